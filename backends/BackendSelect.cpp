@@ -1,0 +1,84 @@
+#include <cstdlib>
+#include <iostream>
+
+#include "fe/gdi/Backend.h"
+#include "gl/GlBackend.h"
+#include "vulkan/VulkanBackend.h"
+
+namespace fe::gdi {
+
+const std::vector<std::string>& backendNames() {
+    static const std::vector<std::string> names = {"vulkan", "gl-egl", "gl-osmesa"};
+    return names;
+}
+
+std::string validBackendList() { return "auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw"; }
+
+BackendProbe probeBackend(const std::string& name, bool validation) {
+    BackendProbe p;
+    p.name = name;
+    try {
+        if (name == "vulkan")
+            p.device = vk::createVulkanDevice(validation);
+        else if (name == "gl-egl")
+            p.device = gl::createGlDevice(gl::PlatformKind::Egl, validation);
+        else if (name == "gl-osmesa")
+            p.device = gl::createGlDevice(gl::PlatformKind::OSMesa, validation);
+        else if (name == "gl-glfw")
+            p.device = gl::createGlDevice(gl::PlatformKind::Glfw, validation);
+        else
+            throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
+        p.available = true;
+    } catch (const std::exception& e) {
+        p.reason = e.what();
+    }
+    return p;
+}
+
+static std::vector<std::string> candidates(const std::string& name) {
+    if (name == "auto") return backendNames();
+    if (name == "gl") return {"gl-egl", "gl-osmesa"};
+    if (name == "vulkan" || name == "gl-egl" || name == "gl-osmesa" || name == "gl-glfw") return {name};
+    throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
+}
+
+std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
+    std::string name = desc.backend;
+    if (name.empty() || name == "auto") {
+        if (const char* env = std::getenv("FE_BACKEND"); env && *env) name = env;
+    }
+    if (name.empty()) name = "auto";
+    std::vector<std::string> list = candidates(name);
+    std::string failures;
+    for (const std::string& c : list) {
+        BackendProbe p = probeBackend(c, desc.validation);
+        if (p.available) {
+            if (desc.verbose && list.size() > 1)
+                std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
+            return std::move(p.device);
+        }
+        failures += "\n  " + c + " unavailable: " + p.reason;
+    }
+    throw Error("no backend could start for '" + name + "':" + failures);
+}
+
+std::vector<std::string> expandBackendList(const std::string& nameOrAll) {
+    if (nameOrAll == "all") return backendNames();
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start <= nameOrAll.size()) {
+        size_t comma = nameOrAll.find(',', start);
+        std::string item = nameOrAll.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (item == "auto" || item == "gl") {
+            for (auto& c : candidates(item)) out.push_back(c);
+        } else {
+            candidates(item);  // throws for unknown names
+            out.push_back(item);
+        }
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    return out;
+}
+
+}  // namespace fe::gdi

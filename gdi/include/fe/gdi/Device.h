@@ -1,0 +1,409 @@
+// Fools Engine graphics device interface (layers 1-4): the whole device API in one header.
+//
+// Usage
+// -----
+//   auto device = fe::gdi::createDevice({.backend = "auto"});     // Backend.h
+//   auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("tri.vert")});
+//   auto target = device->createTexture({.format = Format::RGBA8, .width = 64, .height = 64,
+//                                         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+//   auto pipe = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+//                                               .colorFormats = {Format::RGBA8}});
+//   auto cmd = device->createCommandList();
+//   cmd->beginRenderPass({.colors = {{.texture = target, .clear = {0, 0, 0, 1}}}});
+//   cmd->setPipeline(pipe);
+//   cmd->draw(3);
+//   cmd->endRenderPass();
+//   device->wait(device->submit(*cmd));
+//   fe::gdi::Image img = device->readTexture(target);
+//
+// Conventions (identical on every backend, so images match pixel for pixel):
+//  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
+//  - Image rows are stored top to bottom; texture coordinate (0,0) is the first texel in memory.
+//  - Counter-clockwise in framebuffer coordinates (y down) is FrontFace::CounterClockwise.
+//  - Resource bindings are flat slots: `layout(binding = N)` in GLSL, one namespace per pipeline.
+//  - Errors (invalid descriptions, unsupported formats, missing bindings, backend failures)
+//    throw fe::gdi::Error with a message saying what was wrong; nothing is silently ignored.
+//  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Format.h"
+#include "fe/gdi/Image.h"
+
+namespace fe::gdi {
+
+// ---------------------------------------------------------------------------------------------
+// Errors and handles
+// ---------------------------------------------------------------------------------------------
+struct Error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+template <class Tag>
+struct Handle {
+    uint32_t id = 0;
+    explicit operator bool() const { return id != 0; }
+    friend bool operator==(Handle a, Handle b) { return a.id == b.id; }
+};
+using BufferHandle = Handle<struct BufferTag>;
+using TextureHandle = Handle<struct TextureTag>;
+using SamplerHandle = Handle<struct SamplerTag>;
+using ShaderHandle = Handle<struct ShaderTag>;
+using PipelineHandle = Handle<struct PipelineTag>;
+using TimerHandle = Handle<struct TimerTag>;
+
+template <class E>
+constexpr E operator|(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
+    return E(uint32_t(a) | uint32_t(b));
+}
+template <class E>
+constexpr bool any(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
+    return (uint32_t(a) & uint32_t(b)) != 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Buffers
+// ---------------------------------------------------------------------------------------------
+enum class BufferUsage : uint32_t {
+    None = 0,
+    Vertex = 1 << 0,
+    Index = 1 << 1,
+    Uniform = 1 << 2,
+    Storage = 1 << 3,
+    CopySrc = 1 << 4,
+    CopyDst = 1 << 5,
+    FlagsMarker = 0
+};
+
+enum class MemoryAccess : uint8_t {
+    GpuOnly,   // written by writeBuffer (staged) or by the GPU
+    Upload,    // CPU-writable, read by the GPU (per-frame constants)
+    Readback,  // GPU-written, read by the CPU
+};
+
+struct BufferDesc {
+    uint64_t size = 0;
+    BufferUsage usage = BufferUsage::Vertex | BufferUsage::Index | BufferUsage::Uniform |
+                        BufferUsage::Storage | BufferUsage::CopySrc | BufferUsage::CopyDst;
+    MemoryAccess access = MemoryAccess::GpuOnly;
+    const char* debugName = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Textures and samplers
+// ---------------------------------------------------------------------------------------------
+enum class TextureUsage : uint32_t {
+    None = 0,
+    Sampled = 1 << 0,
+    RenderTarget = 1 << 1,  // colour or depth attachment, by format
+    Storage = 1 << 2,
+    CopySrc = 1 << 3,
+    CopyDst = 1 << 4,
+    FlagsMarker = 0
+};
+
+struct TextureDesc {
+    Format format = Format::RGBA8;
+    uint32_t width = 1;
+    uint32_t height = 1;
+    uint32_t mipLevels = 1;
+    TextureUsage usage = TextureUsage::Sampled | TextureUsage::CopyDst | TextureUsage::CopySrc;
+    const char* debugName = nullptr;
+};
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class MipFilter : uint8_t { None, Nearest, Linear };
+enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge };
+
+struct SamplerDesc {
+    Filter minFilter = Filter::Linear;
+    Filter magFilter = Filter::Linear;
+    MipFilter mipFilter = MipFilter::None;
+    AddressMode addressU = AddressMode::Repeat;
+    AddressMode addressV = AddressMode::Repeat;
+    float maxAnisotropy = 1.0f;
+    const char* debugName = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Shaders and pipelines
+// ---------------------------------------------------------------------------------------------
+enum class ShaderStage : uint32_t {
+    None = 0,
+    Vertex = 1 << 0,
+    Fragment = 1 << 1,
+    Compute = 1 << 2,
+    AllGraphics = Vertex | Fragment,
+    All = Vertex | Fragment | Compute,
+    FlagsMarker = 0
+};
+
+// SPIR-V for both targets, compiled at build time from one GLSL 450 source (see shaders/).
+struct ShaderBinary {
+    const char* name = "";
+    std::span<const uint32_t> vulkan;  // glslang -V
+    std::span<const uint32_t> opengl;  // glslang -G, loaded through ARB_gl_spirv
+};
+
+struct ShaderDesc {
+    ShaderStage stage = ShaderStage::None;
+    ShaderBinary binary;
+    const char* entryPoint = "main";
+};
+
+enum class BindingType : uint8_t { UniformBuffer, StorageBuffer, SampledTexture, StorageTexture };
+
+struct BindingSlot {
+    uint32_t slot = 0;  // `layout(binding = slot)`
+    BindingType type = BindingType::UniformBuffer;
+    ShaderStage stages = ShaderStage::All;
+};
+
+struct VertexAttribute {
+    uint32_t location = 0;
+    VertexFormat format = VertexFormat::Float3;
+    uint32_t offset = 0;
+};
+
+struct VertexBufferLayout {
+    uint32_t stride = 0;
+    bool perInstance = false;
+    std::vector<VertexAttribute> attributes;
+};
+
+enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, LineStrip, PointList };
+enum class CullMode : uint8_t { None, Front, Back };
+enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
+enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
+enum class StencilOp : uint8_t { Keep, Zero, Replace, IncrementClamp, DecrementClamp, Invert, IncrementWrap, DecrementWrap };
+enum class BlendFactor : uint8_t {
+    Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
+    SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, ConstantColor, OneMinusConstantColor
+};
+enum class BlendOp : uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
+enum class ColorMask : uint8_t { None = 0, R = 1, G = 2, B = 4, A = 8, All = 15, FlagsMarker = 0 };
+
+struct RasterState {
+    CullMode cullMode = CullMode::None;
+    FrontFace frontFace = FrontFace::CounterClockwise;
+};
+
+struct StencilFaceState {
+    StencilOp failOp = StencilOp::Keep;
+    StencilOp depthFailOp = StencilOp::Keep;
+    StencilOp passOp = StencilOp::Keep;
+    CompareOp compare = CompareOp::Always;
+};
+
+struct DepthStencilState {
+    bool depthTest = false;
+    bool depthWrite = false;
+    CompareOp depthCompare = CompareOp::Less;
+    bool stencilTest = false;
+    StencilFaceState front;
+    StencilFaceState back;
+    uint8_t stencilReadMask = 0xff;
+    uint8_t stencilWriteMask = 0xff;
+    uint8_t stencilReference = 0;
+};
+
+struct BlendTargetState {
+    bool enable = false;
+    BlendFactor srcColor = BlendFactor::One;
+    BlendFactor dstColor = BlendFactor::Zero;
+    BlendOp colorOp = BlendOp::Add;
+    BlendFactor srcAlpha = BlendFactor::One;
+    BlendFactor dstAlpha = BlendFactor::Zero;
+    BlendOp alphaOp = BlendOp::Add;
+    ColorMask writeMask = ColorMask::All;
+};
+
+struct GraphicsPipelineDesc {
+    ShaderHandle vertexShader;
+    ShaderHandle fragmentShader;  // may be null for depth-only passes
+    std::vector<VertexBufferLayout> vertexBuffers;
+    PrimitiveTopology topology = PrimitiveTopology::TriangleList;
+    RasterState raster;
+    DepthStencilState depthStencil;
+    std::vector<BlendTargetState> blend;  // one per colour target; missing entries: no blending
+    float blendConstant[4] = {0, 0, 0, 0};
+    std::vector<Format> colorFormats;
+    Format depthFormat = Format::Undefined;
+    std::vector<BindingSlot> bindings;
+    const char* debugName = nullptr;
+};
+
+struct ComputePipelineDesc {
+    ShaderHandle computeShader;
+    std::vector<BindingSlot> bindings;
+    const char* debugName = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Render passes
+// ---------------------------------------------------------------------------------------------
+enum class LoadOp : uint8_t { Clear, Load, DontCare };
+enum class StoreOp : uint8_t { Store, DontCare };
+
+struct ColorAttachment {
+    TextureHandle texture;
+    uint32_t mipLevel = 0;
+    LoadOp load = LoadOp::Clear;
+    StoreOp store = StoreOp::Store;
+    float clear[4] = {0, 0, 0, 0};
+};
+
+struct DepthAttachment {
+    TextureHandle texture;  // null: no depth attachment
+    LoadOp load = LoadOp::Clear;
+    StoreOp store = StoreOp::Store;
+    float clearDepth = 1.0f;
+    uint8_t clearStencil = 0;
+};
+
+struct RenderPassDesc {
+    std::vector<ColorAttachment> colors;
+    DepthAttachment depth;
+    const char* debugName = nullptr;
+};
+
+struct Viewport {
+    float x = 0, y = 0, width = 0, height = 0, minDepth = 0, maxDepth = 1;
+};
+struct Rect {
+    int32_t x = 0, y = 0;
+    uint32_t width = 0, height = 0;
+};
+
+enum class IndexType : uint8_t { U16, U32 };
+
+// ---------------------------------------------------------------------------------------------
+// Command recording
+// ---------------------------------------------------------------------------------------------
+// A CommandList is recorded on one thread and submitted with Device::submit. Each recording
+// starts with begin() (implicit on first use after submit). Synchronisation between passes,
+// dispatches and copies is the backend's job: the caller never writes a barrier.
+class CommandList {
+public:
+    virtual ~CommandList() = default;
+
+    virtual void beginRenderPass(const RenderPassDesc& desc) = 0;
+    virtual void endRenderPass() = 0;
+
+    virtual void setPipeline(PipelineHandle pipeline) = 0;
+    virtual void setViewport(const Viewport& viewport) = 0;  // default: whole render area
+    virtual void setScissor(const Rect& rect) = 0;           // default: whole render area
+    virtual void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset = 0) = 0;
+    virtual void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
+
+    // Resource bindings, by slot (`layout(binding = slot)`). size 0 means "to the end".
+    virtual void setUniformBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
+    virtual void setStorageBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
+    virtual void setTexture(uint32_t slot, TextureHandle texture, SamplerHandle sampler) = 0;
+    virtual void setStorageTexture(uint32_t slot, TextureHandle texture, uint32_t mipLevel = 0) = 0;
+
+    virtual void draw(uint32_t vertexCount, uint32_t instanceCount = 1, uint32_t firstVertex = 0,
+                      uint32_t firstInstance = 0) = 0;
+    virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
+                             int32_t baseVertex = 0, uint32_t firstInstance = 0) = 0;
+    virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
+
+    virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
+                            uint64_t size) = 0;
+    // Whole-texture copies of one mip level; formats and sizes must match.
+    virtual void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel = 0) = 0;
+    // Tightly packed rows, top to bottom.
+    virtual void copyBufferToTexture(TextureHandle dst, uint32_t mipLevel, BufferHandle src, uint64_t srcOffset) = 0;
+    virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, uint32_t mipLevel) = 0;
+
+    virtual void beginTimer(TimerHandle timer) = 0;
+    virtual void endTimer(TimerHandle timer) = 0;
+    virtual void pushDebugGroup(const char* name) = 0;
+    virtual void popDebugGroup() = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Device
+// ---------------------------------------------------------------------------------------------
+struct DeviceLimits {
+    uint32_t maxTextureSize2D = 0;
+    uint32_t maxColorAttachments = 0;
+    uint32_t maxComputeWorkGroupInvocations = 0;
+    uint64_t maxUniformBufferRange = 0;
+    uint64_t maxStorageBufferRange = 0;
+    uint32_t uniformBufferOffsetAlignment = 0;
+    uint32_t storageBufferOffsetAlignment = 0;
+};
+
+struct DeviceFeatures {
+    bool timestamps = false;
+    bool computeShaders = false;
+    bool debugLabels = false;
+    bool validation = false;  // Khronos validation layer / KHR_debug active
+};
+
+struct DeviceInfo {
+    std::string backend;      // "vulkan", "gl-egl", "gl-osmesa", "gl-glfw"
+    std::string deviceName;   // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string apiVersion;   // e.g. "Vulkan 1.3.230" or "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
+    std::string driverInfo;
+    bool softwareRasterizer = false;
+    DeviceLimits limits;
+    DeviceFeatures features;
+};
+
+using FenceValue = uint64_t;
+
+class Device {
+public:
+    virtual ~Device() = default;
+
+    virtual const DeviceInfo& info() const = 0;
+    virtual bool supportsFormat(Format format, TextureUsage usage) const = 0;
+
+    virtual BufferHandle createBuffer(const BufferDesc& desc, const void* initialData = nullptr) = 0;
+    virtual TextureHandle createTexture(const TextureDesc& desc) = 0;
+    virtual SamplerHandle createSampler(const SamplerDesc& desc) = 0;
+    virtual ShaderHandle createShader(const ShaderDesc& desc) = 0;
+    virtual PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc) = 0;
+    virtual PipelineHandle createComputePipeline(const ComputePipelineDesc& desc) = 0;
+    virtual TimerHandle createTimer() = 0;
+
+    virtual void destroy(BufferHandle) = 0;
+    virtual void destroy(TextureHandle) = 0;
+    virtual void destroy(SamplerHandle) = 0;
+    virtual void destroy(ShaderHandle) = 0;
+    virtual void destroy(PipelineHandle) = 0;
+    virtual void destroy(TimerHandle) = 0;
+
+    virtual const BufferDesc& desc(BufferHandle) const = 0;
+    virtual const TextureDesc& desc(TextureHandle) const = 0;
+
+    // Blocking transfers: they wait for the GPU. Use command lists for work inside a frame.
+    virtual void writeBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) = 0;
+    // Tightly packed rows of the mip level, top to bottom, in the texture's format.
+    virtual void writeTexture(TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) = 0;
+    virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
+    virtual Image readTexture(TextureHandle texture, uint32_t mipLevel = 0) = 0;
+
+    virtual std::unique_ptr<CommandList> createCommandList() = 0;
+    virtual FenceValue submit(CommandList& commands) = 0;
+    virtual void wait(FenceValue fence) = 0;
+    virtual void waitIdle() = 0;
+
+    // GPU time between beginTimer and endTimer of the last submitted use, once it has completed.
+    virtual std::optional<double> timerNanoseconds(TimerHandle timer) = 0;
+
+    // Messages of severity "error" from the validation layer or the GL debug output so far.
+    virtual uint32_t validationErrorCount() const = 0;
+};
+
+}  // namespace fe::gdi

@@ -1,0 +1,63 @@
+// Layer 1 (Primitives): pixel and vertex formats, shared by every backend.
+#pragma once
+#include <cstdint>
+#include <string_view>
+
+namespace fe::gdi {
+
+enum class Format : uint8_t {
+    Undefined,
+    RGBA8,       // unorm
+    RGBA8_SRGB,  // unorm, sRGB-encoded: decoded on sample, encoded on write
+    RGBA16F,
+    RG16F,
+    R16F,
+    RGBA32F,
+    RG32F,
+    R32F,
+    R32U,
+    R11G11B10F,  // packed unsigned float, no alpha
+    D32F,
+    D24S8,
+    Count
+};
+
+struct FormatInfo {
+    std::string_view name;
+    uint32_t bytesPerPixel = 0;
+    uint32_t channels = 0;  // colour channels stored (0 for depth)
+    bool isFloat = false;
+    bool isSrgb = false;
+    bool isInteger = false;
+    bool hasDepth = false;
+    bool hasStencil = false;
+};
+
+const FormatInfo& formatInfo(Format f);
+inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth; }
+// Parses the names printed by formatInfo (case-sensitive); Undefined when unknown.
+Format formatFromName(std::string_view name);
+
+enum class VertexFormat : uint8_t {
+    Float,
+    Float2,
+    Float3,
+    Float4,
+    Half2,
+    Half4,
+    UNorm8x4,
+    SNorm8x4,
+    UNorm16x2,
+    SNorm16x2,
+    UInt32,  // integer attribute (uint in the shader)
+    Count
+};
+
+struct VertexFormatInfo {
+    std::string_view name;
+    uint32_t bytes = 0;
+    uint32_t components = 0;
+};
+const VertexFormatInfo& vertexFormatInfo(VertexFormat f);
+
+}  // namespace fe::gdi

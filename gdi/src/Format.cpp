@@ -1,0 +1,49 @@
+#include "fe/gdi/Format.h"
+
+namespace fe::gdi {
+
+namespace {
+// Indexed by Format; order must follow the enum.
+const FormatInfo kFormats[] = {
+    {"Undefined", 0, 0},
+    {"RGBA8", 4, 4},
+    {"RGBA8_SRGB", 4, 4, false, true},
+    {"RGBA16F", 8, 4, true},
+    {"RG16F", 4, 2, true},
+    {"R16F", 2, 1, true},
+    {"RGBA32F", 16, 4, true},
+    {"RG32F", 8, 2, true},
+    {"R32F", 4, 1, true},
+    {"R32U", 4, 1, false, false, true},
+    {"R11G11B10F", 4, 3, true},
+    {"D32F", 4, 0, true, false, false, true, false},
+    {"D24S8", 4, 0, false, false, false, true, true},
+};
+static_assert(sizeof(kFormats) / sizeof(kFormats[0]) == size_t(Format::Count));
+
+const VertexFormatInfo kVertexFormats[] = {
+    {"Float", 4, 1},     {"Float2", 8, 2},    {"Float3", 12, 3},    {"Float4", 16, 4},
+    {"Half2", 4, 2},     {"Half4", 8, 4},     {"UNorm8x4", 4, 4},   {"SNorm8x4", 4, 4},
+    {"UNorm16x2", 4, 2}, {"SNorm16x2", 4, 2}, {"UInt32", 4, 1},
+};
+static_assert(sizeof(kVertexFormats) / sizeof(kVertexFormats[0]) == size_t(VertexFormat::Count));
+}  // namespace
+
+const FormatInfo& formatInfo(Format f) {
+    size_t i = size_t(f);
+    return i < size_t(Format::Count) ? kFormats[i] : kFormats[0];
+}
+
+Format formatFromName(std::string_view name) {
+    for (size_t i = 1; i < size_t(Format::Count); ++i)
+        if (kFormats[i].name == name) return Format(i);
+    return Format::Undefined;
+}
+
+const VertexFormatInfo& vertexFormatInfo(VertexFormat f) {
+    size_t i = size_t(f);
+    static const VertexFormatInfo invalid{"Invalid", 0, 0};
+    return i < size_t(VertexFormat::Count) ? kVertexFormats[i] : invalid;
+}
+
+}  // namespace fe::gdi
