@@ -1,4 +1,5 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 #include "fe_common.glsl"
 // One RGB triangle from gl_VertexIndex: no vertex buffer needed.
 layout(location = 0) out vec3 vColor;

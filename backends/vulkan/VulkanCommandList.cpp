@@ -1,0 +1,389 @@
+#include "VulkanCommandList.h"
+
+#include <algorithm>
+#include <string>
+
+#include "fe/gdi/Validation.h"
+
+namespace fe::vk {
+
+namespace {
+VkAttachmentLoadOp toLoad(gdi::LoadOp op) {
+    switch (op) {
+        case gdi::LoadOp::Load: return VK_ATTACHMENT_LOAD_OP_LOAD;
+        case gdi::LoadOp::DontCare: return VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        default: return VK_ATTACHMENT_LOAD_OP_CLEAR;
+    }
+}
+VkAttachmentStoreOp toStore(gdi::StoreOp op) {
+    return op == gdi::StoreOp::DontCare ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+}
+}  // namespace
+
+VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pci.queueFamilyIndex = dev_.queueFamily();
+    check(vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    check(vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_), "vkAllocateCommandBuffers");
+}
+
+VulkanCommandList::~VulkanCommandList() {
+    if (lastSubmit_) dev_.wait(lastSubmit_);
+    vkDestroyCommandPool(dev_.vkDevice(), pool_, nullptr);
+}
+
+void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
+    VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &mb, 0,
+                         nullptr, 0, nullptr);
+}
+
+void VulkanCommandList::ensureRecording() {
+    if (recording_) return;
+    if (lastSubmit_) dev_.wait(lastSubmit_);  // the buffer may still be executing
+    check(vkResetCommandPool(dev_.vkDevice(), pool_, 0), "vkResetCommandPool");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check(vkBeginCommandBuffer(cb_, &bi), "vkBeginCommandBuffer");
+    recording_ = true;
+    inPass_ = false;
+    pipeline_ = nullptr;
+    boundSlots_ = 0;
+    debugDepth_ = 0;
+    written_ = true;  // order after earlier submissions
+}
+
+VkCommandBuffer VulkanCommandList::finish() {
+    ensureRecording();
+    if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
+    if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    barrierIfWritten();  // make results visible to later submissions and transfers
+    check(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
+    return cb_;
+}
+
+void VulkanCommandList::outsidePass(const char* what) {
+    ensureRecording();
+    if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
+}
+
+void VulkanCommandList::barrierIfWritten() {
+    if (!written_) return;
+    fullBarrier(cb_);
+    written_ = false;
+}
+
+void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    outsidePass("beginRenderPass");
+    std::vector<gdi::validate::AttachmentInfo> infos;
+    std::vector<Texture*> colorTex;
+    for (const auto& c : desc.colors) {
+        Texture& t = dev_.texture(c.texture);
+        if (c.mipLevel >= t.desc.mipLevels) throw gdi::Error("beginRenderPass: attachment mip level out of range");
+        infos.push_back({t.desc.format, std::max(1u, t.desc.width >> c.mipLevel), std::max(1u, t.desc.height >> c.mipLevel),
+                         t.desc.usage});
+        colorTex.push_back(&t);
+    }
+    Texture* depthTex = desc.depth.texture ? &dev_.texture(desc.depth.texture) : nullptr;
+    gdi::validate::AttachmentInfo depthInfo{};
+    if (depthTex) depthInfo = {depthTex->desc.format, depthTex->desc.width, depthTex->desc.height, depthTex->desc.usage};
+    renderArea_ = gdi::validate::renderPass(desc, infos, depthTex ? &depthInfo : nullptr, dev_.info().limits);
+
+    barrierIfWritten();
+    std::vector<VkRenderingAttachmentInfo> colors(desc.colors.size());
+    for (size_t i = 0; i < desc.colors.size(); ++i) {
+        const auto& c = desc.colors[i];
+        auto& a = colors[i];
+        a = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = colorTex[i]->mipViews[c.mipLevel];
+        a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+        a.loadOp = toLoad(c.load);
+        a.storeOp = toStore(c.store);
+        if (gdi::formatInfo(colorTex[i]->desc.format).isInteger)
+            for (int k = 0; k < 4; ++k) a.clearValue.color.uint32[k] = uint32_t(c.clear[k]);
+        else
+            for (int k = 0; k < 4; ++k) a.clearValue.color.float32[k] = c.clear[k];
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    VkRenderingAttachmentInfo stencil{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    if (depthTex) {
+        depth.imageView = depthTex->mipViews[0];
+        depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+        depth.loadOp = toLoad(desc.depth.load);
+        depth.storeOp = toStore(desc.depth.store);
+        depth.clearValue.depthStencil = {desc.depth.clearDepth, desc.depth.clearStencil};
+        ri.pDepthAttachment = &depth;
+        if (gdi::formatInfo(depthTex->desc.format).hasStencil) {
+            stencil = depth;
+            ri.pStencilAttachment = &stencil;
+        }
+    }
+    ri.renderArea = {{0, 0}, {renderArea_.width, renderArea_.height}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = uint32_t(colors.size());
+    ri.pColorAttachments = colors.data();
+    if (desc.debugName) pushDebugGroup(desc.debugName);
+    vkCmdBeginRendering(cb_, &ri);
+    inPass_ = true;
+    passHasLabel_ = desc.debugName != nullptr;
+    setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
+    setScissor(renderArea_);
+}
+
+void VulkanCommandList::endRenderPass() {
+    if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
+    vkCmdEndRendering(cb_);
+    inPass_ = false;
+    written_ = true;
+    if (passHasLabel_) popDebugGroup();
+}
+
+void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
+    ensureRecording();
+    Pipeline& p = dev_.pipeline(h);
+    vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
+    if (pipeline_ != &p) bindingsDirty_ = true;
+    pipeline_ = &p;
+}
+
+void VulkanCommandList::setViewport(const gdi::Viewport& v) {
+    ensureRecording();
+    VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
+    vkCmdSetViewport(cb_, 0, 1, &vp);
+}
+
+void VulkanCommandList::setScissor(const gdi::Rect& r) {
+    ensureRecording();
+    VkRect2D rect{{std::max(0, r.x), std::max(0, r.y)}, {r.width, r.height}};
+    vkCmdSetScissor(cb_, 0, 1, &rect);
+}
+
+void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
+    ensureRecording();
+    Buffer& b = dev_.buffer(h);
+    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
+    VkDeviceSize off = offset;
+    vkCmdBindVertexBuffers(cb_, index, 1, &b.buffer, &off);
+}
+
+void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
+    ensureRecording();
+    Buffer& b = dev_.buffer(h);
+    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
+    vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+}
+
+void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    ensureRecording();
+    if (slot >= 64) throw gdi::Error("setUniformBuffer: slot " + std::to_string(slot) + " out of range");
+    Buffer& b = dev_.buffer(h);
+    if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
+    gdi::validate::bufferRange(b.desc, offset, size, "setUniformBuffer");
+    bindings_[slot] = {gdi::BindingType::UniformBuffer, {b.buffer, offset, size}, {}};
+    boundSlots_ |= uint64_t(1) << slot;
+    bindingsDirty_ = true;
+}
+
+void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    ensureRecording();
+    if (slot >= 64) throw gdi::Error("setStorageBuffer: slot " + std::to_string(slot) + " out of range");
+    Buffer& b = dev_.buffer(h);
+    if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
+    gdi::validate::bufferRange(b.desc, offset, size, "setStorageBuffer");
+    bindings_[slot] = {gdi::BindingType::StorageBuffer, {b.buffer, offset, size}, {}};
+    boundSlots_ |= uint64_t(1) << slot;
+    bindingsDirty_ = true;
+}
+
+void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
+    ensureRecording();
+    if (slot >= 64) throw gdi::Error("setTexture: slot " + std::to_string(slot) + " out of range");
+    Texture& t = dev_.texture(th);
+    Sampler& s = dev_.sampler(sh);
+    if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
+        throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
+    bindings_[slot] = {gdi::BindingType::SampledTexture, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    boundSlots_ |= uint64_t(1) << slot;
+    bindingsDirty_ = true;
+}
+
+void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
+    ensureRecording();
+    if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
+    Texture& t = dev_.texture(th);
+    if (!any(t.desc.usage, gdi::TextureUsage::Storage))
+        throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
+    if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
+    bindings_[slot] = {gdi::BindingType::StorageTexture, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
+    boundSlots_ |= uint64_t(1) << slot;
+    bindingsDirty_ = true;
+}
+
+void VulkanCommandList::flushBindings() {
+    if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
+    gdi::validate::missingBindings(pipeline_->requiredSlots, boundSlots_, pipeline_->name.c_str());
+    if (!bindingsDirty_ || pipeline_->bindings.empty()) return;
+    VkWriteDescriptorSet writes[64];
+    uint32_t n = 0;
+    for (const gdi::BindingSlot& s : pipeline_->bindings) {
+        const Binding& b = bindings_[s.slot];
+        if (b.type != s.type)
+            throw gdi::Error("pipeline '" + pipeline_->name + "': slot " + std::to_string(s.slot) +
+                             " is bound with the wrong kind of resource");
+        VkWriteDescriptorSet& w = writes[n++];
+        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstBinding = s.slot;
+        w.descriptorCount = 1;
+        switch (s.type) {
+            case gdi::BindingType::UniformBuffer:
+                w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+                w.pBufferInfo = &b.buffer;
+                break;
+            case gdi::BindingType::StorageBuffer:
+                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+                w.pBufferInfo = &b.buffer;
+                break;
+            case gdi::BindingType::SampledTexture:
+                w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+                w.pImageInfo = &b.image;
+                break;
+            case gdi::BindingType::StorageTexture:
+                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+                w.pImageInfo = &b.image;
+                break;
+        }
+    }
+    dev_.cmdPushDescriptorSet(cb_, pipeline_->bindPoint, pipeline_->layout, 0, n, writes);
+    bindingsDirty_ = false;
+}
+
+void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
+    if (!inPass_) throw gdi::Error("draw outside a render pass");
+    if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_GRAPHICS)
+        throw gdi::Error("draw with compute pipeline '" + pipeline_->name + "'");
+    flushBindings();
+    vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
+}
+
+void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                                    int32_t baseVertex, uint32_t firstInstance) {
+    if (!inPass_) throw gdi::Error("drawIndexed outside a render pass");
+    if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_GRAPHICS)
+        throw gdi::Error("drawIndexed with compute pipeline '" + pipeline_->name + "'");
+    flushBindings();
+    vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
+}
+
+void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
+    outsidePass("dispatch");
+    if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
+        throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->name + "'");
+    flushBindings();
+    barrierIfWritten();
+    vkCmdDispatch(cb_, x, y, z);
+    written_ = true;
+}
+
+void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
+                                   uint64_t size) {
+    outsidePass("copyBuffer");
+    Buffer& d = dev_.buffer(dst);
+    Buffer& s = dev_.buffer(src);
+    gdi::validate::bufferRange(d.desc, dstOffset, size, "copyBuffer destination");
+    gdi::validate::bufferRange(s.desc, srcOffset, size, "copyBuffer source");
+    if (size == 0) return;
+    barrierIfWritten();
+    VkBufferCopy r{srcOffset, dstOffset, size};
+    vkCmdCopyBuffer(cb_, s.buffer, d.buffer, 1, &r);
+    written_ = true;
+}
+
+void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
+    outsidePass("copyTexture");
+    Texture& d = dev_.texture(dst);
+    Texture& s = dev_.texture(src);
+    if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height)
+        throw gdi::Error("copyTexture: '" + s.name + "' and '" + d.name + "' differ in format or size");
+    if (mip >= d.desc.mipLevels || mip >= s.desc.mipLevels) throw gdi::Error("copyTexture: mip level out of range");
+    barrierIfWritten();
+    VkImageCopy r{};
+    r.srcSubresource = r.dstSubresource = {aspectOf(d.desc.format), mip, 0, 1};
+    r.extent = {std::max(1u, d.desc.width >> mip), std::max(1u, d.desc.height >> mip), 1};
+    vkCmdCopyImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+    written_ = true;
+}
+
+void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, uint32_t mip, gdi::BufferHandle src, uint64_t srcOffset) {
+    outsidePass("copyBufferToTexture");
+    Texture& t = dev_.texture(dst);
+    Buffer& b = dev_.buffer(src);
+    if (mip >= t.desc.mipLevels) throw gdi::Error("copyBufferToTexture: mip level out of range");
+    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyBufferToTexture: depth formats are not supported");
+    const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
+    gdi::validate::bufferRange(b.desc, srcOffset, uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel,
+                               "copyBufferToTexture source");
+    barrierIfWritten();
+    VkBufferImageCopy r{};
+    r.bufferOffset = srcOffset;
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
+    r.imageExtent = {w, h, 1};
+    vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+    written_ = true;
+}
+
+void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, uint32_t mip) {
+    outsidePass("copyTextureToBuffer");
+    Texture& t = dev_.texture(src);
+    Buffer& b = dev_.buffer(dst);
+    if (mip >= t.desc.mipLevels) throw gdi::Error("copyTextureToBuffer: mip level out of range");
+    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyTextureToBuffer: depth formats are not supported");
+    const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
+    gdi::validate::bufferRange(b.desc, dstOffset, uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel,
+                               "copyTextureToBuffer destination");
+    barrierIfWritten();
+    VkBufferImageCopy r{};
+    r.bufferOffset = dstOffset;
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
+    r.imageExtent = {w, h, 1};
+    vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
+    written_ = true;
+}
+
+void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
+    outsidePass("beginTimer");  // the query reset below must be outside rendering
+    Timer& t = dev_.timer(h);
+    vkCmdResetQueryPool(cb_, dev_.queryPool(), t.firstQuery, 2);
+    vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery);
+}
+
+void VulkanCommandList::endTimer(gdi::TimerHandle h) {
+    ensureRecording();
+    Timer& t = dev_.timer(h);
+    vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
+}
+
+void VulkanCommandList::pushDebugGroup(const char* name) {
+    ensureRecording();
+    debugDepth_++;
+    if (!dev_.cmdBeginLabel) return;
+    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+    l.pLabelName = name ? name : "";
+    dev_.cmdBeginLabel(cb_, &l);
+}
+
+void VulkanCommandList::popDebugGroup() {
+    ensureRecording();
+    if (debugDepth_ == 0) throw gdi::Error("popDebugGroup without pushDebugGroup");
+    debugDepth_--;
+    if (dev_.cmdEndLabel) dev_.cmdEndLabel(cb_);
+}
+
+}  // namespace fe::vk

@@ -1,0 +1,451 @@
+// Instance, physical/logical device, queue submission and blocking transfers.
+#include "VulkanDevice.h"
+
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+
+#include "VulkanBackend.h"
+#include "VulkanCommandList.h"
+#include "fe/gdi/Validation.h"
+
+namespace fe::vk {
+
+namespace {
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool hasLayer(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    return std::any_of(layers.begin(), layers.end(), [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasInstanceExtension(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> ext(n);
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, ext.data());
+    return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> ext(n);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, ext.data());
+    return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+std::string versionString(uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+}  // namespace
+
+std::unique_ptr<gdi::Device> createVulkanDevice(bool validation) { return std::make_unique<VulkanDevice>(validation); }
+
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                           VkDebugUtilsMessageTypeFlagsEXT,
+                                                           const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                           void* user) {
+    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+        static_cast<VulkanDevice*>(user)->validationErrors_++;
+        std::cerr << "Vulkan validation error: " << (data && data->pMessage ? data->pMessage : "") << "\n";
+    } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        std::cerr << "Vulkan validation warning: " << (data && data->pMessage ? data->pMessage : "") << "\n";
+    }
+    return VK_FALSE;
+}
+
+VulkanDevice::VulkanDevice(bool validation) {
+    try {
+        createInstance(validation);
+        pickPhysicalDevice();
+        createLogicalDevice();
+        fillInfo();
+    } catch (...) {
+        release();  // the destructor does not run when the constructor throws
+        throw;
+    }
+}
+
+void VulkanDevice::createInstance(bool validation) {
+    uint32_t loaderVersion = 0;
+    if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS || loaderVersion < VK_API_VERSION_1_2)
+        throw gdi::Error("Vulkan: loader reports version " + versionString(loaderVersion) + ", 1.2 or newer is required");
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "fe";
+    app.pEngineName = "Fools Engine";
+    app.apiVersion = VK_API_VERSION_1_3;
+
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        if (!hasLayer(kValidationLayer))
+            throw gdi::Error(
+                "Vulkan: validation requested but VK_LAYER_KHRONOS_validation is not installed (apt-get install "
+                "vulkan-validationlayers)");
+        layers.push_back(kValidationLayer);
+    }
+    debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+    VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    // Performance messages are left out: they flag the GENERAL layout policy on every use.
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+    mci.pfnUserCallback = &VulkanDevice::debugCallback;
+    mci.pUserData = this;
+
+    VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ci.pApplicationInfo = &app;
+    ci.enabledLayerCount = uint32_t(layers.size());
+    ci.ppEnabledLayerNames = layers.data();
+    ci.enabledExtensionCount = uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    if (validation && debugUtils_) ci.pNext = &mci;  // also catches instance creation messages
+    check(vkCreateInstance(&ci, nullptr, &instance_), "vkCreateInstance");
+
+    if (debugUtils_) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (validation && create) check(create(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+        setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+        cmdBeginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+        cmdEndLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+    }
+    info_.features.validation = validation;
+}
+
+void VulkanDevice::pickPhysicalDevice() {
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+    if (n == 0) throw gdi::Error("Vulkan: no physical device (no ICD installed? apt-get install mesa-vulkan-drivers)");
+    std::vector<VkPhysicalDevice> devices(n);
+    vkEnumeratePhysicalDevices(instance_, &n, devices.data());
+    std::string rejected;
+    int bestScore = -1;
+    for (VkPhysicalDevice pd : devices) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pd, &p);
+        std::string why;
+        if (p.apiVersion < VK_API_VERSION_1_3 && !hasDeviceExtension(pd, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
+            why = "no dynamic rendering";
+        if (p.apiVersion < VK_API_VERSION_1_2) why = "Vulkan " + versionString(p.apiVersion) + " < 1.2";
+        if (!hasDeviceExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) why = "no VK_KHR_push_descriptor";
+        uint32_t qn = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
+        std::vector<VkQueueFamilyProperties> qf(qn);
+        vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qf.data());
+        int family = -1;
+        for (uint32_t i = 0; i < qn; ++i)
+            if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+                family = int(i);
+                break;
+            }
+        if (family < 0) why = "no graphics+compute queue";
+        if (!why.empty()) {
+            rejected += std::string("; ") + p.deviceName + ": " + why;
+            continue;
+        }
+        int score = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 4
+                    : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 3
+                    : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU    ? 2
+                                                                             : 1;
+        if (score > bestScore) {
+            bestScore = score;
+            physical_ = pd;
+            props_ = p;
+            queueFamily_ = uint32_t(family);
+        }
+    }
+    if (!physical_) throw gdi::Error("Vulkan: no suitable device" + rejected);
+}
+
+void VulkanDevice::createLogicalDevice() {
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = queueFamily_;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(physical_, &supported);
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    anisotropy_ = supported.samplerAnisotropy;
+    features.features.samplerAnisotropy = supported.samplerAnisotropy;
+    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    features.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    features.features.independentBlend = supported.independentBlend;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    f12.hostQueryReset = VK_TRUE;
+    VkPhysicalDeviceDynamicRenderingFeatures dyn{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+    dyn.dynamicRendering = VK_TRUE;
+    features.pNext = &f12;
+    f12.pNext = &dyn;
+
+    std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (props_.apiVersion < VK_API_VERSION_1_3) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+
+    VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    ci.pNext = &features;
+    ci.queueCreateInfoCount = 1;
+    ci.pQueueCreateInfos = &qci;
+    ci.enabledExtensionCount = uint32_t(extensions.size());
+    ci.ppEnabledExtensionNames = extensions.data();
+    check(vkCreateDevice(physical_, &ci, nullptr, &device_), "vkCreateDevice");
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    cmdPushDescriptorSet =
+        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    if (!cmdPushDescriptorSet) throw gdi::Error("Vulkan: vkCmdPushDescriptorSetKHR not found");
+
+    allocator_ = std::make_unique<MemoryAllocator>(physical_, device_);
+
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pci.queueFamilyIndex = queueFamily_;
+    check(vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_), "vkCreateCommandPool");
+
+    VkQueryPoolCreateInfo qpi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qpi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qpi.queryCount = kMaxTimers * 2;
+    check(vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_), "vkCreateQueryPool");
+    vkResetQueryPool(device_, queryPool_, 0, kMaxTimers * 2);
+    for (uint32_t i = kMaxTimers; i-- > 0;) freeTimerSlots_.push_back(i * 2);
+}
+
+void VulkanDevice::fillInfo() {
+    info_.backend = "vulkan";
+    info_.deviceName = props_.deviceName;
+    info_.apiVersion = "Vulkan " + versionString(props_.apiVersion);
+    info_.driverInfo = "driver version " + std::to_string(props_.driverVersion);
+    info_.softwareRasterizer = props_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    const VkPhysicalDeviceLimits& l = props_.limits;
+    info_.limits.maxTextureSize2D = l.maxImageDimension2D;
+    info_.limits.maxColorAttachments = l.maxColorAttachments;
+    info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
+    info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
+    info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
+    info_.limits.uniformBufferOffsetAlignment = uint32_t(l.minUniformBufferOffsetAlignment);
+    info_.limits.storageBufferOffsetAlignment = uint32_t(l.minStorageBufferOffsetAlignment);
+    uint32_t qn = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, nullptr);
+    std::vector<VkQueueFamilyProperties> qf(qn);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, qf.data());
+    info_.features.timestamps = qf[queueFamily_].timestampValidBits > 0 && l.timestampPeriod > 0;
+    info_.features.computeShaders = true;
+    info_.features.debugLabels = cmdBeginLabel != nullptr;
+}
+
+VulkanDevice::~VulkanDevice() { release(); }
+
+void VulkanDevice::release() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
+        textures_.forEach([&](Texture& t) {
+            for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
+            vkDestroyImageView(device_, t.view, nullptr);
+            vkDestroyImage(device_, t.image, nullptr);
+        });
+        samplers_.forEach([&](Sampler& s) { vkDestroySampler(device_, s.sampler, nullptr); });
+        shaders_.forEach([&](Shader& s) { vkDestroyShaderModule(device_, s.module, nullptr); });
+        pipelines_.forEach([&](Pipeline& p) {
+            vkDestroyPipeline(device_, p.pipeline, nullptr);
+            vkDestroyPipelineLayout(device_, p.layout, nullptr);
+            vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+        });
+        for (auto& s : inFlight_) vkDestroyFence(device_, s.fence, nullptr);
+        for (VkFence f : freeFences_) vkDestroyFence(device_, f, nullptr);
+        if (queryPool_) vkDestroyQueryPool(device_, queryPool_, nullptr);
+        if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, nullptr);
+        allocator_.reset();
+        vkDestroyDevice(device_, nullptr);
+        device_ = VK_NULL_HANDLE;
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+        messenger_ = VK_NULL_HANDLE;
+    }
+    if (instance_) {
+        vkDestroyInstance(instance_, nullptr);
+        instance_ = VK_NULL_HANDLE;
+    }
+}
+
+void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name) {
+    if (!setObjectName_ || !name || !*name) return;
+    VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+    ni.objectType = type;
+    ni.objectHandle = object;
+    ni.pObjectName = name;
+    setObjectName_(device_, &ni);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Submission
+// ---------------------------------------------------------------------------------------------
+std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
+    return std::make_unique<VulkanCommandList>(*this);
+}
+
+gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
+    auto& list = static_cast<VulkanCommandList&>(commands);
+    VkCommandBuffer cb = list.finish();
+    VkFence fence;
+    if (!freeFences_.empty()) {
+        fence = freeFences_.back();
+        freeFences_.pop_back();
+    } else {
+        VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        check(vkCreateFence(device_, &fci, nullptr, &fence), "vkCreateFence");
+    }
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cb;
+    check(vkQueueSubmit(queue_, 1, &si, fence), "vkQueueSubmit");
+    gdi::FenceValue value = nextFence_++;
+    inFlight_.push_back({value, fence});
+    list.submitted(value);
+    return value;
+}
+
+void VulkanDevice::wait(gdi::FenceValue fence) {
+    while (!inFlight_.empty() && inFlight_.front().value <= fence) {
+        Submission s = inFlight_.front();
+        check(vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        vkResetFences(device_, 1, &s.fence);
+        freeFences_.push_back(s.fence);
+        completed_ = s.value;
+        inFlight_.pop_front();
+    }
+    completed_ = std::max(completed_, std::min(fence, nextFence_ - 1));
+}
+
+void VulkanDevice::waitIdle() {
+    wait(nextFence_ - 1);
+    check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+}
+
+void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record) {
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = immediatePool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb;
+    check(vkAllocateCommandBuffers(device_, &ai, &cb), "vkAllocateCommandBuffers");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(cb, &bi);
+    VulkanCommandList::fullBarrier(cb);  // order after everything submitted before
+    record(cb);
+    VulkanCommandList::fullBarrier(cb);
+    vkEndCommandBuffer(cb);
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cb;
+    check(vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
+    waitIdle();
+    vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Blocking transfers
+// ---------------------------------------------------------------------------------------------
+void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* data, uint64_t size) {
+    Buffer& b = buffer(h);
+    gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
+    if (size == 0) return;
+    if (!data) throw gdi::Error("writeBuffer: data is null");
+    if (b.desc.access == gdi::MemoryAccess::Upload && b.memory.mapped) {
+        std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data, size);  // caller owns frame pacing
+        return;
+    }
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    std::memcpy(staging.memory.mapped, data, size);
+    immediate([&](VkCommandBuffer cb) {
+        VkBufferCopy region{0, offset, size};
+        vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
+    });
+    freeBuffer(staging);
+}
+
+void VulkanDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data, uint64_t size) {
+    Texture& t = texture(h);
+    if (mip >= t.desc.mipLevels)
+        throw gdi::Error("writeTexture: mip level " + std::to_string(mip) + " out of range for texture '" + t.name + "'");
+    const uint32_t w = std::max(1u, t.desc.width >> mip), hgt = std::max(1u, t.desc.height >> mip);
+    const uint64_t expected = uint64_t(w) * hgt * gdi::formatInfo(t.desc.format).bytesPerPixel;
+    if (size != expected)
+        throw gdi::Error("writeTexture: texture '" + t.name + "' mip " + std::to_string(mip) + " needs " +
+                         std::to_string(expected) + " bytes, got " + std::to_string(size));
+    if (!data) throw gdi::Error("writeTexture: data is null");
+    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    std::memcpy(staging.memory.mapped, data, size);
+    immediate([&](VkCommandBuffer cb) {
+        VkBufferImageCopy r{};
+        r.imageSubresource = {aspectOf(t.desc.format), mip, 0, 1};
+        r.imageExtent = {w, hgt, 1};
+        vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+    });
+    freeBuffer(staging);
+}
+
+std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    Buffer& b = buffer(h);
+    gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
+    std::vector<uint8_t> out(size);
+    if (size == 0) return out;
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    immediate([&](VkCommandBuffer cb) {
+        VkBufferCopy region{offset, 0, size};
+        vkCmdCopyBuffer(cb, b.buffer, staging.buffer, 1, &region);
+    });
+    std::memcpy(out.data(), staging.memory.mapped, size);
+    freeBuffer(staging);
+    return out;
+}
+
+gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
+    Texture& t = texture(h);
+    if (mip >= t.desc.mipLevels)
+        throw gdi::Error("readTexture: mip level " + std::to_string(mip) + " out of range for texture '" + t.name + "'");
+    gdi::Image img;
+    img.width = std::max(1u, t.desc.width >> mip);
+    img.height = std::max(1u, t.desc.height >> mip);
+    img.format = t.desc.format;
+    const uint64_t size = uint64_t(img.width) * img.height * gdi::formatInfo(t.desc.format).bytesPerPixel;
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    immediate([&](VkCommandBuffer cb) {
+        VkBufferImageCopy r{};
+        // Depth/stencil: copy the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
+        r.imageSubresource = {gdi::isDepthFormat(t.desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                                : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                              mip, 0, 1};
+        r.imageExtent = {img.width, img.height, 1};
+        vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);
+    });
+    img.data.resize(size);
+    std::memcpy(img.data.data(), staging.memory.mapped, size);
+    freeBuffer(staging);
+    return img;
+}
+
+std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
+    Timer& t = timer(h);
+    uint64_t ticks[2];
+    VkResult r = vkGetQueryPoolResults(device_, queryPool_, t.firstQuery, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT);
+    if (r != VK_SUCCESS) return std::nullopt;
+    return double(ticks[1] - ticks[0]) * double(props_.limits.timestampPeriod);
+}
+
+}  // namespace fe::vk

@@ -1,0 +1,185 @@
+// The Vulkan implementation of gdi::Device (layer 3: how gdi objects are represented in Vulkan).
+//
+// Design choices, each for a reason:
+//  - Dynamic rendering (Vulkan 1.3 / VK_KHR_dynamic_rendering): no VkRenderPass/VkFramebuffer
+//    objects to cache; a gdi render pass maps 1:1 onto vkCmdBeginRendering.
+//  - Push descriptors (VK_KHR_push_descriptor): gdi's flat slot bindings are written at draw
+//    time with no descriptor pools or set lifetimes to manage.
+//  - Every image lives in VK_IMAGE_LAYOUT_GENERAL after creation, and hazards between passes,
+//    dispatches and copies are covered by one full memory barrier whenever the previous
+//    command wrote something. Coarse but provably correct; the render graph (layer 6) knows
+//    exact read/write sets and is where finer barriers belong.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "VulkanMemory.h"
+#include "fe/gdi/Device.h"
+#include "fe/gdi/HandlePool.h"
+
+namespace fe::vk {
+
+[[noreturn]] void throwVk(VkResult r, const char* what);
+inline void check(VkResult r, const char* what) {
+    if (r != VK_SUCCESS) throwVk(r, what);
+}
+
+VkFormat toVkFormat(gdi::Format f);
+VkFormat toVkVertexFormat(gdi::VertexFormat f);
+VkImageAspectFlags aspectOf(gdi::Format f);
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    Allocation memory;
+    gdi::BufferDesc desc;
+    std::string name;
+};
+
+struct Texture {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;  // all mips, for sampling
+    std::vector<VkImageView> mipViews;  // one per mip, for attachments and storage
+    Allocation memory;
+    gdi::TextureDesc desc;
+    std::string name;
+};
+
+struct Sampler {
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+
+struct Shader {
+    VkShaderModule module = VK_NULL_HANDLE;
+    gdi::ShaderStage stage = gdi::ShaderStage::None;
+    std::string name;
+    std::string entry;
+};
+
+struct Pipeline {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    std::vector<gdi::BindingSlot> bindings;
+    uint64_t requiredSlots = 0;
+    std::vector<gdi::Format> colorFormats;
+    gdi::Format depthFormat = gdi::Format::Undefined;
+    std::string name;
+};
+
+struct Timer {
+    uint32_t firstQuery = 0;
+};
+
+class VulkanCommandList;
+
+class VulkanDevice final : public gdi::Device {
+public:
+    explicit VulkanDevice(bool validation);
+    ~VulkanDevice() override;
+
+    const gdi::DeviceInfo& info() const override { return info_; }
+    bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
+
+    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, const void* initialData) override;
+    gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
+    gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
+    gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
+    gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
+    gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
+    gdi::TimerHandle createTimer() override;
+
+    void destroy(gdi::BufferHandle) override;
+    void destroy(gdi::TextureHandle) override;
+    void destroy(gdi::SamplerHandle) override;
+    void destroy(gdi::ShaderHandle) override;
+    void destroy(gdi::PipelineHandle) override;
+    void destroy(gdi::TimerHandle) override;
+
+    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
+    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
+
+    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) override;
+    void writeTexture(gdi::TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) override;
+    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    gdi::Image readTexture(gdi::TextureHandle texture, uint32_t mipLevel) override;
+
+    std::unique_ptr<gdi::CommandList> createCommandList() override;
+    gdi::FenceValue submit(gdi::CommandList& commands) override;
+    void wait(gdi::FenceValue fence) override;
+    void waitIdle() override;
+    std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
+    uint32_t validationErrorCount() const override { return validationErrors_; }
+
+    // Internal, for the command list.
+    Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
+    Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
+    Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
+    Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
+    Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
+    VkDevice vkDevice() const { return device_; }
+    VkQueryPool queryPool() const { return queryPool_; }
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+    PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
+    PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+    uint32_t queueFamily() const { return queueFamily_; }
+
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                        VkDebugUtilsMessageTypeFlagsEXT type,
+                                                        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+private:
+    void createInstance(bool validation);
+    void pickPhysicalDevice();
+    void createLogicalDevice();
+    void fillInfo();
+    void setName(VkObjectType type, uint64_t object, const char* name);
+    VkImageView makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount);
+    // Records with `record` into a one-time command buffer, submits it and waits.
+    void immediate(const std::function<void(VkCommandBuffer)>& record);
+    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem);
+    void freeBuffer(Buffer& b);
+    void release();
+
+    gdi::DeviceInfo info_;
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    bool debugUtils_ = false;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties props_{};
+    bool anisotropy_ = false;
+    VkDevice device_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    std::unique_ptr<MemoryAllocator> allocator_;
+    VkCommandPool immediatePool_ = VK_NULL_HANDLE;
+    VkQueryPool queryPool_ = VK_NULL_HANDLE;
+    static constexpr uint32_t kMaxTimers = 512;
+    std::vector<uint32_t> freeTimerSlots_;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+    uint32_t validationErrors_ = 0;
+
+    struct Submission {
+        gdi::FenceValue value;
+        VkFence fence;
+    };
+    std::deque<Submission> inFlight_;
+    std::vector<VkFence> freeFences_;
+    gdi::FenceValue nextFence_ = 1;
+    gdi::FenceValue completed_ = 0;
+
+    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
+    gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
+    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
+    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;
+    gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
+};
+
+}  // namespace fe::vk

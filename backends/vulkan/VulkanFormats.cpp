@@ -1,0 +1,70 @@
+// gdi formats and enums to their Vulkan equivalents.
+#include <string>
+
+#include "VulkanDevice.h"
+
+namespace fe::vk {
+
+void throwVk(VkResult r, const char* what) {
+    const char* name = "unknown error";
+    switch (r) {
+        case VK_ERROR_OUT_OF_HOST_MEMORY: name = "VK_ERROR_OUT_OF_HOST_MEMORY"; break;
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: name = "VK_ERROR_OUT_OF_DEVICE_MEMORY"; break;
+        case VK_ERROR_INITIALIZATION_FAILED: name = "VK_ERROR_INITIALIZATION_FAILED"; break;
+        case VK_ERROR_DEVICE_LOST: name = "VK_ERROR_DEVICE_LOST"; break;
+        case VK_ERROR_LAYER_NOT_PRESENT: name = "VK_ERROR_LAYER_NOT_PRESENT"; break;
+        case VK_ERROR_EXTENSION_NOT_PRESENT: name = "VK_ERROR_EXTENSION_NOT_PRESENT"; break;
+        case VK_ERROR_FEATURE_NOT_PRESENT: name = "VK_ERROR_FEATURE_NOT_PRESENT"; break;
+        case VK_ERROR_INCOMPATIBLE_DRIVER: name = "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan ICD installed?)"; break;
+        case VK_ERROR_FORMAT_NOT_SUPPORTED: name = "VK_ERROR_FORMAT_NOT_SUPPORTED"; break;
+        case VK_ERROR_INVALID_SHADER_NV: name = "VK_ERROR_INVALID_SHADER_NV"; break;
+        case VK_TIMEOUT: name = "VK_TIMEOUT"; break;
+        default: break;
+    }
+    throw gdi::Error(std::string("Vulkan: ") + what + " failed: " + name + " (" + std::to_string(int(r)) + ")");
+}
+
+VkFormat toVkFormat(gdi::Format f) {
+    using F = gdi::Format;
+    switch (f) {
+        case F::RGBA8: return VK_FORMAT_R8G8B8A8_UNORM;
+        case F::RGBA8_SRGB: return VK_FORMAT_R8G8B8A8_SRGB;
+        case F::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case F::RG16F: return VK_FORMAT_R16G16_SFLOAT;
+        case F::R16F: return VK_FORMAT_R16_SFLOAT;
+        case F::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+        case F::RG32F: return VK_FORMAT_R32G32_SFLOAT;
+        case F::R32F: return VK_FORMAT_R32_SFLOAT;
+        case F::R32U: return VK_FORMAT_R32_UINT;
+        case F::R11G11B10F: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+        case F::D32F: return VK_FORMAT_D32_SFLOAT;
+        case F::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
+        default: return VK_FORMAT_UNDEFINED;
+    }
+}
+
+VkFormat toVkVertexFormat(gdi::VertexFormat f) {
+    using V = gdi::VertexFormat;
+    switch (f) {
+        case V::Float: return VK_FORMAT_R32_SFLOAT;
+        case V::Float2: return VK_FORMAT_R32G32_SFLOAT;
+        case V::Float3: return VK_FORMAT_R32G32B32_SFLOAT;
+        case V::Float4: return VK_FORMAT_R32G32B32A32_SFLOAT;
+        case V::Half2: return VK_FORMAT_R16G16_SFLOAT;
+        case V::Half4: return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case V::UNorm8x4: return VK_FORMAT_R8G8B8A8_UNORM;
+        case V::SNorm8x4: return VK_FORMAT_R8G8B8A8_SNORM;
+        case V::UNorm16x2: return VK_FORMAT_R16G16_UNORM;
+        case V::SNorm16x2: return VK_FORMAT_R16G16_SNORM;
+        case V::UInt32: return VK_FORMAT_R32_UINT;
+        default: return VK_FORMAT_UNDEFINED;
+    }
+}
+
+VkImageAspectFlags aspectOf(gdi::Format f) {
+    const auto& fi = gdi::formatInfo(f);
+    if (fi.hasDepth) return VK_IMAGE_ASPECT_DEPTH_BIT | (fi.hasStencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+    return VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+}  // namespace fe::vk

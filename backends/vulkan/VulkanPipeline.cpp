@@ -1,0 +1,262 @@
+// Shader modules and graphics/compute pipelines (dynamic rendering, push-descriptor layouts).
+#include <string>
+
+#include "VulkanDevice.h"
+#include "fe/gdi/Validation.h"
+
+namespace fe::vk {
+
+namespace {
+constexpr uint32_t kSpirvMagic = 0x07230203;
+
+VkShaderStageFlags toStages(gdi::ShaderStage s) {
+    VkShaderStageFlags f = 0;
+    if (any(s, gdi::ShaderStage::Vertex)) f |= VK_SHADER_STAGE_VERTEX_BIT;
+    if (any(s, gdi::ShaderStage::Fragment)) f |= VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (any(s, gdi::ShaderStage::Compute)) f |= VK_SHADER_STAGE_COMPUTE_BIT;
+    return f;
+}
+
+VkDescriptorType toDescriptorType(gdi::BindingType t) {
+    switch (t) {
+        case gdi::BindingType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        case gdi::BindingType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case gdi::BindingType::SampledTexture: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        case gdi::BindingType::StorageTexture: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    }
+    return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+}
+
+VkCompareOp toCompare(gdi::CompareOp c) { return VkCompareOp(int(c)); }  // same order as VkCompareOp
+VkStencilOp toStencilOp(gdi::StencilOp o) { return VkStencilOp(int(o)); }  // same order as VkStencilOp
+
+VkBlendFactor toBlendFactor(gdi::BlendFactor f) {
+    using B = gdi::BlendFactor;
+    switch (f) {
+        case B::Zero: return VK_BLEND_FACTOR_ZERO;
+        case B::One: return VK_BLEND_FACTOR_ONE;
+        case B::SrcColor: return VK_BLEND_FACTOR_SRC_COLOR;
+        case B::OneMinusSrcColor: return VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR;
+        case B::DstColor: return VK_BLEND_FACTOR_DST_COLOR;
+        case B::OneMinusDstColor: return VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR;
+        case B::SrcAlpha: return VK_BLEND_FACTOR_SRC_ALPHA;
+        case B::OneMinusSrcAlpha: return VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        case B::DstAlpha: return VK_BLEND_FACTOR_DST_ALPHA;
+        case B::OneMinusDstAlpha: return VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA;
+        case B::ConstantColor: return VK_BLEND_FACTOR_CONSTANT_COLOR;
+        case B::OneMinusConstantColor: return VK_BLEND_FACTOR_ONE_MINUS_CONSTANT_COLOR;
+    }
+    return VK_BLEND_FACTOR_ONE;
+}
+
+VkBlendOp toBlendOp(gdi::BlendOp o) {
+    switch (o) {
+        case gdi::BlendOp::Subtract: return VK_BLEND_OP_SUBTRACT;
+        case gdi::BlendOp::ReverseSubtract: return VK_BLEND_OP_REVERSE_SUBTRACT;
+        case gdi::BlendOp::Min: return VK_BLEND_OP_MIN;
+        case gdi::BlendOp::Max: return VK_BLEND_OP_MAX;
+        default: return VK_BLEND_OP_ADD;
+    }
+}
+
+VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
+    switch (t) {
+        case gdi::PrimitiveTopology::TriangleStrip: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+        case gdi::PrimitiveTopology::LineList: return VK_PRIMITIVE_TOPOLOGY_LINE_LIST;
+        case gdi::PrimitiveTopology::LineStrip: return VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
+        case gdi::PrimitiveTopology::PointList: return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+        default: return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    }
+}
+}  // namespace
+
+gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
+    gdi::validate::shaderDesc(desc);
+    const std::string name = desc.binary.name ? desc.binary.name : "";
+    const auto& code = desc.binary.vulkan;
+    if (code.size() < 5 || code[0] != kSpirvMagic)
+        throw gdi::Error("shader '" + name + "': not a SPIR-V binary for Vulkan (" + std::to_string(code.size()) +
+                         " words, missing magic number)");
+    VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    ci.codeSize = code.size_bytes();
+    ci.pCode = code.data();
+    Shader s;
+    check(vkCreateShaderModule(device_, &ci, nullptr, &s.module), ("vkCreateShaderModule for '" + name + "'").c_str());
+    s.stage = desc.stage;
+    s.name = name;
+    s.entry = desc.entryPoint;
+    setName(VK_OBJECT_TYPE_SHADER_MODULE, uint64_t(s.module), desc.binary.name);
+    return shaders_.add(std::move(s));
+}
+
+static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>& bindings, const char* debugName) {
+    Pipeline p;
+    p.bindings = bindings;
+    p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
+    p.name = debugName ? debugName : "";
+    std::vector<VkDescriptorSetLayoutBinding> vb;
+    for (const gdi::BindingSlot& b : bindings)
+        vb.push_back({b.slot, toDescriptorType(b.type), 1, toStages(b.stages), nullptr});
+    VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    li.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    li.bindingCount = uint32_t(vb.size());
+    li.pBindings = vb.data();
+    check(vkCreateDescriptorSetLayout(device, &li, nullptr, &p.setLayout), "vkCreateDescriptorSetLayout");
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &p.setLayout;
+    if (VkResult r = vkCreatePipelineLayout(device, &pli, nullptr, &p.layout); r != VK_SUCCESS) {
+        vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
+        throwVk(r, "vkCreatePipelineLayout");
+    }
+    return p;
+}
+
+gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    gdi::validate::graphicsPipelineDesc(d, info_.limits);
+    const std::string name = d.debugName ? d.debugName : "";
+    Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
+    if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + name + "': vertexShader is not a vertex shader");
+    Shader* fs = nullptr;
+    if (d.fragmentShader) {
+        fs = &shaders_.get(d.fragmentShader, "fragment shader");
+        if (fs->stage != gdi::ShaderStage::Fragment)
+            throw gdi::Error("pipeline '" + name + "': fragmentShader is not a fragment shader");
+    }
+    for (gdi::Format f : d.colorFormats)
+        if (!supportsFormat(f, gdi::TextureUsage::RenderTarget))
+            throw gdi::Error("pipeline '" + name + "': format " + std::string(gdi::formatInfo(f).name) +
+                             " cannot be a render target on this device");
+
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
+                      vs.module, vs.entry.c_str(), nullptr});
+    if (fs)
+        stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
+                          fs->module, fs->entry.c_str(), nullptr});
+
+    std::vector<VkVertexInputBindingDescription> vbind;
+    std::vector<VkVertexInputAttributeDescription> vattr;
+    for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
+        const auto& vb = d.vertexBuffers[i];
+        vbind.push_back({i, vb.stride, vb.perInstance ? VK_VERTEX_INPUT_RATE_INSTANCE : VK_VERTEX_INPUT_RATE_VERTEX});
+        for (const auto& a : vb.attributes) vattr.push_back({a.location, i, toVkVertexFormat(a.format), a.offset});
+    }
+    VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vi.vertexBindingDescriptionCount = uint32_t(vbind.size());
+    vi.pVertexBindingDescriptions = vbind.data();
+    vi.vertexAttributeDescriptionCount = uint32_t(vattr.size());
+    vi.pVertexAttributeDescriptions = vattr.data();
+
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = toTopology(d.topology);
+
+    VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vp.viewportCount = 1;
+    vp.scissorCount = 1;
+
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = d.raster.cullMode == gdi::CullMode::Back    ? VK_CULL_MODE_BACK_BIT
+                  : d.raster.cullMode == gdi::CullMode::Front ? VK_CULL_MODE_FRONT_BIT
+                                                              : VK_CULL_MODE_NONE;
+    // gdi's CounterClockwise means CCW as seen in framebuffer coordinates (y down), which is
+    // exactly how Vulkan evaluates VK_FRONT_FACE_COUNTER_CLOCKWISE.
+    rs.frontFace = d.raster.frontFace == gdi::FrontFace::Clockwise ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.0f;
+
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+    const auto& ds = d.depthStencil;
+    auto face = [&](const gdi::StencilFaceState& f) {
+        return VkStencilOpState{toStencilOp(f.failOp), toStencilOp(f.passOp), toStencilOp(f.depthFailOp),
+                                toCompare(f.compare), ds.stencilReadMask, ds.stencilWriteMask, ds.stencilReference};
+    };
+    VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    dss.depthTestEnable = ds.depthTest;
+    dss.depthWriteEnable = ds.depthWrite;
+    dss.depthCompareOp = ds.depthTest ? toCompare(ds.depthCompare) : VK_COMPARE_OP_ALWAYS;
+    dss.stencilTestEnable = ds.stencilTest;
+    dss.front = face(ds.front);
+    dss.back = face(ds.back);
+
+    std::vector<VkPipelineColorBlendAttachmentState> blends(d.colorFormats.size());
+    for (size_t i = 0; i < blends.size(); ++i) {
+        gdi::BlendTargetState b = i < d.blend.size() ? d.blend[i] : gdi::BlendTargetState{};
+        blends[i].blendEnable = b.enable;
+        blends[i].srcColorBlendFactor = toBlendFactor(b.srcColor);
+        blends[i].dstColorBlendFactor = toBlendFactor(b.dstColor);
+        blends[i].colorBlendOp = toBlendOp(b.colorOp);
+        blends[i].srcAlphaBlendFactor = toBlendFactor(b.srcAlpha);
+        blends[i].dstAlphaBlendFactor = toBlendFactor(b.dstAlpha);
+        blends[i].alphaBlendOp = toBlendOp(b.alphaOp);
+        blends[i].colorWriteMask = VkColorComponentFlags(uint8_t(b.writeMask));  // R,G,B,A bits match
+    }
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = uint32_t(blends.size());
+    cb.pAttachments = blends.data();
+    for (int i = 0; i < 4; ++i) cb.blendConstants[i] = d.blendConstant[i];
+
+    VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dy.dynamicStateCount = 2;
+    dy.pDynamicStates = dyn;
+
+    std::vector<VkFormat> colorFormats;
+    for (gdi::Format f : d.colorFormats) colorFormats.push_back(toVkFormat(f));
+    VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    ri.colorAttachmentCount = uint32_t(colorFormats.size());
+    ri.pColorAttachmentFormats = colorFormats.data();
+    ri.depthAttachmentFormat = d.depthFormat == gdi::Format::Undefined ? VK_FORMAT_UNDEFINED : toVkFormat(d.depthFormat);
+    ri.stencilAttachmentFormat = gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
+
+    Pipeline p = makeLayout(device_, d.bindings, d.debugName);
+    p.colorFormats = d.colorFormats;
+    p.depthFormat = d.depthFormat;
+    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    ci.pNext = &ri;
+    ci.stageCount = uint32_t(stages.size());
+    ci.pStages = stages.data();
+    ci.pVertexInputState = &vi;
+    ci.pInputAssemblyState = &ia;
+    ci.pViewportState = &vp;
+    ci.pRasterizationState = &rs;
+    ci.pMultisampleState = &ms;
+    ci.pDepthStencilState = &dss;
+    ci.pColorBlendState = &cb;
+    ci.pDynamicState = &dy;
+    ci.layout = p.layout;
+    VkResult r = vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline);
+    if (r != VK_SUCCESS) {
+        vkDestroyPipelineLayout(device_, p.layout, nullptr);
+        vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+        throwVk(r, ("vkCreateGraphicsPipelines for '" + name + "'").c_str());
+    }
+    setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), d.debugName);
+    return pipelines_.add(std::move(p));
+}
+
+gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    gdi::validate::computePipelineDesc(d);
+    Shader& cs = shaders_.get(d.computeShader, "compute shader");
+    if (cs.stage != gdi::ShaderStage::Compute)
+        throw gdi::Error(std::string("compute pipeline '") + (d.debugName ? d.debugName : "") +
+                         "': computeShader is not a compute shader");
+    Pipeline p = makeLayout(device_, d.bindings, d.debugName);
+    p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,
+                cs.entry.c_str(), nullptr};
+    ci.layout = p.layout;
+    VkResult r = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline);
+    if (r != VK_SUCCESS) {
+        vkDestroyPipelineLayout(device_, p.layout, nullptr);
+        vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+        throwVk(r, "vkCreateComputePipelines");
+    }
+    setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), d.debugName);
+    return pipelines_.add(std::move(p));
+}
+
+}  // namespace fe::vk

@@ -1,0 +1,260 @@
+// Buffers, textures, samplers and timers.
+#include <algorithm>
+#include <cstring>
+
+#include "VulkanCommandList.h"
+#include "VulkanDevice.h"
+#include "fe/gdi/Validation.h"
+
+namespace fe::vk {
+
+namespace {
+VkFormatFeatureFlags requiredFeatures(gdi::Format f, gdi::TextureUsage u) {
+    VkFormatFeatureFlags r = 0;
+    if (any(u, gdi::TextureUsage::Sampled)) r |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    if (any(u, gdi::TextureUsage::Storage)) r |= VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    if (any(u, gdi::TextureUsage::RenderTarget))
+        r |= gdi::isDepthFormat(f) ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+    return r | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+}
+
+std::string usageNames(gdi::TextureUsage u) {
+    std::string s;
+    auto add = [&](gdi::TextureUsage bit, const char* n) {
+        if (any(u, bit)) s += (s.empty() ? "" : "|") + std::string(n);
+    };
+    add(gdi::TextureUsage::Sampled, "Sampled");
+    add(gdi::TextureUsage::RenderTarget, "RenderTarget");
+    add(gdi::TextureUsage::Storage, "Storage");
+    add(gdi::TextureUsage::CopySrc, "CopySrc");
+    add(gdi::TextureUsage::CopyDst, "CopyDst");
+    return s;
+}
+}  // namespace
+
+bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
+    VkFormat vf = toVkFormat(format);
+    if (vf == VK_FORMAT_UNDEFINED) return false;
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
+    VkFormatFeatureFlags need = requiredFeatures(format, usage);
+    return (p.optimalTilingFeatures & need) == need;
+}
+
+Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem) {
+    Buffer b;
+    VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    ci.size = size;
+    ci.usage = usage;
+    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    check(vkCreateBuffer(device_, &ci, nullptr, &b.buffer), "vkCreateBuffer");
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device_, b.buffer, &req);
+    try {
+        b.memory = allocator_->allocate(req, mem);
+    } catch (...) {
+        vkDestroyBuffer(device_, b.buffer, nullptr);
+        throw;
+    }
+    check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory");
+    return b;
+}
+
+void VulkanDevice::freeBuffer(Buffer& b) {
+    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
+    allocator_->free(b.memory);
+    b = Buffer{};
+}
+
+gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+    gdi::validate::bufferDesc(desc);
+    using U = gdi::BufferUsage;
+    // Copies in and out are always allowed: writeBuffer/readBuffer stage through them.
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    if (any(desc.usage, U::Vertex)) usage |= VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    if (any(desc.usage, U::Index)) usage |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+    if (any(desc.usage, U::Uniform)) usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    if (any(desc.usage, U::Storage)) usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    MemoryUsage mem = desc.access == gdi::MemoryAccess::Upload     ? MemoryUsage::Upload
+                      : desc.access == gdi::MemoryAccess::Readback ? MemoryUsage::Readback
+                                                                   : MemoryUsage::GpuOnly;
+    Buffer b = makeBuffer(desc.size, usage, mem);
+    b.desc = desc;
+    b.name = desc.debugName ? desc.debugName : "";
+    b.desc.debugName = nullptr;  // the caller's string may not outlive the buffer
+    setName(VK_OBJECT_TYPE_BUFFER, uint64_t(b.buffer), desc.debugName);
+    gdi::BufferHandle h = buffers_.add(std::move(b));
+    if (initialData) {
+        try {
+            writeBuffer(h, 0, initialData, desc.size);
+        } catch (...) {
+            destroy(h);
+            throw;
+        }
+    }
+    return h;
+}
+
+VkImageView VulkanDevice::makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount) {
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = image;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = toVkFormat(format);
+    // Views for sampling and attachments see depth only; stencil is reached through the attachment.
+    vi.subresourceRange = {gdi::isDepthFormat(format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                      : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                           baseMip, mipCount, 0, 1};
+    VkImageView v;
+    check(vkCreateImageView(device_, &vi, nullptr, &v), "vkCreateImageView");
+    return v;
+}
+
+gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
+    gdi::validate::textureDesc(desc, info_.limits);
+    const std::string name = desc.debugName ? desc.debugName : "";
+    if (!supportsFormat(desc.format, desc.usage))
+        throw gdi::Error("texture '" + name + "': format " + std::string(gdi::formatInfo(desc.format).name) +
+                         " does not support usage " + usageNames(desc.usage) + " on this Vulkan device");
+    using U = gdi::TextureUsage;
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    if (any(desc.usage, U::Sampled)) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (any(desc.usage, U::Storage)) usage |= VK_IMAGE_USAGE_STORAGE_BIT;
+    if (any(desc.usage, U::RenderTarget))
+        usage |= gdi::isDepthFormat(desc.format) ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
+                                                 : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    Texture t;
+    t.desc = desc;
+    t.desc.debugName = nullptr;
+    t.name = name;
+    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = toVkFormat(desc.format);
+    ci.extent = {desc.width, desc.height, 1};
+    ci.mipLevels = desc.mipLevels;
+    ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = usage;
+    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    check(vkCreateImage(device_, &ci, nullptr, &t.image), "vkCreateImage");
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device_, t.image, &req);
+    try {
+        t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
+        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory");
+        t.view = makeView(t.image, desc.format, 0, desc.mipLevels);
+        for (uint32_t m = 0; m < desc.mipLevels; ++m) t.mipViews.push_back(makeView(t.image, desc.format, m, 1));
+    } catch (...) {
+        for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
+        if (t.view) vkDestroyImageView(device_, t.view, nullptr);
+        vkDestroyImage(device_, t.image, nullptr);
+        allocator_->free(t.memory);
+        throw;
+    }
+    setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
+    // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
+    immediate([&](VkCommandBuffer cb) {
+        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.srcAccessMask = 0;
+        b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = t.image;
+        b.subresourceRange = {aspectOf(desc.format), 0, desc.mipLevels, 0, 1};
+        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
+                             0, nullptr, 1, &b);
+    });
+    return textures_.add(std::move(t));
+}
+
+gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
+    gdi::validate::samplerDesc(d);
+    auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
+    auto address = [](gdi::AddressMode a) {
+        switch (a) {
+            case gdi::AddressMode::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+            case gdi::AddressMode::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+            default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        }
+    };
+    VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    ci.magFilter = filter(d.magFilter);
+    ci.minFilter = filter(d.minFilter);
+    ci.mipmapMode = d.mipFilter == gdi::MipFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    ci.addressModeU = address(d.addressU);
+    ci.addressModeV = address(d.addressV);
+    ci.addressModeW = address(d.addressV);
+    ci.anisotropyEnable = anisotropy_ && d.maxAnisotropy > 1.0f;
+    ci.maxAnisotropy = std::min(d.maxAnisotropy, props_.limits.maxSamplerAnisotropy);
+    ci.minLod = 0;
+    // MipFilter::None samples the base level only (GL's non-mipmap minification filters).
+    ci.maxLod = d.mipFilter == gdi::MipFilter::None ? 0.0f : VK_LOD_CLAMP_NONE;
+    Sampler s;
+    check(vkCreateSampler(device_, &ci, nullptr, &s.sampler), "vkCreateSampler");
+    setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);
+    return samplers_.add(std::move(s));
+}
+
+gdi::TimerHandle VulkanDevice::createTimer() {
+    if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
+    Timer t{freeTimerSlots_.back()};
+    freeTimerSlots_.pop_back();
+    vkResetQueryPool(device_, queryPool_, t.firstQuery, 2);
+    return timers_.add(std::move(t));
+}
+
+// Destruction waits for the GPU so nothing in flight still uses the object. Resources are
+// created and destroyed at load time, not per frame (the render graph pools its transients).
+void VulkanDevice::destroy(gdi::BufferHandle h) {
+    Buffer b;
+    if (!h || !buffers_.find(h)) return;
+    waitIdle();
+    buffers_.remove(h, b);
+    freeBuffer(b);
+}
+
+void VulkanDevice::destroy(gdi::TextureHandle h) {
+    Texture t;
+    if (!h || !textures_.find(h)) return;
+    waitIdle();
+    textures_.remove(h, t);
+    for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
+    vkDestroyImageView(device_, t.view, nullptr);
+    vkDestroyImage(device_, t.image, nullptr);
+    allocator_->free(t.memory);
+}
+
+void VulkanDevice::destroy(gdi::SamplerHandle h) {
+    Sampler s;
+    if (!h || !samplers_.find(h)) return;
+    waitIdle();
+    samplers_.remove(h, s);
+    vkDestroySampler(device_, s.sampler, nullptr);
+}
+
+void VulkanDevice::destroy(gdi::ShaderHandle h) {
+    Shader s;
+    if (!h || !shaders_.remove(h, s)) return;
+    vkDestroyShaderModule(device_, s.module, nullptr);  // pipelines keep their own copy of the code
+}
+
+void VulkanDevice::destroy(gdi::PipelineHandle h) {
+    Pipeline p;
+    if (!h || !pipelines_.find(h)) return;
+    waitIdle();
+    pipelines_.remove(h, p);
+    vkDestroyPipeline(device_, p.pipeline, nullptr);
+    vkDestroyPipelineLayout(device_, p.layout, nullptr);
+    vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+}
+
+void VulkanDevice::destroy(gdi::TimerHandle h) {
+    Timer t;
+    if (!h || !timers_.find(h)) return;
+    waitIdle();
+    timers_.remove(h, t);
+    freeTimerSlots_.push_back(t.firstQuery);
+}
+
+}  // namespace fe::vk
