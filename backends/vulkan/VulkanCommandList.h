@@ -35,6 +35,10 @@ public:
     void endTimer(gdi::TimerHandle timer) override;
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
+    uint64_t nativeCommandBuffer() override {
+        ensureRecording();
+        return uint64_t(cb_);
+    }
 
     // For the device.
     VkCommandBuffer finish();

@@ -439,6 +439,23 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
     return img;
 }
 
+uint64_t VulkanDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
+    using N = gdi::NativeObject;
+    switch (what) {
+        case N::Device: return uint64_t(device_);
+        case N::PhysicalDevice: return uint64_t(physical_);
+        case N::Queue: return uint64_t(queue_);
+        case N::QueueFamily: return queueFamily_;
+        case N::Buffer: if (auto* b = buffers_.find(gdi::BufferHandle{id})) return uint64_t(b->buffer); break;
+        case N::Texture: if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->image); break;
+        case N::TextureView: if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->view); break;
+        case N::Pipeline: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->pipeline); break;
+        case N::PipelineLayout: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->layout); break;
+        default: break;
+    }
+    return 0;
+}
+
 std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
     Timer& t = timer(h);
     uint64_t ticks[2];

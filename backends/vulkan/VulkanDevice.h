@@ -116,6 +116,7 @@ public:
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_; }
+    uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
 
     // Internal, for the command list.
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }

@@ -328,6 +328,24 @@ public:
     virtual void endTimer(TimerHandle timer) = 0;
     virtual void pushDebugGroup(const char* name) = 0;
     virtual void popDebugGroup() = 0;
+
+    // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
+    // the VkCommandBuffer being recorded, 0 on backends without one.
+    virtual uint64_t nativeCommandBuffer() { return 0; }
+};
+
+// What Device::nativeObject returns: a Vk handle (cast to uint64_t) or a GL object name.
+enum class NativeObject : uint8_t {
+    Device,          // VkDevice
+    PhysicalDevice,  // VkPhysicalDevice
+    Queue,           // VkQueue
+    QueueFamily,     // queue family index
+    Buffer,          // VkBuffer / GL buffer name
+    Texture,         // VkImage / GL texture name
+    TextureView,     // VkImageView (all mips)
+    Pipeline,        // VkPipeline / GL program name
+    PipelineLayout,  // VkPipelineLayout
+    VertexArray,     // GL vertex array object of a pipeline
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -404,6 +422,10 @@ public:
 
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;
+
+    // Escape hatch: the native object behind a handle id (see NativeObject); 0 when not
+    // applicable. Nothing above layer 4 uses it; bench/ and interop code do.
+    virtual uint64_t nativeObject(NativeObject what, uint32_t handleId = 0) const { return 0; }
 };
 
 }  // namespace fe::gdi

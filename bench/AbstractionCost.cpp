@@ -1,0 +1,310 @@
+// Cost of the abstraction: CPU time to record and submit 10,000 small draws through
+// gdi::CommandList, against the same draws issued with direct Vulkan and direct GL calls on
+// the very same objects (pipeline, buffers, render target; found through Device::nativeObject).
+//
+// Each draw binds its own 64-byte slice of a uniform buffer and draws one small triangle,
+// the typical per-object pattern. GPU execution is excluded: the wait for the fence runs with
+// the timer paused. On lavapipe/llvmpipe the "GPU" is the CPU, so the figures are labelled
+// software-rasterizer numbers; the ratio abstract/direct is what matters and is printed at the end.
+#include <benchmark/benchmark.h>
+#include <dlfcn.h>
+#include <vulkan/vulkan.h>
+
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+using namespace fe::gdi;
+
+namespace {
+
+constexpr uint32_t kDraws = 10000;
+constexpr uint32_t kObjectStride = 256;  // >= every device's uniform offset alignment
+
+struct Scene {
+    std::unique_ptr<Device> device;
+    TextureHandle target;
+    BufferHandle vertices, objects;
+    PipelineHandle pipeline;
+    std::unique_ptr<CommandList> cmd;
+};
+
+Scene makeScene(const std::string& backend) {
+    Scene s;
+    s.device = createDevice({.backend = backend, .validation = false, .verbose = false});
+    Device& d = *s.device;
+    s.target = d.createTexture({.format = Format::RGBA8, .width = 64, .height = 64,
+                                .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = "bench target"});
+    const float tri[] = {0, 0, 1, 0, 0, 1};
+    s.vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, tri);
+    std::vector<float> objects(kDraws * kObjectStride / 4, 0.0f);
+    for (uint32_t i = 0; i < kDraws; ++i) {
+        float* o = &objects[i * kObjectStride / 4];
+        o[0] = -1.0f + 2.0f * float(i % 100) / 100.0f;  // offset
+        o[1] = -1.0f + 2.0f * float(i / 100) / 100.0f;
+        o[2] = o[3] = 0.02f;                               // scale: a pixel-sized triangle
+        o[4] = float(i % 7) / 7.0f, o[5] = 0.5f, o[6] = 1.0f, o[7] = 1.0f;
+    }
+    s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform}, objects.data());
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
+    s.pipeline = d.createGraphicsPipeline({
+        .vertexShader = vs,
+        .fragmentShader = fs,
+        .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+        .colorFormats = {Format::RGBA8},
+        .bindings = {{.slot = 0, .type = BindingType::UniformBuffer, .stages = ShaderStage::Vertex}},
+        .debugName = "bench draw"});
+    s.cmd = d.createCommandList();
+    return s;
+}
+
+// One cached scene per backend: device creation is not what is measured.
+Scene& scene(const std::string& backend) {
+    static std::map<std::string, Scene> scenes;
+    auto it = scenes.find(backend);
+    if (it == scenes.end()) it = scenes.emplace(backend, makeScene(backend)).first;
+    return it->second;
+}
+
+void abstractDraws(benchmark::State& state, const std::string& backend) {
+    Scene& s = scene(backend);
+    for (auto _ : state) {
+        CommandList& c = *s.cmd;
+        c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
+        c.setPipeline(s.pipeline);
+        c.setVertexBuffer(0, s.vertices);
+        for (uint32_t i = 0; i < kDraws; ++i) {
+            c.setUniformBuffer(0, s.objects, uint64_t(i) * kObjectStride, 64);
+            c.draw(3);
+        }
+        c.endRenderPass();
+        FenceValue f = s.device->submit(c);
+        state.PauseTiming();
+        s.device->wait(f);
+        state.ResumeTiming();
+    }
+    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
+                                                                           benchmark::Counter::kInvert);
+    state.SetLabel(s.device->info().softwareRasterizer ? "software rasterizer" : s.device->info().deviceName);
+}
+
+// ---- direct Vulkan -------------------------------------------------------------------------
+struct VulkanDirect {
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cb = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    PFN_vkCmdPushDescriptorSetKHR push = nullptr;
+    ~VulkanDirect() {
+        if (!device) return;
+        vkDestroyFence(device, fence, nullptr);
+        vkDestroyCommandPool(device, pool, nullptr);
+    }
+};
+
+void vulkanDirectDraws(benchmark::State& state) {
+    Scene& s = scene("vulkan");
+    Device& d = *s.device;
+    d.waitIdle();
+    VulkanDirect v;
+    v.device = reinterpret_cast<VkDevice>(d.nativeObject(NativeObject::Device));
+    v.queue = reinterpret_cast<VkQueue>(d.nativeObject(NativeObject::Queue));
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pci.queueFamilyIndex = uint32_t(d.nativeObject(NativeObject::QueueFamily));
+    vkCreateCommandPool(v.device, &pci, nullptr, &v.pool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, v.pool,
+                                   VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    vkAllocateCommandBuffers(v.device, &ai, &v.cb);
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vkCreateFence(v.device, &fci, nullptr, &v.fence);
+    v.push = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(v.device, "vkCmdPushDescriptorSetKHR"));
+
+    auto pipeline = reinterpret_cast<VkPipeline>(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
+    auto layout = reinterpret_cast<VkPipelineLayout>(d.nativeObject(NativeObject::PipelineLayout, s.pipeline.id));
+    auto vb = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.vertices.id));
+    auto ubo = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.objects.id));
+    auto view = reinterpret_cast<VkImageView>(d.nativeObject(NativeObject::TextureView, s.target.id));
+
+    for (auto _ : state) {
+        vkResetCommandPool(v.device, v.pool, 0);
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        vkBeginCommandBuffer(v.cb, &bi);
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = view;
+        color.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.clearValue.color = {{0, 0, 0, 1}};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {64, 64}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = 1;
+        ri.pColorAttachments = &color;
+        vkCmdBeginRendering(v.cb, &ri);
+        vkCmdBindPipeline(v.cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        VkViewport vp{0, 0, 64, 64, 0, 1};
+        VkRect2D sc{{0, 0}, {64, 64}};
+        vkCmdSetViewport(v.cb, 0, 1, &vp);
+        vkCmdSetScissor(v.cb, 0, 1, &sc);
+        VkDeviceSize zero = 0;
+        vkCmdBindVertexBuffers(v.cb, 0, 1, &vb, &zero);
+        for (uint32_t i = 0; i < kDraws; ++i) {
+            VkDescriptorBufferInfo info{ubo, VkDeviceSize(i) * kObjectStride, 64};
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstBinding = 0;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            w.pBufferInfo = &info;
+            v.push(v.cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &w);
+            vkCmdDraw(v.cb, 3, 1, 0, 0);
+        }
+        vkCmdEndRendering(v.cb);
+        vkEndCommandBuffer(v.cb);
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &v.cb;
+        vkQueueSubmit(v.queue, 1, &si, v.fence);
+        state.PauseTiming();
+        vkWaitForFences(v.device, 1, &v.fence, VK_TRUE, UINT64_MAX);
+        vkResetFences(v.device, 1, &v.fence);
+        state.ResumeTiming();
+    }
+    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
+                                                                           benchmark::Counter::kInvert);
+    state.SetLabel(d.info().softwareRasterizer ? "software rasterizer" : d.info().deviceName);
+}
+
+// ---- direct GL -----------------------------------------------------------------------------
+// GL entry points fetched through the same platform library the backend uses.
+struct GlDirect {
+    using UseProgram = void (*)(unsigned);
+    using BindVertexArray = void (*)(unsigned);
+    using BindBufferRange = void (*)(unsigned, unsigned, unsigned, intptr_t, intptr_t);
+    using DrawArrays = void (*)(unsigned, int, int);
+    using VertexArrayVertexBuffer = void (*)(unsigned, unsigned, unsigned, intptr_t, int);
+    UseProgram useProgram = nullptr;
+    BindVertexArray bindVertexArray = nullptr;
+    BindBufferRange bindBufferRange = nullptr;
+    DrawArrays drawArrays = nullptr;
+    VertexArrayVertexBuffer vertexArrayVertexBuffer = nullptr;
+
+    explicit GlDirect(const std::string& backend) {
+        using GetProc = void* (*)(const char*);
+        GetProc get = nullptr;
+        if (backend == "gl-egl") {
+            void* lib = dlopen("libEGL.so.1", RTLD_NOW | RTLD_GLOBAL);
+            if (lib) get = reinterpret_cast<GetProc>(dlsym(lib, "eglGetProcAddress"));
+        } else {
+            void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_GLOBAL);
+            if (lib) get = reinterpret_cast<GetProc>(dlsym(lib, "OSMesaGetProcAddress"));
+        }
+        if (!get) throw Error("bench: cannot load GL entry points for " + backend);
+        useProgram = reinterpret_cast<UseProgram>(get("glUseProgram"));
+        bindVertexArray = reinterpret_cast<BindVertexArray>(get("glBindVertexArray"));
+        bindBufferRange = reinterpret_cast<BindBufferRange>(get("glBindBufferRange"));
+        drawArrays = reinterpret_cast<DrawArrays>(get("glDrawArrays"));
+        vertexArrayVertexBuffer = reinterpret_cast<VertexArrayVertexBuffer>(get("glVertexArrayVertexBuffer"));
+    }
+};
+
+void glDirectDraws(benchmark::State& state, const std::string& backend) {
+    Scene& s = scene(backend);
+    Device& d = *s.device;
+    GlDirect gl(backend);
+    const unsigned program = unsigned(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
+    const unsigned vao = unsigned(d.nativeObject(NativeObject::VertexArray, s.pipeline.id));
+    const unsigned vb = unsigned(d.nativeObject(NativeObject::Buffer, s.vertices.id));
+    const unsigned ubo = unsigned(d.nativeObject(NativeObject::Buffer, s.objects.id));
+    if (!program || !vao || !vb || !ubo) {
+        state.SkipWithError("GL backend does not expose native objects");
+        return;
+    }
+    constexpr unsigned GL_UNIFORM_BUFFER = 0x8A11, GL_TRIANGLES = 0x0004;
+    for (auto _ : state) {
+        CommandList& c = *s.cmd;
+        // The render pass itself (FBO bind, clear) goes through the backend on both sides:
+        // only the per-draw work differs.
+        c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
+        c.setPipeline(s.pipeline);
+        gl.useProgram(program);
+        gl.bindVertexArray(vao);
+        gl.vertexArrayVertexBuffer(vao, 0, vb, 0, 8);
+        for (uint32_t i = 0; i < kDraws; ++i) {
+            gl.bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo, intptr_t(i) * kObjectStride, 64);
+            gl.drawArrays(GL_TRIANGLES, 0, 3);
+        }
+        c.endRenderPass();
+        FenceValue f = d.submit(c);
+        state.PauseTiming();
+        d.wait(f);
+        state.ResumeTiming();
+    }
+    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
+                                                                           benchmark::Counter::kInvert);
+    state.SetLabel(d.info().softwareRasterizer ? "software rasterizer" : d.info().deviceName);
+}
+
+// Prints abstract/direct ratios after the normal console table.
+class RatioReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        ConsoleReporter::ReportRuns(runs);
+        for (const Run& r : runs) {
+            if (r.run_type != Run::RT_Aggregate || r.aggregate_name != "median") continue;
+            std::string name = r.benchmark_name();
+            times_[name] = r.GetAdjustedCPUTime();
+        }
+    }
+    void Finalize() override {
+        ConsoleReporter::Finalize();
+        std::cout << "\nabstraction cost (median CPU time, abstract / direct):\n";
+        for (const char* b : {"vulkan", "gl-egl", "gl-osmesa"}) {
+            double a = find(std::string("Abstract/") + b), d = find(std::string("Direct/") + b);
+            if (a > 0 && d > 0)
+                std::cout << "  " << b << ": " << a / kDraws * 1e6 << " ns/draw vs " << d / kDraws * 1e6
+                          << " ns/draw -> ratio " << a / d << " (" << (a / d - 1.0) * 100.0 << "% overhead)\n";
+        }
+    }
+
+private:
+    double find(const std::string& prefix) const {
+        for (auto& [k, v] : times_)
+            if (k.rfind(prefix, 0) == 0) return v;
+        return 0;
+    }
+    std::map<std::string, double> times_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    for (const std::string& b : backendNames()) {
+        BackendProbe p = probeBackend(b, false);
+        if (!p.available) {
+            std::cerr << "skipping " << b << ": " << p.reason << "\n";
+            continue;
+        }
+        p.device.reset();
+        // Interleaved registration (abstract, direct per backend) so both see the same machine state.
+        auto reg = [](benchmark::internal::Benchmark* bm) {
+            bm->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true)->MinTime(0.5);
+        };
+        reg(benchmark::RegisterBenchmark(("Abstract/" + b).c_str(), [b](benchmark::State& s) { abstractDraws(s, b); }));
+        if (b == "vulkan")
+            reg(benchmark::RegisterBenchmark("Direct/vulkan", [](benchmark::State& s) { vulkanDirectDraws(s); }));
+        else
+            reg(benchmark::RegisterBenchmark(("Direct/" + b).c_str(), [b](benchmark::State& s) { glDirectDraws(s, b); }));
+    }
+    RatioReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    benchmark::Shutdown();
+}
