@@ -45,6 +45,25 @@ void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
                          nullptr, 0, nullptr);
 }
 
+void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;  // whatever last wrote these bytes (aliasing)
+    b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspectOf(format), 0, mipLevels, 0, 1};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &b);
+}
+
+void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
+    outsidePass("discardTexture");
+    Texture& t = dev_.texture(h);
+    toGeneral(cb_, t.image, t.desc.format, t.desc.mipLevels);
+}
+
 void VulkanCommandList::ensureRecording() {
     if (recording_) return;
     if (lastSubmit_) dev_.wait(lastSubmit_);  // the buffer may still be executing

@@ -44,6 +44,8 @@ public:
     VkCommandBuffer finish();
     void submitted(gdi::FenceValue value) { lastSubmit_ = value; recording_ = false; }
     static void fullBarrier(VkCommandBuffer cb);
+    static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels);
+    void discardTexture(gdi::TextureHandle texture) override;
 
 private:
     void ensureRecording();

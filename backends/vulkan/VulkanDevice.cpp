@@ -240,6 +240,7 @@ void VulkanDevice::fillInfo() {
     info_.features.timestamps = qf[queueFamily_].timestampValidBits > 0 && l.timestampPeriod > 0;
     info_.features.computeShaders = true;
     info_.features.debugLabels = cmdBeginLabel != nullptr;
+    info_.features.memoryAliasing = true;
 }
 
 VulkanDevice::~VulkanDevice() { release(); }
@@ -248,11 +249,8 @@ void VulkanDevice::release() {
     if (device_) {
         vkDeviceWaitIdle(device_);
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
-        textures_.forEach([&](Texture& t) {
-            for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
-            vkDestroyImageView(device_, t.view, nullptr);
-            vkDestroyImage(device_, t.image, nullptr);
-        });
+        textures_.forEach([&](Texture& t) { destroyTexture(t); });
+        heaps_.forEach([&](Heap& h) { allocator_->free(h.memory); });
         samplers_.forEach([&](Sampler& s) { vkDestroySampler(device_, s.sampler, nullptr); });
         shaders_.forEach([&](Shader& s) { vkDestroyShaderModule(device_, s.module, nullptr); });
         pipelines_.forEach([&](Pipeline& p) {

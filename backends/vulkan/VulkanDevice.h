@@ -43,6 +43,7 @@ struct Buffer {
 
 struct Texture {
     VkImage image = VK_NULL_HANDLE;
+    bool ownsMemory = true;  // false when placed in a Heap
     VkImageView view = VK_NULL_HANDLE;  // all mips, for sampling
     std::vector<VkImageView> mipViews;  // one per mip, for attachments and storage
     Allocation memory;
@@ -77,6 +78,13 @@ struct Timer {
     uint32_t firstQuery = 0;
 };
 
+struct Heap {
+    Allocation memory;
+    uint64_t size = 0;
+    uint32_t placed = 0;  // live textures placed in it
+    std::string name;
+};
+
 class VulkanCommandList;
 
 class VulkanDevice final : public gdi::Device {
@@ -94,6 +102,8 @@ public:
     gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
     gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
     gdi::TimerHandle createTimer() override;
+    gdi::HeapHandle createHeap(const gdi::HeapDesc& desc) override;
+    gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc& desc) const override;
 
     void destroy(gdi::BufferHandle) override;
     void destroy(gdi::TextureHandle) override;
@@ -101,6 +111,7 @@ public:
     void destroy(gdi::ShaderHandle) override;
     void destroy(gdi::PipelineHandle) override;
     void destroy(gdi::TimerHandle) override;
+    void destroy(gdi::HeapHandle) override;
 
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
@@ -181,6 +192,9 @@ private:
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
     gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
+    gdi::HandlePool<gdi::HeapHandle, Heap> heaps_;
+    VkImageCreateInfo imageInfo(const gdi::TextureDesc& desc) const;
+    void destroyTexture(Texture& t);
 };
 
 }  // namespace fe::vk

@@ -109,12 +109,7 @@ VkImageView VulkanDevice::makeView(VkImage image, gdi::Format format, uint32_t b
     return v;
 }
 
-gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
-    gdi::validate::textureDesc(desc, info_.limits);
-    const std::string name = desc.debugName ? desc.debugName : "";
-    if (!supportsFormat(desc.format, desc.usage))
-        throw gdi::Error("texture '" + name + "': format " + std::string(gdi::formatInfo(desc.format).name) +
-                         " does not support usage " + usageNames(desc.usage) + " on this Vulkan device");
+VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     using U = gdi::TextureUsage;
     VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     if (any(desc.usage, U::Sampled)) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -122,10 +117,6 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     if (any(desc.usage, U::RenderTarget))
         usage |= gdi::isDepthFormat(desc.format) ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
                                                  : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-    Texture t;
-    t.desc = desc;
-    t.desc.debugName = nullptr;
-    t.name = name;
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.imageType = VK_IMAGE_TYPE_2D;
     ci.format = toVkFormat(desc.format);
@@ -136,36 +127,107 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = usage;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return ci;
+}
+
+gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::TextureDesc& desc) const {
+    gdi::validate::textureDesc(desc, info_.limits);
+    VkImageCreateInfo ci = imageInfo(desc);
+    VkImage image;
+    check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(device_, image, &req);
+    vkDestroyImage(device_, image, nullptr);
+    return {req.size, req.alignment};
+}
+
+gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
+    const std::string name = desc.debugName ? desc.debugName : "";
+    if (desc.size == 0) throw gdi::Error("heap '" + name + "': size is 0");
+    // Memory types every render-target/sampled image kind accepts, found from sample images.
+    uint32_t typeBits = ~0u;
+    VkDeviceSize alignment = 1;
+    for (gdi::Format f : {gdi::Format::RGBA8, gdi::Format::RGBA16F, gdi::Format::R32F, gdi::Format::D32F}) {
+        gdi::TextureDesc probe{.format = f, .width = 64, .height = 64,
+                               .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
+        VkImageCreateInfo ci = imageInfo(probe);
+        VkImage image;
+        check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(device_, image, &req);
+        vkDestroyImage(device_, image, nullptr);
+        typeBits &= req.memoryTypeBits;
+        alignment = std::max(alignment, req.alignment);
+    }
+    if (!typeBits) throw gdi::Error("heap '" + name + "': no memory type fits all texture kinds");
+    Heap h;
+    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly);
+    h.size = desc.size;
+    h.name = name;
+    return heaps_.add(std::move(h));
+}
+
+void VulkanDevice::destroy(gdi::HeapHandle h) {
+    Heap heap;
+    if (!h || !heaps_.find(h)) return;
+    if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
+    waitIdle();
+    heaps_.remove(h, heap);
+    allocator_->free(heap.memory);
+}
+
+gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
+    gdi::validate::textureDesc(desc, info_.limits);
+    const std::string name = desc.debugName ? desc.debugName : "";
+    if (!supportsFormat(desc.format, desc.usage))
+        throw gdi::Error("texture '" + name + "': format " + std::string(gdi::formatInfo(desc.format).name) +
+                         " does not support usage " + usageNames(desc.usage) + " on this Vulkan device");
+    Heap* heap = desc.heap ? &heaps_.get(desc.heap, "heap") : nullptr;
+    Texture t;
+    t.desc = desc;
+    t.desc.debugName = nullptr;
+    t.name = name;
+    VkImageCreateInfo ci = imageInfo(desc);
     check(vkCreateImage(device_, &ci, nullptr, &t.image), "vkCreateImage");
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
     try {
-        t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
+        if (heap) {
+            if (desc.heapOffset % req.alignment != 0 || desc.heapOffset + req.size > heap->size)
+                throw gdi::Error("texture '" + name + "': placement at offset " + std::to_string(desc.heapOffset) +
+                                 " (size " + std::to_string(req.size) + ", alignment " + std::to_string(req.alignment) +
+                                 ") does not fit heap '" + heap->name + "' of " + std::to_string(heap->size) + " bytes");
+            t.ownsMemory = false;
+            t.memory = heap->memory;
+            t.memory.offset += desc.heapOffset;
+            t.memory.size = req.size;
+        } else {
+            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
+        }
         check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory");
         t.view = makeView(t.image, desc.format, 0, desc.mipLevels);
         for (uint32_t m = 0; m < desc.mipLevels; ++m) t.mipViews.push_back(makeView(t.image, desc.format, m, 1));
     } catch (...) {
-        for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
-        if (t.view) vkDestroyImageView(device_, t.view, nullptr);
-        vkDestroyImage(device_, t.image, nullptr);
-        allocator_->free(t.memory);
+        destroyTexture(t);
         throw;
     }
+    if (heap) heap->placed++;
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
-    immediate([&](VkCommandBuffer cb) {
-        VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-        b.srcAccessMask = 0;
-        b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = t.image;
-        b.subresourceRange = {aspectOf(desc.format), 0, desc.mipLevels, 0, 1};
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr,
-                             0, nullptr, 1, &b);
-    });
+    immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format, desc.mipLevels); });
     return textures_.add(std::move(t));
+}
+
+void VulkanDevice::destroyTexture(Texture& t) {
+    for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
+    if (t.view) vkDestroyImageView(device_, t.view, nullptr);
+    if (t.image) vkDestroyImage(device_, t.image, nullptr);
+    if (t.ownsMemory) {
+        allocator_->free(t.memory);
+    } else if (t.desc.heap) {
+        if (Heap* h = heaps_.find(t.desc.heap)) h->placed--;
+    }
+    t = Texture{};
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
@@ -219,10 +281,7 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
     if (!h || !textures_.find(h)) return;
     waitIdle();
     textures_.remove(h, t);
-    for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
-    vkDestroyImageView(device_, t.view, nullptr);
-    vkDestroyImage(device_, t.image, nullptr);
-    allocator_->free(t.memory);
+    destroyTexture(t);
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {

@@ -59,6 +59,7 @@ using SamplerHandle = Handle<struct SamplerTag>;
 using ShaderHandle = Handle<struct ShaderTag>;
 using PipelineHandle = Handle<struct PipelineTag>;
 using TimerHandle = Handle<struct TimerTag>;
+using HeapHandle = Handle<struct HeapTag>;
 
 template <class E>
 constexpr E operator|(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
@@ -116,7 +117,23 @@ struct TextureDesc {
     uint32_t height = 1;
     uint32_t mipLevels = 1;
     TextureUsage usage = TextureUsage::Sampled | TextureUsage::CopyDst | TextureUsage::CopySrc;
+    // Placed in a heap at an offset (memory aliasing, DeviceFeatures::memoryAliasing only);
+    // null: the texture gets memory of its own.
+    HeapHandle heap;
+    uint64_t heapOffset = 0;
     const char* debugName = nullptr;
+};
+
+// A block of device memory that placed textures share; textures whose lifetimes do not
+// overlap may occupy the same bytes (the render graph's transient aliasing).
+struct HeapDesc {
+    uint64_t size = 0;
+    const char* debugName = nullptr;
+};
+
+struct MemoryRequirements {
+    uint64_t size = 0;
+    uint64_t alignment = 1;
 };
 
 enum class Filter : uint8_t { Nearest, Linear };
@@ -329,6 +346,11 @@ public:
     virtual void pushDebugGroup(const char* name) = 0;
     virtual void popDebugGroup() = 0;
 
+    // The texture's previous contents are no longer needed: required before the first use of
+    // a heap-placed texture whose memory another texture may have written since (Vulkan:
+    // layout from UNDEFINED; GL: glInvalidateTexImage). Outside render passes.
+    virtual void discardTexture(TextureHandle texture) = 0;
+
     // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
     // the VkCommandBuffer being recorded, 0 on backends without one.
     virtual uint64_t nativeCommandBuffer() { return 0; }
@@ -366,6 +388,7 @@ struct DeviceFeatures {
     bool computeShaders = false;
     bool debugLabels = false;
     bool validation = false;  // Khronos validation layer / KHR_debug active
+    bool memoryAliasing = false;  // heaps + placed textures (Vulkan); GL reuses whole objects instead
 };
 
 struct DeviceInfo {
@@ -394,6 +417,9 @@ public:
     virtual PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc) = 0;
     virtual PipelineHandle createComputePipeline(const ComputePipelineDesc& desc) = 0;
     virtual TimerHandle createTimer() = 0;
+    // Heaps exist where DeviceFeatures::memoryAliasing is true; elsewhere these throw Error.
+    virtual HeapHandle createHeap(const HeapDesc& desc) = 0;
+    virtual MemoryRequirements textureMemoryRequirements(const TextureDesc& desc) const = 0;
 
     virtual void destroy(BufferHandle) = 0;
     virtual void destroy(TextureHandle) = 0;
@@ -401,6 +427,7 @@ public:
     virtual void destroy(ShaderHandle) = 0;
     virtual void destroy(PipelineHandle) = 0;
     virtual void destroy(TimerHandle) = 0;
+    virtual void destroy(HeapHandle) = 0;  // placed textures must be destroyed first
 
     virtual const BufferDesc& desc(BufferHandle) const = 0;
     virtual const TextureDesc& desc(TextureHandle) const = 0;
