@@ -1,0 +1,61 @@
+#include "CommandQueue.h"
+
+#include <algorithm>
+#include <string>
+
+namespace fe::render {
+
+CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight, uint64_t uploadBytesPerFrame)
+    : device_(device), regionSize_(uploadBytesPerFrame) {
+    if (framesInFlight == 0 || framesInFlight > 8) throw gdi::Error("CommandQueue: framesInFlight must be 1..8");
+    const auto& l = device.info().limits;
+    alignment_ = std::max<uint64_t>({64, l.uniformBufferOffsetAlignment, l.storageBufferOffsetAlignment});
+    slots_.resize(framesInFlight);
+    for (Slot& s : slots_) s.commands = device.createCommandList();
+    uploadBuffer_ = device.createBuffer({.size = regionSize_ * framesInFlight,
+                                         .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage,
+                                         .access = gdi::MemoryAccess::Upload,
+                                         .debugName = "per-frame uploads"});
+}
+
+CommandQueue::~CommandQueue() {
+    waitIdle();
+    device_.destroy(uploadBuffer_);
+}
+
+gdi::CommandList& CommandQueue::beginFrame() {
+    if (inFrame_) throw gdi::Error("CommandQueue::beginFrame: previous frame not ended");
+    Slot& s = slots_[frameNumber_ % slots_.size()];
+    if (s.fence) device_.wait(s.fence);  // this slot's previous frame is done with its region
+    regionUsed_ = 0;
+    inFrame_ = true;
+    return *s.commands;
+}
+
+gdi::FenceValue CommandQueue::endFrame() {
+    if (!inFrame_) throw gdi::Error("CommandQueue::endFrame without beginFrame");
+    Slot& s = slots_[frameNumber_ % slots_.size()];
+    s.fence = device_.submit(*s.commands);
+    inFrame_ = false;
+    ++frameNumber_;
+    return s.fence;
+}
+
+void CommandQueue::waitIdle() {
+    for (Slot& s : slots_)
+        if (s.fence) device_.wait(s.fence);
+}
+
+UploadAllocation CommandQueue::upload(const void* data, uint64_t size) {
+    if (!inFrame_) throw gdi::Error("CommandQueue::upload outside a frame");
+    uint64_t offset = (regionUsed_ + alignment_ - 1) / alignment_ * alignment_;
+    if (offset + size > regionSize_)
+        throw gdi::Error("CommandQueue: per-frame upload region of " + std::to_string(regionSize_) +
+                         " bytes exhausted (asked " + std::to_string(size) + ")");
+    regionUsed_ = offset + size;
+    uint64_t base = (frameNumber_ % slots_.size()) * regionSize_;
+    device_.writeBuffer(uploadBuffer_, base + offset, data, size);
+    return {uploadBuffer_, base + offset, size};
+}
+
+}  // namespace fe::render

@@ -1,0 +1,217 @@
+#include "render/GpuScene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace fe::render {
+
+namespace {
+
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float linearToSrgb(float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+// Next mip level by a 2x2 box filter; sRGB colour channels are averaged in linear space.
+std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uint32_t h, bool srgb) {
+    uint32_t nw = std::max(1u, w / 2), nh = std::max(1u, h / 2);
+    std::vector<uint8_t> dst(size_t(nw) * nh * 4);
+    for (uint32_t y = 0; y < nh; ++y)
+        for (uint32_t x = 0; x < nw; ++x)
+            for (uint32_t c = 0; c < 4; ++c) {
+                float sum = 0;
+                int n = 0;
+                for (uint32_t dy = 0; dy < 2; ++dy)
+                    for (uint32_t dx = 0; dx < 2; ++dx) {
+                        uint32_t sx = std::min(w - 1, x * 2 + dx), sy = std::min(h - 1, y * 2 + dy);
+                        float v = src[(size_t(sy) * w + sx) * 4 + c] / 255.0f;
+                        sum += (srgb && c < 3) ? srgbToLinear(v) : v;
+                        ++n;
+                    }
+                float v = sum / float(n);
+                if (srgb && c < 3) v = linearToSrgb(v);
+                dst[(size_t(y) * nw + x) * 4 + c] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+            }
+    return dst;
+}
+
+gdi::Filter toFilter(assets::Filter f) { return f == assets::Filter::Nearest ? gdi::Filter::Nearest : gdi::Filter::Linear; }
+gdi::AddressMode toAddress(assets::Wrap w) {
+    switch (w) {
+        case assets::Wrap::ClampToEdge: return gdi::AddressMode::ClampToEdge;
+        case assets::Wrap::MirroredRepeat: return gdi::AddressMode::MirroredRepeat;
+        default: return gdi::AddressMode::Repeat;
+    }
+}
+
+gdi::TextureHandle solidTexture(gdi::Device& device, uint8_t r, uint8_t g, uint8_t b, uint8_t a, bool srgb,
+                                const char* name) {
+    gdi::TextureHandle t = device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                                                 .width = 1, .height = 1, .debugName = name});
+    const uint8_t px[4] = {r, g, b, a};
+    device.writeTexture(t, 0, px, 4);
+    return t;
+}
+
+}  // namespace
+
+GpuLight toGpuLight(const assets::Light& l) {
+    GpuLight g{};
+    g.positionRange = glm::vec4(l.position, l.range);
+    g.colorIntensity = glm::vec4(l.color, l.intensity);
+    float type = l.type == assets::LightType::Directional ? 0.0f : l.type == assets::LightType::Point ? 1.0f : 2.0f;
+    g.directionType = glm::vec4(l.direction, type);
+    float s = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
+    g.spotScaleOffset = glm::vec4(s, -std::cos(l.outerConeAngle) * s, 0.0f, 0.0f);
+    return g;
+}
+
+GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(device), scene_(scene) {
+    // Geometry: every primitive appended to one vertex and one index buffer.
+    std::vector<assets::Vertex> vertices;
+    std::vector<uint32_t> indices;
+    struct Range {
+        uint32_t firstIndex, indexCount;
+        int32_t baseVertex;
+    };
+    std::vector<std::vector<Range>> ranges(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        for (const assets::Primitive& p : scene.meshes[m].primitives) {
+            ranges[m].push_back({uint32_t(indices.size()), uint32_t(p.indices.size()), int32_t(vertices.size())});
+            vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+            indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+        }
+    if (vertices.empty()) vertices.push_back({});  // a buffer needs at least one byte
+    if (indices.empty()) indices.push_back(0);
+    vertices_ = device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex), .usage = gdi::BufferUsage::Vertex,
+                                     .debugName = "scene vertices"},
+                                    vertices.data());
+    indices_ = device.createBuffer({.size = indices.size() * 4, .usage = gdi::BufferUsage::Index, .debugName = "scene indices"},
+                                   indices.data());
+
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const assets::MeshInstance& inst = scene.instances[i];
+        const assets::Mesh& mesh = scene.meshes.at(inst.meshIndex);
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const assets::Primitive& prim = mesh.primitives[p];
+            const assets::Material& mat = scene.materials.at(prim.material);
+            DrawItem d;
+            d.firstIndex = ranges[inst.meshIndex][p].firstIndex;
+            d.indexCount = ranges[inst.meshIndex][p].indexCount;
+            d.baseVertex = ranges[inst.meshIndex][p].baseVertex;
+            d.material = prim.material;
+            d.instance = i;
+            d.alphaMode = mat.alphaMode;
+            d.doubleSided = mat.doubleSided;
+            d.mirrored = inst.mirrored;
+            d.worldCenter = glm::vec3(inst.world * glm::vec4(prim.bounds.center(), 1.0f));
+            if (d.indexCount) draws_.push_back(d);
+        }
+    }
+
+    // Textures, with CPU-generated mip chains when the sampler wants mipmaps.
+    for (const assets::TextureImage& img : scene.textures) {
+        uint32_t mips = 1;
+        if (img.sampler.mipmaps && img.sampler.mipFilter != assets::MipFilter::None)
+            for (uint32_t s = std::max(img.width, img.height); s > 1; s >>= 1) ++mips;
+        gdi::TextureHandle t = device.createTexture({.format = img.srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                                                     .width = img.width, .height = img.height, .mipLevels = mips,
+                                                     .debugName = img.name.c_str()});
+        std::vector<uint8_t> level = img.pixels;
+        uint32_t w = img.width, h = img.height;
+        for (uint32_t m = 0; m < mips; ++m) {
+            device.writeTexture(t, m, level.data(), level.size());
+            if (m + 1 < mips) {
+                level = downsample(level, w, h, img.srgb);
+                w = std::max(1u, w / 2);
+                h = std::max(1u, h / 2);
+            }
+        }
+        textures_.push_back(t);
+        const assets::Sampler& s = img.sampler;
+        samplers_.push_back(device.createSampler({
+            .minFilter = toFilter(s.minFilter),
+            .magFilter = toFilter(s.magFilter),
+            .mipFilter = mips == 1 ? gdi::MipFilter::None
+                         : s.mipFilter == assets::MipFilter::Nearest ? gdi::MipFilter::Nearest
+                                                                      : gdi::MipFilter::Linear,
+            .addressU = toAddress(s.wrapS),
+            .addressV = toAddress(s.wrapT),
+        }));
+    }
+    white_ = solidTexture(device, 255, 255, 255, 255, true, "default white");
+    black_ = solidTexture(device, 0, 0, 0, 255, true, "default black");
+    flatNormal_ = solidTexture(device, 128, 128, 255, 255, false, "default normal");
+    defaultSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest});
+
+    for (const assets::Material& m : scene.materials) {
+        auto pick = [&](const assets::TextureRef& r, gdi::TextureHandle fallback, gdi::TextureHandle& tex,
+                        gdi::SamplerHandle& smp) {
+            if (r.valid() && size_t(r.index) < textures_.size()) {
+                tex = textures_[r.index];
+                smp = samplers_[r.index];
+            } else {
+                tex = fallback;
+                smp = defaultSampler_;
+            }
+        };
+        MaterialTextures mt;
+        pick(m.baseColorTexture, white_, mt.baseColor, mt.baseColorSampler);
+        pick(m.metallicRoughnessTexture, white_, mt.metallicRoughness, mt.metallicRoughnessSampler);
+        pick(m.normalTexture, flatNormal_, mt.normal, mt.normalSampler);
+        pick(m.emissiveTexture, white_, mt.emissive, mt.emissiveSampler);
+        materialTextures_.push_back(mt);
+    }
+    updateLights(scene.lights);
+}
+
+GpuScene::~GpuScene() {
+    device_.waitIdle();
+    for (auto t : textures_) device_.destroy(t);
+    for (auto s : samplers_) device_.destroy(s);
+    device_.destroy(white_);
+    device_.destroy(black_);
+    device_.destroy(flatNormal_);
+    device_.destroy(defaultSampler_);
+    device_.destroy(vertices_);
+    device_.destroy(indices_);
+    device_.destroy(lights_);
+}
+
+void GpuScene::updateLights(const std::vector<assets::Light>& lights) {
+    std::vector<GpuLight> records;
+    for (const assets::Light& l : lights) records.push_back(toGpuLight(l));
+    if (records.empty()) records.push_back({});  // bound even when empty; count says 0
+    const uint64_t bytes = records.size() * sizeof(GpuLight);
+    if (bytes > lightCapacity_) {
+        if (lights_) device_.destroy(lights_);
+        lights_ = device_.createBuffer({.size = bytes, .usage = gdi::BufferUsage::Storage, .debugName = "scene lights"});
+        lightCapacity_ = bytes;
+    }
+    device_.writeBuffer(lights_, 0, records.data(), bytes);
+    lightCount_ = uint32_t(lights.size());
+}
+
+ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
+    const assets::MeshInstance& inst = scene_.instances[item.instance];
+    const assets::Material& m = scene_.materials[item.material];
+    ObjectConstants o{};
+    o.world = inst.world;
+    o.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(inst.world))));
+    o.baseColorFactor = m.baseColorFactor;
+    o.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
+    o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
+    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u), 0, 0, 0);
+    return o;
+}
+
+bool GpuScene::hasBlend() const {
+    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode == assets::AlphaMode::Blend; });
+}
+bool GpuScene::hasOpaque() const {
+    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode != assets::AlphaMode::Blend; });
+}
+
+}  // namespace fe::render

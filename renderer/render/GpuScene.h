@@ -1,0 +1,95 @@
+// Layer 7 (Render): a Scene uploaded through the abstract device, ready for any technique.
+// Geometry lives in one vertex and one index buffer; each (instance, primitive) pair becomes a
+// DrawItem; lights live in one storage buffer of GpuLight records (fe_shading.glsl).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "assets/Scene.h"
+#include "fe/gdi/Device.h"
+
+namespace fe::render {
+
+// std140 layouts shared with shaders/include/fe_scene.glsl.
+struct FrameConstants {
+    glm::mat4 viewProj;
+    glm::mat4 invViewProj;
+    glm::vec4 cameraPosition;  // xyz, w = exposure
+    glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
+    glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
+    glm::uvec4 counts;         // x = light count, y = illumination scale, z = debug flags
+};
+
+struct ObjectConstants {
+    glm::mat4 world;
+    glm::mat4 normalMatrix;      // inverse transpose of world (upper 3x3 used)
+    glm::vec4 baseColorFactor;
+    glm::vec4 emissiveNormalScale;  // rgb emissive factor, a normal scale
+    glm::vec4 params;               // metallic, roughness, alpha cutoff, alpha mode (0,1,2)
+    glm::uvec4 flags;               // x: bit0 normal map, bit1 unlit
+};
+
+struct GpuLight {
+    glm::vec4 positionRange;
+    glm::vec4 colorIntensity;
+    glm::vec4 directionType;
+    glm::vec4 spotScaleOffset;
+};
+GpuLight toGpuLight(const assets::Light& light);
+
+struct DrawItem {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int32_t baseVertex = 0;
+    uint32_t material = 0;
+    uint32_t instance = 0;
+    assets::AlphaMode alphaMode = assets::AlphaMode::Opaque;
+    bool doubleSided = false;
+    bool mirrored = false;
+    glm::vec3 worldCenter{0.0f};  // for back-to-front sorting of blended draws
+};
+
+struct MaterialTextures {
+    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive;
+    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler;
+};
+
+class GpuScene {
+public:
+    GpuScene(gdi::Device& device, const assets::Scene& scene);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    const assets::Scene& scene() const { return scene_; }
+    gdi::BufferHandle vertexBuffer() const { return vertices_; }
+    gdi::BufferHandle indexBuffer() const { return indices_; }
+    gdi::BufferHandle lightBuffer() const { return lights_; }
+    uint32_t lightCount() const { return lightCount_; }
+    const std::vector<DrawItem>& draws() const { return draws_; }
+    const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
+    ObjectConstants objectConstants(const DrawItem& item) const;
+    // Replaces the light list (e.g. animated builtin:lights); the count may change.
+    void updateLights(const std::vector<assets::Light>& lights);
+
+    bool hasBlend() const;
+    bool hasOpaque() const;
+
+    static constexpr uint32_t kVertexStride = sizeof(assets::Vertex);
+
+private:
+    gdi::Device& device_;
+    const assets::Scene& scene_;
+    gdi::BufferHandle vertices_, indices_, lights_;
+    uint64_t lightCapacity_ = 0;
+    uint32_t lightCount_ = 0;
+    std::vector<DrawItem> draws_;
+    std::vector<gdi::TextureHandle> textures_;
+    std::vector<gdi::SamplerHandle> samplers_;
+    std::vector<MaterialTextures> materialTextures_;
+    gdi::TextureHandle white_, black_, flatNormal_;
+    gdi::SamplerHandle defaultSampler_;
+};
+
+}  // namespace fe::render

@@ -1,0 +1,59 @@
+// Material evaluation for passes that draw scene meshes (forward, G-buffer, transparent).
+#ifndef FE_MATERIAL_GLSL
+#define FE_MATERIAL_GLSL
+#include "fe_scene.glsl"
+
+layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
+    mat4 world;
+    mat4 normalMatrix;
+    vec4 baseColorFactor;
+    vec4 emissiveNormalScale;
+    vec4 params;  // metallic, roughness, alpha cutoff, alpha mode
+    uvec4 flags;  // bit0 normal map, bit1 unlit
+} object;
+
+layout(binding = FE_SLOT_BASECOLOR) uniform sampler2D baseColorTexture;
+layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
+layout(binding = FE_SLOT_NORMALMAP) uniform sampler2D normalTexture;
+layout(binding = FE_SLOT_EMISSIVE) uniform sampler2D emissiveTexture;
+
+struct MaterialSample {
+    vec3 baseColor;
+    float alpha;
+    float metallic;
+    float roughness;
+    vec3 emissive;
+    vec3 n;
+    bool unlit;
+};
+
+// Sampled textures are decoded by the sampler (sRGB formats), so everything here is linear.
+MaterialSample feSampleMaterial(vec2 uv, vec3 N, vec4 T, bool frontFacing) {
+    MaterialSample m;
+    vec4 bc = object.baseColorFactor * texture(baseColorTexture, uv);
+    m.baseColor = bc.rgb;
+    m.alpha = bc.a;
+    vec4 mr = texture(metallicRoughnessTexture, uv);
+    m.metallic = clamp(object.params.x * mr.b, 0.0, 1.0);
+    m.roughness = feClampRoughness(object.params.y * mr.g);
+    m.emissive = object.emissiveNormalScale.rgb * texture(emissiveTexture, uv).rgb;
+    vec3 n = normalize(N);
+    if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
+    if ((object.flags.x & 1u) != 0u) {
+        vec3 t = T.xyz - n * dot(n, T.xyz);
+        if (dot(t, t) > 1e-12) {
+            t = normalize(t);
+            vec3 b = cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
+            vec3 tn = texture(normalTexture, uv).xyz * 2.0 - 1.0;
+            tn.xy *= object.emissiveNormalScale.a;
+            n = normalize(tn.x * t + tn.y * b + tn.z * n);
+        }
+    }
+    m.n = n;
+    m.unlit = (object.flags.x & 2u) != 0u;
+    return m;
+}
+
+// MASK: discard below the cutoff; OPAQUE: alpha ignored.
+bool feAlphaDiscard(float alpha) { return object.params.w == 1.0 && alpha < object.params.z; }
+#endif

@@ -1,0 +1,19 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fe_material.glsl"
+// G-buffer: GB0 RGBA8_SRGB base colour + metallic, GB1 RGBA16F world normal + roughness,
+// GB2 RGBA16F emissive (or unlit colour) + unlit flag. Position comes back from depth.
+layout(location = 0) in vec3 vWorld;
+layout(location = 1) in vec3 vNormal;
+layout(location = 2) in vec4 vTangent;
+layout(location = 3) in vec2 vUv;
+layout(location = 0) out vec4 outGb0;
+layout(location = 1) out vec4 outGb1;
+layout(location = 2) out vec4 outGb2;
+void main() {
+    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    if (feAlphaDiscard(m.alpha)) discard;
+    outGb0 = vec4(m.baseColor, m.metallic);
+    outGb1 = vec4(m.n, m.roughness);
+    outGb2 = m.unlit ? vec4(m.baseColor, 1.0) : vec4(m.emissive, 0.0);
+}

@@ -1,0 +1,79 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fe_scene.glsl"
+// Redeferred material pass at full resolution: L_o = emissive + L_d + L_s from the I-buffer.
+// At a reduced illumination rate the sums are upsampled with a G-buffer-guided filter: the
+// bilinear weights of the 4 nearest I-buffer texels are multiplied by depth, normal and
+// roughness similarity between this pixel and each texel's representative G-buffer texel.
+layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
+layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
+layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
+layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+layout(binding = FE_SLOT_IBUFFER0) uniform sampler2D iLdg;
+layout(binding = FE_SLOT_IBUFFER1) uniform sampler2D iLsg1;
+layout(binding = FE_SLOT_IBUFFER2) uniform sampler2D iLsg2;
+layout(location = 0) out vec4 outRadiance;
+
+float linearDepth(vec2 pixelCenter, float depth) {
+    return distance(feWorldFromDepth(pixelCenter, depth), frame.cameraPosition.xyz);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(depthTexture, p, 0).r;
+    vec4 g2 = texelFetch(gb2, p, 0);
+    if (depth >= 1.0) discard;
+    if (g2.a > 0.5) { outRadiance = vec4(g2.rgb, 1.0); return; }  // unlit
+    vec4 g0 = texelFetch(gb0, p, 0);
+    vec4 g1 = texelFetch(gb1, p, 0);
+    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    vec3 n = normalize(g1.xyz);
+    vec3 wo = normalize(frame.cameraPosition.xyz - P);
+    int scale = int(frame.counts.y);
+    IlluminationSums acc;
+    if (scale == 1) {
+        acc.Ldg = texelFetch(iLdg, p, 0).rgb;
+        acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
+        acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
+    } else {
+        ivec2 isize = ivec2(frame.illumViewport.xy);
+        vec2 q = (vec2(p) + 0.5) / float(scale) - 0.5;
+        ivec2 q0 = ivec2(floor(q));
+        vec2 f = q - vec2(q0);
+        float zp = distance(P, frame.cameraPosition.xyz);
+        acc.Ldg = vec3(0.0);
+        acc.Lsg1 = vec3(0.0);
+        acc.Lsg2 = vec3(0.0);
+        float wsum = 0.0;
+        IlluminationSums nearest = acc;
+        float best = -1.0;
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+                ivec2 qi = clamp(q0 + ivec2(i, j), ivec2(0), isize - 1);
+                ivec2 rep = min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
+                float dr = texelFetch(depthTexture, rep, 0).r;
+                vec4 r1 = texelFetch(gb1, rep, 0);
+                float bil = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+                float wz = dr >= 1.0 ? 0.0 : exp(-abs(linearDepth(vec2(rep) + 0.5, dr) - zp) / (0.02 * zp));
+                float wn = pow(max(dot(normalize(r1.xyz), n), 0.0), 32.0);
+                float wr = exp(-abs(r1.a - g1.a) / 0.05);
+                float w = bil * wz * wn * wr;
+                vec3 a = texelFetch(iLdg, qi, 0).rgb, b = texelFetch(iLsg1, qi, 0).rgb, c = texelFetch(iLsg2, qi, 0).rgb;
+                acc.Ldg += w * a;
+                acc.Lsg1 += w * b;
+                acc.Lsg2 += w * c;
+                wsum += w;
+                float sim = wz * wn * wr;
+                if (sim > best) { best = sim; nearest.Ldg = a; nearest.Lsg1 = b; nearest.Lsg2 = c; }
+            }
+        if (wsum > 1e-6) {
+            acc.Ldg /= wsum;
+            acc.Lsg1 /= wsum;
+            acc.Lsg2 /= wsum;
+        } else {
+            acc = nearest;  // no similar neighbour: take the most similar one
+        }
+    }
+    vec3 L = g2.rgb + feResolveMaterial(acc, n, wo, g0.rgb, g0.a, g1.a);
+    outRadiance = vec4(L, 1.0);
+}

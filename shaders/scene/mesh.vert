@@ -1,0 +1,20 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fe_material.glsl"
+// Scene meshes for every pass that draws geometry (forward, G-buffer, transparent).
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inTangent;
+layout(location = 3) in vec2 inUv;
+layout(location = 0) out vec3 vWorld;
+layout(location = 1) out vec3 vNormal;
+layout(location = 2) out vec4 vTangent;
+layout(location = 3) out vec2 vUv;
+void main() {
+    vec4 world = object.world * vec4(inPosition, 1.0);
+    vWorld = world.xyz;
+    vNormal = mat3(object.normalMatrix) * inNormal;
+    vTangent = vec4(mat3(object.world) * inTangent.xyz, inTangent.w);
+    vUv = inUv;
+    gl_Position = frame.viewProj * world;
+}
