@@ -13,7 +13,7 @@ CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight, uint64_
     slots_.resize(framesInFlight);
     for (Slot& s : slots_) s.commands = device.createCommandList();
     uploadBuffer_ = device.createBuffer({.size = regionSize_ * framesInFlight,
-                                         .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage,
+                                         .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage | gdi::BufferUsage::Vertex,
                                          .access = gdi::MemoryAccess::Upload,
                                          .debugName = "per-frame uploads"});
 }

@@ -1,0 +1,244 @@
+#include "assets/BuiltinScenes.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "assets/Geometry.h"
+
+namespace fe::assets {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+float radians(float degrees) { return degrees * float(kPi / 180.0); }
+
+// Integer mixer (multiply / xor-shift rounds): any fixed bijection with good avalanche works;
+// what matters is that light i gets the same numbers on every machine and every run.
+uint32_t mix(uint32_t x) {
+    x ^= x >> 15;
+    x *= 0x2c1b3c6dU;
+    x ^= x >> 12;
+    x *= 0x297a2d39U;
+    x ^= x >> 15;
+    return x;
+}
+
+// Uniform in [0, 1) from light index and a per-quantity stream number.
+float unit(uint32_t light, uint32_t stream) {
+    uint32_t h = mix(mix(light * 0x9E3779B1U + 0x5EED1234U) ^ (stream * 0x85EBCA77U));
+    return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+glm::vec3 hsv(float h, float s, float v) {
+    float h6 = h * 6.0f;
+    int i = int(h6) % 6;
+    float f = h6 - std::floor(h6);
+    float p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+    switch (i) {
+        case 0: return {v, t, p};
+        case 1: return {q, v, p};
+        case 2: return {p, v, t};
+        case 3: return {p, q, v};
+        case 4: return {t, p, v};
+        default: return {v, p, q};
+    }
+}
+
+Material makeMaterial(const std::string& name, const glm::vec4& base, float metallic, float roughness) {
+    Material m;
+    m.name = name;
+    m.baseColorFactor = base;
+    m.metallic = metallic;
+    m.roughness = roughness;
+    return m;
+}
+
+void addInstance(Scene& s, uint32_t mesh, const glm::mat4& world, std::string name) {
+    MeshInstance i;
+    i.meshIndex = mesh;
+    i.world = world;
+    i.mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+    i.name = std::move(name);
+    s.instances.push_back(std::move(i));
+}
+
+Light directional(const std::string& name, const glm::vec3& travel, const glm::vec3& color, float lux) {
+    Light l;
+    l.name = name;
+    l.type = LightType::Directional;
+    l.direction = glm::normalize(travel);
+    l.color = color;
+    l.intensity = lux;
+    return l;
+}
+
+Light point(const std::string& name, const glm::vec3& pos, const glm::vec3& color, float cd, float range) {
+    Light l;
+    l.name = name;
+    l.type = LightType::Point;
+    l.position = pos;
+    l.color = color;
+    l.intensity = cd;
+    l.range = range;
+    return l;
+}
+
+Scene makeSpheres(const BuiltinOptions& o) {
+    const uint32_t n = std::clamp(o.sphereGrid, 2u, 16u);
+    const float spacing = 1.0f, radius = 0.4f;
+    const float half = float(n - 1) * 0.5f;
+    Scene s;
+    s.name = "spheres";
+    const Primitive sphere = makeUVSphere(radius, 48, 24, 0);
+    for (uint32_t row = 0; row < n; ++row) {
+        for (uint32_t col = 0; col < n; ++col) {
+            float roughness = float(col) / float(n - 1);
+            float metallic = float(row) / float(n - 1);
+            uint32_t mat = uint32_t(s.materials.size());
+            s.materials.push_back(makeMaterial("m" + std::to_string(row) + "_r" + std::to_string(col),
+                                               glm::vec4(0.9f, 0.3f, 0.1f, 1.0f), metallic, roughness));
+            Mesh mesh;
+            mesh.name = "sphere_" + std::to_string(row) + "_" + std::to_string(col);
+            mesh.primitives.push_back(sphere);
+            mesh.primitives.back().material = mat;
+            computeBounds(mesh);
+            uint32_t mi = uint32_t(s.meshes.size());
+            s.meshes.push_back(std::move(mesh));
+            glm::vec3 pos((float(col) - half) * spacing, (half - float(row)) * spacing, 0.0f);
+            addInstance(s, mi, glm::translate(glm::mat4(1.0f), pos), s.meshes[mi].name);
+        }
+    }
+    s.lights.push_back(directional("key", {0.5f, -0.6f, -1.0f}, glm::vec3(1.0f), 2.0f));
+    s.lights.push_back(directional("fill", {-0.6f, -0.2f, -1.0f}, {0.8f, 0.9f, 1.0f}, 0.5f));
+    s.lights.push_back(point("point", {2.0f, 3.0f, 4.0f}, glm::vec3(1.0f), 30.0f, 0.0f));
+    const float yfov = radians(45.0f);
+    // The sphere fronts (z = radius) are the closest points: fit the grid's half extent plus a
+    // 10% margin there.
+    const float dist = radius + (half * spacing + radius) * 1.1f / std::tan(yfov * 0.5f);
+    s.camera = Camera::lookAlong({0.0f, 0.0f, dist}, {0, 0, -1}, {0, 1, 0}, yfov, 0.1f, 100.0f);
+    s.camera->name = "spheres";
+    return s;
+}
+
+Scene makeLights(const BuiltinOptions& o) {
+    Scene s;
+    s.name = "lights";
+    s.materials.push_back(makeMaterial("grey", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), 0.0f, 0.5f));
+    Mesh cube;
+    cube.name = "cube";
+    cube.primitives.push_back(makeCube(1.0f, 0));
+    computeBounds(cube);
+    s.meshes.push_back(std::move(cube));
+    for (int iy = 0; iy < 11; ++iy) {
+        for (int ix = 0; ix < 11; ++ix) {
+            glm::vec3 c(float(-15 + 3 * ix), float(-15 + 3 * iy), 0.0f);
+            addInstance(s, 0, glm::translate(glm::mat4(1.0f), c),
+                        "cube_" + std::to_string(ix) + "_" + std::to_string(iy));
+        }
+    }
+    s.lights = lightsSceneLights(o.lights, o.frame);
+    s.camera = Camera::lookAlong({0.0f, 0.0f, -15.0f}, {0, 0, 1}, {0, 1, 0}, radians(60.0f), 0.1f, 100.0f);
+    s.camera->name = "lights";
+    return s;
+}
+
+Scene makePlane() {
+    Scene s;
+    s.name = "plane";
+    s.materials.push_back(makeMaterial("grey", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 0.0f, 0.5f));
+    Mesh quad;
+    quad.name = "quad";
+    quad.primitives.push_back(makeQuad(1.0f, 1.0f, 0));
+    computeBounds(quad);
+    s.meshes.push_back(std::move(quad));
+    addInstance(s, 0, glm::mat4(1.0f), "quad");
+    s.lights.push_back(point("point", {0.0f, 0.0f, 1.0f}, glm::vec3(1.0f), 1.0f, 0.0f));
+    s.camera = Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera->name = "plane";
+    return s;
+}
+
+Scene makeTriangle() {
+    Scene s;
+    s.name = "triangle";
+    s.materials.push_back(makeMaterial("white", glm::vec4(1.0f), 0.0f, 1.0f));
+    Primitive p;
+    p.material = 0;
+    const glm::vec3 pos[3] = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    for (int i = 0; i < 3; ++i) {
+        Vertex v;
+        v.position = pos[i];
+        v.normal = {0, 0, 1};
+        v.uv0 = {(pos[i].x + 1.0f) * 0.5f, (1.0f - pos[i].y) * 0.5f};
+        p.vertices.push_back(v);
+    }
+    p.indices = {0, 1, 2};
+    generateTangents(p);
+    Mesh m;
+    m.name = "triangle";
+    m.primitives.push_back(std::move(p));
+    computeBounds(m);
+    s.meshes.push_back(std::move(m));
+    addInstance(s, 0, glm::mat4(1.0f), "triangle");
+    s.lights.push_back(directional("sun", {0, 0, -1}, glm::vec3(1.0f), 1.0f));
+    s.camera = Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera->name = "triangle";
+    return s;
+}
+
+}  // namespace
+
+const std::vector<std::string>& builtinSceneNames() {
+    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle"};
+    return names;
+}
+
+std::vector<Light> lightsSceneLights(uint32_t count, uint32_t frame) {
+    std::vector<Light> out;
+    out.reserve(count);
+    const double baseSpeed = 2.0 * kPi / 600.0;
+    for (uint32_t i = 0; i < count; ++i) {
+        float cx = -14.0f + 28.0f * unit(i, 0);
+        float cy = -14.0f + 28.0f * unit(i, 1);
+        float z = -2.0f + 4.0f * unit(i, 2);
+        double phase = 2.0 * kPi * unit(i, 3);
+        double speed = baseSpeed * (0.5 + unit(i, 4)) * (unit(i, 5) < 0.5f ? -1.0 : 1.0);
+        // fmod keeps the angle small, so precision does not decay with the frame number.
+        double angle = std::fmod(phase + speed * double(frame), 2.0 * kPi);
+        glm::vec3 pos(cx + float(std::cos(angle)), cy + float(std::sin(angle)), z);
+        out.push_back(point("light" + std::to_string(i), pos, hsv(unit(i, 6), 0.7f, 1.0f), 4.0f, 2.0f));
+    }
+    return out;
+}
+
+Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
+    Scene s;
+    if (name == "spheres") {
+        s = makeSpheres(options);
+    } else if (name == "lights") {
+        s = makeLights(options);
+    } else if (name == "plane") {
+        s = makePlane();
+    } else if (name == "triangle") {
+        s = makeTriangle();
+    } else {
+        std::string valid;
+        for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;
+        throw AssetError("unknown builtin scene '" + std::string(name) + "' (valid: " + valid + ")");
+    }
+    // Every builtin brings its own camera and lights; only the bounds are derived.
+    finalizeScene(s, false, false);
+    return s;
+}
+
+Scene loadScene(std::string_view spec, const LoadOptions& load, const BuiltinOptions& builtin) {
+    constexpr std::string_view prefix = "builtin:";
+    if (spec.substr(0, prefix.size()) == prefix) return makeBuiltinScene(spec.substr(prefix.size()), builtin);
+    if (spec.empty()) throw AssetError("empty scene name (expected 'builtin:NAME' or a glTF file path)");
+    return loadGltf(std::string(spec), load);
+}
+
+}  // namespace fe::assets

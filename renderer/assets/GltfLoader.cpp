@@ -1,0 +1,1256 @@
+// glTF 2.0 loader on top of tinygltf (JSON + container parsing) and stb_image (decoding).
+// tinygltf only parses; everything it does not check (accessor bounds, dangling indices,
+// hierarchy sanity, finite values) is validated here before use, so malformed files end in an
+// AssetError instead of a crash.
+
+// The single translation unit with the tinygltf and stb_image implementations. stb_image is
+// made static so another module embedding its own copy cannot clash at link time.
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#endif
+#include <tiny_gltf.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "assets/GltfLoader.h"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string_view>
+#include <tuple>
+
+#include "assets/Geometry.h"
+
+namespace fe::assets {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Extensions whose data the loader understands, so a file may require them.
+const std::set<std::string> kSupportedExtensions = {
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
+    "EXT_mesh_gpu_instancing",
+};
+
+// Limits that keep hostile files from allocating unbounded memory: components of an accessor
+// without a buffer view (their size is not bounded by the file), decoded image pixels.
+constexpr uint64_t kMaxVirtualAccessorComponents = uint64_t(1) << 24;
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;  // 1 GiB of RGBA8
+
+// Accepted (componentType, normalized) pairs, per attribute semantic.
+enum Comp : uint32_t {
+    F32 = 1u << 0,
+    U8N = 1u << 1,
+    U16N = 1u << 2,
+    S8N = 1u << 3,
+    S16N = 1u << 4,
+    U8 = 1u << 5,
+    U16 = 1u << 6,
+    U32 = 1u << 7,
+};
+
+uint32_t compBit(int componentType, bool normalized) {
+    uint32_t bit = 0;
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: bit = normalized ? 0u : uint32_t(F32); break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: bit = normalized ? U8N : U8; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: bit = normalized ? U16N : U16; break;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: bit = normalized ? uint32_t(S8N) : 0u; break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: bit = normalized ? uint32_t(S16N) : 0u; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: bit = normalized ? 0u : uint32_t(U32); break;
+        default: break;
+    }
+    return bit;
+}
+
+std::string componentTypeName(int componentType, bool normalized) {
+    std::string s;
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: s = "byte"; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: s = "unsigned byte"; break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: s = "short"; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: s = "unsigned short"; break;
+        case TINYGLTF_COMPONENT_TYPE_INT: s = "int"; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: s = "unsigned int"; break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: s = "float"; break;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: s = "double"; break;
+        default: s = "unknown"; break;
+    }
+    s += " (" + std::to_string(componentType) + ")";
+    if (normalized) s += " normalized";
+    return s;
+}
+
+std::string typeName(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+        case TINYGLTF_TYPE_VEC2: return "VEC2";
+        case TINYGLTF_TYPE_VEC3: return "VEC3";
+        case TINYGLTF_TYPE_VEC4: return "VEC4";
+        case TINYGLTF_TYPE_MAT2: return "MAT2";
+        case TINYGLTF_TYPE_MAT3: return "MAT3";
+        case TINYGLTF_TYPE_MAT4: return "MAT4";
+        default: return "type " + std::to_string(type);
+    }
+}
+
+// Reads one component and converts it as glTF defines normalized integers (3.11).
+double readComponent(const unsigned char* p, int componentType, bool normalized) {
+    switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float f;
+            std::memcpy(&f, p, 4);
+            return f;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            double v = p[0];
+            return normalized ? v / 255.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            double v = static_cast<int8_t>(p[0]);
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t u;
+            std::memcpy(&u, p, 2);
+            return normalized ? u / 65535.0 : double(u);
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t s;
+            std::memcpy(&s, p, 2);
+            return normalized ? std::max(s / 32767.0, -1.0) : double(s);
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t u;
+            std::memcpy(&u, p, 4);
+            return double(u);
+        }
+        default: return 0.0;
+    }
+}
+
+bool addOverflows(uint64_t a, uint64_t b, uint64_t& out) { return __builtin_add_overflow(a, b, &out); }
+bool mulOverflows(uint64_t a, uint64_t b, uint64_t& out) { return __builtin_mul_overflow(a, b, &out); }
+
+std::string trimTrailing(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+    return s;
+}
+
+std::string oneLine(std::string s) {
+    s = trimTrailing(std::move(s));
+    for (auto& c : s)
+        if (c == '\n') c = ';';
+    return s;
+}
+
+std::string lowerExtension(const fs::path& p) {
+    std::string e = p.extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return e;
+}
+
+// An index stored in an extension object; -1 when absent, not a number or out of int range
+// (tinygltf's GetNumberAsInt would convert out-of-range doubles with undefined behaviour).
+int valueIndex(const tinygltf::Value& v) {
+    if (!v.IsNumber()) return -1;
+    double d = v.GetNumberAsDouble();
+    return d >= 0.0 && d < 2147483647.0 ? int(d) : -1;
+}
+
+const tinygltf::Value* findExtension(const tinygltf::ExtensionMap& ext, const char* name) {
+    auto it = ext.find(name);
+    return it == ext.end() ? nullptr : &it->second;
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (12-byte header, then chunk 0: uint32
+// length, uint32 type 'JSON', data). A .glb whose header does not parse yields the whole file.
+std::string_view jsonText(const std::vector<unsigned char>& bytes, bool binary) {
+    std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (!binary) return all;
+    if (bytes.size() < 20 || std::memcmp(bytes.data() + 16, "JSON", 4) != 0) return all;
+    uint32_t chunkLen = 0;
+    std::memcpy(&chunkLen, bytes.data() + 12, 4);
+    if (chunkLen > bytes.size() - 20) return all;
+    return all.substr(20, chunkLen);
+}
+
+// Deepest [ / { nesting outside strings. tinygltf converts "extras" and "extensions" to its
+// Value type recursively, so a hostile file nesting arrays 100000 deep overflows the stack;
+// this linear scan rejects such files first.
+size_t jsonNestingDepth(std::string_view text) {
+    size_t depth = 0, deepest = 0;
+    bool inString = false, escaped = false;
+    for (char c : text) {
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+constexpr size_t kMaxJsonDepth = 256;  // glTF itself needs about 10
+
+// extensionsRequired straight from the JSON. tinygltf rejects some extension-only constructs
+// (Draco accessors have no bufferView) with a generic message; when it fails, this tells
+// whether an unsupported required extension is the real reason. Malformed JSON: empty list.
+std::vector<std::string> requiredExtensions(std::string_view text) {
+    std::vector<std::string> out;
+    nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object()) return out;
+    auto it = j.find("extensionsRequired");
+    if (it == j.end() || !it->is_array()) return out;
+    for (const auto& e : *it)
+        if (e.is_string()) out.push_back(e.get<std::string>());
+    return out;
+}
+
+class Loader {
+public:
+    Loader(std::string path, const LoadOptions& options) : path_(std::move(path)), opt_(options) {}
+
+    Scene run() {
+        parseFile();
+        checkExtensions();
+        buildHierarchy();
+        traverseScene();
+        if (!model_.animations.empty()) {
+            warn(std::to_string(model_.animations.size()) +
+                 " animation(s) ignored: the static pose is loaded");
+        }
+        finalizeScene(scene_, opt_.defaultCamera, opt_.defaultLights);
+        return std::move(scene_);
+    }
+
+    // tinygltf callbacks (static trampolines below).
+    bool storeImageBytes(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes, int size);
+    bool fileExists(const std::string& absPath) const;
+    bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path) const;
+
+private:
+    [[noreturn]] void fail(const std::string& msg) const { throw AssetError(path_ + ": " + msg); }
+
+    void warn(const std::string& msg) {
+        if (warned_.insert(msg).second) scene_.warnings.push_back(msg);
+    }
+
+    // ---- labels used in messages ----
+    std::string meshLabel(int m) const {
+        const auto& name = model_.meshes[size_t(m)].name;
+        return name.empty() ? "mesh " + std::to_string(m) : "mesh '" + name + "'";
+    }
+    std::string nodeLabel(int n) const {
+        const auto& name = model_.nodes[size_t(n)].name;
+        return name.empty() ? "node " + std::to_string(n) : "node " + std::to_string(n) + " '" + name + "'";
+    }
+    std::string materialLabel(int m) const {
+        const auto& name = model_.materials[size_t(m)].name;
+        return name.empty() ? "material " + std::to_string(m) : "material '" + name + "'";
+    }
+
+    template <class Vec>
+    void checkIndex(int index, const Vec& v, const std::string& what) const {
+        if (index < 0 || size_t(index) >= v.size()) {
+            fail(what + " " + std::to_string(index) + " does not exist (the file has " + std::to_string(v.size()) + ")");
+        }
+    }
+
+    void parseFile();
+    void checkExtensions();
+    void buildHierarchy();
+    void traverseScene();
+    glm::mat4 localTransform(int n) const;
+    glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
+
+    // Validated, converted accessor contents: count * components values, row-major per element.
+    template <class T>
+    std::vector<T> readAccessor(int index, const std::string& what, int expectedType, uint32_t allowed);
+    const unsigned char* bufferViewData(int bv, const std::string& ctx, uint64_t& length);
+
+    uint32_t getMesh(int gltfMesh, int skin);
+    bool loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, Primitive& out);
+    uint32_t getMaterial(int gltfMaterial);
+    uint32_t defaultMaterial();
+    TextureRef getTexture(int gltfTexture, int texCoord, bool srgb, const tinygltf::ExtensionMap& infoExt,
+                          const std::string& what);
+    void decodeImage(int image, const std::string& what, TextureImage& out);
+    std::vector<glm::mat4> jointMatrices(int skin);
+    void addCamera(int node);
+    void addLight(int node, const tinygltf::Value& ext);
+    void addMeshInstances(int node);
+
+    std::string path_;
+    LoadOptions opt_;
+    tinygltf::Model model_;
+    Scene scene_;
+    std::set<std::string> warned_;
+    std::string baseDir_;
+
+    std::vector<int> parent_;
+    std::vector<glm::mat4> world_;
+    std::map<std::pair<int, int>, uint32_t> meshMap_;  // (glTF mesh, skin or -1) -> scene mesh
+    std::map<int, uint32_t> materialMap_;
+    int defaultMaterial_ = -1;
+    std::map<std::tuple<int, int, bool>, int32_t> textureMap_;  // (image, sampler, sRGB) -> scene texture
+    std::map<int, int32_t> imageTexture_;  // glTF image -> first scene texture holding its pixels
+    std::map<int, std::vector<glm::mat4>> skinCache_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// tinygltf glue
+
+bool imageLoaderTrampoline(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                           const unsigned char* bytes, int size, void* user) {
+    return static_cast<Loader*>(user)->storeImageBytes(image, index, err, bytes, size);
+}
+
+// Images are kept encoded at parse time and decoded only if a material uses them, with our own
+// error messages. Images stored in a buffer view are range-checked here because tinygltf 2.7
+// hands us a pointer into the buffer without checking the view against the buffer size.
+bool Loader::storeImageBytes(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes,
+                             int size) {
+    if (image->bufferView >= 0) {
+        // tinygltf has already checked both indices.
+        const auto& bv = model_.bufferViews[size_t(image->bufferView)];
+        const auto& buf = model_.buffers[size_t(bv.buffer)];
+        uint64_t end = 0;
+        if (addOverflows(bv.byteOffset, bv.byteLength, end) || end > buf.data.size()) {
+            if (err) {
+                *err += "image " + std::to_string(index) + ": bufferView " + std::to_string(image->bufferView) +
+                        " exceeds buffer " + std::to_string(bv.buffer) + "\n";
+            }
+            return false;
+        }
+    }
+    if (size < 0 || (size > 0 && bytes == nullptr)) return false;
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+bool fileExistsTrampoline(const std::string& absPath, void* user) {
+    return static_cast<Loader*>(user)->fileExists(absPath);
+}
+std::string expandTrampoline(const std::string& p, void*) { return p; }
+bool readTrampoline(std::vector<unsigned char>* out, std::string* err, const std::string& p, void* user) {
+    return static_cast<Loader*>(user)->readWholeFile(out, err, p);
+}
+bool writeTrampoline(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing is disabled";
+    return false;
+}
+
+// Resources resolve next to the glTF file only (tinygltf would also search the working
+// directory), and only regular files are read (a FIFO or device would hang or never end).
+bool Loader::fileExists(const std::string& absPath) const {
+    if (absPath.compare(0, baseDir_.size(), baseDir_) != 0) return false;
+    std::error_code ec;
+    return fs::is_regular_file(fs::path(absPath), ec);
+}
+
+bool Loader::readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& p) const {
+    std::error_code ec;
+    fs::path fp = fs::path(p);
+    if (!fs::is_regular_file(fp, ec)) {
+        if (err) *err += "not a regular file";
+        return false;
+    }
+    auto size = fs::file_size(fp, ec);
+    if (ec || size > 0xFFFFFFFFull) {
+        if (err) *err += ec ? ec.message() : std::string("file larger than 4 GiB");
+        return false;
+    }
+    std::ifstream in(fp, std::ios::binary);
+    out->resize(size_t(size));
+    if (!in || (size && !in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size)))) {
+        if (err) *err += "read error";
+        return false;
+    }
+    return true;
+}
+
+void Loader::parseFile() {
+    fs::path fp = fs::path(path_);
+    std::error_code ec;
+    if (!fs::exists(fp, ec)) fail("file not found");
+    if (!fs::is_regular_file(fp, ec)) fail("not a regular file");
+    std::vector<unsigned char> bytes;
+    std::string readErr;
+    baseDir_ = fs::absolute(fp, ec).parent_path().string();
+    if (!readWholeFile(&bytes, &readErr, fp.string())) fail("cannot read file: " + readErr);
+
+    const bool magic = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    const std::string ext = lowerExtension(fp);
+    if (ext == ".glb" && !magic) {
+        std::string found;
+        for (size_t i = 0; i < std::min<size_t>(4, bytes.size()); ++i) {
+            char c = char(bytes[i]);
+            found += (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(unsigned(bytes[i]));
+        }
+        fail("not a binary glTF: bad magic '" + found + "' (expected 'glTF')");
+    }
+    if (magic && ext != ".glb") warn("binary glTF content in a file named '" + fp.filename().string() + "'");
+
+    const std::string_view json = jsonText(bytes, magic);
+    if (jsonNestingDepth(json) > kMaxJsonDepth) {
+        fail("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+    auto failUnsupportedRequired = [&] {
+        for (const auto& e : requiredExtensions(json)) {
+            if (!kSupportedExtensions.count(e)) fail("unsupported required extension " + e);
+        }
+    };
+
+    tinygltf::TinyGLTF gltf;
+    gltf.SetImageLoader(&imageLoaderTrampoline, this);
+    tinygltf::FsCallbacks cb{};
+    cb.FileExists = &fileExistsTrampoline;
+    cb.ExpandFilePath = &expandTrampoline;
+    cb.ReadWholeFile = &readTrampoline;
+    cb.WriteWholeFile = &writeTrampoline;
+    cb.user_data = this;
+    gltf.SetFsCallbacks(cb);
+
+    std::string err, warnings;
+    bool ok = false;
+    try {
+        // The model being filled is our member, so storeImageBytes() can look at its buffers.
+        if (magic) {
+            ok = gltf.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), unsigned(bytes.size()), baseDir_);
+        } else {
+            ok = gltf.LoadASCIIFromString(&model_, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
+                                          unsigned(bytes.size()), baseDir_);
+        }
+    } catch (const std::exception& e) {
+        failUnsupportedRequired();
+        fail(std::string("glTF parse error: ") + e.what());
+    }
+    if (!ok) {
+        failUnsupportedRequired();
+        fail("glTF parse error: " + oneLine(err.empty() ? std::string("unknown error") : err));
+    }
+    std::istringstream ws(warnings);
+    for (std::string line; std::getline(ws, line);) {
+        if (!trimTrailing(line).empty()) warn("tinygltf: " + trimTrailing(line));
+    }
+    if (scene_.name.empty()) scene_.name = fp.stem().string();
+}
+
+void Loader::checkExtensions() {
+    for (const auto& e : model_.extensionsRequired) {
+        if (!kSupportedExtensions.count(e)) fail("unsupported required extension " + e);
+    }
+    for (const auto& e : model_.extensionsUsed) {
+        if (kSupportedExtensions.count(e)) continue;
+        if (e == "KHR_texture_transform") {
+            warn("KHR_texture_transform is not supported: texture transforms are ignored");
+        } else {
+            warn("extension " + e + " is not supported and is ignored");
+        }
+    }
+}
+
+// Finite doubles can still overflow float (1e39): check what we actually keep.
+glm::mat4 Loader::checkedFinite(const glm::mat4& m, int n) const {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) fail(nodeLabel(n) + ": non-finite transform");
+    return m;
+}
+
+glm::mat4 Loader::localTransform(int n) const {
+    const auto& node = model_.nodes[size_t(n)];
+    auto finite = [](const std::vector<double>& v) {
+        return std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); });
+    };
+    if (!finite(node.matrix) || !finite(node.translation) || !finite(node.rotation) || !finite(node.scale)) {
+        fail(nodeLabel(n) + ": non-finite transform");
+    }
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) fail(nodeLabel(n) + ": matrix must have 16 numbers");
+        glm::dmat4 m = glm::make_mat4(node.matrix.data());  // both column-major
+        return checkedFinite(glm::mat4(m), n);
+    }
+    glm::mat4 t(1.0f), r(1.0f), s(1.0f);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3) fail(nodeLabel(n) + ": translation must have 3 numbers");
+        t = glm::translate(glm::mat4(1.0f), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4) fail(nodeLabel(n) + ": rotation must have 4 numbers");
+        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // w, x, y, z
+        double len = glm::length(q);
+        if (len > 1e-12) r = glm::mat4(glm::mat4_cast(q / len));  // exporters round; renormalise
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3) fail(nodeLabel(n) + ": scale must have 3 numbers");
+        s = glm::scale(glm::mat4(1.0f), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+    }
+    return checkedFinite(t * r * s, n);
+}
+
+// World transforms of every node (joints may live outside the drawn scene), with the
+// hierarchy checked to be a forest: every child index valid, one parent per node, no cycles.
+// Iterative, so a deep chain cannot overflow the stack.
+void Loader::buildHierarchy() {
+    const size_t n = model_.nodes.size();
+    parent_.assign(n, -1);
+    for (size_t i = 0; i < n; ++i) {
+        for (int c : model_.nodes[i].children) {
+            checkIndex(c, model_.nodes, nodeLabel(int(i)) + ": child node");
+            if (size_t(c) == i) fail(nodeLabel(c) + " is its own child");
+            if (parent_[size_t(c)] != -1) {
+                fail(nodeLabel(c) + " has two parents (" + nodeLabel(parent_[size_t(c)]) +
+                     " and " + nodeLabel(int(i)) + ")");
+            }
+            parent_[size_t(c)] = int(i);
+        }
+    }
+    world_.assign(n, glm::mat4(1.0f));
+    std::vector<char> done(n, 0);
+    size_t reached = 0;
+    std::vector<int> stack;
+    for (size_t root = 0; root < n; ++root) {
+        if (parent_[root] != -1) continue;
+        stack.push_back(int(root));
+        while (!stack.empty()) {
+            int i = stack.back();
+            stack.pop_back();
+            glm::mat4 parentWorld = parent_[size_t(i)] >= 0 ? world_[size_t(parent_[size_t(i)])] : glm::mat4(1.0f);
+            world_[size_t(i)] = checkedFinite(parentWorld * localTransform(i), i);  // products can overflow too
+            done[size_t(i)] = 1;
+            ++reached;
+            for (int c : model_.nodes[size_t(i)].children) stack.push_back(c);
+        }
+    }
+    if (reached != n) {
+        size_t bad = size_t(std::find(done.begin(), done.end(), 0) - done.begin());
+        fail("node hierarchy has a cycle through " + nodeLabel(int(bad)));
+    }
+}
+
+void Loader::traverseScene() {
+    std::vector<int> roots;
+    if (model_.scenes.empty()) {
+        warn("the file has no scenes: drawing every root node");
+        for (size_t i = 0; i < model_.nodes.size(); ++i)
+            if (parent_[i] == -1) roots.push_back(int(i));
+    } else {
+        int s = opt_.scene >= 0 ? opt_.scene : (model_.defaultScene >= 0 ? model_.defaultScene : 0);
+        checkIndex(s, model_.scenes, "scene");
+        const auto& sc = model_.scenes[size_t(s)];
+        if (!sc.name.empty()) scene_.name = sc.name;
+        for (int r : sc.nodes) {
+            checkIndex(r, model_.nodes, "scene " + std::to_string(s) + ": node");
+            roots.push_back(r);
+        }
+    }
+    // Depth-first, children in file order: defines which camera is "first".
+    std::vector<char> visited(model_.nodes.size(), 0);
+    std::vector<int> stack;
+    for (int r : roots) {
+        stack.push_back(r);
+        while (!stack.empty()) {
+            int n = stack.back();
+            stack.pop_back();
+            if (visited[size_t(n)]) {
+                warn(nodeLabel(n) + " is listed twice in the scene; drawn once");
+                continue;
+            }
+            visited[size_t(n)] = 1;
+            const auto& node = model_.nodes[size_t(n)];
+            if (node.camera >= 0) addCamera(n);
+            if (auto* ext = findExtension(node.extensions, "KHR_lights_punctual")) addLight(n, *ext);
+            if (node.mesh >= 0) addMeshInstances(n);
+            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+        }
+    }
+}
+
+void Loader::addCamera(int n) {
+    const auto& node = model_.nodes[size_t(n)];
+    checkIndex(node.camera, model_.cameras, nodeLabel(n) + ": camera");
+    const auto& cam = model_.cameras[size_t(node.camera)];
+    if (cam.type != "perspective") {
+        warn("camera " + std::to_string(node.camera) + " (" + cam.type + ") ignored: only perspective cameras are supported");
+        return;
+    }
+    if (scene_.camera) return;  // the first one wins
+    const auto& p = cam.perspective;
+    const double kPi = 3.14159265358979323846;
+    if (!(p.yfov > 0.0 && p.yfov < kPi) || !(p.znear > 0.0) || !(p.zfar == 0.0 || p.zfar > p.znear) ||
+        !std::isfinite(p.znear) || !std::isfinite(p.zfar)) {
+        warn("camera " + std::to_string(node.camera) + " ignored: invalid yfov/znear/zfar");
+        return;
+    }
+    const glm::mat4& w = world_[size_t(n)];
+    glm::vec3 eye(w[3]), back(w[2]), up(w[1]);
+    if (!(glm::length(back) > 1e-12f) || !(glm::length(up) > 1e-12f) ||
+        !(glm::length(glm::cross(up, back)) > 1e-12f)) {
+        warn("camera " + std::to_string(node.camera) + " ignored: degenerate node transform");
+        return;
+    }
+    Camera c = Camera::lookAlong(eye, -back, up, float(p.yfov), float(p.znear),
+                                 p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::infinity());
+    if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = float(p.aspectRatio);
+    c.name = cam.name.empty() ? node.name : cam.name;
+    scene_.camera = c;
+}
+
+void Loader::addLight(int n, const tinygltf::Value& ext) {
+    if (!ext.Get("light").IsNumber()) fail(nodeLabel(n) + ": KHR_lights_punctual without a light index");
+    int li = valueIndex(ext.Get("light"));
+    checkIndex(li, model_.lights, nodeLabel(n) + ": KHR_lights_punctual light");
+    const auto& gl = model_.lights[size_t(li)];
+    Light l;
+    l.name = gl.name.empty() ? model_.nodes[size_t(n)].name : gl.name;
+    if (gl.type == "directional") {
+        l.type = LightType::Directional;
+    } else if (gl.type == "point") {
+        l.type = LightType::Point;
+    } else if (gl.type == "spot") {
+        l.type = LightType::Spot;
+    } else {
+        warn("light " + std::to_string(li) + " of unknown type '" + gl.type + "' ignored");
+        return;
+    }
+    if (gl.color.size() == 3) l.color = glm::vec3(gl.color[0], gl.color[1], gl.color[2]);
+    l.intensity = float(gl.intensity);
+    l.range = l.type == LightType::Directional ? 0.0f : float(std::max(gl.range, 0.0));
+    if (l.type == LightType::Spot) {
+        l.innerConeAngle = float(gl.spot.innerConeAngle);
+        l.outerConeAngle = float(gl.spot.outerConeAngle);
+    }
+    const glm::mat4& w = world_[size_t(n)];
+    l.position = glm::vec3(w[3]);
+    glm::vec3 d = glm::mat3(w) * glm::vec3(0.0f, 0.0f, -1.0f);
+    l.direction = glm::length(d) > 1e-12f ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, -1.0f);
+    if (!std::isfinite(l.intensity) || !std::isfinite(l.range) || !std::isfinite(l.color.x + l.color.y + l.color.z)) {
+        fail("light " + std::to_string(li) + ": non-finite colour, intensity or range");
+    }
+    scene_.lights.push_back(l);
+}
+
+void Loader::addMeshInstances(int n) {
+    const auto& node = model_.nodes[size_t(n)];
+    checkIndex(node.mesh, model_.meshes, nodeLabel(n) + ": mesh");
+    int skin = -1;
+    if (node.skin >= 0) {
+        checkIndex(node.skin, model_.skins, nodeLabel(n) + ": skin");
+        skin = node.skin;
+        warn("skin " + std::to_string(skin) + ": rest pose skinned on the CPU (animation ignored)");
+    }
+    uint32_t mi = getMesh(node.mesh, skin);
+    if (scene_.meshes[mi].primitives.empty()) return;  // nothing drawable (e.g. only lines)
+
+    // A skinned mesh is already in world space (glTF ignores the skinned node's own transform).
+    const glm::mat4 nodeWorld = skin >= 0 ? glm::mat4(1.0f) : world_[size_t(n)];
+    std::vector<glm::mat4> worlds;
+    const tinygltf::Value* inst = findExtension(node.extensions, "EXT_mesh_gpu_instancing");
+    if (inst && inst->Get("attributes").IsObject() && skin < 0) {
+        const tinygltf::Value& attrs = inst->Get("attributes");
+        std::vector<float> t, r, s;
+        size_t count = SIZE_MAX;
+        auto read = [&](const char* name, int type, uint32_t allowed, std::vector<float>& out, size_t comps) {
+            const tinygltf::Value& a = attrs.Get(name);
+            if (!a.IsNumber()) return;
+            out = readAccessor<float>(valueIndex(a), std::string(name) + " of EXT_mesh_gpu_instancing on " + nodeLabel(n),
+                                      type, allowed);
+            size_t c = out.size() / comps;
+            if (count != SIZE_MAX && c != count) fail(nodeLabel(n) + ": EXT_mesh_gpu_instancing attribute counts differ");
+            count = c;
+        };
+        read("TRANSLATION", TINYGLTF_TYPE_VEC3, F32, t, 3);
+        read("ROTATION", TINYGLTF_TYPE_VEC4, F32 | S8N | S16N, r, 4);
+        read("SCALE", TINYGLTF_TYPE_VEC3, F32, s, 3);
+        if (count == SIZE_MAX) count = 1;
+        for (size_t i = 0; i < count; ++i) {
+            glm::mat4 m(1.0f);
+            if (!t.empty()) m = glm::translate(m, glm::vec3(t[i * 3], t[i * 3 + 1], t[i * 3 + 2]));
+            if (!r.empty()) {
+                glm::quat q(r[i * 4 + 3], r[i * 4], r[i * 4 + 1], r[i * 4 + 2]);
+                float len = glm::length(q);
+                if (len > 1e-12f) m = m * glm::mat4_cast(q / len);
+            }
+            if (!s.empty()) m = glm::scale(m, glm::vec3(s[i * 3], s[i * 3 + 1], s[i * 3 + 2]));
+            worlds.push_back(nodeWorld * m);
+        }
+    } else {
+        worlds.push_back(nodeWorld);
+    }
+    for (const auto& w : worlds) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                if (!std::isfinite(w[c][r])) fail(nodeLabel(n) + ": non-finite world transform");
+        MeshInstance mi2;
+        mi2.meshIndex = mi;
+        mi2.world = w;
+        mi2.mirrored = glm::determinant(glm::mat3(w)) < 0.0f;
+        mi2.name = node.name;
+        scene_.instances.push_back(std::move(mi2));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accessors
+
+const unsigned char* Loader::bufferViewData(int bvIndex, const std::string& ctx, uint64_t& length) {
+    checkIndex(bvIndex, model_.bufferViews, ctx + ": bufferView");
+    const auto& bv = model_.bufferViews[size_t(bvIndex)];
+    checkIndex(bv.buffer, model_.buffers, ctx + ": bufferView " + std::to_string(bvIndex) + ": buffer");
+    const auto& buf = model_.buffers[size_t(bv.buffer)];
+    uint64_t end = 0;
+    if (addOverflows(bv.byteOffset, bv.byteLength, end) || end > buf.data.size()) {
+        fail("bufferView " + std::to_string(bvIndex) + ": byteOffset+byteLength (" + std::to_string(end) +
+             ") exceeds buffer " + std::to_string(bv.buffer) + " length " + std::to_string(buf.data.size()));
+    }
+    length = bv.byteLength;
+    return buf.data.data() + bv.byteOffset;
+}
+
+template <class T>
+std::vector<T> Loader::readAccessor(int index, const std::string& what, int expectedType, uint32_t allowed) {
+    checkIndex(index, model_.accessors, what + ": accessor");
+    const auto& a = model_.accessors[size_t(index)];
+    const std::string ctx = "accessor " + std::to_string(index) + " (" + what + ")";
+    if (a.type != expectedType) fail(ctx + ": type " + typeName(a.type) + ", expected " + typeName(expectedType));
+    if (!(compBit(a.componentType, a.normalized) & allowed)) {
+        fail(ctx + ": unsupported component type " + componentTypeName(a.componentType, a.normalized));
+    }
+    const uint64_t comps = uint64_t(tinygltf::GetNumComponentsInType(uint32_t(a.type)));
+    const uint64_t csize = uint64_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)));
+    const uint64_t elemSize = comps * csize;
+    const uint64_t count = a.count;
+
+    const unsigned char* data = nullptr;
+    uint64_t stride = elemSize;
+    if (a.bufferView >= 0) {
+        uint64_t viewLen = 0;
+        data = bufferViewData(a.bufferView, ctx, viewLen);
+        const auto& bv = model_.bufferViews[size_t(a.bufferView)];
+        if (bv.byteStride != 0) {
+            if (bv.byteStride < elemSize) {
+                fail(ctx + ": bufferView " + std::to_string(a.bufferView) + " byteStride " + std::to_string(bv.byteStride) +
+                     " is smaller than the element size " + std::to_string(elemSize));
+            }
+            stride = bv.byteStride;
+        }
+        // Last element ends at byteOffset + (count-1)*stride + elemSize.
+        uint64_t need = 0, span = 0;
+        bool overflow = count > 0 && (mulOverflows(count - 1, stride, span) || addOverflows(span, elemSize, span) ||
+                                      addOverflows(span, a.byteOffset, need));
+        if (overflow || need > viewLen || a.byteOffset > viewLen) {
+            fail(ctx + ": byteOffset+count*stride exceeds bufferView " + std::to_string(a.bufferView) + " length (" +
+                 (overflow ? std::string("overflow") : std::to_string(need)) + " > " + std::to_string(viewLen) + ")");
+        }
+        data += a.byteOffset;
+    } else if (count * comps > kMaxVirtualAccessorComponents) {  // count < 2^64 / 16 after tinygltf
+        fail(ctx + ": count " + std::to_string(count) + " without a bufferView is too large");
+    }
+
+    std::vector<T> out(size_t(count * comps), T(0));
+    if (data) {
+        for (uint64_t e = 0; e < count; ++e) {
+            const unsigned char* p = data + e * stride;
+            for (uint64_t c = 0; c < comps; ++c) {
+                out[size_t(e * comps + c)] = static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
+            }
+        }
+    }
+
+    if (a.sparse.isSparse) {
+        const uint64_t sc = uint64_t(std::max(a.sparse.count, 0));
+        if (a.sparse.count < 0 || sc > count) fail(ctx + ": sparse count " + std::to_string(a.sparse.count) + " exceeds count");
+        const int ict = a.sparse.indices.componentType;
+        if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+            fail(ctx + ": unsupported sparse index component type " + componentTypeName(ict, false));
+        }
+        const uint64_t isize = uint64_t(tinygltf::GetComponentSizeInBytes(uint32_t(ict)));
+        uint64_t ilen = 0, vlen = 0;
+        const unsigned char* idata = bufferViewData(a.sparse.indices.bufferView, ctx + " sparse indices", ilen);
+        const unsigned char* vdata = bufferViewData(a.sparse.values.bufferView, ctx + " sparse values", vlen);
+        uint64_t ioff = uint64_t(std::max(a.sparse.indices.byteOffset, 0));
+        uint64_t voff = uint64_t(std::max(a.sparse.values.byteOffset, 0));
+        uint64_t ineed = 0, vneed = 0;
+        if (mulOverflows(sc, isize, ineed) || addOverflows(ineed, ioff, ineed) || ineed > ilen) {
+            fail(ctx + ": sparse indices exceed bufferView " + std::to_string(a.sparse.indices.bufferView) + " length");
+        }
+        if (mulOverflows(sc, elemSize, vneed) || addOverflows(vneed, voff, vneed) || vneed > vlen) {
+            fail(ctx + ": sparse values exceed bufferView " + std::to_string(a.sparse.values.bufferView) + " length");
+        }
+        for (uint64_t k = 0; k < sc; ++k) {
+            uint64_t target = uint64_t(readComponent(idata + ioff + k * isize, ict, false));
+            if (target >= count) {
+                fail(ctx + ": sparse index " + std::to_string(target) + " >= count " + std::to_string(count));
+            }
+            const unsigned char* p = vdata + voff + k * elemSize;
+            for (uint64_t c = 0; c < comps; ++c) {
+                out[size_t(target * comps + c)] = static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
+            }
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes
+
+std::vector<glm::mat4> Loader::jointMatrices(int skinIndex) {
+    auto it = skinCache_.find(skinIndex);
+    if (it != skinCache_.end()) return it->second;
+    const auto& skin = model_.skins[size_t(skinIndex)];
+    const std::string label = "skin " + std::to_string(skinIndex);
+    std::vector<float> ibm;
+    if (skin.inverseBindMatrices >= 0) {
+        ibm = readAccessor<float>(skin.inverseBindMatrices, "inverseBindMatrices of " + label, TINYGLTF_TYPE_MAT4, F32);
+        if (ibm.size() < skin.joints.size() * 16) fail(label + ": fewer inverseBindMatrices than joints");
+    }
+    std::vector<glm::mat4> joints;
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+        checkIndex(skin.joints[j], model_.nodes, label + ": joint node");
+        glm::mat4 inv(1.0f);
+        if (!ibm.empty()) inv = glm::make_mat4(&ibm[j * 16]);
+        joints.push_back(world_[size_t(skin.joints[j])] * inv);
+    }
+    skinCache_[skinIndex] = joints;
+    return joints;
+}
+
+uint32_t Loader::getMesh(int m, int skin) {
+    auto key = std::make_pair(m, skin);
+    auto it = meshMap_.find(key);
+    if (it != meshMap_.end()) return it->second;
+
+    std::vector<glm::mat4> joints;
+    if (skin >= 0) joints = jointMatrices(skin);
+    const auto& gm = model_.meshes[size_t(m)];
+    Mesh mesh;
+    mesh.name = gm.name;
+    for (size_t p = 0; p < gm.primitives.size(); ++p) {
+        Primitive prim;
+        if (loadPrimitive(m, int(p), skin >= 0 ? &joints : nullptr, prim)) mesh.primitives.push_back(std::move(prim));
+    }
+    computeBounds(mesh);
+    uint32_t index = uint32_t(scene_.meshes.size());
+    scene_.meshes.push_back(std::move(mesh));
+    meshMap_[key] = index;
+    return index;
+}
+
+bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, Primitive& out) {
+    const auto& gm = model_.meshes[size_t(m)];
+    const auto& gp = gm.primitives[size_t(p)];
+    const std::string label = meshLabel(m) + " primitive " + std::to_string(p);
+    const int mode = gp.mode < 0 ? TINYGLTF_MODE_TRIANGLES : gp.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        static const char* names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+        std::string name = mode >= 0 && mode < 4 ? names[mode] : "mode " + std::to_string(mode);
+        warn(label + ": " + name + " primitive skipped (only triangles are drawn)");
+        return false;
+    }
+    auto attr = [&](const char* name) {
+        auto it = gp.attributes.find(name);
+        return it == gp.attributes.end() ? -1 : it->second;
+    };
+    const int aPos = attr("POSITION");
+    if (aPos < 0) {
+        warn(label + ": no POSITION attribute; primitive skipped");
+        return false;
+    }
+    if (attr("COLOR_0") >= 0) warn("COLOR_0 vertex colours are ignored");
+
+    const std::vector<float> pos = readAccessor<float>(aPos, "POSITION of " + label, TINYGLTF_TYPE_VEC3, F32);
+    const size_t n = pos.size() / 3;
+    for (size_t i = 0; i < pos.size(); ++i) {
+        if (!std::isfinite(pos[i])) {
+            fail("non-finite POSITION value (vertex " + std::to_string(i / 3) + ") in " + label + " (accessor " +
+                 std::to_string(aPos) + ")");
+        }
+    }
+    auto readMatching = [&](const char* name, int type, uint32_t allowed, size_t comps) {
+        std::vector<float> v;
+        int a = attr(name);
+        if (a < 0) return v;
+        v = readAccessor<float>(a, std::string(name) + " of " + label, type, allowed);
+        if (v.size() / comps != n) {
+            fail("accessor " + std::to_string(a) + " (" + name + " of " + label + "): count " + std::to_string(v.size() / comps) +
+                 " differs from POSITION count " + std::to_string(n));
+        }
+        for (float f : v)
+            if (!std::isfinite(f)) fail(std::string("non-finite ") + name + " value in " + label);
+        return v;
+    };
+    const std::vector<float> nrm = readMatching("NORMAL", TINYGLTF_TYPE_VEC3, F32, 3);
+    const std::vector<float> tan = readMatching("TANGENT", TINYGLTF_TYPE_VEC4, F32, 4);
+    const std::vector<float> uv = readMatching("TEXCOORD_0", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
+
+    out.vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        Vertex& v = out.vertices[i];
+        v.position = glm::vec3(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2]);
+        if (!nrm.empty()) v.normal = glm::vec3(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
+        if (!tan.empty()) v.tangent = glm::vec4(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2], tan[i * 4 + 3]);
+        if (!uv.empty()) v.uv0 = glm::vec2(uv[i * 2], uv[i * 2 + 1]);
+    }
+
+    // Indices.
+    std::vector<uint32_t> idx;
+    if (gp.indices >= 0) {
+        idx = readAccessor<uint32_t>(gp.indices, "indices of " + label, TINYGLTF_TYPE_SCALAR, U8 | U16 | U32);
+        for (uint32_t i : idx) {
+            if (i >= n) fail("index " + std::to_string(i) + " >= vertex count " + std::to_string(n) + " in " + label);
+        }
+    } else {
+        idx.resize(n);
+        for (size_t i = 0; i < n; ++i) idx[i] = uint32_t(i);
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) idx = triangleStripToList(idx);
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) idx = triangleFanToList(idx);
+    if (idx.size() % 3 != 0) {
+        warn(label + ": index count not a multiple of 3; trailing indices dropped");
+        idx.resize(idx.size() - idx.size() % 3);
+    }
+    out.indices = std::move(idx);
+
+    // Morph targets: the static pose uses the mesh's default weights.
+    if (!gp.targets.empty()) {
+        warn(meshLabel(m) + ": morph targets applied with the default weights (animation ignored)");
+        for (size_t t = 0; t < gp.targets.size() && t < gm.weights.size(); ++t) {
+            const float w = float(gm.weights[t]);
+            if (w == 0.0f || !std::isfinite(w)) continue;
+            const auto& target = gp.targets[t];
+            auto apply = [&](const char* name, auto&& fn) {
+                auto it = target.find(name);
+                if (it == target.end()) return;
+                std::vector<float> d = readAccessor<float>(
+                    it->second, std::string(name) + " of morph target " + std::to_string(t) + " of " + label,
+                    TINYGLTF_TYPE_VEC3, F32);
+                if (d.size() / 3 != n) fail(label + ": morph target " + std::to_string(t) + " " + name + " count differs");
+                for (size_t i = 0; i < n; ++i) fn(out.vertices[i], glm::vec3(d[i * 3], d[i * 3 + 1], d[i * 3 + 2]) * w);
+            };
+            apply("POSITION", [](Vertex& v, const glm::vec3& d) { v.position += d; });
+            apply("NORMAL", [](Vertex& v, const glm::vec3& d) { v.normal += d; });
+            apply("TANGENT", [](Vertex& v, const glm::vec3& d) { v.tangent += glm::vec4(d, 0.0f); });
+        }
+    }
+
+    // Skinning into world space with the rest-pose joint matrices.
+    if (joints) {
+        const int aJ = attr("JOINTS_0"), aW = attr("WEIGHTS_0");
+        if (aJ < 0 || aW < 0) {
+            warn(label + ": skinned node without JOINTS_0/WEIGHTS_0; drawn unskinned");
+        } else {
+            std::vector<uint32_t> jv = readAccessor<uint32_t>(aJ, "JOINTS_0 of " + label, TINYGLTF_TYPE_VEC4, U8 | U16);
+            std::vector<float> wv = readAccessor<float>(aW, "WEIGHTS_0 of " + label, TINYGLTF_TYPE_VEC4, F32 | U8N | U16N);
+            if (jv.size() != n * 4 || wv.size() != n * 4) fail(label + ": JOINTS_0/WEIGHTS_0 count differs from POSITION");
+            for (size_t i = 0; i < n; ++i) {
+                glm::mat4 M(0.0f);
+                float sum = 0.0f;
+                for (int k = 0; k < 4; ++k) {
+                    float w = wv[i * 4 + size_t(k)];
+                    if (!(w > 0.0f)) continue;
+                    uint32_t j = jv[i * 4 + size_t(k)];
+                    if (j >= joints->size()) {
+                        fail("JOINTS_0 value " + std::to_string(j) + " >= joint count " + std::to_string(joints->size()) +
+                             " in " + label);
+                    }
+                    M += (*joints)[j] * w;
+                    sum += w;
+                }
+                M = sum > 0.0f ? M / sum : glm::mat4(1.0f);
+                Vertex& v = out.vertices[i];
+                v.position = glm::vec3(M * glm::vec4(v.position, 1.0f));
+                glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
+                v.normal = N * v.normal;
+                v.tangent = glm::vec4(glm::mat3(M) * glm::vec3(v.tangent), v.tangent.w);
+            }
+        }
+    }
+
+    // Material (needed to know whether tangents must be generated).
+    if (gp.material >= 0) {
+        checkIndex(gp.material, model_.materials, label + ": material");
+        out.material = getMaterial(gp.material);
+    } else {
+        out.material = defaultMaterial();
+    }
+    const Material& mat = scene_.materials[out.material];
+
+    // Normals.
+    if (nrm.empty()) {
+        if (opt_.smoothNormals) {
+            generateSmoothNormals(out);
+        } else {
+            generateFlatNormals(out);
+        }
+    } else {
+        std::vector<glm::vec3> smooth;
+        size_t repaired = 0;
+        for (size_t i = 0; i < out.vertices.size(); ++i) {
+            glm::vec3& nv = out.vertices[i].normal;
+            float len = glm::length(nv);
+            if (len > 1e-8f && std::isfinite(len)) {
+                nv /= len;
+                continue;
+            }
+            if (smooth.empty()) smooth = computeSmoothNormals(out);
+            nv = smooth[i];
+            ++repaired;
+        }
+        if (repaired) warn(label + ": " + std::to_string(repaired) + " zero-length normal(s) replaced by smooth normals");
+    }
+
+    // Tangents.
+    if (!tan.empty()) {
+        for (auto& v : out.vertices) {
+            glm::vec3 t(v.tangent);
+            t -= v.normal * glm::dot(v.normal, t);  // skinning/morphing can bend it off the plane
+            float len = glm::length(t);
+            glm::vec3 tt = len > 1e-8f ? t / len : anyPerpendicular(v.normal);
+            v.tangent = glm::vec4(tt, v.tangent.w < 0.0f ? -1.0f : 1.0f);
+        }
+    } else if (mat.normalTexture.valid()) {
+        if (uv.empty()) {
+            warn(label + ": normal map without TEXCOORD_0; tangents cannot be generated");
+            setFallbackTangents(out);
+        } else {
+            generateTangents(out);
+        }
+    } else {
+        setFallbackTangents(out);
+    }
+    computeBounds(out);
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Materials and textures
+
+uint32_t Loader::defaultMaterial() {
+    if (defaultMaterial_ < 0) {
+        Material m;  // glTF's default material: white, metallic 1, roughness 1
+        m.name = "default";
+        defaultMaterial_ = int(scene_.materials.size());
+        scene_.materials.push_back(m);
+    }
+    return uint32_t(defaultMaterial_);
+}
+
+uint32_t Loader::getMaterial(int gi) {
+    auto it = materialMap_.find(gi);
+    if (it != materialMap_.end()) return it->second;
+    const auto& gm = model_.materials[size_t(gi)];
+    const std::string label = materialLabel(gi);
+    const auto& pbr = gm.pbrMetallicRoughness;
+    Material mat;
+    mat.name = gm.name;
+    if (pbr.baseColorFactor.size() == 4) {
+        mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                        pbr.baseColorFactor[3]);
+    }
+    mat.metallic = float(pbr.metallicFactor);
+    mat.roughness = float(pbr.roughnessFactor);
+    if (gm.emissiveFactor.size() == 3) {
+        mat.emissiveFactor = glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
+    }
+    if (auto* es = findExtension(gm.extensions, "KHR_materials_emissive_strength")) {
+        const auto& v = es->Get("emissiveStrength");
+        if (v.IsNumber()) mat.emissiveStrength = float(v.GetNumberAsDouble());
+        mat.emissiveFactor *= mat.emissiveStrength;
+    }
+    mat.unlit = findExtension(gm.extensions, "KHR_materials_unlit") != nullptr;
+    mat.normalScale = float(gm.normalTexture.scale);
+    mat.occlusionStrength = float(gm.occlusionTexture.strength);
+    if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty()) {
+        mat.alphaMode = AlphaMode::Opaque;
+    } else if (gm.alphaMode == "MASK") {
+        mat.alphaMode = AlphaMode::Mask;
+    } else if (gm.alphaMode == "BLEND") {
+        mat.alphaMode = AlphaMode::Blend;
+    } else {
+        warn(label + ": unknown alphaMode '" + gm.alphaMode + "', using OPAQUE");
+    }
+    mat.alphaCutoff = float(gm.alphaCutoff);
+    mat.doubleSided = gm.doubleSided;
+
+    const float checks[] = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z, mat.baseColorFactor.w,
+                            mat.metallic,          mat.roughness,         mat.emissiveFactor.x,  mat.emissiveFactor.y,
+                            mat.emissiveFactor.z,  mat.normalScale,       mat.occlusionStrength, mat.alphaCutoff};
+    for (float f : checks)
+        if (!std::isfinite(f)) fail(label + ": non-finite factor");
+
+    mat.baseColorTexture = getTexture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
+                                      pbr.baseColorTexture.extensions, "baseColorTexture of " + label);
+    mat.metallicRoughnessTexture =
+        getTexture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                   pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture of " + label);
+    mat.normalTexture = getTexture(gm.normalTexture.index, gm.normalTexture.texCoord, false, gm.normalTexture.extensions,
+                                   "normalTexture of " + label);
+    mat.occlusionTexture = getTexture(gm.occlusionTexture.index, gm.occlusionTexture.texCoord, false,
+                                      gm.occlusionTexture.extensions, "occlusionTexture of " + label);
+    mat.emissiveTexture = getTexture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, true,
+                                     gm.emissiveTexture.extensions, "emissiveTexture of " + label);
+
+    uint32_t index = uint32_t(scene_.materials.size());
+    scene_.materials.push_back(std::move(mat));
+    materialMap_[gi] = index;
+    return index;
+}
+
+TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::ExtensionMap& infoExt,
+                              const std::string& what) {
+    TextureRef ref;
+    if (gt < 0) return ref;
+    checkIndex(gt, model_.textures, what + ": texture");
+    if (findExtension(infoExt, "KHR_texture_transform")) {
+        warn("KHR_texture_transform is not supported: texture transforms are ignored");
+    }
+    if (texCoord != 0) {
+        warn(what + " uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 is supported and is used instead");
+    }
+    ref.texCoord = uint32_t(std::max(texCoord, 0));
+
+    const auto& tex = model_.textures[size_t(gt)];
+    if (tex.source < 0) {
+        warn("texture " + std::to_string(gt) + " has no image source (extension-only image?); " + what + " ignored");
+        return ref;
+    }
+    checkIndex(tex.source, model_.images, "texture " + std::to_string(gt) + ": image");
+    if (tex.sampler >= 0) checkIndex(tex.sampler, model_.samplers, "texture " + std::to_string(gt) + ": sampler");
+    // Keyed by what the GPU texture depends on, so glTF textures repeating the same image and
+    // sampler (CesiumMilkTruck) share one decoded copy.
+    auto key = std::make_tuple(tex.source, tex.sampler, srgb);
+    auto it = textureMap_.find(key);
+    if (it != textureMap_.end()) {
+        ref.index = it->second;
+        return ref;
+    }
+
+    TextureImage ti;
+    ti.name = tex.name.empty() ? model_.images[size_t(tex.source)].name : tex.name;
+    if (ti.name.empty()) ti.name = model_.images[size_t(tex.source)].uri;
+    ti.srgb = srgb;
+    if (tex.sampler >= 0) {
+        const auto& s = model_.samplers[size_t(tex.sampler)];
+        ti.sampler.magFilter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+        switch (s.minFilter) {
+            case TINYGLTF_TEXTURE_FILTER_NEAREST:
+                ti.sampler = {Filter::Nearest, ti.sampler.magFilter, MipFilter::None, {}, {}, false};
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR:
+                ti.sampler = {Filter::Linear, ti.sampler.magFilter, MipFilter::None, {}, {}, false};
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+                ti.sampler.minFilter = Filter::Nearest, ti.sampler.mipFilter = MipFilter::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+                ti.sampler.minFilter = Filter::Linear, ti.sampler.mipFilter = MipFilter::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+                ti.sampler.minFilter = Filter::Nearest, ti.sampler.mipFilter = MipFilter::Linear;
+                break;
+            default:  // LINEAR_MIPMAP_LINEAR or unspecified: trilinear, the usual viewer default
+                ti.sampler.minFilter = Filter::Linear, ti.sampler.mipFilter = MipFilter::Linear;
+                break;
+        }
+        auto wrap = [](int w) {
+            switch (w) {
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+                default: return Wrap::Repeat;
+            }
+        };
+        ti.sampler.wrapS = wrap(s.wrapS);
+        ti.sampler.wrapT = wrap(s.wrapT);
+    }
+    // An image already decoded for another sampler / colour space is copied, not decoded again.
+    if (auto done = imageTexture_.find(tex.source); done != imageTexture_.end()) {
+        const TextureImage& other = scene_.textures[size_t(done->second)];
+        ti.width = other.width;
+        ti.height = other.height;
+        ti.pixels = other.pixels;
+    } else {
+        decodeImage(tex.source, what + " (texture " + std::to_string(gt) + ")", ti);
+    }
+
+    ref.index = int32_t(scene_.textures.size());
+    scene_.textures.push_back(std::move(ti));
+    textureMap_[key] = ref.index;
+    imageTexture_.emplace(tex.source, ref.index);
+    return ref;
+}
+
+void Loader::decodeImage(int ii, const std::string& what, TextureImage& out) {
+    const auto& gi = model_.images[size_t(ii)];
+    std::string label = "image " + std::to_string(ii);
+    if (!gi.uri.empty() && gi.uri.compare(0, 5, "data:") != 0) label += " ('" + gi.uri + "')";
+    else if (!gi.name.empty()) label += " ('" + gi.name + "')";
+    label += " used by " + what;
+    if (gi.image.empty()) fail(label + ": image file missing, empty or unreadable");
+    if (gi.image.size() > size_t(INT32_MAX)) fail(label + ": encoded image too large");
+    const auto* bytes = gi.image.data();
+    const int len = int(gi.image.size());
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(bytes, len, &w, &h, &comp)) {
+        const char* why = stbi_failure_reason();
+        fail(label + ": cannot decode (" + std::string(why ? why : "unknown format") + ")");
+    }
+    if (w <= 0 || h <= 0 || uint64_t(w) * uint64_t(h) > kMaxImagePixels) {
+        fail(label + ": unsupported image size " + std::to_string(w) + "x" + std::to_string(h));
+    }
+    unsigned char* px = stbi_load_from_memory(bytes, len, &w, &h, &comp, 4);
+    if (!px) {
+        const char* why = stbi_failure_reason();
+        fail(label + ": cannot decode (" + std::string(why ? why : "unknown error") + ")");
+    }
+    out.width = uint32_t(w);
+    out.height = uint32_t(h);
+    out.pixels.assign(px, px + size_t(w) * size_t(h) * 4);
+    stbi_image_free(px);
+    // Only the decoded copy is needed from now on.
+    model_.images[size_t(ii)].image.clear();
+    model_.images[size_t(ii)].image.shrink_to_fit();
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options) {
+    Loader loader(path, options);
+    try {
+        return loader.run();
+    } catch (const AssetError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw AssetError(path + ": out of memory while loading");
+    } catch (const std::exception& e) {
+        throw AssetError(path + ": " + e.what());
+    }
+}
+
+}  // namespace fe::assets

@@ -1,0 +1,107 @@
+#include "assets/Scene.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fe::assets {
+
+namespace {
+// The numbers below are the ones documented under "Defaults" in GltfLoader.h; keep in step.
+constexpr float kDefaultYfov = 0.78539816339f;  // 45 degrees
+
+glm::vec3 toWorld(const Camera& cam, const glm::vec3& viewDir) {
+    return glm::normalize(glm::mat3(cam.worldFromView) * glm::normalize(viewDir));
+}
+}  // namespace
+
+AABB AABB::transformed(const glm::mat4& m) const {
+    AABB out;
+    if (empty()) return out;
+    for (int i = 0; i < 8; ++i) {
+        glm::vec3 c((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y, (i & 4) ? max.z : min.z);
+        out.extend(glm::vec3(m * glm::vec4(c, 1.0f)));
+    }
+    return out;
+}
+
+glm::mat4 Camera::viewFromWorld() const { return glm::inverse(worldFromView); }
+
+Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up, float yfov,
+                         float znear, float zfar) {
+    glm::vec3 back = -glm::normalize(forward);
+    glm::vec3 right = glm::normalize(glm::cross(up, back));
+    glm::vec3 trueUp = glm::cross(back, right);
+    Camera c;
+    c.worldFromView = glm::mat4(glm::vec4(right, 0.0f), glm::vec4(trueUp, 0.0f), glm::vec4(back, 0.0f),
+                                glm::vec4(eye, 1.0f));
+    c.yfov = yfov;
+    c.znear = znear;
+    c.zfar = zfar;
+    return c;
+}
+
+AABB computeWorldBounds(const Scene& scene) {
+    AABB b;
+    for (const auto& inst : scene.instances) {
+        if (inst.meshIndex < scene.meshes.size()) b.extend(scene.meshes[inst.meshIndex].bounds.transformed(inst.world));
+    }
+    return b;
+}
+
+Camera makeDefaultCamera(const AABB& bounds) {
+    glm::vec3 center = bounds.center();
+    float radius = 0.5f * glm::length(bounds.size());
+    if (!(radius > 1e-6f) || !std::isfinite(radius)) radius = 1.0f;  // empty or a single point
+    // Distance at which the bounding sphere touches the top and bottom of the view.
+    float dist = radius / std::sin(kDefaultYfov * 0.5f);
+    Camera c = Camera::lookAlong(center + glm::vec3(0.0f, 0.0f, dist), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0),
+                                 kDefaultYfov, 0.5f * (dist - radius), dist + 2.0f * radius);
+    c.name = "default";
+    return c;
+}
+
+void addDefaultLights(Scene& scene, const Camera& cam) {
+    Light key;
+    key.name = "default key";
+    key.type = LightType::Directional;
+    key.color = glm::vec3(1.0f, 0.956f, 0.898f);
+    key.intensity = 2.5f;
+    key.direction = toWorld(cam, glm::vec3(0.5f, -1.0f, -1.0f));  // from the viewer's upper left
+
+    Light fill;
+    fill.name = "default fill";
+    fill.type = LightType::Directional;
+    fill.color = glm::vec3(0.85f, 0.9f, 1.0f);
+    fill.intensity = 0.8f;
+    fill.direction = toWorld(cam, glm::vec3(-0.7f, 0.2f, -1.0f));  // from the right, slightly below
+
+    Light head;
+    head.name = "default headlight";
+    head.type = LightType::Point;
+    head.color = glm::vec3(1.0f);
+    head.position = cam.eye();
+    float d = glm::length(scene.bounds.center() - cam.eye());
+    if (!(d > 1e-3f) || !std::isfinite(d)) d = 1.0f;
+    head.intensity = 0.7f * d * d;  // 0.7 lux at the centre of the bounds
+    head.range = 0.0f;
+
+    scene.lights.push_back(key);
+    scene.lights.push_back(fill);
+    scene.lights.push_back(head);
+    scene.hasDefaultLights = true;
+}
+
+void finalizeScene(Scene& scene, bool addCamera, bool addLights) {
+    scene.bounds = computeWorldBounds(scene);
+    if (!scene.camera && addCamera) {
+        scene.camera = makeDefaultCamera(scene.bounds);
+        scene.hasDefaultCamera = true;
+    }
+    if (scene.lights.empty() && addLights) {
+        addDefaultLights(scene, scene.camera ? *scene.camera : makeDefaultCamera(scene.bounds));
+    }
+}
+
+}  // namespace fe::assets

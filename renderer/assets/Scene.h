@@ -1,0 +1,195 @@
+// Layer 5 (Communication: Asset Loader): the CPU-side scene every renderer draws.
+//
+// Plain data, no GPU objects and no graphics API: a renderer uploads it through the abstract
+// device (gdi) itself. Conventions are glTF's: right-handed world, +Y up, metres, a camera looks
+// along its local -Z with +Y up, counter-clockwise front faces, linear colours (sRGB textures
+// are flagged, not converted), light units of KHR_lights_punctual (lux / candela), see
+// ../shared/SHADING.md. Material values are stored as authored: the roughness clamp to
+// [0.045, 1] of SHADING.md is the shaders' job, not the loader's.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fe::assets {
+
+// Axis-aligned box; empty() until something is added.
+struct AABB {
+    glm::vec3 min{std::numeric_limits<float>::infinity()};
+    glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+    bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+    void extend(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const AABB& b) {
+        if (!b.empty()) {
+            extend(b.min);
+            extend(b.max);
+        }
+    }
+    glm::vec3 center() const { return empty() ? glm::vec3(0.0f) : (min + max) * 0.5f; }
+    glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : max - min; }
+    // Box around the 8 transformed corners (conservative for rotations).
+    AABB transformed(const glm::mat4& m) const;
+};
+using Bounds = AABB;
+
+// 48 bytes, tightly packed: uploadable as one interleaved vertex buffer
+// (position RGB32F @0, normal RGB32F @12, tangent RGBA32F @24, uv0 RG32F @40).
+struct Vertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz unit, w = +-1: bitangent = w * cross(n, t)
+    glm::vec2 uv0{0.0f};
+};
+static_assert(sizeof(Vertex) == 48, "Vertex must stay tightly packed for direct upload");
+
+// Always an indexed triangle list (strips/fans are converted, non-indexed input gets 0..n-1).
+struct Primitive {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    uint32_t material = 0;  // always a valid index into Scene::materials
+    AABB bounds;            // object space
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+    AABB bounds;  // object space, union of the primitives
+};
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class MipFilter : uint8_t { None, Nearest, Linear };
+enum class Wrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+struct Sampler {
+    Filter minFilter = Filter::Linear;
+    Filter magFilter = Filter::Linear;
+    MipFilter mipFilter = MipFilter::Linear;
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+    // False only when the file asked for a non-mipmapped minification filter.
+    bool mipmaps = true;
+};
+
+// Decoded image + how it is sampled. A glTF texture used both as colour (sRGB) and as data
+// (linear) becomes two entries, so the renderer can pick an _SRGB format per entry.
+struct TextureImage {
+    std::string name;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> pixels;  // RGBA8, rows top to bottom, width * height * 4 bytes
+    bool srgb = false;            // true for baseColor / emissive, false for data textures
+    Sampler sampler;
+};
+
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+
+struct TextureRef {
+    int32_t index = -1;     // into Scene::textures, -1 = none
+    uint32_t texCoord = 0;  // only set 0 exists in Vertex; the loader warns about others
+    bool valid() const { return index >= 0; }
+};
+
+// glTF 2.0 metallic-roughness, see SHADING.md "Inputs".
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    float metallic = 1.0f;
+    float roughness = 1.0f;             // perceptual, unclamped
+    glm::vec3 emissiveFactor{0.0f};     // already multiplied by KHR_materials_emissive_strength
+    float emissiveStrength = 1.0f;      // informative: the factor already applied above
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+    TextureRef baseColorTexture;          // sRGB
+    TextureRef metallicRoughnessTexture;  // linear, G = roughness, B = metallic
+    TextureRef normalTexture;             // linear, tangent space
+    TextureRef emissiveTexture;           // sRGB
+    TextureRef occlusionTexture;          // linear, R
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+    bool unlit = false;  // KHR_materials_unlit: output = baseColor, no lighting
+};
+
+struct MeshInstance {
+    uint32_t meshIndex = 0;
+    glm::mat4 world{1.0f};
+    // det(world) < 0: the transform mirrors, so counter-clockwise faces become clockwise on
+    // screen; the renderer must flip its front-face (cull) setting for this instance.
+    bool mirrored = false;
+    std::string name;  // the glTF node name, for messages and debugging
+};
+
+enum class LightType : uint8_t { Directional, Point, Spot };
+
+// KHR_lights_punctual, already in world space.
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;  // lux (directional) or candela (point, spot)
+    float range = 0.0f;      // 0 = infinite
+    glm::vec3 position{0.0f};                   // point, spot
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};     // unit, where the light travels (spot, directional)
+    float innerConeAngle = 0.0f;                // radians (spot)
+    float outerConeAngle = 0.78539816339f;      // radians (spot), pi/4 as in glTF
+};
+
+// Perspective camera. worldFromView is a rigid transform (scale removed): column 3 is the eye,
+// -column 2 the viewing direction, column 1 up.
+struct Camera {
+    std::string name;
+    glm::mat4 worldFromView{1.0f};
+    float yfov = 0.78539816339f;  // radians, vertical
+    float znear = 0.1f;
+    float zfar = std::numeric_limits<float>::infinity();  // +inf = infinite far plane
+    std::optional<float> aspectRatio;                     // width / height; unset = the viewport's
+
+    glm::vec3 eye() const { return glm::vec3(worldFromView[3]); }
+    glm::vec3 forward() const { return -glm::normalize(glm::vec3(worldFromView[2])); }
+    glm::vec3 up() const { return glm::normalize(glm::vec3(worldFromView[1])); }
+    glm::mat4 viewFromWorld() const;
+    bool infiniteFar() const { return !(zfar < std::numeric_limits<float>::infinity()); }
+
+    // Right-handed look-at; `up` need not be orthogonal to `forward` but must not be parallel.
+    static Camera lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up,
+                            float yfov, float znear, float zfar);
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<TextureImage> textures;
+    std::vector<MeshInstance> instances;
+    std::vector<Light> lights;
+    std::optional<Camera> camera;
+    Bounds bounds;  // world space, union of the instances; empty if nothing is drawn
+    bool hasDefaultLights = false;  // lights were added by the loader (the file had none)
+    bool hasDefaultCamera = false;  // camera was made by the loader (the file had none)
+    std::vector<std::string> warnings;  // what was ignored or approximated, one line each
+};
+
+// --- helpers shared by the glTF loader and the builtin scenes (Scene.cpp) ---
+
+// Union of every instance's transformed mesh bounds.
+AABB computeWorldBounds(const Scene& scene);
+
+// The camera used when a scene has none: see "Defaults" in GltfLoader.h.
+Camera makeDefaultCamera(const AABB& worldBounds);
+
+// The light rig used when a scene has none, placed relative to `camera`: see "Defaults" in
+// GltfLoader.h. Appends to scene.lights and sets hasDefaultLights.
+void addDefaultLights(Scene& scene, const Camera& camera);
+
+// Recomputes bounds, then adds the default camera / lights when asked and missing.
+void finalizeScene(Scene& scene, bool addDefaultCameraIfMissing, bool addDefaultLightsIfMissing);
+
+}  // namespace fe::assets

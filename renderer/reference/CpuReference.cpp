@@ -1,0 +1,259 @@
+#include "reference/CpuReference.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "reference/CameraMath.h"
+#include "shading/ShadingModel.h"
+
+namespace fe::render {
+
+namespace {
+
+struct WorldTriangle {
+    glm::dvec3 p[3], n[3];
+    glm::dvec4 t[3];
+    glm::dvec2 uv[3];
+    uint32_t material;
+    int32_t surface;
+    bool mirrored;
+};
+
+struct SurfaceBox {
+    glm::dvec3 min, max;
+    size_t first, count;
+};
+
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+double wrapCoord(double u, assets::Wrap w) {
+    switch (w) {
+        case assets::Wrap::ClampToEdge: return std::clamp(u, 0.0, 1.0);
+        case assets::Wrap::MirroredRepeat: {
+            double f = u - 2.0 * std::floor(u / 2.0);
+            return f > 1.0 ? 2.0 - f : f;
+        }
+        default: return u - std::floor(u);
+    }
+}
+
+// Bilinear sample of mip level 0, decoded to linear for sRGB images.
+glm::dvec4 sample(const assets::TextureImage& img, glm::dvec2 uv) {
+    auto texel = [&](int x, int y) {
+        x = (x % int(img.width) + int(img.width)) % int(img.width);
+        y = (y % int(img.height) + int(img.height)) % int(img.height);
+        const uint8_t* p = &img.pixels[(size_t(y) * img.width + x) * 4];
+        glm::dvec4 v(p[0] / 255.0, p[1] / 255.0, p[2] / 255.0, p[3] / 255.0);
+        if (img.srgb)
+            for (int c = 0; c < 3; ++c) v[c] = srgbToLinear(v[c]);
+        return v;
+    };
+    double u = wrapCoord(uv.x, img.sampler.wrapS) * img.width - 0.5;
+    double v = wrapCoord(uv.y, img.sampler.wrapT) * img.height - 0.5;
+    if (img.sampler.magFilter == assets::Filter::Nearest) return texel(int(std::floor(u + 0.5)), int(std::floor(v + 0.5)));
+    int x0 = int(std::floor(u)), y0 = int(std::floor(v));
+    double fx = u - x0, fy = v - y0;
+    if (img.sampler.wrapS == assets::Wrap::ClampToEdge) x0 = std::clamp(x0, 0, int(img.width) - 2 < 0 ? 0 : int(img.width) - 2);
+    if (img.sampler.wrapT == assets::Wrap::ClampToEdge) y0 = std::clamp(y0, 0, int(img.height) - 2 < 0 ? 0 : int(img.height) - 2);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+// Moller-Trumbore; returns t and barycentrics (b1, b2), or t < 0 for a miss.
+double intersect(const WorldTriangle& tri, const glm::dvec3& o, const glm::dvec3& d, double& b1, double& b2) {
+    glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
+    glm::dvec3 pv = glm::cross(d, e2);
+    double det = glm::dot(e1, pv);
+    if (std::abs(det) < 1e-300) return -1.0;
+    double inv = 1.0 / det;
+    glm::dvec3 tv = o - tri.p[0];
+    b1 = glm::dot(tv, pv) * inv;
+    if (b1 < 0.0 || b1 > 1.0) return -1.0;
+    glm::dvec3 qv = glm::cross(tv, e1);
+    b2 = glm::dot(d, qv) * inv;
+    if (b2 < 0.0 || b1 + b2 > 1.0) return -1.0;
+    return glm::dot(e2, qv) * inv;
+}
+
+bool hitsBox(const SurfaceBox& b, const glm::dvec3& o, const glm::dvec3& invD, double tMax) {
+    double t0 = 0.0, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+        double ta = (b.min[a] - o[a]) * invD[a], tb = (b.max[a] - o[a]) * invD[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool ReferenceImage::nearEdge(uint32_t x, uint32_t y) const {
+    const int32_t s = surface[size_t(y) * width + x];
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int nx = int(x) + dx, ny = int(y) + dy;
+            if (nx < 0 || ny < 0 || nx >= int(width) || ny >= int(height)) continue;
+            if (surface[size_t(ny) * width + nx] != s) return true;
+        }
+    return false;
+}
+
+ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
+                               uint32_t height) {
+    // World-space triangles grouped per (instance, primitive) with a bounding box each.
+    std::vector<WorldTriangle> tris;
+    std::vector<SurfaceBox> boxes;
+    int32_t surfaceId = 0;
+    for (const assets::MeshInstance& inst : scene.instances) {
+        const glm::dmat4 world(inst.world);
+        const glm::dmat3 normalMat = glm::transpose(glm::inverse(glm::dmat3(world)));
+        for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
+            const int32_t id = surfaceId++;
+            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) continue;
+            SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
+                           glm::dvec3(-std::numeric_limits<double>::infinity()), tris.size(), 0};
+            for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+                WorldTriangle t;
+                for (int k = 0; k < 3; ++k) {
+                    const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
+                    t.p[k] = glm::dvec3(world * glm::dvec4(glm::dvec3(v.position), 1.0));
+                    t.n[k] = normalMat * glm::dvec3(v.normal);
+                    t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
+                    t.uv[k] = glm::dvec2(v.uv0);
+                    box.min = glm::min(box.min, t.p[k]);
+                    box.max = glm::max(box.max, t.p[k]);
+                }
+                t.material = prim.material;
+                t.surface = id;
+                t.mirrored = inst.mirrored;
+                tris.push_back(t);
+            }
+            box.count = tris.size() - box.first;
+            if (box.count) boxes.push_back(box);
+        }
+    }
+
+    std::vector<shading::PunctualLight> lights;
+    for (const assets::Light& l : scene.lights) {
+        shading::PunctualLight p;
+        p.type = l.type == assets::LightType::Directional ? shading::LightType::Directional
+                 : l.type == assets::LightType::Point     ? shading::LightType::Point
+                                                          : shading::LightType::Spot;
+        p.position = glm::dvec3(l.position);
+        p.direction = glm::dvec3(l.direction);
+        p.color = glm::dvec3(l.color);
+        p.intensity = l.intensity;
+        p.range = l.range;
+        p.innerConeAngle = l.innerConeAngle;
+        p.outerConeAngle = l.outerConeAngle;
+        lights.push_back(p);
+    }
+
+    ReferenceImage out;
+    out.width = width;
+    out.height = height;
+    out.radiance.assign(size_t(width) * height, glm::dvec3(0.0));
+    out.surface.assign(size_t(width) * height, -1);
+    out.textured.assign(size_t(width) * height, 0);
+    const double aspect = camera.aspectRatio ? *camera.aspectRatio : double(width) / double(height);
+    const glm::dmat4 invViewProj = glm::inverse(glm::dmat4(viewProjection(camera, float(aspect))));
+    const glm::dvec3 eye(camera.eye());
+
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+            glm::dvec4 farPoint = invViewProj * glm::dvec4(ndc, 0.5, 1.0);
+            glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+            glm::dvec3 invD = 1.0 / dir;
+            double best = std::numeric_limits<double>::infinity();
+            const WorldTriangle* hit = nullptr;
+            double hb1 = 0, hb2 = 0;
+            for (const SurfaceBox& box : boxes) {
+                if (!hitsBox(box, eye, invD, best)) continue;
+                for (size_t i = box.first; i < box.first + box.count; ++i) {
+                    const WorldTriangle& tri = tris[i];
+                    double b1, b2;
+                    double t = intersect(tri, eye, dir, b1, b2);
+                    if (!(t > camera.znear * 0.5) || t >= best) continue;
+                    const assets::Material& mat = scene.materials[tri.material];
+                    // Back faces are culled for single-sided materials, as on the GPU.
+                    glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+                    // Counter-clockwise seen from the eye; mirrored instances flip the winding.
+                    bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
+                    if (!mat.doubleSided && !front) continue;
+                    if (mat.alphaMode == assets::AlphaMode::Mask) {
+                        glm::dvec2 uv = (1 - b1 - b2) * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
+                        double a = mat.baseColorFactor.a;
+                        if (mat.baseColorTexture.valid()) a *= sample(scene.textures[mat.baseColorTexture.index], uv).a;
+                        if (a < mat.alphaCutoff) continue;
+                    }
+                    best = t;
+                    hit = &tri;
+                    hb1 = b1;
+                    hb2 = b2;
+                }
+            }
+            if (!hit) continue;
+            const size_t pixel = size_t(y) * width + x;
+            out.surface[pixel] = hit->surface;
+            const assets::Material& mat = scene.materials[hit->material];
+            const double b0 = 1.0 - hb1 - hb2;
+            glm::dvec2 uv = b0 * hit->uv[0] + hb1 * hit->uv[1] + hb2 * hit->uv[2];
+            glm::dvec3 n = glm::normalize(b0 * hit->n[0] + hb1 * hit->n[1] + hb2 * hit->n[2]);
+            glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
+            const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
+            if (!front) n = -n;  // a double-sided back face shades with the flipped normal
+
+            glm::dvec4 bc = glm::dvec4(mat.baseColorFactor);
+            double metallic = mat.metallic, roughness = mat.roughness;
+            glm::dvec3 emissive(mat.emissiveFactor);
+            bool textured = false;
+            if (mat.baseColorTexture.valid()) {
+                bc *= sample(scene.textures[mat.baseColorTexture.index], uv);
+                textured = true;
+            }
+            if (mat.metallicRoughnessTexture.valid()) {
+                glm::dvec4 mr = sample(scene.textures[mat.metallicRoughnessTexture.index], uv);
+                metallic *= mr.b;
+                roughness *= mr.g;
+                textured = true;
+            }
+            if (mat.emissiveTexture.valid()) {
+                emissive *= glm::dvec3(sample(scene.textures[mat.emissiveTexture.index], uv));
+                textured = true;
+            }
+            if (mat.normalTexture.valid()) {
+                glm::dvec4 T = b0 * hit->t[0] + hb1 * hit->t[1] + hb2 * hit->t[2];
+                glm::dvec3 t = glm::dvec3(T) - n * glm::dot(n, glm::dvec3(T));
+                if (glm::dot(t, t) > 1e-24) {
+                    t = glm::normalize(t);
+                    glm::dvec3 b = glm::cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
+                    glm::dvec3 tn = glm::dvec3(sample(scene.textures[mat.normalTexture.index], uv)) * 2.0 - 1.0;
+                    tn.x *= mat.normalScale;
+                    tn.y *= mat.normalScale;
+                    n = glm::normalize(tn.x * t + tn.y * b + tn.z * n);
+                }
+                textured = true;
+            }
+            out.textured[pixel] = textured;
+            if (mat.unlit) {
+                out.radiance[pixel] = glm::dvec3(bc);
+                continue;
+            }
+            shading::SurfacePoint s;
+            s.P = eye + dir * best;
+            s.n = n;
+            s.wo = -dir;
+            s.baseColor = glm::dvec3(bc);
+            s.metallic = std::clamp(metallic, 0.0, 1.0);
+            s.roughness = roughness;
+            glm::dvec3 L = emissive;
+            for (const auto& light : lights) L += shading::shadeLight(s, shading::evaluateLight(light, s.P));
+            out.radiance[pixel] = L;
+        }
+    return out;
+}
+
+}  // namespace fe::render

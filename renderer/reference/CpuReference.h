@@ -1,0 +1,29 @@
+// Layer 7 test oracle: the scene ray-cast on the CPU and shaded with the double-precision
+// SHADING.md model (renderer/shading/ShadingModel.h). Independent of every GPU code path:
+// visibility by ray-triangle intersection through each pixel centre, attributes interpolated
+// with exact (perspective-correct) barycentrics, textures sampled bilinearly from level 0.
+// Opaque and MASK materials only; BLEND primitives are ignored (draw them forward on top).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "assets/Scene.h"
+
+namespace fe::render {
+
+struct ReferenceImage {
+    uint32_t width = 0, height = 0;
+    std::vector<glm::dvec3> radiance;  // L_o per pixel, rows top to bottom; 0 where nothing is hit
+    std::vector<int32_t> surface;      // id of the hit (instance, primitive) pair, -1 for background
+    std::vector<uint8_t> textured;     // 1 where the hit material samples a texture
+    // True where the pixel or one of its 8 neighbours sees a different surface: rasterization
+    // coverage rules may legitimately pick another surface there.
+    bool nearEdge(uint32_t x, uint32_t y) const;
+};
+
+ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
+                               uint32_t height);
+
+}  // namespace fe::render

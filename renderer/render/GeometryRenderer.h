@@ -1,0 +1,47 @@
+// Layer 7 (Render): draws scene meshes into whatever pass asks (forward, G-buffer, transparent).
+// Owns the pipeline variants a mesh pass needs: one per (pass kind, cull mode, winding), since
+// double-sided materials draw without culling and mirrored instances flip their front face.
+#pragma once
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+#include "frame/CommandQueue.h"
+#include "render/GpuScene.h"
+
+namespace fe::render {
+
+enum class MeshPass { Forward, GBuffer, Transparent };
+
+// What the pass renders into; pipelines are specialised to these formats.
+struct MeshPassTargets {
+    std::vector<gdi::Format> colorFormats;
+    gdi::Format depthFormat = gdi::Format::D32F;
+};
+
+class GeometryRenderer {
+public:
+    GeometryRenderer(gdi::Device& device, GpuScene& scene);
+    ~GeometryRenderer();
+
+    // Draws the scene's draw items that belong to `pass` (opaque+mask, or blend sorted back to
+    // front). `frameConstants` is the per-frame uniform allocation.
+    void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
+              const UploadAllocation& frameConstants, const glm::vec3& eye);
+
+    uint32_t drawCount(MeshPass pass) const;
+
+private:
+    gdi::PipelineHandle pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull, gdi::FrontFace face);
+
+    gdi::Device& device_;
+    GpuScene& scene_;
+    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_;
+    std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
+};
+
+// Binding layout of mesh passes (fe_material.glsl).
+std::vector<gdi::BindingSlot> meshPassBindings();
+
+}  // namespace fe::render

@@ -1,0 +1,36 @@
+// Layer 7 (Render): lights drawn as volumes, shared by the deferred lighting pass and the
+// redeferred illumination pass: a sphere per ranged point light, a cone per ranged spot light
+// and a full-screen triangle for directional and unbounded lights. One instanced draw per shape.
+#pragma once
+#include <vector>
+
+#include "fe/gdi/Device.h"
+#include "frame/CommandQueue.h"
+#include "render/GpuScene.h"
+
+namespace fe::render {
+
+class LightVolumes {
+public:
+    // `fragmentShader` decides what a volume computes (deferred radiance or I-buffer sums);
+    // every colour target is accumulated additively.
+    LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets,
+                 std::vector<gdi::BindingSlot> fragmentBindings);
+    ~LightVolumes();
+
+    void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame);
+
+    struct Counts {
+        uint32_t spheres = 0, cones = 0, fullscreen = 0;
+    };
+    static Counts classify(const std::vector<assets::Light>& lights);
+
+private:
+    gdi::Device& device_;
+    gdi::BufferHandle mesh_;
+    uint32_t sphereFirst_ = 0, sphereCount_ = 0, coneFirst_ = 0, coneCount_ = 0;
+    gdi::ShaderHandle vs_, fs_;
+    gdi::PipelineHandle volumePipeline_, fullscreenPipeline_;
+};
+
+}  // namespace fe::render

@@ -1,0 +1,20 @@
+// Binding slots of the scene shaders; must match shaders/include/fe_scene.glsl.
+#pragma once
+#include <cstdint>
+
+namespace fe::render {
+constexpr uint32_t kSlotFrame = 0;
+constexpr uint32_t kSlotObject = 1;
+constexpr uint32_t kSlotLights = 2;
+constexpr uint32_t kSlotBaseColor = 3;
+constexpr uint32_t kSlotMetalRough = 4;
+constexpr uint32_t kSlotNormalMap = 5;
+constexpr uint32_t kSlotEmissive = 6;
+constexpr uint32_t kSlotGBuffer0 = 8;
+constexpr uint32_t kSlotGBuffer1 = 9;
+constexpr uint32_t kSlotGBuffer2 = 10;
+constexpr uint32_t kSlotDepth = 11;
+constexpr uint32_t kSlotIBuffer0 = 12;
+constexpr uint32_t kSlotIBuffer1 = 13;
+constexpr uint32_t kSlotIBuffer2 = 14;
+}  // namespace fe::render

@@ -1,0 +1,529 @@
+// Malformed input: every case is written by the test into a temporary folder, starting from a
+// small valid file that is shown to load, and must end in an AssetError whose message names the
+// file and the offending element. Never a crash, a hang or another exception type.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+
+#include "TestSupport.h"
+#include "assets/GltfLoader.h"
+
+using namespace fe::assets;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+class GltfErrors : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("fe_assets_" + std::string(info->name()) + "_" + std::to_string(std::random_device{}()));
+        fs::create_directories(dir_);
+        positions_ = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        indices_ = {0, 1, 2};
+    }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir_, ec);
+    }
+
+    // tri.bin: 3 float3 positions (36 bytes) then u16 indices (padded to 4 bytes).
+    std::vector<uint8_t> bin() const {
+        std::vector<uint8_t> b(positions_.size() * 4);
+        std::memcpy(b.data(), positions_.data(), b.size());
+        size_t off = b.size();
+        b.resize(off + ((indices_.size() * 2 + 3) & ~size_t(3)), 0);
+        std::memcpy(b.data() + off, indices_.data(), indices_.size() * 2);
+        return b;
+    }
+
+    // One triangle, mesh "Tri": accessor 0 = indices, accessor 1 = POSITION.
+    json gltf() const {
+        const size_t posBytes = positions_.size() * 4;
+        return json{
+            {"asset", {{"version", "2.0"}}},
+            {"scene", 0},
+            {"scenes", json::array({{{"nodes", {0}}}})},
+            {"nodes", json::array({{{"mesh", 0}, {"name", "TriNode"}}})},
+            {"meshes", json::array({{{"name", "Tri"},
+                                     {"primitives", json::array({{{"attributes", {{"POSITION", 1}}},
+                                                                  {"indices", 0}}})}}})},
+            {"buffers", json::array({{{"uri", "tri.bin"}, {"byteLength", bin().size()}}})},
+            {"bufferViews", json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", posBytes}},
+                                         {{"buffer", 0}, {"byteOffset", posBytes}, {"byteLength", indices_.size() * 2}}})},
+            {"accessors", json::array({{{"bufferView", 1}, {"componentType", 5123}, {"count", indices_.size()}, {"type", "SCALAR"}},
+                                       {{"bufferView", 0}, {"componentType", 5126}, {"count", positions_.size() / 3}, {"type", "VEC3"}}})},
+        };
+    }
+
+    std::string write(const std::string& name, const std::string& text) const {
+        std::ofstream(dir_ / name, std::ios::binary) << text;
+        return (dir_ / name).string();
+    }
+    std::string writeBytes(const std::string& name, const std::vector<uint8_t>& bytes) const {
+        std::ofstream(dir_ / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        return (dir_ / name).string();
+    }
+    // Writes tri.bin and the JSON; returns the .gltf path.
+    std::string writeGltf(const json& j, const std::string& name = "tri.gltf") const {
+        writeBytes("tri.bin", bin());
+        return write(name, j.dump());
+    }
+
+    // A .glb container around JSON + one BIN chunk.
+    static std::vector<uint8_t> glb(std::string jsonText, std::vector<uint8_t> binChunk) {
+        while (jsonText.size() % 4) jsonText += ' ';
+        while (binChunk.size() % 4) binChunk.push_back(0);
+        std::vector<uint8_t> out;
+        auto u32 = [&](uint32_t v) {
+            uint8_t b[4];
+            std::memcpy(b, &v, 4);
+            out.insert(out.end(), b, b + 4);
+        };
+        uint32_t total = 12 + 8 + uint32_t(jsonText.size()) + 8 + uint32_t(binChunk.size());
+        out.insert(out.end(), {'g', 'l', 'T', 'F'});
+        u32(2);
+        u32(total);
+        u32(uint32_t(jsonText.size()));
+        out.insert(out.end(), {'J', 'S', 'O', 'N'});
+        out.insert(out.end(), jsonText.begin(), jsonText.end());
+        u32(uint32_t(binChunk.size()));
+        out.insert(out.end(), {'B', 'I', 'N', 0});
+        out.insert(out.end(), binChunk.begin(), binChunk.end());
+        return out;
+    }
+
+    // Loads `path`, requires an AssetError mentioning the file and every `needles` entry.
+    void expectError(const std::string& path, std::initializer_list<std::string> needles) const {
+        try {
+            Scene s = loadGltf(path);
+            ADD_FAILURE() << "expected AssetError for " << path;
+        } catch (const AssetError& e) {
+            std::string msg = e.what();
+            EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << "file not named: " << msg;
+            for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "missing '" << n << "' in: " << msg;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "wrong exception type: " << e.what();
+        }
+    }
+
+    fs::path dir_;
+    std::vector<float> positions_;
+    std::vector<uint16_t> indices_;
+};
+
+}  // namespace
+
+// Same fixture, for small valid files that cover what the samples do not.
+class GltfSynthetic : public GltfErrors {};
+
+TEST_F(GltfSynthetic, BaselineFileLoads) {
+    Scene s = loadGltf(writeGltf(gltf()));
+    ASSERT_EQ(s.instances.size(), 1u);
+    EXPECT_EQ(s.meshes[0].primitives[0].indices, (std::vector<uint32_t>{0, 1, 2}));
+    EXPECT_EQ(s.meshes[0].name, "Tri");
+    Scene g = loadGltf(writeBytes("tri.glb", glb([&] {
+        json j = gltf();
+        j["buffers"][0].erase("uri");
+        return j.dump();
+    }(), bin())));
+    EXPECT_EQ(g.meshes[0].primitives[0].vertices.size(), 3u);
+}
+
+TEST_F(GltfErrors, NonExistentPath) { expectError((dir_ / "nope.gltf").string(), {"file not found"}); }
+
+TEST_F(GltfErrors, DirectoryInsteadOfFile) {
+    fs::create_directories(dir_ / "folder.gltf");
+    expectError((dir_ / "folder.gltf").string(), {"not a regular file"});
+}
+
+TEST_F(GltfErrors, TruncatedJson) {
+    std::string text = gltf().dump();
+    expectError(write("trunc.gltf", text.substr(0, text.size() / 2)), {"parse error"});
+}
+
+TEST_F(GltfErrors, MissingBufferFile) {
+    json j = gltf();
+    j["buffers"][0]["uri"] = "missing.bin";
+    expectError(writeGltf(j), {"missing.bin"});
+}
+
+TEST_F(GltfErrors, AccessorPastBufferViewEnd) {
+    json j = gltf();
+    j["accessors"][1]["count"] = 30;
+    expectError(writeGltf(j), {"accessor 1 (POSITION of mesh 'Tri' primitive 0)",
+                               "byteOffset+count*stride exceeds bufferView 0 length"});
+}
+
+TEST_F(GltfErrors, AccessorByteOffsetPastEnd) {
+    json j = gltf();
+    j["accessors"][1]["byteOffset"] = 4;
+    expectError(writeGltf(j), {"accessor 1 (POSITION of mesh 'Tri' primitive 0)", "exceeds bufferView 0"});
+}
+
+TEST_F(GltfErrors, BufferViewPastBufferEnd) {
+    json j = gltf();
+    j["bufferViews"][0]["byteLength"] = 400;
+    expectError(writeGltf(j), {"bufferView 0", "exceeds buffer 0"});
+}
+
+TEST_F(GltfErrors, IndexOutOfRange) {
+    indices_ = {0, 27, 2};
+    expectError(writeGltf(gltf()), {"index 27 >= vertex count 3 in mesh 'Tri' primitive 0"});
+}
+
+TEST_F(GltfErrors, NaNAndInfinitePositions) {
+    positions_[4] = std::numeric_limits<float>::quiet_NaN();
+    expectError(writeGltf(gltf(), "nan.gltf"), {"non-finite POSITION", "vertex 1", "mesh 'Tri' primitive 0"});
+    positions_[4] = 0.0f;
+    positions_[8] = std::numeric_limits<float>::infinity();
+    expectError(writeGltf(gltf(), "inf.gltf"), {"non-finite POSITION", "vertex 2"});
+}
+
+TEST_F(GltfErrors, UnsupportedComponentType) {
+    json j = gltf();
+    j["accessors"][1]["componentType"] = 5123;  // unsigned short positions (KHR_mesh_quantization)
+    j["accessors"][1]["count"] = 3;
+    expectError(writeGltf(j), {"accessor 1 (POSITION", "unsupported component type unsigned short"});
+    json k = gltf();
+    k["accessors"][0]["componentType"] = 5126;  // float indices
+    k["bufferViews"][1]["byteLength"] = 12;
+    expectError(writeGltf(k, "floatidx.gltf"), {"accessor 0 (indices of mesh 'Tri' primitive 0)", "unsupported component type float"});
+}
+
+TEST_F(GltfErrors, WrongAccessorType) {
+    json j = gltf();
+    j["accessors"][1]["type"] = "VEC2";
+    expectError(writeGltf(j), {"accessor 1 (POSITION", "type VEC2, expected VEC3"});
+}
+
+TEST_F(GltfErrors, DanglingIndices) {
+    json j = gltf();
+    j["nodes"][0]["mesh"] = 5;
+    expectError(writeGltf(j, "mesh.gltf"), {"mesh 5 does not exist"});
+    j = gltf();
+    j["meshes"][0]["primitives"][0]["material"] = 3;
+    expectError(writeGltf(j, "material.gltf"), {"material 3 does not exist"});
+    j = gltf();
+    j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
+    expectError(writeGltf(j, "accessor.gltf"), {"accessor 9 does not exist"});
+    j = gltf();
+    j["nodes"][0]["children"] = {4};
+    expectError(writeGltf(j, "child.gltf"), {"child node 4 does not exist"});
+    j = gltf();
+    j["scenes"][0]["nodes"] = {7};
+    expectError(writeGltf(j, "scene.gltf"), {"node 7 does not exist"});
+}
+
+TEST_F(GltfErrors, NodeCycleDoesNotHang) {
+    json j = gltf();
+    j["nodes"] = json::array({{{"children", {1}}}, {{"children", {0}}, {"mesh", 0}}});
+    expectError(writeGltf(j, "cycle.gltf"), {"node"});
+    j["nodes"] = json::array({{{"children", {0}}, {"mesh", 0}}});  // its own child
+    expectError(writeGltf(j, "self.gltf"), {"node 0"});
+}
+
+TEST_F(GltfErrors, NodeWithTwoParents) {
+    json j = gltf();
+    j["nodes"] = json::array({{{"children", {2}}}, {{"children", {2}}}, {{"mesh", 0}}});
+    j["scenes"][0]["nodes"] = {0, 1};
+    expectError(writeGltf(j), {"node 2", "two parents"});
+}
+
+TEST_F(GltfErrors, NonFiniteNodeTransform) {
+    // JSON cannot spell NaN or infinity; 1e39 is a finite double that overflows a float.
+    json j = gltf();
+    j["nodes"][0]["translation"] = {1e39, 0, 0};
+    expectError(writeGltf(j, "inf.gltf"), {"TriNode", "non-finite transform"});
+    // A number too large even for a double is tinygltf's JSON error, still an AssetError.
+    std::string text = gltf().dump();
+    text.replace(text.find("\"name\":\"TriNode\""), std::strlen("\"name\":\"TriNode\""),
+                 "\"name\":\"TriNode\",\"translation\":[1e999,0,0]");
+    expectError(write("overflow.gltf", text), {"1e999"});
+}
+
+TEST_F(GltfErrors, DeeplyNestedJsonIsRejectedNotAStackOverflow) {
+    // tinygltf converts "extras" recursively: 100000 nested arrays would overflow the stack.
+    std::string text = gltf().dump();
+    text.pop_back();
+    text += ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+    expectError(write("deep.gltf", text), {"nested deeper"});
+    // Brackets inside strings do not count.
+    json j = gltf();
+    j["nodes"][0]["name"] = std::string(1000, '[');
+    EXPECT_NO_THROW(loadGltf(writeGltf(j, "brackets.gltf")));
+}
+
+TEST_F(GltfErrors, HugeAccessorWithoutBufferViewIsRefused) {
+    json j = gltf();
+    j["accessors"][1].erase("bufferView");
+    j["accessors"][1]["count"] = 4000000000u;
+    expectError(writeGltf(j), {"accessor 1 (POSITION", "too large"});
+}
+
+TEST_F(GltfErrors, UnsupportedRequiredExtension) {
+    json j = gltf();
+    j["extensionsUsed"] = {"EXT_made_up"};
+    j["extensionsRequired"] = {"EXT_made_up"};
+    expectError(writeGltf(j), {"unsupported required extension EXT_made_up"});
+    // Used but not required: loads with a warning.
+    j.erase("extensionsRequired");
+    Scene s = loadGltf(writeGltf(j, "used.gltf"));
+    ASSERT_FALSE(s.warnings.empty());
+    EXPECT_NE(s.warnings[0].find("EXT_made_up"), std::string::npos);
+}
+
+TEST_F(GltfErrors, ImageThatFailsToDecode) {
+    write("bad.png", "this is not a png at all");
+    json j = gltf();
+    j["images"] = json::array({{{"uri", "bad.png"}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    expectError(writeGltf(j), {"image 0 ('bad.png')", "baseColorTexture of material 'M'", "cannot decode"});
+}
+
+TEST_F(GltfErrors, MissingImageFile) {
+    json j = gltf();
+    j["images"] = json::array({{{"uri", "gone.png"}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    expectError(writeGltf(j), {"image 0 ('gone.png')", "missing"});
+}
+
+TEST_F(GltfErrors, SparseIndexOutOfRange) {
+    // Sparse data appended to the buffer: one u16 index (7, but count is 3) and one float3.
+    std::vector<uint8_t> b = bin();
+    size_t sparseOff = b.size();
+    uint16_t idx[2] = {7, 0};
+    float val[3] = {5, 5, 5};
+    b.resize(sparseOff + 4 + 12);
+    std::memcpy(b.data() + sparseOff, idx, 4);
+    std::memcpy(b.data() + sparseOff + 4, val, 12);
+    writeBytes("sparse.bin", b);
+    json j = gltf();
+    j["buffers"][0] = {{"uri", "sparse.bin"}, {"byteLength", b.size()}};
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", sparseOff}, {"byteLength", 2}});
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", sparseOff + 4}, {"byteLength", 12}});
+    j["accessors"][1]["sparse"] = {{"count", 1},
+                                   {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
+                                   {"values", {{"bufferView", 3}}}};
+    expectError(write("sparse.gltf", j.dump()), {"accessor 1 (POSITION", "sparse index 7 >= count 3"});
+}
+
+TEST_F(GltfSynthetic, SparseAccessorWithoutBufferViewIsZerosPlusSparse) {
+    // The valid counterpart of the case above: a sparse accessor with no bufferView (zeros).
+    std::vector<uint8_t> b = bin();
+    size_t sparseOff = b.size();
+    uint16_t idx[2] = {1, 0};
+    float val[3] = {2, 3, 4};
+    b.resize(sparseOff + 4 + 12);
+    std::memcpy(b.data() + sparseOff, idx, 4);
+    std::memcpy(b.data() + sparseOff + 4, val, 12);
+    writeBytes("sparse.bin", b);
+    json j = gltf();
+    j["buffers"][0] = {{"uri", "sparse.bin"}, {"byteLength", b.size()}};
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", sparseOff}, {"byteLength", 2}});
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", sparseOff + 4}, {"byteLength", 12}});
+    j["accessors"][1].erase("bufferView");
+    j["accessors"][1]["sparse"] = {{"count", 1},
+                                   {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
+                                   {"values", {{"bufferView", 3}}}};
+    Scene s = loadGltf(write("sparse.gltf", j.dump()));
+    const auto& v = s.meshes[0].primitives[0].vertices;  // unwelded: same order as the indices
+    ASSERT_EQ(v.size(), 3u);
+    EXPECT_EQ(v[0].position, glm::vec3(0, 0, 0));
+    EXPECT_EQ(v[1].position, glm::vec3(2, 3, 4));
+    EXPECT_EQ(v[2].position, glm::vec3(0, 0, 0));
+}
+
+TEST_F(GltfErrors, GlbWithBadMagic) {
+    std::vector<uint8_t> bytes = glb(gltf().dump(), bin());
+    std::memcpy(bytes.data(), "gLtF", 4);
+    expectError(writeBytes("bad.glb", bytes), {"bad magic"});
+    expectError(writeBytes("text.glb", std::vector<uint8_t>{'{', '}'}), {"bad magic"});
+}
+
+TEST_F(GltfErrors, TruncatedGlbNeverCrashes) {
+    json j = gltf();
+    j["buffers"][0].erase("uri");
+    std::vector<uint8_t> full = glb(j.dump(), bin());
+    ASSERT_NO_THROW(loadGltf(writeBytes("full.glb", full)));
+    for (size_t len = 0; len < full.size(); ++len) {
+        std::vector<uint8_t> cut(full.begin(), full.begin() + std::ptrdiff_t(len));
+        EXPECT_THROW(loadGltf(writeBytes("cut.glb", cut)), AssetError) << "length " << len;
+    }
+}
+
+// Random byte corruption of a valid .gltf + .bin: whatever happens, only AssetError may escape
+// (crashes and other exceptions fail the test). Fixed seed, so failures reproduce.
+TEST_F(GltfErrors, CorruptedFilesOnlyThrowAssetError) {
+    json j = gltf();
+    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0.25, 1}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    const std::string text = j.dump();
+    const std::vector<uint8_t> goodBin = bin();
+    std::mt19937 rng(1234);
+    int loaded = 0, refused = 0;
+    for (int iter = 0; iter < 400; ++iter) {
+        std::string t = text;
+        std::vector<uint8_t> b = goodBin;
+        int edits = 1 + int(rng() % 3);
+        for (int e = 0; e < edits; ++e) {
+            if (rng() % 4 == 0) {
+                b[rng() % b.size()] = uint8_t(rng());
+            } else {
+                const char alphabet[] = "0123456789-+.e\"{}[],:9999999999";
+                t[rng() % t.size()] = alphabet[rng() % (sizeof(alphabet) - 1)];
+            }
+        }
+        writeBytes("tri.bin", b);
+        std::string path = write("fuzz.gltf", t);
+        try {
+            loadGltf(path);
+            ++loaded;
+        } catch (const AssetError&) {
+            ++refused;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "iteration " << iter << ": non-AssetError exception " << e.what() << "\n" << t;
+        }
+    }
+    EXPECT_GT(refused, 0);
+    EXPECT_GT(loaded, 0);
+}
+
+TEST_F(GltfSynthetic, TrsOrderAndParentTimesChild) {
+    const float h = std::sqrt(0.5f);
+    json j = gltf();
+    // Node 0: T (1,2,3) * R (90 deg about Z) * S (2,1,1). Point (1,0,0) -> S (2,0,0) -> R (0,2,0)
+    // -> T (1,4,3). Node 1 (parent, 90 deg about Y) of node 2 (translation (1,0,0)): the child's
+    // origin is R_y(90) (1,0,0) = (0,0,-1).
+    j["nodes"] = json::array({{{"name", "trs"}, {"mesh", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, h, h}}, {"scale", {2, 1, 1}}},
+                              {{"name", "parent"}, {"rotation", {0, h, 0, h}}, {"children", {2}}},
+                              {{"name", "child"}, {"mesh", 0}, {"translation", {1, 0, 0}}}});
+    j["scenes"][0]["nodes"] = {0, 1};
+    Scene s = loadGltf(writeGltf(j));
+    ASSERT_EQ(s.instances.size(), 2u);
+    const MeshInstance* trs = fe::assets::test::findInstance(s, "trs");
+    const MeshInstance* child = fe::assets::test::findInstance(s, "child");
+    ASSERT_TRUE(trs && child);
+    glm::vec3 p = glm::vec3(trs->world * glm::vec4(1, 0, 0, 1));
+    EXPECT_NEAR(glm::distance(p, glm::vec3(1, 4, 3)), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(glm::vec3(child->world[3]), glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
+}
+
+TEST_F(GltfSynthetic, SpotAndDirectionalLightsFromNodes) {
+    const float h = std::sqrt(0.5f);
+    json j = gltf();
+    j["extensionsUsed"] = {"KHR_lights_punctual"};
+    j["extensions"] = {{"KHR_lights_punctual",
+                        {{"lights", json::array({{{"type", "spot"}, {"name", "S"}, {"color", {1, 0.5, 0.25}}, {"intensity", 7}, {"range", 9},
+                                                  {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+                                                 {{"type", "directional"}, {"intensity", 3}, {"range", 5}}})}}}};
+    // Spot at (1,2,3) turned 90 deg about Y: local -Z -> world -X. Sun turned -90 deg about X:
+    // local -Z -> world -Y (straight down).
+    j["nodes"].push_back({{"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    j["nodes"].push_back({{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    j["scenes"][0]["nodes"] = {0, 1, 2};
+    Scene s = loadGltf(writeGltf(j));
+    EXPECT_FALSE(s.hasDefaultLights);
+    ASSERT_EQ(s.lights.size(), 2u);
+    const Light& spot = s.lights[0];
+    EXPECT_EQ(spot.type, LightType::Spot);
+    EXPECT_EQ(spot.name, "S");
+    EXPECT_EQ(spot.color, glm::vec3(1, 0.5f, 0.25f));
+    EXPECT_EQ(spot.intensity, 7.0f);
+    EXPECT_EQ(spot.range, 9.0f);
+    EXPECT_FLOAT_EQ(spot.innerConeAngle, 0.2f);
+    EXPECT_FLOAT_EQ(spot.outerConeAngle, 0.5f);
+    EXPECT_NEAR(glm::distance(spot.position, glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(spot.direction, glm::vec3(-1, 0, 0)), 0.0f, 1e-6f);
+    const Light& sun = s.lights[1];
+    EXPECT_EQ(sun.type, LightType::Directional);
+    EXPECT_EQ(sun.range, 0.0f) << "range is meaningless for directional lights";
+    EXPECT_NEAR(glm::distance(sun.direction, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+}
+
+TEST_F(GltfSynthetic, CameraWithInfiniteFarAndScaledNode) {
+    json j = gltf();
+    j["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}});
+    j["nodes"].push_back({{"camera", 0}, {"translation", {0, 1, 5}}, {"scale", {2, 2, 2}}});
+    j["scenes"][0]["nodes"] = {0, 1};
+    Scene s = loadGltf(writeGltf(j));
+    ASSERT_TRUE(s.camera);
+    EXPECT_FALSE(s.hasDefaultCamera);
+    EXPECT_TRUE(s.camera->infiniteFar());
+    EXPECT_FALSE(s.camera->aspectRatio.has_value());
+    EXPECT_FLOAT_EQ(s.camera->yfov, 0.9f);
+    EXPECT_NEAR(glm::determinant(s.camera->worldFromView), 1.0f, 1e-5f) << "scale removed";
+    EXPECT_EQ(s.camera->eye(), glm::vec3(0, 1, 5));
+    EXPECT_NEAR(glm::distance(s.camera->forward(), glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+}
+
+TEST_F(GltfSynthetic, NormalizedByteTexcoordsAndByteAndIntIndices) {
+    // Buffer: positions (36 bytes) | u8 indices 0,1,2 (+1 pad) | u32 indices 2,1,0 | u8 normalized
+    // texcoords (0,0) (255,0) (0,255) (+2 pad) | u16 normalized texcoords (0,0) (65535,0) (0,65535).
+    std::vector<uint8_t> b(36);
+    std::memcpy(b.data(), positions_.data(), 36);
+    b.insert(b.end(), {0, 1, 2, 0});
+    uint32_t i32[3] = {2, 1, 0};
+    b.insert(b.end(), reinterpret_cast<uint8_t*>(i32), reinterpret_cast<uint8_t*>(i32) + 12);
+    b.insert(b.end(), {0, 0, 255, 0, 0, 255, 0, 0});
+    uint16_t t16[6] = {0, 0, 65535, 0, 0, 65535};
+    b.insert(b.end(), reinterpret_cast<uint8_t*>(t16), reinterpret_cast<uint8_t*>(t16) + 12);
+    writeBytes("mixed.bin", b);
+    json j = gltf();
+    j["buffers"][0] = {{"uri", "mixed.bin"}, {"byteLength", b.size()}};
+    j["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+                                    {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 3}},
+                                    {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 12}},
+                                    {{"buffer", 0}, {"byteOffset", 52}, {"byteLength", 6}},
+                                    {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 12}}});
+    j["accessors"] = json::array({{{"bufferView", 1}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}},
+                                  {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+                                  {{"bufferView", 2}, {"componentType", 5125}, {"count", 3}, {"type", "SCALAR"}},
+                                  {{"bufferView", 3}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}},
+                                  {{"bufferView", 4}, {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}}});
+    j["meshes"][0]["primitives"] = json::array({{{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 3}}}, {"indices", 0}},
+                                                {{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 4}}}, {"indices", 2}}});
+    Scene s = loadGltf(write("mixed.gltf", j.dump()));
+    ASSERT_EQ(s.meshes[0].primitives.size(), 2u);
+    const auto& a = s.meshes[0].primitives[0].vertices;  // flat normals: vertices in index order
+    EXPECT_EQ(a[0].uv0, glm::vec2(0, 0));
+    EXPECT_EQ(a[1].uv0, glm::vec2(1, 0));
+    EXPECT_EQ(a[2].uv0, glm::vec2(0, 1));
+    const auto& c = s.meshes[0].primitives[1].vertices;  // u32 indices 2, 1, 0
+    EXPECT_EQ(c[0].position, glm::vec3(0, 1, 0));
+    EXPECT_EQ(c[0].uv0, glm::vec2(0, 1));
+    EXPECT_EQ(c[2].uv0, glm::vec2(0, 0));
+    EXPECT_EQ(c[0].normal, glm::vec3(0, 0, -1)) << "reversed winding faces -Z";
+    // Texcoords that are integers but not normalized are not valid glTF.
+    j["accessors"][3]["normalized"] = false;
+    expectError(write("unnormalized.gltf", j.dump()), {"TEXCOORD_0", "unsupported component type unsigned byte"});
+}
+
+TEST_F(GltfSynthetic, FirstPerspectiveCameraInDepthFirstNodeOrderWins) {
+    // Roots [0, 1, 2]; node 1's child 3 holds camera "deep", root 2 holds camera "late".
+    // Depth-first order visits 0, 1, 3, 2: "deep" wins (breadth-first would pick "late").
+    json j = gltf();
+    j["cameras"] = json::array({{{"type", "perspective"}, {"name", "late"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                                {{"type", "perspective"}, {"name", "deep"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
+    j["nodes"].push_back({{"children", {3}}});
+    j["nodes"].push_back({{"camera", 0}});
+    j["nodes"].push_back({{"camera", 1}, {"translation", {0, 0, 7}}});
+    j["scenes"][0]["nodes"] = {0, 1, 2};
+    Scene s = loadGltf(writeGltf(j));
+    ASSERT_TRUE(s.camera);
+    EXPECT_EQ(s.camera->name, "deep");
+    EXPECT_FLOAT_EQ(s.camera->yfov, 0.6f);
+    EXPECT_EQ(s.camera->eye(), glm::vec3(0, 0, 7));
+}
