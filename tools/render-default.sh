@@ -4,5 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
 mkdir -p out
-./build/tools/fe/fe render --out out/default.png "$@"
+./build/tools/fe render --out out/default.png "$@"
 echo "wrote out/default.png"

@@ -1,0 +1,271 @@
+#include "Conformance.h"
+
+#include <array>
+#include <cmath>
+
+#include "fe/gdi/ShaderRegistry.h"
+
+namespace fe::conformance {
+
+using namespace gdi;
+
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+Image solid(Format f, std::array<float, 4> c, uint32_t w = kSize, uint32_t h = kSize) {
+    return Image::fromTexels(w, h, f, std::vector<std::array<float, 4>>(size_t(w) * h, c));
+}
+
+TextureHandle target(Device& d, Format f) {
+    return d.createTexture({.format = f, .width = kSize, .height = kSize,
+                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled});
+}
+
+struct Params {
+    float color[4];
+    float depth[4];
+};
+
+// Clear to a known value and read back: covers clears and readback of every colour format.
+std::vector<CaseImage> clearEveryFormat(Device& d) {
+    std::vector<CaseImage> out;
+    const std::array<float, 4> c{0.25f, 0.5f, 0.75f, 1.0f};
+    for (Format f : {Format::RGBA8, Format::RGBA8_SRGB, Format::RGBA16F, Format::RG16F, Format::R16F, Format::RGBA32F,
+                     Format::RG32F, Format::R32F, Format::R11G11B10F}) {
+        TextureHandle t = target(d, f);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {c[0], c[1], c[2], c[3]}}}});
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        CaseImage ci{std::string(formatInfo(f).name), d.readTexture(t), solid(f, c)};
+        if (formatInfo(f).isFloat) {
+            ci.absTolerance = 1e-3;
+            ci.maxFractionOver = 0;
+            ci.toleranceReason = "float clear of values exact in 16/11-bit floats: 1e-3 absolute, no pixel over";
+        }
+        out.push_back(std::move(ci));
+        d.destroy(t);
+    }
+    return out;
+}
+
+std::vector<CaseImage> triangle(Device& d) {
+    TextureHandle t = target(d, Format::RGBA8);
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
+    cmd->setPipeline(p);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    Image img = d.readTexture(t);
+    // Analytic coverage: inside the triangle (-0.8,0.8),(0.8,0.8),(0,-0.8) away from its edges,
+    // colour = barycentric mix; outside: the clear colour. Edge pixels take the rendered value.
+    std::vector<std::array<float, 4>> texels(kSize * kSize);
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            double px = (x + 0.5) / kSize * 2 - 1, py = (y + 0.5) / kSize * 2 - 1;
+            double ax = -0.8, ay = 0.8, bx = 0.8, by = 0.8, cx = 0.0, cy = -0.8;
+            double den = (by - cy) * (ax - cx) + (cx - bx) * (ay - cy);
+            double l0 = ((by - cy) * (px - cx) + (cx - bx) * (py - cy)) / den;
+            double l1 = ((cy - ay) * (px - cx) + (ax - cx) * (py - cy)) / den;
+            double l2 = 1 - l0 - l1;
+            double m = std::min({l0, l1, l2});
+            if (std::abs(m) < 0.03) texels[y * kSize + x] = img.texel(x, y);
+            else if (m > 0) texels[y * kSize + x] = {float(l0), float(l1), float(l2), 1.0f};
+            else texels[y * kSize + x] = {0, 0, 0, 1};
+        }
+    CaseImage ci{"triangle", img, Image::fromTexels(kSize, kSize, Format::RGBA8, texels)};
+    d.destroy(p);
+    d.destroy(vs);
+    d.destroy(fs);
+    d.destroy(t);
+    return {ci};
+}
+
+// Uniform buffer colour, additive accumulation into RGBA16F beyond 1.0, and the depth test.
+std::vector<CaseImage> uniformBlendDepth(Device& d) {
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
+    std::vector<CaseImage> out;
+
+    // Additive: three draws of 0.75 into RGBA16F = 2.25 (exact in half floats).
+    TextureHandle acc = target(d, Format::RGBA16F);
+    auto add = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                         .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
+                                                    .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
+                                         .colorFormats = {Format::RGBA16F}, .bindings = slots});
+    Params params{{0.75f, 0.5f, 0.25f, 1.0f}, {0.5f, 0, 0, 0}};
+    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = acc}}});
+    cmd->setPipeline(add);
+    cmd->setUniformBuffer(0, ubo);
+    for (int i = 0; i < 3; ++i) cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    CaseImage ci{"additive_rgba16f", d.readTexture(acc), solid(Format::RGBA16F, {2.25f, 1.5f, 0.75f, 3.0f})};
+    ci.absTolerance = 1e-3;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = "sums of values exact in half floats: 1e-3 absolute, no pixel over";
+    out.push_back(ci);
+
+    // Depth: near red (0.25) drawn first, far green (0.75) second must be hidden with Less.
+    for (Format df : {Format::D32F, Format::D24S8}) {
+        TextureHandle color = target(d, Format::RGBA8);
+        TextureHandle depth = d.createTexture({.format = df, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget});
+        auto dp = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                            .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
+                                            .colorFormats = {Format::RGBA8}, .depthFormat = df, .bindings = slots});
+        Params nearP{{1, 0, 0, 1}, {0.25f, 0, 0, 0}}, farP{{0, 1, 0, 1}, {0.75f, 0, 0, 0}};
+        BufferHandle u2 = d.createBuffer({.size = 512, .usage = BufferUsage::Uniform});
+        d.writeBuffer(u2, 0, &nearP, sizeof nearP);
+        d.writeBuffer(u2, 256, &farP, sizeof farP);
+        cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
+        cmd->setPipeline(dp);
+        cmd->setUniformBuffer(0, u2, 0, sizeof(Params));
+        cmd->draw(3);
+        cmd->setUniformBuffer(0, u2, 256, sizeof(Params));
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        out.push_back({std::string("depth_") + std::string(formatInfo(df).name), d.readTexture(color),
+                       solid(Format::RGBA8, {1, 0, 0, 1})});
+        d.destroy(dp);
+        d.destroy(u2);
+        d.destroy(depth);
+        d.destroy(color);
+    }
+    d.destroy(ubo);
+    d.destroy(add);
+    d.destroy(acc);
+    d.destroy(vs);
+    d.destroy(fs);
+    return out;
+}
+
+// Texture upload, nearest sampling, and sRGB decode on sampling.
+std::vector<CaseImage> textureSampling(Device& d) {
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    std::vector<CaseImage> out;
+    Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
+    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+    SamplerHandle nearest = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    for (Format tf : {Format::RGBA8, Format::RGBA8_SRGB}) {
+        // 4x4 checker of 16 distinct values, magnified 16x with nearest filtering.
+        std::vector<uint8_t> px(4 * 4 * 4);
+        for (int i = 0; i < 16; ++i) {
+            px[i * 4 + 0] = uint8_t(i * 16);
+            px[i * 4 + 1] = uint8_t(255 - i * 16);
+            px[i * 4 + 2] = uint8_t((i % 4) * 64);
+            px[i * 4 + 3] = 255;
+        }
+        TextureHandle tex = d.createTexture({.format = tf, .width = 4, .height = 4});
+        d.writeTexture(tex, 0, px.data(), px.size());
+        TextureHandle t = target(d, Format::RGBA32F);
+        auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA32F},
+                                           .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                                                        {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, ubo);
+        cmd->setTexture(1, tex, nearest);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        std::vector<std::array<float, 4>> texels(kSize * kSize);
+        auto decode = [&](uint8_t v, bool colour) {
+            double c = v / 255.0;
+            if (tf == Format::RGBA8_SRGB && colour) c = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+            return float(c);
+        };
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const uint8_t* s = &px[((y / 16) * 4 + x / 16) * 4];
+                texels[y * kSize + x] = {decode(s[0], true), decode(s[1], true), decode(s[2], true), decode(s[3], false)};
+            }
+        CaseImage ci{std::string("nearest_") + std::string(formatInfo(tf).name), d.readTexture(t),
+                     Image::fromTexels(kSize, kSize, Format::RGBA32F, texels)};
+        ci.absTolerance = 2e-3;
+        ci.maxFractionOver = 0;
+        ci.toleranceReason = "8-bit texels decoded to float: sRGB decode may be table-based, 2e-3 absolute";
+        out.push_back(ci);
+        d.destroy(p);
+        d.destroy(t);
+        d.destroy(tex);
+    }
+    d.destroy(nearest);
+    d.destroy(ubo);
+    d.destroy(vs);
+    d.destroy(fs);
+    return out;
+}
+
+// Timestamp queries measure a non-zero duration around real work.
+std::vector<CaseImage> timestamps(Device& d) {
+    if (!d.info().features.timestamps) throw Error("device reports no timestamp support");
+    TextureHandle t = target(d, Format::RGBA8);
+    TimerHandle timer = d.createTimer();
+    auto cmd = d.createCommandList();
+    cmd->beginTimer(timer);
+    for (int i = 0; i < 4; ++i) {
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0.5f, 0.5f, 0.5f, 1}}}});
+        cmd->endRenderPass();
+    }
+    cmd->endTimer(timer);
+    d.wait(d.submit(*cmd));
+    auto ns = d.timerNanoseconds(timer);
+    if (!ns || !(*ns > 0.0)) throw Error("timer measured no duration");
+    CaseImage ci{"cleared", d.readTexture(t), solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1})};
+    d.destroy(timer);
+    d.destroy(t);
+    return {ci};
+}
+
+}  // namespace
+
+const std::vector<Case>& cases() {
+    static const std::vector<Case> all = {
+        {"clear_every_format", clearEveryFormat},
+        {"triangle", triangle},
+        {"uniform_blend_depth", uniformBlendDepth},
+        {"texture_sampling", textureSampling},
+        {"timestamps", timestamps},
+    };
+    return all;
+}
+
+CaseResult runCase(Device& device, const Case& c) {
+    CaseResult r;
+    r.caseName = c.name;
+    const uint32_t errorsBefore = device.validationErrorCount();
+    try {
+        r.images = c.run(device);
+    } catch (const std::exception& e) {
+        r.passed = false;
+        r.message = e.what();
+        return r;
+    }
+    for (const CaseImage& ci : r.images) {
+        if (ci.expected.data.empty()) continue;
+        ImageDiff diff = compareImages(ci.image, ci.expected, ci.absTolerance);
+        if (diff.fractionOver() > ci.maxFractionOver) {
+            r.passed = false;
+            r.message += ci.name + ": " + std::to_string(diff.pixelsOverTolerance) + " of " + std::to_string(diff.pixels) +
+                         " pixels off (max error " + std::to_string(diff.maxAbsError) + "); ";
+        }
+    }
+    if (device.validationErrorCount() != errorsBefore) {
+        r.passed = false;
+        r.message += std::to_string(device.validationErrorCount() - errorsBefore) + " validation error(s)";
+    }
+    return r;
+}
+
+}  // namespace fe::conformance

@@ -1,0 +1,38 @@
+// The conformance suite: each case is recorded once against the abstract device and run on
+// every backend; its images are checked against analytic expectations and, by `fe
+// conformance --backend all`, against the other backends.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+
+namespace fe::conformance {
+
+struct CaseImage {
+    std::string name;
+    gdi::Image image;
+    gdi::Image expected;        // empty: no analytic expectation
+    double absTolerance = 5.0 / 255.0;
+    double maxFractionOver = 0.001;  // 8-bit rule: at most 0.1% of pixels over 5/255
+    std::string toleranceReason = "8-bit target: 0.1% of pixels may differ by more than 5/255";
+};
+
+struct CaseResult {
+    std::string caseName;
+    std::vector<CaseImage> images;
+    bool passed = true;
+    std::string message;
+};
+
+struct Case {
+    std::string name;
+    std::function<std::vector<CaseImage>(gdi::Device&)> run;
+};
+
+const std::vector<Case>& cases();
+// Runs one case: exceptions and validation errors fail it; analytic expectations are compared.
+CaseResult runCase(gdi::Device& device, const Case& c);
+
+}  // namespace fe::conformance

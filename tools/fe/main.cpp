@@ -1,0 +1,241 @@
+// fe: the engine's command-line tool.
+//   fe info                      every backend: available or why not, device, API, limits
+//   fe render [SCENE] [...]      render a scene with a lighting technique to .png / .pfm
+//   fe conformance [...]         the cross-backend conformance suite
+#include <unistd.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Conformance.h"
+#include "assets/AssetError.h"
+#include "assets/BuiltinScenes.h"
+#include "fe/gdi/Backend.h"
+#include "render/SceneRenderer.h"
+
+namespace {
+
+using namespace fe;
+
+constexpr const char* kUsage =
+    "usage: fe <command> [options]\n"
+    "commands:\n"
+    "  info                       list every backend, available or not and why\n"
+    "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
+    "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
+    "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
+    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n";
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// --name value options; anything unknown is a usage error.
+struct Args {
+    std::map<std::string, std::string> options;
+    std::vector<std::string> positional;
+};
+
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
+    Args a;
+    for (int i = first; i < argc; ++i) {
+        std::string s = argv[i];
+        if (s.rfind("--", 0) == 0) {
+            if (std::find(flags.begin(), flags.end(), s) != flags.end()) {
+                a.options[s] = "1";
+            } else if (std::find(valued.begin(), valued.end(), s) != valued.end()) {
+                if (i + 1 >= argc) throw UsageError("option " + s + " needs a value");
+                a.options[s] = argv[++i];
+            } else {
+                throw UsageError("unknown option " + s);
+            }
+        } else {
+            a.positional.push_back(s);
+        }
+    }
+    return a;
+}
+
+uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi) {
+    char* end = nullptr;
+    long v = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || *end || v < long(lo) || v > long(hi))
+        throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                         "], got '" + s + "'");
+    return uint32_t(v);
+}
+
+int cmdInfo(const Args& a) {
+    std::vector<std::string> names = gdi::backendNames();
+    names.push_back("gl-glfw");
+    for (const std::string& n : names) {
+        gdi::BackendProbe p = gdi::probeBackend(n, false);
+        if (!p.available) {
+            std::cout << n << ": unavailable: " << p.reason << "\n";
+            continue;
+        }
+        const gdi::DeviceInfo& i = p.device->info();
+        std::cout << n << ": available\n"
+                  << "  device: " << i.deviceName << (i.softwareRasterizer ? " (software rasterizer)" : "") << "\n"
+                  << "  api: " << i.apiVersion << "\n"
+                  << "  limits: maxTexture2D " << i.limits.maxTextureSize2D << ", colour attachments "
+                  << i.limits.maxColorAttachments << ", compute invocations " << i.limits.maxComputeWorkGroupInvocations
+                  << ", UBO range " << i.limits.maxUniformBufferRange << ", UBO align "
+                  << i.limits.uniformBufferOffsetAlignment << "\n"
+                  << "  features: timestamps " << i.features.timestamps << ", compute " << i.features.computeShaders
+                  << ", debug labels " << i.features.debugLabels << ", memory aliasing " << i.features.memoryAliasing
+                  << "\n";
+    }
+    return 0;
+}
+
+int cmdRender(const Args& a) {
+    if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
+    std::string spec = a.positional.empty() ? "builtin:spheres" : a.positional[0];
+    render::RenderSettings s;
+    auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
+    s.technique = render::techniqueFromName(opt("--technique", "forward"));
+    s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
+    std::string size = opt("--size", "320x240");
+    size_t x = size.find('x');
+    if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
+    s.width = parseUint(size.substr(0, x), "width", 1, 8192);
+    s.height = parseUint(size.substr(x + 1), "height", 1, 8192);
+    char* end = nullptr;
+    std::string ex = opt("--exposure", "1");
+    s.exposure = std::strtof(ex.c_str(), &end);
+    if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
+    const uint32_t frames = parseUint(opt("--frames", "1"), "--frames", 1, 10000);
+    assets::BuiltinOptions builtin;
+    builtin.lights = parseUint(opt("--lights", "512"), "--lights", 0, 100000);
+    const std::string out = opt("--out", "out.png");
+    const bool pfm = out.size() > 4 && out.substr(out.size() - 4) == ".pfm";
+    if (!pfm && !(out.size() > 4 && out.substr(out.size() - 4) == ".png"))
+        throw UsageError("--out must end in .png or .pfm, got '" + out + "'");
+
+    assets::Scene scene = assets::loadScene(spec, {}, builtin);
+    auto device = gdi::createDevice({.backend = opt("--backend", "auto"), .validation = false});
+    render::SceneRenderer renderer(*device, scene, s);
+    std::vector<double> cpu;
+    std::map<std::string, std::vector<double>> gpu;
+    for (uint32_t f = 0; f < frames + (frames > 1 ? 1 : 0); ++f) {  // one warm-up frame when timing
+        auto t0 = std::chrono::steady_clock::now();
+        renderer.renderFrame();
+        auto timings = renderer.passTimings();  // waits for the frame
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (frames > 1 && f == 0) continue;
+        cpu.push_back(ms);
+        for (auto& t : timings) gpu[t.name].push_back(t.gpuMilliseconds);
+    }
+    auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
+    gdi::Image img = renderer.readOutput();
+    for (float v : std::vector<float>(reinterpret_cast<const float*>(img.data.data()),
+                                      reinterpret_cast<const float*>(img.data.data() + img.data.size())))
+        if (!std::isfinite(v)) throw gdi::Error("the rendered image contains NaN or infinite values");
+    if (pfm) gdi::writePfm(img, out);
+    else gdi::writePng(img, out, s.exposure);
+    const bool soft = device->info().softwareRasterizer;
+    std::cout << "backend " << device->info().backend << " (" << device->info().deviceName << ")"
+              << (soft ? " [software rasterizer timings]" : "") << "\n"
+              << "technique " << render::techniqueName(s.technique);
+    if (s.technique == render::Technique::Redeferred) std::cout << " illum-scale " << s.illumScale;
+    std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
+              << " lights)\n"
+              << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
+    for (auto& [name, v] : gpu) std::cout << "  pass " << name << ": " << median(v) << " ms GPU\n";
+    uint64_t bytes = 0;
+    for (auto& t : renderer.targets()) bytes += t.bytes();
+    std::cout << "render targets: " << bytes << " bytes (" << renderer.targets().size() << " targets)\n"
+              << "wrote " << out << "\n";
+    return 0;
+}
+
+// Runs the suite on one backend in this process.
+int conformanceOne(const std::string& backend, const Args& a, std::vector<std::string>& jsonRows, int& passed, int& failed) {
+    const std::string outDir = a.options.count("--out-dir") ? a.options.at("--out-dir") : "";
+    const std::string filter = a.options.count("--case") ? a.options.at("--case") : "";
+    gdi::BackendProbe p = gdi::probeBackend(backend, !a.options.count("--no-validation"));
+    if (!p.available) {
+        std::cout << "FAIL " << backend << ": backend unavailable: " << p.reason << "\n";
+        jsonRows.push_back("{\"backend\":\"" + backend + "\",\"case\":null,\"passed\":false}");
+        ++failed;
+        return 1;
+    }
+    if (!outDir.empty()) std::filesystem::create_directories(outDir + "/" + backend);
+    for (const auto& c : conformance::cases()) {
+        if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
+        conformance::CaseResult r = conformance::runCase(*p.device, c);
+        std::cout << (r.passed ? "PASS " : "FAIL ") << backend << " " << c.name << (r.message.empty() ? "" : ": " + r.message)
+                  << "\n";
+        (r.passed ? passed : failed)++;
+        std::string msg = r.message;
+        std::replace(msg.begin(), msg.end(), '"', '\'');
+        jsonRows.push_back("{\"backend\":\"" + backend + "\",\"case\":\"" + c.name + "\",\"passed\":" +
+                           (r.passed ? "true" : "false") + ",\"message\":\"" + msg + "\"}");
+        if (!outDir.empty())
+            for (const auto& ci : r.images) gdi::writePng(ci.image, outDir + "/" + backend + "/" + c.name + "_" + ci.name + ".png");
+    }
+    return 0;
+}
+
+int cmdConformance(const Args& a) {
+    if (!a.positional.empty()) throw UsageError("conformance takes no positional arguments");
+    std::string which = a.options.count("--backend") ? a.options.at("--backend") : "all";
+    std::vector<std::string> backends = gdi::expandBackendList(which);
+    std::vector<std::string> rows;
+    int passed = 0, failed = 0;
+    for (const std::string& b : backends) conformanceOne(b, a, rows, passed, failed);
+    if (a.options.count("--report")) {
+        std::ofstream f(a.options.at("--report"));
+        f << "[\n";
+        for (size_t i = 0; i < rows.size(); ++i) f << "  " << rows[i] << (i + 1 < rows.size() ? ",\n" : "\n");
+        f << "]\n";
+    }
+    std::cout << passed << " passed, " << failed << " failed\n";
+    return failed ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::cerr << kUsage;
+        return 2;
+    }
+    const std::string command = argv[1];
+    try {
+        if (command == "info") return cmdInfo(parse(argc, argv, 2, {"--backend"}, {}));
+        if (command == "render")
+            return cmdRender(parse(argc, argv, 2,
+                                   {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
+                                    "--lights"},
+                                   {}));
+        if (command == "conformance")
+            return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}));
+        if (command == "--help" || command == "help") {
+            std::cout << kUsage;
+            return 0;
+        }
+        throw UsageError("unknown command '" + command + "'");
+    } catch (const UsageError& e) {
+        std::cerr << "fe: " << e.what() << "\n" << kUsage;
+        return 2;
+    } catch (const assets::AssetError& e) {
+        std::cerr << "fe: " << e.what() << "\n";
+        return 3;
+    } catch (const std::exception& e) {
+        std::cerr << "fe: " << e.what() << "\n";
+        return 1;
+    }
+}
