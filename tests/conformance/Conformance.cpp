@@ -38,7 +38,12 @@ std::vector<CaseImage> clearEveryFormat(Device& d) {
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {c[0], c[1], c[2], c[3]}}}});
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        CaseImage ci{std::string(formatInfo(f).name), d.readTexture(t), solid(f, c)};
+        // sRGB targets store the encoded value of the linear clear colour.
+        std::array<float, 4> stored = c;
+        if (f == Format::RGBA8_SRGB)
+            for (int k = 0; k < 3; ++k)
+                stored[k] = c[k] <= 0.0031308f ? 12.92f * c[k] : 1.055f * std::pow(c[k], 1.0f / 2.4f) - 0.055f;
+        CaseImage ci{std::string(formatInfo(f).name), d.readTexture(t), solid(f, stored)};
         if (formatInfo(f).isFloat) {
             ci.absTolerance = 1e-3;
             ci.maxFractionOver = 0;
