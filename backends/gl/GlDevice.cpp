@@ -1,0 +1,449 @@
+// Context set-up, resources, pipelines and transfers of the GL backend.
+#include "gl/GlDevice.h"
+
+#include <algorithm>
+#include <cstring>
+#include <iostream>
+
+#include "fe/gdi/Validation.h"
+#include "gl/GlBackend.h"
+
+namespace fe::gl {
+
+std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validation) {
+    return std::make_unique<GlDevice>(platform, validation);
+}
+
+GlFormat toGlFormat(gdi::Format f) {
+    using F = gdi::Format;
+    switch (f) {
+        case F::RGBA8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+        case F::RGBA8_SRGB: return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+        case F::RGBA16F: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
+        case F::RG16F: return {GL_RG16F, GL_RG, GL_HALF_FLOAT};
+        case F::R16F: return {GL_R16F, GL_RED, GL_HALF_FLOAT};
+        case F::RGBA32F: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+        case F::RG32F: return {GL_RG32F, GL_RG, GL_FLOAT};
+        case F::R32F: return {GL_R32F, GL_RED, GL_FLOAT};
+        case F::R32U: return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
+        case F::R11G11B10F: return {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV};
+        case F::D32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+        case F::D24S8: return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
+        default: return {0, 0, 0};
+    }
+}
+
+void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
+                                        const void* user) {
+    if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
+        const_cast<GlDevice*>(static_cast<const GlDevice*>(user))->errors_++;
+        std::cerr << "GL debug error: " << message << "\n";
+    }
+}
+
+GlDevice::GlDevice(PlatformKind kind, bool validation) {
+    platform_ = createPlatform(kind, validation);
+#define FE_GL_LOAD(type, fn)                                                                          \
+    gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn));                             \
+    if (!gl_.fn) throw gdi::Error(std::string(platform_->name()) + ": GL entry point gl" #fn " missing");
+    FE_GL_FUNCTIONS(FE_GL_LOAD)
+#undef FE_GL_LOAD
+    GLint major = 0, minor = 0, n = 0;
+    gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
+    gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45)
+        throw gdi::Error(std::string(platform_->name()) + ": OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+                         " < 4.5");
+    bool spirv = false;
+    gl_.GetIntegerv(GL_NUM_EXTENSIONS, &n);
+    for (GLint i = 0; i < n; ++i)
+        if (std::strcmp(reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, i)), "GL_ARB_gl_spirv") == 0) spirv = true;
+    if (!spirv) throw gdi::Error(std::string(platform_->name()) + ": GL_ARB_gl_spirv missing (shaders are SPIR-V)");
+    if (validation) {
+        gl_.Enable(GL_DEBUG_OUTPUT);
+        gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        gl_.DebugMessageCallback(&GlDevice::debugCallback, this);
+    }
+    gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // NDC y=-1 lands in memory row 0, as on Vulkan
+    gl_.Enable(GL_FRAMEBUFFER_SRGB);  // sRGB targets encode on write, as on Vulkan
+    gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+
+    info_.backend = platform_->name();
+    info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
+    info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR));
+    info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
+                               info_.deviceName.find("softpipe") != std::string::npos;
+    auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
+    info_.limits.maxTextureSize2D = get(GL_MAX_TEXTURE_SIZE);
+    info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
+    info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
+    info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
+    info_.limits.maxStorageBufferRange = get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
+    info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
+    info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
+    info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
+                      .memoryAliasing = false};
+}
+
+GlDevice::~GlDevice() {
+    platform_->makeCurrent();
+    buffers_.forEach([&](Buffer& b) { gl_.DeleteBuffers(1, &b.name); });
+    textures_.forEach([&](Texture& t) { gl_.DeleteTextures(1, &t.name); });
+    samplers_.forEach([&](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
+    shaders_.forEach([&](Shader& s) { gl_.DeleteShader(s.name); });
+    pipelines_.forEach([&](Pipeline& p) {
+        gl_.DeleteProgram(p.program);
+        if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
+    });
+    timers_.forEach([&](Timer& t) { gl_.DeleteQueries(2, t.queries); });
+    for (auto& f : fbos_) gl_.DeleteFramebuffers(1, &f.fbo);
+    for (auto& [v, s] : fences_) gl_.DeleteSync(s);
+}
+
+bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
+    if (toGlFormat(format).internal == 0) return false;
+    // GL 4.5 core requires every format here as texture and render target; image load/store
+    // has no sRGB, packed-float-to-RGB or depth formats.
+    if (any(usage, gdi::TextureUsage::Storage) &&
+        (format == gdi::Format::RGBA8_SRGB || gdi::isDepthFormat(format)))
+        return false;
+    return true;
+}
+
+gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+    gdi::validate::bufferDesc(desc);
+    Buffer b;
+    b.desc = desc;
+    b.label = desc.debugName ? desc.debugName : "";
+    b.desc.debugName = nullptr;
+    gl_.CreateBuffers(1, &b.name);
+    gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData, GL_DYNAMIC_STORAGE_BIT);
+    if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
+    return buffers_.add(std::move(b));
+}
+
+gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
+    gdi::validate::textureDesc(desc, info_.limits);
+    const std::string label = desc.debugName ? desc.debugName : "";
+    if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
+    if (!supportsFormat(desc.format, desc.usage))
+        throw gdi::Error("texture '" + label + "': format " + std::string(gdi::formatInfo(desc.format).name) +
+                         " does not support the requested usage on OpenGL");
+    Texture t;
+    t.desc = desc;
+    t.desc.debugName = nullptr;
+    t.label = label;
+    gl_.CreateTextures(GL_TEXTURE_2D, 1, &t.name);
+    gl_.TextureStorage2D(t.name, GLsizei(desc.mipLevels), toGlFormat(desc.format).internal, GLsizei(desc.width),
+                         GLsizei(desc.height));
+    gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
+    if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
+    return textures_.add(std::move(t));
+}
+
+gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
+    gdi::validate::samplerDesc(d);
+    Sampler s;
+    gl_.CreateSamplers(1, &s.name);
+    auto wrap = [](gdi::AddressMode a) {
+        return a == gdi::AddressMode::ClampToEdge ? GL_CLAMP_TO_EDGE
+               : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+    };
+    GLint minf;
+    const bool lin = d.minFilter == gdi::Filter::Linear;
+    switch (d.mipFilter) {
+        case gdi::MipFilter::None: minf = lin ? GL_LINEAR : GL_NEAREST; break;
+        case gdi::MipFilter::Nearest: minf = lin ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST; break;
+        default: minf = lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR; break;
+    }
+    gl_.SamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, minf);
+    gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
+    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
+    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
+    if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
+    return samplers_.add(std::move(s));
+}
+
+gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
+    gdi::validate::shaderDesc(desc);
+    const std::string label = desc.binary.name ? desc.binary.name : "";
+    const auto& code = desc.binary.opengl;
+    if (code.size() < 5 || code[0] != 0x07230203)
+        throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
+                         " words, missing magic number)");
+    Shader s;
+    s.stage = desc.stage;
+    s.label = label;
+    GLenum type = desc.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
+                  : desc.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
+                                                             : GL_COMPUTE_SHADER;
+    s.name = gl_.CreateShader(type);
+    gl_.ShaderBinary(1, &s.name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
+    gl_.SpecializeShader(s.name, desc.entryPoint, 0, nullptr, nullptr);
+    GLint ok = 0;
+    gl_.GetShaderiv(s.name, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        gl_.GetShaderInfoLog(s.name, sizeof log, nullptr, log);
+        gl_.DeleteShader(s.name);
+        throw gdi::Error("shader '" + label + "': SPIR-V specialization failed: " + log);
+    }
+    return shaders_.add(std::move(s));
+}
+
+static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& label) {
+    GLuint p = gl.CreateProgram();
+    for (GLuint s : shaders)
+        if (s) gl.AttachShader(p, s);
+    gl.LinkProgram(p);
+    GLint ok = 0;
+    gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
+        gl.DeleteProgram(p);
+        throw gdi::Error("pipeline '" + label + "': link failed: " + log);
+    }
+    if (!label.empty()) gl.ObjectLabel(GL_PROGRAM, p, -1, label.c_str());
+    return p;
+}
+
+gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    gdi::validate::graphicsPipelineDesc(d, info_.limits);
+    Pipeline p;
+    p.label = d.debugName ? d.debugName : "";
+    Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
+    if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
+    GLuint fs = 0;
+    if (d.fragmentShader) {
+        Shader& f = shaders_.get(d.fragmentShader, "fragment shader");
+        if (f.stage != gdi::ShaderStage::Fragment)
+            throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
+        fs = f.name;
+    }
+    p.program = linkProgram(gl_, {vs.name, fs}, p.label);
+    gl_.CreateVertexArrays(1, &p.vao);
+    for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
+        const auto& vb = d.vertexBuffers[i];
+        p.strides.push_back(vb.stride);
+        gl_.VertexArrayBindingDivisor(p.vao, i, vb.perInstance ? 1 : 0);
+        for (const auto& a : vb.attributes) {
+            using V = gdi::VertexFormat;
+            gl_.EnableVertexArrayAttrib(p.vao, a.location);
+            gl_.VertexArrayAttribBinding(p.vao, a.location, i);
+            switch (a.format) {
+                case V::Float: case V::Float2: case V::Float3: case V::Float4:
+                    gl_.VertexArrayAttribFormat(p.vao, a.location, GLint(int(a.format) - int(V::Float) + 1), GL_FLOAT, GL_FALSE, a.offset);
+                    break;
+                case V::Half2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
+                case V::Half4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
+                case V::UNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_UNSIGNED_BYTE, GL_TRUE, a.offset); break;
+                case V::SNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_BYTE, GL_TRUE, a.offset); break;
+                case V::UNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_UNSIGNED_SHORT, GL_TRUE, a.offset); break;
+                case V::SNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_SHORT, GL_TRUE, a.offset); break;
+                case V::UInt32: gl_.VertexArrayAttribIFormat(p.vao, a.location, 1, GL_UNSIGNED_INT, a.offset); break;
+                default: break;
+            }
+        }
+    }
+    p.desc = d;
+    p.desc.debugName = nullptr;
+    p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+    return pipelines_.add(std::move(p));
+}
+
+gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    gdi::validate::computePipelineDesc(d);
+    Pipeline p;
+    p.label = d.debugName ? d.debugName : "";
+    Shader& cs = shaders_.get(d.computeShader, "compute shader");
+    if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
+    p.program = linkProgram(gl_, {cs.name}, p.label);
+    p.compute = true;
+    p.desc.bindings = d.bindings;
+    p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+    return pipelines_.add(std::move(p));
+}
+
+gdi::TimerHandle GlDevice::createTimer() {
+    Timer t;
+    gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
+    return timers_.add(std::move(t));
+}
+
+gdi::HeapHandle GlDevice::createHeap(const gdi::HeapDesc&) {
+    throw gdi::Error(info_.backend + ": heaps (memory aliasing) are not supported on OpenGL; reuse whole textures");
+}
+gdi::MemoryRequirements GlDevice::textureMemoryRequirements(const gdi::TextureDesc&) const {
+    throw gdi::Error(info_.backend + ": texture memory requirements are not exposed on OpenGL");
+}
+
+void GlDevice::forgetFramebuffers(GLuint texture) {
+    for (size_t i = 0; i < fbos_.size();) {
+        bool uses = fbos_[i].depth == texture;
+        for (auto& c : fbos_[i].colors) uses = uses || c.first == texture;
+        if (uses) {
+            gl_.DeleteFramebuffers(1, &fbos_[i].fbo);
+            fbos_.erase(fbos_.begin() + long(i));
+        } else {
+            ++i;
+        }
+    }
+}
+
+void GlDevice::destroy(gdi::BufferHandle h) {
+    Buffer b;
+    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name);
+}
+void GlDevice::destroy(gdi::TextureHandle h) {
+    Texture t;
+    if (h && textures_.remove(h, t)) {
+        forgetFramebuffers(t.name);
+        gl_.DeleteTextures(1, &t.name);
+    }
+}
+void GlDevice::destroy(gdi::SamplerHandle h) {
+    Sampler s;
+    if (h && samplers_.remove(h, s)) gl_.DeleteSamplers(1, &s.name);
+}
+void GlDevice::destroy(gdi::ShaderHandle h) {
+    Shader s;
+    if (h && shaders_.remove(h, s)) gl_.DeleteShader(s.name);
+}
+void GlDevice::destroy(gdi::PipelineHandle h) {
+    Pipeline p;
+    if (h && pipelines_.remove(h, p)) {
+        gl_.DeleteProgram(p.program);
+        if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
+    }
+}
+void GlDevice::destroy(gdi::TimerHandle h) {
+    Timer t;
+    if (h && timers_.remove(h, t)) gl_.DeleteQueries(2, t.queries);
+}
+
+GLuint GlDevice::framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& colors, GLuint depth, bool stencil) {
+    for (auto& f : fbos_)
+        if (f.colors == colors && f.depth == depth) return f.fbo;
+    GLuint fbo;
+    gl_.CreateFramebuffers(1, &fbo);
+    std::vector<GLenum> draw;
+    for (size_t i = 0; i < colors.size(); ++i) {
+        gl_.NamedFramebufferTexture(fbo, GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i].first, GLint(colors[i].second));
+        draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    }
+    if (depth) gl_.NamedFramebufferTexture(fbo, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth, 0);
+    gl_.NamedFramebufferDrawBuffers(fbo, GLsizei(draw.size()), draw.data());
+    if (gl_.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        gl_.DeleteFramebuffers(1, &fbo);
+        throw gdi::Error(info_.backend + ": incomplete framebuffer for this attachment combination");
+    }
+    fbos_.push_back({colors, depth, fbo});
+    return fbo;
+}
+
+void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* data, uint64_t size) {
+    Buffer& b = buffer(h);
+    gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
+    if (size == 0) return;
+    if (!data) throw gdi::Error("writeBuffer: data is null");
+    gl_.NamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(size), data);  // ordered after earlier GL work
+}
+
+void GlDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data, uint64_t size) {
+    Texture& t = texture(h);
+    if (mip >= t.desc.mipLevels) throw gdi::Error("writeTexture: mip level out of range for texture '" + t.label + "'");
+    const uint32_t w = std::max(1u, t.desc.width >> mip), hh = std::max(1u, t.desc.height >> mip);
+    const uint64_t expected = uint64_t(w) * hh * gdi::formatInfo(t.desc.format).bytesPerPixel;
+    if (size != expected)
+        throw gdi::Error("writeTexture: texture '" + t.label + "' mip " + std::to_string(mip) + " needs " +
+                         std::to_string(expected) + " bytes, got " + std::to_string(size));
+    if (!data) throw gdi::Error("writeTexture: data is null");
+    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
+    GlFormat f = toGlFormat(t.desc.format);
+    gl_.TextureSubImage2D(t.name, GLint(mip), 0, 0, GLsizei(w), GLsizei(hh), f.format, f.type, data);
+}
+
+std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    Buffer& b = buffer(h);
+    gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
+    std::vector<uint8_t> out(size);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    if (size) gl_.GetNamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(size), out.data());
+    return out;
+}
+
+gdi::Image GlDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
+    Texture& t = texture(h);
+    if (mip >= t.desc.mipLevels) throw gdi::Error("readTexture: mip level out of range for texture '" + t.label + "'");
+    gdi::Image img;
+    img.width = std::max(1u, t.desc.width >> mip);
+    img.height = std::max(1u, t.desc.height >> mip);
+    img.format = t.desc.format;
+    img.data.resize(size_t(img.width) * img.height * gdi::formatInfo(t.desc.format).bytesPerPixel);
+    GlFormat f = toGlFormat(t.desc.format);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl_.GetTextureImage(t.name, GLint(mip), f.format, f.type, GLsizei(img.data.size()), img.data.data());
+    if (t.desc.format == gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
+        for (size_t i = 0; i < img.data.size(); i += 4) {
+            uint32_t v;
+            std::memcpy(&v, &img.data[i], 4);
+            v = (v >> 8) | ((v & 0xff) << 24);
+            std::memcpy(&img.data[i], &v, 4);
+        }
+    return img;
+}
+
+gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
+    commands.nativeCommandBuffer();  // no-op; GL work was issued while recording
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl_.Flush();
+    fences_.push_back({nextFence_, s});
+    return nextFence_++;
+}
+
+void GlDevice::wait(gdi::FenceValue fence) {
+    while (!fences_.empty() && fences_.front().first <= fence) {
+        GLsync s = fences_.front().second;
+        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED) {
+        }
+        gl_.DeleteSync(s);
+        fences_.erase(fences_.begin());
+    }
+}
+
+void GlDevice::waitIdle() {
+    wait(nextFence_);
+    gl_.Finish();
+}
+
+std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
+    Timer& t = timer(h);
+    if (!t.used) return std::nullopt;
+    GLint available = 0;
+    gl_.GetQueryObjectiv(t.queries[1], GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!available) return std::nullopt;
+    GLuint64 a = 0, b = 0;
+    gl_.GetQueryObjectui64v(t.queries[0], GL_QUERY_RESULT, &a);
+    gl_.GetQueryObjectui64v(t.queries[1], GL_QUERY_RESULT, &b);
+    return double(b - a);
+}
+
+uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
+    using N = gdi::NativeObject;
+    switch (what) {
+        case N::Buffer: if (auto* b = buffers_.find(gdi::BufferHandle{id})) return b->name; break;
+        case N::Texture: if (auto* t = textures_.find(gdi::TextureHandle{id})) return t->name; break;
+        case N::Pipeline: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->program; break;
+        case N::VertexArray: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->vao; break;
+        default: break;
+    }
+    return 0;
+}
+
+}  // namespace fe::gl

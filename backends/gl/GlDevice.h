@@ -1,0 +1,129 @@
+// The OpenGL 4.5 core implementation of gdi::Device (direct state access, ARB_gl_spirv).
+//  - glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE): depth [0,1] as on Vulkan; NDC y = -1 maps
+//    to window row 0, which is memory row 0 on both APIs, so images match with no flip.
+//  - GL has no deferred command buffers: the command list issues GL calls as it records;
+//    submit() flushes and inserts a fence sync.
+//  - Vertex and index buffers are applied to the current pipeline's VAO at draw time, since
+//    gdi lets them be set before the pipeline.
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+#include "fe/gdi/HandlePool.h"
+#include "gl/GlFunctions.h"
+#include "gl/GlPlatform.h"
+
+namespace fe::gl {
+
+struct GlFormat {
+    GLenum internal, format, type;
+};
+GlFormat toGlFormat(gdi::Format f);
+
+struct Buffer {
+    GLuint name = 0;
+    gdi::BufferDesc desc;
+    std::string label;
+};
+struct Texture {
+    GLuint name = 0;
+    gdi::TextureDesc desc;
+    std::string label;
+};
+struct Sampler {
+    GLuint name = 0;
+};
+struct Shader {
+    GLuint name = 0;
+    gdi::ShaderStage stage = gdi::ShaderStage::None;
+    std::string label;
+};
+struct Pipeline {
+    GLuint program = 0;
+    GLuint vao = 0;
+    bool compute = false;
+    gdi::GraphicsPipelineDesc desc;  // state applied at setPipeline (shaders/bindings kept too)
+    std::vector<uint32_t> strides;
+    uint64_t requiredSlots = 0;
+    std::string label;
+};
+struct Timer {
+    GLuint queries[2] = {0, 0};
+    bool used = false;
+};
+
+class GlDevice final : public gdi::Device {
+public:
+    GlDevice(PlatformKind kind, bool validation);
+    ~GlDevice() override;
+
+    const gdi::DeviceInfo& info() const override { return info_; }
+    bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
+    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, const void* initialData) override;
+    gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
+    gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
+    gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
+    gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
+    gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
+    gdi::TimerHandle createTimer() override;
+    gdi::HeapHandle createHeap(const gdi::HeapDesc&) override;
+    gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc&) const override;
+    void destroy(gdi::BufferHandle) override;
+    void destroy(gdi::TextureHandle) override;
+    void destroy(gdi::SamplerHandle) override;
+    void destroy(gdi::ShaderHandle) override;
+    void destroy(gdi::PipelineHandle) override;
+    void destroy(gdi::TimerHandle) override;
+    void destroy(gdi::HeapHandle) override {}
+    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
+    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
+    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) override;
+    void writeTexture(gdi::TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) override;
+    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    gdi::Image readTexture(gdi::TextureHandle texture, uint32_t mipLevel) override;
+    std::unique_ptr<gdi::CommandList> createCommandList() override;
+    gdi::FenceValue submit(gdi::CommandList& commands) override;
+    void wait(gdi::FenceValue fence) override;
+    void waitIdle() override;
+    std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
+    uint32_t validationErrorCount() const override { return errors_; }
+    uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
+
+    // For the command list.
+    const GlFunctions& gl() const { return gl_; }
+    Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
+    Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
+    Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
+    Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
+    Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
+    GLuint framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& colors, GLuint depth, bool stencil);
+    void makeCurrent() { platform_->makeCurrent(); }
+
+private:
+    static void APIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                                         const GLchar* message, const void* user);
+    std::unique_ptr<GlPlatform> platform_;
+    GlFunctions gl_;
+    gdi::DeviceInfo info_;
+    uint32_t errors_ = 0;
+    std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;
+    gdi::FenceValue nextFence_ = 1;
+    struct CachedFbo {
+        std::vector<std::pair<GLuint, uint32_t>> colors;
+        GLuint depth;
+        GLuint fbo;
+    };
+    std::vector<CachedFbo> fbos_;
+    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
+    gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
+    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
+    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;
+    gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
+    void forgetFramebuffers(GLuint texture);
+};
+
+}  // namespace fe::gl
