@@ -162,7 +162,8 @@ int cmdRender(const Args& a) {
 }
 
 // Runs the suite on one backend in this process.
-int conformanceOne(const std::string& backend, const Args& a, std::vector<std::string>& jsonRows, int& passed, int& failed) {
+int conformanceOne(const std::string& backend, const Args& a, std::vector<std::string>& jsonRows, int& passed, int& failed,
+                   std::map<std::string, std::vector<conformance::CaseResult>>& results) {
     const std::string outDir = a.options.count("--out-dir") ? a.options.at("--out-dir") : "";
     const std::string filter = a.options.count("--case") ? a.options.at("--case") : "";
     gdi::BackendProbe p = gdi::probeBackend(backend, !a.options.count("--no-validation"));
@@ -185,8 +186,37 @@ int conformanceOne(const std::string& backend, const Args& a, std::vector<std::s
                            (r.passed ? "true" : "false") + ",\"message\":\"" + msg + "\"}");
         if (!outDir.empty())
             for (const auto& ci : r.images) gdi::writePng(ci.image, outDir + "/" + backend + "/" + c.name + "_" + ci.name + ".png");
+        results[backend].push_back(std::move(r));
     }
     return 0;
+}
+
+// Every backend's images against the first backend's, with each image's own tolerance.
+void crossBackend(const std::vector<std::string>& backends, std::map<std::string, std::vector<conformance::CaseResult>>& results,
+                  const std::string& outDir, std::vector<std::string>& jsonRows, int& passed, int& failed) {
+    if (backends.size() < 2 || !results.count(backends[0])) return;
+    for (size_t b = 1; b < backends.size(); ++b) {
+        if (!results.count(backends[b])) continue;
+        for (const auto& ref : results[backends[0]])
+            for (const auto& other : results[backends[b]]) {
+                if (other.caseName != ref.caseName) continue;
+                for (size_t i = 0; i < ref.images.size() && i < other.images.size(); ++i) {
+                    const auto& ri = ref.images[i];
+                    gdi::Image diff;
+                    gdi::ImageDiff d = gdi::compareImages(ri.image, other.images[i].image, ri.absTolerance, 0.0, &diff);
+                    const bool ok = d.fractionOver() <= ri.maxFractionOver;
+                    (ok ? passed : failed)++;
+                    const std::string what = backends[0] + " vs " + backends[b] + " " + ref.caseName + "/" + ri.name;
+                    std::cout << (ok ? "PASS " : "FAIL ") << what << ": " << d.pixelsOverTolerance << " pixels over, max error "
+                              << d.maxAbsError << "\n";
+                    jsonRows.push_back("{\"compare\":\"" + what + "\",\"pixelsOver\":" + std::to_string(d.pixelsOverTolerance) +
+                                       ",\"maxAbsError\":" + std::to_string(d.maxAbsError) + ",\"tolerance\":\"" + ri.toleranceReason +
+                                       "\",\"passed\":" + (ok ? "true" : "false") + "}");
+                    if (!outDir.empty())
+                        gdi::writePng(diff, outDir + "/diff_" + backends[0] + "_" + backends[b] + "_" + ref.caseName + "_" + ri.name + ".png");
+                }
+            }
+    }
 }
 
 int cmdConformance(const Args& a) {
@@ -195,7 +225,9 @@ int cmdConformance(const Args& a) {
     std::vector<std::string> backends = gdi::expandBackendList(which);
     std::vector<std::string> rows;
     int passed = 0, failed = 0;
-    for (const std::string& b : backends) conformanceOne(b, a, rows, passed, failed);
+    std::map<std::string, std::vector<conformance::CaseResult>> results;
+    for (const std::string& b : backends) conformanceOne(b, a, rows, passed, failed, results);
+    crossBackend(backends, results, a.options.count("--out-dir") ? a.options.at("--out-dir") : "", rows, passed, failed);
     if (a.options.count("--report")) {
         std::ofstream f(a.options.at("--report"));
         f << "[\n";
