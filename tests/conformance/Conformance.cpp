@@ -235,14 +235,20 @@ std::vector<CaseImage> timestamps(Device& d) {
 
 }  // namespace
 
+std::vector<Case> drawCases();  // DrawCases.cpp
+
 const std::vector<Case>& cases() {
-    static const std::vector<Case> all = {
-        {"clear_every_format", clearEveryFormat},
-        {"triangle", triangle},
-        {"uniform_blend_depth", uniformBlendDepth},
-        {"texture_sampling", textureSampling},
-        {"timestamps", timestamps},
-    };
+    static const std::vector<Case> all = [] {
+        std::vector<Case> v = {
+            {"clear_every_format", clearEveryFormat},
+            {"triangle", triangle},
+            {"uniform_blend_depth", uniformBlendDepth},
+            {"texture_sampling", textureSampling},
+            {"timestamps", timestamps},
+        };
+        for (Case& c : drawCases()) v.push_back(std::move(c));
+        return v;
+    }();
     return all;
 }
 

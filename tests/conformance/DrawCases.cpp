@@ -1,0 +1,380 @@
+// Conformance cases for draws, fixed-function state, compute and copies.
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "Conformance.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+namespace fe::conformance {
+
+using namespace gdi;
+
+namespace {
+
+constexpr uint32_t kSize = 64;
+using Texel = std::array<float, 4>;
+
+struct Vertex {
+    float x, y;
+    float r, g, b, a;
+};
+
+TextureHandle colorTarget(Device& d, Format f = Format::RGBA8) {
+    return d.createTexture({.format = f, .width = kSize, .height = kSize,
+                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled});
+}
+
+// Coverage of a triangle at pixel centres: >0 inside, <0 outside, ~0 on an edge.
+double insideness(const float* v, double px, double py) {
+    double ax = v[0], ay = v[1], bx = v[2], by = v[3], cx = v[4], cy = v[5];
+    double den = (by - cy) * (ax - cx) + (cx - bx) * (ay - cy);
+    double l0 = ((by - cy) * (px - cx) + (cx - bx) * (py - cy)) / den;
+    double l1 = ((cy - ay) * (px - cx) + (ax - cx) * (py - cy)) / den;
+    return std::min({l0, l1, 1 - l0 - l1});
+}
+
+// Expected image: listed triangles in their colour (later ones on top), background elsewhere;
+// pixels on an edge take the rendered value (coverage rules are the API's, not ours).
+Image expectTriangles(const Image& rendered, const std::vector<std::pair<std::array<float, 6>, Texel>>& tris, Texel background) {
+    std::vector<Texel> t(kSize * kSize, background);
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            double px = (x + 0.5) / kSize * 2 - 1, py = (y + 0.5) / kSize * 2 - 1;
+            for (const auto& [v, c] : tris) {
+                double m = insideness(v.data(), px, py);
+                if (std::abs(m) < 0.03) t[y * kSize + x] = rendered.texel(x, y);
+                else if (m > 0) t[y * kSize + x] = c;
+            }
+        }
+    return Image::fromTexels(kSize, kSize, rendered.format, t);
+}
+
+struct VertexColorPipeline {
+    ShaderHandle vs, fs;
+    GraphicsPipelineDesc desc;
+    VertexColorPipeline(Device& d) {
+        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")});
+        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+        desc = {.vertexShader = vs,
+                .fragmentShader = fs,
+                .vertexBuffers = {{.stride = sizeof(Vertex),
+                                   .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
+                                  {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
+                .colorFormats = {Format::RGBA8}};
+    }
+    void release(Device& d) {
+        d.destroy(vs);
+        d.destroy(fs);
+    }
+};
+
+std::vector<CaseImage> cullingWinding(Device& d) {
+    VertexColorPipeline vc(d);
+    // Left: counter-clockwise on screen (y down); right: clockwise.
+    const std::array<float, 6> ccw = {-0.8f, 0.8f, -0.2f, 0.8f, -0.5f, -0.8f};
+    const std::array<float, 6> cw = {0.2f, 0.8f, 0.5f, -0.8f, 0.8f, 0.8f};
+    std::vector<Vertex> v;
+    for (int i = 0; i < 3; ++i) v.push_back({ccw[i * 2], ccw[i * 2 + 1], 1, 0, 0, 1});
+    for (int i = 0; i < 3; ++i) v.push_back({cw[i * 2], cw[i * 2 + 1], 0, 1, 0, 1});
+    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, v.data());
+    const float zero[2] = {0, 0};
+    BufferHandle ib = d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, zero);
+    std::vector<CaseImage> out;
+    struct Variant {
+        const char* name;
+        CullMode cull;
+        FrontFace face;
+        bool showCcw, showCw;
+    };
+    for (Variant var : {Variant{"back_ccw", CullMode::Back, FrontFace::CounterClockwise, true, false},
+                        Variant{"back_cw", CullMode::Back, FrontFace::Clockwise, false, true},
+                        Variant{"front_ccw", CullMode::Front, FrontFace::CounterClockwise, false, true},
+                        Variant{"none", CullMode::None, FrontFace::CounterClockwise, true, true}}) {
+        GraphicsPipelineDesc pd = vc.desc;
+        pd.raster = {.cullMode = var.cull, .frontFace = var.face};
+        PipelineHandle p = d.createGraphicsPipeline(pd);
+        TextureHandle t = colorTarget(d);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
+        cmd->setPipeline(p);
+        cmd->setVertexBuffer(0, vb);
+        cmd->setVertexBuffer(1, ib);
+        cmd->draw(6);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        Image img = d.readTexture(t);
+        std::vector<std::pair<std::array<float, 6>, Texel>> tris;
+        if (var.showCcw) tris.push_back({ccw, {1, 0, 0, 1}});
+        if (var.showCw) tris.push_back({cw, {0, 1, 0, 1}});
+        out.push_back({var.name, img, expectTriangles(img, tris, {0, 0, 0, 1})});
+        d.destroy(p);
+        d.destroy(t);
+    }
+    d.destroy(vb);
+    d.destroy(ib);
+    vc.release(d);
+    return out;
+}
+
+std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
+    VertexColorPipeline vc(d);
+    PipelineHandle p = d.createGraphicsPipeline(vc.desc);
+    // Four junk vertices, then a quad: indices address the quad through baseVertex = 4.
+    std::vector<Vertex> v(4, Vertex{5, 5, 1, 1, 1, 1});
+    for (auto [x, y] : {std::pair{-0.9f, -0.4f}, std::pair{-0.1f, -0.4f}, std::pair{-0.9f, 0.4f}, std::pair{-0.1f, 0.4f}})
+        v.push_back({x, y, 0.25f, 0.5f, 1.0f, 1});
+    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, v.data());
+    const float offsets[4] = {0, 0, 1.0f, 0};  // two instances: left and right half
+    BufferHandle inst = d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, offsets);
+    const uint16_t i16[6] = {0, 1, 2, 2, 1, 3};
+    const uint32_t i32[6] = {0, 1, 2, 2, 1, 3};
+    BufferHandle b16 = d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, i16);
+    BufferHandle b32 = d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, i32);
+    std::vector<CaseImage> out;
+    for (bool wide : {false, true}) {
+        TextureHandle t = colorTarget(d);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
+        cmd->setPipeline(p);
+        cmd->setVertexBuffer(0, vb);
+        cmd->setVertexBuffer(1, inst);
+        cmd->setIndexBuffer(wide ? b32 : b16, wide ? IndexType::U32 : IndexType::U16);
+        cmd->drawIndexed(6, 2, 0, 4, 0);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        Image img = d.readTexture(t);
+        const Texel c{0.25f, 0.5f, 1.0f, 1};
+        std::vector<std::pair<std::array<float, 6>, Texel>> tris;
+        for (float o : {0.0f, 1.0f}) {
+            tris.push_back({{-0.9f + o, -0.4f, -0.1f + o, -0.4f, -0.9f + o, 0.4f}, c});
+            tris.push_back({{-0.9f + o, 0.4f, -0.1f + o, -0.4f, -0.1f + o, 0.4f}, c});
+        }
+        Image expected = expectTriangles(img, tris, {0, 0, 0, 1});
+        // The shared diagonal is an edge of both triangles but inside the quad: fill it too.
+        std::vector<Texel> e(kSize * kSize);
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                double px = (x + 0.5) / kSize * 2 - 1, py = (y + 0.5) / kSize * 2 - 1;
+                bool inside = false, edge = false;
+                for (float o : {0.0f, 1.0f}) {
+                    double dx = std::min(px - (-0.9 + o), (-0.1 + o) - px), dy = std::min(py + 0.4, 0.4 - py);
+                    double m = std::min(dx, dy);
+                    inside = inside || m > 0.03;
+                    edge = edge || std::abs(m) <= 0.03;
+                }
+                e[y * kSize + x] = inside ? c : edge ? img.texel(x, y) : Texel{0, 0, 0, 1};
+            }
+        (void)expected;
+        out.push_back({wide ? "u32_indices" : "u16_indices", img, Image::fromTexels(kSize, kSize, Format::RGBA8, e)});
+        d.destroy(t);
+    }
+    for (BufferHandle b : {vb, inst, b16, b32}) d.destroy(b);
+    d.destroy(p);
+    vc.release(d);
+    return out;
+}
+
+struct Params {
+    float color[4];
+    float depth[4];
+};
+
+std::vector<CaseImage> scissorViewportStencil(Device& d) {
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
+    Params params{{1, 0.5f, 0, 1}, {0.5f, 0, 0, 0}};
+    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, &params);
+    std::vector<CaseImage> out;
+    auto rectImage = [&](Rect r, Texel inside) {
+        std::vector<Texel> t(kSize * kSize, Texel{0, 0, 0, 1});
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x)
+                if (int(x) >= r.x && x < r.x + r.width && int(y) >= r.y && y < r.y + r.height) t[y * kSize + x] = inside;
+        return Image::fromTexels(kSize, kSize, Format::RGBA8, t);
+    };
+    const Texel orange{1, 0.5f, 0, 1};
+    {
+        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}, .bindings = slots});
+        for (int mode = 0; mode < 2; ++mode) {
+            TextureHandle t = colorTarget(d);
+            auto cmd = d.createCommandList();
+            cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
+            cmd->setPipeline(p);
+            cmd->setUniformBuffer(0, ubo);
+            Rect expect;
+            if (mode == 0) {
+                expect = {16, 8, 20, 30};
+                cmd->setScissor(expect);
+            } else {
+                expect = {32, 0, 32, 16};  // viewport: the full-screen triangle fills exactly it
+                cmd->setViewport({32, 0, 32, 16, 0, 1});
+            }
+            cmd->draw(3);
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            out.push_back({mode == 0 ? "scissor" : "viewport", d.readTexture(t), rectImage(expect, orange)});
+            d.destroy(t);
+        }
+        d.destroy(p);
+    }
+    {
+        // Stencil: write 1 inside a scissor rect with colour writes off, then colour where == 1.
+        TextureHandle t = colorTarget(d);
+        TextureHandle ds = d.createTexture({.format = Format::D24S8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget});
+        GraphicsPipelineDesc write{.vertexShader = vs, .fragmentShader = fs,
+                                   .depthStencil = {.stencilTest = true,
+                                                    .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                                                    .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                                                    .stencilReference = 1},
+                                   .blend = {{.writeMask = ColorMask::None}},
+                                   .colorFormats = {Format::RGBA8}, .depthFormat = Format::D24S8, .bindings = slots};
+        GraphicsPipelineDesc test = write;
+        test.depthStencil.front = test.depthStencil.back = {.compare = CompareOp::Equal};
+        test.blend = {};
+        PipelineHandle pw = d.createGraphicsPipeline(write), pt = d.createGraphicsPipeline(test);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}, .depth = {.texture = ds}});
+        cmd->setPipeline(pw);
+        cmd->setUniformBuffer(0, ubo);
+        const Rect r{10, 20, 30, 12};
+        cmd->setScissor(r);
+        cmd->draw(3);
+        cmd->setScissor({0, 0, kSize, kSize});
+        cmd->setPipeline(pt);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        out.push_back({"stencil_equal", d.readTexture(t), rectImage(r, orange)});
+        d.destroy(pw);
+        d.destroy(pt);
+        d.destroy(ds);
+        d.destroy(t);
+    }
+    d.destroy(ubo);
+    d.destroy(vs);
+    d.destroy(fs);
+    return out;
+}
+
+std::vector<CaseImage> mrtMixedFormats(Device& d) {
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")});
+    Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
+    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, &params);
+    const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
+    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = formats,
+                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}});
+    std::vector<TextureHandle> ts;
+    RenderPassDesc rp;
+    for (Format f : formats) {
+        ts.push_back(colorTarget(d, f));
+        rp.colors.push_back({.texture = ts.back()});
+    }
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass(rp);
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, ubo);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    const Texel values[4] = {{0.2f, 0.4f, 0.6f, 0.8f}, {1.5f, -2.0f, 3.25f, 1.0f}, {0.125f, 4.5f, 0, 1}, {-7.75f, 0, 0, 1}};
+    std::vector<CaseImage> out;
+    for (size_t i = 0; i < formats.size(); ++i) {
+        CaseImage ci{"target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name), d.readTexture(ts[i]),
+                     Image::fromTexels(kSize, kSize, formats[i], std::vector<Texel>(kSize * kSize, values[i]))};
+        if (formatInfo(formats[i]).isFloat) {
+            ci.absTolerance = 1e-3;
+            ci.maxFractionOver = 0;
+            ci.toleranceReason = "values exact in the target's float format: 1e-3 absolute, no pixel over";
+        }
+        out.push_back(ci);
+        d.destroy(ts[i]);
+    }
+    d.destroy(p);
+    d.destroy(ubo);
+    d.destroy(vs);
+    d.destroy(fs);
+    return out;
+}
+
+std::vector<CaseImage> computeBufferAndImage(Device& d) {
+    auto cs = d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")});
+    PipelineHandle p = d.createComputePipeline({.computeShader = cs,
+                                                .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                                                             {1, BindingType::StorageTexture, ShaderStage::Compute}}});
+    BufferHandle buf = d.createBuffer({.size = kSize * kSize * 4, .usage = BufferUsage::Storage});
+    TextureHandle img = d.createTexture({.format = Format::RGBA32F, .width = kSize, .height = kSize,
+                                         .usage = TextureUsage::Storage | TextureUsage::CopySrc});
+    auto cmd = d.createCommandList();
+    cmd->setPipeline(p);
+    cmd->setStorageBuffer(0, buf);
+    cmd->setStorageTexture(1, img);
+    cmd->dispatch(kSize / 8, kSize / 8);
+    d.wait(d.submit(*cmd));
+    std::vector<uint8_t> bytes = d.readBuffer(buf, 0, kSize * kSize * 4);
+    Image values{kSize, kSize, Format::R32U, bytes};
+    std::vector<Texel> ev, ei;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            ev.push_back({float(3 * (y * kSize + x) + 1), 0, 0, 1});
+            ei.push_back({float(x) / 64.0f, float(y) / 64.0f, 0.5f, 1.0f});
+        }
+    CaseImage a{"buffer", values, Image::fromTexels(kSize, kSize, Format::R32U, ev)};
+    a.absTolerance = 0;
+    a.maxFractionOver = 0;
+    a.toleranceReason = "integers: exact";
+    CaseImage b{"image", d.readTexture(img), Image::fromTexels(kSize, kSize, Format::RGBA32F, ei)};
+    b.absTolerance = 1e-6;
+    b.maxFractionOver = 0;
+    b.toleranceReason = "x/64 is exact in float32";
+    d.destroy(p);
+    d.destroy(cs);
+    d.destroy(buf);
+    d.destroy(img);
+    return {a, b};
+}
+
+std::vector<CaseImage> copies(Device& d) {
+    std::vector<uint8_t> pattern(kSize * kSize * 4);
+    for (size_t i = 0; i < pattern.size(); ++i) pattern[i] = uint8_t((i * 37) ^ (i >> 7));
+    const uint64_t bytes = pattern.size();
+    BufferHandle src = d.createBuffer({.size = bytes + 256}), mid = d.createBuffer({.size = bytes}), dst = d.createBuffer({.size = bytes});
+    d.writeBuffer(src, 256, pattern.data(), bytes);
+    TextureHandle a = d.createTexture({.width = kSize, .height = kSize}), b = d.createTexture({.width = kSize, .height = kSize});
+    auto cmd = d.createCommandList();
+    cmd->copyBufferToTexture(a, 0, src, 256);
+    cmd->copyTexture(b, a);
+    cmd->copyTextureToBuffer(mid, 0, b, 0);
+    cmd->copyBuffer(dst, 0, mid, 0, bytes);
+    d.wait(d.submit(*cmd));
+    Image expected{kSize, kSize, Format::RGBA8, pattern};
+    CaseImage ci{"buffer_texture_roundtrip", Image{kSize, kSize, Format::RGBA8, d.readBuffer(dst, 0, bytes)}, expected};
+    ci.absTolerance = 0;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = "copies are exact";
+    CaseImage tex{"texture_after_copy", d.readTexture(b), expected};
+    tex.absTolerance = 0;
+    tex.maxFractionOver = 0;
+    tex.toleranceReason = "copies are exact";
+    for (BufferHandle h : {src, mid, dst}) d.destroy(h);
+    d.destroy(a);
+    d.destroy(b);
+    return {ci, tex};
+}
+
+}  // namespace
+
+std::vector<Case> drawCases() {
+    return {
+        {"culling_winding", cullingWinding},
+        {"indexed_instanced_base_vertex", indexedInstancedBaseVertex},
+        {"scissor_viewport_stencil", scissorViewportStencil},
+        {"mrt_mixed_formats", mrtMixedFormats},
+        {"compute_buffer_and_image", computeBufferAndImage},
+        {"copies", copies},
+    };
+}
+
+}  // namespace fe::conformance
