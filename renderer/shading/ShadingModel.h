@@ -84,7 +84,7 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l) {
     double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
     glm::dvec3 h = glm::normalize(s.wo + l.wi);
     double NoH = glm::dot(s.n, h);
-    double P = std::pow(1.0 - std::max(glm::dot(h, s.wo), 0.0), 5.0);
+    double P = std::pow(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0), 5.0);
     glm::dvec3 F0 = glm::mix(glm::dvec3(0.04), s.baseColor, s.metallic);
     glm::dvec3 F = F0 + (1.0 - F0) * P;
     double dd = NoH * NoH * (a2 - 1.0) + 1.0;
@@ -107,7 +107,7 @@ inline void accumulateIllumination(IlluminationSums& acc, const SurfacePoint& s,
     double k = (r + 1.0) * (r + 1.0) / 8.0;
     glm::dvec3 h = glm::normalize(s.wo + l.wi);
     double NoH = glm::dot(s.n, h);
-    double P = std::pow(1.0 - std::max(glm::dot(h, s.wo), 0.0), 5.0);
+    double P = std::pow(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0), 5.0);
     double dd = NoH * NoH * (a2 - 1.0) + 1.0;
     double R = dd * dd * (NoL * (1.0 - k) + k);
     acc.Ldg += (1.0 - P) * l.E * NoL;

@@ -1,0 +1,78 @@
+// Real Khronos glTF samples render on every backend, and the backends agree: the 8-bit output
+// (sRGB of clamp(L_o)) differs by more than 5/255 on at most 0.1% of pixels.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "assets/GltfLoader.h"
+#include "fe/gdi/Backend.h"
+#include "render/SceneRenderer.h"
+
+using namespace fe;
+
+namespace {
+const char* const kSamples[] = {
+    "Box/glTF/Box.gltf", "BoxTextured/glTF/BoxTextured.gltf", "BoxInterleaved/glTF-Binary/BoxInterleaved.glb",
+    "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", "NormalTangentTest/glTF-Binary/NormalTangentTest.glb",
+    "OrientationTest/glTF-Binary/OrientationTest.glb", "AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf",
+    "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf", "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb",
+    "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb",
+    "TwoSidedPlane/glTF/TwoSidedPlane.gltf",
+};
+
+gdi::Image toDisplay(const gdi::Image& linear) {
+    std::vector<std::array<float, 4>> t;
+    for (uint32_t y = 0; y < linear.height; ++y)
+        for (uint32_t x = 0; x < linear.width; ++x) {
+            auto v = linear.texel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                float l = std::clamp(v[c], 0.0f, 1.0f);
+                v[c] = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+            }
+            v[3] = 1;
+            t.push_back(v);
+        }
+    return gdi::Image::fromTexels(linear.width, linear.height, gdi::Format::RGBA8, t);
+}
+}  // namespace
+
+class GltfSampleRender : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GltfSampleRender, BackendsAgree) {
+    const std::string path = std::string(FE_SHARED_ASSETS) + "/" + GetParam();
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
+    assets::Scene scene = assets::loadGltf(path);
+    std::vector<std::pair<std::string, gdi::Image>> images;
+    for (const std::string& b : gdi::backendNames()) {
+        gdi::BackendProbe p = gdi::probeBackend(b, true);
+        if (!p.available) continue;
+        gdi::Image img;
+        {
+            render::SceneRenderer r(*p.device, scene, {.technique = render::Technique::Forward, .width = 64, .height = 64});
+            r.renderFrame();
+            img = r.readOutput();
+        }
+        EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
+        images.push_back({b, toDisplay(img)});
+    }
+    ASSERT_FALSE(images.empty());
+    // Something is drawn: not every pixel is the black background.
+    const auto& first = images[0].second;
+    size_t lit = 0;
+    for (uint32_t i = 0; i < first.width * first.height; ++i)
+        lit += first.data[i * 4] + first.data[i * 4 + 1] + first.data[i * 4 + 2] > 0;
+    EXPECT_GT(lit, 0u) << "nothing visible";
+    for (size_t i = 1; i < images.size(); ++i) {
+        gdi::ImageDiff d = gdi::compareImages(images[0].second, images[i].second, 5.0 / 255.0);
+        EXPECT_LE(d.fractionOver(), 0.001) << images[0].first << " vs " << images[i].first << ": " << d.pixelsOverTolerance
+                                           << " pixels over 5/255, max " << d.maxAbsError;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Samples, GltfSampleRender, ::testing::ValuesIn(kSamples), [](const auto& info) {
+    std::string n = info.param;
+    n = n.substr(0, n.find('/'));
+    return n;
+});
