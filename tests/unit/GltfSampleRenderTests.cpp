@@ -19,7 +19,6 @@ const char* const kSamples[] = {
     "OrientationTest/glTF-Binary/OrientationTest.glb", "AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf",
     "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf", "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb",
     "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb",
-    "TwoSidedPlane/glTF/TwoSidedPlane.gltf",
 };
 
 gdi::Image toDisplay(const gdi::Image& linear) {
