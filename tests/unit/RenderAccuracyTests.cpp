@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
@@ -111,3 +112,32 @@ TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, RenderAccuracy, ::testing::ValuesIn(gdi::backendNames()),
                          [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
+
+// The roughness clamp: a mirror-smooth plane seen head-on with a point light on the view axis.
+// With an odd image size the centre pixel sees n = h exactly, where the alpha^2/(4 pi)-scaled
+// specular sum reaches E / (4 pi alpha^2) ~ 1.9e5 for E = 10: beyond half-float range, so an
+// I-buffer in 16-bit floats would overflow there (checked: this test fails with RGBA16F sums).
+TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
+    assets::Scene s = assets::makeBuiltinScene("plane");
+    for (auto& m : s.materials) m.roughness = 0.0f;  // clamped to 0.045 by every technique
+    for (auto& l : s.lights) l.intensity = 10.0f;
+    auto renderOdd = [&](render::Technique t) {
+        render::SceneRenderer r(*device, s, {.technique = t, .width = 97, .height = 73});
+        r.renderFrame();
+        return r.readOutput();
+    };
+    gdi::Image f = renderOdd(render::Technique::Forward);
+    EXPECT_GT(f.texel(48, 36)[0], 1000.0f) << "the highlight is not at the centre pixel";
+    for (render::Technique t : {render::Technique::Deferred, render::Technique::Redeferred}) {
+        gdi::Image r = renderOdd(t);
+        for (size_t i = 0; i < r.data.size() / 4; ++i) {
+            float v;
+            std::memcpy(&v, &r.data[i * 4], 4);
+            ASSERT_TRUE(std::isfinite(v)) << render::techniqueName(t) << " produced a non-finite value";
+        }
+        Stats st = compare(r, f, 0.02, 0.01);
+        EXPECT_LE(st.fractionOver, 0.01) << render::techniqueName(t) << " max relative error " << st.maxRel;
+        // The peak itself, which a clamping or overflowing 16-bit store would get wrong.
+        EXPECT_NEAR(r.texel(48, 36)[0] / f.texel(48, 36)[0], 1.0, 0.02) << render::techniqueName(t) << " at the highlight";
+    }
+}
