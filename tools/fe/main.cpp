@@ -131,6 +131,8 @@ int cmdRender(const Args& a) {
     std::map<std::string, std::vector<double>> gpu;
     for (uint32_t f = 0; f < frames + (frames > 1 ? 1 : 0); ++f) {  // one warm-up frame when timing
         auto t0 = std::chrono::steady_clock::now();
+        // builtin:lights animates: light positions are a function of the frame index.
+        if (spec == "builtin:lights") renderer.gpuScene().updateLights(assets::lightsSceneLights(builtin.lights, f));
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
