@@ -1,6 +1,7 @@
 // Conformance cases for draws, fixed-function state, compute and copies.
 #include <array>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 #include "Conformance.h"
@@ -364,6 +365,353 @@ std::vector<CaseImage> copies(Device& d) {
     return {ci, tex};
 }
 
+// ---- vertex formats, storage buffers, sampling, render-to-texture, blend modes -------------
+
+CaseImage exactFloat(std::string name, Image img, Image expected, double tol, const char* why) {
+    CaseImage ci{std::move(name), std::move(img), std::move(expected)};
+    ci.absTolerance = tol;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = why;
+    return ci;
+}
+
+Image solidImage(Format f, Texel c) { return Image::fromTexels(kSize, kSize, f, std::vector<Texel>(kSize * kSize, c)); }
+
+uint16_t toHalf(float f) {  // exact for the small values used below
+    Image one = Image::fromTexels(1, 1, Format::R16F, {{f, 0, 0, 1}});
+    uint16_t h;
+    std::memcpy(&h, one.data.data(), 2);
+    return h;
+}
+
+std::vector<CaseImage> vertexFormats(Device& d) {
+    auto vsF = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_attr.vert")});
+    auto vsU = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_uint.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/value.frag")});
+    std::vector<CaseImage> out;
+    for (int fi = 0; fi < int(VertexFormat::Count); ++fi) {
+        const VertexFormat vf = VertexFormat(fi);
+        // Attribute bytes for value v = (0.25, 0.5, -0.5, 0.75) in this format, and what the
+        // shader must see (missing components default to 0, 0, 0, 1).
+        uint8_t attr[16] = {};
+        Texel expect{0, 0, 0, 1};
+        const float v[4] = {0.25f, 0.5f, -0.5f, 0.75f};
+        const uint32_t n = vertexFormatInfo(vf).components;
+        switch (vf) {
+            case VertexFormat::Float: case VertexFormat::Float2: case VertexFormat::Float3: case VertexFormat::Float4:
+                std::memcpy(attr, v, n * 4);
+                for (uint32_t c = 0; c < n; ++c) expect[c] = v[c];
+                break;
+            case VertexFormat::Half2: case VertexFormat::Half4:
+                for (uint32_t c = 0; c < n; ++c) {
+                    uint16_t h = toHalf(v[c]);
+                    std::memcpy(attr + 2 * c, &h, 2);
+                    expect[c] = v[c];
+                }
+                break;
+            case VertexFormat::UNorm8x4:
+                for (int c = 0; c < 4; ++c) { attr[c] = uint8_t(std::lround(std::fabs(v[c]) * 255)); expect[c] = attr[c] / 255.0f; }
+                break;
+            case VertexFormat::SNorm8x4:
+                for (int c = 0; c < 4; ++c) { int8_t q = int8_t(std::lround(v[c] * 127)); std::memcpy(attr + c, &q, 1); expect[c] = std::max(q / 127.0f, -1.0f); }
+                break;
+            case VertexFormat::UNorm16x2:
+                for (int c = 0; c < 2; ++c) { uint16_t q = uint16_t(std::lround(std::fabs(v[c]) * 65535)); std::memcpy(attr + 2 * c, &q, 2); expect[c] = q / 65535.0f; }
+                break;
+            case VertexFormat::SNorm16x2:
+                for (int c = 0; c < 2; ++c) { int16_t q = int16_t(std::lround(-v[c] * 32767)); std::memcpy(attr + 2 * c, &q, 2); expect[c] = q / 32767.0f; }
+                break;
+            case VertexFormat::UInt32: {
+                uint32_t q = 625;
+                std::memcpy(attr, &q, 4);
+                expect = {0.625f, 0, 0, 1};
+                break;
+            }
+            default: break;
+        }
+        const uint32_t stride = 8 + 16;
+        std::vector<uint8_t> vb(3 * stride);
+        const float pos[6] = {-1, -1, 3, -1, -1, 3};
+        for (int i = 0; i < 3; ++i) {
+            std::memcpy(&vb[i * stride], &pos[i * 2], 8);
+            std::memcpy(&vb[i * stride + 8], attr, 16);
+        }
+        BufferHandle b = d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, vb.data());
+        PipelineHandle p = d.createGraphicsPipeline({
+            .vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF, .fragmentShader = fs,
+            .vertexBuffers = {{.stride = stride, .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
+            .colorFormats = {Format::RGBA32F}});
+        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t}}});
+        cmd->setPipeline(p);
+        cmd->setVertexBuffer(0, b);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        out.push_back(exactFloat(std::string(vertexFormatInfo(vf).name), d.readTexture(t), solidImage(Format::RGBA32F, expect),
+                                 1e-5, "attribute decode is exact up to float rounding"));
+        d.destroy(p);
+        d.destroy(b);
+        d.destroy(t);
+    }
+    d.destroy(vsF);
+    d.destroy(vsU);
+    d.destroy(fs);
+    return out;
+}
+
+// Full-screen helper for fragment-only cases: fullscreen_ubo.vert + `fragment`.
+struct FullScreen {
+    ShaderHandle vs, fs;
+    BufferHandle ubo;
+    FullScreen(Device& d, const char* fragment, Params params) {
+        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)});
+        ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+    }
+    void release(Device& d) {
+        d.destroy(vs);
+        d.destroy(fs);
+        d.destroy(ubo);
+    }
+};
+
+std::vector<CaseImage> storageBufferInFragment(Device& d) {
+    FullScreen fsq(d, "conformance/ssbo_read.frag", {{0, 0, 0, 0}, {0.5f, 0, 0, 0}});
+    const float colors[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 0.5f, 0.25f, 0.125f, 1};
+    BufferHandle ssbo = d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, colors);
+    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                                                              {2, BindingType::StorageBuffer, ShaderStage::Fragment}}});
+    TextureHandle t = colorTarget(d, Format::RGBA32F);
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, fsq.ubo);
+    cmd->setStorageBuffer(2, ssbo);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    std::vector<Texel> e;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) e.push_back({colors[(x / 16) * 4], colors[(x / 16) * 4 + 1], colors[(x / 16) * 4 + 2], 1});
+    CaseImage ci = exactFloat("columns", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-6, "copied floats: exact");
+    d.destroy(p);
+    d.destroy(t);
+    d.destroy(ssbo);
+    fsq.release(d);
+    return {ci};
+}
+
+double wrapCoord(double u, AddressMode m) {
+    if (m == AddressMode::ClampToEdge) return std::clamp(u, 0.0, 1.0 - 1e-9);
+    if (m == AddressMode::MirroredRepeat) {
+        double f = u - 2.0 * std::floor(u / 2.0);
+        return f >= 1.0 ? 2.0 - f - 1e-9 : f;
+    }
+    return u - std::floor(u);
+}
+
+std::vector<CaseImage> samplingModes(Device& d) {
+    std::vector<CaseImage> out;
+    // A 4x4 texture of distinct texels, sampled with uv in [-1, 2) so wrapping shows.
+    std::vector<uint8_t> px(4 * 4 * 4);
+    for (int i = 0; i < 16; ++i) {
+        px[i * 4] = uint8_t(i * 17);
+        px[i * 4 + 1] = uint8_t(255 - i * 13);
+        px[i * 4 + 2] = uint8_t((i * 71) % 256);
+        px[i * 4 + 3] = 255;
+    }
+    TextureHandle tex = d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4});
+    d.writeTexture(tex, 0, px.data(), px.size());
+    for (AddressMode mode : {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge}) {
+        // uv = pixel/64 * 3 - 1: texel centres of the magnified texture land on pixel centres.
+        FullScreen fsq(d, "conformance/textured_uv.frag", {{3, 3, -1, -1}, {0.5f, 0, 0, 0}});
+        SamplerHandle smp = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .addressU = mode, .addressV = mode});
+        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                                                                  {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, fsq.ubo);
+        cmd->setTexture(1, tex, smp);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        Image img = d.readTexture(t);
+        std::vector<Texel> e;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                double u = (x + 0.5) / 64.0 * 3 - 1, v = (y + 0.5) / 64.0 * 3 - 1;
+                double fu = (u * 4) - std::floor(u * 4), fv = (v * 4) - std::floor(v * 4);
+                // Texel boundaries: the rounding of the hardware decides; take the rendered value.
+                if (std::min({fu, 1 - fu, fv, 1 - fv}) < 0.02) {
+                    e.push_back(img.texel(x, y));
+                    continue;
+                }
+                int tx = std::min(3, int(wrapCoord(u, mode) * 4)), ty = std::min(3, int(wrapCoord(v, mode) * 4));
+                const uint8_t* s = &px[(ty * 4 + tx) * 4];
+                e.push_back({s[0] / 255.0f, s[1] / 255.0f, s[2] / 255.0f, 1});
+            }
+        const char* name = mode == AddressMode::Repeat ? "nearest_repeat" : mode == AddressMode::MirroredRepeat ? "nearest_mirrored" : "nearest_clamp";
+        out.push_back(exactFloat(name, img, Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-3, "8-bit texels: 1e-3 absolute"));
+        d.destroy(p);
+        d.destroy(t);
+        d.destroy(smp);
+        fsq.release(d);
+    }
+    // Linear filtering: a 2x2 texture magnified over the target with clamping: bilinear ramps.
+    {
+        const uint8_t q[16] = {0, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 255, 255, 255, 255};
+        TextureHandle t2 = d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2});
+        d.writeTexture(t2, 0, q, sizeof q);
+        FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
+        SamplerHandle smp = d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
+        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                                                                  {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, fsq.ubo);
+        cmd->setTexture(1, t2, smp);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        std::vector<Texel> e;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                double a = std::clamp((x + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0), b = std::clamp((y + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0);
+                double r = (1 - b) * a + b * a, g = b, bl = a * b;  // corners: (0,0,0) (1,0,0) / (0,1,0) (1,1,1)
+                e.push_back({float(r), float(g), float(bl), 1});
+            }
+        out.push_back(exactFloat("linear_clamp", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 0.01,
+                                 "filter weights have limited sub-texel precision (8 bits on llvmpipe): 0.01 absolute"));
+        d.destroy(p);
+        d.destroy(t);
+        d.destroy(smp);
+        d.destroy(t2);
+        fsq.release(d);
+    }
+    // Mipmaps: each level uploaded with its own colour, chosen by an explicit level of detail.
+    {
+        TextureHandle mip = d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .mipLevels = 4});
+        const Texel levels[4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}};
+        for (uint32_t l = 0; l < 4; ++l) {
+            uint32_t s = 8 >> l;
+            Image lv = Image::fromTexels(s, s, Format::RGBA8, std::vector<Texel>(s * s, levels[l]));
+            d.writeTexture(mip, l, lv.data.data(), lv.data.size());
+        }
+        SamplerHandle smp = d.createSampler({.mipFilter = MipFilter::Nearest});
+        for (uint32_t l = 0; l < 4; ++l) {
+            FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, float(l), 0, 0}});
+            PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                                                         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                                                                      {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+            TextureHandle t = colorTarget(d, Format::RGBA32F);
+            auto cmd = d.createCommandList();
+            cmd->beginRenderPass({.colors = {{.texture = t}}});
+            cmd->setPipeline(p);
+            cmd->setUniformBuffer(0, fsq.ubo);
+            cmd->setTexture(1, mip, smp);
+            cmd->draw(3);
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            out.push_back(exactFloat("mip_level_" + std::to_string(l), d.readTexture(t), solidImage(Format::RGBA32F, levels[l]), 1e-3,
+                                     "solid 8-bit level: 1e-3 absolute"));
+            d.destroy(p);
+            d.destroy(t);
+            fsq.release(d);
+        }
+        d.destroy(smp);
+        d.destroy(mip);
+    }
+    d.destroy(tex);
+    return out;
+}
+
+std::vector<CaseImage> renderToTextureThenSample(Device& d) {
+    // Pass 1: a triangle into A. Pass 2: A sampled (nearest, 1:1) into B. B must equal A.
+    TextureHandle a = colorTarget(d), b = colorTarget(d);
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    PipelineHandle tri = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
+    SamplerHandle smp = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    PipelineHandle copy = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA8},
+                                                    .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                                                                 {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = a, .clear = {0.1f, 0.2f, 0.3f, 1}}}});
+    cmd->setPipeline(tri);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    cmd->beginRenderPass({.colors = {{.texture = b}}});
+    cmd->setPipeline(copy);
+    cmd->setUniformBuffer(0, fsq.ubo);
+    cmd->setTexture(1, a, smp);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    CaseImage ci{"sampled_copy", d.readTexture(b), d.readTexture(a)};
+    ci.absTolerance = 0;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = "nearest 1:1 sampling of an 8-bit target is exact";
+    for (PipelineHandle p : {tri, copy}) d.destroy(p);
+    d.destroy(vs);
+    d.destroy(fs);
+    d.destroy(smp);
+    d.destroy(a);
+    d.destroy(b);
+    fsq.release(d);
+    return {ci};
+}
+
+std::vector<CaseImage> blendModes(Device& d) {
+    std::vector<CaseImage> out;
+    const float dst[4] = {0.5f, 0.25f, 1.0f, 1.0f};
+    const Texel src{0.25f, 0.75f, 0.5f, 0.25f};
+    struct Mode {
+        const char* name;
+        BlendTargetState state;
+        Texel expect;
+    };
+    const Mode modes[] = {
+        {"alpha", {.enable = true, .srcColor = BlendFactor::SrcAlpha, .dstColor = BlendFactor::OneMinusSrcAlpha,
+                   .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero},
+         {0.25f * 0.25f + 0.5f * 0.75f, 0.75f * 0.25f + 0.25f * 0.75f, 0.5f * 0.25f + 1.0f * 0.75f, 0.25f}},
+        {"min", {.enable = true, .colorOp = BlendOp::Min, .alphaOp = BlendOp::Min}, {0.25f, 0.25f, 0.5f, 0.25f}},
+        {"max", {.enable = true, .colorOp = BlendOp::Max, .alphaOp = BlendOp::Max}, {0.5f, 0.75f, 1.0f, 1.0f}},
+        {"reverse_subtract", {.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
+                              .colorOp = BlendOp::ReverseSubtract, .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero},
+         {0.25f, -0.5f, 0.5f, 0.25f}},
+    };
+    for (const Mode& m : modes) {
+        FullScreen fsq(d, "conformance/ubo_color.frag", {{src[0], src[1], src[2], src[3]}, {0.5f, 0, 0, 0}});
+        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .blend = {m.state},
+                                                     .colorFormats = {Format::RGBA16F},
+                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+        TextureHandle t = colorTarget(d, Format::RGBA16F);
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {dst[0], dst[1], dst[2], dst[3]}}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, fsq.ubo);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        out.push_back(exactFloat(m.name, d.readTexture(t), solidImage(Format::RGBA16F, m.expect), 2e-3,
+                                 "half-float target: 2e-3 absolute"));
+        d.destroy(p);
+        d.destroy(t);
+        fsq.release(d);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<Case> drawCases() {
@@ -374,6 +722,11 @@ std::vector<Case> drawCases() {
         {"mrt_mixed_formats", mrtMixedFormats},
         {"compute_buffer_and_image", computeBufferAndImage},
         {"copies", copies},
+        {"vertex_formats", vertexFormats},
+        {"storage_buffer_in_fragment", storageBufferInFragment},
+        {"sampling_modes", samplingModes},
+        {"render_to_texture_then_sample", renderToTextureThenSample},
+        {"blend_modes", blendModes},
     };
 }
 
