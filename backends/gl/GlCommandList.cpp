@@ -83,6 +83,7 @@ public:
         }
         inPass_ = true;
         pipeline_ = nullptr;
+        vertexDirty_ = indexDirty_ = true;
         setViewport({0, 0, float(area_.width), float(area_.height), 0, 1});
         setScissor(area_);
     }
@@ -96,6 +97,7 @@ public:
 
     void setPipeline(gdi::PipelineHandle h) override {
         Pipeline& p = dev_.pipeline(h);
+        if (pipeline_ != &p) vertexDirty_ = indexDirty_ = true;  // another VAO
         pipeline_ = &p;
         gl_.UseProgram(p.program);
         if (p.compute) return;
@@ -154,11 +156,13 @@ public:
         if (index >= vertexBuffers_.size()) throw gdi::Error("setVertexBuffer: index out of range");
         Buffer& b = dev_.buffer(h);
         if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
+        if (vertexBuffers_[index] != std::pair<GLuint, uint64_t>{b.name, offset}) vertexDirty_ = true;
         vertexBuffers_[index] = {b.name, offset};
     }
     void setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) override {
         Buffer& b = dev_.buffer(h);
         if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
+        if (indexBuffer_ != b.name) indexDirty_ = true;
         indexBuffer_ = b.name;
         indexOffset_ = offset;
         indexType_ = type;
@@ -197,7 +201,8 @@ public:
                      uint32_t firstInstance) override {
         prepareDraw("drawIndexed");
         if (!indexBuffer_) throw gdi::Error("drawIndexed without an index buffer");
-        gl_.VertexArrayElementBuffer(pipeline_->vao, indexBuffer_);
+        if (indexDirty_) gl_.VertexArrayElementBuffer(pipeline_->vao, indexBuffer_);
+        indexDirty_ = false;
         const uint32_t size = indexType_ == gdi::IndexType::U16 ? 2 : 4;
         gl_.DrawElementsInstancedBaseVertexBaseInstance(
             topology(pipeline_->desc.topology), GLsizei(indexCount),
@@ -317,9 +322,11 @@ private:
         if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
         if (pipeline_->compute) throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
         gdi::validate::missingBindings(pipeline_->requiredSlots, bound_, pipeline_->label.c_str());
+        if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
         for (size_t i = 0; i < pipeline_->strides.size(); ++i)
             gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
                                         GLsizei(pipeline_->strides[i]));
+        vertexDirty_ = false;
     }
 
     GlDevice& dev_;
@@ -330,6 +337,7 @@ private:
     Pipeline* pipeline_ = nullptr;
     uint64_t bound_ = 0;
     std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};
+    bool vertexDirty_ = true, indexDirty_ = true;
     GLuint indexBuffer_ = 0;
     uint64_t indexOffset_ = 0;
     gdi::IndexType indexType_ = gdi::IndexType::U32;
