@@ -60,7 +60,7 @@ public:
         GLuint fbo = dev_.framebuffer(colors, depth ? depth->name : 0, stencil);
         if (desc.debugName) pushDebugGroup(desc.debugName);
         labelled_ = desc.debugName != nullptr;
-        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         // Clears must not be masked by the previous pipeline's write masks.
         gl_.Scissor(0, 0, GLsizei(area_.width), GLsizei(area_.height));
@@ -91,7 +91,7 @@ public:
     void endRenderPass() override {
         if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
         inPass_ = false;
-        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         if (labelled_) popDebugGroup();
     }
 
@@ -295,10 +295,32 @@ public:
         outside("discardTexture");
         (void)dev_.texture(h);  // GL reuses whole objects; contents are simply overwritten
     }
+    // GL orders framebuffer writes, copies and texture fetches itself; only image stores
+    // (Storage) need glMemoryBarrier, and Undefined lets the driver drop old contents.
+    void setAutomaticBarriers(bool enabled) override {
+        outside("setAutomaticBarriers");
+        if (enabled != automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        automatic_ = enabled;
+    }
+    void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override {
+        outside("barrier");
+        bool storage = false;
+        for (uint32_t i = 0; i < count; ++i) {
+            if (barriers[i].after == gdi::ResourceState::Undefined)
+                throw gdi::Error("barrier: a texture cannot go to Undefined");
+            Texture& t = dev_.texture(barriers[i].texture);
+            if (barriers[i].before == gdi::ResourceState::Undefined)
+                for (uint32_t m = 0; m < t.desc.mipLevels; ++m) gl_.InvalidateTexImage(t.name, GLint(m));
+            storage = storage || barriers[i].before == gdi::ResourceState::Storage;
+        }
+        if (storage) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    }
     uint64_t nativeCommandBuffer() override {
         if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
         if (depth_) throw gdi::Error("submit: debug group(s) not popped");
         bound_ = 0;  // a new recording starts after submit
+        if (!automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        automatic_ = true;
         return 0;
     }
 
@@ -332,6 +354,7 @@ private:
     GlDevice& dev_;
     const GlFunctions& gl_;
     bool inPass_ = false, labelled_ = false;
+    bool automatic_ = true;  // setAutomaticBarriers
     int depth_ = 0;
     gdi::Rect area_;
     Pipeline* pipeline_ = nullptr;

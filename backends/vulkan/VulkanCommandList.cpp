@@ -64,6 +64,68 @@ void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
     toGeneral(cb_, t.image, t.desc.format, t.desc.mipLevels);
 }
 
+namespace {
+// Stages and accesses of each state; every texture stays in GENERAL, so a barrier only
+// orders and makes memory visible (plus UNDEFINED -> GENERAL for contents not needed).
+struct StateScope {
+    VkPipelineStageFlags stages;
+    VkAccessFlags access;
+};
+StateScope scopeOf(gdi::ResourceState s) {
+    constexpr VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    switch (s) {
+        case gdi::ResourceState::RenderTarget:
+            return {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
+        case gdi::ResourceState::DepthTarget:
+            return {VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+        case gdi::ResourceState::ShaderRead: return {shaders, VK_ACCESS_SHADER_READ_BIT};
+        case gdi::ResourceState::Storage: return {shaders, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+        case gdi::ResourceState::CopySrc: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+        case gdi::ResourceState::CopyDst: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+        case gdi::ResourceState::Undefined: break;
+    }
+    // Undefined: whatever last used these bytes (another texture aliasing the memory).
+    return {VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT};
+}
+}  // namespace
+
+void VulkanCommandList::setAutomaticBarriers(bool enabled) {
+    outsidePass("setAutomaticBarriers");
+    if (enabled == automaticBarriers_) return;
+    if (enabled) fullBarrier(cb_);  // order the explicit section before what follows
+    else barrierIfWritten();        // and what came before it before the explicit section
+    automaticBarriers_ = enabled;
+    written_ = false;
+}
+
+void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
+    outsidePass("barrier");
+    if (count == 0) return;
+    std::vector<VkImageMemoryBarrier> bs(count);
+    VkPipelineStageFlags src = 0, dst = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const gdi::TextureBarrier& in = barriers[i];
+        if (in.after == gdi::ResourceState::Undefined) throw gdi::Error("barrier: a texture cannot go to Undefined");
+        Texture& t = dev_.texture(in.texture);
+        const StateScope before = scopeOf(in.before), after = scopeOf(in.after);
+        VkImageMemoryBarrier& b = bs[i];
+        b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+        b.srcAccessMask = before.access;
+        b.dstAccessMask = after.access;
+        b.oldLayout = in.before == gdi::ResourceState::Undefined ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_GENERAL;
+        b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = t.image;
+        b.subresourceRange = {aspectOf(t.desc.format), 0, t.desc.mipLevels, 0, 1};
+        src |= before.stages;
+        dst |= after.stages;
+    }
+    vkCmdPipelineBarrier(cb_, src, dst, 0, 0, nullptr, 0, nullptr, count, bs.data());
+}
+
 void VulkanCommandList::ensureRecording() {
     if (recording_) return;
     if (lastSubmit_) dev_.wait(lastSubmit_);  // the buffer may still be executing
@@ -77,12 +139,15 @@ void VulkanCommandList::ensureRecording() {
     boundSlots_ = 0;
     debugDepth_ = 0;
     written_ = true;  // order after earlier submissions
+    automaticBarriers_ = true;
 }
 
 VkCommandBuffer VulkanCommandList::finish() {
     ensureRecording();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    setAutomaticBarriers(true);
+    written_ = true;
     barrierIfWritten();  // make results visible to later submissions and transfers
     check(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
     return cb_;
@@ -94,7 +159,7 @@ void VulkanCommandList::outsidePass(const char* what) {
 }
 
 void VulkanCommandList::barrierIfWritten() {
-    if (!written_) return;
+    if (!written_ || !automaticBarriers_) return;
     fullBarrier(cb_);
     written_ = false;
 }

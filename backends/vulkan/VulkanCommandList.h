@@ -46,6 +46,8 @@ public:
     static void fullBarrier(VkCommandBuffer cb);
     static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels);
     void discardTexture(gdi::TextureHandle texture) override;
+    void setAutomaticBarriers(bool enabled) override;
+    void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
 
 private:
     void ensureRecording();
@@ -65,6 +67,7 @@ private:
     bool inPass_ = false;
     bool passHasLabel_ = false;
     bool written_ = false;  // a command since the last barrier wrote memory
+    bool automaticBarriers_ = true;
     gdi::FenceValue lastSubmit_ = 0;
     Pipeline* pipeline_ = nullptr;
     gdi::Rect renderArea_;

@@ -306,8 +306,28 @@ enum class IndexType : uint8_t { U16, U32 };
 // Command recording
 // ---------------------------------------------------------------------------------------------
 // A CommandList is recorded on one thread and submitted with Device::submit. Each recording
-// starts with begin() (implicit on first use after submit). Synchronisation between passes,
-// dispatches and copies is the backend's job: the caller never writes a barrier.
+// starts with begin() (implicit on first use after submit). By default synchronisation between
+// passes, dispatches and copies is the backend's job (a conservative barrier after each write).
+// A caller that knows every access, the render graph, turns that off with
+// setAutomaticBarriers(false) and states each texture's state change with barrier().
+
+// What a texture is being used for, as far as synchronisation is concerned.
+enum class ResourceState : uint8_t {
+    Undefined,     // contents not needed (first use of transient or aliased memory)
+    RenderTarget,  // colour attachment
+    DepthTarget,   // depth/stencil attachment
+    ShaderRead,    // sampled in a shader
+    Storage,       // read/written as a storage image
+    CopySrc,
+    CopyDst,
+};
+const char* resourceStateName(ResourceState s);
+
+struct TextureBarrier {
+    TextureHandle texture;
+    ResourceState before = ResourceState::Undefined;
+    ResourceState after = ResourceState::ShaderRead;
+};
 class CommandList {
 public:
     virtual ~CommandList() = default;
@@ -350,6 +370,14 @@ public:
     // a heap-placed texture whose memory another texture may have written since (Vulkan:
     // layout from UNDEFINED; GL: glInvalidateTexImage). Outside render passes.
     virtual void discardTexture(TextureHandle texture) = 0;
+
+    // Explicit synchronisation. While automatic barriers are off the backend inserts no
+    // hazard barriers between passes, dispatches and copies of this recording; the caller
+    // orders every dependency with barrier(). Turning them back on orders everything
+    // recorded so far before what follows. Submitting always makes the results visible to
+    // later submissions and to readback. Outside render passes.
+    virtual void setAutomaticBarriers(bool enabled) = 0;
+    virtual void barrier(const TextureBarrier* barriers, uint32_t count) = 0;
 
     // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
     // the VkCommandBuffer being recorded, 0 on backends without one.

@@ -1,0 +1,370 @@
+#include "graph/RenderGraph.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "graph/MemoryPlanner.h"
+
+namespace fe::graph {
+
+namespace {
+bool isTarget(gdi::ResourceState s) { return s == gdi::ResourceState::RenderTarget || s == gdi::ResourceState::DepthTarget; }
+
+std::string kib(uint64_t bytes) {
+    std::ostringstream o;
+    o.precision(1);
+    o << std::fixed << double(bytes) / 1024.0 << " KiB";
+    return o.str();
+}
+}  // namespace
+
+bool TextureAccess::reads() const { return !isTarget(state) || load == gdi::LoadOp::Load; }
+bool TextureAccess::writes() const { return isTarget(state); }
+
+// ---- declaration ------------------------------------------------------------------------------
+
+void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4> clear) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::RenderTarget, .load = load,
+                                              .clearColor = clear});
+}
+void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::DepthTarget, .load = load,
+                                              .clearDepth = clearDepth});
+}
+void PassBuilder::sample(TextureId t) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::ShaderRead});
+}
+void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+
+RenderGraph::RenderGraph() = default;
+RenderGraph::~RenderGraph() { release(); }
+
+TextureId RenderGraph::createTexture(std::string name, const TransientTextureDesc& d) {
+    if (d.width == 0 || d.height == 0)
+        throw gdi::Error("render graph: texture '" + name + "' has a zero size");
+    TextureInfo t;
+    t.name = std::move(name);
+    t.desc = {.format = d.format, .width = d.width, .height = d.height, .usage = gdi::TextureUsage::None};
+    textures_.push_back(std::move(t));
+    compiled_ = false;
+    return {uint32_t(textures_.size() - 1)};
+}
+
+TextureId RenderGraph::importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc) {
+    if (!texture) throw gdi::Error("render graph: imported texture '" + name + "' is a null handle");
+    TextureInfo t;
+    t.name = std::move(name);
+    t.desc = desc;
+    t.imported = true;
+    textures_.push_back(std::move(t));
+    handles_.resize(textures_.size());
+    handles_.back() = texture;
+    compiled_ = false;
+    return {uint32_t(textures_.size() - 1)};
+}
+
+void RenderGraph::markOutput(TextureId t) {
+    if (t.index >= textures_.size()) throw gdi::Error("render graph: markOutput with an invalid texture id");
+    textures_[t.index].output = true;
+    compiled_ = false;
+}
+
+void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
+                          std::function<void(PassContext&)> execute) {
+    passes_.push_back({.name = std::move(name)});
+    executors_.push_back({.run = std::move(execute)});
+    PassBuilder b(*this, uint32_t(passes_.size() - 1));
+    if (setup) setup(b);
+    compiled_ = false;
+}
+
+const TextureInfo& RenderGraph::texture(TextureId id) const {
+    if (id.index >= textures_.size()) throw gdi::Error("render graph: invalid texture id");
+    return textures_[id.index];
+}
+
+gdi::TextureHandle RenderGraph::handle(TextureId id) const {
+    const TextureInfo& t = texture(id);
+    if (id.index >= handles_.size() || !handles_[id.index])
+        throw gdi::Error("render graph: texture '" + t.name + "' has no GPU texture (unused, culled or not compiled for a device)");
+    return handles_[id.index];
+}
+
+// ---- compile ----------------------------------------------------------------------------------
+
+void RenderGraph::cull() {
+    // Backwards: a pass survives if it has side effects or writes something still needed; what
+    // it reads is then needed, and what it overwrites entirely is not needed before it.
+    std::vector<bool> needed(textures_.size(), false);
+    for (size_t i = 0; i < textures_.size(); ++i) needed[i] = textures_[i].output;
+    for (size_t p = passes_.size(); p-- > 0;) {
+        PassInfo& pass = passes_[p];
+        bool alive = pass.sideEffect;
+        for (const TextureAccess& a : pass.accesses) alive = alive || (a.writes() && needed[a.texture.index]);
+        pass.culled = !alive;
+        if (!alive) continue;
+        for (const TextureAccess& a : pass.accesses)
+            if (a.writes() && !a.reads()) needed[a.texture.index] = false;
+        for (const TextureAccess& a : pass.accesses)
+            if (a.reads()) needed[a.texture.index] = true;
+    }
+}
+
+void RenderGraph::computeLifetimes() {
+    int lastAlive = -1;
+    for (size_t p = 0; p < passes_.size(); ++p) {
+        if (passes_[p].culled) continue;
+        lastAlive = int(p);
+        for (const TextureAccess& a : passes_[p].accesses) {
+            TextureInfo& t = textures_[a.texture.index];
+            if (t.firstPass < 0) {
+                t.firstPass = int(p);
+                if (a.reads() && !t.imported)
+                    throw gdi::Error("render graph: pass '" + passes_[p].name + "' reads transient texture '" + t.name +
+                                     "' before any pass writes it");
+            }
+            t.lastPass = int(p);
+            if (t.imported) continue;
+            t.desc.usage = t.desc.usage | (a.writes() ? gdi::TextureUsage::RenderTarget : gdi::TextureUsage::Sampled);
+        }
+    }
+    // Outputs live to the end of the frame: they are read after it.
+    for (TextureInfo& t : textures_)
+        if (t.output && t.used()) {
+            t.lastPass = std::max(t.lastPass, lastAlive);
+            if (!t.imported) t.desc.usage = t.desc.usage | gdi::TextureUsage::CopySrc;
+        }
+}
+
+void RenderGraph::planBarriers() {
+    // Every texture stays in one state until a pass needs another, or a pass writes what a
+    // previous pass wrote (write-after-write between passes needs ordering too).
+    std::vector<gdi::ResourceState> state(textures_.size(), gdi::ResourceState::Undefined);
+    std::vector<bool> seen(textures_.size(), false);
+    for (PassInfo& pass : passes_) {
+        pass.barriers.clear();
+        if (pass.culled) continue;
+        for (const TextureAccess& a : pass.accesses) {
+            const uint32_t i = a.texture.index;
+            const TextureInfo& t = textures_[i];
+            if (!seen[i]) {
+                seen[i] = true;
+                // Imported textures: earlier work is ordered by the backend when the graph
+                // switches automatic barriers off. Transients start Undefined: their memory may
+                // hold another texture's bytes.
+                if (!t.imported) pass.barriers.push_back({a.texture, gdi::ResourceState::Undefined, a.state});
+            } else if (state[i] != a.state || a.writes()) {
+                pass.barriers.push_back({a.texture, state[i], a.state});
+            }
+            state[i] = a.state;
+        }
+    }
+}
+
+void RenderGraph::compile(const CompileOptions& options) {
+    for (size_t p = 0; p < passes_.size(); ++p) {
+        const PassInfo& pass = passes_[p];
+        uint32_t w = 0, h = 0;
+        bool depth = false;
+        for (size_t k = 0; k < pass.accesses.size(); ++k) {
+            const TextureAccess& a = pass.accesses[k];
+            if (a.texture.index >= textures_.size())
+                throw gdi::Error("render graph: pass '" + pass.name + "' uses an invalid texture id");
+            const TextureInfo& t = textures_[a.texture.index];
+            for (size_t m = 0; m < k; ++m)
+                if (pass.accesses[m].texture == a.texture)
+                    throw gdi::Error("render graph: pass '" + pass.name + "' uses texture '" + t.name +
+                                     "' twice (a target cannot also be sampled in the same pass)");
+            if (!a.writes()) continue;
+            const bool isDepth = gdi::isDepthFormat(t.desc.format);
+            if ((a.state == gdi::ResourceState::DepthTarget) != isDepth)
+                throw gdi::Error("render graph: pass '" + pass.name + "': texture '" + t.name + "' (" +
+                                 std::string(gdi::formatInfo(t.desc.format).name) + ") cannot be a " +
+                                 (isDepth ? "colour" : "depth") + " target");
+            if (a.state == gdi::ResourceState::DepthTarget && depth)
+                throw gdi::Error("render graph: pass '" + pass.name + "' has two depth targets");
+            depth = depth || isDepth;
+            if (w == 0) w = t.desc.width, h = t.desc.height;
+            if (t.desc.width != w || t.desc.height != h)
+                throw gdi::Error("render graph: pass '" + pass.name + "': target '" + t.name + "' is " +
+                                 std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + ", the others " +
+                                 std::to_string(w) + "x" + std::to_string(h));
+        }
+    }
+    for (TextureInfo& t : textures_) {
+        t.firstPass = t.lastPass = -1;
+        t.offset = 0;
+        t.physical = -1;
+        if (!t.imported) t.desc.usage = gdi::TextureUsage::None;
+    }
+    cull();
+    computeLifetimes();
+    for (TextureInfo& t : textures_) {
+        if (t.imported || !t.used()) continue;
+        if (options.requirements) {
+            gdi::MemoryRequirements r = options.requirements(t.desc);
+            t.size = r.size;
+            t.alignment = std::max<uint64_t>(1, r.alignment);
+        } else {
+            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel;
+            t.alignment = 256;
+        }
+    }
+    memory_ = planMemory(textures_, options.aliasing);
+    aliasing_ = options.aliasing;
+    planBarriers();
+    compiled_ = true;
+}
+
+void RenderGraph::release() {
+    if (!device_) return;
+    device_->waitIdle();
+    for (gdi::TextureHandle t : owned_) device_->destroy(t);
+    owned_.clear();
+    if (heap_) device_->destroy(heap_);
+    heap_ = {};
+    for (Executor& e : executors_)
+        if (e.timer) device_->destroy(e.timer), e.timer = {};
+    for (size_t i = 0; i < textures_.size(); ++i)
+        if (i < handles_.size() && !textures_[i].imported) handles_[i] = {};
+    device_ = nullptr;
+}
+
+void RenderGraph::compile(gdi::Device& device, bool aliasing) {
+    release();
+    const bool heaps = device.info().features.memoryAliasing;
+    CompileOptions options;
+    options.aliasing = !aliasing ? AliasingMode::None : heaps ? AliasingMode::Memory : AliasingMode::ObjectReuse;
+    if (heaps) options.requirements = [&](const gdi::TextureDesc& d) { return device.textureMemoryRequirements(d); };
+    compile(options);
+
+    device_ = &device;
+    handles_.resize(textures_.size());
+    if (aliasing_ == AliasingMode::Memory && memory_.withAliasing > 0)
+        heap_ = device.createHeap({.size = memory_.withAliasing, .debugName = "render graph transients"});
+    for (size_t i = 0; i < textures_.size(); ++i) {
+        const TextureInfo& t = textures_[i];
+        if (t.imported || !t.used()) continue;
+        if (aliasing_ == AliasingMode::ObjectReuse && t.physical != int(i)) continue;  // shares below
+        gdi::TextureDesc d = t.desc;
+        d.debugName = t.name.c_str();
+        if (heap_) d.heap = heap_, d.heapOffset = t.offset;
+        handles_[i] = device.createTexture(d);
+        owned_.push_back(handles_[i]);
+    }
+    for (size_t i = 0; i < textures_.size(); ++i)
+        if (!textures_[i].imported && textures_[i].used() && !handles_[i]) handles_[i] = handles_[textures_[i].physical];
+    if (device.info().features.timestamps)
+        for (size_t p = 0; p < passes_.size(); ++p)
+            if (!passes_[p].culled) executors_[p].timer = device.createTimer();
+}
+
+// ---- execute ----------------------------------------------------------------------------------
+
+gdi::TextureHandle PassContext::texture(TextureId id) const { return graph_.handle(id); }
+
+void PassContext::beginRenderPass() {
+    const PassInfo& pass = graph_.passes_[pass_];
+    gdi::RenderPassDesc rp;
+    for (const TextureAccess& a : pass.accesses) {
+        if (!a.writes()) continue;
+        const TextureInfo& t = graph_.textures_[a.texture.index];
+        // Contents nobody reads after this pass need not reach memory.
+        const bool keep = t.imported || t.output || t.lastPass > int(pass_);
+        const gdi::StoreOp store = keep ? gdi::StoreOp::Store : gdi::StoreOp::DontCare;
+        if (a.state == gdi::ResourceState::DepthTarget) {
+            rp.depth = {.texture = texture(a.texture), .load = a.load, .store = store, .clearDepth = a.clearDepth};
+        } else {
+            gdi::ColorAttachment c{.texture = texture(a.texture), .load = a.load, .store = store};
+            std::copy(a.clearColor.begin(), a.clearColor.end(), c.clear);
+            rp.colors.push_back(c);
+        }
+    }
+    if (rp.colors.empty() && !rp.depth.texture)
+        throw gdi::Error("render graph: pass '" + pass.name + "' begins a render pass but declared no targets");
+    cmd.beginRenderPass(rp);
+}
+
+void RenderGraph::execute(gdi::CommandList& cmd) {
+    if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
+    cmd.setAutomaticBarriers(false);
+    std::vector<gdi::TextureBarrier> barriers;
+    for (size_t p = 0; p < passes_.size(); ++p) {
+        const PassInfo& pass = passes_[p];
+        if (pass.culled) continue;
+        barriers.clear();
+        for (const PlannedBarrier& b : pass.barriers) barriers.push_back({handle(b.texture), b.before, b.after});
+        cmd.barrier(barriers.data(), uint32_t(barriers.size()));
+        cmd.pushDebugGroup(pass.name.c_str());
+        Executor& e = executors_[p];
+        if (e.timer) cmd.beginTimer(e.timer);
+        PassContext ctx(cmd, *this, uint32_t(p));
+        if (e.run) e.run(ctx);
+        if (e.timer) cmd.endTimer(e.timer);
+        cmd.popDebugGroup();
+        e.timed = bool(e.timer);
+    }
+    cmd.setAutomaticBarriers(true);
+}
+
+std::vector<PassTiming> RenderGraph::passTimings() const {
+    std::vector<PassTiming> out;
+    if (!device_) return out;
+    for (size_t p = 0; p < passes_.size(); ++p)
+        if (executors_[p].timed)
+            if (auto ns = device_->timerNanoseconds(executors_[p].timer)) out.push_back({passes_[p].name, *ns / 1e6});
+    return out;
+}
+
+// ---- report -----------------------------------------------------------------------------------
+
+std::string RenderGraph::toDot() const {
+    auto quote = [](const std::string& s) {
+        std::string q = "\"";
+        for (char c : s) q += (c == '"' ? std::string("\\\"") : std::string(1, c));
+        return q + "\"";
+    };
+    static const char* modeNames[] = {"none", "memory", "object reuse"};
+    std::ostringstream o;
+    o << "digraph RenderGraph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
+    o << "  label=" << quote("transient memory: " + kib(memory_.withoutAliasing) + " without aliasing, " +
+                             kib(memory_.withAliasing) + " with (" + modeNames[int(aliasing_)] + ")")
+      << ";\n";
+    for (size_t p = 0; p < passes_.size(); ++p) {
+        const PassInfo& pass = passes_[p];
+        std::string label = std::to_string(p) + ": " + pass.name;
+        for (const PlannedBarrier& b : pass.barriers)
+            label += "\\n" + textures_[b.texture.index].name + ": " + gdi::resourceStateName(b.before) + " -> " +
+                     gdi::resourceStateName(b.after);
+        if (pass.culled) label += "\\n(culled)";
+        o << "  p" << p << " [shape=box, label=" << quote(label)
+          << (pass.culled ? ", style=dashed, color=gray50, fontcolor=gray50" : ", style=filled, fillcolor=lightblue")
+          << "];\n";
+    }
+    for (size_t i = 0; i < textures_.size(); ++i) {
+        const TextureInfo& t = textures_[i];
+        std::string label = t.name + "\\n" + std::string(gdi::formatInfo(t.desc.format).name) + " " +
+                            std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height);
+        if (t.imported) label += "\\nimported";
+        if (!t.used()) label += "\\nunused";
+        else label += "\\npasses " + std::to_string(t.firstPass) + "-" + std::to_string(t.lastPass);
+        if (!t.imported && t.used()) {
+            label += "\\n" + kib(t.size);
+            if (aliasing_ == AliasingMode::Memory) label += " @ " + std::to_string(t.offset);
+            if (aliasing_ == AliasingMode::ObjectReuse && t.physical != int(i))
+                label += "\\nreuses " + textures_[t.physical].name;
+        }
+        o << "  t" << i << " [shape=ellipse, label=" << quote(label)
+          << (t.output ? ", peripheries=2" : "") << (t.used() ? "" : ", style=dashed, color=gray50") << "];\n";
+    }
+    for (size_t p = 0; p < passes_.size(); ++p)
+        for (const TextureAccess& a : passes_[p].accesses) {
+            const std::string style = passes_[p].culled ? " [style=dashed, color=gray50]" : "";
+            if (a.reads()) o << "  t" << a.texture.index << " -> p" << p << style << ";\n";
+            if (a.writes()) o << "  p" << p << " -> t" << a.texture.index << style << ";\n";
+        }
+    o << "}\n";
+    return o.str();
+}
+
+}  // namespace fe::graph

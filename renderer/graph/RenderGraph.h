@@ -1,0 +1,175 @@
+// Layer 6 (Organisation): the render graph.
+//
+// A frame is declared as passes that say which textures they write (colour/depth targets)
+// and read (sampled). compile() then
+//   1. culls every pass whose results nothing uses (outputs and side effects are roots),
+//   2. computes each texture's first and last use among the surviving passes,
+//   3. plans memory for the transient textures: textures whose lifetimes do not overlap share
+//      bytes of one heap (Vulkan: placed images) or share whole objects (OpenGL),
+//   4. derives the barriers before each pass from the state each texture moves between.
+// execute() records the passes in order, each in a debug group and a GPU timer, with the
+// backend's automatic barriers off: the graph's barriers are the only synchronisation.
+//
+//   graph::RenderGraph g;
+//   auto depth = g.createTexture("depth", {.format = gdi::Format::D32F, .width = w, .height = h});
+//   auto out = g.importTexture("output", outputTexture);
+//   g.addPass("forward", [&](graph::PassBuilder& b) {
+//       b.colorTarget(out);
+//       b.depthTarget(depth);
+//   }, [&](graph::PassContext& ctx) {
+//       ctx.beginRenderPass();
+//       ... draws on ctx.cmd ...
+//       ctx.cmd.endRenderPass();
+//   });
+//   g.markOutput(out);
+//   g.compile(device);            // plan + create transient textures
+//   g.execute(cmd);               // every frame
+//
+// A compiled graph is kept and executed frame after frame; transient memory is allocated once
+// at compile and reused by every frame (recompile when the frame's structure changes).
+#pragma once
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+#include "graph/GraphTypes.h"
+
+namespace fe::graph {
+
+// A texture the graph creates and whose memory it may alias. Usage is derived from the passes.
+struct TransientTextureDesc {
+    gdi::Format format = gdi::Format::RGBA8;
+    uint32_t width = 1;
+    uint32_t height = 1;
+};
+
+// How a pass uses a texture.
+struct TextureAccess {
+    TextureId texture;
+    gdi::ResourceState state = gdi::ResourceState::ShaderRead;
+    gdi::LoadOp load = gdi::LoadOp::Load;  // targets only
+    std::array<float, 4> clearColor{0, 0, 0, 0};
+    float clearDepth = 1.0f;
+    bool reads() const;   // sampled, or a target whose old contents are loaded
+    bool writes() const;  // a target
+};
+
+class PassBuilder {
+public:
+    // Attachments in declaration order (colour index 0, 1, ...).
+    void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, std::array<float, 4> clear = {0, 0, 0, 0});
+    void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, float clearDepth = 1.0f);
+    void sample(TextureId texture);
+    // The pass has effects the graph cannot see (e.g. writes a buffer read back later): never culled.
+    void sideEffect();
+
+private:
+    friend class RenderGraph;
+    explicit PassBuilder(class RenderGraph& g, uint32_t pass) : graph_(g), pass_(pass) {}
+    RenderGraph& graph_;
+    uint32_t pass_;
+};
+
+class PassContext {
+public:
+    gdi::CommandList& cmd;
+    gdi::TextureHandle texture(TextureId id) const;
+    // Begins a render pass on the declared targets with their load ops and clear values.
+    void beginRenderPass();
+
+private:
+    friend class RenderGraph;
+    PassContext(gdi::CommandList& c, const class RenderGraph& g, uint32_t pass) : cmd(c), graph_(g), pass_(pass) {}
+    const RenderGraph& graph_;
+    uint32_t pass_;
+};
+
+struct CompileOptions {
+    AliasingMode aliasing = AliasingMode::Memory;
+    // Size and alignment of a texture's memory; default: width x height x bytes per pixel, 256-aligned.
+    std::function<gdi::MemoryRequirements(const gdi::TextureDesc&)> requirements;
+};
+
+// A state change the graph records before a pass (gdi::TextureBarrier once textures exist).
+struct PlannedBarrier {
+    TextureId texture;
+    gdi::ResourceState before = gdi::ResourceState::Undefined;
+    gdi::ResourceState after = gdi::ResourceState::ShaderRead;
+};
+
+struct PassInfo {
+    std::string name;
+    std::vector<TextureAccess> accesses;
+    bool sideEffect = false;
+    bool culled = false;
+    std::vector<PlannedBarrier> barriers;  // recorded before the pass
+};
+
+struct PassTiming {
+    std::string name;
+    double gpuMilliseconds = 0;
+};
+
+class RenderGraph {
+public:
+    RenderGraph();
+    ~RenderGraph();
+    RenderGraph(const RenderGraph&) = delete;
+    RenderGraph& operator=(const RenderGraph&) = delete;
+
+    TextureId createTexture(std::string name, const TransientTextureDesc& desc);
+    TextureId importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
+    void markOutput(TextureId texture);  // its producers are never culled
+    void addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
+                 std::function<void(PassContext&)> execute);
+
+    // Plans without a device (unit tests, reports). Throws gdi::Error on a malformed graph.
+    void compile(const CompileOptions& options);
+    // Plans for the device (Memory aliasing where it has heaps, ObjectReuse elsewhere, or None
+    // when aliasing is false) and creates the transient textures and the pass timers.
+    void compile(gdi::Device& device, bool aliasing = true);
+
+    // Records every surviving pass. Requires compile(device).
+    void execute(gdi::CommandList& cmd);
+
+    const std::vector<PassInfo>& passes() const { return passes_; }
+    const std::vector<TextureInfo>& textures() const { return textures_; }
+    const TextureInfo& texture(TextureId id) const;
+    gdi::TextureHandle handle(TextureId id) const;  // after compile(device)
+    MemoryReport memory() const { return memory_; }
+    AliasingMode aliasing() const { return aliasing_; }
+    // GPU time per executed pass of the last executed frame, once its fence has signalled.
+    std::vector<PassTiming> passTimings() const;
+    // Graphviz: passes as boxes (culled ones dashed), textures as ellipses with lifetime and memory.
+    std::string toDot() const;
+
+private:
+    friend class PassBuilder;
+    friend class PassContext;
+    void release();
+    void cull();
+    void computeLifetimes();
+    void planBarriers();
+
+    struct Executor {
+        std::function<void(PassContext&)> run;
+        gdi::TimerHandle timer;
+        bool timed = false;
+    };
+    std::vector<TextureInfo> textures_;
+    std::vector<gdi::TextureHandle> handles_;   // per texture
+    std::vector<PassInfo> passes_;
+    std::vector<Executor> executors_;
+    MemoryReport memory_;
+    AliasingMode aliasing_ = AliasingMode::None;
+    bool compiled_ = false;
+    // What compile(device) created, released on recompile and destruction.
+    gdi::Device* device_ = nullptr;
+    gdi::HeapHandle heap_;
+    std::vector<gdi::TextureHandle> owned_;
+};
+
+}  // namespace fe::graph

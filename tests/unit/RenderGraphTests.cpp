@@ -1,0 +1,381 @@
+// The render graph: culling, lifetimes, memory plans that never overlap live textures (a
+// randomized property test), barriers, errors, and real execution with aliased memory on every
+// backend (validation layer on).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/ShaderRegistry.h"
+#include "graph/RenderGraph.h"
+
+using namespace fe;
+using graph::RenderGraph;
+using graph::TextureId;
+using gdi::Format;
+using gdi::LoadOp;
+using gdi::ResourceState;
+
+namespace {
+const gdi::TextureDesc kOutputDesc{.format = Format::RGBA8, .width = 64, .height = 64,
+                                   .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc};
+
+// An imported output with a fake handle: planning never touches the device.
+TextureId importFake(RenderGraph& g, const char* name = "output") {
+    return g.importTexture(name, gdi::TextureHandle{1}, kOutputDesc);
+}
+
+bool culled(const RenderGraph& g, const std::string& name) {
+    for (const auto& p : g.passes())
+        if (p.name == name) return p.culled;
+    ADD_FAILURE() << "no pass " << name;
+    return false;
+}
+}  // namespace
+
+TEST(RenderGraph, CullsPassesWhoseResultsNothingUses) {
+    RenderGraph g;
+    auto a = g.createTexture("a", {.width = 64, .height = 64});
+    auto unused = g.createTexture("unused", {.width = 64, .height = 64});
+    auto out = importFake(g);
+    g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
+    g.addPass("makeUnused", [&](auto& b) { b.sample(a); b.colorTarget(unused); }, {});
+    g.addPass("final", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.addPass("effect", [&](auto& b) { b.sideEffect(); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    EXPECT_FALSE(culled(g, "makeA"));
+    EXPECT_TRUE(culled(g, "makeUnused"));
+    EXPECT_FALSE(culled(g, "final"));
+    EXPECT_FALSE(culled(g, "effect"));
+    EXPECT_FALSE(g.texture(unused).used());
+    EXPECT_EQ(g.memory().transientTextures, 1u);  // only "a" needs memory
+}
+
+TEST(RenderGraph, CullsAWriteThatALaterClearHides) {
+    RenderGraph g;
+    auto a = g.createTexture("a", {.width = 8, .height = 8});
+    auto out = importFake(g);
+    g.addPass("first", [&](auto& b) { b.colorTarget(a); }, {});
+    g.addPass("second", [&](auto& b) { b.colorTarget(a, LoadOp::Clear); }, {});
+    g.addPass("accumulate", [&](auto& b) { b.colorTarget(a, LoadOp::Load); }, {});
+    g.addPass("final", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    EXPECT_TRUE(culled(g, "first"));  // "second" clears what it wrote
+    EXPECT_FALSE(culled(g, "second"));
+    EXPECT_FALSE(culled(g, "accumulate"));
+}
+
+TEST(RenderGraph, NothingMarkedOutputCullsEverything) {
+    RenderGraph g;
+    auto out = importFake(g);
+    g.addPass("final", [&](auto& b) { b.colorTarget(out); }, {});
+    g.compile(graph::CompileOptions{});
+    EXPECT_TRUE(culled(g, "final"));
+}
+
+TEST(RenderGraph, LifetimesSpanFirstToLastUse) {
+    RenderGraph g;
+    auto a = g.createTexture("a", {.width = 8, .height = 8});
+    auto b2 = g.createTexture("b", {.width = 8, .height = 8});
+    auto out = importFake(g);
+    g.addPass("p0", [&](auto& b) { b.colorTarget(a); }, {});
+    g.addPass("p1", [&](auto& b) { b.sample(a); b.colorTarget(b2); }, {});
+    g.addPass("p2", [&](auto& b) { b.sample(b2); b.colorTarget(out); }, {});
+    g.addPass("p3", [&](auto& b) { b.colorTarget(out, LoadOp::Load); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    EXPECT_EQ(g.texture(a).firstPass, 0);
+    EXPECT_EQ(g.texture(a).lastPass, 1);
+    EXPECT_EQ(g.texture(b2).firstPass, 1);
+    EXPECT_EQ(g.texture(b2).lastPass, 2);
+    EXPECT_EQ(g.texture(out).lastPass, 3);
+    // Usage follows the accesses.
+    EXPECT_TRUE(any(g.texture(a).desc.usage, gdi::TextureUsage::RenderTarget));
+    EXPECT_TRUE(any(g.texture(a).desc.usage, gdi::TextureUsage::Sampled));
+}
+
+TEST(RenderGraph, DisjointLifetimesShareMemoryOverlappingOnesDoNot) {
+    RenderGraph g;
+    auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 16, .height = 16});
+    auto b2 = g.createTexture("b", {.format = Format::RGBA16F, .width = 16, .height = 16});
+    auto c = g.createTexture("c", {.format = Format::RGBA16F, .width = 16, .height = 16});
+    auto out = importFake(g);
+    g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
+    g.addPass("aToB", [&](auto& b) { b.sample(a); b.colorTarget(b2); }, {});
+    g.addPass("makeC", [&](auto& b) { b.colorTarget(c); }, {});
+    g.addPass("final", [&](auto& b) { b.sample(b2); b.sample(c); b.colorTarget(out); }, {});
+    g.markOutput(out);
+
+    g.compile({.aliasing = graph::AliasingMode::Memory});
+    const uint64_t size = 16 * 16 * 8;
+    EXPECT_EQ(g.memory().withoutAliasing, 3 * size);
+    EXPECT_EQ(g.memory().withAliasing, 2 * size);
+    EXPECT_EQ(g.texture(c).offset, g.texture(a).offset);
+    EXPECT_NE(g.texture(b2).offset, g.texture(a).offset);
+
+    g.compile({.aliasing = graph::AliasingMode::ObjectReuse});
+    EXPECT_EQ(g.texture(c).physical, int(a.index));
+    EXPECT_EQ(g.memory().allocations, 2u);
+    EXPECT_EQ(g.memory().withAliasing, 2 * size);
+
+    g.compile({.aliasing = graph::AliasingMode::None});
+    EXPECT_EQ(g.memory().withAliasing, 3 * size);
+}
+
+TEST(RenderGraph, ObjectReuseNeedsIdenticalDescriptions) {
+    RenderGraph g;
+    auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 16, .height = 16});
+    auto c = g.createTexture("c", {.format = Format::RGBA8, .width = 16, .height = 16});
+    auto out = importFake(g);
+    g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
+    g.addPass("useA", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.addPass("makeC", [&](auto& b) { b.colorTarget(c); }, {});
+    g.addPass("useC", [&](auto& b) { b.sample(c); b.colorTarget(out, LoadOp::Load); }, {});
+    g.markOutput(out);
+    g.compile({.aliasing = graph::AliasingMode::ObjectReuse});
+    EXPECT_NE(g.texture(c).physical, g.texture(a).physical);
+    g.compile({.aliasing = graph::AliasingMode::Memory});
+    EXPECT_EQ(g.texture(c).offset, g.texture(a).offset);  // bytes can be shared across formats
+}
+
+// Property: over many random graphs, no two textures whose lifetimes overlap share a byte
+// (Memory) or an object (ObjectReuse), offsets respect alignment, and aliasing never costs more.
+TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
+    std::mt19937 rng(1234);
+    const Format formats[] = {Format::RGBA8, Format::RGBA16F, Format::RGBA32F, Format::R32F, Format::D32F};
+    int sharedSomewhere = 0;
+    for (int iteration = 0; iteration < 300; ++iteration) {
+        RenderGraph g;
+        std::vector<TextureId> tex;
+        const int textureCount = 2 + int(rng() % 10);
+        const uint32_t w = 8 << (rng() % 3), h = 8 << (rng() % 3);  // one size per graph: passes need equal targets
+        for (int i = 0; i < textureCount; ++i)
+            tex.push_back(g.createTexture("t" + std::to_string(i), {.format = formats[rng() % 5], .width = w, .height = h}));
+        auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = w, .height = h});
+        std::vector<bool> written(textureCount, false);
+        const int passCount = 2 + int(rng() % 12);
+        for (int p = 0; p < passCount; ++p) {
+            // Sample up to two written textures, write one colour (and maybe one depth) target.
+            std::vector<int> reads;
+            for (int k = 0; k < 2; ++k) {
+                int r = int(rng() % textureCount);
+                if (written[r] && std::find(reads.begin(), reads.end(), r) == reads.end()) reads.push_back(r);
+            }
+            int colour = -1, depth = -1;
+            for (int tries = 0; tries < 8 && (colour < 0 || depth < 0); ++tries) {
+                int t = int(rng() % textureCount);
+                if (std::find(reads.begin(), reads.end(), t) != reads.end() || t == colour || t == depth) continue;
+                const bool isDepth = gdi::isDepthFormat(g.texture(tex[t]).desc.format);
+                if (isDepth && depth < 0 && rng() % 2) depth = t;
+                else if (!isDepth && colour < 0) colour = t;
+            }
+            const bool last = p == passCount - 1;
+            g.addPass("p" + std::to_string(p), [&](graph::PassBuilder& b) {
+                for (int r : reads) b.sample(tex[r]);
+                if (colour >= 0) b.colorTarget(tex[colour], written[colour] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
+                if (depth >= 0) b.depthTarget(tex[depth], written[depth] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
+                if (last || rng() % 4 == 0) b.colorTarget(out, LoadOp::Load);
+            }, {});
+            if (colour >= 0) written[colour] = true;
+            if (depth >= 0) written[depth] = true;
+        }
+        g.markOutput(out);
+        for (auto mode : {graph::AliasingMode::Memory, graph::AliasingMode::ObjectReuse}) {
+            graph::CompileOptions options{.aliasing = mode};
+            // Unusual sizes and alignments, as real drivers report them.
+            options.requirements = [](const gdi::TextureDesc& d) {
+                const uint64_t bytes = uint64_t(d.width) * d.height * gdi::formatInfo(d.format).bytesPerPixel;
+                return gdi::MemoryRequirements{bytes + 96, gdi::isDepthFormat(d.format) ? 4096u : 512u};
+            };
+            g.compile(options);
+            const auto& ts = g.textures();
+            uint64_t heapEnd = 0;
+            for (size_t i = 0; i < ts.size(); ++i) {
+                if (ts[i].imported || !ts[i].used()) continue;
+                heapEnd = std::max(heapEnd, ts[i].offset + ts[i].size);
+                if (mode == graph::AliasingMode::Memory) EXPECT_EQ(ts[i].offset % ts[i].alignment, 0u);
+                for (size_t j = i + 1; j < ts.size(); ++j) {
+                    if (ts[j].imported || !ts[j].used()) continue;
+                    const bool shareBytes = ts[i].offset < ts[j].offset + ts[j].size && ts[j].offset < ts[i].offset + ts[i].size;
+                    const bool shareObject = ts[i].physical == ts[j].physical;
+                    if (mode == graph::AliasingMode::Memory ? shareBytes : shareObject) {
+                        ++sharedSomewhere;
+                        ASSERT_FALSE(ts[i].overlaps(ts[j]))
+                            << "iteration " << iteration << ": " << ts[i].name << " and " << ts[j].name << " are both live in passes "
+                            << std::max(ts[i].firstPass, ts[j].firstPass) << ".." << std::min(ts[i].lastPass, ts[j].lastPass)
+                            << " yet share memory\n"
+                            << g.toDot();
+                        if (mode == graph::AliasingMode::ObjectReuse) {
+                            EXPECT_EQ(ts[i].desc.format, ts[j].desc.format);
+                            EXPECT_EQ(ts[i].desc.usage, ts[j].desc.usage);
+                        }
+                    }
+                }
+            }
+            EXPECT_LE(g.memory().withAliasing, g.memory().withoutAliasing);
+            if (mode == graph::AliasingMode::Memory) EXPECT_EQ(g.memory().withAliasing, heapEnd);
+        }
+    }
+    EXPECT_GT(sharedSomewhere, 100);  // the property was exercised, not vacuously true
+}
+
+TEST(RenderGraph, BarriersFollowStateChanges) {
+    RenderGraph g;
+    auto gb = g.createTexture("gbuffer", {.width = 8, .height = 8});
+    auto depth = g.createTexture("depth", {.format = Format::D32F, .width = 8, .height = 8});
+    auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = 8, .height = 8});
+    g.addPass("geometry", [&](auto& b) { b.colorTarget(gb); b.depthTarget(depth); }, {});
+    g.addPass("lighting", [&](auto& b) { b.sample(gb); b.sample(depth); b.colorTarget(out); }, {});
+    g.addPass("transparent", [&](auto& b) { b.colorTarget(out, LoadOp::Load); b.depthTarget(depth, LoadOp::Load); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    auto has = [&](size_t pass, TextureId t, ResourceState before, ResourceState after) {
+        for (const auto& b : g.passes()[pass].barriers)
+            if (b.texture == t && b.before == before && b.after == after) return true;
+        return false;
+    };
+    EXPECT_TRUE(has(0, gb, ResourceState::Undefined, ResourceState::RenderTarget));
+    EXPECT_TRUE(has(0, depth, ResourceState::Undefined, ResourceState::DepthTarget));
+    EXPECT_TRUE(has(1, gb, ResourceState::RenderTarget, ResourceState::ShaderRead));
+    EXPECT_TRUE(has(1, depth, ResourceState::DepthTarget, ResourceState::ShaderRead));
+    EXPECT_EQ(g.passes()[1].barriers.size(), 2u);  // the imported output's first use needs none
+    EXPECT_TRUE(has(2, depth, ResourceState::ShaderRead, ResourceState::DepthTarget));
+    EXPECT_TRUE(has(2, out, ResourceState::RenderTarget, ResourceState::RenderTarget));  // write after write
+    const std::string dot = g.toDot();
+    EXPECT_NE(dot.find("digraph RenderGraph"), std::string::npos);
+    EXPECT_NE(dot.find("1: lighting"), std::string::npos);
+    EXPECT_NE(dot.find("depth: ShaderRead -> DepthTarget"), std::string::npos);
+}
+
+TEST(RenderGraph, MalformedGraphsAreClearErrors) {
+    auto expectError = [](const std::function<void(RenderGraph&, TextureId, TextureId)>& build, const std::string& message) {
+        RenderGraph g;
+        auto a = g.createTexture("a", {.width = 8, .height = 8});
+        auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = 8, .height = 8});
+        build(g, a, out);
+        g.markOutput(out);
+        try {
+            g.compile(graph::CompileOptions{});
+            ADD_FAILURE() << "no error, expected: " << message;
+        } catch (const gdi::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    expectError([](auto& g, auto a, auto out) { g.addPass("p", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {}); },
+                "reads transient texture 'a' before any pass writes it");
+    expectError([](auto& g, auto a, auto out) {
+        g.addPass("w", [&](auto& b) { b.colorTarget(a); }, {});
+        g.addPass("p", [&](auto& b) { b.sample(a); b.colorTarget(a, LoadOp::Load); b.colorTarget(out); }, {});
+    }, "uses texture 'a' twice");
+    expectError([](auto& g, auto, auto out) {
+        auto big = g.createTexture("big", {.width = 16, .height = 16});
+        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.colorTarget(big); }, {});
+    }, "target 'big' is 16x16, the others 8x8");
+    expectError([](auto& g, auto a, auto) { g.addPass("p", [&](auto& b) { b.depthTarget(a); }, {}); },
+                "cannot be a depth target");
+    expectError([](auto& g, auto, auto) { g.addPass("p", [&](auto& b) { b.colorTarget(TextureId{99}); }, {}); },
+                "invalid texture id");
+    RenderGraph g;
+    EXPECT_THROW(g.createTexture("zero", {.width = 0, .height = 8}), gdi::Error);
+}
+
+// ---- on every backend: real textures, aliased memory, explicit barriers --------------------------
+
+class RenderGraphOnDevice : public ::testing::TestWithParam<std::string> {
+protected:
+    void SetUp() override {
+        gdi::BackendProbe p = gdi::probeBackend(GetParam(), true);
+        if (!p.available) GTEST_SKIP() << GetParam() << " unavailable: " << p.reason;
+        device = std::move(p.device);
+    }
+    void TearDown() override {
+        if (device) EXPECT_EQ(device->validationErrorCount(), 0u);
+    }
+    std::unique_ptr<gdi::Device> device;
+};
+
+// makeA (red) -> aToB (copy by sampling) -> makeC (blue, aliasing A's memory) -> final (B + C).
+// If C's memory overlapped B's, B would turn blue before "final" and the sum would be wrong.
+TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
+    gdi::Device& d = *device;
+    using namespace gdi;
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    const float params[8] = {0, 0, 0, 0, 0.5f, 0, 0, 0};
+    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, params);
+    auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                                            {1, BindingType::SampledTexture, ShaderStage::Fragment}};
+    auto copy = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA16F},
+                                          .bindings = slots});
+    auto add = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                         .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
+                                                    .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero}},
+                                         .colorFormats = {Format::RGBA8}, .bindings = slots});
+    auto output = d.createTexture(kOutputDesc);
+
+    for (bool aliasing : {true, false}) {
+        RenderGraph g;
+        auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 64, .height = 64});
+        auto b2 = g.createTexture("b", {.format = Format::RGBA16F, .width = 64, .height = 64});
+        auto c = g.createTexture("c", {.format = Format::RGBA16F, .width = 64, .height = 64});
+        auto unused = g.createTexture("unused", {.format = Format::RGBA16F, .width = 64, .height = 64});
+        auto out = g.importTexture("out", output, kOutputDesc);
+        bool unusedRan = false;
+        auto draw = [&](graph::PassContext& ctx, PipelineHandle p, std::initializer_list<TextureId> inputs) {
+            ctx.cmd.setPipeline(p);
+            ctx.cmd.setUniformBuffer(0, ubo);
+            for (TextureId t : inputs) {
+                ctx.cmd.setTexture(1, ctx.texture(t), sampler);
+                ctx.cmd.draw(3);
+            }
+        };
+        g.addPass("makeA", [&](auto& b) { b.colorTarget(a, LoadOp::Clear, {1, 0, 0, 1}); },
+                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); ctx.cmd.endRenderPass(); });
+        g.addPass("aToB", [&](auto& b) { b.sample(a); b.colorTarget(b2); },
+                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); draw(ctx, copy, {a}); ctx.cmd.endRenderPass(); });
+        g.addPass("makeC", [&](auto& b) { b.colorTarget(c, LoadOp::Clear, {0, 0, 1, 0}); },
+                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); ctx.cmd.endRenderPass(); });
+        g.addPass("makeUnused", [&](auto& b) { b.colorTarget(unused); }, [&](graph::PassContext&) { unusedRan = true; });
+        g.addPass("final", [&](auto& b) { b.sample(b2); b.sample(c); b.colorTarget(out); },
+                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); draw(ctx, add, {b2, c}); ctx.cmd.endRenderPass(); });
+        g.markOutput(out);
+        g.compile(d, aliasing);
+        if (aliasing) {
+            EXPECT_LT(g.memory().withAliasing, g.memory().withoutAliasing) << g.toDot();
+            EXPECT_EQ(g.aliasing(), d.info().features.memoryAliasing ? graph::AliasingMode::Memory
+                                                                     : graph::AliasingMode::ObjectReuse);
+        }
+        EXPECT_THROW(g.handle(unused), gdi::Error);
+        for (int frame = 0; frame < 2; ++frame) {  // the second frame reuses the aliased memory
+            auto cmd = d.createCommandList();
+            g.execute(*cmd);
+            d.wait(d.submit(*cmd));
+        }
+        EXPECT_FALSE(unusedRan);
+        Image img = d.readTexture(output);
+        int wrong = 0;
+        for (uint32_t y = 0; y < img.height; ++y)
+            for (uint32_t x = 0; x < img.width; ++x) {
+                auto t = img.texel(x, y);
+                wrong += std::abs(t[0] - 1) > 0.01f || std::abs(t[1]) > 0.01f || std::abs(t[2] - 1) > 0.01f;
+            }
+        EXPECT_EQ(wrong, 0) << "aliasing " << aliasing;
+        if (d.info().features.timestamps) {
+            auto timings = g.passTimings();
+            ASSERT_EQ(timings.size(), 4u);  // the culled pass is not timed
+            EXPECT_EQ(timings[0].name, "makeA");
+        }
+    }
+    for (auto p : {copy, add}) d.destroy(p);
+    d.destroy(output);
+    d.destroy(sampler);
+    d.destroy(ubo);
+    d.destroy(vs);
+    d.destroy(fs);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, RenderGraphOnDevice, ::testing::ValuesIn(gdi::backendNames()),
+                         [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
