@@ -18,7 +18,7 @@ struct TextureId {
 enum class AliasingMode : uint8_t {
     None,         // every transient texture gets its own memory
     Memory,       // transient textures share heap bytes when their lifetimes do not overlap
-    ObjectReuse,  // textures of identical description share one object (APIs without heaps)
+    ObjectReuse,  // textures of one format and size share an object (APIs without heaps)
 };
 
 struct TextureInfo {

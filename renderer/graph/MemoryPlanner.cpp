@@ -11,8 +11,7 @@ uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) / a * a; }
 bool transient(const TextureInfo& t) { return !t.imported && t.used(); }
 
 bool sameObject(const gdi::TextureDesc& a, const gdi::TextureDesc& b) {
-    return a.format == b.format && a.width == b.width && a.height == b.height && a.mipLevels == b.mipLevels &&
-           a.usage == b.usage;
+    return a.format == b.format && a.width == b.width && a.height == b.height && a.mipLevels == b.mipLevels;
 }
 
 MemoryReport placeInHeap(std::vector<TextureInfo>& textures, std::vector<uint32_t>& order) {
@@ -83,6 +82,9 @@ MemoryReport reuseObjects(std::vector<TextureInfo>& textures, std::vector<uint32
         }
         t.offset = 0;
     }
+    // A shared object is created with every usage of the textures it stands for.
+    for (uint32_t i : order) textures[textures[i].physical].desc.usage = textures[textures[i].physical].desc.usage | textures[i].desc.usage;
+    for (uint32_t i : order) textures[i].desc.usage = textures[textures[i].physical].desc.usage;
     r.allocations = uint32_t(objects.size());
     return r;
 }

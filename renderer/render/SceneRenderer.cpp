@@ -9,6 +9,7 @@ namespace fe::render {
 namespace {
 constexpr gdi::Format kOutputFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
 constexpr gdi::Format kDepthFormat = gdi::Format::D32F;
+constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a screen shows
 // G-buffer: base colour + metallic, world normal + roughness, emissive + unlit flag.
 constexpr gdi::Format kGb0 = gdi::Format::RGBA8_SRGB, kGb1 = gdi::Format::RGBA16F, kGb2 = gdi::Format::RGBA16F;
 // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
@@ -40,16 +41,6 @@ Technique techniqueFromName(const std::string& name) {
     throw gdi::Error("unknown technique '" + name + "' (valid: forward, deferred, redeferred)");
 }
 
-gdi::TextureHandle SceneRenderer::makeTarget(const char* name, gdi::Format format, uint32_t w, uint32_t h) {
-    gdi::TextureHandle t = device_.createTexture({.format = format, .width = w, .height = h,
-                                                  .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
-                                                           gdi::TextureUsage::CopySrc,
-                                                  .debugName = name});
-    ownedTextures_.push_back(t);
-    targets_.push_back({name, format, w, h});
-    return t;
-}
-
 SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& s)
     : device_(device), scene_(scene), settings_(s) {
     if (s.width == 0 || s.height == 0 || s.width > 8192 || s.height > 8192)
@@ -61,72 +52,172 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     queue_ = std::make_unique<CommandQueue>(device, 2);
     gpuScene_ = std::make_unique<GpuScene>(device, scene);
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
-    output_ = makeTarget("output L_o", kOutputFormat, s.width, s.height);
-    depth_ = makeTarget("depth", kDepthFormat, s.width, s.height);
+    outputTexture_ = device.createTexture({.format = kOutputFormat, .width = s.width, .height = s.height,
+                                           .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
+                                                    gdi::TextureUsage::CopySrc,
+                                           .debugName = "output L_o"});
     pointSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest,
                                           .addressU = gdi::AddressMode::ClampToEdge,
                                           .addressV = gdi::AddressMode::ClampToEdge});
     fullscreenVs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")});
-    if (s.technique != Technique::Forward) {
-        gb0_ = makeTarget("gbuffer0 base colour+metallic", kGb0, s.width, s.height);
-        gb1_ = makeTarget("gbuffer1 normal+roughness", kGb1, s.width, s.height);
-        gb2_ = makeTarget("gbuffer2 emissive+unlit", kGb2, s.width, s.height);
-    }
     const gdi::BindingSlot frameSlot{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics};
     if (s.technique == Technique::Deferred) {
         volumes_ = std::make_unique<LightVolumes>(device, "scene/deferred_light.frag", std::vector{kOutputFormat},
                                                   gbufferSlots(true));
-        fullscreenFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")});
-        fullscreenPipeline_ = device.createGraphicsPipeline({
-            .vertexShader = fullscreenVs_, .fragmentShader = fullscreenFs_,
+        lightingFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")});
+        lightingPipeline_ = device.createGraphicsPipeline({
+            .vertexShader = fullscreenVs_, .fragmentShader = lightingFs_,
             .blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                        .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::One}},
             .colorFormats = {kOutputFormat},
             .bindings = {frameSlot, {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
             .debugName = "emissive"});
     } else if (s.technique == Technique::Redeferred) {
-        const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
-        i0_ = makeTarget("ibuffer0 L_dg", kI0, iw, ih);
-        i1_ = makeTarget("ibuffer1 L_sg1", kI1, iw, ih);
-        i2_ = makeTarget("ibuffer2 L_sg2", kI2, iw, ih);
         volumes_ = std::make_unique<LightVolumes>(device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
                                                   gbufferSlots(false));
-        fullscreenFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/material.frag")});
+        lightingFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/material.frag")});
         std::vector<gdi::BindingSlot> b = gbufferSlots(true);
         b.push_back(frameSlot);
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-        fullscreenPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs_, .fragmentShader = fullscreenFs_,
-                                                             .colorFormats = {kOutputFormat}, .bindings = b,
-                                                             .debugName = "material"});
+        lightingPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs_, .fragmentShader = lightingFs_,
+                                                           .colorFormats = {kOutputFormat}, .bindings = b,
+                                                           .debugName = "material"});
     }
+    displayFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/display.frag")});
+    displayPipeline_ = device.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs_, .fragmentShader = displayFs_, .colorFormats = {kDisplayFormat},
+         .bindings = {frameSlot, {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+         .debugName = "display"});
+    buildGraph();
+    graph_.compile(device, s.aliasing);
 }
 
 SceneRenderer::~SceneRenderer() {
     queue_->waitIdle();
-    for (auto& t : timers_) device_.destroy(t.timer);
-    device_.destroy(fullscreenPipeline_);
-    device_.destroy(fullscreenVs_);
-    device_.destroy(fullscreenFs_);
+    for (auto p : {lightingPipeline_, displayPipeline_}) device_.destroy(p);
+    for (auto sh : {fullscreenVs_, lightingFs_, displayFs_}) device_.destroy(sh);
     device_.destroy(pointSampler_);
     volumes_.reset();
     geometry_.reset();
-    for (auto t : ownedTextures_) device_.destroy(t);
+    device_.destroy(outputTexture_);
     gpuScene_.reset();
     queue_.reset();
 }
 
-void SceneRenderer::beginTimed(gdi::CommandList& cmd, const char* name) {
-    if (timerCursor_ == timers_.size()) timers_.push_back({name, device_.createTimer()});
-    timers_[timerCursor_].name = name;
-    cmd.pushDebugGroup(name);
-    if (device_.info().features.timestamps) cmd.beginTimer(timers_[timerCursor_].timer);
+void SceneRenderer::bindGBuffer(gdi::CommandList& cmd, bool albedo) {
+    const gdi::TextureHandle gb0 = graph_.handle(gb0_), gb1 = graph_.handle(gb1_), gb2 = graph_.handle(gb2_);
+    if (albedo) cmd.setTexture(kSlotGBuffer0, gb0, pointSampler_);
+    cmd.setTexture(kSlotGBuffer1, gb1, pointSampler_);
+    cmd.setTexture(kSlotGBuffer2, gb2, pointSampler_);
+    cmd.setTexture(kSlotDepth, graph_.handle(depth_), pointSampler_);
 }
 
-void SceneRenderer::endTimed(gdi::CommandList& cmd) {
-    if (device_.info().features.timestamps) cmd.endTimer(timers_[timerCursor_].timer);
-    cmd.popDebugGroup();
-    ++timerCursor_;
+// The frame as a graph. Only what the technique and the scene need is declared; the graph
+// culls what nothing reads (the display pass unless a display image is asked for).
+void SceneRenderer::buildGraph() {
+    const RenderSettings& s = settings_;
+    graph::RenderGraph& g = graph_;
+    const glm::vec3 eye = scene_.camera->eye();
+    output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
+    depth_ = g.createTexture("depth", {.format = kDepthFormat, .width = s.width, .height = s.height});
+
+    if (s.technique == Technique::Forward) {
+        g.addPass("forward", [&](graph::PassBuilder& b) {
+            b.colorTarget(output_);
+            b.depthTarget(depth_);
+        }, [this, eye](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            geometry_->draw(ctx.cmd, *queue_, MeshPass::Forward, {{kOutputFormat}, kDepthFormat}, frameConstants_, eye);
+            ctx.cmd.endRenderPass();
+        });
+    } else {
+        gb0_ = g.createTexture("gbuffer0 base colour+metallic", {.format = kGb0, .width = s.width, .height = s.height});
+        gb1_ = g.createTexture("gbuffer1 normal+roughness", {.format = kGb1, .width = s.width, .height = s.height});
+        gb2_ = g.createTexture("gbuffer2 emissive+unlit", {.format = kGb2, .width = s.width, .height = s.height});
+        g.addPass("gbuffer", [&](graph::PassBuilder& b) {
+            for (auto t : {gb0_, gb1_, gb2_}) b.colorTarget(t);
+            b.depthTarget(depth_);
+        }, [this, eye](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            geometry_->draw(ctx.cmd, *queue_, MeshPass::GBuffer, {{kGb0, kGb1, kGb2}, kDepthFormat}, frameConstants_, eye);
+            ctx.cmd.endRenderPass();
+        });
+    }
+    if (s.technique == Technique::Deferred) {
+        g.addPass("lighting", [&](graph::PassBuilder& b) {
+            for (auto t : {gb0_, gb1_, gb2_, depth_}) b.sample(t);
+            b.colorTarget(output_);
+        }, [this](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            bindGBuffer(ctx.cmd, true);
+            volumes_->draw(ctx.cmd, *queue_, *gpuScene_, frameConstants_);
+            ctx.cmd.endRenderPass();
+        });
+        g.addPass("emissive", [&](graph::PassBuilder& b) {
+            b.sample(gb2_);
+            b.colorTarget(output_, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            ctx.cmd.setPipeline(lightingPipeline_);
+            ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+            ctx.cmd.setTexture(kSlotGBuffer2, ctx.texture(gb2_), pointSampler_);
+            ctx.cmd.draw(3);
+            ctx.cmd.endRenderPass();
+        });
+    } else if (s.technique == Technique::Redeferred) {
+        const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
+        i0_ = g.createTexture("ibuffer0 L_dg", {.format = kI0, .width = iw, .height = ih});
+        i1_ = g.createTexture("ibuffer1 L_sg1", {.format = kI1, .width = iw, .height = ih});
+        i2_ = g.createTexture("ibuffer2 L_sg2", {.format = kI2, .width = iw, .height = ih});
+        g.addPass("illumination", [&](graph::PassBuilder& b) {
+            for (auto t : {gb1_, gb2_, depth_}) b.sample(t);
+            for (auto t : {i0_, i1_, i2_}) b.colorTarget(t);
+        }, [this](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            bindGBuffer(ctx.cmd, false);
+            volumes_->draw(ctx.cmd, *queue_, *gpuScene_, frameConstants_);
+            ctx.cmd.endRenderPass();
+        });
+        g.addPass("material", [&](graph::PassBuilder& b) {
+            for (auto t : {gb0_, gb1_, gb2_, depth_, i0_, i1_, i2_}) b.sample(t);
+            b.colorTarget(output_);
+        }, [this](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            ctx.cmd.setPipeline(lightingPipeline_);
+            ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+            bindGBuffer(ctx.cmd, true);
+            ctx.cmd.setTexture(kSlotIBuffer0, ctx.texture(i0_), pointSampler_);
+            ctx.cmd.setTexture(kSlotIBuffer1, ctx.texture(i1_), pointSampler_);
+            ctx.cmd.setTexture(kSlotIBuffer2, ctx.texture(i2_), pointSampler_);
+            ctx.cmd.draw(3);
+            ctx.cmd.endRenderPass();
+        });
+    }
+    if (gpuScene_->hasBlend()) {
+        g.addPass("transparent", [&](graph::PassBuilder& b) {
+            b.colorTarget(output_, gdi::LoadOp::Load);
+            b.depthTarget(depth_, gdi::LoadOp::Load);
+        }, [this, eye](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            geometry_->draw(ctx.cmd, *queue_, MeshPass::Transparent, {{kOutputFormat}, kDepthFormat}, frameConstants_, eye);
+            ctx.cmd.endRenderPass();
+        });
+    }
+    display_ = g.createTexture("display sRGB", {.format = kDisplayFormat, .width = s.width, .height = s.height});
+    g.addPass("display", [&](graph::PassBuilder& b) {
+        b.sample(output_);
+        b.colorTarget(display_);
+    }, [this](graph::PassContext& ctx) {
+        ctx.beginRenderPass();
+        ctx.cmd.setPipeline(displayPipeline_);
+        ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+        ctx.cmd.setTexture(kSlotRadiance, ctx.texture(output_), pointSampler_);
+        ctx.cmd.draw(3);
+        ctx.cmd.endRenderPass();
+    });
+    g.markOutput(output_);
+    if (s.displayImage) g.markOutput(display_);
 }
 
 void SceneRenderer::renderFrame() {
@@ -142,82 +233,25 @@ void SceneRenderer::renderFrame() {
     fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, 0, 0);
 
     gdi::CommandList& cmd = queue_->beginFrame();
-    timerCursor_ = 0;
-    UploadAllocation frame = queue_->upload(fc);
-    const glm::vec3 eye = cam.eye();
-
-    if (s.technique == Technique::Forward) {
-        beginTimed(cmd, "forward");
-        cmd.beginRenderPass({.colors = {{.texture = output_}}, .depth = {.texture = depth_}});
-        geometry_->draw(cmd, *queue_, MeshPass::Forward, {{kOutputFormat}, kDepthFormat}, frame, eye);
-        cmd.endRenderPass();
-        endTimed(cmd);
-    } else {
-        beginTimed(cmd, "gbuffer");
-        cmd.beginRenderPass({.colors = {{.texture = gb0_}, {.texture = gb1_}, {.texture = gb2_}}, .depth = {.texture = depth_}});
-        geometry_->draw(cmd, *queue_, MeshPass::GBuffer, {{kGb0, kGb1, kGb2}, kDepthFormat}, frame, eye);
-        cmd.endRenderPass();
-        endTimed(cmd);
-        auto bindGBuffer = [&](bool albedo) {
-            if (albedo) cmd.setTexture(kSlotGBuffer0, gb0_, pointSampler_);
-            cmd.setTexture(kSlotGBuffer1, gb1_, pointSampler_);
-            cmd.setTexture(kSlotGBuffer2, gb2_, pointSampler_);
-            cmd.setTexture(kSlotDepth, depth_, pointSampler_);
-        };
-        if (s.technique == Technique::Deferred) {
-            beginTimed(cmd, "lighting");
-            cmd.beginRenderPass({.colors = {{.texture = output_}}});
-            bindGBuffer(true);
-            volumes_->draw(cmd, *queue_, *gpuScene_, frame);
-            endTimed(cmd);  // timer end inside the pass is allowed; begin is not
-            cmd.setPipeline(fullscreenPipeline_);
-            cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
-            cmd.setTexture(kSlotGBuffer2, gb2_, pointSampler_);
-            cmd.draw(3);
-            cmd.endRenderPass();
-        } else {
-            beginTimed(cmd, "illumination");
-            cmd.beginRenderPass({.colors = {{.texture = i0_}, {.texture = i1_}, {.texture = i2_}}});
-            bindGBuffer(false);
-            volumes_->draw(cmd, *queue_, *gpuScene_, frame);
-            cmd.endRenderPass();
-            endTimed(cmd);
-            beginTimed(cmd, "material");
-            cmd.beginRenderPass({.colors = {{.texture = output_}}});
-            cmd.setPipeline(fullscreenPipeline_);
-            cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
-            bindGBuffer(true);
-            cmd.setTexture(kSlotIBuffer0, i0_, pointSampler_);
-            cmd.setTexture(kSlotIBuffer1, i1_, pointSampler_);
-            cmd.setTexture(kSlotIBuffer2, i2_, pointSampler_);
-            cmd.draw(3);
-            cmd.endRenderPass();
-            endTimed(cmd);
-        }
-    }
-    if (gpuScene_->hasBlend()) {
-        beginTimed(cmd, "transparent");
-        cmd.beginRenderPass({.colors = {{.texture = output_, .load = gdi::LoadOp::Load}},
-                             .depth = {.texture = depth_, .load = gdi::LoadOp::Load}});
-        geometry_->draw(cmd, *queue_, MeshPass::Transparent, {{kOutputFormat}, kDepthFormat}, frame, eye);
-        cmd.endRenderPass();
-        endTimed(cmd);
-    }
+    frameConstants_ = queue_->upload(fc);
+    graph_.execute(cmd);
     lastFence_ = queue_->endFrame();
 }
 
 gdi::Image SceneRenderer::readOutput() {
     device_.wait(lastFence_);
-    return device_.readTexture(output_);
+    return device_.readTexture(outputTexture_);
+}
+
+gdi::Image SceneRenderer::readDisplay() {
+    if (!settings_.displayImage) throw gdi::Error("readDisplay: the renderer was created without RenderSettings::displayImage");
+    device_.wait(lastFence_);
+    return device_.readTexture(graph_.handle(display_));
 }
 
 std::vector<PassTiming> SceneRenderer::passTimings() {
-    std::vector<PassTiming> out;
     device_.wait(lastFence_);
-    if (!device_.info().features.timestamps) return out;
-    for (size_t i = 0; i < timerCursor_; ++i)
-        if (auto ns = device_.timerNanoseconds(timers_[i].timer)) out.push_back({timers_[i].name, *ns / 1e6});
-    return out;
+    return graph_.passTimings();
 }
 
 }  // namespace fe::render

@@ -14,6 +14,7 @@
 #include "assets/Scene.h"
 #include "fe/gdi/Device.h"
 #include "frame/CommandQueue.h"
+#include "graph/RenderGraph.h"
 #include "render/GeometryRenderer.h"
 #include "render/GpuScene.h"
 #include "render/LightVolumes.h"
@@ -31,19 +32,14 @@ struct RenderSettings {
     uint32_t height = 240;
     uint32_t illumScale = 1;  // redeferred I-buffer: 1, 2 or 4
     float exposure = 1.0f;
+    // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
+    // without it the graph culls the display pass.
+    bool displayImage = false;
+    // Alias transient memory (false: every transient texture has memory of its own).
+    bool aliasing = true;
 };
 
-struct PassTiming {
-    std::string name;
-    double gpuMilliseconds = 0;
-};
-
-struct TargetInfo {
-    std::string name;
-    gdi::Format format;
-    uint32_t width, height;
-    uint64_t bytes() const { return uint64_t(width) * height * gdi::formatInfo(format).bytesPerPixel; }
-};
+using graph::PassTiming;
 
 class SceneRenderer {
 public:
@@ -53,15 +49,16 @@ public:
     void renderFrame();
     // Linear L_o (RGBA32F) of the last frame.
     gdi::Image readOutput();
+    // The displayable image of the last frame (RenderSettings::displayImage).
+    gdi::Image readDisplay();
     // GPU time per pass of the last completed frame (empty where timestamps are unsupported).
     std::vector<PassTiming> passTimings();
-    const std::vector<TargetInfo>& targets() const { return targets_; }
+    const graph::RenderGraph& graph() const { return graph_; }
     GpuScene& gpuScene() { return *gpuScene_; }
 
 private:
-    void beginTimed(gdi::CommandList& cmd, const char* name);
-    void endTimed(gdi::CommandList& cmd);
-    gdi::TextureHandle makeTarget(const char* name, gdi::Format format, uint32_t w, uint32_t h);
+    void buildGraph();
+    void bindGBuffer(gdi::CommandList& cmd, bool albedo);
 
     gdi::Device& device_;
     const assets::Scene& scene_;
@@ -70,18 +67,13 @@ private:
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<GeometryRenderer> geometry_;
     std::unique_ptr<LightVolumes> volumes_;
-    std::vector<TargetInfo> targets_;
-    std::vector<gdi::TextureHandle> ownedTextures_;
-    gdi::TextureHandle output_, depth_, gb0_, gb1_, gb2_, i0_, i1_, i2_;
+    graph::RenderGraph graph_;
+    graph::TextureId output_, display_, depth_, gb0_, gb1_, gb2_, i0_, i1_, i2_;
+    gdi::TextureHandle outputTexture_;
     gdi::SamplerHandle pointSampler_;
-    gdi::ShaderHandle fullscreenVs_, fullscreenFs_;
-    gdi::PipelineHandle fullscreenPipeline_;
-    struct Timer {
-        std::string name;
-        gdi::TimerHandle timer;
-    };
-    std::vector<Timer> timers_;
-    size_t timerCursor_ = 0;
+    gdi::ShaderHandle fullscreenVs_, lightingFs_, displayFs_;
+    gdi::PipelineHandle lightingPipeline_, displayPipeline_;
+    UploadAllocation frameConstants_;  // of the frame being recorded
     gdi::FenceValue lastFence_ = 0;
 };
 

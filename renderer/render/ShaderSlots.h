@@ -17,4 +17,5 @@ constexpr uint32_t kSlotDepth = 11;
 constexpr uint32_t kSlotIBuffer0 = 12;
 constexpr uint32_t kSlotIBuffer1 = 13;
 constexpr uint32_t kSlotIBuffer2 = 14;
+constexpr uint32_t kSlotRadiance = 15;
 }  // namespace fe::render

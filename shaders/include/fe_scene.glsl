@@ -17,6 +17,7 @@
 #define FE_SLOT_IBUFFER0 12
 #define FE_SLOT_IBUFFER1 13
 #define FE_SLOT_IBUFFER2 14
+#define FE_SLOT_RADIANCE 15
 
 layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     mat4 viewProj;

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <algorithm>
 
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
@@ -94,6 +96,44 @@ TEST_P(RenderAccuracy, RedeferredFullRateMatchesForward) {
     gdi::Image r = renderImage(*device, scene, render::Technique::Redeferred, 1);
     Stats s = compare(r, f, 0.02, 0.01);  // same G-buffer rounding as deferred
     EXPECT_LE(s.fractionOver, 0.01) << "max relative error " << s.maxRel;
+}
+
+// The frame runs through the render graph: only the passes the technique needs, the display
+// pass culled unless its image is asked for, transient memory aliased, and the GPU display
+// image equal to clamp(exposure x L_o) encoded to sRGB.
+TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
+    const std::map<render::Technique, std::vector<std::string>> expected = {
+        {render::Technique::Forward, {"forward", "display"}},
+        {render::Technique::Deferred, {"gbuffer", "lighting", "emissive", "display"}},
+        {render::Technique::Redeferred, {"gbuffer", "illumination", "material", "display"}}};
+    for (const auto& [technique, passes] : expected) {
+        for (bool display : {false, true}) {
+            render::SceneRenderer r(*device, scene, {.technique = technique, .width = kW, .height = kH, .exposure = 2.0f,
+                                                     .displayImage = display});
+            std::vector<std::string> names;
+            for (const auto& p : r.graph().passes()) {
+                names.push_back(p.name);
+                EXPECT_EQ(p.culled, p.name == "display" && !display) << p.name;
+            }
+            EXPECT_EQ(names, passes);  // no transparent pass: the spheres have no BLEND material
+            const graph::MemoryReport m = r.graph().memory();
+            if (display && technique != render::Technique::Forward)
+                EXPECT_LT(m.withAliasing, m.withoutAliasing) << r.graph().toDot();  // the display image reuses G-buffer memory
+            if (!display) continue;
+            r.renderFrame();
+            gdi::Image out = r.readOutput(), shown = r.readDisplay();
+            ASSERT_EQ(shown.format, gdi::Format::RGBA8_SRGB);
+            int wrong = 0;
+            for (uint32_t y = 0; y < kH; ++y)
+                for (uint32_t x = 0; x < kW; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const float l = std::clamp(2.0f * out.texel(x, y)[c], 0.0f, 1.0f);
+                        const float srgb = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1 / 2.4f) - 0.055f;
+                        wrong += std::abs(shown.texel(x, y)[c] - srgb) > 1.5f / 255.0f;
+                    }
+            EXPECT_EQ(wrong, 0) << render::techniqueName(technique);
+        }
+    }
 }
 
 TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {

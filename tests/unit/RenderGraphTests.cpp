@@ -124,7 +124,7 @@ TEST(RenderGraph, DisjointLifetimesShareMemoryOverlappingOnesDoNot) {
     EXPECT_EQ(g.memory().withAliasing, 3 * size);
 }
 
-TEST(RenderGraph, ObjectReuseNeedsIdenticalDescriptions) {
+TEST(RenderGraph, ObjectReuseNeedsTheSameFormatAndSize) {
     RenderGraph g;
     auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 16, .height = 16});
     auto c = g.createTexture("c", {.format = Format::RGBA8, .width = 16, .height = 16});
@@ -209,7 +209,7 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
                             << g.toDot();
                         if (mode == graph::AliasingMode::ObjectReuse) {
                             EXPECT_EQ(ts[i].desc.format, ts[j].desc.format);
-                            EXPECT_EQ(ts[i].desc.usage, ts[j].desc.usage);
+                            EXPECT_EQ(ts[i].desc.usage, ts[j].desc.usage);  // the shared object has every usage
                         }
                     }
                 }

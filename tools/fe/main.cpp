@@ -34,6 +34,7 @@ constexpr const char* kUsage =
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
     "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n";
 
@@ -124,11 +125,21 @@ int cmdRender(const Args& a) {
     if (!pfm && !(out.size() > 4 && out.substr(out.size() - 4) == ".png"))
         throw UsageError("--out must end in .png or .pfm, got '" + out + "'");
 
+    s.displayImage = !pfm;  // the PNG is the GPU's display pass output
+    s.aliasing = !a.options.count("--no-aliasing");
+    const std::string dumpGraph = opt("--dump-graph", "");
+
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
     auto device = gdi::createDevice({.backend = opt("--backend", "auto"), .validation = false});
     render::SceneRenderer renderer(*device, scene, s);
+    if (!dumpGraph.empty()) {
+        std::ofstream f(dumpGraph);
+        f << renderer.graph().toDot();
+        if (!f) throw gdi::Error("cannot write " + dumpGraph);
+    }
     std::vector<double> cpu;
     std::map<std::string, std::vector<double>> gpu;
+    std::vector<std::string> passOrder;  // execution order
     for (uint32_t f = 0; f < frames + (frames > 1 ? 1 : 0); ++f) {  // one warm-up frame when timing
         auto t0 = std::chrono::steady_clock::now();
         // builtin:lights animates: light positions are a function of the frame index.
@@ -138,7 +149,10 @@ int cmdRender(const Args& a) {
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (frames > 1 && f == 0) continue;
         cpu.push_back(ms);
-        for (auto& t : timings) gpu[t.name].push_back(t.gpuMilliseconds);
+        for (auto& t : timings) {
+            if (!gpu.count(t.name)) passOrder.push_back(t.name);
+            gpu[t.name].push_back(t.gpuMilliseconds);
+        }
     }
     auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v[v.size() / 2]; };
     gdi::Image img = renderer.readOutput();
@@ -146,7 +160,7 @@ int cmdRender(const Args& a) {
                                       reinterpret_cast<const float*>(img.data.data() + img.data.size())))
         if (!std::isfinite(v)) throw gdi::Error("the rendered image contains NaN or infinite values");
     if (pfm) gdi::writePfm(img, out);
-    else gdi::writePng(img, out, s.exposure);
+    else gdi::writePng(renderer.readDisplay(), out);
     const bool soft = device->info().softwareRasterizer;
     std::cout << "backend " << device->info().backend << " (" << device->info().deviceName << ")"
               << (soft ? " [software rasterizer timings]" : "") << "\n"
@@ -155,11 +169,14 @@ int cmdRender(const Args& a) {
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
               << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
-    for (auto& [name, v] : gpu) std::cout << "  pass " << name << ": " << median(v) << " ms GPU\n";
-    uint64_t bytes = 0;
-    for (auto& t : renderer.targets()) bytes += t.bytes();
-    std::cout << "render targets: " << bytes << " bytes (" << renderer.targets().size() << " targets)\n"
-              << "wrote " << out << "\n";
+    for (auto& name : passOrder) std::cout << "  pass " << name << ": " << median(gpu[name]) << " ms GPU\n";
+    const graph::MemoryReport mem = renderer.graph().memory();
+    static const char* modes[] = {"none", "heap memory aliasing", "texture object reuse"};
+    std::cout << "transient memory: " << mem.withAliasing << " bytes with aliasing (" << modes[int(renderer.graph().aliasing())]
+              << "), " << mem.withoutAliasing << " without; " << mem.transientTextures << " transient textures in "
+              << mem.allocations << " allocation(s)\n";
+    if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
+    std::cout              << "wrote " << out << "\n";
     return 0;
 }
 
@@ -253,8 +270,8 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights"},
-                                   {}));
+                                    "--lights", "--dump-graph"},
+                                   {"--no-aliasing"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}));
         if (command == "--help" || command == "help") {
