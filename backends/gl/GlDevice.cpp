@@ -425,6 +425,7 @@ void GlDevice::waitIdle() {
 std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
     Timer& t = timer(h);
     if (!t.used) return std::nullopt;
+    if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
     GLint available = 0;
     gl_.GetQueryObjectiv(t.queries[1], GL_QUERY_RESULT_AVAILABLE, &available);
     if (!available) return std::nullopt;

@@ -6,6 +6,7 @@
 //  - Vertex and index buffers are applied to the current pipeline's VAO at draw time, since
 //    gdi lets them be set before the pipeline.
 #pragma once
+#include <chrono>
 #include <array>
 #include <memory>
 #include <string>
@@ -53,6 +54,8 @@ struct Pipeline {
 struct Timer {
     GLuint queries[2] = {0, 0};
     bool used = false;
+    // Software rasterizers: wall-clock time between two glFinish calls instead of GL_TIMESTAMP.
+    std::chrono::steady_clock::time_point begin, end;
 };
 
 class GlDevice final : public gdi::Device {
