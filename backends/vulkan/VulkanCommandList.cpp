@@ -95,10 +95,9 @@ StateScope scopeOf(gdi::ResourceState s) {
 void VulkanCommandList::setAutomaticBarriers(bool enabled) {
     outsidePass("setAutomaticBarriers");
     if (enabled == automaticBarriers_) return;
-    if (enabled) fullBarrier(cb_);  // order the explicit section before what follows
-    else barrierIfWritten();        // and what came before it before the explicit section
+    if (!enabled) barrierIfWritten();  // order what came before before the explicit section
     automaticBarriers_ = enabled;
-    written_ = false;
+    written_ = enabled;  // and the explicit section before whatever follows it (lazily)
 }
 
 void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
@@ -146,9 +145,10 @@ VkCommandBuffer VulkanCommandList::finish() {
     ensureRecording();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
-    setAutomaticBarriers(true);
-    written_ = true;
-    barrierIfWritten();  // make results visible to later submissions and transfers
+    // No barrier at the end: every recording starts with one before its first pass, copy or
+    // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
+    // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
+    // the rasterizer inside vkQueueSubmit.
     check(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
     return cb_;
 }
