@@ -119,6 +119,27 @@ void SceneRenderer::buildGraph() {
     const RenderSettings& s = settings_;
     graph::RenderGraph& g = graph_;
     const glm::vec3 eye = scene_.camera->eye();
+    // The two pass bodies the techniques share: light volumes over the G-buffer, and one
+    // full-screen triangle with the frame constants and some graph textures bound.
+    auto lightVolumes = [this](bool albedo) {
+        return [this, albedo](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            bindGBuffer(ctx.cmd, albedo);
+            volumes_->draw(ctx.cmd, *queue_, *gpuScene_, frameConstants_);
+            ctx.cmd.endRenderPass();
+        };
+    };
+    using SlotTextures = std::vector<std::pair<uint32_t, graph::TextureId>>;
+    auto fullscreen = [this](gdi::PipelineHandle pipeline, SlotTextures inputs) {
+        return [this, pipeline, inputs](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            ctx.cmd.setPipeline(pipeline);
+            ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+            for (const auto& [slot, id] : inputs) ctx.cmd.setTexture(slot, ctx.texture(id), pointSampler_);
+            ctx.cmd.draw(3);
+            ctx.cmd.endRenderPass();
+        };
+    };
     output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
     depth_ = g.createTexture("depth", {.format = kDepthFormat, .width = s.width, .height = s.height});
 
@@ -148,23 +169,11 @@ void SceneRenderer::buildGraph() {
         g.addPass("lighting", [&](graph::PassBuilder& b) {
             for (auto t : {gb0_, gb1_, gb2_, depth_}) b.sample(t);
             b.colorTarget(output_);
-        }, [this](graph::PassContext& ctx) {
-            ctx.beginRenderPass();
-            bindGBuffer(ctx.cmd, true);
-            volumes_->draw(ctx.cmd, *queue_, *gpuScene_, frameConstants_);
-            ctx.cmd.endRenderPass();
-        });
+        }, lightVolumes(true));
         g.addPass("emissive", [&](graph::PassBuilder& b) {
             b.sample(gb2_);
             b.colorTarget(output_, gdi::LoadOp::Load);
-        }, [this](graph::PassContext& ctx) {
-            ctx.beginRenderPass();
-            ctx.cmd.setPipeline(lightingPipeline_);
-            ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-            ctx.cmd.setTexture(kSlotGBuffer2, ctx.texture(gb2_), pointSampler_);
-            ctx.cmd.draw(3);
-            ctx.cmd.endRenderPass();
-        });
+        }, fullscreen(lightingPipeline_, {{kSlotGBuffer2, gb2_}}));
     } else if (s.technique == Technique::Redeferred) {
         const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
         i0_ = g.createTexture("ibuffer0 L_dg", {.format = kI0, .width = iw, .height = ih});
@@ -173,26 +182,13 @@ void SceneRenderer::buildGraph() {
         g.addPass("illumination", [&](graph::PassBuilder& b) {
             for (auto t : {gb1_, gb2_, depth_}) b.sample(t);
             for (auto t : {i0_, i1_, i2_}) b.colorTarget(t);
-        }, [this](graph::PassContext& ctx) {
-            ctx.beginRenderPass();
-            bindGBuffer(ctx.cmd, false);
-            volumes_->draw(ctx.cmd, *queue_, *gpuScene_, frameConstants_);
-            ctx.cmd.endRenderPass();
-        });
+        }, lightVolumes(false));
         g.addPass("material", [&](graph::PassBuilder& b) {
             for (auto t : {gb0_, gb1_, gb2_, depth_, i0_, i1_, i2_}) b.sample(t);
             b.colorTarget(output_);
-        }, [this](graph::PassContext& ctx) {
-            ctx.beginRenderPass();
-            ctx.cmd.setPipeline(lightingPipeline_);
-            ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-            bindGBuffer(ctx.cmd, true);
-            ctx.cmd.setTexture(kSlotIBuffer0, ctx.texture(i0_), pointSampler_);
-            ctx.cmd.setTexture(kSlotIBuffer1, ctx.texture(i1_), pointSampler_);
-            ctx.cmd.setTexture(kSlotIBuffer2, ctx.texture(i2_), pointSampler_);
-            ctx.cmd.draw(3);
-            ctx.cmd.endRenderPass();
-        });
+        }, fullscreen(lightingPipeline_, {{kSlotGBuffer0, gb0_}, {kSlotGBuffer1, gb1_}, {kSlotGBuffer2, gb2_},
+                                           {kSlotDepth, depth_}, {kSlotIBuffer0, i0_}, {kSlotIBuffer1, i1_},
+                                           {kSlotIBuffer2, i2_}}));
     }
     if (gpuScene_->hasBlend()) {
         g.addPass("transparent", [&](graph::PassBuilder& b) {
@@ -208,14 +204,7 @@ void SceneRenderer::buildGraph() {
     g.addPass("display", [&](graph::PassBuilder& b) {
         b.sample(output_);
         b.colorTarget(display_);
-    }, [this](graph::PassContext& ctx) {
-        ctx.beginRenderPass();
-        ctx.cmd.setPipeline(displayPipeline_);
-        ctx.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        ctx.cmd.setTexture(kSlotRadiance, ctx.texture(output_), pointSampler_);
-        ctx.cmd.draw(3);
-        ctx.cmd.endRenderPass();
-    });
+    }, fullscreen(displayPipeline_, {{kSlotRadiance, output_}}));
     g.markOutput(output_);
     if (s.displayImage) g.markOutput(display_);
 }
