@@ -117,8 +117,9 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
             }
             EXPECT_EQ(names, passes);  // no transparent pass: the spheres have no BLEND material
             const graph::MemoryReport m = r.graph().memory();
-            if (display && technique != render::Technique::Forward)
+            if (display && technique != render::Technique::Forward) {
                 EXPECT_LT(m.withAliasing, m.withoutAliasing) << r.graph().toDot();  // the display image reuses G-buffer memory
+            }
             if (!display) continue;
             r.renderFrame();
             gdi::Image out = r.readOutput(), shown = r.readDisplay();
