@@ -195,7 +195,9 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
             for (size_t i = 0; i < ts.size(); ++i) {
                 if (ts[i].imported || !ts[i].used()) continue;
                 heapEnd = std::max(heapEnd, ts[i].offset + ts[i].size);
-                if (mode == graph::AliasingMode::Memory) EXPECT_EQ(ts[i].offset % ts[i].alignment, 0u);
+                if (mode == graph::AliasingMode::Memory) {
+                    EXPECT_EQ(ts[i].offset % ts[i].alignment, 0u);
+                }
                 for (size_t j = i + 1; j < ts.size(); ++j) {
                     if (ts[j].imported || !ts[j].used()) continue;
                     const bool shareBytes = ts[i].offset < ts[j].offset + ts[j].size && ts[j].offset < ts[i].offset + ts[i].size;
@@ -215,7 +217,9 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
                 }
             }
             EXPECT_LE(g.memory().withAliasing, g.memory().withoutAliasing);
-            if (mode == graph::AliasingMode::Memory) EXPECT_EQ(g.memory().withAliasing, heapEnd);
+            if (mode == graph::AliasingMode::Memory) {
+                EXPECT_EQ(g.memory().withAliasing, heapEnd);
+            }
         }
     }
     EXPECT_GT(sharedSomewhere, 100);  // the property was exercised, not vacuously true
