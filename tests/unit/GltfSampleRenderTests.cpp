@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "assets/GltfLoader.h"
 #include "fe/gdi/Backend.h"
@@ -43,30 +44,34 @@ TEST_P(GltfSampleRender, BackendsAgree) {
     const std::string path = std::string(FE_SHARED_ASSETS) + "/" + GetParam();
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
     assets::Scene scene = assets::loadGltf(path);
-    std::vector<std::pair<std::string, gdi::Image>> images;
+    const render::Technique techniques[] = {render::Technique::Forward, render::Technique::Deferred,
+                                            render::Technique::Redeferred};
+    std::map<render::Technique, std::vector<std::pair<std::string, gdi::Image>>> images;
     for (const std::string& b : gdi::backendNames()) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
         if (!p.available) continue;
-        gdi::Image img;
-        {
-            render::SceneRenderer r(*p.device, scene, {.technique = render::Technique::Forward, .width = 64, .height = 64});
+        for (render::Technique t : techniques) {
+            render::SceneRenderer r(*p.device, scene, {.technique = t, .width = 64, .height = 64});
             r.renderFrame();
-            img = r.readOutput();
+            images[t].push_back({b, toDisplay(r.readOutput())});
         }
         EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
-        images.push_back({b, toDisplay(img)});
     }
-    ASSERT_FALSE(images.empty());
-    // Something is drawn: not every pixel is the black background.
-    const auto& first = images[0].second;
-    size_t lit = 0;
-    for (uint32_t i = 0; i < first.width * first.height; ++i)
-        lit += first.data[i * 4] + first.data[i * 4 + 1] + first.data[i * 4 + 2] > 0;
-    EXPECT_GT(lit, 0u) << "nothing visible";
-    for (size_t i = 1; i < images.size(); ++i) {
-        gdi::ImageDiff d = gdi::compareImages(images[0].second, images[i].second, 5.0 / 255.0);
-        EXPECT_LE(d.fractionOver(), 0.001) << images[0].first << " vs " << images[i].first << ": " << d.pixelsOverTolerance
-                                           << " pixels over 5/255, max " << d.maxAbsError;
+    for (render::Technique t : techniques) {
+        const auto& byBackend = images[t];
+        ASSERT_FALSE(byBackend.empty());
+        // Something is drawn: not every pixel is the black background.
+        const auto& first = byBackend[0].second;
+        size_t lit = 0;
+        for (uint32_t i = 0; i < first.width * first.height; ++i)
+            lit += first.data[i * 4] + first.data[i * 4 + 1] + first.data[i * 4 + 2] > 0;
+        EXPECT_GT(lit, 0u) << "nothing visible with " << render::techniqueName(t);
+        for (size_t i = 1; i < byBackend.size(); ++i) {
+            gdi::ImageDiff d = gdi::compareImages(first, byBackend[i].second, 5.0 / 255.0);
+            EXPECT_LE(d.fractionOver(), 0.001) << render::techniqueName(t) << ": " << byBackend[0].first << " vs "
+                                               << byBackend[i].first << ": " << d.pixelsOverTolerance
+                                               << " pixels over 5/255, max " << d.maxAbsError;
+        }
     }
 }
 
