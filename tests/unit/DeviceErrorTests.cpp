@@ -1,25 +1,13 @@
 // Invalid descriptions give clear errors, never crashes, on every backend.
 #include <gtest/gtest.h>
 
+#include "BackendTest.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/ShaderRegistry.h"
 
 using namespace fe::gdi;
 
-class DeviceErrors : public ::testing::TestWithParam<std::string> {
-protected:
-    void SetUp() override {
-        BackendProbe p = probeBackend(GetParam(), true);
-        if (!p.available) GTEST_SKIP() << GetParam() << " unavailable: " << p.reason;
-        device = std::move(p.device);
-    }
-    void TearDown() override {
-        if (device) {
-            EXPECT_EQ(device->validationErrorCount(), 0u);
-        }
-    }
-    std::unique_ptr<Device> device;
-};
+class DeviceErrors : public fe::testing::BackendTest {};
 
 template <class F>
 std::string errorOf(F&& f) {
@@ -84,5 +72,4 @@ TEST_P(DeviceErrors, OutOfRangeBufferWrite) {
     EXPECT_NE(errorOf([&] { device->writeBuffer(b, 8, data, 16); }).find("exceeds its size 16"), std::string::npos);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, DeviceErrors, ::testing::ValuesIn(backendNames()),
-                         [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
+FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

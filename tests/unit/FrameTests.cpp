@@ -4,26 +4,14 @@
 
 #include <set>
 
+#include "BackendTest.h"
 #include "fe/gdi/Backend.h"
 #include "frame/CommandQueue.h"
 #include "frame/SwapChain.h"
 
 using namespace fe;
 
-class Frames : public ::testing::TestWithParam<std::string> {
-protected:
-    void SetUp() override {
-        gdi::BackendProbe p = gdi::probeBackend(GetParam(), true);
-        if (!p.available) GTEST_SKIP() << GetParam() << " unavailable: " << p.reason;
-        device = std::move(p.device);
-    }
-    void TearDown() override {
-        if (device) {
-            EXPECT_EQ(device->validationErrorCount(), 0u);
-        }
-    }
-    std::unique_ptr<gdi::Device> device;
-};
+class Frames : public fe::testing::BackendTest {};
 
 TEST_P(Frames, SwapChainCyclesItsImagesAndReadsBackTheLastPresented) {
     render::CommandQueue queue(*device, 2);
@@ -68,5 +56,4 @@ TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
     queue.waitIdle();
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, Frames, ::testing::ValuesIn(gdi::backendNames()),
-                         [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
+FE_INSTANTIATE_FOR_EVERY_BACKEND(Frames);

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "assets/BuiltinScenes.h"
+#include "BackendTest.h"
 #include "fe/gdi/Backend.h"
 #include "reference/CpuReference.h"
 #include "render/SceneRenderer.h"
@@ -50,20 +51,12 @@ Stats compare(const gdi::Image& a, const gdi::Image& b, double tol, double floor
     return s;
 }
 
-class RenderAccuracy : public ::testing::TestWithParam<std::string> {
+class RenderAccuracy : public fe::testing::BackendTest {
 protected:
     void SetUp() override {
-        gdi::BackendProbe p = gdi::probeBackend(GetParam(), true);
-        if (!p.available) GTEST_SKIP() << GetParam() << " unavailable: " << p.reason;
-        device = std::move(p.device);
+        BackendTest::SetUp();
         scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 5});
     }
-    void TearDown() override {
-        if (device) {
-            EXPECT_EQ(device->validationErrorCount(), 0u);
-        }
-    }
-    std::unique_ptr<gdi::Device> device;
     assets::Scene scene;
 };
 }  // namespace
@@ -151,8 +144,7 @@ TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, RenderAccuracy, ::testing::ValuesIn(gdi::backendNames()),
-                         [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
+FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderAccuracy);
 
 // The roughness clamp: a mirror-smooth plane seen head-on with a point light on the view axis.
 // With an odd image size the centre pixel sees n = h exactly, where the alpha^2/(4 pi)-scaled

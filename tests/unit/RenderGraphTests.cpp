@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "BackendTest.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/ShaderRegistry.h"
 #include "graph/RenderGraph.h"
@@ -287,20 +288,7 @@ TEST(RenderGraph, MalformedGraphsAreClearErrors) {
 
 // ---- on every backend: real textures, aliased memory, explicit barriers --------------------------
 
-class RenderGraphOnDevice : public ::testing::TestWithParam<std::string> {
-protected:
-    void SetUp() override {
-        gdi::BackendProbe p = gdi::probeBackend(GetParam(), true);
-        if (!p.available) GTEST_SKIP() << GetParam() << " unavailable: " << p.reason;
-        device = std::move(p.device);
-    }
-    void TearDown() override {
-        if (device) {
-            EXPECT_EQ(device->validationErrorCount(), 0u);
-        }
-    }
-    std::unique_ptr<gdi::Device> device;
-};
+class RenderGraphOnDevice : public fe::testing::BackendTest {};
 
 // makeA (red) -> aToB (copy by sampling) -> makeC (blue, aliasing A's memory) -> final (B + C).
 // If C's memory overlapped B's, B would turn blue before "final" and the sum would be wrong.
@@ -383,5 +371,4 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
     d.destroy(fs);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, RenderGraphOnDevice, ::testing::ValuesIn(gdi::backendNames()),
-                         [](const auto& info) { std::string n = info.param; for (char& c : n) if (c == '-') c = '_'; return n; });
+FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderGraphOnDevice);
