@@ -10,6 +10,7 @@ PACKAGES=(
   libosmesa6 libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   googletest libgtest-dev libbenchmark-dev
+  xvfb xauth
 )
 
 missing=()

@@ -86,7 +86,7 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
-                      .memoryAliasing = false};
+                      .memoryAliasing = false, .window = platform_->hasWindow()};
 }
 
 GlDevice::~GlDevice() {
@@ -445,6 +445,46 @@ uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
         default: break;
     }
     return 0;
+}
+
+}  // namespace fe::gl
+
+namespace fe::gl {
+
+bool GlDevice::present(gdi::TextureHandle h) {
+    if (!platform_->hasWindow()) return gdi::Device::present(h);
+    Texture& t = texture(h);
+    if (gdi::isDepthFormat(t.desc.format) || !gdi::any(t.desc.usage, gdi::TextureUsage::CopySrc))
+        throw gdi::Error("present: texture '" + t.label + "' must be a colour texture with CopySrc usage");
+    auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
+    platform_->makeCurrent();
+    GLuint fbo = framebuffer({{t.name, 0}}, 0, false);
+    gl_.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+    // Bytes unchanged: no sRGB decode/encode. The blit honours the scissor test, so it is off.
+    gl_.Disable(GL_FRAMEBUFFER_SRGB);
+    gl_.Disable(GL_SCISSOR_TEST);
+    // Texture row 0 is the image's top; the window's top row is GL row fbHeight - 1.
+    const GLint w = GLint(t.desc.width), hgt = GLint(t.desc.height), top = GLint(fbHeight);
+    gl_.BlitNamedFramebuffer(fbo, 0, 0, 0, w, hgt, 0, top, w, top - hgt, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Enable(GL_FRAMEBUFFER_SRGB);
+    windowWidth_ = std::min(t.desc.width, fbWidth);
+    windowHeight_ = std::min(t.desc.height, fbHeight);
+    const bool open = platform_->swapAndPoll();
+    platform_->makeCurrent();
+    return open;
+}
+
+gdi::Image GlDevice::readWindow() {
+    if (!platform_->hasWindow()) return gdi::Device::readWindow();
+    if (windowWidth_ == 0) throw gdi::Error("readWindow: nothing presented yet");
+    gdi::Image img;
+    img.width = windowWidth_;
+    img.height = windowHeight_;
+    img.format = gdi::Format::RGBA8;
+    img.data = platform_->readWindow(windowWidth_, windowHeight_);
+    return img;
 }
 
 }  // namespace fe::gl

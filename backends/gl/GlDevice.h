@@ -94,6 +94,8 @@ public:
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return errors_; }
     uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
+    bool present(gdi::TextureHandle texture) override;
+    gdi::Image readWindow() override;
 
     // For the command list.
     const GlFunctions& gl() const { return gl_; }
@@ -120,6 +122,7 @@ private:
         GLuint fbo;
     };
     std::vector<CachedFbo> fbos_;
+    uint32_t windowWidth_ = 0, windowHeight_ = 0;  // size of the last presented image
     gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;

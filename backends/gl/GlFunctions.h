@@ -102,7 +102,10 @@ namespace fe::gl {
     X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                                                             \
     X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)                                                               \
     X(PFNGLOBJECTLABELPROC, ObjectLabel)                                                                   \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                                   \
+    X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                                                 \
+    X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)                                     \
+    X(PFNGLREADNPIXELSPROC, ReadnPixels)
 
 struct GlFunctions {
 #define FE_GL_DECLARE(type, name) type name = nullptr;

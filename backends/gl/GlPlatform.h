@@ -1,9 +1,12 @@
 // Where a GL context comes from, apart from the driver (Filament's Platform idea): EGL
-// (surfaceless, headless), OSMesa (offscreen), GLFW (a window; not built in this version).
+// (surfaceless, headless), OSMesa (offscreen), GLFW (a window, X11 or Wayland).
 // Libraries are opened at run time so a missing one is a reason, not a link failure.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gl/GlBackend.h"
 
@@ -15,6 +18,17 @@ public:
     virtual const char* name() const = 0;
     virtual void* getProcAddress(const char* name) = 0;
     virtual void makeCurrent() = 0;
+
+    // Window platforms only (GLFW); headless ones keep these defaults.
+    virtual bool hasWindow() const { return false; }
+    // Sizes the window to width x height (first call also shows it) before a frame is drawn to
+    // it; returns the framebuffer size the window really has (a window manager may refuse).
+    virtual std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) { return {0, 0}; }
+    // Swaps the window's buffers and handles its events; false once the user has closed it.
+    virtual bool swapAndPoll() { return false; }
+    // What the window shows on screen, width x height from its top-left, RGBA8 rows top-down,
+    // read back from the window system (X11), not from GL.
+    virtual std::vector<uint8_t> readWindow(uint32_t width, uint32_t height);
 };
 
 // Creates a 4.5 core context (debug context when `debug`); throws gdi::Error saying why not.

@@ -238,6 +238,11 @@ gdi::Image SceneRenderer::readDisplay() {
     return device_.readTexture(graph_.handle(display_));
 }
 
+gdi::TextureHandle SceneRenderer::displayTexture() {
+    if (!settings_.displayImage) throw gdi::Error("displayTexture: the renderer was created without RenderSettings::displayImage");
+    return graph_.handle(display_);
+}
+
 std::vector<PassTiming> SceneRenderer::passTimings() {
     device_.wait(lastFence_);
     return graph_.passTimings();

@@ -51,6 +51,8 @@ public:
     gdi::Image readOutput();
     // The displayable image of the last frame (RenderSettings::displayImage).
     gdi::Image readDisplay();
+    // The texture the display pass writes (RGBA8_SRGB, CopySrc), e.g. for Device::present.
+    gdi::TextureHandle displayTexture();
     // GPU time per pass of the last completed frame (empty where timestamps are unsupported).
     std::vector<PassTiming> passTimings();
     const graph::RenderGraph& graph() const { return graph_; }

@@ -35,6 +35,7 @@ constexpr const char* kUsage =
     "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
+    "      --window: show the frames in a window (gl-glfw) until it is closed, or for --frames N\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n";
 
@@ -96,6 +97,7 @@ int cmdInfo(const Args& a) {
                   << i.limits.uniformBufferOffsetAlignment << "\n"
                   << "  features: timestamps " << i.features.timestamps << ", compute " << i.features.computeShaders
                   << ", debug labels " << i.features.debugLabels << ", memory aliasing " << i.features.memoryAliasing
+                  << ", window " << i.features.window
                   << "\n";
     }
     return 0;
@@ -117,7 +119,10 @@ int cmdRender(const Args& a) {
     std::string ex = opt("--exposure", "1");
     s.exposure = std::strtof(ex.c_str(), &end);
     if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
-    const uint32_t frames = parseUint(opt("--frames", "1"), "--frames", 1, 10000);
+    const bool window = a.options.count("--window") > 0;
+    // With a window and no --frames, frames are shown until the window is closed.
+    const bool untilClosed = window && !a.options.count("--frames");
+    const uint32_t frames = untilClosed ? 1 : parseUint(opt("--frames", "1"), "--frames", 1, 10000);
     assets::BuiltinOptions builtin;
     builtin.lights = parseUint(opt("--lights", "512"), "--lights", 0, 100000);
     const std::string out = opt("--out", "out.png");
@@ -125,12 +130,15 @@ int cmdRender(const Args& a) {
     if (!pfm && !(out.size() > 4 && out.substr(out.size() - 4) == ".png"))
         throw UsageError("--out must end in .png or .pfm, got '" + out + "'");
 
-    s.displayImage = !pfm;  // the PNG is the GPU's display pass output
+    s.displayImage = !pfm || window;  // the PNG (and the window) show the GPU's display pass output
     s.aliasing = !a.options.count("--no-aliasing");
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
-    auto device = gdi::createDevice({.backend = opt("--backend", "auto"), .validation = false});
+    auto device = gdi::createDevice({.backend = opt("--backend", window ? "gl-glfw" : "auto"), .validation = false});
+    if (window && !device->info().features.window)
+        throw UsageError("--window needs a backend with a window (--backend gl-glfw); " + device->info().backend +
+                         " is headless");
     render::SceneRenderer renderer(*device, scene, s);
     if (!dumpGraph.empty()) {
         std::ofstream f(dumpGraph);
@@ -140,13 +148,15 @@ int cmdRender(const Args& a) {
     std::vector<double> cpu;
     std::map<std::string, std::vector<double>> gpu;
     std::vector<std::string> passOrder;  // execution order
-    for (uint32_t f = 0; f < frames + (frames > 1 ? 1 : 0); ++f) {  // one warm-up frame when timing
+    bool open = true;
+    for (uint32_t f = 0; open && (untilClosed || f < frames + (frames > 1 ? 1 : 0)); ++f) {  // one warm-up frame when timing
         auto t0 = std::chrono::steady_clock::now();
         // builtin:lights animates: light positions are a function of the frame index.
         if (spec == "builtin:lights") renderer.gpuScene().updateLights(assets::lightsSceneLights(builtin.lights, f));
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (window) open = device->present(renderer.displayTexture());
         if (frames > 1 && f == 0) continue;
         cpu.push_back(ms);
         for (auto& t : timings) {
@@ -271,7 +281,7 @@ int main(int argc, char** argv) {
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph"},
-                                   {"--no-aliasing"}));
+                                   {"--no-aliasing", "--window"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}));
         if (command == "--help" || command == "help") {

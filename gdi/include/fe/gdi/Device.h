@@ -417,6 +417,7 @@ struct DeviceFeatures {
     bool debugLabels = false;
     bool validation = false;  // Khronos validation layer / KHR_debug active
     bool memoryAliasing = false;  // heaps + placed textures (Vulkan); GL reuses whole objects instead
+    bool window = false;          // present() shows images in a window (gl-glfw)
 };
 
 struct DeviceInfo {
@@ -477,6 +478,15 @@ public:
 
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;
+
+    // Window presentation, where DeviceFeatures::window (gl-glfw): waits for submitted work,
+    // shows the colour `texture` (CopySrc usage) in the window, sized to it, bytes unchanged, and
+    // swaps. Returns false once the user has closed the window. Headless backends throw Error.
+    virtual bool present(TextureHandle texture) {
+        throw Error(info().backend + ": no window to present to (the gl-glfw backend has one)");
+    }
+    // What the window shows now, top row first, RGBA8 (tests check presentation with it).
+    virtual Image readWindow() { throw Error(info().backend + ": no window to read"); }
 
     // Escape hatch: the native object behind a handle id (see NativeObject); 0 when not
     // applicable. Nothing above layer 4 uses it; bench/ and interop code do.
