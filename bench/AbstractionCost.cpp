@@ -10,13 +10,23 @@
 #include <dlfcn.h>
 #include <vulkan/vulkan.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
 
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/ShaderRegistry.h"
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define FE_HAVE_CALLGRIND 1
+#else
+#define FE_HAVE_CALLGRIND 0
+#endif
 
 using namespace fe::gdi;
 
@@ -63,29 +73,49 @@ Scene makeScene(const std::string& backend) {
     return s;
 }
 
-// One cached scene per backend: device creation is not what is measured.
+// One cached scene per backend: device creation is not what is measured. main() clears them
+// before returning: at exit, the GL drivers' own teardown may already have run.
+std::map<std::string, Scene>& scenes() {
+    static std::map<std::string, Scene> all;
+    return all;
+}
 Scene& scene(const std::string& backend) {
-    static std::map<std::string, Scene> scenes;
-    auto it = scenes.find(backend);
-    if (it == scenes.end()) it = scenes.emplace(backend, makeScene(backend)).first;
+    auto it = scenes().find(backend);
+    if (it == scenes().end()) it = scenes().emplace(backend, makeScene(backend)).first;
     return it->second;
 }
 
-void abstractDraws(benchmark::State& state, const std::string& backend) {
-    Scene& s = scene(backend);
+// One frame of a path, split so that only recording and submission are measured.
+struct FramePath {
+    std::function<void()> record;  // every draw of the frame
+    std::function<void()> submit;  // hand the frame to the queue
+    std::function<void()> wait;    // GPU execution: never measured
+};
+
+FramePath abstractPath(Scene& s) {
+    auto fence = std::make_shared<FenceValue>(0);
+    return {.record =
+                [&s] {
+                    CommandList& c = *s.cmd;
+                    c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
+                    c.setPipeline(s.pipeline);
+                    c.setVertexBuffer(0, s.vertices);
+                    for (uint32_t i = 0; i < kDraws; ++i) {
+                        c.setUniformBuffer(0, s.objects, uint64_t(i) * kObjectStride, 64);
+                        c.draw(3);
+                    }
+                    c.endRenderPass();
+                },
+            .submit = [&s, fence] { *fence = s.device->submit(*s.cmd); },
+            .wait = [&s, fence] { s.device->wait(*fence); }};
+}
+
+void runFrames(benchmark::State& state, Scene& s, const FramePath& path) {
     for (auto _ : state) {
-        CommandList& c = *s.cmd;
-        c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
-        c.setPipeline(s.pipeline);
-        c.setVertexBuffer(0, s.vertices);
-        for (uint32_t i = 0; i < kDraws; ++i) {
-            c.setUniformBuffer(0, s.objects, uint64_t(i) * kObjectStride, 64);
-            c.draw(3);
-        }
-        c.endRenderPass();
-        FenceValue f = s.device->submit(c);
+        path.record();
+        path.submit();
         state.PauseTiming();
-        s.device->wait(f);
+        path.wait();
         state.ResumeTiming();
     }
     state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
@@ -101,6 +131,10 @@ struct VulkanDirect {
     VkCommandBuffer cb = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
     PFN_vkCmdPushDescriptorSetKHR push = nullptr;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkBuffer vb = VK_NULL_HANDLE, ubo = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
     ~VulkanDirect() {
         if (!device) return;
         vkDestroyFence(device, fence, nullptr);
@@ -108,78 +142,78 @@ struct VulkanDirect {
     }
 };
 
-void vulkanDirectDraws(benchmark::State& state) {
-    Scene& s = scene("vulkan");
+FramePath vulkanDirectPath(Scene& s) {
     Device& d = *s.device;
     d.waitIdle();
-    VulkanDirect v;
-    v.device = reinterpret_cast<VkDevice>(d.nativeObject(NativeObject::Device));
-    v.queue = reinterpret_cast<VkQueue>(d.nativeObject(NativeObject::Queue));
+    auto v = std::make_shared<VulkanDirect>();
+    v->device = reinterpret_cast<VkDevice>(d.nativeObject(NativeObject::Device));
+    v->queue = reinterpret_cast<VkQueue>(d.nativeObject(NativeObject::Queue));
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pci.queueFamilyIndex = uint32_t(d.nativeObject(NativeObject::QueueFamily));
-    vkCreateCommandPool(v.device, &pci, nullptr, &v.pool);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, v.pool,
+    vkCreateCommandPool(v->device, &pci, nullptr, &v->pool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, v->pool,
                                    VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
-    vkAllocateCommandBuffers(v.device, &ai, &v.cb);
+    vkAllocateCommandBuffers(v->device, &ai, &v->cb);
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    vkCreateFence(v.device, &fci, nullptr, &v.fence);
-    v.push = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(v.device, "vkCmdPushDescriptorSetKHR"));
+    vkCreateFence(v->device, &fci, nullptr, &v->fence);
+    v->push = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(v->device, "vkCmdPushDescriptorSetKHR"));
+    v->pipeline = reinterpret_cast<VkPipeline>(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
+    v->layout = reinterpret_cast<VkPipelineLayout>(d.nativeObject(NativeObject::PipelineLayout, s.pipeline.id));
+    v->vb = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.vertices.id));
+    v->ubo = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.objects.id));
+    v->view = reinterpret_cast<VkImageView>(d.nativeObject(NativeObject::TextureView, s.target.id));
 
-    auto pipeline = reinterpret_cast<VkPipeline>(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
-    auto layout = reinterpret_cast<VkPipelineLayout>(d.nativeObject(NativeObject::PipelineLayout, s.pipeline.id));
-    auto vb = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.vertices.id));
-    auto ubo = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.objects.id));
-    auto view = reinterpret_cast<VkImageView>(d.nativeObject(NativeObject::TextureView, s.target.id));
-
-    for (auto _ : state) {
-        vkResetCommandPool(v.device, v.pool, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(v.cb, &bi);
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = view;
-        color.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{0, 0, 0, 1}};
-        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        ri.renderArea = {{0, 0}, {64, 64}};
-        ri.layerCount = 1;
-        ri.colorAttachmentCount = 1;
-        ri.pColorAttachments = &color;
-        vkCmdBeginRendering(v.cb, &ri);
-        vkCmdBindPipeline(v.cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-        VkViewport vp{0, 0, 64, 64, 0, 1};
-        VkRect2D sc{{0, 0}, {64, 64}};
-        vkCmdSetViewport(v.cb, 0, 1, &vp);
-        vkCmdSetScissor(v.cb, 0, 1, &sc);
-        VkDeviceSize zero = 0;
-        vkCmdBindVertexBuffers(v.cb, 0, 1, &vb, &zero);
-        for (uint32_t i = 0; i < kDraws; ++i) {
-            VkDescriptorBufferInfo info{ubo, VkDeviceSize(i) * kObjectStride, 64};
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstBinding = 0;
-            w.descriptorCount = 1;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-            w.pBufferInfo = &info;
-            v.push(v.cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &w);
-            vkCmdDraw(v.cb, 3, 1, 0, 0);
-        }
-        vkCmdEndRendering(v.cb);
-        vkEndCommandBuffer(v.cb);
-        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        si.commandBufferCount = 1;
-        si.pCommandBuffers = &v.cb;
-        vkQueueSubmit(v.queue, 1, &si, v.fence);
-        state.PauseTiming();
-        vkWaitForFences(v.device, 1, &v.fence, VK_TRUE, UINT64_MAX);
-        vkResetFences(v.device, 1, &v.fence);
-        state.ResumeTiming();
-    }
-    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
-                                                                           benchmark::Counter::kInvert);
-    state.SetLabel(d.info().softwareRasterizer ? "software rasterizer" : d.info().deviceName);
+    return {.record =
+                [v] {
+                    vkResetCommandPool(v->device, v->pool, 0);
+                    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+                    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+                    vkBeginCommandBuffer(v->cb, &bi);
+                    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                    color.imageView = v->view;
+                    color.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
+                    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                    color.clearValue.color = {{0, 0, 0, 1}};
+                    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                    ri.renderArea = {{0, 0}, {64, 64}};
+                    ri.layerCount = 1;
+                    ri.colorAttachmentCount = 1;
+                    ri.pColorAttachments = &color;
+                    vkCmdBeginRendering(v->cb, &ri);
+                    vkCmdBindPipeline(v->cb, VK_PIPELINE_BIND_POINT_GRAPHICS, v->pipeline);
+                    VkViewport vp{0, 0, 64, 64, 0, 1};
+                    VkRect2D sc{{0, 0}, {64, 64}};
+                    vkCmdSetViewport(v->cb, 0, 1, &vp);
+                    vkCmdSetScissor(v->cb, 0, 1, &sc);
+                    VkDeviceSize zero = 0;
+                    vkCmdBindVertexBuffers(v->cb, 0, 1, &v->vb, &zero);
+                    for (uint32_t i = 0; i < kDraws; ++i) {
+                        VkDescriptorBufferInfo info{v->ubo, VkDeviceSize(i) * kObjectStride, 64};
+                        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+                        w.dstBinding = 0;
+                        w.descriptorCount = 1;
+                        w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+                        w.pBufferInfo = &info;
+                        v->push(v->cb, VK_PIPELINE_BIND_POINT_GRAPHICS, v->layout, 0, 1, &w);
+                        vkCmdDraw(v->cb, 3, 1, 0, 0);
+                    }
+                    vkCmdEndRendering(v->cb);
+                    vkEndCommandBuffer(v->cb);
+                },
+            .submit =
+                [v] {
+                    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+                    si.commandBufferCount = 1;
+                    si.pCommandBuffers = &v->cb;
+                    vkQueueSubmit(v->queue, 1, &si, v->fence);
+                },
+            .wait =
+                [v] {
+                    vkWaitForFences(v->device, 1, &v->fence, VK_TRUE, UINT64_MAX);
+                    vkResetFences(v->device, 1, &v->fence);
+                }};
 }
 
 // ---- direct GL -----------------------------------------------------------------------------
@@ -215,41 +249,38 @@ struct GlDirect {
     }
 };
 
-void glDirectDraws(benchmark::State& state, const std::string& backend) {
-    Scene& s = scene(backend);
+FramePath glDirectPath(Scene& s, const std::string& backend) {
     Device& d = *s.device;
-    GlDirect gl(backend);
+    auto gl = std::make_shared<GlDirect>(backend);
     const unsigned program = unsigned(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
     const unsigned vao = unsigned(d.nativeObject(NativeObject::VertexArray, s.pipeline.id));
     const unsigned vb = unsigned(d.nativeObject(NativeObject::Buffer, s.vertices.id));
     const unsigned ubo = unsigned(d.nativeObject(NativeObject::Buffer, s.objects.id));
-    if (!program || !vao || !vb || !ubo) {
-        state.SkipWithError("GL backend does not expose native objects");
-        return;
-    }
-    constexpr unsigned GL_UNIFORM_BUFFER = 0x8A11, GL_TRIANGLES = 0x0004;
-    for (auto _ : state) {
-        CommandList& c = *s.cmd;
-        // The render pass itself (FBO bind, clear) goes through the backend on both sides:
-        // only the per-draw work differs.
-        c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
-        c.setPipeline(s.pipeline);
-        gl.useProgram(program);
-        gl.bindVertexArray(vao);
-        gl.vertexArrayVertexBuffer(vao, 0, vb, 0, 8);
-        for (uint32_t i = 0; i < kDraws; ++i) {
-            gl.bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo, intptr_t(i) * kObjectStride, 64);
-            gl.drawArrays(GL_TRIANGLES, 0, 3);
-        }
-        c.endRenderPass();
-        FenceValue f = d.submit(c);
-        state.PauseTiming();
-        d.wait(f);
-        state.ResumeTiming();
-    }
-    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
-                                                                           benchmark::Counter::kInvert);
-    state.SetLabel(d.info().softwareRasterizer ? "software rasterizer" : d.info().deviceName);
+    if (!program || !vao || !vb || !ubo) throw Error("GL backend does not expose native objects");
+    auto fence = std::make_shared<FenceValue>(0);
+    return {.record =
+                [&s, gl, program, vao, vb, ubo] {
+                    constexpr unsigned GL_UNIFORM_BUFFER = 0x8A11, GL_TRIANGLES = 0x0004;
+                    CommandList& c = *s.cmd;
+                    // The render pass itself (FBO bind, clear) goes through the backend on both
+                    // sides: only the per-draw work differs.
+                    c.beginRenderPass({.colors = {{.texture = s.target, .clear = {0, 0, 0, 1}}}});
+                    c.setPipeline(s.pipeline);
+                    gl->useProgram(program);
+                    gl->bindVertexArray(vao);
+                    gl->vertexArrayVertexBuffer(vao, 0, vb, 0, 8);
+                    for (uint32_t i = 0; i < kDraws; ++i) {
+                        gl->bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo, intptr_t(i) * kObjectStride, 64);
+                        gl->drawArrays(GL_TRIANGLES, 0, 3);
+                    }
+                    c.endRenderPass();
+                },
+            .submit = [&s, fence] { *fence = s.device->submit(*s.cmd); },
+            .wait = [&s, fence] { s.device->wait(*fence); }};
+}
+
+FramePath directPath(Scene& s, const std::string& backend) {
+    return backend == "vulkan" ? vulkanDirectPath(s) : glDirectPath(s, backend);
 }
 
 // Prints abstract/direct ratios after the normal console table.
@@ -285,7 +316,57 @@ private:
 
 }  // namespace
 
+// --count-instructions: under `valgrind --tool=callgrind --collect-atstart=no`, counts the
+// instructions the calling thread executes while recording, and while recording + submitting,
+// each path's frames (after one warm-up frame), and dumps each count as its own callgrind
+// profile. Instruction counts are repeatable where time on a shared 2-core machine is not;
+// tools/bench-abstraction-instructions.sh runs this and prints the ratios.
+int countInstructions(uint32_t frames) {
+#if FE_HAVE_CALLGRIND
+    if (!RUNNING_ON_VALGRIND) {
+        std::cerr << "--count-instructions must run under valgrind --tool=callgrind --collect-atstart=no "
+                     "(tools/bench-abstraction-instructions.sh does)\n";
+        return 2;
+    }
+    for (const std::string& b : backendNames()) {
+        if (!probeBackend(b, false).available) continue;
+        Scene& s = scene(b);
+        for (const char* kind : {"abstract", "direct"}) {
+            FramePath path = std::string(kind) == "abstract" ? abstractPath(s) : directPath(s, b);
+            path.record(), path.submit(), path.wait();  // warm-up: first-use allocations
+            for (int withSubmit = 0; withSubmit < 2; ++withSubmit) {
+                for (uint32_t f = 0; f < frames; ++f) {
+                    CALLGRIND_TOGGLE_COLLECT;
+                    path.record();
+                    if (withSubmit) path.submit();
+                    CALLGRIND_TOGGLE_COLLECT;
+                    if (!withSubmit) path.submit();
+                    path.wait();
+                }
+                const std::string name = b + " " + kind + (withSubmit ? " record+submit" : " record");
+                CALLGRIND_DUMP_STATS_AT(name.c_str());
+            }
+        }
+    }
+    std::cout << "frames " << frames << " draws " << kDraws << "\n";
+    return 0;
+#else
+    std::cerr << "--count-instructions needs valgrind/callgrind.h at build time (apt-get install valgrind)\n";
+    return 2;
+#endif
+}
+
 int main(int argc, char** argv) {
+    if (argc >= 2 && std::string(argv[1]) == "--count-instructions") {
+        try {
+            const int rc = countInstructions(argc >= 3 ? uint32_t(std::max(1, std::atoi(argv[2]))) : 3);
+            scenes().clear();
+            return rc;
+        } catch (const std::exception& e) {
+            std::cerr << "fe_bench_abstraction: " << e.what() << "\n";
+            return 1;
+        }
+    }
     benchmark::Initialize(&argc, argv);
     for (const std::string& b : backendNames()) {
         BackendProbe p = probeBackend(b, false);
@@ -298,13 +379,17 @@ int main(int argc, char** argv) {
         auto reg = [](benchmark::internal::Benchmark* bm) {
             bm->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true)->MinTime(0.5);
         };
-        reg(benchmark::RegisterBenchmark(("Abstract/" + b).c_str(), [b](benchmark::State& s) { abstractDraws(s, b); }));
-        if (b == "vulkan")
-            reg(benchmark::RegisterBenchmark("Direct/vulkan", [](benchmark::State& s) { vulkanDirectDraws(s); }));
-        else
-            reg(benchmark::RegisterBenchmark(("Direct/" + b).c_str(), [b](benchmark::State& s) { glDirectDraws(s, b); }));
+        reg(benchmark::RegisterBenchmark(("Abstract/" + b).c_str(), [b](benchmark::State& st) {
+            Scene& s = scene(b);
+            runFrames(st, s, abstractPath(s));
+        }));
+        reg(benchmark::RegisterBenchmark(("Direct/" + b).c_str(), [b](benchmark::State& st) {
+            Scene& s = scene(b);
+            runFrames(st, s, directPath(s, b));
+        }));
     }
     RatioReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     benchmark::Shutdown();
+    scenes().clear();
 }

@@ -1,6 +1,7 @@
 #include "VulkanCommandList.h"
 
 #include <algorithm>
+#include <bit>
 #include <string>
 
 #include "fe/gdi/Validation.h"
@@ -8,6 +9,18 @@
 namespace fe::vk {
 
 namespace {
+// Error paths of the per-draw functions, kept out of line so the hot paths stay small.
+[[noreturn, gnu::cold, gnu::noinline]] void fail(const char* message) { throw gdi::Error(message); }
+[[noreturn, gnu::cold, gnu::noinline]] void slotOutOfRange(const char* what, uint32_t slot) {
+    throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
+}
+[[noreturn, gnu::cold, gnu::noinline]] void wrongPipelineKind(const char* what, const std::string& pipeline) {
+    throw gdi::Error(std::string(what) + " pipeline '" + pipeline + "'");
+}
+[[noreturn, gnu::cold, gnu::noinline]] void wrongResourceKind(const std::string& pipeline, uint32_t slot) {
+    throw gdi::Error("pipeline '" + pipeline + "': slot " + std::to_string(slot) + " is bound with the wrong kind of resource");
+}
+
 VkAttachmentLoadOp toLoad(gdi::LoadOp op) {
     switch (op) {
         case gdi::LoadOp::Load: return VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -125,8 +138,7 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
     vkCmdPipelineBarrier(cb_, src, dst, 0, 0, nullptr, 0, nullptr, count, bs.data());
 }
 
-void VulkanCommandList::ensureRecording() {
-    if (recording_) return;
+void VulkanCommandList::beginRecording() {
     if (lastSubmit_) dev_.wait(lastSubmit_);  // the buffer may still be executing
     check(vkResetCommandPool(dev_.vkDevice(), pool_, 0), "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -135,7 +147,10 @@ void VulkanCommandList::ensureRecording() {
     recording_ = true;
     inPass_ = false;
     pipeline_ = nullptr;
+    writesFor_ = nullptr;
+    computeBound_ = false;
     boundSlots_ = 0;
+    dirtySlots_ = ~uint64_t(0);  // push descriptors are undefined when a command buffer begins
     debugDepth_ = 0;
     written_ = true;  // order after earlier submissions
     automaticBarriers_ = true;
@@ -234,8 +249,9 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
     Pipeline& p = dev_.pipeline(h);
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
-    if (pipeline_ != &p) bindingsDirty_ = true;
+    if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     pipeline_ = &p;
+    computeBound_ = p.bindPoint == VK_PIPELINE_BIND_POINT_COMPUTE;
 }
 
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
@@ -267,24 +283,30 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 
 void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     ensureRecording();
-    if (slot >= 64) throw gdi::Error("setUniformBuffer: slot " + std::to_string(slot) + " out of range");
+    if (slot >= 64) [[unlikely]]
+        slotOutOfRange("setUniformBuffer", slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
     gdi::validate::bufferRange(b.desc, offset, size, "setUniformBuffer");
-    bindings_[slot] = {gdi::BindingType::UniformBuffer, {b.buffer, offset, size}, {}};
+    Binding& binding = bindings_[slot];
+    binding.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    binding.buffer = {b.buffer, offset, size};
     boundSlots_ |= uint64_t(1) << slot;
-    bindingsDirty_ = true;
+    dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     ensureRecording();
-    if (slot >= 64) throw gdi::Error("setStorageBuffer: slot " + std::to_string(slot) + " out of range");
+    if (slot >= 64) [[unlikely]]
+        slotOutOfRange("setStorageBuffer", slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
     gdi::validate::bufferRange(b.desc, offset, size, "setStorageBuffer");
-    bindings_[slot] = {gdi::BindingType::StorageBuffer, {b.buffer, offset, size}, {}};
+    Binding& binding = bindings_[slot];
+    binding.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    binding.buffer = {b.buffer, offset, size};
     boundSlots_ |= uint64_t(1) << slot;
-    bindingsDirty_ = true;
+    dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
@@ -294,9 +316,9 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     Sampler& s = dev_.sampler(sh);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
-    bindings_[slot] = {gdi::BindingType::SampledTexture, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
     boundSlots_ |= uint64_t(1) << slot;
-    bindingsDirty_ = true;
+    dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
@@ -306,62 +328,58 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    bindings_[slot] = {gdi::BindingType::StorageTexture, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
+    bindings_[slot] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
     boundSlots_ |= uint64_t(1) << slot;
-    bindingsDirty_ = true;
+    dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::flushBindings() {
-    if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
-    gdi::validate::missingBindings(pipeline_->requiredSlots, boundSlots_, pipeline_->name.c_str());
-    if (!bindingsDirty_ || pipeline_->bindings.empty()) return;
-    VkWriteDescriptorSet writes[64];
-    uint32_t n = 0;
-    for (const gdi::BindingSlot& s : pipeline_->bindings) {
-        const Binding& b = bindings_[s.slot];
-        if (b.type != s.type)
-            throw gdi::Error("pipeline '" + pipeline_->name + "': slot " + std::to_string(s.slot) +
-                             " is bound with the wrong kind of resource");
-        VkWriteDescriptorSet& w = writes[n++];
-        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstBinding = s.slot;
-        w.descriptorCount = 1;
-        switch (s.type) {
-            case gdi::BindingType::UniformBuffer:
-                w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-                w.pBufferInfo = &b.buffer;
-                break;
-            case gdi::BindingType::StorageBuffer:
-                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-                w.pBufferInfo = &b.buffer;
-                break;
-            case gdi::BindingType::SampledTexture:
-                w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-                w.pImageInfo = &b.image;
-                break;
-            case gdi::BindingType::StorageTexture:
-                w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                w.pImageInfo = &b.image;
-                break;
+    const Pipeline* p = pipeline_;
+    if (!p) [[unlikely]]
+        fail("draw/dispatch without a pipeline (call setPipeline first)");
+    uint64_t push = dirtySlots_ & p->requiredSlots;
+    if (!push) return;  // nothing changed since the last flush, which checked what follows
+    gdi::validate::missingBindings(p->requiredSlots, boundSlots_, p->name.c_str());
+    if (writesFor_ != p) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
+        for (uint64_t m = p->requiredSlots; m; m &= m - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(m));
+            writes_[slot] = p->writeTemplates[slot];
+            writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
+            writes_[slot].pImageInfo = &bindings_[slot].image;
         }
+        writesFor_ = p;
     }
-    dev_.cmdPushDescriptorSet(cb_, pipeline_->bindPoint, pipeline_->layout, 0, n, writes);
-    bindingsDirty_ = false;
+    for (uint64_t m = push; m; m &= m - 1) {
+        const uint32_t slot = uint32_t(std::countr_zero(m));
+        if (bindings_[slot].type != writes_[slot].descriptorType) [[unlikely]]
+            wrongResourceKind(p->name, slot);
+    }
+    dirtySlots_ &= ~push;
+    if (!(push & (push - 1))) {  // one slot changed (the per-object case): no gathering
+        dev_.cmdPushDescriptorSet(cb_, p->bindPoint, p->layout, 0, 1, &writes_[std::countr_zero(push)]);
+        return;
+    }
+    VkWriteDescriptorSet gathered[64];
+    uint32_t n = 0;
+    for (; push; push &= push - 1) gathered[n++] = writes_[std::countr_zero(push)];
+    dev_.cmdPushDescriptorSet(cb_, p->bindPoint, p->layout, 0, n, gathered);
 }
 
 void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
-    if (!inPass_) throw gdi::Error("draw outside a render pass");
-    if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_GRAPHICS)
-        throw gdi::Error("draw with compute pipeline '" + pipeline_->name + "'");
+    if (!inPass_) [[unlikely]]
+        fail("draw outside a render pass");
+    if (computeBound_) [[unlikely]]
+        wrongPipelineKind("draw with compute", pipeline_->name);
     flushBindings();
     vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
 }
 
 void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
                                     int32_t baseVertex, uint32_t firstInstance) {
-    if (!inPass_) throw gdi::Error("drawIndexed outside a render pass");
-    if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_GRAPHICS)
-        throw gdi::Error("drawIndexed with compute pipeline '" + pipeline_->name + "'");
+    if (!inPass_) [[unlikely]]
+        fail("drawIndexed outside a render pass");
+    if (computeBound_) [[unlikely]]
+        wrongPipelineKind("drawIndexed with compute", pipeline_->name);
     flushBindings();
     vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
 }

@@ -50,12 +50,16 @@ public:
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
 
 private:
-    void ensureRecording();
+    void ensureRecording() {
+        if (!recording_) [[unlikely]]
+            beginRecording();
+    }
+    void beginRecording();
     void outsidePass(const char* what);
     void barrierIfWritten();
     void flushBindings();
     struct Binding {
-        gdi::BindingType type;
+        VkDescriptorType type;  // checked against the pipeline's at flush
         VkDescriptorBufferInfo buffer;
         VkDescriptorImageInfo image;
     };
@@ -70,10 +74,16 @@ private:
     bool automaticBarriers_ = true;
     gdi::FenceValue lastSubmit_ = 0;
     Pipeline* pipeline_ = nullptr;
+    bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
     gdi::Rect renderArea_;
     std::array<Binding, 64> bindings_{};
+    // Descriptor writes for the pipeline writesFor_, each pointing at its slot in bindings_.
+    std::array<VkWriteDescriptorSet, 64> writes_{};
+    const Pipeline* writesFor_ = nullptr;
     uint64_t boundSlots_ = 0;
-    bool bindingsDirty_ = false;
+    // Slots set since they were last pushed. Push descriptors may be updated incrementally
+    // until a pipeline with another layout disturbs the set, which makes every slot dirty.
+    uint64_t dirtySlots_ = ~uint64_t(0);
     int debugDepth_ = 0;
 };
 

@@ -69,6 +69,9 @@ struct Pipeline {
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     std::vector<gdi::BindingSlot> bindings;
     uint64_t requiredSlots = 0;
+    // Per slot: the descriptor write flushBindings copies (type, binding; pointers filled at
+    // flush time), so the per-draw path does no translation.
+    std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     std::vector<gdi::Format> colorFormats;
     gdi::Format depthFormat = gdi::Format::Undefined;
     std::string name;

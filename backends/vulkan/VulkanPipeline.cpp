@@ -95,8 +95,14 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
     p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
     p.name = debugName ? debugName : "";
     std::vector<VkDescriptorSetLayoutBinding> vb;
-    for (const gdi::BindingSlot& b : bindings)
+    for (const gdi::BindingSlot& b : bindings) {
         vb.push_back({b.slot, toDescriptorType(b.type), 1, toStages(b.stages), nullptr});
+        VkWriteDescriptorSet& w = p.writeTemplates[b.slot & 63];
+        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstBinding = b.slot;
+        w.descriptorCount = 1;
+        w.descriptorType = toDescriptorType(b.type);
+    }
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     li.bindingCount = uint32_t(vb.size());

@@ -123,11 +123,9 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
     return Rect{0, 0, w, h};
 }
 
-void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
-    if (offset > d.size || size > d.size - offset)
-        fail(label("buffer", d.debugName), std::string(what) + ": range [" + std::to_string(offset) + ", " +
-                                               std::to_string(offset + size) + ") exceeds its size " +
-                                               std::to_string(d.size));
+void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
+    fail(label("buffer", d.debugName), std::string(what) + ": range [" + std::to_string(offset) + ", " +
+                                           std::to_string(offset + size) + ") exceeds its size " + std::to_string(d.size));
 }
 
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings) {
@@ -136,9 +134,7 @@ uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings) {
     return m;
 }
 
-void missingBindings(uint64_t required, uint64_t bound, const char* pipelineName) {
-    uint64_t missing = required & ~bound;
-    if (!missing) return;
+void missingBindingsFailed(uint64_t missing, const char* pipelineName) {
     std::string slots;
     for (int i = 0; i < 64; ++i)
         if (missing & (uint64_t(1) << i)) slots += (slots.empty() ? "" : ", ") + std::to_string(i);

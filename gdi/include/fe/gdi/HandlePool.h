@@ -20,6 +20,7 @@ public:
         } else {
             index = uint32_t(slots_.size());
             slots_.push_back({});
+            count_ = uint32_t(slots_.size());
         }
         Slot& s = slots_[index];
         s.object = std::move(object);
@@ -27,17 +28,19 @@ public:
         return H{((s.generation & 0xfffu) << 20) | (index + 1)};
     }
     T* find(H h) {
-        uint32_t index = (h.id & 0xfffffu);
-        if (index == 0 || index > slots_.size()) return nullptr;
-        Slot& s = slots_[index - 1];
+        // Index 0 wraps to the largest value and fails the bound check too; count_ avoids
+        // dividing by sizeof(Slot) in size() on every lookup.
+        const uint32_t index = (h.id & 0xfffffu) - 1u;
+        if (index >= count_) return nullptr;
+        Slot& s = slots_[index];
         if (!s.alive || (s.generation & 0xfffu) != (h.id >> 20)) return nullptr;
         return &s.object;
     }
     const T* find(H h) const { return const_cast<HandlePool*>(this)->find(h); }
-    T& get(H h, const char* what) {
-        T* p = find(h);
-        if (!p) throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(h.id));
-        return *p;
+    T& get(H h, const char* what) {  // inline fast path: looked up on every bind
+        if (T* p = find(h)) [[likely]]
+            return *p;
+        invalidHandle(h.id, what);
     }
     const T& get(H h, const char* what) const { return const_cast<HandlePool*>(this)->get(h, what); }
     // Removes and returns the object so the caller can release its native resources.
@@ -59,6 +62,9 @@ public:
     }
 
 private:
+    [[noreturn, gnu::noinline, gnu::cold]] static void invalidHandle(uint32_t id, const char* what) {
+        throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id));
+    }
     struct Slot {
         T object{};
         uint32_t generation = 1;
@@ -66,6 +72,7 @@ private:
     };
     std::vector<Slot> slots_;
     std::vector<uint32_t> free_;
+    uint32_t count_ = 0;  // slots_.size()
 };
 
 }  // namespace fe::gdi

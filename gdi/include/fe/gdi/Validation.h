@@ -20,10 +20,19 @@ struct AttachmentInfo {
 };
 Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth,
                 const DeviceLimits& limits);
-void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
+// Per-draw checks: inline fast paths, the message is built out of line only on failure.
+[[noreturn]] void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
+inline void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
+    if (offset > d.size || size > d.size - offset) [[unlikely]]
+        bufferRangeFailed(d, offset, size, what);
+}
 
 // Bit set of slots a pipeline declares; draw/dispatch checks every declared slot is bound.
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings);
-void missingBindings(uint64_t required, uint64_t bound, const char* pipelineName);
+[[noreturn]] void missingBindingsFailed(uint64_t missing, const char* pipelineName);
+inline void missingBindings(uint64_t required, uint64_t bound, const char* pipelineName) {
+    if (const uint64_t missing = required & ~bound) [[unlikely]]
+        missingBindingsFailed(missing, pipelineName);
+}
 
 }  // namespace fe::gdi::validate
