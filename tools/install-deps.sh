@@ -8,7 +8,7 @@ PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools
   libosmesa6 libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
-  libglfw3-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  libglfw3-dev libx11-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   googletest libgtest-dev libbenchmark-dev
   xvfb xauth
 )
