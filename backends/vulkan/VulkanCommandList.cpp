@@ -43,6 +43,7 @@ VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     check(vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_), "vkAllocateCommandBuffers");
+    pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
 }
 
 VulkanCommandList::~VulkanCommandList() {
@@ -149,7 +150,9 @@ void VulkanCommandList::beginRecording() {
     pipeline_ = nullptr;
     writesFor_ = nullptr;
     computeBound_ = false;
-    boundSlots_ = 0;
+    readyToDraw_ = false;
+    requiredSlots_ = 0;
+    for (Binding& b : bindings_) b.type = kUnbound;
     dirtySlots_ = ~uint64_t(0);  // push descriptors are undefined when a command buffer begins
     debugDepth_ = 0;
     written_ = true;  // order after earlier submissions
@@ -232,6 +235,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     if (desc.debugName) pushDebugGroup(desc.debugName);
     vkCmdBeginRendering(cb_, &ri);
     inPass_ = true;
+    updateReadyToDraw();
     passHasLabel_ = desc.debugName != nullptr;
     setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
     setScissor(renderArea_);
@@ -241,6 +245,7 @@ void VulkanCommandList::endRenderPass() {
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     vkCmdEndRendering(cb_);
     inPass_ = false;
+    readyToDraw_ = false;
     written_ = true;
     if (passHasLabel_) popDebugGroup();
 }
@@ -251,7 +256,19 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     pipeline_ = &p;
+    requiredSlots_ = p.requiredSlots;
+    layout_ = p.layout;
     computeBound_ = p.bindPoint == VK_PIPELINE_BIND_POINT_COMPUTE;
+    updateReadyToDraw();
+    if (writesFor_ != &p) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
+        for (uint64_t m = p.requiredSlots; m; m &= m - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(m));
+            writes_[slot] = p.writeTemplates[slot];
+            writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
+            writes_[slot].pImageInfo = &bindings_[slot].image;
+        }
+        writesFor_ = &p;
+    }
 }
 
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
@@ -281,32 +298,49 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
 }
 
+// The setters below are the per-object path: the fast path is a leaf (no call, no saved
+// registers) that takes the arguments as they are when all of them are plainly valid; the
+// checked path handles the rest and owns every error message.
 void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    ensureRecording();
-    if (slot >= 64) [[unlikely]]
-        slotOutOfRange("setUniformBuffer", slot);
-    Buffer& b = dev_.buffer(h);
-    if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
-    gdi::validate::bufferRange(b.desc, offset, size, "setUniformBuffer");
-    Binding& binding = bindings_[slot];
-    binding.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    binding.buffer = {b.buffer, offset, size};
-    boundSlots_ |= uint64_t(1) << slot;
-    dirtySlots_ |= uint64_t(1) << slot;
+    const Buffer* b = dev_.findBuffer(h);
+    if (!recording_ || slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
+        return setUniformBufferChecked(slot, h, offset, size);
+    const uint64_t rest = b->desc.size - offset;
+    if (size == 0) size = rest;
+    if (size > rest) [[unlikely]]
+        return setUniformBufferChecked(slot, h, offset, size);
+    bindBuffer(slot, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b->buffer, offset, size);
 }
 
 void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    const Buffer* b = dev_.findBuffer(h);
+    if (!recording_ || slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
+        return setStorageBufferChecked(slot, h, offset, size);
+    const uint64_t rest = b->desc.size - offset;
+    if (size == 0) size = rest;
+    if (size > rest) [[unlikely]]
+        return setStorageBufferChecked(slot, h, offset, size);
+    bindBuffer(slot, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, b->buffer, offset, size);
+}
+
+void VulkanCommandList::setUniformBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    setBufferChecked(VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "setUniformBuffer", slot, h, offset, size);
+}
+
+void VulkanCommandList::setStorageBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    setBufferChecked(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, "setStorageBuffer", slot, h, offset, size);
+}
+
+void VulkanCommandList::setBufferChecked(VkDescriptorType type, const char* what, uint32_t slot, gdi::BufferHandle h,
+                                         uint64_t offset, uint64_t size) {
     ensureRecording();
-    if (slot >= 64) [[unlikely]]
-        slotOutOfRange("setStorageBuffer", slot);
+    if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
-    gdi::validate::bufferRange(b.desc, offset, size, "setStorageBuffer");
-    Binding& binding = bindings_[slot];
-    binding.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    binding.buffer = {b.buffer, offset, size};
-    boundSlots_ |= uint64_t(1) << slot;
-    dirtySlots_ |= uint64_t(1) << slot;
+    gdi::validate::bufferRange(b.desc, offset, size, what);
+    if (size == 0) throw gdi::Error(std::string(what) + ": empty range (offset " + std::to_string(offset) +
+                                    " is the end of buffer '" + b.name + "')");
+    bindBuffer(slot, type, b.buffer, offset, size);
 }
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
@@ -317,7 +351,6 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
-    boundSlots_ |= uint64_t(1) << slot;
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -329,58 +362,68 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
-    boundSlots_ |= uint64_t(1) << slot;
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
-void VulkanCommandList::flushBindings() {
-    const Pipeline* p = pipeline_;
-    if (!p) [[unlikely]]
-        fail("draw/dispatch without a pipeline (call setPipeline first)");
-    uint64_t push = dirtySlots_ & p->requiredSlots;
-    if (!push) return;  // nothing changed since the last flush, which checked what follows
-    gdi::validate::missingBindings(p->requiredSlots, boundSlots_, p->name.c_str());
-    if (writesFor_ != p) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
-        for (uint64_t m = p->requiredSlots; m; m &= m - 1) {
-            const uint32_t slot = uint32_t(std::countr_zero(m));
-            writes_[slot] = p->writeTemplates[slot];
-            writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
-            writes_[slot].pImageInfo = &bindings_[slot].image;
-        }
-        writesFor_ = p;
+void VulkanCommandList::notReadyToDraw(const char* what) const {
+    if (!inPass_) fail((std::string(what) + " outside a render pass").c_str());
+    if (!pipeline_) fail((std::string(what) + " without a pipeline (call setPipeline first)").c_str());
+    wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
+}
+
+// Unbound required slots first (the likelier mistake), then a slot bound with the wrong kind.
+void VulkanCommandList::badBindings() const {
+    uint64_t missing = 0;
+    for (uint64_t m = requiredSlots_; m; m &= m - 1)
+        if (bindings_[std::countr_zero(m)].type == kUnbound) missing |= m & -m;
+    gdi::validate::missingBindings(requiredSlots_, ~missing, pipeline_->name.c_str());
+    for (uint64_t m = requiredSlots_; m; m &= m - 1) {
+        const uint32_t slot = uint32_t(std::countr_zero(m));
+        if (bindings_[slot].type != writes_[slot].descriptorType) wrongResourceKind(pipeline_->name, slot);
     }
+    fail("internal: badBindings found nothing wrong");
+}
+
+// Pushes the slots in push (dirty and used by the pipeline) after checking them. The common
+// per-object case, one changed slot, pushes its prepared write in place; several are gathered.
+// Required slots outside push were checked when they were last pushed and have not changed.
+inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bindPoint) {
+    if (push & (push - 1)) [[unlikely]]
+        return pushGathered(push);
+    const uint32_t slot = uint32_t(std::countr_zero(push));
+    if (bindings_[slot].type != writes_[slot].descriptorType) [[unlikely]]
+        badBindings();
+    dirtySlots_ &= ~push;
+    pushDescriptorSet_(cb_, bindPoint, layout_, 0, 1, &writes_[slot]);
+}
+
+void VulkanCommandList::pushGathered(uint64_t push) {
     for (uint64_t m = push; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
         if (bindings_[slot].type != writes_[slot].descriptorType) [[unlikely]]
-            wrongResourceKind(p->name, slot);
+            badBindings();
     }
     dirtySlots_ &= ~push;
-    if (!(push & (push - 1))) {  // one slot changed (the per-object case): no gathering
-        dev_.cmdPushDescriptorSet(cb_, p->bindPoint, p->layout, 0, 1, &writes_[std::countr_zero(push)]);
-        return;
-    }
     VkWriteDescriptorSet gathered[64];
     uint32_t n = 0;
     for (; push; push &= push - 1) gathered[n++] = writes_[std::countr_zero(push)];
-    dev_.cmdPushDescriptorSet(cb_, p->bindPoint, p->layout, 0, n, gathered);
+    pushDescriptorSet_(cb_, pipeline_->bindPoint, layout_, 0, n, gathered);
 }
 
+// Draws: one state check (render pass open, graphics pipeline bound), then only the slots
+// that changed since the last draw are checked and pushed.
 void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
-    if (!inPass_) [[unlikely]]
-        fail("draw outside a render pass");
-    if (computeBound_) [[unlikely]]
-        wrongPipelineKind("draw with compute", pipeline_->name);
-    flushBindings();
+    if (!readyToDraw_) [[unlikely]]
+        notReadyToDraw("draw");
+    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
 }
 
 void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
                                     int32_t baseVertex, uint32_t firstInstance) {
-    if (!inPass_) [[unlikely]]
-        fail("drawIndexed outside a render pass");
-    if (computeBound_) [[unlikely]]
-        wrongPipelineKind("drawIndexed with compute", pipeline_->name);
-    flushBindings();
+    if (!readyToDraw_) [[unlikely]]
+        notReadyToDraw("drawIndexed");
+    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
 }
 
@@ -388,7 +431,8 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     outsidePass("dispatch");
     if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->name + "'");
-    flushBindings();
+    if (!pipeline_) fail("dispatch without a pipeline (call setPipeline first)");
+    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
     barrierIfWritten();
     vkCmdDispatch(cb_, x, y, z);
     written_ = true;

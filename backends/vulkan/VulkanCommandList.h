@@ -57,11 +57,30 @@ private:
     void beginRecording();
     void outsidePass(const char* what);
     void barrierIfWritten();
-    void flushBindings();
+    void pushDirty(uint64_t push, VkPipelineBindPoint bindPoint);
+    void pushGathered(uint64_t push);
+    [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
+    void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_; }
+    [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
+    // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
+    // size 0 = "the rest", any invalid argument) goes to the checked path, which gives the error.
+    void setBufferChecked(VkDescriptorType type, const char* what, uint32_t slot, gdi::BufferHandle buffer,
+                          uint64_t offset, uint64_t size);
+    [[gnu::noinline]] void setUniformBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
+    [[gnu::noinline]] void setStorageBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
+    void bindBuffer(uint32_t slot, VkDescriptorType type, VkBuffer buffer, uint64_t offset, uint64_t size) {
+        bindings_[slot].type = type;
+        bindings_[slot].buffer = {buffer, offset, size};
+        dirtySlots_ |= uint64_t(1) << slot;
+    }
+    // An unbound slot has type kUnbound, so the one type check before a push also catches a
+    // missing binding (no separate bound-slot mask to maintain per bind).
+    static constexpr VkDescriptorType kUnbound = VK_DESCRIPTOR_TYPE_MAX_ENUM;
     struct Binding {
-        VkDescriptorType type;  // checked against the pipeline's at flush
+        VkDescriptorType type = kUnbound;  // checked against the pipeline's before a push
         VkDescriptorBufferInfo buffer;
         VkDescriptorImageInfo image;
+        uint64_t pad;  // 64 bytes: a slot's address is one shift away
     };
 
     VulkanDevice& dev_;
@@ -75,12 +94,16 @@ private:
     gdi::FenceValue lastSubmit_ = 0;
     Pipeline* pipeline_ = nullptr;
     bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
+    bool readyToDraw_ = false;   // in a render pass with a graphics pipeline: the one per-draw state check
+    uint64_t requiredSlots_ = 0; // pipeline_->requiredSlots, kept here for the per-draw path
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;  // pipeline_->layout
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     std::array<Binding, 64> bindings_{};
-    // Descriptor writes for the pipeline writesFor_, each pointing at its slot in bindings_.
+    // Descriptor writes for the pipeline writesFor_ (prepared by setPipeline), each pointing
+    // at its slot in bindings_.
     std::array<VkWriteDescriptorSet, 64> writes_{};
     const Pipeline* writesFor_ = nullptr;
-    uint64_t boundSlots_ = 0;
     // Slots set since they were last pushed. Push descriptors may be updated incrementally
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);

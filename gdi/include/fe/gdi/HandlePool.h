@@ -1,6 +1,7 @@
 // Layer 3 (Representation): maps typed handles to a backend's objects.
 // Ids carry a generation so a stale handle to a reused slot is caught, not misused.
 #pragma once
+#include <bit>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,8 +25,8 @@ public:
         }
         Slot& s = slots_[index];
         s.object = std::move(object);
-        s.alive = true;
-        return H{((s.generation & 0xfffu) << 20) | (index + 1)};
+        s.liveTag = s.generation & 0xfffu;
+        return H{(s.liveTag << 20) | (index + 1)};
     }
     T* find(H h) {
         // Index 0 wraps to the largest value and fails the bound check too; count_ avoids
@@ -33,7 +34,7 @@ public:
         const uint32_t index = (h.id & 0xfffffu) - 1u;
         if (index >= count_) return nullptr;
         Slot& s = slots_[index];
-        if (!s.alive || (s.generation & 0xfffu) != (h.id >> 20)) return nullptr;
+        if (s.liveTag != (h.id >> 20)) return nullptr;  // dead slots never match: one compare
         return &s.object;
     }
     const T* find(H h) const { return const_cast<HandlePool*>(this)->find(h); }
@@ -50,7 +51,7 @@ public:
         out = std::move(*p);
         *p = T{};
         Slot& s = slots_[(h.id & 0xfffffu) - 1];
-        s.alive = false;
+        s.liveTag = kDead;
         s.generation++;
         free_.push_back((h.id & 0xfffffu) - 1);
         return true;
@@ -58,18 +59,24 @@ public:
     template <class F>
     void forEach(F&& f) {
         for (auto& s : slots_)
-            if (s.alive) f(s.object);
+            if (s.liveTag != kDead) f(s.object);
     }
 
 private:
     [[noreturn, gnu::noinline, gnu::cold]] static void invalidHandle(uint32_t id, const char* what) {
         throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id));
     }
-    struct Slot {
+    static constexpr uint32_t kDead = ~0u;  // id >> 20 is at most 0xfff
+    struct SlotFields {
         T object{};
         uint32_t generation = 1;
-        bool alive = false;
+        uint32_t liveTag = kDead;  // generation & 0xfff while alive (the id's top bits)
     };
+    // Small slots get a power-of-two stride, so the per-bind lookup indexes with a shift
+    // rather than a multiply (a few bytes per object; large objects keep their natural size).
+    static constexpr size_t kSlotAlign =
+        sizeof(SlotFields) <= 256 ? std::bit_ceil(sizeof(SlotFields)) : alignof(SlotFields);
+    struct alignas(kSlotAlign) Slot : SlotFields {};
     std::vector<Slot> slots_;
     std::vector<uint32_t> free_;
     uint32_t count_ = 0;  // slots_.size()
