@@ -1,6 +1,7 @@
 // Command recording for GL: validates like the Vulkan list, then issues GL calls directly.
 #include <algorithm>
 #include <array>
+#include <bit>
 
 #include "fe/gdi/Validation.h"
 #include "gl/GlDevice.h"
@@ -97,7 +98,10 @@ public:
 
     void setPipeline(gdi::PipelineHandle h) override {
         Pipeline& p = dev_.pipeline(h);
-        if (pipeline_ != &p) vertexDirty_ = indexDirty_ = true;  // another VAO
+        if (pipeline_ != &p) {
+            vertexDirty_ = indexDirty_ = true;  // another VAO
+            unchecked_ = ~uint64_t(0);          // other slots, other kinds
+        }
         pipeline_ = &p;
         gl_.UseProgram(p.program);
         if (p.compute) return;
@@ -169,10 +173,10 @@ public:
     }
 
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        bindRange(GL_UNIFORM_BUFFER, slot, h, offset, size, "setUniformBuffer");
+        bindRange(GL_UNIFORM_BUFFER, gdi::BindingType::UniformBuffer, slot, h, offset, size, "setUniformBuffer");
     }
     void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        bindRange(GL_SHADER_STORAGE_BUFFER, slot, h, offset, size, "setStorageBuffer");
+        bindRange(GL_SHADER_STORAGE_BUFFER, gdi::BindingType::StorageBuffer, slot, h, offset, size, "setStorageBuffer");
     }
     void setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) override {
         checkSlot(slot, "setTexture");
@@ -181,7 +185,7 @@ public:
             throw gdi::Error("setTexture: texture '" + t.label + "' lacks Sampled usage");
         gl_.BindTextureUnit(slot, t.name);
         gl_.BindSampler(slot, dev_.sampler(sh).name);
-        bound_ |= uint64_t(1) << slot;
+        bound(slot, gdi::BindingType::SampledTexture);
     }
     void setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) override {
         checkSlot(slot, "setStorageTexture");
@@ -189,7 +193,7 @@ public:
         if (!any(t.desc.usage, gdi::TextureUsage::Storage))
             throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
         gl_.BindImageTexture(slot, t.name, GLint(mip), GL_FALSE, 0, GL_READ_WRITE, toGlFormat(t.desc.format).internal);
-        bound_ |= uint64_t(1) << slot;
+        bound(slot, gdi::BindingType::StorageTexture);
     }
 
     void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override {
@@ -214,7 +218,7 @@ public:
         if (inPass_) throw gdi::Error("dispatch is not allowed inside a render pass");
         if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
         if (!pipeline_->compute) throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->label + "'");
-        gdi::validate::missingBindings(pipeline_->requiredSlots, bound_, pipeline_->label.c_str());
+        checkBindings();
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         gl_.DispatchCompute(x, y, z);
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -329,7 +333,8 @@ public:
     uint64_t nativeCommandBuffer() override {
         if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
         if (depth_) throw gdi::Error("submit: debug group(s) not popped");
-        bound_ = 0;  // a new recording starts after submit
+        kinds_ = {};  // a new recording starts after submit
+        unchecked_ = ~uint64_t(0);
         if (!automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         automatic_ = true;
         return 0;
@@ -342,19 +347,42 @@ private:
     void outside(const char* what) {
         if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
     }
-    void bindRange(GLenum target, uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size, const char* what) {
+    void bindRange(GLenum target, gdi::BindingType kind, uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                   uint64_t size, const char* what) {
         checkSlot(slot, what);
         Buffer& b = dev_.buffer(h);
         if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
-        gdi::validate::bufferRange(b.desc, offset, size, what);
+        gdi::validate::bindingRange(b.desc, offset, size, what);
         gl_.BindBufferRange(target, slot, b.name, GLintptr(offset), GLsizeiptr(size));
-        bound_ |= uint64_t(1) << slot;
+        bound(slot, kind);
+    }
+    void bound(uint32_t slot, gdi::BindingType kind) {
+        kinds_[slot] = uint8_t(1 + uint8_t(kind));
+        unchecked_ |= uint64_t(1) << slot;
+    }
+    // Every slot the pipeline uses must be bound with the kind it declares (GL would otherwise
+    // read whatever the other binding namespace holds). Only slots changed since the last check
+    // with this pipeline are looked at.
+    void checkBindings() {
+        const uint64_t check = unchecked_ & pipeline_->requiredSlots;
+        if (!check) return;
+        uint64_t missing = 0;
+        for (uint64_t m = check; m; m &= m - 1)
+            if (!kinds_[std::countr_zero(m)]) missing |= m & -m;
+        gdi::validate::missingBindings(missing, 0, pipeline_->label.c_str());
+        for (uint64_t m = check; m; m &= m - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(m));
+            if (kinds_[slot] != pipeline_->slotKinds[slot]) [[unlikely]]
+                gdi::validate::wrongBindingKindFailed(slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1),
+                                                      gdi::BindingType(kinds_[slot] - 1), pipeline_->label.c_str());
+        }
+        unchecked_ &= ~check;
     }
     void prepareDraw(const char* what) {
         if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
         if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
         if (pipeline_->compute) throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
-        gdi::validate::missingBindings(pipeline_->requiredSlots, bound_, pipeline_->label.c_str());
+        checkBindings();
         if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
         for (size_t i = 0; i < pipeline_->strides.size(); ++i)
             gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
@@ -369,7 +397,8 @@ private:
     int depth_ = 0;
     gdi::Rect area_;
     Pipeline* pipeline_ = nullptr;
-    uint64_t bound_ = 0;
+    std::array<uint8_t, 64> kinds_{};      // per slot: 1 + BindingType bound, 0 = unbound
+    uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};
     bool vertexDirty_ = true, indexDirty_ = true;
     GLuint indexBuffer_ = 0;

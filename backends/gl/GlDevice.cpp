@@ -253,6 +253,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
     p.desc = d;
     p.desc.debugName = nullptr;
     p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+    p.slotKinds = gdi::validate::slotKinds(d.bindings);
     return pipelines_.add(std::move(p));
 }
 
@@ -266,6 +267,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
     p.compute = true;
     p.desc.bindings = d.bindings;
     p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+    p.slotKinds = gdi::validate::slotKinds(d.bindings);
     return pipelines_.add(std::move(p));
 }
 

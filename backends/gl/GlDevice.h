@@ -49,6 +49,7 @@ struct Pipeline {
     gdi::GraphicsPipelineDesc desc;  // state applied at setPipeline (shaders/bindings kept too)
     std::vector<uint32_t> strides;
     uint64_t requiredSlots = 0;
+    std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     std::string label;
 };
 struct Timer {

@@ -17,8 +17,13 @@ namespace {
 [[noreturn, gnu::cold, gnu::noinline]] void wrongPipelineKind(const char* what, const std::string& pipeline) {
     throw gdi::Error(std::string(what) + " pipeline '" + pipeline + "'");
 }
-[[noreturn, gnu::cold, gnu::noinline]] void wrongResourceKind(const std::string& pipeline, uint32_t slot) {
-    throw gdi::Error("pipeline '" + pipeline + "': slot " + std::to_string(slot) + " is bound with the wrong kind of resource");
+gdi::BindingType kindOf(VkDescriptorType t) {
+    switch (t) {
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return gdi::BindingType::StorageBuffer;
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return gdi::BindingType::SampledTexture;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return gdi::BindingType::StorageTexture;
+        default: return gdi::BindingType::UniformBuffer;
+    }
 }
 
 VkAttachmentLoadOp toLoad(gdi::LoadOp op) {
@@ -337,9 +342,7 @@ void VulkanCommandList::setBufferChecked(VkDescriptorType type, const char* what
     if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
-    gdi::validate::bufferRange(b.desc, offset, size, what);
-    if (size == 0) throw gdi::Error(std::string(what) + ": empty range (offset " + std::to_string(offset) +
-                                    " is the end of buffer '" + b.name + "')");
+    gdi::validate::bindingRange(b.desc, offset, size, what);
     bindBuffer(slot, type, b.buffer, offset, size);
 }
 
@@ -379,7 +382,9 @@ void VulkanCommandList::badBindings() const {
     gdi::validate::missingBindings(requiredSlots_, ~missing, pipeline_->name.c_str());
     for (uint64_t m = requiredSlots_; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        if (bindings_[slot].type != writes_[slot].descriptorType) wrongResourceKind(pipeline_->name, slot);
+        if (bindings_[slot].type != writes_[slot].descriptorType)
+            gdi::validate::wrongBindingKindFailed(slot, kindOf(writes_[slot].descriptorType), kindOf(bindings_[slot].type),
+                                                  pipeline_->name.c_str());
     }
     fail("internal: badBindings found nothing wrong");
 }

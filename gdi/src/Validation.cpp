@@ -128,6 +128,36 @@ void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, cons
                                            std::to_string(offset + size) + ") exceeds its size " + std::to_string(d.size));
 }
 
+void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
+    if (size == 0 && offset <= d.size)
+        fail(label("buffer", d.debugName), std::string(what) + ": empty range (offset " + std::to_string(offset) +
+                                               " is the end of the buffer)");
+    bufferRangeFailed(d, offset, size, what);
+}
+
+namespace {
+const char* kindName(BindingType t) {
+    switch (t) {
+        case BindingType::UniformBuffer: return "a uniform buffer";
+        case BindingType::StorageBuffer: return "a storage buffer";
+        case BindingType::SampledTexture: return "a sampled texture";
+        case BindingType::StorageTexture: return "a storage texture";
+    }
+    return "?";
+}
+}  // namespace
+
+void wrongBindingKindFailed(uint32_t slot, BindingType expected, BindingType bound, const char* pipelineName) {
+    fail(label("draw/dispatch with pipeline", pipelineName), "slot " + std::to_string(slot) + " expects " +
+                                                                 kindName(expected) + " but " + kindName(bound) + " is bound");
+}
+
+std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings) {
+    std::array<uint8_t, 64> kinds{};
+    for (const BindingSlot& b : bindings) kinds[b.slot & 63] = uint8_t(1 + uint8_t(b.type));
+    return kinds;
+}
+
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings) {
     uint64_t m = 0;
     for (const BindingSlot& b : bindings) m |= uint64_t(1) << (b.slot & 63);

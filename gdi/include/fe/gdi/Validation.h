@@ -1,6 +1,8 @@
 // Layer 2 (GDI abstraction): checks every backend runs on descriptions before touching the
 // native API, so invalid input gives the same clear message on Vulkan and GL.
 #pragma once
+#include <array>
+
 #include "fe/gdi/Device.h"
 
 namespace fe::gdi::validate {
@@ -27,6 +29,13 @@ inline void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, con
         bufferRangeFailed(d, offset, size, what);
 }
 
+// A range bound to a slot must also be non-empty (Vulkan and GL both reject zero-sized bindings).
+[[noreturn]] void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
+inline void bindingRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
+    if (offset >= d.size || size > d.size - offset || size == 0) [[unlikely]]
+        bindingRangeFailed(d, offset, size, what);
+}
+
 // Bit set of slots a pipeline declares; draw/dispatch checks every declared slot is bound.
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings);
 [[noreturn]] void missingBindingsFailed(uint64_t missing, const char* pipelineName);
@@ -34,5 +43,9 @@ inline void missingBindings(uint64_t required, uint64_t bound, const char* pipel
     if (const uint64_t missing = required & ~bound) [[unlikely]]
         missingBindingsFailed(missing, pipelineName);
 }
+// A slot bound with another kind of resource than the pipeline declares for it.
+[[noreturn]] void wrongBindingKindFailed(uint32_t slot, BindingType expected, BindingType bound, const char* pipelineName);
+// Per-slot declared kind, 1 + BindingType (0: the pipeline does not use the slot).
+std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings);
 
 }  // namespace fe::gdi::validate
