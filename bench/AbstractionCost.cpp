@@ -318,8 +318,8 @@ private:
 
 // --count-instructions: under `valgrind --tool=callgrind --collect-atstart=no`, counts the
 // instructions the calling thread executes while recording, and while recording + submitting,
-// each path's frames (after one warm-up frame), and dumps each count as its own callgrind
-// profile. Instruction counts are repeatable where time on a shared 2-core machine is not;
+// each of a path's frames (after one warm-up frame), and dumps each frame's count as its own
+// callgrind profile. Instruction counts are repeatable where time on a shared 2-core machine is not;
 // tools/bench-abstraction-instructions.sh runs this and prints the ratios.
 int countInstructions(uint32_t frames) {
 #if FE_HAVE_CALLGRIND
@@ -335,20 +335,20 @@ int countInstructions(uint32_t frames) {
             FramePath path = std::string(kind) == "abstract" ? abstractPath(s) : directPath(s, b);
             path.record(), path.submit(), path.wait();  // warm-up: first-use allocations
             for (int withSubmit = 0; withSubmit < 2; ++withSubmit) {
+                const std::string name = b + " " + kind + (withSubmit ? " record+submit" : " record");
                 for (uint32_t f = 0; f < frames; ++f) {
                     CALLGRIND_TOGGLE_COLLECT;
                     path.record();
                     if (withSubmit) path.submit();
                     CALLGRIND_TOGGLE_COLLECT;
+                    CALLGRIND_DUMP_STATS_AT(name.c_str());  // one profile per frame: the script takes medians
                     if (!withSubmit) path.submit();
                     path.wait();
                 }
-                const std::string name = b + " " + kind + (withSubmit ? " record+submit" : " record");
-                CALLGRIND_DUMP_STATS_AT(name.c_str());
             }
         }
     }
-    std::cout << "frames " << frames << " draws " << kDraws << "\n";
+    std::cout << "frames " << frames << " draws " << kDraws << "\n";  // draws per frame
     return 0;
 #else
     std::cerr << "--count-instructions needs valgrind/callgrind.h at build time (apt-get install valgrind)\n";

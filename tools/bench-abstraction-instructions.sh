@@ -7,10 +7,10 @@
 # own code (application loop + engine; the only part the abstraction changes) and the libraries
 # under it (Vulkan/GL driver, libc).
 #
-# usage: tools/bench-abstraction-instructions.sh [FRAMES]   (default 3; build first: tools/build.sh)
+# usage: tools/bench-abstraction-instructions.sh [FRAMES]   (default 5; build first: tools/build.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-frames="${1:-3}"
+frames="${1:-5}"
 bin=build/bench/fe_bench_abstraction
 [ -x "$bin" ] || { echo "build first: tools/build.sh" >&2; exit 2; }
 if ! command -v valgrind >/dev/null || ! command -v callgrind_annotate >/dev/null; then
@@ -20,11 +20,14 @@ fi
 
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
-if ! valgrind --tool=callgrind --collect-atstart=no --callgrind-out-file="$out/cg.%p" \
+# --separate-threads: the driver's own threads (lavapipe's queue executes submitted frames)
+# would otherwise be summed in whenever the scheduler runs them inside a counted window;
+# only the recording thread (thread 1, files *-01) is counted.
+if ! valgrind --tool=callgrind --collect-atstart=no --separate-threads=yes --callgrind-out-file="$out/cg.%p" \
      "$bin" --count-instructions "$frames" >"$out/stdout" 2>"$out/log"; then
   echo "callgrind run failed:" >&2; tail -20 "$out/log" >&2; exit 1
 fi
-draws=$(awk '/^frames/ {print $2 * $4}' "$out/stdout")
+draws=$(awk '/^frames/ {print $4}' "$out/stdout")  # per frame
 
 # name total own  (one line per dump, in dump order)
 # Self cost per ELF object, read from the profile itself: "ob=" names the object of the
@@ -39,13 +42,23 @@ own_cost() {
     /^[0-9+*-]/ { if (skip) { skip = 0; next } if (cur ~ ("/" own "$")) s += $NF; next }
     END { print s + 0 }' "$1"
 }
-for f in $(cd "$out" && ls cg.*.* | sort -t. -k3 -n); do
+for f in $(cd "$out" && ls cg.*.*-01 | sort -t. -k3 -n); do
   name=$(sed -n 's/^desc: Trigger: Client Request: //p' "$out/$f" | head -1)
   total=$(sed -n 's/^\(summary\|totals\): *//p' "$out/$f" | head -1)
   echo "$name|$total|$(own_cost "$out/$f")"
-done >"$out/rows"
+done >"$out/frames"
+# One row per path and phase: the median frame's total and own counts (the driver's allocator
+# now and then does extra work in one frame; the median is what a frame costs).
+awk -F'|' '
+  function median(list,   v, n, i, j, t) {
+    n = split(list, v, " ")
+    for (i = 2; i <= n; ++i) for (j = i; j > 1 && v[j - 1] + 0 > v[j] + 0; --j) { t = v[j]; v[j] = v[j - 1]; v[j - 1] = t }
+    return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2
+  }
+  { if (!($1 in tot)) order[++m] = $1; tot[$1] = tot[$1] " " $2; own[$1] = own[$1] " " $3 }
+  END { for (i = 1; i <= m; ++i) print order[i] "|" median(tot[order[i]]) "|" median(own[order[i]]) }' "$out/frames" >"$out/rows"
 
-echo "instructions per draw ($draws draws per path and phase, callgrind; software rasterizer drivers)"
+echo "instructions per draw (median of $frames frames of $draws draws per path and phase, callgrind; software rasterizer drivers)"
 printf '%-10s %-9s %-14s %10s %10s %10s\n' backend path phase total own driver
 awk -F'|' -v n="$draws" '{split($1, k, " "); printf "%-10s %-9s %-14s %10.1f %10.1f %10.1f\n", k[1], k[2], k[3], $2 / n, $3 / n, ($2 - $3) / n}' "$out/rows"
 echo

@@ -83,7 +83,8 @@ public:
             else gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &desc.depth.clearDepth);
         }
         inPass_ = true;
-        pipeline_ = nullptr;
+        pipeline_ = nullptr;  // a render pass starts with no pipeline (the clears above changed its state)
+        readyToDraw_ = false;
         vertexDirty_ = indexDirty_ = true;
         setViewport({0, 0, float(area_.width), float(area_.height), 0, 1});
         setScissor(area_);
@@ -92,6 +93,7 @@ public:
     void endRenderPass() override {
         if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
         inPass_ = false;
+        readyToDraw_ = false;
         if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         if (labelled_) popDebugGroup();
     }
@@ -103,8 +105,11 @@ public:
             unchecked_ = ~uint64_t(0);          // other slots, other kinds
         }
         pipeline_ = &p;
+        requiredSlots_ = p.requiredSlots;
+        readyToDraw_ = inPass_ && !p.compute;
         gl_.UseProgram(p.program);
         if (p.compute) return;
+        topology_ = topology(p.desc.topology);
         const auto& d = p.desc;
         gl_.BindVertexArray(p.vao);
         if (d.raster.cullMode == gdi::CullMode::None) {
@@ -172,11 +177,23 @@ public:
         indexType_ = type;
     }
 
+    // Per-object path: plainly valid arguments go straight to GL; anything else (size 0 = "the
+    // rest", errors) takes the checked path, which owns the messages.
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        bindRange(GL_UNIFORM_BUFFER, gdi::BindingType::UniformBuffer, slot, h, offset, size, "setUniformBuffer");
+        const Buffer* b = dev_.findBuffer(h);
+        if (slot >= 64 || !b || size == 0 || offset >= b->desc.size || size > b->desc.size - offset) [[unlikely]]
+            return bindRangeChecked(GL_UNIFORM_BUFFER, gdi::BindingType::UniformBuffer, slot, h, offset, size,
+                                    "setUniformBuffer");
+        bound(slot, gdi::BindingType::UniformBuffer);
+        gl_.BindBufferRange(GL_UNIFORM_BUFFER, slot, b->name, GLintptr(offset), GLsizeiptr(size));
     }
     void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        bindRange(GL_SHADER_STORAGE_BUFFER, gdi::BindingType::StorageBuffer, slot, h, offset, size, "setStorageBuffer");
+        const Buffer* b = dev_.findBuffer(h);
+        if (slot >= 64 || !b || size == 0 || offset >= b->desc.size || size > b->desc.size - offset) [[unlikely]]
+            return bindRangeChecked(GL_SHADER_STORAGE_BUFFER, gdi::BindingType::StorageBuffer, slot, h, offset, size,
+                                    "setStorageBuffer");
+        bound(slot, gdi::BindingType::StorageBuffer);
+        gl_.BindBufferRange(GL_SHADER_STORAGE_BUFFER, slot, b->name, GLintptr(offset), GLsizeiptr(size));
     }
     void setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) override {
         checkSlot(slot, "setTexture");
@@ -198,8 +215,8 @@ public:
 
     void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override {
         prepareDraw("draw");
-        gl_.DrawArraysInstancedBaseInstance(topology(pipeline_->desc.topology), GLint(firstVertex), GLsizei(vertexCount),
-                                            GLsizei(instanceCount), firstInstance);
+        gl_.DrawArraysInstancedBaseInstance(topology_, GLint(firstVertex), GLsizei(vertexCount), GLsizei(instanceCount),
+                                            firstInstance);
     }
     void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
                      uint32_t firstInstance) override {
@@ -209,7 +226,7 @@ public:
         indexDirty_ = false;
         const uint32_t size = indexType_ == gdi::IndexType::U16 ? 2 : 4;
         gl_.DrawElementsInstancedBaseVertexBaseInstance(
-            topology(pipeline_->desc.topology), GLsizei(indexCount),
+            topology_, GLsizei(indexCount),
             indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(firstIndex) * size)), GLsizei(instanceCount),
             baseVertex, firstInstance);
@@ -347,8 +364,8 @@ private:
     void outside(const char* what) {
         if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
     }
-    void bindRange(GLenum target, gdi::BindingType kind, uint32_t slot, gdi::BufferHandle h, uint64_t offset,
-                   uint64_t size, const char* what) {
+    [[gnu::noinline]] void bindRangeChecked(GLenum target, gdi::BindingType kind, uint32_t slot, gdi::BufferHandle h,
+                                            uint64_t offset, uint64_t size, const char* what) {
         checkSlot(slot, what);
         Buffer& b = dev_.buffer(h);
         if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
@@ -362,10 +379,21 @@ private:
     }
     // Every slot the pipeline uses must be bound with the kind it declares (GL would otherwise
     // read whatever the other binding namespace holds). Only slots changed since the last check
-    // with this pipeline are looked at.
+    // with this pipeline are looked at; an unbound slot (kind 0) fails the same comparison.
     void checkBindings() {
-        const uint64_t check = unchecked_ & pipeline_->requiredSlots;
+        const uint64_t check = unchecked_ & requiredSlots_;
         if (!check) return;
+        if (!(check & (check - 1))) [[likely]] {  // the per-object case: one slot changed
+            const uint32_t slot = uint32_t(std::countr_zero(check));
+            if (kinds_[slot] != pipeline_->slotKinds[slot]) [[unlikely]]
+                checkEachSlot(check);
+            unchecked_ &= ~check;
+            return;
+        }
+        checkEachSlot(check);
+        unchecked_ &= ~check;
+    }
+    [[gnu::noinline]] void checkEachSlot(uint64_t check) const {  // throws for the first problem
         uint64_t missing = 0;
         for (uint64_t m = check; m; m &= m - 1)
             if (!kinds_[std::countr_zero(m)]) missing |= m & -m;
@@ -376,14 +404,20 @@ private:
                 gdi::validate::wrongBindingKindFailed(slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1),
                                                       gdi::BindingType(kinds_[slot] - 1), pipeline_->label.c_str());
         }
-        unchecked_ &= ~check;
+    }
+    [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const {
+        if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
+        if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
+        throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
     }
     void prepareDraw(const char* what) {
-        if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
-        if (!pipeline_) throw gdi::Error("draw/dispatch without a pipeline (call setPipeline first)");
-        if (pipeline_->compute) throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
+        if (!readyToDraw_) [[unlikely]]
+            notReadyToDraw(what);
         checkBindings();
-        if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
+        if (vertexDirty_) [[unlikely]]  // re-binding unchanged buffers per draw is measurable CPU cost
+            bindVertexBuffers();
+    }
+    void bindVertexBuffers() {
         for (size_t i = 0; i < pipeline_->strides.size(); ++i)
             gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
                                         GLsizei(pipeline_->strides[i]));
@@ -397,6 +431,9 @@ private:
     int depth_ = 0;
     gdi::Rect area_;
     Pipeline* pipeline_ = nullptr;
+    bool readyToDraw_ = false;    // in a render pass with a graphics pipeline
+    uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots
+    GLenum topology_ = GL_TRIANGLES;
     std::array<uint8_t, 64> kinds_{};      // per slot: 1 + BindingType bound, 0 = unbound
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};

@@ -101,6 +101,7 @@ public:
     // For the command list.
     const GlFunctions& gl() const { return gl_; }
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
+    const Buffer* findBuffer(gdi::BufferHandle h) const { return buffers_.find(h); }  // null if invalid
     Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
     Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }

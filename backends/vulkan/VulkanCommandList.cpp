@@ -151,6 +151,14 @@ void VulkanCommandList::beginRecording() {
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(cb_, &bi), "vkBeginCommandBuffer");
     recording_ = true;
+    written_ = true;  // order after earlier submissions
+}
+
+// Bindings and pass state belong to a recording; they are cleared when it is submitted (and
+// not when the next one begins, so binding needs no recording and no check for one).
+void VulkanCommandList::submitted(gdi::FenceValue value) {
+    lastSubmit_ = value;
+    recording_ = false;
     inPass_ = false;
     pipeline_ = nullptr;
     writesFor_ = nullptr;
@@ -160,7 +168,6 @@ void VulkanCommandList::beginRecording() {
     for (Binding& b : bindings_) b.type = kUnbound;
     dirtySlots_ = ~uint64_t(0);  // push descriptors are undefined when a command buffer begins
     debugDepth_ = 0;
-    written_ = true;  // order after earlier submissions
     automaticBarriers_ = true;
 }
 
@@ -240,6 +247,8 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     if (desc.debugName) pushDebugGroup(desc.debugName);
     vkCmdBeginRendering(cb_, &ri);
     inPass_ = true;
+    pipeline_ = nullptr;  // a render pass starts with no pipeline, as on GL (see Device.h)
+    computeBound_ = false;
     updateReadyToDraw();
     passHasLabel_ = desc.debugName != nullptr;
     setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
@@ -308,7 +317,7 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // checked path handles the rest and owns every error message.
 void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const Buffer* b = dev_.findBuffer(h);
-    if (!recording_ || slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
+    if (slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
         return setUniformBufferChecked(slot, h, offset, size);
     const uint64_t rest = b->desc.size - offset;
     if (size == 0) size = rest;
@@ -319,7 +328,7 @@ void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const Buffer* b = dev_.findBuffer(h);
-    if (!recording_ || slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
+    if (slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
         return setStorageBufferChecked(slot, h, offset, size);
     const uint64_t rest = b->desc.size - offset;
     if (size == 0) size = rest;
@@ -338,7 +347,6 @@ void VulkanCommandList::setStorageBufferChecked(uint32_t slot, gdi::BufferHandle
 
 void VulkanCommandList::setBufferChecked(VkDescriptorType type, const char* what, uint32_t slot, gdi::BufferHandle h,
                                          uint64_t offset, uint64_t size) {
-    ensureRecording();
     if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
@@ -347,7 +355,6 @@ void VulkanCommandList::setBufferChecked(VkDescriptorType type, const char* what
 }
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
-    ensureRecording();
     if (slot >= 64) throw gdi::Error("setTexture: slot " + std::to_string(slot) + " out of range");
     Texture& t = dev_.texture(th);
     Sampler& s = dev_.sampler(sh);
@@ -358,7 +365,6 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
 }
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
-    ensureRecording();
     if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
     Texture& t = dev_.texture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
@@ -420,8 +426,12 @@ void VulkanCommandList::pushGathered(uint64_t push) {
 void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw("draw");
-    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
-    vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
+    const uint64_t push = dirtySlots_ & requiredSlots_;
+    if (!push) return vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
+    // Parked in members across the push: cheaper than keeping four arguments in saved registers.
+    draw_ = {vertexCount, instanceCount, firstVertex, firstInstance};
+    pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    vkCmdDraw(cb_, draw_[0], draw_[1], draw_[2], draw_[3]);
 }
 
 void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,

@@ -42,7 +42,7 @@ public:
 
     // For the device.
     VkCommandBuffer finish();
-    void submitted(gdi::FenceValue value) { lastSubmit_ = value; recording_ = false; }
+    void submitted(gdi::FenceValue value);
     static void fullBarrier(VkCommandBuffer cb);
     static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels);
     void discardTexture(gdi::TextureHandle texture) override;
@@ -96,6 +96,7 @@ private:
     bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
     bool readyToDraw_ = false;   // in a render pass with a graphics pipeline: the one per-draw state check
     uint64_t requiredSlots_ = 0; // pipeline_->requiredSlots, kept here for the per-draw path
+    std::array<uint32_t, 4> draw_{};  // draw arguments while the draw pushes descriptors
     VkPipelineLayout layout_ = VK_NULL_HANDLE;  // pipeline_->layout
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;

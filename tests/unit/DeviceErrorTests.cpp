@@ -124,6 +124,34 @@ TEST_P(DeviceErrors, WrongBindingKind) {
     device->wait(device->submit(*cmd));
 }
 
+// Draw state errors, the same on every backend: no pass, no pipeline (also in a later pass:
+// a pass starts without one), compute pipeline.
+TEST_P(DeviceErrors, DrawStateErrors) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto cs = device->createShader({.stage = ShaderStage::Compute, .binary = fe::shaders::find("conformance/fill.comp")});
+    auto c = device->createComputePipeline({.computeShader = cs,
+                                            .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                                                         {1, BindingType::StorageTexture, ShaderStage::Compute}},
+                                            .debugName = "fill"});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto cmd = device->createCommandList();
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("draw outside a render pass"), std::string::npos);
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    EXPECT_NE(errorOf([&] { cmd->drawIndexed(3); }).find("drawIndexed without a pipeline"), std::string::npos);
+    cmd->setPipeline(p);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->endRenderPass();
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("draw outside a render pass"), std::string::npos);
+    cmd->beginRenderPass({.colors = {{.texture = t, .load = LoadOp::Load}}});
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("draw without a pipeline"), std::string::npos);
+    cmd->setPipeline(c);
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("draw with compute pipeline 'fill'"), std::string::npos);
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+}
+
 TEST_P(DeviceErrors, BrokenShaderBinary) {
     const uint32_t garbage[] = {0xdeadbeef, 1, 2, 3, 4, 5};
     ShaderBinary bin{"garbage.frag", garbage, garbage};

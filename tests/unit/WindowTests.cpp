@@ -59,7 +59,9 @@ protected:
         device = std::move(p.device);
     }
     void TearDown() override {
-        if (device) EXPECT_EQ(device->validationErrorCount(), 0u);
+        if (device) {
+            EXPECT_EQ(device->validationErrorCount(), 0u);
+        }
     }
     std::unique_ptr<gdi::Device> device;
 };

@@ -332,6 +332,8 @@ class CommandList {
 public:
     virtual ~CommandList() = default;
 
+    // A render pass starts with no pipeline bound: call setPipeline in every pass. Bindings
+    // (buffers, textures) persist for the whole recording.
     virtual void beginRenderPass(const RenderPassDesc& desc) = 0;
     virtual void endRenderPass() = 0;
 
