@@ -11,6 +11,7 @@
 #include <vulkan/vulkan.h>
 
 #include <algorithm>
+#include <ctime>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -356,10 +357,65 @@ int countInstructions(uint32_t frames) {
 #endif
 }
 
+// --paired N: N pairs of frames per backend, abstract and direct alternating (which goes first
+// alternates too), each frame's record+submit timed with the recording thread's CPU clock.
+// The ratio is taken per pair and the median reported: drift of the machine between separate
+// benchmark runs (seen at 5-10 % here) cancels within a pair.
+double threadSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + double(ts.tv_nsec) * 1e-9;
+}
+
+int pairedRatios(uint32_t pairs) {
+    std::cout << "abstraction cost, " << pairs << " pairs of frames of " << kDraws
+              << " draws, recording thread CPU time, median (and quartiles) of per-pair abstract / direct:\n";
+    for (const std::string& b : backendNames()) {
+        if (!probeBackend(b, false).available) continue;
+        Scene& s = scene(b);
+        FramePath paths[2] = {abstractPath(s), directPath(s, b)};
+        for (FramePath& p : paths) p.record(), p.submit(), p.wait();  // warm-up
+        std::vector<double> ratios, abstractNs, directNs;
+        for (uint32_t i = 0; i < pairs; ++i) {
+            double t[2];
+            for (int k = 0; k < 2; ++k) {
+                const int which = (i & 1) ? 1 - k : k;
+                const double t0 = threadSeconds();
+                paths[which].record();
+                paths[which].submit();
+                t[which] = threadSeconds() - t0;
+                paths[which].wait();
+            }
+            ratios.push_back(t[0] / t[1]);
+            abstractNs.push_back(t[0] / kDraws * 1e9);
+            directNs.push_back(t[1] / kDraws * 1e9);
+        }
+        auto quantile = [](std::vector<double> v, double q) {
+            std::sort(v.begin(), v.end());
+            return v[size_t(q * double(v.size() - 1) + 0.5)];
+        };
+        std::cout << "  " << b << (s.device->info().softwareRasterizer ? " (software rasterizer)" : "") << ": "
+                  << quantile(abstractNs, 0.5) << " vs " << quantile(directNs, 0.5) << " ns/draw, ratio "
+                  << quantile(ratios, 0.5) << " (quartiles " << quantile(ratios, 0.25) << " - " << quantile(ratios, 0.75)
+                  << ")\n";
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     if (argc >= 2 && std::string(argv[1]) == "--count-instructions") {
         try {
             const int rc = countInstructions(argc >= 3 ? uint32_t(std::max(1, std::atoi(argv[2]))) : 3);
+            scenes().clear();
+            return rc;
+        } catch (const std::exception& e) {
+            std::cerr << "fe_bench_abstraction: " << e.what() << "\n";
+            return 1;
+        }
+    }
+    if (argc >= 2 && std::string(argv[1]) == "--paired") {
+        try {
+            const int rc = pairedRatios(argc >= 3 ? uint32_t(std::max(2, std::atoi(argv[2]))) : 200);
             scenes().clear();
             return rc;
         } catch (const std::exception& e) {
