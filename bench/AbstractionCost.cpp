@@ -403,19 +403,13 @@ int pairedRatios(uint32_t pairs) {
 }
 
 int main(int argc, char** argv) {
-    if (argc >= 2 && std::string(argv[1]) == "--count-instructions") {
+    // The two measuring modes besides Google Benchmark: MODE [N].
+    const std::string mode = argc >= 2 ? argv[1] : "";
+    if (mode == "--count-instructions" || mode == "--paired") {
+        const int n = argc >= 3 ? std::atoi(argv[2]) : 0;
         try {
-            const int rc = countInstructions(argc >= 3 ? uint32_t(std::max(1, std::atoi(argv[2]))) : 3);
-            scenes().clear();
-            return rc;
-        } catch (const std::exception& e) {
-            std::cerr << "fe_bench_abstraction: " << e.what() << "\n";
-            return 1;
-        }
-    }
-    if (argc >= 2 && std::string(argv[1]) == "--paired") {
-        try {
-            const int rc = pairedRatios(argc >= 3 ? uint32_t(std::max(2, std::atoi(argv[2]))) : 200);
+            const int rc = mode == "--paired" ? pairedRatios(n >= 2 ? uint32_t(n) : 200)
+                                              : countInstructions(n >= 1 ? uint32_t(n) : 3);
             scenes().clear();
             return rc;
         } catch (const std::exception& e) {

@@ -180,20 +180,10 @@ public:
     // Per-object path: plainly valid arguments go straight to GL; anything else (size 0 = "the
     // rest", errors) takes the checked path, which owns the messages.
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        const Buffer* b = dev_.findBuffer(h);
-        if (slot >= 64 || !b || size == 0 || offset >= b->desc.size || size > b->desc.size - offset) [[unlikely]]
-            return bindRangeChecked(GL_UNIFORM_BUFFER, gdi::BindingType::UniformBuffer, slot, h, offset, size,
-                                    "setUniformBuffer");
-        bound(slot, gdi::BindingType::UniformBuffer);
-        gl_.BindBufferRange(GL_UNIFORM_BUFFER, slot, b->name, GLintptr(offset), GLsizeiptr(size));
+        setBuffer<gdi::BindingType::UniformBuffer>(slot, h, offset, size);
     }
     void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override {
-        const Buffer* b = dev_.findBuffer(h);
-        if (slot >= 64 || !b || size == 0 || offset >= b->desc.size || size > b->desc.size - offset) [[unlikely]]
-            return bindRangeChecked(GL_SHADER_STORAGE_BUFFER, gdi::BindingType::StorageBuffer, slot, h, offset, size,
-                                    "setStorageBuffer");
-        bound(slot, gdi::BindingType::StorageBuffer);
-        gl_.BindBufferRange(GL_SHADER_STORAGE_BUFFER, slot, b->name, GLintptr(offset), GLsizeiptr(size));
+        setBuffer<gdi::BindingType::StorageBuffer>(slot, h, offset, size);
     }
     void setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) override {
         checkSlot(slot, "setTexture");
@@ -364,14 +354,26 @@ private:
     void outside(const char* what) {
         if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
     }
-    [[gnu::noinline]] void bindRangeChecked(GLenum target, gdi::BindingType kind, uint32_t slot, gdi::BufferHandle h,
-                                            uint64_t offset, uint64_t size, const char* what) {
+    template <gdi::BindingType kKind>
+    static constexpr GLenum kTarget = kKind == gdi::BindingType::UniformBuffer ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER;
+    template <gdi::BindingType kKind>
+    void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+        const Buffer* b = dev_.findBuffer(h);
+        const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
+        if (!bindSize) [[unlikely]]
+            return setBufferChecked<kKind>(slot, h, offset, size);
+        bound(slot, kKind);
+        gl_.BindBufferRange(kTarget<kKind>, slot, b->name, GLintptr(offset), GLsizeiptr(bindSize));
+    }
+    template <gdi::BindingType kKind>
+    [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+        const char* what = kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
         checkSlot(slot, what);
         Buffer& b = dev_.buffer(h);
         if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
         gdi::validate::bindingRange(b.desc, offset, size, what);
-        gl_.BindBufferRange(target, slot, b.name, GLintptr(offset), GLsizeiptr(size));
-        bound(slot, kind);
+        gl_.BindBufferRange(kTarget<kKind>, slot, b.name, GLintptr(offset), GLsizeiptr(size));
+        bound(slot, kKind);
     }
     void bound(uint32_t slot, gdi::BindingType kind) {
         kinds_[slot] = uint8_t(1 + uint8_t(kind));

@@ -315,43 +315,31 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // The setters below are the per-object path: the fast path is a leaf (no call, no saved
 // registers) that takes the arguments as they are when all of them are plainly valid; the
 // checked path handles the rest and owns every error message.
-void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+template <VkDescriptorType kType>
+inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const Buffer* b = dev_.findBuffer(h);
-    if (slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
-        return setUniformBufferChecked(slot, h, offset, size);
-    const uint64_t rest = b->desc.size - offset;
-    if (size == 0) size = rest;
-    if (size > rest) [[unlikely]]
-        return setUniformBufferChecked(slot, h, offset, size);
-    bindBuffer(slot, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, b->buffer, offset, size);
+    const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
+    if (!bindSize) [[unlikely]]
+        return setBufferChecked<kType>(slot, h, offset, size);
+    bindBuffer(slot, kType, b->buffer, offset, bindSize);
 }
 
-void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const Buffer* b = dev_.findBuffer(h);
-    if (slot >= 64 || !b || offset >= b->desc.size) [[unlikely]]
-        return setStorageBufferChecked(slot, h, offset, size);
-    const uint64_t rest = b->desc.size - offset;
-    if (size == 0) size = rest;
-    if (size > rest) [[unlikely]]
-        return setStorageBufferChecked(slot, h, offset, size);
-    bindBuffer(slot, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, b->buffer, offset, size);
-}
-
-void VulkanCommandList::setUniformBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    setBufferChecked(VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, "setUniformBuffer", slot, h, offset, size);
-}
-
-void VulkanCommandList::setStorageBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    setBufferChecked(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, "setStorageBuffer", slot, h, offset, size);
-}
-
-void VulkanCommandList::setBufferChecked(VkDescriptorType type, const char* what, uint32_t slot, gdi::BufferHandle h,
-                                         uint64_t offset, uint64_t size) {
+template <VkDescriptorType kType>
+void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = dev_.buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
     gdi::validate::bindingRange(b.desc, offset, size, what);
-    bindBuffer(slot, type, b.buffer, offset, size);
+    bindBuffer(slot, kType, b.buffer, offset, size);
+}
+
+void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    setBuffer<VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER>(slot, h, offset, size);
+}
+
+void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    setBuffer<VK_DESCRIPTOR_TYPE_STORAGE_BUFFER>(slot, h, offset, size);
 }
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {

@@ -64,10 +64,10 @@ private:
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
     // size 0 = "the rest", any invalid argument) goes to the checked path, which gives the error.
-    void setBufferChecked(VkDescriptorType type, const char* what, uint32_t slot, gdi::BufferHandle buffer,
-                          uint64_t offset, uint64_t size);
-    [[gnu::noinline]] void setUniformBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
-    [[gnu::noinline]] void setStorageBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
+    template <VkDescriptorType kType>
+    void setBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
+    template <VkDescriptorType kType>
+    [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
     void bindBuffer(uint32_t slot, VkDescriptorType type, VkBuffer buffer, uint64_t offset, uint64_t size) {
         bindings_[slot].type = type;
         bindings_[slot].buffer = {buffer, offset, size};

@@ -36,6 +36,16 @@ inline void bindingRange(const BufferDesc& d, uint64_t offset, uint64_t size, co
         bindingRangeFailed(d, offset, size, what);
 }
 
+// The per-object fast path's test, shared by the backends: slot below 64 and a non-empty range
+// inside a buffer of bufferSize bytes (size 0: to the end). Returns the size to bind, or 0 when
+// the arguments need the checked path (which gives the error, if any).
+inline uint64_t plainBindingSize(uint32_t slot, uint64_t bufferSize, uint64_t offset, uint64_t size) {
+    if (slot >= 64 || offset >= bufferSize) return 0;
+    const uint64_t rest = bufferSize - offset;
+    if (size == 0) return rest;
+    return size <= rest ? size : 0;
+}
+
 // Bit set of slots a pipeline declares; draw/dispatch checks every declared slot is bound.
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings);
 [[noreturn]] void missingBindingsFailed(uint64_t missing, const char* pipelineName);
