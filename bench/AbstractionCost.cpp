@@ -46,11 +46,16 @@ struct Scene {
     std::unique_ptr<CommandList> cmd;
 };
 
+// Off when measuring (the layers would dominate the cost); on for --check, which is a test.
+bool validateScenes = false;
+
 Scene makeScene(const std::string& backend) {
     Scene s;
-    s.device = createDevice({.backend = backend, .validation = false, .verbose = false});
+    s.device = createDevice({.backend = backend, .validation = validateScenes, .verbose = false});
     Device& d = *s.device;
-    s.target = d.createTexture({.format = Format::RGBA8, .width = 64, .height = 64,
+    // 100 x 100 pixels, one per draw: draw i covers exactly pixel (i % 100, i / 100) (legs of
+    // 1.5 pixels from the pixel's corner reach its centre and no other), so --check sees every draw.
+    s.target = d.createTexture({.format = Format::RGBA8, .width = 100, .height = 100,
                                 .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = "bench target"});
     const float tri[] = {0, 0, 1, 0, 0, 1};
     s.vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, tri);
@@ -59,7 +64,7 @@ Scene makeScene(const std::string& backend) {
         float* o = &objects[i * kObjectStride / 4];
         o[0] = -1.0f + 2.0f * float(i % 100) / 100.0f;  // offset
         o[1] = -1.0f + 2.0f * float(i / 100) / 100.0f;
-        o[2] = o[3] = 0.02f;                               // scale: a pixel-sized triangle
+        o[2] = o[3] = 0.03f;                               // scale: 1.5 pixels
         o[4] = float(i % 7) / 7.0f, o[5] = 0.5f, o[6] = 1.0f, o[7] = 1.0f;
     }
     s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform}, objects.data());
@@ -304,6 +309,34 @@ int countInstructions(uint32_t frames) {
 #endif
 }
 
+// --check: the two paths must do the same work. Renders one frame with each on every backend
+// and compares the images byte for byte (run by ctest as bench_paths_draw_the_same).
+int checkSameImage() {
+    validateScenes = true;
+    int failures = 0;
+    for (const std::string& b : backendNames()) {
+        if (!probeBackend(b, false).available) continue;
+        Scene& s = scene(b);
+        Image images[2];
+        FramePath paths[2] = {abstractPath(s), directPath(s, b)};
+        for (int k = 0; k < 2; ++k) {
+            paths[k].record(), paths[k].submit(), paths[k].wait();
+            images[k] = s.device->readTexture(s.target);
+        }
+        size_t lit = 0;
+        for (size_t i = 0; i < images[0].data.size(); i += 4) lit += images[0].data[i + 2] != 0;  // blue = 1 where drawn
+        const bool same = images[0].data == images[1].data;
+        const uint32_t errors = s.device->validationErrorCount();
+        if (errors) std::cout << b << ": " << errors << " validation error(s)\n";
+        failures += errors != 0;
+        std::cout << b << ": abstract and direct images " << (same ? "identical" : "DIFFER") << ", " << lit
+                  << " pixels drawn\n";
+        if (lit != kDraws) std::cout << b << ": expected one pixel per draw, " << kDraws << " pixels\n";
+        failures += !same || lit != kDraws;
+    }
+    return failures ? 1 : 0;
+}
+
 // --paired N: N pairs of frames per backend, abstract and direct alternating (which goes first
 // alternates too), each frame's record+submit timed with the recording thread's CPU clock.
 // The ratio is taken per pair and the median reported: drift of the machine between separate
@@ -352,11 +385,12 @@ int pairedRatios(uint32_t pairs) {
 int main(int argc, char** argv) {
     // The two measuring modes besides Google Benchmark: MODE [N].
     const std::string mode = argc >= 2 ? argv[1] : "";
-    if (mode == "--count-instructions" || mode == "--paired") {
+    if (mode == "--check" || mode == "--count-instructions" || mode == "--paired") {
         const int n = argc >= 3 ? std::atoi(argv[2]) : 0;
         try {
-            const int rc = mode == "--paired" ? pairedRatios(n >= 2 ? uint32_t(n) : 200)
-                                              : countInstructions(n >= 1 ? uint32_t(n) : 3);
+            const int rc = mode == "--check"    ? checkSameImage()
+                           : mode == "--paired" ? pairedRatios(n >= 2 ? uint32_t(n) : 200)
+                                                : countInstructions(n >= 1 ? uint32_t(n) : 3);
             scenes().clear();
             return rc;
         } catch (const std::exception& e) {
