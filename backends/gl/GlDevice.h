@@ -129,7 +129,7 @@ private:
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline, gdi::PoolStorage::Pinned> pipelines_;  // command lists point at the bound one
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     void forgetFramebuffers(GLuint texture);
 };

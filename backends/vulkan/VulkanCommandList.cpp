@@ -161,7 +161,7 @@ void VulkanCommandList::submitted(gdi::FenceValue value) {
     recording_ = false;
     inPass_ = false;
     pipeline_ = nullptr;
-    writesFor_ = nullptr;
+    writesFor_ = 0;
     computeBound_ = false;
     readyToDraw_ = false;
     requiredSlots_ = 0;
@@ -274,14 +274,15 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     layout_ = p.layout;
     computeBound_ = p.bindPoint == VK_PIPELINE_BIND_POINT_COMPUTE;
     updateReadyToDraw();
-    if (writesFor_ != &p) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
+    // By handle id, not address: a destroyed pipeline's slot (same address) may hold a new one.
+    if (writesFor_ != h.id) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
         for (uint64_t m = p.requiredSlots; m; m &= m - 1) {
             const uint32_t slot = uint32_t(std::countr_zero(m));
             writes_[slot] = p.writeTemplates[slot];
             writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
             writes_[slot].pImageInfo = &bindings_[slot].image;
         }
-        writesFor_ = &p;
+        writesFor_ = h.id;
     }
 }
 

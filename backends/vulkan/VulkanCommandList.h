@@ -101,10 +101,10 @@ private:
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     std::array<Binding, 64> bindings_{};
-    // Descriptor writes for the pipeline writesFor_ (prepared by setPipeline), each pointing
+    // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
     // at its slot in bindings_.
     std::array<VkWriteDescriptorSet, 64> writes_{};
-    const Pipeline* writesFor_ = nullptr;
+    uint32_t writesFor_ = 0;
     // Slots set since they were last pushed. Push descriptors may be updated incrementally
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);

@@ -15,6 +15,16 @@ using namespace fe::gdi;
 
 namespace {
 
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
 class BindingState : public fe::testing::BackendTest {};
 
 struct Params {
@@ -96,6 +106,41 @@ TEST_P(BindingState, UnboundSlotStillFailsAfterOtherDraws) {
     EXPECT_THROW(cmd->draw(3), Error);  // still unbound: the check is not skipped the second time
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
+}
+
+// A renderer may create pipelines while recording (first use of a material). The bound
+// pipeline must survive the pool growing underneath it, and the new ones must work at once.
+TEST_P(BindingState, PipelinesCreatedMidRecording) {
+    Device& d = *device;
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    const GraphicsPipelineDesc desc{.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                    .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
+                                    .debugName = "first"};
+    const Params green{{0, 1, 0, 1}, {0.5f, 0, 0, 0}};
+    BufferHandle ubo = d.createBuffer({.size = sizeof green, .usage = BufferUsage::Uniform}, &green);
+    TextureHandle target = d.createTexture(
+        {.format = Format::RGBA8, .width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = target, .clear = {0, 0, 0, 1}}}});
+    cmd->setPipeline(d.createGraphicsPipeline(desc));
+    std::vector<PipelineHandle> later;
+    for (int i = 0; i < 40; ++i) later.push_back(d.createGraphicsPipeline(desc));  // the pool grows
+    cmd->setScissor({.x = 0, .y = 0, .width = 8, .height = 16});
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("pipeline 'first'"), std::string::npos);  // names the bound one
+    cmd->setUniformBuffer(0, ubo);
+    cmd->draw(3);  // left half, through the pipeline bound before the pool grew
+    cmd->setPipeline(later.back());
+    cmd->setScissor({.x = 8, .y = 0, .width = 8, .height = 16});
+    cmd->draw(3);  // right half, through the newest one
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    Image img = d.readTexture(target);
+    for (uint32_t x : {2u, 13u}) {
+        auto t = img.texel(x, 8);
+        EXPECT_NEAR(t[0], 0.0, 1.0 / 255) << "x " << x;
+        EXPECT_NEAR(t[1], 1.0, 1.0 / 255) << "x " << x;
+    }
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(BindingState);

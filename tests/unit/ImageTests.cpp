@@ -62,3 +62,37 @@ TEST(HandlePool, StaleHandlesAreRejected) {
     EXPECT_EQ(*pool.find(b), 2);
     EXPECT_THROW(pool.get(a, "buffer"), Error);
 }
+
+// A command list keeps a pointer to its bound pipeline while the renderer may create more
+// objects: growing a pinned pool (the backends' pipeline pools) must not move the ones it holds.
+TEST(HandlePool, PinnedObjectsDoNotMoveWhenThePoolGrows) {
+    struct Big {
+        int value = 0;
+        char payload[3000] = {};  // a pipeline-sized object: few slots per chunk
+    };
+    HandlePool<PipelineHandle, Big, PoolStorage::Pinned> pool;
+    PipelineHandle first = pool.add(Big{7});
+    const Big* where = pool.find(first);
+    std::vector<PipelineHandle> more;
+    for (int i = 0; i < 1000; ++i) more.push_back(pool.add(Big{i}));
+    EXPECT_EQ(pool.find(first), where);
+    EXPECT_EQ(pool.find(first)->value, 7);
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(pool.get(more[size_t(i)], "pipeline").value, i);
+    int visited = 0;
+    pool.forEach([&](Big&) { ++visited; });
+    EXPECT_EQ(visited, 1001);
+    EXPECT_EQ(pool.find(PipelineHandle{}), nullptr);                 // id 0: never valid
+    EXPECT_EQ(pool.find(PipelineHandle{(1u << 20) | 2000u}), nullptr);  // index past the end
+}
+
+TEST(HandlePool, ContiguousPoolFindsEveryObjectAfterGrowing) {
+    HandlePool<BufferHandle, int> pool;
+    std::vector<BufferHandle> handles;
+    for (int i = 0; i < 1000; ++i) handles.push_back(pool.add(int(i)));
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(pool.get(handles[size_t(i)], "buffer"), i);
+    int out = 0;
+    EXPECT_TRUE(pool.remove(handles[500], out));
+    EXPECT_EQ(out, 500);
+    EXPECT_EQ(pool.find(handles[500]), nullptr);
+    EXPECT_FALSE(pool.remove(handles[500], out));
+}

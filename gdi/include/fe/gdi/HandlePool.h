@@ -1,8 +1,16 @@
 // Layer 3 (Representation): maps typed handles to a backend's objects.
 // Ids carry a generation so a stale handle to a reused slot is caught, not misused.
+//
+// Storage: Contiguous (one array: a lookup is one indirection, for the per-draw lookups of
+// buffers and textures; objects move when the pool grows) or Pinned (fixed-size chunks:
+// objects never move, for pipelines, which a command list keeps a pointer to while the
+// renderer may create more mid-recording).
 #pragma once
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -10,7 +18,9 @@
 
 namespace fe::gdi {
 
-template <class H, class T>
+enum class PoolStorage { Contiguous, Pinned };
+
+template <class H, class T, PoolStorage kStorage = PoolStorage::Contiguous>
 class HandlePool {
 public:
     H add(T&& object) {
@@ -19,21 +29,23 @@ public:
             index = free_.back();
             free_.pop_back();
         } else {
-            index = uint32_t(slots_.size());
-            slots_.push_back({});
-            count_ = uint32_t(slots_.size());
+            index = count_++;
+            if constexpr (kStorage == PoolStorage::Pinned) {
+                if ((index & kChunkMask) == 0) chunks_.push_back(std::make_unique<Chunk>());
+            } else {
+                slots_.emplace_back();
+            }
         }
-        Slot& s = slots_[index];
+        Slot& s = slot(index);
         s.object = std::move(object);
         s.liveTag = s.generation & 0xfffu;
         return H{(s.liveTag << 20) | (index + 1)};
     }
     T* find(H h) {
-        // Index 0 wraps to the largest value and fails the bound check too; count_ avoids
-        // dividing by sizeof(Slot) in size() on every lookup.
+        // Index 0 wraps to the largest value and fails the bound check too.
         const uint32_t index = (h.id & 0xfffffu) - 1u;
         if (index >= count_) return nullptr;
-        Slot& s = slots_[index];
+        Slot& s = slot(index);
         if (s.liveTag != (h.id >> 20)) return nullptr;  // dead slots never match: one compare
         return &s.object;
     }
@@ -50,7 +62,7 @@ public:
         if (!p) return false;
         out = std::move(*p);
         *p = T{};
-        Slot& s = slots_[(h.id & 0xfffffu) - 1];
+        Slot& s = slot((h.id & 0xfffffu) - 1);
         s.liveTag = kDead;
         s.generation++;
         free_.push_back((h.id & 0xfffffu) - 1);
@@ -58,8 +70,8 @@ public:
     }
     template <class F>
     void forEach(F&& f) {
-        for (auto& s : slots_)
-            if (s.liveTag != kDead) f(s.object);
+        for (uint32_t i = 0; i < count_; ++i)
+            if (Slot& s = slot(i); s.liveTag != kDead) f(s.object);
     }
 
 private:
@@ -77,9 +89,23 @@ private:
     static constexpr size_t kSlotAlign =
         sizeof(SlotFields) <= 256 ? std::bit_ceil(sizeof(SlotFields)) : alignof(SlotFields);
     struct alignas(kSlotAlign) Slot : SlotFields {};
-    std::vector<Slot> slots_;
+    // Pinned: about 16 KiB per chunk, a power of two slots: index >> shift picks the chunk.
+    static constexpr uint32_t kChunkSlots =
+        uint32_t(std::bit_floor(std::max<size_t>(1, size_t(16384) / sizeof(Slot))));
+    static constexpr uint32_t kChunkShift = uint32_t(std::countr_zero(kChunkSlots));
+    static constexpr uint32_t kChunkMask = kChunkSlots - 1;
+    using Chunk = std::array<Slot, kChunkSlots>;
+    Slot& slot(uint32_t index) {
+        if constexpr (kStorage == PoolStorage::Pinned)
+            return (*chunks_[index >> kChunkShift])[index & kChunkMask];
+        else
+            return slots_[index];
+    }
+
+    std::vector<Slot> slots_;                    // Contiguous
+    std::vector<std::unique_ptr<Chunk>> chunks_;  // Pinned
     std::vector<uint32_t> free_;
-    uint32_t count_ = 0;  // slots_.size()
+    uint32_t count_ = 0;  // slots in use or freed: the next new index
 };
 
 }  // namespace fe::gdi
