@@ -26,6 +26,17 @@ protected:
     std::unique_ptr<gdi::Device> device;
 };
 
+// The message of the gdi::Error f throws, or "(no error)": tests match on the message text.
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const gdi::Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
 // gtest names may not contain '-': gl-egl -> gl_egl.
 inline std::string backendTestName(const ::testing::TestParamInfo<std::string>& info) {
     std::string n = info.param;

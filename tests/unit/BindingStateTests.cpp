@@ -12,18 +12,10 @@
 
 using namespace fe;
 using namespace fe::gdi;
+using fe::testing::errorOf;
 
 namespace {
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 class BindingState : public fe::testing::BackendTest {};
 

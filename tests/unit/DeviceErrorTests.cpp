@@ -6,18 +6,10 @@
 #include "fe/gdi/ShaderRegistry.h"
 
 using namespace fe::gdi;
+using fe::testing::errorOf;
 
 class DeviceErrors : public fe::testing::BackendTest {};
 
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 TEST_P(DeviceErrors, ZeroSizes) {
     EXPECT_NE(errorOf([&] { device->createBuffer({.size = 0}); }).find("size is 0"), std::string::npos);
