@@ -16,7 +16,6 @@ using fe::testing::errorOf;
 
 namespace {
 
-
 class BindingState : public fe::testing::BackendTest {};
 
 struct Params {
