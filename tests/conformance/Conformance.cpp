@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "fe/gdi/ShaderRegistry.h"
 
@@ -214,7 +215,7 @@ std::vector<CaseImage> textureSampling(Device& d) {
 
 // Timestamp queries measure a non-zero duration around real work.
 std::vector<CaseImage> timestamps(Device& d) {
-    if (!d.info().features.timestamps) throw Error("device reports no timestamp support");
+    FE_CONFORMANCE_CHECK(d.info().features.timestamps, "the device reports timestamp support");
     TextureHandle t = target(d, Format::RGBA8);
     TimerHandle timer = d.createTimer();
     auto cmd = d.createCommandList();
@@ -226,7 +227,8 @@ std::vector<CaseImage> timestamps(Device& d) {
     cmd->endTimer(timer);
     d.wait(d.submit(*cmd));
     auto ns = d.timerNanoseconds(timer);
-    if (!ns || !(*ns > 0.0)) throw Error("timer measured no duration");
+    FE_CONFORMANCE_CHECK(ns.has_value(), "the timer has a result after wait");
+    FE_CONFORMANCE_CHECK(*ns > 0.0, "the timer measured a non-zero duration around four render passes");
     CaseImage ci{"cleared", d.readTexture(t), solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1})};
     d.destroy(timer);
     d.destroy(t);
@@ -250,6 +252,12 @@ const std::vector<Case>& cases() {
         return v;
     }();
     return all;
+}
+
+void checkFailed(const char* file, int line, const char* condition, const char* what) {
+    const char* slash = std::strrchr(file, '/');
+    throw Error(std::string(slash ? slash + 1 : file) + ":" + std::to_string(line) + ": check failed: " + what + " (" +
+                condition + ")");
 }
 
 CaseResult runCase(Device& device, const Case& c) {

@@ -31,6 +31,14 @@ struct Case {
     std::function<std::vector<CaseImage>(gdi::Device&)> run;
 };
 
+// A check inside a case for what an image cannot show (a duration, a byte count, a feature):
+// failing it fails the case, and the message names the file and line.
+[[noreturn]] void checkFailed(const char* file, int line, const char* condition, const char* what);
+#define FE_CONFORMANCE_CHECK(condition, what)                                                       \
+    do {                                                                                            \
+        if (!(condition)) ::fe::conformance::checkFailed(__FILE__, __LINE__, #condition, what);     \
+    } while (0)
+
 const std::vector<Case>& cases();
 // Runs one case: exceptions and validation errors fail it; analytic expectations are compared.
 CaseResult runCase(gdi::Device& device, const Case& c);

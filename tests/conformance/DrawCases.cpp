@@ -315,6 +315,7 @@ std::vector<CaseImage> computeBufferAndImage(Device& d) {
     cmd->dispatch(kSize / 8, kSize / 8);
     d.wait(d.submit(*cmd));
     std::vector<uint8_t> bytes = d.readBuffer(buf, 0, kSize * kSize * 4);
+    FE_CONFORMANCE_CHECK(bytes.size() == kSize * kSize * 4, "readBuffer returns the bytes asked for");
     Image values{kSize, kSize, Format::R32U, bytes};
     std::vector<Texel> ev, ei;
     for (uint32_t y = 0; y < kSize; ++y)
@@ -351,7 +352,9 @@ std::vector<CaseImage> copies(Device& d) {
     cmd->copyBuffer(dst, 0, mid, 0, bytes);
     d.wait(d.submit(*cmd));
     Image expected{kSize, kSize, Format::RGBA8, pattern};
-    CaseImage ci{"buffer_texture_roundtrip", Image{kSize, kSize, Format::RGBA8, d.readBuffer(dst, 0, bytes)}, expected};
+    std::vector<uint8_t> roundTrip = d.readBuffer(dst, 0, bytes);
+    FE_CONFORMANCE_CHECK(roundTrip.size() == bytes, "readBuffer returns the bytes asked for");
+    CaseImage ci{"buffer_texture_roundtrip", Image{kSize, kSize, Format::RGBA8, std::move(roundTrip)}, expected};
     ci.absTolerance = 0;
     ci.maxFractionOver = 0;
     ci.toleranceReason = "copies are exact";

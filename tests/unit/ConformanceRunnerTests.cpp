@@ -25,6 +25,16 @@ TEST_P(ConformanceRunner, RejectsWrongImagesAndExceptions) {
     r = conformance::runCase(*device, throws);
     EXPECT_FALSE(r.passed);
     EXPECT_NE(r.message.find("size is 0"), std::string::npos) << r.message;
+
+    conformance::Case checks{"checks", [](gdi::Device&) -> std::vector<conformance::CaseImage> {
+        const double measured = 0.0;
+        FE_CONFORMANCE_CHECK(measured > 0.0, "a non-zero duration");
+        return {};
+    }};
+    r = conformance::runCase(*device, checks);
+    EXPECT_FALSE(r.passed);
+    EXPECT_NE(r.message.find("ConformanceRunnerTests.cpp:"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("check failed: a non-zero duration (measured > 0.0)"), std::string::npos) << r.message;
 }
 
 // Every real case: its analytic expectations pass as rendered, and fail once 2 % of the
