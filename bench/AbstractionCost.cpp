@@ -58,7 +58,7 @@ Scene makeScene(const std::string& backend) {
     s.target = d.createTexture({.format = Format::RGBA8, .width = 100, .height = 100,
                                 .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = "bench target"});
     const float tri[] = {0, 0, 1, 0, 0, 1};
-    s.vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, tri);
+    s.vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, bytesOf(tri));
     std::vector<float> objects(kDraws * kObjectStride / 4, 0.0f);
     for (uint32_t i = 0; i < kDraws; ++i) {
         float* o = &objects[i * kObjectStride / 4];
@@ -67,7 +67,7 @@ Scene makeScene(const std::string& backend) {
         o[2] = o[3] = 0.03f;                               // scale: 1.5 pixels
         o[4] = float(i % 7) / 7.0f, o[5] = 0.5f, o[6] = 1.0f, o[7] = 1.0f;
     }
-    s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform}, objects.data());
+    s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform}, bytesOf(objects));
     auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
     auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
     s.pipeline = d.createGraphicsPipeline({

@@ -44,21 +44,42 @@ public:
 
     void beginRenderPass(const gdi::RenderPassDesc& desc) override {
         if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
-        std::vector<gdi::validate::AttachmentInfo> infos;
-        std::vector<std::pair<GLuint, uint32_t>> colors;
-        for (const auto& c : desc.colors) {
+        using gdi::validate::attachment;
+        std::vector<gdi::validate::AttachmentInfo> infos, resolveInfos(desc.colors.size());
+        std::vector<FboAttachment> colors;
+        resolves_.clear();
+        for (size_t i = 0; i < desc.colors.size(); ++i) {
+            const auto& c = desc.colors[i];
             Texture& t = dev_.texture(c.texture);
-            if (c.mipLevel >= t.desc.mipLevels) throw gdi::Error("beginRenderPass: attachment mip level out of range");
-            infos.push_back({t.desc.format, std::max(1u, t.desc.width >> c.mipLevel), std::max(1u, t.desc.height >> c.mipLevel),
-                             t.desc.usage});
-            colors.push_back({t.name, c.mipLevel});
+            infos.push_back(attachment(t.desc, c.mipLevel, c.layer, "beginRenderPass", t.label));
+            colors.push_back(dev_.fboAttachment(t, c.mipLevel, c.layer));
+            if (c.resolveTexture) {
+                Texture& r = dev_.texture(c.resolveTexture);
+                const gdi::Subresource at = c.resolveSubresource;
+                resolveInfos[i] = attachment(r.desc, at.mipLevel, at.layer, "beginRenderPass resolve", r.label);
+                resolves_.push_back({GLenum(GL_COLOR_ATTACHMENT0 + i), dev_.fboAttachment(r, at.mipLevel, at.layer)});
+            }
         }
         Texture* depth = desc.depth.texture ? &dev_.texture(desc.depth.texture) : nullptr;
-        gdi::validate::AttachmentInfo di{};
-        if (depth) di = {depth->desc.format, depth->desc.width, depth->desc.height, depth->desc.usage};
-        area_ = gdi::validate::renderPass(desc, infos, depth ? &di : nullptr, dev_.info().limits);
+        gdi::validate::AttachmentInfo di{}, dri{};
+        if (depth) di = attachment(depth->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depth->label);
+        Texture* depthResolve = desc.depth.resolveTexture ? &dev_.texture(desc.depth.resolveTexture) : nullptr;
+        if (depthResolve) {
+            if (!depth) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
+            const gdi::Subresource at = desc.depth.resolveSubresource;
+            dri = attachment(depthResolve->desc, at.mipLevel, at.layer, "beginRenderPass resolve", depthResolve->label);
+        }
+        area_ = gdi::validate::renderPass(desc, infos, resolveInfos, depth ? &di : nullptr, depthResolve ? &dri : nullptr,
+                                          dev_.info().limits);
+        passSamples_ = infos.empty() ? di.samples : infos[0].samples;
         const bool stencil = depth && gdi::formatInfo(depth->desc.format).hasStencil;
-        GLuint fbo = dev_.framebuffer(colors, depth ? depth->name : 0, stencil);
+        GLuint fbo = dev_.framebuffer(colors, depth ? dev_.fboAttachment(*depth, desc.depth.mipLevel, desc.depth.layer) : FboAttachment{},
+                                      stencil);
+        fbo_ = fbo;
+        if (depthResolve)
+            resolves_.push_back({GLenum(stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT),
+                                 dev_.fboAttachment(*depthResolve, desc.depth.resolveSubresource.mipLevel,
+                                                    desc.depth.resolveSubresource.layer)});
         if (desc.debugName) pushDebugGroup(desc.debugName);
         labelled_ = desc.debugName != nullptr;
         if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -92,6 +113,7 @@ public:
 
     void endRenderPass() override {
         if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
+        if (!resolves_.empty()) resolve();
         inPass_ = false;
         readyToDraw_ = false;
         if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -100,6 +122,7 @@ public:
 
     void setPipeline(gdi::PipelineHandle h) override {
         Pipeline& p = dev_.pipeline(h);
+        if (inPass_ && !p.compute) gdi::validate::pipelineSamples(p.desc.multisample.sampleCount, passSamples_, p.label.c_str());
         if (pipeline_ != &p) {
             vertexDirty_ = indexDirty_ = true;  // another VAO
             unchecked_ = ~uint64_t(0);          // other slots, other kinds
@@ -121,6 +144,20 @@ public:
         // gdi's winding is Vulkan's: its area formula is negated with respect to GL's over the
         // same (row-index) coordinates, so the GL enum is the opposite one.
         gl_.FrontFace(d.raster.frontFace == gdi::FrontFace::CounterClockwise ? GL_CW : GL_CCW);
+        // Depth bias: glPolygonOffset(factor, units) is Vulkan's (slope, constant) with the same formula.
+        if (d.raster.depthBiasConstant != 0 || d.raster.depthBiasSlope != 0) {
+            gl_.Enable(GL_POLYGON_OFFSET_FILL);
+            if (gl_.PolygonOffsetClamp)
+                gl_.PolygonOffsetClamp(d.raster.depthBiasSlope, d.raster.depthBiasConstant, d.raster.depthBiasClamp);
+            else
+                gl_.PolygonOffset(d.raster.depthBiasSlope, d.raster.depthBiasConstant);
+        } else {
+            gl_.Disable(GL_POLYGON_OFFSET_FILL);
+        }
+        if (d.raster.depthClamp) gl_.Enable(GL_DEPTH_CLAMP);
+        else gl_.Disable(GL_DEPTH_CLAMP);
+        if (d.multisample.alphaToCoverage) gl_.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+        else gl_.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         const auto& ds = d.depthStencil;
         if (ds.depthTest || ds.depthWrite) {
             gl_.Enable(GL_DEPTH_TEST);
@@ -199,7 +236,10 @@ public:
         Texture& t = dev_.texture(th);
         if (!any(t.desc.usage, gdi::TextureUsage::Storage))
             throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
-        gl_.BindImageTexture(slot, t.name, GLint(mip), GL_FALSE, 0, GL_READ_WRITE, toGlFormat(t.desc.format).internal);
+        if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
+        // Every layer (arrays, cubes, 3D slices) of the mip, as Vulkan's storage view binds it.
+        const GLboolean layered = t.target == GL_TEXTURE_2D ? GL_FALSE : GL_TRUE;
+        gl_.BindImageTexture(slot, t.name, GLint(mip), layered, 0, GL_READ_WRITE, toGlFormat(t.desc.format).internal);
         bound(slot, gdi::BindingType::StorageTexture);
     }
 
@@ -211,9 +251,7 @@ public:
     void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
                      uint32_t firstInstance) override {
         prepareDraw("drawIndexed");
-        if (!indexBuffer_) throw gdi::Error("drawIndexed without an index buffer");
-        if (indexDirty_) gl_.VertexArrayElementBuffer(pipeline_->vao, indexBuffer_);
-        indexDirty_ = false;
+        prepareIndexed("drawIndexed", false);
         const uint32_t size = indexType_ == gdi::IndexType::U16 ? 2 : 4;
         gl_.DrawElementsInstancedBaseVertexBaseInstance(
             topology_, GLsizei(indexCount),
@@ -244,43 +282,91 @@ public:
         outside("copyTexture");
         Texture& d = dev_.texture(dst);
         Texture& s = dev_.texture(src);
-        if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height)
-            throw gdi::Error("copyTexture: '" + s.label + "' and '" + d.label + "' differ in format or size");
+        if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
+            d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
+            d.desc.sampleCount != s.desc.sampleCount)
+            throw gdi::Error("copyTexture: '" + s.label + "' and '" + d.label + "' differ in format, kind, size or samples");
         if (mip >= d.desc.mipLevels || mip >= s.desc.mipLevels) throw gdi::Error("copyTexture: mip level out of range");
-        gl_.CopyImageSubData(s.name, GL_TEXTURE_2D, GLint(mip), 0, 0, 0, d.name, GL_TEXTURE_2D, GLint(mip), 0, 0, 0,
-                             GLsizei(std::max(1u, d.desc.width >> mip)), GLsizei(std::max(1u, d.desc.height >> mip)), 1);
+        const gdi::validate::Extent3 e = gdi::validate::mipExtent(d.desc, mip);
+        gl_.CopyImageSubData(s.name, s.target, GLint(mip), 0, 0, 0, d.name, d.target, GLint(mip), 0, 0, 0, GLsizei(e.width),
+                             GLsizei(e.height), GLsizei(e.depthOrLayers));
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     }
-    void copyBufferToTexture(gdi::TextureHandle dst, uint32_t mip, gdi::BufferHandle src, uint64_t srcOffset) override {
-        outside("copyBufferToTexture");
+    // One subresource through a pixel buffer; checks shared by both directions.
+    uint64_t bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset, const char* what) {
+        outside(what);
+        gdi::validate::subresource(t.desc, at, what, t.label);
+        if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error(std::string(what) + ": depth formats are not supported");
+        if (t.desc.sampleCount > 1) throw gdi::Error(std::string(what) + ": multisampled textures are not supported");
+        const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
+        const uint64_t bytes = gdi::imageByteSize(t.desc.format, e.width, e.height);
+        gdi::validate::bufferRange(b.desc, offset, bytes, what);
+        if (offset % 4) throw gdi::Error(std::string(what) + ": buffer offset must be a multiple of 4");
+        return bytes;
+    }
+    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override {
         Texture& t = dev_.texture(dst);
         Buffer& b = dev_.buffer(src);
-        if (mip >= t.desc.mipLevels) throw gdi::Error("copyBufferToTexture: mip level out of range");
-        if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyBufferToTexture: depth formats are not supported");
-        const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
-        gdi::validate::bufferRange(b.desc, srcOffset, uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel,
-                                   "copyBufferToTexture source");
-        GlFormat f = toGlFormat(t.desc.format);
+        const uint64_t bytes = bufferTextureBytes(t, at, b, srcOffset, "copyBufferToTexture");
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, b.name);
-        gl_.TextureSubImage2D(t.name, GLint(mip), 0, 0, GLsizei(w), GLsizei(h), f.format, f.type,
-                              reinterpret_cast<const void*>(uintptr_t(srcOffset)));
+        dev_.uploadSubresource(t, at, reinterpret_cast<const void*>(uintptr_t(srcOffset)), bytes);
         gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     }
-    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, uint32_t mip) override {
-        outside("copyTextureToBuffer");
+    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override {
         Texture& t = dev_.texture(src);
         Buffer& b = dev_.buffer(dst);
-        if (mip >= t.desc.mipLevels) throw gdi::Error("copyTextureToBuffer: mip level out of range");
-        if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyTextureToBuffer: depth formats are not supported");
-        const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
-        const uint64_t bytes = uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel;
-        gdi::validate::bufferRange(b.desc, dstOffset, bytes, "copyTextureToBuffer destination");
-        GlFormat f = toGlFormat(t.desc.format);
+        const uint64_t bytes = bufferTextureBytes(t, at, b, dstOffset, "copyTextureToBuffer");
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, b.name);
-        gl_.GetTextureImage(t.name, GLint(mip), f.format, f.type, GLsizei(bytes), reinterpret_cast<void*>(uintptr_t(dstOffset)));
+        dev_.readSubresource(t, at, reinterpret_cast<void*>(uintptr_t(dstOffset)), bytes);
         gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    }
+    void generateMips(gdi::TextureHandle h) override {
+        outside("generateMips");
+        Texture& t = dev_.texture(h);
+        gdi::validate::mipGeneration(t.desc, t.label);
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        gl_.GenerateTextureMipmap(t.name);
+    }
+
+    // Indirect work. GL reads indexed records relative to the element buffer's start, so the
+    // index buffer must be bound at offset 0 (checked on every backend, so both behave alike).
+    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override {
+        indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirect");
+        gl_.MultiDrawArraysIndirect(topology_, reinterpret_cast<const void*>(uintptr_t(offset)), GLsizei(drawCount), GLsizei(stride));
+    }
+    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override {
+        indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirect");
+        gl_.MultiDrawElementsIndirect(topology_, indexType(), reinterpret_cast<const void*>(uintptr_t(offset)), GLsizei(drawCount),
+                                      GLsizei(stride));
+    }
+    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                           uint32_t maxDrawCount, uint32_t stride) override {
+        countBuffer(count, countOffset, "drawIndirectCount");
+        indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirectCount");
+        gl_.MultiDrawArraysIndirectCount(topology_, reinterpret_cast<const void*>(uintptr_t(offset)), GLintptr(countOffset),
+                                         GLsizei(maxDrawCount), GLsizei(stride));
+    }
+    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                                  uint32_t maxDrawCount, uint32_t stride) override {
+        countBuffer(count, countOffset, "drawIndexedIndirectCount");
+        indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirectCount");
+        gl_.MultiDrawElementsIndirectCount(topology_, indexType(), reinterpret_cast<const void*>(uintptr_t(offset)),
+                                           GLintptr(countOffset), GLsizei(maxDrawCount), GLsizei(stride));
+    }
+    void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override {
+        if (inPass_) throw gdi::Error("dispatchIndirect is not allowed inside a render pass");
+        if (!pipeline_) throw gdi::Error("dispatchIndirect without a pipeline (call setPipeline first)");
+        if (!pipeline_->compute) throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->label + "'");
+        const Buffer& b = dev_.buffer(args);
+        gdi::validate::indirect(b.desc, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
+                                dev_.info().features, "dispatchIndirect");
+        checkBindings();
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        gl_.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, b.name);
+        gl_.DispatchComputeIndirect(GLintptr(offset));
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     }
 
     void beginTimer(gdi::TimerHandle h) override {
@@ -348,6 +434,44 @@ public:
     }
 
 private:
+    GLenum indexType() const { return indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT; }
+    void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
+                      const char* what) {
+        const Buffer& b = dev_.buffer(h);
+        gdi::validate::indirect(b.desc, offset, drawCount, stride, recordSize, dev_.info().features, what);
+        prepareDraw(what);
+        if (recordSize == sizeof(gdi::DrawIndexedIndirectArgs)) prepareIndexed(what, true);
+        gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, b.name);
+    }
+    void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
+        if (!dev_.info().features.drawIndirectCount)
+            throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
+        const Buffer& b = dev_.buffer(h);
+        gdi::validate::indirect(b.desc, offset, 1, 4, 4, dev_.info().features, what);
+        gl_.BindBuffer(GL_PARAMETER_BUFFER, b.name);
+    }
+    // Writes every resolve target from the pass's multisampled attachments. A blit from a
+    // multisampled framebuffer resolves; colour averages the samples. Depth: GL leaves the
+    // choice to the implementation; Mesa takes sample 0, which is what Vulkan's SAMPLE_ZERO
+    // gives (conformance case msaa_resolve checks both against the same expectation).
+    void resolve() {
+        gl_.Disable(GL_SCISSOR_TEST);  // blits honour the scissor
+        gl_.Disable(GL_FRAMEBUFFER_SRGB);  // sRGB bytes copied as they are stored, as on Vulkan
+        for (const auto& [point, target] : resolves_) {
+            const bool color = point >= GL_COLOR_ATTACHMENT0 && point < GL_COLOR_ATTACHMENT0 + 16;
+            std::vector<FboAttachment> colors;
+            FboAttachment depth{};
+            if (color) colors.push_back(target);
+            else depth = target;
+            const GLuint dst = dev_.framebuffer(colors, depth, point == GL_DEPTH_STENCIL_ATTACHMENT);
+            if (color) gl_.NamedFramebufferReadBuffer(fbo_, point);
+            gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0, GLint(area_.width),
+                                     GLint(area_.height), color ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+        }
+        gl_.Enable(GL_FRAMEBUFFER_SRGB);
+        gl_.Enable(GL_SCISSOR_TEST);
+        resolves_.clear();
+    }
     void checkSlot(uint32_t slot, const char* what) {
         if (slot >= 64) throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
     }
@@ -412,6 +536,13 @@ private:
         if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
         throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
     }
+    void prepareIndexed(const char* what, bool indirect) {
+        if (!indexBuffer_) throw gdi::Error(std::string(what) + " without an index buffer");
+        if (indirect && indexOffset_ != 0)
+            throw gdi::Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
+        if (indexDirty_) gl_.VertexArrayElementBuffer(pipeline_->vao, indexBuffer_);
+        indexDirty_ = false;
+    }
     void prepareDraw(const char* what) {
         if (!readyToDraw_) [[unlikely]]
             notReadyToDraw(what);
@@ -432,6 +563,9 @@ private:
     bool automatic_ = true;  // setAutomaticBarriers
     int depth_ = 0;
     gdi::Rect area_;
+    uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
+    GLuint fbo_ = 0;            // the open pass's framebuffer
+    std::vector<std::pair<GLenum, FboAttachment>> resolves_;  // attachment point -> resolve target, at endRenderPass
     Pipeline* pipeline_ = nullptr;
     bool readyToDraw_ = false;    // in a render pass with a graphics pipeline
     uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots

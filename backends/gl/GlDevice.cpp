@@ -14,6 +14,12 @@ std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validati
     return std::make_unique<GlDevice>(platform, validation);
 }
 
+namespace {
+// EXT_texture_sRGB's S3TC tokens, which glcorearb.h does not carry.
+constexpr GLenum kCompressedSrgbAlphaS3tcDxt1 = 0x8C4D;
+constexpr GLenum kCompressedSrgbAlphaS3tcDxt5 = 0x8C4F;
+}  // namespace
+
 GlFormat toGlFormat(gdi::Format f) {
     using F = gdi::Format;
     switch (f) {
@@ -29,7 +35,26 @@ GlFormat toGlFormat(gdi::Format f) {
         case F::R11G11B10F: return {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV};
         case F::D32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
         case F::D24S8: return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
+        // Compressed: the internal format only (uploads use glCompressedTextureSubImage*).
+        case F::BC1: return {GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, 0, 0};
+        case F::BC1_SRGB: return {kCompressedSrgbAlphaS3tcDxt1, 0, 0};
+        case F::BC3: return {GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, 0, 0};
+        case F::BC3_SRGB: return {kCompressedSrgbAlphaS3tcDxt5, 0, 0};
+        case F::BC4: return {GL_COMPRESSED_RED_RGTC1, 0, 0};
+        case F::BC5: return {GL_COMPRESSED_RG_RGTC2, 0, 0};
+        case F::BC7: return {GL_COMPRESSED_RGBA_BPTC_UNORM, 0, 0};
+        case F::BC7_SRGB: return {GL_COMPRESSED_SRGB_ALPHA_BPTC_UNORM, 0, 0};
         default: return {0, 0, 0};
+    }
+}
+
+GLenum textureTarget(const gdi::TextureDesc& d) {
+    switch (d.dimension) {
+        case gdi::TextureDimension::Texture2DArray: return GL_TEXTURE_2D_ARRAY;
+        case gdi::TextureDimension::TextureCube: return GL_TEXTURE_CUBE_MAP;
+        case gdi::TextureDimension::TextureCubeArray: return GL_TEXTURE_CUBE_MAP_ARRAY;
+        case gdi::TextureDimension::Texture3D: return GL_TEXTURE_3D;
+        default: return d.sampleCount > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
     }
 }
 
@@ -54,11 +79,22 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
     if (major * 10 + minor < 45)
         throw gdi::Error(std::string(platform_->name()) + ": OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
                          " < 4.5");
-    bool spirv = false;
+    std::vector<std::string> extensions;
     gl_.GetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i)
-        if (std::strcmp(reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, i)), "GL_ARB_gl_spirv") == 0) spirv = true;
-    if (!spirv) throw gdi::Error(std::string(platform_->name()) + ": GL_ARB_gl_spirv missing (shaders are SPIR-V)");
+    for (GLint i = 0; i < n; ++i) extensions.emplace_back(reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, i)));
+    auto has = [&](const char* e) { return std::find(extensions.begin(), extensions.end(), e) != extensions.end(); };
+    if (!has("GL_ARB_gl_spirv")) throw gdi::Error(std::string(platform_->name()) + ": GL_ARB_gl_spirv missing (shaders are SPIR-V)");
+    if (has("GL_ARB_indirect_parameters")) {
+        gl_.MultiDrawArraysIndirectCount = reinterpret_cast<PFNGLMULTIDRAWARRAYSINDIRECTCOUNTPROC>(
+            platform_->getProcAddress("glMultiDrawArraysIndirectCountARB"));
+        gl_.MultiDrawElementsIndirectCount = reinterpret_cast<PFNGLMULTIDRAWELEMENTSINDIRECTCOUNTPROC>(
+            platform_->getProcAddress("glMultiDrawElementsIndirectCountARB"));
+    }
+    if (has("GL_ARB_polygon_offset_clamp"))
+        gl_.PolygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPPROC>(platform_->getProcAddress("glPolygonOffsetClamp"));
+    // S3TC (BC1, BC3) and its sRGB forms are extensions; RGTC (BC4, BC5) and BPTC (BC7) are core.
+    const bool bc = has("GL_EXT_texture_compression_s3tc") &&
+                    (has("GL_EXT_texture_sRGB") || has("GL_EXT_texture_compression_s3tc_srgb"));
     if (validation) {
         gl_.Enable(GL_DEBUG_OUTPUT);
         gl_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
@@ -79,6 +115,32 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
                                info_.deviceName.find("softpipe") != std::string::npos;
     auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
     info_.limits.maxTextureSize2D = get(GL_MAX_TEXTURE_SIZE);
+    info_.limits.maxTextureSize3D = get(GL_MAX_3D_TEXTURE_SIZE);
+    info_.limits.maxTextureSizeCube = get(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
+    info_.limits.maxTextureArrayLayers = get(GL_MAX_ARRAY_TEXTURE_LAYERS);
+    // Sample counts every format the engine renders to accepts, as Vulkan-style bits.
+    const uint32_t maxColor = std::min(get(GL_MAX_COLOR_TEXTURE_SAMPLES), get(GL_MAX_SAMPLES));
+    const uint32_t maxDepth = std::min(get(GL_MAX_DEPTH_TEXTURE_SAMPLES), get(GL_MAX_SAMPLES));
+    auto countsFor = [&](uint32_t maxSamples, std::initializer_list<gdi::Format> formats) {
+        uint32_t bits = 1;
+        for (uint32_t c = 2; c <= 8 && c <= maxSamples; c *= 2) {
+            bool all = true;
+            for (gdi::Format f : formats) {  // the counts a format supports, from the driver
+                GLint num = 0;
+                gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal, GL_NUM_SAMPLE_COUNTS, 1, &num);
+                std::vector<GLint> counts(size_t(std::max(num, 0)));
+                if (num > 0)
+                    gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal, GL_SAMPLES, num, counts.data());
+                all = all && std::find(counts.begin(), counts.end(), GLint(c)) != counts.end();
+            }
+            if (all) bits |= c;
+        }
+        return bits;
+    };
+    using F = gdi::Format;
+    info_.limits.colorSampleCounts = countsFor(maxColor, {F::RGBA8, F::RGBA8_SRGB, F::RGBA16F, F::RG16F, F::R16F, F::RGBA32F,
+                                                          F::RG32F, F::R32F, F::R32U, F::R11G11B10F});
+    info_.limits.depthSampleCounts = countsFor(maxDepth, {F::D32F, F::D24S8});
     info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
     info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
     info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
@@ -86,7 +148,12 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
-                      .memoryAliasing = false, .window = platform_->hasWindow()};
+                      .memoryAliasing = false, .window = platform_->hasWindow(),
+                      .textureCubeArray = true, .depthClamp = true,  // core in 4.0 and 3.2
+                      .depthBiasClamp = gl_.PolygonOffsetClamp != nullptr,
+                      .multiDrawIndirect = true,  // core in 4.3
+                      .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
+                      .textureCompressionBC = bc};
 }
 
 GlDevice::~GlDevice() {
@@ -106,6 +173,8 @@ GlDevice::~GlDevice() {
 
 bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
     if (toGlFormat(format).internal == 0) return false;
+    if (gdi::isCompressedFormat(format))
+        return info_.features.textureCompressionBC && !any(usage, gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Storage);
     // GL 4.5 core requires every format here as texture and render target; image load/store
     // has no sRGB, packed-float-to-RGB or depth formats.
     if (any(usage, gdi::TextureUsage::Storage) &&
@@ -114,20 +183,22 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
     return true;
 }
 
-gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
     gdi::validate::bufferDesc(desc);
+    gdi::validate::initialData(desc, initialData.size());
     Buffer b;
     b.desc = desc;
     b.label = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;
     gl_.CreateBuffers(1, &b.name);
-    gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData, GL_DYNAMIC_STORAGE_BIT);
+    gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
+                           GL_DYNAMIC_STORAGE_BIT);
     if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
     return buffers_.add(std::move(b));
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
-    gdi::validate::textureDesc(desc, info_.limits);
+    gdi::validate::textureDesc(desc, info_);
     const std::string label = desc.debugName ? desc.debugName : "";
     if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
     if (!supportsFormat(desc.format, desc.usage))
@@ -137,10 +208,19 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     t.desc = desc;
     t.desc.debugName = nullptr;
     t.label = label;
-    gl_.CreateTextures(GL_TEXTURE_2D, 1, &t.name);
-    gl_.TextureStorage2D(t.name, GLsizei(desc.mipLevels), toGlFormat(desc.format).internal, GLsizei(desc.width),
-                         GLsizei(desc.height));
-    gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
+    t.target = textureTarget(desc);
+    gl_.CreateTextures(t.target, 1, &t.name);
+    const GLenum internal = toGlFormat(desc.format).internal;
+    const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
+    switch (t.target) {
+        case GL_TEXTURE_2D_MULTISAMPLE:
+            gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
+            break;
+        case GL_TEXTURE_2D:
+        case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
+        default: gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers)); break;  // layers or depth
+    }
+    if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
     if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
     return textures_.add(std::move(t));
 }
@@ -164,6 +244,11 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
     gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
     gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
     gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
+    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_R, wrap(d.addressW));
+    if (d.compareEnable) {
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(d.compare)));  // same order
+    }
     if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
     return samplers_.add(std::move(s));
 }
@@ -213,7 +298,7 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    gdi::validate::graphicsPipelineDesc(d, info_.limits);
+    gdi::validate::graphicsPipelineDesc(d, info_);
     Pipeline p;
     p.label = d.debugName ? d.debugName : "";
     Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
@@ -286,8 +371,8 @@ gdi::MemoryRequirements GlDevice::textureMemoryRequirements(const gdi::TextureDe
 
 void GlDevice::forgetFramebuffers(GLuint texture) {
     for (size_t i = 0; i < fbos_.size();) {
-        bool uses = fbos_[i].depth == texture;
-        for (auto& c : fbos_[i].colors) uses = uses || c.first == texture;
+        bool uses = fbos_[i].depth.texture == texture;
+        for (auto& c : fbos_[i].colors) uses = uses || c.texture == texture;
         if (uses) {
             gl_.DeleteFramebuffers(1, &fbos_[i].fbo);
             fbos_.erase(fbos_.begin() + long(i));
@@ -328,17 +413,27 @@ void GlDevice::destroy(gdi::TimerHandle h) {
     if (h && timers_.remove(h, t)) gl_.DeleteQueries(2, t.queries);
 }
 
-GLuint GlDevice::framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& colors, GLuint depth, bool stencil) {
+FboAttachment GlDevice::fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const {
+    const bool layered = t.target != GL_TEXTURE_2D && t.target != GL_TEXTURE_2D_MULTISAMPLE;
+    return {t.name, mipLevel, layered ? int32_t(layer) : -1};
+}
+
+GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, bool stencil) {
     for (auto& f : fbos_)
         if (f.colors == colors && f.depth == depth) return f.fbo;
     GLuint fbo;
     gl_.CreateFramebuffers(1, &fbo);
+    auto attach = [&](GLenum point, const FboAttachment& a) {
+        // A layer of an array, cube (faces are layers 0-5 in DSA) or 3D texture; 2D textures whole.
+        if (a.layer >= 0) gl_.NamedFramebufferTextureLayer(fbo, point, a.texture, GLint(a.mipLevel), a.layer);
+        else gl_.NamedFramebufferTexture(fbo, point, a.texture, GLint(a.mipLevel));
+    };
     std::vector<GLenum> draw;
     for (size_t i = 0; i < colors.size(); ++i) {
-        gl_.NamedFramebufferTexture(fbo, GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i].first, GLint(colors[i].second));
+        attach(GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i]);
         draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
     }
-    if (depth) gl_.NamedFramebufferTexture(fbo, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth, 0);
+    if (depth.texture) attach(stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
     gl_.NamedFramebufferDrawBuffers(fbo, GLsizei(draw.size()), draw.data());
     if (gl_.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         gl_.DeleteFramebuffers(1, &fbo);
@@ -348,26 +443,41 @@ GLuint GlDevice::framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& col
     return fbo;
 }
 
-void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* data, uint64_t size) {
+void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
     Buffer& b = buffer(h);
-    gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
-    if (size == 0) return;
-    if (!data) throw gdi::Error("writeBuffer: data is null");
-    gl_.NamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(size), data);  // ordered after earlier GL work
+    gdi::validate::bufferRange(b.desc, offset, data.size(), "writeBuffer");
+    if (data.empty()) return;
+    gl_.NamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(data.size()), data.data());  // ordered after earlier GL work
 }
 
-void GlDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data, uint64_t size) {
+void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes) {
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
+    const GlFormat f = toGlFormat(t.desc.format);
+    const auto w = GLsizei(e.width), h = GLsizei(e.height), mip = GLint(at.mipLevel), layer = GLint(at.layer);
+    const bool flat = t.target == GL_TEXTURE_2D;  // every other kind addresses layers, faces or slices as z
+    if (gdi::isCompressedFormat(t.desc.format)) {
+        if (flat) gl_.CompressedTextureSubImage2D(t.name, mip, 0, 0, w, h, f.internal, GLsizei(bytes), pixels);
+        else gl_.CompressedTextureSubImage3D(t.name, mip, 0, 0, layer, w, h, 1, f.internal, GLsizei(bytes), pixels);
+    } else if (flat) {
+        gl_.TextureSubImage2D(t.name, mip, 0, 0, w, h, f.format, f.type, pixels);
+    } else {
+        gl_.TextureSubImage3D(t.name, mip, 0, 0, layer, w, h, 1, f.format, f.type, pixels);
+    }
+}
+
+void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes) {
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
+    const GlFormat f = toGlFormat(t.desc.format);
+    gl_.GetTextureSubImage(t.name, GLint(at.mipLevel), 0, 0, GLint(at.layer), GLsizei(e.width), GLsizei(e.height), 1, f.format,
+                           f.type, GLsizei(bytes), pixels);
+}
+
+void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
     Texture& t = texture(h);
-    if (mip >= t.desc.mipLevels) throw gdi::Error("writeTexture: mip level out of range for texture '" + t.label + "'");
-    const uint32_t w = std::max(1u, t.desc.width >> mip), hh = std::max(1u, t.desc.height >> mip);
-    const uint64_t expected = uint64_t(w) * hh * gdi::formatInfo(t.desc.format).bytesPerPixel;
-    if (size != expected)
-        throw gdi::Error("writeTexture: texture '" + t.label + "' mip " + std::to_string(mip) + " needs " +
-                         std::to_string(expected) + " bytes, got " + std::to_string(size));
-    if (!data) throw gdi::Error("writeTexture: data is null");
+    gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
-    GlFormat f = toGlFormat(t.desc.format);
-    gl_.TextureSubImage2D(t.name, GLint(mip), 0, 0, GLsizei(w), GLsizei(hh), f.format, f.type, data);
+    if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
+    uploadSubresource(t, at, data.data(), data.size());
 }
 
 std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
@@ -379,17 +489,17 @@ std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, 
     return out;
 }
 
-gdi::Image GlDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
+gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
     Texture& t = texture(h);
-    if (mip >= t.desc.mipLevels) throw gdi::Error("readTexture: mip level out of range for texture '" + t.label + "'");
+    gdi::validate::readable(t.desc, at, "readTexture", t.label);
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     gdi::Image img;
-    img.width = std::max(1u, t.desc.width >> mip);
-    img.height = std::max(1u, t.desc.height >> mip);
+    img.width = e.width;
+    img.height = e.height;
     img.format = t.desc.format;
-    img.data.resize(size_t(img.width) * img.height * gdi::formatInfo(t.desc.format).bytesPerPixel);
-    GlFormat f = toGlFormat(t.desc.format);
+    img.data.resize(gdi::imageByteSize(t.desc.format, e.width, e.height));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    gl_.GetTextureImage(t.name, GLint(mip), f.format, f.type, GLsizei(img.data.size()), img.data.data());
+    readSubresource(t, at, img.data.data(), img.data.size());
     if (t.desc.format == gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
         for (size_t i = 0; i < img.data.size(); i += 4) {
             uint32_t v;
@@ -460,7 +570,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
         throw gdi::Error("present: texture '" + t.label + "' must be a colour texture with CopySrc usage");
     auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
     platform_->makeCurrent();
-    GLuint fbo = framebuffer({{t.name, 0}}, 0, false);
+    GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);
     gl_.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
     gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
     // Bytes unchanged: no sRGB decode/encode. The blit honours the scissor test, so it is off.

@@ -31,8 +31,17 @@ struct Buffer {
 };
 struct Texture {
     GLuint name = 0;
+    GLenum target = GL_TEXTURE_2D;  // by dimension and sample count
     gdi::TextureDesc desc;
     std::string label;
+};
+GLenum textureTarget(const gdi::TextureDesc& d);
+// One framebuffer attachment: a texture's mip level and, for layered textures, its layer.
+struct FboAttachment {
+    GLuint texture = 0;
+    uint32_t mipLevel = 0;
+    int32_t layer = -1;  // -1: the texture has no layers (Texture2D, multisampled)
+    bool operator==(const FboAttachment&) const = default;
 };
 struct Sampler {
     GLuint name = 0;
@@ -66,7 +75,7 @@ public:
 
     const gdi::DeviceInfo& info() const override { return info_; }
     bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
-    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, const void* initialData) override;
+    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
@@ -84,10 +93,14 @@ public:
     void destroy(gdi::HeapHandle) override {}
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
-    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) override;
-    void writeTexture(gdi::TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) override;
+    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
+    void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
     std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    gdi::Image readTexture(gdi::TextureHandle texture, uint32_t mipLevel) override;
+    gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
+    // Upload/readback of one subresource through the pixel unpack/pack state (pointer or, with a
+    // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
+    void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes);
+    void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
     std::unique_ptr<gdi::CommandList> createCommandList() override;
     gdi::FenceValue submit(gdi::CommandList& commands) override;
     void wait(gdi::FenceValue fence) override;
@@ -106,7 +119,8 @@ public:
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
     Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
-    GLuint framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& colors, GLuint depth, bool stencil);
+    FboAttachment fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const;
+    GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, bool stencil);
     void makeCurrent() { platform_->makeCurrent(); }
 
 private:
@@ -119,8 +133,8 @@ private:
     std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;
     gdi::FenceValue nextFence_ = 1;
     struct CachedFbo {
-        std::vector<std::pair<GLuint, uint32_t>> colors;
-        GLuint depth;
+        std::vector<FboAttachment> colors;
+        FboAttachment depth;
         GLuint fbo;
     };
     std::vector<CachedFbo> fbos_;

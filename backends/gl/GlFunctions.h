@@ -24,6 +24,13 @@ namespace fe::gl {
     X(PFNGLBINDBUFFERPROC, BindBuffer)                                                                     \
     X(PFNGLCREATETEXTURESPROC, CreateTextures)                                                             \
     X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                                         \
+    X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                                                         \
+    X(PFNGLTEXTURESTORAGE2DMULTISAMPLEPROC, TextureStorage2DMultisample)                                   \
+    X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                                                       \
+    X(PFNGLCOMPRESSEDTEXTURESUBIMAGE2DPROC, CompressedTextureSubImage2D)                                   \
+    X(PFNGLCOMPRESSEDTEXTURESUBIMAGE3DPROC, CompressedTextureSubImage3D)                                   \
+    X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                                                     \
+    X(PFNGLGENERATETEXTUREMIPMAPPROC, GenerateTextureMipmap)                                               \
     X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                                                       \
     X(PFNGLGETTEXTUREIMAGEPROC, GetTextureImage)                                                           \
     X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                                                       \
@@ -58,6 +65,7 @@ namespace fe::gl {
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                                     \
     X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                                                     \
     X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)                                           \
+    X(PFNGLNAMEDFRAMEBUFFERTEXTURELAYERPROC, NamedFramebufferTextureLayer)                                 \
     X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, NamedFramebufferDrawBuffers)                                   \
     X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)                                   \
     X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                                           \
@@ -86,6 +94,11 @@ namespace fe::gl {
     X(PFNGLDRAWARRAYSINSTANCEDBASEINSTANCEPROC, DrawArraysInstancedBaseInstance)                           \
     X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC, DrawElementsInstancedBaseVertexBaseInstance)   \
     X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                                           \
+    X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                                           \
+    X(PFNGLMULTIDRAWARRAYSINDIRECTPROC, MultiDrawArraysIndirect)                                           \
+    X(PFNGLMULTIDRAWELEMENTSINDIRECTPROC, MultiDrawElementsIndirect)                                       \
+    X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                                               \
+    X(PFNGLGETINTERNALFORMATIVPROC, GetInternalformativ)                                                   \
     X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                                               \
     X(PFNGLCOPYNAMEDBUFFERSUBDATAPROC, CopyNamedBufferSubData)                                             \
     X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                                         \
@@ -111,6 +124,10 @@ struct GlFunctions {
 #define FE_GL_DECLARE(type, name) type name = nullptr;
     FE_GL_FUNCTIONS(FE_GL_DECLARE)
 #undef FE_GL_DECLARE
+    // Extensions beyond 4.5 core: null when the context lacks them (DeviceFeatures says which).
+    PFNGLMULTIDRAWARRAYSINDIRECTCOUNTPROC MultiDrawArraysIndirectCount = nullptr;      // ARB_indirect_parameters
+    PFNGLMULTIDRAWELEMENTSINDIRECTCOUNTPROC MultiDrawElementsIndirectCount = nullptr;  // ARB_indirect_parameters
+    PFNGLPOLYGONOFFSETCLAMPPROC PolygonOffsetClamp = nullptr;                          // ARB_polygon_offset_clamp
 };
 
 }  // namespace fe::gl

@@ -64,7 +64,7 @@ void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
                          nullptr, 0, nullptr);
 }
 
-void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels) {
+void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format) {
     VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;  // whatever last wrote these bytes (aliasing)
     b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
@@ -72,7 +72,7 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
     b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {aspectOf(format), 0, mipLevels, 0, 1};
+    b.subresourceRange = {aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
     vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
                          nullptr, 1, &b);
 }
@@ -80,7 +80,7 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
 void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
     outsidePass("discardTexture");
     Texture& t = dev_.texture(h);
-    toGeneral(cb_, t.image, t.desc.format, t.desc.mipLevels);
+    toGeneral(cb_, t.image, t.desc.format);
 }
 
 namespace {
@@ -137,7 +137,7 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
         b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         b.image = t.image;
-        b.subresourceRange = {aspectOf(t.desc.format), 0, t.desc.mipLevels, 0, 1};
+        b.subresourceRange = {aspectOf(t.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
         src |= before.stages;
         dst |= after.stages;
     }
@@ -165,6 +165,7 @@ void VulkanCommandList::submitted(gdi::FenceValue value) {
     computeBound_ = false;
     readyToDraw_ = false;
     requiredSlots_ = 0;
+    indexBound_ = false;
     for (Binding& b : bindings_) b.type = kUnbound;
     dirtySlots_ = ~uint64_t(0);  // push descriptors are undefined when a command buffer begins
     debugDepth_ = 0;
@@ -196,19 +197,31 @@ void VulkanCommandList::barrierIfWritten() {
 
 void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     outsidePass("beginRenderPass");
-    std::vector<gdi::validate::AttachmentInfo> infos;
-    std::vector<Texture*> colorTex;
-    for (const auto& c : desc.colors) {
+    using gdi::validate::attachment;
+    std::vector<gdi::validate::AttachmentInfo> infos, resolveInfos(desc.colors.size());
+    std::vector<Texture*> colorTex, resolveTex(desc.colors.size(), nullptr);
+    for (size_t i = 0; i < desc.colors.size(); ++i) {
+        const auto& c = desc.colors[i];
         Texture& t = dev_.texture(c.texture);
-        if (c.mipLevel >= t.desc.mipLevels) throw gdi::Error("beginRenderPass: attachment mip level out of range");
-        infos.push_back({t.desc.format, std::max(1u, t.desc.width >> c.mipLevel), std::max(1u, t.desc.height >> c.mipLevel),
-                         t.desc.usage});
+        infos.push_back(attachment(t.desc, c.mipLevel, c.layer, "beginRenderPass", t.name));
         colorTex.push_back(&t);
+        if (c.resolveTexture) {
+            resolveTex[i] = &dev_.texture(c.resolveTexture);
+            resolveInfos[i] = attachment(resolveTex[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
+                                         "beginRenderPass resolve", resolveTex[i]->name);
+        }
     }
     Texture* depthTex = desc.depth.texture ? &dev_.texture(desc.depth.texture) : nullptr;
-    gdi::validate::AttachmentInfo depthInfo{};
-    if (depthTex) depthInfo = {depthTex->desc.format, depthTex->desc.width, depthTex->desc.height, depthTex->desc.usage};
-    renderArea_ = gdi::validate::renderPass(desc, infos, depthTex ? &depthInfo : nullptr, dev_.info().limits);
+    Texture* depthResolveTex = desc.depth.resolveTexture ? &dev_.texture(desc.depth.resolveTexture) : nullptr;
+    gdi::validate::AttachmentInfo depthInfo{}, depthResolveInfo{};
+    if (depthTex) depthInfo = attachment(depthTex->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depthTex->name);
+    if (depthResolveTex)
+        depthResolveInfo = attachment(depthResolveTex->desc, desc.depth.resolveSubresource.mipLevel,
+                                      desc.depth.resolveSubresource.layer, "beginRenderPass resolve", depthResolveTex->name);
+    if (depthResolveTex && !depthTex) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
+    renderArea_ = gdi::validate::renderPass(desc, infos, resolveInfos, depthTex ? &depthInfo : nullptr,
+                                            depthResolveTex ? &depthResolveInfo : nullptr, dev_.info().limits);
+    passSamples_ = infos.empty() ? depthInfo.samples : infos[0].samples;
 
     barrierIfWritten();
     std::vector<VkRenderingAttachmentInfo> colors(desc.colors.size());
@@ -216,27 +229,41 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
         const auto& c = desc.colors[i];
         auto& a = colors[i];
         a = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        a.imageView = colorTex[i]->mipViews[c.mipLevel];
+        a.imageView = dev_.attachmentView(*colorTex[i], c.mipLevel, c.layer);
         a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
         a.loadOp = toLoad(c.load);
         a.storeOp = toStore(c.store);
-        if (gdi::formatInfo(colorTex[i]->desc.format).isInteger)
+        const bool integer = gdi::formatInfo(colorTex[i]->desc.format).isInteger;
+        if (integer)
             for (int k = 0; k < 4; ++k) a.clearValue.color.uint32[k] = uint32_t(c.clear[k]);
         else
             for (int k = 0; k < 4; ++k) a.clearValue.color.float32[k] = c.clear[k];
+        if (resolveTex[i]) {
+            // Integer formats cannot be averaged: they resolve to sample 0, like depth.
+            a.resolveMode = integer ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_AVERAGE_BIT;
+            a.resolveImageView = dev_.attachmentView(*resolveTex[i], c.resolveSubresource.mipLevel, c.resolveSubresource.layer);
+            a.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
+        }
     }
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     VkRenderingAttachmentInfo stencil{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     if (depthTex) {
-        depth.imageView = depthTex->mipViews[0];
+        depth.imageView = dev_.attachmentView(*depthTex, desc.depth.mipLevel, desc.depth.layer);
         depth.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
         depth.loadOp = toLoad(desc.depth.load);
         depth.storeOp = toStore(desc.depth.store);
         depth.clearValue.depthStencil = {desc.depth.clearDepth, desc.depth.clearStencil};
+        if (depthResolveTex) {
+            depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // see DepthAttachment in Device.h
+            depth.resolveImageView = dev_.attachmentView(*depthResolveTex, desc.depth.resolveSubresource.mipLevel,
+                                                         desc.depth.resolveSubresource.layer);
+            depth.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
+        }
         ri.pDepthAttachment = &depth;
         if (gdi::formatInfo(depthTex->desc.format).hasStencil) {
             stencil = depth;
+            stencil.resolveMode = depthResolveTex ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
             ri.pStencilAttachment = &stencil;
         }
     }
@@ -267,6 +294,7 @@ void VulkanCommandList::endRenderPass() {
 void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
     Pipeline& p = dev_.pipeline(h);
+    if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineSamples(p.samples, passSamples_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     pipeline_ = &p;
@@ -311,6 +339,8 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
     Buffer& b = dev_.buffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+    indexOffset_ = offset;
+    indexBound_ = true;
 }
 
 // The setters below are the per-object path: the fast path is a leaf (no call, no saved
@@ -431,6 +461,74 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
     vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
 }
 
+// Indirect draws: the buffer checks of validate::indirect, then the same binding push as draw().
+const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
+                                              uint32_t recordSize, const char* what) {
+    if (!readyToDraw_) [[unlikely]]
+        notReadyToDraw(what);
+    const Buffer& b = dev_.buffer(h);
+    gdi::validate::indirect(b.desc, offset, drawCount, stride, recordSize, dev_.info().features, what);
+    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    return b;
+}
+
+const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
+    if (!dev_.info().features.drawIndirectCount)
+        throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
+    const Buffer& b = dev_.buffer(h);
+    gdi::validate::indirect(b.desc, offset, 1, 4, 4, dev_.info().features, what);
+    return b;
+}
+
+void VulkanCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
+    const Buffer& b = indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirect");
+    vkCmdDrawIndirect(cb_, b.buffer, offset, drawCount, stride);
+}
+
+// GL reads indexed records relative to the element buffer's start, so gdi asks for offset 0 on
+// every backend (the records' firstIndex does the offsetting).
+void VulkanCommandList::indexedIndirect(const char* what) const {
+    if (!indexBound_) throw gdi::Error(std::string(what) + " without an index buffer");
+    if (indexOffset_ != 0)
+        throw gdi::Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
+}
+
+void VulkanCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
+    indexedIndirect("drawIndexedIndirect");
+    const Buffer& b = indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirect");
+    vkCmdDrawIndexedIndirect(cb_, b.buffer, offset, drawCount, stride);
+}
+
+void VulkanCommandList::drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                                          uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+    const Buffer& c = countBuffer(count, countOffset, "drawIndirectCount");
+    const Buffer& b = indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirectCount");
+    dev_.cmdDrawIndirectCount(cb_, b.buffer, offset, c.buffer, countOffset, maxDrawCount, stride);
+}
+
+void VulkanCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                                                 uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+    indexedIndirect("drawIndexedIndirectCount");
+    const Buffer& c = countBuffer(count, countOffset, "drawIndexedIndirectCount");
+    const Buffer& b = indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs),
+                                   "drawIndexedIndirectCount");
+    dev_.cmdDrawIndexedIndirectCount(cb_, b.buffer, offset, c.buffer, countOffset, maxDrawCount, stride);
+}
+
+void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
+    outsidePass("dispatchIndirect");
+    if (!pipeline_) fail("dispatchIndirect without a pipeline (call setPipeline first)");
+    if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
+        throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->name + "'");
+    const Buffer& b = dev_.buffer(args);
+    gdi::validate::indirect(b.desc, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
+                            dev_.info().features, "dispatchIndirect");
+    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
+    barrierIfWritten();
+    vkCmdDispatchIndirect(cb_, b.buffer, offset);
+    written_ = true;
+}
+
 void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     outsidePass("dispatch");
     if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
@@ -460,50 +558,79 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle s
     outsidePass("copyTexture");
     Texture& d = dev_.texture(dst);
     Texture& s = dev_.texture(src);
-    if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height)
-        throw gdi::Error("copyTexture: '" + s.name + "' and '" + d.name + "' differ in format or size");
+    if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
+        d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
+        d.desc.sampleCount != s.desc.sampleCount)
+        throw gdi::Error("copyTexture: '" + s.name + "' and '" + d.name + "' differ in format, kind, size or samples");
     if (mip >= d.desc.mipLevels || mip >= s.desc.mipLevels) throw gdi::Error("copyTexture: mip level out of range");
     barrierIfWritten();
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(d.desc, mip);
+    const bool is3D = d.desc.dimension == gdi::TextureDimension::Texture3D;
     VkImageCopy r{};
-    r.srcSubresource = r.dstSubresource = {aspectOf(d.desc.format), mip, 0, 1};
-    r.extent = {std::max(1u, d.desc.width >> mip), std::max(1u, d.desc.height >> mip), 1};
+    r.srcSubresource = r.dstSubresource = {aspectOf(d.desc.format), mip, 0, arrayLayers(d.desc)};
+    r.extent = {e.width, e.height, is3D ? e.depthOrLayers : 1};
     vkCmdCopyImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     written_ = true;
 }
 
-void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, uint32_t mip, gdi::BufferHandle src, uint64_t srcOffset) {
+// Checks shared by both buffer <-> texture copies: one subresource of a colour texture, a
+// tightly packed range of the buffer.
+static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset,
+                                             const char* what) {
+    gdi::validate::subresource(t.desc, at, what, t.name);
+    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error(std::string(what) + ": depth formats are not supported");
+    if (t.desc.sampleCount > 1) throw gdi::Error(std::string(what) + ": multisampled textures are not supported");
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
+    gdi::validate::bufferRange(b.desc, offset, gdi::imageByteSize(t.desc.format, e.width, e.height), what);
+    if (offset % 4) throw gdi::Error(std::string(what) + ": buffer offset must be a multiple of 4");
+    return copyRegion(t.desc, at, offset);
+}
+
+void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
     Texture& t = dev_.texture(dst);
     Buffer& b = dev_.buffer(src);
-    if (mip >= t.desc.mipLevels) throw gdi::Error("copyBufferToTexture: mip level out of range");
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyBufferToTexture: depth formats are not supported");
-    const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
-    gdi::validate::bufferRange(b.desc, srcOffset, uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel,
-                               "copyBufferToTexture source");
+    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, "copyBufferToTexture");
     barrierIfWritten();
-    VkBufferImageCopy r{};
-    r.bufferOffset = srcOffset;
-    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
-    r.imageExtent = {w, h, 1};
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     written_ = true;
 }
 
-void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, uint32_t mip) {
+void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
     Texture& t = dev_.texture(src);
     Buffer& b = dev_.buffer(dst);
-    if (mip >= t.desc.mipLevels) throw gdi::Error("copyTextureToBuffer: mip level out of range");
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("copyTextureToBuffer: depth formats are not supported");
-    const uint32_t w = std::max(1u, t.desc.width >> mip), h = std::max(1u, t.desc.height >> mip);
-    gdi::validate::bufferRange(b.desc, dstOffset, uint64_t(w) * h * gdi::formatInfo(t.desc.format).bytesPerPixel,
-                               "copyTextureToBuffer destination");
+    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, "copyTextureToBuffer");
     barrierIfWritten();
-    VkBufferImageCopy r{};
-    r.bufferOffset = dstOffset;
-    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 0, 1};
-    r.imageExtent = {w, h, 1};
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
+    written_ = true;
+}
+
+// Each level is a linear blit of the one above (an exact 2x2 or 2x2x2 average where sizes
+// halve evenly), every layer at once; a barrier orders each level's write before its read.
+void VulkanCommandList::generateMips(gdi::TextureHandle h) {
+    outsidePass("generateMips");
+    Texture& t = dev_.texture(h);
+    gdi::validate::mipGeneration(t.desc, t.name);
+    if (!dev_.linearBlit(t.desc.format))
+        throw gdi::Error("generateMips: format " + std::string(gdi::formatInfo(t.desc.format).name) +
+                         " cannot be filtered by a blit on this device");
+    barrierIfWritten();
+    const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
+    for (uint32_t m = 1; m < t.desc.mipLevels; ++m) {
+        const gdi::validate::Extent3 a = gdi::validate::mipExtent(t.desc, m - 1), b = gdi::validate::mipExtent(t.desc, m);
+        VkImageBlit blit{};
+        blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, arrayLayers(t.desc)};
+        blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, arrayLayers(t.desc)};
+        blit.srcOffsets[1] = {int32_t(a.width), int32_t(a.height), is3D ? int32_t(a.depthOrLayers) : 1};
+        blit.dstOffsets[1] = {int32_t(b.width), int32_t(b.height), is3D ? int32_t(b.depthOrLayers) : 1};
+        vkCmdBlitImage(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &blit, VK_FILTER_LINEAR);
+        VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+        vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0,
+                             nullptr);
+    }
     written_ = true;
 }
 

@@ -26,11 +26,19 @@ public:
     void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
                      uint32_t firstInstance) override;
     void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
+    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                           uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                                  uint32_t maxDrawCount, uint32_t stride) override;
+    void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override;
+    void generateMips(gdi::TextureHandle texture) override;
     void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
                     uint64_t size) override;
     void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mipLevel) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, uint32_t mipLevel, gdi::BufferHandle src, uint64_t srcOffset) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, uint32_t mipLevel) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
     void beginTimer(gdi::TimerHandle timer) override;
     void endTimer(gdi::TimerHandle timer) override;
     void pushDebugGroup(const char* name) override;
@@ -44,7 +52,7 @@ public:
     VkCommandBuffer finish();
     void submitted(gdi::FenceValue value);
     static void fullBarrier(VkCommandBuffer cb);
-    static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format, uint32_t mipLevels);
+    static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format);  // every subresource
     void discardTexture(gdi::TextureHandle texture) override;
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
@@ -59,6 +67,10 @@ private:
     void barrierIfWritten();
     void pushDirty(uint64_t push, VkPipelineBindPoint bindPoint);
     void pushGathered(uint64_t push);
+    const Buffer& indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
+                               uint32_t recordSize, const char* what);
+    const Buffer& countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what);
+    void indexedIndirect(const char* what) const;
     [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
     void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_; }
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
@@ -100,6 +112,9 @@ private:
     VkPipelineLayout layout_ = VK_NULL_HANDLE;  // pipeline_->layout
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
+    uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
+    uint64_t indexOffset_ = 0;  // of the bound index buffer (indexed indirect draws need 0)
+    bool indexBound_ = false;
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
     // at its slot in bindings_.

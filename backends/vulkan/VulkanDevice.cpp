@@ -182,8 +182,22 @@ void VulkanDevice::createLogicalDevice() {
     features.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     features.features.independentBlend = supported.independentBlend;
+    features.features.imageCubeArray = supported.imageCubeArray;
+    features.features.depthClamp = supported.depthClamp;
+    features.features.depthBiasClamp = supported.depthBiasClamp;
+    features.features.multiDrawIndirect = supported.multiDrawIndirect;
+    features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
+    features.features.textureCompressionBC = supported.textureCompressionBC;
+    features.features.alphaToOne = VK_FALSE;
+    enabled_ = features.features;
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    query.pNext = &supported12;
+    vkGetPhysicalDeviceFeatures2(physical_, &query);
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.hostQueryReset = VK_TRUE;
+    f12.drawIndirectCount = supported12.drawIndirectCount;
+    drawIndirectCount_ = supported12.drawIndirectCount;
     VkPhysicalDeviceDynamicRenderingFeatures dyn{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
     dyn.dynamicRendering = VK_TRUE;
     features.pNext = &f12;
@@ -203,6 +217,12 @@ void VulkanDevice::createLogicalDevice() {
     cmdPushDescriptorSet =
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
     if (!cmdPushDescriptorSet) throw gdi::Error("Vulkan: vkCmdPushDescriptorSetKHR not found");
+    if (drawIndirectCount_) {
+        cmdDrawIndirectCount = reinterpret_cast<PFN_vkCmdDrawIndirectCount>(vkGetDeviceProcAddr(device_, "vkCmdDrawIndirectCount"));
+        cmdDrawIndexedIndirectCount = reinterpret_cast<PFN_vkCmdDrawIndexedIndirectCount>(
+            vkGetDeviceProcAddr(device_, "vkCmdDrawIndexedIndirectCount"));
+        drawIndirectCount_ = cmdDrawIndirectCount && cmdDrawIndexedIndirectCount;
+    }
 
     allocator_ = std::make_unique<MemoryAllocator>(physical_, device_);
 
@@ -227,6 +247,12 @@ void VulkanDevice::fillInfo() {
     info_.softwareRasterizer = props_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     const VkPhysicalDeviceLimits& l = props_.limits;
     info_.limits.maxTextureSize2D = l.maxImageDimension2D;
+    info_.limits.maxTextureSize3D = l.maxImageDimension3D;
+    info_.limits.maxTextureSizeCube = l.maxImageDimensionCube;
+    info_.limits.maxTextureArrayLayers = l.maxImageArrayLayers;
+    // Counts every render-target format supports; each is one sample-count bit, as in Vulkan.
+    info_.limits.colorSampleCounts = l.framebufferColorSampleCounts & l.framebufferNoAttachmentsSampleCounts & 0xf;
+    info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
     info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
@@ -241,6 +267,13 @@ void VulkanDevice::fillInfo() {
     info_.features.computeShaders = true;
     info_.features.debugLabels = cmdBeginLabel != nullptr;
     info_.features.memoryAliasing = true;
+    info_.features.textureCubeArray = enabled_.imageCubeArray;
+    info_.features.depthClamp = enabled_.depthClamp;
+    info_.features.depthBiasClamp = enabled_.depthBiasClamp;
+    // Multi-draw needs a firstInstance in the records too (the engine's instancing uses it).
+    info_.features.multiDrawIndirect = enabled_.multiDrawIndirect && enabled_.drawIndirectFirstInstance;
+    info_.features.drawIndirectCount = drawIndirectCount_ && info_.features.multiDrawIndirect;
+    info_.features.textureCompressionBC = enabled_.textureCompressionBC;
 }
 
 VulkanDevice::~VulkanDevice() { release(); }
@@ -357,17 +390,17 @@ void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record)
 // ---------------------------------------------------------------------------------------------
 // Blocking transfers
 // ---------------------------------------------------------------------------------------------
-void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* data, uint64_t size) {
+void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
     Buffer& b = buffer(h);
+    const uint64_t size = data.size();
     gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
     if (size == 0) return;
-    if (!data) throw gdi::Error("writeBuffer: data is null");
     if (b.desc.access == gdi::MemoryAccess::Upload && b.memory.mapped) {
-        std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data, size);  // caller owns frame pacing
+        std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data.data(), size);  // caller owns frame pacing
         return;
     }
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
-    std::memcpy(staging.memory.mapped, data, size);
+    std::memcpy(staging.memory.mapped, data.data(), size);
     immediate([&](VkCommandBuffer cb) {
         VkBufferCopy region{0, offset, size};
         vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
@@ -375,23 +408,15 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void*
     freeBuffer(staging);
 }
 
-void VulkanDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data, uint64_t size) {
+void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
     Texture& t = texture(h);
-    if (mip >= t.desc.mipLevels)
-        throw gdi::Error("writeTexture: mip level " + std::to_string(mip) + " out of range for texture '" + t.name + "'");
-    const uint32_t w = std::max(1u, t.desc.width >> mip), hgt = std::max(1u, t.desc.height >> mip);
-    const uint64_t expected = uint64_t(w) * hgt * gdi::formatInfo(t.desc.format).bytesPerPixel;
-    if (size != expected)
-        throw gdi::Error("writeTexture: texture '" + t.name + "' mip " + std::to_string(mip) + " needs " +
-                         std::to_string(expected) + " bytes, got " + std::to_string(size));
-    if (!data) throw gdi::Error("writeTexture: data is null");
+    gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
-    std::memcpy(staging.memory.mapped, data, size);
+    if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
+    Buffer staging = makeBuffer(data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    std::memcpy(staging.memory.mapped, data.data(), data.size());
     immediate([&](VkCommandBuffer cb) {
-        VkBufferImageCopy r{};
-        r.imageSubresource = {aspectOf(t.desc.format), mip, 0, 1};
-        r.imageExtent = {w, hgt, 1};
+        const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     });
     freeBuffer(staging);
@@ -412,23 +437,19 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
     return out;
 }
 
-gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
+gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
     Texture& t = texture(h);
-    if (mip >= t.desc.mipLevels)
-        throw gdi::Error("readTexture: mip level " + std::to_string(mip) + " out of range for texture '" + t.name + "'");
+    gdi::validate::readable(t.desc, at, "readTexture", t.name);
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     gdi::Image img;
-    img.width = std::max(1u, t.desc.width >> mip);
-    img.height = std::max(1u, t.desc.height >> mip);
+    img.width = e.width;
+    img.height = e.height;
     img.format = t.desc.format;
-    const uint64_t size = uint64_t(img.width) * img.height * gdi::formatInfo(t.desc.format).bytesPerPixel;
+    const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
     immediate([&](VkCommandBuffer cb) {
-        VkBufferImageCopy r{};
-        // Depth/stencil: copy the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
-        r.imageSubresource = {gdi::isDepthFormat(t.desc.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
-                                                                : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
-                              mip, 0, 1};
-        r.imageExtent = {img.width, img.height, 1};
+        // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
+        const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);
     });
     img.data.resize(size);

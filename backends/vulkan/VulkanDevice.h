@@ -33,6 +33,11 @@ inline void check(VkResult r, const char* what) {
 VkFormat toVkFormat(gdi::Format f);
 VkFormat toVkVertexFormat(gdi::VertexFormat f);
 VkImageAspectFlags aspectOf(gdi::Format f);
+// The aspect views, copies and readback address: depth only for depth/stencil formats.
+VkImageAspectFlags viewAspectOf(gdi::Format f);
+// Buffer <-> image copy region of one subresource (3D: `layer` is the depth slice).
+VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at, VkDeviceSize bufferOffset);
+uint32_t arrayLayers(const gdi::TextureDesc& d);  // Vulkan array layers (1 for 3D)
 
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -44,8 +49,10 @@ struct Buffer {
 struct Texture {
     VkImage image = VK_NULL_HANDLE;
     bool ownsMemory = true;  // false when placed in a Heap
-    VkImageView view = VK_NULL_HANDLE;  // all mips, for sampling
-    std::vector<VkImageView> mipViews;  // one per mip, for attachments and storage
+    VkImageView view = VK_NULL_HANDLE;  // every mip and layer, of the texture's dimension: for sampling
+    std::vector<VkImageView> mipViews;  // one per mip, every layer, same view type: for storage images
+    // One 2D view per (mip, layer), made on first use as an attachment: index mip * layers + layer.
+    std::vector<VkImageView> attachmentViews;
     Allocation memory;
     gdi::TextureDesc desc;
     std::string name;
@@ -74,6 +81,7 @@ struct Pipeline {
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     std::vector<gdi::Format> colorFormats;
     gdi::Format depthFormat = gdi::Format::Undefined;
+    uint32_t samples = 1;
     std::string name;
 };
 
@@ -98,7 +106,7 @@ public:
     const gdi::DeviceInfo& info() const override { return info_; }
     bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
 
-    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, const void* initialData) override;
+    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
@@ -119,10 +127,10 @@ public:
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
 
-    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) override;
-    void writeTexture(gdi::TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) override;
+    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
+    void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
     std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    gdi::Image readTexture(gdi::TextureHandle texture, uint32_t mipLevel) override;
+    gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
 
     std::unique_ptr<gdi::CommandList> createCommandList() override;
     gdi::FenceValue submit(gdi::CommandList& commands) override;
@@ -145,6 +153,11 @@ public:
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
     uint32_t queueFamily() const { return queueFamily_; }
+    bool linearBlit(gdi::Format format) const;  // vkCmdBlitImage with VK_FILTER_LINEAR works
+    // The 2D view of one subresource, for attachments (made on first use, kept with the texture).
+    VkImageView attachmentView(Texture& t, uint32_t mipLevel, uint32_t layer);
+    PFN_vkCmdDrawIndirectCount cmdDrawIndirectCount = nullptr;
+    PFN_vkCmdDrawIndexedIndirectCount cmdDrawIndexedIndirectCount = nullptr;
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                         VkDebugUtilsMessageTypeFlagsEXT type,
@@ -156,7 +169,7 @@ private:
     void createLogicalDevice();
     void fillInfo();
     void setName(VkObjectType type, uint64_t object, const char* name);
-    VkImageView makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount);
+    VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range);
     // Records with `record` into a one-time command buffer, submits it and waits.
     void immediate(const std::function<void(VkCommandBuffer)>& record);
     Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem);
@@ -170,6 +183,8 @@ private:
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties props_{};
     bool anisotropy_ = false;
+    VkPhysicalDeviceFeatures enabled_{};  // the core features the device was created with
+    bool drawIndirectCount_ = false;
     VkDevice device_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
     VkQueue queue_ = VK_NULL_HANDLE;

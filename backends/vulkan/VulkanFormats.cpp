@@ -2,6 +2,7 @@
 #include <string>
 
 #include "VulkanDevice.h"
+#include "fe/gdi/Validation.h"
 
 namespace fe::vk {
 
@@ -39,6 +40,14 @@ VkFormat toVkFormat(gdi::Format f) {
         case F::R11G11B10F: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
         case F::D32F: return VK_FORMAT_D32_SFLOAT;
         case F::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
+        case F::BC1: return VK_FORMAT_BC1_RGBA_UNORM_BLOCK;
+        case F::BC1_SRGB: return VK_FORMAT_BC1_RGBA_SRGB_BLOCK;
+        case F::BC3: return VK_FORMAT_BC3_UNORM_BLOCK;
+        case F::BC3_SRGB: return VK_FORMAT_BC3_SRGB_BLOCK;
+        case F::BC4: return VK_FORMAT_BC4_UNORM_BLOCK;
+        case F::BC5: return VK_FORMAT_BC5_UNORM_BLOCK;
+        case F::BC7: return VK_FORMAT_BC7_UNORM_BLOCK;
+        case F::BC7_SRGB: return VK_FORMAT_BC7_SRGB_BLOCK;
         default: return VK_FORMAT_UNDEFINED;
     }
 }
@@ -65,6 +74,25 @@ VkImageAspectFlags aspectOf(gdi::Format f) {
     const auto& fi = gdi::formatInfo(f);
     if (fi.hasDepth) return VK_IMAGE_ASPECT_DEPTH_BIT | (fi.hasStencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
     return VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+VkImageAspectFlags viewAspectOf(gdi::Format f) {
+    return gdi::isDepthFormat(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+uint32_t arrayLayers(const gdi::TextureDesc& d) {
+    return d.dimension == gdi::TextureDimension::Texture3D ? 1 : d.depthOrLayers;
+}
+
+VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at, VkDeviceSize bufferOffset) {
+    const gdi::validate::Extent3 e = gdi::validate::mipExtent(d, at.mipLevel);
+    const bool is3D = d.dimension == gdi::TextureDimension::Texture3D;
+    VkBufferImageCopy r{};
+    r.bufferOffset = bufferOffset;
+    r.imageSubresource = {viewAspectOf(d.format), at.mipLevel, is3D ? 0 : at.layer, 1};
+    r.imageOffset = {0, 0, is3D ? int32_t(at.layer) : 0};
+    r.imageExtent = {e.width, e.height, 1};
+    return r;
 }
 
 }  // namespace fe::vk

@@ -119,7 +119,7 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
 }
 
 gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    gdi::validate::graphicsPipelineDesc(d, info_.limits);
+    gdi::validate::graphicsPipelineDesc(d, info_);
     const std::string name = d.debugName ? d.debugName : "";
     Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
     if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + name + "': vertexShader is not a vertex shader");
@@ -170,9 +170,15 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     // exactly how Vulkan evaluates VK_FRONT_FACE_COUNTER_CLOCKWISE.
     rs.frontFace = d.raster.frontFace == gdi::FrontFace::Clockwise ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
+    rs.depthClampEnable = d.raster.depthClamp;
+    rs.depthBiasEnable = d.raster.depthBiasConstant != 0 || d.raster.depthBiasSlope != 0;
+    rs.depthBiasConstantFactor = d.raster.depthBiasConstant;
+    rs.depthBiasSlopeFactor = d.raster.depthBiasSlope;
+    rs.depthBiasClamp = d.raster.depthBiasClamp;
 
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    ms.rasterizationSamples = VkSampleCountFlagBits(d.multisample.sampleCount);
+    ms.alphaToCoverageEnable = d.multisample.alphaToCoverage;
 
     const auto& ds = d.depthStencil;
     auto face = [&](const gdi::StencilFaceState& f) {
@@ -220,6 +226,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     Pipeline p = makeLayout(device_, d.bindings, d.debugName);
     p.colorFormats = d.colorFormats;
     p.depthFormat = d.depthFormat;
+    p.samples = d.multisample.sampleCount;
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.pNext = &ri;
     ci.stageCount = uint32_t(stages.size());

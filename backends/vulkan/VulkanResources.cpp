@@ -35,9 +35,18 @@ std::string usageNames(gdi::TextureUsage u) {
 bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
     VkFormat vf = toVkFormat(format);
     if (vf == VK_FORMAT_UNDEFINED) return false;
+    if (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC) return false;
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
     VkFormatFeatureFlags need = requiredFeatures(format, usage);
+    return (p.optimalTilingFeatures & need) == need;
+}
+
+bool VulkanDevice::linearBlit(gdi::Format format) const {
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(physical_, toVkFormat(format), &p);
+    const VkFormatFeatureFlags need =
+        VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     return (p.optimalTilingFeatures & need) == need;
 }
 
@@ -66,8 +75,9 @@ void VulkanDevice::freeBuffer(Buffer& b) {
     b = Buffer{};
 }
 
-gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
     gdi::validate::bufferDesc(desc);
+    gdi::validate::initialData(desc, initialData.size());
     using U = gdi::BufferUsage;
     // Copies in and out are always allowed: writeBuffer/readBuffer stage through them.
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -75,6 +85,7 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const 
     if (any(desc.usage, U::Index)) usage |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
     if (any(desc.usage, U::Uniform)) usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
     if (any(desc.usage, U::Storage)) usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (any(desc.usage, U::Indirect)) usage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     MemoryUsage mem = desc.access == gdi::MemoryAccess::Upload     ? MemoryUsage::Upload
                       : desc.access == gdi::MemoryAccess::Readback ? MemoryUsage::Readback
                                                                    : MemoryUsage::GpuOnly;
@@ -84,9 +95,9 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const 
     b.desc.debugName = nullptr;  // the caller's string may not outlive the buffer
     setName(VK_OBJECT_TYPE_BUFFER, uint64_t(b.buffer), desc.debugName);
     gdi::BufferHandle h = buffers_.add(std::move(b));
-    if (initialData) {
+    if (!initialData.empty()) {
         try {
-            writeBuffer(h, 0, initialData, desc.size);
+            writeBuffer(h, 0, initialData);
         } catch (...) {
             destroy(h);
             throw;
@@ -95,17 +106,37 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const 
     return h;
 }
 
-VkImageView VulkanDevice::makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount) {
+VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.viewType = type;
     vi.format = toVkFormat(format);
     // Views for sampling and attachments see depth only; stencil is reached through the attachment.
-    vi.subresourceRange = {gdi::isDepthFormat(format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
-                                                      : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
-                           baseMip, mipCount, 0, 1};
+    range.aspectMask = viewAspectOf(format);
+    vi.subresourceRange = range;
     VkImageView v;
     check(vkCreateImageView(device_, &vi, nullptr, &v), "vkCreateImageView");
+    return v;
+}
+
+namespace {
+VkImageViewType viewType(gdi::TextureDimension d) {
+    switch (d) {
+        case gdi::TextureDimension::Texture2DArray: return VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+        case gdi::TextureDimension::TextureCube: return VK_IMAGE_VIEW_TYPE_CUBE;
+        case gdi::TextureDimension::TextureCubeArray: return VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
+        case gdi::TextureDimension::Texture3D: return VK_IMAGE_VIEW_TYPE_3D;
+        default: return VK_IMAGE_VIEW_TYPE_2D;
+    }
+}
+}  // namespace
+
+VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t layer) {
+    const uint32_t layers = t.desc.depthOrLayers;
+    if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
+    VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
+    // A 3D slice is a 2D view of one layer of the 2D-array-compatible image (VK_KHR_maintenance1).
+    if (!v) v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, mip, 1, layer, 1});
     return v;
 }
 
@@ -117,13 +148,16 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     if (any(desc.usage, U::RenderTarget))
         usage |= gdi::isDepthFormat(desc.format) ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
                                                  : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    const bool is3D = desc.dimension == gdi::TextureDimension::Texture3D;
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ci.imageType = VK_IMAGE_TYPE_2D;
+    if (gdi::validate::isCube(desc.dimension)) ci.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+    if (is3D && any(desc.usage, U::RenderTarget)) ci.flags |= VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
+    ci.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ci.format = toVkFormat(desc.format);
-    ci.extent = {desc.width, desc.height, 1};
+    ci.extent = {desc.width, desc.height, is3D ? desc.depthOrLayers : 1};
     ci.mipLevels = desc.mipLevels;
-    ci.arrayLayers = 1;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.arrayLayers = arrayLayers(desc);
+    ci.samples = VkSampleCountFlagBits(desc.sampleCount);
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = usage;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -131,7 +165,7 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
 }
 
 gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::TextureDesc& desc) const {
-    gdi::validate::textureDesc(desc, info_.limits);
+    gdi::validate::textureDesc(desc, info_);
     VkImageCreateInfo ci = imageInfo(desc);
     VkImage image;
     check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
@@ -177,7 +211,7 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
 }
 
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
-    gdi::validate::textureDesc(desc, info_.limits);
+    gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
     if (!supportsFormat(desc.format, desc.usage))
         throw gdi::Error("texture '" + name + "': format " + std::string(gdi::formatInfo(desc.format).name) +
@@ -205,8 +239,17 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
             t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
         }
         check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory");
-        t.view = makeView(t.image, desc.format, 0, desc.mipLevels);
-        for (uint32_t m = 0; m < desc.mipLevels; ++m) t.mipViews.push_back(makeView(t.image, desc.format, m, 1));
+        const VkImageViewType type = viewType(desc.dimension);
+        const uint32_t layers = arrayLayers(desc);
+        // Multisampled images are only attachments (gdi does not sample them).
+        if (desc.sampleCount == 1) {
+            t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers});
+            // Storage images bind one mip; cubes bind as 2D arrays (imageCube needs no more).
+            if (any(desc.usage, gdi::TextureUsage::Storage))
+                for (uint32_t m = 0; m < desc.mipLevels; ++m)
+                    t.mipViews.push_back(makeView(t.image, gdi::validate::isCube(desc.dimension) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : type,
+                                                  desc.format, {0, m, 1, 0, layers}));
+        }
     } catch (...) {
         destroyTexture(t);
         throw;
@@ -214,12 +257,14 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     if (heap) heap->placed++;
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
-    immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format, desc.mipLevels); });
+    immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
     return textures_.add(std::move(t));
 }
 
 void VulkanDevice::destroyTexture(Texture& t) {
     for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
+    for (VkImageView v : t.attachmentViews)
+        if (v) vkDestroyImageView(device_, v, nullptr);
     if (t.view) vkDestroyImageView(device_, t.view, nullptr);
     if (t.image) vkDestroyImage(device_, t.image, nullptr);
     if (t.ownsMemory) {
@@ -246,7 +291,9 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.mipmapMode = d.mipFilter == gdi::MipFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     ci.addressModeU = address(d.addressU);
     ci.addressModeV = address(d.addressV);
-    ci.addressModeW = address(d.addressV);
+    ci.addressModeW = address(d.addressW);
+    ci.compareEnable = d.compareEnable;
+    ci.compareOp = VkCompareOp(int(d.compare));  // same order as VkCompareOp
     ci.anisotropyEnable = anisotropy_ && d.maxAnisotropy > 1.0f;
     ci.maxAnisotropy = std::min(d.maxAnisotropy, props_.limits.maxSamplerAnisotropy);
     ci.minLod = 0;

@@ -18,6 +18,14 @@ const FormatInfo kFormats[] = {
     {"R11G11B10F", 4, 3, true},
     {"D32F", 4, 0, true, false, false, true, false},
     {"D24S8", 4, 0, false, false, false, true, true},
+    {"BC1", 0, 4, false, false, false, false, false, 4, 8},
+    {"BC1_SRGB", 0, 4, false, true, false, false, false, 4, 8},
+    {"BC3", 0, 4, false, false, false, false, false, 4, 16},
+    {"BC3_SRGB", 0, 4, false, true, false, false, false, 4, 16},
+    {"BC4", 0, 1, false, false, false, false, false, 4, 8},
+    {"BC5", 0, 2, false, false, false, false, false, 4, 16},
+    {"BC7", 0, 4, false, false, false, false, false, 4, 16},
+    {"BC7_SRGB", 0, 4, false, true, false, false, false, 4, 16},
 };
 static_assert(sizeof(kFormats) / sizeof(kFormats[0]) == size_t(Format::Count));
 
@@ -32,6 +40,13 @@ static_assert(sizeof(kVertexFormats) / sizeof(kVertexFormats[0]) == size_t(Verte
 const FormatInfo& formatInfo(Format f) {
     size_t i = size_t(f);
     return i < size_t(Format::Count) ? kFormats[i] : kFormats[0];
+}
+
+uint64_t imageByteSize(Format f, uint32_t width, uint32_t height) {
+    const FormatInfo& i = formatInfo(f);
+    if (i.blockSize > 1)
+        return uint64_t((width + i.blockSize - 1) / i.blockSize) * ((height + i.blockSize - 1) / i.blockSize) * i.bytesPerBlock;
+    return uint64_t(width) * height * i.bytesPerPixel;
 }
 
 Format formatFromName(std::string_view name) {

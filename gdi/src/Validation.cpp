@@ -1,6 +1,7 @@
 #include "fe/gdi/Validation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace fe::gdi::validate {
@@ -19,26 +20,141 @@ void bufferDesc(const BufferDesc& d) {
     if (d.usage == BufferUsage::None) fail(what, "usage is None");
 }
 
-void textureDesc(const TextureDesc& d, const DeviceLimits& limits) {
+void initialData(const BufferDesc& d, uint64_t size) {
+    if (size != 0 && size != d.size)
+        fail(label("buffer", d.debugName), "initial data is " + std::to_string(size) + " bytes, the buffer " +
+                                               std::to_string(d.size) + " (they must match)");
+}
+
+void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
     const std::string what = label("texture", d.debugName);
+    const DeviceLimits& limits = device.limits;
+    using D = TextureDimension;
+    if (d.dimension > D::Texture3D) fail(what, "dimension is invalid");
     if (d.format == Format::Undefined || d.format >= Format::Count) fail(what, "format is undefined");
-    if (d.width == 0 || d.height == 0)
-        fail(what, "size " + std::to_string(d.width) + "x" + std::to_string(d.height) + " has a zero dimension");
-    if (limits.maxTextureSize2D && (d.width > limits.maxTextureSize2D || d.height > limits.maxTextureSize2D))
-        fail(what, "size " + std::to_string(d.width) + "x" + std::to_string(d.height) + " exceeds the device limit " +
-                       std::to_string(limits.maxTextureSize2D));
+    const std::string kind = textureDimensionName(d.dimension);
+    const std::string size = std::to_string(d.width) + "x" + std::to_string(d.height) + "x" + std::to_string(d.depthOrLayers);
+    if (d.width == 0 || d.height == 0 || d.depthOrLayers == 0) fail(what, "size " + size + " has a zero dimension");
+    const uint32_t maxEdge = d.dimension == D::Texture3D ? limits.maxTextureSize3D
+                             : isCube(d.dimension)       ? limits.maxTextureSizeCube
+                                                         : limits.maxTextureSize2D;
+    if (maxEdge && (d.width > maxEdge || d.height > maxEdge || (d.dimension == D::Texture3D && d.depthOrLayers > maxEdge)))
+        fail(what, kind + " size " + size + " exceeds the device limit " + std::to_string(maxEdge));
+    switch (d.dimension) {
+        case D::Texture2D:
+            if (d.depthOrLayers != 1) fail(what, "a Texture2D has depthOrLayers 1, got " + std::to_string(d.depthOrLayers));
+            break;
+        case D::TextureCube:
+        case D::TextureCubeArray:
+            if (d.width != d.height) fail(what, kind + " faces must be square, got " + size);
+            if (d.dimension == D::TextureCube && d.depthOrLayers != 6)
+                fail(what, "a TextureCube has 6 layers, got " + std::to_string(d.depthOrLayers));
+            if (d.depthOrLayers % 6) fail(what, "a TextureCubeArray has 6 layers per cube, got " + std::to_string(d.depthOrLayers));
+            if (d.dimension == D::TextureCubeArray && !device.features.textureCubeArray)
+                fail(what, "cube map arrays are not supported on " + device.backend);
+            [[fallthrough]];
+        case D::Texture2DArray:
+            if (limits.maxTextureArrayLayers && d.depthOrLayers > limits.maxTextureArrayLayers)
+                fail(what, std::to_string(d.depthOrLayers) + " layers exceed the device limit " +
+                               std::to_string(limits.maxTextureArrayLayers));
+            break;
+        case D::Texture3D:
+            if (isDepthFormat(d.format)) fail(what, "a Texture3D cannot have a depth format");
+            break;
+    }
     uint32_t maxMips = 1;
-    for (uint32_t s = std::max(d.width, d.height); s > 1; s >>= 1) ++maxMips;
+    uint32_t edge = std::max(d.width, d.height);
+    if (d.dimension == D::Texture3D) edge = std::max(edge, d.depthOrLayers);
+    for (uint32_t s = edge; s > 1; s >>= 1) ++maxMips;
     if (d.mipLevels == 0 || d.mipLevels > maxMips)
         fail(what, "mipLevels " + std::to_string(d.mipLevels) + " not in [1, " + std::to_string(maxMips) + "]");
     if (d.usage == TextureUsage::None) fail(what, "usage is None");
     if (isDepthFormat(d.format) && any(d.usage, TextureUsage::Storage))
         fail(what, "depth format " + std::string(formatInfo(d.format).name) + " cannot be a storage texture");
+    if (isCompressedFormat(d.format)) {
+        if (!device.features.textureCompressionBC)
+            fail(what, "block-compressed format " + std::string(formatInfo(d.format).name) + " is not supported on " +
+                           device.backend);
+        if (any(d.usage, TextureUsage::RenderTarget | TextureUsage::Storage))
+            fail(what, "block-compressed format " + std::string(formatInfo(d.format).name) +
+                           " can only be sampled and copied (no RenderTarget or Storage usage)");
+        if (d.dimension == D::Texture3D) fail(what, "block-compressed 3D textures are not supported");
+    }
+    const uint32_t s = d.sampleCount;
+    if (s != 1 && s != 2 && s != 4 && s != 8) fail(what, "sampleCount " + std::to_string(s) + " is not 1, 2, 4 or 8");
+    if (s > 1) {
+        const uint32_t supported = isDepthFormat(d.format) ? limits.depthSampleCounts : limits.colorSampleCounts;
+        if (!(supported & s))
+            fail(what, std::to_string(s) + " samples are not supported for " + std::string(isDepthFormat(d.format) ? "depth" : "colour") +
+                           " targets on " + device.backend);
+        if (d.dimension != D::Texture2D || d.mipLevels != 1)
+            fail(what, "a multisampled texture is a Texture2D with one mip level");
+        if (!any(d.usage, TextureUsage::RenderTarget) || any(d.usage, TextureUsage::Storage | TextureUsage::Sampled))
+            fail(what, "a multisampled texture is a render target, resolved (not sampled) into a single-sample one");
+        if (isCompressedFormat(d.format)) fail(what, "a compressed format cannot be multisampled");
+    }
+}
+
+Extent3 mipExtent(const TextureDesc& d, uint32_t mip) {
+    Extent3 e{std::max(1u, d.width >> mip), std::max(1u, d.height >> mip), d.depthOrLayers};
+    if (d.dimension == TextureDimension::Texture3D) e.depthOrLayers = std::max(1u, d.depthOrLayers >> mip);
+    return e;
+}
+
+void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {
+    const std::string w = std::string(what) + ": " + label("texture", name.c_str());
+    if (at.mipLevel >= d.mipLevels)
+        fail(w, "mip level " + std::to_string(at.mipLevel) + " out of range (" + std::to_string(d.mipLevels) + " levels)");
+    const uint32_t layers = mipExtent(d, at.mipLevel).depthOrLayers;
+    if (at.layer >= layers)
+        fail(w, std::string(d.dimension == TextureDimension::Texture3D ? "slice " : "layer ") + std::to_string(at.layer) +
+                    " out of range (" + std::to_string(layers) + " at mip " + std::to_string(at.mipLevel) + ")");
+}
+
+void readable(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {
+    subresource(d, at, what, name);
+    const std::string w = std::string(what) + ": " + label("texture", name.c_str());
+    if (d.sampleCount > 1) fail(w, "is multisampled: resolve it into a single-sample texture to read it");
+    if (isCompressedFormat(d.format)) fail(w, "block-compressed textures cannot be read back");
+}
+
+void mipGeneration(const TextureDesc& d, const std::string& name) {
+    const std::string w = "generateMips: " + label("texture", name.c_str());
+    const FormatInfo& f = formatInfo(d.format);
+    if (f.hasDepth || f.isInteger || isCompressedFormat(d.format))
+        fail(w, "format " + std::string(f.name) + " cannot be filtered into mip levels");
+    if (d.sampleCount > 1) fail(w, "is multisampled");
+}
+
+void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char* what, const std::string& name) {
+    subresource(d, at, what, name);
+    const Extent3 e = mipExtent(d, at.mipLevel);
+    const uint64_t expected = imageByteSize(d.format, e.width, e.height);
+    if (size != expected)
+        fail(std::string(what) + ": " + label("texture", name.c_str()),
+             "mip " + std::to_string(at.mipLevel) + " layer " + std::to_string(at.layer) + " needs " +
+                 std::to_string(expected) + " bytes, got " + std::to_string(size));
 }
 
 void samplerDesc(const SamplerDesc& d) {
     if (!(d.maxAnisotropy >= 1.0f && d.maxAnisotropy <= 16.0f))
         fail(label("sampler", d.debugName), "maxAnisotropy must be in [1, 16]");
+    if (d.compare > CompareOp::Always) fail(label("sampler", d.debugName), "compare op is invalid");
+}
+
+void indirect(const BufferDesc& d, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
+              const DeviceFeatures& features, const char* what) {
+    const std::string w = std::string(what) + ": " + label("buffer", d.debugName);
+    if (!any(d.usage, BufferUsage::Indirect)) fail(w, "lacks Indirect usage");
+    if (offset % 4) fail(w, "offset " + std::to_string(offset) + " is not a multiple of 4");
+    if (drawCount > 1 && !features.multiDrawIndirect) fail(w, "drawCount > 1 needs multiDrawIndirect");
+    if (drawCount > 1 && (stride < recordSize || stride % 4))
+        fail(w, "stride " + std::to_string(stride) + " must be a multiple of 4 of at least " + std::to_string(recordSize));
+    if (drawCount == 0) return;
+    const uint64_t bytes = uint64_t(drawCount - 1) * stride + recordSize;
+    if (offset > d.size || bytes > d.size - offset)
+        fail(w, std::to_string(drawCount) + " record(s) from offset " + std::to_string(offset) + " exceed its size " +
+                    std::to_string(d.size));
 }
 
 void shaderDesc(const ShaderDesc& d) {
@@ -57,8 +173,21 @@ static void bindingList(const std::vector<BindingSlot>& bindings, const std::str
     }
 }
 
-void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceLimits& limits) {
+void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device) {
+    const DeviceLimits& limits = device.limits;
     const std::string what = label("graphics pipeline", d.debugName);
+    const uint32_t samples = d.multisample.sampleCount;
+    if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+        fail(what, "sampleCount " + std::to_string(samples) + " is not 1, 2, 4 or 8");
+    if (samples > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & samples))
+        fail(what, std::to_string(samples) + " samples are not supported on " + device.backend);
+    if (d.raster.depthClamp && !device.features.depthClamp) fail(what, "depth clamp is not supported on " + device.backend);
+    if (d.raster.depthBiasClamp != 0 && !device.features.depthBiasClamp)
+        fail(what, "depth bias clamp is not supported on " + device.backend);
+    for (float v : {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp})
+        if (!std::isfinite(v)) fail(what, "depth bias values must be finite");
+    for (Format f : d.colorFormats)
+        if (isCompressedFormat(f)) fail(what, "colour target format " + std::string(formatInfo(f).name) + " is compressed");
     if (!d.vertexShader) fail(what, "no vertex shader");
     if (d.colorFormats.empty() && d.depthFormat == Format::Undefined) fail(what, "no colour or depth target format");
     if (limits.maxColorAttachments && d.colorFormats.size() > limits.maxColorAttachments)
@@ -98,29 +227,59 @@ void computePipelineDesc(const ComputePipelineDesc& d) {
     bindingList(d.bindings, what);
 }
 
-Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth,
-                const DeviceLimits& limits) {
+AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what, const std::string& name) {
+    subresource(d, {mipLevel, layer}, what, name);
+    const Extent3 e = mipExtent(d, mipLevel);
+    return {d.format, e.width, e.height, d.usage, d.sampleCount};
+}
+
+Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors,
+                const std::vector<AttachmentInfo>& colorResolves, const AttachmentInfo* depth,
+                const AttachmentInfo* depthResolve, const DeviceLimits& limits) {
     const std::string what = label("render pass", d.debugName);
     if (colors.empty() && !depth) fail(what, "no attachments");
     if (limits.maxColorAttachments && colors.size() > limits.maxColorAttachments)
         fail(what, std::to_string(colors.size()) + " colour attachments exceed the device limit");
-    uint32_t w = 0, h = 0;
+    uint32_t w = 0, h = 0, samples = 0;
     auto check = [&](const AttachmentInfo& a, const std::string& name) {
         if (!any(a.usage, TextureUsage::RenderTarget)) fail(what, name + " texture lacks RenderTarget usage");
-        if (w == 0 && h == 0) { w = a.width; h = a.height; }
+        if (w == 0 && h == 0) { w = a.width; h = a.height; samples = a.samples; }
         else if (a.width != w || a.height != h)
             fail(what, "mismatched attachments: " + name + " is " + std::to_string(a.width) + "x" +
                            std::to_string(a.height) + ", others are " + std::to_string(w) + "x" + std::to_string(h));
+        else if (a.samples != samples)
+            fail(what, "mismatched sample counts: " + name + " has " + std::to_string(a.samples) + ", others " +
+                           std::to_string(samples));
+    };
+    auto checkResolve = [&](const AttachmentInfo& src, const AttachmentInfo& dst, const std::string& name) {
+        if (src.samples == 1) fail(what, name + " is single-sample: nothing to resolve");
+        if (dst.samples != 1) fail(what, name + " resolve target must be single-sample");
+        if (dst.format != src.format)
+            fail(what, name + " resolve target format " + std::string(formatInfo(dst.format).name) + " differs from " +
+                           std::string(formatInfo(src.format).name));
+        if (dst.width != src.width || dst.height != src.height) fail(what, name + " resolve target size differs");
+        if (!any(dst.usage, TextureUsage::RenderTarget)) fail(what, name + " resolve target lacks RenderTarget usage");
     };
     for (size_t i = 0; i < colors.size(); ++i) {
-        if (isDepthFormat(colors[i].format)) fail(what, "colour attachment " + std::to_string(i) + " has a depth format");
-        check(colors[i], "colour attachment " + std::to_string(i));
+        const std::string name = "colour attachment " + std::to_string(i);
+        if (isDepthFormat(colors[i].format)) fail(what, name + " has a depth format");
+        check(colors[i], name);
+        if (i < colorResolves.size() && colorResolves[i].format != Format::Undefined)
+            checkResolve(colors[i], colorResolves[i], name);
     }
     if (depth) {
         if (!isDepthFormat(depth->format)) fail(what, "depth attachment has colour format " + std::string(formatInfo(depth->format).name));
         check(*depth, "depth attachment");
+        if (depthResolve) checkResolve(*depth, *depthResolve, "depth attachment");
     }
     return Rect{0, 0, w, h};
+}
+
+void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName) {
+    if (pipelineSamples != passSamples) [[unlikely]]
+        fail(label("setPipeline: pipeline", pipelineName), "rasterizes " + std::to_string(pipelineSamples) +
+                                                               " sample(s) but the render pass has " +
+                                                               std::to_string(passSamples));
 }
 
 void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {

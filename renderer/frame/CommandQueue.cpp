@@ -46,7 +46,8 @@ void CommandQueue::waitIdle() {
         if (s.fence) device_.wait(s.fence);
 }
 
-UploadAllocation CommandQueue::upload(const void* data, uint64_t size) {
+UploadAllocation CommandQueue::upload(gdi::ByteSpan data) {
+    const uint64_t size = data.size();
     if (!inFrame_) throw gdi::Error("CommandQueue::upload outside a frame");
     uint64_t offset = (regionUsed_ + alignment_ - 1) / alignment_ * alignment_;
     if (offset + size > regionSize_)
@@ -54,7 +55,7 @@ UploadAllocation CommandQueue::upload(const void* data, uint64_t size) {
                          " bytes exhausted (asked " + std::to_string(size) + ")");
     regionUsed_ = offset + size;
     uint64_t base = (frameNumber_ % slots_.size()) * regionSize_;
-    device_.writeBuffer(uploadBuffer_, base + offset, data, size);
+    device_.writeBuffer(uploadBuffer_, base + offset, data);
     return {uploadBuffer_, base + offset, size};
 }
 

@@ -29,9 +29,9 @@ public:
     void waitIdle();
 
     // Copies `size` bytes into this frame's upload region; aligned for uniform/storage binding.
-    UploadAllocation upload(const void* data, uint64_t size);
+    UploadAllocation upload(gdi::ByteSpan data);
     template <class T>
-    UploadAllocation upload(const T& value) { return upload(&value, sizeof(T)); }
+    UploadAllocation upload(const T& value) { return upload(gdi::bytesOf(value)); }
 
     uint64_t frameNumber() const { return frameNumber_; }
     uint32_t framesInFlight() const { return uint32_t(slots_.size()); }

@@ -51,7 +51,7 @@ gdi::TextureHandle solidTexture(gdi::Device& device, uint8_t r, uint8_t g, uint8
     gdi::TextureHandle t = device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
                                                  .width = 1, .height = 1, .debugName = name});
     const uint8_t px[4] = {r, g, b, a};
-    device.writeTexture(t, 0, px, 4);
+    device.writeTexture(t, {}, gdi::bytesOf(px));
     return t;
 }
 
@@ -87,9 +87,9 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
     if (indices.empty()) indices.push_back(0);
     vertices_ = device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex), .usage = gdi::BufferUsage::Vertex,
                                      .debugName = "scene vertices"},
-                                    vertices.data());
+                                    gdi::bytesOf(vertices));
     indices_ = device.createBuffer({.size = indices.size() * 4, .usage = gdi::BufferUsage::Index, .debugName = "scene indices"},
-                                   indices.data());
+                                   gdi::bytesOf(indices));
 
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const assets::MeshInstance& inst = scene.instances[i];
@@ -122,7 +122,7 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
         std::vector<uint8_t> level = img.pixels;
         uint32_t w = img.width, h = img.height;
         for (uint32_t m = 0; m < mips; ++m) {
-            device.writeTexture(t, m, level.data(), level.size());
+            device.writeTexture(t, {.mipLevel = m}, gdi::bytesOf(level));
             if (m + 1 < mips) {
                 level = downsample(level, w, h, img.srgb);
                 w = std::max(1u, w / 2);
@@ -190,7 +190,7 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights) {
         lights_ = device_.createBuffer({.size = bytes, .usage = gdi::BufferUsage::Storage, .debugName = "scene lights"});
         lightCapacity_ = bytes;
     }
-    device_.writeBuffer(lights_, 0, records.data(), bytes);
+    device_.writeBuffer(lights_, 0, gdi::bytesOf(records));
     lightCount_ = uint32_t(lights.size());
 }
 

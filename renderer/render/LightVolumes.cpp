@@ -97,7 +97,7 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
     coneCount_ = uint32_t(c.size());
     mesh_ = device.createBuffer({.size = verts.size() * sizeof(glm::vec3), .usage = gdi::BufferUsage::Vertex,
                                  .debugName = "light volume meshes"},
-                                verts.data());
+                                gdi::bytesOf(verts));
 
     vs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")});
     fs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
@@ -149,7 +149,7 @@ void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuSce
         for (uint32_t i = 0; i < scene.lightCount() && i < lights.size(); ++i)
             if (shapeOf(lights[i]) == shape) instances.push_back({i, uint32_t(shape)});
     Counts n = classify(lights);
-    UploadAllocation inst = queue.upload(instances.data(), instances.size() * sizeof(glm::uvec2));
+    UploadAllocation inst = queue.upload(gdi::bytesOf(instances));
 
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
     cmd.setStorageBuffer(kSlotLights, scene.lightBuffer());

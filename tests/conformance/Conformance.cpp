@@ -106,7 +106,7 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
                                                     .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
                                          .colorFormats = {Format::RGBA16F}, .bindings = slots});
     Params params{{0.75f, 0.5f, 0.25f, 1.0f}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = acc}}});
     cmd->setPipeline(add);
@@ -129,8 +129,8 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
                                             .colorFormats = {Format::RGBA8}, .depthFormat = df, .bindings = slots});
         Params nearP{{1, 0, 0, 1}, {0.25f, 0, 0, 0}}, farP{{0, 1, 0, 1}, {0.75f, 0, 0, 0}};
         BufferHandle u2 = d.createBuffer({.size = 512, .usage = BufferUsage::Uniform});
-        d.writeBuffer(u2, 0, &nearP, sizeof nearP);
-        d.writeBuffer(u2, 256, &farP, sizeof farP);
+        d.writeBuffer(u2, 0, gdi::bytesOf(nearP));
+        d.writeBuffer(u2, 256, gdi::bytesOf(farP));
         cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
         cmd->setPipeline(dp);
         cmd->setUniformBuffer(0, u2, 0, sizeof(Params));
@@ -160,7 +160,7 @@ std::vector<CaseImage> textureSampling(Device& d) {
     auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
     std::vector<CaseImage> out;
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     SamplerHandle nearest = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
     for (Format tf : {Format::RGBA8, Format::RGBA8_SRGB}) {
         // 4x4 checker of 16 distinct values, magnified 16x with nearest filtering.
@@ -172,7 +172,7 @@ std::vector<CaseImage> textureSampling(Device& d) {
             px[i * 4 + 3] = 255;
         }
         TextureHandle tex = d.createTexture({.format = tf, .width = 4, .height = 4});
-        d.writeTexture(tex, 0, px.data(), px.size());
+        d.writeTexture(tex, {}, gdi::bytesOf(px));
         TextureHandle t = target(d, Format::RGBA32F);
         auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA32F},
                                            .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},

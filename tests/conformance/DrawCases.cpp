@@ -78,9 +78,9 @@ std::vector<CaseImage> cullingWinding(Device& d) {
     std::vector<Vertex> v;
     for (int i = 0; i < 3; ++i) v.push_back({ccw[i * 2], ccw[i * 2 + 1], 1, 0, 0, 1});
     for (int i = 0; i < 3; ++i) v.push_back({cw[i * 2], cw[i * 2 + 1], 0, 1, 0, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, v.data());
+    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v));
     const float zero[2] = {0, 0};
-    BufferHandle ib = d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, zero);
+    BufferHandle ib = d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, gdi::bytesOf(zero));
     std::vector<CaseImage> out;
     struct Variant {
         const char* name;
@@ -125,13 +125,13 @@ std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
     std::vector<Vertex> v(4, Vertex{5, 5, 1, 1, 1, 1});
     for (auto [x, y] : {std::pair{-0.9f, -0.4f}, std::pair{-0.1f, -0.4f}, std::pair{-0.9f, 0.4f}, std::pair{-0.1f, 0.4f}})
         v.push_back({x, y, 0.25f, 0.5f, 1.0f, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, v.data());
+    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v));
     const float offsets[4] = {0, 0, 1.0f, 0};  // two instances: left and right half
-    BufferHandle inst = d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, offsets);
+    BufferHandle inst = d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, gdi::bytesOf(offsets));
     const uint16_t i16[6] = {0, 1, 2, 2, 1, 3};
     const uint32_t i32[6] = {0, 1, 2, 2, 1, 3};
-    BufferHandle b16 = d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, i16);
-    BufferHandle b32 = d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, i32);
+    BufferHandle b16 = d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, gdi::bytesOf(i16));
+    BufferHandle b32 = d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, gdi::bytesOf(i32));
     std::vector<CaseImage> out;
     for (bool wide : {false, true}) {
         TextureHandle t = colorTarget(d);
@@ -186,7 +186,7 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
     auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
     const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
     Params params{{1, 0.5f, 0, 1}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, &params);
+    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     std::vector<CaseImage> out;
     auto rectImage = [&](Rect r, Texel inside) {
         std::vector<Texel> t(kSize * kSize, Texel{0, 0, 0, 1});
@@ -263,7 +263,7 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
     auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
     auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")});
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, &params);
+    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
     PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = formats,
                                                  .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}});
@@ -343,12 +343,12 @@ std::vector<CaseImage> copies(Device& d) {
     for (size_t i = 0; i < pattern.size(); ++i) pattern[i] = uint8_t((i * 37) ^ (i >> 7));
     const uint64_t bytes = pattern.size();
     BufferHandle src = d.createBuffer({.size = bytes + 256}), mid = d.createBuffer({.size = bytes}), dst = d.createBuffer({.size = bytes});
-    d.writeBuffer(src, 256, pattern.data(), bytes);
+    d.writeBuffer(src, 256, gdi::bytesOf(pattern));
     TextureHandle a = d.createTexture({.width = kSize, .height = kSize}), b = d.createTexture({.width = kSize, .height = kSize});
     auto cmd = d.createCommandList();
-    cmd->copyBufferToTexture(a, 0, src, 256);
+    cmd->copyBufferToTexture(a, {}, src, 256);
     cmd->copyTexture(b, a);
-    cmd->copyTextureToBuffer(mid, 0, b, 0);
+    cmd->copyTextureToBuffer(mid, 0, b, {});
     cmd->copyBuffer(dst, 0, mid, 0, bytes);
     d.wait(d.submit(*cmd));
     Image expected{kSize, kSize, Format::RGBA8, pattern};
@@ -439,7 +439,7 @@ std::vector<CaseImage> vertexFormats(Device& d) {
             std::memcpy(&vb[i * stride], &pos[i * 2], 8);
             std::memcpy(&vb[i * stride + 8], attr, 16);
         }
-        BufferHandle b = d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, vb.data());
+        BufferHandle b = d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, gdi::bytesOf(vb));
         PipelineHandle p = d.createGraphicsPipeline({
             .vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF, .fragmentShader = fs,
             .vertexBuffers = {{.stride = stride, .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
@@ -471,7 +471,7 @@ struct FullScreen {
     FullScreen(Device& d, const char* fragment, Params params) {
         vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
         fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)});
-        ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, &params);
+        ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     }
     void release(Device& d) {
         d.destroy(vs);
@@ -483,7 +483,7 @@ struct FullScreen {
 std::vector<CaseImage> storageBufferInFragment(Device& d) {
     FullScreen fsq(d, "conformance/ssbo_read.frag", {{0, 0, 0, 0}, {0.5f, 0, 0, 0}});
     const float colors[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 0.5f, 0.25f, 0.125f, 1};
-    BufferHandle ssbo = d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, colors);
+    BufferHandle ssbo = d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, gdi::bytesOf(colors));
     PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
                                                  .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
                                                               {2, BindingType::StorageBuffer, ShaderStage::Fragment}}});
@@ -527,7 +527,7 @@ std::vector<CaseImage> samplingModes(Device& d) {
         px[i * 4 + 3] = 255;
     }
     TextureHandle tex = d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4});
-    d.writeTexture(tex, 0, px.data(), px.size());
+    d.writeTexture(tex, {}, gdi::bytesOf(px));
     for (AddressMode mode : {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge}) {
         // uv = pixel/64 * 3 - 1: texel centres of the magnified texture land on pixel centres.
         FullScreen fsq(d, "conformance/textured_uv.frag", {{3, 3, -1, -1}, {0.5f, 0, 0, 0}});
@@ -570,7 +570,7 @@ std::vector<CaseImage> samplingModes(Device& d) {
     {
         const uint8_t q[16] = {0, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 255, 255, 255, 255};
         TextureHandle t2 = d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2});
-        d.writeTexture(t2, 0, q, sizeof q);
+        d.writeTexture(t2, {}, gdi::bytesOf(q));
         FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
         SamplerHandle smp = d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
         PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
@@ -607,7 +607,7 @@ std::vector<CaseImage> samplingModes(Device& d) {
         for (uint32_t l = 0; l < 4; ++l) {
             uint32_t s = 8 >> l;
             Image lv = Image::fromTexels(s, s, Format::RGBA8, std::vector<Texel>(s * s, levels[l]));
-            d.writeTexture(mip, l, lv.data.data(), lv.data.size());
+            d.writeTexture(mip, {.mipLevel = l}, gdi::bytesOf(lv.data));
         }
         SamplerHandle smp = d.createSampler({.mipFilter = MipFilter::Nearest});
         for (uint32_t l = 0; l < 4; ++l) {

@@ -44,7 +44,7 @@ TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
         Params p{{colors[i][0], colors[i][1], colors[i][2], colors[i][3]}, {0.5f, 0, 0, 0}};
         std::memcpy(&bytes[i * kStride], &p, sizeof p);
     }
-    BufferHandle ubo = d.createBuffer({.size = bytes.size(), .usage = BufferUsage::Uniform}, bytes.data());
+    BufferHandle ubo = d.createBuffer({.size = bytes.size(), .usage = BufferUsage::Uniform}, gdi::bytesOf(bytes));
     TextureHandle target = d.createTexture(
         {.format = Format::RGBA8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
 
@@ -109,7 +109,7 @@ TEST_P(BindingState, PipelinesCreatedMidRecording) {
                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
                                     .debugName = "first"};
     const Params green{{0, 1, 0, 1}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof green, .usage = BufferUsage::Uniform}, &green);
+    BufferHandle ubo = d.createBuffer({.size = sizeof green, .usage = BufferUsage::Uniform}, gdi::bytesOf(green));
     TextureHandle target = d.createTexture(
         {.format = Format::RGBA8, .width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
     auto cmd = d.createCommandList();

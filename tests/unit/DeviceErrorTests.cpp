@@ -1,4 +1,5 @@
 // Invalid descriptions give clear errors, never crashes, on every backend.
+#include <array>
 #include <gtest/gtest.h>
 
 #include "BackendTest.h"
@@ -52,9 +53,9 @@ TEST_P(DeviceErrors, MissingBinding) {
 // setters have a separate fast path, so each way to leave it is exercised), and a valid bind
 // after the errors still draws.
 TEST_P(DeviceErrors, BufferBindingArguments) {
-    const float params[8] = {0.25f, 0.5f, 0.75f, 1.0f, 0.0f, 0, 0, 0};
+    const std::array<float, 64> params = {0.25f, 0.5f, 0.75f, 1.0f};  // the whole 256-byte buffer
     auto ubo = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform | BufferUsage::Storage, .debugName = "params"},
-                                    params);
+                                    bytesOf(params));
     auto gone = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform});
     device->destroy(gone);
     auto cmd = device->createCommandList();
@@ -87,8 +88,8 @@ TEST_P(DeviceErrors, BufferBindingArguments) {
 // A slot bound with another kind of resource than the pipeline declares is an error at the
 // draw, also when it is re-bound wrongly after draws that were right.
 TEST_P(DeviceErrors, WrongBindingKind) {
-    const float params[8] = {1, 0, 0, 1, 0, 0, 0, 0};
-    auto buf = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform | BufferUsage::Storage}, params);
+    const std::array<float, 64> params = {1, 0, 0, 1};  // the whole 256-byte buffer
+    auto buf = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform | BufferUsage::Storage}, bytesOf(params));
     auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/fullscreen_ubo.vert")});
     auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/ubo_color.frag")});
     auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
@@ -157,7 +158,7 @@ TEST_P(DeviceErrors, BrokenShaderBinary) {
 TEST_P(DeviceErrors, OutOfRangeBufferWrite) {
     auto b = device->createBuffer({.size = 16});
     uint8_t data[32] = {};
-    EXPECT_NE(errorOf([&] { device->writeBuffer(b, 8, data, 16); }).find("exceeds its size 16"), std::string::npos);
+    EXPECT_NE(errorOf([&] { device->writeBuffer(b, 8, bytesOf(data)); }).find("exceeds its size 16"), std::string::npos);
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

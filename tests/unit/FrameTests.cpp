@@ -51,7 +51,7 @@ TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
     // A frame that asks for more than its region is an error, not an overwrite.
     queue.beginFrame();
     std::vector<uint8_t> big(8192);
-    EXPECT_THROW(queue.upload(big.data(), big.size()), gdi::Error);
+    EXPECT_THROW(queue.upload(gdi::bytesOf(big)), gdi::Error);
     queue.endFrame();
     queue.waitIdle();
 }

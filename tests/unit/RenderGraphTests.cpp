@@ -298,7 +298,7 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
     auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
     auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
     const float params[8] = {0, 0, 0, 0, 0.5f, 0, 0, 0};
-    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, params);
+    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
     auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
     const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
                                             {1, BindingType::SampledTexture, ShaderStage::Fragment}};

@@ -107,7 +107,7 @@ TEST_F(GlfwWindow, PresentShowsTheTextureBytesUpright) {
         for (auto [w, h] : {std::pair{64u, 48u}, std::pair{96u, 80u}}) {  // the second presents into a resized window
             const gdi::Image src = pattern(w, h, f);
             gdi::TextureHandle t = device->createTexture({.format = f, .width = w, .height = h});
-            device->writeTexture(t, 0, src.data.data(), src.data.size());
+            device->writeTexture(t, {}, gdi::bytesOf(src.data));
             EXPECT_TRUE(device->present(t));
             gdi::Image shown = device->readWindow();
             ASSERT_EQ(shown.width, w);

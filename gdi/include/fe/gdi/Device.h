@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <ranges>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,18 @@ using PipelineHandle = Handle<struct PipelineTag>;
 using TimerHandle = Handle<struct TimerTag>;
 using HeapHandle = Handle<struct HeapTag>;
 
+// Data handed to the device always carries its length: a span of bytes, made with bytesOf().
+using ByteSpan = std::span<const std::byte>;
+template <class T>
+ByteSpan bytesOf(const T& data) {
+    if constexpr (std::ranges::contiguous_range<T>) {
+        return std::as_bytes(std::span(std::ranges::data(data), std::ranges::size(data)));
+    } else {
+        static_assert(std::is_trivially_copyable_v<T>, "bytesOf: plain data or a contiguous range of it");
+        return {reinterpret_cast<const std::byte*>(&data), sizeof(T)};
+    }
+}
+
 template <class E>
 constexpr E operator|(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
     return E(uint32_t(a) | uint32_t(b));
@@ -81,6 +94,7 @@ enum class BufferUsage : uint32_t {
     Storage = 1 << 3,
     CopySrc = 1 << 4,
     CopyDst = 1 << 5,
+    Indirect = 1 << 6,  // draw/dispatch arguments and draw counts (drawIndirect, dispatchIndirect)
     FlagsMarker = 0
 };
 
@@ -92,8 +106,8 @@ enum class MemoryAccess : uint8_t {
 
 struct BufferDesc {
     uint64_t size = 0;
-    BufferUsage usage = BufferUsage::Vertex | BufferUsage::Index | BufferUsage::Uniform |
-                        BufferUsage::Storage | BufferUsage::CopySrc | BufferUsage::CopyDst;
+    BufferUsage usage = BufferUsage::Vertex | BufferUsage::Index | BufferUsage::Uniform | BufferUsage::Storage |
+                        BufferUsage::CopySrc | BufferUsage::CopyDst | BufferUsage::Indirect;
     MemoryAccess access = MemoryAccess::GpuOnly;
     const char* debugName = nullptr;
 };
@@ -111,11 +125,29 @@ enum class TextureUsage : uint32_t {
     FlagsMarker = 0
 };
 
+// What a texture is, and so how shaders sample it (GLSL sampler2D, sampler2DArray, samplerCube,
+// samplerCubeArray, sampler3D; the *Shadow variants with a comparison sampler).
+enum class TextureDimension : uint8_t {
+    Texture2D,
+    Texture2DArray,
+    TextureCube,       // 6 layers: +X, -X, +Y, -Y, +Z, -Z (the order of both APIs)
+    TextureCubeArray,  // 6 layers per cube (DeviceFeatures::textureCubeArray)
+    Texture3D,
+};
+const char* textureDimensionName(TextureDimension d);
+
 struct TextureDesc {
+    TextureDimension dimension = TextureDimension::Texture2D;
     Format format = Format::RGBA8;
     uint32_t width = 1;
     uint32_t height = 1;
+    // Texture3D: depth in texels (halved per mip); arrays: layer count; TextureCube: 6;
+    // TextureCubeArray: 6 x the number of cubes; Texture2D: 1.
+    uint32_t depthOrLayers = 1;
     uint32_t mipLevels = 1;
+    // 1, 2, 4 or 8 where DeviceLimits::colorSampleCounts / depthSampleCounts has the bit; a
+    // multisampled texture is a 2D render target with one mip, resolved into a single-sample one.
+    uint32_t sampleCount = 1;
     TextureUsage usage = TextureUsage::Sampled | TextureUsage::CopyDst | TextureUsage::CopySrc;
     // Placed in a heap at an offset (memory aliasing, DeviceFeatures::memoryAliasing only);
     // null: the texture gets memory of its own.
@@ -131,6 +163,13 @@ struct HeapDesc {
     const char* debugName = nullptr;
 };
 
+// One image of a texture: a mip level and a layer (array layer; a cube face is layer % 6 of cube
+// layer / 6; a 3D texture's depth slice within that mip level).
+struct Subresource {
+    uint32_t mipLevel = 0;
+    uint32_t layer = 0;
+};
+
 struct MemoryRequirements {
     uint64_t size = 0;
     uint64_t alignment = 1;
@@ -140,13 +179,21 @@ enum class Filter : uint8_t { Nearest, Linear };
 enum class MipFilter : uint8_t { None, Nearest, Linear };
 enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge };
 
+enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
+
 struct SamplerDesc {
     Filter minFilter = Filter::Linear;
     Filter magFilter = Filter::Linear;
     MipFilter mipFilter = MipFilter::None;
     AddressMode addressU = AddressMode::Repeat;
     AddressMode addressV = AddressMode::Repeat;
+    AddressMode addressW = AddressMode::Repeat;  // 3D textures
     float maxAnisotropy = 1.0f;
+    // Comparison sampler, for depth textures read through sampler2DShadow, sampler2DArrayShadow
+    // or samplerCubeShadow: each texel fetched gives `reference compare texel` as 0 or 1, and
+    // Linear filtering averages those results (hardware PCF), not the depths.
+    bool compareEnable = false;
+    CompareOp compare = CompareOp::LessOrEqual;
     const char* debugName = nullptr;
 };
 
@@ -199,7 +246,6 @@ struct VertexBufferLayout {
 enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, LineStrip, PointList };
 enum class CullMode : uint8_t { None, Front, Back };
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
-enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
 enum class StencilOp : uint8_t { Keep, Zero, Replace, IncrementClamp, DecrementClamp, Invert, IncrementWrap, DecrementWrap };
 enum class BlendFactor : uint8_t {
     Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
@@ -211,6 +257,21 @@ enum class ColorMask : uint8_t { None = 0, R = 1, G = 2, B = 4, A = 8, All = 15,
 struct RasterState {
     CullMode cullMode = CullMode::None;
     FrontFace frontFace = FrontFace::CounterClockwise;
+    // Depth bias (shadow maps): offset = depthBiasSlope * m + depthBiasConstant * r, where m is
+    // the primitive's maximum depth slope and r the smallest resolvable difference of the depth
+    // format (D32F: 2^(e - 23) for the primitive's largest exponent e), then clamped to
+    // +-depthBiasClamp when that is not 0. Identical formula on Vulkan and GL.
+    float depthBiasConstant = 0.0f;
+    float depthBiasSlope = 0.0f;
+    float depthBiasClamp = 0.0f;
+    // Fragments beyond the near/far planes are kept with depth clamped to the viewport's range
+    // instead of clipped (shadow casters behind the light's near plane). DeviceFeatures::depthClamp.
+    bool depthClamp = false;
+};
+
+struct MultisampleState {
+    uint32_t sampleCount = 1;      // must equal the sample count of every attachment in the pass
+    bool alphaToCoverage = false;  // the first output's alpha becomes a coverage mask
 };
 
 struct StencilFaceState {
@@ -249,6 +310,7 @@ struct GraphicsPipelineDesc {
     std::vector<VertexBufferLayout> vertexBuffers;
     PrimitiveTopology topology = PrimitiveTopology::TriangleList;
     RasterState raster;
+    MultisampleState multisample;
     DepthStencilState depthStencil;
     std::vector<BlendTargetState> blend;  // one per colour target; missing entries: no blending
     float blendConstant[4] = {0, 0, 0, 0};
@@ -270,20 +332,33 @@ struct ComputePipelineDesc {
 enum class LoadOp : uint8_t { Clear, Load, DontCare };
 enum class StoreOp : uint8_t { Store, DontCare };
 
+// An attachment is one subresource: rendering goes to one mip level of one layer (array layer,
+// cube face or 3D slice). A multisampled attachment may name a single-sample resolve target of
+// the same format and size, written at the end of the pass.
 struct ColorAttachment {
     TextureHandle texture;
     uint32_t mipLevel = 0;
+    uint32_t layer = 0;
     LoadOp load = LoadOp::Clear;
     StoreOp store = StoreOp::Store;
     float clear[4] = {0, 0, 0, 0};
+    TextureHandle resolveTexture;  // the average of each pixel's samples
+    Subresource resolveSubresource;
 };
 
 struct DepthAttachment {
     TextureHandle texture;  // null: no depth attachment
+    uint32_t mipLevel = 0;
+    uint32_t layer = 0;
     LoadOp load = LoadOp::Clear;
     StoreOp store = StoreOp::Store;
     float clearDepth = 1.0f;
     uint8_t clearStencil = 0;
+    // Depth resolve takes sample 0 of each pixel: the one mode every Vulkan device supports
+    // (VK_RESOLVE_MODE_SAMPLE_ZERO_BIT), and a depth some surface really has, where an average
+    // of an edge pixel's samples would be the depth of no surface at all.
+    TextureHandle resolveTexture;
+    Subresource resolveSubresource;
 };
 
 struct RenderPassDesc {
@@ -301,6 +376,20 @@ struct Rect {
 };
 
 enum class IndexType : uint8_t { U16, U32 };
+
+// Indirect argument records, tightly packed, as both APIs read them from BufferUsage::Indirect
+// buffers (a compute shader may write them).
+struct DrawIndirectArgs {
+    uint32_t vertexCount = 0, instanceCount = 0, firstVertex = 0, firstInstance = 0;
+};
+struct DrawIndexedIndirectArgs {
+    uint32_t indexCount = 0, instanceCount = 0, firstIndex = 0;
+    int32_t baseVertex = 0;
+    uint32_t firstInstance = 0;
+};
+struct DispatchIndirectArgs {
+    uint32_t groupsX = 0, groupsY = 0, groupsZ = 0;
+};
 
 // ---------------------------------------------------------------------------------------------
 // Command recording
@@ -355,13 +444,32 @@ public:
                              int32_t baseVertex = 0, uint32_t firstInstance = 0) = 0;
     virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
 
+    // Indirect work: drawCount records of `stride` bytes from `offset` in an Indirect buffer.
+    // drawCount > 1 needs DeviceFeatures::multiDrawIndirect. The *Count forms read the number of
+    // draws (a uint32) from countBuffer at countOffset, capped at maxDrawCount
+    // (DeviceFeatures::drawIndirectCount; elsewhere they throw Error).
+    virtual void drawIndirect(BufferHandle args, uint64_t offset, uint32_t drawCount = 1,
+                              uint32_t stride = sizeof(DrawIndirectArgs)) = 0;
+    virtual void drawIndexedIndirect(BufferHandle args, uint64_t offset, uint32_t drawCount = 1,
+                                     uint32_t stride = sizeof(DrawIndexedIndirectArgs)) = 0;
+    virtual void drawIndirectCount(BufferHandle args, uint64_t offset, BufferHandle countBuffer, uint64_t countOffset,
+                                   uint32_t maxDrawCount, uint32_t stride = sizeof(DrawIndirectArgs)) = 0;
+    virtual void drawIndexedIndirectCount(BufferHandle args, uint64_t offset, BufferHandle countBuffer,
+                                          uint64_t countOffset, uint32_t maxDrawCount,
+                                          uint32_t stride = sizeof(DrawIndexedIndirectArgs)) = 0;
+    virtual void dispatchIndirect(BufferHandle args, uint64_t offset) = 0;
+
+    // Fills mip levels 1.. of every layer from level 0 with a 2x2 (3D: 2x2x2) box filter, on the
+    // GPU. The format must support linear filtering. Outside render passes.
+    virtual void generateMips(TextureHandle texture) = 0;
+
     virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
                             uint64_t size) = 0;
-    // Whole-texture copies of one mip level; formats and sizes must match.
+    // Whole-texture copies of one mip level (every layer); descriptions must match.
     virtual void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel = 0) = 0;
-    // Tightly packed rows, top to bottom.
-    virtual void copyBufferToTexture(TextureHandle dst, uint32_t mipLevel, BufferHandle src, uint64_t srcOffset) = 0;
-    virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, uint32_t mipLevel) = 0;
+    // One subresource, tightly packed rows, top to bottom (see textureByteSize).
+    virtual void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src, uint64_t srcOffset) = 0;
+    virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, Subresource at) = 0;
 
     virtual void beginTimer(TimerHandle timer) = 0;
     virtual void endTimer(TimerHandle timer) = 0;
@@ -405,6 +513,13 @@ enum class NativeObject : uint8_t {
 // ---------------------------------------------------------------------------------------------
 struct DeviceLimits {
     uint32_t maxTextureSize2D = 0;
+    uint32_t maxTextureSize3D = 0;
+    uint32_t maxTextureSizeCube = 0;
+    uint32_t maxTextureArrayLayers = 0;
+    // Bit n set: 2^n samples supported for colour (depth) render targets of every format the
+    // engine renders to (bit 0, one sample, always).
+    uint32_t colorSampleCounts = 1;
+    uint32_t depthSampleCounts = 1;
     uint32_t maxColorAttachments = 0;
     uint32_t maxComputeWorkGroupInvocations = 0;
     uint64_t maxUniformBufferRange = 0;
@@ -420,6 +535,12 @@ struct DeviceFeatures {
     bool validation = false;  // Khronos validation layer / KHR_debug active
     bool memoryAliasing = false;  // heaps + placed textures (Vulkan); GL reuses whole objects instead
     bool window = false;          // present() shows images in a window (gl-glfw)
+    bool textureCubeArray = false;    // TextureDimension::TextureCubeArray
+    bool depthClamp = false;          // RasterState::depthClamp
+    bool depthBiasClamp = false;      // RasterState::depthBiasClamp other than 0
+    bool multiDrawIndirect = false;   // drawIndirect with drawCount > 1
+    bool drawIndirectCount = false;   // drawIndirectCount, drawIndexedIndirectCount
+    bool textureCompressionBC = false;  // Format::BC1..BC7 sampled textures
 };
 
 struct DeviceInfo {
@@ -441,7 +562,8 @@ public:
     virtual const DeviceInfo& info() const = 0;
     virtual bool supportsFormat(Format format, TextureUsage usage) const = 0;
 
-    virtual BufferHandle createBuffer(const BufferDesc& desc, const void* initialData = nullptr) = 0;
+    // Initial data, when given, must be exactly desc.size bytes.
+    virtual BufferHandle createBuffer(const BufferDesc& desc, ByteSpan initialData = {}) = 0;
     virtual TextureHandle createTexture(const TextureDesc& desc) = 0;
     virtual SamplerHandle createSampler(const SamplerDesc& desc) = 0;
     virtual ShaderHandle createShader(const ShaderDesc& desc) = 0;
@@ -464,11 +586,13 @@ public:
     virtual const TextureDesc& desc(TextureHandle) const = 0;
 
     // Blocking transfers: they wait for the GPU. Use command lists for work inside a frame.
-    virtual void writeBuffer(BufferHandle buffer, uint64_t offset, const void* data, uint64_t size) = 0;
-    // Tightly packed rows of the mip level, top to bottom, in the texture's format.
-    virtual void writeTexture(TextureHandle texture, uint32_t mipLevel, const void* data, uint64_t size) = 0;
+    virtual void writeBuffer(BufferHandle buffer, uint64_t offset, ByteSpan data) = 0;
+    // One subresource: tightly packed rows, top to bottom, in the texture's format (compressed
+    // formats: rows of 4x4 blocks); exactly textureByteSize(desc, at.mipLevel) bytes.
+    virtual void writeTexture(TextureHandle texture, Subresource at, ByteSpan data) = 0;
     virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
-    virtual Image readTexture(TextureHandle texture, uint32_t mipLevel = 0) = 0;
+    // One subresource of a single-sample, uncompressed texture.
+    virtual Image readTexture(TextureHandle texture, Subresource at = {}) = 0;
 
     virtual std::unique_ptr<CommandList> createCommandList() = 0;
     virtual FenceValue submit(CommandList& commands) = 0;

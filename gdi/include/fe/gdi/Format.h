@@ -19,6 +19,15 @@ enum class Format : uint8_t {
     R11G11B10F,  // packed unsigned float, no alpha
     D32F,
     D24S8,
+    // Block-compressed (4x4 texel blocks), sampled only; DeviceFeatures::textureCompressionBC.
+    BC1,        // RGB 5:6:5 endpoints + 1-bit alpha, 8 bytes per block
+    BC1_SRGB,
+    BC3,        // BC1 colour + interpolated alpha, 16 bytes
+    BC3_SRGB,
+    BC4,        // one channel (R), 8 bytes
+    BC5,        // two channels (RG), 16 bytes
+    BC7,        // RGBA, eight block modes, 16 bytes
+    BC7_SRGB,
     Count
 };
 
@@ -31,10 +40,15 @@ struct FormatInfo {
     bool isInteger = false;
     bool hasDepth = false;
     bool hasStencil = false;
+    uint32_t blockSize = 1;      // texels per block edge: 4 for block-compressed formats
+    uint32_t bytesPerBlock = 0;  // compressed formats (bytesPerPixel is 0 for them)
 };
 
 const FormatInfo& formatInfo(Format f);
 inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth; }
+inline bool isCompressedFormat(Format f) { return formatInfo(f).blockSize > 1; }
+// Bytes of a tightly packed width x height image (compressed: whole 4x4 blocks).
+uint64_t imageByteSize(Format f, uint32_t width, uint32_t height);
 // Parses the names printed by formatInfo (case-sensitive); Undefined when unknown.
 Format formatFromName(std::string_view name);
 

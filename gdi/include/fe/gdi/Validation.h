@@ -9,19 +9,51 @@ namespace fe::gdi::validate {
 
 // Each throws Error naming the object (debugName when set) and what is wrong.
 void bufferDesc(const BufferDesc& d);
-void textureDesc(const TextureDesc& d, const DeviceLimits& limits);
+// Initial data of createBuffer: none (size 0) or exactly the buffer's size.
+void initialData(const BufferDesc& d, uint64_t size);
+void textureDesc(const TextureDesc& d, const DeviceInfo& device);
+
+// Size of one mip level: width, height, and depth (3D) or layer count (arrays, cubes).
+struct Extent3 {
+    uint32_t width = 1, height = 1, depthOrLayers = 1;
+};
+Extent3 mipExtent(const TextureDesc& d, uint32_t mipLevel);
+// Throws Error unless `at` names an existing subresource of the texture; `what` names the call.
+void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
+// readTexture: an existing subresource of a single-sample, uncompressed texture.
+void readable(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
+// generateMips: a single-sample colour texture of a filterable (not integer, not compressed) format.
+void mipGeneration(const TextureDesc& d, const std::string& name);
+// Vulkan and GL need a view or binding per kind; these say what each dimension is.
+inline bool isArrayed(TextureDimension d) {
+    return d == TextureDimension::Texture2DArray || d == TextureDimension::TextureCubeArray;
+}
+inline bool isCube(TextureDimension d) { return d == TextureDimension::TextureCube || d == TextureDimension::TextureCubeArray; }
+// An upload of `size` bytes to subresource `at` (checked with subresource()) must be exactly it.
+void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char* what, const std::string& name);
 void samplerDesc(const SamplerDesc& d);
+// Indirect arguments: an Indirect buffer holding drawCount records of `stride` bytes from
+// offset (4-byte aligned); drawCount > 1 needs multiDrawIndirect.
+void indirect(const BufferDesc& d, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
+              const DeviceFeatures& features, const char* what);
 void shaderDesc(const ShaderDesc& d);
-void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceLimits& limits);
+void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device);
 void computePipelineDesc(const ComputePipelineDesc& d);
 // Attachment formats/usages/sizes must agree; returns the render area.
 struct AttachmentInfo {
-    Format format;
-    uint32_t width, height;
-    TextureUsage usage;
+    Format format = Format::Undefined;  // Undefined: no attachment (for resolves)
+    uint32_t width = 0, height = 0;
+    TextureUsage usage = TextureUsage::None;
+    uint32_t samples = 1;
 };
-Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth,
-                const DeviceLimits& limits);
+// The attachment view of a texture's subresource; throws for a subresource that does not exist.
+AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what, const std::string& name);
+// colorResolves has one entry per colour attachment (format Undefined: none).
+Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors,
+                const std::vector<AttachmentInfo>& colorResolves, const AttachmentInfo* depth,
+                const AttachmentInfo* depthResolve, const DeviceLimits& limits);
+// A pipeline set in a pass must rasterize with the pass's sample count.
+void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName);
 // Per-draw checks: inline fast paths, the message is built out of line only on failure.
 [[noreturn]] void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
 inline void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {

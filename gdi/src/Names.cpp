@@ -1,3 +1,4 @@
+// Names of gdi enums, for messages and dumps.
 #include "fe/gdi/Device.h"
 
 namespace fe::gdi {
@@ -11,6 +12,17 @@ const char* resourceStateName(ResourceState s) {
         case ResourceState::Storage: return "Storage";
         case ResourceState::CopySrc: return "CopySrc";
         case ResourceState::CopyDst: return "CopyDst";
+    }
+    return "?";
+}
+
+const char* textureDimensionName(TextureDimension d) {
+    switch (d) {
+        case TextureDimension::Texture2D: return "Texture2D";
+        case TextureDimension::Texture2DArray: return "Texture2DArray";
+        case TextureDimension::TextureCube: return "TextureCube";
+        case TextureDimension::TextureCubeArray: return "TextureCubeArray";
+        case TextureDimension::Texture3D: return "Texture3D";
     }
     return "?";
 }
