@@ -237,7 +237,9 @@ std::vector<CaseImage> timestamps(Device& d) {
 
 }  // namespace
 
-std::vector<Case> drawCases();  // DrawCases.cpp
+std::vector<Case> drawCases();     // DrawCases.cpp
+std::vector<Case> textureCases();  // TextureCases.cpp
+std::vector<Case> stateCases();    // StateCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -248,7 +250,8 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (Case& c : drawCases()) v.push_back(std::move(c));
+        for (auto* group : {drawCases, textureCases, stateCases})
+            for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();
     return all;

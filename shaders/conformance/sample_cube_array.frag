@@ -1,0 +1,11 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "cube_direction.glsl"
+// Cube number params.a.x of a cube map array.
+layout(binding = 0, std140) uniform Params { vec4 a; vec4 b; } params;
+layout(binding = 1) uniform samplerCubeArray tex;
+layout(location = 0) out vec4 outColor;
+void main() {
+    int face;
+    outColor = texture(tex, vec4(cubeDirection(gl_FragCoord.xy, face), params.a.x));
+}

@@ -1,0 +1,75 @@
+#include "CaseSupport.h"
+
+#include "fe/gdi/ShaderRegistry.h"
+
+namespace fe::conformance {
+
+using namespace gdi;
+
+Image solid(Format f, Texel c, uint32_t w, uint32_t h) {
+    return Image::fromTexels(w, h, f, std::vector<Texel>(size_t(w) * h, c));
+}
+
+Image expectImage(Format f, const std::function<Texel(uint32_t, uint32_t)>& fn, uint32_t w, uint32_t h) {
+    std::vector<Texel> t;
+    t.reserve(size_t(w) * h);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) t.push_back(fn(x, y));
+    return Image::fromTexels(w, h, f, t);
+}
+
+CaseImage exact(const std::string& name, Image image, Image expected) {
+    CaseImage ci{name, std::move(image), std::move(expected)};
+    ci.absTolerance = 1e-6;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = "data written and read back, or values exact in the format: no difference allowed";
+    return ci;
+}
+
+bool throws(const std::function<void()>& fn) {
+    try {
+        fn();
+    } catch (const Error&) {
+        return true;
+    }
+    return false;
+}
+
+FullscreenSampler::FullscreenSampler(Device& d, const char* fragmentShader, const SamplerDesc& samplerDesc)
+    : fragment(fragmentShader) {
+    vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
+    sampler = d.createSampler(samplerDesc);
+}
+
+Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, std::array<float, 4> a) {
+    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {target},
+                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                                                              {1, BindingType::SampledTexture, ShaderStage::Fragment}},
+                                                 .debugName = fragment.c_str()});
+    const std::array<float, 8> params = {a[0], a[1], a[2], a[3], 0, 0, 0, 0};
+    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params));
+    TextureHandle t = d.createTexture({.format = target, .width = kCaseSize, .height = kCaseSize,
+                                       .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 0}}}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, ubo);
+    cmd->setTexture(1, texture, sampler);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    Image img = d.readTexture(t);
+    d.destroy(t);
+    d.destroy(ubo);
+    d.destroy(p);
+    return img;
+}
+
+void FullscreenSampler::release(Device& d) {
+    d.destroy(vs);
+    d.destroy(fs);
+    d.destroy(sampler);
+}
+
+}  // namespace fe::conformance

@@ -1,0 +1,37 @@
+// Helpers shared by the conformance case files: expected images, exact comparisons, a
+// full-screen pass that samples one texture, and error checks.
+#pragma once
+#include <array>
+#include <functional>
+#include <string>
+
+#include "Conformance.h"
+
+namespace fe::conformance {
+
+constexpr uint32_t kCaseSize = 64;  // every rendered case image is 64x64
+using Texel = std::array<float, 4>;
+
+gdi::Image solid(gdi::Format f, Texel c, uint32_t w = kCaseSize, uint32_t h = kCaseSize);
+// A 64x64 image whose texel (x, y) is fn(x, y).
+gdi::Image expectImage(gdi::Format f, const std::function<Texel(uint32_t, uint32_t)>& fn, uint32_t w = kCaseSize,
+                       uint32_t h = kCaseSize);
+// Expected to match exactly (data written and read back, or values exact in the format).
+CaseImage exact(const std::string& name, gdi::Image image, gdi::Image expected);
+// True when fn throws gdi::Error (the device's clear error for bad input).
+bool throws(const std::function<void()>& fn);
+
+// fullscreen_ubo.vert + a fragment shader with a uniform block at slot 0 (vec4 a, vec4 b; the
+// triangle's depth is b.x) and a sampled texture at slot 1, drawn into a new 64x64 target.
+struct FullscreenSampler {
+    gdi::ShaderHandle vs, fs;
+    gdi::SamplerHandle sampler;
+    std::string fragment;
+    FullscreenSampler(gdi::Device& d, const char* fragmentShader, const gdi::SamplerDesc& samplerDesc = {
+        .minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest, .addressU = gdi::AddressMode::ClampToEdge,
+        .addressV = gdi::AddressMode::ClampToEdge, .addressW = gdi::AddressMode::ClampToEdge});
+    gdi::Image draw(gdi::Device& d, gdi::TextureHandle texture, gdi::Format target, std::array<float, 4> a = {});
+    void release(gdi::Device& d);
+};
+
+}  // namespace fe::conformance
