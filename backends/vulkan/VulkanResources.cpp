@@ -244,11 +244,11 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         // Multisampled images are only attachments (gdi does not sample them).
         if (desc.sampleCount == 1) {
             t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers});
-            // Storage images bind one mip; cubes bind as 2D arrays (imageCube needs no more).
+            // Storage images bind one mip, every layer, of the texture's kind (image2DArray,
+            // imageCube, image3D...), as GL's layered image bindings do.
             if (any(desc.usage, gdi::TextureUsage::Storage))
                 for (uint32_t m = 0; m < desc.mipLevels; ++m)
-                    t.mipViews.push_back(makeView(t.image, gdi::validate::isCube(desc.dimension) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : type,
-                                                  desc.format, {0, m, 1, 0, layers}));
+                    t.mipViews.push_back(makeView(t.image, type, desc.format, {0, m, 1, 0, layers}));
         }
     } catch (...) {
         destroyTexture(t);

@@ -123,6 +123,72 @@ std::vector<CaseImage> msaaResolve(Device& d) {
     return out;
 }
 
+// Four targets of mixed formats and a depth/stencil target, all multisampled, each resolved
+// into its own texture at the end of one pass: the half-covered column averages each target's
+// value with its clear (0), and depth takes sample 0 (inside, for 4 samples).
+std::vector<CaseImage> msaaMultipleTargets(Device& d) {
+    std::vector<CaseImage> out;
+    const uint32_t counts = d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts;
+    if (!(counts & 4)) return out;
+    const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
+    const Texel values[4] = {{0.2f, 0.4f, 0.6f, 0.8f}, {1.5f, -2.0f, 3.25f, 1.0f}, {0.125f, 4.5f, 0, 1}, {-7.75f, 0, 0, 1}};
+    DepthGeometry geo(d);
+    ShaderHandle mrt = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")});
+    GraphicsPipelineDesc pd = geo.desc;
+    pd.fragmentShader = mrt;
+    pd.colorFormats = formats;
+    pd.depthFormat = Format::D24S8;
+    pd.depthStencil = {.depthTest = true, .depthWrite = true};
+    pd.multisample.sampleCount = 4;
+    PipelineHandle p = d.createGraphicsPipeline(pd);
+    std::vector<Vertex3> v = quad(-1, 31.5f / 32.0f - 1.0f, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
+    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
+    std::vector<TextureHandle> owned;
+    auto make = [&](Format f, uint32_t samples) {
+        owned.push_back(d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
+        return owned.back();
+    };
+    RenderPassDesc rp;
+    std::vector<TextureHandle> resolved;
+    for (Format f : formats) {
+        resolved.push_back(make(f, 1));
+        rp.colors.push_back({.texture = make(f, 4), .store = StoreOp::DontCare, .resolveTexture = resolved.back()});
+    }
+    TextureHandle depth = make(Format::D24S8, 1);
+    rp.depth = {.texture = make(Format::D24S8, 4), .store = StoreOp::DontCare, .resolveTexture = depth};
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass(rp);
+    cmd->setPipeline(p);
+    cmd->setVertexBuffer(0, vb);
+    cmd->draw(6);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    for (size_t i = 0; i < formats.size(); ++i) {
+        CaseImage ci{"target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name), d.readTexture(resolved[i]),
+                     expectImage(formats[i], [&](uint32_t x, uint32_t) -> Texel {
+                         const float k = x < 31 ? 1.0f : x == 31 ? 0.5f : 0.0f;
+                         return {values[i][0] * k, values[i][1] * k, values[i][2] * k, values[i][3] * k};
+                     })};
+        ci.absTolerance = formatInfo(formats[i]).isFloat ? 1e-3 : 1.0 / 255.0;
+        ci.maxFractionOver = 0;
+        ci.toleranceReason = "averages of values exact in the format (8-bit: one step of rounding)";
+        out.push_back(std::move(ci));
+    }
+    CaseImage dz{"depth_D24S8_sample0", d.readTexture(depth), expectImage(Format::D24S8, [](uint32_t x, uint32_t) -> Texel {
+                     return {x <= 31 ? 0.25f : 1.0f, 0, 0, 1};
+                 })};
+    dz.absTolerance = std::ldexp(1.0, -23);
+    dz.maxFractionOver = 0;
+    dz.toleranceReason = "24-bit depth: one step";
+    out.push_back(std::move(dz));
+    for (TextureHandle t : owned) d.destroy(t);
+    d.destroy(vb);
+    d.destroy(p);
+    d.destroy(mrt);
+    geo.release(d);
+    return out;
+}
+
 // Alpha to coverage: alpha 0 covers no sample, alpha 1 all of them, alpha 0.5 about half (the
 // exact mask, dithered or not, is the implementation's; its mean is checked, and the image is
 // compared across backends).
@@ -558,6 +624,7 @@ std::vector<CaseImage> dispatchIndirect(Device& d) {
 std::vector<Case> stateCases() {
     return {
         {"msaa_resolve", msaaResolve},
+        {"msaa_multiple_targets", msaaMultipleTargets},
         {"msaa_alpha_to_coverage", msaaAlphaToCoverage},
         {"shadow_compare_ops", shadowCompareOps},
         {"shadow_compare_pcf", shadowComparePcf},

@@ -168,6 +168,84 @@ std::vector<CaseImage> renderToSubresources(Device& d) {
     return out;
 }
 
+// Draws (not clears) a different colour into each face of a cube, then samples the cube by
+// direction: each face band shows the colour drawn into that face.
+std::vector<CaseImage> renderCubeFacesThenSample(Device& d) {
+    TextureHandle cube = d.createTexture({.dimension = TextureDimension::TextureCube, .width = 16, .height = 16,
+                                          .depthOrLayers = 6, .usage = TextureUsage::RenderTarget | TextureUsage::Sampled});
+    ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+    auto colour = [](uint32_t f) -> Texel { return {float(f * 40 + 15) / 255.0f, float(250 - f * 40) / 255.0f, 0.5f, 1}; };
+    std::vector<BufferHandle> ubos;
+    auto cmd = d.createCommandList();
+    for (uint32_t f = 0; f < 6; ++f) {
+        const Texel c = colour(f);
+        const std::array<float, 8> params = {c[0], c[1], c[2], c[3], 0, 0, 0, 0};
+        ubos.push_back(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+        cmd->beginRenderPass({.colors = {{.texture = cube, .layer = f}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, ubos.back());
+        cmd->draw(3);
+        cmd->endRenderPass();
+    }
+    d.wait(d.submit(*cmd));
+    FullscreenSampler sampler(d, "conformance/sample_cube.frag");
+    CaseImage ci{"faces_drawn_then_sampled", sampler.draw(d, cube, Format::RGBA8),
+                 expectImage(Format::RGBA8, [&](uint32_t x, uint32_t) { return colour(uint32_t((x + 0.5) * 6.0 / 64.0)); })};
+    ci.absTolerance = 1.0 / 255.0;
+    ci.maxFractionOver = 0;
+    sampler.release(d);
+    for (BufferHandle b : ubos) d.destroy(b);
+    d.destroy(p);
+    d.destroy(vs);
+    d.destroy(fs);
+    d.destroy(cube);
+    return {ci};
+}
+
+// A compute shader stores into every layer of an array, every face of a cube and every slice
+// of a 3D storage image (declared image2DArray, imageCube, image3D: the texture's own kind).
+std::vector<CaseImage> storageTextureLayers(Device& d) {
+    std::vector<CaseImage> out;
+    struct Kind {
+        const char* name;
+        TextureDimension dim;
+        uint32_t layers;
+        const char* shader;
+        float zScale;
+    };
+    for (Kind k : {Kind{"array", TextureDimension::Texture2DArray, 4, "conformance/fill_array.comp", 4},
+                   Kind{"cube", TextureDimension::TextureCube, 6, "conformance/fill_cube.comp", 8},
+                   Kind{"3d", TextureDimension::Texture3D, 4, "conformance/fill_3d.comp", 4}}) {
+        TextureHandle t = d.createTexture({.dimension = k.dim, .width = 8, .height = 8, .depthOrLayers = k.layers,
+                                           .usage = TextureUsage::Storage | TextureUsage::CopySrc});
+        ShaderHandle cs = d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find(k.shader)});
+        PipelineHandle p = d.createComputePipeline({.computeShader = cs,
+                                                    .bindings = {{0, BindingType::StorageTexture, ShaderStage::Compute}}});
+        auto cmd = d.createCommandList();
+        cmd->setPipeline(p);
+        cmd->setStorageTexture(0, t);
+        cmd->dispatch(1, 1, k.layers);
+        d.wait(d.submit(*cmd));
+        for (uint32_t l = 0; l < k.layers; ++l) {
+            CaseImage ci{std::string(k.name) + "_layer" + std::to_string(l), d.readTexture(t, {.layer = l}),
+                         expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) -> Texel {
+                             return {float(x) / 8.0f, float(y) / 8.0f, float(l) / k.zScale, 1};
+                         }, 8, 8)};
+            ci.absTolerance = 1.0 / 255.0;
+            ci.maxFractionOver = 0;
+            ci.toleranceReason = "x/8 in 8 bits: one step of rounding";
+            out.push_back(std::move(ci));
+        }
+        d.destroy(p);
+        d.destroy(cs);
+        d.destroy(t);
+    }
+    return out;
+}
+
 // Depth written into one layer of a depth array and one face of a depth cube reads back there.
 std::vector<CaseImage> depthToLayer(Device& d) {
     std::vector<CaseImage> out;
@@ -437,6 +515,8 @@ std::vector<Case> textureCases() {
         {"cube_array", cubeArray},
         {"texture_3d_slices", texture3dSlices},
         {"render_to_subresource", renderToSubresources},
+        {"render_cube_faces_then_sample", renderCubeFacesThenSample},
+        {"storage_texture_layers", storageTextureLayers},
         {"depth_to_layer", depthToLayer},
         {"generate_mips", generateMips},
         {"copy_subresources", copySubresources},
