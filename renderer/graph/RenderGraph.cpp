@@ -19,6 +19,7 @@ std::string kib(uint64_t bytes) {
 }  // namespace
 
 bool TextureAccess::reads() const { return !isTarget(state) || load == gdi::LoadOp::Load; }
+// (A resolve destination is a RenderTarget access with DontCare load: a write, not a read.)
 bool TextureAccess::writes() const { return isTarget(state); }
 
 // ---- declaration ------------------------------------------------------------------------------
@@ -30,6 +31,10 @@ void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4
 void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::DepthTarget, .load = load,
                                               .clearDepth = clearDepth});
+}
+void PassBuilder::resolve(TextureId source, TextureId destination) {
+    graph_.passes_[pass_].accesses.push_back({.texture = destination, .state = gdi::ResourceState::RenderTarget,
+                                              .load = gdi::LoadOp::DontCare, .resolveSource = source});
 }
 void PassBuilder::sample(TextureId t) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::ShaderRead});
@@ -44,7 +49,10 @@ TextureId RenderGraph::createTexture(std::string name, const TransientTextureDes
         throw gdi::Error("render graph: texture '" + name + "' has a zero size");
     TextureInfo t;
     t.name = std::move(name);
-    t.desc = {.format = d.format, .width = d.width, .height = d.height, .usage = gdi::TextureUsage::None};
+    if (d.sampleCount != 1 && d.sampleCount != 2 && d.sampleCount != 4 && d.sampleCount != 8)
+        throw gdi::Error("render graph: texture '" + name + "' has sample count " + std::to_string(d.sampleCount));
+    t.desc = {.format = d.format, .width = d.width, .height = d.height, .sampleCount = d.sampleCount,
+              .usage = gdi::TextureUsage::None};
     textures_.push_back(std::move(t));
     compiled_ = false;
     return {uint32_t(textures_.size() - 1)};
@@ -161,6 +169,23 @@ void RenderGraph::planBarriers() {
     }
 }
 
+// A resolve's source is a multisampled target of the same pass; its destination a
+// single-sample texture of the same format and size.
+void RenderGraph::checkResolve(const PassInfo& pass, const TextureAccess& a, const TextureInfo& dst) const {
+    if (a.resolveSource.index >= textures_.size())
+        throw gdi::Error("render graph: pass '" + pass.name + "' resolves an invalid texture id");
+    const TextureInfo& src = textures_[a.resolveSource.index];
+    const std::string what = "render graph: pass '" + pass.name + "' resolves '" + src.name + "' into '" + dst.name + "': ";
+    const bool target = std::any_of(pass.accesses.begin(), pass.accesses.end(), [&](const TextureAccess& o) {
+        return o.texture == a.resolveSource && o.writes() && !o.resolveSource.valid();
+    });
+    if (!target) throw gdi::Error(what + "the source is not a target of this pass");
+    if (src.desc.sampleCount == 1) throw gdi::Error(what + "the source is single-sample");
+    if (dst.desc.sampleCount != 1) throw gdi::Error(what + "the destination is multisampled");
+    if (src.desc.format != dst.desc.format || src.desc.width != dst.desc.width || src.desc.height != dst.desc.height)
+        throw gdi::Error(what + "format or size differ");
+}
+
 void RenderGraph::compile(const CompileOptions& options) {
     for (size_t p = 0; p < passes_.size(); ++p) {
         const PassInfo& pass = passes_[p];
@@ -175,6 +200,13 @@ void RenderGraph::compile(const CompileOptions& options) {
                 if (pass.accesses[m].texture == a.texture)
                     throw gdi::Error("render graph: pass '" + pass.name + "' uses texture '" + t.name +
                                      "' twice (a target cannot also be sampled in the same pass)");
+            if (a.resolveSource.valid()) {
+                checkResolve(pass, a, t);
+                continue;
+            }
+            if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
+                throw gdi::Error("render graph: pass '" + pass.name + "' samples multisampled texture '" + t.name +
+                                 "'; resolve it into a single-sample texture first");
             if (!a.writes()) continue;
             const bool isDepth = gdi::isDepthFormat(t.desc.format);
             if ((a.state == gdi::ResourceState::DepthTarget) != isDepth)
@@ -206,7 +238,7 @@ void RenderGraph::compile(const CompileOptions& options) {
             t.size = r.size;
             t.alignment = std::max<uint64_t>(1, r.alignment);
         } else {
-            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel;
+            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel * t.desc.sampleCount;
             t.alignment = 256;
         }
     }
@@ -266,10 +298,12 @@ gdi::TextureHandle PassContext::texture(TextureId id) const { return graph_.hand
 void PassContext::beginRenderPass() {
     const PassInfo& pass = graph_.passes_[pass_];
     gdi::RenderPassDesc rp;
+    std::vector<TextureId> colorIds;
     for (const TextureAccess& a : pass.accesses) {
-        if (!a.writes()) continue;
+        if (!a.writes() || a.resolveSource.valid()) continue;
         const TextureInfo& t = graph_.textures_[a.texture.index];
-        // Contents nobody reads after this pass need not reach memory.
+        // Contents nobody reads after this pass need not reach memory (a resolved multisampled
+        // target's samples usually are not).
         const bool keep = t.imported || t.output || t.lastPass > int(pass_);
         const gdi::StoreOp store = keep ? gdi::StoreOp::Store : gdi::StoreOp::DontCare;
         if (a.state == gdi::ResourceState::DepthTarget) {
@@ -278,7 +312,14 @@ void PassContext::beginRenderPass() {
             gdi::ColorAttachment c{.texture = texture(a.texture), .load = a.load, .store = store};
             std::copy(a.clearColor.begin(), a.clearColor.end(), c.clear);
             rp.colors.push_back(c);
+            colorIds.push_back(a.texture);
         }
+    }
+    for (const TextureAccess& a : pass.accesses) {
+        if (!a.resolveSource.valid()) continue;
+        const auto it = std::find(colorIds.begin(), colorIds.end(), a.resolveSource);
+        if (it != colorIds.end()) rp.colors[size_t(it - colorIds.begin())].resolveTexture = texture(a.texture);
+        else rp.depth.resolveTexture = texture(a.texture);
     }
     if (rp.colors.empty() && !rp.depth.texture)
         throw gdi::Error("render graph: pass '" + pass.name + "' begins a render pass but declared no targets");

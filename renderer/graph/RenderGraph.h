@@ -44,6 +44,7 @@ struct TransientTextureDesc {
     gdi::Format format = gdi::Format::RGBA8;
     uint32_t width = 1;
     uint32_t height = 1;
+    uint32_t sampleCount = 1;  // > 1: a multisampled target, read only through a resolve
 };
 
 // How a pass uses a texture.
@@ -53,6 +54,9 @@ struct TextureAccess {
     gdi::LoadOp load = gdi::LoadOp::Load;  // targets only
     std::array<float, 4> clearColor{0, 0, 0, 0};
     float clearDepth = 1.0f;
+    // Valid for a resolve destination: the multisampled target of the same pass it receives.
+    // Resolves write in the colour-output stage on Vulkan, depth too, so the state is RenderTarget.
+    TextureId resolveSource;
     bool reads() const;   // sampled, or a target whose old contents are loaded
     bool writes() const;  // a target
 };
@@ -62,6 +66,9 @@ public:
     // Attachments in declaration order (colour index 0, 1, ...).
     void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, std::array<float, 4> clear = {0, 0, 0, 0});
     void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, float clearDepth = 1.0f);
+    // At the end of the pass, the multisampled target `source` (colour: the average of each
+    // pixel's samples; depth: sample 0) is written into single-sample `destination`.
+    void resolve(TextureId source, TextureId destination);
     void sample(TextureId texture);
     // The pass has effects the graph cannot see (e.g. writes a buffer read back later): never culled.
     void sideEffect();
@@ -153,6 +160,7 @@ private:
     void cull();
     void computeLifetimes();
     void planBarriers();
+    void checkResolve(const PassInfo& pass, const TextureAccess& a, const TextureInfo& dst) const;
 
     struct Executor {
         std::function<void(PassContext&)> run;

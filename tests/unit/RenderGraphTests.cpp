@@ -282,8 +282,21 @@ TEST(RenderGraph, MalformedGraphsAreClearErrors) {
                 "cannot be a depth target");
     expectError([](auto& g, auto, auto) { g.addPass("p", [&](auto& b) { b.colorTarget(TextureId{99}); }, {}); },
                 "invalid texture id");
+    expectError([](auto& g, auto, auto out) {
+        auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
+        g.addPass("draw", [&](auto& b) { b.colorTarget(ms); }, {});
+        g.addPass("p", [&](auto& b) { b.sample(ms); b.colorTarget(out); }, {});
+    }, "samples multisampled texture 'ms'");
+    expectError([](auto& g, auto a, auto out) {
+        auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
+        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.resolve(ms, a); }, {});
+    }, "resolves 'ms' into 'a': the source is not a target of this pass");
+    expectError([](auto& g, auto a, auto out) {
+        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.resolve(out, a); }, {});
+    }, "the source is single-sample");
     RenderGraph g;
     EXPECT_THROW(g.createTexture("zero", {.width = 0, .height = 8}), gdi::Error);
+    EXPECT_THROW(g.createTexture("three samples", {.width = 8, .height = 8, .sampleCount = 3}), gdi::Error);
 }
 
 // ---- on every backend: real textures, aliased memory, explicit barriers --------------------------
@@ -369,6 +382,79 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
     d.destroy(ubo);
     d.destroy(vs);
     d.destroy(fs);
+}
+
+// Multisampled transients resolved at the end of their pass: "draw" renders a quad whose edge
+// halves pixel column 31 into 4-sample colour and depth, resolves both; "show" samples the
+// resolved colour into the output. The MS targets are transient, stored DontCare, and culled
+// with their pass when nothing reads the resolve.
+TEST_P(RenderGraphOnDevice, MultisampledTransientsAndResolves) {
+    gdi::Device& d = *device;
+    using namespace gdi;
+    if (!(d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
+    auto vsQuad = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/position3_color.vert")});
+    auto fsColor = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    auto quadPipe = d.createGraphicsPipeline(
+        {.vertexShader = vsQuad, .fragmentShader = fsColor,
+         .vertexBuffers = {{.stride = 28, .attributes = {{0, VertexFormat::Float3, 0}, {1, VertexFormat::Float4, 12}}}},
+         .multisample = {.sampleCount = 4}, .depthStencil = {.depthTest = true, .depthWrite = true},
+         .colorFormats = {Format::RGBA16F}, .depthFormat = Format::D32F});
+    const float e = 31.5f / 32.0f - 1.0f;
+    const float quad[6][7] = {{-1, -1, 0.25f, 1, 1, 1, 1}, {e, -1, 0.25f, 1, 1, 1, 1}, {-1, 1, 0.25f, 1, 1, 1, 1},
+                              {-1, 1, 0.25f, 1, 1, 1, 1},  {e, -1, 0.25f, 1, 1, 1, 1}, {e, 1, 0.25f, 1, 1, 1, 1}};
+    auto vb = d.createBuffer({.size = sizeof quad, .usage = BufferUsage::Vertex}, bytesOf(quad));
+    const float params[8] = {0, 0, 0, 0, 0.5f, 0, 0, 0};
+    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, bytesOf(params));
+    auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    auto show = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                                                       {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+    auto output = d.createTexture(kOutputDesc);
+    RenderGraph g;
+    auto msColor = g.createTexture("ms colour", {.format = Format::RGBA16F, .width = 64, .height = 64, .sampleCount = 4});
+    auto msDepth = g.createTexture("ms depth", {.format = Format::D32F, .width = 64, .height = 64, .sampleCount = 4});
+    auto color = g.createTexture("colour", {.format = Format::RGBA16F, .width = 64, .height = 64});
+    auto depth = g.createTexture("depth", {.format = Format::D32F, .width = 64, .height = 64});
+    auto out = g.importTexture("out", output, kOutputDesc);
+    g.addPass("draw", [&](auto& b) {
+        b.colorTarget(msColor);
+        b.depthTarget(msDepth);
+        b.resolve(msColor, color);
+        b.resolve(msDepth, depth);
+    }, [&](graph::PassContext& ctx) {
+        ctx.beginRenderPass();
+        ctx.cmd.setPipeline(quadPipe);
+        ctx.cmd.setVertexBuffer(0, vb);
+        ctx.cmd.draw(6);
+        ctx.cmd.endRenderPass();
+    });
+    g.addPass("show", [&](auto& b) { b.sample(color); b.colorTarget(out); }, [&](graph::PassContext& ctx) {
+        ctx.beginRenderPass();
+        ctx.cmd.setPipeline(show);
+        ctx.cmd.setUniformBuffer(0, ubo);
+        ctx.cmd.setTexture(1, ctx.texture(color), sampler);
+        ctx.cmd.draw(3);
+        ctx.cmd.endRenderPass();
+    });
+    g.markOutput(out);
+    g.compile(d, true);
+    EXPECT_EQ(g.texture(msColor).desc.sampleCount, 4u);
+    EXPECT_TRUE(g.texture(depth).used());  // written by the resolve even though nothing samples it
+    auto cmd = d.createCommandList();
+    g.execute(*cmd);
+    d.wait(d.submit(*cmd));
+    Image img = d.readTexture(output);
+    for (uint32_t x : {0u, 30u, 31u, 32u, 63u}) {
+        const float expected = x < 31 ? 1.0f : x == 31 ? 0.5f : 0.0f;
+        EXPECT_NEAR(img.texel(x, 10)[0], expected, 1.0 / 255) << "column " << x;
+    }
+    for (auto p : {quadPipe, show}) d.destroy(p);
+    for (auto s : {vsQuad, fsColor, vs, fs}) d.destroy(s);
+    for (auto b : {vb, ubo}) d.destroy(b);
+    d.destroy(sampler);
+    d.destroy(output);
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderGraphOnDevice);
