@@ -360,7 +360,7 @@ public:
         if (!pipeline_) throw gdi::Error("dispatchIndirect without a pipeline (call setPipeline first)");
         if (!pipeline_->compute) throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->label + "'");
         const Buffer& b = dev_.buffer(args);
-        gdi::validate::indirect(b.desc, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
+        gdi::validate::indirect(b.desc, b.label, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
                                 dev_.info().features, "dispatchIndirect");
         checkBindings();
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -437,17 +437,18 @@ private:
     GLenum indexType() const { return indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT; }
     void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
                       const char* what) {
-        const Buffer& b = dev_.buffer(h);
-        gdi::validate::indirect(b.desc, offset, drawCount, stride, recordSize, dev_.info().features, what);
+        // Same order of checks as Vulkan: draw state, index buffer, then the arguments.
         prepareDraw(what);
         if (recordSize == sizeof(gdi::DrawIndexedIndirectArgs)) prepareIndexed(what, true);
+        const Buffer& b = dev_.buffer(h);
+        gdi::validate::indirect(b.desc, b.label, offset, drawCount, stride, recordSize, dev_.info().features, what);
         gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, b.name);
     }
     void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
         if (!dev_.info().features.drawIndirectCount)
             throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
         const Buffer& b = dev_.buffer(h);
-        gdi::validate::indirect(b.desc, offset, 1, 4, 4, dev_.info().features, what);
+        gdi::validate::indirect(b.desc, b.label, offset, 1, 4, 4, dev_.info().features, what);
         gl_.BindBuffer(GL_PARAMETER_BUFFER, b.name);
     }
     // Writes every resolve target from the pass's multisampled attachments. A blit from a

@@ -467,7 +467,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw(what);
     const Buffer& b = dev_.buffer(h);
-    gdi::validate::indirect(b.desc, offset, drawCount, stride, recordSize, dev_.info().features, what);
+    gdi::validate::indirect(b.desc, b.name, offset, drawCount, stride, recordSize, dev_.info().features, what);
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     return b;
 }
@@ -476,7 +476,7 @@ const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offse
     if (!dev_.info().features.drawIndirectCount)
         throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
     const Buffer& b = dev_.buffer(h);
-    gdi::validate::indirect(b.desc, offset, 1, 4, 4, dev_.info().features, what);
+    gdi::validate::indirect(b.desc, b.name, offset, 1, 4, 4, dev_.info().features, what);
     return b;
 }
 
@@ -521,7 +521,7 @@ void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset
     if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->name + "'");
     const Buffer& b = dev_.buffer(args);
-    gdi::validate::indirect(b.desc, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
+    gdi::validate::indirect(b.desc, b.name, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
                             dev_.info().features, "dispatchIndirect");
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
     barrierIfWritten();

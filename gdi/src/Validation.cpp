@@ -142,9 +142,9 @@ void samplerDesc(const SamplerDesc& d) {
     if (d.compare > CompareOp::Always) fail(label("sampler", d.debugName), "compare op is invalid");
 }
 
-void indirect(const BufferDesc& d, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
-              const DeviceFeatures& features, const char* what) {
-    const std::string w = std::string(what) + ": " + label("buffer", d.debugName);
+void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uint32_t drawCount, uint32_t stride,
+              uint32_t recordSize, const DeviceFeatures& features, const char* what) {
+    const std::string w = std::string(what) + ": " + label("buffer", name.c_str());
     if (!any(d.usage, BufferUsage::Indirect)) fail(w, "lacks Indirect usage");
     if (offset % 4) fail(w, "offset " + std::to_string(offset) + " is not a multiple of 4");
     if (drawCount > 1 && !features.multiDrawIndirect) fail(w, "drawCount > 1 needs multiDrawIndirect");

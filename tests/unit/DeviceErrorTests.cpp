@@ -26,6 +26,94 @@ TEST_P(DeviceErrors, UnsupportedUsage) {
               std::string::npos);
 }
 
+// Texture kinds: each rule of TextureDesc gives its own message.
+TEST_P(DeviceErrors, TextureKinds) {
+    using D = TextureDimension;
+    auto err = [&](const TextureDesc& d) { return errorOf([&] { device->destroy(device->createTexture(d)); }); };
+    const TextureUsage rt = TextureUsage::RenderTarget;
+    EXPECT_NE(err({.dimension = D::Texture2D, .width = 4, .height = 4, .depthOrLayers = 2}).find("a Texture2D has depthOrLayers 1"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::TextureCube, .width = 4, .height = 8, .depthOrLayers = 6}).find("faces must be square"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::TextureCube, .width = 4, .height = 4, .depthOrLayers = 12}).find("a TextureCube has 6 layers"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::TextureCubeArray, .width = 4, .height = 4, .depthOrLayers = 8}).find("6 layers per cube"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::Texture3D, .format = Format::D32F, .width = 4, .height = 4, .depthOrLayers = 4}).find("cannot have a depth format"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::Texture3D, .width = 4, .height = 4, .depthOrLayers = 16, .mipLevels = 6}).find("mipLevels 6 not in [1, 5]"), std::string::npos);
+    EXPECT_NE(err({.dimension = D::Texture2DArray, .width = 4, .height = 4, .depthOrLayers = 1u << 20}).find("exceed the device limit"), std::string::npos);
+    EXPECT_NE(err({.width = 4, .height = 4, .sampleCount = 3, .usage = rt}).find("sampleCount 3 is not 1, 2, 4 or 8"), std::string::npos);
+    EXPECT_NE(err({.width = 4, .height = 4, .mipLevels = 2, .sampleCount = 4, .usage = rt}).find("one mip level"), std::string::npos);
+    EXPECT_NE(err({.width = 4, .height = 4, .sampleCount = 4, .usage = rt | TextureUsage::Sampled}).find("resolved (not sampled)"), std::string::npos);
+    EXPECT_NE(err({.format = Format::BC7, .width = 4, .height = 4, .usage = rt}).find("can only be sampled and copied"), std::string::npos);
+    // Every supported kind creates, with the layer count its kind implies.
+    for (TextureDesc d : {TextureDesc{.dimension = D::Texture2DArray, .width = 4, .height = 4, .depthOrLayers = 3},
+                          TextureDesc{.dimension = D::TextureCube, .width = 4, .height = 4, .depthOrLayers = 6},
+                          TextureDesc{.dimension = D::Texture3D, .width = 4, .height = 4, .depthOrLayers = 4, .mipLevels = 3}})
+        EXPECT_EQ(err(d), "(no error)");
+}
+
+// Subresources that do not exist, resolves that do not fit, and readback of what cannot be read.
+TEST_P(DeviceErrors, SubresourcesAndResolves) {
+    const TextureUsage rt = TextureUsage::RenderTarget | TextureUsage::CopySrc;
+    auto arr = device->createTexture({.dimension = TextureDimension::Texture2DArray, .width = 8, .height = 8,
+                                      .depthOrLayers = 2, .mipLevels = 2, .usage = rt, .debugName = "arr"});
+    auto vol = device->createTexture({.dimension = TextureDimension::Texture3D, .width = 8, .height = 8, .depthOrLayers = 4,
+                                      .mipLevels = 2, .usage = TextureUsage::Sampled | TextureUsage::CopySrc | TextureUsage::CopyDst});
+    EXPECT_NE(errorOf([&] { device->readTexture(arr, {.layer = 2}); }).find("layer 2 out of range (2 at mip 0)"), std::string::npos);
+    EXPECT_NE(errorOf([&] { device->readTexture(arr, {.mipLevel = 2}); }).find("mip level 2 out of range"), std::string::npos);
+    EXPECT_NE(errorOf([&] { device->readTexture(vol, {.mipLevel = 1, .layer = 2}); }).find("slice 2 out of range (2 at mip 1)"),
+              std::string::npos);
+    EXPECT_EQ(device->readTexture(vol, {.mipLevel = 1, .layer = 1}).width, 4u);
+    auto cmd = device->createCommandList();
+    EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = arr, .layer = 5}}}); }).find("layer 5 out of range"),
+              std::string::npos);
+    const uint32_t counts = device->info().limits.colorSampleCounts;
+    if (counts & 4) {
+        auto ms = device->createTexture({.width = 8, .height = 8, .sampleCount = 4, .usage = rt});
+        auto small = device->createTexture({.width = 4, .height = 4, .usage = rt});
+        auto other = device->createTexture({.format = Format::RGBA16F, .width = 8, .height = 8, .usage = rt});
+        auto single = device->createTexture({.width = 8, .height = 8, .usage = rt});
+        EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = ms, .resolveTexture = small}}}); }).find("resolve target size differs"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = ms, .resolveTexture = other}}}); }).find("resolve target format RGBA16F differs"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = single, .resolveTexture = single}}}); }).find("nothing to resolve"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = ms}, {.texture = single}}}); }).find("mismatched sample counts"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] { device->readTexture(ms); }).find("is multisampled"), std::string::npos);
+        for (auto t : {ms, small, other, single}) device->destroy(t);
+    }
+    device->destroy(arr);
+    device->destroy(vol);
+}
+
+// Indirect arguments are checked before the API sees them.
+TEST_P(DeviceErrors, IndirectArguments) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    const DrawIndirectArgs rec{3, 1, 0, 0};
+    auto args = device->createBuffer({.size = sizeof rec, .usage = BufferUsage::Indirect, .debugName = "args"}, bytesOf(rec));
+    auto plain = device->createBuffer({.size = 64, .usage = BufferUsage::Storage, .debugName = "plain"});
+    auto cmd = device->createCommandList();
+    EXPECT_NE(errorOf([&] { cmd->drawIndirect(args, 0); }).find("outside a render pass"), std::string::npos);
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(p);
+    EXPECT_NE(errorOf([&] { cmd->drawIndirect(plain, 0); }).find("buffer 'plain': lacks Indirect usage"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->drawIndirect(args, 2); }).find("not a multiple of 4"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->drawIndirect(args, 4); }).find("exceed its size 16"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->drawIndexedIndirect(args, 0); }).find("without an index buffer"), std::string::npos);
+    if (!device->info().features.drawIndirectCount)
+        EXPECT_NE(errorOf([&] { cmd->drawIndirectCount(args, 0, args, 0, 1); }).find("not supported"), std::string::npos);
+    cmd->drawIndirect(args, 0);  // a valid one still records
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+    for (auto b : {args, plain}) device->destroy(b);
+    device->destroy(t);
+    device->destroy(p);
+    device->destroy(vs);
+    device->destroy(fs);
+}
+
 TEST_P(DeviceErrors, MismatchedAttachments) {
     auto a = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
     auto b = device->createTexture({.width = 16, .height = 8, .usage = TextureUsage::RenderTarget});

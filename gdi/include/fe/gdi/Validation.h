@@ -34,8 +34,8 @@ void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char*
 void samplerDesc(const SamplerDesc& d);
 // Indirect arguments: an Indirect buffer holding drawCount records of `stride` bytes from
 // offset (4-byte aligned); drawCount > 1 needs multiDrawIndirect.
-void indirect(const BufferDesc& d, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
-              const DeviceFeatures& features, const char* what);
+void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uint32_t drawCount, uint32_t stride,
+              uint32_t recordSize, const DeviceFeatures& features, const char* what);
 void shaderDesc(const ShaderDesc& d);
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device);
 void computePipelineDesc(const ComputePipelineDesc& d);
