@@ -4,6 +4,13 @@
 #include <cmath>
 #include <string>
 
+namespace fe::gdi {
+uint64_t textureByteSize(const TextureDesc& d, uint32_t mipLevel) {
+    const validate::Extent3 e = validate::mipExtent(d, mipLevel);
+    return imageByteSize(d.format, e.width, e.height);
+}
+}  // namespace fe::gdi
+
 namespace fe::gdi::validate {
 
 namespace {

@@ -51,16 +51,16 @@ Image asDepth(Image img) {  // D32F readback compared as depth values
 
 // --- Multisampling ------------------------------------------------------------------------------
 
-// A white quad whose right edge runs through the middle of pixel column 31: at the standard
-// sample positions of 2, 4 and 8 samples exactly half of that column's samples are inside, so
-// the colour resolve (the average) is 0.5 there. The depth resolve is sample 0: inside for 4
-// samples (0.375, 0.125), outside for 2 (0.75, 0.75) and 8 (0.5625, 0.3125).
+// A white quad whose edge runs through the middle of pixel column 31: at the standard sample
+// positions of 2, 4 and 8 samples exactly half of that column's samples are inside, so the
+// colour resolve (the average) is 0.5 there. The depth resolve is sample 0, which lies left of
+// the middle for 4 samples (0.375, 0.125) and right of it for 2 (0.75, 0.75) and 8 (0.5625,
+// 0.3125): drawn once on each side of the edge, sample 0 is inside exactly once, so a resolve
+// taking the minimum or maximum of the samples fails one of the two.
 std::vector<CaseImage> msaaResolve(Device& d) {
     std::vector<CaseImage> out;
     DepthGeometry geo(d);
     const float edge = 31.5f / 32.0f - 1.0f;
-    std::vector<Vertex3> v = quad(-1, edge, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
     const uint32_t counts = d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts;
     FE_CONFORMANCE_CHECK(counts & 1, "one sample is always supported");
     for (uint32_t samples : {2u, 4u, 8u}) {
@@ -71,7 +71,6 @@ std::vector<CaseImage> msaaResolve(Device& d) {
                                  "an unsupported sample count is an error");
             continue;
         }
-        const std::string n = std::to_string(samples) + "x";
         GraphicsPipelineDesc pd = geo.desc;
         pd.colorFormats = {Format::RGBA8};
         pd.depthFormat = Format::D32F;
@@ -84,26 +83,34 @@ std::vector<CaseImage> msaaResolve(Device& d) {
         TextureHandle color = d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled});
         TextureHandle depth = d.createTexture(
             {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled});
-        auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = ms, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = color}},
-                              .depth = {.texture = msDepth, .store = StoreOp::DontCare, .resolveTexture = depth}});
-        cmd->setPipeline(p);
-        cmd->setVertexBuffer(0, vb);
-        cmd->draw(6);
-        cmd->endRenderPass();
-        d.wait(d.submit(*cmd));
-        CaseImage c{"colour_" + n, d.readTexture(color), expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
-                        const float v = x < 31 ? 1.0f : x == 31 ? 0.5f : 0.0f;
-                        return {v, v, v, 1};
-                    })};
-        c.absTolerance = 1.0 / 255.0;  // 127.5 rounds either way
-        c.maxFractionOver = 0;
-        c.toleranceReason = "half-covered edge column averages to 0.5 (127 or 128 in 8 bits)";
-        out.push_back(std::move(c));
-        const float edgeDepth = samples == 4 ? 0.25f : 1.0f;
-        out.push_back(exact("depth_sample0_" + n, d.readTexture(depth), expectImage(Format::D32F, [&](uint32_t x, uint32_t) -> Texel {
-                                return {x < 31 ? 0.25f : x == 31 ? edgeDepth : 1.0f, 0, 0, 1};
-                            })));
+        for (bool left : {true, false}) {
+            std::vector<Vertex3> v = left ? quad(-1, edge, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1}) : quad(edge, 1, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
+            BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
+            auto cmd = d.createCommandList();
+            cmd->beginRenderPass({.colors = {{.texture = ms, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = color}},
+                                  .depth = {.texture = msDepth, .store = StoreOp::DontCare, .resolveTexture = depth}});
+            cmd->setPipeline(p);
+            cmd->setVertexBuffer(0, vb);
+            cmd->draw(6);
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            d.destroy(vb);
+            auto inside = [left](uint32_t x) { return left ? x < 31 : x > 31; };
+            const std::string n = std::string(left ? "left_" : "right_") + std::to_string(samples) + "x";
+            CaseImage c{"colour_" + n, d.readTexture(color), expectImage(Format::RGBA8, [&](uint32_t x, uint32_t) -> Texel {
+                            const float v = x == 31 ? 0.5f : inside(x) ? 1.0f : 0.0f;
+                            return {v, v, v, 1};
+                        })};
+            c.absTolerance = 1.0 / 255.0;  // 127.5 rounds either way
+            c.maxFractionOver = 0;
+            c.toleranceReason = "half-covered edge column averages to 0.5 (127 or 128 in 8 bits)";
+            out.push_back(std::move(c));
+            const bool sample0Left = samples == 4;
+            const float edgeDepth = sample0Left == left ? 0.25f : 1.0f;
+            out.push_back(exact("depth_sample0_" + n, d.readTexture(depth), expectImage(Format::D32F, [&](uint32_t x, uint32_t) -> Texel {
+                                    return {x == 31 ? edgeDepth : inside(x) ? 0.25f : 1.0f, 0, 0, 1};
+                                })));
+        }
         // A single-sample pipeline in a multisampled pass, and reading a multisampled texture, are errors.
         GraphicsPipelineDesc single = pd;
         single.multisample.sampleCount = 1;
@@ -118,7 +125,6 @@ std::vector<CaseImage> msaaResolve(Device& d) {
         d.destroy(p);
         d.destroy(p1);
     }
-    d.destroy(vb);
     geo.release(d);
     return out;
 }

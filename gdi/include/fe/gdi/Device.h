@@ -16,6 +16,40 @@
 //   device->wait(device->submit(*cmd));
 //   fe::gdi::Image img = device->readTexture(target);
 //
+// Texture kinds, subresources and multisampling
+//   auto cube = device->createTexture({.dimension = TextureDimension::TextureCube, .format = Format::RGBA16F,
+//                                      .width = 256, .height = 256, .depthOrLayers = 6, .mipLevels = 9,
+//                                      .usage = TextureUsage::Sampled | TextureUsage::RenderTarget});
+//   device->writeTexture(cube, {.mipLevel = 0, .layer = 4}, bytesOf(facePixels));   // +Z face
+//   cmd->beginRenderPass({.colors = {{.texture = cube, .layer = 2}}});              // render into +Y
+//   ...
+//   cmd->generateMips(cube);                                                        // box-filtered chain
+//   auto ms = device->createTexture({.width = w, .height = h, .sampleCount = 4, .usage = TextureUsage::RenderTarget});
+//   cmd->beginRenderPass({.colors = {{.texture = ms, .store = StoreOp::DontCare, .resolveTexture = resolved}}});
+//  - Kinds: Texture2D, Texture2DArray, TextureCube (6 layers), TextureCubeArray (6 per cube,
+//    DeviceFeatures::textureCubeArray), Texture3D (depthOrLayers is the depth). GLSL samples each
+//    with sampler2D / sampler2DArray / samplerCube / samplerCubeArray / sampler3D, and a storage
+//    binding is declared with the same kind (image2DArray, imageCube, image3D: every layer of one mip).
+//  - A Subresource is {mipLevel, layer}; layer is the array layer, cube face (layer % 6 of cube
+//    layer / 6, in the order +X -X +Y -Y +Z -Z) or the 3D slice within that mip. Uploads,
+//    readback, buffer<->texture copies and attachments each address exactly one subresource.
+//  - Multisampled textures (sampleCount 2/4/8 as DeviceLimits::colorSampleCounts/depthSampleCounts
+//    allow) are single-mip 2D render targets; pipelines drawing into them set
+//    MultisampleState::sampleCount to match. A pass resolves them into single-sample textures:
+//    colour by averaging, depth by taking sample 0 (see DepthAttachment). They cannot be sampled
+//    or read back.
+//  - Shadow maps: RasterState depth bias and depth clamp; a SamplerDesc with compareEnable makes
+//    sampler2DShadow / sampler2DArrayShadow / samplerCubeShadow return 0..1, filtered (PCF) when Linear.
+//  - Indirect work: records (DrawIndirectArgs, DrawIndexedIndirectArgs, DispatchIndirectArgs) in
+//    BufferUsage::Indirect buffers, which a compute shader may write; *Count forms take the draw
+//    count from a buffer (DeviceFeatures::drawIndirectCount). Indexed indirect draws need the
+//    index buffer bound at offset 0 (the records' firstIndex offsets it).
+//  - Block-compressed formats (BC1/3/4/5/7, sRGB forms) are sampled-only
+//    (DeviceFeatures::textureCompressionBC); uploads are rows of 4x4 blocks.
+//  - Data passed to the device is a ByteSpan (bytesOf(x) for a value, array or vector) and its
+//    length must be exactly what the call reads: createBuffer's initial data is desc.size bytes,
+//    writeTexture's the subresource's textureByteSize.
+//
 // Conventions (identical on every backend, so images match pixel for pixel):
 //  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
 //  - Image rows are stored top to bottom; texture coordinate (0,0) is the first texel in memory.
@@ -163,12 +197,16 @@ struct HeapDesc {
     const char* debugName = nullptr;
 };
 
+struct TextureDesc;
 // One image of a texture: a mip level and a layer (array layer; a cube face is layer % 6 of cube
 // layer / 6; a 3D texture's depth slice within that mip level).
 struct Subresource {
     uint32_t mipLevel = 0;
     uint32_t layer = 0;
 };
+
+// Bytes of one subresource of mip level `mipLevel`, tightly packed (rows of blocks when compressed).
+uint64_t textureByteSize(const TextureDesc& desc, uint32_t mipLevel);
 
 struct MemoryRequirements {
     uint64_t size = 0;
