@@ -26,6 +26,14 @@ CaseImage exact(const std::string& name, Image image, Image expected) {
     return ci;
 }
 
+CaseImage within(const std::string& name, Image image, Image expected, double absTolerance, std::string reason) {
+    CaseImage ci{name, std::move(image), std::move(expected)};
+    ci.absTolerance = absTolerance;
+    ci.maxFractionOver = 0;
+    ci.toleranceReason = std::move(reason);
+    return ci;
+}
+
 bool throws(const std::function<void()>& fn) {
     try {
         fn();

@@ -18,6 +18,8 @@ gdi::Image expectImage(gdi::Format f, const std::function<Texel(uint32_t, uint32
                        uint32_t h = kCaseSize);
 // Expected to match exactly (data written and read back, or values exact in the format).
 CaseImage exact(const std::string& name, gdi::Image image, gdi::Image expected);
+// Expected within absTolerance on every pixel, for the reason given (the report shows it).
+CaseImage within(const std::string& name, gdi::Image image, gdi::Image expected, double absTolerance, std::string reason);
 // True when fn throws gdi::Error (the device's clear error for bad input).
 bool throws(const std::function<void()>& fn);
 

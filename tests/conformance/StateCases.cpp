@@ -170,23 +170,18 @@ std::vector<CaseImage> msaaMultipleTargets(Device& d) {
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
     for (size_t i = 0; i < formats.size(); ++i) {
-        CaseImage ci{"target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name), d.readTexture(resolved[i]),
-                     expectImage(formats[i], [&](uint32_t x, uint32_t) -> Texel {
-                         const float k = x < 31 ? 1.0f : x == 31 ? 0.5f : 0.0f;
-                         return {values[i][0] * k, values[i][1] * k, values[i][2] * k, values[i][3] * k};
-                     })};
-        ci.absTolerance = formatInfo(formats[i]).isFloat ? 1e-3 : 1.0 / 255.0;
-        ci.maxFractionOver = 0;
-        ci.toleranceReason = "averages of values exact in the format (8-bit: one step of rounding)";
-        out.push_back(std::move(ci));
+        auto expected = [&](uint32_t x, uint32_t) -> Texel {
+            const float k = x < 31 ? 1.0f : x == 31 ? 0.5f : 0.0f;
+            return {values[i][0] * k, values[i][1] * k, values[i][2] * k, values[i][3] * k};
+        };
+        out.push_back(within("target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name),
+                             d.readTexture(resolved[i]), expectImage(formats[i], expected),
+                             formatInfo(formats[i]).isFloat ? 1e-3 : 1.0 / 255.0,
+                             "averages of values exact in the format (8-bit: one step of rounding)"));
     }
-    CaseImage dz{"depth_D24S8_sample0", d.readTexture(depth), expectImage(Format::D24S8, [](uint32_t x, uint32_t) -> Texel {
-                     return {x <= 31 ? 0.25f : 1.0f, 0, 0, 1};
-                 })};
-    dz.absTolerance = std::ldexp(1.0, -23);
-    dz.maxFractionOver = 0;
-    dz.toleranceReason = "24-bit depth: one step";
-    out.push_back(std::move(dz));
+    auto depthExpected = [](uint32_t x, uint32_t) -> Texel { return {x <= 31 ? 0.25f : 1.0f, 0, 0, 1}; };
+    out.push_back(within("depth_D24S8_sample0", d.readTexture(depth), expectImage(Format::D24S8, depthExpected),
+                         std::ldexp(1.0, -23), "24-bit depth: one step"));
     for (TextureHandle t : owned) d.destroy(t);
     d.destroy(vb);
     d.destroy(p);
@@ -317,17 +312,15 @@ std::vector<CaseImage> shadowCompareOps(Device& d) {
 std::vector<CaseImage> shadowComparePcf(Device& d) {
     TextureHandle step = depthStep(d);
     FullscreenSampler fs(d, "conformance/shadow_2d.frag", compareSampler(CompareOp::LessOrEqual, Filter::Linear));
-    CaseImage ci{"pcf_across_step", fs.draw(d, step, Format::RGBA16F, {0.5f}),
-                 expectImage(Format::RGBA16F, [](uint32_t x, uint32_t) -> Texel {
-                     const double u = (x + 0.5) / 64.0 * 8.0 - 0.5;
-                     const double i0 = std::floor(u), w = u - i0;
-                     auto pass = [](double i) { return std::clamp(i, 0.0, 7.0) >= 4 ? 1.0 : 0.0; };
-                     const float v = float((1 - w) * pass(i0) + w * pass(i0 + 1));
-                     return {v, v, v, v};
-                 })};
-    ci.absTolerance = 1.0 / 64.0;
-    ci.maxFractionOver = 0;
-    ci.toleranceReason = "filter weights have 8 sub-texel bits on Mesa (1/256) and fewer elsewhere: 1/64";
+    auto pcf = [](uint32_t x, uint32_t) -> Texel {
+        const double u = (x + 0.5) / 64.0 * 8.0 - 0.5;
+        const double i0 = std::floor(u), w = u - i0;
+        auto pass = [](double i) { return std::clamp(i, 0.0, 7.0) >= 4 ? 1.0 : 0.0; };
+        const float v = float((1 - w) * pass(i0) + w * pass(i0 + 1));
+        return {v, v, v, v};
+    };
+    CaseImage ci = within("pcf_across_step", fs.draw(d, step, Format::RGBA16F, {0.5f}), expectImage(Format::RGBA16F, pcf),
+                          1.0 / 64.0, "filter weights have 8 sub-texel bits on Mesa (1/256) and fewer elsewhere: 1/64");
     fs.release(d);
     d.destroy(step);
     return {ci};
@@ -405,11 +398,8 @@ std::vector<CaseImage> depthBias(Device& d) {
     auto ramp = [](uint32_t x) { return 0.5f + 0.25f * ((float(x) + 0.5f) / 32.0f - 1.0f); };
     auto check = [&](const std::string& name, Image img, const std::function<float(uint32_t)>& expected, double tol,
                      const char* reason) {
-        CaseImage ci{name, img, expectImage(Format::D32F, [&](uint32_t x, uint32_t) -> Texel { return {expected(x), 0, 0, 1}; })};
-        ci.absTolerance = tol;
-        ci.maxFractionOver = 0;
-        ci.toleranceReason = reason;
-        out.push_back(std::move(ci));
+        auto texel = [&](uint32_t x, uint32_t) -> Texel { return {expected(x), 0, 0, 1}; };
+        out.push_back(within(name, img, expectImage(Format::D32F, texel), tol, reason));
     };
     const float r = std::ldexp(1.0f, -24);
     check("none", biasedDepth(d, 0.5f, 0.5f, {}), [](uint32_t) { return 0.5f; }, 0, "no bias: exact");
