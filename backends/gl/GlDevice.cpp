@@ -456,8 +456,7 @@ namespace fe::gl {
 bool GlDevice::present(gdi::TextureHandle h) {
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     Texture& t = texture(h);
-    if (gdi::isDepthFormat(t.desc.format) || !gdi::any(t.desc.usage, gdi::TextureUsage::CopySrc))
-        throw gdi::Error("present: texture '" + t.label + "' must be a colour texture with CopySrc usage");
+    gdi::validate::presentTexture(t.desc, t.label);
     auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
     platform_->makeCurrent();
     GLuint fbo = framebuffer({{t.name, 0}}, 0, false);

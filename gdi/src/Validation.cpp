@@ -36,6 +36,13 @@ void textureDesc(const TextureDesc& d, const DeviceLimits& limits) {
         fail(what, "depth format " + std::string(formatInfo(d.format).name) + " cannot be a storage texture");
 }
 
+void presentTexture(const TextureDesc& d, const std::string& name) {
+    const std::string what = "present: texture" + (name.empty() ? std::string() : " '" + name + "'");
+    if (d.format != Format::RGBA8 && d.format != Format::RGBA8_SRGB)
+        fail(what, "format " + std::string(formatInfo(d.format).name) + " cannot be shown; present RGBA8 or RGBA8_SRGB");
+    if (!any(d.usage, TextureUsage::CopySrc)) fail(what, "needs CopySrc usage (present copies it into the window)");
+}
+
 void samplerDesc(const SamplerDesc& d) {
     if (!(d.maxAnisotropy >= 1.0f && d.maxAnisotropy <= 16.0f))
         fail(label("sampler", d.debugName), "maxAnisotropy must be in [1, 16]");

@@ -14,6 +14,9 @@ void samplerDesc(const SamplerDesc& d);
 void shaderDesc(const ShaderDesc& d);
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceLimits& limits);
 void computePipelineDesc(const ComputePipelineDesc& d);
+// Device::present's texture: RGBA8 or RGBA8_SRGB (the bytes a window shows unchanged) with
+// CopySrc usage, on every windowed backend.
+void presentTexture(const TextureDesc& d, const std::string& name);
 // Attachment formats/usages/sizes must agree; returns the render area.
 struct AttachmentInfo {
     Format format;
