@@ -118,17 +118,21 @@ private:
 // with vulkan-glfw (platform/GlfwWindow).
 class GlfwPlatform final : public GlPlatform {
 public:
-    explicit GlfwPlatform(bool debug) : window_(platform::GlfwWindow::Api::OpenGL45, debug) {
+    GlfwPlatform(bool debug, bool vsync) : window_(platform::GlfwWindow::Api::OpenGL45, debug) {
         auto* w = static_cast<GLFWwindow*>(window_.handle());
         makeCurrent_ = window_.function<void (*)(GLFWwindow*)>("glfwMakeContextCurrent");
         getProc_ = window_.function<GLFWglproc (*)(const char*)>("glfwGetProcAddress");
         swap_ = window_.function<void (*)(GLFWwindow*)>("glfwSwapBuffers");
         makeCurrent_(w);
+        // Swap interval 1 waits for the display's refresh; 0 shows frames as they come.
+        window_.function<void (*)(int)>("glfwSwapInterval")(vsync ? 1 : 0);
+        presentMode_ = vsync ? "swap interval 1 (vsync on)" : "swap interval 0 (vsync off)";
     }
     const char* name() const override { return "gl-glfw"; }
     void* getProcAddress(const char* n) override { return reinterpret_cast<void*>(getProc_(n)); }
     void makeCurrent() override { makeCurrent_(static_cast<GLFWwindow*>(window_.handle())); }
     bool hasWindow() const override { return true; }
+    std::string presentMode() const override { return presentMode_; }
     std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) override {
         bool first = false;
         platform::GlfwWindow::Size size = window_.prepare(width, height, &first);
@@ -148,15 +152,16 @@ private:
     void (*makeCurrent_)(GLFWwindow*) = nullptr;
     GLFWglproc (*getProc_)(const char*) = nullptr;
     void (*swap_)(GLFWwindow*) = nullptr;
+    std::string presentMode_;
 };
 
 }  // namespace
 
-std::unique_ptr<GlPlatform> createPlatform(PlatformKind kind, bool debug) {
+std::unique_ptr<GlPlatform> createPlatform(PlatformKind kind, bool debug, bool vsync) {
     switch (kind) {
         case PlatformKind::Egl: return std::make_unique<EglPlatform>(debug);
         case PlatformKind::OSMesa: return std::make_unique<OsmesaPlatform>(debug);
-        case PlatformKind::Glfw: return std::make_unique<GlfwPlatform>(debug);
+        case PlatformKind::Glfw: return std::make_unique<GlfwPlatform>(debug, vsync);
     }
     throw gdi::Error("unknown GL platform");
 }
