@@ -12,9 +12,14 @@ const std::vector<std::string>& backendNames() {
     return names;
 }
 
-std::string validBackendList() { return "auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw"; }
+const std::vector<std::string>& windowBackendNames() {
+    static const std::vector<std::string> names = {"vulkan-glfw", "gl-glfw"};
+    return names;
+}
 
-BackendProbe probeBackend(const std::string& name, bool validation) {
+std::string validBackendList() { return "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw"; }
+
+BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) {
     BackendProbe p;
     p.name = name;
     try {
@@ -24,8 +29,10 @@ BackendProbe probeBackend(const std::string& name, bool validation) {
             p.device = gl::createGlDevice(gl::PlatformKind::Egl, validation);
         else if (name == "gl-osmesa")
             p.device = gl::createGlDevice(gl::PlatformKind::OSMesa, validation);
+        else if (name == "vulkan-glfw")
+            p.device = vk::createVulkanWindowDevice(validation, vsync);
         else if (name == "gl-glfw")
-            p.device = gl::createGlDevice(gl::PlatformKind::Glfw, validation);
+            p.device = gl::createGlDevice(gl::PlatformKind::Glfw, validation, vsync);
         else
             throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
         p.available = true;
@@ -38,8 +45,18 @@ BackendProbe probeBackend(const std::string& name, bool validation) {
 static std::vector<std::string> candidates(const std::string& name) {
     if (name == "auto") return backendNames();
     if (name == "gl") return {"gl-egl", "gl-osmesa"};
-    if (name == "vulkan" || name == "gl-egl" || name == "gl-osmesa" || name == "gl-glfw") return {name};
+    if (name == "vulkan" || name == "gl-egl" || name == "gl-osmesa" || name == "vulkan-glfw" || name == "gl-glfw")
+        return {name};
     throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
+}
+
+std::vector<std::string> windowCandidates(const std::string& name) {
+    if (name == "auto") return windowBackendNames();
+    if (name == "vulkan") return {"vulkan-glfw"};
+    if (name == "gl") return {"gl-glfw"};
+    candidates(name);  // throws for unknown names
+    if (name == "vulkan-glfw" || name == "gl-glfw") return {name};
+    return {};  // gl-egl, gl-osmesa: headless only
 }
 
 std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
@@ -48,10 +65,12 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
         if (const char* env = std::getenv("FE_BACKEND"); env && *env) name = env;
     }
     if (name.empty()) name = "auto";
-    std::vector<std::string> list = candidates(name);
+    std::vector<std::string> list = desc.window ? windowCandidates(name) : candidates(name);
+    if (list.empty())
+        throw Error("backend '" + name + "' is headless; a window needs auto, vulkan, gl, vulkan-glfw or gl-glfw");
     std::string failures;
     for (const std::string& c : list) {
-        BackendProbe p = probeBackend(c, desc.validation);
+        BackendProbe p = probeBackend(c, desc.validation, desc.vsync);
         if (p.available) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";

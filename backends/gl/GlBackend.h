@@ -8,5 +8,6 @@ namespace fe::gl {
 enum class PlatformKind { Egl, OSMesa, Glfw };
 // Throws gdi::Error saying why the platform could not give a GL 4.5 core context
 // (library missing, no EGL device, no display, ...).
-std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validation);
+// `vsync`: the window platform (Glfw) swaps on the display's refresh; ignored by headless ones.
+std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validation, bool vsync = true);
 }  // namespace fe::gl

@@ -10,8 +10,8 @@
 
 namespace fe::gl {
 
-std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validation) {
-    return std::make_unique<GlDevice>(platform, validation);
+std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validation, bool vsync) {
+    return std::make_unique<GlDevice>(platform, validation, vsync);
 }
 
 namespace {
@@ -66,8 +66,8 @@ void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severi
     }
 }
 
-GlDevice::GlDevice(PlatformKind kind, bool validation) {
-    platform_ = createPlatform(kind, validation);
+GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
+    platform_ = createPlatform(kind, validation, vsync);
 #define FE_GL_LOAD(type, fn)                                                                          \
     gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn));                             \
     if (!gl_.fn) throw gdi::Error(std::string(platform_->name()) + ": GL entry point gl" #fn " missing");
@@ -111,6 +111,7 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
     info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
     info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR));
+    info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
     auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
@@ -566,8 +567,7 @@ namespace fe::gl {
 bool GlDevice::present(gdi::TextureHandle h) {
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     Texture& t = texture(h);
-    if (gdi::isDepthFormat(t.desc.format) || !gdi::any(t.desc.usage, gdi::TextureUsage::CopySrc))
-        throw gdi::Error("present: texture '" + t.label + "' must be a colour texture with CopySrc usage");
+    gdi::validate::presentTexture(t.desc, t.label);
     auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
     platform_->makeCurrent();
     GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);

@@ -70,7 +70,7 @@ struct Timer {
 
 class GlDevice final : public gdi::Device {
 public:
-    GlDevice(PlatformKind kind, bool validation);
+    GlDevice(PlatformKind kind, bool validation, bool vsync = true);
     ~GlDevice() override;
 
     const gdi::DeviceInfo& info() const override { return info_; }

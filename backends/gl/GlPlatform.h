@@ -21,6 +21,8 @@ public:
 
     // Window platforms only (GLFW); headless ones keep these defaults.
     virtual bool hasWindow() const { return false; }
+    // How swapped frames reach the screen (DeviceInfo::presentMode).
+    virtual std::string presentMode() const { return ""; }
     // Sizes the window to width x height (first call also shows it) before a frame is drawn to
     // it; returns the framebuffer size the window really has (a window manager may refuse).
     virtual std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) { return {0, 0}; }
@@ -32,6 +34,7 @@ public:
 };
 
 // Creates a 4.5 core context (debug context when `debug`); throws gdi::Error saying why not.
-std::unique_ptr<GlPlatform> createPlatform(PlatformKind kind, bool debug);
+// `vsync`: window platforms swap on the display's refresh (swap interval 1) or at once (0).
+std::unique_ptr<GlPlatform> createPlatform(PlatformKind kind, bool debug, bool vsync = true);
 
 }  // namespace fe::gl

@@ -8,4 +8,8 @@ namespace fe::vk {
 // Throws gdi::Error saying why when no usable Vulkan device exists (no loader, no ICD, missing
 // required features).
 std::unique_ptr<gdi::Device> createVulkanDevice(bool validation);
+// The vulkan-glfw backend: the same device with a GLFW window, a surface and a swap chain
+// (Device::present). `vsync`: FIFO; off: IMMEDIATE, else MAILBOX, else FIFO. Throws gdi::Error
+// saying why when there is no display, no libglfw3, or no queue that can present.
+std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsync);
 }  // namespace fe::vk

@@ -7,6 +7,7 @@
 
 #include "VulkanBackend.h"
 #include "VulkanCommandList.h"
+#include "VulkanSwapchain.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -59,7 +60,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSe
     return VK_FALSE;
 }
 
-VulkanDevice::VulkanDevice(bool validation) {
+VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window) : swapchain_(std::move(window)) {
     try {
         createInstance(validation);
         pickPhysicalDevice();
@@ -90,6 +91,8 @@ void VulkanDevice::createInstance(bool validation) {
     }
     debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (swapchain_)
+        for (const char* e : swapchain_->instanceExtensions()) extensions.push_back(e);
 
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
@@ -119,6 +122,7 @@ void VulkanDevice::createInstance(bool validation) {
             vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
     }
     info_.features.validation = validation;
+    if (swapchain_) swapchain_->createSurface(instance_);
 }
 
 void VulkanDevice::pickPhysicalDevice() {
@@ -137,17 +141,19 @@ void VulkanDevice::pickPhysicalDevice() {
             why = "no dynamic rendering";
         if (p.apiVersion < VK_API_VERSION_1_2) why = "Vulkan " + versionString(p.apiVersion) + " < 1.2";
         if (!hasDeviceExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) why = "no VK_KHR_push_descriptor";
+        if (swapchain_ && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) why = "no VK_KHR_swapchain";
         uint32_t qn = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
         std::vector<VkQueueFamilyProperties> qf(qn);
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qf.data());
         int family = -1;
         for (uint32_t i = 0; i < qn; ++i)
-            if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+            if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+                (!swapchain_ || swapchain_->canPresent(pd, i))) {  // one queue draws and presents
                 family = int(i);
                 break;
             }
-        if (family < 0) why = "no graphics+compute queue";
+        if (family < 0) why = swapchain_ ? "no graphics+compute queue that can present to the window" : "no graphics+compute queue";
         if (!why.empty()) {
             rejected += std::string("; ") + p.deviceName + ": " + why;
             continue;
@@ -205,6 +211,7 @@ void VulkanDevice::createLogicalDevice() {
 
     std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (props_.apiVersion < VK_API_VERSION_1_3) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+    if (swapchain_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
     VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     ci.pNext = &features;
@@ -237,10 +244,11 @@ void VulkanDevice::createLogicalDevice() {
     check(vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_), "vkCreateQueryPool");
     vkResetQueryPool(device_, queryPool_, 0, kMaxTimers * 2);
     for (uint32_t i = kMaxTimers; i-- > 0;) freeTimerSlots_.push_back(i * 2);
+    if (swapchain_) swapchain_->attach(physical_, device_, queue_, queueFamily_);
 }
 
 void VulkanDevice::fillInfo() {
-    info_.backend = "vulkan";
+    info_.backend = swapchain_ ? "vulkan-glfw" : "vulkan";
     info_.deviceName = props_.deviceName;
     info_.apiVersion = "Vulkan " + versionString(props_.apiVersion);
     info_.driverInfo = "driver version " + std::to_string(props_.driverVersion);
@@ -274,11 +282,14 @@ void VulkanDevice::fillInfo() {
     info_.features.multiDrawIndirect = enabled_.multiDrawIndirect && enabled_.drawIndirectFirstInstance;
     info_.features.drawIndirectCount = drawIndirectCount_ && info_.features.multiDrawIndirect;
     info_.features.textureCompressionBC = enabled_.textureCompressionBC;
+    info_.features.window = swapchain_ != nullptr;
+    if (swapchain_) info_.presentMode = swapchain_->presentMode();
 }
 
 VulkanDevice::~VulkanDevice() { release(); }
 
 void VulkanDevice::release() {
+    if (swapchain_) swapchain_->release();  // swap chain and surface go before the device and instance
     if (device_) {
         vkDeviceWaitIdle(device_);
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });

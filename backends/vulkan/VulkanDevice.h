@@ -97,10 +97,12 @@ struct Heap {
 };
 
 class VulkanCommandList;
+class VulkanSwapchain;
 
 class VulkanDevice final : public gdi::Device {
 public:
-    explicit VulkanDevice(bool validation);
+    // `window`: the vulkan-glfw backend (VulkanSwapchain.h); null: headless.
+    explicit VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window = nullptr);
     ~VulkanDevice() override;
 
     const gdi::DeviceInfo& info() const override { return info_; }
@@ -139,6 +141,8 @@ public:
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_; }
     uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
+    bool present(gdi::TextureHandle texture) override;  // VulkanSwapchain.cpp
+    gdi::Image readWindow() override;
 
     // Internal, for the command list.
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
@@ -177,6 +181,7 @@ private:
     void release();
 
     gdi::DeviceInfo info_;
+    std::unique_ptr<VulkanSwapchain> swapchain_;  // vulkan-glfw only
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
     bool debugUtils_ = false;

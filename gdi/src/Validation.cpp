@@ -143,6 +143,13 @@ void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char*
                  std::to_string(expected) + " bytes, got " + std::to_string(size));
 }
 
+void presentTexture(const TextureDesc& d, const std::string& name) {
+    const std::string what = "present: texture" + (name.empty() ? std::string() : " '" + name + "'");
+    if (d.format != Format::RGBA8 && d.format != Format::RGBA8_SRGB)
+        fail(what, "format " + std::string(formatInfo(d.format).name) + " cannot be shown; present RGBA8 or RGBA8_SRGB");
+    if (!any(d.usage, TextureUsage::CopySrc)) fail(what, "needs CopySrc usage (present copies it into the window)");
+}
+
 void samplerDesc(const SamplerDesc& d) {
     if (!(d.maxAnisotropy >= 1.0f && d.maxAnisotropy <= 16.0f))
         fail(label("sampler", d.debugName), "maxAnisotropy must be in [1, 16]");

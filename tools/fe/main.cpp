@@ -35,9 +35,10 @@ constexpr const char* kUsage =
     "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
-    "      --window: show the frames in a window (gl-glfw) until it is closed, or for --frames N\n"
+    "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
+    "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
-    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n";
+    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -80,7 +81,7 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
 
 int cmdInfo(const Args& a) {
     std::vector<std::string> names = gdi::backendNames();
-    names.push_back("gl-glfw");
+    for (const std::string& w : gdi::windowBackendNames()) names.push_back(w);
     for (const std::string& n : names) {
         gdi::BackendProbe p = gdi::probeBackend(n, false);
         if (!p.available) {
@@ -99,6 +100,7 @@ int cmdInfo(const Args& a) {
                   << ", debug labels " << i.features.debugLabels << ", memory aliasing " << i.features.memoryAliasing
                   << ", window " << i.features.window
                   << "\n";
+        if (!i.presentMode.empty()) std::cout << "  present mode: " << i.presentMode << "\n";
     }
     return 0;
 }
@@ -120,6 +122,13 @@ int cmdRender(const Args& a) {
     s.exposure = std::strtof(ex.c_str(), &end);
     if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
     const bool window = a.options.count("--window") > 0;
+    const std::string backend = opt("--backend", "auto");
+    if (window && gdi::windowCandidates(backend).empty())
+        throw UsageError("--window needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " + backend +
+                         " is headless");
+    const std::string vsync = opt("--vsync", "on");
+    if (vsync != "on" && vsync != "off") throw UsageError("--vsync must be on or off, got '" + vsync + "'");
+    if (a.options.count("--vsync") && !window) throw UsageError("--vsync applies to --window");
     // With a window and no --frames, frames are shown until the window is closed.
     const bool untilClosed = window && !a.options.count("--frames");
     const uint32_t frames = untilClosed ? 1 : parseUint(opt("--frames", "1"), "--frames", 1, 10000);
@@ -135,10 +144,7 @@ int cmdRender(const Args& a) {
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
-    auto device = gdi::createDevice({.backend = opt("--backend", window ? "gl-glfw" : "auto"), .validation = false});
-    if (window && !device->info().features.window)
-        throw UsageError("--window needs a backend with a window (--backend gl-glfw); " + device->info().backend +
-                         " is headless");
+    auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
     render::SceneRenderer renderer(*device, scene, s);
     if (!dumpGraph.empty()) {
         std::ofstream f(dumpGraph);
@@ -149,6 +155,7 @@ int cmdRender(const Args& a) {
     std::map<std::string, std::vector<double>> gpu;
     std::vector<std::string> passOrder;  // execution order
     bool open = true;
+    uint32_t presented = 0;
     for (uint32_t f = 0; open && (untilClosed || f < frames + (frames > 1 ? 1 : 0)); ++f) {  // one warm-up frame when timing
         auto t0 = std::chrono::steady_clock::now();
         // builtin:lights animates: light positions are a function of the frame index.
@@ -156,7 +163,7 @@ int cmdRender(const Args& a) {
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        if (window) open = device->present(renderer.displayTexture());
+        if (window) open = device->present(renderer.displayTexture()), ++presented;
         if (frames > 1 && f == 0) continue;
         cpu.push_back(ms);
         for (auto& t : timings) {
@@ -173,7 +180,9 @@ int cmdRender(const Args& a) {
     else gdi::writePng(renderer.readDisplay(), out);
     const bool soft = device->info().softwareRasterizer;
     std::cout << "backend " << device->info().backend << " (" << device->info().deviceName << ")"
-              << (soft ? " [software rasterizer timings]" : "") << "\n"
+              << (soft ? " [software rasterizer timings]" : "") << "\n";
+    if (window) std::cout << "window: " << presented << " frame(s) presented, " << device->info().presentMode << "\n";
+    std::cout
               << "technique " << render::techniqueName(s.technique);
     if (s.technique == render::Technique::Redeferred) std::cout << " illum-scale " << s.illumScale;
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
@@ -280,7 +289,7 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph"},
+                                    "--lights", "--dump-graph", "--vsync"},
                                    {"--no-aliasing", "--window"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}));

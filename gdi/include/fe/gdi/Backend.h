@@ -9,13 +9,26 @@
 namespace fe::gdi {
 
 struct DeviceCreateDesc {
-    std::string backend = "auto";  // auto | vulkan | gl | gl-egl | gl-osmesa | gl-glfw
+    std::string backend = "auto";  // auto | vulkan | gl | gl-egl | gl-osmesa | vulkan-glfw | gl-glfw
     bool validation = false;       // Khronos validation layer / GL debug context
     bool verbose = true;           // auto: say which backend was picked and why others were not
+    // A device with a window (Device::present): auto, vulkan and gl stand for their windowed
+    // backends (windowCandidates); a headless-only name is an error.
+    bool window = false;
+    // Windows: frames wait for the display's refresh (Vulkan FIFO, GL swap interval 1); off:
+    // Vulkan IMMEDIATE, else MAILBOX, else FIFO (DeviceInfo::presentMode says which), GL 0.
+    bool vsync = true;
 };
 
-// Concrete backends in the order `auto` tries them.
+// Concrete headless backends in the order `auto` tries them (`all` in fe conformance).
 const std::vector<std::string>& backendNames();
+// Concrete backends with a window, in the order `auto` tries them with a window; `auto`
+// without one never picks them.
+const std::vector<std::string>& windowBackendNames();
+// The windowed backends `name` stands for (auto: vulkan-glfw then gl-glfw; vulkan: vulkan-glfw;
+// gl: gl-glfw); empty for a headless-only backend (gl-egl, gl-osmesa). Throws Error for
+// unknown names.
+std::vector<std::string> windowCandidates(const std::string& name);
 // Every accepted --backend value, for error messages.
 std::string validBackendList();
 
@@ -27,7 +40,7 @@ struct BackendProbe {
 };
 
 // Starts one named concrete backend; never throws: failure is reported in `reason`.
-BackendProbe probeBackend(const std::string& name, bool validation);
+BackendProbe probeBackend(const std::string& name, bool validation, bool vsync = true);
 
 // Resolves auto / gl / FE_BACKEND and starts the first backend that works. Throws Error listing
 // the valid names for an unknown name, and why each candidate failed when none starts.

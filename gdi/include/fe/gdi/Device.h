@@ -50,6 +50,12 @@
 //    length must be exactly what the call reads: createBuffer's initial data is desc.size bytes,
 //    writeTexture's the subresource's textureByteSize.
 //
+// Windows (vulkan-glfw, gl-glfw; Backend.h): show a texture on screen with present().
+//   auto device = fe::gdi::createDevice({.backend = "auto", .window = true, .vsync = true});
+//   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
+// present() takes an RGBA8 or RGBA8_SRGB texture with CopySrc usage and shows its bytes as they
+// are (no sRGB conversion), upright, in a window sized to it (resized when the size changes).
+//
 // Conventions (identical on every backend, so images match pixel for pixel):
 //  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
 //  - Image rows are stored top to bottom; texture coordinate (0,0) is the first texel in memory.
@@ -572,7 +578,7 @@ struct DeviceFeatures {
     bool debugLabels = false;
     bool validation = false;  // Khronos validation layer / KHR_debug active
     bool memoryAliasing = false;  // heaps + placed textures (Vulkan); GL reuses whole objects instead
-    bool window = false;          // present() shows images in a window (gl-glfw)
+    bool window = false;          // present() shows images in a window (vulkan-glfw, gl-glfw)
     bool textureCubeArray = false;    // TextureDimension::TextureCubeArray
     bool depthClamp = false;          // RasterState::depthClamp
     bool depthBiasClamp = false;      // RasterState::depthBiasClamp other than 0
@@ -582,10 +588,11 @@ struct DeviceFeatures {
 };
 
 struct DeviceInfo {
-    std::string backend;      // "vulkan", "gl-egl", "gl-osmesa", "gl-glfw"
+    std::string backend;      // "vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"
     std::string deviceName;   // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string apiVersion;   // e.g. "Vulkan 1.3.230" or "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
     std::string driverInfo;
+    std::string presentMode;  // windows: how frames reach the screen, e.g. "FIFO (vsync on)"
     bool softwareRasterizer = false;
     DeviceLimits limits;
     DeviceFeatures features;
@@ -643,11 +650,12 @@ public:
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;
 
-    // Window presentation, where DeviceFeatures::window (gl-glfw): waits for submitted work,
-    // shows the colour `texture` (CopySrc usage) in the window, sized to it, bytes unchanged, and
-    // swaps. Returns false once the user has closed the window. Headless backends throw Error.
+    // Window presentation, where DeviceFeatures::window (vulkan-glfw, gl-glfw): after the work
+    // submitted so far, shows `texture` (RGBA8 or RGBA8_SRGB, CopySrc usage) in the window,
+    // sized to it, bytes unchanged, and swaps. Returns false once the user has closed the window.
+    // Headless backends throw Error.
     virtual bool present(TextureHandle texture) {
-        throw Error(info().backend + ": no window to present to (the gl-glfw backend has one)");
+        throw Error(info().backend + ": no window to present to (the vulkan-glfw and gl-glfw backends have one)");
     }
     // What the window shows now, top row first, RGBA8 (tests check presentation with it).
     virtual Image readWindow() { throw Error(info().backend + ": no window to read"); }

@@ -39,6 +39,9 @@ void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uin
 void shaderDesc(const ShaderDesc& d);
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device);
 void computePipelineDesc(const ComputePipelineDesc& d);
+// Device::present's texture: RGBA8 or RGBA8_SRGB (the bytes a window shows unchanged) with
+// CopySrc usage, on every windowed backend.
+void presentTexture(const TextureDesc& d, const std::string& name);
 // Attachment formats/usages/sizes must agree; returns the render area.
 struct AttachmentInfo {
     Format format = Format::Undefined;  // Undefined: no attachment (for resolves)

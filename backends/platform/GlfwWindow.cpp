@@ -1,0 +1,193 @@
+#include "platform/GlfwWindow.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "fe/gdi/Device.h"
+#include "platform/DynamicLibrary.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <X11/Xlib.h>  // after Device.h: Xlib defines macros such as None
+
+namespace fe::platform {
+
+namespace {
+
+// The GLFW entry points every window uses, loaded once: GLFW is process-wide.
+struct Glfw {
+    void* lib = nullptr;
+    int (*init)() = nullptr;
+    void (*terminate)() = nullptr;
+    int (*getError)(const char**) = nullptr;
+    void (*defaultHints)() = nullptr;
+    void (*hint)(int, int) = nullptr;
+    GLFWwindow* (*create)(int, int, const char*, GLFWmonitor*, GLFWwindow*) = nullptr;
+    void (*destroy)(GLFWwindow*) = nullptr;
+    int (*vulkanSupported)() = nullptr;
+    void (*poll)() = nullptr;
+    void (*waitTimeout)(double) = nullptr;
+    int (*getAttrib)(GLFWwindow*, int) = nullptr;
+    int (*shouldClose)(GLFWwindow*) = nullptr;
+    void (*setSize)(GLFWwindow*, int, int) = nullptr;
+    void (*getFramebufferSize)(GLFWwindow*, int*, int*) = nullptr;
+    void (*show)(GLFWwindow*) = nullptr;
+};
+
+const Glfw& glfw() {
+    static Glfw g;
+    if (g.lib) return g;
+    static const char* const names[] = {"libglfw.so.3", "libglfw.so", nullptr};
+    Glfw t;
+    t.lib = openLibrary(names, "libglfw3");
+    t.init = symbol<decltype(t.init)>(t.lib, "glfwInit");
+    t.terminate = symbol<decltype(t.terminate)>(t.lib, "glfwTerminate");
+    t.getError = symbol<decltype(t.getError)>(t.lib, "glfwGetError");
+    t.defaultHints = symbol<decltype(t.defaultHints)>(t.lib, "glfwDefaultWindowHints");
+    t.hint = symbol<decltype(t.hint)>(t.lib, "glfwWindowHint");
+    t.create = symbol<decltype(t.create)>(t.lib, "glfwCreateWindow");
+    t.destroy = symbol<decltype(t.destroy)>(t.lib, "glfwDestroyWindow");
+    t.vulkanSupported = symbol<decltype(t.vulkanSupported)>(t.lib, "glfwVulkanSupported");
+    t.poll = symbol<decltype(t.poll)>(t.lib, "glfwPollEvents");
+    t.waitTimeout = symbol<decltype(t.waitTimeout)>(t.lib, "glfwWaitEventsTimeout");
+    t.getAttrib = symbol<decltype(t.getAttrib)>(t.lib, "glfwGetWindowAttrib");
+    t.shouldClose = symbol<decltype(t.shouldClose)>(t.lib, "glfwWindowShouldClose");
+    t.setSize = symbol<decltype(t.setSize)>(t.lib, "glfwSetWindowSize");
+    t.getFramebufferSize = symbol<decltype(t.getFramebufferSize)>(t.lib, "glfwGetFramebufferSize");
+    t.show = symbol<decltype(t.show)>(t.lib, "glfwShowWindow");
+    g = t;
+    return g;
+}
+
+// glfwInit/glfwTerminate are process-wide: terminate with the last window, of either API.
+int liveWindows = 0;
+
+gdi::Error glfwError(const Glfw& g, const std::string& what) {
+    const char* text = nullptr;
+    g.getError(&text);
+    return gdi::Error("GLFW: " + what + (text ? std::string(": ") + text : std::string()));
+}
+
+}  // namespace
+
+GlfwWindow::GlfwWindow(Api api, bool debug) {
+    const char* x11 = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!x11 || !*x11) && (!wayland || !*wayland))
+        throw gdi::Error("GLFW: no display (DISPLAY and WAYLAND_DISPLAY are unset; run under a desktop or xvfb-run)");
+    const Glfw& g = glfw();
+    lib_ = g.lib;
+    if (!g.init()) throw glfwError(g, "glfwInit failed");
+    initialised_ = true;
+    ++liveWindows;
+    try {
+        g.defaultHints();
+        g.hint(GLFW_VISIBLE, GLFW_FALSE);  // shown on the first present; offscreen work needs no window
+        if (api == Api::Vulkan) {
+            // GLFW finds the Vulkan loader itself; without it no surface can be made.
+            if (!g.vulkanSupported()) throw glfwError(g, "no Vulkan loader for window surfaces (apt-get install libvulkan1)");
+            g.hint(GLFW_CLIENT_API, GLFW_NO_API);
+        } else {
+            g.hint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+            g.hint(GLFW_CONTEXT_VERSION_MINOR, 5);
+            g.hint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+            g.hint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+            g.hint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
+            g.hint(GLFW_SRGB_CAPABLE, GLFW_TRUE);
+        }
+        window_ = g.create(320, 240, "fe", nullptr, nullptr);
+        if (!window_)
+            throw glfwError(g, api == Api::Vulkan ? "cannot create a window" : "cannot create a window with an OpenGL 4.5 core context");
+    } catch (...) {
+        release();  // the destructor does not run when the constructor throws
+        throw;
+    }
+}
+
+GlfwWindow::~GlfwWindow() { release(); }
+
+void GlfwWindow::release() {
+    const Glfw& g = glfw();
+    if (window_) g.destroy(static_cast<GLFWwindow*>(window_)), window_ = nullptr;
+    if (initialised_ && --liveWindows == 0) g.terminate();
+    initialised_ = false;
+}
+
+void* GlfwWindow::symbol(const char* name) const { return librarySymbol(lib_, name); }
+
+GlfwWindow::Size GlfwWindow::framebufferSize() const {
+    int w = 0, h = 0;
+    glfw().getFramebufferSize(static_cast<GLFWwindow*>(window_), &w, &h);
+    return {uint32_t(std::max(w, 0)), uint32_t(std::max(h, 0))};
+}
+
+GlfwWindow::Size GlfwWindow::prepare(uint32_t width, uint32_t height, bool* firstShow) {
+    const Glfw& g = glfw();
+    auto* window = static_cast<GLFWwindow*>(window_);
+    Size size = framebufferSize();
+    const bool resize = size.width != width || size.height != height;
+    if (resize) g.setSize(window, int(width), int(height));
+    if (firstShow) *firstShow = !shown_;
+    if (!shown_) {
+        g.show(window), shown_ = true;
+        // Pixels sent to a window the server has not mapped yet are lost: wait (up to 1 s)
+        // until GLFW reports it viewable.
+        for (int i = 0; i < 100 && !g.getAttrib(window, GLFW_VISIBLE); ++i) g.waitTimeout(0.01);
+    }
+    // The window system applies a resize asynchronously: wait (up to 1 s) for it, so the frame
+    // is not drawn for the old size. A window manager may still refuse the size.
+    for (int i = 0; i < 100; ++i) {
+        if (resize) g.waitTimeout(0.01);
+        else g.poll();
+        size = framebufferSize();
+        if (!resize || (size.width == width && size.height == height)) break;
+    }
+    return size;
+}
+
+bool GlfwWindow::poll() {
+    glfw().poll();
+    return !glfw().shouldClose(static_cast<GLFWwindow*>(window_));
+}
+
+std::vector<uint8_t> GlfwWindow::read(uint32_t width, uint32_t height) const {
+    // Present only in an X11 build of GLFW, and null when the window is not an X11 one.
+    auto getDisplay = reinterpret_cast<Display* (*)()>(dlsym(lib_, "glfwGetX11Display"));
+    auto getWindow = reinterpret_cast<Window (*)(GLFWwindow*)>(dlsym(lib_, "glfwGetX11Window"));
+    Display* display = getDisplay && getWindow ? getDisplay() : nullptr;
+    if (!display) throw gdi::Error("GLFW: reading the window back needs X11 (this is not an X11 window)");
+    static const char* const names[] = {"libX11.so.6", "libX11.so", nullptr};
+    void* x11 = openLibrary(names, "libx11-6");  // already loaded by GLFW: this only finds it
+    auto sync = platform::symbol<int (*)(Display*, Bool)>(x11, "XSync");
+    auto getImage = platform::symbol<XImage* (*)(Display*, Drawable, int, int, unsigned, unsigned, unsigned long, int)>(x11, "XGetImage");
+    auto setHandler = platform::symbol<XErrorHandler (*)(XErrorHandler)>(x11, "XSetErrorHandler");
+    // The server has handled every request sent so far (GL swaps, and the Vulkan WSI's
+    // images, which Mesa sends on this same connection).
+    sync(display, False);
+    // Xlib's default handler exits the process on BadMatch (window not fully on screen).
+    XErrorHandler old = setHandler([](Display*, XErrorEvent*) { return 0; });
+    XImage* image = getImage(display, getWindow(static_cast<GLFWwindow*>(window_)), 0, 0, width, height, AllPlanes, ZPixmap);
+    sync(display, False);
+    setHandler(old);
+    if (!image) throw gdi::Error("GLFW: XGetImage failed (is the window fully on screen?)");
+    auto channel = [](unsigned long pixel, unsigned long mask) {
+        int shift = 0;
+        while (mask && !(mask & 1)) mask >>= 1, ++shift;
+        return uint8_t(mask ? ((pixel >> shift) & mask) * 255 / mask : 0);
+    };
+    std::vector<uint8_t> rgba;
+    rgba.reserve(size_t(width) * height * 4);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            unsigned long p = image->f.get_pixel(image, int(x), int(y));
+            for (uint8_t v : {channel(p, image->red_mask), channel(p, image->green_mask), channel(p, image->blue_mask), uint8_t(255)})
+                rgba.push_back(v);
+        }
+    image->f.destroy_image(image);
+    return rgba;
+}
+
+}  // namespace fe::platform
