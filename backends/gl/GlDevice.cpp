@@ -33,6 +33,45 @@ GlFormat toGlFormat(gdi::Format f) {
     }
 }
 
+namespace {
+const char* glErrorName(GLenum e) {
+    switch (e) {
+        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+        case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
+        case GL_GUILTY_CONTEXT_RESET: return "GL_GUILTY_CONTEXT_RESET";
+        case GL_INNOCENT_CONTEXT_RESET: return "GL_INNOCENT_CONTEXT_RESET";
+        case GL_UNKNOWN_CONTEXT_RESET: return "GL_UNKNOWN_CONTEXT_RESET";
+        default: return "GL error";
+    }
+}
+}  // namespace
+
+template <class Call>
+GLenum GlDevice::allocateStorage(Call&& call) {
+    if (gdi::fault::hit(gdi::fault::Site::Allocation)) return GL_OUT_OF_MEMORY;
+    // Errors of earlier calls are not this one's (the debug output reports them); a lost
+    // context may repeat GL_CONTEXT_LOST, hence the bound.
+    for (int i = 0; i < 8 && gl_.GetError() != GL_NO_ERROR; ++i) {
+    }
+    call();
+    return gl_.GetError();
+}
+
+void GlDevice::checkReset(bool injected) {
+    const GLenum status = injected ? GL_UNKNOWN_CONTEXT_RESET : gl_.GetGraphicsResetStatus();
+    if (status != GL_NO_ERROR)
+        throw loss_.lose(info_.backend, std::string("glGetGraphicsResetStatus returned ") + glErrorName(status));
+}
+
+gdi::LiveObjects GlDevice::liveObjects() const {
+    return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
+            .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
+            .nativeAllocations = nativeObjects_};
+}
+
 void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
                                         const void* user) {
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
@@ -74,7 +113,11 @@ GlDevice::GlDevice(PlatformKind kind, bool validation) {
     info_.backend = platform_->name();
     info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
-    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR));
+    GLint strategy = 0;
+    gl_.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
+                       std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", robust context (resets are reported)"
+                                                                         : ", no reset notification");
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
     auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
@@ -115,18 +158,28 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 }
 
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+    loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc);
     Buffer b;
     b.desc = desc;
     b.label = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;
     gl_.CreateBuffers(1, &b.name);
-    gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData, GL_DYNAMIC_STORAGE_BIT);
+    ++nativeObjects_;
+    if (GLenum e = allocateStorage([&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData, GL_DYNAMIC_STORAGE_BIT); });
+        e != GL_NO_ERROR) {
+        gl_.DeleteBuffers(1, &b.name);
+        --nativeObjects_;
+        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
+        throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
+                         gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
+    }
     if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
     return buffers_.add(std::move(b));
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
+    loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_.limits);
     const std::string label = desc.debugName ? desc.debugName : "";
     if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
@@ -138,14 +191,27 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     t.desc.debugName = nullptr;
     t.label = label;
     gl_.CreateTextures(GL_TEXTURE_2D, 1, &t.name);
-    gl_.TextureStorage2D(t.name, GLsizei(desc.mipLevels), toGlFormat(desc.format).internal, GLsizei(desc.width),
-                         GLsizei(desc.height));
+    ++nativeObjects_;
+    if (GLenum e = allocateStorage([&] {
+            gl_.TextureStorage2D(t.name, GLsizei(desc.mipLevels), toGlFormat(desc.format).internal, GLsizei(desc.width),
+                                 GLsizei(desc.height));
+        });
+        e != GL_NO_ERROR) {
+        gl_.DeleteTextures(1, &t.name);
+        --nativeObjects_;
+        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glTextureStorage2D raised GL_CONTEXT_LOST");
+        throw gdi::Error(info_.backend + ": glTextureStorage2D failed for " +
+                         gdi::describeObject("texture", label, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                                                   " " + std::string(gdi::formatInfo(desc.format).name)) +
+                         ": " + glErrorName(e));
+    }
     gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
     if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
     return textures_.add(std::move(t));
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
+    loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     Sampler s;
     gl_.CreateSamplers(1, &s.name);
@@ -169,6 +235,7 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
+    loss_.check("createShader");
     gdi::validate::shaderDesc(desc);
     const std::string label = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.opengl;
@@ -213,6 +280,7 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_.limits);
     Pipeline p;
     p.label = d.debugName ? d.debugName : "";
@@ -258,6 +326,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Pipeline p;
     p.label = d.debugName ? d.debugName : "";
@@ -272,6 +341,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
+    loss_.check("createTimer");
     Timer t;
     gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
     return timers_.add(std::move(t));
@@ -299,13 +369,14 @@ void GlDevice::forgetFramebuffers(GLuint texture) {
 
 void GlDevice::destroy(gdi::BufferHandle h) {
     Buffer b;
-    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name);
+    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name), --nativeObjects_;
 }
 void GlDevice::destroy(gdi::TextureHandle h) {
     Texture t;
     if (h && textures_.remove(h, t)) {
         forgetFramebuffers(t.name);
         gl_.DeleteTextures(1, &t.name);
+        --nativeObjects_;
     }
 }
 void GlDevice::destroy(gdi::SamplerHandle h) {
@@ -349,6 +420,7 @@ GLuint GlDevice::framebuffer(const std::vector<std::pair<GLuint, uint32_t>>& col
 }
 
 void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* data, uint64_t size) {
+    loss_.check("writeBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
     if (size == 0) return;
@@ -357,6 +429,7 @@ void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void* dat
 }
 
 void GlDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data, uint64_t size) {
+    loss_.check("writeTexture");
     Texture& t = texture(h);
     if (mip >= t.desc.mipLevels) throw gdi::Error("writeTexture: mip level out of range for texture '" + t.label + "'");
     const uint32_t w = std::max(1u, t.desc.width >> mip), hh = std::max(1u, t.desc.height >> mip);
@@ -371,6 +444,7 @@ void GlDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* data
 }
 
 std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    loss_.check("readBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
     std::vector<uint8_t> out(size);
@@ -380,6 +454,7 @@ std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, 
 }
 
 gdi::Image GlDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
+    loss_.check("readTexture");
     Texture& t = texture(h);
     if (mip >= t.desc.mipLevels) throw gdi::Error("readTexture: mip level out of range for texture '" + t.label + "'");
     gdi::Image img;
@@ -401,7 +476,9 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
 }
 
 gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
+    loss_.check("submit");
     commands.nativeCommandBuffer();  // no-op; GL work was issued while recording
+    checkReset(gdi::fault::hit(gdi::fault::Site::Submission));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.Flush();
@@ -410,21 +487,26 @@ gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
 }
 
 void GlDevice::wait(gdi::FenceValue fence) {
+    loss_.check("wait");
     while (!fences_.empty() && fences_.front().first <= fence) {
         GLsync s = fences_.front().second;
-        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED) {
-        }
+        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
+            checkReset(false);  // a reset context may never signal
         gl_.DeleteSync(s);
         fences_.erase(fences_.begin());
     }
+    checkReset(false);
 }
 
 void GlDevice::waitIdle() {
+    loss_.check("waitIdle");
     wait(nextFence_);
     gl_.Finish();
+    checkReset(false);
 }
 
 std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
+    loss_.check("timerNanoseconds");
     Timer& t = timer(h);
     if (!t.used) return std::nullopt;
     if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
@@ -454,6 +536,7 @@ uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 namespace fe::gl {
 
 bool GlDevice::present(gdi::TextureHandle h) {
+    loss_.check("present");
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     Texture& t = texture(h);
     if (gdi::isDepthFormat(t.desc.format) || !gdi::any(t.desc.usage, gdi::TextureUsage::CopySrc))
@@ -479,6 +562,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
 }
 
 gdi::Image GlDevice::readWindow() {
+    loss_.check("readWindow");
     if (!platform_->hasWindow()) return gdi::Device::readWindow();
     if (windowWidth_ == 0) throw gdi::Error("readWindow: nothing presented yet");
     gdi::Image img;

@@ -19,15 +19,17 @@
 #include <string>
 #include <vector>
 
+#include "VulkanFaults.h"
 #include "VulkanMemory.h"
 #include "fe/gdi/Device.h"
 #include "fe/gdi/HandlePool.h"
 
 namespace fe::vk {
 
-[[noreturn]] void throwVk(VkResult r, const char* what);
-inline void check(VkResult r, const char* what) {
-    if (r != VK_SUCCESS) throwVk(r, what);
+// Error for a failed call; `object` names what it was for. VK_ERROR_DEVICE_LOST: DeviceLostError.
+[[noreturn]] void throwVk(VkResult r, const char* what, const std::string& object = {});
+inline void check(VkResult r, const char* what, const std::string& object = {}) {
+    if (r != VK_SUCCESS) throwVk(r, what, object);
 }
 
 VkFormat toVkFormat(gdi::Format f);
@@ -130,6 +132,7 @@ public:
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_; }
+    gdi::LiveObjects liveObjects() const override;
     uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
 
     // Internal, for the command list.
@@ -145,6 +148,9 @@ public:
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
     uint32_t queueFamily() const { return queueFamily_; }
+    // wait(), except that a lost device is recorded, not thrown (the next entry point throws):
+    // for destruction and recording, which must work on a lost device.
+    void settle(gdi::FenceValue fence);
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                         VkDebugUtilsMessageTypeFlagsEXT type,
@@ -159,9 +165,18 @@ private:
     VkImageView makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount);
     // Records with `record` into a one-time command buffer, submits it and waits.
     void immediate(const std::function<void(VkCommandBuffer)>& record);
-    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem);
+    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind = "staging buffer",
+                      const std::string& name = {});
     void freeBuffer(Buffer& b);
     void release();
+    // VkResults of the device's own calls: vk::check, and VK_ERROR_DEVICE_LOST marks the device
+    // lost. As members they hide the free check() in every VulkanDevice member function.
+    void check(VkResult r, const char* call, const std::string& object = {}) const {
+        if (r != VK_SUCCESS) [[unlikely]]
+            fail(r, call, object);
+    }
+    [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
+    void idle();  // destroy's wait: settle() everything
 
     gdi::DeviceInfo info_;
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -180,6 +195,7 @@ private:
     std::vector<uint32_t> freeTimerSlots_;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     uint32_t validationErrors_ = 0;
+    mutable gdi::DeviceLoss loss_;
 
     struct Submission {
         gdi::FenceValue value;

@@ -41,22 +41,24 @@ bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) c
     return (p.optimalTilingFeatures & need) == need;
 }
 
-Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem) {
+Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
+                                const std::string& name) {
+    const std::string object = gdi::describeObject(kind, name, std::to_string(size) + " bytes");
     Buffer b;
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size;
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(vkCreateBuffer(device_, &ci, nullptr, &b.buffer), "vkCreateBuffer");
+    check(nativeAllocation([&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
     try {
-        b.memory = allocator_->allocate(req, mem);
+        b.memory = allocator_->allocate(req, mem, object);
+        check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory", object);
     } catch (...) {
-        vkDestroyBuffer(device_, b.buffer, nullptr);
+        freeBuffer(b);
         throw;
     }
-    check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory");
     return b;
 }
 
@@ -67,6 +69,7 @@ void VulkanDevice::freeBuffer(Buffer& b) {
 }
 
 gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const void* initialData) {
+    loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc);
     using U = gdi::BufferUsage;
     // Copies in and out are always allowed: writeBuffer/readBuffer stage through them.
@@ -78,7 +81,7 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, const 
     MemoryUsage mem = desc.access == gdi::MemoryAccess::Upload     ? MemoryUsage::Upload
                       : desc.access == gdi::MemoryAccess::Readback ? MemoryUsage::Readback
                                                                    : MemoryUsage::GpuOnly;
-    Buffer b = makeBuffer(desc.size, usage, mem);
+    Buffer b = makeBuffer(desc.size, usage, mem, "buffer", desc.debugName ? desc.debugName : "");
     b.desc = desc;
     b.name = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;  // the caller's string may not outlive the buffer
@@ -134,7 +137,8 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
     gdi::validate::textureDesc(desc, info_.limits);
     VkImageCreateInfo ci = imageInfo(desc);
     VkImage image;
-    check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+          gdi::describeObject("texture", desc.debugName ? desc.debugName : "", "memory requirements"));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, image, &req);
     vkDestroyImage(device_, image, nullptr);
@@ -142,6 +146,7 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
 }
 
 gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
+    loss_.check("createHeap");
     const std::string name = desc.debugName ? desc.debugName : "";
     if (desc.size == 0) throw gdi::Error("heap '" + name + "': size is 0");
     // Memory types every render-target/sampled image kind accepts, found from sample images.
@@ -152,7 +157,8 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
                                .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
         VkImageCreateInfo ci = imageInfo(probe);
         VkImage image;
-        check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+        check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+              gdi::describeObject("heap", name, "memory type probe"));
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(device_, image, &req);
         vkDestroyImage(device_, image, nullptr);
@@ -161,7 +167,8 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
     }
     if (!typeBits) throw gdi::Error("heap '" + name + "': no memory type fits all texture kinds");
     Heap h;
-    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly);
+    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly,
+                                    gdi::describeObject("heap", name, std::to_string(desc.size) + " bytes"));
     h.size = desc.size;
     h.name = name;
     return heaps_.add(std::move(h));
@@ -171,12 +178,13 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
     Heap heap;
     if (!h || !heaps_.find(h)) return;
     if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
-    waitIdle();
+    idle();
     heaps_.remove(h, heap);
     allocator_->free(heap.memory);
 }
 
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
+    loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_.limits);
     const std::string name = desc.debugName ? desc.debugName : "";
     if (!supportsFormat(desc.format, desc.usage))
@@ -188,7 +196,9 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     t.desc.debugName = nullptr;
     t.name = name;
     VkImageCreateInfo ci = imageInfo(desc);
-    check(vkCreateImage(device_, &ci, nullptr, &t.image), "vkCreateImage");
+    const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                                                        " " + std::string(gdi::formatInfo(desc.format).name));
+    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
     try {
@@ -202,9 +212,9 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
             t.memory.offset += desc.heapOffset;
             t.memory.size = req.size;
         } else {
-            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
+            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly, object);
         }
-        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory");
+        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory", object);
         t.view = makeView(t.image, desc.format, 0, desc.mipLevels);
         for (uint32_t m = 0; m < desc.mipLevels; ++m) t.mipViews.push_back(makeView(t.image, desc.format, m, 1));
     } catch (...) {
@@ -214,7 +224,12 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     if (heap) heap->placed++;
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
-    immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format, desc.mipLevels); });
+    try {
+        immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format, desc.mipLevels); });
+    } catch (...) {
+        destroyTexture(t);  // the submission failed (device lost): the image was never used
+        throw;
+    }
     return textures_.add(std::move(t));
 }
 
@@ -231,6 +246,7 @@ void VulkanDevice::destroyTexture(Texture& t) {
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
+    loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
     auto address = [](gdi::AddressMode a) {
@@ -259,6 +275,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::TimerHandle VulkanDevice::createTimer() {
+    loss_.check("createTimer");
     if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
     Timer t{freeTimerSlots_.back()};
     freeTimerSlots_.pop_back();
@@ -266,12 +283,13 @@ gdi::TimerHandle VulkanDevice::createTimer() {
     return timers_.add(std::move(t));
 }
 
-// Destruction waits for the GPU so nothing in flight still uses the object. Resources are
-// created and destroyed at load time, not per frame (the render graph pools its transients).
+// Destruction waits for the GPU so nothing in flight still uses the object (on a lost device
+// nothing is: destroy works after a loss). Resources are created and destroyed at load time,
+// not per frame (the render graph pools its transients).
 void VulkanDevice::destroy(gdi::BufferHandle h) {
     Buffer b;
     if (!h || !buffers_.find(h)) return;
-    waitIdle();
+    idle();
     buffers_.remove(h, b);
     freeBuffer(b);
 }
@@ -279,7 +297,7 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
 void VulkanDevice::destroy(gdi::TextureHandle h) {
     Texture t;
     if (!h || !textures_.find(h)) return;
-    waitIdle();
+    idle();
     textures_.remove(h, t);
     destroyTexture(t);
 }
@@ -287,7 +305,7 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
     Sampler s;
     if (!h || !samplers_.find(h)) return;
-    waitIdle();
+    idle();
     samplers_.remove(h, s);
     vkDestroySampler(device_, s.sampler, nullptr);
 }
@@ -301,7 +319,7 @@ void VulkanDevice::destroy(gdi::ShaderHandle h) {
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
     Pipeline p;
     if (!h || !pipelines_.find(h)) return;
-    waitIdle();
+    idle();
     pipelines_.remove(h, p);
     vkDestroyPipeline(device_, p.pipeline, nullptr);
     vkDestroyPipelineLayout(device_, p.layout, nullptr);
@@ -311,7 +329,7 @@ void VulkanDevice::destroy(gdi::PipelineHandle h) {
 void VulkanDevice::destroy(gdi::TimerHandle h) {
     Timer t;
     if (!h || !timers_.find(h)) return;
-    waitIdle();
+    idle();
     timers_.remove(h, t);
     freeTimerSlots_.push_back(t.firstQuery);
 }

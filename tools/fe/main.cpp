@@ -39,7 +39,8 @@ constexpr const char* kUsage =
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window (gl-glfw) until it is closed, or for --frames N\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
-    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n";
+    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, gl-glfw (also FE_BACKEND)\n"
+    "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -358,6 +359,9 @@ int main(int argc, char** argv) {
     } catch (const assets::AssetError& e) {
         std::cerr << "fe: " << e.what() << "\n";
         return 3;
+    } catch (const gdi::DeviceLostError& e) {
+        std::cerr << "fe: " << e.what() << "\nfe: the GPU device was lost (exit code 4)\n";
+        return 4;
     } catch (const std::exception& e) {
         std::cerr << "fe: " << e.what() << "\n";
         return 1;
