@@ -69,7 +69,7 @@ void GlDevice::checkReset(bool injected) {
 gdi::LiveObjects GlDevice::liveObjects() const {
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
-            .nativeAllocations = nativeObjects_};
+            .nativeObjects = nativeObjects_};
 }
 
 void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,

@@ -372,7 +372,7 @@ void VulkanDevice::fail(VkResult r, const char* call, const std::string& object)
 gdi::LiveObjects VulkanDevice::liveObjects() const {
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
-            .heaps = heaps_.size(), .nativeAllocations = allocator_->stats().placements};
+            .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
 void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record) {

@@ -196,6 +196,7 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     uint32_t validationErrors_ = 0;
     mutable gdi::DeviceLoss loss_;
+    uint32_t nativeObjects_ = 0;  // VkBuffers and VkImages of buffers, textures and staging (liveObjects)
 
     struct Submission {
         gdi::FenceValue value;

@@ -50,6 +50,7 @@ Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Mem
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     check(nativeAllocation([&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
+    ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
     try {
@@ -63,7 +64,7 @@ Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Mem
 }
 
 void VulkanDevice::freeBuffer(Buffer& b) {
-    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
+    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr), --nativeObjects_;
     allocator_->free(b.memory);
     b = Buffer{};
 }
@@ -199,6 +200,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
                                                                         " " + std::string(gdi::formatInfo(desc.format).name));
     check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
+    ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
     try {
@@ -236,7 +238,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
 void VulkanDevice::destroyTexture(Texture& t) {
     for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
     if (t.view) vkDestroyImageView(device_, t.view, nullptr);
-    if (t.image) vkDestroyImage(device_, t.image, nullptr);
+    if (t.image) vkDestroyImage(device_, t.image, nullptr), --nativeObjects_;
     if (t.ownsMemory) {
         allocator_->free(t.memory);
     } else if (t.desc.heap) {

@@ -449,11 +449,11 @@ struct DeviceInfo {
 };
 
 // What a device holds now, for leak checks (tests, tools): gdi objects by kind, and the native
-// allocations behind them (Vulkan: sub-allocator placements, staging buffers included; GL:
-// buffer and texture objects).
+// objects behind buffers and textures (Vulkan: VkBuffers, VkImages and memory sub-allocations,
+// staging included; GL: buffer and texture objects).
 struct LiveObjects {
     uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0, heaps = 0;
-    uint32_t nativeAllocations = 0;
+    uint32_t nativeObjects = 0;
     friend bool operator==(const LiveObjects&, const LiveObjects&) = default;
 };
 
