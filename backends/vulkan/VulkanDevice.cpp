@@ -413,7 +413,7 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, const void*
         std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data, size);  // caller owns frame pacing
         return;
     }
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data, size);
     immediate([&](VkCommandBuffer cb) {
@@ -434,7 +434,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, uint32_t mip, const void* 
                          std::to_string(expected) + " bytes, got " + std::to_string(size));
     if (!data) throw gdi::Error("writeTexture: data is null");
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data, size);
     immediate([&](VkCommandBuffer cb) {
@@ -451,7 +451,7 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
     std::vector<uint8_t> out(size);
     if (size == 0) return out;
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     immediate([&](VkCommandBuffer cb) {
         VkBufferCopy region{offset, 0, size};
@@ -471,7 +471,7 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, uint32_t mip) {
     img.height = std::max(1u, t.desc.height >> mip);
     img.format = t.desc.format;
     const uint64_t size = uint64_t(img.width) * img.height * gdi::formatInfo(t.desc.format).bytesPerPixel;
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     immediate([&](VkCommandBuffer cb) {
         VkBufferImageCopy r{};

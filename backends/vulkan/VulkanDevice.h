@@ -165,8 +165,9 @@ private:
     VkImageView makeView(VkImage image, gdi::Format format, uint32_t baseMip, uint32_t mipCount);
     // Records with `record` into a one-time command buffer, submits it and waits.
     void immediate(const std::function<void(VkCommandBuffer)>& record);
-    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind = "staging buffer",
-                      const std::string& name = {});
+    // kind and name say what the buffer is in errors (gdi::describeObject).
+    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
+                      const std::string& name);
     void freeBuffer(Buffer& b);
     void release();
     // VkResults of the device's own calls: vk::check, and VK_ERROR_DEVICE_LOST marks the device

@@ -171,11 +171,10 @@ TEST_P(NativeFaults, OutOfMemoryInTransfersLeavesNothingBehind) {
     const LiveObjects empty = device->liveObjects();
     TextureHandle t = device->createTexture({.width = 16, .height = 16, .debugName = "uploaded"});
     std::vector<uint8_t> texels(16 * 16 * 4, 200);
-    const int failedWrites = failEachAllocation([&] { device->writeTexture(t, 0, texels.data(), texels.size()); },
-                                                [&](const std::string& m) { expectOutOfMemory(m, "staging buffer"); });
+    auto staging = [](const std::string& m) { expectOutOfMemory(m, "staging buffer for texture 'uploaded' (1024 bytes)"); };
+    const int failedWrites = failEachAllocation([&] { device->writeTexture(t, 0, texels.data(), texels.size()); }, staging);
     Image img;
-    const int failedReads = failEachAllocation([&] { img = device->readTexture(t); },
-                                               [&](const std::string& m) { expectOutOfMemory(m, "staging buffer"); });
+    const int failedReads = failEachAllocation([&] { img = device->readTexture(t); }, staging);
     EXPECT_EQ(img.data, texels);
     EXPECT_EQ(failedWrites + failedReads, GetParam() == "vulkan" ? 2 : 0);
     device->destroy(t);
@@ -276,3 +275,27 @@ TEST_P(NativeFaults, LossInsideBlockingTransfersLeavesNothingBehind) {
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(NativeFaults);
+
+// What injection imitates, the drivers really do: a 1 TiB buffer is a real out-of-memory error,
+// with the same message as the injected one, and the device stays usable. Validation is off
+// here only: the layer rightly calls a request beyond the heap invalid usage.
+TEST(RealOutOfMemory, SameErrorAsInjectedAndTheDeviceStaysUsable) {
+    for (const std::string& backend : backendNames()) {
+        BackendProbe p = probeBackend(backend, false);
+        if (!p.available) continue;
+        Device& d = *p.device;
+        const LiveObjects before = d.liveObjects();
+        const BufferDesc huge{.size = uint64_t(1) << 40, .debugName = "too big"};
+        const std::string real = fe::testing::errorOf([&] { d.createBuffer(huge); });
+        EXPECT_EQ(d.liveObjects(), before) << backend;
+        fault::arm(fault::Site::Allocation, 1);
+        const std::string injected = fe::testing::errorOf([&] { d.createBuffer(huge); });
+        fault::arm(fault::Site::Allocation, 0);
+        EXPECT_EQ(real, injected) << backend;
+        expectOutOfMemory(real, "buffer 'too big' (1099511627776 bytes)");
+        BufferHandle b = d.createBuffer({.size = 64}, std::vector<uint8_t>(64, 9).data());
+        EXPECT_EQ(d.readBuffer(b, 0, 64), std::vector<uint8_t>(64, 9)) << backend;
+        d.destroy(b);
+        EXPECT_EQ(d.liveObjects(), before) << backend;
+    }
+}
