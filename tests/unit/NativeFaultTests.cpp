@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <ostream>
 #include <vector>
 
 #include "BackendTest.h"
@@ -13,6 +14,15 @@
 
 using namespace fe;
 using namespace fe::gdi;
+
+namespace fe::gdi {
+// Readable leak-check failures.
+void PrintTo(const LiveObjects& o, std::ostream* os) {
+    *os << "{buffers " << o.buffers << ", textures " << o.textures << ", samplers " << o.samplers << ", shaders "
+        << o.shaders << ", pipelines " << o.pipelines << ", timers " << o.timers << ", heaps " << o.heaps
+        << ", native objects " << o.nativeObjects << "}";
+}
+}  // namespace fe::gdi
 
 namespace {
 

@@ -25,7 +25,7 @@
 //    throw fe::gdi::Error with a message saying what was wrong; nothing is silently ignored.
 //  - Native API failures are errors, never aborts. Out of memory (VK_ERROR_OUT_OF_DEVICE_MEMORY
 //    or _HOST_MEMORY, GL_OUT_OF_MEMORY) is an Error naming the native call and the object, e.g.
-//    "vkAllocateMemory failed for texture 'albedo' (4194304 bytes): VK_ERROR_OUT_OF_DEVICE_MEMORY";
+//    "gl-egl: glTextureStorage2D failed for texture 'albedo' (1024x1024 RGBA8): GL_OUT_OF_MEMORY";
 //    nothing of the failed object is left behind and the device stays usable.
 //  - A lost device (VK_ERROR_DEVICE_LOST; a GL context reset, which a robust context reports
 //    through glGetGraphicsResetStatus, polled at submit and wait) throws DeviceLostError, and so
