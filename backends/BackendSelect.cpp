@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Faults.h"
 #include "gl/GlBackend.h"
 #include "vulkan/VulkanBackend.h"
 
@@ -23,6 +24,7 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) 
     BackendProbe p;
     p.name = name;
     try {
+        fault::fired(fault::Site::Allocation);  // a bad FE_FAULT_* value is reported here, before any device work
         if (name == "vulkan")
             p.device = vk::createVulkanDevice(validation);
         else if (name == "gl-egl")

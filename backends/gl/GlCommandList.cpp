@@ -580,6 +580,9 @@ private:
     gdi::IndexType indexType_ = gdi::IndexType::U32;
 };
 
-std::unique_ptr<gdi::CommandList> GlDevice::createCommandList() { return std::make_unique<GlCommandList>(*this); }
+std::unique_ptr<gdi::CommandList> GlDevice::createCommandList() {
+    loss_.check("createCommandList");
+    return std::make_unique<GlCommandList>(*this);
+}
 
 }  // namespace fe::gl

@@ -58,6 +58,45 @@ GLenum textureTarget(const gdi::TextureDesc& d) {
     }
 }
 
+namespace {
+const char* glErrorName(GLenum e) {
+    switch (e) {
+        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+        case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
+        case GL_GUILTY_CONTEXT_RESET: return "GL_GUILTY_CONTEXT_RESET";
+        case GL_INNOCENT_CONTEXT_RESET: return "GL_INNOCENT_CONTEXT_RESET";
+        case GL_UNKNOWN_CONTEXT_RESET: return "GL_UNKNOWN_CONTEXT_RESET";
+        default: return "GL error";
+    }
+}
+}  // namespace
+
+template <class Call>
+GLenum GlDevice::allocateStorage(Call&& call) {
+    if (gdi::fault::hit(gdi::fault::Site::Allocation)) return GL_OUT_OF_MEMORY;
+    // Errors of earlier calls are not this one's (the debug output reports them); a lost
+    // context may repeat GL_CONTEXT_LOST, hence the bound.
+    for (int i = 0; i < 8 && gl_.GetError() != GL_NO_ERROR; ++i) {
+    }
+    call();
+    return gl_.GetError();
+}
+
+void GlDevice::checkReset(bool injected) {
+    const GLenum status = injected ? GL_UNKNOWN_CONTEXT_RESET : gl_.GetGraphicsResetStatus();
+    if (status != GL_NO_ERROR)
+        throw loss_.lose(info_.backend, std::string("glGetGraphicsResetStatus returned ") + glErrorName(status));
+}
+
+gdi::LiveObjects GlDevice::liveObjects() const {
+    return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
+            .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
+            .nativeObjects = nativeObjects_};
+}
+
 void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
                                         const void* user) {
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
@@ -110,7 +149,11 @@ GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
     info_.backend = platform_->name();
     info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
-    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR));
+    GLint strategy = 0;
+    gl_.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
+                       std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", robust context (resets are reported)"
+                                                                         : ", no reset notification");
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
@@ -185,6 +228,7 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 }
 
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
+    loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc);
     gdi::validate::initialData(desc, initialData.size());
     Buffer b;
@@ -192,13 +236,22 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
     b.label = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;
     gl_.CreateBuffers(1, &b.name);
-    gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
-                           GL_DYNAMIC_STORAGE_BIT);
+    ++nativeObjects_;
+    if (GLenum e = allocateStorage([&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
+                                                                 GL_DYNAMIC_STORAGE_BIT); });
+        e != GL_NO_ERROR) {
+        gl_.DeleteBuffers(1, &b.name);
+        --nativeObjects_;
+        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
+        throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
+                         gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
+    }
     if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
     return buffers_.add(std::move(b));
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
+    loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_);
     const std::string label = desc.debugName ? desc.debugName : "";
     if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
@@ -211,15 +264,33 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     t.label = label;
     t.target = textureTarget(desc);
     gl_.CreateTextures(t.target, 1, &t.name);
+    ++nativeObjects_;
     const GLenum internal = toGlFormat(desc.format).internal;
     const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
-    switch (t.target) {
-        case GL_TEXTURE_2D_MULTISAMPLE:
-            gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
-            break;
-        case GL_TEXTURE_2D:
-        case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
-        default: gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers)); break;  // layers or depth
+    const char* call = "glTextureStorage2D";
+    if (GLenum e = allocateStorage([&] {
+            switch (t.target) {
+                case GL_TEXTURE_2D_MULTISAMPLE:
+                    call = "glTextureStorage2DMultisample";
+                    gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
+                    break;
+                case GL_TEXTURE_2D:
+                case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
+                default:  // layers or depth
+                    call = "glTextureStorage3D";
+                    gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers));
+                    break;
+            }
+        });
+        e != GL_NO_ERROR) {
+        gl_.DeleteTextures(1, &t.name);
+        --nativeObjects_;
+        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, std::string(call) + " raised GL_CONTEXT_LOST");
+        throw gdi::Error(info_.backend + ": " + call + " failed for " +
+                         gdi::describeObject("texture", label, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                                                   (desc.depthOrLayers > 1 ? "x" + std::to_string(desc.depthOrLayers) : "") +
+                                                                   " " + std::string(gdi::formatInfo(desc.format).name)) +
+                         ": " + glErrorName(e));
     }
     if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
     if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
@@ -227,6 +298,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
+    loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     Sampler s;
     gl_.CreateSamplers(1, &s.name);
@@ -255,6 +327,7 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
+    loss_.check("createShader");
     gdi::validate::shaderDesc(desc);
     const std::string label = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.opengl;
@@ -299,6 +372,7 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_);
     Pipeline p;
     p.label = d.debugName ? d.debugName : "";
@@ -344,6 +418,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Pipeline p;
     p.label = d.debugName ? d.debugName : "";
@@ -358,6 +433,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
+    loss_.check("createTimer");
     Timer t;
     gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
     return timers_.add(std::move(t));
@@ -385,13 +461,14 @@ void GlDevice::forgetFramebuffers(GLuint texture) {
 
 void GlDevice::destroy(gdi::BufferHandle h) {
     Buffer b;
-    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name);
+    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name), --nativeObjects_;
 }
 void GlDevice::destroy(gdi::TextureHandle h) {
     Texture t;
     if (h && textures_.remove(h, t)) {
         forgetFramebuffers(t.name);
         gl_.DeleteTextures(1, &t.name);
+        --nativeObjects_;
     }
 }
 void GlDevice::destroy(gdi::SamplerHandle h) {
@@ -445,6 +522,7 @@ GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttach
 }
 
 void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
+    loss_.check("writeBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, data.size(), "writeBuffer");
     if (data.empty()) return;
@@ -474,6 +552,7 @@ void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixe
 }
 
 void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
+    loss_.check("writeTexture");
     Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
@@ -482,6 +561,7 @@ void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::Byte
 }
 
 std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    loss_.check("readBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
     std::vector<uint8_t> out(size);
@@ -491,6 +571,7 @@ std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, 
 }
 
 gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
+    loss_.check("readTexture");
     Texture& t = texture(h);
     gdi::validate::readable(t.desc, at, "readTexture", t.label);
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
@@ -512,7 +593,9 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
 }
 
 gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
+    loss_.check("submit");
     commands.nativeCommandBuffer();  // no-op; GL work was issued while recording
+    checkReset(gdi::fault::hit(gdi::fault::Site::Submission));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.Flush();
@@ -521,21 +604,26 @@ gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
 }
 
 void GlDevice::wait(gdi::FenceValue fence) {
+    loss_.check("wait");
     while (!fences_.empty() && fences_.front().first <= fence) {
         GLsync s = fences_.front().second;
-        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED) {
-        }
+        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
+            checkReset(false);  // a reset context may never signal
         gl_.DeleteSync(s);
         fences_.erase(fences_.begin());
     }
+    checkReset(false);
 }
 
 void GlDevice::waitIdle() {
+    loss_.check("waitIdle");
     wait(nextFence_);
     gl_.Finish();
+    checkReset(false);
 }
 
 std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
+    loss_.check("timerNanoseconds");
     Timer& t = timer(h);
     if (!t.used) return std::nullopt;
     if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
@@ -565,6 +653,7 @@ uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 namespace fe::gl {
 
 bool GlDevice::present(gdi::TextureHandle h) {
+    loss_.check("present");
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     Texture& t = texture(h);
     gdi::validate::presentTexture(t.desc, t.label);
@@ -589,6 +678,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
 }
 
 gdi::Image GlDevice::readWindow() {
+    loss_.check("readWindow");
     if (!platform_->hasWindow()) return gdi::Device::readWindow();
     if (windowWidth_ == 0) throw gdi::Error("readWindow: nothing presented yet");
     gdi::Image img;

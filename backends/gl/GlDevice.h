@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
 #include "gl/GlFunctions.h"
 #include "gl/GlPlatform.h"
@@ -107,6 +108,7 @@ public:
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return errors_; }
+    gdi::LiveObjects liveObjects() const override;
     uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
     bool present(gdi::TextureHandle texture) override;
     gdi::Image readWindow() override;
@@ -130,6 +132,15 @@ private:
     GlFunctions gl_;
     gdi::DeviceInfo info_;
     uint32_t errors_ = 0;
+    gdi::DeviceLoss loss_;
+    uint32_t nativeObjects_ = 0;  // buffer and texture names created and not yet deleted
+    // Storage for a buffer or texture: runs `call` and returns the GL error it raised, or
+    // GL_OUT_OF_MEMORY without running it when fault injection fails it (fe/gdi/Faults.h).
+    template <class Call>
+    GLenum allocateStorage(Call&& call);
+    // A context reset (robust contexts report one through glGetGraphicsResetStatus; fault
+    // injection fakes one at the N-th submit) makes the device lost.
+    void checkReset(bool injected);
     std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;
     gdi::FenceValue nextFence_ = 1;
     struct CachedFbo {

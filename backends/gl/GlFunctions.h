@@ -10,6 +10,8 @@ namespace fe::gl {
     X(PFNGLGETSTRINGPROC, GetString)                                                                       \
     X(PFNGLGETSTRINGIPROC, GetStringi)                                                                     \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                                   \
+    X(PFNGLGETERRORPROC, GetError)                                                                         \
+    X(PFNGLGETGRAPHICSRESETSTATUSPROC, GetGraphicsResetStatus)                                             \
     X(PFNGLENABLEPROC, Enable)                                                                             \
     X(PFNGLDISABLEPROC, Disable)                                                                           \
     X(PFNGLENABLEIPROC, Enablei)                                                                           \

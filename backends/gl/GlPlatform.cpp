@@ -44,10 +44,19 @@ public:
         if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor))
             throw gdi::Error("EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless required)");
         if (!bindApi(EGL_OPENGL_API)) throw gdi::Error("EGL: desktop OpenGL API unavailable");
+        // Robust first (EGL 1.5 / KHR_create_context): a GPU reset is then reported through
+        // glGetGraphicsResetStatus and the device becomes lost instead of undefined. Drivers
+        // without robustness refuse it: a plain context then.
+        const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                                 EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
+                                 EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET, EGL_NONE};
         const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                   EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
-        context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+        context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust);
+        if (context_ == EGL_NO_CONTEXT) context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
         if (context_ == EGL_NO_CONTEXT) throw gdi::Error("EGL: cannot create an OpenGL 4.5 core context");
         makeCurrent();
     }

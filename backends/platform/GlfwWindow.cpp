@@ -97,8 +97,14 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
             g.hint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
             g.hint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
             g.hint(GLFW_SRGB_CAPABLE, GLFW_TRUE);
+            // Robust first, as on EGL (resets are reported); a plain context where the driver refuses.
+            g.hint(GLFW_CONTEXT_ROBUSTNESS, GLFW_LOSE_CONTEXT_ON_RESET);
         }
         window_ = g.create(320, 240, "fe", nullptr, nullptr);
+        if (!window_ && api == Api::OpenGL45) {
+            g.hint(GLFW_CONTEXT_ROBUSTNESS, GLFW_NO_ROBUSTNESS);
+            window_ = g.create(320, 240, "fe", nullptr, nullptr);
+        }
         if (!window_)
             throw glfwError(g, api == Api::Vulkan ? "cannot create a window" : "cannot create a window with an OpenGL 4.5 core context");
     } catch (...) {

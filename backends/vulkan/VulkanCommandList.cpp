@@ -52,7 +52,7 @@ VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
 }
 
 VulkanCommandList::~VulkanCommandList() {
-    if (lastSubmit_) dev_.wait(lastSubmit_);
+    if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
     vkDestroyCommandPool(dev_.vkDevice(), pool_, nullptr);
 }
 
@@ -145,7 +145,7 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
 }
 
 void VulkanCommandList::beginRecording() {
-    if (lastSubmit_) dev_.wait(lastSubmit_);  // the buffer may still be executing
+    if (lastSubmit_) dev_.settle(lastSubmit_);  // the buffer may still be executing; recording on a lost device is harmless
     check(vkResetCommandPool(dev_.vkDevice(), pool_, 0), "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;

@@ -39,6 +39,15 @@ bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
     return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
+// Runs `f` when the scope ends, however it ends (staging buffers of transfers that may throw).
+template <class F>
+struct OnExit {
+    F f;
+    ~OnExit() { f(); }
+};
+template <class F>
+OnExit(F) -> OnExit<F>;
+
 std::string versionString(uint32_t v) {
     return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
            std::to_string(VK_API_VERSION_PATCH(v));
@@ -335,10 +344,12 @@ void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name)
 // Submission
 // ---------------------------------------------------------------------------------------------
 std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
+    loss_.check("createCommandList");
     return std::make_unique<VulkanCommandList>(*this);
 }
 
 gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
+    loss_.check("submit");
     auto& list = static_cast<VulkanCommandList&>(commands);
     VkCommandBuffer cb = list.finish();
     VkFence fence;
@@ -352,7 +363,11 @@ gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cb;
-    check(vkQueueSubmit(queue_, 1, &si, fence), "vkQueueSubmit");
+    if (VkResult r = nativeSubmission([&] { return vkQueueSubmit(queue_, 1, &si, fence); }); r != VK_SUCCESS) {
+        freeFences_.push_back(fence);    // never submitted
+        list.submitted(nextFence_ - 1);  // the recording is dropped; the next one waits for every earlier submission
+        check(r, "vkQueueSubmit");
+    }
     gdi::FenceValue value = nextFence_++;
     inFlight_.push_back({value, fence});
     list.submitted(value);
@@ -360,9 +375,18 @@ gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
 }
 
 void VulkanDevice::wait(gdi::FenceValue fence) {
+    loss_.check("wait");
+    settle(fence);
+    loss_.check("wait");
+}
+
+void VulkanDevice::settle(gdi::FenceValue fence) {
     while (!inFlight_.empty() && inFlight_.front().value <= fence) {
         Submission s = inFlight_.front();
-        check(vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        const VkResult r = vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX);
+        // A lost device runs nothing more: its submissions count as done.
+        if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkWaitForFences returned VK_ERROR_DEVICE_LOST");
+        else check(r, "vkWaitForFences");
         vkResetFences(device_, 1, &s.fence);
         freeFences_.push_back(s.fence);
         completed_ = s.value;
@@ -372,8 +396,27 @@ void VulkanDevice::wait(gdi::FenceValue fence) {
 }
 
 void VulkanDevice::waitIdle() {
+    loss_.check("waitIdle");
     wait(nextFence_ - 1);
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+}
+
+void VulkanDevice::idle() {
+    settle(nextFence_ - 1);
+    const VkResult r = vkQueueWaitIdle(queue_);
+    if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkQueueWaitIdle returned VK_ERROR_DEVICE_LOST");
+    else check(r, "vkQueueWaitIdle");
+}
+
+void VulkanDevice::fail(VkResult r, const char* call, const std::string& object) const {
+    if (r == VK_ERROR_DEVICE_LOST) throw loss_.lose("vulkan", std::string(call) + " returned VK_ERROR_DEVICE_LOST");
+    throwVk(r, call, object);
+}
+
+gdi::LiveObjects VulkanDevice::liveObjects() const {
+    return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
+            .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
+            .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
 void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record) {
@@ -393,7 +436,10 @@ void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record)
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cb;
-    check(vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
+    if (VkResult r = nativeSubmission([&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }); r != VK_SUCCESS) {
+        vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);  // never submitted
+        check(r, "vkQueueSubmit");
+    }
     waitIdle();
     vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
 }
@@ -402,6 +448,7 @@ void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record)
 // Blocking transfers
 // ---------------------------------------------------------------------------------------------
 void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
+    loss_.check("writeBuffer");
     Buffer& b = buffer(h);
     const uint64_t size = data.size();
     gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
@@ -410,45 +457,48 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSp
         std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data.data(), size);  // caller owns frame pacing
         return;
     }
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for buffer", b.name);
+    OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data(), size);
     immediate([&](VkCommandBuffer cb) {
         VkBufferCopy region{0, offset, size};
         vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
     });
-    freeBuffer(staging);
 }
 
 void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
+    loss_.check("writeTexture");
     Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
-    Buffer staging = makeBuffer(data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload);
+    Buffer staging = makeBuffer(data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
+    OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data(), data.size());
     immediate([&](VkCommandBuffer cb) {
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     });
-    freeBuffer(staging);
 }
 
 std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    loss_.check("readBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
     std::vector<uint8_t> out(size);
     if (size == 0) return out;
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for buffer", b.name);
+    OnExit freeStaging{[&] { freeBuffer(staging); }};
     immediate([&](VkCommandBuffer cb) {
         VkBufferCopy region{offset, 0, size};
         vkCmdCopyBuffer(cb, b.buffer, staging.buffer, 1, &region);
     });
     std::memcpy(out.data(), staging.memory.mapped, size);
-    freeBuffer(staging);
     return out;
 }
 
 gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
+    loss_.check("readTexture");
     Texture& t = texture(h);
     gdi::validate::readable(t.desc, at, "readTexture", t.name);
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
@@ -457,7 +507,8 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     img.height = e.height;
     img.format = t.desc.format;
     const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for texture", t.name);
+    OnExit freeStaging{[&] { freeBuffer(staging); }};
     immediate([&](VkCommandBuffer cb) {
         // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
@@ -465,7 +516,6 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     });
     img.data.resize(size);
     std::memcpy(img.data.data(), staging.memory.mapped, size);
-    freeBuffer(staging);
     return img;
 }
 
@@ -487,10 +537,12 @@ uint64_t VulkanDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 }
 
 std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
+    loss_.check("timerNanoseconds");
     Timer& t = timer(h);
     uint64_t ticks[2];
     VkResult r = vkGetQueryPoolResults(device_, queryPool_, t.firstQuery, 2, sizeof(ticks), ticks, sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT);
+    if (r == VK_ERROR_DEVICE_LOST) check(r, "vkGetQueryPoolResults");
     if (r != VK_SUCCESS) return std::nullopt;
     return double(ticks[1] - ticks[0]) * double(props_.limits.timestampPeriod);
 }

@@ -19,15 +19,17 @@
 #include <string>
 #include <vector>
 
+#include "VulkanFaults.h"
 #include "VulkanMemory.h"
 #include "fe/gdi/Device.h"
 #include "fe/gdi/HandlePool.h"
 
 namespace fe::vk {
 
-[[noreturn]] void throwVk(VkResult r, const char* what);
-inline void check(VkResult r, const char* what) {
-    if (r != VK_SUCCESS) throwVk(r, what);
+// Error for a failed call; `object` names what it was for. VK_ERROR_DEVICE_LOST: DeviceLostError.
+[[noreturn]] void throwVk(VkResult r, const char* what, const std::string& object = {});
+inline void check(VkResult r, const char* what, const std::string& object = {}) {
+    if (r != VK_SUCCESS) throwVk(r, what, object);
 }
 
 VkFormat toVkFormat(gdi::Format f);
@@ -140,6 +142,7 @@ public:
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_; }
+    gdi::LiveObjects liveObjects() const override;
     uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
     bool present(gdi::TextureHandle texture) override;  // VulkanSwapchain.cpp
     gdi::Image readWindow() override;
@@ -162,6 +165,9 @@ public:
     VkImageView attachmentView(Texture& t, uint32_t mipLevel, uint32_t layer);
     PFN_vkCmdDrawIndirectCount cmdDrawIndirectCount = nullptr;
     PFN_vkCmdDrawIndexedIndirectCount cmdDrawIndexedIndirectCount = nullptr;
+    // wait(), except that a lost device is recorded, not thrown (the next entry point throws):
+    // for destruction and recording, which must work on a lost device.
+    void settle(gdi::FenceValue fence);
 
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                         VkDebugUtilsMessageTypeFlagsEXT type,
@@ -176,9 +182,19 @@ private:
     VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range);
     // Records with `record` into a one-time command buffer, submits it and waits.
     void immediate(const std::function<void(VkCommandBuffer)>& record);
-    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem);
+    // kind and name say what the buffer is in errors (gdi::describeObject).
+    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
+                      const std::string& name);
     void freeBuffer(Buffer& b);
     void release();
+    // VkResults of the device's own calls: vk::check, and VK_ERROR_DEVICE_LOST marks the device
+    // lost. As members they hide the free check() in every VulkanDevice member function.
+    void check(VkResult r, const char* call, const std::string& object = {}) const {
+        if (r != VK_SUCCESS) [[unlikely]]
+            fail(r, call, object);
+    }
+    [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
+    void idle();  // destroy's wait: settle() everything
 
     gdi::DeviceInfo info_;
     std::unique_ptr<VulkanSwapchain> swapchain_;  // vulkan-glfw only
@@ -200,6 +216,8 @@ private:
     std::vector<uint32_t> freeTimerSlots_;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     uint32_t validationErrors_ = 0;
+    mutable gdi::DeviceLoss loss_;
+    uint32_t nativeObjects_ = 0;  // VkBuffers and VkImages of buffers, textures and staging (liveObjects)
 
     struct Submission {
         gdi::FenceValue value;

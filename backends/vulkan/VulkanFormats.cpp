@@ -6,7 +6,7 @@
 
 namespace fe::vk {
 
-void throwVk(VkResult r, const char* what) {
+void throwVk(VkResult r, const char* what, const std::string& object) {
     const char* name = "unknown error";
     switch (r) {
         case VK_ERROR_OUT_OF_HOST_MEMORY: name = "VK_ERROR_OUT_OF_HOST_MEMORY"; break;
@@ -22,7 +22,10 @@ void throwVk(VkResult r, const char* what) {
         case VK_TIMEOUT: name = "VK_TIMEOUT"; break;
         default: break;
     }
-    throw gdi::Error(std::string("Vulkan: ") + what + " failed: " + name + " (" + std::to_string(int(r)) + ")");
+    const std::string message = std::string("Vulkan: ") + what + " failed" + (object.empty() ? "" : " for " + object) + ": " +
+                                name + " (" + std::to_string(int(r)) + ")";
+    if (r == VK_ERROR_DEVICE_LOST) throw gdi::DeviceLostError(message);
+    throw gdi::Error(message);
 }
 
 VkFormat toVkFormat(gdi::Format f) {

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "fe/gdi/Device.h"
+#include "VulkanDevice.h"
 
 namespace fe::vk {
 
@@ -42,21 +42,24 @@ uint32_t MemoryAllocator::chooseType(uint32_t typeBits, MemoryUsage usage) const
     return best;
 }
 
-uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated) {
+uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated, const std::string& object) {
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = size;
     ai.memoryTypeIndex = typeIndex;
     auto b = std::make_unique<Block>();
-    VkResult r = vkAllocateMemory(device_, &ai, nullptr, &b->memory);
-    if (r != VK_SUCCESS)
-        throw gdi::Error("Vulkan: out of device memory allocating " + std::to_string(size) + " bytes (VkResult " +
-                         std::to_string(int(r)) + ")");
+    const std::string call = "vkAllocateMemory (" + std::to_string(size) + "-byte block)";
+    check(nativeAllocation([&] { return vkAllocateMemory(device_, &ai, nullptr, &b->memory); }), call.c_str(), object);
     b->size = size;
     b->typeIndex = typeIndex;
     b->dedicated = dedicated;
     b->freeRanges[0] = size;
-    if (props_.memoryTypes[typeIndex].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
-        vkMapMemory(device_, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);  // persistently mapped
+    if (props_.memoryTypes[typeIndex].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+        const VkResult r = vkMapMemory(device_, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);  // persistently mapped
+        if (r != VK_SUCCESS) {
+            vkFreeMemory(device_, b->memory, nullptr);
+            throwVk(r, "vkMapMemory", object);
+        }
+    }
     for (uint32_t i = 0; i < blocks_.size(); ++i)
         if (!blocks_[i]) {
             blocks_[i] = std::move(b);
@@ -66,7 +69,7 @@ uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool d
     return uint32_t(blocks_.size() - 1);
 }
 
-Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage) {
+Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, const std::string& object) {
     const uint32_t type = chooseType(req.memoryTypeBits, usage);
     const VkDeviceSize align = std::max<VkDeviceSize>(req.alignment, granularity_);
     const VkDeviceSize size = (req.size + granularity_ - 1) / granularity_ * granularity_;
@@ -95,11 +98,11 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsag
         return {};
     };
 
-    if (size > kBlockSize / 2) return place(newBlock(type, size, true));  // big: own block
+    if (size > kBlockSize / 2) return place(newBlock(type, size, true, object));  // big: own block
     for (uint32_t i = 0; i < blocks_.size(); ++i)
         if (blocks_[i] && !blocks_[i]->dedicated && blocks_[i]->typeIndex == type)
             if (Allocation a = place(i)) return a;
-    return place(newBlock(type, kBlockSize, false));
+    return place(newBlock(type, kBlockSize, false, object));
 }
 
 void MemoryAllocator::free(const Allocation& a) {

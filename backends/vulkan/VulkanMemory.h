@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace fe::vk {
@@ -30,7 +31,8 @@ public:
     MemoryAllocator(const MemoryAllocator&) = delete;
     MemoryAllocator& operator=(const MemoryAllocator&) = delete;
 
-    Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage);
+    // `object` names what the memory is for, in errors (gdi::describeObject).
+    Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage, const std::string& object);
     void free(const Allocation& a);
 
     struct Stats {
@@ -52,7 +54,7 @@ private:
         uint32_t live = 0;
     };
     uint32_t chooseType(uint32_t typeBits, MemoryUsage usage) const;
-    uint32_t newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated);
+    uint32_t newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated, const std::string& object);
 
     VkDevice device_;
     VkPhysicalDeviceMemoryProperties props_{};

@@ -71,6 +71,7 @@ VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
 }  // namespace
 
 gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
+    loss_.check("createShader");
     gdi::validate::shaderDesc(desc);
     const std::string name = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.vulkan;
@@ -119,6 +120,7 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
 }
 
 gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_);
     const std::string name = d.debugName ? d.debugName : "";
     Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
@@ -251,6 +253,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 }
 
 gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Shader& cs = shaders_.get(d.computeShader, "compute shader");
     if (cs.stage != gdi::ShaderStage::Compute)

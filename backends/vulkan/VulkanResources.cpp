@@ -50,32 +50,36 @@ bool VulkanDevice::linearBlit(gdi::Format format) const {
     return (p.optimalTilingFeatures & need) == need;
 }
 
-Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem) {
+Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
+                                const std::string& name) {
+    const std::string object = gdi::describeObject(kind, name, std::to_string(size) + " bytes");
     Buffer b;
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size;
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(vkCreateBuffer(device_, &ci, nullptr, &b.buffer), "vkCreateBuffer");
+    check(nativeAllocation([&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
+    ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
     try {
-        b.memory = allocator_->allocate(req, mem);
+        b.memory = allocator_->allocate(req, mem, object);
+        check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory", object);
     } catch (...) {
-        vkDestroyBuffer(device_, b.buffer, nullptr);
+        freeBuffer(b);
         throw;
     }
-    check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory");
     return b;
 }
 
 void VulkanDevice::freeBuffer(Buffer& b) {
-    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
+    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr), --nativeObjects_;
     allocator_->free(b.memory);
     b = Buffer{};
 }
 
 gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
+    loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc);
     gdi::validate::initialData(desc, initialData.size());
     using U = gdi::BufferUsage;
@@ -89,7 +93,7 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     MemoryUsage mem = desc.access == gdi::MemoryAccess::Upload     ? MemoryUsage::Upload
                       : desc.access == gdi::MemoryAccess::Readback ? MemoryUsage::Readback
                                                                    : MemoryUsage::GpuOnly;
-    Buffer b = makeBuffer(desc.size, usage, mem);
+    Buffer b = makeBuffer(desc.size, usage, mem, "buffer", desc.debugName ? desc.debugName : "");
     b.desc = desc;
     b.name = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;  // the caller's string may not outlive the buffer
@@ -168,7 +172,8 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
     gdi::validate::textureDesc(desc, info_);
     VkImageCreateInfo ci = imageInfo(desc);
     VkImage image;
-    check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+          gdi::describeObject("texture", desc.debugName ? desc.debugName : "", "memory requirements"));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, image, &req);
     vkDestroyImage(device_, image, nullptr);
@@ -176,6 +181,7 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
 }
 
 gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
+    loss_.check("createHeap");
     const std::string name = desc.debugName ? desc.debugName : "";
     if (desc.size == 0) throw gdi::Error("heap '" + name + "': size is 0");
     // Memory types every render-target/sampled image kind accepts, found from sample images.
@@ -186,7 +192,8 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
                                .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
         VkImageCreateInfo ci = imageInfo(probe);
         VkImage image;
-        check(vkCreateImage(device_, &ci, nullptr, &image), "vkCreateImage");
+        check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+              gdi::describeObject("heap", name, "memory type probe"));
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(device_, image, &req);
         vkDestroyImage(device_, image, nullptr);
@@ -195,7 +202,8 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
     }
     if (!typeBits) throw gdi::Error("heap '" + name + "': no memory type fits all texture kinds");
     Heap h;
-    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly);
+    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly,
+                                    gdi::describeObject("heap", name, std::to_string(desc.size) + " bytes"));
     h.size = desc.size;
     h.name = name;
     return heaps_.add(std::move(h));
@@ -205,12 +213,13 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
     Heap heap;
     if (!h || !heaps_.find(h)) return;
     if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
-    waitIdle();
+    idle();
     heaps_.remove(h, heap);
     allocator_->free(heap.memory);
 }
 
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
+    loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
     if (!supportsFormat(desc.format, desc.usage))
@@ -222,7 +231,10 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     t.desc.debugName = nullptr;
     t.name = name;
     VkImageCreateInfo ci = imageInfo(desc);
-    check(vkCreateImage(device_, &ci, nullptr, &t.image), "vkCreateImage");
+    const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                                                        " " + std::string(gdi::formatInfo(desc.format).name));
+    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
+    ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
     try {
@@ -236,9 +248,9 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
             t.memory.offset += desc.heapOffset;
             t.memory.size = req.size;
         } else {
-            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly);
+            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly, object);
         }
-        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory");
+        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory", object);
         const VkImageViewType type = viewType(desc.dimension);
         const uint32_t layers = arrayLayers(desc);
         // Multisampled images are only attachments (gdi does not sample them).
@@ -257,7 +269,12 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     if (heap) heap->placed++;
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
-    immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
+    try {
+        immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
+    } catch (...) {
+        destroyTexture(t);  // the submission failed (device lost): the image was never used
+        throw;
+    }
     return textures_.add(std::move(t));
 }
 
@@ -266,7 +283,7 @@ void VulkanDevice::destroyTexture(Texture& t) {
     for (VkImageView v : t.attachmentViews)
         if (v) vkDestroyImageView(device_, v, nullptr);
     if (t.view) vkDestroyImageView(device_, t.view, nullptr);
-    if (t.image) vkDestroyImage(device_, t.image, nullptr);
+    if (t.image) vkDestroyImage(device_, t.image, nullptr), --nativeObjects_;
     if (t.ownsMemory) {
         allocator_->free(t.memory);
     } else if (t.desc.heap) {
@@ -276,6 +293,7 @@ void VulkanDevice::destroyTexture(Texture& t) {
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
+    loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
     auto address = [](gdi::AddressMode a) {
@@ -306,6 +324,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::TimerHandle VulkanDevice::createTimer() {
+    loss_.check("createTimer");
     if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
     Timer t{freeTimerSlots_.back()};
     freeTimerSlots_.pop_back();
@@ -313,12 +332,13 @@ gdi::TimerHandle VulkanDevice::createTimer() {
     return timers_.add(std::move(t));
 }
 
-// Destruction waits for the GPU so nothing in flight still uses the object. Resources are
-// created and destroyed at load time, not per frame (the render graph pools its transients).
+// Destruction waits for the GPU so nothing in flight still uses the object (on a lost device
+// nothing is: destroy works after a loss). Resources are created and destroyed at load time,
+// not per frame (the render graph pools its transients).
 void VulkanDevice::destroy(gdi::BufferHandle h) {
     Buffer b;
     if (!h || !buffers_.find(h)) return;
-    waitIdle();
+    idle();
     buffers_.remove(h, b);
     freeBuffer(b);
 }
@@ -326,7 +346,7 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
 void VulkanDevice::destroy(gdi::TextureHandle h) {
     Texture t;
     if (!h || !textures_.find(h)) return;
-    waitIdle();
+    idle();
     textures_.remove(h, t);
     destroyTexture(t);
 }
@@ -334,7 +354,7 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
     Sampler s;
     if (!h || !samplers_.find(h)) return;
-    waitIdle();
+    idle();
     samplers_.remove(h, s);
     vkDestroySampler(device_, s.sampler, nullptr);
 }
@@ -348,7 +368,7 @@ void VulkanDevice::destroy(gdi::ShaderHandle h) {
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
     Pipeline p;
     if (!h || !pipelines_.find(h)) return;
-    waitIdle();
+    idle();
     pipelines_.remove(h, p);
     vkDestroyPipeline(device_, p.pipeline, nullptr);
     vkDestroyPipelineLayout(device_, p.layout, nullptr);
@@ -358,7 +378,7 @@ void VulkanDevice::destroy(gdi::PipelineHandle h) {
 void VulkanDevice::destroy(gdi::TimerHandle h) {
     Timer t;
     if (!h || !timers_.find(h)) return;
-    waitIdle();
+    idle();
     timers_.remove(h, t);
     freeTimerSlots_.push_back(t.firstQuery);
 }

@@ -1,6 +1,7 @@
 // The vulkan-glfw window: surface, swap chain, present (see VulkanSwapchain.h), and the
 // VulkanDevice members that use them.
 #include "VulkanSwapchain.h"
+#include "VulkanFaults.h"
 
 #include <algorithm>
 
@@ -12,6 +13,11 @@
 namespace fe::vk {
 
 namespace {
+// A lost device during present: VulkanDevice::present turns it into the device's lost state.
+void checkPresent(VkResult r, const char* call) {
+    if (r == VK_ERROR_DEVICE_LOST) throw SwapchainDeviceLost(call);
+    check(r, call);
+}
 // Long enough for any software rasterizer; a hung presentation engine becomes an error.
 constexpr uint64_t kAcquireTimeoutNs = 10'000'000'000ull;
 
@@ -283,7 +289,7 @@ bool VulkanSwapchain::present(const Source& src) {
         if (!swapchain_) return window_->poll();  // minimised
 
         Frame& f = frames_[frame_];
-        check(vkWaitForFences(device_, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        checkPresent(vkWaitForFences(device_, 1, &f.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
         uint32_t index = 0;
         VkResult r = vkAcquireNextImageKHR(device_, swapchain_, kAcquireTimeoutNs, f.acquired, VK_NULL_HANDLE, &index);
         if (r == VK_ERROR_OUT_OF_DATE_KHR && attempt < 3) {  // no image, semaphore untouched: recreate
@@ -291,7 +297,7 @@ bool VulkanSwapchain::present(const Source& src) {
             continue;
         }
         if (r == VK_SUBOPTIMAL_KHR) stale_ = true;  // still presentable: show this frame, recreate for the next
-        else if (r != VK_SUCCESS) throwVk(r, "vkAcquireNextImageKHR");
+        else if (r != VK_SUCCESS) checkPresent(r, "vkAcquireNextImageKHR");
 
         check(vkResetCommandBuffer(f.commands, 0), "vkResetCommandBuffer");
         record(f.commands, images_[index], src);
@@ -305,7 +311,7 @@ bool VulkanSwapchain::present(const Source& src) {
         si.pCommandBuffers = &f.commands;
         si.signalSemaphoreCount = 1;
         si.pSignalSemaphores = &presentReady_[index];
-        check(vkQueueSubmit(queue_, 1, &si, f.done), "vkQueueSubmit");
+        checkPresent(nativeSubmission([&] { return vkQueueSubmit(queue_, 1, &si, f.done); }), "vkQueueSubmit");
 
         VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
         pi.waitSemaphoreCount = 1;
@@ -316,7 +322,7 @@ bool VulkanSwapchain::present(const Source& src) {
         r = vkQueuePresentKHR(queue_, &pi);
         // Out of date or suboptimal: the semaphore wait still happens; recreate next time.
         if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) stale_ = true;
-        else check(r, "vkQueuePresentKHR");
+        else checkPresent(r, "vkQueuePresentKHR");
         frame_ = (frame_ + 1) % kFrames;
         break;
     }
@@ -361,13 +367,19 @@ std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsyn
 }
 
 bool VulkanDevice::present(gdi::TextureHandle h) {
+    loss_.check("present");
     if (!swapchain_) return gdi::Device::present(h);
     Texture& t = texture(h);
     gdi::validate::presentTexture(t.desc, t.name);
-    return swapchain_->present({t.image, t.desc.width, t.desc.height, t.desc.format == gdi::Format::RGBA8_SRGB});
+    try {
+        return swapchain_->present({t.image, t.desc.width, t.desc.height, t.desc.format == gdi::Format::RGBA8_SRGB});
+    } catch (const SwapchainDeviceLost& e) {
+        throw loss_.lose("vulkan", std::string(e.what()) + " returned VK_ERROR_DEVICE_LOST");
+    }
 }
 
 gdi::Image VulkanDevice::readWindow() {
+    loss_.check("readWindow");
     if (!swapchain_) return gdi::Device::readWindow();
     return swapchain_->readWindow();
 }

@@ -15,6 +15,7 @@
 //  - The swap chain is recreated when the window's size differs from its extent (present sizes
 //    the window to the texture) and after OUT_OF_DATE / SUBOPTIMAL, once the queue is idle.
 #pragma once
+#include <stdexcept>
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -30,6 +31,11 @@ class GlfwWindow;
 }
 
 namespace fe::vk {
+
+// VK_ERROR_DEVICE_LOST from a present's own calls (what() names the call).
+struct SwapchainDeviceLost : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
 class VulkanSwapchain {
 public:

@@ -19,7 +19,7 @@ CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight, uint64_
 }
 
 CommandQueue::~CommandQueue() {
-    waitIdle();
+    device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     device_.destroy(uploadBuffer_);
 }
 

@@ -18,7 +18,7 @@ SwapChain::SwapChain(gdi::Device& device, const SwapChainDesc& desc) : device_(d
 
 SwapChain::~SwapChain() {
     for (Entry& e : images_) {
-        if (e.fence) device_.wait(e.fence);
+        if (e.fence) device_.waitOrLost(e.fence);  // a destructor must not throw
         device_.destroy(e.texture);
     }
 }

@@ -250,7 +250,7 @@ void RenderGraph::compile(const CompileOptions& options) {
 
 void RenderGraph::release() {
     if (!device_) return;
-    device_->waitIdle();
+    device_->waitIdleOrLost();  // also run by the destructor, which must not throw
     for (gdi::TextureHandle t : owned_) device_->destroy(t);
     owned_.clear();
     if (heap_) device_->destroy(heap_);

@@ -168,7 +168,7 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
 }
 
 GpuScene::~GpuScene() {
-    device_.waitIdle();
+    device_.waitIdleOrLost();  // a destructor must not throw
     for (auto t : textures_) device_.destroy(t);
     for (auto s : samplers_) device_.destroy(s);
     device_.destroy(white_);

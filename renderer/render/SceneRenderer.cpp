@@ -94,7 +94,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
 }
 
 SceneRenderer::~SceneRenderer() {
-    queue_->waitIdle();
+    device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     for (auto p : {lightingPipeline_, displayPipeline_}) device_.destroy(p);
     for (auto sh : {fullscreenVs_, lightingFs_, displayFs_}) device_.destroy(sh);
     device_.destroy(pointSampler_);

@@ -274,13 +274,14 @@ CaseResult runCase(Device& device, const Case& c) {
         r.message = e.what();
         return r;
     }
-    for (const CaseImage& ci : r.images) {
+    for (CaseImage& ci : r.images) {
         if (ci.expected.data.empty()) continue;
-        ImageDiff diff = compareImages(ci.image, ci.expected, ci.absTolerance);
-        if (diff.fractionOver() > ci.maxFractionOver) {
+        ci.diff = compareImages(ci.image, ci.expected, ci.absTolerance);
+        if (!ci.passed()) {
             r.passed = false;
-            r.message += ci.name + ": " + std::to_string(diff.pixelsOverTolerance) + " of " + std::to_string(diff.pixels) +
-                         " pixels off (max error " + std::to_string(diff.maxAbsError) + "); ";
+            r.message += ci.name + ": " + std::to_string(ci.diff->pixelsOverTolerance) + " of " +
+                         std::to_string(ci.diff->pixels) + " pixels off (max error " + std::to_string(ci.diff->maxAbsError) +
+                         "); ";
         }
     }
     if (device.validationErrorCount() != errorsBefore) {

@@ -3,6 +3,7 @@
 // conformance --backend all`, against the other backends.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct CaseImage {
     double absTolerance = 5.0 / 255.0;
     double maxFractionOver = 0.001;  // 8-bit rule: at most 0.1% of pixels over 5/255
     std::string toleranceReason = "8-bit target: 0.1% of pixels may differ by more than 5/255";
+    // Set by runCase: `image` against `expected` (reports carry the metrics, not just pass/fail).
+    std::optional<gdi::ImageDiff> diff;
+    bool passed() const { return !diff || diff->fractionOver() <= maxFractionOver; }
 };
 
 struct CaseResult {

@@ -1,5 +1,5 @@
 // fe: the engine's command-line tool.
-//   fe info                      every backend: available or why not, device, API, limits
+//   fe info [--json]             every backend: available or why not, device, API, limits
 //   fe render [SCENE] [...]      render a scene with a lighting technique to .png / .pfm
 //   fe conformance [...]         the cross-backend conformance suite
 #include <unistd.h>
@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "assets/AssetError.h"
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/InfoJson.h"
 #include "render/SceneRenderer.h"
 
 namespace {
@@ -30,7 +32,7 @@ using namespace fe;
 constexpr const char* kUsage =
     "usage: fe <command> [options]\n"
     "commands:\n"
-    "  info                       list every backend, available or not and why\n"
+    "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
     "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
@@ -38,7 +40,8 @@ constexpr const char* kUsage =
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
-    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n";
+    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
+    "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -79,28 +82,49 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
     return uint32_t(v);
 }
 
+// The device summaries of --backend's backends (default: every backend, the window one too).
+gdi::Json probeAll(const Args& a) {
+    std::vector<std::string> names;
+    if (a.options.count("--backend")) {
+        names = gdi::expandBackendList(a.options.at("--backend"));
+    } else {
+        names = gdi::backendNames();
+        for (const std::string& w : gdi::windowBackendNames()) names.push_back(w);
+    }
+    gdi::Json backends = gdi::Json::array();
+    for (const std::string& n : names) backends.push_back(gdi::probeJson(gdi::probeBackend(n, false)));
+    return backends;
+}
+
 int cmdInfo(const Args& a) {
-    std::vector<std::string> names = gdi::backendNames();
-    for (const std::string& w : gdi::windowBackendNames()) names.push_back(w);
-    for (const std::string& n : names) {
-        gdi::BackendProbe p = gdi::probeBackend(n, false);
-        if (!p.available) {
-            std::cout << n << ": unavailable: " << p.reason << "\n";
+    if (!a.positional.empty()) throw UsageError("info takes no positional arguments");
+    const gdi::Json backends = probeAll(a);
+    if (a.options.count("--json")) {
+        std::cout << gdi::Json{{"engine", gdi::engineJson()}, {"backends", backends}}.dump(2) << "\n";
+        return 0;
+    }
+    // The text form prints the same document, so both list every field.
+    auto fields = [](const gdi::Json& object) {
+        std::string s;
+        for (const auto& [name, value] : object.items()) s += (s.empty() ? "" : ", ") + name + " " + value.dump();
+        return s;
+    };
+    for (const gdi::Json& b : backends) {
+        const std::string name = b["name"];
+        if (!b["available"]) {
+            std::cout << name << ": unavailable: " << b["reason"].get<std::string>() << "\n";
             continue;
         }
-        const gdi::DeviceInfo& i = p.device->info();
-        std::cout << n << ": available\n"
-                  << "  device: " << i.deviceName << (i.softwareRasterizer ? " (software rasterizer)" : "") << "\n"
-                  << "  api: " << i.apiVersion << "\n"
-                  << "  limits: maxTexture2D " << i.limits.maxTextureSize2D << ", colour attachments "
-                  << i.limits.maxColorAttachments << ", compute invocations " << i.limits.maxComputeWorkGroupInvocations
-                  << ", UBO range " << i.limits.maxUniformBufferRange << ", UBO align "
-                  << i.limits.uniformBufferOffsetAlignment << "\n"
-                  << "  features: timestamps " << i.features.timestamps << ", compute " << i.features.computeShaders
-                  << ", debug labels " << i.features.debugLabels << ", memory aliasing " << i.features.memoryAliasing
-                  << ", window " << i.features.window
-                  << "\n";
-        if (!i.presentMode.empty()) std::cout << "  present mode: " << i.presentMode << "\n";
+        const gdi::Json& d = b["device"];
+        std::cout << name << ": available\n"
+                  << "  device: " << d["deviceName"].get<std::string>()
+                  << (d["softwareRasterizer"].get<bool>() ? " (software rasterizer)" : "") << "\n"
+                  << "  api: " << d["apiVersion"].get<std::string>() << "\n"
+                  << "  driver: " << d["driverInfo"].get<std::string>() << "\n"
+                  << "  limits: " << fields(d["limits"]) << "\n"
+                  << "  features: " << fields(d["features"]) << "\n";
+        if (!d["presentMode"].get<std::string>().empty())
+            std::cout << "  present mode: " << d["presentMode"].get<std::string>() << "\n";
     }
     return 0;
 }
@@ -199,17 +223,50 @@ int cmdRender(const Args& a) {
     return 0;
 }
 
+// What a conformance run found: the report's sections and the pass/fail counts.
+struct ConformanceRun {
+    int passed = 0, failed = 0;
+    gdi::Json backends = gdi::Json::array();     // device summary per backend
+    gdi::Json cases = gdi::Json::array();        // per backend and case, with per-image metrics
+    gdi::Json comparisons = gdi::Json::array();  // cross-backend image comparisons
+    std::map<std::string, std::vector<conformance::CaseResult>> results;
+};
+
+gdi::Json toleranceJson(const conformance::CaseImage& ci) {
+    return {{"absolute", ci.absTolerance}, {"maxFractionOver", ci.maxFractionOver}, {"reason", ci.toleranceReason}};
+}
+
+gdi::Json metricsJson(const gdi::ImageDiff& d) {
+    return {{"pixels", d.pixels},
+            {"pixelsOverTolerance", d.pixelsOverTolerance},
+            {"fractionOver", d.fractionOver()},
+            {"maxAbsError", d.maxAbsError}};
+}
+
+gdi::Json caseJson(const std::string& backend, const conformance::CaseResult& r) {
+    gdi::Json images = gdi::Json::array();
+    for (const auto& ci : r.images)
+        images.push_back({{"name", ci.name},
+                          {"width", ci.image.width},
+                          {"height", ci.image.height},
+                          {"format", std::string(gdi::formatInfo(ci.image.format).name)},
+                          {"passed", ci.passed()},
+                          // null: the case gives no analytic expectation for this image
+                          {"metrics", ci.diff ? metricsJson(*ci.diff) : gdi::Json(nullptr)},
+                          {"tolerance", toleranceJson(ci)}});
+    return {{"backend", backend}, {"case", r.caseName}, {"passed", r.passed}, {"message", r.message}, {"images", images}};
+}
+
 // Runs the suite on one backend in this process.
-int conformanceOne(const std::string& backend, const Args& a, std::vector<std::string>& jsonRows, int& passed, int& failed,
-                   std::map<std::string, std::vector<conformance::CaseResult>>& results) {
+void conformanceOne(const std::string& backend, const Args& a, ConformanceRun& run) {
     const std::string outDir = a.options.count("--out-dir") ? a.options.at("--out-dir") : "";
     const std::string filter = a.options.count("--case") ? a.options.at("--case") : "";
     gdi::BackendProbe p = gdi::probeBackend(backend, !a.options.count("--no-validation"));
+    run.backends.push_back(gdi::probeJson(p));
     if (!p.available) {
         std::cout << "FAIL " << backend << ": backend unavailable: " << p.reason << "\n";
-        jsonRows.push_back("{\"backend\":\"" + backend + "\",\"case\":null,\"passed\":false}");
-        ++failed;
-        return 1;
+        ++run.failed;
+        return;
     }
     if (!outDir.empty()) std::filesystem::create_directories(outDir + "/" + backend);
     for (const auto& c : conformance::cases()) {
@@ -217,39 +274,43 @@ int conformanceOne(const std::string& backend, const Args& a, std::vector<std::s
         conformance::CaseResult r = conformance::runCase(*p.device, c);
         std::cout << (r.passed ? "PASS " : "FAIL ") << backend << " " << c.name << (r.message.empty() ? "" : ": " + r.message)
                   << "\n";
-        (r.passed ? passed : failed)++;
-        std::string msg = r.message;
-        std::replace(msg.begin(), msg.end(), '"', '\'');
-        jsonRows.push_back("{\"backend\":\"" + backend + "\",\"case\":\"" + c.name + "\",\"passed\":" +
-                           (r.passed ? "true" : "false") + ",\"message\":\"" + msg + "\"}");
+        (r.passed ? run.passed : run.failed)++;
+        run.cases.push_back(caseJson(backend, r));
         if (!outDir.empty())
             for (const auto& ci : r.images) gdi::writePng(ci.image, outDir + "/" + backend + "/" + c.name + "_" + ci.name + ".png");
-        results[backend].push_back(std::move(r));
+        run.results[backend].push_back(std::move(r));
     }
-    return 0;
 }
 
 // Every backend's images against the first backend's, with each image's own tolerance.
-void crossBackend(const std::vector<std::string>& backends, std::map<std::string, std::vector<conformance::CaseResult>>& results,
-                  const std::string& outDir, std::vector<std::string>& jsonRows, int& passed, int& failed) {
-    if (backends.size() < 2 || !results.count(backends[0])) return;
+void crossBackend(const std::vector<std::string>& backends, const std::string& outDir, ConformanceRun& run) {
+    if (backends.size() < 2 || !run.results.count(backends[0])) return;
     for (size_t b = 1; b < backends.size(); ++b) {
-        if (!results.count(backends[b])) continue;
-        for (const auto& ref : results[backends[0]])
-            for (const auto& other : results[backends[b]]) {
+        if (!run.results.count(backends[b])) continue;
+        for (const auto& ref : run.results[backends[0]])
+            for (const auto& other : run.results[backends[b]]) {
                 if (other.caseName != ref.caseName) continue;
-                for (size_t i = 0; i < ref.images.size() && i < other.images.size(); ++i) {
-                    const auto& ri = ref.images[i];
+                // Images pair by name: a backend may produce images another cannot (a sample count
+                // or feature only one supports); those are checked against their expectations only.
+                for (const auto& ri : ref.images) {
+                    const auto oi = std::find_if(other.images.begin(), other.images.end(),
+                                                 [&](const conformance::CaseImage& o) { return o.name == ri.name; });
+                    if (oi == other.images.end()) continue;
                     gdi::Image diff;
-                    gdi::ImageDiff d = gdi::compareImages(ri.image, other.images[i].image, ri.absTolerance, 0.0, &diff);
+                    gdi::ImageDiff d = gdi::compareImages(ri.image, oi->image, ri.absTolerance, 0.0, &diff);
                     const bool ok = d.fractionOver() <= ri.maxFractionOver;
-                    (ok ? passed : failed)++;
+                    (ok ? run.passed : run.failed)++;
                     const std::string what = backends[0] + " vs " + backends[b] + " " + ref.caseName + "/" + ri.name;
                     std::cout << (ok ? "PASS " : "FAIL ") << what << ": " << d.pixelsOverTolerance << " pixels over, max error "
                               << d.maxAbsError << "\n";
-                    jsonRows.push_back("{\"compare\":\"" + what + "\",\"pixelsOver\":" + std::to_string(d.pixelsOverTolerance) +
-                                       ",\"maxAbsError\":" + std::to_string(d.maxAbsError) + ",\"tolerance\":\"" + ri.toleranceReason +
-                                       "\",\"passed\":" + (ok ? "true" : "false") + "}");
+                    run.comparisons.push_back({{"name", what},
+                                               {"reference", backends[0]},
+                                               {"backend", backends[b]},
+                                               {"case", ref.caseName},
+                                               {"image", ri.name},
+                                               {"passed", ok},
+                                               {"metrics", metricsJson(d)},
+                                               {"tolerance", toleranceJson(ri)}});
                     if (!outDir.empty())
                         gdi::writePng(diff, outDir + "/diff_" + backends[0] + "_" + backends[b] + "_" + ref.caseName + "_" + ri.name + ".png");
                 }
@@ -257,23 +318,30 @@ void crossBackend(const std::vector<std::string>& backends, std::map<std::string
     }
 }
 
-int cmdConformance(const Args& a) {
+int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     if (!a.positional.empty()) throw UsageError("conformance takes no positional arguments");
     std::string which = a.options.count("--backend") ? a.options.at("--backend") : "all";
     std::vector<std::string> backends = gdi::expandBackendList(which);
-    std::vector<std::string> rows;
-    int passed = 0, failed = 0;
-    std::map<std::string, std::vector<conformance::CaseResult>> results;
-    for (const std::string& b : backends) conformanceOne(b, a, rows, passed, failed, results);
-    crossBackend(backends, results, a.options.count("--out-dir") ? a.options.at("--out-dir") : "", rows, passed, failed);
+    const std::string date = gdi::utcTimestamp();  // when the run started
+    ConformanceRun run;
+    for (const std::string& b : backends) conformanceOne(b, a, run);
+    crossBackend(backends, a.options.count("--out-dir") ? a.options.at("--out-dir") : "", run);
+    std::cout << run.passed << " passed, " << run.failed << " failed\n";
     if (a.options.count("--report")) {
-        std::ofstream f(a.options.at("--report"));
-        f << "[\n";
-        for (size_t i = 0; i < rows.size(); ++i) f << "  " << rows[i] << (i + 1 < rows.size() ? ",\n" : "\n");
-        f << "]\n";
+        const std::string path = a.options.at("--report");
+        const gdi::Json report = {
+            {"engine", gdi::engineJson()},
+            {"date", date},
+            {"arguments", arguments},
+            {"backends", run.backends},
+            {"cases", run.cases},
+            {"comparisons", run.comparisons},
+            {"summary", {{"passed", run.passed}, {"failed", run.failed}}}};
+        std::ofstream f(path);
+        f << report.dump(2) << "\n";
+        if (!f) throw gdi::Error("cannot write the report " + path);
     }
-    std::cout << passed << " passed, " << failed << " failed\n";
-    return failed ? 1 : 0;
+    return run.failed ? 1 : 0;
 }
 
 }  // namespace
@@ -285,14 +353,15 @@ int main(int argc, char** argv) {
     }
     const std::string command = argv[1];
     try {
-        if (command == "info") return cmdInfo(parse(argc, argv, 2, {"--backend"}, {}));
+        if (command == "info") return cmdInfo(parse(argc, argv, 2, {"--backend"}, {"--json"}));
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync"},
                                    {"--no-aliasing", "--window"}));
         if (command == "conformance")
-            return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}));
+            return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
+                                  std::vector<std::string>(argv + 1, argv + argc));
         if (command == "--help" || command == "help") {
             std::cout << kUsage;
             return 0;
@@ -304,6 +373,9 @@ int main(int argc, char** argv) {
     } catch (const assets::AssetError& e) {
         std::cerr << "fe: " << e.what() << "\n";
         return 3;
+    } catch (const gdi::DeviceLostError& e) {
+        std::cerr << "fe: " << e.what() << "\nfe: the GPU device was lost (exit code 4)\n";
+        return 4;
     } catch (const std::exception& e) {
         std::cerr << "fe: " << e.what() << "\n";
         return 1;

@@ -63,6 +63,18 @@
 //  - Resource bindings are flat slots: `layout(binding = N)` in GLSL, one namespace per pipeline.
 //  - Errors (invalid descriptions, unsupported formats, missing bindings, backend failures)
 //    throw fe::gdi::Error with a message saying what was wrong; nothing is silently ignored.
+//  - Native API failures are errors, never aborts. Out of memory (VK_ERROR_OUT_OF_DEVICE_MEMORY
+//    or _HOST_MEMORY, GL_OUT_OF_MEMORY) is an Error naming the native call and the object, e.g.
+//    "gl-egl: glTextureStorage2D failed for texture 'albedo' (1024x1024 RGBA8): GL_OUT_OF_MEMORY";
+//    nothing of the failed object is left behind and the device stays usable.
+//  - A lost device (VK_ERROR_DEVICE_LOST; a GL context reset, which a robust context reports
+//    through glGetGraphicsResetStatus, polled at submit and wait) throws DeviceLostError, and so
+//    does every later call that creates, transfers, submits or waits on that device. Recording
+//    is not checked, to keep per-draw calls cheap: recording on a lost device is harmless and
+//    its submit throws. destroy(), info(), desc() and the other queries keep working, so objects
+//    made before the loss are released normally; destructors wait with waitIdleOrLost().
+//  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
+//    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
 //  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
 #pragma once
 
@@ -86,6 +98,10 @@ namespace fe::gdi {
 // ---------------------------------------------------------------------------------------------
 struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+// The device is lost: recreate it (see Errors at the top).
+struct DeviceLostError : Error {
+    using Error::Error;
 };
 
 template <class Tag>
@@ -598,6 +614,15 @@ struct DeviceInfo {
     DeviceFeatures features;
 };
 
+// What a device holds now, for leak checks (tests, tools): gdi objects by kind, and the native
+// objects behind buffers and textures (Vulkan: VkBuffers, VkImages and memory sub-allocations,
+// staging included; GL: buffer and texture objects).
+struct LiveObjects {
+    uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0, heaps = 0;
+    uint32_t nativeObjects = 0;
+    friend bool operator==(const LiveObjects&, const LiveObjects&) = default;
+};
+
 using FenceValue = uint64_t;
 
 class Device {
@@ -643,12 +668,27 @@ public:
     virtual FenceValue submit(CommandList& commands) = 0;
     virtual void wait(FenceValue fence) = 0;
     virtual void waitIdle() = 0;
+    // For destructors, which must not throw: wait / waitIdle, except that a lost device has
+    // nothing left to wait for.
+    void waitOrLost(FenceValue fence) {
+        try {
+            wait(fence);
+        } catch (const DeviceLostError&) {
+        }
+    }
+    void waitIdleOrLost() {
+        try {
+            waitIdle();
+        } catch (const DeviceLostError&) {
+        }
+    }
 
     // GPU time between beginTimer and endTimer of the last submitted use, once it has completed.
     virtual std::optional<double> timerNanoseconds(TimerHandle timer) = 0;
 
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;
+    virtual LiveObjects liveObjects() const = 0;
 
     // Window presentation, where DeviceFeatures::window (vulkan-glfw, gl-glfw): after the work
     // submitted so far, shows `texture` (RGBA8 or RGBA8_SRGB, CopySrc usage) in the window,

@@ -68,6 +68,7 @@ public:
         free_.push_back((h.id & 0xfffffu) - 1);
         return true;
     }
+    uint32_t size() const { return count_ - uint32_t(free_.size()); }  // live objects
     template <class F>
     void forEach(F&& f) {
         for (uint32_t i = 0; i < count_; ++i)

@@ -1,0 +1,57 @@
+// Native API failures, for the backends (layer 3 helpers; nothing above layer 4 includes this):
+// test-only fault injection, and the lost state of a device.
+//
+// Fault injection makes the N-th native allocation or submission fail the way the driver
+// reports a real failure, so every backend's error paths run on any machine:
+//   FE_FAULT_ALLOC=N   the N-th native allocation reports out of memory: Vulkan vkCreateBuffer,
+//                      vkCreateImage, vkAllocateMemory (VK_ERROR_OUT_OF_DEVICE_MEMORY); GL
+//                      glNamedBufferStorage, glTextureStorage2D (GL_OUT_OF_MEMORY).
+//   FE_FAULT_SUBMIT=N  the N-th native submission reports a lost device: Vulkan vkQueueSubmit
+//                      (Device::submit and the blocking transfers' own submissions:
+//                      VK_ERROR_DEVICE_LOST); GL Device::submit (a context reset, as
+//                      glGetGraphicsResetStatus reports one).
+// Only the N-th call fails. Counting is per process from its first native call; fault::arm
+// restarts it from the moment of the call (gtests).
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "fe/gdi/Device.h"
+
+namespace fe::gdi::fault {
+
+enum class Site : uint8_t { Allocation, Submission };
+
+// The n-th native call of `site` from now on fails; n = 0: none does.
+void arm(Site site, uint64_t n);
+// A native call of `site` is about to be made: true when it is the one to fail (the caller then
+// skips the call and takes the driver's failure result instead).
+bool hit(Site site);
+// Failures injected at `site` so far.
+uint64_t fired(Site site);
+
+}  // namespace fe::gdi::fault
+
+namespace fe::gdi {
+
+// Whether a device is lost. Device entry points that create, transfer, submit or wait call
+// check() first; the per-draw recording path does not (see Device.h, Errors).
+// How errors name an object: "texture 'albedo' (64x64 RGBA8)", "buffer (256 bytes)" when unnamed.
+std::string describeObject(const char* kind, const std::string& name, const std::string& detail);
+
+class DeviceLoss {
+public:
+    bool lost() const { return !cause_.empty(); }
+    void check(const char* call) const {
+        if (!cause_.empty()) [[unlikely]]
+            throwLost(call);
+    }
+    // Marks the device lost (the first cause is kept) and returns the error to throw now.
+    DeviceLostError lose(const std::string& backend, const std::string& cause);
+
+private:
+    [[noreturn, gnu::cold]] void throwLost(const char* call) const;
+    std::string backend_, cause_;
+};
+
+}  // namespace fe::gdi

@@ -1,0 +1,31 @@
+// JSON forms of what devices report (nlohmann::json), shared by `fe info --json`, the
+// conformance report and benchmarks, so every report describes a device the same way.
+// Limits and features are written field by field from DeviceInfoFields.h.
+#pragma once
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/Device.h"
+
+namespace fe::gdi {
+
+// Keys stay in the order they are written, so documents read like the structs they describe.
+using Json = nlohmann::ordered_json;
+
+// nlohmann's hooks, found by argument-dependent lookup: `gdi::Json j = device.info();`
+// DeviceInfo: backend, deviceName, apiVersion, driverInfo, softwareRasterizer, limits, features.
+void to_json(Json& j, const DeviceLimits& limits);
+void to_json(Json& j, const DeviceFeatures& features);
+void to_json(Json& j, const DeviceInfo& info);
+
+// One backend: {"name", "available", and "device" (its DeviceInfo) or "reason" (why not)}.
+Json probeJson(const BackendProbe& probe);
+
+// The engine build: {"name", "version", "commit" (git describe of the source tree when built)}.
+Json engineJson();
+
+// The current UTC time in ISO 8601, e.g. "2024-05-01T12:34:56Z".
+std::string utcTimestamp();
+
+}  // namespace fe::gdi

@@ -1,0 +1,53 @@
+#include "fe/gdi/InfoJson.h"
+
+#include <chrono>
+#include <ctime>
+#include <nlohmann/json.hpp>
+
+#include "fe/gdi/DeviceInfoFields.h"
+#include "fe_version.h"  // generated at build time (cmake/FeVersion.cmake)
+
+namespace fe::gdi {
+
+void to_json(Json& j, const DeviceLimits& limits) {
+    j = Json::object();
+    forEachField(limits, [&](const char* name, const auto& value) { j[name] = value; });
+}
+
+void to_json(Json& j, const DeviceFeatures& features) {
+    j = Json::object();
+    forEachField(features, [&](const char* name, const auto& value) { j[name] = value; });
+}
+
+void to_json(Json& j, const DeviceInfo& info) {
+    j = {{"backend", info.backend},
+         {"deviceName", info.deviceName},
+         {"apiVersion", info.apiVersion},
+         {"driverInfo", info.driverInfo},
+         {"softwareRasterizer", info.softwareRasterizer},
+         {"presentMode", info.presentMode},
+         {"limits", info.limits},
+         {"features", info.features}};
+}
+
+Json probeJson(const BackendProbe& probe) {
+    Json j = {{"name", probe.name}, {"available", probe.available && probe.device}};
+    if (probe.available && probe.device) j["device"] = probe.device->info();
+    else j["reason"] = probe.reason;
+    return j;
+}
+
+Json engineJson() {
+    return {{"name", "Fools Engine"}, {"version", FE_VERSION}, {"commit", FE_GIT_DESCRIBE}};
+}
+
+std::string utcTimestamp() {
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return text;
+}
+
+}  // namespace fe::gdi

@@ -1,0 +1,311 @@
+// Native API failures on every backend, made to happen by fault injection (fe/gdi/Faults.h):
+// out of memory is an error naming the call and the object, leaves nothing behind and keeps the
+// device usable; a lost device throws DeviceLostError from then on, while objects made before
+// the loss are still destroyed normally. Leaks are counted with Device::liveObjects.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <ostream>
+#include <vector>
+
+#include "BackendTest.h"
+#include "fe/gdi/Faults.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+using namespace fe;
+using namespace fe::gdi;
+
+namespace fe::gdi {
+// Readable leak-check failures.
+void PrintTo(const LiveObjects& o, std::ostream* os) {
+    *os << "{buffers " << o.buffers << ", textures " << o.textures << ", samplers " << o.samplers << ", shaders "
+        << o.shaders << ", pipelines " << o.pipelines << ", timers " << o.timers << ", heaps " << o.heaps
+        << ", native objects " << o.nativeObjects << "}";
+}
+}  // namespace fe::gdi
+
+namespace {
+
+class NativeFaults : public fe::testing::BackendTest {
+protected:
+    void TearDown() override {
+        fault::arm(fault::Site::Allocation, 0);
+        fault::arm(fault::Site::Submission, 0);
+        BackendTest::TearDown();
+    }
+
+    // Runs `op` once per native allocation it makes, failing the first, then the second, ...
+    // until it runs through. Every failure must be an Error whose message passes `check` and
+    // must leave the device's objects as they were. Returns how many allocations failed.
+    int failEachAllocation(const std::function<void()>& op, const std::function<void(const std::string&)>& check) {
+        int failed = 0;
+        for (uint64_t n = 1; n <= 32; ++n) {
+            fault::arm(fault::Site::Allocation, n);
+            const uint64_t firedBefore = fault::fired(fault::Site::Allocation);
+            const LiveObjects before = device->liveObjects();
+            try {
+                op();
+            } catch (const Error& e) {
+                EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore + 1) << "not the injected failure: " << e.what();
+                check(e.what());
+                EXPECT_EQ(device->liveObjects(), before) << "allocation " << n << " failed and left objects behind";
+                ++failed;
+                continue;
+            }
+            fault::arm(fault::Site::Allocation, 0);
+            EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore) << "a failure was swallowed";
+            return failed;
+        }
+        ADD_FAILURE() << "the operation still made native allocations after 32";
+        return failed;
+    }
+
+    // A triangle drawn and read back: the device works.
+    void expectDraws() {
+        Device& d = *device;
+        auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+        auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+        auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+        auto t = d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 1, 1}}}});
+        cmd->setPipeline(p);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        const Image img = d.readTexture(t);
+        EXPECT_EQ(img.texel(0, 15), (std::array<float, 4>{0, 0, 1, 1})) << "corner: the clear colour";
+        const auto centre = img.texel(8, 8);
+        EXPECT_GT(centre[0] + centre[1], 0.5f) << "centre: the triangle";
+        cmd.reset();
+        for (auto h : {vs, fs}) d.destroy(h);
+        d.destroy(p);
+        d.destroy(t);
+    }
+
+    // f must throw DeviceLostError naming `call`.
+    template <class F>
+    void expectLost(const char* call, F&& f) {
+        try {
+            f();
+            ADD_FAILURE() << call << " did not throw on a lost device";
+        } catch (const DeviceLostError& e) {
+            EXPECT_NE(std::string(e.what()).find(call), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("device lost"), std::string::npos) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << call << " threw another error on a lost device: " << e.what();
+        }
+    }
+};
+
+// The message names the native call, what failed, and the object.
+void expectOutOfMemory(const std::string& message, const std::string& object) {
+    EXPECT_TRUE(message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY") != std::string::npos ||
+                message.find("GL_OUT_OF_MEMORY") != std::string::npos)
+        << message;
+    EXPECT_TRUE(message.find("vk") != std::string::npos || message.find("gl") != std::string::npos) << message;
+    EXPECT_NE(message.find(object), std::string::npos) << message;
+}
+
+}  // namespace
+
+TEST(FaultInjection, CounterFailsOnlyTheNthCall) {
+    const uint64_t fired = fault::fired(fault::Site::Allocation);
+    fault::arm(fault::Site::Allocation, 3);
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+    EXPECT_FALSE(fault::hit(fault::Site::Submission));  // sites count separately
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+    EXPECT_TRUE(fault::hit(fault::Site::Allocation));
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+    EXPECT_EQ(fault::fired(fault::Site::Allocation), fired + 1);
+    fault::arm(fault::Site::Allocation, 0);
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+}
+
+TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable) {
+    const LiveObjects empty = device->liveObjects();
+    // Objects made before the failures, released normally at the end.
+    BufferHandle before = device->createBuffer({.size = 256, .debugName = "made before"});
+    TextureHandle beforeTexture = device->createTexture({.width = 8, .height = 8});
+
+    // Larger than half a Vulkan memory block: memory of its own (vkAllocateMemory) besides
+    // vkCreateBuffer, and the initial data goes through a staging buffer that allocates too.
+    std::vector<uint8_t> data(20u << 20, 7);
+    BufferHandle big;
+    const int failed = failEachAllocation(
+        [&] { big = device->createBuffer({.size = data.size(), .debugName = "big vertices"}, bytesOf(data)); },
+        [&](const std::string& m) { expectOutOfMemory(m, "buffer"); });
+    EXPECT_GE(failed, 1);
+    if (GetParam() == "vulkan") {
+        EXPECT_EQ(failed, 4) << "vkCreateBuffer, vkAllocateMemory, and both for staging";
+    }
+    EXPECT_EQ(device->readBuffer(big, data.size() - 4, 4), std::vector<uint8_t>(4, 7));
+
+    // The failing object itself is named.
+    fault::arm(fault::Site::Allocation, 1);
+    const std::string message = fe::testing::errorOf([&] { device->createBuffer({.size = 64, .debugName = "named one"}); });
+    expectOutOfMemory(message, "buffer 'named one' (64 bytes)");
+
+    expectDraws();
+    for (BufferHandle b : {before, big}) device->destroy(b);
+    device->destroy(beforeTexture);
+    EXPECT_EQ(device->liveObjects(), empty);
+}
+
+TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable) {
+    const LiveObjects empty = device->liveObjects();
+    BufferHandle before = device->createBuffer({.size = 256});
+    TextureHandle beforeTexture = device->createTexture({.width = 8, .height = 8, .debugName = "made before"});
+
+    TextureHandle small, big;
+    int failed = failEachAllocation([&] { small = device->createTexture({.width = 64, .height = 64, .debugName = "albedo"}); },
+                                    [&](const std::string& m) { expectOutOfMemory(m, "texture 'albedo' (64x64 RGBA8)"); });
+    EXPECT_GE(failed, 1);
+    // 32 MiB: memory of its own on Vulkan (vkCreateImage, then vkAllocateMemory).
+    failed = failEachAllocation(
+        [&] { big = device->createTexture({.format = Format::RGBA8, .width = 4096, .height = 2048, .debugName = "huge"}); },
+        [&](const std::string& m) { expectOutOfMemory(m, "texture 'huge'"); });
+    EXPECT_GE(failed, 1);
+    if (GetParam() == "vulkan") {
+        EXPECT_EQ(failed, 2) << "vkCreateImage, vkAllocateMemory";
+    }
+
+    expectDraws();
+    for (TextureHandle t : {beforeTexture, small, big}) device->destroy(t);
+    device->destroy(before);
+    EXPECT_EQ(device->liveObjects(), empty);
+}
+
+// Transfers allocate staging memory on Vulkan; GL copies without a native allocation.
+TEST_P(NativeFaults, OutOfMemoryInTransfersLeavesNothingBehind) {
+    const LiveObjects empty = device->liveObjects();
+    TextureHandle t = device->createTexture({.width = 16, .height = 16, .debugName = "uploaded"});
+    std::vector<uint8_t> texels(16 * 16 * 4, 200);
+    auto staging = [](const std::string& m) { expectOutOfMemory(m, "staging buffer for texture 'uploaded' (1024 bytes)"); };
+    const int failedWrites = failEachAllocation([&] { device->writeTexture(t, {}, bytesOf(texels)); }, staging);
+    Image img;
+    const int failedReads = failEachAllocation([&] { img = device->readTexture(t); }, staging);
+    EXPECT_EQ(img.data, texels);
+    EXPECT_EQ(failedWrites + failedReads, GetParam() == "vulkan" ? 2 : 0);
+    device->destroy(t);
+    EXPECT_EQ(device->liveObjects(), empty);
+}
+
+TEST_P(NativeFaults, LostDeviceThrowsFromEveryLaterCallAndStillReleasesObjects) {
+    Device& d = *device;
+    const LiveObjects empty = d.liveObjects();
+    // Objects made before the loss.
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    auto pipeline = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto target = d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    auto buffer = d.createBuffer({.size = 256, .debugName = "made before"});
+    auto sampler = d.createSampler({});
+    auto timer = d.createTimer();
+    auto cmd = d.createCommandList();
+    auto record = [&] {
+        cmd->beginRenderPass({.colors = {{.texture = target, .clear = {0, 0, 1, 1}}}});
+        cmd->setPipeline(pipeline);
+        cmd->draw(3);
+        cmd->endRenderPass();
+    };
+
+    fault::arm(fault::Site::Submission, 2);  // the first submission runs, the second loses the device
+    record();
+    const FenceValue first = d.submit(*cmd);
+    d.wait(first);
+    record();
+    expectLost("device lost", [&] { d.submit(*cmd); });
+
+    // Every later create, transfer, submit and wait throws DeviceLostError.
+    uint8_t bytes[64] = {};
+    expectLost("createBuffer", [&] { d.createBuffer({.size = 64}); });
+    expectLost("createTexture", [&] { d.createTexture({.width = 4, .height = 4}); });
+    expectLost("createSampler", [&] { d.createSampler({}); });
+    expectLost("createShader", [&] { d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}); });
+    expectLost("createGraphicsPipeline", [&] { d.createGraphicsPipeline({.vertexShader = vs, .colorFormats = {Format::RGBA8}}); });
+    expectLost("createTimer", [&] { d.createTimer(); });
+    expectLost("createCommandList", [&] { d.createCommandList(); });
+    expectLost("writeBuffer", [&] { d.writeBuffer(buffer, 0, bytesOf(bytes)); });
+    expectLost("readBuffer", [&] { d.readBuffer(buffer, 0, 64); });
+    expectLost("readTexture", [&] { d.readTexture(target); });
+    expectLost("timerNanoseconds", [&] { d.timerNanoseconds(timer); });
+    expectLost("wait", [&] { d.wait(first); });
+    expectLost("waitIdle", [&] { d.waitIdle(); });
+    // Recording is not checked (the per-draw path stays cheap) and is harmless; its submit throws.
+    record();
+    expectLost("submit", [&] { d.submit(*cmd); });
+    EXPECT_NO_THROW(d.waitIdleOrLost());
+
+    // Queries still answer, and objects made before the loss are released normally.
+    EXPECT_EQ(d.desc(buffer).size, 256u);
+    EXPECT_FALSE(d.info().deviceName.empty());
+    cmd.reset();
+    d.destroy(pipeline);
+    for (auto s : {vs, fs}) d.destroy(s);
+    d.destroy(target);
+    d.destroy(buffer);
+    d.destroy(sampler);
+    d.destroy(timer);
+    EXPECT_EQ(d.liveObjects(), empty);
+}
+
+// Vulkan's blocking transfers and texture creation submit work of their own: losing the device
+// there throws DeviceLostError and leaves no staging buffer or half-made texture behind. GL
+// makes no submission in them, so the same calls succeed there.
+TEST_P(NativeFaults, LossInsideBlockingTransfersLeavesNothingBehind) {
+    const bool submits = GetParam() == "vulkan";
+    {
+        TextureHandle t = device->createTexture({.width = 8, .height = 8});
+        const LiveObjects before = device->liveObjects();
+        fault::arm(fault::Site::Submission, 1);
+        if (submits) {
+            expectLost("device lost", [&] { device->readTexture(t); });
+            EXPECT_EQ(device->liveObjects(), before) << "the staging buffer was left behind";
+        } else {
+            EXPECT_EQ(device->readTexture(t).data.size(), 8u * 8 * 4);
+        }
+        device->destroy(t);
+    }
+    // Texture creation, on a new device (this one may be lost now; GL runs one device at a time).
+    EXPECT_EQ(device->validationErrorCount(), 0u);
+    device.reset();
+    BackendProbe other = probeBackend(GetParam(), true);
+    ASSERT_TRUE(other.available) << other.reason;
+    device = std::move(other.device);  // TearDown checks it
+    Device& d = *device;
+    const LiveObjects empty = d.liveObjects();
+    fault::arm(fault::Site::Submission, 1);
+    if (submits) {
+        expectLost("device lost", [&] { d.createTexture({.width = 8, .height = 8, .debugName = "half made"}); });
+    } else {
+        d.destroy(d.createTexture({.width = 8, .height = 8}));
+    }
+    EXPECT_EQ(d.liveObjects(), empty) << "the texture was left behind";
+}
+
+FE_INSTANTIATE_FOR_EVERY_BACKEND(NativeFaults);
+
+// What injection imitates, the drivers really do: a 1 TiB buffer is a real out-of-memory error,
+// with the same message as the injected one, and the device stays usable. Validation is off
+// here only: the layer rightly calls a request beyond the heap invalid usage.
+TEST(RealOutOfMemory, SameErrorAsInjectedAndTheDeviceStaysUsable) {
+    for (const std::string& backend : backendNames()) {
+        BackendProbe p = probeBackend(backend, false);
+        if (!p.available) continue;
+        Device& d = *p.device;
+        const LiveObjects before = d.liveObjects();
+        const BufferDesc huge{.size = uint64_t(1) << 40, .debugName = "too big"};
+        const std::string real = fe::testing::errorOf([&] { d.createBuffer(huge); });
+        EXPECT_EQ(d.liveObjects(), before) << backend;
+        fault::arm(fault::Site::Allocation, 1);
+        const std::string injected = fe::testing::errorOf([&] { d.createBuffer(huge); });
+        fault::arm(fault::Site::Allocation, 0);
+        EXPECT_EQ(real, injected) << backend;
+        expectOutOfMemory(real, "buffer 'too big' (1099511627776 bytes)");
+        BufferHandle b = d.createBuffer({.size = 64}, bytesOf(std::vector<uint8_t>(64, 9)));
+        EXPECT_EQ(d.readBuffer(b, 0, 64), std::vector<uint8_t>(64, 9)) << backend;
+        d.destroy(b);
+        EXPECT_EQ(d.liveObjects(), before) << backend;
+    }
+}
