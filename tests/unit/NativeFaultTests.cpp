@@ -170,7 +170,28 @@ TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable
         EXPECT_EQ(failed, 2) << "vkCreateImage, vkAllocateMemory";
     }
 
+    // Every texture kind, each of its allocations failed in turn.
+    const TextureUsage rt = TextureUsage::RenderTarget | TextureUsage::Sampled;
+    std::vector<TextureDesc> kinds = {
+        {.dimension = TextureDimension::Texture2DArray, .width = 32, .height = 32, .depthOrLayers = 4, .debugName = "layers"},
+        {.dimension = TextureDimension::TextureCube, .format = Format::RGBA16F, .width = 32, .height = 32, .depthOrLayers = 6,
+         .mipLevels = 6, .usage = rt, .debugName = "environment"},
+        {.dimension = TextureDimension::Texture3D, .width = 16, .height = 16, .depthOrLayers = 16, .debugName = "volume"},
+        {.format = Format::D32F, .width = 64, .height = 64, .usage = rt, .debugName = "shadow map"}};
+    if (device->info().limits.colorSampleCounts & 4)
+        kinds.push_back({.width = 64, .height = 64, .sampleCount = 4, .usage = TextureUsage::RenderTarget, .debugName = "msaa"});
+    std::vector<TextureHandle> made;
+    for (const TextureDesc& k : kinds) {
+        TextureHandle t;
+        EXPECT_GE(failEachAllocation([&] { t = device->createTexture(k); },
+                                     [&](const std::string& m) { expectOutOfMemory(m, std::string("texture '") + k.debugName + "'"); }),
+                  1)
+            << k.debugName;
+        made.push_back(t);
+    }
+
     expectDraws();
+    for (TextureHandle t : made) device->destroy(t);
     for (TextureHandle t : {beforeTexture, small, big}) device->destroy(t);
     device->destroy(before);
     EXPECT_EQ(device->liveObjects(), empty);

@@ -12,6 +12,7 @@
 #include "BackendTest.h"
 #include "Conformance.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Faults.h"
 #include "assets/BuiltinScenes.h"
 #include "render/SceneRenderer.h"
 
@@ -133,6 +134,25 @@ TEST_P(WindowBackend, PresentShowsTheTextureBytesUpright) {
         for (auto [w, h] : {std::pair{64u, 48u}, std::pair{96u, 80u}})
             expectPresentedExactly(*device, pattern(w, h, f),
                                    std::string(gdi::formatInfo(f).name) + " " + std::to_string(w) + "x" + std::to_string(h));
+}
+
+// A device lost while presenting (Vulkan: the present's own submission; GL: a submission, whose
+// reset status the next present sees) is a DeviceLostError, now and for every later present.
+TEST_P(WindowBackend, DeviceLossWhilePresentingIsReported) {
+    const gdi::Image img = pattern(32, 32, gdi::Format::RGBA8);
+    gdi::TextureHandle t = device->createTexture({.format = img.format, .width = img.width, .height = img.height});
+    device->writeTexture(t, {}, gdi::bytesOf(img.data));
+    EXPECT_TRUE(device->present(t));
+    gdi::fault::arm(gdi::fault::Site::Submission, 1);
+    if (!isVulkan()) {
+        auto cmd = device->createCommandList();
+        EXPECT_THROW(device->submit(*cmd), gdi::DeviceLostError);
+    }
+    EXPECT_THROW(device->present(t), gdi::DeviceLostError);
+    EXPECT_THROW(device->present(t), gdi::DeviceLostError);
+    EXPECT_THROW(device->readWindow(), gdi::DeviceLostError);
+    gdi::fault::arm(gdi::fault::Site::Submission, 0);
+    device->destroy(t);  // objects are still released on a lost device
 }
 
 // Frames in a row at one size: the swap chain's images and semaphores are reused (Vulkan:
