@@ -680,13 +680,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
 gdi::Image GlDevice::readWindow() {
     loss_.check("readWindow");
     if (!platform_->hasWindow()) return gdi::Device::readWindow();
-    if (windowWidth_ == 0) throw gdi::Error("readWindow: nothing presented yet");
-    gdi::Image img;
-    img.width = windowWidth_;
-    img.height = windowHeight_;
-    img.format = gdi::Format::RGBA8;
-    img.data = platform_->readWindow(windowWidth_, windowHeight_);
-    return img;
+    return platform_->readWindow(windowWidth_, windowHeight_);
 }
 
 }  // namespace fe::gl

@@ -15,7 +15,7 @@
 
 namespace fe::gl {
 
-std::vector<uint8_t> GlPlatform::readWindow(uint32_t, uint32_t) {
+gdi::Image GlPlatform::readWindow(uint32_t, uint32_t) {
     throw gdi::Error(std::string(name()) + ": no window to read");
 }
 
@@ -154,7 +154,7 @@ public:
         swap_(static_cast<GLFWwindow*>(window_.handle()));
         return window_.poll();
     }
-    std::vector<uint8_t> readWindow(uint32_t width, uint32_t height) override { return window_.read(width, height); }
+    gdi::Image readWindow(uint32_t width, uint32_t height) override { return window_.read(width, height); }
 
 private:
     platform::GlfwWindow window_;

@@ -30,7 +30,7 @@ public:
     virtual bool swapAndPoll() { return false; }
     // What the window shows on screen, width x height from its top-left, RGBA8 rows top-down,
     // read back from the window system (X11), not from GL.
-    virtual std::vector<uint8_t> readWindow(uint32_t width, uint32_t height);
+    virtual gdi::Image readWindow(uint32_t width, uint32_t height);
 };
 
 // Creates a 4.5 core context (debug context when `debug`); throws gdi::Error saying why not.

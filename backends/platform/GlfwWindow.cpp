@@ -159,7 +159,8 @@ bool GlfwWindow::poll() {
     return !glfw().shouldClose(static_cast<GLFWwindow*>(window_));
 }
 
-std::vector<uint8_t> GlfwWindow::read(uint32_t width, uint32_t height) const {
+gdi::Image GlfwWindow::read(uint32_t width, uint32_t height) const {
+    if (width == 0 || height == 0) throw gdi::Error("readWindow: nothing presented yet");
     // Present only in an X11 build of GLFW, and null when the window is not an X11 one.
     auto getDisplay = reinterpret_cast<Display* (*)()>(dlsym(lib_, "glfwGetX11Display"));
     auto getWindow = reinterpret_cast<Window (*)(GLFWwindow*)>(dlsym(lib_, "glfwGetX11Window"));
@@ -193,7 +194,7 @@ std::vector<uint8_t> GlfwWindow::read(uint32_t width, uint32_t height) const {
                 rgba.push_back(v);
         }
     image->f.destroy_image(image);
-    return rgba;
+    return gdi::Image{width, height, gdi::Format::RGBA8, std::move(rgba)};
 }
 
 }  // namespace fe::platform

@@ -3,6 +3,7 @@
 // backends. Nothing here is specific to one API: the GL context and the Vulkan surface are made
 // by the backends through symbol().
 #pragma once
+#include "fe/gdi/Image.h"
 #include <cstdint>
 #include <vector>
 
@@ -38,9 +39,10 @@ public:
     Size framebufferSize() const;
     // Handles pending window events; false once the user has closed the window.
     bool poll();
-    // What the window shows on screen, width x height from its top-left, RGBA8 rows top-down,
-    // read back from the X server (XGetImage), not from the API that drew it.
-    std::vector<uint8_t> read(uint32_t width, uint32_t height) const;
+    // What the window shows on screen, width x height from its top-left (the last presented
+    // image's size; 0 before the first present, an error), RGBA8 rows top-down, read back from
+    // the X server (XGetImage), not from the API that drew it.
+    gdi::Image read(uint32_t width, uint32_t height) const;
 
 private:
     void release();

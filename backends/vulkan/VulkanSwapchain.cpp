@@ -331,15 +331,7 @@ bool VulkanSwapchain::present(const Source& src) {
     return window_->poll();
 }
 
-gdi::Image VulkanSwapchain::readWindow() const {
-    if (shownWidth_ == 0) throw gdi::Error("readWindow: nothing presented yet");
-    gdi::Image img;
-    img.width = shownWidth_;
-    img.height = shownHeight_;
-    img.format = gdi::Format::RGBA8;
-    img.data = window_->read(shownWidth_, shownHeight_);
-    return img;
-}
+gdi::Image VulkanSwapchain::readWindow() const { return window_->read(shownWidth_, shownHeight_); }
 
 void VulkanSwapchain::release() {
     if (device_) {

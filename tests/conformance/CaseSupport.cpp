@@ -68,6 +68,8 @@ Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, s
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
     Image img = d.readTexture(t);
+    FE_CONFORMANCE_CHECK(img.width == kCaseSize && img.height == kCaseSize && img.format == target,
+                         "readback has the target's size and format");
     d.destroy(t);
     d.destroy(ubo);
     d.destroy(p);
