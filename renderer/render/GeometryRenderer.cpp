@@ -25,6 +25,7 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : devic
     vs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")});
     forwardFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward.frag")});
     gbufferFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/gbuffer.frag")});
+    depthFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/depth_prepass.frag")});
 }
 
 GeometryRenderer::~GeometryRenderer() {
@@ -32,6 +33,7 @@ GeometryRenderer::~GeometryRenderer() {
     device_.destroy(vs_);
     device_.destroy(forwardFs_);
     device_.destroy(gbufferFs_);
+    device_.destroy(depthFs_);
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
@@ -40,22 +42,38 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     for (gdi::Format f : targets.colorFormats) key.push_back(uint32_t(f));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
+    // The state table of mesh passes.
+    struct State {
+        gdi::ShaderHandle fs;
+        bool depthWrite;
+        gdi::CompareOp compare;
+        const char* name;
+    };
+    const State st = [&]() -> State {
+        switch (pass) {
+            case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
+            case MeshPass::Transparent: return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
+            case MeshPass::DepthPrepass: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
+            case MeshPass::ForwardEqual: return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};
+            case MeshPass::ForwardAdditive: return {forwardFs_, false, gdi::CompareOp::Equal, "forward additive"};
+            default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
+        }
+    }();
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
         .vertexShader = vs_,
-        .fragmentShader = pass == MeshPass::GBuffer ? gbufferFs_ : forwardFs_,
+        .fragmentShader = st.fs,
         .vertexBuffers = {{.stride = GpuScene::kVertexStride,
                            .attributes = {{0, VertexFormat::Float3, 0},
                                           {1, VertexFormat::Float3, 12},
                                           {2, VertexFormat::Float4, 24},
                                           {3, VertexFormat::Float2, 40}}}},
         .raster = {.cullMode = cull, .frontFace = face},
-        .depthStencil = {.depthTest = true, .depthWrite = pass != MeshPass::Transparent,
-                         .depthCompare = gdi::CompareOp::LessOrEqual},
+        .depthStencil = {.depthTest = true, .depthWrite = st.depthWrite, .depthCompare = st.compare},
         .colorFormats = targets.colorFormats,
         .depthFormat = targets.depthFormat,
         .bindings = meshPassBindings(),
-        .debugName = pass == MeshPass::GBuffer ? "gbuffer" : pass == MeshPass::Forward ? "forward" : "transparent",
+        .debugName = st.name,
     };
     if (pass == MeshPass::Transparent)
         d.blend = {{.enable = true,
@@ -63,6 +81,11 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                     .dstColor = gdi::BlendFactor::OneMinusSrcAlpha,
                     .srcAlpha = gdi::BlendFactor::One,
                     .dstAlpha = gdi::BlendFactor::OneMinusSrcAlpha}};
+    if (pass == MeshPass::ForwardAdditive)
+        d.blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
+                    .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
+    if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
+        d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = device_.createGraphicsPipeline(d);
     pipelines_[key] = p;
     return p;
@@ -75,22 +98,29 @@ uint32_t GeometryRenderer::drawCount(MeshPass pass) const {
     return n;
 }
 
-void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
-                            const UploadAllocation& frame, const glm::vec3& eye) {
+std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::vec3& eye) const {
     std::vector<const DrawItem*> items;
     for (const DrawItem& d : scene_.draws())
         if ((pass == MeshPass::Transparent) == (d.alphaMode == assets::AlphaMode::Blend)) items.push_back(&d);
+    auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
     if (pass == MeshPass::Transparent)  // back to front, so source-over blending composes correctly
-        std::stable_sort(items.begin(), items.end(), [&](const DrawItem* a, const DrawItem* b) {
-            return glm::distance(a->worldCenter, eye) > glm::distance(b->worldCenter, eye);
-        });
+        std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
+    if (pass == MeshPass::DepthPrepass)  // front to back, so hidden surfaces fail the depth test early
+        std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });
+    return items;
+}
 
+void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
+                            const UploadAllocation& frame, const glm::vec3& eye, std::vector<UploadAllocation>* objects) {
+    const std::vector<const DrawItem*> list = items(pass, eye);
+    if (objects && objects->size() != scene_.draws().size()) objects->assign(scene_.draws().size(), {});
     cmd.setVertexBuffer(0, scene_.vertexBuffer());
     cmd.setIndexBuffer(scene_.indexBuffer(), gdi::IndexType::U32);
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
     cmd.setStorageBuffer(kSlotLights, scene_.lightBuffer());
     gdi::PipelineHandle current{};
-    for (const DrawItem* d : items) {
+    for (size_t i = 0; i < list.size(); ++i) {
+        const DrawItem* d = list[i];
         // glTF front faces are counter-clockwise; a mirroring transform turns them clockwise.
         gdi::CullMode cull = d->doubleSided ? gdi::CullMode::None : gdi::CullMode::Back;
         gdi::FrontFace face = d->mirrored ? gdi::FrontFace::Clockwise : gdi::FrontFace::CounterClockwise;
@@ -99,8 +129,14 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
             cmd.setPipeline(p);
             current = p;
         }
-        ObjectConstants oc = scene_.objectConstants(*d);
-        UploadAllocation o = queue.upload(oc);
+        UploadAllocation o;
+        if (objects) {  // by the item's index in the scene, since passes order items differently
+            UploadAllocation& cached = (*objects)[size_t(d - scene_.draws().data())];
+            if (!cached.buffer) cached = queue.upload(scene_.objectConstants(*d));
+            o = cached;
+        } else {
+            o = queue.upload(scene_.objectConstants(*d));
+        }
         cmd.setUniformBuffer(kSlotObject, o.buffer, o.offset, o.size);
         const MaterialTextures& t = scene_.textures(d->material);
         cmd.setTexture(kSlotBaseColor, t.baseColor, t.baseColorSampler);

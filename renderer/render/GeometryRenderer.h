@@ -12,7 +12,15 @@
 
 namespace fe::render {
 
-enum class MeshPass { Forward, GBuffer, Transparent };
+// Which pipeline state a mesh pass draws with (GeometryRenderer::pipeline has the table).
+enum class MeshPass {
+    Forward,          // shade, depth test <=, depth write
+    GBuffer,          // write the G-buffer, depth test <=, depth write
+    Transparent,      // BLEND items back to front, source-over, no depth write
+    DepthPrepass,     // opaque items front to back, depth only (alpha test for MASK)
+    ForwardEqual,     // shade where depth EQUALs the pre-pass depth, no depth write
+    ForwardAdditive,  // shade and add (One, One) where depth is EQUAL: further lights of multipass
+};
 
 // What the pass renders into; pipelines are specialised to these formats.
 struct MeshPassTargets {
@@ -26,9 +34,12 @@ public:
     ~GeometryRenderer();
 
     // Draws the scene's draw items that belong to `pass` (opaque+mask, or blend sorted back to
-    // front). `frameConstants` is the per-frame uniform allocation.
+    // front). `frameConstants` is the per-frame uniform allocation. Passes that draw the same
+    // items again in a frame share `objects` (cleared at the start of each frame): each item's
+    // object constants are uploaded the first time it is drawn and reused after.
     void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
-              const UploadAllocation& frameConstants, const glm::vec3& eye);
+              const UploadAllocation& frameConstants, const glm::vec3& eye,
+              std::vector<UploadAllocation>* objects = nullptr);
 
     uint32_t drawCount(MeshPass pass) const;
 
@@ -37,7 +48,8 @@ private:
 
     gdi::Device& device_;
     GpuScene& scene_;
-    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_;
+    std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
+    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
 };
 

@@ -19,6 +19,7 @@ struct FrameConstants {
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
     glm::uvec4 counts;         // x = light count, y = illumination scale, z = debug flags
+    glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
 };
 
 struct ObjectConstants {

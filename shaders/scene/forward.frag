@@ -1,7 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "fe_material.glsl"
-// Forward: every light in one loop (SHADING.md per-light sum). Also the transparent pass.
+// Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
+// for forward and the transparent pass, one per pass for forward-multipass (which adds the
+// emissive and unlit terms in its first pass only).
 layout(location = 0) in vec3 vWorld;
 layout(location = 1) in vec3 vNormal;
 layout(location = 2) in vec4 vTangent;
@@ -10,9 +12,10 @@ layout(location = 0) out vec4 outRadiance;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
-    vec3 L = m.emissive;
+    const bool first = frame.lightRange.z != 0u;
+    vec3 L = first ? m.emissive : vec3(0.0);
     if (m.unlit) {
-        L = m.baseColor;
+        L = first ? m.baseColor : vec3(0.0);
     } else {
         SurfacePoint s;
         s.P = vWorld;
@@ -21,7 +24,8 @@ void main() {
         s.baseColor = m.baseColor;
         s.metallic = m.metallic;
         s.roughness = m.roughness;
-        for (uint i = 0u; i < frame.counts.x; ++i) L += feShadeLight(s, feEvaluateLight(lights[i], vWorld));
+        const uint end = frame.lightRange.x + frame.lightRange.y;
+        for (uint i = frame.lightRange.x; i < end; ++i) L += feShadeLight(s, feEvaluateLight(lights[i], vWorld));
     }
     // Alpha only matters for BLEND draws (source-over); opaque targets ignore it.
     outRadiance = vec4(L, object.params.w == 2.0 ? m.alpha : 1.0);

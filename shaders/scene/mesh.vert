@@ -10,6 +10,8 @@ layout(location = 0) out vec3 vWorld;
 layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec2 vUv;
+// The depth pre-pass and the EQUAL-tested passes after it must compute bit-identical depths.
+invariant gl_Position;
 void main() {
     vec4 world = object.world * vec4(inPosition, 1.0);
     vWorld = world.xyz;

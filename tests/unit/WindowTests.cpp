@@ -14,7 +14,7 @@
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/Faults.h"
 #include "assets/BuiltinScenes.h"
-#include "render/SceneRenderer.h"
+#include "integration/SceneRenderer.h"
 
 using namespace fe;
 
@@ -205,7 +205,7 @@ TEST_P(WindowBackend, VsyncOff) {
 TEST_P(WindowBackend, SceneRendererFramesAppearInTheWindow) {
     assets::Scene scene = assets::loadScene("builtin:spheres", {}, {});
     render::RenderSettings s;
-    s.width = 96, s.height = 64, s.technique = render::Technique::Deferred, s.displayImage = true;
+    s.width = 96, s.height = 64, s.technique = "deferred", s.displayImage = true;
     render::SceneRenderer renderer(*device, scene, s);
     for (int frame = 0; frame < 3; ++frame) {
         renderer.renderFrame();

@@ -23,7 +23,7 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/InfoJson.h"
-#include "render/SceneRenderer.h"
+#include "integration/SceneRenderer.h"
 
 namespace {
 
@@ -34,7 +34,7 @@ constexpr const char* kUsage =
     "commands:\n"
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
-    "      --backend NAME --technique forward|deferred|redeferred --illum-scale 1|2|4\n"
+    "      --backend NAME --technique NAME (below) --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -42,6 +42,17 @@ constexpr const char* kUsage =
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
     "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
+
+// The usage text with every technique of the engine's table, one line each.
+std::string usage() {
+    std::string u = kUsage;
+    u += "techniques (--technique):\n";
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        std::string name = t.name;
+        u += "  " + name + std::string(name.size() < 20 ? 20 - name.size() : 1, ' ') + t.summary + "\n";
+    }
+    return u;
+}
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -134,7 +145,7 @@ int cmdRender(const Args& a) {
     std::string spec = a.positional.empty() ? "builtin:spheres" : a.positional[0];
     render::RenderSettings s;
     auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
-    s.technique = render::techniqueFromName(opt("--technique", "forward"));
+    s.technique = render::findTechnique(opt("--technique", "forward")).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
@@ -207,8 +218,8 @@ int cmdRender(const Args& a) {
               << (soft ? " [software rasterizer timings]" : "") << "\n";
     if (window) std::cout << "window: " << presented << " frame(s) presented, " << device->info().presentMode << "\n";
     std::cout
-              << "technique " << render::techniqueName(s.technique);
-    if (s.technique == render::Technique::Redeferred) std::cout << " illum-scale " << s.illumScale;
+              << "technique " << s.technique;
+    if (s.technique == "redeferred") std::cout << " illum-scale " << s.illumScale;
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
               << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
@@ -348,7 +359,7 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::cerr << kUsage;
+        std::cerr << usage();
         return 2;
     }
     const std::string command = argv[1];
@@ -363,12 +374,12 @@ int main(int argc, char** argv) {
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
         if (command == "--help" || command == "help") {
-            std::cout << kUsage;
+            std::cout << usage();
             return 0;
         }
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
-        std::cerr << "fe: " << e.what() << "\n" << kUsage;
+        std::cerr << "fe: " << e.what() << "\n" << usage();
         return 2;
     } catch (const assets::AssetError& e) {
         std::cerr << "fe: " << e.what() << "\n";

@@ -1,0 +1,134 @@
+#include "integration/SceneRenderer.h"
+
+#include "fe/gdi/ShaderRegistry.h"
+#include "reference/CameraMath.h"
+#include "render/ShaderSlots.h"
+
+namespace fe::render {
+
+namespace {
+constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a screen shows
+}  // namespace
+
+SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& s)
+    : device_(device), scene_(scene), settings_(s) {
+    const TechniqueInfo& technique = findTechnique(s.technique);  // an unknown name fails before any GPU work
+    if (s.width == 0 || s.height == 0 || s.width > 8192 || s.height > 8192)
+        throw gdi::Error("render size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                         " out of range (1..8192 per axis)");
+    if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
+        throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
+    if (!scene.camera) throw gdi::Error("scene has no camera");
+    queue_ = std::make_unique<CommandQueue>(device, 2);
+    gpuScene_ = std::make_unique<GpuScene>(device, scene);
+    geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
+    outputTexture_ = device.createTexture({.format = kRadianceFormat, .width = s.width, .height = s.height,
+                                           .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
+                                                    gdi::TextureUsage::CopySrc,
+                                           .debugName = "output L_o"});
+    pointSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest,
+                                          .addressU = gdi::AddressMode::ClampToEdge,
+                                          .addressV = gdi::AddressMode::ClampToEdge});
+    fullscreenVs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")});
+    displayFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/display.frag")});
+    displayPipeline_ = device.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs_, .fragmentShader = displayFs_, .colorFormats = {kDisplayFormat},
+         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                      {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+         .debugName = "display"});
+    context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
+                                        scene.camera->eye(), pointSampler_, fullscreenVs_});
+    technique_ = technique.create(*context_);
+    buildGraph();
+    graph_.compile(device, s.aliasing);
+}
+
+SceneRenderer::~SceneRenderer() {
+    device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
+    technique_.reset();
+    device_.destroy(displayPipeline_);
+    for (auto sh : {fullscreenVs_, displayFs_}) device_.destroy(sh);
+    device_.destroy(pointSampler_);
+    geometry_.reset();
+    device_.destroy(outputTexture_);
+    gpuScene_.reset();
+    queue_.reset();
+}
+
+// The frame as a graph: the technique's passes, then what every technique shares. The graph
+// culls what nothing reads (the display pass unless a display image is asked for).
+void SceneRenderer::buildGraph() {
+    const RenderSettings& s = settings_;
+    graph::RenderGraph& g = graph_;
+    output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
+    depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
+    technique_->declare(g, output_, depth_);
+    if (gpuScene_->hasBlend()) {
+        g.addPass("transparent", [&](graph::PassBuilder& b) {
+            b.colorTarget(output_, gdi::LoadOp::Load);
+            b.depthTarget(depth_, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            geometry_->draw(pc.cmd, *queue_, MeshPass::Transparent, {{kRadianceFormat}, kSceneDepthFormat}, frameConstants_,
+                            context_->eye);
+            pc.cmd.endRenderPass();
+        });
+    }
+    display_ = g.createTexture("display sRGB", {.format = kDisplayFormat, .width = s.width, .height = s.height});
+    g.addPass("display", [&](graph::PassBuilder& b) {
+        b.sample(output_);
+        b.colorTarget(display_);
+    }, [this](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        pc.cmd.setPipeline(displayPipeline_);
+        pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+        pc.cmd.setTexture(kSlotRadiance, pc.texture(output_), pointSampler_);
+        pc.cmd.draw(3);
+        pc.cmd.endRenderPass();
+    });
+    g.markOutput(output_);
+    if (s.displayImage) g.markOutput(display_);
+}
+
+void SceneRenderer::renderFrame() {
+    const RenderSettings& s = settings_;
+    const assets::Camera& cam = *scene_.camera;
+    FrameConstants& fc = frame_;
+    fc = {};
+    fc.viewProj = viewProjection(cam, float(s.width) / float(s.height));
+    fc.invViewProj = glm::inverse(fc.viewProj);
+    fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
+    fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
+    const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
+    fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
+    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, 0, 0);
+    fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);  // forward: every light, with emissive
+
+    gdi::CommandList& cmd = queue_->beginFrame();
+    frameConstants_ = queue_->upload(fc);
+    graph_.execute(cmd);
+    lastFence_ = queue_->endFrame();
+}
+
+gdi::Image SceneRenderer::readOutput() {
+    device_.wait(lastFence_);
+    return device_.readTexture(outputTexture_);
+}
+
+gdi::Image SceneRenderer::readDisplay() {
+    if (!settings_.displayImage) throw gdi::Error("readDisplay: the renderer was created without RenderSettings::displayImage");
+    device_.wait(lastFence_);
+    return device_.readTexture(graph_.handle(display_));
+}
+
+gdi::TextureHandle SceneRenderer::displayTexture() {
+    if (!settings_.displayImage) throw gdi::Error("displayTexture: the renderer was created without RenderSettings::displayImage");
+    return graph_.handle(display_);
+}
+
+std::vector<PassTiming> SceneRenderer::passTimings() {
+    device_.wait(lastFence_);
+    return graph_.passTimings();
+}
+
+}  // namespace fe::render

@@ -1,0 +1,63 @@
+// Layer 8 (Integration): renders a Scene with one lighting technique (render/TechniqueRenderer.h),
+// every pass timed. The technique declares its passes; the scene renderer composes them with
+// what every technique shares: the transparent pass (BLEND primitives drawn forward after the
+// opaque ones, declared only when the scene has any) and the display pass (culled unless a
+// displayable image is asked for).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "assets/Scene.h"
+#include "fe/gdi/Device.h"
+#include "frame/CommandQueue.h"
+#include "graph/RenderGraph.h"
+#include "render/GeometryRenderer.h"
+#include "render/GpuScene.h"
+#include "render/RenderSettings.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+using graph::PassTiming;
+
+class SceneRenderer {
+public:
+    SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& settings);
+    ~SceneRenderer();
+
+    void renderFrame();
+    // Linear L_o (RGBA32F) of the last frame.
+    gdi::Image readOutput();
+    // The displayable image of the last frame (RenderSettings::displayImage).
+    gdi::Image readDisplay();
+    // The texture the display pass writes (RGBA8_SRGB, CopySrc), e.g. for Device::present.
+    gdi::TextureHandle displayTexture();
+    // GPU time per pass of the last completed frame (empty where timestamps are unsupported).
+    std::vector<PassTiming> passTimings();
+    const graph::RenderGraph& graph() const { return graph_; }
+    GpuScene& gpuScene() { return *gpuScene_; }
+
+private:
+    void buildGraph();
+
+    gdi::Device& device_;
+    const assets::Scene& scene_;
+    RenderSettings settings_;
+    std::unique_ptr<CommandQueue> queue_;
+    std::unique_ptr<GpuScene> gpuScene_;
+    std::unique_ptr<GeometryRenderer> geometry_;
+    FrameConstants frame_{};            // of the frame being recorded
+    UploadAllocation frameConstants_;   // its upload
+    gdi::SamplerHandle pointSampler_;
+    gdi::ShaderHandle fullscreenVs_, displayFs_;
+    gdi::PipelineHandle displayPipeline_;
+    std::unique_ptr<TechniqueContext> context_;
+    std::unique_ptr<TechniqueRenderer> technique_;
+    graph::RenderGraph graph_;
+    graph::TextureId output_, display_, depth_;
+    gdi::TextureHandle outputTexture_;
+    gdi::FenceValue lastFence_ = 0;
+};
+
+}  // namespace fe::render

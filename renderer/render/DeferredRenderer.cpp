@@ -1,0 +1,44 @@
+#include "render/DeferredRenderer.h"
+
+#include "fe/gdi/ShaderRegistry.h"
+#include "render/ShaderSlots.h"
+
+namespace fe::render {
+
+DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
+    volumes_ = std::make_unique<LightVolumes>(c.device, "scene/deferred_light.frag", std::vector{kRadianceFormat},
+                                              GBuffer::slots(true));
+    emissiveFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")});
+    emissive_ = c.device.createGraphicsPipeline({
+        .vertexShader = c.fullscreenVs, .fragmentShader = emissiveFs_,
+        .blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
+                   .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::One}},
+        .colorFormats = {kRadianceFormat},
+        .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                     {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+        .debugName = "emissive"});
+}
+
+DeferredRenderer::~DeferredRenderer() {
+    ctx_.device.destroy(emissive_);
+    ctx_.device.destroy(emissiveFs_);
+}
+
+void DeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    gbuffer_.declare(g, ctx_, depth);
+    g.addPass("lighting", [&](graph::PassBuilder& b) {
+        gbuffer_.sampleIn(b, true);
+        b.colorTarget(output);
+    }, [this](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
+        volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
+        pc.cmd.endRenderPass();
+    });
+    g.addPass("emissive", [&](graph::PassBuilder& b) {
+        b.sample(gbuffer_.gb2);
+        b.colorTarget(output, gdi::LoadOp::Load);
+    }, fullscreen(emissive_, {{kSlotGBuffer2, gbuffer_.gb2}}));
+}
+
+}  // namespace fe::render

@@ -1,0 +1,24 @@
+// Layer 7: deferred shading: G-buffer, then every light drawn as a volume (sphere, cone or
+// full-screen triangle) over it, accumulated additively into L_o, then the emissive term.
+#pragma once
+#include <memory>
+
+#include "render/GBuffer.h"
+#include "render/LightVolumes.h"
+
+namespace fe::render {
+
+class DeferredRenderer final : public TechniqueRenderer {
+public:
+    explicit DeferredRenderer(TechniqueContext& context);
+    ~DeferredRenderer() override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+
+private:
+    GBuffer gbuffer_;
+    std::unique_ptr<LightVolumes> volumes_;
+    gdi::ShaderHandle emissiveFs_;
+    gdi::PipelineHandle emissive_;
+};
+
+}  // namespace fe::render

@@ -1,0 +1,26 @@
+#include "render/ForwardMultipassRenderer.h"
+
+namespace fe::render {
+
+void ForwardMultipassRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    g.addPass("forward-multipass", [&](graph::PassBuilder& b) {
+        b.colorTarget(output);
+        b.depthTarget(depth);
+    }, [this](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        objects_.clear();
+        const MeshPassTargets targets{{kRadianceFormat}, kSceneDepthFormat};
+        // With no light at all, one pass still lays down depth, emissive and unlit surfaces.
+        const uint32_t lights = std::max(1u, ctx_.frame.counts.x);
+        for (uint32_t i = 0; i < lights; ++i) {
+            FrameConstants fc = ctx_.frame;
+            fc.lightRange = glm::uvec4(i, ctx_.frame.counts.x ? 1u : 0u, i == 0 ? 1u : 0u, 0u);
+            const UploadAllocation perLight = ctx_.queue.upload(fc);
+            ctx_.geometry.draw(pc.cmd, ctx_.queue, i == 0 ? MeshPass::Forward : MeshPass::ForwardAdditive, targets, perLight,
+                               ctx_.eye, &objects_);
+        }
+        pc.cmd.endRenderPass();
+    });
+}
+
+}  // namespace fe::render

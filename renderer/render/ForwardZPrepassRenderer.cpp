@@ -1,0 +1,28 @@
+#include "render/ForwardZPrepassRenderer.h"
+
+namespace fe::render {
+
+void ForwardZPrepassRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    const MeshPassTargets targets{{kRadianceFormat}, kSceneDepthFormat};
+    // The pre-pass also clears the radiance target (attached, unwritten), so the shading pass
+    // loads both and the two passes share one attachment layout and pipeline family.
+    g.addPass("zprepass", [&](graph::PassBuilder& b) {
+        b.colorTarget(output);
+        b.depthTarget(depth);
+    }, [this, targets](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        objects_.clear();
+        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::DepthPrepass, targets, ctx_.frameConstants, ctx_.eye, &objects_);
+        pc.cmd.endRenderPass();
+    });
+    g.addPass("forward-shading", [&](graph::PassBuilder& b) {
+        b.colorTarget(output, gdi::LoadOp::Load);
+        b.depthTarget(depth, gdi::LoadOp::Load);
+    }, [this, targets](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::ForwardEqual, targets, ctx_.frameConstants, ctx_.eye, &objects_);
+        pc.cmd.endRenderPass();
+    });
+}
+
+}  // namespace fe::render

@@ -1,0 +1,29 @@
+// Layer 7: redeferred shading (../shared/seeds/000): G-buffer; an illumination pass drawing the
+// lights as volumes into the I-buffer (L_dg and the specular sums, at 1/--illum-scale of the
+// resolution per axis); a material pass turning the upsampled sums into L_o.
+#pragma once
+#include <memory>
+
+#include "render/GBuffer.h"
+#include "render/LightVolumes.h"
+
+namespace fe::render {
+
+class RedeferredRenderer final : public TechniqueRenderer {
+public:
+    explicit RedeferredRenderer(TechniqueContext& context);
+    ~RedeferredRenderer() override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+
+    // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
+    // the roughness clamp, beyond half range for bright lights, so they are 32-bit.
+    static constexpr gdi::Format kI0 = gdi::Format::RGBA16F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
+
+private:
+    GBuffer gbuffer_;
+    std::unique_ptr<LightVolumes> volumes_;
+    gdi::ShaderHandle materialFs_;
+    gdi::PipelineHandle material_;
+};
+
+}  // namespace fe::render

@@ -1,0 +1,21 @@
+// Layer 7: what a frame is rendered with, shared by every technique renderer and layer 8.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace fe::render {
+
+struct RenderSettings {
+    std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
+    uint32_t width = 320;
+    uint32_t height = 240;
+    uint32_t illumScale = 1;  // redeferred I-buffer: 1, 2 or 4
+    float exposure = 1.0f;
+    // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
+    // without it the graph culls the display pass.
+    bool displayImage = false;
+    // Alias transient memory (false: every transient texture has memory of its own).
+    bool aliasing = true;
+};
+
+}  // namespace fe::render

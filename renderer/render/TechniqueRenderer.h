@@ -1,0 +1,63 @@
+// Layer 7 (Render): a lighting technique is a renderer that declares its passes and buffers on
+// the render graph. It writes the opaque scene's outgoing radiance L_o into `output` and leaves
+// the scene depth in `depth`; layer 8 (integration/SceneRenderer) adds the transparent and
+// display passes. Adding a technique is adding a renderer and its line in techniques().
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+#include "frame/CommandQueue.h"
+#include "graph/RenderGraph.h"
+#include "render/GeometryRenderer.h"
+#include "render/GpuScene.h"
+#include "render/RenderSettings.h"
+
+namespace fe::render {
+
+// What every technique draws with, owned by the scene renderer. frame and frameConstants are
+// those of the frame being recorded (valid inside pass bodies).
+struct TechniqueContext {
+    gdi::Device& device;
+    CommandQueue& queue;
+    GpuScene& scene;
+    GeometryRenderer& geometry;
+    const RenderSettings& settings;
+    const FrameConstants& frame;               // this frame's constants on the CPU
+    const UploadAllocation& frameConstants;    // ... and their upload
+    glm::vec3 eye;
+    gdi::SamplerHandle pointSampler;  // nearest, clamped: reads of full-resolution buffers
+    gdi::ShaderHandle fullscreenVs;   // scene/fullscreen.vert
+};
+
+constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
+constexpr gdi::Format kSceneDepthFormat = gdi::Format::D32F;
+
+class TechniqueRenderer {
+public:
+    explicit TechniqueRenderer(TechniqueContext& context) : ctx_(context) {}
+    virtual ~TechniqueRenderer() = default;
+    // Declares the passes that fill `output` (L_o, kRadianceFormat) and `depth` (transient).
+    virtual void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) = 0;
+
+protected:
+    // A pass body: one full-screen triangle with the frame constants and graph textures bound.
+    using SlotTextures = std::vector<std::pair<uint32_t, graph::TextureId>>;
+    std::function<void(graph::PassContext&)> fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const;
+    TechniqueContext& ctx_;
+};
+
+struct TechniqueInfo {
+    const char* name;
+    const char* summary;  // one line for `fe render --help`
+    std::unique_ptr<TechniqueRenderer> (*create)(TechniqueContext&);
+};
+// Every technique, in the order help lists them (Techniques.cpp).
+const std::vector<TechniqueInfo>& techniques();
+// Throws gdi::Error listing the valid names.
+const TechniqueInfo& findTechnique(const std::string& name);
+std::string techniqueNames();  // "forward, deferred, ..."
+
+}  // namespace fe::render

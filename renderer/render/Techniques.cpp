@@ -1,0 +1,54 @@
+// The technique table: one line per technique renderer.
+#include "render/DeferredRenderer.h"
+#include "render/ForwardMultipassRenderer.h"
+#include "render/ForwardRenderer.h"
+#include "render/ForwardZPrepassRenderer.h"
+#include "render/RedeferredRenderer.h"
+#include "render/ShaderSlots.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+namespace {
+template <class T>
+std::unique_ptr<TechniqueRenderer> make(TechniqueContext& c) {
+    return std::make_unique<T>(c);
+}
+}  // namespace
+
+const std::vector<TechniqueInfo>& techniques() {
+    static const std::vector<TechniqueInfo> all = {
+        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>},
+        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>},
+        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>},
+        {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
+        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", make<RedeferredRenderer>},
+    };
+    return all;
+}
+
+const TechniqueInfo& findTechnique(const std::string& name) {
+    for (const TechniqueInfo& t : techniques())
+        if (name == t.name) return t;
+    throw gdi::Error("unknown technique '" + name + "' (valid: " + techniqueNames() + ")");
+}
+
+std::string techniqueNames() {
+    std::string s;
+    for (const TechniqueInfo& t : techniques()) s += (s.empty() ? "" : ", ") + std::string(t.name);
+    return s;
+}
+
+std::function<void(graph::PassContext&)> TechniqueRenderer::fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const {
+    return [this, pipeline, inputs](graph::PassContext& pc) {
+        pc.beginRenderPass();
+        pc.cmd.setPipeline(pipeline);
+        const UploadAllocation& fc = ctx_.frameConstants;
+        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+        for (const auto& [slot, id] : inputs) pc.cmd.setTexture(slot, pc.texture(id), ctx_.pointSampler);
+        pc.cmd.draw(3);
+        pc.cmd.endRenderPass();
+    };
+}
+
+}  // namespace fe::render
