@@ -18,9 +18,9 @@ std::string kib(uint64_t bytes) {
 }
 }  // namespace
 
-bool TextureAccess::reads() const { return !isTarget(state) || load == gdi::LoadOp::Load; }
+bool TextureAccess::reads() const { return state == gdi::ResourceState::ShaderRead || load == gdi::LoadOp::Load; }
 // (A resolve destination is a RenderTarget access with DontCare load: a write, not a read.)
-bool TextureAccess::writes() const { return isTarget(state); }
+bool TextureAccess::writes() const { return isTarget(state) || state == gdi::ResourceState::Storage; }
 
 // ---- declaration ------------------------------------------------------------------------------
 
@@ -38,6 +38,10 @@ void PassBuilder::resolve(TextureId source, TextureId destination) {
 }
 void PassBuilder::sample(TextureId t) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::ShaderRead});
+}
+void PassBuilder::storage(TextureId t, bool readToo) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::Storage,
+                                              .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
 }
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
@@ -133,7 +137,9 @@ void RenderGraph::computeLifetimes() {
             }
             t.lastPass = int(p);
             if (t.imported) continue;
-            t.desc.usage = t.desc.usage | (a.writes() ? gdi::TextureUsage::RenderTarget : gdi::TextureUsage::Sampled);
+            t.desc.usage = t.desc.usage | (a.state == gdi::ResourceState::Storage ? gdi::TextureUsage::Storage
+                                           : a.writes()                              ? gdi::TextureUsage::RenderTarget
+                                                                                     : gdi::TextureUsage::Sampled);
         }
     }
     // Outputs live to the end of the frame: they are read after it.
@@ -300,7 +306,7 @@ void PassContext::beginRenderPass() {
     gdi::RenderPassDesc rp;
     std::vector<TextureId> colorIds;
     for (const TextureAccess& a : pass.accesses) {
-        if (!a.writes() || a.resolveSource.valid()) continue;
+        if (!isTarget(a.state) || a.resolveSource.valid()) continue;  // storage images are no attachments
         const TextureInfo& t = graph_.textures_[a.texture.index];
         // Contents nobody reads after this pass need not reach memory (a resolved multisampled
         // target's samples usually are not).

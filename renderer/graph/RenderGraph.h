@@ -57,8 +57,8 @@ struct TextureAccess {
     // Valid for a resolve destination: the multisampled target of the same pass it receives.
     // Resolves write in the colour-output stage on Vulkan, depth too, so the state is RenderTarget.
     TextureId resolveSource;
-    bool reads() const;   // sampled, or a target whose old contents are loaded
-    bool writes() const;  // a target
+    bool reads() const;   // sampled, or a target or storage image whose old contents are loaded
+    bool writes() const;  // a target or a storage image
 };
 
 class PassBuilder {
@@ -70,6 +70,8 @@ public:
     // pixel's samples; depth: sample 0) is written into single-sample `destination`.
     void resolve(TextureId source, TextureId destination);
     void sample(TextureId texture);
+    // Written as a storage image (compute); `readToo`: its earlier contents are read as well.
+    void storage(TextureId texture, bool readToo = false);
     // The pass has effects the graph cannot see (e.g. writes a buffer read back later): never culled.
     void sideEffect();
 

@@ -24,7 +24,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
     outputTexture_ = device.createTexture({.format = kRadianceFormat, .width = s.width, .height = s.height,
                                            .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
-                                                    gdi::TextureUsage::CopySrc,
+                                                    gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
                                            .debugName = "output L_o"});
     pointSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest,
                                           .addressU = gdi::AddressMode::ClampToEdge,

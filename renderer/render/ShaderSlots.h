@@ -18,4 +18,5 @@ constexpr uint32_t kSlotIBuffer0 = 12;
 constexpr uint32_t kSlotIBuffer1 = 13;
 constexpr uint32_t kSlotIBuffer2 = 14;
 constexpr uint32_t kSlotRadiance = 15;
+constexpr uint32_t kSlotRadianceOut = 16;  // storage image: compute passes writing L_o
 }  // namespace fe::render

@@ -4,6 +4,7 @@
 #include "render/ForwardRenderer.h"
 #include "render/ForwardZPrepassRenderer.h"
 #include "render/RedeferredRenderer.h"
+#include "render/TiledDeferredRenderer.h"
 #include "render/ShaderSlots.h"
 #include "render/TechniqueRenderer.h"
 
@@ -22,6 +23,7 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>},
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
+        {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
         {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", make<RedeferredRenderer>},
     };
     return all;

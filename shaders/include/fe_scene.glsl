@@ -18,6 +18,7 @@
 #define FE_SLOT_IBUFFER1 13
 #define FE_SLOT_IBUFFER2 14
 #define FE_SLOT_RADIANCE 15
+#define FE_SLOT_RADIANCE_OUT 16
 
 layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     mat4 viewProj;

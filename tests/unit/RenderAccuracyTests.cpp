@@ -76,12 +76,28 @@ TEST_P(RenderAccuracy, ForwardMatchesCpuReference) {
 
 TEST_P(RenderAccuracy, DeferredMatchesForward) {
     gdi::Image f = renderImage(*device, scene, "forward");
-    gdi::Image d = renderImage(*device, scene, "deferred");
-    // G-buffer rounding: base colour in 8-bit sRGB (<0.4% relative above 0.05), normals and
-    // roughness in half floats (specular highlights of smooth spheres move by a fraction of a
-    // pixel): 2% relative on 99% of pixels.
-    Stats s = compare(d, f, 0.02, 0.01);
-    EXPECT_LE(s.fractionOver, 0.01) << "max relative error " << s.maxRel;
+    for (const char* t : {"deferred", "deferred-tiled"}) {
+        gdi::Image d = renderImage(*device, scene, t);
+        // G-buffer rounding: base colour in 8-bit sRGB (<0.4% relative above 0.05), normals and
+        // roughness in half floats (specular highlights of smooth spheres move by a fraction of a
+        // pixel): 2% relative on 99% of pixels.
+        Stats s = compare(d, f, 0.02, 0.01);
+        EXPECT_LE(s.fractionOver, 0.01) << t << " max relative error " << s.maxRel;
+    }
+}
+
+// Tile culling drops no light: 128 ranged point lights over cubes, the tiled compute pass
+// against light volumes on the same G-buffer: the same sums up to float ordering.
+TEST_P(RenderAccuracy, TiledCullingDropsNoLight) {
+    assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 128});
+    auto render = [&](const char* t) {
+        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64});
+        r.renderFrame();
+        return r.readOutput();
+    };
+    gdi::Image volumes = render("deferred"), tiled = render("deferred-tiled");
+    Stats s = compare(tiled, volumes, 1e-4, 1e-3);
+    EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
 }
 
 // Multi-pass forward adds each light's radiance in its own pass (float blending, in another
@@ -112,6 +128,7 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward", {"forward", "display"}},
         {"forward-multipass", {"forward-multipass", "display"}},
         {"forward-zprepass", {"zprepass", "forward-shading", "display"}},
+        {"deferred-tiled", {"gbuffer", "tiled-lighting", "display"}},
         {"deferred", {"gbuffer", "lighting", "emissive", "display"}},
         {"redeferred", {"gbuffer", "illumination", "material", "display"}}};
     for (const auto& [technique, passes] : expected) {
@@ -176,7 +193,7 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
     };
     gdi::Image f = renderOdd("forward");
     EXPECT_GT(f.texel(48, 36)[0], 1000.0f) << "the highlight is not at the centre pixel";
-    for (const std::string& t : {"deferred", "redeferred"}) {
+    for (const std::string& t : {"deferred", "deferred-tiled", "redeferred"}) {
         gdi::Image r = renderOdd(t);
         for (size_t i = 0; i < r.data.size() / 4; ++i) {
             float v;
