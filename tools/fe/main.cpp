@@ -23,6 +23,7 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/InfoJson.h"
+#include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 
 namespace {
@@ -34,7 +35,8 @@ constexpr const char* kUsage =
     "commands:\n"
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
-    "      --backend NAME --technique NAME (below) --illum-scale 1|2|4\n"
+    "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
+    "      --illum-scale 1|2|4\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -145,7 +147,8 @@ int cmdRender(const Args& a) {
     std::string spec = a.positional.empty() ? "builtin:spheres" : a.positional[0];
     render::RenderSettings s;
     auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
-    s.technique = render::findTechnique(opt("--technique", "forward")).name;
+    s.technique = opt("--technique", "forward");
+    if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
@@ -180,6 +183,10 @@ int cmdRender(const Args& a) {
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
     auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
+    const render::DirectorChoice choice = render::direct(scene, s, device->info());
+    if (a.options.count("--verbose"))
+        for (const std::string& r : choice.reasons) std::cout << "director: " << r << "\n";
+    s = choice.settings;
     render::SceneRenderer renderer(*device, scene, s);
     if (!dumpGraph.empty()) {
         std::ofstream f(dumpGraph);
@@ -369,7 +376,7 @@ int main(int argc, char** argv) {
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync"},
-                                   {"--no-aliasing", "--window"}));
+                                   {"--no-aliasing", "--window", "--verbose"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
