@@ -19,6 +19,14 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");
+    if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8)
+        throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");
+    if (s.msaa > 1 && !technique.msaa)
+        throw gdi::Error("technique " + s.technique + " does not take --msaa: it shades from a single-sample G-buffer "
+                         "(use forward, forward-multipass or forward-zprepass)");
+    const gdi::DeviceLimits& limits = device.info().limits;
+    if (s.msaa > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & s.msaa))
+        throw gdi::Error(std::to_string(s.msaa) + " samples are not supported on " + device.info().backend);
     queue_ = std::make_unique<CommandQueue>(device, 2);
     gpuScene_ = std::make_unique<GpuScene>(device, scene);
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);

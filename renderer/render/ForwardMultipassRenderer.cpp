@@ -3,13 +3,15 @@
 namespace fe::render {
 
 void ForwardMultipassRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    const ForwardTargets t = forwardTargets(g, output, depth);
     g.addPass("forward-multipass", [&](graph::PassBuilder& b) {
-        b.colorTarget(output);
-        b.depthTarget(depth);
-    }, [this](graph::PassContext& pc) {
+        b.colorTarget(t.color);
+        b.depthTarget(t.depth);
+        t.resolveIn(b);
+    }, [this, t](graph::PassContext& pc) {
         pc.beginRenderPass();
         objects_.clear();
-        const MeshPassTargets targets{{kRadianceFormat}, kSceneDepthFormat};
+        const MeshPassTargets& targets = t.formats;
         // With no light at all, one pass still lays down depth, emissive and unlit surfaces.
         const uint32_t lights = std::max(1u, ctx_.frame.counts.x);
         for (uint32_t i = 0; i < lights; ++i) {

@@ -3,13 +3,14 @@
 namespace fe::render {
 
 void ForwardRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    const ForwardTargets t = forwardTargets(g, output, depth);
     g.addPass("forward", [&](graph::PassBuilder& b) {
-        b.colorTarget(output);
-        b.depthTarget(depth);
-    }, [this](graph::PassContext& pc) {
+        b.colorTarget(t.color);
+        b.depthTarget(t.depth);
+        t.resolveIn(b);
+    }, [this, t](graph::PassContext& pc) {
         pc.beginRenderPass();
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Forward, {{kRadianceFormat}, kSceneDepthFormat}, ctx_.frameConstants,
-                           ctx_.eye);
+        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Forward, t.formats, ctx_.frameConstants, ctx_.eye);
         pc.cmd.endRenderPass();
     });
 }

@@ -38,7 +38,7 @@ GeometryRenderer::~GeometryRenderer() {
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
                                                gdi::FrontFace face) {
-    std::vector<uint32_t> key = {uint32_t(pass), uint32_t(cull), uint32_t(face), uint32_t(targets.depthFormat)};
+    std::vector<uint32_t> key = {uint32_t(pass), uint32_t(cull), uint32_t(face), uint32_t(targets.depthFormat), targets.samples};
     for (gdi::Format f : targets.colorFormats) key.push_back(uint32_t(f));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
@@ -69,6 +69,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                                           {2, VertexFormat::Float4, 24},
                                           {3, VertexFormat::Float2, 40}}}},
         .raster = {.cullMode = cull, .frontFace = face},
+        .multisample = {.sampleCount = targets.samples},
         .depthStencil = {.depthTest = true, .depthWrite = st.depthWrite, .depthCompare = st.compare},
         .colorFormats = targets.colorFormats,
         .depthFormat = targets.depthFormat,

@@ -26,6 +26,7 @@ enum class MeshPass {
 struct MeshPassTargets {
     std::vector<gdi::Format> colorFormats;
     gdi::Format depthFormat = gdi::Format::D32F;
+    uint32_t samples = 1;
 };
 
 class GeometryRenderer {

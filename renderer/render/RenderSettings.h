@@ -10,6 +10,7 @@ struct RenderSettings {
     uint32_t width = 320;
     uint32_t height = 240;
     uint32_t illumScale = 1;  // redeferred I-buffer: 1, 2 or 4
+    uint32_t msaa = 1;        // samples per pixel (forward techniques; TechniqueInfo::msaa)
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

@@ -35,6 +35,17 @@ struct TechniqueContext {
 constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
 constexpr gdi::Format kSceneDepthFormat = gdi::Format::D32F;
 
+// What forward-style techniques render into: `output` and `depth` themselves, or with --msaa N
+// multisampled transients that the technique's last pass resolves into them (colour averaged,
+// depth from sample 0, so the transparent pass after it tests against real surface depths).
+struct ForwardTargets {
+    graph::TextureId color, depth;        // what the technique's passes render into
+    graph::TextureId output, sceneDepth;  // the single-sample results
+    MeshPassTargets formats;
+    // Declares the resolves in the pass that ends the technique (nothing at one sample).
+    void resolveIn(graph::PassBuilder& b) const;
+};
+
 class TechniqueRenderer {
 public:
     explicit TechniqueRenderer(TechniqueContext& context) : ctx_(context) {}
@@ -43,6 +54,7 @@ public:
     virtual void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) = 0;
 
 protected:
+    ForwardTargets forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const;
     // A pass body: one full-screen triangle with the frame constants and graph textures bound.
     using SlotTextures = std::vector<std::pair<uint32_t, graph::TextureId>>;
     std::function<void(graph::PassContext&)> fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const;
@@ -53,6 +65,9 @@ struct TechniqueInfo {
     const char* name;
     const char* summary;  // one line for `fe render --help`
     std::unique_ptr<TechniqueRenderer> (*create)(TechniqueContext&);
+    // Renders with hardware MSAA (--msaa N). The deferred techniques shade from single-sample
+    // G-buffers: they refuse --msaa with a clear message rather than shade per sample.
+    bool msaa = false;
 };
 // Every technique, in the order help lists them (Techniques.cpp).
 const std::vector<TechniqueInfo>& techniques();

@@ -19,9 +19,9 @@ std::unique_ptr<TechniqueRenderer> make(TechniqueContext& c) {
 
 const std::vector<TechniqueInfo>& techniques() {
     static const std::vector<TechniqueInfo> all = {
-        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>},
-        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>},
-        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>},
+        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true},
+        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
+        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
         {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
         {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", make<RedeferredRenderer>},
@@ -39,6 +39,23 @@ std::string techniqueNames() {
     std::string s;
     for (const TechniqueInfo& t : techniques()) s += (s.empty() ? "" : ", ") + std::string(t.name);
     return s;
+}
+
+ForwardTargets TechniqueRenderer::forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const {
+    const RenderSettings& s = ctx_.settings;
+    ForwardTargets t{output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, s.msaa}};
+    if (s.msaa > 1) {
+        t.color = g.createTexture("msaa L_o", {.format = kRadianceFormat, .width = s.width, .height = s.height, .sampleCount = s.msaa});
+        t.depth = g.createTexture("msaa depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height,
+                                                 .sampleCount = s.msaa});
+    }
+    return t;
+}
+
+void ForwardTargets::resolveIn(graph::PassBuilder& b) const {
+    if (color == output) return;
+    b.resolve(color, output);
+    b.resolve(depth, sceneDepth);
 }
 
 std::function<void(graph::PassContext&)> TechniqueRenderer::fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const {

@@ -36,7 +36,7 @@ constexpr const char* kUsage =
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
     "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
-    "      --illum-scale 1|2|4\n"
+    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -150,6 +150,7 @@ int cmdRender(const Args& a) {
     s.technique = opt("--technique", "forward");
     if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
+    s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
@@ -227,6 +228,7 @@ int cmdRender(const Args& a) {
     std::cout
               << "technique " << s.technique;
     if (s.technique == "redeferred") std::cout << " illum-scale " << s.illumScale;
+    if (s.msaa > 1) std::cout << " msaa " << s.msaa;
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
               << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
@@ -375,7 +377,7 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync"},
+                                    "--lights", "--dump-graph", "--vsync", "--msaa"},
                                    {"--no-aliasing", "--window", "--verbose"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
