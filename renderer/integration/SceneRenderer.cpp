@@ -105,6 +105,7 @@ void SceneRenderer::renderFrame() {
     fc = {};
     fc.viewProj = viewProjection(cam, float(s.width) / float(s.height));
     fc.invViewProj = glm::inverse(fc.viewProj);
+    fc.view = cam.viewFromWorld();
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;

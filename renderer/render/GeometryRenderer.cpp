@@ -26,6 +26,12 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : devic
     forwardFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward.frag")});
     gbufferFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/gbuffer.frag")});
     depthFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/depth_prepass.frag")});
+    auto fragment = [&](const char* name) {
+        return device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)});
+    };
+    lppNormalsFs_ = fragment("scene/lpp_normals.frag");
+    lppNormalsUnpackedFs_ = fragment("scene/lpp_normals_unpacked.frag");
+    lppMaterialFs_ = fragment("scene/lpp_material.frag");
 }
 
 GeometryRenderer::~GeometryRenderer() {
@@ -33,7 +39,7 @@ GeometryRenderer::~GeometryRenderer() {
     device_.destroy(vs_);
     device_.destroy(forwardFs_);
     device_.destroy(gbufferFs_);
-    device_.destroy(depthFs_);
+    for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_}) device_.destroy(sh);
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
@@ -56,6 +62,10 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::DepthPrepass: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
             case MeshPass::ForwardEqual: return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};
             case MeshPass::ForwardAdditive: return {forwardFs_, false, gdi::CompareOp::Equal, "forward additive"};
+            case MeshPass::NormalRoughness: return {lppNormalsFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals"};
+            case MeshPass::NormalRoughnessUnpacked:
+                return {lppNormalsUnpackedFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals unpacked"};
+            case MeshPass::LightPrepassMaterial: return {lppMaterialFs_, false, gdi::CompareOp::Equal, "lpp material"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
@@ -85,6 +95,8 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     if (pass == MeshPass::ForwardAdditive)
         d.blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                     .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
+    if (pass == MeshPass::LightPrepassMaterial)
+        d.bindings.push_back({kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
     if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = device_.createGraphicsPipeline(d);

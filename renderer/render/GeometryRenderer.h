@@ -20,6 +20,9 @@ enum class MeshPass {
     DepthPrepass,     // opaque items front to back, depth only (alpha test for MASK)
     ForwardEqual,     // shade where depth EQUALs the pre-pass depth, no depth write
     ForwardAdditive,  // shade and add (One, One) where depth is EQUAL: further lights of multipass
+    NormalRoughness,          // light pre-pass 1: packed normal + roughness, depth write
+    NormalRoughnessUnpacked,  // ... the RGBA16F variant
+    LightPrepassMaterial,     // light pre-pass 3: material x light buffer (slot kSlotIBuffer0), depth EQUAL
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -50,7 +53,7 @@ private:
     gdi::Device& device_;
     GpuScene& scene_;
     std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
-    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_;
+    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
 };
 

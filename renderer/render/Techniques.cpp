@@ -3,6 +3,7 @@
 #include "render/ForwardMultipassRenderer.h"
 #include "render/ForwardRenderer.h"
 #include "render/ForwardZPrepassRenderer.h"
+#include "render/LightPrepassRenderer.h"
 #include "render/RedeferredRenderer.h"
 #include "render/TiledDeferredRenderer.h"
 #include "render/ShaderSlots.h"
@@ -15,6 +16,10 @@ template <class T>
 std::unique_ptr<TechniqueRenderer> make(TechniqueContext& c) {
     return std::make_unique<T>(c);
 }
+template <bool kPacked>
+std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
+    return std::make_unique<LightPrepassRenderer>(c, kPacked);
+}
 }  // namespace
 
 const std::vector<TechniqueInfo>& techniques() {
@@ -24,6 +29,10 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
         {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
+        {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
+         makeLightPrepass<true>},
+        {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
+         makeLightPrepass<false>},
         {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", make<RedeferredRenderer>},
     };
     return all;

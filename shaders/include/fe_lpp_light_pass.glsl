@@ -1,0 +1,18 @@
+#include "fe_light_prepass.glsl"
+// Light pre-pass, pass 2: one light per fragment of its volume, added into the light buffer.
+layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D normalTexture;
+layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+layout(location = 0) flat in uint vLightIndex;
+layout(location = 0) out vec4 outLight;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(depthTexture, p, 0).r;
+    if (depth >= 1.0) discard;
+    vec4 t = texelFetch(normalTexture, p, 0);
+    vec3 n = feUnpackNormal(t);
+    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);  // the eye ray at the stored depth
+    vec3 wo = normalize(frame.cameraPosition.xyz - P);
+    IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
+    feAccumulateIllumination(acc, n, wo, feUnpackRoughness(t), feEvaluateLight(lights[vLightIndex], P));
+    outLight = vec4(acc.Ldg, feLuminance(acc.Lsg1));
+}
