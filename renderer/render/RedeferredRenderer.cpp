@@ -5,9 +5,27 @@
 
 namespace fe::render {
 
-RedeferredRenderer::RedeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
-    volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
-                                              GBuffer::slots(false));
+RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : TechniqueRenderer(c), tiled_(tiled) {
+    if (tiled) {
+        if (!c.device.info().features.computeShaders)
+            throw gdi::Error("technique redeferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
+        // One shader per scale: a tile is 16x16 pixels, 16 / scale texels wide.
+        const char* shader = c.settings.illumScale == 4   ? "scene/tiled_illumination_s4.comp"
+                             : c.settings.illumScale == 2 ? "scene/tiled_illumination_s2.comp"
+                                                          : "scene/tiled_illumination.comp";
+        illuminationCs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
+        std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
+        for (auto& slot : b) slot.stages = gdi::ShaderStage::Compute;
+        b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute});
+        b.push_back({kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute});
+        for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
+            b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
+        illumination_ = c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
+                                                        .debugName = "tiled illumination"});
+    } else {
+        volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
+                                                  GBuffer::slots(false));
+    }
     materialFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/material.frag")});
     std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
@@ -18,8 +36,8 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c) : TechniqueRenderer(
 }
 
 RedeferredRenderer::~RedeferredRenderer() {
-    ctx_.device.destroy(material_);
-    ctx_.device.destroy(materialFs_);
+    for (auto p : {material_, illumination_}) ctx_.device.destroy(p);
+    for (auto sh : {materialFs_, illuminationCs_}) ctx_.device.destroy(sh);
 }
 
 void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
@@ -29,15 +47,33 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
     const graph::TextureId i0 = g.createTexture("ibuffer0 L_dg", {.format = kI0, .width = iw, .height = ih});
     const graph::TextureId i1 = g.createTexture("ibuffer1 L_sg1", {.format = kI1, .width = iw, .height = ih});
     const graph::TextureId i2 = g.createTexture("ibuffer2 L_sg2", {.format = kI2, .width = iw, .height = ih});
-    g.addPass("illumination", [&](graph::PassBuilder& b) {
-        gbuffer_.sampleIn(b, false);
-        for (auto t : {i0, i1, i2}) b.colorTarget(t);
-    }, [this](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
-        volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
-        pc.cmd.endRenderPass();
-    });
+    if (tiled_) {
+        g.addPass("tiled-illumination", [&](graph::PassBuilder& b) {
+            gbuffer_.sampleIn(b, false);
+            for (auto t : {i0, i1, i2}) b.storage(t);
+        }, [this, i0, i1, i2, iw, ih](graph::PassContext& pc) {
+            pc.cmd.setPipeline(illumination_);
+            const UploadAllocation& fc = ctx_.frameConstants;
+            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+            pc.cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+            gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
+            pc.cmd.setStorageTexture(kSlotIBuffer0, pc.texture(i0));
+            pc.cmd.setStorageTexture(kSlotIBuffer1, pc.texture(i1));
+            pc.cmd.setStorageTexture(kSlotIBuffer2, pc.texture(i2));
+            const uint32_t texels = 16 / ctx_.settings.illumScale;
+            pc.cmd.dispatch((iw + texels - 1) / texels, (ih + texels - 1) / texels);
+        });
+    } else {
+        g.addPass("illumination", [&](graph::PassBuilder& b) {
+            gbuffer_.sampleIn(b, false);
+            for (auto t : {i0, i1, i2}) b.colorTarget(t);
+        }, [this](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
+            volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
+            pc.cmd.endRenderPass();
+        });
+    }
     g.addPass("material", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);
         for (auto t : {i0, i1, i2}) b.sample(t);

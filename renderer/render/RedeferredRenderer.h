@@ -1,6 +1,7 @@
-// Layer 7: redeferred shading (../shared/seeds/000): G-buffer; an illumination pass drawing the
-// lights as volumes into the I-buffer (L_dg and the specular sums, at 1/--illum-scale of the
-// resolution per axis); a material pass turning the upsampled sums into L_o.
+// Layer 7: redeferred shading (../shared/seeds/000): G-buffer; an illumination pass into the
+// I-buffer (L_dg and the specular sums, at 1/--illum-scale of the resolution per axis): the
+// lights drawn as volumes, or (tiled) one compute pass culling them per 16x16 I-buffer tile;
+// a material pass turning the upsampled sums into L_o.
 #pragma once
 #include <memory>
 
@@ -11,7 +12,7 @@ namespace fe::render {
 
 class RedeferredRenderer final : public TechniqueRenderer {
 public:
-    explicit RedeferredRenderer(TechniqueContext& context);
+    RedeferredRenderer(TechniqueContext& context, bool tiled);
     ~RedeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
 
@@ -20,8 +21,11 @@ public:
     static constexpr gdi::Format kI0 = gdi::Format::RGBA16F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
 
 private:
+    bool tiled_;
     GBuffer gbuffer_;
     std::unique_ptr<LightVolumes> volumes_;
+    gdi::ShaderHandle illuminationCs_;
+    gdi::PipelineHandle illumination_;  // tiled
     gdi::ShaderHandle materialFs_;
     gdi::PipelineHandle material_;
 };

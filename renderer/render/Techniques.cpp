@@ -16,6 +16,10 @@ template <class T>
 std::unique_ptr<TechniqueRenderer> make(TechniqueContext& c) {
     return std::make_unique<T>(c);
 }
+template <bool kTiled>
+std::unique_ptr<TechniqueRenderer> makeRedeferred(TechniqueContext& c) {
+    return std::make_unique<RedeferredRenderer>(c, kTiled);
+}
 template <bool kPacked>
 std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
     return std::make_unique<LightPrepassRenderer>(c, kPacked);
@@ -33,7 +37,9 @@ const std::vector<TechniqueInfo>& techniques() {
          makeLightPrepass<true>},
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
          makeLightPrepass<false>},
-        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", make<RedeferredRenderer>},
+        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>},
+        {"redeferred-tiled", "redeferred with the I-buffer filled by one compute pass culling lights per tile",
+         makeRedeferred<true>},
     };
     return all;
 }

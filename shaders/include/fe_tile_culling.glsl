@@ -1,0 +1,71 @@
+// Light culling per work group (a tile of 16x16 full-resolution pixels), shared by the tiled compute passes (tiled_deferred.comp,
+// tiled_illumination.comp). feCullTile() finds the tile's depth bounds and lists in
+// tileLights the lights whose range sphere touches the tile's slice of the view frustum.
+// Culling is exact by construction: the range window (SHADING.md) is 0 beyond a light's
+// range, so a light whose sphere misses the slice contributes nothing to its pixels.
+// The slice is bounded by a world-space box, each invocation computing it: on lavapipe that
+// measured faster (89 ms at 1280x720, 512 lights) than six frustum planes (123 ms), both
+// together (107 ms), the box made once per tile in shared memory (96-144 ms), or depth bounds
+// scanned per row to save atomics (120-138 ms).
+#ifndef FE_TILE_CULLING_GLSL
+#define FE_TILE_CULLING_GLSL
+#include "fe_scene.glsl"
+
+// Invocations per work group, as the including shader's local size says (a macro: measured,
+// striding by gl_WorkGroupSize.x * gl_WorkGroupSize.y made every invocation walk every light).
+#ifndef FE_TILE_INVOCATIONS
+#define FE_TILE_INVOCATIONS 256u
+#endif
+// A tile with more lights than this shades every light (still exact, only slower).
+#define FE_TILE_MAX_LIGHTS 512u
+shared uint tileMinDepth, tileMaxDepth, tileLightCount;
+shared uint tileLights[FE_TILE_MAX_LIGHTS];
+
+// Every invocation of the work group calls this (it has barriers). `depth` is the invocation's
+// surface depth (1: none); the tile spans full-resolution pixels [pixelMin, pixelMax).
+void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
+    if (gl_LocalInvocationIndex == 0u) {
+        tileMinDepth = 0xffffffffu;
+        tileMaxDepth = 0u;
+        tileLightCount = 0u;
+    }
+    barrier();
+    // Non-negative floats order like their bit patterns.
+    if (depth < 1.0) {
+        atomicMin(tileMinDepth, floatBitsToUint(depth));
+        atomicMax(tileMaxDepth, floatBitsToUint(depth));
+    }
+    barrier();
+    if (tileMinDepth <= tileMaxDepth) {  // the tile has surfaces: cull
+        // World-space box around the frustum slice: its 8 corners at the tile's pixel edges
+        // and the depth bounds (a frustum slice is the convex hull of its corners).
+        const float z0 = uintBitsToFloat(tileMinDepth), z1 = uintBitsToFloat(tileMaxDepth);
+        vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
+        for (int c = 0; c < 8; ++c) {
+            vec3 w = feWorldFromDepth(vec2((c & 1) != 0 ? pixelMax.x : pixelMin.x, (c & 2) != 0 ? pixelMax.y : pixelMin.y),
+                                      (c & 4) != 0 ? z1 : z0);
+            lo = min(lo, w);
+            hi = max(hi, w);
+        }
+        for (uint i = gl_LocalInvocationIndex; i < frame.counts.x; i += FE_TILE_INVOCATIONS) {
+            const GpuLight L = lights[i];
+            const float range = L.positionRange.w;
+            bool hit = true;
+            if (L.directionType.w != FE_LIGHT_DIRECTIONAL && range > 0.0) {
+                const vec3 d = L.positionRange.xyz - clamp(L.positionRange.xyz, lo, hi);
+                const float r = range * 1.0001 + 1e-4;  // rounding of the corners must not cull
+                hit = dot(d, d) <= r * r;
+            }
+            if (hit) {
+                const uint slot = atomicAdd(tileLightCount, 1u);
+                if (slot < FE_TILE_MAX_LIGHTS) tileLights[slot] = i;
+            }
+        }
+    }
+    barrier();
+}
+
+// The k-th light of the tile's list (every light when the list overflowed), and their count.
+uint feTileLightCount() { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLightCount : frame.counts.x; }
+uint feTileLight(uint k) { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLights[k] : k; }
+#endif
