@@ -42,4 +42,12 @@ std::vector<gdi::BindingSlot> GBuffer::slots(bool albedo) {
     return s;
 }
 
+std::vector<gdi::BindingSlot> GBuffer::computeSlots(bool albedo) {
+    std::vector<gdi::BindingSlot> s = slots(albedo);
+    for (auto& slot : s) slot.stages = gdi::ShaderStage::Compute;
+    s.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute});
+    s.push_back({kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute});
+    return s;
+}
+
 }  // namespace fe::render

@@ -19,6 +19,8 @@ struct GBuffer {
     void sampleIn(graph::PassBuilder& b, bool albedo) const;
     // The binding slots bind() fills, for pipelines that read the G-buffer.
     static std::vector<gdi::BindingSlot> slots(bool albedo);
+    // The same for the tiled compute passes, with the frame constants and the lights they cull.
+    static std::vector<gdi::BindingSlot> computeSlots(bool albedo);
 };
 
 }  // namespace fe::render

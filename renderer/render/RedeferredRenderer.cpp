@@ -14,10 +14,7 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                              : c.settings.illumScale == 2 ? "scene/tiled_illumination_s2.comp"
                                                           : "scene/tiled_illumination.comp";
         illuminationCs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
-        std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
-        for (auto& slot : b) slot.stages = gdi::ShaderStage::Compute;
-        b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute});
-        b.push_back({kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute});
+        std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(false);
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
         illumination_ = c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
@@ -52,10 +49,7 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
             gbuffer_.sampleIn(b, false);
             for (auto t : {i0, i1, i2}) b.storage(t);
         }, [this, i0, i1, i2, iw, ih](graph::PassContext& pc) {
-            pc.cmd.setPipeline(illumination_);
-            const UploadAllocation& fc = ctx_.frameConstants;
-            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-            pc.cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+            bindFrameAndLights(pc.cmd, illumination_);
             gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
             pc.cmd.setStorageTexture(kSlotIBuffer0, pc.texture(i0));
             pc.cmd.setStorageTexture(kSlotIBuffer1, pc.texture(i1));

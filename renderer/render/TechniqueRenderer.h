@@ -55,6 +55,8 @@ public:
 
 protected:
     ForwardTargets forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const;
+    // Sets a pipeline and binds the frame constants and the scene's lights at their slots.
+    void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
     // A pass body: one full-screen triangle with the frame constants and graph textures bound.
     using SlotTextures = std::vector<std::pair<uint32_t, graph::TextureId>>;
     std::function<void(graph::PassContext&)> fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const;

@@ -73,6 +73,13 @@ void ForwardTargets::resolveIn(graph::PassBuilder& b) const {
     b.resolve(depth, sceneDepth);
 }
 
+void TechniqueRenderer::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
+    cmd.setPipeline(pipeline);
+    const UploadAllocation& fc = ctx_.frameConstants;
+    cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+    cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+}
+
 std::function<void(graph::PassContext&)> TechniqueRenderer::fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const {
     return [this, pipeline, inputs](graph::PassContext& pc) {
         pc.beginRenderPass();

@@ -9,10 +9,7 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRen
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("technique deferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
     cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tiled_deferred.comp")});
-    std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
-    for (auto& slot : b) slot.stages = gdi::ShaderStage::Compute;
-    b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute});
-    b.push_back({kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute});
+    std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(true);
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
     pipeline_ = c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"});
 }
@@ -28,10 +25,7 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
         gbuffer_.sampleIn(b, true);
         b.storage(output);
     }, [this, output](graph::PassContext& pc) {
-        pc.cmd.setPipeline(pipeline_);
-        const UploadAllocation& fc = ctx_.frameConstants;
-        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-        pc.cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+        bindFrameAndLights(pc.cmd, pipeline_);
         gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
         pc.cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));
         const RenderSettings& s = ctx_.settings;
