@@ -1,5 +1,7 @@
 #include "integration/RenderDirector.h"
 
+#include "render/TechniqueRenderer.h"
+
 namespace fe::render {
 
 SceneNeeds sceneNeeds(const assets::Scene& scene) {
@@ -34,8 +36,9 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
         c.reasons.push_back("technique deferred: " + std::to_string(n.lights) + " lights and no compute shaders on " +
                             device.backend + ": lights drawn as volumes");
     }
-    if (s.technique != "redeferred" && s.illumScale != 1) {
-        c.reasons.push_back("illumination scale " + std::to_string(s.illumScale) + " ignored: only redeferred has an I-buffer");
+    if (!findTechnique(s.technique).illumScale && s.illumScale != 1) {
+        c.reasons.push_back("illumination scale " + std::to_string(s.illumScale) + " ignored: " + s.technique +
+                            " has no I-buffer");
         s.illumScale = 1;
     }
     c.reasons.push_back(n.blendPrimitives ? "transparent pass: " + std::to_string(n.blendPrimitives) + " BLEND primitive(s)"

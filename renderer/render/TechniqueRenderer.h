@@ -70,6 +70,8 @@ struct TechniqueInfo {
     // Renders with hardware MSAA (--msaa N). The deferred techniques shade from single-sample
     // G-buffers: they refuse --msaa with a clear message rather than shade per sample.
     bool msaa = false;
+    // Has an I-buffer, so takes --illum-scale (redeferred and redeferred-tiled).
+    bool illumScale = false;
 };
 // Every technique, in the order help lists them (Techniques.cpp).
 const std::vector<TechniqueInfo>& techniques();

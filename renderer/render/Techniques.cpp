@@ -37,9 +37,10 @@ const std::vector<TechniqueInfo>& techniques() {
          makeLightPrepass<true>},
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
          makeLightPrepass<false>},
-        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>},
+        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>, false,
+         true},
         {"redeferred-tiled", "redeferred with the I-buffer filled by one compute pass culling lights per tile",
-         makeRedeferred<true>},
+         makeRedeferred<true>, false, true},
     };
     return all;
 }

@@ -98,3 +98,13 @@ TEST(RenderDirectorChoice, WithoutComputeShadersManyLightsGetDeferred) {
     EXPECT_EQ(c.settings.technique, "deferred");
     EXPECT_NE(c.reasons[0].find("no compute shaders on test"), std::string::npos) << c.reasons[0];
 }
+
+// Every technique with an I-buffer keeps its illumination scale; the others drop it.
+TEST(RenderDirectorChoice, IllumScaleKeptWhereThereIsAnIBuffer) {
+    const assets::Scene scene = assets::makeBuiltinScene("plane");
+    gdi::DeviceInfo device;
+    for (const char* t : {"redeferred", "redeferred-tiled"})
+        EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 2u) << t;
+    for (const char* t : {"deferred", "deferred-tiled", "forward", "light-prepass"})
+        EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 1u) << t;
+}

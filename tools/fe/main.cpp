@@ -227,7 +227,7 @@ int cmdRender(const Args& a) {
     if (window) std::cout << "window: " << presented << " frame(s) presented, " << device->info().presentMode << "\n";
     std::cout
               << "technique " << s.technique;
-    if (s.technique == "redeferred") std::cout << " illum-scale " << s.illumScale;
+    if (render::findTechnique(s.technique).illumScale) std::cout << " illum-scale " << s.illumScale;
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
