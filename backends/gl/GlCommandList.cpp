@@ -457,7 +457,8 @@ private:
     // gives (conformance case msaa_resolve checks both against the same expectation).
     void resolve() {
         gl_.Disable(GL_SCISSOR_TEST);  // blits honour the scissor
-        gl_.Disable(GL_FRAMEBUFFER_SRGB);  // sRGB bytes copied as they are stored, as on Vulkan
+        // GL_FRAMEBUFFER_SRGB stays on: sRGB samples are averaged as linear values and encoded
+        // again, as Vulkan's AVERAGE resolve does (msaa_resolve's colour_srgb image checks it).
         for (const auto& [point, target] : resolves_) {
             const bool color = point >= GL_COLOR_ATTACHMENT0 && point < GL_COLOR_ATTACHMENT0 + 16;
             std::vector<FboAttachment> colors;
@@ -469,7 +470,6 @@ private:
             gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0, GLint(area_.width),
                                      GLint(area_.height), color ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT, GL_NEAREST);
         }
-        gl_.Enable(GL_FRAMEBUFFER_SRGB);
         gl_.Enable(GL_SCISSOR_TEST);
         resolves_.clear();
     }

@@ -111,6 +111,38 @@ std::vector<CaseImage> msaaResolve(Device& d) {
                                     return {x == 31 ? edgeDepth : inside(x) ? 0.25f : 1.0f, 0, 0, 1};
                                 })));
         }
+        {  // sRGB: the same edge into an RGBA8_SRGB target resolves in linear space, as Vulkan's
+           // AVERAGE does: half of white is linear 0.5, stored encoded as 0.735. (GL's blit with
+           // GL_FRAMEBUFFER_SRGB off averaged the encoded bytes instead, storing 0.502: caught here.)
+            GraphicsPipelineDesc ps = pd;
+            ps.colorFormats = {Format::RGBA8_SRGB};
+            ps.depthFormat = Format::Undefined;
+            ps.depthStencil = {};
+            PipelineHandle psrgb = d.createGraphicsPipeline(ps);
+            TextureHandle msS = d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize,
+                                                 .sampleCount = samples, .usage = kTarget});
+            TextureHandle resS = d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+            std::vector<Vertex3> v = quad(-1, edge, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
+            BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
+            auto cmd = d.createCommandList();
+            cmd->beginRenderPass({.colors = {{.texture = msS, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = resS}}});
+            cmd->setPipeline(psrgb);
+            cmd->setVertexBuffer(0, vb);
+            cmd->draw(6);
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            const float half = 1.055f * std::pow(0.5f, 1.0f / 2.4f) - 0.055f;  // sRGB encoding of linear 0.5
+            auto expected = [&](uint32_t x, uint32_t) -> Texel {
+                const float v = x < 31 ? 1.0f : x == 31 ? half : 0.0f;
+                return {v, v, v, 1};
+            };
+            out.push_back(within("colour_srgb_" + std::to_string(samples) + "x", d.readTexture(resS),
+                                 expectImage(Format::RGBA8_SRGB, expected), 1.0 / 255.0,
+                                 "linear average of the edge's samples, encoded: one 8-bit step"));
+            for (TextureHandle t : {msS, resS}) d.destroy(t);
+            d.destroy(vb);
+            d.destroy(psrgb);
+        }
         // A single-sample pipeline in a multisampled pass, and reading a multisampled texture, are errors.
         GraphicsPipelineDesc single = pd;
         single.multisample.sampleCount = 1;
