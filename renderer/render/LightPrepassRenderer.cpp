@@ -16,39 +16,55 @@ LightPrepassRenderer::~LightPrepassRenderer() = default;
 void LightPrepassRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
     const gdi::Format normalFormat = packed_ ? kPackedNormals : kUnpackedNormals;
-    const graph::TextureId normals = g.createTexture(packed_ ? "lpp normal.xy+roughness (packed)" : "lpp normal+roughness",
-                                                     {.format = normalFormat, .width = s.width, .height = s.height});
+    const char* normalName = packed_ ? "lpp normal.xy+roughness (packed)" : "lpp normal+roughness";
+    const graph::TextureId normals = g.createTexture(normalName, {.format = normalFormat, .width = s.width, .height = s.height});
     const graph::TextureId light = g.createTexture("lpp light buffer", {.format = kLightBuffer, .width = s.width, .height = s.height});
+    // With --msaa N the two geometry passes are multisampled and share one multisampled depth
+    // (the material pass tests EQUAL per sample), while the light pass stays per pixel: it reads
+    // the normals averaged by the resolve and depth from sample 0. That is the deck's argument
+    // for the technique: edges are antialiased by the material pass at no extra lighting cost;
+    // the price is edge pixels lit for one surface's depth with the edge's mean normal.
+    const ForwardTargets t = forwardTargets(g, output, depth);
+    graph::TextureId normalTarget = normals;
+    if (s.msaa > 1)
+        normalTarget = g.createTexture(std::string("msaa ") + normalName,
+                                       {.format = normalFormat, .width = s.width, .height = s.height, .sampleCount = s.msaa});
+    const MeshPassTargets normalTargets{{normalFormat}, kSceneDepthFormat, s.msaa};
     g.addPass("lpp-normals", [&](graph::PassBuilder& b) {
-        b.colorTarget(normals);
-        b.depthTarget(depth);
-    }, [this, normalFormat](graph::PassContext& pc) {
+        b.colorTarget(normalTarget);
+        b.depthTarget(t.depth);
+        if (s.msaa > 1) {
+            b.resolve(normalTarget, normals);
+            b.resolve(t.depth, t.sceneDepth);
+        }
+    }, [this, normalTargets](graph::PassContext& pc) {
         pc.beginRenderPass();
         objects_.clear();
         ctx_.geometry.draw(pc.cmd, ctx_.queue, packed_ ? MeshPass::NormalRoughness : MeshPass::NormalRoughnessUnpacked,
-                           {{normalFormat}, kSceneDepthFormat}, ctx_.frameConstants, ctx_.eye, &objects_);
+                           normalTargets, ctx_.frameConstants, ctx_.eye, &objects_);
         pc.cmd.endRenderPass();
     });
     g.addPass("lpp-lights", [&](graph::PassBuilder& b) {
         b.sample(normals);
-        b.sample(depth);
+        b.sample(t.sceneDepth);
         b.colorTarget(light);
-    }, [this, normals, depth](graph::PassContext& pc) {
+    }, [this, normals, sceneDepth = t.sceneDepth](graph::PassContext& pc) {
         pc.beginRenderPass();
         pc.cmd.setTexture(kSlotGBuffer1, pc.texture(normals), ctx_.pointSampler);
-        pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
+        pc.cmd.setTexture(kSlotDepth, pc.texture(sceneDepth), ctx_.pointSampler);
         volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
         pc.cmd.endRenderPass();
     });
     g.addPass("lpp-material", [&](graph::PassBuilder& b) {
         b.sample(light);
-        b.colorTarget(output);
-        b.depthTarget(depth, gdi::LoadOp::Load);
-    }, [this, light](graph::PassContext& pc) {
+        b.colorTarget(t.color);
+        b.depthTarget(t.depth, gdi::LoadOp::Load);
+        if (s.msaa > 1) b.resolve(t.color, t.output);  // depth was resolved by lpp-normals
+    }, [this, light, targets = t.formats](graph::PassContext& pc) {
         pc.beginRenderPass();
         pc.cmd.setTexture(kSlotIBuffer0, pc.texture(light), ctx_.pointSampler);
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::LightPrepassMaterial, {{kRadianceFormat}, kSceneDepthFormat},
-                           ctx_.frameConstants, ctx_.eye, &objects_);
+        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::LightPrepassMaterial, targets, ctx_.frameConstants, ctx_.eye,
+                           &objects_);
         pc.cmd.endRenderPass();
     });
 }

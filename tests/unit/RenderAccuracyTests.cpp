@@ -142,6 +142,23 @@ TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
         Stats same = compare(img, reference, 1e-4, 1e-4);
         EXPECT_EQ(same.fractionOver, 0.0) << t << " differs from forward at 4 samples, max " << same.maxRel;
     }
+    for (const char* t : {"light-prepass", "light-prepass-unpacked"}) {
+        // Hardware MSAA is the deck's argument for the light pre-pass: the material pass is a
+        // forward pass, so silhouettes are antialiased while the light pass stays per pixel.
+        render::SceneRenderer r(*device, scene, {.technique = t, .width = kW, .height = kH, .msaa = 4});
+        uint32_t multisampled = 0;
+        for (const auto& tex : r.graph().textures()) multisampled += tex.used() && tex.desc.sampleCount == 4;
+        EXPECT_EQ(multisampled, 3u) << t << ": normals, depth and L_o should be multisampled";
+        r.renderFrame();
+        gdi::Image img = r.readOutput();
+        Stats differs = compare(img, renderImage(*device, scene, t), 0.02, 1e-3);
+        Stats vsForward = compare(img, reference, 0.05, 1e-3);
+        std::cout << t << " at 4 samples: " << differs.fractionOver * 100 << "% of pixels beyond 2% of its 1-sample image, "
+                  << vsForward.fractionOver * 100 << "% beyond 5% of forward at 4 samples\n";
+        EXPECT_GT(differs.fractionOver, 0.005) << t << ": no silhouette pixel changed";
+        EXPECT_LT(differs.fractionOver, 0.08) << t << ": more than silhouettes changed";
+        EXPECT_LT(vsForward.fractionOver, 0.15) << t << " at 4 samples is far from forward at 4 samples";
+    }
     const std::string e = fe::testing::errorOf([&] { render::SceneRenderer r(*device, scene, {.technique = "deferred", .msaa = 4}); });
     EXPECT_NE(e.find("technique deferred does not take --msaa"), std::string::npos) << e;
     EXPECT_NE(fe::testing::errorOf([&] { render::SceneRenderer r(*device, scene, {.msaa = 3}); }).find("--msaa must be 1, 2, 4 or 8"),
@@ -266,9 +283,11 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
         RecordProperty(std::string("peak_ratio_") + t, std::to_string(ratio));
         EXPECT_TRUE(std::isfinite(ratio) && ratio > 0.0f) << t;
         // Half-float normals keep the peak (measured 0.99998 x); 8-bit ones lose it (0.014 x).
-        if (std::string(t) == "light-prepass-unpacked") EXPECT_NEAR(ratio, 1.0, 0.02) << t;
+        if (std::string(t) == "light-prepass-unpacked") {
+            EXPECT_NEAR(ratio, 1.0, 0.02) << t;
+        }
     }
-    for (const std::string& t : {"deferred", "deferred-tiled", "redeferred", "redeferred-tiled"}) {
+    for (const char* t : {"deferred", "deferred-tiled", "redeferred", "redeferred-tiled"}) {
         gdi::Image r = renderOdd(t);
         ASSERT_TRUE(finite(r)) << t << " produced a non-finite value";
         Stats st = compare(r, f, 0.02, 0.01);
