@@ -1,41 +1,166 @@
 #include "integration/RenderDirector.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "integration/SceneRenderer.h"
 #include "render/TechniqueRenderer.h"
 
 namespace fe::render {
 
-SceneNeeds sceneNeeds(const assets::Scene& scene) {
+namespace {
+
+std::string fixed(double v, int digits = 1) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*f", digits, v);
+    return b;
+}
+
+// Screen fraction covered by a light's range sphere seen from `cam` (see SceneNeeds).
+double coverage(const assets::Light& l, const assets::Camera& cam, float aspect) {
+    if (l.type == assets::LightType::Directional || !(l.range > 0.0f)) return 1.0;
+    const glm::vec3 c = glm::vec3(cam.viewFromWorld() * glm::vec4(l.position, 1.0f));
+    const double d = glm::length(c), r = l.range;
+    if (d <= r) return 1.0;        // the eye is inside the volume
+    if (c.z > r) return 0.0;       // wholly behind the eye
+    const double rho = r / (std::sqrt(d * d - r * r) * std::tan(cam.yfov / 2));  // disc radius, NDC y units
+    return std::min(1.0, 3.14159265358979 * rho * rho / (4.0 * aspect));
+}
+
+// Perceptual roughness range of a material: its factor times the range of its texture's G.
+std::pair<float, float> roughnessRange(const assets::Scene& scene, const assets::Material& m) {
+    float lo = 1.0f, hi = 1.0f;
+    if (m.metallicRoughnessTexture.valid()) {
+        const assets::TextureImage& t = scene.textures[m.metallicRoughnessTexture.index];
+        lo = 1.0f, hi = 0.0f;
+        for (size_t i = 1; i < t.pixels.size(); i += 4) lo = std::min(lo, t.pixels[i] / 255.0f), hi = std::max(hi, t.pixels[i] / 255.0f);
+        if (t.pixels.empty()) lo = hi = 1.0f;
+    }
+    return {m.roughness * lo, m.roughness * hi};
+}
+
+bool hasComputeShaders(const gdi::DeviceInfo& info) { return info.features.computeShaders; }
+
+}  // namespace
+
+SceneNeeds sceneNeeds(const assets::Scene& scene, float aspect) {
     SceneNeeds n;
     n.lights = uint32_t(scene.lights.size());
-    for (const assets::Light& l : scene.lights)
+    for (const assets::Light& l : scene.lights) {
         n.boundedLights += l.type != assets::LightType::Directional && l.range > 0.0f;
+        if (scene.camera) n.lightCoverage += coverage(l, *scene.camera, scene.camera->aspectRatio.value_or(aspect));
+    }
     for (const assets::MeshInstance& i : scene.instances)
-        for (const assets::Primitive& p : scene.meshes[i.meshIndex].primitives)
-            n.blendPrimitives += scene.materials[p.material].alphaMode == assets::AlphaMode::Blend;
+        for (const assets::Primitive& p : scene.meshes[i.meshIndex].primitives) {
+            const assets::Material& m = scene.materials[p.material];
+            n.blendPrimitives += m.alphaMode == assets::AlphaMode::Blend;
+            if (m.unlit) continue;
+            const auto [lo, hi] = roughnessRange(scene, m);
+            n.minRoughness = std::min(n.minRoughness, lo);
+            n.maxRoughness = std::max(n.maxRoughness, hi);
+        }
+    if (n.minRoughness > n.maxRoughness) n.minRoughness = n.maxRoughness = 0.0f;  // nothing lit
     return n;
 }
 
-DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested, const gdi::DeviceInfo& device) {
+double percentPixelsOver5Of255(const gdi::Image& a, const gdi::Image& b, float exposure) {
+    if (a.width != b.width || a.height != b.height) throw gdi::Error("error budget: images differ in size");
+    auto encode = [exposure](float v) {
+        const double x = std::clamp(double(v) * exposure, 0.0, 1.0);
+        return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+    };
+    uint64_t over = 0;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x) {
+            const auto p = a.texel(x, y), q = b.texel(x, y);
+            bool differs = false;
+            for (int c = 0; c < 3; ++c) differs = differs || std::abs(encode(p[c]) - encode(q[c])) > 5.0 / 255.0;
+            over += differs;
+        }
+    return 100.0 * double(over) / double(uint64_t(a.width) * a.height);
+}
+
+DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested, const gdi::DeviceInfo& info,
+                      gdi::Device* probeDevice, const DirectorOptions& options) {
     DirectorChoice c{requested, {}};
-    const SceneNeeds n = sceneNeeds(scene);
+    const SceneNeeds n = sceneNeeds(scene, float(requested.width) / float(requested.height));
     RenderSettings& s = c.settings;
+    const std::string lights = std::to_string(n.lights) + " light(s)";
+    const std::string cover = "covering the screen " + fixed(n.lightCoverage) + " times";
+    bool exactOnly = true;
     if (s.technique != "auto") {
         c.reasons.push_back("technique " + s.technique + ": asked for");
-    } else if (n.lights <= kForwardMaxLights) {
+        exactOnly = false;
+    } else if (n.lights <= kVolumeCostPerForwardLight * n.lightCoverage) {
         s.technique = "forward";
-        c.reasons.push_back("technique forward: " + std::to_string(n.lights) + " light(s), at most " +
-                            std::to_string(kForwardMaxLights) + ": one pass shading every light is cheapest and exact, "
-                            "and needs no G-buffer");
-    } else if (device.features.computeShaders) {
+        c.reasons.push_back("technique forward: " + lights + " " + cover + ": most pixels shade most lights anyway, "
+                            "so one pass with every light in its loop is cheapest (at most " +
+                            fixed(kVolumeCostPerForwardLight, 0) + " lights per screen covered), exact, with no G-buffer" +
+                            (s.msaa > 1 ? "; it takes --msaa " + std::to_string(s.msaa) : ""));
+    } else if (s.msaa > 1) {
+        const bool packed = n.minRoughness >= kPackedNormalsMinRoughness;
+        s.technique = packed ? "light-prepass" : "light-prepass-unpacked";
+        c.reasons.push_back("technique " + s.technique + ": " + lights + " and --msaa " + std::to_string(s.msaa) +
+                            ": the deferred techniques shade single-sample G-buffers, the light pre-pass keeps "
+                            "hardware MSAA in its material pass with lights drawn once per pixel");
+        c.reasons.push_back(std::string(packed ? "packed RGBA8 normals" : "RGBA16F normals") + ": smoothest material has roughness " +
+                            fixed(n.minRoughness, 2) + (packed ? ", not below " : ", below ") +
+                            fixed(kPackedNormalsMinRoughness, 2) + " where 8-bit normals lose highlights");
+    } else if (n.lightCoverage < kTiledMinCoverage) {
+        s.technique = "deferred";
+        c.reasons.push_back("technique deferred: " + lights + " " + cover + ", under " + fixed(kTiledMinCoverage) +
+                            ": light volumes cost only the pixels they cover, tiles a fixed culling pass");
+    } else if (hasComputeShaders(info)) {
         s.technique = "deferred-tiled";
-        c.reasons.push_back("technique deferred-tiled: " + std::to_string(n.lights) + " lights (" +
-                            std::to_string(n.boundedLights) + " with a range, culled per 16x16 tile): each pixel "
-                            "shades only the lights that reach its tile, once");
+        c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +
+                            " with a range) " + cover + ": each pixel reads the G-buffer once and shades only the "
+                            "lights that reach its 16x16 tile");
     } else {
         s.technique = "deferred";
-        c.reasons.push_back("technique deferred: " + std::to_string(n.lights) + " lights and no compute shaders on " +
-                            device.backend + ": lights drawn as volumes");
+        c.reasons.push_back("technique deferred: " + lights + " " + cover + " and no compute shaders on " + info.backend +
+                            ": lights drawn as volumes");
     }
+
+    // A reduced illumination rate: only where a probe frame shows it within the error budget.
+    const bool candidate = exactOnly && (s.technique == "deferred-tiled" || s.technique == "deferred");
+    if (options.errorBudgetPercent > 0 && !candidate) {
+        c.reasons.push_back("error budget " + fixed(options.errorBudgetPercent, 2) + " %: unused, " +
+                            (exactOnly ? s.technique + " has no reduced-rate alternative here" : "technique asked for"));
+    } else if (options.errorBudgetPercent > 0 && !probeDevice) {
+        c.reasons.push_back("error budget: unused, no device to render probe frames on");
+    } else if (options.errorBudgetPercent > 0) {
+        const std::string technique = hasComputeShaders(info) ? "redeferred-tiled" : "redeferred";
+        RenderSettings exact = s;
+        exact.displayImage = false;
+        SceneRenderer reference(*probeDevice, scene, exact);
+        reference.renderFrame();
+        const gdi::Image want = reference.readOutput();
+        std::string measured;
+        for (uint32_t scale : {4u, 2u}) {
+            RenderSettings reduced = exact;
+            reduced.technique = technique;
+            reduced.illumScale = scale;
+            SceneRenderer probe(*probeDevice, scene, reduced);
+            probe.renderFrame();
+            const double percent = percentPixelsOver5Of255(probe.readOutput(), want, s.exposure);
+            measured += (measured.empty() ? "" : ", ") + fixed(percent, 2) + " % at scale " + std::to_string(scale);
+            if (percent <= options.errorBudgetPercent) {
+                s.technique = technique;
+                s.illumScale = scale;
+                c.reasons.push_back("technique " + technique + " illum-scale " + std::to_string(scale) + ": probe frame " +
+                                    fixed(percent, 2) + " % of pixels beyond 5/255 of " + exact.technique +
+                                    ", within the budget of " + fixed(options.errorBudgetPercent, 2) +
+                                    " % (roughness " + fixed(n.minRoughness, 2) + "-" + fixed(n.maxRoughness, 2) + ")");
+                break;
+            }
+        }
+        if (s.technique != technique)
+            c.reasons.push_back("no reduced illumination rate: probe frames " + measured + " of pixels beyond 5/255, over the budget of " +
+                                fixed(options.errorBudgetPercent, 2) + " % (smoothest roughness " + fixed(n.minRoughness, 2) +
+                                ": sharp highlights and edges are what a reduced rate misses)");
+    }
+
     if (!findTechnique(s.technique).illumScale && s.illumScale != 1) {
         c.reasons.push_back("illumination scale " + std::to_string(s.illumScale) + " ignored: " + s.technique +
                             " has no I-buffer");

@@ -2,6 +2,20 @@
 // from what a scene needs (`fe render --technique auto`), and says why. The scene renderer
 // then builds only what that technique and the scene need: no G-buffer for forward, no
 // I-buffer outside redeferred, no transparent pass without BLEND primitives (SceneRenderer).
+//
+// The choice, in order (each threshold is a measurement, see the constants below):
+//   - lights that cover the screen nearly as often as there are lights (every pixel would shade
+//     most of them anyway): forward (exact, one pass, no G-buffer; takes --msaa). Precisely:
+//     lights <= kVolumeCostPerForwardLight x coverage (SceneNeeds::lightCoverage);
+//   - more lights and --msaa N: light-prepass, the technique that keeps hardware MSAA with
+//     lights drawn per pixel; its RGBA16F normal target when the scene's smoothest material is
+//     below kPackedNormalsMinRoughness (8-bit normals lose such highlights);
+//   - more lights whose volumes cover the screen less than kTiledMinCoverage times: deferred
+//     (light volumes cost what they cover; tiles cost a fixed culling pass);
+//   - more: deferred-tiled (compute), or deferred where there are no compute shaders;
+//   - with an error budget (DirectorOptions), the reduced-rate technique redeferred-tiled at
+//     illumination scale 4, then 2, when a probe frame of it stays within the budget against the
+//     exact image of the technique it would replace. Without a budget nothing inexact is chosen.
 #pragma once
 #include <string>
 #include <vector>
@@ -17,21 +31,51 @@ struct DirectorChoice {
     std::vector<std::string> reasons;  // one line per decision, for --verbose
 };
 
+struct DirectorOptions {
+    // Percentage of pixels that may differ from the exact image by more than 5/255 in some
+    // channel of the displayed 8-bit sRGB image (exposure applied, clamped). 0: exact
+    // techniques only. Checked by rendering probe frames on the device given to direct().
+    double errorBudgetPercent = 0.0;
+};
+
 // What in a scene drives the choice.
 struct SceneNeeds {
     uint32_t lights = 0;          // every light
     uint32_t boundedLights = 0;   // point and spot lights with a range (cullable per tile)
     uint32_t blendPrimitives = 0; // instances x primitives with BLEND materials
+    // Sum over lights of the screen fraction their range sphere covers (1 for lights without a
+    // range, and for spheres around the eye): how many times over the lights cover the screen.
+    // The projected disc is not clipped to the screen, so this errs high.
+    double lightCoverage = 0.0;
+    // Perceptual roughness of the lit materials drawn (factor x the texture's range).
+    float minRoughness = 1.0f, maxRoughness = 0.0f;
 };
-SceneNeeds sceneNeeds(const assets::Scene& scene);
+// `aspect` is the viewport's width / height (the camera's own aspect ratio wins if it has one).
+SceneNeeds sceneNeeds(const assets::Scene& scene, float aspect);
 
-// Settings with technique "auto" get one chosen; any other technique is kept as asked.
-DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested, const gdi::DeviceInfo& device);
+// Settings with technique "auto" get one chosen; any other technique is kept as asked. With a
+// device, an error budget is checked by probe frames; without one it is reported as unused.
+DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested, const gdi::DeviceInfo& info,
+                      gdi::Device* probeDevice = nullptr, const DirectorOptions& options = {});
 
-// Up to this many lights, forward shading (one pass, no G-buffer) is chosen over the deferred
-// techniques. Measured (builtin:lights, 640x360, vulkan/lavapipe, median of 5 frames): forward
-// 23.3 / 23.3 / 31.8 / 45.1 ms at 2 / 4 / 8 / 16 lights, deferred-tiled 28.6 / 28.3 / 28.1 /
-// 27.9 ms: the crossover lies between 4 and 8 (docs/BENCHMARKS.md).
-constexpr uint32_t kForwardMaxLights = 4;
+// The error-budget metric (DirectorOptions::errorBudgetPercent) between two linear L_o images.
+double percentPixelsOver5Of255(const gdi::Image& a, const gdi::Image& b, float exposure);
+
+// Forward shades every light at every pixel; light volumes shade a light only where it reaches,
+// but each covered pixel costs more (a G-buffer read and a blend per light). This is that cost
+// ratio: a screen's worth of volume against one light in forward's loop. Measured
+// (builtin:lights, 640x360, median of 5 frames, docs/BENCHMARKS.md): forward adds 1.5 ms per
+// light on vulkan and gl-egl; deferred adds 7.6 (vulkan) and 8.1 (gl-egl) ms per screen covered.
+constexpr double kVolumeCostPerForwardLight = 5.0;
+// Below this roughness the packed 8-bit normals of light-prepass lose highlights. Measured
+// (RenderAccuracy.PackedNormalsHoldFromDirectorThreshold, a plane's highlight summed over 9x9
+// pixels, packed / RGBA16F normals): 0.053 at roughness 0.05, 0.735 at 0.1, 0.991 at 0.15,
+// 0.9996 at 0.2, 1.004 at 0.3, every backend the same.
+constexpr float kPackedNormalsMinRoughness = 0.2f;
+// Light coverage (SceneNeeds::lightCoverage) from which tiled culling beats light volumes.
+// Measured (builtin:lights, 640x360, median of 5 frames): deferred / deferred-tiled 20.7 / 24.6
+// ms at coverage 0.5, 24.1 / 24.5 at 1.1, 35.2 / 29.3 at 2.1 (vulkan); 24.0 / 28.6, 27.6 /
+// 27.6, 28.4 / 33.7 (gl-egl); at 4.2 tiles win by 1.5-1.7x on both.
+constexpr double kTiledMinCoverage = 1.0;
 
 }  // namespace fe::render

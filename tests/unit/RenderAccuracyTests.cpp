@@ -12,6 +12,7 @@
 #include "BackendTest.h"
 #include "fe/gdi/Backend.h"
 #include "reference/CpuReference.h"
+#include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 
 using namespace fe;
@@ -248,6 +249,31 @@ TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderAccuracy);
+
+// The render director picks light-prepass's packed 8-bit normals only for scenes no smoother
+// than kPackedNormalsMinRoughness: there the packed highlight must match the half-float one.
+// Measured below it, to show the threshold is where the packing starts to fail.
+TEST_P(RenderAccuracy, PackedNormalsHoldFromDirectorThreshold) {
+    assets::Scene s = assets::makeBuiltinScene("plane");
+    auto peakRatio = [&](float roughness) {
+        for (auto& m : s.materials) m.roughness = roughness;
+        auto peak = [&](const char* t) {
+            render::SceneRenderer r(*device, s, {.technique = t, .width = 97, .height = 73});
+            r.renderFrame();
+            // Over the whole highlight, not one pixel: the sum of red in the 9x9 block around it.
+            const gdi::Image img = r.readOutput();
+            double sum = 0;
+            for (uint32_t y = 32; y <= 40; ++y)
+                for (uint32_t x = 44; x <= 52; ++x) sum += img.texel(x, y)[0];
+            return sum;
+        };
+        return peak("light-prepass") / peak("light-prepass-unpacked");
+    };
+    for (float r : {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.5f})
+        std::cout << "roughness " << r << ": packed / unpacked highlight " << peakRatio(r) << "\n";
+    EXPECT_NEAR(peakRatio(render::kPackedNormalsMinRoughness), 1.0, 0.01);
+    EXPECT_LT(peakRatio(render::kPackedNormalsMinRoughness / 2), 0.95) << "the threshold is not where packing fails";
+}
 
 // The roughness clamp: a mirror-smooth plane seen head-on with a point light on the view axis.
 // With an odd image size the centre pixel sees n = h exactly, where the alpha^2/(4 pi)-scaled

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "BackendTest.h"
 #include "assets/BuiltinScenes.h"
@@ -20,10 +21,11 @@ struct Built {
     std::vector<std::string> reasons;
 };
 
-Built build(gdi::Device& device, const assets::Scene& scene, render::RenderSettings request) {
+Built build(gdi::Device& device, const assets::Scene& scene, render::RenderSettings request,
+            render::DirectorOptions options = {}) {
     request.width = 64;
     request.height = 48;
-    const render::DirectorChoice c = render::direct(scene, request, device.info());
+    const render::DirectorChoice c = render::direct(scene, request, device.info(), &device, options);
     render::SceneRenderer r(device, scene, c.settings);
     r.renderFrame();
     Built b{c.settings.technique, {}, {}, c.reasons};
@@ -49,18 +51,72 @@ TEST_P(RenderDirector, FewLightsGetForwardAndNoGBuffer) {
     EXPECT_EQ(b.technique, "forward");
     EXPECT_EQ(b.passes, (std::vector<std::string>{"forward"}));  // display culled: no image asked for
     EXPECT_EQ(b.textures, (std::vector<std::string>{"depth"}));
-    EXPECT_NE(b.reasons[0].find("1 light(s)"), std::string::npos) << b.reasons[0];
+    EXPECT_NE(b.reasons[0].find("1 light(s) covering the screen 1.0 times"), std::string::npos) << b.reasons[0];
 }
 
-// Many ranged lights: tiled deferred, whose G-buffer is built but no I-buffer.
+// Many ranged lights covering the screen many times over: tiled deferred, whose G-buffer is
+// built but no I-buffer.
 TEST_P(RenderDirector, ManyLightsGetTiledDeferred) {
-    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
     const Built b = build(*device, scene, {.technique = "auto"});
     EXPECT_EQ(b.technique, "deferred-tiled");
     EXPECT_EQ(b.passes, (std::vector<std::string>{"gbuffer", "tiled-lighting"}));
     EXPECT_TRUE(anyStartsWith(b.textures, "gbuffer"));
     EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
-    EXPECT_NE(b.reasons[0].find("64 lights (64 with a range"), std::string::npos) << b.reasons[0];
+    EXPECT_NE(b.reasons[0].find("512 light(s) (512 with a range) covering the screen"), std::string::npos) << b.reasons[0];
+}
+
+// More lights than forward takes, but small on screen: light volumes, no compute pass.
+TEST_P(RenderDirector, LightsCoveringLittleGetLightVolumes) {
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 16});
+    const render::SceneNeeds n = render::sceneNeeds(scene, 64.0f / 48.0f);
+    ASSERT_LT(n.lightCoverage, render::kTiledMinCoverage);
+    const Built b = build(*device, scene, {.technique = "auto"});
+    EXPECT_EQ(b.technique, "deferred");
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"gbuffer", "lighting", "emissive"}));
+    EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
+}
+
+// --msaa with many lights: the light pre-pass, multisampled; packed normals unless the scene
+// has materials smoother than the packing holds.
+TEST_P(RenderDirector, MsaaWithManyLightsGetsLightPrepass) {
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
+    assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    const Built b = build(*device, scene, {.technique = "auto", .msaa = 4});
+    EXPECT_EQ(b.technique, "light-prepass");
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"lpp-normals", "lpp-lights", "lpp-material"}));
+    EXPECT_TRUE(anyStartsWith(b.textures, "msaa lpp normal.xy+roughness (packed)"));
+    EXPECT_TRUE(anyStartsWith(b.textures, "msaa L_o"));
+    EXPECT_FALSE(anyStartsWith(b.textures, "gbuffer"));
+    for (auto& m : scene.materials) m.roughness = render::kPackedNormalsMinRoughness / 2;
+    const Built smooth = build(*device, scene, {.technique = "auto", .msaa = 4});
+    EXPECT_EQ(smooth.technique, "light-prepass-unpacked");
+    EXPECT_TRUE(anyStartsWith(smooth.textures, "msaa lpp normal+roughness"));
+    EXPECT_NE(smooth.reasons[1].find("below 0.20"), std::string::npos) << smooth.reasons[1];
+}
+
+// An error budget admits a reduced illumination rate only as far as a probe frame shows it
+// within the budget; without a budget there is no I-buffer.
+TEST_P(RenderDirector, ReducedRateOnlyWithinTheErrorBudget) {
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
+    const Built generous = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = 100});
+    EXPECT_EQ(generous.technique, "redeferred-tiled");
+    EXPECT_TRUE(anyStartsWith(generous.textures, "ibuffer0 L_dg"));
+    EXPECT_NE(generous.reasons[1].find("illum-scale 4: probe frame"), std::string::npos) << generous.reasons[1];
+    const Built strict = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = 0.01});
+    EXPECT_EQ(strict.technique, "deferred-tiled");
+    EXPECT_FALSE(anyStartsWith(strict.textures, "ibuffer"));
+    EXPECT_NE(strict.reasons[1].find("no reduced illumination rate: probe frames"), std::string::npos) << strict.reasons[1];
+    // Between the two: a budget just above what scale 2 measured admits scale 2, not 4.
+    const render::DirectorChoice c = render::direct(scene, {.technique = "auto", .width = 64, .height = 48}, device->info(),
+                                                    device.get(), {.errorBudgetPercent = 0.01});
+    const std::string& line = c.reasons[1];
+    const double atScale2 = std::stod(line.substr(line.find(", ") + 2));
+    const double atScale4 = std::stod(line.substr(line.find("probe frames ") + 13));
+    ASSERT_LT(atScale2, atScale4) << line;
+    const Built middle = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = (atScale2 + atScale4) / 2});
+    EXPECT_EQ(middle.technique, "redeferred-tiled");
+    EXPECT_NE(middle.reasons[1].find("illum-scale 2"), std::string::npos) << middle.reasons[1];
 }
 
 // BLEND primitives bring the transparent pass; without them there is none.
@@ -91,7 +147,7 @@ FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderDirector);
 
 // Without compute shaders many lights fall back to light volumes (no device needed).
 TEST(RenderDirectorChoice, WithoutComputeShadersManyLightsGetDeferred) {
-    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
     gdi::DeviceInfo noCompute;
     noCompute.backend = "test";
     const render::DirectorChoice c = render::direct(scene, {.technique = "auto"}, noCompute);
@@ -107,4 +163,38 @@ TEST(RenderDirectorChoice, IllumScaleKeptWhereThereIsAnIBuffer) {
         EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 2u) << t;
     for (const char* t : {"deferred", "deferred-tiled", "forward", "light-prepass"})
         EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 1u) << t;
+}
+
+// Screen coverage: a light whose range sphere holds the eye covers the screen; one behind the
+// eye covers nothing; one far away covers its projected disc.
+TEST(RenderDirectorChoice, LightCoverage) {
+    assets::Scene scene = assets::makeBuiltinScene("plane");
+    const assets::Camera& cam = *scene.camera;
+    assets::Light l;
+    l.type = assets::LightType::Point;
+    l.range = 1.0f;
+    scene.lights = {l};
+    scene.lights[0].position = cam.eye();
+    EXPECT_DOUBLE_EQ(render::sceneNeeds(scene, 1.0f).lightCoverage, 1.0);
+    scene.lights[0].position = cam.eye() - cam.forward() * 5.0f;
+    EXPECT_DOUBLE_EQ(render::sceneNeeds(scene, 1.0f).lightCoverage, 0.0);
+    scene.lights[0].position = cam.eye() + cam.forward() * 10.0f;
+    const double d = 10.0, rho = 1.0 / (std::sqrt(d * d - 1.0) * std::tan(cam.yfov / 2));
+    EXPECT_NEAR(render::sceneNeeds(scene, 2.0f).lightCoverage, 3.14159265358979 * rho * rho / 8.0, 1e-6);
+    scene.lights[0].type = assets::LightType::Directional;
+    EXPECT_DOUBLE_EQ(render::sceneNeeds(scene, 1.0f).lightCoverage, 1.0);
+}
+
+// The roughness range reads metallic-roughness textures: a texture's smallest G scales the factor.
+TEST(RenderDirectorChoice, RoughnessRangeReadsTextures) {
+    assets::Scene scene = assets::makeBuiltinScene("plane");
+    for (auto& m : scene.materials) m.roughness = 0.8f;
+    render::SceneNeeds n = render::sceneNeeds(scene, 1.0f);
+    EXPECT_FLOAT_EQ(n.minRoughness, 0.8f);
+    assets::TextureImage t{.name = "mr", .width = 2, .height = 1, .pixels = {0, 255, 0, 255, 0, 51, 0, 255}};
+    scene.textures.push_back(t);
+    for (auto& m : scene.materials) m.metallicRoughnessTexture.index = int32_t(scene.textures.size() - 1);
+    n = render::sceneNeeds(scene, 1.0f);
+    EXPECT_FLOAT_EQ(n.minRoughness, 0.8f * 0.2f);
+    EXPECT_FLOAT_EQ(n.maxRoughness, 0.8f);
 }

@@ -36,7 +36,9 @@ constexpr const char* kUsage =
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
     "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
-    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques)\n"
+    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
+    "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
+    "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -160,6 +162,13 @@ int cmdRender(const Args& a) {
     std::string ex = opt("--exposure", "1");
     s.exposure = std::strtof(ex.c_str(), &end);
     if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
+    render::DirectorOptions director;
+    const std::string budget = opt("--error-budget", "0");
+    director.errorBudgetPercent = std::strtod(budget.c_str(), &end);
+    if (*end || !(director.errorBudgetPercent >= 0 && director.errorBudgetPercent <= 100))
+        throw UsageError("--error-budget must be a percentage from 0 to 100, got '" + budget + "'");
+    if (a.options.count("--error-budget") && s.technique != "auto")
+        throw UsageError("--error-budget applies to --technique auto");
     const bool window = a.options.count("--window") > 0;
     const std::string backend = opt("--backend", "auto");
     if (window && gdi::windowCandidates(backend).empty())
@@ -184,7 +193,7 @@ int cmdRender(const Args& a) {
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
     auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
-    const render::DirectorChoice choice = render::direct(scene, s, device->info());
+    const render::DirectorChoice choice = render::direct(scene, s, device->info(), device.get(), director);
     if (a.options.count("--verbose"))
         for (const std::string& r : choice.reasons) std::cout << "director: " << r << "\n";
     s = choice.settings;
@@ -377,7 +386,7 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync", "--msaa"},
+                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget"},
                                    {"--no-aliasing", "--window", "--verbose"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
