@@ -213,7 +213,8 @@ void RenderGraph::compile(const CompileOptions& options) {
             if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
                 throw gdi::Error("render graph: pass '" + pass.name + "' samples multisampled texture '" + t.name +
                                  "'; resolve it into a single-sample texture first");
-            if (!a.writes()) continue;
+            // Storage images are addressed by the shader, not a render area: any sizes may mix.
+            if (!a.writes() || a.state == gdi::ResourceState::Storage) continue;
             const bool isDepth = gdi::isDepthFormat(t.desc.format);
             if ((a.state == gdi::ResourceState::DepthTarget) != isDepth)
                 throw gdi::Error("render graph: pass '" + pass.name + "': texture '" + t.name + "' (" +

@@ -11,7 +11,9 @@ void GBuffer::declare(graph::RenderGraph& g, TechniqueContext& ctx, graph::Textu
     gb2 = g.createTexture("gbuffer2 emissive+unlit", {.format = kFormat2, .width = w, .height = h});
     depth = sceneDepth;
     g.addPass("gbuffer", [&](graph::PassBuilder& b) {
-        for (auto t : {gb0, gb1, gb2}) b.colorTarget(t);
+        b.colorTarget(gb0);
+        b.colorTarget(gb1);
+        b.colorTarget(gb2, gdi::LoadOp::Clear, {0, 0, 0, -1});  // alpha -1: nothing drawn (fe_scene.glsl)
         b.depthTarget(depth);
     }, [&ctx](graph::PassContext& pc) {
         pc.beginRenderPass();

@@ -6,11 +6,15 @@
 namespace fe::render {
 
 RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : TechniqueRenderer(c), tiled_(tiled) {
+    if (c.settings.illumSplit && c.settings.illumScale == 1)
+        throw gdi::Error("--illum-split needs --illum-scale 2 or 4 (at full rate nothing is upsampled)");
     if (tiled) {
         if (!c.device.info().features.computeShaders)
             throw gdi::Error("technique redeferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
-        // One shader per scale: a tile is 16x16 pixels, 16 / scale texels wide.
-        const char* shader = c.settings.illumScale == 4   ? "scene/tiled_illumination_s4.comp"
+        // One shader per scale: a tile is 16x16 pixels, 16 / scale texels wide (the split
+        // I-buffer is written per pixel at every scale).
+        const char* shader = c.settings.illumSplit         ? "scene/tiled_illumination_split.comp"
+                             : c.settings.illumScale == 4 ? "scene/tiled_illumination_s4.comp"
                              : c.settings.illumScale == 2 ? "scene/tiled_illumination_s2.comp"
                                                           : "scene/tiled_illumination.comp";
         illuminationCs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
@@ -20,6 +24,10 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
         illumination_ = c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
                                                         .debugName = "tiled illumination"});
     } else {
+        // The volume pass writes the three sums as one multiple-render-target draw, so they
+        // must have one size.
+        if (c.settings.illumSplit)
+            throw gdi::Error("--illum-split needs technique redeferred-tiled (redeferred draws all I-buffer sums at one size)");
         volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
                                                   GBuffer::slots(false));
     }
@@ -42,20 +50,23 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
     const RenderSettings& s = ctx_.settings;
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     const graph::TextureId i0 = g.createTexture("ibuffer0 L_dg", {.format = kI0, .width = iw, .height = ih});
-    const graph::TextureId i1 = g.createTexture("ibuffer1 L_sg1", {.format = kI1, .width = iw, .height = ih});
-    const graph::TextureId i2 = g.createTexture("ibuffer2 L_sg2", {.format = kI2, .width = iw, .height = ih});
+    // Split: the specular sums at full resolution, only L_dg reduced.
+    const uint32_t sw = s.illumSplit ? s.width : iw, sh = s.illumSplit ? s.height : ih;
+    const graph::TextureId i1 = g.createTexture("ibuffer1 L_sg1", {.format = kI1, .width = sw, .height = sh});
+    const graph::TextureId i2 = g.createTexture("ibuffer2 L_sg2", {.format = kI2, .width = sw, .height = sh});
     if (tiled_) {
         g.addPass("tiled-illumination", [&](graph::PassBuilder& b) {
             gbuffer_.sampleIn(b, false);
             for (auto t : {i0, i1, i2}) b.storage(t);
-        }, [this, i0, i1, i2, iw, ih](graph::PassContext& pc) {
+        }, [this, i0, i1, i2, sw, sh](graph::PassContext& pc) {
             bindFrameAndLights(pc.cmd, illumination_);
             gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
             pc.cmd.setStorageTexture(kSlotIBuffer0, pc.texture(i0));
             pc.cmd.setStorageTexture(kSlotIBuffer1, pc.texture(i1));
             pc.cmd.setStorageTexture(kSlotIBuffer2, pc.texture(i2));
-            const uint32_t texels = 16 / ctx_.settings.illumScale;
-            pc.cmd.dispatch((iw + texels - 1) / texels, (ih + texels - 1) / texels);
+            // One work group per 16x16-pixel tile; (sw, sh) are the specular sums' texels.
+            const uint32_t texels = ctx_.settings.illumSplit ? 16 : 16 / ctx_.settings.illumScale;
+            pc.cmd.dispatch((sw + texels - 1) / texels, (sh + texels - 1) / texels);
         });
     } else {
         g.addPass("illumination", [&](graph::PassBuilder& b) {

@@ -11,6 +11,15 @@ struct RenderSettings {
     uint32_t height = 240;
     uint32_t illumScale = 1;  // redeferred I-buffer: 1, 2 or 4
     uint32_t msaa = 1;        // samples per pixel (forward techniques; TechniqueInfo::msaa)
+    // Redeferred options from the seed's considerations, each measured (docs/BENCHMARKS.md):
+    // the specular sums L_sg1, L_sg2 at full resolution while L_dg stays at 1/illumScale, so only
+    // the smooth diffuse term is upsampled (redeferred-tiled only; "separate upscaling for
+    // diffuse and specular").
+    bool illumSplit = false;
+    // The material pass takes w_o.n from the G-buffer (written by the geometry pass) instead of
+    // rebuilding it from depth and the normal; applies at illumScale 1, where nothing else needs
+    // depth or normals there (consideration A).
+    bool precomputedNoV = true;
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

@@ -115,14 +115,18 @@ void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, float
 }
 
 // Redeferred material pass: L_d + L_s from the sums (emissive added by the caller).
-vec3 feResolveMaterial(IlluminationSums acc, vec3 n, vec3 wo, vec3 baseColor, float metallic, float roughness) {
+vec3 feResolveMaterialNoV(IlluminationSums acc, float NoV, vec3 baseColor, float metallic, float roughness) {
     float r = feClampRoughness(roughness);
     float k = (r + 1.0) * (r + 1.0) / 8.0;
-    float NoV = max(dot(n, wo), 1e-4);
+    NoV = max(NoV, 1e-4);
     vec3 F0 = mix(vec3(0.04), baseColor, metallic);
     vec3 Ld = (1.0 - metallic) * (baseColor / FE_PI) * (1.0 - F0) * acc.Ldg;
     vec3 Ls = (F0 * acc.Lsg1 + (1.0 - F0) * acc.Lsg2) / (NoV * (1.0 - k) + k);
     return Ld + Ls;
+}
+
+vec3 feResolveMaterial(IlluminationSums acc, vec3 n, vec3 wo, vec3 baseColor, float metallic, float roughness) {
+    return feResolveMaterialNoV(acc, dot(n, wo), baseColor, metallic, roughness);
 }
 
 vec3 feSrgbToLinear(vec3 c) {

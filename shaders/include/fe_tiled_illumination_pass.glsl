@@ -17,9 +17,16 @@ layout(binding = FE_SLOT_IBUFFER2, rgba32f) uniform writeonly image2D outLsg2;
 void main() {
     const ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     const int scale = int(frame.counts.y);
+#ifdef FE_ILLUM_SPLIT
+    // Split I-buffer: one invocation per pixel, storing its specular sums at full resolution and
+    // its L_dg only if it is the representative pixel of its I-buffer texel.
+    const bool inside = all(lessThan(q, ivec2(frame.viewport.xy)));
+    const ivec2 p = q;
+#else
     const bool inside = all(lessThan(q, ivec2(frame.illumViewport.xy)));
     const ivec2 p = min(q * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
-    const bool lit = inside && texelFetch(gb2, p, 0).a <= 0.5;
+#endif
+    const bool lit = inside && !feGBufferUnlit(texelFetch(gb2, p, 0).a);
     const float depth = lit ? texelFetch(depthTexture, p, 0).r : 1.0;
     const vec2 tile = vec2(gl_WorkGroupID.xy * 16u);  // in full-resolution pixels
     feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
@@ -42,7 +49,13 @@ void main() {
             feAccumulateIllumination(acc, n, wo, g1.a, feEvaluateLight(L, P));
         }
     }
+#ifdef FE_ILLUM_SPLIT
+    const ivec2 qi = q / scale;
+    if (all(equal(p, min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1))))
+        imageStore(outLdg, qi, vec4(acc.Ldg, 0.0));
+#else
     imageStore(outLdg, q, vec4(acc.Ldg, 0.0));
+#endif
     imageStore(outLsg1, q, vec4(acc.Lsg1, 0.0));
     imageStore(outLsg2, q, vec4(acc.Lsg2, 0.0));
 }

@@ -11,7 +11,7 @@ layout(location = 0) out vec4 outRadiance;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || texelFetch(gb2, p, 0).a > 0.5) discard;  // background or unlit
+    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;  // background or unlit
     vec4 g0 = texelFetch(gb0, p, 0);
     vec4 g1 = texelFetch(gb1, p, 0);
     SurfacePoint s;

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "fe_material.glsl"
 // G-buffer: GB0 RGBA8_SRGB base colour + metallic, GB1 RGBA16F world normal + roughness,
-// GB2 RGBA16F emissive (or unlit colour) + unlit flag. Position comes back from depth.
+// GB2 RGBA16F emissive (or unlit colour) + w_o.n or the unlit flag (feGBufferUnlit). Position
+// comes back from depth.
 layout(location = 0) in vec3 vWorld;
 layout(location = 1) in vec3 vNormal;
 layout(location = 2) in vec4 vTangent;
@@ -15,5 +16,6 @@ void main() {
     if (feAlphaDiscard(m.alpha)) discard;
     outGb0 = vec4(m.baseColor, m.metallic);
     outGb1 = vec4(m.n, m.roughness);
-    outGb2 = m.unlit ? vec4(m.baseColor, 1.0) : vec4(m.emissive, 0.0);
+    const float NoV = clamp(dot(m.n, normalize(frame.cameraPosition.xyz - vWorld)), 0.0, 1.0);
+    outGb2 = m.unlit ? vec4(m.baseColor, 2.0) : vec4(m.emissive, NoV);
 }

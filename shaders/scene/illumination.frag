@@ -15,7 +15,7 @@ void main() {
     int scale = int(frame.counts.y);
     ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
     float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || texelFetch(gb2, p, 0).a > 0.5) discard;
+    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     vec4 g1 = texelFetch(gb1, p, 0);
     vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
     vec3 n = normalize(g1.xyz);

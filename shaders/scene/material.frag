@@ -20,17 +20,27 @@ float linearDepth(vec2 pixelCenter, float depth) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(depthTexture, p, 0).r;
     vec4 g2 = texelFetch(gb2, p, 0);
-    if (depth >= 1.0) discard;
-    if (g2.a > 0.5) { outRadiance = vec4(g2.rgb, 1.0); return; }  // unlit
+    if (g2.a < 0.0) discard;  // nothing drawn here (G-buffer 2's clear value)
+    if (feGBufferUnlit(g2.a)) { outRadiance = vec4(g2.rgb, 1.0); return; }
     vec4 g0 = texelFetch(gb0, p, 0);
     vec4 g1 = texelFetch(gb1, p, 0);
+    int scale = int(frame.counts.y);
+    IlluminationSums acc;
+    if (scale == 1 && (frame.counts.w & FE_FRAME_PRECOMPUTED_NOV) != 0u) {
+        // Consideration A: w_o.n from the geometry pass; no depth, position or normal needed.
+        acc.Ldg = texelFetch(iLdg, p, 0).rgb;
+        acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
+        acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
+        outRadiance = vec4(g2.rgb + feResolveMaterialNoV(acc, g2.a, g0.rgb, g0.a, g1.a), 1.0);
+        return;
+    }
+    float depth = texelFetch(depthTexture, p, 0).r;
     vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
     vec3 n = normalize(g1.xyz);
     vec3 wo = normalize(frame.cameraPosition.xyz - P);
-    int scale = int(frame.counts.y);
-    IlluminationSums acc;
+    // With the split I-buffer the specular sums are at full resolution: only L_dg is upsampled.
+    const bool split = (frame.counts.w & FE_FRAME_ILLUM_SPLIT) != 0u;
     if (scale == 1) {
         acc.Ldg = texelFetch(iLdg, p, 0).rgb;
         acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
@@ -58,7 +68,9 @@ void main() {
                 float wn = pow(max(dot(normalize(r1.xyz), n), 0.0), 32.0);
                 float wr = exp(-abs(r1.a - g1.a) / 0.05);
                 float w = bil * wz * wn * wr;
-                vec3 a = texelFetch(iLdg, qi, 0).rgb, b = texelFetch(iLsg1, qi, 0).rgb, c = texelFetch(iLsg2, qi, 0).rgb;
+                vec3 a = texelFetch(iLdg, qi, 0).rgb;
+                vec3 b = split ? vec3(0.0) : texelFetch(iLsg1, qi, 0).rgb;
+                vec3 c = split ? vec3(0.0) : texelFetch(iLsg2, qi, 0).rgb;
                 acc.Ldg += w * a;
                 acc.Lsg1 += w * b;
                 acc.Lsg2 += w * c;
@@ -72,6 +84,10 @@ void main() {
             acc.Lsg2 /= wsum;
         } else {
             acc = nearest;  // no similar neighbour: take the most similar one
+        }
+        if (split) {
+            acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
+            acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
         }
     }
     vec3 L = g2.rgb + feResolveMaterial(acc, n, wo, g0.rgb, g0.a, g1.a);

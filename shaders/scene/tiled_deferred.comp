@@ -21,7 +21,7 @@ void main() {
     if (!inside) return;
     const vec4 g2 = texelFetch(gb2, p, 0);
     vec3 radiance = g2.rgb;  // emissive, or the colour of an unlit surface
-    if (depth < 1.0 && g2.a <= 0.5) {
+    if (depth < 1.0 && !feGBufferUnlit(g2.a)) {
         const vec4 g0 = texelFetch(gb0, p, 0);
         const vec4 g1 = texelFetch(gb1, p, 0);
         SurfacePoint s;

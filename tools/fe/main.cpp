@@ -37,6 +37,8 @@ constexpr const char* kUsage =
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
     "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
     "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
+    "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
+    "      --rebuild-nov (redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer)\n"
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
@@ -189,6 +191,8 @@ int cmdRender(const Args& a) {
 
     s.displayImage = !pfm || window;  // the PNG (and the window) show the GPU's display pass output
     s.aliasing = !a.options.count("--no-aliasing");
+    s.illumSplit = a.options.count("--illum-split") > 0;
+    s.precomputedNoV = !a.options.count("--rebuild-nov");
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
@@ -236,7 +240,9 @@ int cmdRender(const Args& a) {
     if (window) std::cout << "window: " << presented << " frame(s) presented, " << device->info().presentMode << "\n";
     std::cout
               << "technique " << s.technique;
-    if (render::findTechnique(s.technique).illumScale) std::cout << " illum-scale " << s.illumScale;
+    if (render::findTechnique(s.technique).illumScale)
+        std::cout << " illum-scale " << s.illumScale << (s.illumSplit ? " split" : "")
+                  << (s.precomputedNoV ? "" : " rebuild-nov");
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
@@ -387,7 +393,7 @@ int main(int argc, char** argv) {
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget"},
-                                   {"--no-aliasing", "--window", "--verbose"}));
+                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));

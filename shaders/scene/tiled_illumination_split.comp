@@ -1,0 +1,9 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Redeferred tiled illumination with the split I-buffer (--illum-split): one invocation per pixel
+// of a 16x16-pixel tile; specular sums at full resolution, L_dg at 1/scale.
+#define FE_TILE_TEXELS 16
+#define FE_TILE_INVOCATIONS 256u
+#define FE_ILLUM_SPLIT
+#include "fe_tile_culling.glsl"
+#include "fe_tiled_illumination_pass.glsl"
