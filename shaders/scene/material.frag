@@ -47,7 +47,10 @@ void main() {
         acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
     } else {
         ivec2 isize = ivec2(frame.illumViewport.xy);
-        vec2 q = (vec2(p) + 0.5) / float(scale) - 0.5;
+        // Texel qi holds the sums of its representative pixel qi * scale + scale / 2 (the
+        // illumination passes' choice), so that pixel, not the block's centre, is where texel qi
+        // lies in the bilinear footprint.
+        vec2 q = (vec2(p) - float(scale / 2)) / float(scale);
         ivec2 q0 = ivec2(floor(q));
         vec2 f = q - vec2(q0);
         float zp = distance(P, frame.cameraPosition.xyz);
