@@ -192,6 +192,7 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights) {
     }
     device_.writeBuffer(lights_, 0, gdi::bytesOf(records));
     lightCount_ = uint32_t(lights.size());
+    currentLights_ = lights;
 }
 
 ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {

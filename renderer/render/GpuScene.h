@@ -77,6 +77,8 @@ public:
     ObjectConstants objectConstants(const DrawItem& item) const;
     // Replaces the light list (e.g. animated builtin:lights); the count may change.
     void updateLights(const std::vector<assets::Light>& lights);
+    // The lights as last uploaded (the scene's, or those of the last updateLights()).
+    const std::vector<assets::Light>& lights() const { return currentLights_; }
 
     bool hasBlend() const;
     bool hasOpaque() const;
@@ -88,6 +90,7 @@ private:
     const assets::Scene& scene_;
     gdi::BufferHandle vertices_, indices_, lights_;
     uint64_t lightCapacity_ = 0;
+    std::vector<assets::Light> currentLights_;
     uint32_t lightCount_ = 0;
     std::vector<DrawItem> draws_;
     std::vector<gdi::TextureHandle> textures_;

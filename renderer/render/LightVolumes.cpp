@@ -72,6 +72,20 @@ Shape shapeOf(const assets::Light& l) {
     return Sphere;
 }
 
+// As shapeOf, seen from `camera`: a volume the far plane would clip (its back faces cut away),
+// or whose surface passes within the near plane's reach of the eye, is drawn full screen; the
+// fragment shader's range window keeps that exact.
+Shape shapeSeenFrom(const assets::Light& l, const assets::Camera* camera) {
+    const Shape shape = shapeOf(l);
+    if (shape == FullScreen || !camera) return shape;
+    const float d = glm::distance(camera->eye(), l.position);
+    // A cone reaches past its range sphere: its cap's rim lies range / cos(outer) away.
+    const float extent = shape == Cone ? l.range / std::cos(l.outerConeAngle) : l.range;
+    const bool farClips = !camera->infiniteFar() && d + extent > camera->zfar;
+    const bool nearClips = std::abs(d - l.range) < 4.0f * camera->znear;
+    return farClips || nearClips ? FullScreen : shape;
+}
+
 }  // namespace
 
 LightVolumes::Counts LightVolumes::classify(const std::vector<assets::Light>& lights) {
@@ -141,14 +155,18 @@ LightVolumes::~LightVolumes() {
 }
 
 void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame) {
-    const auto& lights = scene.scene().lights;
+    const auto& lights = scene.lights();
     if (scene.lightCount() == 0) return;
+    const assets::Camera* camera = scene.scene().camera ? &*scene.scene().camera : nullptr;
     // Instances grouped by shape: spheres, cones, full screen.
     std::vector<glm::uvec2> instances;
+    Counts n;
     for (Shape shape : {Sphere, Cone, FullScreen})
         for (uint32_t i = 0; i < scene.lightCount() && i < lights.size(); ++i)
-            if (shapeOf(lights[i]) == shape) instances.push_back({i, uint32_t(shape)});
-    Counts n = classify(lights);
+            if (shapeSeenFrom(lights[i], camera) == shape) {
+                instances.push_back({i, uint32_t(shape)});
+                (shape == Sphere ? n.spheres : shape == Cone ? n.cones : n.fullscreen)++;
+            }
     UploadAllocation inst = queue.upload(gdi::bytesOf(instances));
 
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);

@@ -18,7 +18,9 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                              : c.settings.illumScale == 2 ? "scene/tiled_illumination_s2.comp"
                                                           : "scene/tiled_illumination.comp";
         illuminationCs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
+        culling_ = std::make_unique<TileLightCulling>(c);
         std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(false);
+        b.push_back(TileLightCulling::listSlot());
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
         illumination_ = c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
@@ -55,12 +57,15 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
     const graph::TextureId i1 = g.createTexture("ibuffer1 L_sg1", {.format = kI1, .width = sw, .height = sh});
     const graph::TextureId i2 = g.createTexture("ibuffer2 L_sg2", {.format = kI2, .width = sw, .height = sh});
     if (tiled_) {
+        const graph::TextureId lists = culling_->declare(g, gbuffer_.depth);
         g.addPass("tiled-illumination", [&](graph::PassBuilder& b) {
             gbuffer_.sampleIn(b, false);
+            b.sample(lists);
             for (auto t : {i0, i1, i2}) b.storage(t);
-        }, [this, i0, i1, i2, sw, sh](graph::PassContext& pc) {
+        }, [this, i0, i1, i2, sw, sh, lists](graph::PassContext& pc) {
             bindFrameAndLights(pc.cmd, illumination_);
             gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
+            culling_->bindLists(pc.cmd, pc, lists);
             pc.cmd.setStorageTexture(kSlotIBuffer0, pc.texture(i0));
             pc.cmd.setStorageTexture(kSlotIBuffer1, pc.texture(i1));
             pc.cmd.setStorageTexture(kSlotIBuffer2, pc.texture(i2));

@@ -1,12 +1,14 @@
 // Layer 7: redeferred shading (../shared/seeds/000): G-buffer; an illumination pass into the
 // I-buffer (L_dg and the specular sums, at 1/--illum-scale of the resolution per axis): the
-// lights drawn as volumes, or (tiled) one compute pass culling them per 16x16 I-buffer tile;
+// lights drawn as volumes, or (tiled) one compute pass shading per 16x16-pixel tile the lights
+// the light-culling pass (TileLightCulling) listed for it;
 // a material pass turning the upsampled sums into L_o.
 #pragma once
 #include <memory>
 
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
+#include "render/TileLightCulling.h"
 
 namespace fe::render {
 
@@ -24,6 +26,7 @@ private:
     bool tiled_;
     GBuffer gbuffer_;
     std::unique_ptr<LightVolumes> volumes_;
+    std::unique_ptr<TileLightCulling> culling_;  // tiled
     gdi::ShaderHandle illuminationCs_;
     gdi::PipelineHandle illumination_;  // tiled
     gdi::ShaderHandle materialFs_;

@@ -20,6 +20,10 @@ struct RenderSettings {
     // rebuilding it from depth and the normal; applies at illumScale 1, where nothing else needs
     // depth or normals there (consideration A).
     bool precomputedNoV = true;
+    // deferred-tiled: lights culled per tile by a pass of their own (TileLightCulling) rather
+    // than by each shading work group in shared memory within the one dispatch (measured both
+    // ways, docs/BENCHMARKS.md). redeferred-tiled always uses the culling pass.
+    bool tileCullingPass = true;
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

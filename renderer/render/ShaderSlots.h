@@ -19,4 +19,6 @@ constexpr uint32_t kSlotIBuffer1 = 13;
 constexpr uint32_t kSlotIBuffer2 = 14;
 constexpr uint32_t kSlotRadiance = 15;
 constexpr uint32_t kSlotRadianceOut = 16;  // storage image: compute passes writing L_o
+constexpr uint32_t kSlotTileLights = 17;    // per-tile light lists (TileLightCulling), sampled
+constexpr uint32_t kSlotTileLightsOut = 18; // ... and written, by the light-culling pass
 }  // namespace fe::render

@@ -8,8 +8,11 @@ namespace fe::render {
 TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("technique deferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
-    cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tiled_deferred.comp")});
+    if (c.settings.tileCullingPass) culling_ = std::make_unique<TileLightCulling>(c);
+    const char* shader = culling_ ? "scene/tiled_deferred.comp" : "scene/tiled_deferred_onepass.comp";
+    cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
     std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(true);
+    if (culling_) b.push_back(TileLightCulling::listSlot());
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
     pipeline_ = c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"});
 }
@@ -21,12 +24,15 @@ TiledDeferredRenderer::~TiledDeferredRenderer() {
 
 void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
     gbuffer_.declare(g, ctx_, depth);
+    const graph::TextureId lists = culling_ ? culling_->declare(g, depth) : graph::TextureId{};
     g.addPass("tiled-lighting", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);
+        if (culling_) b.sample(lists);
         b.storage(output);
-    }, [this, output](graph::PassContext& pc) {
+    }, [this, output, lists](graph::PassContext& pc) {
         bindFrameAndLights(pc.cmd, pipeline_);
         gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
+        if (culling_) culling_->bindLists(pc.cmd, pc, lists);
         pc.cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));
         const RenderSettings& s = ctx_.settings;
         pc.cmd.dispatch((s.width + kTileSize - 1) / kTileSize, (s.height + kTileSize - 1) / kTileSize);

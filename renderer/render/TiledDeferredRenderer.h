@@ -1,8 +1,13 @@
-// Layer 7: tiled deferred shading: the G-buffer, then one compute pass in which each 16x16
-// screen tile culls the lights against its depth bounds and every pixel shades only its
-// tile's lights, once, writing L_o with no blending (shaders/scene/tiled_deferred.comp).
+// Layer 7: tiled deferred shading: the G-buffer, then the lights culled per 16x16 screen tile
+// against the tile's depth bounds, and one compute pass in which every pixel shades only its
+// tile's lights, once, writing L_o with no blending (shaders/include/fe_tiled_deferred_pass.glsl).
+// The culling runs as a pass of its own (TileLightCulling) or, with
+// RenderSettings::tileCullingPass off, inside the shading dispatch in shared memory.
 #pragma once
+#include <memory>
+
 #include "render/GBuffer.h"
+#include "render/TileLightCulling.h"
 
 namespace fe::render {
 
@@ -11,10 +16,11 @@ public:
     explicit TiledDeferredRenderer(TechniqueContext& context);
     ~TiledDeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
-    static constexpr uint32_t kTileSize = 16;
+    static constexpr uint32_t kTileSize = TileLightCulling::kTileSize;
 
 private:
     GBuffer gbuffer_;
+    std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
 };

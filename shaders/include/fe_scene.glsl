@@ -19,6 +19,8 @@
 #define FE_SLOT_IBUFFER2 14
 #define FE_SLOT_RADIANCE 15
 #define FE_SLOT_RADIANCE_OUT 16
+#define FE_SLOT_TILE_LIGHTS 17
+#define FE_SLOT_TILE_LIGHTS_OUT 18
 
 // frame.counts.w bits (kFrame* in GpuScene.h).
 #define FE_FRAME_PRECOMPUTED_NOV 1u

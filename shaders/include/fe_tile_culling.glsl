@@ -11,6 +11,55 @@
 #define FE_TILE_CULLING_GLSL
 #include "fe_scene.glsl"
 
+// World-space box around a tile's slice of the view frustum: its 8 corners at the tile's pixel
+// edges and depth bounds z0..z1 (a frustum slice is the convex hull of its corners).
+void feTileSliceBox(vec2 pixelMin, vec2 pixelMax, float z0, float z1, out vec3 lo, out vec3 hi) {
+    lo = vec3(3.0e38);
+    hi = vec3(-3.0e38);
+    for (int c = 0; c < 8; ++c) {
+        vec3 w = feWorldFromDepth(vec2((c & 1) != 0 ? pixelMax.x : pixelMin.x, (c & 2) != 0 ? pixelMax.y : pixelMin.y),
+                                  (c & 4) != 0 ? z1 : z0);
+        lo = min(lo, w);
+        hi = max(hi, w);
+    }
+}
+
+// Whether a light can reach point P: beyond its range its window (SHADING.md) is exactly 0.
+bool feLightReaches(GpuLight L, vec3 P) {
+    const vec3 d = L.positionRange.xyz - P;
+    return L.directionType.w == FE_LIGHT_DIRECTIONAL || L.positionRange.w <= 0.0 ||
+           dot(d, d) < L.positionRange.w * L.positionRange.w;
+}
+
+// Whether a light can reach the box: directional and unbounded lights always can.
+bool feLightTouchesBox(GpuLight L, vec3 lo, vec3 hi) {
+    const float range = L.positionRange.w;
+    if (L.directionType.w == FE_LIGHT_DIRECTIONAL || range <= 0.0) return true;
+    const vec3 d = L.positionRange.xyz - clamp(L.positionRange.xyz, lo, hi);
+    const float r = range * 1.0001 + 1e-4;  // rounding of the corners must not cull
+    return dot(d, d) <= r * r;
+}
+
+#ifdef FE_TILE_LISTS
+// The lists come from the light-culling pass (tile_light_culling.comp, TileLightCulling.h): a
+// block of 32 x H texels per tile in an R32U texture, texel 0 the count (all ones: the list
+// overflowed, shade every light), then the light indices in order.
+layout(binding = FE_SLOT_TILE_LIGHTS) uniform usampler2D tileLightLists;
+uint feTileCount_;
+ivec2 feTileBlock_;
+void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
+    const int tilesY = (int(frame.viewport.y) + 15) / 16;
+    const ivec2 tile = ivec2(pixelMin) / 16;
+    feTileBlock_ = ivec2(tile.x * 32, tile.y * (textureSize(tileLightLists, 0).y / tilesY));
+    feTileCount_ = texelFetch(tileLightLists, feTileBlock_, 0).r;
+}
+uint feTileLightCount() { return feTileCount_ == 0xffffffffu ? frame.counts.x : feTileCount_; }
+uint feTileLight(uint k) {
+    if (feTileCount_ == 0xffffffffu) return k;
+    const uint e = k + 1u;
+    return texelFetch(tileLightLists, feTileBlock_ + ivec2(e % 32u, e / 32u), 0).r;
+}
+#else
 // Invocations per work group, as the including shader's local size says (a macro: measured,
 // striding by gl_WorkGroupSize.x * gl_WorkGroupSize.y made every invocation walk every light).
 #ifndef FE_TILE_INVOCATIONS
@@ -37,26 +86,10 @@ void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
     }
     barrier();
     if (tileMinDepth <= tileMaxDepth) {  // the tile has surfaces: cull
-        // World-space box around the frustum slice: its 8 corners at the tile's pixel edges
-        // and the depth bounds (a frustum slice is the convex hull of its corners).
-        const float z0 = uintBitsToFloat(tileMinDepth), z1 = uintBitsToFloat(tileMaxDepth);
-        vec3 lo = vec3(3.0e38), hi = vec3(-3.0e38);
-        for (int c = 0; c < 8; ++c) {
-            vec3 w = feWorldFromDepth(vec2((c & 1) != 0 ? pixelMax.x : pixelMin.x, (c & 2) != 0 ? pixelMax.y : pixelMin.y),
-                                      (c & 4) != 0 ? z1 : z0);
-            lo = min(lo, w);
-            hi = max(hi, w);
-        }
+        vec3 lo, hi;
+        feTileSliceBox(pixelMin, pixelMax, uintBitsToFloat(tileMinDepth), uintBitsToFloat(tileMaxDepth), lo, hi);
         for (uint i = gl_LocalInvocationIndex; i < frame.counts.x; i += FE_TILE_INVOCATIONS) {
-            const GpuLight L = lights[i];
-            const float range = L.positionRange.w;
-            bool hit = true;
-            if (L.directionType.w != FE_LIGHT_DIRECTIONAL && range > 0.0) {
-                const vec3 d = L.positionRange.xyz - clamp(L.positionRange.xyz, lo, hi);
-                const float r = range * 1.0001 + 1e-4;  // rounding of the corners must not cull
-                hit = dot(d, d) <= r * r;
-            }
-            if (hit) {
+            if (feLightTouchesBox(lights[i], lo, hi)) {
                 const uint slot = atomicAdd(tileLightCount, 1u);
                 if (slot < FE_TILE_MAX_LIGHTS) tileLights[slot] = i;
             }
@@ -68,4 +101,5 @@ void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
 // The k-th light of the tile's list (every light when the list overflowed), and their count.
 uint feTileLightCount() { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLightCount : frame.counts.x; }
 uint feTileLight(uint k) { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLights[k] : k; }
+#endif  // FE_TILE_LISTS
 #endif

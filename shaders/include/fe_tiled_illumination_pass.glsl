@@ -40,12 +40,9 @@ void main() {
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
             const GpuLight L = lights[feTileLight(k)];
-            // A reduced-rate tile spans scale^2 as many pixels, so many of its lights miss this
-            // texel's point: beyond its range a light adds exactly 0 (range window), skip it.
-            const vec3 d = L.positionRange.xyz - P;
-            if (L.directionType.w != FE_LIGHT_DIRECTIONAL && L.positionRange.w > 0.0 &&
-                dot(d, d) >= L.positionRange.w * L.positionRange.w)
-                continue;
+            // Many of a tile's lights miss this texel's point: beyond its range a light adds
+            // exactly 0 (range window), skip it.
+            if (!feLightReaches(L, P)) continue;
             feAccumulateIllumination(acc, n, wo, g1.a, feEvaluateLight(L, P));
         }
     }

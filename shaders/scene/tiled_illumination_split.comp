@@ -5,5 +5,6 @@
 #define FE_TILE_TEXELS 16
 #define FE_TILE_INVOCATIONS 256u
 #define FE_ILLUM_SPLIT
+#define FE_TILE_LISTS  // lists from the light-culling pass
 #include "fe_tile_culling.glsl"
 #include "fe_tiled_illumination_pass.glsl"

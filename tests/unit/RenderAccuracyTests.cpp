@@ -95,18 +95,40 @@ TEST_P(RenderAccuracy, DeferredMatchesForward) {
 // against light volumes on the same G-buffer: the same sums up to float ordering.
 TEST_P(RenderAccuracy, TiledCullingDropsNoLight) {
     assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 128});
-    auto render = [&](const char* t) {
-        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64});
+    auto render = [&](const char* t, bool cullingPass = true) {
+        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .tileCullingPass = cullingPass});
         r.renderFrame();
         return r.readOutput();
     };
-    gdi::Image volumes = render("deferred"), tiled = render("deferred-tiled");
-    Stats s = compare(tiled, volumes, 1e-4, 1e-3);
-    EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
+    gdi::Image volumes = render("deferred");
+    for (bool cullingPass : {true, false}) {
+        Stats s = compare(render("deferred-tiled", cullingPass), volumes, 1e-4, 1e-3);
+        EXPECT_EQ(s.fractionOver, 0.0) << (cullingPass ? "culling pass" : "one pass") << " max relative error " << s.maxRel;
+    }
     // The tiled illumination pass fills the I-buffer with the same sums as the volumes (which
     // round L_dg to half float after every light's blend, where the compute pass rounds once).
     Stats r = compare(render("redeferred-tiled"), render("redeferred"), 1e-2, 1e-3);
     EXPECT_EQ(r.fractionOver, 0.0) << "redeferred-tiled max relative error " << r.maxRel;
+}
+
+// A tile list holds at most TileLightCulling::kMaxListLength lights; a tile with more is marked
+// to shade every light. 1030 weak lights reaching every pixel overflow every tile: the image
+// must still equal the light volumes'. (Their range spheres reach past the far plane, which
+// once clipped the volumes' back faces: LightVolumes now draws such lights full screen.)
+TEST_P(RenderAccuracy, TileListOverflowShadesEveryLight) {
+    assets::Scene scene1 = assets::makeBuiltinScene("lights", {.lights = 1030});
+    for (auto& l : scene1.lights) {
+        l.position = {0.0f, 3.0f, 0.0f};
+        l.range = 100.0f;
+        l.intensity = 0.05f;
+    }
+    auto render = [&](const char* t) {
+        render::SceneRenderer r(*device, scene1, {.technique = t, .width = 48, .height = 32});
+        r.renderFrame();
+        return r.readOutput();
+    };
+    Stats s = compare(render("deferred-tiled"), render("deferred"), 1e-3, 1e-3);
+    EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
 }
 
 // Multi-pass forward adds each light's radiance in its own pass (float blending, in another
@@ -187,9 +209,9 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward", {"forward", "display"}},
         {"forward-multipass", {"forward-multipass", "display"}},
         {"forward-zprepass", {"zprepass", "forward-shading", "display"}},
-        {"deferred-tiled", {"gbuffer", "tiled-lighting", "display"}},
+        {"deferred-tiled", {"gbuffer", "light-culling", "tiled-lighting", "display"}},
         {"light-prepass", {"lpp-normals", "lpp-lights", "lpp-material", "display"}},
-        {"redeferred-tiled", {"gbuffer", "tiled-illumination", "material", "display"}},
+        {"redeferred-tiled", {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},
         {"deferred", {"gbuffer", "lighting", "emissive", "display"}},
         {"redeferred", {"gbuffer", "illumination", "material", "display"}}};
     for (const auto& [technique, passes] : expected) {

@@ -60,7 +60,7 @@ TEST_P(RenderDirector, ManyLightsGetTiledDeferred) {
     const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
     const Built b = build(*device, scene, {.technique = "auto"});
     EXPECT_EQ(b.technique, "deferred-tiled");
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"gbuffer", "tiled-lighting"}));
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"gbuffer", "light-culling", "tiled-lighting"}));
     EXPECT_TRUE(anyStartsWith(b.textures, "gbuffer"));
     EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
     EXPECT_NE(b.reasons[0].find("512 light(s) (512 with a range) covering the screen"), std::string::npos) << b.reasons[0];

@@ -1,0 +1,63 @@
+#include "render/TileLightCulling.h"
+
+#include <algorithm>
+
+#include "fe/gdi/ShaderRegistry.h"
+#include "render/ShaderSlots.h"
+
+namespace fe::render {
+
+TileLightCulling::TileLightCulling(TechniqueContext& c) : ctx_(c) {
+    if (!c.device.info().features.computeShaders)
+        throw gdi::Error("tiled light culling needs compute shaders, which " + c.device.info().backend + " lacks");
+    cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tile_light_culling.comp")});
+    pipeline_ = c.device.createComputePipeline(
+        {.computeShader = cs_,
+         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute},
+                      {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute},
+                      {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute},
+                      {kSlotTileLightsOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute}},
+         .debugName = "light culling"});
+}
+
+TileLightCulling::~TileLightCulling() {
+    ctx_.device.destroy(pipeline_);
+    ctx_.device.destroy(cs_);
+}
+
+gdi::BindingSlot TileLightCulling::listSlot() {
+    return {kSlotTileLights, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute};
+}
+
+graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {
+    const RenderSettings& s = ctx_.settings;
+    const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize, tilesY = (s.height + kTileSize - 1) / kTileSize;
+    // Room for every light (up to kMaxListLength) plus the count, within the device's texture limit.
+    const uint32_t entries = std::min(ctx_.scene.lightCount(), kMaxListLength) + 1;
+    const uint32_t maxDim = ctx_.device.info().limits.maxTextureSize2D;
+    const uint32_t blockHeight = std::max(1u, std::min((entries + kBlockWidth - 1) / kBlockWidth, maxDim / tilesY));
+    if (tilesX * kBlockWidth > maxDim)
+        throw gdi::Error("tiled light culling: " + std::to_string(s.width) + " pixels wide needs a list texture wider than " +
+                         std::to_string(maxDim));
+    const graph::TextureId lists = g.createTexture(
+        "tile light lists", {.format = gdi::Format::R32U, .width = tilesX * kBlockWidth, .height = tilesY * blockHeight});
+    g.addPass("light-culling", [&](graph::PassBuilder& b) {
+        b.sample(depth);
+        b.storage(lists);
+    }, [this, depth, lists, tiles = tilesX * tilesY](graph::PassContext& pc) {
+        pc.cmd.setPipeline(pipeline_);
+        const UploadAllocation& fc = ctx_.frameConstants;
+        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+        pc.cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+        pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
+        pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
+        pc.cmd.dispatch((tiles + 63) / 64, 1);
+    });
+    return lists;
+}
+
+void TileLightCulling::bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const {
+    cmd.setTexture(kSlotTileLights, pc.texture(lists), ctx_.pointSampler);
+}
+
+}  // namespace fe::render

@@ -1,0 +1,36 @@
+// Layer 7: the light-culling pass of the tiled techniques (deferred-tiled, redeferred-tiled).
+// One compute pass reads the scene depth and writes, per 16x16-pixel tile, the list of lights
+// whose range reaches the tile's slice of the view frustum (shaders/scene/tile_light_culling.comp);
+// the shading passes then read their tile's list (fe_tile_culling.glsl with FE_TILE_LISTS).
+// The lists are a transient R32U texture of the render graph: a block of 32 x H texels per
+// tile, texel 0 the count. A tile with more lights than its block holds is marked to shade
+// every light, so culling never drops one.
+#pragma once
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+class TileLightCulling {
+public:
+    explicit TileLightCulling(TechniqueContext& context);
+    ~TileLightCulling();
+    TileLightCulling(const TileLightCulling&) = delete;
+    TileLightCulling& operator=(const TileLightCulling&) = delete;
+
+    // Declares the list texture and the "light-culling" pass reading `depth`.
+    graph::TextureId declare(graph::RenderGraph& g, graph::TextureId depth);
+    // The binding the shading pipelines add for the lists, and binding them in a pass.
+    static gdi::BindingSlot listSlot();
+    void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const;
+
+    static constexpr uint32_t kTileSize = 16;
+    static constexpr uint32_t kBlockWidth = 32;       // texels per tile block row
+    static constexpr uint32_t kMaxListLength = 1023;  // lights per tile list at most
+
+private:
+    TechniqueContext& ctx_;
+    gdi::ShaderHandle cs_;
+    gdi::PipelineHandle pipeline_;
+};
+
+}  // namespace fe::render

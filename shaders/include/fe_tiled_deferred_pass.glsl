@@ -1,0 +1,41 @@
+// The body of tiled_deferred*.comp. A work group per 16x16 screen tile; each pixel shades only
+// its tile's lights, once, writing L_o. The tile's lights come from the light-culling pass
+// (FE_TILE_LISTS, tiled_deferred.comp) or are culled by the work group itself against its
+// depth bounds in shared memory (tiled_deferred_onepass.comp). Culling: fe_tile_culling.glsl.
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
+layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
+layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
+layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform writeonly image2D outRadiance;
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    const bool inside = all(lessThan(p, ivec2(frame.viewport.xy)));
+    const float depth = inside ? texelFetch(depthTexture, p, 0).r : 1.0;
+    const vec2 tile = vec2(gl_WorkGroupID.xy * 16u);
+    feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
+    if (!inside) return;
+    const vec4 g2 = texelFetch(gb2, p, 0);
+    vec3 radiance = g2.rgb;  // emissive, or the colour of an unlit surface
+    if (depth < 1.0 && !feGBufferUnlit(g2.a)) {
+        const vec4 g0 = texelFetch(gb0, p, 0);
+        const vec4 g1 = texelFetch(gb1, p, 0);
+        SurfacePoint s;
+        s.P = feWorldFromDepth(vec2(p) + 0.5, depth);
+        s.n = normalize(g1.xyz);
+        s.wo = normalize(frame.cameraPosition.xyz - s.P);
+        s.baseColor = g0.rgb;
+        s.metallic = g0.a;
+        s.roughness = g1.a;
+        const uint count = feTileLightCount();
+        for (uint k = 0u; k < count; ++k) {
+            const GpuLight L = lights[feTileLight(k)];
+            // Most of a tile's lights miss most of its pixels: beyond its range a light adds
+            // exactly 0 (the range window), so skip the shading.
+            if (!feLightReaches(L, s.P)) continue;
+            radiance += feShadeLight(s, feEvaluateLight(L, s.P));
+        }
+    }
+    imageStore(outRadiance, p, vec4(radiance, 1.0));
+}
