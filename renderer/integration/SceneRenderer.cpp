@@ -110,8 +110,7 @@ void SceneRenderer::renderFrame() {
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
-    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, 0,
-                           (s.precomputedNoV ? kFramePrecomputedNoV : 0u) | (s.illumSplit ? kFrameIllumSplit : 0u));
+    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, 0, 0);
     fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);  // forward: every light, with emissive
 
     gdi::CommandList& cmd = queue_->beginFrame();

@@ -12,16 +12,13 @@
 namespace fe::render {
 
 // std140 layouts shared with shaders/include/fe_scene.glsl.
-// FrameConstants::counts.w: redeferred options (RenderSettings).
-constexpr uint32_t kFramePrecomputedNoV = 1u, kFrameIllumSplit = 2u;
-
 struct FrameConstants {
     glm::mat4 viewProj;
     glm::mat4 invViewProj;
     glm::vec4 cameraPosition;  // xyz, w = exposure
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
-    glm::uvec4 counts;         // x = light count, y = illumination scale, z = debug flags, w = kFrame* bits
+    glm::uvec4 counts;         // x = light count, y = illumination scale, z = debug flags
     glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
     glm::mat4 view;            // view from world (rigid)
 };

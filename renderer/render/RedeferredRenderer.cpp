@@ -33,7 +33,12 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
         volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
                                                   GBuffer::slots(false));
     }
-    materialFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/material.frag")});
+    // One material shader per path (fe_material_pass.glsl says why).
+    const RenderSettings& s = c.settings;
+    const char* material = s.illumScale > 1 ? (s.illumSplit ? "scene/material_upsample_split.frag" : "scene/material_upsample.frag")
+                           : s.precomputedNoV ? "scene/material.frag"
+                                              : "scene/material_rebuild_nov.frag";
+    materialFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(material)});
     std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
     for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})

@@ -22,10 +22,6 @@
 #define FE_SLOT_TILE_LIGHTS 17
 #define FE_SLOT_TILE_LIGHTS_OUT 18
 
-// frame.counts.w bits (kFrame* in GpuScene.h).
-#define FE_FRAME_PRECOMPUTED_NOV 1u
-#define FE_FRAME_ILLUM_SPLIT 2u
-
 // G-buffer 2's alpha: -1 where nothing was drawn (its clear value), w_o.n in [0, 1] on lit
 // surfaces (redeferred consideration A: the material pass need not rebuild it), 2 on unlit ones.
 bool feGBufferUnlit(float gb2Alpha) { return gb2Alpha > 1.5; }
@@ -36,7 +32,7 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 cameraPosition;  // w = exposure
     vec4 viewport;        // w, h, 1/w, 1/h
     vec4 illumViewport;   // I-buffer: w, h, 1/w, 1/h
-    uvec4 counts;         // x lights, y illumination scale, w FE_FRAME_* bits
+    uvec4 counts;         // x lights, y illumination scale
     uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit
     mat4 view;            // view from world (rigid): the light pre-pass packs view-space normals
 } frame;

@@ -38,6 +38,7 @@ constexpr const char* kUsage =
     "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
     "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
     "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
+    "      --one-pass-culling (deferred-tiled: each work group culls its tile in shared memory, no culling pass)\n"
     "      --rebuild-nov (redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer)\n"
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
@@ -193,6 +194,9 @@ int cmdRender(const Args& a) {
     s.aliasing = !a.options.count("--no-aliasing");
     s.illumSplit = a.options.count("--illum-split") > 0;
     s.precomputedNoV = !a.options.count("--rebuild-nov");
+    s.tileCullingPass = !a.options.count("--one-pass-culling");
+    if (!s.tileCullingPass && s.technique != "deferred-tiled")
+        throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
@@ -393,7 +397,7 @@ int main(int argc, char** argv) {
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget"},
-                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov"}));
+                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));

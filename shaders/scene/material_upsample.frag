@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Redeferred material pass: reduced rate, every sum upsampled (fe_material_pass.glsl).
+#define FE_UPSAMPLE
+#include "fe_scene.glsl"
+#include "fe_material_pass.glsl"
