@@ -35,9 +35,10 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
     }
     // One material shader per path (fe_material_pass.glsl says why).
     const RenderSettings& s = c.settings;
-    const char* material = s.illumScale > 1 ? (s.illumSplit ? "scene/material_upsample_split.frag" : "scene/material_upsample.frag")
-                           : s.precomputedNoV ? "scene/material.frag"
-                                              : "scene/material_rebuild_nov.frag";
+    const char* material = s.illumScale == 1 ? (s.precomputedNoV ? "scene/material.frag" : "scene/material_rebuild_nov.frag")
+                           : s.illumSplit     ? "scene/material_upsample_split.frag"
+                           : tiled            ? "scene/material_upsample_tiled.frag"
+                                              : "scene/material_upsample.frag";
     materialFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(material)});
     std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});

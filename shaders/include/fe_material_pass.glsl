@@ -8,6 +8,8 @@
 //                                 G-buffer-guided filter: the bilinear weights of the 4 nearest
 //                                 I-buffer texels times depth, normal and roughness similarity
 //                                 between this pixel and each texel's representative pixel
+//   material_upsample_tiled.frag  the same, each texel's representative pixel data read from the
+//                                 I-buffer's alpha channels (FE_REP_IN_IBUFFER; fe_scene.glsl)
 //   material_upsample_split.frag  reduced rate, only L_dg upsampled (FE_SPLIT, --illum-split)
 layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
@@ -17,12 +19,6 @@ layout(binding = FE_SLOT_IBUFFER0) uniform sampler2D iLdg;
 layout(binding = FE_SLOT_IBUFFER1) uniform sampler2D iLsg1;
 layout(binding = FE_SLOT_IBUFFER2) uniform sampler2D iLsg2;
 layout(location = 0) out vec4 outRadiance;
-
-// Depth along the view axis, from the depth buffer: the w row of the inverse projection (and of
-// invViewProj, the view being rigid) depends on depth alone, so no matrix product is needed.
-float viewDepth(float depth) {
-    return 1.0 / abs(frame.invViewProj[2][3] * depth + frame.invViewProj[3][3]);
-}
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -64,7 +60,7 @@ void main() {
         vec2 q = (vec2(p) - float(scale / 2)) / float(scale);
         ivec2 q0 = ivec2(floor(q));
         vec2 f = q - vec2(q0);
-        float zp = viewDepth(depth);
+        float zp = feViewDepth(depth);
         acc.Ldg = vec3(0.0);
         acc.Lsg1 = vec3(0.0);
         acc.Lsg2 = vec3(0.0);
@@ -75,16 +71,31 @@ void main() {
             for (int i = 0; i < 2; ++i) {
                 ivec2 qi = clamp(q0 + ivec2(i, j), ivec2(0), isize - 1);
                 ivec2 rep = min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
-                float dr = texelFetch(depthTexture, rep, 0).r;
-                vec4 r1 = texelFetch(gb1, rep, 0);
+                const vec4 ta = texelFetch(iLdg, qi, 0);
+                const vec4 tb = split ? vec4(0.0) : texelFetch(iLsg1, qi, 0);
+                const vec4 tc = split ? vec4(0.0) : texelFetch(iLsg2, qi, 0);
+                vec3 a = ta.rgb, b = tb.rgb, c = tc.rgb;
+                // The representative pixel's view depth, normal and roughness: from the I-buffer's
+                // alpha channels where the tiled pass stored them (FE_REP_IN_IBUFFER, and the
+                // depth alone with FE_SPLIT), else from the G-buffer.
+#if defined(FE_REP_IN_IBUFFER) || defined(FE_SPLIT)
+                const float zr = ta.a;
+#else
+                const float dr = texelFetch(depthTexture, rep, 0).r;
+                const float zr = dr >= 1.0 ? 0.0 : feViewDepth(dr);
+#endif
+#ifdef FE_REP_IN_IBUFFER
+                float octY, rr;
+                feUnpackOctYRoughness(tc.a, octY, rr);
+                const vec4 r1 = vec4(feOctDecode(vec2(tb.a, octY)), rr);
+#else
+                const vec4 r1 = texelFetch(gb1, rep, 0);
+#endif
                 float bil = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
-                float wz = dr >= 1.0 ? 0.0 : exp(-abs(viewDepth(dr) - zp) / (0.02 * zp));
+                float wz = zr <= 0.0 ? 0.0 : exp(-abs(zr - zp) / (0.02 * zp));
                 float wn = pow(max(dot(normalize(r1.xyz), n), 0.0), 32.0);
                 float wr = exp(-abs(r1.a - g1.a) / 0.05);
                 float w = bil * wz * wn * wr;
-                vec3 a = texelFetch(iLdg, qi, 0).rgb;
-                vec3 b = split ? vec3(0.0) : texelFetch(iLsg1, qi, 0).rgb;
-                vec3 c = split ? vec3(0.0) : texelFetch(iLsg2, qi, 0).rgb;
                 acc.Ldg += w * a;
                 acc.Lsg1 += w * b;
                 acc.Lsg2 += w * c;

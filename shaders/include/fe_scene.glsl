@@ -41,6 +41,36 @@ layout(binding = FE_SLOT_LIGHTS, std430) readonly buffer LightBlock {
     GpuLight lights[];
 };
 
+// Depth along the view axis from the depth buffer: the w row of the inverse projection (and of
+// invViewProj, the view being rigid) depends on depth alone, so no matrix product is needed.
+float feViewDepth(float depth) {
+    return 1.0 / abs(frame.invViewProj[2][3] * depth + frame.invViewProj[3][3]);
+}
+
+// The tiled illumination pass stores, in the I-buffer's alpha channels, what the material
+// pass's upsampling filter needs of each texel's representative pixel, so the filter fetches
+// no G-buffer texel per tap: L_dg.a its view depth (0: nothing lit there), L_sg1.a its normal's
+// octahedral x, L_sg2.a the octahedral y (in [0, 1) after the offset) plus its roughness in
+// 1/255 steps as the integer part (float32 keeps 16 bits of the fraction beside them).
+vec2 feOctEncode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.xy;
+    if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+    return e;
+}
+vec3 feOctDecode(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    return normalize(n);
+}
+float fePackOctYRoughness(float octY, float roughness) {
+    return round(clamp(roughness, 0.0, 1.0) * 255.0) + clamp(octY * 0.5 + 0.5, 0.0, 0.99998);
+}
+void feUnpackOctYRoughness(float v, out float octY, out float roughness) {
+    roughness = floor(v) / 255.0;
+    octY = fract(v) * 2.0 - 1.0;
+}
+
 // World position of full-resolution pixel `p` from its depth (Vulkan clip conventions).
 vec3 feWorldFromDepth(vec2 pixelCenter, float depth) {
     vec2 ndc = pixelCenter * frame.viewport.zw * 2.0 - 1.0;

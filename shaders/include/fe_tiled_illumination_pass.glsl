@@ -32,8 +32,9 @@ void main() {
     feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
     if (!inside) return;
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
+    vec4 g1 = vec4(0.0, 0.0, 1.0, 0.0);
     if (depth < 1.0) {
-        const vec4 g1 = texelFetch(gb1, p, 0);
+        g1 = texelFetch(gb1, p, 0);
         const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
         const vec3 n = normalize(g1.xyz);
         const vec3 wo = normalize(frame.cameraPosition.xyz - P);
@@ -46,13 +47,18 @@ void main() {
             feAccumulateIllumination(acc, n, wo, g1.a, feEvaluateLight(L, P));
         }
     }
+    // The representative pixel's data for the upsampling filter (fe_scene.glsl).
+    const float viewDepth = depth < 1.0 ? feViewDepth(depth) : 0.0;
 #ifdef FE_ILLUM_SPLIT
     const ivec2 qi = q / scale;
     if (all(equal(p, min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1))))
-        imageStore(outLdg, qi, vec4(acc.Ldg, 0.0));
-#else
-    imageStore(outLdg, q, vec4(acc.Ldg, 0.0));
-#endif
+        imageStore(outLdg, qi, vec4(acc.Ldg, viewDepth));
     imageStore(outLsg1, q, vec4(acc.Lsg1, 0.0));
     imageStore(outLsg2, q, vec4(acc.Lsg2, 0.0));
+#else
+    const vec2 oct = feOctEncode(normalize(g1.xyz));
+    imageStore(outLdg, q, vec4(acc.Ldg, viewDepth));
+    imageStore(outLsg1, q, vec4(acc.Lsg1, oct.x));
+    imageStore(outLsg2, q, vec4(acc.Lsg2, fePackOctYRoughness(oct.y, g1.a)));
+#endif
 }
