@@ -31,6 +31,7 @@ gdi::BindingSlot TileLightCulling::listSlot() {
 
 graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
+    // One block of the list texture per list tile; the pass runs one invocation per 16x16 tile.
     const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize, tilesY = (s.height + kTileSize - 1) / kTileSize;
     // Room for every light (up to kMaxListLength) plus the count, within the device's texture limit.
     const uint32_t entries = std::min(ctx_.scene.lightCount(), kMaxListLength) + 1;
@@ -44,7 +45,7 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
     g.addPass("light-culling", [&](graph::PassBuilder& b) {
         b.sample(depth);
         b.storage(lists);
-    }, [this, depth, lists, tiles = tilesX * tilesY](graph::PassContext& pc) {
+    }, [this, depth, lists, tiles = ((s.width + 15) / 16) * ((s.height + 15) / 16)](graph::PassContext& pc) {
         pc.cmd.setPipeline(pipeline_);
         const UploadAllocation& fc = ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);

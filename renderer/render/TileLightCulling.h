@@ -23,7 +23,9 @@ public:
     static gdi::BindingSlot listSlot();
     void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const;
 
-    static constexpr uint32_t kTileSize = 16;
+    // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
+    // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.
+    static constexpr uint32_t kTileSize = 8;
     static constexpr uint32_t kBlockWidth = 32;       // texels per tile block row
     static constexpr uint32_t kMaxListLength = 1023;  // lights per tile list at most
 

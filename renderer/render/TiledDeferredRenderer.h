@@ -16,7 +16,7 @@ public:
     explicit TiledDeferredRenderer(TechniqueContext& context);
     ~TiledDeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
-    static constexpr uint32_t kTileSize = TileLightCulling::kTileSize;
+    static constexpr uint32_t kTileSize = 16;  // pixels per work group side
 
 private:
     GBuffer gbuffer_;

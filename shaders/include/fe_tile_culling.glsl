@@ -45,11 +45,14 @@ bool feLightTouchesBox(GpuLight L, vec3 lo, vec3 hi) {
 // block of 32 x H texels per tile in an R32U texture, texel 0 the count (all ones: the list
 // overflowed, shade every light), then the light indices in order.
 layout(binding = FE_SLOT_TILE_LIGHTS) uniform usampler2D tileLightLists;
+// List tiles are FE_LIST_TILE pixels wide (TileLightCulling::kListTileSize), finer than the
+// shading passes' 16x16 work groups: each invocation reads the list of its own pixel's tile.
+#define FE_LIST_TILE 8
 uint feTileCount_;
 ivec2 feTileBlock_;
-void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
-    const int tilesY = (int(frame.viewport.y) + 15) / 16;
-    const ivec2 tile = ivec2(pixelMin) / 16;
+void feUseTileList(ivec2 pixel) {
+    const int tilesY = (int(frame.viewport.y) + FE_LIST_TILE - 1) / FE_LIST_TILE;
+    const ivec2 tile = pixel / FE_LIST_TILE;
     feTileBlock_ = ivec2(tile.x * 32, tile.y * (textureSize(tileLightLists, 0).y / tilesY));
     feTileCount_ = texelFetch(tileLightLists, feTileBlock_, 0).r;
 }
