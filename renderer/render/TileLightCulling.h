@@ -1,10 +1,10 @@
 // Layer 7: the light-culling pass of the tiled techniques (deferred-tiled, redeferred-tiled).
-// One compute pass reads the scene depth and writes, per 16x16-pixel tile, the list of lights
-// whose range reaches the tile's slice of the view frustum (shaders/scene/tile_light_culling.comp);
-// the shading passes then read their tile's list (fe_tile_culling.glsl with FE_TILE_LISTS).
-// The lists are a transient R32U texture of the render graph: a block of 32 x H texels per
-// tile, texel 0 the count. A tile with more lights than its block holds is marked to shade
-// every light, so culling never drops one.
+// One compute pass reads the scene depth and writes, per 8x8-pixel tile, the list of lights
+// whose range reaches the tile's slice of the view frustum (shaders/scene/tile_light_culling.comp:
+// one invocation per 16x16 pixels, culling in two levels); the shading passes then read their
+// pixel's list (fe_tile_culling.glsl with FE_TILE_LISTS). The lists are a transient R32U texture
+// of the render graph: a block of 32 x H texels per list tile, texel 0 the count. A tile with
+// more lights than its block holds is marked to shade every light, so culling never drops one.
 #pragma once
 #include "render/TechniqueRenderer.h"
 

@@ -1,12 +1,15 @@
-// Light culling per work group (a tile of 16x16 full-resolution pixels), shared by the tiled compute passes (tiled_deferred.comp,
-// tiled_illumination.comp). feCullTile() finds the tile's depth bounds and lists in
-// tileLights the lights whose range sphere touches the tile's slice of the view frustum.
-// Culling is exact by construction: the range window (SHADING.md) is 0 beyond a light's
+// Light culling for the tiled compute passes (tiled_deferred*.comp, tiled_illumination*.comp):
+// lights whose range sphere touches a tile's slice of the view frustum, bounded by the tile's
+// depths. Culling is exact by construction: the range window (SHADING.md) is 0 beyond a light's
 // range, so a light whose sphere misses the slice contributes nothing to its pixels.
-// The slice is bounded by a world-space box, each invocation computing it: on lavapipe that
-// measured faster (89 ms at 1280x720, 512 lights) than six frustum planes (123 ms), both
-// together (107 ms), the box made once per tile in shared memory (96-144 ms), or depth bounds
-// scanned per row to save atomics (120-138 ms).
+// Two forms:
+//   FE_TILE_LISTS: the lists come from the light-culling pass (tile_light_culling.comp), one per
+//     8x8 pixels; feUseTileList() picks the invocation's. Measured fastest (docs/BENCHMARKS.md).
+//   otherwise: feCullTile() culls in each 16x16-pixel work group, in shared memory between
+//     barriers (deferred-tiled --one-pass-culling). The slice is bounded by a world-space box,
+//     each invocation computing it: on lavapipe that measured faster (89 ms at 1280x720, 512
+//     lights) than six frustum planes (123 ms), both together (107 ms), the box made once per
+//     tile in shared memory (96-144 ms), or depth bounds scanned per row (120-138 ms).
 #ifndef FE_TILE_CULLING_GLSL
 #define FE_TILE_CULLING_GLSL
 #include "fe_scene.glsl"
