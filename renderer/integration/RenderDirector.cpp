@@ -115,7 +115,7 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
         s.technique = "deferred-tiled";
         c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +
                             " with a range) " + cover + ": each pixel reads the G-buffer once and shades only the "
-                            "lights that reach its 16x16 tile");
+                            "lights that reach its 8x8 tile");
     } else {
         s.technique = "deferred";
         c.reasons.push_back("technique deferred: " + lights + " " + cover + " and no compute shaders on " + info.backend +
