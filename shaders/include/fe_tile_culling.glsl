@@ -108,4 +108,16 @@ void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
 uint feTileLightCount() { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLightCount : frame.counts.x; }
 uint feTileLight(uint k) { return tileLightCount <= FE_TILE_MAX_LIGHTS ? tileLights[k] : k; }
 #endif  // FE_TILE_LISTS
+
+// The lights of this invocation's tile (every invocation of the work group calls it): its
+// pixel's list, or its 16x16 work group's lights culled in shared memory. `depth`: the
+// invocation's surface depth (1: none), used by the shared-memory form.
+void feFindTileLights(ivec2 pixel, float depth) {
+#ifdef FE_TILE_LISTS
+    feUseTileList(pixel);
+#else
+    const vec2 tile = vec2(gl_WorkGroupID.xy * 16u);
+    feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
+#endif
+}
 #endif

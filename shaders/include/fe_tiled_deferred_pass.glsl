@@ -13,12 +13,7 @@ void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     const bool inside = all(lessThan(p, ivec2(frame.viewport.xy)));
     const float depth = inside ? texelFetch(depthTexture, p, 0).r : 1.0;
-    const vec2 tile = vec2(gl_WorkGroupID.xy * 16u);
-#ifdef FE_TILE_LISTS
-    feUseTileList(p);
-#else
-    feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
-#endif
+    feFindTileLights(p, depth);
     if (!inside) return;
     const vec4 g2 = texelFetch(gb2, p, 0);
     vec3 radiance = g2.rgb;  // emissive, or the colour of an unlit surface

@@ -28,12 +28,7 @@ void main() {
 #endif
     const bool lit = inside && !feGBufferUnlit(texelFetch(gb2, p, 0).a);
     const float depth = lit ? texelFetch(depthTexture, p, 0).r : 1.0;
-    const vec2 tile = vec2(gl_WorkGroupID.xy * 16u);  // in full-resolution pixels
-#ifdef FE_TILE_LISTS
-    feUseTileList(p);
-#else
-    feCullTile(depth, tile, min(tile + 16.0, frame.viewport.xy));
-#endif
+    feFindTileLights(p, depth);
     if (!inside) return;
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
     vec4 g1 = vec4(0.0, 0.0, 1.0, 0.0);
