@@ -19,6 +19,7 @@
 #endif
 
 #include "assets/GltfLoader.h"
+#include "assets/HdrDecode.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -1251,6 +1252,15 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     } catch (const std::exception& e) {
         throw AssetError(path + ": " + e.what());
     }
+}
+
+HdrImage decodeRadianceHdr(const std::string& path) {
+    int w = 0, h = 0, comp = 0;
+    float* px = stbi_loadf(path.c_str(), &w, &h, &comp, 3);
+    if (!px) throw AssetError(path + ": cannot read the Radiance HDR image: " + std::string(stbi_failure_reason()));
+    HdrImage img{uint32_t(w), uint32_t(h), std::vector<float>(px, px + size_t(w) * h * 3)};
+    stbi_image_free(px);
+    return img;
 }
 
 }  // namespace fe::assets

@@ -7,6 +7,7 @@
 // ../shared/SHADING.md. Material values are stored as authored: the roughness clamp to
 // [0.045, 1] of SHADING.md is the shaders' job, not the loader's.
 #pragma once
+#include "assets/Environment.h"
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -171,6 +172,7 @@ struct Scene {
     std::vector<MeshInstance> instances;
     std::vector<Light> lights;
     std::optional<Camera> camera;
+    std::optional<Environment> environment;  // drawn as the background where nothing is drawn
     Bounds bounds;  // world space, union of the instances; empty if nothing is drawn
     bool hasDefaultLights = false;  // lights were added by the loader (the file had none)
     bool hasDefaultCamera = false;  // camera was made by the loader (the file had none)

@@ -47,6 +47,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
     technique_ = technique.create(*context_);
+    if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     buildGraph();
     graph_.compile(device, s.aliasing);
 }
@@ -54,6 +55,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
 SceneRenderer::~SceneRenderer() {
     device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     technique_.reset();
+    environment_.reset();
     device_.destroy(displayPipeline_);
     for (auto sh : {fullscreenVs_, displayFs_}) device_.destroy(sh);
     device_.destroy(pointSampler_);
@@ -71,6 +73,16 @@ void SceneRenderer::buildGraph() {
     output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
     depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
     technique_->declare(g, output_, depth_);
+    if (environment_) {
+        g.addPass("background", [&](graph::PassBuilder& b) {
+            b.colorTarget(output_, gdi::LoadOp::Load);
+            b.depthTarget(depth_, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            environment_->drawBackground(pc.cmd, frameConstants_);
+            pc.cmd.endRenderPass();
+        });
+    }
     if (gpuScene_->hasBlend()) {
         g.addPass("transparent", [&](graph::PassBuilder& b) {
             b.colorTarget(output_, gdi::LoadOp::Load);

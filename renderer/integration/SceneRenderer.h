@@ -1,8 +1,9 @@
 // Layer 8 (Integration): renders a Scene with one lighting technique (render/TechniqueRenderer.h),
 // every pass timed. The technique declares its passes; the scene renderer composes them with
 // what every technique shares: the transparent pass (BLEND primitives drawn forward after the
-// opaque ones, declared only when the scene has any) and the display pass (culled unless a
-// displayable image is asked for).
+// opaque ones, declared only when the scene has any), the background pass (the environment where
+// nothing was drawn, declared only when the scene has an environment) and the display pass
+// (culled unless a displayable image is asked for).
 #pragma once
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "render/GeometryRenderer.h"
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
+#include "render/EnvironmentMap.h"
 #include "render/TechniqueRenderer.h"
 
 namespace fe::render {
@@ -54,6 +56,7 @@ private:
     gdi::PipelineHandle displayPipeline_;
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
+    std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
     graph::RenderGraph graph_;
     graph::TextureId output_, display_, depth_;
     gdi::TextureHandle outputTexture_;

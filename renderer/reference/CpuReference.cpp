@@ -195,8 +195,11 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     hb2 = b2;
                 }
             }
-            if (!hit) continue;
             const size_t pixel = size_t(y) * width + x;
+            if (!hit) {  // the environment seen along the ray, or black
+                if (scene.environment) out.radiance[pixel] = scene.environment->radiance(dir);
+                continue;
+            }
             out.surface[pixel] = hit->surface;
             const assets::Material& mat = scene.materials[hit->material];
             const double b0 = 1.0 - hb1 - hb2;

@@ -15,7 +15,8 @@ namespace fe::render {
 
 struct ReferenceImage {
     uint32_t width = 0, height = 0;
-    std::vector<glm::dvec3> radiance;  // L_o per pixel, rows top to bottom; 0 where nothing is hit
+    std::vector<glm::dvec3> radiance;  // L_o per pixel, rows top to bottom; where nothing is hit, the
+                                       // scene's environment along the ray (or 0)
     std::vector<int32_t> surface;      // id of the hit (instance, primitive) pair, -1 for background
     std::vector<uint8_t> textured;     // 1 where the hit material samples a texture
     // True where the pixel or one of its 8 neighbours sees a different surface: rasterization

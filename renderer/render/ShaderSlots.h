@@ -21,4 +21,6 @@ constexpr uint32_t kSlotRadiance = 15;
 constexpr uint32_t kSlotRadianceOut = 16;  // storage image: compute passes writing L_o
 constexpr uint32_t kSlotTileLights = 17;    // per-tile light lists (TileLightCulling), sampled
 constexpr uint32_t kSlotTileLightsOut = 18; // ... and written, by the light-culling pass
+constexpr uint32_t kSlotEnvironment = 19;   // the environment cube map (EnvironmentMap)
+constexpr uint32_t kSlotEnvironmentSource = 20;  // its source: the equirectangular image
 }  // namespace fe::render

@@ -21,6 +21,8 @@
 #define FE_SLOT_RADIANCE_OUT 16
 #define FE_SLOT_TILE_LIGHTS 17
 #define FE_SLOT_TILE_LIGHTS_OUT 18
+#define FE_SLOT_ENVIRONMENT 19
+#define FE_SLOT_ENVIRONMENT_SOURCE 20
 
 // G-buffer 2's alpha: -1 where nothing was drawn (its clear value), w_o.n in [0, 1] on lit
 // surfaces (redeferred consideration A: the material pass need not rebuild it), 2 on unlit ones.

@@ -42,6 +42,7 @@ constexpr const char* kUsage =
     "      --rebuild-nov (redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer)\n"
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
+    "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -200,6 +201,7 @@ int cmdRender(const Args& a) {
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
+    if (const std::string env = opt("--environment", ""); !env.empty()) scene.environment = assets::loadEnvironment(env);
     auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
     const render::DirectorChoice choice = render::direct(scene, s, device->info(), device.get(), director);
     if (a.options.count("--verbose"))
@@ -396,7 +398,7 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget"},
+                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),

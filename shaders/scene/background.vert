@@ -1,0 +1,9 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fe_common.glsl"
+// A full-screen triangle at the far plane (depth 1): with the depth test LessOrEqual it covers
+// exactly the pixels where nothing was drawn.
+void main() {
+    vec2 p = vec2((FE_VERTEX_ID << 1) & 2, FE_VERTEX_ID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);
+}
