@@ -73,9 +73,10 @@ constexpr double kVolumeCostPerForwardLight = 5.0;
 // 0.9996 at 0.2, 1.004 at 0.3, every backend the same.
 constexpr float kPackedNormalsMinRoughness = 0.2f;
 // Light coverage (SceneNeeds::lightCoverage) from which tiled culling beats light volumes.
-// Measured (builtin:lights, 640x360, median of 5 frames): deferred / deferred-tiled 20.7 / 24.6
-// ms at coverage 0.5, 24.1 / 24.5 at 1.1, 35.2 / 29.3 at 2.1 (vulkan); 24.0 / 28.6, 27.6 /
-// 27.6, 28.4 / 33.7 (gl-egl); at 4.2 tiles win by 1.5-1.7x on both.
-constexpr double kTiledMinCoverage = 1.0;
+// Measured with the light-culling pass (builtin:lights, 640x360, median of 5 frames, deferred /
+// deferred-tiled): gl-egl 25.3 / 30.4 ms at coverage 0.3, 29.5 / 28.0 at 0.5, 28.1 / 26.2 at
+// 1.1; on vulkan tiles win at every coverage measured (20.7 / 12.5 ms at 0.1). The GL crossover
+// is taken for both (docs/BENCHMARKS.md).
+constexpr double kTiledMinCoverage = 0.4;
 
 }  // namespace fe::render

@@ -68,7 +68,7 @@ TEST_P(RenderDirector, ManyLightsGetTiledDeferred) {
 
 // More lights than forward takes, but small on screen: light volumes, no compute pass.
 TEST_P(RenderDirector, LightsCoveringLittleGetLightVolumes) {
-    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 16});
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 8});
     const render::SceneNeeds n = render::sceneNeeds(scene, 64.0f / 48.0f);
     ASSERT_LT(n.lightCoverage, render::kTiledMinCoverage);
     const Built b = build(*device, scene, {.technique = "auto"});
