@@ -23,7 +23,14 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");
     if (s.msaa > 1 && !technique.msaa)
         throw gdi::Error("technique " + s.technique + " does not take --msaa: it shades from a single-sample G-buffer "
-                         "(use forward, forward-multipass or forward-zprepass)");
+                         "(use forward, forward-multipass, forward-zprepass or light-prepass)");
+    if (s.iblSamples > 0 && !scene.environment)
+        throw gdi::Error("--ibl-samples needs an environment to light the scene with (--environment)");
+    if (s.iblSamples > 0 && !technique.ibl)
+        throw gdi::Error("technique " + s.technique + " does not take image-based lighting yet (forward, forward-multipass "
+                         "and forward-zprepass do)");
+    if (s.iblSamples > 65536)
+        throw gdi::Error("--ibl-samples must be at most 65536 (got " + std::to_string(s.iblSamples) + ")");
     const gdi::DeviceLimits& limits = device.info().limits;
     if (s.msaa > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & s.msaa))
         throw gdi::Error(std::to_string(s.msaa) + " samples are not supported on " + device.info().backend);
@@ -48,6 +55,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
     technique_ = technique.create(*context_);
     if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
+    if (s.iblSamples > 0) geometry_->setEnvironment(environment_->cube(), environment_->sampler());
     buildGraph();
     graph_.compile(device, s.aliasing);
 }
@@ -122,7 +130,7 @@ void SceneRenderer::renderFrame() {
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
-    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, 0, 0);
+    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, s.iblSamples, 0);
     fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);  // forward: every light, with emissive
 
     gdi::CommandList& cmd = queue_->beginFrame();

@@ -101,7 +101,7 @@ bool ReferenceImage::nearEdge(uint32_t x, uint32_t y) const {
 }
 
 ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
-                               uint32_t height) {
+                               uint32_t height, const ReferenceOptions& options) {
     // World-space triangles grouped per (instance, primitive) with a bounding box each.
     std::vector<WorldTriangle> tris;
     std::vector<SurfaceBox> boxes;
@@ -254,6 +254,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             s.roughness = roughness;
             glm::dvec3 L = emissive;
             for (const auto& light : lights) L += shading::shadeLight(s, shading::evaluateLight(light, s.P));
+            if (options.iblSamples > 0 && scene.environment)
+                L += shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
+                                               options.iblSamples);
             out.radiance[pixel] = L;
         }
     return out;

@@ -24,7 +24,13 @@ struct ReferenceImage {
     bool nearEdge(uint32_t x, uint32_t y) const;
 };
 
+struct ReferenceOptions {
+    // Image-based lighting from the scene's environment (shading::shadeEnvironment), samples per
+    // term per pixel; 0: the environment is only seen along missed rays.
+    uint32_t iblSamples = 0;
+};
+
 ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
-                               uint32_t height);
+                               uint32_t height, const ReferenceOptions& options = {});
 
 }  // namespace fe::render

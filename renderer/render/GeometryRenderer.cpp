@@ -38,8 +38,16 @@ GeometryRenderer::~GeometryRenderer() {
     for (auto& [k, p] : pipelines_) device_.destroy(p);
     device_.destroy(vs_);
     device_.destroy(forwardFs_);
+    if (forwardIblFs_) device_.destroy(forwardIblFs_);
     device_.destroy(gbufferFs_);
     for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_}) device_.destroy(sh);
+}
+
+void GeometryRenderer::setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler) {
+    if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
+    forwardIblFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward_ibl.frag")});
+    environment_ = cube;
+    environmentSampler_ = sampler;
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
@@ -55,7 +63,10 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         gdi::CompareOp compare;
         const char* name;
     };
-    const State st = [&]() -> State {
+    // The forward-shaded passes that add the environment's light (with the emissive term: not
+    // multi-pass forward's additive passes).
+    const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent);
+    State st = [&]() -> State {
         switch (pass) {
             case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
             case MeshPass::Transparent: return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
@@ -69,6 +80,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
+    if (ibl) st.fs = forwardIblFs_;
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
         .vertexShader = vs_,
@@ -97,6 +109,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                     .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
     if (pass == MeshPass::LightPrepassMaterial)
         d.bindings.push_back({kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+    if (ibl) d.bindings.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
     if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = device_.createGraphicsPipeline(d);
@@ -131,6 +144,7 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
     cmd.setIndexBuffer(scene_.indexBuffer(), gdi::IndexType::U32);
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
     cmd.setStorageBuffer(kSlotLights, scene_.lightBuffer());
+    if (environment_) cmd.setTexture(kSlotEnvironment, environment_, environmentSampler_);
     gdi::PipelineHandle current{};
     for (size_t i = 0; i < list.size(); ++i) {
         const DrawItem* d = list[i];

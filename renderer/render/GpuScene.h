@@ -18,7 +18,7 @@ struct FrameConstants {
     glm::vec4 cameraPosition;  // xyz, w = exposure
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
-    glm::uvec4 counts;         // x = light count, y = illumination scale, z = debug flags
+    glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples
     glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
     glm::mat4 view;            // view from world (rigid)
 };

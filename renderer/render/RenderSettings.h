@@ -24,6 +24,10 @@ struct RenderSettings {
     // than by each shading work group in shared memory within the one dispatch (measured both
     // ways, docs/BENCHMARKS.md). redeferred-tiled always uses the culling pass.
     bool tileCullingPass = true;
+    // Image-based lighting: samples per pixel for each of the specular and diffuse terms (0: the
+    // environment is only the background). Needs an environment and a technique that takes it
+    // (TechniqueInfo::ibl).
+    uint32_t iblSamples = 0;
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

@@ -28,9 +28,9 @@ std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
 
 const std::vector<TechniqueInfo>& techniques() {
     static const std::vector<TechniqueInfo> all = {
-        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true},
-        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
-        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
+        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true, false, true},
+        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true, false, true},
+        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true, false, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
         {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
         {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",

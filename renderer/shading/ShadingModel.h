@@ -126,4 +126,65 @@ inline glm::dvec3 resolveMaterial(const IlluminationSums& acc, const SurfacePoin
     return Ld + Ls;
 }
 
+// --- Image-based lighting (SHADING.md "Image-based lighting"; the seed's "Specular importance
+// sampling"). Keep in step with shaders/include/fe_ibl.glsl: the same sequence, basis and
+// estimator, so that the GPU and this reference at the same sample count differ only by
+// precision and the cube map's interpolation.
+
+// Van der Corput radical inverse in base 2 of a 32-bit index.
+inline double radicalInverse(uint32_t bits) {
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return double(bits) * 2.3283064365386963e-10;
+}
+// Hammersley point i of n: (A, B) = ((i + 1/2) / n, radical inverse of i).
+inline glm::dvec2 hammersley(uint32_t i, uint32_t n) { return {(i + 0.5) / n, radicalInverse(i)}; }
+
+// An orthonormal basis (t, b, n) from n alone (Duff et al., "Building an Orthonormal Basis,
+// Revisited", JCGT 2017), the same on the GPU.
+inline void basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
+    const double s = n.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (s + n.z), c = n.x * n.y * a;
+    t = {1.0 + s * n.x * n.x * a, s * c, -s * n.x};
+    b = {c, s + n.y * n.y * a, -n.y};
+}
+
+// L_o from the environment by importance sampling: n GGX half vectors for the specular term
+// (theta_h = acos(sqrt((1 - A) / (A (alpha^2 - 1) + 1))), phi_h = 2 pi B, w_i the reflection
+// of w_o about h; the estimator (1/n) sum F L_i NoL (w_o.h) / ((NoL (1-k) + k)(n.h)(NoV (1-k)
+// + k)), which is the seed's F0 L_sg1 + (1 - F0) L_sg2 form) and n cosine-weighted directions
+// for the diffuse term ((1/n) sum (1 - F)(1 - m) c L_i). k = alpha^2 / 2 (SHADING.md, IBL).
+template <class Environment>
+glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n) {
+    const double r = clampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
+    const double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
+    const glm::dvec3 F0 = glm::mix(glm::dvec3(0.04), s.baseColor, s.metallic);
+    glm::dvec3 t, b;
+    basis(s.n, t, b);
+    glm::dvec3 specular(0.0), diffuse(0.0);
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::dvec2 u = hammersley(i, n);
+        const double phi = 2.0 * kPi * u.y;
+        // Specular: a GGX half vector.
+        const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
+        const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + s.n * cosH;
+        const double VoH = glm::dot(s.wo, h);
+        const glm::dvec3 wi = 2.0 * VoH * h - s.wo;
+        const double NoL = glm::dot(s.n, wi);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            specular += (F0 + (1.0 - F0) * P) * environment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
+        }
+        // Diffuse: a cosine-weighted direction.
+        const double cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
+        const glm::dvec3 wd = t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + s.n * cosD;
+        const glm::dvec3 hd = glm::normalize(s.wo + wd);
+        const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
+        diffuse += (1.0 - F0) * (1.0 - Pd) * environment(wd);
+    }
+    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular / (NoV * (1.0 - k) + k)) / double(n);
+}
+
 }  // namespace fe::shading

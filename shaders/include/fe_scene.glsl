@@ -34,7 +34,7 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 cameraPosition;  // w = exposure
     vec4 viewport;        // w, h, 1/w, 1/h
     vec4 illumViewport;   // I-buffer: w, h, 1/w, 1/h
-    uvec4 counts;         // x lights, y illumination scale
+    uvec4 counts;         // x lights, y illumination scale, z image-based lighting samples
     uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit
     mat4 view;            // view from world (rigid): the light pre-pass packs view-space normals
 } frame;

@@ -43,6 +43,7 @@ constexpr const char* kUsage =
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
+    "      --ibl-samples N: light the scene by the environment, N importance samples per term (forward techniques)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -157,6 +158,7 @@ int cmdRender(const Args& a) {
     if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
+    s.iblSamples = parseUint(opt("--ibl-samples", "0"), "--ibl-samples", 0, 65536);
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
@@ -398,7 +400,7 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment"},
+                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),

@@ -1,0 +1,39 @@
+// The body of forward.frag and forward_ibl.frag.
+#include "fe_material.glsl"
+#ifdef FE_IBL
+#include "fe_ibl.glsl"
+#endif
+// Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
+// for forward and the transparent pass, one per pass for forward-multipass (which adds the
+// emissive and unlit terms in its first pass only). forward_ibl.frag adds the environment's
+// light by importance sampling (FE_IBL, fe_ibl.glsl).
+layout(location = 0) in vec3 vWorld;
+layout(location = 1) in vec3 vNormal;
+layout(location = 2) in vec4 vTangent;
+layout(location = 3) in vec2 vUv;
+layout(location = 0) out vec4 outRadiance;
+void main() {
+    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    if (feAlphaDiscard(m.alpha)) discard;
+    const bool first = frame.lightRange.z != 0u;
+    vec3 L = first ? m.emissive : vec3(0.0);
+    if (m.unlit) {
+        L = first ? m.baseColor : vec3(0.0);
+    } else {
+        SurfacePoint s;
+        s.P = vWorld;
+        s.n = m.n;
+        s.wo = normalize(frame.cameraPosition.xyz - vWorld);
+        s.baseColor = m.baseColor;
+        s.metallic = m.metallic;
+        s.roughness = m.roughness;
+        const uint end = frame.lightRange.x + frame.lightRange.y;
+        for (uint i = frame.lightRange.x; i < end; ++i) L += feShadeLight(s, feEvaluateLight(lights[i], vWorld));
+#ifdef FE_IBL
+        // The environment's light, with the emissive term in the first pass (frame.counts.z samples).
+        if (first) L += feShadeEnvironment(s, frame.counts.z);
+#endif
+    }
+    // Alpha only matters for BLEND draws (source-over); opaque targets ignore it.
+    outRadiance = vec4(L, object.params.w == 2.0 ? m.alpha : 1.0);
+}

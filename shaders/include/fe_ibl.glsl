@@ -1,0 +1,51 @@
+// Image-based lighting by importance sampling: renderer/shading/ShadingModel.h shadeEnvironment
+// in single precision, the same sequence, basis and estimator (keep the two in step). The
+// environment is read from its cube map's top level, so the GPU and the reference evaluate the
+// same integrand (up to the cube's interpolation).
+#ifndef FE_IBL_GLSL
+#define FE_IBL_GLSL
+#include "fe_scene.glsl"
+
+layout(binding = FE_SLOT_ENVIRONMENT) uniform samplerCube environment;
+
+float feRadicalInverse(uint bits) {
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return float(bits) * 2.3283064365386963e-10;
+}
+
+vec3 feEnvironment(vec3 d) { return textureLod(environment, d, 0.0).rgb; }
+
+vec3 feShadeEnvironment(SurfacePoint s, uint n) {
+    const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
+    const float NoV = max(dot(s.n, s.wo), 1e-4);
+    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    // Duff et al. 2017 basis.
+    const float sg = s.n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sg + s.n.z), bc = s.n.x * s.n.y * ba;
+    const vec3 t = vec3(1.0 + sg * s.n.x * s.n.x * ba, sg * bc, -sg * s.n.x);
+    const vec3 b = vec3(bc, sg + s.n.y * s.n.y * ba, -s.n.y);
+    vec3 specular = vec3(0.0), diffuse = vec3(0.0);
+    for (uint i = 0u; i < n; ++i) {
+        const vec2 u = vec2((float(i) + 0.5) / float(n), feRadicalInverse(i));
+        const float phi = 2.0 * FE_PI * u.y, cp = cos(phi), sp = sin(phi);
+        const float cosH = sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = sqrt(max(1.0 - cosH * cosH, 0.0));
+        const vec3 h = t * (sinH * cp) + b * (sinH * sp) + s.n * cosH;
+        const float VoH = dot(s.wo, h);
+        const vec3 wi = 2.0 * VoH * h - s.wo;
+        const float NoL = dot(s.n, wi);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const float P = pow(clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            specular += (F0 + (1.0 - F0) * P) * feEnvironment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
+        }
+        const float cosD = sqrt(1.0 - u.x), sinD = sqrt(u.x);
+        const vec3 wd = t * (sinD * cp) + b * (sinD * sp) + s.n * cosD;
+        const vec3 hd = normalize(s.wo + wd);
+        const float Pd = pow(clamp(1.0 - dot(hd, s.wo), 0.0, 1.0), 5.0);
+        diffuse += (1.0 - F0) * (1.0 - Pd) * feEnvironment(wd);
+    }
+    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular / (NoV * (1.0 - k) + k)) / float(n);
+}
+#endif

@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Forward shading with image-based lighting (fe_forward_pass.glsl with FE_IBL): a shader of its
+// own so that scenes without it pay nothing (on llvmpipe an untaken branch is not free).
+#define FE_IBL
+#include "fe_forward_pass.glsl"
