@@ -27,8 +27,8 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.iblSamples > 0 && !scene.environment)
         throw gdi::Error("--ibl-samples needs an environment to light the scene with (--environment)");
     if (s.iblSamples > 0 && !technique.ibl)
-        throw gdi::Error("technique " + s.technique + " does not take image-based lighting yet (forward, forward-multipass "
-                         "and forward-zprepass do)");
+        throw gdi::Error("technique " + s.technique + " does not take image-based lighting yet (forward, forward-multipass, "
+                         "forward-zprepass, deferred and deferred-tiled do)");
     if (s.iblSamples > 65536)
         throw gdi::Error("--ibl-samples must be at most 65536 (got " + std::to_string(s.iblSamples) + ")");
     const gdi::DeviceLimits& limits = device.info().limits;
@@ -51,11 +51,15 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
          .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                       {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "display"});
+    if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
+    if (s.iblSamples > 0) {
+        geometry_->setEnvironment(environment_->cube(), environment_->sampler());
+        context_->environment = environment_->cube();
+        context_->environmentSampler = environment_->sampler();
+    }
     technique_ = technique.create(*context_);
-    if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
-    if (s.iblSamples > 0) geometry_->setEnvironment(environment_->cube(), environment_->sampler());
     buildGraph();
     graph_.compile(device, s.aliasing);
 }

@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 
+#include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
 
@@ -16,6 +17,7 @@ public:
 
 private:
     GBuffer gbuffer_;
+    std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
     std::unique_ptr<LightVolumes> volumes_;
     gdi::ShaderHandle emissiveFs_;
     gdi::PipelineHandle emissive_;

@@ -30,6 +30,9 @@ struct TechniqueContext {
     glm::vec3 eye;
     gdi::SamplerHandle pointSampler;  // nearest, clamped: reads of full-resolution buffers
     gdi::ShaderHandle fullscreenVs;   // scene/fullscreen.vert
+    // The environment's cube map when the frame is lit by it (RenderSettings::iblSamples > 0).
+    gdi::TextureHandle environment = {};
+    gdi::SamplerHandle environmentSampler = {};
 };
 
 constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm

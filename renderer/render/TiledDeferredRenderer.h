@@ -6,6 +6,7 @@
 #pragma once
 #include <memory>
 
+#include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/TileLightCulling.h"
 
@@ -20,6 +21,7 @@ public:
 
 private:
     GBuffer gbuffer_;
+    std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
     std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
