@@ -31,6 +31,8 @@ private:
     gdi::PipelineHandle illumination_;  // tiled
     gdi::ShaderHandle materialFs_;
     gdi::PipelineHandle material_;
+    gdi::ShaderHandle iblFs_;  // with --ibl-samples: the environment into the I-buffer
+    gdi::PipelineHandle ibl_;
 };
 
 }  // namespace fe::render

@@ -38,9 +38,9 @@ const std::vector<TechniqueInfo>& techniques() {
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
          makeLightPrepass<false>, true},
         {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>, false,
-         true},
+         true, true},
         {"redeferred-tiled", "redeferred with the I-buffer filled by one compute pass culling lights per tile",
-         makeRedeferred<true>, false, true},
+         makeRedeferred<true>, false, true, true},
     };
     return all;
 }

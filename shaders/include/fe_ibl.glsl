@@ -48,4 +48,42 @@ vec3 feShadeEnvironment(SurfacePoint s, uint n) {
     }
     return ((1.0 - s.metallic) * s.baseColor * diffuse + specular / (NoV * (1.0 - k) + k)) / float(n);
 }
+// Redeferred: the environment's light as I-buffer sums (SHADING.md "The redeferred split", the
+// seed's estimators): L_dg = (pi / n) sum (1 - P) L over cosine-weighted directions, and the
+// specular sums over GGX half vectors stored as the punctual ones are (x alpha^2 / (4 pi)), then
+// times (NoV (1 - k_p) + k_p) / (NoV (1 - k) + k), so that the material pass's common resolve,
+// which divides by the punctual k_p's term, yields the environment's own k = alpha^2 / 2.
+IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count) {
+    const float r = feClampRoughness(roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
+    const float kp = (r + 1.0) * (r + 1.0) / 8.0;
+    const float NoV = max(dot(n, wo), 1e-4);
+    const float sg = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sg + n.z), bc = n.x * n.y * ba;
+    const vec3 t = vec3(1.0 + sg * n.x * n.x * ba, sg * bc, -sg * n.x);
+    const vec3 b = vec3(bc, sg + n.y * n.y * ba, -n.y);
+    IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
+    for (uint i = 0u; i < count; ++i) {
+        const vec2 u = vec2((float(i) + 0.5) / float(count), feRadicalInverse(i));
+        const float phi = 2.0 * FE_PI * u.y, cp = cos(phi), sp = sin(phi);
+        const float cosH = sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = sqrt(max(1.0 - cosH * cosH, 0.0));
+        const vec3 h = t * (sinH * cp) + b * (sinH * sp) + n * cosH;
+        const float VoH = dot(wo, h);
+        const vec3 wi = 2.0 * VoH * h - wo;
+        const float NoL = dot(n, wi);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const float P = pow(clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            const vec3 term = feEnvironment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
+            acc.Lsg1 += term;
+            acc.Lsg2 += P * term;
+        }
+        const float cosD = sqrt(1.0 - u.x), sinD = sqrt(u.x);
+        const vec3 wd = t * (sinD * cp) + b * (sinD * sp) + n * cosD;
+        const float Pd = pow(clamp(1.0 - dot(normalize(wo + wd), wo), 0.0, 1.0), 5.0);
+        acc.Ldg += (1.0 - Pd) * feEnvironment(wd);
+    }
+    const float toPunctual = (NoV * (1.0 - kp) + kp) / (NoV * (1.0 - k) + k) / float(count);
+    acc.Ldg *= FE_PI / float(count);
+    acc.Lsg1 *= toPunctual;
+    acc.Lsg2 *= toPunctual;
+    return acc;
+}
 #endif
