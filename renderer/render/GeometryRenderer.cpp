@@ -39,6 +39,7 @@ GeometryRenderer::~GeometryRenderer() {
     device_.destroy(vs_);
     device_.destroy(forwardFs_);
     if (forwardIblFs_) device_.destroy(forwardIblFs_);
+    if (lppMaterialIblFs_) device_.destroy(lppMaterialIblFs_);
     device_.destroy(gbufferFs_);
     for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_}) device_.destroy(sh);
 }
@@ -46,6 +47,8 @@ GeometryRenderer::~GeometryRenderer() {
 void GeometryRenderer::setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler) {
     if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
     forwardIblFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward_ibl.frag")});
+    lppMaterialIblFs_ =
+        device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/lpp_material_ibl.frag")});
     environment_ = cube;
     environmentSampler_ = sampler;
 }
@@ -65,7 +68,8 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     };
     // The forward-shaded passes that add the environment's light (with the emissive term: not
     // multi-pass forward's additive passes).
-    const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent);
+    const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent ||
+                                       pass == MeshPass::LightPrepassMaterial);
     State st = [&]() -> State {
         switch (pass) {
             case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
@@ -80,7 +84,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
-    if (ibl) st.fs = forwardIblFs_;
+    if (ibl) st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
         .vertexShader = vs_,

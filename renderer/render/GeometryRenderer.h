@@ -41,8 +41,9 @@ public:
     // front). `frameConstants` is the per-frame uniform allocation. Passes that draw the same
     // items again in a frame share `objects` (cleared at the start of each frame): each item's
     // object constants are uploaded the first time it is drawn and reused after.
-    // Image-based lighting in the forward-shaded passes (Forward, ForwardEqual, Transparent):
-    // forward_ibl.frag reading this cube (frame.counts.z samples per term). Before any draw.
+    // Image-based lighting in the forward-shaded passes (Forward, ForwardEqual, Transparent) and
+    // the light pre-pass material pass: forward_ibl.frag / lpp_material_ibl.frag reading this
+    // cube (frame.counts.z samples per term). Before any draw.
     void setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler);
     void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
               const UploadAllocation& frameConstants, const glm::vec3& eye,
@@ -58,7 +59,7 @@ private:
     std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
     gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
-    gdi::ShaderHandle forwardIblFs_;  // with an environment (setEnvironment)
+    gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
     gdi::TextureHandle environment_;
     gdi::SamplerHandle environmentSampler_;
 };

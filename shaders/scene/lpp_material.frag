@@ -1,33 +1,4 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "fe_material.glsl"
-#include "fe_light_prepass.glsl"
-// Light pre-pass, pass 3: the scene drawn again (depth EQUAL), each material combining its
-// albedo and F0 with the light buffer at its pixel.
-layout(binding = FE_SLOT_IBUFFER0) uniform sampler2D lightBuffer;
-layout(location = 0) in vec3 vWorld;
-layout(location = 1) in vec3 vNormal;
-layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
-layout(location = 0) out vec4 outRadiance;
-void main() {
-    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
-    if (feAlphaDiscard(m.alpha)) discard;
-    if (m.unlit) {
-        outRadiance = vec4(m.baseColor, 1.0);
-        return;
-    }
-    vec4 light = texelFetch(lightBuffer, ivec2(gl_FragCoord.xy), 0);
-    vec3 wo = normalize(frame.cameraPosition.xyz - vWorld);
-    float r = feClampRoughness(m.roughness);
-    float k = (r + 1.0) * (r + 1.0) / 8.0;
-    float NoV = max(dot(m.n, wo), 1e-4);
-    vec3 F0 = mix(vec3(0.04), m.baseColor, m.metallic);
-    vec3 Ld = (1.0 - m.metallic) * (m.baseColor / FE_PI) * (1.0 - F0) * light.rgb;
-    // Specular colour: the monochrome sum with the diffuse light's chromaticity; Fresnel at n.v.
-    float lum = feLuminance(light.rgb);
-    vec3 chroma = lum > 0.0 ? light.rgb / lum : vec3(1.0);
-    vec3 F = F0 + (1.0 - F0) * pow(1.0 - NoV, 5.0);
-    vec3 Ls = chroma * light.a * F / (NoV * (1.0 - k) + k);
-    outRadiance = vec4(m.emissive + Ld + Ls, 1.0);
-}
+// Light pre-pass, pass 3 (fe_lpp_material_pass.glsl).
+#include "fe_lpp_material_pass.glsl"
