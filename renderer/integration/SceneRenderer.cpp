@@ -26,9 +26,6 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
                          "(use forward, forward-multipass, forward-zprepass or light-prepass)");
     if (s.iblSamples > 0 && !scene.environment)
         throw gdi::Error("--ibl-samples needs an environment to light the scene with (--environment)");
-    if (s.iblSamples > 0 && !technique.ibl)
-        throw gdi::Error("technique " + s.technique + " does not take image-based lighting yet (forward, forward-multipass, "
-                         "forward-zprepass, deferred, deferred-tiled, light-prepass, redeferred and redeferred-tiled do)");
     if (s.iblSamples > 65536)
         throw gdi::Error("--ibl-samples must be at most 65536 (got " + std::to_string(s.iblSamples) + ")");
     const gdi::DeviceLimits& limits = device.info().limits;

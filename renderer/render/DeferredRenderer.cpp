@@ -17,7 +17,7 @@ DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                      {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
         .debugName = "emissive"});
-    if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c);
+    if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 
 DeferredRenderer::~DeferredRenderer() {
@@ -40,7 +40,7 @@ void DeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, g
         b.sample(gbuffer_.gb2);
         b.colorTarget(output, gdi::LoadOp::Load);
     }, fullscreen(emissive_, {{kSlotGBuffer2, gbuffer_.gb2}}));
-    if (ibl_) ibl_->declare(g, gbuffer_, output);
+    if (ibl_) ibl_->declare(g, "ibl", gbuffer_, {output});
 }
 
 }  // namespace fe::render

@@ -5,16 +5,18 @@
 
 namespace fe::render {
 
-EnvironmentLighting::EnvironmentLighting(TechniqueContext& c) : ctx_(c) {
-    fs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/deferred_ibl.frag")});
-    std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
+EnvironmentLighting::EnvironmentLighting(TechniqueContext& c, const char* fragmentShader, std::vector<gdi::Format> formats,
+                                         bool albedo)
+    : ctx_(c), albedo_(albedo) {
+    fs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
+    std::vector<gdi::BindingSlot> b = GBuffer::slots(albedo);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
     b.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    pipeline_ = c.device.createGraphicsPipeline({
-        .vertexShader = c.fullscreenVs, .fragmentShader = fs_,
-        .blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
-                   .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One}},
-        .colorFormats = {kRadianceFormat}, .bindings = b, .debugName = "ibl"});
+    const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
+                                    .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
+    pipeline_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = fs_,
+                                                 .blend = std::vector<gdi::BlendTargetState>(formats.size(), add),
+                                                 .colorFormats = formats, .bindings = b, .debugName = fragmentShader});
 }
 
 EnvironmentLighting::~EnvironmentLighting() {
@@ -22,16 +24,17 @@ EnvironmentLighting::~EnvironmentLighting() {
     ctx_.device.destroy(fs_);
 }
 
-void EnvironmentLighting::declare(graph::RenderGraph& g, const GBuffer& gbuffer, graph::TextureId output) {
-    g.addPass("ibl", [&](graph::PassBuilder& b) {
-        gbuffer.sampleIn(b, true);
-        b.colorTarget(output, gdi::LoadOp::Load);
+void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer,
+                                  std::vector<graph::TextureId> targets) {
+    g.addPass(passName, [&](graph::PassBuilder& b) {
+        gbuffer.sampleIn(b, albedo_);
+        for (graph::TextureId t : targets) b.colorTarget(t, gdi::LoadOp::Load);
     }, [this, &gbuffer](graph::PassContext& pc) {
         pc.beginRenderPass();
         pc.cmd.setPipeline(pipeline_);
         const UploadAllocation& fc = ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-        gbuffer.bind(pc.cmd, pc, ctx_.pointSampler, true);
+        gbuffer.bind(pc.cmd, pc, ctx_.pointSampler, albedo_);
         pc.cmd.setTexture(kSlotEnvironment, ctx_.environment, ctx_.environmentSampler);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();

@@ -37,15 +37,8 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
     if (s.iblSamples > 0) {
         if (s.illumSplit)
             throw gdi::Error("--illum-split does not take image-based lighting yet (its I-buffer sums differ in size)");
-        iblFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/illumination_ibl.frag")});
-        std::vector<gdi::BindingSlot> bi = GBuffer::slots(false);
-        bi.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-        bi.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-        const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
-                                        .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
-        ibl_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = iblFs_, .blend = {add, add, add},
-                                                .colorFormats = {kI0, kI1, kI2}, .bindings = bi,
-                                                .debugName = "ibl illumination"});
+        // The environment's light added into the I-buffer (alpha, the tiled pass's filter data, kept).
+        ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/illumination_ibl.frag", std::vector{kI0, kI1, kI2}, false);
     }
     // One material shader per path (fe_material_pass.glsl says why).
     const char* material = s.illumScale == 1 ? (s.precomputedNoV ? "scene/material.frag" : "scene/material_rebuild_nov.frag")
@@ -62,8 +55,8 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
 }
 
 RedeferredRenderer::~RedeferredRenderer() {
-    for (auto p : {material_, illumination_, ibl_}) ctx_.device.destroy(p);
-    for (auto sh : {materialFs_, illuminationCs_, iblFs_}) ctx_.device.destroy(sh);
+    for (auto p : {material_, illumination_}) ctx_.device.destroy(p);
+    for (auto sh : {materialFs_, illuminationCs_}) ctx_.device.destroy(sh);
 }
 
 void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
@@ -103,22 +96,7 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
             pc.cmd.endRenderPass();
         });
     }
-    if (ibl_) {
-        // The environment's light added into the I-buffer (illumination_ibl.frag).
-        g.addPass("ibl-illumination", [&](graph::PassBuilder& b) {
-            gbuffer_.sampleIn(b, false);
-            for (auto t : {i0, i1, i2}) b.colorTarget(t, gdi::LoadOp::Load);
-        }, [this](graph::PassContext& pc) {
-            pc.beginRenderPass();
-            pc.cmd.setPipeline(ibl_);
-            const UploadAllocation& fc = ctx_.frameConstants;
-            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-            gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
-            pc.cmd.setTexture(kSlotEnvironment, ctx_.environment, ctx_.environmentSampler);
-            pc.cmd.draw(3);
-            pc.cmd.endRenderPass();
-        });
-    }
+    if (ibl_) ibl_->declare(g, "ibl-illumination", gbuffer_, {i0, i1, i2});
     g.addPass("material", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);
         for (auto t : {i0, i1, i2}) b.sample(t);

@@ -6,6 +6,7 @@
 #pragma once
 #include <memory>
 
+#include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
 #include "render/TileLightCulling.h"
@@ -31,8 +32,7 @@ private:
     gdi::PipelineHandle illumination_;  // tiled
     gdi::ShaderHandle materialFs_;
     gdi::PipelineHandle material_;
-    gdi::ShaderHandle iblFs_;  // with --ibl-samples: the environment into the I-buffer
-    gdi::PipelineHandle ibl_;
+    std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples: the environment into the I-buffer
 };
 
 }  // namespace fe::render

@@ -75,8 +75,8 @@ struct TechniqueInfo {
     bool msaa = false;
     // Has an I-buffer, so takes --illum-scale (redeferred and redeferred-tiled).
     bool illumScale = false;
-    // Lights the scene by its environment (--ibl-samples N); so far the forward techniques.
-    bool ibl = false;
+    // Every technique lights the scene by its environment with --ibl-samples N (checked for
+    // every line of the table by EnvironmentTests).
 };
 // Every technique, in the order help lists them (Techniques.cpp).
 const std::vector<TechniqueInfo>& techniques();

@@ -28,19 +28,19 @@ std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
 
 const std::vector<TechniqueInfo>& techniques() {
     static const std::vector<TechniqueInfo> all = {
-        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true, false, true},
-        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true, false, true},
-        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true, false, true},
-        {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>, false, false, true},
-        {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>, false, false, true},
+        {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true},
+        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
+        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
+        {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
+        {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
         {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
-         makeLightPrepass<true>, true, false, true},
+         makeLightPrepass<true>, true},
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
-         makeLightPrepass<false>, true, false, true},
+         makeLightPrepass<false>, true},
         {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>, false,
-         true, true},
+         true},
         {"redeferred-tiled", "redeferred with the I-buffer filled by one compute pass culling lights per tile",
-         makeRedeferred<true>, false, true, true},
+         makeRedeferred<true>, false, true},
     };
     return all;
 }

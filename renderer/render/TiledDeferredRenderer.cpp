@@ -15,7 +15,7 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRen
     if (culling_) b.push_back(TileLightCulling::listSlot());
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
     pipeline_ = c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"});
-    if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c);
+    if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 
 TiledDeferredRenderer::~TiledDeferredRenderer() {
@@ -38,7 +38,7 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
         const RenderSettings& s = ctx_.settings;
         pc.cmd.dispatch((s.width + kTileSize - 1) / kTileSize, (s.height + kTileSize - 1) / kTileSize);
     });
-    if (ibl_) ibl_->declare(g, gbuffer_, output);
+    if (ibl_) ibl_->declare(g, "ibl", gbuffer_, {output});
 }
 
 }  // namespace fe::render

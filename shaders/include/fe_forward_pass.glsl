@@ -20,13 +20,7 @@ void main() {
     if (m.unlit) {
         L = first ? m.baseColor : vec3(0.0);
     } else {
-        SurfacePoint s;
-        s.P = vWorld;
-        s.n = m.n;
-        s.wo = normalize(frame.cameraPosition.xyz - vWorld);
-        s.baseColor = m.baseColor;
-        s.metallic = m.metallic;
-        s.roughness = m.roughness;
+        const SurfacePoint s = feMaterialSurface(m, vWorld);
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) L += feShadeLight(s, feEvaluateLight(lights[i], vWorld));
 #ifdef FE_IBL

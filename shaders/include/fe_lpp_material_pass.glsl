@@ -34,14 +34,7 @@ void main() {
     vec3 Ls = chroma * light.a * F / (NoV * (1.0 - k) + k);
     vec3 L = m.emissive + Ld + Ls;
 #ifdef FE_IBL
-    SurfacePoint s;
-    s.P = vWorld;
-    s.n = m.n;
-    s.wo = wo;
-    s.baseColor = m.baseColor;
-    s.metallic = m.metallic;
-    s.roughness = m.roughness;
-    L += feShadeEnvironment(s, frame.counts.z);
+    L += feShadeEnvironment(feMaterialSurface(m, vWorld), frame.counts.z);
 #endif
     outRadiance = vec4(L, 1.0);
 }

@@ -56,4 +56,16 @@ MaterialSample feSampleMaterial(vec2 uv, vec3 N, vec4 T, bool frontFacing) {
 
 // MASK: discard below the cutoff; OPAQUE: alpha ignored.
 bool feAlphaDiscard(float alpha) { return object.params.w == 1.0 && alpha < object.params.z; }
+
+// The shading inputs of a sampled material at world position P, seen from the camera.
+SurfacePoint feMaterialSurface(MaterialSample m, vec3 P) {
+    SurfacePoint s;
+    s.P = P;
+    s.n = m.n;
+    s.wo = normalize(frame.cameraPosition.xyz - P);
+    s.baseColor = m.baseColor;
+    s.metallic = m.metallic;
+    s.roughness = m.roughness;
+    return s;
+}
 #endif

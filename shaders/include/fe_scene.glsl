@@ -79,4 +79,16 @@ vec3 feWorldFromDepth(vec2 pixelCenter, float depth) {
     vec4 w = frame.invViewProj * vec4(ndc, depth, 1.0);
     return w.xyz / w.w;
 }
+
+// The surface a G-buffer pixel holds (base colour + metallic in g0, normal + roughness in g1).
+SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
+    SurfacePoint s;
+    s.P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    s.n = normalize(g1.xyz);
+    s.wo = normalize(frame.cameraPosition.xyz - s.P);
+    s.baseColor = g0.rgb;
+    s.metallic = g0.a;
+    s.roughness = g1.a;
+    return s;
+}
 #endif

@@ -20,13 +20,7 @@ void main() {
     if (depth < 1.0 && !feGBufferUnlit(g2.a)) {
         const vec4 g0 = texelFetch(gb0, p, 0);
         const vec4 g1 = texelFetch(gb1, p, 0);
-        SurfacePoint s;
-        s.P = feWorldFromDepth(vec2(p) + 0.5, depth);
-        s.n = normalize(g1.xyz);
-        s.wo = normalize(frame.cameraPosition.xyz - s.P);
-        s.baseColor = g0.rgb;
-        s.metallic = g0.a;
-        s.roughness = g1.a;
+        const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
             const GpuLight L = lights[feTileLight(k)];

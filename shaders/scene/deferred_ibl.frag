@@ -13,12 +13,6 @@ void main() {
     const float depth = texelFetch(depthTexture, p, 0).r;
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     const vec4 g0 = texelFetch(gb0, p, 0), g1 = texelFetch(gb1, p, 0);
-    SurfacePoint s;
-    s.P = feWorldFromDepth(vec2(p) + 0.5, depth);
-    s.n = normalize(g1.xyz);
-    s.wo = normalize(frame.cameraPosition.xyz - s.P);
-    s.baseColor = g0.rgb;
-    s.metallic = g0.a;
-    s.roughness = g1.a;
+    const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
     outRadiance = vec4(feShadeEnvironment(s, frame.counts.z), 0.0);
 }

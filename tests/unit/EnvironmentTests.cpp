@@ -215,7 +215,7 @@ TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
     scene.lights.clear();  // the environment's light alone
     scene.environment = assets::loadEnvironment("builtin:sky");
     scene.environment->sky.sunRadiance = glm::dvec3(0.0);
-    auto gpu = [&](uint32_t samples, const char* technique = "forward") {
+    auto gpu = [&](uint32_t samples, const std::string& technique = "forward") {
         render::SceneRenderer r(*device, scene, {.technique = technique, .width = W, .height = H, .iblSamples = samples});
         r.renderFrame();
         return r.readOutput();
@@ -246,8 +246,10 @@ TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
     const render::ReferenceImage ref64 = render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64});
     // Redeferred accumulates it into the I-buffer as the seed derives L_dg, L_sg1 and L_sg2.
     // The light pre-pass adds it in its material pass, exactly (the pass has the whole material).
-    for (const char* t : {"deferred", "deferred-tiled", "redeferred", "redeferred-tiled", "light-prepass"}) {
-        if (std::string(t).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
+    // Every technique of the table: a new one must light by the environment to pass.
+    for (const render::TechniqueInfo& info : render::techniques()) {
+        const std::string t = info.name;
+        if (t.find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
         const gdi::Image other = gpu(64, t);
         const LitStats d = compareLit(asFunction(other), ref64, 0.02, W, H);
         std::cout << t << " at 64 samples against the reference's estimator: " << d.fractionOver * 100 << " % beyond 2 %\n";
