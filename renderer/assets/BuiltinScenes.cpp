@@ -189,10 +189,50 @@ Scene makeTriangle() {
     return s;
 }
 
+Light spot(const std::string& name, const glm::vec3& pos, const glm::vec3& target, const glm::vec3& color, float cd,
+           float innerDegrees, float outerDegrees) {
+    Light l = point(name, pos, color, cd, 0.0f);
+    l.type = LightType::Spot;
+    l.direction = glm::normalize(target - pos);
+    l.innerConeAngle = radians(innerDegrees);
+    l.outerConeAngle = radians(outerDegrees);
+    return l;
+}
+
+Scene makeShadows() {
+    Scene s;
+    s.name = "shadows";
+    auto mesh = [&](const char* name, Primitive p, Material m) {
+        p.material = uint32_t(s.materials.size());
+        s.materials.push_back(std::move(m));
+        Mesh out;
+        out.name = name;
+        out.primitives.push_back(std::move(p));
+        computeBounds(out);
+        s.meshes.push_back(std::move(out));
+        return uint32_t(s.meshes.size() - 1);
+    };
+    const uint32_t ground = mesh("ground", makeQuad(5.0f, 5.0f, 0), makeMaterial("ground", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 0.0f, 0.7f));
+    addInstance(s, ground, glm::rotate(glm::mat4(1.0f), radians(-90.0f), glm::vec3(1, 0, 0)), "ground");
+    const uint32_t sphere = mesh("sphere", makeUVSphere(0.6f, 48, 24, 0), makeMaterial("gold", glm::vec4(1.0f, 0.78f, 0.34f, 1.0f), 1.0f, 0.3f));
+    addInstance(s, sphere, glm::translate(glm::mat4(1.0f), {-1.3f, 0.6f, 0.2f}), "sphere");
+    const uint32_t cube = mesh("cube", makeCube(0.45f, 0), makeMaterial("red", glm::vec4(0.7f, 0.2f, 0.15f, 1.0f), 0.0f, 0.5f));
+    addInstance(s, cube, glm::rotate(glm::translate(glm::mat4(1.0f), {1.1f, 0.45f, -0.4f}), radians(30.0f), glm::vec3(0, 1, 0)), "cube");
+    const uint32_t pole = mesh("pole", makeCube(1.0f, 0), makeMaterial("white", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), 0.0f, 0.4f));
+    addInstance(s, pole, glm::scale(glm::translate(glm::mat4(1.0f), {0.2f, 1.0f, 1.3f}), {0.06f, 1.0f, 0.06f}), "pole");
+    s.lights.push_back(directional("sun", {-0.5f, -1.0f, -0.35f}, {1.0f, 0.95f, 0.85f}, 2.5f));
+    s.lights.push_back(spot("spot", {2.6f, 3.2f, 2.4f}, {0.0f, 0.0f, 0.0f}, {0.9f, 0.95f, 1.0f}, 60.0f, 20.0f, 30.0f));
+    s.lights.push_back(point("lamp", {-2.4f, 1.6f, 1.8f}, {1.0f, 0.6f, 0.3f}, 6.0f, 0.0f));
+    const glm::vec3 eye(0.0f, 3.0f, 6.0f);
+    s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 0.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera->name = "shadows";
+    return s;
+}
+
 }  // namespace
 
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle"};
+    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows"};
     return names;
 }
 
@@ -224,6 +264,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
         s = makePlane();
     } else if (name == "triangle") {
         s = makeTriangle();
+    } else if (name == "shadows") {
+        s = makeShadows();
     } else {
         std::string valid;
         for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;

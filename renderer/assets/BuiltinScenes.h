@@ -22,6 +22,14 @@
 // "triangle": the smallest scene: one triangle (-1,-1,0), (1,-1,0), (0,1,0) facing +Z (white,
 //   metallic 0, roughness 1), one directional light travelling along -Z at 1 lux, the "plane"
 //   camera.
+//
+// "shadows": shadow casting under every kind of light. A 10 x 10 ground quad in y = 0 facing +Y
+//   (grey 0.5, roughness 0.7), a gold metal sphere (radius 0.6 at (-1.3, 0.6, 0.2), roughness
+//   0.3), a red cube (half size 0.45 at (1.1, 0.45, -0.4), turned 30 degrees about Y) and a thin
+//   white pole (0.12 x 2 x 0.12 at (0.2, 1, 1.3)). Lights: a sun (directional, 2.5 lux, warm,
+//   travelling normalize(-0.5, -1, -0.35)), a spot (60 cd at (2.6, 3.2, 2.4) aimed at the origin,
+//   cone 20/30 degrees) and a lamp (point, 6 cd, orange, at (-2.4, 1.6, 1.8)), none with a range.
+//   Camera at (0, 3, 6) looking at (0, 0.4, 0), yfov 45 degrees, near 0.1, far 100.
 #pragma once
 #include <string>
 #include <string_view>

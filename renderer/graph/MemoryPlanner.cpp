@@ -11,7 +11,7 @@ uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) / a * a; }
 bool transient(const TextureInfo& t) { return !t.imported && t.used(); }
 
 bool sameObject(const gdi::TextureDesc& a, const gdi::TextureDesc& b) {
-    return a.format == b.format && a.width == b.width && a.height == b.height && a.mipLevels == b.mipLevels &&
+    return a.dimension == b.dimension && a.depthOrLayers == b.depthOrLayers && a.format == b.format && a.width == b.width && a.height == b.height && a.mipLevels == b.mipLevels &&
            a.sampleCount == b.sampleCount;
 }
 

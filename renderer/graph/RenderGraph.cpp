@@ -24,13 +24,13 @@ bool TextureAccess::writes() const { return isTarget(state) || state == gdi::Res
 
 // ---- declaration ------------------------------------------------------------------------------
 
-void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4> clear) {
+void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4> clear, uint32_t layer) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::RenderTarget, .load = load,
-                                              .clearColor = clear});
+                                              .clearColor = clear, .layer = layer});
 }
-void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth) {
+void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth, uint32_t layer) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::DepthTarget, .load = load,
-                                              .clearDepth = clearDepth});
+                                              .clearDepth = clearDepth, .layer = layer});
 }
 void PassBuilder::resolve(TextureId source, TextureId destination) {
     graph_.passes_[pass_].accesses.push_back({.texture = destination, .state = gdi::ResourceState::RenderTarget,
@@ -55,8 +55,13 @@ TextureId RenderGraph::createTexture(std::string name, const TransientTextureDes
     t.name = std::move(name);
     if (d.sampleCount != 1 && d.sampleCount != 2 && d.sampleCount != 4 && d.sampleCount != 8)
         throw gdi::Error("render graph: texture '" + name + "' has sample count " + std::to_string(d.sampleCount));
-    t.desc = {.format = d.format, .width = d.width, .height = d.height, .sampleCount = d.sampleCount,
-              .usage = gdi::TextureUsage::None};
+    const bool cube = d.dimension == gdi::TextureDimension::TextureCube;
+    if (d.layers == 0 || (cube && d.layers != 6) || d.dimension == gdi::TextureDimension::Texture3D ||
+        (d.dimension == gdi::TextureDimension::Texture2D && d.layers != 1))
+        throw gdi::Error("render graph: texture '" + t.name + "' has " + std::to_string(d.layers) +
+                         " layers, which its dimension does not allow (2D: 1, cube: 6, arrays: 1 or more)");
+    t.desc = {.dimension = d.dimension, .format = d.format, .width = d.width, .height = d.height,
+              .depthOrLayers = d.layers, .sampleCount = d.sampleCount, .usage = gdi::TextureUsage::None};
     textures_.push_back(std::move(t));
     compiled_ = false;
     return {uint32_t(textures_.size() - 1)};
@@ -116,7 +121,7 @@ void RenderGraph::cull() {
         pass.culled = !alive;
         if (!alive) continue;
         for (const TextureAccess& a : pass.accesses)
-            if (a.writes() && !a.reads()) needed[a.texture.index] = false;
+            if (a.writes() && !a.reads() && !a.partial) needed[a.texture.index] = false;
         for (const TextureAccess& a : pass.accesses)
             if (a.reads()) needed[a.texture.index] = true;
     }
@@ -210,6 +215,9 @@ void RenderGraph::compile(const CompileOptions& options) {
                 checkResolve(pass, a, t);
                 continue;
             }
+            if (a.writes() && a.state != gdi::ResourceState::Storage && a.layer >= t.desc.depthOrLayers)
+                throw gdi::Error("render graph: pass '" + pass.name + "' renders into layer " + std::to_string(a.layer) +
+                                 " of '" + t.name + "', which has " + std::to_string(t.desc.depthOrLayers));
             if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
                 throw gdi::Error("render graph: pass '" + pass.name + "' samples multisampled texture '" + t.name +
                                  "'; resolve it into a single-sample texture first");
@@ -230,6 +238,9 @@ void RenderGraph::compile(const CompileOptions& options) {
                                  std::to_string(w) + "x" + std::to_string(h));
         }
     }
+    for (PassInfo& pass : passes_)
+        for (TextureAccess& a : pass.accesses)
+            a.partial = a.writes() && a.state != gdi::ResourceState::Storage && textures_[a.texture.index].desc.depthOrLayers > 1;
     for (TextureInfo& t : textures_) {
         t.firstPass = t.lastPass = -1;
         t.offset = 0;
@@ -245,7 +256,8 @@ void RenderGraph::compile(const CompileOptions& options) {
             t.size = r.size;
             t.alignment = std::max<uint64_t>(1, r.alignment);
         } else {
-            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel * t.desc.sampleCount;
+            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel *
+                     t.desc.sampleCount * t.desc.depthOrLayers;
             t.alignment = 256;
         }
     }
@@ -314,9 +326,10 @@ void PassContext::beginRenderPass() {
         const bool keep = t.imported || t.output || t.lastPass > int(pass_);
         const gdi::StoreOp store = keep ? gdi::StoreOp::Store : gdi::StoreOp::DontCare;
         if (a.state == gdi::ResourceState::DepthTarget) {
-            rp.depth = {.texture = texture(a.texture), .load = a.load, .store = store, .clearDepth = a.clearDepth};
+            rp.depth = {.texture = texture(a.texture), .layer = a.layer, .load = a.load, .store = store,
+                        .clearDepth = a.clearDepth};
         } else {
-            gdi::ColorAttachment c{.texture = texture(a.texture), .load = a.load, .store = store};
+            gdi::ColorAttachment c{.texture = texture(a.texture), .layer = a.layer, .load = a.load, .store = store};
             std::copy(a.clearColor.begin(), a.clearColor.end(), c.clear);
             rp.colors.push_back(c);
             colorIds.push_back(a.texture);

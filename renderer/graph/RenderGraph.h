@@ -45,6 +45,10 @@ struct TransientTextureDesc {
     uint32_t width = 1;
     uint32_t height = 1;
     uint32_t sampleCount = 1;  // > 1: a multisampled target, read only through a resolve
+    // Layered textures (shadow cascades in a Texture2DArray, a point light's TextureCube): each
+    // pass renders into one layer (PassBuilder's `layer`) and shaders sample every layer.
+    gdi::TextureDimension dimension = gdi::TextureDimension::Texture2D;
+    uint32_t layers = 1;  // TextureCube: 6
 };
 
 // How a pass uses a texture.
@@ -57,15 +61,19 @@ struct TextureAccess {
     // Valid for a resolve destination: the multisampled target of the same pass it receives.
     // Resolves write in the colour-output stage on Vulkan, depth too, so the state is RenderTarget.
     TextureId resolveSource;
+    uint32_t layer = 0;     // targets: the layer rendered into (layered textures)
+    bool partial = false;   // a target that is one layer of several: the others keep their contents
     bool reads() const;   // sampled, or a target or storage image whose old contents are loaded
     bool writes() const;  // a target or a storage image
 };
 
 class PassBuilder {
 public:
-    // Attachments in declaration order (colour index 0, 1, ...).
-    void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, std::array<float, 4> clear = {0, 0, 0, 0});
-    void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, float clearDepth = 1.0f);
+    // Attachments in declaration order (colour index 0, 1, ...). `layer`: the layer of a layered
+    // texture this pass renders into; passes writing different layers all survive culling.
+    void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, std::array<float, 4> clear = {0, 0, 0, 0},
+                     uint32_t layer = 0);
+    void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, float clearDepth = 1.0f, uint32_t layer = 0);
     // At the end of the pass, the multisampled target `source` (colour: the average of each
     // pixel's samples; depth: sample 0) is written into single-sample `destination`.
     void resolve(TextureId source, TextureId destination);

@@ -28,12 +28,27 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         throw gdi::Error("--ibl-samples needs an environment to light the scene with (--environment)");
     if (s.iblSamples > 65536)
         throw gdi::Error("--ibl-samples must be at most 65536 (got " + std::to_string(s.iblSamples) + ")");
+    const ShadowSettings& sh = s.shadows;
+    if (sh.enabled) {
+        if (sh.mapSize < 16 || sh.mapSize > 16384)
+            throw gdi::Error("shadow map size must be 16..16384 (got " + std::to_string(sh.mapSize) + ")");
+        if (sh.cascades < 1 || sh.cascades > 4)
+            throw gdi::Error("shadow cascades must be 1..4 (got " + std::to_string(sh.cascades) + ")");
+        const uint32_t maxCube = device.info().limits.maxTextureSizeCube, max2D = device.info().limits.maxTextureSize2D;
+        if (sh.mapSize > std::min(maxCube, max2D))
+            throw gdi::Error("shadow map size " + std::to_string(sh.mapSize) + " exceeds what " + device.info().backend +
+                             " allows (" + std::to_string(std::min(maxCube, max2D)) + ")");
+    }
     const gdi::DeviceLimits& limits = device.info().limits;
     if (s.msaa > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & s.msaa))
         throw gdi::Error(std::to_string(s.msaa) + " samples are not supported on " + device.info().backend);
     queue_ = std::make_unique<CommandQueue>(device, 2);
     gpuScene_ = std::make_unique<GpuScene>(device, scene);
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
+    shadowPlan_ = planShadows(scene.lights, *scene.camera, scene.bounds, s.shadows);
+    updateLights(scene.lights);
+    if (!shadowPlan_.shadowed.empty())
+        shadows_ = std::make_unique<ShadowMaps>(device, *queue_, *geometry_, shadowPlan_, s.shadows);
     outputTexture_ = device.createTexture({.format = kRadianceFormat, .width = s.width, .height = s.height,
                                            .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
                                                     gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
@@ -56,6 +71,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         context_->environment = environment_->cube();
         context_->environmentSampler = environment_->sampler();
     }
+    context_->shadows = shadows_.get();
     technique_ = technique.create(*context_);
     buildGraph();
     graph_.compile(device, s.aliasing);
@@ -64,6 +80,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
 SceneRenderer::~SceneRenderer() {
     device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     technique_.reset();
+    shadows_.reset();
     environment_.reset();
     device_.destroy(displayPipeline_);
     for (auto sh : {fullscreenVs_, displayFs_}) device_.destroy(sh);
@@ -98,8 +115,11 @@ void SceneRenderer::buildGraph() {
             b.depthTarget(depth_, gdi::LoadOp::Load);
         }, [this](graph::PassContext& pc) {
             pc.beginRenderPass();
-            geometry_->draw(pc.cmd, *queue_, MeshPass::Transparent, {{kRadianceFormat}, kSceneDepthFormat}, frameConstants_,
-                            context_->eye);
+            // Every light, the shadowed ones without their shadows: blended surfaces receive none.
+            FrameConstants fc = frame_;
+            fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);
+            geometry_->draw(pc.cmd, *queue_, MeshPass::Transparent, {{kRadianceFormat}, kSceneDepthFormat},
+                            queue_->upload(fc), context_->eye);
             pc.cmd.endRenderPass();
         });
     }
@@ -119,6 +139,17 @@ void SceneRenderer::buildGraph() {
     if (s.displayImage) g.markOutput(display_);
 }
 
+void SceneRenderer::updateLights(const std::vector<assets::Light>& lights) {
+    if (lights.size() != shadowPlan_.order.size())
+        throw gdi::Error("updateLights: " + std::to_string(lights.size()) + " lights where the renderer was made for " +
+                         std::to_string(shadowPlan_.order.size()));
+    sceneLights_ = lights;
+    std::vector<assets::Light> ordered;
+    ordered.reserve(lights.size());
+    for (uint32_t i : shadowPlan_.order) ordered.push_back(lights[i]);
+    gpuScene_->updateLights(ordered, shadowPlan_.unshadowedCount);
+}
+
 void SceneRenderer::renderFrame() {
     const RenderSettings& s = settings_;
     const assets::Camera& cam = *scene_.camera;
@@ -131,11 +162,14 @@ void SceneRenderer::renderFrame() {
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
-    fc.counts = glm::uvec4(gpuScene_->lightCount(), s.illumScale, s.iblSamples, 0);
-    fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);  // forward: every light, with emissive
+    // The techniques' own loops light the unshadowed lights; each shadowed one has its passes.
+    const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
+    fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, 0);
+    fc.lightRange = glm::uvec4(0, unshadowed, 1, 0);  // forward: the unshadowed lights, with emissive
 
     gdi::CommandList& cmd = queue_->beginFrame();
     frameConstants_ = queue_->upload(fc);
+    if (shadows_) shadows_->update(cam, float(s.width) / float(s.height), scene_.bounds, sceneLights_);
     graph_.execute(cmd);
     lastFence_ = queue_->endFrame();
 }

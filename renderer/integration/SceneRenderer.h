@@ -3,7 +3,8 @@
 // what every technique shares: the transparent pass (BLEND primitives drawn forward after the
 // opaque ones, declared only when the scene has any), the background pass (the environment where
 // nothing was drawn, declared only when the scene has an environment) and the display pass
-// (culled unless a displayable image is asked for).
+// (culled unless a displayable image is asked for). With shadows it plans which lights cast them
+// (ShadowPlan), stores those lights last in the light buffer and gives the technique the maps.
 #pragma once
 #include <memory>
 #include <string>
@@ -39,6 +40,11 @@ public:
     std::vector<PassTiming> passTimings();
     const graph::RenderGraph& graph() const { return graph_; }
     GpuScene& gpuScene() { return *gpuScene_; }
+    // Replaces the scene's lights (scene order, e.g. an animation frame): uploaded in the order
+    // the shadow plan made when the renderer was created (which lights cast shadows is kept).
+    void updateLights(const std::vector<assets::Light>& lights);
+    // Which lights cast shadows and how (empty when shadows are off).
+    const ShadowPlan& shadowPlan() const { return shadowPlan_; }
 
 private:
     void buildGraph();
@@ -57,6 +63,9 @@ private:
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
+    ShadowPlan shadowPlan_;
+    std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
+    std::vector<assets::Light> sceneLights_;       // the current lights, scene order
     graph::RenderGraph graph_;
     graph::TextureId output_, display_, depth_;
     gdi::TextureHandle outputTexture_;

@@ -89,6 +89,19 @@ bool hitsBox(const SurfaceBox& b, const glm::dvec3& o, const glm::dvec3& invD, d
 
 }  // namespace
 
+bool ReferenceImage::nearShadowEdge(uint32_t x, uint32_t y, uint32_t radius) const {
+    if (occluded.empty()) return false;
+    const uint32_t own = occluded[size_t(y) * width + x];
+    const int r = int(radius);
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
+            const int xx = int(x) + dx, yy = int(y) + dy;
+            if (xx < 0 || yy < 0 || xx >= int(width) || yy >= int(height)) continue;
+            if (occluded[size_t(yy) * width + size_t(xx)] != own) return true;
+        }
+    return false;
+}
+
 bool ReferenceImage::nearEdge(uint32_t x, uint32_t y) const {
     const int32_t s = surface[size_t(y) * width + x];
     for (int dy = -1; dy <= 1; ++dy)
@@ -151,12 +164,43 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         lights.push_back(p);
     }
 
+    // Anything hit on the way to the light, from either side; MASK texels below the cutoff let
+    // light through as they let the eye through.
+    auto alphaPasses = [&](const WorldTriangle& tri, double b1, double b2) {
+        const assets::Material& mat = scene.materials[tri.material];
+        if (mat.alphaMode != assets::AlphaMode::Mask) return true;
+        glm::dvec2 uv = (1 - b1 - b2) * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
+        double a = mat.baseColorFactor.a;
+        if (mat.baseColorTexture.valid()) a *= sample(scene.textures[mat.baseColorTexture.index], uv).a;
+        return a >= mat.alphaCutoff;
+    };
+    auto occluded = [&](const glm::dvec3& o, const glm::dvec3& d, double tMax) {
+        const glm::dvec3 invD = 1.0 / d;
+        for (const SurfaceBox& box : boxes) {
+            if (!hitsBox(box, o, invD, tMax)) continue;
+            for (size_t i = box.first; i < box.first + box.count; ++i) {
+                double b1, b2;
+                const double t = intersect(tris[i], o, d, b1, b2);
+                if (t > 0.0 && t < tMax && alphaPasses(tris[i], b1, b2)) return true;
+            }
+        }
+        return false;
+    };
+    const assets::AABB bounds = assets::computeWorldBounds(scene);
+    // Shadow rays start this far off the surface, along its geometric normal: far below a
+    // texel of any shadow map, far above double rounding.
+    const double rayOffset = 1e-5 * std::max(1e-3, double(glm::length(bounds.size())));
+    std::vector<int> casterBit(lights.size(), -1);
+    for (size_t i = 0, k = 0; i < lights.size() && i < options.castsShadow.size(); ++i)
+        if (options.castsShadow[i]) casterBit[i] = k < 32 ? int(k++) : 32;
+
     ReferenceImage out;
     out.width = width;
     out.height = height;
     out.radiance.assign(size_t(width) * height, glm::dvec3(0.0));
     out.surface.assign(size_t(width) * height, -1);
     out.textured.assign(size_t(width) * height, 0);
+    out.occluded.assign(size_t(width) * height, 0);
     const double aspect = camera.aspectRatio ? *camera.aspectRatio : double(width) / double(height);
     const glm::dmat4 invViewProj = glm::inverse(glm::dmat4(viewProjection(camera, float(aspect))));
     const glm::dvec3 eye(camera.eye());
@@ -253,7 +297,21 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             s.metallic = std::clamp(metallic, 0.0, 1.0);
             s.roughness = roughness;
             glm::dvec3 L = emissive;
-            for (const auto& light : lights) L += shading::shadeLight(s, shading::evaluateLight(light, s.P));
+            // The side of the surface the eye sees, for the shadow rays' start.
+            const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);
+            for (size_t li = 0; li < lights.size(); ++li) {
+                const shading::LightSample ls = shading::evaluateLight(lights[li], s.P);
+                if (casterBit[li] >= 0 && glm::dot(ls.wi, n) > 0.0) {
+                    const double tMax = lights[li].type == shading::LightType::Directional
+                                            ? std::numeric_limits<double>::infinity()
+                                            : glm::distance(lights[li].position, s.P);
+                    if (occluded(s.P + ngEye * rayOffset, ls.wi, tMax - rayOffset)) {
+                        if (casterBit[li] < 32) out.occluded[pixel] |= 1u << casterBit[li];
+                        continue;
+                    }
+                }
+                L += shading::shadeLight(s, ls);
+            }
             if (options.iblSamples > 0 && scene.environment)
                 L += shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
                                                options.iblSamples);

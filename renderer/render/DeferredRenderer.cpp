@@ -17,6 +17,10 @@ DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                      {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
         .debugName = "emissive"});
+    if (c.shadows)
+        shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
+                                                           "scene/deferred_light_shadowed_cube.frag",
+                                                           std::vector{kRadianceFormat}, GBuffer::slots(true));
     if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 
@@ -36,6 +40,11 @@ void DeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, g
         volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
         pc.cmd.endRenderPass();
     });
+    if (shadowed_)
+        shadowed_->declare(g, [&](graph::PassBuilder& b) {
+            gbuffer_.sampleIn(b, true);
+            b.colorTarget(output, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& pc) { gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true); });
     g.addPass("emissive", [&](graph::PassBuilder& b) {
         b.sample(gbuffer_.gb2);
         b.colorTarget(output, gdi::LoadOp::Load);

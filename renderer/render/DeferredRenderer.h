@@ -3,6 +3,8 @@
 #pragma once
 #include <memory>
 
+#include "render/ShadowedLightVolumes.h"
+
 #include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
@@ -16,6 +18,7 @@ public:
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
 
 private:
+    std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
     std::unique_ptr<LightVolumes> volumes_;

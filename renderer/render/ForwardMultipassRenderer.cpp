@@ -23,6 +23,7 @@ void ForwardMultipassRenderer::declare(graph::RenderGraph& g, graph::TextureId o
         }
         pc.cmd.endRenderPass();
     });
+    declareShadowedForward(g, t, &objects_);
 }
 
 }  // namespace fe::render

@@ -13,6 +13,7 @@ void ForwardRenderer::declare(graph::RenderGraph& g, graph::TextureId output, gr
         ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Forward, t.formats, ctx_.frameConstants, ctx_.eye);
         pc.cmd.endRenderPass();
     });
+    declareShadowedForward(g, t, nullptr);
 }
 
 }  // namespace fe::render

@@ -25,6 +25,7 @@ void ForwardZPrepassRenderer::declare(graph::RenderGraph& g, graph::TextureId ou
         ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::ForwardEqual, targets, ctx_.frameConstants, ctx_.eye, &objects_);
         pc.cmd.endRenderPass();
     });
+    declareShadowedForward(g, t, &objects_);
 }
 
 }  // namespace fe::render

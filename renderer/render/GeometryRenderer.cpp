@@ -7,6 +7,13 @@
 
 namespace fe::render {
 
+namespace {
+// Shadow casters' depth bias (RasterState): 2 x the depth slope, plus 4 units of the format's
+// resolution (for D32F a few ulps of the depth; the slope term does the work).
+constexpr float kShadowSlopeBias = 2.0f;
+constexpr float kShadowConstantBias = 4.0f;
+}  // namespace
+
 std::vector<gdi::BindingSlot> meshPassBindings() {
     using gdi::BindingType;
     using gdi::ShaderStage;
@@ -32,6 +39,8 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : devic
     lppNormalsFs_ = fragment("scene/lpp_normals.frag");
     lppNormalsUnpackedFs_ = fragment("scene/lpp_normals_unpacked.frag");
     lppMaterialFs_ = fragment("scene/lpp_material.frag");
+    forwardShadowedFs_ = fragment("scene/forward_shadowed.frag");
+    forwardShadowedCubeFs_ = fragment("scene/forward_shadowed_cube.frag");
 }
 
 GeometryRenderer::~GeometryRenderer() {
@@ -41,7 +50,9 @@ GeometryRenderer::~GeometryRenderer() {
     if (forwardIblFs_) device_.destroy(forwardIblFs_);
     if (lppMaterialIblFs_) device_.destroy(lppMaterialIblFs_);
     device_.destroy(gbufferFs_);
-    for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_}) device_.destroy(sh);
+    for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_, forwardShadowedFs_,
+                                 forwardShadowedCubeFs_})
+        device_.destroy(sh);
 }
 
 void GeometryRenderer::setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler) {
@@ -81,6 +92,10 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::NormalRoughnessUnpacked:
                 return {lppNormalsUnpackedFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals unpacked"};
             case MeshPass::LightPrepassMaterial: return {lppMaterialFs_, false, gdi::CompareOp::Equal, "lpp material"};
+            case MeshPass::ShadowCaster: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "shadow caster"};
+            case MeshPass::ForwardShadowed: return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
+            case MeshPass::ForwardShadowedCube:
+                return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal, "forward shadowed cube"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
@@ -108,7 +123,19 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                     .dstColor = gdi::BlendFactor::OneMinusSrcAlpha,
                     .srcAlpha = gdi::BlendFactor::One,
                     .dstAlpha = gdi::BlendFactor::OneMinusSrcAlpha}};
-    if (pass == MeshPass::ForwardAdditive)
+    if (pass == MeshPass::ShadowCaster) {
+        // Both sides cast (as in the reference's shadow rays); the slope-scaled bias keeps a
+        // lit surface from shadowing itself where the light grazes it, the receiver's normal
+        // offset (fe_shadow.glsl) does the rest.
+        d.raster.cullMode = gdi::CullMode::None;
+        d.raster.depthBiasSlope = kShadowSlopeBias;
+        d.raster.depthBiasConstant = kShadowConstantBias;
+    }
+    if (pass == MeshPass::ForwardShadowed || pass == MeshPass::ForwardShadowedCube) {
+        d.bindings.push_back({kSlotShadow, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment});
+        d.bindings.push_back({kSlotShadowMap, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+    }
+    if (pass == MeshPass::ForwardAdditive || pass == MeshPass::ForwardShadowed || pass == MeshPass::ForwardShadowedCube)
         d.blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                     .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
     if (pass == MeshPass::LightPrepassMaterial)
@@ -135,7 +162,7 @@ std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::v
     auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
     if (pass == MeshPass::Transparent)  // back to front, so source-over blending composes correctly
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
-    if (pass == MeshPass::DepthPrepass)  // front to back, so hidden surfaces fail the depth test early
+    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster)  // front to back: hidden surfaces fail early
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });
     return items;
 }

@@ -23,6 +23,9 @@ enum class MeshPass {
     NormalRoughness,          // light pre-pass 1: packed normal + roughness, depth write
     NormalRoughnessUnpacked,  // ... the RGBA16F variant
     LightPrepassMaterial,     // light pre-pass 3: material x light buffer (slot kSlotIBuffer0), depth EQUAL
+    ShadowCaster,             // depth only into a shadow map: no culling, slope-scaled depth bias
+    ForwardShadowed,          // ForwardAdditive for one light with its shadow map (kSlotShadow, kSlotShadowMap)
+    ForwardShadowedCube,      // ... a point light with its shadow cube
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -59,6 +62,7 @@ private:
     std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
     gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
+    gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
     gdi::TextureHandle environment_;
     gdi::SamplerHandle environmentSampler_;

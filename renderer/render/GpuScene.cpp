@@ -180,7 +180,7 @@ GpuScene::~GpuScene() {
     device_.destroy(lights_);
 }
 
-void GpuScene::updateLights(const std::vector<assets::Light>& lights) {
+void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t unshadowed) {
     std::vector<GpuLight> records;
     for (const assets::Light& l : lights) records.push_back(toGpuLight(l));
     if (records.empty()) records.push_back({});  // bound even when empty; count says 0
@@ -192,6 +192,7 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights) {
     }
     device_.writeBuffer(lights_, 0, gdi::bytesOf(records));
     lightCount_ = uint32_t(lights.size());
+    unshadowedCount_ = std::min(unshadowed, lightCount_);
     currentLights_ = lights;
 }
 

@@ -72,8 +72,11 @@ public:
     const std::vector<DrawItem>& draws() const { return draws_; }
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
     ObjectConstants objectConstants(const DrawItem& item) const;
-    // Replaces the light list (e.g. animated builtin:lights); the count may change.
-    void updateLights(const std::vector<assets::Light>& lights);
+    // Replaces the light list (e.g. animated builtin:lights); the count may change. The first
+    // `unshadowed` lights are lit by a technique's own light loop or volumes; each light after
+    // them casts shadows and is added by a pass of its own (ShadowMaps, SceneRenderer orders them).
+    void updateLights(const std::vector<assets::Light>& lights, uint32_t unshadowed = ~0u);
+    uint32_t unshadowedLightCount() const { return unshadowedCount_; }
     // The lights as last uploaded (the scene's, or those of the last updateLights()).
     const std::vector<assets::Light>& lights() const { return currentLights_; }
 
@@ -89,6 +92,7 @@ private:
     uint64_t lightCapacity_ = 0;
     std::vector<assets::Light> currentLights_;
     uint32_t lightCount_ = 0;
+    uint32_t unshadowedCount_ = 0;
     std::vector<DrawItem> draws_;
     std::vector<gdi::TextureHandle> textures_;
     std::vector<gdi::SamplerHandle> samplers_;

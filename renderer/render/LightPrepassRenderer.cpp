@@ -9,6 +9,13 @@ LightPrepassRenderer::LightPrepassRenderer(TechniqueContext& c, bool packed) : T
         c.device, packed ? "scene/lpp_light.frag" : "scene/lpp_light_unpacked.frag", std::vector{kLightBuffer},
         std::vector<gdi::BindingSlot>{{kSlotGBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
                                       {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}});
+    if (c.shadows)
+        shadowed_ = std::make_unique<ShadowedLightVolumes>(
+            c, packed ? "scene/lpp_light_shadowed.frag" : "scene/lpp_light_unpacked_shadowed.frag",
+            packed ? "scene/lpp_light_shadowed_cube.frag" : "scene/lpp_light_unpacked_shadowed_cube.frag",
+            std::vector{kLightBuffer},
+            std::vector<gdi::BindingSlot>{{kSlotGBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
+                                          {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}});
 }
 
 LightPrepassRenderer::~LightPrepassRenderer() = default;
@@ -55,6 +62,15 @@ void LightPrepassRenderer::declare(graph::RenderGraph& g, graph::TextureId outpu
         volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
         pc.cmd.endRenderPass();
     });
+    if (shadowed_)
+        shadowed_->declare(g, [&](graph::PassBuilder& b) {
+            b.sample(normals);
+            b.sample(t.sceneDepth);
+            b.colorTarget(light, gdi::LoadOp::Load);
+        }, [this, normals, sceneDepth = t.sceneDepth](graph::PassContext& pc) {
+            pc.cmd.setTexture(kSlotGBuffer1, pc.texture(normals), ctx_.pointSampler);
+            pc.cmd.setTexture(kSlotDepth, pc.texture(sceneDepth), ctx_.pointSampler);
+        });
     g.addPass("lpp-material", [&](graph::PassBuilder& b) {
         b.sample(light);
         b.colorTarget(t.color);

@@ -5,6 +5,8 @@
 // packing and the specular-colour reconstruction: shaders/include/fe_light_prepass.glsl.
 #pragma once
 #include <memory>
+
+#include "render/ShadowedLightVolumes.h"
 #include <vector>
 
 #include "render/LightVolumes.h"
@@ -23,6 +25,7 @@ public:
     static constexpr gdi::Format kLightBuffer = gdi::Format::RGBA32F;
 
 private:
+    std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     bool packed_;
     std::unique_ptr<LightVolumes> volumes_;
     std::vector<UploadAllocation> objects_;  // object constants, shared by passes 1 and 3

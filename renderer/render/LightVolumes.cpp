@@ -155,14 +155,20 @@ LightVolumes::~LightVolumes() {
 }
 
 void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame) {
+    drawRange(cmd, queue, scene, frame, 0, scene.unshadowedLightCount());
+}
+
+void LightVolumes::drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame,
+                             uint32_t first, uint32_t count) {
     const auto& lights = scene.lights();
-    if (scene.lightCount() == 0) return;
+    const uint32_t end = std::min<uint32_t>({first + count, scene.lightCount(), uint32_t(lights.size())});
+    if (first >= end) return;
     const assets::Camera* camera = scene.scene().camera ? &*scene.scene().camera : nullptr;
     // Instances grouped by shape: spheres, cones, full screen.
     std::vector<glm::uvec2> instances;
     Counts n;
     for (Shape shape : {Sphere, Cone, FullScreen})
-        for (uint32_t i = 0; i < scene.lightCount() && i < lights.size(); ++i)
+        for (uint32_t i = first; i < end; ++i)
             if (shapeSeenFrom(lights[i], camera) == shape) {
                 instances.push_back({i, uint32_t(shape)});
                 (shape == Sphere ? n.spheres : shape == Cone ? n.cones : n.fullscreen)++;

@@ -13,12 +13,17 @@ namespace fe::render {
 class LightVolumes {
 public:
     // `fragmentShader` decides what a volume computes (deferred radiance or I-buffer sums);
-    // every colour target is accumulated additively.
+    // every colour target is accumulated additively (alpha too: the light pre-pass keeps its
+    // monochrome specular there; shaders that write alpha 0 leave it as it was).
     LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets,
                  std::vector<gdi::BindingSlot> fragmentBindings);
     ~LightVolumes();
 
+    // Draws the lights without shadows, [0, scene.unshadowedLightCount()).
     void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame);
+    // Draws lights [first, first + count) of the light buffer (a shadowed light's own pass).
+    void drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame,
+                   uint32_t first, uint32_t count);
 
     struct Counts {
         uint32_t spheres = 0, cones = 0, fullscreen = 0;

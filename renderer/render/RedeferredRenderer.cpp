@@ -34,6 +34,13 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                                                   GBuffer::slots(false));
     }
     const RenderSettings& s = c.settings;
+    if (c.shadows) {
+        if (s.illumSplit)
+            throw gdi::Error("--illum-split does not take shadows yet (its I-buffer sums differ in size)");
+        shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/illumination_shadowed.frag",
+                                                           "scene/illumination_shadowed_cube.frag", std::vector{kI0, kI1, kI2},
+                                                           GBuffer::slots(false));
+    }
     if (s.iblSamples > 0) {
         if (s.illumSplit)
             throw gdi::Error("--illum-split does not take image-based lighting yet (its I-buffer sums differ in size)");
@@ -96,6 +103,11 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
             pc.cmd.endRenderPass();
         });
     }
+    if (shadowed_)
+        shadowed_->declare(g, [&](graph::PassBuilder& b) {
+            gbuffer_.sampleIn(b, false);
+            for (auto t : {i0, i1, i2}) b.colorTarget(t, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& pc) { gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false); });
     if (ibl_) ibl_->declare(g, "ibl-illumination", gbuffer_, {i0, i1, i2});
     g.addPass("material", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);

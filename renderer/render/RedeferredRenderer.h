@@ -6,6 +6,8 @@
 #pragma once
 #include <memory>
 
+#include "render/ShadowedLightVolumes.h"
+
 #include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
@@ -24,6 +26,7 @@ public:
     static constexpr gdi::Format kI0 = gdi::Format::RGBA16F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
 
 private:
+    std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     bool tiled_;
     GBuffer gbuffer_;
     std::unique_ptr<LightVolumes> volumes_;

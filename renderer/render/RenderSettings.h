@@ -5,6 +5,15 @@
 
 namespace fe::render {
 
+// Shadow maps (render/ShadowPlan.h says which lights get one and how they are fitted).
+struct ShadowSettings {
+    bool enabled = false;
+    uint32_t mapSize = 1024;   // texels per side of each map: a cascade, a spot map, a cube face
+    uint32_t cascades = 4;     // per directional light, 1..4
+    uint32_t pointBudget = 4;  // point lights with a shadow cube, the most important first
+    bool pcf = true;           // the device's 2x2 bilinear comparison; false: one nearest comparison
+};
+
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
     uint32_t width = 320;
@@ -28,6 +37,7 @@ struct RenderSettings {
     // environment is only the background). Needs an environment and a technique that takes it
     // (TechniqueInfo::ibl).
     uint32_t iblSamples = 0;
+    ShadowSettings shadows;
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

@@ -23,4 +23,6 @@ constexpr uint32_t kSlotTileLights = 17;    // per-tile light lists (TileLightCu
 constexpr uint32_t kSlotTileLightsOut = 18; // ... and written, by the light-culling pass
 constexpr uint32_t kSlotEnvironment = 19;   // the environment cube map (EnvironmentMap)
 constexpr uint32_t kSlotEnvironmentSource = 20;  // its source: the equirectangular image
+constexpr uint32_t kSlotShadow = 21;        // a shadowed light's ShadowMaps::Constants
+constexpr uint32_t kSlotShadowMap = 22;     // ... and its map (2D array or cube, comparison sampler)
 }  // namespace fe::render

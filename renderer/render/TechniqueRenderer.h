@@ -14,6 +14,7 @@
 #include "render/GeometryRenderer.h"
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
+#include "render/ShadowMaps.h"
 
 namespace fe::render {
 
@@ -33,6 +34,10 @@ struct TechniqueContext {
     // The environment's cube map when the frame is lit by it (RenderSettings::iblSamples > 0).
     gdi::TextureHandle environment = {};
     gdi::SamplerHandle environmentSampler = {};
+    // The shadowed lights' maps when the frame has shadows (RenderSettings::shadows). The
+    // technique's own light loops and volumes cover the unshadowed lights; it adds each shadowed
+    // light in a pass of its own through ShadowMaps::declare.
+    ShadowMaps* shadows = nullptr;
 };
 
 constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
@@ -45,6 +50,9 @@ struct ForwardTargets {
     graph::TextureId color, depth;        // what the technique's passes render into
     graph::TextureId output, sceneDepth;  // the single-sample results
     MeshPassTargets formats;
+    // The shadowed lights' passes come after the technique's own and resolve in the last of
+    // them (TechniqueRenderer::declareShadowedForward): resolveIn() then declares nothing.
+    bool resolveLater = false;
     // Declares the resolves in the pass that ends the technique (nothing at one sample).
     void resolveIn(graph::PassBuilder& b) const;
 };
@@ -57,7 +65,13 @@ public:
     virtual void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) = 0;
 
 protected:
+    // resolveLater is set when shadowed lights follow (declareShadowedForward).
     ForwardTargets forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const;
+    bool hasShadowedLights() const { return ctx_.shadows && ctx_.shadows->any(); }
+    // Forward techniques, after their own passes: each shadowed light's map and a pass adding
+    // that light into t.color where depth is EQUAL (MeshPass::ForwardShadowed); the last one
+    // resolves t. `objects`: the technique's object constants of this frame, if it keeps them.
+    void declareShadowedForward(graph::RenderGraph& g, const ForwardTargets& t, std::vector<UploadAllocation>* objects);
     // Sets a pipeline and binds the frame constants and the scene's lights at their slots.
     void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
     // A pass body: one full-screen triangle with the frame constants and graph textures bound.

@@ -59,7 +59,7 @@ std::string techniqueNames() {
 
 ForwardTargets TechniqueRenderer::forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const {
     const RenderSettings& s = ctx_.settings;
-    ForwardTargets t{output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, s.msaa}};
+    ForwardTargets t{output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, s.msaa}, hasShadowedLights()};
     if (s.msaa > 1) {
         t.color = g.createTexture("msaa L_o", {.format = kRadianceFormat, .width = s.width, .height = s.height, .sampleCount = s.msaa});
         t.depth = g.createTexture("msaa depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height,
@@ -69,9 +69,35 @@ ForwardTargets TechniqueRenderer::forwardTargets(graph::RenderGraph& g, graph::T
 }
 
 void ForwardTargets::resolveIn(graph::PassBuilder& b) const {
-    if (color == output) return;
+    if (color == output || resolveLater) return;
     b.resolve(color, output);
     b.resolve(depth, sceneDepth);
+}
+
+void TechniqueRenderer::declareShadowedForward(graph::RenderGraph& g, const ForwardTargets& t,
+                                               std::vector<UploadAllocation>* objects) {
+    if (!hasShadowedLights()) return;
+    ctx_.shadows->declare(g, [&](graph::RenderGraph& graph, const ShadowMaps::Light& light) {
+        graph.addPass("shadowed light " + std::to_string(light.index), [&](graph::PassBuilder& b) {
+            b.sample(light.map);
+            b.colorTarget(t.color, gdi::LoadOp::Load);
+            b.depthTarget(t.depth, gdi::LoadOp::Load);
+            if (light.last) {
+                ForwardTargets now = t;
+                now.resolveLater = false;
+                now.resolveIn(b);
+            }
+        }, [this, t, light, objects](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            FrameConstants fc = ctx_.frame;
+            fc.lightRange = glm::uvec4(light.gpuLight, 1u, 0u, 0u);  // this light alone, no emissive
+            const UploadAllocation perLight = ctx_.queue.upload(fc);
+            ctx_.shadows->bind(pc.cmd, pc, light);
+            ctx_.geometry.draw(pc.cmd, ctx_.queue, light.kind == ShadowKind::Cube ? MeshPass::ForwardShadowedCube : MeshPass::ForwardShadowed,
+                               t.formats, perLight, ctx_.eye, objects);
+            pc.cmd.endRenderPass();
+        });
+    });
 }
 
 void TechniqueRenderer::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {

@@ -15,6 +15,10 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRen
     if (culling_) b.push_back(TileLightCulling::listSlot());
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
     pipeline_ = c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"});
+    if (c.shadows)
+        shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
+                                                           "scene/deferred_light_shadowed_cube.frag",
+                                                           std::vector{kRadianceFormat}, GBuffer::slots(true));
     if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 
@@ -38,6 +42,11 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
         const RenderSettings& s = ctx_.settings;
         pc.cmd.dispatch((s.width + kTileSize - 1) / kTileSize, (s.height + kTileSize - 1) / kTileSize);
     });
+    if (shadowed_)
+        shadowed_->declare(g, [&](graph::PassBuilder& b) {
+            gbuffer_.sampleIn(b, true);
+            b.colorTarget(output, gdi::LoadOp::Load);
+        }, [this](graph::PassContext& pc) { gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true); });
     if (ibl_) ibl_->declare(g, "ibl", gbuffer_, {output});
 }
 

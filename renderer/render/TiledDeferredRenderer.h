@@ -6,6 +6,8 @@
 #pragma once
 #include <memory>
 
+#include "render/ShadowedLightVolumes.h"
+
 #include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/TileLightCulling.h"
@@ -20,6 +22,7 @@ public:
     static constexpr uint32_t kTileSize = 16;  // pixels per work group side
 
 private:
+    std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
     std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch

@@ -3,6 +3,9 @@
 #ifdef FE_IBL
 #include "fe_ibl.glsl"
 #endif
+#ifdef FE_SHADOWED
+#include "fe_shadow.glsl"
+#endif
 // Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
 // for forward and the transparent pass, one per pass for forward-multipass (which adds the
 // emissive and unlit terms in its first pass only). forward_ibl.frag adds the environment's
@@ -22,7 +25,13 @@ void main() {
     } else {
         const SurfacePoint s = feMaterialSurface(m, vWorld);
         const uint end = frame.lightRange.x + frame.lightRange.y;
-        for (uint i = frame.lightRange.x; i < end; ++i) L += feShadeLight(s, feEvaluateLight(lights[i], vWorld));
+        for (uint i = frame.lightRange.x; i < end; ++i) {
+            SurfaceLight l = feEvaluateLight(lights[i], vWorld);
+#ifdef FE_SHADOWED
+            l.E *= feShadowVisibility(vWorld, s.n);  // forward_shadowed*.frag: one light per pass
+#endif
+            L += feShadeLight(s, l);
+        }
 #ifdef FE_IBL
         // The environment's light, with the emissive term in the first pass (frame.counts.z samples).
         if (first) L += feShadeEnvironment(s, frame.counts.z);

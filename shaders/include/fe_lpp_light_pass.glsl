@@ -1,5 +1,9 @@
 #include "fe_light_prepass.glsl"
-// Light pre-pass, pass 2: one light per fragment of its volume, added into the light buffer.
+#ifdef FE_SHADOWED
+#include "fe_shadow.glsl"
+#endif
+// Light pre-pass, pass 2: one light per fragment of its volume, added into the light buffer;
+// FE_SHADOWED: darkened by the light's shadow map (fe_shadow.glsl).
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 layout(location = 0) flat in uint vLightIndex;
@@ -13,6 +17,10 @@ void main() {
     vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);  // the eye ray at the stored depth
     vec3 wo = normalize(frame.cameraPosition.xyz - P);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
-    feAccumulateIllumination(acc, n, wo, feUnpackRoughness(t), feEvaluateLight(lights[vLightIndex], P));
+    SurfaceLight l = feEvaluateLight(lights[vLightIndex], P);
+#ifdef FE_SHADOWED
+    l.E *= feShadowVisibility(P, n);
+#endif
+    feAccumulateIllumination(acc, n, wo, feUnpackRoughness(t), l);
     outLight = vec4(acc.Ldg, feLuminance(acc.Lsg1));
 }

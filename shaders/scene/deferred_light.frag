@@ -1,19 +1,4 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "fe_scene.glsl"
-// Deferred: one light per fragment of its volume, added into the radiance target.
-layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
-layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
-layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
-layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(location = 0) flat in uint vLightIndex;
-layout(location = 0) out vec4 outRadiance;
-void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;  // background or unlit
-    vec4 g0 = texelFetch(gb0, p, 0);
-    vec4 g1 = texelFetch(gb1, p, 0);
-    const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
-    outRadiance = vec4(feShadeLight(s, feEvaluateLight(lights[vLightIndex], s.P)), 0.0);
-}
+// Deferred lighting, one light per volume fragment (fe_deferred_light_pass.glsl).
+#include "fe_deferred_light_pass.glsl"

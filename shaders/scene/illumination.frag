@@ -1,31 +1,4 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "fe_scene.glsl"
-// Redeferred illumination pass: light-only sums into the I-buffer, possibly at 1/scale of the
-// resolution. Each I-buffer texel shades the G-buffer texel at the centre of its block (the
-// material pass's upsampling filter uses the same representative texels).
-layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
-layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
-layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(location = 0) flat in uint vLightIndex;
-layout(location = 0) out vec4 outLdg;
-layout(location = 1) out vec4 outLsg1;
-layout(location = 2) out vec4 outLsg2;
-void main() {
-    int scale = int(frame.counts.y);
-    ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
-    float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
-    vec4 g1 = texelFetch(gb1, p, 0);
-    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
-    vec3 n = normalize(g1.xyz);
-    vec3 wo = normalize(frame.cameraPosition.xyz - P);
-    IlluminationSums acc;
-    acc.Ldg = vec3(0.0);
-    acc.Lsg1 = vec3(0.0);
-    acc.Lsg2 = vec3(0.0);
-    feAccumulateIllumination(acc, n, wo, g1.a, feEvaluateLight(lights[vLightIndex], P));
-    outLdg = vec4(acc.Ldg, 0.0);
-    outLsg1 = vec4(acc.Lsg1, 0.0);
-    outLsg2 = vec4(acc.Lsg2, 0.0);
-}
+// Redeferred illumination, one light per volume fragment (fe_illumination_pass.glsl).
+#include "fe_illumination_pass.glsl"

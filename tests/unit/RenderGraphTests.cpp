@@ -68,6 +68,39 @@ TEST(RenderGraph, CullsAWriteThatALaterClearHides) {
     EXPECT_FALSE(culled(g, "accumulate"));
 }
 
+// A layered texture (shadow cascades, a cube's faces) is written one layer per pass: a later
+// layer's clear hides nothing of the earlier layers, so every layer's pass survives; a layer
+// that does not exist is an error, and a cube has 6 layers.
+TEST(RenderGraph, PassesWritingDifferentLayersAllSurvive) {
+    RenderGraph g;
+    auto cascades = g.createTexture("cascades", {.format = Format::D32F, .width = 16, .height = 16,
+                                                 .dimension = gdi::TextureDimension::Texture2DArray, .layers = 3});
+    auto out = importFake(g);
+    for (uint32_t layer = 0; layer < 3; ++layer)
+        g.addPass("layer " + std::to_string(layer), [&](auto& b) { b.depthTarget(cascades, LoadOp::Clear, 1.0f, layer); }, {});
+    g.addPass("final", [&](auto& b) { b.sample(cascades); b.colorTarget(out); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    for (const char* p : {"layer 0", "layer 1", "layer 2"}) EXPECT_FALSE(culled(g, p)) << p;
+    EXPECT_EQ(g.texture(cascades).desc.depthOrLayers, 3u);
+    EXPECT_EQ(g.texture(cascades).size, 16u * 16u * 4u * 3u);  // every layer's bytes
+
+    RenderGraph bad;
+    auto two = bad.createTexture("two", {.format = Format::D32F, .width = 8, .height = 8,
+                                         .dimension = gdi::TextureDimension::Texture2DArray, .layers = 2});
+    auto o = importFake(bad);
+    bad.addPass("p", [&](auto& b) { b.depthTarget(two, LoadOp::Clear, 1.0f, 2); b.colorTarget(o); }, {});
+    try {
+        bad.compile(graph::CompileOptions{});
+        ADD_FAILURE() << "layer 2 of 2 accepted";
+    } catch (const gdi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("renders into layer 2 of 'two', which has 2"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(bad.createTexture("cube", {.width = 8, .height = 8, .dimension = gdi::TextureDimension::TextureCube,
+                                            .layers = 4}),
+                 gdi::Error);
+}
+
 TEST(RenderGraph, NothingMarkedOutputCullsEverything) {
     RenderGraph g;
     auto out = importFake(g);

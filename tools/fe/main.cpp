@@ -43,7 +43,10 @@ constexpr const char* kUsage =
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
-    "      --ibl-samples N: light the scene by the environment, N importance samples per term (forward techniques)\n"
+    "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique)\n"
+    "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
+    "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
+    "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
@@ -159,6 +162,17 @@ int cmdRender(const Args& a) {
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
     s.iblSamples = parseUint(opt("--ibl-samples", "0"), "--ibl-samples", 0, 65536);
+    const std::string shadows = opt("--shadows", "off");
+    if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
+    s.shadows.enabled = shadows == "on";
+    s.shadows.mapSize = parseUint(opt("--shadow-map-size", "1024"), "--shadow-map-size", 16, 16384);
+    s.shadows.cascades = parseUint(opt("--shadow-cascades", "4"), "--shadow-cascades", 1, 4);
+    s.shadows.pointBudget = parseUint(opt("--shadow-point-budget", "4"), "--shadow-point-budget", 0, 1000);
+    const std::string filter = opt("--shadow-filter", "pcf");
+    if (filter != "pcf" && filter != "none") throw UsageError("--shadow-filter must be pcf or none, got '" + filter + "'");
+    s.shadows.pcf = filter == "pcf";
+    for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
+        if (a.options.count(k) && !s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
@@ -223,7 +237,7 @@ int cmdRender(const Args& a) {
     for (uint32_t f = 0; open && (untilClosed || f < frames + (frames > 1 ? 1 : 0)); ++f) {  // one warm-up frame when timing
         auto t0 = std::chrono::steady_clock::now();
         // builtin:lights animates: light positions are a function of the frame index.
-        if (spec == "builtin:lights") renderer.gpuScene().updateLights(assets::lightsSceneLights(builtin.lights, f));
+        if (spec == "builtin:lights") renderer.updateLights(assets::lightsSceneLights(builtin.lights, f));
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -252,6 +266,9 @@ int cmdRender(const Args& a) {
         std::cout << " illum-scale " << s.illumScale << (s.illumSplit ? " split" : "")
                   << (s.precomputedNoV ? "" : " rebuild-nov");
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
+    if (s.shadows.enabled)
+        std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
+                  << (s.shadows.pcf ? " pcf" : " nearest");
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
               << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
@@ -400,7 +417,9 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2,
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples"},
+                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
+                                    "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
+                                    "--shadow-filter"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),

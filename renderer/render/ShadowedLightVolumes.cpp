@@ -1,0 +1,42 @@
+#include "render/ShadowedLightVolumes.h"
+
+#include <algorithm>
+
+namespace fe::render {
+
+ShadowedLightVolumes::ShadowedLightVolumes(TechniqueContext& c, const char* shader, const char* cubeShader,
+                                           std::vector<gdi::Format> targets, std::vector<gdi::BindingSlot> inputs)
+    : ctx_(c) {
+    if (!c.shadows) return;
+    std::vector<gdi::BindingSlot> b = inputs;
+    for (const gdi::BindingSlot& s : ShadowMaps::slots()) b.push_back(s);
+    // Only the shaders some shadowed light needs.
+    const auto& lights = c.shadows->plan().shadowed;
+    auto has = [&](bool cube) {
+        return std::any_of(lights.begin(), lights.end(), [&](const ShadowedLight& l) { return (l.kind == ShadowKind::Cube) == cube; });
+    };
+    if (has(false)) volumes_ = std::make_unique<LightVolumes>(c.device, shader, targets, b);
+    if (has(true)) cubeVolumes_ = std::make_unique<LightVolumes>(c.device, cubeShader, targets, b);
+}
+
+ShadowedLightVolumes::~ShadowedLightVolumes() = default;
+
+void ShadowedLightVolumes::declare(graph::RenderGraph& g, const std::function<void(graph::PassBuilder&)>& setup,
+                                   std::function<void(graph::PassContext&)> bindInputs) {
+    if (!ctx_.shadows) return;
+    ctx_.shadows->declare(g, [&](graph::RenderGraph& graph, const ShadowMaps::Light& light) {
+        graph.addPass("shadowed light " + std::to_string(light.index), [&](graph::PassBuilder& b) {
+            b.sample(light.map);
+            setup(b);
+        }, [this, light, bindInputs](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            bindInputs(pc);
+            ctx_.shadows->bind(pc.cmd, pc, light);
+            LightVolumes& v = light.kind == ShadowKind::Cube ? *cubeVolumes_ : *volumes_;
+            v.drawRange(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants, light.gpuLight, 1);
+            pc.cmd.endRenderPass();
+        });
+    });
+}
+
+}  // namespace fe::render

@@ -1,0 +1,30 @@
+// Layer 7 (Render): the shadowed lights of the techniques that light by volumes over screen
+// data (deferred, deferred-tiled, light-prepass, redeferred): after each light's shadow map, one
+// pass draws that light's volume with a shadowed variant of the technique's lighting shader,
+// adding into the technique's targets (L_o, the light buffer or the I-buffer).
+#pragma once
+#include <functional>
+#include <memory>
+
+#include "render/LightVolumes.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+class ShadowedLightVolumes {
+public:
+    // `shader`: the variant for cascades and spot maps; `cubeShader`: for point lights' cubes.
+    // `inputs`: what the shaders sample besides the shadow map (bound by declare's `bindInputs`).
+    ShadowedLightVolumes(TechniqueContext& context, const char* shader, const char* cubeShader,
+                         std::vector<gdi::Format> targets, std::vector<gdi::BindingSlot> inputs);
+    ~ShadowedLightVolumes();
+    // `setup` declares the pass's inputs and its targets (loaded: the light adds to them).
+    void declare(graph::RenderGraph& g, const std::function<void(graph::PassBuilder&)>& setup,
+                 std::function<void(graph::PassContext&)> bindInputs);
+
+private:
+    TechniqueContext& ctx_;
+    std::unique_ptr<LightVolumes> volumes_, cubeVolumes_;
+};
+
+}  // namespace fe::render

@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Deferred lighting of a point light with a shadow cube.
+#define FE_SHADOWED
+#define FE_SHADOW_CUBE
+#include "fe_deferred_light_pass.glsl"

@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Forward shading of one light with a shadow map, added by a pass of its own.
+#define FE_SHADOWED
+#include "fe_forward_pass.glsl"

@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Forward shading of one point light with a shadow cube, added by a pass of its own.
+#define FE_SHADOWED
+#define FE_SHADOW_CUBE
+#include "fe_forward_pass.glsl"

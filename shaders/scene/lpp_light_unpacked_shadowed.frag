@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Light pre-pass pass 2, RGBA16F normals, a light with a shadow map.
+#define FE_LPP_UNPACKED 1
+#define FE_SHADOWED
+#include "fe_lpp_light_pass.glsl"

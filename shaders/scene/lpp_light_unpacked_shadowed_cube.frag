@@ -1,0 +1,7 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Light pre-pass pass 2, RGBA16F normals, a point light with a shadow cube.
+#define FE_LPP_UNPACKED 1
+#define FE_SHADOWED
+#define FE_SHADOW_CUBE
+#include "fe_lpp_light_pass.glsl"
