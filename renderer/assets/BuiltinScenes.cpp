@@ -224,7 +224,7 @@ Scene makeShadows() {
     s.lights.push_back(spot("spot", {2.6f, 3.2f, 2.4f}, {0.0f, 0.0f, 0.0f}, {0.9f, 0.95f, 1.0f}, 60.0f, 20.0f, 30.0f));
     s.lights.push_back(point("lamp", {-2.4f, 1.6f, 1.8f}, {1.0f, 0.6f, 0.3f}, 6.0f, 0.0f));
     const glm::vec3 eye(0.0f, 3.0f, 6.0f);
-    s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 0.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 1.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
     s.camera->name = "shadows";
     return s;
 }

@@ -29,7 +29,8 @@
 //   white pole (0.12 x 2 x 0.12 at (0.2, 1, 1.3)). Lights: a sun (directional, 2.5 lux, warm,
 //   travelling normalize(-0.5, -1, -0.35)), a spot (60 cd at (2.6, 3.2, 2.4) aimed at the origin,
 //   cone 20/30 degrees) and a lamp (point, 6 cd, orange, at (-2.4, 1.6, 1.8)), none with a range.
-//   Camera at (0, 3, 6) looking at (0, 0.4, 0), yfov 45 degrees, near 0.1, far 100.
+//   Camera at (0, 3, 6) looking at (0, 1.4, 0) (sky above the ground), yfov 45 degrees,
+//   near 0.1, far 100.
 #pragma once
 #include <string>
 #include <string_view>
