@@ -24,8 +24,11 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.msaa > 1 && !technique.msaa)
         throw gdi::Error("technique " + s.technique + " does not take --msaa: it shades from a single-sample G-buffer "
                          "(use forward, forward-multipass, forward-zprepass or light-prepass)");
-    if (s.iblSamples > 0 && !scene.environment)
-        throw gdi::Error("--ibl-samples needs an environment to light the scene with (--environment)");
+    if (s.ibl() && !scene.environment)
+        throw gdi::Error(std::string(s.iblPrefiltered ? "--ibl-prefiltered" : "--ibl-samples") +
+                         " needs an environment to light the scene with (--environment)");
+    if (s.iblPrefiltered && s.iblSamples > 0)
+        throw gdi::Error("--ibl-prefiltered and --ibl-samples are two ways of one thing: take one");
     if (s.iblSamples > 65536)
         throw gdi::Error("--ibl-samples must be at most 65536 (got " + std::to_string(s.iblSamples) + ")");
     const ShadowSettings& sh = s.shadows;
@@ -66,10 +69,16 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
-    if (s.iblSamples > 0) {
-        geometry_->setEnvironment(environment_->cube(), environment_->sampler());
-        context_->environment = environment_->cube();
-        context_->environmentSampler = environment_->sampler();
+    if (s.ibl()) {
+        EnvironmentLight light{.cube = environment_->cube(), .sampler = environment_->sampler()};
+        if (s.iblPrefiltered) {
+            prefiltered_ = std::make_unique<PrefilteredEnvironment>(device, *scene.environment, environment_->cube(),
+                                                                    environment_->sampler(), fullscreenVs_);
+            light = {.cube = prefiltered_->cube(), .sampler = prefiltered_->sampler(), .lut = prefiltered_->lut(),
+                     .sh = prefiltered_->sh()};
+        }
+        geometry_->setEnvironment(light);
+        context_->environmentLight = light;
     }
     context_->shadows = shadows_.get();
     technique_ = technique.create(*context_);
@@ -81,6 +90,7 @@ SceneRenderer::~SceneRenderer() {
     device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     technique_.reset();
     shadows_.reset();
+    prefiltered_.reset();
     environment_.reset();
     device_.destroy(displayPipeline_);
     for (auto sh : {fullscreenVs_, displayFs_}) device_.destroy(sh);

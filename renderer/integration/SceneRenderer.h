@@ -18,6 +18,7 @@
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
 #include "render/EnvironmentMap.h"
+#include "render/PrefilteredEnvironment.h"
 #include "render/TechniqueRenderer.h"
 
 namespace fe::render {
@@ -63,6 +64,7 @@ private:
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
+    std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
     std::vector<assets::Light> sceneLights_;       // the current lights, scene order

@@ -21,7 +21,7 @@ DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
                                                            "scene/deferred_light_shadowed_cube.frag",
                                                            std::vector{kRadianceFormat}, GBuffer::slots(true));
-    if (c.settings.iblSamples > 0) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
+    if (c.settings.ibl()) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 
 DeferredRenderer::~DeferredRenderer() {

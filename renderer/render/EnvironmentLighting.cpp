@@ -8,10 +8,11 @@ namespace fe::render {
 EnvironmentLighting::EnvironmentLighting(TechniqueContext& c, const char* fragmentShader, std::vector<gdi::Format> formats,
                                          bool albedo)
     : ctx_(c), albedo_(albedo) {
-    fs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
+    const std::string shader = c.environmentLight.shader(fragmentShader);
+    fs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)});
     std::vector<gdi::BindingSlot> b = GBuffer::slots(albedo);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-    b.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+    c.environmentLight.addBindings(b);
     const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                                     .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
     pipeline_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = fs_,
@@ -35,7 +36,7 @@ void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, c
         const UploadAllocation& fc = ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
         gbuffer.bind(pc.cmd, pc, ctx_.pointSampler, albedo_);
-        pc.cmd.setTexture(kSlotEnvironment, ctx_.environment, ctx_.environmentSampler);
+        ctx_.environmentLight.bind(pc.cmd);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     });

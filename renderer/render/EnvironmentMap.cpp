@@ -15,6 +15,25 @@ constexpr double kPi = 3.14159265358979323846;
 glm::vec4 v4(const glm::dvec3& v) { return glm::vec4(glm::vec3(v), 0.0f); }
 }  // namespace
 
+void EnvironmentLight::addBindings(std::vector<gdi::BindingSlot>& b) const {
+    b.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+    if (!prefiltered()) return;
+    b.push_back({kSlotIblSh, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment});
+    b.push_back({kSlotIblLut, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+}
+
+void EnvironmentLight::bind(gdi::CommandList& cmd) const {
+    cmd.setTexture(kSlotEnvironment, cube, sampler);
+    if (!prefiltered()) return;
+    cmd.setUniformBuffer(kSlotIblSh, sh);
+    cmd.setTexture(kSlotIblLut, lut, sampler);
+}
+
+std::string EnvironmentLight::shader(const std::string& sampled) const {
+    if (!prefiltered()) return sampled;
+    return sampled.substr(0, sampled.size() - 5) + "_prefiltered.frag";
+}
+
 EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e, gdi::ShaderHandle fullscreenVs,
                                uint32_t faceSize)
     : device_(device) {

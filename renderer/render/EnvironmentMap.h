@@ -5,11 +5,31 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <string>
+#include <vector>
+
 #include "assets/Environment.h"
 #include "fe/gdi/Device.h"
 #include "frame/CommandQueue.h"
 
 namespace fe::render {
+
+// What a frame's image-based lighting reads (TechniqueContext::environmentLight): the
+// environment's cube for the sampled estimator, or the fast path's prefiltered cube, table and
+// harmonics (PrefilteredEnvironment). Null when the frame is not lit by its environment.
+struct EnvironmentLight {
+    gdi::TextureHandle cube;
+    gdi::SamplerHandle sampler;
+    gdi::TextureHandle lut;  // the fast path only
+    gdi::BufferHandle sh;    // the fast path only
+    explicit operator bool() const { return bool(cube); }
+    bool prefiltered() const { return bool(lut); }
+    // The slots bind() fills: the cube at kSlotEnvironment, on the fast path also the table and SH.
+    void addBindings(std::vector<gdi::BindingSlot>& bindings) const;
+    void bind(gdi::CommandList& cmd) const;
+    // The shader for this path: "scene/x.frag" or, on the fast path, "scene/x_prefiltered.frag".
+    std::string shader(const std::string& sampled) const;
+};
 
 class EnvironmentMap {
 public:

@@ -55,13 +55,14 @@ GeometryRenderer::~GeometryRenderer() {
         device_.destroy(sh);
 }
 
-void GeometryRenderer::setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler) {
+void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
     if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
-    forwardIblFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward_ibl.frag")});
-    lppMaterialIblFs_ =
-        device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/lpp_material_ibl.frag")});
-    environment_ = cube;
-    environmentSampler_ = sampler;
+    auto fragment = [&](const char* name) {
+        return device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(light.shader(name))});
+    };
+    forwardIblFs_ = fragment("scene/forward_ibl.frag");
+    lppMaterialIblFs_ = fragment("scene/lpp_material_ibl.frag");
+    environment_ = light;
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
@@ -140,7 +141,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                     .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
     if (pass == MeshPass::LightPrepassMaterial)
         d.bindings.push_back({kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    if (ibl) d.bindings.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
+    if (ibl) environment_.addBindings(d.bindings);
     if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = device_.createGraphicsPipeline(d);
@@ -175,7 +176,7 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
     cmd.setIndexBuffer(scene_.indexBuffer(), gdi::IndexType::U32);
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
     cmd.setStorageBuffer(kSlotLights, scene_.lightBuffer());
-    if (environment_) cmd.setTexture(kSlotEnvironment, environment_, environmentSampler_);
+    if (environment_) environment_.bind(cmd);
     gdi::PipelineHandle current{};
     for (size_t i = 0; i < list.size(); ++i) {
         const DrawItem* d = list[i];

@@ -8,6 +8,7 @@
 
 #include "fe/gdi/Device.h"
 #include "frame/CommandQueue.h"
+#include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
 
 namespace fe::render {
@@ -47,7 +48,7 @@ public:
     // Image-based lighting in the forward-shaded passes (Forward, ForwardEqual, Transparent) and
     // the light pre-pass material pass: forward_ibl.frag / lpp_material_ibl.frag reading this
     // cube (frame.counts.z samples per term). Before any draw.
-    void setEnvironment(gdi::TextureHandle cube, gdi::SamplerHandle sampler);
+    void setEnvironment(const EnvironmentLight& light);
     void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
               const UploadAllocation& frameConstants, const glm::vec3& eye,
               std::vector<UploadAllocation>* objects = nullptr);
@@ -64,8 +65,7 @@ private:
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::TextureHandle environment_;
-    gdi::SamplerHandle environmentSampler_;
+    EnvironmentLight environment_;
 };
 
 // Binding layout of mesh passes (fe_material.glsl).

@@ -41,7 +41,7 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                                                            "scene/illumination_shadowed_cube.frag", std::vector{kI0, kI1, kI2},
                                                            GBuffer::slots(false));
     }
-    if (s.iblSamples > 0) {
+    if (s.ibl()) {
         if (s.illumSplit)
             throw gdi::Error("--illum-split does not take image-based lighting yet (its I-buffer sums differ in size)");
         // The environment's light added into the I-buffer (alpha, the tiled pass's filter data, kept).

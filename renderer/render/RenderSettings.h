@@ -37,6 +37,10 @@ struct RenderSettings {
     // environment is only the background). Needs an environment and a technique that takes it
     // (TechniqueInfo::ibl).
     uint32_t iblSamples = 0;
+    // Image-based lighting by the fast path instead (PrefilteredEnvironment: prefiltered cube,
+    // split-sum table, SH irradiance); iblSamples is then unused.
+    bool iblPrefiltered = false;
+    bool ibl() const { return iblSamples > 0 || iblPrefiltered; }
     ShadowSettings shadows;
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;

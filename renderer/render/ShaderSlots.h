@@ -25,4 +25,6 @@ constexpr uint32_t kSlotEnvironment = 19;   // the environment cube map (Environ
 constexpr uint32_t kSlotEnvironmentSource = 20;  // its source: the equirectangular image
 constexpr uint32_t kSlotShadow = 21;        // a shadowed light's ShadowMaps::Constants
 constexpr uint32_t kSlotShadowMap = 22;     // ... and its map (2D array or cube, comparison sampler)
+constexpr uint32_t kSlotIblSh = 23;         // image-based lighting's fast path: irradiance SH
+constexpr uint32_t kSlotIblLut = 24;        // ... and its split-sum table (PrefilteredEnvironment)
 }  // namespace fe::render

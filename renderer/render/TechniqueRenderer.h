@@ -12,6 +12,7 @@
 #include "frame/CommandQueue.h"
 #include "graph/RenderGraph.h"
 #include "render/GeometryRenderer.h"
+#include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
 #include "render/ShadowMaps.h"
@@ -31,9 +32,8 @@ struct TechniqueContext {
     glm::vec3 eye;
     gdi::SamplerHandle pointSampler;  // nearest, clamped: reads of full-resolution buffers
     gdi::ShaderHandle fullscreenVs;   // scene/fullscreen.vert
-    // The environment's cube map when the frame is lit by it (RenderSettings::iblSamples > 0).
-    gdi::TextureHandle environment = {};
-    gdi::SamplerHandle environmentSampler = {};
+    // What image-based lighting reads when the frame is lit by its environment (RenderSettings::ibl()).
+    EnvironmentLight environmentLight;
     // The shadowed lights' maps when the frame has shadows (RenderSettings::shadows). The
     // technique's own light loops and volumes cover the unshadowed lights; it adds each shadowed
     // light in a pass of its own through ShadowMaps::declare.

@@ -4,6 +4,7 @@
 #define FE_ENVIRONMENT_GLSL
 #include "fe_common.glsl"
 #include "fe_shading.glsl"  // FE_PI
+#include "fe_cube.glsl"
 
 // Slots of the face passes (ShaderSlots.h; they bind nothing else).
 #define FE_SLOT_ENVIRONMENT_PARAMS 1
@@ -31,17 +32,4 @@ vec2 feEquirectFromDirection(vec3 d) {
     return vec2(atan(d.x, -d.z) / (2.0 * FE_PI) + 0.5, acos(clamp(d.y, -1.0, 1.0)) / FE_PI);
 }
 
-// The direction through point (s, t) in [0, 1]^2 of cube face `face`, inverting the cube map
-// face selection of the Vulkan and OpenGL specifications (sc, tc = 2 s - 1, 2 t - 1).
-vec3 feCubeFaceDirection(int face, vec2 st) {
-    const vec2 c = st * 2.0 - 1.0;
-    vec3 d;
-    if (face == 0) d = vec3(1.0, -c.y, -c.x);
-    else if (face == 1) d = vec3(-1.0, -c.y, c.x);
-    else if (face == 2) d = vec3(c.x, 1.0, c.y);
-    else if (face == 3) d = vec3(c.x, -1.0, -c.y);
-    else if (face == 4) d = vec3(c.x, -c.y, 1.0);
-    else d = vec3(-c.x, -c.y, -1.0);
-    return normalize(d);
-}
 #endif

@@ -6,6 +6,8 @@
 #define FE_IBL_GLSL
 #include "fe_scene.glsl"
 
+// Sampled: the environment's cube; FE_IBL_PREFILTERED: its GGX-prefiltered cube
+// (PrefilteredEnvironment), roughness r at level r x (FE_PREFILTER_LEVELS - 1).
 layout(binding = FE_SLOT_ENVIRONMENT) uniform samplerCube environment;
 
 float feRadicalInverse(uint bits) {
@@ -18,6 +20,82 @@ float feRadicalInverse(uint bits) {
 }
 
 vec3 feEnvironment(vec3 d) { return textureLod(environment, d, 0.0).rgb; }
+// Hammersley point i of n: ((i + 1/2) / n, radical inverse of i).
+vec2 feHammersley(uint i, uint n) { return vec2((float(i) + 0.5) / float(n), feRadicalInverse(i)); }
+// Duff et al. 2017: an orthonormal basis (t, b, n) from n alone.
+void feBasis(vec3 n, out vec3 t, out vec3 b) {
+    const float sg = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sg + n.z), bc = n.x * n.y * ba;
+    t = vec3(1.0 + sg * n.x * n.x * ba, sg * bc, -sg * n.x);
+    b = vec3(bc, sg + n.y * n.y * ba, -n.y);
+}
+// GGX half vector for the point u (theta_h from A, phi_h = 2 pi B) about n; cosH its n.h.
+vec3 feGgxHalfVector(vec2 u, float a2, vec3 t, vec3 b, vec3 n, out float cosH) {
+    const float phi = 2.0 * FE_PI * u.y;
+    cosH = sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0));
+    const float sinH = sqrt(max(1.0 - cosH * cosH, 0.0));
+    return t * (sinH * cos(phi)) + b * (sinH * sin(phi)) + n * cosH;
+}
+// A cosine-weighted direction for the point u about n.
+vec3 feCosineDirection(vec2 u, vec3 t, vec3 b, vec3 n) {
+    const float phi = 2.0 * FE_PI * u.y, cosD = sqrt(1.0 - u.x), sinD = sqrt(u.x);
+    return t * (sinD * cos(phi)) + b * (sinD * sin(phi)) + n * cosD;
+}
+
+#ifdef FE_IBL_PREFILTERED
+// The usual fast path (Karis, "Real Shading in Unreal Engine 4", 2013: the split sum; Ramamoorthi
+// and Hanrahan, "An Efficient Representation for Irradiance Environment Maps", 2001): the
+// estimators below with the environment's radiance taken out of the sums, as prefiltered
+// radiance (specular, assuming n = v = r while prefiltering) and SH irradiance (diffuse), times
+// the rest of each sum tabulated per (NoV, roughness) by ibl_lut.frag. Its bias against the
+// sampled estimator is measured (docs/BENCHMARKS.md).
+#define FE_SLOT_IBL_SH 23
+#define FE_SLOT_IBL_LUT 24
+const float FE_PREFILTER_LEVELS = 6.0;  // PrefilteredEnvironment::kLevels
+layout(binding = FE_SLOT_IBL_SH, std140) uniform IrradianceBlock {
+    vec4 sh[9];  // L2 spherical harmonics of the radiance, in Ramamoorthi-Hanrahan order
+} irradiance;
+// x: (1/n) sum g, y: (1/n) sum P g over GGX samples, g = NoL VoH / ((NoL (1-k) + k) n.h (NoV (1-k) + k));
+// z: (1/n) sum (1 - P) over cosine-weighted samples.
+layout(binding = FE_SLOT_IBL_LUT) uniform sampler2D iblLut;
+
+// E(n) = integral of L cos over the hemisphere about n, from the radiance's SH (R&H eq. 13).
+vec3 feShIrradiance(vec3 n) {
+    const float c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
+    const vec4 L00 = irradiance.sh[0], L1m1 = irradiance.sh[1], L10 = irradiance.sh[2], L11 = irradiance.sh[3];
+    const vec4 L2m2 = irradiance.sh[4], L2m1 = irradiance.sh[5], L20 = irradiance.sh[6], L21 = irradiance.sh[7], L22 = irradiance.sh[8];
+    const vec3 E = c1 * L22.rgb * (n.x * n.x - n.y * n.y) + c3 * L20.rgb * n.z * n.z + c4 * L00.rgb - c5 * L20.rgb +
+                   2.0 * c1 * (L2m2.rgb * n.x * n.y + L21.rgb * n.x * n.z + L2m1.rgb * n.y * n.z) +
+                   2.0 * c2 * (L11.rgb * n.x + L1m1.rgb * n.y + L10.rgb * n.z);
+    return max(E, vec3(0.0));
+}
+struct FePrefiltered {
+    vec3 radiance;  // prefiltered along the mirror direction
+    vec3 E;         // irradiance about n
+    vec3 lut;
+    float NoV;
+};
+FePrefiltered fePrefiltered(vec3 n, vec3 wo, float roughness) {
+    FePrefiltered p;
+    const float r = feClampRoughness(roughness);
+    p.NoV = max(dot(n, wo), 1e-4);
+    p.radiance = textureLod(environment, reflect(-wo, n), r * (FE_PREFILTER_LEVELS - 1.0)).rgb;
+    p.E = feShIrradiance(n);
+    p.lut = texture(iblLut, vec2(p.NoV, r)).xyz;
+    return p;
+}
+vec3 feShadeEnvironment(SurfacePoint s, uint n) {
+    const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness);
+    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    return (1.0 - s.metallic) * s.baseColor * (1.0 - F0) * (p.E / FE_PI) * p.lut.z +
+           p.radiance * (F0 * p.lut.x + (1.0 - F0) * p.lut.y);
+}
+IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count) {
+    const FePrefiltered p = fePrefiltered(n, wo, roughness);
+    const float r = feClampRoughness(roughness), kp = (r + 1.0) * (r + 1.0) / 8.0;
+    const float toPunctual = p.NoV * (1.0 - kp) + kp;  // the material pass divides by it
+    return IlluminationSums(p.E * p.lut.z, p.radiance * (p.lut.x * toPunctual), p.radiance * (p.lut.y * toPunctual));
+}
+#else
 
 vec3 feShadeEnvironment(SurfacePoint s, uint n) {
     const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
@@ -86,4 +164,5 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
     acc.Lsg2 *= toPunctual;
     return acc;
 }
+#endif  // FE_IBL_PREFILTERED
 #endif

@@ -1,25 +1,4 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#include "fe_ibl.glsl"
-// Redeferred: the environment's light added into the I-buffer (feEnvironmentSums), one
-// full-screen draw at the I-buffer's resolution, each texel for its representative pixel as the
-// punctual illumination passes do. Alpha is left alone (the tiled pass keeps the upsampling
-// filter's data there).
-layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
-layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
-layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(location = 0) out vec4 outLdg;
-layout(location = 1) out vec4 outLsg1;
-layout(location = 2) out vec4 outLsg2;
-void main() {
-    const int scale = int(frame.counts.y);
-    const ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
-    const float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
-    const vec4 g1 = texelFetch(gb1, p, 0);
-    const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
-    const IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(frame.cameraPosition.xyz - P), g1.a, frame.counts.z);
-    outLdg = vec4(acc.Ldg, 0.0);
-    outLsg1 = vec4(acc.Lsg1, 0.0);
-    outLsg2 = vec4(acc.Lsg2, 0.0);
-}
+// Redeferred image-based lighting into the I-buffer (sampled: fe_illumination_ibl_pass.glsl).
+#include "fe_illumination_ibl_pass.glsl"

@@ -136,9 +136,13 @@ TEST_P(Shadows, EveryTechniqueShadowsLikeForward) {
         const double dOn = fractionDiffering(img, f, 0.02), dOff = fractionDiffering(renderShadowed(*device, scene, o), fOff, 0.02);
         EXPECT_LE(dOn, dOff + 0.01) << t.name;
         const bool exact = std::string(t.name).find("light-prepass") == std::string::npos;
-        if (exact) EXPECT_LE(dOn, 0.01) << t.name;  // G-buffer rounding, as in DeferredMatchesForward
+        if (exact) {
+            EXPECT_LE(dOn, 0.01) << t.name;  // G-buffer rounding, as in DeferredMatchesForward
+        }
         const ShadowError e = compare(img, reference);
-        if (exact) EXPECT_LE(e.interior, 0.005) << t.name;
+        if (exact) {
+            EXPECT_LE(e.interior, 0.005) << t.name;
+        }
         std::cout << "  " << t.name << ": " << std::fixed << std::setprecision(3) << dOn * 100 << " % of pixels differ from forward ("
                   << dOff * 100 << " % without shadows); vs rays: interior " << e.interior * 100 << " %, shadow edges "
                   << e.edges * 100 << " %\n";
@@ -183,8 +187,9 @@ TEST_P(Shadows, MapsShareTransientMemory) {
     // Heaps: the cascades (4 MiB) and the spot map (1 MiB) live inside the cube's 6 MiB. Texture
     // object reuse (GL) shares only identical textures: these three maps differ in kind.
     const uint64_t cascadesAndSpot = 512ull * 512 * 4 * 5;
-    if (g.aliasing() == graph::AliasingMode::Memory)
+    if (g.aliasing() == graph::AliasingMode::Memory) {
         EXPECT_GE(m.withoutAliasing - m.withAliasing, cascadesAndSpot) << "the maps were not aliased";
+    }
     EXPECT_EQ(unaliased.graph().memory().withAliasing, unaliased.graph().memory().withoutAliasing);
     r.renderFrame();
     const gdi::Image img = r.readOutput();
@@ -202,7 +207,7 @@ TEST_P(Shadows, RedeferredReducedRateErrorAtShadowEdgesIsMeasured) {
         std::cout << "  redeferred illum-scale " << scale << ": interior " << std::fixed << std::setprecision(3) << e.interior * 100
                   << " %, shadow edges " << e.edges * 100 << " %\n";
         RecordProperty("scale" + std::to_string(scale) + "_edges", std::to_string(e.edges));
-        if (scale == 1) EXPECT_LE(e.interior, 0.01);
+        if (scale == 1) { EXPECT_LE(e.interior, 0.01); }
     }
 }
 
@@ -222,12 +227,14 @@ TEST(ShadowPlan, PointBudgetTakesTheMostImportantLights) {
     }
     const std::vector<bool> casts = plan.castsShadow();
     for (size_t i = 0; i < scene.lights.size(); ++i)
-        if (!casts[i]) EXPECT_LE(render::shadowImportance(scene.lights[i], *scene.camera, scene.bounds), weakestChosen) << i;
+        if (!casts[i]) {
+            EXPECT_LE(render::shadowImportance(scene.lights[i], *scene.camera, scene.bounds), weakestChosen) << i;
+        }
     // The GPU order: unshadowed first, every light exactly once.
     std::vector<uint32_t> sorted = plan.order;
     std::sort(sorted.begin(), sorted.end());
-    for (uint32_t i = 0; i < sorted.size(); ++i) EXPECT_EQ(sorted[i], i);
-    for (uint32_t k = plan.unshadowedCount; k < plan.order.size(); ++k) EXPECT_TRUE(casts[plan.order[k]]);
+    for (uint32_t i = 0; i < sorted.size(); ++i) { EXPECT_EQ(sorted[i], i); }
+    for (uint32_t k = plan.unshadowedCount; k < plan.order.size(); ++k) { EXPECT_TRUE(casts[plan.order[k]]); }
 
     const render::ShadowPlan none = render::planShadows(scene.lights, *scene.camera, scene.bounds, {.enabled = true, .pointBudget = 0});
     EXPECT_TRUE(none.shadowed.empty());

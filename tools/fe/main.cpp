@@ -44,6 +44,8 @@ constexpr const char* kUsage =
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
     "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique)\n"
+    "      --ibl-prefiltered: light the scene by the environment through the fast path (prefiltered cube,\n"
+    "        split-sum table, SH irradiance) instead of sampling it\n"
     "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
     "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
@@ -162,6 +164,7 @@ int cmdRender(const Args& a) {
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
     s.iblSamples = parseUint(opt("--ibl-samples", "0"), "--ibl-samples", 0, 65536);
+    s.iblPrefiltered = a.options.count("--ibl-prefiltered") > 0;
     const std::string shadows = opt("--shadows", "off");
     if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
     s.shadows.enabled = shadows == "on";
@@ -420,7 +423,8 @@ int main(int argc, char** argv) {
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
                                     "--shadow-filter"},
-                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling"}));
+                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
+                                    "--ibl-prefiltered"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));

@@ -1,0 +1,6 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Forward shading with image-based lighting, the fast path.
+#define FE_IBL
+#define FE_IBL_PREFILTERED
+#include "fe_forward_pass.glsl"
