@@ -16,6 +16,17 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.width == 0 || s.height == 0 || s.width > 8192 || s.height > 8192)
         throw gdi::Error("render size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                          " out of range (1..8192 per axis)");
+    for (uint32_t r : {s.rates.punctual, s.rates.shadowed, s.rates.iblDiffuse, s.rates.iblSpecular})
+        if (r != 0 && r != 1 && r != 2 && r != 4)
+            throw gdi::Error("a source's illumination rate must be 1, 2 or 4 (got " + std::to_string(r) + ")");
+    const bool rates = s.rates.punctual || s.rates.shadowed || s.rates.iblDiffuse || s.rates.iblSpecular;
+    if (rates && !technique.illumScale)
+        throw gdi::Error("technique " + s.technique + " has no I-buffer: per-source rates need redeferred or redeferred-tiled");
+    if (rates && s.illumSplit) throw gdi::Error("--rates and --illum-split cannot be combined");
+    if (rates && !s.perSourceRates()) {  // one rate for every source present: the plain reduced-rate path
+        settings_.illumScale = s.rate(s.rates.punctual);
+        settings_.rates = {};
+    }
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");

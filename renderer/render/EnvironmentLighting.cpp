@@ -26,14 +26,14 @@ EnvironmentLighting::~EnvironmentLighting() {
 }
 
 void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer,
-                                  std::vector<graph::TextureId> targets) {
+                                  std::vector<graph::TextureId> targets, FrameConstantsFn frame) {
     g.addPass(passName, [&](graph::PassBuilder& b) {
         gbuffer.sampleIn(b, albedo_);
         for (graph::TextureId t : targets) b.colorTarget(t, gdi::LoadOp::Load);
-    }, [this, &gbuffer](graph::PassContext& pc) {
+    }, [this, &gbuffer, frame](graph::PassContext& pc) {
         pc.beginRenderPass();
         pc.cmd.setPipeline(pipeline_);
-        const UploadAllocation& fc = ctx_.frameConstants;
+        const UploadAllocation fc = frame ? frame() : ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
         gbuffer.bind(pc.cmd, pc, ctx_.pointSampler, albedo_);
         ctx_.environmentLight.bind(pc.cmd);

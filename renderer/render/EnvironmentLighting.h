@@ -19,7 +19,9 @@ public:
     EnvironmentLighting(const EnvironmentLighting&) = delete;
     EnvironmentLighting& operator=(const EnvironmentLighting&) = delete;
     // Declares the pass after the lighting passes: reads the G-buffer, adds into `targets`.
-    void declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer, std::vector<graph::TextureId> targets);
+    // `frame`: the pass's frame constants (default: the frame's own).
+    void declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer, std::vector<graph::TextureId> targets,
+                 FrameConstantsFn frame = {});
 
 private:
     TechniqueContext& ctx_;

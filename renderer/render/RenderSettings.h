@@ -14,6 +14,15 @@ struct ShadowSettings {
     bool pcf = true;           // the device's 2x2 bilinear comparison; false: one nearest comparison
 };
 
+// Redeferred: an I-buffer rate per illumination source (1, 2 or 4 per axis; 0: illumScale's), the
+// seed's "dedicated shading rate per illumination source" (fe render --rates).
+struct SourceRates {
+    uint32_t punctual = 0;     // the lights without shadows
+    uint32_t shadowed = 0;     // the lights with shadow maps
+    uint32_t iblDiffuse = 0;   // the environment's L_dg
+    uint32_t iblSpecular = 0;  // the environment's L_sg1, L_sg2
+};
+
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
     uint32_t width = 320;
@@ -42,6 +51,16 @@ struct RenderSettings {
     bool iblPrefiltered = false;
     bool ibl() const { return iblSamples > 0 || iblPrefiltered; }
     ShadowSettings shadows;
+    SourceRates rates;
+    uint32_t rate(uint32_t sourceRate) const { return sourceRate ? sourceRate : illumScale; }
+    // The sources this frame has (shadowed lights with shadows on, the environment's two with
+    // image-based lighting) do not all share one rate: then each rate gets an I-buffer of its
+    // own, upsampled into the full-rate one (RedeferredRenderer).
+    bool perSourceRates() const {
+        const uint32_t p = rate(rates.punctual);
+        return (shadows.enabled && rate(rates.shadowed) != p) ||
+               (ibl() && (rate(rates.iblDiffuse) != p || rate(rates.iblSpecular) != p));
+    }
     float exposure = 1.0f;
     // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
     // without it the graph culls the display pass.

@@ -22,18 +22,18 @@ ShadowedLightVolumes::ShadowedLightVolumes(TechniqueContext& c, const char* shad
 ShadowedLightVolumes::~ShadowedLightVolumes() = default;
 
 void ShadowedLightVolumes::declare(graph::RenderGraph& g, const std::function<void(graph::PassBuilder&)>& setup,
-                                   std::function<void(graph::PassContext&)> bindInputs) {
+                                   std::function<void(graph::PassContext&)> bindInputs, FrameConstantsFn frame) {
     if (!ctx_.shadows) return;
     ctx_.shadows->declare(g, [&](graph::RenderGraph& graph, const ShadowMaps::Light& light) {
         graph.addPass("shadowed light " + std::to_string(light.index), [&](graph::PassBuilder& b) {
             b.sample(light.map);
             setup(b);
-        }, [this, light, bindInputs](graph::PassContext& pc) {
+        }, [this, light, bindInputs, frame](graph::PassContext& pc) {
             pc.beginRenderPass();
             bindInputs(pc);
             ctx_.shadows->bind(pc.cmd, pc, light);
             LightVolumes& v = light.kind == ShadowKind::Cube ? *cubeVolumes_ : *volumes_;
-            v.drawRange(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants, light.gpuLight, 1);
+            v.drawRange(pc.cmd, ctx_.queue, ctx_.scene, frame ? frame() : ctx_.frameConstants, light.gpuLight, 1);
             pc.cmd.endRenderPass();
         });
     });

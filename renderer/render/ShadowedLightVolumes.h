@@ -19,8 +19,9 @@ public:
                          std::vector<gdi::Format> targets, std::vector<gdi::BindingSlot> inputs);
     ~ShadowedLightVolumes();
     // `setup` declares the pass's inputs and its targets (loaded: the light adds to them).
+    // `frame`: the passes' frame constants (default: the frame's own).
     void declare(graph::RenderGraph& g, const std::function<void(graph::PassBuilder&)>& setup,
-                 std::function<void(graph::PassContext&)> bindInputs);
+                 std::function<void(graph::PassContext&)> bindInputs, FrameConstantsFn frame = {});
 
 private:
     TechniqueContext& ctx_;

@@ -21,6 +21,9 @@ namespace fe::render {
 
 // What every technique draws with, owned by the scene renderer. frame and frameConstants are
 // those of the frame being recorded (valid inside pass bodies).
+// A pass body's frame constants, when they differ from the frame's (an I-buffer of another rate).
+using FrameConstantsFn = std::function<UploadAllocation()>;
+
 struct TechniqueContext {
     gdi::Device& device;
     CommandQueue& queue;

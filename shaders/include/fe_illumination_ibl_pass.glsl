@@ -7,9 +7,19 @@
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
 layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+// Per-source rates (redeferred --rates) may put the environment's diffuse and specular sums in
+// I-buffers of different rates: FE_IBL_DIFFUSE_ONLY writes L_dg alone, FE_IBL_SPECULAR_ONLY
+// L_sg1 and L_sg2 alone (the compiler drops the other half of the estimator).
+#if defined(FE_IBL_DIFFUSE_ONLY)
+layout(location = 0) out vec4 outLdg;
+#elif defined(FE_IBL_SPECULAR_ONLY)
+layout(location = 0) out vec4 outLsg1;
+layout(location = 1) out vec4 outLsg2;
+#else
 layout(location = 0) out vec4 outLdg;
 layout(location = 1) out vec4 outLsg1;
 layout(location = 2) out vec4 outLsg2;
+#endif
 void main() {
     const int scale = int(frame.counts.y);
     const ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
@@ -18,7 +28,11 @@ void main() {
     const vec4 g1 = texelFetch(gb1, p, 0);
     const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
     const IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(frame.cameraPosition.xyz - P), g1.a, frame.counts.z);
+#ifndef FE_IBL_SPECULAR_ONLY
     outLdg = vec4(acc.Ldg, 0.0);
+#endif
+#ifndef FE_IBL_DIFFUSE_ONLY
     outLsg1 = vec4(acc.Lsg1, 0.0);
     outLsg2 = vec4(acc.Lsg2, 0.0);
+#endif
 }

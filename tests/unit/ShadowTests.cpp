@@ -211,6 +211,46 @@ TEST_P(Shadows, RedeferredReducedRateErrorAtShadowEdgesIsMeasured) {
     }
 }
 
+// Per-source rates (the seed's "dedicated shading rate per illumination source"): with the sky
+// lighting the scene too, the shadowed lights at full rate and the environment reduced keep the
+// shadow edges that one reduced rate for everything loses. Against the rays and the same IBL
+// estimator; each rate's I-buffer and its upsampling pass are in the graph.
+TEST_P(Shadows, PerSourceRatesKeepShadowEdges) {
+    assets::Scene lit = scene;
+    lit.environment = assets::loadEnvironment("builtin:sky");
+    const render::ReferenceImage ref =
+        render::renderReference(lit, *lit.camera, kW, kH, {.iblSamples = 64, .castsShadow = plan.castsShadow()});
+    auto run = [&](uint32_t scale, render::SourceRates rates) {
+        render::RenderSettings s = shadowSettings("redeferred");
+        s.iblSamples = 64;
+        s.illumScale = scale;
+        s.rates = rates;
+        render::SceneRenderer r(*device, lit, s);
+        r.renderFrame();
+        std::vector<std::string> passes;
+        for (const auto& p : r.graph().passes())
+            if (!p.culled) passes.push_back(p.name);
+        return std::make_pair(compare(r.readOutput(), ref), passes);
+    };
+    const auto [full, fullPasses] = run(1, {});
+    const auto [uniform, uniformPasses] = run(2, {});
+    const auto [mixed, mixedPasses] = run(1, {.punctual = 2, .shadowed = 1, .iblDiffuse = 4, .iblSpecular = 2});
+    const auto [same, samePasses] = run(1, {.punctual = 2, .shadowed = 2, .iblDiffuse = 2, .iblSpecular = 2});
+    std::cout << std::fixed << std::setprecision(3) << "  full rate: interior " << full.interior * 100 << " %, edges "
+              << full.edges * 100 << " %\n  everything at 1/2: interior " << uniform.interior * 100 << " %, edges "
+              << uniform.edges * 100 << " %\n  shadowed 1, ibl-diffuse 1/4, ibl-specular 1/2: interior " << mixed.interior * 100
+              << " %, edges " << mixed.edges * 100 << " %\n";
+    RecordProperty("uniform_half_edges", std::to_string(uniform.edges));
+    RecordProperty("per_source_edges", std::to_string(mixed.edges));
+    EXPECT_LE(full.interior, 0.02);
+    EXPECT_LT(mixed.edges, uniform.edges * 0.75) << "the shadowed lights at full rate should keep their edges";
+    // Every source at one rate is the plain reduced-rate path, pass for pass.
+    EXPECT_EQ(samePasses, uniformPasses);
+    for (const char* p : {"upsample I-buffer 1/2", "upsample I-buffer 1/4", "ibl-diffuse", "ibl-specular"})
+        EXPECT_NE(std::find(mixedPasses.begin(), mixedPasses.end(), p), mixedPasses.end()) << p;
+    EXPECT_EQ(std::find(uniformPasses.begin(), uniformPasses.end(), "upsample I-buffer 1/2"), uniformPasses.end());
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Shadows);
 
 // The plan: directional and spot lights always; the point-light budget filled by importance.

@@ -15,6 +15,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,8 @@ constexpr const char* kUsage =
     "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique)\n"
     "      --ibl-prefiltered: light the scene by the environment through the fast path (prefiltered cube,\n"
     "        split-sum table, SH irradiance) instead of sampling it\n"
+    "      --rates SOURCE=RATE,...: redeferred, each illumination source in an I-buffer of its own rate (1, 2, 4;\n"
+    "        unset: --illum-scale): punctual, shadowed, ibl-diffuse, ibl-specular\n"
     "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
     "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
@@ -176,6 +179,24 @@ int cmdRender(const Args& a) {
     s.shadows.pcf = filter == "pcf";
     for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
         if (a.options.count(k) && !s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
+    if (const std::string rates = opt("--rates", ""); !rates.empty()) {
+        // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
+        std::stringstream list(rates);
+        for (std::string item; std::getline(list, item, ',');) {
+            const size_t eq = item.find('=');
+            const std::string source = item.substr(0, eq);
+            uint32_t* r = source == "punctual"       ? &s.rates.punctual
+                          : source == "shadowed"     ? &s.rates.shadowed
+                          : source == "ibl-diffuse"  ? &s.rates.iblDiffuse
+                          : source == "ibl-specular" ? &s.rates.iblSpecular
+                                                     : nullptr;
+            if (!r || eq == std::string::npos)
+                throw UsageError("--rates takes SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular; got '" +
+                                 item + "'");
+            *r = parseUint(item.substr(eq + 1), "--rates", 1, 4);
+            if (*r == 3) throw UsageError("--rates: a rate must be 1, 2 or 4, got 3");
+        }
+    }
     std::string size = opt("--size", "320x240");
     size_t x = size.find('x');
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
@@ -265,9 +286,13 @@ int cmdRender(const Args& a) {
     if (window) std::cout << "window: " << presented << " frame(s) presented, " << device->info().presentMode << "\n";
     std::cout
               << "technique " << s.technique;
-    if (render::findTechnique(s.technique).illumScale)
+    if (render::findTechnique(s.technique).illumScale) {
         std::cout << " illum-scale " << s.illumScale << (s.illumSplit ? " split" : "")
                   << (s.precomputedNoV ? "" : " rebuild-nov");
+        if (s.perSourceRates())
+            std::cout << " rates punctual " << s.rate(s.rates.punctual) << " shadowed " << s.rate(s.rates.shadowed)
+                      << " ibl-diffuse " << s.rate(s.rates.iblDiffuse) << " ibl-specular " << s.rate(s.rates.iblSpecular);
+    }
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
     if (s.shadows.enabled)
         std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
@@ -422,7 +447,7 @@ int main(int argc, char** argv) {
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter"},
+                                    "--shadow-filter", "--rates"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered"}));
         if (command == "conformance")

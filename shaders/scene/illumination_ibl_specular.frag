@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Redeferred image-based lighting, L_sg1 and L_sg2 alone (per-source rates).
+#define FE_IBL_SPECULAR_ONLY
+#include "fe_illumination_ibl_pass.glsl"
