@@ -1,5 +1,7 @@
 #include "integration/RenderDirector.h"
 
+#include "render/ShadowPlan.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -136,29 +138,77 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
         SceneRenderer reference(*probeDevice, scene, exact);
         reference.renderFrame();
         const gdi::Image want = reference.readOutput();
-        std::string measured;
-        for (uint32_t scale : {4u, 2u}) {
-            RenderSettings reduced = exact;
+        auto probe = [&](RenderSettings reduced) {
             reduced.technique = technique;
-            reduced.illumScale = scale;
-            SceneRenderer probe(*probeDevice, scene, reduced);
-            probe.renderFrame();
-            const double percent = percentPixelsOver5Of255(probe.readOutput(), want, s.exposure);
-            measured += (measured.empty() ? "" : ", ") + fixed(percent, 2) + " % at scale " + std::to_string(scale);
-            if (percent <= options.errorBudgetPercent) {
+            SceneRenderer r(*probeDevice, scene, reduced);
+            r.renderFrame();
+            return percentPixelsOver5Of255(r.readOutput(), want, s.exposure);
+        };
+        // The illumination sources this frame has: with more than one, each gets its own rate.
+        const ShadowPlan plan = scene.camera ? planShadows(scene.lights, *scene.camera, scene.bounds, s.shadows) : ShadowPlan{};
+        std::vector<std::pair<const char*, uint32_t SourceRates::*>> sources;
+        if (s.ibl()) {
+            sources.push_back({"ibl-diffuse", &SourceRates::iblDiffuse});
+            sources.push_back({"ibl-specular", &SourceRates::iblSpecular});
+        }
+        if (plan.unshadowedCount > 0 || plan.shadowed.empty()) sources.push_back({"punctual", &SourceRates::punctual});
+        if (!plan.shadowed.empty()) sources.push_back({"shadowed", &SourceRates::shadowed});
+        if (sources.size() <= 1) {
+            std::string measured;
+            for (uint32_t scale : {4u, 2u}) {
+                RenderSettings reduced = exact;
+                reduced.illumScale = scale;
+                const double percent = probe(reduced);
+                measured += (measured.empty() ? "" : ", ") + fixed(percent, 2) + " % at scale " + std::to_string(scale);
+                if (percent <= options.errorBudgetPercent) {
+                    s.technique = technique;
+                    s.illumScale = scale;
+                    c.reasons.push_back("technique " + technique + " illum-scale " + std::to_string(scale) + ": probe frame " +
+                                        fixed(percent, 2) + " % of pixels beyond 5/255 of " + exact.technique +
+                                        ", within the budget of " + fixed(options.errorBudgetPercent, 2) +
+                                        " % (roughness " + fixed(n.minRoughness, 2) + "-" + fixed(n.maxRoughness, 2) + ")");
+                    break;
+                }
+            }
+            if (s.technique != technique)
+                c.reasons.push_back("no reduced illumination rate: probe frames " + measured + " of pixels beyond 5/255, over the budget of " +
+                                    fixed(options.errorBudgetPercent, 2) + " % (smoothest roughness " + fixed(n.minRoughness, 2) +
+                                    ": sharp highlights and edges are what a reduced rate misses)");
+        } else {
+            // Greedy, one source at a time (the smoothest first: the environment's diffuse light,
+            // then its specular, the unshadowed lights, the shadowed ones last, whose hard edges
+            // a reduced rate blurs): the lowest rate at which the probe frame, with the rates
+            // already taken, stays within the budget.
+            SourceRates rates{1, 1, 1, 1};
+            double last = 0.0;
+            for (const auto& [name, member] : sources) {
+                std::string measured;
+                for (uint32_t rate : {4u, 2u}) {
+                    RenderSettings reduced = exact;
+                    reduced.rates = rates;
+                    reduced.rates.*member = rate;
+                    const double percent = probe(reduced);
+                    measured += (measured.empty() ? "" : ", ") + fixed(percent, 2) + " % at 1/" + std::to_string(rate);
+                    if (percent <= options.errorBudgetPercent) {
+                        rates.*member = rate;
+                        last = percent;
+                        break;
+                    }
+                }
+                c.reasons.push_back(std::string("source ") + name + ": rate 1/" + std::to_string(rates.*member) + " (probe frames " +
+                                    measured + " of pixels beyond 5/255, budget " + fixed(options.errorBudgetPercent, 2) + " %)");
+            }
+            const bool reduced = rates.punctual > 1 || rates.shadowed > 1 || rates.iblDiffuse > 1 || rates.iblSpecular > 1;
+            if (reduced) {
                 s.technique = technique;
-                s.illumScale = scale;
-                c.reasons.push_back("technique " + technique + " illum-scale " + std::to_string(scale) + ": probe frame " +
-                                    fixed(percent, 2) + " % of pixels beyond 5/255 of " + exact.technique +
-                                    ", within the budget of " + fixed(options.errorBudgetPercent, 2) +
-                                    " % (roughness " + fixed(n.minRoughness, 2) + "-" + fixed(n.maxRoughness, 2) + ")");
-                break;
+                s.illumScale = 1;
+                s.rates = rates;
+                c.reasons.push_back("technique " + technique + " with per-source rates: probe frame " + fixed(last, 2) +
+                                    " % of pixels beyond 5/255 of " + exact.technique + ", within the budget");
+            } else {
+                c.reasons.push_back("no reduced illumination rate: every source over the budget at 1/2");
             }
         }
-        if (s.technique != technique)
-            c.reasons.push_back("no reduced illumination rate: probe frames " + measured + " of pixels beyond 5/255, over the budget of " +
-                                fixed(options.errorBudgetPercent, 2) + " % (smoothest roughness " + fixed(n.minRoughness, 2) +
-                                ": sharp highlights and edges are what a reduced rate misses)");
     }
 
     if (!findTechnique(s.technique).illumScale && s.illumScale != 1) {

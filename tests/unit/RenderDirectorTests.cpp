@@ -7,6 +7,7 @@
 
 #include "BackendTest.h"
 #include "assets/BuiltinScenes.h"
+#include "assets/Environment.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 
@@ -117,6 +118,44 @@ TEST_P(RenderDirector, ReducedRateOnlyWithinTheErrorBudget) {
     const Built middle = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = (atScale2 + atScale4) / 2});
     EXPECT_EQ(middle.technique, "redeferred-tiled");
     EXPECT_NE(middle.reasons[1].find("illum-scale 2"), std::string::npos) << middle.reasons[1];
+}
+
+// With several illumination sources (unshadowed lights, shadowed lights, the environment's
+// diffuse and specular light) the budget is spent per source: each gets the lowest rate whose
+// probe frame, with the rates already chosen, stays within it; the graph then has an I-buffer per
+// rate and upsamples each reduced one. A budget of 0.01 % admits none.
+TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
+    assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 256});
+    scene.environment = assets::loadEnvironment("builtin:sky");
+    render::RenderSettings request{.technique = "auto", .width = 64, .height = 48, .iblPrefiltered = true};
+    request.shadows = {.enabled = true, .mapSize = 256, .pointBudget = 2};
+    const double budget = 8.0;
+    const render::DirectorChoice c = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = budget});
+    std::string why;
+    for (const auto& r : c.reasons) why += r + "\n";
+    size_t sourceLines = 0;
+    for (const auto& r : c.reasons) sourceLines += r.rfind("source ", 0) == 0;
+    EXPECT_EQ(sourceLines, 4u) << why;
+    ASSERT_NE(c.settings.technique.find("redeferred"), std::string::npos) << why;
+    const render::SourceRates& rates = c.settings.rates;
+    EXPECT_TRUE(rates.punctual > 1 || rates.shadowed > 1 || rates.iblDiffuse > 1 || rates.iblSpecular > 1) << why;
+    // What it chose holds: within the budget of the exact image.
+    render::RenderSettings exact = request;
+    exact.technique = device->info().features.computeShaders ? "deferred-tiled" : "deferred";
+    render::SceneRenderer reference(*device, scene, exact), chosen(*device, scene, c.settings);
+    reference.renderFrame();
+    chosen.renderFrame();
+    EXPECT_LE(render::percentPixelsOver5Of255(chosen.readOutput(), reference.readOutput(), 1.0f), budget) << why;
+    if (c.settings.perSourceRates()) {
+        std::vector<std::string> passes;
+        for (const auto& p : chosen.graph().passes())
+            if (!p.culled) passes.push_back(p.name);
+        EXPECT_TRUE(anyStartsWith(passes, "upsample I-buffer 1/")) << why;
+    }
+    std::cout << why;
+    const render::DirectorChoice strict = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 0.01});
+    EXPECT_EQ(strict.settings.technique, exact.technique);
+    EXPECT_EQ(strict.settings.rates.punctual + strict.settings.rates.iblDiffuse, 0u);
 }
 
 // BLEND primitives bring the transparent pass; without them there is none.
