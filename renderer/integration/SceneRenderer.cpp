@@ -183,6 +183,7 @@ void SceneRenderer::renderFrame() {
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
+    fc.temporal = glm::vec4(float(s.illumScale / 2), float(s.illumScale / 2), 0.0f, 0.0f);
     // The techniques' own loops light the unshadowed lights; each shadowed one has its passes.
     const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
     fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, 0);

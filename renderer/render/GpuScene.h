@@ -21,6 +21,12 @@ struct FrameConstants {
     glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples
     glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
     glm::mat4 view;            // view from world (rigid)
+    // Redeferred's reduced-rate sampling: xy the offset of each I-buffer texel's representative
+    // pixel within its scale x scale block (scale / 2, or a jitter cycling through the block
+    // with temporal accumulation), z 1 when the history of the previous frame is valid, w the
+    // most frames a pixel's history averages.
+    glm::vec4 temporal{0.0f};
+    glm::mat4 prevViewProj{1.0f};  // the previous frame's viewProj (temporal reprojection)
 };
 
 struct ObjectConstants {

@@ -113,6 +113,7 @@ FrameConstantsFn RedeferredRenderer::frameAtRate(uint32_t rate) const {
         FrameConstants fc = ctx_.frame;
         fc.counts.y = rate;
         fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
+        fc.temporal.x = fc.temporal.y = float(rate / 2);
         return ctx_.queue.upload(fc);
     };
 }

@@ -17,10 +17,10 @@ IlluminationSums feUpsampleIBuffer(ivec2 p, float depth, vec3 n, vec4 g1) {
 #endif
     const int scale = int(frame.counts.y);
     ivec2 isize = ivec2(frame.illumViewport.xy);
-    // Texel qi holds the sums of its representative pixel qi * scale + scale / 2 (the
+    // Texel qi holds the sums of its representative pixel qi * scale + feRepOffset() (the
     // illumination passes' choice), so that pixel, not the block's centre, is where texel qi
     // lies in the bilinear footprint.
-    vec2 q = (vec2(p) - float(scale / 2)) / float(scale);
+    vec2 q = (vec2(p) - vec2(feRepOffset())) / float(scale);
     ivec2 q0 = ivec2(floor(q));
     vec2 f = q - vec2(q0);
     float zp = feViewDepth(depth);
@@ -33,7 +33,7 @@ IlluminationSums feUpsampleIBuffer(ivec2 p, float depth, vec3 n, vec4 g1) {
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
             ivec2 qi = clamp(q0 + ivec2(i, j), ivec2(0), isize - 1);
-            ivec2 rep = min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
+            ivec2 rep = min(qi * scale + feRepOffset(), ivec2(frame.viewport.xy) - 1);
             const vec4 ta = texelFetch(iLdg, qi, 0);
             const vec4 tb = split ? vec4(0.0) : texelFetch(iLsg1, qi, 0);
             const vec4 tc = split ? vec4(0.0) : texelFetch(iLsg2, qi, 0);

@@ -22,7 +22,7 @@ layout(location = 2) out vec4 outLsg2;
 #endif
 void main() {
     const int scale = int(frame.counts.y);
-    const ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
+    const ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + feRepOffset(), ivec2(frame.viewport.xy) - 1);
     const float depth = texelFetch(depthTexture, p, 0).r;
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     const vec4 g1 = texelFetch(gb1, p, 0);

@@ -15,7 +15,7 @@ layout(location = 1) out vec4 outLsg1;
 layout(location = 2) out vec4 outLsg2;
 void main() {
     int scale = int(frame.counts.y);
-    ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
+    ivec2 p = min(ivec2(gl_FragCoord.xy) * scale + feRepOffset(), ivec2(frame.viewport.xy) - 1);
     float depth = texelFetch(depthTexture, p, 0).r;
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     vec4 g1 = texelFetch(gb1, p, 0);

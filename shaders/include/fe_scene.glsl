@@ -37,7 +37,13 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     uvec4 counts;         // x lights, y illumination scale, z image-based lighting samples
     uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit
     mat4 view;            // view from world (rigid): the light pre-pass packs view-space normals
+    vec4 temporal;        // xy representative pixel's offset in its I-buffer block, z history valid, w history cap
+    mat4 prevViewProj;    // the previous frame's viewProj
 } frame;
+
+// The representative pixel of I-buffer texel q is q * scale + feRepOffset() (clamped to the
+// screen): the block's centre, or this frame's jittered position with temporal accumulation.
+ivec2 feRepOffset() { return ivec2(frame.temporal.xy); }
 
 layout(binding = FE_SLOT_LIGHTS, std430) readonly buffer LightBlock {
     GpuLight lights[];

@@ -24,7 +24,7 @@ void main() {
     const ivec2 p = q;
 #else
     const bool inside = all(lessThan(q, ivec2(frame.illumViewport.xy)));
-    const ivec2 p = min(q * scale + scale / 2, ivec2(frame.viewport.xy) - 1);
+    const ivec2 p = min(q * scale + feRepOffset(), ivec2(frame.viewport.xy) - 1);
 #endif
     const bool lit = inside && !feGBufferUnlit(texelFetch(gb2, p, 0).a);
     const float depth = lit ? texelFetch(depthTexture, p, 0).r : 1.0;
@@ -50,7 +50,7 @@ void main() {
     const float viewDepth = depth < 1.0 ? feViewDepth(depth) : 0.0;
 #ifdef FE_ILLUM_SPLIT
     const ivec2 qi = q / scale;
-    if (all(equal(p, min(qi * scale + scale / 2, ivec2(frame.viewport.xy) - 1))))
+    if (all(equal(p, min(qi * scale + feRepOffset(), ivec2(frame.viewport.xy) - 1))))
         imageStore(outLdg, qi, vec4(acc.Ldg, viewDepth));
     imageStore(outLsg1, q, vec4(acc.Lsg1, 0.0));
     imageStore(outLsg2, q, vec4(acc.Lsg2, 0.0));
