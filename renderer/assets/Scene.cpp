@@ -42,6 +42,13 @@ Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const g
     return c;
 }
 
+Camera Camera::orbited(const glm::vec3& center, float radians) const {
+    const glm::mat4 r = glm::rotate(glm::mat4(1.0f), radians, glm::vec3(0.0f, 1.0f, 0.0f));
+    Camera c = *this;
+    c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r * glm::translate(glm::mat4(1.0f), -center) * worldFromView;
+    return c;
+}
+
 AABB computeWorldBounds(const Scene& scene) {
     AABB b;
     for (const auto& inst : scene.instances) {

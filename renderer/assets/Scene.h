@@ -159,6 +159,9 @@ struct Camera {
     glm::mat4 viewFromWorld() const;
     bool infiniteFar() const { return !(zfar < std::numeric_limits<float>::infinity()); }
 
+    // The camera turned `radians` about the vertical (+Y) axis through `center`: a camera path
+    // around a scene (fe render --orbit).
+    Camera orbited(const glm::vec3& center, float radians) const;
     // Right-handed look-at; `up` need not be orthogonal to `forward` but must not be parallel.
     static Camera lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up,
                             float yfov, float znear, float zfar);

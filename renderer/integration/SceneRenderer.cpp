@@ -3,6 +3,7 @@
 #include "fe/gdi/ShaderRegistry.h"
 #include "reference/CameraMath.h"
 #include "render/ShaderSlots.h"
+#include "render/TemporalAccumulation.h"
 
 namespace fe::render {
 
@@ -30,6 +31,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");
+    camera_ = *scene.camera;
     if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8)
         throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");
     if (s.msaa > 1 && !technique.msaa)
@@ -171,9 +173,14 @@ void SceneRenderer::updateLights(const std::vector<assets::Light>& lights) {
     gpuScene_->updateLights(ordered, shadowPlan_.unshadowedCount);
 }
 
+void SceneRenderer::setCamera(const assets::Camera& camera) {
+    camera_ = camera;
+    context_->eye = camera.eye();
+}
+
 void SceneRenderer::renderFrame() {
     const RenderSettings& s = settings_;
-    const assets::Camera& cam = *scene_.camera;
+    const assets::Camera& cam = camera_;
     FrameConstants& fc = frame_;
     fc = {};
     fc.viewProj = viewProjection(cam, float(s.width) / float(s.height));
@@ -184,6 +191,14 @@ void SceneRenderer::renderFrame() {
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);
     fc.temporal = glm::vec4(float(s.illumScale / 2), float(s.illumScale / 2), 0.0f, 0.0f);
+    if (s.temporal) {
+        const glm::uvec2 o = temporalOffset(s.illumScale, frameIndex_);
+        const float history = frameIndex_ == 0 ? 0.0f : fc.viewProj == prevViewProj_ ? 1.0f : 2.0f;  // none, still, moved
+        fc.temporal = glm::vec4(float(o.x), float(o.y), history, TemporalAccumulation::kMaxFrames);
+    }
+    fc.prevViewProj = frameIndex_ > 0 ? prevViewProj_ : fc.viewProj;
+    prevViewProj_ = fc.viewProj;
+    ++frameIndex_;
     // The techniques' own loops light the unshadowed lights; each shadowed one has its passes.
     const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
     fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, 0);

@@ -46,6 +46,8 @@ public:
     void updateLights(const std::vector<assets::Light>& lights);
     // Which lights cast shadows and how (empty when shadows are off).
     const ShadowPlan& shadowPlan() const { return shadowPlan_; }
+    // The camera of the next frames (a camera path); the scene's until this is called.
+    void setCamera(const assets::Camera& camera);
 
 private:
     void buildGraph();
@@ -68,6 +70,9 @@ private:
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
     std::vector<assets::Light> sceneLights_;       // the current lights, scene order
+    assets::Camera camera_;                        // the current camera
+    uint64_t frameIndex_ = 0;                      // frames rendered
+    glm::mat4 prevViewProj_{1.0f};
     graph::RenderGraph graph_;
     graph::TextureId output_, display_, depth_;
     gdi::TextureHandle outputTexture_;

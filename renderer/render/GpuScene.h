@@ -23,8 +23,8 @@ struct FrameConstants {
     glm::mat4 view;            // view from world (rigid)
     // Redeferred's reduced-rate sampling: xy the offset of each I-buffer texel's representative
     // pixel within its scale x scale block (scale / 2, or a jitter cycling through the block
-    // with temporal accumulation), z 1 when the history of the previous frame is valid, w the
-    // most frames a pixel's history averages.
+    // with temporal accumulation), z the previous frame's history: 0 none, 1 valid from a still
+    // view, 2 valid but the camera moved; w the most frames a pixel's history averages.
     glm::vec4 temporal{0.0f};
     glm::mat4 prevViewProj{1.0f};  // the previous frame's viewProj (temporal reprojection)
 };

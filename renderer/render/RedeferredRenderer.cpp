@@ -59,6 +59,11 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
             ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/illumination_ibl.frag", std::vector{kI0, kI1, kI2}, false);
         }
     }
+    if (s.temporal) {
+        if (s.illumScale == 1) throw gdi::Error("--temporal needs --illum-scale 2 or 4 (at full rate there is nothing to accumulate)");
+        if (perSource_ || s.illumSplit) throw gdi::Error("--temporal takes one illumination rate (not --rates or --illum-split)");
+        temporal_ = std::make_unique<TemporalAccumulation>(c);
+    }
     if (perSource_) {
         upsampleFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ibuffer_upsample.frag")});
         std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
@@ -73,7 +78,7 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
     }
     // One material shader per path (fe_material_pass.glsl says why). Per-source rates resolve the
     // full-rate I-buffer the reduced ones were added into.
-    const uint32_t scale = perSource_ ? 1 : s.illumScale;
+    const uint32_t scale = perSource_ || temporal_ ? 1 : s.illumScale;
     const char* material = scale == 1 ? (s.precomputedNoV ? "scene/material.frag" : "scene/material_rebuild_nov.frag")
                            : s.illumSplit ? "scene/material_upsample_split.frag"
                            : tiled        ? "scene/material_upsample_tiled.frag"
@@ -171,6 +176,10 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
         declarePunctual(g, full);
         declareShadowed(g, full);
         if (ibl_) ibl_->declare(g, "ibl-illumination", gbuffer_, {full.l0, full.l1, full.l2});
+        if (temporal_) {  // the material pass resolves the accumulated full-resolution sums
+            const auto acc = temporal_->declare(g, gbuffer_, {full.l0, full.l1, full.l2});
+            full = {1, acc[0], acc[1], acc[2], s.width, s.height};
+        }
     } else {
         // Each source into the I-buffer of its rate; every reduced one then upsampled, with the
         // G-buffer-guided filter, into the full-rate one the material pass reads.

@@ -14,6 +14,7 @@
 #include "render/EnvironmentLighting.h"
 #include "render/GBuffer.h"
 #include "render/LightVolumes.h"
+#include "render/TemporalAccumulation.h"
 #include "render/TileLightCulling.h"
 
 namespace fe::render {
@@ -54,6 +55,7 @@ private:
     gdi::PipelineHandle material_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with IBL: the environment into the I-buffer (or its L_dg alone)
     std::unique_ptr<EnvironmentLighting> iblSpecular_;  // per-source rates apart: its L_sg1, L_sg2
+    std::unique_ptr<TemporalAccumulation> temporal_;  // RenderSettings::temporal
     gdi::ShaderHandle upsampleFs_;  // per-source rates: a reduced I-buffer into the full-rate one
     gdi::PipelineHandle upsample_;
 };

@@ -52,6 +52,10 @@ struct RenderSettings {
     bool ibl() const { return iblSamples > 0 || iblPrefiltered; }
     ShadowSettings shadows;
     SourceRates rates;
+    // Redeferred at illumScale > 1: the reduced-rate sampling jitters through each I-buffer
+    // block from frame to frame and accumulates over frames (TemporalAccumulation; the seed's
+    // consideration D).
+    bool temporal = false;
     uint32_t rate(uint32_t sourceRate) const { return sourceRate ? sourceRate : illumScale; }
     // The sources this frame has (shadowed lights with shadows on, the environment's two with
     // image-based lighting) do not all share one rate: then each rate gets an I-buffer of its

@@ -27,4 +27,7 @@ constexpr uint32_t kSlotShadow = 21;        // a shadowed light's ShadowMaps::Co
 constexpr uint32_t kSlotShadowMap = 22;     // ... and its map (2D array or cube, comparison sampler)
 constexpr uint32_t kSlotIblSh = 23;         // image-based lighting's fast path: irradiance SH
 constexpr uint32_t kSlotIblLut = 24;        // ... and its split-sum table (PrefilteredEnvironment)
+constexpr uint32_t kSlotHistory0 = 25;      // redeferred temporal accumulation: last frame's sums
+constexpr uint32_t kSlotHistory1 = 26;
+constexpr uint32_t kSlotHistory2 = 27;
 }  // namespace fe::render

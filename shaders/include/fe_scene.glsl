@@ -23,6 +23,9 @@
 #define FE_SLOT_TILE_LIGHTS_OUT 18
 #define FE_SLOT_ENVIRONMENT 19
 #define FE_SLOT_ENVIRONMENT_SOURCE 20
+#define FE_SLOT_HISTORY0 25
+#define FE_SLOT_HISTORY1 26
+#define FE_SLOT_HISTORY2 27
 
 // G-buffer 2's alpha: -1 where nothing was drawn (its clear value), w_o.n in [0, 1] on lit
 // surfaces (redeferred consideration A: the material pass need not rebuild it), 2 on unlit ones.

@@ -11,6 +11,7 @@
 
 #include "BackendTest.h"
 #include "assets/BuiltinScenes.h"
+#include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 #include "reference/CpuReference.h"
 #include "render/ShadowPlan.h"
@@ -249,6 +250,68 @@ TEST_P(Shadows, PerSourceRatesKeepShadowEdges) {
     for (const char* p : {"upsample I-buffer 1/2", "upsample I-buffer 1/4", "ibl-diffuse", "ibl-specular"})
         EXPECT_NE(std::find(mixedPasses.begin(), mixedPasses.end(), p), mixedPasses.end()) << p;
     EXPECT_EQ(std::find(uniformPasses.begin(), uniformPasses.end(), "upsample I-buffer 1/2"), uniformPasses.end());
+}
+
+// Temporal accumulation (the seed's consideration D): a still view converges to the full-rate
+// image once every pixel of each I-buffer block has been the representative one (scale^2
+// frames); a moving camera (an orbit) stays closer to the full-rate image than the plain
+// reduced rate does, frame after frame. Shadow edges measured against the rays.
+TEST_P(Shadows, TemporalAccumulationConvergesAndDegradesGracefully) {
+    const gdi::Image fullRate = renderShadowed(*device, scene, shadowSettings("redeferred"));
+    for (uint32_t scale : {2u, 4u}) {
+        render::RenderSettings s = shadowSettings("redeferred");
+        s.illumScale = scale;
+        s.temporal = true;
+        render::SceneRenderer r(*device, scene, s);
+        std::vector<double> differing;
+        for (uint32_t f = 0; f < scale * scale; ++f) {
+            r.renderFrame();
+            differing.push_back(fractionDiffering(r.readOutput(), fullRate, 1e-4));
+        }
+        const ShadowError e = compare(r.readOutput(), reference);
+        std::cout << "  still, scale " << scale << ": pixels off the full-rate image by more than 0.01 %: frame 1 "
+                  << differing.front() * 100 << " %, frame " << scale * scale << " " << differing.back() * 100
+                  << " %; shadow edges vs rays " << e.edges * 100 << " %\n";
+        EXPECT_GT(differing.front(), 0.05) << "the first frame is the plain reduced rate";
+        EXPECT_LE(differing.back(), 0.001) << "scale " << scale << " did not converge in " << scale * scale << " frames";
+        EXPECT_LE(e.interior, 0.01);
+    }
+    // Orbits over 16 frames at scale 2, each frame against the full-rate image of the same
+    // camera (the director's metric: pixels beyond 5/255 of the 8-bit image): a slow one (1.5
+    // degrees, about a quarter pixel a frame), where history must still help, and a fast one
+    // (12 degrees, about two pixels a frame), where it must at least not hurt.
+    for (const float degrees : {1.5f, 12.0f}) {
+        render::RenderSettings s = shadowSettings("redeferred");
+        s.illumScale = 2;
+        render::RenderSettings t = s;
+        t.temporal = true;
+        render::RenderSettings exact = s;
+        exact.illumScale = 1;
+        render::SceneRenderer plain(*device, scene, s), temporal(*device, scene, t), full(*device, scene, exact);
+        double sumPlain = 0, sumTemporal = 0;
+        std::ostringstream perFrame;
+        constexpr uint32_t kFrames = 16;
+        for (uint32_t f = 0; f < kFrames; ++f) {
+            const assets::Camera cam = scene.camera->orbited(scene.bounds.center(), glm::radians(degrees) * float(f) / kFrames);
+            for (render::SceneRenderer* r : {&plain, &temporal, &full}) {
+                r->setCamera(cam);
+                r->renderFrame();
+            }
+            const gdi::Image want = full.readOutput();
+            const double ep = render::percentPixelsOver5Of255(plain.readOutput(), want, 1.0f);
+            const double et = render::percentPixelsOver5Of255(temporal.readOutput(), want, 1.0f);
+            perFrame << std::fixed << std::setprecision(2) << (f ? ", " : "") << et << "/" << ep;
+            if (f >= 4) sumPlain += ep, sumTemporal += et;
+        }
+        std::cout << "  orbit " << degrees << " degrees, scale 2, % of pixels beyond 5/255 of full rate per frame (temporal/plain): "
+                  << perFrame.str() << "\n";
+        RecordProperty("orbit_" + std::to_string(int(degrees * 10)), perFrame.str());
+        if (degrees < 2.0f) {
+            EXPECT_LT(sumTemporal, sumPlain * 0.8) << perFrame.str();
+        } else {
+            EXPECT_LE(sumTemporal, sumPlain * 1.15) << perFrame.str();
+        }
+    }
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Shadows);

@@ -49,6 +49,8 @@ constexpr const char* kUsage =
     "        split-sum table, SH irradiance) instead of sampling it\n"
     "      --rates SOURCE=RATE,...: redeferred, each illumination source in an I-buffer of its own rate (1, 2, 4;\n"
     "        unset: --illum-scale): punctual, shadowed, ibl-diffuse, ibl-specular\n"
+    "      --temporal (redeferred, --illum-scale 2|4): the reduced-rate samples jitter and accumulate over frames\n"
+    "      --orbit DEGREES: the camera turns about the scene's vertical axis over the --frames\n"
     "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
     "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
@@ -236,6 +238,11 @@ int cmdRender(const Args& a) {
     s.illumSplit = a.options.count("--illum-split") > 0;
     s.precomputedNoV = !a.options.count("--rebuild-nov");
     s.tileCullingPass = !a.options.count("--one-pass-culling");
+    s.temporal = a.options.count("--temporal") > 0;
+    const std::string orbitText = opt("--orbit", "0");
+    const double orbitDegrees = std::strtod(orbitText.c_str(), &end);
+    if (*end || !std::isfinite(orbitDegrees) || std::abs(orbitDegrees) > 3600)
+        throw UsageError("--orbit takes degrees (at most 3600), got '" + orbitText + "'");
     if (!s.tileCullingPass && s.technique != "deferred-tiled")
         throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
     const std::string dumpGraph = opt("--dump-graph", "");
@@ -262,6 +269,11 @@ int cmdRender(const Args& a) {
         auto t0 = std::chrono::steady_clock::now();
         // builtin:lights animates: light positions are a function of the frame index.
         if (spec == "builtin:lights") renderer.updateLights(assets::lightsSceneLights(builtin.lights, f));
+        // --orbit: the camera turns about the scene's vertical axis over the frames.
+        if (orbitDegrees != 0.0) {
+            const double t = frames > 1 ? double(f) / double(frames) : 0.0;
+            renderer.setCamera(scene.camera->orbited(scene.bounds.center(), float(orbitDegrees * t * 3.14159265358979 / 180.0)));
+        }
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -447,9 +459,9 @@ int main(int argc, char** argv) {
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter", "--rates"},
+                                    "--shadow-filter", "--rates", "--orbit"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
-                                    "--ibl-prefiltered"}));
+                                    "--ibl-prefiltered", "--temporal"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
