@@ -83,12 +83,6 @@ FePrefiltered fePrefiltered(vec3 n, vec3 wo, float roughness) {
     p.lut = texture(iblLut, vec2(p.NoV, r)).xyz;
     return p;
 }
-vec3 feShadeEnvironment(SurfacePoint s, uint n) {
-    const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness);
-    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    return (1.0 - s.metallic) * s.baseColor * (1.0 - F0) * (p.E / FE_PI) * p.lut.z +
-           p.radiance * (F0 * p.lut.x + (1.0 - F0) * p.lut.y);
-}
 IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count) {
     const FePrefiltered p = fePrefiltered(n, wo, roughness);
     const float r = feClampRoughness(roughness), kp = (r + 1.0) * (r + 1.0) / 8.0;
@@ -97,35 +91,6 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
 }
 #else
 
-vec3 feShadeEnvironment(SurfacePoint s, uint n) {
-    const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
-    const float NoV = max(dot(s.n, s.wo), 1e-4);
-    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    // Duff et al. 2017 basis.
-    const float sg = s.n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sg + s.n.z), bc = s.n.x * s.n.y * ba;
-    const vec3 t = vec3(1.0 + sg * s.n.x * s.n.x * ba, sg * bc, -sg * s.n.x);
-    const vec3 b = vec3(bc, sg + s.n.y * s.n.y * ba, -s.n.y);
-    vec3 specular = vec3(0.0), diffuse = vec3(0.0);
-    for (uint i = 0u; i < n; ++i) {
-        const vec2 u = vec2((float(i) + 0.5) / float(n), feRadicalInverse(i));
-        const float phi = 2.0 * FE_PI * u.y, cp = cos(phi), sp = sin(phi);
-        const float cosH = sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = sqrt(max(1.0 - cosH * cosH, 0.0));
-        const vec3 h = t * (sinH * cp) + b * (sinH * sp) + s.n * cosH;
-        const float VoH = dot(s.wo, h);
-        const vec3 wi = 2.0 * VoH * h - s.wo;
-        const float NoL = dot(s.n, wi);
-        if (NoL > 0.0 && VoH > 0.0) {
-            const float P = pow(clamp(1.0 - VoH, 0.0, 1.0), 5.0);
-            specular += (F0 + (1.0 - F0) * P) * feEnvironment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
-        }
-        const float cosD = sqrt(1.0 - u.x), sinD = sqrt(u.x);
-        const vec3 wd = t * (sinD * cp) + b * (sinD * sp) + s.n * cosD;
-        const vec3 hd = normalize(s.wo + wd);
-        const float Pd = pow(clamp(1.0 - dot(hd, s.wo), 0.0, 1.0), 5.0);
-        diffuse += (1.0 - F0) * (1.0 - Pd) * feEnvironment(wd);
-    }
-    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular / (NoV * (1.0 - k) + k)) / float(n);
-}
 // Redeferred: the environment's light as I-buffer sums (SHADING.md "The redeferred split", the
 // seed's estimators): L_dg = (pi / n) sum (1 - P) L over cosine-weighted directions, and the
 // specular sums over GGX half vectors stored as the punctual ones are (x alpha^2 / (4 pi)), then
@@ -135,15 +100,13 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
     const float r = feClampRoughness(roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
     const float kp = (r + 1.0) * (r + 1.0) / 8.0;
     const float NoV = max(dot(n, wo), 1e-4);
-    const float sg = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sg + n.z), bc = n.x * n.y * ba;
-    const vec3 t = vec3(1.0 + sg * n.x * n.x * ba, sg * bc, -sg * n.x);
-    const vec3 b = vec3(bc, sg + n.y * n.y * ba, -n.y);
+    vec3 t, b;
+    feBasis(n, t, b);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
     for (uint i = 0u; i < count; ++i) {
-        const vec2 u = vec2((float(i) + 0.5) / float(count), feRadicalInverse(i));
-        const float phi = 2.0 * FE_PI * u.y, cp = cos(phi), sp = sin(phi);
-        const float cosH = sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = sqrt(max(1.0 - cosH * cosH, 0.0));
-        const vec3 h = t * (sinH * cp) + b * (sinH * sp) + n * cosH;
+        const vec2 u = feHammersley(i, count);
+        float cosH;
+        const vec3 h = feGgxHalfVector(u, a2, t, b, n, cosH);
         const float VoH = dot(wo, h);
         const vec3 wi = 2.0 * VoH * h - wo;
         const float NoL = dot(n, wi);
@@ -153,8 +116,7 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
             acc.Lsg1 += term;
             acc.Lsg2 += P * term;
         }
-        const float cosD = sqrt(1.0 - u.x), sinD = sqrt(u.x);
-        const vec3 wd = t * (sinD * cp) + b * (sinD * sp) + n * cosD;
+        const vec3 wd = feCosineDirection(u, t, b, n);
         const float Pd = pow(clamp(1.0 - dot(normalize(wo + wd), wo), 0.0, 1.0), 5.0);
         acc.Ldg += (1.0 - Pd) * feEnvironment(wd);
     }
@@ -165,4 +127,12 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
     return acc;
 }
 #endif  // FE_IBL_PREFILTERED
+
+// L_o from the environment (shading::shadeEnvironment): the sums resolved as the redeferred
+// material pass resolves them, L_d = (1 - m)(c / pi)(1 - F0) L_dg and L_s = (F0 L_sg1 + (1 - F0)
+// L_sg2) / (NoV (1 - k_p) + k_p), which with the sums' rescaling is the estimator's own form.
+vec3 feShadeEnvironment(SurfacePoint s, uint n) {
+    return feResolveMaterialNoV(feEnvironmentSums(s.n, s.wo, s.roughness, n), dot(s.n, s.wo), s.baseColor, s.metallic,
+                                s.roughness);
+}
 #endif

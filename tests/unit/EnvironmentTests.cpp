@@ -208,28 +208,43 @@ LitStats compareLit(const std::function<glm::dvec3(uint32_t, uint32_t)>& a, cons
 }
 }  // namespace
 
+namespace {
+// The 5x5 spheres at 48x36 lit by builtin:sky without its sun and no punctual light: the
+// environment's light alone, smooth enough for 64 samples to mean something.
+constexpr uint32_t kIblW = 48, kIblH = 36;
+assets::Scene skyLitSpheres() {
+    assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 5});
+    scene.lights.clear();
+    scene.environment = assets::loadEnvironment("builtin:sky");
+    scene.environment->sky.sunRadiance = glm::dvec3(0.0);
+    return scene;
+}
+// L_o of `technique` with `samples` per term, or the fast path when samples is 0.
+gdi::Image renderIbl(gdi::Device& device, const assets::Scene& scene, const std::string& technique, uint32_t samples) {
+    render::RenderSettings s{.technique = technique, .width = kIblW, .height = kIblH, .iblSamples = samples};
+    s.iblPrefiltered = samples == 0;
+    render::SceneRenderer r(device, scene, s);
+    r.renderFrame();
+    return r.readOutput();
+}
+// An image as compareLit's pixel function.
+std::function<glm::dvec3(uint32_t, uint32_t)> asFunction(const gdi::Image& img) {
+    return [&img](uint32_t x, uint32_t y) {
+        const auto t = img.texel(x, y);
+        return glm::dvec3(t[0], t[1], t[2]);
+    };
+}
+}  // namespace
+
 // Image-based lighting (forward): the GPU evaluates the reference's estimator with the same
 // Hammersley sequence and basis, so at the same sample count they differ only by single
 // precision and the cube map's interpolation: 2 % on 99 % of lit pixels, for a sky without its
 // sun (whose limb the cube blurs, see above). Against the converged integral (the reference
 // at 4096 samples, itself within 1 % of 8192 on 99 % of pixels) the error falls as samples grow.
 TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
-    constexpr uint32_t W = 48, H = 36;
-    assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 5});
-    scene.lights.clear();  // the environment's light alone
-    scene.environment = assets::loadEnvironment("builtin:sky");
-    scene.environment->sky.sunRadiance = glm::dvec3(0.0);
-    auto gpu = [&](uint32_t samples, const std::string& technique = "forward") {
-        render::SceneRenderer r(*device, scene, {.technique = technique, .width = W, .height = H, .iblSamples = samples});
-        r.renderFrame();
-        return r.readOutput();
-    };
-    auto asFunction = [](const gdi::Image& img) {
-        return [&img](uint32_t x, uint32_t y) {
-            const auto t = img.texel(x, y);
-            return glm::dvec3(t[0], t[1], t[2]);
-        };
-    };
+    constexpr uint32_t W = kIblW, H = kIblH;
+    const assets::Scene scene = skyLitSpheres();
+    auto gpu = [&](uint32_t samples, const std::string& technique = "forward") { return renderIbl(*device, scene, technique, samples); };
     const gdi::Image g64 = gpu(64);
     const LitStats same = compareLit(asFunction(g64), render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64}), 0.02, W, H);
     std::cout << "64 samples, GPU against the reference's same estimator: " << same.fractionOver * 100 << " % beyond 2 %, max "
@@ -302,24 +317,9 @@ TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
 // integral, beside the sampled estimator at 64 and 1024 samples: its bias is the price of its
 // speed (docs/BENCHMARKS.md). Every technique takes it, and gives what forward gives.
 TEST_P(Environment, PrefilteredFastPathBiasIsMeasured) {
-    constexpr uint32_t W = 48, H = 36;
-    assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 5});
-    scene.lights.clear();
-    scene.environment = assets::loadEnvironment("builtin:sky");
-    scene.environment->sky.sunRadiance = glm::dvec3(0.0);
-    auto gpu = [&](const std::string& technique, uint32_t samples) {
-        render::RenderSettings s{.technique = technique, .width = W, .height = H, .iblSamples = samples};
-        s.iblPrefiltered = samples == 0;
-        render::SceneRenderer r(*device, scene, s);
-        r.renderFrame();
-        return r.readOutput();
-    };
-    auto asFunction = [](const gdi::Image& img) {
-        return [&img](uint32_t x, uint32_t y) {
-            const auto t = img.texel(x, y);
-            return glm::dvec3(t[0], t[1], t[2]);
-        };
-    };
+    constexpr uint32_t W = kIblW, H = kIblH;
+    const assets::Scene scene = skyLitSpheres();
+    auto gpu = [&](const std::string& technique, uint32_t samples) { return renderIbl(*device, scene, technique, samples); };
     const render::ReferenceImage converged = render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 4096});
     const gdi::Image fast = gpu("forward", 0);
     std::ostringstream table;
