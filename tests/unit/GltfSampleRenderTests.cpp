@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <map>
 
+#include "assets/BuiltinScenes.h"
+#include "assets/Environment.h"
 #include "assets/GltfLoader.h"
 #include "fe/gdi/Backend.h"
 #include "integration/SceneRenderer.h"
@@ -38,12 +40,9 @@ gdi::Image toDisplay(const gdi::Image& linear) {
 }
 }  // namespace
 
-class GltfSampleRender : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(GltfSampleRender, BackendsAgree) {
-    const std::string path = std::string(FE_SHARED_ASSETS) + "/" + GetParam();
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
-    assets::Scene scene = assets::loadGltf(path);
+// Every technique on every available backend (validation on), the 8-bit images compared with
+// the first backend's.
+static void expectBackendsAgree(const assets::Scene& scene, const render::RenderSettings& base) {
     std::vector<std::string> techniques;  // every technique the engine has
     for (const render::TechniqueInfo& t : render::techniques()) techniques.push_back(t.name);
     std::map<std::string, std::vector<std::pair<std::string, gdi::Image>>> images;
@@ -51,7 +50,9 @@ TEST_P(GltfSampleRender, BackendsAgree) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
         if (!p.available) continue;
         for (const std::string& t : techniques) {
-            render::SceneRenderer r(*p.device, scene, {.technique = t, .width = 64, .height = 64});
+            render::RenderSettings s = base;
+            s.technique = t;
+            render::SceneRenderer r(*p.device, scene, s);
             r.renderFrame();
             images[t].push_back({b, toDisplay(r.readOutput())});
         }
@@ -73,6 +74,29 @@ TEST_P(GltfSampleRender, BackendsAgree) {
                                                << " pixels over 5/255, max " << d.maxAbsError;
         }
     }
+}
+
+class GltfSampleRender : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GltfSampleRender, BackendsAgree) {
+    const std::string path = std::string(FE_SHARED_ASSETS) + "/" + GetParam();
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
+    expectBackendsAgree(assets::loadGltf(path), {.width = 64, .height = 64});
+}
+
+// The "done": every technique with an environment lighting the scene and shadows on
+// renders alike on every backend: builtin:shadows, and a real glTF sample where present.
+TEST(ShadowsAndSkyRender, BackendsAgree) {
+    render::RenderSettings s{.width = 64, .height = 48, .iblSamples = 16};
+    s.shadows = {.enabled = true, .mapSize = 512};
+    assets::Scene scene = assets::makeBuiltinScene("shadows");
+    scene.environment = assets::loadEnvironment("builtin:sky");
+    expectBackendsAgree(scene, s);
+    const std::string path = std::string(FE_SHARED_ASSETS) + "/MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
+    assets::Scene sample = assets::loadGltf(path);
+    sample.environment = assets::loadEnvironment("builtin:sky");
+    expectBackendsAgree(sample, s);
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, GltfSampleRender, ::testing::ValuesIn(kSamples), [](const auto& info) {
