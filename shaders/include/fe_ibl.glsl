@@ -111,13 +111,13 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
         const vec3 wi = 2.0 * VoH * h - wo;
         const float NoL = dot(n, wi);
         if (NoL > 0.0 && VoH > 0.0) {
-            const float P = pow(clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            const float P = feFresnelPower(VoH);
             const vec3 term = feEnvironment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
             acc.Lsg1 += term;
             acc.Lsg2 += P * term;
         }
         const vec3 wd = feCosineDirection(u, t, b, n);
-        const float Pd = pow(clamp(1.0 - dot(normalize(wo + wd), wo), 0.0, 1.0), 5.0);
+        const float Pd = feFresnelPower(dot(normalize(wo + wd), wo));
         acc.Ldg += (1.0 - Pd) * feEnvironment(wd);
     }
     const float toPunctual = (NoV * (1.0 - kp) + kp) / (NoV * (1.0 - k) + k) / float(count);

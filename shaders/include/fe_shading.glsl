@@ -64,6 +64,14 @@ struct SurfacePoint {
 
 float feClampRoughness(float r) { return clamp(r, FE_MIN_ROUGHNESS, 1.0); }
 
+// Schlick's (1 - cos)^5 for cos in [-1, 1]: clamped (a rounding-negative base), and by two
+// multiplications squared and one more rather than pow(), which CPU rasterizers evaluate as
+// exp2(5 log2 x) once per light and pixel.
+float feFresnelPower(float cosTheta) {
+    const float x = clamp(1.0 - cosTheta, 0.0, 1.0), x2 = x * x;
+    return x2 * x2 * x;
+}
+
 // Forward: the full per-light BRDF sum (SHADING.md "Per light").
 vec3 feShadeLight(SurfacePoint s, SurfaceLight l) {
     float NoL = dot(s.n, l.wi);
@@ -75,7 +83,7 @@ vec3 feShadeLight(SurfacePoint s, SurfaceLight l) {
     float NoV = max(dot(s.n, s.wo), 1e-4);
     vec3 h = normalize(s.wo + l.wi);
     float NoH = dot(s.n, h);
-    float P = pow(clamp(1.0 - dot(h, s.wo), 0.0, 1.0), 5.0);  // clamp: pow of a rounding-negative base is NaN
+    float P = feFresnelPower(dot(h, s.wo));
     vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
     vec3 F = F0 + (1.0 - F0) * P;
     float dd = NoH * NoH * (a2 - 1.0) + 1.0;
@@ -104,7 +112,7 @@ void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, float
     float k = (r + 1.0) * (r + 1.0) / 8.0;
     vec3 h = normalize(wo + l.wi);
     float NoH = dot(n, h);
-    float P = pow(clamp(1.0 - dot(h, wo), 0.0, 1.0), 5.0);
+    float P = feFresnelPower(dot(h, wo));
     float dd = NoH * NoH * (a2 - 1.0) + 1.0;
     // a2 / (4 pi R): dividing a2 by dd first keeps the intermediate in range at the clamp.
     float scaledInvR = (a2 / dd) / (dd * (NoL * (1.0 - k) + k) * 4.0 * FE_PI);

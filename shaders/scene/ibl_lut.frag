@@ -25,13 +25,13 @@ void main() {
         const vec3 wi = 2.0 * VoH * h - wo;
         const float NoL = wi.z;
         if (NoL > 0.0 && VoH > 0.0) {
-            const float P = pow(clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            const float P = feFresnelPower(VoH);
             const float g = NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
             sum.x += g;
             sum.y += P * g;
         }
         const vec3 wd = feCosineDirection(u, t, b, n);
-        sum.z += 1.0 - pow(clamp(1.0 - dot(normalize(wo + wd), wo), 0.0, 1.0), 5.0);
+        sum.z += 1.0 - feFresnelPower(dot(normalize(wo + wd), wo));
     }
     outTerms = vec4(sum / float(count), 1.0);
 }
