@@ -93,3 +93,17 @@ TEST(ImageMetrics, DisplayEncodingClampsAndShowsNonFiniteAsWhite) {
     EXPECT_FLOAT_EQ(d.rgb[1].r, 1.0f);
     EXPECT_FLOAT_EQ(d.rgb[1].g, 1.0f);
 }
+
+// FLIP stays in [0, 1] for images that differ by almost nothing, black backgrounds included.
+TEST(ImageMetrics, FlipOfNearlyIdenticalImagesIsNearZero) {
+    DisplayImage a = constant(40, 30, glm::vec3(0.0f));
+    for (uint32_t y = 8; y < 22; ++y)
+        for (uint32_t x = 10; x < 30; ++x) a.rgb[y * 40 + x] = glm::vec3(0.8f, 0.3f, 0.1f);
+    DisplayImage b = a;
+    b.rgb[15 * 40 + 15] += glm::vec3(1e-6f);
+    const std::vector<float> map = render::flipErrorMap(b, a);
+    float worst = 0.0f;
+    for (float v : map) worst = std::max(worst, v);
+    EXPECT_LE(worst, 0.01f);
+    EXPECT_LE(render::flip(b, a), 0.001);
+}

@@ -24,6 +24,7 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/InfoJson.h"
+#include "integration/Bench.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 
@@ -58,6 +59,12 @@ constexpr const char* kUsage =
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
+    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
+    "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
+    "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
+    "      5/255, max); writes DIR/results.json and DIR/results.csv (default DIR: bench)\n"
+    "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
+    "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
     "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
@@ -418,6 +425,71 @@ void crossBackend(const std::vector<std::string>& backends, const std::string& o
     }
 }
 
+gdi::Json readJsonFile(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw gdi::Error("cannot read " + path);
+    try {
+        return gdi::Json::parse(f);
+    } catch (const std::exception& e) {
+        throw gdi::Error(path + ": not valid JSON: " + e.what());
+    }
+}
+
+double parsePositive(const std::string& text, const char* what) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (*end || !std::isfinite(v) || v <= 0) throw UsageError(std::string(what) + " must be a positive number, got '" + text + "'");
+    return v;
+}
+
+// fe bench: a sweep on the backends asked for, results.json and results.csv in --out; or
+// --compare A.json B.json, exit 1 on a regression beyond the thresholds.
+int cmdBench(const Args& a) {
+    if (a.options.count("--compare")) {
+        if (a.positional.size() != 1)
+            throw UsageError("bench --compare A.json B.json: two result files, got " + std::to_string(a.positional.size() + 1));
+        const double time = parsePositive(a.options.count("--time-ratio") ? a.options.at("--time-ratio") : "1.25", "--time-ratio");
+        const double error = parsePositive(a.options.count("--error-points") ? a.options.at("--error-points") : "0.5", "--error-points");
+        const render::BenchComparison c =
+            render::compareResults(readJsonFile(a.options.at("--compare")), readJsonFile(a.positional[0]), time, error);
+        std::cout << c.report;
+        return c.regression ? 1 : 0;
+    }
+    if (!a.positional.empty()) throw UsageError("bench takes no positional arguments (did you mean --compare A.json B.json?)");
+    if (a.options.count("--sweep") && a.options.count("--quick")) throw UsageError("--sweep and --quick: take one");
+    const std::vector<render::BenchCase> cases =
+        a.options.count("--sweep") ? render::sweepFromJson(readJsonFile(a.options.at("--sweep"))) : render::quickSweep();
+    const std::vector<std::string> backends =
+        gdi::expandBackendList(a.options.count("--backend") ? a.options.at("--backend") : "all");
+    render::BenchOptions options;
+    if (a.options.count("--frames")) options.frames = parseUint(a.options.at("--frames"), "--frames", 1, 1000);
+    const std::string out = a.options.count("--out") ? a.options.at("--out") : "bench";
+    std::filesystem::create_directories(out);
+    const bool tty = isatty(2);
+    const gdi::Json results = render::runBench(cases, backends, options, [&](const render::BenchProgress& p) {
+        std::ostringstream line;
+        line << "[" << p.index << "/" << p.count << "] " << p.what << "  elapsed " << int(p.elapsedSeconds) << " s, about "
+             << int(p.remainingSeconds + 0.5) << " s left";
+        std::cerr << (tty ? "\r\033[K" : "") << line.str() << (tty ? "" : "\n") << std::flush;
+    });
+    if (tty) std::cerr << "\n";
+    {
+        std::ofstream f(out + "/results.json");
+        f << results.dump(2) << "\n";
+        if (!f) throw gdi::Error("cannot write " + out + "/results.json");
+    }
+    {
+        std::ofstream f(out + "/results.csv");
+        f << render::resultsCsv(results);
+        if (!f) throw gdi::Error("cannot write " + out + "/results.csv");
+    }
+    size_t refused = 0;
+    for (const auto& r : results["results"]) refused += r.contains("refused");
+    std::cout << results["results"].size() << " measurements (" << refused << " refused) on " << backends.size()
+              << " backend(s); wrote " << out << "/results.json and " << out << "/results.csv\n";
+    return 0;
+}
+
 int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     if (!a.positional.empty()) throw UsageError("conformance takes no positional arguments");
     std::string which = a.options.count("--backend") ? a.options.at("--backend") : "all";
@@ -462,6 +534,9 @@ int main(int argc, char** argv) {
                                     "--shadow-filter", "--rates", "--orbit"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered", "--temporal"}));
+        if (command == "bench")
+            return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
+                                  {"--quick"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));

@@ -1,0 +1,368 @@
+#include "integration/Bench.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "assets/BuiltinScenes.h"
+#include "assets/Environment.h"
+#include "fe/gdi/Backend.h"
+#include "integration/SceneRenderer.h"
+#include "reference/CpuReference.h"
+#include "reference/ImageMetrics.h"
+#include "render/ShadowPlan.h"
+
+namespace fe::render {
+
+namespace {
+
+BenchCase make(const std::string& scene, const std::string& technique, uint32_t w = 96, uint32_t h = 72) {
+    BenchCase c;
+    c.scene = scene;
+    c.settings.technique = technique;
+    c.settings.width = w;
+    c.settings.height = h;
+    return c;
+}
+
+assets::BuiltinOptions builtinOptions(const BenchCase& c) {
+    assets::BuiltinOptions o;
+    if (c.lights) o.lights = c.lights;
+    o.sphereGrid = c.sphereGrid;
+    return o;
+}
+
+gdi::Json stats(std::vector<double> v) {
+    if (v.empty()) return nullptr;
+    std::sort(v.begin(), v.end());
+    return {{"median", v[v.size() / 2]}, {"min", v.front()}, {"max", v.back()}, {"samples", v.size()}};
+}
+
+gdi::Json settingsJson(const BenchCase& c) {
+    const RenderSettings& s = c.settings;
+    return {{"scene", c.scene},
+            {"environment", c.environment},
+            {"lights", c.lights},
+            {"sphereGrid", c.sphereGrid},
+            {"technique", s.technique},
+            {"width", s.width},
+            {"height", s.height},
+            {"illumScale", s.illumScale},
+            {"msaa", s.msaa},
+            {"illumSplit", s.illumSplit},
+            {"precomputedNoV", s.precomputedNoV},
+            {"tileCullingPass", s.tileCullingPass},
+            {"iblSamples", s.iblSamples},
+            {"iblPrefiltered", s.iblPrefiltered},
+            {"shadows", {{"enabled", s.shadows.enabled}, {"mapSize", s.shadows.mapSize}, {"cascades", s.shadows.cascades},
+                         {"pointBudget", s.shadows.pointBudget}, {"pcf", s.shadows.pcf}}},
+            {"rates", {{"punctual", s.rates.punctual}, {"shadowed", s.rates.shadowed}, {"iblDiffuse", s.rates.iblDiffuse},
+                       {"iblSpecular", s.rates.iblSpecular}}},
+            {"temporal", s.temporal},
+            {"exposure", s.exposure}};
+}
+
+// JSON has no infinity: identical images have PSNR null.
+gdi::Json finite(double v) { return std::isfinite(v) ? gdi::Json(v) : gdi::Json(nullptr); }
+
+}  // namespace
+
+std::string BenchCase::key() const {
+    std::string name = scene.rfind("builtin:", 0) == 0 ? scene.substr(8) : scene;
+    if (lights) name += std::to_string(lights);
+    std::string k = name + "/" + settings.technique;
+    const RenderSettings& s = settings;
+    if (s.illumScale != 1) k += "/scale" + std::to_string(s.illumScale);
+    if (s.msaa > 1) k += "/msaa" + std::to_string(s.msaa);
+    if (s.shadows.enabled) k += "/shadows" + std::to_string(s.shadows.mapSize);
+    if (!environment.empty()) k += "/env";
+    if (s.iblSamples) k += "/ibl" + std::to_string(s.iblSamples);
+    if (s.iblPrefiltered) k += "/ibl-prefiltered";
+    if (s.temporal) k += "/temporal";
+    if (s.illumSplit) k += "/split";
+    k += "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
+    return k;
+}
+
+std::vector<BenchCase> quickSweep() {
+    std::vector<BenchCase> cases;
+    for (const TechniqueInfo& t : techniques()) {
+        for (uint32_t scale : {1u, 2u, 4u}) {
+            if (scale > 1 && !t.illumScale) continue;
+            BenchCase c = make("builtin:spheres", t.name);
+            c.settings.illumScale = scale;
+            cases.push_back(c);
+        }
+        if (t.msaa) {
+            BenchCase c = make("builtin:spheres", t.name);
+            c.settings.msaa = 4;
+            cases.push_back(c);
+        }
+    }
+    for (const TechniqueInfo& t : techniques()) {
+        BenchCase c = make("builtin:shadows", t.name);
+        c.settings.shadows = {.enabled = true, .mapSize = 512};
+        cases.push_back(c);
+    }
+    // Image-based lighting: convergence with the sample count, and the fast path.
+    for (const char* t : {"forward", "deferred", "redeferred"}) {
+        for (uint32_t n : {16u, 64u, 256u}) {
+            BenchCase c = make("builtin:spheres", t);
+            c.environment = "builtin:sky";
+            c.settings.iblSamples = n;
+            cases.push_back(c);
+        }
+        BenchCase c = make("builtin:spheres", t);
+        c.environment = "builtin:sky";
+        c.settings.iblPrefiltered = true;
+        cases.push_back(c);
+    }
+    // Scaling with the light count.
+    for (uint32_t lights : {16u, 64u, 256u})
+        for (const char* t : {"forward", "deferred", "deferred-tiled", "redeferred-tiled"}) {
+            BenchCase c = make("builtin:lights", t);
+            c.lights = lights;
+            cases.push_back(c);
+        }
+    return cases;
+}
+
+std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep) {
+    if (!sweep.is_object() || !sweep.contains("cases") || !sweep["cases"].is_array())
+        throw gdi::Error("sweep: expected an object with a \"cases\" array");
+    std::vector<BenchCase> cases;
+    for (const gdi::Json& j : sweep["cases"]) {
+        if (!j.is_object()) throw gdi::Error("sweep: every case must be an object");
+        BenchCase c;
+        RenderSettings& s = c.settings;
+        s.width = 96;
+        s.height = 72;
+        for (const auto& [key, v] : j.items()) {
+            auto uint = [&, k = key](uint32_t lo, uint32_t hi) {
+                if (!v.is_number_unsigned() || v.get<uint64_t>() < lo || v.get<uint64_t>() > hi)
+                    throw gdi::Error("sweep: \"" + k + "\" must be an integer in [" + std::to_string(lo) + ", " +
+                                     std::to_string(hi) + "], got " + v.dump());
+                return v.get<uint32_t>();
+            };
+            auto boolean = [&, k = key]() {
+                if (!v.is_boolean()) throw gdi::Error("sweep: \"" + k + "\" must be true or false, got " + v.dump());
+                return v.get<bool>();
+            };
+            auto text = [&, k = key]() {
+                if (!v.is_string()) throw gdi::Error("sweep: \"" + k + "\" must be a string, got " + v.dump());
+                return v.get<std::string>();
+            };
+            if (key == "scene") c.scene = text();
+            else if (key == "technique") s.technique = findTechnique(text()).name;
+            else if (key == "environment") c.environment = text();
+            else if (key == "size") {
+                const std::string size = text();
+                const size_t x = size.find('x');
+                char* end = nullptr;
+                const unsigned long w = x == std::string::npos ? 0 : std::strtoul(size.c_str(), &end, 10);
+                const unsigned long h = x == std::string::npos ? 0 : std::strtoul(size.c_str() + x + 1, &end, 10);
+                if (w == 0 || h == 0 || w > 8192 || h > 8192 || *end) throw gdi::Error("sweep: \"size\" must be WxH, got " + size);
+                s.width = uint32_t(w);
+                s.height = uint32_t(h);
+            } else if (key == "illumScale") s.illumScale = uint(1, 4);
+            else if (key == "msaa") s.msaa = uint(1, 8);
+            else if (key == "shadows") s.shadows.enabled = boolean();
+            else if (key == "shadowMapSize") s.shadows.mapSize = uint(16, 16384);
+            else if (key == "iblSamples") s.iblSamples = uint(0, 65536);
+            else if (key == "iblPrefiltered") s.iblPrefiltered = boolean();
+            else if (key == "temporal") s.temporal = boolean();
+            else if (key == "lights") c.lights = uint(0, 100000);
+            else if (key == "sphereGrid") c.sphereGrid = uint(2, 16);
+            else throw gdi::Error("sweep: unknown key \"" + key + "\" in a case");
+        }
+        cases.push_back(c);
+    }
+    if (cases.empty()) throw gdi::Error("sweep: no cases");
+    return cases;
+}
+
+gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends, const BenchOptions& options,
+                   const std::function<void(const BenchProgress&)>& progress) {
+    gdi::Json doc = {{"schema", "fe-results/1"},
+                     {"kind", "bench"},
+                     {"engine", gdi::engineJson()},
+                     {"date", gdi::utcTimestamp()},
+                     {"options", {{"warmupFrames", options.warmupFrames}, {"frames", options.frames},
+                                  {"referenceIblSamples", options.referenceIblSamples}, {"validation", options.validation}}},
+                     {"backends", gdi::Json::array()},
+                     {"results", gdi::Json::array()}};
+    // The exact images, one per distinct scene, camera, size and light set, shared by backends.
+    std::map<std::string, std::pair<DisplayImage, std::string>> references;
+    const auto start = std::chrono::steady_clock::now();
+    const size_t total = cases.size() * backends.size();
+    size_t done = 0;
+    for (const std::string& backend : backends) {
+        gdi::BackendProbe probe = gdi::probeBackend(backend, options.validation);
+        doc["backends"].push_back(gdi::probeJson(probe));
+        if (!probe.available) {
+            done += cases.size();
+            continue;
+        }
+        gdi::Device& device = *probe.device;
+        for (const BenchCase& c : cases) {
+            ++done;
+            if (progress) {
+                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                progress({done, total, elapsed, done > 1 ? elapsed / double(done - 1) * double(total - done + 1) : 0.0,
+                          backend + " " + c.key()});
+            }
+            gdi::Json r = {{"backend", backend}, {"key", c.key()}, {"settings", settingsJson(c)},
+                           {"softwareRasterizer", device.info().softwareRasterizer}};
+            try {
+                assets::Scene scene = assets::loadScene(c.scene, {}, builtinOptions(c));
+                if (!c.environment.empty()) scene.environment = assets::loadEnvironment(c.environment);
+                SceneRenderer renderer(device, scene, c.settings);
+                std::vector<double> cpu;
+                std::map<std::string, std::vector<double>> gpu;
+                std::vector<std::string> order;
+                for (uint32_t f = 0; f < options.warmupFrames + options.frames; ++f) {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    renderer.renderFrame();
+                    const auto timings = renderer.passTimings();  // waits for the frame
+                    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                    if (f < options.warmupFrames) continue;
+                    cpu.push_back(ms);
+                    for (const auto& t : timings) {
+                        if (!gpu.count(t.name)) order.push_back(t.name);
+                        gpu[t.name].push_back(t.gpuMilliseconds);
+                    }
+                }
+                r["cpuFrameMs"] = stats(cpu);
+                gdi::Json passes = gdi::Json::object();
+                for (const std::string& p : order) passes[p] = stats(gpu[p]);
+                r["gpuPassMs"] = passes;
+                const graph::RenderGraph& g = renderer.graph();
+                gdi::Json textures = gdi::Json::array();
+                const double pixels = double(c.settings.width) * c.settings.height;
+                for (const graph::TextureInfo& t : g.textures())
+                    if (!t.imported && t.used())
+                        textures.push_back({{"name", t.name}, {"format", gdi::formatInfo(t.desc.format).name},
+                                            {"bytes", t.size}, {"bytesPerPixel", double(t.size) / pixels}});
+                r["memory"] = {{"transientWithAliasing", g.memory().withAliasing},
+                               {"transientWithoutAliasing", g.memory().withoutAliasing},
+                               {"bytesPerPixelWithAliasing", double(g.memory().withAliasing) / pixels},
+                               {"bytesPerPixelWithoutAliasing", double(g.memory().withoutAliasing) / pixels},
+                               {"textures", textures}};
+                // The exact image of this scene, camera, size and light set.
+                const ShadowPlan plan = planShadows(scene.lights, *scene.camera, scene.bounds, c.settings.shadows);
+                ReferenceOptions ro;
+                ro.castsShadow = plan.castsShadow();
+                ro.iblSamples = c.settings.ibl() ? options.referenceIblSamples : 0;
+                std::ostringstream refKey;
+                refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|" << c.settings.width
+                       << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure << "|";
+                for (bool b : ro.castsShadow) refKey << b;
+                auto it = references.find(refKey.str());
+                if (it == references.end()) {
+                    const ReferenceImage ref = renderReference(scene, *scene.camera, c.settings.width, c.settings.height, ro);
+                    std::string label = "cpu reference";
+                    if (ro.iblSamples) label += ", image-based lighting at " + std::to_string(ro.iblSamples) + " samples";
+                    if (std::count(ro.castsShadow.begin(), ro.castsShadow.end(), true)) label += ", shadow rays";
+                    it = references.emplace(refKey.str(), std::make_pair(toDisplay(c.settings.width, c.settings.height, ref.radiance,
+                                                                                   c.settings.exposure), label)).first;
+                }
+                const gdi::Image out = renderer.readOutput();
+                std::vector<glm::dvec3> linear;
+                linear.reserve(size_t(out.width) * out.height);
+                for (uint32_t y = 0; y < out.height; ++y)
+                    for (uint32_t x = 0; x < out.width; ++x) {
+                        const auto t = out.texel(x, y);
+                        linear.push_back(glm::dvec3(t[0], t[1], t[2]));
+                    }
+                const ImageMetrics m = compareImages(toDisplay(out.width, out.height, linear, c.settings.exposure), it->second.first);
+                r["reference"] = it->second.second;
+                r["error"] = {{"psnr", finite(m.psnr)}, {"ssim", m.ssim}, {"flip", m.flip}, {"percentOver5", m.percentOver5},
+                              {"maxAbs", m.maxAbs}};
+            } catch (const gdi::Error& e) {
+                r["refused"] = e.what();  // e.g. a technique the backend cannot run: reported, not fatal
+            } catch (const std::exception& e) {
+                r["refused"] = e.what();
+            }
+            doc["results"].push_back(r);
+        }
+        if (options.validation) doc["backends"].back()["validationErrors"] = device.validationErrorCount();
+    }
+    return doc;
+}
+
+std::string resultsCsv(const gdi::Json& doc) {
+    std::ostringstream o;
+    o << "backend,key,scene,technique,width,height,illumScale,msaa,shadows,iblSamples,iblPrefiltered,lights,"
+         "cpuMedianMs,cpuMinMs,cpuMaxMs,gpuSumMedianMs,transientBytes,transientBytesNoAliasing,psnr,ssim,flip,"
+         "percentOver5,maxAbs,refused\n";
+    auto num = [](const gdi::Json& v) { return v.is_null() ? std::string() : v.dump(); };
+    for (const gdi::Json& r : doc.at("results")) {
+        const gdi::Json& s = r.at("settings");
+        o << r.at("backend").get<std::string>() << "," << r.at("key").get<std::string>() << "," << s.at("scene").get<std::string>()
+          << "," << s.at("technique").get<std::string>() << "," << s.at("width") << "," << s.at("height") << ","
+          << s.at("illumScale") << "," << s.at("msaa") << "," << s.at("shadows").at("enabled") << "," << s.at("iblSamples") << ","
+          << s.at("iblPrefiltered") << "," << s.at("lights") << ",";
+        if (r.contains("refused")) {
+            std::string why = r.at("refused").get<std::string>();
+            std::replace(why.begin(), why.end(), ',', ';');
+            std::replace(why.begin(), why.end(), '\n', ' ');
+            o << ",,,,,,,,,,," << why << "\n";
+            continue;
+        }
+        double gpuSum = 0.0;
+        for (const auto& [name, p] : r.at("gpuPassMs").items()) gpuSum += p.at("median").get<double>();
+        const gdi::Json& e = r.at("error");
+        o << num(r.at("cpuFrameMs").at("median")) << "," << num(r.at("cpuFrameMs").at("min")) << ","
+          << num(r.at("cpuFrameMs").at("max")) << "," << gpuSum << "," << r.at("memory").at("transientWithAliasing") << ","
+          << r.at("memory").at("transientWithoutAliasing") << "," << num(e.at("psnr")) << "," << num(e.at("ssim")) << ","
+          << num(e.at("flip")) << "," << num(e.at("percentOver5")) << "," << num(e.at("maxAbs")) << ",\n";
+    }
+    return o.str();
+}
+
+BenchComparison compareResults(const gdi::Json& a, const gdi::Json& b, double timeRatio, double errorPoints) {
+    BenchComparison c;
+    std::map<std::string, const gdi::Json*> before;
+    for (const gdi::Json& r : a.at("results")) before[r.at("backend").get<std::string>() + " " + r.at("key").get<std::string>()] = &r;
+    std::ostringstream o;
+    o.setf(std::ios::fixed);
+    o.precision(2);
+    size_t matched = 0, slower = 0, worse = 0;
+    for (const gdi::Json& r : b.at("results")) {
+        const std::string k = r.at("backend").get<std::string>() + " " + r.at("key").get<std::string>();
+        const auto it = before.find(k);
+        if (it == before.end()) {
+            o << k << ": new\n";
+            continue;
+        }
+        const gdi::Json& p = *it->second;
+        if (p.contains("refused") || r.contains("refused")) {
+            if (p.contains("refused") != r.contains("refused")) {
+                o << k << ": " << (r.contains("refused") ? "now refused: " + r.at("refused").get<std::string>() : "no longer refused")
+                  << "\n";
+                c.regression = c.regression || r.contains("refused");
+            }
+            continue;
+        }
+        ++matched;
+        const double ratio = r.at("cpuFrameMs").at("median").get<double>() / p.at("cpuFrameMs").at("median").get<double>();
+        const double dErr = r.at("error").at("percentOver5").get<double>() - p.at("error").at("percentOver5").get<double>();
+        const bool timeBad = ratio > timeRatio, errorBad = dErr > errorPoints;
+        slower += timeBad;
+        worse += errorBad;
+        if (timeBad || errorBad || std::abs(ratio - 1.0) > 0.05 || std::abs(dErr) > 0.01)
+            o << k << ": frame time x" << ratio << ", pixels over 5/255 " << (dErr >= 0 ? "+" : "") << dErr << " points"
+              << (timeBad ? "  SLOWER" : "") << (errorBad ? "  LESS EXACT" : "") << "\n";
+    }
+    c.regression = c.regression || slower || worse;
+    o << matched << " measurements matched; " << slower << " slower than x" << timeRatio << ", " << worse
+      << " with more than " << errorPoints << " points more pixels over 5/255\n";
+    c.report = o.str();
+    return c;
+}
+
+}  // namespace fe::render

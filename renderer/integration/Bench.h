@@ -1,0 +1,73 @@
+// Layer 8 (Integration): the bench (`fe bench`): every case of a sweep (scene x technique x
+// options) on every backend asked for, timed over frames and compared with an exact image.
+//
+// Per case and backend: CPU frame time and each pass's GPU time (median, min, max over the
+// timed frames, after warm-up frames); the render graph's transient memory with and without
+// aliasing and each transient texture's bytes per pixel; and the error of the image against the
+// CPU double-precision reference of the same scene and camera (renderer/reference), by every
+// measure of ImageMetrics.h. The reference evaluates everything the bench's scenes use
+// (punctual lights, shadow rays, image-based lighting by the sampled estimator at 4096 samples,
+// the converged integral), so every error is against an exact image.
+//
+// The results are one JSON document (schema "fe-results/1", shared in spirit with the
+// conformance report: engine, date, device summaries, then one record per measurement) and a
+// CSV of the same records; compareResults() says what changed between two of them.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/InfoJson.h"
+#include "render/RenderSettings.h"
+
+namespace fe::render {
+
+struct BenchCase {
+    std::string scene = "builtin:spheres";  // builtin:NAME or a glTF path
+    std::string environment;                // "", "builtin:sky" or an .hdr path
+    uint32_t lights = 0;                    // builtin:lights: its light count (0: its default)
+    uint32_t sphereGrid = 5;                // builtin:spheres: spheres per row
+    RenderSettings settings;                // technique, size and every option
+    // "spheres/redeferred/scale2", unique within a sweep: the key compareResults() matches on.
+    std::string key() const;
+};
+
+struct BenchOptions {
+    uint32_t warmupFrames = 2;
+    uint32_t frames = 5;
+    uint32_t referenceIblSamples = 4096;  // the converged integral (EnvironmentTests: 8192 changes it by < 1 %)
+    // The Khronos validation layer / GL debug output on (tests); each backend's record then
+    // counts its validation errors. Off for measuring: the layer's cost is not the engine's.
+    bool validation = false;
+};
+
+struct BenchProgress {
+    size_t index = 0, count = 0;  // measurement index (from 1) of count
+    double elapsedSeconds = 0, remainingSeconds = 0;
+    std::string what;  // backend and case key
+};
+
+// The quick sweep a developer runs before a change lands: every technique on builtin:spheres
+// (redeferred at every illumination scale, the forward techniques and light-prepass also with
+// 4x MSAA), every technique on builtin:shadows with shadows on, image-based lighting at 16, 64
+// and 256 samples and by the fast path, and the light-count scaling on builtin:lights; 96x72.
+std::vector<BenchCase> quickSweep();
+// A sweep file: {"cases": [{"scene": ..., "technique": ..., "size": "WxH", "illumScale": 2,
+// "msaa": 4, "shadows": true, "shadowMapSize": 512, "environment": "builtin:sky",
+// "iblSamples": 64, "iblPrefiltered": false, "lights": 64, "sphereGrid": 5}, ...]}; unknown keys
+// are errors (a typo must not silently bench the default).
+std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep);
+
+gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends, const BenchOptions& options,
+                   const std::function<void(const BenchProgress&)>& progress = {});
+std::string resultsCsv(const gdi::Json& results);
+
+struct BenchComparison {
+    std::string report;      // one line per matched measurement that changed, then a summary
+    bool regression = false;
+};
+// B against A, matched by backend and case key: CPU frame-time ratio B/A beyond `timeRatio` or
+// an error increase (percentage of pixels over 5/255) beyond `errorPoints` is a regression.
+BenchComparison compareResults(const gdi::Json& a, const gdi::Json& b, double timeRatio = 1.25, double errorPoints = 0.5);
+
+}  // namespace fe::render

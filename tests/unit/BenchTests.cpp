@@ -1,0 +1,96 @@
+// The bench (integration/Bench.h): a small sweep on each backend writes every figure the schema
+// promises, the CSV carries the same records, sweep files are checked, and a comparison flags
+// a slower frame or a less exact image as a regression.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <set>
+#include <sstream>
+
+#include "BackendTest.h"
+#include "integration/Bench.h"
+#include "render/TechniqueRenderer.h"
+
+using namespace fe;
+
+namespace {
+std::vector<render::BenchCase> tinySweep() {
+    return render::sweepFromJson(gdi::Json::parse(R"({"cases": [
+        {"scene": "builtin:spheres", "technique": "forward", "size": "48x36", "sphereGrid": 3},
+        {"scene": "builtin:spheres", "technique": "redeferred", "size": "48x36", "sphereGrid": 3, "illumScale": 4},
+        {"scene": "builtin:shadows", "technique": "deferred", "size": "48x36", "shadows": true, "shadowMapSize": 256,
+         "environment": "builtin:sky", "iblPrefiltered": true}]})"));
+}
+
+class Bench : public fe::testing::BackendTest {};
+}  // namespace
+
+TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
+    device.reset();  // the bench opens the backend itself
+    const gdi::Json doc = render::runBench(tinySweep(), {GetParam()}, {.warmupFrames = 1, .frames = 3, .validation = true});
+    EXPECT_EQ(doc["schema"], "fe-results/1");
+    EXPECT_TRUE(doc["engine"].contains("commit"));
+    ASSERT_EQ(doc["backends"].size(), 1u);
+    EXPECT_TRUE(doc["backends"][0]["available"].get<bool>());
+    EXPECT_EQ(doc["backends"][0]["validationErrors"], 0u);
+    ASSERT_EQ(doc["results"].size(), 3u);
+    for (const gdi::Json& r : doc["results"]) {
+        SCOPED_TRACE(r["key"].get<std::string>());
+        ASSERT_FALSE(r.contains("refused")) << r["refused"];
+        EXPECT_EQ(r["cpuFrameMs"]["samples"], 3u);
+        EXPECT_GT(r["cpuFrameMs"]["median"].get<double>(), 0.0);
+        EXPECT_LE(r["cpuFrameMs"]["min"].get<double>(), r["cpuFrameMs"]["max"].get<double>());
+        EXPECT_GT(r["memory"]["transientWithoutAliasing"].get<uint64_t>(), 0u);
+        EXPECT_FALSE(r["memory"]["textures"].empty());
+        for (const char* k : {"ssim", "flip", "percentOver5", "maxAbs"}) EXPECT_TRUE(r["error"][k].is_number()) << k;
+        EXPECT_TRUE(r["settings"].contains("shadows"));
+    }
+    // Forward is exact; the reduced rate is not; the reference knew about shadows and the sky.
+    EXPECT_GT(doc["results"][0]["error"]["psnr"].get<double>(), 45.0);
+    EXPECT_LT(doc["results"][0]["error"]["percentOver5"].get<double>(), 0.5);
+    EXPECT_GT(doc["results"][1]["error"]["percentOver5"].get<double>(), 1.0);
+    EXPECT_EQ(doc["results"][2]["reference"], "cpu reference, image-based lighting at 4096 samples, shadow rays");
+    EXPECT_LT(doc["results"][2]["error"]["flip"].get<double>(), 0.1);
+    const std::string csv = render::resultsCsv(doc);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+    EXPECT_NE(csv.find(GetParam() + ",spheres/redeferred/scale4/48x36,"), std::string::npos) << csv;
+    // Against itself nothing regresses; a doubled frame time or 1 point more error does.
+    EXPECT_FALSE(render::compareResults(doc, doc).regression);
+    gdi::Json slower = doc, worse = doc;
+    slower["results"][1]["cpuFrameMs"]["median"] = doc["results"][1]["cpuFrameMs"]["median"].get<double>() * 2.0;
+    worse["results"][0]["error"]["percentOver5"] = doc["results"][0]["error"]["percentOver5"].get<double>() + 1.0;
+    const render::BenchComparison s = render::compareResults(doc, slower), w = render::compareResults(doc, worse);
+    EXPECT_TRUE(s.regression);
+    EXPECT_NE(s.report.find("redeferred/scale4/48x36: frame time x2.00"), std::string::npos) << s.report;
+    EXPECT_TRUE(w.regression);
+    EXPECT_NE(w.report.find("LESS EXACT"), std::string::npos) << w.report;
+    EXPECT_FALSE(render::compareResults(doc, slower, 2.5).regression);  // the threshold is the user's
+}
+
+FE_INSTANTIATE_FOR_EVERY_BACKEND(Bench);
+
+TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
+    const auto cases = render::quickSweep();
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        size_t n = 0;
+        for (const auto& c : cases) n += c.settings.technique == t.name;
+        EXPECT_GE(n, 2u) << t.name;
+    }
+    std::set<std::string> keys;
+    for (const auto& c : cases) EXPECT_TRUE(keys.insert(c.key()).second) << "duplicate key " << c.key();
+    auto error = [](const char* text) {
+        try {
+            render::sweepFromJson(gdi::Json::parse(text));
+        } catch (const gdi::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    EXPECT_EQ(error(R"({"cases": [{"technique": "forward", "colour": 1}]})"), "sweep: unknown key \"colour\" in a case");
+    EXPECT_EQ(error(R"({"cases": [{"msaa": 16}]})"), "sweep: \"msaa\" must be an integer in [1, 8], got 16");
+    EXPECT_EQ(error(R"({"cases": [{"size": "big"}]})"), "sweep: \"size\" must be WxH, got big");
+    EXPECT_EQ(error(R"({"cases": []})"), "sweep: no cases");
+    EXPECT_EQ(error(R"([1, 2])"), "sweep: expected an object with a \"cases\" array");
+    EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"), std::string::npos);
+}
