@@ -11,6 +11,7 @@ PACKAGES=(
   libglfw3-dev libx11-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   googletest libgtest-dev libbenchmark-dev
   xvfb xauth
+  python3-matplotlib chromium  # fe bench: its charts, and the browser test of its report
 )
 
 missing=()

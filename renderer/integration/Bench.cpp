@@ -3,7 +3,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include "assets/BuiltinScenes.h"
 #include "assets/Environment.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Image.h"
 #include "integration/SceneRenderer.h"
 #include "reference/CpuReference.h"
 #include "reference/ImageMetrics.h"
@@ -66,6 +69,31 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"exposure", s.exposure}};
 }
 
+// A file name from a case key ("spheres/redeferred/scale2/96x72" -> "spheres_redeferred_scale2_96x72").
+std::string fileName(std::string key) {
+    for (char& ch : key)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-') ch = '_';
+    return key;
+}
+
+gdi::Image displayToImage(const DisplayImage& d) {
+    std::vector<std::array<float, 4>> t;
+    t.reserve(d.rgb.size());
+    for (const glm::vec3& c : d.rgb) t.push_back({c.r, c.g, c.b, 1.0f});
+    return gdi::Image::fromTexels(d.width, d.height, gdi::Format::RGBA8, t);
+}
+
+// FLIP's map as the paper shows it: black (no difference) through red and yellow to white.
+gdi::Image heatMap(uint32_t w, uint32_t h, const std::vector<float>& map) {
+    std::vector<std::array<float, 4>> t;
+    t.reserve(map.size());
+    for (float v : map) {
+        const float x = std::clamp(v, 0.0f, 1.0f);
+        t.push_back({std::min(1.0f, 3.0f * x), std::clamp(3.0f * x - 1.0f, 0.0f, 1.0f), std::clamp(3.0f * x - 2.0f, 0.0f, 1.0f), 1.0f});
+    }
+    return gdi::Image::fromTexels(w, h, gdi::Format::RGBA8, t);
+}
+
 // JSON has no infinity: identical images have PSNR null.
 gdi::Json finite(double v) { return std::isfinite(v) ? gdi::Json(v) : gdi::Json(nullptr); }
 
@@ -109,22 +137,22 @@ std::vector<BenchCase> quickSweep() {
         cases.push_back(c);
     }
     // Image-based lighting: convergence with the sample count, and the fast path.
-    for (const char* t : {"forward", "deferred", "redeferred"}) {
+    for (const TechniqueInfo& t : techniques()) {
         for (uint32_t n : {16u, 64u, 256u}) {
-            BenchCase c = make("builtin:spheres", t);
+            BenchCase c = make("builtin:spheres", t.name);
             c.environment = "builtin:sky";
             c.settings.iblSamples = n;
             cases.push_back(c);
         }
-        BenchCase c = make("builtin:spheres", t);
+        BenchCase c = make("builtin:spheres", t.name);
         c.environment = "builtin:sky";
         c.settings.iblPrefiltered = true;
         cases.push_back(c);
     }
     // Scaling with the light count.
     for (uint32_t lights : {16u, 64u, 256u})
-        for (const char* t : {"forward", "deferred", "deferred-tiled", "redeferred-tiled"}) {
-            BenchCase c = make("builtin:lights", t);
+        for (const TechniqueInfo& t : techniques()) {
+            BenchCase c = make("builtin:lights", t.name);
             c.lights = lights;
             cases.push_back(c);
         }
@@ -196,7 +224,11 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                      {"backends", gdi::Json::array()},
                      {"results", gdi::Json::array()}};
     // The exact images, one per distinct scene, camera, size and light set, shared by backends.
-    std::map<std::string, std::pair<DisplayImage, std::string>> references;
+    struct Reference {
+        DisplayImage image;
+        std::string label, file;
+    };
+    std::map<std::string, Reference> references;
     const auto start = std::chrono::steady_clock::now();
     const size_t total = cases.size() * backends.size();
     size_t done = 0;
@@ -267,9 +299,15 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     std::string label = "cpu reference";
                     if (ro.iblSamples) label += ", image-based lighting at " + std::to_string(ro.iblSamples) + " samples";
                     if (std::count(ro.castsShadow.begin(), ro.castsShadow.end(), true)) label += ", shadow rays";
-                    it = references.emplace(refKey.str(), std::make_pair(toDisplay(c.settings.width, c.settings.height, ref.radiance,
-                                                                                   c.settings.exposure), label)).first;
+                    Reference made{toDisplay(c.settings.width, c.settings.height, ref.radiance, c.settings.exposure), label,
+                                   "reference/" + fileName(c.key()) + ".png"};
+                    if (!options.imageDir.empty()) {
+                        std::filesystem::create_directories(options.imageDir + "/reference");
+                        gdi::writePng(displayToImage(made.image), options.imageDir + "/" + made.file);
+                    }
+                    it = references.emplace(refKey.str(), std::move(made)).first;
                 }
+                if (!options.imageDir.empty()) r["referenceImage"] = it->second.file;
                 const gdi::Image out = renderer.readOutput();
                 std::vector<glm::dvec3> linear;
                 linear.reserve(size_t(out.width) * out.height);
@@ -278,8 +316,19 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                         const auto t = out.texel(x, y);
                         linear.push_back(glm::dvec3(t[0], t[1], t[2]));
                     }
-                const ImageMetrics m = compareImages(toDisplay(out.width, out.height, linear, c.settings.exposure), it->second.first);
-                r["reference"] = it->second.second;
+                const DisplayImage shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
+                const ImageMetrics m = compareImages(shown, it->second.image);
+                if (!options.imageDir.empty()) {
+                    const std::string dir = options.imageDir + "/" + backend;
+                    std::filesystem::create_directories(dir);
+                    const std::string name = backend + "/" + fileName(c.key());
+                    gdi::writePng(displayToImage(shown), options.imageDir + "/" + name + ".png");
+                    gdi::writePng(heatMap(out.width, out.height, flipErrorMap(shown, it->second.image)),
+                                  options.imageDir + "/" + name + ".flip.png");
+                    r["image"] = name + ".png";
+                    r["flipImage"] = name + ".flip.png";
+                }
+                r["reference"] = it->second.label;
                 r["error"] = {{"psnr", finite(m.psnr)}, {"ssim", m.ssim}, {"flip", m.flip}, {"percentOver5", m.percentOver5},
                               {"maxAbs", m.maxAbs}};
             } catch (const gdi::Error& e) {

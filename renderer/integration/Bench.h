@@ -39,6 +39,10 @@ struct BenchOptions {
     // The Khronos validation layer / GL debug output on (tests); each backend's record then
     // counts its validation errors. Off for measuring: the layer's cost is not the engine's.
     bool validation = false;
+    // When set, each measurement's image, its reference and FLIP's error map as a heat map are
+    // written there as PNG (images/BACKEND/KEY.png, KEY.flip.png, reference/...) and named in
+    // the record, for the report's matrix of thumbnails.
+    std::string imageDir;
 };
 
 struct BenchProgress {
@@ -49,8 +53,8 @@ struct BenchProgress {
 
 // The quick sweep a developer runs before a change lands: every technique on builtin:spheres
 // (redeferred at every illumination scale, the forward techniques and light-prepass also with
-// 4x MSAA), every technique on builtin:shadows with shadows on, image-based lighting at 16, 64
-// and 256 samples and by the fast path, and the light-count scaling on builtin:lights; 96x72.
+// 4x MSAA), and every technique on builtin:shadows with shadows on, lit by builtin:sky at 16, 64
+// and 256 samples and by the fast path, and on builtin:lights with 16, 64 and 256 lights; 96x72.
 std::vector<BenchCase> quickSweep();
 // A sweep file: {"cases": [{"scene": ..., "technique": ..., "size": "WxH", "illumScale": 2,
 // "msaa": 4, "shadows": true, "shadowMapSize": 512, "environment": "builtin:sky",

@@ -465,6 +465,7 @@ int cmdBench(const Args& a) {
     if (a.options.count("--frames")) options.frames = parseUint(a.options.at("--frames"), "--frames", 1, 1000);
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "bench";
     std::filesystem::create_directories(out);
+    options.imageDir = out + "/images";
     const bool tty = isatty(2);
     const gdi::Json results = render::runBench(cases, backends, options, [&](const render::BenchProgress& p) {
         std::ostringstream line;
@@ -487,6 +488,15 @@ int cmdBench(const Args& a) {
     for (const auto& r : results["results"]) refused += r.contains("refused");
     std::cout << results["results"].size() << " measurements (" << refused << " refused) on " << backends.size()
               << " backend(s); wrote " << out << "/results.json and " << out << "/results.csv\n";
+    // The charts and report.html, drawn by tools/bench/report.py with Debian's python3-matplotlib.
+    // Debian's interpreter, whose python3-matplotlib it is (a python3 earlier on PATH may lack it).
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string command = python + " '" + std::string(FE_BENCH_REPORT_SCRIPT) + "' '" + out + "/results.json'";
+    const int rc = std::system(command.c_str());
+    if (rc != 0)
+        throw gdi::Error("the charts and report were not drawn: '" + command + "' failed (exit " +
+                         std::to_string(WIFEXITED(rc) ? WEXITSTATUS(rc) : rc) +
+                         "); python3 and python3-matplotlib are needed (tools/install-deps.sh)");
     return 0;
 }
 

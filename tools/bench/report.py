@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""fe bench's charts and report (called by `fe bench`, or by hand: report.py DIR/results.json).
+
+Reads results.json and writes beside it charts/*.png and charts/*.svg (Debian's
+python3-matplotlib) and report.html: the charts, then per case a row of every backend's image,
+FLIP heat map against the exact reference and metrics. Every chart names its axes, units and
+devices, and says when a device is a software rasterizer.
+"""
+import html
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def slug(text):
+    return "".join(c if c.isalnum() or c == "-" else "_" for c in text).strip("_")
+
+
+def main(path):
+    out = os.path.dirname(os.path.abspath(path))
+    with open(path) as f:
+        doc = json.load(f)
+    results = [r for r in doc["results"] if "refused" not in r]
+    refused = [r for r in doc["results"] if "refused" in r]
+    backends = [b["name"] for b in doc["backends"] if b.get("available")]
+    devices = {b["name"]: b.get("device", {}) for b in doc["backends"]}
+
+    def device_label(backend):
+        dev = devices.get(backend, {})
+        soft = " (software rasterizer)" if dev.get("softwareRasterizer") else ""
+        return f"{backend}: {dev.get('deviceName', '?')}{soft}"
+
+    def short(r):
+        return r["key"].split("/", 1)[1].rsplit("/", 1)[0]
+
+    os.makedirs(os.path.join(out, "charts"), exist_ok=True)
+    charts = []
+
+    def save(fig, name, caption):
+        for ext in ("png", "svg"):
+            fig.savefig(os.path.join(out, "charts", f"{name}.{ext}"), dpi=90, bbox_inches="tight")
+        plt.close(fig)
+        charts.append((name, caption))
+
+    def per_backend(title):
+        fig, axes = plt.subplots(1, max(1, len(backends)), figsize=(6.5 * max(1, len(backends)), 5), squeeze=False)
+        fig.suptitle(title)
+        return fig, list(zip(axes[0], backends))
+
+    # 1. Speed against accuracy, per scene configuration: every technique and option a point,
+    # the Pareto front (nothing both faster and more exact) dashed.
+    groups = {}
+    for r in results:
+        s = r["settings"]
+        if s["iblSamples"] or s["iblPrefiltered"] or s["lights"]:
+            continue  # charted below
+        groups.setdefault((s["scene"], s["shadows"]["enabled"]), []).append(r)
+    for (scene, shadows), rows in sorted(groups.items()):
+        label = scene + (" with shadows" if shadows else "")
+        fig, axes = per_backend(f"{label}: frame time against error (Pareto front dashed)")
+        for ax, b in axes:
+            pts = sorted((r for r in rows if r["backend"] == b), key=lambda r: r["cpuFrameMs"]["median"])
+            for r in pts:
+                ax.scatter(r["cpuFrameMs"]["median"], r["error"]["percentOver5"], s=18)
+                ax.annotate(short(r), (r["cpuFrameMs"]["median"], r["error"]["percentOver5"]), fontsize=6,
+                            xytext=(3, 2), textcoords="offset points")
+            front, best = [], float("inf")
+            for r in pts:
+                if r["error"]["percentOver5"] < best:
+                    best = r["error"]["percentOver5"]
+                    front.append(r)
+            if front:
+                ax.plot([r["cpuFrameMs"]["median"] for r in front], [r["error"]["percentOver5"] for r in front], "k--",
+                        linewidth=0.8, drawstyle="steps-post")
+            ax.set_xlabel("CPU frame time, median (ms)")
+            ax.set_ylabel("pixels beyond 5/255 of the exact image (%)")
+            ax.set_title(device_label(b), fontsize=9)
+            ax.grid(alpha=0.3)
+        save(fig, "time_vs_error_" + slug(label), f"{label}: speed against accuracy")
+
+    # 2. Scaling: frame time against light count.
+    lights = [r for r in results if r["settings"]["lights"]]
+    if lights:
+        fig, axes = per_backend("builtin:lights: frame time against the number of lights")
+        for ax, b in axes:
+            for t in sorted({r["settings"]["technique"] for r in lights}):
+                pts = sorted((r for r in lights if r["backend"] == b and r["settings"]["technique"] == t),
+                             key=lambda r: r["settings"]["lights"])
+                ax.plot([r["settings"]["lights"] for r in pts], [r["cpuFrameMs"]["median"] for r in pts], "o-", label=t)
+            ax.set_xscale("log", base=2)
+            ax.set_xlabel("point lights")
+            ax.set_ylabel("CPU frame time, median (ms)")
+            ax.set_title(device_label(b), fontsize=9)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        save(fig, "scaling_lights", "scaling with the light count")
+
+    # 3. Image-based lighting: error against the sample count; the fast path as a dashed level.
+    ibl = [r for r in results if r["settings"]["iblSamples"] or r["settings"]["iblPrefiltered"]]
+    if ibl:
+        fig, axes = per_backend("image-based lighting: error against samples per term (fast path dashed)")
+        for ax, b in axes:
+            for i, t in enumerate(sorted({r["settings"]["technique"] for r in ibl})):
+                rows = [r for r in ibl if r["backend"] == b and r["settings"]["technique"] == t]
+                pts = sorted((r for r in rows if r["settings"]["iblSamples"]), key=lambda r: r["settings"]["iblSamples"])
+                line, = ax.plot([r["settings"]["iblSamples"] for r in pts], [r["error"]["percentOver5"] for r in pts], "o-",
+                                label=t)
+                for r in rows:
+                    if r["settings"]["iblPrefiltered"]:
+                        ax.axhline(r["error"]["percentOver5"], color=line.get_color(), linestyle="--", linewidth=0.8)
+            ax.set_xscale("log", base=2)
+            ax.set_xlabel("importance samples per term")
+            ax.set_ylabel("pixels beyond 5/255 of the converged integral (%)")
+            ax.set_title(device_label(b), fontsize=9)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        save(fig, "ibl_convergence", "image-based lighting convergence")
+
+    # 4. Memory per technique: transient bytes per pixel with and without aliasing.
+    mem = [r for r in groups.get(("builtin:spheres", False), []) if r["settings"]["illumScale"] == 1 and r["settings"]["msaa"] == 1]
+    if mem:
+        fig, axes = per_backend("transient memory per technique (builtin:spheres, one sample, full rate)")
+        for ax, b in axes:
+            rows = [r for r in mem if r["backend"] == b]
+            names = [r["settings"]["technique"] for r in rows]
+            x = range(len(rows))
+            ax.bar([i - 0.2 for i in x], [r["memory"]["bytesPerPixelWithoutAliasing"] for r in rows], 0.4, label="without aliasing")
+            ax.bar([i + 0.2 for i in x], [r["memory"]["bytesPerPixelWithAliasing"] for r in rows], 0.4, label="with aliasing")
+            ax.set_xticks(list(x))
+            ax.set_xticklabels(names, rotation=45, ha="right", fontsize=7)
+            ax.set_ylabel("transient bytes per pixel")
+            ax.set_title(device_label(b), fontsize=9)
+            ax.legend(fontsize=7)
+        save(fig, "memory", "transient memory per technique")
+
+    # The report.
+    e = html.escape
+    engine = doc.get("engine", {})
+    parts = [f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>fe bench report</title>
+<style>body{{font-family:sans-serif;margin:1em}} table{{border-collapse:collapse}} td,th{{border:1px solid #ccc;padding:3px;
+font-size:12px;vertical-align:top}} img.t{{image-rendering:pixelated;width:144px}} .chart{{max-width:100%}}</style>
+<script>window.feErrors = 0; window.addEventListener('error', () => window.feErrors++, true);
+const feConsoleError = console.error; console.error = (...a) => {{ window.feErrors++; feConsoleError(...a); }};</script>
+</head><body>
+<h1>fe bench</h1>
+<p>{e(engine.get('name', ''))} {e(engine.get('version', ''))} ({e(engine.get('commit', ''))}), {e(doc.get('date', ''))};
+{len(results)} measurements, {len(refused)} refused. Error: against the CPU double-precision reference of the same
+scene and camera, on the displayed 8-bit image.</p>
+<ul>{''.join(f'<li>{e(device_label(b))}</li>' for b in backends)}</ul>
+<h2>Charts</h2>"""]
+    for name, caption in charts:
+        parts.append(f'<figure><img class="chart" src="charts/{name}.png" alt="{e(caption)}"><figcaption>{e(caption)} '
+                     f'(<a href="charts/{name}.svg">SVG</a>)</figcaption></figure>')
+    parts.append("<h2>Images</h2><p>Per case: the reference, then per backend the image, its FLIP heat map (black: "
+                 "no visible difference, white: the largest) and its metrics.</p><table><tr><th>case</th><th>reference</th>")
+    parts += [f"<th>{e(device_label(b))}</th>" for b in backends]
+    parts.append("</tr>")
+    keys = list(dict.fromkeys(r["key"] for r in results))
+    for k in keys:
+        rows = {r["backend"]: r for r in results if r["key"] == k}
+        first = next(iter(rows.values()))
+        ref = first.get("referenceImage")
+        parts.append(f"<tr><td>{e(k)}<br>{e(first.get('reference', ''))}</td><td>"
+                     + (f'<img class="t" src="images/{e(ref)}" alt="reference">' if ref else "") + "</td>")
+        for b in backends:
+            r = rows.get(b)
+            if not r:
+                parts.append("<td>refused</td>")
+                continue
+            m = r["error"]
+            psnr = "inf" if m["psnr"] is None else f"{m['psnr']:.1f}"
+            imgs = ""
+            if "image" in r:
+                imgs = (f'<img class="t" src="images/{e(r["image"])}" alt="image"> '
+                        f'<img class="t" src="images/{e(r["flipImage"])}" alt="FLIP">')
+            parts.append(f"<td>{imgs}<br>{r['cpuFrameMs']['median']:.1f} ms; PSNR {psnr} dB, SSIM {m['ssim']:.4f}, "
+                         f"FLIP {m['flip']:.4f}, {m['percentOver5']:.2f} % over 5/255, max {m['maxAbs']:.3f}</td>")
+        parts.append("</tr>")
+    parts.append("</table>")
+    if refused:
+        parts.append("<h2>Refused</h2><ul>" + "".join(f"<li>{e(r['backend'])} {e(r['key'])}: {e(r['refused'])}</li>" for r in refused)
+                     + "</ul>")
+    # For the browser test: how many images loaded, how many did not, and script errors.
+    parts.append("""<script>
+window.addEventListener('load', () => {
+  const imgs = Array.from(document.images);
+  const broken = imgs.filter(i => !i.complete || i.naturalWidth === 0).length;
+  document.body.dataset.images = imgs.length;
+  document.body.dataset.broken = broken;
+  document.body.dataset.errors = window.feErrors;
+});
+</script></body></html>""")
+    with open(os.path.join(out, "report.html"), "w") as f:
+        f.write("\n".join(parts))
+    print(f"wrote {len(charts)} charts and {os.path.join(out, 'report.html')}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: report.py DIR/results.json")
+    main(sys.argv[1])
