@@ -240,6 +240,17 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
             continue;
         }
         gdi::Device& device = *probe.device;
+        // A throwaway frame first: the backend's one-time costs (shader compiler start-up) must
+        // not land in the first case's figures.
+        try {
+            assets::Scene scene = assets::loadScene(cases.front().scene, {}, builtinOptions(cases.front()));
+            SceneRenderer warm(device, scene, {.technique = "forward", .width = 32, .height = 32});
+            warm.renderFrame();
+            warm.renderFrame();
+            warm.readOutput();
+        } catch (const std::exception&) {
+            // the case itself will report what is wrong
+        }
         for (const BenchCase& c : cases) {
             ++done;
             if (progress) {
