@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "assets/AssetError.h"
 
 namespace fe::assets {
 
@@ -100,7 +103,52 @@ void addDefaultLights(Scene& scene, const Camera& cam) {
     scene.hasDefaultLights = true;
 }
 
+namespace {
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+    for (int i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+bool finite(float v) { return std::isfinite(v); }
+bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
+}  // namespace
+
+void checkFinite(const Scene& scene) {
+    auto fail = [](const std::string& what) { throw AssetError(what + " is not finite (NaN or infinity)"); };
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+        for (size_t p = 0; p < scene.meshes[m].primitives.size(); ++p) {
+            const Primitive& prim = scene.meshes[m].primitives[p];
+            for (size_t v = 0; v < prim.vertices.size(); ++v) {
+                const Vertex& x = prim.vertices[v];
+                const std::string where = "mesh '" + scene.meshes[m].name + "' primitive " + std::to_string(p) + " vertex " +
+                                          std::to_string(v) + ": ";
+                if (!finite(x.position)) fail(where + "its position");
+                if (!finite(x.normal)) fail(where + "its normal");
+                if (!finite(x.tangent)) fail(where + "its tangent");
+                if (!finite(x.uv0)) fail(where + "its uv");
+            }
+        }
+    for (const Material& m : scene.materials) {
+        const std::string where = "material '" + m.name + "': ";
+        if (!finite(m.baseColorFactor)) fail(where + "baseColorFactor");
+        if (!finite(m.metallic) || !finite(m.roughness)) fail(where + "metallic or roughness");
+        if (!finite(m.emissiveFactor)) fail(where + "emissiveFactor");
+        if (!finite(m.normalScale) || !finite(m.occlusionStrength) || !finite(m.alphaCutoff))
+            fail(where + "normalScale, occlusionStrength or alphaCutoff");
+    }
+    for (const MeshInstance& i : scene.instances)
+        if (!finite(i.world)) fail("node '" + i.name + "': its transform");
+    for (const Light& l : scene.lights)
+        if (!finite(l.color) || !finite(l.intensity) || !finite(l.range) || !finite(l.position) || !finite(l.direction) ||
+            !finite(l.innerConeAngle) || !finite(l.outerConeAngle))
+            fail("light '" + l.name + "'");
+    if (scene.camera && (!finite(scene.camera->worldFromView) || !finite(scene.camera->yfov) || !finite(scene.camera->znear)))
+        fail("camera '" + scene.camera->name + "'");
+}
+
 void finalizeScene(Scene& scene, bool addCamera, bool addLights) {
+    checkFinite(scene);
     scene.bounds = computeWorldBounds(scene);
     if (!scene.camera && addCamera) {
         scene.camera = makeDefaultCamera(scene.bounds);

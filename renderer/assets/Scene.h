@@ -194,7 +194,14 @@ Camera makeDefaultCamera(const AABB& worldBounds);
 // GltfLoader.h. Appends to scene.lights and sets hasDefaultLights.
 void addDefaultLights(Scene& scene, const Camera& camera);
 
-// Recomputes bounds, then adds the default camera / lights when asked and missing.
+// Throws AssetError naming the first non-finite number (NaN or infinity) in the scene: a vertex
+// position, normal, tangent or uv, a material factor, an instance transform, a light or the
+// camera. Nothing downstream can shade such data into anything but garbage. Denormal numbers
+// are finite and pass.
+void checkFinite(const Scene& scene);
+
+// Checks the scene is finite (checkFinite), recomputes bounds, then adds the default camera /
+// lights when asked and missing.
 void finalizeScene(Scene& scene, bool addDefaultCameraIfMissing, bool addDefaultLightsIfMissing);
 
 }  // namespace fe::assets

@@ -1,5 +1,6 @@
 #include "integration/SceneRenderer.h"
 
+#include "assets/AssetError.h"
 #include "fe/gdi/ShaderRegistry.h"
 #include "reference/CameraMath.h"
 #include "render/ShaderSlots.h"
@@ -31,6 +32,11 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");
+    try {
+        assets::checkFinite(scene);
+    } catch (const assets::AssetError& e) {
+        throw gdi::Error(std::string("scene refused: ") + e.what());
+    }
     camera_ = *scene.camera;
     if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8)
         throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");

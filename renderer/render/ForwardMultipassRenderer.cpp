@@ -3,6 +3,10 @@
 namespace fe::render {
 
 void ForwardMultipassRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+    if (ctx_.scene.lightCount() > kMaxLights)
+        throw gdi::Error("forward-multipass draws the scene once per light: " + std::to_string(ctx_.scene.lightCount()) +
+                         " lights would be as many passes (at most " + std::to_string(kMaxLights) +
+                         "; forward, deferred or deferred-tiled take any number)");
     const ForwardTargets t = forwardTargets(g, output, depth);
     g.addPass("forward-multipass", [&](graph::PassBuilder& b) {
         b.colorTarget(t.color);
