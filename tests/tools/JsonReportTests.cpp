@@ -120,6 +120,8 @@ TEST(ConformanceReport, CarriesDevicesCasesAndComparisons) {
     ASSERT_TRUE(f) << "no report written at " << path;
     const json report = json::parse(f);
 
+    EXPECT_EQ(report["schema"], "fe-results/1");  // the bench's schema too
+    EXPECT_EQ(report["kind"], "conformance");
     EXPECT_EQ(report["engine"]["name"], "Fools Engine");
     EXPECT_TRUE(std::regex_match(report["date"].get<std::string>(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
         << report["date"];

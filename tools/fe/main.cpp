@@ -512,6 +512,8 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     if (a.options.count("--report")) {
         const std::string path = a.options.at("--report");
         const gdi::Json report = {
+            {"schema", "fe-results/1"},  // as fe bench's results: engine, date, device summaries, then records
+            {"kind", "conformance"},
             {"engine", gdi::engineJson()},
             {"date", date},
             {"arguments", arguments},
