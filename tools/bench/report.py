@@ -47,6 +47,14 @@ def main(path):
         plt.close(fig)
         charts.append((name, caption))
 
+    def log2_axes(ax, backend, xlabel, ylabel):
+        ax.set_xscale("log", base=2)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(device_label(backend), fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+
     def per_backend(title):
         fig, axes = plt.subplots(1, max(1, len(backends)), figsize=(6.5 * max(1, len(backends)), 5), squeeze=False)
         fig.suptitle(title)
@@ -92,12 +100,7 @@ def main(path):
                 pts = sorted((r for r in lights if r["backend"] == b and r["settings"]["technique"] == t),
                              key=lambda r: r["settings"]["lights"])
                 ax.plot([r["settings"]["lights"] for r in pts], [r["cpuFrameMs"]["median"] for r in pts], "o-", label=t)
-            ax.set_xscale("log", base=2)
-            ax.set_xlabel("point lights")
-            ax.set_ylabel("CPU frame time, median (ms)")
-            ax.set_title(device_label(b), fontsize=9)
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            log2_axes(ax, b, "point lights", "CPU frame time, median (ms)")
         save(fig, "scaling_lights", "scaling with the light count")
 
     # 3. Image-based lighting: error against the sample count; the fast path as a dashed level.
@@ -105,7 +108,7 @@ def main(path):
     if ibl:
         fig, axes = per_backend("image-based lighting: error against samples per term (fast path dashed)")
         for ax, b in axes:
-            for i, t in enumerate(sorted({r["settings"]["technique"] for r in ibl})):
+            for t in sorted({r["settings"]["technique"] for r in ibl}):
                 rows = [r for r in ibl if r["backend"] == b and r["settings"]["technique"] == t]
                 pts = sorted((r for r in rows if r["settings"]["iblSamples"]), key=lambda r: r["settings"]["iblSamples"])
                 line, = ax.plot([r["settings"]["iblSamples"] for r in pts], [r["error"]["percentOver5"] for r in pts], "o-",
@@ -113,12 +116,7 @@ def main(path):
                 for r in rows:
                     if r["settings"]["iblPrefiltered"]:
                         ax.axhline(r["error"]["percentOver5"], color=line.get_color(), linestyle="--", linewidth=0.8)
-            ax.set_xscale("log", base=2)
-            ax.set_xlabel("importance samples per term")
-            ax.set_ylabel("pixels beyond 5/255 of the converged integral (%)")
-            ax.set_title(device_label(b), fontsize=9)
-            ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            log2_axes(ax, b, "importance samples per term", "pixels beyond 5/255 of the converged integral (%)")
         save(fig, "ibl_convergence", "image-based lighting convergence")
 
     # 4. Memory per technique: transient bytes per pixel with and without aliasing.
