@@ -15,6 +15,7 @@
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/Image.h"
 #include "integration/SceneRenderer.h"
+#include "integration/StabilitySuite.h"
 #include "reference/CpuReference.h"
 #include "reference/ImageMetrics.h"
 #include "render/ShadowPlan.h"
@@ -352,6 +353,46 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
         if (options.validation) doc["backends"].back()["validationErrors"] = device.validationErrorCount();
     }
     return doc;
+}
+
+gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width, uint32_t height,
+                       const std::function<void(const BenchProgress&)>& progress) {
+    gdi::Json records = gdi::Json::array();
+    const std::vector<StabilityCase> cases = stabilityCases();
+    const auto start = std::chrono::steady_clock::now();
+    size_t done = 0;
+    const size_t total = cases.size() * backends.size();
+    std::map<std::string, std::vector<glm::dvec3>> references;
+    for (const std::string& backend : backends) {
+        gdi::BackendProbe probe = gdi::probeBackend(backend, false);
+        if (!probe.available) continue;
+        for (const StabilityCase& c : cases) {
+            ++done;
+            if (progress) {
+                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                progress({done, total, elapsed, done > 1 ? elapsed / double(done - 1) * double(total - done + 1) : 0.0,
+                          backend + " stability: " + c.name});
+            }
+            const assets::Scene scene = c.scene();
+            if (c.refusal.empty() && c.exactBound >= 0.0 && !references.count(c.name))
+                references[c.name] = renderReference(scene, *scene.camera, width, height).radiance;
+            static const std::vector<glm::dvec3> none;
+            const auto ref = references.find(c.name);
+            for (const TechniqueInfo& t : techniques()) {
+                if (std::string(t.name).find("tiled") != std::string::npos && !probe.device->info().features.computeShaders)
+                    continue;
+                const StabilityOutcome o = runStabilityCase(*probe.device, scene, t.name, width, height,
+                                                            ref == references.end() ? none : ref->second);
+                gdi::Json r = {{"backend", backend}, {"case", c.name}, {"technique", t.name}, {"bound", c.exactBound}};
+                if (o.refused) r["refused"] = o.message;
+                else if (o.nonFinite) r["nonFinite"] = o.nonFinite;
+                else if (o.percentOver5 >= 0.0) r["percentOver5"] = o.percentOver5;
+                else r["finite"] = true;
+                records.push_back(r);
+            }
+        }
+    }
+    return records;
 }
 
 std::string resultsCsv(const gdi::Json& doc) {

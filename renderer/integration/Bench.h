@@ -66,6 +66,13 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                    const std::function<void(const BenchProgress&)>& progress = {});
 std::string resultsCsv(const gdi::Json& results);
 
+// The stability suite (StabilitySuite.h) on the backends: one record per backend, case and
+// technique with its outcome (the percentage of pixels beyond 5/255 of the reference, the
+// refusal, or non-finite pixels) and the case's bound; fe bench adds them to its results as
+// "stability", and the report shows them as a technique x case table.
+gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width = 48, uint32_t height = 36,
+                       const std::function<void(const BenchProgress&)>& progress = {});
+
 struct BenchComparison {
     std::string report;      // one line per matched measurement that changed, then a summary
     bool regression = false;

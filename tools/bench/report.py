@@ -181,6 +181,38 @@ scene and camera, on the displayed 8-bit image.</p>
                          f"FLIP {m['flip']:.4f}, {m['percentOver5']:.2f} % over 5/255, max {m['maxAbs']:.3f}</td>")
         parts.append("</tr>")
     parts.append("</table>")
+    stability = doc.get("stability", [])
+    if stability:
+        parts.append("<h2>Stability</h2><p>Per case and technique: the percentage of pixels beyond 5/255 of the CPU "
+                     "reference (bound for the exact techniques in brackets), or the refusal and its reason. Backends "
+                     "that differ from the first are named.</p><table><tr><th>case</th>")
+        techniques = list(dict.fromkeys(r["technique"] for r in stability))
+        parts += [f"<th>{e(t)}</th>" for t in techniques]
+        parts.append("</tr>")
+
+        def outcome(r):
+            if "refused" in r:
+                return "refused: " + r["refused"]
+            if "nonFinite" in r:
+                return f"NON-FINITE ({r['nonFinite']})"
+            if "percentOver5" in r:
+                return f"{r['percentOver5']:.2f} %"
+            return "finite"
+
+        for case in dict.fromkeys(r["case"] for r in stability):
+            rows = [r for r in stability if r["case"] == case]
+            bound = rows[0]["bound"]
+            parts.append(f"<tr><td>{e(case)}" + (f" [{bound:g} %]" if bound >= 0 else "") + "</td>")
+            for t in techniques:
+                cells = [r for r in rows if r["technique"] == t]
+                if not cells:
+                    parts.append("<td></td>")
+                    continue
+                first = outcome(cells[0])
+                others = [f"{r['backend']}: {outcome(r)}" for r in cells[1:] if outcome(r) != first]
+                parts.append(f"<td>{e(first)}" + "".join(f"<br>{e(o)}" for o in others) + "</td>")
+            parts.append("</tr>")
+        parts.append("</table>")
     if refused:
         parts.append("<h2>Refused</h2><ul>" + "".join(f"<li>{e(r['backend'])} {e(r['key'])}: {e(r['refused'])}</li>" for r in refused)
                      + "</ul>")

@@ -62,7 +62,8 @@ constexpr const char* kUsage =
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
-    "      5/255, max); writes DIR/results.json and DIR/results.csv (default DIR: bench)\n"
+    "      5/255, max); the stability suite's table too with --quick or --stability; writes DIR/results.json,\n"
+    "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench)\n"
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
@@ -467,12 +468,17 @@ int cmdBench(const Args& a) {
     std::filesystem::create_directories(out);
     options.imageDir = out + "/images";
     const bool tty = isatty(2);
-    const gdi::Json results = render::runBench(cases, backends, options, [&](const render::BenchProgress& p) {
+    const auto showProgress = [&](const render::BenchProgress& p) {
         std::ostringstream line;
         line << "[" << p.index << "/" << p.count << "] " << p.what << "  elapsed " << int(p.elapsedSeconds) << " s, about "
              << int(p.remainingSeconds + 0.5) << " s left";
         std::cerr << (tty ? "\r\033[K" : "") << line.str() << (tty ? "" : "\n") << std::flush;
-    });
+    };
+    const gdi::Json bench = render::runBench(cases, backends, options, showProgress);
+    gdi::Json results = bench;
+    // The stability table: with --quick, or --stability.
+    if (!a.options.count("--sweep") || a.options.count("--stability"))
+        results["stability"] = render::runStability(backends, 48, 36, showProgress);
     if (tty) std::cerr << "\n";
     {
         std::ofstream f(out + "/results.json");
@@ -548,7 +554,7 @@ int main(int argc, char** argv) {
                                     "--ibl-prefiltered", "--temporal"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
-                                  {"--quick"}));
+                                  {"--quick", "--stability"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
