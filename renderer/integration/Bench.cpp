@@ -241,14 +241,17 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
             continue;
         }
         gdi::Device& device = *probe.device;
-        // A throwaway frame first: the backend's one-time costs (shader compiler start-up) must
-        // not land in the first case's figures.
+        // The first case once over, untimed: on a fresh lavapipe device the first case's frames
+        // measured 35-44 ms where the same case later took 6 (two warm-up frames of a small
+        // forward render did not help); a fresh device's start-up must not land in its figures.
         try {
             assets::Scene scene = assets::loadScene(cases.front().scene, {}, builtinOptions(cases.front()));
-            SceneRenderer warm(device, scene, {.technique = "forward", .width = 32, .height = 32});
-            warm.renderFrame();
-            warm.renderFrame();
-            warm.readOutput();
+            if (!cases.front().environment.empty()) scene.environment = assets::loadEnvironment(cases.front().environment);
+            SceneRenderer warm(device, scene, cases.front().settings);
+            for (uint32_t f = 0; f < options.warmupFrames + options.frames; ++f) {
+                warm.renderFrame();
+                warm.passTimings();
+            }
         } catch (const std::exception&) {
             // the case itself will report what is wrong
         }
