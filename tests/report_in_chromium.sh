@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # fe bench's report in a browser: a small sweep on every backend, then the page opened in
 # headless Chromium (Debian's chromium): every image and chart must load, no script or console
-# error may occur, the stability table must be there, and a screenshot of the page is kept
+# error may occur, the stability table and conformance triplets must be there, and a screenshot of the page is kept
 # beside it (report.png).
 # Usage: report_in_chromium.sh FE SWEEP.json OUT_DIR
 set -euo pipefail
 fe=$1 sweep=$2 out=$3
 rm -rf "$out"
-"$fe" bench --sweep "$sweep" --stability --backend all --frames 2 --out "$out"
+"$fe" bench --sweep "$sweep" --stability --conformance --backend all --frames 2 --out "$out"
 for f in results.json results.csv report.html; do
   test -s "$out/$f" || { echo "missing $out/$f"; exit 1; }
 done
 grep -q '<h2>Stability</h2>' "$out/report.html" || { echo "no stability table in the report"; exit 1; }
+grep -q '<h2>Conformance</h2>' "$out/report.html" || { echo "no conformance section in the report"; exit 1; }
 charts=$(ls "$out"/charts/*.png | wc -l)
 svgs=$(ls "$out"/charts/*.svg | wc -l)
 [ "$charts" -ge 4 ] && [ "$charts" -eq "$svgs" ] || { echo "expected 4 or more charts as PNG and SVG, got $charts / $svgs"; exit 1; }

@@ -10,6 +10,7 @@ import html
 import json
 import os
 import sys
+import urllib.parse
 
 import matplotlib
 
@@ -212,6 +213,24 @@ scene and camera, on the displayed 8-bit image.</p>
                 others = [f"{r['backend']}: {outcome(r)}" for r in cells[1:] if outcome(r) != first]
                 parts.append(f"<td>{e(first)}" + "".join(f"<br>{e(o)}" for o in others) + "</td>")
             parts.append("</tr>")
+        parts.append("</table>")
+    conformance = doc.get("conformance")
+    if conformance:
+        summary = conformance.get("summary", {})
+        parts.append(f"<h2>Conformance</h2><p>{summary.get('passed', 0)} checks passed, {summary.get('failed', 0)} failed. "
+                     "Each backend's images against the first backend's: the two images and their difference (pixels "
+                     "beyond the tolerance), with the tolerance and its reason.</p><table><tr><th>comparison</th>"
+                     "<th>first backend</th><th>other backend</th><th>difference</th><th>result</th></tr>")
+        q = urllib.parse.quote
+        for c in conformance.get("comparisons", []):
+            ref = f"conformance/{q(c['reference'])}/{q(c['case'] + '_' + c['image'])}.png"
+            other = f"conformance/{q(c['backend'])}/{q(c['case'] + '_' + c['image'])}.png"
+            diff = f"conformance/{q('diff_' + c['reference'] + '_' + c['backend'] + '_' + c['case'] + '_' + c['image'])}.png"
+            m, t = c.get("metrics", {}), c.get("tolerance", {})
+            parts.append(f"<tr><td>{e(c['name'])}</td><td><img class=\"t\" src=\"{ref}\" alt=\"first\"></td>"
+                         f"<td><img class=\"t\" src=\"{other}\" alt=\"other\"></td><td><img class=\"t\" src=\"{diff}\" alt=\"difference\"></td>"
+                         f"<td>{'pass' if c['passed'] else 'FAIL'}: {m.get('pixelsOverTolerance', 0)} pixels over "
+                         f"{t.get('absolute', 0)}, max {m.get('maxAbsError', 0):.4f}; {e(str(t.get('reason', '')))}</td></tr>")
         parts.append("</table>")
     if refused:
         parts.append("<h2>Refused</h2><ul>" + "".join(f"<li>{e(r['backend'])} {e(r['key'])}: {e(r['refused'])}</li>" for r in refused)

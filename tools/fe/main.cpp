@@ -62,7 +62,8 @@ constexpr const char* kUsage =
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
-    "      5/255, max); the stability suite's table too with --quick or --stability; writes DIR/results.json,\n"
+    "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
+    "      conformance suite's cross-backend images; writes DIR/results.json,\n"
     "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench)\n"
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
@@ -479,6 +480,19 @@ int cmdBench(const Args& a) {
     // The stability table: with --quick, or --stability.
     if (!a.options.count("--sweep") || a.options.count("--stability"))
         results["stability"] = render::runStability(backends, 48, 36, showProgress);
+    // The conformance suite and its cross-backend image comparisons, for the report's triplets.
+    if (!a.options.count("--sweep") || a.options.count("--conformance")) {
+        Args conformanceArgs;
+        conformanceArgs.options["--out-dir"] = out + "/conformance";
+        ConformanceRun run;
+        std::ostringstream quiet;  // its PASS / FAIL lines: the report has them
+        std::streambuf* saved = std::cout.rdbuf(quiet.rdbuf());
+        for (const std::string& b : backends) conformanceOne(b, conformanceArgs, run);
+        crossBackend(backends, out + "/conformance", run);
+        std::cout.rdbuf(saved);
+        results["conformance"] = {{"cases", run.cases}, {"comparisons", run.comparisons},
+                                  {"summary", {{"passed", run.passed}, {"failed", run.failed}}}};
+    }
     if (tty) std::cerr << "\n";
     {
         std::ofstream f(out + "/results.json");
@@ -554,7 +568,7 @@ int main(int argc, char** argv) {
                                     "--ibl-prefiltered", "--temporal"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
-                                  {"--quick", "--stability"}));
+                                  {"--quick", "--stability", "--conformance"}));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
