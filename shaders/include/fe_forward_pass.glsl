@@ -10,10 +10,6 @@
 // for forward and the transparent pass, one per pass for forward-multipass (which adds the
 // emissive and unlit terms in its first pass only). forward_ibl.frag adds the environment's
 // light by importance sampling (FE_IBL, fe_ibl.glsl).
-layout(location = 0) in vec3 vWorld;
-layout(location = 1) in vec3 vNormal;
-layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
 layout(location = 0) out vec4 outRadiance;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);

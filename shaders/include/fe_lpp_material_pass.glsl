@@ -8,10 +8,6 @@
 // albedo and F0 with the light buffer at its pixel. With FE_IBL (lpp_material_ibl.frag) it adds
 // the environment's light, exactly (the pass has the whole material), by fe_ibl.glsl's estimator.
 layout(binding = FE_SLOT_IBUFFER0) uniform sampler2D lightBuffer;
-layout(location = 0) in vec3 vWorld;
-layout(location = 1) in vec3 vNormal;
-layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
 layout(location = 0) out vec4 outRadiance;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);

@@ -2,10 +2,6 @@
 #include "fe_light_prepass.glsl"
 // Light pre-pass, pass 1: the shading normal and roughness (fe_light_prepass.glsl), with the
 // scene depth written by the rasterizer.
-layout(location = 0) in vec3 vWorld;
-layout(location = 1) in vec3 vNormal;
-layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
 layout(location = 0) out vec4 outNormal;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);

@@ -3,6 +3,15 @@
 #define FE_MATERIAL_GLSL
 #include "fe_scene.glsl"
 
+// What scene/mesh.vert (FE_MESH_VERTEX_STAGE, which declares them as outputs) passes every
+// mesh-pass fragment shader; each includes this file.
+#ifndef FE_MESH_VERTEX_STAGE
+layout(location = 0) in vec3 vWorld;
+layout(location = 1) in vec3 vNormal;
+layout(location = 2) in vec4 vTangent;
+layout(location = 3) in vec2 vUv;
+#endif
+
 layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     mat4 world;
     mat4 normalMatrix;

@@ -4,10 +4,6 @@
 // G-buffer: GB0 RGBA8_SRGB base colour + metallic, GB1 RGBA16F world normal + roughness,
 // GB2 RGBA16F emissive (or unlit colour) + w_o.n or the unlit flag (feGBufferUnlit). Position
 // comes back from depth.
-layout(location = 0) in vec3 vWorld;
-layout(location = 1) in vec3 vNormal;
-layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
 layout(location = 0) out vec4 outGb0;
 layout(location = 1) out vec4 outGb1;
 layout(location = 2) out vec4 outGb2;

@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#define FE_MESH_VERTEX_STAGE
 #include "fe_material.glsl"
 // Scene meshes for every pass that draws geometry (forward, G-buffer, transparent).
 layout(location = 0) in vec3 inPosition;
