@@ -113,6 +113,8 @@ std::string BenchCase::key() const {
     if (s.iblPrefiltered) k += "/ibl-prefiltered";
     if (s.temporal) k += "/temporal";
     if (s.illumSplit) k += "/split";
+    if (!s.precomputedNoV) k += "/rebuild-nov";
+    if (!s.tileCullingPass) k += "/one-pass-culling";
     k += "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
     return k;
 }
@@ -160,55 +162,111 @@ std::vector<BenchCase> quickSweep() {
     return cases;
 }
 
+namespace {
+
+// One case object whose values are all scalars -> a BenchCase (unknown keys are errors).
+BenchCase caseFromJson(const gdi::Json& j) {
+    BenchCase c;
+    RenderSettings& s = c.settings;
+    s.width = 96;
+    s.height = 72;
+    for (const auto& [key, v] : j.items()) {
+        auto uint = [&, k = key](uint32_t lo, uint32_t hi) {
+            if (!v.is_number_unsigned() || v.get<uint64_t>() < lo || v.get<uint64_t>() > hi)
+                throw gdi::Error("sweep: \"" + k + "\" must be an integer in [" + std::to_string(lo) + ", " +
+                                 std::to_string(hi) + "], got " + v.dump());
+            return v.get<uint32_t>();
+        };
+        auto boolean = [&, k = key]() {
+            if (!v.is_boolean()) throw gdi::Error("sweep: \"" + k + "\" must be true or false, got " + v.dump());
+            return v.get<bool>();
+        };
+        auto text = [&, k = key]() {
+            if (!v.is_string()) throw gdi::Error("sweep: \"" + k + "\" must be a string, got " + v.dump());
+            return v.get<std::string>();
+        };
+        if (key == "scene") c.scene = text();
+        else if (key == "technique") s.technique = findTechnique(text()).name;
+        else if (key == "environment") c.environment = text();
+        else if (key == "size") {
+            const std::string size = text();
+            const size_t x = size.find('x');
+            char* end = nullptr;
+            const unsigned long w = x == std::string::npos ? 0 : std::strtoul(size.c_str(), &end, 10);
+            const unsigned long h = x == std::string::npos ? 0 : std::strtoul(size.c_str() + x + 1, &end, 10);
+            if (w == 0 || h == 0 || w > 8192 || h > 8192 || *end) throw gdi::Error("sweep: \"size\" must be WxH, got " + size);
+            s.width = uint32_t(w);
+            s.height = uint32_t(h);
+        } else if (key == "illumScale") s.illumScale = uint(1, 4);
+        else if (key == "illumSplit") s.illumSplit = boolean();
+        else if (key == "precomputedNoV") s.precomputedNoV = boolean();
+        else if (key == "tileCullingPass") s.tileCullingPass = boolean();
+        else if (key == "msaa") s.msaa = uint(1, 8);
+        else if (key == "shadows") s.shadows.enabled = boolean();
+        else if (key == "shadowMapSize") s.shadows.mapSize = uint(16, 16384);
+        else if (key == "iblSamples") s.iblSamples = uint(0, 65536);
+        else if (key == "iblPrefiltered") s.iblPrefiltered = boolean();
+        else if (key == "temporal") s.temporal = boolean();
+        else if (key == "lights") c.lights = uint(0, 100000);
+        else if (key == "sphereGrid") c.sphereGrid = uint(2, 16);
+        else throw gdi::Error("sweep: unknown key \"" + key + "\" in a case");
+    }
+    return c;
+}
+
+// Whether a case's options apply to its technique (an expanded matrix skips those that do not:
+// the deferred techniques take no MSAA, only I-buffer techniques an illumination scale).
+std::string inapplicable(const BenchCase& c) {
+    const TechniqueInfo& t = findTechnique(c.settings.technique);
+    if (c.settings.msaa > 1 && !t.msaa) return "takes no --msaa";
+    if ((c.settings.illumScale > 1 || c.settings.illumSplit) && !t.illumScale) return "has no I-buffer (--illum-scale)";
+    return {};
+}
+
+}  // namespace
+
 std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep) {
     if (!sweep.is_object() || !sweep.contains("cases") || !sweep["cases"].is_array())
         throw gdi::Error("sweep: expected an object with a \"cases\" array");
+    for (const auto& [key, v] : sweep.items())
+        if (key != "cases" && key != "description") throw gdi::Error("sweep: unknown top-level key \"" + key + "\"");
     std::vector<BenchCase> cases;
+    std::map<std::string, bool> keys;
     for (const gdi::Json& j : sweep["cases"]) {
         if (!j.is_object()) throw gdi::Error("sweep: every case must be an object");
-        BenchCase c;
-        RenderSettings& s = c.settings;
-        s.width = 96;
-        s.height = 72;
+        // A value given as an array (or "technique": "all") makes a matrix: one case per
+        // combination, in the order the keys are written.
+        std::vector<std::pair<std::string, std::vector<gdi::Json>>> axes;
+        bool matrix = false;
         for (const auto& [key, v] : j.items()) {
-            auto uint = [&, k = key](uint32_t lo, uint32_t hi) {
-                if (!v.is_number_unsigned() || v.get<uint64_t>() < lo || v.get<uint64_t>() > hi)
-                    throw gdi::Error("sweep: \"" + k + "\" must be an integer in [" + std::to_string(lo) + ", " +
-                                     std::to_string(hi) + "], got " + v.dump());
-                return v.get<uint32_t>();
-            };
-            auto boolean = [&, k = key]() {
-                if (!v.is_boolean()) throw gdi::Error("sweep: \"" + k + "\" must be true or false, got " + v.dump());
-                return v.get<bool>();
-            };
-            auto text = [&, k = key]() {
-                if (!v.is_string()) throw gdi::Error("sweep: \"" + k + "\" must be a string, got " + v.dump());
-                return v.get<std::string>();
-            };
-            if (key == "scene") c.scene = text();
-            else if (key == "technique") s.technique = findTechnique(text()).name;
-            else if (key == "environment") c.environment = text();
-            else if (key == "size") {
-                const std::string size = text();
-                const size_t x = size.find('x');
-                char* end = nullptr;
-                const unsigned long w = x == std::string::npos ? 0 : std::strtoul(size.c_str(), &end, 10);
-                const unsigned long h = x == std::string::npos ? 0 : std::strtoul(size.c_str() + x + 1, &end, 10);
-                if (w == 0 || h == 0 || w > 8192 || h > 8192 || *end) throw gdi::Error("sweep: \"size\" must be WxH, got " + size);
-                s.width = uint32_t(w);
-                s.height = uint32_t(h);
-            } else if (key == "illumScale") s.illumScale = uint(1, 4);
-            else if (key == "msaa") s.msaa = uint(1, 8);
-            else if (key == "shadows") s.shadows.enabled = boolean();
-            else if (key == "shadowMapSize") s.shadows.mapSize = uint(16, 16384);
-            else if (key == "iblSamples") s.iblSamples = uint(0, 65536);
-            else if (key == "iblPrefiltered") s.iblPrefiltered = boolean();
-            else if (key == "temporal") s.temporal = boolean();
-            else if (key == "lights") c.lights = uint(0, 100000);
-            else if (key == "sphereGrid") c.sphereGrid = uint(2, 16);
-            else throw gdi::Error("sweep: unknown key \"" + key + "\" in a case");
+            std::vector<gdi::Json> values;
+            if (key == "technique" && v == "all") {
+                for (const TechniqueInfo& t : techniques()) values.emplace_back(t.name);
+                matrix = true;
+            } else if (v.is_array()) {
+                if (v.empty()) throw gdi::Error("sweep: \"" + key + "\" lists no values");
+                values.assign(v.begin(), v.end());
+                matrix = true;
+            } else
+                values.push_back(v);
+            axes.emplace_back(key, std::move(values));
         }
-        cases.push_back(c);
+        std::vector<size_t> at(axes.size(), 0);
+        for (;;) {
+            gdi::Json one = gdi::Json::object();
+            for (size_t i = 0; i < axes.size(); ++i) one[axes[i].first] = axes[i].second[at[i]];
+            BenchCase c = caseFromJson(one);
+            if (const std::string why = inapplicable(c); why.empty()) {
+                if (keys[c.key()]) throw gdi::Error("sweep: case " + c.key() + " is listed twice");
+                keys[c.key()] = true;
+                cases.push_back(c);
+            } else if (!matrix)
+                throw gdi::Error("sweep: case " + c.key() + ": " + c.settings.technique + " " + why);
+            // Odometer over the axes, the last key fastest.
+            size_t i = axes.size();
+            while (i > 0 && ++at[i - 1] == axes[i - 1].second.size()) at[--i] = 0;
+            if (i == 0) break;
+        }
     }
     if (cases.empty()) throw gdi::Error("sweep: no cases");
     return cases;

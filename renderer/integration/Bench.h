@@ -58,8 +58,12 @@ struct BenchProgress {
 std::vector<BenchCase> quickSweep();
 // A sweep file: {"cases": [{"scene": ..., "technique": ..., "size": "WxH", "illumScale": 2,
 // "msaa": 4, "shadows": true, "shadowMapSize": 512, "environment": "builtin:sky",
-// "iblSamples": 64, "iblPrefiltered": false, "lights": 64, "sphereGrid": 5}, ...]}; unknown keys
-// are errors (a typo must not silently bench the default).
+// "iblSamples": 64, "iblPrefiltered": false, "temporal": false, "illumSplit": false,
+// "precomputedNoV": true, "tileCullingPass": true, "lights": 64, "sphereGrid": 5}, ...],
+// "description": "..."}; unknown keys are errors (a typo must not silently bench the default).
+// A value given as an array, or "technique": "all", makes the case a matrix: one case per
+// combination, skipping options its technique does not take (MSAA on the deferred techniques,
+// an illumination scale without an I-buffer). bench/sweeps/ holds the documented sweeps.
 std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep);
 
 gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends, const BenchOptions& options,

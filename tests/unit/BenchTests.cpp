@@ -5,6 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -93,4 +95,41 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
     EXPECT_EQ(error(R"({"cases": []})"), "sweep: no cases");
     EXPECT_EQ(error(R"([1, 2])"), "sweep: expected an object with a \"cases\" array");
     EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"), std::string::npos);
+    EXPECT_EQ(error(R"({"cases": [{"technique": "deferred", "msaa": 4}]})"),
+              "sweep: case spheres/deferred/msaa4/96x72: deferred takes no --msaa");
+    EXPECT_EQ(error(R"({"cases": [{"technique": "forward"}, {"technique": "forward"}]})"),
+              "sweep: case spheres/forward/96x72 is listed twice");
+    EXPECT_EQ(error(R"({"cases": [{"lights": []}]})"), "sweep: \"lights\" lists no values");
+    EXPECT_EQ(error(R"({"cases": [], "frames": 3})"), "sweep: unknown top-level key \"frames\"");
+}
+
+// Arrays (and "technique": "all") expand to every combination; options a technique does not take
+// are skipped in a matrix, not benched as the default.
+TEST(BenchSweep, MatrixExpands) {
+    const auto cases = render::sweepFromJson(gdi::Json::parse(R"({"cases": [
+        {"scene": "builtin:lights", "lights": [8, 64], "technique": "all", "illumScale": [1, 2]}]})"));
+    size_t withIBuffer = 0;
+    for (const auto& t : render::techniques()) withIBuffer += t.illumScale;
+    ASSERT_EQ(cases.size(), 2 * (render::techniques().size() + withIBuffer));
+    EXPECT_EQ(cases[0].key(), "lights8/" + std::string(render::techniques()[0].name) + "/96x72");
+    EXPECT_EQ(cases.back().key(), "lights64/" + std::string(render::techniques().back().name) + "/scale2/96x72");
+    for (const auto& c : cases) {
+        EXPECT_TRUE(c.settings.illumScale == 1 || render::findTechnique(c.settings.technique).illumScale) << c.key();
+        EXPECT_TRUE(c.lights == 8 || c.lights == 64);
+    }
+}
+
+// The documented sweeps (bench/sweeps/, run by tools/bench/regenerate-benchmarks.sh) parse: a
+// renamed technique or option must fail here, not an hour into a full sweep.
+TEST(BenchSweep, DocumentedSweepsParse) {
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(FE_SWEEPS_DIR)) {
+        if (entry.path().extension() != ".json") continue;
+        ++files;
+        std::ifstream f(entry.path());
+        const gdi::Json sweep = gdi::Json::parse(f);
+        EXPECT_TRUE(sweep.contains("description")) << entry.path();
+        EXPECT_GT(render::sweepFromJson(sweep).size(), 10u) << entry.path();
+    }
+    EXPECT_GE(files, 3u);
 }

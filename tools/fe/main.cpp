@@ -446,7 +446,7 @@ double parsePositive(const std::string& text, const char* what) {
 
 // fe bench: a sweep on the backends asked for, results.json and results.csv in --out; or
 // --compare A.json B.json, exit 1 on a regression beyond the thresholds.
-int cmdBench(const Args& a) {
+int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     if (a.options.count("--compare")) {
         if (a.positional.size() != 1)
             throw UsageError("bench --compare A.json B.json: two result files, got " + std::to_string(a.positional.size() + 1));
@@ -459,8 +459,9 @@ int cmdBench(const Args& a) {
     }
     if (!a.positional.empty()) throw UsageError("bench takes no positional arguments (did you mean --compare A.json B.json?)");
     if (a.options.count("--sweep") && a.options.count("--quick")) throw UsageError("--sweep and --quick: take one");
-    const std::vector<render::BenchCase> cases =
-        a.options.count("--sweep") ? render::sweepFromJson(readJsonFile(a.options.at("--sweep"))) : render::quickSweep();
+    const auto started = std::chrono::steady_clock::now();
+    const gdi::Json sweep = a.options.count("--sweep") ? readJsonFile(a.options.at("--sweep")) : gdi::Json();
+    const std::vector<render::BenchCase> cases = a.options.count("--sweep") ? render::sweepFromJson(sweep) : render::quickSweep();
     const std::vector<std::string> backends =
         gdi::expandBackendList(a.options.count("--backend") ? a.options.at("--backend") : "all");
     render::BenchOptions options;
@@ -494,6 +495,10 @@ int cmdBench(const Args& a) {
                                   {"summary", {{"passed", run.passed}, {"failed", run.failed}}}};
     }
     if (tty) std::cerr << "\n";
+    results["arguments"] = arguments;
+    results["description"] = sweep.is_object() && sweep.contains("description") ? sweep["description"]
+                                                                                : gdi::Json("the quick sweep (fe bench --quick)");
+    results["elapsedSeconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     {
         std::ofstream f(out + "/results.json");
         f << results.dump(2) << "\n";
@@ -568,7 +573,8 @@ int main(int argc, char** argv) {
                                     "--ibl-prefiltered", "--temporal"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
-                                  {"--quick", "--stability", "--conformance"}));
+                                  {"--quick", "--stability", "--conformance"}),
+                            std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));

@@ -1,0 +1,18 @@
+#!/bin/sh
+# The full sweep: the quick sweep and every sweep of bench/sweeps/ on every backend, spliced into docs/BENCHMARKS.md
+# (tools/bench/update_benchmarks.py). Run from the repository root after tools/build.sh; the
+# machine should be otherwise idle (the figures are CPU rasterization on a machine without a GPU).
+#   tools/bench/regenerate-benchmarks.sh [OUT_DIR]
+set -eu
+fe=${FE:-build/tools/fe}
+out=${1:-/tmp/fe-bench-full}
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
+start=$(date +%s)
+"$fe" bench --quick --backend all --out "$out/quick"
+"$fe" bench --sweep bench/sweeps/techniques-720p.json --backend all --frames 5 --out "$out/techniques-720p"
+"$fe" bench --sweep bench/sweeps/light-scaling.json --backend all --frames 5 --out "$out/light-scaling"
+"$fe" bench --sweep bench/sweeps/shadows.json --backend all --frames 5 --out "$out/shadows"
+"$python" tools/bench/update_benchmarks.py docs/BENCHMARKS.md quick="$out/quick" \
+    techniques-720p="$out/techniques-720p" light-scaling="$out/light-scaling" shadows="$out/shadows"
+echo "the full sweep took $(( $(date +%s) - start )) s; results in $out"
