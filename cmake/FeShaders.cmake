@@ -6,7 +6,11 @@
 # and the binaries ship inside the executable (no shader files to find at run time).
 # The result is a static library whose registry answers fe::shaders::find("<path under BASE_DIR>").
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
-set(FE_SHADER_INCLUDE_DIR ${CMAKE_CURRENT_LIST_DIR}/../shaders/include)
+# The engine's GLSL includes (fe_common.glsl, ...): the source tree's, or the installed
+# package's (feConfig.cmake sets it before including this file).
+if(NOT FE_SHADER_INCLUDE_DIR)
+  set(FE_SHADER_INCLUDE_DIR ${CMAKE_CURRENT_LIST_DIR}/../shaders/include)
+endif()
 
 function(fe_add_shaders target)
   cmake_parse_arguments(ARG "" "BASE_DIR" "SOURCES" ${ARGN})
@@ -54,5 +58,9 @@ extern \"C\" void fe_shaders_link_${target}() {}
 ")
   add_library(${target} OBJECT ${registry} ${headers})
   target_include_directories(${target} PRIVATE ${out_dir})
-  target_link_libraries(${target} PUBLIC fe_gdi)
+  if(TARGET fe_gdi)
+    target_link_libraries(${target} PUBLIC fe_gdi)     # inside the engine's build
+  else()
+    target_link_libraries(${target} PUBLIC fe::core)   # a project using the installed package
+  endif()
 endfunction()

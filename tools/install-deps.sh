@@ -12,6 +12,8 @@ PACKAGES=(
   googletest libgtest-dev libbenchmark-dev
   xvfb xauth
   python3-matplotlib chromium  # fe bench: its charts, and the browser test of its report
+  libimgui-dev                 # the UI renderer (fe view)
+  libcli11-dev libspdlog-dev   # the fe command line and its logging
 )
 
 missing=()

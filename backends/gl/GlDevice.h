@@ -112,6 +112,7 @@ public:
     uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
     bool present(gdi::TextureHandle texture) override;
     gdi::Image readWindow() override;
+    gdi::InputState input() const override { return platform_->input(); }
 
     // For the command list.
     const GlFunctions& gl() const { return gl_; }

@@ -155,6 +155,7 @@ public:
         return window_.poll();
     }
     gdi::Image readWindow(uint32_t width, uint32_t height) override { return window_.read(width, height); }
+    gdi::InputState input() const override { return window_.input(); }
 
 private:
     platform::GlfwWindow window_;

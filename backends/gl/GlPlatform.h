@@ -31,6 +31,8 @@ public:
     // What the window shows on screen, width x height from its top-left, RGBA8 rows top-down,
     // read back from the window system (X11), not from GL.
     virtual gdi::Image readWindow(uint32_t width, uint32_t height);
+    // The window's input as of the last swapAndPoll() (none without a window).
+    virtual gdi::InputState input() const { return {}; }
 };
 
 // Creates a 4.5 core context (debug context when `debug`); throws gdi::Error saying why not.

@@ -35,6 +35,14 @@ struct Glfw {
     void (*setSize)(GLFWwindow*, int, int) = nullptr;
     void (*getFramebufferSize)(GLFWwindow*, int*, int*) = nullptr;
     void (*show)(GLFWwindow*) = nullptr;
+    void (*getCursorPos)(GLFWwindow*, double*, double*) = nullptr;
+    int (*getMouseButton)(GLFWwindow*, int) = nullptr;
+    int (*getKey)(GLFWwindow*, int) = nullptr;
+    void (*getWindowSize)(GLFWwindow*, int*, int*) = nullptr;
+    void (*setUserPointer)(GLFWwindow*, void*) = nullptr;
+    void* (*getUserPointer)(GLFWwindow*) = nullptr;
+    GLFWscrollfun (*setScrollCallback)(GLFWwindow*, GLFWscrollfun) = nullptr;
+    GLFWcharfun (*setCharCallback)(GLFWwindow*, GLFWcharfun) = nullptr;
 };
 
 const Glfw& glfw() {
@@ -58,6 +66,14 @@ const Glfw& glfw() {
     t.setSize = symbol<decltype(t.setSize)>(t.lib, "glfwSetWindowSize");
     t.getFramebufferSize = symbol<decltype(t.getFramebufferSize)>(t.lib, "glfwGetFramebufferSize");
     t.show = symbol<decltype(t.show)>(t.lib, "glfwShowWindow");
+    t.getCursorPos = symbol<decltype(t.getCursorPos)>(t.lib, "glfwGetCursorPos");
+    t.getMouseButton = symbol<decltype(t.getMouseButton)>(t.lib, "glfwGetMouseButton");
+    t.getKey = symbol<decltype(t.getKey)>(t.lib, "glfwGetKey");
+    t.getWindowSize = symbol<decltype(t.getWindowSize)>(t.lib, "glfwGetWindowSize");
+    t.setUserPointer = symbol<decltype(t.setUserPointer)>(t.lib, "glfwSetWindowUserPointer");
+    t.getUserPointer = symbol<decltype(t.getUserPointer)>(t.lib, "glfwGetWindowUserPointer");
+    t.setScrollCallback = symbol<decltype(t.setScrollCallback)>(t.lib, "glfwSetScrollCallback");
+    t.setCharCallback = symbol<decltype(t.setCharCallback)>(t.lib, "glfwSetCharCallback");
     g = t;
     return g;
 }
@@ -107,6 +123,19 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
         }
         if (!window_)
             throw glfwError(g, api == Api::Vulkan ? "cannot create a window" : "cannot create a window with an OpenGL 4.5 core context");
+        // The wheel and typed text arrive as events: gathered here until the next poll().
+        auto* window = static_cast<GLFWwindow*>(window_);
+        g.setUserPointer(window, this);
+        g.setScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+            static_cast<GlfwWindow*>(glfw().getUserPointer(w))->wheel_ += float(dy);
+        });
+        g.setCharCallback(window, [](GLFWwindow* w, unsigned int c) {
+            std::string& text = static_cast<GlfwWindow*>(glfw().getUserPointer(w))->text_;
+            if (c < 0x80) text += char(c);  // UTF-8 encoding of one code point
+            else if (c < 0x800) text += char(0xC0 | (c >> 6)), text += char(0x80 | (c & 0x3F));
+            else if (c < 0x10000) text += char(0xE0 | (c >> 12)), text += char(0x80 | ((c >> 6) & 0x3F)), text += char(0x80 | (c & 0x3F));
+            else text += char(0xF0 | (c >> 18)), text += char(0x80 | ((c >> 12) & 0x3F)), text += char(0x80 | ((c >> 6) & 0x3F)), text += char(0x80 | (c & 0x3F));
+        });
     } catch (...) {
         release();  // the destructor does not run when the constructor throws
         throw;
@@ -155,8 +184,31 @@ GlfwWindow::Size GlfwWindow::prepare(uint32_t width, uint32_t height, bool* firs
 }
 
 bool GlfwWindow::poll() {
-    glfw().poll();
-    return !glfw().shouldClose(static_cast<GLFWwindow*>(window_));
+    const Glfw& g = glfw();
+    g.poll();
+    auto* window = static_cast<GLFWwindow*>(window_);
+    gdi::InputState in;
+    double x = 0, y = 0;
+    g.getCursorPos(window, &x, &y);
+    // Cursor positions are in screen coordinates: scaled to framebuffer pixels (HiDPI).
+    int ww = 0, wh = 0;
+    g.getWindowSize(window, &ww, &wh);
+    const Size fb = framebufferSize();
+    in.mouseX = float(x * (ww > 0 ? double(fb.width) / ww : 1.0));
+    in.mouseY = float(y * (wh > 0 ? double(fb.height) / wh : 1.0));
+    for (int b = 0; b < 3; ++b) in.mouse[b] = g.getMouseButton(window, b) == GLFW_PRESS;
+    static const int keys[size_t(gdi::Key::Count)] = {
+        GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_R, GLFW_KEY_F, GLFW_KEY_P,
+        GLFW_KEY_SPACE, GLFW_KEY_ESCAPE, GLFW_KEY_TAB, GLFW_KEY_ENTER, GLFW_KEY_BACKSPACE, GLFW_KEY_DELETE,
+        GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_UP, GLFW_KEY_DOWN, GLFW_KEY_HOME, GLFW_KEY_END,
+        GLFW_KEY_LEFT_SHIFT, GLFW_KEY_LEFT_CONTROL, GLFW_KEY_F1, GLFW_KEY_F2, GLFW_KEY_F12};
+    for (size_t k = 0; k < size_t(gdi::Key::Count); ++k) in.keys[k] = g.getKey(window, keys[k]) == GLFW_PRESS;
+    in.wheel = wheel_;
+    in.text = std::move(text_);
+    wheel_ = 0;
+    text_.clear();
+    input_ = std::move(in);
+    return !g.shouldClose(window);
 }
 
 gdi::Image GlfwWindow::read(uint32_t width, uint32_t height) const {

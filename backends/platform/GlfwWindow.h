@@ -3,6 +3,7 @@
 // backends. Nothing here is specific to one API: the GL context and the Vulkan surface are made
 // by the backends through symbol().
 #pragma once
+#include "fe/gdi/Device.h"
 #include "fe/gdi/Image.h"
 #include <cstdint>
 #include <vector>
@@ -37,8 +38,10 @@ public:
     // manager may refuse a size).
     Size prepare(uint32_t width, uint32_t height, bool* firstShow = nullptr);
     Size framebufferSize() const;
-    // Handles pending window events; false once the user has closed the window.
+    // Handles pending window events and samples the input; false once the user has closed the window.
     bool poll();
+    // The input as of the last poll(): mouse, keys, and the wheel and text since the one before.
+    const gdi::InputState& input() const { return input_; }
     // What the window shows on screen, width x height from its top-left (the last presented
     // image's size; 0 before the first present, an error), RGBA8 rows top-down, read back from
     // the X server (XGetImage), not from the API that drew it.
@@ -50,6 +53,9 @@ private:
     void* window_ = nullptr;
     bool initialised_ = false;
     bool shown_ = false;
+    gdi::InputState input_;
+    float wheel_ = 0;    // gathered by GLFW's callbacks between polls
+    std::string text_;
 };
 
 }  // namespace fe::platform

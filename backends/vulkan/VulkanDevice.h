@@ -146,6 +146,7 @@ public:
     uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
     bool present(gdi::TextureHandle texture) override;  // VulkanSwapchain.cpp
     gdi::Image readWindow() override;
+    gdi::InputState input() const override;
 
     // Internal, for the command list.
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }

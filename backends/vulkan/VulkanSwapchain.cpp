@@ -332,6 +332,7 @@ bool VulkanSwapchain::present(const Source& src) {
 }
 
 gdi::Image VulkanSwapchain::readWindow() const { return window_->read(shownWidth_, shownHeight_); }
+gdi::InputState VulkanSwapchain::input() const { return window_->input(); }
 
 void VulkanSwapchain::release() {
     if (device_) {
@@ -369,6 +370,8 @@ bool VulkanDevice::present(gdi::TextureHandle h) {
         throw loss_.lose("vulkan", std::string(e.what()) + " returned VK_ERROR_DEVICE_LOST");
     }
 }
+
+gdi::InputState VulkanDevice::input() const { return swapchain_ ? swapchain_->input() : gdi::InputState{}; }
 
 gdi::Image VulkanDevice::readWindow() {
     loss_.check("readWindow");

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "fe/gdi/Device.h"
 #include "fe/gdi/Image.h"
 
 namespace fe::platform {
@@ -61,6 +62,7 @@ public:
     // Shows `source` in the window, sized to it; false once the user has closed the window.
     bool present(const Source& source);
     gdi::Image readWindow() const;
+    gdi::InputState input() const;
 
     // Destroys every Vulkan object, the surface included, after waiting for the queue: call
     // before destroying the device and the instance. The window goes with the object.

@@ -13,7 +13,8 @@ CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight, uint64_
     slots_.resize(framesInFlight);
     for (Slot& s : slots_) s.commands = device.createCommandList();
     uploadBuffer_ = device.createBuffer({.size = regionSize_ * framesInFlight,
-                                         .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage | gdi::BufferUsage::Vertex,
+                                         .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage | gdi::BufferUsage::Vertex |
+                                                  gdi::BufferUsage::Index,
                                          .access = gdi::MemoryAccess::Upload,
                                          .debugName = "per-frame uploads"});
 }

@@ -67,7 +67,9 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"rates", {{"punctual", s.rates.punctual}, {"shadowed", s.rates.shadowed}, {"iblDiffuse", s.rates.iblDiffuse},
                        {"iblSpecular", s.rates.iblSpecular}}},
             {"temporal", s.temporal},
-            {"exposure", s.exposure}};
+            {"exposure", s.exposure},
+            {"tonemap", shading::tonemapName(s.tonemap)},
+            {"aa", s.antiAliasing == AntiAliasing::Fxaa ? "fxaa" : "none"}};
 }
 
 // A file name from a case key ("spheres/redeferred/scale2/96x72" -> "spheres_redeferred_scale2_96x72").
@@ -95,6 +97,12 @@ gdi::Image heatMap(uint32_t w, uint32_t h, const std::vector<float>& map) {
     return gdi::Image::fromTexels(w, h, gdi::Format::RGBA8, t);
 }
 
+// Cases whose display image is post-processed on the GPU (a tone mapper other than clamp, FXAA):
+// their error is measured on that image, against the reference through the same tone mapper.
+bool postProcessed(const RenderSettings& s) {
+    return s.tonemap != shading::Tonemap::Clamp || s.antiAliasing != AntiAliasing::None;
+}
+
 // JSON has no infinity: identical images have PSNR null.
 gdi::Json finite(double v) { return std::isfinite(v) ? gdi::Json(v) : gdi::Json(nullptr); }
 
@@ -115,6 +123,8 @@ std::string BenchCase::key() const {
     if (s.illumSplit) k += "/split";
     if (!s.precomputedNoV) k += "/rebuild-nov";
     if (!s.tileCullingPass) k += "/one-pass-culling";
+    if (s.tonemap != shading::Tonemap::Clamp) k += std::string("/") + shading::tonemapName(s.tonemap);
+    if (s.antiAliasing == AntiAliasing::Fxaa) k += "/fxaa";
     k += "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
     return k;
 }
@@ -201,6 +211,15 @@ BenchCase caseFromJson(const gdi::Json& j) {
         else if (key == "illumSplit") s.illumSplit = boolean();
         else if (key == "precomputedNoV") s.precomputedNoV = boolean();
         else if (key == "tileCullingPass") s.tileCullingPass = boolean();
+        else if (key == "tonemap") {
+            const auto t = shading::parseTonemap(text());
+            if (!t) throw gdi::Error("sweep: \"tonemap\" must be clamp, aces or pbr-neutral, got " + v.dump());
+            s.tonemap = *t;
+        } else if (key == "aa") {
+            const std::string aa = text();
+            if (aa != "none" && aa != "fxaa") throw gdi::Error("sweep: \"aa\" must be none or fxaa, got " + v.dump());
+            s.antiAliasing = aa == "fxaa" ? AntiAliasing::Fxaa : AntiAliasing::None;
+        }
         else if (key == "msaa") s.msaa = uint(1, 8);
         else if (key == "shadows") s.shadows.enabled = boolean();
         else if (key == "shadowMapSize") s.shadows.mapSize = uint(16, 16384);
@@ -325,7 +344,9 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
             try {
                 assets::Scene scene = assets::loadScene(c.scene, {}, builtinOptions(c));
                 if (!c.environment.empty()) scene.environment = assets::loadEnvironment(c.environment);
-                SceneRenderer renderer(device, scene, c.settings);
+                RenderSettings settings = c.settings;
+                settings.displayImage = postProcessed(c.settings);
+                SceneRenderer renderer(device, scene, settings);
                 std::vector<double> cpu;
                 std::map<std::string, std::vector<double>> gpu;
                 std::vector<std::string> order;
@@ -364,7 +385,8 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                 ro.iblSamples = c.settings.ibl() ? options.referenceIblSamples : 0;
                 std::ostringstream refKey;
                 refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|" << c.settings.width
-                       << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure << "|";
+                       << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure << "|"
+                       << int(c.settings.tonemap) << "|";
                 for (bool b : ro.castsShadow) refKey << b;
                 auto it = references.find(refKey.str());
                 if (it == references.end()) {
@@ -372,7 +394,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     std::string label = "cpu reference";
                     if (ro.iblSamples) label += ", image-based lighting at " + std::to_string(ro.iblSamples) + " samples";
                     if (std::count(ro.castsShadow.begin(), ro.castsShadow.end(), true)) label += ", shadow rays";
-                    Reference made{toDisplay(c.settings.width, c.settings.height, ref.radiance, c.settings.exposure), label,
+                    Reference made{toDisplay(c.settings.width, c.settings.height, ref.radiance, c.settings.exposure, c.settings.tonemap), label,
                                    "reference/" + fileName(c.key()) + ".png"};
                     if (!options.imageDir.empty()) {
                         std::filesystem::create_directories(options.imageDir + "/reference");
@@ -382,14 +404,25 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                 }
                 if (!options.imageDir.empty()) r["referenceImage"] = it->second.file;
                 const gdi::Image out = renderer.readOutput();
-                std::vector<glm::dvec3> linear;
-                linear.reserve(size_t(out.width) * out.height);
-                for (uint32_t y = 0; y < out.height; ++y)
-                    for (uint32_t x = 0; x < out.width; ++x) {
-                        const auto t = out.texel(x, y);
-                        linear.push_back(glm::dvec3(t[0], t[1], t[2]));
-                    }
-                const DisplayImage shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
+                DisplayImage shown{out.width, out.height, {}};
+                if (postProcessed(c.settings)) {
+                    // The GPU's own display image: tone mapping and antialiasing are what is measured.
+                    const gdi::Image d = renderer.readDisplay();
+                    for (uint32_t y = 0; y < d.height; ++y)
+                        for (uint32_t x = 0; x < d.width; ++x) {
+                            const auto t = d.texel(x, y);  // sRGB-encoded, as DisplayImage holds
+                            shown.rgb.emplace_back(t[0], t[1], t[2]);
+                        }
+                } else {
+                    std::vector<glm::dvec3> linear;
+                    linear.reserve(size_t(out.width) * out.height);
+                    for (uint32_t y = 0; y < out.height; ++y)
+                        for (uint32_t x = 0; x < out.width; ++x) {
+                            const auto t = out.texel(x, y);
+                            linear.push_back(glm::dvec3(t[0], t[1], t[2]));
+                        }
+                    shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
+                }
                 const ImageMetrics m = compareImages(shown, it->second.image);
                 if (!options.imageDir.empty()) {
                     const std::string dir = options.imageDir + "/" + backend;

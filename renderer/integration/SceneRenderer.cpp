@@ -6,14 +6,15 @@
 #include "render/ShaderSlots.h"
 #include "render/TemporalAccumulation.h"
 
-namespace fe::render {
+// The scene shaders' registry (cmake/FeShaders.cmake), archived into this library: referenced
+// here so that linking the library from an installed package pulls it in.
+extern "C" void fe_shaders_link_fe_shaders_scene();
 
-namespace {
-constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a screen shows
-}  // namespace
+namespace fe::render {
 
 SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& s)
     : device_(device), scene_(scene), settings_(s) {
+    fe_shaders_link_fe_shaders_scene();
     const TechniqueInfo& technique = findTechnique(s.technique);  // an unknown name fails before any GPU work
     if (s.width == 0 || s.height == 0 || s.width > 8192 || s.height > 8192)
         throw gdi::Error("render size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
@@ -79,12 +80,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
                                           .addressU = gdi::AddressMode::ClampToEdge,
                                           .addressV = gdi::AddressMode::ClampToEdge});
     fullscreenVs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")});
-    displayFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/display.frag")});
-    displayPipeline_ = device.createGraphicsPipeline(
-        {.vertexShader = fullscreenVs_, .fragmentShader = displayFs_, .colorFormats = {kDisplayFormat},
-         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                      {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "display"});
+    postProcess_ = std::make_unique<PostProcess>(device, settings_, fullscreenVs_, frameConstants_);
     if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
@@ -111,8 +107,10 @@ SceneRenderer::~SceneRenderer() {
     shadows_.reset();
     prefiltered_.reset();
     environment_.reset();
-    device_.destroy(displayPipeline_);
-    for (auto sh : {fullscreenVs_, displayFs_}) device_.destroy(sh);
+    postProcess_.reset();
+    if (debugViewPipeline_) device_.destroy(debugViewPipeline_);
+    if (debugViewFs_) device_.destroy(debugViewFs_);
+    device_.destroy(fullscreenVs_);
     device_.destroy(pointSampler_);
     geometry_.reset();
     device_.destroy(outputTexture_);
@@ -152,20 +150,55 @@ void SceneRenderer::buildGraph() {
             pc.cmd.endRenderPass();
         });
     }
-    display_ = g.createTexture("display sRGB", {.format = kDisplayFormat, .width = s.width, .height = s.height});
-    g.addPass("display", [&](graph::PassBuilder& b) {
-        b.sample(output_);
-        b.colorTarget(display_);
-    }, [this](graph::PassContext& pc) {
+    graph::TextureId shown = output_;
+    if (!s.debugView.empty()) shown = declareDebugView(g);
+    display_ = postProcess_->declare(g, shown);
+    g.markOutput(output_);
+    if (s.displayImage) g.markOutput(display_);
+}
+
+// The debug view: the named texture drawn into a texture of L_o's format, which post-processing
+// then shows as it would show L_o. Integer and cube textures cannot be shown this way (refused).
+graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
+    const RenderSettings& s = settings_;
+    graph::TextureId source;
+    std::string names;
+    for (uint32_t i = 0; i < g.textures().size(); ++i) {
+        const graph::TextureInfo& t = g.textures()[i];
+        names += (names.empty() ? "" : ", ") + t.name;
+        if (t.name == s.debugView) source = graph::TextureId{i};
+    }
+    if (!source.valid()) throw gdi::Error("debug view '" + s.debugView + "': this frame has no such texture (it has: " + names + ")");
+    const gdi::TextureDesc& desc = g.texture(source).desc;
+    const gdi::FormatInfo& format = gdi::formatInfo(desc.format);
+    if (format.isInteger || desc.dimension == gdi::TextureDimension::TextureCube ||
+        desc.dimension == gdi::TextureDimension::TextureCubeArray || desc.dimension == gdi::TextureDimension::Texture3D ||
+        desc.sampleCount > 1)
+        throw gdi::Error("debug view '" + s.debugView + "': " + std::string(format.name) + " " +
+                         (desc.sampleCount > 1 ? "multisampled " : "") + "textures of this kind cannot be shown");
+    const bool layered = desc.dimension == gdi::TextureDimension::Texture2DArray;
+    const char* shader = layered ? "scene/debug_view_layered.frag"
+                         : (format.hasDepth || format.channels == 1) ? "scene/debug_view_grey.frag"
+                                                                       : "scene/debug_view.frag";
+    debugViewFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)});
+    debugViewPipeline_ = device_.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
+         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                      {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+         .debugName = "debug view"});
+    const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
+    g.addPass("debug-view", [&](graph::PassBuilder& b) {
+        b.sample(source);
+        b.colorTarget(view);
+    }, [this, source](graph::PassContext& pc) {
         pc.beginRenderPass();
-        pc.cmd.setPipeline(displayPipeline_);
+        pc.cmd.setPipeline(debugViewPipeline_);
         pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        pc.cmd.setTexture(kSlotRadiance, pc.texture(output_), pointSampler_);
+        pc.cmd.setTexture(kSlotRadiance, pc.texture(source), pointSampler_);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     });
-    g.markOutput(output_);
-    if (s.displayImage) g.markOutput(display_);
+    return view;
 }
 
 void SceneRenderer::updateLights(const std::vector<assets::Light>& lights) {

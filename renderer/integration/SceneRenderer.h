@@ -2,9 +2,10 @@
 // every pass timed. The technique declares its passes; the scene renderer composes them with
 // what every technique shares: the transparent pass (BLEND primitives drawn forward after the
 // opaque ones, declared only when the scene has any), the background pass (the environment where
-// nothing was drawn, declared only when the scene has an environment) and the display pass
-// (culled unless a displayable image is asked for). With shadows it plans which lights cast them
-// (ShadowPlan), stores those lights last in the light buffer and gives the technique the maps.
+// nothing was drawn, declared only when the scene has an environment) and post-processing
+// (PostProcess: tone mapping and antialiasing ending in the display image, culled unless a
+// displayable image is asked for). With shadows it plans which lights cast them (ShadowPlan),
+// stores those lights last in the light buffer and gives the technique the maps.
 #pragma once
 #include <memory>
 #include <string>
@@ -18,6 +19,7 @@
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
 #include "render/EnvironmentMap.h"
+#include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
 #include "render/TechniqueRenderer.h"
 
@@ -35,7 +37,7 @@ public:
     gdi::Image readOutput();
     // The displayable image of the last frame (RenderSettings::displayImage).
     gdi::Image readDisplay();
-    // The texture the display pass writes (RGBA8_SRGB, CopySrc), e.g. for Device::present.
+    // The texture post-processing ends in (RGBA8_SRGB, CopySrc), e.g. for Device::present.
     gdi::TextureHandle displayTexture();
     // GPU time per pass of the last completed frame (empty where timestamps are unsupported).
     std::vector<PassTiming> passTimings();
@@ -51,6 +53,7 @@ public:
 
 private:
     void buildGraph();
+    graph::TextureId declareDebugView(graph::RenderGraph& g);
 
     gdi::Device& device_;
     const assets::Scene& scene_;
@@ -61,8 +64,10 @@ private:
     FrameConstants frame_{};            // of the frame being recorded
     UploadAllocation frameConstants_;   // its upload
     gdi::SamplerHandle pointSampler_;
-    gdi::ShaderHandle fullscreenVs_, displayFs_;
-    gdi::PipelineHandle displayPipeline_;
+    gdi::ShaderHandle fullscreenVs_;
+    std::unique_ptr<PostProcess> postProcess_;
+    gdi::ShaderHandle debugViewFs_;       // RenderSettings::debugView
+    gdi::PipelineHandle debugViewPipeline_;  // tone mapping and antialiasing, ending in the display image
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment

@@ -111,14 +111,16 @@ Kernel featureKernel(int order, double sigma, int radius, bool alongY) {
 }
 }  // namespace
 
-DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure) {
+DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure,
+                       shading::Tonemap tonemap) {
     DisplayImage d{width, height, {}};
     d.rgb.reserve(linear.size());
     for (const glm::dvec3& l : linear) {
+        const glm::dvec3 mapped = shading::tonemap(tonemap, l * exposure);
         glm::vec3 c;
         for (int i = 0; i < 3; ++i) {
             const double v = l[i] * exposure;
-            c[i] = std::isfinite(v) ? float(linearToSrgb(std::clamp(v, 0.0, 1.0))) : 1.0f;
+            c[i] = std::isfinite(v) ? float(linearToSrgb(std::clamp(mapped[i], 0.0, 1.0))) : 1.0f;
         }
         d.rgb.push_back(c);
     }

@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "shading/Tonemap.h"
+
 namespace fe::render {
 
 struct DisplayImage {
@@ -23,8 +25,9 @@ struct DisplayImage {
     std::vector<glm::vec3> rgb;  // sRGB-encoded values in [0, 1], rows top to bottom
 };
 
-// sRGB(clamp(exposure x linear)); non-finite values show as 1 (white), as a display would clip.
-DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure = 1.0);
+// sRGB(tonemap(exposure x linear)); non-finite values show as 1 (white), as a display would clip.
+DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure = 1.0,
+                       shading::Tonemap tonemap = shading::Tonemap::Clamp);
 
 struct ImageMetrics {
     double psnr = 0;  // dB; +inf when identical

@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <string>
 
+#include "shading/Tonemap.h"
+
 namespace fe::render {
 
 // Shadow maps (render/ShadowPlan.h says which lights get one and how they are fitted).
@@ -22,6 +24,9 @@ struct SourceRates {
     uint32_t iblDiffuse = 0;   // the environment's L_dg
     uint32_t iblSpecular = 0;  // the environment's L_sg1, L_sg2
 };
+
+// Antialiasing of the display image as a post-process (hardware MSAA is RenderSettings::msaa).
+enum class AntiAliasing : uint32_t { None, Fxaa };
 
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
@@ -66,8 +71,16 @@ struct RenderSettings {
                (ibl() && (rate(rates.iblDiffuse) != p || rate(rates.iblSpecular) != p));
     }
     float exposure = 1.0f;
-    // Also produce the displayable image (RGBA8_SRGB, clamp(exposure x L_o)) on the GPU;
-    // without it the graph culls the display pass.
+    // The display image's post-processing (render/PostProcess.h): exposure x L_o through a tone
+    // mapper (clamp keeps the image comparable with the exact reference), then antialiasing.
+    shading::Tonemap tonemap = shading::Tonemap::Clamp;
+    AntiAliasing antiAliasing = AntiAliasing::None;
+    // A debug view: the display shows this intermediate texture of the frame's graph (by its
+    // name, as RenderGraph::textures() lists them: "gbuffer1 normal+roughness", "depth", ...)
+    // instead of L_o, scaled by the exposure. Empty: the frame itself.
+    std::string debugView;
+    // Also produce the displayable image (RGBA8_SRGB) on the GPU; without it the graph culls
+    // the post-processing passes.
     bool displayImage = false;
     // Alias transient memory (false: every transient texture has memory of its own).
     bool aliasing = true;

@@ -5,6 +5,10 @@
 #include <unistd.h>
 #include <sys/wait.h>
 
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +28,7 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/InfoJson.h"
+#include "Viewer.h"
 #include "integration/Bench.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
@@ -56,9 +61,16 @@ constexpr const char* kUsage =
     "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
+    "        fit or Khronos PBR Neutral) --aa none|fxaa (the .png: FXAA as a post-process pass)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
+    "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
+    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE] [--no-ui] [--validation]\n"
+    "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
+    "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
+    "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
@@ -85,29 +97,62 @@ std::string usage() {
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+struct HelpShown {};  // `fe COMMAND --help` printed its help: exit 0
 
-// --name value options; anything unknown is a usage error.
+// The usage lines of one command (from kUsage: the line starting "  COMMAND" and its
+// continuation lines), the footer of its --help.
+std::string commandUsage(const std::string& command) {
+    std::istringstream in(usage());
+    std::string line, out;
+    bool inside = false;
+    while (std::getline(in, line)) {
+        if (line.rfind("  " + command + " ", 0) == 0 || line == "  " + command) inside = true;
+        else if (line.rfind("      ", 0) != 0) inside = false;
+        if (inside) out += line + "\n";
+    }
+    return out;
+}
+
+// One command's arguments, parsed by CLI11: `--name value` options and flags as named (anything
+// else is a usage error saying what), positional arguments, --help for each command, and
+// --log-level for every command.
 struct Args {
     std::map<std::string, std::string> options;
     std::vector<std::string> positional;
 };
 
 Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
+    const std::string command = argv[first - 1];
+    CLI::App app{"fe " + command + ": see the usage below", "fe " + command};
+    app.footer("\nUsage:\n" + commandUsage(command));
+    app.allow_extras(false);
+    app.positionals_at_end(false);
+    std::map<std::string, std::string> values;
+    std::map<std::string, bool> on;
+    for (const std::string& o : valued) app.add_option(o, values[o])->type_name("VALUE")->allow_extra_args(false);
+    app.add_option("--log-level", values["--log-level"], "trace, debug, info, warn (default), error or off; also FE_LOG_LEVEL")
+        ->type_name("LEVEL");
+    for (const std::string& f : flags) app.add_flag(f, on[f]);
     Args a;
-    for (int i = first; i < argc; ++i) {
-        std::string s = argv[i];
-        if (s.rfind("--", 0) == 0) {
-            if (std::find(flags.begin(), flags.end(), s) != flags.end()) {
-                a.options[s] = "1";
-            } else if (std::find(valued.begin(), valued.end(), s) != valued.end()) {
-                if (i + 1 >= argc) throw UsageError("option " + s + " needs a value");
-                a.options[s] = argv[++i];
-            } else {
-                throw UsageError("unknown option " + s);
-            }
-        } else {
-            a.positional.push_back(s);
-        }
+    app.add_option("arguments", a.positional, "scene or files, as the command takes")->type_name("");
+    try {
+        // CLI11 skips argv[0] as the program's name: the command's name stands in for it.
+        app.parse(argc - first + 1, argv + first - 1);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        throw HelpShown{};
+    } catch (const CLI::ParseError& e) {
+        throw UsageError(e.what());
+    }
+    for (const std::string& o : valued)
+        if (app.count(o)) a.options[o] = values[o];
+    for (const std::string& f : flags)
+        if (on[f]) a.options[f] = "1";
+    if (app.count("--log-level")) {
+        const spdlog::level::level_enum level = spdlog::level::from_str(values["--log-level"]);
+        if (level == spdlog::level::off && values["--log-level"] != "off")
+            throw UsageError("--log-level must be trace, debug, info, warn, error or off, got '" + values["--log-level"] + "'");
+        spdlog::set_level(level);
     }
     return a;
 }
@@ -217,6 +262,12 @@ int cmdRender(const Args& a) {
     std::string ex = opt("--exposure", "1");
     s.exposure = std::strtof(ex.c_str(), &end);
     if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
+    const std::string tonemap = opt("--tonemap", "clamp");
+    if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
+    else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
+    const std::string aa = opt("--aa", "none");
+    if (aa != "none" && aa != "fxaa") throw UsageError("--aa must be none or fxaa, got '" + aa + "'");
+    s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : render::AntiAliasing::None;
     render::DirectorOptions director;
     const std::string budget = opt("--error-budget", "0");
     director.errorBudgetPercent = std::strtod(budget.c_str(), &end);
@@ -260,8 +311,8 @@ int cmdRender(const Args& a) {
     if (const std::string env = opt("--environment", ""); !env.empty()) scene.environment = assets::loadEnvironment(env);
     auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
     const render::DirectorChoice choice = render::direct(scene, s, device->info(), device.get(), director);
-    if (a.options.count("--verbose"))
-        for (const std::string& r : choice.reasons) std::cout << "director: " << r << "\n";
+    if (a.options.count("--verbose") && spdlog::get_level() > spdlog::level::info) spdlog::set_level(spdlog::level::info);
+    for (const std::string& r : choice.reasons) spdlog::info("director: {}", r);
     s = choice.settings;
     render::SceneRenderer renderer(*device, scene, s);
     if (!dumpGraph.empty()) {
@@ -315,6 +366,8 @@ int cmdRender(const Args& a) {
                       << " ibl-diffuse " << s.rate(s.rates.iblDiffuse) << " ibl-specular " << s.rate(s.rates.iblSpecular);
     }
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
+    if (!pfm && s.tonemap != shading::Tonemap::Clamp) std::cout << ", tonemap " << shading::tonemapName(s.tonemap);
+    if (!pfm && s.antiAliasing == render::AntiAliasing::Fxaa) std::cout << ", fxaa";
     if (s.shadows.enabled)
         std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
                   << (s.shadows.pcf ? " pcf" : " nearest");
@@ -444,6 +497,44 @@ double parsePositive(const std::string& text, const char* what) {
     return v;
 }
 
+// fe view: the interactive viewer (Viewer.h).
+int cmdView(const Args& a) {
+    if (a.positional.size() > 1) throw UsageError("view takes one scene");
+    auto opt = [&](const char* name, const std::string& fallback) { return a.options.count(name) ? a.options.at(name) : fallback; };
+    tools::ViewerOptions o;
+    if (!a.positional.empty()) o.scene = a.positional[0];
+    o.backend = opt("--backend", "auto");
+    if (gdi::windowCandidates(o.backend).empty())
+        throw UsageError("view needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " + o.backend + " is headless");
+    o.technique = render::findTechnique(opt("--technique", "deferred-tiled")).name;
+    const std::string size = opt("--size", "640x480");
+    const size_t x = size.find('x');
+    if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
+    o.width = parseUint(size.substr(0, x), "width", 64, 8192);
+    o.height = parseUint(size.substr(x + 1), "height", 64, 8192);
+    o.environment = opt("--environment", "");
+    o.frames = a.options.count("--frames") ? parseUint(a.options.at("--frames"), "--frames", 1, 1000000) : 0;
+    o.screenshot = opt("--screenshot", "");
+    if (!o.screenshot.empty() && !(o.screenshot.size() > 4 && o.screenshot.substr(o.screenshot.size() - 4) == ".png"))
+        throw UsageError("--screenshot must end in .png, got '" + o.screenshot + "'");
+    o.debugView = opt("--debug-view", "");
+    o.ui = !a.options.count("--no-ui");
+    o.validation = a.options.count("--validation") > 0;
+    return tools::runViewer(o);
+}
+
+// The report script: an installed fe's (PREFIX/share/fe/bench/report.py beside PREFIX/bin/fe),
+// else the source tree's this fe was built from.
+std::string reportScript() {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const std::filesystem::path installed = exe.parent_path().parent_path() / "share/fe/bench/report.py";
+        if (std::filesystem::exists(installed, ec)) return installed.string();
+    }
+    return FE_BENCH_REPORT_SCRIPT;
+}
+
 // fe bench: a sweep on the backends asked for, results.json and results.csv in --out; or
 // --compare A.json B.json, exit 1 on a regression beyond the thresholds.
 int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
@@ -516,7 +607,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     // The charts and report.html, drawn by tools/bench/report.py with Debian's python3-matplotlib.
     // Debian's interpreter, whose python3-matplotlib it is (a python3 earlier on PATH may lack it).
     const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string command = python + " '" + std::string(FE_BENCH_REPORT_SCRIPT) + "' '" + out + "/results.json'";
+    const std::string command = python + " '" + reportScript() + "' '" + out + "/results.json'";
     const int rc = std::system(command.c_str());
     if (rc != 0)
         throw gdi::Error("the charts and report were not drawn: '" + command + "' failed (exit " +
@@ -556,11 +647,29 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Diagnostics go through spdlog to stderr ("fe info: ..."); results go to stdout. The level:
+    // warn unless FE_LOG_LEVEL or a command's --log-level (or render's --verbose) says otherwise.
+    auto logger = spdlog::stderr_color_mt("fe");
+    logger->set_pattern("fe %l: %v");
+    spdlog::set_default_logger(logger);
+    spdlog::set_level(spdlog::level::warn);
+    if (const char* env = std::getenv("FE_LOG_LEVEL"); env && *env) {
+        const spdlog::level::level_enum level = spdlog::level::from_str(env);
+        if (level == spdlog::level::off && std::string(env) != "off")
+            spdlog::warn("FE_LOG_LEVEL must be trace, debug, info, warn, error or off, got '{}': kept warn", env);
+        else
+            spdlog::set_level(level);
+    }
     if (argc < 2) {
         std::cerr << usage();
         return 2;
     }
     const std::string command = argv[1];
+    if (command == "--version") {
+        const gdi::Json engine = gdi::engineJson();
+        std::cout << "fe " << engine.value("version", std::string("?")) << " (" << engine.value("commit", std::string("?")) << ")\n";
+        return 0;
+    }
     try {
         if (command == "info") return cmdInfo(parse(argc, argv, 2, {"--backend"}, {"--json"}));
         if (command == "render")
@@ -568,9 +677,12 @@ int main(int argc, char** argv) {
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter", "--rates", "--orbit"},
+                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa"},
                                    {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered", "--temporal"}));
+        if (command == "view") return cmdView(parse(argc, argv, 2, {"--backend", "--technique", "--size", "--environment", "--frames",
+                                                                     "--screenshot", "--debug-view"},
+                                                        {"--no-ui", "--validation"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
                                   {"--quick", "--stability", "--conformance"}),
@@ -583,8 +695,13 @@ int main(int argc, char** argv) {
             return 0;
         }
         throw UsageError("unknown command '" + command + "'");
+    } catch (const HelpShown&) {
+        return 0;
     } catch (const UsageError& e) {
-        std::cerr << "fe: " << e.what() << "\n" << usage();
+        // A known command's own usage lines (its --help lists every option); else everything.
+        const std::string own = commandUsage(command);
+        std::cerr << "fe: " << e.what() << "\n"
+                  << (own.empty() ? usage() : "usage:\n" + own + "run 'fe " + command + " --help' for every option\n");
         return 2;
     } catch (const assets::AssetError& e) {
         std::cerr << "fe: " << e.what() << "\n";

@@ -55,6 +55,8 @@
 //   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
 // present() takes an RGBA8 or RGBA8_SRGB texture with CopySrc usage and shows its bytes as they
 // are (no sRGB conversion), upright, in a window sized to it (resized when the size changes).
+// device->input() then says where the mouse is, which buttons and keys are down, how far the
+// wheel turned and what was typed (InputState), for UIs and cameras (fe view).
 //
 // Conventions (identical on every backend, so images match pixel for pixel):
 //  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
@@ -92,6 +94,23 @@
 #include "fe/gdi/Image.h"
 
 namespace fe::gdi {
+
+// ---------------------------------------------------------------------------------------------
+// Window input (Device::input): what an interactive application needs, the same on every
+// windowed backend. Keys are the ones the engine's tools use.
+// ---------------------------------------------------------------------------------------------
+enum class Key : uint8_t {
+    W, A, S, D, Q, E, R, F, P, Space, Escape, Tab, Enter, Backspace, Delete, Left, Right, Up, Down,
+    Home, End, LeftShift, LeftControl, F1, F2, F12, Count
+};
+struct InputState {
+    float mouseX = 0, mouseY = 0;   // framebuffer pixels from the window's top-left
+    bool mouse[3] = {};             // left, right, middle button down
+    float wheel = 0;                // scroll since the previous present (positive: away from the user)
+    bool keys[size_t(Key::Count)] = {};
+    std::string text;               // UTF-8 typed since the previous present
+    bool down(Key k) const { return keys[size_t(k)]; }
+};
 
 // ---------------------------------------------------------------------------------------------
 // Errors and handles
@@ -699,6 +718,8 @@ public:
     }
     // What the window shows now, top row first, RGBA8 (tests check presentation with it).
     virtual Image readWindow() { throw Error(info().backend + ": no window to read"); }
+    // The window's mouse, keys and typed text as of the last present() (headless: none).
+    virtual InputState input() const { return {}; }
 
     // Escape hatch: the native object behind a handle id (see NativeObject); 0 when not
     // applicable. Nothing above layer 4 uses it; bench/ and interop code do.

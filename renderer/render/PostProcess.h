@@ -1,0 +1,38 @@
+// Layer 7: post-processing as render-graph passes, from the technique's linear L_o to the
+// displayable image: exposure and a tone mapper (RenderSettings::tonemap: clamp, the ACES fit or
+// Khronos PBR Neutral), then antialiasing (RenderSettings::antiAliasing: FXAA). Each step is a
+// pass reading the previous one's texture, so the chain's intermediates are transients the graph
+// can alias with the technique's buffers; the graph culls the whole chain when nothing reads the
+// display image.
+#pragma once
+#include "fe/gdi/Device.h"
+#include "frame/CommandQueue.h"
+#include "graph/RenderGraph.h"
+#include "render/RenderSettings.h"
+
+namespace fe::render {
+
+constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a screen shows
+
+class PostProcess {
+public:
+    // `frameConstants` is read when each frame's passes execute (exposure is cameraPosition.w).
+    PostProcess(gdi::Device& device, const RenderSettings& settings, gdi::ShaderHandle fullscreenVs,
+                const UploadAllocation& frameConstants);
+    ~PostProcess();
+    PostProcess(const PostProcess&) = delete;
+    PostProcess& operator=(const PostProcess&) = delete;
+
+    // Declares the chain reading `radiance`; returns the display image (kDisplayFormat).
+    graph::TextureId declare(graph::RenderGraph& graph, graph::TextureId radiance);
+
+private:
+    gdi::Device& device_;
+    const RenderSettings& settings_;
+    const UploadAllocation& frameConstants_;
+    gdi::SamplerHandle pointSampler_, linearSampler_;
+    gdi::ShaderHandle tonemapFs_, fxaaFs_;
+    gdi::PipelineHandle tonemapPipeline_, fxaaPipeline_;
+};
+
+}  // namespace fe::render

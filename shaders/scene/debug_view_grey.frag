@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// A debug view of an intermediate texture (SceneRenderer, RenderSettings::debugView).
+#define FE_DEBUG_VIEW 1
+#include "fe_debug_view.glsl"

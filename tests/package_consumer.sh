@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The installed package used from outside the tree: `cmake --install` into a fresh prefix, the
+# examples configured on their own against it (find_package(fe) 0.1: fe::gdi, fe::renderer,
+# fe_add_shaders), built and run headless on every backend with validation on; then the
+# turntable compiled again with nothing but pkg-config's flags, and the installed fe run.
+#   package_consumer.sh BUILD_DIR SOURCE_DIR WORK_DIR
+set -euo pipefail
+build=$1 src=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
+cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >"$work/configure.log"
+cmake --build "$work/examples" -j2 >"$work/build.log"
+for b in vulkan gl-egl gl-osmesa; do
+  "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
+  "$work/examples/fe_example_turntable" --backend "$b" --validation --frames 2 --size 96x72 --out "$work/turntable_$b.png"
+done
+export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
+# shellcheck disable=SC2046 # pkg-config's flags are words
+c++ -O1 -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe)
+"$work/turntable_pkgconfig" --backend gl-osmesa --frames 1 --size 64x48 --out "$work/turntable_pkgconfig.png"
+"$work/prefix/bin/fe" info --backend vulkan | head -2
+echo "package consumer: built and ran against $work/prefix (fe $(pkg-config --modversion fe))"

@@ -1,0 +1,324 @@
+#include "Viewer.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "assets/BuiltinScenes.h"
+#include "assets/Environment.h"
+#include "fe/gdi/Backend.h"
+#include "integration/SceneRenderer.h"
+#include "integration/UiRenderer.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::tools {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr float kPi = 3.14159265358979f;
+
+// An orbit camera about a target (left drag turns, the wheel zooms) that also flies (W A S D
+// move the target and eye along the view, Q E down and up).
+struct OrbitCamera {
+    glm::vec3 target{0.0f};
+    float yaw = 0, pitch = 0, distance = 5;
+    float yfov = 0.785f, znear = 0.1f, zfar = std::numeric_limits<float>::infinity();
+
+    static OrbitCamera from(const assets::Camera& c, const glm::vec3& target) {
+        OrbitCamera o;
+        o.target = target;
+        const glm::vec3 d = c.eye() - target;
+        o.distance = std::max(0.1f, glm::length(d));
+        o.yaw = std::atan2(d.x, d.z);
+        o.pitch = std::asin(std::clamp(d.y / o.distance, -1.0f, 1.0f));
+        o.yfov = c.yfov, o.znear = c.znear, o.zfar = c.zfar;
+        return o;
+    }
+    glm::vec3 eye() const {
+        return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+    }
+    assets::Camera camera() const {
+        return assets::Camera::lookAlong(eye(), target - eye(), glm::vec3(0, 1, 0), yfov, znear, zfar);
+    }
+};
+
+class Viewer {
+public:
+    explicit Viewer(const ViewerOptions& o) : options_(o) {
+        scene_ = assets::loadScene(o.scene);
+        if (!o.environment.empty()) scene_.environment = assets::loadEnvironment(o.environment);
+        settings_.technique = o.technique;
+        settings_.width = o.width;
+        settings_.height = o.height;
+        settings_.displayImage = true;
+        settings_.debugView = o.debugView;
+        camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
+        wantEnvironment_ = bool(scene_.environment);
+        ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr;  // no imgui.ini beside the user's files
+        // ImGui 1.86 reads keys through a map into KeysDown: our Key values are the indices.
+        const std::pair<ImGuiKey_, gdi::Key> keys[] = {
+            {ImGuiKey_Tab, gdi::Key::Tab},         {ImGuiKey_LeftArrow, gdi::Key::Left}, {ImGuiKey_RightArrow, gdi::Key::Right},
+            {ImGuiKey_UpArrow, gdi::Key::Up},      {ImGuiKey_DownArrow, gdi::Key::Down}, {ImGuiKey_Home, gdi::Key::Home},
+            {ImGuiKey_End, gdi::Key::End},         {ImGuiKey_Delete, gdi::Key::Delete},  {ImGuiKey_Backspace, gdi::Key::Backspace},
+            {ImGuiKey_Enter, gdi::Key::Enter},     {ImGuiKey_Escape, gdi::Key::Escape},  {ImGuiKey_Space, gdi::Key::Space}};
+        for (const auto& [imgui, key] : keys) io.KeyMap[imgui] = int(key);
+        startDevice(o.backend);
+    }
+    ~Viewer() {
+        stopDevice();
+        ImGui::DestroyContext();
+    }
+
+    int run() {
+        bool open = true;
+        auto last = Clock::now();
+        for (uint32_t frame = 0; open && (options_.frames == 0 || frame < options_.frames); ++frame) {
+            const auto now = Clock::now();
+            const float dt = std::max(1e-4f, std::chrono::duration<float>(now - last).count());
+            last = now;
+            const gdi::InputState in = device_->input();
+            ImGuiIO& io = ImGui::GetIO();
+            io.DisplaySize = ImVec2(float(settings_.width), float(settings_.height));
+            io.DeltaTime = dt;
+            io.MousePos = ImVec2(in.mouseX, in.mouseY);
+            for (int b = 0; b < 3; ++b) io.MouseDown[b] = in.mouse[b];
+            io.MouseWheel += in.wheel;
+            for (size_t k = 0; k < size_t(gdi::Key::Count); ++k) io.KeysDown[k] = in.keys[k];
+            io.KeyShift = in.down(gdi::Key::LeftShift);
+            io.KeyCtrl = in.down(gdi::Key::LeftControl);
+            if (!in.text.empty()) io.AddInputCharactersUTF8(in.text.c_str());
+            ImGui::NewFrame();
+            if (options_.ui) panel();
+            ImGui::Render();
+            moveCamera(in, dt);
+
+            const auto t0 = Clock::now();
+            renderer_->setCamera(camera_.camera());
+            renderer_->renderFrame();
+            timings_ = renderer_->passTimings();  // waits for the frame
+            frameMs_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+            const gdi::TextureHandle display = renderer_->displayTexture();
+            if (options_.ui) ui_->render(*ImGui::GetDrawData(), display);
+            const bool screenshotKey = in.down(gdi::Key::F12) && !screenshotKeyWasDown_;
+            screenshotKeyWasDown_ = in.down(gdi::Key::F12);
+            if (screenshotKey) screenshot(options_.screenshot.empty() ? "fe-view.png" : options_.screenshot);
+            open = device_->present(display);
+            applyPendingChanges();
+        }
+        if (!options_.screenshot.empty()) screenshot(options_.screenshot);
+        if (const uint32_t errors = device_->validationErrorCount()) {
+            std::cerr << "fe view: " << errors << " validation error(s)\n";
+            return 1;
+        }
+        return 0;
+    }
+
+private:
+    void startDevice(const std::string& backend) {
+        device_ = gdi::createDevice({.backend = backend, .validation = options_.validation, .window = true});
+        ui_ = std::make_unique<render::UiRenderer>(*device_);
+        rebuildRenderer();
+    }
+    void stopDevice() {
+        renderer_.reset();
+        ui_.reset();
+        device_.reset();
+    }
+    void rebuildRenderer() {
+        renderer_.reset();
+        renderer_ = std::make_unique<render::SceneRenderer>(*device_, scene_, settings_);
+    }
+
+    // The panel's changes take effect between frames: a new renderer, or a new device.
+    void applyPendingChanges() {
+        if (!pendingBackend_.empty()) {
+            const std::string backend = pendingBackend_;
+            pendingBackend_.clear();
+            const std::string previous = device_->info().backend;
+            stopDevice();
+            try {
+                startDevice(backend);
+                message_.clear();
+            } catch (const gdi::Error& e) {
+                message_ = e.what();
+                startDevice(previous);
+            }
+            return;
+        }
+        if (!pendingSettings_) return;
+        const render::RenderSettings previous = settings_;
+        settings_ = *pendingSettings_;
+        pendingSettings_.reset();
+        if (wantEnvironment_ != bool(scene_.environment)) {
+            if (wantEnvironment_) scene_.environment = assets::loadEnvironment("builtin:sky");
+            else scene_.environment.reset(), settings_.iblSamples = 0, settings_.iblPrefiltered = false;
+        }
+        try {
+            rebuildRenderer();
+            message_.clear();
+        } catch (const gdi::Error& e) {  // a combination the technique refuses: say so, keep the last one
+            message_ = e.what();
+            settings_ = previous;
+            wantEnvironment_ = bool(scene_.environment) || previous.ibl();
+            rebuildRenderer();
+        }
+    }
+
+    void moveCamera(const gdi::InputState& in, float dt) {
+        const ImGuiIO& io = ImGui::GetIO();
+        if (!io.WantCaptureMouse) {
+            if (in.mouse[0] && mouseWasDown_) {
+                camera_.yaw -= (in.mouseX - lastMouse_.x) * 0.01f;
+                camera_.pitch = std::clamp(camera_.pitch + (in.mouseY - lastMouse_.y) * 0.01f, -1.5f, 1.5f);
+            }
+            if (in.wheel != 0) camera_.distance = std::max(0.05f, camera_.distance * std::pow(0.9f, in.wheel));
+        }
+        mouseWasDown_ = in.mouse[0];
+        lastMouse_ = {in.mouseX, in.mouseY};
+        if (io.WantCaptureKeyboard) return;
+        const glm::vec3 forward = glm::normalize(camera_.target - camera_.eye());
+        const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+        const float speed = camera_.distance * dt * (in.down(gdi::Key::LeftShift) ? 3.0f : 1.0f);
+        glm::vec3 move{0.0f};
+        if (in.down(gdi::Key::W)) move += forward;
+        if (in.down(gdi::Key::S)) move -= forward;
+        if (in.down(gdi::Key::D)) move += right;
+        if (in.down(gdi::Key::A)) move -= right;
+        if (in.down(gdi::Key::E)) move += glm::vec3(0, 1, 0);
+        if (in.down(gdi::Key::Q)) move -= glm::vec3(0, 1, 0);
+        camera_.target += move * speed;
+    }
+
+    void panel() {
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+        ImGui::Begin("fe view");
+        ImGui::PushItemWidth(150);
+        const gdi::DeviceInfo& info = device_->info();
+        ImGui::Text("backend");
+        for (const char* b : {"vulkan-glfw", "gl-glfw"}) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton(b == std::string("vulkan-glfw") ? "Vulkan" : "GL", info.backend == b) && info.backend != b)
+                pendingBackend_ = b;
+        }
+        ImGui::TextWrapped("%s%s", info.deviceName.c_str(), info.softwareRasterizer ? " (software rasterizer)" : "");
+        render::RenderSettings s = pendingSettings_ ? *pendingSettings_ : settings_;
+        bool changed = false;
+        const render::TechniqueInfo& current = render::findTechnique(s.technique);
+        if (ImGui::BeginCombo("technique", s.technique.c_str())) {
+            for (const render::TechniqueInfo& t : render::techniques())
+                if (ImGui::Selectable(t.name, s.technique == t.name)) {
+                    s.technique = t.name;
+                    if (!t.msaa) s.msaa = 1;
+                    if (!t.illumScale) s.illumScale = 1;
+                    changed = true;
+                }
+            ImGui::EndCombo();
+        }
+        if (current.illumScale) {
+            int scale = int(s.illumScale);
+            ImGui::Text("illumination scale");
+            for (int v : {1, 2, 4}) {
+                ImGui::SameLine();
+                changed |= ImGui::RadioButton(("1/" + std::to_string(v)).c_str(), &scale, v);
+            }
+            s.illumScale = uint32_t(scale);
+        }
+        if (current.msaa) {
+            int msaa = int(s.msaa);
+            ImGui::Text("MSAA");
+            for (int v : {1, 2, 4, 8}) {
+                ImGui::SameLine();
+                changed |= ImGui::RadioButton(("x" + std::to_string(v)).c_str(), &msaa, v);
+            }
+            s.msaa = uint32_t(msaa);
+        }
+        changed |= ImGui::Checkbox("shadows", &s.shadows.enabled);
+        bool environment = wantEnvironment_ || bool(scene_.environment);
+        if (ImGui::Checkbox("sky environment", &environment)) wantEnvironment_ = environment, changed = true;
+        if (environment) {
+            int samples = int(s.iblSamples);
+            if (ImGui::SliderInt("IBL samples", &samples, 0, 256)) s.iblSamples = uint32_t(samples), s.iblPrefiltered = false;
+            changed |= ImGui::IsItemDeactivatedAfterEdit();
+            if (ImGui::Checkbox("IBL prefiltered", &s.iblPrefiltered)) s.iblSamples = 0, changed = true;
+        }
+        if (ImGui::BeginCombo("tone mapper", shading::tonemapName(s.tonemap))) {
+            for (shading::Tonemap t : {shading::Tonemap::Clamp, shading::Tonemap::Aces, shading::Tonemap::PbrNeutral})
+                if (ImGui::Selectable(shading::tonemapName(t), s.tonemap == t)) s.tonemap = t, changed = true;
+            ImGui::EndCombo();
+        }
+        bool fxaa = s.antiAliasing == render::AntiAliasing::Fxaa;
+        if (ImGui::Checkbox("FXAA", &fxaa)) s.antiAliasing = fxaa ? render::AntiAliasing::Fxaa : render::AntiAliasing::None, changed = true;
+        float stops = std::log2(s.exposure);
+        if (ImGui::SliderFloat("exposure", &stops, -8.0f, 8.0f, "%.1f")) s.exposure = std::exp2(stops);
+        changed |= ImGui::IsItemDeactivatedAfterEdit();
+        // Debug views: any 2D intermediate of this frame's graph.
+        if (ImGui::BeginCombo("debug view", s.debugView.empty() ? "frame (L_o)" : s.debugView.c_str())) {
+            if (ImGui::Selectable("frame (L_o)", s.debugView.empty())) s.debugView.clear(), changed = true;
+            for (const graph::TextureInfo& t : renderer_->graph().textures()) {
+                const auto& f = gdi::formatInfo(t.desc.format);
+                if (!t.used() || f.isInteger || t.name == "debug view" || t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||
+                    t.desc.dimension == gdi::TextureDimension::TextureCube || t.desc.dimension == gdi::TextureDimension::TextureCubeArray ||
+                    t.desc.sampleCount > 1)
+                    continue;
+                if (ImGui::Selectable(t.name.c_str(), s.debugView == t.name)) s.debugView = t.name, changed = true;
+            }
+            ImGui::EndCombo();
+        }
+        if (changed) pendingSettings_ = s;
+        else if (s.exposure != settings_.exposure) settings_.exposure = s.exposure, pendingSettings_ = s;
+        if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
+        ImGui::Separator();
+        ImGui::Text("frame %.1f ms (CPU)", frameMs_);
+        if (ImGui::BeginTable("passes", 2)) {
+            for (const auto& t : timings_) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(t.name.c_str());
+                ImGui::TableNextColumn();
+                ImGui::Text("%.2f ms", t.gpuMilliseconds);
+            }
+            ImGui::EndTable();
+        }
+        ImGui::TextDisabled("drag: orbit, wheel: zoom\nW A S D Q E: fly, F12: screenshot");
+        ImGui::PopItemWidth();
+        ImGui::End();
+    }
+
+    void screenshot(const std::string& path) {
+        gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
+        std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique << ")\n";
+    }
+
+    ViewerOptions options_;
+    assets::Scene scene_;
+    render::RenderSettings settings_;
+    OrbitCamera camera_;
+    std::unique_ptr<gdi::Device> device_;
+    std::unique_ptr<render::UiRenderer> ui_;
+    std::unique_ptr<render::SceneRenderer> renderer_;
+    std::vector<graph::PassTiming> timings_;
+    double frameMs_ = 0;
+    std::optional<render::RenderSettings> pendingSettings_;
+    std::string pendingBackend_, message_;
+    bool wantEnvironment_ = false;
+    bool mouseWasDown_ = false, screenshotKeyWasDown_ = false;
+    glm::vec2 lastMouse_{0.0f};
+};
+
+}  // namespace
+
+int runViewer(const ViewerOptions& options) {
+    Viewer viewer(options);
+    return viewer.run();
+}
+
+}  // namespace fe::tools

@@ -1,0 +1,27 @@
+// fe view: the interactive viewer. A window on either API (vulkan-glfw, gl-glfw), a scene drawn
+// by any technique, and a Dear ImGui panel drawn by the engine's UiRenderer: the technique and
+// its options, environment, shadows, tone mapping and antialiasing switched live; the backend
+// switched by restarting the device in place; frame and per-pass GPU times; debug views of the
+// frame's intermediate textures; a screenshot key.
+#pragma once
+#include <string>
+
+namespace fe::tools {
+
+struct ViewerOptions {
+    std::string scene = "builtin:spheres";
+    std::string backend = "auto";      // auto | vulkan | gl | vulkan-glfw | gl-glfw
+    std::string technique = "deferred-tiled";
+    std::string environment;           // "", builtin:sky or an .hdr
+    uint32_t width = 640, height = 480;
+    uint32_t frames = 0;               // 0: until the window is closed
+    std::string screenshot;            // written after the last frame (PNG), and by the F12 key
+    bool validation = false;           // Khronos layer / GL debug output on; an error fails the run (tests)
+    bool ui = true;                    // the panel (false: the scene alone, e.g. to compare)
+    std::string debugView;             // a texture of the frame's graph to show instead of L_o
+};
+
+// Runs the viewer; returns the process exit code. Throws gdi::Error / AssetError on failure.
+int runViewer(const ViewerOptions& options);
+
+}  // namespace fe::tools
