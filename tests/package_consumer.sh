@@ -8,9 +8,14 @@ set -euo pipefail
 build=$1 src=$2 work=$3
 rm -rf "$work"
 mkdir -p "$work"
-cmake --install "$build" --prefix "$work/prefix" >"$work/install.log"
-cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >"$work/configure.log"
-cmake --build "$work/examples" -j2 >"$work/build.log"
+step() {  # runs a step quietly, showing its log when it fails
+  local log=$1
+  shift
+  "$@" >"$log" 2>&1 || { cat "$log"; echo "package consumer: failed: $*"; exit 1; }
+}
+step "$work/install.log" cmake --install "$build" --prefix "$work/prefix"
+step "$work/configure.log" cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release
+step "$work/build.log" cmake --build "$work/examples" -j2
 for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
   "$work/examples/fe_example_turntable" --backend "$b" --validation --frames 2 --size 96x72 --out "$work/turntable_$b.png"
@@ -19,5 +24,7 @@ export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046 # pkg-config's flags are words
 c++ -O1 -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe)
 "$work/turntable_pkgconfig" --backend gl-osmesa --frames 1 --size 64x48 --out "$work/turntable_pkgconfig.png"
-"$work/prefix/bin/fe" info --backend vulkan | head -2
+# (into a file, not a pipe: head closing the pipe early would fail fe with SIGPIPE under pipefail)
+"$work/prefix/bin/fe" info --backend vulkan >"$work/info.txt"
+head -2 "$work/info.txt"
 echo "package consumer: built and ran against $work/prefix (fe $(pkg-config --modversion fe))"
