@@ -66,11 +66,11 @@ def main(path):
     groups = {}
     for r in results:
         s = r["settings"]
-        if s["iblSamples"] or s["iblPrefiltered"] or s["lights"]:
+        if s["iblSamples"] or s["lights"]:
             continue  # charted below
-        groups.setdefault((s["scene"], s["shadows"]["enabled"]), []).append(r)
-    for (scene, shadows), rows in sorted(groups.items()):
-        label = scene + (" with shadows" if shadows else "")
+        groups.setdefault((s["scene"], s["shadows"]["enabled"], s["iblPrefiltered"]), []).append(r)
+    for (scene, shadows, prefiltered), rows in sorted(groups.items()):
+        label = scene + (" with shadows" if shadows else "") + (" and prefiltered IBL" if prefiltered else "")
         fig, axes = per_backend(f"{label}: frame time against error (Pareto front dashed)")
         for ax, b in axes:
             pts = sorted((r for r in rows if r["backend"] == b), key=lambda r: r["cpuFrameMs"]["median"])
@@ -106,7 +106,7 @@ def main(path):
 
     # 3. Image-based lighting: error against the sample count; the fast path as a dashed level.
     ibl = [r for r in results if r["settings"]["iblSamples"] or r["settings"]["iblPrefiltered"]]
-    if ibl:
+    if any(r["settings"]["iblSamples"] for r in ibl):
         fig, axes = per_backend("image-based lighting: error against samples per term (fast path dashed)")
         for ax, b in axes:
             for t in sorted({r["settings"]["technique"] for r in ibl}):
@@ -121,12 +121,14 @@ def main(path):
         save(fig, "ibl_convergence", "image-based lighting convergence")
 
     # 4. Memory per technique: transient bytes per pixel with and without aliasing.
-    mem = [r for r in groups.get(("builtin:spheres", False), []) if r["settings"]["illumScale"] == 1 and r["settings"]["msaa"] == 1]
+    # The first scene configuration of the sweep (builtin:spheres in the quick sweep), one sample, full rate.
+    first = groups.get(("builtin:spheres", False, False)) or next(iter(groups.values()), [])
+    mem = [r for r in first if r["settings"]["illumScale"] == 1 and r["settings"]["msaa"] == 1]
     if mem:
-        fig, axes = per_backend("transient memory per technique (builtin:spheres, one sample, full rate)")
+        fig, axes = per_backend(f"transient memory per technique ({mem[0]['settings']['scene']}, one sample, full rate)")
         for ax, b in axes:
             rows = [r for r in mem if r["backend"] == b]
-            names = [r["settings"]["technique"] for r in rows]
+            names = [short(r) for r in rows]
             x = range(len(rows))
             ax.bar([i - 0.2 for i in x], [r["memory"]["bytesPerPixelWithoutAliasing"] for r in rows], 0.4, label="without aliasing")
             ax.bar([i + 0.2 for i in x], [r["memory"]["bytesPerPixelWithAliasing"] for r in rows], 0.4, label="with aliasing")
