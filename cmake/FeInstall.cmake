@@ -13,6 +13,7 @@ target_link_libraries(fe_package_renderer INTERFACE fe_package_gdi fe_render)
 set_target_properties(fe_package_renderer PROPERTIES EXPORT_NAME renderer)
 add_library(fe::gdi ALIAS fe_package_gdi)
 add_library(fe::renderer ALIAS fe_package_renderer)
+add_library(fe::ui ALIAS fe_ui)
 
 # The libraries behind them, exported under short names (fe::core, fe::render, ...) because a
 # static library's dependencies must be installed with it.

@@ -1,9 +1,11 @@
-// Example (b): a glTF model turning, lit and textured, written once against the engine
-// (fe::renderer) and run unchanged on every backend: the backend is only a startup argument.
+// Example (b): a glTF model turning, lit and textured, with a UI panel, written once against the
+// engine (fe::renderer, fe::ui) and run unchanged on every backend: the backend is only a startup
+// argument. The panel (Dear ImGui drawn by the engine's UiRenderer) shows the frame time and
+// lets a window user pause the turn and change its speed; headless, it is drawn into the image.
 //   fe_example_turntable [MODEL.gltf|.glb|builtin:NAME] [--backend NAME] [--technique NAME]
 //                        [--frames N] [--size WxH] [--out FILE.png] [--window] [--validation]
-// Headless it renders N frames of one turn about the model and writes the last; with --window
-// it shows the turn until the window is closed.
+// Headless it renders N frames (default 24) of one turn about the model and writes the last;
+// with --window it shows the turn until the window is closed, or for --frames N.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -13,6 +15,10 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "integration/SceneRenderer.h"
+#include "integration/UiRenderer.h"
+
+#include <imgui.h>
+#include <chrono>
 
 using namespace fe;
 
@@ -22,7 +28,7 @@ int main(int argc, char** argv) {
     settings.tonemap = shading::Tonemap::PbrNeutral;  // a display image, not a measurement
     settings.antiAliasing = render::AntiAliasing::Fxaa;
     settings.displayImage = true;
-    uint32_t frames = 24;
+    uint32_t frames = 0;  // 0: headless 24, windowed until the window is closed
     bool window = false, validation = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -41,19 +47,48 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    if (frames == 0) frames = 1;
+    const bool untilClosed = window && frames == 0;
+    if (frames == 0) frames = 24;
     try {
         const assets::Scene scene = assets::loadScene(model);
         auto device = gdi::createDevice({.backend = backend, .validation = validation, .window = window});
         render::SceneRenderer renderer(*device, scene, settings);
+        ImGui::CreateContext();
+        struct ImGuiContextGuard {
+            ~ImGuiContextGuard() { ImGui::DestroyContext(); }
+        } imguiContext;  // outlives the UI renderer below
+        ImGui::GetIO().IniFilename = nullptr;
+        render::UiRenderer ui(*device);
         const glm::vec3 centre = scene.bounds.center();
-        bool open = true;
-        for (uint32_t f = 0; open && (window || f < frames); ++f) {
-            renderer.setCamera(scene.camera->orbited(centre, 6.2831853f * float(f % frames) / float(frames)));
+        bool open = true, paused = false;
+        float angle = 0, degreesPerFrame = 360.0f / float(frames), frameMs = 0;
+        for (uint32_t f = 0; open && (untilClosed || f < frames); ++f) {
+            const auto t0 = std::chrono::steady_clock::now();
+            renderer.setCamera(scene.camera->orbited(centre, angle * 0.0174532925f));
             renderer.renderFrame();
+            renderer.passTimings();  // waits for the frame, so the time below is the frame's
+            frameMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            // The panel, fed by the window's input (none headless).
+            const gdi::InputState in = device->input();
+            ImGuiIO& io = ImGui::GetIO();
+            io.DisplaySize = ImVec2(float(settings.width), float(settings.height));
+            io.DeltaTime = std::max(frameMs, 0.1f) / 1000.0f;
+            io.MousePos = ImVec2(in.mouseX, in.mouseY);
+            for (int b = 0; b < 3; ++b) io.MouseDown[b] = in.mouse[b];
+            ImGui::NewFrame();
+            ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
+            ImGui::Begin("turntable", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+            ImGui::Text("%s, %s", device->info().backend.c_str(), settings.technique.c_str());
+            ImGui::Text("%.1f ms a frame", frameMs);
+            ImGui::Checkbox("pause", &paused);
+            ImGui::SliderFloat("deg/frame", &degreesPerFrame, 0.0f, 10.0f, "%.1f");
+            ImGui::End();
+            ImGui::Render();
+            ui.render(*ImGui::GetDrawData(), renderer.displayTexture());
+            if (!paused) angle += degreesPerFrame;
             if (window) open = device->present(renderer.displayTexture());
         }
-        gdi::writePng(renderer.readDisplay(), out);
+        gdi::writePng(device->readTexture(renderer.displayTexture()), out);
         if (device->validationErrorCount()) {
             std::fprintf(stderr, "fe_example_turntable: %u validation error(s)\n", unsigned(device->validationErrorCount()));
             return 1;
