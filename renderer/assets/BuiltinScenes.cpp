@@ -229,10 +229,42 @@ Scene makeShadows() {
     return s;
 }
 
+// builtin:particles: builtin:shadows' ground and objects with a fire (additive, emitting) by the
+// cube and a column of smoke (alpha-blended, lit, sorted) rising from behind the sphere.
+Scene makeParticles() {
+    Scene s = makeShadows();
+    s.name = "particles";
+    ParticleEmitter fire;
+    fire.name = "fire";
+    fire.position = {0.0f, 0.05f, 0.6f};
+    fire.velocity = {0.0f, 1.2f, 0.0f};
+    fire.spread = 0.35f;
+    fire.rate = 120.0f;
+    fire.lifetime = 1.0f;
+    fire.gravity = {0.0f, 0.4f, 0.0f};  // buoyant
+    fire.sizeStart = 0.12f, fire.sizeEnd = 0.03f;
+    fire.colorStart = {6.0f, 2.2f, 0.5f, 1.0f}, fire.colorEnd = {1.5f, 0.2f, 0.05f, 0.0f};
+    fire.blend = ParticleEmitter::Blend::Additive;
+    ParticleEmitter smoke;
+    smoke.name = "smoke";
+    smoke.position = {-1.3f, 1.1f, -0.6f};
+    smoke.velocity = {0.15f, 0.7f, 0.0f};
+    smoke.spread = 0.25f;
+    smoke.rate = 60.0f;
+    smoke.lifetime = 3.0f;
+    smoke.gravity = {0.05f, 0.05f, 0.0f};
+    smoke.sizeStart = 0.12f, smoke.sizeEnd = 0.45f;
+    smoke.colorStart = {0.55f, 0.55f, 0.55f, 0.7f}, smoke.colorEnd = {0.4f, 0.4f, 0.42f, 0.0f};
+    smoke.blend = ParticleEmitter::Blend::Alpha;
+    s.emitters = {fire, smoke};
+    s.camera->name = "particles";
+    return s;
+}
+
 }  // namespace
 
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows"};
+    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles"};
     return names;
 }
 
@@ -266,6 +298,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
         s = makeTriangle();
     } else if (name == "shadows") {
         s = makeShadows();
+    } else if (name == "particles") {
+        s = makeParticles();
     } else {
         std::string valid;
         for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;

@@ -285,6 +285,7 @@ private:
     void checkExtensions();
     void buildHierarchy();
     void traverseScene();
+    void addEmitter(int n, const tinygltf::Value& extras);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
 
@@ -587,6 +588,7 @@ void Loader::traverseScene() {
             const auto& node = model_.nodes[size_t(n)];
             if (node.camera >= 0) addCamera(n);
             if (auto* ext = findExtension(node.extensions, "KHR_lights_punctual")) addLight(n, *ext);
+            if (node.extras.IsObject() && node.extras.Has("fe_emitter")) addEmitter(n, node.extras.Get("fe_emitter"));
             if (node.mesh >= 0) addMeshInstances(n);
             for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
         }
@@ -621,6 +623,58 @@ void Loader::addCamera(int n) {
     if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = float(p.aspectRatio);
     c.name = cam.name.empty() ? node.name : cam.name;
     scene_.camera = c;
+}
+
+// A particle emitter from a node's extras: {"fe_emitter": {"rate": 100, "lifetime": 2,
+// "velocity": [0, 1, 0], "spread": 0.3, "gravity": [0, -1, 0], "size": [0.1, 0.3],
+// "colorStart": [r, g, b, a], "colorEnd": [r, g, b, a], "blend": "additive" | "alpha",
+// "softness": 0.2}}, every key optional (ParticleEmitter's defaults). It sits at the node's world
+// position; velocity and gravity are in world space. A malformed value is an error naming it.
+void Loader::addEmitter(int n, const tinygltf::Value& v) {
+    const std::string where = nodeLabel(n) + ": extras.fe_emitter";
+    if (!v.IsObject()) fail(where + " must be an object");
+    ParticleEmitter e;
+    e.name = model_.nodes[size_t(n)].name.empty() ? "node " + std::to_string(n) : model_.nodes[size_t(n)].name;
+    auto number = [&](const char* key, float& out) {
+        if (!v.Has(key)) return;
+        const tinygltf::Value& x = v.Get(key);
+        if (!x.IsNumber()) fail(where + "." + key + " must be a number");
+        out = float(x.GetNumberAsDouble());
+    };
+    auto vector = [&](const char* key, float* out, int count) {
+        if (!v.Has(key)) return;
+        const tinygltf::Value& x = v.Get(key);
+        if (!x.IsArray() || int(x.ArrayLen()) != count) fail(where + "." + key + " must be an array of " + std::to_string(count) + " numbers");
+        for (int i = 0; i < count; ++i) {
+            if (!x.Get(i).IsNumber()) fail(where + "." + key + " must be an array of " + std::to_string(count) + " numbers");
+            out[i] = float(x.Get(i).GetNumberAsDouble());
+        }
+    };
+    for (const std::string& key : v.Keys())
+        if (key != "rate" && key != "lifetime" && key != "velocity" && key != "spread" && key != "gravity" && key != "size" &&
+            key != "colorStart" && key != "colorEnd" && key != "blend" && key != "softness")
+            fail(where + ": unknown key '" + key + "'");
+    number("rate", e.rate);
+    number("lifetime", e.lifetime);
+    number("spread", e.spread);
+    number("softness", e.softness);
+    vector("velocity", &e.velocity.x, 3);
+    vector("gravity", &e.gravity.x, 3);
+    float size[2] = {e.sizeStart, e.sizeEnd};
+    vector("size", size, 2);
+    e.sizeStart = size[0], e.sizeEnd = size[1];
+    vector("colorStart", &e.colorStart.x, 4);
+    vector("colorEnd", &e.colorEnd.x, 4);
+    if (v.Has("blend")) {
+        const tinygltf::Value& b = v.Get("blend");
+        if (!b.IsString() || (b.Get<std::string>() != "additive" && b.Get<std::string>() != "alpha"))
+            fail(where + ".blend must be \"additive\" or \"alpha\"");
+        e.blend = b.Get<std::string>() == "alpha" ? ParticleEmitter::Blend::Alpha : ParticleEmitter::Blend::Additive;
+    }
+    if (!(e.rate > 0.0f) || !(e.lifetime > 0.0f) || !std::isfinite(e.rate * e.lifetime))
+        fail(where + ": rate and lifetime must be positive numbers");
+    e.position = glm::vec3(world_[size_t(n)][3]);
+    scene_.emitters.push_back(e);
 }
 
 void Loader::addLight(int n, const tinygltf::Value& ext) {

@@ -21,6 +21,8 @@
 // - The first perspective camera met in depth-first node order, with its node's world transform
 //   (scale removed); zfar absent = infinite.
 // - EXT_mesh_gpu_instancing (one MeshInstance per instance).
+// - Particle emitters: a node whose extras hold "fe_emitter" gets a ParticleEmitter at its world
+//   position (keys in GltfLoader.cpp, addEmitter; docs/PARTICLES.md).
 // - Skins: the rest pose (joints at their node transforms) is skinned once on the CPU into a
 //   world-space mesh; morph targets: the mesh's default weights are applied. Animations are
 //   ignored. Each of these adds a warning.

@@ -8,6 +8,7 @@
 // [0.045, 1] of SHADING.md is the shaders' job, not the loader's.
 #pragma once
 #include "assets/Environment.h"
+#include <cmath>
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -143,6 +144,27 @@ struct Light {
     float outerConeAngle = 0.78539816339f;      // radians (spot), pi/4 as in glTF
 };
 
+// A particle emitter (the VFX renderer, render/VfxRenderer.h): particles born at `rate` per
+// second at `position`, leaving along `velocity` within a cone of half-angle `spread`, falling
+// with `gravity`, living `lifetime` seconds while size and colour blend from start to end.
+// Additive particles emit light (fire, sparks); alpha-blended ones are lit by the scene's lights
+// and drawn back to front (smoke). A glTF node gets one through its extras (GltfLoader.h).
+struct ParticleEmitter {
+    enum class Blend { Additive, Alpha };
+    std::string name;
+    glm::vec3 position{0.0f};
+    glm::vec3 velocity{0.0f, 1.0f, 0.0f};  // m/s
+    float spread = 0.3f;                   // radians
+    float rate = 100.0f;                   // particles per second
+    float lifetime = 2.0f;                 // seconds
+    glm::vec3 gravity{0.0f, -1.0f, 0.0f};  // m/s^2
+    float sizeStart = 0.1f, sizeEnd = 0.3f;  // billboard half-width, metres
+    glm::vec4 colorStart{1.0f}, colorEnd{1.0f, 1.0f, 1.0f, 0.0f};  // linear; additive: radiance, alpha: albedo
+    Blend blend = Blend::Additive;
+    float softness = 0.2f;  // metres over which a particle fades out in front of scene depth
+    uint32_t maxParticles() const { return uint32_t(std::ceil(rate * lifetime)); }
+};
+
 // Perspective camera. worldFromView is a rigid transform (scale removed): column 3 is the eye,
 // -column 2 the viewing direction, column 1 up.
 struct Camera {
@@ -176,6 +198,7 @@ struct Scene {
     std::vector<Light> lights;
     std::optional<Camera> camera;
     std::optional<Environment> environment;  // drawn as the background where nothing is drawn
+    std::vector<ParticleEmitter> emitters;   // the VFX renderer's particle systems
     Bounds bounds;  // world space, union of the instances; empty if nothing is drawn
     bool hasDefaultLights = false;  // lights were added by the loader (the file had none)
     bool hasDefaultCamera = false;  // camera was made by the loader (the file had none)

@@ -96,6 +96,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         context_->environmentLight = light;
     }
     context_->shadows = shadows_.get();
+    if (!scene.emitters.empty()) vfx_ = std::make_unique<VfxRenderer>(*context_, scene.emitters);
     technique_ = technique.create(*context_);
     buildGraph();
     graph_.compile(device, s.aliasing);
@@ -104,6 +105,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
 SceneRenderer::~SceneRenderer() {
     device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     technique_.reset();
+    vfx_.reset();
     shadows_.reset();
     prefiltered_.reset();
     environment_.reset();
@@ -150,6 +152,7 @@ void SceneRenderer::buildGraph() {
             pc.cmd.endRenderPass();
         });
     }
+    if (vfx_) vfx_->declare(g, output_, depth_);  // particles: after every other translucent surface
     graph::TextureId shown = output_;
     if (!s.debugView.empty()) shown = declareDebugView(g);
     display_ = postProcess_->declare(g, shown);

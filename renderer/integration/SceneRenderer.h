@@ -22,6 +22,7 @@
 #include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
 #include "render/TechniqueRenderer.h"
+#include "render/VfxRenderer.h"
 
 namespace fe::render {
 
@@ -48,6 +49,8 @@ public:
     void updateLights(const std::vector<assets::Light>& lights);
     // Which lights cast shadows and how (empty when shadows are off).
     const ShadowPlan& shadowPlan() const { return shadowPlan_; }
+    // The particle systems (null when the scene has no emitters).
+    VfxRenderer* vfx() { return vfx_.get(); }
     // The camera of the next frames (a camera path); the scene's until this is called.
     void setCamera(const assets::Camera& camera);
 
@@ -70,6 +73,7 @@ private:
     gdi::PipelineHandle debugViewPipeline_;  // tone mapping and antialiasing, ending in the display image
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
+    std::unique_ptr<VfxRenderer> vfx_;             // when the scene has particle emitters
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
