@@ -244,6 +244,8 @@ public:
             warn(std::to_string(model_.animations.size()) +
                  " animation(s) ignored: the static pose is loaded");
         }
+        if (scene_.instances.empty() && scene_.emitters.empty())
+            warn("nothing to draw: no node of the scene has a mesh (an empty frame will be rendered)");
         finalizeScene(scene_, opt_.defaultCamera, opt_.defaultLights);
         return std::move(scene_);
     }
@@ -285,6 +287,7 @@ private:
     void checkExtensions();
     void buildHierarchy();
     void traverseScene();
+    void checkAsset();
     void addEmitter(int n, const tinygltf::Value& extras);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
@@ -461,6 +464,21 @@ void Loader::parseFile() {
         if (!trimTrailing(line).empty()) warn("tinygltf: " + trimTrailing(line));
     }
     if (scene_.name.empty()) scene_.name = fp.stem().string();
+    checkAsset();
+}
+
+// What the glTF 2.0 specification requires and the parser lets through.
+void Loader::checkAsset() {
+    // 3.2 Asset: "version" is required, "<major>.<minor>"; a loader must not load a major version
+    // it does not implement, and "minVersion" names the least version a loader must support.
+    const std::string& v = model_.asset.version;
+    if (v.empty()) fail("asset.version is missing (glTF 2.0 requires it)");
+    if (v.rfind("2.", 0) != 0 || v.size() < 3) fail("asset.version '" + v + "': this loader reads glTF 2.x only");
+    const std::string& min = model_.asset.minVersion;
+    if (!min.empty() && min != "2.0") fail("asset.minVersion '" + min + "': this loader implements glTF 2.0");
+    // 5.x glTF: "scene" (the default scene) must be defined only when "scenes" is.
+    if (model_.defaultScene >= 0 && model_.scenes.empty())
+        fail("scene " + std::to_string(model_.defaultScene) + " is set but the file has no scenes (glTF 2.0 forbids it)");
 }
 
 void Loader::checkExtensions() {

@@ -164,8 +164,9 @@ void SceneRenderer::buildGraph() {
 // then shows as it would show L_o. Integer and cube textures cannot be shown this way (refused).
 graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
     const RenderSettings& s = settings_;
+    if (s.debugView == kLightCountView) return declareLightCountView(g);
     graph::TextureId source;
-    std::string names;
+    std::string names = kLightCountView;
     for (uint32_t i = 0; i < g.textures().size(); ++i) {
         const graph::TextureInfo& t = g.textures()[i];
         names += (names.empty() ? "" : ", ") + t.name;
@@ -198,6 +199,35 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
         pc.cmd.setPipeline(debugViewPipeline_);
         pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
         pc.cmd.setTexture(kSlotRadiance, pc.texture(source), pointSampler_);
+        pc.cmd.draw(3);
+        pc.cmd.endRenderPass();
+    });
+    return view;
+}
+
+// The "light count" debug view: a heat map of how many lights reach each pixel's surface.
+graph::TextureId SceneRenderer::declareLightCountView(graph::RenderGraph& g) {
+    const RenderSettings& s = settings_;
+    debugViewFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/debug_light_count.frag")});
+    debugViewPipeline_ = device_.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
+         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                      {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Fragment},
+                      {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+         .debugName = "debug view light count"});
+    const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
+    g.addPass("debug-view", [&](graph::PassBuilder& b) {
+        b.sample(depth_);
+        b.colorTarget(view);
+    }, [this](graph::PassContext& pc) {
+        FrameConstants fc = frame_;
+        fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 0, 0);  // every light, shadowed ones too
+        const UploadAllocation constants = queue_->upload(fc);
+        pc.beginRenderPass();
+        pc.cmd.setPipeline(debugViewPipeline_);
+        pc.cmd.setUniformBuffer(kSlotFrame, constants.buffer, constants.offset, constants.size);
+        pc.cmd.setStorageBuffer(kSlotLights, gpuScene_->lightBuffer());
+        pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     });

@@ -30,6 +30,10 @@ using graph::PassTiming;
 
 class SceneRenderer {
 public:
+    // RenderSettings::debugView's name for the per-pixel light-count heat map (the other names
+    // are the graph's textures).
+    static constexpr const char* kLightCountView = "light count";
+
     SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& settings);
     ~SceneRenderer();
 
@@ -57,6 +61,7 @@ public:
 private:
     void buildGraph();
     graph::TextureId declareDebugView(graph::RenderGraph& g);
+    graph::TextureId declareLightCountView(graph::RenderGraph& g);
 
     gdi::Device& device_;
     const assets::Scene& scene_;

@@ -77,7 +77,8 @@ struct RenderSettings {
     AntiAliasing antiAliasing = AntiAliasing::None;
     // A debug view: the display shows this intermediate texture of the frame's graph (by its
     // name, as RenderGraph::textures() lists them: "gbuffer1 normal+roughness", "depth", ...)
-    // instead of L_o, scaled by the exposure. Empty: the frame itself.
+    // instead of L_o, scaled by the exposure; "light count": a heat map of how many lights reach
+    // each pixel (SceneRenderer::kLightCountView). Empty: the frame itself.
     std::string debugView;
     // Also produce the displayable image (RGBA8_SRGB) on the GPU; without it the graph culls
     // the post-processing passes.

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 
 #include "BackendTest.h"
 #include "assets/BuiltinScenes.h"
@@ -206,6 +208,35 @@ TEST_P(PostProcess, DebugViewShowsAnIntermediateTexture) {
     const std::string error = fe::testing::errorOf([&] { renderWith(*device, scene, s); });
     EXPECT_NE(error.find("debug view 'nothing': this frame has no such texture (it has: "), std::string::npos) << error;
     EXPECT_NE(error.find("gbuffer1 normal+roughness"), std::string::npos) << error;
+}
+
+// The "light count" heat map: builtin:plane has one unbounded light, so every pixel of the plane
+// shows the colour of one light (and anything else black); builtin:lights (short-range
+// lights) shows several counts.
+TEST_P(PostProcess, LightCountHeatMap) {
+    render::RenderSettings s{.technique = "forward", .width = 64, .height = 48};
+    s.debugView = render::SceneRenderer::kLightCountView;
+    const Rendered plane = renderWith(*device, assets::makeBuiltinScene("plane"), s);
+    size_t one = 0, black = 0, other = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const auto c = plane.display.texel(x, y);
+            if (c[0] + c[1] + c[2] == 0.0f) ++black;
+            else if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - 0.388f) < 0.01f) ++one;  // heat(1/32), sRGB-encoded
+            else ++other;
+        }
+    EXPECT_GT(one, 64u * 48u / 4);  // the plane fills most of the view; any background stays black
+    EXPECT_EQ(other, 0u) << black << " black pixels";
+    assets::BuiltinOptions o;
+    o.lights = 64;
+    const Rendered lights = renderWith(*device, assets::makeBuiltinScene("lights", o), s);
+    std::set<std::array<float, 3>> colours;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const auto c = lights.display.texel(x, y);
+            colours.insert({c[0], c[1], c[2]});
+        }
+    EXPECT_GE(colours.size(), 4u) << "short-range lights should reach different pixels in different numbers";
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(PostProcess);

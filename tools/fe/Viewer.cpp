@@ -111,6 +111,8 @@ public:
             screenshotKeyWasDown_ = in.down(gdi::Key::F12);
             if (screenshotKey) screenshot(options_.screenshot.empty() ? "fe-view.png" : options_.screenshot);
             open = device_->present(display);
+            if (options_.switchBackendAt && frame + 1 == options_.switchBackendAt)
+                pendingBackend_ = device_->info().backend == "vulkan-glfw" ? "gl-glfw" : "vulkan-glfw";
             applyPendingChanges();
         }
         if (!options_.screenshot.empty()) screenshot(options_.screenshot);
@@ -263,6 +265,8 @@ private:
         // Debug views: any 2D intermediate of this frame's graph.
         if (ImGui::BeginCombo("debug view", s.debugView.empty() ? "frame (L_o)" : s.debugView.c_str())) {
             if (ImGui::Selectable("frame (L_o)", s.debugView.empty())) s.debugView.clear(), changed = true;
+            if (ImGui::Selectable(render::SceneRenderer::kLightCountView, s.debugView == render::SceneRenderer::kLightCountView))
+                s.debugView = render::SceneRenderer::kLightCountView, changed = true;
             for (const graph::TextureInfo& t : renderer_->graph().textures()) {
                 const auto& f = gdi::formatInfo(t.desc.format);
                 if (!t.used() || f.isInteger || t.name == "debug view" || t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||

@@ -19,6 +19,7 @@ struct ViewerOptions {
     bool validation = false;           // Khronos layer / GL debug output on; an error fails the run (tests)
     bool ui = true;                    // the panel (false: the scene alone, e.g. to compare)
     std::string debugView;             // a texture of the frame's graph to show instead of L_o
+    uint32_t switchBackendAt = 0;      // tests: at this frame, switch to the other API as the panel does
 };
 
 // Runs the viewer; returns the process exit code. Throws gdi::Error / AssetError on failure.

@@ -64,10 +64,12 @@ constexpr const char* kUsage =
     "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
     "        fit or Khronos PBR Neutral) --aa none|fxaa (the .png: FXAA as a post-process pass)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
+    "      --strict: the loader's warnings (content skipped or approximated, printed on stderr) are errors\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
     "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
-    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE] [--no-ui] [--validation]\n"
+    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"] [--no-ui] [--validation]\n"
+    "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
     "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
     "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
@@ -308,6 +310,11 @@ int cmdRender(const Args& a) {
     const std::string dumpGraph = opt("--dump-graph", "");
 
     assets::Scene scene = assets::loadScene(spec, {}, builtin);
+    // What the loader skipped or approximated, on stderr; --strict makes any of it an error.
+    for (const std::string& w : scene.warnings) spdlog::warn("{}: {}", spec, w);
+    if (a.options.count("--strict") && !scene.warnings.empty())
+        throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
+                                 scene.warnings.front());
     if (const std::string env = opt("--environment", ""); !env.empty()) scene.environment = assets::loadEnvironment(env);
     auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = vsync == "on"});
     const render::DirectorChoice choice = render::direct(scene, s, device->info(), device.get(), director);
@@ -520,6 +527,7 @@ int cmdView(const Args& a) {
     o.debugView = opt("--debug-view", "");
     o.ui = !a.options.count("--no-ui");
     o.validation = a.options.count("--validation") > 0;
+    if (a.options.count("--switch-backend-at")) o.switchBackendAt = parseUint(a.options.at("--switch-backend-at"), "--switch-backend-at", 1, 1000000);
     return tools::runViewer(o);
 }
 
@@ -678,10 +686,10 @@ int main(int argc, char** argv) {
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
                                     "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa"},
-                                   {"--no-aliasing", "--window", "--verbose", "--illum-split", "--rebuild-nov", "--one-pass-culling",
+                                   {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered", "--temporal"}));
         if (command == "view") return cmdView(parse(argc, argv, 2, {"--backend", "--technique", "--size", "--environment", "--frames",
-                                                                     "--screenshot", "--debug-view"},
+                                                                     "--screenshot", "--debug-view", "--switch-backend-at"},
                                                         {"--no-ui", "--validation"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
