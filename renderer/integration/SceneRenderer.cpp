@@ -175,14 +175,15 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
     if (!source.valid()) throw gdi::Error("debug view '" + s.debugView + "': this frame has no such texture (it has: " + names + ")");
     const gdi::TextureDesc& desc = g.texture(source).desc;
     const gdi::FormatInfo& format = gdi::formatInfo(desc.format);
-    if (format.isInteger || desc.dimension == gdi::TextureDimension::TextureCube ||
-        desc.dimension == gdi::TextureDimension::TextureCubeArray || desc.dimension == gdi::TextureDimension::Texture3D ||
-        desc.sampleCount > 1)
+    if (format.isInteger || desc.dimension == gdi::TextureDimension::TextureCubeArray ||
+        desc.dimension == gdi::TextureDimension::Texture3D || desc.sampleCount > 1)
         throw gdi::Error("debug view '" + s.debugView + "': " + std::string(format.name) + " " +
                          (desc.sampleCount > 1 ? "multisampled " : "") + "textures of this kind cannot be shown");
     const bool layered = desc.dimension == gdi::TextureDimension::Texture2DArray;
-    const char* shader = layered ? "scene/debug_view_layered.frag"
-                         : (format.hasDepth || format.channels == 1) ? "scene/debug_view_grey.frag"
+    const char* shader = desc.dimension == gdi::TextureDimension::TextureCube ? "scene/debug_view_cube.frag"
+                         : layered ? "scene/debug_view_layered.frag"
+                         : format.hasDepth         ? "scene/debug_view_depth.frag"
+                         : format.channels == 1    ? "scene/debug_view_grey.frag"
                                                                        : "scene/debug_view.frag";
     debugViewFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)});
     debugViewPipeline_ = device_.createGraphicsPipeline(
@@ -191,17 +192,7 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
                       {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "debug view"});
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
-    g.addPass("debug-view", [&](graph::PassBuilder& b) {
-        b.sample(source);
-        b.colorTarget(view);
-    }, [this, source](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        pc.cmd.setPipeline(debugViewPipeline_);
-        pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        pc.cmd.setTexture(kSlotRadiance, pc.texture(source), pointSampler_);
-        pc.cmd.draw(3);
-        pc.cmd.endRenderPass();
-    });
+    addFullscreenPass(g, "debug-view", source, view, debugViewPipeline_, pointSampler_, frameConstants_);
     return view;
 }
 

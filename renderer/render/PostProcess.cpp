@@ -55,31 +55,26 @@ graph::TextureId PostProcess::declare(graph::RenderGraph& g, graph::TextureId ra
     // 8-bit precision expect); without, the tone mapper writes the display image itself.
     const graph::TextureId tonemapped = g.createTexture(fxaa ? "tonemapped sRGB" : "display sRGB",
                                                         {.format = kDisplayFormat, .width = s.width, .height = s.height});
-    g.addPass(fxaa ? "tonemap" : "display", [&](graph::PassBuilder& b) {
-        b.sample(radiance);
-        b.colorTarget(tonemapped);
-    }, [this, radiance](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        pc.cmd.setPipeline(tonemapPipeline_);
-        pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        pc.cmd.setTexture(kSlotRadiance, pc.texture(radiance), pointSampler_);
-        pc.cmd.draw(3);
-        pc.cmd.endRenderPass();
-    });
+    addFullscreenPass(g, fxaa ? "tonemap" : "display", radiance, tonemapped, tonemapPipeline_, pointSampler_, frameConstants_);
     if (!fxaa) return tonemapped;
     const graph::TextureId display = g.createTexture("display sRGB", {.format = kDisplayFormat, .width = s.width, .height = s.height});
-    g.addPass("fxaa", [&](graph::PassBuilder& b) {
-        b.sample(tonemapped);
-        b.colorTarget(display);
-    }, [this, tonemapped](graph::PassContext& pc) {
+    addFullscreenPass(g, "fxaa", tonemapped, display, fxaaPipeline_, linearSampler_, frameConstants_);
+    return display;
+}
+
+void addFullscreenPass(graph::RenderGraph& g, const char* name, graph::TextureId source, graph::TextureId target,
+                       gdi::PipelineHandle pipeline, gdi::SamplerHandle sampler, const UploadAllocation& frameConstants) {
+    g.addPass(name, [&](graph::PassBuilder& b) {
+        b.sample(source);
+        b.colorTarget(target);
+    }, [source, pipeline, sampler, constants = &frameConstants](graph::PassContext& pc) {
         pc.beginRenderPass();
-        pc.cmd.setPipeline(fxaaPipeline_);
-        pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        pc.cmd.setTexture(kSlotRadiance, pc.texture(tonemapped), linearSampler_);
+        pc.cmd.setPipeline(pipeline);
+        pc.cmd.setUniformBuffer(kSlotFrame, constants->buffer, constants->offset, constants->size);
+        pc.cmd.setTexture(kSlotRadiance, pc.texture(source), sampler);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     });
-    return display;
 }
 
 }  // namespace fe::render

@@ -14,6 +14,12 @@ namespace fe::render {
 
 constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a screen shows
 
+// One full-screen triangle into `target` with `pipeline`, sampling `source` at kSlotRadiance
+// with `sampler` and reading the frame's constants (as they are when the pass executes): each
+// step of post-processing, and the scene renderer's debug view.
+void addFullscreenPass(graph::RenderGraph& graph, const char* name, graph::TextureId source, graph::TextureId target,
+                       gdi::PipelineHandle pipeline, gdi::SamplerHandle sampler, const UploadAllocation& frameConstants);
+
 class PostProcess {
 public:
     // `frameConstants` is read when each frame's passes execute (exposure is cameraPosition.w).

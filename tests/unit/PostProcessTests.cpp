@@ -210,6 +210,28 @@ TEST_P(PostProcess, DebugViewShowsAnIntermediateTexture) {
     EXPECT_NE(error.find("gbuffer1 normal+roughness"), std::string::npos) << error;
 }
 
+// Shadow maps as debug views: the sun's cascades (a 2D array: layer 0) and the lamp's cube (its
+// six faces unfolded) show as grey depths that vary across the view, not one flat value.
+TEST_P(PostProcess, DebugViewShowsShadowMaps) {
+    const assets::Scene scene = assets::makeBuiltinScene("shadows");
+    for (const char* map : {"shadow 0 map", "shadow 2 map"}) {
+        render::RenderSettings s{.technique = "deferred", .width = 96, .height = 64};
+        s.shadows = {.enabled = true, .mapSize = 256};
+        s.debugView = map;
+        const Rendered r = renderWith(*device, scene, s);
+        std::set<float> greys;
+        size_t coloured = 0;
+        for (uint32_t y = 0; y < r.display.height; ++y)
+            for (uint32_t x = 0; x < r.display.width; ++x) {
+                const auto c = r.display.texel(x, y);
+                greys.insert(c[0]);
+                coloured += c[0] != c[1] || c[1] != c[2];
+            }
+        EXPECT_EQ(coloured, 0u) << map;
+        EXPECT_GE(greys.size(), 8u) << map << ": a shadow map of a scene should hold many depths";
+    }
+}
+
 // The "light count" heat map: builtin:plane has one unbounded light, so every pixel of the plane
 // shows the colour of one light (and anything else black); builtin:lights (short-range
 // lights) shows several counts.

@@ -270,7 +270,7 @@ private:
             for (const graph::TextureInfo& t : renderer_->graph().textures()) {
                 const auto& f = gdi::formatInfo(t.desc.format);
                 if (!t.used() || f.isInteger || t.name == "debug view" || t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||
-                    t.desc.dimension == gdi::TextureDimension::TextureCube || t.desc.dimension == gdi::TextureDimension::TextureCubeArray ||
+                    t.desc.dimension == gdi::TextureDimension::TextureCubeArray || t.desc.dimension == gdi::TextureDimension::Texture3D ||
                     t.desc.sampleCount > 1)
                     continue;
                 if (ImGui::Selectable(t.name.c_str(), s.debugView == t.name)) s.debugView = t.name, changed = true;

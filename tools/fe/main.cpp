@@ -64,6 +64,8 @@ constexpr const char* kUsage =
     "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
     "        fit or Khronos PBR Neutral) --aa none|fxaa (the .png: FXAA as a post-process pass)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
+    "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
+    "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\", a heat map)\n"
     "      --strict: the loader's warnings (content skipped or approximated, printed on stderr) are errors\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
@@ -301,6 +303,7 @@ int cmdRender(const Args& a) {
     s.precomputedNoV = !a.options.count("--rebuild-nov");
     s.tileCullingPass = !a.options.count("--one-pass-culling");
     s.temporal = a.options.count("--temporal") > 0;
+    s.debugView = opt("--debug-view", "");
     const std::string orbitText = opt("--orbit", "0");
     const double orbitDegrees = std::strtod(orbitText.c_str(), &end);
     if (*end || !std::isfinite(orbitDegrees) || std::abs(orbitDegrees) > 3600)
@@ -685,7 +688,7 @@ int main(int argc, char** argv) {
                                    {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa"},
+                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view"},
                                    {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered", "--temporal"}));
         if (command == "view") return cmdView(parse(argc, argv, 2, {"--backend", "--technique", "--size", "--environment", "--frames",
