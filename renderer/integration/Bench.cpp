@@ -69,7 +69,7 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"temporal", s.temporal},
             {"exposure", s.exposure},
             {"tonemap", shading::tonemapName(s.tonemap)},
-            {"aa", s.antiAliasing == AntiAliasing::Fxaa ? "fxaa" : "none"}};
+            {"aa", s.antiAliasing == AntiAliasing::Fxaa ? "fxaa" : s.antiAliasing == AntiAliasing::Taa ? "taa" : "none"}};
 }
 
 // A file name from a case key ("spheres/redeferred/scale2/96x72" -> "spheres_redeferred_scale2_96x72").
@@ -125,6 +125,7 @@ std::string BenchCase::key() const {
     if (!s.tileCullingPass) k += "/one-pass-culling";
     if (s.tonemap != shading::Tonemap::Clamp) k += std::string("/") + shading::tonemapName(s.tonemap);
     if (s.antiAliasing == AntiAliasing::Fxaa) k += "/fxaa";
+    if (s.antiAliasing == AntiAliasing::Taa) k += "/taa";
     k += "/" + std::to_string(s.width) + "x" + std::to_string(s.height);
     return k;
 }
@@ -217,8 +218,8 @@ BenchCase caseFromJson(const gdi::Json& j) {
             s.tonemap = *t;
         } else if (key == "aa") {
             const std::string aa = text();
-            if (aa != "none" && aa != "fxaa") throw gdi::Error("sweep: \"aa\" must be none or fxaa, got " + v.dump());
-            s.antiAliasing = aa == "fxaa" ? AntiAliasing::Fxaa : AntiAliasing::None;
+            if (aa != "none" && aa != "fxaa" && aa != "taa") throw gdi::Error("sweep: \"aa\" must be none, fxaa or taa, got " + v.dump());
+            s.antiAliasing = aa == "fxaa" ? AntiAliasing::Fxaa : aa == "taa" ? AntiAliasing::Taa : AntiAliasing::None;
         }
         else if (key == "msaa") s.msaa = uint(1, 8);
         else if (key == "shadows") s.shadows.enabled = boolean();

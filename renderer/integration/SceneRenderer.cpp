@@ -1,5 +1,7 @@
 #include "integration/SceneRenderer.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "assets/AssetError.h"
 #include "fe/gdi/ShaderRegistry.h"
 #include "reference/CameraMath.h"
@@ -33,6 +35,8 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");
+    if (s.antiAliasing == AntiAliasing::Taa && s.temporal)
+        throw gdi::Error("--aa taa and --temporal both jitter the frame over time: take one");
     try {
         assets::checkFinite(scene);
     } catch (const assets::AssetError& e) {
@@ -155,7 +159,7 @@ void SceneRenderer::buildGraph() {
     if (vfx_) vfx_->declare(g, output_, depth_);  // particles: after every other translucent surface
     graph::TextureId shown = output_;
     if (!s.debugView.empty()) shown = declareDebugView(g);
-    display_ = postProcess_->declare(g, shown);
+    display_ = postProcess_->declare(g, shown, depth_);
     g.markOutput(output_);
     if (s.displayImage) g.markOutput(display_);
 }
@@ -246,7 +250,12 @@ void SceneRenderer::renderFrame() {
     const assets::Camera& cam = camera_;
     FrameConstants& fc = frame_;
     fc = {};
-    fc.viewProj = viewProjection(cam, float(s.width) / float(s.height));
+    const glm::mat4 unjittered = viewProjection(cam, float(s.width) / float(s.height));
+    // TAA: every pass of the frame sees the projection moved by a sub-pixel offset (clip x and y
+    // shifted by 2 x offset / size), so successive frames sample different points of each pixel.
+    const glm::vec2 jitter = postProcess_->jitter(frameIndex_);
+    fc.viewProj = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * jitter.x / float(s.width), 2.0f * jitter.y / float(s.height), 0.0f)) *
+                  unjittered;
     fc.invViewProj = glm::inverse(fc.viewProj);
     fc.view = cam.viewFromWorld();
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
@@ -269,6 +278,8 @@ void SceneRenderer::renderFrame() {
 
     gdi::CommandList& cmd = queue_->beginFrame();
     frameConstants_ = queue_->upload(fc);
+    // History from the second frame on; camera motion is handled by reprojection and clamping.
+    postProcess_->beginFrame(*queue_, unjittered, frameIndex_ > 1);
     if (shadows_) shadows_->update(cam, float(s.width) / float(s.height), scene_.bounds, sceneLights_);
     graph_.execute(cmd);
     lastFence_ = queue_->endFrame();

@@ -31,6 +31,24 @@ PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings, gd
     tonemapPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = tonemapFs_,
                                                       .colorFormats = {kDisplayFormat}, .bindings = bindings,
                                                       .debugName = "tonemap"});
+    if (settings.antiAliasing == AntiAliasing::Taa) {
+        taaFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/taa_resolve.frag")});
+        taaPipeline_ = device.createGraphicsPipeline(
+            {.vertexShader = fullscreenVs, .fragmentShader = taaFs_, .colorFormats = {gdi::Format::RGBA32F},
+             .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                          {kSlotTaa, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
+                          {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
+                          {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
+                          {kSlotHistory0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
+             .debugName = "taa resolve"});
+        copyFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/copy.frag")});
+        copyPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = copyFs_,
+                                                       .colorFormats = {gdi::Format::RGBA32F}, .bindings = bindings,
+                                                       .debugName = "taa keep"});
+        history_ = device.createTexture({.format = gdi::Format::RGBA32F, .width = settings.width, .height = settings.height,
+                                         .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                                         .debugName = "taa history"});
+    }
     if (settings.antiAliasing == AntiAliasing::Fxaa) {
         fxaaFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/fxaa.frag")});
         fxaaPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = fxaaFs_,
@@ -40,17 +58,75 @@ PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings, gd
 }
 
 PostProcess::~PostProcess() {
-    for (gdi::PipelineHandle p : {tonemapPipeline_, fxaaPipeline_})
+    for (gdi::PipelineHandle p : {tonemapPipeline_, fxaaPipeline_, taaPipeline_, copyPipeline_})
         if (p) device_.destroy(p);
-    for (gdi::ShaderHandle s : {tonemapFs_, fxaaFs_})
+    for (gdi::ShaderHandle s : {tonemapFs_, fxaaFs_, taaFs_, copyFs_})
         if (s) device_.destroy(s);
+    if (history_) device_.destroy(history_);
     device_.destroy(pointSampler_);
     device_.destroy(linearSampler_);
 }
 
-graph::TextureId PostProcess::declare(graph::RenderGraph& g, graph::TextureId radiance) {
+glm::vec2 PostProcess::jitter(uint64_t frameIndex) const {
+    if (settings_.antiAliasing != AntiAliasing::Taa) return glm::vec2(0.0f);
+    // The radical inverse of n in `base`: the Halton sequence, well spread over any prefix.
+    auto halton = [](uint64_t n, uint64_t base) {
+        double f = 1.0, r = 0.0;
+        for (; n > 0; n /= base) f /= double(base), r += f * double(n % base);
+        return float(r);
+    };
+    const uint64_t n = frameIndex % 8 + 1;
+    return glm::vec2(halton(n, 2), halton(n, 3)) - 0.5f;
+}
+
+void PostProcess::beginFrame(CommandQueue& queue, const glm::mat4& viewProjUnjittered, bool historyValid) {
+    if (settings_.antiAliasing != AntiAliasing::Taa) return;
+    struct {
+        glm::mat4 prevViewProj;
+        glm::vec4 params;
+    } constants{previousViewProj_, glm::vec4(historyValid ? 1.0f : 0.0f, 0.1f, 0.0f, 0.0f)};
+    taaConstants_ = queue.upload(constants);
+    previousViewProj_ = viewProjUnjittered;
+}
+
+graph::TextureId PostProcess::declare(graph::RenderGraph& g, graph::TextureId radiance, graph::TextureId depth) {
     const RenderSettings& s = settings_;
     const bool fxaa = s.antiAliasing == AntiAliasing::Fxaa;
+    if (s.antiAliasing == AntiAliasing::Taa) {
+        // Resolve into a transient, then keep that as the next frame's history (a side effect:
+        // nothing this frame reads it).
+        const graph::TextureId history = g.importTexture("taa history", history_, device_.desc(history_));
+        const graph::TextureId resolved = g.createTexture("taa L_o", {.format = gdi::Format::RGBA32F, .width = s.width, .height = s.height});
+        g.addPass("taa-resolve", [&](graph::PassBuilder& b) {
+            b.sample(radiance);
+            b.sample(depth);
+            b.sample(history);
+            b.colorTarget(resolved);
+        }, [this, radiance, depth, history](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            pc.cmd.setPipeline(taaPipeline_);
+            pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+            pc.cmd.setUniformBuffer(kSlotTaa, taaConstants_.buffer, taaConstants_.offset, taaConstants_.size);
+            pc.cmd.setTexture(kSlotRadiance, pc.texture(radiance), pointSampler_);
+            pc.cmd.setTexture(kSlotDepth, pc.texture(depth), pointSampler_);
+            pc.cmd.setTexture(kSlotHistory0, pc.texture(history), linearSampler_);
+            pc.cmd.draw(3);
+            pc.cmd.endRenderPass();
+        });
+        g.addPass("taa-keep", [&](graph::PassBuilder& b) {
+            b.sample(resolved);
+            b.colorTarget(history, gdi::LoadOp::DontCare);
+            b.sideEffect();
+        }, [this, resolved](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            pc.cmd.setPipeline(copyPipeline_);
+            pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+            pc.cmd.setTexture(kSlotRadiance, pc.texture(resolved), pointSampler_);
+            pc.cmd.draw(3);
+            pc.cmd.endRenderPass();
+        });
+        radiance = resolved;
+    }
     // With FXAA the tone-mapped image is an intermediate (sRGB-encoded, as FXAA's thresholds and
     // 8-bit precision expect); without, the tone mapper writes the display image itself.
     const graph::TextureId tonemapped = g.createTexture(fxaa ? "tonemapped sRGB" : "display sRGB",

@@ -26,7 +26,9 @@ struct SourceRates {
 };
 
 // Antialiasing of the display image as a post-process (hardware MSAA is RenderSettings::msaa).
-enum class AntiAliasing : uint32_t { None, Fxaa };
+// Taa: the projection jitters by a sub-pixel Halton offset per frame and a resolve pass blends
+// each frame with the reprojected, neighbourhood-clamped history (converges over frames).
+enum class AntiAliasing : uint32_t { None, Fxaa, Taa };
 
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)

@@ -30,4 +30,5 @@ constexpr uint32_t kSlotIblLut = 24;        // ... and its split-sum table (Pref
 constexpr uint32_t kSlotHistory0 = 25;      // redeferred temporal accumulation: last frame's sums
 constexpr uint32_t kSlotHistory1 = 26;
 constexpr uint32_t kSlotHistory2 = 27;
+constexpr uint32_t kSlotTaa = 34;           // temporal antialiasing's constants (PostProcess)
 }  // namespace fe::render

@@ -162,6 +162,78 @@ TEST_P(PostProcess, FxaaSmoothsSilhouettesAndLeavesFlatRegions) {
               << " of " << flatChange.size() << "\n";
 }
 
+// TAA: 16 frames of a still camera, each jittered within the pixel and blended into the
+// reprojected history, bring silhouettes toward 4x MSAA like supersampling; flat regions stay.
+// Under camera motion (an orbit over the frames) the clamped history does not smear: the
+// result stays near the single-sample frame of the final camera.
+TEST_P(PostProcess, TaaConvergesTowardMultisamplingAndDoesNotGhost) {
+    const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});
+    render::RenderSettings s{.technique = "forward", .width = 96, .height = 72};
+    s.displayImage = true;
+    const Rendered none = renderWith(*device, scene, s);
+    auto taaFrames = [&](uint32_t frames, float orbitDegrees) {
+        render::RenderSettings t = s;
+        t.antiAliasing = render::AntiAliasing::Taa;
+        render::SceneRenderer r(*device, scene, t);
+        for (uint32_t f = 0; f < frames; ++f) {
+            const float a = orbitDegrees * float(f) / float(std::max(1u, frames - 1)) * 0.0174532925f;
+            r.setCamera(scene.camera->orbited(scene.bounds.center(), a));
+            r.renderFrame();
+        }
+        return r.readDisplay();
+    };
+    const gdi::Image taa = taaFrames(16, 0.0f);
+    render::RenderSettings m = s;
+    m.msaa = 4;
+    const Rendered msaa = renderWith(*device, scene, m);
+    const uint32_t w = 96, h = 72;
+    auto diff = [&](const gdi::Image& a, const gdi::Image& b, uint32_t x, uint32_t y) {
+        double d = 0;
+        for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
+        return d;
+    };
+    std::vector<double> edgeNone, edgeTaa;
+    size_t flat = 0, flatChanged = 0;
+    for (uint32_t y = 1; y + 1 < h; ++y)
+        for (uint32_t x = 1; x + 1 < w; ++x) {
+            if (diff(none.display, msaa.display, x, y) > 8.0) {
+                edgeNone.push_back(diff(none.display, msaa.display, x, y));
+                edgeTaa.push_back(diff(taa, msaa.display, x, y));
+            }
+            bool isFlat = true;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) isFlat = isFlat && diff(none.display, msaa.display, x + dx, y + dy) <= 1.0;
+            if (isFlat) ++flat, flatChanged += diff(taa, none.display, x, y) > 4.0;
+        }
+    ASSERT_GT(edgeNone.size(), 50u);
+    EXPECT_LT(mean(edgeTaa), 0.7 * mean(edgeNone)) << "silhouette error: taa " << mean(edgeTaa) << ", none " << mean(edgeNone);
+    EXPECT_LT(double(flatChanged), 0.05 * double(flat)) << flatChanged << " of " << flat << " flat pixels changed";
+    // Motion: 30 degrees of orbit over 8 frames, compared with the final camera's plain frame.
+    const gdi::Image moving = taaFrames(8, 30.0f);
+    render::RenderSettings last = s;
+    render::SceneRenderer r(*device, scene, last);
+    r.setCamera(scene.camera->orbited(scene.bounds.center(), 30.0f * 0.0174532925f));
+    r.renderFrame();
+    const gdi::Image finalFrame = r.readDisplay();
+    // Away from the final frame's edges (where antialiasing itself differs from one sample), a
+    // pixel far from the final frame is history left behind by the motion: a ghost.
+    size_t ghosts = 0;
+    for (uint32_t y = 1; y + 1 < h; ++y)
+        for (uint32_t x = 1; x + 1 < w; ++x) {
+            double lo = 1e9, hi = -1e9;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const auto c = finalFrame.texel(x + dx, y + dy);
+                    lo = std::min(lo, double(c[0] + c[1] + c[2])), hi = std::max(hi, double(c[0] + c[1] + c[2]));
+                }
+            if ((hi - lo) * 255.0 < 24.0) ghosts += diff(moving, finalFrame, x, y) > 24.0;
+        }
+    EXPECT_LT(double(ghosts), 0.01 * w * h) << ghosts << " pixels away from edges far from the final camera's frame (ghosting)";
+    std::cout << "[ taa ] " << GetParam() << ": silhouette error none " << mean(edgeNone) << ", taa " << mean(edgeTaa) << " over "
+              << edgeNone.size() << " pixels; flat pixels changed " << flatChanged << " of " << flat << "; under motion "
+              << ghosts << " pixels away from edges beyond 24/255\n";
+}
+
 // With FXAA the tone-mapped image is a transient of its own. The chain never costs aliasing a
 // saving it had, and where the graph places textures in one heap (Vulkan) the intermediate takes
 // memory the technique is done with (deferred: the G-buffer after the lighting pass), so the

@@ -257,8 +257,12 @@ private:
                 if (ImGui::Selectable(shading::tonemapName(t), s.tonemap == t)) s.tonemap = t, changed = true;
             ImGui::EndCombo();
         }
-        bool fxaa = s.antiAliasing == render::AntiAliasing::Fxaa;
-        if (ImGui::Checkbox("FXAA", &fxaa)) s.antiAliasing = fxaa ? render::AntiAliasing::Fxaa : render::AntiAliasing::None, changed = true;
+        int aa = int(s.antiAliasing);
+        ImGui::Text("AA");
+        for (auto [name, value] : {std::pair{"none", 0}, std::pair{"FXAA", 1}, std::pair{"TAA", 2}}) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton(name, &aa, value)) s.antiAliasing = render::AntiAliasing(aa), changed = true;
+        }
         float stops = std::log2(s.exposure);
         if (ImGui::SliderFloat("exposure", &stops, -8.0f, 8.0f, "%.1f")) s.exposure = std::exp2(stops);
         changed |= ImGui::IsItemDeactivatedAfterEdit();

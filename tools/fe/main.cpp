@@ -62,7 +62,8 @@ constexpr const char* kUsage =
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
     "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
-    "        fit or Khronos PBR Neutral) --aa none|fxaa (the .png: FXAA as a post-process pass)\n"
+    "        fit or Khronos PBR Neutral) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
+    "        frames blended with the reprojected history; it converges over --frames)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
     "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\", a heat map)\n"
@@ -270,8 +271,8 @@ int cmdRender(const Args& a) {
     if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
     else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
     const std::string aa = opt("--aa", "none");
-    if (aa != "none" && aa != "fxaa") throw UsageError("--aa must be none or fxaa, got '" + aa + "'");
-    s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : render::AntiAliasing::None;
+    if (aa != "none" && aa != "fxaa" && aa != "taa") throw UsageError("--aa must be none, fxaa or taa, got '" + aa + "'");
+    s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : aa == "taa" ? render::AntiAliasing::Taa : render::AntiAliasing::None;
     render::DirectorOptions director;
     const std::string budget = opt("--error-budget", "0");
     director.errorBudgetPercent = std::strtod(budget.c_str(), &end);
@@ -378,6 +379,7 @@ int cmdRender(const Args& a) {
     if (s.msaa > 1) std::cout << " msaa " << s.msaa;
     if (!pfm && s.tonemap != shading::Tonemap::Clamp) std::cout << ", tonemap " << shading::tonemapName(s.tonemap);
     if (!pfm && s.antiAliasing == render::AntiAliasing::Fxaa) std::cout << ", fxaa";
+    if (s.antiAliasing == render::AntiAliasing::Taa) std::cout << ", taa";
     if (s.shadows.enabled)
         std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
                   << (s.shadows.pcf ? " pcf" : " nearest");
