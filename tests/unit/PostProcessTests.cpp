@@ -32,18 +32,20 @@ Rendered renderWith(gdi::Device& d, const assets::Scene& scene, render::RenderSe
     return {r.readOutput(), r.readDisplay(), r.graph().memory(), r.graph().aliasing()};
 }
 
-// The largest channel difference between two RGBA8 images, in 1/255 steps, over pixels where
-// `only` says so.
+// The largest channel difference of pixel (x, y) between two RGBA8 images, in 1/255 steps.
+double maxChannelDiff(const gdi::Image& a, const gdi::Image& b, uint32_t x, uint32_t y) {
+    double m = 0;
+    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
+    return m;
+}
+
+// maxChannelDiff over the pixels where `only` says so.
 template <class Pred>
 std::vector<double> channelDiffs(const gdi::Image& a, const gdi::Image& b, Pred only) {
     std::vector<double> diffs;
     for (uint32_t y = 0; y < a.height; ++y)
-        for (uint32_t x = 0; x < a.width; ++x) {
-            if (!only(x, y)) continue;
-            double m = 0;
-            for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
-            diffs.push_back(m);
-        }
+        for (uint32_t x = 0; x < a.width; ++x)
+            if (only(x, y)) diffs.push_back(maxChannelDiff(a, b, x, y));
     return diffs;
 }
 
@@ -134,11 +136,7 @@ TEST_P(PostProcess, FxaaSmoothsSilhouettesAndLeavesFlatRegions) {
     const uint32_t w = none.display.width, h = none.display.height;
     std::vector<double> d(size_t(w) * h);
     for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            double m = 0;
-            for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(double(none.display.texel(x, y)[c]) - msaa.display.texel(x, y)[c]) * 255.0);
-            d[size_t(y) * w + x] = m;
-        }
+        for (uint32_t x = 0; x < w; ++x) d[size_t(y) * w + x] = maxChannelDiff(none.display, msaa.display, x, y);
     auto edge = [&](uint32_t x, uint32_t y) { return d[size_t(y) * w + x] > 8.0; };
     auto flat = [&](uint32_t x, uint32_t y) {
         for (int dy = -1; dy <= 1; ++dy)
@@ -187,11 +185,7 @@ TEST_P(PostProcess, TaaConvergesTowardMultisamplingAndDoesNotGhost) {
     m.msaa = 4;
     const Rendered msaa = renderWith(*device, scene, m);
     const uint32_t w = 96, h = 72;
-    auto diff = [&](const gdi::Image& a, const gdi::Image& b, uint32_t x, uint32_t y) {
-        double d = 0;
-        for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
-        return d;
-    };
+    const auto diff = maxChannelDiff;
     std::vector<double> edgeNone, edgeTaa;
     size_t flat = 0, flatChanged = 0;
     for (uint32_t y = 1; y + 1 < h; ++y)

@@ -196,6 +196,19 @@ scene and camera, on the displayed 8-bit image.</p>
             return f"{r['percentOver5']:.2f} %"
         return "finite"
 
+    def stability_table():
+        """Per case: its bound and, per technique, None or (the first backend's outcome, the other
+        backends whose outcome differs, as "backend: outcome")."""
+        for case in dict.fromkeys(r["case"] for r in stability):
+            rows = [r for r in stability if r["case"] == case]
+            cells = []
+            for t in techniques:
+                mine = [r for r in rows if r["technique"] == t]
+                first = outcome(mine[0]) if mine else None
+                cells.append(None if not mine else
+                             (first, [f"{r['backend']}: {outcome(r)}" for r in mine[1:] if outcome(r) != first]))
+            yield case, rows[0]["bound"], cells
+
     if stability:
         parts.append("<h2>Stability</h2><p>Per case and technique: the percentage of pixels beyond 5/255 of the CPU "
                      "reference (bound for the exact techniques in brackets), or the refusal and its reason. Backends "
@@ -203,18 +216,11 @@ scene and camera, on the displayed 8-bit image.</p>
         parts += [f"<th>{e(t)}</th>" for t in techniques]
         parts.append("</tr>")
 
-        for case in dict.fromkeys(r["case"] for r in stability):
-            rows = [r for r in stability if r["case"] == case]
-            bound = rows[0]["bound"]
+        for case, bound, cells in stability_table():
             parts.append(f"<tr><td>{e(case)}" + (f" [{bound:g} %]" if bound >= 0 else "") + "</td>")
-            for t in techniques:
-                cells = [r for r in rows if r["technique"] == t]
-                if not cells:
-                    parts.append("<td></td>")
-                    continue
-                first = outcome(cells[0])
-                others = [f"{r['backend']}: {outcome(r)}" for r in cells[1:] if outcome(r) != first]
-                parts.append(f"<td>{e(first)}" + "".join(f"<br>{e(o)}" for o in others) + "</td>")
+            for cell in cells:
+                parts.append("<td></td>" if cell is None else
+                             f"<td>{e(cell[0])}" + "".join(f"<br>{e(o)}" for o in cell[1]) + "</td>")
             parts.append("</tr>")
         parts.append("</table>")
     conformance = doc.get("conformance")
@@ -294,20 +300,10 @@ window.addEventListener('load', () => {
                "its reason) or \"finite\" (no exact image; every pixel finite). Backends that differ from the first "
                "are named in the cell.", "",
                "| case | " + " | ".join(techniques) + " |", "|---|" + "---|" * len(techniques)]
-        for case in dict.fromkeys(r["case"] for r in stability):
-            rows = [r for r in stability if r["case"] == case]
-            bound = rows[0]["bound"]
-            cells = []
-            for t in techniques:
-                mine = [r for r in rows if r["technique"] == t]
-                if not mine:
-                    cells.append("")
-                    continue
-                first = outcome(mine[0])
-                first = "refused" if first.startswith("refused") else first
-                others = [f"{r['backend']}: {outcome(r)}" for r in mine[1:] if outcome(r) != outcome(mine[0])]
-                cells.append("; ".join([first] + others))
-            md.append(f"| {case}" + (f" [{bound:g} %]" if bound >= 0 else "") + " | " + " | ".join(cells) + " |")
+        for case, bound, cells in stability_table():
+            # The refusal's reason is listed once below the table, not in every cell.
+            text = ["" if c is None else "; ".join(["refused" if c[0].startswith("refused") else c[0]] + c[1]) for c in cells]
+            md.append(f"| {case}" + (f" [{bound:g} %]" if bound >= 0 else "") + " | " + " | ".join(text) + " |")
         reasons = sorted({r["refused"] for r in stability if "refused" in r})
         if reasons:
             md += ["", "Refusals, as printed:"] + [f"- {x}" for x in reasons]
