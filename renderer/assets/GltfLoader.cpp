@@ -257,6 +257,7 @@ public:
 
 private:
     [[noreturn]] void fail(const std::string& msg) const { throw AssetError(path_ + ": " + msg); }
+    void checkGlbLayout(const std::vector<unsigned char>& bytes) const;
 
     void warn(const std::string& msg) {
         if (warned_.insert(msg).second) scene_.warnings.push_back(msg);
@@ -399,6 +400,49 @@ bool Loader::readWholeFile(std::vector<unsigned char>* out, std::string* err, co
     return true;
 }
 
+// 4.4 GLB file format: the 12-byte header's version is 2 and its length the file's; then
+// chunks (uint32 length, uint32 type, data), each starting and ending 4-byte aligned; the first
+// is the one JSON chunk, a BIN chunk if present is the second and only one; chunks of other
+// types are ignored, as the specification requires. tinygltf reads the first two chunks
+// and looks no further, so what it would let through is refused here, naming the chunk.
+void Loader::checkGlbLayout(const std::vector<unsigned char>& bytes) const {
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    if (bytes.size() < 12) fail("GLB header truncated: " + std::to_string(bytes.size()) + " bytes, 12 needed");
+    if (const uint32_t version = u32(4); version != 2)
+        fail("GLB header version " + std::to_string(version) + " (glTF 2.0 binaries have version 2)");
+    if (const uint32_t length = u32(8); length != bytes.size())
+        fail("GLB header length " + std::to_string(length) + " but the file has " + std::to_string(bytes.size()) +
+             " bytes");
+    bool bin = false;
+    size_t index = 0;
+    for (size_t at = 12; at < bytes.size(); ++index) {
+        const std::string where = "GLB chunk " + std::to_string(index) + " at byte " + std::to_string(at);
+        if (bytes.size() - at < 8) fail(where + ": truncated chunk header");
+        const uint32_t length = u32(at), type = u32(at + 4);
+        std::string name;
+        for (int i = 0; i < 4; ++i) {
+            const char c = char((type >> (8 * i)) & 0xff);
+            name += (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(unsigned(uint8_t(c)));
+        }
+        const bool isJson = type == 0x4E4F534Au, isBin = type == 0x004E4942u;
+        const std::string chunk = where + " (" + (isBin ? std::string("BIN") : name) + ")";
+        if (index == 0 && !isJson) fail(chunk + ": the first chunk must be JSON");
+        if (index > 0 && isJson) fail(chunk + ": duplicate JSON chunk (a GLB has exactly one, the first)");
+        if (isBin && bin) fail(chunk + ": duplicate BIN chunk (a GLB has at most one)");
+        if (isBin && index != 1) fail(chunk + ": the BIN chunk must directly follow the JSON chunk");
+        if (length % 4 != 0)
+            fail(chunk + ": length " + std::to_string(length) + " is not a multiple of 4 (chunks are 4-byte aligned)");
+        if (length > bytes.size() - at - 8)
+            fail(chunk + ": length " + std::to_string(length) + " runs past the end of the file");
+        bin = bin || isBin;
+        at += 8 + size_t(length);
+    }
+}
+
 void Loader::parseFile() {
     fs::path fp = fs::path(path_);
     std::error_code ec;
@@ -421,7 +465,12 @@ void Loader::parseFile() {
     }
     if (magic && ext != ".glb") warn("binary glTF content in a file named '" + fp.filename().string() + "'");
 
+    if (magic) checkGlbLayout(bytes);
     const std::string_view json = jsonText(bytes, magic);
+    // 3.1 JSON encoding: UTF-8 without a byte order mark; exporters must not write one, and
+    // clients may ignore it rather than fail, so it is a warning (an error under --strict).
+    if (json.substr(0, 3) == "\xEF\xBB\xBF")
+        warn("the JSON starts with a UTF-8 byte order mark, which glTF 2.0 forbids; it was ignored");
     if (jsonNestingDepth(json) > kMaxJsonDepth) {
         fail("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     }

@@ -364,6 +364,94 @@ TEST_F(GltfErrors, TruncatedGlbNeverCrashes) {
     }
 }
 
+// 4.4: chunk layout rules the loader enforces itself (tinygltf reads two chunks and stops).
+class GlbLayout : public GltfErrors {
+protected:
+    struct Chunk {
+        std::string type;  // four characters
+        std::vector<uint8_t> data;
+    };
+    std::string jsonNoUri() const {
+        json j = gltf();
+        j["buffers"][0].erase("uri");
+        std::string t = j.dump();
+        while (t.size() % 4) t += ' ';
+        return t;
+    }
+    static std::vector<uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.end()}; }
+    // A GLB of `chunks` as given (no padding added); `lengthDelta` corrupts the header's length.
+    static std::vector<uint8_t> container(const std::vector<Chunk>& chunks, int lengthDelta = 0, uint32_t version = 2) {
+        std::vector<uint8_t> out{'g', 'l', 'T', 'F'};
+        auto u32 = [&](uint32_t v) {
+            uint8_t b[4];
+            std::memcpy(b, &v, 4);
+            out.insert(out.end(), b, b + 4);
+        };
+        u32(version);
+        u32(0);
+        for (const Chunk& c : chunks) {
+            u32(uint32_t(c.data.size()));
+            out.insert(out.end(), c.type.begin(), c.type.begin() + 4);
+            out.insert(out.end(), c.data.begin(), c.data.end());
+        }
+        const uint32_t total = uint32_t(int(out.size()) + lengthDelta);
+        std::memcpy(out.data() + 8, &total, 4);
+        return out;
+    }
+    Chunk jsonChunk() const { return {"JSON", bytesOf(jsonNoUri())}; }
+    Chunk binChunk() const { return {std::string("BIN\0", 4), bin()}; }
+};
+
+TEST_F(GlbLayout, WellFormedLoadsAndUnknownChunksAreIgnored) {
+    EXPECT_NO_THROW(loadGltf(writeBytes("ok.glb", container({jsonChunk(), binChunk()}))));
+    Scene s = loadGltf(writeBytes("extra.glb", container({jsonChunk(), binChunk(), {"XTRA", {1, 2, 3, 4}}})));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();  // the specification requires ignoring them
+}
+
+TEST_F(GlbLayout, DuplicateChunksAreRefused) {
+    expectError(writeBytes("json2.glb", container({jsonChunk(), binChunk(), jsonChunk()})),
+                {"GLB chunk 2", "duplicate JSON chunk"});
+    expectError(writeBytes("bin2.glb", container({jsonChunk(), binChunk(), binChunk()})),
+                {"GLB chunk 2", "duplicate BIN chunk"});
+}
+
+TEST_F(GlbLayout, ChunkOrderIsEnforced) {
+    expectError(writeBytes("binfirst.glb", container({binChunk(), jsonChunk()})), {"GLB chunk 0", "first chunk must be JSON"});
+    expectError(writeBytes("binlate.glb", container({jsonChunk(), {"XTRA", {0, 0, 0, 0}}, binChunk()})),
+                {"GLB chunk 2", "must directly follow"});
+}
+
+TEST_F(GlbLayout, MisalignedChunkIsRefused) {
+    Chunk j = jsonChunk();
+    j.data.push_back(' ');  // 4n + 1 bytes: BIN would start unaligned
+    expectError(writeBytes("misaligned.glb", container({j, binChunk()})), {"GLB chunk 0", "not a multiple of 4"});
+    Chunk b = binChunk();
+    b.data.resize(b.data.size() - 2);
+    expectError(writeBytes("misbin.glb", container({jsonChunk(), b})), {"GLB chunk 1 at byte", "(BIN)", "multiple of 4"});
+}
+
+TEST_F(GlbLayout, HeaderMustDescribeTheFile) {
+    expectError(writeBytes("long.glb", container({jsonChunk(), binChunk()}, +4)), {"GLB header length"});
+    expectError(writeBytes("short.glb", container({jsonChunk(), binChunk()}, -8)), {"GLB header length"});
+    expectError(writeBytes("v1.glb", container({jsonChunk(), binChunk()}, 0, 1)), {"GLB header version 1"});
+    std::vector<uint8_t> tail = container({jsonChunk(), binChunk()}, 4);
+    tail.insert(tail.end(), {0, 0, 0, 0});  // length matches, but 4 bytes are no chunk
+    expectError(writeBytes("tail.glb", tail), {"GLB chunk 2", "truncated chunk header"});
+}
+
+// 3.1: JSON must be UTF-8 without a byte order mark; clients may ignore one, so it is a warning.
+TEST_F(GlbLayout, ByteOrderMarkIsAWarning) {
+    Scene plain = loadGltf(writeGltf(gltf()));
+    EXPECT_TRUE(plain.warnings.empty());
+    Scene text = loadGltf(write("bom.gltf", "\xEF\xBB\xBF" + gltf().dump()));  // tri.bin is written above
+    ASSERT_EQ(text.warnings.size(), 1u);
+    EXPECT_NE(text.warnings[0].find("byte order mark"), std::string::npos) << text.warnings[0];
+    EXPECT_EQ(text.instances.size(), 1u);
+    Scene binary = loadGltf(writeBytes("bom.glb", container({{"JSON", bytesOf("\xEF\xBB\xBF" + jsonNoUri() + " ")}, binChunk()})));
+    ASSERT_EQ(binary.warnings.size(), 1u);
+    EXPECT_NE(binary.warnings[0].find("byte order mark"), std::string::npos) << binary.warnings[0];
+}
+
 // Random byte corruption of a valid .gltf + .bin: whatever happens, only AssetError may escape
 // (crashes and other exceptions fail the test). Fixed seed, so failures reproduce.
 TEST_F(GltfErrors, CorruptedFilesOnlyThrowAssetError) {
