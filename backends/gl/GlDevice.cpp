@@ -75,8 +75,8 @@ const char* glErrorName(GLenum e) {
 }  // namespace
 
 template <class Call>
-GLenum GlDevice::allocateStorage(Call&& call) {
-    if (gdi::fault::hit(gdi::fault::Site::Allocation)) return GL_OUT_OF_MEMORY;
+GLenum GlDevice::allocateStorage(const char* name, Call&& call) {
+    if (gdi::fault::hit(gdi::fault::Site::Allocation, name)) return GL_OUT_OF_MEMORY;
     // Errors of earlier calls are not this one's (the debug output reports them); a lost
     // context may repeat GL_CONTEXT_LOST, hence the bound.
     for (int i = 0; i < 8 && gl_.GetError() != GL_NO_ERROR; ++i) {
@@ -201,6 +201,12 @@ GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
 }
 
 GlDevice::~GlDevice() {
+    if (gdi::leakCheckEnabled()) {
+        std::vector<std::string> named;
+        buffers_.forEach([&](Buffer& b) { named.push_back("buffer '" + b.label + "'"); });
+        textures_.forEach([&](Texture& t) { named.push_back("texture '" + t.label + "'"); });
+        gdi::reportLeaksAtDestruction(info_.backend, liveObjects(), named);
+    }
     platform_->makeCurrent();
     buffers_.forEach([&](Buffer& b) { gl_.DeleteBuffers(1, &b.name); });
     textures_.forEach([&](Texture& t) { gl_.DeleteTextures(1, &t.name); });
@@ -237,7 +243,7 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
     b.desc.debugName = nullptr;
     gl_.CreateBuffers(1, &b.name);
     ++nativeObjects_;
-    if (GLenum e = allocateStorage([&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
+    if (GLenum e = allocateStorage("glNamedBufferStorage", [&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
                                                                  GL_DYNAMIC_STORAGE_BIT); });
         e != GL_NO_ERROR) {
         gl_.DeleteBuffers(1, &b.name);
@@ -267,17 +273,17 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     ++nativeObjects_;
     const GLenum internal = toGlFormat(desc.format).internal;
     const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
-    const char* call = "glTextureStorage2D";
-    if (GLenum e = allocateStorage([&] {
+    const char* call = t.target == GL_TEXTURE_2D_MULTISAMPLE                                ? "glTextureStorage2DMultisample"
+                       : (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_CUBE_MAP) ? "glTextureStorage2D"
+                                                                                          : "glTextureStorage3D";
+    if (GLenum e = allocateStorage(call, [&] {
             switch (t.target) {
                 case GL_TEXTURE_2D_MULTISAMPLE:
-                    call = "glTextureStorage2DMultisample";
                     gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
                     break;
                 case GL_TEXTURE_2D:
                 case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
                 default:  // layers or depth
-                    call = "glTextureStorage3D";
                     gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers));
                     break;
             }
@@ -595,7 +601,7 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
 gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
     loss_.check("submit");
     commands.nativeCommandBuffer();  // no-op; GL work was issued while recording
-    checkReset(gdi::fault::hit(gdi::fault::Site::Submission));
+    checkReset(gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit"));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl_.Flush();
@@ -672,6 +678,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
     gl_.Enable(GL_FRAMEBUFFER_SRGB);
     windowWidth_ = std::min(t.desc.width, fbWidth);
     windowHeight_ = std::min(t.desc.height, fbHeight);
+    checkReset(gdi::fault::hit(gdi::fault::Site::Submission, "Device::present"));
     const bool open = platform_->swapAndPoll();
     platform_->makeCurrent();
     return open;

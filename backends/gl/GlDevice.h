@@ -138,7 +138,7 @@ private:
     // Storage for a buffer or texture: runs `call` and returns the GL error it raised, or
     // GL_OUT_OF_MEMORY without running it when fault injection fails it (fe/gdi/Faults.h).
     template <class Call>
-    GLenum allocateStorage(Call&& call);
+    GLenum allocateStorage(const char* name, Call&& call);
     // A context reset (robust contexts report one through glGetGraphicsResetStatus; fault
     // injection fakes one at the N-th submit) makes the device lost.
     void checkReset(bool injected);

@@ -1,4 +1,5 @@
 #include "VulkanCommandList.h"
+#include "VulkanFaults.h"
 
 #include <algorithm>
 #include <bit>
@@ -42,12 +43,12 @@ VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pci.queueFamilyIndex = dev_.queueFamily();
-    check(vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &pool_), "vkCreateCommandPool");
+    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &pool_); }), "vkCreateCommandPool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = pool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
-    check(vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_), "vkAllocateCommandBuffers");
+    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_); }), "vkAllocateCommandBuffers");
     pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
 }
 
@@ -149,7 +150,7 @@ void VulkanCommandList::beginRecording() {
     check(vkResetCommandPool(dev_.vkDevice(), pool_, 0), "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(vkBeginCommandBuffer(cb_, &bi), "vkBeginCommandBuffer");
+    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb_, &bi); }), "vkBeginCommandBuffer");
     recording_ = true;
     written_ = true;  // order after earlier submissions
 }
@@ -180,7 +181,7 @@ VkCommandBuffer VulkanCommandList::finish() {
     // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
     // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
     // the rasterizer inside vkQueueSubmit.
-    check(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
     return cb_;
 }
 

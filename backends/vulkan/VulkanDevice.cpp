@@ -1,5 +1,6 @@
 // Instance, physical/logical device, queue submission and blocking transfers.
 #include "VulkanDevice.h"
+#include "VulkanFaults.h"
 
 #include <algorithm>
 #include <cstring>
@@ -117,7 +118,7 @@ void VulkanDevice::createInstance(bool validation) {
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
     if (validation && debugUtils_) ci.pNext = &mci;  // also catches instance creation messages
-    check(vkCreateInstance(&ci, nullptr, &instance_), "vkCreateInstance");
+    check(nativeAllocation("vkCreateInstance", [&] { return vkCreateInstance(&ci, nullptr, &instance_); }), "vkCreateInstance");
 
     if (debugUtils_) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -228,7 +229,7 @@ void VulkanDevice::createLogicalDevice() {
     ci.pQueueCreateInfos = &qci;
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
-    check(vkCreateDevice(physical_, &ci, nullptr, &device_), "vkCreateDevice");
+    check(nativeAllocation("vkCreateDevice", [&] { return vkCreateDevice(physical_, &ci, nullptr, &device_); }), "vkCreateDevice");
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
     cmdPushDescriptorSet =
         reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
@@ -245,12 +246,12 @@ void VulkanDevice::createLogicalDevice() {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pci.queueFamilyIndex = queueFamily_;
-    check(vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_), "vkCreateCommandPool");
+    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_); }), "vkCreateCommandPool");
 
     VkQueryPoolCreateInfo qpi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qpi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qpi.queryCount = kMaxTimers * 2;
-    check(vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_), "vkCreateQueryPool");
+    check(nativeAllocation("vkCreateQueryPool", [&] { return vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_); }), "vkCreateQueryPool");
     vkResetQueryPool(device_, queryPool_, 0, kMaxTimers * 2);
     for (uint32_t i = kMaxTimers; i-- > 0;) freeTimerSlots_.push_back(i * 2);
     if (swapchain_) swapchain_->attach(physical_, device_, queue_, queueFamily_);
@@ -295,7 +296,15 @@ void VulkanDevice::fillInfo() {
     if (swapchain_) info_.presentMode = swapchain_->presentMode();
 }
 
-VulkanDevice::~VulkanDevice() { release(); }
+VulkanDevice::~VulkanDevice() {
+    if (gdi::leakCheckEnabled()) {
+        std::vector<std::string> named;
+        buffers_.forEach([&](Buffer& b) { named.push_back("buffer '" + b.name + "'"); });
+        textures_.forEach([&](Texture& t) { named.push_back("texture '" + t.name + "'"); });
+        gdi::reportLeaksAtDestruction(info_.backend, liveObjects(), named);
+    }
+    release();
+}
 
 void VulkanDevice::release() {
     if (swapchain_) swapchain_->release();  // swap chain and surface go before the device and instance
@@ -358,12 +367,12 @@ gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
         freeFences_.pop_back();
     } else {
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        check(vkCreateFence(device_, &fci, nullptr, &fence), "vkCreateFence");
+        check(nativeAllocation("vkCreateFence", [&] { return vkCreateFence(device_, &fci, nullptr, &fence); }), "vkCreateFence");
     }
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cb;
-    if (VkResult r = nativeSubmission([&] { return vkQueueSubmit(queue_, 1, &si, fence); }); r != VK_SUCCESS) {
+    if (VkResult r = nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, fence); }); r != VK_SUCCESS) {
         freeFences_.push_back(fence);    // never submitted
         list.submitted(nextFence_ - 1);  // the recording is dropped; the next one waits for every earlier submission
         check(r, "vkQueueSubmit");
@@ -419,29 +428,32 @@ gdi::LiveObjects VulkanDevice::liveObjects() const {
             .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
-void VulkanDevice::immediate(const std::function<void(VkCommandBuffer)>& record) {
+void VulkanDevice::immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record) {
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = immediatePool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     VkCommandBuffer cb;
-    check(vkAllocateCommandBuffers(device_, &ai, &cb), "vkAllocateCommandBuffers");
+    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }), "vkAllocateCommandBuffers", object);
+    // Freed however this ends: after the wait, or unsubmitted when a step before it throws.
+    struct Release {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer cb;
+        ~Release() { vkFreeCommandBuffers(device, pool, 1, &cb); }
+    } release{device_, immediatePool_, cb};
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkBeginCommandBuffer(cb, &bi);
+    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }), "vkBeginCommandBuffer", object);
     VulkanCommandList::fullBarrier(cb);  // order after everything submitted before
     record(cb);
     VulkanCommandList::fullBarrier(cb);
-    vkEndCommandBuffer(cb);
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer", object);
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = 1;
     si.pCommandBuffers = &cb;
-    if (VkResult r = nativeSubmission([&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }); r != VK_SUCCESS) {
-        vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);  // never submitted
-        check(r, "vkQueueSubmit");
-    }
+    check(nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }), "vkQueueSubmit");
     waitIdle();
-    vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -460,7 +472,7 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSp
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data(), size);
-    immediate([&](VkCommandBuffer cb) {
+    immediate("writeBuffer of " + gdi::describeObject("buffer", b.name, {}), [&](VkCommandBuffer cb) {
         VkBufferCopy region{0, offset, size};
         vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
     });
@@ -475,7 +487,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     Buffer staging = makeBuffer(data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data(), data.size());
-    immediate([&](VkCommandBuffer cb) {
+    immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     });
@@ -489,7 +501,7 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
     if (size == 0) return out;
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
-    immediate([&](VkCommandBuffer cb) {
+    immediate("readBuffer of " + gdi::describeObject("buffer", b.name, {}), [&](VkCommandBuffer cb) {
         VkBufferCopy region{offset, 0, size};
         vkCmdCopyBuffer(cb, b.buffer, staging.buffer, 1, &region);
     });
@@ -509,7 +521,7 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
-    immediate([&](VkCommandBuffer cb) {
+    immediate("readTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
         // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);

@@ -180,9 +180,11 @@ private:
     void createLogicalDevice();
     void fillInfo();
     void setName(VkObjectType type, uint64_t object, const char* name);
-    VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range);
+    VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
+                         const std::string& object);
     // Records with `record` into a one-time command buffer, submits it and waits.
-    void immediate(const std::function<void(VkCommandBuffer)>& record);
+    // Records, submits and waits for a one-off command buffer; `object` names it in errors.
+    void immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record);
     // kind and name say what the buffer is in errors (gdi::describeObject).
     Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
                       const std::string& name);

@@ -7,14 +7,15 @@
 
 namespace fe::vk {
 
+// `name`: the Vulkan call, as the fault trace names the site.
 template <class Call>
-VkResult nativeAllocation(Call&& call) {
-    return gdi::fault::hit(gdi::fault::Site::Allocation) ? VK_ERROR_OUT_OF_DEVICE_MEMORY : call();
+VkResult nativeAllocation(const char* name, Call&& call) {
+    return gdi::fault::hit(gdi::fault::Site::Allocation, name) ? VK_ERROR_OUT_OF_DEVICE_MEMORY : call();
 }
 
 template <class Call>
-VkResult nativeSubmission(Call&& call) {
-    return gdi::fault::hit(gdi::fault::Site::Submission) ? VK_ERROR_DEVICE_LOST : call();
+VkResult nativeSubmission(const char* name, Call&& call) {
+    return gdi::fault::hit(gdi::fault::Site::Submission, name) ? VK_ERROR_DEVICE_LOST : call();
 }
 
 }  // namespace fe::vk

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "VulkanDevice.h"
+#include "VulkanFaults.h"
 
 namespace fe::vk {
 
@@ -48,13 +49,15 @@ uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool d
     ai.memoryTypeIndex = typeIndex;
     auto b = std::make_unique<Block>();
     const std::string call = "vkAllocateMemory (" + std::to_string(size) + "-byte block)";
-    check(nativeAllocation([&] { return vkAllocateMemory(device_, &ai, nullptr, &b->memory); }), call.c_str(), object);
+    check(nativeAllocation("vkAllocateMemory", [&] { return vkAllocateMemory(device_, &ai, nullptr, &b->memory); }), call.c_str(), object);
     b->size = size;
     b->typeIndex = typeIndex;
     b->dedicated = dedicated;
     b->freeRanges[0] = size;
     if (props_.memoryTypes[typeIndex].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
-        const VkResult r = vkMapMemory(device_, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);  // persistently mapped
+        const VkResult r = nativeAllocation("vkMapMemory", [&] {  // persistently mapped
+            return vkMapMemory(device_, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);
+        });
         if (r != VK_SUCCESS) {
             vkFreeMemory(device_, b->memory, nullptr);
             throwVk(r, "vkMapMemory", object);

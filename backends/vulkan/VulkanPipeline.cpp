@@ -2,6 +2,7 @@
 #include <string>
 
 #include "VulkanDevice.h"
+#include "VulkanFaults.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -82,7 +83,7 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
     ci.codeSize = code.size_bytes();
     ci.pCode = code.data();
     Shader s;
-    check(vkCreateShaderModule(device_, &ci, nullptr, &s.module), ("vkCreateShaderModule for '" + name + "'").c_str());
+    check(nativeAllocation("vkCreateShaderModule", [&] { return vkCreateShaderModule(device_, &ci, nullptr, &s.module); }), ("vkCreateShaderModule for '" + name + "'").c_str());
     s.stage = desc.stage;
     s.name = name;
     s.entry = desc.entryPoint;
@@ -108,11 +109,12 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
     li.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     li.bindingCount = uint32_t(vb.size());
     li.pBindings = vb.data();
-    check(vkCreateDescriptorSetLayout(device, &li, nullptr, &p.setLayout), "vkCreateDescriptorSetLayout");
+    check(nativeAllocation("vkCreateDescriptorSetLayout", [&] { return vkCreateDescriptorSetLayout(device, &li, nullptr, &p.setLayout); }), "vkCreateDescriptorSetLayout");
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 1;
     pli.pSetLayouts = &p.setLayout;
-    if (VkResult r = vkCreatePipelineLayout(device, &pli, nullptr, &p.layout); r != VK_SUCCESS) {
+    if (VkResult r = nativeAllocation("vkCreatePipelineLayout", [&] { return vkCreatePipelineLayout(device, &pli, nullptr, &p.layout); });
+        r != VK_SUCCESS) {
         vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
         throwVk(r, "vkCreatePipelineLayout");
     }
@@ -242,7 +244,8 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dy;
     ci.layout = p.layout;
-    VkResult r = vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline);
+    VkResult r = nativeAllocation("vkCreateGraphicsPipelines",
+                                  [&] { return vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline); });
     if (r != VK_SUCCESS) {
         vkDestroyPipelineLayout(device_, p.layout, nullptr);
         vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
@@ -265,7 +268,8 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,
                 cs.entry.c_str(), nullptr};
     ci.layout = p.layout;
-    VkResult r = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline);
+    VkResult r = nativeAllocation("vkCreateComputePipelines",
+                                  [&] { return vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline); });
     if (r != VK_SUCCESS) {
         vkDestroyPipelineLayout(device_, p.layout, nullptr);
         vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);

@@ -4,6 +4,7 @@
 
 #include "VulkanCommandList.h"
 #include "VulkanDevice.h"
+#include "VulkanFaults.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -58,7 +59,7 @@ Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Mem
     ci.size = size;
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(nativeAllocation([&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
+    check(nativeAllocation("vkCreateBuffer", [&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
     ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
@@ -110,7 +111,8 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     return h;
 }
 
-VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range) {
+VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
+                                   const std::string& object) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
     vi.viewType = type;
@@ -119,7 +121,7 @@ VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::For
     range.aspectMask = viewAspectOf(format);
     vi.subresourceRange = range;
     VkImageView v;
-    check(vkCreateImageView(device_, &vi, nullptr, &v), "vkCreateImageView");
+    check(nativeAllocation("vkCreateImageView", [&] { return vkCreateImageView(device_, &vi, nullptr, &v); }), "vkCreateImageView", object);
     return v;
 }
 
@@ -140,7 +142,7 @@ VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t laye
     if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
     VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
     // A 3D slice is a 2D view of one layer of the 2D-array-compatible image (VK_KHR_maintenance1).
-    if (!v) v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, mip, 1, layer, 1});
+    if (!v) v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, mip, 1, layer, 1}, gdi::describeObject("texture", t.name, {}));
     return v;
 }
 
@@ -172,7 +174,7 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
     gdi::validate::textureDesc(desc, info_);
     VkImageCreateInfo ci = imageInfo(desc);
     VkImage image;
-    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+    check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
           gdi::describeObject("texture", desc.debugName ? desc.debugName : "", "memory requirements"));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, image, &req);
@@ -192,7 +194,7 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
                                .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
         VkImageCreateInfo ci = imageInfo(probe);
         VkImage image;
-        check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
+        check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
               gdi::describeObject("heap", name, "memory type probe"));
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(device_, image, &req);
@@ -233,7 +235,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     VkImageCreateInfo ci = imageInfo(desc);
     const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
                                                                         " " + std::string(gdi::formatInfo(desc.format).name));
-    check(nativeAllocation([&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
+    check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
     ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
@@ -255,12 +257,12 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         const uint32_t layers = arrayLayers(desc);
         // Multisampled images are only attachments (gdi does not sample them).
         if (desc.sampleCount == 1) {
-            t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers});
+            t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers}, object);
             // Storage images bind one mip, every layer, of the texture's kind (image2DArray,
             // imageCube, image3D...), as GL's layered image bindings do.
             if (any(desc.usage, gdi::TextureUsage::Storage))
                 for (uint32_t m = 0; m < desc.mipLevels; ++m)
-                    t.mipViews.push_back(makeView(t.image, type, desc.format, {0, m, 1, 0, layers}));
+                    t.mipViews.push_back(makeView(t.image, type, desc.format, {0, m, 1, 0, layers}, object));
         }
     } catch (...) {
         destroyTexture(t);
@@ -270,7 +272,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
     try {
-        immediate([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
+        immediate("the first layout transition of " + object, [&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
     } catch (...) {
         destroyTexture(t);  // the submission failed (device lost): the image was never used
         throw;
@@ -318,7 +320,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     // MipFilter::None samples the base level only (GL's non-mipmap minification filters).
     ci.maxLod = d.mipFilter == gdi::MipFilter::None ? 0.0f : VK_LOD_CLAMP_NONE;
     Sampler s;
-    check(vkCreateSampler(device_, &ci, nullptr, &s.sampler), "vkCreateSampler");
+    check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);
     return samplers_.add(std::move(s));
 }

@@ -3,7 +3,10 @@
 #include <array>
 #include <atomic>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <mutex>
+#include <vector>
 
 namespace fe::gdi::fault {
 
@@ -13,7 +16,44 @@ struct Counter {
     explicit Counter(uint64_t n) : remaining(n) {}
     std::atomic<uint64_t> remaining;  // calls until the failing one; 0: disarmed
     std::atomic<uint64_t> fired{0};
+    std::atomic<uint64_t> calls{0};
 };
+
+const char* const kSiteNames[] = {"allocation", "submission"};
+
+// FE_FAULT_TRACE: the calls in order, written when the process exits (normally or by exit()).
+class Trace {
+public:
+    Trace() {
+        const char* f = std::getenv("FE_FAULT_TRACE");
+        if (f && *f) path_ = f;
+    }
+    ~Trace() {
+        if (path_.empty()) return;
+        std::ofstream out(path_);
+        for (const auto& [site, ordinal, call] : lines_) out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call << '\n';
+    }
+    void record(Site site, uint64_t ordinal, const char* call) {
+        if (path_.empty()) return;
+        std::lock_guard lock(mutex_);
+        lines_.push_back({site, ordinal, call});
+    }
+
+private:
+    struct Line {
+        Site site;
+        uint64_t ordinal;
+        const char* call;
+    };
+    std::string path_;
+    std::mutex mutex_;
+    std::vector<Line> lines_;
+};
+
+Trace& trace() {
+    static Trace t;
+    return t;
+}
 
 uint64_t fromEnvironment(const char* name, const char* what) {
     const char* text = std::getenv(name);
@@ -37,13 +77,16 @@ std::array<Counter, 2>& counters() {
 
 void arm(Site site, uint64_t n) { counters()[size_t(site)].remaining = n; }
 
-bool hit(Site site) {
+bool hit(Site site, const char* call) {
     Counter& c = counters()[size_t(site)];
+    trace().record(site, ++c.calls, call);
     uint64_t r = c.remaining.load(std::memory_order_relaxed);
     while (r != 0) {
         if (c.remaining.compare_exchange_weak(r, r - 1)) {
             if (r != 1) return false;
             c.fired++;
+            std::cerr << "fe: fault injection: native " << kSiteNames[size_t(site)] << " " << c.calls << " (" << call
+                      << ") fails\n";
             return true;
         }
     }
@@ -52,12 +95,36 @@ bool hit(Site site) {
 
 uint64_t fired(Site site) { return counters()[size_t(site)].fired; }
 
+uint64_t calls(Site site) { return counters()[size_t(site)].calls; }
+
 }  // namespace fe::gdi::fault
 
 namespace fe::gdi {
 
 std::string describeObject(const char* kind, const std::string& name, const std::string& detail) {
     return std::string(kind) + (name.empty() ? "" : " '" + name + "'") + (detail.empty() ? "" : " (" + detail + ")");
+}
+
+std::string toString(const LiveObjects& o) {
+    return "{buffers " + std::to_string(o.buffers) + ", textures " + std::to_string(o.textures) + ", samplers " +
+           std::to_string(o.samplers) + ", shaders " + std::to_string(o.shaders) + ", pipelines " +
+           std::to_string(o.pipelines) + ", timers " + std::to_string(o.timers) + ", heaps " + std::to_string(o.heaps) +
+           ", native objects " + std::to_string(o.nativeObjects) + "}";
+}
+
+bool leakCheckEnabled() {
+    static const bool enabled = [] {
+        const char* v = std::getenv("FE_LEAK_CHECK");
+        return v && std::string(v) == "1";
+    }();
+    return enabled;
+}
+
+void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live, const std::vector<std::string>& named) {
+    if (live == LiveObjects{}) return;
+    std::string names;
+    for (const auto& n : named) names += (names.empty() ? ": " : ", ") + n;
+    std::cerr << "fe leak check: " << backend << " device destroyed with " << toString(live) << " still alive" << names << "\n";
 }
 
 DeviceLostError DeviceLoss::lose(const std::string& backend, const std::string& cause) {

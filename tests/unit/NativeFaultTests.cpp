@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <regex>
 #include <ostream>
 #include <vector>
 
@@ -17,11 +18,7 @@ using namespace fe::gdi;
 
 namespace fe::gdi {
 // Readable leak-check failures.
-void PrintTo(const LiveObjects& o, std::ostream* os) {
-    *os << "{buffers " << o.buffers << ", textures " << o.textures << ", samplers " << o.samplers << ", shaders "
-        << o.shaders << ", pipelines " << o.pipelines << ", timers " << o.timers << ", heaps " << o.heaps
-        << ", native objects " << o.nativeObjects << "}";
-}
+void PrintTo(const LiveObjects& o, std::ostream* os) { *os << toString(o); }
 }  // namespace fe::gdi
 
 namespace {
@@ -36,9 +33,10 @@ protected:
 
     // Runs `op` once per native allocation it makes, failing the first, then the second, ...
     // until it runs through. Every failure must be an Error whose message passes `check` and
-    // must leave the device's objects as they were. Returns how many allocations failed.
-    int failEachAllocation(const std::function<void()>& op, const std::function<void(const std::string&)>& check) {
-        int failed = 0;
+    // must leave the device's objects as they were. Returns the native calls failed, in order,
+    // as the errors name them.
+    std::vector<std::string> failEachAllocation(const std::function<void()>& op, const std::function<void(const std::string&)>& check) {
+        std::vector<std::string> failed;
         for (uint64_t n = 1; n <= 32; ++n) {
             fault::arm(fault::Site::Allocation, n);
             const uint64_t firedBefore = fault::fired(fault::Site::Allocation);
@@ -49,7 +47,10 @@ protected:
                 EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore + 1) << "not the injected failure: " << e.what();
                 check(e.what());
                 EXPECT_EQ(device->liveObjects(), before) << "allocation " << n << " failed and left objects behind";
-                ++failed;
+                std::smatch call;
+                const std::string message = e.what();
+                EXPECT_TRUE(std::regex_search(message, call, std::regex(R"(\b(vk|gl)[A-Z]\w+)"))) << "no native call named: " << message;
+                failed.push_back(call.str());
                 continue;
             }
             fault::arm(fault::Site::Allocation, 0);
@@ -111,15 +112,17 @@ void expectOutOfMemory(const std::string& message, const std::string& object) {
 
 TEST(FaultInjection, CounterFailsOnlyTheNthCall) {
     const uint64_t fired = fault::fired(fault::Site::Allocation);
+    const uint64_t calls = fault::calls(fault::Site::Allocation);
     fault::arm(fault::Site::Allocation, 3);
-    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
-    EXPECT_FALSE(fault::hit(fault::Site::Submission));  // sites count separately
-    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
-    EXPECT_TRUE(fault::hit(fault::Site::Allocation));
-    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation, "a"));
+    EXPECT_FALSE(fault::hit(fault::Site::Submission, "s"));  // sites count separately
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation, "b"));
+    EXPECT_TRUE(fault::hit(fault::Site::Allocation, "c"));
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation, "d"));
     EXPECT_EQ(fault::fired(fault::Site::Allocation), fired + 1);
     fault::arm(fault::Site::Allocation, 0);
-    EXPECT_FALSE(fault::hit(fault::Site::Allocation));
+    EXPECT_FALSE(fault::hit(fault::Site::Allocation, "e"));
+    EXPECT_EQ(fault::calls(fault::Site::Allocation), calls + 5) << "every call is counted, armed or not";
 }
 
 TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable) {
@@ -132,12 +135,20 @@ TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable)
     // vkCreateBuffer, and the initial data goes through a staging buffer that allocates too.
     std::vector<uint8_t> data(20u << 20, 7);
     BufferHandle big;
-    const int failed = failEachAllocation(
+    const std::vector<std::string> failed = failEachAllocation(
         [&] { big = device->createBuffer({.size = data.size(), .debugName = "big vertices"}, bytesOf(data)); },
         [&](const std::string& m) { expectOutOfMemory(m, "buffer"); });
-    EXPECT_GE(failed, 1);
     if (GetParam() == "vulkan") {
-        EXPECT_EQ(failed, 4) << "vkCreateBuffer, vkAllocateMemory, and both for staging";
+        // The buffer and its memory, then the staging buffer, its memory and mapping, and the
+        // copy's command buffer; memory is mapped where it is host-visible (the buffer's too on
+        // a CPU device).
+        std::vector<std::string> unmapped = failed;
+        std::erase(unmapped, "vkMapMemory");
+        EXPECT_EQ(unmapped, (std::vector<std::string>{"vkCreateBuffer", "vkAllocateMemory", "vkCreateBuffer", "vkAllocateMemory",
+                                                      "vkAllocateCommandBuffers", "vkBeginCommandBuffer", "vkEndCommandBuffer"}));
+        EXPECT_GE(failed.size() - unmapped.size(), 1u) << "the staging memory's mapping";
+    } else {
+        EXPECT_EQ(failed, std::vector<std::string>{"glNamedBufferStorage"});
     }
     EXPECT_EQ(device->readBuffer(big, data.size() - 4, 4), std::vector<uint8_t>(4, 7));
 
@@ -158,16 +169,22 @@ TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable
     TextureHandle beforeTexture = device->createTexture({.width = 8, .height = 8, .debugName = "made before"});
 
     TextureHandle small, big;
-    int failed = failEachAllocation([&] { small = device->createTexture({.width = 64, .height = 64, .debugName = "albedo"}); },
-                                    [&](const std::string& m) { expectOutOfMemory(m, "texture 'albedo' (64x64 RGBA8)"); });
-    EXPECT_GE(failed, 1);
+    EXPECT_FALSE(failEachAllocation([&] { small = device->createTexture({.width = 64, .height = 64, .debugName = "albedo"}); },
+                                    [&](const std::string& m) { expectOutOfMemory(m, "texture 'albedo' (64x64 RGBA8)"); })
+                     .empty());
     // 32 MiB: memory of its own on Vulkan (vkCreateImage, then vkAllocateMemory).
-    failed = failEachAllocation(
+    const std::vector<std::string> failed = failEachAllocation(
         [&] { big = device->createTexture({.format = Format::RGBA8, .width = 4096, .height = 2048, .debugName = "huge"}); },
         [&](const std::string& m) { expectOutOfMemory(m, "texture 'huge'"); });
-    EXPECT_GE(failed, 1);
     if (GetParam() == "vulkan") {
-        EXPECT_EQ(failed, 2) << "vkCreateImage, vkAllocateMemory";
+        // The image, its memory (mapped where host-visible), its view, and the command buffer
+        // of its first layout transition.
+        std::vector<std::string> unmapped = failed;
+        std::erase(unmapped, "vkMapMemory");
+        EXPECT_EQ(unmapped, (std::vector<std::string>{"vkCreateImage", "vkAllocateMemory", "vkCreateImageView",
+                                                      "vkAllocateCommandBuffers", "vkBeginCommandBuffer", "vkEndCommandBuffer"}));
+    } else {
+        EXPECT_EQ(failed, std::vector<std::string>{"glTextureStorage2D"});
     }
 
     // Every texture kind, each of its allocations failed in turn.
@@ -183,9 +200,9 @@ TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable
     std::vector<TextureHandle> made;
     for (const TextureDesc& k : kinds) {
         TextureHandle t;
-        EXPECT_GE(failEachAllocation([&] { t = device->createTexture(k); },
-                                     [&](const std::string& m) { expectOutOfMemory(m, std::string("texture '") + k.debugName + "'"); }),
-                  1)
+        EXPECT_FALSE(failEachAllocation([&] { t = device->createTexture(k); },
+                                        [&](const std::string& m) { expectOutOfMemory(m, std::string("texture '") + k.debugName + "'"); })
+                         .empty())
             << k.debugName;
         made.push_back(t);
     }
@@ -202,12 +219,21 @@ TEST_P(NativeFaults, OutOfMemoryInTransfersLeavesNothingBehind) {
     const LiveObjects empty = device->liveObjects();
     TextureHandle t = device->createTexture({.width = 16, .height = 16, .debugName = "uploaded"});
     std::vector<uint8_t> texels(16 * 16 * 4, 200);
-    auto staging = [](const std::string& m) { expectOutOfMemory(m, "staging buffer for texture 'uploaded' (1024 bytes)"); };
-    const int failedWrites = failEachAllocation([&] { device->writeTexture(t, {}, bytesOf(texels)); }, staging);
+    auto staging = [](const std::string& m) {
+        expectOutOfMemory(m, m.find("staging") != std::string::npos ? "staging buffer for texture 'uploaded' (1024 bytes)"
+                                                                    : "texture 'uploaded'");  // the copy's command buffer
+    };
+    const std::vector<std::string> failedWrites = failEachAllocation([&] { device->writeTexture(t, {}, bytesOf(texels)); }, staging);
     Image img;
-    const int failedReads = failEachAllocation([&] { img = device->readTexture(t); }, staging);
+    const std::vector<std::string> failedReads = failEachAllocation([&] { img = device->readTexture(t); }, staging);
     EXPECT_EQ(img.data, texels);
-    EXPECT_EQ(failedWrites + failedReads, GetParam() == "vulkan" ? 2 : 0);
+    // Vulkan, each way: the staging buffer (its memory block is already mapped, made by the
+    // earlier texture) and the copy's command buffer.
+    const std::vector<std::string> perTransfer = GetParam() == "vulkan"
+        ? std::vector<std::string>{"vkCreateBuffer", "vkAllocateCommandBuffers", "vkBeginCommandBuffer", "vkEndCommandBuffer"}
+        : std::vector<std::string>{};
+    EXPECT_EQ(failedWrites, perTransfer);
+    EXPECT_EQ(failedReads, perTransfer);
     device->destroy(t);
     EXPECT_EQ(device->liveObjects(), empty);
 }

@@ -3,18 +3,22 @@
 //
 // Fault injection makes the N-th native allocation or submission fail the way the driver
 // reports a real failure, so every backend's error paths run on any machine:
-//   FE_FAULT_ALLOC=N   the N-th native allocation reports out of memory: Vulkan vkCreateBuffer,
-//                      vkCreateImage, vkAllocateMemory (VK_ERROR_OUT_OF_DEVICE_MEMORY); GL
-//                      glNamedBufferStorage, glTextureStorage2D (GL_OUT_OF_MEMORY).
+//   FE_FAULT_ALLOC=N   the N-th native allocation reports out of memory. Vulkan: every
+//                      vkCreate* and vkAllocate* call of the device, vkMapMemory and
+//                      vkBegin/EndCommandBuffer (VK_ERROR_OUT_OF_DEVICE_MEMORY); GL: the
+//                      storage calls glNamedBufferStorage and glTextureStorage* (GL_OUT_OF_MEMORY).
 //   FE_FAULT_SUBMIT=N  the N-th native submission reports a lost device: Vulkan vkQueueSubmit
-//                      (Device::submit and the blocking transfers' own submissions:
-//                      VK_ERROR_DEVICE_LOST); GL Device::submit (a context reset, as
-//                      glGetGraphicsResetStatus reports one).
+//                      (Device::submit, the blocking transfers' own submissions, the swap chain)
+//                      and vkQueuePresentKHR (VK_ERROR_DEVICE_LOST); GL Device::submit and
+//                      present (a context reset, as glGetGraphicsResetStatus reports one).
+//   FE_FAULT_TRACE=FILE  at exit, every native call of either kind made, one line each:
+//                      "allocation|submission ORDINAL CALL" (the fault sweep picks its targets from it).
 // Only the N-th call fails. Counting is per process from its first native call; fault::arm
 // restarts it from the moment of the call (gtests).
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fe/gdi/Device.h"
 
@@ -24,9 +28,12 @@ enum class Site : uint8_t { Allocation, Submission };
 
 // The n-th native call of `site` from now on fails; n = 0: none does.
 void arm(Site site, uint64_t n);
-// A native call of `site` is about to be made: true when it is the one to fail (the caller then
-// skips the call and takes the driver's failure result instead).
-bool hit(Site site);
+// The native call `call` (its API name, a string literal) of `site` is about to be made: true
+// when it is the one to fail (the caller then skips the call and takes the driver's failure
+// result instead).
+bool hit(Site site, const char* call);
+// Native calls of `site` made so far (counted whether or not armed).
+uint64_t calls(Site site);
 // Failures injected at `site` so far.
 uint64_t fired(Site site);
 
@@ -38,6 +45,12 @@ namespace fe::gdi {
 // check() first; the per-draw recording path does not (see Device.h, Errors).
 // How errors name an object: "texture 'albedo' (64x64 RGBA8)", "buffer (256 bytes)" when unnamed.
 std::string describeObject(const char* kind, const std::string& name, const std::string& detail);
+
+// FE_LEAK_CHECK=1 (device destructors): whether to report, and the report of `live` on stderr,
+// naming the buffers and textures left (`named`), unless nothing is left.
+bool leakCheckEnabled();
+void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live, const std::vector<std::string>& named);
+std::string toString(const LiveObjects& live);
 
 class DeviceLoss {
 public:
