@@ -246,6 +246,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
                                  " (size " + std::to_string(req.size) + ", alignment " + std::to_string(req.alignment) +
                                  ") does not fit heap '" + heap->name + "' of " + std::to_string(heap->size) + " bytes");
             t.ownsMemory = false;
+            heap->placed++;  // from here on destroyTexture() counts it out again, also when this fails
             t.memory = heap->memory;
             t.memory.offset += desc.heapOffset;
             t.memory.size = req.size;
@@ -268,7 +269,6 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         destroyTexture(t);
         throw;
     }
-    if (heap) heap->placed++;
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
     try {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 
 namespace fe::render {
 
@@ -42,6 +43,7 @@ private:
         std::unique_ptr<gdi::CommandList> commands;
         gdi::FenceValue fence = 0;
     };
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     std::vector<Slot> slots_;
     gdi::BufferHandle uploadBuffer_;

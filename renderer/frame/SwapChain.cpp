@@ -4,23 +4,21 @@
 
 namespace fe::render {
 
-SwapChain::SwapChain(gdi::Device& device, const SwapChainDesc& desc) : device_(device), desc_(desc) {
+SwapChain::SwapChain(gdi::Device& device, const SwapChainDesc& desc) : objects_(device), device_(device), desc_(desc) {
     if (desc.imageCount == 0 || desc.imageCount > 8) throw gdi::Error("SwapChain: imageCount must be 1..8");
     for (uint32_t i = 0; i < desc.imageCount; ++i) {
         std::string name = "swapchain " + std::to_string(i);
-        images_.push_back({device.createTexture({.format = desc.format, .width = desc.width, .height = desc.height,
-                                                 .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
-                                                          gdi::TextureUsage::CopySrc,
-                                                 .debugName = name.c_str()}),
+        images_.push_back({objects_.add(device.createTexture({.format = desc.format, .width = desc.width, .height = desc.height,
+                                                              .usage = gdi::TextureUsage::RenderTarget |
+                                                                       gdi::TextureUsage::Sampled | gdi::TextureUsage::CopySrc,
+                                                              .debugName = name.c_str()})),
                            0});
     }
 }
 
 SwapChain::~SwapChain() {
-    for (Entry& e : images_) {
+    for (Entry& e : images_)
         if (e.fence) device_.waitOrLost(e.fence);  // a destructor must not throw
-        device_.destroy(e.texture);
-    }
 }
 
 gdi::TextureHandle SwapChain::acquire() {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 
 namespace fe::render {
 
@@ -35,6 +36,7 @@ private:
         gdi::TextureHandle texture;
         gdi::FenceValue fence = 0;
     };
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     SwapChainDesc desc_;
     std::vector<Entry> images_;

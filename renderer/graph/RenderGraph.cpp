@@ -270,12 +270,8 @@ void RenderGraph::compile(const CompileOptions& options) {
 void RenderGraph::release() {
     if (!device_) return;
     device_->waitIdleOrLost();  // also run by the destructor, which must not throw
-    for (gdi::TextureHandle t : owned_) device_->destroy(t);
-    owned_.clear();
-    if (heap_) device_->destroy(heap_);
-    heap_ = {};
-    for (Executor& e : executors_)
-        if (e.timer) device_->destroy(e.timer), e.timer = {};
+    objects_.reset();  // newest first: the placed textures before their heap
+    for (Executor& e : executors_) e.timer = {};
     for (size_t i = 0; i < textures_.size(); ++i)
         if (i < handles_.size() && !textures_[i].imported) handles_[i] = {};
     device_ = nullptr;
@@ -290,24 +286,25 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
     compile(options);
 
     device_ = &device;
+    objects_.emplace(device);
     handles_.resize(textures_.size());
+    gdi::HeapHandle heap;
     if (aliasing_ == AliasingMode::Memory && memory_.withAliasing > 0)
-        heap_ = device.createHeap({.size = memory_.withAliasing, .debugName = "render graph transients"});
+        heap = objects_->add(device.createHeap({.size = memory_.withAliasing, .debugName = "render graph transients"}));
     for (size_t i = 0; i < textures_.size(); ++i) {
         const TextureInfo& t = textures_[i];
         if (t.imported || !t.used()) continue;
         if (aliasing_ == AliasingMode::ObjectReuse && t.physical != int(i)) continue;  // shares below
         gdi::TextureDesc d = t.desc;
         d.debugName = t.name.c_str();
-        if (heap_) d.heap = heap_, d.heapOffset = t.offset;
-        handles_[i] = device.createTexture(d);
-        owned_.push_back(handles_[i]);
+        if (heap) d.heap = heap, d.heapOffset = t.offset;
+        handles_[i] = objects_->add(device.createTexture(d));
     }
     for (size_t i = 0; i < textures_.size(); ++i)
         if (!textures_[i].imported && textures_[i].used() && !handles_[i]) handles_[i] = handles_[textures_[i].physical];
     if (device.info().features.timestamps)
         for (size_t p = 0; p < passes_.size(); ++p)
-            if (!passes_[p].culled) executors_[p].timer = device.createTimer();
+            if (!passes_[p].culled) executors_[p].timer = objects_->add(device.createTimer());
 }
 
 // ---- execute ----------------------------------------------------------------------------------

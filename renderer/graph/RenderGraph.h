@@ -31,10 +31,12 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "graph/GraphTypes.h"
 
 namespace fe::graph {
@@ -177,6 +179,9 @@ private:
         gdi::TimerHandle timer;
         bool timed = false;
     };
+    // What compile(device) created (the pass timers, the transient textures and the heap they
+    // are placed in), released on recompile and destruction.
+    std::optional<gdi::DeviceObjects> objects_;
     std::vector<TextureInfo> textures_;
     std::vector<gdi::TextureHandle> handles_;   // per texture
     std::vector<PassInfo> passes_;
@@ -184,10 +189,7 @@ private:
     MemoryReport memory_;
     AliasingMode aliasing_ = AliasingMode::None;
     bool compiled_ = false;
-    // What compile(device) created, released on recompile and destruction.
-    gdi::Device* device_ = nullptr;
-    gdi::HeapHandle heap_;
-    std::vector<gdi::TextureHandle> owned_;
+    gdi::Device* device_ = nullptr;  // of compile(device)
 };
 
 }  // namespace fe::graph

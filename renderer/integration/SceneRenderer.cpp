@@ -15,7 +15,7 @@ extern "C" void fe_shaders_link_fe_shaders_scene();
 namespace fe::render {
 
 SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& s)
-    : device_(device), scene_(scene), settings_(s) {
+    : objects_(device), device_(device), scene_(scene), settings_(s) {
     fe_shaders_link_fe_shaders_scene();
     const TechniqueInfo& technique = findTechnique(s.technique);  // an unknown name fails before any GPU work
     if (s.width == 0 || s.height == 0 || s.width > 8192 || s.height > 8192)
@@ -76,14 +76,15 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     updateLights(scene.lights);
     if (!shadowPlan_.shadowed.empty())
         shadows_ = std::make_unique<ShadowMaps>(device, *queue_, *geometry_, shadowPlan_, s.shadows);
-    outputTexture_ = device.createTexture({.format = kRadianceFormat, .width = s.width, .height = s.height,
-                                           .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
-                                                    gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
-                                           .debugName = "output L_o"});
-    pointSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest,
-                                          .addressU = gdi::AddressMode::ClampToEdge,
-                                          .addressV = gdi::AddressMode::ClampToEdge});
-    fullscreenVs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")});
+    outputTexture_ = objects_.add(device.createTexture({.format = kRadianceFormat, .width = s.width, .height = s.height,
+                                                        .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
+                                                                 gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
+                                                        .debugName = "output L_o"}));
+    pointSampler_ = objects_.add(device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest,
+                                                       .addressU = gdi::AddressMode::ClampToEdge,
+                                                       .addressV = gdi::AddressMode::ClampToEdge}));
+    fullscreenVs_ = objects_.add(
+        device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")}));
     postProcess_ = std::make_unique<PostProcess>(device, settings_, fullscreenVs_, frameConstants_);
     if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
@@ -108,20 +109,6 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
 
 SceneRenderer::~SceneRenderer() {
     device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
-    technique_.reset();
-    vfx_.reset();
-    shadows_.reset();
-    prefiltered_.reset();
-    environment_.reset();
-    postProcess_.reset();
-    if (debugViewPipeline_) device_.destroy(debugViewPipeline_);
-    if (debugViewFs_) device_.destroy(debugViewFs_);
-    device_.destroy(fullscreenVs_);
-    device_.destroy(pointSampler_);
-    geometry_.reset();
-    device_.destroy(outputTexture_);
-    gpuScene_.reset();
-    queue_.reset();
 }
 
 // The frame as a graph: the technique's passes, then what every technique shares. The graph
@@ -189,12 +176,12 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
                          : format.hasDepth         ? "scene/debug_view_depth.frag"
                          : format.channels == 1    ? "scene/debug_view_grey.frag"
                                                                        : "scene/debug_view.frag";
-    debugViewFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)});
-    debugViewPipeline_ = device_.createGraphicsPipeline(
+    debugViewFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)}));
+    debugViewPipeline_ = objects_.add(device_.createGraphicsPipeline(
         {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
          .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                       {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "debug view"});
+         .debugName = "debug view"}));
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
     addFullscreenPass(g, "debug-view", source, view, debugViewPipeline_, pointSampler_, frameConstants_);
     return view;
@@ -203,13 +190,14 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
 // The "light count" debug view: a heat map of how many lights reach each pixel's surface.
 graph::TextureId SceneRenderer::declareLightCountView(graph::RenderGraph& g) {
     const RenderSettings& s = settings_;
-    debugViewFs_ = device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/debug_light_count.frag")});
-    debugViewPipeline_ = device_.createGraphicsPipeline(
+    debugViewFs_ = objects_.add(
+        device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/debug_light_count.frag")}));
+    debugViewPipeline_ = objects_.add(device_.createGraphicsPipeline(
         {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
          .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                       {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Fragment},
                       {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "debug view light count"});
+         .debugName = "debug view light count"}));
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
     g.addPass("debug-view", [&](graph::PassBuilder& b) {
         b.sample(depth_);

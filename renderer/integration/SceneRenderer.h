@@ -13,6 +13,7 @@
 
 #include "assets/Scene.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 #include "graph/RenderGraph.h"
 #include "render/GeometryRenderer.h"
@@ -63,6 +64,8 @@ private:
     graph::TextureId declareDebugView(graph::RenderGraph& g);
     graph::TextureId declareLightCountView(graph::RenderGraph& g);
 
+    // First: destroyed last, after the members below that use its objects.
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     const assets::Scene& scene_;
     RenderSettings settings_;

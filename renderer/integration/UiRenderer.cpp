@@ -17,7 +17,7 @@ static_assert(sizeof(ImDrawVert) == 20, "ImDrawVert is pos, uv, colour");
 }  // namespace
 
 UiRenderer::UiRenderer(gdi::Device& device, gdi::Format targetFormat)
-    : device_(device), format_(targetFormat), queue_(device, 2, 1u << 20) {
+    : objects_(device), device_(device), format_(targetFormat), queue_(device, 2, 1u << 20) {
     if (!ImGui::GetCurrentContext()) throw gdi::Error("UiRenderer: no ImGui context (ImGui::CreateContext first)");
     ImGuiIO& io = ImGui::GetIO();
     io.BackendRendererName = "fe::render::UiRenderer";
@@ -25,14 +25,13 @@ UiRenderer::UiRenderer(gdi::Device& device, gdi::Format targetFormat)
     unsigned char* pixels = nullptr;
     int w = 0, h = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    font_ = device.createTexture({.format = gdi::Format::RGBA8, .width = uint32_t(w), .height = uint32_t(h),
-                                  .usage = gdi::TextureUsage::Sampled, .debugName = "ui font atlas"});
+    font_ = objects_.add(device.createTexture({.format = gdi::Format::RGBA8, .width = uint32_t(w), .height = uint32_t(h),
+                                               .usage = gdi::TextureUsage::Sampled, .debugName = "ui font atlas"}));
     device.writeTexture(font_, {}, gdi::ByteSpan(reinterpret_cast<const std::byte*>(pixels), size_t(w) * size_t(h) * 4));
-    io.Fonts->SetTexID(textureId(font_));
-    sampler_ = device.createSampler({.addressU = gdi::AddressMode::ClampToEdge, .addressV = gdi::AddressMode::ClampToEdge});
-    vs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/ui.vert")});
-    fs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ui.frag")});
-    pipeline_ = device.createGraphicsPipeline(
+    sampler_ = objects_.add(device.createSampler({.addressU = gdi::AddressMode::ClampToEdge, .addressV = gdi::AddressMode::ClampToEdge}));
+    vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/ui.vert")}));
+    fs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ui.frag")}));
+    pipeline_ = objects_.add(device.createGraphicsPipeline(
         {.vertexShader = vs_,
          .fragmentShader = fs_,
          .vertexBuffers = {{.stride = sizeof(ImDrawVert),
@@ -47,16 +46,12 @@ UiRenderer::UiRenderer(gdi::Device& device, gdi::Format targetFormat)
          .colorFormats = {targetFormat},
          .bindings = {{kSlotUi, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Vertex},
                       {kSlotAtlas, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "ui"});
+         .debugName = "ui"}));
+    io.Fonts->SetTexID(textureId(font_));  // last: should anything above throw, ImGui names no freed texture
 }
 
 UiRenderer::~UiRenderer() {
-    queue_.waitIdle();
-    device_.destroy(pipeline_);
-    device_.destroy(vs_);
-    device_.destroy(fs_);
-    device_.destroy(sampler_);
-    device_.destroy(font_);
+    device_.waitIdleOrLost();  // a destructor must not throw, and a lost device runs nothing more
     if (ImGui::GetCurrentContext()) ImGui::GetIO().Fonts->SetTexID(nullptr);
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 
 struct ImDrawData;
@@ -28,6 +29,7 @@ public:
     static void* textureId(gdi::TextureHandle texture);
 
 private:
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     gdi::Format format_;
     CommandQueue queue_;

@@ -5,28 +5,24 @@
 
 namespace fe::render {
 
-DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
+DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), objects_(c.device) {
     volumes_ = std::make_unique<LightVolumes>(c.device, "scene/deferred_light.frag", std::vector{kRadianceFormat},
                                               GBuffer::slots(true));
-    emissiveFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")});
-    emissive_ = c.device.createGraphicsPipeline({
+    emissiveFs_ = objects_.add(
+        c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")}));
+    emissive_ = objects_.add(c.device.createGraphicsPipeline({
         .vertexShader = c.fullscreenVs, .fragmentShader = emissiveFs_,
         .blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                    .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::One}},
         .colorFormats = {kRadianceFormat},
         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                      {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-        .debugName = "emissive"});
+        .debugName = "emissive"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
                                                            "scene/deferred_light_shadowed_cube.frag",
                                                            std::vector{kRadianceFormat}, GBuffer::slots(true));
     if (c.settings.ibl()) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
-}
-
-DeferredRenderer::~DeferredRenderer() {
-    ctx_.device.destroy(emissive_);
-    ctx_.device.destroy(emissiveFs_);
 }
 
 void DeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {

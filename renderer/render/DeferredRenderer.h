@@ -14,10 +14,10 @@ namespace fe::render {
 class DeferredRenderer final : public TechniqueRenderer {
 public:
     explicit DeferredRenderer(TechniqueContext& context);
-    ~DeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
 
 private:
+    gdi::DeviceObjects objects_;
     std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples

@@ -7,22 +7,18 @@ namespace fe::render {
 
 EnvironmentLighting::EnvironmentLighting(TechniqueContext& c, const char* fragmentShader, std::vector<gdi::Format> formats,
                                          bool albedo)
-    : ctx_(c), albedo_(albedo) {
+    : objects_(c.device), ctx_(c), albedo_(albedo) {
     const std::string shader = c.environmentLight.shader(fragmentShader);
-    fs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)});
+    fs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)}));
     std::vector<gdi::BindingSlot> b = GBuffer::slots(albedo);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
     c.environmentLight.addBindings(b);
     const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                                     .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
-    pipeline_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = fs_,
-                                                 .blend = std::vector<gdi::BlendTargetState>(formats.size(), add),
-                                                 .colorFormats = formats, .bindings = b, .debugName = fragmentShader});
-}
-
-EnvironmentLighting::~EnvironmentLighting() {
-    ctx_.device.destroy(pipeline_);
-    ctx_.device.destroy(fs_);
+    pipeline_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = fs_,
+                                                              .blend = std::vector<gdi::BlendTargetState>(formats.size(), add),
+                                                              .colorFormats = formats, .bindings = b,
+                                                              .debugName = fragmentShader}));
 }
 
 void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer,

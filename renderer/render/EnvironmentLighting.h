@@ -15,7 +15,6 @@ public:
     // `albedo`: whether the shader reads G-buffer 0 (base colour and metallic).
     EnvironmentLighting(TechniqueContext& context, const char* fragmentShader, std::vector<gdi::Format> targetFormats,
                         bool albedo);
-    ~EnvironmentLighting();
     EnvironmentLighting(const EnvironmentLighting&) = delete;
     EnvironmentLighting& operator=(const EnvironmentLighting&) = delete;
     // Declares the pass after the lighting passes: reads the G-buffer, adds into `targets`.
@@ -24,6 +23,7 @@ public:
                  FrameConstantsFn frame = {});
 
 private:
+    gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
     bool albedo_;
     gdi::ShaderHandle fs_;

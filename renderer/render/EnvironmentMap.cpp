@@ -36,38 +36,40 @@ std::string EnvironmentLight::shader(const std::string& sampled) const {
 
 EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e, gdi::ShaderHandle fullscreenVs,
                                uint32_t faceSize)
-    : device_(device) {
+    : objects_(device) {
     const uint32_t mips = uint32_t(std::floor(std::log2(double(faceSize)))) + 1;
-    cube_ = device.createTexture({.dimension = gdi::TextureDimension::TextureCube, .format = kFormat, .width = faceSize,
-                                  .height = faceSize, .depthOrLayers = 6, .mipLevels = mips,
-                                  .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget |
-                                           gdi::TextureUsage::CopySrc | gdi::TextureUsage::CopyDst,
-                                  .debugName = "environment cube"});
-    sampler_ = device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,
-                                     .addressV = gdi::AddressMode::ClampToEdge, .addressW = gdi::AddressMode::ClampToEdge,
-                                     .debugName = "environment"});
+    cube_ = objects_.add(device.createTexture({.dimension = gdi::TextureDimension::TextureCube, .format = kFormat,
+                                               .width = faceSize, .height = faceSize, .depthOrLayers = 6, .mipLevels = mips,
+                                               .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget |
+                                                        gdi::TextureUsage::CopySrc | gdi::TextureUsage::CopyDst,
+                                               .debugName = "environment cube"}));
+    sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,
+                                                  .addressV = gdi::AddressMode::ClampToEdge,
+                                                  .addressW = gdi::AddressMode::ClampToEdge, .debugName = "environment"}));
 
-    // The faces: one full-screen triangle each, into mip 0 of that face.
+    // The faces: one full-screen triangle each, into mip 0 of that face. What draws them is
+    // freed once they are drawn, or when something throws before.
+    gdi::DeviceObjects temporary(device);
     const bool image = e.kind == assets::Environment::Kind::Image;
-    const gdi::ShaderHandle fs = device.createShader(
-        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(image ? "scene/env_equirect.frag" : "scene/env_sky.frag")});
+    const gdi::ShaderHandle fs = temporary.add(device.createShader(
+        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(image ? "scene/env_equirect.frag" : "scene/env_sky.frag")}));
     std::vector<gdi::BindingSlot> bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment}};
     gdi::TextureHandle source;
     gdi::SamplerHandle sourceSampler;
     if (image) {
         bindings.push_back({kSlotEnvironmentSource, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-        source = device.createTexture({.format = gdi::Format::RGBA32F, .width = e.width, .height = e.height,
-                                       .debugName = "environment equirect"});
+        source = temporary.add(device.createTexture({.format = gdi::Format::RGBA32F, .width = e.width, .height = e.height,
+                                                     .debugName = "environment equirect"}));
         std::vector<float> rgba(size_t(e.width) * e.height * 4, 1.0f);
         for (size_t i = 0; i < size_t(e.width) * e.height; ++i)
             for (int c = 0; c < 3; ++c) rgba[i * 4 + c] = e.rgb[i * 3 + c];
         device.writeTexture(source, {}, gdi::bytesOf(rgba));
-        sourceSampler = device.createSampler({.addressU = gdi::AddressMode::Repeat, .addressV = gdi::AddressMode::ClampToEdge,
-                                              .debugName = "environment equirect"});
+        sourceSampler = temporary.add(device.createSampler(
+            {.addressU = gdi::AddressMode::Repeat, .addressV = gdi::AddressMode::ClampToEdge, .debugName = "environment equirect"}));
     }
-    const gdi::PipelineHandle faces = device.createGraphicsPipeline(
+    const gdi::PipelineHandle faces = temporary.add(device.createGraphicsPipeline(
         {.vertexShader = fullscreenVs, .fragmentShader = fs, .colorFormats = {kFormat}, .bindings = bindings,
-         .debugName = "environment faces"});
+         .debugName = "environment faces"}));
     const assets::SkyModel& sky = e.sky;
     std::vector<Params> params(6);
     for (uint32_t f = 0; f < 6; ++f)
@@ -80,9 +82,9 @@ EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e
     const uint64_t stride = (sizeof(Params) + align - 1) / align * align;
     std::vector<std::byte> blocks(stride * 6);
     for (uint32_t f = 0; f < 6; ++f) std::memcpy(blocks.data() + f * stride, &params[f], sizeof(Params));
-    const gdi::BufferHandle ubo =
+    const gdi::BufferHandle ubo = temporary.add(
         device.createBuffer({.size = blocks.size(), .usage = gdi::BufferUsage::Uniform, .debugName = "environment faces"},
-                            gdi::ByteSpan(blocks));
+                            gdi::ByteSpan(blocks)));
     auto cmd = device.createCommandList();
     for (uint32_t f = 0; f < 6; ++f) {
         gdi::RenderPassDesc rp{.colors = {{.texture = cube_, .layer = f, .load = gdi::LoadOp::DontCare}},
@@ -96,31 +98,19 @@ EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e
     }
     cmd->generateMips(cube_);
     device.wait(device.submit(*cmd));
-    device.destroy(faces);
-    device.destroy(fs);
-    device.destroy(ubo);
-    if (image) {
-        device.destroy(source);
-        device.destroy(sourceSampler);
-    }
+    temporary.clear();
 
-    backgroundVs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/background.vert")});
-    backgroundFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/background.frag")});
-    background_ = device.createGraphicsPipeline(
+    backgroundVs_ = objects_.add(
+        device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/background.vert")}));
+    backgroundFs_ = objects_.add(
+        device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/background.frag")}));
+    background_ = objects_.add(device.createGraphicsPipeline(
         {.vertexShader = backgroundVs_, .fragmentShader = backgroundFs_,
          .depthStencil = {.depthTest = true, .depthWrite = false, .depthCompare = gdi::CompareOp::LessOrEqual},
          .colorFormats = {kRadianceFormat}, .depthFormat = kSceneDepthFormat,
          .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                       {kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "background"});
-}
-
-EnvironmentMap::~EnvironmentMap() {
-    device_.destroy(background_);
-    device_.destroy(backgroundVs_);
-    device_.destroy(backgroundFs_);
-    device_.destroy(sampler_);
-    device_.destroy(cube_);
+         .debugName = "background"}));
 }
 
 void EnvironmentMap::drawBackground(gdi::CommandList& cmd, const UploadAllocation& fc) const {

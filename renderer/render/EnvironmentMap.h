@@ -10,6 +10,7 @@
 
 #include "assets/Environment.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 
 namespace fe::render {
@@ -40,7 +41,6 @@ public:
 
     EnvironmentMap(gdi::Device& device, const assets::Environment& environment, gdi::ShaderHandle fullscreenVs,
                    uint32_t faceSize = kDefaultFaceSize);
-    ~EnvironmentMap();
     EnvironmentMap(const EnvironmentMap&) = delete;
     EnvironmentMap& operator=(const EnvironmentMap&) = delete;
 
@@ -56,7 +56,7 @@ public:
     };
 
 private:
-    gdi::Device& device_;
+    gdi::DeviceObjects objects_;
     gdi::TextureHandle cube_;
     gdi::SamplerHandle sampler_;
     gdi::ShaderHandle backgroundVs_, backgroundFs_;

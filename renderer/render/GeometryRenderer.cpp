@@ -28,14 +28,14 @@ std::vector<gdi::BindingSlot> meshPassBindings() {
     };
 }
 
-GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : device_(device), scene_(scene) {
-    vs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")});
-    forwardFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/forward.frag")});
-    gbufferFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/gbuffer.frag")});
-    depthFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/depth_prepass.frag")});
+GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : objects_(device), device_(device), scene_(scene) {
+    vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
     auto fragment = [&](const char* name) {
-        return device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)});
+        return objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
+    forwardFs_ = fragment("scene/forward.frag");
+    gbufferFs_ = fragment("scene/gbuffer.frag");
+    depthFs_ = fragment("scene/depth_prepass.frag");
     lppNormalsFs_ = fragment("scene/lpp_normals.frag");
     lppNormalsUnpackedFs_ = fragment("scene/lpp_normals_unpacked.frag");
     lppMaterialFs_ = fragment("scene/lpp_material.frag");
@@ -43,22 +43,10 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : devic
     forwardShadowedCubeFs_ = fragment("scene/forward_shadowed_cube.frag");
 }
 
-GeometryRenderer::~GeometryRenderer() {
-    for (auto& [k, p] : pipelines_) device_.destroy(p);
-    device_.destroy(vs_);
-    device_.destroy(forwardFs_);
-    if (forwardIblFs_) device_.destroy(forwardIblFs_);
-    if (lppMaterialIblFs_) device_.destroy(lppMaterialIblFs_);
-    device_.destroy(gbufferFs_);
-    for (gdi::ShaderHandle sh : {depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_, forwardShadowedFs_,
-                                 forwardShadowedCubeFs_})
-        device_.destroy(sh);
-}
-
 void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
     if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
     auto fragment = [&](const char* name) {
-        return device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(light.shader(name))});
+        return objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(light.shader(name))}));
     };
     forwardIblFs_ = fragment("scene/forward_ibl.frag");
     lppMaterialIblFs_ = fragment("scene/lpp_material_ibl.frag");
@@ -144,7 +132,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     if (ibl) environment_.addBindings(d.bindings);
     if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
-    gdi::PipelineHandle p = device_.createGraphicsPipeline(d);
+    gdi::PipelineHandle p = objects_.add(device_.createGraphicsPipeline(d));
     pipelines_[key] = p;
     return p;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 #include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
@@ -39,7 +40,6 @@ struct MeshPassTargets {
 class GeometryRenderer {
 public:
     GeometryRenderer(gdi::Device& device, GpuScene& scene);
-    ~GeometryRenderer();
 
     // Draws the scene's draw items that belong to `pass` (opaque+mask, or blend sorted back to
     // front). `frameConstants` is the per-frame uniform allocation. Passes that draw the same
@@ -57,10 +57,11 @@ public:
 
 private:
     gdi::PipelineHandle pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull, gdi::FrontFace face);
+    std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
 
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     GpuScene& scene_;
-    std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
     gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;

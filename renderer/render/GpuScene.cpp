@@ -46,10 +46,11 @@ gdi::AddressMode toAddress(assets::Wrap w) {
     }
 }
 
-gdi::TextureHandle solidTexture(gdi::Device& device, uint8_t r, uint8_t g, uint8_t b, uint8_t a, bool srgb,
+gdi::TextureHandle solidTexture(gdi::DeviceObjects& objects, uint8_t r, uint8_t g, uint8_t b, uint8_t a, bool srgb,
                                 const char* name) {
-    gdi::TextureHandle t = device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
-                                                 .width = 1, .height = 1, .debugName = name});
+    gdi::Device& device = objects.device();
+    gdi::TextureHandle t = objects.add(device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                                                             .width = 1, .height = 1, .debugName = name}));
     const uint8_t px[4] = {r, g, b, a};
     device.writeTexture(t, {}, gdi::bytesOf(px));
     return t;
@@ -68,7 +69,7 @@ GpuLight toGpuLight(const assets::Light& l) {
     return g;
 }
 
-GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(device), scene_(scene) {
+GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(device), device_(device), scene_(scene) {
     // Geometry: every primitive appended to one vertex and one index buffer.
     std::vector<assets::Vertex> vertices;
     std::vector<uint32_t> indices;
@@ -85,11 +86,11 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
         }
     if (vertices.empty()) vertices.push_back({});  // a buffer needs at least one byte
     if (indices.empty()) indices.push_back(0);
-    vertices_ = device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex), .usage = gdi::BufferUsage::Vertex,
-                                     .debugName = "scene vertices"},
-                                    gdi::bytesOf(vertices));
-    indices_ = device.createBuffer({.size = indices.size() * 4, .usage = gdi::BufferUsage::Index, .debugName = "scene indices"},
-                                   gdi::bytesOf(indices));
+    vertices_ = objects_.add(device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex),
+                                                  .usage = gdi::BufferUsage::Vertex, .debugName = "scene vertices"},
+                                                 gdi::bytesOf(vertices)));
+    indices_ = objects_.add(device.createBuffer(
+        {.size = indices.size() * 4, .usage = gdi::BufferUsage::Index, .debugName = "scene indices"}, gdi::bytesOf(indices)));
 
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const assets::MeshInstance& inst = scene.instances[i];
@@ -116,9 +117,9 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
         uint32_t mips = 1;
         if (img.sampler.mipmaps && img.sampler.mipFilter != assets::MipFilter::None)
             for (uint32_t s = std::max(img.width, img.height); s > 1; s >>= 1) ++mips;
-        gdi::TextureHandle t = device.createTexture({.format = img.srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
-                                                     .width = img.width, .height = img.height, .mipLevels = mips,
-                                                     .debugName = img.name.c_str()});
+        gdi::TextureHandle t = objects_.add(device.createTexture({.format = img.srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                                                                  .width = img.width, .height = img.height, .mipLevels = mips,
+                                                                  .debugName = img.name.c_str()}));
         std::vector<uint8_t> level = img.pixels;
         uint32_t w = img.width, h = img.height;
         for (uint32_t m = 0; m < mips; ++m) {
@@ -131,7 +132,7 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
         }
         textures_.push_back(t);
         const assets::Sampler& s = img.sampler;
-        samplers_.push_back(device.createSampler({
+        samplers_.push_back(objects_.add(device.createSampler({
             .minFilter = toFilter(s.minFilter),
             .magFilter = toFilter(s.magFilter),
             .mipFilter = mips == 1 ? gdi::MipFilter::None
@@ -139,12 +140,12 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
                                                                       : gdi::MipFilter::Linear,
             .addressU = toAddress(s.wrapS),
             .addressV = toAddress(s.wrapT),
-        }));
+        })));
     }
-    white_ = solidTexture(device, 255, 255, 255, 255, true, "default white");
-    black_ = solidTexture(device, 0, 0, 0, 255, true, "default black");
-    flatNormal_ = solidTexture(device, 128, 128, 255, 255, false, "default normal");
-    defaultSampler_ = device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest});
+    white_ = solidTexture(objects_, 255, 255, 255, 255, true, "default white");
+    black_ = solidTexture(objects_, 0, 0, 0, 255, true, "default black");
+    flatNormal_ = solidTexture(objects_, 128, 128, 255, 255, false, "default normal");
+    defaultSampler_ = objects_.add(device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest}));
 
     for (const assets::Material& m : scene.materials) {
         auto pick = [&](const assets::TextureRef& r, gdi::TextureHandle fallback, gdi::TextureHandle& tex,
@@ -169,15 +170,6 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : device_(de
 
 GpuScene::~GpuScene() {
     device_.waitIdleOrLost();  // a destructor must not throw
-    for (auto t : textures_) device_.destroy(t);
-    for (auto s : samplers_) device_.destroy(s);
-    device_.destroy(white_);
-    device_.destroy(black_);
-    device_.destroy(flatNormal_);
-    device_.destroy(defaultSampler_);
-    device_.destroy(vertices_);
-    device_.destroy(indices_);
-    device_.destroy(lights_);
 }
 
 void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t unshadowed) {
@@ -186,8 +178,9 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
     if (records.empty()) records.push_back({});  // bound even when empty; count says 0
     const uint64_t bytes = records.size() * sizeof(GpuLight);
     if (bytes > lightCapacity_) {
-        if (lights_) device_.destroy(lights_);
-        lights_ = device_.createBuffer({.size = bytes, .usage = gdi::BufferUsage::Storage, .debugName = "scene lights"});
+        objects_.destroy(lights_);
+        lightCapacity_ = 0;  // until the new buffer exists
+        lights_ = objects_.add(device_.createBuffer({.size = bytes, .usage = gdi::BufferUsage::Storage, .debugName = "scene lights"}));
         lightCapacity_ = bytes;
     }
     device_.writeBuffer(lights_, 0, gdi::bytesOf(records));

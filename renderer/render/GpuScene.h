@@ -8,6 +8,7 @@
 
 #include "assets/Scene.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 
 namespace fe::render {
 
@@ -92,6 +93,7 @@ public:
     static constexpr uint32_t kVertexStride = sizeof(assets::Vertex);
 
 private:
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     const assets::Scene& scene_;
     gdi::BufferHandle vertices_, indices_, lights_;

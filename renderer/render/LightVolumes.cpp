@@ -99,7 +99,7 @@ LightVolumes::Counts LightVolumes::classify(const std::vector<assets::Light>& li
 
 LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets,
                            std::vector<gdi::BindingSlot> fragmentBindings)
-    : device_(device) {
+    : objects_(device) {
     std::vector<glm::vec3> verts = {{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}};  // full-screen triangle
     sphereFirst_ = uint32_t(verts.size());
     auto s = icosphere();
@@ -109,12 +109,12 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
     auto c = cone();
     verts.insert(verts.end(), c.begin(), c.end());
     coneCount_ = uint32_t(c.size());
-    mesh_ = device.createBuffer({.size = verts.size() * sizeof(glm::vec3), .usage = gdi::BufferUsage::Vertex,
-                                 .debugName = "light volume meshes"},
-                                gdi::bytesOf(verts));
+    mesh_ = objects_.add(device.createBuffer({.size = verts.size() * sizeof(glm::vec3), .usage = gdi::BufferUsage::Vertex,
+                                              .debugName = "light volume meshes"},
+                                             gdi::bytesOf(verts)));
 
-    vs_ = device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")});
-    fs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
+    vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")}));
+    fs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
     std::vector<gdi::BindingSlot> bindings = {
         {kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
         {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::AllGraphics},
@@ -140,18 +140,10 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
         .bindings = bindings,
         .debugName = "light volumes",
     };
-    volumePipeline_ = device.createGraphicsPipeline(d);
+    volumePipeline_ = objects_.add(device.createGraphicsPipeline(d));
     d.raster.cullMode = gdi::CullMode::None;
     d.debugName = "full-screen lights";
-    fullscreenPipeline_ = device.createGraphicsPipeline(d);
-}
-
-LightVolumes::~LightVolumes() {
-    device_.destroy(volumePipeline_);
-    device_.destroy(fullscreenPipeline_);
-    device_.destroy(vs_);
-    device_.destroy(fs_);
-    device_.destroy(mesh_);
+    fullscreenPipeline_ = objects_.add(device.createGraphicsPipeline(d));
 }
 
 void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 #include "render/GpuScene.h"
 
@@ -17,7 +18,6 @@ public:
     // monochrome specular there; shaders that write alpha 0 leave it as it was).
     LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets,
                  std::vector<gdi::BindingSlot> fragmentBindings);
-    ~LightVolumes();
 
     // Draws the lights without shadows, [0, scene.unshadowedLightCount()).
     void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame);
@@ -31,7 +31,7 @@ public:
     static Counts classify(const std::vector<assets::Light>& lights);
 
 private:
-    gdi::Device& device_;
+    gdi::DeviceObjects objects_;
     gdi::BufferHandle mesh_;
     uint32_t sphereFirst_ = 0, sphereCount_ = 0, coneFirst_ = 0, coneCount_ = 0;
     gdi::ShaderHandle vs_, fs_;

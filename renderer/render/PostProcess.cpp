@@ -18,53 +18,47 @@ const char* tonemapShader(shading::Tonemap t) {
 
 PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings, gdi::ShaderHandle fullscreenVs,
                          const UploadAllocation& frameConstants)
-    : device_(device), settings_(settings), frameConstants_(frameConstants) {
+    : objects_(device), device_(device), settings_(settings), frameConstants_(frameConstants) {
     const gdi::SamplerDesc clamp{.addressU = gdi::AddressMode::ClampToEdge, .addressV = gdi::AddressMode::ClampToEdge};
     gdi::SamplerDesc point = clamp;
     point.minFilter = point.magFilter = gdi::Filter::Nearest;
-    pointSampler_ = device.createSampler(point);
-    linearSampler_ = device.createSampler(clamp);
+    pointSampler_ = objects_.add(device.createSampler(point));
+    linearSampler_ = objects_.add(device.createSampler(clamp));
     const std::vector<gdi::BindingSlot> bindings = {
         {kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
         {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}};
-    tonemapFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(tonemapShader(settings.tonemap))});
-    tonemapPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = tonemapFs_,
-                                                      .colorFormats = {kDisplayFormat}, .bindings = bindings,
-                                                      .debugName = "tonemap"});
+    auto fragment = [&](const char* name) {
+        return objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
+    };
+    tonemapFs_ = fragment(tonemapShader(settings.tonemap));
+    tonemapPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = tonemapFs_,
+                                                                   .colorFormats = {kDisplayFormat}, .bindings = bindings,
+                                                                   .debugName = "tonemap"}));
     if (settings.antiAliasing == AntiAliasing::Taa) {
-        taaFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/taa_resolve.frag")});
-        taaPipeline_ = device.createGraphicsPipeline(
+        taaFs_ = fragment("scene/taa_resolve.frag");
+        taaPipeline_ = objects_.add(device.createGraphicsPipeline(
             {.vertexShader = fullscreenVs, .fragmentShader = taaFs_, .colorFormats = {gdi::Format::RGBA32F},
              .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
                           {kSlotTaa, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
                           {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
                           {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
                           {kSlotHistory0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-             .debugName = "taa resolve"});
-        copyFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/copy.frag")});
-        copyPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = copyFs_,
-                                                       .colorFormats = {gdi::Format::RGBA32F}, .bindings = bindings,
-                                                       .debugName = "taa keep"});
-        history_ = device.createTexture({.format = gdi::Format::RGBA32F, .width = settings.width, .height = settings.height,
-                                         .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                         .debugName = "taa history"});
+             .debugName = "taa resolve"}));
+        copyFs_ = fragment("scene/copy.frag");
+        copyPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = copyFs_,
+                                                                    .colorFormats = {gdi::Format::RGBA32F}, .bindings = bindings,
+                                                                    .debugName = "taa keep"}));
+        history_ = objects_.add(device.createTexture({.format = gdi::Format::RGBA32F, .width = settings.width,
+                                                      .height = settings.height,
+                                                      .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                                                      .debugName = "taa history"}));
     }
     if (settings.antiAliasing == AntiAliasing::Fxaa) {
-        fxaaFs_ = device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/fxaa.frag")});
-        fxaaPipeline_ = device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = fxaaFs_,
-                                                       .colorFormats = {kDisplayFormat}, .bindings = bindings,
-                                                       .debugName = "fxaa"});
+        fxaaFs_ = fragment("scene/fxaa.frag");
+        fxaaPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = fxaaFs_,
+                                                                    .colorFormats = {kDisplayFormat}, .bindings = bindings,
+                                                                    .debugName = "fxaa"}));
     }
-}
-
-PostProcess::~PostProcess() {
-    for (gdi::PipelineHandle p : {tonemapPipeline_, fxaaPipeline_, taaPipeline_, copyPipeline_})
-        if (p) device_.destroy(p);
-    for (gdi::ShaderHandle s : {tonemapFs_, fxaaFs_, taaFs_, copyFs_})
-        if (s) device_.destroy(s);
-    if (history_) device_.destroy(history_);
-    device_.destroy(pointSampler_);
-    device_.destroy(linearSampler_);
 }
 
 glm::vec2 PostProcess::jitter(uint64_t frameIndex) const {

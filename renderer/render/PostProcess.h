@@ -7,6 +7,7 @@
 // display image.
 #pragma once
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 #include "graph/RenderGraph.h"
 #include "render/RenderSettings.h"
@@ -26,7 +27,6 @@ public:
     // `frameConstants` is read when each frame's passes execute (exposure is cameraPosition.w).
     PostProcess(gdi::Device& device, const RenderSettings& settings, gdi::ShaderHandle fullscreenVs,
                 const UploadAllocation& frameConstants);
-    ~PostProcess();
     PostProcess(const PostProcess&) = delete;
     PostProcess& operator=(const PostProcess&) = delete;
 
@@ -43,6 +43,7 @@ public:
     void beginFrame(CommandQueue& queue, const glm::mat4& viewProjUnjittered, bool historyValid);
 
 private:
+    gdi::DeviceObjects objects_;
     gdi::Device& device_;
     const RenderSettings& settings_;
     const UploadAllocation& frameConstants_;

@@ -22,13 +22,14 @@ std::array<double, 9> basis(const glm::dvec3& d) {
 
 // Blocks of std140 uniforms, one per draw, each at an offset the device allows.
 template <class T>
-gdi::BufferHandle uniformBlocks(gdi::Device& device, const std::vector<T>& blocks, uint64_t& stride, const char* name) {
+gdi::BufferHandle uniformBlocks(gdi::DeviceObjects& objects, const std::vector<T>& blocks, uint64_t& stride, const char* name) {
+    gdi::Device& device = objects.device();
     const uint64_t align = std::max<uint64_t>(16, device.info().limits.uniformBufferOffsetAlignment);
     stride = (sizeof(T) + align - 1) / align * align;
     std::vector<std::byte> bytes(stride * blocks.size());
     for (size_t i = 0; i < blocks.size(); ++i) std::memcpy(bytes.data() + i * stride, &blocks[i], sizeof(T));
-    return device.createBuffer({.size = bytes.size(), .usage = gdi::BufferUsage::Uniform, .debugName = name},
-                               gdi::ByteSpan(bytes));
+    return objects.add(device.createBuffer({.size = bytes.size(), .usage = gdi::BufferUsage::Uniform, .debugName = name},
+                                           gdi::ByteSpan(bytes)));
 }
 }  // namespace
 
@@ -61,22 +62,25 @@ glm::dvec3 irradianceFromSH(const std::array<glm::dvec3, 9>& L, const glm::dvec3
 PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets::Environment& environment,
                                                gdi::TextureHandle cube, gdi::SamplerHandle cubeSampler,
                                                gdi::ShaderHandle fullscreenVs)
-    : device_(device) {
-    prefiltered_ = device.createTexture({.dimension = gdi::TextureDimension::TextureCube, .format = kPrefilteredFormat,
-                                         .width = kFaceSize, .height = kFaceSize, .depthOrLayers = 6, .mipLevels = kLevels,
-                                         .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                         .debugName = "prefiltered environment"});
-    lut_ = device.createTexture({.format = kLutFormat, .width = kLutSize, .height = kLutSize,
-                                 .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                 .debugName = "split-sum table"});
-    sampler_ = device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,
-                                     .addressV = gdi::AddressMode::ClampToEdge, .addressW = gdi::AddressMode::ClampToEdge,
-                                     .debugName = "prefiltered environment"});
+    : objects_(device) {
+    prefiltered_ = objects_.add(device.createTexture({.dimension = gdi::TextureDimension::TextureCube, .format = kPrefilteredFormat,
+                                                      .width = kFaceSize, .height = kFaceSize, .depthOrLayers = 6,
+                                                      .mipLevels = kLevels,
+                                                      .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                                                      .debugName = "prefiltered environment"}));
+    lut_ = objects_.add(device.createTexture({.format = kLutFormat, .width = kLutSize, .height = kLutSize,
+                                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                                              .debugName = "split-sum table"}));
+    sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,
+                                                  .addressV = gdi::AddressMode::ClampToEdge,
+                                                  .addressW = gdi::AddressMode::ClampToEdge,
+                                                  .debugName = "prefiltered environment"}));
     std::array<glm::vec4, 9> coefficients;
     const std::array<glm::dvec3, 9> sh = radianceSH(environment);
     for (int i = 0; i < 9; ++i) coefficients[i] = glm::vec4(glm::vec3(sh[i]), 0.0f);
-    sh_ = device.createBuffer({.size = sizeof(coefficients), .usage = gdi::BufferUsage::Uniform, .debugName = "irradiance SH"},
-                              gdi::bytesOf(coefficients));
+    sh_ = objects_.add(device.createBuffer(
+        {.size = sizeof(coefficients), .usage = gdi::BufferUsage::Uniform, .debugName = "irradiance SH"},
+        gdi::bytesOf(coefficients)));
 
     struct Block {
         glm::vec4 params;
@@ -91,21 +95,23 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
             blocks.push_back({glm::vec4(float(face), float(kFaceSize >> level), float(level) / float(kLevels - 1), texelSolidAngle),
                               glm::uvec4(kPrefilterSamples, 0, 0, 0)});
     blocks.push_back({glm::vec4(float(kLutSize), float(kLutSize), 0, 0), glm::uvec4(kLutSamples, 0, 0, 0)});
+    // What draws the cube and the table: freed once they are drawn, or when something throws before.
+    gdi::DeviceObjects temporary(device);
     uint64_t stride = 0;
-    const gdi::BufferHandle ubo = uniformBlocks(device, blocks, stride, "prefilter blocks");
+    const gdi::BufferHandle ubo = uniformBlocks(temporary, blocks, stride, "prefilter blocks");
     auto shader = [&](const char* name) {
-        return device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)});
+        return temporary.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
     const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag"), lutFs = shader("scene/ibl_lut.frag");
-    const gdi::PipelineHandle prefilter = device.createGraphicsPipeline(
+    const gdi::PipelineHandle prefilter = temporary.add(device.createGraphicsPipeline(
         {.vertexShader = fullscreenVs, .fragmentShader = prefilterFs, .colorFormats = {kPrefilteredFormat},
          .bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
                       {kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "prefilter environment"});
-    const gdi::PipelineHandle table = device.createGraphicsPipeline(
+         .debugName = "prefilter environment"}));
+    const gdi::PipelineHandle table = temporary.add(device.createGraphicsPipeline(
         {.vertexShader = fullscreenVs, .fragmentShader = lutFs, .colorFormats = {kLutFormat},
          .bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment}},
-         .debugName = "split-sum table"});
+         .debugName = "split-sum table"}));
     auto cmd = device.createCommandList();
     for (uint32_t level = 0; level < kLevels; ++level)
         for (uint32_t face = 0; face < 6; ++face) {
@@ -123,18 +129,6 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
     cmd->draw(3);
     cmd->endRenderPass();
     device.wait(device.submit(*cmd));
-    device.destroy(prefilter);
-    device.destroy(table);
-    device.destroy(prefilterFs);
-    device.destroy(lutFs);
-    device.destroy(ubo);
-}
-
-PrefilteredEnvironment::~PrefilteredEnvironment() {
-    device_.destroy(sh_);
-    device_.destroy(sampler_);
-    device_.destroy(lut_);
-    device_.destroy(prefiltered_);
 }
 
 }  // namespace fe::render

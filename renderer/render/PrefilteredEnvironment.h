@@ -13,6 +13,7 @@
 
 #include "assets/Environment.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 
 namespace fe::render {
 
@@ -35,7 +36,6 @@ public:
     // `cube`: the environment's cube with its mips (EnvironmentMap), sampled by `cubeSampler`.
     PrefilteredEnvironment(gdi::Device& device, const assets::Environment& environment, gdi::TextureHandle cube,
                            gdi::SamplerHandle cubeSampler, gdi::ShaderHandle fullscreenVs);
-    ~PrefilteredEnvironment();
     PrefilteredEnvironment(const PrefilteredEnvironment&) = delete;
     PrefilteredEnvironment& operator=(const PrefilteredEnvironment&) = delete;
 
@@ -45,7 +45,7 @@ public:
     gdi::BufferHandle sh() const { return sh_; }              // vec4 sh[9], std140
 
 private:
-    gdi::Device& device_;
+    gdi::DeviceObjects objects_;
     gdi::TextureHandle prefiltered_, lut_;
     gdi::SamplerHandle sampler_;
     gdi::BufferHandle sh_;

@@ -7,7 +7,8 @@
 
 namespace fe::render {
 
-RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : TechniqueRenderer(c), tiled_(tiled) {
+RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
+    : TechniqueRenderer(c), objects_(c.device), tiled_(tiled) {
     const RenderSettings& s = c.settings;
     perSource_ = s.perSourceRates();
     if (s.illumSplit && s.illumScale == 1)
@@ -23,14 +24,14 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                              : punctual == 4 ? "scene/tiled_illumination_s4.comp"
                              : punctual == 2 ? "scene/tiled_illumination_s2.comp"
                                              : "scene/tiled_illumination.comp";
-        illuminationCs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
+        illuminationCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)}));
         culling_ = std::make_unique<TileLightCulling>(c);
         std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(false);
         b.push_back(TileLightCulling::listSlot());
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
-        illumination_ = c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
-                                                        .debugName = "tiled illumination"});
+        illumination_ = objects_.add(c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
+                                                                     .debugName = "tiled illumination"}));
     } else {
         // The volume pass writes the three sums as one multiple-render-target draw, so they
         // must have one size.
@@ -65,16 +66,17 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
         temporal_ = std::make_unique<TemporalAccumulation>(c);
     }
     if (perSource_) {
-        upsampleFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ibuffer_upsample.frag")});
+        upsampleFs_ = objects_.add(
+            c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ibuffer_upsample.frag")}));
         std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
         b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
         const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                                         .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
-        upsample_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = upsampleFs_,
-                                                     .blend = {add, add, add}, .colorFormats = {kI0, kI1, kI2},
-                                                     .bindings = b, .debugName = "I-buffer upsample"});
+        upsample_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = upsampleFs_,
+                                                                  .blend = {add, add, add}, .colorFormats = {kI0, kI1, kI2},
+                                                                  .bindings = b, .debugName = "I-buffer upsample"}));
     }
     // One material shader per path (fe_material_pass.glsl says why). Per-source rates resolve the
     // full-rate I-buffer the reduced ones were added into.
@@ -83,18 +85,14 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled) : Techni
                            : s.illumSplit ? "scene/material_upsample_split.frag"
                            : tiled        ? "scene/material_upsample_tiled.frag"
                                           : "scene/material_upsample.frag";
-    materialFs_ = c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(material)});
+    materialFs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(material)}));
     std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
     for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
         b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    material_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = materialFs_,
-                                                 .colorFormats = {kRadianceFormat}, .bindings = b, .debugName = "material"});
-}
-
-RedeferredRenderer::~RedeferredRenderer() {
-    for (auto p : {material_, illumination_, upsample_}) ctx_.device.destroy(p);
-    for (auto sh : {materialFs_, illuminationCs_, upsampleFs_}) ctx_.device.destroy(sh);
+    material_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = materialFs_,
+                                                              .colorFormats = {kRadianceFormat}, .bindings = b,
+                                                              .debugName = "material"}));
 }
 
 RedeferredRenderer::IBuffer RedeferredRenderer::createIBuffer(graph::RenderGraph& g, uint32_t rate) const {
@@ -210,7 +208,9 @@ void RedeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
             const IBuffer& sp = at(s.rate(s.rates.iblSpecular));
             iblSpecular_->declare(g, "ibl-specular", gbuffer_, {sp.l1, sp.l2}, frameAtRate(sp.rate));
         }
-        for (const auto& [rate, ib] : buffers) {
+        for (const auto& entry : buffers) {  // not a structured binding: lambdas capture `ib` (clang 14)
+            const uint32_t rate = entry.first;
+            const IBuffer& ib = entry.second;
             if (rate == 1) continue;
             g.addPass("upsample I-buffer 1/" + std::to_string(rate), [&](graph::PassBuilder& b) {
                 gbuffer_.sampleIn(b, false);

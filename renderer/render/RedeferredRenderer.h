@@ -22,7 +22,6 @@ namespace fe::render {
 class RedeferredRenderer final : public TechniqueRenderer {
 public:
     RedeferredRenderer(TechniqueContext& context, bool tiled);
-    ~RedeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
 
     // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
@@ -43,6 +42,7 @@ private:
     void declarePunctual(graph::RenderGraph& g, const IBuffer& ib);
     void declareShadowed(graph::RenderGraph& g, const IBuffer& ib);
 
+    gdi::DeviceObjects objects_;
     std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     bool tiled_;
     bool perSource_ = false;  // RenderSettings::perSourceRates()

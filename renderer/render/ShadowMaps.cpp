@@ -12,19 +12,18 @@ constexpr gdi::Format kShadowMapFormat = gdi::Format::D32F;
 
 ShadowMaps::ShadowMaps(gdi::Device& device, CommandQueue& queue, GeometryRenderer& geometry, const ShadowPlan& plan,
                        const ShadowSettings& settings)
-    : device_(device), queue_(queue), geometry_(geometry), plan_(plan), settings_(settings) {
+    : objects_(device), queue_(queue), geometry_(geometry), plan_(plan), settings_(settings) {
     // Linear comparison: the device's 2x2 percentage-closer filter (PCF); Nearest: one texel.
     const gdi::Filter filter = settings.pcf ? gdi::Filter::Linear : gdi::Filter::Nearest;
-    sampler_ = device.createSampler({.minFilter = filter, .magFilter = filter,
-                                     .addressU = gdi::AddressMode::ClampToEdge, .addressV = gdi::AddressMode::ClampToEdge,
-                                     .addressW = gdi::AddressMode::ClampToEdge,
-                                     .compareEnable = true, .compare = gdi::CompareOp::LessOrEqual});
+    sampler_ = objects_.add(device.createSampler({.minFilter = filter, .magFilter = filter,
+                                                  .addressU = gdi::AddressMode::ClampToEdge,
+                                                  .addressV = gdi::AddressMode::ClampToEdge,
+                                                  .addressW = gdi::AddressMode::ClampToEdge,
+                                                  .compareEnable = true, .compare = gdi::CompareOp::LessOrEqual}));
     constants_.resize(plan.shadowed.size());
     layers_.resize(plan.shadowed.size());
     lightPositions_.resize(plan.shadowed.size());
 }
-
-ShadowMaps::~ShadowMaps() { device_.destroy(sampler_); }
 
 std::vector<gdi::BindingSlot> ShadowMaps::slots() {
     return {{kSlotShadow, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
@@ -33,7 +32,7 @@ std::vector<gdi::BindingSlot> ShadowMaps::slots() {
 
 void ShadowMaps::update(const assets::Camera& camera, float aspect, const assets::AABB& bounds,
                         const std::vector<assets::Light>& sceneLights) {
-    objects_.clear();
+    objectConstants_.clear();
     for (size_t i = 0; i < plan_.shadowed.size(); ++i) {
         const ShadowedLight& s = plan_.shadowed[i];
         const assets::Light& light = sceneLights.at(s.light);
@@ -78,7 +77,7 @@ void ShadowMaps::declare(graph::RenderGraph& g, const Accumulate& accumulate) {
                       [this, i, l](graph::PassContext& pc) {
                           pc.beginRenderPass();
                           geometry_.draw(pc.cmd, queue_, MeshPass::ShadowCaster, {{}, kShadowMapFormat, 1}, layers_[i][l],
-                                         lightPositions_[i], &objects_);
+                                         lightPositions_[i], &objectConstants_);
                           pc.cmd.endRenderPass();
                       });
         }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "frame/CommandQueue.h"
 #include "graph/RenderGraph.h"
 #include "render/GeometryRenderer.h"
@@ -37,7 +38,6 @@ public:
     using Accumulate = std::function<void(graph::RenderGraph&, const Light&)>;
 
     ShadowMaps(gdi::Device& device, CommandQueue& queue, GeometryRenderer& geometry, const ShadowPlan& plan, const ShadowSettings& settings);
-    ~ShadowMaps();
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
@@ -55,7 +55,7 @@ public:
     static std::vector<gdi::BindingSlot> slots();
 
 private:
-    gdi::Device& device_;
+    gdi::DeviceObjects objects_;
     CommandQueue& queue_;
     GeometryRenderer& geometry_;
     ShadowPlan plan_;
@@ -64,7 +64,7 @@ private:
     std::vector<UploadAllocation> constants_;            // per shadowed light
     std::vector<std::vector<UploadAllocation>> layers_;  // per shadowed light and layer: the casters' frame constants
     std::vector<glm::vec3> lightPositions_;              // per shadowed light, for the casters' draw order
-    std::vector<UploadAllocation> objects_;              // object constants shared by every caster pass of a frame
+    std::vector<UploadAllocation> objectConstants_;      // shared by every caster pass of a frame
 };
 
 }  // namespace fe::render

@@ -19,22 +19,22 @@ glm::uvec2 temporalOffset(uint32_t scale, uint64_t frame) {
     return {0, 0};
 }
 
-TemporalAccumulation::TemporalAccumulation(TechniqueContext& c) : ctx_(c) {
+TemporalAccumulation::TemporalAccumulation(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     const RenderSettings& s = c.settings;
     auto cmd = c.device.createCommandList();
     for (size_t i = 0; i < history_.size(); ++i) {
-        history_[i] = c.device.createTexture({.format = kFormat, .width = s.width, .height = s.height,
-                                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                              .debugName = "temporal history"});
+        history_[i] = objects_.add(c.device.createTexture({.format = kFormat, .width = s.width, .height = s.height,
+                                                           .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                                                           .debugName = "temporal history"}));
         cmd->beginRenderPass({.colors = {{.texture = history_[i]}}, .debugName = "clear history"});  // defined contents
         cmd->endRenderPass();
     }
     c.device.wait(c.device.submit(*cmd));
     // Under motion the history is read between texels (RGBA32F filtering: every device here has it).
-    linear_ = c.device.createSampler({.addressU = gdi::AddressMode::ClampToEdge, .addressV = gdi::AddressMode::ClampToEdge,
-                                      .debugName = "temporal history"});
+    linear_ = objects_.add(c.device.createSampler({.addressU = gdi::AddressMode::ClampToEdge,
+                                                   .addressV = gdi::AddressMode::ClampToEdge, .debugName = "temporal history"}));
     auto fragment = [&](const char* name) {
-        return c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)});
+        return objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
     resolveFs_ = fragment("scene/temporal_resolve.frag");
     keepFs_ = fragment("scene/temporal_keep.frag");
@@ -42,22 +42,15 @@ TemporalAccumulation::TemporalAccumulation(TechniqueContext& c) : ctx_(c) {
     b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
     for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2, kSlotHistory0, kSlotHistory1, kSlotHistory2})
         b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    resolve_ = c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = resolveFs_,
-                                                .colorFormats = {kFormat, kFormat, kFormat}, .bindings = b,
-                                                .debugName = "temporal resolve"});
-    keep_ = c.device.createGraphicsPipeline(
+    resolve_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = resolveFs_,
+                                                             .colorFormats = {kFormat, kFormat, kFormat}, .bindings = b,
+                                                             .debugName = "temporal resolve"}));
+    keep_ = objects_.add(c.device.createGraphicsPipeline(
         {.vertexShader = c.fullscreenVs, .fragmentShader = keepFs_, .colorFormats = {kFormat, kFormat, kFormat},
          .bindings = {{kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
                       {kSlotIBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
                       {kSlotIBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
-         .debugName = "temporal keep"});
-}
-
-TemporalAccumulation::~TemporalAccumulation() {
-    for (auto p : {resolve_, keep_}) ctx_.device.destroy(p);
-    for (auto sh : {resolveFs_, keepFs_}) ctx_.device.destroy(sh);
-    for (auto t : history_) ctx_.device.destroy(t);
-    ctx_.device.destroy(linear_);
+         .debugName = "temporal keep"}));
 }
 
 std::array<graph::TextureId, 3> TemporalAccumulation::declare(graph::RenderGraph& g, const GBuffer& gbuffer,

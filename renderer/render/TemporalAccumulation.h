@@ -26,7 +26,6 @@ public:
     static constexpr float kMaxFrames = 8.0f;  // history cap under motion (FrameConstants::temporal.w)
 
     explicit TemporalAccumulation(TechniqueContext& context);
-    ~TemporalAccumulation();
     TemporalAccumulation(const TemporalAccumulation&) = delete;
     TemporalAccumulation& operator=(const TemporalAccumulation&) = delete;
 
@@ -36,6 +35,7 @@ public:
                                             const std::array<graph::TextureId, 3>& ibuffer);
 
 private:
+    gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
     std::array<gdi::TextureHandle, 3> history_;
     gdi::SamplerHandle linear_;

@@ -7,22 +7,18 @@
 
 namespace fe::render {
 
-TileLightCulling::TileLightCulling(TechniqueContext& c) : ctx_(c) {
+TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("tiled light culling needs compute shaders, which " + c.device.info().backend + " lacks");
-    cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tile_light_culling.comp")});
-    pipeline_ = c.device.createComputePipeline(
+    cs_ = objects_.add(
+        c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tile_light_culling.comp")}));
+    pipeline_ = objects_.add(c.device.createComputePipeline(
         {.computeShader = cs_,
          .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute},
                       {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute},
                       {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute},
                       {kSlotTileLightsOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute}},
-         .debugName = "light culling"});
-}
-
-TileLightCulling::~TileLightCulling() {
-    ctx_.device.destroy(pipeline_);
-    ctx_.device.destroy(cs_);
+         .debugName = "light culling"}));
 }
 
 gdi::BindingSlot TileLightCulling::listSlot() {

@@ -13,7 +13,6 @@ namespace fe::render {
 class TileLightCulling {
 public:
     explicit TileLightCulling(TechniqueContext& context);
-    ~TileLightCulling();
     TileLightCulling(const TileLightCulling&) = delete;
     TileLightCulling& operator=(const TileLightCulling&) = delete;
 
@@ -30,6 +29,7 @@ public:
     static constexpr uint32_t kMaxListLength = 1023;  // lights per tile list at most
 
 private:
+    gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;

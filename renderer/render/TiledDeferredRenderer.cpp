@@ -5,26 +5,21 @@
 
 namespace fe::render {
 
-TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c) {
+TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), objects_(c.device) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("technique deferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
     if (c.settings.tileCullingPass) culling_ = std::make_unique<TileLightCulling>(c);
     const char* shader = culling_ ? "scene/tiled_deferred.comp" : "scene/tiled_deferred_onepass.comp";
-    cs_ = c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)});
+    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)}));
     std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(true);
     if (culling_) b.push_back(TileLightCulling::listSlot());
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
-    pipeline_ = c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"});
+    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
                                                            "scene/deferred_light_shadowed_cube.frag",
                                                            std::vector{kRadianceFormat}, GBuffer::slots(true));
     if (c.settings.ibl()) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
-}
-
-TiledDeferredRenderer::~TiledDeferredRenderer() {
-    ctx_.device.destroy(pipeline_);
-    ctx_.device.destroy(cs_);
 }
 
 void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {

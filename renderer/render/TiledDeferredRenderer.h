@@ -17,11 +17,11 @@ namespace fe::render {
 class TiledDeferredRenderer final : public TechniqueRenderer {
 public:
     explicit TiledDeferredRenderer(TechniqueContext& context);
-    ~TiledDeferredRenderer() override;
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
     static constexpr uint32_t kTileSize = 16;  // pixels per work group side
 
 private:
+    gdi::DeviceObjects objects_;
     std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples

@@ -27,7 +27,7 @@ bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v
 }  // namespace
 
 VfxRenderer::VfxRenderer(TechniqueContext& ctx, const std::vector<assets::ParticleEmitter>& emitters)
-    : ctx_(ctx), emitters_(emitters) {
+    : objects_(ctx.device), ctx_(ctx), emitters_(emitters) {
     gdi::Device& d = ctx.device;
     std::vector<GpuEmitter> gpu;
     uint32_t alphaSlots = 0;
@@ -55,53 +55,55 @@ VfxRenderer::VfxRenderer(TechniqueContext& ctx, const std::vector<assets::Partic
         throw gdi::Error("alpha-blended particles: " + std::to_string(alphaSlots) + " alive at once (rate x lifetime) exceed the " +
                          std::to_string(kMaxSortedParticles) + " one work group sorts");
     time_ = longest;
-    emitterBuffer_ = d.createBuffer({.size = gpu.size() * sizeof(GpuEmitter), .usage = gdi::BufferUsage::Storage,
-                                     .debugName = "particle emitters"},
-                                    gdi::bytesOf(gpu));
+    emitterBuffer_ = objects_.add(d.createBuffer({.size = gpu.size() * sizeof(GpuEmitter), .usage = gdi::BufferUsage::Storage,
+                                                  .debugName = "particle emitters"},
+                                                 gdi::bytesOf(gpu)));
     auto list = [&](uint32_t n, const char* name) {
-        return d.createBuffer({.size = std::max<uint64_t>(1, n) * sizeof(GpuParticle), .usage = gdi::BufferUsage::Storage,
-                               .debugName = name});
+        return objects_.add(d.createBuffer({.size = std::max<uint64_t>(1, n) * sizeof(GpuParticle),
+                                            .usage = gdi::BufferUsage::Storage, .debugName = name}));
     };
     additive_ = list(additiveSlots_, "particles additive");
     alpha_ = list(kMaxSortedParticles, "particles alpha");
     sorted_ = list(kMaxSortedParticles, "particles alpha sorted");
     const gdi::DrawIndirectArgs reset[2] = {{6, 0, 0, 0}, {6, 0, 0, 0}};
-    args_ = d.createBuffer({.size = sizeof(reset),
-                            .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::Indirect | gdi::BufferUsage::CopyDst |
-                                     gdi::BufferUsage::CopySrc,
-                            .debugName = "particle draw arguments"});
-    argsReset_ = d.createBuffer({.size = sizeof(reset), .usage = gdi::BufferUsage::CopySrc, .debugName = "particle draw arguments reset"},
-                                gdi::bytesOf(reset));
-    const auto shader = [&](gdi::ShaderStage stage, const char* path) { return d.createShader({.stage = stage, .binary = shaders::find(path)}); };
+    args_ = objects_.add(d.createBuffer({.size = sizeof(reset),
+                                         .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::Indirect |
+                                                  gdi::BufferUsage::CopyDst | gdi::BufferUsage::CopySrc,
+                                         .debugName = "particle draw arguments"}));
+    argsReset_ = objects_.add(d.createBuffer(
+        {.size = sizeof(reset), .usage = gdi::BufferUsage::CopySrc, .debugName = "particle draw arguments reset"}, gdi::bytesOf(reset)));
+    const auto shader = [&](gdi::ShaderStage stage, const char* path) {
+        return objects_.add(d.createShader({.stage = stage, .binary = shaders::find(path)}));
+    };
     simulateCs_ = shader(gdi::ShaderStage::Compute, "scene/particles_simulate.comp");
     sortCs_ = shader(gdi::ShaderStage::Compute, "scene/particles_sort.comp");
     vs_ = shader(gdi::ShaderStage::Vertex, "scene/particles.vert");
     additiveFs_ = shader(gdi::ShaderStage::Fragment, "scene/particles_additive.frag");
     alphaFs_ = shader(gdi::ShaderStage::Fragment, "scene/particles_alpha.frag");
     using B = gdi::BindingType;
-    simulate_ = d.createComputePipeline({.computeShader = simulateCs_,
-                                         .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotLights, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotSim, B::UniformBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotEmitters, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotAdditive, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                      {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
-                                         .debugName = "particles simulate"});
-    sort_ = d.createComputePipeline({.computeShader = sortCs_,
-                                     .bindings = {{kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                  {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                  {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
-                                     .debugName = "particles sort"});
+    simulate_ = objects_.add(d.createComputePipeline({.computeShader = simulateCs_,
+                                                      .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotLights, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotSim, B::UniformBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotEmitters, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotAdditive, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                                   {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
+                                                      .debugName = "particles simulate"}));
+    sort_ = objects_.add(d.createComputePipeline({.computeShader = sortCs_,
+                                                  .bindings = {{kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                               {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Compute},
+                                                               {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
+                                                  .debugName = "particles sort"}));
     const auto draw = [&](gdi::ShaderHandle fs, gdi::BlendTargetState blend, const char* name) {
-        return d.createGraphicsPipeline({.vertexShader = vs_,
-                                         .fragmentShader = fs,
-                                         .blend = {blend},
-                                         .colorFormats = {kRadianceFormat},
-                                         .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                                                      {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Vertex},
-                                                      {kSlotDepth, B::SampledTexture, gdi::ShaderStage::Fragment}},
-                                         .debugName = name});
+        return objects_.add(d.createGraphicsPipeline({.vertexShader = vs_,
+                                                      .fragmentShader = fs,
+                                                      .blend = {blend},
+                                                      .colorFormats = {kRadianceFormat},
+                                                      .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::AllGraphics},
+                                                                   {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Vertex},
+                                                                   {kSlotDepth, B::SampledTexture, gdi::ShaderStage::Fragment}},
+                                                      .debugName = name}));
     };
     // Additive: emitted light adds to L_o (alpha untouched); alpha: source-over.
     drawAdditive_ = draw(additiveFs_,
@@ -112,13 +114,6 @@ VfxRenderer::VfxRenderer(TechniqueContext& ctx, const std::vector<assets::Partic
                       {.enable = true, .srcColor = gdi::BlendFactor::SrcAlpha, .dstColor = gdi::BlendFactor::OneMinusSrcAlpha,
                        .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One},
                       "particles alpha");
-}
-
-VfxRenderer::~VfxRenderer() {
-    gdi::Device& d = ctx_.device;
-    for (gdi::PipelineHandle p : {simulate_, sort_, drawAdditive_, drawAlpha_}) d.destroy(p);
-    for (gdi::ShaderHandle s : {simulateCs_, sortCs_, vs_, additiveFs_, alphaFs_}) d.destroy(s);
-    for (gdi::BufferHandle b : {emitterBuffer_, additive_, alpha_, sorted_, args_, argsReset_}) d.destroy(b);
 }
 
 void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {

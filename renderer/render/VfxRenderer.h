@@ -26,7 +26,6 @@ public:
     // Throws gdi::Error for emitters that cannot be drawn (non-finite or negative values, more
     // alpha-blended slots than kMaxSortedParticles).
     VfxRenderer(TechniqueContext& context, const std::vector<assets::ParticleEmitter>& emitters);
-    ~VfxRenderer();
     VfxRenderer(const VfxRenderer&) = delete;
     VfxRenderer& operator=(const VfxRenderer&) = delete;
 
@@ -49,6 +48,7 @@ public:
     static Counts aliveAt(const std::vector<assets::ParticleEmitter>& emitters, double seconds);
 
 private:
+    gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
     std::vector<assets::ParticleEmitter> emitters_;
     uint32_t slots_ = 0, additiveSlots_ = 0;

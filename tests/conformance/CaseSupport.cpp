@@ -44,21 +44,23 @@ bool throws(const std::function<void()>& fn) {
 }
 
 FullscreenSampler::FullscreenSampler(Device& d, const char* fragmentShader, const SamplerDesc& samplerDesc)
-    : fragment(fragmentShader) {
-    vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragmentShader)});
-    sampler = d.createSampler(samplerDesc);
+    : objects(d), fragment(fragmentShader) {
+    vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
+    sampler = objects.add(d.createSampler(samplerDesc));
 }
 
 Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, std::array<float, 4> a) {
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {target},
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-                                                              {1, BindingType::SampledTexture, ShaderStage::Fragment}},
-                                                 .debugName = fragment.c_str()});
+    DeviceObjects drawing(d);
+    PipelineHandle p = drawing.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {target},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                      {1, BindingType::SampledTexture, ShaderStage::Fragment}},
+         .debugName = fragment.c_str()}));
     const std::array<float, 8> params = {a[0], a[1], a[2], a[3], 0, 0, 0, 0};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params));
-    TextureHandle t = d.createTexture({.format = target, .width = kCaseSize, .height = kCaseSize,
-                                       .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    BufferHandle ubo = drawing.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+    TextureHandle t = drawing.add(d.createTexture({.format = target, .width = kCaseSize, .height = kCaseSize,
+                                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 0}}}});
     cmd->setPipeline(p);
@@ -70,16 +72,7 @@ Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, s
     Image img = d.readTexture(t);
     FE_CONFORMANCE_CHECK(img.width == kCaseSize && img.height == kCaseSize && img.format == target,
                          "readback has the target's size and format");
-    d.destroy(t);
-    d.destroy(ubo);
-    d.destroy(p);
     return img;
-}
-
-void FullscreenSampler::release(Device& d) {
-    d.destroy(vs);
-    d.destroy(fs);
-    d.destroy(sampler);
 }
 
 }  // namespace fe::conformance

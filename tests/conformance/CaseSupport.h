@@ -1,11 +1,16 @@
 // Helpers shared by the conformance case files: expected images, exact comparisons, a
 // full-screen pass that samples one texture, and error checks.
+//
+// A case owns what it creates through a gdi::DeviceObjects (one per case, or per loop
+// iteration for objects remade each time) instead of destroying it at its end, so a case that
+// throws half-way (a failed check, an out-of-memory error, a lost device) leaves nothing behind.
 #pragma once
 #include <array>
 #include <functional>
 #include <string>
 
 #include "Conformance.h"
+#include "fe/gdi/DeviceObjects.h"
 
 namespace fe::conformance {
 
@@ -26,6 +31,7 @@ bool throws(const std::function<void()>& fn);
 // fullscreen_ubo.vert + a fragment shader with a uniform block at slot 0 (vec4 a, vec4 b; the
 // triangle's depth is b.x) and a sampled texture at slot 1, drawn into a new 64x64 target.
 struct FullscreenSampler {
+    gdi::DeviceObjects objects;
     gdi::ShaderHandle vs, fs;
     gdi::SamplerHandle sampler;
     std::string fragment;
@@ -33,7 +39,6 @@ struct FullscreenSampler {
         .minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest, .addressU = gdi::AddressMode::ClampToEdge,
         .addressV = gdi::AddressMode::ClampToEdge, .addressW = gdi::AddressMode::ClampToEdge});
     gdi::Image draw(gdi::Device& d, gdi::TextureHandle texture, gdi::Format target, std::array<float, 4> a = {});
-    void release(gdi::Device& d);
 };
 
 }  // namespace fe::conformance

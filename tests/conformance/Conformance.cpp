@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
 
 namespace fe::conformance {
@@ -18,9 +19,11 @@ Image solid(Format f, std::array<float, 4> c, uint32_t w = kSize, uint32_t h = k
     return Image::fromTexels(w, h, f, std::vector<std::array<float, 4>>(size_t(w) * h, c));
 }
 
-TextureHandle target(Device& d, Format f) {
-    return d.createTexture({.format = f, .width = kSize, .height = kSize,
-                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled});
+// Cases own what they create through a DeviceObjects (CaseSupport.h says why).
+TextureHandle target(DeviceObjects& objects, Format f) {
+    return objects.add(objects.device().createTexture(
+        {.format = f, .width = kSize, .height = kSize,
+         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled}));
 }
 
 struct Params {
@@ -34,7 +37,8 @@ std::vector<CaseImage> clearEveryFormat(Device& d) {
     const std::array<float, 4> c{0.25f, 0.5f, 0.75f, 1.0f};
     for (Format f : {Format::RGBA8, Format::RGBA8_SRGB, Format::RGBA16F, Format::RG16F, Format::R16F, Format::RGBA32F,
                      Format::RG32F, Format::R32F, Format::R11G11B10F}) {
-        TextureHandle t = target(d, f);
+        DeviceObjects iteration(d);
+        TextureHandle t = target(iteration, f);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {c[0], c[1], c[2], c[3]}}}});
         cmd->endRenderPass();
@@ -51,16 +55,16 @@ std::vector<CaseImage> clearEveryFormat(Device& d) {
             ci.toleranceReason = "float clear of values exact in 16/11-bit floats: 1e-3 absolute, no pixel over";
         }
         out.push_back(std::move(ci));
-        d.destroy(t);
     }
     return out;
 }
 
 std::vector<CaseImage> triangle(Device& d) {
-    TextureHandle t = target(d, Format::RGBA8);
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-    auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    DeviceObjects objects(d);
+    TextureHandle t = target(objects, Format::RGBA8);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+    auto p = objects.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
     cmd->setPipeline(p);
@@ -85,28 +89,26 @@ std::vector<CaseImage> triangle(Device& d) {
             else texels[y * kSize + x] = {0, 0, 0, 1};
         }
     CaseImage ci{"triangle", img, Image::fromTexels(kSize, kSize, Format::RGBA8, texels)};
-    d.destroy(p);
-    d.destroy(vs);
-    d.destroy(fs);
-    d.destroy(t);
     return {ci};
 }
 
 // Uniform buffer colour, additive accumulation into RGBA16F beyond 1.0, and the depth test.
 std::vector<CaseImage> uniformBlendDepth(Device& d) {
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    DeviceObjects objects(d);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
     const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
     std::vector<CaseImage> out;
 
     // Additive: three draws of 0.75 into RGBA16F = 2.25 (exact in half floats).
-    TextureHandle acc = target(d, Format::RGBA16F);
-    auto add = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                         .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
-                                                    .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
-                                         .colorFormats = {Format::RGBA16F}, .bindings = slots});
+    TextureHandle acc = target(objects, Format::RGBA16F);
+    auto add = objects.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                                     .blend = {{.enable = true, .srcColor = BlendFactor::One,
+                                                                .dstColor = BlendFactor::One, .srcAlpha = BlendFactor::One,
+                                                                .dstAlpha = BlendFactor::One}},
+                                                     .colorFormats = {Format::RGBA16F}, .bindings = slots}));
     Params params{{0.75f, 0.5f, 0.25f, 1.0f}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
+    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = acc}}});
     cmd->setPipeline(add);
@@ -122,13 +124,16 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
 
     // Depth: near red (0.25) drawn first, far green (0.75) second must be hidden with Less.
     for (Format df : {Format::D32F, Format::D24S8}) {
-        TextureHandle color = target(d, Format::RGBA8);
-        TextureHandle depth = d.createTexture({.format = df, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget});
-        auto dp = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                            .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
-                                            .colorFormats = {Format::RGBA8}, .depthFormat = df, .bindings = slots});
+        DeviceObjects iteration(d);
+        TextureHandle color = target(iteration, Format::RGBA8);
+        TextureHandle depth = iteration.add(
+            d.createTexture({.format = df, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget}));
+        auto dp = iteration.add(d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs,
+             .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
+             .colorFormats = {Format::RGBA8}, .depthFormat = df, .bindings = slots}));
         Params nearP{{1, 0, 0, 1}, {0.25f, 0, 0, 0}}, farP{{0, 1, 0, 1}, {0.75f, 0, 0, 0}};
-        BufferHandle u2 = d.createBuffer({.size = 512, .usage = BufferUsage::Uniform});
+        BufferHandle u2 = iteration.add(d.createBuffer({.size = 512, .usage = BufferUsage::Uniform}));
         d.writeBuffer(u2, 0, gdi::bytesOf(nearP));
         d.writeBuffer(u2, 256, gdi::bytesOf(farP));
         cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
@@ -141,28 +146,21 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
         d.wait(d.submit(*cmd));
         out.push_back({std::string("depth_") + std::string(formatInfo(df).name), d.readTexture(color),
                        solid(Format::RGBA8, {1, 0, 0, 1})});
-        d.destroy(dp);
-        d.destroy(u2);
-        d.destroy(depth);
-        d.destroy(color);
     }
-    d.destroy(ubo);
-    d.destroy(add);
-    d.destroy(acc);
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
 // Texture upload, nearest sampling, and sRGB decode on sampling.
 std::vector<CaseImage> textureSampling(Device& d) {
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    DeviceObjects objects(d);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")}));
     std::vector<CaseImage> out;
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
-    SamplerHandle nearest = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+    SamplerHandle nearest = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
     for (Format tf : {Format::RGBA8, Format::RGBA8_SRGB}) {
+        DeviceObjects iteration(d);
         // 4x4 checker of 16 distinct values, magnified 16x with nearest filtering.
         std::vector<uint8_t> px(4 * 4 * 4);
         for (int i = 0; i < 16; ++i) {
@@ -171,12 +169,13 @@ std::vector<CaseImage> textureSampling(Device& d) {
             px[i * 4 + 2] = uint8_t((i % 4) * 64);
             px[i * 4 + 3] = 255;
         }
-        TextureHandle tex = d.createTexture({.format = tf, .width = 4, .height = 4});
+        TextureHandle tex = iteration.add(d.createTexture({.format = tf, .width = 4, .height = 4}));
         d.writeTexture(tex, {}, gdi::bytesOf(px));
-        TextureHandle t = target(d, Format::RGBA32F);
-        auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA32F},
-                                           .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
-                                                        {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+        TextureHandle t = target(iteration, Format::RGBA32F);
+        auto p = iteration.add(d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA32F},
+             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                          {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t}}});
         cmd->setPipeline(p);
@@ -202,22 +201,16 @@ std::vector<CaseImage> textureSampling(Device& d) {
         ci.maxFractionOver = 0;
         ci.toleranceReason = "8-bit texels decoded to float: sRGB decode may be table-based, 2e-3 absolute";
         out.push_back(ci);
-        d.destroy(p);
-        d.destroy(t);
-        d.destroy(tex);
     }
-    d.destroy(nearest);
-    d.destroy(ubo);
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
 // Timestamp queries measure a non-zero duration around real work.
 std::vector<CaseImage> timestamps(Device& d) {
     FE_CONFORMANCE_CHECK(d.info().features.timestamps, "the device reports timestamp support");
-    TextureHandle t = target(d, Format::RGBA8);
-    TimerHandle timer = d.createTimer();
+    DeviceObjects objects(d);
+    TextureHandle t = target(objects, Format::RGBA8);
+    TimerHandle timer = objects.add(d.createTimer());
     auto cmd = d.createCommandList();
     cmd->beginTimer(timer);
     for (int i = 0; i < 4; ++i) {
@@ -230,8 +223,6 @@ std::vector<CaseImage> timestamps(Device& d) {
     FE_CONFORMANCE_CHECK(ns.has_value(), "the timer has a result after wait");
     FE_CONFORMANCE_CHECK(*ns > 0.0, "the timer measured a non-zero duration around four render passes");
     CaseImage ci{"cleared", d.readTexture(t), solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1})};
-    d.destroy(timer);
-    d.destroy(t);
     return {ci};
 }
 

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "Conformance.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
 
 namespace fe::conformance {
@@ -21,9 +22,11 @@ struct Vertex {
     float r, g, b, a;
 };
 
-TextureHandle colorTarget(Device& d, Format f = Format::RGBA8) {
-    return d.createTexture({.format = f, .width = kSize, .height = kSize,
-                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled});
+// Cases own what they create through a DeviceObjects (CaseSupport.h says why).
+TextureHandle colorTarget(DeviceObjects& objects, Format f = Format::RGBA8) {
+    return objects.add(objects.device().createTexture(
+        {.format = f, .width = kSize, .height = kSize,
+         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled}));
 }
 
 // Coverage of a triangle at pixel centres: >0 inside, <0 outside, ~0 on an edge.
@@ -52,11 +55,12 @@ Image expectTriangles(const Image& rendered, const std::vector<std::pair<std::ar
 }
 
 struct VertexColorPipeline {
+    DeviceObjects objects;
     ShaderHandle vs, fs;
     GraphicsPipelineDesc desc;
-    VertexColorPipeline(Device& d) {
-        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")});
-        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    explicit VertexColorPipeline(Device& d) : objects(d) {
+        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
         desc = {.vertexShader = vs,
                 .fragmentShader = fs,
                 .vertexBuffers = {{.stride = sizeof(Vertex),
@@ -64,23 +68,20 @@ struct VertexColorPipeline {
                                   {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
                 .colorFormats = {Format::RGBA8}};
     }
-    void release(Device& d) {
-        d.destroy(vs);
-        d.destroy(fs);
-    }
 };
 
 std::vector<CaseImage> cullingWinding(Device& d) {
     VertexColorPipeline vc(d);
+    DeviceObjects objects(d);
     // Left: counter-clockwise on screen (y down); right: clockwise.
     const std::array<float, 6> ccw = {-0.8f, 0.8f, -0.2f, 0.8f, -0.5f, -0.8f};
     const std::array<float, 6> cw = {0.2f, 0.8f, 0.5f, -0.8f, 0.8f, 0.8f};
     std::vector<Vertex> v;
     for (int i = 0; i < 3; ++i) v.push_back({ccw[i * 2], ccw[i * 2 + 1], 1, 0, 0, 1});
     for (int i = 0; i < 3; ++i) v.push_back({cw[i * 2], cw[i * 2 + 1], 0, 1, 0, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v));
+    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
     const float zero[2] = {0, 0};
-    BufferHandle ib = d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, gdi::bytesOf(zero));
+    BufferHandle ib = objects.add(d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, gdi::bytesOf(zero)));
     std::vector<CaseImage> out;
     struct Variant {
         const char* name;
@@ -92,10 +93,11 @@ std::vector<CaseImage> cullingWinding(Device& d) {
                         Variant{"back_cw", CullMode::Back, FrontFace::Clockwise, false, true},
                         Variant{"front_ccw", CullMode::Front, FrontFace::CounterClockwise, false, true},
                         Variant{"none", CullMode::None, FrontFace::CounterClockwise, true, true}}) {
+        DeviceObjects iteration(d);
         GraphicsPipelineDesc pd = vc.desc;
         pd.raster = {.cullMode = var.cull, .frontFace = var.face};
-        PipelineHandle p = d.createGraphicsPipeline(pd);
-        TextureHandle t = colorTarget(d);
+        PipelineHandle p = iteration.add(d.createGraphicsPipeline(pd));
+        TextureHandle t = colorTarget(iteration);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
         cmd->setPipeline(p);
@@ -109,32 +111,29 @@ std::vector<CaseImage> cullingWinding(Device& d) {
         if (var.showCcw) tris.push_back({ccw, {1, 0, 0, 1}});
         if (var.showCw) tris.push_back({cw, {0, 1, 0, 1}});
         out.push_back({var.name, img, expectTriangles(img, tris, {0, 0, 0, 1})});
-        d.destroy(p);
-        d.destroy(t);
     }
-    d.destroy(vb);
-    d.destroy(ib);
-    vc.release(d);
     return out;
 }
 
 std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
     VertexColorPipeline vc(d);
-    PipelineHandle p = d.createGraphicsPipeline(vc.desc);
+    DeviceObjects objects(d);
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(vc.desc));
     // Four junk vertices, then a quad: indices address the quad through baseVertex = 4.
     std::vector<Vertex> v(4, Vertex{5, 5, 1, 1, 1, 1});
     for (auto [x, y] : {std::pair{-0.9f, -0.4f}, std::pair{-0.1f, -0.4f}, std::pair{-0.9f, 0.4f}, std::pair{-0.1f, 0.4f}})
         v.push_back({x, y, 0.25f, 0.5f, 1.0f, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v));
+    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
     const float offsets[4] = {0, 0, 1.0f, 0};  // two instances: left and right half
-    BufferHandle inst = d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, gdi::bytesOf(offsets));
+    BufferHandle inst = objects.add(d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, gdi::bytesOf(offsets)));
     const uint16_t i16[6] = {0, 1, 2, 2, 1, 3};
     const uint32_t i32[6] = {0, 1, 2, 2, 1, 3};
-    BufferHandle b16 = d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, gdi::bytesOf(i16));
-    BufferHandle b32 = d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, gdi::bytesOf(i32));
+    BufferHandle b16 = objects.add(d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, gdi::bytesOf(i16)));
+    BufferHandle b32 = objects.add(d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, gdi::bytesOf(i32)));
     std::vector<CaseImage> out;
     for (bool wide : {false, true}) {
-        TextureHandle t = colorTarget(d);
+        DeviceObjects iteration(d);
+        TextureHandle t = colorTarget(iteration);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
         cmd->setPipeline(p);
@@ -168,11 +167,7 @@ std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
             }
         (void)expected;
         out.push_back({wide ? "u32_indices" : "u16_indices", img, Image::fromTexels(kSize, kSize, Format::RGBA8, e)});
-        d.destroy(t);
     }
-    for (BufferHandle b : {vb, inst, b16, b32}) d.destroy(b);
-    d.destroy(p);
-    vc.release(d);
     return out;
 }
 
@@ -182,11 +177,12 @@ struct Params {
 };
 
 std::vector<CaseImage> scissorViewportStencil(Device& d) {
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    DeviceObjects objects(d);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
     const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
     Params params{{1, 0.5f, 0, 1}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
+    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     std::vector<CaseImage> out;
     auto rectImage = [&](Rect r, Texel inside) {
         std::vector<Texel> t(kSize * kSize, Texel{0, 0, 0, 1});
@@ -197,9 +193,10 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
     };
     const Texel orange{1, 0.5f, 0, 1};
     {
-        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}, .bindings = slots});
+        PipelineHandle p = objects.add(
+            d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}, .bindings = slots}));
         for (int mode = 0; mode < 2; ++mode) {
-            TextureHandle t = colorTarget(d);
+            TextureHandle t = colorTarget(objects);
             auto cmd = d.createCommandList();
             cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
             cmd->setPipeline(p);
@@ -216,14 +213,13 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
             out.push_back({mode == 0 ? "scissor" : "viewport", d.readTexture(t), rectImage(expect, orange)});
-            d.destroy(t);
         }
-        d.destroy(p);
     }
     {
         // Stencil: write 1 inside a scissor rect with colour writes off, then colour where == 1.
-        TextureHandle t = colorTarget(d);
-        TextureHandle ds = d.createTexture({.format = Format::D24S8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget});
+        TextureHandle t = colorTarget(objects);
+        TextureHandle ds = objects.add(
+            d.createTexture({.format = Format::D24S8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget}));
         GraphicsPipelineDesc write{.vertexShader = vs, .fragmentShader = fs,
                                    .depthStencil = {.stencilTest = true,
                                                     .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
@@ -234,7 +230,7 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
         GraphicsPipelineDesc test = write;
         test.depthStencil.front = test.depthStencil.back = {.compare = CompareOp::Equal};
         test.blend = {};
-        PipelineHandle pw = d.createGraphicsPipeline(write), pt = d.createGraphicsPipeline(test);
+        PipelineHandle pw = objects.add(d.createGraphicsPipeline(write)), pt = objects.add(d.createGraphicsPipeline(test));
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}, .depth = {.texture = ds}});
         cmd->setPipeline(pw);
@@ -248,29 +244,24 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
         out.push_back({"stencil_equal", d.readTexture(t), rectImage(r, orange)});
-        d.destroy(pw);
-        d.destroy(pt);
-        d.destroy(ds);
-        d.destroy(t);
     }
-    d.destroy(ubo);
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
 std::vector<CaseImage> mrtMixedFormats(Device& d) {
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")});
+    DeviceObjects objects(d);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")}));
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
+    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = formats,
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}});
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = formats,
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}}));
     std::vector<TextureHandle> ts;
     RenderPassDesc rp;
     for (Format f : formats) {
-        ts.push_back(colorTarget(d, f));
+        ts.push_back(colorTarget(objects, f));
         rp.colors.push_back({.texture = ts.back()});
     }
     auto cmd = d.createCommandList();
@@ -291,23 +282,19 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
             ci.toleranceReason = "values exact in the target's float format: 1e-3 absolute, no pixel over";
         }
         out.push_back(ci);
-        d.destroy(ts[i]);
     }
-    d.destroy(p);
-    d.destroy(ubo);
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
 std::vector<CaseImage> computeBufferAndImage(Device& d) {
-    auto cs = d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")});
-    PipelineHandle p = d.createComputePipeline({.computeShader = cs,
-                                                .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
-                                                             {1, BindingType::StorageTexture, ShaderStage::Compute}}});
-    BufferHandle buf = d.createBuffer({.size = kSize * kSize * 4, .usage = BufferUsage::Storage});
-    TextureHandle img = d.createTexture({.format = Format::RGBA32F, .width = kSize, .height = kSize,
-                                         .usage = TextureUsage::Storage | TextureUsage::CopySrc});
+    DeviceObjects objects(d);
+    auto cs = objects.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")}));
+    PipelineHandle p = objects.add(d.createComputePipeline({.computeShader = cs,
+                                                            .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                                                                         {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
+    BufferHandle buf = objects.add(d.createBuffer({.size = kSize * kSize * 4, .usage = BufferUsage::Storage}));
+    TextureHandle img = objects.add(d.createTexture({.format = Format::RGBA32F, .width = kSize, .height = kSize,
+                                                     .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
     auto cmd = d.createCommandList();
     cmd->setPipeline(p);
     cmd->setStorageBuffer(0, buf);
@@ -331,10 +318,6 @@ std::vector<CaseImage> computeBufferAndImage(Device& d) {
     b.absTolerance = 1e-6;
     b.maxFractionOver = 0;
     b.toleranceReason = "x/64 is exact in float32";
-    d.destroy(p);
-    d.destroy(cs);
-    d.destroy(buf);
-    d.destroy(img);
     return {a, b};
 }
 
@@ -342,9 +325,12 @@ std::vector<CaseImage> copies(Device& d) {
     std::vector<uint8_t> pattern(kSize * kSize * 4);
     for (size_t i = 0; i < pattern.size(); ++i) pattern[i] = uint8_t((i * 37) ^ (i >> 7));
     const uint64_t bytes = pattern.size();
-    BufferHandle src = d.createBuffer({.size = bytes + 256}), mid = d.createBuffer({.size = bytes}), dst = d.createBuffer({.size = bytes});
+    DeviceObjects objects(d);
+    BufferHandle src = objects.add(d.createBuffer({.size = bytes + 256})), mid = objects.add(d.createBuffer({.size = bytes})),
+                 dst = objects.add(d.createBuffer({.size = bytes}));
     d.writeBuffer(src, 256, gdi::bytesOf(pattern));
-    TextureHandle a = d.createTexture({.width = kSize, .height = kSize}), b = d.createTexture({.width = kSize, .height = kSize});
+    TextureHandle a = objects.add(d.createTexture({.width = kSize, .height = kSize})),
+                  b = objects.add(d.createTexture({.width = kSize, .height = kSize}));
     auto cmd = d.createCommandList();
     cmd->copyBufferToTexture(a, {}, src, 256);
     cmd->copyTexture(b, a);
@@ -362,9 +348,6 @@ std::vector<CaseImage> copies(Device& d) {
     tex.absTolerance = 0;
     tex.maxFractionOver = 0;
     tex.toleranceReason = "copies are exact";
-    for (BufferHandle h : {src, mid, dst}) d.destroy(h);
-    d.destroy(a);
-    d.destroy(b);
     return {ci, tex};
 }
 
@@ -388,9 +371,10 @@ uint16_t toHalf(float f) {  // exact for the small values used below
 }
 
 std::vector<CaseImage> vertexFormats(Device& d) {
-    auto vsF = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_attr.vert")});
-    auto vsU = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_uint.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/value.frag")});
+    DeviceObjects objects(d);
+    auto vsF = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_attr.vert")}));
+    auto vsU = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_uint.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/value.frag")}));
     std::vector<CaseImage> out;
     for (int fi = 0; fi < int(VertexFormat::Count); ++fi) {
         const VertexFormat vf = VertexFormat(fi);
@@ -439,12 +423,13 @@ std::vector<CaseImage> vertexFormats(Device& d) {
             std::memcpy(&vb[i * stride], &pos[i * 2], 8);
             std::memcpy(&vb[i * stride + 8], attr, 16);
         }
-        BufferHandle b = d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, gdi::bytesOf(vb));
-        PipelineHandle p = d.createGraphicsPipeline({
-            .vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF, .fragmentShader = fs,
-            .vertexBuffers = {{.stride = stride, .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
-            .colorFormats = {Format::RGBA32F}});
-        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        DeviceObjects iteration(d);
+        BufferHandle b = iteration.add(d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, gdi::bytesOf(vb)));
+        PipelineHandle p = iteration.add(d.createGraphicsPipeline(
+            {.vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF, .fragmentShader = fs,
+             .vertexBuffers = {{.stride = stride, .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
+             .colorFormats = {Format::RGBA32F}}));
+        TextureHandle t = colorTarget(iteration, Format::RGBA32F);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t}}});
         cmd->setPipeline(p);
@@ -454,40 +439,32 @@ std::vector<CaseImage> vertexFormats(Device& d) {
         d.wait(d.submit(*cmd));
         out.push_back(exactFloat(std::string(vertexFormatInfo(vf).name), d.readTexture(t), solidImage(Format::RGBA32F, expect),
                                  1e-5, "attribute decode is exact up to float rounding"));
-        d.destroy(p);
-        d.destroy(b);
-        d.destroy(t);
     }
-    d.destroy(vsF);
-    d.destroy(vsU);
-    d.destroy(fs);
     return out;
 }
 
 // Full-screen helper for fragment-only cases: fullscreen_ubo.vert + `fragment`.
 struct FullScreen {
+    DeviceObjects objects;
     ShaderHandle vs, fs;
     BufferHandle ubo;
-    FullScreen(Device& d, const char* fragment, Params params) {
-        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)});
-        ubo = d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
-    }
-    void release(Device& d) {
-        d.destroy(vs);
-        d.destroy(fs);
-        d.destroy(ubo);
+    FullScreen(Device& d, const char* fragment, Params params) : objects(d) {
+        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)}));
+        ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     }
 };
 
 std::vector<CaseImage> storageBufferInFragment(Device& d) {
     FullScreen fsq(d, "conformance/ssbo_read.frag", {{0, 0, 0, 0}, {0.5f, 0, 0, 0}});
+    DeviceObjects objects(d);
     const float colors[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 0.5f, 0.25f, 0.125f, 1};
-    BufferHandle ssbo = d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, gdi::bytesOf(colors));
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
-                                                              {2, BindingType::StorageBuffer, ShaderStage::Fragment}}});
-    TextureHandle t = colorTarget(d, Format::RGBA32F);
+    BufferHandle ssbo = objects.add(d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, gdi::bytesOf(colors)));
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                      {2, BindingType::StorageBuffer, ShaderStage::Fragment}}}));
+    TextureHandle t = colorTarget(objects, Format::RGBA32F);
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t}}});
     cmd->setPipeline(p);
@@ -500,10 +477,6 @@ std::vector<CaseImage> storageBufferInFragment(Device& d) {
     for (uint32_t y = 0; y < kSize; ++y)
         for (uint32_t x = 0; x < kSize; ++x) e.push_back({colors[(x / 16) * 4], colors[(x / 16) * 4 + 1], colors[(x / 16) * 4 + 2], 1});
     CaseImage ci = exactFloat("columns", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-6, "copied floats: exact");
-    d.destroy(p);
-    d.destroy(t);
-    d.destroy(ssbo);
-    fsq.release(d);
     return {ci};
 }
 
@@ -526,16 +499,20 @@ std::vector<CaseImage> samplingModes(Device& d) {
         px[i * 4 + 2] = uint8_t((i * 71) % 256);
         px[i * 4 + 3] = 255;
     }
-    TextureHandle tex = d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4});
+    DeviceObjects objects(d);
+    TextureHandle tex = objects.add(d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4}));
     d.writeTexture(tex, {}, gdi::bytesOf(px));
     for (AddressMode mode : {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge}) {
         // uv = pixel/64 * 3 - 1: texel centres of the magnified texture land on pixel centres.
         FullScreen fsq(d, "conformance/textured_uv.frag", {{3, 3, -1, -1}, {0.5f, 0, 0, 0}});
-        SamplerHandle smp = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .addressU = mode, .addressV = mode});
-        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
-                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-                                                                  {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
-        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        DeviceObjects iteration(d);
+        SamplerHandle smp = iteration.add(
+            d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .addressU = mode, .addressV = mode}));
+        PipelineHandle p = iteration.add(d.createGraphicsPipeline(
+            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                          {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
+        TextureHandle t = colorTarget(iteration, Format::RGBA32F);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t}}});
         cmd->setPipeline(p);
@@ -561,22 +538,20 @@ std::vector<CaseImage> samplingModes(Device& d) {
             }
         const char* name = mode == AddressMode::Repeat ? "nearest_repeat" : mode == AddressMode::MirroredRepeat ? "nearest_mirrored" : "nearest_clamp";
         out.push_back(exactFloat(name, img, Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-3, "8-bit texels: 1e-3 absolute"));
-        d.destroy(p);
-        d.destroy(t);
-        d.destroy(smp);
-        fsq.release(d);
     }
     // Linear filtering: a 2x2 texture magnified over the target with clamping: bilinear ramps.
     {
-        const uint8_t q[16] = {0, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 255, 255, 255, 255};
-        TextureHandle t2 = d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2});
-        d.writeTexture(t2, {}, gdi::bytesOf(q));
         FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
-        SamplerHandle smp = d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
-        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
-                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-                                                                  {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
-        TextureHandle t = colorTarget(d, Format::RGBA32F);
+        DeviceObjects linear(d);
+        const uint8_t q[16] = {0, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 255, 255, 255, 255};
+        TextureHandle t2 = linear.add(d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2}));
+        d.writeTexture(t2, {}, gdi::bytesOf(q));
+        SamplerHandle smp = linear.add(d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
+        PipelineHandle p = linear.add(d.createGraphicsPipeline(
+            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                          {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
+        TextureHandle t = colorTarget(linear, Format::RGBA32F);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t}}});
         cmd->setPipeline(p);
@@ -594,28 +569,26 @@ std::vector<CaseImage> samplingModes(Device& d) {
             }
         out.push_back(exactFloat("linear_clamp", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 0.01,
                                  "filter weights have limited sub-texel precision (8 bits on llvmpipe): 0.01 absolute"));
-        d.destroy(p);
-        d.destroy(t);
-        d.destroy(smp);
-        d.destroy(t2);
-        fsq.release(d);
     }
     // Mipmaps: each level uploaded with its own colour, chosen by an explicit level of detail.
     {
-        TextureHandle mip = d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .mipLevels = 4});
+        DeviceObjects mips(d);
+        TextureHandle mip = mips.add(d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .mipLevels = 4}));
         const Texel levels[4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}};
         for (uint32_t l = 0; l < 4; ++l) {
             uint32_t s = 8 >> l;
             Image lv = Image::fromTexels(s, s, Format::RGBA8, std::vector<Texel>(s * s, levels[l]));
             d.writeTexture(mip, {.mipLevel = l}, gdi::bytesOf(lv.data));
         }
-        SamplerHandle smp = d.createSampler({.mipFilter = MipFilter::Nearest});
+        SamplerHandle smp = mips.add(d.createSampler({.mipFilter = MipFilter::Nearest}));
         for (uint32_t l = 0; l < 4; ++l) {
             FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, float(l), 0, 0}});
-            PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
-                                                         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-                                                                      {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
-            TextureHandle t = colorTarget(d, Format::RGBA32F);
+            DeviceObjects level(d);
+            PipelineHandle p = level.add(d.createGraphicsPipeline(
+                {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                              {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
+            TextureHandle t = colorTarget(level, Format::RGBA32F);
             auto cmd = d.createCommandList();
             cmd->beginRenderPass({.colors = {{.texture = t}}});
             cmd->setPipeline(p);
@@ -626,28 +599,25 @@ std::vector<CaseImage> samplingModes(Device& d) {
             d.wait(d.submit(*cmd));
             out.push_back(exactFloat("mip_level_" + std::to_string(l), d.readTexture(t), solidImage(Format::RGBA32F, levels[l]), 1e-3,
                                      "solid 8-bit level: 1e-3 absolute"));
-            d.destroy(p);
-            d.destroy(t);
-            fsq.release(d);
         }
-        d.destroy(smp);
-        d.destroy(mip);
     }
-    d.destroy(tex);
     return out;
 }
 
 std::vector<CaseImage> renderToTextureThenSample(Device& d) {
     // Pass 1: a triangle into A. Pass 2: A sampled (nearest, 1:1) into B. B must equal A.
-    TextureHandle a = colorTarget(d), b = colorTarget(d);
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-    PipelineHandle tri = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
     FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
-    SamplerHandle smp = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
-    PipelineHandle copy = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA8},
-                                                    .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-                                                                 {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+    DeviceObjects objects(d);
+    TextureHandle a = colorTarget(objects), b = colorTarget(objects);
+    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
+    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+    PipelineHandle tri = objects.add(
+        d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
+    SamplerHandle smp = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
+    PipelineHandle copy = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA8},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
+                      {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = a, .clear = {0.1f, 0.2f, 0.3f, 1}}}});
     cmd->setPipeline(tri);
@@ -664,13 +634,6 @@ std::vector<CaseImage> renderToTextureThenSample(Device& d) {
     ci.absTolerance = 0;
     ci.maxFractionOver = 0;
     ci.toleranceReason = "nearest 1:1 sampling of an 8-bit target is exact";
-    for (PipelineHandle p : {tri, copy}) d.destroy(p);
-    d.destroy(vs);
-    d.destroy(fs);
-    d.destroy(smp);
-    d.destroy(a);
-    d.destroy(b);
-    fsq.release(d);
     return {ci};
 }
 
@@ -695,10 +658,11 @@ std::vector<CaseImage> blendModes(Device& d) {
     };
     for (const Mode& m : modes) {
         FullScreen fsq(d, "conformance/ubo_color.frag", {{src[0], src[1], src[2], src[3]}, {0.5f, 0, 0, 0}});
-        PipelineHandle p = d.createGraphicsPipeline({.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .blend = {m.state},
-                                                     .colorFormats = {Format::RGBA16F},
-                                                     .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
-        TextureHandle t = colorTarget(d, Format::RGBA16F);
+        DeviceObjects iteration(d);
+        PipelineHandle p = iteration.add(d.createGraphicsPipeline(
+            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .blend = {m.state}, .colorFormats = {Format::RGBA16F},
+             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}}));
+        TextureHandle t = colorTarget(iteration, Format::RGBA16F);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {dst[0], dst[1], dst[2], dst[3]}}}});
         cmd->setPipeline(p);
@@ -708,9 +672,6 @@ std::vector<CaseImage> blendModes(Device& d) {
         d.wait(d.submit(*cmd));
         out.push_back(exactFloat(m.name, d.readTexture(t), solidImage(Format::RGBA16F, m.expect), 2e-3,
                                  "half-float target: 2e-3 absolute"));
-        d.destroy(p);
-        d.destroy(t);
-        fsq.release(d);
     }
     return out;
 }

@@ -22,19 +22,16 @@ struct Vertex3 {
 
 // position3_color.vert + color.frag, for geometry with depth.
 struct DepthGeometry {
+    DeviceObjects objects;
     ShaderHandle vs, fs;
     GraphicsPipelineDesc desc;
-    explicit DepthGeometry(Device& d) {
-        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/position3_color.vert")});
-        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    explicit DepthGeometry(Device& d) : objects(d) {
+        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/position3_color.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
         desc = {.vertexShader = vs,
                 .fragmentShader = fs,
                 .vertexBuffers = {{.stride = sizeof(Vertex3),
                                    .attributes = {{0, VertexFormat::Float3, 0}, {1, VertexFormat::Float4, 12}}}}};
-    }
-    void release(Device& d) {
-        d.destroy(vs);
-        d.destroy(fs);
     }
 };
 
@@ -65,27 +62,32 @@ std::vector<CaseImage> msaaResolve(Device& d) {
     FE_CONFORMANCE_CHECK(counts & 1, "one sample is always supported");
     for (uint32_t samples : {2u, 4u, 8u}) {
         if (!(counts & samples)) {
-            FE_CONFORMANCE_CHECK(throws([&] {
-                                     d.createTexture({.width = 8, .height = 8, .sampleCount = samples, .usage = kTarget});
+            FE_CONFORMANCE_CHECK(throws([&] {  // (freed at once, should it be made)
+                                     DeviceObjects(d).add(
+                                         d.createTexture({.width = 8, .height = 8, .sampleCount = samples, .usage = kTarget}));
                                  }),
                                  "an unsupported sample count is an error");
             continue;
         }
+        DeviceObjects iteration(d);
         GraphicsPipelineDesc pd = geo.desc;
         pd.colorFormats = {Format::RGBA8};
         pd.depthFormat = Format::D32F;
         pd.depthStencil = {.depthTest = true, .depthWrite = true};
         pd.multisample.sampleCount = samples;
-        PipelineHandle p = d.createGraphicsPipeline(pd);
-        TextureHandle ms = d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget});
-        TextureHandle msDepth = d.createTexture(
-            {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget});
-        TextureHandle color = d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled});
-        TextureHandle depth = d.createTexture(
-            {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled});
+        PipelineHandle p = iteration.add(d.createGraphicsPipeline(pd));
+        TextureHandle ms = iteration.add(
+            d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
+        TextureHandle msDepth = iteration.add(d.createTexture(
+            {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
+        TextureHandle color = iteration.add(
+            d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled}));
+        TextureHandle depth = iteration.add(d.createTexture(
+            {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget | TextureUsage::Sampled}));
         for (bool left : {true, false}) {
             std::vector<Vertex3> v = left ? quad(-1, edge, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1}) : quad(edge, 1, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
-            BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
+            DeviceObjects side(d);
+            BufferHandle vb = side.add(d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
             auto cmd = d.createCommandList();
             cmd->beginRenderPass({.colors = {{.texture = ms, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = color}},
                                   .depth = {.texture = msDepth, .store = StoreOp::DontCare, .resolveTexture = depth}});
@@ -94,7 +96,6 @@ std::vector<CaseImage> msaaResolve(Device& d) {
             cmd->draw(6);
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
-            d.destroy(vb);
             auto inside = [left](uint32_t x) { return left ? x < 31 : x > 31; };
             const std::string n = std::string(left ? "left_" : "right_") + std::to_string(samples) + "x";
             CaseImage c{"colour_" + n, d.readTexture(color), expectImage(Format::RGBA8, [&](uint32_t x, uint32_t) -> Texel {
@@ -118,12 +119,14 @@ std::vector<CaseImage> msaaResolve(Device& d) {
             ps.colorFormats = {Format::RGBA8_SRGB};
             ps.depthFormat = Format::Undefined;
             ps.depthStencil = {};
-            PipelineHandle psrgb = d.createGraphicsPipeline(ps);
-            TextureHandle msS = d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize,
-                                                 .sampleCount = samples, .usage = kTarget});
-            TextureHandle resS = d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+            DeviceObjects srgb(d);
+            PipelineHandle psrgb = srgb.add(d.createGraphicsPipeline(ps));
+            TextureHandle msS = srgb.add(d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize,
+                                                          .sampleCount = samples, .usage = kTarget}));
+            TextureHandle resS = srgb.add(
+                d.createTexture({.format = Format::RGBA8_SRGB, .width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
             std::vector<Vertex3> v = quad(-1, edge, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
-            BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
+            BufferHandle vb = srgb.add(d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
             auto cmd = d.createCommandList();
             cmd->beginRenderPass({.colors = {{.texture = msS, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = resS}}});
             cmd->setPipeline(psrgb);
@@ -139,25 +142,18 @@ std::vector<CaseImage> msaaResolve(Device& d) {
             out.push_back(within("colour_srgb_" + std::to_string(samples) + "x", d.readTexture(resS),
                                  expectImage(Format::RGBA8_SRGB, expected), 1.0 / 255.0,
                                  "linear average of the edge's samples, encoded: one 8-bit step"));
-            for (TextureHandle t : {msS, resS}) d.destroy(t);
-            d.destroy(vb);
-            d.destroy(psrgb);
         }
         // A single-sample pipeline in a multisampled pass, and reading a multisampled texture, are errors.
         GraphicsPipelineDesc single = pd;
         single.multisample.sampleCount = 1;
-        PipelineHandle p1 = d.createGraphicsPipeline(single);
+        PipelineHandle p1 = iteration.add(d.createGraphicsPipeline(single));
         auto bad = d.createCommandList();
         bad->beginRenderPass({.colors = {{.texture = ms}}, .depth = {.texture = msDepth}});
         FE_CONFORMANCE_CHECK(throws([&] { bad->setPipeline(p1); }), "a pipeline's sample count must match the pass");
         bad->endRenderPass();
         d.wait(d.submit(*bad));
         FE_CONFORMANCE_CHECK(throws([&] { d.readTexture(ms); }), "a multisampled texture cannot be read back");
-        for (TextureHandle t : {ms, msDepth, color, depth}) d.destroy(t);
-        d.destroy(p);
-        d.destroy(p1);
     }
-    geo.release(d);
     return out;
 }
 
@@ -171,20 +167,20 @@ std::vector<CaseImage> msaaMultipleTargets(Device& d) {
     const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
     const Texel values[4] = {{0.2f, 0.4f, 0.6f, 0.8f}, {1.5f, -2.0f, 3.25f, 1.0f}, {0.125f, 4.5f, 0, 1}, {-7.75f, 0, 0, 1}};
     DepthGeometry geo(d);
-    ShaderHandle mrt = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")});
+    DeviceObjects objects(d);
+    ShaderHandle mrt = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")}));
     GraphicsPipelineDesc pd = geo.desc;
     pd.fragmentShader = mrt;
     pd.colorFormats = formats;
     pd.depthFormat = Format::D24S8;
     pd.depthStencil = {.depthTest = true, .depthWrite = true};
     pd.multisample.sampleCount = 4;
-    PipelineHandle p = d.createGraphicsPipeline(pd);
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(pd));
     std::vector<Vertex3> v = quad(-1, 31.5f / 32.0f - 1.0f, -1, 1, 0.25f, 0.25f, {1, 1, 1, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
-    std::vector<TextureHandle> owned;
+    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
     auto make = [&](Format f, uint32_t samples) {
-        owned.push_back(d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
-        return owned.back();
+        return objects.add(
+            d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
     };
     RenderPassDesc rp;
     std::vector<TextureHandle> resolved;
@@ -214,11 +210,6 @@ std::vector<CaseImage> msaaMultipleTargets(Device& d) {
     auto depthExpected = [](uint32_t x, uint32_t) -> Texel { return {x <= 31 ? 0.25f : 1.0f, 0, 0, 1}; };
     out.push_back(within("depth_D24S8_sample0", d.readTexture(depth), expectImage(Format::D24S8, depthExpected),
                          std::ldexp(1.0, -23), "24-bit depth: one step"));
-    for (TextureHandle t : owned) d.destroy(t);
-    d.destroy(vb);
-    d.destroy(p);
-    d.destroy(mrt);
-    geo.release(d);
     return out;
 }
 
@@ -230,17 +221,21 @@ std::vector<CaseImage> msaaAlphaToCoverage(Device& d) {
     const uint32_t counts = d.info().limits.colorSampleCounts;
     const uint32_t samples = (counts & 4) ? 4 : (counts & 8) ? 8 : (counts & 2) ? 2 : 0;
     if (!samples) return out;
-    ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                                 .multisample = {.sampleCount = samples, .alphaToCoverage = true},
-                                                 .colorFormats = {Format::RGBA8},
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+    DeviceObjects objects(d);
+    ShaderHandle vs = objects.add(
+        d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    ShaderHandle fs = objects.add(
+        d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .multisample = {.sampleCount = samples, .alphaToCoverage = true},
+         .colorFormats = {Format::RGBA8}, .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}}));
     for (float alpha : {0.0f, 0.5f, 1.0f}) {
+        DeviceObjects iteration(d);
         const std::array<float, 8> params = {1, 1, 1, alpha, 0, 0, 0, 0};
-        BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params));
-        TextureHandle ms = d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget});
-        TextureHandle color = d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+        BufferHandle ubo = iteration.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+        TextureHandle ms = iteration.add(
+            d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = samples, .usage = kTarget}));
+        TextureHandle color = iteration.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = ms, .clear = {0, 0, 0, 0}, .resolveTexture = color}}});
         cmd->setPipeline(p);
@@ -262,29 +257,27 @@ std::vector<CaseImage> msaaAlphaToCoverage(Device& d) {
             ci.maxFractionOver = 0;
             out.push_back(std::move(ci));
         }
-        d.destroy(ms);
-        d.destroy(color);
-        d.destroy(ubo);
     }
-    d.destroy(p);
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
 // --- Shadow-map state ---------------------------------------------------------------------------
 
-// An 8x8 D32F texture: depth 0.25 in columns 0-3, 0.75 in columns 4-7 (a known depth step).
-TextureHandle depthStep(Device& d) {
-    TextureHandle t = d.createTexture({.format = Format::D32F, .width = 8, .height = 8,
-                                       .usage = TextureUsage::RenderTarget | TextureUsage::Sampled | TextureUsage::CopySrc});
-    ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .depthStencil = {.depthTest = true, .depthWrite = true,
-                                                                                        .depthCompare = CompareOp::Always},
-                                                 .depthFormat = Format::D32F,
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}});
+// An 8x8 D32F texture, owned by `objects`: depth 0.25 in columns 0-3, 0.75 in columns 4-7 (a
+// known depth step).
+TextureHandle depthStep(DeviceObjects& objects) {
+    Device& d = objects.device();
+    TextureHandle t = objects.add(d.createTexture(
+        {.format = Format::D32F, .width = 8, .height = 8,
+         .usage = TextureUsage::RenderTarget | TextureUsage::Sampled | TextureUsage::CopySrc}));
+    DeviceObjects drawing(d);
+    ShaderHandle vs = drawing.add(
+        d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    PipelineHandle p = drawing.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Always},
+         .depthFormat = Format::D32F, .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}}));
     const std::array<float, 8> params = {0, 0, 0, 0, 0.25f, 0, 0, 0};
-    BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params));
+    BufferHandle ubo = drawing.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.depth = {.texture = t, .clearDepth = 0.75f}});
     cmd->setPipeline(p);
@@ -293,9 +286,6 @@ TextureHandle depthStep(Device& d) {
     cmd->draw(3);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    d.destroy(p);
-    d.destroy(vs);
-    d.destroy(ubo);
     return t;
 }
 
@@ -321,7 +311,8 @@ SamplerDesc compareSampler(CompareOp op, Filter filter) {
 // Every compare op with the reference equal to the near side of the step: 0 or 1 per side.
 std::vector<CaseImage> shadowCompareOps(Device& d) {
     std::vector<CaseImage> out;
-    TextureHandle step = depthStep(d);
+    DeviceObjects objects(d);
+    TextureHandle step = depthStep(objects);
     out.push_back(exact("depth_step", d.readTexture(step), expectImage(Format::D32F, [](uint32_t x, uint32_t) -> Texel {
                             return {x < 4 ? 0.25f : 0.75f, 0, 0, 1};
                         }, 8, 8)));
@@ -333,16 +324,15 @@ std::vector<CaseImage> shadowCompareOps(Device& d) {
                                 const float v = compareResult(op, 0.25f, x < 32 ? 0.25f : 0.75f) ? 1.0f : 0.0f;
                                 return {v, v, v, v};
                             })));
-        fs.release(d);
     }
-    d.destroy(step);
     return out;
 }
 
 // Linear filtering of comparison results (hardware PCF) across the step: each pixel is the
 // bilinear weight of the taps on the far side, where the reference 0.5 passes LessOrEqual.
 std::vector<CaseImage> shadowComparePcf(Device& d) {
-    TextureHandle step = depthStep(d);
+    DeviceObjects objects(d);
+    TextureHandle step = depthStep(objects);
     FullscreenSampler fs(d, "conformance/shadow_2d.frag", compareSampler(CompareOp::LessOrEqual, Filter::Linear));
     auto pcf = [](uint32_t x, uint32_t) -> Texel {
         const double u = (x + 0.5) / 64.0 * 8.0 - 0.5;
@@ -353,8 +343,6 @@ std::vector<CaseImage> shadowComparePcf(Device& d) {
     };
     CaseImage ci = within("pcf_across_step", fs.draw(d, step, Format::RGBA16F, {0.5f}), expectImage(Format::RGBA16F, pcf),
                           1.0 / 64.0, "filter weights have 8 sub-texel bits on Mesa (1/256) and fewer elsewhere: 1/64");
-    fs.release(d);
-    d.destroy(step);
     return {ci};
 }
 
@@ -363,10 +351,11 @@ std::vector<CaseImage> shadowComparePcf(Device& d) {
 std::vector<CaseImage> shadowArrayCube(Device& d) {
     std::vector<CaseImage> out;
     const TextureUsage usage = TextureUsage::RenderTarget | TextureUsage::Sampled;
-    TextureHandle arr = d.createTexture({.dimension = TextureDimension::Texture2DArray, .format = Format::D32F, .width = 8,
-                                         .height = 8, .depthOrLayers = 2, .usage = usage});
-    TextureHandle cube = d.createTexture({.dimension = TextureDimension::TextureCube, .format = Format::D32F, .width = 8,
-                                          .height = 8, .depthOrLayers = 6, .usage = usage});
+    DeviceObjects objects(d);
+    TextureHandle arr = objects.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .format = Format::D32F,
+                                                     .width = 8, .height = 8, .depthOrLayers = 2, .usage = usage}));
+    TextureHandle cube = objects.add(d.createTexture({.dimension = TextureDimension::TextureCube, .format = Format::D32F,
+                                                      .width = 8, .height = 8, .depthOrLayers = 6, .usage = usage}));
     auto cmd = d.createCommandList();
     for (uint32_t l = 0; l < 2; ++l) {
         cmd->beginRenderPass({.depth = {.texture = arr, .layer = l, .clearDepth = l ? 0.75f : 0.25f}});
@@ -381,16 +370,12 @@ std::vector<CaseImage> shadowArrayCube(Device& d) {
     for (uint32_t l = 0; l < 2; ++l)
         out.push_back(exact("array_layer" + std::to_string(l), fa.draw(d, arr, Format::RGBA8, {0.5f, float(l)}),
                             solid(Format::RGBA8, l ? Texel{1, 1, 1, 1} : Texel{0, 0, 0, 0})));
-    fa.release(d);
     FullscreenSampler fc(d, "conformance/shadow_cube.frag", compareSampler(CompareOp::LessOrEqual, Filter::Nearest));
     out.push_back(exact("cube_faces", fc.draw(d, cube, Format::RGBA8, {0.4f}), expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
                             const uint32_t face = uint32_t((x + 0.5) * 6.0 / 64.0);
                             const float v = 0.4f <= 0.1f * float(face + 1) + 0.05f ? 1.0f : 0.0f;
                             return {v, v, v, v};
                         })));
-    fc.release(d);
-    d.destroy(arr);
-    d.destroy(cube);
     return out;
 }
 
@@ -403,10 +388,12 @@ Image biasedDepth(Device& d, float z0, float z1, RasterState raster) {
     pd.raster = raster;
     pd.depthFormat = Format::D32F;
     pd.depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Always};
-    PipelineHandle p = d.createGraphicsPipeline(pd);
+    DeviceObjects objects(d);
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(pd));
     std::vector<Vertex3> v = quad(-1, 1, -1, 1, z0, z1, {1, 1, 1, 1});
-    BufferHandle vb = d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v));
-    TextureHandle t = d.createTexture({.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
+    TextureHandle t = objects.add(
+        d.createTexture({.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.depth = {.texture = t, .clearDepth = 1.0f}});
     cmd->setPipeline(p);
@@ -414,12 +401,7 @@ Image biasedDepth(Device& d, float z0, float z1, RasterState raster) {
     cmd->draw(6);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    Image img = d.readTexture(t);
-    d.destroy(t);
-    d.destroy(vb);
-    d.destroy(p);
-    geo.release(d);
-    return img;
+    return d.readTexture(t);
 }
 
 // offset = slope * m + constant * r, clamped: constant alone on a flat quad at 0.5 moves depth
@@ -450,19 +432,24 @@ std::vector<CaseImage> depthBias(Device& d) {
 std::vector<CaseImage> depthClamp(Device& d) {
     std::vector<CaseImage> out;
     if (!d.info().features.depthClamp) return out;
-    ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    DeviceObjects objects(d);
+    ShaderHandle vs = objects.add(
+        d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    ShaderHandle fs = objects.add(
+        d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
     for (float z : {1.5f, -0.5f})
         for (bool clamp : {false, true}) {
-            PipelineHandle p = d.createGraphicsPipeline(
+            DeviceObjects iteration(d);
+            PipelineHandle p = iteration.add(d.createGraphicsPipeline(
                 {.vertexShader = vs, .fragmentShader = fs, .raster = {.depthClamp = clamp},
                  .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Always},
                  .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F,
-                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}}));
             const std::array<float, 8> params = {1, 0.5f, 0, 1, z, 0, 0, 0};
-            BufferHandle ubo = d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params));
-            TextureHandle c = d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget});
-            TextureHandle t = d.createTexture({.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+            BufferHandle ubo = iteration.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+            TextureHandle c = iteration.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
+            TextureHandle t = iteration.add(
+                d.createTexture({.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
             auto cmd = d.createCommandList();
             cmd->beginRenderPass({.colors = {{.texture = c, .clear = {0, 0, 0, 1}}}, .depth = {.texture = t, .clearDepth = 0.5f}});
             cmd->setPipeline(p);
@@ -474,12 +461,7 @@ std::vector<CaseImage> depthClamp(Device& d) {
             out.push_back(exact(n + "_colour", d.readTexture(c), solid(Format::RGBA8, clamp ? Texel{1, 0.5f, 0, 1} : Texel{0, 0, 0, 1})));
             out.back().absTolerance = 1.0 / 255.0;
             out.push_back(exact(n + "_depth", d.readTexture(t), solid(Format::D32F, {clamp ? (z > 1 ? 1.0f : 0.0f) : 0.5f, 0, 0, 1})));
-            for (TextureHandle h : {c, t}) d.destroy(h);
-            d.destroy(ubo);
-            d.destroy(p);
         }
-    d.destroy(vs);
-    d.destroy(fs);
     return out;
 }
 
@@ -493,19 +475,22 @@ struct Vertex2 {
 // Quads A (red, left), B (green, right) and C (blue, centre, indexed: 4 corners at vertex 12),
 // all in the upper half; instances 2, 3 and 5 move theirs into the lower half.
 struct IndirectScene {
+    DeviceObjects objects;
     ShaderHandle vs, fs, cs;
     PipelineHandle draw, compute;
     BufferHandle vertices, instances, indices, args;
-    explicit IndirectScene(Device& d) {
-        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")});
-        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-        cs = d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/indirect_args.comp")});
-        draw = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                         .vertexBuffers = {{.stride = sizeof(Vertex2),
-                                                            .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
-                                                           {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
-                                         .colorFormats = {Format::RGBA8}});
-        compute = d.createComputePipeline({.computeShader = cs, .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute}}});
+    explicit IndirectScene(Device& d) : objects(d) {
+        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+        cs = objects.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/indirect_args.comp")}));
+        draw = objects.add(d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs,
+             .vertexBuffers = {{.stride = sizeof(Vertex2),
+                                .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
+                               {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
+             .colorFormats = {Format::RGBA8}}));
+        compute = objects.add(
+            d.createComputePipeline({.computeShader = cs, .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute}}}));
         std::vector<Vertex2> v;
         auto addQuad = [&](float x0, float x1, Texel c) {
             for (auto [x, y] : {std::pair{x0, -0.75f}, std::pair{x1, -0.75f}, std::pair{x0, -0.25f}, std::pair{x0, -0.25f},
@@ -516,16 +501,18 @@ struct IndirectScene {
         addQuad(0.5f, 0.75f, {0, 1, 0, 1});
         for (auto [x, y] : {std::pair{-0.25f, -0.75f}, std::pair{0.25f, -0.75f}, std::pair{-0.25f, -0.25f}, std::pair{0.25f, -0.25f}})
             v.push_back({x, y, 0, 0, 1, 1});
-        vertices = d.createBuffer({.size = v.size() * sizeof(Vertex2), .usage = BufferUsage::Vertex}, bytesOf(v));
+        vertices = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex2), .usage = BufferUsage::Vertex}, bytesOf(v)));
         const float offsets[12] = {0, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
-        instances = d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, bytesOf(offsets));
+        instances = objects.add(d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, bytesOf(offsets)));
         const uint16_t idx[6] = {0, 1, 2, 2, 1, 3};
-        indices = d.createBuffer({.size = sizeof idx, .usage = BufferUsage::Index}, bytesOf(idx));
-        args = d.createBuffer({.size = 256, .usage = BufferUsage::Storage | BufferUsage::Indirect, .debugName = "indirect args"});
+        indices = objects.add(d.createBuffer({.size = sizeof idx, .usage = BufferUsage::Index}, bytesOf(idx)));
+        args = objects.add(
+            d.createBuffer({.size = 256, .usage = BufferUsage::Storage | BufferUsage::Indirect, .debugName = "indirect args"}));
     }
     // The compute pass writes the argument records, then `record` draws from them.
     Image run(Device& d, const std::function<void(CommandList&)>& record) {
-        TextureHandle t = d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget});
+        DeviceObjects running(d);
+        TextureHandle t = running.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
         auto cmd = d.createCommandList();
         cmd->setPipeline(compute);
         cmd->setStorageBuffer(0, args);
@@ -538,14 +525,7 @@ struct IndirectScene {
         record(*cmd);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        Image img = d.readTexture(t);
-        d.destroy(t);
-        return img;
-    }
-    void release(Device& d) {
-        for (PipelineHandle p : {draw, compute}) d.destroy(p);
-        for (ShaderHandle s : {vs, fs, cs}) d.destroy(s);
-        for (BufferHandle b : {vertices, instances, indices, args}) d.destroy(b);
+        return d.readTexture(t);
     }
 };
 
@@ -574,11 +554,10 @@ std::vector<CaseImage> drawIndirect(Device& d) {
                             expectQuads(true, true, true, true)));
     FE_CONFORMANCE_CHECK(throws([&] { s.run(d, [&](CommandList& c) { c.drawIndirect(s.args, 248); }); }),
                          "a record past the end of the buffer is an error");
-    BufferHandle plain = d.createBuffer({.size = 64, .usage = BufferUsage::Storage});
+    DeviceObjects objects(d);
+    BufferHandle plain = objects.add(d.createBuffer({.size = 64, .usage = BufferUsage::Storage}));
     FE_CONFORMANCE_CHECK(throws([&] { s.run(d, [&](CommandList& c) { c.drawIndirect(plain, 0); }); }),
                          "an argument buffer without Indirect usage is an error");
-    d.destroy(plain);
-    s.release(d);
     return out;
 }
 
@@ -594,7 +573,6 @@ std::vector<CaseImage> drawIndexedIndirect(Device& d) {
                              });
                          }),
                          "indexed indirect draws need the index buffer at offset 0");
-    s.release(d);
     return out;
 }
 
@@ -611,7 +589,6 @@ std::vector<CaseImage> drawIndirectCount(Device& d) {
         FE_CONFORMANCE_CHECK(throws([&] { s.run(d, [&](CommandList& c) { c.drawIndirectCount(s.args, 0, s.args, 64, 4); }); }),
                              "drawIndirectCount where the device lacks it is a clear error");
     }
-    s.release(d);
     return out;
 }
 
@@ -619,13 +596,15 @@ std::vector<CaseImage> drawIndirectCount(Device& d) {
 // 64x64 buffer, as the direct dispatch in compute_buffer_and_image does.
 std::vector<CaseImage> dispatchIndirect(Device& d) {
     IndirectScene s(d);
-    auto fillShader = d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")});
-    PipelineHandle fill = d.createComputePipeline({.computeShader = fillShader,
-                                                   .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
-                                                                {1, BindingType::StorageTexture, ShaderStage::Compute}}});
-    BufferHandle buf = d.createBuffer({.size = kCaseSize * kCaseSize * 4, .usage = BufferUsage::Storage});
-    TextureHandle img = d.createTexture({.format = Format::RGBA32F, .width = kCaseSize, .height = kCaseSize,
-                                         .usage = TextureUsage::Storage | TextureUsage::CopySrc});
+    DeviceObjects objects(d);
+    auto fillShader = objects.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")}));
+    PipelineHandle fill = objects.add(d.createComputePipeline(
+        {.computeShader = fillShader,
+         .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                      {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
+    BufferHandle buf = objects.add(d.createBuffer({.size = kCaseSize * kCaseSize * 4, .usage = BufferUsage::Storage}));
+    TextureHandle img = objects.add(d.createTexture({.format = Format::RGBA32F, .width = kCaseSize, .height = kCaseSize,
+                                                     .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
     auto cmd = d.createCommandList();
     cmd->setPipeline(s.compute);
     cmd->setStorageBuffer(0, s.args);
@@ -639,11 +618,6 @@ std::vector<CaseImage> dispatchIndirect(Device& d) {
     CaseImage a = exact("buffer", values, expectImage(Format::R32U, [](uint32_t x, uint32_t y) -> Texel {
                             return {float(3 * (y * kCaseSize + x) + 1), 0, 0, 1};
                         }));
-    d.destroy(fill);
-    d.destroy(fillShader);
-    d.destroy(buf);
-    d.destroy(img);
-    s.release(d);
     return {a};
 }
 
