@@ -3,6 +3,7 @@
 #include "VulkanFaults.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 
@@ -24,11 +25,12 @@ bool hasLayer(const char* name) {
     return std::any_of(layers.begin(), layers.end(), [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-bool hasInstanceExtension(const char* name) {
+// `layer`: an extension the layer provides (null: the loader's and drivers').
+bool hasInstanceExtension(const char* name, const char* layer = nullptr) {
     uint32_t n = 0;
-    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+    vkEnumerateInstanceExtensionProperties(layer, &n, nullptr);
     std::vector<VkExtensionProperties> ext(n);
-    vkEnumerateInstanceExtensionProperties(nullptr, &n, ext.data());
+    vkEnumerateInstanceExtensionProperties(layer, &n, ext.data());
     return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
@@ -118,6 +120,22 @@ void VulkanDevice::createInstance(bool validation) {
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
     if (validation && debugUtils_) ci.pNext = &mci;  // also catches instance creation messages
+    // With validation, synchronization validation too: a missing or wrong barrier (a hazard) is
+    // reported as an error like any other, so tests fail on it. FE_VK_SYNC_VALIDATION=0 turns
+    // it off (it slows recording down).
+    const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    const char* syncSetting = std::getenv("FE_VK_SYNC_VALIDATION");
+    if (validation && !(syncSetting && std::string(syncSetting) == "0") &&
+        hasInstanceExtension(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME, kValidationLayer)) {
+        extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+        ci.enabledExtensionCount = uint32_t(extensions.size());
+        ci.ppEnabledExtensionNames = extensions.data();
+        features.enabledValidationFeatureCount = 1;
+        features.pEnabledValidationFeatures = &sync;
+        features.pNext = ci.pNext;
+        ci.pNext = &features;
+    }
     check(nativeAllocation("vkCreateInstance", [&] { return vkCreateInstance(&ci, nullptr, &instance_); }), "vkCreateInstance");
 
     if (debugUtils_) {

@@ -231,6 +231,20 @@ std::vector<std::string> requiredExtensions(std::string_view text) {
     return out;
 }
 
+// Nodes with both "matrix" and any of "translation", "rotation", "scale", which glTF 2.0 forbids
+// (5.25). tinygltf keeps the matrix and drops the rest without a word, so this reads the JSON.
+std::vector<size_t> nodesWithMatrixAndTrs(std::string_view text) {
+    std::vector<size_t> out;
+    nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("nodes") || !j["nodes"].is_array()) return out;
+    const nlohmann::json& nodes = j["nodes"];
+    for (size_t n = 0; n < nodes.size(); ++n)
+        if (nodes[n].is_object() && nodes[n].contains("matrix") &&
+            (nodes[n].contains("translation") || nodes[n].contains("rotation") || nodes[n].contains("scale")))
+            out.push_back(n);
+    return out;
+}
+
 class Loader {
 public:
     Loader(std::string path, const LoadOptions& options) : path_(std::move(path)), opt_(options) {}
@@ -514,6 +528,8 @@ void Loader::parseFile() {
     }
     if (scene_.name.empty()) scene_.name = fp.stem().string();
     checkAsset();
+    for (size_t n : nodesWithMatrixAndTrs(json))
+        warn(nodeLabel(int(n)) + " has both a matrix and translation/rotation/scale, which glTF 2.0 forbids; the matrix is used");
 }
 
 // What the glTF 2.0 specification requires and the parser lets through.

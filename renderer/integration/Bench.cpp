@@ -181,7 +181,9 @@ BenchCase caseFromJson(const gdi::Json& j) {
     RenderSettings& s = c.settings;
     s.width = 96;
     s.height = 72;
-    for (const auto& [key, v] : j.items()) {
+    for (const auto& item : j.items()) {  // not a structured binding: lambdas capture `v` (clang 14)
+        const std::string& key = item.key();
+        const gdi::Json& v = item.value();
         auto uint = [&, k = key](uint32_t lo, uint32_t hi) {
             if (!v.is_number_unsigned() || v.get<uint64_t>() < lo || v.get<uint64_t>() > hi)
                 throw gdi::Error("sweep: \"" + k + "\" must be an integer in [" + std::to_string(lo) + ", " +
@@ -258,7 +260,9 @@ std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep) {
         // combination, in the order the keys are written.
         std::vector<std::pair<std::string, std::vector<gdi::Json>>> axes;
         bool matrix = false;
-        for (const auto& [key, v] : j.items()) {
+        for (const auto& item : j.items()) {  // not a structured binding: lambdas capture `v` (clang 14)
+        const std::string& key = item.key();
+        const gdi::Json& v = item.value();
             std::vector<gdi::Json> values;
             if (key == "technique" && v == "all") {
                 for (const TechniqueInfo& t : techniques()) values.emplace_back(t.name);

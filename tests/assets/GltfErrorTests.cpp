@@ -615,3 +615,31 @@ TEST_F(GltfSynthetic, FirstPerspectiveCameraInDepthFirstNodeOrderWins) {
     EXPECT_FLOAT_EQ(s.camera->yfov, 0.6f);
     EXPECT_EQ(s.camera->eye(), glm::vec3(0, 0, 7));
 }
+
+// The fuzzers' seed corpus (tests/fuzz/make_seeds.py): one file per glTF 2.0 rule the loader
+// enforces, each the valid triangle with that rule broken. The rule for invalid files: never
+// rendered silently, so each is refused with an AssetError or loaded with a warning; the valid
+// seeds load without one.
+TEST(FuzzSeeds, EveryBrokenRuleIsRefusedOrWarnedAndValidFilesLoadCleanly) {
+    int rules = 0, valid = 0;
+    for (const auto& entry : fs::directory_iterator(FE_FUZZ_SEEDS "/gltf")) {
+        const std::string name = entry.path().filename().string();
+        SCOPED_TRACE(name);
+        if (name.rfind("valid-", 0) == 0) {
+            ++valid;
+            Scene s = loadGltf(entry.path().string());
+            EXPECT_FALSE(s.instances.empty());
+            EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+            continue;
+        }
+        ++rules;
+        try {
+            Scene s = loadGltf(entry.path().string());
+            EXPECT_FALSE(s.warnings.empty()) << "an invalid file loaded without a warning";
+        } catch (const AssetError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << "the error names the file: " << e.what();
+        }
+    }
+    EXPECT_GE(rules, 40);
+    EXPECT_GE(valid, 4);
+}

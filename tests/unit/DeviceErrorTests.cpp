@@ -102,8 +102,9 @@ TEST_P(DeviceErrors, IndirectArguments) {
     EXPECT_NE(errorOf([&] { cmd->drawIndirect(args, 2); }).find("not a multiple of 4"), std::string::npos);
     EXPECT_NE(errorOf([&] { cmd->drawIndirect(args, 4); }).find("exceed its size 16"), std::string::npos);
     EXPECT_NE(errorOf([&] { cmd->drawIndexedIndirect(args, 0); }).find("without an index buffer"), std::string::npos);
-    if (!device->info().features.drawIndirectCount)
+    if (!device->info().features.drawIndirectCount) {
         EXPECT_NE(errorOf([&] { cmd->drawIndirectCount(args, 0, args, 0, 1); }).find("not supported"), std::string::npos);
+    }
     cmd->drawIndirect(args, 0);  // a valid one still records
     cmd->endRenderPass();
     device->wait(device->submit(*cmd));

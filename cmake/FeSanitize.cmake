@@ -1,0 +1,25 @@
+# Sanitizer builds: -DFE_SANITIZE=address,undefined (any list -fsanitize takes), used by
+# tools/run-sanitized-tests.sh and CI. Every target is instrumented; undefined behaviour stops
+# the program (no recovery), so a test that triggers it fails.
+#
+# Leak checking needs the driver modules loaded at exit: the Vulkan loader and our GL platform
+# dlclose Mesa's drivers and the validation layer when a device goes, and LeakSanitizer then
+# cannot tell which module a leaked block came from, so suppressions by module name (see
+# tools/sanitizers/lsan.supp) cannot match. Linking KeepModulesLoaded.c into every program
+# keeps every dlopened module mapped until the process ends; nothing else changes.
+set(FE_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address,undefined (empty: none)")
+if(FE_SANITIZE)
+  add_compile_options(-fsanitize=${FE_SANITIZE} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  # Exported, so the interposed dlclose also serves libraries that are dlopened (Mesa's EGL).
+  add_link_options(-fsanitize=${FE_SANITIZE} -Wl,--export-dynamic-symbol=dlclose)
+  # Compiled here and put on every program's link line (not into the installed libraries).
+  set(_keep ${CMAKE_BINARY_DIR}/keep_modules_loaded.o)
+  execute_process(COMMAND ${CMAKE_C_COMPILER} -O2 -fPIC -c ${CMAKE_CURRENT_LIST_DIR}/../tools/sanitizers/KeepModulesLoaded.c -o ${_keep}
+                  RESULT_VARIABLE _failed)
+  if(_failed)
+    message(FATAL_ERROR "fe: cannot compile tools/sanitizers/KeepModulesLoaded.c")
+  endif()
+  string(APPEND CMAKE_C_STANDARD_LIBRARIES " ${_keep}")
+  string(APPEND CMAKE_CXX_STANDARD_LIBRARIES " ${_keep}")
+  message(STATUS "fe: sanitizers ${FE_SANITIZE}; driver modules stay loaded for leak checking")
+endif()

@@ -1,0 +1,249 @@
+#include "Cli.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "fe/gdi/Backend.h"
+#include "render/TechniqueRenderer.h"
+#include "shading/Tonemap.h"
+
+namespace fe::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: fe <command> [options]\n"
+    "commands:\n"
+    "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
+    "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
+    "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
+    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
+    "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
+    "      --one-pass-culling (deferred-tiled: each work group culls its tile in shared memory, no culling pass)\n"
+    "      --rebuild-nov (redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer)\n"
+    "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
+    "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
+    "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
+    "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique)\n"
+    "      --ibl-prefiltered: light the scene by the environment through the fast path (prefiltered cube,\n"
+    "        split-sum table, SH irradiance) instead of sampling it\n"
+    "      --rates SOURCE=RATE,...: redeferred, each illumination source in an I-buffer of its own rate (1, 2, 4;\n"
+    "        unset: --illum-scale): punctual, shadowed, ibl-diffuse, ibl-specular\n"
+    "      --temporal (redeferred, --illum-scale 2|4): the reduced-rate samples jitter and accumulate over frames\n"
+    "      --orbit DEGREES: the camera turns about the scene's vertical axis over the --frames\n"
+    "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
+    "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
+    "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
+    "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
+    "        fit or Khronos PBR Neutral) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
+    "        frames blended with the reprojected history; it converges over --frames)\n"
+    "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
+    "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
+    "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\", a heat map)\n"
+    "      --strict: the loader's warnings (content skipped or approximated, printed on stderr) are errors\n"
+    "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
+    "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
+    "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
+    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"] [--no-ui] [--validation]\n"
+    "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
+    "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
+    "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
+    "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
+    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
+    "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
+    "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
+    "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
+    "      conformance suite's cross-backend images; writes DIR/results.json,\n"
+    "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench)\n"
+    "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
+    "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
+    "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
+    "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
+    "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
+
+}  // namespace
+
+// The usage text with every technique of the engine's table, one line each.
+std::string usage() {
+    std::string u = kUsage;
+    u += "techniques (--technique):\n";
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        std::string name = t.name;
+        u += "  " + name + std::string(name.size() < 20 ? 20 - name.size() : 1, ' ') + t.summary + "\n";
+    }
+    return u;
+}
+
+// The usage lines of one command (from kUsage: the line starting "  COMMAND" and its
+// continuation lines), the footer of its --help.
+std::string commandUsage(const std::string& command) {
+    std::istringstream in(usage());
+    std::string line, out;
+    bool inside = false;
+    while (std::getline(in, line)) {
+        if (line.rfind("  " + command + " ", 0) == 0 || line == "  " + command) inside = true;
+        else if (line.rfind("      ", 0) != 0) inside = false;
+        if (inside) out += line + "\n";
+    }
+    return out;
+}
+
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
+    const std::string command = argv[first - 1];
+    CLI::App app{"fe " + command + ": see the usage below", "fe " + command};
+    app.footer("\nUsage:\n" + commandUsage(command));
+    app.allow_extras(false);
+    app.positionals_at_end(false);
+    std::map<std::string, std::string> values;
+    std::map<std::string, bool> on;
+    for (const std::string& o : valued) app.add_option(o, values[o])->type_name("VALUE")->allow_extra_args(false);
+    app.add_option("--log-level", values["--log-level"], "trace, debug, info, warn (default), error or off; also FE_LOG_LEVEL")
+        ->type_name("LEVEL");
+    for (const std::string& f : flags) app.add_flag(f, on[f]);
+    Args a;
+    app.add_option("arguments", a.positional, "scene or files, as the command takes")->type_name("");
+    try {
+        // CLI11 skips argv[0] as the program's name: the command's name stands in for it.
+        app.parse(argc - first + 1, argv + first - 1);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        throw HelpShown{};
+    } catch (const CLI::ParseError& e) {
+        throw UsageError(e.what());
+    }
+    for (const std::string& o : valued)
+        if (app.count(o)) a.options[o] = values[o];
+    for (const std::string& f : flags)
+        if (on[f]) a.options[f] = "1";
+    if (app.count("--log-level")) {
+        const spdlog::level::level_enum level = spdlog::level::from_str(values["--log-level"]);
+        if (level == spdlog::level::off && values["--log-level"] != "off")
+            throw UsageError("--log-level must be trace, debug, info, warn, error or off, got '" + values["--log-level"] + "'");
+        spdlog::set_level(level);
+    }
+    return a;
+}
+
+uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi) {
+    char* end = nullptr;
+    long v = std::strtol(s.c_str(), &end, 10);
+    if (s.empty() || *end || v < long(lo) || v > long(hi))
+        throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                         "], got '" + s + "'");
+    return uint32_t(v);
+}
+
+const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
+                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
+                                    "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
+                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view"};
+const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
+                                    "--ibl-prefiltered", "--temporal"};
+
+RenderJob renderJob(const Args& a) {
+    if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
+    std::string spec = a.positional.empty() ? "builtin:spheres" : a.positional[0];
+    render::RenderSettings s;
+    auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
+    s.technique = opt("--technique", "forward");
+    if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
+    s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
+    s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
+    s.iblSamples = parseUint(opt("--ibl-samples", "0"), "--ibl-samples", 0, 65536);
+    s.iblPrefiltered = a.options.count("--ibl-prefiltered") > 0;
+    const std::string shadows = opt("--shadows", "off");
+    if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
+    s.shadows.enabled = shadows == "on";
+    s.shadows.mapSize = parseUint(opt("--shadow-map-size", "1024"), "--shadow-map-size", 16, 16384);
+    s.shadows.cascades = parseUint(opt("--shadow-cascades", "4"), "--shadow-cascades", 1, 4);
+    s.shadows.pointBudget = parseUint(opt("--shadow-point-budget", "4"), "--shadow-point-budget", 0, 1000);
+    const std::string filter = opt("--shadow-filter", "pcf");
+    if (filter != "pcf" && filter != "none") throw UsageError("--shadow-filter must be pcf or none, got '" + filter + "'");
+    s.shadows.pcf = filter == "pcf";
+    for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
+        if (a.options.count(k) && !s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
+    if (const std::string rates = opt("--rates", ""); !rates.empty()) {
+        // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
+        std::stringstream list(rates);
+        for (std::string item; std::getline(list, item, ',');) {
+            const size_t eq = item.find('=');
+            const std::string source = item.substr(0, eq);
+            uint32_t* r = source == "punctual"       ? &s.rates.punctual
+                          : source == "shadowed"     ? &s.rates.shadowed
+                          : source == "ibl-diffuse"  ? &s.rates.iblDiffuse
+                          : source == "ibl-specular" ? &s.rates.iblSpecular
+                                                     : nullptr;
+            if (!r || eq == std::string::npos)
+                throw UsageError("--rates takes SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular; got '" +
+                                 item + "'");
+            *r = parseUint(item.substr(eq + 1), "--rates", 1, 4);
+            if (*r == 3) throw UsageError("--rates: a rate must be 1, 2 or 4, got 3");
+        }
+    }
+    std::string size = opt("--size", "320x240");
+    size_t x = size.find('x');
+    if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
+    s.width = parseUint(size.substr(0, x), "width", 1, 8192);
+    s.height = parseUint(size.substr(x + 1), "height", 1, 8192);
+    char* end = nullptr;
+    std::string ex = opt("--exposure", "1");
+    s.exposure = std::strtof(ex.c_str(), &end);
+    if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
+    const std::string tonemap = opt("--tonemap", "clamp");
+    if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
+    else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
+    const std::string aa = opt("--aa", "none");
+    if (aa != "none" && aa != "fxaa" && aa != "taa") throw UsageError("--aa must be none, fxaa or taa, got '" + aa + "'");
+    s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : aa == "taa" ? render::AntiAliasing::Taa : render::AntiAliasing::None;
+    render::DirectorOptions director;
+    const std::string budget = opt("--error-budget", "0");
+    director.errorBudgetPercent = std::strtod(budget.c_str(), &end);
+    if (*end || !(director.errorBudgetPercent >= 0 && director.errorBudgetPercent <= 100))
+        throw UsageError("--error-budget must be a percentage from 0 to 100, got '" + budget + "'");
+    if (a.options.count("--error-budget") && s.technique != "auto")
+        throw UsageError("--error-budget applies to --technique auto");
+    const bool window = a.options.count("--window") > 0;
+    const std::string backend = opt("--backend", "auto");
+    if (window && gdi::windowCandidates(backend).empty())
+        throw UsageError("--window needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " + backend +
+                         " is headless");
+    const std::string vsync = opt("--vsync", "on");
+    if (vsync != "on" && vsync != "off") throw UsageError("--vsync must be on or off, got '" + vsync + "'");
+    if (a.options.count("--vsync") && !window) throw UsageError("--vsync applies to --window");
+    // With a window and no --frames, frames are shown until the window is closed.
+    const bool untilClosed = window && !a.options.count("--frames");
+    const uint32_t frames = untilClosed ? 1 : parseUint(opt("--frames", "1"), "--frames", 1, 10000);
+    assets::BuiltinOptions builtin;
+    builtin.lights = parseUint(opt("--lights", "512"), "--lights", 0, 100000);
+    const std::string out = opt("--out", "out.png");
+    const bool pfm = out.size() > 4 && out.substr(out.size() - 4) == ".pfm";
+    if (!pfm && !(out.size() > 4 && out.substr(out.size() - 4) == ".png"))
+        throw UsageError("--out must end in .png or .pfm, got '" + out + "'");
+
+    s.displayImage = !pfm || window;  // the PNG (and the window) show the GPU's display pass output
+    s.aliasing = !a.options.count("--no-aliasing");
+    s.illumSplit = a.options.count("--illum-split") > 0;
+    s.precomputedNoV = !a.options.count("--rebuild-nov");
+    s.tileCullingPass = !a.options.count("--one-pass-culling");
+    s.temporal = a.options.count("--temporal") > 0;
+    s.debugView = opt("--debug-view", "");
+    const std::string orbitText = opt("--orbit", "0");
+    const double orbitDegrees = std::strtod(orbitText.c_str(), &end);
+    if (*end || !std::isfinite(orbitDegrees) || std::abs(orbitDegrees) > 3600)
+        throw UsageError("--orbit takes degrees (at most 3600), got '" + orbitText + "'");
+    if (!s.tileCullingPass && s.technique != "deferred-tiled")
+        throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
+    const std::string dumpGraph = opt("--dump-graph", "");
+    return RenderJob{.spec = spec, .settings = s, .director = director, .window = window, .backend = backend,
+                     .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
+                     .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph};
+
+}
+
+}  // namespace fe::cli

@@ -1,0 +1,56 @@
+// fe's command line, apart from the commands' work so it can be tested and fuzzed on its own
+// (tests/fuzz/CliFuzzer.cpp): the usage text, CLI11 parsing into Args, and `fe render`'s
+// options checked and turned into a RenderJob, with every bad value a UsageError.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "assets/BuiltinScenes.h"
+#include "integration/RenderDirector.h"
+#include "render/RenderSettings.h"
+
+namespace fe::cli {
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+struct HelpShown {};  // `fe COMMAND --help` printed its help: exit 0
+
+// Every command's usage, and the techniques; the usage lines of one command.
+std::string usage();
+std::string commandUsage(const std::string& command);
+
+// One command's arguments, parsed by CLI11: `--name value` options and flags as named (anything
+// else is a usage error saying what), positional arguments, --help for each command, and
+// --log-level for every command.
+struct Args {
+    std::map<std::string, std::string> options;
+    std::vector<std::string> positional;
+};
+// argv[first - 1] is the command's name; its arguments follow.
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags);
+uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi);
+
+// `fe render`: its options and flags, and what they ask for.
+extern const std::vector<std::string> kRenderOptions, kRenderFlags;
+struct RenderJob {
+    std::string spec;  // the scene: a path or builtin:NAME
+    render::RenderSettings settings;
+    render::DirectorOptions director;
+    bool window = false;
+    std::string backend;
+    bool vsync = true;
+    bool untilClosed = false;  // a window and no --frames: until it is closed
+    uint32_t frames = 1;
+    assets::BuiltinOptions builtin;
+    std::string out;
+    bool pfm = false;
+    double orbitDegrees = 0;
+    std::string dumpGraph;
+};
+RenderJob renderJob(const Args& a);
+
+}  // namespace fe::cli
