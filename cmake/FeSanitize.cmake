@@ -10,8 +10,12 @@
 set(FE_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address,undefined (empty: none)")
 if(FE_SANITIZE)
   add_compile_options(-fsanitize=${FE_SANITIZE} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  add_link_options(-fsanitize=${FE_SANITIZE})
+endif()
+# The fuzzers (-DFE_FUZZ=ON) are sanitized too and need the same for their exit leak check.
+if(FE_SANITIZE OR FE_FUZZ)
   # Exported, so the interposed dlclose also serves libraries that are dlopened (Mesa's EGL).
-  add_link_options(-fsanitize=${FE_SANITIZE} -Wl,--export-dynamic-symbol=dlclose)
+  add_link_options(-Wl,--export-dynamic-symbol=dlclose)
   # Compiled here and put on every program's link line (not into the installed libraries).
   set(_keep ${CMAKE_BINARY_DIR}/keep_modules_loaded.o)
   execute_process(COMMAND ${CMAKE_C_COMPILER} -O2 -fPIC -c ${CMAKE_CURRENT_LIST_DIR}/../tools/sanitizers/KeepModulesLoaded.c -o ${_keep}
@@ -21,5 +25,5 @@ if(FE_SANITIZE)
   endif()
   string(APPEND CMAKE_C_STANDARD_LIBRARIES " ${_keep}")
   string(APPEND CMAKE_CXX_STANDARD_LIBRARIES " ${_keep}")
-  message(STATUS "fe: sanitizers ${FE_SANITIZE}; driver modules stay loaded for leak checking")
+  message(STATUS "fe: driver modules stay loaded for leak checking")
 endif()
