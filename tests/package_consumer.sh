@@ -3,9 +3,12 @@
 # examples configured on their own against it (find_package(fe) 0.1: fe::gdi, fe::renderer,
 # fe_add_shaders), built and run headless on every backend with validation on; then the
 # turntable compiled again with nothing but pkg-config's flags, and the installed fe run.
-#   package_consumer.sh BUILD_DIR SOURCE_DIR WORK_DIR
+#   package_consumer.sh BUILD_DIR SOURCE_DIR WORK_DIR [SANITIZERS]
+# SANITIZERS: the build's FE_SANITIZE; its libraries need the consumer linked with them too.
 set -euo pipefail
-build=$1 src=$2 work=$3
+build=$1 src=$2 work=$3 sanitize=${4:-}
+flags=""
+[ -z "$sanitize" ] || flags="-fsanitize=$sanitize"
 rm -rf "$work"
 mkdir -p "$work"
 step() {  # runs a step quietly, showing its log when it fails
@@ -14,7 +17,8 @@ step() {  # runs a step quietly, showing its log when it fails
   "$@" >"$log" 2>&1 || { cat "$log"; echo "package consumer: failed: $*"; exit 1; }
 }
 step "$work/install.log" cmake --install "$build" --prefix "$work/prefix"
-step "$work/configure.log" cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release
+step "$work/configure.log" cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags"
 step "$work/build.log" cmake --build "$work/examples" -j2
 for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
@@ -22,7 +26,7 @@ for b in vulkan gl-egl gl-osmesa; do
 done
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046 # pkg-config's flags are words
-c++ -O1 -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe)
+c++ -O1 $flags -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe)
 "$work/turntable_pkgconfig" --backend gl-osmesa --frames 1 --size 64x48 --out "$work/turntable_pkgconfig.png"
 # (into a file, not a pipe: head closing the pipe early would fail fe with SIGPIPE under pipefail)
 "$work/prefix/bin/fe" info --backend vulkan >"$work/info.txt"
