@@ -48,7 +48,11 @@ VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
     ai.commandPool = pool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
-    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_); }), "vkAllocateCommandBuffers");
+    if (VkResult r = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_); });
+        r != VK_SUCCESS) {
+        vkDestroyCommandPool(dev_.vkDevice(), pool_, nullptr);  // the destructor does not run when this throws
+        check(r, "vkAllocateCommandBuffers");
+    }
     pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
 }
 
