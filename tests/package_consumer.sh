@@ -7,10 +7,16 @@
 # SANITIZERS: the build's FE_SANITIZE; its libraries need the consumer linked with them too.
 set -euo pipefail
 build=$1 src=$2 work=$3 sanitize=${4:-}
-flags=""
-[ -z "$sanitize" ] || flags="-fsanitize=$sanitize"
+flags="" linkflags=""
+if [ -n "$sanitize" ]; then
+  # As the build does (cmake/FeSanitize.cmake): driver modules kept loaded, so leak reports
+  # can be attributed and the driver suppressions match.
+  flags="-fsanitize=$sanitize"
+  linkflags="$flags $work/keep_modules_loaded.o -Wl,--export-dynamic-symbol=dlclose"
+fi
 rm -rf "$work"
 mkdir -p "$work"
+[ -z "$sanitize" ] || cc -O2 -c "$src/tools/sanitizers/KeepModulesLoaded.c" -o "$work/keep_modules_loaded.o"
 step() {  # runs a step quietly, showing its log when it fails
   local log=$1
   shift
@@ -18,7 +24,7 @@ step() {  # runs a step quietly, showing its log when it fails
 }
 step "$work/install.log" cmake --install "$build" --prefix "$work/prefix"
 step "$work/configure.log" cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags"
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$linkflags"
 step "$work/build.log" cmake --build "$work/examples" -j2
 for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
@@ -26,7 +32,7 @@ for b in vulkan gl-egl gl-osmesa; do
 done
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046 # pkg-config's flags are words
-c++ -O1 $flags -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe)
+c++ -O1 $flags -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe) $linkflags
 "$work/turntable_pkgconfig" --backend gl-osmesa --frames 1 --size 64x48 --out "$work/turntable_pkgconfig.png"
 # (into a file, not a pipe: head closing the pipe early would fail fe with SIGPIPE under pipefail)
 "$work/prefix/bin/fe" info --backend vulkan >"$work/info.txt"
