@@ -5,6 +5,9 @@
 // input must end in the documented errors: UsageError, AssetError or gdi::Error.
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -67,6 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const fe::cli::HelpShown&) {
     } catch (const fe::assets::AssetError&) {
     } catch (const fe::gdi::Error&) {
+    } catch (const std::exception& e) {  // the contract broken: a finding
+        std::fprintf(stderr, "parsing threw an undocumented exception: %s\n", e.what());
+        std::abort();
     }
     return 0;
 }
