@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "Cli.h"
+#include "FuzzSupport.h"
 #include "assets/AssetError.h"
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Device.h"
@@ -71,8 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const fe::assets::AssetError&) {
     } catch (const fe::gdi::Error&) {
     } catch (const std::exception& e) {  // the contract broken: a finding
-        std::fprintf(stderr, "parsing threw an undocumented exception: %s\n", e.what());
-        std::abort();
+        fe::fuzz::fuzzAssert(false, "parsing threw an undocumented exception:", e.what());
     }
     return 0;
 }

@@ -4,12 +4,22 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace fe::fuzz {
+
+// A harness's contract: when `ok` is false the input is a finding. Aborting makes libFuzzer
+// keep the input in build-fuzz/findings/ and fail the run (tools/fuzz/run.sh).
+inline void fuzzAssert(bool ok, const char* what, const char* detail = "") {
+    if (ok) return;
+    std::fprintf(stderr, "fuzz finding: %s %s\n", what, detail);
+    std::abort();
+}
 
 // scene.glb when the input starts with the GLB magic, else scene.gltf.
 inline std::string writeInput(const uint8_t* data, size_t size) {

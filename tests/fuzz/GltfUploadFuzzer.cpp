@@ -31,17 +31,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         d.waitIdle();
     } catch (const fe::assets::AssetError&) {
     } catch (const fe::gdi::DeviceLostError& e) {
-        std::fprintf(stderr, "device lost: %s\n", e.what());
-        std::abort();
+        fe::fuzz::fuzzAssert(false, "device lost:", e.what());
     } catch (const fe::gdi::Error&) {
     }
-    if (!(d.liveObjects() == before)) {
-        std::fprintf(stderr, "device objects left behind: %s\n", fe::gdi::toString(d.liveObjects()).c_str());
-        std::abort();
-    }
-    if (d.validationErrorCount() != validationBefore) {
-        std::fprintf(stderr, "validation errors while uploading\n");
-        std::abort();
-    }
+    fe::fuzz::fuzzAssert(d.liveObjects() == before, "device objects left behind:", fe::gdi::toString(d.liveObjects()).c_str());
+    fe::fuzz::fuzzAssert(d.validationErrorCount() == validationBefore, "validation errors while uploading");
     return 0;
 }
