@@ -16,14 +16,17 @@ endif()
 if(FE_SANITIZE OR FE_FUZZ)
   # Exported, so the interposed dlclose also serves libraries that are dlopened (Mesa's EGL).
   add_link_options(-Wl,--export-dynamic-symbol=dlclose)
-  # Compiled here and put on every program's link line (not into the installed libraries).
-  set(_keep ${CMAKE_BINARY_DIR}/keep_modules_loaded.o)
-  execute_process(COMMAND ${CMAKE_C_COMPILER} -O2 -fPIC -c ${CMAKE_CURRENT_LIST_DIR}/../tools/sanitizers/KeepModulesLoaded.c -o ${_keep}
-                  RESULT_VARIABLE _failed)
-  if(_failed)
-    message(FATAL_ERROR "fe: cannot compile tools/sanitizers/KeepModulesLoaded.c")
-  endif()
-  string(APPEND CMAKE_C_STANDARD_LIBRARIES " ${_keep}")
-  string(APPEND CMAKE_CXX_STANDARD_LIBRARIES " ${_keep}")
+  # Compiled here and put on every program's link line (not into the installed libraries):
+  # KeepModulesLoaded.c as above, SanitizerDefaults.c the runtime options every program needs.
+  foreach(_src KeepModulesLoaded SanitizerDefaults)
+    set(_obj ${CMAKE_BINARY_DIR}/${_src}.o)
+    execute_process(COMMAND ${CMAKE_C_COMPILER} -O2 -fPIC -c ${CMAKE_CURRENT_LIST_DIR}/../tools/sanitizers/${_src}.c -o ${_obj}
+                    RESULT_VARIABLE _failed)
+    if(_failed)
+      message(FATAL_ERROR "fe: cannot compile tools/sanitizers/${_src}.c")
+    endif()
+    string(APPEND CMAKE_C_STANDARD_LIBRARIES " ${_obj}")
+    string(APPEND CMAKE_CXX_STANDARD_LIBRARIES " ${_obj}")
+  endforeach()
   message(STATUS "fe: driver modules stay loaded for leak checking")
 endif()

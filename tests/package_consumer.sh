@@ -10,13 +10,15 @@ build=$1 src=$2 work=$3 sanitize=${4:-}
 flags="" linkflags=""
 if [ -n "$sanitize" ]; then
   # As the build does (cmake/FeSanitize.cmake): driver modules kept loaded, so leak reports
-  # can be attributed and the driver suppressions match.
+  # can be attributed and the driver suppressions match, and the same runtime defaults.
   flags="-fsanitize=$sanitize"
-  linkflags="$flags $work/keep_modules_loaded.o -Wl,--export-dynamic-symbol=dlclose"
+  linkflags="$flags $work/KeepModulesLoaded.o $work/SanitizerDefaults.o -Wl,--export-dynamic-symbol=dlclose"
 fi
 rm -rf "$work"
 mkdir -p "$work"
-[ -z "$sanitize" ] || cc -O2 -c "$src/tools/sanitizers/KeepModulesLoaded.c" -o "$work/keep_modules_loaded.o"
+if [ -n "$sanitize" ]; then
+  for f in KeepModulesLoaded SanitizerDefaults; do cc -O2 -c "$src/tools/sanitizers/$f.c" -o "$work/$f.o"; done
+fi
 step() {  # runs a step quietly, showing its log when it fails
   local log=$1
   shift

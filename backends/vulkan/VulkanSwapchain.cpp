@@ -12,6 +12,9 @@
 
 namespace fe::vk {
 
+// The fault trace names this file's native calls "vkXxx (swap chain)": the fault sweep injects
+// into the first call of each named site, and the device's own vkCreateSemaphore comes first.
+
 namespace {
 // A lost device during present: VulkanDevice::present turns it into the device's lost state.
 void checkPresent(VkResult r, const char* call) {
@@ -117,18 +120,18 @@ void VulkanSwapchain::attach(VkPhysicalDevice physical, VkDevice device, VkQueue
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pci.queueFamilyIndex = queueFamily;
-    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &pool_); }), "vkCreateCommandPool");
+    check(nativeAllocation("vkCreateCommandPool (swap chain)", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &pool_); }), "vkCreateCommandPool");
     for (Frame& f : frames_) {
         VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         ai.commandPool = pool_;
         ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         ai.commandBufferCount = 1;
-        check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &f.commands); }), "vkAllocateCommandBuffers");
+        check(nativeAllocation("vkAllocateCommandBuffers (swap chain)", [&] { return vkAllocateCommandBuffers(device_, &ai, &f.commands); }), "vkAllocateCommandBuffers");
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         fci.flags = VK_FENCE_CREATE_SIGNALED_BIT;  // the first use of a slot waits for nothing
-        check(nativeAllocation("vkCreateFence", [&] { return vkCreateFence(device_, &fci, nullptr, &f.done); }), "vkCreateFence");
+        check(nativeAllocation("vkCreateFence (swap chain)", [&] { return vkCreateFence(device_, &fci, nullptr, &f.done); }), "vkCreateFence");
         VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        check(nativeAllocation("vkCreateSemaphore", [&] { return vkCreateSemaphore(device_, &sci, nullptr, &f.acquired); }), "vkCreateSemaphore");
+        check(nativeAllocation("vkCreateSemaphore (swap chain)", [&] { return vkCreateSemaphore(device_, &sci, nullptr, &f.acquired); }), "vkCreateSemaphore");
     }
 }
 
@@ -170,7 +173,7 @@ void VulkanSwapchain::recreate(uint32_t width, uint32_t height) {
     ci.clipped = VK_TRUE;
     ci.oldSwapchain = swapchain_;
     VkSwapchainKHR created = VK_NULL_HANDLE;
-    check(nativeAllocation("vkCreateSwapchainKHR", [&] { return vkCreateSwapchainKHR(device_, &ci, nullptr, &created); }), "vkCreateSwapchainKHR");
+    check(nativeAllocation("vkCreateSwapchainKHR (swap chain)", [&] { return vkCreateSwapchainKHR(device_, &ci, nullptr, &created); }), "vkCreateSwapchainKHR");
     destroyChain(swapchain_);
     swapchain_ = created;
     extent_ = extent;
@@ -183,7 +186,7 @@ void VulkanSwapchain::recreate(uint32_t width, uint32_t height) {
     presentReady_.assign(n, VK_NULL_HANDLE);
     for (VkSemaphore& s : presentReady_) {
         VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        check(nativeAllocation("vkCreateSemaphore", [&] { return vkCreateSemaphore(device_, &sci, nullptr, &s); }), "vkCreateSemaphore");
+        check(nativeAllocation("vkCreateSemaphore (swap chain)", [&] { return vkCreateSemaphore(device_, &sci, nullptr, &s); }), "vkCreateSemaphore");
     }
 }
 
@@ -209,7 +212,7 @@ void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height) {
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &staging_); }), "vkCreateImage");
+    check(nativeAllocation("vkCreateImage (swap chain)", [&] { return vkCreateImage(device_, &ci, nullptr, &staging_); }), "vkCreateImage");
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, staging_, &req);
     VkPhysicalDeviceMemoryProperties props;
@@ -225,7 +228,7 @@ void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height) {
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
     ai.memoryTypeIndex = type;
-    check(nativeAllocation("vkAllocateMemory", [&] { return vkAllocateMemory(device_, &ai, nullptr, &stagingMemory_); }), "vkAllocateMemory");
+    check(nativeAllocation("vkAllocateMemory (swap chain)", [&] { return vkAllocateMemory(device_, &ai, nullptr, &stagingMemory_); }), "vkAllocateMemory");
     check(vkBindImageMemory(device_, staging_, stagingMemory_, 0), "vkBindImageMemory");
     stagingExtent_ = {width, height};
 }
@@ -233,7 +236,7 @@ void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height) {
 void VulkanSwapchain::record(VkCommandBuffer cb, VkImage target, const Source& src) {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }), "vkBeginCommandBuffer");
+    check(nativeAllocation("vkBeginCommandBuffer (swap chain)", [&] { return vkBeginCommandBuffer(cb, &bi); }), "vkBeginCommandBuffer");
     VulkanCommandList::fullBarrier(cb);  // after every earlier submission's writes to the texture
 
     VkImage from = src.image;
@@ -277,7 +280,7 @@ void VulkanSwapchain::record(VkCommandBuffer cb, VkImage target, const Source& s
     barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT,
             imageBarrier(target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
                          VK_ACCESS_TRANSFER_WRITE_BIT, 0));
-    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer");
+    check(nativeAllocation("vkEndCommandBuffer (swap chain)", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer");
 }
 
 bool VulkanSwapchain::present(const Source& src) {
@@ -311,7 +314,7 @@ bool VulkanSwapchain::present(const Source& src) {
         si.pCommandBuffers = &f.commands;
         si.signalSemaphoreCount = 1;
         si.pSignalSemaphores = &presentReady_[index];
-        checkPresent(nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, f.done); }), "vkQueueSubmit");
+        checkPresent(nativeSubmission("vkQueueSubmit (swap chain)", [&] { return vkQueueSubmit(queue_, 1, &si, f.done); }), "vkQueueSubmit");
 
         VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
         pi.waitSemaphoreCount = 1;
@@ -319,7 +322,7 @@ bool VulkanSwapchain::present(const Source& src) {
         pi.swapchainCount = 1;
         pi.pSwapchains = &swapchain_;
         pi.pImageIndices = &index;
-        r = nativeSubmission("vkQueuePresentKHR", [&] { return vkQueuePresentKHR(queue_, &pi); });
+        r = nativeSubmission("vkQueuePresentKHR (swap chain)", [&] { return vkQueuePresentKHR(queue_, &pi); });
         // Out of date or suboptimal: the semaphore wait still happens; recreate next time.
         if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) stale_ = true;
         else checkPresent(r, "vkQueuePresentKHR");

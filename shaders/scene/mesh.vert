@@ -12,7 +12,12 @@ layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec2 vUv;
 // The depth pre-pass and the EQUAL-tested passes after it must compute bit-identical depths.
+// `invariant` is GLSL's way, but Mesa 22.3 drops it: glslang puts it on the gl_PerVertex member,
+// and spirv_to_nir warns ("Decoration not allowed on struct members: SpvDecorationInvariant")
+// and ignores it. `precise` (NoContraction on every operation leading to gl_Position) is honoured:
+// no fused or reassociated arithmetic, whatever the rest of the pipeline lets the compiler drop.
 invariant gl_Position;
+precise gl_Position;
 void main() {
     vec4 world = object.world * vec4(inPosition, 1.0);
     vWorld = world.xyz;

@@ -18,10 +18,11 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(current, 0);
     vec3 c = texelFetch(current, p, 0).rgb;
-    if (taa.params.x < 0.5) {
-        outColor = vec4(c, 1.0);
-        return;
-    }
+    // No branch on the uniform alone: Mesa 22.3's lavapipe compiles a variant of a shader whose
+    // control flow depends only on uniforms at draw time, whenever their buffer changes (here every
+    // frame), and never frees it. Combined with the per-pixel test below, the condition is not
+    // inlinable, and nothing is compiled or leaked per frame.
+    bool historyValid = taa.params.x >= 0.5;
     vec3 lo = c, hi = c;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -35,7 +36,7 @@ void main() {
     // A point at infinity (nothing drawn, infinite far plane) reprojects as a direction.
     vec4 q = abs(h.w) < 1e-9 ? taa.prevViewProj * vec4(h.xyz, 0.0) : taa.prevViewProj * vec4(h.xyz / h.w, 1.0);
     vec2 uv = q.xy / q.w * 0.5 + 0.5;
-    if (q.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
+    if (!historyValid || q.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
         outColor = vec4(c, 1.0);  // nothing to reproject from: this frame's sample alone
         return;
     }
