@@ -2,11 +2,14 @@
 //   frames: one renderer draws --frames frames of the scene;
 //   churn:  --cycles times, the scene is loaded, a renderer made, one frame drawn, all released.
 // Reported for each: resident memory at the start and end, its least-squares slope (bytes per
-// frame or per cycle, over the second half, after warm-up), minor page faults per frame or cycle
+// frame or per cycle, over the second half, after warm-up), the same for the malloc heap in use
+// (what is allocated and not freed: resident memory also moves with the allocator's retention and
+// fragmentation, the heap only with what someone holds), minor page faults per frame or cycle
 // (pages the process mapped afresh), and the device's live gdi objects before and after.
 // --check exits 1 when live objects grew (CI runs a short version with it); --out writes JSON.
 //   fe_soak [--backend all|NAME] [--frames 10000] [--cycles 1000] [--scene builtin:shadows]
 //           [--technique deferred] [--size 64x64] [--out soak.json] [--check]
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -36,6 +39,13 @@ double residentBytes() {
     return double(resident) * double(sysconf(_SC_PAGESIZE));
 }
 
+// Bytes handed out by malloc and not yet freed, over every arena (glibc): the arenas' chunks in
+// use plus the large blocks malloc maps on their own.
+double heapInUseBytes() {
+    const struct mallinfo2 m = mallinfo2();
+    return double(m.uordblks + m.hblkhd);
+}
+
 long minorFaults() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
@@ -60,7 +70,7 @@ double slope(const std::vector<double>& all) {
 struct Phase {
     std::string name;
     uint32_t steps = 0;
-    std::vector<double> resident;  // after each step
+    std::vector<double> resident, heap;  // after each step
     double faultsPerStep = 0;
     gdi::LiveObjects before, after;
 
@@ -69,6 +79,9 @@ struct Phase {
                 {"residentStartMiB", resident.front() / 1048576.0},
                 {"residentEndMiB", resident.back() / 1048576.0},
                 {"slopeBytesPerStep", slope(resident)},
+                {"heapInUseStartMiB", heap.front() / 1048576.0},
+                {"heapInUseEndMiB", heap.back() / 1048576.0},
+                {"heapSlopeBytesPerStep", slope(heap)},
                 {"minorFaultsPerStep", faultsPerStep},
                 {"liveBefore", gdi::toString(before)},
                 {"liveAfter", gdi::toString(after)},
@@ -102,6 +115,7 @@ Phase frames(gdi::Device& device, const Options& o) {
         renderer.renderFrame();
         renderer.passTimings();  // waits for the frame
         p.resident.push_back(residentBytes());
+        p.heap.push_back(heapInUseBytes());
     }
     p.faultsPerStep = double(minorFaults() - faults) / o.frames;
     p.after = device.liveObjects();
@@ -118,6 +132,7 @@ Phase churn(gdi::Device& device, const Options& o) {
         renderer.renderFrame();
         renderer.passTimings();
         p.resident.push_back(residentBytes());
+        p.heap.push_back(heapInUseBytes());
     }
     p.faultsPerStep = double(minorFaults() - faults) / o.cycles;
     p.after = device.liveObjects();
@@ -180,10 +195,12 @@ int main(int argc, char** argv) {
                 if (p.steps == 0) continue;
                 const gdi::Json j = p.json();
                 grew = grew || j["liveObjectsGrew"].get<bool>();
-                std::printf("%-10s %-6s %6u steps: resident %.1f -> %.1f MiB, slope %+.1f bytes/step, %.1f minor faults/step, "
-                            "live objects %s -> %s\n",
+                std::printf("%-10s %-6s %6u steps: resident %.1f -> %.1f MiB, slope %+.1f bytes/step; heap in use %.1f -> %.1f MiB, "
+                            "slope %+.1f bytes/step; %.1f minor faults/step, live objects %s -> %s\n",
                             backend.c_str(), p.name.c_str(), p.steps, j["residentStartMiB"].get<double>(),
-                            j["residentEndMiB"].get<double>(), j["slopeBytesPerStep"].get<double>(), p.faultsPerStep,
+                            j["residentEndMiB"].get<double>(), j["slopeBytesPerStep"].get<double>(),
+                            j["heapInUseStartMiB"].get<double>(), j["heapInUseEndMiB"].get<double>(),
+                            j["heapSlopeBytesPerStep"].get<double>(), p.faultsPerStep,
                             j["liveBefore"].get<std::string>().c_str(), j["liveAfter"].get<std::string>().c_str());
                 b[p.name] = j;
             }
