@@ -11,9 +11,10 @@ python=/usr/bin/python3
 start=$(date +%s)
 "$fe" bench --quick --backend all --out "$out/quick"
 "$fe" bench --sweep bench/sweeps/techniques-720p.json --backend all --frames 5 --out "$out/techniques-720p"
+"$fe" bench --sweep bench/sweeps/tiled-720p.json --backend all --frames 21 --out "$out/tiled-720p"
 "$fe" bench --sweep bench/sweeps/light-scaling.json --backend all --frames 5 --out "$out/light-scaling"
 "$fe" bench --sweep bench/sweeps/shadows.json --backend all --frames 5 --out "$out/shadows"
 "$fe" bench --sweep bench/sweeps/post.json --backend all --frames 5 --out "$out/post"
 "$python" tools/bench/update_benchmarks.py docs/BENCHMARKS.md quick="$out/quick" \
-    techniques-720p="$out/techniques-720p" light-scaling="$out/light-scaling" shadows="$out/shadows" post="$out/post"
+    techniques-720p="$out/techniques-720p" tiled-720p="$out/tiled-720p" light-scaling="$out/light-scaling" shadows="$out/shadows" post="$out/post"
 echo "the full sweep took $(( $(date +%s) - start )) s; results in $out"
