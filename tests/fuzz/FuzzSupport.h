@@ -14,10 +14,13 @@
 namespace fe::fuzz {
 
 // A harness's contract: when `ok` is false the input is a finding. Aborting makes libFuzzer
-// keep the input in build-fuzz/findings/ and fail the run (tools/fuzz/run.sh).
-inline void fuzzAssert(bool ok, const char* what, const char* detail = "") {
+// keep the input in build-fuzz/findings/ and fail the run (tools/fuzz/run.sh). The message
+// names the broken condition and where it is checked.
+#define FUZZ_CHECK(ok, what, detail) ::fe::fuzz::checkContract(bool(ok), #ok, __FILE__, __LINE__, what, detail)
+inline void checkContract(bool ok, const char* condition, const char* file, int line, const char* what,
+                          const std::string& detail) {
     if (ok) return;
-    std::fprintf(stderr, "fuzz finding: %s %s\n", what, detail);
+    std::fprintf(stderr, "fuzz finding: %s %s\n  (%s:%d: %s)\n", what, detail.c_str(), file, line, condition);
     std::abort();
 }
 
