@@ -176,11 +176,12 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
     std::vector<GpuLight> records;
     for (const assets::Light& l : lights) records.push_back(toGpuLight(l));
     if (records.empty()) records.push_back({});  // bound even when empty; count says 0
-    const uint64_t bytes = records.size() * sizeof(GpuLight);
+    const uint64_t bytes = std::max(records.size() * sizeof(GpuLight), kUniformLightBytes);
     if (bytes > lightCapacity_) {
         objects_.destroy(lights_);
         lightCapacity_ = 0;  // until the new buffer exists
-        lights_ = objects_.add(device_.createBuffer({.size = bytes, .usage = gdi::BufferUsage::Storage, .debugName = "scene lights"}));
+        lights_ = objects_.add(device_.createBuffer(
+            {.size = bytes, .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::Uniform, .debugName = "scene lights"}));
         lightCapacity_ = bytes;
     }
     device_.writeBuffer(lights_, 0, gdi::bytesOf(records));

@@ -45,6 +45,7 @@ struct GpuLight {
     glm::vec4 directionType;
     glm::vec4 spotScaleOffset;
 };
+static_assert(sizeof(GpuLight) == 64, "GpuScene::kUniformLightBytes assumes 64-byte light records");
 GpuLight toGpuLight(const assets::Light& light);
 
 struct DrawItem {
@@ -76,6 +77,11 @@ public:
     gdi::BufferHandle indexBuffer() const { return indices_; }
     gdi::BufferHandle lightBuffer() const { return lights_; }
     uint32_t lightCount() const { return lightCount_; }
+    // The light buffer is also a uniform block of kUniformLights records (64 KiB; FE_UNIFORM_LIGHTS
+    // in fe_scene.glsl) for the passes that read the lights faster that way (TileLightCulling):
+    // it is never smaller, so the block's whole range can be bound whatever the light count.
+    static constexpr uint32_t kUniformLights = 1024;
+    static constexpr uint64_t kUniformLightBytes = uint64_t(kUniformLights) * 64;
     const std::vector<DrawItem>& draws() const { return draws_; }
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
     ObjectConstants objectConstants(const DrawItem& item) const;

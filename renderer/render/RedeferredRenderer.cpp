@@ -20,14 +20,15 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
             throw gdi::Error("technique redeferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
         // One shader per scale: a tile is 16x16 pixels, 16 / scale texels wide (the split
         // I-buffer is written per pixel at every scale).
-        const char* shader = s.illumSplit     ? "scene/tiled_illumination_split.comp"
-                             : punctual == 4 ? "scene/tiled_illumination_s4.comp"
-                             : punctual == 2 ? "scene/tiled_illumination_s2.comp"
-                                             : "scene/tiled_illumination.comp";
-        illuminationCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)}));
+        const char* shader = s.illumSplit     ? "tiled_illumination_split"
+                             : punctual == 4 ? "tiled_illumination_s4"
+                             : punctual == 2 ? "tiled_illumination_s2"
+                                             : "tiled_illumination";
         culling_ = std::make_unique<TileLightCulling>(c);
+        illuminationCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = culling_->shader(shader)}));
         std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(false);
         b.push_back(TileLightCulling::listSlot());
+        culling_->useLightBinding(b);
         for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
             b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
         illumination_ = objects_.add(c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
@@ -130,7 +131,7 @@ void RedeferredRenderer::declarePunctual(graph::RenderGraph& g, const IBuffer& i
             b.sample(lists);
             for (auto t : {ib.l0, ib.l1, ib.l2}) b.storage(t);
         }, [this, ib, lists, frame](graph::PassContext& pc) {
-            bindFrameAndLights(pc.cmd, illumination_);
+            culling_->bindFrameAndLights(pc.cmd, illumination_);
             if (frame) {
                 const UploadAllocation fc = frame();
                 pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);

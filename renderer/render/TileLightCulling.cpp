@@ -10,15 +10,39 @@ namespace fe::render {
 TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("tiled light culling needs compute shaders, which " + c.device.info().backend + " lacks");
-    cs_ = objects_.add(
-        c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/tile_light_culling.comp")}));
-    pipeline_ = objects_.add(c.device.createComputePipeline(
-        {.computeShader = cs_,
-         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute},
-                      {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute},
-                      {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute},
-                      {kSlotTileLightsOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute}},
-         .debugName = "light culling"}));
+    uniformLights_ = c.scene.lightCount() <= GpuScene::kUniformLights &&
+                     c.device.info().limits.maxUniformBufferRange >= GpuScene::kUniformLightBytes;
+    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
+    std::vector<gdi::BindingSlot> bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute},
+                                              {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute},
+                                              {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute},
+                                              {kSlotTileLightsOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute}};
+    useLightBinding(bindings);
+    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .bindings = bindings, .debugName = "light culling"}));
+}
+
+const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const {
+    return shaders::find("scene/" + name + ".comp" + (uniformLights_ ? "" : ":FE_LIGHTS_IN_STORAGE"));
+}
+
+void TileLightCulling::useLightBinding(std::vector<gdi::BindingSlot>& slots) const {
+    for (gdi::BindingSlot& s : slots)
+        if (s.slot == kSlotLights) s.type = uniformLights_ ? gdi::BindingType::UniformBuffer : gdi::BindingType::StorageBuffer;
+}
+
+void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
+    cmd.setPipeline(pipeline);
+    const UploadAllocation& fc = ctx_.frameConstants;
+    cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+    if (!uniformLights_) {
+        cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+        return;
+    }
+    // The renderer was made for this many lights (SceneRenderer::updateLights keeps the count).
+    if (ctx_.scene.lightCount() > GpuScene::kUniformLights)
+        throw gdi::Error("tiled light culling: " + std::to_string(ctx_.scene.lightCount()) + " lights where it was made for at most " +
+                         std::to_string(GpuScene::kUniformLights));
+    cmd.setUniformBuffer(kSlotLights, ctx_.scene.lightBuffer(), 0, GpuScene::kUniformLightBytes);
 }
 
 gdi::BindingSlot TileLightCulling::listSlot() {
@@ -42,10 +66,7 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
         b.sample(depth);
         b.storage(lists);
     }, [this, depth, lists, tiles = ((s.width + 15) / 16) * ((s.height + 15) / 16)](graph::PassContext& pc) {
-        pc.cmd.setPipeline(pipeline_);
-        const UploadAllocation& fc = ctx_.frameConstants;
-        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-        pc.cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
+        bindFrameAndLights(pc.cmd, pipeline_);
         pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
         pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
         pc.cmd.dispatch((tiles + 63) / 64, 1);

@@ -22,6 +22,16 @@ public:
     static gdi::BindingSlot listSlot();
     void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const;
 
+    // The passes that walk the lists (this one and the shading passes) read the lights from a
+    // uniform block when the scene's lights fit one (GpuScene::kUniformLights) and the device
+    // binds 64 KiB, else from the storage buffer with their FE_LIGHTS_IN_STORAGE variant.
+    // Such a pass's shader (scene/NAME.comp), in the variant for this scene's lights.
+    const gdi::ShaderBinary& shader(const std::string& name) const;
+    // Its pipeline's light binding: rewrites the kSlotLights entry of `slots`.
+    void useLightBinding(std::vector<gdi::BindingSlot>& slots) const;
+    // Binds the frame constants and the lights for such a pass's pipeline.
+    void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
+
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
     // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.
     static constexpr uint32_t kTileSize = 8;
@@ -31,6 +41,7 @@ public:
 private:
     gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
+    bool uniformLights_ = false;
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
 };

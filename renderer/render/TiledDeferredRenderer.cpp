@@ -9,10 +9,14 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRen
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("technique deferred-tiled needs compute shaders, which " + c.device.info().backend + " lacks");
     if (c.settings.tileCullingPass) culling_ = std::make_unique<TileLightCulling>(c);
-    const char* shader = culling_ ? "scene/tiled_deferred.comp" : "scene/tiled_deferred_onepass.comp";
-    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find(shader)}));
+    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
+                                              .binary = culling_ ? culling_->shader("tiled_deferred")
+                                                                 : shaders::find("scene/tiled_deferred_onepass.comp")}));
     std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(true);
-    if (culling_) b.push_back(TileLightCulling::listSlot());
+    if (culling_) {
+        b.push_back(TileLightCulling::listSlot());
+        culling_->useLightBinding(b);
+    }
     b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
     pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"}));
     if (c.shadows)
@@ -30,7 +34,8 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
         if (culling_) b.sample(lists);
         b.storage(output);
     }, [this, output, lists](graph::PassContext& pc) {
-        bindFrameAndLights(pc.cmd, pipeline_);
+        if (culling_) culling_->bindFrameAndLights(pc.cmd, pipeline_);
+        else bindFrameAndLights(pc.cmd, pipeline_);
         gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
         if (culling_) culling_->bindLists(pc.cmd, pc, lists);
         pc.cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));

@@ -20,13 +20,14 @@ void main() {
         L = first ? m.baseColor : vec3(0.0);
     } else {
         const SurfacePoint s = feMaterialSurface(m, vWorld);
+        const SurfaceBrdf brdf = fePrepareBrdf(s);
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {
             SurfaceLight l = feEvaluateLight(lights[i], vWorld);
 #ifdef FE_SHADOWED
             l.E *= feShadowVisibility(vWorld, s.n);  // forward_shadowed*.frag: one light per pass
 #endif
-            L += feShadeLight(s, l);
+            L += feShadeLight(brdf, l);
         }
 #ifdef FE_IBL
         // The environment's light, with the emissive term in the first pass (frame.counts.z samples).

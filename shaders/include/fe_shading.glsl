@@ -72,26 +72,62 @@ float feFresnelPower(float cosTheta) {
     return x2 * x2 * x;
 }
 
-// Forward: the full per-light BRDF sum (SHADING.md "Per light").
-vec3 feShadeLight(SurfacePoint s, SurfaceLight l) {
-    float NoL = dot(s.n, l.wi);
-    if (NoL <= 0.0) return vec3(0.0);
-    float r = feClampRoughness(s.roughness);
+// The roughness terms of the BRDF, prepared once per pixel by loops over lights (SurfaceBrdf below).
+struct RoughnessTerms {
+    float a2;  // alpha^2, alpha = clamped roughness^2
+    float k;   // Schlick-GGX k
+};
+
+RoughnessTerms feRoughnessTerms(float roughness) {
+    float r = feClampRoughness(roughness);
     float a = r * r;
-    float a2 = a * a;
-    float k = (r + 1.0) * (r + 1.0) / 8.0;
-    float NoV = max(dot(s.n, s.wo), 1e-4);
-    vec3 h = normalize(s.wo + l.wi);
-    float NoH = dot(s.n, h);
-    float P = feFresnelPower(dot(h, s.wo));
-    vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    vec3 F = F0 + (1.0 - F0) * P;
-    float dd = NoH * NoH * (a2 - 1.0) + 1.0;
-    float D = a2 / (FE_PI * dd * dd);
-    float G = NoV / (NoV * (1.0 - k) + k) * NoL / (NoL * (1.0 - k) + k);
-    vec3 f = (1.0 - F) * (1.0 - s.metallic) * s.baseColor / FE_PI + D * F * G / (4.0 * NoV * NoL);
+    return RoughnessTerms(a * a, (r + 1.0) * (r + 1.0) / 8.0);
+}
+
+// The factors of the per-light BRDF sum that depend on the surface alone. Loops over lights
+// (forward, tiled) prepare them once per pixel: CPU rasterizers' shader compilers do not move
+// them out of the loop (on lavapipe that measured 5 % of the tiled lighting pass).
+struct SurfaceBrdf {
+    vec3 n;        // unit shading normal
+    vec3 wo;       // unit vector to the eye
+    vec3 F0;       // specular colour at normal incidence
+    vec3 diffuse;  // (1 - metallic) baseColor / pi
+    float a2;      // alpha^2, alpha = clamped roughness^2
+    float k;       // Schlick-GGX k
+    float NoV;
+    float Gv;      // the view half of G
+};
+
+SurfaceBrdf fePrepareBrdf(SurfacePoint s) {
+    SurfaceBrdf b;
+    b.n = s.n;
+    b.wo = s.wo;
+    const RoughnessTerms t = feRoughnessTerms(s.roughness);
+    b.a2 = t.a2;
+    b.k = t.k;
+    b.NoV = max(dot(s.n, s.wo), 1e-4);
+    b.Gv = b.NoV / (b.NoV * (1.0 - b.k) + b.k);
+    b.F0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    b.diffuse = (1.0 - s.metallic) * s.baseColor / FE_PI;
+    return b;
+}
+
+// Forward: the full per-light BRDF sum (SHADING.md "Per light").
+vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
+    float NoL = dot(b.n, l.wi);
+    if (NoL <= 0.0) return vec3(0.0);
+    vec3 h = normalize(b.wo + l.wi);
+    float NoH = dot(b.n, h);
+    float P = feFresnelPower(dot(h, b.wo));
+    vec3 F = b.F0 + (1.0 - b.F0) * P;
+    float dd = NoH * NoH * (b.a2 - 1.0) + 1.0;
+    float D = b.a2 / (FE_PI * dd * dd);
+    float G = b.Gv * NoL / (NoL * (1.0 - b.k) + b.k);
+    vec3 f = (1.0 - F) * b.diffuse + D * F * G / (4.0 * b.NoV * NoL);
     return f * l.E * NoL;
 }
+
+vec3 feShadeLight(SurfacePoint s, SurfaceLight l) { return feShadeLight(fePrepareBrdf(s), l); }
 
 // Redeferred illumination: the light-only sums (SHADING.md "The redeferred split").
 // The specular sums are stored pre-multiplied by alpha^2 / (4 pi): their raw peak near
@@ -103,13 +139,10 @@ struct IlluminationSums {
     vec3 Lsg2;  // x alpha^2 / (4 pi)
 };
 
-void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, float roughness, SurfaceLight l) {
+void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, RoughnessTerms t, SurfaceLight l) {
     float NoL = dot(n, l.wi);
     if (NoL <= 0.0) return;
-    float r = feClampRoughness(roughness);
-    float a = r * r;
-    float a2 = a * a;
-    float k = (r + 1.0) * (r + 1.0) / 8.0;
+    const float a2 = t.a2, k = t.k;
     vec3 h = normalize(wo + l.wi);
     float NoH = dot(n, h);
     float P = feFresnelPower(dot(h, wo));
@@ -120,6 +153,10 @@ void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, float
     acc.Ldg += (1.0 - P) * EN;
     acc.Lsg1 += EN * scaledInvR;
     acc.Lsg2 += P * EN * scaledInvR;
+}
+
+void feAccumulateIllumination(inout IlluminationSums acc, vec3 n, vec3 wo, float roughness, SurfaceLight l) {
+    feAccumulateIllumination(acc, n, wo, feRoughnessTerms(roughness), l);
 }
 
 // Redeferred material pass: L_d + L_s from the sums (emissive added by the caller).

@@ -12,6 +12,9 @@
 //     tile in shared memory (96-144 ms), or depth bounds scanned per row (120-138 ms).
 #ifndef FE_TILE_CULLING_GLSL
 #define FE_TILE_CULLING_GLSL
+#ifdef FE_TILE_LISTS
+#define FE_LIGHTS_UNIFORM  // the list passes read the lights from a uniform block (fe_scene.glsl)
+#endif
 #include "fe_scene.glsl"
 
 // World-space box around a tile's slice of the view frustum: its 8 corners at the tile's pixel

@@ -21,13 +21,14 @@ void main() {
         const vec4 g0 = texelFetch(gb0, p, 0);
         const vec4 g1 = texelFetch(gb1, p, 0);
         const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
+        const SurfaceBrdf brdf = fePrepareBrdf(s);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
             const GpuLight L = lights[feTileLight(k)];
             // Most of a tile's lights miss most of its pixels: beyond its range a light adds
             // exactly 0 (the range window), so skip the shading.
             if (!feLightReaches(L, s.P)) continue;
-            radiance += feShadeLight(s, feEvaluateLight(L, s.P));
+            radiance += feShadeLight(brdf, feEvaluateLight(L, s.P));
         }
     }
     imageStore(outRadiance, p, vec4(radiance, 1.0));

@@ -37,13 +37,14 @@ void main() {
         const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
         const vec3 n = normalize(g1.xyz);
         const vec3 wo = normalize(frame.cameraPosition.xyz - P);
+        const RoughnessTerms terms = feRoughnessTerms(g1.a);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
             const GpuLight L = lights[feTileLight(k)];
             // Many of a tile's lights miss this texel's point: beyond its range a light adds
             // exactly 0 (range window), skip it.
             if (!feLightReaches(L, P)) continue;
-            feAccumulateIllumination(acc, n, wo, g1.a, feEvaluateLight(L, P));
+            feAccumulateIllumination(acc, n, wo, terms, feEvaluateLight(L, P));
         }
     }
     // The representative pixel's data for the upsampling filter (fe_scene.glsl).

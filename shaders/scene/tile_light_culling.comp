@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
 #define FE_TILE_LISTS  // only for the shared helpers: this pass writes the lists
 #include "fe_tile_culling.glsl"
 // The light-culling pass of the tiled techniques (TileLightCulling.h): one invocation per tile of

@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
 // Redeferred tiled illumination at illum-scale 1: 16x16 I-buffer texels per 16x16-pixel tile.
 #define FE_TILE_TEXELS 16
 #define FE_TILE_INVOCATIONS 256u

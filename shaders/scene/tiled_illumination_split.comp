@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
 // Redeferred tiled illumination with the split I-buffer (--illum-split): one invocation per pixel
 // of a 16x16-pixel tile; specular sums at full resolution, L_dg at 1/scale.
 #define FE_TILE_TEXELS 16

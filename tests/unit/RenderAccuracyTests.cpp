@@ -13,6 +13,7 @@
 #include "assets/BuiltinScenes.h"
 #include "BackendTest.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/ShaderRegistry.h"
 #include "reference/CpuReference.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
@@ -129,6 +130,21 @@ TEST_P(RenderAccuracy, TileListOverflowShadesEveryLight) {
     };
     Stats s = compare(render("deferred-tiled"), render("deferred"), 1e-3, 1e-3);
     EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
+}
+
+// The tiled passes read up to 1024 lights from a uniform block and more from the storage buffer,
+// through a second build of each shader (`// fe-variant: FE_LIGHTS_IN_STORAGE`, FeShaders.cmake).
+// Both builds must exist and differ, on both APIs: a lost marker or an ignored define fails here,
+// and TileListOverflowShadesEveryLight (1030 lights) renders through the variant.
+TEST(TiledLightsVariants, EveryListShaderHasItsStorageVariant) {
+    for (const char* name : {"tile_light_culling", "tiled_deferred", "tiled_illumination", "tiled_illumination_s2",
+                             "tiled_illumination_s4", "tiled_illumination_split"}) {
+        const std::string path = std::string("scene/") + name + ".comp";
+        const gdi::ShaderBinary& uniform = shaders::find(path);
+        const gdi::ShaderBinary& storage = shaders::find(path + ":FE_LIGHTS_IN_STORAGE");
+        EXPECT_FALSE(std::ranges::equal(uniform.vulkan, storage.vulkan)) << path << ": the Vulkan variant is the same binary";
+        EXPECT_FALSE(std::ranges::equal(uniform.opengl, storage.opengl)) << path << ": the GL variant is the same binary";
+    }
 }
 
 // Multi-pass forward adds each light's radiance in its own pass (float blending, in another
