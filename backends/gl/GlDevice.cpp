@@ -149,11 +149,12 @@ GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
     info_.backend = platform_->name();
     info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
     info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
-    GLint strategy = 0;
+    GLint strategy = 0, flags = 0;
     gl_.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    gl_.GetIntegerv(GL_CONTEXT_FLAGS, &flags);
     info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
-                       std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", robust context (resets are reported)"
-                                                                         : ", no reset notification");
+                       std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", resets are reported" : ", no reset notification") +
+                       std::string((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) ? ", robust buffer access" : "");
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;

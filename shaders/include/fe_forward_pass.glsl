@@ -23,7 +23,7 @@ void main() {
         const SurfaceBrdf brdf = fePrepareBrdf(s);
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {
-            SurfaceLight l = feEvaluateLight(lights[i], vWorld);
+            SurfaceLight l = feEvaluateLight(feLight(i), vWorld);
 #ifdef FE_SHADOWED
             l.E *= feShadowVisibility(vWorld, s.n);  // forward_shadowed*.frag: one light per pass
 #endif

@@ -26,7 +26,7 @@ void main() {
     acc.Ldg = vec3(0.0);
     acc.Lsg1 = vec3(0.0);
     acc.Lsg2 = vec3(0.0);
-    SurfaceLight l = feEvaluateLight(lights[vLightIndex], P);
+    SurfaceLight l = feEvaluateLight(feLight(vLightIndex), P);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);  // at the representative pixel, like the rest of the sums
 #endif

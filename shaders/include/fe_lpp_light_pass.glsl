@@ -17,7 +17,7 @@ void main() {
     vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);  // the eye ray at the stored depth
     vec3 wo = normalize(frame.cameraPosition.xyz - P);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
-    SurfaceLight l = feEvaluateLight(lights[vLightIndex], P);
+    SurfaceLight l = feEvaluateLight(feLight(vLightIndex), P);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);
 #endif

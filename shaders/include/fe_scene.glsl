@@ -55,14 +55,21 @@ ivec2 feRepOffset() { return ivec2(frame.temporal.xy); }
 // FE_UNIFORM_LIGHTS (64 KiB): scenes with more use each such shader's FE_LIGHTS_IN_STORAGE
 // variant (TileLightCulling::shader).
 #define FE_UNIFORM_LIGHTS 1024
+// The block is declared as plain vec4s, not GpuLight records: Mesa's GL linker makes a program
+// resource per member of every array element and grows its lists by realloc, which made each
+// link of a 1024-record block take 10 s under AddressSanitizer. feLight(i) reads record i.
 #if defined(FE_LIGHTS_UNIFORM) && !defined(FE_LIGHTS_IN_STORAGE)
 layout(binding = FE_SLOT_LIGHTS, std140) uniform LightBlock {
-    GpuLight lights[FE_UNIFORM_LIGHTS];
+    vec4 lightWords[FE_UNIFORM_LIGHTS * 4];
 };
+GpuLight feLight(uint i) {
+    return GpuLight(lightWords[4u * i], lightWords[4u * i + 1u], lightWords[4u * i + 2u], lightWords[4u * i + 3u]);
+}
 #else
 layout(binding = FE_SLOT_LIGHTS, std430) readonly buffer LightBlock {
     GpuLight lights[];
 };
+GpuLight feLight(uint i) { return lights[i]; }
 #endif
 
 // Depth along the view axis from the depth buffer: the w row of the inverse projection (and of

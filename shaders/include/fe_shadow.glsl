@@ -30,7 +30,7 @@ const float FE_SHADOW_NORMAL_OFFSET = 1.5;
 
 // 1 lit, 0 shadowed, between at a filtered (PCF) edge.
 float feShadowVisibility(vec3 P, vec3 n) {
-    const vec3 lightPos = lights[shadow.params.x].positionRange.xyz;
+    const vec3 lightPos = feLight(shadow.params.x).positionRange.xyz;
 #ifdef FE_SHADOW_CUBE
     const vec3 Q = P + n * (FE_SHADOW_NORMAL_OFFSET * shadow.texelWorld.x * distance(P, lightPos));
     const vec3 d = Q - lightPos;

@@ -98,7 +98,7 @@ void feCullTile(float depth, vec2 pixelMin, vec2 pixelMax) {
         vec3 lo, hi;
         feTileSliceBox(pixelMin, pixelMax, uintBitsToFloat(tileMinDepth), uintBitsToFloat(tileMaxDepth), lo, hi);
         for (uint i = gl_LocalInvocationIndex; i < frame.counts.x; i += FE_TILE_INVOCATIONS) {
-            if (feLightTouchesBox(lights[i], lo, hi)) {
+            if (feLightTouchesBox(feLight(i), lo, hi)) {
                 const uint slot = atomicAdd(tileLightCount, 1u);
                 if (slot < FE_TILE_MAX_LIGHTS) tileLights[slot] = i;
             }

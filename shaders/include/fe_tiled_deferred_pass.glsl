@@ -24,7 +24,7 @@ void main() {
         const SurfaceBrdf brdf = fePrepareBrdf(s);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
-            const GpuLight L = lights[feTileLight(k)];
+            const GpuLight L = feLight(feTileLight(k));
             // Most of a tile's lights miss most of its pixels: beyond its range a light adds
             // exactly 0 (the range window), so skip the shading.
             if (!feLightReaches(L, s.P)) continue;

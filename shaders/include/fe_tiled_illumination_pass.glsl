@@ -40,7 +40,7 @@ void main() {
         const RoughnessTerms terms = feRoughnessTerms(g1.a);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
-            const GpuLight L = lights[feTileLight(k)];
+            const GpuLight L = feLight(feTileLight(k));
             // Many of a tile's lights miss this texel's point: beyond its range a light adds
             // exactly 0 (range window), skip it.
             if (!feLightReaches(L, P)) continue;

@@ -22,7 +22,7 @@ void main() {
     vec3 P = h.xyz / h.w;
     uint count = 0;
     for (uint i = 0; i < frame.lightRange.y; ++i) {
-        GpuLight L = lights[i];
+        GpuLight L = feLight(i);
         if (L.directionType.w == FE_LIGHT_DIRECTIONAL || L.positionRange.w <= 0.0 ||
             feRangeWindow(distance(L.positionRange.xyz, P), L.positionRange.w) > 0.0)
             ++count;

@@ -9,7 +9,7 @@ layout(location = 2) in uint inShape;      // per instance: 0 full screen, 1 sph
 layout(location = 0) flat out uint vLightIndex;
 void main() {
     vLightIndex = inLightIndex;
-    GpuLight L = lights[inLightIndex];
+    GpuLight L = feLight(inLightIndex);
     if (inShape == 0u) {
         gl_Position = vec4(inPosition.xy, 0.0, 1.0);
         return;

@@ -54,7 +54,7 @@ void main() {
     if (em.sizeSoftness.w > 0.5) {
         // Lit like a diffuse card facing each light: albedo / pi x the irradiance at its centre.
         vec3 E = vec3(0.0);
-        for (uint l = 0; l < frame.lightRange.y; ++l) E += feEvaluateLight(lights[l], p).E;
+        for (uint l = 0; l < frame.lightRange.y; ++l) E += feEvaluateLight(feLight(l), p).E;
         q.color = vec4(c.rgb * E / 3.14159265, c.a);
         uint k = atomicAdd(args[1].instanceCount, 1u);
         if (k < FE_MAX_SORTED_PARTICLES) alpha[k] = q;

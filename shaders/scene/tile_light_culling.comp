@@ -44,7 +44,7 @@ void main() {
         vec3 tileLo, tileHi;
         feTileSliceBox(vec2(p0), vec2(p1), zAll.x, zAll.y, tileLo, tileHi);
         for (uint i = 0u; i < frame.counts.x; ++i) {
-            const GpuLight L = lights[i];
+            const GpuLight L = feLight(i);
             if (!feLightTouchesBox(L, tileLo, tileHi)) continue;
             for (int k = 0; k < 4; ++k) {
                 if (!(z[k].x <= z[k].y) || !feLightTouchesBox(L, lo[k], hi[k])) continue;
