@@ -67,6 +67,82 @@ constexpr const char* kUsage =
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
     "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
 
+// Each option's line in `fe COMMAND --help`: its value's name and what it does, keyed by
+// "COMMAND --option" where commands differ, else by "--option". The usage text above stays the
+// full account (the --help footer); these are the one-line summaries CLI11 lists.
+struct OptionHelp {
+    const char* value;  // "" for a flag
+    const char* text;
+};
+const std::map<std::string, OptionHelp> kOptionHelp = {
+    {"--backend", {"NAME", "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw or gl-glfw (also FE_BACKEND)"}},
+    {"info --backend", {"NAME[,NAME]", "only these backends (or all)"}},
+    {"bench --backend", {"NAME[,NAME]|all", "the backends to measure (default all)"}},
+    {"conformance --backend", {"NAME[,NAME]|all", "the backends to run the cases on (default all)"}},
+    {"--json", {"", "print the report as JSON"}},
+    {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto: the render director chooses"}},
+    {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
+    {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},
+    {"--size", {"WxH", "image size in pixels (default 320x240)"}},
+    {"view --size", {"WxH", "window size in pixels (default 640x480)"}},
+    {"--out", {"FILE", ".png (tone mapped) or .pfm (linear radiance) (default out.png)"}},
+    {"bench --out", {"DIR", "where the results, charts and report go (default bench)"}},
+    {"--exposure", {"X", "multiplies the radiance before tone mapping (default 1)"}},
+    {"--frames", {"N", "frames to render (default 1; with --window: until it is closed)"}},
+    {"view --frames", {"N", "stop after N frames (default: when the window is closed)"}},
+    {"bench --frames", {"N", "timed frames per case; medians are reported"}},
+    {"--lights", {"N", "builtin:lights: the number of point lights (default 512)"}},
+    {"--dump-graph", {"FILE.dot", "write the compiled render graph as Graphviz"}},
+    {"--vsync", {"on|off", "with --window: wait for the display (default on)"}},
+    {"--msaa", {"1|2|4|8", "samples per pixel: forward techniques and light-prepass (default 1)"}},
+    {"--error-budget", {"PERCENT", "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},
+    {"--environment", {"FILE.hdr|builtin:sky", "the light from far away, drawn as the background"}},
+    {"--ibl-samples", {"N", "light the scene by the environment, N importance samples per term"}},
+    {"--shadows", {"on|off", "shadow maps for directional, spot and the most important point lights (default off)"}},
+    {"--shadow-map-size", {"N", "shadow map size in texels (default 1024)"}},
+    {"--shadow-cascades", {"1-4", "cascades of a directional light's shadow (default 4)"}},
+    {"--shadow-point-budget", {"N", "point lights given cube shadow maps, the most important first (default 4)"}},
+    {"--shadow-filter", {"pcf|none", "2x2 hardware comparison or one tap (default pcf)"}},
+    {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
+    {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
+    {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default clamp)"}},
+    {"--aa", {"none|fxaa|taa", "the .png's anti-aliasing (default none)"}},
+    {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\""}},
+    {"--no-aliasing", {"", "transient textures in memory of their own"}},
+    {"--window", {"", "show the frames in a window"}},
+    {"--verbose", {"", "print the render director's choices and their reasons"}},
+    {"--strict", {"", "the glTF loader's warnings are errors"}},
+    {"--illum-split", {"", "redeferred-tiled: specular sums at full rate, diffuse at 1/scale"}},
+    {"--rebuild-nov", {"", "redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer"}},
+    {"--one-pass-culling", {"", "deferred-tiled: each work group culls its tile, no culling pass"}},
+    {"--ibl-prefiltered", {"", "light by the environment through prefiltered maps, not by sampling it"}},
+    {"--temporal", {"", "redeferred at illum-scale 2|4: jittered reduced-rate samples accumulate over frames"}},
+    {"--screenshot", {"FILE.png", "write the last frame"}},
+    {"--switch-backend-at", {"FRAME", "tests: restart on the other API at this frame"}},
+    {"--no-ui", {"", "no panel"}},
+    {"--validation", {"", "the Khronos validation layer / GL debug output on"}},
+    {"--sweep", {"FILE.json", "the cases to measure (bench/sweeps/ has the documented ones)"}},
+    {"--compare", {"A.json", "compare A with the results file given after it"}},
+    {"--time-ratio", {"X", "with --compare: a frame this many times slower fails (default 1.25)"}},
+    {"--error-points", {"P", "with --compare: this many more % of pixels over 5/255 fails (default 0.5)"}},
+    {"--quick", {"", "every technique and option at 96x72, with the stability and conformance suites"}},
+    {"--stability", {"", "with --sweep: also the stability suite's table"}},
+    {"--conformance", {"", "with --sweep: also the conformance suite's cross-backend images"}},
+    {"--report", {"FILE.json", "write the results as JSON"}},
+    {"--out-dir", {"DIR", "write each case's image per backend"}},
+    {"--case", {"SUBSTRING", "only the cases whose name contains it"}},
+    {"--no-validation", {"", "without the validation layer / GL debug output"}},
+};
+
+// One option's --help line; an option missing from the table is a programming error, caught by
+// the cli_help_describes_every_option test.
+const OptionHelp& optionHelp(const std::string& command, const std::string& option) {
+    static const OptionHelp missing{"VALUE", ""};
+    auto it = kOptionHelp.find(command + " " + option);
+    if (it == kOptionHelp.end()) it = kOptionHelp.find(option);
+    return it == kOptionHelp.end() ? missing : it->second;
+}
+
 }  // namespace
 
 // The usage text with every technique of the engine's table, one line each.
@@ -96,16 +172,19 @@ std::string commandUsage(const std::string& command) {
 
 Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
     const std::string command = argv[first - 1];
-    CLI::App app{"fe " + command + ": see the usage below", "fe " + command};
+    CLI::App app{"fe " + command + ": the options, then the full usage", "fe " + command};
     app.footer("\nUsage:\n" + commandUsage(command));
     app.allow_extras(false);
     app.positionals_at_end(false);
     std::map<std::string, std::string> values;
     std::map<std::string, bool> on;
-    for (const std::string& o : valued) app.add_option(o, values[o])->type_name("VALUE")->allow_extra_args(false);
+    for (const std::string& o : valued) {
+        const OptionHelp& h = optionHelp(command, o);
+        app.add_option(o, values[o], h.text)->type_name(h.value)->allow_extra_args(false);
+    }
     app.add_option("--log-level", values["--log-level"], "trace, debug, info, warn (default), error or off; also FE_LOG_LEVEL")
         ->type_name("LEVEL");
-    for (const std::string& f : flags) app.add_flag(f, on[f]);
+    for (const std::string& f : flags) app.add_flag(f, on[f], optionHelp(command, f).text);
     Args a;
     app.add_option("arguments", a.positional, "scene or files, as the command takes")->type_name("");
     try {
