@@ -7,7 +7,8 @@
 //   material_upsample.frag        reduced rate (FE_UPSAMPLE): the sums upsampled with a
 //                                 G-buffer-guided filter: the bilinear weights of the 4 nearest
 //                                 I-buffer texels times depth, normal and roughness similarity
-//                                 between this pixel and each texel's representative pixel
+//                                 between this pixel and each texel's representative pixel;
+//                                 w_o.n from G-buffer 2, as at scale 1
 //   material_upsample_tiled.frag  the same, each texel's representative pixel data read from the
 //                                 I-buffer's alpha channels (FE_REP_IN_IBUFFER; fe_scene.glsl)
 //   material_upsample_split.frag  reduced rate, only L_dg upsampled (FE_SPLIT, --illum-split)
@@ -37,18 +38,20 @@ void main() {
     acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
     acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
     outRadiance = vec4(g2.rgb + feResolveMaterialNoV(acc, g2.a, g0.rgb, g0.a, g1.a), 1.0);
+#elif defined(FE_UPSAMPLE)
+    // The filter needs this pixel's depth and normal; the resolve takes w_o.n from the geometry
+    // pass (consideration A) as at scale 1: rebuilding the position and w_o here cost 2.5 of
+    // the pass's 32 ms at 1280x720 on lavapipe, for the same image (docs/BENCHMARKS.md).
+    acc = feUpsampleIBuffer(p, texelFetch(depthTexture, p, 0).r, normalize(g1.xyz), g1);
+    outRadiance = vec4(g2.rgb + feResolveMaterialNoV(acc, g2.a, g0.rgb, g0.a, g1.a), 1.0);
 #else
     float depth = texelFetch(depthTexture, p, 0).r;
     vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
     vec3 n = normalize(g1.xyz);
     vec3 wo = normalize(frame.cameraPosition.xyz - P);
-#ifndef FE_UPSAMPLE
     acc.Ldg = texelFetch(iLdg, p, 0).rgb;
     acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
     acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;
-#else
-    acc = feUpsampleIBuffer(p, depth, n, g1);
-#endif  // FE_UPSAMPLE
     outRadiance = vec4(g2.rgb + feResolveMaterial(acc, n, wo, g0.rgb, g0.a, g1.a), 1.0);
 #endif
 }
