@@ -303,7 +303,8 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                      {"engine", gdi::engineJson()},
                      {"date", gdi::utcTimestamp()},
                      {"options", {{"warmupFrames", options.warmupFrames}, {"frames", options.frames},
-                                  {"referenceIblSamples", options.referenceIblSamples}, {"validation", options.validation}}},
+                                  {"referenceIblSamples", options.referenceIblSamples}, {"validation", options.validation},
+                                  {"interleave", options.interleave}}},
                      {"backends", gdi::Json::array()},
                      {"results", gdi::Json::array()}};
     // The exact images, one per distinct scene, camera, size and light set, shared by backends.
@@ -337,117 +338,160 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
         } catch (const std::exception&) {
             // the case itself will report what is wrong
         }
-        for (const BenchCase& c : cases) {
-            ++done;
-            if (progress) {
-                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                progress({done, total, elapsed, done > 1 ? elapsed / double(done - 1) * double(total - done + 1) : 0.0,
-                          backend + " " + c.key()});
+        // Each case: its scene and renderer, then its timed frames (in alternation with the other
+        // cases' when interleaving), then its results.
+        struct Measurement {
+            const BenchCase* c = nullptr;
+            gdi::Json r;
+            assets::Scene scene;
+            std::unique_ptr<SceneRenderer> renderer;
+            std::vector<double> cpu;
+            std::map<std::string, std::vector<double>> gpu;
+            std::vector<std::string> order;
+        };
+        auto refuse = [](Measurement& m, const char* why) {
+            m.r["refused"] = why;  // e.g. a technique the backend cannot run: reported, not fatal
+            m.renderer.reset();
+        };
+        auto measure = [&](std::vector<Measurement>& group) {
+            for (Measurement& m : group) {
+                ++done;
+                if (progress) {
+                    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    progress({done, total, elapsed, done > 1 ? elapsed / double(done - 1) * double(total - done + 1) : 0.0,
+                              backend + " " + m.c->key()});
+                }
+                m.r = {{"backend", backend}, {"key", m.c->key()}, {"settings", settingsJson(*m.c)},
+                       {"softwareRasterizer", device.info().softwareRasterizer}};
+                try {
+                    m.scene = assets::loadScene(m.c->scene, {}, builtinOptions(*m.c));
+                    if (!m.c->environment.empty()) m.scene.environment = assets::loadEnvironment(m.c->environment);
+                    RenderSettings settings = m.c->settings;
+                    settings.displayImage = postProcessed(m.c->settings);
+                    m.renderer = std::make_unique<SceneRenderer>(device, m.scene, settings);
+                } catch (const std::exception& e) {
+                    refuse(m, e.what());
+                }
             }
-            gdi::Json r = {{"backend", backend}, {"key", c.key()}, {"settings", settingsJson(c)},
-                           {"softwareRasterizer", device.info().softwareRasterizer}};
-            try {
-                assets::Scene scene = assets::loadScene(c.scene, {}, builtinOptions(c));
-                if (!c.environment.empty()) scene.environment = assets::loadEnvironment(c.environment);
-                RenderSettings settings = c.settings;
-                settings.displayImage = postProcessed(c.settings);
-                SceneRenderer renderer(device, scene, settings);
-                std::vector<double> cpu;
-                std::map<std::string, std::vector<double>> gpu;
-                std::vector<std::string> order;
-                for (uint32_t f = 0; f < options.warmupFrames + options.frames; ++f) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    renderer.renderFrame();
-                    const auto timings = renderer.passTimings();  // waits for the frame
-                    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                    if (f < options.warmupFrames) continue;
-                    cpu.push_back(ms);
-                    for (const auto& t : timings) {
-                        if (!gpu.count(t.name)) order.push_back(t.name);
-                        gpu[t.name].push_back(t.gpuMilliseconds);
+            for (uint32_t f = 0; f < options.warmupFrames + options.frames; ++f)
+                for (Measurement& m : group) {
+                    if (!m.renderer) continue;
+                    if (options.onFrame) options.onFrame(m.c->key(), f);
+                    try {
+                        const auto t0 = std::chrono::steady_clock::now();
+                        m.renderer->renderFrame();
+                        const auto timings = m.renderer->passTimings();  // waits for the frame
+                        const double ms =
+                            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                        if (f < options.warmupFrames) continue;
+                        m.cpu.push_back(ms);
+                        for (const auto& t : timings) {
+                            if (!m.gpu.count(t.name)) m.order.push_back(t.name);
+                            m.gpu[t.name].push_back(t.gpuMilliseconds);
+                        }
+                    } catch (const std::exception& e) {
+                        refuse(m, e.what());
                     }
                 }
-                r["cpuFrameMs"] = stats(cpu);
-                gdi::Json passes = gdi::Json::object();
-                for (const std::string& p : order) passes[p] = stats(gpu[p]);
-                r["gpuPassMs"] = passes;
-                const graph::RenderGraph& g = renderer.graph();
-                gdi::Json textures = gdi::Json::array();
-                const double pixels = double(c.settings.width) * c.settings.height;
-                for (const graph::TextureInfo& t : g.textures())
-                    if (!t.imported && t.used())
-                        textures.push_back({{"name", t.name}, {"format", gdi::formatInfo(t.desc.format).name},
-                                            {"bytes", t.size}, {"bytesPerPixel", double(t.size) / pixels}});
-                r["memory"] = {{"transientWithAliasing", g.memory().withAliasing},
-                               {"transientWithoutAliasing", g.memory().withoutAliasing},
-                               {"bytesPerPixelWithAliasing", double(g.memory().withAliasing) / pixels},
-                               {"bytesPerPixelWithoutAliasing", double(g.memory().withoutAliasing) / pixels},
-                               {"textures", textures}};
-                // The exact image of this scene, camera, size and light set.
-                const ShadowPlan plan = planShadows(scene.lights, *scene.camera, scene.bounds, c.settings.shadows);
-                ReferenceOptions ro;
-                ro.castsShadow = plan.castsShadow();
-                ro.iblSamples = c.settings.ibl() ? options.referenceIblSamples : 0;
-                std::ostringstream refKey;
-                refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|" << c.settings.width
-                       << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure << "|"
-                       << int(c.settings.tonemap) << "|";
-                for (bool b : ro.castsShadow) refKey << b;
-                auto it = references.find(refKey.str());
-                if (it == references.end()) {
-                    const ReferenceImage ref = renderReference(scene, *scene.camera, c.settings.width, c.settings.height, ro);
-                    std::string label = "cpu reference";
-                    if (ro.iblSamples) label += ", image-based lighting at " + std::to_string(ro.iblSamples) + " samples";
-                    if (std::count(ro.castsShadow.begin(), ro.castsShadow.end(), true)) label += ", shadow rays";
-                    Reference made{toDisplay(c.settings.width, c.settings.height, ref.radiance, c.settings.exposure, c.settings.tonemap), label,
-                                   "reference/" + fileName(c.key()) + ".png"};
-                    if (!options.imageDir.empty()) {
-                        std::filesystem::create_directories(options.imageDir + "/reference");
-                        gdi::writePng(displayToImage(made.image), options.imageDir + "/" + made.file);
+            for (Measurement& m : group) {
+                if (m.renderer) {
+                    try {
+                        const BenchCase& c = *m.c;
+                        m.r["cpuFrameMs"] = stats(m.cpu);
+                        gdi::Json passes = gdi::Json::object();
+                        for (const std::string& p : m.order) passes[p] = stats(m.gpu[p]);
+                        m.r["gpuPassMs"] = passes;
+                        const graph::RenderGraph& g = m.renderer->graph();
+                        gdi::Json textures = gdi::Json::array();
+                        const double pixels = double(c.settings.width) * c.settings.height;
+                        for (const graph::TextureInfo& t : g.textures())
+                            if (!t.imported && t.used())
+                                textures.push_back({{"name", t.name}, {"format", gdi::formatInfo(t.desc.format).name},
+                                                    {"bytes", t.size}, {"bytesPerPixel", double(t.size) / pixels}});
+                        m.r["memory"] = {{"transientWithAliasing", g.memory().withAliasing},
+                                         {"transientWithoutAliasing", g.memory().withoutAliasing},
+                                         {"bytesPerPixelWithAliasing", double(g.memory().withAliasing) / pixels},
+                                         {"bytesPerPixelWithoutAliasing", double(g.memory().withoutAliasing) / pixels},
+                                         {"textures", textures}};
+                        // The exact image of this scene, camera, size and light set.
+                        const ShadowPlan plan = planShadows(m.scene.lights, *m.scene.camera, m.scene.bounds, c.settings.shadows);
+                        ReferenceOptions ro;
+                        ro.castsShadow = plan.castsShadow();
+                        ro.iblSamples = c.settings.ibl() ? options.referenceIblSamples : 0;
+                        std::ostringstream refKey;
+                        refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|"
+                               << c.settings.width << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure << "|"
+                               << int(c.settings.tonemap) << "|";
+                        for (bool b : ro.castsShadow) refKey << b;
+                        auto it = references.find(refKey.str());
+                        if (it == references.end()) {
+                            const ReferenceImage ref =
+                                renderReference(m.scene, *m.scene.camera, c.settings.width, c.settings.height, ro);
+                            std::string label = "cpu reference";
+                            if (ro.iblSamples) label += ", image-based lighting at " + std::to_string(ro.iblSamples) + " samples";
+                            if (std::count(ro.castsShadow.begin(), ro.castsShadow.end(), true)) label += ", shadow rays";
+                            Reference made{toDisplay(c.settings.width, c.settings.height, ref.radiance, c.settings.exposure,
+                                                     c.settings.tonemap),
+                                           label, "reference/" + fileName(c.key()) + ".png"};
+                            if (!options.imageDir.empty()) {
+                                std::filesystem::create_directories(options.imageDir + "/reference");
+                                gdi::writePng(displayToImage(made.image), options.imageDir + "/" + made.file);
+                            }
+                            it = references.emplace(refKey.str(), std::move(made)).first;
+                        }
+                        if (!options.imageDir.empty()) m.r["referenceImage"] = it->second.file;
+                        const gdi::Image out = m.renderer->readOutput();
+                        DisplayImage shown{out.width, out.height, {}};
+                        if (postProcessed(c.settings)) {
+                            // The GPU's own display image: tone mapping and antialiasing are what is measured.
+                            const gdi::Image d = m.renderer->readDisplay();
+                            for (uint32_t y = 0; y < d.height; ++y)
+                                for (uint32_t x = 0; x < d.width; ++x) {
+                                    const auto t = d.texel(x, y);  // sRGB-encoded, as DisplayImage holds
+                                    shown.rgb.emplace_back(t[0], t[1], t[2]);
+                                }
+                        } else {
+                            std::vector<glm::dvec3> linear;
+                            linear.reserve(size_t(out.width) * out.height);
+                            for (uint32_t y = 0; y < out.height; ++y)
+                                for (uint32_t x = 0; x < out.width; ++x) {
+                                    const auto t = out.texel(x, y);
+                                    linear.push_back(glm::dvec3(t[0], t[1], t[2]));
+                                }
+                            shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
+                        }
+                        const ImageMetrics metrics = compareImages(shown, it->second.image);
+                        if (!options.imageDir.empty()) {
+                            const std::string dir = options.imageDir + "/" + backend;
+                            std::filesystem::create_directories(dir);
+                            const std::string name = backend + "/" + fileName(c.key());
+                            gdi::writePng(displayToImage(shown), options.imageDir + "/" + name + ".png");
+                            gdi::writePng(heatMap(out.width, out.height, flipErrorMap(shown, it->second.image)),
+                                          options.imageDir + "/" + name + ".flip.png");
+                            m.r["image"] = name + ".png";
+                            m.r["flipImage"] = name + ".flip.png";
+                        }
+                        m.r["reference"] = it->second.label;
+                        m.r["error"] = {{"psnr", finite(metrics.psnr)}, {"ssim", metrics.ssim}, {"flip", metrics.flip},
+                                        {"percentOver5", metrics.percentOver5}, {"maxAbs", metrics.maxAbs}};
+                    } catch (const std::exception& e) {
+                        refuse(m, e.what());
                     }
-                    it = references.emplace(refKey.str(), std::move(made)).first;
                 }
-                if (!options.imageDir.empty()) r["referenceImage"] = it->second.file;
-                const gdi::Image out = renderer.readOutput();
-                DisplayImage shown{out.width, out.height, {}};
-                if (postProcessed(c.settings)) {
-                    // The GPU's own display image: tone mapping and antialiasing are what is measured.
-                    const gdi::Image d = renderer.readDisplay();
-                    for (uint32_t y = 0; y < d.height; ++y)
-                        for (uint32_t x = 0; x < d.width; ++x) {
-                            const auto t = d.texel(x, y);  // sRGB-encoded, as DisplayImage holds
-                            shown.rgb.emplace_back(t[0], t[1], t[2]);
-                        }
-                } else {
-                    std::vector<glm::dvec3> linear;
-                    linear.reserve(size_t(out.width) * out.height);
-                    for (uint32_t y = 0; y < out.height; ++y)
-                        for (uint32_t x = 0; x < out.width; ++x) {
-                            const auto t = out.texel(x, y);
-                            linear.push_back(glm::dvec3(t[0], t[1], t[2]));
-                        }
-                    shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
-                }
-                const ImageMetrics m = compareImages(shown, it->second.image);
-                if (!options.imageDir.empty()) {
-                    const std::string dir = options.imageDir + "/" + backend;
-                    std::filesystem::create_directories(dir);
-                    const std::string name = backend + "/" + fileName(c.key());
-                    gdi::writePng(displayToImage(shown), options.imageDir + "/" + name + ".png");
-                    gdi::writePng(heatMap(out.width, out.height, flipErrorMap(shown, it->second.image)),
-                                  options.imageDir + "/" + name + ".flip.png");
-                    r["image"] = name + ".png";
-                    r["flipImage"] = name + ".flip.png";
-                }
-                r["reference"] = it->second.label;
-                r["error"] = {{"psnr", finite(m.psnr)}, {"ssim", m.ssim}, {"flip", m.flip}, {"percentOver5", m.percentOver5},
-                              {"maxAbs", m.maxAbs}};
-            } catch (const gdi::Error& e) {
-                r["refused"] = e.what();  // e.g. a technique the backend cannot run: reported, not fatal
-            } catch (const std::exception& e) {
-                r["refused"] = e.what();
+                m.renderer.reset();
+                doc["results"].push_back(std::move(m.r));
             }
-            doc["results"].push_back(r);
+        };
+        if (options.interleave) {
+            std::vector<Measurement> group(cases.size());
+            for (size_t i = 0; i < cases.size(); ++i) group[i].c = &cases[i];
+            measure(group);
+        } else {
+            for (const BenchCase& c : cases) {
+                std::vector<Measurement> one(1);
+                one[0].c = &c;
+                measure(one);
+            }
         }
         if (options.validation) doc["backends"].back()["validationErrors"] = device.validationErrorCount();
     }

@@ -43,6 +43,13 @@ struct BenchOptions {
     // written there as PNG (images/BACKEND/KEY.png, KEY.flip.png, reference/...) and named in
     // the record, for the report's matrix of thumbnails.
     std::string imageDir;
+    // The cases' timed frames in alternation (frame 1 of every case, then frame 2, ...), every
+    // case's renderer alive throughout: a burst of interference from elsewhere on the machine
+    // then lands on all cases alike instead of on the one running, which steadies the ratios
+    // between them. Off by default: it holds every case's renderer in memory at once.
+    bool interleave = false;
+    // Called before each frame a case renders, warm-up frames included (frame counts from 0).
+    std::function<void(const std::string& key, uint32_t frame)> onFrame;
 };
 
 struct BenchProgress {

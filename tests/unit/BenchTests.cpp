@@ -72,6 +72,37 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Bench);
 
+// --interleave: frame f of every case, then frame f + 1; the same images and sample counts as
+// one case after another.
+TEST_P(Bench, InterleavedCasesAlternateFramesAndMeasureTheSame) {
+    device.reset();
+    std::vector<render::BenchCase> cases = tinySweep();
+    cases.resize(2);
+    std::vector<std::string> sequential, interleaved;
+    render::BenchOptions options{.warmupFrames = 1, .frames = 2, .validation = true};
+    options.onFrame = [&](const std::string& key, uint32_t f) { sequential.push_back(key + " " + std::to_string(f)); };
+    const gdi::Json a = render::runBench(cases, {GetParam()}, options);
+    options.interleave = true;
+    options.onFrame = [&](const std::string& key, uint32_t f) { interleaved.push_back(key + " " + std::to_string(f)); };
+    const gdi::Json b = render::runBench(cases, {GetParam()}, options);
+    const std::string k0 = cases[0].key(), k1 = cases[1].key();
+    EXPECT_EQ(sequential, (std::vector<std::string>{k0 + " 0", k0 + " 1", k0 + " 2", k1 + " 0", k1 + " 1", k1 + " 2"}));
+    EXPECT_EQ(interleaved, (std::vector<std::string>{k0 + " 0", k1 + " 0", k0 + " 1", k1 + " 1", k0 + " 2", k1 + " 2"}));
+    EXPECT_TRUE(b["options"]["interleave"].get<bool>());
+    EXPECT_EQ(b["backends"][0]["validationErrors"], 0u);
+    ASSERT_EQ(a["results"].size(), 2u);
+    ASSERT_EQ(b["results"].size(), 2u);
+    for (size_t i = 0; i < 2; ++i) {
+        SCOPED_TRACE(cases[i].key());
+        ASSERT_FALSE(b["results"][i].contains("refused")) << b["results"][i]["refused"];
+        EXPECT_EQ(b["results"][i]["key"], a["results"][i]["key"]);
+        EXPECT_EQ(b["results"][i]["cpuFrameMs"]["samples"], 2u);
+        EXPECT_EQ(b["results"][i]["gpuPassMs"].size(), a["results"][i]["gpuPassMs"].size());
+        EXPECT_EQ(b["results"][i]["error"], a["results"][i]["error"]);
+        EXPECT_EQ(b["results"][i]["memory"], a["results"][i]["memory"]);
+    }
+}
+
 TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
     const auto cases = render::quickSweep();
     for (const render::TechniqueInfo& t : render::techniques()) {

@@ -55,12 +55,13 @@ constexpr const char* kUsage =
     "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
     "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
-    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N]\n"
+    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--interleave]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
     "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
     "      conformance suite's cross-backend images; writes DIR/results.json,\n"
-    "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench)\n"
+    "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench); --interleave: each\n"
+    "      backend's cases render their timed frames in alternation, all held at once, for steadier ratios\n"
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
@@ -128,6 +129,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--quick", {"", "every technique and option at 96x72, with the stability and conformance suites"}},
     {"--stability", {"", "with --sweep: also the stability suite's table"}},
     {"--conformance", {"", "with --sweep: also the conformance suite's cross-backend images"}},
+    {"--interleave", {"", "the cases' timed frames in alternation, so interference hits all alike"}},
     {"--report", {"FILE.json", "write the results as JSON"}},
     {"--out-dir", {"DIR", "write each case's image per backend"}},
     {"--case", {"SUBSTRING", "only the cases whose name contains it"}},

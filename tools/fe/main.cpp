@@ -359,6 +359,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
         gdi::expandBackendList(a.options.count("--backend") ? a.options.at("--backend") : "all");
     render::BenchOptions options;
     if (a.options.count("--frames")) options.frames = parseUint(a.options.at("--frames"), "--frames", 1, 1000);
+    options.interleave = a.options.count("--interleave") > 0;
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "bench";
     std::filesystem::create_directories(out);
     options.imageDir = out + "/images";
@@ -481,7 +482,7 @@ int main(int argc, char** argv) {
                                                         {"--no-ui", "--validation"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
-                                  {"--quick", "--stability", "--conformance"}),
+                                  {"--quick", "--stability", "--conformance", "--interleave"}),
                             std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
