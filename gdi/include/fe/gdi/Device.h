@@ -473,11 +473,19 @@ struct DispatchIndirectArgs {
 // ---------------------------------------------------------------------------------------------
 // Command recording
 // ---------------------------------------------------------------------------------------------
-// A CommandList is recorded on one thread and submitted with Device::submit. Each recording
-// starts with begin() (implicit on first use after submit). By default synchronisation between
-// passes, dispatches and copies is the backend's job (a conservative barrier after each write).
+// Recording is not executing, on every backend (Vulkan's model). A CommandList records; nothing
+// it records runs before Device::submit, submitted lists run in submission order, and a list
+// that is never submitted has no effect. What a command reads (buffer contents, texture texels)
+// is read when the work runs on the GPU, not when it is recorded. Mistakes are still reported
+// where they are made: each call validates its arguments and throws gdi::Error while recording.
+// After submit the list is empty and records anew (its bindings and pass state are reset).
+//
+// Threads: a CommandList may be recorded on any thread, and several lists on several threads
+// at once, one thread per list at a time. Every Device member may be called from any thread;
+// the device serialises what it must (see Device). By default synchronisation between passes,
+// dispatches and copies is the backend's job (a conservative barrier after each write).
 // A caller that knows every access, the render graph, turns that off with
-// setAutomaticBarriers(false) and states each texture's state change with barrier().
+// setAutomaticBarriers(false) and states each texture's and buffer's change with barrier().
 
 // What a texture is being used for, as far as synchronisation is concerned.
 enum class ResourceState : uint8_t {
@@ -491,10 +499,37 @@ enum class ResourceState : uint8_t {
 };
 const char* resourceStateName(ResourceState s);
 
+// A state change of a texture's subresources: mips [baseMip, baseMip + mipCount) of layers
+// [baseLayer, baseLayer + layerCount); a count of 0 means "to the last one". Undefined as
+// `before` drops those subresources' contents (the whole texture on GL, which cannot drop less).
 struct TextureBarrier {
     TextureHandle texture;
     ResourceState before = ResourceState::Undefined;
     ResourceState after = ResourceState::ShaderRead;
+    uint32_t baseMip = 0, mipCount = 0;
+    uint32_t baseLayer = 0, layerCount = 0;
+};
+
+// How a command reads or writes a buffer, as far as synchronisation is concerned (flags).
+enum class BufferAccess : uint32_t {
+    None = 0,
+    Vertex = 1 << 0,
+    Index = 1 << 1,
+    Indirect = 1 << 2,      // draw/dispatch arguments and draw counts
+    Uniform = 1 << 3,
+    StorageRead = 1 << 4,
+    StorageWrite = 1 << 5,
+    CopySrc = 1 << 6,
+    CopyDst = 1 << 7,
+    FlagsMarker = 0
+};
+// Work after the barrier that accesses [offset, offset + size) of the buffer as `after` waits
+// for work before it that accessed it as `before` (size 0: to the end).
+struct BufferBarrier {
+    BufferHandle buffer;
+    BufferAccess before = BufferAccess::StorageWrite;
+    BufferAccess after = BufferAccess::StorageRead;
+    uint64_t offset = 0, size = 0;
 };
 class CommandList {
 public:
@@ -567,6 +602,9 @@ public:
     // later submissions and to readback. Outside render passes.
     virtual void setAutomaticBarriers(bool enabled) = 0;
     virtual void barrier(const TextureBarrier* barriers, uint32_t count) = 0;
+    virtual void barrier(const BufferBarrier* barriers, uint32_t count) = 0;
+    void barrier(const TextureBarrier& b) { barrier(&b, 1); }
+    void barrier(const BufferBarrier& b) { barrier(&b, 1); }
 
     // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
     // the VkCommandBuffer being recorded, 0 on backends without one.
@@ -647,6 +685,12 @@ struct LiveObjects {
 
 using FenceValue = uint64_t;
 
+// Threads: every member may be called from any thread, concurrently. The device serialises
+// what it must: creation, destruction, transfers, submit and wait take one lock each (on GL
+// they run on the thread that owns the context, which replays submitted lists in order), so
+// they are safe but do not run in parallel with each other. What runs in parallel is
+// recording: lists recorded on different threads at once take no device lock. Objects used by
+// a list must not be destroyed while that list is being recorded or is unsubmitted.
 class Device {
 public:
     virtual ~Device() = default;
@@ -666,6 +710,10 @@ public:
     virtual HeapHandle createHeap(const HeapDesc& desc) = 0;
     virtual MemoryRequirements textureMemoryRequirements(const TextureDesc& desc) const = 0;
 
+    // Destruction is immediate for the caller (the handle is invalid at once) and deferred for
+    // the GPU: the object's memory is released once every submission made before the call has
+    // completed, without waiting. Destroying an object that a recorded, not yet submitted list
+    // uses makes that list's submit throw Error.
     virtual void destroy(BufferHandle) = 0;
     virtual void destroy(TextureHandle) = 0;
     virtual void destroy(SamplerHandle) = 0;
@@ -677,18 +725,45 @@ public:
     virtual const BufferDesc& desc(BufferHandle) const = 0;
     virtual const TextureDesc& desc(TextureHandle) const = 0;
 
-    // Blocking transfers: they wait for the GPU. Use command lists for work inside a frame.
+    // Queue-ordered writes: the data is copied before the call returns (the caller may reuse
+    // its memory), and the write takes effect after all work submitted before the call and
+    // before all work submitted after it, as if it were a command of its own submission. So a
+    // list recorded before writeBuffer and submitted after it reads the new data. The calls
+    // return without waiting for the GPU, except on Vulkan for GpuOnly memory, which they stage
+    // and wait for. A write to an Upload buffer the GPU may still be reading (a frame in
+    // flight) is the caller's to pace: use map() with one region per frame in flight instead.
     virtual void writeBuffer(BufferHandle buffer, uint64_t offset, ByteSpan data) = 0;
     // One subresource: tightly packed rows, top to bottom, in the texture's format (compressed
     // formats: rows of 4x4 blocks); exactly textureByteSize(desc, at.mipLevel) bytes.
     virtual void writeTexture(TextureHandle texture, Subresource at, ByteSpan data) = 0;
+    // Blocking reads: they wait for all work submitted before the call, then copy.
     virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
     // One subresource of a single-sample, uncompressed texture.
     virtual Image readTexture(TextureHandle texture, Subresource at = {}) = 0;
 
+    // Mapped memory: the buffer's bytes in CPU address space, never blocking.
+    //  - Upload buffers: a write-only pointer, persistent (the same pointer until destroy),
+    //    coherent: bytes written before a submit are what the GPU reads when that work runs.
+    //    Pacing is the caller's: do not overwrite a region that work in flight still reads
+    //    (keep one region per frame in flight and wait on the fence of its last use).
+    //  - Readback buffers: a read-only pointer whose bytes are valid once the fence of the
+    //    work that wrote them (a copy into the buffer, a shader store) has completed: submit,
+    //    then wait(fence) or poll isComplete(fence), then read. No staging, no extra copy.
+    //  GpuOnly buffers cannot be mapped (Error).
+    virtual void* map(BufferHandle buffer) = 0;
+
     virtual std::unique_ptr<CommandList> createCommandList() = 0;
-    virtual FenceValue submit(CommandList& commands) = 0;
+    // Submits lists in order as one submission; its fence covers all of them. Each list is
+    // then empty, ready to record again (while the submitted work runs).
+    virtual FenceValue submit(std::span<CommandList* const> lists) = 0;
+    FenceValue submit(CommandList& commands) {
+        CommandList* list = &commands;
+        return submit(std::span<CommandList* const>(&list, 1));
+    }
+    // Blocks until the submission with this fence (and every one before it) has completed.
     virtual void wait(FenceValue fence) = 0;
+    // Whether it has completed, without blocking.
+    virtual bool isComplete(FenceValue fence) = 0;
     virtual void waitIdle() = 0;
     // For destructors, which must not throw: wait / waitIdle, except that a lost device has
     // nothing left to wait for.
