@@ -7,6 +7,8 @@
 
 #include "fe/gdi/Validation.h"
 #include "gl/GlBackend.h"
+#include "gl/GlCommandList.h"
+#include "gl/GlReplay.h"
 
 namespace fe::gl {
 
@@ -92,6 +94,9 @@ void GlDevice::checkReset(bool injected) {
 }
 
 gdi::LiveObjects GlDevice::liveObjects() const {
+    // After the queue: destroys already called count as done.
+    if (!const_cast<GlContextThread&>(thread_).onThisThread())
+        return const_cast<GlContextThread&>(thread_).run([&] { return liveObjects(); });
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
             .nativeObjects = nativeObjects_};
@@ -105,8 +110,30 @@ void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severi
     }
 }
 
+void runOnContextThread(gdi::Device& device, const std::function<void()>& task) {
+    auto* gl = dynamic_cast<GlDevice*>(&device);
+    if (!gl) throw gdi::Error(device.info().backend + ": runOnContextThread needs an OpenGL device");
+    gl->runOnContextThread(task);
+}
+
+// The platform is made on the calling thread (a GLFW window must be), then its context moves
+// to the context thread, where everything else happens.
 GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
     platform_ = createPlatform(kind, validation, vsync);
+    platform_->releaseCurrent();
+    try {
+        thread_.run([&] {
+            platform_->makeCurrent();
+            initialize(validation);
+        });
+    } catch (...) {
+        thread_.run([&] { platform_->releaseCurrent(); });
+        thread_.stop();
+        throw;
+    }
+}
+
+void GlDevice::initialize(bool validation) {
 #define FE_GL_LOAD(type, fn)                                                                          \
     gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn));                             \
     if (!gl_.fn) throw gdi::Error(std::string(platform_->name()) + ": GL entry point gl" #fn " missing");
@@ -202,13 +229,23 @@ GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
 }
 
 GlDevice::~GlDevice() {
+    try {
+        thread_.run([&] {
+            releaseAll();
+            platform_->releaseCurrent();
+        });
+    } catch (...) {  // a destructor must not throw; the context goes with the platform
+    }
+    thread_.stop();
+}
+
+void GlDevice::releaseAll() {
     if (gdi::leakCheckEnabled()) {
         std::vector<std::string> named;
         buffers_.forEach([&](Buffer& b) { named.push_back("buffer '" + b.label + "'"); });
         textures_.forEach([&](Texture& t) { named.push_back("texture '" + t.label + "'"); });
         gdi::reportLeaksAtDestruction(info_.backend, liveObjects(), named);
     }
-    platform_->makeCurrent();
     buffers_.forEach([&](Buffer& b) { gl_.DeleteBuffers(1, &b.name); });
     textures_.forEach([&](Texture& t) { gl_.DeleteTextures(1, &t.name); });
     samplers_.forEach([&](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
@@ -235,130 +272,144 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 }
 
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
-    loss_.check("createBuffer");
-    gdi::validate::bufferDesc(desc);
-    gdi::validate::initialData(desc, initialData.size());
-    Buffer b;
-    b.desc = desc;
-    b.label = desc.debugName ? desc.debugName : "";
-    b.desc.debugName = nullptr;
-    gl_.CreateBuffers(1, &b.name);
-    ++nativeObjects_;
-    if (GLenum e = allocateStorage("glNamedBufferStorage", [&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
-                                                                 GL_DYNAMIC_STORAGE_BIT); });
-        e != GL_NO_ERROR) {
-        gl_.DeleteBuffers(1, &b.name);
-        --nativeObjects_;
-        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
-        throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
-                         gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
-    }
-    if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
-    return buffers_.add(std::move(b));
+    return thread_.run([&]() -> gdi::BufferHandle {
+        loss_.check("createBuffer");
+        gdi::validate::bufferDesc(desc);
+        gdi::validate::initialData(desc, initialData.size());
+        Buffer b;
+        b.desc = desc;
+        b.label = desc.debugName ? desc.debugName : "";
+        b.desc.debugName = nullptr;
+        // Upload and Readback memory is mapped once, persistently and coherently (map()).
+        const GLbitfield persistent = GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        const GLbitfield mapFlags = desc.access == gdi::MemoryAccess::Upload     ? GL_MAP_WRITE_BIT | persistent
+                                    : desc.access == gdi::MemoryAccess::Readback ? GL_MAP_READ_BIT | persistent
+                                                                                 : 0;
+        gl_.CreateBuffers(1, &b.name);
+        ++nativeObjects_;
+        if (GLenum e = allocateStorage("glNamedBufferStorage", [&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
+                                                                     GL_DYNAMIC_STORAGE_BIT | mapFlags); });
+            e != GL_NO_ERROR) {
+            gl_.DeleteBuffers(1, &b.name);
+            --nativeObjects_;
+            if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
+            throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
+                             gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
+        }
+        if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
+        if (mapFlags) b.mapped = gl_.MapNamedBufferRange(b.name, 0, GLsizeiptr(desc.size), mapFlags);
+        return buffers_.add(std::move(b));
+    });
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
-    loss_.check("createTexture");
-    gdi::validate::textureDesc(desc, info_);
-    const std::string label = desc.debugName ? desc.debugName : "";
-    if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
-    if (!supportsFormat(desc.format, desc.usage))
-        throw gdi::Error("texture '" + label + "': format " + std::string(gdi::formatInfo(desc.format).name) +
-                         " does not support the requested usage on OpenGL");
-    Texture t;
-    t.desc = desc;
-    t.desc.debugName = nullptr;
-    t.label = label;
-    t.target = textureTarget(desc);
-    gl_.CreateTextures(t.target, 1, &t.name);
-    ++nativeObjects_;
-    const GLenum internal = toGlFormat(desc.format).internal;
-    const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
-    const char* call = t.target == GL_TEXTURE_2D_MULTISAMPLE                                ? "glTextureStorage2DMultisample"
-                       : (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_CUBE_MAP) ? "glTextureStorage2D"
-                                                                                          : "glTextureStorage3D";
-    if (GLenum e = allocateStorage(call, [&] {
-            switch (t.target) {
-                case GL_TEXTURE_2D_MULTISAMPLE:
-                    gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
-                    break;
-                case GL_TEXTURE_2D:
-                case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
-                default:  // layers or depth
-                    gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers));
-                    break;
-            }
-        });
-        e != GL_NO_ERROR) {
-        gl_.DeleteTextures(1, &t.name);
-        --nativeObjects_;
-        if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, std::string(call) + " raised GL_CONTEXT_LOST");
-        throw gdi::Error(info_.backend + ": " + call + " failed for " +
-                         gdi::describeObject("texture", label, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                                                                   (desc.depthOrLayers > 1 ? "x" + std::to_string(desc.depthOrLayers) : "") +
-                                                                   " " + std::string(gdi::formatInfo(desc.format).name)) +
-                         ": " + glErrorName(e));
-    }
-    if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
-    if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
-    return textures_.add(std::move(t));
+    return thread_.run([&]() -> gdi::TextureHandle {
+        loss_.check("createTexture");
+        gdi::validate::textureDesc(desc, info_);
+        const std::string label = desc.debugName ? desc.debugName : "";
+        if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
+        if (!supportsFormat(desc.format, desc.usage))
+            throw gdi::Error("texture '" + label + "': format " + std::string(gdi::formatInfo(desc.format).name) +
+                             " does not support the requested usage on OpenGL");
+        Texture t;
+        t.desc = desc;
+        t.desc.debugName = nullptr;
+        t.label = label;
+        t.target = textureTarget(desc);
+        gl_.CreateTextures(t.target, 1, &t.name);
+        ++nativeObjects_;
+        const GLenum internal = toGlFormat(desc.format).internal;
+        const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
+        const char* call = t.target == GL_TEXTURE_2D_MULTISAMPLE                                ? "glTextureStorage2DMultisample"
+                           : (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_CUBE_MAP) ? "glTextureStorage2D"
+                                                                                              : "glTextureStorage3D";
+        if (GLenum e = allocateStorage(call, [&] {
+                switch (t.target) {
+                    case GL_TEXTURE_2D_MULTISAMPLE:
+                        gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
+                        break;
+                    case GL_TEXTURE_2D:
+                    case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
+                    default:  // layers or depth
+                        gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers));
+                        break;
+                }
+            });
+            e != GL_NO_ERROR) {
+            gl_.DeleteTextures(1, &t.name);
+            --nativeObjects_;
+            if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, std::string(call) + " raised GL_CONTEXT_LOST");
+            throw gdi::Error(info_.backend + ": " + call + " failed for " +
+                             gdi::describeObject("texture", label, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                                                                       (desc.depthOrLayers > 1 ? "x" + std::to_string(desc.depthOrLayers) : "") +
+                                                                       " " + std::string(gdi::formatInfo(desc.format).name)) +
+                             ": " + glErrorName(e));
+        }
+        if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
+        if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
+        return textures_.add(std::move(t));
+    });
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
-    loss_.check("createSampler");
-    gdi::validate::samplerDesc(d);
-    Sampler s;
-    gl_.CreateSamplers(1, &s.name);
-    auto wrap = [](gdi::AddressMode a) {
-        return a == gdi::AddressMode::ClampToEdge ? GL_CLAMP_TO_EDGE
-               : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
-    };
-    GLint minf;
-    const bool lin = d.minFilter == gdi::Filter::Linear;
-    switch (d.mipFilter) {
-        case gdi::MipFilter::None: minf = lin ? GL_LINEAR : GL_NEAREST; break;
-        case gdi::MipFilter::Nearest: minf = lin ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST; break;
-        default: minf = lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR; break;
-    }
-    gl_.SamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, minf);
-    gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
-    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
-    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
-    gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_R, wrap(d.addressW));
-    if (d.compareEnable) {
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(d.compare)));  // same order
-    }
-    if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
-    return samplers_.add(std::move(s));
+    return thread_.run([&]() -> gdi::SamplerHandle {
+        loss_.check("createSampler");
+        gdi::validate::samplerDesc(d);
+        Sampler s;
+        gl_.CreateSamplers(1, &s.name);
+        auto wrap = [](gdi::AddressMode a) {
+            return a == gdi::AddressMode::ClampToEdge ? GL_CLAMP_TO_EDGE
+                   : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
+        };
+        GLint minf;
+        const bool lin = d.minFilter == gdi::Filter::Linear;
+        switch (d.mipFilter) {
+            case gdi::MipFilter::None: minf = lin ? GL_LINEAR : GL_NEAREST; break;
+            case gdi::MipFilter::Nearest: minf = lin ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST; break;
+            default: minf = lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR; break;
+        }
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, minf);
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
+        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_R, wrap(d.addressW));
+        if (d.compareEnable) {
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(d.compare)));  // same order
+        }
+        if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
+        return samplers_.add(std::move(s));
+    });
 }
 
 gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
-    loss_.check("createShader");
-    gdi::validate::shaderDesc(desc);
-    const std::string label = desc.binary.name ? desc.binary.name : "";
-    const auto& code = desc.binary.opengl;
-    if (code.size() < 5 || code[0] != 0x07230203)
-        throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
-                         " words, missing magic number)");
-    Shader s;
-    s.stage = desc.stage;
-    s.label = label;
-    GLenum type = desc.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
-                  : desc.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
-                                                             : GL_COMPUTE_SHADER;
-    s.name = gl_.CreateShader(type);
-    gl_.ShaderBinary(1, &s.name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
-    gl_.SpecializeShader(s.name, desc.entryPoint, 0, nullptr, nullptr);
-    GLint ok = 0;
-    gl_.GetShaderiv(s.name, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        gl_.GetShaderInfoLog(s.name, sizeof log, nullptr, log);
-        gl_.DeleteShader(s.name);
-        throw gdi::Error("shader '" + label + "': SPIR-V specialization failed: " + log);
-    }
-    return shaders_.add(std::move(s));
+    return thread_.run([&]() -> gdi::ShaderHandle {
+        loss_.check("createShader");
+        gdi::validate::shaderDesc(desc);
+        const std::string label = desc.binary.name ? desc.binary.name : "";
+        const auto& code = desc.binary.opengl;
+        if (code.size() < 5 || code[0] != 0x07230203)
+            throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
+                             " words, missing magic number)");
+        Shader s;
+        s.stage = desc.stage;
+        s.label = label;
+        GLenum type = desc.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
+                      : desc.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
+                                                                 : GL_COMPUTE_SHADER;
+        s.name = gl_.CreateShader(type);
+        gl_.ShaderBinary(1, &s.name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
+        gl_.SpecializeShader(s.name, desc.entryPoint, 0, nullptr, nullptr);
+        GLint ok = 0;
+        gl_.GetShaderiv(s.name, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            char log[2048] = {};
+            gl_.GetShaderInfoLog(s.name, sizeof log, nullptr, log);
+            gl_.DeleteShader(s.name);
+            throw gdi::Error("shader '" + label + "': SPIR-V specialization failed: " + log);
+        }
+        return shaders_.add(std::move(s));
+    });
 }
 
 static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& label) {
@@ -379,71 +430,77 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    loss_.check("createGraphicsPipeline");
-    gdi::validate::graphicsPipelineDesc(d, info_);
-    Pipeline p;
-    p.label = d.debugName ? d.debugName : "";
-    Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
-    if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
-    GLuint fs = 0;
-    if (d.fragmentShader) {
-        Shader& f = shaders_.get(d.fragmentShader, "fragment shader");
-        if (f.stage != gdi::ShaderStage::Fragment)
-            throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
-        fs = f.name;
-    }
-    p.program = linkProgram(gl_, {vs.name, fs}, p.label);
-    gl_.CreateVertexArrays(1, &p.vao);
-    for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
-        const auto& vb = d.vertexBuffers[i];
-        p.strides.push_back(vb.stride);
-        gl_.VertexArrayBindingDivisor(p.vao, i, vb.perInstance ? 1 : 0);
-        for (const auto& a : vb.attributes) {
-            using V = gdi::VertexFormat;
-            gl_.EnableVertexArrayAttrib(p.vao, a.location);
-            gl_.VertexArrayAttribBinding(p.vao, a.location, i);
-            switch (a.format) {
-                case V::Float: case V::Float2: case V::Float3: case V::Float4:
-                    gl_.VertexArrayAttribFormat(p.vao, a.location, GLint(int(a.format) - int(V::Float) + 1), GL_FLOAT, GL_FALSE, a.offset);
-                    break;
-                case V::Half2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
-                case V::Half4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
-                case V::UNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_UNSIGNED_BYTE, GL_TRUE, a.offset); break;
-                case V::SNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_BYTE, GL_TRUE, a.offset); break;
-                case V::UNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_UNSIGNED_SHORT, GL_TRUE, a.offset); break;
-                case V::SNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_SHORT, GL_TRUE, a.offset); break;
-                case V::UInt32: gl_.VertexArrayAttribIFormat(p.vao, a.location, 1, GL_UNSIGNED_INT, a.offset); break;
-                default: break;
+    return thread_.run([&]() -> gdi::PipelineHandle {
+        loss_.check("createGraphicsPipeline");
+        gdi::validate::graphicsPipelineDesc(d, info_);
+        Pipeline p;
+        p.label = d.debugName ? d.debugName : "";
+        Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
+        if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
+        GLuint fs = 0;
+        if (d.fragmentShader) {
+            Shader& f = shaders_.get(d.fragmentShader, "fragment shader");
+            if (f.stage != gdi::ShaderStage::Fragment)
+                throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
+            fs = f.name;
+        }
+        p.program = linkProgram(gl_, {vs.name, fs}, p.label);
+        gl_.CreateVertexArrays(1, &p.vao);
+        for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
+            const auto& vb = d.vertexBuffers[i];
+            p.strides.push_back(vb.stride);
+            gl_.VertexArrayBindingDivisor(p.vao, i, vb.perInstance ? 1 : 0);
+            for (const auto& a : vb.attributes) {
+                using V = gdi::VertexFormat;
+                gl_.EnableVertexArrayAttrib(p.vao, a.location);
+                gl_.VertexArrayAttribBinding(p.vao, a.location, i);
+                switch (a.format) {
+                    case V::Float: case V::Float2: case V::Float3: case V::Float4:
+                        gl_.VertexArrayAttribFormat(p.vao, a.location, GLint(int(a.format) - int(V::Float) + 1), GL_FLOAT, GL_FALSE, a.offset);
+                        break;
+                    case V::Half2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
+                    case V::Half4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
+                    case V::UNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_UNSIGNED_BYTE, GL_TRUE, a.offset); break;
+                    case V::SNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_BYTE, GL_TRUE, a.offset); break;
+                    case V::UNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_UNSIGNED_SHORT, GL_TRUE, a.offset); break;
+                    case V::SNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_SHORT, GL_TRUE, a.offset); break;
+                    case V::UInt32: gl_.VertexArrayAttribIFormat(p.vao, a.location, 1, GL_UNSIGNED_INT, a.offset); break;
+                    default: break;
+                }
             }
         }
-    }
-    p.desc = d;
-    p.desc.debugName = nullptr;
-    p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
-    p.slotKinds = gdi::validate::slotKinds(d.bindings);
-    return pipelines_.add(std::move(p));
+        p.desc = d;
+        p.desc.debugName = nullptr;
+        p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+        p.slotKinds = gdi::validate::slotKinds(d.bindings);
+        return pipelines_.add(std::move(p));
+    });
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
-    loss_.check("createComputePipeline");
-    gdi::validate::computePipelineDesc(d);
-    Pipeline p;
-    p.label = d.debugName ? d.debugName : "";
-    Shader& cs = shaders_.get(d.computeShader, "compute shader");
-    if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
-    p.program = linkProgram(gl_, {cs.name}, p.label);
-    p.compute = true;
-    p.desc.bindings = d.bindings;
-    p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
-    p.slotKinds = gdi::validate::slotKinds(d.bindings);
-    return pipelines_.add(std::move(p));
+    return thread_.run([&]() -> gdi::PipelineHandle {
+        loss_.check("createComputePipeline");
+        gdi::validate::computePipelineDesc(d);
+        Pipeline p;
+        p.label = d.debugName ? d.debugName : "";
+        Shader& cs = shaders_.get(d.computeShader, "compute shader");
+        if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
+        p.program = linkProgram(gl_, {cs.name}, p.label);
+        p.compute = true;
+        p.desc.bindings = d.bindings;
+        p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
+        p.slotKinds = gdi::validate::slotKinds(d.bindings);
+        return pipelines_.add(std::move(p));
+    });
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
-    loss_.check("createTimer");
-    Timer t;
-    gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
-    return timers_.add(std::move(t));
+    return thread_.run([&]() -> gdi::TimerHandle {
+        loss_.check("createTimer");
+        Timer t;
+        gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
+        return timers_.add(std::move(t));
+    });
 }
 
 gdi::HeapHandle GlDevice::createHeap(const gdi::HeapDesc&) {
@@ -466,36 +523,43 @@ void GlDevice::forgetFramebuffers(GLuint texture) {
     }
 }
 
+template <class Pool, class H, class Release>
+void GlDevice::retire(Pool& pool, H h, Release&& release) {
+    if (!h || !pool.retire(h)) return;
+    destroyEpoch_.fetch_add(1, std::memory_order_release);
+    thread_.post([this, &pool, h, release = std::forward<Release>(release)] {
+        typename std::remove_reference_t<decltype(pool.at(h))> object;
+        pool.release(h, object);
+        release(object);
+    });
+}
 void GlDevice::destroy(gdi::BufferHandle h) {
-    Buffer b;
-    if (h && buffers_.remove(h, b)) gl_.DeleteBuffers(1, &b.name), --nativeObjects_;
+    retire(buffers_, h, [this](Buffer& b) {
+        gl_.DeleteBuffers(1, &b.name);  // unmaps a mapped buffer too
+        --nativeObjects_;
+    });
 }
 void GlDevice::destroy(gdi::TextureHandle h) {
-    Texture t;
-    if (h && textures_.remove(h, t)) {
+    retire(textures_, h, [this](Texture& t) {
         forgetFramebuffers(t.name);
         gl_.DeleteTextures(1, &t.name);
         --nativeObjects_;
-    }
+    });
 }
 void GlDevice::destroy(gdi::SamplerHandle h) {
-    Sampler s;
-    if (h && samplers_.remove(h, s)) gl_.DeleteSamplers(1, &s.name);
+    retire(samplers_, h, [this](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
 }
 void GlDevice::destroy(gdi::ShaderHandle h) {
-    Shader s;
-    if (h && shaders_.remove(h, s)) gl_.DeleteShader(s.name);
+    retire(shaders_, h, [this](Shader& s) { gl_.DeleteShader(s.name); });
 }
 void GlDevice::destroy(gdi::PipelineHandle h) {
-    Pipeline p;
-    if (h && pipelines_.remove(h, p)) {
+    retire(pipelines_, h, [this](Pipeline& p) {
         gl_.DeleteProgram(p.program);
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
-    }
+    });
 }
 void GlDevice::destroy(gdi::TimerHandle h) {
-    Timer t;
-    if (h && timers_.remove(h, t)) gl_.DeleteQueries(2, t.queries);
+    retire(timers_, h, [this](Timer& t) { gl_.DeleteQueries(2, t.queries); });
 }
 
 FboAttachment GlDevice::fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const {
@@ -528,12 +592,15 @@ GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttach
     return fbo;
 }
 
+// Queue-ordered: the bytes are copied now and written after the work queued before.
 void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
     loss_.check("writeBuffer");
-    Buffer& b = buffer(h);
+    const Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, data.size(), "writeBuffer");
     if (data.empty()) return;
-    gl_.NamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(data.size()), data.data());  // ordered after earlier GL work
+    thread_.post([this, name = b.name, offset, bytes = std::vector<std::byte>(data.begin(), data.end())] {
+        gl_.NamedBufferSubData(name, GLintptr(offset), GLsizeiptr(bytes.size()), bytes.data());
+    });
 }
 
 void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes) {
@@ -560,87 +627,196 @@ void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixe
 
 void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
     loss_.check("writeTexture");
-    Texture& t = texture(h);
+    const Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
     if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
-    uploadSubresource(t, at, data.data(), data.size());
+    thread_.post([this, h, at, bytes = std::vector<std::byte>(data.begin(), data.end())] {
+        uploadSubresource(textures_.at(h), at, bytes.data(), bytes.size());
+    });
 }
 
 std::vector<uint8_t> GlDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    loss_.check("readBuffer");
-    Buffer& b = buffer(h);
-    gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
-    std::vector<uint8_t> out(size);
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    if (size) gl_.GetNamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(size), out.data());
-    return out;
+    return thread_.run([&]() -> std::vector<uint8_t> {
+        loss_.check("readBuffer");
+        Buffer& b = buffer(h);
+        gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
+        std::vector<uint8_t> out(size);
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        if (size) gl_.GetNamedBufferSubData(b.name, GLintptr(offset), GLsizeiptr(size), out.data());
+        return out;
+    });
 }
 
 gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
-    loss_.check("readTexture");
-    Texture& t = texture(h);
-    gdi::validate::readable(t.desc, at, "readTexture", t.label);
-    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
-    gdi::Image img;
-    img.width = e.width;
-    img.height = e.height;
-    img.format = t.desc.format;
-    img.data.resize(gdi::imageByteSize(t.desc.format, e.width, e.height));
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    readSubresource(t, at, img.data.data(), img.data.size());
-    if (t.desc.format == gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
-        for (size_t i = 0; i < img.data.size(); i += 4) {
-            uint32_t v;
-            std::memcpy(&v, &img.data[i], 4);
-            v = (v >> 8) | ((v & 0xff) << 24);
-            std::memcpy(&img.data[i], &v, 4);
-        }
-    return img;
+    return thread_.run([&]() -> gdi::Image {
+        loss_.check("readTexture");
+        Texture& t = texture(h);
+        gdi::validate::readable(t.desc, at, "readTexture", t.label);
+        const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
+        gdi::Image img;
+        img.width = e.width;
+        img.height = e.height;
+        img.format = t.desc.format;
+        img.data.resize(gdi::imageByteSize(t.desc.format, e.width, e.height));
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+        readSubresource(t, at, img.data.data(), img.data.size());
+        if (t.desc.format == gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
+            for (size_t i = 0; i < img.data.size(); i += 4) {
+                uint32_t v;
+                std::memcpy(&v, &img.data[i], 4);
+                v = (v >> 8) | ((v & 0xff) << 24);
+                std::memcpy(&img.data[i], &v, 4);
+            }
+        return img;
+    });
 }
 
-gdi::FenceValue GlDevice::submit(gdi::CommandList& commands) {
+void* GlDevice::map(gdi::BufferHandle h) {
+    const Buffer& b = buffer(h);
+    gdi::validate::mappable(b.desc, b.label);
+    return b.mapped;  // mapped once, persistently, when created
+}
+
+std::unique_ptr<gdi::cmd::CommandStream> GlDevice::takeStream() {
+    std::lock_guard lock(streamsMutex_);
+    if (freeStreams_.empty()) return std::make_unique<gdi::cmd::CommandStream>();
+    auto stream = std::move(freeStreams_.back());
+    freeStreams_.pop_back();
+    return stream;
+}
+void GlDevice::returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream) {
+    if (!stream) return;
+    stream->reset();
+    std::lock_guard lock(streamsMutex_);
+    freeStreams_.push_back(std::move(stream));
+}
+
+// A handle field of a recorded command, or one inside its payloads, that no longer names a
+// live object makes the submit fail (the list was recorded before that object's destroy).
+void GlDevice::checkAlive(const gdi::cmd::CommandStream& stream) const {
+    auto check = [&](const auto& pool, auto h, const char* kind) {
+        if (h && !pool.find(h)) gdi::validate::destroyedBeforeSubmit(kind, h.id);
+    };
+    auto field = [&](const char*, const auto& value) {
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_same_v<T, gdi::BufferHandle>) check(buffers_, value, "buffer");
+        else if constexpr (std::is_same_v<T, gdi::TextureHandle>) check(textures_, value, "texture");
+        else if constexpr (std::is_same_v<T, gdi::SamplerHandle>) check(samplers_, value, "sampler");
+        else if constexpr (std::is_same_v<T, gdi::PipelineHandle>) check(pipelines_, value, "pipeline");
+        else if constexpr (std::is_same_v<T, gdi::TimerHandle>) check(timers_, value, "timer");
+        else if constexpr (std::is_same_v<T, gdi::DepthAttachment>) {
+            check(textures_, value.texture, "texture");
+            check(textures_, value.resolveTexture, "texture");
+        }
+    };
+    stream.forEach([&](const auto& record) {
+        gdi::cmd::forEachField(record, field);
+        using R = std::decay_t<decltype(record)>;
+        if constexpr (std::is_same_v<R, gdi::cmd::BeginRenderPass>)
+            for (const auto& c : gdi::cmd::view(record, record.colors)) {
+                check(textures_, c.texture, "texture");
+                check(textures_, c.resolveTexture, "texture");
+            }
+        if constexpr (std::is_same_v<R, gdi::cmd::TextureBarriers>)
+            for (const auto& b : gdi::cmd::view(record, record.barriers)) check(textures_, b.texture, "texture");
+        if constexpr (std::is_same_v<R, gdi::cmd::BufferBarriers>)
+            for (const auto& b : gdi::cmd::view(record, record.barriers)) check(buffers_, b.buffer, "buffer");
+    });
+}
+
+void GlDevice::rethrowAsyncError() {
+    if (std::exception_ptr e = thread_.takeError()) std::rethrow_exception(e);
+}
+
+// Validated on the calling thread; replayed, in order, on the context thread.
+gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     loss_.check("submit");
-    commands.nativeCommandBuffer();  // no-op; GL work was issued while recording
-    checkReset(gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit"));
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
-    GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    gl_.Flush();
-    fences_.push_back({nextFence_, s});
-    return nextFence_++;
+    rethrowAsyncError();
+    std::vector<std::unique_ptr<gdi::cmd::CommandStream>> streams;
+    for (gdi::CommandList* list : lists) {
+        auto* gl = dynamic_cast<GlCommandList*>(list);
+        if (!gl) throw gdi::Error("submit: a command list of another device");
+        streams.push_back(gl->finish());
+    }
+    if (gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit")) {
+        for (auto& s : streams) returnStream(std::move(s));
+        throw loss_.lose(info_.backend, "glGetGraphicsResetStatus returned GL_UNKNOWN_CONTEXT_RESET");
+    }
+    std::lock_guard lock(submitMutex_);
+    const gdi::FenceValue value = nextFence_++;
+    auto shared = std::make_shared<decltype(streams)>(std::move(streams));
+    thread_.post([this, value, shared] {
+        for (auto& stream : *shared) {
+            GlReplay(*this).run(*stream);
+            returnStream(std::move(stream));
+        }
+        gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // shader stores reach readback and mapped memory
+        GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        gl_.Flush();
+        fences_.push_back({value, s});
+        checkReset(false);
+    });
+    return value;
 }
 
 void GlDevice::wait(gdi::FenceValue fence) {
     loss_.check("wait");
-    while (!fences_.empty() && fences_.front().first <= fence) {
-        GLsync s = fences_.front().second;
-        while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
-            checkReset(false);  // a reset context may never signal
-        gl_.DeleteSync(s);
-        fences_.erase(fences_.begin());
-    }
-    checkReset(false);
+    thread_.run([&] {
+        while (!fences_.empty() && fences_.front().first <= fence) {
+            GLsync s = fences_.front().second;
+            while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
+                checkReset(false);  // a reset context may never signal
+            gl_.DeleteSync(s);
+            completed_.store(fences_.front().first, std::memory_order_release);
+            fences_.erase(fences_.begin());
+        }
+        checkReset(false);
+    });
+    rethrowAsyncError();
+}
+
+bool GlDevice::isComplete(gdi::FenceValue fence) {
+    loss_.check("isComplete");
+    if (completed_.load(std::memory_order_acquire) >= fence) return true;
+    return thread_.run([&] {
+        while (!fences_.empty()) {
+            if (gl_.ClientWaitSync(fences_.front().second, GL_SYNC_FLUSH_COMMANDS_BIT, 0) == GL_TIMEOUT_EXPIRED) break;
+            gl_.DeleteSync(fences_.front().second);
+            completed_.store(fences_.front().first, std::memory_order_release);
+            fences_.erase(fences_.begin());
+        }
+        checkReset(false);
+        // Nothing of `fence` still queued or pending: every submission up to it has completed.
+        return fences_.empty() || fences_.front().first > fence;
+    });
 }
 
 void GlDevice::waitIdle() {
     loss_.check("waitIdle");
-    wait(nextFence_);
-    gl_.Finish();
-    checkReset(false);
+    thread_.run([&] {
+        gl_.Finish();
+        for (auto& [v, s] : fences_) gl_.DeleteSync(s), completed_.store(v, std::memory_order_release);
+        fences_.clear();
+        checkReset(false);
+    });
+    rethrowAsyncError();
 }
 
 std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
-    loss_.check("timerNanoseconds");
-    Timer& t = timer(h);
-    if (!t.used) return std::nullopt;
-    if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
-    GLint available = 0;
-    gl_.GetQueryObjectiv(t.queries[1], GL_QUERY_RESULT_AVAILABLE, &available);
-    if (!available) return std::nullopt;
-    GLuint64 a = 0, b = 0;
-    gl_.GetQueryObjectui64v(t.queries[0], GL_QUERY_RESULT, &a);
-    gl_.GetQueryObjectui64v(t.queries[1], GL_QUERY_RESULT, &b);
-    return double(b - a);
+    return thread_.run([&]() -> std::optional<double> {
+        loss_.check("timerNanoseconds");
+        Timer& t = timer(h);
+        if (!t.used) return std::nullopt;
+        if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
+        GLint available = 0;
+        gl_.GetQueryObjectiv(t.queries[1], GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) return std::nullopt;
+        GLuint64 a = 0, b = 0;
+        gl_.GetQueryObjectui64v(t.queries[0], GL_QUERY_RESULT, &a);
+        gl_.GetQueryObjectui64v(t.queries[1], GL_QUERY_RESULT, &b);
+        return double(b - a);
+    });
 }
 
 uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
@@ -659,36 +835,41 @@ uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 
 namespace fe::gl {
 
+// Window calls (sizing, events) stay on the calling thread, which GLFW requires to be the one
+// that made the window; the blit and the swap run on the context thread.
 bool GlDevice::present(gdi::TextureHandle h) {
     loss_.check("present");
     if (!platform_->hasWindow()) return gdi::Device::present(h);
-    Texture& t = texture(h);
+    const Texture& t = texture(h);
     gdi::validate::presentTexture(t.desc, t.label);
     auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
-    platform_->makeCurrent();
-    GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);
-    gl_.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
-    gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
-    // Bytes unchanged: no sRGB decode/encode. The blit honours the scissor test, so it is off.
-    gl_.Disable(GL_FRAMEBUFFER_SRGB);
-    gl_.Disable(GL_SCISSOR_TEST);
-    // Texture row 0 is the image's top; the window's top row is GL row fbHeight - 1.
-    const GLint w = GLint(t.desc.width), hgt = GLint(t.desc.height), top = GLint(fbHeight);
-    gl_.BlitNamedFramebuffer(fbo, 0, 0, 0, w, hgt, 0, top, w, top - hgt, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    gl_.Enable(GL_SCISSOR_TEST);
-    gl_.Enable(GL_FRAMEBUFFER_SRGB);
-    windowWidth_ = std::min(t.desc.width, fbWidth);
-    windowHeight_ = std::min(t.desc.height, fbHeight);
-    checkReset(gdi::fault::hit(gdi::fault::Site::Submission, "Device::present"));
-    const bool open = platform_->swapAndPoll();
-    platform_->makeCurrent();
-    return open;
+    thread_.run([&] {
+        platform_->beforeDraw();
+        GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);
+        gl_.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+        gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+        // Bytes unchanged: no sRGB decode/encode. The blit honours the scissor test, so it is off.
+        gl_.Disable(GL_FRAMEBUFFER_SRGB);
+        gl_.Disable(GL_SCISSOR_TEST);
+        // Texture row 0 is the image's top; the window's top row is GL row fbHeight - 1.
+        const GLint w = GLint(t.desc.width), hgt = GLint(t.desc.height), top = GLint(fbHeight);
+        gl_.BlitNamedFramebuffer(fbo, 0, 0, 0, w, hgt, 0, top, w, top - hgt, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        gl_.Enable(GL_SCISSOR_TEST);
+        gl_.Enable(GL_FRAMEBUFFER_SRGB);
+        windowWidth_ = std::min(t.desc.width, fbWidth);
+        windowHeight_ = std::min(t.desc.height, fbHeight);
+        checkReset(gdi::fault::hit(gdi::fault::Site::Submission, "Device::present"));
+        platform_->swap();
+        gl_.Finish();  // the window shows the frame when present returns (readWindow reads it)
+    });
+    return platform_->poll();
 }
 
 gdi::Image GlDevice::readWindow() {
     loss_.check("readWindow");
     if (!platform_->hasWindow()) return gdi::Device::readWindow();
-    return platform_->readWindow(windowWidth_, windowHeight_);
+    const auto [width, height] = thread_.run([&] { return std::pair{windowWidth_, windowHeight_}; });
+    return platform_->readWindow(width, height);
 }
 
 }  // namespace fe::gl

@@ -1,20 +1,26 @@
 // The OpenGL 4.5 core implementation of gdi::Device (direct state access, ARB_gl_spirv).
 //  - glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE): depth [0,1] as on Vulkan; NDC y = -1 maps
 //    to window row 0, which is memory row 0 on both APIs, so images match with no flip.
-//  - GL has no deferred command buffers: the command list issues GL calls as it records;
-//    submit() flushes and inserts a fence sync.
+//  - One thread owns the context (GlContextThread): every GL call runs there, whichever thread
+//    calls the device. Command lists record into a CommandStream without touching GL; submit
+//    queues the streams, which the context thread replays in submission order (GlReplay),
+//    then flushes and inserts a fence sync. Destroys and writes are queued in the same order.
 //  - Vertex and index buffers are applied to the current pipeline's VAO at draw time, since
 //    gdi lets them be set before the pipeline.
 #pragma once
-#include <chrono>
 #include <array>
+#include <atomic>
+#include <chrono>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Device.h"
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
+#include "gl/GlContextThread.h"
 #include "gl/GlFunctions.h"
 #include "gl/GlPlatform.h"
 
@@ -29,6 +35,7 @@ struct Buffer {
     GLuint name = 0;
     gdi::BufferDesc desc;
     std::string label;
+    void* mapped = nullptr;  // Upload and Readback buffers: persistently mapped, coherent
 };
 struct Texture {
     GLuint name = 0;
@@ -102,20 +109,36 @@ public:
     // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
     void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes);
     void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
+    void* map(gdi::BufferHandle buffer) override;
     std::unique_ptr<gdi::CommandList> createCommandList() override;
-    gdi::FenceValue submit(gdi::CommandList& commands) override;
+    using gdi::Device::submit;
+    gdi::FenceValue submit(std::span<gdi::CommandList* const> lists) override;
     void wait(gdi::FenceValue fence) override;
+    bool isComplete(gdi::FenceValue fence) override;
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
-    uint32_t validationErrorCount() const override { return errors_; }
+    uint32_t validationErrorCount() const override { return errors_.load(); }
     gdi::LiveObjects liveObjects() const override;
     uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
     bool present(gdi::TextureHandle texture) override;
     gdi::Image readWindow() override;
     gdi::InputState input() const override { return platform_->input(); }
 
-    // For the command list.
+    // For the command list (recording, any thread: lookups only) and the replay (context thread).
     const GlFunctions& gl() const { return gl_; }
+    // Objects of handles checked when recorded: live, or destroyed with the release still queued.
+    Buffer& bufferAt(gdi::BufferHandle h) { return buffers_.at(h); }
+    Texture& textureAt(gdi::TextureHandle h) { return textures_.at(h); }
+    Sampler& samplerAt(gdi::SamplerHandle h) { return samplers_.at(h); }
+    Pipeline& pipelineAt(gdi::PipelineHandle h) { return pipelines_.at(h); }
+    Timer& timerAt(gdi::TimerHandle h) { return timers_.at(h); }
+    // Streams are reused (their blocks kept) from list to list.
+    std::unique_ptr<gdi::cmd::CommandStream> takeStream();
+    void returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream);
+    // How many destroy() calls so far: a list compares it at submit with its value when it began.
+    uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
+    // Throws the submit error when the stream uses a destroyed object.
+    void checkAlive(const gdi::cmd::CommandStream& stream) const;
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
     const Buffer* findBuffer(gdi::BufferHandle h) const { return buffers_.find(h); }  // null if invalid
     Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
@@ -124,15 +147,22 @@ public:
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
     FboAttachment fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const;
     GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, bool stencil);
-    void makeCurrent() { platform_->makeCurrent(); }
+    // Runs `task` on the context thread (gl-specific escape hatch: bench/ issues direct GL calls).
+    void runOnContextThread(const std::function<void()>& task) { thread_.run(task); }
 
 private:
     static void APIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
                                          const GLchar* message, const void* user);
+    void initialize(bool validation);  // on the context thread
+    void releaseAll();                 // on the context thread, at destruction
+    // Destroy: the handle is dead at once; the GL object goes after the work queued before.
+    template <class Pool, class H, class Release>
+    void retire(Pool& pool, H h, Release&& release);
+    void rethrowAsyncError();
     std::unique_ptr<GlPlatform> platform_;
     GlFunctions gl_;
     gdi::DeviceInfo info_;
-    uint32_t errors_ = 0;
+    std::atomic<uint32_t> errors_{0};
     gdi::DeviceLoss loss_;
     uint32_t nativeObjects_ = 0;  // buffer and texture names created and not yet deleted
     // Storage for a buffer or texture: runs `call` and returns the GL error it raised, or
@@ -142,8 +172,13 @@ private:
     // A context reset (robust contexts report one through glGetGraphicsResetStatus; fault
     // injection fakes one at the N-th submit) makes the device lost.
     void checkReset(bool injected);
-    std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;
+    std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;  // context thread only
+    std::mutex submitMutex_;  // fence values are handed out in the order streams are queued
     gdi::FenceValue nextFence_ = 1;
+    std::atomic<gdi::FenceValue> completed_{0};  // every fence up to it has signalled
+    std::atomic<uint64_t> destroyEpoch_{0};
+    std::mutex streamsMutex_;
+    std::vector<std::unique_ptr<gdi::cmd::CommandStream>> freeStreams_;
     struct CachedFbo {
         std::vector<FboAttachment> colors;
         FboAttachment depth;
@@ -155,9 +190,10 @@ private:
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline, gdi::PoolStorage::Pinned> pipelines_;  // command lists point at the bound one
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     void forgetFramebuffers(GLuint texture);
+    GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes
 };
 
 }  // namespace fe::gl

@@ -120,7 +120,9 @@ namespace fe::gl {
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                                                   \
     X(PFNGLBLITNAMEDFRAMEBUFFERPROC, BlitNamedFramebuffer)                                                 \
     X(PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC, NamedFramebufferReadBuffer)                                     \
-    X(PFNGLREADNPIXELSPROC, ReadnPixels)
+    X(PFNGLREADNPIXELSPROC, ReadnPixels)                                                                   \
+    X(PFNGLMAPNAMEDBUFFERRANGEPROC, MapNamedBufferRange)                                                   \
+    X(PFNGLINVALIDATETEXSUBIMAGEPROC, InvalidateTexSubImage)
 
 struct GlFunctions {
 #define FE_GL_DECLARE(type, name) type name = nullptr;

@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <utility>
 #include <cstdlib>
 
 #include "fe/gdi/Device.h"
@@ -73,6 +74,7 @@ public:
         if (!makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
             throw gdi::Error("EGL: eglMakeCurrent failed");
     }
+    void releaseCurrent() override { makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
 private:
     void* lib_ = nullptr;
@@ -113,6 +115,7 @@ public:
         // OSMesa needs a colour buffer to be current; all rendering goes to framebuffer objects.
         if (!makeCurrent_(context_, buffer_, GL_UNSIGNED_BYTE, 4, 4)) throw gdi::Error("OSMesa: OSMesaMakeCurrent failed");
     }
+    void releaseCurrent() override { makeCurrent_(nullptr, nullptr, 0, 0, 0); }  // no context, no buffer: unbind
 
 private:
     void* lib_ = nullptr;
@@ -140,20 +143,22 @@ public:
     const char* name() const override { return "gl-glfw"; }
     void* getProcAddress(const char* n) override { return reinterpret_cast<void*>(getProc_(n)); }
     void makeCurrent() override { makeCurrent_(static_cast<GLFWwindow*>(window_.handle())); }
+    void releaseCurrent() override { makeCurrent_(nullptr); }
     bool hasWindow() const override { return true; }
     std::string presentMode() const override { return presentMode_; }
     std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) override {
         bool first = false;
         platform::GlfwWindow::Size size = window_.prepare(width, height, &first);
-        // Mesa's software GLX drops the first frame swapped to a newly mapped window; an empty
-        // swap first makes the first real frame appear.
-        if (first) swap_(static_cast<GLFWwindow*>(window_.handle()));
+        if (first) emptySwapFirst_ = true;
         return {size.width, size.height};
     }
-    bool swapAndPoll() override {
-        swap_(static_cast<GLFWwindow*>(window_.handle()));
-        return window_.poll();
+    // Mesa's software GLX drops the first frame swapped to a newly mapped window; an empty
+    // swap first makes the first real frame appear.
+    void beforeDraw() override {
+        if (std::exchange(emptySwapFirst_, false)) swap_(static_cast<GLFWwindow*>(window_.handle()));
     }
+    void swap() override { swap_(static_cast<GLFWwindow*>(window_.handle())); }
+    bool poll() override { return window_.poll(); }
     gdi::Image readWindow(uint32_t width, uint32_t height) override { return window_.read(width, height); }
     gdi::InputState input() const override { return window_.input(); }
 
@@ -163,6 +168,7 @@ private:
     GLFWglproc (*getProc_)(const char*) = nullptr;
     void (*swap_)(GLFWwindow*) = nullptr;
     std::string presentMode_;
+    bool emptySwapFirst_ = false;
 };
 
 }  // namespace

@@ -40,25 +40,36 @@ VkAttachmentStoreOp toStore(gdi::StoreOp op) {
 }  // namespace
 
 VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
+    addRecordingBuffer();
+    pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
+    destroyEpoch_ = dev_.destroyEpoch();
+}
+
+// One command pool and buffer per recording still in flight: recording the next frame does not
+// wait for the previous one's execution.
+void VulkanCommandList::addRecordingBuffer() {
+    RecordingBuffer b;
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pci.queueFamilyIndex = dev_.queueFamily();
-    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &pool_); }), "vkCreateCommandPool");
+    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &b.pool); }), "vkCreateCommandPool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool_;
+    ai.commandPool = b.pool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
-    if (VkResult r = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &cb_); });
+    if (VkResult r = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &b.cb); });
         r != VK_SUCCESS) {
-        vkDestroyCommandPool(dev_.vkDevice(), pool_, nullptr);  // the destructor does not run when this throws
+        vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);  // not yet in buffers_: nothing else frees it
         check(r, "vkAllocateCommandBuffers");
     }
-    pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
+    buffers_.push_back(b);
+    current_ = buffers_.size() - 1;
+    cb_ = b.cb;
 }
 
 VulkanCommandList::~VulkanCommandList() {
     if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
-    vkDestroyCommandPool(dev_.vkDevice(), pool_, nullptr);
+    for (const RecordingBuffer& b : buffers_) vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
 }
 
 void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
@@ -84,7 +95,7 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
 
 void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
     outsidePass("discardTexture");
-    Texture& t = dev_.texture(h);
+    Texture& t = use_texture(h);
     toGeneral(cb_, t.image, t.desc.format);
 }
 
@@ -131,8 +142,8 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
     VkPipelineStageFlags src = 0, dst = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const gdi::TextureBarrier& in = barriers[i];
-        if (in.after == gdi::ResourceState::Undefined) throw gdi::Error("barrier: a texture cannot go to Undefined");
-        Texture& t = dev_.texture(in.texture);
+        Texture& t = use_texture(in.texture);
+        const auto range = gdi::validate::textureBarrier(t.desc, in, t.name);
         const StateScope before = scopeOf(in.before), after = scopeOf(in.after);
         VkImageMemoryBarrier& b = bs[i];
         b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -142,16 +153,87 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
         b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         b.image = t.image;
-        b.subresourceRange = {aspectOf(t.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+        b.subresourceRange = {aspectOf(t.desc.format), range.baseMip, range.mipCount, range.baseLayer, range.layerCount};
+        if (t.desc.dimension == gdi::TextureDimension::Texture3D) b.subresourceRange.layerCount = 1;
         src |= before.stages;
         dst |= after.stages;
     }
     vkCmdPipelineBarrier(cb_, src, dst, 0, 0, nullptr, 0, nullptr, count, bs.data());
 }
 
+namespace {
+// Where and how a buffer access happens, for a buffer memory barrier.
+StateScope bufferScope(gdi::BufferAccess a) {
+    using A = gdi::BufferAccess;
+    StateScope s{0, 0};
+    auto add = [&](A bit, VkPipelineStageFlags stages, VkAccessFlags access) {
+        if (any(a, bit)) s.stages |= stages, s.access |= access;
+    };
+    constexpr VkPipelineStageFlags kShaders =
+        VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    add(A::Vertex, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT);
+    add(A::Index, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
+    add(A::Indirect, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+    add(A::Uniform, kShaders, VK_ACCESS_UNIFORM_READ_BIT);
+    add(A::StorageRead, kShaders, VK_ACCESS_SHADER_READ_BIT);
+    add(A::StorageWrite, kShaders, VK_ACCESS_SHADER_WRITE_BIT);
+    add(A::CopySrc, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    add(A::CopyDst, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    if (!s.stages) s.stages = VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT;
+    return s;
+}
+}  // namespace
+
+void VulkanCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) {
+    outsidePass("barrier");
+    if (count == 0) return;
+    std::vector<VkBufferMemoryBarrier> bs(count);
+    VkPipelineStageFlags src = 0, dst = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const gdi::BufferBarrier& in = barriers[i];
+        const Buffer& buf = use_buffer(in.buffer);
+        const uint64_t size = gdi::validate::bufferBarrier(buf.desc, in, buf.name);
+        const StateScope before = bufferScope(in.before), after = bufferScope(in.after);
+        VkBufferMemoryBarrier& b = bs[i];
+        b = {VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+        b.srcAccessMask = before.access;
+        b.dstAccessMask = after.access;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.buffer = buf.buffer;
+        b.offset = in.offset;
+        b.size = size;
+        src |= before.stages;
+        dst |= after.stages;
+    }
+    vkCmdPipelineBarrier(cb_, src, dst, 0, 0, nullptr, count, bs.data(), 0, nullptr);
+}
+
+// A destroy happened since this recording began: every object it used must still be alive.
+void VulkanCommandList::checkAlive() const {
+    for (uint64_t u : used_) {
+        const uint32_t id = uint32_t(u);
+        switch (UsedKind(u >> 32)) {
+            case UsedKind::Buffer: if (!dev_.findBuffer({id})) gdi::validate::destroyedBeforeSubmit("buffer", id); break;
+            case UsedKind::Texture: if (!dev_.findTexture({id})) gdi::validate::destroyedBeforeSubmit("texture", id); break;
+            case UsedKind::Sampler: if (!dev_.findSampler({id})) gdi::validate::destroyedBeforeSubmit("sampler", id); break;
+            case UsedKind::Pipeline: if (!dev_.findPipeline({id})) gdi::validate::destroyedBeforeSubmit("pipeline", id); break;
+            case UsedKind::Timer: if (!dev_.findTimer({id})) gdi::validate::destroyedBeforeSubmit("timer", id); break;
+        }
+    }
+}
+
 void VulkanCommandList::beginRecording() {
-    if (lastSubmit_) dev_.settle(lastSubmit_);  // the buffer may still be executing; recording on a lost device is harmless
-    check(vkResetCommandPool(dev_.vkDevice(), pool_, 0), "vkResetCommandPool");
+    // A buffer whose last submission has completed is reused; otherwise another one is made.
+    size_t free = buffers_.size();
+    for (size_t i = 0; i < buffers_.size() && free == buffers_.size(); ++i)
+        if (!buffers_[i].fence || dev_.completedNoThrow(buffers_[i].fence)) free = i;
+    if (free == buffers_.size()) {
+        addRecordingBuffer();
+    } else {
+        current_ = free;
+        cb_ = buffers_[current_].cb;
+    }
+    check(vkResetCommandPool(dev_.vkDevice(), buffers_[current_].pool, 0), "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb_, &bi); }), "vkBeginCommandBuffer");
@@ -163,6 +245,9 @@ void VulkanCommandList::beginRecording() {
 // not when the next one begins, so binding needs no recording and no check for one).
 void VulkanCommandList::submitted(gdi::FenceValue value) {
     lastSubmit_ = value;
+    buffers_[current_].fence = value;
+    used_.clear();
+    destroyEpoch_ = dev_.destroyEpoch();
     recording_ = false;
     inPass_ = false;
     pipeline_ = nullptr;
@@ -181,6 +266,7 @@ VkCommandBuffer VulkanCommandList::finish() {
     ensureRecording();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    if (dev_.destroyEpoch() != destroyEpoch_) checkAlive();
     // No barrier at the end: every recording starts with one before its first pass, copy or
     // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
     // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
@@ -207,17 +293,17 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     std::vector<Texture*> colorTex, resolveTex(desc.colors.size(), nullptr);
     for (size_t i = 0; i < desc.colors.size(); ++i) {
         const auto& c = desc.colors[i];
-        Texture& t = dev_.texture(c.texture);
+        Texture& t = use_texture(c.texture);
         infos.push_back(attachment(t.desc, c.mipLevel, c.layer, "beginRenderPass", t.name));
         colorTex.push_back(&t);
         if (c.resolveTexture) {
-            resolveTex[i] = &dev_.texture(c.resolveTexture);
+            resolveTex[i] = &use_texture(c.resolveTexture);
             resolveInfos[i] = attachment(resolveTex[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
                                          "beginRenderPass resolve", resolveTex[i]->name);
         }
     }
-    Texture* depthTex = desc.depth.texture ? &dev_.texture(desc.depth.texture) : nullptr;
-    Texture* depthResolveTex = desc.depth.resolveTexture ? &dev_.texture(desc.depth.resolveTexture) : nullptr;
+    Texture* depthTex = desc.depth.texture ? &use_texture(desc.depth.texture) : nullptr;
+    Texture* depthResolveTex = desc.depth.resolveTexture ? &use_texture(desc.depth.resolveTexture) : nullptr;
     gdi::validate::AttachmentInfo depthInfo{}, depthResolveInfo{};
     if (depthTex) depthInfo = attachment(depthTex->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depthTex->name);
     if (depthResolveTex)
@@ -298,7 +384,7 @@ void VulkanCommandList::endRenderPass() {
 
 void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
-    Pipeline& p = dev_.pipeline(h);
+    Pipeline& p = use_pipeline(h);
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineSamples(p.samples, passSamples_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
@@ -333,7 +419,7 @@ void VulkanCommandList::setScissor(const gdi::Rect& r) {
 
 void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
     ensureRecording();
-    Buffer& b = dev_.buffer(h);
+    Buffer& b = use_buffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     VkDeviceSize off = offset;
     vkCmdBindVertexBuffers(cb_, index, 1, &b.buffer, &off);
@@ -341,7 +427,7 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
     ensureRecording();
-    Buffer& b = dev_.buffer(h);
+    Buffer& b = use_buffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
     indexOffset_ = offset;
@@ -353,7 +439,7 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // checked path handles the rest and owns every error message.
 template <VkDescriptorType kType>
 inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const Buffer* b = dev_.findBuffer(h);
+    const Buffer* b = use_findBuffer(h);
     const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
     if (!bindSize) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
@@ -364,7 +450,7 @@ template <VkDescriptorType kType>
 void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
-    Buffer& b = dev_.buffer(h);
+    Buffer& b = use_buffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
     gdi::validate::bindingRange(b.desc, offset, size, what);
     bindBuffer(slot, kType, b.buffer, offset, size);
@@ -380,8 +466,8 @@ void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
     if (slot >= 64) throw gdi::Error("setTexture: slot " + std::to_string(slot) + " out of range");
-    Texture& t = dev_.texture(th);
-    Sampler& s = dev_.sampler(sh);
+    Texture& t = use_texture(th);
+    Sampler& s = use_sampler(sh);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
@@ -390,7 +476,7 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
     if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
-    Texture& t = dev_.texture(th);
+    Texture& t = use_texture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
@@ -471,7 +557,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
                                               uint32_t recordSize, const char* what) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw(what);
-    const Buffer& b = dev_.buffer(h);
+    const Buffer& b = use_buffer(h);
     gdi::validate::indirect(b.desc, b.name, offset, drawCount, stride, recordSize, dev_.info().features, what);
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     return b;
@@ -480,7 +566,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
 const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
     if (!dev_.info().features.drawIndirectCount)
         throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
-    const Buffer& b = dev_.buffer(h);
+    const Buffer& b = use_buffer(h);
     gdi::validate::indirect(b.desc, b.name, offset, 1, 4, 4, dev_.info().features, what);
     return b;
 }
@@ -525,7 +611,7 @@ void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset
     if (!pipeline_) fail("dispatchIndirect without a pipeline (call setPipeline first)");
     if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->name + "'");
-    const Buffer& b = dev_.buffer(args);
+    const Buffer& b = use_buffer(args);
     gdi::validate::indirect(b.desc, b.name, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
                             dev_.info().features, "dispatchIndirect");
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
@@ -548,8 +634,8 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
 void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
                                    uint64_t size) {
     outsidePass("copyBuffer");
-    Buffer& d = dev_.buffer(dst);
-    Buffer& s = dev_.buffer(src);
+    Buffer& d = use_buffer(dst);
+    Buffer& s = use_buffer(src);
     gdi::validate::bufferRange(d.desc, dstOffset, size, "copyBuffer destination");
     gdi::validate::bufferRange(s.desc, srcOffset, size, "copyBuffer source");
     if (size == 0) return;
@@ -561,8 +647,8 @@ void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gd
 
 void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
     outsidePass("copyTexture");
-    Texture& d = dev_.texture(dst);
-    Texture& s = dev_.texture(src);
+    Texture& d = use_texture(dst);
+    Texture& s = use_texture(src);
     if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
         d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
         d.desc.sampleCount != s.desc.sampleCount)
@@ -593,8 +679,8 @@ static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource 
 
 void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
-    Texture& t = dev_.texture(dst);
-    Buffer& b = dev_.buffer(src);
+    Texture& t = use_texture(dst);
+    Buffer& b = use_buffer(src);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, "copyBufferToTexture");
     barrierIfWritten();
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
@@ -603,8 +689,8 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subreso
 
 void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
-    Texture& t = dev_.texture(src);
-    Buffer& b = dev_.buffer(dst);
+    Texture& t = use_texture(src);
+    Buffer& b = use_buffer(dst);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, "copyTextureToBuffer");
     barrierIfWritten();
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
@@ -615,7 +701,7 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstO
 // halve evenly), every layer at once; a barrier orders each level's write before its read.
 void VulkanCommandList::generateMips(gdi::TextureHandle h) {
     outsidePass("generateMips");
-    Texture& t = dev_.texture(h);
+    Texture& t = use_texture(h);
     gdi::validate::mipGeneration(t.desc, t.name);
     if (!dev_.linearBlit(t.desc.format))
         throw gdi::Error("generateMips: format " + std::string(gdi::formatInfo(t.desc.format).name) +
@@ -641,14 +727,14 @@ void VulkanCommandList::generateMips(gdi::TextureHandle h) {
 
 void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
     outsidePass("beginTimer");  // the query reset below must be outside rendering
-    Timer& t = dev_.timer(h);
+    Timer& t = use_timer(h);
     vkCmdResetQueryPool(cb_, dev_.queryPool(), t.firstQuery, 2);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery);
 }
 
 void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     ensureRecording();
-    Timer& t = dev_.timer(h);
+    Timer& t = use_timer(h);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
 }
 

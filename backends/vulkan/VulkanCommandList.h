@@ -1,6 +1,7 @@
 // Command recording into a VkCommandBuffer; see VulkanDevice.h for the synchronisation model.
 #pragma once
 #include <array>
+#include <vector>
 
 #include "VulkanDevice.h"
 
@@ -56,8 +57,24 @@ public:
     void discardTexture(gdi::TextureHandle texture) override;
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
+    void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
 
 private:
+    // Lookups that note what the recording uses, so submit can refuse objects destroyed since.
+    enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer };
+    void note(UsedKind kind, uint32_t id) { used_.push_back(uint64_t(kind) << 32 | id); }
+    Buffer& use_buffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); note(UsedKind::Buffer, h.id); return b; }
+    const Buffer* use_findBuffer(gdi::BufferHandle h) {
+        const Buffer* b = dev_.findBuffer(h);
+        note(UsedKind::Buffer, h.id);
+        return b;
+    }
+    Texture& use_texture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
+    Sampler& use_sampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
+    Pipeline& use_pipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
+    Timer& use_timer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
+    void checkAlive() const;
+    void addRecordingBuffer();
     void ensureRecording() {
         if (!recording_) [[unlikely]]
             beginRecording();
@@ -96,8 +113,16 @@ private:
     };
 
     VulkanDevice& dev_;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer cb_ = VK_NULL_HANDLE;
+    struct RecordingBuffer {
+        VkCommandPool pool = VK_NULL_HANDLE;
+        VkCommandBuffer cb = VK_NULL_HANDLE;
+        gdi::FenceValue fence = 0;  // of its last submission; 0: never submitted
+    };
+    std::vector<RecordingBuffer> buffers_;
+    size_t current_ = 0;
+    VkCommandBuffer cb_ = VK_NULL_HANDLE;  // buffers_[current_].cb
+    std::vector<uint64_t> used_;  // UsedKind << 32 | handle id, per use
+    uint64_t destroyEpoch_ = 0;
     bool recording_ = false;
     bool inPass_ = false;
     bool passHasLabel_ = false;

@@ -3,6 +3,7 @@
 #include "VulkanFaults.h"
 
 #include <algorithm>
+#include <utility>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -315,6 +316,11 @@ void VulkanDevice::fillInfo() {
 }
 
 VulkanDevice::~VulkanDevice() {
+    if (device_) {  // what was destroyed is not a leak: release it first
+        vkDeviceWaitIdle(device_);
+        for (Retired& r : retired_) r.release();
+        retired_.clear();
+    }
     if (gdi::leakCheckEnabled()) {
         std::vector<std::string> named;
         buffers_.forEach([&](Buffer& b) { named.push_back("buffer '" + b.name + "'"); });
@@ -328,6 +334,9 @@ void VulkanDevice::release() {
     if (swapchain_) swapchain_->release();  // swap chain and surface go before the device and instance
     if (device_) {
         vkDeviceWaitIdle(device_);
+        for (Retired& r : retired_) r.release();
+        retired_.clear();
+        if (pendingInit_) vkFreeCommandBuffers(device_, immediatePool_, 1, &pendingInit_);
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
         textures_.forEach([&](Texture& t) { destroyTexture(t); });
         heaps_.forEach([&](Heap& h) { allocator_->free(h.memory); });
@@ -375,10 +384,19 @@ std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
     return std::make_unique<VulkanCommandList>(*this);
 }
 
-gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
+gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
+    std::lock_guard lock(mutex_);
     loss_.check("submit");
-    auto& list = static_cast<VulkanCommandList&>(commands);
-    VkCommandBuffer cb = list.finish();
+    std::vector<VulkanCommandList*> vk;
+    std::vector<VkCommandBuffer> cbs;
+    for (gdi::CommandList* l : lists) {
+        auto* list = dynamic_cast<VulkanCommandList*>(l);
+        if (!list) throw gdi::Error("submit: a command list of another device");
+        vk.push_back(list);
+    }
+    const VkCommandBuffer init = takeInitialTransitions();
+    if (init) cbs.push_back(init);
+    for (VulkanCommandList* list : vk) cbs.push_back(list->finish());
     VkFence fence;
     if (!freeFences_.empty()) {
         fence = freeFences_.back();
@@ -388,26 +406,81 @@ gdi::FenceValue VulkanDevice::submit(gdi::CommandList& commands) {
         check(nativeAllocation("vkCreateFence", [&] { return vkCreateFence(device_, &fci, nullptr, &fence); }), "vkCreateFence");
     }
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cb;
+    si.commandBufferCount = uint32_t(cbs.size());
+    si.pCommandBuffers = cbs.data();
     if (VkResult r = nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, fence); }); r != VK_SUCCESS) {
-        freeFences_.push_back(fence);    // never submitted
-        list.submitted(nextFence_ - 1);  // the recording is dropped; the next one waits for every earlier submission
+        freeFences_.push_back(fence);  // never submitted
+        for (VulkanCommandList* list : vk) list->submitted(nextFence_ - 1);  // the recordings are dropped
+        if (init) vkFreeCommandBuffers(device_, immediatePool_, 1, &init);
         check(r, "vkQueueSubmit");
     }
     gdi::FenceValue value = nextFence_++;
     inFlight_.push_back({value, fence});
-    list.submitted(value);
+    for (VulkanCommandList* list : vk) list->submitted(value);
+    if (init) freeAfter(value, init);
+    pollFences();
+    collectRetired();
     return value;
 }
 
 void VulkanDevice::wait(gdi::FenceValue fence) {
+    std::lock_guard lock(mutex_);
     loss_.check("wait");
     settle(fence);
     loss_.check("wait");
+    collectRetired();
+}
+
+bool VulkanDevice::isComplete(gdi::FenceValue fence) {
+    std::lock_guard lock(mutex_);
+    loss_.check("isComplete");
+    pollFences();
+    loss_.check("isComplete");
+    collectRetired();
+    return completed_ >= std::min(fence, nextFence_ - 1);
+}
+
+bool VulkanDevice::completedNoThrow(gdi::FenceValue fence) {
+    std::lock_guard lock(mutex_);
+    if (loss_.lost()) return true;
+    pollFences();
+    return completed_ >= fence;
+}
+
+void VulkanDevice::pollFences() {
+    while (!inFlight_.empty()) {
+        Submission s = inFlight_.front();
+        const VkResult r = vkGetFenceStatus(device_, s.fence);
+        if (r == VK_NOT_READY) break;
+        if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkGetFenceStatus returned VK_ERROR_DEVICE_LOST");
+        else check(r, "vkGetFenceStatus");
+        vkResetFences(device_, 1, &s.fence);
+        freeFences_.push_back(s.fence);
+        completed_ = s.value;
+        inFlight_.pop_front();
+    }
+    if (inFlight_.empty()) completed_ = nextFence_ - 1;
+}
+
+void VulkanDevice::retire(std::function<void()> release) {
+    destroyEpoch_.fetch_add(1, std::memory_order_release);
+    pollFences();
+    // Unsubmitted initial transitions may name it: then it waits for the next submission too.
+    const gdi::FenceValue after = pendingInit_ ? nextFence_ : nextFence_ - 1;
+    if (completed_ >= after) return release();  // nothing in flight can use it
+    retired_.push_back({after, std::move(release)});
+}
+
+void VulkanDevice::collectRetired() {
+    while (!retired_.empty() && (retired_.front().after <= completed_ || loss_.lost())) {
+        auto release = std::move(retired_.front().release);
+        retired_.pop_front();
+        release();
+    }
 }
 
 void VulkanDevice::settle(gdi::FenceValue fence) {
+    std::lock_guard lock(mutex_);
     while (!inFlight_.empty() && inFlight_.front().value <= fence) {
         Submission s = inFlight_.front();
         const VkResult r = vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX);
@@ -423,9 +496,11 @@ void VulkanDevice::settle(gdi::FenceValue fence) {
 }
 
 void VulkanDevice::waitIdle() {
+    std::lock_guard lock(mutex_);
     loss_.check("waitIdle");
     wait(nextFence_ - 1);
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+    collectRetired();
 }
 
 void VulkanDevice::idle() {
@@ -441,12 +516,57 @@ void VulkanDevice::fail(VkResult r, const char* call, const std::string& object)
 }
 
 gdi::LiveObjects VulkanDevice::liveObjects() const {
+    std::lock_guard lock(mutex_);
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
             .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
+void VulkanDevice::recordInitialTransition(const std::function<void(VkCommandBuffer)>& record) {
+    if (!pendingInit_) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = immediatePool_;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        VkCommandBuffer cb;
+        check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }), "vkAllocateCommandBuffers");
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        if (VkResult r = nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }); r != VK_SUCCESS) {
+            vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
+            check(r, "vkBeginCommandBuffer");
+        }
+        pendingInit_ = cb;
+    }
+    record(pendingInit_);
+}
+
+VkCommandBuffer VulkanDevice::takeInitialTransitions() {
+    VkCommandBuffer cb = std::exchange(pendingInit_, VK_NULL_HANDLE);
+    if (!cb) return cb;
+    if (VkResult r = vkEndCommandBuffer(cb); r != VK_SUCCESS) {
+        vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
+        check(r, "vkEndCommandBuffer");
+    }
+    return cb;
+}
+
+void VulkanDevice::freeAfter(gdi::FenceValue fence, VkCommandBuffer cb) {
+    retired_.push_back({fence, [this, cb]() mutable { vkFreeCommandBuffers(device_, immediatePool_, 1, &cb); }});
+}
+
 void VulkanDevice::immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record) {
+    // Textures made since the last submission get their first transitions first, in the same
+    // submission; both command buffers are freed after the wait at the end.
+    const VkCommandBuffer init = takeInitialTransitions();
+    struct ReleaseInit {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer cb;
+        ~ReleaseInit() {
+            if (cb) vkFreeCommandBuffers(device, pool, 1, &cb);
+        }
+    } releaseInit{device_, immediatePool_, init};
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = immediatePool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -467,9 +587,10 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
     record(cb);
     VulkanCommandList::fullBarrier(cb);
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer", object);
+    const VkCommandBuffer both[] = {init, cb};
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cb;
+    si.commandBufferCount = init ? 2 : 1;
+    si.pCommandBuffers = init ? both : &cb;
     check(nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }), "vkQueueSubmit");
     waitIdle();
 }
@@ -477,14 +598,23 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
 // ---------------------------------------------------------------------------------------------
 // Blocking transfers
 // ---------------------------------------------------------------------------------------------
+void* VulkanDevice::map(gdi::BufferHandle h) {
+    const Buffer& b = buffer(h);
+    gdi::validate::mappable(b.desc, b.name);
+    return b.memory.mapped;  // host-visible, coherent memory, mapped for the buffer's life
+}
+
 void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
+    std::lock_guard lock(mutex_);
     loss_.check("writeBuffer");
     Buffer& b = buffer(h);
     const uint64_t size = data.size();
     gdi::validate::bufferRange(b.desc, offset, size, "writeBuffer");
     if (size == 0) return;
     if (b.desc.access == gdi::MemoryAccess::Upload && b.memory.mapped) {
-        std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data.data(), size);  // caller owns frame pacing
+        // Queue order: work submitted before may still read these bytes (map() does not wait).
+        settle(nextFence_ - 1);
+        std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data.data(), size);
         return;
     }
     Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for buffer", b.name);
@@ -497,6 +627,7 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSp
 }
 
 void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
+    std::lock_guard lock(mutex_);
     loss_.check("writeTexture");
     Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
@@ -512,6 +643,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
 }
 
 std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+    std::lock_guard lock(mutex_);
     loss_.check("readBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
@@ -528,6 +660,7 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
 }
 
 gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
+    std::lock_guard lock(mutex_);
     loss_.check("readTexture");
     Texture& t = texture(h);
     gdi::validate::readable(t.desc, at, "readTexture", t.name);
@@ -567,6 +700,7 @@ uint64_t VulkanDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 }
 
 std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
+    std::lock_guard lock(mutex_);
     loss_.check("timerNanoseconds");
     Timer& t = timer(h);
     uint64_t ticks[2];

@@ -13,6 +13,8 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <atomic>
+#include <mutex>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -136,9 +138,12 @@ public:
     std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
     gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
 
+    void* map(gdi::BufferHandle buffer) override;
     std::unique_ptr<gdi::CommandList> createCommandList() override;
-    gdi::FenceValue submit(gdi::CommandList& commands) override;
+    using gdi::Device::submit;
+    gdi::FenceValue submit(std::span<gdi::CommandList* const> lists) override;
     void wait(gdi::FenceValue fence) override;
+    bool isComplete(gdi::FenceValue fence) override;
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_; }
@@ -152,6 +157,14 @@ public:
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
     const Buffer* findBuffer(gdi::BufferHandle h) const { return buffers_.find(h); }  // null if invalid
     Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
+    const Texture* findTexture(gdi::TextureHandle h) const { return textures_.find(h); }
+    const Sampler* findSampler(gdi::SamplerHandle h) const { return samplers_.find(h); }
+    const Pipeline* findPipeline(gdi::PipelineHandle h) const { return pipelines_.find(h); }
+    const Timer* findTimer(gdi::TimerHandle h) const { return timers_.find(h); }
+    // How many destroy() calls so far (a list compares it at submit with its value at start).
+    uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
+    // Whether the submission has completed, without waiting; a lost device's work counts as done.
+    bool completedNoThrow(gdi::FenceValue fence);
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
     Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
@@ -185,6 +198,12 @@ private:
     // Records with `record` into a one-time command buffer, submits it and waits.
     // Records, submits and waits for a one-off command buffer; `object` names it in errors.
     void immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record);
+    // First layout transitions of new textures, gathered in one command buffer that goes in
+    // front of the next submission or transfer.
+    void recordInitialTransition(const std::function<void(VkCommandBuffer)>& record);
+    VkCommandBuffer takeInitialTransitions();  // ended, ready to submit; null when none
+    void freeAfter(gdi::FenceValue fence, VkCommandBuffer cb);
+    VkCommandBuffer pendingInit_ = VK_NULL_HANDLE;
     // kind and name say what the buffer is in errors (gdi::describeObject).
     Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
                       const std::string& name);
@@ -198,6 +217,19 @@ private:
     }
     [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
     void idle();  // destroy's wait: settle() everything
+    // Deferred destruction: `release` runs once every submission made so far has completed.
+    void retire(std::function<void()> release);
+    void collectRetired();  // runs the releases whose submissions have completed
+    void pollFences();      // completes finished submissions without waiting
+    struct Retired {
+        gdi::FenceValue after;
+        std::function<void()> release;
+    };
+    std::deque<Retired> retired_;
+    std::atomic<uint64_t> destroyEpoch_{0};
+    // One lock for everything but recording: creation, destruction, transfers, submission and
+    // fences, attachment views made while recording. Recursive: transfers wait through waitIdle.
+    mutable std::recursive_mutex mutex_;
 
     gdi::DeviceInfo info_;
     std::unique_ptr<VulkanSwapchain> swapchain_;  // vulkan-glfw only
@@ -235,7 +267,7 @@ private:
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline, gdi::PoolStorage::Pinned> pipelines_;  // command lists point at the bound one
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     gdi::HandlePool<gdi::HeapHandle, Heap> heaps_;
     VkImageCreateInfo imageInfo(const gdi::TextureDesc& desc) const;

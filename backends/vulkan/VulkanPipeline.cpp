@@ -72,6 +72,7 @@ VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
 }  // namespace
 
 gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
+    std::lock_guard lock(mutex_);
     loss_.check("createShader");
     gdi::validate::shaderDesc(desc);
     const std::string name = desc.binary.name ? desc.binary.name : "";
@@ -122,6 +123,7 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
 }
 
 gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
+    std::lock_guard lock(mutex_);
     loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_);
     const std::string name = d.debugName ? d.debugName : "";
@@ -256,6 +258,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 }
 
 gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
+    std::lock_guard lock(mutex_);
     loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Shader& cs = shaders_.get(d.computeShader, "compute shader");

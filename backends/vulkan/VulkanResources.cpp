@@ -80,6 +80,7 @@ void VulkanDevice::freeBuffer(Buffer& b) {
 }
 
 gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
+    std::lock_guard lock(mutex_);
     loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc);
     gdi::validate::initialData(desc, initialData.size());
@@ -138,6 +139,7 @@ VkImageViewType viewType(gdi::TextureDimension d) {
 }  // namespace
 
 VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t layer) {
+    std::lock_guard lock(mutex_);
     const uint32_t layers = t.desc.depthOrLayers;
     if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
     VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
@@ -183,6 +185,7 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
 }
 
 gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
+    std::lock_guard lock(mutex_);
     loss_.check("createHeap");
     const std::string name = desc.debugName ? desc.debugName : "";
     if (desc.size == 0) throw gdi::Error("heap '" + name + "': size is 0");
@@ -212,8 +215,11 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
 }
 
 void VulkanDevice::destroy(gdi::HeapHandle h) {
+    std::lock_guard lock(mutex_);
     Heap heap;
     if (!h || !heaps_.find(h)) return;
+    idle();  // textures destroyed before the heap are released now, not later
+    collectRetired();
     if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
     idle();
     heaps_.remove(h, heap);
@@ -221,6 +227,7 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
 }
 
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
+    std::lock_guard lock(mutex_);
     loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
@@ -270,9 +277,10 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         throw;
     }
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
-    // Move the image into GENERAL once; it stays there (see VulkanDevice.h).
+    // Move the image into GENERAL once; it stays there (see VulkanDevice.h). Recorded into the
+    // next submission (or transfer) rather than submitted and waited for here.
     try {
-        immediate("the first layout transition of " + object, [&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
+        recordInitialTransition([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
     } catch (...) {
         destroyTexture(t);  // the submission failed (device lost): the image was never used
         throw;
@@ -295,6 +303,7 @@ void VulkanDevice::destroyTexture(Texture& t) {
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
+    std::lock_guard lock(mutex_);
     loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
@@ -326,6 +335,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::TimerHandle VulkanDevice::createTimer() {
+    std::lock_guard lock(mutex_);
     loss_.check("createTimer");
     if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
     Timer t{freeTimerSlots_.back()};
@@ -337,52 +347,52 @@ gdi::TimerHandle VulkanDevice::createTimer() {
 // Destruction waits for the GPU so nothing in flight still uses the object (on a lost device
 // nothing is: destroy works after a loss). Resources are created and destroyed at load time,
 // not per frame (the render graph pools its transients).
+// Destruction is deferred past the submissions that may use the object (retire()); the
+// handle is invalid at once.
 void VulkanDevice::destroy(gdi::BufferHandle h) {
+    std::lock_guard lock(mutex_);
     Buffer b;
-    if (!h || !buffers_.find(h)) return;
-    idle();
-    buffers_.remove(h, b);
-    freeBuffer(b);
+    if (!h || !buffers_.remove(h, b)) return;
+    retire([this, b]() mutable { freeBuffer(b); });
 }
 
 void VulkanDevice::destroy(gdi::TextureHandle h) {
+    std::lock_guard lock(mutex_);
     Texture t;
-    if (!h || !textures_.find(h)) return;
-    idle();
-    textures_.remove(h, t);
-    destroyTexture(t);
+    if (!h || !textures_.remove(h, t)) return;
+    retire([this, t]() mutable { destroyTexture(t); });
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
+    std::lock_guard lock(mutex_);
     Sampler s;
-    if (!h || !samplers_.find(h)) return;
-    idle();
-    samplers_.remove(h, s);
-    vkDestroySampler(device_, s.sampler, nullptr);
+    if (!h || !samplers_.remove(h, s)) return;
+    retire([this, s] { vkDestroySampler(device_, s.sampler, nullptr); });
 }
 
 void VulkanDevice::destroy(gdi::ShaderHandle h) {
+    std::lock_guard lock(mutex_);
     Shader s;
     if (!h || !shaders_.remove(h, s)) return;
     vkDestroyShaderModule(device_, s.module, nullptr);  // pipelines keep their own copy of the code
 }
 
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
+    std::lock_guard lock(mutex_);
     Pipeline p;
-    if (!h || !pipelines_.find(h)) return;
-    idle();
-    pipelines_.remove(h, p);
-    vkDestroyPipeline(device_, p.pipeline, nullptr);
-    vkDestroyPipelineLayout(device_, p.layout, nullptr);
-    vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+    if (!h || !pipelines_.remove(h, p)) return;
+    retire([this, pipeline = p.pipeline, layout = p.layout, setLayout = p.setLayout] {
+        vkDestroyPipeline(device_, pipeline, nullptr);
+        vkDestroyPipelineLayout(device_, layout, nullptr);
+        vkDestroyDescriptorSetLayout(device_, setLayout, nullptr);
+    });
 }
 
 void VulkanDevice::destroy(gdi::TimerHandle h) {
+    std::lock_guard lock(mutex_);
     Timer t;
-    if (!h || !timers_.find(h)) return;
-    idle();
-    timers_.remove(h, t);
-    freeTimerSlots_.push_back(t.firstQuery);
+    if (!h || !timers_.remove(h, t)) return;
+    retire([this, t] { freeTimerSlots_.push_back(t.firstQuery); });
 }
 
 }  // namespace fe::vk

@@ -128,14 +128,17 @@ void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& liv
 }
 
 DeviceLostError DeviceLoss::lose(const std::string& backend, const std::string& cause) {
-    if (cause_.empty()) {
+    std::lock_guard lock(mutex_);
+    if (!lost_.load(std::memory_order_relaxed)) {
         backend_ = backend;
         cause_ = cause;
+        lost_.store(true, std::memory_order_release);
     }
     return DeviceLostError(backend + ": device lost: " + cause);
 }
 
 void DeviceLoss::throwLost(const char* call) const {
+    std::lock_guard lock(mutex_);
     throw DeviceLostError(backend_ + ": " + call + ": device lost (" + cause_ + "); nothing more runs on this device");
 }
 

@@ -1,5 +1,7 @@
 #include "fe/gdi/Validation.h"
 
+#include "fe/gdi/Faults.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -342,6 +344,40 @@ void missingBindingsFailed(uint64_t missing, const char* pipelineName) {
     for (int i = 0; i < 64; ++i)
         if (missing & (uint64_t(1) << i)) slots += (slots.empty() ? "" : ", ") + std::to_string(i);
     fail(label("draw/dispatch with pipeline", pipelineName), "missing binding for slot(s) " + slots);
+}
+
+SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name) {
+    if (b.after == ResourceState::Undefined) throw Error("barrier: a texture cannot go to Undefined");
+    const uint32_t layers = d.dimension == TextureDimension::Texture3D ? 1 : d.depthOrLayers;
+    SubresourceRange r{b.baseMip, b.mipCount ? b.mipCount : d.mipLevels - std::min(b.baseMip, d.mipLevels), b.baseLayer,
+                       b.layerCount ? b.layerCount : layers - std::min(b.baseLayer, layers)};
+    if (b.baseMip >= d.mipLevels || r.mipCount == 0 || uint64_t(r.baseMip) + r.mipCount > d.mipLevels ||
+        b.baseLayer >= layers || r.layerCount == 0 || uint64_t(r.baseLayer) + r.layerCount > layers)
+        throw Error("barrier: " + describeObject("texture", name, {}) + " has mips 0-" + std::to_string(d.mipLevels - 1) +
+                    " and layers 0-" + std::to_string(layers - 1) + "; the barrier names mips " + std::to_string(b.baseMip) +
+                    "+" + std::to_string(b.mipCount) + ", layers " + std::to_string(b.baseLayer) + "+" +
+                    std::to_string(b.layerCount));
+    r.whole = r.baseMip == 0 && r.mipCount == d.mipLevels && r.baseLayer == 0 && r.layerCount == layers;
+    return r;
+}
+
+uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name) {
+    const uint64_t size = b.size ? b.size : d.size - std::min(b.offset, d.size);
+    if (b.offset >= d.size || size > d.size - b.offset)
+        throw Error("barrier: range " + std::to_string(b.offset) + "+" + std::to_string(b.size) + " is outside " +
+                    describeObject("buffer", name, std::to_string(d.size) + " bytes"));
+    return size;
+}
+
+void mappable(const BufferDesc& d, const std::string& name) {
+    if (d.access == MemoryAccess::GpuOnly)
+        throw Error("map: " + describeObject("buffer", name, {}) +
+                    " is GpuOnly; only Upload and Readback buffers can be mapped (use writeBuffer or a copy)");
+}
+
+void destroyedBeforeSubmit(const char* kind, uint32_t id) {
+    throw Error(std::string("submit: the list uses ") + kind + " handle " + std::to_string(id) +
+                ", destroyed after it was recorded; record it again");
 }
 
 }  // namespace fe::gdi::validate

@@ -231,6 +231,7 @@ std::vector<CaseImage> timestamps(Device& d) {
 std::vector<Case> drawCases();     // DrawCases.cpp
 std::vector<Case> textureCases();  // TextureCases.cpp
 std::vector<Case> stateCases();    // StateCases.cpp
+std::vector<Case> executionCases();  // ExecutionCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -241,7 +242,7 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases})
+        for (auto* group : {drawCases, textureCases, stateCases, executionCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

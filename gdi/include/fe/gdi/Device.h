@@ -728,10 +728,11 @@ public:
     // Queue-ordered writes: the data is copied before the call returns (the caller may reuse
     // its memory), and the write takes effect after all work submitted before the call and
     // before all work submitted after it, as if it were a command of its own submission. So a
-    // list recorded before writeBuffer and submitted after it reads the new data. The calls
-    // return without waiting for the GPU, except on Vulkan for GpuOnly memory, which they stage
-    // and wait for. A write to an Upload buffer the GPU may still be reading (a frame in
-    // flight) is the caller's to pace: use map() with one region per frame in flight instead.
+    // list recorded before writeBuffer and submitted after it reads the new data, and work in
+    // flight never sees a half-written buffer. Blocking: on GL they return at once (the context
+    // thread applies them in order); on Vulkan they wait for the work in flight (GpuOnly memory
+    // is staged and copied; Upload memory is written once nothing in flight can read it).
+    // Per-frame data without any wait: map() an Upload buffer, one region per frame in flight.
     virtual void writeBuffer(BufferHandle buffer, uint64_t offset, ByteSpan data) = 0;
     // One subresource: tightly packed rows, top to bottom, in the texture's format (compressed
     // formats: rows of 4x4 blocks); exactly textureByteSize(desc, at.mipLevel) bytes.

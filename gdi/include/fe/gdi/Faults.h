@@ -16,6 +16,8 @@
 // Only the N-th call fails. Counting is per process from its first native call; fault::arm
 // restarts it from the moment of the call (gtests).
 #pragma once
+#include <atomic>
+#include <mutex>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,11 +54,12 @@ bool leakCheckEnabled();
 void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live, const std::vector<std::string>& named);
 std::string toString(const LiveObjects& live);
 
+// Thread-safe: any thread may check while another (a GL context thread) marks the loss.
 class DeviceLoss {
 public:
-    bool lost() const { return !cause_.empty(); }
+    bool lost() const { return lost_.load(std::memory_order_acquire); }
     void check(const char* call) const {
-        if (!cause_.empty()) [[unlikely]]
+        if (lost()) [[unlikely]]
             throwLost(call);
     }
     // Marks the device lost (the first cause is kept) and returns the error to throw now.
@@ -64,7 +67,9 @@ public:
 
 private:
     [[noreturn, gnu::cold]] void throwLost(const char* call) const;
-    std::string backend_, cause_;
+    mutable std::mutex mutex_;
+    std::string backend_, cause_;  // written once, under mutex_, before lost_
+    std::atomic<bool> lost_{false};
 };
 
 }  // namespace fe::gdi

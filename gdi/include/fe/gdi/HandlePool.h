@@ -1,13 +1,21 @@
 // Layer 3 (Representation): maps typed handles to a backend's objects.
 // Ids carry a generation so a stale handle to a reused slot is caught, not misused.
 //
-// Storage: Contiguous (one array: a lookup is one indirection, for the per-draw lookups of
-// buffers and textures; objects move when the pool grows) or Pinned (fixed-size chunks:
-// objects never move, for pipelines, which a command list keeps a pointer to while the
-// renderer may create more mid-recording).
+// Threads: lookups (find, get, at) take no lock and may run on any number of threads while
+// one thread at a time adds, retires or removes (the backends' device lock serialises those).
+// That is what lets command lists be recorded on several threads while another creates and
+// destroys objects. It holds because objects never move: slots live in fixed-size chunks
+// reached through a table sized for every possible index, made once, so growing the pool
+// publishes a new chunk and never reallocates what a reader is looking at; a slot's tag is
+// published with release after its object is written, and read with acquire.
+//
+// Two-step removal, for work that still runs after the caller's destroy(): retire() makes the
+// handle invalid for find()/get() at once but keeps the object in its slot; at() still reaches
+// it (for replaying already-validated work); release() frees the slot later.
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <memory>
@@ -18,35 +26,39 @@
 
 namespace fe::gdi {
 
-enum class PoolStorage { Contiguous, Pinned };
-
-template <class H, class T, PoolStorage kStorage = PoolStorage::Contiguous>
+template <class H, class T>
 class HandlePool {
 public:
+    HandlePool() : chunks_(std::make_unique<std::atomic<Chunk*>[]>(kMaxChunks)) {}
+    ~HandlePool() {
+        for (uint32_t c = 0; c < kMaxChunks; ++c) delete chunks_[c].load(std::memory_order_relaxed);
+    }
+    HandlePool(const HandlePool&) = delete;
+    HandlePool& operator=(const HandlePool&) = delete;
+
     H add(T&& object) {
         uint32_t index;
         if (!free_.empty()) {
             index = free_.back();
             free_.pop_back();
         } else {
-            index = count_++;
-            if constexpr (kStorage == PoolStorage::Pinned) {
-                if ((index & kChunkMask) == 0) chunks_.push_back(std::make_unique<Chunk>());
-            } else {
-                slots_.emplace_back();
-            }
+            index = count_.load(std::memory_order_relaxed);
+            if (index >= kMaxIndex) throw Error("too many live objects of one kind (at most " + std::to_string(kMaxIndex) + ")");
+            if ((index & kChunkMask) == 0) chunks_[index >> kChunkShift].store(new Chunk, std::memory_order_release);
+            count_.store(index + 1, std::memory_order_release);
         }
         Slot& s = slot(index);
         s.object = std::move(object);
-        s.liveTag = s.generation & 0xfffu;
-        return H{(s.liveTag << 20) | (index + 1)};
+        const uint32_t tag = s.generation & 0xfffu;
+        s.liveTag.store(tag, std::memory_order_release);
+        return H{(tag << 20) | (index + 1)};
     }
     T* find(H h) {
         // Index 0 wraps to the largest value and fails the bound check too.
         const uint32_t index = (h.id & 0xfffffu) - 1u;
-        if (index >= count_) return nullptr;
+        if (index >= count_.load(std::memory_order_acquire)) return nullptr;
         Slot& s = slot(index);
-        if (s.liveTag != (h.id >> 20)) return nullptr;  // dead slots never match: one compare
+        if (s.liveTag.load(std::memory_order_acquire) != (h.id >> 20)) return nullptr;  // dead slots never match
         return &s.object;
     }
     const T* find(H h) const { return const_cast<HandlePool*>(this)->find(h); }
@@ -56,23 +68,37 @@ public:
         invalidHandle(h.id, what);
     }
     const T& get(H h, const char* what) const { return const_cast<HandlePool*>(this)->get(h, what); }
+    // The object of a live or retired (not yet released) handle, without the liveness check:
+    // for replaying work whose handles were checked when it was recorded.
+    T& at(H h) { return slot((h.id & 0xfffffu) - 1).object; }
+
     // Removes and returns the object so the caller can release its native resources.
     bool remove(H h, T& out) {
-        T* p = find(h);
-        if (!p) return false;
-        out = std::move(*p);
-        *p = T{};
-        Slot& s = slot((h.id & 0xfffffu) - 1);
-        s.liveTag = kDead;
-        s.generation++;
-        free_.push_back((h.id & 0xfffffu) - 1);
+        if (!retire(h)) return false;
+        release(h, out);
         return true;
     }
-    uint32_t size() const { return count_ - uint32_t(free_.size()); }  // live objects
+    // The handle stops being valid; the object stays where at() finds it until release().
+    bool retire(H h) {
+        if (!find(h)) return false;
+        slot((h.id & 0xfffffu) - 1).liveTag.store(kDead, std::memory_order_release);
+        return true;
+    }
+    // Frees a retired handle's slot, moving its object out.
+    void release(H h, T& out) {
+        const uint32_t index = (h.id & 0xfffffu) - 1;
+        Slot& s = slot(index);
+        out = std::move(s.object);
+        s.object = T{};
+        s.generation++;
+        free_.push_back(index);
+    }
+    uint32_t size() const { return count_.load(std::memory_order_acquire) - uint32_t(free_.size()); }  // live + retired
     template <class F>
     void forEach(F&& f) {
-        for (uint32_t i = 0; i < count_; ++i)
-            if (Slot& s = slot(i); s.liveTag != kDead) f(s.object);
+        const uint32_t n = count_.load(std::memory_order_acquire);
+        for (uint32_t i = 0; i < n; ++i)
+            if (Slot& s = slot(i); s.liveTag.load(std::memory_order_acquire) != kDead) f(s.object);
     }
 
 private:
@@ -80,33 +106,29 @@ private:
         throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id));
     }
     static constexpr uint32_t kDead = ~0u;  // id >> 20 is at most 0xfff
+    static constexpr uint32_t kMaxIndex = (1u << 20) - 1;  // ids keep 20 bits of index
     struct SlotFields {
         T object{};
         uint32_t generation = 1;
-        uint32_t liveTag = kDead;  // generation & 0xfff while alive (the id's top bits)
+        std::atomic<uint32_t> liveTag{kDead};  // generation & 0xfff while alive (the id's top bits)
     };
     // Small slots get a power-of-two stride, so the per-bind lookup indexes with a shift
     // rather than a multiply (a few bytes per object; large objects keep their natural size).
     static constexpr size_t kSlotAlign =
         sizeof(SlotFields) <= 256 ? std::bit_ceil(sizeof(SlotFields)) : alignof(SlotFields);
     struct alignas(kSlotAlign) Slot : SlotFields {};
-    // Pinned: about 16 KiB per chunk, a power of two slots: index >> shift picks the chunk.
+    // About 16 KiB per chunk, a power of two slots: index >> shift picks the chunk.
     static constexpr uint32_t kChunkSlots =
         uint32_t(std::bit_floor(std::max<size_t>(1, size_t(16384) / sizeof(Slot))));
     static constexpr uint32_t kChunkShift = uint32_t(std::countr_zero(kChunkSlots));
     static constexpr uint32_t kChunkMask = kChunkSlots - 1;
+    static constexpr uint32_t kMaxChunks = (kMaxIndex >> kChunkShift) + 1;
     using Chunk = std::array<Slot, kChunkSlots>;
-    Slot& slot(uint32_t index) {
-        if constexpr (kStorage == PoolStorage::Pinned)
-            return (*chunks_[index >> kChunkShift])[index & kChunkMask];
-        else
-            return slots_[index];
-    }
+    Slot& slot(uint32_t index) { return (*chunks_[index >> kChunkShift].load(std::memory_order_acquire))[index & kChunkMask]; }
 
-    std::vector<Slot> slots_;                    // Contiguous
-    std::vector<std::unique_ptr<Chunk>> chunks_;  // Pinned
+    std::unique_ptr<std::atomic<Chunk*>[]> chunks_;  // kMaxChunks entries, null until used
     std::vector<uint32_t> free_;
-    uint32_t count_ = 0;  // slots in use or freed: the next new index
+    std::atomic<uint32_t> count_{0};  // slots in use or freed: the next new index
 };
 
 }  // namespace fe::gdi

@@ -93,4 +93,19 @@ inline void missingBindings(uint64_t required, uint64_t bound, const char* pipel
 // Per-slot declared kind, 1 + BindingType (0: the pipeline does not use the slot).
 std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings);
 
+// A barrier's subresources, resolved: mips [baseMip, baseMip + mipCount), layers likewise
+// (array layers and cube faces; a 3D texture has one). Throws for an empty or outside range,
+// or `after` Undefined.
+struct SubresourceRange {
+    uint32_t baseMip = 0, mipCount = 1, baseLayer = 0, layerCount = 1;
+    bool whole = true;  // every mip and layer of the texture
+};
+SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name);
+// A buffer barrier's range, resolved (size 0: to the end); throws when outside the buffer.
+uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name);
+// map(): Upload and Readback buffers only.
+void mappable(const BufferDesc& d, const std::string& name);
+// Submitting a list that uses an object destroyed after it was recorded.
+[[noreturn]] void destroyedBeforeSubmit(const char* kind, uint32_t id);
+
 }  // namespace fe::gdi::validate

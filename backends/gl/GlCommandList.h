@@ -1,0 +1,99 @@
+// Command recording for GL: each call is validated as on Vulkan (same checks, same messages,
+// thrown where the mistake is made) and encoded into a CommandStream; nothing touches GL.
+// Device::submit hands the stream to the context thread, which replays it (GlReplay.h).
+// Recording may therefore run on any thread, several lists at once.
+#pragma once
+#include <array>
+#include <memory>
+
+#include "fe/gdi/CommandStream.h"
+#include "gl/GlDevice.h"
+
+namespace fe::gl {
+
+class GlCommandList final : public gdi::CommandList {
+public:
+    explicit GlCommandList(GlDevice& d);
+    ~GlCommandList() override;
+
+    void beginRenderPass(const gdi::RenderPassDesc& desc) override;
+    void endRenderPass() override;
+    void setPipeline(gdi::PipelineHandle h) override;
+    void setViewport(const gdi::Viewport& v) override { stream_->push(gdi::cmd::SetViewport{v}); }
+    void setScissor(const gdi::Rect& r) override { stream_->push(gdi::cmd::SetScissor{r}); }
+    void setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) override;
+    void setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) override;
+    void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;
+    void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;
+    void setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) override;
+    void setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) override;
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override;
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
+                     uint32_t firstInstance) override;
+    void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
+    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
+    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                           uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+                                  uint32_t maxDrawCount, uint32_t stride) override;
+    void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override;
+    void generateMips(gdi::TextureHandle h) override;
+    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset, uint64_t size) override;
+    void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
+    void beginTimer(gdi::TimerHandle h) override;
+    void endTimer(gdi::TimerHandle h) override;
+    void pushDebugGroup(const char* name) override;
+    void popDebugGroup() override;
+    void discardTexture(gdi::TextureHandle h) override;
+    void setAutomaticBarriers(bool enabled) override;
+    void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
+    void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
+
+    // For Device::submit: checks the recording is complete and that no object it uses was
+    // destroyed since, then hands over the stream (the list starts a new recording).
+    std::unique_ptr<gdi::cmd::CommandStream> finish();
+
+private:
+    void outside(const char* what) const;
+    void checkSlot(uint32_t slot, const char* what) const;
+    template <gdi::BindingType kKind>
+    void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size);
+    void bound(uint32_t slot, gdi::BindingType kind) {
+        kinds_[slot] = uint8_t(1 + uint8_t(kind));
+        unchecked_ |= uint64_t(1) << slot;
+    }
+    void checkBindings();
+    [[gnu::noinline]] void checkEachSlot(uint64_t check) const;
+    [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
+    void prepareDraw(const char* what) {
+        if (!readyToDraw_) [[unlikely]]
+            notReadyToDraw(what);
+        checkBindings();
+    }
+    void prepareIndexed(const char* what, bool indirect) const;
+    void prepareCompute(const char* what);
+    void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
+                      const char* what);
+    void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const;
+    uint64_t bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset, const char* what) const;
+    void restart();
+
+    GlDevice& dev_;
+    std::unique_ptr<gdi::cmd::CommandStream> stream_;
+    uint64_t destroyEpoch_ = 0;  // the device's destroy count when this recording began
+    bool inPass_ = false;
+    int depth_ = 0;
+    uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
+    const Pipeline* pipeline_ = nullptr;
+    bool readyToDraw_ = false;    // in a render pass with a graphics pipeline
+    uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots
+    std::array<uint8_t, 64> kinds_{};    // per slot: 1 + BindingType bound, 0 = unbound
+    uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
+    bool hasIndexBuffer_ = false;
+    uint64_t indexOffset_ = 0;
+};
+
+}  // namespace fe::gl

@@ -1,0 +1,101 @@
+// The thread that owns a GL context (Filament's driver thread, bgfx's render thread): a GL
+// context is current on one thread at a time, and gdi lets every device call come from any
+// thread, so every GL call runs here. Synchronous calls (create, read) wait for their result;
+// submitted command streams and destroys are queued and run in order while the caller goes on,
+// which is also what gives GL the CPU/GPU overlap of frames in flight.
+#pragma once
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <type_traits>
+#include <utility>
+
+namespace fe::gl {
+
+class GlContextThread {
+public:
+    GlContextThread() : thread_([this] { loop(); }) {}
+    ~GlContextThread() { stop(); }
+
+    bool onThisThread() const { return std::this_thread::get_id() == thread_.get_id(); }
+
+    // Runs `task` after everything queued before it and returns its result (or rethrows).
+    template <class F>
+    auto run(F&& task) -> std::invoke_result_t<F&> {
+        if (onThisThread()) return task();
+        using R = std::invoke_result_t<F&>;
+        std::mutex doneMutex;
+        std::condition_variable doneCv;
+        bool done = false;
+        std::exception_ptr error;
+        std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
+        post([&] {
+            try {
+                if constexpr (std::is_void_v<R>) task();
+                else result.emplace(task());
+            } catch (...) {
+                error = std::current_exception();
+            }
+            std::lock_guard lock(doneMutex);
+            done = true;
+            doneCv.notify_one();
+        });
+        std::unique_lock lock(doneMutex);
+        doneCv.wait(lock, [&] { return done; });
+        if (error) std::rethrow_exception(error);
+        if constexpr (!std::is_void_v<R>) return std::move(*result);
+    }
+    // Queues `task`; exceptions it throws are kept and rethrown by takeError().
+    void post(std::function<void()> task) {
+        std::lock_guard lock(mutex_);
+        tasks_.push_back(std::move(task));
+        cv_.notify_one();
+    }
+    // The first exception an asynchronous task threw since the last call, if any.
+    std::exception_ptr takeError() {
+        std::lock_guard lock(mutex_);
+        return std::exchange(error_, nullptr);
+    }
+    void stop() {
+        if (!thread_.joinable()) return;
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+            cv_.notify_one();
+        }
+        thread_.join();
+    }
+
+private:
+    void loop() {
+        for (;;) {
+            std::function<void()> task;
+            {
+                std::unique_lock lock(mutex_);
+                cv_.wait(lock, [&] { return stopping_ || !tasks_.empty(); });
+                if (tasks_.empty()) return;  // stopping, with everything run
+                task = std::move(tasks_.front());
+                tasks_.pop_front();
+            }
+            try {
+                task();
+            } catch (...) {
+                std::lock_guard lock(mutex_);
+                if (!error_) error_ = std::current_exception();
+            }
+        }
+    }
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<std::function<void()>> tasks_;
+    std::exception_ptr error_;
+    bool stopping_ = false;
+    std::thread thread_;  // last: starts after the members it uses exist
+};
+
+}  // namespace fe::gl

@@ -1,0 +1,76 @@
+// Replays a recorded command stream as GL calls, on the context thread, at submit. The
+// stream was validated while it was recorded, so replay only translates: one overload per
+// command of CommandSet.inc (the compiler rejects a command without one).
+#pragma once
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "fe/gdi/CommandStream.h"
+#include "gl/GlDevice.h"
+
+namespace fe::gl {
+
+class GlReplay {
+public:
+    explicit GlReplay(GlDevice& d) : dev_(d), gl_(d.gl()) {}
+    void run(const gdi::cmd::CommandStream& stream);
+
+    void operator()(const gdi::cmd::BeginRenderPass& r);
+    void operator()(const gdi::cmd::EndRenderPass&);
+    void operator()(const gdi::cmd::SetPipeline& r);
+    void operator()(const gdi::cmd::SetViewport& r);
+    void operator()(const gdi::cmd::SetScissor& r);
+    void operator()(const gdi::cmd::SetVertexBuffer& r);
+    void operator()(const gdi::cmd::SetIndexBuffer& r);
+    void operator()(const gdi::cmd::SetUniformBuffer& r);
+    void operator()(const gdi::cmd::SetStorageBuffer& r);
+    void operator()(const gdi::cmd::SetTexture& r);
+    void operator()(const gdi::cmd::SetStorageTexture& r);
+    void operator()(const gdi::cmd::Draw& r);
+    void operator()(const gdi::cmd::DrawIndexed& r);
+    void operator()(const gdi::cmd::Dispatch& r);
+    void operator()(const gdi::cmd::DrawIndirect& r);
+    void operator()(const gdi::cmd::DrawIndexedIndirect& r);
+    void operator()(const gdi::cmd::DrawIndirectCount& r);
+    void operator()(const gdi::cmd::DrawIndexedIndirectCount& r);
+    void operator()(const gdi::cmd::DispatchIndirect& r);
+    void operator()(const gdi::cmd::GenerateMips& r);
+    void operator()(const gdi::cmd::CopyBuffer& r);
+    void operator()(const gdi::cmd::CopyTexture& r);
+    void operator()(const gdi::cmd::CopyBufferToTexture& r);
+    void operator()(const gdi::cmd::CopyTextureToBuffer& r);
+    void operator()(const gdi::cmd::BeginTimer& r);
+    void operator()(const gdi::cmd::EndTimer& r);
+    void operator()(const gdi::cmd::PushDebugGroup& r);
+    void operator()(const gdi::cmd::PopDebugGroup&);
+    void operator()(const gdi::cmd::DiscardTexture&) {}  // GL reuses whole objects; contents are simply overwritten
+    void operator()(const gdi::cmd::SetAutomaticBarriers& r);
+    void operator()(const gdi::cmd::TextureBarriers& r);
+    void operator()(const gdi::cmd::BufferBarriers& r);
+
+private:
+    void applyPipelineState(const Pipeline& p);
+    void resolve();
+    void bindVertexBuffers();
+    void bindIndexBuffer();
+    bool drainSoftwareRasterizer();
+    GLenum indexType() const { return indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT; }
+
+    GlDevice& dev_;
+    const GlFunctions& gl_;
+    bool automatic_ = true;  // setAutomaticBarriers
+    bool labelled_ = false;  // the open pass pushed a debug group
+    gdi::Rect area_;
+    GLuint fbo_ = 0;  // the open pass's framebuffer
+    std::vector<std::pair<GLenum, FboAttachment>> resolves_;  // attachment point -> resolve target, at EndRenderPass
+    const Pipeline* pipeline_ = nullptr;
+    GLenum topology_ = GL_TRIANGLES;
+    std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};
+    bool vertexDirty_ = true, indexDirty_ = true;
+    GLuint indexBuffer_ = 0;
+    uint64_t indexOffset_ = 0;
+    gdi::IndexType indexType_ = gdi::IndexType::U32;
+};
+
+}  // namespace fe::gl

@@ -1,0 +1,171 @@
+// A recorded command list as data: typed records in an arena, generated from CommandSet.inc.
+//
+//   cmd::Draw record{.vertexCount = 3, .instanceCount = 1};
+//   stream.push(record);                                   // no heap allocation per command
+//   auto* pass = stream.push(cmd::BeginRenderPass{}, payloadBytes);
+//   pass->colors = stream.payload(*pass, std::span(colors)); // variable-length data after it
+//   stream.forEach([&](const auto& record) { execute(record); });  // one overload per command
+//
+// Records are 8-byte aligned: a header (opcode, size), the record, then its payloads. Blocks are
+// kept across reset(), so a list recorded every frame stops allocating after its first frames.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+
+namespace fe::gdi::cmd {
+
+// A run of T stored after its record; `offset` counts bytes from the record's start.
+template <class T>
+struct Array {
+    uint32_t offset = 0, count = 0;
+};
+using String = Array<char>;  // NUL-terminated; count includes the NUL; empty: no string
+
+enum class Op : uint16_t {
+#define FE_COMMAND(Name, Fields) Name,
+#include "fe/gdi/CommandSet.inc"
+#undef FE_COMMAND
+    Count
+};
+
+#define FE_FIELD(Type, name) Type name{};
+#define FE_COMMAND(Name, Fields)              \
+    struct Name {                             \
+        static constexpr Op kOp = Op::Name;   \
+        static constexpr const char* kName = #Name; \
+        Fields                                \
+    };
+#include "fe/gdi/CommandSet.inc"
+#undef FE_COMMAND
+#undef FE_FIELD
+
+const char* opName(Op op);
+
+// Calls f(fieldName, value) for every field of a record, in declaration order.
+#define FE_FIELD(Type, name) f(#name, record.name);
+#define FE_COMMAND(Name, Fields)                                      \
+    template <class F>                                                \
+    void forEachField([[maybe_unused]] const Name& record, [[maybe_unused]] F&& f) { Fields }
+#include "fe/gdi/CommandSet.inc"
+#undef FE_COMMAND
+#undef FE_FIELD
+
+// The payload an Array field refers to.
+template <class T, class R>
+std::span<const T> view(const R& record, Array<T> a) {
+    return {reinterpret_cast<const T*>(reinterpret_cast<const std::byte*>(&record) + a.offset), a.count};
+}
+template <class R>
+const char* view(const R& record, String s) {
+    return s.count ? reinterpret_cast<const char*>(&record) + s.offset : nullptr;
+}
+
+class CommandStream {
+public:
+    struct Header {
+        Op op;
+        uint16_t reserved = 0;
+        uint32_t size;  // bytes of header, record and payloads, a multiple of 8
+    };
+
+    // Appends a record with room for `payloadBytes` of payloads; returns it for payload().
+    template <class R>
+    R* push(const R& record, size_t payloadBytes = 0) {
+        static_assert(std::is_trivially_copyable_v<R>);
+        const size_t size = align(sizeof(Header) + align(sizeof(R)) + payloadBytes);
+        std::byte* at = reserve(size);
+        new (at) Header{R::kOp, 0, uint32_t(size)};
+        R* r = new (at + sizeof(Header)) R(record);
+        payloadAt_ = at + sizeof(Header) + align(sizeof(R));
+        ++count_;
+        return r;
+    }
+    // Copies `data` into the room push() reserved after `record` (the last record pushed).
+    template <class T, class R>
+    Array<T> payload(const R& record, std::span<const T> data) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        if (data.empty()) return {};
+        std::byte* at = payloadAt_;
+        std::memcpy(at, data.data(), data.size_bytes());
+        payloadAt_ += align(data.size_bytes());
+        return {uint32_t(at - reinterpret_cast<const std::byte*>(&record)), uint32_t(data.size())};
+    }
+    template <class R>
+    String payload(const R& record, const char* text) {
+        if (!text) return {};
+        return payload(record, std::span<const char>(text, std::strlen(text) + 1));
+    }
+    static size_t payloadSize(size_t bytes) { return align(bytes); }
+    static size_t payloadSize(const char* text) { return text ? align(std::strlen(text) + 1) : 0; }
+
+    // Calls f(record) for each record in recording order; f has an overload per record type.
+    template <class F>
+    void forEach(F&& f) const {
+        for (const auto& b : blocks_) {
+            for (const std::byte* p = b.data.get(); p < b.data.get() + b.used;) {
+                const auto* h = reinterpret_cast<const Header*>(p);
+                dispatch(h->op, p + sizeof(Header), f);
+                p += h->size;
+            }
+        }
+    }
+    template <class F>
+    static void dispatch(Op op, const std::byte* record, F&& f) {
+        switch (op) {
+#define FE_COMMAND(Name, Fields) \
+    case Op::Name: f(*reinterpret_cast<const Name*>(record)); break;
+#include "fe/gdi/CommandSet.inc"
+#undef FE_COMMAND
+            default: break;
+        }
+    }
+
+    size_t commandCount() const { return count_; }
+    bool empty() const { return count_ == 0; }
+    // Drops the records, keeping the blocks for the next recording.
+    void reset() {
+        for (auto& b : blocks_) b.used = 0;
+        current_ = 0;
+        count_ = 0;
+    }
+
+private:
+    static constexpr size_t kBlockSize = 64 * 1024;
+    static constexpr size_t align(size_t n) { return (n + 7) & ~size_t(7); }
+    struct Block {
+        std::unique_ptr<std::byte[]> data;
+        size_t size = 0, used = 0;
+    };
+    std::byte* reserve(size_t size) {
+        while (current_ < blocks_.size() && blocks_[current_].used + size > blocks_[current_].size) {
+            if (blocks_[current_].used == 0 && size > blocks_[current_].size) break;  // replace: too small
+            ++current_;
+        }
+        if (current_ == blocks_.size()) blocks_.push_back({});
+        Block& b = blocks_[current_];
+        if (b.size < b.used + size) {  // new or too small for one large record
+            const size_t n = std::max(kBlockSize, size);
+            b.data.reset(new std::byte[n]);
+            b.size = n;
+            b.used = 0;
+        }
+        std::byte* at = b.data.get() + b.used;
+        b.used += size;
+        return at;
+    }
+    std::vector<Block> blocks_;
+    size_t current_ = 0;
+    size_t count_ = 0;
+    std::byte* payloadAt_ = nullptr;
+};
+
+}  // namespace fe::gdi::cmd
