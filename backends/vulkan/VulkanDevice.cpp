@@ -479,6 +479,13 @@ void VulkanDevice::collectRetired() {
     }
 }
 
+void VulkanDevice::releaseRetiredNow() {
+    if (pendingInit_) immediate("pending layout transitions", [](VkCommandBuffer) {});
+    idle();
+    for (Retired& r : retired_) r.release();
+    retired_.clear();
+}
+
 void VulkanDevice::settle(gdi::FenceValue fence) {
     std::lock_guard lock(mutex_);
     while (!inFlight_.empty() && inFlight_.front().value <= fence) {

@@ -220,6 +220,7 @@ private:
     // Deferred destruction: `release` runs once every submission made so far has completed.
     void retire(std::function<void()> release);
     void collectRetired();  // runs the releases whose submissions have completed
+    void releaseRetiredNow();  // waits for the queue (pending transitions included), releases all
     void pollFences();      // completes finished submissions without waiting
     struct Retired {
         gdi::FenceValue after;

@@ -218,8 +218,7 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
     std::lock_guard lock(mutex_);
     Heap heap;
     if (!h || !heaps_.find(h)) return;
-    idle();  // textures destroyed before the heap are released now, not later
-    collectRetired();
+    releaseRetiredNow();  // textures destroyed before the heap are released now, not later
     if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
     idle();
     heaps_.remove(h, heap);
