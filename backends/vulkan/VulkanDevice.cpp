@@ -462,11 +462,11 @@ void VulkanDevice::pollFences() {
     if (inFlight_.empty()) completed_ = nextFence_ - 1;
 }
 
-void VulkanDevice::retire(std::function<void()> release) {
+void VulkanDevice::retire(std::function<void()> release, bool texture) {
     destroyEpoch_.fetch_add(1, std::memory_order_release);
     pollFences();
-    // Unsubmitted initial transitions may name it: then it waits for the next submission too.
-    const gdi::FenceValue after = pendingInit_ ? nextFence_ : nextFence_ - 1;
+    // Unsubmitted initial transitions may name a texture: it waits for the next submission too.
+    const gdi::FenceValue after = texture && pendingInit_ ? nextFence_ : nextFence_ - 1;
     if (completed_ >= after) return release();  // nothing in flight can use it
     retired_.push_back({after, std::move(release)});
 }
@@ -480,7 +480,7 @@ void VulkanDevice::collectRetired() {
 }
 
 void VulkanDevice::releaseRetiredNow() {
-    if (pendingInit_) immediate("pending layout transitions", [](VkCommandBuffer) {});
+    if (pendingInit_) immediate("pending layout transitions", [](VkCommandBuffer) {});  // waits: waitIdle
     idle();
     for (Retired& r : retired_) r.release();
     retired_.clear();
@@ -505,9 +505,11 @@ void VulkanDevice::settle(gdi::FenceValue fence) {
 void VulkanDevice::waitIdle() {
     std::lock_guard lock(mutex_);
     loss_.check("waitIdle");
+    if (pendingInit_) return releaseRetiredNow();  // submits the pending transitions too
     wait(nextFence_ - 1);
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
-    collectRetired();
+    for (Retired& r : retired_) r.release();  // nothing in flight, nothing pending: all of them
+    retired_.clear();
 }
 
 void VulkanDevice::idle() {
@@ -524,6 +526,10 @@ void VulkanDevice::fail(VkResult r, const char* call, const std::string& object)
 
 gdi::LiveObjects VulkanDevice::liveObjects() const {
     std::lock_guard lock(mutex_);
+    // Destroyed objects whose submissions have completed are gone: release them first.
+    auto* self = const_cast<VulkanDevice*>(this);
+    if (!loss_.lost()) self->pollFences();
+    self->collectRetired();
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
             .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
@@ -563,17 +569,6 @@ void VulkanDevice::freeAfter(gdi::FenceValue fence, VkCommandBuffer cb) {
 }
 
 void VulkanDevice::immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record) {
-    // Textures made since the last submission get their first transitions first, in the same
-    // submission; both command buffers are freed after the wait at the end.
-    const VkCommandBuffer init = takeInitialTransitions();
-    struct ReleaseInit {
-        VkDevice device;
-        VkCommandPool pool;
-        VkCommandBuffer cb;
-        ~ReleaseInit() {
-            if (cb) vkFreeCommandBuffers(device, pool, 1, &cb);
-        }
-    } releaseInit{device_, immediatePool_, init};
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = immediatePool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -594,6 +589,17 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
     record(cb);
     VulkanCommandList::fullBarrier(cb);
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer", object);
+    // Textures made since the last submission get their first transitions first, in the same
+    // submission (taken only now, so a failure above leaves them pending); freed after the wait.
+    const VkCommandBuffer init = takeInitialTransitions();
+    struct ReleaseInit {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer cb;
+        ~ReleaseInit() {
+            if (cb) vkFreeCommandBuffers(device, pool, 1, &cb);
+        }
+    } releaseInit{device_, immediatePool_, init};
     const VkCommandBuffer both[] = {init, cb};
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = init ? 2 : 1;

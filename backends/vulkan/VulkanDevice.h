@@ -218,7 +218,7 @@ private:
     [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
     void idle();  // destroy's wait: settle() everything
     // Deferred destruction: `release` runs once every submission made so far has completed.
-    void retire(std::function<void()> release);
+    void retire(std::function<void()> release, bool texture = false);
     void collectRetired();  // runs the releases whose submissions have completed
     void releaseRetiredNow();  // waits for the queue (pending transitions included), releases all
     void pollFences();      // completes finished submissions without waiting

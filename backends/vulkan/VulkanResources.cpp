@@ -359,7 +359,7 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
     std::lock_guard lock(mutex_);
     Texture t;
     if (!h || !textures_.remove(h, t)) return;
-    retire([this, t]() mutable { destroyTexture(t); });
+    retire([this, t]() mutable { destroyTexture(t); }, true);
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {

@@ -16,6 +16,14 @@
 //   device->wait(device->submit(*cmd));
 //   fe::gdi::Image img = device->readTexture(target);
 //
+// Recording is not executing, on every backend: nothing recorded runs before submit, and what
+// a command reads is read when it runs. Lists may be recorded on any threads at once:
+//   std::vector<std::unique_ptr<CommandList>> lists;  // one per thread, recorded in parallel
+//   std::vector<CommandList*> order = {lists[2].get(), lists[0].get(), lists[1].get()};
+//   FenceValue f = device->submit(order);             // one submission, in this order
+//   auto* bytes = static_cast<uint8_t*>(device->map(uploadRing));  // Upload: persistent pointer
+//   if (device->isComplete(f)) { /* read a Readback buffer through map() */ }
+//
 // Texture kinds, subresources and multisampling
 //   auto cube = device->createTexture({.dimension = TextureDimension::TextureCube, .format = Format::RGBA16F,
 //                                      .width = 256, .height = 256, .depthOrLayers = 6, .mipLevels = 9,
