@@ -464,6 +464,7 @@ void VulkanDevice::pollFences() {
 
 void VulkanDevice::retire(std::function<void()> release, bool texture) {
     destroyEpoch_.fetch_add(1, std::memory_order_release);
+    if (std::exchange(presentedSinceIdle_, false)) idle();
     pollFences();
     // Unsubmitted initial transitions may name a texture: it waits for the next submission too.
     const gdi::FenceValue after = texture && pendingInit_ ? nextFence_ : nextFence_ - 1;

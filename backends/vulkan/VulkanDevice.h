@@ -227,6 +227,9 @@ private:
         std::function<void()> release;
     };
     std::deque<Retired> retired_;
+    // present() copies through the swap chain's own submissions, which no device fence covers:
+    // the next destroy waits for the queue, as every destroy did before deferred release.
+    bool presentedSinceIdle_ = false;
     std::atomic<uint64_t> destroyEpoch_{0};
     // One lock for everything but recording: creation, destruction, transfers, submission and
     // fences, attachment views made while recording. Recursive: transfers wait through waitIdle.

@@ -363,10 +363,20 @@ std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsyn
 }
 
 bool VulkanDevice::present(gdi::TextureHandle h) {
+    std::lock_guard lock(mutex_);
     loss_.check("present");
     if (!swapchain_) return gdi::Device::present(h);
     Texture& t = texture(h);
     gdi::validate::presentTexture(t.desc, t.name);
+    presentedSinceIdle_ = true;  // the swap chain's copy is not behind a device fence
+    if (VkCommandBuffer init = takeInitialTransitions()) {  // the presented texture may be new
+        VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        si.commandBufferCount = 1;
+        si.pCommandBuffers = &init;
+        check(vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
+        check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+        vkFreeCommandBuffers(device_, immediatePool_, 1, &init);
+    }
     try {
         return swapchain_->present({t.image, t.desc.width, t.desc.height, t.desc.format == gdi::Format::RGBA8_SRGB});
     } catch (const SwapchainDeviceLost& e) {
