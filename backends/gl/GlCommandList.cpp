@@ -24,10 +24,13 @@ void GlCommandList::restart() {
     destroyEpoch_ = dev_.destroyEpoch();
 }
 
-std::unique_ptr<cmd::CommandStream> GlCommandList::finish() {
+void GlCommandList::checkSubmittable() const {
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
-    if (depth_) throw gdi::Error("submit: debug group(s) not popped");
+    if (depth_) throw gdi::Error("submit: " + std::to_string(depth_) + " debug group(s) not popped");
     if (dev_.destroyEpoch() != destroyEpoch_) dev_.checkAlive(*stream_);  // only when something was destroyed
+}
+
+std::unique_ptr<cmd::CommandStream> GlCommandList::finish() {
     auto recorded = std::exchange(stream_, dev_.takeStream());
     restart();
     return recorded;
@@ -291,23 +294,19 @@ void GlCommandList::setAutomaticBarriers(bool enabled) {
 }
 void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
     outside("barrier");
-    for (uint32_t i = 0; i < count; ++i) {
-        const Texture& t = dev_.texture(barriers[i].texture);
-        gdi::validate::textureBarrier(t.desc, barriers[i], t.label);
+    for (const gdi::TextureBarrier& b : std::span(barriers, count)) {
+        const Texture& t = dev_.texture(b.texture);
+        gdi::validate::textureBarrier(t.desc, b, t.label);
     }
-    const std::span<const gdi::TextureBarrier> all(barriers, count);
-    auto* r = stream_->push(cmd::TextureBarriers{}, cmd::CommandStream::payloadSize(all.size_bytes()));
-    r->barriers = stream_->payload(*r, all);
+    pushArray<cmd::TextureBarriers>(std::span(barriers, count));
 }
 void GlCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) {
     outside("barrier");
-    for (uint32_t i = 0; i < count; ++i) {
-        const Buffer& b = dev_.buffer(barriers[i].buffer);
-        gdi::validate::bufferBarrier(b.desc, barriers[i], b.label);
+    for (const gdi::BufferBarrier& b : std::span(barriers, count)) {
+        const Buffer& buffer = dev_.buffer(b.buffer);
+        gdi::validate::bufferBarrier(buffer.desc, b, buffer.label);
     }
-    const std::span<const gdi::BufferBarrier> all(barriers, count);
-    auto* r = stream_->push(cmd::BufferBarriers{}, cmd::CommandStream::payloadSize(all.size_bytes()));
-    r->barriers = stream_->payload(*r, all);
+    pushArray<cmd::BufferBarriers>(std::span(barriers, count));
 }
 
 void GlCommandList::checkSlot(uint32_t slot, const char* what) const {

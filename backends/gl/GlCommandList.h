@@ -52,8 +52,10 @@ public:
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
     void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
 
-    // For Device::submit: checks the recording is complete and that no object it uses was
-    // destroyed since, then hands over the stream (the list starts a new recording).
+    // For Device::submit, which checks every list before it takes any (a refused submission
+    // leaves each list as it was): the recording is complete and no object it uses was
+    // destroyed since; then finish() hands over the stream and starts a new recording.
+    void checkSubmittable() const;
     std::unique_ptr<gdi::cmd::CommandStream> finish();
 
 private:
@@ -80,6 +82,12 @@ private:
     void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const;
     uint64_t bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset, const char* what) const;
     void restart();
+    // A record whose one field is an array payload (the barrier commands).
+    template <class Record, class T>
+    void pushArray(std::span<const T> items) {
+        auto* r = stream_->push(Record{}, gdi::cmd::CommandStream::payloadSize(items.size_bytes()));
+        r->barriers = stream_->payload(*r, items);
+    }
 
     GlDevice& dev_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;

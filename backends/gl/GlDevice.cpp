@@ -95,8 +95,7 @@ void GlDevice::checkReset(bool injected) {
 
 gdi::LiveObjects GlDevice::liveObjects() const {
     // After the queue: destroys already called count as done.
-    if (!const_cast<GlContextThread&>(thread_).onThisThread())
-        return const_cast<GlContextThread&>(thread_).run([&] { return liveObjects(); });
+    if (!thread_.onThisThread()) return thread_.run([&] { return liveObjects(); });
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
             .nativeObjects = nativeObjects_};
@@ -733,12 +732,16 @@ void GlDevice::rethrowAsyncError() {
 gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     loss_.check("submit");
     rethrowAsyncError();
-    std::vector<std::unique_ptr<gdi::cmd::CommandStream>> streams;
+    gdi::validate::submittedLists(lists);
+    std::vector<GlCommandList*> gls;
     for (gdi::CommandList* list : lists) {
         auto* gl = dynamic_cast<GlCommandList*>(list);
         if (!gl) throw gdi::Error("submit: a command list of another device");
-        streams.push_back(gl->finish());
+        gls.push_back(gl);
     }
+    for (GlCommandList* gl : gls) gl->checkSubmittable();
+    std::vector<std::unique_ptr<gdi::cmd::CommandStream>> streams;
+    for (GlCommandList* gl : gls) streams.push_back(gl->finish());
     if (gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit")) {
         for (auto& s : streams) returnStream(std::move(s));
         throw loss_.lose(info_.backend, "glGetGraphicsResetStatus returned GL_UNKNOWN_CONTEXT_RESET");

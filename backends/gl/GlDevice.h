@@ -193,7 +193,7 @@ private:
     gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     void forgetFramebuffers(GLuint texture);
-    GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes
+    mutable GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes
 };
 
 }  // namespace fe::gl

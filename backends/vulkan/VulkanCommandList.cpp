@@ -95,7 +95,7 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
 
 void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
     outsidePass("discardTexture");
-    Texture& t = use_texture(h);
+    Texture& t = usedTexture(h);
     toGeneral(cb_, t.image, t.desc.format);
 }
 
@@ -142,7 +142,7 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
     VkPipelineStageFlags src = 0, dst = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const gdi::TextureBarrier& in = barriers[i];
-        Texture& t = use_texture(in.texture);
+        Texture& t = usedTexture(in.texture);
         const auto range = gdi::validate::textureBarrier(t.desc, in, t.name);
         const StateScope before = scopeOf(in.before), after = scopeOf(in.after);
         VkImageMemoryBarrier& b = bs[i];
@@ -191,7 +191,7 @@ void VulkanCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t cou
     VkPipelineStageFlags src = 0, dst = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const gdi::BufferBarrier& in = barriers[i];
-        const Buffer& buf = use_buffer(in.buffer);
+        const Buffer& buf = usedBuffer(in.buffer);
         const uint64_t size = gdi::validate::bufferBarrier(buf.desc, in, buf.name);
         const StateScope before = bufferScope(in.before), after = bufferScope(in.after);
         VkBufferMemoryBarrier& b = bs[i];
@@ -262,11 +262,14 @@ void VulkanCommandList::submitted(gdi::FenceValue value) {
     automaticBarriers_ = true;
 }
 
-VkCommandBuffer VulkanCommandList::finish() {
-    ensureRecording();
+void VulkanCommandList::checkSubmittable() const {
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     if (dev_.destroyEpoch() != destroyEpoch_) checkAlive();
+}
+
+VkCommandBuffer VulkanCommandList::finish() {
+    ensureRecording();
     // No barrier at the end: every recording starts with one before its first pass, copy or
     // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
     // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
@@ -293,17 +296,17 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     std::vector<Texture*> colorTex, resolveTex(desc.colors.size(), nullptr);
     for (size_t i = 0; i < desc.colors.size(); ++i) {
         const auto& c = desc.colors[i];
-        Texture& t = use_texture(c.texture);
+        Texture& t = usedTexture(c.texture);
         infos.push_back(attachment(t.desc, c.mipLevel, c.layer, "beginRenderPass", t.name));
         colorTex.push_back(&t);
         if (c.resolveTexture) {
-            resolveTex[i] = &use_texture(c.resolveTexture);
+            resolveTex[i] = &usedTexture(c.resolveTexture);
             resolveInfos[i] = attachment(resolveTex[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
                                          "beginRenderPass resolve", resolveTex[i]->name);
         }
     }
-    Texture* depthTex = desc.depth.texture ? &use_texture(desc.depth.texture) : nullptr;
-    Texture* depthResolveTex = desc.depth.resolveTexture ? &use_texture(desc.depth.resolveTexture) : nullptr;
+    Texture* depthTex = desc.depth.texture ? &usedTexture(desc.depth.texture) : nullptr;
+    Texture* depthResolveTex = desc.depth.resolveTexture ? &usedTexture(desc.depth.resolveTexture) : nullptr;
     gdi::validate::AttachmentInfo depthInfo{}, depthResolveInfo{};
     if (depthTex) depthInfo = attachment(depthTex->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depthTex->name);
     if (depthResolveTex)
@@ -384,7 +387,7 @@ void VulkanCommandList::endRenderPass() {
 
 void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
-    Pipeline& p = use_pipeline(h);
+    Pipeline& p = usedPipeline(h);
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineSamples(p.samples, passSamples_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
@@ -419,7 +422,7 @@ void VulkanCommandList::setScissor(const gdi::Rect& r) {
 
 void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
     ensureRecording();
-    Buffer& b = use_buffer(h);
+    Buffer& b = usedBuffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     VkDeviceSize off = offset;
     vkCmdBindVertexBuffers(cb_, index, 1, &b.buffer, &off);
@@ -427,7 +430,7 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
     ensureRecording();
-    Buffer& b = use_buffer(h);
+    Buffer& b = usedBuffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
     indexOffset_ = offset;
@@ -439,7 +442,7 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // checked path handles the rest and owns every error message.
 template <VkDescriptorType kType>
 inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const Buffer* b = use_findBuffer(h);
+    const Buffer* b = findUsedBuffer(h);
     const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
     if (!bindSize) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
@@ -450,7 +453,7 @@ template <VkDescriptorType kType>
 void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
-    Buffer& b = use_buffer(h);
+    Buffer& b = usedBuffer(h);
     if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
     gdi::validate::bindingRange(b.desc, offset, size, what);
     bindBuffer(slot, kType, b.buffer, offset, size);
@@ -466,8 +469,8 @@ void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
     if (slot >= 64) throw gdi::Error("setTexture: slot " + std::to_string(slot) + " out of range");
-    Texture& t = use_texture(th);
-    Sampler& s = use_sampler(sh);
+    Texture& t = usedTexture(th);
+    Sampler& s = usedSampler(sh);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
@@ -476,7 +479,7 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
     if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
-    Texture& t = use_texture(th);
+    Texture& t = usedTexture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
@@ -557,7 +560,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
                                               uint32_t recordSize, const char* what) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw(what);
-    const Buffer& b = use_buffer(h);
+    const Buffer& b = usedBuffer(h);
     gdi::validate::indirect(b.desc, b.name, offset, drawCount, stride, recordSize, dev_.info().features, what);
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     return b;
@@ -566,7 +569,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
 const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
     if (!dev_.info().features.drawIndirectCount)
         throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
-    const Buffer& b = use_buffer(h);
+    const Buffer& b = usedBuffer(h);
     gdi::validate::indirect(b.desc, b.name, offset, 1, 4, 4, dev_.info().features, what);
     return b;
 }
@@ -611,7 +614,7 @@ void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset
     if (!pipeline_) fail("dispatchIndirect without a pipeline (call setPipeline first)");
     if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->name + "'");
-    const Buffer& b = use_buffer(args);
+    const Buffer& b = usedBuffer(args);
     gdi::validate::indirect(b.desc, b.name, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
                             dev_.info().features, "dispatchIndirect");
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
@@ -634,8 +637,8 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
 void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
                                    uint64_t size) {
     outsidePass("copyBuffer");
-    Buffer& d = use_buffer(dst);
-    Buffer& s = use_buffer(src);
+    Buffer& d = usedBuffer(dst);
+    Buffer& s = usedBuffer(src);
     gdi::validate::bufferRange(d.desc, dstOffset, size, "copyBuffer destination");
     gdi::validate::bufferRange(s.desc, srcOffset, size, "copyBuffer source");
     if (size == 0) return;
@@ -643,12 +646,13 @@ void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gd
     VkBufferCopy r{srcOffset, dstOffset, size};
     vkCmdCopyBuffer(cb_, s.buffer, d.buffer, 1, &r);
     written_ = true;
+    if (d.desc.access == gdi::MemoryAccess::Readback) hostReadable(d);
 }
 
 void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
     outsidePass("copyTexture");
-    Texture& d = use_texture(dst);
-    Texture& s = use_texture(src);
+    Texture& d = usedTexture(dst);
+    Texture& s = usedTexture(src);
     if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
         d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
         d.desc.sampleCount != s.desc.sampleCount)
@@ -679,8 +683,8 @@ static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource 
 
 void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
-    Texture& t = use_texture(dst);
-    Buffer& b = use_buffer(src);
+    Texture& t = usedTexture(dst);
+    Buffer& b = usedBuffer(src);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, "copyBufferToTexture");
     barrierIfWritten();
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
@@ -689,19 +693,32 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subreso
 
 void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
-    Texture& t = use_texture(src);
-    Buffer& b = use_buffer(dst);
+    Texture& t = usedTexture(src);
+    Buffer& b = usedBuffer(dst);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, "copyTextureToBuffer");
     barrierIfWritten();
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
     written_ = true;
+    if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
+}
+
+// The host reads Readback memory through map() once the fence has signalled; a fence does not
+// make device writes available to the host by itself, this barrier does.
+void VulkanCommandList::hostReadable(const Buffer& b) {
+    VkBufferMemoryBarrier mb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    mb.srcQueueFamilyIndex = mb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    mb.buffer = b.buffer;
+    mb.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &mb, 0, nullptr);
 }
 
 // Each level is a linear blit of the one above (an exact 2x2 or 2x2x2 average where sizes
 // halve evenly), every layer at once; a barrier orders each level's write before its read.
 void VulkanCommandList::generateMips(gdi::TextureHandle h) {
     outsidePass("generateMips");
-    Texture& t = use_texture(h);
+    Texture& t = usedTexture(h);
     gdi::validate::mipGeneration(t.desc, t.name);
     if (!dev_.linearBlit(t.desc.format))
         throw gdi::Error("generateMips: format " + std::string(gdi::formatInfo(t.desc.format).name) +
@@ -727,14 +744,14 @@ void VulkanCommandList::generateMips(gdi::TextureHandle h) {
 
 void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
     outsidePass("beginTimer");  // the query reset below must be outside rendering
-    Timer& t = use_timer(h);
+    Timer& t = usedTimer(h);
     vkCmdResetQueryPool(cb_, dev_.queryPool(), t.firstQuery, 2);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery);
 }
 
 void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     ensureRecording();
-    Timer& t = use_timer(h);
+    Timer& t = usedTimer(h);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
 }
 

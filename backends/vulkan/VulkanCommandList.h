@@ -49,7 +49,9 @@ public:
         return uint64_t(cb_);
     }
 
-    // For the device.
+    // For the device: submit checks every list before it ends any (a refused submission leaves
+    // each list as it was), then ends each recording.
+    void checkSubmittable() const;
     VkCommandBuffer finish();
     void submitted(gdi::FenceValue value);
     static void fullBarrier(VkCommandBuffer cb);
@@ -63,18 +65,19 @@ private:
     // Lookups that note what the recording uses, so submit can refuse objects destroyed since.
     enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer };
     void note(UsedKind kind, uint32_t id) { used_.push_back(uint64_t(kind) << 32 | id); }
-    Buffer& use_buffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); note(UsedKind::Buffer, h.id); return b; }
-    const Buffer* use_findBuffer(gdi::BufferHandle h) {
+    Buffer& usedBuffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); note(UsedKind::Buffer, h.id); return b; }
+    const Buffer* findUsedBuffer(gdi::BufferHandle h) {
         const Buffer* b = dev_.findBuffer(h);
         note(UsedKind::Buffer, h.id);
         return b;
     }
-    Texture& use_texture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
-    Sampler& use_sampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
-    Pipeline& use_pipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
-    Timer& use_timer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
+    Texture& usedTexture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
+    Sampler& usedSampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
+    Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
+    Timer& usedTimer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
     void checkAlive() const;
     void addRecordingBuffer();
+    void hostReadable(const Buffer& b);
     void ensureRecording() {
         if (!recording_) [[unlikely]]
             beginRecording();

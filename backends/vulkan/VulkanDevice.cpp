@@ -389,11 +389,13 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     loss_.check("submit");
     std::vector<VulkanCommandList*> vk;
     std::vector<VkCommandBuffer> cbs;
+    gdi::validate::submittedLists(lists);
     for (gdi::CommandList* l : lists) {
         auto* list = dynamic_cast<VulkanCommandList*>(l);
         if (!list) throw gdi::Error("submit: a command list of another device");
         vk.push_back(list);
     }
+    for (VulkanCommandList* list : vk) list->checkSubmittable();
     const VkCommandBuffer init = takeInitialTransitions();
     if (init) cbs.push_back(init);
     for (VulkanCommandList* list : vk) cbs.push_back(list->finish());

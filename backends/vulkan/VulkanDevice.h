@@ -146,7 +146,7 @@ public:
     bool isComplete(gdi::FenceValue fence) override;
     void waitIdle() override;
     std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
-    uint32_t validationErrorCount() const override { return validationErrors_; }
+    uint32_t validationErrorCount() const override { return validationErrors_.load(); }
     gdi::LiveObjects liveObjects() const override;
     uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
     bool present(gdi::TextureHandle texture) override;  // VulkanSwapchain.cpp
@@ -254,7 +254,7 @@ private:
     static constexpr uint32_t kMaxTimers = 512;
     std::vector<uint32_t> freeTimerSlots_;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
-    uint32_t validationErrors_ = 0;
+    std::atomic<uint32_t> validationErrors_{0};  // the layer calls back on recording threads too
     mutable gdi::DeviceLoss loss_;
     uint32_t nativeObjects_ = 0;  // VkBuffers and VkImages of buffers, textures and staging (liveObjects)
 

@@ -375,6 +375,16 @@ void mappable(const BufferDesc& d, const std::string& name) {
                     " is GpuOnly; only Upload and Readback buffers can be mapped (use writeBuffer or a copy)");
 }
 
+void submittedLists(std::span<CommandList* const> lists) {
+    for (size_t i = 0; i < lists.size(); ++i) {
+        if (!lists[i]) throw Error("submit: list " + std::to_string(i) + " is null");
+        for (size_t j = 0; j < i; ++j)
+            if (lists[j] == lists[i])
+                throw Error("submit: the same list at " + std::to_string(j) + " and " + std::to_string(i) +
+                            " (a recording runs once)");
+    }
+}
+
 void destroyedBeforeSubmit(const char* kind, uint32_t id) {
     throw Error(std::string("submit: the list uses ") + kind + " handle " + std::to_string(id) +
                 ", destroyed after it was recorded; record it again");

@@ -250,4 +250,36 @@ TEST_P(DeviceErrors, OutOfRangeBufferWrite) {
     EXPECT_NE(errorOf([&] { device->writeBuffer(b, 8, bytesOf(data)); }).find("exceeds its size 16"), std::string::npos);
 }
 
+// A refused submit runs none of its lists and leaves each as it was: here the second list's
+// pass is still open, so the first list's clear must not run, and both lists are intact to be
+// submitted once the mistake is mended. A list twice in one submit is refused the same way.
+TEST_P(DeviceErrors, RefusedSubmitRunsNothingAndKeepsItsLists) {
+    Device& d = *device;
+    const TextureUsage usage = TextureUsage::RenderTarget | TextureUsage::CopySrc;
+    const TextureHandle a = d.createTexture({.width = 4, .height = 4, .usage = usage});
+    const TextureHandle b = d.createTexture({.width = 4, .height = 4, .usage = usage});
+    auto clear = [&](TextureHandle t, float red) {
+        auto c = d.createCommandList();
+        c->beginRenderPass({.colors = {{.texture = t, .clear = {red, 0, 1, 1}}}});
+        c->endRenderPass();
+        return c;
+    };
+    d.wait(d.submit(*clear(a, 0)));
+    auto first = clear(a, 1);
+    auto second = d.createCommandList();
+    second->beginRenderPass({.colors = {{.texture = b, .clear = {0, 1, 0, 1}}}});
+    std::array<CommandList*, 2> both = {first.get(), second.get()};
+    EXPECT_NE(errorOf([&] { d.submit(both); }).find("render pass still open"), std::string::npos);
+    d.waitIdle();
+    EXPECT_EQ(d.readTexture(a).texel(0, 0)[0], 0.0f) << "the refused submission ran its first list";
+    std::array<CommandList*, 2> twice = {first.get(), first.get()};
+    EXPECT_NE(errorOf([&] { d.submit(twice); }).find("the same list at 0 and 1"), std::string::npos);
+    second->endRenderPass();
+    d.wait(d.submit(both));
+    EXPECT_EQ(d.readTexture(a).texel(0, 0)[0], 1.0f) << "the first list's recording was lost";
+    EXPECT_EQ(d.readTexture(b).texel(0, 0)[1], 1.0f);
+    d.destroy(a);
+    d.destroy(b);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

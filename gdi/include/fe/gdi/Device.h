@@ -697,8 +697,10 @@ using FenceValue = uint64_t;
 // what it must: creation, destruction, transfers, submit and wait take one lock each (on GL
 // they run on the thread that owns the context, which replays submitted lists in order), so
 // they are safe but do not run in parallel with each other. What runs in parallel is
-// recording: lists recorded on different threads at once take no device lock. Objects used by
-// a list must not be destroyed while that list is being recorded or is unsubmitted.
+// recording: binding and drawing take no device lock (Vulkan takes it briefly when a
+// recording starts and when a pass first uses an attachment view). Objects used by a list
+// must not be destroyed while that list is being recorded or is unsubmitted (its submit
+// throws Error). A submit that throws runs none of its lists and leaves them as they were.
 class Device {
 public:
     virtual ~Device() = default;

@@ -105,6 +105,8 @@ SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, c
 uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name);
 // map(): Upload and Readback buffers only.
 void mappable(const BufferDesc& d, const std::string& name);
+// submit(lists): no list twice, none null.
+void submittedLists(std::span<CommandList* const> lists);
 // Submitting a list that uses an object destroyed after it was recorded.
 [[noreturn]] void destroyedBeforeSubmit(const char* kind, uint32_t id);
 

@@ -1,0 +1,111 @@
+// Example (c): command lists recorded on two threads at once and submitted together, three
+// frames in flight, and three mistakes made on purpose, each of which must be the same
+// gdi::Error on every backend (tests/package_consumer.sh compares the messages).
+//   fe_example_threads [--backend NAME] [--validation]
+// Prints one line per mistake ("error: ..."), then whether both halves were drawn; exit 1 when
+// a mistake was not reported, a half is missing or the validation layer spoke.
+#include <array>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/Device.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+using namespace fe::gdi;
+
+namespace {
+// Runs `mistake`, which must throw gdi::Error; prints its message.
+bool reported(const char* what, const std::function<void()>& mistake) {
+    try {
+        mistake();
+    } catch (const Error& e) {
+        std::printf("error: %s: %s\n", what, e.what());
+        return true;
+    }
+    std::printf("NOT REPORTED: %s\n", what);
+    return false;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string backend = "auto";
+    bool validation = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--backend" && i + 1 < argc) backend = argv[++i];
+        else if (a == "--validation") validation = true;
+        else {
+            std::fprintf(stderr, "usage: %s [--backend NAME] [--validation]\n", argv[0]);
+            return 2;
+        }
+    }
+    try {
+        auto device = createDevice({.backend = backend, .validation = validation, .verbose = false});
+        Device& d = *device;
+        const ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("triangle/triangle.vert")});
+        const ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("triangle/triangle.frag")});
+        const PipelineHandle pipeline = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+        auto target = [&](const char* name) {
+            return d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = name});
+        };
+        const std::array<TextureHandle, 2> halves = {target("left"), target("right")};
+        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(), d.createCommandList()};
+        std::array<FenceValue, 3> inFlight{};  // three frames in flight: frame f waits for frame f - 3
+
+        for (uint32_t frame = 0; frame < 6; ++frame) {
+            d.wait(inFlight[frame % 3]);
+            // Each thread records its own list; neither touches the device's lock.
+            std::array<std::thread, 2> recorders;
+            for (size_t i = 0; i < 2; ++i)
+                recorders[i] = std::thread([&, i] {
+                    CommandList& c = *lists[i];
+                    c.beginRenderPass({.colors = {{.texture = halves[i], .clear = {0.1f * float(i), 0, 0, 1}}}});
+                    c.setPipeline(pipeline);
+                    c.draw(3);
+                    c.endRenderPass();
+                });
+            for (auto& t : recorders) t.join();
+            std::array<CommandList*, 2> order = {lists[1].get(), lists[0].get()};
+            inFlight[frame % 3] = d.submit(order);
+        }
+        d.waitIdle();
+
+        bool ok = true;
+        // Mistake 1: a draw outside a render pass, recorded on a worker thread.
+        std::thread([&] { ok &= reported("draw outside a pass", [&] { lists[0]->setPipeline(pipeline), lists[0]->draw(3); }); }).join();
+        // Mistake 2: a list whose target is destroyed between recording and submit.
+        const TextureHandle doomed = target("doomed");
+        auto late = d.createCommandList();
+        late->beginRenderPass({.colors = {{.texture = doomed}}});
+        late->endRenderPass();
+        d.destroy(doomed);
+        ok &= reported("submit after destroy", [&] { d.submit(*late); });
+        // Mistake 3: mapping GPU-only memory.
+        const BufferHandle gpuOnly = d.createBuffer({.size = 256, .debugName = "gpu only"});
+        ok &= reported("map GpuOnly", [&] { d.map(gpuOnly); });
+
+        for (size_t i = 0; i < 2; ++i) {
+            const auto mid = d.readTexture(halves[i]).texel(32, 40);
+            const bool drawn = mid[1] > 0.15f || mid[2] > 0.15f;
+            std::printf("%s half: %s\n", i ? "right" : "left", drawn ? "drawn" : "MISSING");
+            ok &= drawn;
+        }
+        lists = {};
+        late.reset();
+        d.destroy(gpuOnly);
+        for (TextureHandle t : halves) d.destroy(t);
+        d.destroy(pipeline);
+        d.destroy(vs);
+        d.destroy(fs);
+        if (d.validationErrorCount()) std::printf("%u validation error(s)\n", unsigned(d.validationErrorCount()));
+        return ok && d.validationErrorCount() == 0 ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fe_example_threads: %s\n", e.what());
+        return 1;
+    }
+}
