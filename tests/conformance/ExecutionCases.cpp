@@ -125,6 +125,14 @@ struct TexturedDraw {
         const Params p = paramsOf({1, 1, 0, 0}, lod);
         return owner.add(owner.device().createBuffer({.size = sizeof p, .usage = BufferUsage::Uniform}, bytesOf(p)));
     }
+    // One full-screen draw of `texture` through `sampler` (default: nearest) in an open pass.
+    void draw(CommandList& cmd, PipelineHandle pipeline, BufferHandle ubo, TextureHandle texture,
+              SamplerHandle sampler = {}) const {
+        cmd.setPipeline(pipeline);
+        cmd.setUniformBuffer(0, ubo);
+        cmd.setTexture(1, texture, sampler ? sampler : nearest);
+        cmd.draw(3);
+    }
 };
 
 // A 4x4 texture of 16 distinct texels, and how textured_uv.frag shows it (16x magnified).
@@ -295,10 +303,7 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
         BufferHandle ubo = textured.params(objects, 0);
         auto cmd = d.createCommandList();
         beginPass(*cmd, t, kBlack);
-        cmd->setPipeline(p);
-        cmd->setUniformBuffer(0, ubo);
-        cmd->setTexture(1, tex, textured.nearest);
-        cmd->draw(3);
+        textured.draw(*cmd, p, ubo, tex);
         cmd->endRenderPass();
         d.writeTexture(tex, {}, bytesOf(tiles().data));
         d.wait(d.submit(*cmd));
@@ -459,10 +464,7 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
         BufferHandle ubo = textured.params(iteration, 0);
         auto stale = d.createCommandList();
         beginPass(*stale, t, magenta);
-        stale->setPipeline(p);
-        stale->setUniformBuffer(0, ubo);
-        stale->setTexture(1, tex, textured.nearest);
-        stale->draw(3);
+        textured.draw(*stale, p, ubo, tex);
         stale->endRenderPass();
         if (destroyTexture) iteration.destroy(tex);
         else iteration.destroy(ubo);
@@ -478,10 +480,7 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
         TextureHandle tex = tileTexture(again);
         BufferHandle ubo = textured.params(again, 0);
         beginPass(*cmd, t, magenta);
-        cmd->setPipeline(p);
-        cmd->setUniformBuffer(0, ubo);
-        cmd->setTexture(1, tex, textured.nearest);
-        cmd->draw(3);
+        textured.draw(*cmd, p, ubo, tex);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
         out.push_back(rendered("after_refused_submits", d.readTexture(t), tilesMagnified()));
@@ -708,19 +707,13 @@ std::vector<CaseImage> subresourceBarrier(Device& d) {
     // Sampled through textured.nearest, which reads the base level only: on GL an attached level
     // within the sampler's mip range is a feedback loop even where the shader never reads it.
     cmd->beginRenderPass({.colors = {{.texture = tex, .mipLevel = 1, .clear = {0, 0, 0, 1}}}});
-    cmd->setPipeline(p);
-    cmd->setUniformBuffer(0, level0);
-    cmd->setTexture(1, tex, textured.nearest);
-    cmd->draw(3);
+    textured.draw(*cmd, p, level0, tex);
     cmd->endRenderPass();
     const TextureBarrier renderedMip{.texture = tex, .before = ResourceState::RenderTarget, .after = ResourceState::ShaderRead,
                                      .baseMip = 1, .mipCount = 1};
     cmd->barrier(renderedMip);
     cmd->beginRenderPass({.colors = {{.texture = copy, .clear = {0, 0, 0, 1}}}});
-    cmd->setPipeline(p);
-    cmd->setUniformBuffer(0, level1);
-    cmd->setTexture(1, tex, levels);
-    cmd->draw(3);
+    textured.draw(*cmd, p, level1, tex, levels);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
 
