@@ -302,11 +302,23 @@ int countInstructions(uint32_t frames) {
             for (int withSubmit = 0; withSubmit < 2; ++withSubmit) {
                 const std::string name = b + " " + kind + (withSubmit ? " record+submit" : " record");
                 for (uint32_t f = 0; f < frames; ++f) {
+                    const std::string frame = name + " #" + std::to_string(f);
+                    // Collection is a per-thread state in callgrind: on GL the context thread's is
+                    // switched too, around the recording thread's window.
+                    auto toggleContextThread = [&] {
+                        if (b != "vulkan") fe::gl::runOnContextThread(*s.device, [] { CALLGRIND_TOGGLE_COLLECT; });
+                    };
+                    toggleContextThread();
                     CALLGRIND_TOGGLE_COLLECT;
                     path.record();
                     if (withSubmit) path.submit();
                     CALLGRIND_TOGGLE_COLLECT;
-                    CALLGRIND_DUMP_STATS_AT(name.c_str());  // one profile per frame: the script takes medians
+                    toggleContextThread();
+                    // One profile per frame and thread (a dump covers the calling thread only): the
+                    // recording thread's, and on GL the context thread's, which replays the lists
+                    // and makes the direct path's calls. The script sums a frame's profiles.
+                    CALLGRIND_DUMP_STATS_AT(frame.c_str());
+                    if (b != "vulkan") fe::gl::runOnContextThread(*s.device, [&] { CALLGRIND_DUMP_STATS_AT(frame.c_str()); });
                     if (!withSubmit) path.submit();
                     path.wait();
                 }

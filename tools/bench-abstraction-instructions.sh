@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Cost of the abstraction in instructions, not seconds: runs the abstraction benchmark's
 # --count-instructions mode under callgrind, which counts every instruction the recording
-# thread executes while recording (and recording + submitting) 10,000 draws, for the abstract
+# thread (and, on GL, the context thread that replays) executes while recording (and recording
+# + submitting) 10,000 draws, for the abstract
 # and the direct path on every backend. Counts are repeatable on a busy machine where CPU time
 # is not (docs/BENCHMARKS.md). Each count is split by where the instructions ran: the program's
 # own code (application loop + engine; the only part the abstraction changes) and the libraries
@@ -22,7 +23,7 @@ out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 # --separate-threads: the driver's own threads (lavapipe's queue executes submitted frames)
 # would otherwise be summed in whenever the scheduler runs them inside a counted window;
-# only the recording thread (thread 1, files *-01) is counted.
+# only the threads that dump a frame's profile (below) are counted.
 if ! valgrind --tool=callgrind --collect-atstart=no --separate-threads=yes --callgrind-out-file="$out/cg.%p" \
      "$bin" --count-instructions "$frames" >"$out/stdout" 2>"$out/log"; then
   echo "callgrind run failed:" >&2; tail -20 "$out/log" >&2; exit 1
@@ -42,11 +43,16 @@ own_cost() {
     /^[0-9+*-]/ { if (skip) { skip = 0; next } if (cur ~ ("/" own "$")) s += $NF; next }
     END { print s + 0 }' "$1"
 }
-for f in $(cd "$out" && ls cg.*.*-01 | sort -t. -k3 -n); do
+# A frame's profiles: the recording thread's and, on GL, the context thread's, which replays
+# the recorded lists and makes the direct path's GL calls (backends/gl/GlContextThread.h); the
+# benchmark names each frame's dumps alike ("... #N"). Other threads (llvmpipe's rasterizer,
+# lavapipe's queue: the "GPU") are never dumped inside a frame.
+for f in $(cd "$out" && ls cg.*.*-* | sort -t. -k3 -n); do
   name=$(sed -n 's/^desc: Trigger: Client Request: //p' "$out/$f" | head -1)
   total=$(sed -n 's/^\(summary\|totals\): *//p' "$out/$f" | head -1)
   echo "$name|$total|$(own_cost "$out/$f")"
-done >"$out/frames"
+done | awk -F'|' '{ if (!($1 in t)) order[++m] = $1; t[$1] += $2; o[$1] += $3 }
+  END { for (i = 1; i <= m; ++i) { n = order[i]; sub(/ #[0-9]+$/, "", n); print n "|" t[order[i]] "|" o[order[i]] } }' >"$out/frames"
 # One row per path and phase: the median frame's total and own counts (the driver's allocator
 # now and then does extra work in one frame; the median is what a frame costs).
 awk -F'|' '

@@ -247,6 +247,7 @@ void VulkanCommandList::submitted(gdi::FenceValue value) {
     lastSubmit_ = value;
     buffers_[current_].fence = value;
     used_.clear();
+    lastBuffer_ = 0;
     destroyEpoch_ = dev_.destroyEpoch();
     recording_ = false;
     inPass_ = false;
@@ -442,9 +443,11 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // checked path handles the rest and owns every error message.
 template <VkDescriptorType kType>
 inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const Buffer* b = findUsedBuffer(h);
+    const Buffer* b = dev_.findBuffer(h);
     const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
-    if (!bindSize) [[unlikely]]
+    // Another buffer than the last one bound is noted (for submit's liveness check) on the
+    // checked path, so this one stays a leaf: no call, no saved registers.
+    if (!bindSize || h.id != lastBuffer_) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
     bindBuffer(slot, kType, b->buffer, offset, bindSize);
 }

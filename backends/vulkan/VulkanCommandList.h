@@ -65,12 +65,13 @@ private:
     // Lookups that note what the recording uses, so submit can refuse objects destroyed since.
     enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer };
     void note(UsedKind kind, uint32_t id) { used_.push_back(uint64_t(kind) << 32 | id); }
-    Buffer& usedBuffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); note(UsedKind::Buffer, h.id); return b; }
-    const Buffer* findUsedBuffer(gdi::BufferHandle h) {
-        const Buffer* b = dev_.findBuffer(h);
-        note(UsedKind::Buffer, h.id);
-        return b;
+    // Per-object binds repeat one buffer at many offsets: a buffer is noted when it differs
+    // from the last one noted (one compare on the per-draw path, measured in docs/BENCHMARKS.md).
+    void noteBuffer(uint32_t id) {
+        if (id != lastBuffer_) [[unlikely]]
+            note(UsedKind::Buffer, lastBuffer_ = id);
     }
+    Buffer& usedBuffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); noteBuffer(h.id); return b; }
     Texture& usedTexture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
     Sampler& usedSampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
     Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
@@ -125,6 +126,7 @@ private:
     size_t current_ = 0;
     VkCommandBuffer cb_ = VK_NULL_HANDLE;  // buffers_[current_].cb
     std::vector<uint64_t> used_;  // UsedKind << 32 | handle id, per use
+    uint32_t lastBuffer_ = 0;     // the buffer noted last (0: none yet this recording)
     uint64_t destroyEpoch_ = 0;
     bool recording_ = false;
     bool inPass_ = false;

@@ -110,8 +110,10 @@ public:
     // Calls f(record) for each record in recording order; f has an overload per record type.
     template <class F>
     void forEach(F&& f) const {
-        for (const auto& b : blocks_) {
-            for (const std::byte* p = b.data.get(); p < b.data.get() + b.used;) {
+        for (size_t i = 0; i < blocks_.size(); ++i) {
+            const Block& b = blocks_[i];
+            const std::byte* end = i == current_ ? cur_ : b.data.get() + b.used;
+            for (const std::byte* p = b.data.get(); p < end;) {
                 const auto* h = reinterpret_cast<const Header*>(p);
                 dispatch(h->op, p + sizeof(Header), f);
                 p += h->size;
@@ -136,6 +138,8 @@ public:
         for (auto& b : blocks_) b.used = 0;
         current_ = 0;
         count_ = 0;
+        cur_ = blocks_.empty() ? nullptr : blocks_[0].data.get();
+        end_ = blocks_.empty() ? nullptr : cur_ + blocks_[0].size;
     }
 
 private:
@@ -145,25 +149,36 @@ private:
         std::unique_ptr<std::byte[]> data;
         size_t size = 0, used = 0;
     };
+    // The per-command path: a bump of the current block's cursor.
     std::byte* reserve(size_t size) {
-        while (current_ < blocks_.size() && blocks_[current_].used + size > blocks_[current_].size) {
-            if (blocks_[current_].used == 0 && size > blocks_[current_].size) break;  // replace: too small
+        if (size <= size_t(end_ - cur_)) [[likely]] {
+            std::byte* at = cur_;
+            cur_ += size;
+            return at;
+        }
+        return reserveInNextBlock(size);
+    }
+    [[gnu::noinline]] std::byte* reserveInNextBlock(size_t size) {
+        if (cur_) {
+            blocks_[current_].used = size_t(cur_ - blocks_[current_].data.get());
             ++current_;
         }
+        // The next kept block, replaced when too small for one large record; or a new one.
         if (current_ == blocks_.size()) blocks_.push_back({});
         Block& b = blocks_[current_];
-        if (b.size < b.used + size) {  // new or too small for one large record
+        if (b.size < size) {
             const size_t n = std::max(kBlockSize, size);
             b.data.reset(new std::byte[n]);
             b.size = n;
-            b.used = 0;
         }
-        std::byte* at = b.data.get() + b.used;
-        b.used += size;
-        return at;
+        b.used = 0;
+        cur_ = b.data.get() + size;
+        end_ = b.data.get() + b.size;
+        return b.data.get();
     }
     std::vector<Block> blocks_;
-    size_t current_ = 0;
+    size_t current_ = 0;                            // the block being written
+    std::byte* cur_ = nullptr, *end_ = nullptr;     // its free space
     size_t count_ = 0;
     std::byte* payloadAt_ = nullptr;
 };

@@ -5,7 +5,7 @@
 // one thread at a time adds, retires or removes (the backends' device lock serialises those).
 // That is what lets command lists be recorded on several threads while another creates and
 // destroys objects. It holds because objects never move: slots live in fixed-size chunks
-// reached through a table sized for every possible index, made once, so growing the pool
+// reached through a table sized for every possible index, inside the pool, so growing it
 // publishes a new chunk and never reallocates what a reader is looking at; a slot's tag is
 // published with release after its object is written, and read with acquire.
 //
@@ -29,7 +29,7 @@ namespace fe::gdi {
 template <class H, class T>
 class HandlePool {
 public:
-    HandlePool() : chunks_(std::make_unique<std::atomic<Chunk*>[]>(kMaxChunks)) {}
+    HandlePool() = default;
     ~HandlePool() {
         for (uint32_t c = 0; c < kMaxChunks; ++c) delete chunks_[c].load(std::memory_order_relaxed);
     }
@@ -126,7 +126,8 @@ private:
     using Chunk = std::array<Slot, kChunkSlots>;
     Slot& slot(uint32_t index) { return (*chunks_[index >> kChunkShift].load(std::memory_order_acquire))[index & kChunkMask]; }
 
-    std::unique_ptr<std::atomic<Chunk*>[]> chunks_;  // kMaxChunks entries, null until used
+    // Inline, not behind a pointer: a lookup is one load for the chunk, one for the slot.
+    std::array<std::atomic<Chunk*>, kMaxChunks> chunks_{};  // null until used
     std::vector<uint32_t> free_;
     std::atomic<uint32_t> count_{0};  // slots in use or freed: the next new index
 };

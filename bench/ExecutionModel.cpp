@@ -1,0 +1,227 @@
+// The execution model's figures (issue 24), per backend, medians over repeated rounds:
+//  1. Parallel recording: 20,000 draws (a uniform-buffer slice and a draw each) recorded as one
+//     list on one thread, against four lists of 5,000 on two threads (two lists each). Only the
+//     recording is timed; the ratio two-thread / one-thread is the figure.
+//  2. CPU/GPU overlap: frames of 5,000 draws, recorded and submitted with two frames in flight,
+//     against the same frames each waited for before the next is recorded. Record, submit and
+//     wait are timed apart; with overlap the pipelined frame costs less than record + execute.
+//  3. Churn: the frame time of (2) with two frames in flight, plain and while 1,000 textures are
+//     created and destroyed (50 per frame over 20 frames).
+// Each frame starts with --cpu-ms of application work (a busy loop), which frames in flight
+// overlap with the previous frame's execution.
+// Prints a markdown table. On lavapipe/llvmpipe the "GPU" is the same two CPU cores, so these
+// are software-rasterizer figures: ratios measured in one run, not absolute speeds.
+//   fe_bench_execution [--backend NAME|all] [--rounds N] [--cpu-ms MS]
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <atomic>
+#include <barrier>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/Device.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+using namespace fe::gdi;
+
+namespace {
+
+constexpr uint32_t kDraws = 20000;
+constexpr uint32_t kStride = 256;  // >= every device's uniform offset alignment
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
+}
+
+struct Scene {
+    std::unique_ptr<Device> device;
+    TextureHandle target;
+    BufferHandle vertices, objects;
+    PipelineHandle pipeline;
+    ShaderHandle vs, fs;
+    explicit Scene(const std::string& backend) {
+        device = createDevice({.backend = backend, .validation = false, .verbose = false});
+        Device& d = *device;
+        target = d.createTexture({.width = 100, .height = 100, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+        const float tri[] = {0, 0, 1, 0, 0, 1};
+        vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, bytesOf(tri));
+        std::vector<float> o(size_t(kDraws) * kStride / 4, 0.0f);
+        for (uint32_t i = 0; i < kDraws; ++i) {
+            float* p = &o[size_t(i) * kStride / 4];
+            p[0] = -1 + 2 * float(i % 100) / 100, p[1] = -1 + 2 * float(i / 100 % 100) / 100, p[2] = p[3] = 0.03f;
+            p[4] = p[5] = p[6] = p[7] = 1;
+        }
+        objects = d.createBuffer({.size = o.size() * 4, .usage = BufferUsage::Uniform}, bytesOf(o));
+        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
+        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
+        pipeline = d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs,
+             .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+             .colorFormats = {Format::RGBA8},
+             .bindings = {{.slot = 0, .type = BindingType::UniformBuffer, .stages = ShaderStage::Vertex}}});
+    }
+    ~Scene() {
+        device->waitIdle();
+        for (BufferHandle b : {vertices, objects}) device->destroy(b);
+        device->destroy(target);
+        device->destroy(pipeline);
+        device->destroy(vs);
+        device->destroy(fs);
+    }
+    // Draws [first, first + count) into the target; `clear` on the first list of a frame.
+    void record(CommandList& c, uint32_t first, uint32_t count, bool clear) const {
+        c.beginRenderPass({.colors = {{.texture = target, .load = clear ? LoadOp::Clear : LoadOp::Load}}});
+        c.setPipeline(pipeline);
+        c.setVertexBuffer(0, vertices);
+        for (uint32_t i = first; i < first + count; ++i) {
+            c.setUniformBuffer(0, objects, uint64_t(i) * kStride, 64);
+            c.draw(3);
+        }
+        c.endRenderPass();
+    }
+};
+
+struct Row {
+    std::string backend;
+    double oneThread = 0, twoThreads = 0;
+    double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
+    double plainFrame = 0, churnFrame = 0;
+};
+
+// Two recording threads that live across rounds, as an engine's job threads do (threads made
+// per round would hand their malloc arenas over, which is not what recording costs).
+void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
+    Device& d = *s.device;
+    std::vector<double> one, two;
+    auto single = d.createCommandList();
+    std::array<std::unique_ptr<CommandList>, 4> quarter = {d.createCommandList(), d.createCommandList(), d.createCommandList(),
+                                                           d.createCommandList()};
+    std::barrier roundStart(3), roundEnd(3);
+    std::atomic<bool> done{false};
+    std::array<std::thread, 2> workers;
+    for (uint32_t k = 0; k < 2; ++k)
+        workers[k] = std::thread([&, k] {
+            for (;;) {
+                roundStart.arrive_and_wait();
+                if (done) return;
+                for (uint32_t l = 2 * k; l < 2 * k + 2; ++l) s.record(*quarter[l], l * kDraws / 4, kDraws / 4, l == 0);
+                roundEnd.arrive_and_wait();
+            }
+        });
+    for (uint32_t r = 0; r < rounds + 1; ++r) {  // round 0 warms both paths up
+        Clock::time_point t = Clock::now();
+        s.record(*single, 0, kDraws, true);
+        if (r) one.push_back(msSince(t));
+        d.wait(d.submit(*single));
+
+        t = Clock::now();
+        roundStart.arrive_and_wait();
+        roundEnd.arrive_and_wait();
+        if (r) two.push_back(msSince(t));
+        std::array<CommandList*, 4> all = {quarter[0].get(), quarter[1].get(), quarter[2].get(), quarter[3].get()};
+        d.wait(d.submit(all));
+    }
+    done = true;
+    roundStart.arrive_and_wait();
+    for (auto& w : workers) w.join();
+    // Both ways drew every draw: each of the 10,000 pixels is covered (the last round's image).
+    const Image image = d.readTexture(s.target);
+    uint32_t lit = 0;
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) lit += image.texel(x, y)[0] > 0.5f;
+    if (lit != 10000) throw Error("parallel recording drew " + std::to_string(lit) + " of 10000 pixels");
+    row.oneThread = median(one);
+    row.twoThreads = median(two);
+}
+
+// The application's own CPU work per frame (simulation, culling), a busy loop of `ms`.
+void applicationWork(double ms) {
+    const Clock::time_point t = Clock::now();
+    while (msSince(t) < ms) {
+    }
+}
+
+// Frames of kDraws / 4 draws after `cpuMs` of application work: `inFlight` 1 waits for each
+// frame before the next begins; with 2 the next frame's work and recording overlap this one's
+// execution (GL: its replay on the context thread and the rasterizer).
+double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t churnPerFrame, double cpuMs) {
+    Device& d = *s.device;
+    std::vector<std::unique_ptr<CommandList>> lists;
+    for (uint32_t i = 0; i < inFlight; ++i) lists.push_back(d.createCommandList());
+    std::vector<FenceValue> fences(inFlight, 0);
+    std::vector<double> frameMs, recordMs, submitMs, waitMs;
+    for (uint32_t f = 0; f < count + 2; ++f) {  // two warm-up frames
+        const Clock::time_point start = Clock::now();
+        Clock::time_point t = start;
+        d.wait(fences[f % inFlight]);
+        const double w = msSince(t);
+        for (uint32_t c = 0; c < churnPerFrame; ++c)
+            d.destroy(d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+        applicationWork(cpuMs);
+        t = Clock::now();
+        s.record(*lists[f % inFlight], 0, kDraws / 4, true);
+        const double r = msSince(t);
+        t = Clock::now();
+        fences[f % inFlight] = d.submit(*lists[f % inFlight]);
+        const double sub = msSince(t);
+        if (f < 2) continue;
+        frameMs.push_back(msSince(start)), recordMs.push_back(r), submitMs.push_back(sub), waitMs.push_back(w);
+    }
+    d.waitIdle();
+    if (split) split->record = median(recordMs), split->submit = median(submitMs), split->wait = median(waitMs);
+    return median(frameMs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string which = "all";
+    uint32_t rounds = 9;
+    double cpuMs = 1.0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--backend" && i + 1 < argc) which = argv[++i];
+        else if (a == "--rounds" && i + 1 < argc) rounds = uint32_t(std::max(1, std::atoi(argv[++i])));
+        else if (a == "--cpu-ms" && i + 1 < argc) cpuMs = std::max(0.0, std::atof(argv[++i]));
+        else {
+            std::fprintf(stderr, "usage: %s [--backend NAME|all] [--rounds N] [--cpu-ms MS]\n", argv[0]);
+            return 2;
+        }
+    }
+    try {
+        std::vector<Row> rows;
+        for (const std::string& b : expandBackendList(which)) {
+            if (!probeBackend(b, false).available) continue;
+            Scene s(b);
+            Row row{.backend = b};
+            parallelRecording(s, rounds, row);
+            row.seqFrame = frames(s, 2 * rounds, 1, nullptr, 0, cpuMs);
+            row.pipeFrame = frames(s, 2 * rounds, 2, &row, 0, cpuMs);
+            row.plainFrame = frames(s, 20, 2, nullptr, 0, cpuMs);
+            row.churnFrame = frames(s, 20, 2, nullptr, 50, cpuMs);
+            rows.push_back(row);
+        }
+        std::printf("Parallel recording (%u rounds, medians)\n\n| backend | 20,000 draws, 1 list on 1 thread, ms | 4 lists on 2 "
+                    "threads, ms | ratio |\n|---|---|---|---|\n", rounds);
+        for (const Row& r : rows)
+            std::printf("| %s | %.2f | %.2f | **%.2f** |\n", r.backend.c_str(), r.oneThread, r.twoThreads, r.twoThreads / r.oneThread);
+        std::printf("\nFrames of 5,000 draws after %.1f ms of application work (medians)\n\n| backend | 1 frame in flight, ms | "
+                    "2 in flight, ms | 2 in flight: record / submit / wait, ms | 2 in flight, again, ms | same, creating and "
+                    "destroying 50 textures per frame, ms |\n|---|---|---|---|---|---|\n", cpuMs);
+        for (const Row& r : rows)
+            std::printf("| %s | %.2f | %.2f | %.2f / %.2f / %.2f | %.2f | %.2f |\n", r.backend.c_str(), r.seqFrame, r.pipeFrame,
+                        r.record, r.submit, r.wait, r.plainFrame, r.churnFrame);
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fe_bench_execution: %s\n", e.what());
+        return 1;
+    }
+}
