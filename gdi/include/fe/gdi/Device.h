@@ -693,7 +693,9 @@ struct LiveObjects {
 
 using FenceValue = uint64_t;
 
-// Threads: every member may be called from any thread, concurrently. The device serialises
+// Threads: every member may be called from any thread, concurrently, except present() and
+// input() on windowed backends, which belong to the thread that created the device (window
+// systems require it). The device serialises
 // what it must: creation, destruction, transfers, submit and wait take one lock each (on GL
 // they run on the thread that owns the context, which replays submitted lists in order), so
 // they are safe but do not run in parallel with each other. What runs in parallel is
