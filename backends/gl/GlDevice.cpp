@@ -526,7 +526,7 @@ template <class Pool, class H, class Release>
 void GlDevice::retire(Pool& pool, H h, Release&& release) {
     if (!h || !pool.retire(h)) return;
     destroyEpoch_.fetch_add(1, std::memory_order_release);
-    thread_.post([this, &pool, h, release = std::forward<Release>(release)] {
+    thread_.post([&pool, h, release = std::forward<Release>(release)] {
         typename std::remove_reference_t<decltype(pool.at(h))> object;
         pool.release(h, object);
         release(object);
@@ -845,7 +845,9 @@ bool GlDevice::present(gdi::TextureHandle h) {
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     const Texture& t = texture(h);
     gdi::validate::presentTexture(t.desc, t.label);
-    auto [fbWidth, fbHeight] = platform_->prepareWindow(t.desc.width, t.desc.height);
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda (P1381, clang 16).
+    const std::pair<uint32_t, uint32_t> framebufferSize = platform_->prepareWindow(t.desc.width, t.desc.height);
+    const uint32_t fbWidth = framebufferSize.first, fbHeight = framebufferSize.second;
     thread_.run([&] {
         platform_->beforeDraw();
         GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);
