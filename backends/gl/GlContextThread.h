@@ -2,7 +2,8 @@
 // context is current on one thread at a time, and gdi lets every device call come from any
 // thread, so every GL call runs here. Synchronous calls (create, read) wait for their result;
 // submitted command streams and destroys are queued and run in order while the caller goes on,
-// which is also what gives GL the CPU/GPU overlap of frames in flight.
+// which is also what gives GL the CPU/GPU overlap of frames in flight. Calls that do not depend
+// on queued work (creation, waiting on a replayed fence) go ahead of it: runUrgent.
 #pragma once
 #include <condition_variable>
 #include <deque>
@@ -27,35 +28,30 @@ public:
     // Runs `task` after everything queued before it and returns its result (or rethrows).
     template <class F>
     auto run(F&& task) -> std::invoke_result_t<F&> {
-        if (onThisThread()) return task();
-        using R = std::invoke_result_t<F&>;
-        std::mutex doneMutex;
-        std::condition_variable doneCv;
-        bool done = false;
-        std::exception_ptr error;
-        std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
-        post([&] {
-            try {
-                if constexpr (std::is_void_v<R>) task();
-                else result.emplace(task());
-            } catch (...) {
-                error = std::current_exception();
+        return runIn(tasks_, std::forward<F>(task));
+    }
+    // For calls whose result does not depend on queued work (creating an object, waiting on a
+    // fence whose submission has been replayed): runs `task` before the queued tasks, and even
+    // inside a long one (a replay services these between commands: serviceUrgent()).
+    template <class F>
+    auto runUrgent(F&& task) -> std::invoke_result_t<F&> {
+        return runIn(urgent_, std::forward<F>(task));
+    }
+    // Called by long tasks on this thread: runs the urgent tasks waiting now.
+    void serviceUrgent() {
+        for (;;) {
+            std::function<void()> task;
+            {
+                std::lock_guard lock(mutex_);
+                if (urgent_.empty()) return;
+                task = std::move(urgent_.front());
+                urgent_.pop_front();
             }
-            std::lock_guard lock(doneMutex);
-            done = true;
-            doneCv.notify_one();
-        });
-        std::unique_lock lock(doneMutex);
-        doneCv.wait(lock, [&] { return done; });
-        if (error) std::rethrow_exception(error);
-        if constexpr (!std::is_void_v<R>) return std::move(*result);
+            task();  // runIn's wrapper catches and hands exceptions to the waiting caller
+        }
     }
     // Queues `task`; exceptions it throws are kept and rethrown by takeError().
-    void post(std::function<void()> task) {
-        std::lock_guard lock(mutex_);
-        tasks_.push_back(std::move(task));
-        cv_.notify_one();
-    }
+    void post(std::function<void()> task) { push(tasks_, std::move(task)); }
     // The first exception an asynchronous task threw since the last call, if any.
     std::exception_ptr takeError() {
         std::lock_guard lock(mutex_);
@@ -72,15 +68,46 @@ public:
     }
 
 private:
+    template <class F>
+    auto runIn(std::deque<std::function<void()>>& queue, F&& task) -> std::invoke_result_t<F&> {
+        if (onThisThread()) return task();
+        using R = std::invoke_result_t<F&>;
+        std::mutex doneMutex;
+        std::condition_variable doneCv;
+        bool done = false;
+        std::exception_ptr error;
+        std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
+        push(queue, [&] {
+            try {
+                if constexpr (std::is_void_v<R>) task();
+                else result.emplace(task());
+            } catch (...) {
+                error = std::current_exception();
+            }
+            std::lock_guard lock(doneMutex);
+            done = true;
+            doneCv.notify_one();
+        });
+        std::unique_lock lock(doneMutex);
+        doneCv.wait(lock, [&] { return done; });
+        if (error) std::rethrow_exception(error);
+        if constexpr (!std::is_void_v<R>) return std::move(*result);
+    }
+    void push(std::deque<std::function<void()>>& queue, std::function<void()> task) {
+        std::lock_guard lock(mutex_);
+        queue.push_back(std::move(task));
+        cv_.notify_one();
+    }
     void loop() {
         for (;;) {
             std::function<void()> task;
             {
                 std::unique_lock lock(mutex_);
-                cv_.wait(lock, [&] { return stopping_ || !tasks_.empty(); });
-                if (tasks_.empty()) return;  // stopping, with everything run
-                task = std::move(tasks_.front());
-                tasks_.pop_front();
+                cv_.wait(lock, [&] { return stopping_ || !tasks_.empty() || !urgent_.empty(); });
+                auto& queue = urgent_.empty() ? tasks_ : urgent_;
+                if (queue.empty()) return;  // stopping, with everything run
+                task = std::move(queue.front());
+                queue.pop_front();
             }
             try {
                 task();
@@ -92,7 +119,7 @@ private:
     }
     std::mutex mutex_;
     std::condition_variable cv_;
-    std::deque<std::function<void()>> tasks_;
+    std::deque<std::function<void()>> tasks_, urgent_;
     std::exception_ptr error_;
     bool stopping_ = false;
     std::thread thread_;  // last: starts after the members it uses exist

@@ -271,7 +271,7 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 }
 
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
-    return thread_.run([&]() -> gdi::BufferHandle {
+    return thread_.runUrgent([&]() -> gdi::BufferHandle {  // a new object: no queued work uses it
         loss_.check("createBuffer");
         gdi::validate::bufferDesc(desc);
         gdi::validate::initialData(desc, initialData.size());
@@ -302,7 +302,7 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
-    return thread_.run([&]() -> gdi::TextureHandle {
+    return thread_.runUrgent([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
         loss_.check("createTexture");
         gdi::validate::textureDesc(desc, info_);
         const std::string label = desc.debugName ? desc.debugName : "";
@@ -351,7 +351,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
-    return thread_.run([&]() -> gdi::SamplerHandle {
+    return thread_.runUrgent([&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
         loss_.check("createSampler");
         gdi::validate::samplerDesc(d);
         Sampler s;
@@ -382,7 +382,7 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
-    return thread_.run([&]() -> gdi::ShaderHandle {
+    return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
         gdi::validate::shaderDesc(desc);
         const std::string label = desc.binary.name ? desc.binary.name : "";
@@ -429,7 +429,7 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    return thread_.run([&]() -> gdi::PipelineHandle {
+    return thread_.runUrgent([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
         loss_.check("createGraphicsPipeline");
         gdi::validate::graphicsPipelineDesc(d, info_);
         Pipeline p;
@@ -477,7 +477,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
-    return thread_.run([&]() -> gdi::PipelineHandle {
+    return thread_.runUrgent([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
         loss_.check("createComputePipeline");
         gdi::validate::computePipelineDesc(d);
         Pipeline p;
@@ -494,7 +494,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
-    return thread_.run([&]() -> gdi::TimerHandle {
+    return thread_.runUrgent([&]() -> gdi::TimerHandle {  // a new object: no queued work uses it
         loss_.check("createTimer");
         Timer t;
         gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
@@ -751,13 +751,14 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     auto shared = std::make_shared<decltype(streams)>(std::move(streams));
     thread_.post([this, value, shared] {
         for (auto& stream : *shared) {
-            GlReplay(*this).run(*stream);
+            GlReplay(*this).run(*stream, [this] { thread_.serviceUrgent(); });
             returnStream(std::move(stream));
         }
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // shader stores reach readback and mapped memory
         GLsync s = gl_.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
         gl_.Flush();
         fences_.push_back({value, s});
+        replayed_.store(value, std::memory_order_release);
         checkReset(false);
     });
     return value;
@@ -765,7 +766,10 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
 
 void GlDevice::wait(gdi::FenceValue fence) {
     loss_.check("wait");
-    thread_.run([&] {
+    // Once its submission has been replayed, a fence is waited on ahead of the queue (and in
+    // between the commands of a replay in progress): not behind the next frame's replay.
+    auto waitFor = [&](auto&& task) { fence <= replayed_.load(std::memory_order_acquire) ? thread_.runUrgent(task) : thread_.run(task); };
+    waitFor([&] {
         while (!fences_.empty() && fences_.front().first <= fence) {
             GLsync s = fences_.front().second;
             while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
@@ -782,7 +786,8 @@ void GlDevice::wait(gdi::FenceValue fence) {
 bool GlDevice::isComplete(gdi::FenceValue fence) {
     loss_.check("isComplete");
     if (completed_.load(std::memory_order_acquire) >= fence) return true;
-    return thread_.run([&] {
+    if (fence > replayed_.load(std::memory_order_acquire)) return false;  // not even replayed yet
+    return thread_.runUrgent([&] {
         while (!fences_.empty()) {
             if (gl_.ClientWaitSync(fences_.front().second, GL_SYNC_FLUSH_COMMANDS_BIT, 0) == GL_TIMEOUT_EXPIRED) break;
             gl_.DeleteSync(fences_.front().second);

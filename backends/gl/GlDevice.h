@@ -176,6 +176,7 @@ private:
     std::mutex submitMutex_;  // fence values are handed out in the order streams are queued
     gdi::FenceValue nextFence_ = 1;
     std::atomic<gdi::FenceValue> completed_{0};  // every fence up to it has signalled
+    std::atomic<gdi::FenceValue> replayed_{0};   // every submission up to it has been replayed
     std::atomic<uint64_t> destroyEpoch_{0};
     std::mutex streamsMutex_;
     std::vector<std::unique_ptr<gdi::cmd::CommandStream>> freeStreams_;

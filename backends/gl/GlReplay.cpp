@@ -39,8 +39,12 @@ GLenum topology(gdi::PrimitiveTopology p) {
 }
 }  // namespace
 
-void GlReplay::run(const cmd::CommandStream& stream) {
-    stream.forEach(*this);
+void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>& between) {
+    uint32_t n = 0;
+    stream.forEach([&](const auto& record) {
+        (*this)(record);
+        if (between && ++n % kServiceInterval == 0) between();
+    });
     // A recording ends with automatic barriers on again; anything it left unordered is ordered
     // before later submissions and readback.
     if (!automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);

@@ -3,6 +3,7 @@
 // command of CommandSet.inc (the compiler rejects a command without one).
 #pragma once
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -14,7 +15,10 @@ namespace fe::gl {
 class GlReplay {
 public:
     explicit GlReplay(GlDevice& d) : dev_(d), gl_(d.gl()) {}
-    void run(const gdi::cmd::CommandStream& stream);
+    // `between` runs every kServiceInterval commands: the device serves urgent calls there
+    // (creation, fence waits) instead of after the whole stream.
+    static constexpr uint32_t kServiceInterval = 64;
+    void run(const gdi::cmd::CommandStream& stream, const std::function<void()>& between = {});
 
     void operator()(const gdi::cmd::BeginRenderPass& r);
     void operator()(const gdi::cmd::EndRenderPass&);
