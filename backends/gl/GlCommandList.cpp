@@ -15,16 +15,21 @@ GlCommandList::GlCommandList(GlDevice& d) : dev_(d), stream_(d.takeStream()) { r
 GlCommandList::~GlCommandList() { dev_.returnStream(std::move(stream_)); }
 
 void GlCommandList::restart() {
+    unbindAll();
+    destroyEpoch_ = dev_.destroyEpoch();
+}
+
+void GlCommandList::unbindAll() {
     kinds_ = {};
     unchecked_ = ~uint64_t(0);
     pipeline_ = nullptr;
     readyToDraw_ = false;
     hasIndexBuffer_ = false;
     indexOffset_ = 0;
-    destroyEpoch_ = dev_.destroyEpoch();
 }
 
 void GlCommandList::checkSubmittable() const {
+    if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (depth_) throw gdi::Error("submit: " + std::to_string(depth_) + " debug group(s) not popped");
     if (dev_.destroyEpoch() != destroyEpoch_) dev_.checkAlive(*stream_);  // only when something was destroyed
@@ -36,8 +41,8 @@ std::unique_ptr<cmd::CommandStream> GlCommandList::finish() {
     return recorded;
 }
 
-void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
-    if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
+// The pass's attachments, validated (the same checks and messages as Vulkan's).
+gdi::validate::PassSignature GlCommandList::checkPass(const gdi::RenderPassDesc& desc) const {
     using gdi::validate::attachment;
     std::vector<gdi::validate::AttachmentInfo> infos, resolveInfos(desc.colors.size());
     for (size_t i = 0; i < desc.colors.size(); ++i) {
@@ -59,11 +64,18 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
         const gdi::Subresource at = desc.depth.resolveSubresource;
         dri = attachment(r.desc, at.mipLevel, at.layer, "beginRenderPass resolve", r.label);
     }
-    gdi::validate::renderPass(desc, infos, resolveInfos, depth ? &di : nullptr, desc.depth.resolveTexture ? &dri : nullptr,
-                              dev_.info().limits);
-    passSamples_ = infos.empty() ? di.samples : infos[0].samples;
+    const gdi::Rect area = gdi::validate::renderPass(desc, infos, resolveInfos, depth ? &di : nullptr,
+                                                     desc.depth.resolveTexture ? &dri : nullptr, dev_.info().limits);
+    return gdi::validate::passSignature(infos, depth ? &di : nullptr, area);
+}
+
+void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
+    if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
+    signature_ = checkPass(desc);
+    passSamples_ = signature_.samples;
     const std::span<const gdi::ColorAttachment> colors(desc.colors);
-    auto* r = stream_->push(cmd::BeginRenderPass{.depth = desc.depth},
+    auto* r = stream_->push(cmd::BeginRenderPass{.depth = desc.depth, .secondaryLists = desc.secondaryLists},
                             cmd::CommandStream::payloadSize(colors.size_bytes()) +
                                 cmd::CommandStream::payloadSize(desc.debugName));
     r->colors = stream_->payload(*r, colors);
@@ -71,16 +83,66 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     inPass_ = true;
     pipeline_ = nullptr;  // a render pass starts with no pipeline
     readyToDraw_ = false;
+    secondaryPass_ = restricted_ = desc.secondaryLists;
 }
 
 void GlCommandList::endRenderPass() {
+    if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     inPass_ = false;
     readyToDraw_ = false;
+    if (secondaryPass_) {  // as on Vulkan, where vkCmdExecuteCommands leaves the state undefined
+        secondaryPass_ = restricted_ = false;
+        unbindAll();
+    }
     stream_->push(cmd::EndRenderPass{});
 }
 
+void GlCommandList::restrictedCall(const char* what) const {
+    if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
+    gdi::validate::onlyExecuteSecondary(what);
+}
+
+void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    if (!stream_->empty() || secondary_ || inPass_) gdi::validate::secondaryNotEmpty();
+    signature_ = checkPass(desc);
+    restart();
+    secondary_ = inPass_ = true;
+    passSamples_ = signature_.samples;
+    const gdi::Rect area = gdi::validate::renderArea(signature_);
+    stream_->push(cmd::SetViewport{{0, 0, float(area.width), float(area.height), 0, 1}});
+    stream_->push(cmd::SetScissor{area});
+}
+
+void GlCommandList::endSecondary() {
+    if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
+    if (depth_) throw gdi::Error("endSecondary: " + std::to_string(depth_) + " debug group(s) not popped");
+    ended_ = restricted_ = true;
+    readyToDraw_ = false;
+}
+
+void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
+    gdi::validate::submittedLists(lists);
+    std::vector<GlCommandList*> parts;
+    for (size_t i = 0; i < lists.size(); ++i) {
+        auto* l = dynamic_cast<GlCommandList*>(lists[i]);
+        if (!l || &l->dev_ != &dev_) throw gdi::Error("executeSecondary: list " + std::to_string(i) + " belongs to another device");
+        if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
+        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_, l->signature_, signature_, i);
+        parts.push_back(l);
+    }
+    // Each recording moves, uncopied, into this list's stream; the secondary list records anew.
+    for (GlCommandList* l : parts) {
+        destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);
+        stream_->push(cmd::ExecuteSecondary{stream_->adopt(std::exchange(l->stream_, dev_.takeStream()))});
+        l->secondary_ = l->ended_ = l->restricted_ = l->inPass_ = false;
+        l->depth_ = 0;
+        l->restart();
+    }
+}
+
 void GlCommandList::setPipeline(gdi::PipelineHandle h) {
+    checkUnrestricted("setPipeline");
     const Pipeline& p = dev_.pipeline(h);
     if (inPass_ && !p.compute) gdi::validate::pipelineSamples(p.desc.multisample.sampleCount, passSamples_, p.label.c_str());
     if (pipeline_ != &p) unchecked_ = ~uint64_t(0);  // other slots, other kinds
@@ -91,12 +153,14 @@ void GlCommandList::setPipeline(gdi::PipelineHandle h) {
 }
 
 void GlCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
+    checkUnrestricted("setVertexBuffer");
     if (index >= 16) throw gdi::Error("setVertexBuffer: index out of range");
     const Buffer& b = dev_.buffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     stream_->push(cmd::SetVertexBuffer{index, h, offset});
 }
 void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
+    checkUnrestricted("setIndexBuffer");
     const Buffer& b = dev_.buffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     hasIndexBuffer_ = true;
@@ -270,15 +334,19 @@ void GlCommandList::beginTimer(gdi::TimerHandle h) {
     stream_->push(cmd::BeginTimer{h});
 }
 void GlCommandList::endTimer(gdi::TimerHandle h) {
+    checkUnrestricted("endTimer");
+    if (secondary_) gdi::validate::notInSecondary("endTimer");
     (void)dev_.timer(h);
     stream_->push(cmd::EndTimer{h});
 }
 void GlCommandList::pushDebugGroup(const char* name) {
+    checkUnrestricted("pushDebugGroup");
     ++depth_;
     auto* r = stream_->push(cmd::PushDebugGroup{}, cmd::CommandStream::payloadSize(name ? name : ""));
     r->name = stream_->payload(*r, name ? name : "");
 }
 void GlCommandList::popDebugGroup() {
+    checkUnrestricted("popDebugGroup");
     if (depth_ == 0) throw gdi::Error("popDebugGroup without pushDebugGroup");
     --depth_;
     stream_->push(cmd::PopDebugGroup{});
@@ -344,6 +412,7 @@ void GlCommandList::checkEachSlot(uint64_t check) const {  // throws for the fir
     }
 }
 void GlCommandList::notReadyToDraw(const char* what) const {
+    checkUnrestricted(what);
     if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
     if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
     throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "fe/gdi/CommandStream.h"
+#include "fe/gdi/Validation.h"
 #include "gl/GlDevice.h"
 
 namespace fe::gl {
@@ -19,8 +20,14 @@ public:
     void beginRenderPass(const gdi::RenderPassDesc& desc) override;
     void endRenderPass() override;
     void setPipeline(gdi::PipelineHandle h) override;
-    void setViewport(const gdi::Viewport& v) override { stream_->push(gdi::cmd::SetViewport{v}); }
-    void setScissor(const gdi::Rect& r) override { stream_->push(gdi::cmd::SetScissor{r}); }
+    void setViewport(const gdi::Viewport& v) override {
+        checkUnrestricted("setViewport");
+        stream_->push(gdi::cmd::SetViewport{v});
+    }
+    void setScissor(const gdi::Rect& r) override {
+        checkUnrestricted("setScissor");
+        stream_->push(gdi::cmd::SetScissor{r});
+    }
     void setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) override;
     void setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) override;
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;
@@ -51,6 +58,9 @@ public:
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
     void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
+    void beginSecondary(const gdi::RenderPassDesc& pass) override;
+    void endSecondary() override;
+    void executeSecondary(std::span<gdi::CommandList* const> lists) override;
 
     // For Device::submit, which checks every list before it takes any (a refused submission
     // leaves each list as it was): the recording is complete and no object it uses was
@@ -59,6 +69,13 @@ public:
     std::unique_ptr<gdi::cmd::CommandStream> finish();
 
 private:
+    gdi::validate::PassSignature checkPass(const gdi::RenderPassDesc& desc) const;
+    // Calls refused in a pass of secondary lists and after endSecondary: one flag on their path.
+    void checkUnrestricted(const char* what) const {
+        if (restricted_) [[unlikely]]
+            restrictedCall(what);
+    }
+    [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
     void outside(const char* what) const;
     void checkSlot(uint32_t slot, const char* what) const;
     template <gdi::BindingType kKind>
@@ -81,7 +98,8 @@ private:
                       const char* what);
     void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const;
     uint64_t bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset, const char* what) const;
-    void restart();
+    void restart();    // a new recording
+    void unbindAll();  // no pipeline, bindings or index buffer
     // A record whose one field is an array payload (the barrier commands).
     template <class Record, class T>
     void pushArray(std::span<const T> items) {
@@ -102,6 +120,10 @@ private:
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     bool hasIndexBuffer_ = false;
     uint64_t indexOffset_ = 0;
+    // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
+    // after endSecondary), or its open pass takes them (secondaryPass_).
+    bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
+    gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
 };
 
 }  // namespace fe::gl

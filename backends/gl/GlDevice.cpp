@@ -686,6 +686,7 @@ std::unique_ptr<gdi::cmd::CommandStream> GlDevice::takeStream() {
 }
 void GlDevice::returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream) {
     if (!stream) return;
+    for (auto& child : stream->takeChildren()) returnStream(std::move(child));
     stream->reset();
     std::lock_guard lock(streamsMutex_);
     freeStreams_.push_back(std::move(stream));
@@ -712,6 +713,7 @@ void GlDevice::checkAlive(const gdi::cmd::CommandStream& stream) const {
     stream.forEach([&](const auto& record) {
         gdi::cmd::forEachField(record, field);
         using R = std::decay_t<decltype(record)>;
+        if constexpr (std::is_same_v<R, gdi::cmd::ExecuteSecondary>) checkAlive(stream.child(record.child));
         if constexpr (std::is_same_v<R, gdi::cmd::BeginRenderPass>)
             for (const auto& c : gdi::cmd::view(record, record.colors)) {
                 check(textures_, c.texture, "texture");

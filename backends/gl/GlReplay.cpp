@@ -40,15 +40,29 @@ GLenum topology(gdi::PrimitiveTopology p) {
 }  // namespace
 
 void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>& between) {
-    uint32_t n = 0;
-    stream.forEach([&](const auto& record) {
-        (*this)(record);
-        if (between && ++n % kServiceInterval == 0) between();
-    });
+    stream_ = &stream;
+    between_ = &between;
+    replayRecords(stream);
     // A recording ends with automatic barriers on again; anything it left unordered is ordered
     // before later submissions and readback.
     if (!automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     automatic_ = true;
+}
+
+void GlReplay::replayRecords(const cmd::CommandStream& stream) {
+    const std::function<void()>& between = *between_;
+    stream.forEach([&](const auto& record) {
+        (*this)(record);
+        if (between && ++serviced_ % kServiceInterval == 0) between();
+    });
+}
+
+// A secondary list's records, in place (it sets its own viewport, scissor, pipeline and bindings).
+void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
+    const cmd::CommandStream* primary = stream_;
+    stream_ = &primary->child(r.child);
+    replayRecords(*stream_);
+    stream_ = primary;
 }
 
 void GlReplay::operator()(const cmd::BeginRenderPass& r) {

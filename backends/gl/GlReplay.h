@@ -21,6 +21,7 @@ public:
     void run(const gdi::cmd::CommandStream& stream, const std::function<void()>& between = {});
 
     void operator()(const gdi::cmd::BeginRenderPass& r);
+    void operator()(const gdi::cmd::ExecuteSecondary& r);
     void operator()(const gdi::cmd::EndRenderPass&);
     void operator()(const gdi::cmd::SetPipeline& r);
     void operator()(const gdi::cmd::SetViewport& r);
@@ -54,6 +55,10 @@ public:
     void operator()(const gdi::cmd::BufferBarriers& r);
 
 private:
+    void replayRecords(const gdi::cmd::CommandStream& stream);
+    const gdi::cmd::CommandStream* stream_ = nullptr;  // being replayed (a secondary's, inside one)
+    const std::function<void()>* between_ = nullptr;
+    uint32_t serviced_ = 0;  // records replayed, for `between`
     void applyPipelineState(const Pipeline& p);
     void resolve();
     void bindVertexBuffers();

@@ -68,6 +68,9 @@ void VulkanCommandList::addRecordingBuffer() {
 }
 
 VulkanCommandList::~VulkanCommandList() {
+    // Secondary recordings never submitted (this list's own, or executed by it) are free again.
+    if (lease_.pool) executed_.push_back(lease_);
+    dev_.releaseSecondary(executed_, 0);
     if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
     for (const RecordingBuffer& b : buffers_) vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
 }
@@ -246,24 +249,13 @@ void VulkanCommandList::beginRecording() {
 void VulkanCommandList::submitted(gdi::FenceValue value) {
     lastSubmit_ = value;
     buffers_[current_].fence = value;
-    used_.clear();
-    lastBuffer_ = 0;
-    destroyEpoch_ = dev_.destroyEpoch();
-    recording_ = false;
-    inPass_ = false;
-    pipeline_ = nullptr;
-    writesFor_ = 0;
-    computeBound_ = false;
-    readyToDraw_ = false;
-    requiredSlots_ = 0;
-    indexBound_ = false;
-    for (Binding& b : bindings_) b.type = kUnbound;
-    dirtySlots_ = ~uint64_t(0);  // push descriptors are undefined when a command buffer begins
-    debugDepth_ = 0;
-    automaticBarriers_ = true;
+    dev_.releaseSecondary(executed_, value);
+    executed_.clear();
+    clearRecording();  // push descriptors are undefined when a command buffer begins: all dirty
 }
 
 void VulkanCommandList::checkSubmittable() const {
+    if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     if (dev_.destroyEpoch() != destroyEpoch_) checkAlive();
@@ -290,33 +282,49 @@ void VulkanCommandList::barrierIfWritten() {
     written_ = false;
 }
 
-void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
-    outsidePass("beginRenderPass");
+// The pass's attachments, validated (the same checks and messages as GL's): its signature, and
+// the textures when `textures` is given.
+gdi::validate::PassSignature VulkanCommandList::checkPass(const gdi::RenderPassDesc& desc, PassTextures* textures) {
     using gdi::validate::attachment;
     std::vector<gdi::validate::AttachmentInfo> infos, resolveInfos(desc.colors.size());
-    std::vector<Texture*> colorTex, resolveTex(desc.colors.size(), nullptr);
+    PassTextures local;
+    PassTextures& pt = textures ? *textures : local;
+    pt.resolve.assign(desc.colors.size(), nullptr);
     for (size_t i = 0; i < desc.colors.size(); ++i) {
         const auto& c = desc.colors[i];
         Texture& t = usedTexture(c.texture);
         infos.push_back(attachment(t.desc, c.mipLevel, c.layer, "beginRenderPass", t.name));
-        colorTex.push_back(&t);
+        pt.colors.push_back(&t);
         if (c.resolveTexture) {
-            resolveTex[i] = &usedTexture(c.resolveTexture);
-            resolveInfos[i] = attachment(resolveTex[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
-                                         "beginRenderPass resolve", resolveTex[i]->name);
+            pt.resolve[i] = &usedTexture(c.resolveTexture);
+            resolveInfos[i] = attachment(pt.resolve[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
+                                         "beginRenderPass resolve", pt.resolve[i]->name);
         }
     }
-    Texture* depthTex = desc.depth.texture ? &usedTexture(desc.depth.texture) : nullptr;
-    Texture* depthResolveTex = desc.depth.resolveTexture ? &usedTexture(desc.depth.resolveTexture) : nullptr;
+    pt.depth = desc.depth.texture ? &usedTexture(desc.depth.texture) : nullptr;
+    pt.depthResolve = desc.depth.resolveTexture ? &usedTexture(desc.depth.resolveTexture) : nullptr;
     gdi::validate::AttachmentInfo depthInfo{}, depthResolveInfo{};
-    if (depthTex) depthInfo = attachment(depthTex->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depthTex->name);
-    if (depthResolveTex)
-        depthResolveInfo = attachment(depthResolveTex->desc, desc.depth.resolveSubresource.mipLevel,
-                                      desc.depth.resolveSubresource.layer, "beginRenderPass resolve", depthResolveTex->name);
-    if (depthResolveTex && !depthTex) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
-    renderArea_ = gdi::validate::renderPass(desc, infos, resolveInfos, depthTex ? &depthInfo : nullptr,
-                                            depthResolveTex ? &depthResolveInfo : nullptr, dev_.info().limits);
-    passSamples_ = infos.empty() ? depthInfo.samples : infos[0].samples;
+    if (pt.depth) depthInfo = attachment(pt.depth->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", pt.depth->name);
+    if (pt.depthResolve)
+        depthResolveInfo = attachment(pt.depthResolve->desc, desc.depth.resolveSubresource.mipLevel,
+                                      desc.depth.resolveSubresource.layer, "beginRenderPass resolve", pt.depthResolve->name);
+    if (pt.depthResolve && !pt.depth) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
+    const gdi::Rect area = gdi::validate::renderPass(desc, infos, resolveInfos, pt.depth ? &depthInfo : nullptr,
+                                                     pt.depthResolve ? &depthResolveInfo : nullptr, dev_.info().limits);
+    return gdi::validate::passSignature(infos, pt.depth ? &depthInfo : nullptr, area);
+}
+
+void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
+    outsidePass("beginRenderPass");
+    PassTextures pt;
+    signature_ = checkPass(desc, &pt);
+    renderArea_ = gdi::validate::renderArea(signature_);
+    passSamples_ = signature_.samples;
+    std::vector<Texture*>& colorTex = pt.colors;
+    std::vector<Texture*>& resolveTex = pt.resolve;
+    Texture* depthTex = pt.depth;
+    Texture* depthResolveTex = pt.depthResolve;
 
     barrierIfWritten();
     std::vector<VkRenderingAttachmentInfo> colors(desc.colors.size());
@@ -366,6 +374,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     ri.layerCount = 1;
     ri.colorAttachmentCount = uint32_t(colors.size());
     ri.pColorAttachments = colors.data();
+    if (desc.secondaryLists) ri.flags = VK_RENDERING_CONTENTS_SECONDARY_COMMAND_BUFFERS_BIT;
     if (desc.debugName) pushDebugGroup(desc.debugName);
     vkCmdBeginRendering(cb_, &ri);
     inPass_ = true;
@@ -373,21 +382,130 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     computeBound_ = false;
     updateReadyToDraw();
     passHasLabel_ = desc.debugName != nullptr;
+    if (desc.secondaryLists) {
+        secondaryPass_ = restricted_ = true;  // the secondary lists set their own viewports
+        return;
+    }
     setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
     setScissor(renderArea_);
 }
 
 void VulkanCommandList::endRenderPass() {
+    if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     vkCmdEndRendering(cb_);
     inPass_ = false;
     readyToDraw_ = false;
     written_ = true;
+    if (secondaryPass_) {  // vkCmdExecuteCommands left the primary's state undefined
+        secondaryPass_ = restricted_ = false;
+        unbindAll();
+    }
     if (passHasLabel_) popDebugGroup();
+}
+
+void VulkanCommandList::unbindAll() {
+    pipeline_ = nullptr;
+    writesFor_ = 0;
+    computeBound_ = false;
+    readyToDraw_ = false;
+    requiredSlots_ = 0;
+    indexBound_ = false;
+    for (Binding& b : bindings_) b.type = kUnbound;
+    dirtySlots_ = ~uint64_t(0);
+}
+
+// A call that a pass of secondary lists (primary side) or an ended secondary list refuses.
+void VulkanCommandList::restrictedCall(const char* what) const {
+    if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
+    gdi::validate::onlyExecuteSecondary(what);
+}
+
+void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    bool bound = false;
+    for (const Binding& b : bindings_) bound |= b.type != kUnbound;
+    if (recording_ || secondary_ || inPass_ || bound) gdi::validate::secondaryNotEmpty();
+    signature_ = checkPass(desc, nullptr);
+    lease_ = dev_.acquireSecondary();
+    std::array<VkFormat, 8> formats{};
+    for (uint32_t i = 0; i < signature_.colorCount; ++i) formats[i] = toVkFormat(signature_.colors[i]);
+    VkCommandBufferInheritanceRenderingInfo ir{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_RENDERING_INFO};
+    ir.colorAttachmentCount = signature_.colorCount;
+    ir.pColorAttachmentFormats = formats.data();
+    if (signature_.depth != gdi::Format::Undefined) {
+        ir.depthAttachmentFormat = toVkFormat(signature_.depth);
+        if (gdi::formatInfo(signature_.depth).hasStencil) ir.stencilAttachmentFormat = ir.depthAttachmentFormat;
+    }
+    ir.rasterizationSamples = VkSampleCountFlagBits(signature_.samples);
+    VkCommandBufferInheritanceInfo ii{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
+    ii.pNext = &ir;
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT | VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT;
+    bi.pInheritanceInfo = &ii;
+    if (VkResult r = nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(lease_.cb, &bi); });
+        r != VK_SUCCESS) {
+        dev_.releaseSecondary(std::span(&lease_, 1), 0);
+        lease_ = {};
+        check(r, "vkBeginCommandBuffer");
+    }
+    cb_ = lease_.cb;
+    recording_ = secondary_ = inPass_ = true;
+    renderArea_ = gdi::validate::renderArea(signature_);
+    passSamples_ = signature_.samples;
+    passHasLabel_ = false;
+    written_ = false;  // barriers are the primary's business
+    unbindAll();
+    setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
+    setScissor(renderArea_);
+}
+
+void VulkanCommandList::endSecondary() {
+    if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
+    if (debugDepth_ != 0) throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
+    ended_ = restricted_ = true;
+    readyToDraw_ = false;
+}
+
+void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
+    gdi::validate::submittedLists(lists);
+    std::vector<VulkanCommandList*> parts;
+    for (size_t i = 0; i < lists.size(); ++i) {
+        auto* l = dynamic_cast<VulkanCommandList*>(lists[i]);
+        if (!l || &l->dev_ != &dev_) throw gdi::Error("executeSecondary: list " + std::to_string(i) + " belongs to another device");
+        if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
+        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_, l->signature_, signature_, i);
+        parts.push_back(l);
+    }
+    std::vector<VkCommandBuffer> cbs;
+    for (VulkanCommandList* l : parts) {
+        cbs.push_back(l->lease_.cb);
+        executed_.push_back(l->lease_);
+        used_.insert(used_.end(), l->used_.begin(), l->used_.end());
+        lastBuffer_ = 0;
+        destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);
+        l->lease_ = {};
+        l->clearRecording();
+    }
+    if (!cbs.empty()) vkCmdExecuteCommands(cb_, uint32_t(cbs.size()), cbs.data());
+}
+
+// The state of a list with nothing recorded (after submit, or after its secondary recording
+// was executed).
+void VulkanCommandList::clearRecording() {
+    used_.clear();
+    lastBuffer_ = 0;
+    destroyEpoch_ = dev_.destroyEpoch();
+    recording_ = secondary_ = ended_ = restricted_ = secondaryPass_ = false;
+    inPass_ = false;
+    unbindAll();
+    debugDepth_ = 0;
+    automaticBarriers_ = true;
 }
 
 void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
+    checkUnrestricted("setPipeline");
     Pipeline& p = usedPipeline(h);
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineSamples(p.samples, passSamples_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
@@ -411,18 +529,21 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
 
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     ensureRecording();
+    checkUnrestricted("setViewport");
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
 }
 
 void VulkanCommandList::setScissor(const gdi::Rect& r) {
     ensureRecording();
+    checkUnrestricted("setScissor");
     VkRect2D rect{{std::max(0, r.x), std::max(0, r.y)}, {r.width, r.height}};
     vkCmdSetScissor(cb_, 0, 1, &rect);
 }
 
 void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
     ensureRecording();
+    checkUnrestricted("setVertexBuffer");
     Buffer& b = usedBuffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     VkDeviceSize off = offset;
@@ -431,6 +552,7 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
 
 void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
     ensureRecording();
+    checkUnrestricted("setIndexBuffer");
     Buffer& b = usedBuffer(h);
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
@@ -491,6 +613,7 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
 }
 
 void VulkanCommandList::notReadyToDraw(const char* what) const {
+    checkUnrestricted(what);
     if (!inPass_) fail((std::string(what) + " outside a render pass").c_str());
     if (!pipeline_) fail((std::string(what) + " without a pipeline (call setPipeline first)").c_str());
     wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
@@ -754,12 +877,15 @@ void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
 
 void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     ensureRecording();
+    checkUnrestricted("endTimer");
+    if (secondary_) gdi::validate::notInSecondary("endTimer");
     Timer& t = usedTimer(h);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
 }
 
 void VulkanCommandList::pushDebugGroup(const char* name) {
     ensureRecording();
+    checkUnrestricted("pushDebugGroup");
     debugDepth_++;
     if (!dev_.cmdBeginLabel) return;
     VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
@@ -769,6 +895,7 @@ void VulkanCommandList::pushDebugGroup(const char* name) {
 
 void VulkanCommandList::popDebugGroup() {
     ensureRecording();
+    checkUnrestricted("popDebugGroup");
     if (debugDepth_ == 0) throw gdi::Error("popDebugGroup without pushDebugGroup");
     debugDepth_--;
     if (dev_.cmdEndLabel) dev_.cmdEndLabel(cb_);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "VulkanDevice.h"
+#include "fe/gdi/Validation.h"
 
 namespace fe::vk {
 
@@ -44,6 +45,9 @@ public:
     void endTimer(gdi::TimerHandle timer) override;
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
+    void beginSecondary(const gdi::RenderPassDesc& pass) override;
+    void endSecondary() override;
+    void executeSecondary(std::span<gdi::CommandList* const> lists) override;
     uint64_t nativeCommandBuffer() override {
         ensureRecording();
         return uint64_t(cb_);
@@ -77,6 +81,20 @@ private:
     Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
     Timer& usedTimer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
     void checkAlive() const;
+    struct PassTextures {
+        std::vector<Texture*> colors, resolve;
+        Texture* depth = nullptr;
+        Texture* depthResolve = nullptr;
+    };
+    gdi::validate::PassSignature checkPass(const gdi::RenderPassDesc& desc, PassTextures* textures);
+    void unbindAll();
+    void clearRecording();
+    // Calls refused in a pass of secondary lists and after endSecondary: one flag on their path.
+    void checkUnrestricted(const char* what) const {
+        if (restricted_) [[unlikely]]
+            restrictedCall(what);
+    }
+    [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
     void addRecordingBuffer();
     void hostReadable(const Buffer& b);
     void ensureRecording() {
@@ -154,6 +172,12 @@ private:
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);
     int debugDepth_ = 0;
+    // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
+    // after endSecondary), or its open pass takes them (secondaryPass_).
+    bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
+    gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
+    VulkanDevice::SecondaryRecording lease_;  // the secondary command buffer being recorded
+    std::vector<VulkanDevice::SecondaryRecording> executed_;  // owned until this list's submission
 };
 
 }  // namespace fe::vk

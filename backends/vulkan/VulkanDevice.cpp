@@ -337,6 +337,8 @@ void VulkanDevice::release() {
         for (Retired& r : retired_) r.release();
         retired_.clear();
         if (pendingInit_) vkFreeCommandBuffers(device_, immediatePool_, 1, &pendingInit_);
+        for (const SecondaryRecording& r : secondaries_) vkDestroyCommandPool(device_, r.pool, nullptr);
+        secondaries_.clear();
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
         textures_.forEach([&](Texture& t) { destroyTexture(t); });
         heaps_.forEach([&](Heap& h) { allocator_->free(h.memory); });
@@ -725,6 +727,61 @@ std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
     if (r == VK_ERROR_DEVICE_LOST) check(r, "vkGetQueryPoolResults");
     if (r != VK_SUCCESS) return std::nullopt;
     return double(ticks[1] - ticks[0]) * double(props_.limits.timestampPeriod);
+}
+
+}  // namespace fe::vk
+
+namespace fe::vk {
+
+VulkanDevice::SecondaryRecording VulkanDevice::acquireSecondary() {
+    SecondaryRecording r;
+    const std::thread::id self = std::this_thread::get_id();
+    {
+        // A free recording this thread made before comes first: lavapipe, like most drivers,
+        // allocates commands with malloc, and a pool reset on another thread frees into a
+        // foreign arena (measured: secondary lists recorded slower than primary ones).
+        std::lock_guard lock(mutex_);
+        size_t pick = secondaries_.size();
+        for (size_t i = 0; i < secondaries_.size(); ++i)
+            if (!secondaries_[i].fence || completedNoThrow(secondaries_[i].fence)) {
+                if (pick == secondaries_.size() || secondaries_[i].recordedOn == self) pick = i;
+                if (secondaries_[i].recordedOn == self) break;
+            }
+        if (pick < secondaries_.size()) {
+            r = secondaries_[pick];
+            secondaries_[pick] = secondaries_.back();
+            secondaries_.pop_back();
+        }
+    }
+    r.recordedOn = self;
+    if (r.pool) {  // now this list's alone: no lock needed to reset it
+        check(vkResetCommandPool(device_, r.pool, 0), "vkResetCommandPool");
+        return r;
+    }
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pci.queueFamilyIndex = queueFamily_;
+    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &r.pool); }),
+          "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = r.pool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
+    ai.commandBufferCount = 1;
+    if (VkResult res = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &r.cb); });
+        res != VK_SUCCESS) {
+        vkDestroyCommandPool(device_, r.pool, nullptr);
+        check(res, "vkAllocateCommandBuffers");
+    }
+    return r;
+}
+
+void VulkanDevice::releaseSecondary(std::span<const SecondaryRecording> recordings, gdi::FenceValue fence) {
+    if (recordings.empty()) return;
+    std::lock_guard lock(mutex_);
+    for (SecondaryRecording r : recordings) {
+        r.fence = fence;
+        secondaries_.push_back(r);
+    }
 }
 
 }  // namespace fe::vk

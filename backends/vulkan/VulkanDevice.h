@@ -19,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "VulkanFaults.h"
@@ -179,6 +180,17 @@ public:
     VkImageView attachmentView(Texture& t, uint32_t mipLevel, uint32_t layer);
     PFN_vkCmdDrawIndirectCount cmdDrawIndirectCount = nullptr;
     PFN_vkCmdDrawIndexedIndirectCount cmdDrawIndexedIndirectCount = nullptr;
+    // Secondary command buffers, one pool each, shared by every list of the device: a primary
+    // list that executes one owns it until its submission, so a secondary list never waits for
+    // the primary's work and may be destroyed right after executeSecondary.
+    struct SecondaryRecording {
+        VkCommandPool pool = VK_NULL_HANDLE;
+        VkCommandBuffer cb = VK_NULL_HANDLE;
+        gdi::FenceValue fence = 0;  // of the submission that ran it; 0: none pending
+        std::thread::id recordedOn;  // a recording goes back to its thread: malloc arenas stay local
+    };
+    SecondaryRecording acquireSecondary();  // reset, ready to begin
+    void releaseSecondary(std::span<const SecondaryRecording> recordings, gdi::FenceValue fence);
     // wait(), except that a lost device is recorded, not thrown (the next entry point throws):
     // for destruction and recording, which must work on a lost device.
     void settle(gdi::FenceValue fence);
@@ -227,6 +239,7 @@ private:
         std::function<void()> release;
     };
     std::deque<Retired> retired_;
+    std::vector<SecondaryRecording> secondaries_;  // free, or pending until their fence
     // present() copies through the swap chain's own submissions, which no device fence covers:
     // the next destroy waits for the queue, as every destroy did before deferred release.
     bool presentedSinceIdle_ = false;

@@ -391,3 +391,52 @@ void destroyedBeforeSubmit(const char* kind, uint32_t id) {
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth, Rect area) {
+    PassSignature s;
+    s.colorCount = uint32_t(std::min(colors.size(), s.colors.size()));
+    for (uint32_t i = 0; i < s.colorCount; ++i) s.colors[i] = colors[i].format;
+    if (depth) s.depth = depth->format;
+    s.samples = colors.empty() ? (depth ? depth->samples : 1) : colors[0].samples;
+    s.width = area.width;
+    s.height = area.height;
+    return s;
+}
+
+void secondaryNotEmpty() {
+    throw Error("beginSecondary: the list must be empty (a secondary list records one pass's draws from its start)");
+}
+void onlyExecuteSecondary(const char* what) {
+    throw Error(std::string(what) + " is not allowed in a render pass whose draws come from secondary lists "
+                                    "(the primary list may only call executeSecondary and endRenderPass there)");
+}
+void notInSecondary(const char* what) { throw Error(std::string(what) + " is not allowed in a secondary list"); }
+void submittedSecondary() {
+    throw Error("submit: a secondary list is executed by a primary list (executeSecondary), not submitted");
+}
+
+namespace {
+std::string signatureText(const PassSignature& s) {
+    std::string t;
+    for (uint32_t i = 0; i < s.colorCount; ++i) t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
+    if (s.depth != Format::Undefined)
+        t += std::string(t.empty() ? "" : ", ") + "depth " + std::string(formatInfo(s.depth).name);
+    return t + "; " + std::to_string(s.samples) + " sample(s); " + std::to_string(s.width) + "x" + std::to_string(s.height);
+}
+}  // namespace
+
+void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const PassSignature& list,
+                       const PassSignature& pass, size_t index) {
+    const std::string what = "executeSecondary: list " + std::to_string(index);
+    if (!inSecondaryPass)
+        throw Error("executeSecondary outside a render pass begun with secondaryLists (RenderPassDesc::secondaryLists)");
+    if (!isSecondary) throw Error(what + " is not a secondary list (record it between beginSecondary and endSecondary)");
+    if (!ended) throw Error(what + " is still recording (missing endSecondary)");
+    if (!(list == pass))
+        throw Error(what + " was begun for another pass (" + signatureText(list) + ") than the open one (" +
+                    signatureText(pass) + ")");
+}
+
+}  // namespace fe::gdi::validate

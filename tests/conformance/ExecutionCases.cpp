@@ -368,6 +368,59 @@ std::vector<CaseImage> recordOnThreads(Device& d) {
     return out;
 }
 
+// The draws of one pass recorded on four threads as secondary lists, executed by the primary in
+// a shuffled order over two executeSecondary calls, for two frames (the lists record anew after
+// being executed). Secondary list t fills column quarter t and then the middle band: each column
+// shows its list, the band the list executed last.
+std::vector<CaseImage> secondaryListsInOnePass(Device& d) {
+    constexpr uint32_t kThreads = 4;
+    ColorDraw draw(d);
+    DeviceObjects objects(d);
+    const TextureHandle t = target(objects);
+    auto colorOf = [](uint32_t frame, uint32_t i) { return rgb8(40 + 50 * i, 220 - 40 * i - 20 * frame, 60 + 90 * frame); };
+    const Rect middle{8, 28, 48, 8};
+    const Texel clear = rgb8(10, 20, 30);
+    std::array<std::unique_ptr<CommandList>, kThreads> parts;
+    for (auto& p : parts) p = d.createCommandList();
+    auto primary = d.createCommandList();
+    const std::array<std::array<uint32_t, kThreads>, 2> orders{{{2, 0, 3, 1}, {1, 3, 0, 2}}};
+    std::vector<CaseImage> out;
+    for (uint32_t frame = 0; frame < 2; ++frame) {
+        std::array<BufferHandle, kThreads> ubos;
+        for (uint32_t i = 0; i < kThreads; ++i) ubos[i] = draw.params(objects, colorOf(frame, i));
+        const RenderPassDesc pass{.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}},
+                                  .debugName = "secondary lists", .secondaryLists = true};
+        primary->beginRenderPass(pass);  // before the workers record: order does not matter
+        std::latch start(kThreads);
+        Threads threads;
+        for (uint32_t th = 0; th < kThreads; ++th)
+            threads.start([&, th] {
+                start.arrive_and_wait();
+                CommandList& part = *parts[th];
+                part.beginSecondary(pass);
+                part.pushDebugGroup("part");
+                for (uint32_t strip = 0; strip < 4; ++strip)  // the quarter in four draws
+                    draw.draw(part, ubos[th], {int32_t(16 * th), int32_t(16 * strip), 16, 16});
+                draw.draw(part, ubos[th], middle);
+                part.popDebugGroup();
+                part.endSecondary();
+            });
+        threads.joinAndRethrow();
+        const auto& order = orders[frame];
+        primary->executeSecondary(std::vector<CommandList*>{parts[order[0]].get(), parts[order[1]].get()});
+        primary->executeSecondary(std::vector<CommandList*>{parts[order[2]].get(), parts[order[3]].get()});
+        primary->endRenderPass();
+        d.wait(d.submit(*primary));
+        const Image expected = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
+            const bool inMiddle = int32_t(x) >= middle.x && x < middle.x + middle.width && int32_t(y) >= middle.y &&
+                                  y < middle.y + middle.height;
+            return colorOf(frame, inMiddle ? order[kThreads - 1] : x / 16);
+        });
+        out.push_back(rendered("frame" + std::to_string(frame), d.readTexture(t), expected));
+    }
+    return out;
+}
+
 // One thread creates sixteen textures and uploads them while this one creates uniform buffers
 // and records and submits eight lists, one band of a target each: every upload reads back
 // as written and every band is drawn.
@@ -734,6 +787,7 @@ std::vector<Case> executionCases() {
         {"unsubmitted_list_has_no_effect", unsubmittedListHasNoEffect},
         {"data_read_at_execution", dataReadAtExecution},
         {"record_on_threads", recordOnThreads},
+        {"secondary_lists_in_one_pass", secondaryListsInOnePass},
         {"create_while_recording", createWhileRecording},
         {"destroy_while_in_flight", destroyWhileInFlight},
         {"mapped_upload_ring", mappedUploadRing},

@@ -73,3 +73,26 @@ TEST(CommandStream, EveryCommandHasANameAndFields) {
     cmd::forEachField(cmd::SetUniformBuffer{.slot = 3}, [&](const char* name, const auto&) { fields.push_back(name); });
     EXPECT_EQ(fields, (std::vector<std::string>{"slot", "buffer", "offset", "size"}));
 }
+
+// A primary stream adopts a secondary list's stream whole; ExecuteSecondary names it, reset
+// drops it, and takeChildren hands the adopted streams back for reuse.
+TEST(CommandStream, AdoptsSecondaryStreams) {
+    cmd::CommandStream primary;
+    auto secondary = std::make_unique<cmd::CommandStream>();
+    secondary->push(cmd::Draw{.vertexCount = 5});
+    const cmd::CommandStream* adopted = secondary.get();
+    primary.push(cmd::ExecuteSecondary{primary.adopt(std::move(secondary))});
+    std::vector<std::string> seen;
+    primary.forEach([&](const auto& record) {
+        using R = std::decay_t<decltype(record)>;
+        if constexpr (std::is_same_v<R, cmd::ExecuteSecondary>) {
+            EXPECT_EQ(&primary.child(record.child), adopted);
+            seen.push_back("ExecuteSecondary " + std::to_string(replayed(primary.child(record.child)).size()));
+        }
+    });
+    EXPECT_EQ(seen, (std::vector<std::string>{"ExecuteSecondary 1"}));
+    auto back = primary.takeChildren();
+    ASSERT_EQ(back.size(), 1u);
+    EXPECT_EQ(back[0].get(), adopted);
+    EXPECT_THROW(primary.child(0), std::out_of_range);
+}

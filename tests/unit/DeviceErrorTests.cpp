@@ -282,4 +282,84 @@ TEST_P(DeviceErrors, RefusedSubmitRunsNothingAndKeepsItsLists) {
     d.destroy(b);
 }
 
+// Each rule of secondary lists (Device.h) gives its gdi::Error on every backend, before any
+// native call: the primary draws in a pass of secondary lists, a secondary list is submitted,
+// executed unended or for another pass, begun on a non-empty list, recorded after its end; and
+// after a pass of secondary lists the primary's bindings are unset on every backend.
+TEST_P(DeviceErrors, SecondaryListRules) {
+    Device& d = *device;
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto ubo = d.createBuffer({.size = 256, .usage = BufferUsage::Uniform});
+    const TextureUsage rt = TextureUsage::RenderTarget | TextureUsage::CopySrc;
+    auto t = d.createTexture({.width = 8, .height = 8, .usage = rt});
+    auto wide = d.createTexture({.width = 16, .height = 8, .usage = rt});
+    const RenderPassDesc pass{.colors = {{.texture = t}}, .secondaryLists = true};
+    auto primary = d.createCommandList();
+    auto part = d.createCommandList();
+    auto has = [](const std::string& error, const char* text) {
+        return error.find(text) != std::string::npos ? ::testing::AssertionSuccess()
+                                                     : ::testing::AssertionFailure() << "got: " << error;
+    };
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "outside a render pass begun with secondaryLists"));
+    primary->beginRenderPass(pass);
+    EXPECT_TRUE(has(errorOf([&] { primary->setPipeline(p); }), "setPipeline is not allowed in a render pass whose draws come from secondary lists"));
+    EXPECT_TRUE(has(errorOf([&] { primary->draw(3); }), "draw is not allowed in a render pass whose draws"));
+    EXPECT_TRUE(has(errorOf([&] { primary->setViewport({0, 0, 4, 4}); }), "setViewport is not allowed"));
+    EXPECT_TRUE(has(errorOf([&] { primary->pushDebugGroup("x"); }), "pushDebugGroup is not allowed"));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
+    part->beginSecondary(pass);
+    EXPECT_TRUE(has(errorOf([&] { part->beginRenderPass(pass); }), "beginRenderPass is not allowed in a secondary list"));
+    EXPECT_TRUE(has(errorOf([&] { part->endRenderPass(); }), "endRenderPass is not allowed in a secondary list"));
+    EXPECT_TRUE(has(errorOf([&] { part->copyBuffer(ubo, 0, ubo, 128, 4); }), "copyBuffer is not allowed inside a render pass"));
+    EXPECT_TRUE(has(errorOf([&] { d.submit(*part); }), "a secondary list is executed by a primary list"));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is still recording (missing endSecondary)"));
+    part->setPipeline(p);
+    part->draw(3);
+    part->pushDebugGroup("open");
+    EXPECT_TRUE(has(errorOf([&] { part->endSecondary(); }), "endSecondary: 1 debug group(s) not popped"));
+    part->popDebugGroup();
+    part->endSecondary();
+    EXPECT_TRUE(has(errorOf([&] { part->draw(3); }), "draw after endSecondary"));
+    EXPECT_TRUE(has(errorOf([&] { part->setPipeline(p); }), "setPipeline after endSecondary"));
+    EXPECT_TRUE(has(errorOf([&] { part->endSecondary(); }), "endSecondary without beginSecondary"));
+    auto other = d.createCommandList();
+    other->beginSecondary({.colors = {{.texture = wide}}});
+    other->endSecondary();
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*other); }),
+                    "list 0 was begun for another pass (RGBA8; 1 sample(s); 16x8) than the open one (RGBA8; 1 sample(s); 8x8)"));
+    std::array<CommandList*, 2> twice = {part.get(), part.get()};
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(twice); }), "the same list at 0 and 1"));
+    primary->executeSecondary(*part);
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
+    primary->endRenderPass();
+    // The executed list is empty again; a list with something recorded cannot begin a secondary one.
+    part->beginSecondary(pass);
+    part->endSecondary();
+    auto used = d.createCommandList();
+    used->setUniformBuffer(0, ubo);
+    EXPECT_TRUE(has(errorOf([&] { used->beginSecondary(pass); }), "beginSecondary: the list must be empty"));
+    // The primary's bindings do not survive a pass of secondary lists.
+    auto uboPipeline = d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+    auto again = d.createCommandList();
+    again->setUniformBuffer(0, ubo);
+    again->beginRenderPass(pass);
+    again->endRenderPass();
+    again->beginRenderPass({.colors = {{.texture = t}}});
+    again->setPipeline(uboPipeline);
+    EXPECT_TRUE(has(errorOf([&] { again->draw(3); }), "missing binding for slot(s) 0"));
+    again->endRenderPass();
+    d.wait(d.submit(*primary));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*other); }), "outside a render pass begun with secondaryLists"));
+    for (auto pl : {p, uboPipeline}) d.destroy(pl);
+    d.destroy(vs);
+    d.destroy(fs);
+    d.destroy(ubo);
+    d.destroy(t);
+    d.destroy(wide);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

@@ -17,6 +17,7 @@
 #include <span>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "fe/gdi/Device.h"
@@ -131,10 +132,21 @@ public:
         }
     }
 
+    // Secondary lists: a stream owns the streams its ExecuteSecondary records name (by index),
+    // handed over whole (no copy) when a primary list executes them.
+    uint32_t adopt(std::unique_ptr<CommandStream> child) {
+        children_.push_back(std::move(child));
+        return uint32_t(children_.size() - 1);
+    }
+    const CommandStream& child(uint32_t index) const { return *children_.at(index); }
+    // Gives the adopted streams back (for reuse), leaving none.
+    std::vector<std::unique_ptr<CommandStream>> takeChildren() { return std::exchange(children_, {}); }
+
     size_t commandCount() const { return count_; }
     bool empty() const { return count_ == 0; }
-    // Drops the records, keeping the blocks for the next recording.
+    // Drops the records and adopted streams, keeping the blocks for the next recording.
     void reset() {
+        children_.clear();
         for (auto& b : blocks_) b.used = 0;
         current_ = 0;
         count_ = 0;
@@ -181,6 +193,7 @@ private:
     std::byte* cur_ = nullptr, *end_ = nullptr;     // its free space
     size_t count_ = 0;
     std::byte* payloadAt_ = nullptr;
+    std::vector<std::unique_ptr<CommandStream>> children_;
 };
 
 }  // namespace fe::gdi::cmd

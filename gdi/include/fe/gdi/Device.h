@@ -452,6 +452,10 @@ struct RenderPassDesc {
     std::vector<ColorAttachment> colors;
     DepthAttachment depth;
     const char* debugName = nullptr;
+    // The pass's draws are recorded in secondary lists (CommandList::beginSecondary) and the
+    // primary list only executes them: between beginRenderPass and endRenderPass it may call
+    // executeSecondary and nothing else.
+    bool secondaryLists = false;
 };
 
 struct Viewport {
@@ -613,6 +617,30 @@ public:
     virtual void barrier(const BufferBarrier* barriers, uint32_t count) = 0;
     void barrier(const TextureBarrier& b) { barrier(&b, 1); }
     void barrier(const BufferBarrier& b) { barrier(&b, 1); }
+
+    // Secondary lists: the draws of one pass recorded on several threads (Vulkan's secondary
+    // command buffers, Metal's parallel render encoder, D3D12 bundles):
+    //   primary->beginRenderPass({.colors = ..., .secondaryLists = true});
+    //   // on each worker thread, with the same RenderPassDesc:
+    //   part->beginSecondary(pass); part->setPipeline(p); ... part->draw(...); part->endSecondary();
+    //   primary->executeSecondary(parts);   // in this order, after the workers are done
+    //   primary->endRenderPass();
+    // beginSecondary starts a secondary recording on an empty list; until endSecondary it may
+    // record what a pass may hold (pipeline, viewport, scissor, vertex/index buffers, bindings,
+    // draws, balanced debug groups), starting from the pass's render area as viewport and
+    // scissor, no pipeline and no bindings of its own. executeSecondary checks each list was
+    // begun for a pass of the same formats, sample count and size, and takes its recording:
+    // the list is empty again (as after submit) and its commands run when the primary's
+    // submission runs. A secondary list cannot be submitted itself. After a pass of secondary
+    // lists the primary's bindings, vertex and index buffers are unset (Vulkan leaves them
+    // undefined): set them again before its next draw or dispatch.
+    virtual void beginSecondary(const RenderPassDesc& pass) = 0;
+    virtual void endSecondary() = 0;
+    virtual void executeSecondary(std::span<CommandList* const> lists) = 0;
+    void executeSecondary(CommandList& list) {
+        CommandList* l = &list;
+        executeSecondary(std::span<CommandList* const>(&l, 1));
+    }
 
     // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
     // the VkCommandBuffer being recorded, 0 on backends without one.

@@ -55,6 +55,29 @@ AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t laye
 Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors,
                 const std::vector<AttachmentInfo>& colorResolves, const AttachmentInfo* depth,
                 const AttachmentInfo* depthResolve, const DeviceLimits& limits);
+// What a secondary list inherits from its pass: attachment formats, sample count and size.
+struct PassSignature {
+    std::array<Format, 8> colors{};
+    uint32_t colorCount = 0;
+    Format depth = Format::Undefined;
+    uint32_t samples = 1;
+    uint32_t width = 0, height = 0;  // the render area
+    bool operator==(const PassSignature&) const = default;
+};
+PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth, Rect area);
+inline Rect renderArea(const PassSignature& s) { return {0, 0, s.width, s.height}; }
+// The secondary-list rules of CommandList (Device.h), with one message on every backend.
+// beginSecondary on a list that is not empty, or inside a pass.
+[[noreturn]] void secondaryNotEmpty();
+// A call other than executeSecondary/endRenderPass inside a pass begun with secondaryLists.
+[[noreturn]] void onlyExecuteSecondary(const char* what);
+// A call a secondary list may not hold (timers; begin/endRenderPass).
+[[noreturn]] void notInSecondary(const char* what);
+// executeSecondary's checks of list `index`: a secondary list, ended, for this pass.
+void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const PassSignature& list,
+                       const PassSignature& pass, size_t index);
+// submit of a secondary list.
+[[noreturn]] void submittedSecondary();
 // A pipeline set in a pass must rasterize with the pass's sample count.
 void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName);
 // Per-draw checks: inline fast paths, the message is built out of line only on failure.
