@@ -15,6 +15,24 @@ struct TextureId {
     bool operator==(const TextureId&) const = default;
 };
 
+// A buffer the graph orders: imported (the renderer's own, kept across frames) or transient
+// (created by compile(device) with the usages its passes need; contents undefined each frame).
+struct BufferId {
+    uint32_t index = ~0u;
+    bool valid() const { return index != ~0u; }
+    bool operator==(const BufferId&) const = default;
+};
+
+struct BufferInfo {
+    std::string name;
+    uint64_t size = 0;
+    gdi::BufferUsage usage = gdi::BufferUsage::None;  // transient: derived from the passes
+    bool imported = false;
+    bool output = false;                 // read after the frame (e.g. read back): writers survive
+    int firstPass = -1, lastPass = -1;   // indices into passes(), -1: unused
+    bool used() const { return firstPass >= 0; }
+};
+
 enum class AliasingMode : uint8_t {
     None,         // every transient texture gets its own memory
     Memory,       // transient textures share heap bytes when their lifetimes do not overlap

@@ -8,6 +8,21 @@
 namespace fe::graph {
 
 namespace {
+// The buffer usage a transient buffer needs for an access.
+gdi::BufferUsage usageFor(gdi::BufferAccess a) {
+    using A = gdi::BufferAccess;
+    using U = gdi::BufferUsage;
+    U u = U::None;
+    if (any(a, A::Vertex)) u = u | U::Vertex;
+    if (any(a, A::Index)) u = u | U::Index;
+    if (any(a, A::Indirect)) u = u | U::Indirect;
+    if (any(a, A::Uniform)) u = u | U::Uniform;
+    if (any(a, A::StorageRead | A::StorageWrite)) u = u | U::Storage;
+    if (any(a, A::CopySrc)) u = u | U::CopySrc;
+    if (any(a, A::CopyDst)) u = u | U::CopyDst;
+    return u;
+}
+
 bool isTarget(gdi::ResourceState s) { return s == gdi::ResourceState::RenderTarget || s == gdi::ResourceState::DepthTarget; }
 
 std::string kib(uint64_t bytes) {
@@ -42,6 +57,9 @@ void PassBuilder::sample(TextureId t) {
 void PassBuilder::storage(TextureId t, bool readToo) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::Storage,
                                               .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
+}
+void PassBuilder::buffer(BufferId b, gdi::BufferAccess access) {
+    graph_.passes_[pass_].buffers.push_back({b, access});
 }
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
@@ -86,6 +104,41 @@ void RenderGraph::markOutput(TextureId t) {
     compiled_ = false;
 }
 
+BufferId RenderGraph::createBuffer(std::string name, const TransientBufferDesc& d) {
+    if (d.size == 0) throw gdi::Error("render graph: buffer '" + name + "' has size 0");
+    buffers_.push_back({.name = std::move(name), .size = d.size});
+    bufferHandles_.resize(buffers_.size());
+    compiled_ = false;
+    return {uint32_t(buffers_.size() - 1)};
+}
+
+BufferId RenderGraph::importBuffer(std::string name, gdi::BufferHandle buffer, uint64_t size) {
+    if (!buffer) throw gdi::Error("render graph: imported buffer '" + name + "' is a null handle");
+    buffers_.push_back({.name = std::move(name), .size = size, .imported = true});
+    bufferHandles_.resize(buffers_.size());
+    bufferHandles_.back() = buffer;
+    compiled_ = false;
+    return {uint32_t(buffers_.size() - 1)};
+}
+
+void RenderGraph::markOutput(BufferId b) {
+    if (b.index >= buffers_.size()) throw gdi::Error("render graph: markOutput with an invalid buffer id");
+    buffers_[b.index].output = true;
+    compiled_ = false;
+}
+
+const BufferInfo& RenderGraph::buffer(BufferId id) const {
+    if (id.index >= buffers_.size()) throw gdi::Error("render graph: invalid buffer id");
+    return buffers_[id.index];
+}
+
+gdi::BufferHandle RenderGraph::handle(BufferId id) const {
+    const BufferInfo& b = buffer(id);
+    if (!bufferHandles_[id.index])
+        throw gdi::Error("render graph: buffer '" + b.name + "' has no GPU buffer (unused, culled or not compiled for a device)");
+    return bufferHandles_[id.index];
+}
+
 void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
                           std::function<void(PassContext&)> execute) {
     passes_.push_back({.name = std::move(name)});
@@ -112,18 +165,23 @@ gdi::TextureHandle RenderGraph::handle(TextureId id) const {
 void RenderGraph::cull() {
     // Backwards: a pass survives if it has side effects or writes something still needed; what
     // it reads is then needed, and what it overwrites entirely is not needed before it.
-    std::vector<bool> needed(textures_.size(), false);
+    // Buffer writes are partial (atomics, appends): they never end a buffer's need.
+    std::vector<bool> needed(textures_.size(), false), bufferNeeded(buffers_.size(), false);
     for (size_t i = 0; i < textures_.size(); ++i) needed[i] = textures_[i].output;
+    for (size_t i = 0; i < buffers_.size(); ++i) bufferNeeded[i] = buffers_[i].output;
     for (size_t p = passes_.size(); p-- > 0;) {
         PassInfo& pass = passes_[p];
         bool alive = pass.sideEffect;
         for (const TextureAccess& a : pass.accesses) alive = alive || (a.writes() && needed[a.texture.index]);
+        for (const BufferUse& u : pass.buffers) alive = alive || (u.writes() && bufferNeeded[u.buffer.index]);
         pass.culled = !alive;
         if (!alive) continue;
         for (const TextureAccess& a : pass.accesses)
             if (a.writes() && !a.reads() && !a.partial) needed[a.texture.index] = false;
         for (const TextureAccess& a : pass.accesses)
             if (a.reads()) needed[a.texture.index] = true;
+        for (const BufferUse& u : pass.buffers)
+            if (u.reads()) bufferNeeded[u.buffer.index] = true;
     }
 }
 
@@ -147,11 +205,66 @@ void RenderGraph::computeLifetimes() {
                                                                                      : gdi::TextureUsage::Sampled);
         }
     }
+    for (size_t p = 0; p < passes_.size(); ++p) {
+        if (passes_[p].culled) continue;
+        for (const BufferUse& u : passes_[p].buffers) {
+            BufferInfo& b = buffers_[u.buffer.index];
+            if (b.firstPass < 0) b.firstPass = int(p);
+            b.lastPass = int(p);
+            if (!b.imported) b.usage = b.usage | usageFor(u.access);
+        }
+    }
     // Outputs live to the end of the frame: they are read after it.
     for (TextureInfo& t : textures_)
         if (t.output && t.used()) {
             t.lastPass = std::max(t.lastPass, lastAlive);
             if (!t.imported) t.desc.usage = t.desc.usage | gdi::TextureUsage::CopySrc;
+        }
+}
+
+// Per buffer: the accesses of its last write, and the kinds of read made visible since (or
+// made since, for the next write to wait for). A read after a write waits for it once per
+// kind of read; a write waits for the previous write and every read since.
+void RenderGraph::planBufferBarriers() {
+    struct Track {
+        uint32_t lastWrite = 0, readsSince = 0, visibleTo = 0;
+    };
+    std::vector<Track> track(buffers_.size());
+    for (PassInfo& pass : passes_) {
+        pass.bufferBarriers.clear();
+        if (pass.culled) continue;
+        for (const BufferUse& u : pass.buffers) {
+            Track& t = track[u.buffer.index];
+            const uint32_t access = uint32_t(u.access);
+            const uint32_t reads = access & ~BufferUse::kWriteBits;
+            if (u.writes()) {
+                if (t.lastWrite || t.readsSince)
+                    pass.bufferBarriers.push_back({u.buffer, gdi::BufferAccess(t.lastWrite | t.readsSince), u.access});
+                t = {access & BufferUse::kWriteBits, reads, 0};  // its own reads are the pass's business
+            } else if (t.lastWrite && (reads & ~t.visibleTo)) {
+                pass.bufferBarriers.push_back({u.buffer, gdi::BufferAccess(t.lastWrite), u.access});
+                t.visibleTo |= reads;
+                t.readsSince |= reads;
+            } else {
+                t.readsSince |= reads;
+            }
+        }
+    }
+}
+
+void RenderGraph::checkBufferUses() const {
+    for (const PassInfo& pass : passes_)
+        for (size_t k = 0; k < pass.buffers.size(); ++k) {
+            const BufferUse& u = pass.buffers[k];
+            if (u.buffer.index >= buffers_.size())
+                throw gdi::Error("render graph: pass '" + pass.name + "' uses an invalid buffer id");
+            if (u.access == gdi::BufferAccess::None)
+                throw gdi::Error("render graph: pass '" + pass.name + "' uses buffer '" + buffers_[u.buffer.index].name +
+                                 "' with no access");
+            for (size_t m = 0; m < k; ++m)
+                if (pass.buffers[m].buffer == u.buffer)
+                    throw gdi::Error("render graph: pass '" + pass.name + "' declares buffer '" +
+                                     buffers_[u.buffer.index].name + "' twice (give every access in one call)");
         }
 }
 
@@ -247,6 +360,11 @@ void RenderGraph::compile(const CompileOptions& options) {
         t.physical = -1;
         if (!t.imported) t.desc.usage = gdi::TextureUsage::None;
     }
+    checkBufferUses();
+    for (BufferInfo& b : buffers_) {
+        b.firstPass = b.lastPass = -1;
+        if (!b.imported) b.usage = gdi::BufferUsage::None;
+    }
     cull();
     computeLifetimes();
     for (TextureInfo& t : textures_) {
@@ -264,6 +382,7 @@ void RenderGraph::compile(const CompileOptions& options) {
     memory_ = planMemory(textures_, options.aliasing);
     aliasing_ = options.aliasing;
     planBarriers();
+    planBufferBarriers();
     compiled_ = true;
 }
 
@@ -274,6 +393,8 @@ void RenderGraph::release() {
     for (Executor& e : executors_) e.timer = {};
     for (size_t i = 0; i < textures_.size(); ++i)
         if (i < handles_.size() && !textures_[i].imported) handles_[i] = {};
+    for (size_t i = 0; i < buffers_.size(); ++i)
+        if (!buffers_[i].imported) bufferHandles_[i] = {};
     device_ = nullptr;
 }
 
@@ -302,6 +423,11 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
     }
     for (size_t i = 0; i < textures_.size(); ++i)
         if (!textures_[i].imported && textures_[i].used() && !handles_[i]) handles_[i] = handles_[textures_[i].physical];
+    for (size_t i = 0; i < buffers_.size(); ++i) {
+        const BufferInfo& b = buffers_[i];
+        if (b.imported || !b.used()) continue;
+        bufferHandles_[i] = objects_->add(device.createBuffer({.size = b.size, .usage = b.usage, .debugName = b.name.c_str()}));
+    }
     if (device.info().features.timestamps)
         for (size_t p = 0; p < passes_.size(); ++p)
             if (!passes_[p].culled) executors_[p].timer = objects_->add(device.createTimer());
@@ -310,6 +436,7 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
 // ---- execute ----------------------------------------------------------------------------------
 
 gdi::TextureHandle PassContext::texture(TextureId id) const { return graph_.handle(id); }
+gdi::BufferHandle PassContext::buffer(BufferId id) const { return graph_.handle(id); }
 
 void PassContext::beginRenderPass() {
     const PassInfo& pass = graph_.passes_[pass_];
@@ -347,12 +474,17 @@ void RenderGraph::execute(gdi::CommandList& cmd) {
     if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
     cmd.setAutomaticBarriers(false);
     std::vector<gdi::TextureBarrier> barriers;
+    std::vector<gdi::BufferBarrier> bufferBarriers;
     for (size_t p = 0; p < passes_.size(); ++p) {
         const PassInfo& pass = passes_[p];
         if (pass.culled) continue;
         barriers.clear();
         for (const PlannedBarrier& b : pass.barriers) barriers.push_back({handle(b.texture), b.before, b.after});
         cmd.barrier(barriers.data(), uint32_t(barriers.size()));
+        bufferBarriers.clear();
+        for (const PlannedBufferBarrier& b : pass.bufferBarriers)
+            bufferBarriers.push_back({.buffer = handle(b.buffer), .before = b.before, .after = b.after});
+        cmd.barrier(bufferBarriers.data(), uint32_t(bufferBarriers.size()));
         cmd.pushDebugGroup(pass.name.c_str());
         Executor& e = executors_[p];
         if (e.timer) cmd.beginTimer(e.timer);
@@ -415,6 +547,18 @@ std::string RenderGraph::toDot() const {
         o << "  t" << i << " [shape=ellipse, label=" << quote(label)
           << (t.output ? ", peripheries=2" : "") << (t.used() ? "" : ", style=dashed, color=gray50") << "];\n";
     }
+    for (size_t i = 0; i < buffers_.size(); ++i) {
+        const BufferInfo& b = buffers_[i];
+        std::string label = b.name + "\\nbuffer " + std::to_string(b.size) + " B" + (b.imported ? "\\nimported" : "");
+        o << "  b" << i << " [shape=cylinder, label=" << quote(label) << (b.used() ? "" : ", style=dashed, color=gray50")
+          << "];\n";
+    }
+    for (size_t p = 0; p < passes_.size(); ++p)
+        for (const BufferUse& u : passes_[p].buffers) {
+            const std::string style = passes_[p].culled ? " [style=dashed, color=gray50]" : "";
+            if (u.reads()) o << "  b" << u.buffer.index << " -> p" << p << style << ";\n";
+            if (u.writes()) o << "  p" << p << " -> b" << u.buffer.index << style << ";\n";
+        }
     for (size_t p = 0; p < passes_.size(); ++p)
         for (const TextureAccess& a : passes_[p].accesses) {
             const std::string style = passes_[p].culled ? " [style=dashed, color=gray50]" : "";

@@ -1,12 +1,14 @@
 // Layer 6 (Organisation): the render graph.
 //
 // A frame is declared as passes that say which textures they write (colour/depth targets)
-// and read (sampled). compile() then
+// and read (sampled), and which buffers they read and write, with how (BufferAccess: indirect
+// arguments, vertices, storage, copies). compile() then
 //   1. culls every pass whose results nothing uses (outputs and side effects are roots),
 //   2. computes each texture's first and last use among the surviving passes,
 //   3. plans memory for the transient textures: textures whose lifetimes do not overlap share
 //      bytes of one heap (Vulkan: placed images) or share whole objects (OpenGL),
-//   4. derives the barriers before each pass from the state each texture moves between.
+//   4. derives the barriers before each pass from the state each texture moves between, and
+//      for buffers from each write and the reads after it (buffer memory barriers).
 // execute() records the passes in order, each in a debug group and a GPU timer, with the
 // backend's automatic barriers off: the graph's barriers are the only synchronisation.
 //
@@ -53,6 +55,20 @@ struct TransientTextureDesc {
     uint32_t layers = 1;  // TextureCube: 6
 };
 
+struct TransientBufferDesc {
+    uint64_t size = 0;
+};
+
+// How a pass uses a buffer: `access` says how (flags); StorageWrite and CopyDst are writes.
+struct BufferUse {
+    BufferId buffer;
+    gdi::BufferAccess access = gdi::BufferAccess::StorageRead;
+    static constexpr uint32_t kWriteBits =
+        uint32_t(gdi::BufferAccess::StorageWrite) | uint32_t(gdi::BufferAccess::CopyDst);
+    bool writes() const { return (uint32_t(access) & kWriteBits) != 0; }
+    bool reads() const { return (uint32_t(access) & ~kWriteBits) != 0; }
+};
+
 // How a pass uses a texture.
 struct TextureAccess {
     TextureId texture;
@@ -82,7 +98,10 @@ public:
     void sample(TextureId texture);
     // Written as a storage image (compute); `readToo`: its earlier contents are read as well.
     void storage(TextureId texture, bool readToo = false);
-    // The pass has effects the graph cannot see (e.g. writes a buffer read back later): never culled.
+    // Buffers: every access of the pass to the buffer, as flags (Indirect | StorageRead, ...).
+    // Writes (StorageWrite, CopyDst) are taken as partial: earlier contents stay needed.
+    void buffer(BufferId buffer, gdi::BufferAccess access);
+    // The pass has effects the graph cannot see: never culled.
     void sideEffect();
 
 private:
@@ -96,6 +115,7 @@ class PassContext {
 public:
     gdi::CommandList& cmd;
     gdi::TextureHandle texture(TextureId id) const;
+    gdi::BufferHandle buffer(BufferId id) const;
     // Begins a render pass on the declared targets with their load ops and clear values.
     void beginRenderPass();
 
@@ -118,13 +138,21 @@ struct PlannedBarrier {
     gdi::ResourceState before = gdi::ResourceState::Undefined;
     gdi::ResourceState after = gdi::ResourceState::ShaderRead;
 };
+// A buffer dependency the graph records before a pass (a gdi::BufferBarrier, whole buffer).
+struct PlannedBufferBarrier {
+    BufferId buffer;
+    gdi::BufferAccess before = gdi::BufferAccess::StorageWrite;
+    gdi::BufferAccess after = gdi::BufferAccess::StorageRead;
+};
 
 struct PassInfo {
     std::string name;
     std::vector<TextureAccess> accesses;
+    std::vector<BufferUse> buffers;
     bool sideEffect = false;
     bool culled = false;
     std::vector<PlannedBarrier> barriers;  // recorded before the pass
+    std::vector<PlannedBufferBarrier> bufferBarriers;
 };
 
 struct PassTiming {
@@ -142,6 +170,9 @@ public:
     TextureId createTexture(std::string name, const TransientTextureDesc& desc);
     TextureId importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
     void markOutput(TextureId texture);  // its producers are never culled
+    BufferId createBuffer(std::string name, const TransientBufferDesc& desc);
+    BufferId importBuffer(std::string name, gdi::BufferHandle buffer, uint64_t size);
+    void markOutput(BufferId buffer);  // read after the frame: its writers are never culled
     void addPass(std::string name, const std::function<void(PassBuilder&)>& setup,
                  std::function<void(PassContext&)> execute);
 
@@ -158,6 +189,9 @@ public:
     const std::vector<TextureInfo>& textures() const { return textures_; }
     const TextureInfo& texture(TextureId id) const;
     gdi::TextureHandle handle(TextureId id) const;  // after compile(device)
+    const std::vector<BufferInfo>& buffers() const { return buffers_; }
+    const BufferInfo& buffer(BufferId id) const;
+    gdi::BufferHandle handle(BufferId id) const;  // imported, or transient after compile(device)
     MemoryReport memory() const { return memory_; }
     AliasingMode aliasing() const { return aliasing_; }
     // GPU time per executed pass of the last executed frame, once its fence has signalled.
@@ -172,6 +206,8 @@ private:
     void cull();
     void computeLifetimes();
     void planBarriers();
+    void planBufferBarriers();
+    void checkBufferUses() const;
     void checkResolve(const PassInfo& pass, const TextureAccess& a, const TextureInfo& dst) const;
 
     struct Executor {
@@ -184,6 +220,8 @@ private:
     std::optional<gdi::DeviceObjects> objects_;
     std::vector<TextureInfo> textures_;
     std::vector<gdi::TextureHandle> handles_;   // per texture
+    std::vector<BufferInfo> buffers_;
+    std::vector<gdi::BufferHandle> bufferHandles_;  // per buffer
     std::vector<PassInfo> passes_;
     std::vector<Executor> executors_;
     MemoryReport memory_;

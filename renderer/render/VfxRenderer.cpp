@@ -116,25 +116,42 @@ VfxRenderer::VfxRenderer(TechniqueContext& ctx, const std::vector<assets::Partic
                       "particles alpha");
 }
 
+// Four graph passes, so the graph orders the buffers between them with buffer barriers (the
+// backend's automatic barriers stay off): reset the draw arguments, simulate, sort, draw.
 void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
-    g.addPass("particles", [&](graph::PassBuilder& b) {
-        b.sample(depth);
-        b.colorTarget(output, gdi::LoadOp::Load);
-    }, [this, depth](graph::PassContext& pc) {
+    using A = gdi::BufferAccess;
+    const auto list = [&](const char* name, gdi::BufferHandle b, uint64_t particles) {
+        return g.importBuffer(name, b, std::max<uint64_t>(1, particles) * sizeof(GpuParticle));
+    };
+    const graph::BufferId emitters = g.importBuffer("particle emitters", emitterBuffer_, emitters_.size() * sizeof(GpuEmitter));
+    const graph::BufferId additive = list("particles additive", additive_, additiveSlots_);
+    const graph::BufferId alpha = list("particles alpha", alpha_, kMaxSortedParticles);
+    const graph::BufferId sorted = list("particles alpha sorted", sorted_, kMaxSortedParticles);
+    const graph::BufferId args = g.importBuffer("particle draw arguments", args_, 2 * sizeof(gdi::DrawIndirectArgs));
+    const graph::BufferId argsReset = g.importBuffer("particle draw arguments reset", argsReset_, 2 * sizeof(gdi::DrawIndirectArgs));
+    g.markOutput(args);  // lastCounts() reads it back
+
+    g.addPass("particles reset", [&](graph::PassBuilder& b) {
+        b.buffer(argsReset, A::CopySrc);
+        b.buffer(args, A::CopyDst);
+    }, [this](graph::PassContext& pc) { pc.cmd.copyBuffer(args_, 0, argsReset_, 0, sizeof(gdi::DrawIndirectArgs) * 2); });
+
+    g.addPass("particles simulate", [&](graph::PassBuilder& b) {
+        b.buffer(emitters, A::StorageRead);
+        b.buffer(additive, A::StorageWrite);
+        b.buffer(alpha, A::StorageWrite);
+        b.buffer(args, A::StorageRead | A::StorageWrite);  // atomic appends count the instances
+    }, [this](graph::PassContext& pc) {
         gdi::CommandList& cmd = pc.cmd;
         // Every light, the shadowed ones too (particles receive no shadows), as the transparent pass.
         FrameConstants fc = ctx_.frame;
         fc.lightRange = glm::uvec4(0, ctx_.scene.lightCount(), 0, 0);
-        const UploadAllocation frame = ctx_.queue.upload(fc);
+        frame_ = ctx_.queue.upload(fc);
         const glm::vec4 sim(float(time_), float(emitters_.size()), float(slots_), 0.0f);
         const UploadAllocation simulation = ctx_.queue.upload(sim);
         time_ += kFrameSeconds;
-        // The graph orders textures; these buffers (lists, counts, indirect arguments) are ordered
-        // by the device's automatic barriers, on for the compute half of the pass.
-        cmd.setAutomaticBarriers(true);
-        cmd.copyBuffer(args_, 0, argsReset_, 0, sizeof(gdi::DrawIndirectArgs) * 2);
         cmd.setPipeline(simulate_);
-        cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
+        cmd.setUniformBuffer(kSlotFrame, frame_.buffer, frame_.offset, frame_.size);
         cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
         cmd.setUniformBuffer(kSlotSim, simulation.buffer, simulation.offset, simulation.size);
         cmd.setStorageBuffer(kSlotEmitters, emitterBuffer_);
@@ -142,17 +159,34 @@ void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph:
         cmd.setStorageBuffer(kSlotAlpha, alpha_);
         cmd.setStorageBuffer(kSlotArgs, args_);
         cmd.dispatch((slots_ + 63) / 64);
+    });
+
+    g.addPass("particles sort", [&](graph::PassBuilder& b) {
+        b.buffer(alpha, A::StorageRead);
+        b.buffer(sorted, A::StorageWrite);
+        b.buffer(args, A::StorageRead | A::StorageWrite);  // caps the alpha count at the list size
+    }, [this](graph::PassContext& pc) {
+        gdi::CommandList& cmd = pc.cmd;
         cmd.setPipeline(sort_);
         cmd.setStorageBuffer(kSlotAlpha, alpha_);
         cmd.setStorageBuffer(kSlotSorted, sorted_);
         cmd.setStorageBuffer(kSlotArgs, args_);
         cmd.dispatch(1);
-        cmd.setAutomaticBarriers(false);
+    });
+
+    g.addPass("particles", [&](graph::PassBuilder& b) {
+        b.sample(depth);
+        b.colorTarget(output, gdi::LoadOp::Load);
+        b.buffer(sorted, A::StorageRead);
+        b.buffer(additive, A::StorageRead);
+        b.buffer(args, A::Indirect);
+    }, [this, depth](graph::PassContext& pc) {
+        gdi::CommandList& cmd = pc.cmd;
         pc.beginRenderPass();
         for (const auto& [pipeline, list, offset] : {std::tuple{drawAlpha_, sorted_, sizeof(gdi::DrawIndirectArgs)},
                                                     std::tuple{drawAdditive_, additive_, size_t(0)}}) {
             cmd.setPipeline(pipeline);
-            cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
+            cmd.setUniformBuffer(kSlotFrame, frame_.buffer, frame_.offset, frame_.size);
             cmd.setStorageBuffer(kSlotSorted, list);
             cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
             cmd.drawIndirect(args_, offset);

@@ -1,5 +1,6 @@
 // Layer 7: the VFX renderer. GPU particles for the scene's emitters (assets::ParticleEmitter),
-// added by SceneRenderer to every technique's translucency stage as one render-graph pass:
+// added by SceneRenderer to every technique's translucency stage as render-graph passes whose
+// buffer reads and writes the graph orders (reset, simulate, sort, draw):
 //  1. simulate (compute): one invocation per particle slot; closed-form motion from the system's
 //     time, so every backend and frame rate gives the same particles; the living ones are lit
 //     (alpha-blended ones by every scene light) and appended to an additive and an alpha list,
@@ -53,6 +54,7 @@ private:
     std::vector<assets::ParticleEmitter> emitters_;
     uint32_t slots_ = 0, additiveSlots_ = 0;
     double time_ = 0.0;
+    UploadAllocation frame_;  // this frame's constants: uploaded by the simulation, read by the draws
     gdi::BufferHandle emitterBuffer_, additive_, alpha_, sorted_, args_, argsReset_;
     gdi::ShaderHandle simulateCs_, sortCs_, vs_, additiveFs_, alphaFs_;
     gdi::PipelineHandle simulate_, sort_, drawAdditive_, drawAlpha_;

@@ -3,6 +3,7 @@
 // backend (validation layer on).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 
 #include "BackendTest.h"
@@ -287,6 +288,70 @@ TEST(RenderGraph, BarriersFollowStateChanges) {
     EXPECT_NE(dot.find("depth: ShaderRead -> DepthTarget"), std::string::npos);
 }
 
+// Buffers: a read waits for the last write once per kind of read; a write waits for the last
+// write and every read since; an imported buffer's first use waits for nothing.
+TEST(RenderGraph, BufferBarriersOrderWritesAndReads) {
+    using A = gdi::BufferAccess;
+    RenderGraph g;
+    auto out = importFake(g);
+    auto args = g.importBuffer("args", gdi::BufferHandle{1}, 32);
+    auto list = g.createBuffer("list", {.size = 256});
+    g.addPass("reset", [&](auto& b) { b.buffer(args, A::CopyDst); }, {});
+    g.addPass("simulate", [&](auto& b) { b.buffer(args, A::StorageRead | A::StorageWrite); b.buffer(list, A::StorageWrite); }, {});
+    auto sorted = g.createBuffer("sorted", {.size = 256});
+    g.addPass("sort", [&](auto& b) { b.buffer(list, A::StorageRead); b.buffer(args, A::StorageRead); b.buffer(sorted, A::StorageWrite); }, {});
+    g.addPass("draw", [&](auto& b) {
+        b.buffer(args, A::Indirect); b.buffer(list, A::StorageRead); b.buffer(sorted, A::StorageRead); b.colorTarget(out);
+    }, {});
+    g.addPass("rewrite", [&](auto& b) { b.buffer(list, A::StorageWrite); b.colorTarget(out, LoadOp::Load); }, {});
+    g.addPass("draw again", [&](auto& b) { b.buffer(list, A::Vertex); b.colorTarget(out, LoadOp::Load); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    using Planned = std::vector<std::tuple<uint32_t, A, A>>;
+    auto planned = [&](size_t pass) {
+        Planned v;
+        for (const auto& b : g.passes()[pass].bufferBarriers) v.emplace_back(b.buffer.index, b.before, b.after);
+        return v;
+    };
+    EXPECT_EQ(planned(0), Planned{});
+    EXPECT_EQ(planned(1), (Planned{{args.index, A::CopyDst, A::StorageRead | A::StorageWrite}}));
+    EXPECT_EQ(planned(2), (Planned{{list.index, A::StorageWrite, A::StorageRead}, {args.index, A::StorageWrite, A::StorageRead}}));
+    // The list is already visible to storage reads; the sorted list is not.
+    EXPECT_EQ(planned(3), (Planned{{args.index, A::StorageWrite, A::Indirect}, {sorted.index, A::StorageWrite, A::StorageRead}}));
+    EXPECT_EQ(planned(4), (Planned{{list.index, A::StorageWrite | A::StorageRead, A::StorageWrite}}));
+    EXPECT_EQ(planned(5), (Planned{{list.index, A::StorageWrite, A::Vertex}}));
+    // A transient buffer gets the usages its passes need.
+    EXPECT_EQ(g.buffer(list).usage, gdi::BufferUsage::Storage | gdi::BufferUsage::Vertex);
+    EXPECT_EQ(g.buffer(list).firstPass, 1);
+    EXPECT_EQ(g.buffer(list).lastPass, 5);
+    const std::string dot = g.toDot();
+    EXPECT_NE(dot.find("shape=cylinder, label=\"list\\nbuffer 256 B\""), std::string::npos) << dot;
+}
+
+// A pass that writes only a buffer survives when a surviving pass reads it or the buffer is an
+// output (read after the frame), and is culled otherwise.
+TEST(RenderGraph, BufferWritersSurviveOnlyWhenRead) {
+    using A = gdi::BufferAccess;
+    RenderGraph g;
+    auto out = importFake(g);
+    auto counts = g.importBuffer("counts", gdi::BufferHandle{1}, 16);
+    auto lists = g.createBuffer("lists", {.size = 64});
+    auto unread = g.createBuffer("unread", {.size = 64});
+    g.addPass("count", [&](auto& b) { b.buffer(counts, A::StorageWrite); }, {});
+    g.addPass("build lists", [&](auto& b) { b.buffer(lists, A::StorageWrite); }, {});
+    g.addPass("write unread", [&](auto& b) { b.buffer(unread, A::StorageWrite); }, {});
+    g.addPass("shade", [&](auto& b) { b.buffer(lists, A::StorageRead); b.colorTarget(out); }, {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    EXPECT_TRUE(culled(g, "count"));
+    EXPECT_FALSE(culled(g, "build lists"));
+    EXPECT_TRUE(culled(g, "write unread"));
+    EXPECT_FALSE(g.buffer(unread).used());
+    g.markOutput(counts);
+    g.compile(graph::CompileOptions{});
+    EXPECT_FALSE(culled(g, "count"));
+}
+
 TEST(RenderGraph, MalformedGraphsAreClearErrors) {
     auto expectError = [](const std::function<void(RenderGraph&, TextureId, TextureId)>& build, const std::string& message) {
         RenderGraph g;
@@ -327,7 +392,20 @@ TEST(RenderGraph, MalformedGraphsAreClearErrors) {
     expectError([](auto& g, auto a, auto out) {
         g.addPass("p", [&](auto& b) { b.colorTarget(out); b.resolve(out, a); }, {});
     }, "the source is single-sample");
+    expectError([](auto& g, auto, auto out) {
+        auto buf = g.createBuffer("buf", {.size = 16});
+        g.addPass("p", [&](auto& b) { b.buffer(buf, gdi::BufferAccess::StorageRead); b.buffer(buf, gdi::BufferAccess::Indirect); b.colorTarget(out); }, {});
+    }, "declares buffer 'buf' twice");
+    expectError([](auto& g, auto, auto out) {
+        g.addPass("p", [&](auto& b) { b.buffer(graph::BufferId{7}, gdi::BufferAccess::StorageRead); b.colorTarget(out); }, {});
+    }, "invalid buffer id");
+    expectError([](auto& g, auto, auto out) {
+        auto buf = g.createBuffer("buf", {.size = 16});
+        g.addPass("p", [&](auto& b) { b.buffer(buf, gdi::BufferAccess::None); b.colorTarget(out); }, {});
+    }, "uses buffer 'buf' with no access");
     RenderGraph g;
+    EXPECT_THROW(g.createBuffer("empty", {.size = 0}), gdi::Error);
+    EXPECT_THROW(g.importBuffer("null", gdi::BufferHandle{}, 16), gdi::Error);
     EXPECT_THROW(g.createTexture("zero", {.width = 0, .height = 8}), gdi::Error);
     EXPECT_THROW(g.createTexture("three samples", {.width = 8, .height = 8, .sampleCount = 3}), gdi::Error);
 }
@@ -488,6 +566,42 @@ TEST_P(RenderGraphOnDevice, MultisampledTransientsAndResolves) {
     for (auto b : {vb, ubo}) d.destroy(b);
     d.destroy(sampler);
     d.destroy(output);
+}
+
+// A transient buffer between two copy passes, with the backend's automatic barriers off: the
+// graph creates it with copy usages, orders the write before the read, and the bytes arrive.
+TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
+    using namespace gdi;
+    using A = BufferAccess;
+    Device& d = *device;
+    std::array<uint32_t, 64> words{};
+    for (uint32_t i = 0; i < words.size(); ++i) words[i] = 0x9e3779b9u * (i + 1);
+    auto src = d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"}, bytesOf(words));
+    auto dst = d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc, .debugName = "result"});
+    {
+        RenderGraph g;
+        auto in = g.importBuffer("source", src, sizeof words);
+        auto mid = g.createBuffer("middle", {.size = sizeof words});
+        auto result = g.importBuffer("result", dst, sizeof words);
+        g.addPass("fill", [&](auto& b) { b.buffer(in, A::CopySrc); b.buffer(mid, A::CopyDst); },
+                  [&](graph::PassContext& pc) { pc.cmd.copyBuffer(pc.buffer(mid), 0, src, 0, sizeof words); });
+        g.addPass("drain", [&](auto& b) { b.buffer(mid, A::CopySrc); b.buffer(result, A::CopyDst); },
+                  [&](graph::PassContext& pc) { pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words); });
+        g.markOutput(result);
+        g.compile(d);
+        EXPECT_EQ(g.buffer(mid).usage, BufferUsage::CopySrc | BufferUsage::CopyDst);
+        ASSERT_EQ(g.passes()[1].bufferBarriers.size(), 1u);
+        auto cmd = d.createCommandList();
+        g.execute(*cmd);
+        d.wait(d.submit(*cmd));
+    }
+    const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
+    std::array<uint32_t, 64> back{};
+    std::memcpy(back.data(), bytes.data(), sizeof back);
+    EXPECT_EQ(back, words);
+    EXPECT_EQ(d.validationErrorCount(), 0u);
+    d.destroy(src);
+    d.destroy(dst);
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderGraphOnDevice);
