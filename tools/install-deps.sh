@@ -14,6 +14,7 @@ PACKAGES=(
   python3-matplotlib chromium  # fe bench: its charts, and the browser test of its report
   libimgui-dev                 # the UI renderer (fe view)
   libcli11-dev libspdlog-dev   # the fe command line and its logging
+  libspirv-cross-c-shared-dev  # shader reflection (bindings, inputs, outputs) checked against pipelines
   clang libclang-rt-14-dev     # the fuzzers (libFuzzer); gcc's own sanitizer runtimes come with g++
 )
 

@@ -144,7 +144,7 @@ void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
 void GlCommandList::setPipeline(gdi::PipelineHandle h) {
     checkUnrestricted("setPipeline");
     const Pipeline& p = dev_.pipeline(h);
-    if (inPass_ && !p.compute) gdi::validate::pipelineSamples(p.desc.multisample.sampleCount, passSamples_, p.label.c_str());
+    if (inPass_ && !p.compute) gdi::validate::pipelineFitsPass(p.signature, signature_, p.label.c_str());
     if (pipeline_ != &p) unchecked_ = ~uint64_t(0);  // other slots, other kinds
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;

@@ -382,17 +382,19 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
+    loss_.check("createShader");
+    gdi::validate::shaderDesc(desc);
+    const std::string label = desc.binary.name ? desc.binary.name : "";
+    const auto& code = desc.binary.opengl;
+    if (code.size() < 5 || code[0] != 0x07230203)
+        throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
+                         " words, missing magic number)");
+    Shader s;
+    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label);  // on this thread: no GL needed
+    s.stage = desc.stage;
+    s.label = label;
     return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
-        gdi::validate::shaderDesc(desc);
-        const std::string label = desc.binary.name ? desc.binary.name : "";
-        const auto& code = desc.binary.opengl;
-        if (code.size() < 5 || code[0] != 0x07230203)
-            throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
-                             " words, missing magic number)");
-        Shader s;
-        s.stage = desc.stage;
-        s.label = label;
         GLenum type = desc.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
                       : desc.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
                                                                  : GL_COMPUTE_SHADER;
@@ -437,12 +439,17 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
         if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
         GLuint fs = 0;
+        const gdi::ShaderInterface* fsIface = nullptr;
         if (d.fragmentShader) {
             Shader& f = shaders_.get(d.fragmentShader, "fragment shader");
             if (f.stage != gdi::ShaderStage::Fragment)
                 throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
             fs = f.name;
+            fsIface = &f.iface;
         }
+        gdi::validate::vertexInputs(d, vs.iface, p.label);
+        if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
+        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label);
         p.program = linkProgram(gl_, {vs.name, fs}, p.label);
         gl_.CreateVertexArrays(1, &p.vao);
         for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
@@ -470,8 +477,10 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         }
         p.desc = d;
         p.desc.debugName = nullptr;
-        p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
-        p.slotKinds = gdi::validate::slotKinds(d.bindings);
+        p.desc.bindings = bindings;
+        p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
+        p.slotKinds = gdi::validate::slotKinds(bindings);
+        p.signature = gdi::validate::pipelineSignature(d);
         return pipelines_.add(std::move(p));
     });
 }
@@ -484,11 +493,13 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         p.label = d.debugName ? d.debugName : "";
         Shader& cs = shaders_.get(d.computeShader, "compute shader");
         if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
+        gdi::validate::workgroup(cs.iface, info_.limits, p.label);
+        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label);
         p.program = linkProgram(gl_, {cs.name}, p.label);
         p.compute = true;
-        p.desc.bindings = d.bindings;
-        p.requiredSlots = gdi::validate::requiredSlotMask(d.bindings);
-        p.slotKinds = gdi::validate::slotKinds(d.bindings);
+        p.desc.bindings = bindings;
+        p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
+        p.slotKinds = gdi::validate::slotKinds(bindings);
         return pipelines_.add(std::move(p));
     });
 }

@@ -18,6 +18,7 @@
 
 #include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/Validation.h"
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
 #include "gl/GlContextThread.h"
@@ -58,6 +59,7 @@ struct Shader {
     GLuint name = 0;
     gdi::ShaderStage stage = gdi::ShaderStage::None;
     std::string label;
+    gdi::ShaderInterface iface;  // reflected: pipelines are checked against it
 };
 struct Pipeline {
     GLuint program = 0;
@@ -67,6 +69,7 @@ struct Pipeline {
     std::vector<uint32_t> strides;
     uint64_t requiredSlots = 0;
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
+    gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
     std::string label;
 };
 struct Timer {

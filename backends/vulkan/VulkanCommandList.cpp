@@ -507,7 +507,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording();
     checkUnrestricted("setPipeline");
     Pipeline& p = usedPipeline(h);
-    if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineSamples(p.samples, passSamples_, p.name.c_str());
+    if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     pipeline_ = &p;

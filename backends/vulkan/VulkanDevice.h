@@ -25,6 +25,7 @@
 #include "VulkanFaults.h"
 #include "VulkanMemory.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/Validation.h"
 #include "fe/gdi/HandlePool.h"
 
 namespace fe::vk {
@@ -72,6 +73,7 @@ struct Shader {
     gdi::ShaderStage stage = gdi::ShaderStage::None;
     std::string name;
     std::string entry;
+    gdi::ShaderInterface iface;  // reflected: pipelines are checked against it
 };
 
 struct Pipeline {
@@ -84,9 +86,7 @@ struct Pipeline {
     // Per slot: the descriptor write flushBindings copies (type, binding; pointers filled at
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
-    std::vector<gdi::Format> colorFormats;
-    gdi::Format depthFormat = gdi::Format::Undefined;
-    uint32_t samples = 1;
+    gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
     std::string name;
 };
 

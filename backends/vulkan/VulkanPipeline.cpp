@@ -80,10 +80,11 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
     if (code.size() < 5 || code[0] != kSpirvMagic)
         throw gdi::Error("shader '" + name + "': not a SPIR-V binary for Vulkan (" + std::to_string(code.size()) +
                          " words, missing magic number)");
+    Shader s;
+    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, name);
     VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     ci.codeSize = code.size_bytes();
     ci.pCode = code.data();
-    Shader s;
     check(nativeAllocation("vkCreateShaderModule", [&] { return vkCreateShaderModule(device_, &ci, nullptr, &s.module); }), ("vkCreateShaderModule for '" + name + "'").c_str());
     s.stage = desc.stage;
     s.name = name;
@@ -135,6 +136,10 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
         if (fs->stage != gdi::ShaderStage::Fragment)
             throw gdi::Error("pipeline '" + name + "': fragmentShader is not a fragment shader");
     }
+    gdi::validate::vertexInputs(d, vs.iface, name);
+    if (fs) gdi::validate::fragmentOutputs(d, fs->iface, name);
+    const std::vector<gdi::BindingSlot> bindings =
+        gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fs ? &fs->iface : nullptr}, name);
     for (gdi::Format f : d.colorFormats)
         if (!supportsFormat(f, gdi::TextureUsage::RenderTarget))
             throw gdi::Error("pipeline '" + name + "': format " + std::string(gdi::formatInfo(f).name) +
@@ -229,10 +234,8 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ri.depthAttachmentFormat = d.depthFormat == gdi::Format::Undefined ? VK_FORMAT_UNDEFINED : toVkFormat(d.depthFormat);
     ri.stencilAttachmentFormat = gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
 
-    Pipeline p = makeLayout(device_, d.bindings, d.debugName);
-    p.colorFormats = d.colorFormats;
-    p.depthFormat = d.depthFormat;
-    p.samples = d.multisample.sampleCount;
+    Pipeline p = makeLayout(device_, bindings, d.debugName);
+    p.signature = gdi::validate::pipelineSignature(d);
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.pNext = &ri;
     ci.stageCount = uint32_t(stages.size());
@@ -265,7 +268,9 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     if (cs.stage != gdi::ShaderStage::Compute)
         throw gdi::Error(std::string("compute pipeline '") + (d.debugName ? d.debugName : "") +
                          "': computeShader is not a compute shader");
-    Pipeline p = makeLayout(device_, d.bindings, d.debugName);
+    const std::string name = d.debugName ? d.debugName : "";
+    gdi::validate::workgroup(cs.iface, info_.limits, name);
+    Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name), d.debugName);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,

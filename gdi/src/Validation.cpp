@@ -440,3 +440,112 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
+                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+    const std::string what = "pipeline '" + pipeline + "'";
+    std::vector<BindingSlot> used;  // by slot, stages merged
+    for (const ShaderInterface* sh : shaders) {
+        if (!sh) continue;
+        for (const ShaderInterface::Binding& b : sh->bindings) {
+            if (b.slot >= 64)
+                fail(what, std::string("the ") + shaderStageName(sh->stage) + " shader uses binding " + std::to_string(b.slot) +
+                               " ('" + b.name + "'); slots are 0 to 63");
+            auto it = std::find_if(used.begin(), used.end(), [&](const BindingSlot& u) { return u.slot == b.slot; });
+            if (it == used.end()) {
+                used.push_back({b.slot, b.type, sh->stage});
+            } else if (it->type != b.type) {
+                fail(what, "slot " + std::to_string(b.slot) + " is a " + bindingTypeName(it->type) +
+                               " in one shader and a " + bindingTypeName(b.type) + " ('" + b.name + "') in the " +
+                               shaderStageName(sh->stage) + " shader");
+            } else {
+                it->stages = it->stages | sh->stage;
+            }
+        }
+    }
+    std::sort(used.begin(), used.end(), [](const BindingSlot& a, const BindingSlot& b) { return a.slot < b.slot; });
+    if (declared.empty()) return used;
+    for (const BindingSlot& u : used) {
+        auto it = std::find_if(declared.begin(), declared.end(), [&](const BindingSlot& d) { return d.slot == u.slot; });
+        std::string user;
+        for (const ShaderInterface* sh : shaders)
+            if (sh && any(u.stages, sh->stage)) user += std::string(user.empty() ? "the " : " and ") + shaderStageName(sh->stage);
+        if (it == declared.end())
+            fail(what, "binding slot " + std::to_string(u.slot) + " (" + bindingTypeName(u.type) + ") is used by " + user +
+                           " shader but missing from the pipeline's bindings (leave bindings empty to take them from the shaders)");
+        if (it->type != u.type)
+            fail(what, "binding slot " + std::to_string(u.slot) + " is declared a " + bindingTypeName(it->type) + ", but " + user +
+                           " shader uses a " + bindingTypeName(u.type));
+        if ((uint32_t(it->stages) & uint32_t(u.stages)) != uint32_t(u.stages))
+            fail(what, "binding slot " + std::to_string(u.slot) + " is used by " + user +
+                           " shader, which its declared stages leave out");
+    }
+    return declared;
+}
+
+namespace {
+ScalarKind vertexKind(VertexFormat f) { return f == VertexFormat::UInt32 ? ScalarKind::Uint : ScalarKind::Float; }
+}  // namespace
+
+void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline) {
+    const std::string what = "pipeline '" + pipeline + "'";
+    for (const ShaderInterface::Variable& in : vs.inputs) {
+        const VertexAttribute* found = nullptr;
+        for (const VertexBufferLayout& vb : d.vertexBuffers)
+            for (const VertexAttribute& a : vb.attributes)
+                if (a.location == in.location) found = &a;
+        if (!found)
+            fail(what, "vertex shader input '" + in.name + "' (location " + std::to_string(in.location) +
+                           ") has no attribute in the vertex layout");
+        if (vertexKind(found->format) != in.kind)
+            fail(what, "vertex shader input '" + in.name + "' (location " + std::to_string(in.location) + ") is " +
+                           scalarKindName(in.kind) + ", its attribute's format gives " + scalarKindName(vertexKind(found->format)));
+    }
+}
+
+void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline) {
+    const std::string what = "pipeline '" + pipeline + "'";
+    for (const ShaderInterface::Variable& out : fs.outputs) {
+        if (out.location >= d.colorFormats.size()) continue;  // no target there: the value is dropped, as both APIs do
+        const FormatInfo& f = formatInfo(d.colorFormats[out.location]);
+        const ScalarKind want = f.isInteger ? ScalarKind::Uint : ScalarKind::Float;
+        if (out.kind != want)
+            fail(what, "fragment output '" + out.name + "' (location " + std::to_string(out.location) + ") is " +
+                           scalarKindName(out.kind) + ", colour target " + std::to_string(out.location) + " is " +
+                           std::string(f.name) + " (" + scalarKindName(want) + ")");
+    }
+}
+
+void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline) {
+    const uint64_t n = uint64_t(cs.workgroupSize[0]) * cs.workgroupSize[1] * cs.workgroupSize[2];
+    if (limits.maxComputeWorkGroupInvocations && n > limits.maxComputeWorkGroupInvocations)
+        fail("compute pipeline '" + pipeline + "'", "work group of " + std::to_string(n) + " invocations exceeds the device's " +
+                                                        std::to_string(limits.maxComputeWorkGroupInvocations));
+}
+
+PassSignature pipelineSignature(const GraphicsPipelineDesc& d) {
+    PassSignature s;
+    s.colorCount = uint32_t(std::min(d.colorFormats.size(), s.colors.size()));
+    for (uint32_t i = 0; i < s.colorCount; ++i) s.colors[i] = d.colorFormats[i];
+    s.depth = d.depthFormat;
+    s.samples = d.multisample.sampleCount;
+    return s;
+}
+
+void pipelineFitsPass(const PassSignature& p, const PassSignature& pass, const char* pipelineName) {
+    if (p.samples != pass.samples) pipelineSamples(p.samples, pass.samples, pipelineName);
+    auto formats = [](const PassSignature& s) {
+        std::string t = "colour [";
+        for (uint32_t i = 0; i < s.colorCount; ++i) t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
+        return t + "], depth " + (s.depth == Format::Undefined ? std::string("none") : std::string(formatInfo(s.depth).name));
+    };
+    bool same = p.colorCount == pass.colorCount && p.depth == pass.depth;
+    for (uint32_t i = 0; same && i < p.colorCount; ++i) same = p.colors[i] == pass.colors[i];
+    if (!same)
+        fail(label("setPipeline: pipeline", pipelineName),
+             "renders to " + formats(p) + " but the render pass has " + formats(pass));
+}
+
+}  // namespace fe::gdi::validate

@@ -362,4 +362,74 @@ TEST_P(DeviceErrors, SecondaryListRules) {
     d.destroy(wide);
 }
 
+// Pipelines are checked against their shaders' reflection, with the same gdi::Error on every
+// backend before any native call: bindings the list omits or mistypes, vertex inputs without
+// attributes or of another scalar kind, fragment outputs of the wrong kind for their target,
+// and at setPipeline attachment formats that are not the pass's. An empty binding list takes
+// the shaders' own.
+TEST_P(DeviceErrors, PipelinesAreCheckedAgainstTheirShaders) {
+    Device& d = *device;
+    auto has = [](const std::string& error, const char* text) {
+        return error.find(text) != std::string::npos ? ::testing::AssertionSuccess()
+                                                     : ::testing::AssertionFailure() << "got: " << error;
+    };
+    auto shader = [&](ShaderStage stage, const char* path) {
+        return d.createShader({.stage = stage, .binary = fe::shaders::find(path)});
+    };
+    auto uboVs = shader(ShaderStage::Vertex, "conformance/fullscreen_ubo.vert");
+    auto uboFs = shader(ShaderStage::Fragment, "conformance/ubo_color.frag");
+    auto uintVs = shader(ShaderStage::Vertex, "conformance/vertex_uint.vert");
+    auto valueFs = shader(ShaderStage::Fragment, "conformance/value.frag");
+    auto err = [&](const GraphicsPipelineDesc& desc) { return errorOf([&] { d.destroy(d.createGraphicsPipeline(desc)); }); };
+    const GraphicsPipelineDesc ubo{.vertexShader = uboVs, .fragmentShader = uboFs, .colorFormats = {Format::RGBA8},
+                                   .debugName = "ubo"};
+    GraphicsPipelineDesc omitted = ubo;
+    omitted.bindings = {{1, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
+    EXPECT_TRUE(has(err(omitted), "pipeline 'ubo': binding slot 0 (uniform buffer) is used by the vertex and fragment shader "
+                                  "but missing from the pipeline's bindings"));
+    GraphicsPipelineDesc mistyped = ubo;
+    mistyped.bindings = {{0, BindingType::StorageBuffer, ShaderStage::AllGraphics}};
+    EXPECT_TRUE(has(err(mistyped), "binding slot 0 is declared a storage buffer, but the vertex and fragment shader uses a uniform buffer"));
+    GraphicsPipelineDesc stageless = ubo;
+    stageless.bindings = {{0, BindingType::UniformBuffer, ShaderStage::Fragment}};
+    EXPECT_TRUE(has(err(stageless), "binding slot 0 is used by the vertex and fragment shader, which its declared stages leave out"));
+    const VertexBufferLayout uintLayout{.stride = 12, .attributes = {{.location = 0, .format = VertexFormat::Float2},
+                                                                     {.location = 1, .format = VertexFormat::UInt32, .offset = 8}}};
+    GraphicsPipelineDesc noAttribute{.vertexShader = uintVs, .fragmentShader = valueFs,
+                                     .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+                                     .colorFormats = {Format::RGBA8}, .debugName = "attrs"};
+    EXPECT_TRUE(has(err(noAttribute), "pipeline 'attrs': vertex shader input 'inValue' (location 1) has no attribute in the vertex layout"));
+    GraphicsPipelineDesc wrongKind = noAttribute;
+    wrongKind.vertexBuffers = {{.stride = 12, .attributes = {{.location = 0, .format = VertexFormat::Float2},
+                                                             {.location = 1, .format = VertexFormat::Float, .offset = 8}}}};
+    EXPECT_TRUE(has(err(wrongKind), "vertex shader input 'inValue' (location 1) is uint, its attribute's format gives float"));
+    GraphicsPipelineDesc intTarget = noAttribute;
+    intTarget.vertexBuffers = {uintLayout};
+    intTarget.colorFormats = {Format::R32U};
+    EXPECT_TRUE(has(err(intTarget), "fragment output 'outColor' (location 0) is float, colour target 0 is R32U (uint)"));
+
+    // Bindings taken from the shaders: the pipeline needs slot 0 bound, like a declared one.
+    auto derived = d.createGraphicsPipeline(ubo);
+    auto t = d.createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto t16 = d.createTexture({.format = Format::RGBA16F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto depth = d.createTexture({.format = Format::D32F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(derived);
+    EXPECT_TRUE(has(errorOf([&] { cmd->draw(3); }), "missing binding for slot(s) 0"));
+    cmd->endRenderPass();
+    cmd->beginRenderPass({.colors = {{.texture = t16}}});
+    EXPECT_TRUE(has(errorOf([&] { cmd->setPipeline(derived); }),
+                    "setPipeline: pipeline 'ubo': renders to colour [RGBA8], depth none but the render pass has colour [RGBA16F], depth none"));
+    cmd->endRenderPass();
+    cmd->beginRenderPass({.colors = {{.texture = t}}, .depth = {.texture = depth}});
+    EXPECT_TRUE(has(errorOf([&] { cmd->setPipeline(derived); }), "but the render pass has colour [RGBA8], depth D32F"));
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    EXPECT_EQ(d.validationErrorCount(), 0u);
+    d.destroy(derived);
+    for (auto tex : {t, t16, depth}) d.destroy(tex);
+    for (auto sh : {uboVs, uboFs, uintVs, valueFs}) d.destroy(sh);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

@@ -2,8 +2,10 @@
 // native API, so invalid input gives the same clear message on Vulkan and GL.
 #pragma once
 #include <array>
+#include <initializer_list>
 
 #include "fe/gdi/Device.h"
+#include "fe/gdi/ShaderReflection.h"
 
 namespace fe::gdi::validate {
 
@@ -78,6 +80,21 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const
                        const PassSignature& pass, size_t index);
 // submit of a secondary list.
 [[noreturn]] void submittedSecondary();
+// Pipelines against their shaders (ShaderReflection.h). The binding slots: derived from the
+// shaders when `declared` is empty; otherwise `declared`, where every slot a shader uses must
+// appear with the kind the shader declares and that shader's stage.
+std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
+                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+// Every vertex shader input has an attribute of the same scalar kind in the vertex layout.
+void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline);
+// Every fragment output that lands on a colour target has the target format's scalar kind.
+void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline);
+// A compute shader's work group fits the device.
+void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline);
+// The attachments a graphics pipeline renders to (formats, depth format, samples).
+PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
+// setPipeline in a pass: the pipeline's attachment formats and sample count are the pass's.
+void pipelineFitsPass(const PassSignature& pipeline, const PassSignature& pass, const char* pipelineName);
 // A pipeline set in a pass must rasterize with the pass's sample count.
 void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName);
 // Per-draw checks: inline fast paths, the message is built out of line only on failure.

@@ -1,0 +1,46 @@
+// Layer 2 (GDI abstraction): what a SPIR-V module declares and uses, read with SPIRV-Cross, so
+// a pipeline is checked against its shaders before any native call (the same gdi::Error on
+// every backend) and its binding slots can be derived from them.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+
+namespace fe::gdi {
+
+// The scalar type of a stage input or output (vertex attributes, colour outputs).
+enum class ScalarKind : uint8_t { Float, Int, Uint, Other };
+const char* scalarKindName(ScalarKind k);
+const char* shaderStageName(ShaderStage s);  // "vertex", "fragment", "compute"
+const char* bindingTypeName(BindingType t);  // "uniform buffer", ...
+
+struct ShaderInterface {
+    struct Binding {
+        uint32_t slot = 0;  // layout(binding = slot), descriptor set 0
+        BindingType type = BindingType::UniformBuffer;
+        std::string name;   // the block or variable name, for messages
+    };
+    struct Variable {
+        uint32_t location = 0;
+        ScalarKind kind = ScalarKind::Float;
+        uint32_t components = 1;
+        std::string name;
+    };
+    ShaderStage stage = ShaderStage::None;
+    std::vector<Binding> bindings;   // the ones the entry point uses, by slot
+    std::vector<Variable> inputs;    // user inputs (built-ins excluded), by location
+    std::vector<Variable> outputs;
+    uint32_t pushConstantBytes = 0;  // 0: no push-constant block
+    std::array<uint32_t, 3> workgroupSize{};  // compute
+};
+
+// Throws Error naming the shader when the module cannot be parsed, uses a descriptor set other
+// than 0, or a resource kind the device has no slot type for (separate samplers and images).
+ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
+                              const std::string& name);
+
+}  // namespace fe::gdi

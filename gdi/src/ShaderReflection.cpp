@@ -1,0 +1,134 @@
+// SPIR-V reflection through SPIRV-Cross's C API (Debian's libspirv-cross-c-shared): only the
+// variables the entry point statically uses count, as Vulkan's validation counts them, so an
+// include that declares more blocks than a shader reads does not ask for more bindings.
+#include "fe/gdi/ShaderReflection.h"
+
+#include <algorithm>
+#include <memory>
+#include <spirv_cross/spirv_cross_c.h>
+
+namespace fe::gdi {
+
+const char* scalarKindName(ScalarKind k) {
+    switch (k) {
+        case ScalarKind::Float: return "float";
+        case ScalarKind::Int: return "int";
+        case ScalarKind::Uint: return "uint";
+        default: return "other";
+    }
+}
+
+const char* shaderStageName(ShaderStage s) {
+    switch (s) {
+        case ShaderStage::Vertex: return "vertex";
+        case ShaderStage::Fragment: return "fragment";
+        case ShaderStage::Compute: return "compute";
+        default: return "unknown-stage";
+    }
+}
+
+const char* bindingTypeName(BindingType t) {
+    switch (t) {
+        case BindingType::UniformBuffer: return "uniform buffer";
+        case BindingType::StorageBuffer: return "storage buffer";
+        case BindingType::SampledTexture: return "sampled texture";
+        default: return "storage texture";
+    }
+}
+
+namespace {
+
+struct Context {
+    spvc_context ctx = nullptr;
+    Context() { spvc_context_create(&ctx); }
+    ~Context() { spvc_context_destroy(ctx); }
+};
+
+ScalarKind kindOf(spvc_basetype t) {
+    switch (t) {
+        case SPVC_BASETYPE_FP16: case SPVC_BASETYPE_FP32: case SPVC_BASETYPE_FP64: return ScalarKind::Float;
+        case SPVC_BASETYPE_INT8: case SPVC_BASETYPE_INT16: case SPVC_BASETYPE_INT32: case SPVC_BASETYPE_INT64: return ScalarKind::Int;
+        case SPVC_BASETYPE_UINT8: case SPVC_BASETYPE_UINT16: case SPVC_BASETYPE_UINT32: case SPVC_BASETYPE_UINT64: return ScalarKind::Uint;
+        default: return ScalarKind::Other;
+    }
+}
+
+}  // namespace
+
+ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
+                              const std::string& name) {
+    Context c;
+    auto fail = [&](const std::string& what) -> Error {
+        const char* detail = c.ctx ? spvc_context_get_last_error_string(c.ctx) : "";
+        return Error("shader '" + name + "': " + what + (detail && *detail ? std::string(": ") + detail : std::string()));
+    };
+    if (!c.ctx) throw fail("SPIRV-Cross could not start");
+    spvc_parsed_ir ir = nullptr;
+    spvc_compiler comp = nullptr;
+    if (spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS)
+        throw fail("not a valid SPIR-V module");
+    if (spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) != SPVC_SUCCESS)
+        throw fail("SPIR-V reflection failed");
+    const SpvExecutionModel model = stage == ShaderStage::Vertex     ? SpvExecutionModelVertex
+                                    : stage == ShaderStage::Fragment ? SpvExecutionModelFragment
+                                                                     : SpvExecutionModelGLCompute;
+    if (spvc_compiler_set_entry_point(comp, entryPoint ? entryPoint : "main", model) != SPVC_SUCCESS)
+        throw fail(std::string("no ") + shaderStageName(stage) + " entry point '" + (entryPoint ? entryPoint : "main") + "'");
+    spvc_set active = nullptr;
+    spvc_resources res = nullptr;
+    if (spvc_compiler_get_active_interface_variables(comp, &active) != SPVC_SUCCESS ||
+        spvc_compiler_create_shader_resources_for_active_variables(comp, &res, active) != SPVC_SUCCESS)
+        throw fail("SPIR-V reflection failed");
+
+    ShaderInterface out;
+    out.stage = stage;
+    auto each = [&](spvc_resource_type type, auto&& f) {
+        const spvc_reflected_resource* list = nullptr;
+        size_t count = 0;
+        spvc_resources_get_resource_list_for_type(res, type, &list, &count);
+        for (size_t i = 0; i < count; ++i) f(list[i]);
+    };
+    auto binding = [&](BindingType type) {
+        return [&, type](const spvc_reflected_resource& r) {
+            const uint32_t set = spvc_compiler_get_decoration(comp, r.id, SpvDecorationDescriptorSet);
+            if (set != 0)
+                throw fail("'" + std::string(r.name) + "' is in descriptor set " + std::to_string(set) +
+                           "; the device binds set 0 only (layout(binding = slot))");
+            out.bindings.push_back({spvc_compiler_get_decoration(comp, r.id, SpvDecorationBinding), type, r.name});
+        };
+    };
+    each(SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, binding(BindingType::UniformBuffer));
+    each(SPVC_RESOURCE_TYPE_STORAGE_BUFFER, binding(BindingType::StorageBuffer));
+    each(SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, binding(BindingType::SampledTexture));
+    each(SPVC_RESOURCE_TYPE_STORAGE_IMAGE, binding(BindingType::StorageTexture));
+    for (spvc_resource_type t : {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS})
+        each(t, [&](const spvc_reflected_resource& r) {
+            throw fail("'" + std::string(r.name) + "' is a separate image or sampler; the device binds combined "
+                                                   "image samplers (sampler2D and the like)");
+        });
+    auto variable = [&](std::vector<ShaderInterface::Variable>& into) {
+        return [&](const spvc_reflected_resource& r) {
+            const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
+            into.push_back({spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation), kindOf(spvc_type_get_basetype(t)),
+                            spvc_type_get_vector_size(t), r.name});
+        };
+    };
+    each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));
+    each(SPVC_RESOURCE_TYPE_STAGE_OUTPUT, variable(out.outputs));
+    each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT, [&](const spvc_reflected_resource& r) {
+        size_t size = 0;
+        spvc_compiler_get_declared_struct_size(comp, spvc_compiler_get_type_handle(comp, r.base_type_id), &size);
+        out.pushConstantBytes = uint32_t(size);
+    });
+    if (stage == ShaderStage::Compute)
+        for (uint32_t i = 0; i < 3; ++i)
+            out.workgroupSize[i] = spvc_compiler_get_execution_mode_argument_by_index(comp, SpvExecutionModeLocalSize, i);
+    auto bySlot = [](const auto& a, const auto& b) { return a.slot < b.slot; };
+    auto byLocation = [](const auto& a, const auto& b) { return a.location < b.location; };
+    std::sort(out.bindings.begin(), out.bindings.end(), bySlot);
+    std::sort(out.inputs.begin(), out.inputs.end(), byLocation);
+    std::sort(out.outputs.begin(), out.outputs.end(), byLocation);
+    return out;
+}
+
+}  // namespace fe::gdi
