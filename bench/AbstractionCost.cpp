@@ -76,7 +76,6 @@ Scene makeScene(const std::string& backend) {
         .fragmentShader = fs,
         .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
         .colorFormats = {Format::RGBA8},
-        .bindings = {{.slot = 0, .type = BindingType::UniformBuffer, .stages = ShaderStage::Vertex}},
         .debugName = "bench draw"});
     s.cmd = d.createCommandList();
     return s;

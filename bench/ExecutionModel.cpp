@@ -67,8 +67,7 @@ struct Scene {
         pipeline = d.createGraphicsPipeline(
             {.vertexShader = vs, .fragmentShader = fs,
              .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
-             .colorFormats = {Format::RGBA8},
-             .bindings = {{.slot = 0, .type = BindingType::UniformBuffer, .stages = ShaderStage::Vertex}}});
+             .colorFormats = {Format::RGBA8}});
     }
     ~Scene() {
         device->waitIdle();

@@ -11,7 +11,13 @@ namespace fe::gl {
 
 namespace cmd = gdi::cmd;
 
-GlCommandList::GlCommandList(GlDevice& d) : dev_(d), stream_(d.takeStream()) { restart(); }
+GlCommandList::GlCommandList(GlDevice& d)
+    : dev_(d),
+      uniformLimits_(gdi::validate::uniformBindingLimits(d.info().limits)),
+      storageLimits_(gdi::validate::storageBindingLimits(d.info().limits)),
+      stream_(d.takeStream()) {
+    restart();
+}
 GlCommandList::~GlCommandList() { dev_.returnStream(std::move(stream_)); }
 
 void GlCommandList::restart() {
@@ -175,13 +181,15 @@ template <gdi::BindingType kKind>
 void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer, cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
     const Buffer* b = dev_.findBuffer(h);
-    uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
+    const gdi::validate::BindingLimits& limits = kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
+    uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
     if (!bindSize) [[unlikely]] {
         const char* what = kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
         checkSlot(slot, what);
         const Buffer& checked = dev_.buffer(h);
-        bindSize = size == 0 ? checked.desc.size - std::min(offset, checked.desc.size) : size;
+        bindSize = size == 0 ? std::min(checked.desc.size - std::min(offset, checked.desc.size), limits.maxRange) : size;
         gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
+        gdi::validate::bindingLimits(offset, bindSize, limits, what);
     }
     bound(slot, kKind);
     stream_->push(Record{slot, h, offset, bindSize});

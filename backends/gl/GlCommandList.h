@@ -108,6 +108,7 @@ private:
     }
 
     GlDevice& dev_;
+    const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;
     uint64_t destroyEpoch_ = 0;  // the device's destroy count when this recording began
     bool inPass_ = false;

@@ -104,8 +104,9 @@ gdi::LiveObjects GlDevice::liveObjects() const {
 void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
                                         const void* user) {
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
-        const_cast<GlDevice*>(static_cast<const GlDevice*>(user))->errors_++;
-        std::cerr << "GL debug error: " << message << "\n";
+        auto* device = const_cast<GlDevice*>(static_cast<const GlDevice*>(user));
+        device->errors_++;
+        device->messages_.report("error", message ? message : "");
     }
 }
 
@@ -169,6 +170,11 @@ void GlDevice::initialize(bool validation) {
     gl_.Enable(GL_FRAMEBUFFER_SRGB);  // sRGB targets encode on write, as on Vulkan
     gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl_.Enable(GL_SCISSOR_TEST);
+    // Points: gl_PointSize is honoured (Vulkan always does), and gl_PointCoord's (0, 0) is the
+    // point's first row in memory, Vulkan's top left: with the lower-left clip origin above,
+    // memory row 0 is GL's window bottom, so the sprite origin is GL's lower left.
+    gl_.Enable(GL_PROGRAM_POINT_SIZE);
+    gl_.PointParameteri(GL_POINT_SPRITE_COORD_ORIGIN, GL_LOWER_LEFT);
     gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
 

@@ -21,6 +21,7 @@
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
+#include "fe/gdi/MessageLog.h"
 #include "gl/GlContextThread.h"
 #include "gl/GlFunctions.h"
 #include "gl/GlPlatform.h"
@@ -166,6 +167,7 @@ private:
     GlFunctions gl_;
     gdi::DeviceInfo info_;
     std::atomic<uint32_t> errors_{0};
+    gdi::MessageLog messages_{"GL debug"};  // each message once; repeats counted
     gdi::DeviceLoss loss_;
     uint32_t nativeObjects_ = 0;  // buffer and texture names created and not yet deleted
     // Storage for a buffer or texture: runs `call` and returns the GL error it raised, or

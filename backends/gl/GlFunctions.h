@@ -15,6 +15,7 @@ namespace fe::gl {
     X(PFNGLENABLEPROC, Enable)                                                                             \
     X(PFNGLDISABLEPROC, Disable)                                                                           \
     X(PFNGLENABLEIPROC, Enablei)                                                                           \
+    X(PFNGLPOINTPARAMETERIPROC, PointParameteri)                                                           \
     X(PFNGLDISABLEIPROC, Disablei)                                                                         \
     X(PFNGLCLIPCONTROLPROC, ClipControl)                                                                   \
     X(PFNGLDEBUGMESSAGECALLBACKPROC, DebugMessageCallback)                                                 \

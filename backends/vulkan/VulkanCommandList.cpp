@@ -39,7 +39,10 @@ VkAttachmentStoreOp toStore(gdi::StoreOp op) {
 }
 }  // namespace
 
-VulkanCommandList::VulkanCommandList(VulkanDevice& device) : dev_(device) {
+VulkanCommandList::VulkanCommandList(VulkanDevice& device)
+    : dev_(device),
+      uniformLimits_(gdi::validate::uniformBindingLimits(device.info().limits)),
+      storageLimits_(gdi::validate::storageBindingLimits(device.info().limits)) {
     addRecordingBuffer();
     pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
     destroyEpoch_ = dev_.destroyEpoch();
@@ -566,7 +569,8 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 template <VkDescriptorType kType>
 inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const Buffer* b = dev_.findBuffer(h);
-    const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size) : 0;
+    const gdi::validate::BindingLimits& limits = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? uniformLimits_ : storageLimits_;
+    const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
     // Another buffer than the last one bound is noted (for submit's liveness check) on the
     // checked path, so this one stays a leaf: no call, no saved registers.
     if (!bindSize || h.id != lastBuffer_) [[unlikely]]
@@ -579,8 +583,10 @@ void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uin
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = usedBuffer(h);
-    if (size == 0) size = b.desc.size - std::min(offset, b.desc.size);
+    const gdi::validate::BindingLimits& limits = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? uniformLimits_ : storageLimits_;
+    if (size == 0) size = std::min(b.desc.size - std::min(offset, b.desc.size), limits.maxRange);
     gdi::validate::bindingRange(b.desc, offset, size, what);
+    gdi::validate::bindingLimits(offset, size, limits, what);
     bindBuffer(slot, kType, b.buffer, offset, size);
 }
 

@@ -135,6 +135,7 @@ private:
     };
 
     VulkanDevice& dev_;
+    const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     struct RecordingBuffer {
         VkCommandPool pool = VK_NULL_HANDLE;
         VkCommandBuffer cb = VK_NULL_HANDLE;

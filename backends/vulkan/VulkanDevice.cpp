@@ -64,11 +64,13 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSe
                                                            VkDebugUtilsMessageTypeFlagsEXT,
                                                            const VkDebugUtilsMessengerCallbackDataEXT* data,
                                                            void* user) {
+    auto* device = static_cast<VulkanDevice*>(user);
+    const char* message = data && data->pMessage ? data->pMessage : "";
     if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
-        static_cast<VulkanDevice*>(user)->validationErrors_++;
-        std::cerr << "Vulkan validation error: " << (data && data->pMessage ? data->pMessage : "") << "\n";
+        device->validationErrors_++;
+        device->messages_.report("error", message);
     } else if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-        std::cerr << "Vulkan validation warning: " << (data && data->pMessage ? data->pMessage : "") << "\n";
+        device->messages_.report("warning", message);
     }
     return VK_FALSE;
 }

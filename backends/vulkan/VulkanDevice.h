@@ -27,6 +27,7 @@
 #include "fe/gdi/Device.h"
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/HandlePool.h"
+#include "fe/gdi/MessageLog.h"
 
 namespace fe::vk {
 
@@ -239,6 +240,7 @@ private:
         std::function<void()> release;
     };
     std::deque<Retired> retired_;
+    gdi::MessageLog messages_{"Vulkan validation"};  // each message once; repeats counted
     std::vector<SecondaryRecording> secondaries_;  // free, or pending until their fence
     // present() copies through the swap chain's own submissions, which no device fence covers:
     // the next destroy waits for the queue, as every destroy did before deferred release.

@@ -197,7 +197,9 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
                                 toCompare(f.compare), ds.stencilReadMask, ds.stencilWriteMask, ds.stencilReference};
     };
     VkPipelineDepthStencilStateCreateInfo dss{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    dss.depthTestEnable = ds.depthTest;
+    // depthWrite without depthTest writes every fragment's depth, as on GL (Device.h): Vulkan
+    // writes depth only with the test enabled, so the test runs and always passes.
+    dss.depthTestEnable = ds.depthTest || ds.depthWrite;
     dss.depthWriteEnable = ds.depthWrite;
     dss.depthCompareOp = ds.depthTest ? toCompare(ds.depthCompare) : VK_COMPARE_OP_ALWAYS;
     dss.stencilTestEnable = ds.stencilTest;

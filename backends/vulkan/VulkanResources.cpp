@@ -262,8 +262,10 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory", object);
         const VkImageViewType type = viewType(desc.dimension);
         const uint32_t layers = arrayLayers(desc);
-        // Multisampled images are only attachments (gdi does not sample them).
-        if (desc.sampleCount == 1) {
+        // Multisampled images are only attachments (gdi does not sample them); an image only
+        // copied to and from has no usage a view may have (VUID-VkImageViewCreateInfo-image-04441).
+        using U = gdi::TextureUsage;
+        if (desc.sampleCount == 1 && any(desc.usage, U::Sampled | U::Storage | U::RenderTarget)) {
             t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers}, object);
             // Storage images bind one mip, every layer, of the texture's kind (image2DArray,
             // imageCube, image3D...), as GL's layered image bindings do.
@@ -325,8 +327,11 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.anisotropyEnable = anisotropy_ && d.maxAnisotropy > 1.0f;
     ci.maxAnisotropy = std::min(d.maxAnisotropy, props_.limits.maxSamplerAnisotropy);
     ci.minLod = 0;
-    // MipFilter::None samples the base level only (GL's non-mipmap minification filters).
-    ci.maxLod = d.mipFilter == gdi::MipFilter::None ? 0.0f : VK_LOD_CLAMP_NONE;
+    // MipFilter::None samples the base level only, with minFilter when minifying, as GL's
+    // non-mipmap filters do. Clamping the level of detail to 0 would make every lookup a
+    // magnification (magFilter); 0.25 keeps minification visible while NEAREST mipmapping still
+    // rounds to level 0 (the Vulkan specification's own advice for this GL mode).
+    ci.maxLod = d.mipFilter == gdi::MipFilter::None ? 0.25f : VK_LOD_CLAMP_NONE;
     Sampler s;
     check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);

@@ -549,3 +549,27 @@ void pipelineFitsPass(const PassSignature& p, const PassSignature& pass, const c
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+BindingLimits uniformBindingLimits(const DeviceLimits& l) {
+    return {l.uniformBufferOffsetAlignment ? l.uniformBufferOffsetAlignment - 1u : 0u,
+            l.maxUniformBufferRange ? l.maxUniformBufferRange : ~uint64_t(0), "uniformBufferOffsetAlignment",
+            "maxUniformBufferRange"};
+}
+BindingLimits storageBindingLimits(const DeviceLimits& l) {
+    return {l.storageBufferOffsetAlignment ? l.storageBufferOffsetAlignment - 1u : 0u,
+            l.maxStorageBufferRange ? l.maxStorageBufferRange : ~uint64_t(0), "storageBufferOffsetAlignment",
+            "maxStorageBufferRange"};
+}
+
+void bindingLimits(uint64_t offset, uint64_t size, const BindingLimits& limits, const char* what) {
+    if (offset & limits.alignMask)
+        throw Error(std::string(what) + ": offset " + std::to_string(offset) + " is not a multiple of the device's " +
+                    limits.alignmentName + " (" + std::to_string(limits.alignMask + 1) + ")");
+    if (size > limits.maxRange)
+        throw Error(std::string(what) + ": " + std::to_string(size) + " bytes exceed the device's " + limits.rangeName + " (" +
+                    std::to_string(limits.maxRange) + ")");
+}
+
+}  // namespace fe::gdi::validate

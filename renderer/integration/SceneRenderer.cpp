@@ -179,8 +179,6 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
     debugViewFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)}));
     debugViewPipeline_ = objects_.add(device_.createGraphicsPipeline(
         {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
-         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                      {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "debug view"}));
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
     addFullscreenPass(g, "debug-view", source, view, debugViewPipeline_, pointSampler_, frameConstants_);
@@ -194,9 +192,6 @@ graph::TextureId SceneRenderer::declareLightCountView(graph::RenderGraph& g) {
         device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/debug_light_count.frag")}));
     debugViewPipeline_ = objects_.add(device_.createGraphicsPipeline(
         {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
-         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                      {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Fragment},
-                      {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "debug view light count"}));
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
     g.addPass("debug-view", [&](graph::PassBuilder& b) {

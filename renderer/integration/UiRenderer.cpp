@@ -44,8 +44,6 @@ UiRenderer::UiRenderer(gdi::Device& device, gdi::Format targetFormat)
                     .srcAlpha = gdi::BlendFactor::One,
                     .dstAlpha = gdi::BlendFactor::OneMinusSrcAlpha}},
          .colorFormats = {targetFormat},
-         .bindings = {{kSlotUi, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Vertex},
-                      {kSlotAtlas, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "ui"}));
     io.Fonts->SetTexID(textureId(font_));  // last: should anything above throw, ImGui names no freed texture
 }

@@ -6,8 +6,7 @@
 namespace fe::render {
 
 DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), objects_(c.device) {
-    volumes_ = std::make_unique<LightVolumes>(c.device, "scene/deferred_light.frag", std::vector{kRadianceFormat},
-                                              GBuffer::slots(true));
+    volumes_ = std::make_unique<LightVolumes>(c.device, "scene/deferred_light.frag", std::vector{kRadianceFormat});
     emissiveFs_ = objects_.add(
         c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")}));
     emissive_ = objects_.add(c.device.createGraphicsPipeline({
@@ -15,13 +14,11 @@ DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), 
         .blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                    .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::One}},
         .colorFormats = {kRadianceFormat},
-        .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                     {kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
         .debugName = "emissive"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
                                                            "scene/deferred_light_shadowed_cube.frag",
-                                                           std::vector{kRadianceFormat}, GBuffer::slots(true));
+                                                           std::vector{kRadianceFormat});
     if (c.settings.ibl()) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 

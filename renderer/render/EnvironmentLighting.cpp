@@ -10,15 +10,11 @@ EnvironmentLighting::EnvironmentLighting(TechniqueContext& c, const char* fragme
     : objects_(c.device), ctx_(c), albedo_(albedo) {
     const std::string shader = c.environmentLight.shader(fragmentShader);
     fs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)}));
-    std::vector<gdi::BindingSlot> b = GBuffer::slots(albedo);
-    b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-    c.environmentLight.addBindings(b);
     const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                                     .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
     pipeline_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = fs_,
                                                               .blend = std::vector<gdi::BlendTargetState>(formats.size(), add),
-                                                              .colorFormats = formats, .bindings = b,
-                                                              .debugName = fragmentShader}));
+                                                              .colorFormats = formats, .debugName = fragmentShader}));
 }
 
 void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer,

@@ -15,13 +15,6 @@ constexpr double kPi = 3.14159265358979323846;
 glm::vec4 v4(const glm::dvec3& v) { return glm::vec4(glm::vec3(v), 0.0f); }
 }  // namespace
 
-void EnvironmentLight::addBindings(std::vector<gdi::BindingSlot>& b) const {
-    b.push_back({kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    if (!prefiltered()) return;
-    b.push_back({kSlotIblSh, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment});
-    b.push_back({kSlotIblLut, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-}
-
 void EnvironmentLight::bind(gdi::CommandList& cmd) const {
     cmd.setTexture(kSlotEnvironment, cube, sampler);
     if (!prefiltered()) return;
@@ -53,11 +46,9 @@ EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e
     const bool image = e.kind == assets::Environment::Kind::Image;
     const gdi::ShaderHandle fs = temporary.add(device.createShader(
         {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(image ? "scene/env_equirect.frag" : "scene/env_sky.frag")}));
-    std::vector<gdi::BindingSlot> bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment}};
     gdi::TextureHandle source;
     gdi::SamplerHandle sourceSampler;
     if (image) {
-        bindings.push_back({kSlotEnvironmentSource, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
         source = temporary.add(device.createTexture({.format = gdi::Format::RGBA32F, .width = e.width, .height = e.height,
                                                      .debugName = "environment equirect"}));
         std::vector<float> rgba(size_t(e.width) * e.height * 4, 1.0f);
@@ -68,8 +59,7 @@ EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e
             {.addressU = gdi::AddressMode::Repeat, .addressV = gdi::AddressMode::ClampToEdge, .debugName = "environment equirect"}));
     }
     const gdi::PipelineHandle faces = temporary.add(device.createGraphicsPipeline(
-        {.vertexShader = fullscreenVs, .fragmentShader = fs, .colorFormats = {kFormat}, .bindings = bindings,
-         .debugName = "environment faces"}));
+        {.vertexShader = fullscreenVs, .fragmentShader = fs, .colorFormats = {kFormat}, .debugName = "environment faces"}));
     const assets::SkyModel& sky = e.sky;
     std::vector<Params> params(6);
     for (uint32_t f = 0; f < 6; ++f)
@@ -108,8 +98,6 @@ EnvironmentMap::EnvironmentMap(gdi::Device& device, const assets::Environment& e
         {.vertexShader = backgroundVs_, .fragmentShader = backgroundFs_,
          .depthStencil = {.depthTest = true, .depthWrite = false, .depthCompare = gdi::CompareOp::LessOrEqual},
          .colorFormats = {kRadianceFormat}, .depthFormat = kSceneDepthFormat,
-         .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                      {kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "background"}));
 }
 

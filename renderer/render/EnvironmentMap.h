@@ -25,8 +25,7 @@ struct EnvironmentLight {
     gdi::BufferHandle sh;    // the fast path only
     explicit operator bool() const { return bool(cube); }
     bool prefiltered() const { return bool(lut); }
-    // The slots bind() fills: the cube at kSlotEnvironment, on the fast path also the table and SH.
-    void addBindings(std::vector<gdi::BindingSlot>& bindings) const;
+    // Binds the cube at kSlotEnvironment, on the fast path also the table and SH.
     void bind(gdi::CommandList& cmd) const;
     // The shader for this path: "scene/x.frag" or, on the fast path, "scene/x_prefiltered.frag".
     std::string shader(const std::string& sampled) const;

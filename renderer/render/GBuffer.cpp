@@ -35,21 +35,4 @@ void GBuffer::sampleIn(graph::PassBuilder& b, bool albedo) const {
     for (auto t : {gb1, gb2, depth}) b.sample(t);
 }
 
-std::vector<gdi::BindingSlot> GBuffer::slots(bool albedo) {
-    std::vector<gdi::BindingSlot> s;
-    if (albedo) s.push_back({kSlotGBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    s.push_back({kSlotGBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    s.push_back({kSlotGBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    s.push_back({kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    return s;
-}
-
-std::vector<gdi::BindingSlot> GBuffer::computeSlots(bool albedo) {
-    std::vector<gdi::BindingSlot> s = slots(albedo);
-    for (auto& slot : s) slot.stages = gdi::ShaderStage::Compute;
-    s.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute});
-    s.push_back({kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute});
-    return s;
-}
-
 }  // namespace fe::render

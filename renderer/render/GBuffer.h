@@ -1,8 +1,6 @@
 // Layer 7: the G-buffer the deferred techniques share: base colour + metallic, world normal +
 // roughness, emissive + unlit flag, and the scene depth, written by one geometry pass.
 #pragma once
-#include <vector>
-
 #include "render/TechniqueRenderer.h"
 
 namespace fe::render {
@@ -17,10 +15,6 @@ struct GBuffer {
     // Binds the G-buffer (base colour only when `albedo`) and depth at their shader slots.
     void bind(gdi::CommandList& cmd, const graph::PassContext& pc, gdi::SamplerHandle sampler, bool albedo) const;
     void sampleIn(graph::PassBuilder& b, bool albedo) const;
-    // The binding slots bind() fills, for pipelines that read the G-buffer.
-    static std::vector<gdi::BindingSlot> slots(bool albedo);
-    // The same for the tiled compute passes, with the frame constants and the lights they cull.
-    static std::vector<gdi::BindingSlot> computeSlots(bool albedo);
 };
 
 }  // namespace fe::render

@@ -14,20 +14,6 @@ constexpr float kShadowSlopeBias = 2.0f;
 constexpr float kShadowConstantBias = 4.0f;
 }  // namespace
 
-std::vector<gdi::BindingSlot> meshPassBindings() {
-    using gdi::BindingType;
-    using gdi::ShaderStage;
-    return {
-        {kSlotFrame, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-        {kSlotObject, BindingType::UniformBuffer, ShaderStage::AllGraphics},
-        {kSlotLights, BindingType::StorageBuffer, ShaderStage::Fragment},
-        {kSlotBaseColor, BindingType::SampledTexture, ShaderStage::Fragment},
-        {kSlotMetalRough, BindingType::SampledTexture, ShaderStage::Fragment},
-        {kSlotNormalMap, BindingType::SampledTexture, ShaderStage::Fragment},
-        {kSlotEmissive, BindingType::SampledTexture, ShaderStage::Fragment},
-    };
-}
-
 GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : objects_(device), device_(device), scene_(scene) {
     vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
     auto fragment = [&](const char* name) {
@@ -103,7 +89,6 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .depthStencil = {.depthTest = true, .depthWrite = st.depthWrite, .depthCompare = st.compare},
         .colorFormats = targets.colorFormats,
         .depthFormat = targets.depthFormat,
-        .bindings = meshPassBindings(),
         .debugName = st.name,
     };
     if (pass == MeshPass::Transparent)
@@ -120,16 +105,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         d.raster.depthBiasSlope = kShadowSlopeBias;
         d.raster.depthBiasConstant = kShadowConstantBias;
     }
-    if (pass == MeshPass::ForwardShadowed || pass == MeshPass::ForwardShadowedCube) {
-        d.bindings.push_back({kSlotShadow, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment});
-        d.bindings.push_back({kSlotShadowMap, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    }
     if (pass == MeshPass::ForwardAdditive || pass == MeshPass::ForwardShadowed || pass == MeshPass::ForwardShadowedCube)
         d.blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                     .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
-    if (pass == MeshPass::LightPrepassMaterial)
-        d.bindings.push_back({kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
-    if (ibl) environment_.addBindings(d.bindings);
     if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = objects_.add(device_.createGraphicsPipeline(d));

@@ -69,7 +69,4 @@ private:
     EnvironmentLight environment_;
 };
 
-// Binding layout of mesh passes (fe_material.glsl).
-std::vector<gdi::BindingSlot> meshPassBindings();
-
 }  // namespace fe::render

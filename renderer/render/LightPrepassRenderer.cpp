@@ -5,17 +5,13 @@
 namespace fe::render {
 
 LightPrepassRenderer::LightPrepassRenderer(TechniqueContext& c, bool packed) : TechniqueRenderer(c), packed_(packed) {
-    volumes_ = std::make_unique<LightVolumes>(
-        c.device, packed ? "scene/lpp_light.frag" : "scene/lpp_light_unpacked.frag", std::vector{kLightBuffer},
-        std::vector<gdi::BindingSlot>{{kSlotGBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                                      {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}});
+    volumes_ = std::make_unique<LightVolumes>(c.device, packed ? "scene/lpp_light.frag" : "scene/lpp_light_unpacked.frag",
+                                              std::vector{kLightBuffer});
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(
             c, packed ? "scene/lpp_light_shadowed.frag" : "scene/lpp_light_unpacked_shadowed.frag",
             packed ? "scene/lpp_light_shadowed_cube.frag" : "scene/lpp_light_unpacked_shadowed_cube.frag",
-            std::vector{kLightBuffer},
-            std::vector<gdi::BindingSlot>{{kSlotGBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                                          {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}});
+            std::vector{kLightBuffer});
 }
 
 LightPrepassRenderer::~LightPrepassRenderer() = default;

@@ -97,8 +97,7 @@ LightVolumes::Counts LightVolumes::classify(const std::vector<assets::Light>& li
     return c;
 }
 
-LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets,
-                           std::vector<gdi::BindingSlot> fragmentBindings)
+LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets)
     : objects_(device) {
     std::vector<glm::vec3> verts = {{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}};  // full-screen triangle
     sphereFirst_ = uint32_t(verts.size());
@@ -115,11 +114,6 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
 
     vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")}));
     fs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
-    std::vector<gdi::BindingSlot> bindings = {
-        {kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-        {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::AllGraphics},
-    };
-    bindings.insert(bindings.end(), fragmentBindings.begin(), fragmentBindings.end());
     std::vector<gdi::BlendTargetState> blend(targets.size(), gdi::BlendTargetState{
                                                                  .enable = true,
                                                                  .srcColor = gdi::BlendFactor::One,
@@ -137,7 +131,6 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
         .raster = {.cullMode = gdi::CullMode::Front},
         .blend = blend,
         .colorFormats = targets,
-        .bindings = bindings,
         .debugName = "light volumes",
     };
     volumePipeline_ = objects_.add(device.createGraphicsPipeline(d));

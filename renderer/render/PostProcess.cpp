@@ -24,29 +24,20 @@ PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings, gd
     point.minFilter = point.magFilter = gdi::Filter::Nearest;
     pointSampler_ = objects_.add(device.createSampler(point));
     linearSampler_ = objects_.add(device.createSampler(clamp));
-    const std::vector<gdi::BindingSlot> bindings = {
-        {kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-        {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}};
     auto fragment = [&](const char* name) {
         return objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
     tonemapFs_ = fragment(tonemapShader(settings.tonemap));
     tonemapPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = tonemapFs_,
-                                                                   .colorFormats = {kDisplayFormat}, .bindings = bindings,
-                                                                   .debugName = "tonemap"}));
+                                                                   .colorFormats = {kDisplayFormat}, .debugName = "tonemap"}));
     if (settings.antiAliasing == AntiAliasing::Taa) {
         taaFs_ = fragment("scene/taa_resolve.frag");
         taaPipeline_ = objects_.add(device.createGraphicsPipeline(
             {.vertexShader = fullscreenVs, .fragmentShader = taaFs_, .colorFormats = {gdi::Format::RGBA32F},
-             .bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                          {kSlotTaa, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
-                          {kSlotRadiance, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                          {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                          {kSlotHistory0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
              .debugName = "taa resolve"}));
         copyFs_ = fragment("scene/copy.frag");
         copyPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = copyFs_,
-                                                                    .colorFormats = {gdi::Format::RGBA32F}, .bindings = bindings,
+                                                                    .colorFormats = {gdi::Format::RGBA32F},
                                                                     .debugName = "taa keep"}));
         history_ = objects_.add(device.createTexture({.format = gdi::Format::RGBA32F, .width = settings.width,
                                                       .height = settings.height,
@@ -56,8 +47,7 @@ PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings, gd
     if (settings.antiAliasing == AntiAliasing::Fxaa) {
         fxaaFs_ = fragment("scene/fxaa.frag");
         fxaaPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs, .fragmentShader = fxaaFs_,
-                                                                    .colorFormats = {kDisplayFormat}, .bindings = bindings,
-                                                                    .debugName = "fxaa"}));
+                                                                    .colorFormats = {kDisplayFormat}, .debugName = "fxaa"}));
     }
 }
 

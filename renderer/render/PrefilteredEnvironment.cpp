@@ -105,12 +105,9 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
     const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag"), lutFs = shader("scene/ibl_lut.frag");
     const gdi::PipelineHandle prefilter = temporary.add(device.createGraphicsPipeline(
         {.vertexShader = fullscreenVs, .fragmentShader = prefilterFs, .colorFormats = {kPrefilteredFormat},
-         .bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
-                      {kSlotEnvironment, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "prefilter environment"}));
     const gdi::PipelineHandle table = temporary.add(device.createGraphicsPipeline(
         {.vertexShader = fullscreenVs, .fragmentShader = lutFs, .colorFormats = {kLutFormat},
-         .bindings = {{kSlotObject, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment}},
          .debugName = "split-sum table"}));
     auto cmd = device.createCommandList();
     for (uint32_t level = 0; level < kLevels; ++level)

@@ -26,27 +26,20 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
                                              : "tiled_illumination";
         culling_ = std::make_unique<TileLightCulling>(c);
         illuminationCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = culling_->shader(shader)}));
-        std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(false);
-        b.push_back(TileLightCulling::listSlot());
-        culling_->useLightBinding(b);
-        for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
-            b.push_back({slot, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
-        illumination_ = objects_.add(c.device.createComputePipeline({.computeShader = illuminationCs_, .bindings = b,
-                                                                     .debugName = "tiled illumination"}));
+        illumination_ = objects_.add(
+            c.device.createComputePipeline({.computeShader = illuminationCs_, .debugName = "tiled illumination"}));
     } else {
         // The volume pass writes the three sums as one multiple-render-target draw, so they
         // must have one size.
         if (s.illumSplit)
             throw gdi::Error("--illum-split needs technique redeferred-tiled (redeferred draws all I-buffer sums at one size)");
-        volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2},
-                                                  GBuffer::slots(false));
+        volumes_ = std::make_unique<LightVolumes>(c.device, "scene/illumination.frag", std::vector{kI0, kI1, kI2});
     }
     if (c.shadows) {
         if (s.illumSplit)
             throw gdi::Error("--illum-split does not take shadows yet (its I-buffer sums differ in size)");
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/illumination_shadowed.frag",
-                                                           "scene/illumination_shadowed_cube.frag", std::vector{kI0, kI1, kI2},
-                                                           GBuffer::slots(false));
+                                                           "scene/illumination_shadowed_cube.frag", std::vector{kI0, kI1, kI2});
     }
     if (s.ibl()) {
         if (s.illumSplit)
@@ -69,15 +62,11 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
     if (perSource_) {
         upsampleFs_ = objects_.add(
             c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/ibuffer_upsample.frag")}));
-        std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
-        b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-        for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
-            b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
         const gdi::BlendTargetState add{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
                                         .srcAlpha = gdi::BlendFactor::Zero, .dstAlpha = gdi::BlendFactor::One};
         upsample_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = upsampleFs_,
                                                                   .blend = {add, add, add}, .colorFormats = {kI0, kI1, kI2},
-                                                                  .bindings = b, .debugName = "I-buffer upsample"}));
+                                                                  .debugName = "I-buffer upsample"}));
     }
     // One material shader per path (fe_material_pass.glsl says why). Per-source rates resolve the
     // full-rate I-buffer the reduced ones were added into.
@@ -87,13 +76,8 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
                            : tiled        ? "scene/material_upsample_tiled.frag"
                                           : "scene/material_upsample.frag";
     materialFs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(material)}));
-    std::vector<gdi::BindingSlot> b = GBuffer::slots(true);
-    b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-    for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2})
-        b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
     material_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = materialFs_,
-                                                              .colorFormats = {kRadianceFormat}, .bindings = b,
-                                                              .debugName = "material"}));
+                                                              .colorFormats = {kRadianceFormat}, .debugName = "material"}));
 }
 
 RedeferredRenderer::IBuffer RedeferredRenderer::createIBuffer(graph::RenderGraph& g, uint32_t rate) const {

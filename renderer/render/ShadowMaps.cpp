@@ -25,11 +25,6 @@ ShadowMaps::ShadowMaps(gdi::Device& device, CommandQueue& queue, GeometryRendere
     lightPositions_.resize(plan.shadowed.size());
 }
 
-std::vector<gdi::BindingSlot> ShadowMaps::slots() {
-    return {{kSlotShadow, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Fragment},
-            {kSlotShadowMap, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}};
-}
-
 void ShadowMaps::update(const assets::Camera& camera, float aspect, const assets::AABB& bounds,
                         const std::vector<assets::Light>& sceneLights) {
     objectConstants_.clear();

@@ -51,8 +51,6 @@ public:
     void declare(graph::RenderGraph& g, const Accumulate& accumulate);
     // Binds a shadowed light's constants and map (kSlotShadow, kSlotShadowMap).
     void bind(gdi::CommandList& cmd, const graph::PassContext& pc, const Light& light) const;
-    // The binding slots bind() fills, for the accumulation pipelines.
-    static std::vector<gdi::BindingSlot> slots();
 
 private:
     gdi::DeviceObjects objects_;

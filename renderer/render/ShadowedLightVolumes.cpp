@@ -5,18 +5,16 @@
 namespace fe::render {
 
 ShadowedLightVolumes::ShadowedLightVolumes(TechniqueContext& c, const char* shader, const char* cubeShader,
-                                           std::vector<gdi::Format> targets, std::vector<gdi::BindingSlot> inputs)
+                                           std::vector<gdi::Format> targets)
     : ctx_(c) {
     if (!c.shadows) return;
-    std::vector<gdi::BindingSlot> b = inputs;
-    for (const gdi::BindingSlot& s : ShadowMaps::slots()) b.push_back(s);
     // Only the shaders some shadowed light needs.
     const auto& lights = c.shadows->plan().shadowed;
     auto has = [&](bool cube) {
         return std::any_of(lights.begin(), lights.end(), [&](const ShadowedLight& l) { return (l.kind == ShadowKind::Cube) == cube; });
     };
-    if (has(false)) volumes_ = std::make_unique<LightVolumes>(c.device, shader, targets, b);
-    if (has(true)) cubeVolumes_ = std::make_unique<LightVolumes>(c.device, cubeShader, targets, b);
+    if (has(false)) volumes_ = std::make_unique<LightVolumes>(c.device, shader, targets);
+    if (has(true)) cubeVolumes_ = std::make_unique<LightVolumes>(c.device, cubeShader, targets);
 }
 
 ShadowedLightVolumes::~ShadowedLightVolumes() = default;

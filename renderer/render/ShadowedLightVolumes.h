@@ -14,12 +14,12 @@ namespace fe::render {
 class ShadowedLightVolumes {
 public:
     // `shader`: the variant for cascades and spot maps; `cubeShader`: for point lights' cubes.
-    // `inputs`: what the shaders sample besides the shadow map (bound by declare's `bindInputs`).
     ShadowedLightVolumes(TechniqueContext& context, const char* shader, const char* cubeShader,
-                         std::vector<gdi::Format> targets, std::vector<gdi::BindingSlot> inputs);
+                         std::vector<gdi::Format> targets);
     ~ShadowedLightVolumes();
     // `setup` declares the pass's inputs and its targets (loaded: the light adds to them).
-    // `frame`: the passes' frame constants (default: the frame's own).
+    // `bindInputs` binds what the shaders sample besides the shadow map. `frame`: the passes'
+    // frame constants (default: the frame's own).
     void declare(graph::RenderGraph& g, const std::function<void(graph::PassBuilder&)>& setup,
                  std::function<void(graph::PassContext&)> bindInputs, FrameConstantsFn frame = {});
 

@@ -38,18 +38,11 @@ TemporalAccumulation::TemporalAccumulation(TechniqueContext& c) : objects_(c.dev
     };
     resolveFs_ = fragment("scene/temporal_resolve.frag");
     keepFs_ = fragment("scene/temporal_keep.frag");
-    std::vector<gdi::BindingSlot> b = GBuffer::slots(false);
-    b.push_back({kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::AllGraphics});
-    for (uint32_t slot : {kSlotIBuffer0, kSlotIBuffer1, kSlotIBuffer2, kSlotHistory0, kSlotHistory1, kSlotHistory2})
-        b.push_back({slot, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment});
     resolve_ = objects_.add(c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs, .fragmentShader = resolveFs_,
-                                                             .colorFormats = {kFormat, kFormat, kFormat}, .bindings = b,
+                                                             .colorFormats = {kFormat, kFormat, kFormat},
                                                              .debugName = "temporal resolve"}));
     keep_ = objects_.add(c.device.createGraphicsPipeline(
         {.vertexShader = c.fullscreenVs, .fragmentShader = keepFs_, .colorFormats = {kFormat, kFormat, kFormat},
-         .bindings = {{kSlotIBuffer0, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                      {kSlotIBuffer1, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment},
-                      {kSlotIBuffer2, gdi::BindingType::SampledTexture, gdi::ShaderStage::Fragment}},
          .debugName = "temporal keep"}));
 }
 

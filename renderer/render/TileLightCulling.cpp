@@ -13,21 +13,11 @@ TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ct
     uniformLights_ = c.scene.lightCount() <= GpuScene::kUniformLights &&
                      c.device.info().limits.maxUniformBufferRange >= GpuScene::kUniformLightBytes;
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
-    std::vector<gdi::BindingSlot> bindings = {{kSlotFrame, gdi::BindingType::UniformBuffer, gdi::ShaderStage::Compute},
-                                              {kSlotLights, gdi::BindingType::StorageBuffer, gdi::ShaderStage::Compute},
-                                              {kSlotDepth, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute},
-                                              {kSlotTileLightsOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute}};
-    useLightBinding(bindings);
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .bindings = bindings, .debugName = "light culling"}));
+    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
 }
 
 const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const {
     return shaders::find("scene/" + name + ".comp" + (uniformLights_ ? "" : ":FE_LIGHTS_IN_STORAGE"));
-}
-
-void TileLightCulling::useLightBinding(std::vector<gdi::BindingSlot>& slots) const {
-    for (gdi::BindingSlot& s : slots)
-        if (s.slot == kSlotLights) s.type = uniformLights_ ? gdi::BindingType::UniformBuffer : gdi::BindingType::StorageBuffer;
 }
 
 void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
@@ -43,10 +33,6 @@ void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHa
         throw gdi::Error("tiled light culling: " + std::to_string(ctx_.scene.lightCount()) + " lights where it was made for at most " +
                          std::to_string(GpuScene::kUniformLights));
     cmd.setUniformBuffer(kSlotLights, ctx_.scene.lightBuffer(), 0, GpuScene::kUniformLightBytes);
-}
-
-gdi::BindingSlot TileLightCulling::listSlot() {
-    return {kSlotTileLights, gdi::BindingType::SampledTexture, gdi::ShaderStage::Compute};
 }
 
 graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {

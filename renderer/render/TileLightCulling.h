@@ -18,8 +18,7 @@ public:
 
     // Declares the list texture and the "light-culling" pass reading `depth`.
     graph::TextureId declare(graph::RenderGraph& g, graph::TextureId depth);
-    // The binding the shading pipelines add for the lists, and binding them in a pass.
-    static gdi::BindingSlot listSlot();
+    // Binds the lists for a shading pass.
     void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const;
 
     // The passes that walk the lists (this one and the shading passes) read the lights from a
@@ -27,8 +26,6 @@ public:
     // binds 64 KiB, else from the storage buffer with their FE_LIGHTS_IN_STORAGE variant.
     // Such a pass's shader (scene/NAME.comp), in the variant for this scene's lights.
     const gdi::ShaderBinary& shader(const std::string& name) const;
-    // Its pipeline's light binding: rewrites the kSlotLights entry of `slots`.
-    void useLightBinding(std::vector<gdi::BindingSlot>& slots) const;
     // Binds the frame constants and the lights for such a pass's pipeline.
     void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
 

@@ -12,17 +12,11 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c) : TechniqueRen
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                               .binary = culling_ ? culling_->shader("tiled_deferred")
                                                                  : shaders::find("scene/tiled_deferred_onepass.comp")}));
-    std::vector<gdi::BindingSlot> b = GBuffer::computeSlots(true);
-    if (culling_) {
-        b.push_back(TileLightCulling::listSlot());
-        culling_->useLightBinding(b);
-    }
-    b.push_back({kSlotRadianceOut, gdi::BindingType::StorageTexture, gdi::ShaderStage::Compute});
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .bindings = b, .debugName = "tiled lighting"}));
+    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "tiled lighting"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(c, "scene/deferred_light_shadowed.frag",
                                                            "scene/deferred_light_shadowed_cube.frag",
-                                                           std::vector{kRadianceFormat}, GBuffer::slots(true));
+                                                           std::vector{kRadianceFormat});
     if (c.settings.ibl()) ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag", std::vector{kRadianceFormat}, true);
 }
 

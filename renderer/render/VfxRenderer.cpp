@@ -80,29 +80,13 @@ VfxRenderer::VfxRenderer(TechniqueContext& ctx, const std::vector<assets::Partic
     vs_ = shader(gdi::ShaderStage::Vertex, "scene/particles.vert");
     additiveFs_ = shader(gdi::ShaderStage::Fragment, "scene/particles_additive.frag");
     alphaFs_ = shader(gdi::ShaderStage::Fragment, "scene/particles_alpha.frag");
-    using B = gdi::BindingType;
-    simulate_ = objects_.add(d.createComputePipeline({.computeShader = simulateCs_,
-                                                      .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotLights, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotSim, B::UniformBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotEmitters, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotAdditive, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                                   {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
-                                                      .debugName = "particles simulate"}));
-    sort_ = objects_.add(d.createComputePipeline({.computeShader = sortCs_,
-                                                  .bindings = {{kSlotAlpha, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                               {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Compute},
-                                                               {kSlotArgs, B::StorageBuffer, gdi::ShaderStage::Compute}},
-                                                  .debugName = "particles sort"}));
+    simulate_ = objects_.add(d.createComputePipeline({.computeShader = simulateCs_, .debugName = "particles simulate"}));
+    sort_ = objects_.add(d.createComputePipeline({.computeShader = sortCs_, .debugName = "particles sort"}));
     const auto draw = [&](gdi::ShaderHandle fs, gdi::BlendTargetState blend, const char* name) {
         return objects_.add(d.createGraphicsPipeline({.vertexShader = vs_,
                                                       .fragmentShader = fs,
                                                       .blend = {blend},
                                                       .colorFormats = {kRadianceFormat},
-                                                      .bindings = {{kSlotFrame, B::UniformBuffer, gdi::ShaderStage::AllGraphics},
-                                                                   {kSlotSorted, B::StorageBuffer, gdi::ShaderStage::Vertex},
-                                                                   {kSlotDepth, B::SampledTexture, gdi::ShaderStage::Fragment}},
                                                       .debugName = name}));
     };
     // Additive: emitted light adds to L_o (alpha untouched); alpha: source-over.

@@ -1,11 +1,15 @@
 // Included by every shader: hides the few differences between Vulkan and OpenGL SPIR-V.
 #ifndef FE_COMMON_GLSL
 #define FE_COMMON_GLSL
+// FE_VERTEX_ID counts from firstVertex (plus baseVertex), FE_INSTANCE_ID from firstInstance,
+// on both: GL's gl_InstanceID starts at 0 whatever the base instance, so the base is added
+// (ARB_shader_draw_parameters, SPIR-V DrawParameters).
 #if defined(FE_VULKAN)
 #define FE_VERTEX_ID gl_VertexIndex
-#define FE_INSTANCE_ID gl_InstanceIndex  // draws use firstInstance 0, where the two agree
+#define FE_INSTANCE_ID gl_InstanceIndex
 #else
+#extension GL_ARB_shader_draw_parameters : enable
 #define FE_VERTEX_ID gl_VertexID
-#define FE_INSTANCE_ID gl_InstanceID
+#define FE_INSTANCE_ID (gl_InstanceID + gl_BaseInstanceARB)
 #endif
 #endif

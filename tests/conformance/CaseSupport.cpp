@@ -50,14 +50,14 @@ FullscreenSampler::FullscreenSampler(Device& d, const char* fragmentShader, cons
     sampler = objects.add(d.createSampler(samplerDesc));
 }
 
-Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, std::array<float, 4> a) {
+Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, std::array<float, 4> a, std::array<float, 4> b) {
     DeviceObjects drawing(d);
     PipelineHandle p = drawing.add(d.createGraphicsPipeline(
         {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {target},
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                       {1, BindingType::SampledTexture, ShaderStage::Fragment}},
          .debugName = fragment.c_str()}));
-    const std::array<float, 8> params = {a[0], a[1], a[2], a[3], 0, 0, 0, 0};
+    const std::array<float, 8> params = {a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]};
     BufferHandle ubo = drawing.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
     TextureHandle t = drawing.add(d.createTexture({.format = target, .width = kCaseSize, .height = kCaseSize,
                                                    .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));

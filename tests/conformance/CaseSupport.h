@@ -38,7 +38,8 @@ struct FullscreenSampler {
     FullscreenSampler(gdi::Device& d, const char* fragmentShader, const gdi::SamplerDesc& samplerDesc = {
         .minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest, .addressU = gdi::AddressMode::ClampToEdge,
         .addressV = gdi::AddressMode::ClampToEdge, .addressW = gdi::AddressMode::ClampToEdge});
-    gdi::Image draw(gdi::Device& d, gdi::TextureHandle texture, gdi::Format target, std::array<float, 4> a = {});
+    gdi::Image draw(gdi::Device& d, gdi::TextureHandle texture, gdi::Format target, std::array<float, 4> a = {},
+                    std::array<float, 4> b = {});
 };
 
 }  // namespace fe::conformance

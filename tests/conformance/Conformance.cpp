@@ -232,6 +232,7 @@ std::vector<Case> drawCases();     // DrawCases.cpp
 std::vector<Case> textureCases();  // TextureCases.cpp
 std::vector<Case> stateCases();    // StateCases.cpp
 std::vector<Case> executionCases();  // ExecutionCases.cpp
+std::vector<Case> fixedFunctionCases();  // FixedFunctionCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -242,7 +243,7 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases, executionCases})
+        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

@@ -41,10 +41,6 @@ std::vector<Vertex3> quad(float x0, float x1, float y0, float y1, float z0, floa
     return {v(x0, y0, z0), v(x1, y0, z1), v(x0, y1, z0), v(x0, y1, z0), v(x1, y0, z1), v(x1, y1, z1)};
 }
 
-Image asDepth(Image img) {  // D32F readback compared as depth values
-    img.format = Format::D32F;
-    return img;
-}
 
 // --- Multisampling ------------------------------------------------------------------------------
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fe/gdi/CommandStream.h"
+#include "fe/gdi/MessageLog.h"
 
 using namespace fe::gdi;
 
@@ -95,4 +96,26 @@ TEST(CommandStream, AdoptsSecondaryStreams) {
     ASSERT_EQ(back.size(), 1u);
     EXPECT_EQ(back[0].get(), adopted);
     EXPECT_THROW(primary.child(0), std::out_of_range);
+}
+
+// Validation messages: each distinct one printed once, every report counted.
+TEST(MessageLog, PrintsEachMessageOnceAndCountsRepeats) {
+    fe::gdi::MessageLog log("test");
+    ::testing::internal::CaptureStderr();
+    for (int i = 0; i < 60; ++i) log.report("error", "the same mistake every frame");
+    log.report("warning", "the same mistake every frame");
+    log.report("error", "another one");
+    const std::string printed = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(log.count("error", "the same mistake every frame"), 60u);
+    EXPECT_EQ(log.count("warning", "the same mistake every frame"), 1u);
+    EXPECT_EQ(log.distinct(), 3u);
+    size_t lines = 0;
+    for (char c : printed) lines += c == '\n';
+    EXPECT_EQ(lines, 3u) << printed;
+    ::testing::internal::CaptureStderr();
+    log.printRepeats();
+    const std::string repeats = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(repeats.find("test message repeated 60 times in all: error: the same mistake every frame"), std::string::npos)
+        << repeats;
+    EXPECT_EQ(repeats.find("another one"), std::string::npos);
 }

@@ -114,12 +114,24 @@ inline void bindingRange(const BufferDesc& d, uint64_t offset, uint64_t size, co
 // The per-object fast path's test, shared by the backends: slot below 64 and a non-empty range
 // inside a buffer of bufferSize bytes (size 0: to the end). Returns the size to bind, or 0 when
 // the arguments need the checked path (which gives the error, if any).
-inline uint64_t plainBindingSize(uint32_t slot, uint64_t bufferSize, uint64_t offset, uint64_t size) {
-    if (slot >= 64 || offset >= bufferSize) return 0;
+// `limits` is the device's rule for the binding's kind: the offset a multiple of its alignment
+// and the range at most its maximum; size 0 binds to the end, at most that maximum.
+struct BindingLimits {
+    uint64_t alignMask = 0;     // offset alignment - 1 (alignments are powers of two)
+    uint64_t maxRange = ~uint64_t(0);
+    const char* alignmentName = "";  // for messages: "uniformBufferOffsetAlignment"
+    const char* rangeName = "";
+};
+BindingLimits uniformBindingLimits(const DeviceLimits& l);
+BindingLimits storageBindingLimits(const DeviceLimits& l);
+inline uint64_t plainBindingSize(uint32_t slot, uint64_t bufferSize, uint64_t offset, uint64_t size, const BindingLimits& limits) {
+    if (slot >= 64 || offset >= bufferSize || (offset & limits.alignMask)) return 0;
     const uint64_t rest = bufferSize - offset;
-    if (size == 0) return rest;
-    return size <= rest ? size : 0;
+    if (size == 0) return rest < limits.maxRange ? rest : limits.maxRange;
+    return size <= rest && size <= limits.maxRange ? size : 0;
 }
+// The checked path's rules (after bindingRange): alignment and maximum range, or throws.
+void bindingLimits(uint64_t offset, uint64_t size, const BindingLimits& limits, const char* what);
 
 // Bit set of slots a pipeline declares; draw/dispatch checks every declared slot is bound.
 uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings);
