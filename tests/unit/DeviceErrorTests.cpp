@@ -432,4 +432,30 @@ TEST_P(DeviceErrors, PipelinesAreCheckedAgainstTheirShaders) {
     for (auto sh : {uboVs, uboFs, uintVs, valueFs}) d.destroy(sh);
 }
 
+// Binding ranges follow the device's rules before any native call: offsets a multiple of the
+// kind's alignment, ranges at most its maximum; size 0 binds to the end, at most the maximum.
+TEST_P(DeviceErrors, BindingOffsetsAndRangesFollowTheDeviceLimits) {
+    Device& d = *device;
+    const DeviceLimits& l = d.info().limits;
+    ASSERT_GT(l.uniformBufferOffsetAlignment, 1u);
+    ASSERT_GT(l.maxUniformBufferRange, 0u);
+    auto big = d.createBuffer({.size = l.maxUniformBufferRange + 1024, .usage = BufferUsage::Uniform | BufferUsage::Storage});
+    auto cmd = d.createCommandList();
+    const uint64_t half = l.uniformBufferOffsetAlignment / 2;
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(0, big, half, 16); })
+                  .find("setUniformBuffer: offset " + std::to_string(half) + " is not a multiple of the device's "
+                        "uniformBufferOffsetAlignment (" + std::to_string(l.uniformBufferOffsetAlignment) + ")"),
+              std::string::npos);
+    if (l.storageBufferOffsetAlignment > 1)
+        EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(0, big, l.storageBufferOffsetAlignment / 2, 16); })
+                      .find("is not a multiple of the device's storageBufferOffsetAlignment"),
+                  std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(0, big, 0, l.maxUniformBufferRange + 16); })
+                  .find("bytes exceed the device's maxUniformBufferRange"),
+              std::string::npos);
+    EXPECT_EQ(errorOf([&] { cmd->setUniformBuffer(0, big, 0, 0); }), "(no error)");  // to the end, capped
+    EXPECT_EQ(errorOf([&] { cmd->setUniformBuffer(0, big, l.uniformBufferOffsetAlignment, 16); }), "(no error)");
+    d.destroy(big);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);
