@@ -28,6 +28,19 @@ public:
         checkUnrestricted("setScissor");
         stream_->push(gdi::cmd::SetScissor{r});
     }
+    void setBlendConstant(const std::array<float, 4>& rgba) override {
+        checkUnrestricted("setBlendConstant");
+        stream_->push(gdi::cmd::SetBlendConstant{rgba});
+    }
+    void setStencilReference(uint8_t reference) override {
+        checkUnrestricted("setStencilReference");
+        stream_->push(gdi::cmd::SetStencilReference{reference});
+    }
+    void setDepthBias(float constant, float slope, float clamp) override {
+        checkUnrestricted("setDepthBias");
+        gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
+        stream_->push(gdi::cmd::SetDepthBias{constant, slope, clamp});
+    }
     void setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) override;
     void setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) override;
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;

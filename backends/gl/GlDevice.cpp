@@ -301,6 +301,8 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
             throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
                              gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
         }
+        // New buffers read as zeros on every backend (Device.h); a null clear value is zero.
+        if (initialData.empty()) gl_.ClearNamedBufferData(b.name, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);
         if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
         if (mapFlags) b.mapped = gl_.MapNamedBufferRange(b.name, 0, GLsizeiptr(desc.size), mapFlags);
         return buffers_.add(std::move(b));
@@ -351,6 +353,12 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
                              ": " + glErrorName(e));
         }
         if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
+        // New textures read as zeros on every backend (Device.h; block-compressed ones cannot be
+        // cleared and are uploaded before use). A null clear value is zero in any format.
+        if (!gdi::isCompressedFormat(desc.format)) {
+            const GlFormat f = toGlFormat(desc.format);
+            for (uint32_t m = 0; m < desc.mipLevels; ++m) gl_.ClearTexImage(t.name, GLint(m), f.format, f.type, nullptr);
+        }
         if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
         return textures_.add(std::move(t));
     });
@@ -363,7 +371,8 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
         Sampler s;
         gl_.CreateSamplers(1, &s.name);
         auto wrap = [](gdi::AddressMode a) {
-            return a == gdi::AddressMode::ClampToEdge ? GL_CLAMP_TO_EDGE
+            return a == gdi::AddressMode::ClampToEdge     ? GL_CLAMP_TO_EDGE
+                   : a == gdi::AddressMode::ClampToBorder ? GL_CLAMP_TO_BORDER
                    : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
         };
         GLint minf;
@@ -383,6 +392,11 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
             gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(d.compare)));  // same order
         }
         if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
+        static constexpr GLfloat kBorder[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
+        gl_.SamplerParameterfv(s.name, GL_TEXTURE_BORDER_COLOR, kBorder[int(d.borderColor)]);
+        gl_.SamplerParameterf(s.name, GL_TEXTURE_LOD_BIAS, d.lodBias);
+        gl_.SamplerParameterf(s.name, GL_TEXTURE_MIN_LOD, d.minLod);
+        gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_LOD, d.maxLod);
         return samplers_.add(std::move(s));
     });
 }

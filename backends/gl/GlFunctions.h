@@ -42,6 +42,10 @@ namespace fe::gl {
     X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                                                             \
     X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                                                       \
     X(PFNGLSAMPLERPARAMETERFPROC, SamplerParameterf)                                                       \
+    X(PFNGLSAMPLERPARAMETERFVPROC, SamplerParameterfv)                                                     \
+    X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)                                                 \
+    X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                                               \
+    X(PFNGLSAMPLEMASKIPROC, SampleMaski)                                                                   \
     X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                                             \
     X(PFNGLCREATESHADERPROC, CreateShader)                                                                 \
     X(PFNGLSHADERBINARYPROC, ShaderBinary)                                                                 \

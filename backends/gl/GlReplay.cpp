@@ -150,20 +150,19 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     // gdi's winding is Vulkan's: its area formula is negated with respect to GL's over the
     // same (row-index) coordinates, so the GL enum is the opposite one.
     gl_.FrontFace(d.raster.frontFace == gdi::FrontFace::CounterClockwise ? GL_CW : GL_CCW);
-    // Depth bias: glPolygonOffset(factor, units) is Vulkan's (slope, constant) with the same formula.
-    if (d.raster.depthBiasConstant != 0 || d.raster.depthBiasSlope != 0) {
-        gl_.Enable(GL_POLYGON_OFFSET_FILL);
-        if (gl_.PolygonOffsetClamp)
-            gl_.PolygonOffsetClamp(d.raster.depthBiasSlope, d.raster.depthBiasConstant, d.raster.depthBiasClamp);
-        else
-            gl_.PolygonOffset(d.raster.depthBiasSlope, d.raster.depthBiasConstant);
-    } else {
-        gl_.Disable(GL_POLYGON_OFFSET_FILL);
-    }
+    applyDepthBias(d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp);
     if (d.raster.depthClamp) gl_.Enable(GL_DEPTH_CLAMP);
     else gl_.Disable(GL_DEPTH_CLAMP);
     if (d.multisample.alphaToCoverage) gl_.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     else gl_.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (d.multisample.sampleMask != ~0u) {
+        gl_.Enable(GL_SAMPLE_MASK);
+        gl_.SampleMaski(0, d.multisample.sampleMask);
+    } else {
+        gl_.Disable(GL_SAMPLE_MASK);
+    }
+    if (d.primitiveRestart) gl_.Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // 0xFFFF / 0xFFFFFFFF, as on Vulkan
+    else gl_.Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     const auto& ds = d.depthStencil;
     if (ds.depthTest || ds.depthWrite) {
         gl_.Enable(GL_DEPTH_TEST);
@@ -174,10 +173,9 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     gl_.DepthMask(ds.depthWrite ? GL_TRUE : GL_FALSE);
     if (ds.stencilTest) {
         gl_.Enable(GL_STENCIL_TEST);
-        for (auto [face, s] : {std::pair{GL_FRONT, ds.front}, std::pair{GL_BACK, ds.back}}) {
-            gl_.StencilFuncSeparate(face, compare(s.compare), ds.stencilReference, ds.stencilReadMask);
+        for (auto [face, s] : {std::pair{GL_FRONT, ds.front}, std::pair{GL_BACK, ds.back}})
             gl_.StencilOpSeparate(face, stencilOp(s.failOp), stencilOp(s.depthFailOp), stencilOp(s.passOp));
-        }
+        applyStencil(ds.stencilReference);
         gl_.StencilMask(ds.stencilWriteMask);
     } else {
         gl_.Disable(GL_STENCIL_TEST);
@@ -197,6 +195,28 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     }
     gl_.BlendColor(d.blendConstant[0], d.blendConstant[1], d.blendConstant[2], d.blendConstant[3]);
 }
+
+// The reference goes with the compare function and mask in GL; they are the pipeline's.
+void GlReplay::applyStencil(uint8_t reference) {
+    const auto& ds = pipeline_->desc.depthStencil;
+    for (auto [face, s] : {std::pair{GL_FRONT, ds.front}, std::pair{GL_BACK, ds.back}})
+        gl_.StencilFuncSeparate(face, compare(s.compare), reference, ds.stencilReadMask);
+}
+
+// glPolygonOffset(factor, units) is Vulkan's (slope, constant) with the same formula. Always
+// enabled, as Vulkan's depth bias is (0 and 0 is no bias), so setDepthBias works with any pipeline.
+void GlReplay::applyDepthBias(float constant, float slope, float clamp) {
+    gl_.Enable(GL_POLYGON_OFFSET_FILL);
+    if (gl_.PolygonOffsetClamp) gl_.PolygonOffsetClamp(slope, constant, clamp);
+    else gl_.PolygonOffset(slope, constant);
+}
+
+void GlReplay::operator()(const cmd::SetBlendConstant& r) { gl_.BlendColor(r.rgba[0], r.rgba[1], r.rgba[2], r.rgba[3]); }
+// Without a stencil test the reference has no effect, and the next setPipeline sets its own.
+void GlReplay::operator()(const cmd::SetStencilReference& r) {
+    if (pipeline_ && !pipeline_->compute && pipeline_->desc.depthStencil.stencilTest) applyStencil(r.reference);
+}
+void GlReplay::operator()(const cmd::SetDepthBias& r) { applyDepthBias(r.constant, r.slope, r.clamp); }
 
 void GlReplay::operator()(const cmd::SetViewport& r) {
     const gdi::Viewport& v = r.viewport;

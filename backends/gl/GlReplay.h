@@ -26,6 +26,9 @@ public:
     void operator()(const gdi::cmd::SetPipeline& r);
     void operator()(const gdi::cmd::SetViewport& r);
     void operator()(const gdi::cmd::SetScissor& r);
+    void operator()(const gdi::cmd::SetBlendConstant& r);
+    void operator()(const gdi::cmd::SetStencilReference& r);
+    void operator()(const gdi::cmd::SetDepthBias& r);
     void operator()(const gdi::cmd::SetVertexBuffer& r);
     void operator()(const gdi::cmd::SetIndexBuffer& r);
     void operator()(const gdi::cmd::SetUniformBuffer& r);
@@ -60,6 +63,8 @@ private:
     const std::function<void()>* between_ = nullptr;
     uint32_t serviced_ = 0;  // records replayed, for `between`
     void applyPipelineState(const Pipeline& p);
+    void applyStencil(uint8_t reference);
+    void applyDepthBias(float constant, float slope, float clamp);
     void resolve();
     void bindVertexBuffers();
     void bindIndexBuffer();

@@ -512,6 +512,11 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     Pipeline& p = usedPipeline(h);
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
+    if (p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) {
+        vkCmdSetBlendConstants(cb_, p.blendConstant.data());
+        vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, p.stencilReference);
+        vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
+    }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
@@ -535,6 +540,25 @@ void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     checkUnrestricted("setViewport");
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
+}
+
+void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
+    ensureRecording();
+    checkUnrestricted("setBlendConstant");
+    vkCmdSetBlendConstants(cb_, rgba.data());
+}
+
+void VulkanCommandList::setStencilReference(uint8_t reference) {
+    ensureRecording();
+    checkUnrestricted("setStencilReference");
+    vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, reference);
+}
+
+void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
+    ensureRecording();
+    checkUnrestricted("setDepthBias");
+    gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
+    vkCmdSetDepthBias(cb_, constant, clamp, slope);
 }
 
 void VulkanCommandList::setScissor(const gdi::Rect& r) {

@@ -18,6 +18,9 @@ public:
     void setPipeline(gdi::PipelineHandle pipeline) override;
     void setViewport(const gdi::Viewport& viewport) override;
     void setScissor(const gdi::Rect& rect) override;
+    void setBlendConstant(const std::array<float, 4>& rgba) override;
+    void setStencilReference(uint8_t reference) override;
+    void setDepthBias(float constant, float slope, float clamp) override;
     void setVertexBuffer(uint32_t index, gdi::BufferHandle buffer, uint64_t offset) override;
     void setIndexBuffer(gdi::BufferHandle buffer, gdi::IndexType type, uint64_t offset) override;
     void setUniformBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;

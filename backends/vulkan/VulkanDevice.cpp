@@ -468,12 +468,13 @@ void VulkanDevice::pollFences() {
     if (inFlight_.empty()) completed_ = nextFence_ - 1;
 }
 
-void VulkanDevice::retire(std::function<void()> release, bool texture) {
+void VulkanDevice::retire(std::function<void()> release, bool inInitialCommands) {
     destroyEpoch_.fetch_add(1, std::memory_order_release);
     if (std::exchange(presentedSinceIdle_, false)) idle();
     pollFences();
-    // Unsubmitted initial transitions may name a texture: it waits for the next submission too.
-    const gdi::FenceValue after = texture && pendingInit_ ? nextFence_ : nextFence_ - 1;
+    // Unsubmitted initial commands (layout transitions, zero fills) may name a texture or a
+    // buffer: it waits for the next submission too.
+    const gdi::FenceValue after = inInitialCommands && pendingInit_ ? nextFence_ : nextFence_ - 1;
     if (completed_ >= after) return release();  // nothing in flight can use it
     retired_.push_back({after, std::move(release)});
 }

@@ -51,6 +51,7 @@ struct Buffer {
     Allocation memory;
     gdi::BufferDesc desc;
     std::string name;
+    bool zeroFillRecorded = false;  // into the initial commands (destroy waits for them)
 };
 
 struct Texture {
@@ -88,6 +89,10 @@ struct Pipeline {
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).
+    std::array<float, 4> blendConstant{};
+    uint8_t stencilReference = 0;
+    std::array<float, 3> depthBias{};  // constant, slope, clamp
     std::string name;
 };
 
@@ -214,6 +219,7 @@ private:
     // First layout transitions of new textures, gathered in one command buffer that goes in
     // front of the next submission or transfer.
     void recordInitialTransition(const std::function<void(VkCommandBuffer)>& record);
+    void clearToZero(VkCommandBuffer cb, const Texture& t);
     VkCommandBuffer takeInitialTransitions();  // ended, ready to submit; null when none
     void freeAfter(gdi::FenceValue fence, VkCommandBuffer cb);
     VkCommandBuffer pendingInit_ = VK_NULL_HANDLE;
@@ -231,7 +237,7 @@ private:
     [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
     void idle();  // destroy's wait: settle() everything
     // Deferred destruction: `release` runs once every submission made so far has completed.
-    void retire(std::function<void()> release, bool texture = false);
+    void retire(std::function<void()> release, bool inInitialCommands = false);
     void collectRetired();  // runs the releases whose submissions have completed
     void releaseRetiredNow();  // waits for the queue (pending transitions included), releases all
     void pollFences();      // completes finished submissions without waiting

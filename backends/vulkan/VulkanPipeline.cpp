@@ -167,6 +167,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     ia.topology = toTopology(d.topology);
+    ia.primitiveRestartEnable = d.primitiveRestart;
 
     VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
     vp.viewportCount = 1;
@@ -182,7 +183,9 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     rs.frontFace = d.raster.frontFace == gdi::FrontFace::Clockwise ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
     rs.lineWidth = 1.0f;
     rs.depthClampEnable = d.raster.depthClamp;
-    rs.depthBiasEnable = d.raster.depthBiasConstant != 0 || d.raster.depthBiasSlope != 0;
+    // Always on: the values are dynamic state (setPipeline sets the pipeline's, setDepthBias
+    // others), and a bias of 0 and 0 is no bias.
+    rs.depthBiasEnable = VK_TRUE;
     rs.depthBiasConstantFactor = d.raster.depthBiasConstant;
     rs.depthBiasSlopeFactor = d.raster.depthBiasSlope;
     rs.depthBiasClamp = d.raster.depthBiasClamp;
@@ -190,6 +193,8 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = VkSampleCountFlagBits(d.multisample.sampleCount);
     ms.alphaToCoverageEnable = d.multisample.alphaToCoverage;
+    const VkSampleMask sampleMask = d.multisample.sampleMask;
+    ms.pSampleMask = &sampleMask;
 
     const auto& ds = d.depthStencil;
     auto face = [&](const gdi::StencilFaceState& f) {
@@ -223,9 +228,10 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     cb.pAttachments = blends.data();
     for (int i = 0; i < 4; ++i) cb.blendConstants[i] = d.blendConstant[i];
 
-    VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_BLEND_CONSTANTS,
+                            VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_DEPTH_BIAS};
     VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dy.dynamicStateCount = 2;
+    dy.dynamicStateCount = uint32_t(std::size(dyn));
     dy.pDynamicStates = dyn;
 
     std::vector<VkFormat> colorFormats;
@@ -238,6 +244,9 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 
     Pipeline p = makeLayout(device_, bindings, d.debugName);
     p.signature = gdi::validate::pipelineSignature(d);
+    std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
+    p.stencilReference = d.depthStencil.stencilReference;
+    p.depthBias = {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp};
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.pNext = &ri;
     ci.stageCount = uint32_t(stages.size());

@@ -100,14 +100,25 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     b.name = desc.debugName ? desc.debugName : "";
     b.desc.debugName = nullptr;  // the caller's string may not outlive the buffer
     setName(VK_OBJECT_TYPE_BUFFER, uint64_t(b.buffer), desc.debugName);
+    // New buffers read as zeros on every backend (Device.h): host-visible memory is cleared
+    // here, device memory by a fill recorded in front of the next submission.
+    const bool zero = initialData.empty();
+    if (zero && b.memory.mapped) std::memset(b.memory.mapped, 0, desc.size);
+    const VkBuffer native = b.buffer;
+    const bool fill = zero && !b.memory.mapped;
     gdi::BufferHandle h = buffers_.add(std::move(b));
-    if (!initialData.empty()) {
-        try {
-            writeBuffer(h, 0, initialData);
-        } catch (...) {
-            destroy(h);
-            throw;
+    try {
+        if (!zero) writeBuffer(h, 0, initialData);
+        if (fill) {
+            recordInitialTransition([&](VkCommandBuffer cb) {
+                vkCmdFillBuffer(cb, native, 0, VK_WHOLE_SIZE, 0);
+                VulkanCommandList::fullBarrier(cb);
+            });
+            buffers_.get(h, "buffer").zeroFillRecorded = true;
         }
+    } catch (...) {
+        destroy(h);
+        throw;
     }
     return h;
 }
@@ -281,7 +292,10 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h). Recorded into the
     // next submission (or transfer) rather than submitted and waited for here.
     try {
-        recordInitialTransition([&](VkCommandBuffer cb) { VulkanCommandList::toGeneral(cb, t.image, desc.format); });
+        recordInitialTransition([&](VkCommandBuffer cb) {
+            VulkanCommandList::toGeneral(cb, t.image, desc.format);
+            clearToZero(cb, t);
+        });
     } catch (...) {
         destroyTexture(t);  // the submission failed (device lost): the image was never used
         throw;
@@ -303,6 +317,21 @@ void VulkanDevice::destroyTexture(Texture& t) {
     t = Texture{};
 }
 
+// New textures read as zeros on every backend (Device.h), block-compressed ones excepted: they
+// cannot be cleared and are uploaded before use.
+void VulkanDevice::clearToZero(VkCommandBuffer cb, const Texture& t) {
+    if (gdi::isCompressedFormat(t.desc.format)) return;
+    const VkImageSubresourceRange all{aspectOf(t.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+    if (gdi::isDepthFormat(t.desc.format)) {
+        const VkClearDepthStencilValue zero{0.0f, 0};
+        vkCmdClearDepthStencilImage(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    } else {
+        const VkClearColorValue zero{};
+        vkCmdClearColorImage(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+    }
+    VulkanCommandList::fullBarrier(cb);
+}
+
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     std::lock_guard lock(mutex_);
     loss_.check("createSampler");
@@ -312,6 +341,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
         switch (a) {
             case gdi::AddressMode::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
             case gdi::AddressMode::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+            case gdi::AddressMode::ClampToBorder: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
             default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
         }
     };
@@ -326,12 +356,17 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.compareOp = VkCompareOp(int(d.compare));  // same order as VkCompareOp
     ci.anisotropyEnable = anisotropy_ && d.maxAnisotropy > 1.0f;
     ci.maxAnisotropy = std::min(d.maxAnisotropy, props_.limits.maxSamplerAnisotropy);
-    ci.minLod = 0;
+    static constexpr VkBorderColor kBorder[] = {VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK, VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK,
+                                                VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
+    ci.borderColor = kBorder[int(d.borderColor)];
+    ci.mipLodBias = std::clamp(d.lodBias, -props_.limits.maxSamplerLodBias, props_.limits.maxSamplerLodBias);
     // MipFilter::None samples the base level only, with minFilter when minifying, as GL's
     // non-mipmap filters do. Clamping the level of detail to 0 would make every lookup a
     // magnification (magFilter); 0.25 keeps minification visible while NEAREST mipmapping still
     // rounds to level 0 (the Vulkan specification's own advice for this GL mode).
-    ci.maxLod = d.mipFilter == gdi::MipFilter::None ? 0.25f : VK_LOD_CLAMP_NONE;
+    const bool baseOnly = d.mipFilter == gdi::MipFilter::None;
+    ci.minLod = baseOnly ? 0.0f : d.minLod;
+    ci.maxLod = baseOnly ? 0.25f : d.maxLod;
     Sampler s;
     check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);
@@ -357,7 +392,7 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
     std::lock_guard lock(mutex_);
     Buffer b;
     if (!h || !buffers_.remove(h, b)) return;
-    retire([this, b]() mutable { freeBuffer(b); });
+    retire([this, b]() mutable { freeBuffer(b); }, b.zeroFillRecorded);  // the fill may still be pending
 }
 
 void VulkanDevice::destroy(gdi::TextureHandle h) {

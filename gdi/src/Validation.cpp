@@ -156,6 +156,13 @@ void samplerDesc(const SamplerDesc& d) {
     if (!(d.maxAnisotropy >= 1.0f && d.maxAnisotropy <= 16.0f))
         fail(label("sampler", d.debugName), "maxAnisotropy must be in [1, 16]");
     if (d.compare > CompareOp::Always) fail(label("sampler", d.debugName), "compare op is invalid");
+    if (!(d.lodBias >= -16.0f && d.lodBias <= 16.0f)) fail(label("sampler", d.debugName), "lodBias must be in [-16, 16]");
+    if (!(d.minLod >= 0.0f && d.minLod <= d.maxLod))
+        fail(label("sampler", d.debugName), "minLod and maxLod must satisfy 0 <= minLod <= maxLod (and be numbers)");
+    if (d.borderColor > BorderColor::OpaqueWhite) fail(label("sampler", d.debugName), "border colour is invalid");
+    if (d.addressU > AddressMode::ClampToBorder || d.addressV > AddressMode::ClampToBorder ||
+        d.addressW > AddressMode::ClampToBorder)
+        fail(label("sampler", d.debugName), "address mode is invalid");
 }
 
 void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uint32_t drawCount, uint32_t stride,
@@ -219,17 +226,18 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
     if (d.depthStencil.stencilTest && !formatInfo(d.depthFormat).hasStencil)
         fail(what, "stencil test enabled but depth format has no stencil");
     if (d.blend.size() > d.colorFormats.size()) fail(what, "more blend states than colour targets");
+    if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip && d.topology != PrimitiveTopology::LineStrip)
+        fail(what, "primitiveRestart needs a strip topology (TriangleStrip or LineStrip)");
     uint32_t locations = 0;
     for (size_t i = 0; i < d.vertexBuffers.size(); ++i) {
         const VertexBufferLayout& vb = d.vertexBuffers[i];
-        if (vb.stride == 0) fail(what, "vertex buffer " + std::to_string(i) + " has stride 0");
         for (const VertexAttribute& a : vb.attributes) {
             if (a.format >= VertexFormat::Count) fail(what, "vertex attribute has an invalid format");
             if (a.location >= 16) fail(what, "vertex attribute location " + std::to_string(a.location) + " >= 16");
             if (locations & (1u << a.location))
                 fail(what, "vertex attribute location " + std::to_string(a.location) + " is used twice");
             locations |= 1u << a.location;
-            if (a.offset + vertexFormatInfo(a.format).bytes > vb.stride)
+            if (vb.stride != 0 && a.offset + vertexFormatInfo(a.format).bytes > vb.stride)  // 0: one element for all
                 fail(what, "vertex attribute at location " + std::to_string(a.location) + " overruns stride " +
                                std::to_string(vb.stride));
         }
@@ -570,6 +578,16 @@ void bindingLimits(uint64_t offset, uint64_t size, const BindingLimits& limits, 
     if (size > limits.maxRange)
         throw Error(std::string(what) + ": " + std::to_string(size) + " bytes exceed the device's " + limits.rangeName + " (" +
                     std::to_string(limits.maxRange) + ")");
+}
+
+}  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+void depthBias(float constant, float slope, float clamp, const DeviceFeatures& features) {
+    if (!std::isfinite(constant) || !std::isfinite(slope) || !std::isfinite(clamp))
+        throw Error("setDepthBias: values must be finite");
+    if (clamp != 0 && !features.depthBiasClamp) throw Error("setDepthBias: depth bias clamp is not supported on this device");
 }
 
 }  // namespace fe::gdi::validate

@@ -446,10 +446,11 @@ TEST_P(DeviceErrors, BindingOffsetsAndRangesFollowTheDeviceLimits) {
                   .find("setUniformBuffer: offset " + std::to_string(half) + " is not a multiple of the device's "
                         "uniformBufferOffsetAlignment (" + std::to_string(l.uniformBufferOffsetAlignment) + ")"),
               std::string::npos);
-    if (l.storageBufferOffsetAlignment > 1)
+    if (l.storageBufferOffsetAlignment > 1) {
         EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(0, big, l.storageBufferOffsetAlignment / 2, 16); })
                       .find("is not a multiple of the device's storageBufferOffsetAlignment"),
                   std::string::npos);
+    }
     EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(0, big, 0, l.maxUniformBufferRange + 16); })
                   .find("bytes exceed the device's maxUniformBufferRange"),
               std::string::npos);

@@ -30,6 +30,7 @@ struct Array {
     uint32_t offset = 0, count = 0;
 };
 using String = Array<char>;  // NUL-terminated; count includes the NUL; empty: no string
+using Rgba = std::array<float, 4>;
 
 enum class Op : uint16_t {
 #define FE_COMMAND(Name, Fields) Name,

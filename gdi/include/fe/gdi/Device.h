@@ -88,6 +88,7 @@
 //  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -264,7 +265,9 @@ struct MemoryRequirements {
 
 enum class Filter : uint8_t { Nearest, Linear };
 enum class MipFilter : uint8_t { None, Nearest, Linear };
-enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge };
+enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
+// What ClampToBorder returns outside the texture (the three colours both APIs offer alike).
+enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
 
 enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
 
@@ -281,6 +284,13 @@ struct SamplerDesc {
     // Linear filtering averages those results (hardware PCF), not the depths.
     bool compareEnable = false;
     CompareOp compare = CompareOp::LessOrEqual;
+    BorderColor borderColor = BorderColor::TransparentBlack;  // AddressMode::ClampToBorder
+    // Level of detail: the computed one (or textureLod's) plus lodBias, clamped to
+    // [minLod, maxLod], as both APIs define it. lodBias in [-16, 16]; 0 <= minLod <= maxLod.
+    // MipFilter::None reads level 0 whatever these say.
+    float lodBias = 0.0f;
+    float minLod = 0.0f;
+    float maxLod = 1000.0f;
     const char* debugName = nullptr;
 };
 
@@ -325,7 +335,7 @@ struct VertexAttribute {
 };
 
 struct VertexBufferLayout {
-    uint32_t stride = 0;
+    uint32_t stride = 0;  // 0: every vertex (or instance) reads the same element
     bool perInstance = false;
     std::vector<VertexAttribute> attributes;
 };
@@ -359,6 +369,7 @@ struct RasterState {
 struct MultisampleState {
     uint32_t sampleCount = 1;      // must equal the sample count of every attachment in the pass
     bool alphaToCoverage = false;  // the first output's alpha becomes a coverage mask
+    uint32_t sampleMask = ~0u;     // bit i clear: sample i is never written (bit 0: single-sample targets)
 };
 
 struct StencilFaceState {
@@ -396,6 +407,9 @@ struct GraphicsPipelineDesc {
     ShaderHandle fragmentShader;  // may be null for depth-only passes
     std::vector<VertexBufferLayout> vertexBuffers;
     PrimitiveTopology topology = PrimitiveTopology::TriangleList;
+    // Strip topologies, indexed draws: the index 0xFFFF (U16) or 0xFFFFFFFF (U32) ends a strip
+    // and starts the next.
+    bool primitiveRestart = false;
     RasterState raster;
     MultisampleState multisample;
     DepthStencilState depthStencil;
@@ -555,6 +569,12 @@ public:
     virtual void setPipeline(PipelineHandle pipeline) = 0;
     virtual void setViewport(const Viewport& viewport) = 0;  // default: whole render area
     virtual void setScissor(const Rect& rect) = 0;           // default: whole render area
+    // Pipeline state that may also change between draws: setPipeline applies the pipeline's
+    // values (GraphicsPipelineDesc::blendConstant, DepthStencilState::stencilReference,
+    // RasterState's depth bias), and these replace them until the next setPipeline.
+    virtual void setBlendConstant(const std::array<float, 4>& rgba) = 0;
+    virtual void setStencilReference(uint8_t reference) = 0;
+    virtual void setDepthBias(float constant, float slope, float clamp = 0.0f) = 0;
     virtual void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset = 0) = 0;
     virtual void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
 

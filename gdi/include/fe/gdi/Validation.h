@@ -95,6 +95,8 @@ void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std:
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
 // setPipeline in a pass: the pipeline's attachment formats and sample count are the pass's.
 void pipelineFitsPass(const PassSignature& pipeline, const PassSignature& pass, const char* pipelineName);
+// setDepthBias's values: finite, and a clamp only where the device has depthBiasClamp.
+void depthBias(float constant, float slope, float clamp, const DeviceFeatures& features);
 // A pipeline set in a pass must rasterize with the pass's sample count.
 void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName);
 // Per-draw checks: inline fast paths, the message is built out of line only on failure.
