@@ -205,7 +205,8 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     const Texture& t = dev_.texture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.label + "' lacks Sampled usage");
-    (void)dev_.sampler(sh);
+    const Sampler& s = dev_.sampler(sh);
+    if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.label, t.desc.format, s.label);
     bound(slot, gdi::BindingType::SampledTexture);
     stream_->push(cmd::SetTexture{slot, th, sh});
 }

@@ -231,6 +231,25 @@ void GlDevice::initialize(bool validation) {
                       .multiDrawIndirect = true,  // core in 4.3
                       .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
                       .textureCompressionBC = bc};
+    // What each format can do, from the driver's internal-format queries (ARB_internalformat_query2).
+    auto supported = [&](GLenum target, GLenum internal, GLenum pname) {
+        GLint v = GL_NONE;
+        gl_.GetInternalformativ(target, internal, pname, 1, &v);
+        return v == GL_FULL_SUPPORT || v == GL_CAVEAT_SUPPORT;
+    };
+    for (size_t i = 1; i < size_t(F::Count); ++i) {
+        const auto f = F(i);
+        const GLenum internal = toGlFormat(f).internal;
+        gdi::FormatCaps& c = formatCaps_[i];
+        if (!internal || !supportsFormat(f, gdi::TextureUsage::Sampled)) continue;
+        const gdi::FormatInfo& fi = gdi::formatInfo(f);
+        c.sampled = true;
+        c.linearFilter = !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FILTER);
+        c.renderTarget = supportsFormat(f, gdi::TextureUsage::RenderTarget);
+        c.blend = c.renderTarget && !fi.hasDepth && !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FRAMEBUFFER_BLEND);
+        c.storage = supportsFormat(f, gdi::TextureUsage::Storage);
+        if (c.renderTarget) c.sampleCounts = countsFor(fi.hasDepth ? maxDepth : maxColor, {f});
+    }
 }
 
 GlDevice::~GlDevice() {
@@ -322,6 +341,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
         t.desc = desc;
         t.desc.debugName = nullptr;
         t.label = label;
+        t.linearFilter = formatCaps_[size_t(desc.format)].linearFilter;
         t.target = textureTarget(desc);
         gl_.CreateTextures(t.target, 1, &t.name);
         ++nativeObjects_;
@@ -369,6 +389,8 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
         loss_.check("createSampler");
         gdi::validate::samplerDesc(d);
         Sampler s;
+        s.filtersLinearly = gdi::validate::filtersLinearly(d);
+        s.label = d.debugName ? d.debugName : "";
         gl_.CreateSamplers(1, &s.name);
         auto wrap = [](gdi::AddressMode a) {
             return a == gdi::AddressMode::ClampToEdge     ? GL_CLAMP_TO_EDGE

@@ -44,6 +44,7 @@ struct Texture {
     GLenum target = GL_TEXTURE_2D;  // by dimension and sample count
     gdi::TextureDesc desc;
     std::string label;
+    bool linearFilter = false;  // FormatCaps::linearFilter of its format
 };
 GLenum textureTarget(const gdi::TextureDesc& d);
 // One framebuffer attachment: a texture's mip level and, for layered textures, its layer.
@@ -55,6 +56,8 @@ struct FboAttachment {
 };
 struct Sampler {
     GLuint name = 0;
+    bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
+    std::string label;
 };
 struct Shader {
     GLuint name = 0;
@@ -87,6 +90,7 @@ public:
 
     const gdi::DeviceInfo& info() const override { return info_; }
     bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
+    gdi::FormatCaps formatCaps(gdi::Format format) const override { return formatCaps_[size_t(format)]; }
     gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
@@ -167,6 +171,7 @@ private:
     GlFunctions gl_;
     gdi::DeviceInfo info_;
     std::atomic<uint32_t> errors_{0};
+    std::array<gdi::FormatCaps, size_t(gdi::Format::Count)> formatCaps_{};  // queried once at start
     gdi::MessageLog messages_{"GL debug"};  // each message once; repeats counted
     gdi::DeviceLoss loss_;
     uint32_t nativeObjects_ = 0;  // buffer and texture names created and not yet deleted

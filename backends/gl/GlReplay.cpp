@@ -66,6 +66,7 @@ void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
 }
 
 void GlReplay::operator()(const cmd::BeginRenderPass& r) {
+    gl_.Disable(GL_RASTERIZER_DISCARD);  // a pipeline's empty sample mask must not discard the clears
     const auto colorsIn = cmd::view(r, r.colors);
     std::vector<FboAttachment> colors;
     resolves_.clear();
@@ -122,6 +123,7 @@ void GlReplay::operator()(const cmd::BeginRenderPass& r) {
 }
 
 void GlReplay::operator()(const cmd::EndRenderPass&) {
+    gl_.Disable(GL_RASTERIZER_DISCARD);
     if (!resolves_.empty()) resolve();
     if (automatic_) gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     if (labelled_) gl_.PopDebugGroup();
@@ -161,6 +163,11 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     } else {
         gl_.Disable(GL_SAMPLE_MASK);
     }
+    // GL ignores the sample mask without sample buffers; Vulkan applies bit 0 to single-sample
+    // targets, where a clear bit writes nothing at all. Discarding every primitive does the same.
+    // (Clears are discarded too, so BeginRenderPass and EndRenderPass turn it off again.)
+    if (d.multisample.sampleCount == 1 && !(d.multisample.sampleMask & 1)) gl_.Enable(GL_RASTERIZER_DISCARD);
+    else gl_.Disable(GL_RASTERIZER_DISCARD);
     if (d.primitiveRestart) gl_.Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // 0xFFFF / 0xFFFFFFFF, as on Vulkan
     else gl_.Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     const auto& ds = d.depthStencil;

@@ -628,6 +628,7 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     Sampler& s = usedSampler(sh);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
+    if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
     dirtySlots_ |= uint64_t(1) << slot;
 }

@@ -691,15 +691,34 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     img.height = e.height;
     img.format = t.desc.format;
     const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for texture", t.name);
+    // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits), then the
+    // stencil aspect (one byte per texel) after it, merged into the high byte as GL returns it.
+    const bool stencil = gdi::formatInfo(t.desc.format).hasStencil;
+    const uint64_t stencilBytes = stencil ? uint64_t(e.width) * e.height : 0;
+    Buffer staging = makeBuffer(size + stencilBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
+                                "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     immediate("readTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
-        // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits).
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);
+        if (stencil) {
+            VkBufferImageCopy s = r;
+            s.bufferOffset = size;
+            s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+            vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &s);
+        }
     });
     img.data.resize(size);
     std::memcpy(img.data.data(), staging.memory.mapped, size);
+    if (stencil && t.desc.format == gdi::Format::D24S8) {
+        const auto* s = static_cast<const uint8_t*>(staging.memory.mapped) + size;
+        for (uint64_t i = 0; i < stencilBytes; ++i) {
+            uint32_t v;
+            std::memcpy(&v, &img.data[4 * i], 4);
+            v = (v & 0xffffffu) | (uint32_t(s[i]) << 24);
+            std::memcpy(&img.data[4 * i], &v, 4);
+        }
+    }
     return img;
 }
 

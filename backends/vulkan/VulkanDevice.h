@@ -64,10 +64,13 @@ struct Texture {
     Allocation memory;
     gdi::TextureDesc desc;
     std::string name;
+    bool linearFilter = false;  // FormatCaps::linearFilter of its format
 };
 
 struct Sampler {
     VkSampler sampler = VK_NULL_HANDLE;
+    bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
+    std::string name;
 };
 
 struct Shader {
@@ -181,7 +184,8 @@ public:
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
     uint32_t queueFamily() const { return queueFamily_; }
-    bool linearBlit(gdi::Format format) const;  // vkCmdBlitImage with VK_FILTER_LINEAR works
+    bool linearBlit(gdi::Format format) const;
+    gdi::FormatCaps formatCaps(gdi::Format format) const override;  // vkCmdBlitImage with VK_FILTER_LINEAR works
     // The 2D view of one subresource, for attachments (made on first use, kept with the texture).
     VkImageView attachmentView(Texture& t, uint32_t mipLevel, uint32_t layer);
     PFN_vkCmdDrawIndirectCount cmdDrawIndirectCount = nullptr;

@@ -43,6 +43,29 @@ bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) c
     return (p.optimalTilingFeatures & need) == need;
 }
 
+gdi::FormatCaps VulkanDevice::formatCaps(gdi::Format format) const {
+    gdi::FormatCaps c;
+    const VkFormat vf = toVkFormat(format);
+    if (vf == VK_FORMAT_UNDEFINED || (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC)) return c;
+    VkFormatProperties p;
+    vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
+    const VkFormatFeatureFlags f = p.optimalTilingFeatures;
+    const bool depth = gdi::isDepthFormat(format);
+    c.sampled = f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    c.linearFilter = c.sampled && (f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
+    c.renderTarget = f & (depth ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
+    c.blend = !depth && (f & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT);
+    c.storage = f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    if (c.renderTarget) {
+        VkImageFormatProperties ip{};
+        const VkImageUsageFlags usage = depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        if (vkGetPhysicalDeviceImageFormatProperties(physical_, vf, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0, &ip) ==
+            VK_SUCCESS)
+            c.sampleCounts = uint32_t(ip.sampleCounts) & 0xf;  // 1, 2, 4, 8: what the engine offers
+    }
+    return c;
+}
+
 bool VulkanDevice::linearBlit(gdi::Format format) const {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, toVkFormat(format), &p);
@@ -249,6 +272,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     t.desc = desc;
     t.desc.debugName = nullptr;
     t.name = name;
+    t.linearFilter = formatCaps(desc.format).linearFilter;
     VkImageCreateInfo ci = imageInfo(desc);
     const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
                                                                         " " + std::string(gdi::formatInfo(desc.format).name));
@@ -368,6 +392,8 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.minLod = baseOnly ? 0.0f : d.minLod;
     ci.maxLod = baseOnly ? 0.25f : d.maxLod;
     Sampler s;
+    s.filtersLinearly = gdi::validate::filtersLinearly(d);
+    s.name = d.debugName ? d.debugName : "";
     check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);
     return samplers_.add(std::move(s));

@@ -32,8 +32,20 @@ void to_json(Json& j, const DeviceInfo& info) {
 
 Json probeJson(const BackendProbe& probe) {
     Json j = {{"name", probe.name}, {"available", probe.available && probe.device}};
-    if (probe.available && probe.device) j["device"] = probe.device->info();
-    else j["reason"] = probe.reason;
+    if (probe.available && probe.device) {
+        j["device"] = probe.device->info();
+        // Device::formatCaps per format: what each can do here.
+        Json formats = Json::object();
+        for (uint32_t i = 1; i < uint32_t(Format::Count); ++i) {
+            const FormatCaps c = probe.device->formatCaps(Format(i));
+            formats[std::string(formatInfo(Format(i)).name)] = {
+                {"sampled", c.sampled}, {"linearFilter", c.linearFilter}, {"renderTarget", c.renderTarget},
+                {"blend", c.blend}, {"storage", c.storage}, {"sampleCounts", c.sampleCounts}};
+        }
+        j["device"]["formats"] = formats;
+    } else {
+        j["reason"] = probe.reason;
+    }
     return j;
 }
 

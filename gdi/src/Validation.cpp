@@ -591,3 +591,14 @@ void depthBias(float constant, float slope, float clamp, const DeviceFeatures& f
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+void notFilterable(const std::string& texture, Format format, const std::string& sampler) {
+    throw Error("setTexture: " + label("sampler", sampler.c_str()) + " filters linearly, but " +
+                label("texture", texture.c_str()) + " (" + std::string(formatInfo(format).name) +
+                ") cannot be filtered linearly on this device (FormatCaps::linearFilter); use Nearest filters, or a "
+                "comparison sampler for depth");
+}
+
+}  // namespace fe::gdi::validate

@@ -162,6 +162,91 @@ std::vector<CaseImage> copyOnlyTextures(Device& d) {
     return {exact("copied", d.readTexture(b), pattern)};
 }
 
+// Every capability Device::formatCaps reports is exercised, per uncompressed format: it agrees
+// with supportsFormat; linearFilter: two texels (0 and 1) sampled halfway through a Linear
+// sampler give 0.5 (a format without it refuses the Linear sampler at setTexture); renderTarget:
+// a clear reads back; blend: One + One over a clear adds; each sample count in sampleCounts
+// makes a target that a pass clears (and resolves, for averaging formats).
+std::vector<CaseImage> formatCapsCase(Device& d) {
+    std::vector<CaseImage> out;
+    DeviceObjects o(d);
+    const SamplerHandle linear = o.add(d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
+    for (uint32_t i = 1; i < uint32_t(Format::Count); ++i) {
+        const Format f = Format(i);
+        const FormatInfo& fi = formatInfo(f);
+        if (isCompressedFormat(f)) continue;
+        const FormatCaps caps = d.formatCaps(f);
+        const std::string name(fi.name);
+        FE_CONFORMANCE_CHECK(caps.sampled == d.supportsFormat(f, TextureUsage::Sampled), ("sampled agrees: " + name).c_str());
+        FE_CONFORMANCE_CHECK(caps.renderTarget == d.supportsFormat(f, TextureUsage::RenderTarget),
+                             ("renderTarget agrees: " + name).c_str());
+        FE_CONFORMANCE_CHECK(caps.storage == d.supportsFormat(f, TextureUsage::Storage), ("storage agrees: " + name).c_str());
+        FE_CONFORMANCE_CHECK(!caps.renderTarget || (caps.sampleCounts & 1), ("one sample renders: " + name).c_str());
+        if (!caps.sampled) continue;
+        DeviceObjects per(d);
+        const bool colour = !fi.hasDepth && !fi.isInteger;
+        // Linear filtering, or its refusal.
+        const TextureHandle pair = per.add(d.createTexture({.format = f, .width = 2, .height = 1,
+                                                            .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+        if (!caps.linearFilter) {
+            auto cmd = d.createCommandList();
+            FE_CONFORMANCE_CHECK(throws([&] { cmd->setTexture(1, pair, linear); }),
+                                 ("a Linear sampler is refused on " + name + ", which cannot be filtered linearly").c_str());
+        } else if (colour) {
+            d.writeTexture(pair, {}, bytesOf(Image::fromTexels(2, 1, f, {{0, 0, 0, 0}, {1, 1, 1, 1}}).data));
+            FullscreenSampler pass(d, "conformance/textured_uv.frag",
+                                   {.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
+            const Image image = pass.draw(d, pair, Format::RGBA16F, {0, 0, 0.5f, 0.5f});  // uv (0.5, 0.5) everywhere
+            const bool alpha = fi.channels == 4;
+            const Texel half{0.5f, fi.channels > 1 ? 0.5f : 0.0f, fi.channels > 2 ? 0.5f : 0.0f, alpha ? 0.5f : 1.0f};
+            out.push_back(within("linear_" + name, image, solid(Format::RGBA16F, half), 2.0 / 255.0,
+                                 "the average of texels 0 and 1: filtering weights of at least 8 bits"));
+        }
+        if (!caps.renderTarget || fi.hasDepth) continue;
+        // A clear of values exact in every format (and in sRGB encoding).
+        const TextureHandle rt = per.add(d.createTexture({.format = f, .width = 4, .height = 4,
+                                                          .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {1, 0, 1, 1}}}});
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        const Texel cleared{1, 0, fi.channels > 2 ? 1.0f : 0.0f, fi.channels == 4 ? 1.0f : 1.0f};
+        out.push_back(exact("clear_" + name, d.readTexture(rt), solid(f, cleared, 4, 4)));
+        if (caps.blend && !fi.isSrgb) {  // sRGB blends in linear space: values checked elsewhere
+            const PipelineHandle add = per.add(d.createGraphicsPipeline(
+                {.vertexShader = shader(per, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+                 .fragmentShader = shader(per, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+                 .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
+                            .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
+                 .colorFormats = {f}}));
+            const float params[8] = {0.5f, 0.5f, 0.5f, 0.5f, 0, 0, 0, 0};
+            const BufferHandle ubo = per.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+            cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {0.25f, 0.25f, 0.25f, 0.25f}}}});
+            cmd->setPipeline(add);
+            cmd->setUniformBuffer(0, ubo);
+            cmd->draw(3);
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            const Texel sum{0.75f, fi.channels > 1 ? 0.75f : 0.0f, fi.channels > 2 ? 0.75f : 0.0f, fi.channels == 4 ? 0.75f : 1.0f};
+            out.push_back(within("blend_" + name, d.readTexture(rt), solid(f, sum, 4, 4), 2.0 / 255.0,
+                                 "0.25 + 0.5 in the target's precision (8-bit: two rounding steps)"));
+        }
+        // Each sample count it reports renders (and resolves, where samples are averaged).
+        for (uint32_t n = 2; n <= 8; n *= 2) {
+            if (!(caps.sampleCounts & n)) continue;
+            const TextureHandle ms = per.add(d.createTexture({.format = f, .width = 4, .height = 4, .sampleCount = n,
+                                                              .usage = TextureUsage::RenderTarget}));
+            ColorAttachment a{.texture = ms, .store = StoreOp::DontCare, .clear = {1, 0, 1, 1}};
+            if (colour) a.resolveTexture = rt;
+            cmd->beginRenderPass({.colors = {a}});
+            cmd->endRenderPass();
+            d.wait(d.submit(*cmd));
+            if (colour) out.push_back(exact("resolve_" + std::to_string(n) + "x_" + name, d.readTexture(rt), solid(f, cleared, 4, 4)));
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<Case> fixedFunctionCases() {
@@ -171,6 +256,7 @@ std::vector<Case> fixedFunctionCases() {
         {"depth_write_without_test", depthWriteWithoutTest},
         {"mip_filter_none", mipFilterNone},
         {"copy_only_textures", copyOnlyTextures},
+        {"format_caps", formatCapsCase},
     };
 }
 

@@ -88,6 +88,17 @@ int cmdInfo(const Args& a) {
                   << "  features: " << fields(d["features"]) << "\n";
         if (!d["presentMode"].get<std::string>().empty())
             std::cout << "  present mode: " << d["presentMode"].get<std::string>() << "\n";
+        std::cout << "  formats (s sampled, l linear filter, r render target, b blend, w storage; sample counts):\n";
+        for (const auto& [format, c] : d["formats"].items()) {
+            std::string flags;
+            for (const auto& [key, letter] : {std::pair{"sampled", 's'}, {"linearFilter", 'l'}, {"renderTarget", 'r'},
+                                              {"blend", 'b'}, {"storage", 'w'}})
+                flags += c[key].get<bool>() ? letter : '-';
+            std::string counts;
+            for (uint32_t n = 1; n <= 8; n *= 2)
+                if (c["sampleCounts"].get<uint32_t>() & n) counts += (counts.empty() ? "" : ",") + std::to_string(n);
+            std::cout << "    " << format << " " << flags << (counts.empty() ? "" : " " + counts) << "\n";
+        }
     }
     return 0;
 }

@@ -701,6 +701,16 @@ struct DeviceLimits {
     uint32_t storageBufferOffsetAlignment = 0;
 };
 
+// What a format can do on a device (Device::formatCaps).
+struct FormatCaps {
+    bool sampled = false;
+    bool linearFilter = false;  // sampled through a Linear min/mag/mip filter
+    bool renderTarget = false;  // colour or depth attachment
+    bool blend = false;         // a colour attachment blended into
+    bool storage = false;       // storage image
+    uint32_t sampleCounts = 0;  // as a render target: bit n set, 2^n samples (bit 0: one sample)
+};
+
 struct DeviceFeatures {
     bool timestamps = false;
     bool computeShaders = false;
@@ -757,6 +767,10 @@ public:
 
     virtual const DeviceInfo& info() const = 0;
     virtual bool supportsFormat(Format format, TextureUsage usage) const = 0;
+    // Everything a format can do on this device (Vulkan: its optimal-tiling features and image
+    // format properties; GL: the internal-format queries). setTexture refuses a sampler that
+    // filters linearly (any Linear filter, no comparison) on a format without linearFilter.
+    virtual FormatCaps formatCaps(Format format) const = 0;
 
     // Initial data, when given, must be exactly desc.size bytes.
     virtual BufferHandle createBuffer(const BufferDesc& desc, ByteSpan initialData = {}) = 0;

@@ -95,6 +95,11 @@ void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std:
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
 // setPipeline in a pass: the pipeline's attachment formats and sample count are the pass's.
 void pipelineFitsPass(const PassSignature& pipeline, const PassSignature& pass, const char* pipelineName);
+// setTexture: a sampler that filters linearly needs a format that can be (FormatCaps).
+inline bool filtersLinearly(const SamplerDesc& d) {
+    return !d.compareEnable && (d.minFilter == Filter::Linear || d.magFilter == Filter::Linear || d.mipFilter == MipFilter::Linear);
+}
+[[noreturn]] void notFilterable(const std::string& texture, Format format, const std::string& sampler);
 // setDepthBias's values: finite, and a clamp only where the device has depthBiasClamp.
 void depthBias(float constant, float slope, float clamp, const DeviceFeatures& features);
 // A pipeline set in a pass must rasterize with the pass's sample count.
