@@ -233,6 +233,7 @@ std::vector<Case> textureCases();  // TextureCases.cpp
 std::vector<Case> stateCases();    // StateCases.cpp
 std::vector<Case> executionCases();  // ExecutionCases.cpp
 std::vector<Case> fixedFunctionCases();  // FixedFunctionCases.cpp
+std::vector<Case> pipelineCases();  // PipelineCases.cpp
 std::vector<Case> samplerStateCases();  // SamplerStateCases.cpp
 
 const std::vector<Case>& cases() {
@@ -244,7 +245,7 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, samplerStateCases})
+        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, pipelineCases, samplerStateCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();
