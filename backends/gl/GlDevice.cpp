@@ -37,6 +37,8 @@ GlFormat toGlFormat(gdi::Format f) {
         case F::R11G11B10F: return {GL_R11F_G11F_B10F, GL_RGB, GL_UNSIGNED_INT_10F_11F_11F_REV};
         case F::D32F: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
         case F::D24S8: return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
+        case F::D16: return {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT};
+        case F::D32F_S8: return {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV};
         // Compressed: the internal format only (uploads use glCompressedTextureSubImage*).
         case F::BC1: return {GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, 0, 0};
         case F::BC1_SRGB: return {kCompressedSrgbAlphaS3tcDxt1, 0, 0};

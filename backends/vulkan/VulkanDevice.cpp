@@ -709,7 +709,16 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
         }
     });
     img.data.resize(size);
-    std::memcpy(img.data.data(), staging.memory.mapped, size);
+    const auto* staged = static_cast<const uint8_t*>(staging.memory.mapped);
+    if (t.desc.format == gdi::Format::D32F_S8) {  // depth aspect packed as floats: spread to 8-byte texels
+        std::fill(img.data.begin(), img.data.end(), uint8_t(0));
+        for (uint64_t i = 0; i < stencilBytes; ++i) {
+            std::memcpy(&img.data[8 * i], staged + 4 * i, 4);
+            img.data[8 * i + 4] = staged[size + i];
+        }
+        return img;
+    }
+    std::memcpy(img.data.data(), staged, size);
     if (stencil && t.desc.format == gdi::Format::D24S8) {
         const auto* s = static_cast<const uint8_t*>(staging.memory.mapped) + size;
         for (uint64_t i = 0; i < stencilBytes; ++i) {

@@ -43,6 +43,8 @@ VkFormat toVkFormat(gdi::Format f) {
         case F::R11G11B10F: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
         case F::D32F: return VK_FORMAT_D32_SFLOAT;
         case F::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
+        case F::D16: return VK_FORMAT_D16_UNORM;
+        case F::D32F_S8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
         case F::BC1: return VK_FORMAT_BC1_RGBA_UNORM_BLOCK;
         case F::BC1_SRGB: return VK_FORMAT_BC1_RGBA_SRGB_BLOCK;
         case F::BC3: return VK_FORMAT_BC3_UNORM_BLOCK;

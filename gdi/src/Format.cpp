@@ -18,6 +18,8 @@ const FormatInfo kFormats[] = {
     {"R11G11B10F", 4, 3, true},
     {"D32F", 4, 0, true, false, false, true, false},
     {"D24S8", 4, 0, false, false, false, true, true},
+    {"D16", 2, 0, false, false, false, true, false},
+    {"D32F_S8", 8, 0, true, false, false, true, true},
     {"BC1", 0, 4, false, false, false, false, false, 4, 8},
     {"BC1_SRGB", 0, 4, false, true, false, false, false, 4, 8},
     {"BC3", 0, 4, false, false, false, false, false, 4, 16},

@@ -109,6 +109,14 @@ std::array<float, 4> Image::texel(uint32_t x, uint32_t y) const {
             out[2] = 0;
             break;
         }
+        case Format::D16: { uint16_t v; std::memcpy(&v, p, 2); out[0] = float(v) / 65535.0f; out[1] = out[2] = 0; break; }
+        case Format::D32F_S8: {  // float depth, then stencil in the low 8 bits of the next word (GL's layout)
+            uint32_t s; std::memcpy(&s, p + 4, 4);
+            out[0] = f32(0);
+            out[1] = float(s & 0xff);
+            out[2] = 0;
+            break;
+        }
         default: break;
     }
     return out;
@@ -146,6 +154,17 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const st
             case Format::D24S8: {
                 uint32_t v = uint32_t(std::nearbyint(std::clamp(t[0], 0.0f, 1.0f) * 0xffffff)) | (uint32_t(t[1]) << 24);
                 std::memcpy(p, &v, 4);
+                break;
+            }
+            case Format::D16: {
+                const auto v = uint16_t(std::nearbyint(std::clamp(t[0], 0.0f, 1.0f) * 65535.0f));
+                std::memcpy(p, &v, 2);
+                break;
+            }
+            case Format::D32F_S8: {
+                put32(0, t[0]);
+                const uint32_t s = uint32_t(std::clamp(t[1], 0.0f, 255.0f)) & 0xff;
+                std::memcpy(p + 4, &s, 4);
                 break;
             }
             default: break;

@@ -247,6 +247,77 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
     return out;
 }
 
+// D16 depth testing: near red at 0.25 drawn over the left half, far green at 0.75 over all of it
+// with Less: green only on the right; the depth image reads 0.25 and 0.75 (16-bit unorm).
+std::vector<CaseImage> depth16(Device& d) {
+    if (!d.formatCaps(Format::D16).renderTarget) return {};  // not a depth target here: nothing to prove
+    DeviceObjects o(d);
+    const TextureHandle color = target(o);
+    const TextureHandle depth = target(o, Format::D16);
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+         .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
+         .colorFormats = {Format::RGBA8}, .depthFormat = Format::D16, .debugName = "depth16"}));
+    const float near[8] = {1, 0, 0, 1, 0.25f, 0, 0, 0}, far[8] = {0, 1, 0, 1, 0.75f, 0, 0, 0};
+    const BufferHandle nearUbo = o.add(d.createBuffer({.size = sizeof near, .usage = BufferUsage::Uniform}, bytesOf(near)));
+    const BufferHandle farUbo = o.add(d.createBuffer({.size = sizeof far, .usage = BufferUsage::Uniform}, bytesOf(far)));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, nearUbo);
+    cmd->setScissor({0, 0, 32, 64});
+    cmd->draw(3);
+    cmd->setUniformBuffer(0, farUbo);
+    cmd->setScissor({0, 0, 64, 64});
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    const Image expectedColor = expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
+        return x < 32 ? Texel{1, 0, 0, 1} : Texel{0, 1, 0, 1};
+    });
+    const Image expectedDepth = expectImage(Format::D16, [](uint32_t x, uint32_t) -> Texel { return {x < 32 ? 0.25f : 0.75f, 0, 0, 0}; });
+    return {drawn("colour", d.readTexture(color), expectedColor),
+            within("depth", d.readTexture(depth), expectedDepth, 1.5 / 65535.0, "depth in 16-bit unorm: one rounding step")};
+}
+
+// Stencil written and read back with depth, in each depth-stencil format: stencil cleared to 3,
+// a draw with Replace and reference 7 over a rectangle, the depth left at its clear value 1.
+// readTexture gives depth in channel 0 and stencil in channel 1 on every backend.
+std::vector<CaseImage> stencilReadback(Device& d) {
+    std::vector<CaseImage> out;
+    for (Format f : {Format::D24S8, Format::D32F_S8}) {
+        if (!d.formatCaps(f).renderTarget) continue;
+        DeviceObjects o(d);
+        const TextureHandle color = target(o);
+        const TextureHandle depth = target(o, f);
+        const PipelineHandle p = o.add(d.createGraphicsPipeline(
+            {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+             .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+             .depthStencil = {.stencilTest = true,
+                              .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                              .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                              .stencilReference = 7},
+             .colorFormats = {Format::RGBA8}, .depthFormat = f, .debugName = "stencil replace"}));
+        const float params[8] = {1, 1, 1, 1, 0.5f, 0, 0, 0};
+        const BufferHandle ubo = o.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = color}}, .depth = {.texture = depth, .clearDepth = 1.0f, .clearStencil = 3}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, ubo);
+        cmd->setScissor({8, 16, 40, 24});
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        const Image expected = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+            const bool in = x >= 8 && x < 48 && y >= 16 && y < 40;
+            return {1.0f, in ? 7.0f : 3.0f, 0, 0};
+        });
+        out.push_back(exact("stencil_" + std::string(formatInfo(f).name), d.readTexture(depth), expected));
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<Case> fixedFunctionCases() {
@@ -257,6 +328,8 @@ std::vector<Case> fixedFunctionCases() {
         {"mip_filter_none", mipFilterNone},
         {"copy_only_textures", copyOnlyTextures},
         {"format_caps", formatCapsCase},
+        {"depth16", depth16},
+        {"stencil_and_readback", stencilReadback},
     };
 }
 

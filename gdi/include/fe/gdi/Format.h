@@ -18,7 +18,9 @@ enum class Format : uint8_t {
     R32U,
     R11G11B10F,  // packed unsigned float, no alpha
     D32F,
-    D24S8,
+    D24S8,    // read back as 32-bit texels: depth in the low 24 bits, stencil in the high 8
+    D16,      // unorm
+    D32F_S8,  // read back as 64-bit texels: float depth, then a 32-bit word with stencil in its low 8 bits
     // Block-compressed (4x4 texel blocks), sampled only; DeviceFeatures::textureCompressionBC.
     BC1,        // RGB 5:6:5 endpoints + 1-bit alpha, 8 bytes per block
     BC1_SRGB,
