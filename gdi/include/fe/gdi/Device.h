@@ -86,6 +86,36 @@
 //  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
 //    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
 //  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
+//
+// Pipelines are checked against their shaders (SPIR-V reflected with SPIRV-Cross, at
+// createShader), before any native call and with the same Error on every backend:
+//  - GraphicsPipelineDesc::bindings and ComputePipelineDesc::bindings may be left empty: the
+//    slots are then every binding the shaders use, with its kind and stages. A list that is
+//    given must name every slot a shader uses, with that kind and stage (an error names the
+//    slot); slots the shaders do not use are allowed and must still be bound to draw.
+//  - Every vertex shader input needs an attribute of its scalar kind (float or uint) in the
+//    vertex layout; a fragment output landing on a colour target has the target's kind; a
+//    compute work group fits maxComputeWorkGroupInvocations.
+//  - setPipeline in a pass: colorFormats, depthFormat and sampleCount equal the pass's.
+//  - Binding setters: offsets are multiples of uniformBufferOffsetAlignment /
+//    storageBufferOffsetAlignment and ranges at most maxUniformBufferRange / maxStorageBufferRange
+//    (size 0: to the end, capped at the maximum); the kind of each slot is checked at the draw.
+//  - setTexture refuses a sampler that filters linearly (a Linear filter, no comparison) on a
+//    format without FormatCaps::linearFilter (formatCaps() says what each format can do here).
+//
+// Fixed function that differs between the APIs behaves as Vulkan's on every backend:
+//  - FE_INSTANCE_ID (fe_common.glsl) counts from firstInstance, FE_VERTEX_ID from firstVertex.
+//  - Points obey gl_PointSize; gl_PointCoord (0, 0) is the point's top-left texel.
+//  - depthWrite without depthTest writes every fragment's depth (the test always passes).
+//  - MipFilter::None reads level 0 and minifies with minFilter, magnifies with magFilter.
+//  - MultisampleState::sampleMask with bit 0 clear draws nothing on a single-sample target.
+//  - Primitive restart (strip topologies) uses the index 0xFFFF / 0xFFFFFFFF.
+//  - New buffers and textures read as zeros (block-compressed textures excepted: upload them).
+//  - readTexture of D24S8 gives depth in the low 24 bits and stencil in the high 8 of each
+//    32-bit texel, of D32F_S8 a float depth and a word with stencil in its low 8 bits;
+//    Image::texel returns depth in [0] and stencil in [1]. Depth textures cannot be uploaded.
+//  - Validation-layer and GL debug messages are printed once each; the count of repeats is
+//    printed when the device is destroyed (validationErrorCount() counts every one).
 #pragma once
 
 #include <array>
