@@ -27,6 +27,7 @@ void GlCommandList::restart() {
 
 void GlCommandList::unbindAll() {
     kinds_ = {};
+    lastBound_ = {};
     unchecked_ = ~uint64_t(0);
     pipeline_ = nullptr;
     readyToDraw_ = false;
@@ -162,12 +163,14 @@ void GlCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_
     checkUnrestricted("setVertexBuffer");
     if (index >= 16) throw gdi::Error("setVertexBuffer: index out of range");
     const Buffer& b = dev_.buffer(h);
+    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Vertex, b.label, "setVertexBuffer");
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     stream_->push(cmd::SetVertexBuffer{index, h, offset});
 }
 void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
     checkUnrestricted("setIndexBuffer");
     const Buffer& b = dev_.buffer(h);
+    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Index, b.label, "setIndexBuffer");
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     hasIndexBuffer_ = true;
     indexOffset_ = offset;
@@ -183,10 +186,14 @@ void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offse
     const Buffer* b = dev_.findBuffer(h);
     const gdi::validate::BindingLimits& limits = kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
     uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
-    if (!bindSize) [[unlikely]] {
+    constexpr size_t kind = kKind == gdi::BindingType::UniformBuffer ? 0 : 1;
+    if (!bindSize || h.id != lastBound_[kind]) [[unlikely]] {  // another buffer: its usage is checked
         const char* what = kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
         checkSlot(slot, what);
         const Buffer& checked = dev_.buffer(h);
+        gdi::validate::bufferUsage(checked.desc, kind == 0 ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage,
+                                   checked.label, what);
+        lastBound_[kind] = h.id;
         bindSize = size == 0 ? std::min(checked.desc.size - std::min(offset, checked.desc.size), limits.maxRange) : size;
         gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
         gdi::validate::bindingLimits(offset, bindSize, limits, what);

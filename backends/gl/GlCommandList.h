@@ -134,6 +134,7 @@ private:
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     bool hasIndexBuffer_ = false;
     uint64_t indexOffset_ = 0;
+    std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;

@@ -452,8 +452,11 @@ void GlReplay::resolve() {
         else depth = target;
         const GLuint dst = dev_.framebuffer(colors, depth, point == GL_DEPTH_STENCIL_ATTACHMENT);
         if (color) gl_.NamedFramebufferReadBuffer(fbo_, point);
+        // Depth-stencil resolves carry stencil too, as Vulkan's (SAMPLE_ZERO for both aspects).
+        const GLbitfield mask = color ? GL_COLOR_BUFFER_BIT
+                                      : GL_DEPTH_BUFFER_BIT | (point == GL_DEPTH_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT : 0);
         gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0, GLint(area_.width),
-                                 GLint(area_.height), color ? GL_COLOR_BUFFER_BIT : GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+                                 GLint(area_.height), mask, GL_NEAREST);
     }
     gl_.Enable(GL_SCISSOR_TEST);
     resolves_.clear();

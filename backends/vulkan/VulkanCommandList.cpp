@@ -498,6 +498,7 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
 void VulkanCommandList::clearRecording() {
     used_.clear();
     lastBuffer_ = 0;
+    lastBound_ = {};
     destroyEpoch_ = dev_.destroyEpoch();
     recording_ = secondary_ = ended_ = restricted_ = secondaryPass_ = false;
     inPass_ = false;
@@ -572,6 +573,7 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
     ensureRecording();
     checkUnrestricted("setVertexBuffer");
     Buffer& b = usedBuffer(h);
+    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Vertex, b.name, "setVertexBuffer");
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
     VkDeviceSize off = offset;
     vkCmdBindVertexBuffers(cb_, index, 1, &b.buffer, &off);
@@ -581,6 +583,7 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
     ensureRecording();
     checkUnrestricted("setIndexBuffer");
     Buffer& b = usedBuffer(h);
+    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Index, b.name, "setIndexBuffer");
     if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
     indexOffset_ = offset;
@@ -595,9 +598,11 @@ inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uin
     const Buffer* b = dev_.findBuffer(h);
     const gdi::validate::BindingLimits& limits = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? uniformLimits_ : storageLimits_;
     const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
-    // Another buffer than the last one bound is noted (for submit's liveness check) on the
-    // checked path, so this one stays a leaf: no call, no saved registers.
-    if (!bindSize || h.id != lastBuffer_) [[unlikely]]
+    // Another buffer than the last one bound with this kind is checked (usage) and noted (for
+    // submit's liveness check) on the checked path, so this one stays a leaf: no call, no saved
+    // registers.
+    constexpr size_t kind = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? 0 : 1;
+    if (!bindSize || h.id != lastBound_[kind]) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
     bindBuffer(slot, kType, b->buffer, offset, bindSize);
 }
@@ -607,10 +612,13 @@ void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uin
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
     Buffer& b = usedBuffer(h);
-    const gdi::validate::BindingLimits& limits = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? uniformLimits_ : storageLimits_;
+    const bool uniform = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    gdi::validate::bufferUsage(b.desc, uniform ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage, b.name, what);
+    const gdi::validate::BindingLimits& limits = uniform ? uniformLimits_ : storageLimits_;
     if (size == 0) size = std::min(b.desc.size - std::min(offset, b.desc.size), limits.maxRange);
     gdi::validate::bindingRange(b.desc, offset, size, what);
     gdi::validate::bindingLimits(offset, size, limits, what);
+    lastBound_[uniform ? 0 : 1] = h.id;
     bindBuffer(slot, kType, b.buffer, offset, size);
 }
 

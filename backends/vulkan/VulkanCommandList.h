@@ -149,6 +149,7 @@ private:
     VkCommandBuffer cb_ = VK_NULL_HANDLE;  // buffers_[current_].cb
     std::vector<uint64_t> used_;  // UsedKind << 32 | handle id, per use
     uint32_t lastBuffer_ = 0;     // the buffer noted last (0: none yet this recording)
+    std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer the checked path passed
     uint64_t destroyEpoch_ = 0;
     bool recording_ = false;
     bool inPass_ = false;

@@ -602,3 +602,16 @@ void notFilterable(const std::string& texture, Format format, const std::string&
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what) {
+    if (any(d.usage, usage)) return;
+    const char* kind = usage == BufferUsage::Uniform ? "Uniform"
+                       : usage == BufferUsage::Storage ? "Storage"
+                       : usage == BufferUsage::Vertex  ? "Vertex"
+                                                       : "Index";
+    throw Error(std::string(what) + ": " + label("buffer", name.c_str()) + " lacks " + kind + " usage");
+}
+
+}  // namespace fe::gdi::validate

@@ -459,4 +459,24 @@ TEST_P(DeviceErrors, BindingOffsetsAndRangesFollowTheDeviceLimits) {
     d.destroy(big);
 }
 
+// A buffer bound as what it was not created for is the same gdi::Error on every backend (the
+// Vulkan validation layer would report it; GL would bind it silently).
+TEST_P(DeviceErrors, BuffersAreBoundOnlyAsTheirUsage) {
+    Device& d = *device;
+    auto uniformOnly = d.createBuffer({.size = 256, .usage = BufferUsage::Uniform, .debugName = "uniform only"});
+    auto storageOnly = d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "storage only"});
+    auto cmd = d.createCommandList();
+    EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(0, uniformOnly); }).find("setStorageBuffer: buffer 'uniform only' lacks Storage usage"),
+              std::string::npos);
+    cmd->setUniformBuffer(0, uniformOnly);  // the same buffer as what it is: accepted, and again on the fast path
+    cmd->setUniformBuffer(1, uniformOnly, 0, 16);
+    EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(1, uniformOnly, 0, 16); }).find("lacks Storage usage"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(0, storageOnly); }).find("lacks Uniform usage"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setVertexBuffer(0, storageOnly); }).find("setVertexBuffer: buffer 'storage only' lacks Vertex usage"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setIndexBuffer(storageOnly, IndexType::U16); }).find("lacks Index usage"), std::string::npos);
+    d.destroy(uniformOnly);
+    d.destroy(storageOnly);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DeviceErrors);

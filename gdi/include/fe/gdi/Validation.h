@@ -100,6 +100,8 @@ inline bool filtersLinearly(const SamplerDesc& d) {
     return !d.compareEnable && (d.minFilter == Filter::Linear || d.magFilter == Filter::Linear || d.mipFilter == MipFilter::Linear);
 }
 [[noreturn]] void notFilterable(const std::string& texture, Format format, const std::string& sampler);
+// A buffer bound as `usage` (Uniform, Storage, Vertex, Index) must have been created with it.
+void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what);
 // setDepthBias's values: finite, and a clamp only where the device has depthBiasClamp.
 void depthBias(float constant, float slope, float clamp, const DeviceFeatures& features);
 // A pipeline set in a pass must rasterize with the pass's sample count.
