@@ -49,12 +49,17 @@ void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>
     automatic_ = true;
 }
 
+// Locals, not members, on the per-command path: a member would be reloaded and stored around
+// every record's call (measured: about 30 instructions per draw).
 void GlReplay::replayRecords(const cmd::CommandStream& stream) {
     const std::function<void()>& between = *between_;
+    const bool serve = bool(between);
+    uint32_t n = serviced_;
     stream.forEach([&](const auto& record) {
         (*this)(record);
-        if (between && ++serviced_ % kServiceInterval == 0) between();
+        if (serve && ++n % kServiceInterval == 0) between();
     });
+    serviced_ = n;
 }
 
 // A secondary list's records, in place (it sets its own viewport, scissor, pipeline and bindings).
