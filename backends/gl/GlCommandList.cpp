@@ -367,6 +367,17 @@ void GlCommandList::popDebugGroup() {
     --depth_;
     stream_->push(cmd::PopDebugGroup{});
 }
+void GlCommandList::insertDebugLabel(const char* name) {
+    checkUnrestricted("insertDebugLabel");
+    auto* r = stream_->push(cmd::InsertDebugLabel{}, cmd::CommandStream::payloadSize(name ? name : ""));
+    r->name = stream_->payload(*r, name ? name : "");
+}
+void GlCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size, uint32_t value) {
+    outside("clearBuffer");
+    const Buffer& b = dev_.buffer(h);
+    const uint64_t bytes = gdi::validate::clearRange(b.desc, b.label, offset, size);
+    stream_->push(cmd::ClearBuffer{h, offset, bytes, value});
+}
 void GlCommandList::discardTexture(gdi::TextureHandle h) {
     outside("discardTexture");
     (void)dev_.texture(h);

@@ -67,6 +67,8 @@ public:
     void endTimer(gdi::TimerHandle h) override;
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
+    void insertDebugLabel(const char* name) override;
+    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size, uint32_t value) override;
     void discardTexture(gdi::TextureHandle h) override;
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;

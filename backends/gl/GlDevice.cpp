@@ -683,9 +683,16 @@ void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::Byte
     loss_.check("writeTexture");
     const Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
-    thread_.post([this, h, at, bytes = std::vector<std::byte>(data.begin(), data.end())] {
+    std::vector<std::byte> bytes(data.begin(), data.end());
+    if (t.desc.format == gdi::Format::D24S8)  // gdi's X8D24 with stencil high -> GL's depth high, stencil low
+        for (size_t i = 0; i + 4 <= bytes.size(); i += 4) {
+            uint32_t v;
+            std::memcpy(&v, &bytes[i], 4);
+            v = (v << 8) | (v >> 24);
+            std::memcpy(&bytes[i], &v, 4);
+        }
+    thread_.post([this, h, at, bytes = std::move(bytes)] {
         uploadSubresource(textures_.at(h), at, bytes.data(), bytes.size());
     });
 }

@@ -46,6 +46,8 @@ namespace fe::gl {
     X(PFNGLCLEARNAMEDBUFFERDATAPROC, ClearNamedBufferData)                                                 \
     X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                                               \
     X(PFNGLSAMPLEMASKIPROC, SampleMaski)                                                                   \
+    X(PFNGLCLEARNAMEDBUFFERSUBDATAPROC, ClearNamedBufferSubData)                                           \
+    X(PFNGLDEBUGMESSAGEINSERTPROC, DebugMessageInsert)                                                     \
     X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                                             \
     X(PFNGLCREATESHADERPROC, CreateShader)                                                                 \
     X(PFNGLSHADERBINARYPROC, ShaderBinary)                                                                 \

@@ -340,6 +340,19 @@ void GlReplay::operator()(const cmd::GenerateMips& r) {
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.GenerateTextureMipmap(dev_.textureAt(r.texture).name);
 }
+// A marker message: frame debuggers (RenderDoc, apitrace) show GL_DEBUG_TYPE_MARKER messages
+// among the calls.
+void GlReplay::operator()(const cmd::InsertDebugLabel& r) {
+    const char* name = cmd::view(r, r.name);
+    gl_.DebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 0, GL_DEBUG_SEVERITY_NOTIFICATION, -1,
+                           name ? name : "");
+}
+void GlReplay::operator()(const cmd::ClearBuffer& r) {
+    if (r.size)
+        gl_.ClearNamedBufferSubData(dev_.bufferAt(r.buffer).name, GL_R32UI, GLintptr(r.offset), GLsizeiptr(r.size),
+                                    GL_RED_INTEGER, GL_UNSIGNED_INT, &r.value);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+}
 void GlReplay::operator()(const cmd::CopyBuffer& r) {
     if (r.size)
         gl_.CopyNamedBufferSubData(dev_.bufferAt(r.src).name, dev_.bufferAt(r.dst).name, GLintptr(r.srcOffset),

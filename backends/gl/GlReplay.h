@@ -21,6 +21,8 @@ public:
     void run(const gdi::cmd::CommandStream& stream, const std::function<void()>& between = {});
 
     void operator()(const gdi::cmd::BeginRenderPass& r);
+    void operator()(const gdi::cmd::InsertDebugLabel& r);
+    void operator()(const gdi::cmd::ClearBuffer& r);
     void operator()(const gdi::cmd::ExecuteSecondary& r);
     void operator()(const gdi::cmd::EndRenderPass&);
     void operator()(const gdi::cmd::SetPipeline& r);

@@ -814,6 +814,26 @@ void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gd
     if (d.desc.access == gdi::MemoryAccess::Readback) hostReadable(d);
 }
 
+void VulkanCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size, uint32_t value) {
+    outsidePass("clearBuffer");
+    Buffer& b = usedBuffer(h);
+    const uint64_t bytes = gdi::validate::clearRange(b.desc, b.name, offset, size);
+    if (bytes == 0) return;
+    barrierIfWritten();
+    vkCmdFillBuffer(cb_, b.buffer, offset, bytes, value);
+    written_ = true;
+    if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
+}
+
+void VulkanCommandList::insertDebugLabel(const char* name) {
+    ensureRecording();
+    checkUnrestricted("insertDebugLabel");
+    if (!dev_.cmdInsertLabel) return;
+    VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+    l.pLabelName = name ? name : "";
+    dev_.cmdInsertLabel(cb_, &l);
+}
+
 void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
     outsidePass("copyTexture");
     Texture& d = usedTexture(dst);

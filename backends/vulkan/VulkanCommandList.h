@@ -48,6 +48,8 @@ public:
     void endTimer(gdi::TimerHandle timer) override;
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
+    void insertDebugLabel(const char* name) override;
+    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size, uint32_t value) override;
     void beginSecondary(const gdi::RenderPassDesc& pass) override;
     void endSecondary() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;

@@ -151,6 +151,8 @@ void VulkanDevice::createInstance(bool validation) {
             vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
         cmdEndLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
             vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+        cmdInsertLabel = reinterpret_cast<PFN_vkCmdInsertDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdInsertDebugUtilsLabelEXT"));
     }
     info_.features.validation = validation;
     if (swapchain_) swapchain_->createSurface(instance_);
@@ -652,14 +654,35 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     loss_.check("writeTexture");
     Texture& t = texture(h);
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error("writeTexture: depth textures cannot be uploaded");
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
-    Buffer staging = makeBuffer(data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
+    // Depth-stencil texels (gdi's readback layout, Device.h) go in as two aspects: the depth
+    // words first (D32F_S8: packed from 8-byte texels), then one stencil byte per texel.
+    const gdi::FormatInfo& fi = gdi::formatInfo(t.desc.format);
+    const uint64_t texels = fi.hasStencil ? data.size() / fi.bytesPerPixel : 0;
+    const uint64_t depthBytes = fi.hasStencil ? texels * 4 : data.size();
+    Buffer staging = makeBuffer(depthBytes + texels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
+                                "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
-    std::memcpy(staging.memory.mapped, data.data(), data.size());
+    auto* staged = static_cast<uint8_t*>(staging.memory.mapped);
+    const auto* in = reinterpret_cast<const uint8_t*>(data.data());
+    if (!fi.hasStencil) {
+        std::memcpy(staged, in, data.size());
+    } else {
+        for (uint64_t i = 0; i < texels; ++i) {
+            const uint8_t* texel = in + i * fi.bytesPerPixel;
+            std::memcpy(staged + 4 * i, texel, 4);  // D24S8: the high byte is ignored by the depth copy
+            staged[depthBytes + i] = t.desc.format == gdi::Format::D24S8 ? texel[3] : texel[4];
+        }
+    }
     immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+        if (fi.hasStencil) {
+            VkBufferImageCopy s = r;
+            s.bufferOffset = depthBytes;
+            s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+            vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &s);
+        }
     });
 }
 

@@ -183,6 +183,7 @@ public:
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+    PFN_vkCmdInsertDebugUtilsLabelEXT cmdInsertLabel = nullptr;
     uint32_t queueFamily() const { return queueFamily_; }
     bool linearBlit(gdi::Format format) const;
     gdi::FormatCaps formatCaps(gdi::Format format) const override;  // vkCmdBlitImage with VK_FILTER_LINEAR works

@@ -215,7 +215,8 @@ ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, dou
                     std::to_string(b.width) + "x" + std::to_string(b.height) + " " +
                     std::string(formatInfo(b.format).name) + ")");
     const FormatInfo& fi = formatInfo(a.format);
-    const int channels = fi.hasDepth ? 1 : int(fi.channels);
+    // Depth formats compare depth, and stencil (texel channel 1) where they have one.
+    const int channels = fi.hasDepth ? (fi.hasStencil ? 2 : 1) : int(fi.channels);
     ImageDiff d;
     d.pixels = a.width * a.height;
     std::vector<std::array<float, 4>> diffTexels;

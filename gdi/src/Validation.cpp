@@ -615,3 +615,16 @@ void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t size) {
+    const uint64_t bytes = size == 0 && offset <= d.size ? d.size - offset : size;
+    if (offset % 4 || bytes % 4)
+        throw Error("clearBuffer: " + label("buffer", name.c_str()) + ": offset " + std::to_string(offset) + " and size " +
+                    std::to_string(bytes) + " must be multiples of 4");
+    bufferRange(d, offset, bytes, "clearBuffer");
+    return bytes;
+}
+
+}  // namespace fe::gdi::validate

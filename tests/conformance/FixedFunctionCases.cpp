@@ -283,7 +283,8 @@ std::vector<CaseImage> depth16(Device& d) {
 
 // Stencil written and read back with depth, in each depth-stencil format: stencil cleared to 3,
 // a draw with Replace and reference 7 over a rectangle, the depth left at its clear value 1.
-// readTexture gives depth in channel 0 and stencil in channel 1 on every backend.
+// readTexture gives depth in channel 0 and stencil in channel 1 on every backend; writeTexture
+// takes the same layout for every depth format.
 std::vector<CaseImage> stencilReadback(Device& d) {
     std::vector<CaseImage> out;
     for (Format f : {Format::D24S8, Format::D32F_S8}) {
@@ -315,7 +316,44 @@ std::vector<CaseImage> stencilReadback(Device& d) {
         });
         out.push_back(exact("stencil_" + std::string(formatInfo(f).name), d.readTexture(depth), expected));
     }
+    // Uploads in the readback layout: a depth ramp and a stencil pattern, read back unchanged.
+    for (Format f : {Format::D32F, Format::D16, Format::D24S8, Format::D32F_S8}) {
+        if (!d.formatCaps(f).sampled) continue;
+        DeviceObjects o(d);
+        const TextureHandle t = o.add(d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize,
+                                                       .usage = TextureUsage::CopySrc | TextureUsage::CopyDst}));
+        const Image pattern = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+            return {float(x) / 63.0f, float((x * 7 + y * 3) & 0xff), 0, 0};
+        });
+        d.writeTexture(t, {}, bytesOf(pattern.data));
+        out.push_back(exact("upload_" + std::string(formatInfo(f).name), d.readTexture(t), pattern));
+    }
     return out;
+}
+
+// clearBuffer fills a range with a 32-bit pattern, size 0 meaning to the end; ranges that are not
+// multiples of 4 or leave the buffer are refused. A debug label between the commands records
+// without a validation message.
+std::vector<CaseImage> clearBufferCase(Device& d) {
+    DeviceObjects o(d);
+    const BufferHandle b = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "cleared"}));
+    auto cmd = d.createCommandList();
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 2, 8, 1); }), "an offset that is not a multiple of 4 is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 0, 6, 1); }), "a size that is not a multiple of 4 is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 128, 256, 1); }), "a range past the end is refused");
+    cmd->clearBuffer(b, 0, 0, 0x01020304u);  // all of it
+    cmd->insertDebugLabel("between the clears");
+    cmd->clearBuffer(b, 16, 48, 0xdeadbeefu);
+    cmd->clearBuffer(b, 192, 0, 0);  // from 192 to the end
+    d.wait(d.submit(*cmd));
+    const std::vector<uint8_t> bytes = d.readBuffer(b, 0, 256);
+    for (uint32_t i = 0; i < 64; ++i) {
+        uint32_t v;
+        std::memcpy(&v, &bytes[4 * i], 4);
+        const uint32_t want = i >= 48 ? 0u : (i >= 4 && i < 16) ? 0xdeadbeefu : 0x01020304u;
+        FE_CONFORMANCE_CHECK(v == want, ("word " + std::to_string(i) + " holds its fill").c_str());
+    }
+    return {};
 }
 
 }  // namespace
@@ -330,6 +368,7 @@ std::vector<Case> fixedFunctionCases() {
         {"format_caps", formatCapsCase},
         {"depth16", depth16},
         {"stencil_and_readback", stencilReadback},
+        {"clear_buffer", clearBufferCase},
     };
 }
 

@@ -113,7 +113,8 @@
 //  - New buffers and textures read as zeros (block-compressed textures excepted: upload them).
 //  - readTexture of D24S8 gives depth in the low 24 bits and stencil in the high 8 of each
 //    32-bit texel, of D32F_S8 a float depth and a word with stencil in its low 8 bits;
-//    Image::texel returns depth in [0] and stencil in [1]. Depth textures cannot be uploaded.
+//    Image::texel returns depth in [0] and stencil in [1]. writeTexture takes depth and
+//    depth-stencil texels in the same layout (Image::fromTexels makes them).
 //  - Validation-layer and GL debug messages are printed once each; the count of repeats is
 //    printed when the device is destroyed (validationErrorCount() counts every one).
 #pragma once
@@ -641,6 +642,10 @@ public:
 
     virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
                             uint64_t size) = 0;
+    // Fills [offset, offset + size) of the buffer with the 32-bit pattern `value` (0: zeros);
+    // size 0 means to the end. Offset and size are multiples of 4 (vkCmdFillBuffer's rule).
+    // Outside render passes.
+    virtual void clearBuffer(BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0, uint32_t value = 0) = 0;
     // Whole-texture copies of one mip level (every layer); descriptions must match.
     virtual void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel = 0) = 0;
     // One subresource, tightly packed rows, top to bottom (see textureByteSize).
@@ -651,6 +656,8 @@ public:
     virtual void endTimer(TimerHandle timer) = 0;
     virtual void pushDebugGroup(const char* name) = 0;
     virtual void popDebugGroup() = 0;
+    // One marker at this point of the recording (a frame debugger shows it among the calls).
+    virtual void insertDebugLabel(const char* name) = 0;
 
     // The texture's previous contents are no longer needed: required before the first use of
     // a heap-placed texture whose memory another texture may have written since (Vulkan:

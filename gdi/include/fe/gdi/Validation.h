@@ -102,6 +102,9 @@ inline bool filtersLinearly(const SamplerDesc& d) {
 [[noreturn]] void notFilterable(const std::string& texture, Format format, const std::string& sampler);
 // A buffer bound as `usage` (Uniform, Storage, Vertex, Index) must have been created with it.
 void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what);
+// clearBuffer: a range inside the buffer, offset and size multiples of 4 (size 0: to the end);
+// returns the size to fill.
+uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t size);
 // setDepthBias's values: finite, and a clamp only where the device has depthBiasClamp.
 void depthBias(float constant, float slope, float clamp, const DeviceFeatures& features);
 // A pipeline set in a pass must rasterize with the pass's sample count.
