@@ -39,6 +39,7 @@ GlFormat toGlFormat(gdi::Format f) {
         case F::D24S8: return {GL_DEPTH24_STENCIL8, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
         case F::D16: return {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT, GL_UNSIGNED_SHORT};
         case F::D32F_S8: return {GL_DEPTH32F_STENCIL8, GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV};
+        case F::S8: return {GL_STENCIL_INDEX8, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE};
         // Compressed: the internal format only (uploads use glCompressedTextureSubImage*).
         case F::BC1: return {GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, 0, 0};
         case F::BC1_SRGB: return {kCompressedSrgbAlphaS3tcDxt1, 0, 0};
@@ -248,9 +249,9 @@ void GlDevice::initialize(bool validation) {
         c.sampled = true;
         c.linearFilter = !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FILTER);
         c.renderTarget = supportsFormat(f, gdi::TextureUsage::RenderTarget);
-        c.blend = c.renderTarget && !fi.hasDepth && !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FRAMEBUFFER_BLEND);
+        c.blend = c.renderTarget && !gdi::isDepthFormat(f) && !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FRAMEBUFFER_BLEND);
         c.storage = supportsFormat(f, gdi::TextureUsage::Storage);
-        if (c.renderTarget) c.sampleCounts = countsFor(fi.hasDepth ? maxDepth : maxColor, {f});
+        if (c.renderTarget) c.sampleCounts = countsFor(gdi::isDepthFormat(f) ? maxDepth : maxColor, {f});
     }
 }
 
@@ -621,7 +622,12 @@ FboAttachment GlDevice::fboAttachment(const Texture& t, uint32_t mipLevel, uint3
     return {t.name, mipLevel, layered ? int32_t(layer) : -1};
 }
 
-GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, bool stencil) {
+GLenum depthAttachmentPoint(gdi::Format f) {
+    const gdi::FormatInfo& fi = gdi::formatInfo(f);
+    return fi.hasDepth && fi.hasStencil ? GL_DEPTH_STENCIL_ATTACHMENT : fi.hasDepth ? GL_DEPTH_ATTACHMENT : GL_STENCIL_ATTACHMENT;
+}
+
+GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, GLenum depthPoint) {
     for (auto& f : fbos_)
         if (f.colors == colors && f.depth == depth) return f.fbo;
     GLuint fbo;
@@ -636,7 +642,7 @@ GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttach
         attach(GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i]);
         draw.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
     }
-    if (depth.texture) attach(stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth);
+    if (depth.texture) attach(depthPoint, depth);
     gl_.NamedFramebufferDrawBuffers(fbo, GLsizei(draw.size()), draw.data());
     if (gl_.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         gl_.DeleteFramebuffers(1, &fbo);
@@ -919,7 +925,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
     const uint32_t fbWidth = framebufferSize.first, fbHeight = framebufferSize.second;
     thread_.run([&] {
         platform_->beforeDraw();
-        GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, false);
+        GLuint fbo = framebuffer({fboAttachment(t, 0, 0)}, {}, GL_NONE);
         gl_.NamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
         gl_.MemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
         // Bytes unchanged: no sRGB decode/encode. The blit honours the scissor test, so it is off.

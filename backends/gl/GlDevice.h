@@ -47,6 +47,9 @@ struct Texture {
     bool linearFilter = false;  // FormatCaps::linearFilter of its format
 };
 GLenum textureTarget(const gdi::TextureDesc& d);
+// Where a depth/stencil format attaches: GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH_ATTACHMENT or (S8)
+// GL_STENCIL_ATTACHMENT.
+GLenum depthAttachmentPoint(gdi::Format f);
 // One framebuffer attachment: a texture's mip level and, for layered textures, its layer.
 struct FboAttachment {
     GLuint texture = 0;
@@ -154,7 +157,7 @@ public:
     Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
     FboAttachment fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const;
-    GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, bool stencil);
+    GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, GLenum depthPoint);
     // Runs `task` on the context thread (gl-specific escape hatch: bench/ issues direct GL calls).
     void runOnContextThread(const std::function<void()>& task) { thread_.run(task); }
 

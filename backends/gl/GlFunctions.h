@@ -48,6 +48,7 @@ namespace fe::gl {
     X(PFNGLSAMPLEMASKIPROC, SampleMaski)                                                                   \
     X(PFNGLCLEARNAMEDBUFFERSUBDATAPROC, ClearNamedBufferSubData)                                           \
     X(PFNGLDEBUGMESSAGEINSERTPROC, DebugMessageInsert)                                                     \
+    X(PFNGLCLEARNAMEDFRAMEBUFFERIVPROC, ClearNamedFramebufferiv)                                           \
     X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                                             \
     X(PFNGLCREATESHADERPROC, CreateShader)                                                                 \
     X(PFNGLSHADERBINARYPROC, ShaderBinary)                                                                 \

@@ -85,11 +85,11 @@ void GlReplay::operator()(const cmd::BeginRenderPass& r) {
     }
     const gdi::DepthAttachment& d = r.depth;
     const Texture* depth = d.texture ? &dev_.textureAt(d.texture) : nullptr;
-    const bool stencil = depth && gdi::formatInfo(depth->desc.format).hasStencil;
-    const GLuint fbo = dev_.framebuffer(colors, depth ? dev_.fboAttachment(*depth, d.mipLevel, d.layer) : FboAttachment{}, stencil);
+    const GLenum depthPoint = depth ? depthAttachmentPoint(depth->desc.format) : GL_NONE;
+    const GLuint fbo = dev_.framebuffer(colors, depth ? dev_.fboAttachment(*depth, d.mipLevel, d.layer) : FboAttachment{}, depthPoint);
     fbo_ = fbo;
     if (d.resolveTexture)
-        resolves_.push_back({GLenum(stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT),
+        resolves_.push_back({depthPoint,
                              dev_.fboAttachment(dev_.textureAt(d.resolveTexture), d.resolveSubresource.mipLevel,
                                                 d.resolveSubresource.layer)});
     // The render area: the attachments' common size (validated when recorded).
@@ -118,8 +118,14 @@ void GlReplay::operator()(const cmd::BeginRenderPass& r) {
     if (depth && d.load == gdi::LoadOp::Clear) {
         gl_.DepthMask(GL_TRUE);
         gl_.StencilMask(0xff);
-        if (stencil) gl_.ClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, d.clearDepth, d.clearStencil);
-        else gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &d.clearDepth);
+        if (depthPoint == GL_DEPTH_STENCIL_ATTACHMENT) {
+            gl_.ClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, d.clearDepth, d.clearStencil);
+        } else if (depthPoint == GL_DEPTH_ATTACHMENT) {
+            gl_.ClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &d.clearDepth);
+        } else {
+            const GLint s = d.clearStencil;
+            gl_.ClearNamedFramebufferiv(fbo, GL_STENCIL, 0, &s);
+        }
     }
     pipeline_ = nullptr;  // a render pass starts with no pipeline (the clears above changed its state)
     vertexDirty_ = indexDirty_ = true;
@@ -464,15 +470,18 @@ void GlReplay::resolve() {
     // again, as Vulkan's AVERAGE resolve does (msaa_resolve's colour_srgb image checks it).
     for (const auto& [point, target] : resolves_) {
         const bool color = point >= GL_COLOR_ATTACHMENT0 && point < GL_COLOR_ATTACHMENT0 + 16;
+        const GLenum depthPoint = color ? GLenum(GL_NONE) : point;
         std::vector<FboAttachment> colors;
         FboAttachment depth{};
         if (color) colors.push_back(target);
         else depth = target;
-        const GLuint dst = dev_.framebuffer(colors, depth, point == GL_DEPTH_STENCIL_ATTACHMENT);
+        const GLuint dst = dev_.framebuffer(colors, depth, depthPoint);
         if (color) gl_.NamedFramebufferReadBuffer(fbo_, point);
         // Depth-stencil resolves carry stencil too, as Vulkan's (SAMPLE_ZERO for both aspects).
-        const GLbitfield mask = color ? GL_COLOR_BUFFER_BIT
-                                      : GL_DEPTH_BUFFER_BIT | (point == GL_DEPTH_STENCIL_ATTACHMENT ? GL_STENCIL_BUFFER_BIT : 0);
+        const GLbitfield mask = color                              ? GL_COLOR_BUFFER_BIT
+                                : point == GL_DEPTH_STENCIL_ATTACHMENT ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
+                                : point == GL_DEPTH_ATTACHMENT       ? GL_DEPTH_BUFFER_BIT
+                                                                     : GL_STENCIL_BUFFER_BIT;
         gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0, GLint(area_.width),
                                  GLint(area_.height), mask, GL_NEAREST);
     }

@@ -366,7 +366,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
                                                          desc.depth.resolveSubresource.layer);
             depth.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
         }
-        ri.pDepthAttachment = &depth;
+        if (gdi::formatInfo(depthTex->desc.format).hasDepth) ri.pDepthAttachment = &depth;  // S8: stencil only
         if (gdi::formatInfo(depthTex->desc.format).hasStencil) {
             stencil = depth;
             stencil.resolveMode = depthResolveTex ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
@@ -436,8 +436,9 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     ir.colorAttachmentCount = signature_.colorCount;
     ir.pColorAttachmentFormats = formats.data();
     if (signature_.depth != gdi::Format::Undefined) {
-        ir.depthAttachmentFormat = toVkFormat(signature_.depth);
-        if (gdi::formatInfo(signature_.depth).hasStencil) ir.stencilAttachmentFormat = ir.depthAttachmentFormat;
+        const VkFormat f = toVkFormat(signature_.depth);
+        if (gdi::formatInfo(signature_.depth).hasDepth) ir.depthAttachmentFormat = f;
+        if (gdi::formatInfo(signature_.depth).hasStencil) ir.stencilAttachmentFormat = f;
     }
     ir.rasterizationSamples = VkSampleCountFlagBits(signature_.samples);
     VkCommandBufferInheritanceInfo ii{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};

@@ -658,14 +658,15 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     // Depth-stencil texels (gdi's readback layout, Device.h) go in as two aspects: the depth
     // words first (D32F_S8: packed from 8-byte texels), then one stencil byte per texel.
     const gdi::FormatInfo& fi = gdi::formatInfo(t.desc.format);
-    const uint64_t texels = fi.hasStencil ? data.size() / fi.bytesPerPixel : 0;
-    const uint64_t depthBytes = fi.hasStencil ? texels * 4 : data.size();
+    const bool split = fi.hasDepth && fi.hasStencil;  // S8 is one (stencil) aspect, copied as it is
+    const uint64_t texels = split ? data.size() / fi.bytesPerPixel : 0;
+    const uint64_t depthBytes = split ? texels * 4 : data.size();
     Buffer staging = makeBuffer(depthBytes + texels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
                                 "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     auto* staged = static_cast<uint8_t*>(staging.memory.mapped);
     const auto* in = reinterpret_cast<const uint8_t*>(data.data());
-    if (!fi.hasStencil) {
+    if (!split) {
         std::memcpy(staged, in, data.size());
     } else {
         for (uint64_t i = 0; i < texels; ++i) {
@@ -677,7 +678,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
         const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
         vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
-        if (fi.hasStencil) {
+        if (split) {
             VkBufferImageCopy s = r;
             s.bufferOffset = depthBytes;
             s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
@@ -716,7 +717,7 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
     // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits), then the
     // stencil aspect (one byte per texel) after it, merged into the high byte as GL returns it.
-    const bool stencil = gdi::formatInfo(t.desc.format).hasStencil;
+    const bool stencil = gdi::formatInfo(t.desc.format).hasStencil && gdi::formatInfo(t.desc.format).hasDepth;  // S8: one aspect
     const uint64_t stencilBytes = stencil ? uint64_t(e.width) * e.height : 0;
     Buffer staging = makeBuffer(size + stencilBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
                                 "staging buffer for texture", t.name);

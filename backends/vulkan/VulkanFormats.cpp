@@ -45,6 +45,7 @@ VkFormat toVkFormat(gdi::Format f) {
         case F::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
         case F::D16: return VK_FORMAT_D16_UNORM;
         case F::D32F_S8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
+        case F::S8: return VK_FORMAT_S8_UINT;
         case F::BC1: return VK_FORMAT_BC1_RGBA_UNORM_BLOCK;
         case F::BC1_SRGB: return VK_FORMAT_BC1_RGBA_SRGB_BLOCK;
         case F::BC3: return VK_FORMAT_BC3_UNORM_BLOCK;
@@ -78,11 +79,12 @@ VkFormat toVkVertexFormat(gdi::VertexFormat f) {
 VkImageAspectFlags aspectOf(gdi::Format f) {
     const auto& fi = gdi::formatInfo(f);
     if (fi.hasDepth) return VK_IMAGE_ASPECT_DEPTH_BIT | (fi.hasStencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
-    return VK_IMAGE_ASPECT_COLOR_BIT;
+    return fi.hasStencil ? VK_IMAGE_ASPECT_STENCIL_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
 VkImageAspectFlags viewAspectOf(gdi::Format f) {
-    return gdi::isDepthFormat(f) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+    const auto& fi = gdi::formatInfo(f);
+    return fi.hasDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : fi.hasStencil ? VK_IMAGE_ASPECT_STENCIL_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
 uint32_t arrayLayers(const gdi::TextureDesc& d) {

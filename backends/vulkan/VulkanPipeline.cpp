@@ -239,7 +239,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     ri.colorAttachmentCount = uint32_t(colorFormats.size());
     ri.pColorAttachmentFormats = colorFormats.data();
-    ri.depthAttachmentFormat = d.depthFormat == gdi::Format::Undefined ? VK_FORMAT_UNDEFINED : toVkFormat(d.depthFormat);
+    ri.depthAttachmentFormat = gdi::formatInfo(d.depthFormat).hasDepth ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
     ri.stencilAttachmentFormat = gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
 
     Pipeline p = makeLayout(device_, bindings, d.debugName);

@@ -20,6 +20,7 @@ const FormatInfo kFormats[] = {
     {"D24S8", 4, 0, false, false, false, true, true},
     {"D16", 2, 0, false, false, false, true, false},
     {"D32F_S8", 8, 0, true, false, false, true, true},
+    {"S8", 1, 0, false, false, true, false, true},
     {"BC1", 0, 4, false, false, false, false, false, 4, 8},
     {"BC1_SRGB", 0, 4, false, true, false, false, false, 4, 8},
     {"BC3", 0, 4, false, false, false, false, false, 4, 16},

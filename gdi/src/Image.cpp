@@ -110,6 +110,7 @@ std::array<float, 4> Image::texel(uint32_t x, uint32_t y) const {
             break;
         }
         case Format::D16: { uint16_t v; std::memcpy(&v, p, 2); out[0] = float(v) / 65535.0f; out[1] = out[2] = 0; break; }
+        case Format::S8: out[0] = 0; out[1] = float(p[0]); out[2] = 0; break;  // stencil in [1], as with depth
         case Format::D32F_S8: {  // float depth, then stencil in the low 8 bits of the next word (GL's layout)
             uint32_t s; std::memcpy(&s, p + 4, 4);
             out[0] = f32(0);
@@ -161,6 +162,7 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const st
                 std::memcpy(p, &v, 2);
                 break;
             }
+            case Format::S8: p[0] = uint8_t(std::clamp(t[1], 0.0f, 255.0f)); break;
             case Format::D32F_S8: {
                 put32(0, t[0]);
                 const uint32_t s = uint32_t(std::clamp(t[1], 0.0f, 255.0f)) & 0xff;
@@ -216,7 +218,7 @@ ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, dou
                     std::string(formatInfo(b.format).name) + ")");
     const FormatInfo& fi = formatInfo(a.format);
     // Depth formats compare depth, and stencil (texel channel 1) where they have one.
-    const int channels = fi.hasDepth ? (fi.hasStencil ? 2 : 1) : int(fi.channels);
+    const int channels = fi.hasStencil ? 2 : fi.hasDepth ? 1 : int(fi.channels);
     ImageDiff d;
     d.pixels = a.width * a.height;
     std::vector<std::array<float, 4>> diffTexels;

@@ -225,6 +225,8 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
         fail(what, "depth test/write enabled without a depth format");
     if (d.depthStencil.stencilTest && !formatInfo(d.depthFormat).hasStencil)
         fail(what, "stencil test enabled but depth format has no stencil");
+    if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) && !formatInfo(d.depthFormat).hasDepth)
+        fail(what, "depth test or write enabled but the depth format has no depth");
     if (d.blend.size() > d.colorFormats.size()) fail(what, "more blend states than colour targets");
     if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip && d.topology != PrimitiveTopology::LineStrip)
         fail(what, "primitiveRestart needs a strip topology (TriangleStrip or LineStrip)");

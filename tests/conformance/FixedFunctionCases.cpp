@@ -184,7 +184,7 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
         FE_CONFORMANCE_CHECK(!caps.renderTarget || (caps.sampleCounts & 1), ("one sample renders: " + name).c_str());
         if (!caps.sampled) continue;
         DeviceObjects per(d);
-        const bool colour = !fi.hasDepth && !fi.isInteger;
+        const bool colour = !isDepthFormat(f) && !fi.isInteger;
         // Linear filtering, or its refusal.
         const TextureHandle pair = per.add(d.createTexture({.format = f, .width = 2, .height = 1,
                                                             .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
@@ -202,7 +202,7 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
             out.push_back(within("linear_" + name, image, solid(Format::RGBA16F, half), 2.0 / 255.0,
                                  "the average of texels 0 and 1: filtering weights of at least 8 bits"));
         }
-        if (!caps.renderTarget || fi.hasDepth) continue;
+        if (!caps.renderTarget || isDepthFormat(f)) continue;  // depth and stencil: depth16, stencil_and_readback
         // A clear of values exact in every format (and in sRGB encoding).
         const TextureHandle rt = per.add(d.createTexture({.format = f, .width = 4, .height = 4,
                                                           .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
@@ -281,14 +281,16 @@ std::vector<CaseImage> depth16(Device& d) {
             within("depth", d.readTexture(depth), expectedDepth, 1.5 / 65535.0, "depth in 16-bit unorm: one rounding step")};
 }
 
-// Stencil written and read back with depth, in each depth-stencil format: stencil cleared to 3,
+// Stencil written and read back with depth, in each depth-stencil format and S8 (where it is an
+// attachment): stencil cleared to 3,
 // a draw with Replace and reference 7 over a rectangle, the depth left at its clear value 1.
 // readTexture gives depth in channel 0 and stencil in channel 1 on every backend; writeTexture
 // takes the same layout for every depth format.
 std::vector<CaseImage> stencilReadback(Device& d) {
     std::vector<CaseImage> out;
-    for (Format f : {Format::D24S8, Format::D32F_S8}) {
+    for (Format f : {Format::D24S8, Format::D32F_S8, Format::S8}) {
         if (!d.formatCaps(f).renderTarget) continue;
+        const float clearedDepth = formatInfo(f).hasDepth ? 1.0f : 0.0f;  // S8 reads 0 as its depth
         DeviceObjects o(d);
         const TextureHandle color = target(o);
         const TextureHandle depth = target(o, f);
@@ -310,14 +312,14 @@ std::vector<CaseImage> stencilReadback(Device& d) {
         cmd->draw(3);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        const Image expected = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+        const Image expected = expectImage(f, [&](uint32_t x, uint32_t y) -> Texel {
             const bool in = x >= 8 && x < 48 && y >= 16 && y < 40;
-            return {1.0f, in ? 7.0f : 3.0f, 0, 0};
+            return {clearedDepth, in ? 7.0f : 3.0f, 0, 0};
         });
         out.push_back(exact("stencil_" + std::string(formatInfo(f).name), d.readTexture(depth), expected));
     }
     // Uploads in the readback layout: a depth ramp and a stencil pattern, read back unchanged.
-    for (Format f : {Format::D32F, Format::D16, Format::D24S8, Format::D32F_S8}) {
+    for (Format f : {Format::D32F, Format::D16, Format::D24S8, Format::D32F_S8, Format::S8}) {
         if (!d.formatCaps(f).sampled) continue;
         DeviceObjects o(d);
         const TextureHandle t = o.add(d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize,

@@ -112,7 +112,8 @@
 //  - Primitive restart (strip topologies) uses the index 0xFFFF / 0xFFFFFFFF.
 //  - New buffers and textures read as zeros (block-compressed textures excepted: upload them).
 //  - readTexture of D24S8 gives depth in the low 24 bits and stencil in the high 8 of each
-//    32-bit texel, of D32F_S8 a float depth and a word with stencil in its low 8 bits;
+//    32-bit texel, of D32F_S8 a float depth and a word with stencil in its low 8 bits, of S8
+//    (stencil only, an attachment where FormatCaps::renderTarget says so) one byte;
 //    Image::texel returns depth in [0] and stencil in [1]. writeTexture takes depth and
 //    depth-stencil texels in the same layout (Image::fromTexels makes them).
 //  - Validation-layer and GL debug messages are printed once each; the count of repeats is

@@ -21,6 +21,7 @@ enum class Format : uint8_t {
     D24S8,    // read back as 32-bit texels: depth in the low 24 bits, stencil in the high 8
     D16,      // unorm
     D32F_S8,  // read back as 64-bit texels: float depth, then a 32-bit word with stencil in its low 8 bits
+    S8,       // stencil only (FormatCaps say where it can be an attachment); one byte per texel
     // Block-compressed (4x4 texel blocks), sampled only; DeviceFeatures::textureCompressionBC.
     BC1,        // RGB 5:6:5 endpoints + 1-bit alpha, 8 bytes per block
     BC1_SRGB,
@@ -47,7 +48,8 @@ struct FormatInfo {
 };
 
 const FormatInfo& formatInfo(Format f);
-inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth; }
+// A format of the depth/stencil attachment: depth, stencil or both (S8 has no depth).
+inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth || formatInfo(f).hasStencil; }
 inline bool isCompressedFormat(Format f) { return formatInfo(f).blockSize > 1; }
 // Bytes of a tightly packed width x height image (compressed: whole 4x4 blocks).
 uint64_t imageByteSize(Format f, uint32_t width, uint32_t height);
