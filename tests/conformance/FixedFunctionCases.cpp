@@ -202,7 +202,7 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
             out.push_back(within("linear_" + name, image, solid(Format::RGBA16F, half), 2.0 / 255.0,
                                  "the average of texels 0 and 1: filtering weights of at least 8 bits"));
         }
-        if (!caps.renderTarget || isDepthFormat(f)) continue;  // depth and stencil: depth16, stencil_and_readback
+        if (!caps.renderTarget || isDepthFormat(f)) continue;  // depth and stencil: depth16, stencil8_and_readback
         // A clear of values exact in every format (and in sRGB encoding).
         const TextureHandle rt = per.add(d.createTexture({.format = f, .width = 4, .height = 4,
                                                           .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
@@ -369,7 +369,7 @@ std::vector<Case> fixedFunctionCases() {
         {"copy_only_textures", copyOnlyTextures},
         {"format_caps", formatCapsCase},
         {"depth16", depth16},
-        {"stencil_and_readback", stencilReadback},
+        {"stencil8_and_readback", stencilReadback},
         {"clear_buffer", clearBufferCase},
     };
 }
