@@ -34,6 +34,20 @@ CaseImage within(const std::string& name, Image image, Image expected, double ab
     return ci;
 }
 
+ShaderHandle registryShader(DeviceObjects& o, ShaderStage stage, const char* path) {
+    return o.add(o.device().createShader({.stage = stage, .binary = shaders::find(path)}));
+}
+
+TextureHandle caseTarget(DeviceObjects& o, Format f) {
+    return o.add(o.device().createTexture({.format = f, .width = kCaseSize, .height = kCaseSize,
+                                           .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+}
+
+CaseImage drawn8(const std::string& name, Image image, Image expected, double steps) {
+    return within(name, std::move(image), std::move(expected), steps / 255.0,
+                  "values drawn into an 8-bit target: float-to-unorm rounding");
+}
+
 bool throws(const std::function<void()>& fn) {
     try {
         fn();

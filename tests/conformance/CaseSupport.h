@@ -25,6 +25,12 @@ gdi::Image expectImage(gdi::Format f, const std::function<Texel(uint32_t, uint32
 CaseImage exact(const std::string& name, gdi::Image image, gdi::Image expected);
 // Expected within absTolerance on every pixel, for the reason given (the report shows it).
 CaseImage within(const std::string& name, gdi::Image image, gdi::Image expected, double absTolerance, std::string reason);
+// A shader from the registry (fe::shaders::find), owned by `o`.
+gdi::ShaderHandle registryShader(gdi::DeviceObjects& o, gdi::ShaderStage stage, const char* path);
+// A 64x64 render target that can be read back, owned by `o`.
+gdi::TextureHandle caseTarget(gdi::DeviceObjects& o, gdi::Format f = gdi::Format::RGBA8);
+// Within `steps` steps of float-to-unorm rounding: values drawn into an 8-bit target.
+CaseImage drawn8(const std::string& name, gdi::Image image, gdi::Image expected, double steps = 1.0);
 // True when fn throws gdi::Error (the device's clear error for bad input).
 bool throws(const std::function<void()>& fn);
 

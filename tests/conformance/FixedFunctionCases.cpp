@@ -12,28 +12,14 @@ using namespace gdi;
 
 namespace {
 
-constexpr TextureUsage kTarget = TextureUsage::RenderTarget | TextureUsage::CopySrc;
-
-ShaderHandle shader(DeviceObjects& o, ShaderStage stage, const char* path) {
-    return o.add(o.device().createShader({.stage = stage, .binary = shaders::find(path)}));
-}
-TextureHandle target(DeviceObjects& o, Format f = Format::RGBA8) {
-    return o.add(o.device().createTexture({.format = f, .width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
-}
-// One step of float-to-unorm rounding, for values drawn into an 8-bit target.
-CaseImage drawn(const std::string& name, Image image, Image expected, double steps = 1.0) {
-    return within(name, std::move(image), std::move(expected), steps / 255.0,
-                  "values drawn into an 8-bit target: float-to-unorm rounding");
-}
-
 // draw(6, 2, 0, 3) and drawIndexed(6, 1, 0, 0, 6): the instances are 3, 4 and 6 (FE_INSTANCE_ID
 // counts from firstInstance on both backends; GL adds gl_BaseInstance to gl_InstanceID).
 std::vector<CaseImage> firstInstance(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle t = target(o);
+    const TextureHandle t = caseTarget(o);
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/instance_band.vert"),
-         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/value.frag"),
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/instance_band.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/value.frag"),
          .colorFormats = {Format::RGBA8}, .debugName = "instance bands"}));
     const uint16_t indices[6] = {0, 1, 2, 3, 4, 5};
     const BufferHandle ib = o.add(d.createBuffer({.size = sizeof indices, .usage = BufferUsage::Index}, bytesOf(indices)));
@@ -50,17 +36,17 @@ std::vector<CaseImage> firstInstance(Device& d) {
         if (band == 3 || band == 4 || band == 6) return {float(band) / 16.0f, 0.5f, 0, 1};
         return {0, 0, 1, 1};
     });
-    return {drawn("instances", d.readTexture(t), expected)};
+    return {drawn8("instances", d.readTexture(t), expected)};
 }
 
 // Two points, 8 and 4 pixels wide (gl_PointSize), each showing gl_PointCoord: (0, 0) at its top
 // left, the centre of pixel (i, j) of the point at ((i + 0.5) / size, (j + 0.5) / size).
 std::vector<CaseImage> pointSizeAndCoord(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle t = target(o);
+    const TextureHandle t = caseTarget(o);
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/point_sprite.vert"),
-         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/point_coord.frag"),
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/point_sprite.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/point_coord.frag"),
          .topology = PrimitiveTopology::PointList, .colorFormats = {Format::RGBA8}, .debugName = "points"}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 1, 1}}}});
@@ -78,7 +64,7 @@ std::vector<CaseImage> pointSizeAndCoord(Device& d) {
                 return {(float(x - pt.x0) + 0.5f) / float(pt.size), (float(y - pt.y0) + 0.5f) / float(pt.size), 0, 1};
         return {0, 0, 1, 1};
     });
-    return {drawn("points", d.readTexture(t), expected, 1.5)};
+    return {drawn8("points", d.readTexture(t), expected, 1.5)};
 }
 
 // depthWrite without depthTest writes every fragment's depth on both backends (Device.h): a
@@ -86,11 +72,11 @@ std::vector<CaseImage> pointSizeAndCoord(Device& d) {
 // over all of it, which passes too (no test) and writes 0.75 everywhere it covers.
 std::vector<CaseImage> depthWriteWithoutTest(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle color = target(o);
-    const TextureHandle depth = target(o, Format::D32F);
+    const TextureHandle color = caseTarget(o);
+    const TextureHandle depth = caseTarget(o, Format::D32F);
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
          .depthStencil = {.depthTest = false, .depthWrite = true},
          .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F, .debugName = "depth write, no test"}));
     const float near[8] = {1, 0, 0, 1, 0.25f, 0, 0, 0}, far[8] = {0, 1, 0, 1, 0.75f, 0, 0, 0};
@@ -116,7 +102,7 @@ std::vector<CaseImage> depthWriteWithoutTest(Device& d) {
         const Texel c[3] = {{0, 0, 1, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}};
         return c[region(x, y)];
     });
-    return {exact("depth", d.readTexture(depth), expectedDepth), drawn("colour", d.readTexture(color), expectedColor)};
+    return {exact("depth", d.readTexture(depth), expectedDepth), drawn8("colour", d.readTexture(color), expectedColor)};
 }
 
 // MipFilter::None minifies with minFilter from the base level on both backends: a 128x128
@@ -141,7 +127,7 @@ std::vector<CaseImage> mipFilterNone(Device& d) {
                             .addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
     // textured_uv.frag: uv = pixel / 64 * (1, 1) + 0, textureLod at level 1 (the block's b.y).
     const Image image = pass.draw(d, tex, Format::RGBA8, {1, 1, 0, 0}, {0, 1, 0, 0});
-    return {drawn("minified", image, solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1}), 1.5)};
+    return {drawn8("minified", image, solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1}), 1.5)};
 }
 
 // Textures whose only usages are copies: written, copied into another, read back; on Vulkan
@@ -214,8 +200,8 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
         out.push_back(exact("clear_" + name, d.readTexture(rt), solid(f, cleared, 4, 4)));
         if (caps.blend && !fi.isSrgb) {  // sRGB blends in linear space: values checked elsewhere
             const PipelineHandle add = per.add(d.createGraphicsPipeline(
-                {.vertexShader = shader(per, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-                 .fragmentShader = shader(per, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+                {.vertexShader = registryShader(per, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+                 .fragmentShader = registryShader(per, ShaderStage::Fragment, "conformance/ubo_color.frag"),
                  .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
                             .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
                  .colorFormats = {f}}));
@@ -252,11 +238,11 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
 std::vector<CaseImage> depth16(Device& d) {
     if (!d.formatCaps(Format::D16).renderTarget) return {};  // not a depth target here: nothing to prove
     DeviceObjects o(d);
-    const TextureHandle color = target(o);
-    const TextureHandle depth = target(o, Format::D16);
+    const TextureHandle color = caseTarget(o);
+    const TextureHandle depth = caseTarget(o, Format::D16);
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
          .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
          .colorFormats = {Format::RGBA8}, .depthFormat = Format::D16, .debugName = "depth16"}));
     const float near[8] = {1, 0, 0, 1, 0.25f, 0, 0, 0}, far[8] = {0, 1, 0, 1, 0.75f, 0, 0, 0};
@@ -277,7 +263,7 @@ std::vector<CaseImage> depth16(Device& d) {
         return x < 32 ? Texel{1, 0, 0, 1} : Texel{0, 1, 0, 1};
     });
     const Image expectedDepth = expectImage(Format::D16, [](uint32_t x, uint32_t) -> Texel { return {x < 32 ? 0.25f : 0.75f, 0, 0, 0}; });
-    return {drawn("colour", d.readTexture(color), expectedColor),
+    return {drawn8("colour", d.readTexture(color), expectedColor),
             within("depth", d.readTexture(depth), expectedDepth, 1.5 / 65535.0, "depth in 16-bit unorm: one rounding step")};
 }
 
@@ -292,11 +278,11 @@ std::vector<CaseImage> stencilReadback(Device& d) {
         if (!d.formatCaps(f).renderTarget) continue;
         const float clearedDepth = formatInfo(f).hasDepth ? 1.0f : 0.0f;  // S8 reads 0 as its depth
         DeviceObjects o(d);
-        const TextureHandle color = target(o);
-        const TextureHandle depth = target(o, f);
+        const TextureHandle color = caseTarget(o);
+        const TextureHandle depth = caseTarget(o, f);
         const PipelineHandle p = o.add(d.createGraphicsPipeline(
-            {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-             .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+            {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+             .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
              .depthStencil = {.stencilTest = true,
                               .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
                               .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},

@@ -14,19 +14,15 @@ using namespace gdi;
 
 namespace {
 
-ShaderHandle shader(DeviceObjects& o, ShaderStage stage, const char* path) {
-    return o.add(o.device().createShader({.stage = stage, .binary = shaders::find(path)}));
-}
-
 // Graphics and compute pipelines with no binding list: the slots come from the shaders (a
 // uniform block read by both stages at 0, a sampled texture at 1; a storage buffer at 0 and a
 // storage image at 1), and draws and dispatches that bind them work. A hand-written list equal
 // to the shaders' draws the same.
 std::vector<CaseImage> pipelineLayoutFromShader(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert");
-    const ShaderHandle fs = shader(o, ShaderStage::Fragment, "conformance/textured_uv.frag");
-    const ShaderHandle cs = shader(o, ShaderStage::Compute, "conformance/fill.comp");
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert");
+    const ShaderHandle fs = registryShader(o, ShaderStage::Fragment, "conformance/textured_uv.frag");
+    const ShaderHandle cs = registryShader(o, ShaderStage::Compute, "conformance/fill.comp");
     const PipelineHandle derived = o.add(d.createGraphicsPipeline(
         {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}, .debugName = "derived"}));
     const PipelineHandle declared = o.add(d.createGraphicsPipeline(
@@ -78,10 +74,10 @@ std::vector<CaseImage> pipelineLayoutFromShader(Device& d) {
 // wrong, raised before any native call: no validation message, no crash, on every backend.
 std::vector<CaseImage> bindingMismatchErrors(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert");
-    const ShaderHandle fs = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
-    const ShaderHandle uintVs = shader(o, ShaderStage::Vertex, "conformance/vertex_uint.vert");
-    const ShaderHandle valueFs = shader(o, ShaderStage::Fragment, "conformance/value.frag");
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert");
+    const ShaderHandle fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
+    const ShaderHandle uintVs = registryShader(o, ShaderStage::Vertex, "conformance/vertex_uint.vert");
+    const ShaderHandle valueFs = registryShader(o, ShaderStage::Fragment, "conformance/value.frag");
     auto message = [&](const std::function<void()>& fn) -> std::string {
         try {
             fn();

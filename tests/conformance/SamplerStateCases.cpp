@@ -20,17 +20,6 @@ namespace {
 constexpr TextureUsage kTarget = TextureUsage::RenderTarget | TextureUsage::CopySrc;
 constexpr Rect kWhole{0, 0, kCaseSize, kCaseSize};
 
-ShaderHandle shader(DeviceObjects& o, ShaderStage stage, const char* path) {
-    return o.add(o.device().createShader({.stage = stage, .binary = shaders::find(path)}));
-}
-TextureHandle target(DeviceObjects& o, Format f = Format::RGBA8) {
-    return o.add(o.device().createTexture({.format = f, .width = kCaseSize, .height = kCaseSize, .usage = kTarget}));
-}
-// One step of float-to-unorm rounding, for values drawn into an 8-bit target.
-CaseImage drawn(const std::string& name, Image image, Image expected, double steps = 1.0) {
-    return within(name, std::move(image), std::move(expected), steps / 255.0,
-                  "values drawn into an 8-bit target: float-to-unorm rounding");
-}
 
 // An 8-bit colour: k/255 survives the float-to-unorm conversion of clears, draws and samples.
 Texel rgb8(uint32_t r, uint32_t g, uint32_t b) { return {r / 255.0f, g / 255.0f, b / 255.0f, 1.0f}; }
@@ -138,10 +127,10 @@ std::vector<CaseImage> lodBiasAndClamp(Device& d) {
 // glVertexAttribPointer reading of 0) shows red on vertices 1-5.
 std::vector<CaseImage> strideZeroVertex(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle t = target(o);
+    const TextureHandle t = caseTarget(o);
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = shader(o, ShaderStage::Vertex, "conformance/vertex_attr.vert"),
-         .fragmentShader = shader(o, ShaderStage::Fragment, "conformance/value.frag"),
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/vertex_attr.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/value.frag"),
          .vertexBuffers = {{.stride = 8, .attributes = {{0, VertexFormat::Float2, 0}}},
                            {.stride = 0, .attributes = {{1, VertexFormat::Float4, 0}}}},
          .colorFormats = {Format::RGBA8}, .debugName = "stride 0 colour"}));
@@ -160,7 +149,7 @@ std::vector<CaseImage> strideZeroVertex(Device& d) {
     cmd->draw(6);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    return {drawn("constant_colour", d.readTexture(t), rectImage(clear, {16, 8, 32, 32}, color))};
+    return {drawn8("constant_colour", d.readTexture(t), rectImage(clear, {16, 8, 32, 32}, color))};
 }
 
 // Primitive restart: indices {0, 1, 2, 3, restart, 4, 5, 6, 7} of a triangle strip draw two
@@ -169,8 +158,8 @@ std::vector<CaseImage> strideZeroVertex(Device& d) {
 // vertex 0xFFFF sits in the gap, so a strip that ran on through it would cover gap pixels.
 std::vector<CaseImage> primitiveRestart(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = shader(o, ShaderStage::Vertex, "conformance/position.vert"),
-                       fs = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/position.vert"),
+                       fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
         {.vertexShader = vs, .fragmentShader = fs,
          .vertexBuffers = {{.stride = 8, .attributes = {{0, VertexFormat::Float2, 0}}}},
@@ -201,7 +190,7 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
     });
     std::vector<CaseImage> out;
     for (IndexType type : {IndexType::U16, IndexType::U32}) {
-        const TextureHandle t = target(o);
+        const TextureHandle t = caseTarget(o);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
         cmd->setPipeline(p);
@@ -211,7 +200,7 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
         cmd->drawIndexed(9);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(drawn(type == IndexType::U16 ? "u16_two_strips" : "u32_two_strips", d.readTexture(t), expected));
+        out.push_back(drawn8(type == IndexType::U16 ? "u16_two_strips" : "u32_two_strips", d.readTexture(t), expected));
     }
     return out;
 }
@@ -312,8 +301,8 @@ std::vector<CaseImage> zeroInitialised(Device& d) {
 // decides: mask 0 draws nothing, mask 1 everything. A mask that is ignored gives white.
 std::vector<CaseImage> sampleMask(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-                       fs = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+                       fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const BufferHandle white = params(o, {1, 1, 1, 1});
     auto pipeline = [&](uint32_t samples, uint32_t mask) {
         return o.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
@@ -331,7 +320,7 @@ std::vector<CaseImage> sampleMask(Device& d) {
     };
     std::vector<CaseImage> out;
     for (uint32_t mask : {0u, 1u}) {
-        const TextureHandle t = target(o);
+        const TextureHandle t = caseTarget(o);
         drawInto(pipeline(1, mask), {.texture = t, .clear = {0, 0, 0, 1}});
         const float v = float(mask);
         out.push_back(exact("single_sample_mask" + std::to_string(mask), d.readTexture(t), solid(Format::RGBA8, {v, v, v, 1})));
@@ -340,7 +329,7 @@ std::vector<CaseImage> sampleMask(Device& d) {
         const TextureHandle ms = o.add(
             d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = 4, .usage = TextureUsage::RenderTarget}));
         for (uint32_t mask : {0b0001u, 0b0011u, 0b1110u}) {
-            const TextureHandle resolved = target(o);
+            const TextureHandle resolved = caseTarget(o);
             drawInto(pipeline(4, mask), {.texture = ms, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = resolved});
             const float v = float(std::popcount(mask)) / 4.0f;
             out.push_back(within("msaa4_mask" + std::to_string(mask), d.readTexture(resolved), solid(Format::RGBA8, {v, v, v, 1}),
@@ -365,8 +354,8 @@ std::vector<CaseImage> sampleMask(Device& d) {
 // A command ignored, or setPipeline not restoring the pipeline's value, changes a column.
 std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = shader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-                       fs = shader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+                       fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const Texel red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1};
     const BufferHandle whiteUbo = params(o, {1, 1, 1, 1}), redUbo = params(o, red), greenUbo = params(o, green);
     auto column = [](uint32_t i) { return Rect{int32_t(16 * i), 0, 16, kCaseSize}; };
@@ -383,7 +372,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
              .blend = {{.enable = true, .srcColor = BlendFactor::ConstantColor, .dstColor = BlendFactor::Zero,
                         .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero}},
              .blendConstant = {1, 0, 0, 1}, .colorFormats = {Format::RGBA8}, .debugName = "blend constant"}));
-        const TextureHandle t = target(o);
+        const TextureHandle t = caseTarget(o);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
         cmd->setPipeline(p);
@@ -404,7 +393,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         out.push_back(exact("blend_constant", d.readTexture(t), columns(red, green, red, blue)));
     }
     {
-        const TextureHandle t = target(o);
+        const TextureHandle t = caseTarget(o);
         const TextureHandle ds = o.add(d.createTexture(
             {.format = Format::D24S8, .width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::RenderTarget}));
         const StencilFaceState replace{.passOp = StencilOp::Replace, .compare = CompareOp::Always};
@@ -447,7 +436,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         biasedDesc.raster.depthBiasConstant = -1000.0f;
         biasedDesc.debugName = "depth less, biased";
         const PipelineHandle p = o.add(d.createGraphicsPipeline(desc)), biased = o.add(d.createGraphicsPipeline(biasedDesc));
-        const TextureHandle t = target(o);
+        const TextureHandle t = caseTarget(o);
         const TextureHandle depth = o.add(d.createTexture(
             {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::RenderTarget}));
         auto cmd = d.createCommandList();
