@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "CaseSupport.h"
-#include "fe/gdi/ShaderRegistry.h"
 
 namespace fe::conformance {
 

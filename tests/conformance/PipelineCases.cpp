@@ -6,7 +6,6 @@
 #include <cstring>
 
 #include "CaseSupport.h"
-#include "fe/gdi/ShaderRegistry.h"
 
 namespace fe::conformance {
 

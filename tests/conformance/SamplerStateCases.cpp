@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "CaseSupport.h"
-#include "fe/gdi/ShaderRegistry.h"
 
 namespace fe::conformance {
 
