@@ -1,6 +1,7 @@
 // Example (c): command lists recorded on two threads at once and submitted together, three
-// frames in flight, and three mistakes made on purpose, each of which must be the same
-// gdi::Error on every backend (tests/package_consumer.sh compares the messages).
+// frames in flight, one pass whose draws are two secondary lists recorded on two threads, and
+// five mistakes made on purpose, each of which must be the same gdi::Error on every backend
+// (tests/package_consumer.sh compares the messages).
 //   fe_example_threads [--backend NAME] [--validation]
 // Prints one line per mistake ("error: ..."), then whether both halves were drawn; exit 1 when
 // a mistake was not reported, a half is missing or the validation layer spoke.
@@ -75,6 +76,26 @@ int main(int argc, char** argv) {
         }
         d.waitIdle();
 
+        // One pass, its draws recorded on two threads as secondary lists (left and right half).
+        const TextureHandle whole = target("whole");
+        const RenderPassDesc pass{.colors = {{.texture = whole, .clear = {0, 0, 0, 1}}}, .secondaryLists = true};
+        auto primary = d.createCommandList();
+        primary->beginRenderPass(pass);
+        std::array<std::thread, 2> recorders;
+        for (size_t i = 0; i < 2; ++i)
+            recorders[i] = std::thread([&, i] {
+                CommandList& c = *lists[i];
+                c.beginSecondary(pass);
+                c.setPipeline(pipeline);
+                c.setScissor({int32_t(32 * i), 0, 32, 64});
+                c.draw(3);
+                c.endSecondary();
+            });
+        for (auto& t : recorders) t.join();
+        primary->executeSecondary(std::array<CommandList*, 2>{lists[0].get(), lists[1].get()});
+        primary->endRenderPass();
+        d.wait(d.submit(*primary));
+
         bool ok = true;
         // Mistake 1: a draw outside a render pass, recorded on a worker thread.
         std::thread([&] { ok &= reported("draw outside a pass", [&] { lists[0]->setPipeline(pipeline), lists[0]->draw(3); }); }).join();
@@ -88,6 +109,31 @@ int main(int argc, char** argv) {
         // Mistake 3: mapping GPU-only memory.
         const BufferHandle gpuOnly = d.createBuffer({.size = 256, .debugName = "gpu only"});
         ok &= reported("map GpuOnly", [&] { d.map(gpuOnly); });
+        // Mistake 4: a pipeline whose colour format is not the pass's (Vulkan's validation layer
+        // would report it at the draw; GL would draw).
+        ok &= reported("pipeline formats against the pass", [&] {
+            const TextureHandle hdr = d.createTexture({.format = Format::RGBA16F, .width = 64, .height = 64,
+                                                       .usage = TextureUsage::RenderTarget, .debugName = "hdr"});
+            auto c = d.createCommandList();
+            c->beginRenderPass({.colors = {{.texture = hdr}}});
+            try {
+                c->setPipeline(pipeline);  // an RGBA8 pipeline in an RGBA16F pass
+            } catch (...) {
+                c->endRenderPass();
+                d.destroy(hdr);
+                throw;
+            }
+        });
+        // Mistake 5: drawing in the primary list of a pass whose draws come from secondary lists.
+        ok &= reported("draw in a pass of secondary lists", [&] {
+            primary->beginRenderPass(pass);
+            try {
+                primary->setPipeline(pipeline);
+            } catch (...) {
+                primary->endRenderPass();
+                throw;
+            }
+        });
 
         for (size_t i = 0; i < 2; ++i) {
             const auto mid = d.readTexture(halves[i]).texel(32, 40);
@@ -95,8 +141,17 @@ int main(int argc, char** argv) {
             std::printf("%s half: %s\n", i ? "right" : "left", drawn ? "drawn" : "MISSING");
             ok &= drawn;
         }
+        const Image all = d.readTexture(whole);
+        for (uint32_t x : {24u, 40u}) {  // either side of the split, inside the triangle
+            const auto t = all.texel(x, 40);
+            const bool drawn = t[1] > 0.15f || t[2] > 0.15f;
+            std::printf("secondary list %s: %s\n", x < 32 ? "left" : "right", drawn ? "drawn" : "MISSING");
+            ok &= drawn;
+        }
         lists = {};
+        primary.reset();
         late.reset();
+        d.destroy(whole);
         d.destroy(gpuOnly);
         for (TextureHandle t : halves) d.destroy(t);
         d.destroy(pipeline);
