@@ -28,6 +28,12 @@ public:
         checkUnrestricted("setScissor");
         stream_->push(gdi::cmd::SetScissor{r});
     }
+    void setConstants(uint32_t offset, gdi::ByteSpan data) override {
+        gdi::validate::constantsRange(offset, data.size());
+        checkUnrestricted("setConstants");
+        auto* r = stream_->push(gdi::cmd::SetConstants{offset}, gdi::cmd::CommandStream::payloadSize(data.size()));
+        r->data = stream_->payload(*r, data);
+    }
     void setBlendConstant(const std::array<float, 4>& rgba) override {
         checkUnrestricted("setBlendConstant");
         stream_->push(gdi::cmd::SetBlendConstant{rgba});

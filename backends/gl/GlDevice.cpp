@@ -277,6 +277,7 @@ void GlDevice::releaseAll() {
     textures_.forEach([&](Texture& t) { gl_.DeleteTextures(1, &t.name); });
     samplers_.forEach([&](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
     shaders_.forEach([&](Shader& s) { gl_.DeleteShader(s.name); });
+    constantsRing_.release(gl_);
     pipelines_.forEach([&](Pipeline& p) {
         gl_.DeleteProgram(p.program);
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
@@ -438,24 +439,48 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label);  // on this thread: no GL needed
     s.stage = desc.stage;
     s.label = label;
+    s.entry = desc.entryPoint ? desc.entryPoint : "main";
+    if (!s.iface.specConstants.empty()) s.spirv.assign(code.begin(), code.end());
     return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
-        GLenum type = desc.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
-                      : desc.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
-                                                                 : GL_COMPUTE_SHADER;
-        s.name = gl_.CreateShader(type);
-        gl_.ShaderBinary(1, &s.name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
-        gl_.SpecializeShader(s.name, desc.entryPoint, 0, nullptr, nullptr);
-        GLint ok = 0;
-        gl_.GetShaderiv(s.name, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            char log[2048] = {};
-            gl_.GetShaderInfoLog(s.name, sizeof log, nullptr, log);
-            gl_.DeleteShader(s.name);
-            throw gdi::Error("shader '" + label + "': SPIR-V specialization failed: " + log);
-        }
+        s.name = specializedShader(s, code, {});
         return shaders_.add(std::move(s));
     });
+}
+
+// A shader object of `code` with these specialization constants (context thread).
+GLuint GlDevice::specializedShader(const Shader& s, std::span<const uint32_t> code,
+                                   const std::vector<gdi::SpecializationConstant>& values) {
+    const GLenum type = s.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
+                        : s.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
+                                                                : GL_COMPUTE_SHADER;
+    // Only the ids this stage declares: glSpecializeShader fails on any other.
+    std::vector<GLuint> ids, bits;
+    for (const gdi::SpecializationConstant& v : values)
+        for (const auto& c : s.iface.specConstants)
+            if (c.id == v.id) ids.push_back(v.id), bits.push_back(v.bits);
+    const GLuint name = gl_.CreateShader(type);
+    gl_.ShaderBinary(1, &name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
+    gl_.SpecializeShader(name, s.entry.c_str(), GLuint(ids.size()), ids.data(), bits.data());
+    GLint ok = 0;
+    gl_.GetShaderiv(name, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        gl_.GetShaderInfoLog(name, sizeof log, nullptr, log);
+        gl_.DeleteShader(name);
+        throw gdi::Error("shader '" + s.label + "': SPIR-V specialization failed: " + log);
+    }
+    return name;
+}
+
+// The pipeline's shader object for `s`: its own, or one specialized with the pipeline's values
+// (deleted by the caller once linked; `owned` says which).
+GLuint GlDevice::pipelineShader(const Shader& s, const std::vector<gdi::SpecializationConstant>& values, bool& owned) {
+    owned = false;
+    for (const gdi::SpecializationConstant& v : values)
+        for (const auto& c : s.iface.specConstants)
+            if (c.id == v.id) owned = true;
+    return owned ? specializedShader(s, s.spirv, values) : s.name;
 }
 
 static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& label) {
@@ -495,7 +520,22 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         gdi::validate::vertexInputs(d, vs.iface, p.label);
         if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label);
-        p.program = linkProgram(gl_, {vs.name, fs}, p.label);
+        p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
+        gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
+        bool ownVs = false, ownFs = false;
+        const GLuint vsName = pipelineShader(vs, d.specialization, ownVs);
+        if (fs) fs = pipelineShader(shaders_.get(d.fragmentShader, "fragment shader"), d.specialization, ownFs);
+        auto dropOwned = [&] {
+            if (ownVs) gl_.DeleteShader(vsName);
+            if (ownFs) gl_.DeleteShader(fs);
+        };
+        try {
+            p.program = linkProgram(gl_, {vsName, fs}, p.label);
+        } catch (...) {
+            dropOwned();
+            throw;
+        }
+        dropOwned();
         gl_.CreateVertexArrays(1, &p.vao);
         for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
             const auto& vb = d.vertexBuffers[i];
@@ -540,7 +580,17 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
         gdi::validate::workgroup(cs.iface, info_.limits, p.label);
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label);
-        p.program = linkProgram(gl_, {cs.name}, p.label);
+        p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
+        gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
+        bool own = false;
+        const GLuint csName = pipelineShader(cs, d.specialization, own);
+        try {
+            p.program = linkProgram(gl_, {csName}, p.label);
+        } catch (...) {
+            if (own) gl_.DeleteShader(csName);
+            throw;
+        }
+        if (own) gl_.DeleteShader(csName);
         p.compute = true;
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);

@@ -22,6 +22,7 @@
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
 #include "fe/gdi/MessageLog.h"
+#include "gl/GlConstantsRing.h"
 #include "gl/GlContextThread.h"
 #include "gl/GlFunctions.h"
 #include "gl/GlPlatform.h"
@@ -67,6 +68,9 @@ struct Shader {
     gdi::ShaderStage stage = gdi::ShaderStage::None;
     std::string label;
     gdi::ShaderInterface iface;  // reflected: pipelines are checked against it
+    // For pipelines with specialization constants, which specialize a shader object of their own.
+    std::vector<uint32_t> spirv;
+    std::string entry;
 };
 struct Pipeline {
     GLuint program = 0;
@@ -77,6 +81,7 @@ struct Pipeline {
     uint64_t requiredSlots = 0;
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)
     std::string label;
 };
 struct Timer {
@@ -158,6 +163,7 @@ public:
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
     FboAttachment fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const;
     GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, GLenum depthPoint);
+    GlConstantsRing& constantsRing() { return constantsRing_; }  // context thread (GlReplay)
     // Runs `task` on the context thread (gl-specific escape hatch: bench/ issues direct GL calls).
     void runOnContextThread(const std::function<void()>& task) { thread_.run(task); }
 
@@ -170,6 +176,9 @@ private:
     template <class Pool, class H, class Release>
     void retire(Pool& pool, H h, Release&& release);
     void rethrowAsyncError();
+    GLuint specializedShader(const Shader& s, std::span<const uint32_t> code,
+                             const std::vector<gdi::SpecializationConstant>& values);
+    GLuint pipelineShader(const Shader& s, const std::vector<gdi::SpecializationConstant>& values, bool& owned);
     std::unique_ptr<GlPlatform> platform_;
     GlFunctions gl_;
     gdi::DeviceInfo info_;
@@ -199,6 +208,7 @@ private:
         GLuint fbo;
     };
     std::vector<CachedFbo> fbos_;
+    GlConstantsRing constantsRing_;
     uint32_t windowWidth_ = 0, windowHeight_ = 0;  // size of the last presented image
     gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_;

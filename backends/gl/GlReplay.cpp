@@ -2,6 +2,7 @@
 #include "gl/GlReplay.h"
 
 #include <chrono>
+#include <cstring>
 
 #include "fe/gdi/Validation.h"
 
@@ -42,6 +43,8 @@ GLenum topology(gdi::PrimitiveTopology p) {
 void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>& between) {
     stream_ = &stream;
     between_ = &between;
+    constants_ = {};  // each recording starts with zero constants
+    constantsDirty_ = true;
     replayRecords(stream);
     // A recording ends with automatic barriers on again; anything it left unordered is ordered
     // before later submissions and readback.
@@ -65,9 +68,26 @@ void GlReplay::replayRecords(const cmd::CommandStream& stream) {
 // A secondary list's records, in place (it sets its own viewport, scissor, pipeline and bindings).
 void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
     const cmd::CommandStream* primary = stream_;
+    const auto primaryConstants = constants_;  // a secondary starts from zeros and leaves the primary's alone
+    constants_ = {};
+    constantsDirty_ = true;
     stream_ = &primary->child(r.child);
     replayRecords(*stream_);
     stream_ = primary;
+    constants_ = primaryConstants;
+    constantsDirty_ = true;
+}
+
+void GlReplay::operator()(const cmd::SetConstants& r) {
+    const auto data = cmd::view(r, r.data);
+    std::memcpy(constants_.data() + r.offset, data.data(), data.size());
+    constantsDirty_ = true;
+}
+void GlReplay::flushConstants() {
+    constantsDirty_ = false;
+    if (pipeline_->constantBytes)
+        dev_.constantsRing().bind(gl_, constants_.data(), pipeline_->constantBytes,
+                                  dev_.info().limits.uniformBufferOffsetAlignment);
 }
 
 void GlReplay::operator()(const cmd::BeginRenderPass& r) {
@@ -143,7 +163,7 @@ void GlReplay::operator()(const cmd::EndRenderPass&) {
 
 void GlReplay::operator()(const cmd::SetPipeline& r) {
     const Pipeline& p = dev_.pipelineAt(r.pipeline);
-    if (pipeline_ != &p) vertexDirty_ = indexDirty_ = true;  // another VAO
+    if (pipeline_ != &p) vertexDirty_ = indexDirty_ = constantsDirty_ = true;  // another VAO, maybe another block size
     pipeline_ = &p;
     gl_.UseProgram(p.program);
     if (p.compute) return;
@@ -274,6 +294,7 @@ void GlReplay::operator()(const cmd::SetStorageTexture& r) {
 }
 
 void GlReplay::bindVertexBuffers() {
+    if (constantsDirty_) flushConstants();
     if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
     for (size_t i = 0; i < pipeline_->strides.size(); ++i)
         gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
@@ -301,6 +322,7 @@ void GlReplay::operator()(const cmd::DrawIndexed& r) {
 // Dispatches and copies keep full barriers even with automatic barriers off: glMemoryBarrier
 // is cheap next to them, and GL has no finer ordering to gain.
 void GlReplay::operator()(const cmd::Dispatch& r) {
+    if (constantsDirty_) flushConstants();
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.DispatchCompute(r.groupsX, r.groupsY, r.groupsZ);
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -336,6 +358,7 @@ void GlReplay::operator()(const cmd::DrawIndexedIndirectCount& r) {
                                        GLintptr(r.countOffset), GLsizei(r.maxDrawCount), GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DispatchIndirect& r) {
+    if (constantsDirty_) flushConstants();
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
     gl_.DispatchComputeIndirect(GLintptr(r.offset));

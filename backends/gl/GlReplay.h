@@ -26,6 +26,7 @@ public:
     void operator()(const gdi::cmd::ExecuteSecondary& r);
     void operator()(const gdi::cmd::EndRenderPass&);
     void operator()(const gdi::cmd::SetPipeline& r);
+    void operator()(const gdi::cmd::SetConstants& r);
     void operator()(const gdi::cmd::SetViewport& r);
     void operator()(const gdi::cmd::SetScissor& r);
     void operator()(const gdi::cmd::SetBlendConstant& r);
@@ -84,6 +85,10 @@ private:
     GLenum topology_ = GL_TRIANGLES;
     std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};
     bool vertexDirty_ = true, indexDirty_ = true;
+    // setConstants' bytes, uploaded to the device's ring at the next draw or dispatch.
+    std::array<std::byte, gdi::kMaxConstantBytes> constants_{};
+    bool constantsDirty_ = true;
+    void flushConstants();
     GLuint indexBuffer_ = 0;
     uint64_t indexOffset_ = 0;
     gdi::IndexType indexType_ = gdi::IndexType::U32;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <string>
 
 #include "fe/gdi/Validation.h"
@@ -459,6 +460,7 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     passHasLabel_ = false;
     written_ = false;  // barriers are the primary's business
     unbindAll();
+    constants_ = {};
     setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
     setScissor(renderArea_);
 }
@@ -504,6 +506,7 @@ void VulkanCommandList::clearRecording() {
     recording_ = secondary_ = ended_ = restricted_ = secondaryPass_ = false;
     inPass_ = false;
     unbindAll();
+    constants_ = {};
     debugDepth_ = 0;
     automaticBarriers_ = true;
 }
@@ -520,6 +523,8 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
         vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
     }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
+    // The list's constants, whatever the previous pipeline was (a list's values outlive it).
+    if (p.constantBytes) vkCmdPushConstants(cb_, p.layout, p.constantStages, 0, p.constantBytes, constants_.data());
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
     layout_ = p.layout;
@@ -542,6 +547,18 @@ void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     checkUnrestricted("setViewport");
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
+}
+
+// Kept in the list (setPipeline pushes them for the next pipeline) and pushed at once for the
+// bound one, up to the size of its block.
+void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
+    gdi::validate::constantsRange(offset, data.size());
+    ensureRecording();
+    checkUnrestricted("setConstants");
+    std::memcpy(constants_.data() + offset, data.data(), data.size());
+    if (pipeline_ && offset < pipeline_->constantBytes)
+        vkCmdPushConstants(cb_, layout_, pipeline_->constantStages, offset,
+                           std::min(uint32_t(data.size()), pipeline_->constantBytes - offset), data.data());
 }
 
 void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {

@@ -18,6 +18,7 @@ public:
     void setPipeline(gdi::PipelineHandle pipeline) override;
     void setViewport(const gdi::Viewport& viewport) override;
     void setScissor(const gdi::Rect& rect) override;
+    void setConstants(uint32_t offset, gdi::ByteSpan data) override;
     void setBlendConstant(const std::array<float, 4>& rgba) override;
     void setStencilReference(uint8_t reference) override;
     void setDepthBias(float constant, float slope, float clamp) override;
@@ -179,6 +180,7 @@ private:
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);
     int debugDepth_ = 0;
+    std::array<std::byte, gdi::kMaxConstantBytes> constants_{};  // setConstants' bytes, pushed at setPipeline
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;

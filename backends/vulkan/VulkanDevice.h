@@ -96,6 +96,8 @@ struct Pipeline {
     std::array<float, 4> blendConstant{};
     uint8_t stencilReference = 0;
     std::array<float, 3> depthBias{};  // constant, slope, clamp
+    uint32_t constantBytes = 0;        // the shaders' constants block (push-constant range)
+    VkShaderStageFlags constantStages = 0;
     std::string name;
 };
 

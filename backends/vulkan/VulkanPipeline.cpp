@@ -93,8 +93,25 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
     return shaders_.add(std::move(s));
 }
 
-static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>& bindings, const char* debugName) {
+// Specialization data for one stage: every value given (Vulkan ignores ids a stage does not
+// declare), each 32 bits.
+struct StageSpecialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    VkSpecializationInfo info{};
+    explicit StageSpecialization(const std::vector<gdi::SpecializationConstant>& values) {
+        for (size_t i = 0; i < values.size(); ++i)
+            entries.push_back({values[i].id, uint32_t(i * sizeof(gdi::SpecializationConstant) + 4), 4});
+        info = {uint32_t(entries.size()), entries.data(), values.size() * sizeof(gdi::SpecializationConstant), values.data()};
+    }
+    const VkSpecializationInfo* get() const { return entries.empty() ? nullptr : &info; }
+};
+
+// The constants block, one push-constant range over every stage of the pipeline.
+static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>& bindings, const char* debugName,
+                           uint32_t constantBytes, VkShaderStageFlags stages) {
     Pipeline p;
+    p.constantBytes = constantBytes;
+    p.constantStages = stages;
     p.bindings = bindings;
     p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
     p.name = debugName ? debugName : "";
@@ -115,6 +132,9 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 1;
     pli.pSetLayouts = &p.setLayout;
+    const VkPushConstantRange range{stages, 0, constantBytes};
+    pli.pushConstantRangeCount = constantBytes ? 1 : 0;
+    pli.pPushConstantRanges = &range;
     if (VkResult r = nativeAllocation("vkCreatePipelineLayout", [&] { return vkCreatePipelineLayout(device, &pli, nullptr, &p.layout); });
         r != VK_SUCCESS) {
         vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
@@ -145,12 +165,16 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
             throw gdi::Error("pipeline '" + name + "': format " + std::string(gdi::formatInfo(f).name) +
                              " cannot be a render target on this device");
 
+    const uint32_t constantBytes = gdi::validate::pipelineConstants({&vs.iface, fs ? &fs->iface : nullptr}, name);
+    gdi::validate::specialization(d.specialization, {&vs.iface, fs ? &fs->iface : nullptr}, name);
+    const StageSpecialization spec(d.specialization);
+
     std::vector<VkPipelineShaderStageCreateInfo> stages;
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
-                      vs.module, vs.entry.c_str(), nullptr});
+                      vs.module, vs.entry.c_str(), spec.get()});
     if (fs)
         stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                          fs->module, fs->entry.c_str(), nullptr});
+                          fs->module, fs->entry.c_str(), spec.get()});
 
     std::vector<VkVertexInputBindingDescription> vbind;
     std::vector<VkVertexInputAttributeDescription> vattr;
@@ -242,7 +266,8 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ri.depthAttachmentFormat = gdi::formatInfo(d.depthFormat).hasDepth ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
     ri.stencilAttachmentFormat = gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
 
-    Pipeline p = makeLayout(device_, bindings, d.debugName);
+    Pipeline p = makeLayout(device_, bindings, d.debugName, constantBytes,
+                            VK_SHADER_STAGE_VERTEX_BIT | (fs ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
     p.signature = gdi::validate::pipelineSignature(d);
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
     p.stencilReference = d.depthStencil.stencilReference;
@@ -281,11 +306,15 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
                          "': computeShader is not a compute shader");
     const std::string name = d.debugName ? d.debugName : "";
     gdi::validate::workgroup(cs.iface, info_.limits, name);
-    Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name), d.debugName);
+    const uint32_t constantBytes = gdi::validate::pipelineConstants({&cs.iface}, name);
+    gdi::validate::specialization(d.specialization, {&cs.iface}, name);
+    const StageSpecialization spec(d.specialization);
+    Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name), d.debugName,
+                            constantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,
-                cs.entry.c_str(), nullptr};
+                cs.entry.c_str(), spec.get()};
     ci.layout = p.layout;
     VkResult r = nativeAllocation("vkCreateComputePipelines",
                                   [&] { return vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline); });

@@ -88,13 +88,23 @@ ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage
         spvc_resources_get_resource_list_for_type(res, type, &list, &count);
         for (size_t i = 0; i < count; ++i) f(list[i]);
     };
+    auto declaredSize = [&](spvc_type_id type) {
+        size_t size = 0;
+        spvc_compiler_get_declared_struct_size(comp, spvc_compiler_get_type_handle(comp, type), &size);
+        return size;
+    };
     auto binding = [&](BindingType type) {
         return [&, type](const spvc_reflected_resource& r) {
             const uint32_t set = spvc_compiler_get_decoration(comp, r.id, SpvDecorationDescriptorSet);
             if (set != 0)
                 throw fail("'" + std::string(r.name) + "' is in descriptor set " + std::to_string(set) +
                            "; the device binds set 0 only (layout(binding = slot))");
-            out.bindings.push_back({spvc_compiler_get_decoration(comp, r.id, SpvDecorationBinding), type, r.name});
+            const uint32_t slot = spvc_compiler_get_decoration(comp, r.id, SpvDecorationBinding);
+            if (type == BindingType::UniformBuffer && slot == kConstantsGlBinding) {  // FE_CONSTANTS on GL
+                out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id));
+                return;
+            }
+            out.bindings.push_back({slot, type, r.name});
         };
     };
     each(SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, binding(BindingType::UniformBuffer));
@@ -115,11 +125,19 @@ ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage
     };
     each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));
     each(SPVC_RESOURCE_TYPE_STAGE_OUTPUT, variable(out.outputs));
-    each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT, [&](const spvc_reflected_resource& r) {
-        size_t size = 0;
-        spvc_compiler_get_declared_struct_size(comp, spvc_compiler_get_type_handle(comp, r.base_type_id), &size);
-        out.pushConstantBytes = uint32_t(size);
-    });
+    each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT,
+         [&](const spvc_reflected_resource& r) { out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id)); });
+    const spvc_specialization_constant* specs = nullptr;
+    size_t specCount = 0;
+    spvc_compiler_get_specialization_constants(comp, &specs, &specCount);
+    for (size_t i = 0; i < specCount; ++i) {
+        const spvc_constant c = spvc_compiler_get_constant_handle(comp, specs[i].id);
+        const spvc_basetype base = spvc_type_get_basetype(spvc_compiler_get_type_handle(comp, spvc_constant_get_type(c)));
+        const char* name = spvc_compiler_get_name(comp, specs[i].id);
+        const bool word = base == SPVC_BASETYPE_FP32 || base == SPVC_BASETYPE_INT32 || base == SPVC_BASETYPE_UINT32;
+        out.specConstants.push_back({specs[i].constant_id, word ? kindOf(base) : ScalarKind::Other,
+                                     base == SPVC_BASETYPE_BOOLEAN, name ? name : ""});
+    }
     if (stage == ShaderStage::Compute)
         for (uint32_t i = 0; i < 3; ++i)
             out.workgroupSize[i] = spvc_compiler_get_execution_mode_argument_by_index(comp, SpvExecutionModeLocalSize, i);
@@ -128,6 +146,7 @@ ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage
     std::sort(out.bindings.begin(), out.bindings.end(), bySlot);
     std::sort(out.inputs.begin(), out.inputs.end(), byLocation);
     std::sort(out.outputs.begin(), out.outputs.end(), byLocation);
+    std::sort(out.specConstants.begin(), out.specConstants.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
     return out;
 }
 

@@ -535,6 +535,55 @@ void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std:
                                                         std::to_string(limits.maxComputeWorkGroupInvocations));
 }
 
+uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+    uint32_t bytes = 0;
+    for (const ShaderInterface* sh : shaders) {
+        if (!sh) continue;
+        if (sh->pushConstantBytes > kMaxConstantBytes)
+            fail("pipeline '" + pipeline + "'", std::string("the ") + shaderStageName(sh->stage) + " shader's constants block is " +
+                                                    std::to_string(sh->pushConstantBytes) + " bytes; at most " +
+                                                    std::to_string(kMaxConstantBytes) + " (kMaxConstantBytes)");
+        bytes = std::max(bytes, sh->pushConstantBytes);
+    }
+    return bytes;
+}
+
+void badConstantsRange(uint32_t offset, size_t size) {
+    fail("setConstants", "offset " + std::to_string(offset) + " and size " + std::to_string(size) +
+                             " must be multiples of 4, the size not 0, and offset + size at most " +
+                             std::to_string(kMaxConstantBytes) + " (kMaxConstantBytes)");
+}
+
+void specialization(const std::vector<SpecializationConstant>& values,
+                    std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+    const std::string what = "pipeline '" + pipeline + "'";
+    for (size_t i = 0; i < values.size(); ++i) {
+        const SpecializationConstant& v = values[i];
+        for (size_t j = 0; j < i; ++j)
+            if (values[j].id == v.id) fail(what, "specialization constant " + std::to_string(v.id) + " is given twice");
+        const ShaderInterface::SpecConstant* declared = nullptr;
+        for (const ShaderInterface* sh : shaders) {
+            if (!sh) continue;
+            for (const ShaderInterface::SpecConstant& c : sh->specConstants)
+                if (c.id == v.id) {
+                    if (declared && (declared->isBool != c.isBool || declared->kind != c.kind))
+                        fail(what, "specialization constant " + std::to_string(v.id) + " has a different type in the " +
+                                       shaderStageName(sh->stage) + " shader");
+                    declared = &c;
+                }
+        }
+        if (!declared)
+            fail(what, "specialization constant " + std::to_string(v.id) +
+                           " is not declared by its shaders (layout(constant_id = " + std::to_string(v.id) + "))");
+        if (declared->isBool && v.bits > 1)
+            fail(what, "specialization constant " + std::to_string(v.id) + " ('" + declared->name +
+                           "') is a bool: its value is 0 or 1, not " + std::to_string(v.bits));
+        if (!declared->isBool && declared->kind == ScalarKind::Other)
+            fail(what, "specialization constant " + std::to_string(v.id) + " ('" + declared->name +
+                           "') is not a 32-bit bool, int, uint or float");
+    }
+}
+
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d) {
     PassSignature s;
     s.colorCount = uint32_t(std::min(d.colorFormats.size(), s.colors.size()));

@@ -235,6 +235,7 @@ std::vector<Case> executionCases();  // ExecutionCases.cpp
 std::vector<Case> fixedFunctionCases();  // FixedFunctionCases.cpp
 std::vector<Case> pipelineCases();  // PipelineCases.cpp
 std::vector<Case> samplerStateCases();  // SamplerStateCases.cpp
+std::vector<Case> portCases();  // PortCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -245,7 +246,8 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, pipelineCases, samplerStateCases})
+        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, pipelineCases, samplerStateCases,
+                              portCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

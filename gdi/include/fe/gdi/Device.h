@@ -121,6 +121,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -129,6 +130,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "fe/gdi/Format.h"
@@ -354,6 +356,31 @@ struct ShaderDesc {
 
 enum class BindingType : uint8_t { UniformBuffer, StorageBuffer, SampledTexture, StorageTexture };
 
+// Per-draw constants (CommandList::setConstants): at most this many bytes per pipeline, in one
+// block declared through the engine include (fe_common.glsl), std140 rules on every backend:
+//   FE_CONSTANTS(DrawConstants) { mat4 model; vec4 tint; } draw;   // then draw.model, draw.tint
+// It is a push-constant block on Vulkan and a uniform block at a reserved binding on GL (fed
+// per draw from a ring of uniform memory); the pipeline takes its size from the shaders.
+inline constexpr uint32_t kMaxConstantBytes = 128;
+
+// A specialization constant's value for a pipeline: `layout(constant_id = id) const T name =
+// default;` in GLSL takes it in every stage of the pipeline that declares that id, when the
+// pipeline is made (Vulkan VkSpecializationInfo, GL glSpecializeShader), so one SPIR-V pair
+// serves every value. bool, int, uint and float constants; an id no stage declares, a value of
+// the wrong kind (a bool other than 0 or 1) or an id given twice is an Error.
+struct SpecializationConstant {
+    uint32_t id = 0;
+    uint32_t bits = 0;  // the value's 32 bits
+    template <class T>
+    static SpecializationConstant of(uint32_t id, T value) {
+        static_assert(std::is_same_v<T, bool> || std::is_same_v<T, int32_t> || std::is_same_v<T, uint32_t> ||
+                          std::is_same_v<T, float>,
+                      "specialization constants are bool, int32_t, uint32_t or float");
+        if constexpr (std::is_same_v<T, bool>) return {id, value ? 1u : 0u};
+        else return {id, std::bit_cast<uint32_t>(value)};
+    }
+};
+
 struct BindingSlot {
     uint32_t slot = 0;  // `layout(binding = slot)`
     BindingType type = BindingType::UniformBuffer;
@@ -450,12 +477,14 @@ struct GraphicsPipelineDesc {
     std::vector<Format> colorFormats;
     Format depthFormat = Format::Undefined;
     std::vector<BindingSlot> bindings;
+    std::vector<SpecializationConstant> specialization;  // see SpecializationConstant
     const char* debugName = nullptr;
 };
 
 struct ComputePipelineDesc {
     ShaderHandle computeShader;
     std::vector<BindingSlot> bindings;
+    std::vector<SpecializationConstant> specialization;  // see SpecializationConstant
     const char* debugName = nullptr;
 };
 
@@ -607,6 +636,14 @@ public:
     virtual void setBlendConstant(const std::array<float, 4>& rgba) = 0;
     virtual void setStencilReference(uint8_t reference) = 0;
     virtual void setDepthBias(float constant, float slope, float clamp = 0.0f) = 0;
+    // Per-draw constants: bytes [offset, offset + data.size()) of the constants block
+    // (FE_CONSTANTS, kMaxConstantBytes at most), read by the draws and dispatches that follow.
+    // Offset and size are multiples of 4. Each recording (and each secondary list) starts with
+    // all 128 bytes zero; values persist across setPipeline, and a pipeline reads the first
+    // bytes its block declares. Cheaper per draw than a uniform buffer at a new offset.
+    virtual void setConstants(uint32_t offset, ByteSpan data) = 0;
+    template <class T>
+    void setConstants(const T& data) { setConstants(0, bytesOf(data)); }
     virtual void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset = 0) = 0;
     virtual void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
 

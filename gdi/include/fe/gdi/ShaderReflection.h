@@ -34,9 +34,21 @@ struct ShaderInterface {
     std::vector<Binding> bindings;   // the ones the entry point uses, by slot
     std::vector<Variable> inputs;    // user inputs (built-ins excluded), by location
     std::vector<Variable> outputs;
-    uint32_t pushConstantBytes = 0;  // 0: no push-constant block
+    struct SpecConstant {
+        uint32_t id = 0;  // layout(constant_id = id)
+        ScalarKind kind = ScalarKind::Float;  // Other: a bool
+        bool isBool = false;
+        std::string name;
+    };
+    // The per-draw constants block (FE_CONSTANTS): a push-constant block in Vulkan SPIR-V, the
+    // uniform block at kConstantsGlBinding in GL SPIR-V. 0: none.
+    uint32_t pushConstantBytes = 0;
+    std::vector<SpecConstant> specConstants;  // by id
     std::array<uint32_t, 3> workgroupSize{};  // compute
 };
+
+// The GL binding of the constants block (fe_common.glsl's FE_CONSTANTS), past the 0..63 slots.
+inline constexpr uint32_t kConstantsGlBinding = 64;
 
 // Throws Error naming the shader when the module cannot be parsed, uses a descriptor set other
 // than 0, or a resource kind the device has no slot type for (separate samplers and images).

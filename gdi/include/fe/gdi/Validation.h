@@ -91,6 +91,19 @@ void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, cons
 void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline);
 // A compute shader's work group fits the device.
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline);
+// Bytes of per-draw constants the pipeline's shaders read (the largest block; 0: none), at
+// most kMaxConstantBytes.
+uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+// setConstants: offset and size multiples of 4, not empty, within kMaxConstantBytes.
+[[noreturn, gnu::cold]] void badConstantsRange(uint32_t offset, size_t size);
+inline void constantsRange(uint32_t offset, size_t size) {
+    if ((offset | size) & 3 || size == 0 || offset + size > kMaxConstantBytes) [[unlikely]]
+        badConstantsRange(offset, size);
+}
+// Specialization constants given to a pipeline: each id declared by one of its shaders, once,
+// with a value of that constant's kind.
+void specialization(const std::vector<SpecializationConstant>& values,
+                    std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
 // The attachments a graphics pipeline renders to (formats, depth format, samples).
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
 // setPipeline in a pass: the pipeline's attachment formats and sample count are the pass's.
