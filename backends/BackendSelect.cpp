@@ -76,6 +76,7 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
         if (p.available) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
+            if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
             return std::move(p.device);
         }
         failures += "\n  " + c + " unavailable: " + p.reason;

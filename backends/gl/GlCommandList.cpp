@@ -22,6 +22,7 @@ GlCommandList::~GlCommandList() { dev_.returnStream(std::move(stream_)); }
 
 void GlCommandList::restart() {
     unbindAll();
+    queries_.clear();
     destroyEpoch_ = dev_.destroyEpoch();
 }
 
@@ -39,6 +40,7 @@ void GlCommandList::checkSubmittable() const {
     if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (depth_) throw gdi::Error("submit: " + std::to_string(depth_) + " debug group(s) not popped");
+    queries_.finish();
     if (dev_.destroyEpoch() != destroyEpoch_) dev_.checkAlive(*stream_);  // only when something was destroyed
 }
 
@@ -96,6 +98,7 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
 void GlCommandList::endRenderPass() {
     if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
+    queries_.endPass();
     inPass_ = false;
     readyToDraw_ = false;
     if (secondaryPass_) {  // as on Vulkan, where vkCmdExecuteCommands leaves the state undefined
@@ -355,6 +358,36 @@ void GlCommandList::endTimer(gdi::TimerHandle h) {
     (void)dev_.timer(h);
     stream_->push(cmd::EndTimer{h});
 }
+QuerySet& GlCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* what) {
+    checkUnrestricted(what);
+    if (secondary_) gdi::validate::notInSecondary(what);
+    return dev_.querySet(h);
+}
+void GlCommandList::beginQuery(gdi::QuerySetHandle h, uint32_t index) {
+    const QuerySet& q = usedQuerySet(h, "beginQuery");
+    queries_.begin(q.desc, q.label, h.id, index, inPass_);
+    stream_->push(cmd::BeginQuery{h, index});
+}
+void GlCommandList::endQuery(gdi::QuerySetHandle h, uint32_t index) {
+    const QuerySet& q = usedQuerySet(h, "endQuery");
+    queries_.end(q.desc, q.label, h.id, index, inPass_);
+    stream_->push(cmd::EndQuery{h, index});
+}
+void GlCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
+    const QuerySet& q = usedQuerySet(h, "writeTimestamp");
+    queries_.timestamp(q.desc, q.label, h.id, index, inPass_);
+    stream_->push(cmd::WriteTimestamp{h, index});
+}
+void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count, gdi::BufferHandle dst,
+                                   uint64_t dstOffset) {
+    outside("resolveQueries");
+    const QuerySet& q = usedQuerySet(h, "resolveQueries");
+    const Buffer& b = dev_.buffer(dst);
+    queries_.resolve(q.desc, q.label, h.id, first, count);
+    gdi::validate::queryDestination(b.desc, b.label, dstOffset, 8ull * gdi::validate::queryValues(q.desc.type) * count);
+    stream_->push(cmd::ResolveQueries{h, first, count, dst, dstOffset});
+}
+
 void GlCommandList::pushDebugGroup(const char* name) {
     checkUnrestricted("pushDebugGroup");
     ++depth_;

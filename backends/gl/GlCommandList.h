@@ -71,6 +71,12 @@ public:
     void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
     void beginTimer(gdi::TimerHandle h) override;
     void endTimer(gdi::TimerHandle h) override;
+    void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
+    void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
+    void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;
+    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count, gdi::BufferHandle dst,
+                        uint64_t dstOffset) override;
+    const gdi::validate::QueryRecording& queries() const { return queries_; }
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
     void insertDebugLabel(const char* name) override;
@@ -98,6 +104,7 @@ private:
     }
     [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
     void outside(const char* what) const;
+    QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
     void checkSlot(uint32_t slot, const char* what) const;
     template <gdi::BindingType kKind>
     void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size);
@@ -147,6 +154,7 @@ private:
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
     gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
+    gdi::validate::QueryRecording queries_;
 };
 
 }  // namespace fe::gl

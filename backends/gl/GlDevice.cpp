@@ -101,6 +101,7 @@ gdi::LiveObjects GlDevice::liveObjects() const {
     if (!thread_.onThisThread()) return thread_.run([&] { return liveObjects(); });
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
+            .querySets = querySets_.size(),
             .nativeObjects = nativeObjects_};
 }
 
@@ -227,13 +228,18 @@ void GlDevice::initialize(bool validation) {
     info_.limits.maxStorageBufferRange = get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
+    // Mesa 22.3 crashes (strlen in the driver) serialising a SPIR-V program that has uniform
+    // blocks or samplers for glGetProgramBinary (seen on llvmpipe): no program binaries there.
+    binaryFormats_ = info_.apiVersion.find("Mesa") == std::string::npos ? get(GL_NUM_PROGRAM_BINARY_FORMATS) : 0;
     info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
                       .memoryAliasing = false, .window = platform_->hasWindow(),
                       .textureCubeArray = true, .depthClamp = true,  // core in 4.0 and 3.2
                       .depthBiasClamp = gl_.PolygonOffsetClamp != nullptr,
                       .multiDrawIndirect = true,  // core in 4.3
                       .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
-                      .textureCompressionBC = bc};
+                      .textureCompressionBC = bc,
+                      .occlusionQueries = true,  // GL_SAMPLES_PASSED counts exactly
+                      .pipelineStatistics = has("GL_ARB_pipeline_statistics_query")};
     // What each format can do, from the driver's internal-format queries (ARB_internalformat_query2).
     auto supported = [&](GLenum target, GLenum internal, GLenum pname) {
         GLint v = GL_NONE;
@@ -258,6 +264,13 @@ void GlDevice::initialize(bool validation) {
 GlDevice::~GlDevice() {
     try {
         thread_.run([&] {
+            if (!loss_.lost()) {
+                try {
+                    savePipelineCacheOnContext();
+                } catch (const gdi::Error& e) {
+                    std::cerr << "fe: " << e.what() << "\n";
+                }
+            }
             releaseAll();
             platform_->releaseCurrent();
         });
@@ -283,6 +296,7 @@ void GlDevice::releaseAll() {
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
     timers_.forEach([&](Timer& t) { gl_.DeleteQueries(2, t.queries); });
+    querySets_.forEach([&](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
     for (auto& f : fbos_) gl_.DeleteFramebuffers(1, &f.fbo);
     for (auto& [v, s] : fences_) gl_.DeleteSync(s);
 }
@@ -440,6 +454,8 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     s.stage = desc.stage;
     s.label = label;
     s.entry = desc.entryPoint ? desc.entryPoint : "main";
+    s.codeHash = gdi::fnv1a({reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
+                            gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()}));
     if (!s.iface.specConstants.empty()) s.spirv.assign(code.begin(), code.end());
     return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
@@ -485,6 +501,7 @@ GLuint GlDevice::pipelineShader(const Shader& s, const std::vector<gdi::Speciali
 
 static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& label) {
     GLuint p = gl.CreateProgram();
+    gl.ProgramParameteri(p, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // for the pipeline cache
     for (GLuint s : shaders)
         if (s) gl.AttachShader(p, s);
     gl.LinkProgram(p);
@@ -496,8 +513,90 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
         gl.DeleteProgram(p);
         throw gdi::Error("pipeline '" + label + "': link failed: " + log);
     }
-    if (!label.empty()) gl.ObjectLabel(GL_PROGRAM, p, -1, label.c_str());
+    // Always labelled: Mesa 22.3 reads the label as a C string when it serialises a program for
+    // glGetProgramBinary, and crashes on an unlabelled one.
+    gl.ObjectLabel(GL_PROGRAM, p, -1, label.empty() ? "unnamed pipeline" : label.c_str());
     return p;
+}
+
+// A program's cache key: its shaders' code and entry points, and the specialization values.
+static uint64_t programKey(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values) {
+    uint64_t key = 0xcbf29ce484222325ull;
+    for (const Shader* s : shaders) key = (key ^ (s ? s->codeHash : 0)) * 0x100000001b3ull;
+    return gdi::fnv1a({reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(values[0])}, key);
+}
+
+// The program for `key`: from its cached binary when the driver takes it back, else linked by
+// `link` and its binary kept for the cache (context thread).
+GLuint GlDevice::cachedProgram(uint64_t key, const std::function<GLuint()>& link, const std::string& label) {
+    if (auto it = programs_.find(key); it != programs_.end()) {
+        const GLuint p = gl_.CreateProgram();
+        gl_.ProgramBinary(p, it->second.format, it->second.bytes.data(), GLsizei(it->second.bytes.size()));
+        GLint ok = 0;
+        gl_.GetProgramiv(p, GL_LINK_STATUS, &ok);
+        if (ok) {
+            gl_.ObjectLabel(GL_PROGRAM, p, -1, label.empty() ? "unnamed pipeline" : label.c_str());
+            std::lock_guard lock(cacheMutex_);
+            ++cacheStats_.hits;
+            return p;
+        }
+        gl_.DeleteProgram(p);  // the driver may refuse a binary (an update): link it again
+        programs_.erase(it);
+    }
+    const GLuint p = link();
+    {
+        std::lock_guard lock(cacheMutex_);
+        ++cacheStats_.misses;
+    }
+    GLint length = 0;
+    if (binaryFormats_ > 0) gl_.GetProgramiv(p, GL_PROGRAM_BINARY_LENGTH, &length);
+    if (length > 0) {
+        gdi::ProgramBinary& b = programs_[key];
+        b.bytes.resize(size_t(length));
+        GLenum format = 0;
+        gl_.GetProgramBinary(p, length, nullptr, &format, b.bytes.data());
+        b.format = format;
+    }
+    return p;
+}
+
+gdi::PipelineCacheStats GlDevice::openPipelineCache(const std::string& path) {
+    const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
+    gdi::PipelineCacheStats stats{.path = path, .warning = file.warning};
+    std::map<uint64_t, gdi::ProgramBinary> programs;
+    std::string why;
+    if (!file.payload.empty() && !gdi::decodeProgramBinaries(file.payload, programs, why))
+        stats.warning = "pipeline cache '" + path + "' ignored: " + why;
+    else if (!file.payload.empty())
+        stats.loaded = true, stats.loadedBytes = file.payload.size();
+    if (binaryFormats_ == 0 && stats.warning.empty() && !path.empty())
+        stats.warning = "pipeline cache '" + path + "': GL programs are not cached here: " +
+                        (info_.apiVersion.find("Mesa") != std::string::npos
+                             ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with resources"
+                             : "the driver offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS is 0)");
+    if (!stats.warning.empty()) std::cerr << "fe: " << stats.warning << "\n";
+    thread_.run([&] { programs_ = stats.loaded ? std::move(programs) : std::map<uint64_t, gdi::ProgramBinary>{}; });
+    std::lock_guard lock(cacheMutex_);
+    cacheStats_ = stats;
+    return stats;
+}
+
+void GlDevice::savePipelineCacheOnContext() {
+    std::string path;
+    {
+        std::lock_guard lock(cacheMutex_);
+        path = cacheStats_.path;
+    }
+    if (!path.empty()) gdi::writePipelineCache(path, gdi::pipelineCacheIdentity(info_), gdi::encodeProgramBinaries(programs_));
+}
+
+void GlDevice::savePipelineCache() {
+    thread_.run([&] { savePipelineCacheOnContext(); });
+}
+
+gdi::PipelineCacheStats GlDevice::pipelineCacheStats() const {
+    std::lock_guard lock(cacheMutex_);
+    return cacheStats_;
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
@@ -522,20 +621,24 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label);
         p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
         gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
-        bool ownVs = false, ownFs = false;
-        const GLuint vsName = pipelineShader(vs, d.specialization, ownVs);
-        if (fs) fs = pipelineShader(shaders_.get(d.fragmentShader, "fragment shader"), d.specialization, ownFs);
-        auto dropOwned = [&] {
-            if (ownVs) gl_.DeleteShader(vsName);
-            if (ownFs) gl_.DeleteShader(fs);
-        };
-        try {
-            p.program = linkProgram(gl_, {vsName, fs}, p.label);
-        } catch (...) {
-            dropOwned();
-            throw;
-        }
-        dropOwned();
+        const Shader* fsShader = d.fragmentShader ? &shaders_.get(d.fragmentShader, "fragment shader") : nullptr;
+        p.program = cachedProgram(programKey({&vs, fsShader}, d.specialization), [&] {
+            bool ownVs = false, ownFs = false;
+            const GLuint vsName = pipelineShader(vs, d.specialization, ownVs);
+            if (fsShader) fs = pipelineShader(*fsShader, d.specialization, ownFs);
+            auto dropOwned = [&] {
+                if (ownVs) gl_.DeleteShader(vsName);
+                if (ownFs) gl_.DeleteShader(fs);
+            };
+            try {
+                const GLuint program = linkProgram(gl_, {vsName, fs}, p.label);
+                dropOwned();
+                return program;
+            } catch (...) {
+                dropOwned();
+                throw;
+            }
+        }, p.label);
         gl_.CreateVertexArrays(1, &p.vao);
         for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
             const auto& vb = d.vertexBuffers[i];
@@ -582,15 +685,18 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label);
         p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
         gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
-        bool own = false;
-        const GLuint csName = pipelineShader(cs, d.specialization, own);
-        try {
-            p.program = linkProgram(gl_, {csName}, p.label);
-        } catch (...) {
-            if (own) gl_.DeleteShader(csName);
-            throw;
-        }
-        if (own) gl_.DeleteShader(csName);
+        p.program = cachedProgram(programKey({&cs}, d.specialization), [&] {
+            bool own = false;
+            const GLuint csName = pipelineShader(cs, d.specialization, own);
+            try {
+                const GLuint program = linkProgram(gl_, {csName}, p.label);
+                if (own) gl_.DeleteShader(csName);
+                return program;
+            } catch (...) {
+                if (own) gl_.DeleteShader(csName);
+                throw;
+            }
+        }, p.label);
         p.compute = true;
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
@@ -663,6 +769,61 @@ void GlDevice::destroy(gdi::PipelineHandle h) {
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
 }
+std::span<const GLenum> queryTargets(gdi::QueryType t) {
+    static const GLenum occlusion[] = {GL_SAMPLES_PASSED}, any[] = {GL_ANY_SAMPLES_PASSED}, time[] = {GL_TIMESTAMP};
+    static const GLenum statistics[] = {GL_PRIMITIVES_SUBMITTED, GL_VERTEX_SHADER_INVOCATIONS,
+                                        GL_FRAGMENT_SHADER_INVOCATIONS, GL_COMPUTE_SHADER_INVOCATIONS};
+    switch (t) {
+        case gdi::QueryType::Occlusion: return occlusion;
+        case gdi::QueryType::AnySamplesPassed: return any;
+        case gdi::QueryType::Timestamp: return time;
+        case gdi::QueryType::PipelineStatistics: return statistics;
+    }
+    return {};
+}
+
+gdi::QuerySetHandle GlDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
+    gdi::validate::querySetDesc(desc, info_.features);
+    return thread_.runUrgent([&]() -> gdi::QuerySetHandle {  // a new object: no queued work uses it
+        loss_.check("createQuerySet");
+        QuerySet q;
+        q.desc = desc;
+        q.label = desc.debugName ? desc.debugName : "";
+        q.desc.debugName = nullptr;
+        q.submitted.assign(desc.count, 0);
+        const auto targets = queryTargets(desc.type);
+        q.names.resize(size_t(desc.count) * targets.size());
+        if (desc.type == gdi::QueryType::PipelineStatistics) {
+            // Mesa's glCreateQueries refuses the statistics targets (GL_INVALID_ENUM) although it
+            // counts them: names from glGenQueries become queries at their first glBeginQuery.
+            gl_.GenQueries(GLsizei(q.names.size()), q.names.data());
+        } else {
+            gl_.CreateQueries(targets[0], GLsizei(q.names.size()), q.names.data());
+        }
+        return querySets_.add(std::move(q));
+    });
+}
+
+void GlDevice::destroy(gdi::QuerySetHandle h) {
+    retire(querySets_, h, [this](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
+}
+
+bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
+    loss_.check("queryResults");
+    const QuerySet& q = querySets_.get(h, "query set");
+    gdi::validate::queryRead(q.desc, q.label, first, count, out.size());
+    {
+        std::lock_guard lock(queriesMutex_);
+        for (uint32_t i = first; i < first + count; ++i)
+            if (q.submitted[i] == 0 || !isComplete(q.submitted[i])) return false;
+    }
+    const size_t values = queryTargets(q.desc.type).size();
+    thread_.runUrgent([&] {  // complete: the results are there, nothing waits
+        for (size_t i = 0; i < count * values; ++i) gl_.GetQueryObjectui64v(q.names[first * values + i], GL_QUERY_RESULT, &out[i]);
+    });
+    return true;
+}
+
 void GlDevice::destroy(gdi::TimerHandle h) {
     retire(timers_, h, [this](Timer& t) { gl_.DeleteQueries(2, t.queries); });
 }
@@ -823,6 +984,7 @@ void GlDevice::checkAlive(const gdi::cmd::CommandStream& stream) const {
         else if constexpr (std::is_same_v<T, gdi::SamplerHandle>) check(samplers_, value, "sampler");
         else if constexpr (std::is_same_v<T, gdi::PipelineHandle>) check(pipelines_, value, "pipeline");
         else if constexpr (std::is_same_v<T, gdi::TimerHandle>) check(timers_, value, "timer");
+        else if constexpr (std::is_same_v<T, gdi::QuerySetHandle>) check(querySets_, value, "query set");
         else if constexpr (std::is_same_v<T, gdi::DepthAttachment>) {
             check(textures_, value.texture, "texture");
             check(textures_, value.resolveTexture, "texture");
@@ -860,6 +1022,11 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
         gls.push_back(gl);
     }
     for (GlCommandList* gl : gls) gl->checkSubmittable();
+    std::vector<const gdi::validate::QueryRecording*> queries;
+    for (GlCommandList* gl : gls) queries.push_back(&gl->queries());
+    gdi::validate::queriesOncePerSubmission(queries);
+    std::vector<gdi::validate::QueryRecording::Use> usedQueries;
+    for (const auto* q : queries) usedQueries.insert(usedQueries.end(), q->used().begin(), q->used().end());
     std::vector<std::unique_ptr<gdi::cmd::CommandStream>> streams;
     for (GlCommandList* gl : gls) streams.push_back(gl->finish());
     if (gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit")) {
@@ -868,6 +1035,11 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     }
     std::lock_guard lock(submitMutex_);
     const gdi::FenceValue value = nextFence_++;
+    if (!usedQueries.empty()) {
+        std::lock_guard queriesLock(queriesMutex_);
+        for (const auto& u : usedQueries)
+            if (QuerySet* q = querySets_.find({u.set})) q->submitted[u.index] = value;
+    }
     auto shared = std::make_shared<decltype(streams)>(std::move(streams));
     thread_.post([this, value, shared] {
         for (auto& stream : *shared) {

@@ -11,6 +11,8 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <functional>
+#include <map>
 #include <mutex>
 #include <memory>
 #include <string>
@@ -22,6 +24,7 @@
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
 #include "fe/gdi/MessageLog.h"
+#include "fe/gdi/PipelineCacheFile.h"
 #include "gl/GlConstantsRing.h"
 #include "gl/GlContextThread.h"
 #include "gl/GlFunctions.h"
@@ -71,6 +74,7 @@ struct Shader {
     // For pipelines with specialization constants, which specialize a shader object of their own.
     std::vector<uint32_t> spirv;
     std::string entry;
+    uint64_t codeHash = 0;  // of the SPIR-V and entry point: part of a program's cache key
 };
 struct Pipeline {
     GLuint program = 0;
@@ -91,6 +95,15 @@ struct Timer {
     std::chrono::steady_clock::time_point begin, end;
 };
 
+struct QuerySet {
+    std::vector<GLuint> names;  // validate::queryValues(type) per query (statistics: one per counter)
+    gdi::QuerySetDesc desc;
+    std::string label;
+    std::vector<gdi::FenceValue> submitted;  // per query: the submission that last wrote it (0: none)
+};
+// The GL query targets of a set's type: one, or the four statistics in PipelineStatistics order.
+std::span<const GLenum> queryTargets(gdi::QueryType t);
+
 class GlDevice final : public gdi::Device {
 public:
     GlDevice(PlatformKind kind, bool validation, bool vsync = true);
@@ -107,6 +120,12 @@ public:
     gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
     gdi::TimerHandle createTimer() override;
     gdi::HeapHandle createHeap(const gdi::HeapDesc&) override;
+    gdi::QuerySetHandle createQuerySet(const gdi::QuerySetDesc& desc) override;
+    gdi::PipelineCacheStats openPipelineCache(const std::string& path) override;
+    void savePipelineCache() override;
+    gdi::PipelineCacheStats pipelineCacheStats() const override;
+    void destroy(gdi::QuerySetHandle) override;
+    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) override;
     gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc&) const override;
     void destroy(gdi::BufferHandle) override;
     void destroy(gdi::TextureHandle) override;
@@ -148,6 +167,8 @@ public:
     Sampler& samplerAt(gdi::SamplerHandle h) { return samplers_.at(h); }
     Pipeline& pipelineAt(gdi::PipelineHandle h) { return pipelines_.at(h); }
     Timer& timerAt(gdi::TimerHandle h) { return timers_.at(h); }
+    QuerySet& querySetAt(gdi::QuerySetHandle h) { return querySets_.at(h); }
+    QuerySet& querySet(gdi::QuerySetHandle h) { return querySets_.get(h, "query set"); }
     // Streams are reused (their blocks kept) from list to list.
     std::unique_ptr<gdi::cmd::CommandStream> takeStream();
     void returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream);
@@ -216,6 +237,15 @@ private:
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
     gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
+    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_;
+    std::mutex queriesMutex_;
+    // Program binaries by key (shaders, entry points, specialization), context thread only.
+    std::map<uint64_t, gdi::ProgramBinary> programs_;
+    gdi::PipelineCacheStats cacheStats_;
+    mutable std::mutex cacheMutex_;  // cacheStats_
+    GLint binaryFormats_ = 0;        // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
+    GLuint cachedProgram(uint64_t key, const std::function<GLuint()>& link, const std::string& label);
+    void savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
     void forgetFramebuffers(GLuint texture);
     mutable GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes
 };

@@ -114,6 +114,13 @@ namespace fe::gl {
     X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                                         \
     X(PFNGLCREATEQUERIESPROC, CreateQueries)                                                               \
     X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                                                 \
+    X(PFNGLGENQUERIESPROC, GenQueries)                                                                     \
+    X(PFNGLPROGRAMBINARYPROC, ProgramBinary)                                                               \
+    X(PFNGLGETPROGRAMBINARYPROC, GetProgramBinary)                                                         \
+    X(PFNGLPROGRAMPARAMETERIPROC, ProgramParameteri)                                                       \
+    X(PFNGLBEGINQUERYPROC, BeginQuery)                                                                     \
+    X(PFNGLENDQUERYPROC, EndQuery)                                                                         \
+    X(PFNGLGETQUERYBUFFEROBJECTUI64VPROC, GetQueryBufferObjectui64v)                                       \
     X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                                                   \
     X(PFNGLGETQUERYOBJECTIVPROC, GetQueryObjectiv)                                                         \
     X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                                               \

@@ -435,6 +435,26 @@ void GlReplay::operator()(const cmd::EndTimer& r) {
     gl_.QueryCounter(t.queries[1], GL_TIMESTAMP);
     t.used = true;
 }
+// Queries: a statistics query is four GL queries, one per counter, begun and ended together.
+void GlReplay::operator()(const cmd::BeginQuery& r) {
+    const QuerySet& q = dev_.querySetAt(r.set);
+    const auto targets = queryTargets(q.desc.type);
+    for (size_t k = 0; k < targets.size(); ++k) gl_.BeginQuery(targets[k], q.names[r.index * targets.size() + k]);
+}
+void GlReplay::operator()(const cmd::EndQuery& r) {
+    for (GLenum target : queryTargets(dev_.querySetAt(r.set).desc.type)) gl_.EndQuery(target);
+}
+void GlReplay::operator()(const cmd::WriteTimestamp& r) {
+    gl_.QueryCounter(dev_.querySetAt(r.set).names[r.index], GL_TIMESTAMP);
+}
+void GlReplay::operator()(const cmd::ResolveQueries& r) {
+    const QuerySet& q = dev_.querySetAt(r.set);
+    const GLuint buffer = dev_.bufferAt(r.dst).name;
+    const size_t values = queryTargets(q.desc.type).size();
+    for (size_t i = 0; i < r.count * values; ++i)  // the GPU waits for each result, not this thread
+        gl_.GetQueryBufferObjectui64v(q.names[r.first * values + i], buffer, GL_QUERY_RESULT, GLintptr(r.dstOffset + 8 * i));
+}
+
 void GlReplay::operator()(const cmd::PushDebugGroup& r) {
     const char* name = cmd::view(r, r.name);
     gl_.PushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name ? name : "");

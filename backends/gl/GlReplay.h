@@ -53,6 +53,10 @@ public:
     void operator()(const gdi::cmd::CopyTextureToBuffer& r);
     void operator()(const gdi::cmd::BeginTimer& r);
     void operator()(const gdi::cmd::EndTimer& r);
+    void operator()(const gdi::cmd::BeginQuery& r);
+    void operator()(const gdi::cmd::EndQuery& r);
+    void operator()(const gdi::cmd::WriteTimestamp& r);
+    void operator()(const gdi::cmd::ResolveQueries& r);
     void operator()(const gdi::cmd::PushDebugGroup& r);
     void operator()(const gdi::cmd::PopDebugGroup&);
     void operator()(const gdi::cmd::DiscardTexture&) {}  // GL reuses whole objects; contents are simply overwritten

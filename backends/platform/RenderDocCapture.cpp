@@ -41,11 +41,35 @@ void RenderDocCapture::setCapturePath(const std::string& pathWithoutOrWithRdc) {
     api_->SetCaptureFilePathTemplate(pathWithoutOrWithRdc.c_str());
 }
 
+namespace {
+
+// RenderDoc's own work when a capture starts and ends (reading resources back, a thumbnail from
+// the default framebuffer that a surfaceless GL context lacks) raises API errors that are not the
+// engine's: the API's messages are muted just then, and only then.
+class MutedApiMessages {
+public:
+    explicit MutedApiMessages(RENDERDOC_API_1_0_0* api) : api_(api) {
+        api_->SetCaptureOptionU32(eRENDERDOC_Option_DebugOutputMute, 1);
+    }
+    ~MutedApiMessages() { api_->SetCaptureOptionU32(eRENDERDOC_Option_DebugOutputMute, 0); }
+
+private:
+    RENDERDOC_API_1_0_0* api_;
+};
+
+}  // namespace
+
 // Null device and window: RenderDoc takes the one it saw last, which is ours (one device; a
 // headless context has no window to name anyway).
-void RenderDocCapture::startFrame() { api_->StartFrameCapture(nullptr, nullptr); }
+void RenderDocCapture::startFrame() {
+    MutedApiMessages muted(api_);
+    api_->StartFrameCapture(nullptr, nullptr);
+}
 
-bool RenderDocCapture::endFrame() { return api_->EndFrameCapture(nullptr, nullptr) == 1; }
+bool RenderDocCapture::endFrame() {
+    MutedApiMessages muted(api_);
+    return api_->EndFrameCapture(nullptr, nullptr) == 1;
+}
 
 std::string RenderDocCapture::lastCapturePath() const {
     const uint32_t count = api_->GetNumCaptures();

@@ -15,12 +15,14 @@
 // variable, and the loader reads it in vkCreateInstance; an instance made before load() is never
 // captured (startFrame then does nothing and endFrame returns false).
 //
-// What is captured (RenderDoc 1.24, Debian 12, findings in the issue 26 notes):
+// What is captured (RenderDoc 1.24 on Debian 12, lavapipe and llvmpipe, as measured):
 //   vulkan, vulkan-glfw: yes, with the library opened here; the Khronos validation layer keeps
 //     working and its messages still reach the engine.
 //   gl-egl, gl-glfw: only when the process starts with LD_PRELOAD=librenderdoc.so. RenderDoc
 //     hooks GL by interposing dlopen/eglGetProcAddress/glXGetProcAddress, which a library opened
-//     later cannot do; glHooked() tells which case this is.
+//     later cannot do; glHooked() tells which case this is. RenderDoc drops itself from
+//     LD_PRELOAD in child processes: put it on the engine's command itself, not on a wrapper
+//     (`xvfb-run -a env LD_PRELOAD=librenderdoc.so fe ...`, not `LD_PRELOAD=... xvfb-run ...`).
 //   gl-osmesa: never (RenderDoc has no OSMesa hooks).
 #pragma once
 #include <memory>
@@ -42,7 +44,9 @@ public:
     void setCapturePath(const std::string& pathWithoutOrWithRdc);
 
     // Captures every API call between the two on the device RenderDoc saw last (there is one).
-    // Any thread: the GL context thread need not call them.
+    // Vulkan: any thread. GL: on the thread the context is current on (GlDevice's
+    // runOnContextThread); elsewhere RenderDoc borrows a shared context, which it cannot create
+    // on Mesa's surfaceless EGL, and EndFrameCapture crashes.
     void startFrame();
     bool endFrame();  // true when a capture file was written
 

@@ -225,6 +225,7 @@ void VulkanCommandList::checkAlive() const {
             case UsedKind::Sampler: if (!dev_.findSampler({id})) gdi::validate::destroyedBeforeSubmit("sampler", id); break;
             case UsedKind::Pipeline: if (!dev_.findPipeline({id})) gdi::validate::destroyedBeforeSubmit("pipeline", id); break;
             case UsedKind::Timer: if (!dev_.findTimer({id})) gdi::validate::destroyedBeforeSubmit("timer", id); break;
+            case UsedKind::QuerySet: if (!dev_.findQuerySet({id})) gdi::validate::destroyedBeforeSubmit("query set", id); break;
         }
     }
 }
@@ -262,6 +263,7 @@ void VulkanCommandList::checkSubmittable() const {
     if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
     if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    queries_.finish();
     if (dev_.destroyEpoch() != destroyEpoch_) checkAlive();
 }
 
@@ -397,6 +399,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
 void VulkanCommandList::endRenderPass() {
     if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
+    queries_.endPass();
     vkCmdEndRendering(cb_);
     inPass_ = false;
     readyToDraw_ = false;
@@ -507,6 +510,7 @@ void VulkanCommandList::clearRecording() {
     inPass_ = false;
     unbindAll();
     constants_ = {};
+    queries_.clear();
     debugDepth_ = 0;
     automaticBarriers_ = true;
 }
@@ -958,6 +962,49 @@ void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     Timer& t = usedTimer(h);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
+}
+
+// Queries: the device resets every query a submission uses before it runs (VulkanDevice::submit).
+QuerySet& VulkanCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* what) {
+    ensureRecording();
+    checkUnrestricted(what);
+    if (secondary_) gdi::validate::notInSecondary(what);
+    QuerySet& q = dev_.querySet(h);
+    note(UsedKind::QuerySet, h.id);
+    return q;
+}
+
+void VulkanCommandList::beginQuery(gdi::QuerySetHandle h, uint32_t index) {
+    QuerySet& q = usedQuerySet(h, "beginQuery");
+    queries_.begin(q.desc, q.name, h.id, index, inPass_);
+    vkCmdBeginQuery(cb_, q.pool, index, q.desc.type == gdi::QueryType::Occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+}
+
+void VulkanCommandList::endQuery(gdi::QuerySetHandle h, uint32_t index) {
+    QuerySet& q = usedQuerySet(h, "endQuery");
+    queries_.end(q.desc, q.name, h.id, index, inPass_);
+    vkCmdEndQuery(cb_, q.pool, index);
+}
+
+void VulkanCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
+    QuerySet& q = usedQuerySet(h, "writeTimestamp");
+    queries_.timestamp(q.desc, q.name, h.id, index, inPass_);
+    vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, q.pool, index);
+}
+
+void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count, gdi::BufferHandle dst,
+                                       uint64_t dstOffset) {
+    outsidePass("resolveQueries");
+    QuerySet& q = usedQuerySet(h, "resolveQueries");
+    Buffer& b = usedBuffer(dst);
+    queries_.resolve(q.desc, q.name, h.id, first, count);
+    const uint64_t stride = 8 * gdi::validate::queryValues(q.desc.type);
+    gdi::validate::queryDestination(b.desc, b.name, dstOffset, stride * count);
+    barrierIfWritten();
+    vkCmdCopyQueryPoolResults(cb_, q.pool, first, count, b.buffer, dstOffset, stride,
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    written_ = true;
+    if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
 }
 
 void VulkanCommandList::pushDebugGroup(const char* name) {

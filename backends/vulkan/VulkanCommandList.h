@@ -19,6 +19,11 @@ public:
     void setViewport(const gdi::Viewport& viewport) override;
     void setScissor(const gdi::Rect& rect) override;
     void setConstants(uint32_t offset, gdi::ByteSpan data) override;
+    void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
+    void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
+    void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;
+    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count, gdi::BufferHandle dst,
+                        uint64_t dstOffset) override;
     void setBlendConstant(const std::array<float, 4>& rgba) override;
     void setStencilReference(uint8_t reference) override;
     void setDepthBias(float constant, float slope, float clamp) override;
@@ -62,6 +67,7 @@ public:
     // For the device: submit checks every list before it ends any (a refused submission leaves
     // each list as it was), then ends each recording.
     void checkSubmittable() const;
+    const gdi::validate::QueryRecording& queries() const { return queries_; }
     VkCommandBuffer finish();
     void submitted(gdi::FenceValue value);
     static void fullBarrier(VkCommandBuffer cb);
@@ -73,7 +79,7 @@ public:
 
 private:
     // Lookups that note what the recording uses, so submit can refuse objects destroyed since.
-    enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer };
+    enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer, QuerySet };
     void note(UsedKind kind, uint32_t id) { used_.push_back(uint64_t(kind) << 32 | id); }
     // Per-object binds repeat one buffer at many offsets: a buffer is noted when it differs
     // from the last one noted (one compare on the per-draw path, measured in docs/BENCHMARKS.md).
@@ -86,6 +92,7 @@ private:
     Sampler& usedSampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
     Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
     Timer& usedTimer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
+    QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
     void checkAlive() const;
     struct PassTextures {
         std::vector<Texture*> colors, resolve;
@@ -180,6 +187,7 @@ private:
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);
     int debugDepth_ = 0;
+    gdi::validate::QueryRecording queries_;
     std::array<std::byte, gdi::kMaxConstantBytes> constants_{};  // setConstants' bytes, pushed at setPipeline
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).

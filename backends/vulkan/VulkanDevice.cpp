@@ -11,6 +11,7 @@
 #include "VulkanBackend.h"
 #include "VulkanCommandList.h"
 #include "VulkanSwapchain.h"
+#include "fe/gdi/PipelineCacheFile.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -227,6 +228,8 @@ void VulkanDevice::createLogicalDevice() {
     features.features.multiDrawIndirect = supported.multiDrawIndirect;
     features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
     features.features.textureCompressionBC = supported.textureCompressionBC;
+    features.features.occlusionQueryPrecise = supported.occlusionQueryPrecise;
+    features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     features.features.alphaToOne = VK_FALSE;
     enabled_ = features.features;
     VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
@@ -277,7 +280,60 @@ void VulkanDevice::createLogicalDevice() {
     check(nativeAllocation("vkCreateQueryPool", [&] { return vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_); }), "vkCreateQueryPool");
     vkResetQueryPool(device_, queryPool_, 0, kMaxTimers * 2);
     for (uint32_t i = kMaxTimers; i-- > 0;) freeTimerSlots_.push_back(i * 2);
+    VkPipelineCacheCreateInfo cci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    check(nativeAllocation("vkCreatePipelineCache", [&] { return vkCreatePipelineCache(device_, &cci, nullptr, &pipelineCache_); }),
+          "vkCreatePipelineCache");
     if (swapchain_) swapchain_->attach(physical_, device_, queue_, queueFamily_);
+}
+
+// The file's data seeds a new cache, which takes in what the old one holds (pipelines made
+// before the call); a file that is not this device's is never handed to the driver.
+gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path) {
+    std::lock_guard lock(mutex_);
+    cacheStats_ = {.path = path};
+    const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
+    cacheStats_.warning = file.warning;
+    if (!file.warning.empty()) std::cerr << "fe: " << file.warning << "\n";
+    if (file.payload.empty()) return cacheStats_;
+    VkPipelineCacheCreateInfo cci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    cci.initialDataSize = file.payload.size();
+    cci.pInitialData = file.payload.data();
+    VkPipelineCache loaded = VK_NULL_HANDLE;
+    if (vkCreatePipelineCache(device_, &cci, nullptr, &loaded) != VK_SUCCESS) {
+        cacheStats_.warning = "pipeline cache '" + path + "' ignored: the driver refused its data";
+        std::cerr << "fe: " << cacheStats_.warning << "\n";
+        return cacheStats_;
+    }
+    vkMergePipelineCaches(device_, loaded, 1, &pipelineCache_);
+    vkDestroyPipelineCache(device_, pipelineCache_, nullptr);
+    pipelineCache_ = loaded;
+    cacheStats_.loaded = true;
+    cacheStats_.loadedBytes = file.payload.size();
+    return cacheStats_;
+}
+
+void VulkanDevice::savePipelineCache() {
+    std::lock_guard lock(mutex_);
+    if (cacheStats_.path.empty()) return;
+    size_t size = 0;
+    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, nullptr), "vkGetPipelineCacheData");
+    std::vector<uint8_t> data(size);
+    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, data.data()), "vkGetPipelineCacheData");
+    data.resize(size);
+    gdi::writePipelineCache(cacheStats_.path, gdi::pipelineCacheIdentity(info_), data);
+}
+
+gdi::PipelineCacheStats VulkanDevice::pipelineCacheStats() const {
+    std::lock_guard lock(mutex_);
+    return cacheStats_;
+}
+
+// Whether the pipeline just made came from the cache (VK_EXT_pipeline_creation_feedback, core
+// in 1.3): counted in the stats.
+void VulkanDevice::countCacheUse(const VkPipelineCreationFeedback& feedback) {
+    if (!(feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_VALID_BIT)) return;
+    if (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT) ++cacheStats_.hits;
+    else ++cacheStats_.misses;
 }
 
 void VulkanDevice::fillInfo() {
@@ -300,6 +356,7 @@ void VulkanDevice::fillInfo() {
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
     info_.limits.uniformBufferOffsetAlignment = uint32_t(l.minUniformBufferOffsetAlignment);
     info_.limits.storageBufferOffsetAlignment = uint32_t(l.minStorageBufferOffsetAlignment);
+    info_.limits.timestampPeriodNs = l.timestampPeriod;
     uint32_t qn = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, nullptr);
     std::vector<VkQueueFamilyProperties> qf(qn);
@@ -315,6 +372,8 @@ void VulkanDevice::fillInfo() {
     info_.features.multiDrawIndirect = enabled_.multiDrawIndirect && enabled_.drawIndirectFirstInstance;
     info_.features.drawIndirectCount = drawIndirectCount_ && info_.features.multiDrawIndirect;
     info_.features.textureCompressionBC = enabled_.textureCompressionBC;
+    info_.features.occlusionQueries = enabled_.occlusionQueryPrecise;
+    info_.features.pipelineStatistics = enabled_.pipelineStatisticsQuery;
     info_.features.window = swapchain_ != nullptr;
     if (swapchain_) info_.presentMode = swapchain_->presentMode();
 }
@@ -336,6 +395,13 @@ VulkanDevice::~VulkanDevice() {
 
 void VulkanDevice::release() {
     if (swapchain_) swapchain_->release();  // swap chain and surface go before the device and instance
+    if (device_ && !cacheStats_.path.empty() && !loss_.lost()) {
+        try {
+            savePipelineCache();
+        } catch (const gdi::Error& e) {
+            std::cerr << "fe: " << e.what() << "\n";
+        }
+    }
     if (device_) {
         vkDeviceWaitIdle(device_);
         for (Retired& r : retired_) r.release();
@@ -346,6 +412,7 @@ void VulkanDevice::release() {
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
         textures_.forEach([&](Texture& t) { destroyTexture(t); });
         heaps_.forEach([&](Heap& h) { allocator_->free(h.memory); });
+        querySets_.forEach([&](QuerySet& q) { vkDestroyQueryPool(device_, q.pool, nullptr); });
         samplers_.forEach([&](Sampler& s) { vkDestroySampler(device_, s.sampler, nullptr); });
         shaders_.forEach([&](Shader& s) { vkDestroyShaderModule(device_, s.module, nullptr); });
         pipelines_.forEach([&](Pipeline& p) {
@@ -356,6 +423,7 @@ void VulkanDevice::release() {
         for (auto& s : inFlight_) vkDestroyFence(device_, s.fence, nullptr);
         for (VkFence f : freeFences_) vkDestroyFence(device_, f, nullptr);
         if (queryPool_) vkDestroyQueryPool(device_, queryPool_, nullptr);
+        if (pipelineCache_) vkDestroyPipelineCache(device_, pipelineCache_, nullptr);
         if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, nullptr);
         allocator_.reset();
         vkDestroyDevice(device_, nullptr);
@@ -402,6 +470,16 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
         vk.push_back(list);
     }
     for (VulkanCommandList* list : vk) list->checkSubmittable();
+    std::vector<const gdi::validate::QueryRecording*> queries;
+    for (VulkanCommandList* list : vk) queries.push_back(&list->queries());
+    gdi::validate::queriesOncePerSubmission(queries);
+    std::vector<std::pair<QuerySet*, uint32_t>> usedQueries;  // reset before the lists run
+    for (const auto* q : queries)
+        for (const auto& u : q->used()) usedQueries.push_back({&querySets_.get({u.set}, "query set"), u.index});
+    if (!usedQueries.empty())
+        recordInitialTransition([&](VkCommandBuffer cb) {
+            for (auto [set, index] : usedQueries) vkCmdResetQueryPool(cb, set->pool, index, 1);
+        });
     const VkCommandBuffer init = takeInitialTransitions();
     if (init) cbs.push_back(init);
     for (VulkanCommandList* list : vk) cbs.push_back(list->finish());
@@ -424,6 +502,7 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     }
     gdi::FenceValue value = nextFence_++;
     inFlight_.push_back({value, fence});
+    for (auto [set, index] : usedQueries) set->submitted[index] = value;
     for (VulkanCommandList* list : vk) list->submitted(value);
     if (init) freeAfter(value, init);
     pollFences();
@@ -542,7 +621,7 @@ gdi::LiveObjects VulkanDevice::liveObjects() const {
     self->collectRetired();
     return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
             .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
-            .heaps = heaps_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
+            .heaps = heaps_.size(), .querySets = querySets_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
 void VulkanDevice::recordInitialTransition(const std::function<void(VkCommandBuffer)>& record) {

@@ -105,6 +105,13 @@ struct Timer {
     uint32_t firstQuery = 0;
 };
 
+struct QuerySet {
+    VkQueryPool pool = VK_NULL_HANDLE;
+    gdi::QuerySetDesc desc;
+    std::string name;
+    std::vector<gdi::FenceValue> submitted;  // per query: the submission that last wrote it (0: none)
+};
+
 struct Heap {
     Allocation memory;
     uint64_t size = 0;
@@ -132,6 +139,11 @@ public:
     gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
     gdi::TimerHandle createTimer() override;
     gdi::HeapHandle createHeap(const gdi::HeapDesc& desc) override;
+    gdi::QuerySetHandle createQuerySet(const gdi::QuerySetDesc& desc) override;
+    gdi::PipelineCacheStats openPipelineCache(const std::string& path) override;
+    void savePipelineCache() override;
+    gdi::PipelineCacheStats pipelineCacheStats() const override;
+    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) override;
     gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc& desc) const override;
 
     void destroy(gdi::BufferHandle) override;
@@ -141,6 +153,7 @@ public:
     void destroy(gdi::PipelineHandle) override;
     void destroy(gdi::TimerHandle) override;
     void destroy(gdi::HeapHandle) override;
+    void destroy(gdi::QuerySetHandle) override;
 
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
@@ -173,6 +186,8 @@ public:
     const Sampler* findSampler(gdi::SamplerHandle h) const { return samplers_.find(h); }
     const Pipeline* findPipeline(gdi::PipelineHandle h) const { return pipelines_.find(h); }
     const Timer* findTimer(gdi::TimerHandle h) const { return timers_.find(h); }
+    const QuerySet* findQuerySet(gdi::QuerySetHandle h) const { return querySets_.find(h); }
+    QuerySet& querySet(gdi::QuerySetHandle h) { return querySets_.get(h, "query set"); }
     // How many destroy() calls so far (a list compares it at submit with its value at start).
     uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
     // Whether the submission has completed, without waiting; a lost device's work counts as done.
@@ -302,6 +317,10 @@ private:
     gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     gdi::HandlePool<gdi::HeapHandle, Heap> heaps_;
+    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_;
+    VkPipelineCache pipelineCache_ = VK_NULL_HANDLE;
+    gdi::PipelineCacheStats cacheStats_;
+    void countCacheUse(const VkPipelineCreationFeedback& feedback);
     VkImageCreateInfo imageInfo(const gdi::TextureDesc& desc) const;
     void destroyTexture(Texture& t);
 };

@@ -1,5 +1,6 @@
 // Shader modules and graphics/compute pipelines (dynamic rendering, push-descriptor layouts).
 #include <string>
+#include <utility>
 
 #include "VulkanDevice.h"
 #include "VulkanFaults.h"
@@ -285,8 +286,13 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dy;
     ci.layout = p.layout;
+    VkPipelineCreationFeedback feedback{};
+    VkPipelineCreationFeedbackCreateInfo fi{VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO};
+    fi.pPipelineCreationFeedback = &feedback;
+    if (props_.apiVersion >= VK_API_VERSION_1_3) fi.pNext = std::exchange(ci.pNext, &fi);
     VkResult r = nativeAllocation("vkCreateGraphicsPipelines",
-                                  [&] { return vkCreateGraphicsPipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline); });
+                                  [&] { return vkCreateGraphicsPipelines(device_, pipelineCache_, 1, &ci, nullptr, &p.pipeline); });
+    if (r == VK_SUCCESS) countCacheUse(feedback);
     if (r != VK_SUCCESS) {
         vkDestroyPipelineLayout(device_, p.layout, nullptr);
         vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
@@ -316,8 +322,13 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,
                 cs.entry.c_str(), spec.get()};
     ci.layout = p.layout;
+    VkPipelineCreationFeedback feedback{};
+    VkPipelineCreationFeedbackCreateInfo fi{VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO};
+    fi.pPipelineCreationFeedback = &feedback;
+    if (props_.apiVersion >= VK_API_VERSION_1_3) ci.pNext = &fi;
     VkResult r = nativeAllocation("vkCreateComputePipelines",
-                                  [&] { return vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline); });
+                                  [&] { return vkCreateComputePipelines(device_, pipelineCache_, 1, &ci, nullptr, &p.pipeline); });
+    if (r == VK_SUCCESS) countCacheUse(feedback);
     if (r != VK_SUCCESS) {
         vkDestroyPipelineLayout(device_, p.layout, nullptr);
         vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);

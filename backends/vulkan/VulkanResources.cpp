@@ -460,4 +460,63 @@ void VulkanDevice::destroy(gdi::TimerHandle h) {
     retire([this, t] { freeTimerSlots_.push_back(t.firstQuery); });
 }
 
+gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
+    std::lock_guard lock(mutex_);
+    loss_.check("createQuerySet");
+    gdi::validate::querySetDesc(desc, info_.features);
+    QuerySet q;
+    q.desc = desc;
+    q.name = desc.debugName ? desc.debugName : "";
+    q.desc.debugName = nullptr;
+    q.submitted.assign(desc.count, 0);
+    VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    ci.queryCount = desc.count;
+    switch (desc.type) {
+        case gdi::QueryType::Occlusion: case gdi::QueryType::AnySamplesPassed: ci.queryType = VK_QUERY_TYPE_OCCLUSION; break;
+        case gdi::QueryType::Timestamp: ci.queryType = VK_QUERY_TYPE_TIMESTAMP; break;
+        case gdi::QueryType::PipelineStatistics:
+            ci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+            // Results come in bit order: primitives, vertex, fragment, compute (PipelineStatistics).
+            ci.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT |
+                                    VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |
+                                    VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT |
+                                    VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;
+            break;
+    }
+    check(nativeAllocation("vkCreateQueryPool", [&] { return vkCreateQueryPool(device_, &ci, nullptr, &q.pool); }),
+          "vkCreateQueryPool", q.name);
+    vkResetQueryPool(device_, q.pool, 0, desc.count);
+    setName(VK_OBJECT_TYPE_QUERY_POOL, uint64_t(q.pool), desc.debugName);
+    return querySets_.add(std::move(q));
+}
+
+void VulkanDevice::destroy(gdi::QuerySetHandle h) {
+    std::lock_guard lock(mutex_);
+    QuerySet q;
+    if (!h || !querySets_.remove(h, q)) return;
+    retire([this, pool = q.pool] { vkDestroyQueryPool(device_, pool, nullptr); });
+}
+
+bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
+    std::lock_guard lock(mutex_);
+    loss_.check("queryResults");
+    QuerySet& q = querySets_.get(h, "query set");
+    gdi::validate::queryRead(q.desc, q.name, first, count, out.size());
+    pollFences();
+    for (uint32_t i = first; i < first + count; ++i)
+        if (q.submitted[i] == 0 || q.submitted[i] > completed_) return false;
+    const uint32_t values = gdi::validate::queryValues(q.desc.type);
+    const VkResult r = vkGetQueryPoolResults(device_, q.pool, first, count, count * values * 8, out.data(), values * 8,
+                                             VK_QUERY_RESULT_64_BIT);
+    if (r == VK_NOT_READY) return false;
+    check(r, "vkGetQueryPoolResults", q.name);
+    for (uint32_t i = 0; i < count * values; ++i) {
+        if (q.desc.type == gdi::QueryType::Timestamp)
+            out[i] = uint64_t(double(out[i]) * double(props_.limits.timestampPeriod));
+        else if (q.desc.type == gdi::QueryType::AnySamplesPassed)
+            out[i] = out[i] != 0;
+    }
+    return true;
+}
+
 }  // namespace fe::vk

@@ -27,4 +27,14 @@ const char* textureDimensionName(TextureDimension d) {
     return "?";
 }
 
+const char* queryTypeName(QueryType t) {
+    switch (t) {
+        case QueryType::Occlusion: return "Occlusion";
+        case QueryType::AnySamplesPassed: return "AnySamplesPassed";
+        case QueryType::PipelineStatistics: return "PipelineStatistics";
+        case QueryType::Timestamp: return "Timestamp";
+    }
+    return "?";
+}
+
 }  // namespace fe::gdi

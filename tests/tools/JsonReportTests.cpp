@@ -9,6 +9,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <type_traits>
 
 #include "fe/gdi/DeviceInfoFields.h"
 #include "fe/gdi/InfoJson.h"
@@ -43,9 +44,12 @@ void expectDeviceSummary(const json& d, const std::string& backend) {
     }
     EXPECT_TRUE(d["softwareRasterizer"].is_boolean()) << backend;
     size_t limits = 0, features = 0;
-    fe::gdi::forEachField(fe::gdi::DeviceLimits{}, [&](const char* name, const auto&) {
+    fe::gdi::forEachField(fe::gdi::DeviceLimits{}, [&](const char* name, const auto& value) {
         ++limits;
-        EXPECT_TRUE(d["limits"][name].is_number_unsigned()) << backend << " limit " << name;
+        if constexpr (std::is_floating_point_v<std::decay_t<decltype(value)>>)
+            EXPECT_TRUE(d["limits"][name].is_number()) << backend << " limit " << name;
+        else
+            EXPECT_TRUE(d["limits"][name].is_number_unsigned()) << backend << " limit " << name;
     });
     fe::gdi::forEachField(fe::gdi::DeviceFeatures{}, [&](const char* name, const auto&) {
         ++features;

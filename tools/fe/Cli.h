@@ -50,6 +50,7 @@ struct RenderJob {
     bool pfm = false;
     double orbitDegrees = 0;
     std::string dumpGraph;
+    std::string pipelineCache;  // --pipeline-cache
 };
 RenderJob renderJob(const Args& a);
 

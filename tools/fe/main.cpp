@@ -120,12 +120,17 @@ int cmdRender(const Args& a) {
         throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
                                  scene.warnings.front());
     if (a.options.count("--environment")) scene.environment = assets::loadEnvironment(a.options.at("--environment"));
-    auto device = gdi::createDevice({.backend = backend, .validation = false, .window = window, .vsync = job.vsync});
+    const auto startup = std::chrono::steady_clock::now();
+    auto device = gdi::createDevice(
+        {.backend = backend, .validation = false, .window = window, .vsync = job.vsync, .pipelineCache = job.pipelineCache});
+    const double deviceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - startup).count();
     const render::DirectorChoice choice = render::direct(scene, s, device->info(), device.get(), director);
     if (a.options.count("--verbose") && spdlog::get_level() > spdlog::level::info) spdlog::set_level(spdlog::level::info);
     for (const std::string& r : choice.reasons) spdlog::info("director: {}", r);
     s = choice.settings;
+    const auto rendererStart = std::chrono::steady_clock::now();
     render::SceneRenderer renderer(*device, scene, s);
+    const double rendererMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - rendererStart).count();
     if (!dumpGraph.empty()) {
         std::ofstream f(dumpGraph);
         f << renderer.graph().toDot();
@@ -186,6 +191,12 @@ int cmdRender(const Args& a) {
     std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " (" << scene.lights.size()
               << " lights)\n"
               << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu) << " ms\n";
+    if (!job.pipelineCache.empty()) {
+        const gdi::PipelineCacheStats c = device->pipelineCacheStats();
+        std::cout << "start-up: device " << deviceMs << " ms, renderer (pipelines and resources) " << rendererMs
+                  << " ms; pipeline cache " << (c.loaded ? "loaded " + std::to_string(c.loadedBytes) + " bytes" : std::string("empty"))
+                  << ", " << c.hits << " hit(s), " << c.misses << " compiled\n";
+    }
     for (auto& name : passOrder) std::cout << "  pass " << name << ": " << median(gpu[name]) << " ms GPU\n";
     const graph::MemoryReport mem = renderer.graph().memory();
     static const char* modes[] = {"none", "heap memory aliasing", "texture object reuse"};

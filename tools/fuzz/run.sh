@@ -5,6 +5,7 @@
 # leak, a timeout or a sanitizer report stops the harness, leaves the input in
 # build-fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
 #   tools/fuzz/run.sh [SECONDS] [HARNESS...]     HARNESS: GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer
+#                                                PipelineCacheFuzzer
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root="$(pwd)"
@@ -12,7 +13,7 @@ tools/install-deps.sh
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFE_FUZZ=ON -DFE_BUILD_TESTS=OFF \
   -DFE_BUILD_BENCHMARKS=OFF -DFE_BUILD_EXAMPLES=OFF >/dev/null
@@ -28,6 +29,7 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$corpus"
   case "$h" in
     CliFuzzer) seeds=(tests/fuzz/seeds/cli) ;;
+    PipelineCacheFuzzer) seeds=(tests/fuzz/seeds/pipeline_cache) ;;
     *) seeds=(tests/fuzz/seeds/gltf)
        if [ -d ../shared/assets ]; then
          mkdir -p build-fuzz/samples

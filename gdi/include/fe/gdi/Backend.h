@@ -18,6 +18,8 @@ struct DeviceCreateDesc {
     // Windows: frames wait for the display's refresh (Vulkan FIFO, GL swap interval 1); off:
     // Vulkan IMMEDIATE, else MAILBOX, else FIFO (DeviceInfo::presentMode says which), GL 0.
     bool vsync = true;
+    // A pipeline cache file (Device::openPipelineCache): loaded now, saved when the device goes.
+    std::string pipelineCache;
 };
 
 // Concrete headless backends in the order `auto` tries them (`all` in fe conformance).

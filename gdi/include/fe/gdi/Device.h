@@ -179,6 +179,7 @@ using ShaderHandle = Handle<struct ShaderTag>;
 using PipelineHandle = Handle<struct PipelineTag>;
 using TimerHandle = Handle<struct TimerTag>;
 using HeapHandle = Handle<struct HeapTag>;
+using QuerySetHandle = Handle<struct QuerySetTag>;
 
 // Data handed to the device always carries its length: a span of bytes, made with bytesOf().
 using ByteSpan = std::span<const std::byte>;
@@ -558,6 +559,39 @@ struct DispatchIndirectArgs {
 };
 
 // ---------------------------------------------------------------------------------------------
+// Queries
+// ---------------------------------------------------------------------------------------------
+//   auto occlusion = device->createQuerySet({.type = QueryType::Occlusion, .count = 64});
+//   cmd->beginQuery(occlusion, i); cmd->drawIndexed(...); cmd->endQuery(occlusion, i);  // in a pass
+//   std::vector<uint64_t> samples(64);
+//   if (device->queryResults(occlusion, 0, 64, samples)) { /* the frame's counts, no waiting */ }
+//   cmd->resolveQueries(occlusion, 0, 64, buffer, 0);  // or into a buffer on the GPU
+enum class QueryType : uint8_t {
+    Occlusion,           // samples that passed the depth and stencil tests, exactly (x samples per pixel)
+    AnySamplesPassed,    // 1 when any sample passed, else 0 (resolveQueries: 0 or non-zero)
+    PipelineStatistics,  // a PipelineStatistics per query (DeviceFeatures::pipelineStatistics)
+    Timestamp,           // the GPU clock when the work recorded before it has finished (writeTimestamp)
+};
+const char* queryTypeName(QueryType t);
+
+struct QuerySetDesc {
+    QueryType type = QueryType::Occlusion;
+    uint32_t count = 1;  // queries 0 .. count - 1, at most 4096
+    const char* debugName = nullptr;
+};
+
+// What a PipelineStatistics query counts between beginQuery and endQuery, in this order (the
+// layout resolveQueries writes, 32 bytes per query). Counts of invocations are what the GPU
+// ran: a vertex shader may run fewer times than vertices (reuse) and a fragment shader more
+// times than pixels (helper invocations); primitives and compute invocations are exact.
+struct PipelineStatistics {
+    uint64_t primitives = 0;           // primitives assembled from the draws' vertices
+    uint64_t vertexInvocations = 0;
+    uint64_t fragmentInvocations = 0;
+    uint64_t computeInvocations = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
 // Command recording
 // ---------------------------------------------------------------------------------------------
 // Recording is not executing, on every backend (Vulkan's model). A CommandList records; nothing
@@ -692,6 +726,22 @@ public:
 
     virtual void beginTimer(TimerHandle timer) = 0;
     virtual void endTimer(TimerHandle timer) = 0;
+
+    // Queries (QuerySetDesc). Occlusion and AnySamplesPassed queries begin and end inside one
+    // render pass; PipelineStatistics queries begin and end both inside one pass or both outside
+    // (then they may span passes and dispatches). One query of each type is active at a time.
+    // A query is written at most once per submission (the device resets the queries a
+    // submission uses before it runs) and not in secondary lists.
+    virtual void beginQuery(QuerySetHandle set, uint32_t index) = 0;
+    virtual void endQuery(QuerySetHandle set, uint32_t index) = 0;
+    // Timestamp sets: the GPU time once the work recorded before has finished. Outside passes.
+    virtual void writeTimestamp(QuerySetHandle set, uint32_t index) = 0;
+    // Copies the results of queries [first, first + count), each written earlier in this
+    // recording, into dst at dstOffset (a multiple of 8; CopyDst usage) as uint64_t values: one
+    // per query, four (PipelineStatistics) for statistics; timestamps in DeviceLimits::
+    // timestampPeriodNs units. The GPU waits for the queries, not the CPU. Outside passes.
+    virtual void resolveQueries(QuerySetHandle set, uint32_t first, uint32_t count, BufferHandle dst,
+                                uint64_t dstOffset) = 0;
     virtual void pushDebugGroup(const char* name) = 0;
     virtual void popDebugGroup() = 0;
     // One marker at this point of the recording (a frame debugger shows it among the calls).
@@ -774,6 +824,8 @@ struct DeviceLimits {
     uint64_t maxStorageBufferRange = 0;
     uint32_t uniformBufferOffsetAlignment = 0;
     uint32_t storageBufferOffsetAlignment = 0;
+    // Nanoseconds per unit of the timestamps resolveQueries writes (queryResults converts).
+    double timestampPeriodNs = 1.0;
 };
 
 // What a format can do on a device (Device::formatCaps).
@@ -799,6 +851,8 @@ struct DeviceFeatures {
     bool multiDrawIndirect = false;   // drawIndirect with drawCount > 1
     bool drawIndirectCount = false;   // drawIndirectCount, drawIndexedIndirectCount
     bool textureCompressionBC = false;  // Format::BC1..BC7 sampled textures
+    bool occlusionQueries = false;      // QueryType::Occlusion (exact counts) and AnySamplesPassed
+    bool pipelineStatistics = false;    // QueryType::PipelineStatistics
 };
 
 struct DeviceInfo {
@@ -819,12 +873,22 @@ struct DeviceInfo {
 // users left alive ("fe leak check: vulkan device destroyed with {buffers 1, ...}"; it frees
 // them either way), so a whole program's run is leak-checked without a test harness.
 struct LiveObjects {
-    uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0, heaps = 0;
+    uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0, heaps = 0, querySets = 0;
     uint32_t nativeObjects = 0;
     friend bool operator==(const LiveObjects&, const LiveObjects&) = default;
 };
 
 using FenceValue = uint64_t;
+
+// The device's pipeline cache (Device::openPipelineCache, DeviceCreateDesc::pipelineCache).
+struct PipelineCacheStats {
+    std::string path;           // empty: no file (pipelines are still cached in memory)
+    bool loaded = false;        // the file's data was accepted
+    uint64_t loadedBytes = 0;   // of backend data
+    uint32_t hits = 0;          // pipelines created from cached data (where the backend can tell)
+    uint32_t misses = 0;        // pipelines compiled
+    std::string warning;        // why the file was ignored, or why the backend cannot cache
+};
 
 // Threads: every member may be called from any thread, concurrently, except present() and
 // input() on windowed backends, which belong to the thread that created the device (window
@@ -847,6 +911,16 @@ public:
     // filters linearly (any Linear filter, no comparison) on a format without linearFilter.
     virtual FormatCaps formatCaps(Format format) const = 0;
 
+    // Pipeline cache: compiled pipelines kept across runs (Vulkan: VkPipelineCache data; GL:
+    // program binaries), in one file keyed by backend, device, driver and engine build
+    // (PipelineCacheFile.h). openPipelineCache loads `path` when it exists, before the pipelines
+    // it should speed up are made; a file made elsewhere, damaged or truncated is ignored with
+    // one warning on stderr (and in the stats), never handed to the driver. savePipelineCache
+    // writes it (whole or not at all); the device also saves when destroyed.
+    virtual PipelineCacheStats openPipelineCache(const std::string& path) = 0;
+    virtual void savePipelineCache() = 0;
+    virtual PipelineCacheStats pipelineCacheStats() const = 0;
+
     // Initial data, when given, must be exactly desc.size bytes.
     virtual BufferHandle createBuffer(const BufferDesc& desc, ByteSpan initialData = {}) = 0;
     virtual TextureHandle createTexture(const TextureDesc& desc) = 0;
@@ -857,6 +931,8 @@ public:
     virtual TimerHandle createTimer() = 0;
     // Heaps exist where DeviceFeatures::memoryAliasing is true; elsewhere these throw Error.
     virtual HeapHandle createHeap(const HeapDesc& desc) = 0;
+    // Timestamp sets need DeviceFeatures::timestamps, the others their feature.
+    virtual QuerySetHandle createQuerySet(const QuerySetDesc& desc) = 0;
     virtual MemoryRequirements textureMemoryRequirements(const TextureDesc& desc) const = 0;
 
     // Destruction is immediate for the caller (the handle is invalid at once) and deferred for
@@ -870,6 +946,7 @@ public:
     virtual void destroy(PipelineHandle) = 0;
     virtual void destroy(TimerHandle) = 0;
     virtual void destroy(HeapHandle) = 0;  // placed textures must be destroyed first
+    virtual void destroy(QuerySetHandle) = 0;
 
     virtual const BufferDesc& desc(BufferHandle) const = 0;
     virtual const TextureDesc& desc(TextureHandle) const = 0;
@@ -932,6 +1009,11 @@ public:
 
     // GPU time between beginTimer and endTimer of the last submitted use, once it has completed.
     virtual std::optional<double> timerNanoseconds(TimerHandle timer) = 0;
+    // Results of queries [first, first + count) from their last submitted use, without blocking:
+    // false (and `out` untouched) until every one of them has been submitted and its submission
+    // has completed. `out` holds count values (4 x count for PipelineStatistics, in its order);
+    // timestamps in nanoseconds, AnySamplesPassed 0 or 1.
+    virtual bool queryResults(QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) = 0;
 
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;

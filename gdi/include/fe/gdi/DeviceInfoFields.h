@@ -26,6 +26,7 @@ constexpr void forEachField(const DeviceLimits& l, Visitor&& visit) {
     visit("maxStorageBufferRange", l.maxStorageBufferRange);
     visit("uniformBufferOffsetAlignment", l.uniformBufferOffsetAlignment);
     visit("storageBufferOffsetAlignment", l.storageBufferOffsetAlignment);
+    visit("timestampPeriodNs", l.timestampPeriodNs);
 }
 
 template <class Visitor>
@@ -42,6 +43,8 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("multiDrawIndirect", f.multiDrawIndirect);
     visit("drawIndirectCount", f.drawIndirectCount);
     visit("textureCompressionBC", f.textureCompressionBC);
+    visit("occlusionQueries", f.occlusionQueries);
+    visit("pipelineStatistics", f.pipelineStatistics);
 }
 
 namespace detail {

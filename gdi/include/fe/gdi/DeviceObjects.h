@@ -65,7 +65,8 @@ public:
     size_t size() const { return objects_.size(); }
 
 private:
-    using Object = std::variant<BufferHandle, TextureHandle, SamplerHandle, ShaderHandle, PipelineHandle, TimerHandle, HeapHandle>;
+    using Object = std::variant<BufferHandle, TextureHandle, SamplerHandle, ShaderHandle, PipelineHandle, TimerHandle, HeapHandle,
+                                QuerySetHandle>;
     Device* device_;
     std::vector<Object> objects_;
 };

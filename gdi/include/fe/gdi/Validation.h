@@ -91,6 +91,41 @@ void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, cons
 void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline);
 // A compute shader's work group fits the device.
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline);
+// Queries: a set's description (feature, count), and each recording's rules, with one message
+// on every backend. A list keeps a QueryRecording; the device resets what it used() at submit.
+void querySetDesc(const QuerySetDesc& d, const DeviceFeatures& f);
+uint32_t queryValues(QueryType t);  // uint64_t values per query: 4 for statistics, else 1
+// resolveQueries' buffer: CopyDst usage, an 8-byte aligned offset, room for `bytes`.
+void queryDestination(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t bytes);
+// queryResults: the range is in the set and `out` holds its values.
+void queryRead(const QuerySetDesc& d, const std::string& name, uint32_t first, uint32_t count, size_t outSize);
+class QueryRecording {
+public:
+    struct Use {
+        uint32_t set = 0, index = 0;
+        bool ended = false;
+    };
+    void begin(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
+    void end(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
+    void timestamp(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
+    void resolve(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t first, uint32_t count) const;
+    void endPass() const;  // a query begun in the pass must end in it
+    void finish() const;   // submit: none left active
+    void clear() { used_.clear(), active_ = {}; }
+    const std::vector<Use>& used() const { return used_; }
+
+private:
+    void written(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, const char* what);
+    struct Active {
+        uint32_t set = 0, index = 0;
+        bool inPass = false;
+    };
+    std::array<std::optional<Active>, 3> active_;  // per type that begins and ends
+    std::vector<Use> used_;
+};
+// submit: no query written by two of the lists (each is reset once, before the submission).
+void queriesOncePerSubmission(std::span<const QueryRecording* const> lists);
+
 // Bytes of per-draw constants the pipeline's shaders read (the largest block; 0: none), at
 // most kMaxConstantBytes.
 uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
