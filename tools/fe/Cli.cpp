@@ -44,6 +44,8 @@ constexpr const char* kUsage =
     "        fit or Khronos PBR Neutral) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
     "        frames blended with the reprojected history; it converges over --frames)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
+    "      --renderdoc-capture FILE: the first frame captured by RenderDoc (librenderdoc) into FILE_capture.rdc;\n"
+    "        vulkan as is, gl-egl/gl-glfw only with LD_PRELOAD=/usr/lib/librenderdoc.so, gl-osmesa never\n"
     "      --pipeline-cache FILE: compiled pipelines kept across runs (loaded at start, saved at exit; a file made\n"
     "        for another device, driver or build is ignored with a warning); start-up times are printed\n"
     "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
@@ -97,6 +99,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--lights", {"N", "builtin:lights: the number of point lights (default 512)"}},
     {"--dump-graph", {"FILE.dot", "write the compiled render graph as Graphviz"}},
     {"--pipeline-cache", {"FILE", "load and save compiled pipelines (Vulkan cache data, GL program binaries)"}},
+    {"--renderdoc-capture", {"FILE", "capture the first frame with RenderDoc into FILE_capture.rdc"}},
     {"--vsync", {"on|off", "with --window: wait for the display (default on)"}},
     {"--msaa", {"1|2|4|8", "samples per pixel: forward techniques and light-prepass (default 1)"}},
     {"--error-budget", {"PERCENT", "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},
@@ -226,7 +229,8 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
 const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache"};
+                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
+                                    "--renderdoc-capture"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--ibl-prefiltered", "--temporal"};
 
@@ -327,7 +331,7 @@ RenderJob renderJob(const Args& a) {
     return RenderJob{.spec = spec, .settings = s, .director = director, .window = window, .backend = backend,
                      .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
                      .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph,
-                     .pipelineCache = opt("--pipeline-cache", "")};
+                     .pipelineCache = opt("--pipeline-cache", ""), .renderdocCapture = opt("--renderdoc-capture", "")};
 
 }
 

@@ -51,6 +51,7 @@ struct RenderJob {
     double orbitDegrees = 0;
     std::string dumpGraph;
     std::string pipelineCache;  // --pipeline-cache
+    std::string renderdocCapture;  // --renderdoc-capture
 };
 RenderJob renderJob(const Args& a);
 

@@ -120,6 +120,10 @@ int cmdRender(const Args& a) {
         throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
                                  scene.warnings.front());
     if (a.options.count("--environment")) scene.environment = assets::loadEnvironment(a.options.at("--environment"));
+    // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
+    std::unique_ptr<gdi::FrameCapture> capture;
+    if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
+    std::string captured;
     const auto startup = std::chrono::steady_clock::now();
     auto device = gdi::createDevice(
         {.backend = backend, .validation = false, .window = window, .vsync = job.vsync, .pipelineCache = job.pipelineCache});
@@ -150,8 +154,10 @@ int cmdRender(const Args& a) {
             const double t = frames > 1 ? double(f) / double(frames) : 0.0;
             renderer.setCamera(scene.camera->orbited(scene.bounds.center(), float(orbitDegrees * t * 3.14159265358979 / 180.0)));
         }
+        if (capture && f == 0) capture->begin(*device);
         renderer.renderFrame();
         auto timings = renderer.passTimings();  // waits for the frame
+        if (capture && f == 0) captured = capture->end(*device);
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (window) open = device->present(renderer.displayTexture()), ++presented;
         if (frames > 1 && f == 0) continue;
@@ -204,6 +210,7 @@ int cmdRender(const Args& a) {
               << "), " << mem.withoutAliasing << " without; " << mem.transientTextures << " transient textures in "
               << mem.allocations << " allocation(s)\n";
     if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
+    if (!captured.empty()) std::cout << "RenderDoc capture of frame 0: " << captured << "\n";
     std::cout              << "wrote " << out << "\n";
     return 0;
 }

@@ -48,6 +48,27 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync =
 // the valid names for an unknown name, and why each candidate failed when none starts.
 std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc);
 
+// RenderDoc frame captures (RenderDoc's in-application API; Debian's librenderdoc, opened at
+// run time). Every object's debugName, each pass's name and each debug group or label reaches
+// the capture, which qrenderdoc or python3-renderdoc opens.
+//   auto capture = gdi::FrameCapture::load("out/frame");   // BEFORE createDevice
+//   auto device = gdi::createDevice({...});
+//   capture->begin(*device);  ... record, submit, wait ...  std::string rdc = capture->end(*device);
+// Vulkan (vulkan, vulkan-glfw) is captured as is. GL (gl-egl, gl-glfw) only when the process was
+// started with LD_PRELOAD=/usr/lib/librenderdoc.so (RenderDoc hooks GL by symbol interposition);
+// gl-osmesa never: begin() throws Error saying so.
+class FrameCapture {
+public:
+    // Throws Error with a one-line reason when librenderdoc cannot be loaded. `path`: where the
+    // capture goes (RenderDoc writes PATH_capture.rdc, a trailing .rdc dropped).
+    static std::unique_ptr<FrameCapture> load(const std::string& path);
+    virtual ~FrameCapture() = default;
+    // Captures what `device` records and submits from now (lists begun before are not included).
+    virtual void begin(Device& device) = 0;
+    // Ends the capture after the work submitted so far; returns the .rdc file written.
+    virtual std::string end(Device& device) = 0;
+};
+
 // Expands "all" into the concrete backends, checks names; throws Error for unknown ones.
 std::vector<std::string> expandBackendList(const std::string& nameOrAll);
 
