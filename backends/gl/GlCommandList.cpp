@@ -295,6 +295,36 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffse
     bufferTextureBytes(t, at, dev_.buffer(dst), dstOffset, "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBuffer{dst, dstOffset, src, at});
 }
+// Regions: the shared rules resolve them, and the records carry the resolved values.
+void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
+                                        const gdi::TexelLayout& layout) {
+    outside("copyBufferToTexture");
+    const Texture& t = dev_.texture(dst);
+    const Buffer& b = dev_.buffer(src);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyBufferToTexture");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
+    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyBufferToTexture");
+    stream_->push(cmd::CopyBufferToTextureRegion{dst, r, src, l.layout});
+}
+void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
+                                        const gdi::TextureRegion& region) {
+    outside("copyTextureToBuffer");
+    const Texture& t = dev_.texture(src);
+    const Buffer& b = dev_.buffer(dst);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyTextureToBuffer");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
+    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyTextureToBuffer");
+    stream_->push(cmd::CopyTextureToBufferRegion{dst, l.layout, src, r});
+}
+void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
+                                const gdi::TextureRegion& srcRegion) {
+    outside("copyTexture");
+    const Texture& d = dev_.texture(dst);
+    const Texture& s = dev_.texture(src);
+    const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
+    stream_->push(cmd::CopyTextureRegion{dst, dr, src, sr});
+}
+
 void GlCommandList::generateMips(gdi::TextureHandle h) {
     outside("generateMips");
     const Texture& t = dev_.texture(h);

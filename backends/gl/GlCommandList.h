@@ -69,6 +69,12 @@ public:
     void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) override;
     void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override;
     void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
+                             const gdi::TexelLayout& layout) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
+                             const gdi::TextureRegion& region) override;
+    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
+                     const gdi::TextureRegion& srcRegion) override;
     void beginTimer(gdi::TimerHandle h) override;
     void endTimer(gdi::TimerHandle h) override;
     void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;

@@ -889,6 +889,51 @@ void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const vo
     }
 }
 
+// Row length in texels and image height in rows: GL's pixel store, reset after each use.
+static void pixelPitch(const GlFunctions& gl, bool pack, const gdi::TexelLayout& l, gdi::Format f) {
+    const uint32_t texel = gdi::formatInfo(f).bytesPerPixel;
+    gl.PixelStorei(pack ? GL_PACK_ROW_LENGTH : GL_UNPACK_ROW_LENGTH, texel ? GLint(l.bytesPerRow / texel) : 0);
+    gl.PixelStorei(pack ? GL_PACK_IMAGE_HEIGHT : GL_UNPACK_IMAGE_HEIGHT, texel ? GLint(l.rowsPerImage) : 0);
+}
+
+void GlDevice::uploadRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, const void* pixels,
+                            uint64_t bytes) {
+    const GlFormat f = toGlFormat(t.desc.format);
+    const bool flat = t.target == GL_TEXTURE_2D;
+    const auto mip = GLint(r.mipLevel), x = GLint(r.x), y = GLint(r.y), z = GLint(r.z);
+    const auto w = GLsizei(r.width), h = GLsizei(r.height), d = GLsizei(r.depth);
+    if (gdi::isCompressedFormat(t.desc.format)) {  // packed tightly (validate::texelLayout)
+        if (flat) gl_.CompressedTextureSubImage2D(t.name, mip, x, y, w, h, f.internal, GLsizei(bytes), pixels);
+        else gl_.CompressedTextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.internal, GLsizei(bytes), pixels);
+        return;
+    }
+    pixelPitch(gl_, false, l, t.desc.format);
+    if (flat) gl_.TextureSubImage2D(t.name, mip, x, y, w, h, f.format, f.type, pixels);
+    else gl_.TextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.format, f.type, pixels);
+    pixelPitch(gl_, false, {}, t.desc.format);
+}
+
+void GlDevice::readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, void* pixels, uint64_t bytes) {
+    const GlFormat f = toGlFormat(t.desc.format);
+    pixelPitch(gl_, true, l, t.desc.format);
+    gl_.GetTextureSubImage(t.name, GLint(r.mipLevel), GLint(r.x), GLint(r.y), GLint(r.z), GLsizei(r.width), GLsizei(r.height),
+                           GLsizei(r.depth), f.format, f.type, GLsizei(bytes), pixels);
+    pixelPitch(gl_, true, {}, t.desc.format);
+}
+
+void GlDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region, gdi::ByteSpan data,
+                            const gdi::TexelLayout& layout) {
+    loss_.check("writeTextureRegion");
+    const Texture& t = texture(h);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "writeTextureRegion");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
+    gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
+    std::vector<std::byte> bytes(data.begin() + std::ptrdiff_t(l.layout.offset), data.begin() + std::ptrdiff_t(l.end));
+    thread_.post([this, h, r, pitch = l.layout, bytes = std::move(bytes)] {
+        uploadRegion(textures_.at(h), r, pitch, bytes.data(), bytes.size());
+    });
+}
+
 void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes) {
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     const GlFormat f = toGlFormat(t.desc.format);

@@ -138,11 +138,17 @@ public:
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
     void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
     void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
+    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region, gdi::ByteSpan data,
+                      const gdi::TexelLayout& layout) override;
     std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
     gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
     // Upload/readback of one subresource through the pixel unpack/pack state (pointer or, with a
     // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
     void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes);
+    // Regions (resolved region and layout): the pixel store's row length and image height say the
+    // pitch; `pixels` is where the layout's offset points (a pointer, or a pixel-buffer offset).
+    void uploadRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, const void* pixels, uint64_t bytes);
+    void readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, void* pixels, uint64_t bytes);
     void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
     void* map(gdi::BufferHandle buffer) override;
     std::unique_ptr<gdi::CommandList> createCommandList() override;

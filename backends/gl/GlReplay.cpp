@@ -415,6 +415,37 @@ void GlReplay::operator()(const cmd::CopyTextureToBuffer& r) {
     gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
+// The end offset of a resolved layout's span, from validate::texelLayout's formula.
+static uint64_t spanBytes(gdi::Format f, const gdi::TextureRegion& r, const gdi::TexelLayout& l) {
+    return gdi::validate::texelLayout(f, r, l, "replay").end - l.offset;
+}
+void GlReplay::operator()(const cmd::CopyBufferToTextureRegion& r) {
+    const Texture& t = dev_.textureAt(r.dst);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
+    gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, dev_.bufferAt(r.src).name);
+    dev_.uploadRegion(t, r.region, r.layout, reinterpret_cast<const void*>(uintptr_t(r.layout.offset)),
+                      spanBytes(t.desc.format, r.region, r.layout));
+    gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+}
+void GlReplay::operator()(const cmd::CopyTextureToBufferRegion& r) {
+    const Texture& t = dev_.textureAt(r.src);
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, dev_.bufferAt(r.dst).name);
+    dev_.readRegion(t, r.region, r.layout, reinterpret_cast<void*>(uintptr_t(r.layout.offset)),
+                    spanBytes(t.desc.format, r.region, r.layout));
+    gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+}
+void GlReplay::operator()(const cmd::CopyTextureRegion& r) {
+    const Texture& d = dev_.textureAt(r.dst);
+    const Texture& s = dev_.textureAt(r.src);
+    const auto& a = r.srcRegion;
+    const auto& b = r.dstAt;
+    gl_.CopyImageSubData(s.name, s.target, GLint(a.mipLevel), GLint(a.x), GLint(a.y), GLint(a.z), d.name, d.target,
+                         GLint(b.mipLevel), GLint(b.x), GLint(b.y), GLint(b.z), GLsizei(a.width), GLsizei(a.height),
+                         GLsizei(a.depth));
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
 // llvmpipe's GL_TIMESTAMP does not wait for the binned rendering before it (measured: a 3 s
 // forward pass timed as 9 ms, even after glFinish). On software rasterizers a timed section is
 // therefore the wall-clock time between two glFinish calls during replay, which is the

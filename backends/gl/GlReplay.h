@@ -51,6 +51,9 @@ public:
     void operator()(const gdi::cmd::CopyTexture& r);
     void operator()(const gdi::cmd::CopyBufferToTexture& r);
     void operator()(const gdi::cmd::CopyTextureToBuffer& r);
+    void operator()(const gdi::cmd::CopyBufferToTextureRegion& r);
+    void operator()(const gdi::cmd::CopyTextureToBufferRegion& r);
+    void operator()(const gdi::cmd::CopyTextureRegion& r);
     void operator()(const gdi::cmd::BeginTimer& r);
     void operator()(const gdi::cmd::EndTimer& r);
     void operator()(const gdi::cmd::BeginQuery& r);

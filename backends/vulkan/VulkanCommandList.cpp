@@ -909,6 +909,48 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstO
     if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
 }
 
+// Regions (validated and resolved by the shared rules, then one copy each).
+void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
+                                            const gdi::TexelLayout& layout) {
+    outsidePass("copyBufferToTexture");
+    Texture& t = usedTexture(dst);
+    Buffer& b = usedBuffer(src);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyBufferToTexture");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
+    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyBufferToTexture");
+    barrierIfWritten();
+    const VkBufferImageCopy c = regionCopy(t.desc, r, l.layout);
+    vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
+    written_ = true;
+}
+
+void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
+                                            const gdi::TextureRegion& region) {
+    outsidePass("copyTextureToBuffer");
+    Texture& t = usedTexture(src);
+    Buffer& b = usedBuffer(dst);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyTextureToBuffer");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
+    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyTextureToBuffer");
+    barrierIfWritten();
+    const VkBufferImageCopy c = regionCopy(t.desc, r, l.layout);
+    vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &c);
+    written_ = true;
+    if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
+}
+
+void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
+                                    const gdi::TextureRegion& srcRegion) {
+    outsidePass("copyTexture");
+    Texture& d = usedTexture(dst);
+    Texture& s = usedTexture(src);
+    const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.name, dstAt, dst == src, s.desc, s.name, srcRegion);
+    barrierIfWritten();
+    const VkImageCopy c = imageCopy(d.desc, dr, s.desc, sr);
+    vkCmdCopyImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
+    written_ = true;
+}
+
 // The host reads Readback memory through map() once the fence has signalled; a fence does not
 // make device writes available to the host by itself, this barrier does.
 void VulkanCommandList::hostReadable(const Buffer& b) {

@@ -19,6 +19,12 @@ public:
     void setViewport(const gdi::Viewport& viewport) override;
     void setScissor(const gdi::Rect& rect) override;
     void setConstants(uint32_t offset, gdi::ByteSpan data) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
+                             const gdi::TexelLayout& layout) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
+                             const gdi::TextureRegion& region) override;
+    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
+                     const gdi::TextureRegion& srcRegion) override;
     void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;

@@ -766,6 +766,27 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     });
 }
 
+void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region, gdi::ByteSpan data,
+                                const gdi::TexelLayout& layout) {
+    std::lock_guard lock(mutex_);
+    loss_.check("writeTextureRegion");
+    Texture& t = texture(h);
+    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "writeTextureRegion");
+    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
+    gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
+    // The spanned bytes are staged as they are; the copy reads them with the caller's pitch.
+    const uint64_t bytes = l.end - l.layout.offset;
+    Buffer staging = makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
+    OnExit freeStaging{[&] { freeBuffer(staging); }};
+    std::memcpy(staging.memory.mapped, data.data() + l.layout.offset, bytes);
+    gdi::TexelLayout staged = l.layout;
+    staged.offset = 0;
+    immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
+        const VkBufferImageCopy c = regionCopy(t.desc, r, staged);
+        vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
+    });
+}
+
 std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     std::lock_guard lock(mutex_);
     loss_.check("readBuffer");

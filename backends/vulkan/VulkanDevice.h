@@ -45,6 +45,10 @@ VkImageAspectFlags viewAspectOf(gdi::Format f);
 // Buffer <-> image copy region of one subresource (3D: `layer` is the depth slice).
 VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at, VkDeviceSize bufferOffset);
 uint32_t arrayLayers(const gdi::TextureDesc& d);  // Vulkan array layers (1 for 3D)
+// A resolved region (validate::textureRegion) and layout (validate::texelLayout) as a copy.
+VkBufferImageCopy regionCopy(const gdi::TextureDesc& d, const gdi::TextureRegion& r, const gdi::TexelLayout& l);
+VkImageCopy imageCopy(const gdi::TextureDesc& dst, const gdi::TextureRegion& d, const gdi::TextureDesc& src,
+                      const gdi::TextureRegion& s);
 
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -160,6 +164,8 @@ public:
 
     void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
     void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
+    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region, gdi::ByteSpan data,
+                      const gdi::TexelLayout& layout) override;
     std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
     gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
 

@@ -102,4 +102,30 @@ VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at, VkD
     return r;
 }
 
+VkBufferImageCopy regionCopy(const gdi::TextureDesc& d, const gdi::TextureRegion& r, const gdi::TexelLayout& l) {
+    const gdi::FormatInfo& fi = gdi::formatInfo(d.format);
+    const uint32_t unit = fi.blockSize > 1 ? fi.bytesPerBlock : fi.bytesPerPixel;
+    const bool is3D = d.dimension == gdi::TextureDimension::Texture3D;
+    VkBufferImageCopy c{};
+    c.bufferOffset = l.offset;
+    c.bufferRowLength = l.bytesPerRow / unit * fi.blockSize;  // in texels
+    c.bufferImageHeight = l.rowsPerImage * fi.blockSize;
+    c.imageSubresource = {viewAspectOf(d.format), r.mipLevel, is3D ? 0 : r.z, is3D ? 1 : r.depth};
+    c.imageOffset = {int32_t(r.x), int32_t(r.y), is3D ? int32_t(r.z) : 0};
+    c.imageExtent = {r.width, r.height, is3D ? r.depth : 1};
+    return c;
+}
+
+VkImageCopy imageCopy(const gdi::TextureDesc& dst, const gdi::TextureRegion& d, const gdi::TextureDesc& src,
+                      const gdi::TextureRegion& s) {
+    const bool is3D = src.dimension == gdi::TextureDimension::Texture3D;
+    VkImageCopy c{};
+    c.srcSubresource = {viewAspectOf(src.format), s.mipLevel, is3D ? 0 : s.z, is3D ? 1 : s.depth};
+    c.srcOffset = {int32_t(s.x), int32_t(s.y), is3D ? int32_t(s.z) : 0};
+    c.dstSubresource = {viewAspectOf(dst.format), d.mipLevel, is3D ? 0 : d.z, is3D ? 1 : d.depth};
+    c.dstOffset = {int32_t(d.x), int32_t(d.y), is3D ? int32_t(d.z) : 0};
+    c.extent = {s.width, s.height, is3D ? s.depth : 1};
+    return c;
+}
+
 }  // namespace fe::vk

@@ -64,4 +64,25 @@ const VertexFormatInfo& vertexFormatInfo(VertexFormat f) {
     return i < size_t(VertexFormat::Count) ? kVertexFormats[i] : invalid;
 }
 
+Format srgbPair(Format f) {
+    switch (f) {
+        case Format::RGBA8: return Format::RGBA8_SRGB;
+        case Format::RGBA8_SRGB: return Format::RGBA8;
+        case Format::BC1: return Format::BC1_SRGB;
+        case Format::BC1_SRGB: return Format::BC1;
+        case Format::BC3: return Format::BC3_SRGB;
+        case Format::BC3_SRGB: return Format::BC3;
+        case Format::BC7: return Format::BC7_SRGB;
+        case Format::BC7_SRGB: return Format::BC7;
+        default: return Format::Undefined;
+    }
+}
+
+bool formatsCompatible(Format a, Format b) {
+    if (a == b || (srgbPair(a) == b && b != Format::Undefined)) return true;
+    const FormatInfo &fa = formatInfo(a), &fb = formatInfo(b);
+    return !isDepthFormat(a) && !isDepthFormat(b) && !isCompressedFormat(a) && !isCompressedFormat(b) &&
+           a != Format::Undefined && b != Format::Undefined && fa.bytesPerPixel == fb.bytesPerPixel;
+}
+
 }  // namespace fe::gdi

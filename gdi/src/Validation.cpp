@@ -110,6 +110,78 @@ Extent3 mipExtent(const TextureDesc& d, uint32_t mip) {
     return e;
 }
 
+TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what) {
+    const std::string w = std::string(what) + ": " + label("texture", name.c_str());
+    if (d.sampleCount > 1) fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
+    if (isDepthFormat(d.format))
+        fail(w, std::string(formatInfo(d.format).name) + " is a depth format: use the whole-subresource call");
+    if (r.mipLevel >= d.mipLevels)
+        fail(w, "mip level " + std::to_string(r.mipLevel) + " out of range (" + std::to_string(d.mipLevels) + " levels)");
+    const Extent3 e = mipExtent(d, r.mipLevel);
+    TextureRegion out = r;
+    out.width = r.width ? r.width : (r.x < e.width ? e.width - r.x : 0);
+    out.height = r.height ? r.height : (r.y < e.height ? e.height - r.y : 0);
+    out.depth = r.depth ? r.depth : (r.z < e.depthOrLayers ? e.depthOrLayers - r.z : 0);
+    auto beyond = [](uint32_t at, uint32_t n, uint32_t size) { return n == 0 || at >= size || n > size - at; };
+    if (beyond(r.x, out.width, e.width) || beyond(r.y, out.height, e.height) || beyond(r.z, out.depth, e.depthOrLayers))
+        fail(w, "region at (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.z) + ") of " +
+                    std::to_string(out.width) + "x" + std::to_string(out.height) + "x" + std::to_string(out.depth) +
+                    " is outside mip level " + std::to_string(r.mipLevel) + " (" + std::to_string(e.width) + "x" +
+                    std::to_string(e.height) + "x" + std::to_string(e.depthOrLayers) + ")");
+    const uint32_t block = formatInfo(d.format).blockSize;
+    auto aligned = [&](uint32_t at, uint32_t n, uint32_t size) { return at % block == 0 && (n % block == 0 || at + n == size); };
+    if (block > 1 && !(aligned(r.x, out.width, e.width) && aligned(r.y, out.height, e.height)))
+        fail(w, "a compressed region starts on a 4x4 block and spans whole blocks (or reaches the edge)");
+    return out;
+}
+
+ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l, const char* what) {
+    const FormatInfo& fi = formatInfo(f);
+    const bool compressed = fi.blockSize > 1;
+    const uint32_t unit = compressed ? fi.bytesPerBlock : fi.bytesPerPixel;  // bytes per texel or block
+    const uint32_t columns = (region.width + fi.blockSize - 1) / fi.blockSize;
+    const uint32_t rows = (region.height + fi.blockSize - 1) / fi.blockSize;
+    const uint64_t rowBytes = uint64_t(columns) * unit;
+    ResolvedLayout r{l};
+    r.layout.bytesPerRow = l.bytesPerRow ? l.bytesPerRow : uint32_t(rowBytes);
+    r.layout.rowsPerImage = l.rowsPerImage ? l.rowsPerImage : rows;
+    const std::string w = what;
+    if (l.offset % 4 || l.offset % unit)
+        fail(w, "offset " + std::to_string(l.offset) + " is not a multiple of 4 and of the texel size (" + std::to_string(unit) + ")");
+    if (r.layout.bytesPerRow % unit || r.layout.bytesPerRow < rowBytes)
+        fail(w, "bytesPerRow " + std::to_string(r.layout.bytesPerRow) + " is not a multiple of the texel size (" +
+                    std::to_string(unit) + ") of at least one row (" + std::to_string(rowBytes) + ")");
+    if (r.layout.rowsPerImage < rows)
+        fail(w, "rowsPerImage " + std::to_string(r.layout.rowsPerImage) + " is less than the region's " + std::to_string(rows) + " rows");
+    if (compressed && (r.layout.bytesPerRow != rowBytes || r.layout.rowsPerImage != rows))
+        fail(w, "compressed texels are packed tightly (bytesPerRow and rowsPerImage 0)");
+    r.end = l.offset + (uint64_t(region.depth - 1) * r.layout.rowsPerImage + (rows - 1)) * r.layout.bytesPerRow + rowBytes;
+    return r;
+}
+
+void dataSpan(size_t size, uint64_t end, const char* what) {
+    if (size < end)
+        fail(what, std::to_string(size) + " bytes of data; the region and layout span " + std::to_string(end));
+}
+
+std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
+                                                    bool sameTexture, const TextureDesc& src, const std::string& srcName,
+                                                    const TextureRegion& srcRegion) {
+    const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source");
+    if (!formatsCompatible(src.format, dst.format))
+        fail("copyTexture", std::string(formatInfo(src.format).name) + " texels cannot be copied into " + std::string(formatInfo(dst.format).name) +
+                                " (the same format, its sRGB/UNORM pair, or the same texel size)");
+    if ((src.dimension == TextureDimension::Texture3D) != (dst.dimension == TextureDimension::Texture3D))
+        fail("copyTexture", "between a 3D texture and a layered one");
+    dstAt.width = s.width, dstAt.height = s.height, dstAt.depth = s.depth;
+    const TextureRegion d = textureRegion(dst, dstAt, dstName, "copyTexture destination");
+    auto apart = [](uint32_t a, uint32_t b, uint32_t n) { return a + n <= b || b + n <= a; };
+    if (sameTexture && s.mipLevel == d.mipLevel &&
+        !(apart(s.x, d.x, s.width) || apart(s.y, d.y, s.height) || apart(s.z, d.z, s.depth)))
+        fail("copyTexture", "source and destination overlap in '" + srcName + "'");
+    return {d, s};
+}
+
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {
     const std::string w = std::string(what) + ": " + label("texture", name.c_str());
     if (at.mipLevel >= d.mipLevels)

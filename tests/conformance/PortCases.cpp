@@ -465,6 +465,146 @@ std::vector<CaseImage> queryErrors(Device& d) {
     return {};
 }
 
+// RGBA8 test texel of texture coordinate (x, y) and a tag (layer or source): exact in 8 bits.
+std::array<uint8_t, 4> patternTexel(uint32_t x, uint32_t y, uint32_t tag) {
+    return {uint8_t(x * 4), uint8_t(y * 4), uint8_t(64 + 32 * tag), 255};
+}
+// A CPU image of `w` x `h` RGBA8 texels: the pattern inside [x0, x0 + rw) x [y0, y0 + rh), 0 elsewhere.
+Image patternImage(uint32_t w, uint32_t h, uint32_t x0, uint32_t y0, uint32_t rw, uint32_t rh, uint32_t tag,
+                   int32_t dx = 0, int32_t dy = 0) {
+    Image img{w, h, Format::RGBA8, std::vector<uint8_t>(size_t(w) * h * 4, 0)};
+    for (uint32_t y = y0; y < y0 + rh; ++y)
+        for (uint32_t x = x0; x < x0 + rw; ++x) {
+            const auto t = patternTexel(uint32_t(int32_t(x) + dx), uint32_t(int32_t(y) + dy), tag);
+            std::memcpy(&img.data[(size_t(y) * w + x) * 4], t.data(), 4);
+        }
+    return img;
+}
+// Bytes of a padded layout holding the pattern of the box, padding bytes 0xEE (they must not land).
+std::vector<uint8_t> paddedPattern(const TextureRegion& r, const TexelLayout& l, uint32_t firstTag) {
+    std::vector<uint8_t> bytes(l.offset + size_t(l.rowsPerImage) * l.bytesPerRow * r.depth, 0xEE);
+    for (uint32_t z = 0; z < r.depth; ++z)
+        for (uint32_t y = 0; y < r.height; ++y)
+            for (uint32_t x = 0; x < r.width; ++x) {
+                const auto t = patternTexel(r.x + x, r.y + y, firstTag + z);
+                std::memcpy(&bytes[l.offset + (size_t(z) * l.rowsPerImage + y) * l.bytesPerRow + x * 4], t.data(), 4);
+            }
+    return bytes;
+}
+
+// Padded rows land where stated: a writeTextureRegion with 20-texel rows for a 16-texel box at
+// an offset, and a buffer copy into two layers of an array with 16-texel rows and 10 rows per
+// layer; the padding never reaches the texture, and nothing outside the boxes changes.
+std::vector<CaseImage> regionUploadRowPitch(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle flat = o.add(d.createTexture({.width = 64, .height = 64, .debugName = "flat"}));
+    const TextureRegion box{.x = 8, .y = 4, .width = 16, .height = 8, .depth = 1};
+    const TexelLayout rows{.offset = 12, .bytesPerRow = 20 * 4};
+    TexelLayout full = rows;
+    full.rowsPerImage = box.height;
+    d.writeTextureRegion(flat, box, bytesOf(paddedPattern(box, full, 0)), rows);
+
+    const TextureHandle array = o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .width = 64, .height = 64,
+                                                       .depthOrLayers = 3, .debugName = "array"}));
+    const TextureRegion layers{.x = 32, .y = 40, .z = 1, .width = 8, .height = 8, .depth = 2};
+    const TexelLayout pitch{.offset = 256, .bytesPerRow = 16 * 4, .rowsPerImage = 10};
+    const std::vector<uint8_t> staged = paddedPattern(layers, pitch, 1);
+    const BufferHandle buffer = o.add(d.createBuffer({.size = staged.size(), .usage = BufferUsage::CopySrc}, bytesOf(staged)));
+    auto cmd = d.createCommandList();
+    cmd->copyBufferToTexture(array, layers, buffer, pitch);
+    d.wait(d.submit(*cmd));
+    return {exact("writeTextureRegion, 80-byte rows", d.readTexture(flat), patternImage(64, 64, 8, 4, 16, 8, 0)),
+            exact("array layer 0 untouched", d.readTexture(array, {0, 0}), patternImage(64, 64, 0, 0, 0, 0, 0)),
+            exact("array layer 1", d.readTexture(array, {0, 1}), patternImage(64, 64, 32, 40, 8, 8, 1)),
+            exact("array layer 2", d.readTexture(array, {0, 2}), patternImage(64, 64, 32, 40, 8, 8, 2))};
+}
+
+// Regions read back into a buffer with a pitch (the bytes between rows keep the buffer's
+// earlier contents), and copied between textures of compatible formats: RGBA8 into RGBA8_SRGB
+// and R32F into R32U move the same bits. And every layout or region mistake is the same Error.
+std::vector<CaseImage> regionCopies(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle source = o.add(d.createTexture({.width = 64, .height = 64, .debugName = "source"}));
+    const TextureRegion whole{.width = 64, .height = 64, .depth = 1};
+    d.writeTextureRegion(source, whole, bytesOf(paddedPattern(whole, {.bytesPerRow = 256, .rowsPerImage = 64}, 0)));
+    const BufferHandle readback = o.add(d.createBuffer({.size = 4096, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+    const TextureRegion box{.x = 16, .y = 8, .width = 8, .height = 4, .depth = 1};
+    const TexelLayout pitch{.offset = 64, .bytesPerRow = 48};
+    const TextureHandle srgb = o.add(d.createTexture({.format = Format::RGBA8_SRGB, .width = 64, .height = 64, .debugName = "srgb"}));
+    const TextureHandle floats = o.add(d.createTexture({.format = Format::R32F, .width = 64, .height = 64, .debugName = "floats"}));
+    const TextureHandle uints = o.add(d.createTexture({.format = Format::R32U, .width = 64, .height = 64, .debugName = "uints"}));
+    std::vector<float> values(64 * 64);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = float(i) * 0.25f - 100.0f;
+    d.writeTextureRegion(floats, whole, bytesOf(values));
+    auto cmd = d.createCommandList();
+    cmd->clearBuffer(readback, 0, 0, 0xABABABABu);
+    cmd->copyTextureToBuffer(readback, pitch, source, box);
+    cmd->copyTexture(srgb, {.x = 40, .y = 50}, source, box);
+    cmd->copyTexture(uints, {}, floats, {.y = 32, .height = 32});
+    d.wait(d.submit(*cmd));
+
+    const std::vector<uint8_t> bytes = d.readBuffer(readback, 0, 4096);
+    for (uint32_t i = 0; i < 4096; ++i) {
+        const bool inBox = i >= pitch.offset && (i - pitch.offset) / 48 < box.height && (i - pitch.offset) % 48 < 32;
+        uint8_t want = 0xAB;
+        if (inBox) {
+            const uint32_t row = (i - 64) / 48, column = (i - 64) % 48 / 4;
+            want = patternTexel(box.x + column, box.y + row, 0)[(i - 64) % 4];
+        }
+        FE_CONFORMANCE_CHECK(bytes[i] == want, ("copyTextureToBuffer byte " + std::to_string(i) + " is " +
+                                                std::to_string(bytes[i]) + ", expected " + std::to_string(want)).c_str());
+    }
+    Image floatBits{64, 64, Format::R32U, std::vector<uint8_t>(64 * 64 * 4, 0)};
+    std::memcpy(floatBits.data.data(), reinterpret_cast<const uint8_t*>(values.data()) + 32 * 64 * 4, 32 * 64 * 4);
+    Image srgbRaw = d.readTexture(srgb);
+    srgbRaw.format = Format::RGBA8;  // compared as the bytes the copy moved
+    std::vector<CaseImage> images = {exact("RGBA8 box copied into RGBA8_SRGB", srgbRaw, patternImage(64, 64, 40, 50, 8, 4, 0, -24, -42)),
+                                     exact("R32F rows copied into R32U", d.readTexture(uints), floatBits)};
+
+    auto list = d.createCommandList();
+    expectError([&] { list->copyTextureToBuffer(readback, {.bytesPerRow = 30}, source, box); },
+                "bytesPerRow 30 is not a multiple of the texel size (4) of at least one row (32)");
+    expectError([&] { list->copyTextureToBuffer(readback, {.offset = 2}, source, box); }, "offset 2 is not a multiple of 4");
+    expectError([&] { list->copyBufferToTexture(source, TextureRegion{.depth = 1}, readback, TexelLayout{}); },
+                "copyBufferToTexture: range [0, 16384) exceeds its size 4096");
+    expectError([&] { list->copyTexture(source, {.x = 60}, source, box); }, "is outside mip level 0 (64x64x1)");
+    expectError([&] { list->copyTexture(floats, {}, o.add(d.createTexture({.format = Format::RGBA16F, .width = 8, .height = 8})), {}); },
+                "RGBA16F texels cannot be copied into R32F");
+    expectError([&] { list->copyTexture(source, {.x = 20, .y = 10}, source, box); }, "source and destination overlap in 'source'");
+    expectError([&] { d.writeTextureRegion(source, box, bytesOf(values), {.rowsPerImage = 2}); },
+                "rowsPerImage 2 is less than the region's 4 rows");
+    d.wait(d.submit(*list));
+    return images;
+}
+
+// Mip to mip and face to face inside one texture: a 16x16 box of level 0 into level 1 at (4, 4),
+// one cube face's quadrant into another face, and a 3D texture's slices moved along z.
+std::vector<CaseImage> textureCopyBetweenMips(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle chain = o.add(d.createTexture({.width = 64, .height = 64, .mipLevels = 3, .debugName = "chain"}));
+    const TextureRegion level0{.width = 64, .height = 64, .depth = 1};
+    d.writeTextureRegion(chain, level0, bytesOf(paddedPattern(level0, {.bytesPerRow = 256, .rowsPerImage = 64}, 0)));
+    const TextureHandle cube = o.add(d.createTexture({.dimension = TextureDimension::TextureCube, .width = 32, .height = 32,
+                                                      .depthOrLayers = 6, .debugName = "cube"}));
+    const TextureRegion face2{.z = 2, .width = 32, .height = 32, .depth = 1};
+    d.writeTextureRegion(cube, face2, bytesOf(paddedPattern(face2, {.bytesPerRow = 128, .rowsPerImage = 32}, 2)));
+    const TextureHandle volume = o.add(d.createTexture({.dimension = TextureDimension::Texture3D, .width = 16, .height = 16,
+                                                        .depthOrLayers = 8, .debugName = "volume"}));
+    const TextureRegion slices{.z = 0, .width = 16, .height = 16, .depth = 2};
+    d.writeTextureRegion(volume, slices, bytesOf(paddedPattern(slices, {.bytesPerRow = 64, .rowsPerImage = 16}, 0)));
+    auto cmd = d.createCommandList();
+    cmd->copyTexture(chain, {.mipLevel = 1, .x = 4, .y = 4}, chain, {.width = 16, .height = 16});
+    cmd->copyTexture(cube, {.x = 16, .y = 16, .z = 5}, cube, {.z = 2, .width = 16, .height = 16, .depth = 1});
+    cmd->copyTexture(volume, {.z = 5}, volume, slices);
+    d.wait(d.submit(*cmd));
+    std::vector<CaseImage> images = {
+        exact("level 0 box in level 1 at (4, 4)", d.readTexture(chain, {1, 0}), patternImage(32, 32, 4, 4, 16, 16, 0, -4, -4)),
+        exact("face 2 quadrant in face 5", d.readTexture(cube, {0, 5}), patternImage(32, 32, 16, 16, 16, 16, 2, -16, -16))};
+    for (uint32_t z : {5u, 6u})
+        images.push_back(exact("3D slice " + std::to_string(z), d.readTexture(volume, {0, z}), patternImage(16, 16, 0, 0, 16, 16, z - 5)));
+    return images;
+}
+
 }  // namespace
 
 std::vector<Case> portCases() {
@@ -477,6 +617,9 @@ std::vector<Case> portCases() {
         {"timestamps_in_query_set", timestampsInQuerySet},
         {"query_errors", queryErrors},
         {"pipeline_cache_roundtrip", pipelineCacheRoundtrip},
+        {"region_upload_row_pitch", regionUploadRowPitch},
+        {"region_copies", regionCopies},
+        {"texture_copy_between_mips", textureCopyBetweenMips},
     };
 }
 

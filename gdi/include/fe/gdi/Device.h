@@ -290,6 +290,28 @@ struct Subresource {
     uint32_t layer = 0;
 };
 
+// A box of texels in one mip level: columns [x, x + width), rows [y, y + height) of the array
+// layers, cube faces (as Subresource::layer counts them) or 3D slices [z, z + depth). A width,
+// height or depth of 0 reaches the edge of the mip level (the last layer or slice).
+// Block-compressed formats: x, y, width and height are multiples of 4 or reach the edge.
+struct TextureRegion {
+    uint32_t mipLevel = 0;
+    uint32_t x = 0, y = 0, z = 0;
+    uint32_t width = 0, height = 0, depth = 0;
+};
+
+// Where a region's texels lie in a buffer (or in writeTexture's data): from `offset`, rows of
+// bytesPerRow bytes and rowsPerImage rows per layer or slice, top row first; 0 means tightly
+// packed (one row of the region; the region's height). Rules, the same on every backend:
+// offset is a multiple of 4 and of the texel size; bytesPerRow a multiple of the texel size and
+// at least one row; rowsPerImage at least the region's height. Compressed formats are packed
+// tightly (rows of 4x4 blocks).
+struct TexelLayout {
+    uint64_t offset = 0;
+    uint32_t bytesPerRow = 0;
+    uint32_t rowsPerImage = 0;
+};
+
 // Bytes of one subresource of mip level `mipLevel`, tightly packed (rows of blocks when compressed).
 uint64_t textureByteSize(const TextureDesc& desc, uint32_t mipLevel);
 
@@ -723,6 +745,17 @@ public:
     // One subresource, tightly packed rows, top to bottom (see textureByteSize).
     virtual void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src, uint64_t srcOffset) = 0;
     virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, Subresource at) = 0;
+    // Regions (TextureRegion, TexelLayout): uncompressed colour formats and compressed ones
+    // packed tightly; depth formats and multisampled textures use the whole-subresource calls.
+    virtual void copyBufferToTexture(TextureHandle dst, const TextureRegion& region, BufferHandle src,
+                                     const TexelLayout& layout) = 0;
+    virtual void copyTextureToBuffer(BufferHandle dst, const TexelLayout& layout, TextureHandle src,
+                                     const TextureRegion& region) = 0;
+    // Copies srcRegion of src to dst at dstAt's mip level and origin (its extent is srcRegion's):
+    // between mips, layers or places of one texture (the two boxes must not overlap) or between
+    // textures of compatible formats (formatsCompatible), both 3D or both layered. Outside passes.
+    virtual void copyTexture(TextureHandle dst, const TextureRegion& dstAt, TextureHandle src,
+                             const TextureRegion& srcRegion) = 0;
 
     virtual void beginTimer(TimerHandle timer) = 0;
     virtual void endTimer(TimerHandle timer) = 0;
@@ -963,6 +996,10 @@ public:
     // One subresource: tightly packed rows, top to bottom, in the texture's format (compressed
     // formats: rows of 4x4 blocks); exactly textureByteSize(desc, at.mipLevel) bytes.
     virtual void writeTexture(TextureHandle texture, Subresource at, ByteSpan data) = 0;
+    // A region of uncompressed colour texels laid out as `layout` says (its offset counts from
+    // data's start); data holds at least what the layout spans. Queue-ordered like the above.
+    virtual void writeTextureRegion(TextureHandle texture, const TextureRegion& region, ByteSpan data,
+                              const TexelLayout& layout = {}) = 0;
     // Blocking reads: they wait for all work submitted before the call, then copy.
     virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
     // One subresource of a single-sample, uncompressed texture.

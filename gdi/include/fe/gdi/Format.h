@@ -53,6 +53,12 @@ inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth || formatInf
 inline bool isCompressedFormat(Format f) { return formatInfo(f).blockSize > 1; }
 // Bytes of a tightly packed width x height image (compressed: whole 4x4 blocks).
 uint64_t imageByteSize(Format f, uint32_t width, uint32_t height);
+// The sRGB form of a UNORM format or the UNORM form of an sRGB one (RGBA8, BC1, BC3, BC7);
+// Undefined for the others.
+Format srgbPair(Format f);
+// Whether texels of `a` may be read as `b` (copies between textures, texture views): the same
+// format, its sRGB/UNORM pair, or two uncompressed colour formats of the same texel size.
+bool formatsCompatible(Format a, Format b);
 // Parses the names printed by formatInfo (case-sensitive); Undefined when unknown.
 Format formatFromName(std::string_view name);
 

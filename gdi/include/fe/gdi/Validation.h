@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <initializer_list>
+#include <utility>
 
 #include "fe/gdi/Device.h"
 #include "fe/gdi/ShaderReflection.h"
@@ -20,6 +21,23 @@ struct Extent3 {
     uint32_t width = 1, height = 1, depthOrLayers = 1;
 };
 Extent3 mipExtent(const TextureDesc& d, uint32_t mipLevel);
+// A TextureRegion checked against the texture and resolved (0 extents filled in): in its mip
+// level, not multisampled, no depth format, block-aligned when compressed.
+TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what);
+// A TexelLayout checked for `region` of format `f` and resolved (0 fields filled in); `end` is
+// the offset just past the last byte it spans.
+struct ResolvedLayout {
+    TexelLayout layout;
+    uint64_t end = 0;
+};
+ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l, const char* what);
+// writeTexture's data holds at least the `end` bytes its layout spans.
+void dataSpan(size_t size, uint64_t end, const char* what);
+// copyTexture between regions: compatible formats, both 3D or both layered, the destination box
+// in its texture, the two boxes apart when the texture is the same. Returns the resolved pair.
+std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
+                                                    bool sameTexture, const TextureDesc& src, const std::string& srcName,
+                                                    const TextureRegion& srcRegion);
 // Throws Error unless `at` names an existing subresource of the texture; `what` names the call.
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
 // readTexture: an existing subresource of a single-sample, uncompressed texture.
