@@ -264,8 +264,8 @@ void GlCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::B
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
     outside("copyTexture");
-    const Texture& d = dev_.texture(dst);
-    const Texture& s = dev_.texture(src);
+    const Texture& d = copied(dst);
+    const Texture& s = copied(src);
     if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
         d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
         d.desc.sampleCount != s.desc.sampleCount)
@@ -287,11 +287,11 @@ uint64_t GlCommandList::bufferTextureBytes(const Texture& t, gdi::Subresource at
     return bytes;
 }
 void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
-    bufferTextureBytes(dev_.texture(dst), at, dev_.buffer(src), srcOffset, "copyBufferToTexture");
+    bufferTextureBytes(copied(dst), at, dev_.buffer(src), srcOffset, "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTexture{dst, at, src, srcOffset});
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
-    const Texture& t = dev_.texture(src);
+    const Texture& t = copied(src);
     bufferTextureBytes(t, at, dev_.buffer(dst), dstOffset, "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBuffer{dst, dstOffset, src, at});
 }
@@ -299,7 +299,7 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffse
 void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
                                         const gdi::TexelLayout& layout) {
     outside("copyBufferToTexture");
-    const Texture& t = dev_.texture(dst);
+    const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyBufferToTexture");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
@@ -309,7 +309,7 @@ void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::Textu
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
                                         const gdi::TextureRegion& region) {
     outside("copyTextureToBuffer");
-    const Texture& t = dev_.texture(src);
+    const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyTextureToBuffer");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
@@ -319,15 +319,15 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelL
 void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
                                 const gdi::TextureRegion& srcRegion) {
     outside("copyTexture");
-    const Texture& d = dev_.texture(dst);
-    const Texture& s = dev_.texture(src);
+    const Texture& d = copied(dst);
+    const Texture& s = copied(src);
     const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
     stream_->push(cmd::CopyTextureRegion{dst, dr, src, sr});
 }
 
 void GlCommandList::generateMips(gdi::TextureHandle h) {
     outside("generateMips");
-    const Texture& t = dev_.texture(h);
+    const Texture& t = copied(h);
     gdi::validate::mipGeneration(t.desc, t.label);
     stream_->push(cmd::GenerateMips{h});
 }
@@ -443,7 +443,7 @@ void GlCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t s
 }
 void GlCommandList::discardTexture(gdi::TextureHandle h) {
     outside("discardTexture");
-    (void)dev_.texture(h);
+    (void)copied(h);
     stream_->push(cmd::DiscardTexture{h});
 }
 void GlCommandList::setAutomaticBarriers(bool enabled) {
@@ -453,7 +453,7 @@ void GlCommandList::setAutomaticBarriers(bool enabled) {
 void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
     outside("barrier");
     for (const gdi::TextureBarrier& b : std::span(barriers, count)) {
-        const Texture& t = dev_.texture(b.texture);
+        const Texture& t = copied(b.texture);
         gdi::validate::textureBarrier(t.desc, b, t.label);
     }
     pushArray<cmd::TextureBarriers>(std::span(barriers, count));

@@ -111,6 +111,12 @@ private:
     [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
     void outside(const char* what) const;
     QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
+    // Copies, mips, discards and barriers address the texture itself, never a view of it.
+    const Texture& copied(gdi::TextureHandle h) {
+        const Texture& t = dev_.texture(h);
+        gdi::validate::notAView(t.viewOf != 0, t.label, "copy, mip generation or barrier");
+        return t;
+    }
     void checkSlot(uint32_t slot, const char* what) const;
     template <gdi::BindingType kKind>
     void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size);

@@ -402,6 +402,36 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     });
 }
 
+gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
+    return thread_.runUrgent([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
+        loss_.check("createTextureView");
+        Texture& parent = texture(h);
+        Texture t;
+        t.desc = gdi::validate::textureView(parent.desc, parent.label, parent.viewOf != 0, v);
+        t.label = v.debugName ? v.debugName : "";
+        t.linearFilter = formatCaps_[size_t(t.desc.format)].linearFilter;
+        t.target = textureTarget(t.desc);
+        t.viewOf = h.id;
+        const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
+        gl_.GenTextures(1, &t.name);  // glTextureView wants a name that is not yet a texture
+        gl_.TextureView(t.name, t.target, parent.name, toGlFormat(t.desc.format).internal, v.baseMip, t.desc.mipLevels,
+                        is3D ? 0 : v.baseLayer, is3D ? 1 : t.desc.depthOrLayers);
+        static constexpr GLenum kParams[] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
+        static constexpr GLint kChannels[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+        for (size_t i = 0; i < 4; ++i) {
+            const gdi::Swizzle c = v.swizzle[i];
+            const GLint value = c == gdi::Swizzle::Identity ? kChannels[i]
+                                : c == gdi::Swizzle::Zero   ? GL_ZERO
+                                : c == gdi::Swizzle::One    ? GL_ONE
+                                                            : kChannels[int(c) - int(gdi::Swizzle::R)];
+            if (value != kChannels[i]) gl_.TextureParameteri(t.name, kParams[i], value);
+        }
+        if (!t.label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, t.label.c_str());
+        ++parent.views;
+        return textures_.add(std::move(t));
+    });
+}
+
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
     return thread_.runUrgent([&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
         loss_.check("createSampler");
@@ -751,10 +781,14 @@ void GlDevice::destroy(gdi::BufferHandle h) {
     });
 }
 void GlDevice::destroy(gdi::TextureHandle h) {
+    if (const Texture* live = h ? textures_.find(h) : nullptr) {
+        if (live->views) gdi::validate::viewsAlive(live->label, live->views);
+        if (Texture* parent = live->viewOf ? textures_.find({live->viewOf}) : nullptr) --parent->views;
+    }
     retire(textures_, h, [this](Texture& t) {
         forgetFramebuffers(t.name);
         gl_.DeleteTextures(1, &t.name);
-        --nativeObjects_;
+        if (!t.viewOf) --nativeObjects_;
     });
 }
 void GlDevice::destroy(gdi::SamplerHandle h) {
@@ -925,6 +959,7 @@ void GlDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion
                             const gdi::TexelLayout& layout) {
     loss_.check("writeTextureRegion");
     const Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.label, "writeTexture");
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "writeTextureRegion");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
     gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
@@ -944,6 +979,7 @@ void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixe
 void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
     loss_.check("writeTexture");
     const Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.label, "writeTexture");
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
     std::vector<std::byte> bytes(data.begin(), data.end());
@@ -975,6 +1011,7 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
     return thread_.run([&]() -> gdi::Image {
         loss_.check("readTexture");
         Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.label, "readTexture");
         gdi::validate::readable(t.desc, at, "readTexture", t.label);
         const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
         gdi::Image img;
@@ -1186,6 +1223,7 @@ bool GlDevice::present(gdi::TextureHandle h) {
     loss_.check("present");
     if (!platform_->hasWindow()) return gdi::Device::present(h);
     const Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.label, "present");
     gdi::validate::presentTexture(t.desc, t.label);
     // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda (P1381, clang 16).
     const std::pair<uint32_t, uint32_t> framebufferSize = platform_->prepareWindow(t.desc.width, t.desc.height);

@@ -49,6 +49,8 @@ struct Texture {
     gdi::TextureDesc desc;
     std::string label;
     bool linearFilter = false;  // FormatCaps::linearFilter of its format
+    uint32_t viewOf = 0;  // a view (glTextureView) of this texture handle id; 0: a texture
+    uint32_t views = 0;   // live views of this texture
 };
 GLenum textureTarget(const gdi::TextureDesc& d);
 // Where a depth/stencil format attaches: GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH_ATTACHMENT or (S8)
@@ -114,6 +116,7 @@ public:
     gdi::FormatCaps formatCaps(gdi::Format format) const override { return formatCaps_[size_t(format)]; }
     gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
+    gdi::TextureHandle createTextureView(gdi::TextureHandle texture, const gdi::TextureViewDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
     gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;

@@ -115,6 +115,8 @@ namespace fe::gl {
     X(PFNGLCREATEQUERIESPROC, CreateQueries)                                                               \
     X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                                                 \
     X(PFNGLGENQUERIESPROC, GenQueries)                                                                     \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                                                                   \
+    X(PFNGLTEXTUREVIEWPROC, TextureView)                                                                   \
     X(PFNGLPROGRAMBINARYPROC, ProgramBinary)                                                               \
     X(PFNGLGETPROGRAMBINARYPROC, GetProgramBinary)                                                         \
     X(PFNGLPROGRAMPARAMETERIPROC, ProgramParameteri)                                                       \

@@ -102,7 +102,7 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
 
 void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
     outsidePass("discardTexture");
-    Texture& t = usedTexture(h);
+    Texture& t = copiedTexture(h);
     toGeneral(cb_, t.image, t.desc.format);
 }
 
@@ -149,7 +149,7 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
     VkPipelineStageFlags src = 0, dst = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const gdi::TextureBarrier& in = barriers[i];
-        Texture& t = usedTexture(in.texture);
+        Texture& t = copiedTexture(in.texture);
         const auto range = gdi::validate::textureBarrier(t.desc, in, t.name);
         const StateScope before = scopeOf(in.before), after = scopeOf(in.after);
         VkImageMemoryBarrier& b = bs[i];
@@ -858,8 +858,8 @@ void VulkanCommandList::insertDebugLabel(const char* name) {
 
 void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
     outsidePass("copyTexture");
-    Texture& d = usedTexture(dst);
-    Texture& s = usedTexture(src);
+    Texture& d = copiedTexture(dst);
+    Texture& s = copiedTexture(src);
     if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
         d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
         d.desc.sampleCount != s.desc.sampleCount)
@@ -890,7 +890,7 @@ static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource 
 
 void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
-    Texture& t = usedTexture(dst);
+    Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, "copyBufferToTexture");
     barrierIfWritten();
@@ -900,7 +900,7 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subreso
 
 void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
-    Texture& t = usedTexture(src);
+    Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
     const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, "copyTextureToBuffer");
     barrierIfWritten();
@@ -913,7 +913,7 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstO
 void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
                                             const gdi::TexelLayout& layout) {
     outsidePass("copyBufferToTexture");
-    Texture& t = usedTexture(dst);
+    Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyBufferToTexture");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
@@ -927,7 +927,7 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::T
 void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
                                             const gdi::TextureRegion& region) {
     outsidePass("copyTextureToBuffer");
-    Texture& t = usedTexture(src);
+    Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyTextureToBuffer");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
@@ -942,8 +942,8 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::Te
 void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
                                     const gdi::TextureRegion& srcRegion) {
     outsidePass("copyTexture");
-    Texture& d = usedTexture(dst);
-    Texture& s = usedTexture(src);
+    Texture& d = copiedTexture(dst);
+    Texture& s = copiedTexture(src);
     const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.name, dstAt, dst == src, s.desc, s.name, srcRegion);
     barrierIfWritten();
     const VkImageCopy c = imageCopy(d.desc, dr, s.desc, sr);
@@ -967,7 +967,7 @@ void VulkanCommandList::hostReadable(const Buffer& b) {
 // halve evenly), every layer at once; a barrier orders each level's write before its read.
 void VulkanCommandList::generateMips(gdi::TextureHandle h) {
     outsidePass("generateMips");
-    Texture& t = usedTexture(h);
+    Texture& t = copiedTexture(h);
     gdi::validate::mipGeneration(t.desc, t.name);
     if (!dev_.linearBlit(t.desc.format))
         throw gdi::Error("generateMips: format " + std::string(gdi::formatInfo(t.desc.format).name) +

@@ -95,6 +95,12 @@ private:
     }
     Buffer& usedBuffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); noteBuffer(h.id); return b; }
     Texture& usedTexture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
+    // Copies, mips, discards and barriers address the texture itself, never a view of it.
+    Texture& copiedTexture(gdi::TextureHandle h) {
+        Texture& t = usedTexture(h);
+        gdi::validate::notAView(t.viewOf != 0, t.name, "copy, mip generation or barrier");
+        return t;
+    }
     Sampler& usedSampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
     Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
     Timer& usedTimer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }

@@ -732,6 +732,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     std::lock_guard lock(mutex_);
     loss_.check("writeTexture");
     Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
     if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
     // Depth-stencil texels (gdi's readback layout, Device.h) go in as two aspects: the depth
@@ -771,6 +772,7 @@ void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRe
     std::lock_guard lock(mutex_);
     loss_.check("writeTextureRegion");
     Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
     const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "writeTextureRegion");
     const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
     gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
@@ -808,6 +810,7 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     std::lock_guard lock(mutex_);
     loss_.check("readTexture");
     Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.name, "readTexture");
     gdi::validate::readable(t.desc, at, "readTexture", t.name);
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     gdi::Image img;

@@ -69,6 +69,11 @@ struct Texture {
     gdi::TextureDesc desc;
     std::string name;
     bool linearFilter = false;  // FormatCaps::linearFilter of its format
+    // Views (createTextureView): the texture's image seen from baseMip and baseLayer on; the
+    // image and memory are the texture's (viewOf), which counts its live views.
+    uint32_t viewOf = 0;
+    uint32_t baseMip = 0, baseLayer = 0;
+    uint32_t views = 0;
 };
 
 struct Sampler {
@@ -137,6 +142,7 @@ public:
 
     gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
+    gdi::TextureHandle createTextureView(gdi::TextureHandle texture, const gdi::TextureViewDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
     gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
@@ -240,7 +246,7 @@ private:
     void fillInfo();
     void setName(VkObjectType type, uint64_t object, const char* name);
     VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
-                         const std::string& object);
+                         const std::string& object, VkComponentMapping swizzle = {});
     // Records with `record` into a one-time command buffer, submits it and waits.
     // Records, submits and waits for a one-off command buffer; `object` names it in errors.
     void immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record);

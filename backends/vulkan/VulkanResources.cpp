@@ -147,11 +147,12 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
 }
 
 VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
-                                   const std::string& object) {
+                                   const std::string& object, VkComponentMapping swizzle) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
     vi.viewType = type;
     vi.format = toVkFormat(format);
+    vi.components = swizzle;
     // Views for sampling and attachments see depth only; stencil is reached through the attachment.
     range.aspectMask = viewAspectOf(format);
     vi.subresourceRange = range;
@@ -178,7 +179,9 @@ VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t laye
     if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
     VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
     // A 3D slice is a 2D view of one layer of the 2D-array-compatible image (VK_KHR_maintenance1).
-    if (!v) v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, mip, 1, layer, 1}, gdi::describeObject("texture", t.name, {}));
+    if (!v)
+        v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, t.baseMip + mip, 1, t.baseLayer + layer, 1},
+                     gdi::describeObject("texture", t.name, {}));
     return v;
 }
 
@@ -192,7 +195,11 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
                                                  : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     const bool is3D = desc.dimension == gdi::TextureDimension::Texture3D;
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    if (gdi::validate::isCube(desc.dimension)) ci.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+    // Cube views of square arrays, and views in the formats TextureDesc::viewFormats lists.
+    if (gdi::validate::isCube(desc.dimension) ||
+        (desc.dimension == gdi::TextureDimension::Texture2DArray && desc.width == desc.height && desc.depthOrLayers >= 6))
+        ci.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+    if (!desc.viewFormats.empty()) ci.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
     if (is3D && any(desc.usage, U::RenderTarget)) ci.flags |= VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
     ci.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ci.format = toVkFormat(desc.format);
@@ -274,6 +281,13 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     t.name = name;
     t.linearFilter = formatCaps(desc.format).linearFilter;
     VkImageCreateInfo ci = imageInfo(desc);
+    // The formats views may take, so a driver keeps compression where it can.
+    std::vector<VkFormat> viewFormats = {toVkFormat(desc.format)};
+    for (gdi::Format f : desc.viewFormats) viewFormats.push_back(toVkFormat(f));
+    VkImageFormatListCreateInfo formatList{VK_STRUCTURE_TYPE_IMAGE_FORMAT_LIST_CREATE_INFO};
+    formatList.viewFormatCount = uint32_t(viewFormats.size());
+    formatList.pViewFormats = viewFormats.data();
+    if (!desc.viewFormats.empty()) ci.pNext = &formatList;
     const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
                                                                         " " + std::string(gdi::formatInfo(desc.format).name));
     check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
@@ -327,11 +341,52 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     return textures_.add(std::move(t));
 }
 
+gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
+    std::lock_guard lock(mutex_);
+    loss_.check("createTextureView");
+    Texture& parent = texture(h);
+    Texture t;
+    t.desc = gdi::validate::textureView(parent.desc, parent.name, parent.viewOf != 0, v);
+    t.name = v.debugName ? v.debugName : "";
+    t.image = parent.image;
+    t.ownsMemory = false;
+    t.viewOf = h.id;
+    t.baseMip = v.baseMip;
+    t.baseLayer = t.desc.dimension == gdi::TextureDimension::Texture3D ? 0 : v.baseLayer;
+    t.linearFilter = formatCaps(t.desc.format).linearFilter;
+    auto channel = [](gdi::Swizzle s) {
+        static constexpr VkComponentSwizzle k[] = {VK_COMPONENT_SWIZZLE_IDENTITY, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ONE,
+                                                   VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_G, VK_COMPONENT_SWIZZLE_B,
+                                                   VK_COMPONENT_SWIZZLE_A};
+        return k[int(s)];
+    };
+    const VkComponentMapping swizzle{channel(v.swizzle[0]), channel(v.swizzle[1]), channel(v.swizzle[2]), channel(v.swizzle[3])};
+    const std::string object = gdi::describeObject("texture view", t.name, "of '" + parent.name + "'");
+    const VkImageViewType type = viewType(t.desc.dimension);
+    const uint32_t layers = arrayLayers(t.desc);
+    try {
+        t.view = makeView(t.image, type, t.desc.format, {0, t.baseMip, t.desc.mipLevels, t.baseLayer, layers}, object, swizzle);
+        if (any(t.desc.usage, gdi::TextureUsage::Storage))
+            for (uint32_t m = 0; m < t.desc.mipLevels; ++m)
+                t.mipViews.push_back(makeView(t.image, type, t.desc.format, {0, t.baseMip + m, 1, t.baseLayer, layers}, object));
+    } catch (...) {
+        destroyTexture(t);
+        throw;
+    }
+    setName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(t.view), v.debugName);
+    ++parent.views;
+    return textures_.add(std::move(t));
+}
+
 void VulkanDevice::destroyTexture(Texture& t) {
     for (VkImageView v : t.mipViews) vkDestroyImageView(device_, v, nullptr);
     for (VkImageView v : t.attachmentViews)
         if (v) vkDestroyImageView(device_, v, nullptr);
     if (t.view) vkDestroyImageView(device_, t.view, nullptr);
+    if (t.viewOf) {  // the image is the texture's (destroy() counted the view out)
+        t = Texture{};
+        return;
+    }
     if (t.image) vkDestroyImage(device_, t.image, nullptr), --nativeObjects_;
     if (t.ownsMemory) {
         allocator_->free(t.memory);
@@ -424,7 +479,10 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
 void VulkanDevice::destroy(gdi::TextureHandle h) {
     std::lock_guard lock(mutex_);
     Texture t;
+    if (const Texture* live = h ? textures_.find(h) : nullptr; live && live->views)
+        gdi::validate::viewsAlive(live->name, live->views);
     if (!h || !textures_.remove(h, t)) return;
+    if (Texture* parent = t.viewOf ? textures_.find({t.viewOf}) : nullptr) --parent->views;
     retire([this, t]() mutable { destroyTexture(t); }, true);
 }
 

@@ -367,6 +367,7 @@ bool VulkanDevice::present(gdi::TextureHandle h) {
     loss_.check("present");
     if (!swapchain_) return gdi::Device::present(h);
     Texture& t = texture(h);
+    gdi::validate::notAView(t.viewOf != 0, t.name, "present");
     gdi::validate::presentTexture(t.desc, t.name);
     presentedSinceIdle_ = true;  // the swap chain's copy is not behind a device fence
     if (VkCommandBuffer init = takeInitialTransitions()) {  // the presented texture may be new

@@ -41,6 +41,10 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
     using D = TextureDimension;
     if (d.dimension > D::Texture3D) fail(what, "dimension is invalid");
     if (d.format == Format::Undefined || d.format >= Format::Count) fail(what, "format is undefined");
+    for (Format f : d.viewFormats)
+        if (!formatsCompatible(d.format, f))
+            fail(what, "view format " + std::string(formatInfo(f).name) + " is not compatible with " +
+                           std::string(formatInfo(d.format).name) + " (its sRGB/UNORM pair, or the same texel size)");
     const std::string kind = textureDimensionName(d.dimension);
     const std::string size = std::to_string(d.width) + "x" + std::to_string(d.height) + "x" + std::to_string(d.depthOrLayers);
     if (d.width == 0 || d.height == 0 || d.depthOrLayers == 0) fail(what, "size " + size + " has a zero dimension");
@@ -108,6 +112,61 @@ Extent3 mipExtent(const TextureDesc& d, uint32_t mip) {
     Extent3 e{std::max(1u, d.width >> mip), std::max(1u, d.height >> mip), d.depthOrLayers};
     if (d.dimension == TextureDimension::Texture3D) e.depthOrLayers = std::max(1u, d.depthOrLayers >> mip);
     return e;
+}
+
+TextureDesc textureView(const TextureDesc& t, const std::string& name, bool textureIsView, const TextureViewDesc& v) {
+    const std::string what = "texture view '" + std::string(v.debugName ? v.debugName : "") + "' of '" + name + "'";
+    if (textureIsView) fail(what, "a view of a view: make it from the texture");
+    if (t.sampleCount > 1) fail(what, "multisampled textures have no views");
+    using D = TextureDimension;
+    const D kind = v.dimension.value_or(t.dimension);
+    const Format format = v.format == Format::Undefined ? t.format : v.format;
+    if (format != t.format && std::find(t.viewFormats.begin(), t.viewFormats.end(), format) == t.viewFormats.end())
+        fail(what, std::string("format ") + std::string(formatInfo(format).name) + " is not the texture's " +
+                       std::string(formatInfo(t.format).name) + " nor in its TextureDesc::viewFormats");
+    if (v.baseMip >= t.mipLevels || v.mipCount > t.mipLevels - v.baseMip)
+        fail(what, "mips " + std::to_string(v.baseMip) + " + " + std::to_string(v.mipCount) + " exceed the texture's " +
+                       std::to_string(t.mipLevels));
+    const bool is3D = t.dimension == D::Texture3D;
+    const bool allowed = is3D ? kind == D::Texture3D
+                              : kind != D::Texture3D && (t.dimension != D::Texture2D || kind == D::Texture2D || kind == D::Texture2DArray);
+    if (!allowed)
+        fail(what, std::string("a ") + textureDimensionName(t.dimension) + " cannot be seen as a " + textureDimensionName(kind));
+    const uint32_t layers = is3D ? 1 : t.depthOrLayers;
+    if (is3D && (v.baseLayer || v.layerCount > 1)) fail(what, "a 3D view takes every slice (baseLayer and layerCount 0)");
+    if (v.baseLayer >= layers || v.layerCount > layers - v.baseLayer)
+        fail(what, "layers " + std::to_string(v.baseLayer) + " + " + std::to_string(v.layerCount) + " exceed the texture's " +
+                       std::to_string(layers));
+    const uint32_t count = v.layerCount ? v.layerCount : layers - v.baseLayer;
+    if (kind == D::Texture2D && count != 1) fail(what, "a Texture2D view has one layer, not " + std::to_string(count));
+    if ((kind == D::TextureCube && count != 6) || (kind == D::TextureCubeArray && count % 6))
+        fail(what, std::string("a ") + textureDimensionName(kind) + " view takes 6 layers per cube, not " + std::to_string(count));
+    if (isCube(kind) && t.width != t.height) fail(what, "a cube view needs a square texture");
+    TextureDesc d = t;
+    d.dimension = kind;
+    d.format = format;
+    const Extent3 e = mipExtent(t, v.baseMip);
+    d.width = e.width, d.height = e.height;
+    d.depthOrLayers = is3D ? e.depthOrLayers : count;
+    d.mipLevels = v.mipCount ? v.mipCount : t.mipLevels - v.baseMip;
+    d.heap = {}, d.heapOffset = 0;
+    d.viewFormats.clear();
+    d.debugName = nullptr;
+    if (!identitySwizzle(v.swizzle)) {  // Vulkan: swizzled views are sampled, never attachments or storage
+        if (!any(t.usage, TextureUsage::Sampled)) fail(what, "a swizzled view is sampled, and the texture has no Sampled usage");
+        d.usage = TextureUsage::Sampled;
+    }
+    return d;
+}
+
+void viewsAlive(const std::string& name, uint32_t views) {
+    fail("destroy " + label("texture", name.c_str()), std::to_string(views) + " view(s) of it are alive: destroy them first");
+}
+
+void notAView(bool isView, const std::string& name, const char* what) {
+    if (isView)
+        fail(what, label("texture view", name.c_str()) + " is for binding: copies, uploads, readback, mip generation "
+                                                        "and barriers take its texture");
 }
 
 TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what) {

@@ -554,12 +554,16 @@ std::vector<CaseImage> regionCopies(Device& d) {
         FE_CONFORMANCE_CHECK(bytes[i] == want, ("copyTextureToBuffer byte " + std::to_string(i) + " is " +
                                                 std::to_string(bytes[i]) + ", expected " + std::to_string(want)).c_str());
     }
-    Image floatBits{64, 64, Format::R32U, std::vector<uint8_t>(64 * 64 * 4, 0)};
+    // Compared byte by byte (as RGBA8 images of the same bytes): the copy moves bits, not values.
+    Image floatBits{64, 64, Format::RGBA8, std::vector<uint8_t>(64 * 64 * 4, 0)};
     std::memcpy(floatBits.data.data(), reinterpret_cast<const uint8_t*>(values.data()) + 32 * 64 * 4, 32 * 64 * 4);
-    Image srgbRaw = d.readTexture(srgb);
-    srgbRaw.format = Format::RGBA8;  // compared as the bytes the copy moved
+    auto asBytes = [](Image i) {  // 4-byte texels compared as the bytes the copy moved
+        i.format = Format::RGBA8;
+        return i;
+    };
+    Image srgbRaw = asBytes(d.readTexture(srgb));
     std::vector<CaseImage> images = {exact("RGBA8 box copied into RGBA8_SRGB", srgbRaw, patternImage(64, 64, 40, 50, 8, 4, 0, -24, -42)),
-                                     exact("R32F rows copied into R32U", d.readTexture(uints), floatBits)};
+                                     exact("R32F rows copied into R32U", asBytes(d.readTexture(uints)), floatBits)};
 
     auto list = d.createCommandList();
     expectError([&] { list->copyTextureToBuffer(readback, {.bytesPerRow = 30}, source, box); },
@@ -605,6 +609,218 @@ std::vector<CaseImage> textureCopyBetweenMips(Device& d) {
     return images;
 }
 
+// Solid RGBA8 colours, exact in 8 bits, one per mip level or layer.
+constexpr std::array<std::array<uint8_t, 4>, 6> kSolid = {{{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255},
+                                                           {255, 255, 255, 255}, {255, 0, 255, 255}, {0, 255, 255, 255}}};
+Texel solidTexel(size_t i) { return {kSolid[i][0] / 255.0f, kSolid[i][1] / 255.0f, kSolid[i][2] / 255.0f, kSolid[i][3] / 255.0f}; }
+// Fills every texel of one subresource of an RGBA8 texture with kSolid[colour].
+void fillSolid(Device& d, TextureHandle t, Subresource at, size_t colour) {
+    const TextureDesc& desc = d.desc(t);
+    const uint32_t w = std::max(1u, desc.width >> at.mipLevel), h = std::max(1u, desc.height >> at.mipLevel);
+    std::vector<std::array<uint8_t, 4>> texels(size_t(w) * h, kSolid[colour]);
+    d.writeTexture(t, at, bytesOf(texels));
+}
+Image solidImage(size_t colour, uint32_t w = kCaseSize, uint32_t h = kCaseSize) { return solid(Format::RGBA8, solidTexel(colour), w, h); }
+
+// One pass drawing a full-screen triangle into `target` (a texture or view) that samples
+// `source` with textured_uv.frag at uv = pixel / 64 and level of detail `lod`.
+void sampleInto(Device& d, TextureHandle target, Format format, TextureHandle source, float lod = 0) {
+    DeviceObjects o(d);
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/textured_uv.frag"),
+         .colorFormats = {format}, .debugName = "sample into"}));
+    const std::array<float, 8> params = {1, 1, 0, 0, 0, lod, 0, 0};
+    const BufferHandle ubo = o.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+    const SamplerHandle nearest = o.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest,
+                                                         .mipFilter = MipFilter::Nearest, .addressU = AddressMode::ClampToEdge,
+                                                         .addressV = AddressMode::ClampToEdge}));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = target}}, .debugName = "sample into"});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, ubo);
+    cmd->setTexture(1, source, nearest);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+}
+
+// A view of mips 2 and 3 sampled at its levels 0 and 1; then one mip sampled through a view of
+// it while the next one is drawn through another (a downsampling chain's step).
+std::vector<CaseImage> viewMipRange(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle chain = o.add(d.createTexture({.width = 64, .height = 64, .mipLevels = 4,
+                                                       .usage = TextureUsage::Sampled | TextureUsage::RenderTarget |
+                                                                TextureUsage::CopyDst | TextureUsage::CopySrc,
+                                                       .debugName = "chain"}));
+    for (uint32_t m = 0; m < 4; ++m) fillSolid(d, chain, {m, 0}, m);
+    const TextureHandle tail = o.add(d.createTextureView(chain, {.baseMip = 2, .mipCount = 2, .debugName = "mips 2-3"}));
+    FE_CONFORMANCE_CHECK(d.desc(tail).width == 16 && d.desc(tail).mipLevels == 2, "the view's desc is its base mip's size and count");
+    std::vector<CaseImage> images;
+    for (uint32_t level : {0u, 1u}) {
+        const TextureHandle target = caseTarget(o);
+        sampleInto(d, target, Format::RGBA8, tail, float(level));
+        images.push_back(exact("view level " + std::to_string(level) + " is mip " + std::to_string(level + 2), d.readTexture(target),
+                               solidImage(level + 2)));
+    }
+    const TextureHandle mip0 = o.add(d.createTextureView(chain, {.mipCount = 1, .debugName = "mip 0"}));
+    const TextureHandle mip1 = o.add(d.createTextureView(chain, {.baseMip = 1, .mipCount = 1, .debugName = "mip 1"}));
+    sampleInto(d, mip1, Format::RGBA8, mip0);
+    images.push_back(exact("mip 1 drawn from mip 0", d.readTexture(chain, {1, 0}), solidImage(0, 32, 32)));
+    images.push_back(exact("mip 2 untouched", d.readTexture(chain, {2, 0}), solidImage(2, 16, 16)));
+    return images;
+}
+
+// Layers as textures: one layer of an array as a Texture2D, two layers as a smaller array, six
+// layers of a square array as a cube, and one face of a cube as a Texture2D.
+std::vector<CaseImage> viewLayerAndFace(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle array = o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .width = 32, .height = 32,
+                                                       .depthOrLayers = 6, .debugName = "array"}));
+    const TextureHandle cube = o.add(d.createTexture({.dimension = TextureDimension::TextureCube, .width = 32, .height = 32,
+                                                      .depthOrLayers = 6, .debugName = "cube"}));
+    for (uint32_t l = 0; l < 6; ++l) fillSolid(d, array, {0, l}, l), fillSolid(d, cube, {0, l}, 5 - l);
+    std::vector<CaseImage> images;
+    auto sampled = [&](const char* shader, TextureHandle view) { return FullscreenSampler(d, shader).draw(d, view, Format::RGBA8); };
+    const TextureHandle layer4 = o.add(d.createTextureView(array, {.dimension = TextureDimension::Texture2D, .baseLayer = 4, .layerCount = 1}));
+    images.push_back(exact("array layer 4 as a Texture2D", sampled("conformance/textured.frag", layer4), solidImage(4)));
+    const TextureHandle pair = o.add(d.createTextureView(array, {.baseLayer = 2, .layerCount = 2}));
+    images.push_back(exact("layers 2-3 as an array", sampled("conformance/sample_array.frag", pair),
+                           expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) { return solidTexel(x < 32 && y < 32 ? 2 : 3); })));
+    const TextureHandle asCube = o.add(d.createTextureView(array, {.dimension = TextureDimension::TextureCube}));
+    images.push_back(exact("six array layers as a cube", sampled("conformance/sample_cube.frag", asCube),
+                           expectImage(Format::RGBA8, [](uint32_t x, uint32_t) { return solidTexel(size_t((x + 0.5) * 6.0 / 64.0)); })));
+    const TextureHandle face1 = o.add(d.createTextureView(cube, {.dimension = TextureDimension::Texture2D, .baseLayer = 1, .layerCount = 1}));
+    images.push_back(exact("cube face 1 as a Texture2D", sampled("conformance/textured.frag", face1), solidImage(4)));
+
+    expectError([&] { d.createTextureView(array, {.dimension = TextureDimension::Texture2D}); }, "a Texture2D view has one layer, not 6");
+    expectError([&] { d.createTextureView(array, {.dimension = TextureDimension::TextureCube, .baseLayer = 1}); },
+                "a TextureCube view takes 6 layers per cube, not 5");
+    expectError([&] { d.createTextureView(layer4, {}); }, "a view of a view");
+    expectError([&] { d.destroy(array); }, "view(s) of it are alive: destroy them first");
+    expectError([&] { auto c = d.createCommandList(); c->generateMips(layer4); }, "is for binding");
+    expectError([&] { d.readTexture(face1); }, "is for binding");
+    return images;
+}
+
+// An sRGB texture read through a UNORM view gives its stored bytes, not decoded values; a UNORM
+// render target drawn through an sRGB view stores encoded values. Formats not listed in
+// viewFormats, or not compatible, are refused.
+std::vector<CaseImage> viewFormatSrgbUnorm(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle srgb = o.add(d.createTexture({.format = Format::RGBA8_SRGB, .width = 64, .height = 64,
+                                                      .viewFormats = {Format::RGBA8}, .debugName = "srgb"}));
+    std::vector<std::array<uint8_t, 4>> texels(64 * 64, {128, 64, 255, 255});
+    d.writeTexture(srgb, {}, bytesOf(texels));
+    const TextureHandle raw = o.add(d.createTextureView(srgb, {.format = Format::RGBA8, .debugName = "unorm view"}));
+    FullscreenSampler sampler(d, "conformance/textured.frag");
+    std::vector<CaseImage> images;
+    images.push_back(exact("UNORM view of sRGB texels: the bytes", sampler.draw(d, raw, Format::RGBA8),
+                           expectImage(Format::RGBA8, [](uint32_t, uint32_t) -> Texel { return {128 / 255.0f, 64 / 255.0f, 1, 1}; })));
+    images.push_back(drawn8("the sRGB texture itself: decoded", sampler.draw(d, srgb, Format::RGBA8),
+                            expectImage(Format::RGBA8, [](uint32_t, uint32_t) -> Texel {
+                                auto decode = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+                                return {decode(128 / 255.0f), decode(64 / 255.0f), 1, 1};
+                            })));
+    const TextureHandle unorm = o.add(d.createTexture({.width = 64, .height = 64,
+                                                       .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                                                       .viewFormats = {Format::RGBA8_SRGB}, .debugName = "unorm target"}));
+    const TextureHandle encoded = o.add(d.createTextureView(unorm, {.format = Format::RGBA8_SRGB}));
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+         .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8_SRGB}, .debugName = "srgb writer"}));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = encoded}}});
+    cmd->setPipeline(p);
+    cmd->setConstants(pixelQuad(0, 0, 64, 64, {0.5f, 0.2f, 1, 1}));
+    cmd->draw(4);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    auto encode = [](float c) { return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f; };
+    images.push_back(drawn8("drawn through an sRGB view: encoded", d.readTexture(unorm),
+                            expectImage(Format::RGBA8, [&](uint32_t, uint32_t) -> Texel { return {encode(0.5f), encode(0.2f), 1, 1}; })));
+    expectError([&] { d.createTextureView(unorm, {.format = Format::R32F}); }, "is not the texture's RGBA8 nor in its TextureDesc::viewFormats");
+    expectError([&] { d.createTexture({.width = 4, .height = 4, .viewFormats = {Format::RGBA16F}, .debugName = "bad"}); },
+                "view format RGBA16F is not compatible with RGBA8");
+    return images;
+}
+
+// A swizzled view reorders and replaces channels when sampled (B, G, R, 1; then 0, 0, 0, A; then
+// R, R, R, 1), the texture unchanged; a swizzled view cannot be drawn into.
+std::vector<CaseImage> viewSwizzle(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle t = o.add(d.createTexture({.width = 64, .height = 64,
+                                                   .usage = TextureUsage::Sampled | TextureUsage::RenderTarget | TextureUsage::CopyDst,
+                                                   .debugName = "rgba"}));
+    std::vector<std::array<uint8_t, 4>> texels(64 * 64, {40, 80, 120, 160});
+    d.writeTexture(t, {}, bytesOf(texels));
+    using W = Swizzle;
+    const std::array<std::pair<std::array<Swizzle, 4>, std::array<uint8_t, 4>>, 4> cases = {{
+        {{W::Identity, W::Identity, W::Identity, W::Identity}, {40, 80, 120, 160}},
+        {{W::B, W::G, W::R, W::One}, {120, 80, 40, 255}},
+        {{W::Zero, W::Zero, W::Zero, W::A}, {0, 0, 0, 160}},
+        {{W::R, W::R, W::R, W::One}, {40, 40, 40, 255}},
+    }};
+    FullscreenSampler sampler(d, "conformance/textured.frag");
+    std::vector<CaseImage> images;
+    for (const auto& [swizzle, want] : cases) {
+        const TextureHandle view = o.add(d.createTextureView(t, {.swizzle = swizzle}));
+        images.push_back(exact("swizzle " + std::to_string(want[0]) + "," + std::to_string(want[1]) + "," + std::to_string(want[2]) +
+                                   "," + std::to_string(want[3]),
+                               sampler.draw(d, view, Format::RGBA8),
+                               expectImage(Format::RGBA8, [w = want](uint32_t, uint32_t) -> Texel {
+                                   return {w[0] / 255.0f, w[1] / 255.0f, w[2] / 255.0f, w[3] / 255.0f};
+                               })));
+    }
+    const TextureHandle swizzled = o.add(d.createTextureView(t, {.swizzle = {W::B, W::G, W::R, W::A}}));
+    auto cmd = d.createCommandList();
+    expectError([&] { cmd->beginRenderPass({.colors = {{.texture = swizzled}}}); }, "RenderTarget");
+    return images;
+}
+
+// Views as attachments and storage: layer 2 of an array drawn through a Texture2D view (its
+// neighbours untouched), and mip 1 of a texture written by a compute shader through a view bound
+// as a storage image.
+std::vector<CaseImage> viewAsAttachment(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle array = o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .width = 64, .height = 64,
+                                                       .depthOrLayers = 4, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                                                       .debugName = "layers"}));
+    const TextureHandle layer2 = o.add(d.createTextureView(array, {.dimension = TextureDimension::Texture2D, .baseLayer = 2, .layerCount = 1}));
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+         .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8}, .debugName = "layer writer"}));
+    const TextureHandle image = o.add(d.createTexture({.format = Format::RGBA32F, .width = 128, .height = 128, .mipLevels = 2,
+                                                       .usage = TextureUsage::Storage | TextureUsage::CopySrc, .debugName = "mips"}));
+    const TextureHandle level1 = o.add(d.createTextureView(image, {.baseMip = 1, .mipCount = 1, .debugName = "mip 1"}));
+    const PipelineHandle fill = o.add(d.createComputePipeline(
+        {.computeShader = registryShader(o, ShaderStage::Compute, "conformance/fill.comp"), .debugName = "fill"}));
+    const BufferHandle values = o.add(d.createBuffer({.size = 64 * 64 * 4, .usage = BufferUsage::Storage}));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = layer2, .clear = {0.25f, 0.5f, 0.75f, 1}}}});
+    cmd->setPipeline(p);
+    cmd->setConstants(pixelQuad(16, 16, 48, 48, solidTexel(1)));
+    cmd->draw(4);
+    cmd->endRenderPass();
+    cmd->setPipeline(fill);
+    cmd->setStorageBuffer(0, values);
+    cmd->setStorageTexture(1, level1);
+    cmd->dispatch(8, 8);
+    d.wait(d.submit(*cmd));
+    const Texel clear = {0.25f, 0.5f, 0.75f, 1};
+    std::vector<CaseImage> images = {
+        drawn8("layer 2 drawn through its view", d.readTexture(array, {0, 2}), expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
+                   return x >= 16 && x < 48 && y >= 16 && y < 48 ? solidTexel(1) : clear;
+               })),
+        exact("layer 1 untouched", d.readTexture(array, {0, 1}), solid(Format::RGBA8, {0, 0, 0, 0})),
+        within("mip 1 stored through a view", d.readTexture(image, {1, 0}), expectImage(Format::RGBA32F, [](uint32_t x, uint32_t y) -> Texel {
+                   return {float(x) / 64.0f, float(y) / 64.0f, 0.5f, 1};
+               }), 0.0, "exact float stores")};
+    return images;
+}
+
 }  // namespace
 
 std::vector<Case> portCases() {
@@ -620,6 +836,11 @@ std::vector<Case> portCases() {
         {"region_upload_row_pitch", regionUploadRowPitch},
         {"region_copies", regionCopies},
         {"texture_copy_between_mips", textureCopyBetweenMips},
+        {"view_mip_range", viewMipRange},
+        {"view_layer_and_face", viewLayerAndFace},
+        {"view_format_srgb_unorm", viewFormatSrgbUnorm},
+        {"view_swizzle", viewSwizzle},
+        {"view_as_attachment", viewAsAttachment},
     };
 }
 

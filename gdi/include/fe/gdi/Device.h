@@ -272,6 +272,28 @@ struct TextureDesc {
     // null: the texture gets memory of its own.
     HeapHandle heap;
     uint64_t heapOffset = 0;
+    // Formats, besides `format`, that views of this texture may have (formatsCompatible with it:
+    // its sRGB/UNORM pair, or another uncompressed colour format of the same texel size).
+    std::vector<Format> viewFormats;
+    const char* debugName = nullptr;
+};
+
+// What a view's channel reads (TextureViewDesc::swizzle): itself, a constant, or another channel.
+enum class Swizzle : uint8_t { Identity, Zero, One, R, G, B, A };
+
+// A view of a texture (Device::createTextureView): a range of its mips and layers, seen as
+// another kind or format. The view is a TextureHandle, bound wherever a texture is: sampled,
+// storage (one mip of the view), attachment (mip and layer of the view). Kinds: Texture2D as
+// 2D or 2D array; 2D array and cube (array) as 2D, 2D array, cube or cube array (a cube view is
+// 6 layers of a square texture); 3D as 3D. A swizzled view is for sampling only. Copies,
+// uploads, readback, mip generation and barriers address the texture itself, not its views;
+// a texture's views are destroyed before it.
+struct TextureViewDesc {
+    std::optional<TextureDimension> dimension;  // default: the texture's
+    Format format = Format::Undefined;          // default: the texture's; else one of its viewFormats
+    uint32_t baseMip = 0, mipCount = 0;         // 0: to the last mip
+    uint32_t baseLayer = 0, layerCount = 0;     // 0: to the last layer; 3D views take every slice
+    std::array<Swizzle, 4> swizzle{};           // what r, g, b and a return
     const char* debugName = nullptr;
 };
 
@@ -957,6 +979,8 @@ public:
     // Initial data, when given, must be exactly desc.size bytes.
     virtual BufferHandle createBuffer(const BufferDesc& desc, ByteSpan initialData = {}) = 0;
     virtual TextureHandle createTexture(const TextureDesc& desc) = 0;
+    // A view of `texture` (TextureViewDesc); desc(view) describes it (its size is the base mip's).
+    virtual TextureHandle createTextureView(TextureHandle texture, const TextureViewDesc& desc) = 0;
     virtual SamplerHandle createSampler(const SamplerDesc& desc) = 0;
     virtual ShaderHandle createShader(const ShaderDesc& desc) = 0;
     virtual PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc) = 0;

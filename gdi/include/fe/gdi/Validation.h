@@ -21,6 +21,17 @@ struct Extent3 {
     uint32_t width = 1, height = 1, depthOrLayers = 1;
 };
 Extent3 mipExtent(const TextureDesc& d, uint32_t mipLevel);
+// A view checked against its texture (not itself a view); returns the view's TextureDesc.
+TextureDesc textureView(const TextureDesc& texture, const std::string& name, bool textureIsView, const TextureViewDesc& v);
+// destroy() of a texture whose views are alive.
+[[noreturn]] void viewsAlive(const std::string& name, uint32_t views);
+// Views are bound, not copied: copies, uploads, readback, mips and barriers take the texture.
+void notAView(bool isView, const std::string& name, const char* what);
+inline bool identitySwizzle(const std::array<Swizzle, 4>& s) {
+    for (size_t i = 0; i < 4; ++i)
+        if (s[i] != Swizzle::Identity && s[i] != Swizzle(uint8_t(Swizzle::R) + i)) return false;
+    return true;
+}
 // A TextureRegion checked against the texture and resolved (0 extents filled in): in its mip
 // level, not multisampled, no depth format, block-aligned when compressed.
 TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what);
