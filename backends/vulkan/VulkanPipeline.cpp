@@ -267,8 +267,10 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ri.depthAttachmentFormat = gdi::formatInfo(d.depthFormat).hasDepth ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
     ri.stencilAttachmentFormat = gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
 
+    // The constants range covers only the stages that read the block: drivers update per stage.
     Pipeline p = makeLayout(device_, bindings, d.debugName, constantBytes,
-                            VK_SHADER_STAGE_VERTEX_BIT | (fs ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
+                            (vs.iface.pushConstantBytes ? VK_SHADER_STAGE_VERTEX_BIT : 0) |
+                                (fs && fs->iface.pushConstantBytes ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
     p.signature = gdi::validate::pipelineSignature(d);
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
     p.stencilReference = d.depthStencil.stencilReference;
