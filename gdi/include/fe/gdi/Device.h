@@ -58,6 +58,27 @@
 //    length must be exactly what the call reads: createBuffer's initial data is desc.size bytes,
 //    writeTexture's the subresource's textureByteSize.
 //
+// What ports need (issue 26), the same on every backend:
+//   cmd->setConstants(drawData);          // per-draw bytes (<= 128): FE_CONSTANTS(Name) { ... } in GLSL
+//   device->createGraphicsPipeline({..., .specialization = {SpecializationConstant::of(0, 4u)}});
+//   auto mip1 = device->createTextureView(chain, {.baseMip = 1, .mipCount = 1});  // bind anywhere
+//   device->writeTextureRegion(tex, {.x = 8, .y = 8, .width = 16, .height = 16}, bytes, {.bytesPerRow = 256});
+//   cmd->copyTexture(tex, {.mipLevel = 1}, tex, {.width = 32, .height = 32});   // regions, mips, layers
+//   auto occlusion = device->createQuerySet({.type = QueryType::Occlusion, .count = 64});
+//   cmd->beginQuery(occlusion, 0); ... cmd->endQuery(occlusion, 0);
+//   device->queryResults(occlusion, 0, 1, samples);   // false until its submission completed
+//   device->openPipelineCache("pipelines.bin");         // or DeviceCreateDesc::pipelineCache
+//   auto capture = FrameCapture::load("frame");         // RenderDoc (Backend.h), before createDevice
+//  - Per-draw constants: std140, one block per stage, at most kMaxConstantBytes; each recording
+//    starts with zeros and values persist across setPipeline. Vulkan push constants; GL a uniform
+//    block at binding 64 fed from a ring (slots stay 0..63 for the application).
+//  - Regions and layouts (TextureRegion, TexelLayout): offsets multiples of 4 and of the texel
+//    size, bytesPerRow a multiple of the texel size, compressed data tightly packed.
+//  - Views: TextureDesc::viewFormats lists the other formats a view may take; copies, uploads,
+//    readback and barriers take the texture, not a view; views go before their texture.
+//  - Queries: a query is written once per submission (the device resets it before the
+//    submission runs); occlusion queries inside one pass; none in secondary lists.
+//
 // Windows (vulkan-glfw, gl-glfw; Backend.h): show a texture on screen with present().
 //   auto device = fe::gdi::createDevice({.backend = "auto", .window = true, .vsync = true});
 //   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
