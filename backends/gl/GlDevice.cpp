@@ -1011,7 +1011,7 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
     return thread_.run([&]() -> gdi::Image {
         loss_.check("readTexture");
         Texture& t = texture(h);
-    gdi::validate::notAView(t.viewOf != 0, t.label, "readTexture");
+        gdi::validate::notAView(t.viewOf != 0, t.label, "readTexture");
         gdi::validate::readable(t.desc, at, "readTexture", t.label);
         const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
         gdi::Image img;
