@@ -5,7 +5,7 @@
 # leak, a timeout or a sanitizer report stops the harness, leaves the input in
 # build-fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
 #   tools/fuzz/run.sh [SECONDS] [HARNESS...]     HARNESS: GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer
-#                                                PipelineCacheFuzzer
+#                                                PipelineCacheFuzzer CaptureStreamFuzzer
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root="$(pwd)"
@@ -13,7 +13,7 @@ tools/install-deps.sh
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFE_FUZZ=ON -DFE_BUILD_TESTS=OFF \
   -DFE_BUILD_BENCHMARKS=OFF -DFE_BUILD_EXAMPLES=OFF >/dev/null
@@ -30,6 +30,7 @@ for h in "${harnesses[@]}"; do
   case "$h" in
     CliFuzzer) seeds=(tests/fuzz/seeds/cli) ;;
     PipelineCacheFuzzer) seeds=(tests/fuzz/seeds/pipeline_cache) ;;
+    CaptureStreamFuzzer) seeds=(tests/fuzz/seeds/capture_stream) ;;
     *) seeds=(tests/fuzz/seeds/gltf)
        if [ -d ../shared/assets ]; then
          mkdir -p build-fuzz/samples

@@ -133,6 +133,26 @@ public:
         }
     }
 
+    // Raw form, for capture files (CaptureStream.h): f(bytes) for each record, its header included,
+    // exactly as push() laid it out (payload offsets are relative, so the bytes move as they are).
+    template <class F>
+    void forEachRaw(F&& f) const {
+        for (size_t i = 0; i < blocks_.size(); ++i) {
+            const Block& b = blocks_[i];
+            const std::byte* end = i == current_ ? cur_ : b.data.get() + b.used;
+            for (const std::byte* p = b.data.get(); p < end;) {
+                const auto* h = reinterpret_cast<const Header*>(p);
+                f(std::span<const std::byte>(p, h->size));
+                p += h->size;
+            }
+        }
+    }
+    // Appends a record given as forEachRaw's bytes (checked by the caller: CaptureStream.cpp).
+    void pushRaw(std::span<const std::byte> bytes) {
+        std::memcpy(reserve(bytes.size()), bytes.data(), bytes.size());
+        ++count_;
+    }
+
     // Secondary lists: a stream owns the streams its ExecuteSecondary records name (by index),
     // handed over whole (no copy) when a primary list executes them.
     uint32_t adopt(std::unique_ptr<CommandStream> child) {
