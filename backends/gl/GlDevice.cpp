@@ -427,6 +427,7 @@ gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::
             if (value != kChannels[i]) gl_.TextureParameteri(t.name, kParams[i], value);
         }
         if (!t.label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, t.label.c_str());
+        std::lock_guard lock(viewsMutex_);
         ++parent.views;
         return textures_.add(std::move(t));
     });
@@ -782,6 +783,7 @@ void GlDevice::destroy(gdi::BufferHandle h) {
 }
 void GlDevice::destroy(gdi::TextureHandle h) {
     if (const Texture* live = h ? textures_.find(h) : nullptr) {
+        std::lock_guard lock(viewsMutex_);  // views are counted on the context thread too
         if (live->views) gdi::validate::viewsAlive(live->label, live->views);
         if (Texture* parent = live->viewOf ? textures_.find({live->viewOf}) : nullptr) --parent->views;
     }

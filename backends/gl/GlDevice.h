@@ -248,6 +248,7 @@ private:
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
     gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_;
     std::mutex queriesMutex_;
+    std::mutex viewsMutex_;  // Texture::views
     // Program binaries by key (shaders, entry points, specialization), context thread only.
     std::map<uint64_t, gdi::ProgramBinary> programs_;
     gdi::PipelineCacheStats cacheStats_;

@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include "CaseSupport.h"
+#include "fe/gdi/CaptureStream.h"
+#include "fe/gdi/CommandRecorder.h"
 #include "fe/gdi/PipelineCacheFile.h"
 
 namespace fe::conformance {
@@ -821,6 +823,74 @@ std::vector<CaseImage> viewAsAttachment(Device& d) {
     return images;
 }
 
+// Capture groundwork (issue 27): a list recorded through RecordingCommandList (constants, a
+// debug group and label, a pass of two secondary lists, a region copy, an occlusion query) is
+// turned into capture bytes and back, then applied to a fresh list: the same picture, the same
+// copy and the same query count as the live submission.
+std::vector<CaseImage> recordedListReplays(Device& d) {
+    DeviceObjects o(d);
+    const PipelineHandle quad = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+         .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8}, .debugName = "recorded quads"}));
+    const TextureHandle target = o.add(d.createTexture({.width = 64, .height = 64,
+                                                        .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = "target"}));
+    const BufferHandle copy = o.add(d.createBuffer({.size = 16 * 16 * 4, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+    const QuerySetHandle occlusion = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 1}));
+    auto frame = [&](CommandList& list, auto&& secondary) {
+        list.pushDebugGroup("recorded frame");
+        list.beginRenderPass({.colors = {{.texture = target, .clear = {0.1f, 0.2f, 0.3f, 1}}}, .debugName = "quads"});
+        list.setPipeline(quad);
+        list.beginQuery(occlusion, 0);
+        for (uint32_t i = 0; i < 8; ++i) {
+            list.setConstants(pixelQuad(8 * i, 8 * i, 8 * i + 8, 64, solidTexel(i % 6)));
+            list.draw(4);
+        }
+        list.endQuery(occlusion, 0);
+        list.insertDebugLabel("quads drawn");
+        list.endRenderPass();
+        const RenderPassDesc pass{.colors = {{.texture = target, .load = LoadOp::Load}}, .secondaryLists = true};
+        list.beginRenderPass(pass);
+        std::array<std::unique_ptr<CommandList>, 2> parts = {secondary(), secondary()};
+        for (uint32_t k = 0; k < 2; ++k) {
+            parts[k]->beginSecondary(pass);
+            parts[k]->setPipeline(quad);
+            parts[k]->setConstants(pixelQuad(40 + 8 * k, 0, 48 + 8 * k, 16, solidTexel(5 - k)));
+            parts[k]->draw(4);
+            parts[k]->endSecondary();
+        }
+        list.executeSecondary(std::array<CommandList*, 2>{parts[0].get(), parts[1].get()});
+        list.endRenderPass();
+        list.copyTextureToBuffer(copy, {}, target, {.x = 40, .width = 16, .height = 16, .depth = 1});
+        list.popDebugGroup();
+    };
+    RecordingCommandList recorder(d, d.createCommandList());
+    frame(recorder, [&] { return std::make_unique<RecordingCommandList>(d, d.createCommandList()); });
+    d.wait(d.submit(recorder.inner()));
+    const Image live = d.readTexture(target);
+    const std::vector<uint8_t> liveCopy = d.readBuffer(copy, 0, 16 * 16 * 4);
+    std::array<uint64_t, 1> liveSamples{};
+    FE_CONFORMANCE_CHECK(d.queryResults(occlusion, 0, 1, liveSamples), "the live query has its result");
+
+    const std::vector<std::byte> bytes = encodeCommandStream(*recorder.takeStream());
+    const auto decoded = decodeCommandStream(bytes);
+    {  // clear what the live frame left, so the replay has to draw everything again
+        auto wipe = d.createCommandList();
+        wipe->beginRenderPass({.colors = {{.texture = target}}});
+        wipe->endRenderPass();
+        wipe->clearBuffer(copy);
+        d.wait(d.submit(*wipe));
+    }
+    auto replay = d.createCommandList();
+    applyStream(*decoded, d, *replay);
+    d.wait(d.submit(*replay));
+    std::array<uint64_t, 1> replayedSamples{};
+    FE_CONFORMANCE_CHECK(d.queryResults(occlusion, 0, 1, replayedSamples) && replayedSamples == liveSamples,
+                         "the replayed occlusion query counts what the live one did");
+    FE_CONFORMANCE_CHECK(d.readBuffer(copy, 0, 16 * 16 * 4) == liveCopy, "the replayed region copy holds the live copy's bytes");
+    return {exact("replayed from capture bytes, against the live frame", d.readTexture(target), live)};
+}
+
 }  // namespace
 
 std::vector<Case> portCases() {
@@ -841,6 +911,7 @@ std::vector<Case> portCases() {
         {"view_format_srgb_unorm", viewFormatSrgbUnorm},
         {"view_swizzle", viewSwizzle},
         {"view_as_attachment", viewAsAttachment},
+        {"recorded_list_replays", recordedListReplays},
     };
 }
 
