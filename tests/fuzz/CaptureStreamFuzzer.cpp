@@ -4,9 +4,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 #include <span>
 #include <vector>
 
+#include "FuzzSupport.h"
 #include "fe/gdi/CaptureStream.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -14,7 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         const auto stream = fe::gdi::decodeCommandStream(bytes);
         const std::vector<std::byte> again = fe::gdi::encodeCommandStream(*stream);
-        if (fe::gdi::encodeCommandStream(*fe::gdi::decodeCommandStream(again)) != again) std::abort();
+        FUZZ_CHECK(fe::gdi::encodeCommandStream(*fe::gdi::decodeCommandStream(again)) == again,
+                   "an accepted stream does not re-encode to the same bytes", std::to_string(again.size()) + " bytes");
     } catch (const fe::gdi::CaptureError&) {
     }
     return 0;

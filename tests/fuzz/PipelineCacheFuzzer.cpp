@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "FuzzSupport.h"
 #include "fe/gdi/PipelineCacheFile.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -23,11 +24,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         file.assign(rest.begin(), rest.end());
     }
     const fe::gdi::PipelineCacheLoad load = fe::gdi::parsePipelineCache(file, identity);
+    FUZZ_CHECK(load.payload.empty() || load.warning.empty(), "a file both loaded and ignored", load.warning);
+    if (data[0] & 1 && !(data[0] & 6))  // an intact file made here must load
+        FUZZ_CHECK(load.payload.size() == rest.size() && load.warning.empty(), "an intact file was ignored", load.warning);
     if (!load.payload.empty()) {
         std::map<uint64_t, fe::gdi::ProgramBinary> programs;
         std::string why;
-        if (fe::gdi::decodeProgramBinaries(load.payload, programs, why))
-            (void)fe::gdi::encodeProgramBinaries(programs);  // round trip of what was accepted
+        if (fe::gdi::decodeProgramBinaries(load.payload, programs, why)) {
+            std::map<uint64_t, fe::gdi::ProgramBinary> again;
+            FUZZ_CHECK(fe::gdi::decodeProgramBinaries(fe::gdi::encodeProgramBinaries(programs), again, why) &&
+                           again.size() == programs.size(),
+                       "accepted programs do not round-trip", why);
+        }
     }
     return 0;
 }
