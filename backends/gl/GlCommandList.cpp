@@ -301,20 +301,16 @@ void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::Textu
     outside("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyBufferToTexture");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
-    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyBufferToTexture");
-    stream_->push(cmd::CopyBufferToTextureRegion{dst, r, src, l.layout});
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, region, layout, "copyBufferToTexture");
+    stream_->push(cmd::CopyBufferToTextureRegion{dst, r, src, l});
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
                                         const gdi::TextureRegion& region) {
     outside("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "copyTextureToBuffer");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
-    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyTextureToBuffer");
-    stream_->push(cmd::CopyTextureToBufferRegion{dst, l.layout, src, r});
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, region, layout, "copyTextureToBuffer");
+    stream_->push(cmd::CopyTextureToBufferRegion{dst, l, src, r});
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
                                 const gdi::TextureRegion& srcRegion) {

@@ -915,11 +915,9 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::T
     outsidePass("copyBufferToTexture");
     Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyBufferToTexture");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyBufferToTexture");
-    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyBufferToTexture");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, region, layout, "copyBufferToTexture");
     barrierIfWritten();
-    const VkBufferImageCopy c = regionCopy(t.desc, r, l.layout);
+    const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
     written_ = true;
 }
@@ -929,11 +927,9 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::Te
     outsidePass("copyTextureToBuffer");
     Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "copyTextureToBuffer");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "copyTextureToBuffer");
-    gdi::validate::bufferRange(b.desc, l.layout.offset, l.end - l.layout.offset, "copyTextureToBuffer");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, region, layout, "copyTextureToBuffer");
     barrierIfWritten();
-    const VkBufferImageCopy c = regionCopy(t.desc, r, l.layout);
+    const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &c);
     written_ = true;
     if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);

@@ -218,6 +218,14 @@ ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLay
     return r;
 }
 
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const TextureRegion& region,
+                               const TexelLayout& layout, const char* what) {
+    const TextureRegion r = textureRegion(t, region, name, what);
+    const ResolvedLayout l = texelLayout(t.format, r, layout, what);
+    bufferRange(b, l.layout.offset, l.end - l.layout.offset, what);
+    return {r, l.layout};
+}
+
 void dataSpan(size_t size, uint64_t end, const char* what) {
     if (size < end)
         fail(what, std::to_string(size) + " bytes of data; the region and layout span " + std::to_string(end));

@@ -42,6 +42,13 @@ struct ResolvedLayout {
     uint64_t end = 0;
 };
 ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l, const char* what);
+// A buffer<->texture region copy: the region and layout resolved and checked, the buffer range too.
+struct RegionCopy {
+    TextureRegion region;
+    TexelLayout layout;
+};
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const TextureRegion& region,
+                               const TexelLayout& layout, const char* what);
 // writeTexture's data holds at least the `end` bytes its layout spans.
 void dataSpan(size_t size, uint64_t end, const char* what);
 // copyTexture between regions: compatible formats, both 3D or both layered, the destination box
