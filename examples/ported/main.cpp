@@ -1,0 +1,109 @@
+// Example (d): what a port of a Vulkan or GL sample uses, from the installed package: per-draw
+// constants and a specialization constant in shaders of its own (fe_common.glsl's FE_CONSTANTS),
+// a texture view drawn into (one layer of an array), a region read back with a row pitch, an
+// occlusion query, and three mistakes made on purpose that must be the same gdi::Error on every
+// backend (tests/package_consumer.sh compares the output).
+//   fe_example_ported [--backend NAME] [--validation]
+// Prints the query count, the texels read back and the mistakes; exit 1 when something differs
+// from what the program expects.
+#include <array>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
+#include "fe/gdi/ShaderRegistry.h"
+
+using namespace fe::gdi;
+
+namespace {
+struct Quad {
+    float rect[4];
+    float color[4];
+};
+bool reported(const char* what, const std::function<void()>& mistake) {
+    try {
+        mistake();
+    } catch (const Error& e) {
+        std::printf("error: %s: %s\n", what, e.what());
+        return true;
+    }
+    std::printf("NOT REPORTED: %s\n", what);
+    return false;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string backend = "auto";
+    bool validation = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--backend" && i + 1 < argc) backend = argv[++i];
+        else if (a == "--validation") validation = true;
+        else return std::fprintf(stderr, "usage: %s [--backend NAME] [--validation]\n", argv[0]), 2;
+    }
+    try {
+        auto device = createDevice({.backend = backend, .validation = validation, .verbose = false});
+        Device& d = *device;
+        DeviceObjects o(d);
+        const ShaderHandle vs = o.add(d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("ported/ported.vert")}));
+        const ShaderHandle fs = o.add(d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("ported/ported.frag")}));
+        auto pipeline = [&](float brightness) {
+            return o.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                                   .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8},
+                                                   .specialization = {SpecializationConstant::of(0, brightness)}}));
+        };
+        const PipelineHandle full = pipeline(1.0f), half = pipeline(0.5f);
+        // A 2-layer array; layer 1 is drawn through a Texture2D view of it.
+        const TextureHandle layers = o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .width = 32, .height = 32,
+                                                            .depthOrLayers = 2,
+                                                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+        const TextureHandle layer1 = o.add(d.createTextureView(layers, {.dimension = TextureDimension::Texture2D, .baseLayer = 1,
+                                                                        .layerCount = 1}));
+        const QuerySetHandle occlusion = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 1}));
+        const BufferHandle readback = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback}));
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = layer1}}});
+        cmd->beginQuery(occlusion, 0);
+        cmd->setPipeline(full);
+        cmd->setConstants(Quad{{-1, -1, 0, 0}, {1, 0.5f, 0, 1}});  // the top-left 16x16 quarter
+        cmd->draw(4);
+        cmd->setPipeline(half);  // constants persist across setPipeline; only the rect changes
+        cmd->setConstants(0, bytesOf(std::array<float, 4>{0, 0, 1, 1}));
+        cmd->draw(4);
+        cmd->endQuery(occlusion, 0);
+        cmd->endRenderPass();
+        // Texels (14..17, 15) and (14..17, 16) of layer 1: two rows of 4, with 64-byte rows.
+        cmd->copyTextureToBuffer(readback, {.bytesPerRow = 64}, layers, {.x = 14, .y = 15, .z = 1, .width = 4, .height = 2, .depth = 1});
+        d.wait(d.submit(*cmd));
+        std::array<uint64_t, 1> samples{};
+        const bool ready = d.queryResults(occlusion, 0, 1, samples);
+        std::printf("occlusion: %s, %llu samples passed\n", ready ? "ready" : "not ready", (unsigned long long)samples[0]);
+        const auto* texels = static_cast<const uint8_t*>(d.map(readback));
+        for (int row = 0; row < 2; ++row) {
+            std::printf("row %d:", row);
+            for (int x = 0; x < 4; ++x)
+                std::printf(" %02x%02x%02x%02x", texels[row * 64 + x * 4], texels[row * 64 + x * 4 + 1], texels[row * 64 + x * 4 + 2],
+                            texels[row * 64 + x * 4 + 3]);
+            std::printf("\n");
+        }
+        bool ok = ready && samples[0] == 2 * 16 * 16 && texels[0] == 255 && texels[64 + 12] == 128;
+        ok &= reported("constants at an offset that is not a multiple of 4", [&] { cmd->setConstants(2, bytesOf(1.0f)); });
+        ok &= reported("a view drawn into, then copied from", [&] {
+            cmd->copyTextureToBuffer(readback, {}, layer1, {.width = 4, .height = 4, .depth = 1});
+        });
+        ok &= reported("a specialization constant the shaders do not declare", [&] {
+            d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                      .specialization = {SpecializationConstant::of(7, 1.0f)}});
+        });
+        if (validation && d.validationErrorCount()) ok = false, std::printf("the validation layer reported errors\n");
+        return ok ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fe_example_ported: %s\n", e.what());
+        return 1;
+    }
+}
