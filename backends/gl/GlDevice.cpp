@@ -520,21 +520,9 @@ GLuint GlDevice::specializedShader(const Shader& s, std::span<const uint32_t> co
     return name;
 }
 
-// The pipeline's shader object for `s`: its own, or one specialized with the pipeline's values
-// (deleted by the caller once linked; `owned` says which).
-GLuint GlDevice::pipelineShader(const Shader& s, const std::vector<gdi::SpecializationConstant>& values, bool& owned) {
-    owned = false;
-    for (const gdi::SpecializationConstant& v : values)
-        for (const auto& c : s.iface.specConstants)
-            if (c.id == v.id) owned = true;
-    return owned ? specializedShader(s, s.spirv, values) : s.name;
-}
-
-static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> shaders, const std::string& label) {
-    GLuint p = gl.CreateProgram();
-    gl.ProgramParameteri(p, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // for the pipeline cache
-    for (GLuint s : shaders)
-        if (s) gl.AttachShader(p, s);
+// Links `p` (its shaders attached) and labels it; a failed link is an Error with the driver's log.
+GLuint GlDevice::checkLinked(GLuint p, const std::string& label) {
+    const GlFunctions& gl = gl_;
     gl.LinkProgram(p);
     GLint ok = 0;
     gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
@@ -544,10 +532,38 @@ static GLuint linkProgram(const GlFunctions& gl, std::initializer_list<GLuint> s
         gl.DeleteProgram(p);
         throw gdi::Error("pipeline '" + label + "': link failed: " + log);
     }
-    // Always labelled: Mesa 22.3 reads the label as a C string when it serialises a program for
-    // glGetProgramBinary, and crashes on an unlabelled one.
-    gl.ObjectLabel(GL_PROGRAM, p, -1, label.empty() ? "unnamed pipeline" : label.c_str());
+    if (!label.empty()) gl.ObjectLabel(GL_PROGRAM, p, -1, label.c_str());
     return p;
+}
+
+// Links the pipeline's shaders: each one's own shader object, or one specialized with the
+// pipeline's values for the stages that declare them (deleted once linked).
+GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+                              const std::string& label) {
+    std::vector<GLuint> names, owned;
+    auto dropOwned = [&] {
+        for (GLuint n : owned) gl_.DeleteShader(n);
+    };
+    try {
+        for (const Shader* sh : shaders) {
+            if (!sh) continue;
+            const bool specialize = std::any_of(values.begin(), values.end(), [&](const gdi::SpecializationConstant& v) {
+                return std::any_of(sh->iface.specConstants.begin(), sh->iface.specConstants.end(),
+                                   [&](const auto& c) { return c.id == v.id; });
+            });
+            if (specialize) owned.push_back(specializedShader(*sh, sh->spirv, values));
+            names.push_back(specialize ? owned.back() : sh->name);
+        }
+        GLuint program = gl_.CreateProgram();
+        gl_.ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // for the pipeline cache
+        for (GLuint n : names) gl_.AttachShader(program, n);
+        program = checkLinked(program, label);
+        dropOwned();
+        return program;
+    } catch (...) {
+        dropOwned();
+        throw;
+    }
 }
 
 // A program's cache key: its shaders' code and entry points, and the specialization values.
@@ -559,14 +575,16 @@ static uint64_t programKey(std::initializer_list<const Shader*> shaders, const s
 
 // The program for `key`: from its cached binary when the driver takes it back, else linked by
 // `link` and its binary kept for the cache (context thread).
-GLuint GlDevice::cachedProgram(uint64_t key, const std::function<GLuint()>& link, const std::string& label) {
+GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+                               const std::string& label) {
+    const uint64_t key = programKey(shaders, values);
     if (auto it = programs_.find(key); it != programs_.end()) {
         const GLuint p = gl_.CreateProgram();
         gl_.ProgramBinary(p, it->second.format, it->second.bytes.data(), GLsizei(it->second.bytes.size()));
         GLint ok = 0;
         gl_.GetProgramiv(p, GL_LINK_STATUS, &ok);
         if (ok) {
-            gl_.ObjectLabel(GL_PROGRAM, p, -1, label.empty() ? "unnamed pipeline" : label.c_str());
+            if (!label.empty()) gl_.ObjectLabel(GL_PROGRAM, p, -1, label.c_str());
             std::lock_guard lock(cacheMutex_);
             ++cacheStats_.hits;
             return p;
@@ -574,7 +592,7 @@ GLuint GlDevice::cachedProgram(uint64_t key, const std::function<GLuint()>& link
         gl_.DeleteProgram(p);  // the driver may refuse a binary (an update): link it again
         programs_.erase(it);
     }
-    const GLuint p = link();
+    const GLuint p = linkPipeline(shaders, values, label);
     {
         std::lock_guard lock(cacheMutex_);
         ++cacheStats_.misses;
@@ -638,38 +656,20 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         p.label = d.debugName ? d.debugName : "";
         Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
         if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
-        GLuint fs = 0;
+        const Shader* fsShader = nullptr;
         const gdi::ShaderInterface* fsIface = nullptr;
         if (d.fragmentShader) {
-            Shader& f = shaders_.get(d.fragmentShader, "fragment shader");
-            if (f.stage != gdi::ShaderStage::Fragment)
+            fsShader = &shaders_.get(d.fragmentShader, "fragment shader");
+            if (fsShader->stage != gdi::ShaderStage::Fragment)
                 throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
-            fs = f.name;
-            fsIface = &f.iface;
+            fsIface = &fsShader->iface;
         }
         gdi::validate::vertexInputs(d, vs.iface, p.label);
         if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label);
         p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
         gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
-        const Shader* fsShader = d.fragmentShader ? &shaders_.get(d.fragmentShader, "fragment shader") : nullptr;
-        p.program = cachedProgram(programKey({&vs, fsShader}, d.specialization), [&] {
-            bool ownVs = false, ownFs = false;
-            const GLuint vsName = pipelineShader(vs, d.specialization, ownVs);
-            if (fsShader) fs = pipelineShader(*fsShader, d.specialization, ownFs);
-            auto dropOwned = [&] {
-                if (ownVs) gl_.DeleteShader(vsName);
-                if (ownFs) gl_.DeleteShader(fs);
-            };
-            try {
-                const GLuint program = linkProgram(gl_, {vsName, fs}, p.label);
-                dropOwned();
-                return program;
-            } catch (...) {
-                dropOwned();
-                throw;
-            }
-        }, p.label);
+        p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label);
         gl_.CreateVertexArrays(1, &p.vao);
         for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
             const auto& vb = d.vertexBuffers[i];
@@ -716,18 +716,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label);
         p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
         gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
-        p.program = cachedProgram(programKey({&cs}, d.specialization), [&] {
-            bool own = false;
-            const GLuint csName = pipelineShader(cs, d.specialization, own);
-            try {
-                const GLuint program = linkProgram(gl_, {csName}, p.label);
-                if (own) gl_.DeleteShader(csName);
-                return program;
-            } catch (...) {
-                if (own) gl_.DeleteShader(csName);
-                throw;
-            }
-        }, p.label);
+        p.program = cachedProgram({&cs}, d.specialization, p.label);
         p.compute = true;
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);

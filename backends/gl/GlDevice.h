@@ -208,7 +208,9 @@ private:
     void rethrowAsyncError();
     GLuint specializedShader(const Shader& s, std::span<const uint32_t> code,
                              const std::vector<gdi::SpecializationConstant>& values);
-    GLuint pipelineShader(const Shader& s, const std::vector<gdi::SpecializationConstant>& values, bool& owned);
+    GLuint linkPipeline(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+                        const std::string& label);
+    GLuint checkLinked(GLuint program, const std::string& label);
     std::unique_ptr<GlPlatform> platform_;
     GlFunctions gl_;
     gdi::DeviceInfo info_;
@@ -254,7 +256,8 @@ private:
     gdi::PipelineCacheStats cacheStats_;
     mutable std::mutex cacheMutex_;  // cacheStats_
     GLint binaryFormats_ = 0;        // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
-    GLuint cachedProgram(uint64_t key, const std::function<GLuint()>& link, const std::string& label);
+    GLuint cachedProgram(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+                         const std::string& label);
     void savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
     void forgetFramebuffers(GLuint texture);
     mutable GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes

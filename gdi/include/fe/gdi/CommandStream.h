@@ -112,15 +112,9 @@ public:
     // Calls f(record) for each record in recording order; f has an overload per record type.
     template <class F>
     void forEach(F&& f) const {
-        for (size_t i = 0; i < blocks_.size(); ++i) {
-            const Block& b = blocks_[i];
-            const std::byte* end = i == current_ ? cur_ : b.data.get() + b.used;
-            for (const std::byte* p = b.data.get(); p < end;) {
-                const auto* h = reinterpret_cast<const Header*>(p);
-                dispatch(h->op, p + sizeof(Header), f);
-                p += h->size;
-            }
-        }
+        forEachRaw([&](std::span<const std::byte> r) {
+            dispatch(reinterpret_cast<const Header*>(r.data())->op, r.data() + sizeof(Header), f);
+        });
     }
     template <class F>
     static void dispatch(Op op, const std::byte* record, F&& f) {
