@@ -229,7 +229,7 @@ void GlDevice::initialize(bool validation) {
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     // Mesa 22.3 crashes (strlen in the driver) serialising a SPIR-V program that has uniform
-    // blocks or samplers for glGetProgramBinary (seen on llvmpipe): no program binaries there.
+    // blocks for glGetProgramBinary (seen on llvmpipe): no program binaries there.
     binaryFormats_ = info_.apiVersion.find("Mesa") == std::string::npos ? get(GL_NUM_PROGRAM_BINARY_FORMATS) : 0;
     info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
                       .memoryAliasing = false, .window = platform_->hasWindow(),
@@ -621,7 +621,7 @@ gdi::PipelineCacheStats GlDevice::openPipelineCache(const std::string& path) {
     if (binaryFormats_ == 0 && stats.warning.empty() && !path.empty())
         stats.warning = "pipeline cache '" + path + "': GL programs are not cached here: " +
                         (info_.apiVersion.find("Mesa") != std::string::npos
-                             ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with resources"
+                             ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with uniform blocks"
                              : "the driver offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS is 0)");
     if (!stats.warning.empty()) std::cerr << "fe: " << stats.warning << "\n";
     thread_.run([&] { programs_ = stats.loaded ? std::move(programs) : std::map<uint64_t, gdi::ProgramBinary>{}; });

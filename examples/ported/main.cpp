@@ -1,8 +1,9 @@
 // Example (d): what a port of a Vulkan or GL sample uses, from the installed package: per-draw
 // constants and a specialization constant in shaders of its own (fe_common.glsl's FE_CONSTANTS),
 // a texture view drawn into (one layer of an array), a region read back with a row pitch, an
-// occlusion query, and three mistakes made on purpose that must be the same gdi::Error on every
-// backend (tests/package_consumer.sh compares the output).
+// occlusion query, two lists recorded on two threads and submitted together, and four mistakes
+// made on purpose that must be the same gdi::Error on every backend (tests/package_consumer.sh
+// compares the output).
 //   fe_example_ported [--backend NAME] [--validation]
 // Prints the query count, the texels read back and the mistakes; exit 1 when something differs
 // from what the program expects.
@@ -10,7 +11,9 @@
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fe/gdi/Backend.h"
@@ -92,6 +95,35 @@ int main(int argc, char** argv) {
             std::printf("\n");
         }
         bool ok = ready && samples[0] == 2 * 16 * 16 && texels[0] == 255 && texels[64 + 12] == 128;
+
+        // Two threads record a list each (constants per draw, a query each), submitted together.
+        const std::array<TextureHandle, 2> halves = {
+            o.add(d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc})),
+            o.add(d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}))};
+        const QuerySetHandle counts = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 2}));
+        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(), d.createCommandList()};
+        auto record = [&](uint32_t k, uint32_t query) {
+            CommandList& l = *lists[k];
+            l.beginRenderPass({.colors = {{.texture = halves[k]}}});
+            l.setPipeline(full);
+            l.beginQuery(counts, query);
+            l.setConstants(Quad{{-1, -1, k ? 1.0f : 0.0f, 1}, {float(k), 1, 0, 1}});  // all, or the left half
+            l.draw(4);
+            l.endQuery(counts, query);
+            l.endRenderPass();
+        };
+        std::array<std::thread, 2> workers = {std::thread(record, 0u, 0u), std::thread(record, 1u, 0u)};
+        for (std::thread& t : workers) t.join();
+        std::array<CommandList*, 2> both = {lists[0].get(), lists[1].get()};
+        ok &= reported("one query written by both lists of a submission", [&] { d.submit(both); });
+        for (auto& l : lists) l = d.createCommandList();  // record again, a query each
+        workers = {std::thread(record, 0u, 0u), std::thread(record, 1u, 1u)};
+        for (std::thread& t : workers) t.join();
+        both = {lists[0].get(), lists[1].get()};
+        d.wait(d.submit(both));
+        std::array<uint64_t, 2> covered{};
+        ok &= d.queryResults(counts, 0, 2, covered) && covered[0] == 8 * 16 && covered[1] == 16 * 16;
+        std::printf("two threads: %llu and %llu samples\n", (unsigned long long)covered[0], (unsigned long long)covered[1]);
         ok &= reported("constants at an offset that is not a multiple of 4", [&] { cmd->setConstants(2, bytesOf(1.0f)); });
         ok &= reported("a view drawn into, then copied from", [&] {
             cmd->copyTextureToBuffer(readback, {}, layer1, {.width = 4, .height = 4, .depth = 1});
