@@ -1,7 +1,9 @@
+#include <atomic>
 #include <cstdlib>
 #include <iostream>
 
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Capture.h"
 #include "fe/gdi/Faults.h"
 #include "gl/GlBackend.h"
 #include "vulkan/VulkanBackend.h"
@@ -61,6 +63,31 @@ std::vector<std::string> windowCandidates(const std::string& name) {
     return {};  // gl-egl, gl-osmesa: headless only
 }
 
+namespace {
+
+// desc.capture, else FE_CAPTURE for the first device of the process (a program that makes
+// several would otherwise write them all over one file).
+std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const DeviceCreateDesc& desc) {
+    CaptureDesc capture{.path = desc.capture, .frames = desc.captureFrames};
+    static std::atomic<bool> environmentUsed = false;
+    if (capture.path.empty()) {
+        const char* env = std::getenv("FE_CAPTURE");
+        if (!env || !*env || environmentUsed.exchange(true)) return device;
+        capture.path = env;
+        if (const char* frames = std::getenv("FE_CAPTURE_FRAMES"); frames && *frames) {
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(frames, &end, 10);
+            if (*end || n > UINT32_MAX) throw Error(std::string("FE_CAPTURE_FRAMES: not a frame count: '") + frames + "'");
+            capture.frames = uint32_t(n);
+        }
+        if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0") capture.compress = false;
+        if (desc.verbose) std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path << "\n";
+    }
+    return makeCaptureDevice(std::move(device), capture);
+}
+
+}  // namespace
+
 std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
     std::string name = desc.backend;
     if (name.empty() || name == "auto") {
@@ -77,7 +104,7 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
             if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
-            return std::move(p.device);
+            return withCapture(std::move(p.device), desc);
         }
         failures += "\n  " + c + " unavailable: " + p.reason;
     }

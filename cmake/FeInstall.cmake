@@ -6,7 +6,7 @@ include(CMakePackageConfigHelpers)
 
 # The targets a consumer names (and fe::ui, the UI renderer, which brings Dear ImGui): the abstract device with every backend, and the renderer.
 add_library(fe_package_gdi INTERFACE)
-target_link_libraries(fe_package_gdi INTERFACE fe_gdi fe_gdi_json fe_backends)
+target_link_libraries(fe_package_gdi INTERFACE fe_gdi fe_gdi_json fe_gdi_capture fe_backends)
 set_target_properties(fe_package_gdi PROPERTIES EXPORT_NAME gdi)
 add_library(fe_package_renderer INTERFACE)
 target_link_libraries(fe_package_renderer INTERFACE fe_package_gdi fe_render)
@@ -17,7 +17,7 @@ add_library(fe::ui ALIAS fe_ui)
 
 # The libraries behind them, exported under short names (fe::core, fe::render, ...) because a
 # static library's dependencies must be installed with it.
-set(FE_EXPORTED fe_gdi:core fe_gdi_json:gdi_json fe_platform:platform fe_backend_vulkan:backend_vulkan
+set(FE_EXPORTED fe_gdi:core fe_gdi_json:gdi_json fe_gdi_capture:gdi_capture fe_platform:platform fe_backend_vulkan:backend_vulkan
     fe_backend_gl:backend_gl fe_backends:backends fe_assets:assets fe_graph:graph fe_render:render
     fe_shaders_scene:shaders_scene fe_ui:ui)
 set(FE_EXPORTED_TARGETS fe_package_gdi fe_package_renderer)

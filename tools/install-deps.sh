@@ -9,6 +9,8 @@ PACKAGES=(
   glslang-tools
   libosmesa6 libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libx11-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  libzstd-dev                  # capture files (fe capture, fe replay)
+  libturbojpeg0-dev            # JPEG textures (stb_image's JPEG decoder is not safe on hostile files)
   googletest libgtest-dev libbenchmark-dev
   xvfb xauth
   python3-matplotlib chromium  # fe bench: its charts, and the browser test of its report

@@ -163,9 +163,11 @@ struct Applier {
     const cmd::CommandStream& stream;
     RenderPassDesc pass;  // the open pass, for the secondary lists it executes
 
-    static uint32_t mapped(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t id) {
+    uint32_t mapped(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t id) const {
+        if (id == 0) return 0;  // a null handle stays null
         const auto it = m.find(id);
-        return it == m.end() ? id : it->second;
+        if (it != m.end()) return it->second;
+        return map.keepUnknown ? id : HandleMap::kUnknownId;
     }
     BufferHandle operator[](BufferHandle h) const { return {mapped(map.buffers, h.id)}; }
     TextureHandle operator[](TextureHandle h) const { return {mapped(map.textures, h.id)}; }

@@ -9,6 +9,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
+#define STBI_NO_JPEG  // JPEG goes to libjpeg-turbo (JpegDecode.h says why)
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -20,6 +21,7 @@
 
 #include "assets/GltfLoader.h"
 #include "assets/HdrDecode.h"
+#include "assets/JpegDecode.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -1353,6 +1355,19 @@ void Loader::decodeImage(int ii, const std::string& what, TextureImage& out) {
     if (gi.image.empty()) fail(label + ": image file missing, empty or unreadable");
     if (gi.image.size() > size_t(INT32_MAX)) fail(label + ": encoded image too large");
     const auto* bytes = gi.image.data();
+    if (looksLikeJpeg(bytes, gi.image.size())) {
+        try {
+            JpegImage jpeg = decodeJpeg(bytes, gi.image.size(), kMaxImagePixels);
+            out.width = jpeg.width;
+            out.height = jpeg.height;
+            out.pixels = std::move(jpeg.rgba);
+        } catch (const std::runtime_error& e) {
+            fail(label + ": cannot decode JPEG (" + e.what() + ")");
+        }
+        model_.images[size_t(ii)].image.clear();
+        model_.images[size_t(ii)].image.shrink_to_fit();
+        return;
+    }
     const int len = int(gi.image.size());
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes, len, &w, &h, &comp)) {

@@ -11,6 +11,8 @@
 #include <limits>
 #include <random>
 
+#include <turbojpeg.h>
+
 #include "TestSupport.h"
 #include "assets/GltfLoader.h"
 
@@ -289,6 +291,80 @@ TEST_F(GltfErrors, ImageThatFailsToDecode) {
     j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     expectError(writeGltf(j), {"image 0 ('bad.png')", "baseColorTexture of material 'M'", "cannot decode"});
+}
+
+namespace {
+// An 8x8 JPEG of one colour, encoded by libjpeg-turbo (4:4:4, quality 95).
+std::vector<uint8_t> solidJpeg(uint8_t r, uint8_t g, uint8_t b) {
+    std::vector<uint8_t> rgb(8 * 8 * 3);
+    for (size_t i = 0; i < 64; ++i) rgb[i * 3] = r, rgb[i * 3 + 1] = g, rgb[i * 3 + 2] = b;
+    tjhandle tj = tjInitCompress();
+    unsigned char* out = nullptr;
+    unsigned long size = 0;
+    EXPECT_EQ(tjCompress2(tj, rgb.data(), 8, 0, 8, TJPF_RGB, &out, &size, TJSAMP_444, 95, 0), 0);
+    std::vector<uint8_t> jpeg(out, out + size);
+    tjFree(out);
+    tjDestroy(tj);
+    return jpeg;
+}
+// Offset of the first marker 0xFF `code` after the start-of-image marker.
+size_t markerOffset(const std::vector<uint8_t>& jpeg, uint8_t code) {
+    for (size_t i = 2; i + 1 < jpeg.size(); ++i)
+        if (jpeg[i] == 0xFF && jpeg[i + 1] == code) return i;
+    ADD_FAILURE() << "marker not found";
+    return 0;
+}
+}  // namespace
+
+TEST_F(GltfSynthetic, JpegTextureDecodesToItsColour) {
+    writeBytes("red.jpg", solidJpeg(200, 40, 10));
+    json j = gltf();
+    j["images"] = json::array({{{"uri", "red.jpg"}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    Scene s = loadGltf(writeGltf(j));
+    ASSERT_EQ(s.textures.size(), 1u);
+    const TextureImage& t = s.textures[0];
+    ASSERT_EQ(t.width, 8u);
+    ASSERT_EQ(t.height, 8u);
+    ASSERT_EQ(t.pixels.size(), 8u * 8u * 4u);
+    for (size_t p = 0; p < 64; ++p) {
+        EXPECT_NEAR(t.pixels[p * 4 + 0], 200, 3);
+        EXPECT_NEAR(t.pixels[p * 4 + 1], 40, 3);
+        EXPECT_NEAR(t.pixels[p * 4 + 2], 10, 3);
+        EXPECT_EQ(t.pixels[p * 4 + 3], 255);
+    }
+}
+
+// A Huffman table declaring more than 256 codes made Debian's stb_image write past its tables
+// (the glTF fuzzer found it); it must be an AssetError naming the image.
+TEST_F(GltfErrors, JpegWithOversizedHuffmanTable) {
+    std::vector<uint8_t> jpeg = solidJpeg(200, 40, 10);
+    const size_t dht = markerOffset(jpeg, 0xC4);
+    // 0xFF 0xC4, 2 length bytes, 1 class/id byte, then 16 code counts: 16 x 20 = 320 codes.
+    for (size_t i = 0; i < 16; ++i) jpeg[dht + 5 + i] = 20;
+    writeBytes("bogus.jpg", jpeg);
+    json j = gltf();
+    j["images"] = json::array({{{"uri", "bogus.jpg"}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    expectError(writeGltf(j), {"image 0 ('bogus.jpg')", "cannot decode JPEG", "Huffman"});
+}
+
+// A JPEG cut inside its scan decodes to grey rows with only a warning in most decoders: here it
+// is refused, never a half-grey texture.
+TEST_F(GltfErrors, TruncatedJpegIsRefused) {
+    std::vector<uint8_t> jpeg = solidJpeg(200, 40, 10);
+    jpeg.resize(markerOffset(jpeg, 0xDA) + 20);
+    writeBytes("cut.jpg", jpeg);
+    json j = gltf();
+    j["images"] = json::array({{{"uri", "cut.jpg"}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["meshes"][0]["primitives"][0]["material"] = 0;
+    expectError(writeGltf(j), {"image 0 ('cut.jpg')", "cannot decode JPEG"});
 }
 
 TEST_F(GltfErrors, MissingImageFile) {

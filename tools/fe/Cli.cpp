@@ -69,6 +69,13 @@ constexpr const char* kUsage =
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
+    "  capture [--out FILE] [--frames N] [--no-compress] -- PROGRAM [ARGS...]\n"
+    "      runs PROGRAM (any program using the device, e.g. fe render) with FE_CAPTURE=FILE (default\n"
+    "      capture.fecap): every call of its first device, with its data, goes into FILE; --frames N: only the\n"
+    "      first N frames (a frame ends at a present, or at the first read-back after a submit)\n"
+    "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present]\n"
+    "      replays a capture on any backend (captured on vulkan, replayed on gl-egl, or the other way round);\n"
+    "      --out DIR: every read-back and presented image as PNG; prints the frame times; --present: in a window\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
     "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
 
@@ -85,6 +92,12 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"bench --backend", {"NAME[,NAME]|all", "the backends to measure (default all)"}},
     {"conformance --backend", {"NAME[,NAME]|all", "the backends to run the cases on (default all)"}},
     {"--json", {"", "print the report as JSON"}},
+    {"capture --out", {"FILE", "the capture file written (default capture.fecap)"}},
+    {"capture --frames", {"N", "capture only the first N frames (default: all)"}},
+    {"--no-compress", {"", "write chunks without zstd"}},
+    {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
+    {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
+    {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
     {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto: the render director chooses"}},
     {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
     {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},

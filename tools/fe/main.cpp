@@ -28,6 +28,7 @@
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/InfoJson.h"
+#include "CaptureCommands.h"
 #include "Cli.h"
 #include "Viewer.h"
 #include "integration/Bench.h"
@@ -516,6 +517,9 @@ int main(int argc, char** argv) {
         if (command == "conformance")
             return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
+        if (command == "capture") return cli::cmdCapture(argc, argv);
+        if (command == "replay")
+            return cli::cmdReplay(parse(argc, argv, 2, {"--backend", "--out"}, {"--validation", "--present"}));
         if (command == "--help" || command == "help") {
             std::cout << usage();
             return 0;

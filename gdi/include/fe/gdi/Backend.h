@@ -20,6 +20,11 @@ struct DeviceCreateDesc {
     bool vsync = true;
     // A pipeline cache file (Device::openPipelineCache): loaded now, saved when the device goes.
     std::string pipelineCache;
+    // A capture file (Capture.h): every call is written there for fe replay and fe bisect, the
+    // first captureFrames frames (0: all). Empty: FE_CAPTURE and FE_CAPTURE_FRAMES from the
+    // environment, for the first device the process creates.
+    std::string capture;
+    uint32_t captureFrames = 0;
 };
 
 // Concrete headless backends in the order `auto` tries them (`all` in fe conformance).

@@ -88,10 +88,13 @@ private:
     std::unique_ptr<cmd::CommandStream> stream_;
 };
 
-// Handle ids of the recording device -> the replaying device's (ids missing from a map are
-// used as they are, which is right when both are one device).
+// Handle ids of the recording device -> the replaying device's. Ids missing from a map are
+// used as they are when keepUnknown (right when both are one device), else they become an id no
+// device has, so the replaying device refuses them (captures from files).
 struct HandleMap {
     std::unordered_map<uint32_t, uint32_t> buffers, textures, samplers, pipelines, timers, querySets;
+    bool keepUnknown = true;
+    static constexpr uint32_t kUnknownId = 0xFFFFFFFFu;
 };
 
 // Calls `stream`'s records on `list` (a recording list of `device`), handles mapped through `map`.

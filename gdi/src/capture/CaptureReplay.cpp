@@ -1,0 +1,367 @@
+// Replays a capture file on any device: objects are made again from their descriptions (handle
+// ids mapped), data written as it was, each submission's command lists applied from their
+// streams (applyStream), and waits, read-backs and presents repeated in the same order.
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+#include <cstring>
+#include <deque>
+
+#include "CaptureFile.h"
+#include "CaptureJson.h"
+#include "fe/gdi/Capture.h"
+#include "fe/gdi/CommandRecorder.h"
+
+namespace fe::gdi {
+
+namespace {
+
+using capture::json;
+using capture::u32;
+using capture::u64;
+using Clock = std::chrono::steady_clock;
+
+class Replayer {
+public:
+    Replayer(Device& device, const ReplayOptions& options) : device_(device), options_(options) {
+        map_.keepUnknown = false;
+        if (!options_.outDir.empty()) std::filesystem::create_directories(options_.outDir);
+    }
+    // What the capture left alive is destroyed, views before their textures, pipelines before
+    // their shaders, placed textures before their heaps.
+    ~Replayer() {
+        try {
+            device_.waitIdle();
+            for (auto& [c, r] : map_.pipelines) device_.destroy(PipelineHandle{r});
+            for (auto& [c, r] : shaders_) device_.destroy(ShaderHandle{r});
+            for (uint32_t r : views_) device_.destroy(TextureHandle{r});
+            for (auto& [c, r] : map_.textures)
+                if (!views_.count(r)) device_.destroy(TextureHandle{r});
+            for (auto& [c, r] : heaps_) device_.destroy(HeapHandle{r});
+            for (auto& [c, r] : map_.buffers) device_.destroy(BufferHandle{r});
+            for (auto& [c, r] : map_.samplers) device_.destroy(SamplerHandle{r});
+            for (auto& [c, r] : map_.timers) device_.destroy(TimerHandle{r});
+            for (auto& [c, r] : map_.querySets) device_.destroy(QuerySetHandle{r});
+        } catch (const std::exception&) {
+            // A lost device or a damaged capture: the device frees the rest when it goes.
+        }
+    }
+
+    ReplayResult run(const std::string& path) {
+        capture::Reader reader(path);
+        result_.formatVersion = reader.version();
+        capture::Chunk chunk;
+        uint64_t index = 0;
+        frameStart_ = Clock::now();
+        while (reader.next(chunk)) {
+            if (chunk.kind == capture::ChunkKind::Blob) {
+                blobs_.push_back(std::move(chunk.bytes));
+            } else if (chunk.kind == capture::ChunkKind::Record) {
+                apply(chunk, index++);
+            }
+        }
+        device_.waitIdle();
+        return std::move(result_);
+    }
+
+private:
+    void apply(const capture::Chunk& chunk, uint64_t index) {
+        std::string op = "?";
+        try {
+            const json r = json::from_cbor(chunk.bytes);
+            if (!r.is_object() || !r.contains("op") || !r["op"].is_string()) throw std::runtime_error("record without an op");
+            op = r["op"].get<std::string>();
+            if (index == 0 && op != "device") throw std::runtime_error("the first record is not the device's");
+            const auto it = handlers().find(op);
+            if (it == handlers().end()) throw std::runtime_error("unknown call");
+            (this->*(it->second))(r);
+            ++result_.records;
+        } catch (const DeviceLostError&) {
+            throw;
+        } catch (const CaptureError& e) {
+            throw CaptureError(where(chunk, index, op) + e.what());
+        } catch (const std::exception& e) {
+            throw CaptureError(where(chunk, index, op) + e.what());
+        }
+    }
+    static std::string where(const capture::Chunk& c, uint64_t index, const std::string& op) {
+        return "capture: record " + std::to_string(index) + " (" + op + ") at offset " + std::to_string(c.offset) + ": ";
+    }
+
+    using Handler = void (Replayer::*)(const json&);
+    static const std::unordered_map<std::string, Handler>& handlers() {
+        static const std::unordered_map<std::string, Handler> h = {
+            {"device", &Replayer::deviceRecord},
+            {"createBuffer", &Replayer::createBuffer},
+            {"createTexture", &Replayer::createTexture},
+            {"createTextureView", &Replayer::createTextureView},
+            {"createSampler", &Replayer::createSampler},
+            {"createShader", &Replayer::createShader},
+            {"createGraphicsPipeline", &Replayer::createGraphicsPipeline},
+            {"createComputePipeline", &Replayer::createComputePipeline},
+            {"createTimer", &Replayer::createTimer},
+            {"createHeap", &Replayer::createHeap},
+            {"createQuerySet", &Replayer::createQuerySet},
+            {"destroy", &Replayer::destroy},
+            {"writeBuffer", &Replayer::writeBuffer},
+            {"mapped", &Replayer::mapped},
+            {"writeTexture", &Replayer::writeTexture},
+            {"writeTextureRegion", &Replayer::writeTextureRegion},
+            {"readBuffer", &Replayer::readBuffer},
+            {"readTexture", &Replayer::readTexture},
+            {"submit", &Replayer::submit},
+            {"wait", &Replayer::wait},
+            {"waitIdle", &Replayer::waitIdle},
+            {"present", &Replayer::present},
+            {"frame", &Replayer::frame},
+        };
+        return h;
+    }
+
+    std::span<const std::byte> blob(const json& r, const char* key) const {
+        const uint64_t id = u64(r, key);
+        if (id == 0) return {};
+        if (id > blobs_.size()) throw std::runtime_error("data block " + std::to_string(id) + " is not in the file before it");
+        return blobs_[id - 1];
+    }
+    // A new id for a handle the capture names; an id given twice is damage.
+    static void bind(std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured, uint32_t replayed) {
+        if (captured == 0 || !m.emplace(captured, replayed).second)
+            throw std::runtime_error("object id " + std::to_string(captured) + " is null or already in use");
+    }
+    static uint32_t lookup(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured) {
+        if (captured == 0) return 0;
+        const auto it = m.find(captured);
+        return it == m.end() ? HandleMap::kUnknownId : it->second;
+    }
+    BufferHandle buffer(const json& r, const char* key = "id") const { return {lookup(map_.buffers, u32(r, key))}; }
+    TextureHandle texture(const json& r, const char* key = "id") const { return {lookup(map_.textures, u32(r, key))}; }
+
+    void deviceRecord(const json& r) {
+        result_.capturedBackend = r.at("backend").get<std::string>();
+        if (u64(r, "commandSet") != capture::commandSetFingerprint())
+            throw std::runtime_error("recorded with another build's command set; its command lists cannot be read here");
+    }
+    void createBuffer(const json& r) {
+        const BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
+        const BufferHandle h = device_.createBuffer(d, blob(r, "data"));
+        bind(map_.buffers, u32(r, "id"), h.id);
+    }
+    void createTexture(const json& r) {
+        TextureDesc d = capture::textureDesc(r.at("desc"), strings_);
+        if (unplacedHeaps_.count(d.heap.id)) d.heap = {}, d.heapOffset = 0;
+        else d.heap = {lookup(heaps_, d.heap.id)};
+        const TextureHandle h = device_.createTexture(d);
+        bind(map_.textures, u32(r, "id"), h.id);
+        names_[h.id] = d.debugName ? d.debugName : "texture " + std::to_string(u32(r, "id"));
+    }
+    void createTextureView(const json& r) {
+        const TextureViewDesc d = capture::textureViewDesc(r.at("desc"), strings_);
+        const TextureHandle h = device_.createTextureView(texture(r, "of"), d);
+        bind(map_.textures, u32(r, "id"), h.id);
+        views_.insert(h.id);
+        names_[h.id] = d.debugName ? d.debugName : "view " + std::to_string(u32(r, "id"));
+    }
+    void createSampler(const json& r) {
+        const SamplerHandle h = device_.createSampler(capture::samplerDesc(r.at("desc"), strings_));
+        bind(map_.samplers, u32(r, "id"), h.id);
+    }
+    void createShader(const json& r) {
+        auto words = [&](const char* key) -> std::span<const uint32_t> {
+            const auto bytes = blob(r, key);
+            if (bytes.size() % 4) throw std::runtime_error(std::string("SPIR-V '") + key + "' is not whole words");
+            auto& w = code_.emplace_back(bytes.size() / 4);
+            std::memcpy(w.data(), bytes.data(), bytes.size());
+            return w;
+        };
+        ShaderDesc d{.stage = capture::shaderStage(r),
+                     .binary = {.name = capture::text(r, "name", strings_), .vulkan = words("vulkan"), .opengl = words("opengl")},
+                     .entryPoint = capture::text(r, "entry", strings_)};
+        if (!d.binary.name) d.binary.name = "";
+        if (!d.entryPoint) throw std::runtime_error("field 'entry' is missing");
+        const ShaderHandle h = device_.createShader(d);
+        bind(shaders_, u32(r, "id"), h.id);
+    }
+    void createGraphicsPipeline(const json& r) {
+        GraphicsPipelineDesc d = capture::graphicsPipelineDesc(r.at("desc"), strings_);
+        d.vertexShader = {lookup(shaders_, d.vertexShader.id)};
+        d.fragmentShader = {lookup(shaders_, d.fragmentShader.id)};
+        bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
+    }
+    void createComputePipeline(const json& r) {
+        ComputePipelineDesc d = capture::computePipelineDesc(r.at("desc"), strings_);
+        d.computeShader = {lookup(shaders_, d.computeShader.id)};
+        bind(map_.pipelines, u32(r, "id"), device_.createComputePipeline(d).id);
+    }
+    void createTimer(const json& r) { bind(map_.timers, u32(r, "id"), device_.createTimer().id); }
+    // A device without memory aliasing (GL) gives each placed texture memory of its own: what
+    // aliasing saves is memory, and a correct program never reads one texture through another.
+    void createHeap(const json& r) {
+        const HeapDesc d = capture::heapDesc(r.at("desc"), strings_);
+        if (!device_.info().features.memoryAliasing) {
+            unplacedHeaps_.insert(u32(r, "id"));
+            return;
+        }
+        bind(heaps_, u32(r, "id"), device_.createHeap(d).id);
+    }
+    void createQuerySet(const json& r) {
+        bind(map_.querySets, u32(r, "id"), device_.createQuerySet(capture::querySetDesc(r.at("desc"), strings_)).id);
+    }
+    void destroy(const json& r) {
+        const std::string kind = r.at("kind").get<std::string>();
+        const uint32_t id = u32(r, "id");
+        // Looks the id up, destroys the replayed object and forgets the id (it may be reused).
+        auto take = [&](std::unordered_map<uint32_t, uint32_t>& m) {
+            const uint32_t replayed = lookup(m, id);
+            m.erase(id);
+            return replayed;
+        };
+        if (kind == "buffer") device_.destroy(BufferHandle{take(map_.buffers)});
+        else if (kind == "texture") {
+            const uint32_t replayed = take(map_.textures);
+            views_.erase(replayed);
+            device_.destroy(TextureHandle{replayed});
+        }
+        else if (kind == "sampler") device_.destroy(SamplerHandle{take(map_.samplers)});
+        else if (kind == "shader") device_.destroy(ShaderHandle{take(shaders_)});
+        else if (kind == "pipeline") device_.destroy(PipelineHandle{take(map_.pipelines)});
+        else if (kind == "timer") device_.destroy(TimerHandle{take(map_.timers)});
+        else if (kind == "heap") {
+            if (!unplacedHeaps_.erase(id)) device_.destroy(HeapHandle{take(heaps_)});
+        }
+        else if (kind == "querySet") device_.destroy(QuerySetHandle{take(map_.querySets)});
+        else throw std::runtime_error("unknown object kind '" + kind + "'");
+    }
+    void writeBuffer(const json& r) { device_.writeBuffer(buffer(r), u64(r, "offset"), blob(r, "data")); }
+    // What the program wrote into mapped Upload memory: written the same way here, so the GPU
+    // reads it from mapped memory as it did (writeBuffer would wait for the work in flight).
+    void mapped(const json& r) {
+        const BufferHandle b = buffer(r);
+        const uint64_t offset = u64(r, "offset");
+        const auto data = blob(r, "data");
+        const BufferDesc& d = device_.desc(b);
+        if (offset > d.size || data.size() > d.size - offset) throw std::runtime_error("mapped bytes beyond the buffer's end");
+        if (d.access != MemoryAccess::Upload) throw std::runtime_error("mapped bytes for a buffer that is not Upload memory");
+        std::memcpy(static_cast<std::byte*>(device_.map(b)) + offset, data.data(), data.size());
+    }
+    void writeTexture(const json& r) {
+        device_.writeTexture(texture(r), {u32(r, "mip"), u32(r, "layer")}, blob(r, "data"));
+    }
+    void writeTextureRegion(const json& r) {
+        device_.writeTextureRegion(texture(r), capture::textureRegion(r.at("region")), blob(r, "data"),
+                                   capture::texelLayout(r.at("layout")));
+    }
+    void readBuffer(const json& r) { device_.readBuffer(buffer(r), u64(r, "offset"), u64(r, "size")); }
+    void readTexture(const json& r) {
+        const TextureHandle t = texture(r);
+        keep(t, device_.readTexture(t, {u32(r, "mip"), u32(r, "layer")}), false);
+    }
+    void submit(const json& r) {
+        const json& lists = r.at("lists");
+        if (!lists.is_array()) throw std::runtime_error("field 'lists' is not an array");
+        std::vector<std::unique_ptr<CommandList>> recorded;
+        std::vector<CommandList*> raw;
+        for (size_t i = 0; i < lists.size(); ++i) {
+            const json one = {{"data", lists[i]}};
+            const auto bytes = blob(one, "data");
+            const auto stream = decodeCommandStream(bytes);
+            auto list = device_.createCommandList();
+            applyStream(*stream, device_, *list, map_);
+            raw.push_back(list.get());
+            recorded.push_back(std::move(list));
+        }
+        const FenceValue replayed = device_.submit(raw);
+        fences_[u64(r, "fence")] = replayed;
+        ++result_.submits;
+        result_.commandLists += raw.size();
+    }
+    // A captured fence maps to the newest replayed fence at or before it (fences only grow).
+    void wait(const json& r) {
+        const auto it = fences_.upper_bound(u64(r, "fence"));
+        if (it != fences_.begin()) device_.wait(std::prev(it)->second);
+    }
+    void waitIdle(const json&) { device_.waitIdle(); }
+    void present(const json& r) {
+        const TextureHandle t = texture(r);
+        if (options_.present && device_.info().features.window) {
+            device_.present(t);
+            return;
+        }
+        keep(t, device_.readTexture(t, {}), true);
+    }
+    void frame(const json&) {
+        const auto now = Clock::now();
+        result_.frameMilliseconds.push_back(std::chrono::duration<double, std::milli>(now - frameStart_).count());
+        frameStart_ = now;
+        ++result_.frames;
+    }
+
+    void keep(TextureHandle t, Image image, bool presented) {
+        ReplayImage out{.frame = result_.frames, .name = names_[t.id], .presented = presented, .image = std::move(image)};
+        if (!options_.outDir.empty()) {
+            std::string file = out.name;
+            for (char& c : file)
+                if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+            const std::string path = options_.outDir + "/frame" + std::to_string(out.frame) + "_" +
+                                     std::to_string(result_.images.size()) + "_" + file + ".png";
+            try {
+                writePng(out.image, path);
+            } catch (const Error&) {
+                // A format PNG cannot show (integer, depth): the image is still in the result.
+            }
+        }
+        result_.images.push_back(std::move(out));
+    }
+
+    Device& device_;
+    ReplayOptions options_;
+    ReplayResult result_;
+    HandleMap map_;
+    std::unordered_map<uint32_t, uint32_t> shaders_, heaps_;
+    std::unordered_set<uint32_t> unplacedHeaps_;       // captured heaps this device cannot make
+    std::unordered_set<uint32_t> views_;               // replayed ids of texture views
+    std::unordered_map<uint32_t, std::string> names_;  // replayed texture id -> name
+    std::map<uint64_t, FenceValue> fences_;            // captured fence -> replayed fence
+    std::vector<std::vector<std::byte>> blobs_;
+    std::deque<std::vector<uint32_t>> code_;           // SPIR-V words, aligned
+    capture::Strings strings_;
+    Clock::time_point frameStart_;
+};
+
+}  // namespace
+
+CaptureSummary summarizeCapture(const std::string& path) {
+    capture::Reader reader(path);
+    CaptureSummary s{.formatVersion = reader.version(), .fileBytes = std::filesystem::file_size(path)};
+    capture::Chunk chunk;
+    while (reader.next(chunk)) {
+        s.rawBytes += chunk.bytes.size();
+        if (chunk.kind == capture::ChunkKind::Blob) ++s.blobs;
+        if (chunk.kind != capture::ChunkKind::Record) continue;
+        std::string op;
+        try {
+            const json r = json::from_cbor(chunk.bytes);
+            op = r.is_object() && r.contains("op") && r["op"].is_string() ? r["op"].get<std::string>() : "";
+            if (op == "device") {
+                s.backend = r.value("backend", std::string());
+                s.device = r.value("device", std::string());
+            }
+        } catch (const std::exception& e) {
+            throw CaptureError("capture: record " + std::to_string(s.records) + " at offset " + std::to_string(chunk.offset) +
+                               ": " + e.what());
+        }
+        s.frames += op == "frame";
+        s.submits += op == "submit";
+        ++s.records;
+    }
+    return s;
+}
+
+ReplayResult replayCapture(const std::string& path, Device& device, const ReplayOptions& options) {
+    return Replayer(device, options).run(path);
+}
+
+}  // namespace fe::gdi
