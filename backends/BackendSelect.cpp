@@ -22,7 +22,31 @@ const std::vector<std::string>& windowBackendNames() {
 
 std::string validBackendList() { return "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw"; }
 
-BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) {
+namespace {
+
+// `path` (with `frames`), else FE_CAPTURE for the first device of the process (a program that
+// makes several would otherwise write them all over one file).
+std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::string& path, uint32_t frames, bool verbose) {
+    CaptureDesc capture{.path = path, .frames = frames};
+    static std::atomic<bool> environmentUsed = false;
+    if (capture.path.empty()) {
+        const char* env = std::getenv("FE_CAPTURE");
+        if (!env || !*env || environmentUsed.exchange(true)) return device;
+        capture.path = env;
+        if (const char* frames = std::getenv("FE_CAPTURE_FRAMES"); frames && *frames) {
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(frames, &end, 10);
+            if (*end || n > UINT32_MAX) throw Error(std::string("FE_CAPTURE_FRAMES: not a frame count: '") + frames + "'");
+            capture.frames = uint32_t(n);
+        }
+        if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0") capture.compress = false;
+        if (verbose) std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path << "\n";
+    }
+    return makeCaptureDevice(std::move(device), capture);
+}
+
+// Starts one backend as it is (createDevice adds its own capture).
+BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsync) {
     BackendProbe p;
     p.name = name;
     try {
@@ -46,6 +70,20 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) 
     return p;
 }
 
+}  // namespace
+
+BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) {
+    BackendProbe p = probeUncaptured(name, validation, vsync);
+    if (p.available) {
+        try {
+            p.device = withCapture(std::move(p.device), "", 0, true);
+        } catch (const std::exception& e) {
+            p = {.name = name, .reason = e.what()};
+        }
+    }
+    return p;
+}
+
 static std::vector<std::string> candidates(const std::string& name) {
     if (name == "auto") return backendNames();
     if (name == "gl") return {"gl-egl", "gl-osmesa"};
@@ -63,31 +101,6 @@ std::vector<std::string> windowCandidates(const std::string& name) {
     return {};  // gl-egl, gl-osmesa: headless only
 }
 
-namespace {
-
-// desc.capture, else FE_CAPTURE for the first device of the process (a program that makes
-// several would otherwise write them all over one file).
-std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const DeviceCreateDesc& desc) {
-    CaptureDesc capture{.path = desc.capture, .frames = desc.captureFrames};
-    static std::atomic<bool> environmentUsed = false;
-    if (capture.path.empty()) {
-        const char* env = std::getenv("FE_CAPTURE");
-        if (!env || !*env || environmentUsed.exchange(true)) return device;
-        capture.path = env;
-        if (const char* frames = std::getenv("FE_CAPTURE_FRAMES"); frames && *frames) {
-            char* end = nullptr;
-            const unsigned long n = std::strtoul(frames, &end, 10);
-            if (*end || n > UINT32_MAX) throw Error(std::string("FE_CAPTURE_FRAMES: not a frame count: '") + frames + "'");
-            capture.frames = uint32_t(n);
-        }
-        if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0") capture.compress = false;
-        if (desc.verbose) std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path << "\n";
-    }
-    return makeCaptureDevice(std::move(device), capture);
-}
-
-}  // namespace
-
 std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
     std::string name = desc.backend;
     if (name.empty() || name == "auto") {
@@ -99,12 +112,12 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
         throw Error("backend '" + name + "' is headless; a window needs auto, vulkan, gl, vulkan-glfw or gl-glfw");
     std::string failures;
     for (const std::string& c : list) {
-        BackendProbe p = probeBackend(c, desc.validation, desc.vsync);
+        BackendProbe p = probeUncaptured(c, desc.validation, desc.vsync);
         if (p.available) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
             if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
-            return withCapture(std::move(p.device), desc);
+            return withCapture(std::move(p.device), desc.capture, desc.captureFrames, desc.verbose);
         }
         failures += "\n  " + c + " unavailable: " + p.reason;
     }

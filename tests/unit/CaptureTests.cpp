@@ -1,0 +1,318 @@
+// Capture and replay (Capture.h): programs captured on one backend replay on every backend.
+//  - every technique: replayed on its own backend, the image is the live one exactly; on another
+//    backend, it matches that backend's live render within the conformance tolerance;
+//  - what the program wrote into mapped memory between submits reaches the replay;
+//  - the whole conformance run (views, queries, constants, secondary lists, heaps, threads)
+//    replays on every backend with the validation layer and GL debug output silent;
+//  - damaged, truncated, future-version and hand-made files are refused with a CaptureError
+//    naming the record or the offset, never a crash.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "BackendTest.h"
+#include "Conformance.h"
+#include "assets/BuiltinScenes.h"
+#include "fe/gdi/Capture.h"
+#include "integration/SceneRenderer.h"
+#include "render/TechniqueRenderer.h"
+
+using namespace fe;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path tempPath(const std::string& name) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string test = std::string(info->test_suite_name()) + "_" + info->name();
+    for (char& c : test)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return fs::temp_directory_path() / ("fe_capture_" + test + "_" + name);
+}
+
+std::unique_ptr<gdi::Device> startOrNull(const std::string& backend) {
+    gdi::BackendProbe p = gdi::probeBackend(backend, true);
+    return p.available ? std::move(p.device) : nullptr;
+}
+
+// One display image per technique, in techniques() order, rendered on `device`.
+std::vector<gdi::Image> renderEveryTechnique(gdi::Device& device, const assets::Scene& scene) {
+    std::vector<gdi::Image> images;
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        render::SceneRenderer r(device, scene, {.technique = t.name, .width = 48, .height = 32, .displayImage = true});
+        r.renderFrame();
+        images.push_back(r.readDisplay());
+    }
+    return images;
+}
+
+double fractionOver(const gdi::Image& a, const gdi::Image& b) {
+    return gdi::compareImages(a, b, 5.0 / 255.0).fractionOver();
+}
+
+}  // namespace
+
+// Capture on each backend, replay on each: 3 x 3 pairs, every technique in each capture.
+TEST(CaptureReplay, EveryTechniqueOnEveryBackendPair) {
+    const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 3});
+    std::map<std::string, std::vector<gdi::Image>> live;
+    std::map<std::string, fs::path> files;
+    for (const std::string& b : gdi::backendNames()) {
+        auto device = startOrNull(b);
+        if (!device) continue;
+        files[b] = tempPath(b + ".fecap");
+        auto captured = gdi::makeCaptureDevice(std::move(device), {.path = files[b].string()});
+        live[b] = renderEveryTechnique(*captured, scene);
+        EXPECT_EQ(captured->validationErrorCount(), 0u) << b;
+        gdi::finishCapture(*captured);
+        EXPECT_EQ(gdi::captureStats(*captured)->frames, render::techniques().size()) << b;
+    }
+    if (live.empty()) GTEST_SKIP() << "no backend starts here";
+    for (const auto& [from, file] : files) {
+        for (const auto& [to, liveImages] : live) {
+            auto device = startOrNull(to);
+            ASSERT_TRUE(device);
+            const gdi::ReplayResult r = gdi::replayCapture(file.string(), *device);
+            EXPECT_EQ(r.capturedBackend, from);
+            EXPECT_EQ(device->validationErrorCount(), 0u) << from << " on " << to;
+            ASSERT_EQ(r.images.size(), liveImages.size()) << from << " on " << to;
+            for (size_t i = 0; i < r.images.size(); ++i) {
+                const std::string technique = render::techniques()[i].name;
+                if (from == to) {
+                    EXPECT_EQ(r.images[i].image.data, live[from][i].data) << technique << " on " << to << " is not the live image";
+                } else {
+                    EXPECT_LE(fractionOver(r.images[i].image, liveImages[i]), 0.001)
+                        << technique << ": captured on " << from << ", replayed on " << to;
+                }
+            }
+        }
+        fs::remove(file);
+    }
+}
+
+// Bytes the program wrote into mapped Upload memory, different in each frame, reach the replay:
+// each frame copies the buffer into a texture and reads it back.
+class CaptureMappedMemory : public fe::testing::BackendTest {};
+TEST_P(CaptureMappedMemory, EveryFramesBytesReplayOnEveryBackend) {
+    const fs::path file = tempPath(GetParam() + ".fecap");
+    const std::array<uint32_t, 3> colours = {0xff0000ffu, 0xff00ff00u, 0x80ff0000u};
+    {
+        auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
+        const auto upload = d->createBuffer({.size = 4 * 4 * 4, .usage = gdi::BufferUsage::CopySrc, .access = gdi::MemoryAccess::Upload});
+        const auto texture = d->createTexture({.width = 4, .height = 4, .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
+        auto* mapped = static_cast<uint32_t*>(d->map(upload));
+        auto list = d->createCommandList();
+        for (uint32_t colour : colours) {
+            for (int i = 0; i < 16; ++i) mapped[i] = colour;
+            // Only some bytes change between frames: the capture writes what changed.
+            mapped[5] = colour ^ 0x00ffffffu;
+            list->copyBufferToTexture(texture, {}, upload, 0);
+            d->wait(d->submit(*list));
+            const gdi::Image live = d->readTexture(texture);
+            uint32_t texel;
+            std::memcpy(&texel, live.data.data(), 4);
+            ASSERT_EQ(texel, colour);
+        }
+        d->destroy(texture);
+        d->destroy(upload);
+        EXPECT_EQ(d->validationErrorCount(), 0u);
+    }
+    for (const std::string& to : gdi::backendNames()) {
+        auto replay = startOrNull(to);
+        if (!replay) continue;
+        const gdi::ReplayResult r = gdi::replayCapture(file.string(), *replay);
+        ASSERT_EQ(r.images.size(), colours.size()) << to;
+        for (size_t f = 0; f < colours.size(); ++f) {
+            std::vector<uint32_t> texels(16);
+            std::memcpy(texels.data(), r.images[f].image.data.data(), 64);
+            for (int i = 0; i < 16; ++i)
+                EXPECT_EQ(texels[size_t(i)], i == 5 ? colours[f] ^ 0x00ffffffu : colours[f]) << "frame " << f << " texel " << i << " on " << to;
+        }
+        EXPECT_EQ(replay->validationErrorCount(), 0u) << to;
+    }
+    fs::remove(file);
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureMappedMemory);
+
+// The conformance cases use every part of the device: their capture must replay everywhere.
+class CaptureConformanceRun : public fe::testing::BackendTest {};
+TEST_P(CaptureConformanceRun, ReplaysOnEveryBackendWithValidationSilent) {
+    const fs::path file = tempPath(GetParam() + ".fecap");
+    {
+        auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
+        for (const conformance::Case& c : conformance::cases()) {
+            const conformance::CaseResult r = conformance::runCase(*d, c);
+            EXPECT_TRUE(r.passed) << c.name << ": " << r.message;
+        }
+        EXPECT_EQ(d->validationErrorCount(), 0u);
+        gdi::finishCapture(*d);
+        EXPECT_GT(gdi::captureStats(*d)->dedupedBlobs, 0u) << "shaders made again should be written once";
+    }
+    const gdi::CaptureSummary summary = gdi::summarizeCapture(file.string());
+    EXPECT_EQ(summary.backend, GetParam());
+    for (const std::string& to : gdi::backendNames()) {
+        auto replay = startOrNull(to);
+        if (!replay) continue;
+        const gdi::ReplayResult r = gdi::replayCapture(file.string(), *replay);
+        EXPECT_EQ(r.submits, summary.submits) << to;
+        EXPECT_GT(r.images.size(), 100u) << to;
+        EXPECT_EQ(replay->validationErrorCount(), 0u) << to;
+    }
+    fs::remove(file);
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureConformanceRun);
+
+// ---------------------------------------------------------------------------------------------
+// Hostile files, written byte by byte as docs/CAPTURE.md describes the format.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+using nlohmann::json;
+
+struct FileBuilder {
+    std::vector<uint8_t> bytes;
+    explicit FileBuilder(uint32_t version = gdi::kCaptureFormatVersion) {
+        for (char c : std::string("FECAPTUR")) bytes.push_back(uint8_t(c));
+        u32(version);
+        u32(0);
+    }
+    void u32(uint32_t v) { put(&v, 4); }
+    void u64(uint64_t v) { put(&v, 8); }
+    void put(const void* p, size_t n) {
+        for (size_t i = 0; i < n; ++i) bytes.push_back(static_cast<const uint8_t*>(p)[i]);
+    }
+    FileBuilder& chunk(uint32_t kind, const std::vector<uint8_t>& body) {
+        u32(kind), u32(0), u64(body.size()), u64(body.size());
+        bytes.insert(bytes.end(), body.begin(), body.end());
+        return *this;
+    }
+    FileBuilder& record(const json& j) { return chunk(2, json::to_cbor(j)); }
+    FileBuilder& blob(const std::vector<uint8_t>& b) { return chunk(1, b); }
+    FileBuilder& end() { return chunk(3, {}); }
+};
+
+json deviceRecord(uint64_t commandSet) { return {{"op", "device"}, {"backend", "vulkan"}, {"device", "x"}, {"commandSet", commandSet}, {"window", false}}; }
+
+class CaptureFileErrors : public fe::testing::BackendTest {
+protected:
+    void SetUp() override {
+        BackendTest::SetUp();
+        if (!device) return;
+        // A real capture's first record gives the command-set fingerprint hand-made files need.
+        const fs::path good = tempPath("good.fecap");
+        {
+            auto d = gdi::makeCaptureDevice(startOrNull(GetParam()), {.path = good.string(), .compress = false});
+            const auto t = d->createTexture({.width = 2, .height = 2, .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
+            d->writeTexture(t, {}, gdi::bytesOf(std::vector<uint8_t>(16, 7)));
+            d->readTexture(t);
+            d->destroy(t);
+        }
+        std::ifstream in(good, std::ios::binary);
+        valid.assign(std::istreambuf_iterator<char>(in), {});
+        fs::remove(good);
+        // The device record is the first chunk: 16 bytes of header, 24 of chunk header.
+        uint64_t size;
+        std::memcpy(&size, valid.data() + 16 + 8, 8);
+        fingerprint = json::from_cbor(std::vector<uint8_t>(valid.begin() + 40, valid.begin() + 40 + long(size)))["commandSet"];
+    }
+    // Replays `bytes` and returns the CaptureError's message ("(replayed)" when accepted); any
+    // other exception fails the test.
+    std::string replayError(const std::vector<uint8_t>& bytes) {
+        const fs::path file = tempPath("hostile.fecap");
+        std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        std::string message = "(replayed)";
+        try {
+            gdi::replayCapture(file.string(), *device);
+        } catch (const gdi::CaptureError& e) {
+            message = e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "not a CaptureError: " << e.what();
+        }
+        fs::remove(file);
+        return message;
+    }
+    FileBuilder started() {
+        FileBuilder f;
+        f.record(deviceRecord(fingerprint));
+        return f;
+    }
+    std::vector<uint8_t> valid;
+    uint64_t fingerprint = 0;
+};
+
+}  // namespace
+
+TEST_P(CaptureFileErrors, TheValidFileReplays) { EXPECT_EQ(replayError(valid), "(replayed)"); }
+
+TEST_P(CaptureFileErrors, NotACaptureOrAFutureVersion) {
+    EXPECT_NE(replayError({'h', 'e', 'l', 'l', 'o'}).find("not a capture file"), std::string::npos);
+    EXPECT_NE(replayError(FileBuilder(99).end().bytes).find("format version 99; this build reads version 1"), std::string::npos);
+    EXPECT_NE(replayError(FileBuilder(0).end().bytes).find("format version 0"), std::string::npos);
+}
+
+TEST_P(CaptureFileErrors, EveryTruncationIsRefusedWithItsOffset) {
+    for (size_t n = 0; n < valid.size(); n += 7) {
+        const std::string e = replayError(std::vector<uint8_t>(valid.begin(), valid.begin() + long(n)));
+        EXPECT_NE(e.find("offset"), std::string::npos) << "cut at " << n << ": " << e;
+    }
+}
+
+TEST_P(CaptureFileErrors, DamagedBytesNeverCrash) {
+    std::mt19937 random(27);
+    for (int i = 0; i < 200; ++i) {
+        std::vector<uint8_t> bytes = valid;
+        for (int k = 0; k < 3; ++k) bytes[16 + random() % (bytes.size() - 16)] ^= uint8_t(1 + random() % 255);
+        replayError(bytes);  // refused or replayed: only another exception or a crash fails
+    }
+}
+
+TEST_P(CaptureFileErrors, ChunkSizesAreCheckedBeforeMemoryIsTaken) {
+    FileBuilder past = started();
+    past.u32(1), past.u32(0), past.u64(1000), past.u64(1000);
+    EXPECT_NE(replayError(past.bytes).find("runs past the end of the file"), std::string::npos);
+    FileBuilder huge = started();
+    huge.u32(1), huge.u32(1), huge.u64(4), huge.u64(uint64_t(1) << 40), huge.u32(0);
+    EXPECT_NE(replayError(huge.bytes).find("larger than a capture chunk may be"), std::string::npos);
+    FileBuilder kind = started();
+    kind.chunk(9, {}).end();
+    EXPECT_NE(replayError(kind.bytes).find("unknown chunk kind 9"), std::string::npos);
+    FileBuilder unended = started();
+    EXPECT_NE(replayError(unended.bytes).find("truncated"), std::string::npos);
+}
+
+TEST_P(CaptureFileErrors, HandMadeRecordsNameTheRecordAndTheField) {
+    auto error = [&](const json& record) { return replayError(started().record(record).end().bytes); };
+    EXPECT_NE(error({{"op", "launchRockets"}}).find("record 1 (launchRockets) at offset"), std::string::npos);
+    EXPECT_NE(error({{"op", "launchRockets"}}).find("unknown call"), std::string::npos);
+    const json texture = {{"dimension", 0}, {"format", 250}, {"width", 4}, {"height", 4}, {"depthOrLayers", 1}, {"mips", 1},
+                          {"samples", 1}, {"usage", 1}, {"heap", 0}, {"heapOffset", 0}, {"viewFormats", json::array()}};
+    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", texture}}).find("field 'format' has no such value (250)"),
+              std::string::npos);
+    json usage = texture;
+    usage["format"] = 0, usage["usage"] = 1u << 20;
+    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", usage}}).find("field 'usage' has unknown bits"), std::string::npos);
+    EXPECT_NE(error({{"op", "createBuffer"}, {"id", 1}, {"desc", {{"size", 16}, {"usage", 1}, {"access", 0}}}, {"data", 99}})
+                  .find("data block 99 is not in the file before it"),
+              std::string::npos);
+    EXPECT_NE(error({{"op", "writeBuffer"}, {"id", 77}, {"offset", 0}, {"data", 0}}).find("record 1 (writeBuffer)"), std::string::npos);
+    EXPECT_NE(error({{"op", "createTimer"}, {"id", 0}}).find("object id 0 is null or already in use"), std::string::npos);
+    EXPECT_NE(error({{"op", "submit"}, {"fence", 1}, {"lists", "no"}}).find("field 'lists' is not an array"), std::string::npos);
+    // The device's own checks stand behind the file's: a buffer of size 0 is the device's error.
+    EXPECT_NE(error({{"op", "createBuffer"}, {"id", 1}, {"desc", {{"size", 0}, {"usage", 1}, {"access", 0}}}, {"data", 0}})
+                  .find("record 1 (createBuffer)"),
+              std::string::npos);
+    // Not CBOR at all.
+    EXPECT_NE(replayError(started().chunk(2, {0xff, 0x00, 0x13}).end().bytes).find("record 1 (?) at offset"), std::string::npos);
+    // A command list whose stream is damaged names the command-stream record inside it.
+    EXPECT_NE(replayError(started().blob({1, 2, 3}).record({{"op", "submit"}, {"fence", 1}, {"lists", {1}}}).end().bytes)
+                  .find("record 1 (submit)"),
+              std::string::npos);
+    // Another build's command set.
+    EXPECT_NE(replayError(FileBuilder().record(deviceRecord(fingerprint + 1)).end().bytes).find("another build's command set"),
+              std::string::npos);
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureFileErrors);
