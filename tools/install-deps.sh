@@ -17,6 +17,7 @@ PACKAGES=(
   libimgui-dev                 # the UI renderer (fe view)
   libcli11-dev libspdlog-dev   # the fe command line and its logging
   libspirv-cross-c-shared-dev  # shader reflection (bindings, inputs, outputs) checked against pipelines
+  spirv-tools                  # SPIR-V validated before reflection (SPIRV-Cross trusts its input)
   clang libclang-rt-14-dev     # the fuzzers (libFuzzer); gcc's own sanitizer runtimes come with g++
   librenderdoc librenderdoc-dev python3-renderdoc  # fe render --renderdoc-capture, and its test
 )

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <spirv-tools/libspirv.h>
 #include <spirv_cross/spirv_cross_c.h>
 
 namespace fe::gdi {
@@ -53,16 +54,35 @@ ScalarKind kindOf(spvc_basetype t) {
     }
 }
 
+// SPIRV-Cross trusts the module it parses: a malformed one can crash it (the capture-file fuzzer
+// found one), so SPIRV-Tools' validator (Debian's spirv-tools) checks every module first. The
+// universal environment: the SPIR-V rules, not one API's (the validation layer checks those).
+void validateSpirv(std::span<const uint32_t> spirv, const std::string& name) {
+    static const spv_context context = spvContextCreate(SPV_ENV_UNIVERSAL_1_5);
+    spv_diagnostic diagnostic = nullptr;
+    const spv_result_t result = spvValidateBinary(context, spirv.data(), spirv.size(), &diagnostic);
+    if (result == SPV_SUCCESS) {
+        spvDiagnosticDestroy(diagnostic);
+        return;
+    }
+    const std::string why = diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
+    spvDiagnosticDestroy(diagnostic);
+    throw Error("shader '" + name + "': not a valid SPIR-V module: " + why);
+}
+
 }  // namespace
 
-ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                              const std::string& name) {
+// Some of SPIRV-Cross's C API entry points let its C++ exceptions through (set_entry_point on a
+// valid module whose entry point is of another stage, say): reflectShader turns them into Error.
+static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
+                                 const std::string& name) {
     Context c;
     auto fail = [&](const std::string& what) -> Error {
         const char* detail = c.ctx ? spvc_context_get_last_error_string(c.ctx) : "";
         return Error("shader '" + name + "': " + what + (detail && *detail ? std::string(": ") + detail : std::string()));
     };
     if (!c.ctx) throw fail("SPIRV-Cross could not start");
+    validateSpirv(spirv, name);
     spvc_parsed_ir ir = nullptr;
     spvc_compiler comp = nullptr;
     if (spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS)
@@ -148,6 +168,17 @@ ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage
     std::sort(out.outputs.begin(), out.outputs.end(), byLocation);
     std::sort(out.specConstants.begin(), out.specConstants.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
     return out;
+}
+
+ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
+                              const std::string& name) {
+    try {
+        return reflectUnguarded(spirv, stage, entryPoint, name);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error("shader '" + name + "': SPIR-V reflection failed: " + e.what());
+    }
 }
 
 }  // namespace fe::gdi

@@ -5,7 +5,7 @@
 # leak, a timeout or a sanitizer report stops the harness, leaves the input in
 # build-fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
 #   tools/fuzz/run.sh [SECONDS] [HARNESS...]     HARNESS: GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer
-#                                                PipelineCacheFuzzer CaptureStreamFuzzer
+#                                                PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root="$(pwd)"
@@ -13,7 +13,7 @@ tools/install-deps.sh
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer)
 
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFE_FUZZ=ON -DFE_BUILD_TESTS=OFF \
   -DFE_BUILD_BENCHMARKS=OFF -DFE_BUILD_EXAMPLES=OFF >/dev/null
@@ -31,6 +31,7 @@ for h in "${harnesses[@]}"; do
     CliFuzzer) seeds=(tests/fuzz/seeds/cli) ;;
     PipelineCacheFuzzer) seeds=(tests/fuzz/seeds/pipeline_cache) ;;
     CaptureStreamFuzzer) seeds=(tests/fuzz/seeds/capture_stream) ;;
+    CaptureFileFuzzer) seeds=(tests/fuzz/seeds/capture_file) ;;
     *) seeds=(tests/fuzz/seeds/gltf)
        if [ -d ../shared/assets ]; then
          mkdir -p build-fuzz/samples
@@ -42,7 +43,7 @@ for h in "${harnesses[@]}"; do
   # not per input, so libFuzzer's per-input leak check is off there (objects are checked
   # per input with Device::liveObjects, and process leaks by the sanitizer suite).
   leaks=1
-  [ "$h" = GltfUploadFuzzer ] && leaks=0
+  [ "$h" = GltfUploadFuzzer ] || [ "$h" = CaptureFileFuzzer ] && leaks=0
   log="build-fuzz/$h.log"
   echo "fuzz: $h for ${seconds} s"
   if ! "build-fuzz/tests/fuzz/$h" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=8000 \

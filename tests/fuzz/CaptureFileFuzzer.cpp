@@ -1,0 +1,39 @@
+// libFuzzer harness: whole capture files (Capture.h), summarized and replayed on a real device
+// (Vulkan on lavapipe, validation on). Any bytes either replay or are refused with a
+// CaptureError; never a crash, a hang, a device loss, a validation error (the device's own
+// checks must stop every bad call a file can make before the driver sees it) or an object left
+// behind. A violation aborts, so libFuzzer records the input.
+#include <cstdint>
+#include <memory>
+
+#include "FuzzSupport.h"
+#include "fe/gdi/Backend.h"
+#include "fe/gdi/Capture.h"
+#include "fe/gdi/Faults.h"  // toString(LiveObjects)
+
+namespace {
+fe::gdi::Device& device() {
+    static std::unique_ptr<fe::gdi::Device> d = fe::gdi::createDevice({.backend = "vulkan", .validation = true});
+    return *d;
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    fe::gdi::Device& d = device();
+    const fe::gdi::LiveObjects before = d.liveObjects();
+    const uint32_t validationBefore = d.validationErrorCount();
+    const std::string path = fe::fuzz::writeInput(data, size);
+    std::string lost;
+    try {
+        fe::gdi::summarizeCapture(path);
+        fe::gdi::replayCapture(path, d);
+    } catch (const fe::gdi::CaptureError&) {
+    } catch (const fe::gdi::DeviceLostError& e) {
+        lost = e.what();
+    }
+    d.waitIdle();
+    FUZZ_CHECK(lost.empty(), "device lost:", lost);
+    FUZZ_CHECK(d.liveObjects() == before, "device objects left behind:", fe::gdi::toString(d.liveObjects()));
+    FUZZ_CHECK(d.validationErrorCount() == validationBefore, "validation errors while replaying", "");
+    return 0;
+}
