@@ -136,11 +136,20 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
             throw fail("'" + std::string(r.name) + "' is a separate image or sampler; the device binds combined "
                                                    "image samplers (sampler2D and the like)");
         });
+    // Stage inputs and outputs stay within the 16 locations (64 components) every Vulkan and GL
+    // 4.5 device has; beyond that the pipeline would be the driver's error, not ours.
     auto variable = [&](std::vector<ShaderInterface::Variable>& into) {
         return [&](const spvc_reflected_resource& r) {
             const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
-            into.push_back({spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation), kindOf(spvc_type_get_basetype(t)),
-                            spvc_type_get_vector_size(t), r.name});
+            const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
+            uint64_t locations = std::max(1u, spvc_type_get_columns(t));
+            for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
+                locations *= std::max<uint64_t>(1, spvc_type_get_array_dimension(t, d));
+            if (uint64_t(location) + locations > kMaxInterfaceLocations)
+                throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) + " takes locations up to " +
+                           std::to_string(uint64_t(location) + locations - 1) + "; every device has " +
+                           std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
+            into.push_back({location, kindOf(spvc_type_get_basetype(t)), spvc_type_get_vector_size(t), r.name});
         };
     };
     each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));

@@ -512,3 +512,22 @@ TEST_P(DamagedSpirv, IsAnErrorNeverACrash) {
     EXPECT_GT(refused, 250u);
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DamagedSpirv);
+
+// An output at a location beyond the 16 every device has is refused before the driver sees it
+// (the Vulkan validation layer reported it, found by the capture-file fuzzer).
+TEST_P(DamagedSpirv, LocationsBeyondSixteenAreRefused) {
+    const ShaderBinary& good = fe::shaders::find("conformance/triangle.vert");
+    auto patched = [](std::span<const uint32_t> words) {
+        std::vector<uint32_t> w(words.begin(), words.end());
+        // OpDecorate (opcode 71): word count 4, target, Location (30), the location.
+        for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16))
+            if ((w[i] & 0xffffu) == 71 && (w[i] >> 16) == 4 && w[i + 2] == 30) w[i + 3] = 40;
+        return w;
+    };
+    const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
+    ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
+    const std::string e = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "far", .vulkan = vulkan, .opengl = opengl}});
+    });
+    EXPECT_NE(e.find("at location 40 takes locations up to 40; every device has 16"), std::string::npos) << e;
+}

@@ -18,6 +18,10 @@ const char* scalarKindName(ScalarKind k);
 const char* shaderStageName(ShaderStage s);  // "vertex", "fragment", "compute"
 const char* bindingTypeName(BindingType t);  // "uniform buffer", ...
 
+// Locations a stage's inputs or outputs may use: 0 to 15 (64 components, the least both APIs
+// guarantee for vertex attributes, varyings and fragment inputs).
+inline constexpr uint32_t kMaxInterfaceLocations = 16;
+
 struct ShaderInterface {
     struct Binding {
         uint32_t slot = 0;  // layout(binding = slot), descriptor set 0
