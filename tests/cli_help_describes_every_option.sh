@@ -5,7 +5,7 @@
 set -euo pipefail
 fe=$1
 status=0
-for command in info render view bench conformance capture replay; do
+for command in info render view bench conformance capture replay bisect; do
   "$fe" "$command" --help | awk -v command="$command" '
     function flush() { if (pending != "") { missing = missing " " pending; pending = "" } }
     /^Options:/ { options = 1; next }

@@ -162,6 +162,7 @@ struct Applier {
     const HandleMap& map;
     const cmd::CommandStream& stream;
     RenderPassDesc pass;  // the open pass, for the secondary lists it executes
+    ApplyObserver* observer = nullptr;
 
     uint32_t mapped(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t id) const {
         if (id == 0) return 0;  // a null handle stays null
@@ -187,6 +188,7 @@ struct Applier {
         pass.depth.texture = m()[r.depth.texture], pass.depth.resolveTexture = m()[r.depth.resolveTexture];
         pass.debugName = cmd::view(r, r.debugName);
         pass.secondaryLists = r.secondaryLists;
+        if (observer) observer->adjustPass(pass);
         list.beginRenderPass(pass);
     }
     void operator()(const cmd::EndRenderPass&) { list.endRenderPass(); }
@@ -258,9 +260,21 @@ struct Applier {
 
 }  // namespace
 
-void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map) {
-    Applier a{device, list, map, stream, {}};
-    stream.forEach([&](const auto& record) { a(record); });
+void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map,
+                 ApplyObserver* observer) {
+    Applier a{device, list, map, stream, {}, observer};
+    if (!observer) {
+        stream.forEach([&](const auto& record) { a(record); });
+        return;
+    }
+    stream.forEachRaw([&](std::span<const std::byte> raw) {
+        if (observer->stop) return;
+        const cmd::Op op = reinterpret_cast<const cmd::CommandStream::Header*>(raw.data())->op;
+        const std::byte* record = raw.data() + sizeof(cmd::CommandStream::Header);
+        if (!observer->before(op, record, list)) return;
+        cmd::CommandStream::dispatch(op, record, a);
+        observer->after(op, record, list);
+    });
 }
 
 }  // namespace fe::gdi

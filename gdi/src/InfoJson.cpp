@@ -30,6 +30,13 @@ void to_json(Json& j, const DeviceInfo& info) {
          {"features", info.features}};
 }
 
+void to_json(Json& j, const ImageDiff& d) {
+    j = {{"pixels", d.pixels},
+         {"pixelsOverTolerance", d.pixelsOverTolerance},
+         {"fractionOver", d.fractionOver()},
+         {"maxAbsError", d.maxAbsError}};
+}
+
 Json probeJson(const BackendProbe& probe) {
     Json j = {{"name", probe.name}, {"available", probe.available && probe.device}};
     if (probe.available && probe.device) {

@@ -316,3 +316,45 @@ TEST_P(CaptureFileErrors, HandMadeRecordsNameTheRecordAndTheField) {
               std::string::npos);
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureFileErrors);
+
+// ---------------------------------------------------------------------------------------------
+// Bisection: a frame captured on one backend, bisected against every backend. Unperturbed, no
+// divergence; with one draw left out on one side, exactly that draw is named.
+// ---------------------------------------------------------------------------------------------
+class CaptureBisect : public fe::testing::BackendTest {};
+TEST_P(CaptureBisect, FindsThePerturbedDrawAndNothingElse) {
+    const fs::path file = tempPath(GetParam() + ".fecap");
+    {
+        auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
+        const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 3});
+        render::SceneRenderer r(*d, scene, {.technique = "deferred", .width = 48, .height = 32, .displayImage = true});
+        r.renderFrame();
+        r.readDisplay();
+    }
+    auto self = startOrNull(GetParam());
+    const uint64_t draws = gdi::replayCapture(file.string(), *self, {.snapshotPasses = true}).draws;
+    ASSERT_GT(draws, 5u);
+    for (const std::string& other : gdi::backendNames()) {
+        auto b = startOrNull(other);
+        if (!b) continue;
+        const gdi::BisectResult same = gdi::bisectCapture(file.string(), *self, *b);
+        EXPECT_FALSE(same.diverged) << GetParam() << " against " << other << ": "
+                                    << (same.diffs.empty() ? "" : same.diffs[0].target);
+        EXPECT_GT(same.passesCompared, 1u);
+        // The first draw, one in the middle, the last (in the display pass).
+        for (uint64_t perturbed : {uint64_t(0), draws / 2, draws - 1}) {
+            const gdi::BisectResult r = gdi::bisectCapture(file.string(), *self, *b, {.perturb = {{1, perturbed}}});
+            ASSERT_TRUE(r.diverged) << "draw " << perturbed << " on " << other;
+            ASSERT_TRUE(r.draw) << "draw " << perturbed << " on " << other << ": only the pass was found";
+            EXPECT_EQ(r.draw->draw, perturbed) << other;
+            EXPECT_FALSE(r.draw->pipeline.empty());
+            EXPECT_FALSE(r.draw->shaders.empty());
+            EXPECT_FALSE(r.diffs.empty());
+            EXPECT_GT(r.diffs[0].diff.pixelsOverTolerance, 0u);
+        }
+        EXPECT_EQ(b->validationErrorCount(), 0u) << other;
+    }
+    EXPECT_EQ(self->validationErrorCount(), 0u);
+    fs::remove(file);
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureBisect);

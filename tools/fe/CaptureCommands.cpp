@@ -9,8 +9,13 @@
 #include <iostream>
 #include <numeric>
 
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/Capture.h"
+#include "fe/gdi/InfoJson.h"
 
 extern char** environ;
 
@@ -26,6 +31,39 @@ void printSummary(const std::string& path) {
               << "  " << s.fileBytes << " bytes on disk (" << s.rawBytes << " uncompressed)";
     if (s.frames) std::cout << ", " << s.fileBytes / s.frames << " bytes per frame";
     std::cout << "\n";
+}
+
+std::string fileName(std::string name) {
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return name;
+}
+
+// PNG where the format allows (not integer or depth formats): false when it does not.
+bool writeImage(const gdi::Image& image, const std::string& path) {
+    try {
+        std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+        gdi::writePng(image, path);
+        return true;
+    } catch (const gdi::Error&) {
+        return false;
+    }
+}
+
+void printDraw(const gdi::DrawContext& d) {
+    std::cout << "draw " << d.draw << " (" << d.command << ", draw " << d.drawInPass << " of pass " << d.pass << " '"
+              << d.passName << "')\n";
+    std::string path;
+    for (const std::string& g : d.groups) path += (path.empty() ? "" : " > ") + g;
+    if (!path.empty()) std::cout << "  debug groups: " << path << "\n";
+    std::cout << "  pipeline: " << (d.pipeline.empty() ? "(none)" : d.pipeline);
+    if (!d.shaders.empty()) {
+        std::cout << " (shaders:";
+        for (const std::string& s : d.shaders) std::cout << " " << s;
+        std::cout << ")";
+    }
+    std::cout << "\n";
+    for (const std::string& r : d.resources) std::cout << "  bound " << r << "\n";
 }
 
 double median(std::vector<double> v) {
@@ -67,7 +105,29 @@ int cmdReplay(const Args& a) {
                                      .window = a.options.count("--present") > 0});
     gdi::ReplayOptions options{.outDir = a.options.count("--out") ? a.options.at("--out") : "",
                                .present = a.options.count("--present") > 0};
+    if (a.options.count("--pass") && a.options.count("--draw")) throw UsageError("replay: --pass or --draw, not both");
+    if (a.options.count("--pass")) options.stopAfterPass = a.options.at("--pass");
+    if (a.options.count("--draw")) options.stopAfterDraw = parseUint(a.options.at("--draw"), "--draw", 0, UINT32_MAX);
     const gdi::ReplayResult r = gdi::replayCapture(path, *device, options);
+    if (options.stopAfterPass || options.stopAfterDraw) {
+        if (!r.stopTargets) {
+            std::cerr << "fe: replay: the capture has no " << (options.stopAfterPass ? "render pass named '" + *options.stopAfterPass + "'"
+                                                                                : "draw " + std::to_string(*options.stopAfterDraw) + " inside a render pass")
+                      << " (" << r.passes << " passes, " << r.draws << " draws)\n";
+            return 1;
+        }
+        if (r.stoppedAt) printDraw(*r.stoppedAt);
+        std::cout << "stopped after pass " << r.stopTargets->pass << " '" << r.stopTargets->name << "'; its targets:\n";
+        for (const gdi::ReplayImage& t : r.stopTargets->targets) {
+            std::cout << "  " << t.name << " (" << t.image.width << "x" << t.image.height << ")";
+            if (!options.outDir.empty()) {
+                const std::string file = options.outDir + "/" + fileName(t.name) + ".png";
+                if (writeImage(t.image, file)) std::cout << " -> " << file;
+            }
+            std::cout << "\n";
+        }
+        return 0;
+    }
     std::cout << path << ": captured on " << r.capturedBackend << ", replayed on " << device->info().backend << ": "
               << r.frames << " frame(s), " << r.submits << " submission(s), " << r.commandLists << " command list(s), "
               << r.images.size() << " image(s)";
@@ -83,6 +143,90 @@ int cmdReplay(const Args& a) {
         return 1;
     }
     return 0;
+}
+
+int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
+    if (a.positional.size() != 1) throw UsageError("bisect takes one capture FILE");
+    const std::string& path = a.positional[0];
+    const std::string pair = a.options.count("--backends") ? a.options.at("--backends") : "vulkan,gl-egl";
+    const auto comma = pair.find(',');
+    if (comma == std::string::npos || pair.find(',', comma + 1) != std::string::npos)
+        throw UsageError("--backends takes two backends, A,B (e.g. vulkan,gl-egl), got '" + pair + "'");
+    const std::string nameA = pair.substr(0, comma), nameB = pair.substr(comma + 1);
+    gdi::BisectOptions options;
+    if (a.options.count("--tolerance")) {
+        const std::string t = a.options.at("--tolerance");
+        char* end = nullptr;
+        options.absTolerance = std::strtod(t.c_str(), &end);
+        if (*end == ',') options.maxFractionOver = std::strtod(end + 1, &end);
+        if (*end || !(options.absTolerance >= 0) || !(options.maxFractionOver >= 0) || options.maxFractionOver > 1)
+            throw UsageError("--tolerance takes ABS[,FRACTION] (default 0.0196,0.001: 5/255, 0.1 % of pixels), got '" + t + "'");
+    }
+    if (a.options.count("--perturb")) {
+        const std::string p = a.options.at("--perturb");
+        const auto colon = p.find(':');
+        const std::string backend = p.substr(0, colon);
+        if (colon == std::string::npos || (backend != nameA && backend != nameB))
+            throw UsageError("--perturb takes BACKEND:DRAW with BACKEND one of the two bisected, got '" + p + "'");
+        options.perturb = {{backend == nameA ? 0 : 1, parseUint(p.substr(colon + 1), "--perturb's DRAW", 0, UINT32_MAX)}};
+    }
+    auto deviceA = gdi::createDevice({.backend = nameA, .validation = true, .verbose = false});
+    auto deviceB = gdi::createDevice({.backend = nameB, .validation = true, .verbose = false});
+    const gdi::BisectResult r = gdi::bisectCapture(path, *deviceA, *deviceB, options);
+    const std::string out = a.options.count("--out") ? a.options.at("--out") : "bisect";
+    std::filesystem::create_directories(out);
+
+    std::cout << path << ": " << nameA << " against " << nameB << ", " << r.passesCompared << " pass(es) and "
+              << r.drawsCompared << " draw(s) compared in " << r.replays << " replays\n";
+    gdi::Json comparisons = gdi::Json::array();
+    for (const gdi::TargetDiff& d : r.diffs) {
+        const std::string base = out + "/" + fileName(d.target);
+        writeImage(d.a, base + "_" + nameA + ".png");
+        writeImage(d.b, base + "_" + nameB + ".png");
+        const bool heat = d.heat.width && writeImage(d.heat, base + "_heat.png");
+        comparisons.push_back({{"name", d.target}, {"reference", nameA}, {"backend", nameB}, {"case", "bisect"},
+                               {"image", d.target}, {"passed", false}, {"metrics", d.diff},
+                               {"tolerance", {{"absolute", options.absTolerance}, {"maxFractionOver", options.maxFractionOver},
+                                              {"reason", "fe bisect --tolerance"}}},
+                               {"files", {base + "_" + nameA + ".png", base + "_" + nameB + ".png", heat ? base + "_heat.png" : ""}}});
+    }
+    gdi::Json divergence = nullptr;
+    if (!r.diverged) {
+        std::cout << "no divergence: every render pass and read-back agrees within " << options.absTolerance << " on all but "
+                  << options.maxFractionOver * 100 << " % of pixels\n";
+    } else {
+        if (r.pass) std::cout << "first divergent pass: " << r.pass->pass << " '" << r.pass->name << "' (draws " << r.pass->firstDraw
+                              << " to " << r.pass->firstDraw + r.pass->draws - 1 << ")\n";
+        else std::cout << "no render pass differs; the read-backs do\n";
+        if (r.draw) {
+            std::cout << "first divergent ";
+            printDraw(*r.draw);
+        } else if (r.pass) {
+            std::cout << "no single draw's targets differ: the difference comes at the end of the pass (resolve or store)\n";
+        }
+        for (const gdi::TargetDiff& d : r.diffs)
+            std::cout << "  " << d.target << ": " << d.diff.pixelsOverTolerance << " of " << d.diff.pixels << " pixels differ ("
+                      << d.diff.fractionOver() * 100 << " %), max error " << d.diff.maxAbsError << "\n";
+        divergence = {{"pass", r.pass ? gdi::Json(r.pass->pass) : gdi::Json(nullptr)},
+                      {"passName", r.pass ? r.pass->name : ""}};
+        if (r.draw) {
+            divergence["draw"] = r.draw->draw;
+            divergence["drawInPass"] = r.draw->drawInPass;
+            divergence["command"] = r.draw->command;
+            divergence["groups"] = r.draw->groups;
+            divergence["pipeline"] = r.draw->pipeline;
+            divergence["shaders"] = r.draw->shaders;
+            divergence["resources"] = r.draw->resources;
+        }
+    }
+    const gdi::Json report = {{"schema", "fe-results/1"}, {"kind", "bisect"}, {"engine", gdi::engineJson()},
+                              {"date", gdi::utcTimestamp()}, {"arguments", arguments}, {"capture", path},
+                              {"backends", {deviceA->info(), deviceB->info()}}, {"divergence", divergence},
+                              {"comparisons", comparisons},
+                              {"summary", {{"passed", r.diverged ? 0 : 1}, {"failed", r.diverged ? 1 : 0}}}};
+    std::ofstream(out + "/bisect.json") << report.dump(2) << "\n";
+    std::cout << "report: " << out << "/bisect.json\n";
+    return r.diverged ? 1 : 0;
 }
 
 }  // namespace fe::cli

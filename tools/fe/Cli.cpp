@@ -73,9 +73,17 @@ constexpr const char* kUsage =
     "      runs PROGRAM (any program using the device, e.g. fe render) with FE_CAPTURE=FILE (default\n"
     "      capture.fecap): every call of its first device, with its data, goes into FILE; --frames N: only the\n"
     "      first N frames (a frame ends at a present, or at the first read-back after a submit)\n"
-    "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present]\n"
+    "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present] [--pass NAME | --draw N]\n"
     "      replays a capture on any backend (captured on vulkan, replayed on gl-egl, or the other way round);\n"
-    "      --out DIR: every read-back and presented image as PNG; prints the frame times; --present: in a window\n"
+    "      --out DIR: every read-back and presented image as PNG; prints the frame times; --present: in a window;\n"
+    "      --pass NAME / --draw N: stop after that render pass or draw (counted from 0 over the capture) and\n"
+    "      write the render targets there\n"
+    "  bisect FILE [--backends A,B] [--tolerance ABS[,FRACTION]] [--out DIR] [--perturb BACKEND:DRAW]\n"
+    "      replays on both backends (default vulkan,gl-egl), compares the render targets after every render\n"
+    "      pass, then draw by draw in the first pass that differs, and prints the first divergent pass and draw:\n"
+    "      debug groups, pipeline, shaders, bound resources, pixels that differ; writes DIR/bisect.json (default\n"
+    "      DIR: bisect) with both images and a heat map; tolerance default 0.0196,0.001 (5/255 on 0.1 % of\n"
+    "      pixels); --perturb leaves one draw out on one backend (a test of the bisection); exit 1 when they differ\n"
     "backends: auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw (also FE_BACKEND)\n"
     "exit codes: 0 success, 1 error (out of memory included), 2 usage, 3 asset, 4 device lost\n";
 
@@ -98,6 +106,12 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
     {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
+    {"--pass", {"NAME", "stop after the first render pass of this name and write its targets"}},
+    {"--draw", {"N", "stop after draw N (from 0, over the capture) and write its pass's targets"}},
+    {"--backends", {"A,B", "the two backends to compare (default vulkan,gl-egl)"}},
+    {"--tolerance", {"ABS[,FRACTION]", "per channel, and the fraction of pixels allowed beyond it (default 0.0196,0.001)"}},
+    {"bisect --out", {"DIR", "where bisect.json and the images go (default bisect)"}},
+    {"--perturb", {"BACKEND:DRAW", "leave draw DRAW out on BACKEND (tests the bisection)"}},
     {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto: the render director chooses"}},
     {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
     {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},

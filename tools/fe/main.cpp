@@ -229,12 +229,7 @@ gdi::Json toleranceJson(const conformance::CaseImage& ci) {
     return {{"absolute", ci.absTolerance}, {"maxFractionOver", ci.maxFractionOver}, {"reason", ci.toleranceReason}};
 }
 
-gdi::Json metricsJson(const gdi::ImageDiff& d) {
-    return {{"pixels", d.pixels},
-            {"pixelsOverTolerance", d.pixelsOverTolerance},
-            {"fractionOver", d.fractionOver()},
-            {"maxAbsError", d.maxAbsError}};
-}
+gdi::Json metricsJson(const gdi::ImageDiff& d) { return d; }
 
 gdi::Json caseJson(const std::string& backend, const conformance::CaseResult& r) {
     gdi::Json images = gdi::Json::array();
@@ -519,7 +514,10 @@ int main(int argc, char** argv) {
                                   std::vector<std::string>(argv + 1, argv + argc));
         if (command == "capture") return cli::cmdCapture(argc, argv);
         if (command == "replay")
-            return cli::cmdReplay(parse(argc, argv, 2, {"--backend", "--out"}, {"--validation", "--present"}));
+            return cli::cmdReplay(parse(argc, argv, 2, {"--backend", "--out", "--pass", "--draw"}, {"--validation", "--present"}));
+        if (command == "bisect")
+            return cli::cmdBisect(parse(argc, argv, 2, {"--backends", "--tolerance", "--out", "--perturb"}, {}),
+                                  std::vector<std::string>(argv + 1, argv + argc));
         if (command == "--help" || command == "help") {
             std::cout << usage();
             return 0;

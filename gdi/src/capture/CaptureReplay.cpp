@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 
 class Replayer {
 public:
-    Replayer(Device& device, const ReplayOptions& options) : device_(device), options_(options) {
+    Replayer(Device& device, const ReplayOptions& options) : device_(device), options_(options), probe_(*this) {
         map_.keepUnknown = false;
         if (!options_.outDir.empty()) std::filesystem::create_directories(options_.outDir);
     }
@@ -56,14 +56,19 @@ public:
         capture::Chunk chunk;
         uint64_t index = 0;
         frameStart_ = Clock::now();
-        while (reader.next(chunk)) {
-            if (chunk.kind == capture::ChunkKind::Blob) {
-                blobs_.push_back(std::move(chunk.bytes));
-            } else if (chunk.kind == capture::ChunkKind::Record) {
-                apply(chunk, index++);
+        try {
+            while (reader.next(chunk)) {
+                if (chunk.kind == capture::ChunkKind::Blob) {
+                    blobs_.push_back(std::move(chunk.bytes));
+                } else if (chunk.kind == capture::ChunkKind::Record) {
+                    apply(chunk, index++);
+                }
             }
+        } catch (const Stopped&) {
+            // A probe ended the replay where it was asked to.
         }
         device_.waitIdle();
+        result_.draws = probe_.draw, result_.passes = probe_.pass;
         return std::move(result_);
     }
 
@@ -80,6 +85,8 @@ private:
             (this->*(it->second))(r);
             ++result_.records;
         } catch (const DeviceLostError&) {
+            throw;
+        } catch (const Stopped&) {
             throw;
         } catch (const CaptureError& e) {
             throw CaptureError(where(chunk, index, op) + e.what());
@@ -149,14 +156,16 @@ private:
         const BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
         const BufferHandle h = device_.createBuffer(d, blob(r, "data"));
         bind(map_.buffers, u32(r, "id"), h.id);
+        bufferNames_[u32(r, "id")] = d.debugName ? d.debugName : "buffer " + std::to_string(u32(r, "id"));
     }
     void createTexture(const json& r) {
         TextureDesc d = capture::textureDesc(r.at("desc"), strings_);
         if (unplacedHeaps_.count(d.heap.id)) d.heap = {}, d.heapOffset = 0;
         else d.heap = {lookup(heaps_, d.heap.id)};
-        const TextureHandle h = device_.createTexture(d);
+        const TextureHandle h = createReadableTexture(d);
         bind(map_.textures, u32(r, "id"), h.id);
         names_[h.id] = d.debugName ? d.debugName : "texture " + std::to_string(u32(r, "id"));
+        textureNames_[u32(r, "id")] = names_[h.id];
     }
     void createTextureView(const json& r) {
         const TextureViewDesc d = capture::textureViewDesc(r.at("desc"), strings_);
@@ -164,6 +173,7 @@ private:
         bind(map_.textures, u32(r, "id"), h.id);
         views_.insert(h.id);
         names_[h.id] = d.debugName ? d.debugName : "view " + std::to_string(u32(r, "id"));
+        textureNames_[u32(r, "id")] = names_[h.id];
     }
     void createSampler(const json& r) {
         const SamplerHandle h = device_.createSampler(capture::samplerDesc(r.at("desc"), strings_));
@@ -184,15 +194,20 @@ private:
         if (!d.entryPoint) throw std::runtime_error("field 'entry' is missing");
         const ShaderHandle h = device_.createShader(d);
         bind(shaders_, u32(r, "id"), h.id);
+        shaderNames_[u32(r, "id")] = d.binary.name;
     }
     void createGraphicsPipeline(const json& r) {
         GraphicsPipelineDesc d = capture::graphicsPipelineDesc(r.at("desc"), strings_);
+        pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
+                                    {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]}};
         d.vertexShader = {lookup(shaders_, d.vertexShader.id)};
         d.fragmentShader = {lookup(shaders_, d.fragmentShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
     }
     void createComputePipeline(const json& r) {
         ComputePipelineDesc d = capture::computePipelineDesc(r.at("desc"), strings_);
+        pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
+                                    {shaderNames_[d.computeShader.id]}};
         d.computeShader = {lookup(shaders_, d.computeShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createComputePipeline(d).id);
     }
@@ -264,12 +279,13 @@ private:
         if (!lists.is_array()) throw std::runtime_error("field 'lists' is not an array");
         std::vector<std::unique_ptr<CommandList>> recorded;
         std::vector<CommandList*> raw;
-        for (size_t i = 0; i < lists.size(); ++i) {
+        for (size_t i = 0; i < lists.size() && !probe_.stop; ++i) {
             const json one = {{"data", lists[i]}};
             const auto bytes = blob(one, "data");
             const auto stream = decodeCommandStream(bytes);
             auto list = device_.createCommandList();
-            applyStream(*stream, device_, *list, map_);
+            probe_.newList();
+            applyStream(*stream, device_, *list, map_, probing() ? &probe_ : nullptr);
             raw.push_back(list.get());
             recorded.push_back(std::move(list));
         }
@@ -277,6 +293,8 @@ private:
         fences_[u64(r, "fence")] = replayed;
         ++result_.submits;
         result_.commandLists += raw.size();
+        probe_.collect();
+        if (probe_.stop) throw Stopped{};
     }
     // A captured fence maps to the newest replayed fence at or before it (fences only grow).
     void wait(const json& r) {
@@ -316,9 +334,200 @@ private:
         result_.images.push_back(std::move(out));
     }
 
+    struct Stopped {};
+    bool probing() const {
+        return options_.snapshotPasses || options_.stopAfterDraw || options_.stopAfterPass || options_.skipDraw;
+    }
+    // Probing reads render targets back, so they get CopySrc where the format allows it (a
+    // placed texture whose memory needs would change keeps its usage).
+    TextureHandle createReadableTexture(const TextureDesc& d) {
+        if (!probing() || !any(d.usage, TextureUsage::RenderTarget) || any(d.usage, TextureUsage::CopySrc) || d.sampleCount > 1)
+            return device_.createTexture(d);
+        TextureDesc readable = d;
+        readable.usage = d.usage | TextureUsage::CopySrc;
+        if (!device_.supportsFormat(d.format, readable.usage)) return device_.createTexture(d);
+        try {
+            return device_.createTexture(readable);
+        } catch (const Error&) {
+            return device_.createTexture(d);
+        }
+    }
+
+    // Follows the primary streams record by record: counts draws and passes, knows what is
+    // bound, and reads targets back where the options ask.
+    class Probe final : public ApplyObserver {
+    public:
+        explicit Probe(Replayer& r) : r_(r) {}
+        uint64_t draw = 0, pass = 0;
+
+        bool before(cmd::Op op, const std::byte*, CommandList& list) override {
+            if (!isDraw(op) || !r_.options_.skipDraw || *r_.options_.skipDraw != draw) return true;
+            drawDone(op, list);  // left out, but counted (and a stop there still stops)
+            return false;
+        }
+        void adjustPass(RenderPassDesc& p) override {
+            for (ColorAttachment& c : p.colors) c.store = StoreOp::Store;
+            if (p.depth.texture) p.depth.store = StoreOp::Store;
+            open_ = p;
+        }
+        void after(cmd::Op op, const std::byte* record, CommandList& list) override {
+            cmd::CommandStream::dispatch(op, record, [&](const auto& rec) { note(rec); });
+            if (op == cmd::Op::BeginRenderPass) {
+                inPass_ = true, drawsInPass_ = 0, firstDraw_ = draw, groupsAtPass_ = groups_.size();
+                // Unnamed passes (a render graph names its passes by debug group) take the group's name.
+                passName_ = open_.debugName      ? open_.debugName
+                            : !groups_.empty() ? groups_.back()
+                                               : "pass " + std::to_string(pass);
+            } else if (op == cmd::Op::EndRenderPass) {
+                inPass_ = false;
+                const bool stopHere = r_.options_.stopAfterPass && *r_.options_.stopAfterPass == passName_;
+                if (r_.options_.snapshotPasses || stopHere) readTargets(list, stopHere);
+                stop = stop || stopHere;
+                ++pass;
+            } else if (isDraw(op)) {
+                drawDone(op, list);
+            }
+        }
+        // Each command list starts with automatic barriers and no debug groups.
+        void newList() {
+            automaticBarriers_ = true;
+            groups_.clear();
+        }
+        // After the submission: the targets read, as images.
+        void collect() {
+            if (pending_.empty() && buffers_.empty()) return;
+            r_.device_.waitIdle();
+            for (Pending& p : pending_) {
+                for (auto& [buffer, image] : p.reads) {
+                    const auto bytes = r_.device_.readBuffer(buffer, 0, image.image.data.size());
+                    image.image.data.assign(bytes.begin(), bytes.end());
+                    p.snapshot.targets.push_back(std::move(image));
+                }
+                if (p.stop) r_.result_.stopTargets = std::move(p.snapshot);
+                else r_.result_.passSnapshots.push_back(std::move(p.snapshot));
+            }
+            pending_.clear();
+            for (BufferHandle b : buffers_) r_.device_.destroy(b);
+            buffers_.clear();
+        }
+
+    private:
+        void drawDone(cmd::Op op, CommandList& list) {
+            if (r_.options_.stopAfterDraw && *r_.options_.stopAfterDraw == draw) {
+                r_.result_.stoppedAt = context(cmd::opName(op));
+                // The list is closed as the program would have: groups opened in the pass, the
+                // pass, then the groups around it.
+                size_t open = groups_.size();
+                if (inPass_) {
+                    for (; open > groupsAtPass_; --open) list.popDebugGroup();
+                    list.endRenderPass();
+                    readTargets(list, true);
+                }
+                for (; open > 0; --open) list.popDebugGroup();
+                stop = true;
+            }
+            ++draw, ++drawsInPass_;
+        }
+        struct Pending {
+            PassSnapshot snapshot;
+            bool stop = false;
+            std::vector<std::pair<BufferHandle, ReplayImage>> reads;
+        };
+        static bool isDraw(cmd::Op op) {
+            return op == cmd::Op::Draw || op == cmd::Op::DrawIndexed || op == cmd::Op::DrawIndirect ||
+                   op == cmd::Op::DrawIndexedIndirect || op == cmd::Op::DrawIndirectCount ||
+                   op == cmd::Op::DrawIndexedIndirectCount || op == cmd::Op::ExecuteSecondary;
+        }
+        // Copies each readable attachment of the pass that just ended into a Readback buffer.
+        void readTargets(CommandList& list, bool stopHere) {
+            Pending p{.snapshot = {pass, passName_, firstDraw_, drawsInPass_, {}}, .stop = stopHere};
+            auto read = [&](TextureHandle t, Subresource at, const std::string& what, ResourceState state) {
+                if (!t) return;
+                BufferHandle buffer;
+                try {
+                    const TextureDesc& d = r_.device_.desc(t);
+                    const uint64_t bytes = textureByteSize(d, at.mipLevel);
+                    buffer = r_.device_.createBuffer({.size = bytes, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback});
+                    // Buffers outlive the list's submission even when the copy is refused.
+                    buffers_.push_back(buffer);
+                    // With the program's own barriers (automatic ones off), the copy brings its own
+                    // and gives the texture back in the state the program left it in.
+                    const TextureBarrier toCopy{t, state, ResourceState::CopySrc, at.mipLevel, 1, at.layer, 1};
+                    if (!automaticBarriers_) list.barrier(&toCopy, 1);
+                    list.copyTextureToBuffer(buffer, 0, t, at);
+                    const TextureBarrier back{t, ResourceState::CopySrc, state, at.mipLevel, 1, at.layer, 1};
+                    if (!automaticBarriers_) list.barrier(&back, 1);
+                    ReplayImage image{.frame = r_.result_.frames, .name = what + ": " + r_.names_[t.id]};
+                    image.image = {std::max(1u, d.width >> at.mipLevel), std::max(1u, d.height >> at.mipLevel), d.format,
+                                   std::vector<uint8_t>(bytes)};
+                    p.reads.emplace_back(buffer, std::move(image));
+                } catch (const Error&) {
+                    // Not readable (a view, multisampled, no CopySrc): left out of the snapshot.
+                }
+            };
+            for (size_t i = 0; i < open_.colors.size(); ++i) {
+                const ColorAttachment& c = open_.colors[i];
+                if (c.resolveTexture)
+                    read(c.resolveTexture, c.resolveSubresource, "colour " + std::to_string(i), ResourceState::RenderTarget);
+                else
+                    read(c.texture, {c.mipLevel, c.layer}, "colour " + std::to_string(i), ResourceState::RenderTarget);
+            }
+            read(open_.depth.texture, {open_.depth.mipLevel, open_.depth.layer}, "depth", ResourceState::DepthTarget);
+            pending_.push_back(std::move(p));
+        }
+        DrawContext context(const char* command) const {
+            DrawContext c{.draw = draw, .pass = pass, .drawInPass = drawsInPass_, .passName = passName_, .groups = groups_,
+                          .command = command};
+            if (const auto it = r_.pipelines_.find(pipeline_); it != r_.pipelines_.end()) {
+                c.pipeline = it->second.first;
+                for (const std::string& s : it->second.second)
+                    if (!s.empty()) c.shaders.push_back(s);
+            }
+            for (const auto& [slot, name] : bound_) c.resources.push_back(slot + ": " + name);
+            return c;
+        }
+        std::string buffer(BufferHandle b) const { return name(r_.bufferNames_, b.id); }
+        std::string texture(TextureHandle t) const { return name(r_.textureNames_, t.id); }
+        static std::string name(const std::unordered_map<uint32_t, std::string>& m, uint32_t id) {
+            const auto it = m.find(id);
+            return it == m.end() ? "#" + std::to_string(id) : it->second;
+        }
+        // What each record tells about the state a draw sees (captured ids: names are the capture's).
+        template <class R>
+        void note(const R&) {}
+        void note(const cmd::PushDebugGroup& r) { groups_.push_back(cmd::view(r, r.name) ? cmd::view(r, r.name) : ""); }
+        void note(const cmd::PopDebugGroup&) {
+            if (!groups_.empty()) groups_.pop_back();
+        }
+        void note(const cmd::SetPipeline& r) { pipeline_ = r.pipeline.id; }
+        void note(const cmd::SetAutomaticBarriers& r) { automaticBarriers_ = r.enabled; }
+        void note(const cmd::SetVertexBuffer& r) { bound_["vertex buffer " + std::to_string(r.index)] = buffer(r.buffer); }
+        void note(const cmd::SetIndexBuffer& r) { bound_["index buffer"] = buffer(r.buffer); }
+        void note(const cmd::SetUniformBuffer& r) { bound_["uniform buffer " + std::to_string(r.slot)] = buffer(r.buffer); }
+        void note(const cmd::SetStorageBuffer& r) { bound_["storage buffer " + std::to_string(r.slot)] = buffer(r.buffer); }
+        void note(const cmd::SetTexture& r) { bound_["texture " + std::to_string(r.slot)] = texture(r.texture); }
+        void note(const cmd::SetStorageTexture& r) { bound_["storage texture " + std::to_string(r.slot)] = texture(r.texture); }
+
+        Replayer& r_;
+        RenderPassDesc open_;
+        bool inPass_ = false;
+        std::string passName_;
+        uint64_t firstDraw_ = 0, drawsInPass_ = 0;
+        std::vector<std::string> groups_;
+        uint32_t pipeline_ = 0;
+        std::map<std::string, std::string> bound_;
+        std::vector<Pending> pending_;
+        std::vector<BufferHandle> buffers_;  // read-back buffers of the current submission
+        bool automaticBarriers_ = true;
+        size_t groupsAtPass_ = 0;  // debug groups open when the pass began
+    };
+
     Device& device_;
     ReplayOptions options_;
     ReplayResult result_;
+    Probe probe_;
+    std::unordered_map<uint32_t, std::string> bufferNames_, textureNames_, shaderNames_;  // captured id -> name
+    std::unordered_map<uint32_t, std::pair<std::string, std::vector<std::string>>> pipelines_;  // name, shaders
     HandleMap map_;
     std::unordered_map<uint32_t, uint32_t> shaders_, heaps_;
     std::unordered_set<uint32_t> unplacedHeaps_;       // captured heaps this device cannot make

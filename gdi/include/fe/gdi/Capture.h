@@ -72,12 +72,41 @@ struct ReplayOptions {
     std::string outDir;
     // On a device with a window, present what the program presented (else read it back).
     bool present = false;
+    // Probes (fe replay --pass/--draw, fe bisect). Draws are counted over the whole capture in
+    // submission order from 0: draw, drawIndexed and the indirect draws (a secondary list a pass
+    // executes counts as one). Render passes likewise. While probing, attachments are stored
+    // (StoreOp::DontCare becomes Store) and render targets get CopySrc usage, so they can be read.
+    bool snapshotPasses = false;               // every render pass's attachments, read at its end
+    std::optional<uint64_t> stopAfterDraw;     // end the replay after this draw, reading its pass
+    std::optional<std::string> stopAfterPass;  // end after the first render pass of this name
+    std::optional<uint64_t> skipDraw;          // leave this draw out (fe bisect --perturb)
 };
 struct ReplayImage {
     uint32_t frame = 0;
     std::string name;  // the texture's debug name, else "texture <id>"
     bool presented = false;
     Image image;
+};
+// Where a draw is in the capture, and what it used.
+struct DrawContext {
+    uint64_t draw = 0;        // over the capture
+    uint64_t pass = 0;        // its render pass, over the capture
+    uint64_t drawInPass = 0;  // within that pass
+    std::string passName;
+    std::vector<std::string> groups;     // debug groups open at the draw, outermost first
+    std::string command;                 // Draw, DrawIndexed, ...
+    std::string pipeline;                // its debug name
+    std::vector<std::string> shaders;    // the pipeline's shaders, by name
+    std::vector<std::string> resources;  // what was bound: "vertex buffer 0: NAME", "texture 2: NAME", ...
+};
+// A render pass's attachments as its last draw left them (ReplayImage::name: "colour N: TEXTURE"
+// or "depth: TEXTURE"); attachments that cannot be read (views, multisampled without a resolve
+// target) are left out.
+struct PassSnapshot {
+    uint64_t pass = 0;
+    std::string name;
+    uint64_t firstDraw = 0, draws = 0;
+    std::vector<ReplayImage> targets;
 };
 struct ReplayResult {
     std::string capturedBackend;  // the device the capture was made on
@@ -86,9 +115,38 @@ struct ReplayResult {
     uint64_t records = 0, submits = 0, commandLists = 0;
     std::vector<double> frameMilliseconds;  // wall time of each replayed frame (CPU and GPU)
     std::vector<ReplayImage> images;
+    uint64_t draws = 0, passes = 0;          // replayed (up to the stop)
+    std::vector<PassSnapshot> passSnapshots;  // snapshotPasses
+    std::optional<DrawContext> stoppedAt;     // stopAfterDraw: the draw, when it was reached
+    std::optional<PassSnapshot> stopTargets;  // stopAfterDraw / stopAfterPass: the targets there
 };
 // Replays the capture at `path` on `device`. Throws CaptureError naming the record and the byte
 // offset for a damaged, truncated or future-version file, and for a call `device` refuses.
 ReplayResult replayCapture(const std::string& path, Device& device, const ReplayOptions& options = {});
+
+// fe bisect: where two devices first disagree on a capture. Both replay it, reading every render
+// pass's attachments; the first pass whose targets differ beyond the tolerance is then replayed
+// draw by draw on both (each replay stopping after one draw) until a draw's targets differ.
+struct BisectOptions {
+    double absTolerance = 5.0 / 255.0;  // per channel, as the conformance suite
+    double maxFractionOver = 0.001;     // of a target's pixels beyond absTolerance
+    // A test switch: leave draw N out on device A or B (Device index 0 or 1), so the bisection
+    // has a known answer.
+    std::optional<std::pair<int, uint64_t>> perturb;
+};
+struct TargetDiff {
+    std::string target;  // "colour 0: NAME", "depth: NAME", or a read-back's name
+    ImageDiff diff;
+    Image a, b, heat;    // heat: per pixel, how far apart (compareImages' diff image)
+};
+struct BisectResult {
+    bool diverged = false;
+    std::optional<PassSnapshot> pass;  // the first pass that differs (targets: as device A made them)
+    std::optional<DrawContext> draw;   // the first draw in it whose targets differ
+    std::vector<TargetDiff> diffs;     // the targets that differ there (at the draw, else the pass)
+    uint64_t passesCompared = 0, drawsCompared = 0;
+    uint32_t replays = 0;
+};
+BisectResult bisectCapture(const std::string& path, Device& a, Device& b, const BisectOptions& options = {});
 
 }  // namespace fe::gdi

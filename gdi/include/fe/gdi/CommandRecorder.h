@@ -97,8 +97,24 @@ struct HandleMap {
     static constexpr uint32_t kUnknownId = 0xFFFFFFFFu;
 };
 
+// Watches and steers applyStream record by record in the primary stream (capture replay's pass
+// snapshots, early stops and perturbations for fe bisect). A secondary stream is applied whole,
+// as its ExecuteSecondary record.
+class ApplyObserver {
+public:
+    virtual ~ApplyObserver() = default;
+    // Before a record (`record` points at the record struct of `op`): false skips it.
+    virtual bool before(cmd::Op op, const std::byte* record, CommandList& list) { return true; }
+    // The pass a BeginRenderPass record is about to begin (handles already mapped): may change it.
+    virtual void adjustPass(RenderPassDesc& pass) {}
+    // After the record was applied to `list`; may record more on it, or set `stop`.
+    virtual void after(cmd::Op op, const std::byte* record, CommandList& list) {}
+    bool stop = false;  // the rest of the stream is not applied
+};
+
 // Calls `stream`'s records on `list` (a recording list of `device`), handles mapped through `map`.
 // Secondary streams become secondary lists of `device`, begun for the pass that executes them.
-void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map = {});
+void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map = {},
+                 ApplyObserver* observer = nullptr);
 
 }  // namespace fe::gdi

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Image.h"
 #include "fe/gdi/Device.h"
 
 namespace fe::gdi {
@@ -18,6 +19,9 @@ using Json = nlohmann::ordered_json;
 void to_json(Json& j, const DeviceLimits& limits);
 void to_json(Json& j, const DeviceFeatures& features);
 void to_json(Json& j, const DeviceInfo& info);
+
+// An image comparison, as reports carry it: pixels, pixelsOverTolerance, fractionOver, maxAbsError.
+void to_json(Json& j, const ImageDiff& diff);
 
 // One backend: {"name", "available", and "device" (its DeviceInfo) or "reason" (why not)}.
 Json probeJson(const BackendProbe& probe);
