@@ -44,6 +44,8 @@ struct Case {
     } while (0)
 
 const std::vector<Case>& cases();
+// A capture file (gdi/Capture.h) as a case: its read-back and presented images, replayed.
+Case captureCase(const std::string& path);
 // Runs one case: exceptions and validation errors fail it; analytic expectations are compared.
 CaseResult runCase(gdi::Device& device, const Case& c);
 

@@ -69,6 +69,8 @@ constexpr const char* kUsage =
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
+    "      [--capture FILE[,FILE...]]: the captures are the cases (each replayed on every backend, its images\n"
+    "      compared across backends with the suite's tolerance)\n"
     "  capture [--out FILE] [--frames N] [--no-compress] -- PROGRAM [ARGS...]\n"
     "      runs PROGRAM (any program using the device, e.g. fe render) with FE_CAPTURE=FILE (default\n"
     "      capture.fecap): every call of its first device, with its data, goes into FILE; --frames N: only the\n"
@@ -106,6 +108,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
     {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
+    {"--capture", {"FILE[,FILE...]", "run these capture files as the cases (fe capture makes them)"}},
     {"--pass", {"NAME", "stop after the first render pass of this name and write its targets"}},
     {"--draw", {"N", "stop after draw N (from 0, over the capture) and write its pass's targets"}},
     {"--backends", {"A,B", "the two backends to compare (default vulkan,gl-egl)"}},

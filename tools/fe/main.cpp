@@ -27,6 +27,7 @@
 #include "assets/AssetError.h"
 #include "assets/BuiltinScenes.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/Capture.h"
 #include "fe/gdi/InfoJson.h"
 #include "CaptureCommands.h"
 #include "Cli.h"
@@ -246,7 +247,7 @@ gdi::Json caseJson(const std::string& backend, const conformance::CaseResult& r)
 }
 
 // Runs the suite on one backend in this process.
-void conformanceOne(const std::string& backend, const Args& a, ConformanceRun& run) {
+void conformanceOne(const std::string& backend, const Args& a, const std::vector<conformance::Case>& cases, ConformanceRun& run) {
     const std::string outDir = a.options.count("--out-dir") ? a.options.at("--out-dir") : "";
     const std::string filter = a.options.count("--case") ? a.options.at("--case") : "";
     gdi::BackendProbe p = gdi::probeBackend(backend, !a.options.count("--no-validation"));
@@ -257,7 +258,7 @@ void conformanceOne(const std::string& backend, const Args& a, ConformanceRun& r
         return;
     }
     if (!outDir.empty()) std::filesystem::create_directories(outDir + "/" + backend);
-    for (const auto& c : conformance::cases()) {
+    for (const auto& c : cases) {
         if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
         conformance::CaseResult r = conformance::runCase(*p.device, c);
         std::cout << (r.passed ? "PASS " : "FAIL ") << backend << " " << c.name << (r.message.empty() ? "" : ": " + r.message)
@@ -407,7 +408,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
         ConformanceRun run;
         std::ostringstream quiet;  // its PASS / FAIL lines: the report has them
         std::streambuf* saved = std::cout.rdbuf(quiet.rdbuf());
-        for (const std::string& b : backends) conformanceOne(b, conformanceArgs, run);
+        for (const std::string& b : backends) conformanceOne(b, conformanceArgs, conformance::cases(), run);
         crossBackend(backends, out + "/conformance", run);
         std::cout.rdbuf(saved);
         results["conformance"] = {{"cases", run.cases}, {"comparisons", run.comparisons},
@@ -449,8 +450,23 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     std::string which = a.options.count("--backend") ? a.options.at("--backend") : "all";
     std::vector<std::string> backends = gdi::expandBackendList(which);
     const std::string date = gdi::utcTimestamp();  // when the run started
+    // --capture FILE[,FILE...]: those captures are the cases (each replayed on every backend).
+    std::vector<conformance::Case> cases;
+    if (a.options.count("--capture")) {
+        const std::string list = a.options.at("--capture");
+        for (size_t start = 0; start <= list.size();) {
+            const size_t comma = std::min(list.find(',', start), list.size());
+            const std::string file = list.substr(start, comma - start);
+            if (file.empty()) throw UsageError("--capture takes FILE[,FILE...], got '" + list + "'");
+            gdi::summarizeCapture(file);  // a file that is not a capture fails here, once, not per backend
+            cases.push_back(conformance::captureCase(file));
+            start = comma + 1;
+        }
+    } else {
+        cases = conformance::cases();
+    }
     ConformanceRun run;
-    for (const std::string& b : backends) conformanceOne(b, a, run);
+    for (const std::string& b : backends) conformanceOne(b, a, cases, run);
     crossBackend(backends, a.options.count("--out-dir") ? a.options.at("--out-dir") : "", run);
     std::cout << run.passed << " passed, " << run.failed << " failed\n";
     if (a.options.count("--report")) {
@@ -510,7 +526,7 @@ int main(int argc, char** argv) {
                                   {"--quick", "--stability", "--conformance", "--interleave"}),
                             std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
-            return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case"}, {"--no-validation"}),
+            return cmdConformance(parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case", "--capture"}, {"--no-validation"}),
                                   std::vector<std::string>(argv + 1, argv + argc));
         if (command == "capture") return cli::cmdCapture(argc, argv);
         if (command == "replay")

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <mutex>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "CaptureFile.h"
 #include "CaptureJson.h"
@@ -116,6 +117,7 @@ public:
         inner_->destroy(h);
         std::lock_guard lock(mutex_);
         mapped_.erase(h.id);
+        mappedForRead_.erase(h.id);
         recordLocked({{"op", "destroy"}, {"kind", "buffer"}, {"id", h.id}});
     }
     void destroy(TextureHandle h) override { destroyed(h, "texture"); }
@@ -161,6 +163,12 @@ public:
 
     void* map(BufferHandle b) override {
         void* p = inner_->map(b);
+        if (inner_->desc(b).access == MemoryAccess::Readback) {
+            // The program reads this memory: replay keeps what it holds (ReplayResult::buffers).
+            std::lock_guard lock(mutex_);
+            if (mappedForRead_.insert(b.id).second) recordLocked({{"op", "mapRead"}, {"id", b.id}});
+            return p;
+        }
         if (inner_->desc(b).access != MemoryAccess::Upload) return p;
         std::lock_guard lock(mutex_);
         if (mapped_.count(b.id) || !recording_) return p;
@@ -218,8 +226,11 @@ public:
         record({{"op", "waitIdle"}});
     }
     std::optional<double> timerNanoseconds(TimerHandle t) override { return inner_->timerNanoseconds(t); }
+    // Results the program got are results replay can compare (fe conformance --capture).
     bool queryResults(QuerySetHandle s, uint32_t first, uint32_t count, std::span<uint64_t> out) override {
-        return inner_->queryResults(s, first, count, out);
+        const bool ready = inner_->queryResults(s, first, count, out);
+        if (ready) record({{"op", "queryResults"}, {"id", s.id}, {"first", first}, {"count", count}});
+        return ready;
     }
     uint32_t validationErrorCount() const override { return inner_->validationErrorCount(); }
     LiveObjects liveObjects() const override { return inner_->liveObjects(); }
@@ -295,6 +306,7 @@ private:
     uint32_t frameLimit_ = 0, frames_ = 0;
     bool submittedSinceFrame_ = false;
     std::unordered_map<uint32_t, Mapped> mapped_;
+    std::unordered_set<uint32_t> mappedForRead_;
 };
 
 }  // namespace

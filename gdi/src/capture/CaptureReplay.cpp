@@ -64,6 +64,7 @@ public:
                     apply(chunk, index++);
                 }
             }
+            while (!mappedForRead_.empty()) keepMappedRead(mappedForRead_.begin()->first);
         } catch (const Stopped&) {
             // A probe ended the replay where it was asked to.
         }
@@ -118,6 +119,8 @@ private:
             {"writeTexture", &Replayer::writeTexture},
             {"writeTextureRegion", &Replayer::writeTextureRegion},
             {"readBuffer", &Replayer::readBuffer},
+            {"mapRead", &Replayer::mapRead},
+            {"queryResults", &Replayer::queryResults},
             {"readTexture", &Replayer::readTexture},
             {"submit", &Replayer::submit},
             {"wait", &Replayer::wait},
@@ -223,7 +226,9 @@ private:
         bind(heaps_, u32(r, "id"), device_.createHeap(d).id);
     }
     void createQuerySet(const json& r) {
-        bind(map_.querySets, u32(r, "id"), device_.createQuerySet(capture::querySetDesc(r.at("desc"), strings_)).id);
+        const QuerySetDesc d = capture::querySetDesc(r.at("desc"), strings_);
+        bind(map_.querySets, u32(r, "id"), device_.createQuerySet(d).id);
+        querySetTypes_[u32(r, "id")] = d.type;
     }
     void destroy(const json& r) {
         const std::string kind = r.at("kind").get<std::string>();
@@ -234,7 +239,10 @@ private:
             m.erase(id);
             return replayed;
         };
-        if (kind == "buffer") device_.destroy(BufferHandle{take(map_.buffers)});
+        if (kind == "buffer") {
+            keepMappedRead(id);
+            device_.destroy(BufferHandle{take(map_.buffers)});
+        }
         else if (kind == "texture") {
             const uint32_t replayed = take(map_.textures);
             views_.erase(replayed);
@@ -269,7 +277,39 @@ private:
         device_.writeTextureRegion(texture(r), capture::textureRegion(r.at("region")), blob(r, "data"),
                                    capture::texelLayout(r.at("layout")));
     }
-    void readBuffer(const json& r) { device_.readBuffer(buffer(r), u64(r, "offset"), u64(r, "size")); }
+    void readBuffer(const json& r) {
+        const auto bytes = device_.readBuffer(buffer(r), u64(r, "offset"), u64(r, "size"));
+        result_.buffers.push_back({result_.frames, bufferNames_[u32(r, "id")], bytes});
+    }
+    // Readback memory the program mapped: what it holds when the buffer goes (or the replay
+    // ends) is kept, as the program could read it.
+    void mapRead(const json& r) {
+        const BufferHandle b = buffer(r);
+        if (device_.desc(b).access != MemoryAccess::Readback) throw std::runtime_error("mapRead of a buffer that is not Readback memory");
+        mappedForRead_[u32(r, "id")] = {b, static_cast<const uint8_t*>(device_.map(b))};
+    }
+    void keepMappedRead(uint32_t captured) {
+        const auto it = mappedForRead_.find(captured);
+        if (it == mappedForRead_.end()) return;
+        device_.waitIdle();
+        const uint8_t* p = it->second.second;
+        result_.buffers.push_back({result_.frames, bufferNames_[captured], {p, p + device_.desc(it->second.first).size}});
+        mappedForRead_.erase(it);
+    }
+    // Occlusion results compare across devices; timestamps and pipeline statistics do not.
+    void queryResults(const json& r) {
+        const uint32_t id = u32(r, "id"), first = u32(r, "first"), count = u32(r, "count");
+        const auto type = querySetTypes_.find(id);
+        if (type == querySetTypes_.end()) throw std::runtime_error("query set " + std::to_string(id) + " does not exist");
+        if (type->second != QueryType::Occlusion && type->second != QueryType::AnySamplesPassed) return;
+        if (count > 4096) throw std::runtime_error("more queries than a set holds");
+        std::vector<uint64_t> values(count);
+        device_.waitIdle();
+        if (!device_.queryResults({lookup(map_.querySets, id)}, first, count, values))
+            throw std::runtime_error("the queries' results are not available after the work completed");
+        const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
+        result_.buffers.push_back({result_.frames, "queries of set " + std::to_string(id), {bytes, bytes + count * 8}});
+    }
     void readTexture(const json& r) {
         const TextureHandle t = texture(r);
         keep(t, device_.readTexture(t, {u32(r, "mip"), u32(r, "layer")}), false);
@@ -530,6 +570,8 @@ private:
     std::unordered_map<uint32_t, std::pair<std::string, std::vector<std::string>>> pipelines_;  // name, shaders
     HandleMap map_;
     std::unordered_map<uint32_t, uint32_t> shaders_, heaps_;
+    std::unordered_map<uint32_t, std::pair<BufferHandle, const uint8_t*>> mappedForRead_;  // captured id ->
+    std::unordered_map<uint32_t, QueryType> querySetTypes_;                                 // captured id ->
     std::unordered_set<uint32_t> unplacedHeaps_;       // captured heaps this device cannot make
     std::unordered_set<uint32_t> views_;               // replayed ids of texture views
     std::unordered_map<uint32_t, std::string> names_;  // replayed texture id -> name

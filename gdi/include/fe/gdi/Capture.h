@@ -87,6 +87,11 @@ struct ReplayImage {
     bool presented = false;
     Image image;
 };
+struct ReplayBuffer {
+    uint32_t frame = 0;
+    std::string name;  // the buffer's debug name, else "buffer <id>"
+    std::vector<uint8_t> bytes;
+};
 // Where a draw is in the capture, and what it used.
 struct DrawContext {
     uint64_t draw = 0;        // over the capture
@@ -115,6 +120,7 @@ struct ReplayResult {
     uint64_t records = 0, submits = 0, commandLists = 0;
     std::vector<double> frameMilliseconds;  // wall time of each replayed frame (CPU and GPU)
     std::vector<ReplayImage> images;
+    std::vector<ReplayBuffer> buffers;       // every readBuffer, as replayed
     uint64_t draws = 0, passes = 0;          // replayed (up to the stop)
     std::vector<PassSnapshot> passSnapshots;  // snapshotPasses
     std::optional<DrawContext> stoppedAt;     // stopAfterDraw: the draw, when it was reached
