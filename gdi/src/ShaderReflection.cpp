@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <memory>
+#include <unordered_map>
+#include <vector>
 #include <spirv-tools/libspirv.h>
 #include <spirv_cross/spirv_cross_c.h>
 
@@ -70,6 +72,70 @@ void validateSpirv(std::span<const uint32_t> spirv, const std::string& name) {
     throw Error("shader '" + name + "': not a valid SPIR-V module: " + why);
 }
 
+// Location decorations anywhere (block members included, which reflection does not list) stay
+// below kMaxInterfaceLocations. The module is valid here, so the instruction stream is sound.
+void checkLocationLiterals(std::span<const uint32_t> spirv, const std::string& name) {
+    constexpr uint32_t kOpDecorate = 71, kOpMemberDecorate = 72, kLocation = 30;
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (words == 0 || i + words > spirv.size()) break;
+        const size_t decoration = op == kOpDecorate ? 2 : op == kOpMemberDecorate ? 3 : 0;
+        if (decoration && words > decoration + 1 && spirv[i + decoration] == kLocation &&
+            spirv[i + decoration + 1] >= kMaxInterfaceLocations)
+            throw Error("shader '" + name + "': location " + std::to_string(spirv[i + decoration + 1]) + "; every device has " +
+                        std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
+        i += words;
+    }
+}
+
+// gl_ClipDistance and gl_CullDistance arrays hold at most 8 distances together (the least both
+// APIs guarantee); a longer one is the driver's error otherwise (the capture-file fuzzer made a
+// module with 14337). Found by walking the module's types, as reflection does not list built-ins.
+void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& name) {
+    constexpr uint32_t kOpConstant = 43, kOpTypeArray = 28, kOpTypeStruct = 30, kOpTypePointer = 32, kOpVariable = 59;
+    constexpr uint32_t kOpDecorate = 71, kOpMemberDecorate = 72, kBuiltIn = 11, kClip = 3, kCull = 4;
+    constexpr uint32_t kMaxDistances = 8;
+    std::unordered_map<uint32_t, uint32_t> constants, arrayLength, pointee, variableType;
+    std::unordered_map<uint32_t, std::vector<uint32_t>> structMembers;
+    std::vector<uint32_t> distanceTypes;  // the types of the distance built-ins, resolved below
+    std::vector<std::pair<uint32_t, uint32_t>> memberDistances;  // (struct, member)
+    std::vector<uint32_t> variableDistances;
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (words == 0 || i + words > spirv.size()) break;
+        const uint32_t* w = &spirv[i];
+        if (op == kOpConstant && words == 4) constants[w[2]] = w[3];
+        else if (op == kOpTypeArray && words == 4) arrayLength[w[1]] = w[3];
+        else if (op == kOpTypeStruct) structMembers[w[1]].assign(w + 2, w + words);
+        else if (op == kOpTypePointer && words == 4) pointee[w[1]] = w[3];
+        else if (op == kOpVariable && words >= 4) variableType[w[2]] = w[1];
+        else if (op == kOpMemberDecorate && words == 5 && w[3] == kBuiltIn && (w[4] == kClip || w[4] == kCull))
+            memberDistances.push_back({w[1], w[2]});
+        else if (op == kOpDecorate && words == 4 && w[2] == kBuiltIn && (w[3] == kClip || w[3] == kCull))
+            variableDistances.push_back(w[1]);
+        i += words;
+    }
+    for (const auto& [s, m] : memberDistances)
+        if (const auto it = structMembers.find(s); it != structMembers.end() && m < it->second.size())
+            distanceTypes.push_back(it->second[m]);
+    for (uint32_t v : variableDistances)
+        if (const auto t = variableType.find(v); t != variableType.end())
+            if (const auto p = pointee.find(t->second); p != pointee.end()) distanceTypes.push_back(p->second);
+    uint64_t total = 0;
+    for (uint32_t type : distanceTypes) {
+        // Per-vertex arrays of stages with several vertices nest one array deeper: the inner one counts.
+        uint64_t length = 1;
+        if (const auto a = arrayLength.find(type); a != arrayLength.end()) {
+            const auto c = constants.find(a->second);
+            length = c == constants.end() ? kMaxDistances + 1 : c->second;
+        }
+        total += length;
+    }
+    if (total > kMaxDistances)
+        throw Error("shader '" + name + "': gl_ClipDistance and gl_CullDistance hold " + std::to_string(total) +
+                    " distances; every device has " + std::to_string(kMaxDistances));
+}
+
 }  // namespace
 
 // Some of SPIRV-Cross's C API entry points let its C++ exceptions through (set_entry_point on a
@@ -83,6 +149,8 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     };
     if (!c.ctx) throw fail("SPIRV-Cross could not start");
     validateSpirv(spirv, name);
+    checkLocationLiterals(spirv, name);
+    checkDistanceArrays(spirv, name);
     spvc_parsed_ir ir = nullptr;
     spvc_compiler comp = nullptr;
     if (spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS)
@@ -137,18 +205,31 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
                                                    "image samplers (sampler2D and the like)");
         });
     // Stage inputs and outputs stay within the 16 locations (64 components) every Vulkan and GL
-    // 4.5 device has; beyond that the pipeline would be the driver's error, not ours.
+    // 4.5 device has; beyond that the pipeline would be the driver's error, not ours. Every
+    // interface variable counts, used or not (as the drivers count them).
+    auto checkLocations = [&](const spvc_reflected_resource& r) {
+        const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
+        const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
+        uint64_t locations = std::max(1u, spvc_type_get_columns(t));
+        for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
+            locations *= std::max<uint64_t>(1, spvc_type_get_array_dimension(t, d));
+        if (uint64_t(location) + locations > kMaxInterfaceLocations)
+            throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) + " takes locations up to " +
+                       std::to_string(uint64_t(location) + locations - 1) + "; every device has " +
+                       std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
+    };
+    spvc_resources all = nullptr;
+    if (spvc_compiler_create_shader_resources(comp, &all) != SPVC_SUCCESS) throw fail("SPIR-V reflection failed");
+    for (spvc_resource_type type : {SPVC_RESOURCE_TYPE_STAGE_INPUT, SPVC_RESOURCE_TYPE_STAGE_OUTPUT}) {
+        const spvc_reflected_resource* list = nullptr;
+        size_t count = 0;
+        spvc_resources_get_resource_list_for_type(all, type, &list, &count);
+        for (size_t i = 0; i < count; ++i) checkLocations(list[i]);
+    }
     auto variable = [&](std::vector<ShaderInterface::Variable>& into) {
         return [&](const spvc_reflected_resource& r) {
             const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
             const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
-            uint64_t locations = std::max(1u, spvc_type_get_columns(t));
-            for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
-                locations *= std::max<uint64_t>(1, spvc_type_get_array_dimension(t, d));
-            if (uint64_t(location) + locations > kMaxInterfaceLocations)
-                throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) + " takes locations up to " +
-                           std::to_string(uint64_t(location) + locations - 1) + "; every device has " +
-                           std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
             into.push_back({location, kindOf(spvc_type_get_basetype(t)), spvc_type_get_vector_size(t), r.name});
         };
     };

@@ -1,5 +1,6 @@
 // Invalid descriptions give clear errors, never crashes, on every backend.
 #include <array>
+#include <map>
 #include <random>
 #include <gtest/gtest.h>
 
@@ -529,5 +530,30 @@ TEST_P(DamagedSpirv, LocationsBeyondSixteenAreRefused) {
     const std::string e = errorOf([&] {
         device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "far", .vulkan = vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(e.find("at location 40 takes locations up to 40; every device has 16"), std::string::npos) << e;
+    EXPECT_NE(e.find("location 40; every device has 16 (0 to 15)"), std::string::npos) << e;
+}
+
+// gl_ClipDistance longer than the 8 distances every device has is refused before the driver sees
+// it (the capture-file fuzzer made one of 14337; the validation layer reported it).
+TEST_P(DamagedSpirv, ClipDistancesBeyondEightAreRefused) {
+    const ShaderBinary& good = fe::shaders::find("conformance/triangle.vert");
+    // The array length constant of gl_PerVertex's gl_ClipDistance: OpTypeArray (28) whose
+    // element is the float type and whose length is the constant 1, made 14337.
+    auto patched = [](std::span<const uint32_t> words) {
+        std::vector<uint32_t> w(words.begin(), words.end());
+        std::map<uint32_t, size_t> constantAt;  // id -> word index of its value
+        for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16)) {
+            const uint32_t op = w[i] & 0xffffu, n = w[i] >> 16;
+            if (op == 43 && n == 4 && w[i + 3] == 1) constantAt[w[i + 2]] = i + 3;  // OpConstant ... 1
+            if (op == 28 && n == 4 && constantAt.count(w[i + 3])) w[constantAt[w[i + 3]]] = 14337;
+        }
+        return w;
+    };
+    const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
+    ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
+    const std::string e = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "clip", .vulkan = vulkan, .opengl = opengl}});
+    });
+    // gl_ClipDistance and gl_CullDistance share the array type: 2 x 14337.
+    EXPECT_NE(e.find("gl_ClipDistance and gl_CullDistance hold 28674 distances; every device has 8"), std::string::npos) << e;
 }

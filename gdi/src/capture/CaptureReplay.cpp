@@ -33,21 +33,27 @@ public:
     // What the capture left alive is destroyed, views before their textures, pipelines before
     // their shaders, placed textures before their heaps.
     ~Replayer() {
+        // Each on its own: one refusal (a lost device) does not keep the others alive.
+        auto destroy = [&](auto handle) {
+            try {
+                device_.destroy(handle);
+            } catch (const std::exception&) {
+            }
+        };
         try {
             device_.waitIdle();
-            for (auto& [c, r] : map_.pipelines) device_.destroy(PipelineHandle{r});
-            for (auto& [c, r] : shaders_) device_.destroy(ShaderHandle{r});
-            for (uint32_t r : views_) device_.destroy(TextureHandle{r});
-            for (auto& [c, r] : map_.textures)
-                if (!views_.count(r)) device_.destroy(TextureHandle{r});
-            for (auto& [c, r] : heaps_) device_.destroy(HeapHandle{r});
-            for (auto& [c, r] : map_.buffers) device_.destroy(BufferHandle{r});
-            for (auto& [c, r] : map_.samplers) device_.destroy(SamplerHandle{r});
-            for (auto& [c, r] : map_.timers) device_.destroy(TimerHandle{r});
-            for (auto& [c, r] : map_.querySets) device_.destroy(QuerySetHandle{r});
         } catch (const std::exception&) {
-            // A lost device or a damaged capture: the device frees the rest when it goes.
         }
+        for (auto& [c, r] : map_.pipelines) destroy(PipelineHandle{r});
+        for (auto& [c, r] : shaders_) destroy(ShaderHandle{r});
+        for (uint32_t r : views_) destroy(TextureHandle{r});
+        for (auto& [c, r] : map_.textures)
+            if (!views_.count(r)) destroy(TextureHandle{r});
+        for (auto& [c, r] : heaps_) destroy(HeapHandle{r});
+        for (auto& [c, r] : map_.buffers) destroy(BufferHandle{r});
+        for (auto& [c, r] : map_.samplers) destroy(SamplerHandle{r});
+        for (auto& [c, r] : map_.timers) destroy(TimerHandle{r});
+        for (auto& [c, r] : map_.querySets) destroy(QuerySetHandle{r});
     }
 
     ReplayResult run(const std::string& path) {
@@ -137,11 +143,15 @@ private:
         if (id > blobs_.size()) throw std::runtime_error("data block " + std::to_string(id) + " is not in the file before it");
         return blobs_[id - 1];
     }
-    // A new id for a handle the capture names; an id given twice is damage.
-    static void bind(std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured, uint32_t replayed) {
-        if (captured == 0 || !m.emplace(captured, replayed).second)
+    // The id a create record names, checked before the object is made (so a refusal leaves
+    // nothing behind): an id that is null or already in use is damage.
+    static uint32_t freeId(const std::unordered_map<uint32_t, uint32_t>& m, const json& r) {
+        const uint32_t captured = u32(r, "id");
+        if (captured == 0 || m.count(captured))
             throw std::runtime_error("object id " + std::to_string(captured) + " is null or already in use");
+        return captured;
     }
+    static void bind(std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured, uint32_t replayed) { m.emplace(captured, replayed); }
     static uint32_t lookup(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured) {
         if (captured == 0) return 0;
         const auto it = m.find(captured);
@@ -156,12 +166,14 @@ private:
             throw std::runtime_error("recorded with another build's command set; its command lists cannot be read here");
     }
     void createBuffer(const json& r) {
+        freeId(map_.buffers, r);
         const BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
         const BufferHandle h = device_.createBuffer(d, blob(r, "data"));
         bind(map_.buffers, u32(r, "id"), h.id);
         bufferNames_[u32(r, "id")] = d.debugName ? d.debugName : "buffer " + std::to_string(u32(r, "id"));
     }
     void createTexture(const json& r) {
+        freeId(map_.textures, r);
         TextureDesc d = capture::textureDesc(r.at("desc"), strings_);
         if (unplacedHeaps_.count(d.heap.id)) d.heap = {}, d.heapOffset = 0;
         else d.heap = {lookup(heaps_, d.heap.id)};
@@ -171,6 +183,7 @@ private:
         textureNames_[u32(r, "id")] = names_[h.id];
     }
     void createTextureView(const json& r) {
+        freeId(map_.textures, r);
         const TextureViewDesc d = capture::textureViewDesc(r.at("desc"), strings_);
         const TextureHandle h = device_.createTextureView(texture(r, "of"), d);
         bind(map_.textures, u32(r, "id"), h.id);
@@ -179,6 +192,7 @@ private:
         textureNames_[u32(r, "id")] = names_[h.id];
     }
     void createSampler(const json& r) {
+        freeId(map_.samplers, r);
         const SamplerHandle h = device_.createSampler(capture::samplerDesc(r.at("desc"), strings_));
         bind(map_.samplers, u32(r, "id"), h.id);
     }
@@ -190,6 +204,7 @@ private:
             std::memcpy(w.data(), bytes.data(), bytes.size());
             return w;
         };
+        freeId(shaders_, r);
         ShaderDesc d{.stage = capture::shaderStage(r),
                      .binary = {.name = capture::text(r, "name", strings_), .vulkan = words("vulkan"), .opengl = words("opengl")},
                      .entryPoint = capture::text(r, "entry", strings_)};
@@ -200,6 +215,7 @@ private:
         shaderNames_[u32(r, "id")] = d.binary.name;
     }
     void createGraphicsPipeline(const json& r) {
+        freeId(map_.pipelines, r);
         GraphicsPipelineDesc d = capture::graphicsPipelineDesc(r.at("desc"), strings_);
         pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
                                     {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]}};
@@ -208,16 +224,19 @@ private:
         bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
     }
     void createComputePipeline(const json& r) {
+        freeId(map_.pipelines, r);
         ComputePipelineDesc d = capture::computePipelineDesc(r.at("desc"), strings_);
         pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
                                     {shaderNames_[d.computeShader.id]}};
         d.computeShader = {lookup(shaders_, d.computeShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createComputePipeline(d).id);
     }
-    void createTimer(const json& r) { bind(map_.timers, u32(r, "id"), device_.createTimer().id); }
+    void createTimer(const json& r) { bind(map_.timers, freeId(map_.timers, r), device_.createTimer().id); }
     // A device without memory aliasing (GL) gives each placed texture memory of its own: what
     // aliasing saves is memory, and a correct program never reads one texture through another.
     void createHeap(const json& r) {
+        const uint32_t id = freeId(heaps_, r);
+        if (unplacedHeaps_.count(id)) throw std::runtime_error("object id " + std::to_string(id) + " is already in use");
         const HeapDesc d = capture::heapDesc(r.at("desc"), strings_);
         if (!device_.info().features.memoryAliasing) {
             unplacedHeaps_.insert(u32(r, "id"));
@@ -226,37 +245,43 @@ private:
         bind(heaps_, u32(r, "id"), device_.createHeap(d).id);
     }
     void createQuerySet(const json& r) {
+        freeId(map_.querySets, r);
         const QuerySetDesc d = capture::querySetDesc(r.at("desc"), strings_);
         bind(map_.querySets, u32(r, "id"), device_.createQuerySet(d).id);
         querySetTypes_[u32(r, "id")] = d.type;
     }
+    // The id is forgotten only once the device has destroyed the object: a refused destroy (a
+    // texture with live views, say) leaves it for the end of the replay.
+    template <class H>
+    void destroyIn(std::unordered_map<uint32_t, uint32_t>& m, uint32_t id) {
+        const uint32_t replayed = lookup(m, id);
+        device_.destroy(H{replayed});
+        m.erase(id);
+        if constexpr (std::is_same_v<H, TextureHandle>) views_.erase(replayed);
+    }
     void destroy(const json& r) {
         const std::string kind = r.at("kind").get<std::string>();
         const uint32_t id = u32(r, "id");
-        // Looks the id up, destroys the replayed object and forgets the id (it may be reused).
-        auto take = [&](std::unordered_map<uint32_t, uint32_t>& m) {
-            const uint32_t replayed = lookup(m, id);
-            m.erase(id);
-            return replayed;
-        };
         if (kind == "buffer") {
             keepMappedRead(id);
-            device_.destroy(BufferHandle{take(map_.buffers)});
+            destroyIn<BufferHandle>(map_.buffers, id);
+        } else if (kind == "texture") {
+            destroyIn<TextureHandle>(map_.textures, id);
+        } else if (kind == "sampler") {
+            destroyIn<SamplerHandle>(map_.samplers, id);
+        } else if (kind == "shader") {
+            destroyIn<ShaderHandle>(shaders_, id);
+        } else if (kind == "pipeline") {
+            destroyIn<PipelineHandle>(map_.pipelines, id);
+        } else if (kind == "timer") {
+            destroyIn<TimerHandle>(map_.timers, id);
+        } else if (kind == "heap") {
+            if (!unplacedHeaps_.erase(id)) destroyIn<HeapHandle>(heaps_, id);
+        } else if (kind == "querySet") {
+            destroyIn<QuerySetHandle>(map_.querySets, id);
+        } else {
+            throw std::runtime_error("unknown object kind '" + kind + "'");
         }
-        else if (kind == "texture") {
-            const uint32_t replayed = take(map_.textures);
-            views_.erase(replayed);
-            device_.destroy(TextureHandle{replayed});
-        }
-        else if (kind == "sampler") device_.destroy(SamplerHandle{take(map_.samplers)});
-        else if (kind == "shader") device_.destroy(ShaderHandle{take(shaders_)});
-        else if (kind == "pipeline") device_.destroy(PipelineHandle{take(map_.pipelines)});
-        else if (kind == "timer") device_.destroy(TimerHandle{take(map_.timers)});
-        else if (kind == "heap") {
-            if (!unplacedHeaps_.erase(id)) device_.destroy(HeapHandle{take(heaps_)});
-        }
-        else if (kind == "querySet") device_.destroy(QuerySetHandle{take(map_.querySets)});
-        else throw std::runtime_error("unknown object kind '" + kind + "'");
     }
     void writeBuffer(const json& r) { device_.writeBuffer(buffer(r), u64(r, "offset"), blob(r, "data")); }
     // What the program wrote into mapped Upload memory: written the same way here, so the GPU
