@@ -60,6 +60,10 @@ ScalarKind kindOf(spvc_basetype t) {
 // found one), so SPIRV-Tools' validator (Debian's spirv-tools) checks every module first. The
 // universal environment: the SPIR-V rules, not one API's (the validation layer checks those).
 void validateSpirv(std::span<const uint32_t> spirv, const std::string& name) {
+    // The header's schema word is 0 (the validator lets any value through; Mesa refuses others).
+    if (spirv.size() >= 5 && spirv[4] != 0)
+        throw Error("shader '" + name + "': not a valid SPIR-V module: header word 4 (schema) is " + std::to_string(spirv[4]) +
+                    ", not 0");
     static const spv_context context = spvContextCreate(SPV_ENV_UNIVERSAL_1_5);
     spv_diagnostic diagnostic = nullptr;
     const spv_result_t result = spvValidateBinary(context, spirv.data(), spirv.size(), &diagnostic);

@@ -557,3 +557,15 @@ TEST_P(DamagedSpirv, ClipDistancesBeyondEightAreRefused) {
     // gl_ClipDistance and gl_CullDistance share the array type: 2 x 14337.
     EXPECT_NE(e.find("gl_ClipDistance and gl_CullDistance hold 28674 distances; every device has 8"), std::string::npos) << e;
 }
+
+// The SPIR-V header's schema word must be 0: SPIRV-Tools lets other values through, Mesa's
+// Vulkan driver refuses them with a validation error (found by the capture-file fuzzer).
+TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
+    const ShaderBinary& good = fe::shaders::find("conformance/triangle.vert");
+    std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()), opengl(good.opengl.begin(), good.opengl.end());
+    vulkan[4] = opengl[4] = 40;
+    const std::string e = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "schema", .vulkan = vulkan, .opengl = opengl}});
+    });
+    EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
+}

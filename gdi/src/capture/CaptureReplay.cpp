@@ -1,10 +1,13 @@
 // Replays a capture file on any device: objects are made again from their descriptions (handle
 // ids mapped), data written as it was, each submission's command lists applied from their
 // streams (applyStream), and waits, read-backs and presents repeated in the same order.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 #include <cstring>
@@ -217,8 +220,10 @@ private:
     void createGraphicsPipeline(const json& r) {
         freeId(map_.pipelines, r);
         GraphicsPipelineDesc d = capture::graphicsPipelineDesc(r.at("desc"), strings_);
-        pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
-                                    {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]}};
+        PipelineInfo& info = pipelines_[u32(r, "id")];
+        info = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
+                {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]}, usedSlots(d.bindings)};
+        for (size_t i = 0; i < d.vertexBuffers.size(); ++i) info.uses.insert("vertex buffer " + std::to_string(i));
         d.vertexShader = {lookup(shaders_, d.vertexShader.id)};
         d.fragmentShader = {lookup(shaders_, d.fragmentShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
@@ -227,7 +232,7 @@ private:
         freeId(map_.pipelines, r);
         ComputePipelineDesc d = capture::computePipelineDesc(r.at("desc"), strings_);
         pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
-                                    {shaderNames_[d.computeShader.id]}};
+                                    {shaderNames_[d.computeShader.id]}, usedSlots(d.bindings)};
         d.computeShader = {lookup(shaders_, d.computeShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createComputePipeline(d).id);
     }
@@ -543,12 +548,23 @@ private:
         DrawContext context(const char* command) const {
             DrawContext c{.draw = draw, .pass = pass, .drawInPass = drawsInPass_, .passName = passName_, .groups = groups_,
                           .command = command};
-            if (const auto it = r_.pipelines_.find(pipeline_); it != r_.pipelines_.end()) {
-                c.pipeline = it->second.first;
-                for (const std::string& s : it->second.second)
-                    if (!s.empty()) c.shaders.push_back(s);
+            const auto it = r_.pipelines_.find(pipeline_);
+            if (it == r_.pipelines_.end()) return c;
+            c.pipeline = it->second.name;
+            for (const std::string& s : it->second.shaders)
+                if (!s.empty()) c.shaders.push_back(s);
+            // What the pipeline reads: its binding slots, its vertex buffers, the index buffer of
+            // an indexed draw (bindings persist across passes; the rest is not this draw's).
+            const bool indexed = std::string_view(command).find("Indexed") != std::string_view::npos;
+            // A pipeline without declared bindings (taken from its shaders) shows every binding.
+            const bool declared = std::any_of(it->second.uses.begin(), it->second.uses.end(),
+                                              [](const std::string& k) { return k.rfind("vertex buffer", 0) != 0; });
+            for (const auto& [slot, name] : bound_) {
+                const bool vertex = slot.rfind("vertex buffer", 0) == 0, index = slot == "index buffer";
+                if ((index && indexed) || (vertex && it->second.uses.count(slot)) ||
+                    (!vertex && !index && (!declared || it->second.uses.count(slot))))
+                    c.resources.push_back(slot + ": " + name);
             }
-            for (const auto& [slot, name] : bound_) c.resources.push_back(slot + ": " + name);
             return c;
         }
         std::string buffer(BufferHandle b) const { return name(r_.bufferNames_, b.id); }
@@ -592,7 +608,23 @@ private:
     ReplayResult result_;
     Probe probe_;
     std::unordered_map<uint32_t, std::string> bufferNames_, textureNames_, shaderNames_;  // captured id -> name
-    std::unordered_map<uint32_t, std::pair<std::string, std::vector<std::string>>> pipelines_;  // name, shaders
+    struct PipelineInfo {
+        std::string name;
+        std::vector<std::string> shaders;
+        std::set<std::string> uses;  // binding keys as the probe names them ("texture 3", ...)
+    };
+    static std::set<std::string> usedSlots(const std::vector<BindingSlot>& bindings) {
+        std::set<std::string> keys;
+        for (const BindingSlot& b : bindings) {
+            const char* kind = b.type == BindingType::UniformBuffer   ? "uniform buffer "
+                               : b.type == BindingType::StorageBuffer ? "storage buffer "
+                               : b.type == BindingType::SampledTexture ? "texture "
+                                                                       : "storage texture ";
+            keys.insert(kind + std::to_string(b.slot));
+        }
+        return keys;
+    }
+    std::unordered_map<uint32_t, PipelineInfo> pipelines_;  // captured id ->
     HandleMap map_;
     std::unordered_map<uint32_t, uint32_t> shaders_, heaps_;
     std::unordered_map<uint32_t, std::pair<BufferHandle, const uint8_t*>> mappedForRead_;  // captured id ->

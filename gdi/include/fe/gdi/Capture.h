@@ -1,4 +1,4 @@
-// Layer 3 (device-independent): capture and replay of whole programs at the device interface
+// Layer 2 (GDI abstraction, device-independent): capture and replay of whole programs at the device interface
 // (docs/CAPTURE.md). A capturing device wraps any device: every call reaches the wrapped device
 // first (so its checks and errors are the same), then is written to a file with its data, object
 // descriptions, both SPIR-V targets of every shader, uploads, what the program wrote into mapped
