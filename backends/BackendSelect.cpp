@@ -26,19 +26,25 @@ namespace {
 
 // `path` (with `frames`), else FE_CAPTURE for the first device of the process (a program that
 // makes several would otherwise write them all over one file).
-std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::string& path, uint32_t frames, bool verbose) {
-    CaptureDesc capture{.path = path, .frames = frames};
+uint32_t frameCount(const char* variable) {
+    const char* text = std::getenv(variable);
+    if (!text || !*text) return 0;
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(text, &end, 10);
+    if (*end || n > UINT32_MAX) throw Error(std::string(variable) + ": not a frame count: '" + text + "'");
+    return uint32_t(n);
+}
+
+std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::string& path, uint32_t frames,
+                                    uint32_t firstFrame, bool verbose) {
+    CaptureDesc capture{.path = path, .frames = frames, .firstFrame = firstFrame};
     static std::atomic<bool> environmentUsed = false;
     if (capture.path.empty()) {
         const char* env = std::getenv("FE_CAPTURE");
         if (!env || !*env || environmentUsed.exchange(true)) return device;
         capture.path = env;
-        if (const char* frames = std::getenv("FE_CAPTURE_FRAMES"); frames && *frames) {
-            char* end = nullptr;
-            const unsigned long n = std::strtoul(frames, &end, 10);
-            if (*end || n > UINT32_MAX) throw Error(std::string("FE_CAPTURE_FRAMES: not a frame count: '") + frames + "'");
-            capture.frames = uint32_t(n);
-        }
+        capture.frames = frameCount("FE_CAPTURE_FRAMES");
+        capture.firstFrame = frameCount("FE_CAPTURE_FIRST_FRAME");
         if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0") capture.compress = false;
         if (verbose) std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path << "\n";
     }
@@ -76,7 +82,7 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) 
     BackendProbe p = probeUncaptured(name, validation, vsync);
     if (p.available) {
         try {
-            p.device = withCapture(std::move(p.device), "", 0, true);
+            p.device = withCapture(std::move(p.device), "", 0, 0, true);
         } catch (const std::exception& e) {
             p = {.name = name, .reason = e.what()};
         }
@@ -117,7 +123,7 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
             if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
-            return withCapture(std::move(p.device), desc.capture, desc.captureFrames, desc.verbose);
+            return withCapture(std::move(p.device), desc.capture, desc.captureFrames, desc.captureFirstFrame, desc.verbose);
         }
         failures += "\n  " + c + " unavailable: " + p.reason;
     }

@@ -1,5 +1,8 @@
 #include "fe/gdi/CaptureStream.h"
 
+#include <cmath>
+#include <functional>
+
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -60,6 +63,87 @@ struct Reader {
     }
 };
 
+// Field values a device could not be handed safely: a bool other than 0 or 1, an enum outside
+// its values, flags outside their bits, a non-finite float. Read as raw bytes (loading a bool
+// of value 3 is itself undefined behaviour). The device's own checks judge everything else.
+class ValueCheck {
+public:
+    explicit ValueCheck(const std::byte* record) : record_(record) {}
+    std::string problem;
+
+    template <class T>
+    void operator()(const char* name, const T& v) { check(name, v); }
+
+private:
+    template <class T>
+    static uint64_t raw(const T& v) {
+        uint64_t out = 0;
+        std::memcpy(&out, &v, sizeof(T));
+        return out;
+    }
+    void fail(const char* name, const std::string& why) {
+        if (problem.empty()) problem = std::string("field '") + name + "' " + why;
+    }
+    void boolean(const char* name, const bool& v) {
+        if (raw(v) > 1) fail(name, "is not a boolean (" + std::to_string(raw(v)) + ")");
+    }
+    template <class E>
+    void upTo(const char* name, const E& v, E last) {
+        if (raw(v) > uint64_t(last)) fail(name, "has no such value (" + std::to_string(raw(v)) + ")");
+    }
+    void finite(const char* name, float v) {
+        if (!std::isfinite(v)) fail(name, "is not a finite number");
+    }
+    void check(const char* name, const bool& v) { boolean(name, v); }
+    void check(const char* name, const IndexType& v) { upTo(name, v, IndexType::U32); }
+    void check(const char* name, const float& v) { finite(name, v); }
+    void check(const char* name, const cmd::Rgba& v) {
+        for (float f : v) finite(name, f);
+    }
+    void check(const char* name, const Viewport& v) {
+        for (float f : {v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth}) finite(name, f);
+    }
+    void check(const char* name, const DepthAttachment& d) {
+        upTo(name, d.load, LoadOp::DontCare);
+        upTo(name, d.store, StoreOp::DontCare);
+        finite(name, d.clearDepth);
+    }
+    void check(const char* name, const ColorAttachment& c) {
+        upTo(name, c.load, LoadOp::DontCare);
+        upTo(name, c.store, StoreOp::DontCare);
+        for (float f : c.clear) finite(name, f);
+    }
+    void check(const char* name, const TextureBarrier& b) {
+        upTo(name, b.before, ResourceState::CopyDst);
+        upTo(name, b.after, ResourceState::CopyDst);
+    }
+    void check(const char* name, const BufferBarrier& b) {
+        for (const BufferAccess& a : {std::cref(b.before), std::cref(b.after)})
+            if (raw(a) & ~uint64_t(0xff)) fail(name, "has unknown access bits (" + std::to_string(raw(a)) + ")");
+    }
+    // Payload arrays: each element as its own field.
+    template <class T>
+    void check(const char* name, const cmd::Array<T>& a) {
+        if constexpr (std::is_same_v<T, ColorAttachment> || std::is_same_v<T, TextureBarrier> ||
+                      std::is_same_v<T, BufferBarrier>) {
+            const auto* first = reinterpret_cast<const T*>(record_ + a.offset);
+            for (uint32_t i = 0; i < a.count; ++i) check(name, first[i]);
+        }
+    }
+    // Integers, handles, subresources, regions, layouts: any value is one the device can judge.
+    template <class T>
+    void check(const char*, const T&) {}
+
+    const std::byte* record_;
+};
+
+template <class R>
+std::string valueProblem(const R& r) {
+    ValueCheck check(reinterpret_cast<const std::byte*>(&r));
+    cmd::forEachField(r, check);
+    return check.problem;
+}
+
 }  // namespace
 
 std::vector<std::byte> encodeCommandStream(const cmd::CommandStream& stream) {
@@ -114,6 +198,7 @@ std::unique_ptr<cmd::CommandStream> decodeCommandStream(std::span<const std::byt
             using R = std::decay_t<decltype(r)>;
             if (bodyBytes < sizeof(R)) problem = "shorter than its fields";
             else problem = payloadProblem(r, bodyBytes);
+            if (problem.empty()) problem = valueProblem(r);
             if constexpr (std::is_same_v<R, cmd::ExecuteSecondary>)
                 if (problem.empty() && r.child >= children) problem = "secondary stream " + std::to_string(r.child) + " does not exist";
         });

@@ -1,6 +1,8 @@
 #include "CommandQueue.h"
 
 #include <algorithm>
+
+#include "fe/gdi/Capture.h"
 #include <string>
 
 namespace fe::render {
@@ -36,6 +38,7 @@ gdi::FenceValue CommandQueue::endFrame() {
     if (!inFrame_) throw gdi::Error("CommandQueue::endFrame without beginFrame");
     Slot& s = slots_[frameNumber_ % slots_.size()];
     s.fence = device_.submit(*s.commands);
+    gdi::markFrameEnd(device_);  // a capture's frames are the queue's frames (headless too)
     inFrame_ = false;
     ++frameNumber_;
     return s.fence;

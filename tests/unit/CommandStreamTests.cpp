@@ -3,6 +3,9 @@
 // records again into the same memory.
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <limits>
+
 #include <cstring>
 #include <memory>
 #include <string>
@@ -187,4 +190,34 @@ TEST(CaptureStream, RefusesTruncatedAndDamagedBytesNamingTheOffset) {
             }
         },
         CaptureError);
+}
+
+// Field values a device could not be handed safely are refused when read: a bool of 3, an enum
+// out of range, flags beyond their bits, a NaN (found by the capture-file fuzzer: a bool of 3
+// reached the replay, undefined behaviour to load).
+TEST(CaptureStream, RefusesValuesNoDeviceCouldBeHanded) {
+    auto refusal = [](auto record, auto damage) {
+        cmd::CommandStream s;
+        s.push(record);
+        std::vector<std::byte> bytes = encodeCommandStream(s);
+        damage(bytes.data() + 16 + sizeof(cmd::CommandStream::Header));  // the record's fields
+        try {
+            decodeCommandStream(bytes);
+        } catch (const CaptureError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_NE(refusal(cmd::SetAutomaticBarriers{true}, [](std::byte* f) { f[0] = std::byte(3); })
+                  .find("(SetAutomaticBarriers) at offset 16: field 'enabled' is not a boolean (3)"),
+              std::string::npos);
+    EXPECT_NE(refusal(cmd::SetIndexBuffer{}, [](std::byte* f) { f[offsetof(cmd::SetIndexBuffer, type)] = std::byte(9); })
+                  .find("field 'type' has no such value (9)"),
+              std::string::npos);
+    EXPECT_NE(refusal(cmd::SetViewport{}, [](std::byte* f) {
+                  const float nan = std::numeric_limits<float>::quiet_NaN();
+                  std::memcpy(f, &nan, 4);
+              }).find("field 'viewport' is not a finite number"),
+              std::string::npos);
+    EXPECT_EQ(refusal(cmd::SetIndexBuffer{}, [](std::byte*) {}), "(accepted)");
 }

@@ -26,7 +26,7 @@ namespace {
 void printSummary(const std::string& path) {
     const gdi::CaptureSummary s = gdi::summarizeCapture(path);
     std::cout << path << ": captured on " << s.backend << " (" << s.device << "), format " << s.formatVersion << "\n"
-              << "  " << s.frames << " frame(s), " << s.submits << " submission(s), " << s.records << " calls, " << s.blobs
+              << "  " << s.frames << " frame(s)" << (s.firstFrame ? " from frame " + std::to_string(s.firstFrame) : "") << ", " << s.submits << " submission(s), " << s.records << " calls, " << s.blobs
               << " data blocks\n"
               << "  " << s.fileBytes << " bytes on disk (" << s.rawBytes << " uncompressed)";
     if (s.frames) std::cout << ", " << s.fileBytes / s.frames << " bytes per frame";
@@ -77,13 +77,17 @@ double median(std::vector<double> v) {
 int cmdCapture(int argc, char** argv) {
     int dashes = 2;
     while (dashes < argc && std::strcmp(argv[dashes], "--") != 0) ++dashes;
-    const Args a = parse(dashes, argv, 2, {"--out", "--frames"}, {"--no-compress"});
+    const Args a = parse(dashes, argv, 2, {"--out", "--frames", "--frame"}, {"--no-compress"});
     if (!a.positional.empty()) throw UsageError("capture: put the program after --, e.g. fe capture -- fe render");
     if (dashes + 1 >= argc) throw UsageError("capture: no program to run (fe capture [options] -- PROGRAM [ARGS...])");
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "capture.fecap";
-    const uint32_t frames = a.options.count("--frames") ? parseUint(a.options.at("--frames"), "--frames", 1, 1000000) : 0;
+    if (a.options.count("--frames") && a.options.count("--frame")) throw UsageError("capture: --frames N or --frame K, not both");
+    uint32_t frames = a.options.count("--frames") ? parseUint(a.options.at("--frames"), "--frames", 1, 1000000) : 0;
+    uint32_t first = 0;
+    if (a.options.count("--frame")) first = parseUint(a.options.at("--frame"), "--frame", 0, 1000000), frames = 1;
     setenv("FE_CAPTURE", out.c_str(), 1);
     setenv("FE_CAPTURE_FRAMES", std::to_string(frames).c_str(), 1);
+    setenv("FE_CAPTURE_FIRST_FRAME", std::to_string(first).c_str(), 1);
     if (a.options.count("--no-compress")) setenv("FE_CAPTURE_COMPRESS", "0", 1);
     pid_t child = 0;
     if (const int e = posix_spawnp(&child, argv[dashes + 1], nullptr, nullptr, argv + dashes + 1, environ); e != 0)
@@ -133,6 +137,9 @@ int cmdReplay(const Args& a) {
               << r.images.size() << " image(s)";
     if (!options.outDir.empty()) std::cout << " in " << options.outDir;
     std::cout << "\n";
+    if (r.unrestored)
+        std::cerr << "fe: replay: " << r.unrestored << " texture subresource(s) of the captured state could not be written on "
+                  << device->info().backend << " (left undefined)\n";
     if (!r.frameMilliseconds.empty()) {
         const double total = std::accumulate(r.frameMilliseconds.begin(), r.frameMilliseconds.end(), 0.0);
         std::cout << "  frame time: median " << median(r.frameMilliseconds) << " ms, total " << total << " ms"

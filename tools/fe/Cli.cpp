@@ -71,10 +71,11 @@ constexpr const char* kUsage =
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
     "      [--capture FILE[,FILE...]]: the captures are the cases (each replayed on every backend, its images\n"
     "      compared across backends with the suite's tolerance)\n"
-    "  capture [--out FILE] [--frames N] [--no-compress] -- PROGRAM [ARGS...]\n"
+    "  capture [--out FILE] [--frames N | --frame K] [--no-compress] -- PROGRAM [ARGS...]\n"
     "      runs PROGRAM (any program using the device, e.g. fe render) with FE_CAPTURE=FILE (default\n"
     "      capture.fecap): every call of its first device, with its data, goes into FILE; --frames N: only the\n"
-    "      first N frames (a frame ends at a present, or at the first read-back after a submit)\n"
+    "      first N frames (a frame ends with the renderer's frame, a present, or a read-back, after a submit); --frame K: only\n"
+    "      frame K (from 0), the objects made before it written in the state they have when it starts\n"
     "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present] [--pass NAME | --draw N]\n"
     "      replays a capture on any backend (captured on vulkan, replayed on gl-egl, or the other way round);\n"
     "      --out DIR: every read-back and presented image as PNG; prints the frame times; --present: in a window;\n"
@@ -104,6 +105,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--json", {"", "print the report as JSON"}},
     {"capture --out", {"FILE", "the capture file written (default capture.fecap)"}},
     {"capture --frames", {"N", "capture only the first N frames (default: all)"}},
+    {"--frame", {"K", "capture only frame K, starting from the state the frames before left"}},
     {"--no-compress", {"", "write chunks without zstd"}},
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},

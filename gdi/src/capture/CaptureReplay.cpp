@@ -129,6 +129,8 @@ private:
             {"writeTextureRegion", &Replayer::writeTextureRegion},
             {"readBuffer", &Replayer::readBuffer},
             {"mapRead", &Replayer::mapRead},
+            {"restoreBuffer", &Replayer::restoreBuffer},
+            {"restoreTexture", &Replayer::restoreTexture},
             {"queryResults", &Replayer::queryResults},
             {"readTexture", &Replayer::readTexture},
             {"submit", &Replayer::submit},
@@ -170,7 +172,9 @@ private:
     }
     void createBuffer(const json& r) {
         freeId(map_.buffers, r);
-        const BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
+        BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
+        // A trimmed capture's state is written into it (restoreBuffer).
+        if (r.contains("restore") && d.access == MemoryAccess::GpuOnly) d.usage = d.usage | BufferUsage::CopyDst;
         const BufferHandle h = device_.createBuffer(d, blob(r, "data"));
         bind(map_.buffers, u32(r, "id"), h.id);
         bufferNames_[u32(r, "id")] = d.debugName ? d.debugName : "buffer " + std::to_string(u32(r, "id"));
@@ -180,6 +184,11 @@ private:
         TextureDesc d = capture::textureDesc(r.at("desc"), strings_);
         if (unplacedHeaps_.count(d.heap.id)) d.heap = {}, d.heapOffset = 0;
         else d.heap = {lookup(heaps_, d.heap.id)};
+        if (r.contains("restore")) {  // a trimmed capture's state is written into it (restoreTexture)
+            TextureDesc writable = d;
+            writable.usage = d.usage | TextureUsage::CopyDst;
+            if (device_.supportsFormat(d.format, writable.usage)) d = writable;
+        }
         const TextureHandle h = createReadableTexture(d);
         bind(map_.textures, u32(r, "id"), h.id);
         names_[h.id] = d.debugName ? d.debugName : "texture " + std::to_string(u32(r, "id"));
@@ -339,6 +348,28 @@ private:
             throw std::runtime_error("the queries' results are not available after the work completed");
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
         result_.buffers.push_back({result_.frames, "queries of set " + std::to_string(id), {bytes, bytes + count * 8}});
+    }
+    // A trimmed capture's state: what an object held when the captured range began. A device
+    // that refuses it (a depth format it cannot upload to, say) leaves it undefined and counts it.
+    void restoreBuffer(const json& r) {
+        const BufferHandle b = buffer(r);
+        const auto data = blob(r, "data");
+        const BufferDesc& d = device_.desc(b);
+        if (data.size() != d.size) throw std::runtime_error("restored contents are not the buffer's size");
+        if (d.access == MemoryAccess::Upload) {
+            std::memcpy(device_.map(b), data.data(), data.size());
+        } else if (d.access == MemoryAccess::GpuOnly) {
+            device_.writeBuffer(b, 0, data);
+        }
+    }
+    void restoreTexture(const json& r) {
+        try {
+            device_.writeTexture(texture(r), {u32(r, "mip"), u32(r, "layer")}, blob(r, "data"));
+        } catch (const DeviceLostError&) {
+            throw;
+        } catch (const Error&) {
+            ++result_.unrestored;
+        }
     }
     void readTexture(const json& r) {
         const TextureHandle t = texture(r);
@@ -656,6 +687,7 @@ CaptureSummary summarizeCapture(const std::string& path) {
             if (op == "device") {
                 s.backend = r.value("backend", std::string());
                 s.device = r.value("device", std::string());
+                s.firstFrame = r.value("firstFrame", 0u);
             }
         } catch (const std::exception& e) {
             throw CaptureError("capture: record " + std::to_string(s.records) + " at offset " + std::to_string(chunk.offset) +

@@ -20,11 +20,12 @@ struct DeviceCreateDesc {
     bool vsync = true;
     // A pipeline cache file (Device::openPipelineCache): loaded now, saved when the device goes.
     std::string pipelineCache;
-    // A capture file (Capture.h): every call is written there for fe replay and fe bisect, the
-    // first captureFrames frames (0: all). Empty: FE_CAPTURE and FE_CAPTURE_FRAMES from the
-    // environment, for the first device the process creates.
+    // A capture file (Capture.h): every call is written there for fe replay and fe bisect,
+    // captureFrames frames (0: all) from captureFirstFrame. Empty: FE_CAPTURE, FE_CAPTURE_FRAMES
+    // and FE_CAPTURE_FIRST_FRAME from the environment, for the first device the process creates.
     std::string capture;
     uint32_t captureFrames = 0;
+    uint32_t captureFirstFrame = 0;  // CaptureDesc::firstFrame; FE_CAPTURE_FIRST_FRAME
 };
 
 // Concrete headless backends in the order `auto` tries them (`all` in fe conformance).

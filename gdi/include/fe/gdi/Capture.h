@@ -32,9 +32,17 @@ struct CaptureDesc {
     std::string path;       // the file written (created or replaced)
     bool compress = true;   // zstd on every chunk it shrinks
     // Frames captured: 0 for all of them, until the device is destroyed; N: the first N, after
-    // which the file is finished and the device goes on uncaptured. A frame ends at present(),
-    // or, for headless programs, at the first readTexture after a submit.
+    // which the file is finished and the device goes on uncaptured. A frame ends at
+    // markFrameEnd (the renderer's CommandQueue calls it after each frame's submit), at
+    // present(), or at the first readTexture; each only when something was submitted since the
+    // last frame ended.
     uint32_t frames = 0;
+    // The first frame captured (0: from the start). Before it nothing is written; when it starts,
+    // every live object is written in the state it has then: its description, and its contents
+    // read back from the device (buffers; single-sample uncompressed 2D, array and cube
+    // textures), or for textures that cannot be read back (compressed, 3D) what the program
+    // wrote into them. Multisampled textures start undefined, as after their creation.
+    uint32_t firstFrame = 0;
 };
 
 // Wraps `inner` in a capturing device. Throws Error when the file cannot be created.
@@ -49,6 +57,9 @@ struct CaptureStats {
     uint64_t fileBytes = 0;     // written to the file so far
     bool finished = false;      // the file is complete
 };
+// Ends the current frame of a capturing device (headless programs, which never present, mark
+// their frames so); does nothing for other devices.
+void markFrameEnd(Device& device);
 // A capturing device's statistics; nullopt for any other device.
 std::optional<CaptureStats> captureStats(Device& device);
 // Completes a capturing device's file now (it goes on uncaptured); throws Error when writing
@@ -61,6 +72,7 @@ struct CaptureSummary {
     uint32_t formatVersion = 0;
     std::string backend, device;  // where it was captured
     uint32_t frames = 0;
+    uint32_t firstFrame = 0;  // the program's frame the capture starts at
     uint64_t records = 0, submits = 0, blobs = 0;
     uint64_t fileBytes = 0, rawBytes = 0;  // on disk; records and blobs uncompressed
 };
@@ -121,6 +133,7 @@ struct ReplayResult {
     std::vector<double> frameMilliseconds;  // wall time of each replayed frame (CPU and GPU)
     std::vector<ReplayImage> images;
     std::vector<ReplayBuffer> buffers;       // every readBuffer, as replayed
+    uint32_t unrestored = 0;                 // object contents of a trimmed capture this device refused
     uint64_t draws = 0, passes = 0;          // replayed (up to the stop)
     std::vector<PassSnapshot> passSnapshots;  // snapshotPasses
     std::optional<DrawContext> stoppedAt;     // stopAfterDraw: the draw, when it was reached
