@@ -12,7 +12,8 @@ case "$backend" in gl-*) preload=(env LD_PRELOAD=/usr/lib/librenderdoc.so) ;; es
 # In a sanitizer build ASan's runtime must come first in the preload list, and then its dlopen
 # interceptor, not RenderDoc's, wins symbol lookup: RenderDoc cannot hook GL there. Skipped (77)
 # in that suite only; the plain suite runs it.
-if [ ${#preload[@]} -gt 0 ] && ldd "$fe" | grep -q libasan; then
+# (grep without -q: under pipefail, ldd killed by SIGPIPE when grep quits early reads as "no".)
+if [ ${#preload[@]} -gt 0 ] && ldd "$fe" | grep libasan >/dev/null; then
   echo "skipped: RenderDoc cannot hook GL in an AddressSanitizer build (ASan's dlopen comes first)"
   exit 77
 fi

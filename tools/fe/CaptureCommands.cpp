@@ -185,17 +185,22 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
 
     std::cout << path << ": " << nameA << " against " << nameB << ", " << r.passesCompared << " pass(es) and "
               << r.drawsCompared << " draw(s) compared in " << r.replays << " replays\n";
+    // Images where fe bench's report page looks for a conformance comparison's (report.py:
+    // conformance/A/CASE_IMAGE.png, conformance/B/..., conformance/diff_A_B_CASE_IMAGE.png).
     gdi::Json comparisons = gdi::Json::array();
     for (const gdi::TargetDiff& d : r.diffs) {
-        const std::string base = out + "/" + fileName(d.target);
-        writeImage(d.a, base + "_" + nameA + ".png");
-        writeImage(d.b, base + "_" + nameB + ".png");
-        const bool heat = d.heat.width && writeImage(d.heat, base + "_heat.png");
-        comparisons.push_back({{"name", d.target}, {"reference", nameA}, {"backend", nameB}, {"case", "bisect"},
-                               {"image", d.target}, {"passed", false}, {"metrics", d.diff},
+        const std::string image = fileName(d.target);
+        const std::string fileA = out + "/conformance/" + nameA + "/bisect_" + image + ".png";
+        const std::string fileB = out + "/conformance/" + nameB + "/bisect_" + image + ".png";
+        const std::string heat = out + "/conformance/diff_" + nameA + "_" + nameB + "_bisect_" + image + ".png";
+        writeImage(d.a, fileA);
+        writeImage(d.b, fileB);
+        const bool heatWritten = d.heat.width && writeImage(d.heat, heat);
+        comparisons.push_back({{"name", nameA + " vs " + nameB + " bisect/" + d.target}, {"reference", nameA}, {"backend", nameB},
+                               {"case", "bisect"}, {"image", image}, {"passed", false}, {"metrics", d.diff},
                                {"tolerance", {{"absolute", options.absTolerance}, {"maxFractionOver", options.maxFractionOver},
                                               {"reason", "fe bisect --tolerance"}}},
-                               {"files", {base + "_" + nameA + ".png", base + "_" + nameB + ".png", heat ? base + "_heat.png" : ""}}});
+                               {"files", {fileA, fileB, heatWritten ? heat : ""}}});
     }
     gdi::Json divergence = nullptr;
     if (!r.diverged) {
@@ -226,13 +231,18 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
             divergence["resources"] = r.draw->resources;
         }
     }
-    const gdi::Json report = {{"schema", "fe-results/1"}, {"kind", "bisect"}, {"engine", gdi::engineJson()},
-                              {"date", gdi::utcTimestamp()}, {"arguments", arguments}, {"capture", path},
-                              {"backends", {deviceA->info(), deviceB->info()}}, {"divergence", divergence},
-                              {"comparisons", comparisons},
-                              {"summary", {{"passed", r.diverged ? 0 : 1}, {"failed", r.diverged ? 1 : 0}}}};
+    // fe bench's results schema with a conformance section: `python3 tools/bench/report.py
+    // DIR/bisect.json` draws the comparison page.
+    const gdi::Json summary = {{"passed", r.diverged ? 0 : 1}, {"failed", r.diverged ? 1 : 0}};
+    const gdi::Json report = {
+        {"schema", "fe-results/1"}, {"kind", "bisect"}, {"engine", gdi::engineJson()}, {"date", gdi::utcTimestamp()},
+        {"arguments", arguments}, {"capture", path},
+        {"backends", {{{"name", nameA}, {"available", true}, {"device", deviceA->info()}},
+                      {{"name", nameB}, {"available", true}, {"device", deviceB->info()}}}},
+        {"results", gdi::Json::array()}, {"divergence", divergence},
+        {"conformance", {{"summary", summary}, {"comparisons", comparisons}}}, {"summary", summary}};
     std::ofstream(out + "/bisect.json") << report.dump(2) << "\n";
-    std::cout << "report: " << out << "/bisect.json\n";
+    std::cout << "report: " << out << "/bisect.json (python3 tools/bench/report.py " << out << "/bisect.json draws it)\n";
     return r.diverged ? 1 : 0;
 }
 

@@ -69,6 +69,8 @@
 //   device->queryResults(occlusion, 0, 1, samples);   // false until its submission completed
 //   device->openPipelineCache("pipelines.bin");         // or DeviceCreateDesc::pipelineCache
 //   auto capture = FrameCapture::load("frame");         // RenderDoc (Backend.h), before createDevice
+//   createDevice({.capture = "frame.fecap"});             // or FE_CAPTURE: every call into a file that
+//   replayCapture("frame.fecap", *other);                 // replays on any backend (Capture.h)
 //  - Per-draw constants: std140, one block per stage, at most kMaxConstantBytes; each recording
 //    starts with zeros and values persist across setPipeline. Vulkan push constants; GL a uniform
 //    block at binding 64 fed from a ring (slots stay 0..63 for the application).
