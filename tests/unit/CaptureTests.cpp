@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 
 #include "BackendTest.h"
 #include "Conformance.h"
@@ -433,3 +434,36 @@ TEST_P(CaptureFrameRange, FramesFromTwoStartFromTheStateBeforeThem) {
     fs::remove(file);
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureFrameRange);
+
+// A capture is a portable benchmark: replay times each render pass on the GPU (timestamps around
+// it), named as the program named it, and the timing changes nothing in the images.
+class CapturePassTimes : public fe::testing::BackendTest {};
+TEST_P(CapturePassTimes, EveryPassIsTimedAndNamed) {
+    if (!device->info().features.timestamps) GTEST_SKIP() << "no timestamps on " << GetParam();
+    const fs::path file = tempPath(GetParam() + ".fecap");
+    {
+        auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
+        const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});
+        render::SceneRenderer r(*d, scene, {.technique = "deferred", .width = 32, .height = 24, .displayImage = true});
+        r.renderFrame();
+        r.renderFrame();
+        r.readDisplay();
+    }
+    auto replay = startOrNull(GetParam());
+    const gdi::ReplayResult timed = gdi::replayCapture(file.string(), *replay, {.passTimes = true});
+    const gdi::ReplayResult plain = gdi::replayCapture(file.string(), *replay);
+    EXPECT_EQ(timed.passTimes.size(), timed.passes);
+    EXPECT_TRUE(plain.passTimes.empty());
+    std::set<std::string> names;
+    for (const gdi::PassTime& t : timed.passTimes) {
+        names.insert(t.name);
+        EXPECT_GT(t.gpuMilliseconds, 0.0) << t.name;
+    }
+    EXPECT_TRUE(names.count("gbuffer") && names.count("lighting") && names.count("display"));
+    EXPECT_EQ(timed.frames, 2u);
+    ASSERT_EQ(timed.images.size(), plain.images.size());
+    for (size_t i = 0; i < timed.images.size(); ++i) EXPECT_EQ(timed.images[i].image.data, plain.images[i].image.data);
+    EXPECT_EQ(replay->validationErrorCount(), 0u);
+    fs::remove(file);
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CapturePassTimes);

@@ -108,7 +108,8 @@ int cmdReplay(const Args& a) {
                                      .validation = a.options.count("--validation") > 0,
                                      .window = a.options.count("--present") > 0});
     gdi::ReplayOptions options{.outDir = a.options.count("--out") ? a.options.at("--out") : "",
-                               .present = a.options.count("--present") > 0};
+                               .present = a.options.count("--present") > 0,
+                               .passTimes = true};
     if (a.options.count("--pass") && a.options.count("--draw")) throw UsageError("replay: --pass or --draw, not both");
     if (a.options.count("--pass")) options.stopAfterPass = a.options.at("--pass");
     if (a.options.count("--draw")) options.stopAfterDraw = parseUint(a.options.at("--draw"), "--draw", 0, UINT32_MAX);
@@ -145,6 +146,15 @@ int cmdReplay(const Args& a) {
         std::cout << "  frame time: median " << median(r.frameMilliseconds) << " ms, total " << total << " ms"
                   << (device->info().softwareRasterizer ? " (software rasterizer)" : "") << "\n";
     }
+    // Each pass's GPU time, the median over the frames it ran in (passes keep their order).
+    std::vector<std::pair<std::string, std::vector<double>>> passes;
+    for (const gdi::PassTime& t : r.passTimes) {
+        auto it = std::find_if(passes.begin(), passes.end(), [&](const auto& p) { return p.first == t.name; });
+        if (it == passes.end()) it = passes.insert(passes.end(), {t.name, {}});
+        it->second.push_back(t.gpuMilliseconds);
+    }
+    for (const auto& [name, ms] : passes)
+        std::cout << "  pass " << name << ": " << median(ms) << " ms GPU (median of " << ms.size() << ")\n";
     if (const uint32_t errors = device->validationErrorCount()) {
         std::cerr << "fe: replay: " << errors << " validation error(s)\n";
         return 1;

@@ -2,6 +2,7 @@
 // ids mapped), data written as it was, each submission's command lists applied from their
 // streams (applyStream), and waits, read-backs and presents repeated in the same order.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -386,7 +387,7 @@ private:
             const auto stream = decodeCommandStream(bytes);
             auto list = device_.createCommandList();
             probe_.newList();
-            applyStream(*stream, device_, *list, map_, probing() ? &probe_ : nullptr);
+            applyStream(*stream, device_, *list, map_, probing() || timing() ? &probe_ : nullptr);
             raw.push_back(list.get());
             recorded.push_back(std::move(list));
         }
@@ -436,6 +437,7 @@ private:
     }
 
     struct Stopped {};
+    bool timing() const { return options_.passTimes && device_.info().features.timestamps; }
     bool probing() const {
         return options_.snapshotPasses || options_.stopAfterDraw || options_.stopAfterPass || options_.skipDraw;
     }
@@ -462,13 +464,20 @@ private:
         uint64_t draw = 0, pass = 0;
 
         bool before(cmd::Op op, const std::byte*, CommandList& list) override {
+            if (op == cmd::Op::BeginRenderPass && r_.timing()) {
+                const QuerySetHandle set = r_.device_.createQuerySet({.type = QueryType::Timestamp, .count = 2});
+                timestampSets_.push_back(set);
+                list.writeTimestamp(set, 0);
+            }
             if (!isDraw(op) || !r_.options_.skipDraw || *r_.options_.skipDraw != draw) return true;
             drawDone(op, list);  // left out, but counted (and a stop there still stops)
             return false;
         }
         void adjustPass(RenderPassDesc& p) override {
-            for (ColorAttachment& c : p.colors) c.store = StoreOp::Store;
-            if (p.depth.texture) p.depth.store = StoreOp::Store;
+            if (r_.probing()) {
+                for (ColorAttachment& c : p.colors) c.store = StoreOp::Store;
+                if (p.depth.texture) p.depth.store = StoreOp::Store;
+            }
             open_ = p;
         }
         void after(cmd::Op op, const std::byte* record, CommandList& list) override {
@@ -481,6 +490,10 @@ private:
                                                : "pass " + std::to_string(pass);
             } else if (op == cmd::Op::EndRenderPass) {
                 inPass_ = false;
+                if (r_.timing() && !timestampSets_.empty()) {
+                    list.writeTimestamp(timestampSets_.back(), 1);
+                    timed_.push_back({timestampSets_.back(), {r_.result_.frames, pass, passName_, 0}});
+                }
                 const bool stopHere = r_.options_.stopAfterPass && *r_.options_.stopAfterPass == passName_;
                 if (r_.options_.snapshotPasses || stopHere) readTargets(list, stopHere);
                 stop = stop || stopHere;
@@ -496,6 +509,7 @@ private:
         }
         // After the submission: the targets read, as images.
         void collect() {
+            collectTimes();
             if (pending_.empty() && buffers_.empty()) return;
             r_.device_.waitIdle();
             for (Pending& p : pending_) {
@@ -513,6 +527,20 @@ private:
         }
 
     private:
+        void collectTimes() {
+            if (timestampSets_.empty()) return;
+            r_.device_.waitIdle();
+            for (auto& [set, time] : timed_) {
+                std::array<uint64_t, 2> ns{};
+                if (r_.device_.queryResults(set, 0, 2, ns) && ns[1] >= ns[0]) {
+                    time.gpuMilliseconds = double(ns[1] - ns[0]) * 1e-6;
+                    r_.result_.passTimes.push_back(time);
+                }
+            }
+            for (QuerySetHandle set : timestampSets_) r_.device_.destroy(set);
+            timestampSets_.clear();
+            timed_.clear();
+        }
         void drawDone(cmd::Op op, CommandList& list) {
             if (r_.options_.stopAfterDraw && *r_.options_.stopAfterDraw == draw) {
                 r_.result_.stoppedAt = context(cmd::opName(op));
@@ -630,6 +658,8 @@ private:
         std::map<std::string, std::string> bound_;
         std::vector<Pending> pending_;
         std::vector<BufferHandle> buffers_;  // read-back buffers of the current submission
+        std::vector<QuerySetHandle> timestampSets_;              // one per timed pass of the submission
+        std::vector<std::pair<QuerySetHandle, PassTime>> timed_;  // the passes whose end was written
         bool automaticBarriers_ = true;
         size_t groupsAtPass_ = 0;  // debug groups open when the pass began
     };

@@ -92,6 +92,15 @@ struct ReplayOptions {
     std::optional<uint64_t> stopAfterDraw;     // end the replay after this draw, reading its pass
     std::optional<std::string> stopAfterPass;  // end after the first render pass of this name
     std::optional<uint64_t> skipDraw;          // leave this draw out (fe bisect --perturb)
+    // GPU time of every render pass (timestamps before and after it, where the device has
+    // DeviceFeatures::timestamps): ReplayResult::passTimes. Changes nothing else.
+    bool passTimes = false;
+};
+struct PassTime {
+    uint32_t frame = 0;
+    uint64_t pass = 0;  // over the capture
+    std::string name;   // the pass's debug name, else the innermost debug group's
+    double gpuMilliseconds = 0;
 };
 struct ReplayImage {
     uint32_t frame = 0;
@@ -133,6 +142,7 @@ struct ReplayResult {
     std::vector<double> frameMilliseconds;  // wall time of each replayed frame (CPU and GPU)
     std::vector<ReplayImage> images;
     std::vector<ReplayBuffer> buffers;       // every readBuffer, as replayed
+    std::vector<PassTime> passTimes;         // ReplayOptions::passTimes
     uint32_t unrestored = 0;                 // object contents of a trimmed capture this device refused
     uint64_t draws = 0, passes = 0;          // replayed (up to the stop)
     std::vector<PassSnapshot> passSnapshots;  // snapshotPasses
