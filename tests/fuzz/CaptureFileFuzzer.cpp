@@ -26,7 +26,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string lost;
     try {
         fe::gdi::summarizeCapture(path);
-        fe::gdi::replayCapture(path, d);
+        // Work bounded so that each input replays in well under the harness's timeout on
+        // lavapipe under ASan (the seeds draw a few thousand vertices).
+        fe::gdi::replayCapture(path, d, {.maxDrawVertices = 1u << 20, .maxDispatchGroups = 1u << 16});
     } catch (const fe::gdi::CaptureError&) {
     } catch (const fe::gdi::DeviceLostError& e) {
         lost = e.what();

@@ -467,3 +467,34 @@ TEST_P(CapturePassTimes, EveryPassIsTimedAndNamed) {
     fs::remove(file);
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(CapturePassTimes);
+
+// A damaged count cannot make a replay run for hours: work per call is bounded (and the bound
+// is the replay's option, so a capture of a really heavy frame can raise it).
+TEST_P(CaptureFileErrors, DrawsBeyondTheWorkLimitAreRefused) {
+    const fs::path file = tempPath("heavy.fecap");
+    {
+        auto d = gdi::makeCaptureDevice(startOrNull(GetParam()), {.path = file.string()});
+        const auto target = d->createTexture({.width = 4, .height = 4, .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc});
+        const auto vs = d->createShader({.stage = gdi::ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+        const auto fs = d->createShader({.stage = gdi::ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+        const auto p = d->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {gdi::Format::RGBA8}});
+        auto list = d->createCommandList();
+        list->beginRenderPass({.colors = {{.texture = target}}});
+        list->setPipeline(p);
+        list->draw(3, 1000);
+        list->endRenderPass();
+        d->wait(d->submit(*list));
+        d->readTexture(target);
+    }
+    std::string e = "(replayed)";
+    try {
+        gdi::replayCapture(file.string(), *device, {.maxDrawVertices = 2999});
+    } catch (const gdi::CaptureError& x) {
+        e = x.what();
+    }
+    EXPECT_NE(e.find("(submit)"), std::string::npos) << e;
+    EXPECT_NE(e.find("draw 0 of 3000 vertices is beyond this replay's limit (2999"), std::string::npos) << e;
+    EXPECT_NO_THROW(gdi::replayCapture(file.string(), *device, {.maxDrawVertices = 3000}));
+    EXPECT_EQ(device->liveObjects(), gdi::LiveObjects{});
+    fs::remove(file);
+}

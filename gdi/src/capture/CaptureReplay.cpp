@@ -387,7 +387,7 @@ private:
             const auto stream = decodeCommandStream(bytes);
             auto list = device_.createCommandList();
             probe_.newList();
-            applyStream(*stream, device_, *list, map_, probing() || timing() ? &probe_ : nullptr);
+            applyStream(*stream, device_, *list, map_, &probe_);
             raw.push_back(list.get());
             recorded.push_back(std::move(list));
         }
@@ -463,7 +463,8 @@ private:
         explicit Probe(Replayer& r) : r_(r) {}
         uint64_t draw = 0, pass = 0;
 
-        bool before(cmd::Op op, const std::byte*, CommandList& list) override {
+        bool before(cmd::Op op, const std::byte* record, CommandList& list) override {
+            cmd::CommandStream::dispatch(op, record, [&](const auto& rec) { checkWork(rec); });
             if (op == cmd::Op::BeginRenderPass && r_.timing()) {
                 const QuerySetHandle set = r_.device_.createQuerySet({.type = QueryType::Timestamp, .count = 2});
                 timestampSets_.push_back(set);
@@ -527,6 +528,22 @@ private:
         }
 
     private:
+        template <class R>
+        void checkWork(const R&) {}
+        void checkWork(const cmd::Draw& r) { checkVertices(uint64_t(r.vertexCount) * r.instanceCount); }
+        void checkWork(const cmd::DrawIndexed& r) { checkVertices(uint64_t(r.indexCount) * r.instanceCount); }
+        void checkWork(const cmd::Dispatch& r) {
+            const uint64_t groups = uint64_t(r.groupsX) * r.groupsY * r.groupsZ;
+            if (groups > r_.options_.maxDispatchGroups)
+                throw std::runtime_error("a dispatch of " + std::to_string(groups) + " work groups is beyond this replay's limit (" +
+                                         std::to_string(r_.options_.maxDispatchGroups) + ", ReplayOptions::maxDispatchGroups)");
+        }
+        void checkVertices(uint64_t vertices) {
+            if (vertices > r_.options_.maxDrawVertices)
+                throw std::runtime_error("draw " + std::to_string(draw) + " of " + std::to_string(vertices) +
+                                         " vertices is beyond this replay's limit (" + std::to_string(r_.options_.maxDrawVertices) +
+                                         ", ReplayOptions::maxDrawVertices)");
+        }
         void collectTimes() {
             if (timestampSets_.empty()) return;
             r_.device_.waitIdle();

@@ -95,6 +95,11 @@ struct ReplayOptions {
     // GPU time of every render pass (timestamps before and after it, where the device has
     // DeviceFeatures::timestamps): ReplayResult::passTimes. Changes nothing else.
     bool passTimes = false;
+    // Work one recorded call may ask for (vertices x instances of a draw, work groups of a
+    // dispatch): beyond it the replay stops with a CaptureError instead of running for hours on
+    // a damaged count. Indirect arguments are the GPU's and are not checked.
+    uint64_t maxDrawVertices = uint64_t(1) << 28;
+    uint64_t maxDispatchGroups = uint64_t(1) << 24;
 };
 struct PassTime {
     uint32_t frame = 0;
