@@ -6,22 +6,12 @@
 #include <cstdint>
 #include <memory>
 
-#include "FuzzSupport.h"
-#include "fe/gdi/Backend.h"
+#include "FuzzDevice.h"
 #include "fe/gdi/Capture.h"
-#include "fe/gdi/Faults.h"  // toString(LiveObjects)
-
-namespace {
-fe::gdi::Device& device() {
-    static std::unique_ptr<fe::gdi::Device> d = fe::gdi::createDevice({.backend = "vulkan", .validation = true});
-    return *d;
-}
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    fe::gdi::Device& d = device();
-    const fe::gdi::LiveObjects before = d.liveObjects();
-    const uint32_t validationBefore = d.validationErrorCount();
+    fe::gdi::Device& d = fe::fuzz::vulkanDevice();
+    const fe::fuzz::DeviceContract contract{d};
     const std::string path = fe::fuzz::writeInput(data, size);
     std::string lost;
     try {
@@ -34,8 +24,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         lost = e.what();
     }
     d.waitIdle();
-    FUZZ_CHECK(lost.empty(), "device lost:", lost);
-    FUZZ_CHECK(d.liveObjects() == before, "device objects left behind:", fe::gdi::toString(d.liveObjects()));
-    FUZZ_CHECK(d.validationErrorCount() == validationBefore, "validation errors while replaying", "");
+    contract.check(lost, "while replaying");
     return 0;
 }

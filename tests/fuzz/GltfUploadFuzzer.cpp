@@ -7,24 +7,14 @@
 #include <cstdlib>
 #include <memory>
 
-#include "FuzzSupport.h"
+#include "FuzzDevice.h"
 #include "assets/AssetError.h"
 #include "assets/GltfLoader.h"
-#include "fe/gdi/Backend.h"
-#include "fe/gdi/Faults.h"  // toString(LiveObjects)
 #include "render/GpuScene.h"
 
-namespace {
-fe::gdi::Device& device() {
-    static std::unique_ptr<fe::gdi::Device> d = fe::gdi::createDevice({.backend = "vulkan", .validation = true});
-    return *d;
-}
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    fe::gdi::Device& d = device();
-    const fe::gdi::LiveObjects before = d.liveObjects();
-    const uint32_t validationBefore = d.validationErrorCount();
+    fe::gdi::Device& d = fe::fuzz::vulkanDevice();
+    const fe::fuzz::DeviceContract contract{d};
     std::string lost;  // a device loss: uploading must never cause one
     try {
         fe::assets::Scene scene = fe::assets::loadGltf(fe::fuzz::writeInput(data, size));
@@ -35,8 +25,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         lost = e.what();
     } catch (const fe::gdi::Error&) {
     }
-    FUZZ_CHECK(lost.empty(), "device lost:", lost);
-    FUZZ_CHECK(d.liveObjects() == before, "device objects left behind:", fe::gdi::toString(d.liveObjects()));
-    FUZZ_CHECK(d.validationErrorCount() == validationBefore, "validation errors while uploading", "");
+    contract.check(lost, "while uploading");
     return 0;
 }
