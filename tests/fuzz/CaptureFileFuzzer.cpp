@@ -24,6 +24,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         lost = e.what();
     }
     d.waitIdle();
-    contract.check(lost, "while replaying");
+    FUZZ_CHECK_DEVICE(contract, lost, "while replaying");
     return 0;
 }

@@ -29,3 +29,6 @@ struct DeviceContract {
 };
 
 }  // namespace fe::fuzz
+
+// The harness's assertion after each input: aborts (libFuzzer keeps the input) on a violation.
+#define FUZZ_CHECK_DEVICE(contract, lost, while_) (contract).check(lost, while_)

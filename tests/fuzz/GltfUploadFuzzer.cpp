@@ -25,6 +25,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         lost = e.what();
     } catch (const fe::gdi::Error&) {
     }
-    contract.check(lost, "while uploading");
+    FUZZ_CHECK_DEVICE(contract, lost, "while uploading");
     return 0;
 }
