@@ -480,8 +480,10 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     if (code.size() < 5 || code[0] != 0x07230203)
         throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
                          " words, missing magic number)");
+    // The Vulkan half too, under the newest Vulkan rules a device takes (see validateShaderBinary).
+    gdi::validateShaderBinary(desc, gdi::SpirvRules::Vulkan13, info_.features);
     Shader s;
-    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label);  // on this thread: no GL needed
+    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label, gdi::SpirvRules::OpenGL45);  // on this thread: no GL needed
     s.stage = desc.stage;
     s.label = label;
     s.entry = desc.entryPoint ? desc.entryPoint : "main";

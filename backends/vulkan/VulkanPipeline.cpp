@@ -82,7 +82,9 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
         throw gdi::Error("shader '" + name + "': not a SPIR-V binary for Vulkan (" + std::to_string(code.size()) +
                          " words, missing magic number)");
     Shader s;
-    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, name);
+    const auto rules = props_.apiVersion >= VK_API_VERSION_1_3 ? gdi::SpirvRules::Vulkan13 : gdi::SpirvRules::Vulkan12;
+    gdi::validateShaderBinary(desc, rules, info_.features);
+    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, name, rules);
     VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     ci.codeSize = code.size_bytes();
     ci.pCode = code.data();

@@ -1,6 +1,8 @@
 // SPIR-V reflection through SPIRV-Cross's C API (Debian's libspirv-cross-c-shared): only the
 // variables the entry point statically uses count, as Vulkan's validation counts them, so an
 // include that declares more blocks than a shader reads does not ask for more bindings.
+#include <cstring>
+#include <string_view>
 #include "fe/gdi/ShaderReflection.h"
 
 #include <algorithm>
@@ -57,23 +59,22 @@ ScalarKind kindOf(spvc_basetype t) {
 }
 
 // SPIRV-Cross trusts the module it parses: a malformed one can crash it (the capture-file fuzzer
-// found one), so SPIRV-Tools' validator (Debian's spirv-tools) checks every module first. The
-// universal environment: the SPIR-V rules, not one API's (the validation layer checks those).
-void validateSpirv(std::span<const uint32_t> spirv, const std::string& name) {
-    // The header's schema word is 0 (the validator lets any value through; Mesa refuses others).
-    if (spirv.size() >= 5 && spirv[4] != 0)
-        throw Error("shader '" + name + "': not a valid SPIR-V module: header word 4 (schema) is " + std::to_string(spirv[4]) +
-                    ", not 0");
-    static const spv_context context = spvContextCreate(SPV_ENV_UNIVERSAL_1_5);
-    spv_diagnostic diagnostic = nullptr;
-    const spv_result_t result = spvValidateBinary(context, spirv.data(), spirv.size(), &diagnostic);
-    if (result == SPV_SUCCESS) {
-        spvDiagnosticDestroy(diagnostic);
-        return;
+// found one), so SPIRV-Tools' validator (Debian's spirv-tools) checks every module first. Vulkan
+// modules under the device's Vulkan rules, as the validation layer would: a uniform block whose
+// member straddles a 16-byte boundary is valid SPIR-V but not valid Vulkan (the fuzzer again).
+// Relaxed block layout is core from Vulkan 1.1; the device enables no scalar or standard layout.
+spv_context spirvContext(SpirvRules rules) {
+    static const spv_context universal = spvContextCreate(SPV_ENV_UNIVERSAL_1_5);
+    static const spv_context opengl45 = spvContextCreate(SPV_ENV_OPENGL_4_5);
+    static const spv_context vulkan12 = spvContextCreate(SPV_ENV_VULKAN_1_2);
+    static const spv_context vulkan13 = spvContextCreate(SPV_ENV_VULKAN_1_3);
+    switch (rules) {
+        case SpirvRules::OpenGL45: return opengl45;
+        case SpirvRules::Vulkan12: return vulkan12;
+        case SpirvRules::Vulkan13: return vulkan13;
+        case SpirvRules::Universal: break;
     }
-    const std::string why = diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
-    spvDiagnosticDestroy(diagnostic);
-    throw Error("shader '" + name + "': not a valid SPIR-V module: " + why);
+    return universal;
 }
 
 // Location decorations anywhere (block members included, which reflection does not list) stay
@@ -142,19 +143,121 @@ void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& nam
 
 }  // namespace
 
+void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name) {
+    const std::string what = std::string("shader '") + name + "': not a valid SPIR-V module" +
+                             (rules == SpirvRules::OpenGL45 ? " for OpenGL"
+                              : rules == SpirvRules::Universal ? ""
+                                                               : " for Vulkan") + ": ";
+    // The header's schema word is 0 (the validator lets any value through; Mesa refuses others).
+    if (spirv.size() >= 5 && spirv[4] != 0)
+        throw Error(what + "header word 4 (schema) is " + std::to_string(spirv[4]) + ", not 0");
+    struct Options {
+        spv_validator_options options = spvValidatorOptionsCreate();
+        Options() { spvValidatorOptionsSetRelaxBlockLayout(options, true); }
+        ~Options() { spvValidatorOptionsDestroy(options); }
+    };
+    static const Options options;
+    spv_const_binary_t binary{spirv.data(), spirv.size()};
+    spv_diagnostic diagnostic = nullptr;
+    const spv_result_t result = spvValidateWithOptions(spirvContext(rules), options.options, &binary, &diagnostic);
+    if (result == SPV_SUCCESS) {
+        spvDiagnosticDestroy(diagnostic);
+        checkLocationLiterals(spirv, name);
+        checkDistanceArrays(spirv, name);
+        return;
+    }
+    const std::string why = diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
+    spvDiagnosticDestroy(diagnostic);
+    throw Error(what + why);
+}
+
+namespace {
+
+// The module (valid here) declares an entry point of this name for this stage.
+void checkEntryPoint(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint, const std::string& name) {
+    constexpr uint32_t kOpEntryPoint = 15;
+    const uint32_t model = stage == ShaderStage::Vertex ? 0u : stage == ShaderStage::Fragment ? 4u : 5u;  // GLCompute
+    const std::string_view wanted = entryPoint ? entryPoint : "main";
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (words == 0 || i + words > spirv.size()) break;
+        if (op == kOpEntryPoint && words >= 4 && spirv[i + 1] == model) {
+            // The name: a nul-terminated UTF-8 literal packed from word 3 on.
+            const auto* bytes = reinterpret_cast<const char*>(&spirv[i + 3]);
+            const size_t room = (words - 3) * 4;
+            if (std::string_view(bytes, strnlen(bytes, room)) == wanted) return;
+        }
+        i += words;
+    }
+    throw Error("shader '" + name + "': no " + shaderStageName(stage) + " entry point '" + std::string(wanted) + "'");
+}
+
+// The capabilities a module may declare: what every device of the API offers with the features
+// the backends enable (a declared one the device lacks is a validation-layer error on Vulkan,
+// found by the capture-file fuzzer: CullDistance without shaderCullDistance). GL SPIR-V may use
+// draw parameters (ARB_shader_draw_parameters); Vulkan's need a feature the device leaves off.
+void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const DeviceFeatures& features, const std::string& name) {
+    constexpr uint32_t kOpCapability = 17;
+    enum : uint32_t { Matrix = 0, Shader = 1, ClipDistance = 32, CullDistance = 33, ImageCubeArray = 34, Sampled1D = 43,
+                      Image1D = 44, SampledCubeArray = 45, SampledBuffer = 46, ImageBuffer = 47, ImageQuery = 50,
+                      DerivativeControl = 51, InterpolationFunction = 52, DrawParameters = 4427 };
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (words == 0 || i + words > spirv.size()) break;
+        if (op == kOpCapability && words == 2) {
+            const uint32_t c = spirv[i + 1];
+            bool offered = false;
+            switch (c) {
+                case Matrix: case Shader: case Sampled1D: case Image1D: case SampledBuffer: case ImageBuffer: case ImageQuery:
+                case DerivativeControl: case InterpolationFunction: offered = true; break;
+                case ImageCubeArray: case SampledCubeArray: offered = features.textureCubeArray; break;
+                case DrawParameters: offered = !vulkan; break;
+                default: break;
+            }
+            if (!offered) {
+                const char* known = c == ClipDistance ? " (ClipDistance)" : c == CullDistance ? " (CullDistance)"
+                                  : c == DrawParameters ? " (DrawParameters)" : c == ImageCubeArray ? " (ImageCubeArray)"
+                                  : c == SampledCubeArray ? " (SampledCubeArray)" : "";
+                throw Error("shader '" + name + "': its " + (vulkan ? "Vulkan" : "OpenGL") + " SPIR-V declares capability " +
+                            std::to_string(c) + known + ", which the device does not offer");
+            }
+        }
+        i += words;
+    }
+}
+
+}  // namespace
+
+void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const DeviceFeatures& features) {
+    constexpr uint32_t kSpirvMagic = 0x07230203;
+    const std::string name = desc.binary.name ? desc.binary.name : "";
+    struct Half {
+        std::span<const uint32_t> words;
+        SpirvRules rules;
+        const char* api;
+    };
+    for (const Half& half : {Half{desc.binary.vulkan, vulkanRules, "Vulkan"}, Half{desc.binary.opengl, SpirvRules::OpenGL45, "OpenGL"}}) {
+        if (half.words.empty()) continue;
+        if (half.words.size() < 5 || half.words[0] != kSpirvMagic)
+            throw Error("shader '" + name + "': not a SPIR-V binary for " + half.api + " (" + std::to_string(half.words.size()) +
+                        " words, missing magic number)");
+        validateSpirv(half.words, half.rules, name);
+        checkCapabilities(half.words, half.rules != SpirvRules::OpenGL45, features, name);
+        checkEntryPoint(half.words, desc.stage, desc.entryPoint, name);
+    }
+}
+
 // Some of SPIRV-Cross's C API entry points let its C++ exceptions through (set_entry_point on a
 // valid module whose entry point is of another stage, say): reflectShader turns them into Error.
 static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                                 const std::string& name) {
+                                        const std::string& name, SpirvRules rules) {
     Context c;
     auto fail = [&](const std::string& what) -> Error {
         const char* detail = c.ctx ? spvc_context_get_last_error_string(c.ctx) : "";
         return Error("shader '" + name + "': " + what + (detail && *detail ? std::string(": ") + detail : std::string()));
     };
     if (!c.ctx) throw fail("SPIRV-Cross could not start");
-    validateSpirv(spirv, name);
-    checkLocationLiterals(spirv, name);
-    checkDistanceArrays(spirv, name);
+    validateSpirv(spirv, rules, name);
     spvc_parsed_ir ir = nullptr;
     spvc_compiler comp = nullptr;
     if (spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS)
@@ -265,9 +368,9 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
 }
 
 ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                              const std::string& name) {
+                              const std::string& name, SpirvRules rules) {
     try {
-        return reflectUnguarded(spirv, stage, entryPoint, name);
+        return reflectUnguarded(spirv, stage, entryPoint, name, rules);
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {

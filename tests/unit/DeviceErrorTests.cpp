@@ -514,6 +514,36 @@ TEST_P(DamagedSpirv, IsAnErrorNeverACrash) {
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(DamagedSpirv);
 
+// A damaged binary is the same Error on every backend: each validates both halves of the binary,
+// the Vulkan one first, so which backend reads which half does not change the message.
+TEST(DamagedSpirvAcrossBackends, SameErrorOnEveryBackend) {
+    std::vector<std::unique_ptr<Device>> devices;
+    for (const char* name : {"vulkan", "gl-egl", "gl-osmesa"})
+        if (BackendProbe p = probeBackend(name, true); p.available) devices.push_back(std::move(p.device));
+    if (devices.size() < 2) GTEST_SKIP() << "fewer than two backends";
+    const ShaderBinary& good = fe::shaders::find("conformance/ubo_color.frag");
+    std::mt19937 random(27);
+    uint32_t refused = 0;
+    for (int i = 0; i < 200; ++i) {
+        std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()), opengl(good.opengl.begin(), good.opengl.end());
+        auto* words = (i % 2) ? &vulkan : &opengl;  // one half damaged: the other backend must notice too
+        const size_t at = 5 + random() % (words->size() - 5);
+        (*words)[at] ^= 1u << (random() % 32);
+        std::vector<std::string> errors;
+        for (const auto& device : devices)
+            errors.push_back(errorOf([&] {
+                device->destroy(device->createShader(
+                    {.stage = ShaderStage::Fragment, .binary = {.name = "damaged", .vulkan = vulkan, .opengl = opengl}}));
+            }));
+        refused += errors[0] != "(no error)";
+        for (size_t d = 1; d < devices.size(); ++d)
+            EXPECT_EQ(errors[d], errors[0]) << "damage " << i << ": " << devices[d]->info().backend << " vs "
+                                            << devices[0]->info().backend;
+    }
+    EXPECT_GT(refused, 100u);
+    for (const auto& device : devices) EXPECT_EQ(device->validationErrorCount(), 0u);
+}
+
 // An output at a location beyond the 16 every device has is refused before the driver sees it
 // (the Vulkan validation layer reported it, found by the capture-file fuzzer).
 TEST_P(DamagedSpirv, LocationsBeyondSixteenAreRefused) {
@@ -558,6 +588,56 @@ TEST_P(DamagedSpirv, ClipDistancesBeyondEightAreRefused) {
     EXPECT_NE(e.find("gl_ClipDistance and gl_CullDistance hold 28674 distances; every device has 8"), std::string::npos) << e;
 }
 
+// A uniform block member that straddles a 16-byte boundary is valid SPIR-V but not a layout any
+// device reads (Vulkan's relaxed block layout, GL's std140): refused, not left to the validation
+// layer or the GLSL compiler (found by the capture-file fuzzer).
+TEST_P(DamagedSpirv, StraddlingBlockMembersAreRefused) {
+    const ShaderBinary& good = fe::shaders::find("conformance/ubo_color.frag");
+    // OpMemberDecorate (72): struct, member 1, Offset (35), 16 -> 24: the second vec4 straddles.
+    auto patched = [](std::span<const uint32_t> words) {
+        std::vector<uint32_t> w(words.begin(), words.end());
+        for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16))
+            if ((w[i] & 0xffffu) == 72 && (w[i] >> 16) == 5 && w[i + 2] == 1 && w[i + 3] == 35 && w[i + 4] == 16) w[i + 4] = 24;
+        return w;
+    };
+    const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
+    ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
+    ASSERT_NE(opengl, std::vector<uint32_t>(good.opengl.begin(), good.opengl.end()));
+    const std::string e = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Fragment, .binary = {.name = "straddle", .vulkan = vulkan, .opengl = opengl}});
+    });
+    EXPECT_NE(e.find("shader 'straddle': not a valid SPIR-V module for Vulkan:"), std::string::npos) << e;
+    EXPECT_NE(e.find("improperly straddling vector at offset 24"), std::string::npos) << e;
+}
+
+// A capability the device does not enable is refused by name before the driver sees it (the
+// capture-file fuzzer made a module declaring CullDistance: a validation-layer error on Vulkan).
+TEST_P(DamagedSpirv, CapabilitiesTheDeviceLacksAreRefused) {
+    const ShaderBinary& good = fe::shaders::find("conformance/triangle.vert");
+    auto patched = [](std::span<const uint32_t> words) {
+        std::vector<uint32_t> w(words.begin(), words.end());
+        // After the first OpCapability (opcode 17): OpCapability CullDistance (33).
+        for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16))
+            if ((w[i] & 0xffffu) == 17) {
+                w.insert(w.begin() + std::ptrdiff_t(i + 2), {(2u << 16) | 17u, 33u});
+                break;
+            }
+        return w;
+    };
+    const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
+    ASSERT_EQ(vulkan.size(), good.vulkan.size() + 2);
+    const std::string e = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "cull", .vulkan = vulkan, .opengl = opengl}});
+    });
+    EXPECT_NE(e.find("shader 'cull': its Vulkan SPIR-V declares capability 33 (CullDistance), which the device does not offer"),
+              std::string::npos) << e;
+    // The GL half alone: refused the same way on every backend.
+    const std::string gl = errorOf([&] {
+        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "cull", .vulkan = good.vulkan, .opengl = opengl}});
+    });
+    EXPECT_NE(gl.find("shader 'cull': its OpenGL SPIR-V declares capability 33 (CullDistance)"), std::string::npos) << gl;
+}
+
 // The SPIR-V header's schema word must be 0: SPIRV-Tools lets other values through, Mesa's
 // Vulkan driver refuses them with a validation error (found by the capture-file fuzzer).
 TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
@@ -567,5 +647,5 @@ TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
     const std::string e = errorOf([&] {
         device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "schema", .vulkan = vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
+    EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module for Vulkan: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
 }

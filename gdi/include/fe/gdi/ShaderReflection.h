@@ -54,9 +54,24 @@ struct ShaderInterface {
 // The GL binding of the constants block (fe_common.glsl's FE_CONSTANTS), past the 0..63 slots.
 inline constexpr uint32_t kConstantsGlBinding = 64;
 
-// Throws Error naming the shader when the module cannot be parsed, uses a descriptor set other
-// than 0, or a resource kind the device has no slot type for (separate samplers and images).
+// The rules a module is validated against before it is read: SPIR-V's own, OpenGL 4.5's (the GL
+// backend) or a Vulkan version's (block layouts, capabilities, built-ins: what the validation
+// layer would refuse on that device).
+enum class SpirvRules : uint8_t { Universal, OpenGL45, Vulkan12, Vulkan13 };
+
+// Throws Error naming the shader and the encoding when the module is not valid under `rules`.
+void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name);
+
+// Both encodings a ShaderBinary carries (an empty one is skipped), the Vulkan one first under
+// `vulkanRules`: the magic number, validateSpirv, the capabilities it declares (those every
+// device offers, cube arrays where `features` say so), and the entry point of desc's stage.
+// Every backend calls it before reading its own half, so a damaged binary is the same Error on
+// every backend, not only on the one that happens to read the damaged half.
+void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const DeviceFeatures& features);
+
+// Throws Error naming the shader when the module is not valid under `rules`, cannot be parsed,
+// uses a descriptor set other than 0, or a resource kind the device has no slot type for.
 ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                              const std::string& name);
+                              const std::string& name, SpirvRules rules = SpirvRules::Universal);
 
 }  // namespace fe::gdi
