@@ -56,6 +56,10 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     // multi-pass forward's additive passes).
     const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent ||
                                        pass == MeshPass::LightPrepassMaterial);
+    if (pass == MeshPass::ForwardTiled && !forwardTiledFs_) {
+        const std::string name = forwardIblFs_ ? environment_.shader("scene/forward_plus_ibl.frag") : "scene/forward_plus.frag";
+        forwardTiledFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
+    }
     State st = [&]() -> State {
         switch (pass) {
             case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
@@ -71,6 +75,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::ForwardShadowed: return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
             case MeshPass::ForwardShadowedCube:
                 return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal, "forward shadowed cube"};
+            case MeshPass::ForwardTiled: return {forwardTiledFs_, false, gdi::CompareOp::Equal, "forward tiled"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();

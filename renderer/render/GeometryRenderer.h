@@ -28,6 +28,7 @@ enum class MeshPass {
     ShadowCaster,             // depth only into a shadow map: no culling, slope-scaled depth bias
     ForwardShadowed,          // ForwardAdditive for one light with its shadow map (kSlotShadow, kSlotShadowMap)
     ForwardShadowedCube,      // ... a point light with its shadow cube
+    ForwardTiled,             // ForwardEqual over the pixel's tile light list (kSlotTileLights, forward-plus)
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -66,6 +67,7 @@ private:
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
+    gdi::ShaderHandle forwardTiledFs_;  // made at the first ForwardTiled pipeline
     EnvironmentLight environment_;
 };
 

@@ -1,6 +1,7 @@
 // The technique table: one line per technique renderer.
 #include "render/DeferredRenderer.h"
 #include "render/ForwardMultipassRenderer.h"
+#include "render/ForwardPlusRenderer.h"
 #include "render/ForwardRenderer.h"
 #include "render/ForwardZPrepassRenderer.h"
 #include "render/LightPrepassRenderer.h"
@@ -31,6 +32,8 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true},
         {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
+        {"forward-plus", "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
+         make<ForwardPlusRenderer>, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
         {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
         {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",

@@ -39,8 +39,8 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
     const RenderSettings& s = ctx_.settings;
     // One block of the list texture per list tile; the pass runs one invocation per 16x16 tile.
     const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize, tilesY = (s.height + kTileSize - 1) / kTileSize;
-    // Room for every light (up to kMaxListLength) plus the count, within the device's texture limit.
-    const uint32_t entries = std::min(ctx_.scene.lightCount(), kMaxListLength) + 1;
+    // Room for every light (up to kMaxListLength) and the header, within the device's texture limit.
+    const uint32_t entries = std::min(ctx_.scene.lightCount(), kMaxListLength) + kListHeader;
     const uint32_t maxDim = ctx_.device.info().limits.maxTextureSize2D;
     const uint32_t blockHeight = std::max(1u, std::min((entries + kBlockWidth - 1) / kBlockWidth, maxDim / tilesY));
     if (tilesX * kBlockWidth > maxDim)

@@ -3,7 +3,8 @@
 // whose range reaches the tile's slice of the view frustum (shaders/scene/tile_light_culling.comp:
 // one invocation per 16x16 pixels, culling in two levels); the shading passes then read their
 // pixel's list (fe_tile_culling.glsl with FE_TILE_LISTS). The lists are a transient R32U texture
-// of the render graph: a block of 32 x H texels per list tile, texel 0 the count. A tile with
+// of the render graph: a block of 32 x H texels per list tile, a header of 3 (the count and the
+// depth bounds culled for), then the lights. A tile with
 // more lights than its block holds is marked to shade every light, so culling never drops one.
 #pragma once
 #include "render/TechniqueRenderer.h"
@@ -33,7 +34,8 @@ public:
     // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.
     static constexpr uint32_t kTileSize = 8;
     static constexpr uint32_t kBlockWidth = 32;       // texels per tile block row
-    static constexpr uint32_t kMaxListLength = 1023;  // lights per tile list at most
+    static constexpr uint32_t kListHeader = 3;        // count, depth min, depth max (FE_TILE_HEADER)
+    static constexpr uint32_t kMaxListLength = 1021;  // lights per tile list at most
 
 private:
     gdi::DeviceObjects objects_;

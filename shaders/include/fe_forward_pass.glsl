@@ -6,10 +6,15 @@
 #ifdef FE_SHADOWED
 #include "fe_shadow.glsl"
 #endif
+#ifdef FE_TILE_LISTS
+#define FE_LIGHTS_IN_STORAGE  // the mesh passes bind the lights' storage buffer
+#include "fe_tile_culling.glsl"
+#endif
 // Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
 // for forward and the transparent pass, one per pass for forward-multipass (which adds the
 // emissive and unlit terms in its first pass only). forward_ibl.frag adds the environment's
-// light by importance sampling (FE_IBL, fe_ibl.glsl).
+// light by importance sampling (FE_IBL, fe_ibl.glsl). forward_plus*.frag (FE_TILE_LISTS) loop over
+// their tile's list instead.
 layout(location = 0) out vec4 outRadiance;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
@@ -21,8 +26,17 @@ void main() {
     } else {
         const SurfacePoint s = feMaterialSurface(m, vWorld);
         const SurfaceBrdf brdf = fePrepareBrdf(s);
+#ifdef FE_TILE_LISTS
+        // forward-plus: the lights of this pixel's tile list (light-culling pass), all lights where
+        // the fragment lies outside the slice the list was culled for.
+        feUseTileListAt(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
+        const uint count = feTileLightCount();
+        for (uint k = 0u; k < count; ++k) {
+            const uint i = feTileLight(k);
+#else
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {
+#endif
             SurfaceLight l = feEvaluateLight(feLight(i), vWorld);
 #ifdef FE_SHADOWED
             l.E *= feShadowVisibility(vWorld, s.n);  // forward_shadowed*.frag: one light per pass

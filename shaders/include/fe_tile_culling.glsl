@@ -49,7 +49,8 @@ bool feLightTouchesBox(GpuLight L, vec3 lo, vec3 hi) {
 #ifdef FE_TILE_LISTS
 // The lists come from the light-culling pass (tile_light_culling.comp, TileLightCulling.h): a
 // block of 32 x H texels per tile in an R32U texture, texel 0 the count (all ones: the list
-// overflowed, shade every light), then the light indices in order.
+// overflowed, shade every light), texels 1 and 2 the depth bounds the tile was culled for (the
+// bits of two floats; min > max: no surface), then the light indices in order.
 layout(binding = FE_SLOT_TILE_LIGHTS) uniform usampler2D tileLightLists;
 // List tiles are FE_LIST_TILE pixels wide (TileLightCulling::kListTileSize), finer than the
 // shading passes' 16x16 work groups: each invocation reads the list of its own pixel's tile.
@@ -62,10 +63,20 @@ void feUseTileList(ivec2 pixel) {
     feTileBlock_ = ivec2(tile.x * 32, tile.y * (textureSize(tileLightLists, 0).y / tilesY));
     feTileCount_ = texelFetch(tileLightLists, feTileBlock_, 0).r;
 }
+#define FE_TILE_HEADER 3u  // count, depth min, depth max
+// For a fragment of depth `depth` (forward-plus): a list is only valid for points inside the slice
+// it was culled for, and a fragment may lie outside it (an edge sample under MSAA, whose tile was
+// culled for sample 0's depths): such a fragment shades every light, so culling stays exact.
+void feUseTileListAt(ivec2 pixel, float depth) {
+    feUseTileList(pixel);
+    const float lo = uintBitsToFloat(texelFetch(tileLightLists, feTileBlock_ + ivec2(1, 0), 0).r);
+    const float hi = uintBitsToFloat(texelFetch(tileLightLists, feTileBlock_ + ivec2(2, 0), 0).r);
+    if (!(depth >= lo && depth <= hi)) feTileCount_ = 0xffffffffu;
+}
 uint feTileLightCount() { return feTileCount_ == 0xffffffffu ? frame.counts.x : feTileCount_; }
 uint feTileLight(uint k) {
     if (feTileCount_ == 0xffffffffu) return k;
-    const uint e = k + 1u;
+    const uint e = k + FE_TILE_HEADER;
     return texelFetch(tileLightLists, feTileBlock_ + ivec2(e % 32u, e / 32u), 0).r;
 }
 #else

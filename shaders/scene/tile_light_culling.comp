@@ -22,7 +22,7 @@ void main() {
     const ivec2 tile = ivec2(t % tilesX, t / tilesX);
     const int listTilesY = (viewport.y + FE_LIST_TILE - 1) / FE_LIST_TILE;
     const int blockHeight = imageSize(lists).y / listTilesY;
-    const uint capacity = uint(32 * blockHeight - 1);
+    const uint capacity = uint(32 * blockHeight) - FE_TILE_HEADER;
     // Depth bounds of the four quarters (a quarter outside the viewport stays empty).
     vec2 z[4] = vec2[4](vec2(1.0, 0.0), vec2(1.0, 0.0), vec2(1.0, 0.0), vec2(1.0, 0.0));
     const ivec2 p0 = tile * 16, p1 = min(p0 + 16, viewport);
@@ -49,14 +49,17 @@ void main() {
             for (int k = 0; k < 4; ++k) {
                 if (!(z[k].x <= z[k].y) || !feLightTouchesBox(L, lo[k], hi[k])) continue;
                 const ivec2 block = ivec2((tile.x * 2 + (k & 1)) * 32, (tile.y * 2 + (k >> 1)) * blockHeight);
-                ++count[k];
-                if (count[k] <= capacity) imageStore(lists, block + ivec2(count[k] % 32u, count[k] / 32u), uvec4(i));
+                const uint e = count[k]++ + FE_TILE_HEADER;
+                if (count[k] <= capacity) imageStore(lists, block + ivec2(e % 32u, e / 32u), uvec4(i));
             }
         }
     }
     for (int k = 0; k < 4; ++k) {
         const ivec2 q = ivec2(tile.x * 2 + (k & 1), tile.y * 2 + (k >> 1));
         if (q.x * FE_LIST_TILE >= viewport.x || q.y * FE_LIST_TILE >= viewport.y) continue;
-        imageStore(lists, ivec2(q.x * 32, q.y * blockHeight), uvec4(count[k] > capacity ? 0xffffffffu : count[k]));
+        const ivec2 block = ivec2(q.x * 32, q.y * blockHeight);
+        imageStore(lists, block, uvec4(count[k] > capacity ? 0xffffffffu : count[k]));
+        imageStore(lists, block + ivec2(1, 0), uvec4(floatBitsToUint(z[k].x)));
+        imageStore(lists, block + ivec2(2, 0), uvec4(floatBitsToUint(z[k].y)));
     }
 }

@@ -158,6 +158,26 @@ TEST_P(RenderAccuracy, ForwardVariantsMatchForward) {
     EXPECT_EQ(multi.fractionOver, 0.0) << "forward-multipass max relative error " << multi.maxRel;
     Stats z = compare(renderImage(*device, scene, "forward-zprepass"), f, 1e-6, 1e-6);
     EXPECT_EQ(z.fractionOver, 0.0) << "forward-zprepass max relative error " << z.maxRel;
+    Stats plus = compare(renderImage(*device, scene, "forward-plus"), f, 1e-6, 1e-6);
+    EXPECT_EQ(plus.fractionOver, 0.0) << "forward-plus max relative error " << plus.maxRel;
+}
+
+// Forward+ culls ranged lights per 8x8 tile and sums the tile's list in index order: a culled
+// light adds exactly 0 (its window is 0 beyond its range), so the image equals forward's, bit for
+// bit, with 256 ranged lights, at one sample and at four (where edge fragments outside their
+// tile's culled depth bounds shade every light). And it is culling: the lists are short.
+TEST_P(RenderAccuracy, ForwardPlusCullsExactly) {
+    const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
+    for (uint32_t msaa : {1u, 4u}) {
+        if (msaa > 1 && !(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & msaa)) continue;
+        auto render = [&](const char* t) {
+            render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .msaa = msaa});
+            r.renderFrame();
+            return r.readOutput();
+        };
+        Stats s = compare(render("forward-plus"), render("forward"), 1e-6, 1e-6);
+        EXPECT_EQ(s.fractionOver, 0.0) << msaa << " samples: max relative error " << s.maxRel;
+    }
 }
 
 // --msaa: the forward techniques render into multisampled transients resolved at the end of
@@ -169,7 +189,7 @@ TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
     const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});  // large spheres: few edge pixels
     gdi::Image single = renderImage(*device, scene, "forward");
     gdi::Image reference;
-    for (const char* t : {"forward", "forward-multipass", "forward-zprepass"}) {
+    for (const char* t : {"forward", "forward-multipass", "forward-zprepass", "forward-plus"}) {
         render::SceneRenderer r(*device, scene, {.technique = t, .width = kW, .height = kH, .msaa = 4});
         bool multisampled = false;
         for (const auto& tex : r.graph().textures()) multisampled = multisampled || (tex.used() && tex.desc.sampleCount == 4);
@@ -225,6 +245,7 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward", {"forward", "display"}},
         {"forward-multipass", {"forward-multipass", "display"}},
         {"forward-zprepass", {"zprepass", "forward-shading", "display"}},
+        {"forward-plus", {"zprepass", "light-culling", "forward-plus-shading", "display"}},
         {"deferred-tiled", {"gbuffer", "light-culling", "tiled-lighting", "display"}},
         {"light-prepass", {"lpp-normals", "lpp-lights", "lpp-material", "display"}},
         {"redeferred-tiled", {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},
