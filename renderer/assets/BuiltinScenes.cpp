@@ -261,10 +261,104 @@ Scene makeParticles() {
     return s;
 }
 
+// builtin:atrium (BuiltinScenes.h has the layout): a deep two-storey arcade whose near columns
+// stand in front of far walls, so a screen tile spans a wide range of depths: what clustered
+// shading gains over per-tile lists. Boxes and quads only, so the CPU reference is exact.
+Scene makeAtrium(const BuiltinOptions& o) {
+    Scene s;
+    s.name = "atrium";
+    auto material = [&](Material m) {
+        s.materials.push_back(std::move(m));
+        return uint32_t(s.materials.size() - 1);
+    };
+    auto mesh = [&](const char* name, Primitive p) {
+        Mesh out;
+        out.name = name;
+        out.primitives.push_back(std::move(p));
+        computeBounds(out);
+        s.meshes.push_back(std::move(out));
+        return uint32_t(s.meshes.size() - 1);
+    };
+    const uint32_t stone = material(makeMaterial("stone", glm::vec4(0.62f, 0.6f, 0.56f, 1.0f), 0.0f, 0.8f));
+    const uint32_t plaster = material(makeMaterial("plaster", glm::vec4(0.78f, 0.72f, 0.62f, 1.0f), 0.0f, 0.9f));
+    const uint32_t marble = material(makeMaterial("marble", glm::vec4(0.85f, 0.85f, 0.82f, 1.0f), 0.0f, 0.35f));
+    const uint32_t box = mesh("box", makeCube(1.0f, 0));  // scaled per instance: half extents
+    const uint32_t quad = mesh("quad", makeQuad(1.0f, 1.0f, 0));
+    auto addBox = [&](uint32_t mat, const glm::vec3& centre, const glm::vec3& half, const std::string& name) {
+        // One mesh per material: the primitive's material is the instance's here.
+        Mesh m = s.meshes[box];
+        m.primitives[0].material = mat;
+        m.name = name;
+        s.meshes.push_back(std::move(m));
+        addInstance(s, uint32_t(s.meshes.size() - 1), glm::scale(glm::translate(glm::mat4(1.0f), centre), half), name);
+    };
+    constexpr float kHalfWidth = 6.0f, kLength = 60.0f, kStorey = 4.0f, kHeight = 8.0f, kBay = 4.0f;
+    addBox(stone, {0.0f, -0.1f, -kLength / 2}, {kHalfWidth, 0.1f, kLength / 2}, "floor");
+    addBox(plaster, {-kHalfWidth - 0.1f, kHeight / 2, -kLength / 2}, {0.1f, kHeight / 2, kLength / 2}, "wall_left");
+    addBox(plaster, {kHalfWidth + 0.1f, kHeight / 2, -kLength / 2}, {0.1f, kHeight / 2, kLength / 2}, "wall_right");
+    addBox(plaster, {0.0f, kHeight / 2, -kLength - 0.1f}, {kHalfWidth, kHeight / 2, 0.1f}, "wall_end");
+    for (float side : {-1.0f, 1.0f}) {
+        const std::string tag = side < 0 ? "left" : "right";
+        // The gallery floor of the upper storey, and the beam along the arcade under it.
+        addBox(stone, {side * 4.75f, kStorey, -kLength / 2}, {1.25f, 0.15f, kLength / 2}, "gallery_" + tag);
+        addBox(marble, {side * 3.5f, kStorey - 0.35f, -kLength / 2}, {0.3f, 0.2f, kLength / 2}, "beam_" + tag);
+        for (int bay = 0; bay < int(kLength / kBay) - 1; ++bay) {
+            const float z = -kBay * float(bay + 1);
+            const std::string at = tag + "_" + std::to_string(bay);
+            addBox(marble, {side * 3.5f, (kStorey - 0.55f) / 2, z}, {0.3f, (kStorey - 0.55f) / 2, 0.3f}, "column_" + at);
+            addBox(marble, {side * 3.5f, kStorey + 0.15f + (kHeight - kStorey - 0.15f) / 2, z},
+                   {0.22f, (kHeight - kStorey - 0.15f) / 2, 0.22f}, "upper_column_" + at);
+        }
+    }
+    // Translucent hangings: banners between the upper columns, every other bay, blended and seen
+    // from both sides (drawn in the translucent pass, lit with the light clusters' lists).
+    if (o.hangings) {
+        const uint32_t red = material([] {
+            Material m = makeMaterial("banner_red", glm::vec4(0.8f, 0.12f, 0.1f, 0.55f), 0.0f, 0.9f);
+            m.alphaMode = AlphaMode::Blend;
+            m.doubleSided = true;
+            return m;
+        }());
+        const uint32_t blue = material([] {
+            Material m = makeMaterial("banner_blue", glm::vec4(0.1f, 0.2f, 0.75f, 0.55f), 0.0f, 0.9f);
+            m.alphaMode = AlphaMode::Blend;
+            m.doubleSided = true;
+            return m;
+        }());
+        for (float side : {-1.0f, 1.0f})
+            for (int bay = 0; bay < int(kLength / kBay) - 2; bay += 2) {
+                Mesh m = s.meshes[quad];
+                m.primitives[0].material = (bay / 2) % 2 ? blue : red;
+                m.name = "banner";
+                s.meshes.push_back(std::move(m));
+                // The quad faces +Z; turned to face the axis, 1.2 m wide and 2.4 m tall.
+                const glm::mat4 world = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {side * 3.3f, 6.2f, -kBay * (bay + 1.5f)}),
+                                                               radians(-90.0f * side), glm::vec3(0, 1, 0)),
+                                                   {1.6f, 1.2f, 1.0f});
+                addInstance(s, uint32_t(s.meshes.size() - 1), world, "banner_" + std::to_string(bay) + (side < 0 ? "_left" : "_right"));
+            }
+    }
+    s.lights = atriumLights(o.lights);
+    s.camera = Camera::lookAlong({0.0f, 1.7f, 1.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f), 0.1f, 100.0f);
+    s.camera->name = "atrium";
+    return s;
+}
+
 }  // namespace
 
+std::vector<Light> atriumLights(uint32_t count) {
+    std::vector<Light> out;
+    out.reserve(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        // Spread through the whole hall: across, up both storeys, and along its depth.
+        const glm::vec3 pos(-5.5f + 11.0f * unit(i, 10), 0.3f + 7.2f * unit(i, 11), -1.0f - 57.0f * unit(i, 12));
+        out.push_back(point("light" + std::to_string(i), pos, hsv(unit(i, 13), 0.6f, 1.0f), 3.0f, 2.5f));
+    }
+    return out;
+}
+
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles"};
+    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles", "atrium"};
     return names;
 }
 
@@ -300,6 +394,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
         s = makeShadows();
     } else if (name == "particles") {
         s = makeParticles();
+    } else if (name == "atrium") {
+        s = makeAtrium(options);
     } else {
         std::string valid;
         for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;

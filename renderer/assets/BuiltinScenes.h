@@ -31,6 +31,16 @@
 //   cone 20/30 degrees) and a lamp (point, 6 cd, orange, at (-2.4, 1.6, 1.8)), none with a range.
 //   Camera at (0, 3, 6) looking at (0, 1.4, 0) (sky above the ground), yfov 45 degrees,
 //   near 0.1, far 100.
+//
+// "atrium": a deep two-storey arcade standing in for Sponza (whose geometry cannot be had here).
+//   A hall 12 m wide (x in [-6, 6]), 8 m high and 60 m long (z from 0 to -60): stone floor,
+//   plaster side and end walls (boxes 0.2 m thick). Along each side at x = +-3.5, a column every
+//   4 m (0.6 m square, up to the beam at 3.45 m), a marble beam along the arcade, a stone gallery
+//   floor (x from 3.5 to 6, at 4 m) and slimmer upper columns to the ceiling height. With
+//   BuiltinOptions::hangings, translucent banners (alpha 0.55, red and blue, double-sided,
+//   3.2 x 2.4 m) hang facing the axis between the upper columns every other bay. Lights:
+//   BuiltinOptions::lights point lights (atriumLights()). Camera at (0, 1.7, 1.5) looking down
+//   the hall (along -z, slightly down), yfov 60 degrees, near 0.1, far 100. Boxes and quads only.
 #pragma once
 #include <string>
 #include <string_view>
@@ -46,7 +56,13 @@ struct BuiltinOptions {
     uint32_t lights = 512;    // "lights": number of point lights
     uint32_t frame = 0;       // "lights": animation frame (light positions)
     uint32_t sphereGrid = 7;  // "spheres": spheres per row and column (2..16)
+    bool hangings = true;     // "atrium": the translucent banners
 };
+
+// The "atrium" scene's point lights: light i at a fixed-seed hash position uniform in the hall
+// (x in [-5.5, 5.5], y in [0.3, 7.5], z in [-58, -1]), a hue from the same hash (saturation 0.6),
+// 3 cd, range 2.5 m.
+std::vector<Light> atriumLights(uint32_t count);
 
 const std::vector<std::string>& builtinSceneNames();
 

@@ -45,9 +45,13 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     camera_ = *scene.camera;
     if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8)
         throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");
-    if (s.msaa > 1 && !technique.msaa)
-        throw gdi::Error("technique " + s.technique + " does not take --msaa: it shades from a single-sample G-buffer "
-                         "(use forward, forward-multipass, forward-zprepass or light-prepass)");
+    if (s.msaa > 1 && !technique.msaa) {
+        std::string taking;
+        for (const TechniqueInfo& t : techniques())
+            if (t.msaa) taking += (taking.empty() ? "" : ", ") + std::string(t.name);
+        throw gdi::Error("technique " + s.technique + " does not take --msaa: it shades from a single-sample G-buffer (use " +
+                         taking + ")");
+    }
     if (s.ibl() && !scene.environment)
         throw gdi::Error(std::string(s.iblPrefiltered ? "--ibl-prefiltered" : "--ibl-samples") +
                          " needs an environment to light the scene with (--environment)");
@@ -101,6 +105,12 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         context_->environmentLight = light;
     }
     context_->shadows = shadows_.get();
+    // The cluster grid: for the clustered techniques, and for the translucent pass of every
+    // technique (which otherwise lights each blended fragment with every light).
+    if (technique.clusters || (gpuScene_->hasBlend() && s.translucentClusters && device.info().features.computeShaders)) {
+        clusters_ = std::make_unique<ClusterLightGrid>(*context_);
+        context_->clusters = clusters_.get();
+    }
     if (!scene.emitters.empty()) vfx_ = std::make_unique<VfxRenderer>(*context_, scene.emitters);
     technique_ = technique.create(*context_);
     buildGraph();
@@ -130,15 +140,20 @@ void SceneRenderer::buildGraph() {
         });
     }
     if (gpuScene_->hasBlend()) {
+        const bool culled = clusters_ && s.translucentClusters;
+        const graph::BufferId clusterLists = culled ? clusters_->declare(g) : graph::BufferId{};
         g.addPass("transparent", [&](graph::PassBuilder& b) {
             b.colorTarget(output_, gdi::LoadOp::Load);
             b.depthTarget(depth_, gdi::LoadOp::Load);
-        }, [this](graph::PassContext& pc) {
+            if (culled) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
+        }, [this, culled](graph::PassContext& pc) {
             pc.beginRenderPass();
+            if (culled) clusters_->bindLists(pc.cmd);
             // Every light, the shadowed ones without their shadows: blended surfaces receive none.
             FrameConstants fc = frame_;
             fc.lightRange = glm::uvec4(0, gpuScene_->lightCount(), 1, 0);
-            geometry_->draw(pc.cmd, *queue_, MeshPass::Transparent, {{kRadianceFormat}, kSceneDepthFormat},
+            geometry_->draw(pc.cmd, *queue_, culled ? MeshPass::TransparentClustered : MeshPass::Transparent,
+                            {{kRadianceFormat}, kSceneDepthFormat},
                             queue_->upload(fc), context_->eye);
             pc.cmd.endRenderPass();
         });
@@ -256,7 +271,8 @@ void SceneRenderer::renderFrame() {
     ++frameIndex_;
     // The techniques' own loops light the unshadowed lights; each shadowed one has its passes.
     const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
-    fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, 0);
+    fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, gpuScene_->lightCount());
+    fc.clusters = ClusterLightGrid::slicing(cam, scene_.bounds);
     fc.lightRange = glm::uvec4(0, unshadowed, 1, 0);  // forward: the unshadowed lights, with emissive
 
     gdi::CommandList& cmd = queue_->beginFrame();

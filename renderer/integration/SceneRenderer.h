@@ -19,6 +19,7 @@
 #include "render/GeometryRenderer.h"
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
+#include "render/ClusterLightGrid.h"
 #include "render/EnvironmentMap.h"
 #include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
@@ -58,6 +59,8 @@ public:
     VfxRenderer* vfx() { return vfx_.get(); }
     // The camera of the next frames (a camera path); the scene's until this is called.
     void setCamera(const assets::Camera& camera);
+    // The light cluster grid (null unless a clustered technique or blended surfaces need it).
+    const ClusterLightGrid* clusters() const { return clusters_.get(); }
 
 private:
     void buildGraph();
@@ -86,6 +89,7 @@ private:
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
+    std::unique_ptr<ClusterLightGrid> clusters_;   // TechniqueContext::clusters
     std::vector<assets::Light> sceneLights_;       // the current lights, scene order
     assets::Camera camera_;                        // the current camera
     uint64_t frameIndex_ = 0;                      // frames rendered

@@ -117,6 +117,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                                uint32_t height, const ReferenceOptions& options) {
     // World-space triangles grouped per (instance, primitive) with a bounding box each.
     std::vector<WorldTriangle> tris;
+    std::vector<WorldTriangle> blended;  // BLEND surfaces: composited over the opaque result
     std::vector<SurfaceBox> boxes;
     int32_t surfaceId = 0;
     for (const assets::MeshInstance& inst : scene.instances) {
@@ -124,7 +125,23 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         const glm::dmat3 normalMat = glm::transpose(glm::inverse(glm::dmat3(world)));
         for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
             const int32_t id = surfaceId++;
-            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) continue;
+            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) {
+                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+                    WorldTriangle t;
+                    for (int k = 0; k < 3; ++k) {
+                        const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
+                        t.p[k] = glm::dvec3(world * glm::dvec4(glm::dvec3(v.position), 1.0));
+                        t.n[k] = normalMat * glm::dvec3(v.normal);
+                        t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
+                        t.uv[k] = glm::dvec2(v.uv0);
+                    }
+                    t.material = prim.material;
+                    t.surface = id;
+                    t.mirrored = inst.mirrored;
+                    blended.push_back(t);
+                }
+                continue;
+            }
             SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
                            glm::dvec3(-std::numeric_limits<double>::infinity()), tris.size(), 0};
             for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
@@ -205,6 +222,116 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     const glm::dmat4 invViewProj = glm::inverse(glm::dmat4(viewProjection(camera, float(aspect))));
     const glm::dvec3 eye(camera.eye());
 
+    // The radiance a surface sends to the eye and its alpha: `shadows` (the opaque surfaces)
+    // traces shadow rays for the casting lights, recording occluded ones in *occludedBits;
+    // blended surfaces receive no shadows, as on the GPU.
+    struct Shaded {
+        glm::dvec3 radiance{0.0};
+        double alpha = 1.0;
+        bool textured = false;
+    };
+    auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance, const glm::dvec3& dir,
+                     bool shadows, uint32_t* occludedBits) {
+        Shaded out;
+        const WorldTriangle* hit = &tri;
+        const assets::Material& mat = scene.materials[hit->material];
+        const double b0 = 1.0 - hb1 - hb2;
+        glm::dvec2 uv = b0 * hit->uv[0] + hb1 * hit->uv[1] + hb2 * hit->uv[2];
+        glm::dvec3 n = glm::normalize(b0 * hit->n[0] + hb1 * hit->n[1] + hb2 * hit->n[2]);
+        glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
+        const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
+        if (!front) n = -n;  // a double-sided back face shades with the flipped normal
+
+        glm::dvec4 bc = glm::dvec4(mat.baseColorFactor);
+        double metallic = mat.metallic, roughness = mat.roughness;
+        glm::dvec3 emissive(mat.emissiveFactor);
+        if (mat.baseColorTexture.valid()) {
+            bc *= sample(scene.textures[mat.baseColorTexture.index], uv);
+            out.textured = true;
+        }
+        if (mat.metallicRoughnessTexture.valid()) {
+            glm::dvec4 mr = sample(scene.textures[mat.metallicRoughnessTexture.index], uv);
+            metallic *= mr.b;
+            roughness *= mr.g;
+            out.textured = true;
+        }
+        if (mat.emissiveTexture.valid()) {
+            emissive *= glm::dvec3(sample(scene.textures[mat.emissiveTexture.index], uv));
+            out.textured = true;
+        }
+        if (mat.normalTexture.valid()) {
+            glm::dvec4 T = b0 * hit->t[0] + hb1 * hit->t[1] + hb2 * hit->t[2];
+            glm::dvec3 t = glm::dvec3(T) - n * glm::dot(n, glm::dvec3(T));
+            if (glm::dot(t, t) > 1e-24) {
+                t = glm::normalize(t);
+                glm::dvec3 b = glm::cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
+                glm::dvec3 tn = glm::dvec3(sample(scene.textures[mat.normalTexture.index], uv)) * 2.0 - 1.0;
+                tn.x *= mat.normalScale;
+                tn.y *= mat.normalScale;
+                n = glm::normalize(tn.x * t + tn.y * b + tn.z * n);
+            }
+            out.textured = true;
+        }
+        out.alpha = bc.a;
+        if (mat.unlit) {
+            out.radiance = glm::dvec3(bc);
+            return out;
+        }
+        shading::SurfacePoint s;
+        s.P = eye + dir * distance;
+        s.n = n;
+        s.wo = -dir;
+        s.baseColor = glm::dvec3(bc);
+        s.metallic = std::clamp(metallic, 0.0, 1.0);
+        s.roughness = roughness;
+        glm::dvec3 L = emissive;
+        // The side of the surface the eye sees, for the shadow rays' start.
+        const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);
+        for (size_t li = 0; li < lights.size(); ++li) {
+            const shading::LightSample ls = shading::evaluateLight(lights[li], s.P);
+            if (shadows && casterBit[li] >= 0 && glm::dot(ls.wi, n) > 0.0) {
+                const double tMax = lights[li].type == shading::LightType::Directional
+                                        ? std::numeric_limits<double>::infinity()
+                                        : glm::distance(lights[li].position, s.P);
+                if (occluded(s.P + ngEye * rayOffset, ls.wi, tMax - rayOffset)) {
+                    if (casterBit[li] < 32) *occludedBits |= 1u << casterBit[li];
+                    continue;
+                }
+            }
+            L += shading::shadeLight(s, ls);
+        }
+        if (options.iblSamples > 0 && scene.environment)
+            L += shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
+                                           options.iblSamples);
+        out.radiance = L;
+        return out;
+    };
+    // Blended surfaces in front of the opaque result, composited far to near (source-over, the
+    // GPU's translucent pass, which sorts whole objects: the same wherever they do not interleave).
+    auto composite = [&](glm::dvec3 radiance, const glm::dvec3& origin, const glm::dvec3& dir, double limit) {
+        struct Layer {
+            double t, b1, b2;
+            const WorldTriangle* tri;
+        };
+        std::vector<Layer> layers;
+        for (const WorldTriangle& tri : blended) {
+            double b1, b2;
+            const double t = intersect(tri, origin, dir, b1, b2);
+            if (!(t > camera.znear * 0.5) || t >= limit) continue;
+            const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+            const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
+            if (!scene.materials[tri.material].doubleSided && !front) continue;
+            layers.push_back({t, b1, b2, &tri});
+        }
+        std::sort(layers.begin(), layers.end(), [](const Layer& a, const Layer& b) { return a.t > b.t; });
+        for (const Layer& l : layers) {
+            const Shaded s = shade(*l.tri, l.b1, l.b2, l.t, dir, false, nullptr);
+            const double a = std::clamp(s.alpha, 0.0, 1.0);
+            radiance = s.radiance * a + radiance * (1.0 - a);
+        }
+        return radiance;
+    };
+
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
@@ -240,82 +367,16 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 }
             }
             const size_t pixel = size_t(y) * width + x;
+            glm::dvec3 radiance(0.0);
             if (!hit) {  // the environment seen along the ray, or black
-                if (scene.environment) out.radiance[pixel] = scene.environment->radiance(dir);
-                continue;
+                if (scene.environment) radiance = scene.environment->radiance(dir);
+            } else {
+                out.surface[pixel] = hit->surface;
+                const Shaded opaque = shade(*hit, hb1, hb2, best, dir, true, &out.occluded[pixel]);
+                out.textured[pixel] = opaque.textured;
+                radiance = opaque.radiance;
             }
-            out.surface[pixel] = hit->surface;
-            const assets::Material& mat = scene.materials[hit->material];
-            const double b0 = 1.0 - hb1 - hb2;
-            glm::dvec2 uv = b0 * hit->uv[0] + hb1 * hit->uv[1] + hb2 * hit->uv[2];
-            glm::dvec3 n = glm::normalize(b0 * hit->n[0] + hb1 * hit->n[1] + hb2 * hit->n[2]);
-            glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
-            const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
-            if (!front) n = -n;  // a double-sided back face shades with the flipped normal
-
-            glm::dvec4 bc = glm::dvec4(mat.baseColorFactor);
-            double metallic = mat.metallic, roughness = mat.roughness;
-            glm::dvec3 emissive(mat.emissiveFactor);
-            bool textured = false;
-            if (mat.baseColorTexture.valid()) {
-                bc *= sample(scene.textures[mat.baseColorTexture.index], uv);
-                textured = true;
-            }
-            if (mat.metallicRoughnessTexture.valid()) {
-                glm::dvec4 mr = sample(scene.textures[mat.metallicRoughnessTexture.index], uv);
-                metallic *= mr.b;
-                roughness *= mr.g;
-                textured = true;
-            }
-            if (mat.emissiveTexture.valid()) {
-                emissive *= glm::dvec3(sample(scene.textures[mat.emissiveTexture.index], uv));
-                textured = true;
-            }
-            if (mat.normalTexture.valid()) {
-                glm::dvec4 T = b0 * hit->t[0] + hb1 * hit->t[1] + hb2 * hit->t[2];
-                glm::dvec3 t = glm::dvec3(T) - n * glm::dot(n, glm::dvec3(T));
-                if (glm::dot(t, t) > 1e-24) {
-                    t = glm::normalize(t);
-                    glm::dvec3 b = glm::cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
-                    glm::dvec3 tn = glm::dvec3(sample(scene.textures[mat.normalTexture.index], uv)) * 2.0 - 1.0;
-                    tn.x *= mat.normalScale;
-                    tn.y *= mat.normalScale;
-                    n = glm::normalize(tn.x * t + tn.y * b + tn.z * n);
-                }
-                textured = true;
-            }
-            out.textured[pixel] = textured;
-            if (mat.unlit) {
-                out.radiance[pixel] = glm::dvec3(bc);
-                continue;
-            }
-            shading::SurfacePoint s;
-            s.P = eye + dir * best;
-            s.n = n;
-            s.wo = -dir;
-            s.baseColor = glm::dvec3(bc);
-            s.metallic = std::clamp(metallic, 0.0, 1.0);
-            s.roughness = roughness;
-            glm::dvec3 L = emissive;
-            // The side of the surface the eye sees, for the shadow rays' start.
-            const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);
-            for (size_t li = 0; li < lights.size(); ++li) {
-                const shading::LightSample ls = shading::evaluateLight(lights[li], s.P);
-                if (casterBit[li] >= 0 && glm::dot(ls.wi, n) > 0.0) {
-                    const double tMax = lights[li].type == shading::LightType::Directional
-                                            ? std::numeric_limits<double>::infinity()
-                                            : glm::distance(lights[li].position, s.P);
-                    if (occluded(s.P + ngEye * rayOffset, ls.wi, tMax - rayOffset)) {
-                        if (casterBit[li] < 32) out.occluded[pixel] |= 1u << casterBit[li];
-                        continue;
-                    }
-                }
-                L += shading::shadeLight(s, ls);
-            }
-            if (options.iblSamples > 0 && scene.environment)
-                L += shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
-                                               options.iblSamples);
-            out.radiance[pixel] = L;
+            out.radiance[pixel] = composite(radiance, eye, dir, best);
         }
     return out;
 }

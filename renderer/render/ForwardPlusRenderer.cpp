@@ -1,8 +1,13 @@
 #include "render/ForwardPlusRenderer.h"
 
+#include "render/ClusterLightGrid.h"
+
 namespace fe::render {
 
-ForwardPlusRenderer::ForwardPlusRenderer(TechniqueContext& c) : TechniqueRenderer(c), culling_(c) {}
+ForwardPlusRenderer::ForwardPlusRenderer(TechniqueContext& c, Lists lists) : TechniqueRenderer(c) {
+    if (lists == Lists::Tiles) culling_ = std::make_unique<TileLightCulling>(c);
+    else if (!c.clusters) throw gdi::Error("clustered-forward: the renderer made no light cluster grid");
+}
 
 void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
     const ForwardTargets t = forwardTargets(g, output, depth);
@@ -11,23 +16,27 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
     g.addPass("zprepass", [&](graph::PassBuilder& b) {
         b.colorTarget(t.color);
         b.depthTarget(t.depth);
-        if (t.depth != t.sceneDepth) b.resolve(t.depth, t.sceneDepth);  // culling reads one sample
+        if (culling_ && t.depth != t.sceneDepth) b.resolve(t.depth, t.sceneDepth);  // culling reads one sample
     }, [this, targets](graph::PassContext& pc) {
         pc.beginRenderPass();
         objects_.clear();
         ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::DepthPrepass, targets, ctx_.frameConstants, ctx_.eye, &objects_);
         pc.cmd.endRenderPass();
     });
-    const graph::TextureId lists = culling_.declare(g, t.sceneDepth);
-    g.addPass("forward-plus-shading", [&](graph::PassBuilder& b) {
-        b.sample(lists);
+    const graph::TextureId tiles = culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
+    const graph::BufferId clusters = culling_ ? graph::BufferId{} : ctx_.clusters->declare(g);
+    g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
+        if (culling_) b.sample(tiles);
+        else b.buffer(clusters, gdi::BufferAccess::StorageRead);
         b.colorTarget(t.color, gdi::LoadOp::Load);
         b.depthTarget(t.depth, gdi::LoadOp::Load);
         t.resolveIn(b);
-    }, [this, targets, lists](graph::PassContext& pc) {
+    }, [this, targets, tiles](graph::PassContext& pc) {
         pc.beginRenderPass();
-        culling_.bindLists(pc.cmd, pc, lists);
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::ForwardTiled, targets, ctx_.frameConstants, ctx_.eye, &objects_);
+        if (culling_) culling_->bindLists(pc.cmd, pc, tiles);
+        else ctx_.clusters->bindLists(pc.cmd);
+        ctx_.geometry.draw(pc.cmd, ctx_.queue, culling_ ? MeshPass::ForwardTiled : MeshPass::ForwardClustered, targets,
+                           ctx_.frameConstants, ctx_.eye, &objects_);
         pc.cmd.endRenderPass();
     });
     declareShadowedForward(g, t, &objects_);

@@ -1,9 +1,12 @@
-// Layer 7: Forward+ (tiled forward shading: Harada, McKee and Yang 2012). A depth pre-pass, the
-// light-culling pass of the tiled techniques on its depth (per-tile lists, TileLightCulling),
-// then one forward pass where depth is EQUAL whose light loop walks the pixel's tile list
-// (MeshPass::ForwardTiled, forward_plus*.frag). Forward, so it takes --msaa: the pre-pass depth
-// is resolved (sample 0) for culling, and a fragment outside the depth bounds its tile was
-// culled for shades every light, so an edge sample never loses one.
+// Layer 7: forward shading over light lists, after a depth pre-pass.
+//  forward-plus (Forward+, tiled forward shading: Harada, McKee and Yang 2012): the light-culling
+//    pass of the tiled techniques on the pre-pass depth (per-tile lists, TileLightCulling), then
+//    one forward pass where depth is EQUAL whose light loop walks the pixel's tile list
+//    (MeshPass::ForwardTiled, forward_plus*.frag). With --msaa the pre-pass depth is resolved
+//    (sample 0) for culling, and a fragment outside the depth bounds its tile was culled for
+//    shades every light, so an edge sample never loses one.
+//  clustered-forward (Olsson, Billeter and Assarsson 2012): the same shading pass walking the
+//    fragment's cluster list (ClusterLightGrid: lists that need no depth, MeshPass::ForwardClustered).
 #pragma once
 #include <memory>
 #include <vector>
@@ -15,12 +18,13 @@ namespace fe::render {
 
 class ForwardPlusRenderer final : public TechniqueRenderer {
 public:
-    explicit ForwardPlusRenderer(TechniqueContext& context);
+    enum class Lists { Tiles, Clusters };
+    ForwardPlusRenderer(TechniqueContext& context, Lists lists);
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
 
 private:
-    TileLightCulling culling_;
-    std::vector<UploadAllocation> objects_;  // object constants, shared by the passes of a frame
+    std::unique_ptr<TileLightCulling> culling_;  // the tile lists; null: the cluster grid's
+    std::vector<UploadAllocation> objects_;      // object constants, shared by the passes of a frame
 };
 
 }  // namespace fe::render

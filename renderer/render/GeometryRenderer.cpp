@@ -8,6 +8,8 @@
 namespace fe::render {
 
 namespace {
+bool isTransparent(MeshPass pass) { return pass == MeshPass::Transparent || pass == MeshPass::TransparentClustered; }
+
 // Shadow casters' depth bias (RasterState): 2 x the depth slope, plus 4 units of the format's
 // resolution (for D32F a few ulps of the depth; the slope term does the work).
 constexpr float kShadowSlopeBias = 2.0f;
@@ -56,10 +58,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     // multi-pass forward's additive passes).
     const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent ||
                                        pass == MeshPass::LightPrepassMaterial);
-    if (pass == MeshPass::ForwardTiled && !forwardTiledFs_) {
-        const std::string name = forwardIblFs_ ? environment_.shader("scene/forward_plus_ibl.frag") : "scene/forward_plus.frag";
-        forwardTiledFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
-    }
+
     State st = [&]() -> State {
         switch (pass) {
             case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
@@ -75,7 +74,11 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::ForwardShadowed: return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
             case MeshPass::ForwardShadowedCube:
                 return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal, "forward shadowed cube"};
-            case MeshPass::ForwardTiled: return {forwardTiledFs_, false, gdi::CompareOp::Equal, "forward tiled"};
+            case MeshPass::ForwardTiled: return {listShader(forwardTiledFs_, "forward_plus"), false, gdi::CompareOp::Equal, "forward tiled"};
+            case MeshPass::ForwardClustered:
+                return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::Equal, "forward clustered"};
+            case MeshPass::TransparentClustered:
+                return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::LessOrEqual, "transparent clustered"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
@@ -96,7 +99,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .depthFormat = targets.depthFormat,
         .debugName = st.name,
     };
-    if (pass == MeshPass::Transparent)
+    if (isTransparent(pass))
         d.blend = {{.enable = true,
                     .srcColor = gdi::BlendFactor::SrcAlpha,
                     .dstColor = gdi::BlendFactor::OneMinusSrcAlpha,
@@ -120,19 +123,29 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     return p;
 }
 
+// The forward shader walking a light list (scene/NAME.frag), with the environment's light when
+// the renderer has one; made once, at its first pipeline.
+gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name) {
+    if (made) return made;
+    const std::string plain = std::string("scene/") + name + ".frag";
+    const std::string path = forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain;
+    made = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
+    return made;
+}
+
 uint32_t GeometryRenderer::drawCount(MeshPass pass) const {
     uint32_t n = 0;
     for (const DrawItem& d : scene_.draws())
-        n += (pass == MeshPass::Transparent) == (d.alphaMode == assets::AlphaMode::Blend);
+        n += isTransparent(pass) == (d.alphaMode == assets::AlphaMode::Blend);
     return n;
 }
 
 std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::vec3& eye) const {
     std::vector<const DrawItem*> items;
     for (const DrawItem& d : scene_.draws())
-        if ((pass == MeshPass::Transparent) == (d.alphaMode == assets::AlphaMode::Blend)) items.push_back(&d);
+        if (isTransparent(pass) == (d.alphaMode == assets::AlphaMode::Blend)) items.push_back(&d);
     auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
-    if (pass == MeshPass::Transparent)  // back to front, so source-over blending composes correctly
+    if (isTransparent(pass))  // back to front, so source-over blending composes correctly
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
     if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster)  // front to back: hidden surfaces fail early
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });

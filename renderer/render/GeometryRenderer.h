@@ -29,6 +29,8 @@ enum class MeshPass {
     ForwardShadowed,          // ForwardAdditive for one light with its shadow map (kSlotShadow, kSlotShadowMap)
     ForwardShadowedCube,      // ... a point light with its shadow cube
     ForwardTiled,             // ForwardEqual over the pixel's tile light list (kSlotTileLights, forward-plus)
+    ForwardClustered,         // ForwardEqual over the fragment's cluster list (kSlotClusterLights, clustered-forward)
+    TransparentClustered,     // Transparent over the fragment's cluster list (any technique, with a cluster grid)
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -67,7 +69,8 @@ private:
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::ShaderHandle forwardTiledFs_;  // made at the first ForwardTiled pipeline
+    gdi::ShaderHandle forwardTiledFs_, forwardClusteredFs_;  // made at their first pipeline
+    gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name);
     EnvironmentLight environment_;
 };
 

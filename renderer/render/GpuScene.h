@@ -19,7 +19,7 @@ struct FrameConstants {
     glm::vec4 cameraPosition;  // xyz, w = exposure
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
-    glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples
+    glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples, w = all lights
     glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
     glm::mat4 view;            // view from world (rigid)
     // Redeferred's reduced-rate sampling: xy the offset of each I-buffer texel's representative
@@ -28,6 +28,9 @@ struct FrameConstants {
     // view, 2 valid but the camera moved; w the most frames a pixel's history averages.
     glm::vec4 temporal{0.0f};
     glm::mat4 prevViewProj{1.0f};  // the previous frame's viewProj (temporal reprojection)
+    // The light cluster grid's depth slices (ClusterLightGrid): x the near plane's view depth, y
+    // slices / ln(far / near), z far: the view depth of the scene's far side.
+    glm::vec4 clusters{0.0f};
 };
 
 struct ObjectConstants {

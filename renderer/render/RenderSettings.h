@@ -49,6 +49,10 @@ struct RenderSettings {
     // than by each shading work group in shared memory within the one dispatch (measured both
     // ways, docs/BENCHMARKS.md). redeferred-tiled always uses the culling pass.
     bool tileCullingPass = true;
+    // The translucent pass lights each blended fragment with its cluster's lights (the light
+    // cluster grid, made for it when the technique has none); off: with every light, the way
+    // it was measured against (the same image: a culled light adds exactly 0).
+    bool translucentClusters = true;
     // Image-based lighting: samples per pixel for each of the specular and diffuse terms (0: the
     // environment is only the background). Needs an environment and a technique that takes it
     // (TechniqueInfo::ibl).

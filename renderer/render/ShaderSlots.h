@@ -31,4 +31,5 @@ constexpr uint32_t kSlotHistory0 = 25;      // redeferred temporal accumulation:
 constexpr uint32_t kSlotHistory1 = 26;
 constexpr uint32_t kSlotHistory2 = 27;
 constexpr uint32_t kSlotTaa = 34;           // temporal antialiasing's constants (PostProcess)
+constexpr uint32_t kSlotClusterLights = 35; // the light cluster grid's lists (ClusterLightGrid), storage buffer
 }  // namespace fe::render

@@ -19,6 +19,8 @@
 
 namespace fe::render {
 
+class ClusterLightGrid;
+
 // What every technique draws with, owned by the scene renderer. frame and frameConstants are
 // those of the frame being recorded (valid inside pass bodies).
 // A pass body's frame constants, when they differ from the frame's (an I-buffer of another rate).
@@ -41,6 +43,9 @@ struct TechniqueContext {
     // technique's own light loops and volumes cover the unshadowed lights; it adds each shadowed
     // light in a pass of its own through ShadowMaps::declare.
     ShadowMaps* shadows = nullptr;
+    // The light cluster grid, when the technique reads it (TechniqueInfo::clusters) or the scene
+    // has blended surfaces (the translucent pass reads it) and the device has compute shaders.
+    ClusterLightGrid* clusters = nullptr;
 };
 
 constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
@@ -92,6 +97,8 @@ struct TechniqueInfo {
     bool msaa = false;
     // Has an I-buffer, so takes --illum-scale (redeferred and redeferred-tiled).
     bool illumScale = false;
+    // Reads the light cluster grid (TechniqueContext::clusters).
+    bool clusters = false;
     // Every technique lights the scene by its environment with --ibl-samples N (checked for
     // every line of the table by EnvironmentTests).
 };

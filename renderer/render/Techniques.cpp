@@ -21,6 +21,14 @@ template <bool kTiled>
 std::unique_ptr<TechniqueRenderer> makeRedeferred(TechniqueContext& c) {
     return std::make_unique<RedeferredRenderer>(c, kTiled);
 }
+template <ForwardPlusRenderer::Lists kLists>
+std::unique_ptr<TechniqueRenderer> makeForwardLists(TechniqueContext& c) {
+    return std::make_unique<ForwardPlusRenderer>(c, kLists);
+}
+template <TiledDeferredRenderer::Lists kLists>
+std::unique_ptr<TechniqueRenderer> makeTiledDeferred(TechniqueContext& c) {
+    return std::make_unique<TiledDeferredRenderer>(c, kLists);
+}
 template <bool kPacked>
 std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
     return std::make_unique<LightPrepassRenderer>(c, kPacked);
@@ -33,9 +41,14 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
         {"forward-plus", "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
-         make<ForwardPlusRenderer>, true},
+         makeForwardLists<ForwardPlusRenderer::Lists::Tiles>, true},
+        {"clustered-forward", "depth pre-pass, lights assigned to 32x32-pixel x 24-slice clusters, one forward pass over the cluster's list",
+         makeForwardLists<ForwardPlusRenderer::Lists::Clusters>, true, false, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
-        {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once", make<TiledDeferredRenderer>},
+        {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once",
+         makeTiledDeferred<TiledDeferredRenderer::Lists::Tiles>},
+        {"clustered-deferred", "G-buffer, lights assigned to clusters, one compute pass: each pixel shades its cluster's lights",
+         makeTiledDeferred<TiledDeferredRenderer::Lists::Clusters>, false, false, true},
         {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
          makeLightPrepass<true>, true},
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",

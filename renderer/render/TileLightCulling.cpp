@@ -10,29 +10,39 @@ namespace fe::render {
 TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("tiled light culling needs compute shaders, which " + c.device.info().backend + " lacks");
-    uniformLights_ = c.scene.lightCount() <= GpuScene::kUniformLights &&
-                     c.device.info().limits.maxUniformBufferRange >= GpuScene::kUniformLightBytes;
+    uniformLights_ = lightsFitUniformBlock(c);
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
     pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
 }
 
-const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const {
-    return shaders::find("scene/" + name + ".comp" + (uniformLights_ ? "" : ":FE_LIGHTS_IN_STORAGE"));
+bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {
+    return c.scene.lightCount() <= GpuScene::kUniformLights &&
+           c.device.info().limits.maxUniformBufferRange >= GpuScene::kUniformLightBytes;
+}
+
+const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name, bool uniformLights) {
+    return shaders::find("scene/" + name + ".comp" + (uniformLights ? "" : ":FE_LIGHTS_IN_STORAGE"));
+}
+
+const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const { return listPassShader(name, uniformLights_); }
+
+void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights) {
+    if (!uniformLights) {
+        cmd.setStorageBuffer(kSlotLights, c.scene.lightBuffer());
+        return;
+    }
+    // The renderer was made for this many lights (SceneRenderer::updateLights keeps the count).
+    if (c.scene.lightCount() > GpuScene::kUniformLights)
+        throw gdi::Error("light list pass: " + std::to_string(c.scene.lightCount()) + " lights where it was made for at most " +
+                         std::to_string(GpuScene::kUniformLights));
+    cmd.setUniformBuffer(kSlotLights, c.scene.lightBuffer(), 0, GpuScene::kUniformLightBytes);
 }
 
 void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
     cmd.setPipeline(pipeline);
     const UploadAllocation& fc = ctx_.frameConstants;
     cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-    if (!uniformLights_) {
-        cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
-        return;
-    }
-    // The renderer was made for this many lights (SceneRenderer::updateLights keeps the count).
-    if (ctx_.scene.lightCount() > GpuScene::kUniformLights)
-        throw gdi::Error("tiled light culling: " + std::to_string(ctx_.scene.lightCount()) + " lights where it was made for at most " +
-                         std::to_string(GpuScene::kUniformLights));
-    cmd.setUniformBuffer(kSlotLights, ctx_.scene.lightBuffer(), 0, GpuScene::kUniformLightBytes);
+    bindLights(cmd, ctx_, uniformLights_);
 }
 
 graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {

@@ -29,6 +29,11 @@ public:
     const gdi::ShaderBinary& shader(const std::string& name) const;
     // Binds the frame constants and the lights for such a pass's pipeline.
     void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
+    // The same choice for any list pass (ClusterLightGrid's too): whether the lights fit the
+    // uniform block, the shader variant, and the binding of the lights alone.
+    static bool lightsFitUniformBlock(const TechniqueContext& c);
+    static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights);
+    static void bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights);
 
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
     // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.

@@ -3,6 +3,8 @@
 // tile's lights, once, writing L_o with no blending (shaders/include/fe_tiled_deferred_pass.glsl).
 // The culling runs as a pass of its own (TileLightCulling) or, with
 // RenderSettings::tileCullingPass off, inside the shading dispatch in shared memory.
+// clustered-deferred is the same technique reading the light cluster grid (ClusterLightGrid):
+// its lists do not depend on the depth, so the translucent pass after it reads them too.
 #pragma once
 #include <memory>
 
@@ -16,7 +18,8 @@ namespace fe::render {
 
 class TiledDeferredRenderer final : public TechniqueRenderer {
 public:
-    explicit TiledDeferredRenderer(TechniqueContext& context);
+    enum class Lists { Tiles, Clusters };
+    explicit TiledDeferredRenderer(TechniqueContext& context, Lists lists = Lists::Tiles);
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
     static constexpr uint32_t kTileSize = 16;  // pixels per work group side
 
@@ -25,7 +28,8 @@ private:
     std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
-    std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch
+    std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch, or clusters
+    bool clusters_ = false;                      // the lists of ctx_.clusters
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
 };

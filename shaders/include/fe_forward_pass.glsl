@@ -10,11 +10,14 @@
 #define FE_LIGHTS_IN_STORAGE  // the mesh passes bind the lights' storage buffer
 #include "fe_tile_culling.glsl"
 #endif
+#ifdef FE_CLUSTER_LISTS
+#include "fe_clusters.glsl"
+#endif
 // Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
 // for forward and the transparent pass, one per pass for forward-multipass (which adds the
 // emissive and unlit terms in its first pass only). forward_ibl.frag adds the environment's
 // light by importance sampling (FE_IBL, fe_ibl.glsl). forward_plus*.frag (FE_TILE_LISTS) loop over
-// their tile's list instead.
+// their tile's list instead, forward_clustered*.frag (FE_CLUSTER_LISTS) over their cluster's.
 layout(location = 0) out vec4 outRadiance;
 void main() {
     MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
@@ -33,6 +36,15 @@ void main() {
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
             const uint i = feTileLight(k);
+#elif defined(FE_CLUSTER_LISTS)
+        // clustered: the lights of the fragment's cluster (ClusterLightGrid), those of this
+        // pass's range (the list is ordered: the shadowed lights come last).
+        feUseClusterList(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
+        const uint end = frame.lightRange.x + frame.lightRange.y;
+        const uint count = feClusterLightCount(end);
+        for (uint k = 0u; k < count; ++k) {
+            const uint i = feClusterLight(k);
+            if (i >= end) break;
 #else
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {

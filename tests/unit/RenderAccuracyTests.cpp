@@ -15,8 +15,10 @@
 #include "fe/gdi/Backend.h"
 #include "fe/gdi/ShaderRegistry.h"
 #include "reference/CpuReference.h"
+#include "reference/ImageMetrics.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
+#include "render/ClusterLightGrid.h"
 
 using namespace fe;
 
@@ -112,6 +114,107 @@ TEST_P(RenderAccuracy, TiledCullingDropsNoLight) {
     EXPECT_EQ(r.fractionOver, 0.0) << "redeferred-tiled max relative error " << r.maxRel;
 }
 
+// The clustered techniques read the light cluster grid (32x32-pixel tiles x 24 depth slices): a
+// culled light adds exactly 0, and lists keep index order, so clustered-forward equals forward
+// and clustered-deferred equals deferred-tiled bit for bit, with 256 ranged lights (and with
+// 4x MSAA for the forward one). And the grid culls: a cluster holds a small part of the lights.
+TEST_P(RenderAccuracy, ClusteredTechniquesCullExactly) {
+    const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
+    auto render = [&](const char* t, uint32_t msaa = 1) {
+        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .msaa = msaa});
+        r.renderFrame();
+        gdi::Image image = r.readOutput();
+        if (r.clusters()) {
+            const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
+            EXPECT_EQ(st.clusters, 3u * 2u * render::ClusterLightGrid::kSlices) << t;
+            EXPECT_EQ(st.overflowed, 0u) << t;
+            EXPECT_GT(st.nonEmpty, 0u) << t;
+            EXPECT_LT(st.meanLights, 256.0 / 4) << t << ": the clusters hardly cull";
+        }
+        return image;
+    };
+    Stats f = compare(render("clustered-forward"), render("forward"), 1e-6, 1e-6);
+    EXPECT_EQ(f.fractionOver, 0.0) << "clustered-forward max relative error " << f.maxRel;
+    Stats d = compare(render("clustered-deferred"), render("deferred-tiled"), 1e-6, 1e-6);
+    EXPECT_EQ(d.fractionOver, 0.0) << "clustered-deferred max relative error " << d.maxRel;
+    if (device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4) {
+        Stats m = compare(render("clustered-forward", 4), render("forward", 4), 1e-6, 1e-6);
+        EXPECT_EQ(m.fractionOver, 0.0) << "clustered-forward at 4 samples, max relative error " << m.maxRel;
+    }
+}
+
+// builtin:atrium (a deep arcade with translucent banners, 64 ranged lights through its depth):
+// the many-light techniques against the CPU reference (which composites the blended banners far
+// to near) at the exact techniques' tolerance: PSNR >= 45 dB, at most 0.1 % of pixels beyond 5/255.
+TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
+    const assets::Scene atrium = assets::makeBuiltinScene("atrium", {.lights = 64});
+    constexpr uint32_t W = 128, H = 72;
+    const render::ReferenceImage ref = render::renderReference(atrium, *atrium.camera, W, H);
+    const render::DisplayImage expected = render::toDisplay(W, H, ref.radiance);
+    for (const char* t : {"forward", "forward-plus", "clustered-forward", "clustered-deferred", "deferred-tiled"}) {
+        render::SceneRenderer r(*device, atrium, {.technique = t, .width = W, .height = H});
+        r.renderFrame();
+        const gdi::Image out = r.readOutput();
+        std::vector<glm::dvec3> linear;
+        for (uint32_t y = 0; y < H; ++y)
+            for (uint32_t x = 0; x < W; ++x) {
+                const auto v = out.texel(x, y);
+                linear.emplace_back(v[0], v[1], v[2]);
+            }
+        const render::ImageMetrics m = render::compareImages(render::toDisplay(W, H, linear), expected);
+        RecordProperty(std::string("psnr_") + t, std::to_string(m.psnr));
+        EXPECT_GE(m.psnr, 45.0) << t;
+        EXPECT_LE(m.percentOver5, 0.1) << t;
+    }
+}
+
+// Every technique's translucent pass reads the cluster grid (made for it when the technique has
+// none): the same image as lighting blended surfaces with every light, shadowed lights included.
+TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {
+    for (const char* name : {"lights", "shadows"}) {
+        assets::Scene scene1 = assets::makeBuiltinScene(name, {.lights = 96});
+        for (size_t i = 0; i < scene1.materials.size(); i += 2) {
+            scene1.materials[i].alphaMode = assets::AlphaMode::Blend;
+            scene1.materials[i].baseColorFactor.a = 0.5f;
+        }
+        for (const char* t : {"deferred", "forward-plus", "clustered-deferred"}) {
+            auto render = [&](bool clusters) {
+                render::SceneRenderer r(*device, scene1, {.technique = t, .width = 96, .height = 64,
+                                                          .translucentClusters = clusters,
+                                                          .shadows = {.enabled = std::string(name) == "shadows"}});
+                bool assigns = false;
+                for (const auto& p : r.graph().passes()) assigns = assigns || p.name == "light-assignment";
+                EXPECT_EQ(assigns, clusters || std::string(t) == "clustered-deferred") << name << " " << t;
+                r.renderFrame();
+                return r.readOutput();
+            };
+            Stats s = compare(render(true), render(false), 1e-6, 1e-6);
+            EXPECT_EQ(s.fractionOver, 0.0) << name << " " << t << ": max relative error " << s.maxRel;
+        }
+    }
+}
+
+// A cluster list holds at most ClusterLightGrid::kMaxListLength lights; a fuller cluster shades
+// every light and is counted. 300 weak lights reaching every pixel overflow every cluster they
+// reach: the image still equals forward's.
+TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
+    assets::Scene scene1 = assets::makeBuiltinScene("lights", {.lights = 300});
+    for (auto& l : scene1.lights) {
+        l.position = {0.0f, 3.0f, 0.0f};
+        l.range = 100.0f;
+        l.intensity = 0.05f;
+    }
+    render::SceneRenderer r(*device, scene1, {.technique = "clustered-forward", .width = 48, .height = 32});
+    r.renderFrame();
+    const gdi::Image clustered = r.readOutput();
+    const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
+    EXPECT_GT(st.overflowed, 0u);
+    render::SceneRenderer f(*device, scene1, {.technique = "forward", .width = 48, .height = 32});
+    f.renderFrame();
+    Stats s = compare(clustered, f.readOutput(), 1e-5, 1e-5);
+    EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
+}
+
 // A tile list holds at most TileLightCulling::kMaxListLength lights; a tile with more is marked
 // to shade every light. 1030 weak lights reaching every pixel overflow every tile: the image
 // must still equal the light volumes'. (Their range spheres reach past the far plane, which
@@ -189,7 +292,7 @@ TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
     const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});  // large spheres: few edge pixels
     gdi::Image single = renderImage(*device, scene, "forward");
     gdi::Image reference;
-    for (const char* t : {"forward", "forward-multipass", "forward-zprepass", "forward-plus"}) {
+    for (const char* t : {"forward", "forward-multipass", "forward-zprepass", "forward-plus", "clustered-forward"}) {
         render::SceneRenderer r(*device, scene, {.technique = t, .width = kW, .height = kH, .msaa = 4});
         bool multisampled = false;
         for (const auto& tex : r.graph().textures()) multisampled = multisampled || (tex.used() && tex.desc.sampleCount == 4);
@@ -246,6 +349,8 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward-multipass", {"forward-multipass", "display"}},
         {"forward-zprepass", {"zprepass", "forward-shading", "display"}},
         {"forward-plus", {"zprepass", "light-culling", "forward-plus-shading", "display"}},
+        {"clustered-forward", {"zprepass", "light-assignment", "clustered-shading", "display"}},
+        {"clustered-deferred", {"gbuffer", "light-assignment", "clustered-lighting", "display"}},
         {"deferred-tiled", {"gbuffer", "light-culling", "tiled-lighting", "display"}},
         {"light-prepass", {"lpp-normals", "lpp-lights", "lpp-material", "display"}},
         {"redeferred-tiled", {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},

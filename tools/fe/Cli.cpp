@@ -128,7 +128,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--frames", {"N", "frames to render (default 1; with --window: until it is closed)"}},
     {"view --frames", {"N", "stop after N frames (default: when the window is closed)"}},
     {"bench --frames", {"N", "timed frames per case; medians are reported"}},
-    {"--lights", {"N", "builtin:lights: the number of point lights (default 512)"}},
+    {"--lights", {"N", "builtin:lights and builtin:atrium: the number of point lights (default 512)"}},
     {"--dump-graph", {"FILE.dot", "write the compiled render graph as Graphviz"}},
     {"--pipeline-cache", {"FILE", "load and save compiled pipelines (Vulkan cache data, GL program binaries)"}},
     {"--renderdoc-capture", {"FILE", "capture the first frame with RenderDoc into FILE_capture.rdc"}},

@@ -211,6 +211,14 @@ int cmdRender(const Args& a) {
     std::cout << "transient memory: " << mem.withAliasing << " bytes with aliasing (" << modes[int(renderer.graph().aliasing())]
               << "), " << mem.withoutAliasing << " without; " << mem.transientTextures << " transient textures in "
               << mem.allocations << " allocation(s)\n";
+    if (const render::ClusterLightGrid* grid = renderer.clusters()) {
+        // Always printed: a cluster that overflowed shades every light, which must not pass unseen.
+        const render::ClusterLightGrid::Statistics c = grid->statistics();
+        std::cout << "light clusters: " << c.clusters << " (" << render::ClusterLightGrid::kTilePixels << "x"
+                  << render::ClusterLightGrid::kTilePixels << " px x " << render::ClusterLightGrid::kSlices << " slices), "
+                  << c.nonEmpty << " with lights, " << c.meanLights << " lights per such cluster (max " << c.maxLights
+                  << "), " << c.overflowed << " overflowed (over " << grid->listCapacity() << ": shade every light)\n";
+    }
     if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
     if (!captured.empty()) std::cout << "RenderDoc capture of frame 0: " << captured << "\n";
     std::cout              << "wrote " << out << "\n";

@@ -1,0 +1,85 @@
+#include "render/ClusterLightGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "render/ShaderSlots.h"
+#include "render/TileLightCulling.h"
+
+namespace fe::render {
+
+ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ctx_(c) {
+    if (!c.device.info().features.computeShaders)
+        throw gdi::Error("clustered light lists need compute shaders, which " + c.device.info().backend + " lacks");
+    const RenderSettings& s = c.settings;
+    tiles_ = {(s.width + kTilePixels - 1) / kTilePixels, (s.height + kTilePixels - 1) / kTilePixels};
+    // Room for every light of the scene, shadowed ones too (the translucent pass lights with
+    // them), up to kMaxListLength; the count word before each list.
+    capacity_ = std::min(c.scene.lightCount(), kMaxListLength);
+    const uint64_t bytes = uint64_t(clusterCount()) * (capacity_ + 1) * sizeof(uint32_t);
+    lists_ = objects_.add(c.device.createBuffer({.size = bytes,
+                                                 .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
+                                                 .debugName = "cluster light lists"}));
+    uniformLights_ = TileLightCulling::lightsFitUniformBlock(c);
+    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
+                                              .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
+    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "cluster light assignment"}));
+}
+
+glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::Bounds& bounds) {
+    const float nearDepth = camera.znear;
+    float farDepth = 2.0f * nearDepth;
+    if (!bounds.empty()) {
+        const glm::mat4 view = camera.viewFromWorld();
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+                                   (c & 4) ? bounds.max.z : bounds.min.z);
+            farDepth = std::max(farDepth, -(view * glm::vec4(corner, 1.0f)).z);
+        }
+    }
+    farDepth = std::min(farDepth * 1.01f, camera.zfar);  // a margin for rounding; never past the far plane
+    farDepth = std::max(farDepth, 2.0f * nearDepth);
+    return {nearDepth, float(kSlices) / std::log(farDepth / nearDepth), farDepth, 0.0f};
+}
+
+graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
+    if (declaredIn_ == &g) return declared_;
+    declaredIn_ = &g;
+    declared_ = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size);
+    g.markOutput(declared_);  // statistics() reads it back
+    g.addPass("light-assignment", [&](graph::PassBuilder& b) { b.buffer(declared_, gdi::BufferAccess::StorageWrite); },
+              [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
+                  pc.cmd.setPipeline(pipeline_);
+                  const UploadAllocation& fc = ctx_.frameConstants;
+                  pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+                  TileLightCulling::bindLights(pc.cmd, ctx_, uniformLights_);
+                  pc.cmd.setStorageBuffer(kSlotClusterLights, lists_);
+                  pc.cmd.dispatch((columns + 63) / 64);
+              });
+    return declared_;
+}
+
+void ClusterLightGrid::bindLists(gdi::CommandList& cmd) const { cmd.setStorageBuffer(kSlotClusterLights, lists_); }
+
+ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
+    const std::vector<uint8_t> bytes = ctx_.device.readBuffer(lists_, 0, ctx_.device.desc(lists_).size);
+    std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
+    std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
+    Statistics s{.clusters = clusterCount()};
+    uint64_t sum = 0;
+    for (uint32_t c = 0; c < s.clusters; ++c) {
+        const uint32_t count = words[size_t(c) * (capacity_ + 1)];
+        if (count == 0xffffffffu) {
+            ++s.overflowed;
+            continue;
+        }
+        s.nonEmpty += count > 0;
+        s.maxLights = std::max(s.maxLights, count);
+        sum += count;
+    }
+    s.meanLights = s.nonEmpty ? double(sum) / s.nonEmpty : 0.0;
+    return s;
+}
+
+}  // namespace fe::render

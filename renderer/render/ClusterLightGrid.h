@@ -1,0 +1,65 @@
+// Layer 7: the light cluster grid of the clustered techniques and of every technique's
+// translucent pass (Olsson, Billeter and Assarsson 2012, "Clustered Deferred and Forward
+// Shading"). The view frustum is cut into kTilePixels x kTilePixels-pixel tiles and kSlices
+// slices of view depth, spaced exponentially from the near plane to the far side of the scene
+// (FrameConstants::clusters; Doom 2016 and Olsson's paper use about as many). One compute pass
+// ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
+// range reaches a cluster's box into its list, in a storage buffer the shading passes read
+// (shaders/include/fe_clusters.glsl). The grid does not depend on the opaque depth, so blended
+// surfaces use it as opaque ones do. A list holds up to kMaxListLength lights; a fuller cluster
+// is marked to shade every light and counted (Statistics), so a light is never dropped.
+#pragma once
+#include <cstdint>
+
+#include "fe/gdi/DeviceObjects.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+class ClusterLightGrid {
+public:
+    static constexpr uint32_t kTilePixels = 32;       // FE_CLUSTER_TILE
+    static constexpr uint32_t kSlices = 24;           // FE_CLUSTER_SLICES
+    static constexpr uint32_t kMaxListLength = 255;   // lights per cluster list at most
+
+    explicit ClusterLightGrid(TechniqueContext& context);
+    ClusterLightGrid(const ClusterLightGrid&) = delete;
+    ClusterLightGrid& operator=(const ClusterLightGrid&) = delete;
+
+    // The lists and the pass that fills them: declared once per graph, later calls return the
+    // same buffer (the clustered technique and the translucent pass share it).
+    graph::BufferId declare(graph::RenderGraph& g);
+    // Binds the lists for a shading pass (storage buffer, kSlotClusterLights).
+    void bindLists(gdi::CommandList& cmd) const;
+
+    // The frame's slicing (FrameConstants::clusters): the near plane to the farthest corner of
+    // the scene's bounds along the view axis.
+    static glm::vec4 slicing(const assets::Camera& camera, const assets::Bounds& sceneBounds);
+
+    uint32_t clusterCount() const { return tiles_.x * tiles_.y * kSlices; }
+    uint32_t listCapacity() const { return capacity_; }
+
+    // What the last frame's lists hold (read back: after the frame completes).
+    struct Statistics {
+        uint32_t clusters = 0;
+        uint32_t nonEmpty = 0;      // clusters with at least one light
+        double meanLights = 0;      // per non-empty cluster
+        uint32_t maxLights = 0;
+        uint32_t overflowed = 0;    // clusters that shade every light (more than the capacity)
+    };
+    Statistics statistics() const;
+
+private:
+    gdi::DeviceObjects objects_;
+    TechniqueContext& ctx_;
+    bool uniformLights_ = false;
+    glm::uvec2 tiles_{0};
+    uint32_t capacity_ = 0;
+    gdi::BufferHandle lists_;
+    gdi::ShaderHandle cs_;
+    gdi::PipelineHandle pipeline_;
+    graph::RenderGraph* declaredIn_ = nullptr;
+    graph::BufferId declared_{};
+};
+
+}  // namespace fe::render

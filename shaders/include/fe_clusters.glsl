@@ -1,0 +1,67 @@
+// Clustered light lists (Olsson, Billeter and Assarsson 2012; ClusterLightGrid.h): the view
+// frustum cut into FE_CLUSTER_TILE x FE_CLUSTER_TILE-pixel tiles and FE_CLUSTER_SLICES slices
+// of view depth spaced exponentially from the near plane to frame.clusters.z (the far side of
+// the scene), each holding the lights whose range reaches it. The grid does not depend on the
+// opaque depth, so translucent surfaces read it as opaque ones do.
+// The lists live in a storage buffer of uints: per cluster (slice-major, then rows, then columns)
+// a block of 1 + C words (C from the buffer's length): the count (all ones: the list overflowed,
+// shade every light), then the lights in increasing order. A fragment beyond the last slice
+// shades every light too, so no light is ever dropped.
+#ifndef FE_CLUSTERS_GLSL
+#define FE_CLUSTERS_GLSL
+#include "fe_scene.glsl"
+
+#define FE_CLUSTER_TILE 32
+#define FE_CLUSTER_SLICES 24
+#define FE_SLOT_CLUSTER_LIGHTS 35
+
+#ifdef FE_CLUSTER_ASSIGN
+layout(binding = FE_SLOT_CLUSTER_LIGHTS, std430) buffer ClusterLights {
+#else
+layout(binding = FE_SLOT_CLUSTER_LIGHTS, std430) readonly buffer ClusterLights {
+#endif
+    uint clusterWords[];
+};
+
+ivec2 feClusterTiles() {
+    return (ivec2(frame.viewport.xy) + FE_CLUSTER_TILE - 1) / FE_CLUSTER_TILE;
+}
+
+// View depth where slice k begins (k = FE_CLUSTER_SLICES: where the last one ends).
+float feClusterSliceStart(int k) {
+    return frame.clusters.x * exp(float(k) / frame.clusters.y);
+}
+
+// The slice holding view depth v: 0 before the near plane, FE_CLUSTER_SLICES beyond the last.
+int feClusterSlice(float v) {
+    if (v >= frame.clusters.z) return FE_CLUSTER_SLICES;
+    return clamp(int(floor(log(max(v, frame.clusters.x) / frame.clusters.x) * frame.clusters.y)), 0, FE_CLUSTER_SLICES - 1);
+}
+
+// Lights a list has room for.
+uint feClusterCapacity() {
+    const ivec2 tiles = feClusterTiles();
+    return uint(clusterWords.length()) / uint(tiles.x * tiles.y * FE_CLUSTER_SLICES) - 1u;
+}
+
+uint feClusterBlock(ivec2 tile, int slice) {
+    const ivec2 tiles = feClusterTiles();
+    const uint cluster = uint((slice * tiles.y + tile.y) * tiles.x + tile.x);
+    return cluster * (feClusterCapacity() + 1u);
+}
+
+#ifndef FE_CLUSTER_ASSIGN
+uint feClusterBase_, feClusterCount_;
+// The list of the cluster holding the fragment at `pixel` of depth `depth` (the depth buffer's).
+void feUseClusterList(ivec2 pixel, float depth) {
+    const int slice = feClusterSlice(feViewDepth(depth));
+    feClusterCount_ = 0xffffffffu;
+    if (slice >= FE_CLUSTER_SLICES) return;
+    feClusterBase_ = feClusterBlock(pixel / FE_CLUSTER_TILE, slice);
+    feClusterCount_ = clusterWords[feClusterBase_];
+}
+// Lights below `end` (the list is ordered): the caller's range, all of them when overflowed.
+uint feClusterLightCount(uint end) { return feClusterCount_ == 0xffffffffu ? end : feClusterCount_; }
+uint feClusterLight(uint k) { return feClusterCount_ == 0xffffffffu ? k : clusterWords[feClusterBase_ + 1u + k]; }
+#endif
+#endif

@@ -1,0 +1,8 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Clustered forward shading (clustered-forward, and every technique's translucent pass):
+// fe_forward_pass.glsl over the fragment's cluster light list.
+#define FE_CLUSTER_LISTS
+#define FE_IBL
+#define FE_IBL_PREFILTERED
+#include "fe_forward_pass.glsl"
