@@ -24,6 +24,20 @@ namespace fe::render {
 
 namespace {
 
+// The lights the technique's loop walked per pixel, from a renderer of its own with the
+// statistics pass (kept out of the timed frames): mean, 95th percentile and max.
+gdi::Json lightsEvaluated(gdi::Device& device, const assets::Scene& scene, RenderSettings settings) {
+    settings.lightListStatistics = true;
+    settings.displayImage = false;
+    SceneRenderer r(device, scene, settings);
+    r.renderFrame();
+    const LightListStatistics l = r.lightListStatistics();
+    gdi::Json j = {{"lists", l.lists}, {"measured", l.measured}};
+    if (l.measured) j.update({{"mean", l.mean}, {"p95", l.p95}, {"max", l.max}, {"pixels", l.pixels}});
+    return j;
+}
+
+
 BenchCase make(const std::string& scene, const std::string& technique, uint32_t w = 96, uint32_t h = 72) {
     BenchCase c;
     c.scene = scene;
@@ -474,6 +488,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                         m.r["reference"] = it->second.label;
                         m.r["error"] = {{"psnr", finite(metrics.psnr)}, {"ssim", metrics.ssim}, {"flip", metrics.flip},
                                         {"percentOver5", metrics.percentOver5}, {"maxAbs", metrics.maxAbs}};
+                        m.r["lightsEvaluated"] = lightsEvaluated(device, m.scene, c.settings);
                     } catch (const std::exception& e) {
                         refuse(m, e.what());
                     }

@@ -2,6 +2,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cstring>
+
 #include "assets/AssetError.h"
 #include "fe/gdi/ShaderRegistry.h"
 #include "reference/CameraMath.h"
@@ -129,6 +132,7 @@ void SceneRenderer::buildGraph() {
     output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
     depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
     technique_->declare(g, output_, depth_);
+    if (s.lightListStatistics) declareListStatistics(g);
     if (environment_) {
         g.addPass("background", [&](graph::PassBuilder& b) {
             b.colorTarget(output_, gdi::LoadOp::Load);
@@ -198,6 +202,75 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
     const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
     addFullscreenPass(g, "debug-view", source, view, debugViewPipeline_, pointSampler_, frameConstants_);
     return view;
+}
+
+// The light-list statistics pass: the length of the list each pixel's surface walks, from the
+// technique's tile lists or the cluster grid (shaders/scene/light_list_statistics.comp).
+void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
+    const LightLists lists = technique_->lightLists();
+    if (lists.kind != LightLists::Kind::Tiles && lists.kind != LightLists::Kind::Clusters) return;
+    const RenderSettings& s = settings_;
+    listCounts_ = objects_.add(device_.createTexture({.format = gdi::Format::R32U, .width = s.width, .height = s.height,
+                                                      .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
+                                                      .debugName = "lights evaluated"}));
+    const bool clusters = lists.kind == LightLists::Kind::Clusters;
+    listStatisticsCs_ = objects_.add(device_.createShader(
+        {.stage = gdi::ShaderStage::Compute,
+         .binary = shaders::find(std::string("scene/light_list_statistics.comp") + (clusters ? ":FE_CLUSTER_LISTS" : ""))}));
+    listStatisticsPipeline_ = objects_.add(
+        device_.createComputePipeline({.computeShader = listStatisticsCs_, .debugName = "light-list statistics"}));
+    const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
+    const graph::BufferId clusterLists = clusters ? clusters_->declare(g) : graph::BufferId{};
+    g.addPass("light-list-statistics", [&](graph::PassBuilder& b) {
+        b.sample(depth_);
+        if (clusters) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
+        else b.sample(lists.tiles);
+        b.storage(counts);
+    }, [this, clusters, tiles = lists.tiles, counts](graph::PassContext& pc) {
+        pc.cmd.setPipeline(listStatisticsPipeline_);
+        pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+        pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
+        if (clusters) clusters_->bindLists(pc.cmd);
+        else pc.cmd.setTexture(kSlotTileLights, pc.texture(tiles), pointSampler_);
+        pc.cmd.setStorageTexture(kSlotRadianceOut, pc.texture(counts));
+        pc.cmd.dispatch((settings_.width + 7) / 8, (settings_.height + 7) / 8);
+    });
+    g.markOutput(counts);
+}
+
+LightListStatistics SceneRenderer::lightListStatistics() {
+    if (!settings_.lightListStatistics)
+        throw gdi::Error("lightListStatistics: the renderer was created without RenderSettings::lightListStatistics");
+    LightListStatistics out;
+    switch (technique_->lightLists().kind) {
+        case LightLists::Kind::EveryLight: out.lists = "every light"; break;
+        case LightLists::Kind::Tiles: out.lists = "tile lists"; break;
+        case LightLists::Kind::Clusters: out.lists = "cluster lists"; break;
+        case LightLists::Kind::NotMeasured: out.lists = "not measured (light volumes or reduced-rate lists)"; return out;
+    }
+    device_.wait(lastFence_);
+    std::vector<uint32_t> counts;
+    if (listCounts_) {
+        const gdi::Image image = device_.readTexture(listCounts_);
+        for (uint32_t y = 0; y < image.height; ++y)
+            for (uint32_t x = 0; x < image.width; ++x) {
+                uint32_t n;
+                std::memcpy(&n, image.data.data() + (size_t(y) * image.width + x) * sizeof(uint32_t), sizeof n);
+                if (n != 0xffffffffu) counts.push_back(n);
+            }
+    } else {  // every light at every pixel: the unshadowed ones (each shadowed light has its own pass)
+        counts.assign(1, gpuScene_->unshadowedLightCount());
+    }
+    out.measured = true;
+    out.pixels = listCounts_ ? uint32_t(counts.size()) : settings_.width * settings_.height;
+    if (counts.empty()) return out;
+    std::sort(counts.begin(), counts.end());
+    double sum = 0;
+    for (uint32_t n : counts) sum += n;
+    out.mean = sum / double(counts.size());
+    out.p95 = counts[std::min(counts.size() - 1, size_t(double(counts.size()) * 0.95))];
+    out.max = counts.back();
+    return out;
 }
 
 // The "light count" debug view: a heat map of how many lights reach each pixel's surface.

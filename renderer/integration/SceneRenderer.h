@@ -30,6 +30,15 @@ namespace fe::render {
 
 using graph::PassTiming;
 
+// Lights evaluated per pixel with a surface in the last frame (RenderSettings::lightListStatistics).
+struct LightListStatistics {
+    std::string lists;       // "every light", "tile lists", "cluster lists" or "not measured (...)"
+    bool measured = false;
+    uint32_t pixels = 0;     // pixels with a surface
+    double mean = 0;
+    uint32_t p95 = 0, max = 0;
+};
+
 class SceneRenderer {
 public:
     // RenderSettings::debugView's name for the per-pixel light-count heat map (the other names
@@ -61,11 +70,15 @@ public:
     void setCamera(const assets::Camera& camera);
     // The light cluster grid (null unless a clustered technique or blended surfaces need it).
     const ClusterLightGrid* clusters() const { return clusters_.get(); }
+    // How many lights the technique's shading loop walked per pixel in the last frame. Throws
+    // unless the renderer was made with RenderSettings::lightListStatistics.
+    LightListStatistics lightListStatistics();
 
 private:
     void buildGraph();
     graph::TextureId declareDebugView(graph::RenderGraph& g);
     graph::TextureId declareLightCountView(graph::RenderGraph& g);
+    void declareListStatistics(graph::RenderGraph& g);
 
     // First: destroyed last, after the members below that use its objects.
     gdi::DeviceObjects objects_;
@@ -90,6 +103,9 @@ private:
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
     std::unique_ptr<ClusterLightGrid> clusters_;   // TechniqueContext::clusters
+    gdi::TextureHandle listCounts_;                // lights evaluated per pixel (R32U), with statistics
+    gdi::ShaderHandle listStatisticsCs_;
+    gdi::PipelineHandle listStatisticsPipeline_;
     std::vector<assets::Light> sceneLights_;       // the current lights, scene order
     assets::Camera camera_;                        // the current camera
     uint64_t frameIndex_ = 0;                      // frames rendered

@@ -15,6 +15,7 @@ class DeferredRenderer final : public TechniqueRenderer {
 public:
     explicit DeferredRenderer(TechniqueContext& context);
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    LightLists lightLists() const override { return {LightLists::Kind::NotMeasured, {}}; }
 
 private:
     gdi::DeviceObjects objects_;

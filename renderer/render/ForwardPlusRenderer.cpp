@@ -24,6 +24,7 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
         pc.cmd.endRenderPass();
     });
     const graph::TextureId tiles = culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
+    tiles_ = tiles;
     const graph::BufferId clusters = culling_ ? graph::BufferId{} : ctx_.clusters->declare(g);
     g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
         if (culling_) b.sample(tiles);

@@ -23,6 +23,7 @@ class RedeferredRenderer final : public TechniqueRenderer {
 public:
     RedeferredRenderer(TechniqueContext& context, bool tiled);
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    LightLists lightLists() const override { return {LightLists::Kind::NotMeasured, {}}; }
 
     // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
     // the roughness clamp, beyond half range for bright lights, so they are 32-bit.

@@ -53,6 +53,9 @@ struct RenderSettings {
     // cluster grid, made for it when the technique has none); off: with every light, the way
     // it was measured against (the same image: a culled light adds exactly 0).
     bool translucentClusters = true;
+    // A "light-list-statistics" pass after the technique's: per pixel, the lights its shading
+    // loop walks (SceneRenderer::lightListStatistics). fe render --verbose turns it on.
+    bool lightListStatistics = false;
     // Image-based lighting: samples per pixel for each of the specular and diffuse terms (0: the
     // environment is only the background). Needs an environment and a technique that takes it
     // (TechniqueInfo::ibl).

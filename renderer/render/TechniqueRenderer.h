@@ -65,12 +65,23 @@ struct ForwardTargets {
     void resolveIn(graph::PassBuilder& b) const;
 };
 
+// Which lights a technique's shading loop walks for a pixel, for the light-list statistics
+// (SceneRenderer::lightListStatistics): every light, a tile list (the graph texture of
+// TileLightCulling, declared by declare()), the cluster grid's list, or not measured (light
+// volumes: the lights whose volume covers the pixel; redeferred's lists at the I-buffer's rate).
+struct LightLists {
+    enum class Kind { EveryLight, Tiles, Clusters, NotMeasured } kind = Kind::EveryLight;
+    graph::TextureId tiles;  // Kind::Tiles
+};
+
 class TechniqueRenderer {
 public:
     explicit TechniqueRenderer(TechniqueContext& context) : ctx_(context) {}
     virtual ~TechniqueRenderer() = default;
     // Declares the passes that fill `output` (L_o, kRadianceFormat) and `depth` (transient).
     virtual void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) = 0;
+    // What the shading loop walks (valid after declare).
+    virtual LightLists lightLists() const { return {}; }
 
 protected:
     // resolveLater is set when shadowed lights follow (declareShadowedForward).

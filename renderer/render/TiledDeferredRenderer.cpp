@@ -29,6 +29,7 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c, Lists lists)
 void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
     gbuffer_.declare(g, ctx_, depth);
     const graph::TextureId lists = culling_ ? culling_->declare(g, depth) : graph::TextureId{};
+    tiles_ = lists;
     const graph::BufferId clusterLists = clusters_ ? ctx_.clusters->declare(g) : graph::BufferId{};
     g.addPass(clusters_ ? "clustered-lighting" : "tiled-lighting", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);

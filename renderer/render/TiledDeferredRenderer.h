@@ -21,6 +21,11 @@ public:
     enum class Lists { Tiles, Clusters };
     explicit TiledDeferredRenderer(TechniqueContext& context, Lists lists = Lists::Tiles);
     void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    // The one-pass form culls in shared memory: its lists are not kept (reported as every light).
+    LightLists lightLists() const override {
+        if (clusters_) return {LightLists::Kind::Clusters, {}};
+        return culling_ ? LightLists{LightLists::Kind::Tiles, tiles_} : LightLists{};
+    }
     static constexpr uint32_t kTileSize = 16;  // pixels per work group side
 
 private:
@@ -30,6 +35,7 @@ private:
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
     std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch, or clusters
     bool clusters_ = false;                      // the lists of ctx_.clusters
+    graph::TextureId tiles_;
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
 };

@@ -168,6 +168,35 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
     }
 }
 
+// The light-list statistics: what each technique's shading loop walks per pixel. Every light for
+// forward; far fewer for the culled techniques' lists, the tiles (8x8 pixels, depth-bounded)
+// and the clusters (32x32 pixels, 24 slices) each within the lights; volumes are not measured.
+TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
+    const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
+    auto statistics = [&](const char* t) {
+        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .lightListStatistics = true});
+        r.renderFrame();
+        return r.lightListStatistics();
+    };
+    const render::LightListStatistics every = statistics("forward");
+    EXPECT_EQ(every.lists, "every light");
+    EXPECT_EQ(every.mean, 256.0);
+    EXPECT_EQ(every.max, 256u);
+    for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward", "clustered-deferred"}) {
+        const render::LightListStatistics l = statistics(t);
+        EXPECT_TRUE(l.measured) << t;
+        EXPECT_EQ(l.lists, std::string(t).starts_with("clustered") ? "cluster lists" : "tile lists") << t;
+        EXPECT_GT(l.pixels, 96u * 64u / 2) << t;  // the cubes cover most of the frame
+        EXPECT_GT(l.mean, 0.0) << t;
+        EXPECT_LT(l.mean, 256.0 / 4) << t << ": the lists hardly cull";  // 32-pixel clusters: 3x2 columns here
+        EXPECT_LE(double(l.p95), double(l.max)) << t;
+        EXPECT_LE(l.max, 256u) << t;
+    }
+    // The two tiled techniques share the culling pass: the same lists.
+    EXPECT_EQ(statistics("forward-plus").mean, statistics("deferred-tiled").mean);
+    EXPECT_FALSE(statistics("deferred").measured);
+}
+
 // Every technique's translucent pass reads the cluster grid (made for it when the technique has
 // none): the same image as lighting blended surfaces with every light, shadowed lights included.
 TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {

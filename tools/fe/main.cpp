@@ -134,6 +134,8 @@ int cmdRender(const Args& a) {
     if (a.options.count("--verbose") && spdlog::get_level() > spdlog::level::info) spdlog::set_level(spdlog::level::info);
     for (const std::string& r : choice.reasons) spdlog::info("director: {}", r);
     s = choice.settings;
+    const bool verbose = a.options.count("--verbose") > 0;
+    s.lightListStatistics = verbose;  // one more compute pass, so only when asked
     const auto rendererStart = std::chrono::steady_clock::now();
     render::SceneRenderer renderer(*device, scene, s);
     const double rendererMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - rendererStart).count();
@@ -211,6 +213,12 @@ int cmdRender(const Args& a) {
     std::cout << "transient memory: " << mem.withAliasing << " bytes with aliasing (" << modes[int(renderer.graph().aliasing())]
               << "), " << mem.withoutAliasing << " without; " << mem.transientTextures << " transient textures in "
               << mem.allocations << " allocation(s)\n";
+    if (verbose) {
+        const render::LightListStatistics l = renderer.lightListStatistics();
+        std::cout << "lights evaluated per pixel (" << l.lists << ")";
+        if (l.measured) std::cout << ": mean " << l.mean << ", 95th percentile " << l.p95 << ", max " << l.max << " over " << l.pixels << " pixels";
+        std::cout << "\n";
+    }
     if (const render::ClusterLightGrid* grid = renderer.clusters()) {
         // Always printed: a cluster that overflowed shades every light, which must not pass unseen.
         const render::ClusterLightGrid::Statistics c = grid->statistics();
