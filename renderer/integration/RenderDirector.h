@@ -7,9 +7,11 @@
 //   - lights that cover the screen nearly as often as there are lights (every pixel would shade
 //     most of them anyway): forward (exact, one pass, no G-buffer; takes --msaa). Precisely:
 //     lights <= kVolumeCostPerForwardLight x coverage (SceneNeeds::lightCoverage);
-//   - more lights and --msaa N: light-prepass, the technique that keeps hardware MSAA with
-//     lights drawn per pixel; its RGBA16F normal target when the scene's smoothest material is
-//     below kPackedNormalsMinRoughness (8-bit normals lose such highlights);
+//   - more lights and --msaa N: clustered-forward (exact, keeps hardware MSAA, each fragment
+//     shading its cluster's lights: measured fastest with MSAA, docs/BENCHMARKS.md many lights);
+//     without compute shaders light-prepass, which keeps hardware MSAA with lights drawn per
+//     pixel; its RGBA16F normal target when the scene's smoothest material is below
+//     kPackedNormalsMinRoughness (8-bit normals lose such highlights);
 //   - more lights whose volumes cover the screen less than kTiledMinCoverage times: deferred
 //     (light volumes cost what they cover; tiles cost a fixed culling pass);
 //   - more: deferred-tiled (compute), or deferred where there are no compute shaders;

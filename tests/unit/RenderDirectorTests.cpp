@@ -78,19 +78,45 @@ TEST_P(RenderDirector, LightsCoveringLittleGetLightVolumes) {
     EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
 }
 
-// --msaa with many lights: the light pre-pass, multisampled; packed normals unless the scene
-// has materials smoother than the packing holds.
-TEST_P(RenderDirector, MsaaWithManyLightsGetsLightPrepass) {
+// --msaa with many lights: clustered forward, multisampled and exact (measured fastest with MSAA).
+TEST_P(RenderDirector, MsaaWithManyLightsGetsClusteredForward) {
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    const Built b = build(*device, scene, {.technique = "auto", .msaa = 4});
+    EXPECT_EQ(b.technique, "clustered-forward");
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "light-assignment", "clustered-shading"}));
+    EXPECT_TRUE(anyStartsWith(b.textures, "msaa L_o"));
+    EXPECT_FALSE(anyStartsWith(b.textures, "gbuffer"));
+    EXPECT_NE(b.reasons[0].find("keeps hardware MSAA"), std::string::npos) << b.reasons[0];
+}
+
+// Without compute shaders, --msaa with many lights: the light pre-pass, multisampled; packed
+// normals unless the scene has materials smoother than the packing holds.
+TEST_P(RenderDirector, MsaaWithManyLightsAndNoComputeGetsLightPrepass) {
     if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
     assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
-    const Built b = build(*device, scene, {.technique = "auto", .msaa = 4});
+    gdi::DeviceInfo noCompute = device->info();
+    noCompute.features.computeShaders = false;
+    auto build = [&](const assets::Scene& sc, render::RenderSettings requested) {
+        requested.width = 64;
+        requested.height = 48;
+        const render::DirectorChoice c = render::direct(sc, requested, noCompute);
+        render::SceneRenderer r(*device, sc, c.settings);
+        Built out{c.settings.technique, {}, {}, c.reasons};
+        for (const auto& p : r.graph().passes())
+            if (!p.culled) out.passes.push_back(p.name);
+        for (const auto& t : r.graph().textures())
+            if (!t.imported && t.used()) out.textures.push_back(t.name);
+        return out;
+    };
+    const Built b = build(scene, {.technique = "auto", .msaa = 4});
     EXPECT_EQ(b.technique, "light-prepass");
     EXPECT_EQ(b.passes, (std::vector<std::string>{"lpp-normals", "lpp-lights", "lpp-material"}));
     EXPECT_TRUE(anyStartsWith(b.textures, "msaa lpp normal.xy+roughness (packed)"));
     EXPECT_TRUE(anyStartsWith(b.textures, "msaa L_o"));
     EXPECT_FALSE(anyStartsWith(b.textures, "gbuffer"));
     for (auto& m : scene.materials) m.roughness = render::kPackedNormalsMinRoughness / 2;
-    const Built smooth = build(*device, scene, {.technique = "auto", .msaa = 4});
+    const Built smooth = build(scene, {.technique = "auto", .msaa = 4});
     EXPECT_EQ(smooth.technique, "light-prepass-unpacked");
     EXPECT_TRUE(anyStartsWith(smooth.textures, "msaa lpp normal+roughness"));
     EXPECT_NE(smooth.reasons[1].find("below 0.20"), std::string::npos) << smooth.reasons[1];
