@@ -20,7 +20,8 @@ constexpr const char* kUsage =
     "usage: fe <command> [options]\n"
     "commands:\n"
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
-    "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME (default builtin:spheres)\n"
+    "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME; none: the quick start's image\n"
+    "      (builtin:shadows, --environment builtin:sky --ibl-samples 256 --shadows on unless given)\n"
     "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
     "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
     "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
@@ -268,16 +269,19 @@ const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--v
 
 RenderJob renderJob(const Args& a) {
     if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
-    std::string spec = a.positional.empty() ? "builtin:spheres" : a.positional[0];
+    const bool quickStart = a.positional.empty();  // no scene named: the quick start's image
+    std::string spec = quickStart ? kQuickStartScene : a.positional[0];
     render::RenderSettings s;
     auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
+    const bool lightingAsked = a.options.count("--environment") || a.options.count("--ibl-samples") || a.options.count("--ibl-prefiltered");
     s.technique = opt("--technique", "forward");
     if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
-    s.iblSamples = parseUint(opt("--ibl-samples", "0"), "--ibl-samples", 0, 65536);
+    s.iblSamples = parseUint(opt("--ibl-samples", quickStart && !lightingAsked ? std::to_string(kQuickStartIblSamples) : "0"),
+                             "--ibl-samples", 0, 65536);
     s.iblPrefiltered = a.options.count("--ibl-prefiltered") > 0;
-    const std::string shadows = opt("--shadows", "off");
+    const std::string shadows = opt("--shadows", quickStart ? "on" : "off");
     if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
     s.shadows.enabled = shadows == "on";
     s.shadows.mapSize = parseUint(opt("--shadow-map-size", "1024"), "--shadow-map-size", 16, 16384);
@@ -288,6 +292,7 @@ RenderJob renderJob(const Args& a) {
     s.shadows.pcf = filter == "pcf";
     for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
         if (a.options.count(k) && !s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
+    const std::string environment = opt("--environment", quickStart && !lightingAsked ? kQuickStartEnvironment : "");
     if (const std::string rates = opt("--rates", ""); !rates.empty()) {
         // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
         std::stringstream list(rates);
@@ -360,7 +365,7 @@ RenderJob renderJob(const Args& a) {
     if (!s.tileCullingPass && s.technique != "deferred-tiled")
         throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
     const std::string dumpGraph = opt("--dump-graph", "");
-    return RenderJob{.spec = spec, .settings = s, .director = director, .window = window, .backend = backend,
+    return RenderJob{.spec = spec, .environment = environment, .settings = s, .director = director, .window = window, .backend = backend,
                      .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
                      .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph,
                      .pipelineCache = opt("--pipeline-cache", ""), .renderdocCapture = opt("--renderdoc-capture", "")};

@@ -36,8 +36,16 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
 
 // `fe render`: its options and flags, and what they ask for.
 extern const std::vector<std::string> kRenderOptions, kRenderFlags;
+// What `fe render` and `fe view` show when no scene is named: the quick start's image
+// (tools/render-default.sh): builtin:shadows lit by the builtin sky (image-based lighting at
+// kQuickStartIblSamples samples) with shadows on; options given on the command line win.
+inline constexpr const char* kQuickStartScene = "builtin:shadows";
+inline constexpr const char* kQuickStartEnvironment = "builtin:sky";
+inline constexpr uint32_t kQuickStartIblSamples = 256;
+
 struct RenderJob {
     std::string spec;  // the scene: a path or builtin:NAME
+    std::string environment;  // --environment, or the quick start's sky when no scene is named
     render::RenderSettings settings;
     render::DirectorOptions director;
     bool window = false;

@@ -58,6 +58,10 @@ public:
         settings_.height = o.height;
         settings_.displayImage = true;
         settings_.debugView = o.debugView;
+        if (o.quickStartLighting) {
+            settings_.iblPrefiltered = true;
+            settings_.shadows.enabled = true;
+        }
         camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
         wantEnvironment_ = bool(scene_.environment);
         ImGui::CreateContext();
@@ -303,7 +307,8 @@ private:
 
     void screenshot(const std::string& path) {
         gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
-        std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique << ")\n";
+        std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique
+                  << (settings_.ibl() ? ", environment light" : "") << (settings_.shadows.enabled ? ", shadows" : "") << ")\n";
     }
 
     ViewerOptions options_;

@@ -10,6 +10,9 @@ namespace fe::tools {
 
 struct ViewerOptions {
     std::string scene = "builtin:spheres";
+    // No scene named: the quick start's image, lit by its environment through the fast path
+    // (prefiltered: interactive on a CPU rasterizer) with shadows on.
+    bool quickStartLighting = false;
     std::string backend = "auto";      // auto | vulkan | gl | vulkan-glfw | gl-glfw
     std::string technique = "deferred-tiled";
     std::string environment;           // "", builtin:sky or an .hdr

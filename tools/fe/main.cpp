@@ -121,7 +121,7 @@ int cmdRender(const Args& a) {
     if (a.options.count("--strict") && !scene.warnings.empty())
         throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
                                  scene.warnings.front());
-    if (a.options.count("--environment")) scene.environment = assets::loadEnvironment(a.options.at("--environment"));
+    if (!job.environment.empty()) scene.environment = assets::loadEnvironment(job.environment);
     // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
     std::unique_ptr<gdi::FrameCapture> capture;
     if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
@@ -195,6 +195,7 @@ int cmdRender(const Args& a) {
     if (!pfm && s.tonemap != shading::Tonemap::Clamp) std::cout << ", tonemap " << shading::tonemapName(s.tonemap);
     if (!pfm && s.antiAliasing == render::AntiAliasing::Fxaa) std::cout << ", fxaa";
     if (s.antiAliasing == render::AntiAliasing::Taa) std::cout << ", taa";
+    if (s.ibl()) std::cout << ", environment light " << (s.iblPrefiltered ? std::string("prefiltered") : std::to_string(s.iblSamples) + " samples");
     if (s.shadows.enabled)
         std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
                   << (s.shadows.pcf ? " pcf" : " nearest");
@@ -346,6 +347,7 @@ int cmdView(const Args& a) {
     auto opt = [&](const char* name, const std::string& fallback) { return a.options.count(name) ? a.options.at(name) : fallback; };
     tools::ViewerOptions o;
     if (!a.positional.empty()) o.scene = a.positional[0];
+    else o.scene = cli::kQuickStartScene, o.quickStartLighting = !a.options.count("--environment");
     o.backend = opt("--backend", "auto");
     if (gdi::windowCandidates(o.backend).empty())
         throw UsageError("view needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " + o.backend + " is headless");
@@ -355,7 +357,7 @@ int cmdView(const Args& a) {
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
     o.width = parseUint(size.substr(0, x), "width", 64, 8192);
     o.height = parseUint(size.substr(x + 1), "height", 64, 8192);
-    o.environment = opt("--environment", "");
+    o.environment = opt("--environment", o.quickStartLighting ? cli::kQuickStartEnvironment : "");
     o.frames = a.options.count("--frames") ? parseUint(a.options.at("--frames"), "--frames", 1, 1000000) : 0;
     o.screenshot = opt("--screenshot", "");
     if (!o.screenshot.empty() && !(o.screenshot.size() > 4 && o.screenshot.substr(o.screenshot.size() - 4) == ".png"))
