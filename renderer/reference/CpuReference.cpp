@@ -125,26 +125,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         const glm::dmat3 normalMat = glm::transpose(glm::inverse(glm::dmat3(world)));
         for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
             const int32_t id = surfaceId++;
-            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) {
-                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
-                    WorldTriangle t;
-                    for (int k = 0; k < 3; ++k) {
-                        const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
-                        t.p[k] = glm::dvec3(world * glm::dvec4(glm::dvec3(v.position), 1.0));
-                        t.n[k] = normalMat * glm::dvec3(v.normal);
-                        t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
-                        t.uv[k] = glm::dvec2(v.uv0);
-                    }
-                    t.material = prim.material;
-                    t.surface = id;
-                    t.mirrored = inst.mirrored;
-                    blended.push_back(t);
-                }
-                continue;
-            }
-            SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
-                           glm::dvec3(-std::numeric_limits<double>::infinity()), tris.size(), 0};
-            for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+            // Triangle i/3 of the primitive in world space.
+            auto triangle = [&](size_t i) {
                 WorldTriangle t;
                 for (int k = 0; k < 3; ++k) {
                     const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
@@ -152,12 +134,24 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     t.n[k] = normalMat * glm::dvec3(v.normal);
                     t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
                     t.uv[k] = glm::dvec2(v.uv0);
-                    box.min = glm::min(box.min, t.p[k]);
-                    box.max = glm::max(box.max, t.p[k]);
                 }
                 t.material = prim.material;
                 t.surface = id;
                 t.mirrored = inst.mirrored;
+                return t;
+            };
+            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) {
+                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) blended.push_back(triangle(i));
+                continue;
+            }
+            SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
+                           glm::dvec3(-std::numeric_limits<double>::infinity()), tris.size(), 0};
+            for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
+                const WorldTriangle t = triangle(i);
+                for (int k = 0; k < 3; ++k) {
+                    box.min = glm::min(box.min, t.p[k]);
+                    box.max = glm::max(box.max, t.p[k]);
+                }
                 tris.push_back(t);
             }
             box.count = tris.size() - box.first;
