@@ -65,6 +65,16 @@ void addInstance(Scene& s, uint32_t mesh, const glm::mat4& world, std::string na
     s.instances.push_back(std::move(i));
 }
 
+// A mesh of one primitive, its bounds computed; returns its index.
+uint32_t addMesh(Scene& s, const char* name, Primitive p) {
+    Mesh out;
+    out.name = name;
+    out.primitives.push_back(std::move(p));
+    computeBounds(out);
+    s.meshes.push_back(std::move(out));
+    return uint32_t(s.meshes.size() - 1);
+}
+
 Light directional(const std::string& name, const glm::vec3& travel, const glm::vec3& color, float lux) {
     Light l;
     l.name = name;
@@ -205,12 +215,7 @@ Scene makeShadows() {
     auto mesh = [&](const char* name, Primitive p, Material m) {
         p.material = uint32_t(s.materials.size());
         s.materials.push_back(std::move(m));
-        Mesh out;
-        out.name = name;
-        out.primitives.push_back(std::move(p));
-        computeBounds(out);
-        s.meshes.push_back(std::move(out));
-        return uint32_t(s.meshes.size() - 1);
+        return addMesh(s, name, std::move(p));
     };
     const uint32_t ground = mesh("ground", makeQuad(5.0f, 5.0f, 0), makeMaterial("ground", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 0.0f, 0.7f));
     addInstance(s, ground, glm::rotate(glm::mat4(1.0f), radians(-90.0f), glm::vec3(1, 0, 0)), "ground");
@@ -271,19 +276,11 @@ Scene makeAtrium(const BuiltinOptions& o) {
         s.materials.push_back(std::move(m));
         return uint32_t(s.materials.size() - 1);
     };
-    auto mesh = [&](const char* name, Primitive p) {
-        Mesh out;
-        out.name = name;
-        out.primitives.push_back(std::move(p));
-        computeBounds(out);
-        s.meshes.push_back(std::move(out));
-        return uint32_t(s.meshes.size() - 1);
-    };
     const uint32_t stone = material(makeMaterial("stone", glm::vec4(0.62f, 0.6f, 0.56f, 1.0f), 0.0f, 0.8f));
     const uint32_t plaster = material(makeMaterial("plaster", glm::vec4(0.78f, 0.72f, 0.62f, 1.0f), 0.0f, 0.9f));
     const uint32_t marble = material(makeMaterial("marble", glm::vec4(0.85f, 0.85f, 0.82f, 1.0f), 0.0f, 0.35f));
-    const uint32_t box = mesh("box", makeCube(1.0f, 0));  // scaled per instance: half extents
-    const uint32_t quad = mesh("quad", makeQuad(1.0f, 1.0f, 0));
+    const uint32_t box = addMesh(s, "box", makeCube(1.0f, 0));  // scaled per instance: half extents
+    const uint32_t quad = addMesh(s, "quad", makeQuad(1.0f, 1.0f, 0));
     auto addBox = [&](uint32_t mat, const glm::vec3& centre, const glm::vec3& half, const std::string& name) {
         // One mesh per material: the primitive's material is the instance's here.
         Mesh m = s.meshes[box];
