@@ -617,22 +617,26 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
 // checked path handles the rest and owns every error message.
 template <VkDescriptorType kType>
 inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const Buffer* b = dev_.findBuffer(h);
-    const gdi::validate::BindingLimits& limits = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? uniformLimits_ : storageLimits_;
-    const uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
-    // Another buffer than the last one bound with this kind is checked (usage) and noted (for
-    // submit's liveness check) on the checked path, so this one stays a leaf: no call, no saved
-    // registers.
+    // The per-object case binds one buffer at many offsets: the buffer the checked path passed
+    // last, with nothing destroyed since, is still alive and of the usage checked then, so only
+    // the range is checked here (no handle lookup). Anything else goes to the checked path, which
+    // notes the buffer for submit's liveness check; this one stays a leaf.
     constexpr size_t kind = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? 0 : 1;
-    if (!bindSize || h.id != lastBound_[kind]) [[unlikely]]
+    const BoundBuffer& last = lastBound_[kind];
+    if (h.id != last.id || last.destroyEpoch != dev_.destroyEpoch()) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
-    bindBuffer(slot, kType, b->buffer, offset, bindSize);
+    const gdi::validate::BindingLimits& limits = kind == 0 ? uniformLimits_ : storageLimits_;
+    const uint64_t bindSize = gdi::validate::plainBindingSize(slot, last.size, offset, size, limits);
+    if (!bindSize) [[unlikely]]
+        return setBufferChecked<kType>(slot, h, offset, size);
+    bindBuffer(slot, kType, last.buffer, offset, bindSize);
 }
 
 template <VkDescriptorType kType>
 void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     if (slot >= 64) slotOutOfRange(what, slot);
+    const uint64_t epoch = dev_.destroyEpoch();  // before the lookup: a destroy after it invalidates
     Buffer& b = usedBuffer(h);
     const bool uniform = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     gdi::validate::bufferUsage(b.desc, uniform ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage, b.name, what);
@@ -640,7 +644,7 @@ void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uin
     if (size == 0) size = std::min(b.desc.size - std::min(offset, b.desc.size), limits.maxRange);
     gdi::validate::bindingRange(b.desc, offset, size, what);
     gdi::validate::bindingLimits(offset, size, limits, what);
-    lastBound_[uniform ? 0 : 1] = h.id;
+    lastBound_[uniform ? 0 : 1] = {.id = h.id, .destroyEpoch = epoch, .buffer = b.buffer, .size = b.desc.size};
     bindBuffer(slot, kType, b.buffer, offset, size);
 }
 

@@ -171,7 +171,16 @@ private:
     VkCommandBuffer cb_ = VK_NULL_HANDLE;  // buffers_[current_].cb
     std::vector<uint64_t> used_;  // UsedKind << 32 | handle id, per use
     uint32_t lastBuffer_ = 0;     // the buffer noted last (0: none yet this recording)
-    std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer the checked path passed
+    // Per kind (uniform, storage): the last buffer the checked path passed, as it was then. While
+    // no object has been destroyed since (the device's destroy epoch), a bind of the same handle
+    // takes its size and VkBuffer from here instead of looking the handle up again.
+    struct BoundBuffer {
+        uint32_t id = 0;  // 0 (no handle): size 0 sends every bind to the checked path
+        uint64_t destroyEpoch = 0;
+        VkBuffer buffer = VK_NULL_HANDLE;
+        uint64_t size = 0;
+    };
+    std::array<BoundBuffer, 2> lastBound_{};
     uint64_t destroyEpoch_ = 0;
     bool recording_ = false;
     bool inPass_ = false;

@@ -406,7 +406,7 @@ void VulkanDevice::release() {
         vkDeviceWaitIdle(device_);
         for (Retired& r : retired_) r.release();
         retired_.clear();
-        if (pendingInit_) vkFreeCommandBuffers(device_, immediatePool_, 1, &pendingInit_);
+        pendingInit_.clear();
         for (const SecondaryRecording& r : secondaries_) vkDestroyCommandPool(device_, r.pool, nullptr);
         secondaries_.clear();
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
@@ -474,11 +474,13 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (VulkanCommandList* list : vk) queries.push_back(&list->queries());
     gdi::validate::queriesOncePerSubmission(queries);
     std::vector<std::pair<QuerySet*, uint32_t>> usedQueries;  // reset before the lists run
+    std::vector<std::pair<VkQueryPool, uint32_t>> resets;        // (the closure outlives this call on failure)
     for (const auto* q : queries)
         for (const auto& u : q->used()) usedQueries.push_back({&querySets_.get({u.set}, "query set"), u.index});
-    if (!usedQueries.empty())
-        recordInitialTransition([&](VkCommandBuffer cb) {
-            for (auto [set, index] : usedQueries) vkCmdResetQueryPool(cb, set->pool, index, 1);
+    for (auto [set, index] : usedQueries) resets.push_back({set->pool, index});
+    if (!resets.empty())
+        recordInitialTransition([resets](VkCommandBuffer cb) {
+            for (auto [pool, index] : resets) vkCmdResetQueryPool(cb, pool, index, 1);
         });
     const VkCommandBuffer init = takeInitialTransitions();
     if (init) cbs.push_back(init);
@@ -549,13 +551,12 @@ void VulkanDevice::pollFences() {
     if (inFlight_.empty()) completed_ = nextFence_ - 1;
 }
 
-void VulkanDevice::retire(std::function<void()> release, bool inInitialCommands) {
+void VulkanDevice::retire(std::function<void()> release) {
     destroyEpoch_.fetch_add(1, std::memory_order_release);
     if (std::exchange(presentedSinceIdle_, false)) idle();
     pollFences();
-    // Unsubmitted initial commands (layout transitions, zero fills) may name a texture or a
-    // buffer: it waits for the next submission too.
-    const gdi::FenceValue after = inInitialCommands && pendingInit_ ? nextFence_ : nextFence_ - 1;
+    // An object's own unsubmitted initial commands were dropped by its destroy; none else names it.
+    const gdi::FenceValue after = nextFence_ - 1;
     if (completed_ >= after) return release();  // nothing in flight can use it
     retired_.push_back({after, std::move(release)});
 }
@@ -569,7 +570,7 @@ void VulkanDevice::collectRetired() {
 }
 
 void VulkanDevice::releaseRetiredNow() {
-    if (pendingInit_) immediate("pending layout transitions", [](VkCommandBuffer) {});  // waits: waitIdle
+    if (!pendingInit_.empty()) immediate("pending layout transitions", [](VkCommandBuffer) {});  // waits: waitIdle
     idle();
     for (Retired& r : retired_) r.release();
     retired_.clear();
@@ -594,7 +595,7 @@ void VulkanDevice::settle(gdi::FenceValue fence) {
 void VulkanDevice::waitIdle() {
     std::lock_guard lock(mutex_);
     loss_.check("waitIdle");
-    if (pendingInit_) return releaseRetiredNow();  // submits the pending transitions too
+    if (!pendingInit_.empty()) return releaseRetiredNow();  // submits the pending transitions too
     wait(nextFence_ - 1);
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
     for (Retired& r : retired_) r.release();  // nothing in flight, nothing pending: all of them
@@ -624,32 +625,42 @@ gdi::LiveObjects VulkanDevice::liveObjects() const {
             .heaps = heaps_.size(), .querySets = querySets_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
-void VulkanDevice::recordInitialTransition(const std::function<void(VkCommandBuffer)>& record) {
-    if (!pendingInit_) {
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = immediatePool_;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        VkCommandBuffer cb;
-        check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }), "vkAllocateCommandBuffers");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        if (VkResult r = nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }); r != VK_SUCCESS) {
-            vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
-            check(r, "vkBeginCommandBuffer");
-        }
-        pendingInit_ = cb;
-    }
-    record(pendingInit_);
+void VulkanDevice::recordInitialTransition(std::function<void(VkCommandBuffer)> record, uint32_t texture, uint32_t buffer) {
+    pendingInit_.push_back({texture, buffer, std::move(record)});
 }
 
-VkCommandBuffer VulkanDevice::takeInitialTransitions() {
-    VkCommandBuffer cb = std::exchange(pendingInit_, VK_NULL_HANDLE);
-    if (!cb) return cb;
-    if (VkResult r = vkEndCommandBuffer(cb); r != VK_SUCCESS) {
-        vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
-        check(r, "vkEndCommandBuffer");
+void VulkanDevice::dropInitialCommands(uint32_t texture, uint32_t buffer) {
+    std::erase_if(pendingInit_, [&](const InitialCommands& c) {
+        return (texture && c.texture == texture) || (buffer && c.buffer == buffer);
+    });
+}
+
+// Records every pending object's first commands into one command buffer, then one full barrier
+// that orders them before whatever follows in the submission. On failure they stay pending.
+VkCommandBuffer VulkanDevice::takeInitialTransitions(const std::string& object) {
+    if (pendingInit_.empty()) return VK_NULL_HANDLE;
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = immediatePool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cb;
+    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }),
+          "vkAllocateCommandBuffers", object);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    const char* call = "vkBeginCommandBuffer";
+    VkResult r = nativeAllocation(call, [&] { return vkBeginCommandBuffer(cb, &bi); });
+    if (r == VK_SUCCESS) {
+        for (const InitialCommands& c : pendingInit_) c.record(cb);
+        VulkanCommandList::fullBarrier(cb);
+        call = "vkEndCommandBuffer";
+        r = vkEndCommandBuffer(cb);
     }
+    if (r != VK_SUCCESS) {
+        vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
+        check(r, call, object);
+    }
+    pendingInit_.clear();
     return cb;
 }
 
@@ -680,7 +691,7 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer", object);
     // Textures made since the last submission get their first transitions first, in the same
     // submission (taken only now, so a failure above leaves them pending); freed after the wait.
-    const VkCommandBuffer init = takeInitialTransitions();
+    const VkCommandBuffer init = takeInitialTransitions(object);
     struct ReleaseInit {
         VkDevice device;
         VkCommandPool pool;

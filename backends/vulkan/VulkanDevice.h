@@ -55,7 +55,6 @@ struct Buffer {
     Allocation memory;
     gdi::BufferDesc desc;
     std::string name;
-    bool zeroFillRecorded = false;  // into the initial commands (destroy waits for them)
 };
 
 struct Texture {
@@ -250,13 +249,22 @@ private:
     // Records with `record` into a one-time command buffer, submits it and waits.
     // Records, submits and waits for a one-off command buffer; `object` names it in errors.
     void immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record);
-    // First layout transitions of new textures, gathered in one command buffer that goes in
-    // front of the next submission or transfer.
-    void recordInitialTransition(const std::function<void(VkCommandBuffer)>& record);
-    void clearToZero(VkCommandBuffer cb, const Texture& t);
-    VkCommandBuffer takeInitialTransitions();  // ended, ready to submit; null when none
+    // The first commands of new objects (a texture's layout transition and zero clear, a
+    // buffer's zero fill, query resets), kept as closures until the next submission or transfer
+    // records them, with one barrier after them all, into a command buffer that goes in front.
+    // An object destroyed before then drops its own: a texture made and destroyed between two
+    // submissions costs no GPU work and is freed at once.
+    struct InitialCommands {
+        uint32_t texture = 0, buffer = 0;  // the object they are for (0: none)
+        std::function<void(VkCommandBuffer)> record;
+    };
+    void recordInitialTransition(std::function<void(VkCommandBuffer)> record, uint32_t texture = 0, uint32_t buffer = 0);
+    void dropInitialCommands(uint32_t texture, uint32_t buffer);
+    static void clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format format);
+    // Ended, ready to submit; null when none. `object`: what errors name (the transfer's object).
+    VkCommandBuffer takeInitialTransitions(const std::string& object = "first commands of new objects");
     void freeAfter(gdi::FenceValue fence, VkCommandBuffer cb);
-    VkCommandBuffer pendingInit_ = VK_NULL_HANDLE;
+    std::vector<InitialCommands> pendingInit_;
     // kind and name say what the buffer is in errors (gdi::describeObject).
     Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
                       const std::string& name);
@@ -271,7 +279,7 @@ private:
     [[noreturn]] void fail(VkResult r, const char* call, const std::string& object) const;
     void idle();  // destroy's wait: settle() everything
     // Deferred destruction: `release` runs once every submission made so far has completed.
-    void retire(std::function<void()> release, bool inInitialCommands = false);
+    void retire(std::function<void()> release);
     void collectRetired();  // runs the releases whose submissions have completed
     void releaseRetiredNow();  // waits for the queue (pending transitions included), releases all
     void pollFences();      // completes finished submissions without waiting

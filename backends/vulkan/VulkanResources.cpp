@@ -133,11 +133,7 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     try {
         if (!zero) writeBuffer(h, 0, initialData);
         if (fill) {
-            recordInitialTransition([&](VkCommandBuffer cb) {
-                vkCmdFillBuffer(cb, native, 0, VK_WHOLE_SIZE, 0);
-                VulkanCommandList::fullBarrier(cb);
-            });
-            buffers_.get(h, "buffer").zeroFillRecorded = true;
+            recordInitialTransition([native](VkCommandBuffer cb) { vkCmdFillBuffer(cb, native, 0, VK_WHOLE_SIZE, 0); }, 0, h.id);
         }
     } catch (...) {
         destroy(h);
@@ -329,16 +325,16 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     setName(VK_OBJECT_TYPE_IMAGE, uint64_t(t.image), desc.debugName);
     // Move the image into GENERAL once; it stays there (see VulkanDevice.h). Recorded into the
     // next submission (or transfer) rather than submitted and waited for here.
-    try {
-        recordInitialTransition([&](VkCommandBuffer cb) {
-            VulkanCommandList::toGeneral(cb, t.image, desc.format);
-            clearToZero(cb, t);
-        });
-    } catch (...) {
-        destroyTexture(t);  // the submission failed (device lost): the image was never used
-        throw;
-    }
-    return textures_.add(std::move(t));
+    const VkImage image = t.image;
+    const gdi::Format format = desc.format;
+    const gdi::TextureHandle h = textures_.add(std::move(t));
+    recordInitialTransition(
+        [image, format](VkCommandBuffer cb) {
+            VulkanCommandList::toGeneral(cb, image, format);
+            clearToZero(cb, image, format);
+        },
+        h.id);
+    return h;
 }
 
 gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
@@ -398,17 +394,18 @@ void VulkanDevice::destroyTexture(Texture& t) {
 
 // New textures read as zeros on every backend (Device.h), block-compressed ones excepted: they
 // cannot be cleared and are uploaded before use.
-void VulkanDevice::clearToZero(VkCommandBuffer cb, const Texture& t) {
-    if (gdi::isCompressedFormat(t.desc.format)) return;
-    const VkImageSubresourceRange all{aspectOf(t.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
-    if (gdi::isDepthFormat(t.desc.format)) {
+// A new texture's zero clear (in GENERAL, after its transition); the barrier after every
+// pending object's commands orders it before use.
+void VulkanDevice::clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format format) {
+    if (gdi::isCompressedFormat(format)) return;
+    const VkImageSubresourceRange all{aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+    if (gdi::isDepthFormat(format)) {
         const VkClearDepthStencilValue zero{0.0f, 0};
-        vkCmdClearDepthStencilImage(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+        vkCmdClearDepthStencilImage(cb, image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     } else {
         const VkClearColorValue zero{};
-        vkCmdClearColorImage(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
+        vkCmdClearColorImage(cb, image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
     }
-    VulkanCommandList::fullBarrier(cb);
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
@@ -473,7 +470,8 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
     std::lock_guard lock(mutex_);
     Buffer b;
     if (!h || !buffers_.remove(h, b)) return;
-    retire([this, b]() mutable { freeBuffer(b); }, b.zeroFillRecorded);  // the fill may still be pending
+    dropInitialCommands(0, h.id);  // a zero fill not yet submitted never runs
+    retire([this, b]() mutable { freeBuffer(b); });
 }
 
 void VulkanDevice::destroy(gdi::TextureHandle h) {
@@ -483,7 +481,8 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
         gdi::validate::viewsAlive(live->name, live->views);
     if (!h || !textures_.remove(h, t)) return;
     if (Texture* parent = t.viewOf ? textures_.find({t.viewOf}) : nullptr) --parent->views;
-    retire([this, t]() mutable { destroyTexture(t); }, true);
+    dropInitialCommands(h.id, 0);  // nor a first transition and clear
+    retire([this, t]() mutable { destroyTexture(t); });
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {

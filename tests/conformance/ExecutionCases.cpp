@@ -488,6 +488,11 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
     auto cmd = d.createCommandList();
     d.waitIdle();  // earlier destructions have been released: the count below is settled
     const LiveObjects before = d.liveObjects();
+    // Made and destroyed with no submission between: their first commands (Vulkan: the
+    // transition and zero clear, the zero fill) are dropped and they are released at once.
+    d.destroy(d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+    d.destroy(d.createBuffer({.size = 4096, .usage = BufferUsage::Storage}));
+    FE_CONFORMANCE_CHECK(d.liveObjects() == before, "objects made and destroyed before any submission are released at once");
     {
         DeviceObjects inFlight(d);
         TextureHandle tex = tileTexture(inFlight);

@@ -176,6 +176,29 @@ TEST_P(DeviceErrors, BufferBindingArguments) {
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(texel[c], params[c], 1.0 / 255) << "channel " << c;
 }
 
+// The per-object bind path remembers the buffer it bound last (Vulkan skips the handle lookup
+// for it): a buffer bound, destroyed and bound again is still "invalid or destroyed", and a
+// buffer bound only with Storage usage is refused as a uniform buffer after it was bound as
+// storage, on every backend.
+TEST_P(DeviceErrors, RebindingABufferChecksItAgain) {
+    auto ubo = device->createBuffer({.size = 512, .usage = BufferUsage::Uniform});
+    auto ssbo = device->createBuffer({.size = 512, .usage = BufferUsage::Storage});
+    auto other = device->createBuffer({.size = 16, .usage = BufferUsage::Uniform});
+    auto cmd = device->createCommandList();
+    EXPECT_EQ(errorOf([&] { cmd->setUniformBuffer(0, ubo, 0, 64); }), "(no error)");
+    EXPECT_EQ(errorOf([&] { cmd->setUniformBuffer(1, ubo, 256, 64); }), "(no error)");
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(1, ubo, 480, 64); }).find("exceeds its size 512"), std::string::npos);
+    device->destroy(other);  // another object's destroy: the same buffer still binds
+    EXPECT_EQ(errorOf([&] { cmd->setUniformBuffer(1, ubo, 256, 64); }), "(no error)");
+    device->destroy(ubo);
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(1, ubo, 256, 64); }).find("invalid or destroyed"), std::string::npos);
+    EXPECT_EQ(errorOf([&] { cmd->setStorageBuffer(2, ssbo); }), "(no error)");
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(2, ssbo); }).find("Uniform"), std::string::npos);
+    EXPECT_EQ(errorOf([&] { cmd->setStorageBuffer(3, ssbo, 256); }), "(no error)");
+    device->destroy(ssbo);
+    EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(3, ssbo, 256); }).find("invalid or destroyed"), std::string::npos);
+}
+
 // A slot bound with another kind of resource than the pipeline declares is an error at the
 // draw, also when it is re-bound wrongly after draws that were right.
 TEST_P(DeviceErrors, WrongBindingKind) {

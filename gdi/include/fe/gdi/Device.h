@@ -1017,8 +1017,10 @@ public:
 
     // Destruction is immediate for the caller (the handle is invalid at once) and deferred for
     // the GPU: the object's memory is released once every submission made before the call has
-    // completed, without waiting. Destroying an object that a recorded, not yet submitted list
-    // uses makes that list's submit throw Error.
+    // completed, without waiting (an object made and destroyed with no submission between is
+    // released at once: its first commands, such as the zero fill of new memory, never run).
+    // Destroying an object that a recorded, not yet submitted list uses makes that list's
+    // submit throw Error.
     virtual void destroy(BufferHandle) = 0;
     virtual void destroy(TextureHandle) = 0;
     virtual void destroy(SamplerHandle) = 0;
