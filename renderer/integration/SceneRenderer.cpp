@@ -132,7 +132,7 @@ void SceneRenderer::buildGraph() {
     output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
     depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
     technique_->declare(g, output_, depth_);
-    if (s.lightListStatistics) declareListStatistics(g);
+    if (s.lightListStatistics || s.debugView == kLightsEvaluatedView) declareListStatistics(g);
     if (environment_) {
         g.addPass("background", [&](graph::PassBuilder& b) {
             b.colorTarget(output_, gdi::LoadOp::Load);
@@ -175,8 +175,9 @@ void SceneRenderer::buildGraph() {
 graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
     const RenderSettings& s = settings_;
     if (s.debugView == kLightCountView) return declareLightCountView(g);
+    if (s.debugView == kLightsEvaluatedView) return declareLightsEvaluatedView(g);
     graph::TextureId source;
-    std::string names = kLightCountView;
+    std::string names = std::string(kLightCountView) + ", " + kLightsEvaluatedView;
     for (uint32_t i = 0; i < g.textures().size(); ++i) {
         const graph::TextureInfo& t = g.textures()[i];
         names += (names.empty() ? "" : ", ") + t.name;
@@ -211,7 +212,8 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     if (lists.kind != LightLists::Kind::Tiles && lists.kind != LightLists::Kind::Clusters) return;
     const RenderSettings& s = settings_;
     listCounts_ = objects_.add(device_.createTexture({.format = gdi::Format::R32U, .width = s.width, .height = s.height,
-                                                      .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::CopySrc,
+                                                      .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled |
+                                                               gdi::TextureUsage::CopySrc,
                                                       .debugName = "lights evaluated"}));
     const bool clusters = lists.kind == LightLists::Kind::Clusters;
     listStatisticsCs_ = objects_.add(device_.createShader(
@@ -220,6 +222,7 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     listStatisticsPipeline_ = objects_.add(
         device_.createComputePipeline({.computeShader = listStatisticsCs_, .debugName = "light-list statistics"}));
     const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
+    listCountsId_ = counts;
     const graph::BufferId clusterLists = clusters ? clusters_->declare(g) : graph::BufferId{};
     g.addPass("light-list-statistics", [&](graph::PassBuilder& b) {
         b.sample(depth_);
@@ -294,6 +297,40 @@ graph::TextureId SceneRenderer::declareLightCountView(graph::RenderGraph& g) {
         pc.cmd.setUniformBuffer(kSlotFrame, constants.buffer, constants.offset, constants.size);
         pc.cmd.setStorageBuffer(kSlotLights, gpuScene_->lightBuffer());
         pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
+        pc.cmd.draw(3);
+        pc.cmd.endRenderPass();
+    });
+    return view;
+}
+
+graph::TextureId SceneRenderer::declareLightsEvaluatedView(graph::RenderGraph& g) {
+    const RenderSettings& s = settings_;
+    const LightLists lists = technique_->lightLists();
+    if (lists.kind == LightLists::Kind::NotMeasured)
+        throw gdi::Error(std::string("debug view '") + kLightsEvaluatedView + "': technique " + s.technique +
+                         " walks no per-pixel light list (light volumes or reduced-rate lists), so it is not measured");
+    const bool everyLight = lists.kind == LightLists::Kind::EveryLight;
+    debugViewFs_ = objects_.add(device_.createShader(
+        {.stage = gdi::ShaderStage::Fragment,
+         .binary = shaders::find(std::string("scene/debug_lights_evaluated.frag") + (everyLight ? ":FE_EVERY_LIGHT" : ""))}));
+    debugViewPipeline_ = objects_.add(device_.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs_, .fragmentShader = debugViewFs_, .colorFormats = {kRadianceFormat},
+         .debugName = "debug view lights evaluated"}));
+    const graph::TextureId view = g.createTexture("debug view", {.format = kRadianceFormat, .width = s.width, .height = s.height});
+    const graph::TextureId counts = listCountsId_;
+    g.addPass("debug-view", [&](graph::PassBuilder& b) {
+        b.sample(depth_);
+        if (!everyLight) b.sample(counts);
+        b.colorTarget(view);
+    }, [this, everyLight, counts](graph::PassContext& pc) {
+        FrameConstants fc = frame_;
+        fc.lightRange = glm::uvec4(0, gpuScene_->unshadowedLightCount(), 0, 0);  // each shadowed light has its own pass
+        const UploadAllocation constants = queue_->upload(fc);
+        pc.beginRenderPass();
+        pc.cmd.setPipeline(debugViewPipeline_);
+        pc.cmd.setUniformBuffer(kSlotFrame, constants.buffer, constants.offset, constants.size);
+        pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
+        if (!everyLight) pc.cmd.setTexture(kSlotTileLights, pc.texture(counts), pointSampler_);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     });

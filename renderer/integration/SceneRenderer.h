@@ -44,6 +44,10 @@ public:
     // RenderSettings::debugView's name for the per-pixel light-count heat map (the other names
     // are the graph's textures).
     static constexpr const char* kLightCountView = "light count";
+    // The heat map of lights the technique's loop walks per pixel (its tile or cluster list, or
+    // every light; the light-list statistics pass counts them), on a log scale. Refused for
+    // techniques whose lists are not measured (light volumes, reduced-rate lists).
+    static constexpr const char* kLightsEvaluatedView = "lights evaluated";
 
     SceneRenderer(gdi::Device& device, const assets::Scene& scene, const RenderSettings& settings);
     ~SceneRenderer();
@@ -78,6 +82,7 @@ private:
     void buildGraph();
     graph::TextureId declareDebugView(graph::RenderGraph& g);
     graph::TextureId declareLightCountView(graph::RenderGraph& g);
+    graph::TextureId declareLightsEvaluatedView(graph::RenderGraph& g);
     void declareListStatistics(graph::RenderGraph& g);
 
     // First: destroyed last, after the members below that use its objects.
@@ -104,6 +109,7 @@ private:
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
     std::unique_ptr<ClusterLightGrid> clusters_;   // TechniqueContext::clusters
     gdi::TextureHandle listCounts_;                // lights evaluated per pixel (R32U), with statistics
+    graph::TextureId listCountsId_;                // listCounts_ in the graph
     gdi::ShaderHandle listStatisticsCs_;
     gdi::PipelineHandle listStatisticsPipeline_;
     std::vector<assets::Light> sceneLights_;       // the current lights, scene order

@@ -327,4 +327,45 @@ TEST_P(PostProcess, LightCountHeatMap) {
     EXPECT_GE(colours.size(), 4u) << "short-range lights should reach different pixels in different numbers";
 }
 
+// The "lights evaluated" heat map: forward walks every light, so builtin:plane (one light) shows
+// heat(log2(2) / 8) = (0, 0.5, 1) on the whole plane; Forward+ in builtin:atrium walks tile lists
+// of many lengths (more colours, and the same count where its statistics say so); light volumes
+// are not measured and the view is refused, naming why.
+TEST_P(PostProcess, LightsEvaluatedHeatMap) {
+    render::RenderSettings s{.technique = "forward", .width = 64, .height = 48};
+    s.debugView = render::SceneRenderer::kLightsEvaluatedView;
+    const Rendered plane = renderWith(*device, assets::makeBuiltinScene("plane"), s);
+    size_t one = 0, other = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const auto c = plane.display.texel(x, y);
+            if (c[0] + c[1] + c[2] == 0.0f) continue;  // background
+            if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - 0.735f) < 0.01f) ++one;  // sRGB-encoded 0.5
+            else ++other;
+        }
+    EXPECT_GT(one, 64u * 48u / 4);
+    EXPECT_EQ(other, 0u);
+
+    assets::BuiltinOptions o;
+    o.lights = 256;
+    const assets::Scene atrium = assets::makeBuiltinScene("atrium", o);
+    s.technique = "forward-plus";
+    const Rendered tiles = renderWith(*device, atrium, s);
+    std::set<std::array<float, 3>> colours;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const auto c = tiles.display.texel(x, y);
+            colours.insert({c[0], c[1], c[2]});
+        }
+    EXPECT_GE(colours.size(), 6u) << "tile lists of many lengths should show many colours";
+
+    s.technique = "deferred";
+    try {
+        renderWith(*device, atrium, s);
+        ADD_FAILURE() << "deferred's light volumes have no list to show";
+    } catch (const gdi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("not measured"), std::string::npos) << e.what();
+    }
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(PostProcess);

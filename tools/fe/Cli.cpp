@@ -50,12 +50,12 @@ constexpr const char* kUsage =
     "      --pipeline-cache FILE: compiled pipelines kept across runs (loaded at start, saved at exit; a file made\n"
     "        for another device, driver or build is ignored with a warning); start-up times are printed\n"
     "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
-    "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\", a heat map)\n"
+    "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\" / \"lights evaluated\", heat maps)\n"
     "      --strict: the loader's warnings (content skipped or approximated, printed on stderr) are errors\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
     "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
-    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"] [--no-ui] [--validation]\n"
+    "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"|\"lights evaluated\"] [--no-ui] [--validation]\n"
     "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
     "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
@@ -147,7 +147,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
     {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default clamp)"}},
     {"--aa", {"none|fxaa|taa", "the .png's anti-aliasing (default none)"}},
-    {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\""}},
+    {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
     {"--no-aliasing", {"", "transient textures in memory of their own"}},
     {"--window", {"", "show the frames in a window"}},
     {"--verbose", {"", "print the render director's choices and their reasons, and the lights evaluated per pixel"}},

@@ -273,8 +273,8 @@ private:
         // Debug views: any 2D intermediate of this frame's graph.
         if (ImGui::BeginCombo("debug view", s.debugView.empty() ? "frame (L_o)" : s.debugView.c_str())) {
             if (ImGui::Selectable("frame (L_o)", s.debugView.empty())) s.debugView.clear(), changed = true;
-            if (ImGui::Selectable(render::SceneRenderer::kLightCountView, s.debugView == render::SceneRenderer::kLightCountView))
-                s.debugView = render::SceneRenderer::kLightCountView, changed = true;
+            for (const char* view : {render::SceneRenderer::kLightCountView, render::SceneRenderer::kLightsEvaluatedView})
+                if (ImGui::Selectable(view, s.debugView == view)) s.debugView = view, changed = true;
             for (const graph::TextureInfo& t : renderer_->graph().textures()) {
                 const auto& f = gdi::formatInfo(t.desc.format);
                 if (!t.used() || f.isInteger || t.name == "debug view" || t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||
