@@ -29,7 +29,14 @@ AABB AABB::transformed(const glm::mat4& m) const {
     return out;
 }
 
-glm::mat4 Camera::viewFromWorld() const { return glm::inverse(worldFromView); }
+// The rotation inverted on its own: a 4x4 inverse mixes the translation into every cofactor, and
+// 1e5 from the origin that cost the rotation 3 decimal places (the stability case).
+glm::mat4 Camera::viewFromWorld() const {
+    const glm::mat3 rotation = glm::inverse(glm::mat3(worldFromView));
+    glm::mat4 v(rotation);
+    v[3] = glm::vec4(-(rotation * glm::vec3(worldFromView[3])), 1.0f);
+    return v;
+}
 
 Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up, float yfov,
                          float znear, float zfar) {

@@ -44,6 +44,11 @@ gdi::FenceValue CommandQueue::endFrame() {
     return s.fence;
 }
 
+gdi::FenceValue CommandQueue::flush() {
+    if (!inFrame_) throw gdi::Error("CommandQueue::flush outside a frame");
+    return device_.submit(*slots_[frameNumber_ % slots_.size()].commands);
+}
+
 void CommandQueue::waitIdle() {
     for (Slot& s : slots_)
         if (s.fence) device_.wait(s.fence);

@@ -27,6 +27,9 @@ public:
 
     gdi::CommandList& beginFrame();
     gdi::FenceValue endFrame();  // submits the frame's command list
+    // Submits what the frame has recorded so far; recording goes on in the same list (a
+    // profiling run's flush-and-wait between passes).
+    gdi::FenceValue flush();
     void waitIdle();
 
     // Copies `size` bytes into this frame's upload region; aligned for uniform/storage binding.

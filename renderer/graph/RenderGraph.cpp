@@ -470,7 +470,7 @@ void PassContext::beginRenderPass() {
     cmd.beginRenderPass(rp);
 }
 
-void RenderGraph::execute(gdi::CommandList& cmd) {
+void RenderGraph::execute(gdi::CommandList& cmd, const std::function<void(const std::string&)>& afterPass) {
     if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
     cmd.setAutomaticBarriers(false);
     std::vector<gdi::TextureBarrier> barriers;
@@ -493,6 +493,10 @@ void RenderGraph::execute(gdi::CommandList& cmd) {
         if (e.timer) cmd.endTimer(e.timer);
         cmd.popDebugGroup();
         e.timed = bool(e.timer);
+        if (afterPass) {
+            afterPass(pass.name);
+            cmd.setAutomaticBarriers(false);  // a submitted list starts over with the default
+        }
     }
     cmd.setAutomaticBarriers(true);
 }

@@ -182,8 +182,10 @@ public:
     // when aliasing is false) and creates the transient textures and the pass timers.
     void compile(gdi::Device& device, bool aliasing = true);
 
-    // Records every surviving pass. Requires compile(device).
-    void execute(gdi::CommandList& cmd);
+    // Records every surviving pass. Requires compile(device). `afterPass`, when given, runs after
+    // each pass with its name (a profiling run flushes and waits there); the graph then records
+    // on into the same list.
+    void execute(gdi::CommandList& cmd, const std::function<void(const std::string& pass)>& afterPass = {});
 
     const std::vector<PassInfo>& passes() const { return passes_; }
     const std::vector<TextureInfo>& textures() const { return textures_; }

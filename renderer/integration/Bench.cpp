@@ -310,6 +310,7 @@ std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep) {
     return cases;
 }
 
+
 gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends, const BenchOptions& options,
                    const std::function<void(const BenchProgress&)>& progress) {
     gdi::Json doc = {{"schema", "fe-results/1"},
@@ -412,9 +413,6 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     try {
                         const BenchCase& c = *m.c;
                         m.r["cpuFrameMs"] = stats(m.cpu);
-                        gdi::Json passes = gdi::Json::object();
-                        for (const std::string& p : m.order) passes[p] = stats(m.gpu[p]);
-                        m.r["gpuPassMs"] = passes;
                         const graph::RenderGraph& g = m.renderer->graph();
                         gdi::Json textures = gdi::Json::array();
                         const double pixels = double(c.settings.width) * c.settings.height;
@@ -475,6 +473,21 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                             shown = toDisplay(out.width, out.height, linear, c.settings.exposure);
                         }
                         const ImageMetrics metrics = compareImages(shown, it->second.image);
+                        // Pass times, saying which method made them: the timestamps when they
+                        // account for the frame, else three flush-and-wait frames (timestamps kept);
+                        // after the image is read: profiling frames add to temporal histories.
+                        SceneRenderer::PassSamples timestamps;
+                        for (const std::string& p : m.order) timestamps.push_back({p, m.gpu[p]});
+                        const SceneRenderer::PassTimes times = m.renderer->measurePassTimes(timestamps, m.cpu, std::min(options.frames, 3u));
+                        auto json = [](const SceneRenderer::PassSamples& samples) {
+                            gdi::Json j = gdi::Json::object();
+                            for (const auto& [name, v] : samples) j[name] = stats(v);
+                            return j;
+                        };
+                        m.r["passTimeMethod"] = times.method;
+                        m.r["timestampShareOfFrame"] = times.timestampShare;
+                        m.r["gpuPassMs"] = json(times.passes);
+                        if (times.method != "gpu-timestamps") m.r["timestampPassMs"] = json(times.timestamps);
                         if (!options.imageDir.empty()) {
                             const std::string dir = options.imageDir + "/" + backend;
                             std::filesystem::create_directories(dir);

@@ -3,6 +3,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <limits>
 #include <cstring>
 
 #include "assets/AssetError.h"
@@ -353,7 +355,58 @@ void SceneRenderer::setCamera(const assets::Camera& camera) {
     context_->eye = camera.eye();
 }
 
-void SceneRenderer::renderFrame() {
+void SceneRenderer::renderFrame() { recordFrame({}); }
+
+bool SceneRenderer::timersAccountForFrame(const std::vector<PassTiming>& passes, double frameMs) {
+    double sum = 0;
+    for (const PassTiming& p : passes) sum += p.gpuMilliseconds;
+    return !passes.empty() && sum >= kTimersAccountFor * frameMs;
+}
+
+std::vector<PassTiming> SceneRenderer::profilePasses() {
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+    device_.wait(lastFence_);
+    std::vector<PassTiming> out;
+    double overhead = std::numeric_limits<double>::infinity();
+    recordFrame([&](const std::string& pass) {
+        Clock::time_point t = Clock::now();
+        device_.wait(queue_->flush());
+        out.push_back({pass, ms(t)});
+        t = Clock::now();
+        device_.wait(queue_->flush());  // the same list, now empty: what a submission costs
+        overhead = std::min(overhead, ms(t));
+    });
+    device_.wait(lastFence_);
+    for (PassTiming& p : out) p.gpuMilliseconds = std::max(0.0, p.gpuMilliseconds - overhead);
+    return out;
+}
+
+SceneRenderer::PassTimes SceneRenderer::measurePassTimes(const PassSamples& timestamps, const std::vector<double>& frameMs,
+                                                        uint32_t profiled) {
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    PassTimes out{.method = "gpu-timestamps", .passes = timestamps, .timestamps = timestamps};
+    std::vector<PassTiming> medians;
+    double sum = 0;
+    for (const auto& [name, samples] : timestamps) medians.push_back({name, median(samples)}), sum += medians.back().gpuMilliseconds;
+    const double frame = median(frameMs);
+    out.timestampShare = frame > 0 ? sum / frame : 0.0;
+    if (timersAccountForFrame(medians, frame) || profiled == 0) return out;
+    out.method = "flush-and-wait";
+    out.passes.clear();
+    for (uint32_t f = 0; f < profiled; ++f)
+        for (const PassTiming& p : profilePasses()) {
+            auto it = std::find_if(out.passes.begin(), out.passes.end(), [&](const auto& e) { return e.first == p.name; });
+            if (it == out.passes.end()) it = out.passes.insert(out.passes.end(), {p.name, {}});
+            it->second.push_back(p.gpuMilliseconds);
+        }
+    return out;
+}
+
+void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& afterPass) {
     const RenderSettings& s = settings_;
     const assets::Camera& cam = camera_;
     FrameConstants& fc = frame_;
@@ -366,6 +419,11 @@ void SceneRenderer::renderFrame() {
                   unjittered;
     fc.invViewProj = glm::inverse(fc.viewProj);
     fc.view = cam.viewFromWorld();
+    glm::mat4 rotation = fc.view;  // eye space: the view without its translation
+    rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    fc.viewProjFromEye = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * jitter.x / float(s.width), 2.0f * jitter.y / float(s.height), 0.0f)) *
+                         projection(cam.yfov, float(s.width) / float(s.height), cam.znear, cam.zfar) * rotation;
+    fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
@@ -390,7 +448,7 @@ void SceneRenderer::renderFrame() {
     // History from the second frame on; camera motion is handled by reprojection and clamping.
     postProcess_->beginFrame(*queue_, unjittered, frameIndex_ > 1);
     if (shadows_) shadows_->update(cam, float(s.width) / float(s.height), scene_.bounds, sceneLights_);
-    graph_.execute(cmd);
+    graph_.execute(cmd, afterPass);
     lastFence_ = queue_->endFrame();
 }
 

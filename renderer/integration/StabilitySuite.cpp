@@ -76,7 +76,7 @@ std::vector<StabilityCase> stabilityCases() {
                      s.camera->worldFromView = glm::translate(glm::mat4(1.0f), offset) * s.camera->worldFromView;
                      s.bounds = assets::computeWorldBounds(s);
                      return s;
-                 }, 25.0});
+                 }, 1.0});
     c.push_back({"denormal positions and factors", [] {
                      assets::Scene s = assets::makeBuiltinScene("plane");
                      s.meshes[0].primitives[0].vertices[0].uv0 = glm::vec2(1e-40f);
@@ -97,7 +97,7 @@ std::vector<StabilityCase> stabilityCases() {
                          s.materials[i].baseColorFactor.a = 0.5f;
                      }
                      return s;
-                 }, -1.0});
+                 }, 1.0});
     // Non-finite data is refused by every technique, with what and where.
     auto broken = [](const char* what, std::function<void(assets::Scene&)> breakIt, const char* message) {
         return StabilityCase{what, [breakIt] {

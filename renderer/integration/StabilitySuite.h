@@ -16,7 +16,7 @@ struct StabilityCase {
     std::string name;
     std::function<assets::Scene()> scene;  // built without finalizeScene's checks where it must be broken
     // Bound on the percentage of pixels beyond 5/255 of the reference for the exact techniques
-    // (negative: not compared, e.g. BLEND, which the reference does not draw).
+    // (negative: not compared).
     double exactBound = 1.0;
     std::string refusal;  // non-empty: every technique must refuse with a message containing it
 };

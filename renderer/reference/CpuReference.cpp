@@ -213,7 +213,12 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     out.textured.assign(size_t(width) * height, 0);
     out.occluded.assign(size_t(width) * height, 0);
     const double aspect = camera.aspectRatio ? *camera.aspectRatio : double(width) / double(height);
-    const glm::dmat4 invViewProj = glm::inverse(glm::dmat4(viewProjection(camera, float(aspect))));
+    // Eye rays from the projection and the view's rotation alone (camera-relative, as the GPU
+    // renders): a float view-projection holds the eye's distance from the origin in its
+    // translation, which 1e5 from the origin moved these rays by 2 % of a pixel's radiance.
+    glm::dmat4 rotation(glm::inverse(glm::dmat3(camera.worldFromView)));
+    const glm::dmat4 invProjRotation =
+        glm::inverse(glm::dmat4(projection(camera.yfov, float(aspect), camera.znear, camera.zfar)) * rotation);
     const glm::dvec3 eye(camera.eye());
 
     // The radiance a surface sends to the eye and its alpha: `shadows` (the opaque surfaces)
@@ -329,8 +334,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
-            glm::dvec4 farPoint = invViewProj * glm::dvec4(ndc, 0.5, 1.0);
-            glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w - eye);
+            glm::dvec4 farPoint = invProjRotation * glm::dvec4(ndc, 0.5, 1.0);
+            glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w);
             glm::dvec3 invD = 1.0 / dir;
             double best = std::numeric_limits<double>::infinity();
             const WorldTriangle* hit = nullptr;

@@ -44,8 +44,8 @@ void ShadowMaps::update(const assets::Camera& camera, float aspect, const assets
         layers_[i].clear();
         for (uint32_t l = 0; l < s.layers; ++l) {
             FrameConstants fc{};
-            fc.viewProj = p.viewProj[l];
-            fc.invViewProj = glm::inverse(p.viewProj[l]);
+            fc.viewProj = fc.viewProjFromEye = p.viewProj[l];  // the eye at the origin: world space
+            fc.invViewProj = fc.invViewProjFromEye = glm::inverse(p.viewProj[l]);
             layers_[i].push_back(queue_.upload(fc));
         }
         // Directional casters are sorted from the sun's side of the scene.

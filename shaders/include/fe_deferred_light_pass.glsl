@@ -17,7 +17,7 @@ void main() {
     vec4 g0 = texelFetch(gb0, p, 0);
     vec4 g1 = texelFetch(gb1, p, 0);
     const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
-    SurfaceLight l = feEvaluateLight(feLight(vLightIndex), s.P);
+    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), s.Pe);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(s.P, s.n);
 #endif

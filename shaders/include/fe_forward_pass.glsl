@@ -27,7 +27,7 @@ void main() {
     if (m.unlit) {
         L = first ? m.baseColor : vec3(0.0);
     } else {
-        const SurfacePoint s = feMaterialSurface(m, vWorld);
+        const SurfacePoint s = feMaterialSurface(m, vEye);
         const SurfaceBrdf brdf = fePrepareBrdf(s);
 #ifdef FE_TILE_LISTS
         // forward-plus: the lights of this pixel's tile list (light-culling pass), all lights where
@@ -49,9 +49,9 @@ void main() {
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {
 #endif
-            SurfaceLight l = feEvaluateLight(feLight(i), vWorld);
+            SurfaceLight l = feEvaluateLightFromEye(feLight(i), vEye);
 #ifdef FE_SHADOWED
-            l.E *= feShadowVisibility(vWorld, s.n);  // forward_shadowed*.frag: one light per pass
+            l.E *= feShadowVisibility(s.P, s.n);  // forward_shadowed*.frag: one light per pass
 #endif
             L += feShadeLight(brdf, l);
         }

@@ -26,8 +26,9 @@ void main() {
     const float depth = texelFetch(depthTexture, p, 0).r;
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     const vec4 g1 = texelFetch(gb1, p, 0);
-    const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
-    const IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(frame.cameraPosition.xyz - P), g1.a, frame.counts.z);
+    const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+    const vec3 P = frame.cameraPosition.xyz + Pe;
+    const IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(-Pe), g1.a, frame.counts.z);
 #ifndef FE_IBL_SPECULAR_ONLY
     outLdg = vec4(acc.Ldg, 0.0);
 #endif

@@ -19,14 +19,15 @@ void main() {
     float depth = texelFetch(depthTexture, p, 0).r;
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     vec4 g1 = texelFetch(gb1, p, 0);
-    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+    vec3 P = frame.cameraPosition.xyz + Pe;
     vec3 n = normalize(g1.xyz);
-    vec3 wo = normalize(frame.cameraPosition.xyz - P);
+    vec3 wo = normalize(-Pe);
     IlluminationSums acc;
     acc.Ldg = vec3(0.0);
     acc.Lsg1 = vec3(0.0);
     acc.Lsg2 = vec3(0.0);
-    SurfaceLight l = feEvaluateLight(feLight(vLightIndex), P);
+    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), Pe);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);  // at the representative pixel, like the rest of the sums
 #endif

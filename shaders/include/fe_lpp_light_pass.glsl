@@ -14,10 +14,11 @@ void main() {
     if (depth >= 1.0) discard;
     vec4 t = texelFetch(normalTexture, p, 0);
     vec3 n = feUnpackNormal(t);
-    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);  // the eye ray at the stored depth
-    vec3 wo = normalize(frame.cameraPosition.xyz - P);
+    const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+    vec3 P = frame.cameraPosition.xyz + Pe;  // the eye ray at the stored depth
+    vec3 wo = normalize(-Pe);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
-    SurfaceLight l = feEvaluateLight(feLight(vLightIndex), P);
+    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), Pe);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);
 #endif

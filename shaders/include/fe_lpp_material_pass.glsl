@@ -17,7 +17,7 @@ void main() {
         return;
     }
     vec4 light = texelFetch(lightBuffer, ivec2(gl_FragCoord.xy), 0);
-    vec3 wo = normalize(frame.cameraPosition.xyz - vWorld);
+    vec3 wo = normalize(-vEye);
     float r = feClampRoughness(m.roughness);
     float k = (r + 1.0) * (r + 1.0) / 8.0;
     float NoV = max(dot(m.n, wo), 1e-4);
@@ -30,7 +30,7 @@ void main() {
     vec3 Ls = chroma * light.a * F / (NoV * (1.0 - k) + k);
     vec3 L = m.emissive + Ld + Ls;
 #ifdef FE_IBL
-    L += feShadeEnvironment(feMaterialSurface(m, vWorld), frame.counts.z);
+    L += feShadeEnvironment(feMaterialSurface(m, vEye), frame.counts.z);
 #endif
     outRadiance = vec4(L, 1.0);
 }

@@ -6,7 +6,7 @@
 // What scene/mesh.vert (FE_MESH_VERTEX_STAGE, which declares them as outputs) passes every
 // mesh-pass fragment shader; each includes this file.
 #ifndef FE_MESH_VERTEX_STAGE
-layout(location = 0) in vec3 vWorld;
+layout(location = 0) in vec3 vEye;  // camera-relative position: world minus frame.cameraPosition
 layout(location = 1) in vec3 vNormal;
 layout(location = 2) in vec4 vTangent;
 layout(location = 3) in vec2 vUv;
@@ -66,12 +66,13 @@ MaterialSample feSampleMaterial(vec2 uv, vec3 N, vec4 T, bool frontFacing) {
 // MASK: discard below the cutoff; OPAQUE: alpha ignored.
 bool feAlphaDiscard(float alpha) { return object.params.w == 1.0 && alpha < object.params.z; }
 
-// The shading inputs of a sampled material at world position P, seen from the camera.
-SurfacePoint feMaterialSurface(MaterialSample m, vec3 P) {
+// The shading inputs of a sampled material at eye-space position Pe, seen from the camera.
+SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     SurfacePoint s;
-    s.P = P;
+    s.P = frame.cameraPosition.xyz + Pe;
+    s.Pe = Pe;
     s.n = m.n;
-    s.wo = normalize(frame.cameraPosition.xyz - P);
+    s.wo = normalize(-Pe);
     s.baseColor = m.baseColor;
     s.metallic = m.metallic;
     s.roughness = m.roughness;

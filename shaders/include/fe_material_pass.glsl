@@ -46,9 +46,10 @@ void main() {
     outRadiance = vec4(g2.rgb + feResolveMaterialNoV(acc, g2.a, g0.rgb, g0.a, g1.a), 1.0);
 #else
     float depth = texelFetch(depthTexture, p, 0).r;
-    vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+    vec3 P = frame.cameraPosition.xyz + Pe;
     vec3 n = normalize(g1.xyz);
-    vec3 wo = normalize(frame.cameraPosition.xyz - P);
+    vec3 wo = normalize(-Pe);
     acc.Ldg = texelFetch(iLdg, p, 0).rgb;
     acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
     acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;

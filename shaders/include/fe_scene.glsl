@@ -44,6 +44,8 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 temporal;        // xy representative pixel's offset in its I-buffer block, z history valid, w history cap
     mat4 prevViewProj;    // the previous frame's viewProj
     vec4 clusters;        // the light cluster grid's slicing (fe_clusters.glsl): x near, y slices / ln(far / near), z far
+    mat4 viewProjFromEye;     // clip from eye space (world - cameraPosition.xyz): camera-relative rendering
+    mat4 invViewProjFromEye;  // and back
 } frame;
 
 // The representative pixel of I-buffer texel q is q * scale + feRepOffset() (clamped to the
@@ -103,19 +105,29 @@ void feUnpackOctYRoughness(float v, out float octY, out float roughness) {
     octY = fract(v) * 2.0 - 1.0;
 }
 
-// World position of full-resolution pixel `p` from its depth (Vulkan clip conventions).
-vec3 feWorldFromDepth(vec2 pixelCenter, float depth) {
+// Eye-space offset (world - camera position) of full-resolution pixel `p` from its depth
+// (Vulkan clip conventions). Rebuilt relative to the camera: the world-space inverse multiplies
+// the position's distance from the origin into every term.
+vec3 feEyeFromDepth(vec2 pixelCenter, float depth) {
     vec2 ndc = pixelCenter * frame.viewport.zw * 2.0 - 1.0;
-    vec4 w = frame.invViewProj * vec4(ndc, depth, 1.0);
-    return w.xyz / w.w;
+    vec4 e = frame.invViewProjFromEye * vec4(ndc, depth, 1.0);
+    return e.xyz / e.w;
 }
+vec3 feWorldFromDepth(vec2 pixelCenter, float depth) {
+    return frame.cameraPosition.xyz + feEyeFromDepth(pixelCenter, depth);
+}
+
+// The light at eye-space offset Pe from the camera (feEvaluateLightAt).
+SurfaceLight feEvaluateLightFromEye(GpuLight L, vec3 Pe) { return feEvaluateLightAt(L, Pe, frame.cameraPosition.xyz); }
 
 // The surface a G-buffer pixel holds (base colour + metallic in g0, normal + roughness in g1).
 SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
     SurfacePoint s;
-    s.P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    const vec3 eye = feEyeFromDepth(vec2(p) + 0.5, depth);
+    s.P = frame.cameraPosition.xyz + eye;
+    s.Pe = eye;
     s.n = normalize(g1.xyz);
-    s.wo = normalize(frame.cameraPosition.xyz - s.P);
+    s.wo = normalize(-eye);
     s.baseColor = g0.rgb;
     s.metallic = g0.a;
     s.roughness = g1.a;

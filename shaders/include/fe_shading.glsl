@@ -31,7 +31,10 @@ float feRangeWindow(float d, float range) {
     return w * w;
 }
 
-SurfaceLight feEvaluateLight(GpuLight L, vec3 P) {
+// The light at P = origin + Pe. Camera-relative callers pass the eye-space offset Pe and the
+// camera position: the light's position minus the camera's is exact in float where both are far
+// from the origin and near each other, so the light vector keeps the offset's precision.
+SurfaceLight feEvaluateLightAt(GpuLight L, vec3 Pe, vec3 origin) {
     SurfaceLight s;
     vec3 E = L.colorIntensity.rgb * L.colorIntensity.w;
     if (L.directionType.w == FE_LIGHT_DIRECTIONAL) {
@@ -39,7 +42,7 @@ SurfaceLight feEvaluateLight(GpuLight L, vec3 P) {
         s.E = E;
         return s;
     }
-    vec3 toLight = L.positionRange.xyz - P;
+    vec3 toLight = (L.positionRange.xyz - origin) - Pe;
     float d2 = max(dot(toLight, toLight), 1e-12);
     float d = sqrt(d2);
     s.wi = toLight / d;
@@ -52,9 +55,11 @@ SurfaceLight feEvaluateLight(GpuLight L, vec3 P) {
     s.E = E;
     return s;
 }
+SurfaceLight feEvaluateLight(GpuLight L, vec3 P) { return feEvaluateLightAt(L, P, vec3(0.0)); }
 
 struct SurfacePoint {
     vec3 P;          // world position
+    vec3 Pe;         // eye space: P minus the camera position (camera-relative lighting)
     vec3 n;          // unit shading normal
     vec3 wo;         // unit vector to the eye
     vec3 baseColor;  // linear

@@ -41,7 +41,7 @@ void main() {
             // Most of a tile's lights miss most of its pixels: beyond its range a light adds
             // exactly 0 (the range window), so skip the shading.
             if (!feLightReaches(L, s.P)) continue;
-            radiance += feShadeLight(brdf, feEvaluateLight(L, s.P));
+            radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
         }
     }
     imageStore(outRadiance, p, vec4(radiance, 1.0));

@@ -34,9 +34,10 @@ void main() {
     vec4 g1 = vec4(0.0, 0.0, 1.0, 0.0);
     if (depth < 1.0) {
         g1 = texelFetch(gb1, p, 0);
-        const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
+        const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+        const vec3 P = frame.cameraPosition.xyz + Pe;
         const vec3 n = normalize(g1.xyz);
-        const vec3 wo = normalize(frame.cameraPosition.xyz - P);
+        const vec3 wo = normalize(-Pe);
         const RoughnessTerms terms = feRoughnessTerms(g1.a);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {
@@ -44,7 +45,7 @@ void main() {
             // Many of a tile's lights miss this texel's point: beyond its range a light adds
             // exactly 0 (range window), skip it.
             if (!feLightReaches(L, P)) continue;
-            feAccumulateIllumination(acc, n, wo, terms, feEvaluateLight(L, P));
+            feAccumulateIllumination(acc, n, wo, terms, feEvaluateLightFromEye(L, Pe));
         }
     }
     // The representative pixel's data for the upsampling filter (fe_scene.glsl).

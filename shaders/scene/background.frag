@@ -5,6 +5,6 @@
 layout(binding = FE_SLOT_ENVIRONMENT) uniform samplerCube environment;
 layout(location = 0) out vec4 outRadiance;
 void main() {
-    const vec3 d = normalize(feWorldFromDepth(gl_FragCoord.xy, 0.5) - frame.cameraPosition.xyz);
+    const vec3 d = normalize(feEyeFromDepth(gl_FragCoord.xy, 0.5));
     outRadiance = vec4(textureLod(environment, d, 0.0).rgb, 1.0);
 }

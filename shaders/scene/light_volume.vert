@@ -14,9 +14,9 @@ void main() {
         gl_Position = vec4(inPosition.xy, 0.0, 1.0);
         return;
     }
-    vec3 world;
+    vec3 world;  // relative to the light, then to the eye (camera-relative, as mesh.vert)
     if (inShape == 1u) {
-        world = L.positionRange.xyz + inPosition * L.positionRange.w;
+        world = inPosition * L.positionRange.w;
     } else {
         vec3 d = normalize(L.directionType.xyz);
         vec3 up = abs(d.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
@@ -26,7 +26,7 @@ void main() {
         float cosOuter = clamp(-L.spotScaleOffset.y / L.spotScaleOffset.x, 0.0, 1.0);
         float tanOuter = sqrt(max(1.0 - cosOuter * cosOuter, 0.0)) / max(cosOuter, 1e-3);
         float r = L.positionRange.w;
-        world = L.positionRange.xyz + (t * inPosition.x * tanOuter + b * inPosition.y * tanOuter + d * inPosition.z) * r;
+        world = (t * inPosition.x * tanOuter + b * inPosition.y * tanOuter + d * inPosition.z) * r;
     }
-    gl_Position = frame.viewProj * vec4(world, 1.0);
+    gl_Position = frame.viewProjFromEye * vec4((L.positionRange.xyz - frame.cameraPosition.xyz) + world, 1.0);
 }

@@ -7,7 +7,7 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
-layout(location = 0) out vec3 vWorld;
+layout(location = 0) out vec3 vEye;  // world minus the camera position
 layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec2 vUv;
@@ -19,10 +19,12 @@ layout(location = 3) out vec2 vUv;
 invariant gl_Position;
 precise gl_Position;
 void main() {
-    vec4 world = object.world * vec4(inPosition, 1.0);
-    vWorld = world.xyz;
+    // Camera-relative: the object's translation minus the eye's is exact in float where both are
+    // far from the origin and near each other (Sterbenz), so the offset keeps its precision.
+    const vec3 eye = mat3(object.world) * inPosition + (object.world[3].xyz - frame.cameraPosition.xyz);
+    vEye = eye;
     vNormal = mat3(object.normalMatrix) * inNormal;
     vTangent = vec4(mat3(object.world) * inTangent.xyz, inTangent.w);
     vUv = inUv;
-    gl_Position = frame.viewProj * world;
+    gl_Position = frame.viewProjFromEye * vec4(eye, 1.0);
 }

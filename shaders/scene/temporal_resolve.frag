@@ -42,7 +42,8 @@ void main() {
         current = feUpsampleIBuffer(p, depth, normalize(g1.xyz), g1);
     }
     // Last frame's history at this surface point.
-    const vec3 P = feWorldFromDepth(vec2(p) + 0.5, depth);
+    const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
+    const vec3 P = frame.cameraPosition.xyz + Pe;
     const vec4 c = frame.prevViewProj * vec4(P, 1.0);
     const vec2 prev = (c.xy / c.w * 0.5 + 0.5) * frame.viewport.xy;
     // frame.temporal.z: 0 no history, 1 a still view (history read texel for texel, so the

@@ -1,5 +1,5 @@
-// Layer 5 frame plumbing on every backend: the headless swap chain's ring of images and the
-// command queue's frames in flight with their upload regions.
+// Layer 5 frame plumbing on every backend: the headless swap chain's ring of images, the
+// command queue's frames in flight with their upload regions, and pass timing.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -8,6 +8,8 @@
 #include "fe/gdi/Backend.h"
 #include "frame/CommandQueue.h"
 #include "frame/SwapChain.h"
+#include "assets/BuiltinScenes.h"
+#include "integration/SceneRenderer.h"
 
 using namespace fe;
 
@@ -57,3 +59,47 @@ TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Frames);
+
+// Pass times you can trust (issue 28): a flush-and-wait profiling frame times every pass the
+// graph executes, in order, and leaves the image as a plain frame draws it; the method is chosen
+// from whether the timestamps account for the frame.
+class PassTimes : public fe::testing::BackendTest {};
+
+TEST_P(PassTimes, FlushAndWaitTimesEveryPassAndLeavesTheImage) {
+    assets::BuiltinOptions o;
+    o.lights = 16;
+    const assets::Scene scene = assets::makeBuiltinScene("lights", o);
+    const std::string technique = device->info().features.computeShaders ? "deferred-tiled" : "deferred";
+    render::SceneRenderer r(*device, scene, {.technique = technique, .width = 64, .height = 48});
+    r.renderFrame();
+    const gdi::Image plain = r.readOutput();
+    std::vector<std::string> executed;
+    for (const graph::PassInfo& p : r.graph().passes())
+        if (!p.culled) executed.push_back(p.name);
+    const std::vector<graph::PassTiming> profiled = r.profilePasses();
+    std::vector<std::string> timed;
+    double sum = 0;
+    for (const graph::PassTiming& p : profiled) {
+        timed.push_back(p.name);
+        EXPECT_GE(p.gpuMilliseconds, 0.0) << p.name;
+        sum += p.gpuMilliseconds;
+    }
+    EXPECT_EQ(timed, executed);
+    EXPECT_GT(sum, 0.0);
+    EXPECT_EQ(r.readOutput().data, plain.data) << "a profiled frame draws what a plain one does";
+
+    using render::SceneRenderer;
+    EXPECT_FALSE(SceneRenderer::timersAccountForFrame({{"a", 1.0}}, 10.0));
+    EXPECT_TRUE(SceneRenderer::timersAccountForFrame({{"a", 3.0}, {"b", 3.0}}, 10.0));
+    EXPECT_FALSE(SceneRenderer::timersAccountForFrame({}, 10.0)) << "no timestamps account for nothing";
+    const SceneRenderer::PassTimes low = r.measurePassTimes({{"gbuffer", {0.1, 0.1}}}, {100.0, 100.0}, 2);
+    EXPECT_EQ(low.method, "flush-and-wait");
+    ASSERT_EQ(low.passes.size(), executed.size());
+    EXPECT_EQ(low.passes.front().second.size(), 2u) << "two profiled frames";
+    EXPECT_NEAR(low.timestampShare, 0.001, 1e-9);
+    const SceneRenderer::PassTimes high = r.measurePassTimes({{"gbuffer", {90.0}}}, {100.0}, 2);
+    EXPECT_EQ(high.method, "gpu-timestamps");
+    EXPECT_EQ(high.passes, high.timestamps);
+}
+
+FE_INSTANTIATE_FOR_EVERY_BACKEND(PassTimes);

@@ -104,6 +104,28 @@ int cmdInfo(const Args& a) {
     }
     return 0;
 }
+// Pass times, saying which method made them (SceneRenderer::measurePassTimes): the GPU
+// timestamps where they account for the frame, else `profiled` flush-and-wait frames (medians).
+void printPassTimes(render::SceneRenderer& renderer, const std::vector<std::string>& order,
+                    std::map<std::string, std::vector<double>>& timestamps, const std::vector<double>& frameMs, uint32_t profiled) {
+    auto median = [](std::vector<double> v) { std::sort(v.begin(), v.end()); return v.empty() ? 0.0 : v[v.size() / 2]; };
+    render::SceneRenderer::PassSamples samples;
+    for (const std::string& name : order) samples.push_back({name, timestamps[name]});
+    const render::SceneRenderer::PassTimes t = renderer.measurePassTimes(samples, frameMs, profiled);
+    const int share = int(100.0 * t.timestampShare + 0.5);
+    if (t.method == "gpu-timestamps") {
+        std::cout << "pass times (GPU timestamps; they sum to " << share << " % of the frame):\n";
+        for (const auto& [name, v] : t.passes) std::cout << "  pass " << name << ": " << median(v) << " ms GPU\n";
+        return;
+    }
+    std::cout << "pass times (flush-and-wait profiling, median of " << profiled << " frame(s): the GPU timestamps "
+              << (order.empty() ? std::string("are unavailable") : "sum to only " + std::to_string(share) + " % of the frame")
+              << "):\n";
+    for (const auto& [name, v] : t.passes)
+        std::cout << "  pass " << name << ": " << median(v) << " ms (flush-and-wait"
+                  << (timestamps.count(name) ? "; timestamps " + std::to_string(median(timestamps[name])) + " ms" : std::string()) << ")\n";
+}
+
 
 int cmdRender(const Args& a) {
     cli::RenderJob job = cli::renderJob(a);
@@ -208,7 +230,7 @@ int cmdRender(const Args& a) {
                   << " ms; pipeline cache " << (c.loaded ? "loaded " + std::to_string(c.loadedBytes) + " bytes" : std::string("empty"))
                   << ", " << c.hits << " hit(s), " << c.misses << " compiled\n";
     }
-    for (auto& name : passOrder) std::cout << "  pass " << name << ": " << median(gpu[name]) << " ms GPU\n";
+    printPassTimes(renderer, passOrder, gpu, cpu, std::min<uint32_t>(uint32_t(cpu.size()), 3));
     const graph::MemoryReport mem = renderer.graph().memory();
     static const char* modes[] = {"none", "heap memory aliasing", "texture object reuse"};
     std::cout << "transient memory: " << mem.withAliasing << " bytes with aliasing (" << modes[int(renderer.graph().aliasing())]
