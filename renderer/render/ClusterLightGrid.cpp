@@ -14,10 +14,10 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
         throw gdi::Error("clustered light lists need compute shaders, which " + c.device.info().backend + " lacks");
     const RenderSettings& s = c.settings;
     tiles_ = {(s.width + kTilePixels - 1) / kTilePixels, (s.height + kTilePixels - 1) / kTilePixels};
-    // Room for every light of the scene, shadowed ones too (the translucent pass lights with
-    // them), up to kMaxListLength; the count word before each list.
-    capacity_ = std::min(c.scene.lightCount(), kMaxListLength);
-    const uint64_t bytes = uint64_t(clusterCount()) * (capacity_ + 1) * sizeof(uint32_t);
+    // Every light of the scene is assigned, shadowed ones too (the translucent pass lights with
+    // them). The buffer: the reservation counter, (offset, count) per cluster, then the indices.
+    capacity_ = clusterCount() * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
+    const uint64_t bytes = (1 + 2 * uint64_t(clusterCount()) + capacity_) * sizeof(uint32_t);
     lists_ = objects_.add(c.device.createBuffer({.size = bytes,
                                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
                                                  .debugName = "cluster light lists"}));
@@ -50,6 +50,15 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
     g.markOutput(declared_);  // statistics() reads it back
     g.addPass("light-assignment", [&](graph::PassBuilder& b) { b.buffer(declared_, gdi::BufferAccess::StorageWrite); },
               [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
+                  // The reservation counter starts each frame at 0.
+                  const gdi::BufferBarrier beforeClear{.buffer = lists_, .before = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite,
+                                                       .after = gdi::BufferAccess::CopyDst, .offset = 0, .size = 4};
+                  pc.cmd.barrier(&beforeClear, 1);
+                  pc.cmd.clearBuffer(lists_, 0, 4, 0);
+                  const gdi::BufferBarrier afterClear{.buffer = lists_, .before = gdi::BufferAccess::CopyDst,
+                                                      .after = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite,
+                                                      .offset = 0, .size = 4};
+                  pc.cmd.barrier(&afterClear, 1);
                   pc.cmd.setPipeline(pipeline_);
                   const UploadAllocation& fc = ctx_.frameConstants;
                   pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
@@ -66,10 +75,10 @@ ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
     const std::vector<uint8_t> bytes = ctx_.device.readBuffer(lists_, 0, ctx_.device.desc(lists_).size);
     std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
-    Statistics s{.clusters = clusterCount()};
+    Statistics s{.clusters = clusterCount(), .entries = words[0]};
     uint64_t sum = 0;
     for (uint32_t c = 0; c < s.clusters; ++c) {
-        const uint32_t count = words[size_t(c) * (capacity_ + 1)];
+        const uint32_t count = words[2 + 2 * size_t(c)];
         if (count == 0xffffffffu) {
             ++s.overflowed;
             continue;

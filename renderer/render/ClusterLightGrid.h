@@ -6,8 +6,11 @@
 // ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
 // range reaches a cluster's box into its list, in a storage buffer the shading passes read
 // (shaders/include/fe_clusters.glsl). The grid does not depend on the opaque depth, so blended
-// surfaces use it as opaque ones do. A list holds up to kMaxListLength lights; a fuller cluster
-// is marked to shade every light and counted (Statistics), so a light is never dropped.
+// surfaces use it as opaque ones do. The lists are compact: each cluster reserves exactly its
+// length in one shared index array (an atomic counter), so a crowded far cluster takes what
+// near empty ones leave; the array holds kMeanListCapacity lights per cluster on average. A
+// cluster that finds no room is marked to shade every light and counted (Statistics), so a
+// light is never dropped.
 #pragma once
 #include <cstdint>
 
@@ -18,9 +21,9 @@ namespace fe::render {
 
 class ClusterLightGrid {
 public:
-    static constexpr uint32_t kTilePixels = 32;       // FE_CLUSTER_TILE
-    static constexpr uint32_t kSlices = 24;           // FE_CLUSTER_SLICES
-    static constexpr uint32_t kMaxListLength = 255;   // lights per cluster list at most
+    static constexpr uint32_t kTilePixels = 32;        // FE_CLUSTER_TILE
+    static constexpr uint32_t kSlices = 24;            // FE_CLUSTER_SLICES
+    static constexpr uint32_t kMeanListCapacity = 64;  // index entries per cluster (at most the scene's lights)
 
     explicit ClusterLightGrid(TechniqueContext& context);
     ClusterLightGrid(const ClusterLightGrid&) = delete;
@@ -37,7 +40,7 @@ public:
     static glm::vec4 slicing(const assets::Camera& camera, const assets::Bounds& sceneBounds);
 
     uint32_t clusterCount() const { return tiles_.x * tiles_.y * kSlices; }
-    uint32_t listCapacity() const { return capacity_; }
+    uint32_t listCapacity() const { return capacity_; }  // light indices all lists together hold
 
     // What the last frame's lists hold (read back: after the frame completes).
     struct Statistics {
@@ -45,7 +48,8 @@ public:
         uint32_t nonEmpty = 0;      // clusters with at least one light
         double meanLights = 0;      // per non-empty cluster
         uint32_t maxLights = 0;
-        uint32_t overflowed = 0;    // clusters that shade every light (more than the capacity)
+        uint32_t overflowed = 0;    // clusters that shade every light (no room left in the index array)
+        uint32_t entries = 0;       // light indices the lists asked for (overflowed ones included)
     };
     Statistics statistics() const;
 

@@ -3,10 +3,11 @@
 // of view depth spaced exponentially from the near plane to frame.clusters.z (the far side of
 // the scene), each holding the lights whose range reaches it. The grid does not depend on the
 // opaque depth, so translucent surfaces read it as opaque ones do.
-// The lists live in a storage buffer of uints: per cluster (slice-major, then rows, then columns)
-// a block of 1 + C words (C from the buffer's length): the count (all ones: the list overflowed,
-// shade every light), then the lights in increasing order. A fragment beyond the last slice
-// shades every light too, so no light is ever dropped.
+// The lists live in a storage buffer of uints: word 0 counts the index entries reserved this
+// frame; then per cluster (slice-major, then rows, then columns) its list's first word and its
+// length (all ones: no room was left, shade every light); then the lists, compact, each in
+// increasing light order. A fragment beyond the last slice shades every light too, so no light
+// is ever dropped.
 #ifndef FE_CLUSTERS_GLSL
 #define FE_CLUSTERS_GLSL
 #include "fe_scene.glsl"
@@ -38,16 +39,17 @@ int feClusterSlice(float v) {
     return clamp(int(floor(log(max(v, frame.clusters.x) / frame.clusters.x) * frame.clusters.y)), 0, FE_CLUSTER_SLICES - 1);
 }
 
-// Lights a list has room for.
-uint feClusterCapacity() {
+// The word where the lists begin, and the index entries they have room for together.
+uint feClusterListsStart() {
     const ivec2 tiles = feClusterTiles();
-    return uint(clusterWords.length()) / uint(tiles.x * tiles.y * FE_CLUSTER_SLICES) - 1u;
+    return 1u + 2u * uint(tiles.x * tiles.y * FE_CLUSTER_SLICES);
 }
+uint feClusterCapacity() { return uint(clusterWords.length()) - feClusterListsStart(); }
 
-uint feClusterBlock(ivec2 tile, int slice) {
+// The cluster's (first word, length) pair.
+uint feClusterHeader(ivec2 tile, int slice) {
     const ivec2 tiles = feClusterTiles();
-    const uint cluster = uint((slice * tiles.y + tile.y) * tiles.x + tile.x);
-    return cluster * (feClusterCapacity() + 1u);
+    return 1u + 2u * uint((slice * tiles.y + tile.y) * tiles.x + tile.x);
 }
 
 #ifndef FE_CLUSTER_ASSIGN
@@ -57,11 +59,12 @@ void feUseClusterList(ivec2 pixel, float depth) {
     const int slice = feClusterSlice(feViewDepth(depth));
     feClusterCount_ = 0xffffffffu;
     if (slice >= FE_CLUSTER_SLICES) return;
-    feClusterBase_ = feClusterBlock(pixel / FE_CLUSTER_TILE, slice);
-    feClusterCount_ = clusterWords[feClusterBase_];
+    const uint header = feClusterHeader(pixel / FE_CLUSTER_TILE, slice);
+    feClusterBase_ = clusterWords[header];
+    feClusterCount_ = clusterWords[header + 1u];
 }
 // Lights below `end` (the list is ordered): the caller's range, all of them when overflowed.
 uint feClusterLightCount(uint end) { return feClusterCount_ == 0xffffffffu ? end : feClusterCount_; }
-uint feClusterLight(uint k) { return feClusterCount_ == 0xffffffffu ? k : clusterWords[feClusterBase_ + 1u + k]; }
+uint feClusterLight(uint k) { return feClusterCount_ == 0xffffffffu ? k : clusterWords[feClusterBase_ + k]; }
 #endif
 #endif

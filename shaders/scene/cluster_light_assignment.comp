@@ -35,25 +35,39 @@ void main() {
         feTileSliceBox(p0, p1, feDepthOfViewDepth(z[k] * 0.999), feDepthOfViewDepth(z[k + 1] * 1.001), lo[k], hi[k]);
     vec3 columnLo, columnHi;
     feTileSliceBox(p0, p1, feDepthOfViewDepth(z[0] * 0.999), feDepthOfViewDepth(z[FE_CLUSTER_SLICES] * 1.001), columnLo, columnHi);
-    const uint capacity = feClusterCapacity();
+    // Two walks over the lights: the first counts each slice's list, then each non-empty list
+    // reserves its room in the shared index array (one atomic add), the second fills them.
     uint count[FE_CLUSTER_SLICES];
     for (int k = 0; k < FE_CLUSTER_SLICES; ++k) count[k] = 0u;
-    for (uint i = 0u; i < frame.counts.w; ++i) {
-        const GpuLight L = feLight(i);
-        if (!feLightTouchesBox(L, columnLo, columnHi)) continue;
-        int first = 0, last = FE_CLUSTER_SLICES - 1;
-        if (L.directionType.w != FE_LIGHT_DIRECTIONAL && L.positionRange.w > 0.0) {
-            // The slices the sphere spans along the view axis, one more each side for rounding.
-            const float v = -(frame.view * vec4(L.positionRange.xyz, 1.0)).z, r = L.positionRange.w;
-            first = max(feClusterSlice(v - r) - 1, 0);
-            last = min(feClusterSlice(v + r) + 1, FE_CLUSTER_SLICES - 1);
+    for (int pass = 0; pass < 2; ++pass) {
+        for (uint i = 0u; i < frame.counts.w; ++i) {
+            const GpuLight L = feLight(i);
+            if (!feLightTouchesBox(L, columnLo, columnHi)) continue;
+            int first = 0, last = FE_CLUSTER_SLICES - 1;
+            if (L.directionType.w != FE_LIGHT_DIRECTIONAL && L.positionRange.w > 0.0) {
+                // The slices the sphere spans along the view axis, one more each side for rounding.
+                const float v = -(frame.view * vec4(L.positionRange.xyz, 1.0)).z, r = L.positionRange.w;
+                first = max(feClusterSlice(v - r) - 1, 0);
+                last = min(feClusterSlice(v + r) + 1, FE_CLUSTER_SLICES - 1);
+            }
+            for (int k = first; k <= last; ++k) {
+                if (!feLightTouchesBox(L, lo[k], hi[k])) continue;
+                if (pass == 1) {
+                    const uint header = feClusterHeader(tile, k);
+                    if (clusterWords[header + 1u] != 0xffffffffu) clusterWords[clusterWords[header] + count[k]] = i;
+                }
+                ++count[k];
+            }
         }
-        for (int k = first; k <= last; ++k) {
-            if (!feLightTouchesBox(L, lo[k], hi[k])) continue;
-            const uint block = feClusterBlock(tile, k);
-            if (count[k] < capacity) clusterWords[block + 1u + count[k]] = i;
-            ++count[k];
+        if (pass == 1) break;
+        const uint start = feClusterListsStart(), capacity = feClusterCapacity();
+        for (int k = 0; k < FE_CLUSTER_SLICES; ++k) {
+            const uint header = feClusterHeader(tile, k);
+            const uint base = count[k] == 0u ? 0u : atomicAdd(clusterWords[0], count[k]);
+            const bool fits = base + count[k] <= capacity && base + count[k] >= base;
+            clusterWords[header] = start + base;
+            clusterWords[header + 1u] = fits ? count[k] : 0xffffffffu;
+            count[k] = 0u;  // the second walk counts again, as it writes
         }
     }
-    for (int k = 0; k < FE_CLUSTER_SLICES; ++k) clusterWords[feClusterBlock(tile, k)] = count[k] > capacity ? 0xffffffffu : count[k];
 }

@@ -126,7 +126,9 @@ TEST_P(RenderAccuracy, ClusteredTechniquesCullExactly) {
         gdi::Image image = r.readOutput();
         if (r.clusters()) {
             const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
-            EXPECT_EQ(st.clusters, 3u * 2u * render::ClusterLightGrid::kSlices) << t;
+            constexpr uint32_t tile = render::ClusterLightGrid::kTilePixels;
+            EXPECT_EQ(st.clusters, (96 + tile - 1) / tile * ((64 + tile - 1) / tile) * render::ClusterLightGrid::kSlices) << t;
+            EXPECT_LE(st.entries, r.clusters()->listCapacity()) << t;
             EXPECT_EQ(st.overflowed, 0u) << t;
             EXPECT_GT(st.nonEmpty, 0u) << t;
             EXPECT_LT(st.meanLights, 256.0 / 4) << t << ": the clusters hardly cull";
@@ -223,9 +225,10 @@ TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {
     }
 }
 
-// A cluster list holds at most ClusterLightGrid::kMaxListLength lights; a fuller cluster shades
-// every light and is counted. 300 weak lights reaching every pixel overflow every cluster they
-// reach: the image still equals forward's.
+// The clusters' lists share an index array of ClusterLightGrid::kMeanListCapacity entries per
+// cluster; a cluster that finds no room left shades every light and is counted. 300 weak lights
+// reaching every pixel ask for 300 per cluster: the later clusters overflow, and the image still
+// equals forward's.
 TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
     assets::Scene scene1 = assets::makeBuiltinScene("lights", {.lights = 300});
     for (auto& l : scene1.lights) {
@@ -238,6 +241,7 @@ TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
     const gdi::Image clustered = r.readOutput();
     const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
     EXPECT_GT(st.overflowed, 0u);
+    EXPECT_GT(st.entries, r.clusters()->listCapacity());
     render::SceneRenderer f(*device, scene1, {.technique = "forward", .width = 48, .height = 32});
     f.renderFrame();
     Stats s = compare(clustered, f.readOutput(), 1e-5, 1e-5);

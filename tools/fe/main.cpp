@@ -248,7 +248,8 @@ int cmdRender(const Args& a) {
         std::cout << "light clusters: " << c.clusters << " (" << render::ClusterLightGrid::kTilePixels << "x"
                   << render::ClusterLightGrid::kTilePixels << " px x " << render::ClusterLightGrid::kSlices << " slices), "
                   << c.nonEmpty << " with lights, " << c.meanLights << " lights per such cluster (max " << c.maxLights
-                  << "), " << c.overflowed << " overflowed (over " << grid->listCapacity() << ": shade every light)\n";
+                  << "), " << c.entries << " of " << grid->listCapacity() << " index entries used, " << c.overflowed
+                  << " overflowed (no room left: shade every light)\n";
     }
     if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
     if (!captured.empty()) std::cout << "RenderDoc capture of frame 0: " << captured << "\n";
