@@ -119,17 +119,29 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
     } else if (n.lightCoverage < kTiledMinCoverage) {
         s.technique = "deferred";
         c.reasons.push_back("technique deferred: " + lights + " " + cover + ", under " + fixed(kTiledMinCoverage) +
-                            ": light volumes cost only the pixels they cover, tiles a fixed culling pass");
+                            ": light volumes cost only the pixels they cover, tiles a fixed culling pass (measured "
+                            "against clustered-forward and forward-plus at 8 and 32 lights on builtin:lights and "
+                            "builtin:atrium: fastest in five cases of eight, docs/BENCHMARKS.md director crossovers)");
     } else if (hasComputeShaders(info)) {
         s.technique = "deferred-tiled";
         c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +
                             " with a range) " + cover + ": each pixel reads the G-buffer once and shades only the "
-                            "lights that reach its 8x8 tile");
+                            "lights that reach its 8x8 tile, culled to the tile's depth bounds; measured against "
+                            "clustered-forward and forward-plus from 128 to 512 lights on builtin:lights and the deep "
+                            "builtin:atrium: fastest in six cases of eight, clustered-forward 5-7 % faster in the other "
+                            "two (docs/BENCHMARKS.md director crossovers); the clusters' fixed depth slices hold about "
+                            "twice the lights of a depth-bounded tile");
     } else {
         s.technique = "deferred";
         c.reasons.push_back("technique deferred: " + lights + " " + cover + " and no compute shaders on " + info.backend +
                             ": lights drawn as volumes");
     }
+
+    if (n.blendPrimitives)
+        c.reasons.push_back(std::to_string(n.blendPrimitives) + " translucent primitive(s): " +
+                            (hasComputeShaders(info) ? "their pass lights them from the light cluster grid whatever the technique, "
+                                                       "so they do not change the choice (measured with builtin:atrium's banners)"
+                                                     : "their pass shades every light (no compute shaders for a cluster grid)"));
 
     // A reduced illumination rate: only where a probe frame shows it within the error budget.
     const bool candidate = exactOnly && (s.technique == "deferred-tiled" || s.technique == "deferred");

@@ -78,6 +78,19 @@ TEST_P(RenderDirector, LightsCoveringLittleGetLightVolumes) {
     EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
 }
 
+// Without MSAA, the deep scene with translucent banners and many lights: deferred-tiled (measured
+// fastest or within noise of clustered-forward and forward-plus), and --verbose says why,
+// translucency included.
+TEST_P(RenderDirector, ManyLightsInTheAtriumWithoutMsaaGetTiledDeferredAndSayWhy) {
+    if (!device->info().features.computeShaders) GTEST_SKIP() << "no compute shaders";
+    const assets::Scene scene = assets::makeBuiltinScene("atrium", {.lights = 256});
+    const Built b = build(*device, scene, {.technique = "auto"});
+    EXPECT_EQ(b.technique, "deferred-tiled");
+    EXPECT_NE(b.reasons[0].find("against clustered-forward and forward-plus"), std::string::npos) << b.reasons[0];
+    EXPECT_TRUE(anyStartsWith(b.reasons, std::to_string(render::sceneNeeds(scene, 64.0f / 48.0f).blendPrimitives) +
+                                             " translucent primitive(s): their pass lights them from the light cluster grid"));
+}
+
 // --msaa with many lights: clustered forward, multisampled and exact (measured fastest with MSAA).
 TEST_P(RenderDirector, MsaaWithManyLightsGetsClusteredForward) {
     if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
