@@ -2,7 +2,8 @@
 # fe bench's report in a browser: a small sweep on every backend, then the page opened in
 # headless Chromium (Debian's chromium): every image and chart must load, no script or console
 # error may occur, the stability table and conformance triplets must be there, and a screenshot of the page is kept
-# beside it (report.png).
+# beside it (report.png). The charts: each has a legend, the heaviest cases' chart (light count x
+# pixels) opens the page, and report.py still draws a sweep of one backend, technique and light count.
 # Usage: report_in_chromium.sh FE SWEEP.json OUT_DIR
 set -euo pipefail
 fe=$1 sweep=$2 out=$3
@@ -16,6 +17,44 @@ grep -q '<h2>Conformance</h2>' "$out/report.html" || { echo "no conformance sect
 charts=$(ls "$out"/charts/*.png | wc -l)
 svgs=$(ls "$out"/charts/*.svg | wc -l)
 [ "$charts" -ge 4 ] && [ "$charts" -eq "$svgs" ] || { echo "expected 4 or more charts as PNG and SVG, got $charts / $svgs"; exit 1; }
+# Every chart names its techniques (or bars) in a legend, not in text at the points.
+for svg in "$out"/charts/*.svg; do
+  grep -q 'id="legend_1"' "$svg" || { echo "no legend in $svg"; exit 1; }
+done
+# report.py as fe runs it (Debian's interpreter, whose python3-matplotlib it is), from this source tree.
+python=/usr/bin/python3; [ -x "$python" ] || python=python3
+report="$(cd "$(dirname "$0")/.." && pwd)/tools/bench/report.py"
+"$python" - "$out" <<'PY'
+import json, os, re, sys
+out = sys.argv[1]
+doc = json.load(open(os.path.join(out, "results.json")))
+done = [r for r in doc["results"] if "refused" not in r]
+# The page opens with the heaviest cases' chart (light count x pixels): when those cases have
+# lights, with scaling_lights, before the charts of the cases without lights.
+def weight(r):
+    s = r["settings"]
+    return max(s["lights"], 1) * s["width"] * s["height"]
+lit = max((weight(r) for r in done if r["settings"]["lights"]), default=0)
+unlit = max((weight(r) for r in done if not r["settings"]["lights"]), default=0)
+first = re.search(r'src="charts/([^"]+)\.png"', open(os.path.join(out, "report.html")).read())
+if lit > unlit and (not first or first.group(1) != "scaling_lights"):
+    sys.exit(f"the report opens with {first and first.group(1)}, not scaling_lights (the heaviest cases)")
+# One backend, one technique, one light count: the results cut down to one case with lights.
+one = next((r for r in done if r["settings"]["lights"]), None)
+if one is None:
+    sys.exit("the sweep has no case with lights")
+doc["results"] = [one]
+doc["backends"] = [b for b in doc["backends"] if b["name"] == one["backend"]]
+doc.pop("stability", None)
+doc.pop("conformance", None)
+os.makedirs(os.path.join(out, "one-case"), exist_ok=True)
+json.dump(doc, open(os.path.join(out, "one-case", "results.json"), "w"))
+PY
+"$python" "$report" "$out/one-case/results.json" >/dev/null || { echo "report.py failed on one backend, technique and light count"; exit 1; }
+for f in scaling_lights.png scaling_lights.svg; do
+  test -s "$out/one-case/charts/$f" || { echo "no $f for one backend, technique and light count"; exit 1; }
+done
+grep -q 'id="legend_1"' "$out/one-case/charts/scaling_lights.svg" || { echo "no legend for one technique"; exit 1; }
 url="file://$(realpath "$out")/report.html"
 browse() { timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=10000 "$@" "$url" 2>/dev/null; }
 body=$(browse --dump-dom | grep -o '<body[^>]*>' || true)
