@@ -121,15 +121,18 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
         c.reasons.push_back("technique deferred: " + lights + " " + cover + ", under " + fixed(kTiledMinCoverage) +
                             ": light volumes cost only the pixels they cover, tiles a fixed culling pass (measured "
                             "against clustered-forward and forward-plus at 8 and 32 lights on builtin:lights and "
-                            "builtin:atrium: fastest in five cases of eight, docs/BENCHMARKS.md director crossovers)");
+                            "builtin:atrium: fastest in four cases of eight, clustered-forward up to 35 % faster in "
+                            "the others, mostly the deep atrium, which the director cannot tell apart yet; "
+                            "docs/BENCHMARKS.md director crossovers)");
     } else if (hasComputeShaders(info)) {
         s.technique = "deferred-tiled";
         c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +
                             " with a range) " + cover + ": each pixel reads the G-buffer once and shades only the "
                             "lights that reach its 8x8 tile, culled to the tile's depth bounds; measured against "
                             "clustered-forward and forward-plus from 128 to 512 lights on builtin:lights and the deep "
-                            "builtin:atrium: fastest in six cases of eight, clustered-forward 5-7 % faster in the other "
-                            "two (docs/BENCHMARKS.md director crossovers); the clusters' fixed depth slices hold about "
+                            "builtin:atrium: fastest in six cases of eight, clustered-forward 13-27 % faster in the "
+                            "other two (the atrium at 128 lights, where tiles span near columns and far walls; "
+                            "docs/BENCHMARKS.md director crossovers); the clusters' fixed depth slices hold about "
                             "twice the lights of a depth-bounded tile");
     } else {
         s.technique = "deferred";
