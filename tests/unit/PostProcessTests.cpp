@@ -55,6 +55,33 @@ double mean(const std::vector<double>& v) {
     return v.empty() ? 0.0 : s / double(v.size());
 }
 
+// A heat-map debug view's pixels: black (no surface), of the colour (0, green, 1) (sRGB-encoded),
+// or anything else.
+struct HeatPixels {
+    size_t black = 0, matching = 0, other = 0;
+};
+HeatPixels heatPixels(const gdi::Image& display, float green) {
+    HeatPixels h;
+    for (uint32_t y = 0; y < display.height; ++y)
+        for (uint32_t x = 0; x < display.width; ++x) {
+            const auto c = display.texel(x, y);
+            if (c[0] + c[1] + c[2] == 0.0f) ++h.black;
+            else if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - green) < 0.01f) ++h.matching;
+            else ++h.other;
+        }
+    return h;
+}
+
+size_t distinctColours(const gdi::Image& display) {
+    std::set<std::array<float, 3>> colours;
+    for (uint32_t y = 0; y < display.height; ++y)
+        for (uint32_t x = 0; x < display.width; ++x) {
+            const auto c = display.texel(x, y);
+            colours.insert({c[0], c[1], c[2]});
+        }
+    return colours.size();
+}
+
 }  // namespace
 
 TEST(Tonemap, OperatorsKeepTheirPromises) {
@@ -305,26 +332,13 @@ TEST_P(PostProcess, LightCountHeatMap) {
     render::RenderSettings s{.technique = "forward", .width = 64, .height = 48};
     s.debugView = render::SceneRenderer::kLightCountView;
     const Rendered plane = renderWith(*device, assets::makeBuiltinScene("plane"), s);
-    size_t one = 0, black = 0, other = 0;
-    for (uint32_t y = 0; y < 48; ++y)
-        for (uint32_t x = 0; x < 64; ++x) {
-            const auto c = plane.display.texel(x, y);
-            if (c[0] + c[1] + c[2] == 0.0f) ++black;
-            else if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - 0.388f) < 0.01f) ++one;  // heat(1/32), sRGB-encoded
-            else ++other;
-        }
-    EXPECT_GT(one, 64u * 48u / 4);  // the plane fills most of the view; any background stays black
-    EXPECT_EQ(other, 0u) << black << " black pixels";
+    const HeatPixels one = heatPixels(plane.display, 0.388f);  // heat(1/32), sRGB-encoded
+    EXPECT_GT(one.matching, 64u * 48u / 4);  // the plane fills most of the view; any background stays black
+    EXPECT_EQ(one.other, 0u) << one.black << " black pixels";
     assets::BuiltinOptions o;
     o.lights = 64;
     const Rendered lights = renderWith(*device, assets::makeBuiltinScene("lights", o), s);
-    std::set<std::array<float, 3>> colours;
-    for (uint32_t y = 0; y < 48; ++y)
-        for (uint32_t x = 0; x < 64; ++x) {
-            const auto c = lights.display.texel(x, y);
-            colours.insert({c[0], c[1], c[2]});
-        }
-    EXPECT_GE(colours.size(), 4u) << "short-range lights should reach different pixels in different numbers";
+    EXPECT_GE(distinctColours(lights.display), 4u) << "short-range lights should reach different pixels in different numbers";
 }
 
 // The "lights evaluated" heat map: forward walks every light, so builtin:plane (one light) shows
@@ -335,29 +349,16 @@ TEST_P(PostProcess, LightsEvaluatedHeatMap) {
     render::RenderSettings s{.technique = "forward", .width = 64, .height = 48};
     s.debugView = render::SceneRenderer::kLightsEvaluatedView;
     const Rendered plane = renderWith(*device, assets::makeBuiltinScene("plane"), s);
-    size_t one = 0, other = 0;
-    for (uint32_t y = 0; y < 48; ++y)
-        for (uint32_t x = 0; x < 64; ++x) {
-            const auto c = plane.display.texel(x, y);
-            if (c[0] + c[1] + c[2] == 0.0f) continue;  // background
-            if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - 0.735f) < 0.01f) ++one;  // sRGB-encoded 0.5
-            else ++other;
-        }
-    EXPECT_GT(one, 64u * 48u / 4);
-    EXPECT_EQ(other, 0u);
+    const HeatPixels one = heatPixels(plane.display, 0.735f);  // sRGB-encoded 0.5
+    EXPECT_GT(one.matching, 64u * 48u / 4);
+    EXPECT_EQ(one.other, 0u);
 
     assets::BuiltinOptions o;
     o.lights = 256;
     const assets::Scene atrium = assets::makeBuiltinScene("atrium", o);
     s.technique = "forward-plus";
     const Rendered tiles = renderWith(*device, atrium, s);
-    std::set<std::array<float, 3>> colours;
-    for (uint32_t y = 0; y < 48; ++y)
-        for (uint32_t x = 0; x < 64; ++x) {
-            const auto c = tiles.display.texel(x, y);
-            colours.insert({c[0], c[1], c[2]});
-        }
-    EXPECT_GE(colours.size(), 6u) << "tile lists of many lengths should show many colours";
+    EXPECT_GE(distinctColours(tiles.display), 6u) << "tile lists of many lengths should show many colours";
 
     s.technique = "deferred";
     try {
