@@ -224,6 +224,8 @@ void GlDevice::initialize(bool validation) {
     info_.limits.depthSampleCounts = countsFor(maxDepth, {F::D32F, F::D24S8});
     info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
     info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
+    info_.limits.maxStorageTextures = uint32_t(std::min({get(GL_MAX_IMAGE_UNITS), get(GL_MAX_FRAGMENT_IMAGE_UNIFORMS),
+                                                         get(GL_MAX_COMPUTE_IMAGE_UNIFORMS), get(GL_MAX_COMBINED_IMAGE_UNIFORMS)}));
     info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
     info_.limits.maxStorageBufferRange = get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
@@ -489,10 +491,13 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     s.entry = desc.entryPoint ? desc.entryPoint : "main";
     s.codeHash = gdi::fnv1a({reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
                             gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()}));
-    if (!s.iface.specConstants.empty()) s.spirv.assign(code.begin(), code.end());
+    const std::vector<uint32_t> unnamed = gdi::withNamesPrefixed(code, std::string(gdi::shaderStageName(desc.stage)) + ".");
+    const bool images = std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
+                                    [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
+    if (!s.iface.specConstants.empty() || images) s.spirv = unnamed;
     return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
-        s.name = specializedShader(s, code, {});
+        s.name = specializedShader(s, unnamed, {});
         return shaders_.add(std::move(s));
     });
 }
@@ -538,14 +543,37 @@ GLuint GlDevice::checkLinked(GLuint p, const std::string& label) {
     return p;
 }
 
-// Links the pipeline's shaders: each one's own shader object, or one specialized with the
-// pipeline's values for the stages that declare them (deleted once linked).
+std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders) {
+    std::array<uint8_t, 64> unit;
+    unit.fill(0xff);
+    for (const Shader* sh : shaders)
+        for (const auto& b : sh ? sh->iface.bindings : std::vector<gdi::ShaderInterface::Binding>{})
+            if (b.type == gdi::BindingType::StorageTexture && b.slot < unit.size()) unit[b.slot] = 0;
+    uint8_t next = 0;
+    for (uint8_t& u : unit)
+        if (u == 0) u = next++;
+    return unit;
+}
+
+// The slots of those units, by unit.
+static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shaders) {
+    const std::array<uint8_t, 64> units = imageUnits(shaders);
+    std::vector<uint8_t> slots;
+    for (uint8_t slot = 0; slot < units.size(); ++slot)
+        if (units[slot] != 0xff) slots.push_back(slot);
+    return slots;
+}
+
+// Links the pipeline's shaders: each one's own shader object, or one of its own (deleted once
+// linked) for the stages that declare the pipeline's specialization constants or whose storage
+// textures take other image units in this pipeline than their slot numbers.
 GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
                               const std::string& label) {
     std::vector<GLuint> names, owned;
     auto dropOwned = [&] {
         for (GLuint n : owned) gl_.DeleteShader(n);
     };
+    const std::array<uint8_t, 64> units = imageUnits(shaders);
     try {
         for (const Shader* sh : shaders) {
             if (!sh) continue;
@@ -553,8 +581,12 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, cons
                 return std::any_of(sh->iface.specConstants.begin(), sh->iface.specConstants.end(),
                                    [&](const auto& c) { return c.id == v.id; });
             });
-            if (specialize) owned.push_back(specializedShader(*sh, sh->spirv, values));
-            names.push_back(specialize ? owned.back() : sh->name);
+            const bool renumber = std::any_of(sh->iface.bindings.begin(), sh->iface.bindings.end(), [&](const auto& b) {
+                return b.type == gdi::BindingType::StorageTexture && units[b.slot] != b.slot;
+            });
+            if (renumber) owned.push_back(specializedShader(*sh, gdi::withStorageTextureSlots(sh->spirv, units), values));
+            else if (specialize) owned.push_back(specializedShader(*sh, sh->spirv, values));
+            names.push_back(specialize || renumber ? owned.back() : sh->name);
         }
         GLuint program = gl_.CreateProgram();
         gl_.ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // for the pipeline cache
@@ -668,10 +700,11 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         }
         gdi::validate::vertexInputs(d, vs.iface, p.label);
         if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
-        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label);
+        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label, info_.limits);
         p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
         gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
         p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label);
+        p.imageSlots = imageSlots({&vs, fsShader});
         gl_.CreateVertexArrays(1, &p.vao);
         for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
             const auto& vb = d.vertexBuffers[i];
@@ -715,10 +748,11 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         Shader& cs = shaders_.get(d.computeShader, "compute shader");
         if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
         gdi::validate::workgroup(cs.iface, info_.limits, p.label);
-        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label);
+        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label, info_.limits);
         p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
         gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
         p.program = cachedProgram({&cs}, d.specialization, p.label);
+        p.imageSlots = imageSlots({&cs});
         p.compute = true;
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);

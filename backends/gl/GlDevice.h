@@ -73,7 +73,8 @@ struct Shader {
     gdi::ShaderStage stage = gdi::ShaderStage::None;
     std::string label;
     gdi::ShaderInterface iface;  // reflected: pipelines are checked against it
-    // For pipelines with specialization constants, which specialize a shader object of their own.
+    // Names prefixed by the stage (gdi::withNamesPrefixed). Kept for shaders with specialization constants
+    // or storage textures: pipelines specialize or renumber a shader object of their own.
     std::vector<uint32_t> spirv;
     std::string entry;
     uint64_t codeHash = 0;  // of the SPIR-V and entry point: part of a program's cache key
@@ -88,8 +89,14 @@ struct Pipeline {
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
     uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)
+    // The storage-texture slots its shaders use, in slot order: slot imageSlots[u] is bound to
+    // image unit u (the shaders are renumbered so; GL may have only 8 units).
+    std::vector<uint8_t> imageSlots;
     std::string label;
 };
+// The image units of a pipeline of these shaders: each storage-texture slot they use, in
+// order, takes the next unit (0xff: not a storage texture of theirs).
+std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders);
 struct Timer {
     GLuint queries[2] = {0, 0};
     bool used = false;

@@ -163,7 +163,7 @@ void GlReplay::operator()(const cmd::EndRenderPass&) {
 
 void GlReplay::operator()(const cmd::SetPipeline& r) {
     const Pipeline& p = dev_.pipelineAt(r.pipeline);
-    if (pipeline_ != &p) vertexDirty_ = indexDirty_ = constantsDirty_ = true;  // another VAO, maybe another block size
+    if (pipeline_ != &p) vertexDirty_ = indexDirty_ = constantsDirty_ = imagesDirty_ = true;  // another VAO, block size, units
     pipeline_ = &p;
     gl_.UseProgram(p.program);
     if (p.compute) return;
@@ -290,11 +290,20 @@ void GlReplay::operator()(const cmd::SetStorageTexture& r) {
     const Texture& t = dev_.textureAt(r.texture);
     // Every layer (arrays, cubes, 3D slices) of the mip, as Vulkan's storage view binds it.
     const GLboolean layered = t.target == GL_TEXTURE_2D ? GL_FALSE : GL_TRUE;
-    gl_.BindImageTexture(r.slot, t.name, GLint(r.mipLevel), layered, 0, GL_READ_WRITE, toGlFormat(t.desc.format).internal);
+    images_[r.slot] = {t.name, GLint(r.mipLevel), layered, toGlFormat(t.desc.format).internal};
+    imagesDirty_ = true;
+}
+void GlReplay::bindImages() {
+    imagesDirty_ = false;
+    if (!pipeline_) return;
+    for (size_t unit = 0; unit < pipeline_->imageSlots.size(); ++unit) {
+        const ImageBinding& b = images_[pipeline_->imageSlots[unit]];
+        if (b.texture) gl_.BindImageTexture(GLuint(unit), b.texture, b.mipLevel, b.layered, 0, GL_READ_WRITE, b.format);
+    }
 }
 
 void GlReplay::bindVertexBuffers() {
-    if (constantsDirty_) flushConstants();
+    flushBindings();
     if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
     for (size_t i = 0; i < pipeline_->strides.size(); ++i)
         gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
@@ -322,7 +331,7 @@ void GlReplay::operator()(const cmd::DrawIndexed& r) {
 // Dispatches and copies keep full barriers even with automatic barriers off: glMemoryBarrier
 // is cheap next to them, and GL has no finer ordering to gain.
 void GlReplay::operator()(const cmd::Dispatch& r) {
-    if (constantsDirty_) flushConstants();
+    flushBindings();
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.DispatchCompute(r.groupsX, r.groupsY, r.groupsZ);
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -358,7 +367,7 @@ void GlReplay::operator()(const cmd::DrawIndexedIndirectCount& r) {
                                        GLintptr(r.countOffset), GLsizei(r.maxDrawCount), GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DispatchIndirect& r) {
-    if (constantsDirty_) flushConstants();
+    flushBindings();
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
     gl_.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
     gl_.DispatchComputeIndirect(GLintptr(r.offset));

@@ -96,6 +96,22 @@ private:
     std::array<std::byte, gdi::kMaxConstantBytes> constants_{};
     bool constantsDirty_ = true;
     void flushConstants();
+    // setStorageTexture's textures by slot, bound to the pipeline's image units (Pipeline::
+    // imageSlots) at the next draw or dispatch: the unit of a slot depends on the pipeline.
+    struct ImageBinding {
+        GLuint texture = 0;
+        GLint mipLevel = 0;
+        GLboolean layered = GL_FALSE;
+        GLenum format = 0;
+    };
+    std::array<ImageBinding, 64> images_{};
+    bool imagesDirty_ = true;
+    void bindImages();
+    // What every draw and dispatch needs first: the constants and the storage textures.
+    void flushBindings() {
+        if (constantsDirty_) flushConstants();
+        if (imagesDirty_) bindImages();
+    }
     GLuint indexBuffer_ = 0;
     uint64_t indexOffset_ = 0;
     gdi::IndexType indexType_ = gdi::IndexType::U32;

@@ -352,6 +352,7 @@ void VulkanDevice::fillInfo() {
     info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
+    info_.limits.maxStorageTextures = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
     info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
     info_.limits.uniformBufferOffsetAlignment = uint32_t(l.minUniformBufferOffsetAlignment);

@@ -162,7 +162,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     gdi::validate::vertexInputs(d, vs.iface, name);
     if (fs) gdi::validate::fragmentOutputs(d, fs->iface, name);
     const std::vector<gdi::BindingSlot> bindings =
-        gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fs ? &fs->iface : nullptr}, name);
+        gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fs ? &fs->iface : nullptr}, name, info_.limits);
     for (gdi::Format f : d.colorFormats)
         if (!supportsFormat(f, gdi::TextureUsage::RenderTarget))
             throw gdi::Error("pipeline '" + name + "': format " + std::string(gdi::formatInfo(f).name) +
@@ -319,7 +319,7 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     const uint32_t constantBytes = gdi::validate::pipelineConstants({&cs.iface}, name);
     gdi::validate::specialization(d.specialization, {&cs.iface}, name);
     const StageSpecialization spec(d.specialization);
-    Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name), d.debugName,
+    Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name, info_.limits), d.debugName,
                             constantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -1,4 +1,5 @@
 #include "fe/gdi/CommandRecorder.h"
+#include "fe/gdi/Validation.h"
 
 #include <vector>
 
@@ -41,10 +42,14 @@ void RecordingCommandList::setVertexBuffer(uint32_t i, BufferHandle b, uint64_t 
 void RecordingCommandList::setIndexBuffer(BufferHandle b, IndexType t, uint64_t o) {
     inner_->setIndexBuffer(b, t, o), stream_->push(cmd::SetIndexBuffer{b, t, o});
 }
+// Offsets are checked against the recording device's limits too: a capture device reports the
+// alignments every backend takes, stricter than its inner device's own.
 void RecordingCommandList::setUniformBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) {
+    validate::bindingLimits(o, n, validate::uniformBindingLimits(device_.info().limits), "setUniformBuffer");
     inner_->setUniformBuffer(s, b, o, n), stream_->push(cmd::SetUniformBuffer{s, b, o, n});
 }
 void RecordingCommandList::setStorageBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) {
+    validate::bindingLimits(o, n, validate::storageBindingLimits(device_.info().limits), "setStorageBuffer");
     inner_->setStorageBuffer(s, b, o, n), stream_->push(cmd::SetStorageBuffer{s, b, o, n});
 }
 void RecordingCommandList::setTexture(uint32_t s, TextureHandle t, SamplerHandle p) {

@@ -367,6 +367,55 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     return out;
 }
 
+std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const std::string& prefix) {
+    constexpr uint32_t kOpName = 5;
+    std::vector<uint32_t> out(spirv.begin(), spirv.begin() + std::min<size_t>(5, spirv.size()));
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (words == 0 || i + words > spirv.size()) throw Error("SPIR-V instruction stream is damaged at word " + std::to_string(i));
+        if (op == kOpName && words >= 3 && spirv[i + 2] != 0) {  // an empty name stays empty (anonymous)
+            // OpName <target> "string": a nul-terminated UTF-8 literal padded to whole words.
+            const char* old = reinterpret_cast<const char*>(&spirv[i + 2]);
+            const std::string name = prefix + std::string(old, strnlen(old, size_t(words - 2) * 4));
+            const size_t literalWords = name.size() / 4 + 1;
+            out.push_back(uint32_t((2 + literalWords) << 16) | kOpName);
+            out.push_back(spirv[i + 1]);
+            const size_t at = out.size();
+            out.resize(at + literalWords, 0);
+            std::memcpy(&out[at], name.data(), name.size());
+        } else {
+            out.insert(out.end(), spirv.begin() + long(i), spirv.begin() + long(i + words));
+        }
+        i += words;
+    }
+    return out;
+}
+
+// SPIRV-Cross knows where each decoration's literal sits in the module (the word offset it
+// reports is the one to patch), so the renumbering needs no instruction walk of its own.
+std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv, const std::array<uint8_t, 64>& newSlot) {
+    std::vector<uint32_t> out(spirv.begin(), spirv.end());
+    Context c;
+    spvc_parsed_ir ir = nullptr;
+    spvc_compiler comp = nullptr;
+    spvc_resources all = nullptr;
+    if (!c.ctx || spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
+        spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) != SPVC_SUCCESS ||
+        spvc_compiler_create_shader_resources(comp, &all) != SPVC_SUCCESS)
+        throw Error("SPIR-V reflection failed while renumbering storage textures");
+    const spvc_reflected_resource* list = nullptr;
+    size_t count = 0;
+    spvc_resources_get_resource_list_for_type(all, SPVC_RESOURCE_TYPE_STORAGE_IMAGE, &list, &count);
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t slot = spvc_compiler_get_decoration(comp, list[i].id, SpvDecorationBinding);
+        uint32_t offset = 0;
+        if (slot < newSlot.size() && newSlot[slot] != 0xff &&
+            spvc_compiler_get_binary_offset_for_decoration(comp, list[i].id, SpvDecorationBinding, &offset) && offset < out.size())
+            out[offset] = newSlot[slot];
+    }
+    return out;
+}
+
 ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
                               const std::string& name, SpirvRules rules) {
     try {

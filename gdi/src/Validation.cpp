@@ -593,7 +593,8 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const
 namespace fe::gdi::validate {
 
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline,
+                                          const DeviceLimits& limits) {
     const std::string what = "pipeline '" + pipeline + "'";
     std::vector<BindingSlot> used;  // by slot, stages merged
     for (const ShaderInterface* sh : shaders) {
@@ -615,6 +616,10 @@ std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declar
         }
     }
     std::sort(used.begin(), used.end(), [](const BindingSlot& a, const BindingSlot& b) { return a.slot < b.slot; });
+    const auto images = std::count_if(used.begin(), used.end(), [](const BindingSlot& u) { return u.type == BindingType::StorageTexture; });
+    if (limits.maxStorageTextures && uint64_t(images) > limits.maxStorageTextures)
+        fail(what, "the shaders use " + std::to_string(images) + " storage textures; this device binds at most " +
+                       std::to_string(limits.maxStorageTextures) + " to one pipeline (limits.maxStorageTextures)");
     if (declared.empty()) return used;
     for (const BindingSlot& u : used) {
         auto it = std::find_if(declared.begin(), declared.end(), [&](const BindingSlot& d) { return d.slot == u.slot; });

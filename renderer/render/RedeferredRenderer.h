@@ -27,7 +27,10 @@ public:
 
     // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
     // the roughness clamp, beyond half range for bright lights, so they are 32-bit.
-    static constexpr gdi::Format kI0 = gdi::Format::RGBA16F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
+    // L_dg is an irradiance: E = I / d^2 passes half-float range (65504) for the lights the engine
+    // accepts (the stability suite's 1e7 cd), and NVIDIA's additive blending of half floats
+    // then stores infinity where lavapipe saturates (H100, 2026-11-27). All three are 32-bit.
+    static constexpr gdi::Format kI0 = gdi::Format::RGBA32F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
 
 private:
     // One I-buffer: L_dg, L_sg1, L_sg2 at 1/rate (the specular sums' size in width, height).

@@ -10,7 +10,7 @@ layout(local_size_x = FE_TILE_TEXELS, local_size_y = FE_TILE_TEXELS) in;
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
 layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(binding = FE_SLOT_IBUFFER0, rgba16f) uniform writeonly image2D outLdg;
+layout(binding = FE_SLOT_IBUFFER0, rgba32f) uniform writeonly image2D outLdg;
 layout(binding = FE_SLOT_IBUFFER1, rgba32f) uniform writeonly image2D outLsg1;
 layout(binding = FE_SLOT_IBUFFER2, rgba32f) uniform writeonly image2D outLsg2;
 

@@ -235,6 +235,54 @@ std::vector<CaseImage> storageTextureLayers(Device& d) {
     return out;
 }
 
+// Storage textures at slots 9 and 40 (GL has as few as 8 image units: the backend numbers a
+// pipeline's storage textures itself), then another compute pipeline with its own storage
+// texture, then the first pipeline again with other textures: each lands in its own texture.
+std::vector<CaseImage> storageTexturesAtAnySlot(Device& d) {
+    DeviceObjects o(d);
+    const TextureDesc small{.width = 8, .height = 8, .usage = TextureUsage::Storage | TextureUsage::CopySrc};
+    const TextureHandle a = o.add(d.createTexture(small)), b = o.add(d.createTexture(small));
+    const TextureHandle e = o.add(d.createTexture(small)), f = o.add(d.createTexture(small));
+    const TextureHandle gradient = o.add(d.createTexture(
+        {.format = Format::RGBA32F, .width = 64, .height = 64, .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
+    const float quarter = 0.25f, threeQuarters = 0.75f;
+    const BufferHandle scaleA = o.add(d.createBuffer({.size = 16, .usage = BufferUsage::Storage}, bytesOf(std::array{quarter, 0.f, 0.f, 0.f})));
+    const BufferHandle scaleE =
+        o.add(d.createBuffer({.size = 16, .usage = BufferUsage::Storage}, bytesOf(std::array{threeQuarters, 0.f, 0.f, 0.f})));
+    const BufferHandle values = o.add(d.createBuffer({.size = 64 * 64 * 4, .usage = BufferUsage::Storage}));
+    const ShaderHandle highCs = o.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/storage_high_slots.comp")}));
+    const ShaderHandle fillCs = o.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")}));
+    const PipelineHandle high = o.add(d.createComputePipeline({.computeShader = highCs, .debugName = "slots 9 and 40"}));
+    const PipelineHandle fill = o.add(d.createComputePipeline({.computeShader = fillCs, .debugName = "slot 1"}));
+    auto cmd = d.createCommandList();
+    cmd->setPipeline(high);
+    cmd->setStorageBuffer(3, scaleA);
+    cmd->setStorageTexture(9, a);
+    cmd->setStorageTexture(40, b);
+    cmd->dispatch(1, 1, 1);
+    cmd->setPipeline(fill);
+    cmd->setStorageBuffer(0, values);
+    cmd->setStorageTexture(1, gradient);
+    cmd->dispatch(8, 8, 1);
+    cmd->setPipeline(high);
+    cmd->setStorageBuffer(3, scaleE);
+    cmd->setStorageTexture(9, e);
+    cmd->setStorageTexture(40, f);
+    cmd->dispatch(1, 1, 1);
+    d.wait(d.submit(*cmd));
+    auto first = [](float scale) { return [scale](uint32_t x, uint32_t) -> Texel { return {float(x) / 8.0f, 0, scale, 1}; }; };
+    auto second = [](float scale) { return [scale](uint32_t, uint32_t y) -> Texel { return {0, float(y) / 8.0f, 1 - scale, 1}; }; };
+    const char* rounding = "x/8 in 8 bits: one step of rounding";
+    return {within("slot9", d.readTexture(a), expectImage(Format::RGBA8, first(quarter), 8, 8), 1.0 / 255.0, rounding),
+            within("slot40", d.readTexture(b), expectImage(Format::RGBA8, second(quarter), 8, 8), 1.0 / 255.0, rounding),
+            within("slot1_between", d.readTexture(gradient),
+                   expectImage(Format::RGBA32F, [](uint32_t x, uint32_t y) -> Texel { return {float(x) / 64.0f, float(y) / 64.0f, 0.5f, 1}; },
+                               64, 64),
+                   0.0, "exact in 32-bit float"),
+            within("slot9_again", d.readTexture(e), expectImage(Format::RGBA8, first(threeQuarters), 8, 8), 1.0 / 255.0, rounding),
+            within("slot40_again", d.readTexture(f), expectImage(Format::RGBA8, second(threeQuarters), 8, 8), 1.0 / 255.0, rounding)};
+}
+
 // Depth written into one layer of a depth array and one face of a depth cube reads back there.
 std::vector<CaseImage> depthToLayer(Device& d) {
     std::vector<CaseImage> out;
@@ -493,6 +541,7 @@ std::vector<Case> textureCases() {
         {"render_to_subresource", renderToSubresources},
         {"render_cube_faces_then_sample", renderCubeFacesThenSample},
         {"storage_texture_layers", storageTextureLayers},
+        {"storage_textures_at_any_slot", storageTexturesAtAnySlot},
         {"depth_to_layer", depthToLayer},
         {"generate_mips", generateMips},
         {"copy_subresources", copySubresources},

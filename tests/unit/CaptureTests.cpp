@@ -168,6 +168,23 @@ TEST_P(CaptureConformanceRun, ReplaysOnEveryBackendWithValidationSilent) {
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureConformanceRun);
 
+// A capture made where buffer offsets may be multiples of 16 or 64 must replay where GL asks for
+// 256 (NVIDIA's Vulkan against its GL): the capture device tells the program the strictest.
+class CaptureLimits : public fe::testing::BackendTest {};
+TEST_P(CaptureLimits, OffsetAlignmentsSuitEveryBackend) {
+    const gdi::DeviceLimits inner = device->info().limits;
+    auto d = gdi::makeCaptureDevice(std::move(device), {.path = tempPath(GetParam() + "-limits.fecap").string()});
+    const gdi::DeviceLimits& l = d->info().limits;
+    EXPECT_EQ(l.uniformBufferOffsetAlignment % 256, 0u);
+    EXPECT_EQ(l.storageBufferOffsetAlignment % 256, 0u);
+    EXPECT_EQ(l.uniformBufferOffsetAlignment % inner.uniformBufferOffsetAlignment, 0u);
+    EXPECT_EQ(l.storageBufferOffsetAlignment % inner.storageBufferOffsetAlignment, 0u);
+    EXPECT_EQ(l.maxTextureSize2D, inner.maxTextureSize2D);  // the rest is the device's own
+    d.reset();
+    fs::remove(tempPath(GetParam() + "-limits.fecap"));
+}
+FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureLimits);
+
 // ---------------------------------------------------------------------------------------------
 // Hostile files, written byte by byte as docs/CAPTURE.md describes the format.
 // ---------------------------------------------------------------------------------------------
@@ -306,6 +323,10 @@ TEST_P(CaptureFileErrors, HandMadeRecordsNameTheRecordAndTheField) {
     // The device's own checks stand behind the file's: a buffer of size 0 is the device's error.
     EXPECT_NE(error({{"op", "createBuffer"}, {"id", 1}, {"desc", {{"size", 0}, {"usage", 1}, {"access", 0}}}, {"data", 0}})
                   .find("record 1 (createBuffer)"),
+              std::string::npos);
+    // No SPIR-V at all (data block 0 is "no bytes"): the device refuses it, nothing copies from null.
+    EXPECT_NE(error({{"op", "createShader"}, {"id", 1}, {"stage", 1}, {"name", "empty"}, {"entry", "main"}, {"vulkan", 0}, {"opengl", 0}})
+                  .find("record 1 (createShader)"),
               std::string::npos);
     // Not CBOR at all.
     EXPECT_NE(replayError(started().chunk(2, {0xff, 0x00, 0x13}).end().bytes).find("record 1 (?) at offset"), std::string::npos);

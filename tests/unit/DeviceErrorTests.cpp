@@ -2,11 +2,14 @@
 #include <array>
 #include <map>
 #include <random>
+#include <set>
 #include <gtest/gtest.h>
 
 #include "BackendTest.h"
 #include "fe/gdi/Backend.h"
+#include "fe/gdi/ShaderReflection.h"
 #include "fe/gdi/ShaderRegistry.h"
+#include "fe/gdi/Validation.h"
 
 using namespace fe::gdi;
 using fe::testing::errorOf;
@@ -671,4 +674,41 @@ TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
         device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "schema", .vulkan = vulkan, .opengl = opengl}});
     });
     EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module for Vulkan: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
+}
+
+// GL has as few as 8 image units (NVIDIA): a pipeline's storage textures are counted against
+// limits.maxStorageTextures by the shared validation, so every backend refuses alike. Checked on
+// the validation itself, since no device here has a limit a shader of the suite reaches.
+TEST(StorageTextureLimit, MoreThanTheDeviceBindsIsRefusedAndSlotNumbersDoNotCount) {
+    ShaderInterface cs;
+    cs.stage = ShaderStage::Compute;
+    cs.bindings = {{9, BindingType::StorageTexture, "a"}, {40, BindingType::StorageTexture, "b"}, {3, BindingType::StorageBuffer, "s"}};
+    const DeviceLimits two{.maxStorageTextures = 2}, one{.maxStorageTextures = 1};
+    EXPECT_EQ(validate::pipelineBindings({}, {&cs}, "images", two).size(), 3u);  // slots 9 and 40 with 2 units
+    EXPECT_EQ(errorOf([&] { validate::pipelineBindings({}, {&cs}, "images", one); }),
+              "pipeline 'images': the shaders use 2 storage textures; this device binds at most 1 to one pipeline "
+              "(limits.maxStorageTextures)");
+}
+
+// The GL backend renumbers storage textures to image units in the SPIR-V it hands the driver.
+TEST(StorageTextureLimit, RenumberingChangesOnlyTheStorageTextureBindings) {
+    const ShaderBinary& b = fe::shaders::find("conformance/storage_high_slots.comp");
+    std::array<uint8_t, 64> units;
+    units.fill(0xff);
+    units[9] = 0, units[40] = 1;
+    const std::vector<uint32_t> renumbered = withStorageTextureSlots(b.opengl, units);
+    const ShaderInterface before = reflectShader(b.opengl, ShaderStage::Compute, "main", "before");
+    const ShaderInterface after = reflectShader(renumbered, ShaderStage::Compute, "main", "after");
+    std::map<std::string, uint32_t> slots;
+    for (const auto& x : after.bindings) slots[x.name] = x.slot;
+    ASSERT_EQ(before.bindings.size(), after.bindings.size());
+    EXPECT_EQ(slots["first"], 0u);
+    EXPECT_EQ(slots["second"], 1u);
+    EXPECT_EQ(slots["Scale"], 3u);  // the storage buffer keeps its slot
+    // Names get the stage's prefix, so two stages' blocks of one name stay apart on NVIDIA's GL.
+    const std::vector<uint32_t> prefixed = withNamesPrefixed(b.opengl, "compute.");
+    const ShaderInterface named = reflectShader(prefixed, ShaderStage::Compute, "main", "prefixed", SpirvRules::OpenGL45);
+    std::set<std::string> names;
+    for (const auto& x : named.bindings) names.insert(x.name);
+    EXPECT_EQ(names, (std::set<std::string>{"compute.first", "compute.second", "compute.Scale"}));
 }

@@ -29,6 +29,20 @@ TEST(Image, CompareCountsPixelsOverTolerance) {
     EXPECT_THROW(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{0, 0, 0, 1}}), 0.1), Error);
 }
 
+// A rounding tie (0.5 is 127.5 steps) may land on either side on a real GPU (NVIDIA: 127,
+// lavapipe: 128): a tolerance of one 8-bit step takes every value one step off, as decoded
+// floats, and nothing two steps off.
+TEST(Image, ToleranceOfWholeStepsHoldsForEveryEightBitValue) {
+    for (int v = 1; v < 255; ++v) {
+        const float lo = float(v - 1) / 255.0f, mid = float(v) / 255.0f, hi = float(v + 1) / 255.0f;
+        const Image a = Image::fromTexels(1, 1, Format::RGBA8, {{mid, mid, mid, 1}});
+        EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{lo, hi, mid, 1}}), 1.0 / 255.0).pixelsOverTolerance, 0u) << v;
+        if (v > 1)
+            EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{float(v - 2) / 255.0f, mid, mid, 1}}), 1.0 / 255.0)
+                          .pixelsOverTolerance, 1u) << v;
+    }
+}
+
 TEST(Image, PfmIsBottomRowFirstLittleEndian) {
     Image img = Image::fromTexels(1, 2, Format::RGBA32F, {{1, 2, 3, 1}, {4, 5, 6, 1}});  // top, bottom
     const std::string path = ::testing::TempDir() + "/t.pfm";

@@ -592,9 +592,10 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
         std::cout << t << " at the roughness clamp: highlight peak " << ratio << " x forward's\n";
         RecordProperty(std::string("peak_ratio_") + t, std::to_string(ratio));
         EXPECT_TRUE(std::isfinite(ratio) && ratio > 0.0f) << t;
-        // Half-float normals keep the peak (measured 0.99998 x); 8-bit ones lose it (0.014 x).
+        // Half-float normals keep the peak within their rounding (lavapipe 0.99998 x, an H100
+        // 0.944 x; the bound below is derived there); 8-bit ones lose it (0.014 x).
         if (std::string(t) == "light-prepass-unpacked") {
-            EXPECT_NEAR(ratio, 1.0, 0.02) << t;
+            EXPECT_NEAR(ratio, 1.0, 0.12) << t;
         }
     }
     for (const char* t : {"deferred", "deferred-tiled", "redeferred", "redeferred-tiled"}) {
@@ -602,7 +603,12 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
         ASSERT_TRUE(finite(r)) << t << " produced a non-finite value";
         Stats st = compare(r, f, 0.02, 0.01);
         EXPECT_LE(st.fractionOver, 0.01) << t << " max relative error " << st.maxRel;
-        // The peak itself, which a clamping or overflowing 16-bit store would get wrong.
-        EXPECT_NEAR(r.texel(48, 36)[0] / f.texel(48, 36)[0], 1.0, 0.02) << t << " at the highlight";
+        // The peak itself, which a clamping or overflowing 16-bit store would get wrong. The
+        // G-buffer's half-float normal is off by up to about 2^-11 radians, and at alpha 0.002
+        // that alone moves D's peak by up to (1 + (2^-11 / 0.002)^2)^-2 = 0.89 x: lavapipe lands
+        // at 1.000 x, an H100 at 0.945 x (2026-11-27), so 12 % is the bound, not 2 %.
+        const float ratio = r.texel(48, 36)[0] / f.texel(48, 36)[0];
+        std::cout << t << " at the roughness clamp: highlight peak " << f.texel(48, 36)[0] << ", " << ratio << " x forward's\n";
+        EXPECT_NEAR(ratio, 1.0, 0.12) << t << " at the highlight";
     }
 }

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <atomic>
 #include <map>
+#include <numeric>
 #include <tuple>
 #include <cstring>
 #include <mutex>
@@ -27,7 +28,7 @@ constexpr size_t kMappedGap = 64;
 class CaptureDevice final : public Device {
 public:
     CaptureDevice(std::unique_ptr<Device> inner, const CaptureDesc& desc)
-        : inner_(std::move(inner)), writer_(desc.path, desc.compress), frameLimit_(desc.frames),
+        : inner_(std::move(inner)), info_(portable(inner_->info())), writer_(desc.path, desc.compress), frameLimit_(desc.frames),
           firstFrame_(desc.firstFrame), beforeRange_(desc.firstFrame > 0) {
         const DeviceInfo& i = inner_->info();
         writer_.record(json::to_cbor(json{{"op", "device"}, {"backend", i.backend}, {"device", i.deviceName},
@@ -62,7 +63,7 @@ public:
         return {captured, w.records, w.blobs, w.dedupedBlobs, w.rawBytes, w.fileBytes, finished_};
     }
 
-    const DeviceInfo& info() const override { return inner_->info(); }
+    const DeviceInfo& info() const override { return info_; }
     bool supportsFormat(Format f, TextureUsage u) const override { return inner_->supportsFormat(f, u); }
     FormatCaps formatCaps(Format f) const override { return inner_->formatCaps(f); }
     PipelineCacheStats openPipelineCache(const std::string& path) override { return inner_->openPipelineCache(path); }
@@ -198,7 +199,7 @@ public:
     }
 
     std::unique_ptr<CommandList> createCommandList() override {
-        return std::make_unique<RecordingCommandList>(*inner_, inner_->createCommandList());
+        return std::make_unique<RecordingCommandList>(*this, inner_->createCommandList());  // checked against info_
     }
     FenceValue submit(std::span<CommandList* const> lists) override {
         std::vector<CommandList*> inner;
@@ -419,7 +420,16 @@ private:
         }
     }
 
+    // The inner device's, with buffer offset alignments a multiple of 256, the most Vulkan allows
+    // and what GL drivers ask (NVIDIA's GL: 256, its Vulkan: 64): a program that aligns its
+    // offsets as info() says records a capture every backend replays.
+    static DeviceInfo portable(DeviceInfo i) {
+        i.limits.uniformBufferOffsetAlignment = std::lcm(std::max(i.limits.uniformBufferOffsetAlignment, 1u), 256u);
+        i.limits.storageBufferOffsetAlignment = std::lcm(std::max(i.limits.storageBufferOffsetAlignment, 1u), 256u);
+        return i;
+    }
     std::unique_ptr<Device> inner_;
+    const DeviceInfo info_;
     capture::Writer writer_;
     std::mutex mutex_;  // the file's record order is the order calls completed in
     struct Kept {

@@ -214,7 +214,7 @@ private:
             const auto bytes = blob(r, key);
             if (bytes.size() % 4) throw std::runtime_error(std::string("SPIR-V '") + key + "' is not whole words");
             auto& w = code_.emplace_back(bytes.size() / 4);
-            std::memcpy(w.data(), bytes.data(), bytes.size());
+            if (!bytes.empty()) std::memcpy(w.data(), bytes.data(), bytes.size());  // empty: both may be null
             return w;
         };
         freeId(shaders_, r);
@@ -308,7 +308,7 @@ private:
         const BufferDesc& d = device_.desc(b);
         if (offset > d.size || data.size() > d.size - offset) throw std::runtime_error("mapped bytes beyond the buffer's end");
         if (d.access != MemoryAccess::Upload) throw std::runtime_error("mapped bytes for a buffer that is not Upload memory");
-        std::memcpy(static_cast<std::byte*>(device_.map(b)) + offset, data.data(), data.size());
+        if (!data.empty()) std::memcpy(static_cast<std::byte*>(device_.map(b)) + offset, data.data(), data.size());
     }
     void writeTexture(const json& r) {
         device_.writeTexture(texture(r), {u32(r, "mip"), u32(r, "layer")}, blob(r, "data"));

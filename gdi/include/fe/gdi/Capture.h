@@ -45,7 +45,10 @@ struct CaptureDesc {
     uint32_t firstFrame = 0;
 };
 
-// Wraps `inner` in a capturing device. Throws Error when the file cannot be created.
+// Wraps `inner` in a capturing device. Throws Error when the file cannot be created. Its info()
+// is inner's except that both buffer offset alignments are multiples of 256 (the most Vulkan
+// allows; GL drivers ask up to that, NVIDIA's 256 where its Vulkan asks 64), and command lists
+// are held to them: a program that aligns as info() says records a capture every backend replays.
 std::unique_ptr<Device> makeCaptureDevice(std::unique_ptr<Device> inner, const CaptureDesc& desc);
 
 struct CaptureStats {

@@ -748,7 +748,9 @@ public:
     virtual void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset = 0) = 0;
     virtual void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
 
-    // Resource bindings, by slot (`layout(binding = slot)`). size 0 means "to the end".
+    // Resource bindings, by slot (`layout(binding = slot)`, 0 to 63 for every kind, on every
+    // backend). size 0 means "to the end". A pipeline's shaders may use at most
+    // limits.maxStorageTextures storage textures (GL image units: 8 on NVIDIA), at any slots.
     virtual void setUniformBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
     virtual void setStorageBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
     virtual void setTexture(uint32_t slot, TextureHandle texture, SamplerHandle sampler) = 0;
@@ -898,6 +900,9 @@ struct DeviceLimits {
     uint32_t depthSampleCounts = 1;
     uint32_t maxColorAttachments = 0;
     uint32_t maxComputeWorkGroupInvocations = 0;
+    // Storage textures one pipeline's shaders may use (GL: image units, 8 on NVIDIA; the slot
+    // numbers themselves may be any of 0 to 63 on every backend).
+    uint32_t maxStorageTextures = 0;
     uint64_t maxUniformBufferRange = 0;
     uint64_t maxStorageBufferRange = 0;
     uint32_t uniformBufferOffsetAlignment = 0;

@@ -74,4 +74,16 @@ void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const 
 ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
                               const std::string& name, SpirvRules rules = SpirvRules::Universal);
 
+// The module with `prefix` before every OpName. NVIDIA's GL matches a program's uniforms across
+// stages by name even in SPIR-V programs, so two stages' blocks of one name and different members
+// fail to link there ("struct fields mismatch") where Vulkan and Mesa take them. Dropping the
+// names does not help: it names them by result id, and ids repeat across stages ("type mismatch
+// between variables of same name __defaultname_103"). A prefix per stage keeps every name apart.
+std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const std::string& prefix);
+
+// The module with every storage texture's binding `slot` changed to newSlot[slot] (0xff: kept).
+// The GL backend numbers a pipeline's storage textures 0, 1, ... as image units, because GL has
+// as few as 8 image units (NVIDIA) where the device's slots go to 63. `spirv` must be valid.
+std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv, const std::array<uint8_t, 64>& newSlot);
+
 }  // namespace fe::gdi

@@ -118,9 +118,11 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const
 [[noreturn]] void submittedSecondary();
 // Pipelines against their shaders (ShaderReflection.h). The binding slots: derived from the
 // shaders when `declared` is empty; otherwise `declared`, where every slot a shader uses must
-// appear with the kind the shader declares and that shader's stage.
+// appear with the kind the shader declares and that shader's stage. The shaders use at most
+// limits.maxStorageTextures storage textures.
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline,
+                                          const DeviceLimits& limits);
 // Every vertex shader input has an attribute of the same scalar kind in the vertex layout.
 void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline);
 // Every fragment output that lands on a colour target has the target format's scalar kind.

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Runs on a lent NVIDIA machine (the device tool; docs/BENCHMARKS.md, "On NVIDIA"), from the
+# repository root with .gl/ and .gpubundle/ carried (tools/gpu/make-bundle.sh): the test
+# binaries in parallel, then the benchmarks one at a time. Everything it writes goes
+# to $OUT. Each step has its own time limit so that one slow step still leaves the others' files.
+#   bash tools/gpu/run-on-nvidia.sh [QUICK_S SWEEP_S MICRO_S TESTS_S]   (a step given 0 s is left out)
+set -u
+out=${OUT:-/tmp/gpu-out}; mkdir -p "$out"
+quick_s=${1:-100} sweep_s=${2:-120} micro_s=${3:-60} tests_s=${4:-150}
+for f in .gl/*.deb; do dpkg -x "$f" /; done; ldconfig
+tar -xzf .gpubundle/bundle.tar.gz
+export LD_LIBRARY_PATH=$PWD/gpu-libs VK_LAYER_PATH=$PWD/gpu-libs/layers
+# The binaries name their data by the path they were built at.
+if [ ! -e /work/main ]; then mkdir -p /work && ln -s "$PWD" /work/main
+elif [ "$(realpath /work/main)" != "$(realpath .)" ]; then echo "/work/main is another checkout: the binaries would read its files" >&2; exit 2; fi
+[ -e /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json ] && export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+[ -e /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json ] && export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+fe=build/tools/fe
+{ date -u; pwd; nproc; nvidia-smi -L; nvidia-smi --query-gpu=driver_version,clocks.sm,clocks.mem --format=csv; $fe info --backend all; } >"$out/info.txt" 2>&1
+backends=vulkan,gl-egl
+step() { local name=$1 limit=$2; shift 2; [ "$limit" -gt 0 ] || return 0; local t0=$SECONDS; timeout "$limit" "$@" >"$out/$name.log" 2>&1; echo "$name: exit $? after $((SECONDS - t0)) s" | tee -a "$out/info.txt"; }
+# Tests first (what a change must not break), the unit tests in 12 shards; osmesa is not there.
+if [ "$tests_s" -gt 0 ]; then
+  t0=$SECONDS
+  for i in $(seq 0 11); do
+    (GTEST_TOTAL_SHARDS=12 GTEST_SHARD_INDEX=$i timeout "$tests_s" build/tests/fe_unit_tests --gtest_brief=1 >"/tmp/unit$i.log" 2>&1
+     echo "exit $?" >>"/tmp/unit$i.log") &
+  done
+  for t in execution stability tool; do (timeout "$tests_s" build/tests/fe_${t}_tests --gtest_brief=1 >"/tmp/$t.log" 2>&1; echo "exit $?" >>"/tmp/$t.log") & done
+  wait
+  logs=(/tmp/unit*.log /tmp/execution.log /tmp/stability.log /tmp/tool.log)
+  cat "${logs[@]}" >"$out/tests.log"
+  echo "tests: $((SECONDS - t0)) s; $(grep -c '^\[  FAILED  \]' "$out/tests.log") failed lines, $(grep -h '^\[  PASSED  \]' "${logs[@]}" | awk '{s+=$4} END {print s}') passed; binaries' exits: $(grep -h '^exit ' "${logs[@]}" | sort | uniq -c | tr '\n' ' ')" | tee -a "$out/info.txt"
+fi
+# Then the benchmarks, on an otherwise idle GPU.
+step sweep "$sweep_s" $fe bench --sweep bench/sweeps/many-lights-gpu.json --backend $backends --frames 20 --out /tmp/sweep
+step quick "$quick_s" $fe bench --quick --backend $backends --out /tmp/quick
+step micro "$micro_s" bash -c 'build/bench/fe_bench_execution --rounds 21 && build/bench/fe_bench_abstraction --paired 300'
+tar -C /tmp -czf "$out/bench.tar.gz" --exclude='*.pfm' quick sweep 2>/dev/null
