@@ -508,6 +508,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                 }
                 m.renderer.reset();
                 doc["results"].push_back(std::move(m.r));
+                if (options.onResult) options.onResult(doc);
             }
         };
         if (options.interleave) {

@@ -50,6 +50,9 @@ struct BenchOptions {
     bool interleave = false;
     // Called before each frame a case renders, warm-up frames included (frame counts from 0).
     std::function<void(const std::string& key, uint32_t frame)> onFrame;
+    // Called with the document so far after each measurement, so that a run stopped part way
+    // (a time limit on a lent GPU) still leaves what it measured.
+    std::function<void(const gdi::Json& partial)> onResult;
 };
 
 struct BenchProgress {

@@ -1,5 +1,7 @@
 #include "reference/CpuReference.h"
 
+#include <exception>
+#include <thread>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -331,7 +333,11 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         return radiance;
     };
 
-    for (uint32_t y = 0; y < height; ++y)
+    // Every pixel is its own ray and writes only its own entries, and everything the rays read is
+    // const: rows are shared out among the machine's threads (interleaved, as cost varies by row),
+    // with the same result as one thread. 78 s on one thread for the 1280x720 atrium with 1024
+    // lights was more than a 15-minute GPU lease could spend on each reference.
+    auto row = [&](uint32_t y) {
         for (uint32_t x = 0; x < width; ++x) {
             glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
             glm::dvec4 farPoint = invProjRotation * glm::dvec4(ndc, 0.5, 1.0);
@@ -377,6 +383,22 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             }
             out.radiance[pixel] = composite(radiance, eye, dir, best);
         }
+    };
+    const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(height, 1u));
+    std::vector<std::exception_ptr> failures(threads);
+    auto rows = [&](uint32_t first) {
+        try {
+            for (uint32_t y = first; y < height; y += threads) row(y);
+        } catch (...) {
+            failures[first] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> workers;
+    for (uint32_t t = 1; t < threads; ++t) workers.emplace_back(rows, t);
+    rows(0);
+    for (std::thread& w : workers) w.join();
+    for (const std::exception_ptr& e : failures)
+        if (e) std::rethrow_exception(e);
     return out;
 }
 

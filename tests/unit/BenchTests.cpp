@@ -30,7 +30,13 @@ class Bench : public fe::testing::BackendTest {};
 
 TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
     device.reset();  // the bench opens the backend itself
-    const gdi::Json doc = render::runBench(tinySweep(), {GetParam()}, {.warmupFrames = 1, .frames = 3, .validation = true});
+    // Each measurement hands over the document so far (fe bench writes results.partial.json).
+    std::vector<size_t> partialSizes;
+    const gdi::Json doc = render::runBench(
+        tinySweep(), {GetParam()},
+        {.warmupFrames = 1, .frames = 3, .validation = true,
+         .onResult = [&](const gdi::Json& partial) { partialSizes.push_back(partial["results"].size()); }});
+    EXPECT_EQ(partialSizes, (std::vector<size_t>{1, 2, 3}));
     EXPECT_EQ(doc["schema"], "fe-results/1");
     EXPECT_TRUE(doc["engine"].contains("commit"));
     ASSERT_EQ(doc["backends"].size(), 1u);

@@ -437,6 +437,13 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
              << int(p.remainingSeconds + 0.5) << " s left";
         std::cerr << (tty ? "\r\033[K" : "") << line.str() << (tty ? "" : "\n") << std::flush;
     };
+    // What is measured so far, rewritten after each measurement: a run stopped by a time limit
+    // leaves results.partial.json (removed once results.json is written).
+    const std::string partial = out + "/results.partial.json";
+    options.onResult = [&](const gdi::Json& doc) {
+        std::ofstream(partial + ".tmp") << doc.dump(2) << "\n";
+        std::filesystem::rename(partial + ".tmp", partial);
+    };
     const gdi::Json bench = render::runBench(cases, backends, options, showProgress);
     gdi::Json results = bench;
     // The stability table: with --quick, or --stability.
@@ -470,6 +477,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
         f << render::resultsCsv(results);
         if (!f) throw gdi::Error("cannot write " + out + "/results.csv");
     }
+    std::filesystem::remove(partial);
     size_t refused = 0;
     for (const auto& r : results["results"]) refused += r.contains("refused");
     std::cout << results["results"].size() << " measurements (" << refused << " refused) on " << backends.size()
