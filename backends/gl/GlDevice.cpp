@@ -1,6 +1,7 @@
 // Context set-up, resources, pipelines and transfers of the GL backend.
 #include "gl/GlDevice.h"
 
+#include <bitset>
 #include <algorithm>
 #include <cstring>
 #include <iostream>
@@ -491,13 +492,13 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     s.entry = desc.entryPoint ? desc.entryPoint : "main";
     s.codeHash = gdi::fnv1a({reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
                             gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()}));
-    const std::vector<uint32_t> unnamed = gdi::withNamesPrefixed(code, std::string(gdi::shaderStageName(desc.stage)) + ".");
+    const std::vector<uint32_t> stageNamed = gdi::withNamesPrefixed(code, std::string(gdi::shaderStageName(desc.stage)) + ".");
     const bool images = std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
                                     [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
-    if (!s.iface.specConstants.empty() || images) s.spirv = unnamed;
+    if (!s.iface.specConstants.empty() || images) s.spirv = stageNamed;
     return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
-        s.name = specializedShader(s, unnamed, {});
+        s.name = specializedShader(s, stageNamed, {});
         return shaders_.add(std::move(s));
     });
 }
@@ -543,25 +544,25 @@ GLuint GlDevice::checkLinked(GLuint p, const std::string& label) {
     return p;
 }
 
-std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders) {
-    std::array<uint8_t, 64> unit;
-    unit.fill(0xff);
+// GL image units: each storage-texture slot the shaders use, in slot order, takes the next unit.
+// The slots by unit (Pipeline::imageSlots)...
+static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shaders) {
+    std::bitset<64> used;
     for (const Shader* sh : shaders)
         for (const auto& b : sh ? sh->iface.bindings : std::vector<gdi::ShaderInterface::Binding>{})
-            if (b.type == gdi::BindingType::StorageTexture && b.slot < unit.size()) unit[b.slot] = 0;
-    uint8_t next = 0;
-    for (uint8_t& u : unit)
-        if (u == 0) u = next++;
-    return unit;
-}
-
-// The slots of those units, by unit.
-static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shaders) {
-    const std::array<uint8_t, 64> units = imageUnits(shaders);
+            if (b.type == gdi::BindingType::StorageTexture && b.slot < used.size()) used.set(b.slot);
     std::vector<uint8_t> slots;
-    for (uint8_t slot = 0; slot < units.size(); ++slot)
-        if (units[slot] != 0xff) slots.push_back(slot);
+    for (uint8_t slot = 0; slot < used.size(); ++slot)
+        if (used[slot]) slots.push_back(slot);
     return slots;
+}
+// ... and the unit by slot (0xff: not a storage texture of theirs), as the shaders are renumbered.
+static std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders) {
+    std::array<uint8_t, 64> unit;
+    unit.fill(0xff);
+    const std::vector<uint8_t> slots = imageSlots(shaders);
+    for (size_t u = 0; u < slots.size(); ++u) unit[slots[u]] = uint8_t(u);
+    return unit;
 }
 
 // Links the pipeline's shaders: each one's own shader object, or one of its own (deleted once

@@ -94,9 +94,6 @@ struct Pipeline {
     std::vector<uint8_t> imageSlots;
     std::string label;
 };
-// The image units of a pipeline of these shaders: each storage-texture slot they use, in
-// order, takes the next unit (0xff: not a storage texture of theirs).
-std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders);
 struct Timer {
     GLuint queries[2] = {0, 0};
     bool used = false;
