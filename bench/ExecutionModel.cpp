@@ -113,6 +113,8 @@ struct Row {
     double oneThread = 0, twoThreads = 0, secondaryTwoThreads = 0, fromSleep = 0;
     double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
     double plainFrame = 0, churnFrame = 0;
+    double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
+    bool pinned = false;
 };
 
 // A job thread that lives across rounds, as an engine's job threads do (threads made per round
@@ -125,20 +127,31 @@ struct Row {
 // systems pin their workers: a thread woken by the thread it works beside is placed on the
 // waker's core, and the two then share it while the other core idles (seen here: the job ran
 // only after the caller's half had finished).
-void pinCallingThread(int cpu) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    const int count = int(std::thread::hardware_concurrency());
-    for (int c = 0; c < std::max(count, 1); ++c)
-        if (cpu < 0 || c == cpu) CPU_SET(c, &set);
-    pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
+// CPUs are named by their place among the ones this process may use (a container's cpuset need
+// not start at 0): 0 is the first allowed CPU, -2 the last, -1 all of them again. Returns false
+// where the pin did not take (the figures then include the sharing described above).
+bool pinCallingThread(int place) {
+    static const cpu_set_t allowed = [] {
+        cpu_set_t set;
+        CPU_ZERO(&set);
+        sched_getaffinity(0, sizeof(set), &set);
+        return set;
+    }();
+    std::vector<int> cpus;
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+        if (CPU_ISSET(c, &allowed)) cpus.push_back(c);
+    if (place == -1 || cpus.size() < 2) return pthread_setaffinity_np(pthread_self(), sizeof(allowed), &allowed) == 0;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(place == -2 ? cpus.back() : cpus[size_t(place) % cpus.size()], &one);
+    return pthread_setaffinity_np(pthread_self(), sizeof(one), &one) == 0;
 }
 
 class JobThread {
 public:
     // The worker keeps to the last CPU; a caller of pinned phases keeps to the first.
     JobThread() : thread_([this] {
-        if (std::thread::hardware_concurrency() >= 2) pinCallingThread(int(std::thread::hardware_concurrency()) - 1);
+        pinned_ = pinCallingThread(-2);
         run();
     }) {}
     ~JobThread() {
@@ -149,11 +162,13 @@ public:
     // Keeps the worker spinning until sleep(), and the caller on the first CPU; returns once the
     // worker spins.
     void wake() {
-        if (std::thread::hardware_concurrency() >= 2) pinCallingThread(0);
+        callerPinned_ = pinCallingThread(0);
         awake_ = true;
         signal();
         while (!spinning_) std::this_thread::yield();
     }
+    // Whether both threads kept to their own CPUs (the worker's pin is set as it starts).
+    bool pinned() const { return pinned_ && callerPinned_; }
     void sleep() {
         awake_ = false;
         pinCallingThread(-1);
@@ -198,6 +213,8 @@ private:
     }
     std::atomic<uint32_t> signals_{0};
     std::atomic<bool> awake_{false}, spinning_{false}, pending_{false}, stop_{false};
+    std::atomic<bool> pinned_{false};
+    bool callerPinned_ = false;
     std::function<void()> job_;
     std::exception_ptr error_;
     std::thread thread_;
@@ -208,22 +225,30 @@ private:
 // repeats the four lists with the job thread asleep when the recording starts.
 void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     Device& d = *s.device;
-    std::vector<double> one, two, parts, cold;
+    std::vector<double> one, two, parts, cold, callerHalves, workerHalves;
     auto single = d.createCommandList();
     std::array<std::unique_ptr<CommandList>, 4> quarter = {d.createCommandList(), d.createCommandList(), d.createCommandList(),
                                                            d.createCommandList()};
     std::array<CommandList*, 4> all = {quarter[0].get(), quarter[1].get(), quarter[2].get(), quarter[3].get()};
     auto primary = d.createCommandList();
     JobThread worker;
-    auto halves = [&](bool secondary) {
+    auto halves = [&](bool secondary, bool keepHalves = false) {
         auto recordPair = [&](uint32_t first) {
             for (uint32_t l = first; l < first + 2; ++l)
                 if (secondary) s.recordSecondary(*quarter[l], l * kDraws / 4, kDraws / 4);
                 else s.record(*quarter[l], l * kDraws / 4, kDraws / 4, l == 0);
         };
-        worker.start([&] { recordPair(2); });
+        double workerMs = 0;
+        Clock::time_point t0 = Clock::now();
+        worker.start([&] {
+            const Clock::time_point tw = Clock::now();
+            recordPair(2);
+            workerMs = msSince(tw);
+        });
         recordPair(0);
+        const double callerMs = msSince(t0);
         worker.join();
+        if (keepHalves) callerHalves.push_back(callerMs), workerHalves.push_back(workerMs);
     };
     for (uint32_t r = 0; r < rounds + 1; ++r) {  // round 0 warms every path up
         Clock::time_point t = Clock::now();
@@ -233,7 +258,7 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
 
         worker.wake();
         t = Clock::now();
-        halves(false);
+        halves(false, r > 0);
         if (r) two.push_back(msSince(t));
         worker.sleep();
         d.wait(d.submit(all));
@@ -264,6 +289,9 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     row.twoThreads = median(two);
     row.secondaryTwoThreads = median(parts);
     row.fromSleep = median(cold);
+    row.callerHalf = median(callerHalves);
+    row.workerHalf = median(workerHalves);
+    row.pinned = worker.pinned();
 }
 
 // The application's own CPU work per frame (simulation, culling), a busy loop of `ms`.
@@ -341,6 +369,10 @@ int main(int argc, char** argv) {
             std::printf("| %s | %.3f | %.3f | **%.2f** | %.3f | **%.2f** | %.3f | %.2f |\n", r.backend.c_str(), r.oneThread,
                         r.twoThreads, r.twoThreads / r.oneThread, r.secondaryTwoThreads, r.secondaryTwoThreads / r.oneThread,
                         r.fromSleep, r.fromSleep / r.oneThread);
+        std::printf("\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
+        for (const Row& r : rows)
+            std::printf("- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s\n", r.backend.c_str(),
+                        r.callerHalf, r.workerHalf, r.pinned ? "pinned to the first and last allowed CPUs" : "NOT pinned (the pin failed)");
         std::printf("\nFrames of 5,000 draws after %.1f ms of application work (medians)\n\n| backend | 1 frame in flight, ms | "
                     "2 in flight, ms | 2 in flight: record / submit / wait, ms | 2 in flight, again, ms | same, creating and "
                     "destroying 50 textures per frame, ms |\n|---|---|---|---|---|---|\n", cpuMs);

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "fe/gdi/Validation.h"
 #include "gl/GlBackend.h"
 #include "gl/GlCommandList.h"
@@ -229,6 +231,13 @@ void GlDevice::initialize(bool validation) {
                                                          get(GL_MAX_COMPUTE_IMAGE_UNIFORMS), get(GL_MAX_COMBINED_IMAGE_UNIFORMS)}));
     info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
     info_.limits.maxStorageBufferRange = get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
+    // GL states no allocation limit: the video memory where the driver says it (NVIDIA, and
+    // Mesa's hardware drivers), else the machine's memory (llvmpipe's buffers live there).
+    constexpr GLenum kDedicatedVideoMemoryNvx = 0x9047;  // GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX (not in glcorearb.h)
+    GLint videoKiB = 0;
+    if (has("GL_NVX_gpu_memory_info")) gl_.GetIntegerv(kDedicatedVideoMemoryNvx, &videoKiB);
+    info_.limits.maxAllocationSize = videoKiB > 0 ? uint64_t(videoKiB) * 1024
+                                                  : uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     // Mesa 22.3 crashes (strlen in the driver) serialising a SPIR-V program that has uniform
@@ -319,7 +328,7 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
     return thread_.runUrgent([&]() -> gdi::BufferHandle {  // a new object: no queued work uses it
         loss_.check("createBuffer");
-        gdi::validate::bufferDesc(desc);
+        gdi::validate::bufferDesc(desc, info_.limits);
         gdi::validate::initialData(desc, initialData.size());
         Buffer b;
         b.desc = desc;

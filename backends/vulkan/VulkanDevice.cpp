@@ -355,6 +355,14 @@ void VulkanDevice::fillInfo() {
     info_.limits.maxStorageTextures = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
     info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
+    VkPhysicalDeviceMaintenance3Properties m3{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};
+    vkGetPhysicalDeviceProperties2(physical_, &p2);
+    VkPhysicalDeviceMemoryProperties memory{};
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory);
+    VkDeviceSize largestHeap = 0;
+    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h) largestHeap = std::max(largestHeap, memory.memoryHeaps[h].size);
+    info_.limits.maxAllocationSize = std::min(m3.maxMemoryAllocationSize, largestHeap);
     info_.limits.uniformBufferOffsetAlignment = uint32_t(l.minUniformBufferOffsetAlignment);
     info_.limits.storageBufferOffsetAlignment = uint32_t(l.minStorageBufferOffsetAlignment);
     info_.limits.timestampPeriodNs = l.timestampPeriod;

@@ -105,7 +105,7 @@ void VulkanDevice::freeBuffer(Buffer& b) {
 gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
     std::lock_guard lock(mutex_);
     loss_.check("createBuffer");
-    gdi::validate::bufferDesc(desc);
+    gdi::validate::bufferDesc(desc, info_.limits);
     gdi::validate::initialData(desc, initialData.size());
     using U = gdi::BufferUsage;
     // Copies in and out are always allowed: writeBuffer/readBuffer stage through them.

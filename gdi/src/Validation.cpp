@@ -22,11 +22,21 @@ std::string label(const char* kind, const char* name) {
 [[noreturn]] void fail(const std::string& what, const std::string& why) { throw Error(what + ": " + why); }
 }  // namespace
 
-void bufferDesc(const BufferDesc& d) {
+namespace {
+// Bytes beyond what one allocation of the device may take (0: no limit known).
+void allocationFits(const std::string& what, uint64_t bytes, const DeviceLimits& limits) {
+    if (limits.maxAllocationSize && bytes > limits.maxAllocationSize)
+        fail(what, std::to_string(bytes) + " bytes exceed the device's maxAllocationSize (" +
+                       std::to_string(limits.maxAllocationSize) + " bytes)");
+}
+}  // namespace
+
+void bufferDesc(const BufferDesc& d, const DeviceLimits& limits) {
     const std::string what = label("buffer", d.debugName);
     if (d.size == 0) fail(what, "size is 0 (a buffer needs at least one byte)");
     if (d.size > (uint64_t(1) << 40)) fail(what, "size " + std::to_string(d.size) + " bytes is out of range");
     if (d.usage == BufferUsage::None) fail(what, "usage is None");
+    allocationFits(what, d.size, limits);
 }
 
 void initialData(const BufferDesc& d, uint64_t size) {
@@ -106,6 +116,9 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
             fail(what, "a multisampled texture is a render target, resolved (not sampled) into a single-sample one");
         if (isCompressedFormat(d.format)) fail(what, "a compressed format cannot be multisampled");
     }
+    uint64_t bytes = 0;
+    for (uint32_t mip = 0; mip < d.mipLevels; ++mip) bytes += textureByteSize(d, mip) * mipExtent(d, mip).depthOrLayers;
+    allocationFits(what, bytes * s, limits);
 }
 
 Extent3 mipExtent(const TextureDesc& d, uint32_t mip) {

@@ -189,6 +189,9 @@ std::vector<BenchCase> quickSweep() {
 
 namespace {
 
+// A cap on the time-based warm-up, for cases so fast that a second is thousands of frames.
+constexpr uint32_t kMaxTimedWarmupFrames = 2000;
+
 // One case object whose values are all scalars -> a BenchCase (unknown keys are errors).
 BenchCase caseFromJson(const gdi::Json& j) {
     BenchCase c;
@@ -317,7 +320,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                      {"kind", "bench"},
                      {"engine", gdi::engineJson()},
                      {"date", gdi::utcTimestamp()},
-                     {"options", {{"warmupFrames", options.warmupFrames}, {"frames", options.frames},
+                     {"options", {{"warmupFrames", options.warmupFrames}, {"warmupSeconds", options.warmupSeconds}, {"frames", options.frames},
                                   {"referenceIblSamples", options.referenceIblSamples}, {"validation", options.validation},
                                   {"interleave", options.interleave}}},
                      {"backends", gdi::Json::array()},
@@ -388,26 +391,38 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     refuse(m, e.what());
                 }
             }
-            for (uint32_t f = 0; f < options.warmupFrames + options.frames; ++f)
-                for (Measurement& m : group) {
-                    if (!m.renderer) continue;
-                    if (options.onFrame) options.onFrame(m.c->key(), f);
-                    try {
-                        const auto t0 = std::chrono::steady_clock::now();
-                        m.renderer->renderFrame();
-                        const auto timings = m.renderer->passTimings();  // waits for the frame
-                        const double ms =
-                            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                        if (f < options.warmupFrames) continue;
-                        m.cpu.push_back(ms);
-                        for (const auto& t : timings) {
-                            if (!m.gpu.count(t.name)) m.order.push_back(t.name);
-                            m.gpu[t.name].push_back(t.gpuMilliseconds);
-                        }
-                    } catch (const std::exception& e) {
-                        refuse(m, e.what());
+            auto frame = [&](Measurement& m, uint32_t f, bool timed) {
+                if (!m.renderer) return;
+                if (options.onFrame) options.onFrame(m.c->key(), f);
+                try {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    m.renderer->renderFrame();
+                    const auto timings = m.renderer->passTimings();  // waits for the frame
+                    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                    if (!timed) return;
+                    m.cpu.push_back(ms);
+                    for (const auto& t : timings) {
+                        if (!m.gpu.count(t.name)) m.order.push_back(t.name);
+                        m.gpu[t.name].push_back(t.gpuMilliseconds);
                     }
+                } catch (const std::exception& e) {
+                    refuse(m, e.what());
                 }
+            };
+            // A GPU idling between waited frames stays at its lowest clock: on an H200 two warm-up
+            // frames left the median frame at 5x the fastest. Hardware warms up for a time as well.
+            const double warmupSeconds = device.info().softwareRasterizer ? 0.0 : options.warmupSeconds;
+            const auto warmStart = std::chrono::steady_clock::now();
+            uint32_t f = 0;
+            auto warming = [&] {
+                return f < options.warmupFrames ||
+                       (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmStart).count() < warmupSeconds &&
+                        f < options.warmupFrames + kMaxTimedWarmupFrames);
+            };
+            for (; warming(); ++f)
+                for (Measurement& m : group) frame(m, f, false);
+            for (const uint32_t end = f + options.frames; f < end; ++f)
+                for (Measurement& m : group) frame(m, f, true);
             for (Measurement& m : group) {
                 if (m.renderer) {
                     try {

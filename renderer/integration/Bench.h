@@ -34,6 +34,9 @@ struct BenchCase {
 
 struct BenchOptions {
     uint32_t warmupFrames = 2;
+    // On hardware (not on software rasterizers, which have no clocks to raise) the warm-up also
+    // lasts at least this long, so that the GPU's clocks have risen before the timed frames.
+    double warmupSeconds = 1.0;
     uint32_t frames = 5;
     uint32_t referenceIblSamples = 4096;  // the converged integral (EnvironmentTests: 8192 changes it by < 1 %)
     // The Khronos validation layer / GL debug output on (tests); each backend's record then

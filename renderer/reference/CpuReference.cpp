@@ -1,12 +1,11 @@
 #include "reference/CpuReference.h"
 
-#include <exception>
-#include <thread>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "reference/CameraMath.h"
+#include "reference/ParallelRows.h"
 #include "shading/ShadingModel.h"
 
 namespace fe::render {
@@ -384,21 +383,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             out.radiance[pixel] = composite(radiance, eye, dir, best);
         }
     };
-    const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(height, 1u));
-    std::vector<std::exception_ptr> failures(threads);
-    auto rows = [&](uint32_t first) {
-        try {
-            for (uint32_t y = first; y < height; y += threads) row(y);
-        } catch (...) {
-            failures[first] = std::current_exception();
-        }
-    };
-    std::vector<std::thread> workers;
-    for (uint32_t t = 1; t < threads; ++t) workers.emplace_back(rows, t);
-    rows(0);
-    for (std::thread& w : workers) w.join();
-    for (const std::exception_ptr& e : failures)
-        if (e) std::rethrow_exception(e);
+    forEachRowInParallel(height, row);
     return out;
 }
 

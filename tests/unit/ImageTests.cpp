@@ -37,9 +37,10 @@ TEST(Image, ToleranceOfWholeStepsHoldsForEveryEightBitValue) {
         const float lo = float(v - 1) / 255.0f, mid = float(v) / 255.0f, hi = float(v + 1) / 255.0f;
         const Image a = Image::fromTexels(1, 1, Format::RGBA8, {{mid, mid, mid, 1}});
         EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{lo, hi, mid, 1}}), 1.0 / 255.0).pixelsOverTolerance, 0u) << v;
-        if (v > 1)
+        if (v > 1) {
             EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{float(v - 2) / 255.0f, mid, mid, 1}}), 1.0 / 255.0)
                           .pixelsOverTolerance, 1u) << v;
+        }
     }
 }
 

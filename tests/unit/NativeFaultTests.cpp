@@ -351,35 +351,34 @@ TEST_P(NativeFaults, LossInsideBlockingTransfersLeavesNothingBehind) {
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(NativeFaults);
 
-// What injection imitates, the drivers really do: a 1 TiB buffer is a real out-of-memory error,
-// with the same message as the injected one, and the device stays usable. Validation is off
-// here only: the layer rightly calls a request beyond the heap invalid usage.
-TEST(RealOutOfMemory, SameErrorAsInjectedAndTheDeviceStaysUsable) {
-    for (const std::string& backend : backendNames()) {
-        BackendProbe p = probeBackend(backend, false);
-        if (!p.available) continue;
-        Device& d = *p.device;
-        const LiveObjects before = d.liveObjects();
-        const BufferDesc huge{.size = uint64_t(1) << 40, .debugName = "too big"};
-        const std::string real = fe::testing::errorOf([&] { d.createBuffer(huge); });
-        EXPECT_EQ(d.liveObjects(), before) << backend;
-        // Drivers refuse at different calls (lavapipe at vkCreateBuffer, NVIDIA at
-        // vkAllocateMemory): the injected failure of one of the creation's native calls matches.
-        std::vector<std::string> injected;
-        for (uint64_t call = 1; call <= 3; ++call) {
-            const uint64_t fired = fault::fired(fault::Site::Allocation);
-            fault::arm(fault::Site::Allocation, call);
-            const std::string e = fe::testing::errorOf([&] { d.createBuffer(huge); });
-            fault::arm(fault::Site::Allocation, 0);
-            if (fault::fired(fault::Site::Allocation) > fired) injected.push_back(e);  // the driver's own failure does not count
-        }
-        ASSERT_FALSE(injected.empty()) << backend;
-        EXPECT_NE(std::find(injected.begin(), injected.end(), real), injected.end())
-            << backend << ": " << real << "\n  injected at the first call: " << injected[0];
-        expectOutOfMemory(real, "buffer 'too big' (1099511627776 bytes)");
-        BufferHandle b = d.createBuffer({.size = 64}, bytesOf(std::vector<uint8_t>(64, 9)));
-        EXPECT_EQ(d.readBuffer(b, 0, 64), std::vector<uint8_t>(64, 9)) << backend;
-        d.destroy(b);
-        EXPECT_EQ(d.liveObjects(), before) << backend;
+// A buffer or texture larger than limits.maxAllocationSize is refused by the shared validation
+// before any native call, with the same message on every backend, and the device stays usable.
+// Drivers are not trusted with it: NVIDIA's GL accepted a 1 TiB buffer and then spent minutes
+// zeroing it (an H200, 2026-11-27); lavapipe refuses at vkCreateBuffer, NVIDIA's Vulkan at
+// vkAllocateMemory. The injected failures above stand in for what a driver reports within it.
+TEST_P(NativeFaults, AllocationBeyondTheDeviceIsRefusedBeforeAnyNativeCall) {
+    const DeviceLimits& l = device->info().limits;
+    ASSERT_GT(l.maxAllocationSize, 0u);
+    const LiveObjects before = device->liveObjects();
+    const uint64_t calls = fault::calls(fault::Site::Allocation);
+    const std::string limit = "exceed the device's maxAllocationSize (" + std::to_string(l.maxAllocationSize) + " bytes)";
+    if (l.maxAllocationSize < (uint64_t(1) << 40)) {  // larger buffers are out of range anyway
+        const uint64_t size = l.maxAllocationSize + 1;
+        EXPECT_EQ(fe::testing::errorOf([&] { device->createBuffer({.size = size, .usage = BufferUsage::Storage, .debugName = "huge"}); }),
+                  "buffer 'huge': " + std::to_string(size) + " bytes " + limit);
     }
+    // Layers of the widest RGBA32F texture, one more than fits.
+    const uint32_t edge = std::min(l.maxTextureSize2D, 16384u);
+    const uint64_t layerBytes = uint64_t(edge) * edge * 16;
+    const uint32_t layers = uint32_t(l.maxAllocationSize / layerBytes + 1);
+    ASSERT_LE(layers, l.maxTextureArrayLayers);
+    const TextureDesc huge{.dimension = TextureDimension::Texture2DArray, .format = Format::RGBA32F, .width = edge,
+                           .height = edge, .depthOrLayers = layers, .usage = TextureUsage::Sampled, .debugName = "huge"};
+    EXPECT_EQ(fe::testing::errorOf([&] { device->createTexture(huge); }),
+              "texture 'huge': " + std::to_string(layerBytes * layers) + " bytes " + limit);
+    EXPECT_EQ(fault::calls(fault::Site::Allocation), calls) << "a native allocation was tried";
+    EXPECT_EQ(device->liveObjects(), before);
+    BufferHandle b = device->createBuffer({.size = 64}, bytesOf(std::vector<uint8_t>(64, 9)));
+    EXPECT_EQ(device->readBuffer(b, 0, 64), std::vector<uint8_t>(64, 9));
+    device->destroy(b);
 }

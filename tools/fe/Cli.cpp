@@ -60,7 +60,7 @@ constexpr const char* kUsage =
     "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
     "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
-    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--interleave]\n"
+    "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--warmup-ms MS] [--interleave]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
     "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
@@ -130,6 +130,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--frames", {"N", "frames to render (default 1; with --window: until it is closed)"}},
     {"view --frames", {"N", "stop after N frames (default: when the window is closed)"}},
     {"bench --frames", {"N", "timed frames per case; medians are reported"}},
+    {"--warmup-ms", {"MS", "untimed frames for at least MS ms per case on a GPU, so its clocks rise first (default 1000)"}},
     {"--lights", {"N", "builtin:lights and builtin:atrium: the number of point lights (default 512)"}},
     {"--dump-graph", {"FILE.dot", "write the compiled render graph as Graphviz"}},
     {"--pipeline-cache", {"FILE", "load and save compiled pipelines (Vulkan cache data, GL program binaries)"}},

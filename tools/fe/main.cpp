@@ -426,6 +426,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
         gdi::expandBackendList(a.options.count("--backend") ? a.options.at("--backend") : "all");
     render::BenchOptions options;
     if (a.options.count("--frames")) options.frames = parseUint(a.options.at("--frames"), "--frames", 1, 1000);
+    if (a.options.count("--warmup-ms")) options.warmupSeconds = parseUint(a.options.at("--warmup-ms"), "--warmup-ms", 0, 60000) / 1000.0;
     options.interleave = a.options.count("--interleave") > 0;
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "bench";
     std::filesystem::create_directories(out);
@@ -571,7 +572,7 @@ int main(int argc, char** argv) {
                                                                      "--screenshot", "--debug-view", "--switch-backend-at"},
                                                         {"--no-ui", "--validation"}));
         if (command == "bench")
-            return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--compare", "--time-ratio", "--error-points"},
+            return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare", "--time-ratio", "--error-points"},
                                   {"--quick", "--stability", "--conformance", "--interleave"}),
                             std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")

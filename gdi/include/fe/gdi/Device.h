@@ -99,7 +99,8 @@
 //  - Native API failures are errors, never aborts. Out of memory (VK_ERROR_OUT_OF_DEVICE_MEMORY
 //    or _HOST_MEMORY, GL_OUT_OF_MEMORY) is an Error naming the native call and the object, e.g.
 //    "gl-egl: glTextureStorage2D failed for texture 'albedo' (1024x1024 RGBA8): GL_OUT_OF_MEMORY";
-//    nothing of the failed object is left behind and the device stays usable.
+//    nothing of the failed object is left behind and the device stays usable. A buffer or
+//    texture larger than limits.maxAllocationSize is an Error before any native call.
 //  - A lost device (VK_ERROR_DEVICE_LOST; a GL context reset, which a robust context reports
 //    through glGetGraphicsResetStatus, polled at submit and wait) throws DeviceLostError, and so
 //    does every later call that creates, transfers, submits or waits on that device. Recording
@@ -905,6 +906,11 @@ struct DeviceLimits {
     uint32_t maxStorageTextures = 0;
     uint64_t maxUniformBufferRange = 0;
     uint64_t maxStorageBufferRange = 0;
+    // Bytes one buffer, or one texture with all its mips, layers and samples, may take: Vulkan's
+    // maxMemoryAllocationSize, at most the largest memory heap; GL's video memory
+    // (NVX_gpu_memory_info), else the machine's memory. Larger requests are refused before any
+    // native call (a driver may accept one and then take minutes zeroing it, as NVIDIA's GL does).
+    uint64_t maxAllocationSize = 0;
     uint32_t uniformBufferOffsetAlignment = 0;
     uint32_t storageBufferOffsetAlignment = 0;
     // Nanoseconds per unit of the timestamps resolveQueries writes (queryResults converts).

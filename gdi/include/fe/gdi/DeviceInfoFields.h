@@ -25,6 +25,7 @@ constexpr void forEachField(const DeviceLimits& l, Visitor&& visit) {
     visit("maxStorageTextures", l.maxStorageTextures);
     visit("maxUniformBufferRange", l.maxUniformBufferRange);
     visit("maxStorageBufferRange", l.maxStorageBufferRange);
+    visit("maxAllocationSize", l.maxAllocationSize);
     visit("uniformBufferOffsetAlignment", l.uniformBufferOffsetAlignment);
     visit("storageBufferOffsetAlignment", l.storageBufferOffsetAlignment);
     visit("timestampPeriodNs", l.timestampPeriodNs);

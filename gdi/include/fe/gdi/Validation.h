@@ -11,7 +11,7 @@
 namespace fe::gdi::validate {
 
 // Each throws Error naming the object (debugName when set) and what is wrong.
-void bufferDesc(const BufferDesc& d);
+void bufferDesc(const BufferDesc& d, const DeviceLimits& limits);
 // Initial data of createBuffer: none (size 0) or exactly the buffer's size.
 void initialData(const BufferDesc& d, uint64_t size);
 void textureDesc(const TextureDesc& d, const DeviceInfo& device);
