@@ -64,7 +64,7 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
                   pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
                   TileLightCulling::bindLights(pc.cmd, ctx_, uniformLights_);
                   pc.cmd.setStorageBuffer(kSlotClusterLights, lists_);
-                  pc.cmd.dispatch((columns + 63) / 64);
+                  pc.cmd.dispatch(columns);  // a work group per tile column
               });
     return declared_;
 }

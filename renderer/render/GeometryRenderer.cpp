@@ -79,6 +79,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                 return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::Equal, "forward clustered"};
             case MeshPass::TransparentClustered:
                 return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::LessOrEqual, "transparent clustered"};
+            case MeshPass::Visibility: return {visibilityShaders(), true, gdi::CompareOp::LessOrEqual, "visibility"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
@@ -99,6 +100,10 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .depthFormat = targets.depthFormat,
         .debugName = st.name,
     };
+    if (pass == MeshPass::Visibility) {  // no vertex buffers: the vertex shader pulls its vertices
+        d.vertexShader = visibilityVs_;
+        d.vertexBuffers.clear();
+    }
     if (isTransparent(pass))
         d.blend = {{.enable = true,
                     .srcColor = gdi::BlendFactor::SrcAlpha,
@@ -133,6 +138,15 @@ gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const ch
     return made;
 }
 
+// The visibility pass's shaders (its fragment shader returned), made at its first pipeline.
+gdi::ShaderHandle GeometryRenderer::visibilityShaders() {
+    if (!visibilityFs_) {
+        visibilityVs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/visibility.vert")}));
+        visibilityFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/visibility.frag")}));
+    }
+    return visibilityFs_;
+}
+
 uint32_t GeometryRenderer::drawCount(MeshPass pass) const {
     uint32_t n = 0;
     for (const DrawItem& d : scene_.draws())
@@ -147,7 +161,7 @@ std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::v
     auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
     if (isTransparent(pass))  // back to front, so source-over blending composes correctly
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
-    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster)  // front to back: hidden surfaces fail early
+    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster || pass == MeshPass::Visibility)  // front to back: hidden surfaces fail early
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });
     return items;
 }
@@ -161,6 +175,10 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
     cmd.setStorageBuffer(kSlotLights, scene_.lightBuffer());
     if (environment_) environment_.bind(cmd);
+    if (pass == MeshPass::Visibility) {
+        cmd.setStorageBuffer(kSlotVertices, scene_.vertexBuffer());
+        cmd.setStorageBuffer(kSlotIndices, scene_.indexBuffer());
+    }
     gdi::PipelineHandle current{};
     for (size_t i = 0; i < list.size(); ++i) {
         const DrawItem* d = list[i];
@@ -186,7 +204,8 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
         cmd.setTexture(kSlotMetalRough, t.metallicRoughness, t.metallicRoughnessSampler);
         cmd.setTexture(kSlotNormalMap, t.normal, t.normalSampler);
         cmd.setTexture(kSlotEmissive, t.emissive, t.emissiveSampler);
-        cmd.drawIndexed(d->indexCount, 1, d->firstIndex, d->baseVertex, 0);
+        if (pass == MeshPass::Visibility) cmd.draw(d->indexCount);  // unindexed: vertex id / 3 is the triangle
+        else cmd.drawIndexed(d->indexCount, 1, d->firstIndex, d->baseVertex, 0);
     }
 }
 

@@ -31,6 +31,7 @@ enum class MeshPass {
     ForwardTiled,             // ForwardEqual over the pixel's tile light list (kSlotTileLights, forward-plus)
     ForwardClustered,         // ForwardEqual over the fragment's cluster list (kSlotClusterLights, clustered-forward)
     TransparentClustered,     // Transparent over the fragment's cluster list (any technique, with a cluster grid)
+    Visibility,               // triangle ids (R32U) and depth, vertices pulled (kSlotVertices, kSlotIndices), front to back
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -70,7 +71,9 @@ private:
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
     gdi::ShaderHandle forwardTiledFs_, forwardClusteredFs_;  // made at their first pipeline
+    gdi::ShaderHandle visibilityVs_, visibilityFs_;          // likewise
     gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name);
+    gdi::ShaderHandle visibilityShaders();
     EnvironmentLight environment_;
 };
 

@@ -87,11 +87,13 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     if (vertices.empty()) vertices.push_back({});  // a buffer needs at least one byte
     if (indices.empty()) indices.push_back(0);
     vertices_ = objects_.add(device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex),
-                                                  .usage = gdi::BufferUsage::Vertex, .debugName = "scene vertices"},
+                                                  .usage = gdi::BufferUsage::Vertex | gdi::BufferUsage::Storage,
+                                                  .debugName = "scene vertices"},
                                                  gdi::bytesOf(vertices)));
     indices_ = objects_.add(device.createBuffer(
-        {.size = indices.size() * 4, .usage = gdi::BufferUsage::Index, .debugName = "scene indices"}, gdi::bytesOf(indices)));
+        {.size = indices.size() * 4, .usage = gdi::BufferUsage::Index | gdi::BufferUsage::Storage, .debugName = "scene indices"}, gdi::bytesOf(indices)));
 
+    uint64_t triangles = 0;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const assets::MeshInstance& inst = scene.instances[i];
         const assets::Mesh& mesh = scene.meshes.at(inst.meshIndex);
@@ -108,7 +110,12 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             d.doubleSided = mat.doubleSided;
             d.mirrored = inst.mirrored;
             d.worldCenter = glm::vec3(inst.world * glm::vec4(prim.bounds.center(), 1.0f));
-            if (d.indexCount) draws_.push_back(d);
+            if (!d.indexCount) continue;
+            if (triangles + d.indexCount / 3 >= uint64_t(1) << 32)
+                throw gdi::Error("scene has more than 2^32 - 1 triangles (the visibility buffer's ids)");
+            d.firstTriangle = uint32_t(triangles + 1);
+            triangles += d.indexCount / 3;
+            draws_.push_back(d);
         }
     }
 
@@ -165,6 +172,18 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.emissiveTexture, white_, mt.emissive, mt.emissiveSampler);
         materialTextures_.push_back(mt);
     }
+    for (DrawItem& d : draws_) {
+        const MaterialTextures& mt = materialTextures_[d.material];
+        auto same = [&](const MaterialTextures& s) {
+            return s.baseColor == mt.baseColor && s.metallicRoughness == mt.metallicRoughness && s.normal == mt.normal &&
+                   s.emissive == mt.emissive && s.baseColorSampler == mt.baseColorSampler &&
+                   s.metallicRoughnessSampler == mt.metallicRoughnessSampler && s.normalSampler == mt.normalSampler &&
+                   s.emissiveSampler == mt.emissiveSampler;
+        };
+        auto it = std::find_if(textureSets_.begin(), textureSets_.end(), same);
+        d.textureSet = uint32_t(it - textureSets_.begin());
+        if (it == textureSets_.end()) textureSets_.push_back(mt);
+    }
     updateLights(scene.lights);
 }
 
@@ -199,7 +218,8 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.baseColorFactor = m.baseColorFactor;
     o.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
-    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u), 0, 0, 0);
+    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) | (item.textureSet << 8),
+                         item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
     return o;
 }
 

@@ -46,7 +46,9 @@ struct ObjectConstants {
     glm::vec4 baseColorFactor;
     glm::vec4 emissiveNormalScale;  // rgb emissive factor, a normal scale
     glm::vec4 params;               // metallic, roughness, alpha cutoff, alpha mode (0,1,2)
-    glm::uvec4 flags;               // x: bit0 normal map, bit1 unlit
+    // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 the draw's texture set; y, z: the
+    // draw's firstIndex and baseVertex; w: its first triangle's visibility id (DrawItem).
+    glm::uvec4 flags;
 };
 
 struct GpuLight {
@@ -68,6 +70,10 @@ struct DrawItem {
     bool doubleSided = false;
     bool mirrored = false;
     glm::vec3 worldCenter{0.0f};  // for back-to-front sorting of blended draws
+    // The visibility buffer's id of the draw's first triangle: triangles are numbered from 1
+    // across the draws in scene order (0: no surface).
+    uint32_t firstTriangle = 0;
+    uint32_t textureSet = 0;  // which of GpuScene::textureSets() its material samples
 };
 
 struct MaterialTextures {
@@ -94,6 +100,9 @@ public:
     static constexpr uint64_t kUniformLightBytes = uint64_t(kUniformLights) * 64;
     const std::vector<DrawItem>& draws() const { return draws_; }
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
+    // The distinct texture bindings of the materials (many share the defaults): a pass that
+    // shades every material at once binds one set at a time (VisibilityBufferRenderer).
+    const std::vector<MaterialTextures>& textureSets() const { return textureSets_; }
     ObjectConstants objectConstants(const DrawItem& item) const;
     // Replaces the light list (e.g. animated builtin:lights); the count may change. The first
     // `unshadowed` lights are lit by a technique's own light loop or volumes; each light after
@@ -120,7 +129,7 @@ private:
     std::vector<DrawItem> draws_;
     std::vector<gdi::TextureHandle> textures_;
     std::vector<gdi::SamplerHandle> samplers_;
-    std::vector<MaterialTextures> materialTextures_;
+    std::vector<MaterialTextures> materialTextures_, textureSets_;
     gdi::TextureHandle white_, black_, flatNormal_;
     gdi::SamplerHandle defaultSampler_;
 };

@@ -32,4 +32,8 @@ constexpr uint32_t kSlotHistory1 = 26;
 constexpr uint32_t kSlotHistory2 = 27;
 constexpr uint32_t kSlotTaa = 34;           // temporal antialiasing's constants (PostProcess)
 constexpr uint32_t kSlotClusterLights = 35; // the light cluster grid's lists (ClusterLightGrid), storage buffer
+constexpr uint32_t kSlotVisibility = 36;    // the visibility buffer's triangle ids (R32U, sampled)
+constexpr uint32_t kSlotDraws = 37;         // every draw's ObjectConstants (storage buffer)
+constexpr uint32_t kSlotVertices = 38;      // the scene's vertices, pulled by shaders (storage buffer)
+constexpr uint32_t kSlotIndices = 39;       // ... and its indices
 }  // namespace fe::render

@@ -7,6 +7,7 @@
 #include "render/LightPrepassRenderer.h"
 #include "render/RedeferredRenderer.h"
 #include "render/TiledDeferredRenderer.h"
+#include "render/VisibilityBufferRenderer.h"
 #include "render/ShaderSlots.h"
 #include "render/TechniqueRenderer.h"
 
@@ -49,6 +50,8 @@ const std::vector<TechniqueInfo>& techniques() {
          makeTiledDeferred<TiledDeferredRenderer::Lists::Tiles>},
         {"clustered-deferred", "G-buffer, lights assigned to clusters, one compute pass: each pixel shades its cluster's lights",
          makeTiledDeferred<TiledDeferredRenderer::Lists::Clusters>, false, false, true},
+        {"visibility-buffer", "triangle id + depth per pixel, one compute pass rebuilding each pixel's surface and shading its cluster's lights",
+         make<VisibilityBufferRenderer>, false, false, true},
         {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
          makeLightPrepass<true>, true},
         {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",

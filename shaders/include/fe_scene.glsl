@@ -27,6 +27,10 @@
 #define FE_SLOT_HISTORY1 26
 #define FE_SLOT_HISTORY2 27
 #define FE_SLOT_TAA 34
+#define FE_SLOT_VISIBILITY 36
+#define FE_SLOT_DRAWS 37
+#define FE_SLOT_VERTICES 38
+#define FE_SLOT_INDICES 39
 
 // G-buffer 2's alpha: -1 where nothing was drawn (its clear value), w_o.n in [0, 1] on lit
 // surfaces (redeferred consideration A: the material pass need not rebuild it), 2 on unlit ones.

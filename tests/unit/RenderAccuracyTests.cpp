@@ -139,6 +139,10 @@ TEST_P(RenderAccuracy, ClusteredTechniquesCullExactly) {
     EXPECT_EQ(f.fractionOver, 0.0) << "clustered-forward max relative error " << f.maxRel;
     Stats d = compare(render("clustered-deferred"), render("deferred-tiled"), 1e-6, 1e-6);
     EXPECT_EQ(d.fractionOver, 0.0) << "clustered-deferred max relative error " << d.maxRel;
+    // The visibility buffer shades the same lists with full-precision normals and positions
+    // rebuilt from the triangle, where the G-buffer rounds normals to half floats: as forward.
+    Stats v = compare(render("visibility-buffer"), render("clustered-forward"), 1e-3, 1e-3);
+    EXPECT_EQ(v.fractionOver, 0.0) << "visibility-buffer max relative error " << v.maxRel;
     if (device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4) {
         Stats m = compare(render("clustered-forward", 4), render("forward", 4), 1e-6, 1e-6);
         EXPECT_EQ(m.fractionOver, 0.0) << "clustered-forward at 4 samples, max relative error " << m.maxRel;
@@ -153,7 +157,7 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
     constexpr uint32_t W = 128, H = 72;
     const render::ReferenceImage ref = render::renderReference(atrium, *atrium.camera, W, H);
     const render::DisplayImage expected = render::toDisplay(W, H, ref.radiance);
-    for (const char* t : {"forward", "forward-plus", "clustered-forward", "clustered-deferred", "deferred-tiled"}) {
+    for (const char* t : {"forward", "forward-plus", "clustered-forward", "clustered-deferred", "deferred-tiled", "visibility-buffer"}) {
         render::SceneRenderer r(*device, atrium, {.technique = t, .width = W, .height = H});
         r.renderFrame();
         const gdi::Image out = r.readOutput();
@@ -184,10 +188,11 @@ TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
     EXPECT_EQ(every.lists, "every light");
     EXPECT_EQ(every.mean, 256.0);
     EXPECT_EQ(every.max, 256u);
-    for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward", "clustered-deferred"}) {
+    for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward", "clustered-deferred", "visibility-buffer"}) {
         const render::LightListStatistics l = statistics(t);
         EXPECT_TRUE(l.measured) << t;
-        EXPECT_EQ(l.lists, std::string(t).starts_with("clustered") ? "cluster lists" : "tile lists") << t;
+        const bool clustered = std::string(t).starts_with("clustered") || std::string(t) == "visibility-buffer";
+        EXPECT_EQ(l.lists, clustered ? "cluster lists" : "tile lists") << t;
         EXPECT_GT(l.pixels, 96u * 64u / 2) << t;  // the cubes cover most of the frame
         EXPECT_GT(l.mean, 0.0) << t;
         EXPECT_LT(l.mean, 256.0 / 4) << t << ": the lists hardly cull";  // 32-pixel clusters: 3x2 columns here
@@ -208,14 +213,15 @@ TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {
             scene1.materials[i].alphaMode = assets::AlphaMode::Blend;
             scene1.materials[i].baseColorFactor.a = 0.5f;
         }
-        for (const char* t : {"deferred", "forward-plus", "clustered-deferred"}) {
+        for (const char* t : {"deferred", "forward-plus", "clustered-deferred", "visibility-buffer"}) {
             auto render = [&](bool clusters) {
                 render::SceneRenderer r(*device, scene1, {.technique = t, .width = 96, .height = 64,
                                                           .translucentClusters = clusters,
                                                           .shadows = {.enabled = std::string(name) == "shadows"}});
                 bool assigns = false;
                 for (const auto& p : r.graph().passes()) assigns = assigns || p.name == "light-assignment";
-                EXPECT_EQ(assigns, clusters || std::string(t) == "clustered-deferred") << name << " " << t;
+                EXPECT_EQ(assigns, clusters || std::string(t) == "clustered-deferred" || std::string(t) == "visibility-buffer")
+                    << name << " " << t;
                 r.renderFrame();
                 return r.readOutput();
             };
@@ -384,6 +390,7 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward-plus", {"zprepass", "light-culling", "forward-plus-shading", "display"}},
         {"clustered-forward", {"zprepass", "light-assignment", "clustered-shading", "display"}},
         {"clustered-deferred", {"gbuffer", "light-assignment", "clustered-lighting", "display"}},
+        {"visibility-buffer", {"visibility", "light-assignment", "visibility-resolve", "display"}},
         {"deferred-tiled", {"gbuffer", "light-culling", "tiled-lighting", "display"}},
         {"light-prepass", {"lpp-normals", "lpp-lights", "lpp-material", "display"}},
         {"redeferred-tiled", {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},

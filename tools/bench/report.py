@@ -42,6 +42,7 @@ TECHNIQUE_STYLES = {
     "deferred": ("#2ca02c", "D", "--"),
     "deferred-tiled": ("#8c564b", "^", "--"),
     "clustered-deferred": ("#e377c2", "*", "--"),
+    "visibility-buffer": ("#e6550d", "d", (0, (5, 1, 1, 1))),
     "light-prepass": ("#7f7f7f", "p", ":"),
     "light-prepass-unpacked": ("#bcbd22", "h", ":"),
     "redeferred": ("#000000", "<", "-."),

@@ -1,0 +1,121 @@
+// The body of visibility_resolve*.comp (VisibilityBufferRenderer): a work group per 16x16 screen
+// tile; each pixel finds its triangle from the visibility buffer's id, rebuilds the surface the
+// ray through its centre meets there (barycentrics of the view ray, not of the depth), samples
+// its material with the gradients of the rays through the next pixels, and shades the lights of
+// its cluster (ClusterLightGrid), once, writing L_o. A device without bindless textures binds one
+// texture set at a time: the renderer dispatches once per set (resolve.pass.x) and a pixel whose
+// draw samples another set is left for that dispatch; the first also writes the empty pixels.
+#define FE_TILE_LISTS  // the list passes' helpers and uniform lights (fe_tile_culling.glsl)
+#define FE_CLUSTER_LISTS
+#define FE_MATERIAL_FROM_STORAGE
+#include "fe_common.glsl"
+#include "fe_tile_culling.glsl"
+#include "fe_clusters.glsl"
+#include "fe_material.glsl"
+#ifdef FE_IBL
+#include "fe_ibl.glsl"
+#endif
+layout(local_size_x = 16, local_size_y = 16) in;
+layout(binding = FE_SLOT_VISIBILITY) uniform usampler2D visibility;
+layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform writeonly image2D outRadiance;
+layout(binding = FE_SLOT_VERTICES, std430) readonly buffer VertexBlock {
+    float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv (12 floats)
+};
+layout(binding = FE_SLOT_INDICES, std430) readonly buffer IndexBlock {
+    uint indices[];
+};
+FE_CONSTANTS(ResolveConstants) {
+    uvec4 pass;  // x: the texture set this dispatch shades, y: 1 when it also writes empty pixels
+} resolve;
+
+// The draw holding triangle `id`: the last whose first triangle is at most id (draws are in
+// scene order, their ids increasing).
+uint feDrawOfTriangle(uint id) {
+    uint lo = 0u, hi = uint(draws.length()) - 1u;
+    while (lo < hi) {
+        const uint mid = (lo + hi + 1u) >> 1;
+        if (draws[mid].flags.w <= id) lo = mid;
+        else hi = mid - 1u;
+    }
+    return lo;
+}
+
+struct TriangleVertex {
+    vec3 eye;  // camera-relative position, as mesh.vert computes it
+    vec3 normal;
+    vec4 tangent;
+    vec2 uv;
+};
+TriangleVertex feTriangleVertex(uint index) {
+    const uint f = (index + object.flags.z) * 12u;
+    TriangleVertex v;
+    const vec3 p = vec3(vertexFloats[f], vertexFloats[f + 1u], vertexFloats[f + 2u]);
+    v.eye = mat3(object.world) * p + (object.world[3].xyz - frame.cameraPosition.xyz);
+    v.normal = vec3(vertexFloats[f + 3u], vertexFloats[f + 4u], vertexFloats[f + 5u]);
+    v.tangent = vec4(vertexFloats[f + 6u], vertexFloats[f + 7u], vertexFloats[f + 8u], vertexFloats[f + 9u]);
+    v.uv = vec2(vertexFloats[f + 10u], vertexFloats[f + 11u]);
+    return v;
+}
+
+// Barycentrics (of vertices 1 and 2) where the ray from the eye along `dir` meets the plane of
+// the triangle (Moller and Trumbore 1997, with the ray's origin at the eye: 0 in eye space).
+vec2 feRayBarycentrics(vec3 dir, vec3 p0, vec3 e1, vec3 e2) {
+    const vec3 pv = cross(dir, e2);
+    const float inv = 1.0 / dot(e1, pv);
+    const vec3 tv = -p0;
+    return vec2(dot(tv, pv), dot(dir, cross(tv, e1))) * inv;
+}
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+    const uint id = texelFetch(visibility, p, 0).r;
+    if (id == 0u) {
+        if (resolve.pass.y != 0u) imageStore(outRadiance, p, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    object = draws[feDrawOfTriangle(id)];
+    if ((object.flags.x >> 8) != resolve.pass.x) return;
+    const uint first = object.flags.y + 3u * (id - object.flags.w);
+    const TriangleVertex v0 = feTriangleVertex(indices[first]), v1 = feTriangleVertex(indices[first + 1u]),
+                         v2 = feTriangleVertex(indices[first + 2u]);
+    const vec3 e1 = v1.eye - v0.eye, e2 = v2.eye - v0.eye;
+    // The rays through this pixel's centre and its neighbours' (the gradients a fragment
+    // shader's 2x2 quad would see).
+    const vec3 dir = feEyeFromDepth(vec2(p) + 0.5, 0.5);
+    const vec2 b = feRayBarycentrics(dir, v0.eye, e1, e2);
+    const vec2 bx = feRayBarycentrics(feEyeFromDepth(vec2(p) + vec2(1.5, 0.5), 0.5), v0.eye, e1, e2);
+    const vec2 by = feRayBarycentrics(feEyeFromDepth(vec2(p) + vec2(0.5, 1.5), 0.5), v0.eye, e1, e2);
+    const vec3 w = vec3(1.0 - b.x - b.y, b);
+    const vec2 uv = w.x * v0.uv + w.y * v1.uv + w.z * v2.uv;
+    const mat3x2 uvs = mat3x2(v0.uv, v1.uv, v2.uv);
+    feUvDx = uvs * vec3(1.0 - bx.x - bx.y, bx) - uv;
+    feUvDy = uvs * vec3(1.0 - by.x - by.y, by) - uv;
+    const vec3 eye = w.x * v0.eye + w.y * v1.eye + w.z * v2.eye;
+    const vec3 N = mat3(object.normalMatrix) * (w.x * v0.normal + w.y * v1.normal + w.z * v2.normal);
+    const vec4 T = w.x * v0.tangent + w.y * v1.tangent + w.z * v2.tangent;
+    // Counter-clockwise seen from the eye; mirrored instances flip the winding (CpuReference).
+    const bool front = (dot(cross(e1, e2), dir) < 0.0) != ((object.flags.x & 4u) != 0u);
+    const MaterialSample m = feSampleMaterial(uv, N, vec4(mat3(object.world) * T.xyz, T.w), front);
+    vec3 radiance = m.emissive;
+    if (m.unlit) {
+        radiance = m.baseColor;
+    } else {
+        const SurfacePoint s = feMaterialSurface(m, eye);
+        const SurfaceBrdf brdf = fePrepareBrdf(s);
+        feUseClusterList(p, texelFetch(depthTexture, p, 0).r);
+        const uint count = feClusterLightCount(frame.counts.x);
+        for (uint k = 0u; k < count; ++k) {
+            const uint i = feClusterLight(k);
+            if (i >= frame.counts.x) break;  // the shadowed lights, last in the list, have passes of their own
+            const GpuLight L = feLight(i);
+            if (!feLightReaches(L, s.P)) continue;  // beyond its range a light adds exactly 0
+            radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
+        }
+#ifdef FE_IBL
+        radiance += feShadeEnvironment(s, frame.counts.z);
+#endif
+    }
+    imageStore(outRadiance, p, vec4(radiance, 1.0));
+}

@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
+// The visibility buffer's resolve (fe_visibility_resolve_pass.glsl).
+#include "fe_visibility_resolve_pass.glsl"

@@ -1,0 +1,7 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
+// The visibility buffer's resolve (fe_visibility_resolve_pass.glsl), with the environment's light.
+#define FE_IBL
+#define FE_IBL_PREFILTERED
+#include "fe_visibility_resolve_pass.glsl"
