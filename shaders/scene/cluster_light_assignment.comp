@@ -6,20 +6,22 @@
 #include "fe_tile_culling.glsl"
 #include "fe_clusters.glsl"
 // The light assignment pass of the clustered techniques (ClusterLightGrid.h): one work group
-// per tile column of the grid, its 64 invocations taking the lights 64 at a time. A light is
-// tested against the box around the whole column, then against the boxes of the slices its
-// range sphere spans in view depth only (two levels, as tile_light_culling.comp: one test per
-// light and column, not one per light and cluster). Each invocation notes the slices its light
-// reaches in a bit mask; per slice, the invocations' bits (a 64-bit ballot in shared memory)
-// give each light its place in the slice's list, so lists stay in increasing light order with
-// no serial walk. (One invocation per column walking every light, as this pass first did, kept
-// 920 invocations busy for 1.4 ms on an H200 at 1024 lights: far too few to fill a GPU.)
+// per tile column of the grid, each of its 64 invocations taking a 64th of the lights, in
+// order. A light is tested against the box around the whole column, then against the boxes of
+// the slices its range sphere spans in view depth only (two levels, as tile_light_culling.comp:
+// one test per light and column, not one per light and cluster). Two walks: the first counts,
+// per slice, the lights of each invocation's share; a prefix over the invocations then gives
+// each share its place in the slice's list (so lists stay in increasing light order), and each
+// non-empty list reserves its room in the shared index array (one atomic add); the second walk
+// fills them. (One invocation per column walking every light, as this pass first did, left an
+// H200 mostly idle: 920 invocations, 1.4 ms at 1024 lights.)
 // Every light of the scene is assigned (frame.counts.w), shadowed ones too: the translucent
 // pass lights with all of them, the opaque passes stop at their own range.
 #if FE_CLUSTER_SLICES > 32
 #error "a light's slices are a 32-bit mask"
 #endif
-layout(local_size_x = 64) in;
+#define FE_ASSIGN_LANES 64
+layout(local_size_x = FE_ASSIGN_LANES) in;
 
 // Depth-buffer depth of view depth v (the inverse of feViewDepth).
 float feDepthOfViewDepth(float v) {
@@ -29,9 +31,8 @@ float feDepthOfViewDepth(float v) {
 }
 
 shared vec3 sLo[FE_CLUSTER_SLICES + 1], sHi[FE_CLUSTER_SLICES + 1];  // the slices' boxes, then the column's
-shared uint sBallot[2 * FE_CLUSTER_SLICES];  // per slice: which of the 64 invocations' lights reach it
-shared uint sCount[FE_CLUSTER_SLICES];       // per slice: lights listed so far
-shared uint sStart[FE_CLUSTER_SLICES];       // per slice: where its list begins (second walk)
+shared uint sCount[FE_CLUSTER_SLICES][FE_ASSIGN_LANES];  // per slice and share: its lights, then its place
+shared uint sStart[FE_CLUSTER_SLICES];                   // per slice: where its list begins
 shared bool sFits[FE_CLUSTER_SLICES];
 
 // The slices the light reaches, as a bit mask.
@@ -61,52 +62,39 @@ void main() {
     // rounded across a boundary still lies inside the box of the slice it is filed under.
     if (lane <= uint(FE_CLUSTER_SLICES)) {
         const int k = int(lane);
-        const float z0 = k == FE_CLUSTER_SLICES ? feClusterSliceStart(0) : feClusterSliceStart(k);
+        const float z0 = feClusterSliceStart(k == FE_CLUSTER_SLICES ? 0 : k);
         const float z1 = feClusterSliceStart(k == FE_CLUSTER_SLICES ? FE_CLUSTER_SLICES : k + 1);
         feTileSliceBox(p0, p1, feDepthOfViewDepth(z0 * 0.999), feDepthOfViewDepth(z1 * 1.001), sLo[k], sHi[k]);
     }
-    if (lane < uint(FE_CLUSTER_SLICES)) sCount[lane] = 0u;
-    if (lane < uint(2 * FE_CLUSTER_SLICES)) sBallot[lane] = 0u;
+    for (int k = 0; k < FE_CLUSTER_SLICES; ++k) sCount[k][lane] = 0u;
     barrier();
-    const uint below = lane < 32u ? (1u << lane) - 1u : (lane == 32u ? 0u : (1u << (lane - 32u)) - 1u);
-    // Two walks over the lights: the first counts each slice's list, then each non-empty list
-    // reserves its room in the shared index array (one atomic add), the second fills them.
-    for (int pass = 0; pass < 2; ++pass) {
-        for (uint base = 0u; base < frame.counts.w; base += 64u) {
-            const uint i = base + lane;
-            const uint mask = i < frame.counts.w ? feSlicesReached(i) : 0u;
-            for (uint m = mask; m != 0u; m &= m - 1u)
-                atomicOr(sBallot[2 * findLSB(m) + (lane >> 5)], 1u << (lane & 31u));
-            barrier();
-            if (pass == 1) {
-                for (uint m = mask; m != 0u; m &= m - 1u) {
-                    const int k = findLSB(m);
-                    if (!sFits[k]) continue;
-                    const uint before = lane < 32u ? bitCount(sBallot[2 * k] & below)
-                                                   : bitCount(sBallot[2 * k]) + bitCount(sBallot[2 * k + 1] & below);
-                    clusterWords[sStart[k] + sCount[k] + before] = i;
-                }
-            }
-            barrier();
-            if (lane < uint(FE_CLUSTER_SLICES)) {
-                sCount[lane] += bitCount(sBallot[2 * lane]) + bitCount(sBallot[2 * lane + 1]);
-                sBallot[2 * lane] = sBallot[2 * lane + 1] = 0u;
-            }
-            barrier();
+    // This invocation's share of the lights: [begin, end), in order.
+    const uint share = (frame.counts.w + FE_ASSIGN_LANES - 1u) / FE_ASSIGN_LANES;
+    const uint begin = min(lane * share, frame.counts.w), end = min(begin + share, frame.counts.w);
+    for (uint i = begin; i < end; ++i)
+        for (uint m = feSlicesReached(i); m != 0u; m &= m - 1u) ++sCount[findLSB(m)][lane];
+    barrier();
+    if (lane < uint(FE_CLUSTER_SLICES)) {
+        const int k = int(lane);
+        uint count = 0u;
+        for (int j = 0; j < FE_ASSIGN_LANES; ++j) {  // exclusive prefix: each share's place
+            const uint c = sCount[k][j];
+            sCount[k][j] = count;
+            count += c;
         }
-        if (pass == 1) break;
-        if (lane < uint(FE_CLUSTER_SLICES)) {
-            const int k = int(lane);
-            const uint count = sCount[k];
-            const uint header = feClusterHeader(tile, k);
-            const uint reserved = count == 0u ? 0u : atomicAdd(clusterWords[0], count);
-            const bool fits = reserved + count <= feClusterCapacity() && reserved + count >= reserved;
-            clusterWords[header] = feClusterListsStart() + reserved;
-            clusterWords[header + 1u] = fits ? count : 0xffffffffu;
-            sStart[k] = feClusterListsStart() + reserved;
-            sFits[k] = fits;
-            sCount[k] = 0u;  // the second walk counts again, as it writes
-        }
-        barrier();
+        const uint header = feClusterHeader(tile, k);
+        const uint reserved = count == 0u ? 0u : atomicAdd(clusterWords[0], count);
+        const bool fits = reserved + count <= feClusterCapacity() && reserved + count >= reserved;
+        clusterWords[header] = feClusterListsStart() + reserved;
+        clusterWords[header + 1u] = fits ? count : 0xffffffffu;
+        sStart[k] = feClusterListsStart() + reserved;
+        sFits[k] = fits;
     }
+    barrier();
+    for (uint i = begin; i < end; ++i)
+        for (uint m = feSlicesReached(i); m != 0u; m &= m - 1u) {
+            const int k = findLSB(m);
+            if (sFits[k]) clusterWords[sStart[k] + sCount[k][lane]] = i;
+            ++sCount[k][lane];
+        }
 }
