@@ -1,6 +1,7 @@
 // The bench (integration/Bench.h): a small sweep on each backend writes every figure the schema
 // promises, the CSV carries the same records, sweep files are checked, and a comparison flags
 // a slower frame or a less exact image as a regression.
+#include <chrono>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -78,6 +79,28 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Bench);
 
+// A GPU idling between waited frames stays at its lowest clock (an H200 ran two-frame warm-ups
+// at 5x its fastest frame), so on hardware the warm-up also lasts BenchOptions::warmupSeconds;
+// a software rasterizer has no clock to raise and keeps to warmupFrames.
+TEST_P(Bench, WarmUpLastsItsTimeOnAGpuAndItsFramesOnASoftwareDevice) {
+    const bool software = device->info().softwareRasterizer;
+    device.reset();
+    std::vector<render::BenchCase> cases = tinySweep();
+    cases.resize(1);
+    std::vector<std::chrono::steady_clock::time_point> frames;
+    render::BenchOptions options{.warmupFrames = 1, .warmupSeconds = 0.3, .frames = 2};
+    options.onFrame = [&](const std::string&, uint32_t) { frames.push_back(std::chrono::steady_clock::now()); };
+    render::runBench(cases, {GetParam()}, options);
+    ASSERT_GE(frames.size(), 3u);
+    if (software) {
+        EXPECT_EQ(frames.size(), 3u) << "a software device warmed up for a time";
+    } else {
+        // The first timed frame starts after the warm-up's time.
+        const double warm = std::chrono::duration<double>(frames[frames.size() - 2] - frames[0]).count();
+        EXPECT_GE(warm, 0.3) << frames.size() << " frames";
+    }
+}
+
 // --interleave: frame f of every case, then frame f + 1; the same images and sample counts as
 // one case after another.
 TEST_P(Bench, InterleavedCasesAlternateFramesAndMeasureTheSame) {
@@ -85,7 +108,8 @@ TEST_P(Bench, InterleavedCasesAlternateFramesAndMeasureTheSame) {
     std::vector<render::BenchCase> cases = tinySweep();
     cases.resize(2);
     std::vector<std::string> sequential, interleaved;
-    render::BenchOptions options{.warmupFrames = 1, .frames = 2, .validation = true};
+    // Counted frames only: a GPU's timed warm-up would add frames (WarmUp, below).
+    render::BenchOptions options{.warmupFrames = 1, .warmupSeconds = 0, .frames = 2, .validation = true};
     options.onFrame = [&](const std::string& key, uint32_t f) { sequential.push_back(key + " " + std::to_string(f)); };
     const gdi::Json a = render::runBench(cases, {GetParam()}, options);
     options.interleave = true;

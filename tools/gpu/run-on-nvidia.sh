@@ -4,6 +4,7 @@
 # binaries in parallel, then the benchmarks one at a time. Everything it writes goes
 # to $OUT. Each step has its own time limit so that one slow step still leaves the others' files.
 #   bash tools/gpu/run-on-nvidia.sh [QUICK_S SWEEP_S MICRO_S TESTS_S]   (a step given 0 s is left out)
+# SWEEP_FRAMES and SWEEP_WARMUP_MS (default 20 and 1000) size the sweep to the time left.
 set -u
 out=${OUT:-/tmp/gpu-out}; mkdir -p "$out"
 quick_s=${1:-100} sweep_s=${2:-120} micro_s=${3:-60} tests_s=${4:-150}
@@ -33,10 +34,16 @@ if [ "$tests_s" -gt 0 ]; then
   echo "tests: $((SECONDS - t0)) s; $(grep -c '^\[  FAILED  \]' "$out/tests.log") failed lines, $(grep -h '^\[  PASSED  \]' "${logs[@]}" | awk '{s+=$4} END {print s}') passed; binaries' exits: $(grep -h '^exit ' "${logs[@]}" | sort | uniq -c | tr '\n' ' ')" | tee -a "$out/info.txt"
 fi
 # Then the benchmarks, on an otherwise idle GPU.
-step sweep "$sweep_s" $fe bench --sweep bench/sweeps/many-lights-gpu.json --backend $backends --frames 20 --out /tmp/sweep
+# The sweep's measurements so far reach $OUT every few seconds, so a time limit keeps them.
+( while sleep 3; do cp /tmp/sweep/results.partial.json "$out/sweep.partial.json" 2>/dev/null; done ) & copier=$!
+step sweep "$sweep_s" $fe bench --sweep bench/sweeps/many-lights-gpu.json --backend $backends --frames ${SWEEP_FRAMES:-20} \
+  --warmup-ms ${SWEEP_WARMUP_MS:-1000} --out /tmp/sweep
+kill $copier 2>/dev/null
+cp /tmp/sweep/results.json /tmp/sweep/results.csv "$out/" 2>/dev/null
 step quick "$quick_s" $fe bench --quick --backend $backends --out /tmp/quick
 # The GL recording ratio once more without NVIDIA's threaded optimisations (its driver thread
 # may share the recording threads' CPUs).
 step micro "$micro_s" bash -c 'build/bench/fe_bench_execution --rounds 21 && build/bench/fe_bench_abstraction --paired 300 &&
   __GL_THREADED_OPTIMIZATIONS=0 build/bench/fe_bench_execution --backend gl-egl --rounds 21'
-tar -C /tmp -czf "$out/bench.tar.gz" --exclude='*.pfm' quick sweep 2>/dev/null
+# Results only: 28 cases' 720p images and FLIP maps are past what the device tool brings back.
+tar -C /tmp -czf "$out/bench.tar.gz" --exclude='*.pfm' --exclude='*.png' --exclude=images quick sweep 2>/dev/null
