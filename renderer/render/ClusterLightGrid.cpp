@@ -50,21 +50,22 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
     g.markOutput(declared_);  // statistics() reads it back
     g.addPass("light-assignment", [&](graph::PassBuilder& b) { b.buffer(declared_, gdi::BufferAccess::StorageWrite); },
               [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
-                  // The reservation counter starts each frame at 0.
-                  const gdi::BufferBarrier beforeClear{.buffer = lists_, .before = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite,
-                                                       .after = gdi::BufferAccess::CopyDst, .offset = 0, .size = 4};
-                  pc.cmd.barrier(&beforeClear, 1);
-                  pc.cmd.clearBuffer(lists_, 0, 4, 0);
-                  const gdi::BufferBarrier afterClear{.buffer = lists_, .before = gdi::BufferAccess::CopyDst,
-                                                      .after = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite,
-                                                      .offset = 0, .size = 4};
-                  pc.cmd.barrier(&afterClear, 1);
-                  pc.cmd.setPipeline(pipeline_);
+                  gdi::CommandList& cmd = pc.cmd;
+                  cmd.setPipeline(pipeline_);
                   const UploadAllocation& fc = ctx_.frameConstants;
-                  pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-                  TileLightCulling::bindLights(pc.cmd, ctx_, uniformLights_);
-                  pc.cmd.setStorageBuffer(kSlotClusterLights, lists_);
-                  pc.cmd.dispatch(columns);  // a work group per tile column
+                  cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+                  TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
+                  cmd.setStorageBuffer(kSlotClusterLights, lists_);
+                  // Count each cluster's lights, place the lists in header order, fill them
+                  // (cluster_light_assignment.comp): no atomics, the same layout on every device.
+                  const gdi::BufferBarrier between{.buffer = lists_,
+                                                   .before = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite,
+                                                   .after = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite};
+                  for (uint32_t phase = 0; phase < 3; ++phase) {
+                      if (phase) cmd.barrier(&between, 1);
+                      cmd.setConstants(glm::uvec4(phase, 0u, 0u, 0u));
+                      cmd.dispatch(phase == 1 ? 1 : columns);  // a work group per tile column; one to place
+                  }
               });
     return declared_;
 }

@@ -6,11 +6,12 @@
 // ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
 // range reaches a cluster's box into its list, in a storage buffer the shading passes read
 // (shaders/include/fe_clusters.glsl). The grid does not depend on the opaque depth, so blended
-// surfaces use it as opaque ones do. The lists are compact: each cluster reserves exactly its
-// length in one shared index array (an atomic counter), so a crowded far cluster takes what
-// near empty ones leave; the array holds kMeanListCapacity lights per cluster on average. A
-// cluster that finds no room is marked to shade every light and counted (Statistics), so a
-// light is never dropped.
+// surfaces use it as opaque ones do. The lists are compact: the pass counts each cluster's
+// lights, places the lists one after another in one shared index array (a prefix over the
+// clusters in order, so the layout is the same on every device and run), then fills them; a
+// crowded far cluster takes what near empty ones leave; the array holds kMeanListCapacity
+// lights per cluster on average. A cluster past its end is marked to shade every light and
+// counted (Statistics), so a light is never dropped.
 #pragma once
 #include <cstdint>
 

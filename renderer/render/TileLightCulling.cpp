@@ -65,6 +65,8 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
         bindFrameAndLights(pc.cmd, pipeline_);
         pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
         pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
+        // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres.
+        pc.cmd.setConstants(glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
         pc.cmd.dispatch((tiles + 63) / 64, 1);
     });
     return lists;

@@ -3,25 +3,34 @@
 // fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
 #define FE_TILE_LISTS  // only for the shared helpers (feTileSliceBox, feLightTouchesBox)
 #define FE_CLUSTER_ASSIGN
+#include "fe_common.glsl"
 #include "fe_tile_culling.glsl"
 #include "fe_clusters.glsl"
-// The light assignment pass of the clustered techniques (ClusterLightGrid.h): one work group
-// per tile column of the grid, each of its 64 invocations taking a 64th of the lights, in
-// order. A light is tested against the box around the whole column, then against the boxes of
-// the slices its range sphere spans in view depth only (two levels, as tile_light_culling.comp:
-// one test per light and column, not one per light and cluster). Two walks: the first counts,
-// per slice, the lights of each invocation's share; a prefix over the invocations then gives
-// each share its place in the slice's list (so lists stay in increasing light order), and each
-// non-empty list reserves its room in the shared index array (one atomic add); the second walk
-// fills them. (One invocation per column walking every light, as this pass first did, left an
-// H200 mostly idle: 920 invocations, 1.4 ms at 1024 lights.)
-// Every light of the scene is assigned (frame.counts.w), shadowed ones too: the translucent
-// pass lights with all of them, the opaque passes stop at their own range.
+// The light assignment pass of the clustered techniques (ClusterLightGrid.h), three dispatches
+// chosen by assignment.phase.x, each a barrier apart:
+//  0. Count: one work group per tile column of the grid, each of its 64 invocations taking a 64th
+//     of the lights, in order. A light is tested against the box around the whole column, then
+//     against the boxes of the slices its range sphere spans in view depth only (two levels, as
+//     tile_light_culling.comp: one test per light and column, not one per light and cluster).
+//     Each cluster's length goes to its header.
+//  1. Place: one work group turns the lengths, in header order, into each list's first word (an
+//     exclusive prefix), so the layout is the same on every device and every run (a capture's
+//     read-back compares byte by byte; atomic reservations land in the order threads happen to
+//     run); a list past the shared index array's end is marked to shade every light.
+//  2. Fill: as 0, each invocation's lights placed after those of the invocations before it (a
+//     prefix over the shares), so lists stay in increasing light order.
+// (One invocation per column walking every light, as this pass first did, left an H200 mostly
+// idle: 920 invocations, 1.4 ms at 1024 lights.) Every light of the scene is assigned
+// (frame.counts.w), shadowed ones too: the translucent pass lights with all of them, the opaque
+// passes stop at their own range.
 #if FE_CLUSTER_SLICES > 32
 #error "a light's slices are a 32-bit mask"
 #endif
 #define FE_ASSIGN_LANES 64
 layout(local_size_x = FE_ASSIGN_LANES) in;
+FE_CONSTANTS(AssignmentConstants) {
+    uvec4 phase;  // x: 0 count, 1 place, 2 fill
+} assignment;
 
 // Depth-buffer depth of view depth v (the inverse of feViewDepth).
 float feDepthOfViewDepth(float v) {
@@ -32,8 +41,7 @@ float feDepthOfViewDepth(float v) {
 
 shared vec3 sLo[FE_CLUSTER_SLICES + 1], sHi[FE_CLUSTER_SLICES + 1];  // the slices' boxes, then the column's
 shared uint sCount[FE_CLUSTER_SLICES][FE_ASSIGN_LANES];  // per slice and share: its lights, then its place
-shared uint sStart[FE_CLUSTER_SLICES];                   // per slice: where its list begins
-shared bool sFits[FE_CLUSTER_SLICES];
+shared uint sTotal[FE_ASSIGN_LANES];                     // phase 1: each invocation's run of lengths
 
 // The slices the light reaches, as a bit mask.
 uint feSlicesReached(uint i) {
@@ -52,7 +60,36 @@ uint feSlicesReached(uint i) {
     return mask;
 }
 
+// Phase 1: the lists' first words from their lengths, in header order.
+void placeLists() {
+    const ivec2 tiles = feClusterTiles();
+    const uint clusters = uint(tiles.x * tiles.y * FE_CLUSTER_SLICES), lane = gl_LocalInvocationIndex;
+    const uint run = (clusters + FE_ASSIGN_LANES - 1u) / FE_ASSIGN_LANES;
+    const uint begin = min(lane * run, clusters), end = min(begin + run, clusters);
+    uint sum = 0u;
+    for (uint c = begin; c < end; ++c) sum += clusterWords[2u + 2u * c];
+    sTotal[lane] = sum;
+    barrier();
+    uint place = 0u, total = 0u;
+    for (uint j = 0u; j < FE_ASSIGN_LANES; ++j) {
+        place += j < lane ? sTotal[j] : 0u;
+        total += sTotal[j];
+    }
+    const uint start = feClusterListsStart(), capacity = feClusterCapacity();
+    for (uint c = begin; c < end; ++c) {
+        const uint count = clusterWords[2u + 2u * c];
+        clusterWords[1u + 2u * c] = start + place;
+        if (place + count > capacity) clusterWords[2u + 2u * c] = 0xffffffffu;  // no room: every light
+        place += count;
+    }
+    if (lane == 0u) clusterWords[0] = total;  // the entries the lists asked for (statistics)
+}
+
 void main() {
+    if (assignment.phase.x == 1u) {
+        placeLists();
+        return;
+    }
     const ivec2 tiles = feClusterTiles();
     const int t = int(gl_WorkGroupID.x);
     const uint lane = gl_LocalInvocationIndex;
@@ -82,19 +119,15 @@ void main() {
             sCount[k][j] = count;
             count += c;
         }
-        const uint header = feClusterHeader(tile, k);
-        const uint reserved = count == 0u ? 0u : atomicAdd(clusterWords[0], count);
-        const bool fits = reserved + count <= feClusterCapacity() && reserved + count >= reserved;
-        clusterWords[header] = feClusterListsStart() + reserved;
-        clusterWords[header + 1u] = fits ? count : 0xffffffffu;
-        sStart[k] = feClusterListsStart() + reserved;
-        sFits[k] = fits;
+        if (assignment.phase.x == 0u) clusterWords[feClusterHeader(tile, k) + 1u] = count;
     }
+    if (assignment.phase.x == 0u) return;
     barrier();
     for (uint i = begin; i < end; ++i)
         for (uint m = feSlicesReached(i); m != 0u; m &= m - 1u) {
             const int k = findLSB(m);
-            if (sFits[k]) clusterWords[sStart[k] + sCount[k][lane]] = i;
+            const uint header = feClusterHeader(tile, k);
+            if (clusterWords[header + 1u] != 0xffffffffu) clusterWords[clusterWords[header] + sCount[k][lane]] = i;
             ++sCount[k][lane];
         }
 }

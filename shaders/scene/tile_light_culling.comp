@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
 #define FE_TILE_LISTS  // only for the shared helpers: this pass writes the lists
+#include "fe_common.glsl"
 #include "fe_tile_culling.glsl"
 // The light-culling pass of the tiled techniques (TileLightCulling.h): one invocation per tile of
 // 16x16 pixels finds the depth bounds of its four FE_LIST_TILE^2 quarters, culls every light
@@ -13,6 +14,22 @@
 layout(local_size_x = 64) in;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = FE_SLOT_TILE_LIGHTS_OUT, r32ui) uniform writeonly uimage2D lists;
+FE_CONSTANTS(CullingConstants) {
+    // x: with MSAA, how far (in pixels of depth slope) a fragment's pixel-centre depth may lie from
+    // the sample-0 depth culled for: 0.5 (every sample lies within half a pixel of the centre);
+    // 0 at one sample, where the centre is the sample.
+    vec4 widen;
+} culling;
+
+// Depth slope of the surface at pixel p in pixels, per axis: the smaller one-sided difference,
+// so that an edge to another surface (or to the background) does not count.
+float feDepthSlope(ivec2 p, float d, ivec2 axis, ivec2 viewport) {
+    const float a = texelFetch(depthTexture, clamp(p - axis, ivec2(0), viewport - 1), 0).r;
+    const float b = texelFetch(depthTexture, clamp(p + axis, ivec2(0), viewport - 1), 0).r;
+    const float da = a < 1.0 ? abs(d - a) : 1.0, db = b < 1.0 ? abs(b - d) : 1.0;
+    const float slope = min(da, db);
+    return slope < 1.0 ? slope : 0.0;
+}
 
 void main() {
     const ivec2 viewport = ivec2(frame.viewport.xy);
@@ -30,7 +47,13 @@ void main() {
         for (int x = p0.x; x < p1.x; ++x) {
             const float d = texelFetch(depthTexture, ivec2(x, y), 0).r;
             const int k = (x - p0.x) / FE_LIST_TILE + 2 * ((y - p0.y) / FE_LIST_TILE);
-            if (d < 1.0) z[k] = vec2(min(z[k].x, d), max(z[k].y, d));
+            if (!(d < 1.0)) continue;
+            // With MSAA the fragments shading this pixel sit at its centre, the depth culled for at
+            // sample 0: the bounds take in the centre's depth along the surface's slope.
+            const float s = culling.widen.x > 0.0 ? culling.widen.x * (feDepthSlope(ivec2(x, y), d, ivec2(1, 0), viewport) +
+                                                                        feDepthSlope(ivec2(x, y), d, ivec2(0, 1), viewport))
+                                                  : 0.0;
+            z[k] = vec2(min(z[k].x, max(d - s, 0.0)), max(z[k].y, min(d + s, 1.0)));
         }
     vec3 lo[4], hi[4];
     uint count[4] = uint[4](0u, 0u, 0u, 0u);

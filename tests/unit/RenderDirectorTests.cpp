@@ -233,6 +233,21 @@ TEST(RenderDirectorChoice, WithoutComputeShadersManyLightsGetDeferred) {
     EXPECT_NE(c.reasons[0].find("no compute shaders on test"), std::string::npos) << c.reasons[0];
 }
 
+// On a GPU (not a software rasterizer), many lights get the visibility buffer, measured fastest
+// there (an H200); the same scene on a CPU rasterizer gets deferred-tiled (ManyLightsGetTiledDeferred).
+TEST(RenderDirectorChoice, ManyLightsOnAGpuGetTheVisibilityBuffer) {
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
+    gdi::DeviceInfo gpu;
+    gpu.backend = "test";
+    gpu.features.computeShaders = true;
+    gpu.softwareRasterizer = false;
+    const render::DirectorChoice c = render::direct(scene, {.technique = "auto"}, gpu);
+    EXPECT_EQ(c.settings.technique, "visibility-buffer");
+    EXPECT_NE(c.reasons[0].find("on a GPU"), std::string::npos) << c.reasons[0];
+    gpu.softwareRasterizer = true;
+    EXPECT_EQ(render::direct(scene, {.technique = "auto"}, gpu).settings.technique, "deferred-tiled");
+}
+
 // Every technique with an I-buffer keeps its illumination scale; the others drop it.
 TEST(RenderDirectorChoice, IllumScaleKeptWhereThereIsAnIBuffer) {
     const assets::Scene scene = assets::makeBuiltinScene("plane");
