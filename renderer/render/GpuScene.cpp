@@ -184,6 +184,9 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         d.textureSet = uint32_t(it - textureSets_.begin());
         if (it == textureSets_.end()) textureSets_.push_back(mt);
     }
+    // A pass binding one set at a time still binds one in a scene without draws.
+    if (textureSets_.empty())
+        textureSets_.push_back({white_, white_, flatNormal_, white_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_});
     updateLights(scene.lights);
 }
 

@@ -101,7 +101,8 @@ public:
     const std::vector<DrawItem>& draws() const { return draws_; }
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
     // The distinct texture bindings of the materials (many share the defaults): a pass that
-    // shades every material at once binds one set at a time (VisibilityBufferRenderer).
+    // shades every material at once binds one set at a time (VisibilityBufferRenderer). Never
+    // empty: a scene without draws has the defaults' set.
     const std::vector<MaterialTextures>& textureSets() const { return textureSets_; }
     ObjectConstants objectConstants(const DrawItem& item) const;
     // Replaces the light list (e.g. animated builtin:lights); the count may change. The first

@@ -58,14 +58,12 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
         cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));
         const RenderSettings& rs = ctx_.settings;
         const std::vector<MaterialTextures>& sets = ctx_.scene.textureSets();
-        for (uint32_t set = 0; set < std::max<size_t>(sets.size(), 1); ++set) {
-            if (set < sets.size()) {
-                const MaterialTextures& t = sets[set];
-                cmd.setTexture(kSlotBaseColor, t.baseColor, t.baseColorSampler);
-                cmd.setTexture(kSlotMetalRough, t.metallicRoughness, t.metallicRoughnessSampler);
-                cmd.setTexture(kSlotNormalMap, t.normal, t.normalSampler);
-                cmd.setTexture(kSlotEmissive, t.emissive, t.emissiveSampler);
-            }
+        for (uint32_t set = 0; set < sets.size(); ++set) {  // never empty (GpuScene::textureSets)
+            const MaterialTextures& t = sets[set];
+            cmd.setTexture(kSlotBaseColor, t.baseColor, t.baseColorSampler);
+            cmd.setTexture(kSlotMetalRough, t.metallicRoughness, t.metallicRoughnessSampler);
+            cmd.setTexture(kSlotNormalMap, t.normal, t.normalSampler);
+            cmd.setTexture(kSlotEmissive, t.emissive, t.emissiveSampler);
             cmd.setConstants(glm::uvec4(set, set == 0 ? 1u : 0u, 0u, 0u));
             cmd.dispatch((rs.width + kGroupSize - 1) / kGroupSize, (rs.height + kGroupSize - 1) / kGroupSize);
         }

@@ -387,6 +387,23 @@ TEST_P(RenderAccuracy, RedeferredFullRateMatchesForward) {
     }
 }
 
+// A scene with lights but nothing to light (no mesh instances): every technique renders black,
+// with nothing unbound (the visibility buffer's resolve still binds a texture set).
+TEST_P(RenderAccuracy, EveryTechniqueRendersASceneWithNothingInIt) {
+    assets::Scene empty = assets::makeBuiltinScene("lights", {.lights = 4});
+    empty.instances.clear();
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        render::SceneRenderer r(*device, empty, {.technique = t.name, .width = 32, .height = 24});
+        r.renderFrame();
+        const gdi::Image out = r.readOutput();
+        float brightest = 0.0f;
+        for (uint32_t y = 0; y < out.height; ++y)
+            for (uint32_t x = 0; x < out.width; ++x)
+                for (int c = 0; c < 3; ++c) brightest = std::max(brightest, out.texel(x, y)[c]);
+        EXPECT_EQ(brightest, 0.0f) << t.name;
+    }
+}
+
 // The frame runs through the render graph: only the passes the technique needs, the display
 // pass culled unless its image is asked for, transient memory aliased, and the GPU display
 // image equal to clamp(exposure x L_o) encoded to sRGB.
