@@ -141,6 +141,49 @@ void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& nam
                     " distances; every device has " + std::to_string(kMaxDistances));
 }
 
+// An image write's texel has at least as many components as the image's declared format (a
+// Vulkan rule the validator leaves to the layer, VUID-RuntimeSpirv-OpImageWrite-07112; the
+// capture-file fuzzer changed a format word and the layer, not the device, said so). Walked with
+// SPIRV-Tools' parser, which knows each instruction's result type.
+void checkImageWrites(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name) {
+    struct Walk {
+        std::unordered_map<uint32_t, uint32_t> components, imageFormat, resultType;
+        std::vector<std::pair<uint32_t, uint32_t>> writes;  // (image id, texel id)
+    } walk;
+    auto instruction = [](void* user, const spv_parsed_instruction_t* in) -> spv_result_t {
+        Walk& w = *static_cast<Walk*>(user);
+        constexpr uint16_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypeImage = 25, kOpImageWrite = 99;
+        const uint32_t* words = in->words;
+        if (in->opcode == kOpTypeInt || in->opcode == kOpTypeFloat) w.components[words[1]] = 1;
+        else if (in->opcode == kOpTypeVector && in->num_words >= 4) w.components[words[1]] = words[3];
+        else if (in->opcode == kOpTypeImage && in->num_words >= 9) w.imageFormat[words[1]] = words[8];
+        else if (in->opcode == kOpImageWrite && in->num_words >= 4) w.writes.push_back({words[1], words[3]});
+        if (in->result_id && in->type_id) w.resultType[in->result_id] = in->type_id;
+        return SPV_SUCCESS;
+    };
+    if (spvBinaryParse(spirvContext(rules), &walk, spirv.data(), spirv.size(), nullptr, instruction, nullptr) != SPV_SUCCESS) return;
+    auto formatComponents = [](uint32_t f) -> uint32_t {  // spv::ImageFormat; 0 where unknown
+        switch (f) {
+            case 1: case 2: case 4: case 5: case 10: case 11: case 16: case 21: case 22: case 23: case 30: case 31: case 32: case 34: return 4;
+            case 8: return 3;
+            case 6: case 7: case 12: case 13: case 17: case 18: case 25: case 26: case 27: case 35: case 36: case 37: return 2;
+            case 3: case 9: case 14: case 15: case 19: case 20: case 24: case 28: case 29: case 33: case 38: case 39: case 40: case 41: return 1;
+            default: return 0;
+        }
+    };
+    for (const auto& [image, texel] : walk.writes) {
+        const auto imageType = walk.resultType.find(image), texelType = walk.resultType.find(texel);
+        if (imageType == walk.resultType.end() || texelType == walk.resultType.end()) continue;
+        const auto format = walk.imageFormat.find(imageType->second);
+        const auto texelComponents = walk.components.find(texelType->second);
+        if (format == walk.imageFormat.end() || texelComponents == walk.components.end()) continue;
+        const uint32_t needed = formatComponents(format->second);
+        if (texelComponents->second < needed)
+            throw Error("shader '" + name + "': an image write gives " + std::to_string(texelComponents->second) +
+                        " component(s) to an image whose format has " + std::to_string(needed));
+    }
+}
+
 }  // namespace
 
 void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name) {
@@ -164,6 +207,7 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
         spvDiagnosticDestroy(diagnostic);
         checkLocationLiterals(spirv, name);
         checkDistanceArrays(spirv, name);
+        checkImageWrites(spirv, rules, name);
         return;
     }
     const std::string why = diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";

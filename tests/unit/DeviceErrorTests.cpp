@@ -676,6 +676,37 @@ TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
     EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module for Vulkan: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
 }
 
+// An image write whose texel has fewer components than the image's format is refused at
+// createShader on every backend alike (the validator lets it through, Vulkan's layer does not:
+// the capture-file fuzzer found one). conformance/fill.comp writes a vec4 to an rgba32f image;
+// here its texel becomes a float constant.
+TEST(DamagedSpirvAcrossBackends, ImageWriteWithTooFewComponentsIsRefused) {
+    const ShaderBinary& good = fe::shaders::find("conformance/fill.comp");
+    auto narrowed = [](std::span<const uint32_t> in) {
+        std::vector<uint32_t> w(in.begin(), in.end());
+        uint32_t floatType = 0, scalar = 0;
+        for (size_t i = 5; i < w.size(); i += w[i] >> 16) {
+            const uint32_t op = w[i] & 0xffffu;
+            if (op == 22 && w[i + 2] == 32) floatType = w[i + 1];                         // OpTypeFloat 32
+            if (op == 43 && floatType && w[i + 1] == floatType && !scalar) scalar = w[i + 2];  // OpConstant
+            if (op == 99 && scalar) w[i + 3] = scalar;                                     // OpImageWrite's texel
+        }
+        return w;
+    };
+    const std::vector<uint32_t> vulkan = narrowed(good.vulkan), opengl = narrowed(good.opengl);
+    ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
+    for (const std::string& backend : backendNames()) {
+        BackendProbe p = probeBackend(backend, true);
+        if (!p.available) continue;
+        EXPECT_EQ(errorOf([&] {
+                      p.device->createShader({.stage = ShaderStage::Compute, .binary = {.name = "narrow", .vulkan = vulkan, .opengl = opengl}});
+                  }),
+                  "shader 'narrow': an image write gives 1 component(s) to an image whose format has 4")
+            << backend;
+        EXPECT_EQ(p.device->validationErrorCount(), 0u) << backend;
+    }
+}
+
 // GL has as few as 8 image units (NVIDIA): a pipeline's storage textures are counted against
 // limits.maxStorageTextures by the shared validation, so every backend refuses alike. Checked on
 // the validation itself, since no device here has a limit a shader of the suite reaches.
