@@ -208,40 +208,60 @@ graph::TextureId SceneRenderer::declareDebugView(graph::RenderGraph& g) {
 }
 
 // The light-list statistics pass: the length of the list each pixel's surface walks, from the
-// technique's tile lists or the cluster grid (shaders/scene/light_list_statistics.comp).
+// technique's tile lists or the cluster grid (every light where it has none), and how many
+// lights reach that surface (shaders/scene/light_list_statistics.comp).
 void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     const LightLists lists = technique_->lightLists();
-    if (lists.kind != LightLists::Kind::Tiles && lists.kind != LightLists::Kind::Clusters) return;
+    if (lists.kind == LightLists::Kind::NotMeasured) return;
     const RenderSettings& s = settings_;
-    listCounts_ = objects_.add(device_.createTexture({.format = gdi::Format::R32U, .width = s.width, .height = s.height,
-                                                      .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled |
-                                                               gdi::TextureUsage::CopySrc,
-                                                      .debugName = "lights evaluated"}));
-    const bool clusters = lists.kind == LightLists::Kind::Clusters;
+    auto countTexture = [&](const char* name) {
+        return objects_.add(device_.createTexture({.format = gdi::Format::R32U, .width = s.width, .height = s.height,
+                                                   .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled |
+                                                            gdi::TextureUsage::CopySrc,
+                                                   .debugName = name}));
+    };
+    listCounts_ = countTexture("lights evaluated");
+    reachingCounts_ = countTexture("lights reaching");
+    const bool clusters = lists.kind == LightLists::Kind::Clusters, tiles = lists.kind == LightLists::Kind::Tiles;
+    const char* variant = clusters ? ":FE_CLUSTER_LISTS" : tiles ? "" : ":FE_EVERY_LIGHT";
     listStatisticsCs_ = objects_.add(device_.createShader(
-        {.stage = gdi::ShaderStage::Compute,
-         .binary = shaders::find(std::string("scene/light_list_statistics.comp") + (clusters ? ":FE_CLUSTER_LISTS" : ""))}));
+        {.stage = gdi::ShaderStage::Compute, .binary = shaders::find(std::string("scene/light_list_statistics.comp") + variant)}));
     listStatisticsPipeline_ = objects_.add(
         device_.createComputePipeline({.computeShader = listStatisticsCs_, .debugName = "light-list statistics"}));
     const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
+    const graph::TextureId reaching = g.importTexture("lights reaching", reachingCounts_, device_.desc(reachingCounts_));
     listCountsId_ = counts;
     const graph::BufferId clusterLists = clusters ? clusters_->declare(g) : graph::BufferId{};
     g.addPass("light-list-statistics", [&](graph::PassBuilder& b) {
         b.sample(depth_);
         if (clusters) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
-        else b.sample(lists.tiles);
+        if (tiles) b.sample(lists.tiles);
         b.storage(counts);
-    }, [this, clusters, tiles = lists.tiles, counts](graph::PassContext& pc) {
+        b.storage(reaching);
+    }, [this, clusters, tiles, lists, counts, reaching](graph::PassContext& pc) {
         pc.cmd.setPipeline(listStatisticsPipeline_);
         pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
+        pc.cmd.setStorageBuffer(kSlotLights, gpuScene_->lightBuffer());
         pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
         if (clusters) clusters_->bindLists(pc.cmd);
-        else pc.cmd.setTexture(kSlotTileLights, pc.texture(tiles), pointSampler_);
+        if (tiles) pc.cmd.setTexture(kSlotTileLights, pc.texture(lists.tiles), pointSampler_);
         pc.cmd.setStorageTexture(kSlotRadianceOut, pc.texture(counts));
+        pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(reaching));
         pc.cmd.dispatch((settings_.width + 7) / 8, (settings_.height + 7) / 8);
     });
     g.markOutput(counts);
+    g.markOutput(reaching);
 }
+
+namespace {
+// An R32U image's texels other than all ones (no surface), in row order.
+std::vector<uint32_t> surfaceTexels(const gdi::Image& image) {
+    std::vector<uint32_t> texels(size_t(image.width) * image.height);
+    std::memcpy(texels.data(), image.data.data(), texels.size() * sizeof(uint32_t));
+    std::erase(texels, 0xffffffffu);
+    return texels;
+}
+}  // namespace
 
 LightListStatistics SceneRenderer::lightListStatistics() {
     if (!settings_.lightListStatistics)
@@ -254,21 +274,17 @@ LightListStatistics SceneRenderer::lightListStatistics() {
         case LightLists::Kind::NotMeasured: out.lists = "not measured (light volumes or reduced-rate lists)"; return out;
     }
     device_.wait(lastFence_);
-    std::vector<uint32_t> counts;
-    if (listCounts_) {
-        const gdi::Image image = device_.readTexture(listCounts_);
-        for (uint32_t y = 0; y < image.height; ++y)
-            for (uint32_t x = 0; x < image.width; ++x) {
-                uint32_t n;
-                std::memcpy(&n, image.data.data() + (size_t(y) * image.width + x) * sizeof(uint32_t), sizeof n);
-                if (n != 0xffffffffu) counts.push_back(n);
-            }
-    } else {  // every light at every pixel: the unshadowed ones (each shadowed light has its own pass)
-        counts.assign(1, gpuScene_->unshadowedLightCount());
-    }
+    std::vector<uint32_t> counts = surfaceTexels(device_.readTexture(listCounts_));
+    const std::vector<uint32_t> reaching = surfaceTexels(device_.readTexture(reachingCounts_));
     out.measured = true;
-    out.pixels = listCounts_ ? uint32_t(counts.size()) : settings_.width * settings_.height;
+    out.pixels = uint32_t(counts.size());
+    double reachSum = 0;
+    for (uint32_t r : reaching) {
+        reachSum += r & 0x7fffffffu;
+        out.pixelsMissingALight += r >> 31;
+    }
     if (counts.empty()) return out;
+    out.reaching = reachSum / double(reaching.size());
     std::sort(counts.begin(), counts.end());
     double sum = 0;
     for (uint32_t n : counts) sum += n;
@@ -441,7 +457,8 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
     fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, gpuScene_->lightCount());
     fc.clusters = ClusterLightGrid::slicing(cam, scene_.bounds);
-    fc.lightRange = glm::uvec4(0, unshadowed, 1, 0);  // forward: the unshadowed lights, with emissive
+    // forward: the unshadowed lights, with emissive; w: samples the tile lists were not culled for
+    fc.lightRange = glm::uvec4(0, unshadowed, 1, s.msaa > 1 ? 1u : 0u);
 
     gdi::CommandList& cmd = queue_->beginFrame();
     frameConstants_ = queue_->upload(fc);

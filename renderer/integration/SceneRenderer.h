@@ -37,6 +37,12 @@ struct LightListStatistics {
     uint32_t pixels = 0;     // pixels with a surface
     double mean = 0;
     uint32_t p95 = 0, max = 0;
+    // Mean lights whose range reaches the pixel's surface: what any exact culling walks at least,
+    // so mean / reaching is how much a technique's lists walk in vain.
+    double reaching = 0;
+    // Pixels whose loop walks fewer of the lights reaching them than there are: a light dropped
+    // (culling that is not exact). 0 for every technique; tests hold it there.
+    uint32_t pixelsMissingALight = 0;
 };
 
 class SceneRenderer {
@@ -131,6 +137,7 @@ private:
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
     std::unique_ptr<ClusterLightGrid> clusters_;   // TechniqueContext::clusters
     gdi::TextureHandle listCounts_;                // lights evaluated per pixel (R32U), with statistics
+    gdi::TextureHandle reachingCounts_;            // lights reaching each pixel's surface (R32U), with statistics
     graph::TextureId listCountsId_;                // listCounts_ in the graph
     gdi::ShaderHandle listStatisticsCs_;
     gdi::PipelineHandle listStatisticsPipeline_;

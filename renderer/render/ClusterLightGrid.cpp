@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "render/ShaderSlots.h"
 #include "render/TileLightCulling.h"
@@ -29,18 +30,26 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
 
 glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::Bounds& bounds) {
     const float nearDepth = camera.znear;
-    float farDepth = 2.0f * nearDepth;
+    float farDepth = 2.0f * nearDepth, nearestDepth = 0.0f;
     if (!bounds.empty()) {
         const glm::mat4 view = camera.viewFromWorld();
+        nearestDepth = std::numeric_limits<float>::max();
         for (int c = 0; c < 8; ++c) {
             const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
                                    (c & 4) ? bounds.max.z : bounds.min.z);
-            farDepth = std::max(farDepth, -(view * glm::vec4(corner, 1.0f)).z);
+            const float depth = -(view * glm::vec4(corner, 1.0f)).z;
+            farDepth = std::max(farDepth, depth);
+            nearestDepth = std::min(nearestDepth, depth);
         }
     }
     farDepth = std::min(farDepth * 1.01f, camera.zfar);  // a margin for rounding; never past the far plane
     farDepth = std::max(farDepth, 2.0f * nearDepth);
-    return {nearDepth, float(kSlices) / std::log(farDepth / nearDepth), farDepth, 0.0f};
+    // The near split: slice 0 takes everything before it, so the exponential slices are not
+    // spent on the first metres in front of the camera, where little is seen (Doom 2016 does
+    // the same). It lies at kNearSplit of the far depth, or where the scene begins when the
+    // camera looks at it from outside (rounding margin kept), never before the near plane.
+    const float split = std::clamp(std::max(farDepth * kNearSplit, nearestDepth * 0.99f), nearDepth, 0.5f * farDepth);
+    return {nearDepth, float(kSlices - 1) / std::log(farDepth / split), farDepth, split};
 }
 
 graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {

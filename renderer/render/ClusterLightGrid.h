@@ -1,8 +1,11 @@
 // Layer 7: the light cluster grid of the clustered techniques and of every technique's
 // translucent pass (Olsson, Billeter and Assarsson 2012, "Clustered Deferred and Forward
 // Shading"). The view frustum is cut into kTilePixels x kTilePixels-pixel tiles and kSlices
-// slices of view depth, spaced exponentially from the near plane to the far side of the scene
-// (FrameConstants::clusters; Doom 2016 and Olsson's paper use about as many). One compute pass
+// slices of view depth: slice 0 from the near plane to a near split, the others spaced
+// exponentially from there to the far side of the scene (FrameConstants::clusters; Doom 2016
+// and Olsson's paper use about as many). In builtin:atrium at 1280x720 with 1024 lights, 32
+// slices after the split walk 15.8 lights a pixel where 24 from the near plane walked 23.0 (9.0
+// reach each pixel; 16-pixel tiles walk 14.4 at 3.4x the assignment's cost). One compute pass
 // ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
 // range reaches a cluster's box into its list, in a storage buffer the shading passes read
 // (shaders/include/fe_clusters.glsl). The grid does not depend on the opaque depth, so blended
@@ -23,7 +26,8 @@ namespace fe::render {
 class ClusterLightGrid {
 public:
     static constexpr uint32_t kTilePixels = 32;        // FE_CLUSTER_TILE
-    static constexpr uint32_t kSlices = 24;            // FE_CLUSTER_SLICES
+    static constexpr uint32_t kSlices = 32;            // FE_CLUSTER_SLICES
+    static constexpr float kNearSplit = 1.0f / 32;     // slice 0 ends at this share of the far depth (at least)
     static constexpr uint32_t kMeanListCapacity = 64;  // index entries per cluster (at most the scene's lights)
 
     explicit ClusterLightGrid(TechniqueContext& context);

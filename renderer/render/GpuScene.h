@@ -20,7 +20,7 @@ struct FrameConstants {
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
     glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples, w = all lights
-    glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit
+    glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit, w 1 = MSAA (forward-plus)
     glm::mat4 view;            // view from world (rigid)
     // Redeferred's reduced-rate sampling: xy the offset of each I-buffer texel's representative
     // pixel within its scale x scale block (scale / 2, or a jitter cycling through the block

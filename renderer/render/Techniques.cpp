@@ -43,7 +43,7 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
         {"forward-plus", "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
          makeForwardLists<ForwardPlusRenderer::Lists::Tiles>, true},
-        {"clustered-forward", "depth pre-pass, lights assigned to 32x32-pixel x 24-slice clusters, one forward pass over the cluster's list",
+        {"clustered-forward", "depth pre-pass, lights assigned to 32x32-pixel x 32-slice clusters, one forward pass over the cluster's list",
          makeForwardLists<ForwardPlusRenderer::Lists::Clusters>, true, false, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},
         {"deferred-tiled", "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once",

@@ -1,7 +1,7 @@
 // Clustered light lists (Olsson, Billeter and Assarsson 2012; ClusterLightGrid.h): the view
 // frustum cut into FE_CLUSTER_TILE x FE_CLUSTER_TILE-pixel tiles and FE_CLUSTER_SLICES slices
-// of view depth spaced exponentially from the near plane to frame.clusters.z (the far side of
-// the scene), each holding the lights whose range reaches it. The grid does not depend on the
+// of view depth (slice 0 up to the near split frame.clusters.w, the others spaced exponentially
+// from there to frame.clusters.z, the far side of the scene), each holding the lights whose range reaches it. The grid does not depend on the
 // opaque depth, so translucent surfaces read it as opaque ones do.
 // The lists live in a storage buffer of uints: word 0 counts the index entries reserved this
 // frame; then per cluster (slice-major, then rows, then columns) its list's first word and its
@@ -13,7 +13,7 @@
 #include "fe_scene.glsl"
 
 #define FE_CLUSTER_TILE 32
-#define FE_CLUSTER_SLICES 24
+#define FE_CLUSTER_SLICES 32
 #define FE_SLOT_CLUSTER_LIGHTS 35
 
 #ifdef FE_CLUSTER_ASSIGN
@@ -28,15 +28,18 @@ ivec2 feClusterTiles() {
     return (ivec2(frame.viewport.xy) + FE_CLUSTER_TILE - 1) / FE_CLUSTER_TILE;
 }
 
-// View depth where slice k begins (k = FE_CLUSTER_SLICES: where the last one ends).
+// View depth where slice k begins (k = FE_CLUSTER_SLICES: where the last one ends). Slice 0 is
+// the near one, from the near plane to frame.clusters.w; the others are spaced exponentially
+// from there to frame.clusters.z.
 float feClusterSliceStart(int k) {
-    return frame.clusters.x * exp(float(k) / frame.clusters.y);
+    return k == 0 ? frame.clusters.x : frame.clusters.w * exp(float(k - 1) / frame.clusters.y);
 }
 
-// The slice holding view depth v: 0 before the near plane, FE_CLUSTER_SLICES beyond the last.
+// The slice holding view depth v: 0 before the near split, FE_CLUSTER_SLICES beyond the last.
 int feClusterSlice(float v) {
     if (v >= frame.clusters.z) return FE_CLUSTER_SLICES;
-    return clamp(int(floor(log(max(v, frame.clusters.x) / frame.clusters.x) * frame.clusters.y)), 0, FE_CLUSTER_SLICES - 1);
+    if (v < frame.clusters.w) return 0;
+    return clamp(1 + int(floor(log(v / frame.clusters.w) * frame.clusters.y)), 1, FE_CLUSTER_SLICES - 1);
 }
 
 // The word where the lists begin, and the index entries they have room for together.

@@ -43,11 +43,11 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 viewport;        // w, h, 1/w, 1/h
     vec4 illumViewport;   // I-buffer: w, h, 1/w, 1/h
     uvec4 counts;         // x lights, y illumination scale, z image-based lighting samples, w all lights (shadowed too)
-    uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit
+    uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit, w 1 = MSAA (forward-plus checks its tile's depth bounds)
     mat4 view;            // view from world (rigid): the light pre-pass packs view-space normals
     vec4 temporal;        // xy representative pixel's offset in its I-buffer block, z history valid, w history cap
     mat4 prevViewProj;    // the previous frame's viewProj
-    vec4 clusters;        // the light cluster grid's slicing (fe_clusters.glsl): x near, y slices / ln(far / near), z far
+    vec4 clusters;        // the light cluster grid's slicing (fe_clusters.glsl): x near, y (slices - 1) / ln(far / split), z far, w near split
     mat4 viewProjFromEye;     // clip from eye space (world - cameraPosition.xyz): camera-relative rendering
     mat4 invViewProjFromEye;  // and back
 } frame;

@@ -65,7 +65,7 @@ void feUseTileList(ivec2 pixel) {
 }
 #define FE_TILE_HEADER 3u  // count, depth min, depth max
 // For a fragment of depth `depth` (forward-plus): a list is only valid for points inside the slice
-// it was culled for, and a fragment may lie outside it (an edge sample under MSAA, whose tile was
+// it was culled for, and under MSAA a fragment may lie outside it (an edge sample, whose tile was
 // culled for sample 0's depths): such a fragment shades every light, so culling stays exact.
 void feUseTileListAt(ivec2 pixel, float depth) {
     feUseTileList(pixel);

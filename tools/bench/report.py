@@ -467,8 +467,8 @@ window.addEventListener('load', () => {
                   + (" (software rasterizer: times are CPU rasterization)" if dev.get("softwareRasterizer") else ""))
     md.append("")
     md.append("| case | " + " | ".join(f"{b} ms" for b in backends)
-              + " | PSNR dB | SSIM | FLIP | % over 5/255 | lights/px mean, p95, max |")
-    md.append("|---|" + "---|" * len(backends) + "---|---|---|---|---|")
+              + " | PSNR dB | SSIM | FLIP | % over 5/255 | lights/px mean, p95, max | reaching/px |")
+    md.append("|---|" + "---|" * len(backends) + "---|---|---|---|---|---|")
     for k in keys:
         rows = {r["backend"]: r for r in results if r["key"] == k}
         first = next(iter(rows.values()))
@@ -478,11 +478,16 @@ window.addEventListener('load', () => {
         lights = first.get("lightsEvaluated", {})
         evaluated = (f"{lights['mean']:.1f}, {lights['p95']}, {lights['max']} ({lights['lists']})" if lights.get("measured")
                      else lights.get("lists", ""))
-        md.append(f"| {k} | {times} | {psnr} | {m['ssim']:.4f} | {m['flip']:.4f} | {m['percentOver5']:.2f} | {evaluated} |")
+        reaching = f"{lights['reaching']:.1f}" if "reaching" in lights else ""
+        if lights.get("pixelsMissingALight"):
+            reaching += f" ({lights['pixelsMissingALight']} px MISS a light)"
+        md.append(f"| {k} | {times} | {psnr} | {m['ssim']:.4f} | {m['flip']:.4f} | {m['percentOver5']:.2f} | {evaluated} "
+                  f"| {reaching} |")
     md.append("")
     md.append(f"Error columns: {backends[0] if backends else ''}'s image (the backends agree, see the report). "
-              "Times: median CPU frame over the timed frames. Lights/px: the lights the shading loop walked per pixel "
-              "(of a surface, for lists; every light: at every pixel).")
+              "Times: median CPU frame over the timed frames. Lights/px: the lights the shading loop walked "
+              "per pixel of a surface; reaching/px: the lights whose range reaches that surface, the least any exact "
+              "culling walks.")
     # Each pass's GPU time (median ms) and the transient memory, per backend and case.
     md += ["", "GPU time per render-graph pass (median ms; the last column is the CPU frame) and the transient "
            "memory in bytes per pixel, with / without aliasing. The method column says how the pass times were "

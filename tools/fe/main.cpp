@@ -239,7 +239,12 @@ int cmdRender(const Args& a) {
     if (verbose) {
         const render::LightListStatistics l = renderer.lightListStatistics();
         std::cout << "lights evaluated per pixel (" << l.lists << ")";
-        if (l.measured) std::cout << ": mean " << l.mean << ", 95th percentile " << l.p95 << ", max " << l.max << " over " << l.pixels << " pixels";
+        if (l.measured) {
+            std::cout << ": mean " << l.mean << ", 95th percentile " << l.p95 << ", max " << l.max << " over " << l.pixels
+                      << " pixels; lights reaching a pixel (what exact culling walks at least): mean " << l.reaching;
+            // Always said when it happens: a dropped light is a wrong picture, not a slow one.
+            if (l.pixelsMissingALight) std::cout << "; " << l.pixelsMissingALight << " pixels MISS a light that reaches them";
+        }
         std::cout << "\n";
     }
     if (const render::ClusterLightGrid* grid = renderer.clusters()) {
