@@ -9,9 +9,10 @@
 // The light assignment pass of the clustered techniques (ClusterLightGrid.h), three dispatches
 // chosen by assignment.phase.x, each a barrier apart:
 //  0. Count: one work group per tile column of the grid, each of its 64 invocations taking a 64th
-//     of the lights, in order. A light is tested against the box around the whole column, then
-//     against the boxes of the slices its range sphere spans in view depth only (two levels, as
-//     tile_light_culling.comp: one test per light and column, not one per light and cluster).
+//     of the lights, in order. A light is tested against the box around the whole column and the
+//     column's four side planes, then against the boxes of the slices its range sphere spans in
+//     view depth only (two levels, as tile_light_culling.comp: one test per light and column, not
+//     one per light and cluster).
 //     Each cluster's length goes to its header.
 //  1. Place: one work group turns the lengths, in header order, into each list's first word (an
 //     exclusive prefix), so the layout is the same on every device and every run (a capture's
@@ -40,6 +41,11 @@ float feDepthOfViewDepth(float v) {
 }
 
 shared vec3 sLo[FE_CLUSTER_SLICES + 1], sHi[FE_CLUSTER_SLICES + 1];  // the slices' boxes, then the column's
+// The column's four side planes through the eye, as inward unit normals in eye space. A slice's
+// box is loose where the column runs oblique to the world's axes (towards the screen's edges: a
+// thin slab's box spans its depth times the slope); a sphere wholly outside a side plane misses
+// every slice of the column, which the boxes alone do not see.
+shared vec3 sSide[4];
 shared uint sCount[FE_CLUSTER_SLICES][FE_ASSIGN_LANES];  // per slice and share: its lights, then its place
 shared uint sTotal[FE_ASSIGN_LANES];                     // phase 1: each invocation's run of lengths
 
@@ -49,6 +55,10 @@ uint feSlicesReached(uint i) {
     if (!feLightTouchesBox(L, sLo[FE_CLUSTER_SLICES], sHi[FE_CLUSTER_SLICES])) return 0u;
     int first = 0, last = FE_CLUSTER_SLICES - 1;
     if (L.directionType.w != FE_LIGHT_DIRECTIONAL && L.positionRange.w > 0.0) {
+        const vec3 eye = L.positionRange.xyz - frame.cameraPosition.xyz;
+        const float reach = L.positionRange.w * 1.0001 + 1e-4;  // feLightTouchesBox's rounding margin
+        for (int j = 0; j < 4; ++j)
+            if (dot(sSide[j], eye) < -reach) return 0u;
         // The slices the sphere spans along the view axis, one more each side for rounding.
         const float v = -(frame.view * vec4(L.positionRange.xyz, 1.0)).z, r = L.positionRange.w;
         first = max(feClusterSlice(v - r) - 1, 0);
@@ -102,6 +112,16 @@ void main() {
         const float z0 = feClusterSliceStart(k == FE_CLUSTER_SLICES ? 0 : k);
         const float z1 = feClusterSliceStart(k == FE_CLUSTER_SLICES ? FE_CLUSTER_SLICES : k + 1);
         feTileSliceBox(p0, p1, feDepthOfViewDepth(z0 * 0.999), feDepthOfViewDepth(z1 * 1.001), sLo[k], sHi[k]);
+    }
+    if (lane < 4u) {
+        // Two corner rays of the column's edge j (left, right, top, bottom), at the far end of the
+        // slices; the normal points towards the column's centre ray.
+        const float z = feDepthOfViewDepth(frame.clusters.z);
+        const vec2 a = vec2(lane == 1u ? p1.x : p0.x, lane == 3u ? p1.y : p0.y);
+        const vec2 b = lane < 2u ? vec2(a.x, p1.y) : vec2(p1.x, a.y);
+        vec3 n = normalize(cross(feEyeFromDepth(a, z), feEyeFromDepth(b, z)));
+        if (dot(n, feEyeFromDepth(0.5 * (p0 + p1), z)) < 0.0) n = -n;
+        sSide[lane] = n;
     }
     for (int k = 0; k < FE_CLUSTER_SLICES; ++k) sCount[k][lane] = 0u;
     barrier();
