@@ -131,18 +131,25 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
                             "rebuilt from its triangle and shaded once over its cluster's lights; measured on an H200 at "
                             "1280x720 against deferred-tiled: 0.46x its frame with 1024 lights in builtin:atrium and "
                             "0.65x with 512 on builtin:lights (Vulkan; 0.52x and 0.86x on GL), the fastest of every "
-                            "technique there (docs/BENCHMARKS.md, On NVIDIA); on the CPU rasterizers deferred-tiled "
+                            "technique there (docs/BENCHMARKS.md, On NVIDIA); on the CPU rasterizers forward-plus "
                             "is faster");
+    } else if (hasComputeShaders(info) && (options.errorBudgetPercent <= 0 || !probeDevice)) {
+        s.technique = "forward-plus";
+        c.reasons.push_back("technique forward-plus: " + lights + " (" + std::to_string(n.boundedLights) +
+                            " with a range) " + cover + " on a CPU rasterizer: a depth pre-pass, then each fragment "
+                            "shades once, over the lights that reach its 8x8 tile (culled to the tile's depth bounds), "
+                            "with no G-buffer; measured against deferred-tiled and clustered-forward at 32 to 512 lights "
+                            "on builtin:lights and the deep builtin:atrium (lavapipe and llvmpipe): fastest on "
+                            "builtin:lights; 7-29 % slower than clustered-forward in the atrium, where that is "
+                            "fastest but 1.2-1.9x slower than forward-plus on builtin:lights; faster than "
+                            "deferred-tiled in all twelve cases (docs/BENCHMARKS.md director crossovers; at 1024 lights "
+                            "in the atrium deferred-tiled is 4 % faster, clustered-deferred 15 %)");
     } else if (hasComputeShaders(info)) {
         s.technique = "deferred-tiled";
         c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +
-                            " with a range) " + cover + ": each pixel reads the G-buffer once and shades only the "
-                            "lights that reach its 8x8 tile, culled to the tile's depth bounds; measured against "
-                            "clustered-forward and forward-plus from 128 to 512 lights on builtin:lights and the deep "
-                            "builtin:atrium: fastest in six cases of eight, clustered-forward 13-27 % faster in the "
-                            "other two (the atrium at 128 lights, where tiles span near columns and far walls; "
-                            "docs/BENCHMARKS.md director crossovers); the clusters' fixed depth slices hold about "
-                            "twice the lights of a depth-bounded tile");
+                            " with a range) " + cover + " and an error budget: the exact technique the reduced "
+                            "illumination rates start from (its G-buffer feeds the I-buffer); each pixel reads the "
+                            "G-buffer once and shades only the lights that reach its 8x8 tile");
     } else {
         s.technique = "deferred";
         c.reasons.push_back("technique deferred: " + lights + " " + cover + " and no compute shaders on " + info.backend +

@@ -14,11 +14,14 @@
 //     kPackedNormalsMinRoughness (8-bit normals lose such highlights);
 //   - more lights whose volumes cover the screen less than kTiledMinCoverage times: deferred
 //     (light volumes cost what they cover; tiles cost a fixed culling pass);
-//   - more: deferred-tiled (compute), or deferred where there are no compute shaders. Without
-//     MSAA the clustered and Forward+ techniques are not chosen: measured from 8 to 512 lights on
-//     builtin:lights and builtin:atrium, deferred or deferred-tiled was fastest or within noise
-//     (docs/BENCHMARKS.md director crossovers), translucent surfaces included, whose pass reads
-//     the cluster grid whatever the technique;
+//   - more, with compute shaders: on a GPU visibility-buffer (measured fastest there, an H200);
+//     on a CPU rasterizer forward-plus (measured from 32 to 512 lights on builtin:lights and
+//     builtin:atrium: faster than deferred-tiled in every case, fastest on builtin:lights and
+//     7-29 % behind clustered-forward in the atrium, which is 1.2-1.9x behind it on
+//     builtin:lights; docs/BENCHMARKS.md director crossovers), or deferred-tiled when an error
+//     budget may reduce the illumination rate (its G-buffer feeds the I-buffer); translucent
+//     surfaces do not change the choice: their pass reads the cluster grid whatever the
+//     technique. Without compute shaders: deferred;
 //   - with an error budget (DirectorOptions), the reduced-rate technique redeferred-tiled at
 //     illumination scale 4, then 2, when a probe frame of it stays within the budget against the
 //     exact image of the technique it would replace. Without a budget nothing inexact is chosen.
