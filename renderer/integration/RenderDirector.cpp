@@ -44,6 +44,52 @@ std::pair<float, float> roughnessRange(const assets::Scene& scene, const assets:
 
 bool hasComputeShaders(const gdi::DeviceInfo& info) { return info.features.computeShaders; }
 
+// The lights a technique's lists walk per pixel in one probe frame of the scene (its statistics
+// pass on, nothing the lists do not depend on: no shadows, no environment light, no image).
+double probeLightsWalked(gdi::Device& device, const assets::Scene& scene, RenderSettings settings, const char* technique) {
+    settings.technique = technique;
+    settings.lightListStatistics = true;
+    settings.displayImage = false;
+    settings.iblSamples = 0;
+    settings.iblPrefiltered = false;
+    settings.shadows.enabled = false;
+    SceneRenderer r(device, scene, settings);
+    r.renderFrame();
+    return r.lightListStatistics().mean;
+}
+
+// Many lights without MSAA on a CPU rasterizer: forward-plus, or clustered-forward where a probe
+// frame shows the scene deep (its clusters walk about as many lights as the depth-bounded tiles).
+void chooseForCpuRasterizer(const assets::Scene& scene, gdi::Device* probeDevice, const std::string& what,
+                            DirectorChoice& c) {
+    RenderSettings& s = c.settings;
+    const std::string measured =
+        "measured against deferred-tiled and clustered-forward at 32 to 512 lights on builtin:lights and the deep "
+        "builtin:atrium (lavapipe and llvmpipe; docs/BENCHMARKS.md director crossovers)";
+    s.technique = "forward-plus";
+    std::string probe = "no probe device, so the scene's depth is not measured";
+    if (probeDevice) {
+        const double tiles = probeLightsWalked(*probeDevice, scene, s, "forward-plus");
+        const double clusters = probeLightsWalked(*probeDevice, scene, s, "clustered-forward");
+        probe = "a probe frame's lists walk " + fixed(clusters, 2) + " lights a pixel in clusters, " + fixed(tiles, 2) +
+                " in tiles";
+        if (tiles > 0.0 && clusters <= kDeepSceneClusterToTileRatio * tiles) {
+            s.technique = "clustered-forward";
+            c.reasons.push_back("technique clustered-forward: " + what + " on a CPU rasterizer, and " + probe +
+                                " (at most " + fixed(kDeepSceneClusterToTileRatio, 2) +
+                                "x): a deep scene, whose tiles span near and far surfaces; " + measured +
+                                ": there clustered-forward was fastest, forward-plus 7-29 % slower");
+            return;
+        }
+        probe += " (over " + fixed(kDeepSceneClusterToTileRatio, 2) + "x: tiles hold their depth tightly)";
+    }
+    c.reasons.push_back("technique forward-plus: " + what + " on a CPU rasterizer, and " + probe +
+                        ": a depth pre-pass, then each fragment shades once over the lights that reach its 8x8 "
+                        "tile (culled to the tile's depth bounds), with no G-buffer; " + measured +
+                        ": fastest on builtin:lights, where clustered-forward was 1.2-1.9x slower, and faster "
+                        "than deferred-tiled in all twelve cases");
+}
+
 }  // namespace
 
 SceneNeeds sceneNeeds(const assets::Scene& scene, float aspect) {
@@ -134,16 +180,7 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
                             "technique there (docs/BENCHMARKS.md, On NVIDIA); on the CPU rasterizers forward-plus "
                             "is faster");
     } else if (hasComputeShaders(info) && (options.errorBudgetPercent <= 0 || !probeDevice)) {
-        s.technique = "forward-plus";
-        c.reasons.push_back("technique forward-plus: " + lights + " (" + std::to_string(n.boundedLights) +
-                            " with a range) " + cover + " on a CPU rasterizer: a depth pre-pass, then each fragment "
-                            "shades once, over the lights that reach its 8x8 tile (culled to the tile's depth bounds), "
-                            "with no G-buffer; measured against deferred-tiled and clustered-forward at 32 to 512 lights "
-                            "on builtin:lights and the deep builtin:atrium (lavapipe and llvmpipe): fastest on "
-                            "builtin:lights; 7-29 % slower than clustered-forward in the atrium, where that is "
-                            "fastest but 1.2-1.9x slower than forward-plus on builtin:lights; faster than "
-                            "deferred-tiled in all twelve cases (docs/BENCHMARKS.md director crossovers; at 1024 lights "
-                            "in the atrium deferred-tiled is 4 % faster, clustered-deferred 15 %)");
+        chooseForCpuRasterizer(scene, probeDevice, lights + " (" + std::to_string(n.boundedLights) + " with a range) " + cover, c);
     } else if (hasComputeShaders(info)) {
         s.technique = "deferred-tiled";
         c.reasons.push_back("technique deferred-tiled: " + lights + " (" + std::to_string(n.boundedLights) +

@@ -15,10 +15,11 @@
 //   - more lights whose volumes cover the screen less than kTiledMinCoverage times: deferred
 //     (light volumes cost what they cover; tiles cost a fixed culling pass);
 //   - more, with compute shaders: on a GPU visibility-buffer (measured fastest there, an H200);
-//     on a CPU rasterizer forward-plus (measured from 32 to 512 lights on builtin:lights and
-//     builtin:atrium: faster than deferred-tiled in every case, fastest on builtin:lights and
-//     7-29 % behind clustered-forward in the atrium, which is 1.2-1.9x behind it on
-//     builtin:lights; docs/BENCHMARKS.md director crossovers), or deferred-tiled when an error
+//     on a CPU rasterizer forward-plus, or clustered-forward where a probe frame shows a deep
+//     scene (its clusters walk at most kDeepSceneClusterToTileRatio x the tiles' lights; measured
+//     from 32 to 512 lights on builtin:lights and builtin:atrium: forward-plus faster than
+//     deferred-tiled in every case and fastest on builtin:lights, clustered-forward fastest in
+//     the atrium; docs/BENCHMARKS.md director crossovers), or deferred-tiled when an error
 //     budget may reduce the illumination rate (its G-buffer feeds the I-buffer); translucent
 //     surfaces do not change the choice: their pass reads the cluster grid whatever the
 //     technique. Without compute shaders: deferred;
@@ -87,5 +88,11 @@ constexpr float kPackedNormalsMinRoughness = 0.2f;
 // 1.1; on vulkan tiles win at every coverage measured (20.7 / 12.5 ms at 0.1). The GL crossover
 // is taken for both (docs/BENCHMARKS.md).
 constexpr double kTiledMinCoverage = 0.4;
+// Many lights on a CPU rasterizer: clustered-forward when a probe frame's cluster lists walk at
+// most this many times the lights of its depth-bounded tile lists (a deep scene), else
+// forward-plus. Measured (lights walked per pixel, clusters / tiles, at 64x48 to 640x360):
+// builtin:atrium 0.46-1.09, where clustered-forward was 7-29 % faster than forward-plus;
+// builtin:lights 1.44-3.59, where forward-plus was 1.2-1.9x faster (docs/BENCHMARKS.md).
+constexpr double kDeepSceneClusterToTileRatio = 1.3;
 
 }  // namespace fe::render
