@@ -1,8 +1,9 @@
 // Clustered light lists (Olsson, Billeter and Assarsson 2012; ClusterLightGrid.h): the view
 // frustum cut into FE_CLUSTER_TILE x FE_CLUSTER_TILE-pixel tiles and FE_CLUSTER_SLICES slices
 // of view depth (slice 0 up to the near split frame.clusters.w, the others spaced exponentially
-// from there to frame.clusters.z, the far side of the scene), each holding the lights whose range reaches it. The grid does not depend on the
-// opaque depth, so translucent surfaces read it as opaque ones do.
+// from there to frame.clusters.z, the far side of the scene), each holding the lights whose
+// range reaches it. The grid does not depend on the opaque depth, so translucent surfaces read
+// it as opaque ones do.
 // The lists live in a storage buffer of uints: word 0 counts the index entries reserved this
 // frame; then per cluster (slice-major, then rows, then columns) its list's first word and its
 // length (all ones: no room was left, shade every light); then the lists, compact, each in
