@@ -190,8 +190,9 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
 // a list walks; and no pixel's list misses a light that reaches it.
 TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
     const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
-    auto statistics = [&](const char* t) {
-        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .lightListStatistics = true});
+    auto statistics = [&](const char* t, uint32_t msaa = 1) {
+        render::SceneRenderer r(*device, lights,
+                                {.technique = t, .width = 96, .height = 64, .msaa = msaa, .lightListStatistics = true});
         r.renderFrame();
         return r.lightListStatistics();
     };
@@ -202,6 +203,15 @@ TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
     EXPECT_GT(every.reaching, 1.0);  // 256 lights of range 2 among 121 cubes: a few reach each surface
     EXPECT_LT(every.reaching, 256.0 / 8);
     EXPECT_EQ(every.pixelsMissingALight, 0u);
+    if (device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4) {
+        // Multisampled techniques count on the resolved depth: the same surfaces, the same lights.
+        for (const char* t : {"forward-zprepass", "forward-plus", "clustered-forward"}) {
+            const render::LightListStatistics m = statistics(t, 4);
+            EXPECT_TRUE(m.measured) << t;
+            EXPECT_NEAR(m.reaching, every.reaching, 0.05 * every.reaching) << t << " at 4 samples";
+            EXPECT_EQ(m.pixelsMissingALight, 0u) << t << " at 4 samples";
+        }
+    }
     for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward", "clustered-deferred", "visibility-buffer"}) {
         const render::LightListStatistics l = statistics(t);
         EXPECT_TRUE(l.measured) << t;
