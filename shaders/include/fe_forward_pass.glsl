@@ -33,8 +33,10 @@ void main() {
         // forward-plus: the lights of this pixel's tile list (light-culling pass). Under MSAA, all
         // lights where the fragment lies outside the slice the list was culled for. At one sample
         // a fragment that passes the EQUAL depth test stands on the depth culled for, whatever its
-        // gl_FragCoord.z reads (on an H200 Forward+ shading took 4x clustered-forward's time at
-        // fewer lights per pixel, as if its fragments fell back to every light).
+        // gl_FragCoord.z reads, so the check (two texel fetches and a branch) is skipped: on lavapipe
+        // it cost 97.7 -> 62.2 ms in builtin:atrium at 1024 lights, with no fragment falling back;
+        // on an H200 Forward+ shading took 4x clustered-forward's time at fewer lights per pixel,
+        // as if fragments fell back to every light there.
         if (frame.lightRange.w != 0u) feUseTileListAt(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
         else feUseTileList(ivec2(gl_FragCoord.xy));
         const uint count = feTileLightCount();

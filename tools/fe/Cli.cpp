@@ -152,7 +152,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
     {"--no-aliasing", {"", "transient textures in memory of their own"}},
     {"--window", {"", "show the frames in a window"}},
-    {"--verbose", {"", "print the render director's choices and their reasons, and the lights evaluated per pixel"}},
+    {"--verbose", {"", "print the render director's choices and their reasons, and the lights evaluated and reaching per pixel"}},
     {"--strict", {"", "the glTF loader's warnings are errors"}},
     {"--illum-split", {"", "redeferred-tiled: specular sums at full rate, diffuse at 1/scale"}},
     {"--rebuild-nov", {"", "redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer"}},
