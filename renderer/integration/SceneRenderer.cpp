@@ -112,7 +112,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     context_->shadows = shadows_.get();
     // The cluster grid: for the clustered techniques, and for the translucent pass of every
     // technique (which otherwise lights each blended fragment with every light).
-    if (technique.clusters || (gpuScene_->hasBlend() && s.translucentClusters && device.info().features.computeShaders)) {
+    if (technique.clusters || (technique.clustersUnderMsaa && s.msaa > 1) || (gpuScene_->hasBlend() && s.translucentClusters && device.info().features.computeShaders)) {
         clusters_ = std::make_unique<ClusterLightGrid>(*context_);
         context_->clusters = clusters_.get();
     }
@@ -457,8 +457,8 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     const uint32_t unshadowed = gpuScene_->unshadowedLightCount();
     fc.counts = glm::uvec4(unshadowed, s.illumScale, s.iblSamples, gpuScene_->lightCount());
     fc.clusters = ClusterLightGrid::slicing(cam, scene_.bounds);
-    // forward: the unshadowed lights, with emissive; w: samples the tile lists were not culled for
-    fc.lightRange = glm::uvec4(0, unshadowed, 1, s.msaa > 1 ? 1u : 0u);
+    // forward: the unshadowed lights, with emissive
+    fc.lightRange = glm::uvec4(0, unshadowed, 1, 0);
 
     gdi::CommandList& cmd = queue_->beginFrame();
     frameConstants_ = queue_->upload(fc);

@@ -6,7 +6,9 @@ namespace fe::render {
 
 ForwardPlusRenderer::ForwardPlusRenderer(TechniqueContext& c, Lists lists) : TechniqueRenderer(c) {
     if (lists == Lists::Tiles) culling_ = std::make_unique<TileLightCulling>(c);
-    else if (!c.clusters) throw gdi::Error("clustered-forward: the renderer made no light cluster grid");
+    if ((lists == Lists::Clusters || c.settings.msaa > 1) && !c.clusters)
+        throw gdi::Error(std::string(lists == Lists::Clusters ? "clustered-forward" : "forward-plus") +
+                         ": the renderer made no light cluster grid");
 }
 
 void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
@@ -25,17 +27,20 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
     });
     const graph::TextureId tiles = culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
     tiles_ = tiles;
-    const graph::BufferId clusters = culling_ ? graph::BufferId{} : ctx_.clusters->declare(g);
+    // Under MSAA a Forward+ fragment outside its tile's depth bounds walks its cluster's list
+    // (fe_forward_pass.glsl), so the grid is built then too.
+    const bool clustersRead = !culling_ || ctx_.settings.msaa > 1;
+    const graph::BufferId clusters = clustersRead ? ctx_.clusters->declare(g) : graph::BufferId{};
     g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
         if (culling_) b.sample(tiles);
-        else b.buffer(clusters, gdi::BufferAccess::StorageRead);
+        if (clustersRead) b.buffer(clusters, gdi::BufferAccess::StorageRead);
         b.colorTarget(t.color, gdi::LoadOp::Load);
         b.depthTarget(t.depth, gdi::LoadOp::Load);
         t.resolveIn(b);
-    }, [this, targets, tiles](graph::PassContext& pc) {
+    }, [this, targets, tiles, clustersRead](graph::PassContext& pc) {
         pc.beginRenderPass();
         if (culling_) culling_->bindLists(pc.cmd, pc, tiles);
-        else ctx_.clusters->bindLists(pc.cmd);
+        if (clustersRead) ctx_.clusters->bindLists(pc.cmd);
         ctx_.geometry.draw(pc.cmd, ctx_.queue, culling_ ? MeshPass::ForwardTiled : MeshPass::ForwardClustered, targets,
                            ctx_.frameConstants, ctx_.eye, &objects_);
         pc.cmd.endRenderPass();

@@ -4,7 +4,8 @@
 //    one forward pass where depth is EQUAL whose light loop walks the pixel's tile list
 //    (MeshPass::ForwardTiled, forward_plus*.frag). With --msaa the pre-pass depth is resolved
 //    (sample 0) for culling, and a fragment outside the depth bounds its tile was culled for
-//    shades every light, so an edge sample never loses one.
+//    walks its cluster's list (ClusterLightGrid, built then too), so an edge sample never loses
+//    a light and never walks every light.
 //  clustered-forward (Olsson, Billeter and Assarsson 2012): the same shading pass walking the
 //    fragment's cluster list (ClusterLightGrid: lists that need no depth, MeshPass::ForwardClustered).
 #pragma once

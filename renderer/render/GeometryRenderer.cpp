@@ -74,7 +74,12 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::ForwardShadowed: return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
             case MeshPass::ForwardShadowedCube:
                 return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal, "forward shadowed cube"};
-            case MeshPass::ForwardTiled: return {listShader(forwardTiledFs_, "forward_plus"), false, gdi::CompareOp::Equal, "forward tiled"};
+            case MeshPass::ForwardTiled:
+                // Multisampled: the variant whose fragments outside their tile's bounds walk their cluster's list.
+                return targets.samples > 1 ? State{listShader(forwardTiledMsaaFs_, "forward_plus", "FE_MULTISAMPLED"), false,
+                                                   gdi::CompareOp::Equal, "forward tiled multisampled"}
+                                           : State{listShader(forwardTiledFs_, "forward_plus"), false, gdi::CompareOp::Equal,
+                                                   "forward tiled"};
             case MeshPass::ForwardClustered:
                 return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::Equal, "forward clustered"};
             case MeshPass::TransparentClustered:
@@ -128,12 +133,13 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     return p;
 }
 
-// The forward shader walking a light list (scene/NAME.frag), with the environment's light when
-// the renderer has one; made once, at its first pipeline.
-gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name) {
+// The forward shader walking a light list (scene/NAME.frag, its `variant` if given), with the
+// environment's light when the renderer has one; made once, at its first pipeline.
+gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name, const char* variant) {
     if (made) return made;
     const std::string plain = std::string("scene/") + name + ".frag";
-    const std::string path = forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain;
+    std::string path = forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain;
+    if (variant) path += std::string(":") + variant;
     made = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
     return made;
 }

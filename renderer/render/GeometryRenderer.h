@@ -70,9 +70,9 @@ private:
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::ShaderHandle forwardTiledFs_, forwardClusteredFs_;  // made at their first pipeline
+    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;  // made at their first pipeline
     gdi::ShaderHandle visibilityVs_, visibilityFs_;          // likewise
-    gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name);
+    gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name, const char* variant = nullptr);
     gdi::ShaderHandle visibilityShaders();
     EnvironmentLight environment_;
 };

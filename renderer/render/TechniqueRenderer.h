@@ -110,6 +110,9 @@ struct TechniqueInfo {
     bool illumScale = false;
     // Reads the light cluster grid (TechniqueContext::clusters).
     bool clusters = false;
+    // Reads the grid with --msaa N > 1 only (forward-plus: a fragment outside its tile's depth
+    // bounds walks its cluster's list).
+    bool clustersUnderMsaa = false;
     // Every technique lights the scene by its environment with --ibl-samples N (checked for
     // every line of the table by EnvironmentTests).
 };

@@ -42,7 +42,7 @@ const std::vector<TechniqueInfo>& techniques() {
         {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
         {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
         {"forward-plus", "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
-         makeForwardLists<ForwardPlusRenderer::Lists::Tiles>, true},
+         makeForwardLists<ForwardPlusRenderer::Lists::Tiles>, true, false, false, true},
         {"clustered-forward", "depth pre-pass, lights assigned to 32x32-pixel x 32-slice clusters, one forward pass over the cluster's list",
          makeForwardLists<ForwardPlusRenderer::Lists::Clusters>, true, false, true},
         {"deferred", "G-buffer, lights drawn as volumes, emissive", make<DeferredRenderer>},

@@ -10,8 +10,32 @@
 #define FE_LIGHTS_IN_STORAGE  // the mesh passes bind the lights' storage buffer
 #include "fe_tile_culling.glsl"
 #endif
-#ifdef FE_CLUSTER_LISTS
-#include "fe_clusters.glsl"
+#if defined(FE_CLUSTER_LISTS) || defined(FE_MULTISAMPLED)
+#include "fe_clusters.glsl"  // forward-plus: the fallback under MSAA
+#endif
+#ifdef FE_TILE_LISTS
+// forward-plus's list for a fragment: its tile's; under MSAA (FE_MULTISAMPLED) its cluster's
+// where the fragment lies outside the depth bounds its tile was culled for.
+bool feInCluster_ = false;
+void feUseForwardPlusList(ivec2 pixel, float depth) {
+    feUseTileList(pixel);
+#ifdef FE_MULTISAMPLED
+    feInCluster_ = !feTileListHolds(depth);
+    if (feInCluster_) feUseClusterList(pixel, depth);
+#endif
+}
+uint feForwardPlusLightCount(uint end) {
+#ifdef FE_MULTISAMPLED
+    if (feInCluster_) return feClusterLightCount(end);
+#endif
+    return feTileLightCount();
+}
+uint feForwardPlusLight(uint k) {
+#ifdef FE_MULTISAMPLED
+    if (feInCluster_) return feClusterLight(k);
+#endif
+    return feTileLight(k);
+}
 #endif
 // Forward: the lights of frame.lightRange in one loop (SHADING.md per-light sum): every light
 // for forward and the transparent pass, one per pass for forward-multipass (which adds the
@@ -30,18 +54,21 @@ void main() {
         const SurfacePoint s = feMaterialSurface(m, vEye);
         const SurfaceBrdf brdf = fePrepareBrdf(s);
 #ifdef FE_TILE_LISTS
-        // forward-plus: the lights of this pixel's tile list (light-culling pass). Under MSAA, all
-        // lights where the fragment lies outside the slice the list was culled for. At one sample
-        // a fragment that passes the EQUAL depth test stands on the depth culled for, whatever its
-        // gl_FragCoord.z reads, so the check (two texel fetches and a branch) is skipped: on lavapipe
-        // it cost 97.7 -> 62.2 ms in builtin:atrium at 1024 lights, with no fragment falling back;
-        // on an H200 Forward+ shading took 4x clustered-forward's time at fewer lights per pixel,
-        // as if fragments fell back to every light there.
-        if (frame.lightRange.w != 0u) feUseTileListAt(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
-        else feUseTileList(ivec2(gl_FragCoord.xy));
-        const uint count = feTileLightCount();
+        // forward-plus: the lights of this pixel's tile list (light-culling pass). Under MSAA a
+        // fragment's centre may lie outside the slice its tile was culled for (an edge pixel,
+        // culled for sample 0's depths); such a fragment walks its cluster's list instead (the
+        // grid every technique's translucent pass reads, culled without depth): exact, and short.
+        // (It walked every light until 2026-11-28: 4x MSAA Forward+ then cost 0.30x
+        // forward-zprepass's frame on lavapipe, 0.95x on an H200.) At one sample a fragment that
+        // passes the EQUAL depth test stands on the depth culled for, whatever its gl_FragCoord.z
+        // reads, so the plain variant has no check (two texel fetches and a branch): on lavapipe
+        // it cost 97.7 -> 62.2 ms in builtin:atrium at 1024 lights, with no fragment falling back.
+        feUseForwardPlusList(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
+        const uint end = frame.lightRange.x + frame.lightRange.y;
+        const uint count = feForwardPlusLightCount(end);
         for (uint k = 0u; k < count; ++k) {
-            const uint i = feTileLight(k);
+            const uint i = feForwardPlusLight(k);
+            if (i >= end) break;
 #elif defined(FE_CLUSTER_LISTS)
         // clustered: the lights of the fragment's cluster (ClusterLightGrid), those of this
         // pass's range (the list is ordered: the shadowed lights come last).

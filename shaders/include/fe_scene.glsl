@@ -43,7 +43,7 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 viewport;        // w, h, 1/w, 1/h
     vec4 illumViewport;   // I-buffer: w, h, 1/w, 1/h
     uvec4 counts;         // x lights, y illumination scale, z image-based lighting samples, w all lights (shadowed too)
-    uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit, w 1 = MSAA (forward-plus checks its tile's depth bounds)
+    uvec4 lightRange;     // forward shading: x first light, y light count, z 1 = add emissive/unlit, w 0
     mat4 view;            // view from world (rigid): the light pre-pass packs view-space normals
     vec4 temporal;        // xy representative pixel's offset in its I-buffer block, z history valid, w history cap
     mat4 prevViewProj;    // the previous frame's viewProj

@@ -64,14 +64,13 @@ void feUseTileList(ivec2 pixel) {
     feTileCount_ = texelFetch(tileLightLists, feTileBlock_, 0).r;
 }
 #define FE_TILE_HEADER 3u  // count, depth min, depth max
-// For a fragment of depth `depth` (forward-plus): a list is only valid for points inside the slice
-// it was culled for, and under MSAA a fragment may lie outside it (an edge sample, whose tile was
-// culled for sample 0's depths): such a fragment shades every light, so culling stays exact.
-void feUseTileListAt(ivec2 pixel, float depth) {
-    feUseTileList(pixel);
+// Whether the list of feUseTileList's tile holds for a fragment of depth `depth` (forward-plus):
+// a list is only valid for points inside the slice it was culled for, and under MSAA a fragment
+// may lie outside it (an edge pixel, whose tile was culled for sample 0's depths).
+bool feTileListHolds(float depth) {
     const float lo = uintBitsToFloat(texelFetch(tileLightLists, feTileBlock_ + ivec2(1, 0), 0).r);
     const float hi = uintBitsToFloat(texelFetch(tileLightLists, feTileBlock_ + ivec2(2, 0), 0).r);
-    if (!(depth >= lo && depth <= hi)) feTileCount_ = 0xffffffffu;
+    return depth >= lo && depth <= hi;
 }
 uint feTileLightCount() { return feTileCount_ == 0xffffffffu ? frame.counts.x : feTileCount_; }
 uint feTileLight(uint k) {

@@ -38,7 +38,7 @@ void main() {
         n = frame.counts.x;
         walkedReaching = 0xffffffffu;  // every light walked: none missed
 #else
-        feUseTileListAt(p, depth);
+        feUseTileList(p);  // the depth read here is the one its tile was culled for: the list holds
         n = feTileLightCount();
         for (uint k = 0u; k < n; ++k)
             if (feLightReaches(feLight(feTileLight(k)), P)) ++walkedReaching;

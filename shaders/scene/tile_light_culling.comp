@@ -62,7 +62,7 @@ void main() {
         const ivec2 q0 = p0 + FE_LIST_TILE * ivec2(k & 1, k >> 1), q1 = min(q0 + FE_LIST_TILE, viewport);
         // Widened by 4 ulps: a forward-plus fragment's gl_FragCoord.z need not equal, bit for bit,
         // the depth the pre-pass stored (the EQUAL test passing does not promise it), and one
-        // outside the bounds shades every light (fe_tile_culling.glsl, feUseTileListAt).
+        // outside the bounds walks its cluster's list (fe_forward_pass.glsl, feTileListHolds).
         if (z[k].x <= z[k].y) z[k] = vec2(z[k].x * (1.0 - 4.8e-7), min(z[k].y * (1.0 + 4.8e-7), 1.0));
         if (z[k].x <= z[k].y) feTileSliceBox(vec2(q0), vec2(q1), z[k].x, z[k].y, lo[k], hi[k]);
         zAll = vec2(min(zAll.x, z[k].x), max(zAll.y, z[k].y));
