@@ -151,8 +151,8 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
         c.reasons.push_back("technique clustered-forward: " + lights + " and --msaa " + std::to_string(s.msaa) +
                             ": the deferred techniques shade single-sample G-buffers; a forward pass over each "
                             "fragment's cluster list keeps hardware MSAA, exact, and measured fastest with MSAA "
-                            "(builtin:atrium, 256 lights, 4x: 28 ms against forward-plus 205, forward-zprepass 436 on "
-                            "lavapipe; the light pre-pass is inexact there, docs/BENCHMARKS.md)");
+                            "(builtin:atrium, 256 lights, 4x: 36.3 ms against forward-plus 47.0, forward-zprepass 507.5 "
+                            "on lavapipe; the light pre-pass is inexact there, docs/BENCHMARKS.md)");
     } else if (s.msaa > 1) {
         const bool packed = n.minRoughness >= kPackedNormalsMinRoughness;
         s.technique = packed ? "light-prepass" : "light-prepass-unpacked";
