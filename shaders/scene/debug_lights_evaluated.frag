@@ -3,8 +3,7 @@
 // fe-variant: FE_EVERY_LIGHT (the technique's loop walks every unshadowed light: frame.lightRange.y)
 // Debug view "lights evaluated" (SceneRenderer::kLightsEvaluatedView): per pixel, how many lights
 // the technique's shading loop walks there, as the light-list statistics pass counted them (its
-// tile or cluster list, every light where a list overflowed or a surface lies outside the depth
-// bounds it was culled for). A heat map on a log scale, so 1 and 1000 both read: black where no
+// tile or cluster list at the resolved depth, every light where a list overflowed). A heat map on a log scale, so 1 and 1000 both read: black where no
 // surface was drawn, then blue (1 light), cyan (4), green (16), yellow (64), red (256 or more).
 // The quantity Forward+ and clustering spend their time on; compare "light count", the lights
 // that actually reach each pixel.

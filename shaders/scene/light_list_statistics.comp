@@ -3,9 +3,10 @@
 // fe-variant: FE_CLUSTER_LISTS (the cluster grid's lists, else the tile lists)
 // fe-variant: FE_EVERY_LIGHT (the loop walks every unshadowed light: no list)
 // Light-list statistics (SceneRenderer::lightListStatistics): per pixel, how many lights the
-// technique's shading loop walks there: the length of its tile list (all lights where the list
-// overflowed or the surface lies outside the depth bounds it was culled for), or of its cluster's
-// list up to the unshadowed lights, or every unshadowed light. Next to it, how many of those
+// technique's shading loop walks there, at the (resolved) depth the tile lists were culled for:
+// the length of its tile list (all lights where the list overflowed), or of its cluster's list up
+// to the unshadowed lights, or every unshadowed light. (Under MSAA a Forward+ fragment at an edge
+// may walk its cluster's list instead; this pass does not see it.) Next to it, how many of those
 // lights reach the surface (their range window is non-zero there): what an exact culling walks
 // at least, whatever its lists; its top bit set where the loop misses one of them (culling that
 // is not exact: a light dropped). All ones in both where no surface was drawn.
