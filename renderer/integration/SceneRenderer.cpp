@@ -110,9 +110,11 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         context_->environmentLight = light;
     }
     context_->shadows = shadows_.get();
-    // The cluster grid: for the clustered techniques, and for the translucent pass of every
-    // technique (which otherwise lights each blended fragment with every light).
-    if (technique.clusters || (technique.clustersUnderMsaa && s.msaa > 1) || (gpuScene_->hasBlend() && s.translucentClusters && device.info().features.computeShaders)) {
+    // The cluster grid: for the clustered techniques, for forward-plus under MSAA (an edge
+    // fragment outside its tile's depth bounds walks its cluster's list), and for the translucent
+    // pass of every technique (which otherwise lights each blended fragment with every light).
+    const bool translucentNeedsGrid = gpuScene_->hasBlend() && s.translucentClusters && device.info().features.computeShaders;
+    if (technique.clusters || (technique.clustersUnderMsaa && s.msaa > 1) || translucentNeedsGrid) {
         clusters_ = std::make_unique<ClusterLightGrid>(*context_);
         context_->clusters = clusters_.get();
     }
