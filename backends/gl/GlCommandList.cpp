@@ -17,8 +17,15 @@ GlCommandList::GlCommandList(GlDevice& d)
       storageLimits_(gdi::validate::storageBindingLimits(d.info().limits)),
       stream_(d.takeStream()) {
     restart();
+    dev_.liveLists().add(this);
 }
-GlCommandList::~GlCommandList() { dev_.returnStream(std::move(stream_)); }
+GlCommandList::~GlCommandList() {
+    if (orphaned_) return;  // the device is gone: the stream is freed with the list
+    dev_.returnStream(std::move(stream_));
+    dev_.liveLists().remove(this);
+}
+// The device is being destroyed before this list (LiveLists.h): every later call throws.
+void GlCommandList::orphan() { orphaned_ = restricted_ = true, readyToDraw_ = inPass_ = false; }
 
 void GlCommandList::restart() {
     unbindAll();
@@ -32,8 +39,8 @@ void GlCommandList::unbindAll() {
     unchecked_ = ~uint64_t(0);
     pipeline_ = nullptr;
     readyToDraw_ = false;
-    hasIndexBuffer_ = false;
-    indexOffset_ = 0;
+    vertexInputs_.clear();
+    vertexInputs_.setPipeline(nullptr, nullptr);
 }
 
 void GlCommandList::checkSubmittable() const {
@@ -109,6 +116,7 @@ void GlCommandList::endRenderPass() {
 }
 
 void GlCommandList::restrictedCall(const char* what) const {
+    if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
     if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
     gdi::validate::onlyExecuteSecondary(what);
 }
@@ -158,25 +166,22 @@ void GlCommandList::setPipeline(gdi::PipelineHandle h) {
     if (pipeline_ != &p) unchecked_ = ~uint64_t(0);  // other slots, other kinds
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
-    readyToDraw_ = inPass_ && !p.compute;
+    vertexInputs_.setPipeline(p.compute ? nullptr : &p.vertexBindings, &p.label);
+    readyToDraw_ = inPass_ && !p.compute && vertexInputs_.ready();
     stream_->push(cmd::SetPipeline{h});
 }
 
 void GlCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
     checkUnrestricted("setVertexBuffer");
-    if (index >= 16) throw gdi::Error("setVertexBuffer: index out of range");
     const Buffer& b = dev_.buffer(h);
-    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Vertex, b.label, "setVertexBuffer");
-    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
+    vertexInputs_.setVertexBuffer(index, b.desc, b.label, offset);
+    readyToDraw_ = inPass_ && pipeline_ && !pipeline_->compute && vertexInputs_.ready();
     stream_->push(cmd::SetVertexBuffer{index, h, offset});
 }
 void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
     checkUnrestricted("setIndexBuffer");
     const Buffer& b = dev_.buffer(h);
-    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Index, b.label, "setIndexBuffer");
-    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
-    hasIndexBuffer_ = true;
-    indexOffset_ = offset;
+    vertexInputs_.setIndexBuffer(b.desc, b.label, type, offset);
     stream_->push(cmd::SetIndexBuffer{h, type, offset});
 }
 
@@ -232,23 +237,23 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
 
 void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
     prepareDraw("draw");
+    vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
     stream_->push(cmd::Draw{vertexCount, instanceCount, firstVertex, firstInstance});
 }
 void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
                                 uint32_t firstInstance) {
     prepareDraw("drawIndexed");
-    prepareIndexed("drawIndexed", false);
+    vertexInputs_.drawIndexed(indexCount, instanceCount, firstIndex, firstInstance);
     stream_->push(cmd::DrawIndexed{indexCount, instanceCount, firstIndex, baseVertex, firstInstance});
 }
 void GlCommandList::prepareCompute(const char* what) {
     if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
-    if (!pipeline_)
-        throw gdi::Error(std::string(what == std::string("dispatch") ? "draw/dispatch" : what) +
-                         " without a pipeline (call setPipeline first)");
+    if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
     if (!pipeline_->compute) throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
 }
 void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     prepareCompute("dispatch");
+    gdi::validate::dispatchSize(x, y, z, dev_.info().limits);
     checkBindings();
     stream_->push(cmd::Dispatch{x, y, z});
 }
@@ -258,8 +263,7 @@ void GlCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::B
     outside("copyBuffer");
     const Buffer& d = dev_.buffer(dst);
     const Buffer& s = dev_.buffer(src);
-    gdi::validate::bufferRange(d.desc, dstOffset, size, "copyBuffer destination");
-    gdi::validate::bufferRange(s.desc, srcOffset, size, "copyBuffer source");
+    gdi::validate::bufferCopy(d.desc, d.label, dstOffset, s.desc, s.label, srcOffset, size, &d == &s);
     stream_->push(cmd::CopyBuffer{dst, dstOffset, src, srcOffset, size});
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
@@ -334,7 +338,7 @@ void GlCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t 
                                  uint32_t recordSize, const char* what) {
     // Same order of checks as Vulkan: draw state, index buffer, then the arguments.
     prepareDraw(what);
-    if (recordSize == sizeof(gdi::DrawIndexedIndirectArgs)) prepareIndexed(what, true);
+    if (recordSize == sizeof(gdi::DrawIndexedIndirectArgs)) vertexInputs_.indexedIndirect(what);
     const Buffer& b = dev_.buffer(h);
     gdi::validate::indirect(b.desc, b.label, offset, drawCount, stride, recordSize, dev_.info().features, what);
 }
@@ -467,6 +471,7 @@ void GlCommandList::checkSlot(uint32_t slot, const char* what) const {
     if (slot >= 64) throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
 }
 void GlCommandList::outside(const char* what) const {
+    if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
     if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
 }
 // Every slot the pipeline uses must be bound with the kind it declares (GL would otherwise
@@ -501,12 +506,8 @@ void GlCommandList::notReadyToDraw(const char* what) const {
     checkUnrestricted(what);
     if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
     if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
-    throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
-}
-void GlCommandList::prepareIndexed(const char* what, bool indirect) const {
-    if (!hasIndexBuffer_) throw gdi::Error(std::string(what) + " without an index buffer");
-    if (indirect && indexOffset_ != 0)
-        throw gdi::Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
+    if (pipeline_->compute) throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
+    vertexInputs_.notReady(what);
 }
 
 std::unique_ptr<gdi::CommandList> GlDevice::createCommandList() {

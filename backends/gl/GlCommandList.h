@@ -16,17 +16,19 @@ class GlCommandList final : public gdi::CommandList {
 public:
     explicit GlCommandList(GlDevice& d);
     ~GlCommandList() override;
+    void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
     void beginRenderPass(const gdi::RenderPassDesc& desc) override;
     void endRenderPass() override;
     void setPipeline(gdi::PipelineHandle h) override;
     void setViewport(const gdi::Viewport& v) override {
         checkUnrestricted("setViewport");
+        gdi::validate::viewport(v);
         stream_->push(gdi::cmd::SetViewport{v});
     }
     void setScissor(const gdi::Rect& r) override {
         checkUnrestricted("setScissor");
-        stream_->push(gdi::cmd::SetScissor{r});
+        stream_->push(gdi::cmd::SetScissor{gdi::validate::scissor(r)});
     }
     void setConstants(uint32_t offset, gdi::ByteSpan data) override {
         gdi::validate::constantsRange(offset, data.size());
@@ -132,7 +134,6 @@ private:
             notReadyToDraw(what);
         checkBindings();
     }
-    void prepareIndexed(const char* what, bool indirect) const;
     void prepareCompute(const char* what);
     void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
                       const char* what);
@@ -156,11 +157,11 @@ private:
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
     const Pipeline* pipeline_ = nullptr;
     bool readyToDraw_ = false;    // in a render pass with a graphics pipeline
+    bool orphaned_ = false;       // the device was destroyed first (orphan())
     uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots
     std::array<uint8_t, 64> kinds_{};    // per slot: 1 + BindingType bound, 0 = unbound
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
-    bool hasIndexBuffer_ = false;
-    uint64_t indexOffset_ = 0;
+    gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).

@@ -227,6 +227,11 @@ void GlDevice::initialize(bool validation) {
     info_.limits.depthSampleCounts = countsFor(maxDepth, {F::D32F, F::D24S8});
     info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
     info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
+    for (GLuint axis = 0; axis < 3; ++axis) {
+        GLint groups = 0;
+        gl_.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, axis, &groups);
+        info_.limits.maxComputeWorkGroupCount[axis] = uint32_t(std::max(groups, 0));
+    }
     info_.limits.maxStorageTextures = uint32_t(std::min({get(GL_MAX_IMAGE_UNITS), get(GL_MAX_FRAGMENT_IMAGE_UNIFORMS),
                                                          get(GL_MAX_COMPUTE_IMAGE_UNIFORMS), get(GL_MAX_COMBINED_IMAGE_UNIFORMS)}));
     info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
@@ -274,6 +279,7 @@ void GlDevice::initialize(bool validation) {
 }
 
 GlDevice::~GlDevice() {
+    liveLists_.orphanAll();  // lists that outlive the device let go of it now
     try {
         thread_.run([&] {
             if (!loss_.lost()) {
@@ -364,9 +370,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
         gdi::validate::textureDesc(desc, info_);
         const std::string label = desc.debugName ? desc.debugName : "";
         if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
-        if (!supportsFormat(desc.format, desc.usage))
-            throw gdi::Error("texture '" + label + "': format " + std::string(gdi::formatInfo(desc.format).name) +
-                             " does not support the requested usage on OpenGL");
+        if (!supportsFormat(desc.format, desc.usage)) gdi::validate::unsupportedTextureUsage(desc);
         Texture t;
         t.desc = desc;
         t.desc.debugName = nullptr;
@@ -745,6 +749,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
         p.slotKinds = gdi::validate::slotKinds(bindings);
         p.signature = gdi::validate::pipelineSignature(d);
+        p.vertexBindings = gdi::validate::vertexBindings(d);
         return pipelines_.add(std::move(p));
     });
 }
@@ -756,7 +761,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         Pipeline p;
         p.label = d.debugName ? d.debugName : "";
         Shader& cs = shaders_.get(d.computeShader, "compute shader");
-        if (cs.stage != gdi::ShaderStage::Compute) throw gdi::Error("compute pipeline '" + p.label + "': not a compute shader");
+        gdi::validate::computeShaderStage(cs.stage, d);
         gdi::validate::workgroup(cs.iface, info_.limits, p.label);
         const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label, info_.limits);
         p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
@@ -1177,6 +1182,7 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
 
 void GlDevice::wait(gdi::FenceValue fence) {
     loss_.check("wait");
+    gdi::validate::issuedFence(fence, nextFence_.load() - 1, "wait");
     // Once its submission has been replayed, a fence is waited on ahead of the queue (and in
     // between the commands of a replay in progress): not behind the next frame's replay.
     auto waitFor = [&](auto&& task) { fence <= replayed_.load(std::memory_order_acquire) ? thread_.runUrgent(task) : thread_.run(task); };
@@ -1196,6 +1202,7 @@ void GlDevice::wait(gdi::FenceValue fence) {
 
 bool GlDevice::isComplete(gdi::FenceValue fence) {
     loss_.check("isComplete");
+    gdi::validate::issuedFence(fence, nextFence_.load() - 1, "isComplete");
     if (completed_.load(std::memory_order_acquire) >= fence) return true;
     if (fence > replayed_.load(std::memory_order_acquire)) return false;  // not even replayed yet
     return thread_.runUrgent([&] {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "fe/gdi/LiveLists.h"
 #include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Device.h"
 #include "fe/gdi/Validation.h"
@@ -31,6 +32,8 @@
 #include "gl/GlPlatform.h"
 
 namespace fe::gl {
+
+class GlCommandList;
 
 struct GlFormat {
     GLenum internal, format, type;
@@ -88,6 +91,7 @@ struct Pipeline {
     uint64_t requiredSlots = 0;
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)
     // The storage-texture slots its shaders use, in slot order: slot imageSlots[u] is bound to
     // image unit u (the shaders are renumbered so; GL may have only 8 units).
@@ -187,6 +191,7 @@ public:
     void returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream);
     // How many destroy() calls so far: a list compares it at submit with its value when it began.
     uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
+    gdi::LiveLists<GlCommandList>& liveLists() { return liveLists_; }
     // Throws the submit error when the stream uses a destroyed object.
     void checkAlive(const gdi::cmd::CommandStream& stream) const;
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
@@ -232,10 +237,11 @@ private:
     void checkReset(bool injected);
     std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;  // context thread only
     std::mutex submitMutex_;  // fence values are handed out in the order streams are queued
-    gdi::FenceValue nextFence_ = 1;
+    std::atomic<gdi::FenceValue> nextFence_{1};  // taken under submitMutex_; wait and isComplete read it
     std::atomic<gdi::FenceValue> completed_{0};  // every fence up to it has signalled
     std::atomic<gdi::FenceValue> replayed_{0};   // every submission up to it has been replayed
     std::atomic<uint64_t> destroyEpoch_{0};
+    gdi::LiveLists<GlCommandList> liveLists_;  // lists to orphan when the device goes first
     std::mutex streamsMutex_;
     std::vector<std::unique_ptr<gdi::cmd::CommandStream>> freeStreams_;
     struct CachedFbo {

@@ -10,6 +10,7 @@ namespace fe::gl {
     X(PFNGLGETSTRINGPROC, GetString)                                                                       \
     X(PFNGLGETSTRINGIPROC, GetStringi)                                                                     \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                                   \
+    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                                                               \
     X(PFNGLGETERRORPROC, GetError)                                                                         \
     X(PFNGLGETGRAPHICSRESETSTATUSPROC, GetGraphicsResetStatus)                                             \
     X(PFNGLENABLEPROC, Enable)                                                                             \

@@ -47,6 +47,7 @@ VulkanCommandList::VulkanCommandList(VulkanDevice& device)
     addRecordingBuffer();
     pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
     destroyEpoch_ = dev_.destroyEpoch();
+    dev_.liveLists().add(this);
 }
 
 // One command pool and buffer per recording still in flight: recording the next frame does not
@@ -72,11 +73,28 @@ void VulkanCommandList::addRecordingBuffer() {
 }
 
 VulkanCommandList::~VulkanCommandList() {
+    if (orphaned_) return;  // the device is gone; what the list held went with orphan()
+    releaseNative();
+    dev_.liveLists().remove(this);
+}
+
+void VulkanCommandList::releaseNative() {
     // Secondary recordings never submitted (this list's own, or executed by it) are free again.
     if (lease_.pool) executed_.push_back(lease_);
     dev_.releaseSecondary(executed_, 0);
+    executed_.clear();
+    lease_ = {};
     if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
     for (const RecordingBuffer& b : buffers_) vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
+    buffers_.clear();
+}
+
+// The device is being destroyed before this list (LiveLists.h): every later call throws.
+void VulkanCommandList::orphan() {
+    releaseNative();
+    orphaned_ = restricted_ = true;
+    recording_ = readyToDraw_ = inPass_ = false;
+    cb_ = VK_NULL_HANDLE;
 }
 
 void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
@@ -231,6 +249,7 @@ void VulkanCommandList::checkAlive() const {
 }
 
 void VulkanCommandList::beginRecording() {
+    if (orphaned_) gdi::validate::listOfDestroyedDevice("recording");
     // A buffer whose last submission has completed is reused; otherwise another one is made.
     size_t free = buffers_.size();
     for (size_t i = 0; i < buffers_.size() && free == buffers_.size(); ++i)
@@ -278,6 +297,8 @@ VkCommandBuffer VulkanCommandList::finish() {
 }
 
 void VulkanCommandList::outsidePass(const char* what) {
+    if (orphaned_) [[unlikely]]
+        gdi::validate::listOfDestroyedDevice(what);
     ensureRecording();
     if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
 }
@@ -417,13 +438,15 @@ void VulkanCommandList::unbindAll() {
     computeBound_ = false;
     readyToDraw_ = false;
     requiredSlots_ = 0;
-    indexBound_ = false;
+    vertexInputs_.clear();
+    vertexInputs_.setPipeline(nullptr, nullptr);
     for (Binding& b : bindings_) b.type = kUnbound;
     dirtySlots_ = ~uint64_t(0);
 }
 
 // A call that a pass of secondary lists (primary side) or an ended secondary list refuses.
 void VulkanCommandList::restrictedCall(const char* what) const {
+    if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
     if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
     gdi::validate::onlyExecuteSecondary(what);
 }
@@ -533,6 +556,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     requiredSlots_ = p.requiredSlots;
     layout_ = p.layout;
     computeBound_ = p.bindPoint == VK_PIPELINE_BIND_POINT_COMPUTE;
+    vertexInputs_.setPipeline(computeBound_ ? nullptr : &p.vertexBindings, &p.name);
     updateReadyToDraw();
     // By handle id, not address: a destroyed pipeline's slot (same address) may hold a new one.
     if (writesFor_ != h.id) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
@@ -549,6 +573,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     ensureRecording();
     checkUnrestricted("setViewport");
+    gdi::validate::viewport(v);
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
 }
@@ -587,7 +612,8 @@ void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
 void VulkanCommandList::setScissor(const gdi::Rect& r) {
     ensureRecording();
     checkUnrestricted("setScissor");
-    VkRect2D rect{{std::max(0, r.x), std::max(0, r.y)}, {r.width, r.height}};
+    const gdi::Rect c = gdi::validate::scissor(r);
+    VkRect2D rect{{c.x, c.y}, {c.width, c.height}};
     vkCmdSetScissor(cb_, 0, 1, &rect);
 }
 
@@ -595,8 +621,8 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
     ensureRecording();
     checkUnrestricted("setVertexBuffer");
     Buffer& b = usedBuffer(h);
-    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Vertex, b.name, "setVertexBuffer");
-    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setVertexBuffer");
+    vertexInputs_.setVertexBuffer(index, b.desc, b.name, offset);
+    updateReadyToDraw();
     VkDeviceSize off = offset;
     vkCmdBindVertexBuffers(cb_, index, 1, &b.buffer, &off);
 }
@@ -605,11 +631,8 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
     ensureRecording();
     checkUnrestricted("setIndexBuffer");
     Buffer& b = usedBuffer(h);
-    gdi::validate::bufferUsage(b.desc, gdi::BufferUsage::Index, b.name, "setIndexBuffer");
-    if (offset >= b.desc.size) gdi::validate::bufferRange(b.desc, offset, 1, "setIndexBuffer");
+    vertexInputs_.setIndexBuffer(b.desc, b.name, type, offset);
     vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
-    indexOffset_ = offset;
-    indexBound_ = true;
 }
 
 // The setters below are the per-object path: the fast path is a leaf (no call, no saved
@@ -681,7 +704,8 @@ void VulkanCommandList::notReadyToDraw(const char* what) const {
     checkUnrestricted(what);
     if (!inPass_) fail((std::string(what) + " outside a render pass").c_str());
     if (!pipeline_) fail((std::string(what) + " without a pipeline (call setPipeline first)").c_str());
-    wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
+    if (computeBound_) wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
+    vertexInputs_.notReady(what);
 }
 
 // Unbound required slots first (the likelier mistake), then a slot bound with the wrong kind.
@@ -730,6 +754,7 @@ void VulkanCommandList::pushGathered(uint64_t push) {
 void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw("draw");
+    vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
     const uint64_t push = dirtySlots_ & requiredSlots_;
     if (!push) return vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
     // Parked in members across the push: cheaper than keeping four arguments in saved registers.
@@ -742,6 +767,7 @@ void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
                                     int32_t baseVertex, uint32_t firstInstance) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw("drawIndexed");
+    vertexInputs_.drawIndexed(indexCount, instanceCount, firstIndex, firstInstance);
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
 }
@@ -773,9 +799,7 @@ void VulkanCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, ui
 // GL reads indexed records relative to the element buffer's start, so gdi asks for offset 0 on
 // every backend (the records' firstIndex does the offsetting).
 void VulkanCommandList::indexedIndirect(const char* what) const {
-    if (!indexBound_) throw gdi::Error(std::string(what) + " without an index buffer");
-    if (indexOffset_ != 0)
-        throw gdi::Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
+    vertexInputs_.indexedIndirect(what);
 }
 
 void VulkanCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
@@ -819,6 +843,7 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->name + "'");
     if (!pipeline_) fail("dispatch without a pipeline (call setPipeline first)");
+    gdi::validate::dispatchSize(x, y, z, dev_.info().limits);
     if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
     barrierIfWritten();
     vkCmdDispatch(cb_, x, y, z);
@@ -830,8 +855,7 @@ void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gd
     outsidePass("copyBuffer");
     Buffer& d = usedBuffer(dst);
     Buffer& s = usedBuffer(src);
-    gdi::validate::bufferRange(d.desc, dstOffset, size, "copyBuffer destination");
-    gdi::validate::bufferRange(s.desc, srcOffset, size, "copyBuffer source");
+    gdi::validate::bufferCopy(d.desc, d.name, dstOffset, s.desc, s.name, srcOffset, size, &d == &s);
     if (size == 0) return;
     barrierIfWritten();
     VkBufferCopy r{srcOffset, dstOffset, size};

@@ -12,6 +12,7 @@ class VulkanCommandList final : public gdi::CommandList {
 public:
     explicit VulkanCommandList(VulkanDevice& device);
     ~VulkanCommandList() override;
+    void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
     void beginRenderPass(const gdi::RenderPassDesc& desc) override;
     void endRenderPass() override;
@@ -120,6 +121,7 @@ private:
             restrictedCall(what);
     }
     [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
+    void releaseNative();  // command pools and secondary buffers back to the device
     void addRecordingBuffer();
     void hostReadable(const Buffer& b);
     void ensureRecording() {
@@ -136,7 +138,7 @@ private:
     const Buffer& countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what);
     void indexedIndirect(const char* what) const;
     [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
-    void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_; }
+    void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_ && vertexInputs_.ready(); }
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
     // size 0 = "the rest", any invalid argument) goes to the checked path, which gives the error.
@@ -190,15 +192,15 @@ private:
     gdi::FenceValue lastSubmit_ = 0;
     Pipeline* pipeline_ = nullptr;
     bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
-    bool readyToDraw_ = false;   // in a render pass with a graphics pipeline: the one per-draw state check
+    bool readyToDraw_ = false;
+    bool orphaned_ = false;  // the device was destroyed first (orphan())   // in a render pass with a graphics pipeline: the one per-draw state check
     uint64_t requiredSlots_ = 0; // pipeline_->requiredSlots, kept here for the per-draw path
     std::array<uint32_t, 4> draw_{};  // draw arguments while the draw pushes descriptors
     VkPipelineLayout layout_ = VK_NULL_HANDLE;  // pipeline_->layout
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
-    uint64_t indexOffset_ = 0;  // of the bound index buffer (indexed indirect draws need 0)
-    bool indexBound_ = false;
+    gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
     // at its slot in bindings_.

@@ -352,6 +352,7 @@ void VulkanDevice::fillInfo() {
     info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
+    for (int axis = 0; axis < 3; ++axis) info_.limits.maxComputeWorkGroupCount[axis] = l.maxComputeWorkGroupCount[axis];
     info_.limits.maxStorageTextures = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
     info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
@@ -388,6 +389,7 @@ void VulkanDevice::fillInfo() {
 }
 
 VulkanDevice::~VulkanDevice() {
+    liveLists_.orphanAll();  // lists that outlive the device let go of it now
     if (device_) {  // what was destroyed is not a leak: release it first
         vkDeviceWaitIdle(device_);
         for (Retired& r : retired_) r.release();
@@ -524,6 +526,7 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
 void VulkanDevice::wait(gdi::FenceValue fence) {
     std::lock_guard lock(mutex_);
     loss_.check("wait");
+    gdi::validate::issuedFence(fence, nextFence_ - 1, "wait");
     settle(fence);
     loss_.check("wait");
     collectRetired();
@@ -532,6 +535,7 @@ void VulkanDevice::wait(gdi::FenceValue fence) {
 bool VulkanDevice::isComplete(gdi::FenceValue fence) {
     std::lock_guard lock(mutex_);
     loss_.check("isComplete");
+    gdi::validate::issuedFence(fence, nextFence_ - 1, "isComplete");
     pollFences();
     loss_.check("isComplete");
     collectRetired();

@@ -24,6 +24,7 @@
 
 #include "VulkanFaults.h"
 #include "VulkanMemory.h"
+#include "fe/gdi/LiveLists.h"
 #include "fe/gdi/Device.h"
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/HandlePool.h"
@@ -100,6 +101,7 @@ struct Pipeline {
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).
     std::array<float, 4> blendConstant{};
     uint8_t stencilReference = 0;
@@ -201,6 +203,7 @@ public:
     QuerySet& querySet(gdi::QuerySetHandle h) { return querySets_.get(h, "query set"); }
     // How many destroy() calls so far (a list compares it at submit with its value at start).
     uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
+    gdi::LiveLists<VulkanCommandList>& liveLists() { return liveLists_; }
     // Whether the submission has completed, without waiting; a lost device's work counts as done.
     bool completedNoThrow(gdi::FenceValue fence);
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
@@ -294,6 +297,7 @@ private:
     // the next destroy waits for the queue, as every destroy did before deferred release.
     bool presentedSinceIdle_ = false;
     std::atomic<uint64_t> destroyEpoch_{0};
+    gdi::LiveLists<VulkanCommandList> liveLists_;  // lists to orphan when the device goes first
     // One lock for everything but recording: creation, destruction, transfers, submission and
     // fences, attachment views made while recording. Recursive: transfers wait through waitIdle.
     mutable std::recursive_mutex mutex_;

@@ -274,6 +274,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
                             (vs.iface.pushConstantBytes ? VK_SHADER_STAGE_VERTEX_BIT : 0) |
                                 (fs && fs->iface.pushConstantBytes ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
     p.signature = gdi::validate::pipelineSignature(d);
+    p.vertexBindings = gdi::validate::vertexBindings(d);
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
     p.stencilReference = d.depthStencil.stencilReference;
     p.depthBias = {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp};
@@ -311,9 +312,7 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Shader& cs = shaders_.get(d.computeShader, "compute shader");
-    if (cs.stage != gdi::ShaderStage::Compute)
-        throw gdi::Error(std::string("compute pipeline '") + (d.debugName ? d.debugName : "") +
-                         "': computeShader is not a compute shader");
+    gdi::validate::computeShaderStage(cs.stage, d);
     const std::string name = d.debugName ? d.debugName : "";
     gdi::validate::workgroup(cs.iface, info_.limits, name);
     const uint32_t constantBytes = gdi::validate::pipelineConstants({&cs.iface}, name);

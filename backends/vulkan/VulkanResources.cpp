@@ -19,18 +19,6 @@ VkFormatFeatureFlags requiredFeatures(gdi::Format f, gdi::TextureUsage u) {
     return r | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
 }
 
-std::string usageNames(gdi::TextureUsage u) {
-    std::string s;
-    auto add = [&](gdi::TextureUsage bit, const char* n) {
-        if (any(u, bit)) s += (s.empty() ? "" : "|") + std::string(n);
-    };
-    add(gdi::TextureUsage::Sampled, "Sampled");
-    add(gdi::TextureUsage::RenderTarget, "RenderTarget");
-    add(gdi::TextureUsage::Storage, "Storage");
-    add(gdi::TextureUsage::CopySrc, "CopySrc");
-    add(gdi::TextureUsage::CopyDst, "CopyDst");
-    return s;
-}
 }  // namespace
 
 bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
@@ -267,9 +255,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
-    if (!supportsFormat(desc.format, desc.usage))
-        throw gdi::Error("texture '" + name + "': format " + std::string(gdi::formatInfo(desc.format).name) +
-                         " does not support usage " + usageNames(desc.usage) + " on this Vulkan device");
+    if (!supportsFormat(desc.format, desc.usage)) gdi::validate::unsupportedTextureUsage(desc);
     Heap* heap = desc.heap ? &heaps_.get(desc.heap, "heap") : nullptr;
     Texture t;
     t.desc = desc;

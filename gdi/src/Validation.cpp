@@ -382,6 +382,8 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
     if (d.blend.size() > d.colorFormats.size()) fail(what, "more blend states than colour targets");
     if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip && d.topology != PrimitiveTopology::LineStrip)
         fail(what, "primitiveRestart needs a strip topology (TriangleStrip or LineStrip)");
+    if (d.vertexBuffers.size() > kMaxVertexBuffers)
+        fail(what, std::to_string(d.vertexBuffers.size()) + " vertex buffers (at most " + std::to_string(kMaxVertexBuffers) + ")");
     uint32_t locations = 0;
     for (size_t i = 0; i < d.vertexBuffers.size(); ++i) {
         const VertexBufferLayout& vb = d.vertexBuffers[i];
@@ -470,6 +472,162 @@ void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, con
         fail(label("buffer", d.debugName), std::string(what) + ": empty range (offset " + std::to_string(offset) +
                                                " is the end of the buffer)");
     bufferRangeFailed(d, offset, size, what);
+}
+
+void unsupportedTextureUsage(const TextureDesc& d) {
+    std::string usages;
+    auto add = [&](TextureUsage bit, const char* n) {
+        if (any(d.usage, bit)) usages += (usages.empty() ? "" : "|") + std::string(n);
+    };
+    add(TextureUsage::Sampled, "Sampled");
+    add(TextureUsage::RenderTarget, "RenderTarget");
+    add(TextureUsage::Storage, "Storage");
+    add(TextureUsage::CopySrc, "CopySrc");
+    add(TextureUsage::CopyDst, "CopyDst");
+    fail(label("texture", d.debugName), "format " + std::string(formatInfo(d.format).name) + " does not support usage " +
+                                            usages + " on this device (Device::formatCaps says what it can do)");
+}
+
+void computeShaderStage(ShaderStage stage, const ComputePipelineDesc& d) {
+    if (stage != ShaderStage::Compute) fail(label("compute pipeline", d.debugName), "computeShader is not a compute shader");
+}
+
+std::vector<VertexBinding> vertexBindings(const GraphicsPipelineDesc& d) {
+    std::vector<VertexBinding> out;
+    for (const VertexBufferLayout& vb : d.vertexBuffers) {
+        VertexBinding b{.stride = vb.stride, .perInstance = vb.perInstance};
+        for (const VertexAttribute& a : vb.attributes) b.extent = std::max(b.extent, a.offset + vertexFormatInfo(a.format).bytes);
+        out.push_back(b);
+    }
+    return out;
+}
+
+void VertexInputs::setVertexBuffer(uint32_t index, const BufferDesc& d, const std::string& name, uint64_t offset) {
+    if (index >= kMaxVertexBuffers)
+        throw Error("setVertexBuffer: index " + std::to_string(index) + " out of range (at most " +
+                    std::to_string(kMaxVertexBuffers) + " vertex buffers)");
+    bufferUsage(d, BufferUsage::Vertex, name, "setVertexBuffer");
+    if (offset >= d.size) bufferRange(d, offset, 1, "setVertexBuffer");
+    buffers_[index] = {d.size - offset, name};
+    bound_ |= 1u << index;
+    update();
+}
+
+void VertexInputs::setIndexBuffer(const BufferDesc& d, const std::string& name, IndexType type, uint64_t offset) {
+    bufferUsage(d, BufferUsage::Index, name, "setIndexBuffer");
+    if (offset >= d.size) bufferRange(d, offset, 1, "setIndexBuffer");
+    const uint32_t bytes = type == IndexType::U16 ? 2 : 4;
+    if (offset % bytes)
+        fail(label("buffer", name.c_str()), "setIndexBuffer: offset " + std::to_string(offset) + " is not a multiple of " +
+                                                std::to_string(bytes) + " (the index size)");
+    indexBound_ = true;
+    indexOffset_ = offset;
+    indexBytes_ = bytes;
+    indices_ = (d.size - offset) / bytes;
+    indexName_ = name;
+}
+
+void VertexInputs::setPipeline(const std::vector<VertexBinding>* bindings, const std::string* pipelineName) {
+    bindings_ = bindings;
+    pipelineName_ = pipelineName;
+    required_ = bindings ? (1u << bindings->size()) - 1u : 0u;
+    update();
+}
+
+void VertexInputs::clear() {
+    bound_ = 0;
+    indexBound_ = false;
+    indices_ = 0;
+    update();
+}
+
+void VertexInputs::update() {
+    vertices_ = instances_ = ~uint64_t(0);
+    if (!bindings_) return;
+    for (uint32_t i = 0; i < bindings_->size(); ++i) {
+        const VertexBinding& b = (*bindings_)[i];
+        if (!(bound_ >> i & 1u) || b.stride == 0) continue;
+        const uint64_t available = buffers_[i].available;
+        const uint64_t elements = available < b.extent ? 0 : (available - b.extent) / b.stride + 1;
+        uint64_t& capacity = b.perInstance ? instances_ : vertices_;
+        capacity = std::min(capacity, elements);
+    }
+}
+
+void VertexInputs::notReady(const char* what) const {
+    const uint32_t missing = required_ & ~bound_;
+    throw Error(std::string(what) + ": pipeline '" + (pipelineName_ ? *pipelineName_ : std::string()) +
+                "' reads vertex buffer " + std::to_string(std::countr_zero(missing)) +
+                ", which is not bound (setVertexBuffer)");
+}
+
+void VertexInputs::outside(const char* what, uint32_t count, uint32_t instanceCount, uint32_t first,
+                           uint32_t firstInstance) const {
+    const bool instances = uint64_t(firstInstance) + instanceCount > instances_;
+    throw Error(std::string(what) + ": " + (instances ? "instances [" : "vertices [") +
+                std::to_string(instances ? firstInstance : first) + ", " +
+                std::to_string(instances ? uint64_t(firstInstance) + instanceCount : uint64_t(first) + count) +
+                ") reach past the bound vertex buffers of pipeline '" + (pipelineName_ ? *pipelineName_ : std::string()) +
+                "', which hold " + std::to_string(instances ? instances_ : vertices_));
+}
+
+void VertexInputs::indexedOutside(uint32_t count, uint32_t instanceCount, uint32_t first, uint32_t firstInstance) const {
+    if (!indexBound_) throw Error("drawIndexed without an index buffer");
+    if (uint64_t(first) + count > indices_)
+        fail(label("buffer", indexName_.c_str()), "drawIndexed: indices [" + std::to_string(first) + ", " +
+                                                      std::to_string(uint64_t(first) + count) +
+                                                      ") reach past the index buffer, which holds " +
+                                                      std::to_string(indices_) + " from offset " +
+                                                      std::to_string(indexOffset_));
+    outside("drawIndexed", 0, instanceCount, 0, firstInstance);
+}
+
+void VertexInputs::indexedIndirect(const char* what) const {
+    if (!indexBound_) throw Error(std::string(what) + " without an index buffer");
+    if (indexOffset_ != 0)
+        throw Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
+}
+
+void badViewport(const Viewport& v) {
+    std::string why;
+    if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.width) && std::isfinite(v.height)))
+        why = "not finite";
+    else if (v.height < 0)
+        why = "a negative height (Vulkan's y flip) is not supported: clip space is already Vulkan's, y down, on every "
+              "backend; flip y in the projection instead";
+    else if (!(v.width > 0 && v.height > 0))
+        why = "width and height must be positive";
+    else
+        why = "minDepth and maxDepth must lie in [0, 1]";
+    throw Error("setViewport {" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.width) + ", " +
+                std::to_string(v.height) + ", " + std::to_string(v.minDepth) + ", " + std::to_string(v.maxDepth) + "}: " + why);
+}
+
+void badDispatch(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& l) {
+    throw Error("dispatch(" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
+                "): beyond the device's maxComputeWorkGroupCount (" + std::to_string(l.maxComputeWorkGroupCount[0]) + ", " +
+                std::to_string(l.maxComputeWorkGroupCount[1]) + ", " + std::to_string(l.maxComputeWorkGroupCount[2]) + ")");
+}
+
+void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset, const BufferDesc& src,
+                const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer) {
+    bufferRange(dst, dstOffset, size, "copyBuffer destination");
+    bufferRange(src, srcOffset, size, "copyBuffer source");
+    if (sameBuffer && size && dstOffset < srcOffset + size && srcOffset < dstOffset + size)
+        fail(label("buffer", dstName.c_str()), "copyBuffer: the source [" + std::to_string(srcOffset) + ", " +
+                                                   std::to_string(srcOffset + size) + ") and destination [" +
+                                                   std::to_string(dstOffset) + ", " + std::to_string(dstOffset + size) +
+                                                   ") overlap");
+    (void)srcName;
+}
+
+void listOfDestroyedDevice(const char* what) {
+    throw Error(std::string(what) + ": the device of this command list was destroyed (destroy lists before their device)");
+}
+
+void fenceNotIssued(FenceValue fence, FenceValue last, const char* what) {
+    throw Error(std::string(what) + ": fence " + std::to_string(fence) + " was never issued (the last submission's is " +
+                std::to_string(last) + ")");
 }
 
 namespace {

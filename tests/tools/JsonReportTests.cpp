@@ -48,6 +48,8 @@ void expectDeviceSummary(const json& d, const std::string& backend) {
         ++limits;
         if constexpr (std::is_floating_point_v<std::decay_t<decltype(value)>>)
             EXPECT_TRUE(d["limits"][name].is_number()) << backend << " limit " << name;
+        else if constexpr (!std::is_arithmetic_v<std::decay_t<decltype(value)>>)  // x, y, z
+            EXPECT_TRUE(d["limits"][name].is_array() && d["limits"][name].size() == value.size()) << backend << " limit " << name;
         else
             EXPECT_TRUE(d["limits"][name].is_number_unsigned()) << backend << " limit " << name;
     });

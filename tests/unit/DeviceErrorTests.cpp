@@ -1,5 +1,6 @@
 // Invalid descriptions give clear errors, never crashes, on every backend.
 #include <array>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -260,6 +261,87 @@ TEST_P(DeviceErrors, DrawStateErrors) {
     EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("draw with compute pipeline 'fill'"), std::string::npos);
     cmd->endRenderPass();
     device->wait(device->submit(*cmd));
+}
+
+// Vertex input, viewports, scissors, dispatch sizes, copies and fences: mistakes a port makes,
+// one Error on every backend before any native call (lavapipe crashed on a missing index
+// buffer; GL dropped what Vulkan drew).
+TEST_P(DeviceErrors, DrawInputsAreCheckedAlike) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/vertex_color.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = device->createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs,
+         .vertexBuffers = {{.stride = 24, .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
+                           {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
+         .colorFormats = {Format::RGBA8}, .debugName = "vc"});
+    auto vertices = device->createBuffer({.size = 72, .usage = BufferUsage::Vertex});  // 3 vertices
+    auto offsets = device->createBuffer({.size = 16, .usage = BufferUsage::Vertex});   // 2 instances
+    auto indices = device->createBuffer({.size = 12, .usage = BufferUsage::Index, .debugName = "idx"});  // 6 U16
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto has = [](const std::string& e, const std::string& s) { return e.find(s) != std::string::npos; };
+    auto cmd = device->createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(p);
+    EXPECT_TRUE(has(errorOf([&] { cmd->draw(3); }), "draw: pipeline 'vc' reads vertex buffer 0, which is not bound"));
+    cmd->setVertexBuffer(0, vertices);
+    EXPECT_TRUE(has(errorOf([&] { cmd->draw(3); }), "reads vertex buffer 1, which is not bound"));
+    cmd->setVertexBuffer(1, offsets);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3, 2); }), "(no error)");
+    EXPECT_TRUE(has(errorOf([&] { cmd->draw(3, 1, 1); }), "vertices [1, 4) reach past the bound vertex buffers"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->draw(3, 2, 0, 1); }), "instances [1, 3) reach past"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setVertexBuffer(0, vertices, 24); cmd->draw(3); }), "vertices [0, 3)"));
+    cmd->setVertexBuffer(0, vertices);
+    EXPECT_TRUE(has(errorOf([&] { cmd->drawIndexed(3); }), "drawIndexed without an index buffer"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setIndexBuffer(indices, IndexType::U32, 2); }), "offset 2 is not a multiple of 4"));
+    cmd->setIndexBuffer(indices, IndexType::U16, 2);
+    EXPECT_EQ(errorOf([&] { cmd->drawIndexed(5); }), "(no error)");
+    EXPECT_TRUE(has(errorOf([&] { cmd->drawIndexed(3, 1, 3); }), "indices [3, 6) reach past the index buffer, which holds 5"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setVertexBuffer(16, vertices); }), "index 16 out of range (at most 16 vertex buffers)"));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_TRUE(has(errorOf([&] { cmd->setViewport({0, 0, nan, 8}); }), "not finite"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setViewport({0, 8, 8, -8}); }), "a negative height (Vulkan's y flip) is not supported"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setViewport({0, 0, 0, 8}); }), "width and height must be positive"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setViewport({0, 0, 8, 8, 0, 2}); }), "must lie in [0, 1]"));
+    EXPECT_EQ(errorOf([&] { cmd->setScissor({-4, -100, 16, 16}); }), "(no error)");  // clipped: nothing left
+    cmd->draw(3, 2);
+    cmd->endRenderPass();
+    auto b = device->createBuffer({.size = 64, .debugName = "bytes"});
+    EXPECT_TRUE(has(errorOf([&] { cmd->copyBuffer(b, 16, b, 0, 32); }), "buffer 'bytes': copyBuffer: the source [0, 32) and destination [16, 48) overlap"));
+    EXPECT_EQ(errorOf([&] { cmd->copyBuffer(b, 32, b, 0, 32); }), "(no error)");
+    auto cs = device->createShader({.stage = ShaderStage::Compute, .binary = fe::shaders::find("conformance/fill.comp")});
+    auto c = device->createComputePipeline({.computeShader = cs});
+    cmd->setPipeline(c);
+    const std::array<uint32_t, 3> most = device->info().limits.maxComputeWorkGroupCount;
+    EXPECT_GE(most[0], 65535u);
+    if (most[0] < UINT32_MAX)
+        EXPECT_TRUE(has(errorOf([&] { cmd->dispatch(most[0] + 1); }), "beyond the device's maxComputeWorkGroupCount"));
+    const FenceValue f = device->submit(*cmd);
+    EXPECT_TRUE(has(errorOf([&] { device->wait(f + 1000); }), "wait: fence " + std::to_string(f + 1000) + " was never issued"));
+    EXPECT_TRUE(has(errorOf([&] { device->isComplete(f + 1); }), "isComplete: fence"));
+    device->wait(f);
+    for (auto buffer : {vertices, offsets, indices, b}) device->destroy(buffer);
+}
+
+// A list destroyed after its device is safe, and recording into it is an Error, not a crash.
+TEST_P(DeviceErrors, ListsMayOutliveTheirDevice) {
+    auto other = createDevice({.backend = GetParam()});
+    auto recorded = other->createCommandList();
+    auto submitted = other->createCommandList();
+    auto t = other->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+    recorded->beginRenderPass({.colors = {{.texture = t}}});
+    submitted->beginRenderPass({.colors = {{.texture = t}}});
+    submitted->endRenderPass();
+    other->submit(*submitted);
+    auto empty = other->createCommandList();
+    other.reset();  // lists first would be the right order
+    for (auto* list : {recorded.get(), submitted.get(), empty.get()}) {
+        EXPECT_NE(errorOf([&] { list->draw(3); }).find("the device of this command list was destroyed"), std::string::npos);
+        EXPECT_NE(errorOf([&] { list->setScissor({}); }).find("the device of this command list was destroyed"), std::string::npos);
+        EXPECT_NE(errorOf([&] { list->clearBuffer({1}); }).find("the device of this command list was destroyed"), std::string::npos);
+    }
+    recorded.reset();
+    submitted.reset();
+    empty.reset();
 }
 
 TEST_P(DeviceErrors, BrokenShaderBinary) {

@@ -730,6 +730,9 @@ public:
     virtual void endRenderPass() = 0;
 
     virtual void setPipeline(PipelineHandle pipeline) = 0;
+    // Viewports are finite with a positive width and height and depths in [0, 1] (Vulkan's
+    // negative-height y flip is an Error: clip space is already Vulkan's, y down, so flip y in
+    // the projection). A scissor partly outside the target (negative offsets too) clips to it.
     virtual void setViewport(const Viewport& viewport) = 0;  // default: whole render area
     virtual void setScissor(const Rect& rect) = 0;           // default: whole render area
     // Pipeline state that may also change between draws: setPipeline applies the pipeline's
@@ -746,6 +749,10 @@ public:
     virtual void setConstants(uint32_t offset, ByteSpan data) = 0;
     template <class T>
     void setConstants(const T& data) { setConstants(0, bytesOf(data)); }
+    // Vertex buffers 0 to 15; an index buffer's offset is a multiple of its index size. Each
+    // draw checks that every buffer its pipeline's layout names is bound, that a non-indexed
+    // draw's vertices and every draw's instances lie inside them, and that an indexed draw's
+    // indices lie inside the index buffer (the vertices indices pick are the GPU's business).
     virtual void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset = 0) = 0;
     virtual void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
 
@@ -761,6 +768,7 @@ public:
                       uint32_t firstInstance = 0) = 0;
     virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
                              int32_t baseVertex = 0, uint32_t firstInstance = 0) = 0;
+    // At most limits.maxComputeWorkGroupCount groups along each axis.
     virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
 
     // Indirect work: drawCount records of `stride` bytes from `offset` in an Indirect buffer.
@@ -782,6 +790,7 @@ public:
     // GPU. The format must support linear filtering. Outside render passes.
     virtual void generateMips(TextureHandle texture) = 0;
 
+    // Within one buffer the two ranges must not overlap.
     virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
                             uint64_t size) = 0;
     // Fills [offset, offset + size) of the buffer with the 32-bit pattern `value` (0: zeros);
@@ -901,6 +910,8 @@ struct DeviceLimits {
     uint32_t depthSampleCounts = 1;
     uint32_t maxColorAttachments = 0;
     uint32_t maxComputeWorkGroupInvocations = 0;
+    // Work groups one dispatch may launch in x, y and z (both APIs guarantee 65535 each).
+    std::array<uint32_t, 3> maxComputeWorkGroupCount = {65535, 65535, 65535};
     // Storage textures one pipeline's shaders may use (GL: image units, 8 on NVIDIA; the slot
     // numbers themselves may be any of 0 to 63 on every backend).
     uint32_t maxStorageTextures = 0;
@@ -989,6 +1000,8 @@ struct PipelineCacheStats {
 // recording starts and when a pass first uses an attachment view). Objects used by a list
 // must not be destroyed while that list is being recorded or is unsubmitted (its submit
 // throws Error). A submit that throws runs none of its lists and leaves them as they were.
+// Destroy command lists before their device; a list that outlives it is safe to destroy, and
+// recording into it throws Error.
 class Device {
 public:
     virtual ~Device() = default;
@@ -1084,7 +1097,8 @@ public:
         CommandList* list = &commands;
         return submit(std::span<CommandList* const>(&list, 1));
     }
-    // Blocks until the submission with this fence (and every one before it) has completed.
+    // Blocks until the submission with this fence (and every one before it) has completed. A
+    // fence no submit has returned yet is an Error (here and in isComplete); 0 is always complete.
     virtual void wait(FenceValue fence) = 0;
     // Whether it has completed, without blocking.
     virtual bool isComplete(FenceValue fence) = 0;

@@ -22,6 +22,7 @@ constexpr void forEachField(const DeviceLimits& l, Visitor&& visit) {
     visit("depthSampleCounts", l.depthSampleCounts);
     visit("maxColorAttachments", l.maxColorAttachments);
     visit("maxComputeWorkGroupInvocations", l.maxComputeWorkGroupInvocations);
+    visit("maxComputeWorkGroupCount", l.maxComputeWorkGroupCount);  // x, y, z
     visit("maxStorageTextures", l.maxStorageTextures);
     visit("maxUniformBufferRange", l.maxUniformBufferRange);
     visit("maxStorageBufferRange", l.maxStorageBufferRange);

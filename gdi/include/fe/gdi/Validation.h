@@ -1,7 +1,9 @@
 // Layer 2 (GDI abstraction): checks every backend runs on descriptions before touching the
 // native API, so invalid input gives the same clear message on Vulkan and GL.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <climits>
 #include <initializer_list>
 #include <utility>
 
@@ -15,6 +17,8 @@ void bufferDesc(const BufferDesc& d, const DeviceLimits& limits);
 // Initial data of createBuffer: none (size 0) or exactly the buffer's size.
 void initialData(const BufferDesc& d, uint64_t size);
 void textureDesc(const TextureDesc& d, const DeviceInfo& device);
+// createTexture of a format the device cannot use with every usage asked for (supportsFormat).
+[[noreturn]] void unsupportedTextureUsage(const TextureDesc& d);
 
 // Size of one mip level: width, height, and depth (3D) or layer count (arrays, cubes).
 struct Extent3 {
@@ -77,6 +81,8 @@ void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uin
 void shaderDesc(const ShaderDesc& d);
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device);
 void computePipelineDesc(const ComputePipelineDesc& d);
+// createComputePipeline: its shader's stage.
+void computeShaderStage(ShaderStage stage, const ComputePipelineDesc& d);
 // Device::present's texture: RGBA8 or RGBA8_SRGB (the bytes a window shows unchanged) with
 // CopySrc usage, on every windowed backend.
 void presentTexture(const TextureDesc& d, const std::string& name);
@@ -200,6 +206,106 @@ void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char*
 inline void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
     if (offset > d.size || size > d.size - offset) [[unlikely]]
         bufferRangeFailed(d, offset, size, what);
+}
+
+// Vertex input, checked at every draw the same way on every backend: each vertex buffer the
+// pipeline's layout names is bound, a non-indexed draw's vertices and every draw's instances
+// lie inside those buffers, and an indexed draw's indices inside the index buffer (bound at an
+// offset aligned to its index size). Indexed draws read vertices the GPU chooses; those are not
+// checked. A list keeps one VertexInputs; the fast path is two comparisons per draw.
+inline constexpr uint32_t kMaxVertexBuffers = 16;
+struct VertexBinding {
+    uint32_t stride = 0;  // 0: every vertex (instance) reads the same element
+    uint32_t extent = 0;  // bytes one element's attributes reach (the last attribute's end)
+    bool perInstance = false;
+};
+// The pipeline's vertex bindings (graphicsPipelineDesc checked them: at most kMaxVertexBuffers).
+std::vector<VertexBinding> vertexBindings(const GraphicsPipelineDesc& d);
+class VertexInputs {
+public:
+    // setVertexBuffer / setIndexBuffer: index below kMaxVertexBuffers, usage, offset in the buffer
+    // (and, for indices, a multiple of the index size).
+    void setVertexBuffer(uint32_t index, const BufferDesc& d, const std::string& name, uint64_t offset);
+    void setIndexBuffer(const BufferDesc& d, const std::string& name, IndexType type, uint64_t offset);
+    // The bound pipeline's bindings (null: none, or a compute pipeline).
+    void setPipeline(const std::vector<VertexBinding>* bindings, const std::string* pipelineName);
+    void clear();  // nothing bound (a new recording; after a pass of secondary lists)
+    // Every buffer the pipeline reads is bound (folded into the lists' one per-draw state check).
+    bool ready() const { return (required_ & ~bound_) == 0; }
+    [[noreturn, gnu::cold]] void notReady(const char* what) const;
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) const {
+        if (uint64_t(firstVertex) + vertexCount > vertices_ || uint64_t(firstInstance) + instanceCount > instances_)
+            [[unlikely]]
+            outside("draw", vertexCount, instanceCount, firstVertex, firstInstance);
+    }
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, uint32_t firstInstance) const {
+        if (uint64_t(firstIndex) + indexCount > indices_ || uint64_t(firstInstance) + instanceCount > instances_) [[unlikely]]
+            indexedOutside(indexCount, instanceCount, firstIndex, firstInstance);
+    }
+    // Indirect indexed draws: an index buffer bound at offset 0 (the records hold firstIndex).
+    void indexedIndirect(const char* what) const;
+    bool indexBound() const { return indexBound_; }
+
+private:
+    [[noreturn, gnu::cold]] void outside(const char* what, uint32_t count, uint32_t instanceCount, uint32_t first,
+                                         uint32_t firstInstance) const;
+    [[noreturn, gnu::cold]] void indexedOutside(uint32_t count, uint32_t instanceCount, uint32_t first,
+                                                uint32_t firstInstance) const;
+    void update();  // the capacities below, from what is bound
+    struct Bound {
+        uint64_t available = 0;  // bytes from the bound offset to the buffer's end
+        std::string name;
+    };
+    std::array<Bound, kMaxVertexBuffers> buffers_{};
+    uint32_t bound_ = 0, required_ = 0;
+    const std::vector<VertexBinding>* bindings_ = nullptr;
+    const std::string* pipelineName_ = nullptr;
+    uint64_t vertices_ = ~uint64_t(0), instances_ = ~uint64_t(0);  // elements every bound buffer holds
+    bool indexBound_ = false;
+    uint64_t indexOffset_ = 0, indices_ = 0;
+    uint32_t indexBytes_ = 2;
+    std::string indexName_;
+};
+
+// setViewport: finite, a positive width and height, depths within [0, 1]. Vulkan's negative
+// height (the y flip of ports from GL) is refused on every backend: clip space already is
+// Vulkan's, y down, so the projection flips y instead.
+[[noreturn, gnu::cold]] void badViewport(const Viewport& v);
+inline void viewport(const Viewport& v) {
+    const bool ok = v.width > 0 && v.height > 0 && v.x - v.x == 0 && v.y - v.y == 0 && v.width - v.width == 0 &&
+                    v.height - v.height == 0 && v.minDepth >= 0 && v.minDepth <= 1 && v.maxDepth >= 0 && v.maxDepth <= 1;
+    if (!ok) [[unlikely]]
+        badViewport(v);
+}
+// setScissor: the part of the rectangle right of x = 0 and below y = 0, which both backends
+// set (a rectangle partly outside the target clips it, as GL's does; Vulkan refuses negative
+// offsets).
+inline Rect scissor(const Rect& r) {
+    Rect out = r;
+    if (r.x < 0) out.x = 0, out.width = uint32_t(std::max<int64_t>(0, int64_t(r.width) + r.x));
+    if (r.y < 0) out.y = 0, out.height = uint32_t(std::max<int64_t>(0, int64_t(r.height) + r.y));
+    out.width = uint32_t(std::min<int64_t>(out.width, int64_t(INT32_MAX) - out.x));
+    out.height = uint32_t(std::min<int64_t>(out.height, int64_t(INT32_MAX) - out.y));
+    return out;
+}
+// dispatch: group counts within limits.maxComputeWorkGroupCount.
+[[noreturn, gnu::cold]] void badDispatch(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& limits);
+inline void dispatchSize(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& l) {
+    if (x > l.maxComputeWorkGroupCount[0] || y > l.maxComputeWorkGroupCount[1] || z > l.maxComputeWorkGroupCount[2])
+        [[unlikely]]
+        badDispatch(x, y, z, l);
+}
+// copyBuffer: both ranges inside their buffers, and apart when the buffer is the same (Vulkan
+// leaves overlapping copies undefined, GL refuses them).
+void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset, const BufferDesc& src,
+                const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer);
+// A call on a command list whose device was destroyed (LiveLists.h).
+[[noreturn, gnu::cold]] void listOfDestroyedDevice(const char* what);
+// wait / isComplete: a fence a submission returned (at most the last one issued).
+[[noreturn, gnu::cold]] void fenceNotIssued(FenceValue fence, FenceValue last, const char* what);
+inline void issuedFence(FenceValue fence, FenceValue last, const char* what) {
+    if (fence > last) [[unlikely]]
+        fenceNotIssued(fence, last, what);
 }
 
 // A range bound to a slot must also be non-empty (Vulkan and GL both reject zero-sized bindings).
