@@ -222,7 +222,7 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
         throw gdi::Error("setTexture: texture '" + t.label + "' lacks Sampled usage");
     const Sampler& s = dev_.sampler(sh);
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.label, t.desc.format, s.label);
-    bound(slot, gdi::BindingType::SampledTexture);
+    bound(slot, gdi::BindingType::SampledTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
     stream_->push(cmd::SetTexture{slot, th, sh});
 }
 void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
@@ -231,7 +231,7 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    bound(slot, gdi::BindingType::StorageTexture);
+    bound(slot, gdi::BindingType::StorageTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
     stream_->push(cmd::SetStorageTexture{slot, th, mip});
 }
 
@@ -482,7 +482,7 @@ void GlCommandList::checkBindings() {
     if (!check) return;
     if (!(check & (check - 1))) [[likely]] {  // the per-object case: one slot changed
         const uint32_t slot = uint32_t(std::countr_zero(check));
-        if (kinds_[slot] != pipeline_->slotKinds[slot]) [[unlikely]]
+        if (!slotMatches(slot)) [[unlikely]]
             checkEachSlot(check);
         unchecked_ &= ~check;
         return;
@@ -500,6 +500,9 @@ void GlCommandList::checkEachSlot(uint64_t check) const {  // throws for the fir
         if (kinds_[slot] != pipeline_->slotKinds[slot]) [[unlikely]]
             gdi::validate::wrongBindingKindFailed(slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1),
                                                   gdi::BindingType(kinds_[slot] - 1), pipeline_->label.c_str());
+        if (!slotMatches(slot)) [[unlikely]]
+            gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot], dims_[slot],
+                                                       pipeline_->label.c_str());
     }
 }
 void GlCommandList::notReadyToDraw(const char* what) const {

@@ -122,9 +122,15 @@ private:
     void checkSlot(uint32_t slot, const char* what) const;
     template <gdi::BindingType kKind>
     void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size);
-    void bound(uint32_t slot, gdi::BindingType kind) {
+    void bound(uint32_t slot, gdi::BindingType kind, uint8_t dimension = 0) {
         kinds_[slot] = uint8_t(1 + uint8_t(kind));
+        dims_[slot] = dimension;
         unchecked_ |= uint64_t(1) << slot;
+    }
+    // The slot holds what the pipeline declares: its kind, and a texture of the shader's kind.
+    bool slotMatches(uint32_t slot) const {
+        return kinds_[slot] == pipeline_->slotKinds[slot] &&
+               (!pipeline_->slotDimensions[slot] || dims_[slot] == pipeline_->slotDimensions[slot]);
     }
     void checkBindings();
     [[gnu::noinline]] void checkEachSlot(uint64_t check) const;
@@ -160,6 +166,7 @@ private:
     bool orphaned_ = false;       // the device was destroyed first (orphan())
     uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots
     std::array<uint8_t, 64> kinds_{};    // per slot: 1 + BindingType bound, 0 = unbound
+    std::array<uint8_t, 64> dims_{};     // per slot: 1 + TextureDimension of the bound texture, 0 = a buffer
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked

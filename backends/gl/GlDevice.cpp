@@ -748,6 +748,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
         p.slotKinds = gdi::validate::slotKinds(bindings);
+        p.slotDimensions = gdi::validate::slotDimensions({&vs.iface, fsIface}, p.label);
         p.signature = gdi::validate::pipelineSignature(d);
         p.vertexBindings = gdi::validate::vertexBindings(d);
         return pipelines_.add(std::move(p));
@@ -772,6 +773,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
         p.slotKinds = gdi::validate::slotKinds(bindings);
+        p.slotDimensions = gdi::validate::slotDimensions({&cs.iface}, p.label);
         return pipelines_.add(std::move(p));
     });
 }

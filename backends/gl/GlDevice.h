@@ -90,6 +90,7 @@ struct Pipeline {
     std::vector<uint32_t> strides;
     uint64_t requiredSlots = 0;
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
+    std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)

@@ -85,6 +85,7 @@ namespace fe::gl {
     X(PFNGLCLEARNAMEDFRAMEBUFFERUIVPROC, ClearNamedFramebufferuiv)                                         \
     X(PFNGLCLEARNAMEDFRAMEBUFFERFIPROC, ClearNamedFramebufferfi)                                           \
     X(PFNGLVIEWPORTPROC, Viewport)                                                                         \
+    X(PFNGLVIEWPORTINDEXEDFPROC, ViewportIndexedf)                                                         \
     X(PFNGLDEPTHRANGEFPROC, DepthRangef)                                                                   \
     X(PFNGLSCISSORPROC, Scissor)                                                                           \
     X(PFNGLCULLFACEPROC, CullFace)                                                                         \

@@ -258,7 +258,7 @@ void GlReplay::operator()(const cmd::SetDepthBias& r) { applyDepthBias(r.constan
 
 void GlReplay::operator()(const cmd::SetViewport& r) {
     const gdi::Viewport& v = r.viewport;
-    gl_.Viewport(GLint(v.x), GLint(v.y), GLsizei(v.width), GLsizei(v.height));
+    gl_.ViewportIndexedf(0, v.x, v.y, v.width, v.height);  // fractional, as Vulkan's (glViewport rounds)
     gl_.DepthRangef(v.minDepth, v.maxDepth);
 }
 void GlReplay::operator()(const cmd::SetScissor& r) {

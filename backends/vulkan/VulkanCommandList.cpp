@@ -687,6 +687,7 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    boundDimensions_[slot] = uint8_t(1 + uint8_t(t.desc.dimension));
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -697,6 +698,7 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bindings_[slot] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
+    boundDimensions_[slot] = uint8_t(1 + uint8_t(t.desc.dimension));
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -719,6 +721,9 @@ void VulkanCommandList::badBindings() const {
         if (bindings_[slot].type != writes_[slot].descriptorType)
             gdi::validate::wrongBindingKindFailed(slot, kindOf(writes_[slot].descriptorType), kindOf(bindings_[slot].type),
                                                   pipeline_->name.c_str());
+        if (!slotMatches(slot))
+            gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot], boundDimensions_[slot],
+                                                       pipeline_->name.c_str());
     }
     fail("internal: badBindings found nothing wrong");
 }
@@ -730,7 +735,7 @@ inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bind
     if (push & (push - 1)) [[unlikely]]
         return pushGathered(push);
     const uint32_t slot = uint32_t(std::countr_zero(push));
-    if (bindings_[slot].type != writes_[slot].descriptorType) [[unlikely]]
+    if (!slotMatches(slot)) [[unlikely]]
         badBindings();
     dirtySlots_ &= ~push;
     pushDescriptorSet_(cb_, bindPoint, layout_, 0, 1, &writes_[slot]);
@@ -739,7 +744,7 @@ inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bind
 void VulkanCommandList::pushGathered(uint64_t push) {
     for (uint64_t m = push; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        if (bindings_[slot].type != writes_[slot].descriptorType) [[unlikely]]
+        if (!slotMatches(slot)) [[unlikely]]
             badBindings();
     }
     dirtySlots_ &= ~push;

@@ -138,6 +138,11 @@ private:
     const Buffer& countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what);
     void indexedIndirect(const char* what) const;
     [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
+    // The slot holds what the pipeline declares: its kind, and a texture of the shader's kind.
+    bool slotMatches(uint32_t slot) const {
+        return bindings_[slot].type == writes_[slot].descriptorType &&
+               (!pipeline_->slotDimensions[slot] || boundDimensions_[slot] == pipeline_->slotDimensions[slot]);
+    }
     void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_ && vertexInputs_.ready(); }
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
@@ -200,6 +205,7 @@ private:
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
+    std::array<uint8_t, 64> boundDimensions_{};  // per slot: 1 + TextureDimension of the bound texture
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing

@@ -102,6 +102,7 @@ struct Pipeline {
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
+    std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
     // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).
     std::array<float, 4> blendConstant{};
     uint8_t stencilReference = 0;

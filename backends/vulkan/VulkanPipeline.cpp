@@ -163,6 +163,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     if (fs) gdi::validate::fragmentOutputs(d, fs->iface, name);
     const std::vector<gdi::BindingSlot> bindings =
         gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fs ? &fs->iface : nullptr}, name, info_.limits);
+    const std::array<uint8_t, 64> dimensions = gdi::validate::slotDimensions({&vs.iface, fs ? &fs->iface : nullptr}, name);
     for (gdi::Format f : d.colorFormats)
         if (!supportsFormat(f, gdi::TextureUsage::RenderTarget))
             throw gdi::Error("pipeline '" + name + "': format " + std::string(gdi::formatInfo(f).name) +
@@ -275,6 +276,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
                                 (fs && fs->iface.pushConstantBytes ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
     p.signature = gdi::validate::pipelineSignature(d);
     p.vertexBindings = gdi::validate::vertexBindings(d);
+    p.slotDimensions = dimensions;
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
     p.stencilReference = d.depthStencil.stencilReference;
     p.depthBias = {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp};
@@ -318,8 +320,10 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     const uint32_t constantBytes = gdi::validate::pipelineConstants({&cs.iface}, name);
     gdi::validate::specialization(d.specialization, {&cs.iface}, name);
     const StageSpecialization spec(d.specialization);
+    const std::array<uint8_t, 64> dimensions = gdi::validate::slotDimensions({&cs.iface}, name);
     Pipeline p = makeLayout(device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name, info_.limits), d.debugName,
                             constantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
+    p.slotDimensions = dimensions;
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, cs.module,

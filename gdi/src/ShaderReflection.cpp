@@ -343,7 +343,18 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
                 out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id));
                 return;
             }
-            out.bindings.push_back({slot, type, r.name});
+            uint8_t dimension = 0;
+            if (type == BindingType::SampledTexture || type == BindingType::StorageTexture) {
+                const spvc_type t = spvc_compiler_get_type_handle(comp, r.base_type_id);
+                const bool arrayed = spvc_type_get_image_arrayed(t);
+                if (!spvc_type_get_image_multisampled(t)) switch (spvc_type_get_image_dimension(t)) {
+                    case SpvDim2D: dimension = 1 + uint8_t(arrayed ? TextureDimension::Texture2DArray : TextureDimension::Texture2D); break;
+                    case SpvDimCube: dimension = 1 + uint8_t(arrayed ? TextureDimension::TextureCubeArray : TextureDimension::TextureCube); break;
+                    case SpvDim3D: dimension = 1 + uint8_t(TextureDimension::Texture3D); break;
+                    default: break;
+                }
+            }
+            out.bindings.push_back({slot, type, r.name, dimension});
         };
     };
     each(SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, binding(BindingType::UniformBuffer));

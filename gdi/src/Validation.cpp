@@ -474,6 +474,29 @@ void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, con
     bufferRangeFailed(d, offset, size, what);
 }
 
+std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+    std::array<uint8_t, 64> dims{};
+    for (const ShaderInterface* s : shaders) {
+        if (!s) continue;
+        for (const ShaderInterface::Binding& b : s->bindings) {
+            if (b.slot >= 64 || !b.dimension) continue;
+            if (dims[b.slot] && dims[b.slot] != b.dimension)
+                fail(label("pipeline", pipeline.c_str()),
+                     "slot " + std::to_string(b.slot) + " is a " + textureDimensionName(TextureDimension(dims[b.slot] - 1)) +
+                         " in one stage and a " + textureDimensionName(TextureDimension(b.dimension - 1)) + " in another");
+            dims[b.slot] = b.dimension;
+        }
+    }
+    return dims;
+}
+
+void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected, uint8_t bound, const char* pipelineName) {
+    fail(label("pipeline", pipelineName),
+         "slot " + std::to_string(slot) + " is declared a " + textureDimensionName(TextureDimension(expected - 1)) +
+             " in its shader, but the texture bound there is a " + textureDimensionName(TextureDimension(bound - 1)) +
+             " (bind a view of that kind: createTextureView with .dimension)");
+}
+
 void unsupportedTextureUsage(const TextureDesc& d) {
     std::string usages;
     auto add = [&](TextureUsage bit, const char* n) {

@@ -322,6 +322,53 @@ TEST_P(DeviceErrors, DrawInputsAreCheckedAlike) {
     for (auto buffer : {vertices, offsets, indices, b}) device->destroy(buffer);
 }
 
+// A texture bound where the shader declares another kind (Vulkan sampled it with a validation
+// error, GL read black) is one Error; a view of the shader's kind is the way to bind it.
+TEST_P(DeviceErrors, TexturesAreBoundAsTheKindTheShaderDeclares) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/sample_array.frag")});
+    auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                             .debugName = "layers"});
+    auto flat = device->createTexture({.width = 4, .height = 4, .debugName = "flat"});
+    auto asArray = device->createTextureView(flat, {.dimension = TextureDimension::Texture2DArray});
+    auto sampler = device->createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto cmd = device->createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(p);
+    cmd->setTexture(1, flat, sampler);
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("pipeline 'layers': slot 1 is declared a Texture2DArray in its shader, "
+                                                 "but the texture bound there is a Texture2D"),
+              std::string::npos);
+    cmd->setTexture(1, asArray, sampler);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+    device->destroy(asArray);
+    for (auto tex : {flat, t}) device->destroy(tex);
+}
+
+// Viewports keep their fractions on every backend (GL's glViewport rounded them to whole
+// pixels): the triangle of triangle.vert in viewport x = 2.75 covers pixels 3 to 5 of row 6.
+TEST_P(DeviceErrors, ViewportsKeepTheirFractions) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    auto cmd = device->createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    cmd->setPipeline(p);
+    cmd->setViewport({2.75f, 0, 4, 8});
+    cmd->draw(3);
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+    const Image img = device->readTexture(t);
+    std::string row;
+    for (uint32_t x = 0; x < 8; ++x) row += img.texel(x, 6)[3] > 0.5f ? '#' : '.';
+    EXPECT_EQ(row, "...###..");
+    device->destroy(t);
+}
+
 // A list destroyed after its device is safe, and recording into it is an Error, not a crash.
 TEST_P(DeviceErrors, ListsMayOutliveTheirDevice) {
     auto other = createDevice({.backend = GetParam()});

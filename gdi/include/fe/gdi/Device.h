@@ -123,7 +123,9 @@
 //  - setPipeline in a pass: colorFormats, depthFormat and sampleCount equal the pass's.
 //  - Binding setters: offsets are multiples of uniformBufferOffsetAlignment /
 //    storageBufferOffsetAlignment and ranges at most maxUniformBufferRange / maxStorageBufferRange
-//    (size 0: to the end, capped at the maximum); the kind of each slot is checked at the draw.
+//    (size 0: to the end, capped at the maximum); the kind of each slot is checked at the draw,
+//    and a texture's kind is the one its shader declares (a Texture2D where the shader samples a
+//    sampler2DArray is an Error: bind a view of that kind, createTextureView with .dimension).
 //  - setTexture refuses a sampler that filters linearly (a Linear filter, no comparison) on a
 //    format without FormatCaps::linearFilter (formatCaps() says what each format can do here).
 //

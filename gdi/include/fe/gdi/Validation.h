@@ -348,6 +348,12 @@ inline void missingBindings(uint64_t required, uint64_t bound, const char* pipel
 [[noreturn]] void wrongBindingKindFailed(uint32_t slot, BindingType expected, BindingType bound, const char* pipelineName);
 // Per-slot declared kind, 1 + BindingType (0: the pipeline does not use the slot).
 std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings);
+// Per-slot texture kind the shaders sample or store, 1 + TextureDimension (0: any; a buffer
+// slot, or one no shader uses). Stages that declare one slot with two kinds are an Error. A
+// texture bound there must be of that kind (a view may give it another: createTextureView).
+std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+[[noreturn, gnu::cold]] void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected, uint8_t bound,
+                                                         const char* pipelineName);
 
 // A barrier's subresources, resolved: mips [baseMip, baseMip + mipCount), layers likewise
 // (array layers and cube faces; a 3D texture has one). Throws for an empty or outside range,
