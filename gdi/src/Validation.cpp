@@ -730,7 +730,8 @@ void submittedLists(std::span<CommandList* const> lists) {
 
 void destroyedBeforeSubmit(const char* kind, uint32_t id) {
     throw Error(std::string("submit: the list uses ") + kind + " handle " + std::to_string(id) +
-                ", destroyed after it was recorded; record it again");
+                ", destroyed after it was recorded; record the work again in a new command list (this one keeps "
+                "its refused recording)");
 }
 
 }  // namespace fe::gdi::validate
