@@ -93,7 +93,8 @@ void VulkanCommandList::releaseNative() {
 void VulkanCommandList::orphan() {
     releaseNative();
     orphaned_ = restricted_ = true;
-    recording_ = readyToDraw_ = inPass_ = false;
+    recording_ = inPass_ = false;
+    setNotReady();
     cb_ = VK_NULL_HANDLE;
 }
 
@@ -423,7 +424,7 @@ void VulkanCommandList::endRenderPass() {
     queries_.endPass();
     vkCmdEndRendering(cb_);
     inPass_ = false;
-    readyToDraw_ = false;
+    setNotReady();
     written_ = true;
     if (secondaryPass_) {  // vkCmdExecuteCommands left the primary's state undefined
         secondaryPass_ = restricted_ = false;
@@ -436,11 +437,11 @@ void VulkanCommandList::unbindAll() {
     pipeline_ = nullptr;
     writesFor_ = 0;
     computeBound_ = false;
-    readyToDraw_ = false;
+    setNotReady();
     requiredSlots_ = 0;
     vertexInputs_.clear();
     vertexInputs_.setPipeline(nullptr, nullptr);
-    for (Binding& b : bindings_) b.type = kUnbound;
+    for (Binding& b : bindings_) b.kind = kUnbound;
     dirtySlots_ = ~uint64_t(0);
 }
 
@@ -453,7 +454,7 @@ void VulkanCommandList::restrictedCall(const char* what) const {
 
 void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     bool bound = false;
-    for (const Binding& b : bindings_) bound |= b.type != kUnbound;
+    for (const Binding& b : bindings_) bound |= b.kind != kUnbound;
     if (recording_ || secondary_ || inPass_ || bound) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc, nullptr);
     lease_ = dev_.acquireSecondary();
@@ -496,7 +497,7 @@ void VulkanCommandList::endSecondary() {
     if (debugDepth_ != 0) throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
     ended_ = restricted_ = true;
-    readyToDraw_ = false;
+    setNotReady();
 }
 
 void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
@@ -563,6 +564,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
         for (uint64_t m = p.requiredSlots; m; m &= m - 1) {
             const uint32_t slot = uint32_t(std::countr_zero(m));
             writes_[slot] = p.writeTemplates[slot];
+            expectedKinds_[slot] = kindCode(p.writeTemplates[slot].descriptorType, p.slotDimensions[slot]);
             writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
             writes_[slot].pImageInfo = &bindings_[slot].image;
         }
@@ -686,8 +688,8 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
-    bindings_[slot] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
-    boundDimensions_[slot] = uint8_t(1 + uint8_t(t.desc.dimension));
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))), {},
+                       {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -697,8 +699,8 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    bindings_[slot] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
-    boundDimensions_[slot] = uint8_t(1 + uint8_t(t.desc.dimension));
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))), {},
+                       {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -714,16 +716,16 @@ void VulkanCommandList::notReadyToDraw(const char* what) const {
 void VulkanCommandList::badBindings() const {
     uint64_t missing = 0;
     for (uint64_t m = requiredSlots_; m; m &= m - 1)
-        if (bindings_[std::countr_zero(m)].type == kUnbound) missing |= m & -m;
+        if (bindings_[std::countr_zero(m)].kind == kUnbound) missing |= m & -m;
     gdi::validate::missingBindings(requiredSlots_, ~missing, pipeline_->name.c_str());
     for (uint64_t m = requiredSlots_; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        if (bindings_[slot].type != writes_[slot].descriptorType)
-            gdi::validate::wrongBindingKindFailed(slot, kindOf(writes_[slot].descriptorType), kindOf(bindings_[slot].type),
-                                                  pipeline_->name.c_str());
-        if (!slotMatches(slot))
-            gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot], boundDimensions_[slot],
-                                                       pipeline_->name.c_str());
+        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
+        if ((bound & 0xFFFFFFu) != (expected & 0xFFFFFFu))
+            gdi::validate::wrongBindingKindFailed(slot, kindOf(VkDescriptorType(expected & 0xFFFFFFu)),
+                                                  kindOf(VkDescriptorType(bound & 0xFFFFFFu)), pipeline_->name.c_str());
+        if (!slotAcceptable(slot))
+            gdi::validate::wrongTextureDimensionFailed(slot, uint8_t(expected >> 24), uint8_t(bound >> 24), pipeline_->name.c_str());
     }
     fail("internal: badBindings found nothing wrong");
 }
@@ -736,7 +738,7 @@ inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bind
         return pushGathered(push);
     const uint32_t slot = uint32_t(std::countr_zero(push));
     if (!slotMatches(slot)) [[unlikely]]
-        badBindings();
+        checkSlots(push);
     dirtySlots_ &= ~push;
     pushDescriptorSet_(cb_, bindPoint, layout_, 0, 1, &writes_[slot]);
 }
@@ -745,7 +747,7 @@ void VulkanCommandList::pushGathered(uint64_t push) {
     for (uint64_t m = push; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
         if (!slotMatches(slot)) [[unlikely]]
-            badBindings();
+            checkSlots(uint64_t(1) << slot);
     }
     dirtySlots_ &= ~push;
     VkWriteDescriptorSet gathered[64];
@@ -756,10 +758,18 @@ void VulkanCommandList::pushGathered(uint64_t push) {
 
 // Draws: one state check (render pass open, graphics pipeline bound), then only the slots
 // that changed since the last draw are checked and pushed.
-void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
-    if (!readyToDraw_) [[unlikely]]
-        notReadyToDraw("draw");
+void VulkanCommandList::drawRefused(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                                    uint32_t firstInstance) const {
+    if (!readyToDraw_) notReadyToDraw("draw");
     vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
+    fail("internal: drawRefused found nothing wrong");
+}
+
+// One comparison covers the draw state and the vertices (drawVertexLimit_), one the instances.
+void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
+    if (int64_t(firstVertex) + vertexCount > drawVertexLimit_ ||
+        uint64_t(firstInstance) + instanceCount > vertexInputs_.instanceCapacity()) [[unlikely]]
+        drawRefused(vertexCount, instanceCount, firstVertex, firstInstance);
     const uint64_t push = dirtySlots_ & requiredSlots_;
     if (!push) return vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
     // Parked in members across the push: cheaper than keeping four arguments in saved registers.

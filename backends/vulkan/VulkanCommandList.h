@@ -138,12 +138,28 @@ private:
     const Buffer& countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what);
     void indexedIndirect(const char* what) const;
     [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
-    // The slot holds what the pipeline declares: its kind, and a texture of the shader's kind.
-    bool slotMatches(uint32_t slot) const {
-        return bindings_[slot].type == writes_[slot].descriptorType &&
-               (!pipeline_->slotDimensions[slot] || boundDimensions_[slot] == pipeline_->slotDimensions[slot]);
+    // A slot's kind: its descriptor type, and for textures 1 + TextureDimension in the top byte.
+    static uint32_t kindCode(VkDescriptorType type, uint8_t dimension = 0) { return uint32_t(type) | uint32_t(dimension) << 24; }
+    // The slot holds exactly what the pipeline declares (one compare per pushed slot); when not,
+    // slotAcceptable decides: a slot no shader gives a texture kind takes any kind of texture.
+    bool slotMatches(uint32_t slot) const { return bindings_[slot].kind == expectedKinds_[slot]; }
+    bool slotAcceptable(uint32_t slot) const {
+        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
+        return (bound & 0xFFFFFFu) == (expected & 0xFFFFFFu) && (!(expected >> 24) || bound == expected);
     }
-    void updateReadyToDraw() { readyToDraw_ = inPass_ && pipeline_ && !computeBound_ && vertexInputs_.ready(); }
+    void checkSlots(uint64_t slots) const {
+        for (; slots; slots &= slots - 1)
+            if (!slotAcceptable(uint32_t(std::countr_zero(slots)))) badBindings();
+    }
+    // readyToDraw_ and, for draw()'s one comparison, the vertices it may reach: -1 when not ready,
+    // so that every draw takes the checked path, which names the problem.
+    void updateReadyToDraw() {
+        readyToDraw_ = inPass_ && pipeline_ && !computeBound_ && vertexInputs_.ready();
+        drawVertexLimit_ = readyToDraw_ ? int64_t(std::min<uint64_t>(vertexInputs_.vertexCapacity(), INT64_MAX)) : -1;
+    }
+    void setNotReady() { readyToDraw_ = false, drawVertexLimit_ = -1; }
+    [[noreturn, gnu::cold, gnu::noinline]] void drawRefused(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                                                            uint32_t firstInstance) const;
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
     // size 0 = "the rest", any invalid argument) goes to the checked path, which gives the error.
@@ -152,15 +168,15 @@ private:
     template <VkDescriptorType kType>
     [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
     void bindBuffer(uint32_t slot, VkDescriptorType type, VkBuffer buffer, uint64_t offset, uint64_t size) {
-        bindings_[slot].type = type;
+        bindings_[slot].kind = type;
         bindings_[slot].buffer = {buffer, offset, size};
         dirtySlots_ |= uint64_t(1) << slot;
     }
     // An unbound slot has type kUnbound, so the one type check before a push also catches a
     // missing binding (no separate bound-slot mask to maintain per bind).
-    static constexpr VkDescriptorType kUnbound = VK_DESCRIPTOR_TYPE_MAX_ENUM;
+    static constexpr uint32_t kUnbound = VK_DESCRIPTOR_TYPE_MAX_ENUM;
     struct Binding {
-        VkDescriptorType type = kUnbound;  // checked against the pipeline's before a push
+        uint32_t kind = kUnbound;  // kindCode, checked against the pipeline's before a push
         VkDescriptorBufferInfo buffer;
         VkDescriptorImageInfo image;
         uint64_t pad;  // 64 bytes: a slot's address is one shift away
@@ -198,6 +214,7 @@ private:
     Pipeline* pipeline_ = nullptr;
     bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
     bool readyToDraw_ = false;
+    int64_t drawVertexLimit_ = -1;  // updateReadyToDraw
     bool orphaned_ = false;  // the device was destroyed first (orphan())   // in a render pass with a graphics pipeline: the one per-draw state check
     uint64_t requiredSlots_ = 0; // pipeline_->requiredSlots, kept here for the per-draw path
     std::array<uint32_t, 4> draw_{};  // draw arguments while the draw pushes descriptors
@@ -205,7 +222,7 @@ private:
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
-    std::array<uint8_t, 64> boundDimensions_{};  // per slot: 1 + TextureDimension of the bound texture
+    std::array<uint32_t, 64> expectedKinds_{};  // per slot the pipeline uses: its kindCode (set with writes_)
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing

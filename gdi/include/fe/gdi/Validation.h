@@ -245,6 +245,9 @@ public:
     // Indirect indexed draws: an index buffer bound at offset 0 (the records hold firstIndex).
     void indexedIndirect(const char* what) const;
     bool indexBound() const { return indexBound_; }
+    // What a non-indexed draw may reach (first + count at most these), for a list's own fast path.
+    uint64_t vertexCapacity() const { return vertices_; }
+    uint64_t instanceCapacity() const { return instances_; }
 
 private:
     [[noreturn, gnu::cold]] void outside(const char* what, uint32_t count, uint32_t instanceCount, uint32_t first,
