@@ -546,9 +546,9 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
 }
 
 gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width, uint32_t height,
-                       const std::function<void(const BenchProgress&)>& progress) {
+                       const std::function<void(const BenchProgress&)>& progress, const std::string& caseNames) {
     gdi::Json records = gdi::Json::array();
-    const std::vector<StabilityCase> cases = stabilityCases();
+    const std::vector<StabilityCase> cases = stabilityCases(caseNames);
     const auto start = std::chrono::steady_clock::now();
     size_t done = 0;
     const size_t total = cases.size() * backends.size();
@@ -565,15 +565,16 @@ gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width,
             }
             const assets::Scene scene = c.scene();
             if (c.refusal.empty() && c.exactBound >= 0.0 && !references.count(c.name))
-                references[c.name] = renderReference(scene, *scene.camera, width, height).radiance;
+                references[c.name] = renderReference(scene, *scene.camera, c.width(width), c.height(height)).radiance;
             static const std::vector<glm::dvec3> none;
             const auto ref = references.find(c.name);
             for (const TechniqueInfo& t : techniques()) {
                 if (std::string(t.name).find("tiled") != std::string::npos && !probe.device->info().features.computeShaders)
                     continue;
-                const StabilityOutcome o = runStabilityCase(*probe.device, scene, t.name, width, height,
+                const StabilityOutcome o = runStabilityCase(*probe.device, scene, t.name, c.width(width), c.height(height),
                                                             ref == references.end() ? none : ref->second);
-                gdi::Json r = {{"backend", backend}, {"case", c.name}, {"technique", t.name}, {"bound", c.exactBound}};
+                gdi::Json r = {{"backend", backend}, {"case", c.name}, {"technique", t.name}, {"bound", c.exactBound},
+                             {"width", c.width(width)}, {"height", c.height(height)}};
                 if (o.refused) r["refused"] = o.message;
                 else if (o.nonFinite) r["nonFinite"] = o.nonFinite;
                 else if (o.percentOver5 >= 0.0) r["percentOver5"] = o.percentOver5;

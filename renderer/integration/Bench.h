@@ -86,9 +86,10 @@ std::string resultsCsv(const gdi::Json& results);
 // The stability suite (StabilitySuite.h) on the backends: one record per backend, case and
 // technique with its outcome (the percentage of pixels beyond 5/255 of the reference, the
 // refusal, or non-finite pixels) and the case's bound; fe bench adds them to its results as
-// "stability", and the report shows them as a technique x case table.
+// "stability", and the report shows them as a technique x case table. `caseNames`: only the
+// cases named by one of its comma-separated parts (stabilityCases(names)); empty: every case.
 gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width = 48, uint32_t height = 36,
-                       const std::function<void(const BenchProgress&)>& progress = {});
+                       const std::function<void(const BenchProgress&)>& progress = {}, const std::string& caseNames = {});
 
 struct BenchComparison {
     std::string report;      // one line per matched measurement that changed, then a summary

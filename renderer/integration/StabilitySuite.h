@@ -3,6 +3,7 @@
 // renders every pixel finite, its error within a stated bound of the CPU reference, or is
 // refused with a message naming the problem.
 #pragma once
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -19,12 +20,21 @@ struct StabilityCase {
     // (negative: not compared).
     double exactBound = 1.0;
     std::string refusal;  // non-empty: every technique must refuse with a message containing it
+    // The case renders at the suite's size divided by this: where every tile's light list
+    // overflows (65536 lights), each pixel walks every light, and at the full size that one case
+    // cost more than all the others together.
+    uint32_t sizeDivisor = 1;
+    uint32_t width(uint32_t suiteWidth) const { return std::max(1u, suiteWidth / sizeDivisor); }
+    uint32_t height(uint32_t suiteHeight) const { return std::max(1u, suiteHeight / sizeDivisor); }
 };
 
 // Roughness below the clamp, grazing angles, lights at the eye, inside geometry, at the range
 // boundary, of 1e4 and 1e7 cd, none, one, 4096 and 65536 of them, a scene 1e5 from the origin,
 // denormal data, degenerate triangles, translucent materials; NaN and infinite data (refused).
 std::vector<StabilityCase> stabilityCases();
+// The cases whose name contains one of the comma-separated parts of `names` (empty: all); a
+// part that names no case throws gdi::Error listing the cases.
+std::vector<StabilityCase> stabilityCases(const std::string& names);
 
 struct StabilityOutcome {
     bool refused = false;

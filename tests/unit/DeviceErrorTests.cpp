@@ -313,8 +313,9 @@ TEST_P(DeviceErrors, DrawInputsAreCheckedAlike) {
     cmd->setPipeline(c);
     const std::array<uint32_t, 3> most = device->info().limits.maxComputeWorkGroupCount;
     EXPECT_GE(most[0], 65535u);
-    if (most[0] < UINT32_MAX)
+    if (most[0] < UINT32_MAX) {
         EXPECT_TRUE(has(errorOf([&] { cmd->dispatch(most[0] + 1); }), "beyond the device's maxComputeWorkGroupCount"));
+    }
     const FenceValue f = device->submit(*cmd);
     EXPECT_TRUE(has(errorOf([&] { device->wait(f + 1000); }), "wait: fence " + std::to_string(f + 1000) + " was never issued"));
     EXPECT_TRUE(has(errorOf([&] { device->isComplete(f + 1); }), "isComplete: fence"));

@@ -27,11 +27,11 @@ TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
     for (const render::StabilityCase& c : render::stabilityCases()) {
         const assets::Scene scene = c.scene();
         std::vector<glm::dvec3> reference;
-        if (c.refusal.empty() && c.exactBound >= 0.0) reference = render::renderReference(scene, *scene.camera, kW, kH).radiance;
+        if (c.refusal.empty() && c.exactBound >= 0.0) reference = render::renderReference(scene, *scene.camera, c.width(kW), c.height(kH)).radiance;
         for (const render::TechniqueInfo& t : render::techniques()) {
             if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
             SCOPED_TRACE(c.name + ", " + t.name);
-            const render::StabilityOutcome o = render::runStabilityCase(*device, scene, t.name, kW, kH, reference);
+            const render::StabilityOutcome o = render::runStabilityCase(*device, scene, t.name, c.width(kW), c.height(kH), reference);
             std::string outcome;
             if (o.refused) {
                 outcome = "refused: " + o.message;

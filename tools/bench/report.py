@@ -395,6 +395,10 @@ scene and camera, on the displayed 8-bit image.</p>
             return f"{r['percentOver5']:.2f} %"
         return "finite"
 
+    # The size most cases rendered at; a case at another size is labelled with it.
+    sizes = [(r["width"], r["height"]) for r in stability if "width" in r]
+    suite_size = max(set(sizes), key=sizes.count) if sizes else None
+
     def stability_table():
         """Per case: its bound and, per technique, None or (the first backend's outcome, the other
         backends whose outcome differs, as "backend: outcome")."""
@@ -406,7 +410,10 @@ scene and camera, on the displayed 8-bit image.</p>
                 first = outcome(mine[0]) if mine else None
                 cells.append(None if not mine else
                              (first, [f"{r['backend']}: {outcome(r)}" for r in mine[1:] if outcome(r) != first]))
-            yield case, rows[0]["bound"], cells
+            # A case rendered at its own size (the heaviest light counts) says so.
+            size = f" at {rows[0]['width']}x{rows[0]['height']}" if "width" in rows[0] and (
+                rows[0]["width"], rows[0]["height"]) != suite_size else ""
+            yield case + size, rows[0]["bound"], cells
 
     if stability:
         parts.append("<h2>Stability</h2><p>Per case and technique: the percentage of pixels beyond 5/255 of the CPU "

@@ -61,10 +61,12 @@ constexpr const char* kUsage =
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
     "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--warmup-ms MS] [--interleave]\n"
+    "      [--stability | --stability-cases LIST] [--conformance]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
     "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
-    "      conformance suite's cross-backend images; writes DIR/results.json,\n"
+    "      conformance suite's cross-backend images (--stability-cases \"one light,NaN\": only the stability\n"
+    "      cases whose name contains a part); writes DIR/results.json,\n"
     "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench; while it runs,\n"
     "      DIR/results.partial.json holds what is measured so far); --interleave: each\n"
     "      backend's cases render their timed frames in alternation, all held at once, for steadier ratios\n"
@@ -169,6 +171,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--error-points", {"P", "with --compare: this many more % of pixels over 5/255 fails (default 0.5)"}},
     {"--quick", {"", "every technique and option at 96x72, with the stability and conformance suites"}},
     {"--stability", {"", "with --sweep: also the stability suite's table"}},
+    {"--stability-cases", {"LIST", "only the stability cases whose name contains one of these comma-separated parts"}},
     {"--conformance", {"", "with --sweep: also the conformance suite's cross-backend images"}},
     {"--interleave", {"", "the cases' timed frames in alternation, so interference hits all alike"}},
     {"--report", {"FILE.json", "write the results as JSON"}},

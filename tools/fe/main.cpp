@@ -35,6 +35,7 @@
 #include "integration/Bench.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
+#include "integration/StabilitySuite.h"
 
 namespace {
 
@@ -424,6 +425,13 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     }
     if (!a.positional.empty()) throw UsageError("bench takes no positional arguments (did you mean --compare A.json B.json?)");
     if (a.options.count("--sweep") && a.options.count("--quick")) throw UsageError("--sweep and --quick: take one");
+    // A --stability-cases part that names no case is a usage error, before anything runs.
+    const std::string stabilityNames = a.options.count("--stability-cases") ? a.options.at("--stability-cases") : "";
+    try {
+        render::stabilityCases(stabilityNames);
+    } catch (const gdi::Error& e) {
+        throw UsageError(std::string("--stability-cases: ") + e.what());
+    }
     const auto started = std::chrono::steady_clock::now();
     const gdi::Json sweep = a.options.count("--sweep") ? readJsonFile(a.options.at("--sweep")) : gdi::Json();
     const std::vector<render::BenchCase> cases = a.options.count("--sweep") ? render::sweepFromJson(sweep) : render::quickSweep();
@@ -452,9 +460,9 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     };
     const gdi::Json bench = render::runBench(cases, backends, options, showProgress);
     gdi::Json results = bench;
-    // The stability table: with --quick, or --stability.
-    if (!a.options.count("--sweep") || a.options.count("--stability"))
-        results["stability"] = render::runStability(backends, 48, 36, showProgress);
+    // The stability table: with --quick, --stability or --stability-cases.
+    if (!a.options.count("--sweep") || a.options.count("--stability") || a.options.count("--stability-cases"))
+        results["stability"] = render::runStability(backends, 48, 36, showProgress, stabilityNames);
     // The conformance suite and its cross-backend image comparisons, for the report's triplets.
     if (!a.options.count("--sweep") || a.options.count("--conformance")) {
         Args conformanceArgs;
@@ -577,7 +585,8 @@ int main(int argc, char** argv) {
                                                                      "--screenshot", "--debug-view", "--switch-backend-at"},
                                                         {"--no-ui", "--validation"}));
         if (command == "bench")
-            return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare", "--time-ratio", "--error-points"},
+            return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare", "--time-ratio", "--error-points",
+                                   "--stability-cases"},
                                   {"--quick", "--stability", "--conformance", "--interleave"}),
                             std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
