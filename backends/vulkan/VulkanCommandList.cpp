@@ -75,7 +75,21 @@ void VulkanCommandList::addRecordingBuffer() {
 VulkanCommandList::~VulkanCommandList() {
     if (orphaned_) return;  // the device is gone; what the list held went with orphan()
     releaseNative();
+    closeRecording();  // what was destroyed while it recorded is released now
     dev_.liveLists().remove(this);
+}
+
+// The device holds back the native release of objects destroyed while a recording is open
+// (VulkanDevice::openRecording): from the first native command until submit, execution by a
+// primary, or the list's end.
+void VulkanCommandList::openRecording() {
+    dev_.openRecording(destroyEpoch_);
+    openSince_ = destroyEpoch_;
+}
+
+void VulkanCommandList::closeRecording() {
+    if (openSince_ == kNotOpen) return;
+    dev_.closeRecording(std::exchange(openSince_, kNotOpen));
 }
 
 void VulkanCommandList::releaseNative() {
@@ -94,6 +108,7 @@ void VulkanCommandList::orphan() {
     releaseNative();
     orphaned_ = restricted_ = true;
     recording_ = inPass_ = false;
+    openSince_ = kNotOpen;  // the device releases everything as it goes
     setNotReady();
     cb_ = VK_NULL_HANDLE;
 }
@@ -265,6 +280,7 @@ void VulkanCommandList::beginRecording() {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb_, &bi); }), "vkBeginCommandBuffer");
+    openRecording();
     recording_ = true;
     written_ = true;  // order after earlier submissions
 }
@@ -481,6 +497,7 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
         check(r, "vkBeginCommandBuffer");
     }
     cb_ = lease_.cb;
+    openRecording();
     recording_ = secondary_ = inPass_ = true;
     renderArea_ = gdi::validate::renderArea(signature_);
     passSamples_ = signature_.samples;
@@ -516,7 +533,11 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
         executed_.push_back(l->lease_);
         used_.insert(used_.end(), l->used_.begin(), l->used_.end());
         lastBuffer_ = 0;
-        destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);
+        if (l->destroyEpoch_ < destroyEpoch_) {  // this recording now holds back what that one did
+            dev_.openRecording(l->destroyEpoch_);
+            closeRecording();
+            openSince_ = destroyEpoch_ = l->destroyEpoch_;
+        }
         l->lease_ = {};
         l->clearRecording();
     }
@@ -526,6 +547,7 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
 // The state of a list with nothing recorded (after submit, or after its secondary recording
 // was executed).
 void VulkanCommandList::clearRecording() {
+    closeRecording();
     used_.clear();
     lastBuffer_ = 0;
     lastBound_ = {};

@@ -205,6 +205,10 @@ private:
     };
     std::array<BoundBuffer, 2> lastBound_{};
     uint64_t destroyEpoch_ = 0;
+    static constexpr uint64_t kNotOpen = ~0ull;
+    uint64_t openSince_ = kNotOpen;  // the destroy epoch this open recording registered, if any
+    void openRecording();
+    void closeRecording();
     bool recording_ = false;
     bool inPass_ = false;
     bool passHasLabel_ = false;

@@ -565,17 +565,30 @@ void VulkanDevice::pollFences() {
 }
 
 void VulkanDevice::retire(std::function<void()> release) {
-    destroyEpoch_.fetch_add(1, std::memory_order_release);
+    const uint64_t epoch = destroyEpoch_.fetch_add(1, std::memory_order_release) + 1;
     if (std::exchange(presentedSinceIdle_, false)) idle();
     pollFences();
     // An object's own unsubmitted initial commands were dropped by its destroy; none else names it.
     const gdi::FenceValue after = nextFence_ - 1;
-    if (completed_ >= after) return release();  // nothing in flight can use it
-    retired_.push_back({after, std::move(release)});
+    if (completed_ >= after && !heldByRecording(epoch)) return release();  // nothing can use it
+    retired_.push_back({after, epoch, std::move(release)});
 }
 
+void VulkanDevice::openRecording(uint64_t since) {
+    std::lock_guard lock(mutex_);
+    openRecordings_.insert(since);
+}
+
+void VulkanDevice::closeRecording(uint64_t since) {
+    std::lock_guard lock(mutex_);
+    openRecordings_.erase(openRecordings_.find(since));
+    collectRetired();
+}
+
+// In destroy order: a release held back by a recording holds back the later ones too.
 void VulkanDevice::collectRetired() {
-    while (!retired_.empty() && (retired_.front().after <= completed_ || loss_.lost())) {
+    while (!retired_.empty() &&
+           ((retired_.front().after <= completed_ && !heldByRecording(retired_.front().epoch)) || loss_.lost())) {
         auto release = std::move(retired_.front().release);
         retired_.pop_front();
         release();
@@ -611,8 +624,7 @@ void VulkanDevice::waitIdle() {
     if (!pendingInit_.empty()) return releaseRetiredNow();  // submits the pending transitions too
     wait(nextFence_ - 1);
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
-    for (Retired& r : retired_) r.release();  // nothing in flight, nothing pending: all of them
-    retired_.clear();
+    collectRetired();  // nothing in flight, nothing pending: all but what open recordings hold
 }
 
 void VulkanDevice::idle() {
@@ -678,7 +690,8 @@ VkCommandBuffer VulkanDevice::takeInitialTransitions(const std::string& object) 
 }
 
 void VulkanDevice::freeAfter(gdi::FenceValue fence, VkCommandBuffer cb) {
-    retired_.push_back({fence, [this, cb]() mutable { vkFreeCommandBuffers(device_, immediatePool_, 1, &cb); }});
+    // Epoch 0: no list records into an immediate command buffer, so none holds it back.
+    retired_.push_back({fence, 0, [this, cb]() mutable { vkFreeCommandBuffers(device_, immediatePool_, 1, &cb); }});
 }
 
 void VulkanDevice::immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record) {

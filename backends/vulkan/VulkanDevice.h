@@ -18,6 +18,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -205,6 +206,14 @@ public:
     // How many destroy() calls so far (a list compares it at submit with its value at start).
     uint64_t destroyEpoch() const { return destroyEpoch_.load(std::memory_order_acquire); }
     gdi::LiveLists<VulkanCommandList>& liveLists() { return liveLists_; }
+    // A command buffer being recorded holds native handles of what it uses, and Vulkan forbids
+    // recording on after one of them is destroyed (GL records nothing native before submit). So
+    // a destroyed object's native release waits until every recording open since before its
+    // destroy is closed: submitted, executed by a primary, or dropped with its list. Its submit
+    // is refused the same on every backend (destroyedBeforeSubmit). `since`: the destroy epoch of
+    // the list's state, taken before any of its lookups.
+    void openRecording(uint64_t since);
+    void closeRecording(uint64_t since);  // also runs the releases it no longer holds back
     // Whether the submission has completed, without waiting; a lost device's work counts as done.
     bool completedNoThrow(gdi::FenceValue fence);
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
@@ -289,9 +298,12 @@ private:
     void pollFences();      // completes finished submissions without waiting
     struct Retired {
         gdi::FenceValue after;
+        uint64_t epoch;  // the destroy's: recordings open since before it hold the release back
         std::function<void()> release;
     };
     std::deque<Retired> retired_;
+    bool heldByRecording(uint64_t epoch) const { return !openRecordings_.empty() && *openRecordings_.begin() < epoch; }
+    std::multiset<uint64_t> openRecordings_;  // the `since` of each open recording
     gdi::MessageLog messages_{"Vulkan validation"};  // each message once; repeats counted
     std::vector<SecondaryRecording> secondaries_;  // free, or pending until their fence
     // present() copies through the swap chain's own submissions, which no device fence covers:

@@ -480,7 +480,8 @@ std::vector<CaseImage> createWhileRecording(Device& d) {
 // Objects destroyed right after the submit of work that reads them (a texture, a sampler, a
 // uniform buffer, the pipeline) live until that work is done: the image is right, and once
 // the device is idle everything they held is released. A list that uses an object destroyed
-// before its submit is refused with an Error, runs nothing, and the device carries on.
+// before its submit may record on (no validation message), is refused with an Error at submit,
+// runs nothing, and the device carries on; what it held back is released when it is dropped.
 std::vector<CaseImage> destroyWhileInFlight(Device& d) {
     TexturedDraw textured(d);
     DeviceObjects objects(d);
@@ -526,11 +527,18 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
         stale->endRenderPass();
         if (destroyTexture) iteration.destroy(tex);
         else iteration.destroy(ubo);
+        // Recording goes on after the destroy (Vulkan: into the command buffer that names the
+        // object, so its native release waits for the list); only the submit is refused.
+        beginPass(*stale, t, magenta);
+        if (destroyTexture) textured.draw(*stale, p, ubo, tileTexture(iteration));
+        else textured.draw(*stale, p, textured.params(iteration, 0), tex);
+        stale->endRenderPass();
         FE_CONFORMANCE_CHECK(throws([&] { d.submit(*stale); }), destroyTexture
                                                                     ? "submitting a list that uses a destroyed texture is an error"
                                                                     : "submitting a list that uses a destroyed buffer is an error");
     }
     d.waitIdle();
+    FE_CONFORMANCE_CHECK(d.liveObjects() == before, "what refused lists held back is released once they are dropped");
     out.push_back(rendered("refused_submits_ran_nothing", d.readTexture(t), tilesMagnified()));
     {   // and the device carries on
         DeviceObjects again(d);

@@ -1046,7 +1046,8 @@ public:
     // completed, without waiting (an object made and destroyed with no submission between is
     // released at once: its first commands, such as the zero fill of new memory, never run).
     // Destroying an object that a recorded, not yet submitted list uses makes that list's
-    // submit throw Error.
+    // submit throw Error; recording into that list may go on meanwhile (its memory is held
+    // until the list is submitted or destroyed).
     virtual void destroy(BufferHandle) = 0;
     virtual void destroy(TextureHandle) = 0;
     virtual void destroy(SamplerHandle) = 0;
