@@ -9,11 +9,13 @@ here="$(cd "$(dirname "$0")" && pwd)"
 rm -rf "$out" && mkdir -p "$out"
 preload=()
 case "$backend" in gl-*) preload=(env LD_PRELOAD=/usr/lib/librenderdoc.so) ;; esac
-# In a sanitizer build ASan's runtime must come first in the preload list, and then its dlopen
-# interceptor, not RenderDoc's, wins symbol lookup: RenderDoc cannot hook GL there. Skipped (77)
-# in that suite only; the plain suite runs it.
-# (grep without -q: under pipefail, ldd killed by SIGPIPE when grep quits early reads as "no".)
-if [ ${#preload[@]} -gt 0 ] && ldd "$fe" | grep libasan >/dev/null; then
+# In a sanitizer build ASan's runtime comes first (gcc: libasan first in the preload list; clang:
+# linked into fe), and then its dlopen interceptor, not RenderDoc's, wins symbol lookup:
+# RenderDoc cannot hook GL there. Skipped (77) in that suite only; the plain suite runs it.
+# (grep without -q after ldd: under pipefail, ldd killed by SIGPIPE when grep quits early reads
+# as "no"; clang's static runtime is found by its symbol in the file itself.)
+asan() { ldd "$fe" | grep libasan >/dev/null || grep -q __asan_init "$fe"; }
+if [ ${#preload[@]} -gt 0 ] && asan; then
   echo "skipped: RenderDoc cannot hook GL in an AddressSanitizer build (ASan's dlopen comes first)"
   exit 77
 fi
