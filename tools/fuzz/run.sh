@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses with clang in build-fuzz/ and runs each for SECONDS (default 60)
+# Builds the libFuzzer harnesses with clang in build-sanitize/ and runs each for SECONDS (default 60)
 # on its corpus: the hand-made seeds (tests/fuzz/seeds/), the glTF sample models of
-# ../shared/assets when present, and what earlier runs kept (build-fuzz/corpus/). A crash, a
+# ../shared/assets when present, and what earlier runs kept (build-sanitize/fuzz/corpus/). A crash, a
 # leak, a timeout or a sanitizer report stops the harness, leaves the input in
-# build-fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
+# build-sanitize/fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
 #   tools/fuzz/run.sh [SECONDS] [HARNESS...]     HARNESS: GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer
 #                                                PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer
 set -euo pipefail
@@ -15,17 +15,16 @@ shift || true
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer)
 
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFE_FUZZ=ON -DFE_BUILD_TESTS=OFF \
-  -DFE_BUILD_BENCHMARKS=OFF -DFE_BUILD_EXAMPLES=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target "${harnesses[@]}"
+# The sanitized suite's build (tools/sanitized-build.sh): after that suite, nothing is left to compile.
+tools/sanitized-build.sh "${harnesses[@]}"
 
 # Driver modules stay loaded for leak attribution, as in the sanitizer suite (lsan.supp).
 export LSAN_OPTIONS="suppressions=$root/tools/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-mkdir -p build-fuzz/findings
+mkdir -p build-sanitize/fuzz/findings
 status=0
 for h in "${harnesses[@]}"; do
-  corpus="build-fuzz/corpus/$h"
+  corpus="build-sanitize/fuzz/corpus/$h"
   mkdir -p "$corpus"
   case "$h" in
     CliFuzzer) seeds=(tests/fuzz/seeds/cli) ;;
@@ -34,9 +33,9 @@ for h in "${harnesses[@]}"; do
     CaptureFileFuzzer) seeds=(tests/fuzz/seeds/capture_file) ;;
     *) seeds=(tests/fuzz/seeds/gltf)
        if [ -d ../shared/assets ]; then
-         mkdir -p build-fuzz/samples
-         find ../shared/assets \( -name '*.gltf' -o -name '*.glb' \) -size -2M -exec cp -t build-fuzz/samples {} + 2>/dev/null || true
-         seeds+=(build-fuzz/samples)
+         mkdir -p build-sanitize/fuzz/samples
+         find ../shared/assets \( -name '*.gltf' -o -name '*.glb' \) -size -2M -exec cp -t build-sanitize/fuzz/samples {} + 2>/dev/null || true
+         seeds+=(build-sanitize/fuzz/samples)
        fi ;;
   esac
   # The upload harness keeps one device for the whole run; the driver's own allocations are
@@ -44,11 +43,11 @@ for h in "${harnesses[@]}"; do
   # per input with Device::liveObjects, and process leaks by the sanitizer suite).
   leaks=1
   [ "$h" = GltfUploadFuzzer ] || [ "$h" = CaptureFileFuzzer ] && leaks=0
-  log="build-fuzz/$h.log"
+  log="build-sanitize/fuzz/$h.log"
   echo "fuzz: $h for ${seconds} s"
-  if ! "build-fuzz/tests/fuzz/$h" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=8000 \
-       -detect_leaks="$leaks" -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$h-" >"$log" 2>&1; then
-    echo "fuzz: $h FOUND A PROBLEM (input in build-fuzz/findings/, log $log):"
+  if ! "build-sanitize/tests/fuzz/$h" "$corpus" "${seeds[@]}" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=8000 \
+       -detect_leaks="$leaks" -print_final_stats=1 -artifact_prefix="build-sanitize/fuzz/findings/$h-" >"$log" 2>&1; then
+    echo "fuzz: $h FOUND A PROBLEM (input in build-sanitize/fuzz/findings/, log $log):"
     grep -E "ERROR|SUMMARY|Test unit written|deadly signal|timeout" "$log" | head -20
     status=1
   fi
