@@ -253,13 +253,14 @@ private:
     std::vector<CachedFbo> fbos_;
     GlConstantsRing constantsRing_;
     uint32_t windowWidth_ = 0, windowHeight_ = 0;  // size of the last presented image
-    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
-    gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
-    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
-    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
-    gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
-    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_;
+    const uint32_t handleSalt_ = gdi::nextHandleSalt();  // before the pools it salts
+    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_{handleSalt_};
+    gdi::HandlePool<gdi::TextureHandle, Texture> textures_{handleSalt_};
+    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_{handleSalt_};
+    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_{handleSalt_};
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{handleSalt_};  // command lists point at the bound one (objects never move)
+    gdi::HandlePool<gdi::TimerHandle, Timer> timers_{handleSalt_};
+    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_{handleSalt_};
     std::mutex queriesMutex_;
     std::mutex viewsMutex_;  // Texture::views
     // Program binaries by key (shaders, entry points, specialization), context thread only.

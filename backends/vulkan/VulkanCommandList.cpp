@@ -81,8 +81,9 @@ VulkanCommandList::~VulkanCommandList() {
 
 // The device holds back the native release of objects destroyed while a recording is open
 // (VulkanDevice::openRecording): from the first native command until submit, execution by a
-// primary, or the list's end.
+// primary, or the list's end; and from the first object bound, where that comes first.
 void VulkanCommandList::openRecording() {
+    if (openSince_ != kNotOpen) return;
     dev_.openRecording(destroyEpoch_);
     openSince_ = destroyEpoch_;
 }

@@ -87,7 +87,13 @@ public:
 private:
     // Lookups that note what the recording uses, so submit can refuse objects destroyed since.
     enum class UsedKind : uint32_t { Buffer, Texture, Sampler, Pipeline, Timer, QuerySet };
-    void note(UsedKind kind, uint32_t id) { used_.push_back(uint64_t(kind) << 32 | id); }
+    // State bound before the recording's first native command counts as recording too: an
+    // object bound, then destroyed, must outlive the draws that will still name it natively.
+    void note(UsedKind kind, uint32_t id) {
+        if (openSince_ == kNotOpen) [[unlikely]]
+            openRecording();
+        used_.push_back(uint64_t(kind) << 32 | id);
+    }
     // Per-object binds repeat one buffer at many offsets: a buffer is noted when it differs
     // from the last one noted (one compare on the per-draw path, measured in docs/BENCHMARKS.md).
     void noteBuffer(uint32_t id) {

@@ -347,14 +347,15 @@ private:
     gdi::FenceValue nextFence_ = 1;
     gdi::FenceValue completed_ = 0;
 
-    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_;
-    gdi::HandlePool<gdi::TextureHandle, Texture> textures_;
-    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_;
-    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_;
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_;  // command lists point at the bound one (objects never move)
-    gdi::HandlePool<gdi::TimerHandle, Timer> timers_;
-    gdi::HandlePool<gdi::HeapHandle, Heap> heaps_;
-    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_;
+    const uint32_t handleSalt_ = gdi::nextHandleSalt();  // before the pools it salts
+    gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_{handleSalt_};
+    gdi::HandlePool<gdi::TextureHandle, Texture> textures_{handleSalt_};
+    gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_{handleSalt_};
+    gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_{handleSalt_};
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{handleSalt_};  // command lists point at the bound one (objects never move)
+    gdi::HandlePool<gdi::TimerHandle, Timer> timers_{handleSalt_};
+    gdi::HandlePool<gdi::HeapHandle, Heap> heaps_{handleSalt_};
+    gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_{handleSalt_};
     VkPipelineCache pipelineCache_ = VK_NULL_HANDLE;
     gdi::PipelineCacheStats cacheStats_;
     void countCacheUse(const VkPipelineCreationFeedback& feedback);

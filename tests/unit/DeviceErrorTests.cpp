@@ -203,6 +203,34 @@ TEST_P(DeviceErrors, RebindingABufferChecksItAgain) {
     EXPECT_NE(errorOf([&] { cmd->setStorageBuffer(3, ssbo, 256); }).find("invalid or destroyed"), std::string::npos);
 }
 
+// Binding needs no recording: a buffer bound before a list's first command, destroyed, then
+// drawn with. The draw records (recording may go on after a destroy), the submit is refused
+// with the same message on every backend, and no native command names a freed object (on
+// Vulkan the buffer's release waits for the list; without that the validation layer reports
+// the destroyed VkBuffer and TearDown fails). Once the list is gone, so is the buffer.
+TEST_P(DeviceErrors, StateBoundBeforeRecordingOutlivesItsDestroy) {
+    const std::array<float, 64> params = {0.25f, 0.5f, 0.75f, 1.0f};
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/ubo_color.frag")});
+    auto p = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+                                             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    const LiveObjects before = device->liveObjects();
+    {
+        auto ubo = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform}, bytesOf(params));
+        auto cmd = device->createCommandList();
+        cmd->setUniformBuffer(0, ubo);  // state only: nothing recorded yet
+        device->destroy(ubo);
+        cmd->beginRenderPass({.colors = {{.texture = t}}});
+        cmd->setPipeline(p);
+        EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+        cmd->endRenderPass();
+        EXPECT_NE(errorOf([&] { device->submit(*cmd); }).find("destroyed after it was recorded"), std::string::npos);
+    }
+    device->waitIdle();
+    EXPECT_TRUE(device->liveObjects() == before);
+}
+
 // A slot bound with another kind of resource than the pipeline declares is an error at the
 // draw, also when it is re-bound wrongly after draws that were right.
 TEST_P(DeviceErrors, WrongBindingKind) {
@@ -698,6 +726,31 @@ TEST(DamagedSpirvAcrossBackends, SameErrorOnEveryBackend) {
     }
     EXPECT_GT(refused, 100u);
     for (const auto& device : devices) EXPECT_EQ(device->validationErrorCount(), 0u);
+}
+
+// A handle is its own device's: given to another device of the same backend, where an object
+// of the same kind sits at the same index, it is refused as invalid instead of naming that
+// object (it did, before handles were salted per device).
+TEST_P(DeviceErrors, HandlesOfAnotherDeviceAreRefused) {
+    BackendProbe second = probeBackend(GetParam(), true);
+    ASSERT_TRUE(second.available) << second.reason;
+    Device& other = *second.device;
+    const std::array<uint8_t, 16> bytes{};
+    auto mine = device->createBuffer({.size = 16, .usage = BufferUsage::Uniform | BufferUsage::CopySrc | BufferUsage::CopyDst});
+    auto theirs = other.createBuffer({.size = 16, .usage = BufferUsage::Uniform | BufferUsage::CopySrc | BufferUsage::CopyDst});
+    auto myTexture = device->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+    auto theirTexture = other.createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+    EXPECT_EQ(errorOf([&] { other.writeBuffer(theirs, 0, bytesOf(bytes)); }), "(no error)");
+    EXPECT_NE(errorOf([&] { other.writeBuffer(mine, 0, bytesOf(bytes)); }).find("invalid or destroyed buffer handle"), std::string::npos);
+    EXPECT_NE(errorOf([&] { other.readBuffer(mine, 0, 16); }).find("invalid or destroyed buffer handle"), std::string::npos);
+    auto cmd = other.createCommandList();
+    EXPECT_NE(errorOf([&] { cmd->setUniformBuffer(0, mine); }).find("invalid or destroyed buffer handle"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = myTexture}}}); }).find("invalid or destroyed texture handle"),
+              std::string::npos);
+    EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = theirTexture}}}); }), "(no error)");
+    cmd->endRenderPass();
+    other.wait(other.submit(*cmd));
+    EXPECT_EQ(other.validationErrorCount(), 0u);
 }
 
 // An output at a location beyond the 16 every device has is refused before the driver sees it

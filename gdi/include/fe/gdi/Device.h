@@ -110,6 +110,9 @@
 //  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
 //    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
 //  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
+//    A handle belongs to the device that made it: given to another device it is refused as
+//    "invalid or destroyed" (ids are salted per device; a 12-bit generation, so this catches
+//    the mistake with near certainty rather than always).
 //
 // Pipelines are checked against their shaders (SPIR-V reflected with SPIRV-Cross, at
 // createShader), before any native call and with the same Error on every backend:
@@ -1047,7 +1050,8 @@ public:
     // released at once: its first commands, such as the zero fill of new memory, never run).
     // Destroying an object that a recorded, not yet submitted list uses makes that list's
     // submit throw Error; recording into that list may go on meanwhile (its memory is held
-    // until the list is submitted or destroyed).
+    // until the list is submitted or destroyed). The same holds for an object only bound to a
+    // list (setUniformBuffer and the like before its first command) when it is destroyed.
     virtual void destroy(BufferHandle) = 0;
     virtual void destroy(TextureHandle) = 0;
     virtual void destroy(SamplerHandle) = 0;

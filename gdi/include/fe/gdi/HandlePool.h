@@ -26,10 +26,23 @@
 
 namespace fe::gdi {
 
+// Each device's pools start their generations at a salt of its own, so that a handle given to
+// another device than the one that made it (its index may well exist there too) fails find()
+// instead of naming that device's object. Ids are 32 bits with 12 of generation, so this
+// catches the mistake with near certainty, not always: a salt stride of 0x9e5 (odd, so 4096
+// devices pass before a salt repeats) puts devices made one after the other 1,563 generations
+// apart. The first device of a process keeps salt 0: ids of a one-device program (captures,
+// messages) are what they always were.
+inline uint32_t nextHandleSalt() {
+    static std::atomic<uint32_t> devices{0};
+    return (devices.fetch_add(1, std::memory_order_relaxed) * 0x9e5u) & 0xfffu;
+}
+
 template <class H, class T>
 class HandlePool {
 public:
     HandlePool() = default;
+    explicit HandlePool(uint32_t salt) : salt_(salt & 0xfffu) {}
     ~HandlePool() {
         for (uint32_t c = 0; c < kMaxChunks; ++c) delete chunks_[c].load(std::memory_order_relaxed);
     }
@@ -46,6 +59,7 @@ public:
             if (index >= kMaxIndex) throw Error("too many live objects of one kind (at most " + std::to_string(kMaxIndex) + ")");
             if ((index & kChunkMask) == 0) chunks_[index >> kChunkShift].store(new Chunk, std::memory_order_release);
             count_.store(index + 1, std::memory_order_release);
+            slot(index).generation += salt_;  // a new slot: its first generation is the salt's
         }
         Slot& s = slot(index);
         s.object = std::move(object);
@@ -103,7 +117,8 @@ public:
 
 private:
     [[noreturn, gnu::noinline, gnu::cold]] static void invalidHandle(uint32_t id, const char* what) {
-        throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id));
+        throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id) +
+                    " (or one made by another device)");
     }
     static constexpr uint32_t kDead = ~0u;  // id >> 20 is at most 0xfff
     static constexpr uint32_t kMaxIndex = (1u << 20) - 1;  // ids keep 20 bits of index
@@ -130,6 +145,7 @@ private:
     std::array<std::atomic<Chunk*>, kMaxChunks> chunks_{};  // null until used
     std::vector<uint32_t> free_;
     std::atomic<uint32_t> count_{0};  // slots in use or freed: the next new index
+    uint32_t salt_ = 0;               // see nextHandleSalt()
 };
 
 }  // namespace fe::gdi
