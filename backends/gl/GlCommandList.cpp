@@ -28,6 +28,7 @@ GlCommandList::~GlCommandList() {
 void GlCommandList::orphan() { orphaned_ = restricted_ = true, readyToDraw_ = inPass_ = false; }
 
 void GlCommandList::restart() {
+    feedback_.clear();
     unbindAll();
     queries_.clear();
     destroyEpoch_ = dev_.destroyEpoch();
@@ -89,6 +90,7 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
     if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
     signature_ = checkPass(desc);
+    beginPassFeedback(desc);
     passSamples_ = signature_.samples;
     const std::span<const gdi::ColorAttachment> colors(desc.colors);
     auto* r = stream_->push(cmd::BeginRenderPass{.depth = desc.depth, .secondaryLists = desc.secondaryLists},
@@ -108,6 +110,7 @@ void GlCommandList::endRenderPass() {
     queries_.endPass();
     inPass_ = false;
     readyToDraw_ = false;
+    endPassFeedback();
     if (secondaryPass_) {  // as on Vulkan, where vkCmdExecuteCommands leaves the state undefined
         secondaryPass_ = restricted_ = false;
         unbindAll();
@@ -125,6 +128,7 @@ void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     if (!stream_->empty() || secondary_ || inPass_) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc);
     restart();
+    beginPassFeedback(desc);  // no texture is bound yet: checks the attachments
     secondary_ = inPass_ = true;
     passSamples_ = signature_.samples;
     const gdi::Rect area = gdi::validate::renderArea(signature_);
@@ -137,6 +141,7 @@ void GlCommandList::endSecondary() {
     if (depth_) throw gdi::Error("endSecondary: " + std::to_string(depth_) + " debug group(s) not popped");
     ended_ = restricted_ = true;
     readyToDraw_ = false;
+    endPassFeedback();
 }
 
 void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
@@ -164,6 +169,7 @@ void GlCommandList::setPipeline(gdi::PipelineHandle h) {
     const Pipeline& p = dev_.pipeline(h);
     if (inPass_ && !p.compute) gdi::validate::pipelineFitsPass(p.signature, signature_, p.label.c_str());
     if (pipeline_ != &p) unchecked_ = ~uint64_t(0);  // other slots, other kinds
+    unchecked_ |= feedback_.reaching();  // checked again against this pipeline's depth writes
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
     vertexInputs_.setPipeline(p.compute ? nullptr : &p.vertexBindings, &p.label);
@@ -223,6 +229,7 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     const Sampler& s = dev_.sampler(sh);
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.label, t.desc.format, s.label);
     bound(slot, gdi::BindingType::SampledTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
+    if (feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false)) kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetTexture{slot, th, sh});
 }
 void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
@@ -232,6 +239,7 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
         throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bound(slot, gdi::BindingType::StorageTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
+    if (feedback_.bind(slot, textureSpan(th, t, mip), true)) kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetStorageTexture{slot, th, mip});
 }
 
@@ -467,6 +475,23 @@ void GlCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) 
     pushArray<cmd::BufferBarriers>(std::span(barriers, count));
 }
 
+void GlCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
+    uint64_t textures = 0;
+    for (uint32_t slot = 0; slot < 64; ++slot) {
+        const uint8_t kind = kinds_[slot] & ~kFeedback;
+        if (kind == 1 + uint8_t(gdi::BindingType::SampledTexture) || kind == 1 + uint8_t(gdi::BindingType::StorageTexture))
+            textures |= uint64_t(1) << slot;
+    }
+    const uint64_t reach =
+        feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures);
+    for (uint64_t m = reach; m; m &= m - 1) kinds_[std::countr_zero(m)] |= kFeedback;
+    unchecked_ |= reach;
+}
+
+void GlCommandList::endPassFeedback() {
+    for (uint64_t m = feedback_.endPass(); m; m &= m - 1) kinds_[std::countr_zero(m)] &= ~kFeedback;
+}
+
 void GlCommandList::checkSlot(uint32_t slot, const char* what) const {
     if (slot >= 64) throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
 }
@@ -497,10 +522,13 @@ void GlCommandList::checkEachSlot(uint64_t check) const {  // throws for the fir
     gdi::validate::missingBindings(missing, 0, pipeline_->label.c_str());
     for (uint64_t m = check; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        if (kinds_[slot] != pipeline_->slotKinds[slot]) [[unlikely]]
+        const uint8_t kind = kinds_[slot] & ~kFeedback;
+        if (kinds_[slot] & kFeedback) [[unlikely]]
+            feedback_.check(slot, pipeline_->writesDepthStencil, pipeline_->label.c_str());
+        if (kind != pipeline_->slotKinds[slot]) [[unlikely]]
             gdi::validate::wrongBindingKindFailed(slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1),
-                                                  gdi::BindingType(kinds_[slot] - 1), pipeline_->label.c_str());
-        if (!slotMatches(slot)) [[unlikely]]
+                                                  gdi::BindingType(kind - 1), pipeline_->label.c_str());
+        if (pipeline_->slotDimensions[slot] && dims_[slot] != pipeline_->slotDimensions[slot]) [[unlikely]]
             gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot], dims_[slot],
                                                        pipeline_->label.c_str());
     }

@@ -127,6 +127,17 @@ private:
         dims_[slot] = dimension;
         unchecked_ |= uint64_t(1) << slot;
     }
+    // Feedback loops (validate::FeedbackLoops): a slot whose texture reaches an attachment of the
+    // open pass carries kFeedback in its kind, so slotMatches fails and checkEachSlot decides.
+    static constexpr uint8_t kFeedback = 0x80;
+    gdi::validate::TextureSpan textureSpan(gdi::TextureHandle h, const Texture& t,
+                                           std::optional<uint32_t> oneMip = std::nullopt) const {
+        gdi::validate::TextureSpan s = gdi::validate::bindingSpan(h.id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
+        s.name = t.label;
+        return s;
+    }
+    void beginPassFeedback(const gdi::RenderPassDesc& desc);
+    void endPassFeedback();
     // The slot holds what the pipeline declares: its kind, and a texture of the shader's kind.
     bool slotMatches(uint32_t slot) const {
         return kinds_[slot] == pipeline_->slotKinds[slot] &&
@@ -169,6 +180,7 @@ private:
     std::array<uint8_t, 64> dims_{};     // per slot: 1 + TextureDimension of the bound texture, 0 = a buffer
     uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
+    gdi::validate::FeedbackLoops feedback_;
     std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).

@@ -429,6 +429,8 @@ gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::
         t.target = textureTarget(t.desc);
         t.viewOf = h.id;
         const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
+        t.baseMip = v.baseMip;
+        t.baseLayer = is3D ? 0 : v.baseLayer;
         gl_.GenTextures(1, &t.name);  // glTextureView wants a name that is not yet a texture
         gl_.TextureView(t.name, t.target, parent.name, toGlFormat(t.desc.format).internal, v.baseMip, t.desc.mipLevels,
                         is3D ? 0 : v.baseLayer, is3D ? 1 : t.desc.depthOrLayers);
@@ -455,6 +457,7 @@ gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
         gdi::validate::samplerDesc(d);
         Sampler s;
         s.filtersLinearly = gdi::validate::filtersLinearly(d);
+        s.readsMips = d.mipFilter != gdi::MipFilter::None;
         s.label = d.debugName ? d.debugName : "";
         gl_.CreateSamplers(1, &s.name);
         auto wrap = [](gdi::AddressMode a) {
@@ -750,6 +753,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
         p.slotKinds = gdi::validate::slotKinds(bindings);
         p.slotDimensions = gdi::validate::slotDimensions({&vs.iface, fsIface}, p.label);
         p.signature = gdi::validate::pipelineSignature(d);
+        p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
         p.vertexBindings = gdi::validate::vertexBindings(d);
         return pipelines_.add(std::move(p));
     });

@@ -53,6 +53,7 @@ struct Texture {
     std::string label;
     bool linearFilter = false;  // FormatCaps::linearFilter of its format
     uint32_t viewOf = 0;  // a view (glTextureView) of this texture handle id; 0: a texture
+    uint32_t baseMip = 0, baseLayer = 0;  // a view: where it starts in its texture
     uint32_t views = 0;   // live views of this texture
 };
 GLenum textureTarget(const gdi::TextureDesc& d);
@@ -69,6 +70,7 @@ struct FboAttachment {
 struct Sampler {
     GLuint name = 0;
     bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
+    bool readsMips = false;        // a MipFilter other than None: reads more than the base mip
     std::string label;
 };
 struct Shader {
@@ -92,6 +94,7 @@ struct Pipeline {
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    bool writesDepthStencil = false;         // validate::writesDepthStencil: may not sample its depth attachment
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)
     // The storage-texture slots its shaders use, in slot order: slot imageSlots[u] is bound to

@@ -364,6 +364,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     outsidePass("beginRenderPass");
     PassTextures pt;
     signature_ = checkPass(desc, &pt);
+    beginPassFeedback(desc);
     renderArea_ = gdi::validate::renderArea(signature_);
     passSamples_ = signature_.samples;
     std::vector<Texture*>& colorTex = pt.colors;
@@ -441,6 +442,7 @@ void VulkanCommandList::endRenderPass() {
     queries_.endPass();
     vkCmdEndRendering(cb_);
     inPass_ = false;
+    endPassFeedback();
     setNotReady();
     written_ = true;
     if (secondaryPass_) {  // vkCmdExecuteCommands left the primary's state undefined
@@ -448,6 +450,23 @@ void VulkanCommandList::endRenderPass() {
         unbindAll();
     }
     if (passHasLabel_) popDebugGroup();
+}
+
+void VulkanCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
+    uint64_t textures = 0;
+    for (uint32_t slot = 0; slot < 64; ++slot) {
+        const uint32_t type = bindings_[slot].kind & 0xFFFFFFu;
+        if (type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
+            textures |= uint64_t(1) << slot;
+    }
+    const uint64_t reach =
+        feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures);
+    for (uint64_t m = reach; m; m &= m - 1) bindings_[std::countr_zero(m)].kind |= kFeedback;
+    dirtySlots_ |= reach;
+}
+
+void VulkanCommandList::endPassFeedback() {
+    for (uint64_t m = feedback_.endPass(); m; m &= m - 1) bindings_[std::countr_zero(m)].kind &= ~kFeedback;
 }
 
 void VulkanCommandList::unbindAll() {
@@ -474,6 +493,7 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     for (const Binding& b : bindings_) bound |= b.kind != kUnbound;
     if (recording_ || secondary_ || inPass_ || bound) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc, nullptr);
+    beginPassFeedback(desc);  // no texture is bound yet: checks the attachments
     lease_ = dev_.acquireSecondary();
     std::array<VkFormat, 8> formats{};
     for (uint32_t i = 0; i < signature_.colorCount; ++i) formats[i] = toVkFormat(signature_.colors[i]);
@@ -515,6 +535,7 @@ void VulkanCommandList::endSecondary() {
     if (debugDepth_ != 0) throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
     ended_ = restricted_ = true;
+    endPassFeedback();
     setNotReady();
 }
 
@@ -555,6 +576,7 @@ void VulkanCommandList::clearRecording() {
     destroyEpoch_ = dev_.destroyEpoch();
     recording_ = secondary_ = ended_ = restricted_ = secondaryPass_ = false;
     inPass_ = false;
+    feedback_.clear();
     unbindAll();
     constants_ = {};
     queries_.clear();
@@ -574,6 +596,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
         vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
     }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
+    dirtySlots_ |= feedback_.reaching();  // checked again against this pipeline's depth writes
     // The list's constants, whatever the previous pipeline was (a list's values outlive it).
     if (p.constantBytes) vkCmdPushConstants(cb_, p.layout, p.constantStages, 0, p.constantBytes, constants_.data());
     pipeline_ = &p;
@@ -711,8 +734,9 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))), {},
-                       {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    const uint32_t feedback = feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false) ? kFeedback : 0;
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))) | feedback,
+                       {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -722,7 +746,8 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))), {},
+    const uint32_t feedback = feedback_.bind(slot, textureSpan(th, t, mip), true) ? kFeedback : 0;
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))) | feedback, {},
                        {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
     dirtySlots_ |= uint64_t(1) << slot;
 }
@@ -743,7 +768,7 @@ void VulkanCommandList::badBindings() const {
     gdi::validate::missingBindings(requiredSlots_, ~missing, pipeline_->name.c_str());
     for (uint64_t m = requiredSlots_; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
+        const uint32_t bound = bindings_[slot].kind & ~kFeedback, expected = expectedKinds_[slot];
         if ((bound & 0xFFFFFFu) != (expected & 0xFFFFFFu))
             gdi::validate::wrongBindingKindFailed(slot, kindOf(VkDescriptorType(expected & 0xFFFFFFu)),
                                                   kindOf(VkDescriptorType(bound & 0xFFFFFFu)), pipeline_->name.c_str());

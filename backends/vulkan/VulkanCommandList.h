@@ -150,13 +150,28 @@ private:
     // slotAcceptable decides: a slot no shader gives a texture kind takes any kind of texture.
     bool slotMatches(uint32_t slot) const { return bindings_[slot].kind == expectedKinds_[slot]; }
     bool slotAcceptable(uint32_t slot) const {
-        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
+        const uint32_t bound = bindings_[slot].kind & ~kFeedback, expected = expectedKinds_[slot];
         return (bound & 0xFFFFFFu) == (expected & 0xFFFFFFu) && (!(expected >> 24) || bound == expected);
     }
     void checkSlots(uint64_t slots) const {
-        for (; slots; slots &= slots - 1)
-            if (!slotAcceptable(uint32_t(std::countr_zero(slots)))) badBindings();
+        for (; slots; slots &= slots - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(slots));
+            if (bindings_[slot].kind & kFeedback) [[unlikely]]
+                feedback_.check(slot, pipeline_->writesDepthStencil, pipeline_->name.c_str());
+            if (!slotAcceptable(slot)) badBindings();
+        }
     }
+    // Feedback loops (validate::FeedbackLoops): a slot whose texture reaches an attachment of the
+    // open pass carries kFeedback in its kind, so slotMatches fails and checkSlots decides.
+    static constexpr uint32_t kFeedback = 1u << 31;
+    gdi::validate::TextureSpan textureSpan(gdi::TextureHandle h, const Texture& t,
+                                           std::optional<uint32_t> oneMip = std::nullopt) const {
+        gdi::validate::TextureSpan s = gdi::validate::bindingSpan(h.id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
+        s.name = t.name;
+        return s;
+    }
+    void beginPassFeedback(const gdi::RenderPassDesc& desc);
+    void endPassFeedback();
     // readyToDraw_ and, for draw()'s one comparison, the vertices it may reach: -1 when not ready,
     // so that every draw takes the checked path, which names the problem.
     void updateReadyToDraw() {
@@ -234,6 +249,7 @@ private:
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
     std::array<uint32_t, 64> expectedKinds_{};  // per slot the pipeline uses: its kindCode (set with writes_)
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
+    gdi::validate::FeedbackLoops feedback_;
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
     // at its slot in bindings_.

@@ -80,6 +80,7 @@ struct Texture {
 struct Sampler {
     VkSampler sampler = VK_NULL_HANDLE;
     bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
+    bool readsMips = false;        // a MipFilter other than None: reads more than the base mip
     std::string name;
 };
 
@@ -102,6 +103,7 @@ struct Pipeline {
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
     gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
+    bool writesDepthStencil = false;         // validate::writesDepthStencil: may not sample its depth attachment
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
     // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).

@@ -275,6 +275,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
                             (vs.iface.pushConstantBytes ? VK_SHADER_STAGE_VERTEX_BIT : 0) |
                                 (fs && fs->iface.pushConstantBytes ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
     p.signature = gdi::validate::pipelineSignature(d);
+    p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
     p.vertexBindings = gdi::validate::vertexBindings(d);
     p.slotDimensions = dimensions;
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());

@@ -431,6 +431,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.maxLod = baseOnly ? 0.25f : d.maxLod;
     Sampler s;
     s.filtersLinearly = gdi::validate::filtersLinearly(d);
+    s.readsMips = d.mipFilter != gdi::MipFilter::None;
     s.name = d.debugName ? d.debugName : "";
     check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);

@@ -1130,3 +1130,67 @@ uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offse
 }
 
 }  // namespace fe::gdi::validate
+
+namespace fe::gdi::validate {
+
+TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer, const TextureDesc& view,
+                        std::optional<uint32_t> oneMip) {
+    TextureSpan s{.texture = viewOf ? viewOf : id, .baseMip = baseMip, .mipCount = view.mipLevels, .baseLayer = baseLayer,
+                  .layerCount = view.depthOrLayers};
+    if (view.dimension == TextureDimension::Texture3D) s.baseLayer = 0, s.layerCount = UINT32_MAX;  // every slice
+    if (oneMip) s.baseMip += *oneMip, s.mipCount = 1;
+    return s;
+}
+
+void PassAttachments::add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role, const char* passName) {
+    if (count_ == 0) passName_ = passName ? passName : "";
+    const TextureSpan a{.texture = whole.texture, .baseMip = whole.baseMip + mip, .mipCount = 1,
+                        .baseLayer = whole.baseLayer + layer, .layerCount = 1};
+    for (uint32_t i = 0; i < count_; ++i)
+        if (reaches(a, at_[i]))
+            fail(label("render pass", passName), roleName(roles_[i]) + " and " + roleName(role) +
+                                                     " are the same subresource (" +
+                                                     label("texture", names_[i].c_str()) + ", mip " +
+                                                     std::to_string(a.baseMip) + ", layer " +
+                                                     std::to_string(a.baseLayer) + "): each attachment needs its own");
+    at_[count_] = a;
+    kinds_[count_] = role == kDepthRole ? kDepth : kColour;
+    roles_[count_] = role;
+    names_[count_].assign(whole.name);
+    ++count_;
+}
+
+std::string PassAttachments::roleName(uint8_t role) {
+    if (role < 8) return "colour attachment " + std::to_string(role);
+    if (role < 16) return "colour attachment " + std::to_string(role - 8) + "'s resolve target";
+    return role == kDepthRole ? "the depth attachment" : "the depth resolve target";
+}
+
+void PassAttachments::failed(uint32_t slot, const TextureSpan& s, bool storage, const char* pipelineName) const {
+    uint32_t i = 0;
+    while (i + 1 < count_ && !reaches(s, at_[i])) ++i;
+    const std::string how = storage ? " stores to " : " samples ";
+    fail(label("draw with pipeline", pipelineName),
+         "slot " + std::to_string(slot) + how + label("texture", names_[i].c_str()) + " (mip " + std::to_string(at_[i].baseMip) +
+             ", layer " + std::to_string(at_[i].baseLayer) + "), which " + roleName(roles_[i]) + " of " +
+             label("render pass", passName_.c_str()) + " writes: a feedback loop, undefined on every API. Read another mip or layer, or a copy" +
+             (roles_[i] == kDepthRole ? " (a pipeline that writes neither depth nor stencil may sample the depth attachment)"
+                                      : ""));
+}
+
+void FeedbackLoops::check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const {
+    if (!(reaching_ & bit(slot))) return;
+    const bool storage = storage_ & bit(slot);
+    if ((hits_[slot] & PassAttachments::kColour) || storage || pipelineWritesDepthStencil)
+        pass_.failed(slot, slots_[slot], storage, pipelineName);
+}
+
+bool writesDepthStencil(const GraphicsPipelineDesc& d) {
+    const DepthStencilState& ds = d.depthStencil;
+    auto writes = [](const StencilFaceState& f) {
+        return f.failOp != StencilOp::Keep || f.depthFailOp != StencilOp::Keep || f.passOp != StencilOp::Keep;
+    };
+    return ds.depthWrite || (ds.stencilTest && ds.stencilWriteMask && (writes(ds.front) || writes(ds.back)));
+}
+
+}  // namespace fe::gdi::validate

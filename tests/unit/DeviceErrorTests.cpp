@@ -231,6 +231,112 @@ TEST_P(DeviceErrors, StateBoundBeforeRecordingOutlivesItsDestroy) {
     EXPECT_TRUE(device->liveObjects() == before);
 }
 
+// A draw that samples what its own pass renders into (a feedback loop, undefined on both
+// APIs) and a pass naming one subresource twice are Errors, the same on every backend; other
+// mips and layers of the same texture, and a depth attachment that the pipeline only tests,
+// may be read.
+TEST_P(DeviceErrors, FeedbackLoopsAreRefused) {
+    Device& d = *device;
+    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto sampleFs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/textured.frag")});
+    auto colorFs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto shadowFs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/shadow_2d.frag")});
+    auto sampling = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = sampleFs,
+                                              .colorFormats = {Format::RGBA8}, .debugName = "sampling"});
+    auto plain = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = colorFs, .colorFormats = {Format::RGBA8}});
+    auto depthReader = [&](bool depthWrite, const char* name) {
+        return d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = shadowFs,
+                                         .depthStencil = {.depthTest = true, .depthWrite = depthWrite},
+                                         .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F, .debugName = name});
+    };
+    auto testsDepth = depthReader(false, "tests depth"), writesDepth = depthReader(true, "writes depth");
+    auto rt = d.createTexture({.width = 64, .height = 64, .mipLevels = 2,
+                               .usage = TextureUsage::RenderTarget | TextureUsage::Sampled, .debugName = "rt"});
+    auto other = d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::RenderTarget});
+    auto mip1 = d.createTextureView(rt, {.baseMip = 1, .mipCount = 1});
+    auto depth = d.createTexture({.format = Format::D32F, .width = 64, .height = 64,
+                                  .usage = TextureUsage::RenderTarget | TextureUsage::Sampled, .debugName = "depth"});
+    auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
+    auto mipmapped = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .mipFilter = MipFilter::Nearest});
+    auto compare = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .compareEnable = true});
+    const std::array<float, 8> params{0.5f};
+    auto ubo = d.createBuffer({.size = 256, .usage = BufferUsage::Uniform});
+    d.writeBuffer(ubo, 0, bytesOf(params));
+
+    auto cmd = d.createCommandList();
+    // Bound before the pass: it persists into it, and the draw that reads it is refused.
+    cmd->setTexture(1, rt, sampler);
+    cmd->beginRenderPass({.colors = {{.texture = rt}}, .debugName = "loop"});
+    cmd->setPipeline(plain);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)") << "a pipeline that does not read slot 1";
+    cmd->setPipeline(sampling);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }),
+              "draw with pipeline 'sampling': slot 1 samples texture 'rt' (mip 0, layer 0), which colour attachment 0 "
+              "of render pass 'loop' writes: a feedback loop, undefined on every API. Read another mip or layer, or a copy");
+    cmd->setTexture(1, mip1, sampler);  // mip 1 while mip 0 is rendered: allowed
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->setTexture(1, rt, sampler);  // bound inside the pass
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("slot 1 samples texture 'rt' (mip 0, layer 0)"), std::string::npos);
+    cmd->endRenderPass();
+    // The next pass renders elsewhere: the same binding is fine again.
+    cmd->beginRenderPass({.colors = {{.texture = other}}});
+    cmd->setPipeline(sampling);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->endRenderPass();
+    // Rendering into mip 1 of rt while sampling the view of mip 1: refused; sampling mip 0 is fine.
+    auto mip0 = d.createTextureView(rt, {.baseMip = 0, .mipCount = 1});
+    cmd->setTexture(1, mip1, sampler);
+    cmd->beginRenderPass({.colors = {{.texture = rt, .mipLevel = 1}}});
+    cmd->setPipeline(sampling);
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("slot 1 samples texture 'rt' (mip 1, layer 0)"), std::string::npos);
+    cmd->setTexture(1, mip0, sampler);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    // The whole texture: a sampler without a mip filter reads its base mip only (GL's rule too);
+    // one with a mip filter may read mip 1.
+    cmd->setTexture(1, rt, sampler);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->setTexture(1, rt, mipmapped);
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("slot 1 samples texture 'rt' (mip 1, layer 0)"), std::string::npos);
+    cmd->endRenderPass();
+
+    // The depth attachment: a pipeline that only tests depth may sample it, one that writes may not,
+    // also when it replaces the reading pipeline without a new binding.
+    cmd->setUniformBuffer(0, ubo);
+    cmd->setTexture(1, depth, compare);
+    cmd->beginRenderPass({.colors = {{.texture = other}}, .depth = {.texture = depth, .load = LoadOp::Load}});
+    cmd->setPipeline(testsDepth);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->setPipeline(writesDepth);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }),
+              "draw with pipeline 'writes depth': slot 1 samples texture 'depth' (mip 0, layer 0), which the depth "
+              "attachment of render pass writes: a feedback loop, undefined on every API. Read another mip or layer, or "
+              "a copy (a pipeline that writes neither depth nor stencil may sample the depth attachment)");
+    cmd->setPipeline(testsDepth);
+    EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+
+    // One subresource as two attachments, and a secondary list reading its pass's target.
+    EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = rt}, {.texture = mip0}}, .debugName = "twice"}); }),
+              "render pass 'twice': colour attachment 0 and colour attachment 1 are the same subresource (texture 'rt', "
+              "mip 0, layer 0): each attachment needs its own");
+    auto part = d.createCommandList();
+    const RenderPassDesc pass{.colors = {{.texture = rt}}, .secondaryLists = true};
+    part->beginSecondary(pass);
+    part->setPipeline(sampling);
+    part->setTexture(1, rt, sampler);
+    EXPECT_NE(errorOf([&] { part->draw(3); }).find("slot 1 samples texture 'rt' (mip 0, layer 0)"), std::string::npos);
+    part->setTexture(1, mip1, sampler);
+    EXPECT_EQ(errorOf([&] { part->draw(3); }), "(no error)");
+    part->endSecondary();
+    cmd->beginRenderPass(pass);
+    cmd->executeSecondary(*part);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    for (auto v : {mip0, mip1}) d.destroy(v);
+    for (auto t : {rt, other, depth}) d.destroy(t);
+}
+
 // A slot bound with another kind of resource than the pipeline declares is an error at the
 // draw, also when it is re-bound wrongly after draws that were right.
 TEST_P(DeviceErrors, WrongBindingKind) {

@@ -131,6 +131,11 @@
 //    sampler2DArray is an Error: bind a view of that kind, createTextureView with .dimension).
 //  - setTexture refuses a sampler that filters linearly (a Linear filter, no comparison) on a
 //    format without FormatCaps::linearFilter (formatCaps() says what each format can do here).
+//  - Feedback loops are Errors at the draw: a slot the pipeline reads may not hold a subresource
+//    (mip, layer) that its render pass renders into or resolves to; other mips and layers of the
+//    same texture may be read (render mip 1 while sampling a view of mip 0). The exception is
+//    read-only depth: a pipeline that writes neither depth nor stencil may sample the depth
+//    attachment (soft particles, decals). A pass may not name one subresource twice.
 //
 // Fixed function that differs between the APIs behaves as Vulkan's on every backend:
 //  - FE_INSTANCE_ID (fe_common.glsl) counts from firstInstance, FE_VERTEX_ID from firstVertex.

@@ -5,6 +5,9 @@
 #include <array>
 #include <climits>
 #include <initializer_list>
+#include <optional>
+#include <span>
+#include <string_view>
 #include <utility>
 
 #include "fe/gdi/Device.h"
@@ -110,6 +113,117 @@ struct PassSignature {
 };
 PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth, Rect area);
 inline Rect renderArea(const PassSignature& s) { return {0, 0, s.width, s.height}; }
+
+// Rendering feedback loops. A draw that samples or stores to a subresource its render pass
+// renders into reads what the APIs leave undefined (Vulkan's feedback-loop rules, GL 4.5
+// section 9.3.1), and GPUs and backends then disagree; two attachments naming one subresource
+// likewise. Both are Errors, the same on every backend. Reading the depth attachment from a
+// pipeline that writes neither depth nor stencil is allowed (read-only depth: soft particles,
+// decals), as Vulkan's read-only depth layouts allow it.
+struct TextureSpan {
+    uint32_t texture = 0;  // handle id of the texture; a view's is its texture's
+    uint32_t baseMip = 0, mipCount = 1;
+    uint32_t baseLayer = 0, layerCount = 1;  // a 3D texture's slices count as layers
+    std::string_view name;                   // for messages, valid during the call that gives it
+};
+// The subresources a texture (or view: `viewOf` its texture's id, `baseMip`/`baseLayer` where it
+// starts) exposes to a binding: every layer, and every mip of the view, or one mip: a storage
+// binding's, or the base mip for a sampler whose MipFilter is None (GL's feedback-loop rule
+// takes the levels the filter can reach).
+TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer, const TextureDesc& view,
+                        std::optional<uint32_t> oneMip = std::nullopt);
+class PassAttachments {
+public:
+    static constexpr uint8_t kColour = 1, kDepth = 2;  // what overlaps() found
+    // The open pass's attachments, each as spanOf(handle) (bindingSpan of the whole texture or
+    // view) narrowed to its mip and layer. Throws when two name one subresource.
+    template <class SpanOf>
+    void begin(const RenderPassDesc& d, SpanOf&& spanOf) {
+        count_ = 0;
+        auto each = [&](TextureHandle h, uint32_t mip, uint32_t layer, uint8_t role) {
+            if (h) add(spanOf(h), mip, layer, role, d.debugName);
+        };
+        for (size_t i = 0; i < d.colors.size() && i < 8; ++i) {
+            each(d.colors[i].texture, d.colors[i].mipLevel, d.colors[i].layer, uint8_t(i));
+            each(d.colors[i].resolveTexture, d.colors[i].resolveSubresource.mipLevel, d.colors[i].resolveSubresource.layer,
+                uint8_t(8 + i));
+        }
+        each(d.depth.texture, d.depth.mipLevel, d.depth.layer, kDepthRole);
+        each(d.depth.resolveTexture, d.depth.resolveSubresource.mipLevel, d.depth.resolveSubresource.layer, kDepthRole + 1);
+    }
+    void end() { count_ = 0; }
+    bool empty() const { return count_ == 0; }
+    // kColour and/or kDepth: which attachments of the open pass a binding of `s` reaches.
+    uint8_t overlaps(const TextureSpan& s) const {
+        uint8_t hit = 0;
+        for (uint32_t i = 0; i < count_; ++i)
+            if (reaches(s, at_[i])) hit |= kinds_[i];
+        return hit;
+    }
+    // The Error of a draw whose pipeline reads `slot` while it reaches an attachment.
+    [[noreturn]] void failed(uint32_t slot, const TextureSpan& s, bool storage, const char* pipelineName) const;
+
+private:
+    static bool reaches(const TextureSpan& s, const TextureSpan& a) {
+        return s.texture == a.texture && a.baseMip - s.baseMip < s.mipCount && a.baseLayer - s.baseLayer < s.layerCount;
+    }
+    // role: colour attachment i (0-7), its resolve target (8 + i), depth (16), depth resolve (17).
+    static constexpr uint8_t kDepthRole = 16;
+    void add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role, const char* passName);
+    static std::string roleName(uint8_t role);
+    static constexpr uint32_t kMax = 2 * 8 + 2;
+    std::array<TextureSpan, kMax> at_{};
+    std::array<uint8_t, kMax> kinds_{}, roles_{};
+    std::array<std::string, kMax> names_;  // the attachments' texture names, for messages
+    std::string passName_;
+    uint32_t count_ = 0;
+};
+// Per list: the texture each slot was last given (setTexture/setStorageTexture) and which slots
+// reach an attachment of the open pass. The backends mark those slots so that their per-slot
+// kind check fails and the draw's checked path calls check(); no cost on the per-draw path.
+class FeedbackLoops {
+public:
+    // A texture bound to `slot`; returns what it reaches in the open pass (PassAttachments kinds).
+    uint8_t bind(uint32_t slot, const TextureSpan& s, bool storage) {
+        slots_[slot] = {s.texture, s.baseMip, s.mipCount, s.baseLayer, s.layerCount, {}};
+        storage_ = storage ? storage_ | bit(slot) : storage_ & ~bit(slot);
+        const uint8_t hit = pass_.empty() ? 0 : pass_.overlaps(s);
+        hits_[slot] = hit;
+        reaching_ = hit ? reaching_ | bit(slot) : reaching_ & ~bit(slot);
+        return hit;
+    }
+    // A pass begins: returns the slots among `textureSlots` (those now holding textures) whose
+    // texture reaches one of its attachments.
+    template <class SpanOf>
+    uint64_t beginPass(const RenderPassDesc& d, SpanOf&& spanOf, uint64_t textureSlots) {
+        pass_.begin(d, spanOf);
+        reaching_ = 0;
+        for (uint64_t m = textureSlots; m; m &= m - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(m));
+            if ((hits_[slot] = pass_.overlaps(slots_[slot]))) reaching_ |= bit(slot);
+        }
+        return reaching_;
+    }
+    // Returns the slots that reached an attachment of the pass now ended.
+    uint64_t endPass() {
+        pass_.end();
+        return std::exchange(reaching_, 0);
+    }
+    uint64_t reaching() const { return reaching_; }
+    // At a draw, for a slot the pipeline uses that reaches an attachment: throws unless only the
+    // depth attachment is reached and the pipeline writes neither depth nor stencil.
+    void check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const;
+    void clear() { pass_.end(), reaching_ = 0; }
+
+private:
+    static uint64_t bit(uint32_t slot) { return uint64_t(1) << slot; }
+    PassAttachments pass_;
+    std::array<TextureSpan, 64> slots_{};
+    std::array<uint8_t, 64> hits_{};  // per slot: PassAttachments::overlaps while in reaching_
+    uint64_t storage_ = 0, reaching_ = 0;
+};
+// Whether a pipeline writes the depth attachment (depth writes, or a stencil test that writes).
+bool writesDepthStencil(const GraphicsPipelineDesc& d);
 // The secondary-list rules of CommandList (Device.h), with one message on every backend.
 // beginSecondary on a list that is not empty, or inside a pass.
 [[noreturn]] void secondaryNotEmpty();
