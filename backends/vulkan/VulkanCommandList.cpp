@@ -454,19 +454,25 @@ void VulkanCommandList::endRenderPass() {
 
 void VulkanCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
     uint64_t textures = 0;
-    for (uint32_t slot = 0; slot < 64; ++slot) {
-        const uint32_t type = bindings_[slot].kind & 0xFFFFFFu;
-        if (type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
-            textures |= uint64_t(1) << slot;
+    for (uint32_t slot = 0; slot < 64; ++slot)
+        if (holdsTexture(bindings_[slot].kind)) textures |= uint64_t(1) << slot;
+    if (feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures))
+        refreshFeedback();
+}
+
+void VulkanCommandList::refreshFeedback() {
+    const bool writesDepth = pipeline_ && pipeline_->writesDepthStencil;
+    for (uint64_t m = feedback_.reaching(); m; m &= m - 1) {
+        Binding& b = bindings_[std::countr_zero(m)];
+        if (!holdsTexture(b.kind)) continue;  // a buffer replaced the texture
+        b.kind = feedback_.refused(uint32_t(std::countr_zero(m)), writesDepth) ? b.kind | kFeedback : b.kind & ~kFeedback;
     }
-    const uint64_t reach =
-        feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures);
-    for (uint64_t m = reach; m; m &= m - 1) bindings_[std::countr_zero(m)].kind |= kFeedback;
-    dirtySlots_ |= reach;
+    dirtySlots_ |= feedback_.reaching();
 }
 
 void VulkanCommandList::endPassFeedback() {
-    for (uint64_t m = feedback_.endPass(); m; m &= m - 1) bindings_[std::countr_zero(m)].kind &= ~kFeedback;
+    for (uint64_t m = feedback_.endPass(); m; m &= m - 1)
+        if (Binding& b = bindings_[std::countr_zero(m)]; holdsTexture(b.kind)) b.kind &= ~kFeedback;
 }
 
 void VulkanCommandList::unbindAll() {
@@ -596,12 +602,13 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
         vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
     }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
-    dirtySlots_ |= feedback_.reaching();  // checked again against this pipeline's depth writes
     // The list's constants, whatever the previous pipeline was (a list's values outlive it).
     if (p.constantBytes) vkCmdPushConstants(cb_, p.layout, p.constantStages, 0, p.constantBytes, constants_.data());
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
     layout_ = p.layout;
+    if (feedback_.reaching()) [[unlikely]]
+        refreshFeedback();  // read-only depth depends on the pipeline
     computeBound_ = p.bindPoint == VK_PIPELINE_BIND_POINT_COMPUTE;
     vertexInputs_.setPipeline(computeBound_ ? nullptr : &p.vertexBindings, &p.name);
     updateReadyToDraw();
@@ -734,9 +741,9 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
-    const uint32_t feedback = feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false) ? kFeedback : 0;
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))) | feedback,
-                       {}, {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))), {},
+                       {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    if (feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false)) refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -746,9 +753,9 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    const uint32_t feedback = feedback_.bind(slot, textureSpan(th, t, mip), true) ? kFeedback : 0;
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))) | feedback, {},
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))), {},
                        {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
+    if (feedback_.bind(slot, textureSpan(th, t, mip), true)) refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -762,13 +769,18 @@ void VulkanCommandList::notReadyToDraw(const char* what) const {
 
 // Unbound required slots first (the likelier mistake), then a slot bound with the wrong kind.
 void VulkanCommandList::badBindings() const {
+    for (uint64_t m = requiredSlots_; m; m &= m - 1) {
+        const uint32_t slot = uint32_t(std::countr_zero(m));
+        if (holdsTexture(bindings_[slot].kind) && (bindings_[slot].kind & kFeedback))
+            feedback_.check(slot, pipeline_->writesDepthStencil, pipeline_->name.c_str());
+    }
     uint64_t missing = 0;
     for (uint64_t m = requiredSlots_; m; m &= m - 1)
         if (bindings_[std::countr_zero(m)].kind == kUnbound) missing |= m & -m;
     gdi::validate::missingBindings(requiredSlots_, ~missing, pipeline_->name.c_str());
     for (uint64_t m = requiredSlots_; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
-        const uint32_t bound = bindings_[slot].kind & ~kFeedback, expected = expectedKinds_[slot];
+        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
         if ((bound & 0xFFFFFFu) != (expected & 0xFFFFFFu))
             gdi::validate::wrongBindingKindFailed(slot, kindOf(VkDescriptorType(expected & 0xFFFFFFu)),
                                                   kindOf(VkDescriptorType(bound & 0xFFFFFFu)), pipeline_->name.c_str());

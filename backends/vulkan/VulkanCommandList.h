@@ -150,20 +150,24 @@ private:
     // slotAcceptable decides: a slot no shader gives a texture kind takes any kind of texture.
     bool slotMatches(uint32_t slot) const { return bindings_[slot].kind == expectedKinds_[slot]; }
     bool slotAcceptable(uint32_t slot) const {
-        const uint32_t bound = bindings_[slot].kind & ~kFeedback, expected = expectedKinds_[slot];
+        const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
         return (bound & 0xFFFFFFu) == (expected & 0xFFFFFFu) && (!(expected >> 24) || bound == expected);
     }
     void checkSlots(uint64_t slots) const {
-        for (; slots; slots &= slots - 1) {
-            const uint32_t slot = uint32_t(std::countr_zero(slots));
-            if (bindings_[slot].kind & kFeedback) [[unlikely]]
-                feedback_.check(slot, pipeline_->writesDepthStencil, pipeline_->name.c_str());
-            if (!slotAcceptable(slot)) badBindings();
-        }
+        for (; slots; slots &= slots - 1)
+            if (!slotAcceptable(uint32_t(std::countr_zero(slots)))) badBindings();
     }
-    // Feedback loops (validate::FeedbackLoops): a slot whose texture reaches an attachment of the
-    // open pass carries kFeedback in its kind, so slotMatches fails and checkSlots decides.
-    static constexpr uint32_t kFeedback = 1u << 31;
+    // Feedback loops (validate::FeedbackLoops): a slot that the bound pipeline may not read
+    // (its texture reaches an attachment of the open pass) carries kFeedback in its descriptor
+    // type, so the draw's one kind comparison fails and badBindings names the loop. Which slots
+    // carry it is refreshed when a texture, pass or pipeline changes (read-only depth depends
+    // on the pipeline), never per draw.
+    static constexpr uint32_t kFeedback = 1u << 23;
+    static bool holdsTexture(uint32_t kind) {
+        const uint32_t type = kind & 0xFFFFFFu & ~kFeedback;
+        return type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    }
+    void refreshFeedback();
     gdi::validate::TextureSpan textureSpan(gdi::TextureHandle h, const Texture& t,
                                            std::optional<uint32_t> oneMip = std::nullopt) const {
         gdi::validate::TextureSpan s = gdi::validate::bindingSpan(h.id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
@@ -249,7 +253,6 @@ private:
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
     std::array<uint32_t, 64> expectedKinds_{};  // per slot the pipeline uses: its kindCode (set with writes_)
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
-    gdi::validate::FeedbackLoops feedback_;
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
     // at its slot in bindings_.
@@ -267,6 +270,7 @@ private:
     gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
     VulkanDevice::SecondaryRecording lease_;  // the secondary command buffer being recorded
     std::vector<VulkanDevice::SecondaryRecording> executed_;  // owned until this list's submission
+    gdi::validate::FeedbackLoops feedback_;  // last: keeps it off the per-draw members' cache lines
 };
 
 }  // namespace fe::vk

@@ -1179,10 +1179,7 @@ void PassAttachments::failed(uint32_t slot, const TextureSpan& s, bool storage, 
 }
 
 void FeedbackLoops::check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const {
-    if (!(reaching_ & bit(slot))) return;
-    const bool storage = storage_ & bit(slot);
-    if ((hits_[slot] & PassAttachments::kColour) || storage || pipelineWritesDepthStencil)
-        pass_.failed(slot, slots_[slot], storage, pipelineName);
+    if (refused(slot, pipelineWritesDepthStencil)) pass_.failed(slot, slots_[slot], storage_ & bit(slot), pipelineName);
 }
 
 bool writesDepthStencil(const GraphicsPipelineDesc& d) {

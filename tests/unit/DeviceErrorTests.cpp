@@ -304,6 +304,8 @@ TEST_P(DeviceErrors, FeedbackLoopsAreRefused) {
     cmd->setUniformBuffer(0, ubo);
     cmd->setTexture(1, depth, compare);
     cmd->beginRenderPass({.colors = {{.texture = other}}, .depth = {.texture = depth, .load = LoadOp::Load}});
+    cmd->setTexture(0, depth, compare);  // a loop for a moment: the uniform buffer replaces it
+    cmd->setUniformBuffer(0, ubo);
     cmd->setPipeline(testsDepth);
     EXPECT_EQ(errorOf([&] { cmd->draw(3); }), "(no error)");
     cmd->setPipeline(writesDepth);

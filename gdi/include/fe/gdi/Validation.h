@@ -213,6 +213,11 @@ public:
     // At a draw, for a slot the pipeline uses that reaches an attachment: throws unless only the
     // depth attachment is reached and the pipeline writes neither depth nor stencil.
     void check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const;
+    // Whether check() would throw for this slot.
+    bool refused(uint32_t slot, bool pipelineWritesDepthStencil) const {
+        return (reaching_ & bit(slot)) &&
+               ((hits_[slot] & PassAttachments::kColour) || (storage_ & bit(slot)) || pipelineWritesDepthStencil);
+    }
     void clear() { pass_.end(), reaching_ = 0; }
 
 private:
