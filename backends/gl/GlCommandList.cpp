@@ -229,7 +229,8 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     const Sampler& s = dev_.sampler(sh);
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.label, t.desc.format, s.label);
     bound(slot, gdi::BindingType::SampledTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
-    if (feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false)) kinds_[slot] |= kFeedback;
+    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.label, s.readsMips ? std::nullopt : std::optional(0u));
+    if (feedback_.bind(slot, span, false)) kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetTexture{slot, th, sh});
 }
 void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
@@ -239,7 +240,7 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
         throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bound(slot, gdi::BindingType::StorageTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
-    if (feedback_.bind(slot, textureSpan(th, t, mip), true)) kinds_[slot] |= kFeedback;
+    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.label, mip), true)) kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetStorageTexture{slot, th, mip});
 }
 
@@ -483,7 +484,10 @@ void GlCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
             textures |= uint64_t(1) << slot;
     }
     const uint64_t reach =
-        feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures);
+        feedback_.beginPass(desc, [&](gdi::TextureHandle h) {
+            const Texture& t = dev_.texture(h);
+            return gdi::validate::bindingSpanOf(h.id, t, t.label);
+        }, textures);
     for (uint64_t m = reach; m; m &= m - 1) kinds_[std::countr_zero(m)] |= kFeedback;
     unchecked_ |= reach;
 }

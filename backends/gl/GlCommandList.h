@@ -130,12 +130,6 @@ private:
     // Feedback loops (validate::FeedbackLoops): a slot whose texture reaches an attachment of the
     // open pass carries kFeedback in its kind, so slotMatches fails and checkEachSlot decides.
     static constexpr uint8_t kFeedback = 0x80;
-    gdi::validate::TextureSpan textureSpan(gdi::TextureHandle h, const Texture& t,
-                                           std::optional<uint32_t> oneMip = std::nullopt) const {
-        gdi::validate::TextureSpan s = gdi::validate::bindingSpan(h.id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
-        s.name = t.label;
-        return s;
-    }
     void beginPassFeedback(const gdi::RenderPassDesc& desc);
     void endPassFeedback();
     // The slot holds what the pipeline declares: its kind, and a texture of the shader's kind.

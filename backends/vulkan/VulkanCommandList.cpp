@@ -456,7 +456,11 @@ void VulkanCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
     uint64_t textures = 0;
     for (uint32_t slot = 0; slot < 64; ++slot)
         if (holdsTexture(bindings_[slot].kind)) textures |= uint64_t(1) << slot;
-    if (feedback_.beginPass(desc, [&](gdi::TextureHandle h) { return textureSpan(h, dev_.texture(h)); }, textures))
+    auto spanOf = [&](gdi::TextureHandle h) {
+        const Texture& t = dev_.texture(h);
+        return gdi::validate::bindingSpanOf(h.id, t, t.name);
+    };
+    if (feedback_.beginPass(desc, spanOf, textures))
         refreshFeedback();
 }
 
@@ -743,7 +747,8 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
     bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))), {},
                        {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
-    if (feedback_.bind(slot, s.readsMips ? textureSpan(th, t) : textureSpan(th, t, 0), false)) refreshFeedback();
+    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.name, s.readsMips ? std::nullopt : std::optional(0u));
+    if (feedback_.bind(slot, span, false)) refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
@@ -755,7 +760,7 @@ void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, 
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))), {},
                        {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
-    if (feedback_.bind(slot, textureSpan(th, t, mip), true)) refreshFeedback();
+    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.name, mip), true)) refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 

@@ -168,12 +168,6 @@ private:
         return type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
     void refreshFeedback();
-    gdi::validate::TextureSpan textureSpan(gdi::TextureHandle h, const Texture& t,
-                                           std::optional<uint32_t> oneMip = std::nullopt) const {
-        gdi::validate::TextureSpan s = gdi::validate::bindingSpan(h.id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
-        s.name = t.name;
-        return s;
-    }
     void beginPassFeedback(const gdi::RenderPassDesc& desc);
     void endPassFeedback();
     // readyToDraw_ and, for draw()'s one comparison, the vertices it may reach: -1 when not ready,

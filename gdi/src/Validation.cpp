@@ -1146,13 +1146,14 @@ void PassAttachments::add(const TextureSpan& whole, uint32_t mip, uint32_t layer
     if (count_ == 0) passName_ = passName ? passName : "";
     const TextureSpan a{.texture = whole.texture, .baseMip = whole.baseMip + mip, .mipCount = 1,
                         .baseLayer = whole.baseLayer + layer, .layerCount = 1};
-    for (uint32_t i = 0; i < count_; ++i)
-        if (reaches(a, at_[i]))
-            fail(label("render pass", passName), roleName(roles_[i]) + " and " + roleName(role) +
-                                                     " are the same subresource (" +
-                                                     label("texture", names_[i].c_str()) + ", mip " +
-                                                     std::to_string(a.baseMip) + ", layer " +
-                                                     std::to_string(a.baseLayer) + "): each attachment needs its own");
+    for (uint32_t i = 0; i < count_; ++i) {
+        if (!reaches(a, at_[i])) continue;
+        const std::string why = roleName(roles_[i]) + " and " + roleName(role) + " are the same subresource (" +
+                                label("texture", names_[i].c_str()) + ", mip " + std::to_string(a.baseMip) + ", layer " +
+                                std::to_string(a.baseLayer) + "): each attachment needs its own";
+        count_ = 0;  // the pass does not begin: nothing may be checked against its half-read attachments
+        fail(label("render pass", passName), why);
+    }
     at_[count_] = a;
     kinds_[count_] = role == kDepthRole ? kDepth : kColour;
     roles_[count_] = role;

@@ -322,6 +322,20 @@ TEST_P(DeviceErrors, FeedbackLoopsAreRefused) {
     EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = rt}, {.texture = mip0}}, .debugName = "twice"}); }),
               "render pass 'twice': colour attachment 0 and colour attachment 1 are the same subresource (texture 'rt', "
               "mip 0, layer 0): each attachment needs its own");
+    // The refused pass leaves nothing behind: storage textures bound after it are not checked
+    // against the attachments it never began with.
+    auto img = d.createTexture({.width = 8, .height = 8, .usage = TextureUsage::Storage | TextureUsage::RenderTarget});
+    auto img2 = d.createTexture({.width = 8, .height = 8, .usage = TextureUsage::Storage});
+    EXPECT_NE(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = img}, {.texture = img}}}); }).find("same subresource"),
+              std::string::npos);
+    auto cs = d.createShader({.stage = ShaderStage::Compute, .binary = fe::shaders::find("conformance/storage_high_slots.comp")});
+    auto fill = d.createComputePipeline({.computeShader = cs});
+    auto scale = d.createBuffer({.size = 16, .usage = BufferUsage::Storage});
+    cmd->setPipeline(fill);
+    cmd->setStorageTexture(9, img);
+    cmd->setStorageTexture(40, img2);
+    cmd->setStorageBuffer(3, scale);
+    EXPECT_EQ(errorOf([&] { cmd->dispatch(1, 1); }), "(no error)");
     auto part = d.createCommandList();
     const RenderPassDesc pass{.colors = {{.texture = rt}}, .secondaryLists = true};
     part->beginSecondary(pass);
@@ -336,7 +350,7 @@ TEST_P(DeviceErrors, FeedbackLoopsAreRefused) {
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
     for (auto v : {mip0, mip1}) d.destroy(v);
-    for (auto t : {rt, other, depth}) d.destroy(t);
+    for (auto t : {rt, other, depth, img, img2}) d.destroy(t);
 }
 
 // A slot bound with another kind of resource than the pipeline declares is an error at the

@@ -132,6 +132,13 @@ struct TextureSpan {
 // takes the levels the filter can reach).
 TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer, const TextureDesc& view,
                         std::optional<uint32_t> oneMip = std::nullopt);
+// The same for a backend's texture record (viewOf, baseMip, baseLayer, desc) named `name`.
+template <class Texture>
+TextureSpan bindingSpanOf(uint32_t id, const Texture& t, std::string_view name, std::optional<uint32_t> oneMip = std::nullopt) {
+    TextureSpan s = bindingSpan(id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
+    s.name = name;
+    return s;
+}
 class PassAttachments {
 public:
     static constexpr uint8_t kColour = 1, kDepth = 2;  // what overlaps() found
