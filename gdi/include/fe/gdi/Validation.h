@@ -186,8 +186,9 @@ private:
     uint32_t count_ = 0;
 };
 // Per list: the texture each slot was last given (setTexture/setStorageTexture) and which slots
-// reach an attachment of the open pass. The backends mark those slots so that their per-slot
-// kind check fails and the draw's checked path calls check(); no cost on the per-draw path.
+// reach an attachment of the open pass. The backends mark those slots (GL: every slot that
+// reaches; Vulkan: those refused() for the bound pipeline) so that their per-slot kind check
+// fails and the draw's checked path calls check(); no cost on the per-draw path.
 class FeedbackLoops {
 public:
     // A texture bound to `slot`; returns what it reaches in the open pass (PassAttachments kinds).
