@@ -5,6 +5,7 @@
 #include <array>
 #include <climits>
 #include <initializer_list>
+#include <bit>
 #include <optional>
 #include <span>
 #include <string_view>
