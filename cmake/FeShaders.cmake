@@ -26,12 +26,13 @@ function(fe_add_shaders target)
     file(RELATIVE_PATH rel ${ARG_BASE_DIR} ${abs})
     # Variants: a line "// fe-variant: NAME (why)" compiles the source once more with NAME defined,
     # registered as "<path>:NAME" (a path a pipeline picks when it is made, not a run-time
-    # branch). Read at configure time, so editing a shader re-runs the configuration.
+    # branch); "NAME+OTHER" defines both, registered as "<path>:NAME+OTHER". Read at configure
+    # time, so editing a shader re-runs the configuration.
     set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${abs})
-    file(STRINGS ${abs} variant_lines REGEX "^// fe-variant: [A-Za-z_0-9]+")
+    file(STRINGS ${abs} variant_lines REGEX "^// fe-variant: [A-Za-z_0-9+]+")
     set(variants "-")
     foreach(line ${variant_lines})
-      string(REGEX REPLACE "^// fe-variant: ([A-Za-z_0-9]+).*$" "\\1" v "${line}")
+      string(REGEX REPLACE "^// fe-variant: ([A-Za-z_0-9+]+).*$" "\\1" v "${line}")
       list(APPEND variants ${v})
     endforeach()
     foreach(variant ${variants})
@@ -40,7 +41,7 @@ function(fe_add_shaders target)
         set(define "")
       else()
         set(name "${rel}:${variant}")
-        set(define "-D${variant}=1")
+        string(REPLACE "+" "=1;-D" define "-D${variant}=1")
       endif()
       set(vk_h ${out_dir}/s${index}_vk.h)
       set(gl_h ${out_dir}/s${index}_gl.h)

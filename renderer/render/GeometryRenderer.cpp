@@ -16,19 +16,29 @@ constexpr float kShadowSlopeBias = 2.0f;
 constexpr float kShadowConstantBias = 4.0f;
 }  // namespace
 
-GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene) : objects_(device), device_(device), scene_(scene) {
+GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene)
+    : objects_(device), device_(device), scene_(scene),
+      uniformLights_(GpuScene::lightsFitUniformBlock(uint32_t(scene.scene().lights.size()), device.info().limits)) {
     vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
-    auto fragment = [&](const char* name) {
+    auto fragment = [&](const std::string& name) {
         return objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
-    forwardFs_ = fragment("scene/forward.frag");
+    forwardFs_ = fragment(lightsVariant("scene/forward.frag"));
     gbufferFs_ = fragment("scene/gbuffer.frag");
     depthFs_ = fragment("scene/depth_prepass.frag");
     lppNormalsFs_ = fragment("scene/lpp_normals.frag");
     lppNormalsUnpackedFs_ = fragment("scene/lpp_normals_unpacked.frag");
     lppMaterialFs_ = fragment("scene/lpp_material.frag");
-    forwardShadowedFs_ = fragment("scene/forward_shadowed.frag");
-    forwardShadowedCubeFs_ = fragment("scene/forward_shadowed_cube.frag");
+    forwardShadowedFs_ = fragment(lightsVariant("scene/forward_shadowed.frag"));
+    forwardShadowedCubeFs_ = fragment(lightsVariant("scene/forward_shadowed_cube.frag"));
+}
+
+// The forward shaders read the lights from the uniform block when they fit it, else from the
+// storage buffer (their FE_LIGHTS_IN_STORAGE variants; fe_forward_pass.glsl says why).
+std::string GeometryRenderer::lightsVariant(const std::string& path, const char* variant) const {
+    std::string v = variant ? variant : "";
+    if (!uniformLights_) v += v.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
+    return v.empty() ? path : path + ":" + v;
 }
 
 void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
@@ -36,7 +46,8 @@ void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
     auto fragment = [&](const char* name) {
         return objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(light.shader(name))}));
     };
-    forwardIblFs_ = fragment("scene/forward_ibl.frag");
+    forwardIblFs_ = objects_.add(device_.createShader(
+        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(lightsVariant(light.shader("scene/forward_ibl.frag")))}));
     lppMaterialIblFs_ = fragment("scene/lpp_material_ibl.frag");
     environment_ = light;
 }
@@ -138,8 +149,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
 gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name, const char* variant) {
     if (made) return made;
     const std::string plain = std::string("scene/") + name + ".frag";
-    std::string path = forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain;
-    if (variant) path += std::string(":") + variant;
+    const std::string path = lightsVariant(forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain, variant);
     made = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
     return made;
 }
@@ -179,7 +189,7 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
     cmd.setVertexBuffer(0, scene_.vertexBuffer());
     cmd.setIndexBuffer(scene_.indexBuffer(), gdi::IndexType::U32);
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
-    cmd.setStorageBuffer(kSlotLights, scene_.lightBuffer());
+    scene_.bindLights(cmd, kSlotLights, uniformLights_);
     if (environment_) environment_.bind(cmd);
     if (pass == MeshPass::Visibility) {
         cmd.setStorageBuffer(kSlotVertices, scene_.vertexBuffer());

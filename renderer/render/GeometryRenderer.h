@@ -4,6 +4,7 @@
 #pragma once
 #include <functional>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "fe/gdi/Device.h"
@@ -66,6 +67,7 @@ private:
     gdi::DeviceObjects objects_;
     gdi::Device& device_;
     GpuScene& scene_;
+    bool uniformLights_;  // the forward shaders read the lights as the uniform block (GpuScene)
     gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
@@ -73,6 +75,7 @@ private:
     gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;  // made at their first pipeline
     gdi::ShaderHandle visibilityVs_, visibilityFs_;          // likewise
     gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name, const char* variant = nullptr);
+    std::string lightsVariant(const std::string& path, const char* variant = nullptr) const;
     gdi::ShaderHandle visibilityShaders();
     EnvironmentLight environment_;
 };

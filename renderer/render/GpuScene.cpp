@@ -233,4 +233,15 @@ bool GpuScene::hasOpaque() const {
     return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode != assets::AlphaMode::Blend; });
 }
 
+void GpuScene::bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBlock) const {
+    if (!uniformBlock) {
+        cmd.setStorageBuffer(slot, lights_);
+        return;
+    }
+    if (lightCount_ > kUniformLights)
+        throw gdi::Error("lights as a uniform block: " + std::to_string(lightCount_) + " lights where it holds " +
+                         std::to_string(kUniformLights) + " (the pass was made for fewer)");
+    cmd.setUniformBuffer(slot, lights_, 0, kUniformLightBytes);
+}
+
 }  // namespace fe::render

@@ -94,10 +94,20 @@ public:
     gdi::BufferHandle lightBuffer() const { return lights_; }
     uint32_t lightCount() const { return lightCount_; }
     // The light buffer is also a uniform block of kUniformLights records (64 KiB; FE_UNIFORM_LIGHTS
-    // in fe_scene.glsl) for the passes that read the lights faster that way (TileLightCulling):
-    // it is never smaller, so the block's whole range can be bound whatever the light count.
+    // in fe_scene.glsl) for the passes that read the lights faster that way (the list passes and the
+    // forward shaders): it is never smaller, so the block's whole range can be bound whatever the
+    // light count.
     static constexpr uint32_t kUniformLights = 1024;
     static constexpr uint64_t kUniformLightBytes = uint64_t(kUniformLights) * 64;
+    // Whether `lightCount` lights fit the uniform block and the device binds 64 KiB of one: the
+    // passes that read lights then take the block (faster on lavapipe), else each shader's
+    // FE_LIGHTS_IN_STORAGE variant reads the storage buffer.
+    static bool lightsFitUniformBlock(uint32_t lightCount, const gdi::DeviceLimits& limits) {
+        return lightCount <= kUniformLights && limits.maxUniformBufferRange >= kUniformLightBytes;
+    }
+    // Binds the lights at `slot` as the uniform block or the storage buffer; the block only while
+    // the lights fit it (the renderer keeps the count it was made for).
+    void bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBlock) const;
     const std::vector<DrawItem>& draws() const { return draws_; }
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
     // The distinct texture bindings of the materials (many share the defaults): a pass that

@@ -16,8 +16,7 @@ TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ct
 }
 
 bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {
-    return c.scene.lightCount() <= GpuScene::kUniformLights &&
-           c.device.info().limits.maxUniformBufferRange >= GpuScene::kUniformLightBytes;
+    return GpuScene::lightsFitUniformBlock(c.scene.lightCount(), c.device.info().limits);
 }
 
 const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name, bool uniformLights) {
@@ -27,15 +26,7 @@ const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& nam
 const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const { return listPassShader(name, uniformLights_); }
 
 void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights) {
-    if (!uniformLights) {
-        cmd.setStorageBuffer(kSlotLights, c.scene.lightBuffer());
-        return;
-    }
-    // The renderer was made for this many lights (SceneRenderer::updateLights keeps the count).
-    if (c.scene.lightCount() > GpuScene::kUniformLights)
-        throw gdi::Error("light list pass: " + std::to_string(c.scene.lightCount()) + " lights where it was made for at most " +
-                         std::to_string(GpuScene::kUniformLights));
-    cmd.setUniformBuffer(kSlotLights, c.scene.lightBuffer(), 0, GpuScene::kUniformLightBytes);
+    c.scene.bindLights(cmd, kSlotLights, uniformLights);
 }
 
 void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {

@@ -56,11 +56,12 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
 // screen): the block's centre, or this frame's jittered position with temporal accumulation.
 ivec2 feRepOffset() { return ivec2(frame.temporal.xy); }
 
-// The passes that walk tile light lists read the lights from a uniform block (FE_LIGHTS_UNIFORM):
-// on lavapipe a storage buffer load is a loop over the SIMD lanes, a uniform one a vector gather,
-// which measured 10 % faster tiled passes (docs/BENCHMARKS.md). A block holds at most
-// FE_UNIFORM_LIGHTS (64 KiB): scenes with more use each such shader's FE_LIGHTS_IN_STORAGE
-// variant (TileLightCulling::shader).
+// The passes that walk light lists and the forward shaders read the lights from a uniform block
+// (FE_LIGHTS_UNIFORM): on lavapipe and llvmpipe a storage buffer load is a loop over the SIMD
+// lanes, a uniform one a vector gather, which measured 10 % faster tiled passes and a forward
+// shading pass 7x faster (docs/BENCHMARKS.md). A block holds at most FE_UNIFORM_LIGHTS (64 KiB):
+// scenes with more use each such shader's FE_LIGHTS_IN_STORAGE variant (TileLightCulling::shader,
+// GeometryRenderer::lightsVariant).
 #define FE_UNIFORM_LIGHTS 1024
 // The block is declared as plain vec4s, not GpuLight records: Mesa's GL linker makes a program
 // resource per member of every array element and grows its lists by realloc, which made each

@@ -1,4 +1,5 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
 // Forward shading (fe_forward_pass.glsl).
 #include "fe_forward_pass.glsl"

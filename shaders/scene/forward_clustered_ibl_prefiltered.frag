@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
 // Clustered forward shading (clustered-forward, and every technique's translucent pass):
 // fe_forward_pass.glsl over the fragment's cluster light list.
 #define FE_CLUSTER_LISTS

@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
 // Forward shading with image-based lighting, the fast path.
 #define FE_IBL
 #define FE_IBL_PREFILTERED

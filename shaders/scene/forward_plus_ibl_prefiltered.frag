@@ -1,6 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_MULTISAMPLED (--msaa: a fragment outside its tile's depth bounds walks its cluster's list)
+// fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
+// fe-variant: FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE
 // Forward+ shading (forward-plus): fe_forward_pass.glsl over the pixel's tile light list.
 #define FE_TILE_LISTS
 #define FE_IBL
