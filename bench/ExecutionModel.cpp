@@ -5,8 +5,7 @@
 //     recorded on two threads and executed by a primary list. Only the recording is timed
 //     (executeSecondary included); the ratios two-thread / one-thread are the figures. The job
 //     thread is awake when the recording starts (as mid-frame); its wake-up from sleep is a
-//     column of its own. Beside them, the machine's own two-thread ratio for a loop that shares
-//     no data (what two threads can reach here at best).
+//     column of its own.
 //  2. CPU/GPU overlap: frames of 5,000 draws, recorded and submitted with two frames in flight,
 //     against the same frames each waited for before the next is recorded. Record, submit and
 //     wait are timed apart; with overlap the pipelined frame costs less than record + execute.
@@ -115,7 +114,6 @@ struct Row {
     double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
     double plainFrame = 0, churnFrame = 0;
     double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
-    double machineRatio = 0;                // a loop sharing no data, on two threads against one
     bool pinned = false;
 };
 
@@ -225,18 +223,9 @@ private:
 // 20,000 draws: one list on one thread, then four lists on two threads (this thread records two,
 // the job thread the other two), then one pass of four secondary lists likewise. `fromSleep`
 // repeats the four lists with the job thread asleep when the recording starts.
-// Stores into a thread's own 4 MiB (no data shared with the other thread): the work two cores
-// halve if the machine gives each thread a core of its own. A VM's two vCPUs need not (a loaded
-// host, or hyperthreads of one core), and then no recording can reach 0.5x either.
-void privateStores(uint64_t n, std::vector<uint32_t>& out) {
-    for (uint64_t i = 0; i < n; ++i) out[i & (out.size() - 1)] = uint32_t(i * 2654435761u);
-}
-
 void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     Device& d = *s.device;
-    std::vector<double> one, two, parts, cold, callerHalves, workerHalves, machine;
-    std::vector<uint32_t> mine(1u << 20), theirs(1u << 20);
-    uint64_t loopN = 0;  // sized in round 0 to take as long as the one-thread recording
+    std::vector<double> one, two, parts, cold, callerHalves, workerHalves;
     auto single = d.createCommandList();
     std::array<std::unique_ptr<CommandList>, 4> quarter = {d.createCommandList(), d.createCommandList(), d.createCommandList(),
                                                            d.createCommandList()};
@@ -264,25 +253,8 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     for (uint32_t r = 0; r < rounds + 1; ++r) {  // round 0 warms every path up
         Clock::time_point t = Clock::now();
         s.record(*single, 0, kDraws, true);
-        const double oneMs = msSince(t);
-        if (r) one.push_back(oneMs);
+        if (r) one.push_back(msSince(t));
         d.wait(d.submit(*single));
-
-        if (!r) {
-            t = Clock::now();
-            privateStores(1u << 20, mine);
-            loopN = std::max<uint64_t>(1024, uint64_t(double(1u << 20) * oneMs / std::max(msSince(t), 1e-6)));
-        }
-        t = Clock::now();
-        privateStores(loopN, mine);
-        const double loopOne = msSince(t);
-        worker.wake();
-        t = Clock::now();
-        worker.start([&] { privateStores(loopN / 2, theirs); });
-        privateStores(loopN / 2, mine);
-        worker.join();
-        if (r) machine.push_back(msSince(t) / loopOne);
-        worker.sleep();
 
         worker.wake();
         t = Clock::now();
@@ -320,7 +292,6 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     row.callerHalf = median(callerHalves);
     row.workerHalf = median(workerHalves);
     row.pinned = worker.pinned();
-    row.machineRatio = median(machine);
 }
 
 // The application's own CPU work per frame (simulation, culling), a busy loop of `ms`.
@@ -400,11 +371,8 @@ int main(int argc, char** argv) {
                         r.fromSleep, r.fromSleep / r.oneThread);
         std::printf("\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
         for (const Row& r : rows)
-            std::printf("- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s; the machine's own "
-                        "two-thread ratio, a loop of private stores as long as the one-thread recording, split over the "
-                        "same two threads: %.2f (median of per-round ratios)\n",
-                        r.backend.c_str(), r.callerHalf, r.workerHalf,
-                        r.pinned ? "pinned to the first and last allowed CPUs" : "NOT pinned (the pin failed)", r.machineRatio);
+            std::printf("- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s\n", r.backend.c_str(),
+                        r.callerHalf, r.workerHalf, r.pinned ? "pinned to the first and last allowed CPUs" : "NOT pinned (the pin failed)");
         std::printf("\nFrames of 5,000 draws after %.1f ms of application work (medians)\n\n| backend | 1 frame in flight, ms | "
                     "2 in flight, ms | 2 in flight: record / submit / wait, ms | 2 in flight, again, ms | same, creating and "
                     "destroying 50 textures per frame, ms |\n|---|---|---|---|---|---|\n", cpuMs);
