@@ -16,6 +16,8 @@ constexpr float kShadowSlopeBias = 2.0f;
 constexpr float kShadowConstantBias = 4.0f;
 }  // namespace
 
+// The light count comes from the scene asset: the GpuScene's is set after this constructor
+// (SceneRenderer::updateLights, which keeps it).
 GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene)
     : objects_(device), device_(device), scene_(scene),
       uniformLights_(GpuScene::lightsFitUniformBlock(uint32_t(scene.scene().lights.size()), device.info().limits)) {
@@ -43,12 +45,11 @@ std::string GeometryRenderer::lightsVariant(const std::string& path, const char*
 
 void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
     if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
-    auto fragment = [&](const char* name) {
-        return objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(light.shader(name))}));
+    auto fragment = [&](const std::string& path) {
+        return objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
     };
-    forwardIblFs_ = objects_.add(device_.createShader(
-        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(lightsVariant(light.shader("scene/forward_ibl.frag")))}));
-    lppMaterialIblFs_ = fragment("scene/lpp_material_ibl.frag");
+    forwardIblFs_ = fragment(lightsVariant(light.shader("scene/forward_ibl.frag")));
+    lppMaterialIblFs_ = fragment(light.shader("scene/lpp_material_ibl.frag"));
     environment_ = light;
 }
 
