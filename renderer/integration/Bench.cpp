@@ -27,12 +27,8 @@ namespace {
 // The lights the technique's loop walked per pixel, from a renderer of its own with the
 // statistics pass (kept out of the timed frames): mean, 95th percentile and max, and the mean of
 // the lights that reach each pixel (the least exact culling walks).
-gdi::Json lightsEvaluated(gdi::Device& device, const assets::Scene& scene, RenderSettings settings) {
-    settings.lightListStatistics = true;
-    settings.displayImage = false;
-    SceneRenderer r(device, scene, settings);
-    r.renderFrame();
-    const LightListStatistics l = r.lightListStatistics();
+gdi::Json lightsEvaluated(gdi::Device& device, const assets::Scene& scene, const RenderSettings& settings) {
+    const LightListStatistics l = measureLightLists(device, scene, settings);
     gdi::Json j = {{"lists", l.lists}, {"measured", l.measured}};
     if (l.measured)
         j.update({{"mean", l.mean}, {"p95", l.p95}, {"max", l.max}, {"pixels", l.pixels}, {"reaching", l.reaching},

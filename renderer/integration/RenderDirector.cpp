@@ -48,14 +48,10 @@ bool hasComputeShaders(const gdi::DeviceInfo& info) { return info.features.compu
 // pass on, nothing the lists do not depend on: no shadows, no environment light, no image).
 double probeLightsWalked(gdi::Device& device, const assets::Scene& scene, RenderSettings settings, const char* technique) {
     settings.technique = technique;
-    settings.lightListStatistics = true;
-    settings.displayImage = false;
     settings.iblSamples = 0;
     settings.iblPrefiltered = false;
     settings.shadows.enabled = false;
-    SceneRenderer r(device, scene, settings);
-    r.renderFrame();
-    return r.lightListStatistics().mean;
+    return measureLightLists(device, scene, settings).mean;
 }
 
 // Many lights without MSAA on a CPU rasterizer: forward-plus, or clustered-forward where a probe

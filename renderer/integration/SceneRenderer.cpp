@@ -225,9 +225,13 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     listCounts_ = countTexture("lights evaluated");
     reachingCounts_ = countTexture("lights reaching");
     const bool clusters = lists.kind == LightLists::Kind::Clusters, tiles = lists.kind == LightLists::Kind::Tiles;
-    const char* variant = clusters ? ":FE_CLUSTER_LISTS" : tiles ? "" : ":FE_EVERY_LIGHT";
+    // It walks every light at every pixel: from the uniform block where they fit (fe_scene.glsl).
+    const bool uniformLights = GpuScene::lightsFitUniformBlock(uint32_t(scene_.lights.size()), device_.info().limits);
+    std::string variant = clusters ? "FE_CLUSTER_LISTS" : tiles ? "" : "FE_EVERY_LIGHT";
+    if (!uniformLights) variant += variant.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
     listStatisticsCs_ = objects_.add(device_.createShader(
-        {.stage = gdi::ShaderStage::Compute, .binary = shaders::find(std::string("scene/light_list_statistics.comp") + variant)}));
+        {.stage = gdi::ShaderStage::Compute,
+         .binary = shaders::find("scene/light_list_statistics.comp" + (variant.empty() ? "" : ":" + variant))}));
     listStatisticsPipeline_ = objects_.add(
         device_.createComputePipeline({.computeShader = listStatisticsCs_, .debugName = "light-list statistics"}));
     const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
@@ -240,10 +244,10 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
         if (tiles) b.sample(lists.tiles);
         b.storage(counts);
         b.storage(reaching);
-    }, [this, clusters, tiles, lists, counts, reaching](graph::PassContext& pc) {
+    }, [this, clusters, tiles, lists, counts, reaching, uniformLights](graph::PassContext& pc) {
         pc.cmd.setPipeline(listStatisticsPipeline_);
         pc.cmd.setUniformBuffer(kSlotFrame, frameConstants_.buffer, frameConstants_.offset, frameConstants_.size);
-        pc.cmd.setStorageBuffer(kSlotLights, gpuScene_->lightBuffer());
+        gpuScene_->bindLights(pc.cmd, kSlotLights, uniformLights);
         pc.cmd.setTexture(kSlotDepth, pc.texture(depth_), pointSampler_);
         if (clusters) clusters_->bindLists(pc.cmd);
         if (tiles) pc.cmd.setTexture(kSlotTileLights, pc.texture(lists.tiles), pointSampler_);
@@ -294,6 +298,16 @@ LightListStatistics SceneRenderer::lightListStatistics() {
     out.p95 = counts[std::min(counts.size() - 1, size_t(double(counts.size()) * 0.95))];
     out.max = counts.back();
     return out;
+}
+
+LightListStatistics measureLightLists(gdi::Device& device, const assets::Scene& scene, RenderSettings settings,
+                                      const std::function<void(SceneRenderer&)>& prepare) {
+    settings.lightListStatistics = true;
+    settings.displayImage = false;
+    SceneRenderer r(device, scene, settings);
+    if (prepare) prepare(r);
+    r.renderFrame();
+    return r.lightListStatistics();
 }
 
 // The "light count" debug view: a heat map of how many lights reach each pixel's surface.

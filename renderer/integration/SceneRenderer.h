@@ -7,6 +7,7 @@
 // displayable image is asked for). With shadows it plans which lights cast them (ShadowPlan),
 // stores those lights last in the light buffer and gives the technique the maps.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -150,5 +151,13 @@ private:
     gdi::TextureHandle outputTexture_;
     gdi::FenceValue lastFence_ = 0;
 };
+
+// Lights walked per pixel in one frame of `scene` rendered with `settings` by a renderer of its
+// own (RenderSettings::lightListStatistics on, no display image). The statistics pass walks every
+// light at every pixel, far slower than the technique it measures, so a caller that times frames
+// measures them here rather than in its timed renderer. `prepare`, when given, sets that renderer
+// up as the caller's last frame was (updateLights, setCamera) before it renders.
+LightListStatistics measureLightLists(gdi::Device& device, const assets::Scene& scene, RenderSettings settings,
+                                      const std::function<void(SceneRenderer&)>& prepare = {});
 
 }  // namespace fe::render

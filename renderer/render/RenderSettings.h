@@ -54,7 +54,8 @@ struct RenderSettings {
     // it was measured against (the same image: a culled light adds exactly 0).
     bool translucentClusters = true;
     // A "light-list-statistics" pass after the technique's: per pixel, the lights its shading
-    // loop walks (SceneRenderer::lightListStatistics). fe render --verbose turns it on.
+    // loop walks (SceneRenderer::lightListStatistics). measureLightLists turns it on in a renderer of
+    // its own (fe render --verbose, fe bench, the director), out of the timed frames.
     bool lightListStatistics = false;
     // Image-based lighting: samples per pixel for each of the specular and diffuse terms (0: the
     // environment is only the background). Needs an environment and a technique that takes it

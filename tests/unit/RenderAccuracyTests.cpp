@@ -381,6 +381,10 @@ TEST(TiledLightsVariants, EveryListShaderHasItsStorageVariant) {
         differ(path, "FE_MULTISAMPLED", "FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE");  // both defines, not one
         differ(path, "FE_LIGHTS_IN_STORAGE", "FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE");
     }
+    // The statistics pass walks every light at every pixel, for each kind of list.
+    differ("scene/light_list_statistics.comp", "", "FE_LIGHTS_IN_STORAGE");
+    for (const std::string lists : {"FE_CLUSTER_LISTS", "FE_EVERY_LIGHT"})
+        differ("scene/light_list_statistics.comp", lists, lists + "+FE_LIGHTS_IN_STORAGE");
 }
 
 // Multi-pass forward adds each light's radiance in its own pass (float blending, in another
