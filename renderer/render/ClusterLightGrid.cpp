@@ -22,12 +22,11 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     lists_ = objects_.add(c.device.createBuffer({.size = bytes,
                                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
                                                  .debugName = "cluster light lists"}));
-    // The assignment's scratch: per block of kBlockColumns^2 columns, a bit per light.
-    const uint64_t blocks = uint64_t((tiles_.x + kBlockColumns - 1) / kBlockColumns) * ((tiles_.y + kBlockColumns - 1) / kBlockColumns);
-    blockMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, blocks * ((c.scene.lightCount() + 31) / 32) * 4),
-                                                      .usage = gdi::BufferUsage::Storage,
-                                                      .debugName = "cluster light assignment blocks"}));
-    blockCount_ = uint32_t(blocks);
+    // The assignment's scratch: per tile column, a bit per light.
+    const uint64_t columns = uint64_t(tiles_.x) * tiles_.y;
+    columnMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
+                                                       .usage = gdi::BufferUsage::Storage,
+                                                       .debugName = "cluster light assignment columns"}));
     uniformLights_ = TileLightCulling::lightsFitUniformBlock(c);
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                               .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
@@ -71,14 +70,14 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
                   cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
                   TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
                   cmd.setStorageBuffer(kSlotClusterLights, lists_);
-                  cmd.setStorageBuffer(kSlotClusterBlocks, blockMasks_);
-                  // Mark each block's lights, count each cluster's, place the lists in header
+                  cmd.setStorageBuffer(kSlotClusterColumns, columnMasks_);
+                  // Mark each column's lights, count each cluster's, place the lists in header
                   // order, fill them (cluster_light_assignment.comp): no atomics, the same layout
                   // on every device.
                   constexpr auto rw = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite;
                   const gdi::BufferBarrier between[2] = {{.buffer = lists_, .before = rw, .after = rw},
-                                                         {.buffer = blockMasks_, .before = rw, .after = rw}};
-                  const uint32_t groups[4] = {blockCount_, columns, 1, columns};  // one to place
+                                                         {.buffer = columnMasks_, .before = rw, .after = rw}};
+                  const uint32_t groups[4] = {columns, columns, 1, columns};  // one to place
                   for (uint32_t phase = 0; phase < 4; ++phase) {
                       if (phase) cmd.barrier(between, 2);
                       cmd.setConstants(glm::uvec4(phase, 0u, 0u, 0u));

@@ -36,5 +36,5 @@ constexpr uint32_t kSlotVisibility = 36;    // the visibility buffer's triangle 
 constexpr uint32_t kSlotDraws = 37;         // every draw's ObjectConstants (storage buffer)
 constexpr uint32_t kSlotVertices = 38;      // the scene's vertices, pulled by shaders (storage buffer)
 constexpr uint32_t kSlotIndices = 39;       // ... and its indices
-constexpr uint32_t kSlotClusterBlocks = 40; // the cluster light assignment's lights per block of columns (storage buffer)
+constexpr uint32_t kSlotClusterColumns = 40; // the cluster light assignment's lights per tile column (storage buffer)
 }  // namespace fe::render

@@ -16,7 +16,7 @@
 #define FE_CLUSTER_TILE 32
 #define FE_CLUSTER_SLICES 32
 #define FE_SLOT_CLUSTER_LIGHTS 35
-#define FE_SLOT_CLUSTER_BLOCKS 40  // the assignment's scratch: lights per block of columns
+#define FE_SLOT_CLUSTER_COLUMNS 40  // the assignment's scratch: the lights reaching each column
 
 #ifdef FE_CLUSTER_ASSIGN
 layout(binding = FE_SLOT_CLUSTER_LIGHTS, std430) buffer ClusterLights {
