@@ -149,11 +149,11 @@ void SceneRenderer::buildGraph() {
     }
     if (gpuScene_->hasBlend()) {
         const bool culled = clusters_ && s.translucentClusters;
-        const graph::BufferId clusterLists = culled ? clusters_->declare(g) : graph::BufferId{};
+        const ClusterLightGrid::Lists clusterLists = culled ? clusters_->declare(g) : ClusterLightGrid::Lists{};
         g.addPass("transparent", [&](graph::PassBuilder& b) {
             b.colorTarget(output_, gdi::LoadOp::Load);
             b.depthTarget(depth_, gdi::LoadOp::Load);
-            if (culled) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
+            if (culled) ClusterLightGrid::read(b, clusterLists);
         }, [this, culled](graph::PassContext& pc) {
             pc.beginRenderPass();
             if (culled) clusters_->bindLists(pc.cmd);
@@ -237,10 +237,10 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
     const graph::TextureId reaching = g.importTexture("lights reaching", reachingCounts_, device_.desc(reachingCounts_));
     listCountsId_ = counts;
-    const graph::BufferId clusterLists = clusters ? clusters_->declare(g) : graph::BufferId{};
+    const ClusterLightGrid::Lists clusterLists = clusters ? clusters_->declare(g) : ClusterLightGrid::Lists{};
     g.addPass("light-list-statistics", [&](graph::PassBuilder& b) {
         b.sample(depth_);
-        if (clusters) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
+        if (clusters) ClusterLightGrid::read(b, clusterLists);
         if (tiles) b.sample(lists.tiles);
         b.storage(counts);
         b.storage(reaching);

@@ -16,12 +16,19 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     const RenderSettings& s = c.settings;
     tiles_ = {(s.width + kTilePixels - 1) / kTilePixels, (s.height + kTilePixels - 1) / kTilePixels};
     // Every light of the scene is assigned, shadowed ones too (the translucent pass lights with
-    // them). The buffer: the reservation counter, (offset, count) per cluster, then the indices.
-    capacity_ = clusterCount() * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
-    const uint64_t bytes = (1 + 2 * uint64_t(clusterCount()) + capacity_) * sizeof(uint32_t);
-    lists_ = objects_.add(c.device.createBuffer({.size = bytes,
+    // them). The buffer: the entries asked for, (first entry, count) per cluster; the entries in a
+    // texture of kIndexWidth texels a row (fe_clusters.glsl says why), as many rows as the
+    // device allows (the lists past its end shade every light, counted).
+    const uint64_t wanted = uint64_t(clusterCount()) * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
+    const uint32_t rows = uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1,
+                                                        c.device.info().limits.maxTextureSize2D));
+    capacity_ = rows * kIndexWidth;
+    lists_ = objects_.add(c.device.createBuffer({.size = (1 + 2 * uint64_t(clusterCount())) * sizeof(uint32_t),
                                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
                                                  .debugName = "cluster light lists"}));
+    indices_ = objects_.add(c.device.createTexture({.format = gdi::Format::R32U, .width = kIndexWidth, .height = rows,
+                                                    .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled,
+                                                    .debugName = "cluster light list entries"}));
     // The assignment's scratch: per tile column, a bit per light.
     const uint64_t columns = uint64_t(tiles_.x) * tiles_.y;
     columnMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
@@ -57,12 +64,16 @@ glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::
     return {nearDepth, float(kSlices - 1) / std::log(farDepth / split), farDepth, split};
 }
 
-graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
+ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
     if (declaredIn_ == &g) return declared_;
     declaredIn_ = &g;
-    declared_ = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size);
-    g.markOutput(declared_);  // statistics() reads it back
-    g.addPass("light-assignment", [&](graph::PassBuilder& b) { b.buffer(declared_, gdi::BufferAccess::StorageWrite); },
+    declared_ = {.headers = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size),
+                 .entries = g.importTexture("cluster light list entries", indices_, ctx_.device.desc(indices_))};
+    g.markOutput(declared_.headers);  // statistics() reads it back
+    g.addPass("light-assignment", [&](graph::PassBuilder& b) {
+        b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
+        b.storage(declared_.entries);
+    },
               [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
                   gdi::CommandList& cmd = pc.cmd;
                   cmd.setPipeline(pipeline_);
@@ -71,6 +82,7 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
                   TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
                   cmd.setStorageBuffer(kSlotClusterLights, lists_);
                   cmd.setStorageBuffer(kSlotClusterColumns, columnMasks_);
+                  cmd.setStorageTexture(kSlotClusterIndicesOut, indices_);
                   // Mark each column's lights, count each cluster's, place the lists in header
                   // order, fill them (cluster_light_assignment.comp): no atomics, the same layout
                   // on every device.
@@ -87,7 +99,15 @@ graph::BufferId ClusterLightGrid::declare(graph::RenderGraph& g) {
     return declared_;
 }
 
-void ClusterLightGrid::bindLists(gdi::CommandList& cmd) const { cmd.setStorageBuffer(kSlotClusterLights, lists_); }
+void ClusterLightGrid::read(graph::PassBuilder& b, const Lists& lists) {
+    b.buffer(lists.headers, gdi::BufferAccess::StorageRead);
+    b.sample(lists.entries);
+}
+
+void ClusterLightGrid::bindLists(gdi::CommandList& cmd) const {
+    cmd.setStorageBuffer(kSlotClusterLights, lists_);
+    cmd.setTexture(kSlotClusterIndices, indices_, ctx_.pointSampler);
+}
 
 ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
     const std::vector<uint8_t> bytes = ctx_.device.readBuffer(lists_, 0, ctx_.device.desc(lists_).size);

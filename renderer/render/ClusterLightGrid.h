@@ -8,7 +8,8 @@
 // reach each pixel; 16-pixel tiles walk 14.4 at 3.4x the assignment's cost), and 15.4 with each
 // column's side planes tested too (lavapipe). One compute pass
 // ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
-// range reaches a cluster's box into its list, in a storage buffer the shading passes read
+// range reaches a cluster's box into its list (headers in a storage buffer, the entries in an R32U
+// texture: a texel fetch, not a storage-buffer load, per light the shading passes walk) they read
 // (shaders/include/fe_clusters.glsl). It first marks, per tile column, the lights that reach the
 // column (the invocations taking the lights), then an invocation per cluster tests those against
 // its slice (all lanes on the same light): builtin:atrium, 1280x720, 1024 lights, lavapipe, on
@@ -34,15 +35,24 @@ public:
     static constexpr uint32_t kSlices = 32;            // FE_CLUSTER_SLICES
     static constexpr float kNearSplit = 1.0f / 32;     // slice 0 ends at this share of the far depth (at least)
     static constexpr uint32_t kMeanListCapacity = 64;  // index entries per cluster (at most the scene's lights)
+    static constexpr uint32_t kIndexWidth = 4096;      // FE_CLUSTER_INDEX_WIDTH: texels a row of the entries
 
     explicit ClusterLightGrid(TechniqueContext& context);
     ClusterLightGrid(const ClusterLightGrid&) = delete;
     ClusterLightGrid& operator=(const ClusterLightGrid&) = delete;
 
+    // The lists as a graph holds them: the headers (a storage buffer) and the entries (an R32U
+    // texture of kIndexWidth texels a row).
+    struct Lists {
+        graph::BufferId headers;
+        graph::TextureId entries;
+    };
     // The lists and the pass that fills them: declared once per graph, later calls return the
-    // same buffer (the clustered technique and the translucent pass share it).
-    graph::BufferId declare(graph::RenderGraph& g);
-    // Binds the lists for a shading pass (storage buffer, kSlotClusterLights).
+    // same (the clustered technique and the translucent pass share them).
+    Lists declare(graph::RenderGraph& g);
+    // A shading pass's reads of the lists (its setup declares them), and their bindings
+    // (kSlotClusterLights, kSlotClusterIndices).
+    static void read(graph::PassBuilder& b, const Lists& lists);
     void bindLists(gdi::CommandList& cmd) const;
 
     // The frame's slicing (FrameConstants::clusters): the near plane to the farthest corner of
@@ -70,11 +80,12 @@ private:
     glm::uvec2 tiles_{0};
     uint32_t capacity_ = 0;
     gdi::BufferHandle lists_;
+    gdi::TextureHandle indices_;
     gdi::BufferHandle columnMasks_;  // the assignment's: the lights that reach each tile column
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
     graph::RenderGraph* declaredIn_ = nullptr;
-    graph::BufferId declared_{};
+    Lists declared_{};
 };
 
 }  // namespace fe::render

@@ -30,10 +30,10 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
     // Under MSAA a Forward+ fragment outside its tile's depth bounds walks its cluster's list
     // (fe_forward_pass.glsl), so the grid is built then too.
     const bool clustersRead = !culling_ || ctx_.settings.msaa > 1;
-    const graph::BufferId clusters = clustersRead ? ctx_.clusters->declare(g) : graph::BufferId{};
+    const ClusterLightGrid::Lists clusters = clustersRead ? ctx_.clusters->declare(g) : ClusterLightGrid::Lists{};
     g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
         if (culling_) b.sample(tiles);
-        if (clustersRead) b.buffer(clusters, gdi::BufferAccess::StorageRead);
+        if (clustersRead) ClusterLightGrid::read(b, clusters);
         b.colorTarget(t.color, gdi::LoadOp::Load);
         b.depthTarget(t.depth, gdi::LoadOp::Load);
         t.resolveIn(b);

@@ -37,4 +37,6 @@ constexpr uint32_t kSlotDraws = 37;         // every draw's ObjectConstants (sto
 constexpr uint32_t kSlotVertices = 38;      // the scene's vertices, pulled by shaders (storage buffer)
 constexpr uint32_t kSlotIndices = 39;       // ... and its indices
 constexpr uint32_t kSlotClusterColumns = 40; // the cluster light assignment's lights per tile column (storage buffer)
+constexpr uint32_t kSlotClusterIndices = 41; // the light cluster grid's list entries (R32U texture), sampled
+constexpr uint32_t kSlotClusterIndicesOut = 42; // ... and written, by the light assignment
 }  // namespace fe::render

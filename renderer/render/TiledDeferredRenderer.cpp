@@ -30,11 +30,11 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
     gbuffer_.declare(g, ctx_, depth);
     const graph::TextureId lists = culling_ ? culling_->declare(g, depth) : graph::TextureId{};
     tiles_ = lists;
-    const graph::BufferId clusterLists = clusters_ ? ctx_.clusters->declare(g) : graph::BufferId{};
+    const ClusterLightGrid::Lists clusterLists = clusters_ ? ctx_.clusters->declare(g) : ClusterLightGrid::Lists{};
     g.addPass(clusters_ ? "clustered-lighting" : "tiled-lighting", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);
         if (culling_) b.sample(lists);
-        if (clusters_) b.buffer(clusterLists, gdi::BufferAccess::StorageRead);
+        if (clusters_) ClusterLightGrid::read(b, clusterLists);
         b.storage(output);
     }, [this, output, lists](graph::PassContext& pc) {
         if (culling_) {

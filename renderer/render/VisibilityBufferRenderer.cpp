@@ -38,11 +38,11 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
                            ctx_.eye, &objectUploads_);
         pc.cmd.endRenderPass();
     });
-    const graph::BufferId lists = ctx_.clusters->declare(g);
+    const ClusterLightGrid::Lists lists = ctx_.clusters->declare(g);
     g.addPass("visibility-resolve", [&](graph::PassBuilder& b) {
         b.sample(ids);
         b.sample(depth);
-        b.buffer(lists, gdi::BufferAccess::StorageRead);
+        ClusterLightGrid::read(b, lists);
         b.storage(output);
     }, [this, ids, depth, output](graph::PassContext& pc) {
         gdi::CommandList& cmd = pc.cmd;

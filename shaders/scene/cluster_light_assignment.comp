@@ -119,10 +119,10 @@ void placeLists() {
         place += j < lane ? sTotal[j] : 0u;
         total += sTotal[j];
     }
-    const uint start = feClusterListsStart(), capacity = feClusterCapacity();
+    const uint capacity = feClusterCapacity();
     for (uint c = begin; c < end; ++c) {
         const uint count = clusterWords[2u + 2u * c];
-        clusterWords[1u + 2u * c] = start + place;
+        clusterWords[1u + 2u * c] = place;
         if (place + count > capacity) clusterWords[2u + 2u * c] = 0xffffffffu;  // no room: every light
         place += count;
     }
@@ -165,7 +165,7 @@ void assignCluster(bool fill) {
         for (; bits != 0u; bits &= bits - 1u) {
             const uint i = w * 32u + uint(findLSB(bits));
             if (!feReachesSlice(feLight(i), k, lo, hi)) continue;
-            if (fill && !noRoom) clusterWords[first + count] = i;
+            if (fill && !noRoom) imageStore(clusterIndicesOut, feClusterEntryTexel(first + count), uvec4(i));
             ++count;
         }
     }
