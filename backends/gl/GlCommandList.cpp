@@ -15,6 +15,7 @@ GlCommandList::GlCommandList(GlDevice& d)
     : dev_(d),
       uniformLimits_(gdi::validate::uniformBindingLimits(d.info().limits)),
       storageLimits_(gdi::validate::storageBindingLimits(d.info().limits)),
+      viewportLimits_(gdi::validate::viewportLimits(d.info().limits)),
       stream_(d.takeStream()) {
     restart();
     dev_.liveLists().add(this);

@@ -15,6 +15,7 @@ namespace fe::gl {
 class GlCommandList final : public gdi::CommandList {
 public:
     explicit GlCommandList(GlDevice& d);
+    bool madeBy(const GlDevice& d) const { return &dev_ == &d; }
     ~GlCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -23,7 +24,7 @@ public:
     void setPipeline(gdi::PipelineHandle h) override;
     void setViewport(const gdi::Viewport& v) override {
         checkUnrestricted("setViewport");
-        gdi::validate::viewport(v);
+        gdi::validate::viewport(v, viewportLimits_);
         stream_->push(gdi::cmd::SetViewport{v});
     }
     void setScissor(const gdi::Rect& r) override {
@@ -38,6 +39,7 @@ public:
     }
     void setBlendConstant(const std::array<float, 4>& rgba) override {
         checkUnrestricted("setBlendConstant");
+        gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
         stream_->push(gdi::cmd::SetBlendConstant{rgba});
     }
     void setStencilReference(uint8_t reference) override {
@@ -161,6 +163,7 @@ private:
 
     GlDevice& dev_;
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
+    const gdi::validate::ViewportLimits viewportLimits_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;
     uint64_t destroyEpoch_ = 0;  // the device's destroy count when this recording began
     bool inPass_ = false;

@@ -175,6 +175,7 @@ void GlDevice::initialize(bool validation) {
     }
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // NDC y=-1 lands in memory row 0, as on Vulkan
     gl_.Enable(GL_FRAMEBUFFER_SRGB);  // sRGB targets encode on write, as on Vulkan
+    gl_.ProvokingVertex(GL_FIRST_VERTEX_CONVENTION);  // flat outputs come from a primitive's first vertex, as on Vulkan
     gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl_.Enable(GL_SCISSOR_TEST);
     // Points: gl_PointSize is honoured (Vulkan always does), and gl_PointCoord's (0, 0) is the
@@ -226,6 +227,12 @@ void GlDevice::initialize(bool validation) {
                                                           F::RG32F, F::R32F, F::R32U, F::R11G11B10F});
     info_.limits.depthSampleCounts = countsFor(maxDepth, {F::D32F, F::D24S8});
     info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
+    GLint dims[2] = {0, 0};
+    gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    info_.limits.maxViewportSize = uint32_t(std::max(0, std::min(dims[0], dims[1])));
+    GLfloat bounds[2] = {0, 0};
+    gl_.GetFloatv(GL_VIEWPORT_BOUNDS_RANGE, bounds);
+    info_.limits.viewportBounds = {bounds[0], bounds[1]};
     info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
     for (GLuint axis = 0; axis < 3; ++axis) {
         GLint groups = 0;
@@ -703,6 +710,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
     return thread_.runUrgent([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
         loss_.check("createGraphicsPipeline");
         gdi::validate::graphicsPipelineDesc(d, info_);
+        gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
         Pipeline p;
         p.label = d.debugName ? d.debugName : "";
         Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
@@ -747,6 +755,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
             }
         }
         p.desc = d;
+        p.desc.blend = gdi::validate::writtenTargetBlends(d, fsIface);
         p.desc.debugName = nullptr;
         p.desc.bindings = bindings;
         p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
@@ -1148,7 +1157,7 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     std::vector<GlCommandList*> gls;
     for (gdi::CommandList* list : lists) {
         auto* gl = dynamic_cast<GlCommandList*>(list);
-        if (!gl) throw gdi::Error("submit: a command list of another device");
+        if (!gl || !gl->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
         gls.push_back(gl);
     }
     for (GlCommandList* gl : gls) gl->checkSubmittable();

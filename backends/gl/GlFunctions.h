@@ -10,6 +10,7 @@ namespace fe::gl {
     X(PFNGLGETSTRINGPROC, GetString)                                                                       \
     X(PFNGLGETSTRINGIPROC, GetStringi)                                                                     \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                                                   \
+    X(PFNGLGETFLOATVPROC, GetFloatv)                                                                     \
     X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                                                               \
     X(PFNGLGETERRORPROC, GetError)                                                                         \
     X(PFNGLGETGRAPHICSRESETSTATUSPROC, GetGraphicsResetStatus)                                             \
@@ -19,6 +20,7 @@ namespace fe::gl {
     X(PFNGLPOINTPARAMETERIPROC, PointParameteri)                                                           \
     X(PFNGLDISABLEIPROC, Disablei)                                                                         \
     X(PFNGLCLIPCONTROLPROC, ClipControl)                                                                   \
+    X(PFNGLPROVOKINGVERTEXPROC, ProvokingVertex)                                                           \
     X(PFNGLDEBUGMESSAGECALLBACKPROC, DebugMessageCallback)                                                 \
     X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                                               \
     X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                                                     \

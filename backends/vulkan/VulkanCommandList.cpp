@@ -43,7 +43,8 @@ VkAttachmentStoreOp toStore(gdi::StoreOp op) {
 VulkanCommandList::VulkanCommandList(VulkanDevice& device)
     : dev_(device),
       uniformLimits_(gdi::validate::uniformBindingLimits(device.info().limits)),
-      storageLimits_(gdi::validate::storageBindingLimits(device.info().limits)) {
+      storageLimits_(gdi::validate::storageBindingLimits(device.info().limits)),
+      viewportLimits_(gdi::validate::viewportLimits(device.info().limits)) {
     addRecordingBuffer();
     pushDescriptorSet_ = dev_.cmdPushDescriptorSet;
     destroyEpoch_ = dev_.destroyEpoch();
@@ -632,7 +633,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     ensureRecording();
     checkUnrestricted("setViewport");
-    gdi::validate::viewport(v);
+    gdi::validate::viewport(v, viewportLimits_);
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
 }
@@ -652,6 +653,7 @@ void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
 void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
     ensureRecording();
     checkUnrestricted("setBlendConstant");
+    gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
     vkCmdSetBlendConstants(cb_, rgba.data());
 }
 

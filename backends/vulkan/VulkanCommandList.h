@@ -11,6 +11,7 @@ namespace fe::vk {
 class VulkanCommandList final : public gdi::CommandList {
 public:
     explicit VulkanCommandList(VulkanDevice& device);
+    bool madeBy(const VulkanDevice& d) const { return &dev_ == &d; }
     ~VulkanCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -203,6 +204,7 @@ private:
 
     VulkanDevice& dev_;
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
+    const gdi::validate::ViewportLimits viewportLimits_;
     struct RecordingBuffer {
         VkCommandPool pool = VK_NULL_HANDLE;
         VkCommandBuffer cb = VK_NULL_HANDLE;

@@ -351,6 +351,8 @@ void VulkanDevice::fillInfo() {
     info_.limits.colorSampleCounts = l.framebufferColorSampleCounts & l.framebufferNoAttachmentsSampleCounts & 0xf;
     info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
+    info_.limits.maxViewportSize = std::min(l.maxViewportDimensions[0], l.maxViewportDimensions[1]);
+    info_.limits.viewportBounds = {l.viewportBoundsRange[0], l.viewportBoundsRange[1]};
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
     for (int axis = 0; axis < 3; ++axis) info_.limits.maxComputeWorkGroupCount[axis] = l.maxComputeWorkGroupCount[axis];
     info_.limits.maxStorageTextures = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
@@ -477,7 +479,7 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     gdi::validate::submittedLists(lists);
     for (gdi::CommandList* l : lists) {
         auto* list = dynamic_cast<VulkanCommandList*>(l);
-        if (!list) throw gdi::Error("submit: a command list of another device");
+        if (!list || !list->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
         vk.push_back(list);
     }
     for (VulkanCommandList* list : vk) list->checkSubmittable();

@@ -150,6 +150,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     std::lock_guard lock(mutex_);
     loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_);
+    gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
     const std::string name = d.debugName ? d.debugName : "";
     Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
     if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + name + "': vertexShader is not a vertex shader");
@@ -221,7 +222,9 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = VkSampleCountFlagBits(d.multisample.sampleCount);
     ms.alphaToCoverageEnable = d.multisample.alphaToCoverage;
-    const VkSampleMask sampleMask = d.multisample.sampleMask;
+    // Only the bits of existing samples count (GL ignores the others; lavapipe drew a
+    // single-sample target whenever any bit was set).
+    const VkSampleMask sampleMask = d.multisample.sampleMask & uint32_t((uint64_t(1) << d.multisample.sampleCount) - 1);
     ms.pSampleMask = &sampleMask;
 
     const auto& ds = d.depthStencil;
@@ -239,9 +242,10 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     dss.front = face(ds.front);
     dss.back = face(ds.back);
 
+    const std::vector<gdi::BlendTargetState> written = gdi::validate::writtenTargetBlends(d, fs ? &fs->iface : nullptr);
     std::vector<VkPipelineColorBlendAttachmentState> blends(d.colorFormats.size());
     for (size_t i = 0; i < blends.size(); ++i) {
-        gdi::BlendTargetState b = i < d.blend.size() ? d.blend[i] : gdi::BlendTargetState{};
+        const gdi::BlendTargetState& b = written[i];
         blends[i].blendEnable = b.enable;
         blends[i].srcColorBlendFactor = toBlendFactor(b.srcColor);
         blends[i].dstColorBlendFactor = toBlendFactor(b.dstColor);

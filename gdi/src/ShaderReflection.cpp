@@ -353,6 +353,13 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
                     case SpvDim3D: dimension = 1 + uint8_t(TextureDimension::Texture3D); break;
                     default: break;
                 }
+                // No texture of the device can be bound there: refused here, not left to the draw
+                // (Vulkan's validation layer complained, GL read zeros).
+                if (dimension == 0)
+                    throw fail("'" + std::string(r.name) + "' is a " +
+                               (spvc_type_get_image_multisampled(t) ? "multisampled" : "1D or buffer") +
+                               " texture, which the device has none of: bind 2D, 2D array, cube, cube array or 3D "
+                               "textures (a multisampled target is resolved into one by its render pass)");
             }
             out.bindings.push_back({slot, type, r.name, dimension});
         };
@@ -392,7 +399,10 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
         return [&](const spvc_reflected_resource& r) {
             const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
             const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
-            into.push_back({location, kindOf(spvc_type_get_basetype(t)), spvc_type_get_vector_size(t), r.name});
+            uint32_t locations = std::max(1u, spvc_type_get_columns(t));
+            for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
+                locations *= std::max(1u, spvc_type_get_array_dimension(t, d));
+            into.push_back({location, kindOf(spvc_type_get_basetype(t)), spvc_type_get_vector_size(t), r.name, locations});
         };
     };
     each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));

@@ -380,6 +380,7 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
     if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) && !formatInfo(d.depthFormat).hasDepth)
         fail(what, "depth test or write enabled but the depth format has no depth");
     if (d.blend.size() > d.colorFormats.size()) fail(what, "more blend states than colour targets");
+    blendConstant(d.blendConstant, what.c_str());
     if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip && d.topology != PrimitiveTopology::LineStrip)
         fail(what, "primitiveRestart needs a strip topology (TriangleStrip or LineStrip)");
     if (d.vertexBuffers.size() > kMaxVertexBuffers)
@@ -611,7 +612,7 @@ void VertexInputs::indexedIndirect(const char* what) const {
         throw Error(std::string(what) + ": the index buffer must be bound at offset 0 (records hold firstIndex)");
 }
 
-void badViewport(const Viewport& v) {
+void badViewport(const Viewport& v, const ViewportLimits& l) {
     std::string why;
     if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.width) && std::isfinite(v.height)))
         why = "not finite";
@@ -620,6 +621,11 @@ void badViewport(const Viewport& v) {
               "backend; flip y in the projection instead";
     else if (!(v.width > 0 && v.height > 0))
         why = "width and height must be positive";
+    else if (!(v.width <= l.maxSize && v.height <= l.maxSize))
+        why = "width and height must be at most the device's maxViewportSize (" + std::to_string(uint64_t(l.maxSize)) + ")";
+    else if (!(v.x >= l.lo && v.y >= l.lo && v.x + v.width <= l.hi && v.y + v.height <= l.hi))
+        why = "x, y, x + width and y + height must lie within the device's viewportBounds [" + std::to_string(int64_t(l.lo)) +
+              ", " + std::to_string(int64_t(l.hi)) + "]";
     else
         why = "minDepth and maxDepth must lie in [0, 1]";
     throw Error("setViewport {" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.width) + ", " +
@@ -865,6 +871,25 @@ void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, c
                            scalarKindName(out.kind) + ", colour target " + std::to_string(out.location) + " is " +
                            std::string(f.name) + " (" + scalarKindName(want) + ")");
     }
+}
+
+void blendedTargets(const GraphicsPipelineDesc& d, const std::function<FormatCaps(Format)>& caps) {
+    for (size_t i = 0; i < d.blend.size() && i < d.colorFormats.size(); ++i)
+        if (d.blend[i].enable && !caps(d.colorFormats[i]).blend)
+            fail(label("graphics pipeline", d.debugName),
+                 "colour target " + std::to_string(i) + " (" + std::string(formatInfo(d.colorFormats[i]).name) +
+                     ") is blended, which this device cannot do for that format (FormatCaps::blend)");
+}
+
+std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d, const ShaderInterface* fs) {
+    std::vector<BlendTargetState> blends(d.colorFormats.size());
+    for (size_t i = 0; i < blends.size(); ++i) {
+        if (i < d.blend.size()) blends[i] = d.blend[i];
+        const bool written = fs && std::any_of(fs->outputs.begin(), fs->outputs.end(),
+                                               [&](const ShaderInterface::Variable& o) { return i >= o.location && i < o.location + o.locations; });
+        if (!written) blends[i].writeMask = ColorMask::None;
+    }
+    return blends;
 }
 
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline) {

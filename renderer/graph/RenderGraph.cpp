@@ -147,6 +147,18 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
     if (setup) setup(b);
     compiled_ = false;
 }
+void RenderGraph::replaceImport(TextureId id, gdi::TextureHandle texture, const gdi::TextureDesc& desc) {
+    if (id.index >= textures_.size()) throw gdi::Error("render graph: invalid texture id");
+    TextureInfo& t = textures_[id.index];
+    const std::string what = "render graph: replacing imported texture '" + t.name + "': ";
+    if (!t.imported) throw gdi::Error(what + "it is not imported");
+    if (!texture) throw gdi::Error(what + "a null handle");
+    if (desc.dimension != t.desc.dimension || desc.format != t.desc.format || desc.sampleCount != t.desc.sampleCount)
+        throw gdi::Error(what + "the new texture differs in dimension, format or samples");
+    t.desc = desc;
+    handles_[id.index] = texture;
+}
+
 
 const TextureInfo& RenderGraph::texture(TextureId id) const {
     if (id.index >= textures_.size()) throw gdi::Error("render graph: invalid texture id");

@@ -169,6 +169,9 @@ public:
 
     TextureId createTexture(std::string name, const TransientTextureDesc& desc);
     TextureId importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
+    // Points an imported texture at another of the same kind, format and samples (a buffer that
+    // grew: its size may differ) for the frames recorded from now on; no recompile is needed.
+    void replaceImport(TextureId id, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
     void markOutput(TextureId texture);  // its producers are never culled
     BufferId createBuffer(std::string name, const TransientBufferDesc& desc);
     BufferId importBuffer(std::string name, gdi::BufferHandle buffer, uint64_t size);

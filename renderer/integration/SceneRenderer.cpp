@@ -307,6 +307,10 @@ LightListStatistics measureLightLists(gdi::Device& device, const assets::Scene& 
     SceneRenderer r(device, scene, settings);
     if (prepare) prepare(r);
     r.renderFrame();
+    // Cluster lists that overflowed have grown within framesInFlight frames (ClusterLightGrid::
+    // beginFrame): the statistics are those of the frames after that.
+    for (uint32_t i = 0; i <= r.framesInFlight() && r.clusters() && r.clusters()->statistics().overflowed; ++i)
+        r.renderFrame();
     return r.lightListStatistics();
 }
 
@@ -477,6 +481,7 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     fc.lightRange = glm::uvec4(0, unshadowed, 1, 0);
 
     gdi::CommandList& cmd = queue_->beginFrame();
+    if (clusters_) clusters_->beginFrame();  // the lists grow after an overflow
     frameConstants_ = queue_->upload(fc);
     // History from the second frame on; camera motion is handled by reprojection and clamping.
     postProcess_->beginFrame(*queue_, unjittered, frameIndex_ > 1);

@@ -101,7 +101,9 @@ public:
     // The camera of the next frames (a camera path); the scene's until this is called.
     void setCamera(const assets::Camera& camera);
     // The light cluster grid (null unless a clustered technique or blended surfaces need it).
+    // Lists that overflow grow for the frames framesInFlight() after (ClusterLightGrid::beginFrame).
     const ClusterLightGrid* clusters() const { return clusters_.get(); }
+    uint32_t framesInFlight() const { return queue_->framesInFlight(); }
     // How many lights the technique's shading loop walked per pixel in the last frame. Throws
     // unless the renderer was made with RenderSettings::lightListStatistics.
     LightListStatistics lightListStatistics();

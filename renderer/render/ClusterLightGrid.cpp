@@ -19,16 +19,18 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     // them). The buffer: the entries asked for, (first entry, count) per cluster; the entries in a
     // texture of kIndexWidth texels a row (fe_clusters.glsl says why), as many rows as the
     // device allows (the lists past its end shade every light, counted).
+    mostEntries_ = std::max<uint64_t>(1, uint64_t(clusterCount()) * c.scene.lightCount());
+    maxRows_ = std::max(1u, c.device.info().limits.maxTextureSize2D);
     const uint64_t wanted = uint64_t(clusterCount()) * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
-    const uint32_t rows = uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1,
-                                                        c.device.info().limits.maxTextureSize2D));
-    capacity_ = rows * kIndexWidth;
+    createEntries(uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1, maxRows_)));
     lists_ = objects_.add(c.device.createBuffer({.size = (1 + 2 * uint64_t(clusterCount())) * sizeof(uint32_t),
                                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
                                                  .debugName = "cluster light lists"}));
-    indices_ = objects_.add(c.device.createTexture({.format = gdi::Format::R32U, .width = kIndexWidth, .height = rows,
-                                                    .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled,
-                                                    .debugName = "cluster light list entries"}));
+    for (uint32_t i = 0; i < c.queue.framesInFlight(); ++i)
+        asked_.push_back(objects_.add(c.device.createBuffer({.size = sizeof(uint32_t), .usage = gdi::BufferUsage::CopyDst,
+                                                             .access = gdi::MemoryAccess::Readback,
+                                                             .debugName = "cluster light entries asked"})));
+    askedWritten_.assign(asked_.size(), false);
     // The assignment's scratch: per tile column, a bit per light.
     const uint64_t columns = uint64_t(tiles_.x) * tiles_.y;
     columnMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
@@ -38,6 +40,27 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                               .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
     pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "cluster light assignment"}));
+}
+
+void ClusterLightGrid::createEntries(uint32_t rows) {
+    objects_.destroy(indices_);  // retired once the frames in flight that read it complete
+    indices_ = objects_.add(ctx_.device.createTexture({.format = gdi::Format::R32U, .width = kIndexWidth, .height = rows,
+                                                       .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled,
+                                                       .debugName = "cluster light list entries"}));
+    capacity_ = rows * kIndexWidth;
+}
+
+void ClusterLightGrid::beginFrame() {
+    const size_t slot = ctx_.queue.frameNumber() % asked_.size();
+    if (!askedWritten_[slot]) return;
+    askedWritten_[slot] = false;
+    uint32_t asked = 0;
+    std::memcpy(&asked, ctx_.device.map(asked_[slot]), sizeof asked);
+    const uint32_t rows = capacity_ / kIndexWidth;
+    if (asked <= capacity_ || rows >= maxRows_) return;
+    const uint64_t wanted = std::min<uint64_t>(uint64_t(asked) + asked / 4, mostEntries_);
+    createEntries(uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, rows + 1, maxRows_)));
+    if (declaredIn_) declaredIn_->replaceImport(declared_.entries, indices_, ctx_.device.desc(indices_));
 }
 
 glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::Bounds& bounds) {
@@ -95,6 +118,12 @@ ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
                       cmd.setConstants(glm::uvec4(phase, 0u, 0u, 0u));
                       cmd.dispatch(groups[phase]);
                   }
+                  // The entries this frame asked for, for beginFrame framesInFlight frames on.
+                  const size_t slot = ctx_.queue.frameNumber() % asked_.size();
+                  cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = rw, .after = gdi::BufferAccess::CopySrc, .size = 4});
+                  cmd.copyBuffer(asked_[slot], 0, lists_, 0, sizeof(uint32_t));
+                  cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = gdi::BufferAccess::CopySrc, .after = rw, .size = 4});
+                  askedWritten_[slot] = true;
               });
     return declared_;
 }

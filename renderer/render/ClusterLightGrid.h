@@ -19,10 +19,12 @@
 // lights, places the lists one after another in one shared index array (a prefix over the
 // clusters in order, so the layout is the same on every device and run), then fills them; a
 // crowded far cluster takes what near empty ones leave; the array holds kMeanListCapacity
-// lights per cluster on average. A cluster past its end is marked to shade every light and
-// counted (Statistics), so a light is never dropped.
+// lights per cluster on average, and grows when a frame asks for more (beginFrame). A cluster
+// past its end is marked to shade every light and counted (Statistics), so a light is never
+// dropped, and the lists hold it again a few frames later.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "fe/gdi/DeviceObjects.h"
 #include "render/TechniqueRenderer.h"
@@ -54,6 +56,13 @@ public:
     // (kSlotClusterLights, kSlotClusterIndices).
     static void read(graph::PassBuilder& b, const Lists& lists);
     void bindLists(gdi::CommandList& cmd) const;
+    // Before each frame is recorded (after CommandQueue::beginFrame): when the frame
+    // framesInFlight ago asked for more entries than the lists hold, they grow to a quarter more
+    // than it asked (at most what one 2D texture of the device holds) from this frame on. Each
+    // frame copies the count it asked into a readback ring; the queue has waited for that frame,
+    // so nothing here waits. Until then the clusters past the end shade every light (counted):
+    // growth changes the speed, never the picture.
+    void beginFrame();
 
     // The frame's slicing (FrameConstants::clusters): the near plane to the farthest corner of
     // the scene's bounds along the view axis.
@@ -78,9 +87,15 @@ private:
     TechniqueContext& ctx_;
     bool uniformLights_ = false;
     glm::uvec2 tiles_{0};
-    uint32_t capacity_ = 0;
+    // The entries texture, (re)made with `rows` rows of kIndexWidth.
+    void createEntries(uint32_t rows);
+
+    uint32_t capacity_ = 0, maxRows_ = 1;
+    uint64_t mostEntries_ = 0;  // every light in every cluster: more is never asked
     gdi::BufferHandle lists_;
     gdi::TextureHandle indices_;
+    std::vector<gdi::BufferHandle> asked_;  // per frame in flight: the entries that frame asked for
+    std::vector<bool> askedWritten_;
     gdi::BufferHandle columnMasks_;  // the assignment's: the lights that reach each tile column
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;

@@ -11,6 +11,75 @@ using namespace gdi;
 
 namespace {
 
+// Flat outputs take the first vertex's value (Vulkan's provoking vertex; GL's default is the
+// last, which the device changes). Left half: a triangle list of two triangles whose first
+// vertices are red and green; right half: a strip of two triangles (the first vertex of
+// triangle i is vertex i: blue, then white). Each triangle's other vertices are black.
+std::vector<CaseImage> flatFirstVertex(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle t = caseTarget(o);
+    GraphicsPipelineDesc desc{.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/flat_color.vert"),
+                              .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/flat_color.frag"),
+                              .vertexBuffers = {{.stride = 24, .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}}},
+                              .colorFormats = {Format::RGBA8}, .debugName = "flat list"};
+    const PipelineHandle list = o.add(d.createGraphicsPipeline(desc));
+    desc.topology = PrimitiveTopology::TriangleStrip;
+    desc.debugName = "flat strip";
+    const PipelineHandle strip = o.add(d.createGraphicsPipeline(desc));
+    struct V {
+        float x, y, r, g, b, a;
+    };
+    const V black = {0, 0, 0, 0, 0, 1};
+    auto at = [](V v, float x, float y) { return V{x, y, v.r, v.g, v.b, v.a}; };
+    const V red{0, 0, 1, 0, 0, 1}, green{0, 0, 0, 1, 0, 1}, blue{0, 0, 0, 0, 1, 1}, white{0, 0, 1, 1, 1, 1};
+    const std::vector<V> v = {
+        // list: top-left triangle, then bottom-right, of the left half
+        at(red, -1, -1), at(black, 0, -1), at(black, -1, 1),
+        at(green, 0, 1), at(black, -1, 1), at(black, 0, -1),
+        // strip over the right half: (v0 v1 v2) then (v1 v2 v3)
+        at(blue, 0, -1), at(white, 0, 1), at(black, 1, -1), at(black, 1, 1)};
+    const BufferHandle vb = o.add(d.createBuffer({.size = v.size() * sizeof(V), .usage = BufferUsage::Vertex}, bytesOf(v)));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 0}}}});
+    cmd->setVertexBuffer(0, vb);
+    cmd->setPipeline(list);
+    cmd->draw(6);
+    cmd->setPipeline(strip);
+    cmd->draw(4, 1, 6, 0);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    // Pixel centres off the diagonals: which triangle covers (x, y) in each half.
+    const Image expected = expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) -> Texel {
+        const float u = (float(x % (kCaseSize / 2)) + 0.5f) / float(kCaseSize / 2), w = (float(y) + 0.5f) / float(kCaseSize);
+        if (x < kCaseSize / 2) return u + w < 1.0f ? Texel{1, 0, 0, 1} : Texel{0, 1, 0, 1};
+        return u + w < 1.0f ? Texel{0, 0, 1, 1} : Texel{1, 1, 1, 1};
+    });
+    return {drawn8("first_vertex", d.readTexture(t), expected)};
+}
+
+// A pipeline with two colour targets whose fragment shader writes only location 0: target 1
+// keeps what the pass cleared it to (the device masks its writes; Vulkan had stored stale bytes
+// there, GL zeros).
+std::vector<CaseImage> unwrittenTargetKeepsContents(Device& d) {
+    DeviceObjects o(d);
+    const TextureHandle t0 = caseTarget(o), t1 = caseTarget(o);
+    const float params[8] = {1, 0, 1, 1, 0.5f, 0, 0, 0};  // fullscreen_ubo.vert's colour and depth
+    const BufferHandle colour = o.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+         .colorFormats = {Format::RGBA8, Format::RGBA8}, .debugName = "one output, two targets"}));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t0, .clear = {0, 0, 0, 1}}, {.texture = t1, .clear = {0, 0.5f, 0, 1}}}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, colour);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    return {exact("written", d.readTexture(t0), solid(Format::RGBA8, {1, 0, 1, 1})),
+            drawn8("unwritten_keeps_clear", d.readTexture(t1), solid(Format::RGBA8, {0, 0.5f, 0, 1}))};
+}
+
 // draw(6, 2, 0, 3) and drawIndexed(6, 1, 0, 0, 6): the instances are 3, 4 and 6 (FE_INSTANCE_ID
 // counts from firstInstance on both backends; GL adds gl_BaseInstance to gl_InstanceID).
 std::vector<CaseImage> firstInstance(Device& d) {
@@ -348,6 +417,8 @@ std::vector<CaseImage> clearBufferCase(Device& d) {
 std::vector<Case> fixedFunctionCases() {
     return {
         {"first_instance", firstInstance},
+        {"flat_first_vertex", flatFirstVertex},
+        {"unwritten_target_keeps_contents", unwrittenTargetKeepsContents},
         {"point_size_and_coord", pointSizeAndCoord},
         {"depth_write_without_test", depthWriteWithoutTest},
         {"mip_filter_none", mipFilterNone},

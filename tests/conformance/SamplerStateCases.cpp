@@ -297,7 +297,8 @@ std::vector<CaseImage> zeroInitialised(Device& d) {
 // MultisampleState::sampleMask: a full-screen opaque white draw over black into a 4-sample
 // target writes only the samples whose mask bits are set, so the resolve averages to the
 // fraction of bits set (1, 2 and 3 of 4: 0.25, 0.5, 0.75). On a single-sample target bit 0
-// decides: mask 0 draws nothing, mask 1 everything. A mask that is ignored gives white.
+// decides: mask 0 and 0xe draw nothing (lavapipe drew 0xe: any bit set), 1 and all ones
+// everything. A mask that is ignored gives white.
 std::vector<CaseImage> sampleMask(Device& d) {
     DeviceObjects o(d);
     const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
@@ -318,10 +319,10 @@ std::vector<CaseImage> sampleMask(Device& d) {
         d.wait(d.submit(*cmd));
     };
     std::vector<CaseImage> out;
-    for (uint32_t mask : {0u, 1u}) {
+    for (uint32_t mask : {0u, 1u, 0xeu, 0xffffffffu}) {
         const TextureHandle t = caseTarget(o);
         drawInto(pipeline(1, mask), {.texture = t, .clear = {0, 0, 0, 1}});
-        const float v = float(mask);
+        const float v = float(mask & 1u);
         out.push_back(exact("single_sample_mask" + std::to_string(mask), d.readTexture(t), solid(Format::RGBA8, {v, v, v, 1})));
     }
     if (d.info().limits.colorSampleCounts & 4) {

@@ -1048,3 +1048,54 @@ TEST(StorageTextureLimit, RenumberingChangesOnlyTheStorageTextureBindings) {
     for (const auto& x : named.bindings) names.insert(x.name);
     EXPECT_EQ(names, (std::set<std::string>{"compute.first", "compute.second", "compute.Scale"}));
 }
+
+// Mistakes a port makes with pipelines and dynamic state (found porting samples): each is the
+// same Error on every backend before any native call.
+TEST_P(DeviceErrors, PortingMistakesOfState) {
+    auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/ubo_color.frag")});
+    // Blending an integer target: Vulkan's validation layer objected, GL ignored it.
+    EXPECT_NE(errorOf([&] {
+                  device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+                                                  .blend = {{.enable = true}}, .colorFormats = {Format::R32U}});
+              }).find("colour target 0 (R32U) is blended"),
+              std::string::npos);
+    GraphicsPipelineDesc nanConstant{.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}};
+    nanConstant.blendConstant[1] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_NE(errorOf([&] { device->createGraphicsPipeline(nanConstant); }).find("blend constant values must be finite"),
+              std::string::npos);
+    // A sampler2DMS: no texture of the device can be bound to it.
+    EXPECT_NE(errorOf([&] {
+                  device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/sample_ms.frag")});
+              }).find("'tex' is a multisampled texture, which the device has none of"),
+              std::string::npos);
+    auto cmd = device->createCommandList();
+    const DeviceLimits& l = device->info().limits;
+    ASSERT_GT(l.maxViewportSize, 0u);
+    ASSERT_LT(l.viewportBounds[0], 0.0f);
+    EXPECT_NE(errorOf([&] { cmd->setViewport({0, 0, float(l.maxViewportSize) * 2, 64}); }).find("at most the device's maxViewportSize"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setViewport({l.viewportBounds[0] * 2, 0, 16, 16}); }).find("within the device's viewportBounds"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setViewport({0, 0, 1e30f, 64}); }).find("maxViewportSize"), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setBlendConstant({0, 0, std::numeric_limits<float>::infinity(), 1}); }).find("must be finite"),
+              std::string::npos);
+    device->destroy(fs);
+    device->destroy(vs);
+}
+
+// A list made by one device submitted to another: GL replayed it on the wrong context (whose
+// objects share the names), Vulkan's validation layer objected.
+TEST_P(DeviceErrors, ListOfAnotherDeviceIsRefused) {
+    auto other = createDevice({.backend = GetParam(), .validation = true});
+    const BufferHandle mine = device->createBuffer({.size = 16});
+    const BufferHandle theirs = other->createBuffer({.size = 16});
+    auto list = other->createCommandList();
+    list->clearBuffer(theirs, 0, 16, 0x5555u);
+    EXPECT_NE(errorOf([&] { device->submit(*list); }).find("a command list of another device"), std::string::npos);
+    const std::vector<uint8_t> bytes = device->readBuffer(mine, 0, 16);
+    EXPECT_EQ(bytes, std::vector<uint8_t>(16, 0));  // untouched
+    other->wait(other->submit(*list));
+    other->destroy(theirs);
+    device->destroy(mine);
+}

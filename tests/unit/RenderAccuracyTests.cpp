@@ -280,7 +280,8 @@ TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {
 // The clusters' lists share an index array of ClusterLightGrid::kMeanListCapacity entries per
 // cluster; a cluster that finds no room left shades every light and is counted. 300 weak lights
 // reaching every pixel ask for 300 per cluster: the later clusters overflow, and the image still
-// equals forward's.
+// equals forward's. The lists then grow: framesInFlight frames later none overflows, and the
+// image is the same.
 TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
     assets::Scene scene1 = assets::makeBuiltinScene("lights", {.lights = 300});
     for (auto& l : scene1.lights) {
@@ -296,8 +297,20 @@ TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
     EXPECT_GT(st.entries, r.clusters()->listCapacity());
     render::SceneRenderer f(*device, scene1, {.technique = "forward", .width = 48, .height = 32});
     f.renderFrame();
-    Stats s = compare(clustered, f.readOutput(), 1e-5, 1e-5);
+    const gdi::Image forward = f.readOutput();
+    Stats s = compare(clustered, forward, 1e-5, 1e-5);
     EXPECT_EQ(s.fractionOver, 0.0) << "max relative error " << s.maxRel;
+
+    const uint32_t asked = st.entries;
+    for (uint32_t i = 0; i < r.framesInFlight(); ++i) r.renderFrame();
+    const gdi::Image grown = r.readOutput();
+    const render::ClusterLightGrid::Statistics after = r.clusters()->statistics();
+    EXPECT_EQ(after.overflowed, 0u);
+    EXPECT_EQ(after.entries, asked);
+    EXPECT_GE(r.clusters()->listCapacity(), asked);
+    EXPECT_EQ(after.maxLights, 300u);
+    Stats g = compare(grown, forward, 1e-5, 1e-5);
+    EXPECT_EQ(g.fractionOver, 0.0) << "after growing: max relative error " << g.maxRel;
 }
 
 // A tile list holds at most TileLightCulling::kMaxListLength lights; a tile with more is marked

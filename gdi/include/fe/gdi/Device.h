@@ -142,7 +142,15 @@
 //  - Points obey gl_PointSize; gl_PointCoord (0, 0) is the point's top-left texel.
 //  - depthWrite without depthTest writes every fragment's depth (the test always passes).
 //  - MipFilter::None reads level 0 and minifies with minFilter, magnifies with magFilter.
-//  - MultisampleState::sampleMask with bit 0 clear draws nothing on a single-sample target.
+//  - MultisampleState::sampleMask with bit 0 clear draws nothing on a single-sample target;
+//    bits beyond the sample count are ignored.
+//  - Flat-shaded (`flat`) outputs take the value of a primitive's first vertex (Vulkan's
+//    provoking vertex; GL is set to its first-vertex convention).
+//  - A colour target the fragment shader has no output for (or every target, without a fragment
+//    shader) keeps its contents: the device masks its writes (the APIs leave it undefined).
+//  - Blending a colour target whose format cannot be blended here (FormatCaps::blend: never the
+//    integer formats) is an Error at createGraphicsPipeline; so is a shader declaring a texture
+//    kind the device has none of (sampler2DMS, 1D, buffer textures) at createShader.
 //  - Primitive restart (strip topologies) uses the index 0xFFFF / 0xFFFFFFFF.
 //  - New buffers and textures read as zeros (block-compressed textures excepted: upload them).
 //  - readTexture of D24S8 gives depth in the low 24 bits and stencil in the high 8 of each
@@ -495,7 +503,9 @@ struct RasterState {
     // Depth bias (shadow maps): offset = depthBiasSlope * m + depthBiasConstant * r, where m is
     // the primitive's maximum depth slope and r the smallest resolvable difference of the depth
     // format (D32F: 2^(e - 23) for the primitive's largest exponent e), then clamped to
-    // +-depthBiasClamp when that is not 0. Identical formula on Vulkan and GL.
+    // +-depthBiasClamp when that is not 0. Identical formula on Vulkan and GL. For the UNORM
+    // formats (D16, D24S8) both APIs let the driver choose r between 2^-n and 2 x 2^-n for n
+    // depth bits: llvmpipe and lavapipe take 2 x 2^-n, so size a constant bias for that.
     float depthBiasConstant = 0.0f;
     float depthBiasSlope = 0.0f;
     float depthBiasClamp = 0.0f;
@@ -934,6 +944,11 @@ struct DeviceLimits {
     uint64_t maxAllocationSize = 0;
     uint32_t uniformBufferOffsetAlignment = 0;
     uint32_t storageBufferOffsetAlignment = 0;
+    // Viewports: width and height at most maxViewportSize; x, y, x + width and y + height within
+    // viewportBounds (Vulkan's maxViewportDimensions and viewportBoundsRange, GL's
+    // GL_MAX_VIEWPORT_DIMS and GL_VIEWPORT_BOUNDS_RANGE). setViewport refuses others.
+    uint32_t maxViewportSize = 0;
+    std::array<float, 2> viewportBounds = {0, 0};
     // Nanoseconds per unit of the timestamps resolveQueries writes (queryResults converts).
     double timestampPeriodNs = 1.0;
 };

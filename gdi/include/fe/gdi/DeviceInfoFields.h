@@ -29,6 +29,8 @@ constexpr void forEachField(const DeviceLimits& l, Visitor&& visit) {
     visit("maxAllocationSize", l.maxAllocationSize);
     visit("uniformBufferOffsetAlignment", l.uniformBufferOffsetAlignment);
     visit("storageBufferOffsetAlignment", l.storageBufferOffsetAlignment);
+    visit("maxViewportSize", l.maxViewportSize);
+    visit("viewportBounds", l.viewportBounds);  // min, max
     visit("timestampPeriodNs", l.timestampPeriodNs);
 }
 

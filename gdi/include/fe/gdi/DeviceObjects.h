@@ -19,6 +19,7 @@
 // flight on the GPU waits for them in its own destructor body, which runs before its members go.
 #pragma once
 #include <algorithm>
+#include <cstdio>
 #include <variant>
 #include <vector>
 
@@ -31,7 +32,18 @@ public:
     explicit DeviceObjects(Device& device) : device_(&device) {}
     DeviceObjects(const DeviceObjects&) = delete;
     DeviceObjects& operator=(const DeviceObjects&) = delete;
-    ~DeviceObjects() { clear(); }
+    // A destroy that fails here (a view of a texture kept alive elsewhere) cannot throw out of a
+    // destructor: it is reported on stderr and that object is left to the device, which frees it
+    // when the device goes.
+    ~DeviceObjects() {
+        while (!objects_.empty()) {
+            try {
+                clear();
+            } catch (const Error& e) {
+                std::fprintf(stderr, "fe: DeviceObjects: %s (left to the device)\n", e.what());
+            }
+        }
+    }
 
     // Takes ownership of `h` (a null handle is ignored) and returns it.
     template <class H>

@@ -36,6 +36,7 @@ struct ShaderInterface {
         ScalarKind kind = ScalarKind::Float;
         uint32_t components = 1;
         std::string name;
+        uint32_t locations = 1;  // consecutive locations taken (arrays, matrices)
     };
     ShaderStage stage = ShaderStage::None;
     std::vector<Binding> bindings;   // the ones the entry point uses, by slot

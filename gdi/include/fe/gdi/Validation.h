@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <functional>
 #include <initializer_list>
 #include <bit>
 #include <optional>
@@ -261,6 +262,13 @@ std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declar
 void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline);
 // Every fragment output that lands on a colour target has the target format's scalar kind.
 void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline);
+// Every blended colour target's format can be blended on this device (FormatCaps::blend: never
+// integer formats; 32-bit floats only where the device says so).
+void blendedTargets(const GraphicsPipelineDesc& d, const std::function<FormatCaps(Format)>& caps);
+// The pipeline's blend states with writes masked off for the colour targets the fragment shader
+// (null: none) has no output for: such a target keeps its contents on every backend, where the
+// APIs leave it undefined (Vulkan stored stale bytes there, GL zeros).
+std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d, const ShaderInterface* fs);
 // A compute shader's work group fits the device.
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline);
 // Queries: a set's description (feature, count), and each recording's rules, with one message
@@ -401,12 +409,27 @@ private:
 // setViewport: finite, a positive width and height, depths within [0, 1]. Vulkan's negative
 // height (the y flip of ports from GL) is refused on every backend: clip space already is
 // Vulkan's, y down, so the projection flips y instead.
-[[noreturn, gnu::cold]] void badViewport(const Viewport& v);
-inline void viewport(const Viewport& v) {
+// setBlendConstant and GraphicsPipelineDesc::blendConstant: finite values (NaN blends differently
+// per driver).
+inline void blendConstant(const float* rgba, const char* what) {
+    for (int i = 0; i < 4; ++i)
+        if (!(rgba[i] - rgba[i] == 0)) [[unlikely]]
+            throw Error(std::string(what) + ": blend constant values must be finite");
+}
+struct ViewportLimits {
+    float maxSize = 0, lo = 0, hi = 0;  // DeviceLimits::maxViewportSize and viewportBounds
+};
+inline ViewportLimits viewportLimits(const DeviceLimits& l) {
+    return {float(l.maxViewportSize), l.viewportBounds[0], l.viewportBounds[1]};
+}
+[[noreturn, gnu::cold]] void badViewport(const Viewport& v, const ViewportLimits& l);
+inline void viewport(const Viewport& v, const ViewportLimits& l) {
     const bool ok = v.width > 0 && v.height > 0 && v.x - v.x == 0 && v.y - v.y == 0 && v.width - v.width == 0 &&
-                    v.height - v.height == 0 && v.minDepth >= 0 && v.minDepth <= 1 && v.maxDepth >= 0 && v.maxDepth <= 1;
+                    v.height - v.height == 0 && v.minDepth >= 0 && v.minDepth <= 1 && v.maxDepth >= 0 && v.maxDepth <= 1 &&
+                    v.width <= l.maxSize && v.height <= l.maxSize && v.x >= l.lo && v.y >= l.lo && v.x + v.width <= l.hi &&
+                    v.y + v.height <= l.hi;
     if (!ok) [[unlikely]]
-        badViewport(v);
+        badViewport(v, l);
 }
 // setScissor: the part of the rectangle right of x = 0 and below y = 0, which both backends
 // set (a rectangle partly outside the target clips it, as GL's does; Vulkan refuses negative
