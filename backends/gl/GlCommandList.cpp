@@ -390,12 +390,14 @@ void GlCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
 void GlCommandList::beginTimer(gdi::TimerHandle h) {
     outside("beginTimer");
     (void)dev_.timer(h);
+    queries_.beginTimer(h.id);
     stream_->push(cmd::BeginTimer{h});
 }
 void GlCommandList::endTimer(gdi::TimerHandle h) {
     checkUnrestricted("endTimer");
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     (void)dev_.timer(h);
+    queries_.endTimer(h.id);
     stream_->push(cmd::EndTimer{h});
 }
 QuerySet& GlCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* what) {

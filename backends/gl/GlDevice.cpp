@@ -1166,6 +1166,9 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     gdi::validate::queriesOncePerSubmission(queries);
     std::vector<gdi::validate::QueryRecording::Use> usedQueries;
     for (const auto* q : queries) usedQueries.insert(usedQueries.end(), q->used().begin(), q->used().end());
+    std::vector<uint32_t> usedTimers;  // copied: finishing a list starts its next recording
+    for (const auto* q : queries)
+        for (const auto& t : q->timers()) usedTimers.push_back(t.first);
     std::vector<std::unique_ptr<gdi::cmd::CommandStream>> streams;
     for (GlCommandList* gl : gls) streams.push_back(gl->finish());
     if (gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit")) {
@@ -1174,10 +1177,12 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     }
     std::lock_guard lock(submitMutex_);
     const gdi::FenceValue value = nextFence_++;
-    if (!usedQueries.empty()) {
+    {
         std::lock_guard queriesLock(queriesMutex_);
         for (const auto& u : usedQueries)
             if (QuerySet* q = querySets_.find({u.set})) q->submitted[u.index] = value;
+        for (uint32_t id : usedTimers)
+            if (Timer* timer = timers_.find({id})) timer->submitted = value;
     }
     auto shared = std::make_shared<decltype(streams)>(std::move(streams));
     thread_.post([this, value, shared] {
@@ -1245,7 +1250,14 @@ void GlDevice::waitIdle() {
 }
 
 std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
-    return thread_.run([&]() -> std::optional<double> {
+    loss_.check("timerNanoseconds");
+    {
+        // Not before its submission completed: the read would queue behind the replay and wait.
+        std::lock_guard lock(queriesMutex_);
+        const gdi::FenceValue submitted = timer(h).submitted;
+        if (submitted == 0 || !isComplete(submitted)) return std::nullopt;
+    }
+    return thread_.runUrgent([&]() -> std::optional<double> {
         loss_.check("timerNanoseconds");
         Timer& t = timer(h);
         if (!t.used) return std::nullopt;

@@ -105,6 +105,7 @@ struct Pipeline {
 struct Timer {
     GLuint queries[2] = {0, 0};
     bool used = false;
+    gdi::FenceValue submitted = 0;  // the submission that last used it (0: none; queriesMutex_)
     // Software rasterizers: wall-clock time between two glFinish calls instead of GL_TIMESTAMP.
     std::chrono::steady_clock::time_point begin, end;
 };

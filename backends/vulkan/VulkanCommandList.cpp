@@ -1100,6 +1100,7 @@ void VulkanCommandList::generateMips(gdi::TextureHandle h) {
 void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
     outsidePass("beginTimer");  // the query reset below must be outside rendering
     Timer& t = usedTimer(h);
+    queries_.beginTimer(h.id);
     vkCmdResetQueryPool(cb_, dev_.queryPool(), t.firstQuery, 2);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery);
 }
@@ -1109,6 +1110,7 @@ void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     checkUnrestricted("endTimer");
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     Timer& t = usedTimer(h);
+    queries_.endTimer(h.id);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
 }
 

@@ -491,6 +491,9 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (const auto* q : queries)
         for (const auto& u : q->used()) usedQueries.push_back({&querySets_.get({u.set}, "query set"), u.index});
     for (auto [set, index] : usedQueries) resets.push_back({set->pool, index});
+    std::vector<Timer*> usedTimers;  // copied: finishing a list may start its next recording
+    for (const auto* q : queries)
+        for (const auto& t : q->timers()) usedTimers.push_back(&timer({t.first}));
     if (!resets.empty())
         recordInitialTransition([resets](VkCommandBuffer cb) {
             for (auto [pool, index] : resets) vkCmdResetQueryPool(cb, pool, index, 1);
@@ -518,6 +521,7 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     gdi::FenceValue value = nextFence_++;
     inFlight_.push_back({value, fence});
     for (auto [set, index] : usedQueries) set->submitted[index] = value;
+    for (Timer* t : usedTimers) t->submitted = value;
     for (VulkanCommandList* list : vk) list->submitted(value);
     if (init) freeAfter(value, init);
     pollFences();
@@ -918,6 +922,9 @@ std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
     std::lock_guard lock(mutex_);
     loss_.check("timerNanoseconds");
     Timer& t = timer(h);
+    // Not before its submission completed: lavapipe's vkGetQueryPoolResults waited for it.
+    pollFences();
+    if (t.submitted == 0 || t.submitted > completed_) return std::nullopt;
     uint64_t ticks[2];
     VkResult r = vkGetQueryPoolResults(device_, queryPool_, t.firstQuery, 2, sizeof(ticks), ticks, sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT);

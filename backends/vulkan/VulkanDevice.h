@@ -117,6 +117,7 @@ struct Pipeline {
 
 struct Timer {
     uint32_t firstQuery = 0;
+    gdi::FenceValue submitted = 0;  // the submission that last used it (0: none)
 };
 
 struct QuerySet {

@@ -999,6 +999,26 @@ void QueryRecording::endPass() const {
 void QueryRecording::finish() const {
     for (const auto& a : active_)
         if (a) fail("submit", "query " + std::to_string(a->index) + " is still active: end it before submitting");
+    for (const auto& [timer, ended] : timers_)
+        if (!ended) fail("submit", "a timer begun in this recording was not ended (endTimer)");
+}
+
+// A timer holds one span per submission: begun twice it would measure from the second begin on
+// one backend and be a validation error on another; ended unbegun, GL read a negative time.
+void QueryRecording::beginTimer(uint32_t timer) {
+    for (const auto& t : timers_)
+        if (t.first == timer) fail("beginTimer", "the timer was already begun in this recording (one span per submission)");
+    timers_.push_back({timer, false});
+}
+
+void QueryRecording::endTimer(uint32_t timer) {
+    for (auto& t : timers_)
+        if (t.first == timer) {
+            if (t.second) fail("endTimer", "the timer was already ended in this recording");
+            t.second = true;
+            return;
+        }
+    fail("endTimer", "the timer was not begun in this recording (beginTimer first)");
 }
 
 void queriesOncePerSubmission(std::span<const QueryRecording* const> lists) {

@@ -1099,3 +1099,35 @@ TEST_P(DeviceErrors, ListOfAnotherDeviceIsRefused) {
     other->destroy(theirs);
     device->destroy(mine);
 }
+
+// Timers: one span per recording. Ended without a begin, GL read a negative time and Vulkan's
+// layer objected; begun twice or left open, the backends measured different spans.
+TEST_P(DeviceErrors, TimerMisuse) {
+    const TimerHandle timer = device->createTimer();
+    {
+        auto cmd = device->createCommandList();
+        EXPECT_NE(errorOf([&] { cmd->endTimer(timer); }).find("endTimer: the timer was not begun in this recording"),
+                  std::string::npos);
+        cmd->beginTimer(timer);
+        EXPECT_NE(errorOf([&] { cmd->beginTimer(timer); }).find("beginTimer: the timer was already begun"), std::string::npos);
+        EXPECT_NE(errorOf([&] { device->submit(*cmd); }).find("a timer begun in this recording was not ended"),
+                  std::string::npos);
+        cmd->endTimer(timer);
+        EXPECT_NE(errorOf([&] { cmd->endTimer(timer); }).find("endTimer: the timer was already ended"), std::string::npos);
+        EXPECT_FALSE(device->timerNanoseconds(timer).has_value());  // never submitted
+        const FenceValue f = device->submit(*cmd);
+        device->wait(f);
+        if (device->info().features.timestamps) {
+            const std::optional<double> ns = device->timerNanoseconds(timer);
+            ASSERT_TRUE(ns.has_value());
+            EXPECT_GE(*ns, 0.0);
+        }
+    }
+    {
+        auto cmd = device->createCommandList();  // a new recording: the timer may be used again
+        cmd->beginTimer(timer);
+        cmd->endTimer(timer);
+        device->wait(device->submit(*cmd));
+    }
+    device->destroy(timer);
+}

@@ -1145,7 +1145,10 @@ public:
         }
     }
 
-    // GPU time between beginTimer and endTimer of the last submitted use, once it has completed.
+    // GPU time between beginTimer and endTimer of the last submitted use; nullopt until that
+    // submission has completed (it never waits). A recording begins and ends a timer once each,
+    // outside passes and secondary lists; a timer begun twice, ended unbegun, or left unended at
+    // submit is an Error.
     virtual std::optional<double> timerNanoseconds(TimerHandle timer) = 0;
     // Results of queries [first, first + count) from their last submitted use, without blocking:
     // false (and `out` untouched) until every one of them has been submitted and its submission

@@ -290,9 +290,13 @@ public:
     void timestamp(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
     void resolve(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t first, uint32_t count) const;
     void endPass() const;  // a query begun in the pass must end in it
-    void finish() const;   // submit: none left active
-    void clear() { used_.clear(), active_ = {}; }
+    void finish() const;   // submit: none left active, every timer ended
+    void clear() { used_.clear(), active_ = {}, timers_.clear(); }
     const std::vector<Use>& used() const { return used_; }
+    // Timers (Device::createTimer): each begun once and then ended once per recording.
+    void beginTimer(uint32_t timer);
+    void endTimer(uint32_t timer);
+    const std::vector<std::pair<uint32_t, bool>>& timers() const { return timers_; }  // (id, ended)
 
 private:
     void written(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, const char* what);
@@ -302,6 +306,7 @@ private:
     };
     std::array<std::optional<Active>, 3> active_;  // per type that begins and ends
     std::vector<Use> used_;
+    std::vector<std::pair<uint32_t, bool>> timers_;
 };
 // submit: no query written by two of the lists (each is reset once, before the submission).
 void queriesOncePerSubmission(std::span<const QueryRecording* const> lists);
