@@ -497,6 +497,7 @@ private:
                 }
                 const bool stopHere = r_.options_.stopAfterPass && *r_.options_.stopAfterPass == passName_;
                 if (r_.options_.snapshotPasses || stopHere) readTargets(list, stopHere);
+                if (stopHere) closeList(list);
                 stop = stop || stopHere;
                 ++pass;
             } else if (isDraw(op)) {
@@ -507,6 +508,7 @@ private:
         void newList() {
             automaticBarriers_ = true;
             groups_.clear();
+            timers_.clear();
         }
         // After the submission: the targets read, as images.
         void collect() {
@@ -563,16 +565,22 @@ private:
                 r_.result_.stoppedAt = context(cmd::opName(op));
                 // The list is closed as the program would have: groups opened in the pass, the
                 // pass, then the groups around it.
-                size_t open = groups_.size();
                 if (inPass_) {
-                    for (; open > groupsAtPass_; --open) list.popDebugGroup();
+                    for (; groups_.size() > groupsAtPass_; groups_.pop_back()) list.popDebugGroup();
                     list.endRenderPass();
                     readTargets(list, true);
                 }
-                for (; open > 0; --open) list.popDebugGroup();
+                closeList(list);
                 stop = true;
             }
             ++draw, ++drawsInPass_;
+        }
+        // An early stop ends the list as the program would have: the debug groups still open, then
+        // the timers begun and not ended (a render graph times each pass), outermost last.
+        void closeList(CommandList& list) {
+            for (; !groups_.empty(); groups_.pop_back()) list.popDebugGroup();
+            for (uint32_t timer : timers_) list.endTimer(TimerHandle{lookup(r_.map_.timers, timer)});
+            timers_.clear();
         }
         struct Pending {
             PassSnapshot snapshot;
@@ -656,6 +664,8 @@ private:
         void note(const cmd::PopDebugGroup&) {
             if (!groups_.empty()) groups_.pop_back();
         }
+        void note(const cmd::BeginTimer& r) { timers_.push_back(r.timer.id); }
+        void note(const cmd::EndTimer& r) { std::erase(timers_, r.timer.id); }
         void note(const cmd::SetPipeline& r) { pipeline_ = r.pipeline.id; }
         void note(const cmd::SetAutomaticBarriers& r) { automaticBarriers_ = r.enabled; }
         void note(const cmd::SetVertexBuffer& r) { bound_["vertex buffer " + std::to_string(r.index)] = buffer(r.buffer); }
@@ -671,6 +681,7 @@ private:
         std::string passName_;
         uint64_t firstDraw_ = 0, drawsInPass_ = 0;
         std::vector<std::string> groups_;
+        std::vector<uint32_t> timers_;  // begun and not yet ended in this list (captured ids)
         uint32_t pipeline_ = 0;
         std::map<std::string, std::string> bound_;
         std::vector<Pending> pending_;

@@ -411,9 +411,6 @@ private:
     std::string indexName_;
 };
 
-// setViewport: finite, a positive width and height, depths within [0, 1]. Vulkan's negative
-// height (the y flip of ports from GL) is refused on every backend: clip space already is
-// Vulkan's, y down, so the projection flips y instead.
 // setBlendConstant and GraphicsPipelineDesc::blendConstant: finite values (NaN blends differently
 // per driver).
 inline void blendConstant(const float* rgba, const char* what) {
@@ -421,6 +418,10 @@ inline void blendConstant(const float* rgba, const char* what) {
         if (!(rgba[i] - rgba[i] == 0)) [[unlikely]]
             throw Error(std::string(what) + ": blend constant values must be finite");
 }
+// setViewport: finite, a positive width and height within the device's maxViewportSize, corners
+// within its viewportBounds, depths within [0, 1]. Vulkan's negative height (the y flip of ports
+// from GL) is refused on every backend: clip space already is Vulkan's, y down, so the
+// projection flips y instead.
 struct ViewportLimits {
     float maxSize = 0, lo = 0, hi = 0;  // DeviceLimits::maxViewportSize and viewportBounds
 };
