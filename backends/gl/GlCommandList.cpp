@@ -280,33 +280,21 @@ void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, 
     outside("copyTexture");
     const Texture& d = copied(dst);
     const Texture& s = copied(src);
-    if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
-        d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
-        d.desc.sampleCount != s.desc.sampleCount)
-        throw gdi::Error("copyTexture: '" + s.label + "' and '" + d.label + "' differ in format, kind, size or samples");
-    if (mip >= d.desc.mipLevels || mip >= s.desc.mipLevels) throw gdi::Error("copyTexture: mip level out of range");
+    gdi::validate::wholeTextureCopy(d.desc, d.label, s.desc, s.label, mip);
     stream_->push(cmd::CopyTexture{dst, src, mip});
 }
-// One subresource through a pixel buffer; checks shared by both directions.
-uint64_t GlCommandList::bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset,
-                                           const char* what) const {
-    outside(what);
-    gdi::validate::subresource(t.desc, at, what, t.label);
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error(std::string(what) + ": depth formats are not supported");
-    if (t.desc.sampleCount > 1) throw gdi::Error(std::string(what) + ": multisampled textures are not supported");
-    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
-    const uint64_t bytes = gdi::imageByteSize(t.desc.format, e.width, e.height);
-    gdi::validate::bufferRange(b.desc, offset, bytes, what);
-    if (offset % 4) throw gdi::Error(std::string(what) + ": buffer offset must be a multiple of 4");
-    return bytes;
-}
 void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
-    bufferTextureBytes(copied(dst), at, dev_.buffer(src), srcOffset, "copyBufferToTexture");
+    outside("copyBufferToTexture");
+    const Texture& t = copied(dst);
+    const Buffer& b = dev_.buffer(src);
+    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, srcOffset, true, "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTexture{dst, at, src, srcOffset});
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
+    outside("copyTextureToBuffer");
     const Texture& t = copied(src);
-    bufferTextureBytes(t, at, dev_.buffer(dst), dstOffset, "copyTextureToBuffer");
+    const Buffer& b = dev_.buffer(dst);
+    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, dstOffset, false, "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBuffer{dst, dstOffset, src, at});
 }
 // Regions: the shared rules resolve them, and the records carry the resolved values.
@@ -315,7 +303,8 @@ void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::Textu
     outside("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, region, layout, "copyBufferToTexture");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, true,
+                                                        "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTextureRegion{dst, r, src, l});
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
@@ -323,7 +312,8 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelL
     outside("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, region, layout, "copyTextureToBuffer");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, false,
+                                                        "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBufferRegion{dst, l, src, r});
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,

@@ -24,11 +24,15 @@ public:
     void setPipeline(gdi::PipelineHandle h) override;
     void setViewport(const gdi::Viewport& v) override {
         checkUnrestricted("setViewport");
+        if (!inPass_) [[unlikely]]
+            gdi::validate::stateOutsidePass("setViewport");
         gdi::validate::viewport(v, viewportLimits_);
         stream_->push(gdi::cmd::SetViewport{v});
     }
     void setScissor(const gdi::Rect& r) override {
         checkUnrestricted("setScissor");
+        if (!inPass_) [[unlikely]]
+            gdi::validate::stateOutsidePass("setScissor");
         stream_->push(gdi::cmd::SetScissor{gdi::validate::scissor(r)});
     }
     void setConstants(uint32_t offset, gdi::ByteSpan data) override {
@@ -39,15 +43,21 @@ public:
     }
     void setBlendConstant(const std::array<float, 4>& rgba) override {
         checkUnrestricted("setBlendConstant");
+        if (!inPass_) [[unlikely]]
+            gdi::validate::stateOutsidePass("setBlendConstant");
         gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
         stream_->push(gdi::cmd::SetBlendConstant{rgba});
     }
     void setStencilReference(uint8_t reference) override {
         checkUnrestricted("setStencilReference");
+        if (!inPass_) [[unlikely]]
+            gdi::validate::stateOutsidePass("setStencilReference");
         stream_->push(gdi::cmd::SetStencilReference{reference});
     }
     void setDepthBias(float constant, float slope, float clamp) override {
         checkUnrestricted("setDepthBias");
+        if (!inPass_) [[unlikely]]
+            gdi::validate::stateOutsidePass("setDepthBias");
         gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
         stream_->push(gdi::cmd::SetDepthBias{constant, slope, clamp});
     }
@@ -151,7 +161,6 @@ private:
     void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
                       const char* what);
     void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const;
-    uint64_t bufferTextureBytes(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset, const char* what) const;
     void restart();    // a new recording
     void unbindAll();  // no pipeline, bindings or index buffer
     // A record whose one field is an array payload (the barrier commands).

@@ -821,8 +821,9 @@ void GlDevice::forgetFramebuffers(GLuint texture) {
 }
 
 template <class Pool, class H, class Release>
-void GlDevice::retire(Pool& pool, H h, Release&& release) {
-    if (!h || !pool.retire(h)) return;
+void GlDevice::retire(Pool& pool, H h, const char* kind, Release&& release) {
+    if (!h) return;
+    if (!pool.retire(h)) gdi::validate::destroyedHandle(kind, h.id);
     destroyEpoch_.fetch_add(1, std::memory_order_release);
     thread_.post([&pool, h, release = std::forward<Release>(release)] {
         typename std::remove_reference_t<decltype(pool.at(h))> object;
@@ -831,7 +832,7 @@ void GlDevice::retire(Pool& pool, H h, Release&& release) {
     });
 }
 void GlDevice::destroy(gdi::BufferHandle h) {
-    retire(buffers_, h, [this](Buffer& b) {
+    retire(buffers_, h, "buffer", [this](Buffer& b) {
         gl_.DeleteBuffers(1, &b.name);  // unmaps a mapped buffer too
         --nativeObjects_;
     });
@@ -842,20 +843,20 @@ void GlDevice::destroy(gdi::TextureHandle h) {
         if (live->views) gdi::validate::viewsAlive(live->label, live->views);
         if (Texture* parent = live->viewOf ? textures_.find({live->viewOf}) : nullptr) --parent->views;
     }
-    retire(textures_, h, [this](Texture& t) {
+    retire(textures_, h, "texture", [this](Texture& t) {
         forgetFramebuffers(t.name);
         gl_.DeleteTextures(1, &t.name);
         if (!t.viewOf) --nativeObjects_;
     });
 }
 void GlDevice::destroy(gdi::SamplerHandle h) {
-    retire(samplers_, h, [this](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
+    retire(samplers_, h, "sampler", [this](Sampler& s) { gl_.DeleteSamplers(1, &s.name); });
 }
 void GlDevice::destroy(gdi::ShaderHandle h) {
-    retire(shaders_, h, [this](Shader& s) { gl_.DeleteShader(s.name); });
+    retire(shaders_, h, "shader", [this](Shader& s) { gl_.DeleteShader(s.name); });
 }
 void GlDevice::destroy(gdi::PipelineHandle h) {
-    retire(pipelines_, h, [this](Pipeline& p) {
+    retire(pipelines_, h, "pipeline", [this](Pipeline& p) {
         gl_.DeleteProgram(p.program);
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
@@ -896,7 +897,7 @@ gdi::QuerySetHandle GlDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
 }
 
 void GlDevice::destroy(gdi::QuerySetHandle h) {
-    retire(querySets_, h, [this](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
+    retire(querySets_, h, "query set", [this](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
 }
 
 bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
@@ -916,7 +917,7 @@ bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t coun
 }
 
 void GlDevice::destroy(gdi::TimerHandle h) {
-    retire(timers_, h, [this](Timer& t) { gl_.DeleteQueries(2, t.queries); });
+    retire(timers_, h, "timer", [this](Timer& t) { gl_.DeleteQueries(2, t.queries); });
 }
 
 FboAttachment GlDevice::fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const {

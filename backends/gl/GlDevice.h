@@ -149,7 +149,9 @@ public:
     void destroy(gdi::ShaderHandle) override;
     void destroy(gdi::PipelineHandle) override;
     void destroy(gdi::TimerHandle) override;
-    void destroy(gdi::HeapHandle) override {}
+    void destroy(gdi::HeapHandle h) override {  // no heaps on GL: only the null handle is valid
+        if (h) gdi::validate::destroyedHandle("heap", h.id);
+    }
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
     void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
@@ -218,7 +220,7 @@ private:
     void releaseAll();                 // on the context thread, at destruction
     // Destroy: the handle is dead at once; the GL object goes after the work queued before.
     template <class Pool, class H, class Release>
-    void retire(Pool& pool, H h, Release&& release);
+    void retire(Pool& pool, H h, const char* kind, Release&& release);
     void rethrowAsyncError();
     GLuint specializedShader(const Shader& s, std::span<const uint32_t> code,
                              const std::vector<gdi::SpecializationConstant>& values);

@@ -633,6 +633,8 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
     ensureRecording();
     checkUnrestricted("setViewport");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setViewport");
     gdi::validate::viewport(v, viewportLimits_);
     VkViewport vp{v.x, v.y, v.width, v.height, v.minDepth, v.maxDepth};
     vkCmdSetViewport(cb_, 0, 1, &vp);
@@ -653,6 +655,8 @@ void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
 void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
     ensureRecording();
     checkUnrestricted("setBlendConstant");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setBlendConstant");
     gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
     vkCmdSetBlendConstants(cb_, rgba.data());
 }
@@ -660,12 +664,16 @@ void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
 void VulkanCommandList::setStencilReference(uint8_t reference) {
     ensureRecording();
     checkUnrestricted("setStencilReference");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setStencilReference");
     vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, reference);
 }
 
 void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
     ensureRecording();
     checkUnrestricted("setDepthBias");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setDepthBias");
     gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
     vkCmdSetDepthBias(cb_, constant, clamp, slope);
 }
@@ -673,6 +681,8 @@ void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
 void VulkanCommandList::setScissor(const gdi::Rect& r) {
     ensureRecording();
     checkUnrestricted("setScissor");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setScissor");
     const gdi::Rect c = gdi::validate::scissor(r);
     VkRect2D rect{{c.x, c.y}, {c.width, c.height}};
     vkCmdSetScissor(cb_, 0, 1, &rect);
@@ -970,11 +980,7 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle s
     outsidePass("copyTexture");
     Texture& d = copiedTexture(dst);
     Texture& s = copiedTexture(src);
-    if (d.desc.format != s.desc.format || d.desc.width != s.desc.width || d.desc.height != s.desc.height ||
-        d.desc.dimension != s.desc.dimension || d.desc.depthOrLayers != s.desc.depthOrLayers ||
-        d.desc.sampleCount != s.desc.sampleCount)
-        throw gdi::Error("copyTexture: '" + s.name + "' and '" + d.name + "' differ in format, kind, size or samples");
-    if (mip >= d.desc.mipLevels || mip >= s.desc.mipLevels) throw gdi::Error("copyTexture: mip level out of range");
+    gdi::validate::wholeTextureCopy(d.desc, d.name, s.desc, s.name, mip);
     barrierIfWritten();
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(d.desc, mip);
     const bool is3D = d.desc.dimension == gdi::TextureDimension::Texture3D;
@@ -985,16 +991,10 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle s
     written_ = true;
 }
 
-// Checks shared by both buffer <-> texture copies: one subresource of a colour texture, a
-// tightly packed range of the buffer.
+// One whole subresource (checked by the shared rules) as a copy region.
 static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset,
-                                             const char* what) {
-    gdi::validate::subresource(t.desc, at, what, t.name);
-    if (gdi::isDepthFormat(t.desc.format)) throw gdi::Error(std::string(what) + ": depth formats are not supported");
-    if (t.desc.sampleCount > 1) throw gdi::Error(std::string(what) + ": multisampled textures are not supported");
-    const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
-    gdi::validate::bufferRange(b.desc, offset, gdi::imageByteSize(t.desc.format, e.width, e.height), what);
-    if (offset % 4) throw gdi::Error(std::string(what) + ": buffer offset must be a multiple of 4");
+                                             bool toTexture, const char* what) {
+    gdi::validate::subresourceBufferCopy(t.desc, t.name, at, b.desc, b.name, offset, toTexture, what);
     return copyRegion(t.desc, at, offset);
 }
 
@@ -1002,7 +1002,7 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subreso
     outsidePass("copyBufferToTexture");
     Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
-    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, "copyBufferToTexture");
+    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, true, "copyBufferToTexture");
     barrierIfWritten();
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     written_ = true;
@@ -1012,7 +1012,7 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstO
     outsidePass("copyTextureToBuffer");
     Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
-    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, "copyTextureToBuffer");
+    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, false, "copyTextureToBuffer");
     barrierIfWritten();
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
     written_ = true;
@@ -1025,7 +1025,8 @@ void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::T
     outsidePass("copyBufferToTexture");
     Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, region, layout, "copyBufferToTexture");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region, layout, true,
+                                                        "copyBufferToTexture");
     barrierIfWritten();
     const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
@@ -1037,7 +1038,8 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::Te
     outsidePass("copyTextureToBuffer");
     Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, region, layout, "copyTextureToBuffer");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region, layout, false,
+                                                        "copyTextureToBuffer");
     barrierIfWritten();
     const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &c);

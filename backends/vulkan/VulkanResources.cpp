@@ -242,7 +242,8 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
 void VulkanDevice::destroy(gdi::HeapHandle h) {
     std::lock_guard lock(mutex_);
     Heap heap;
-    if (!h || !heaps_.find(h)) return;
+    if (!h) return;
+    if (!heaps_.find(h)) gdi::validate::destroyedHandle("heap", h.id);
     releaseRetiredNow();  // textures destroyed before the heap are released now, not later
     if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
     idle();
@@ -456,7 +457,8 @@ gdi::TimerHandle VulkanDevice::createTimer() {
 void VulkanDevice::destroy(gdi::BufferHandle h) {
     std::lock_guard lock(mutex_);
     Buffer b;
-    if (!h || !buffers_.remove(h, b)) return;
+    if (!h) return;
+    if (!buffers_.remove(h, b)) gdi::validate::destroyedHandle("buffer", h.id);
     dropInitialCommands(0, h.id);  // a zero fill not yet submitted never runs
     retire([this, b]() mutable { freeBuffer(b); });
 }
@@ -466,7 +468,8 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
     Texture t;
     if (const Texture* live = h ? textures_.find(h) : nullptr; live && live->views)
         gdi::validate::viewsAlive(live->name, live->views);
-    if (!h || !textures_.remove(h, t)) return;
+    if (!h) return;
+    if (!textures_.remove(h, t)) gdi::validate::destroyedHandle("texture", h.id);
     if (Texture* parent = t.viewOf ? textures_.find({t.viewOf}) : nullptr) --parent->views;
     dropInitialCommands(h.id, 0);  // nor a first transition and clear
     retire([this, t]() mutable { destroyTexture(t); });
@@ -475,21 +478,24 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
     std::lock_guard lock(mutex_);
     Sampler s;
-    if (!h || !samplers_.remove(h, s)) return;
+    if (!h) return;
+    if (!samplers_.remove(h, s)) gdi::validate::destroyedHandle("sampler", h.id);
     retire([this, s] { vkDestroySampler(device_, s.sampler, nullptr); });
 }
 
 void VulkanDevice::destroy(gdi::ShaderHandle h) {
     std::lock_guard lock(mutex_);
     Shader s;
-    if (!h || !shaders_.remove(h, s)) return;
+    if (!h) return;
+    if (!shaders_.remove(h, s)) gdi::validate::destroyedHandle("shader", h.id);
     vkDestroyShaderModule(device_, s.module, nullptr);  // pipelines keep their own copy of the code
 }
 
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
     std::lock_guard lock(mutex_);
     Pipeline p;
-    if (!h || !pipelines_.remove(h, p)) return;
+    if (!h) return;
+    if (!pipelines_.remove(h, p)) gdi::validate::destroyedHandle("pipeline", h.id);
     retire([this, pipeline = p.pipeline, layout = p.layout, setLayout = p.setLayout] {
         vkDestroyPipeline(device_, pipeline, nullptr);
         vkDestroyPipelineLayout(device_, layout, nullptr);
@@ -500,7 +506,8 @@ void VulkanDevice::destroy(gdi::PipelineHandle h) {
 void VulkanDevice::destroy(gdi::TimerHandle h) {
     std::lock_guard lock(mutex_);
     Timer t;
-    if (!h || !timers_.remove(h, t)) return;
+    if (!h) return;
+    if (!timers_.remove(h, t)) gdi::validate::destroyedHandle("timer", h.id);
     retire([this, t] { freeTimerSlots_.push_back(t.firstQuery); });
 }
 
@@ -537,7 +544,8 @@ gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) 
 void VulkanDevice::destroy(gdi::QuerySetHandle h) {
     std::lock_guard lock(mutex_);
     QuerySet q;
-    if (!h || !querySets_.remove(h, q)) return;
+    if (!h) return;
+    if (!querySets_.remove(h, q)) gdi::validate::destroyedHandle("query set", h.id);
     retire([this, pool = q.pool] { vkDestroyQueryPool(device_, pool, nullptr); });
 }
 

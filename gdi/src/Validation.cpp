@@ -19,6 +19,24 @@ namespace {
 std::string label(const char* kind, const char* name) {
     return std::string(kind) + (name && *name ? std::string(" '") + name + "'" : std::string());
 }
+
+template <class Usage>
+std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, const char*>> names) {
+    std::string out;
+    for (const auto& [bit, n] : names)
+        if (any(u, bit)) out += (out.empty() ? "" : "|") + std::string(n);
+    return out.empty() ? "None" : out;
+}
+std::string bufferUsageNames(BufferUsage u) {
+    using B = BufferUsage;
+    return usageNames(u, {{B::Vertex, "Vertex"}, {B::Index, "Index"}, {B::Uniform, "Uniform"}, {B::Storage, "Storage"},
+                          {B::CopySrc, "CopySrc"}, {B::CopyDst, "CopyDst"}, {B::Indirect, "Indirect"}});
+}
+std::string textureUsageNames(TextureUsage u) {
+    using T = TextureUsage;
+    return usageNames(u, {{T::Sampled, "Sampled"}, {T::RenderTarget, "RenderTarget"}, {T::Storage, "Storage"},
+                          {T::CopySrc, "CopySrc"}, {T::CopyDst, "CopyDst"}});
+}
 [[noreturn]] void fail(const std::string& what, const std::string& why) { throw Error(what + ": " + why); }
 }  // namespace
 
@@ -231,8 +249,16 @@ ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLay
     return r;
 }
 
-RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const TextureRegion& region,
-                               const TexelLayout& layout, const char* what) {
+// The usages a buffer <-> texture copy needs, by direction.
+static void bufferTextureUsages(const TextureDesc& t, const std::string& textureName, const BufferDesc& b,
+                                const std::string& bufferName, bool toTexture, const char* what) {
+    textureUsage(t, toTexture ? TextureUsage::CopyDst : TextureUsage::CopySrc, textureName, what);
+    bufferUsage(b, toTexture ? BufferUsage::CopySrc : BufferUsage::CopyDst, bufferName, what);
+}
+
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const std::string& bufferName,
+                               const TextureRegion& region, const TexelLayout& layout, bool toTexture, const char* what) {
+    bufferTextureUsages(t, name, b, bufferName, toTexture, what);
     const TextureRegion r = textureRegion(t, region, name, what);
     const ResolvedLayout l = texelLayout(t.format, r, layout, what);
     bufferRange(b, l.layout.offset, l.end - l.layout.offset, what);
@@ -247,6 +273,8 @@ void dataSpan(size_t size, uint64_t end, const char* what) {
 std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
                                                     bool sameTexture, const TextureDesc& src, const std::string& srcName,
                                                     const TextureRegion& srcRegion) {
+    textureUsage(src, TextureUsage::CopySrc, srcName, "copyTexture source");
+    textureUsage(dst, TextureUsage::CopyDst, dstName, "copyTexture destination");
     const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source");
     if (!formatsCompatible(src.format, dst.format))
         fail("copyTexture", std::string(formatInfo(src.format).name) + " texels cannot be copied into " + std::string(formatInfo(dst.format).name) +
@@ -260,6 +288,29 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, cons
         !(apart(s.x, d.x, s.width) || apart(s.y, d.y, s.height) || apart(s.z, d.z, s.depth)))
         fail("copyTexture", "source and destination overlap in '" + srcName + "'");
     return {d, s};
+}
+
+void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
+                      const std::string& srcName, uint32_t mip) {
+    textureUsage(src, TextureUsage::CopySrc, srcName, "copyTexture source");
+    textureUsage(dst, TextureUsage::CopyDst, dstName, "copyTexture destination");
+    if (dst.format != src.format || dst.width != src.width || dst.height != src.height || dst.dimension != src.dimension ||
+        dst.depthOrLayers != src.depthOrLayers || dst.sampleCount != src.sampleCount)
+        fail("copyTexture", "'" + srcName + "' and '" + dstName + "' differ in format, kind, size or samples");
+    if (mip >= dst.mipLevels || mip >= src.mipLevels) fail("copyTexture", "mip level out of range");
+}
+
+uint64_t subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at, const BufferDesc& b,
+                               const std::string& bufferName, uint64_t offset, bool toTexture, const char* what) {
+    bufferTextureUsages(t, textureName, b, bufferName, toTexture, what);
+    subresource(t, at, what, textureName);
+    if (isDepthFormat(t.format)) fail(what, "depth formats are not supported");
+    if (t.sampleCount > 1) fail(what, "multisampled textures are not supported");
+    const Extent3 e = mipExtent(t, at.mipLevel);
+    const uint64_t bytes = imageByteSize(t.format, e.width, e.height);
+    bufferRange(b, offset, bytes, what);
+    if (offset % 4) fail(what, "buffer offset must be a multiple of 4");
+    return bytes;
 }
 
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {
@@ -499,17 +550,8 @@ void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected, uint8_t bound,
 }
 
 void unsupportedTextureUsage(const TextureDesc& d) {
-    std::string usages;
-    auto add = [&](TextureUsage bit, const char* n) {
-        if (any(d.usage, bit)) usages += (usages.empty() ? "" : "|") + std::string(n);
-    };
-    add(TextureUsage::Sampled, "Sampled");
-    add(TextureUsage::RenderTarget, "RenderTarget");
-    add(TextureUsage::Storage, "Storage");
-    add(TextureUsage::CopySrc, "CopySrc");
-    add(TextureUsage::CopyDst, "CopyDst");
     fail(label("texture", d.debugName), "format " + std::string(formatInfo(d.format).name) + " does not support usage " +
-                                            usages + " on this device (Device::formatCaps says what it can do)");
+                                            textureUsageNames(d.usage) + " on this device (Device::formatCaps says what it can do)");
 }
 
 void computeShaderStage(ShaderStage stage, const ComputePipelineDesc& d) {
@@ -640,6 +682,8 @@ void badDispatch(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& l) {
 
 void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset, const BufferDesc& src,
                 const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer) {
+    bufferUsage(src, BufferUsage::CopySrc, srcName, "copyBuffer source");
+    bufferUsage(dst, BufferUsage::CopyDst, dstName, "copyBuffer destination");
     bufferRange(dst, dstOffset, size, "copyBuffer destination");
     bufferRange(src, srcOffset, size, "copyBuffer source");
     if (sameBuffer && size && dstOffset < srcOffset + size && srcOffset < dstOffset + size)
@@ -647,7 +691,6 @@ void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstO
                                                    std::to_string(srcOffset + size) + ") and destination [" +
                                                    std::to_string(dstOffset) + ", " + std::to_string(dstOffset + size) +
                                                    ") overlap");
-    (void)srcName;
 }
 
 void listOfDestroyedDevice(const char* what) {
@@ -695,8 +738,45 @@ void missingBindingsFailed(uint64_t missing, const char* pipelineName) {
     fail(label("draw/dispatch with pipeline", pipelineName), "missing binding for slot(s) " + slots);
 }
 
+namespace {
+// A state the texture's usage and format allow (Undefined always: contents not needed).
+void stateAllowed(const TextureDesc& d, ResourceState s, const std::string& name) {
+    const bool depth = isDepthFormat(d.format);
+    auto need = [&](TextureUsage u) { textureUsage(d, u, name, (std::string("barrier to or from ") + resourceStateName(s)).c_str()); };
+    switch (s) {
+        case ResourceState::Undefined: return;
+        case ResourceState::RenderTarget:
+        case ResourceState::DepthTarget:
+            need(TextureUsage::RenderTarget);
+            if (depth != (s == ResourceState::DepthTarget))
+                throw Error("barrier: " + describeObject("texture", name, {}) + " has format " +
+                            std::string(formatInfo(d.format).name) + ": its attachment state is " +
+                            (depth ? "DepthTarget" : "RenderTarget"));
+            return;
+        case ResourceState::ShaderRead: return need(TextureUsage::Sampled | TextureUsage::Storage);
+        case ResourceState::Storage: return need(TextureUsage::Storage);
+        case ResourceState::CopySrc: return need(TextureUsage::CopySrc);
+        case ResourceState::CopyDst: return need(TextureUsage::CopyDst);
+    }
+}
+
+// Each access of a barrier needs the usage that allows it.
+void accessesAllowed(const BufferDesc& d, BufferAccess a, const std::string& name) {
+    using A = BufferAccess;
+    using U = BufferUsage;
+    static constexpr std::pair<A, U> kNeeds[] = {{A::Vertex, U::Vertex},         {A::Index, U::Index},
+                                                 {A::Indirect, U::Indirect},     {A::Uniform, U::Uniform},
+                                                 {A::StorageRead, U::Storage},   {A::StorageWrite, U::Storage},
+                                                 {A::CopySrc, U::CopySrc},       {A::CopyDst, U::CopyDst}};
+    for (const auto& [access, usage] : kNeeds)
+        if (any(a, access)) bufferUsage(d, usage, name, "barrier");
+}
+}  // namespace
+
 SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name) {
     if (b.after == ResourceState::Undefined) throw Error("barrier: a texture cannot go to Undefined");
+    stateAllowed(d, b.before, name);
+    stateAllowed(d, b.after, name);
     const uint32_t layers = d.dimension == TextureDimension::Texture3D ? 1 : d.depthOrLayers;
     SubresourceRange r{b.baseMip, b.mipCount ? b.mipCount : d.mipLevels - std::min(b.baseMip, d.mipLevels), b.baseLayer,
                        b.layerCount ? b.layerCount : layers - std::min(b.baseLayer, layers)};
@@ -711,6 +791,8 @@ SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, c
 }
 
 uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name) {
+    accessesAllowed(d, b.before, name);
+    accessesAllowed(d, b.after, name);
     const uint64_t size = b.size ? b.size : d.size - std::min(b.offset, d.size);
     if (b.offset >= d.size || size > d.size - b.offset)
         throw Error("barrier: range " + std::to_string(b.offset) + "+" + std::to_string(b.size) + " is outside " +
@@ -1154,11 +1236,24 @@ namespace fe::gdi::validate {
 
 void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what) {
     if (any(d.usage, usage)) return;
-    const char* kind = usage == BufferUsage::Uniform ? "Uniform"
-                       : usage == BufferUsage::Storage ? "Storage"
-                       : usage == BufferUsage::Vertex  ? "Vertex"
-                                                       : "Index";
-    throw Error(std::string(what) + ": " + label("buffer", name.c_str()) + " lacks " + kind + " usage");
+    throw Error(std::string(what) + ": " + label("buffer", name.c_str()) + " lacks " + bufferUsageNames(usage) +
+                " usage (it was created with " + bufferUsageNames(d.usage) + ")");
+}
+
+void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name, const char* what) {
+    if (any(d.usage, usage)) return;
+    throw Error(std::string(what) + ": " + label("texture", name.c_str()) + " lacks " + textureUsageNames(usage) +
+                " usage (it was created with " + textureUsageNames(d.usage) + ")");
+}
+
+void destroyedHandle(const char* kind, uint32_t id) {
+    throw Error(std::string("destroy: ") + kind + " handle " + std::to_string(id) +
+                " is not live (destroyed already, or made by another device)");
+}
+
+void stateOutsidePass(const char* what) {
+    throw Error(std::string(what) + " outside a render pass (each pass starts from its pipeline's state: set it "
+                "after beginRenderPass and setPipeline)");
 }
 
 }  // namespace fe::gdi::validate
@@ -1166,6 +1261,7 @@ void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name
 namespace fe::gdi::validate {
 
 uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t size) {
+    bufferUsage(d, BufferUsage::CopyDst, name, "clearBuffer");
     const uint64_t bytes = size == 0 && offset <= d.size ? d.size - offset : size;
     if (offset % 4 || bytes % 4)
         throw Error("clearBuffer: " + label("buffer", name.c_str()) + ": offset " + std::to_string(offset) + " and size " +

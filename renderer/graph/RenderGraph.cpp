@@ -48,7 +48,10 @@ void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth, u
                                               .clearDepth = clearDepth, .layer = layer});
 }
 void PassBuilder::resolve(TextureId source, TextureId destination) {
-    graph_.passes_[pass_].accesses.push_back({.texture = destination, .state = gdi::ResourceState::RenderTarget,
+    // A depth resolve writes its destination as a depth attachment (the state its barriers name).
+    const bool depth = gdi::isDepthFormat(graph_.textures_.at(destination.index).desc.format);
+    graph_.passes_[pass_].accesses.push_back({.texture = destination,
+                                              .state = depth ? gdi::ResourceState::DepthTarget : gdi::ResourceState::RenderTarget,
                                               .load = gdi::LoadOp::DontCare, .resolveSource = source});
 }
 void PassBuilder::sample(TextureId t) {

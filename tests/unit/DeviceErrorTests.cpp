@@ -1069,7 +1069,9 @@ TEST_P(DeviceErrors, PortingMistakesOfState) {
                   device->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/sample_ms.frag")});
               }).find("'tex' is a multisampled texture, which the device has none of"),
               std::string::npos);
+    auto target = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
     auto cmd = device->createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = target}}});  // dynamic state is set inside a pass
     const DeviceLimits& l = device->info().limits;
     ASSERT_GT(l.maxViewportSize, 0u);
     ASSERT_LT(l.viewportBounds[0], 0.0f);
@@ -1080,8 +1082,117 @@ TEST_P(DeviceErrors, PortingMistakesOfState) {
     EXPECT_NE(errorOf([&] { cmd->setViewport({0, 0, 1e30f, 64}); }).find("maxViewportSize"), std::string::npos);
     EXPECT_NE(errorOf([&] { cmd->setBlendConstant({0, 0, std::numeric_limits<float>::infinity(), 1}); }).find("must be finite"),
               std::string::npos);
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+    device->destroy(target);
     device->destroy(fs);
     device->destroy(vs);
+}
+
+// Usage flags mean what they say for the commands a list records: a copy reads a CopySrc
+// resource and writes a CopyDst one, a barrier names only states the usage allows. Both
+// backends accepted these (Vulkan's buffers and images carry the transfer bits whatever the
+// usage), so a program that worked here failed on a stricter API. The device's own transfers
+// (writeTexture, readBuffer) need no copy usage, as the header's examples show.
+TEST_P(DeviceErrors, CopiesAndBarriersFollowUsage) {
+    Device& d = *device;
+    const BufferHandle storage = d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "storage only"});
+    const BufferHandle staging =
+        d.createBuffer({.size = 256, .usage = BufferUsage::CopySrc | BufferUsage::CopyDst, .debugName = "staging"});
+    const TextureHandle sampled = d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::Sampled, .debugName = "sampled only"});
+    const TextureHandle copyable = d.createTexture({.width = 4, .height = 4, .debugName = "copyable"});  // default usage
+    auto cmd = d.createCommandList();
+    auto error = [&](auto&& f) { return errorOf(std::forward<decltype(f)>(f)); };
+    EXPECT_NE(error([&] { cmd->copyBuffer(staging, 0, storage, 0, 16); }).find("copyBuffer source: buffer 'storage only' lacks CopySrc usage (it was created with Storage)"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyBuffer(storage, 0, staging, 0, 16); }).find("copyBuffer destination: buffer 'storage only' lacks CopyDst usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->clearBuffer(storage); }).find("clearBuffer: buffer 'storage only' lacks CopyDst usage"), std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyTextureToBuffer(staging, 0, sampled, {}); }).find("copyTextureToBuffer: texture 'sampled only' lacks CopySrc usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyBufferToTexture(sampled, {}, staging, 0); }).find("copyBufferToTexture: texture 'sampled only' lacks CopyDst usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyTextureToBuffer(storage, 0, copyable, {}); }).find("copyTextureToBuffer: buffer 'storage only' lacks CopyDst usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyBufferToTexture(copyable, TextureRegion{}, storage, TexelLayout{}); })
+                  .find("copyBufferToTexture: buffer 'storage only' lacks CopySrc usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyTexture(sampled, copyable); }).find("copyTexture destination: texture 'sampled only' lacks CopyDst usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->copyTexture(copyable, TextureRegion{}, sampled, TextureRegion{}); })
+                  .find("copyTexture source: texture 'sampled only' lacks CopySrc usage"),
+              std::string::npos);
+    // Barriers: states and accesses the resource cannot be in.
+    EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::ShaderRead, .after = ResourceState::RenderTarget}); })
+                  .find("texture 'sampled only' lacks RenderTarget usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::Storage}); }).find("lacks Storage usage"),
+              std::string::npos);
+    const TextureHandle colour = d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget, .debugName = "colour"});
+    EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = colour, .before = ResourceState::Undefined, .after = ResourceState::DepthTarget}); })
+                  .find("texture 'colour' has format RGBA8: its attachment state is RenderTarget"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->barrier(BufferBarrier{.buffer = storage, .before = BufferAccess::StorageWrite, .after = BufferAccess::Indirect}); })
+                  .find("barrier: buffer 'storage only' lacks Indirect usage"),
+              std::string::npos);
+    EXPECT_NE(error([&] { cmd->barrier(BufferBarrier{.buffer = staging, .before = BufferAccess::CopyDst, .after = BufferAccess::StorageRead}); })
+                  .find("barrier: buffer 'staging' lacks Storage usage"),
+              std::string::npos);
+    // What the usage allows is accepted, and runs.
+    cmd->barrier(BufferBarrier{.buffer = storage, .before = BufferAccess::StorageWrite, .after = BufferAccess::StorageRead});
+    cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::Undefined, .after = ResourceState::ShaderRead});
+    cmd->clearBuffer(staging, 0, 0, 0x01020304u);
+    cmd->barrier(BufferBarrier{.buffer = staging, .before = BufferAccess::CopyDst, .after = BufferAccess::CopySrc});
+    cmd->copyBufferToTexture(copyable, {}, staging, 0);
+    d.wait(d.submit(*cmd));
+    EXPECT_EQ(d.readTexture(copyable).data[5], 0x03);
+    // Device transfers need no copy usage.
+    const std::array<uint8_t, 64> texels{};
+    d.writeTexture(sampled, {}, bytesOf(texels));
+    EXPECT_EQ(d.readBuffer(storage, 0, 4).size(), 4u);
+    for (TextureHandle t : {sampled, copyable, colour}) d.destroy(t);
+    d.destroy(storage);
+    d.destroy(staging);
+}
+
+// Dynamic state set outside a pass changed nothing (each pass starts from its pipeline's
+// values), silently on both backends; destroying a handle twice was a silent no-op. Both are
+// Errors now, the same on every backend; destroying the null handle stays a no-op.
+TEST_P(DeviceErrors, StateOutsideAPassAndDoubleDestroy) {
+    Device& d = *device;
+    auto cmd = d.createCommandList();
+    const std::string outside = "outside a render pass";
+    EXPECT_NE(errorOf([&] { cmd->setViewport({0, 0, 8, 8}); }).find("setViewport " + outside), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setScissor({0, 0, 8, 8}); }).find("setScissor " + outside), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setBlendConstant({1, 1, 1, 1}); }).find("setBlendConstant " + outside), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setStencilReference(1); }).find("setStencilReference " + outside), std::string::npos);
+    EXPECT_NE(errorOf([&] { cmd->setDepthBias(1, 1, 0); }).find("setDepthBias " + outside), std::string::npos);
+
+    auto twice = [&](auto handle, const char* kind) {
+        d.destroy(handle);
+        const std::string e = errorOf([&] { d.destroy(handle); });
+        EXPECT_NE(e.find(std::string("destroy: ") + kind + " handle " + std::to_string(handle.id) + " is not live"),
+                  std::string::npos)
+            << kind << ": " << e;
+        d.destroy(decltype(handle){});  // null: a no-op
+    };
+    twice(d.createBuffer({.size = 16}), "buffer");
+    twice(d.createTexture({.width = 4, .height = 4}), "texture");
+    twice(d.createSampler({}), "sampler");
+    const ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    const ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    twice(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}), "pipeline");
+    d.destroy(fs);
+    twice(vs, "shader");
+    twice(d.createTimer(), "timer");
+    if (d.info().features.occlusionQueries) twice(d.createQuerySet({.type = QueryType::Occlusion, .count = 2}), "query set");
+    EXPECT_NE(errorOf([&] { d.destroy(HeapHandle{0x00100001u}); }).find("destroy: heap handle"), std::string::npos);
+    // The device is still whole: a list records and runs.
+    const BufferHandle b = d.createBuffer({.size = 16});
+    cmd->clearBuffer(b, 0, 16, 7);
+    d.wait(d.submit(*cmd));
+    EXPECT_EQ(d.readBuffer(b, 0, 4)[0], 7);
+    d.destroy(b);
 }
 
 // A list made by one device submitted to another: GL replayed it on the wrong context (whose

@@ -109,7 +109,8 @@
 //    made before the loss are released normally; destructors wait with waitIdleOrLost().
 //  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
 //    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
-//  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op.
+//  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op;
+//    destroying one that is not live (destroyed already) is an Error.
 //    A handle belongs to the device that made it: given to another device it is refused as
 //    "invalid or destroyed" (ids are salted per device; a 12-bit generation, so this catches
 //    the mistake with near certainty rather than always).
@@ -758,6 +759,8 @@ public:
     // Pipeline state that may also change between draws: setPipeline applies the pipeline's
     // values (GraphicsPipelineDesc::blendConstant, DepthStencilState::stencilReference,
     // RasterState's depth bias), and these replace them until the next setPipeline.
+    // Viewport, scissor and these are set inside a render pass (outside one they are an Error:
+    // each pass starts from the render area and its pipeline's values).
     virtual void setBlendConstant(const std::array<float, 4>& rgba) = 0;
     virtual void setStencilReference(uint8_t reference) = 0;
     virtual void setDepthBias(float constant, float slope, float clamp = 0.0f) = 0;
@@ -810,6 +813,10 @@ public:
     // GPU. The format must support linear filtering. Outside render passes.
     virtual void generateMips(TextureHandle texture) = 0;
 
+    // Copies and fills check usage: what a command reads needs CopySrc (buffers and textures),
+    // what it writes CopyDst (copies, clearBuffer, resolveQueries); an Error names the object
+    // and the usage it was created with. The device's own transfers (writeBuffer, writeTexture,
+    // readBuffer, readTexture, initial data) and generateMips need no copy usage.
     // Within one buffer the two ranges must not overlap.
     virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
                             uint64_t size) = 0;
@@ -866,7 +873,11 @@ public:
     // hazard barriers between passes, dispatches and copies of this recording; the caller
     // orders every dependency with barrier(). Turning them back on orders everything
     // recorded so far before what follows. Submitting always makes the results visible to
-    // later submissions and to readback. Outside render passes.
+    // later submissions and to readback. Outside render passes. A barrier names only states
+    // the resource's usage allows, before and after: RenderTarget / DepthTarget need
+    // RenderTarget usage and a colour / depth format, ShaderRead Sampled or Storage, Storage
+    // Storage, CopySrc and CopyDst those usages; a buffer access needs its usage (StorageRead
+    // and StorageWrite: Storage). Anything else is an Error, as a state the resource is never in.
     virtual void setAutomaticBarriers(bool enabled) = 0;
     virtual void barrier(const TextureBarrier* barriers, uint32_t count) = 0;
     virtual void barrier(const BufferBarrier* barriers, uint32_t count) = 0;

@@ -56,8 +56,8 @@ struct RegionCopy {
     TextureRegion region;
     TexelLayout layout;
 };
-RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const TextureRegion& region,
-                               const TexelLayout& layout, const char* what);
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const std::string& bufferName,
+                               const TextureRegion& region, const TexelLayout& layout, bool toTexture, const char* what);
 // writeTexture's data holds at least the `end` bytes its layout spans.
 void dataSpan(size_t size, uint64_t end, const char* what);
 // copyTexture between regions: compatible formats, both 3D or both layered, the destination box
@@ -65,6 +65,18 @@ void dataSpan(size_t size, uint64_t end, const char* what);
 std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
                                                     bool sameTexture, const TextureDesc& src, const std::string& srcName,
                                                     const TextureRegion& srcRegion);
+// copyTexture of a whole mip: the same format, kind, size and samples; the mip in both.
+void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
+                      const std::string& srcName, uint32_t mip);
+// copyBufferToTexture / copyTextureToBuffer of one whole subresource: a colour, single-sample
+// texture and a tightly packed range of the buffer at a 4-byte aligned offset. Returns its bytes.
+uint64_t subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
+                               const BufferDesc& b, const std::string& bufferName, uint64_t offset, bool toTexture,
+                               const char* what);
+// Commands recorded in a list that copy or fill need CopySrc on what they read and CopyDst on
+// what they write (copies, clearBuffer, resolveQueries). The device's own transfers
+// (writeBuffer, writeTexture, readBuffer, readTexture, initial data) need neither.
+void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name, const char* what);
 // Throws Error unless `at` names an existing subresource of the texture; `what` names the call.
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
 // readTexture: an existing subresource of a single-sample, uncompressed texture.
@@ -333,7 +345,7 @@ inline bool filtersLinearly(const SamplerDesc& d) {
     return !d.compareEnable && (d.minFilter == Filter::Linear || d.magFilter == Filter::Linear || d.mipFilter == MipFilter::Linear);
 }
 [[noreturn]] void notFilterable(const std::string& texture, Format format, const std::string& sampler);
-// A buffer bound as `usage` (Uniform, Storage, Vertex, Index) must have been created with it.
+// A buffer bound or copied as `usage` must have been created with it.
 void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what);
 // clearBuffer: a range inside the buffer, offset and size multiples of 4 (size 0: to the end);
 // returns the size to fill.
@@ -517,18 +529,27 @@ std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterfa
 
 // A barrier's subresources, resolved: mips [baseMip, baseMip + mipCount), layers likewise
 // (array layers and cube faces; a 3D texture has one). Throws for an empty or outside range,
-// or `after` Undefined.
+// or `after` Undefined, or a state the texture's usage does not allow (RenderTarget and
+// DepthTarget need RenderTarget usage and a colour or depth format, ShaderRead Sampled or
+// Storage, Storage Storage, CopySrc and CopyDst those usages).
 struct SubresourceRange {
     uint32_t baseMip = 0, mipCount = 1, baseLayer = 0, layerCount = 1;
     bool whole = true;  // every mip and layer of the texture
 };
 SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name);
-// A buffer barrier's range, resolved (size 0: to the end); throws when outside the buffer.
+// A buffer barrier's range, resolved (size 0: to the end); throws when outside the buffer or
+// when an access needs a usage the buffer lacks (Vertex, Index, Indirect, Uniform; StorageRead
+// and StorageWrite need Storage; CopySrc, CopyDst).
 uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name);
 // map(): Upload and Readback buffers only.
 void mappable(const BufferDesc& d, const std::string& name);
 // submit(lists): no list twice, none null.
 void submittedLists(std::span<CommandList* const> lists);
+// destroy() of a handle that is not live (destroyed already, or made by another device).
+[[noreturn]] void destroyedHandle(const char* kind, uint32_t id);
+// Dynamic state (viewport, scissor, blend constant, stencil reference, depth bias) is set
+// inside a render pass: each pass starts from its pipeline's values.
+[[noreturn]] void stateOutsidePass(const char* what);
 // Submitting a list that uses an object destroyed after it was recorded.
 [[noreturn]] void destroyedBeforeSubmit(const char* kind, uint32_t id);
 
