@@ -213,7 +213,7 @@ void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offse
         gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
         gdi::validate::bindingLimits(offset, bindSize, limits, what);
     }
-    bound(slot, kKind);
+    boundBuffer(slot, kKind);
     stream_->push(Record{slot, h, offset, bindSize});
 }
 void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
