@@ -5,6 +5,7 @@
 // which is also what gives GL the CPU/GPU overlap of frames in flight. Calls that do not depend
 // on queued work (creation, waiting on a replayed fence) go ahead of it: runUrgent.
 #pragma once
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -37,6 +38,9 @@ public:
     auto runUrgent(F&& task) -> std::invoke_result_t<F&> {
         return runIn(urgent_, std::forward<F>(task));
     }
+    // Set while urgent tasks wait: a long task on this thread polls it (one load) and calls
+    // serviceUrgent() when it is set, so an urgent call waits one command, not a whole replay.
+    const std::atomic<bool>& urgentWaiting() const { return urgentWaiting_; }
     // Called by long tasks on this thread: runs the urgent tasks waiting now.
     void serviceUrgent() {
         for (;;) {
@@ -46,6 +50,7 @@ public:
                 if (urgent_.empty()) return;
                 task = std::move(urgent_.front());
                 urgent_.pop_front();
+                urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             task();  // runIn's wrapper catches and hands exceptions to the waiting caller
         }
@@ -96,6 +101,7 @@ private:
     void push(std::deque<std::function<void()>>& queue, std::function<void()> task) {
         std::lock_guard lock(mutex_);
         queue.push_back(std::move(task));
+        if (&queue == &urgent_) urgentWaiting_.store(true, std::memory_order_relaxed);
         cv_.notify_one();
     }
     void loop() {
@@ -108,6 +114,7 @@ private:
                 if (queue.empty()) return;  // stopping, with everything run
                 task = std::move(queue.front());
                 queue.pop_front();
+                urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             try {
                 task();
@@ -121,6 +128,7 @@ private:
     std::condition_variable cv_;
     std::deque<std::function<void()>> tasks_, urgent_;
     std::exception_ptr error_;
+    std::atomic<bool> urgentWaiting_{false};  // !urgent_.empty(), written under mutex_
     bool stopping_ = false;
     std::thread thread_;  // last: starts after the members it uses exist
 };

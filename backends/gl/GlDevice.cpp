@@ -1188,7 +1188,7 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     auto shared = std::make_shared<decltype(streams)>(std::move(streams));
     thread_.post([this, value, shared] {
         for (auto& stream : *shared) {
-            GlReplay(*this).run(*stream, [this] { thread_.serviceUrgent(); });
+            GlReplay(*this).run(*stream, &thread_.urgentWaiting(), [this] { thread_.serviceUrgent(); });
             returnStream(std::move(stream));
         }
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // shader stores reach readback and mapped memory

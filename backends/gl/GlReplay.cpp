@@ -40,9 +40,10 @@ GLenum topology(gdi::PrimitiveTopology p) {
 }
 }  // namespace
 
-void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>& between) {
+void GlReplay::run(const cmd::CommandStream& stream, const std::atomic<bool>* waiting, const std::function<void()>& serve) {
     stream_ = &stream;
-    between_ = &between;
+    waiting_ = waiting;
+    serve_ = &serve;
     constants_ = {};  // each recording starts with zero constants
     constantsDirty_ = true;
     replayRecords(stream);
@@ -55,14 +56,15 @@ void GlReplay::run(const cmd::CommandStream& stream, const std::function<void()>
 // Locals, not members, on the per-command path: a member would be reloaded and stored around
 // every record's call (measured: about 30 instructions per draw).
 void GlReplay::replayRecords(const cmd::CommandStream& stream) {
-    const std::function<void()>& between = *between_;
-    const bool serve = bool(between);
-    uint32_t n = serviced_;
+    static const std::atomic<bool> never{false};
+    const std::atomic<bool>& waiting = waiting_ ? *waiting_ : never;
+    const std::function<void()>& serve = *serve_;
     stream.forEach([&](const auto& record) {
         (*this)(record);
-        if (serve && ++n % kServiceInterval == 0) between();
+        // One load a command (the flag's writer takes the queue's lock, which orders the task).
+        if (waiting.load(std::memory_order_relaxed)) [[unlikely]]
+            serve();
     });
-    serviced_ = n;
 }
 
 // A secondary list's records, in place (it sets its own viewport, scissor, pipeline and bindings).

@@ -3,6 +3,7 @@
 // command of CommandSet.inc (the compiler rejects a command without one).
 #pragma once
 #include <array>
+#include <atomic>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -15,10 +16,10 @@ namespace fe::gl {
 class GlReplay {
 public:
     explicit GlReplay(GlDevice& d) : dev_(d), gl_(d.gl()) {}
-    // `between` runs every kServiceInterval commands: the device serves urgent calls there
-    // (creation, fence waits) instead of after the whole stream.
-    static constexpr uint32_t kServiceInterval = 64;
-    void run(const gdi::cmd::CommandStream& stream, const std::function<void()>& between = {});
+    // `serve` runs between two commands whenever `waiting` is set: the device serves urgent
+    // calls there (creation, fence waits) one command after they arrive, not after the stream.
+    void run(const gdi::cmd::CommandStream& stream, const std::atomic<bool>* waiting = nullptr,
+             const std::function<void()>& serve = {});
 
     void operator()(const gdi::cmd::BeginRenderPass& r);
     void operator()(const gdi::cmd::InsertDebugLabel& r);
@@ -70,8 +71,8 @@ public:
 private:
     void replayRecords(const gdi::cmd::CommandStream& stream);
     const gdi::cmd::CommandStream* stream_ = nullptr;  // being replayed (a secondary's, inside one)
-    const std::function<void()>* between_ = nullptr;
-    uint32_t serviced_ = 0;  // records replayed, for `between`
+    const std::atomic<bool>* waiting_ = nullptr;
+    const std::function<void()>* serve_ = nullptr;
     void applyPipelineState(const Pipeline& p);
     void applyStencil(uint8_t reference);
     void applyDepthBias(float constant, float slope, float clamp);
