@@ -20,22 +20,25 @@ std::string label(const char* kind, const char* name) {
     return std::string(kind) + (name && *name ? std::string(" '") + name + "'" : std::string());
 }
 
+// "A|B" for the usage an object has; "A or B" for the usages a call accepts (separator " or ").
 template <class Usage>
-std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, const char*>> names) {
+std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, const char*>> names, const char* separator) {
     std::string out;
     for (const auto& [bit, n] : names)
-        if (any(u, bit)) out += (out.empty() ? "" : "|") + std::string(n);
+        if (any(u, bit)) out += (out.empty() ? "" : separator) + std::string(n);
     return out.empty() ? "None" : out;
 }
-std::string bufferUsageNames(BufferUsage u) {
+std::string bufferUsageNames(BufferUsage u, const char* separator = "|") {
     using B = BufferUsage;
     return usageNames(u, {{B::Vertex, "Vertex"}, {B::Index, "Index"}, {B::Uniform, "Uniform"}, {B::Storage, "Storage"},
-                          {B::CopySrc, "CopySrc"}, {B::CopyDst, "CopyDst"}, {B::Indirect, "Indirect"}});
+                          {B::CopySrc, "CopySrc"}, {B::CopyDst, "CopyDst"}, {B::Indirect, "Indirect"}},
+                      separator);
 }
-std::string textureUsageNames(TextureUsage u) {
+std::string textureUsageNames(TextureUsage u, const char* separator = "|") {
     using T = TextureUsage;
     return usageNames(u, {{T::Sampled, "Sampled"}, {T::RenderTarget, "RenderTarget"}, {T::Storage, "Storage"},
-                          {T::CopySrc, "CopySrc"}, {T::CopyDst, "CopyDst"}});
+                          {T::CopySrc, "CopySrc"}, {T::CopyDst, "CopyDst"}},
+                      separator);
 }
 [[noreturn]] void fail(const std::string& what, const std::string& why) { throw Error(what + ": " + why); }
 }  // namespace
@@ -739,7 +742,9 @@ void missingBindingsFailed(uint64_t missing, const char* pipelineName) {
 }
 
 namespace {
-// A state the texture's usage and format allow (Undefined always: contents not needed).
+// A state the texture's usage and format allow. Undefined always (contents not needed), and the
+// copy states always: the device's own transfers (writeTexture, readTexture) copy any texture,
+// so "it was last written by writeTexture" is a true CopyDst whatever the usage.
 void stateAllowed(const TextureDesc& d, ResourceState s, const std::string& name) {
     const bool depth = isDepthFormat(d.format);
     auto need = [&](TextureUsage u) { textureUsage(d, u, name, (std::string("barrier to or from ") + resourceStateName(s)).c_str()); };
@@ -755,19 +760,19 @@ void stateAllowed(const TextureDesc& d, ResourceState s, const std::string& name
             return;
         case ResourceState::ShaderRead: return need(TextureUsage::Sampled | TextureUsage::Storage);
         case ResourceState::Storage: return need(TextureUsage::Storage);
-        case ResourceState::CopySrc: return need(TextureUsage::CopySrc);
-        case ResourceState::CopyDst: return need(TextureUsage::CopyDst);
+        case ResourceState::CopySrc:
+        case ResourceState::CopyDst: return;
     }
 }
 
-// Each access of a barrier needs the usage that allows it.
+// Each access of a barrier needs the usage that allows it; the copy accesses need none (the
+// device's writeBuffer and readBuffer copy any buffer, as for textures above).
 void accessesAllowed(const BufferDesc& d, BufferAccess a, const std::string& name) {
     using A = BufferAccess;
     using U = BufferUsage;
-    static constexpr std::pair<A, U> kNeeds[] = {{A::Vertex, U::Vertex},         {A::Index, U::Index},
-                                                 {A::Indirect, U::Indirect},     {A::Uniform, U::Uniform},
-                                                 {A::StorageRead, U::Storage},   {A::StorageWrite, U::Storage},
-                                                 {A::CopySrc, U::CopySrc},       {A::CopyDst, U::CopyDst}};
+    static constexpr std::pair<A, U> kNeeds[] = {{A::Vertex, U::Vertex},       {A::Index, U::Index},
+                                                 {A::Indirect, U::Indirect},   {A::Uniform, U::Uniform},
+                                                 {A::StorageRead, U::Storage}, {A::StorageWrite, U::Storage}};
     for (const auto& [access, usage] : kNeeds)
         if (any(a, access)) bufferUsage(d, usage, name, "barrier");
 }
@@ -1236,13 +1241,13 @@ namespace fe::gdi::validate {
 
 void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what) {
     if (any(d.usage, usage)) return;
-    throw Error(std::string(what) + ": " + label("buffer", name.c_str()) + " lacks " + bufferUsageNames(usage) +
+    throw Error(std::string(what) + ": " + label("buffer", name.c_str()) + " lacks " + bufferUsageNames(usage, " or ") +
                 " usage (it was created with " + bufferUsageNames(d.usage) + ")");
 }
 
 void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name, const char* what) {
     if (any(d.usage, usage)) return;
-    throw Error(std::string(what) + ": " + label("texture", name.c_str()) + " lacks " + textureUsageNames(usage) +
+    throw Error(std::string(what) + ": " + label("texture", name.c_str()) + " lacks " + textureUsageNames(usage, " or ") +
                 " usage (it was created with " + textureUsageNames(d.usage) + ")");
 }
 
@@ -1261,7 +1266,7 @@ void stateOutsidePass(const char* what) {
 namespace fe::gdi::validate {
 
 uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t size) {
-    bufferUsage(d, BufferUsage::CopyDst, name, "clearBuffer");
+    bufferUsage(d, BufferUsage::CopyDst | BufferUsage::Storage, name, "clearBuffer");  // a transfer or a UAV clear
     const uint64_t bytes = size == 0 && offset <= d.size ? d.size - offset : size;
     if (offset % 4 || bytes % 4)
         throw Error("clearBuffer: " + label("buffer", name.c_str()) + ": offset " + std::to_string(offset) + " and size " +

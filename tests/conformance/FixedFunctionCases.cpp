@@ -388,16 +388,15 @@ std::vector<CaseImage> stencilReadback(Device& d) {
 }
 
 // clearBuffer fills a range with a 32-bit pattern, size 0 meaning to the end; ranges that are not
-// multiples of 4 or leave the buffer are refused, and so is a buffer without CopyDst usage (a fill
-// is a transfer write on Vulkan). A debug label between the commands records
+// multiples of 4 or leave the buffer are refused, and so is a buffer without CopyDst or Storage
+// usage (a fill is a transfer write on Vulkan, a storage-view clear on D3D12). A debug label between the commands records
 // without a validation message.
 std::vector<CaseImage> clearBufferCase(Device& d) {
     DeviceObjects o(d);
-    const BufferHandle b =
-        o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage | BufferUsage::CopyDst, .debugName = "cleared"}));
-    const BufferHandle storageOnly = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage}));
+    const BufferHandle b = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "cleared"}));
+    const BufferHandle uniformOnly = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Uniform}));
     auto cmd = d.createCommandList();
-    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(storageOnly); }), "a buffer without CopyDst usage is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(uniformOnly); }), "a buffer without CopyDst or Storage usage is refused");
     FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 2, 8, 1); }), "an offset that is not a multiple of 4 is refused");
     FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 0, 6, 1); }), "a size that is not a multiple of 4 is refused");
     FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 128, 256, 1); }), "a range past the end is refused");

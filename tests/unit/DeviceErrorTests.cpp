@@ -1101,13 +1101,13 @@ TEST_P(DeviceErrors, CopiesAndBarriersFollowUsage) {
         d.createBuffer({.size = 256, .usage = BufferUsage::CopySrc | BufferUsage::CopyDst, .debugName = "staging"});
     const TextureHandle sampled = d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::Sampled, .debugName = "sampled only"});
     const TextureHandle copyable = d.createTexture({.width = 4, .height = 4, .debugName = "copyable"});  // default usage
+    const TextureHandle renderOnly = d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget, .debugName = "render only"});
     auto cmd = d.createCommandList();
     auto error = [&](auto&& f) { return errorOf(std::forward<decltype(f)>(f)); };
     EXPECT_NE(error([&] { cmd->copyBuffer(staging, 0, storage, 0, 16); }).find("copyBuffer source: buffer 'storage only' lacks CopySrc usage (it was created with Storage)"),
               std::string::npos);
     EXPECT_NE(error([&] { cmd->copyBuffer(storage, 0, staging, 0, 16); }).find("copyBuffer destination: buffer 'storage only' lacks CopyDst usage"),
               std::string::npos);
-    EXPECT_NE(error([&] { cmd->clearBuffer(storage); }).find("clearBuffer: buffer 'storage only' lacks CopyDst usage"), std::string::npos);
     EXPECT_NE(error([&] { cmd->copyTextureToBuffer(staging, 0, sampled, {}); }).find("copyTextureToBuffer: texture 'sampled only' lacks CopySrc usage"),
               std::string::npos);
     EXPECT_NE(error([&] { cmd->copyBufferToTexture(sampled, {}, staging, 0); }).find("copyBufferToTexture: texture 'sampled only' lacks CopyDst usage"),
@@ -1128,6 +1128,9 @@ TEST_P(DeviceErrors, CopiesAndBarriersFollowUsage) {
               std::string::npos);
     EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::Storage}); }).find("lacks Storage usage"),
               std::string::npos);
+    EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = renderOnly, .before = ResourceState::Undefined}); })
+                  .find("barrier to or from ShaderRead: texture 'render only' lacks Sampled or Storage usage"),
+              std::string::npos);
     const TextureHandle colour = d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget, .debugName = "colour"});
     EXPECT_NE(error([&] { cmd->barrier(TextureBarrier{.texture = colour, .before = ResourceState::Undefined, .after = ResourceState::DepthTarget}); })
                   .find("texture 'colour' has format RGBA8: its attachment state is RenderTarget"),
@@ -1138,8 +1141,16 @@ TEST_P(DeviceErrors, CopiesAndBarriersFollowUsage) {
     EXPECT_NE(error([&] { cmd->barrier(BufferBarrier{.buffer = staging, .before = BufferAccess::CopyDst, .after = BufferAccess::StorageRead}); })
                   .find("barrier: buffer 'staging' lacks Storage usage"),
               std::string::npos);
-    // What the usage allows is accepted, and runs.
+    const BufferHandle uniform = d.createBuffer({.size = 256, .usage = BufferUsage::Uniform, .debugName = "uniform only"});
+    EXPECT_NE(error([&] { cmd->clearBuffer(uniform); }).find("clearBuffer: buffer 'uniform only' lacks Storage or CopyDst usage"),
+              std::string::npos);
+    // What the usage allows is accepted, and runs: a Storage buffer may be cleared (a UAV clear on
+    // D3D12), and the copy states go with any usage (writeTexture and writeBuffer copy into
+    // anything, so a barrier from CopyDst after one is true).
+    cmd->clearBuffer(storage);
     cmd->barrier(BufferBarrier{.buffer = storage, .before = BufferAccess::StorageWrite, .after = BufferAccess::StorageRead});
+    cmd->barrier(BufferBarrier{.buffer = uniform, .before = BufferAccess::CopyDst, .after = BufferAccess::Uniform});
+    cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::CopyDst, .after = ResourceState::ShaderRead});
     cmd->barrier(TextureBarrier{.texture = sampled, .before = ResourceState::Undefined, .after = ResourceState::ShaderRead});
     cmd->clearBuffer(staging, 0, 0, 0x01020304u);
     cmd->barrier(BufferBarrier{.buffer = staging, .before = BufferAccess::CopyDst, .after = BufferAccess::CopySrc});
@@ -1153,6 +1164,8 @@ TEST_P(DeviceErrors, CopiesAndBarriersFollowUsage) {
     for (TextureHandle t : {sampled, copyable, colour}) d.destroy(t);
     d.destroy(storage);
     d.destroy(staging);
+    d.destroy(uniform);
+    d.destroy(renderOnly);
 }
 
 // Dynamic state set outside a pass changed nothing (each pass starts from its pipeline's

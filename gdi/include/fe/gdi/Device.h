@@ -813,9 +813,10 @@ public:
     // GPU. The format must support linear filtering. Outside render passes.
     virtual void generateMips(TextureHandle texture) = 0;
 
-    // Copies and fills check usage: what a command reads needs CopySrc (buffers and textures),
-    // what it writes CopyDst (copies, clearBuffer, resolveQueries); an Error names the object
-    // and the usage it was created with. The device's own transfers (writeBuffer, writeTexture,
+    // Copies check usage: what a command reads needs CopySrc (buffers and textures), what it
+    // writes CopyDst (copies, resolveQueries; clearBuffer CopyDst or Storage, as Vulkan fills
+    // through a transfer and D3D12 through a storage view); an Error names the object and the
+    // usage it was created with. The device's own transfers (writeBuffer, writeTexture,
     // readBuffer, readTexture, initial data) and generateMips need no copy usage.
     // Within one buffer the two ranges must not overlap.
     virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
@@ -876,8 +877,10 @@ public:
     // later submissions and to readback. Outside render passes. A barrier names only states
     // the resource's usage allows, before and after: RenderTarget / DepthTarget need
     // RenderTarget usage and a colour / depth format, ShaderRead Sampled or Storage, Storage
-    // Storage, CopySrc and CopyDst those usages; a buffer access needs its usage (StorageRead
-    // and StorageWrite: Storage). Anything else is an Error, as a state the resource is never in.
+    // Storage; a buffer access its usage (StorageRead and StorageWrite: Storage). Anything else
+    // is an Error, as a state the resource is never in. CopySrc and CopyDst go with any usage:
+    // writeTexture / writeBuffer are copies into any resource (a barrier from CopyDst after one
+    // is true, though not needed: device transfers are ordered for you).
     virtual void setAutomaticBarriers(bool enabled) = 0;
     virtual void barrier(const TextureBarrier* barriers, uint32_t count) = 0;
     virtual void barrier(const BufferBarrier* barriers, uint32_t count) = 0;

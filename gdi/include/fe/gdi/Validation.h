@@ -73,8 +73,8 @@ void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const 
 uint64_t subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
                                const BufferDesc& b, const std::string& bufferName, uint64_t offset, bool toTexture,
                                const char* what);
-// Commands recorded in a list that copy or fill need CopySrc on what they read and CopyDst on
-// what they write (copies, clearBuffer, resolveQueries). The device's own transfers
+// Commands recorded in a list that copy need CopySrc on what they read and CopyDst on what they
+// write (copies, resolveQueries; clearBuffer CopyDst or Storage). The device's own transfers
 // (writeBuffer, writeTexture, readBuffer, readTexture, initial data) need neither.
 void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name, const char* what);
 // Throws Error unless `at` names an existing subresource of the texture; `what` names the call.
@@ -531,7 +531,7 @@ std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterfa
 // (array layers and cube faces; a 3D texture has one). Throws for an empty or outside range,
 // or `after` Undefined, or a state the texture's usage does not allow (RenderTarget and
 // DepthTarget need RenderTarget usage and a colour or depth format, ShaderRead Sampled or
-// Storage, Storage Storage, CopySrc and CopyDst those usages).
+// Storage, Storage Storage; the copy states any usage, as device transfers copy any texture).
 struct SubresourceRange {
     uint32_t baseMip = 0, mipCount = 1, baseLayer = 0, layerCount = 1;
     bool whole = true;  // every mip and layer of the texture
@@ -539,7 +539,7 @@ struct SubresourceRange {
 SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name);
 // A buffer barrier's range, resolved (size 0: to the end); throws when outside the buffer or
 // when an access needs a usage the buffer lacks (Vertex, Index, Indirect, Uniform; StorageRead
-// and StorageWrite need Storage; CopySrc, CopyDst).
+// and StorageWrite need Storage; the copy accesses any usage).
 uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::string& name);
 // map(): Upload and Readback buffers only.
 void mappable(const BufferDesc& d, const std::string& name);
