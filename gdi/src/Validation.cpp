@@ -303,17 +303,15 @@ void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const 
     if (mip >= dst.mipLevels || mip >= src.mipLevels) fail("copyTexture", "mip level out of range");
 }
 
-uint64_t subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at, const BufferDesc& b,
-                               const std::string& bufferName, uint64_t offset, bool toTexture, const char* what) {
+void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at, const BufferDesc& b,
+                           const std::string& bufferName, uint64_t offset, bool toTexture, const char* what) {
     bufferTextureUsages(t, textureName, b, bufferName, toTexture, what);
     subresource(t, at, what, textureName);
     if (isDepthFormat(t.format)) fail(what, "depth formats are not supported");
     if (t.sampleCount > 1) fail(what, "multisampled textures are not supported");
     const Extent3 e = mipExtent(t, at.mipLevel);
-    const uint64_t bytes = imageByteSize(t.format, e.width, e.height);
-    bufferRange(b, offset, bytes, what);
+    bufferRange(b, offset, imageByteSize(t.format, e.width, e.height), what);
     if (offset % 4) fail(what, "buffer offset must be a multiple of 4");
-    return bytes;
 }
 
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {

@@ -69,10 +69,10 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, cons
 void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
                       const std::string& srcName, uint32_t mip);
 // copyBufferToTexture / copyTextureToBuffer of one whole subresource: a colour, single-sample
-// texture and a tightly packed range of the buffer at a 4-byte aligned offset. Returns its bytes.
-uint64_t subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
-                               const BufferDesc& b, const std::string& bufferName, uint64_t offset, bool toTexture,
-                               const char* what);
+// texture and a tightly packed range of the buffer at a 4-byte aligned offset, with copy usages.
+void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
+                           const BufferDesc& b, const std::string& bufferName, uint64_t offset, bool toTexture,
+                           const char* what);
 // Commands recorded in a list that copy need CopySrc on what they read and CopyDst on what they
 // write (copies, resolveQueries; clearBuffer CopyDst or Storage). The device's own transfers
 // (writeBuffer, writeTexture, readBuffer, readTexture, initial data) need neither.
