@@ -3,7 +3,10 @@
 //     list on one thread, against four lists of 5,000 on two threads (the calling thread and a
 //     job thread, two lists each), and against one pass whose draws are four secondary lists
 //     recorded on two threads and executed by a primary list. Only the recording is timed
-//     (executeSecondary included); the ratios two-thread / one-thread are the figures. The job
+//     (executeSecondary included); the ratios two-thread / one-thread are the figures, each the
+//     median of the rounds' own ratios: a round records one way right after the other, so a slow
+//     phase of the machine (here they last several rounds and change the one-thread time up to
+//     2x) slows both sides of its ratio, where a ratio of two medians would mix phases. The job
 //     thread is awake when the recording starts (as mid-frame); its wake-up from sleep is a
 //     column of its own.
 //  2. CPU/GPU overlap: frames of 5,000 draws, recorded and submitted with two frames in flight,
@@ -110,7 +113,8 @@ struct Scene {
 
 struct Row {
     std::string backend;
-    double oneThread = 0, twoThreads = 0, secondaryTwoThreads = 0, fromSleep = 0;
+    double oneThread = 0, twoThreads = 0, secondaryTwoThreads = 0, fromSleep = 0;  // medians, ms
+    double twoRatio = 0, secondaryRatio = 0, fromSleepRatio = 0;  // medians of each round's ratio to oneThread
     double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
     double plainFrame = 0, churnFrame = 0;
     double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
@@ -285,6 +289,12 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) lit += image.texel(x, y)[0] > 0.5f;
     if (lit != 10000) throw Error("parallel recording drew " + std::to_string(lit) + " of 10000 pixels");
+    auto ratios = [&](const std::vector<double>& two) {
+        std::vector<double> r;
+        for (size_t i = 0; i < two.size(); ++i) r.push_back(two[i] / one[i]);
+        return median(r);
+    };
+    row.twoRatio = ratios(two), row.secondaryRatio = ratios(parts), row.fromSleepRatio = ratios(cold);
     row.oneThread = median(one);
     row.twoThreads = median(two);
     row.secondaryTwoThreads = median(parts);
@@ -361,14 +371,14 @@ int main(int argc, char** argv) {
             row.churnFrame = frames(s, 20, 2, nullptr, 50, cpuMs);
             rows.push_back(row);
         }
-        std::printf("Parallel recording (%u rounds, medians)\n\n| backend | 20,000 draws, 1 list on 1 thread, ms | 4 lists on 2 "
-                    "threads, ms | ratio | 1 pass of 4 secondary lists on 2 threads, ms | ratio | 4 lists, job thread woken "
-                    "from sleep, ms | ratio |\n|---|---|---|---|---|---|---|---|\n",
+        std::printf("Parallel recording (%u rounds; times are medians, a ratio is the median of the rounds' own ratios)\n\n"
+                    "| backend | 20,000 draws, 1 list on 1 thread, ms | 4 lists on 2 threads, ms | ratio | 1 pass of 4 "
+                    "secondary lists on 2 threads, ms | ratio | 4 lists, job thread woken from sleep, ms | ratio |\n"
+                    "|---|---|---|---|---|---|---|---|\n",
                     rounds);
         for (const Row& r : rows)
             std::printf("| %s | %.3f | %.3f | **%.2f** | %.3f | **%.2f** | %.3f | %.2f |\n", r.backend.c_str(), r.oneThread,
-                        r.twoThreads, r.twoThreads / r.oneThread, r.secondaryTwoThreads, r.secondaryTwoThreads / r.oneThread,
-                        r.fromSleep, r.fromSleep / r.oneThread);
+                        r.twoThreads, r.twoRatio, r.secondaryTwoThreads, r.secondaryRatio, r.fromSleep, r.fromSleepRatio);
         std::printf("\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
         for (const Row& r : rows)
             std::printf("- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s\n", r.backend.c_str(),

@@ -71,7 +71,10 @@ const char* view(const R& record, String s) {
     return s.count ? reinterpret_cast<const char*>(&record) + s.offset : nullptr;
 }
 
-class CommandStream {
+// Cache-line aligned: its cursor and count are written per command by the recording thread, and
+// the device's pool allocates the streams of lists recorded on other threads next to each other
+// (unaligned, two streams of under 100 bytes could share a line and every push would contend).
+class alignas(64) CommandStream {
 public:
     struct Header {
         Op op;
