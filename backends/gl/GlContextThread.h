@@ -6,6 +6,7 @@
 // on queued work (creation, waiting on a replayed fence) go ahead of it: runUrgent.
 #pragma once
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -29,14 +30,22 @@ public:
     // Runs `task` after everything queued before it and returns its result (or rethrows).
     template <class F>
     auto run(F&& task) -> std::invoke_result_t<F&> {
-        return runIn(tasks_, std::forward<F>(task));
+        return runIn(tasks_, std::forward<F>(task), false);
     }
     // For calls whose result does not depend on queued work (creating an object, waiting on a
     // fence whose submission has been replayed): runs `task` before the queued tasks, and even
     // inside a long one (a replay services these between commands: serviceUrgent()).
     template <class F>
     auto runUrgent(F&& task) -> std::invoke_result_t<F&> {
-        return runIn(urgent_, std::forward<F>(task));
+        return runIn(urgent_, std::forward<F>(task), false);
+    }
+    // runUrgent for creating an object. Creations come in runs (loading, per-frame churn), so
+    // afterwards this thread polls briefly for the next call before it sleeps (see spinBriefly);
+    // after other calls, such as a fence wait, it sleeps at once and leaves the core to the
+    // caller's own work.
+    template <class F>
+    auto runCreation(F&& task) -> std::invoke_result_t<F&> {
+        return runIn(urgent_, std::forward<F>(task), true);
     }
     // Set while urgent tasks wait: a long task on this thread polls it (one load) and calls
     // serviceUrgent() when it is set, so an urgent call waits one command, not a whole replay.
@@ -50,9 +59,11 @@ public:
                 if (urgent_.empty()) return;
                 task = std::move(urgent_.front());
                 urgent_.pop_front();
+                queued_.fetch_sub(1, std::memory_order_relaxed);
                 urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             task();  // runIn's wrapper catches and hands exceptions to the waiting caller
+            linger_ = false;  // this thread is busy with the task that serves these
         }
     }
     // Queues `task`; exceptions it throws are kept and rethrown by takeError().
@@ -67,6 +78,7 @@ public:
         {
             std::lock_guard lock(mutex_);
             stopping_ = true;
+            stopRequested_.store(true, std::memory_order_relaxed);
             cv_.notify_one();
         }
         thread_.join();
@@ -74,12 +86,12 @@ public:
 
 private:
     template <class F>
-    auto runIn(std::deque<std::function<void()>>& queue, F&& task) -> std::invoke_result_t<F&> {
+    auto runIn(std::deque<std::function<void()>>& queue, F&& task, bool linger) -> std::invoke_result_t<F&> {
         if (onThisThread()) return task();
         using R = std::invoke_result_t<F&>;
         std::mutex doneMutex;
         std::condition_variable doneCv;
-        bool done = false;
+        std::atomic<bool> done{false};
         std::exception_ptr error;
         std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
         push(queue, [&] {
@@ -89,17 +101,34 @@ private:
             } catch (...) {
                 error = std::current_exception();
             }
-            std::lock_guard lock(doneMutex);
-            done = true;
+            linger_ = linger;
+            std::lock_guard lock(doneMutex);  // notified under the lock: the caller's frame outlives it
+            done.store(true, std::memory_order_release);
             doneCv.notify_one();
         });
-        std::unique_lock lock(doneMutex);
-        doneCv.wait(lock, [&] { return done; });
+        spinBriefly([&] { return done.load(std::memory_order_acquire); }, std::chrono::microseconds(50));
+        std::unique_lock lock(doneMutex);  // also waits for the task's notify to finish
+        doneCv.wait(lock, [&] { return done.load(std::memory_order_relaxed); });
         if (error) std::rethrow_exception(error);
         if constexpr (!std::is_void_v<R>) return std::move(*result);
     }
+    // A synchronous call is a hand-over each way. Sleeping at once on both sides made each one
+    // two futex sleeps and wake-ups (a texture create and destroy took 40 us on this VM, most of
+    // it in the kernel's wake-up path, and frames that create objects paid it on the app
+    // thread). So the caller polls for its result, and this thread, after a creation, for the
+    // next call, each for about as long as a wake-up costs and yielding so the driver's own
+    // threads keep the core, before sleeping.
+    template <class Ready>
+    static void spinBriefly(Ready&& ready, std::chrono::microseconds spin) {
+        const auto until = std::chrono::steady_clock::now() + spin;
+        for (uint32_t i = 0; !ready(); ++i) {
+            if ((i & 15) == 15 && std::chrono::steady_clock::now() > until) return;
+            std::this_thread::yield();
+        }
+    }
     void push(std::deque<std::function<void()>>& queue, std::function<void()> task) {
         std::lock_guard lock(mutex_);
+        queued_.fetch_add(1, std::memory_order_release);
         queue.push_back(std::move(task));
         if (&queue == &urgent_) urgentWaiting_.store(true, std::memory_order_relaxed);
         cv_.notify_one();
@@ -114,6 +143,7 @@ private:
                 if (queue.empty()) return;  // stopping, with everything run
                 task = std::move(queue.front());
                 queue.pop_front();
+                queued_.fetch_sub(1, std::memory_order_relaxed);
                 urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             try {
@@ -122,6 +152,9 @@ private:
                 std::lock_guard lock(mutex_);
                 if (!error_) error_ = std::current_exception();
             }
+            if (std::exchange(linger_, false))
+                spinBriefly([&] { return queued_.load(std::memory_order_acquire) != 0 || stopRequested_.load(std::memory_order_relaxed); },
+                            std::chrono::microseconds(20));
         }
     }
     std::mutex mutex_;
@@ -129,6 +162,9 @@ private:
     std::deque<std::function<void()>> tasks_, urgent_;
     std::exception_ptr error_;
     std::atomic<bool> urgentWaiting_{false};  // !urgent_.empty(), written under mutex_
+    std::atomic<uint32_t> queued_{0};         // tasks in both queues, written under mutex_
+    std::atomic<bool> stopRequested_{false};  // stopping_, for the idle poll
+    bool linger_ = false;                     // this thread's own: the last task was a creation
     bool stopping_ = false;
     std::thread thread_;  // last: starts after the members it uses exist
 };

@@ -339,7 +339,7 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
 }
 
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
-    return thread_.runUrgent([&]() -> gdi::BufferHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::BufferHandle {  // a new object: no queued work uses it
         loss_.check("createBuffer");
         gdi::validate::bufferDesc(desc, info_.limits);
         gdi::validate::initialData(desc, initialData.size());
@@ -372,7 +372,7 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
-    return thread_.runUrgent([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
         loss_.check("createTexture");
         gdi::validate::textureDesc(desc, info_);
         const std::string label = desc.debugName ? desc.debugName : "";
@@ -426,7 +426,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
 }
 
 gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
-    return thread_.runUrgent([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
         loss_.check("createTextureView");
         Texture& parent = texture(h);
         Texture t;
@@ -459,7 +459,7 @@ gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
-    return thread_.runUrgent([&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
         loss_.check("createSampler");
         gdi::validate::samplerDesc(d);
         Sampler s;
@@ -519,7 +519,7 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     const bool images = std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
                                     [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
     if (!s.iface.specConstants.empty() || images) s.spirv = stageNamed;
-    return thread_.runUrgent([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
         s.name = specializedShader(s, stageNamed, {});
         return shaders_.add(std::move(s));
@@ -707,7 +707,7 @@ gdi::PipelineCacheStats GlDevice::pipelineCacheStats() const {
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    return thread_.runUrgent([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
         loss_.check("createGraphicsPipeline");
         gdi::validate::graphicsPipelineDesc(d, info_);
         gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
@@ -769,7 +769,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
-    return thread_.runUrgent([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
         loss_.check("createComputePipeline");
         gdi::validate::computePipelineDesc(d);
         Pipeline p;
@@ -792,7 +792,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
-    return thread_.runUrgent([&]() -> gdi::TimerHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::TimerHandle {  // a new object: no queued work uses it
         loss_.check("createTimer");
         Timer t;
         gl_.CreateQueries(GL_TIMESTAMP, 2, t.queries);
@@ -876,7 +876,7 @@ std::span<const GLenum> queryTargets(gdi::QueryType t) {
 
 gdi::QuerySetHandle GlDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
     gdi::validate::querySetDesc(desc, info_.features);
-    return thread_.runUrgent([&]() -> gdi::QuerySetHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]() -> gdi::QuerySetHandle {  // a new object: no queued work uses it
         loss_.check("createQuerySet");
         QuerySet q;
         q.desc = desc;
