@@ -21,6 +21,11 @@
 namespace fe::gl {
 
 class GlContextThread {
+    struct Task {
+        std::function<void()> run;
+        bool oneOfARun = false;  // poll briefly for the next call afterwards
+    };
+
 public:
     GlContextThread() : thread_([this] { loop(); }) {}
     ~GlContextThread() { stop(); }
@@ -39,10 +44,10 @@ public:
     auto runUrgent(F&& task) -> std::invoke_result_t<F&> {
         return runIn(urgent_, std::forward<F>(task), false);
     }
-    // runUrgent for creating an object. Creations come in runs (loading, per-frame churn), so
-    // afterwards this thread polls briefly for the next call before it sleeps (see spinBriefly);
-    // after other calls, such as a fence wait, it sleeps at once and leaves the core to the
-    // caller's own work.
+    // runUrgent for creating an object: a short call, which the caller polls for, and one of a
+    // run (loading, per-frame churn), so afterwards this thread polls briefly for the next call
+    // before it sleeps (see spinBriefly). Other calls sleep at once on both sides: a fence wait
+    // or a read waits for the GPU, and after it the core is the caller's.
     template <class F>
     auto runCreation(F&& task) -> std::invoke_result_t<F&> {
         return runIn(urgent_, std::forward<F>(task), true);
@@ -53,7 +58,7 @@ public:
     // Called by long tasks on this thread: runs the urgent tasks waiting now.
     void serviceUrgent() {
         for (;;) {
-            std::function<void()> task;
+            Task task;
             {
                 std::lock_guard lock(mutex_);
                 if (urgent_.empty()) return;
@@ -62,12 +67,13 @@ public:
                 queued_.fetch_sub(1, std::memory_order_relaxed);
                 urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
-            task();  // runIn's wrapper catches and hands exceptions to the waiting caller
-            linger_ = false;  // this thread is busy with the task that serves these
+            task.run();  // runIn's wrapper catches and hands exceptions to the waiting caller
         }
     }
     // Queues `task`; exceptions it throws are kept and rethrown by takeError().
-    void post(std::function<void()> task) { push(tasks_, std::move(task)); }
+    // `oneOfARun`: a call that others usually follow at once (destroying objects), after which
+    // this thread polls briefly for the next before it sleeps, as after runCreation.
+    void post(std::function<void()> task, bool oneOfARun = false) { push(tasks_, {std::move(task), oneOfARun}); }
     // The first exception an asynchronous task threw since the last call, if any.
     std::exception_ptr takeError() {
         std::lock_guard lock(mutex_);
@@ -86,7 +92,7 @@ public:
 
 private:
     template <class F>
-    auto runIn(std::deque<std::function<void()>>& queue, F&& task, bool linger) -> std::invoke_result_t<F&> {
+    auto runIn(std::deque<Task>& queue, F&& task, bool oneOfARun) -> std::invoke_result_t<F&> {
         if (onThisThread()) return task();
         using R = std::invoke_result_t<F&>;
         std::mutex doneMutex;
@@ -94,19 +100,18 @@ private:
         std::atomic<bool> done{false};
         std::exception_ptr error;
         std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
-        push(queue, [&] {
+        push(queue, {[&] {
             try {
                 if constexpr (std::is_void_v<R>) task();
                 else result.emplace(task());
             } catch (...) {
                 error = std::current_exception();
             }
-            linger_ = linger;
             std::lock_guard lock(doneMutex);  // notified under the lock: the caller's frame outlives it
             done.store(true, std::memory_order_release);
             doneCv.notify_one();
-        });
-        spinBriefly([&] { return done.load(std::memory_order_acquire); }, std::chrono::microseconds(50));
+        }, oneOfARun});
+        if (oneOfARun) spinBriefly([&] { return done.load(std::memory_order_acquire); }, std::chrono::microseconds(50));
         std::unique_lock lock(doneMutex);  // also waits for the task's notify to finish
         doneCv.wait(lock, [&] { return done.load(std::memory_order_relaxed); });
         if (error) std::rethrow_exception(error);
@@ -115,7 +120,7 @@ private:
     // A synchronous call is a hand-over each way. Sleeping at once on both sides made each one
     // two futex sleeps and wake-ups (a texture create and destroy took 40 us on this VM, most of
     // it in the kernel's wake-up path, and frames that create objects paid it on the app
-    // thread). So the caller polls for its result, and this thread, after a creation, for the
+    // thread). So for a creation the caller polls for its result and this thread then for the
     // next call, each for about as long as a wake-up costs and yielding so the driver's own
     // threads keep the core, before sleeping.
     template <class Ready>
@@ -126,7 +131,7 @@ private:
             std::this_thread::yield();
         }
     }
-    void push(std::deque<std::function<void()>>& queue, std::function<void()> task) {
+    void push(std::deque<Task>& queue, Task task) {
         std::lock_guard lock(mutex_);
         queued_.fetch_add(1, std::memory_order_release);
         queue.push_back(std::move(task));
@@ -135,7 +140,7 @@ private:
     }
     void loop() {
         for (;;) {
-            std::function<void()> task;
+            Task task;
             {
                 std::unique_lock lock(mutex_);
                 cv_.wait(lock, [&] { return stopping_ || !tasks_.empty() || !urgent_.empty(); });
@@ -147,24 +152,23 @@ private:
                 urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             try {
-                task();
+                task.run();
             } catch (...) {
                 std::lock_guard lock(mutex_);
                 if (!error_) error_ = std::current_exception();
             }
-            if (std::exchange(linger_, false))
+            if (task.oneOfARun)
                 spinBriefly([&] { return queued_.load(std::memory_order_acquire) != 0 || stopRequested_.load(std::memory_order_relaxed); },
                             std::chrono::microseconds(20));
         }
     }
     std::mutex mutex_;
     std::condition_variable cv_;
-    std::deque<std::function<void()>> tasks_, urgent_;
+    std::deque<Task> tasks_, urgent_;
     std::exception_ptr error_;
     std::atomic<bool> urgentWaiting_{false};  // !urgent_.empty(), written under mutex_
     std::atomic<uint32_t> queued_{0};         // tasks in both queues, written under mutex_
     std::atomic<bool> stopRequested_{false};  // stopping_, for the idle poll
-    bool linger_ = false;                     // this thread's own: the last task was a creation
     bool stopping_ = false;
     std::thread thread_;  // last: starts after the members it uses exist
 };

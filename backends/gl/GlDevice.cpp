@@ -825,11 +825,13 @@ void GlDevice::retire(Pool& pool, H h, const char* kind, Release&& release) {
     if (!h) return;
     if (!pool.retire(h)) gdi::validate::destroyedHandle(kind, h.id);
     destroyEpoch_.fetch_add(1, std::memory_order_release);
-    thread_.post([&pool, h, release = std::forward<Release>(release)] {
-        typename std::remove_reference_t<decltype(pool.at(h))> object;
-        pool.release(h, object);
-        release(object);
-    });
+    thread_.post(
+        [&pool, h, release = std::forward<Release>(release)] {
+            typename std::remove_reference_t<decltype(pool.at(h))> object;
+            pool.release(h, object);
+            release(object);
+        },
+        true);  // destroys come in runs, as creations do
 }
 void GlDevice::destroy(gdi::BufferHandle h) {
     retire(buffers_, h, "buffer", [this](Buffer& b) {
