@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "fe/gdi/ExclusiveUse.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::gl {
@@ -540,7 +541,8 @@ void GlCommandList::notReadyToDraw(const char* what) const {
 
 std::unique_ptr<gdi::CommandList> GlDevice::createCommandList() {
     loss_.check("createCommandList");
-    return std::make_unique<GlCommandList>(*this);
+    auto list = std::make_unique<GlCommandList>(*this);
+    return info_.features.validation ? gdi::exclusiveUse(std::move(list)) : std::move(list);
 }
 
 }  // namespace fe::gl

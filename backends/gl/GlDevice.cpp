@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include "fe/gdi/ExclusiveUse.h"
 #include "fe/gdi/Validation.h"
 #include "gl/GlBackend.h"
 #include "gl/GlCommandList.h"
@@ -1156,9 +1157,9 @@ void GlDevice::rethrowAsyncError() {
 gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     loss_.check("submit");
     rethrowAsyncError();
-    gdi::validate::submittedLists(lists);
+    const gdi::ClaimedLists claimed(lists, "submit");  // null, twice, in use on another thread
     std::vector<GlCommandList*> gls;
-    for (gdi::CommandList* list : lists) {
+    for (gdi::CommandList* list : claimed.lists()) {
         auto* gl = dynamic_cast<GlCommandList*>(list);
         if (!gl || !gl->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
         gls.push_back(gl);

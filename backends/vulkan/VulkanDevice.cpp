@@ -11,6 +11,7 @@
 #include "VulkanBackend.h"
 #include "VulkanCommandList.h"
 #include "VulkanSwapchain.h"
+#include "fe/gdi/ExclusiveUse.h"
 #include "fe/gdi/PipelineCacheFile.h"
 #include "fe/gdi/Validation.h"
 
@@ -468,7 +469,8 @@ void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name)
 // ---------------------------------------------------------------------------------------------
 std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
     loss_.check("createCommandList");
-    return std::make_unique<VulkanCommandList>(*this);
+    auto list = std::make_unique<VulkanCommandList>(*this);
+    return info_.features.validation ? gdi::exclusiveUse(std::move(list)) : std::move(list);
 }
 
 gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
@@ -476,8 +478,8 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     loss_.check("submit");
     std::vector<VulkanCommandList*> vk;
     std::vector<VkCommandBuffer> cbs;
-    gdi::validate::submittedLists(lists);
-    for (gdi::CommandList* l : lists) {
+    const gdi::ClaimedLists claimed(lists, "submit");  // null, twice, in use on another thread
+    for (gdi::CommandList* l : claimed.lists()) {
         auto* list = dynamic_cast<VulkanCommandList*>(l);
         if (!list || !list->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
         vk.push_back(list);

@@ -13,6 +13,7 @@
 #include "CaptureJson.h"
 #include "fe/gdi/Capture.h"
 #include "fe/gdi/CommandRecorder.h"
+#include "fe/gdi/ExclusiveUse.h"
 
 namespace fe::gdi {
 
@@ -199,12 +200,15 @@ public:
     }
 
     std::unique_ptr<CommandList> createCommandList() override {
-        return std::make_unique<RecordingCommandList>(*this, inner_->createCommandList());  // checked against info_
+        // Checked against info_; the recorder's own stream is guarded as the inner list is.
+        auto list = std::make_unique<RecordingCommandList>(*this, inner_->createCommandList());
+        return info_.features.validation ? exclusiveUse(std::move(list)) : std::move(list);
     }
     FenceValue submit(std::span<CommandList* const> lists) override {
         std::vector<CommandList*> inner;
         std::vector<RecordingCommandList*> recorded;
-        for (CommandList* l : lists) {
+        const ClaimedLists claimed(lists, "submit");
+        for (CommandList* l : claimed.lists()) {
             auto* r = dynamic_cast<RecordingCommandList*>(l);
             if (!r) throw Error("submit: a command list made by another device");
             recorded.push_back(r);
