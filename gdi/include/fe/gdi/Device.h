@@ -691,7 +691,11 @@ struct PipelineStatistics {
 // After submit the list is empty and records anew (its bindings and pass state are reset).
 //
 // Threads: a CommandList may be recorded on any thread, and several lists on several threads
-// at once, one thread per list at a time. Every Device member may be called from any thread;
+// at once, one thread per list at a time (a list may move to another thread between calls).
+// With DeviceCreateDesc::validation a call made while another thread is inside a call of the
+// same list (submit and executeSecondary count as calls of every list they take) throws Error
+// on every backend, and the list is unharmed; without validation that is undefined, as in
+// Vulkan without its layer (the check's cost: ExclusiveUse.h). Every Device member may be called from any thread;
 // the device serialises what it must (see Device). By default synchronisation between passes,
 // dispatches and copies is the backend's job (a conservative barrier after each write).
 // A caller that knows every access, the render graph, turns that off with

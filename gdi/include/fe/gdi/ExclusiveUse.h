@@ -4,8 +4,9 @@
 // every backend hands out its lists behind this check, and a call that finds the list in use by
 // another thread throws the same Error on every backend before touching the list; the thread
 // already inside goes on undisturbed. Without validation the check is absent and such a use is
-// undefined, as Vulkan's is without its layer: the exchange it costs per call is as much again as
-// a draw's whole abstraction overhead (docs/BENCHMARKS.md, "Abstraction cost").
+// undefined, as Vulkan's is without its layer: always on, this check measured 62 more
+// instructions a draw in callgrind (Vulkan's abstraction overhead 80 -> 142, 4.9 % -> 8.7 % of
+// the direct path; the criterion is 5 %).
 //
 //   list = gdi::exclusiveUse(std::make_unique<BackendList>(...));   // createCommandList
 //   gdi::ClaimedLists claimed(lists, "submit");                       // Device::submit
