@@ -89,6 +89,7 @@ gdi::validate::PassSignature GlCommandList::checkPass(const gdi::RenderPassDesc&
 }
 
 void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    checkDevice("beginRenderPass");
     if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
     if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
     signature_ = checkPass(desc);
@@ -107,6 +108,7 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
 }
 
 void GlCommandList::endRenderPass() {
+    checkDevice("endRenderPass");
     if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     queries_.endPass();
@@ -127,6 +129,7 @@ void GlCommandList::restrictedCall(const char* what) const {
 }
 
 void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    checkDevice("beginSecondary");
     if (!stream_->empty() || secondary_ || inPass_) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc);
     restart();
@@ -139,6 +142,7 @@ void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
 }
 
 void GlCommandList::endSecondary() {
+    checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
     if (depth_) throw gdi::Error("endSecondary: " + std::to_string(depth_) + " debug group(s) not popped");
     ended_ = restricted_ = true;
@@ -147,6 +151,7 @@ void GlCommandList::endSecondary() {
 }
 
 void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
+    checkDevice("executeSecondary");
     gdi::validate::submittedLists(lists);
     std::vector<GlCommandList*> parts;
     for (size_t i = 0; i < lists.size(); ++i) {
@@ -199,6 +204,7 @@ void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uin
 template <gdi::BindingType kKind>
 void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer, cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
+    checkDevice(kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer");
     const Buffer* b = dev_.findBuffer(h);
     const gdi::validate::BindingLimits& limits = kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
     uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
@@ -224,6 +230,7 @@ void GlCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_
     setBuffer<gdi::BindingType::StorageBuffer>(slot, h, offset, size);
 }
 void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
+    checkDevice("setTexture");
     checkSlot(slot, "setTexture");
     const Texture& t = dev_.texture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
@@ -236,6 +243,7 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     stream_->push(cmd::SetTexture{slot, th, sh});
 }
 void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
+    checkDevice("setStorageTexture");
     checkSlot(slot, "setStorageTexture");
     const Texture& t = dev_.texture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
@@ -258,6 +266,7 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
     stream_->push(cmd::DrawIndexed{indexCount, instanceCount, firstIndex, baseVertex, firstInstance});
 }
 void GlCommandList::prepareCompute(const char* what) {
+    checkDevice(what);
     if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
     if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
     if (!pipeline_->compute) throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
@@ -344,6 +353,7 @@ void GlCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t 
     gdi::validate::indirect(b.desc, b.label, offset, drawCount, stride, recordSize, dev_.info().features, what);
 }
 void GlCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const {
+    checkDevice(what);
     if (!dev_.info().features.drawIndirectCount)
         throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
     const Buffer& b = dev_.buffer(h);
@@ -455,6 +465,7 @@ void GlCommandList::setAutomaticBarriers(bool enabled) {
 }
 void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
     outside("barrier");
+    gdi::validate::barrierArray(barriers, count);
     for (const gdi::TextureBarrier& b : std::span(barriers, count)) {
         const Texture& t = copied(b.texture);
         gdi::validate::textureBarrier(t.desc, b, t.label);
@@ -463,6 +474,7 @@ void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count)
 }
 void GlCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) {
     outside("barrier");
+    gdi::validate::barrierArray(barriers, count);
     for (const gdi::BufferBarrier& b : std::span(barriers, count)) {
         const Buffer& buffer = dev_.buffer(b.buffer);
         gdi::validate::bufferBarrier(buffer.desc, b, buffer.label);

@@ -15,7 +15,7 @@ namespace fe::gl {
 class GlCommandList final : public gdi::CommandList {
 public:
     explicit GlCommandList(GlDevice& d);
-    bool madeBy(const GlDevice& d) const { return &dev_ == &d; }
+    bool madeBy(const GlDevice& d) const { return !orphaned_ && &dev_ == &d; }  // a new device may reuse the address
     ~GlCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -123,6 +123,12 @@ private:
             restrictedCall(what);
     }
     [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
+    // A list whose device was destroyed (orphan()) throws at every call, naming it, before it
+    // touches the device (calls that check `restricted_` or `outside` get this from there).
+    void checkDevice(const char* what) const {
+        if (orphaned_) [[unlikely]]
+            gdi::validate::listOfDestroyedDevice(what);
+    }
     void outside(const char* what) const;
     QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
     // Copies, mips, discards and barriers address the texture itself, never a view of it.

@@ -504,11 +504,12 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     gdi::validate::shaderDesc(desc);
     const std::string label = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.opengl;
+    // Both halves, the Vulkan one first under the newest Vulkan rules a device takes, so that a
+    // damaged binary reads the same here as on Vulkan (see validateShaderBinary); then this one's.
+    gdi::validateShaderBinary(desc, gdi::SpirvRules::Vulkan13, info_.features);
     if (code.size() < 5 || code[0] != 0x07230203)
         throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
                          " words, missing magic number)");
-    // The Vulkan half too, under the newest Vulkan rules a device takes (see validateShaderBinary).
-    gdi::validateShaderBinary(desc, gdi::SpirvRules::Vulkan13, info_.features);
     Shader s;
     s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label, gdi::SpirvRules::OpenGL45);  // on this thread: no GL needed
     s.stage = desc.stage;

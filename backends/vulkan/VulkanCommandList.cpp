@@ -110,6 +110,7 @@ void VulkanCommandList::orphan() {
     releaseNative();
     orphaned_ = restricted_ = true;
     recording_ = inPass_ = false;
+    lastBound_[0].id = lastBound_[1].id = ~0u;  // no device makes it: the setters take the checked path, which throws
     openSince_ = kNotOpen;  // the device releases everything as it goes
     setNotReady();
     cb_ = VK_NULL_HANDLE;
@@ -180,6 +181,7 @@ void VulkanCommandList::setAutomaticBarriers(bool enabled) {
 
 void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
     outsidePass("barrier");
+    gdi::validate::barrierArray(barriers, count);
     if (count == 0) return;
     std::vector<VkImageMemoryBarrier> bs(count);
     VkPipelineStageFlags src = 0, dst = 0;
@@ -229,6 +231,7 @@ StateScope bufferScope(gdi::BufferAccess a) {
 
 void VulkanCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) {
     outsidePass("barrier");
+    gdi::validate::barrierArray(barriers, count);
     if (count == 0) return;
     std::vector<VkBufferMemoryBarrier> bs(count);
     VkPipelineStageFlags src = 0, dst = 0;
@@ -266,8 +269,8 @@ void VulkanCommandList::checkAlive() const {
     }
 }
 
-void VulkanCommandList::beginRecording() {
-    if (orphaned_) gdi::validate::listOfDestroyedDevice("recording");
+void VulkanCommandList::beginRecording(const char* what) {
+    checkDevice(what);
     // A buffer whose last submission has completed is reused; otherwise another one is made.
     size_t free = buffers_.size();
     for (size_t i = 0; i < buffers_.size() && free == buffers_.size(); ++i)
@@ -306,7 +309,7 @@ void VulkanCommandList::checkSubmittable() const {
 }
 
 VkCommandBuffer VulkanCommandList::finish() {
-    ensureRecording();
+    ensureRecording("submit");
     // No barrier at the end: every recording starts with one before its first pass, copy or
     // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
     // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
@@ -318,7 +321,7 @@ VkCommandBuffer VulkanCommandList::finish() {
 void VulkanCommandList::outsidePass(const char* what) {
     if (orphaned_) [[unlikely]]
         gdi::validate::listOfDestroyedDevice(what);
-    ensureRecording();
+    ensureRecording(what);
     if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
 }
 
@@ -438,6 +441,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
 }
 
 void VulkanCommandList::endRenderPass() {
+    checkDevice("endRenderPass");
     if (secondary_) gdi::validate::notInSecondary("endRenderPass");
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     queries_.endPass();
@@ -500,6 +504,7 @@ void VulkanCommandList::restrictedCall(const char* what) const {
 }
 
 void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    checkDevice("beginSecondary");
     bool bound = false;
     for (const Binding& b : bindings_) bound |= b.kind != kUnbound;
     if (recording_ || secondary_ || inPass_ || bound) gdi::validate::secondaryNotEmpty();
@@ -542,6 +547,7 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
 }
 
 void VulkanCommandList::endSecondary() {
+    checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
     if (debugDepth_ != 0) throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
@@ -551,6 +557,7 @@ void VulkanCommandList::endSecondary() {
 }
 
 void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
+    checkDevice("executeSecondary");
     gdi::validate::submittedLists(lists);
     std::vector<VulkanCommandList*> parts;
     for (size_t i = 0; i < lists.size(); ++i) {
@@ -596,7 +603,7 @@ void VulkanCommandList::clearRecording() {
 }
 
 void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
-    ensureRecording();
+    ensureRecording("setPipeline");
     checkUnrestricted("setPipeline");
     Pipeline& p = usedPipeline(h);
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
@@ -631,7 +638,7 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
 }
 
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
-    ensureRecording();
+    ensureRecording("setViewport");
     checkUnrestricted("setViewport");
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setViewport");
@@ -644,7 +651,7 @@ void VulkanCommandList::setViewport(const gdi::Viewport& v) {
 // bound one, up to the size of its block.
 void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
     gdi::validate::constantsRange(offset, data.size());
-    ensureRecording();
+    ensureRecording("setConstants");
     checkUnrestricted("setConstants");
     std::memcpy(constants_.data() + offset, data.data(), data.size());
     if (pipeline_ && offset < pipeline_->constantBytes)
@@ -653,7 +660,7 @@ void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
 }
 
 void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
-    ensureRecording();
+    ensureRecording("setBlendConstant");
     checkUnrestricted("setBlendConstant");
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setBlendConstant");
@@ -662,7 +669,7 @@ void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
 }
 
 void VulkanCommandList::setStencilReference(uint8_t reference) {
-    ensureRecording();
+    ensureRecording("setStencilReference");
     checkUnrestricted("setStencilReference");
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setStencilReference");
@@ -670,7 +677,7 @@ void VulkanCommandList::setStencilReference(uint8_t reference) {
 }
 
 void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
-    ensureRecording();
+    ensureRecording("setDepthBias");
     checkUnrestricted("setDepthBias");
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setDepthBias");
@@ -679,7 +686,7 @@ void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
 }
 
 void VulkanCommandList::setScissor(const gdi::Rect& r) {
-    ensureRecording();
+    ensureRecording("setScissor");
     checkUnrestricted("setScissor");
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setScissor");
@@ -689,7 +696,7 @@ void VulkanCommandList::setScissor(const gdi::Rect& r) {
 }
 
 void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) {
-    ensureRecording();
+    ensureRecording("setVertexBuffer");
     checkUnrestricted("setVertexBuffer");
     Buffer& b = usedBuffer(h);
     vertexInputs_.setVertexBuffer(index, b.desc, b.name, offset);
@@ -699,7 +706,7 @@ void VulkanCommandList::setVertexBuffer(uint32_t index, gdi::BufferHandle h, uin
 }
 
 void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) {
-    ensureRecording();
+    ensureRecording("setIndexBuffer");
     checkUnrestricted("setIndexBuffer");
     Buffer& b = usedBuffer(h);
     vertexInputs_.setIndexBuffer(b.desc, b.name, type, offset);
@@ -729,6 +736,7 @@ inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uin
 template <VkDescriptorType kType>
 void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
     const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
+    checkDevice(what);
     if (slot >= 64) slotOutOfRange(what, slot);
     const uint64_t epoch = dev_.destroyEpoch();  // before the lookup: a destroy after it invalidates
     Buffer& b = usedBuffer(h);
@@ -751,6 +759,7 @@ void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uin
 }
 
 void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
+    checkDevice("setTexture");
     if (slot >= 64) throw gdi::Error("setTexture: slot " + std::to_string(slot) + " out of range");
     Texture& t = usedTexture(th);
     Sampler& s = usedSampler(sh);
@@ -765,6 +774,7 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
 }
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
+    checkDevice("setStorageTexture");
     if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
     Texture& t = usedTexture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
@@ -876,6 +886,7 @@ const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offs
 }
 
 const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
+    checkDevice(what);
     if (!dev_.info().features.drawIndirectCount)
         throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
     const Buffer& b = usedBuffer(h);
@@ -891,6 +902,7 @@ void VulkanCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, ui
 // GL reads indexed records relative to the element buffer's start, so gdi asks for offset 0 on
 // every backend (the records' firstIndex does the offsetting).
 void VulkanCommandList::indexedIndirect(const char* what) const {
+    checkDevice(what);
     vertexInputs_.indexedIndirect(what);
 }
 
@@ -968,7 +980,7 @@ void VulkanCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64
 }
 
 void VulkanCommandList::insertDebugLabel(const char* name) {
-    ensureRecording();
+    ensureRecording("insertDebugLabel");
     checkUnrestricted("insertDebugLabel");
     if (!dev_.cmdInsertLabel) return;
     VkDebugUtilsLabelEXT l{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
@@ -1108,7 +1120,7 @@ void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
 }
 
 void VulkanCommandList::endTimer(gdi::TimerHandle h) {
-    ensureRecording();
+    ensureRecording("endTimer");
     checkUnrestricted("endTimer");
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     Timer& t = usedTimer(h);
@@ -1118,7 +1130,7 @@ void VulkanCommandList::endTimer(gdi::TimerHandle h) {
 
 // Queries: the device resets every query a submission uses before it runs (VulkanDevice::submit).
 QuerySet& VulkanCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* what) {
-    ensureRecording();
+    ensureRecording(what);
     checkUnrestricted(what);
     if (secondary_) gdi::validate::notInSecondary(what);
     QuerySet& q = dev_.querySet(h);
@@ -1160,7 +1172,7 @@ void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, ui
 }
 
 void VulkanCommandList::pushDebugGroup(const char* name) {
-    ensureRecording();
+    ensureRecording("pushDebugGroup");
     checkUnrestricted("pushDebugGroup");
     debugDepth_++;
     if (!dev_.cmdBeginLabel) return;
@@ -1170,7 +1182,7 @@ void VulkanCommandList::pushDebugGroup(const char* name) {
 }
 
 void VulkanCommandList::popDebugGroup() {
-    ensureRecording();
+    ensureRecording("popDebugGroup");
     checkUnrestricted("popDebugGroup");
     if (debugDepth_ == 0) throw gdi::Error("popDebugGroup without pushDebugGroup");
     debugDepth_--;

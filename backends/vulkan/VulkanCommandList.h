@@ -11,7 +11,7 @@ namespace fe::vk {
 class VulkanCommandList final : public gdi::CommandList {
 public:
     explicit VulkanCommandList(VulkanDevice& device);
-    bool madeBy(const VulkanDevice& d) const { return &dev_ == &d; }
+    bool madeBy(const VulkanDevice& d) const { return !orphaned_ && &dev_ == &d; }  // a new device may reuse the address
     ~VulkanCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -68,7 +68,7 @@ public:
     void endSecondary() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;
     uint64_t nativeCommandBuffer() override {
-        ensureRecording();
+        ensureRecording("nativeCommandBuffer");
         return uint64_t(cb_);
     }
 
@@ -131,11 +131,18 @@ private:
     void releaseNative();  // command pools and secondary buffers back to the device
     void addRecordingBuffer();
     void hostReadable(const Buffer& b);
-    void ensureRecording() {
+    // `what`: the call, named in the Error of a list whose device was destroyed.
+    void ensureRecording(const char* what) {
         if (!recording_) [[unlikely]]
-            beginRecording();
+            beginRecording(what);
     }
-    void beginRecording();
+    void beginRecording(const char* what);
+    // A list whose device was destroyed (orphan()) throws at every call, naming it, before it
+    // touches the device; the per-draw paths reach this through their not-ready branch.
+    void checkDevice(const char* what) const {
+        if (orphaned_) [[unlikely]]
+            gdi::validate::listOfDestroyedDevice(what);
+    }
     void outsidePass(const char* what);
     void barrierIfWritten();
     void pushDirty(uint64_t push, VkPipelineBindPoint bindPoint);

@@ -389,6 +389,8 @@ void shaderDesc(const ShaderDesc& d) {
     if (d.stage != ShaderStage::Vertex && d.stage != ShaderStage::Fragment && d.stage != ShaderStage::Compute)
         fail(what, "stage must be exactly one of Vertex, Fragment, Compute");
     if (!d.entryPoint || !*d.entryPoint) fail(what, "entry point is empty");
+    if (d.binary.vulkan.empty() && d.binary.opengl.empty())
+        fail(what, "the binary is empty (no SPIR-V for Vulkan or for OpenGL: fe_add_shaders and shaders::find make both)");
 }
 
 static void bindingList(const std::vector<BindingSlot>& bindings, const std::string& what) {
@@ -497,12 +499,20 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
         const std::string name = "colour attachment " + std::to_string(i);
         if (isDepthFormat(colors[i].format)) fail(what, name + " has a depth format");
         check(colors[i], name);
+        // NaN or infinity converts to a format's values differently per driver (and a unorm
+        // target has no such value): a clear colour is finite.
+        if (i < d.colors.size() && d.colors[i].load == LoadOp::Clear)
+            for (float c : d.colors[i].clear)
+                if (!std::isfinite(c)) fail(what, name + ": clear colour is not finite");
         if (i < colorResolves.size() && colorResolves[i].format != Format::Undefined)
             checkResolve(colors[i], colorResolves[i], name);
     }
     if (depth) {
         if (!isDepthFormat(depth->format)) fail(what, "depth attachment has colour format " + std::string(formatInfo(depth->format).name));
         check(*depth, "depth attachment");
+        const float z = d.depth.clearDepth;  // Vulkan's VkClearDepthStencilValue rule
+        if (d.depth.load == LoadOp::Clear && !(z >= 0.0f && z <= 1.0f))
+            fail(what, "depth attachment: clearDepth " + std::to_string(z) + " is not in [0, 1]");
         if (depthResolve) checkResolve(*depth, *depthResolve, "depth attachment");
     }
     return Rect{0, 0, w, h};

@@ -1,5 +1,6 @@
 // Invalid descriptions give clear errors, never crashes, on every backend.
 #include <array>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -540,6 +541,115 @@ TEST_P(DeviceErrors, ListsMayOutliveTheirDevice) {
     recorded.reset();
     submitted.reset();
     empty.reset();
+}
+
+// Every call of a list whose device is gone is that Error, naming the call, on every backend
+// (before: binding setters, beginRenderPass on GL and beginSecondary read the freed device and
+// crashed; other calls named "recording" on Vulkan, or said "dispatch without a pipeline").
+TEST_P(DeviceErrors, EveryCallOfAnOrphanedListNamesItself) {
+    using Call = std::pair<const char*, std::function<void(CommandList&)>>;
+    const BufferHandle b{1};
+    const TextureHandle t{1};
+    const float four[4] = {};
+    const TextureBarrier tb{.texture = t};
+    const BufferBarrier bb{.buffer = b};
+    const std::vector<Call> calls = {
+        {"beginRenderPass", [&](CommandList& l) { l.beginRenderPass({.colors = {{.texture = t}}}); }},
+        {"endRenderPass", [](CommandList& l) { l.endRenderPass(); }},
+        {"setPipeline", [](CommandList& l) { l.setPipeline({1}); }},
+        {"setViewport", [](CommandList& l) { l.setViewport({.width = 4, .height = 4}); }},
+        {"setScissor", [](CommandList& l) { l.setScissor({0, 0, 4, 4}); }},
+        {"setBlendConstant", [](CommandList& l) { l.setBlendConstant({0, 0, 0, 0}); }},
+        {"setStencilReference", [](CommandList& l) { l.setStencilReference(1); }},
+        {"setDepthBias", [](CommandList& l) { l.setDepthBias(1, 1); }},
+        {"setConstants", [&](CommandList& l) { l.setConstants(0, bytesOf(four)); }},
+        {"setVertexBuffer", [&](CommandList& l) { l.setVertexBuffer(0, b); }},
+        {"setIndexBuffer", [&](CommandList& l) { l.setIndexBuffer(b, IndexType::U16); }},
+        {"setUniformBuffer", [&](CommandList& l) { l.setUniformBuffer(0, b); }},
+        {"setStorageBuffer", [&](CommandList& l) { l.setStorageBuffer(0, b); }},
+        {"setTexture", [&](CommandList& l) { l.setTexture(0, t, {1}); }},
+        {"setStorageTexture", [&](CommandList& l) { l.setStorageTexture(0, t); }},
+        {"draw", [](CommandList& l) { l.draw(3); }},
+        {"drawIndexed", [](CommandList& l) { l.drawIndexed(3); }},
+        {"dispatch", [](CommandList& l) { l.dispatch(1); }},
+        {"drawIndirect", [&](CommandList& l) { l.drawIndirect(b, 0); }},
+        {"drawIndexedIndirect", [&](CommandList& l) { l.drawIndexedIndirect(b, 0); }},
+        {"drawIndirectCount", [&](CommandList& l) { l.drawIndirectCount(b, 0, b, 0, 1); }},
+        {"drawIndexedIndirectCount", [&](CommandList& l) { l.drawIndexedIndirectCount(b, 0, b, 0, 1); }},
+        {"dispatchIndirect", [&](CommandList& l) { l.dispatchIndirect(b, 0); }},
+        {"generateMips", [&](CommandList& l) { l.generateMips(t); }},
+        {"copyBuffer", [&](CommandList& l) { l.copyBuffer(b, 0, b, 4, 4); }},
+        {"clearBuffer", [&](CommandList& l) { l.clearBuffer(b); }},
+        {"copyTexture", [&](CommandList& l) { l.copyTexture(t, t); }},
+        {"copyBufferToTexture", [&](CommandList& l) { l.copyBufferToTexture(t, Subresource{}, b, 0); }},
+        {"copyTextureToBuffer", [&](CommandList& l) { l.copyTextureToBuffer(b, 0, t, Subresource{}); }},
+        {"beginTimer", [](CommandList& l) { l.beginTimer({1}); }},
+        {"endTimer", [](CommandList& l) { l.endTimer({1}); }},
+        {"beginQuery", [](CommandList& l) { l.beginQuery({1}, 0); }},
+        {"endQuery", [](CommandList& l) { l.endQuery({1}, 0); }},
+        {"writeTimestamp", [](CommandList& l) { l.writeTimestamp({1}, 0); }},
+        {"resolveQueries", [&](CommandList& l) { l.resolveQueries({1}, 0, 1, b, 0); }},
+        {"pushDebugGroup", [](CommandList& l) { l.pushDebugGroup("g"); }},
+        {"popDebugGroup", [](CommandList& l) { l.popDebugGroup(); }},
+        {"insertDebugLabel", [](CommandList& l) { l.insertDebugLabel("l"); }},
+        {"discardTexture", [&](CommandList& l) { l.discardTexture(t); }},
+        {"setAutomaticBarriers", [](CommandList& l) { l.setAutomaticBarriers(false); }},
+        {"barrier", [&](CommandList& l) { l.barrier(tb); }},
+        {"barrier", [&](CommandList& l) { l.barrier(bb); }},
+        {"beginSecondary", [&](CommandList& l) { l.beginSecondary({.colors = {{.texture = t}}}); }},
+        {"endSecondary", [](CommandList& l) { l.endSecondary(); }},
+        {"executeSecondary", [](CommandList& l) { l.executeSecondary(std::span<CommandList* const>()); }},
+    };
+    for (bool inPass : {false, true}) {
+        auto other = createDevice({.backend = GetParam()});
+        auto target = other->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+        std::vector<std::unique_ptr<CommandList>> lists;
+        for (size_t i = 0; i < calls.size(); ++i) {
+            lists.push_back(other->createCommandList());
+            if (inPass) lists.back()->beginRenderPass({.colors = {{.texture = target}}});
+        }
+        other.reset();
+        for (size_t i = 0; i < calls.size(); ++i)
+            EXPECT_EQ(errorOf([&] { calls[i].second(*lists[i]); }),
+                      std::string(calls[i].first) +
+                          ": the device of this command list was destroyed (destroy lists before their device)")
+                << (inPass ? "in a pass: " : "") << calls[i].first;
+    }
+}
+
+// Arrays, clear values and binaries that no backend can take: the same Error everywhere (a null
+// barrier array crashed every backend; non-finite clears and an empty binary were taken or read
+// differently).
+TEST_P(DeviceErrors, NullArraysClearValuesAndEmptyBinaries) {
+    auto cmd = device->createCommandList();
+    EXPECT_EQ(errorOf([&] { cmd->barrier(static_cast<const TextureBarrier*>(nullptr), 2); }),
+              "barrier: 2 barrier(s) from a null pointer");
+    EXPECT_EQ(errorOf([&] { cmd->barrier(static_cast<const BufferBarrier*>(nullptr), 1); }),
+              "barrier: 1 barrier(s) from a null pointer");
+    cmd->barrier(static_cast<const TextureBarrier*>(nullptr), 0);  // no barrier: fine
+    auto rt = device->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+    auto depth = device->createTexture({.format = Format::D32F, .width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {0, nan, 0, 1}}}}); }),
+              "render pass: colour attachment 0: clear colour is not finite");
+    EXPECT_EQ(errorOf([&] {
+                  cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {0, std::numeric_limits<float>::infinity(), 0, 1}}}});
+              }),
+              "render pass: colour attachment 0: clear colour is not finite");
+    EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.depth = {.texture = depth, .clearDepth = 2.0f}}); }),
+              "render pass: depth attachment: clearDepth 2.000000 is not in [0, 1]");
+    EXPECT_EQ(errorOf([&] { cmd->beginRenderPass({.depth = {.texture = depth, .clearDepth = nan}}); }),
+              "render pass: depth attachment: clearDepth nan is not in [0, 1]");
+    // Loaded, not cleared: the clear values are not used and not checked.
+    cmd->beginRenderPass({.colors = {{.texture = rt, .load = LoadOp::Load, .clear = {nan, 0, 0, 1}}},
+                          .depth = {.texture = depth, .load = LoadOp::Load, .clearDepth = 2.0f}});
+    cmd->endRenderPass();
+    device->wait(device->submit(*cmd));
+    EXPECT_EQ(errorOf([&] { device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "none"}}); }),
+              "shader 'none': the binary is empty (no SPIR-V for Vulkan or for OpenGL: fe_add_shaders and shaders::find make "
+              "both)");
+    device->destroy(rt);
+    device->destroy(depth);
 }
 
 TEST_P(DeviceErrors, BrokenShaderBinary) {

@@ -473,6 +473,11 @@ void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstO
                 const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer);
 // A call on a command list whose device was destroyed (LiveLists.h).
 [[noreturn, gnu::cold]] void listOfDestroyedDevice(const char* what);
+// barrier(pointer, count): count barriers need an array (a null one with count 0 is no barrier).
+inline void barrierArray(const void* barriers, uint32_t count) {
+    if (!barriers && count) [[unlikely]]
+        throw Error("barrier: " + std::to_string(count) + " barrier(s) from a null pointer");
+}
 // wait / isComplete: a fence a submission returned (at most the last one issued).
 [[noreturn, gnu::cold]] void fenceNotIssued(FenceValue fence, FenceValue last, const char* what);
 inline void issuedFence(FenceValue fence, FenceValue last, const char* what) {
