@@ -825,6 +825,7 @@ void GlDevice::forgetFramebuffers(GLuint texture) {
 template <class Pool, class H, class Release>
 void GlDevice::retire(Pool& pool, H h, const char* kind, Release&& release) {
     if (!h) return;
+    std::lock_guard lock(submitMutex_);  // not between a submit's liveness check and its replay
     if (!pool.retire(h)) gdi::validate::destroyedHandle(kind, h.id);
     destroyEpoch_.fetch_add(1, std::memory_order_release);
     thread_.post(
@@ -1165,6 +1166,9 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
         if (!gl || !gl->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
         gls.push_back(gl);
     }
+    // Held from the liveness check to queueing the replay: a destroy retires and queues its GL
+    // delete under it too, so an object is either refused here or deleted after the replay.
+    std::lock_guard lock(submitMutex_);
     for (GlCommandList* gl : gls) gl->checkSubmittable();
     std::vector<const gdi::validate::QueryRecording*> queries;
     for (GlCommandList* gl : gls) queries.push_back(&gl->queries());
@@ -1180,7 +1184,6 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
         for (auto& s : streams) returnStream(std::move(s));
         throw loss_.lose(info_.backend, "glGetGraphicsResetStatus returned GL_UNKNOWN_CONTEXT_RESET");
     }
-    std::lock_guard lock(submitMutex_);
     const gdi::FenceValue value = nextFence_++;
     {
         std::lock_guard queriesLock(queriesMutex_);

@@ -456,31 +456,40 @@ gdi::TimerHandle VulkanDevice::createTimer() {
 // handle is invalid at once.
 void VulkanDevice::destroy(gdi::BufferHandle h) {
     std::lock_guard lock(mutex_);
-    Buffer b;
     if (!h) return;
-    if (!buffers_.remove(h, b)) gdi::validate::destroyedHandle("buffer", h.id);
+    if (!buffers_.retire(h)) gdi::validate::destroyedHandle("buffer", h.id);
     dropInitialCommands(0, h.id);  // a zero fill not yet submitted never runs
-    retire([this, b]() mutable { freeBuffer(b); });
+    retire([this, h] {
+        Buffer b;
+        buffers_.release(h, b);
+        freeBuffer(b);
+    });
 }
 
 void VulkanDevice::destroy(gdi::TextureHandle h) {
     std::lock_guard lock(mutex_);
-    Texture t;
     if (const Texture* live = h ? textures_.find(h) : nullptr; live && live->views)
         gdi::validate::viewsAlive(live->name, live->views);
     if (!h) return;
-    if (!textures_.remove(h, t)) gdi::validate::destroyedHandle("texture", h.id);
-    if (Texture* parent = t.viewOf ? textures_.find({t.viewOf}) : nullptr) --parent->views;
+    if (!textures_.retire(h)) gdi::validate::destroyedHandle("texture", h.id);
+    if (Texture* parent = textures_.at(h).viewOf ? textures_.find({textures_.at(h).viewOf}) : nullptr) --parent->views;
     dropInitialCommands(h.id, 0);  // nor a first transition and clear
-    retire([this, t]() mutable { destroyTexture(t); });
+    retire([this, h] {
+        Texture t;
+        textures_.release(h, t);
+        destroyTexture(t);
+    });
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
     std::lock_guard lock(mutex_);
-    Sampler s;
     if (!h) return;
-    if (!samplers_.remove(h, s)) gdi::validate::destroyedHandle("sampler", h.id);
-    retire([this, s] { vkDestroySampler(device_, s.sampler, nullptr); });
+    if (!samplers_.retire(h)) gdi::validate::destroyedHandle("sampler", h.id);
+    retire([this, h] {
+        Sampler s;
+        samplers_.release(h, s);
+        vkDestroySampler(device_, s.sampler, nullptr);
+    });
 }
 
 void VulkanDevice::destroy(gdi::ShaderHandle h) {
@@ -493,22 +502,26 @@ void VulkanDevice::destroy(gdi::ShaderHandle h) {
 
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
     std::lock_guard lock(mutex_);
-    Pipeline p;
     if (!h) return;
-    if (!pipelines_.remove(h, p)) gdi::validate::destroyedHandle("pipeline", h.id);
-    retire([this, pipeline = p.pipeline, layout = p.layout, setLayout = p.setLayout] {
-        vkDestroyPipeline(device_, pipeline, nullptr);
-        vkDestroyPipelineLayout(device_, layout, nullptr);
-        vkDestroyDescriptorSetLayout(device_, setLayout, nullptr);
+    if (!pipelines_.retire(h)) gdi::validate::destroyedHandle("pipeline", h.id);
+    retire([this, h] {
+        Pipeline p;
+        pipelines_.release(h, p);
+        vkDestroyPipeline(device_, p.pipeline, nullptr);
+        vkDestroyPipelineLayout(device_, p.layout, nullptr);
+        vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
     });
 }
 
 void VulkanDevice::destroy(gdi::TimerHandle h) {
     std::lock_guard lock(mutex_);
-    Timer t;
     if (!h) return;
-    if (!timers_.remove(h, t)) gdi::validate::destroyedHandle("timer", h.id);
-    retire([this, t] { freeTimerSlots_.push_back(t.firstQuery); });
+    if (!timers_.retire(h)) gdi::validate::destroyedHandle("timer", h.id);
+    retire([this, h] {
+        Timer t;
+        timers_.release(h, t);
+        freeTimerSlots_.push_back(t.firstQuery);
+    });
 }
 
 gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
@@ -543,10 +556,13 @@ gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) 
 
 void VulkanDevice::destroy(gdi::QuerySetHandle h) {
     std::lock_guard lock(mutex_);
-    QuerySet q;
     if (!h) return;
-    if (!querySets_.remove(h, q)) gdi::validate::destroyedHandle("query set", h.id);
-    retire([this, pool = q.pool] { vkDestroyQueryPool(device_, pool, nullptr); });
+    if (!querySets_.retire(h)) gdi::validate::destroyedHandle("query set", h.id);
+    retire([this, h] {
+        QuerySet q;
+        querySets_.release(h, q);
+        vkDestroyQueryPool(device_, q.pool, nullptr);
+    });
 }
 
 bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {

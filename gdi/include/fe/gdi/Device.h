@@ -1042,7 +1042,8 @@ struct PipelineCacheStats {
 // recording: binding and drawing take no device lock (Vulkan takes it briefly when a
 // recording starts and when a pass first uses an attachment view). Objects used by a list
 // must not be destroyed while that list is being recorded or is unsubmitted (its submit
-// throws Error). A submit that throws runs none of its lists and leaves them as they were.
+// throws Error; a call that looks the object up after its destroy throws Error at once, also
+// when another thread destroys it during the call, and nothing crashes). A submit that throws runs none of its lists and leaves them as they were.
 // Destroy command lists before their device; a list that outlives it is safe to destroy, and
 // recording into it throws Error.
 class Device {

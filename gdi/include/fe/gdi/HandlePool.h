@@ -12,12 +12,19 @@
 // Two-step removal, for work that still runs after the caller's destroy(): retire() makes the
 // handle invalid for find()/get() at once but keeps the object in its slot; at() still reaches
 // it (for replaying already-validated work); release() frees the slot later.
+//
+// A recording thread may have found an object just before another thread destroys it (a misuse
+// the list's submit refuses, which must not crash first). So release() copies the object out
+// and leaves the slot as it was, and a freed slot waits in a first-in first-out quarantine of
+// kQuarantine others before add() writes a new object there: a reader that found the handle
+// reads an intact (stale) object, not one being overwritten.
 #pragma once
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <bit>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,9 +58,9 @@ public:
 
     H add(T&& object) {
         uint32_t index;
-        if (!free_.empty()) {
-            index = free_.back();
-            free_.pop_back();
+        if (free_.size() > kQuarantine || (!free_.empty() && count_.load(std::memory_order_relaxed) >= kMaxIndex)) {
+            index = free_.front();
+            free_.pop_front();
         } else {
             index = count_.load(std::memory_order_relaxed);
             if (index >= kMaxIndex) throw Error("too many live objects of one kind (at most " + std::to_string(kMaxIndex) + ")");
@@ -98,12 +105,11 @@ public:
         slot((h.id & 0xfffffu) - 1).liveTag.store(kDead, std::memory_order_release);
         return true;
     }
-    // Frees a retired handle's slot, moving its object out.
+    // Frees a retired handle's slot, copying its object out (the slot keeps it until reused).
     void release(H h, T& out) {
         const uint32_t index = (h.id & 0xfffffu) - 1;
         Slot& s = slot(index);
-        out = std::move(s.object);
-        s.object = T{};
+        out = s.object;
         s.generation++;
         free_.push_back(index);
     }
@@ -143,7 +149,8 @@ private:
 
     // Inline, not behind a pointer: a lookup is one load for the chunk, one for the slot.
     std::array<std::atomic<Chunk*>, kMaxChunks> chunks_{};  // null until used
-    std::vector<uint32_t> free_;
+    static constexpr size_t kQuarantine = 64;
+    std::deque<uint32_t> free_;  // released slots, oldest first
     std::atomic<uint32_t> count_{0};  // slots in use or freed: the next new index
     uint32_t salt_ = 0;               // see nextHandleSalt()
 };
