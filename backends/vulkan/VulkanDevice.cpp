@@ -291,8 +291,9 @@ void VulkanDevice::createLogicalDevice() {
 // before the call); a file that is not this device's is never handed to the driver.
 gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path) {
     std::lock_guard lock(mutex_);
-    cacheStats_ = {.path = path};
+    // Read first: a path refused with an Error leaves the cache as it was (GL's order too).
     const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
+    cacheStats_ = {.path = path};
     cacheStats_.warning = file.warning;
     if (!file.warning.empty()) std::cerr << "fe: " << file.warning << "\n";
     if (file.payload.empty()) return cacheStats_;

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -67,9 +68,20 @@ PipelineCacheLoad parsePipelineCache(std::span<const uint8_t> bytes, const std::
 }
 
 PipelineCacheLoad readPipelineCache(const std::string& path, const std::string& identity) {
+    // A directory (or a device) opens as a stream and then throws from the read: a path that
+    // exists must be a file, which is then written back there.
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw Error("pipeline cache '" + path + "': not a regular file (give a file path; it is created if missing)");
     std::ifstream f(path, std::ios::binary);
     if (!f) return {};  // no cache yet: not worth a warning
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    std::vector<uint8_t> bytes;
+    try {
+        bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    } catch (const std::exception& e) {
+        throw Error("pipeline cache '" + path + "': cannot be read (" + e.what() + ")");
+    }
     PipelineCacheLoad r = parsePipelineCache(bytes, identity);
     if (!r.warning.empty()) r.warning = "pipeline cache '" + path + "' ignored: " + r.warning;
     return r;

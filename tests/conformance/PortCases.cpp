@@ -247,6 +247,17 @@ std::vector<CaseImage> pipelineCacheRoundtrip(Device& d) {
                              ("expected the file ignored with \"" + std::string(why) + "\", got \"" + stats.warning + "\"").c_str());
         drawFrame(std::string("after a file ignored: ") + why);
     }
+    // A path that is not a file (a directory) is an Error, the same on every backend, and the
+    // cache stays where it was (before, the read threw std::ios_base::failure out of the device).
+    std::string refused;
+    try {
+        d.openPipelineCache(std::filesystem::temp_directory_path().string());
+    } catch (const Error& e) {
+        refused = e.what();
+    }
+    FE_CONFORMANCE_CHECK(refused.find("not a regular file") != std::string::npos,
+                         ("a directory as the cache path: expected an Error, got \"" + refused + "\"").c_str());
+    FE_CONFORMANCE_CHECK(d.pipelineCacheStats().path == path.string(), "the refused path did not replace the cache's");
     return images;
 }
 
