@@ -150,8 +150,22 @@ void checkFinite(const Scene& scene) {
         if (!finite(l.color) || !finite(l.intensity) || !finite(l.range) || !finite(l.position) || !finite(l.direction) ||
             !finite(l.innerConeAngle) || !finite(l.outerConeAngle))
             fail("light '" + l.name + "'");
-    if (scene.camera && (!finite(scene.camera->worldFromView) || !finite(scene.camera->yfov) || !finite(scene.camera->znear)))
-        fail("camera '" + scene.camera->name + "'");
+    if (scene.camera) checkCamera(*scene.camera);
+}
+
+void checkCamera(const Camera& c) {
+    const std::string what = "camera '" + c.name + "': ";
+    if (!finite(c.worldFromView) || !finite(c.yfov) || !finite(c.znear))
+        throw AssetError(what + "not finite (NaN or infinity)");
+    // The view matrix is inverted every frame: a singular one gives a NaN view, not a picture.
+    if (!(std::abs(glm::determinant(glm::mat3(c.worldFromView))) > 1e-12f))
+        throw AssetError(what + "its transform is singular (no view can be made from it)");
+    if (!(c.yfov > 0.0f && c.yfov < 3.14159265f))
+        throw AssetError(what + "yfov " + std::to_string(c.yfov) + " is not in (0, pi) radians");
+    if (!(c.znear > 0.0f)) throw AssetError(what + "znear " + std::to_string(c.znear) + " is not positive");
+    if (!(c.zfar > c.znear)) throw AssetError(what + "zfar " + std::to_string(c.zfar) + " is not beyond znear");
+    if (c.aspectRatio && !(*c.aspectRatio > 0.0f && std::isfinite(*c.aspectRatio)))
+        throw AssetError(what + "aspectRatio " + std::to_string(*c.aspectRatio) + " is not a positive number");
 }
 
 void finalizeScene(Scene& scene, bool addCamera, bool addLights) {

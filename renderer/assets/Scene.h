@@ -222,6 +222,9 @@ void addDefaultLights(Scene& scene, const Camera& camera);
 // camera. Nothing downstream can shade such data into anything but garbage. Denormal numbers
 // are finite and pass.
 void checkFinite(const Scene& scene);
+// A camera a view can be made from: finite, an invertible transform, yfov in (0, pi),
+// 0 < znear < zfar (zfar may be infinite), a positive aspect ratio when set. Throws AssetError.
+void checkCamera(const Camera& camera);
 
 // Checks the scene is finite (checkFinite), recomputes bounds, then adds the default camera /
 // lights when asked and missing.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <cstring>
 
@@ -40,6 +41,8 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     if (s.illumScale != 1 && s.illumScale != 2 && s.illumScale != 4)
         throw gdi::Error("illumination scale must be 1, 2 or 4 (got " + std::to_string(s.illumScale) + ")");
     if (!scene.camera) throw gdi::Error("scene has no camera");
+    if (!(s.exposure > 0.0f && std::isfinite(s.exposure)))
+        throw gdi::Error("exposure " + std::to_string(s.exposure) + " is not a positive number");
     if (s.antiAliasing == AntiAliasing::Taa && s.temporal)
         throw gdi::Error("--aa taa and --temporal both jitter the frame over time: take one");
     try {
@@ -387,6 +390,11 @@ void SceneRenderer::updateLights(const std::vector<assets::Light>& lights) {
 }
 
 void SceneRenderer::setCamera(const assets::Camera& camera) {
+    try {
+        assets::checkCamera(camera);
+    } catch (const assets::AssetError& e) {
+        throw gdi::Error(std::string("setCamera: ") + e.what());
+    }
     camera_ = camera;
     context_->eye = camera.eye();
 }

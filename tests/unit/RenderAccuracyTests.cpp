@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -487,6 +489,38 @@ TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
     EXPECT_NE(e.find("technique deferred does not take --msaa"), std::string::npos) << e;
     EXPECT_NE(fe::testing::errorOf([&] { render::SceneRenderer r(*device, scene, {.msaa = 3}); }).find("--msaa must be 1, 2, 4 or 8"),
               std::string::npos);
+}
+
+// Cameras no view can be made from, and a non-finite exposure, are Errors (they rendered a
+// silent black or NaN frame); a refused setCamera keeps the previous camera.
+TEST_P(RenderAccuracy, BadCamerasAndExposureAreErrors) {
+    using fe::testing::errorOf;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(errorOf([&] { render::SceneRenderer r(*device, scene, {.width = kW, .height = kH, .exposure = nan}); }),
+              "exposure nan is not a positive number");
+    render::SceneRenderer r(*device, scene, {.width = kW, .height = kH});
+    r.renderFrame();
+    const gdi::Image before = r.readOutput();
+    const assets::Camera good = *scene.camera;
+    const std::vector<std::pair<std::function<void(assets::Camera&)>, std::string>> bad = {
+        {[&](assets::Camera& c) { c.worldFromView[3][0] = nan; }, "not finite (NaN or infinity)"},
+        {[](assets::Camera& c) { c.worldFromView = glm::mat4(0.0f); }, "its transform is singular (no view can be made from it)"},
+        {[](assets::Camera& c) { c.yfov = 0; }, "yfov 0.000000 is not in (0, pi) radians"},
+        {[](assets::Camera& c) { c.znear = -1; }, "znear -1.000000 is not positive"},
+        {[](assets::Camera& c) { c.znear = 10, c.zfar = 1; }, "zfar 1.000000 is not beyond znear"},
+        {[](assets::Camera& c) { c.aspectRatio = 0.0f; }, "aspectRatio 0.000000 is not a positive number"},
+    };
+    for (const auto& [spoil, why] : bad) {
+        assets::Camera c = good;
+        spoil(c);
+        EXPECT_EQ(errorOf([&] { r.setCamera(c); }), "setCamera: camera '" + good.name + "': " + why);
+        assets::Scene withCamera = scene;
+        withCamera.camera = c;
+        EXPECT_EQ(errorOf([&] { render::SceneRenderer s(*device, withCamera, {.width = kW, .height = kH}); }),
+                  "scene refused: camera '" + good.name + "': " + why);
+    }
+    r.renderFrame();
+    EXPECT_EQ(compare(r.readOutput(), before, 0.0, 1e-6).fractionOver, 0.0) << "the refused cameras changed the view";
 }
 
 TEST_P(RenderAccuracy, RedeferredFullRateMatchesForward) {

@@ -2,6 +2,8 @@
 // replay (issue 27).
 //  - RecordingCommandList wraps a device's list: each call goes to that list first (so its
 //    checks and errors are the device's), then becomes a record of CommandSet.inc in a stream.
+//    Like any list it is used by one thread at a time; gdi::exclusiveUse (ExclusiveUse.h) checks
+//    that, as the capture device does for the lists it hands out under validation.
 //  - applyStream calls a stream's records on any device's list, mapping the handle ids it holds
 //    to that device's objects, so a recording made on one backend runs on another.
 //
