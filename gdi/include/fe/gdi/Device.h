@@ -695,9 +695,10 @@ struct PipelineStatistics {
 // With DeviceCreateDesc::validation a call made while another thread is inside a call of the
 // same list (submit and executeSecondary count as calls of every list they take) throws Error
 // on every backend, and the list is unharmed; without validation that is undefined, as in
-// Vulkan without its layer (the check's cost: ExclusiveUse.h). Every Device member may be called from any thread;
-// the device serialises what it must (see Device). By default synchronisation between passes,
-// dispatches and copies is the backend's job (a conservative barrier after each write).
+// Vulkan without its layer (the check's cost: ExclusiveUse.h). Every Device member may be
+// called from any thread; the device serialises what it must (see Device). By default
+// synchronisation between passes, dispatches and copies is the backend's job (a conservative
+// barrier after each write).
 // A caller that knows every access, the render graph, turns that off with
 // setAutomaticBarriers(false) and states each texture's and buffer's change with barrier().
 
@@ -1043,7 +1044,8 @@ struct PipelineCacheStats {
 // recording starts and when a pass first uses an attachment view). Objects used by a list
 // must not be destroyed while that list is being recorded or is unsubmitted (its submit
 // throws Error; a call that looks the object up after its destroy throws Error at once, also
-// when another thread destroys it during the call, and nothing crashes). A submit that throws runs none of its lists and leaves them as they were.
+// when another thread destroys it during the call, and nothing crashes). A submit that throws
+// runs none of its lists and leaves them as they were.
 // Destroy command lists before their device; a list that outlives it is safe to destroy, and
 // recording into it throws Error.
 class Device {

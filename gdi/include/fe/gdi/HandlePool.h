@@ -58,7 +58,8 @@ public:
 
     H add(T&& object) {
         uint32_t index;
-        if (free_.size() > kQuarantine || (!free_.empty() && count_.load(std::memory_order_relaxed) >= kMaxIndex)) {
+        const bool full = count_.load(std::memory_order_relaxed) >= kMaxIndex;  // then reuse sooner
+        if (free_.size() > kQuarantine || (full && !free_.empty())) {
             index = free_.front();
             free_.pop_front();
         } else {
