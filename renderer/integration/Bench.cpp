@@ -73,6 +73,7 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"illumSplit", s.illumSplit},
             {"precomputedNoV", s.precomputedNoV},
             {"tileCullingPass", s.tileCullingPass},
+            {"clusterDepthBounds", s.clusterDepthBounds},
             {"iblSamples", s.iblSamples},
             {"iblPrefiltered", s.iblPrefiltered},
             {"shadows", {{"enabled", s.shadows.enabled}, {"mapSize", s.shadows.mapSize}, {"cascades", s.shadows.cascades},
@@ -136,6 +137,7 @@ std::string BenchCase::key() const {
     if (s.illumSplit) k += "/split";
     if (!s.precomputedNoV) k += "/rebuild-nov";
     if (!s.tileCullingPass) k += "/one-pass-culling";
+    if (!s.clusterDepthBounds) k += "/no-cluster-bounds";
     if (s.tonemap != shading::Tonemap::Clamp) k += std::string("/") + shading::tonemapName(s.tonemap);
     if (s.antiAliasing == AntiAliasing::Fxaa) k += "/fxaa";
     if (s.antiAliasing == AntiAliasing::Taa) k += "/taa";
@@ -230,6 +232,7 @@ BenchCase caseFromJson(const gdi::Json& j) {
         else if (key == "illumSplit") s.illumSplit = boolean();
         else if (key == "precomputedNoV") s.precomputedNoV = boolean();
         else if (key == "tileCullingPass") s.tileCullingPass = boolean();
+        else if (key == "clusterDepthBounds") s.clusterDepthBounds = boolean();
         else if (key == "tonemap") {
             const auto t = shading::parseTonemap(text());
             if (!t) throw gdi::Error("sweep: \"tonemap\" must be clamp, aces or pbr-neutral, got " + v.dump());

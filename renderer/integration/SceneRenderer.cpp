@@ -240,7 +240,9 @@ void SceneRenderer::declareListStatistics(graph::RenderGraph& g) {
     const graph::TextureId counts = g.importTexture("lights evaluated", listCounts_, device_.desc(listCounts_));
     const graph::TextureId reaching = g.importTexture("lights reaching", reachingCounts_, device_.desc(reachingCounts_));
     listCountsId_ = counts;
-    const ClusterLightGrid::Lists clusterLists = clusters ? clusters_->declare(g) : ClusterLightGrid::Lists{};
+    // It counts what an opaque pixel walks: the bounded parts (the whole lists where the
+    // technique's grid is not bounded, under MSAA).
+    const ClusterLightGrid::Lists clusterLists = clusters ? clusters_->declareBounded(g, depth_) : ClusterLightGrid::Lists{};
     g.addPass("light-list-statistics", [&](graph::PassBuilder& b) {
         b.sample(depth_);
         if (clusters) ClusterLightGrid::read(b, clusterLists);

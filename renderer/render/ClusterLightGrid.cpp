@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include "fe/gdi/ShaderRegistry.h"
 #include "render/ShaderSlots.h"
 #include "render/TileLightCulling.h"
 
@@ -23,7 +24,7 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     maxRows_ = std::max(1u, c.device.info().limits.maxTextureSize2D);
     const uint64_t wanted = uint64_t(clusterCount()) * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
     createEntries(uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1, maxRows_)));
-    lists_ = objects_.add(c.device.createBuffer({.size = (1 + 2 * uint64_t(clusterCount())) * sizeof(uint32_t),
+    lists_ = objects_.add(c.device.createBuffer({.size = (1 + kHeaderWords * uint64_t(clusterCount())) * sizeof(uint32_t),
                                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
                                                  .debugName = "cluster light lists"}));
     for (uint32_t i = 0; i < c.queue.framesInFlight(); ++i)
@@ -36,6 +37,13 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     columnMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
                                                        .usage = gdi::BufferUsage::Storage,
                                                        .debugName = "cluster light assignment columns"}));
+    // Bound to the assignment whether or not a bounds pass fills it (it reads it only then).
+    bounds_ = objects_.add(c.device.createBuffer({.size = 2 * uint64_t(clusterCount()) * sizeof(uint32_t),
+                                                  .usage = gdi::BufferUsage::Storage,
+                                                  .debugName = "cluster opaque depth bounds"}));
+    boundsCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
+                                                    .binary = shaders::find("scene/cluster_bounds.comp")}));
+    boundsPipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = boundsCs_, .debugName = "cluster bounds"}));
     uniformLights_ = TileLightCulling::lightsFitUniformBlock(c);
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                               .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
@@ -87,15 +95,41 @@ glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::
     return {nearDepth, float(kSlices - 1) / std::log(farDepth / split), farDepth, split};
 }
 
-ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
+ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) { return declareLists(g, {}); }
+
+ClusterLightGrid::Lists ClusterLightGrid::declareBounded(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+    if (!opaqueDepth.valid()) throw gdi::Error("ClusterLightGrid::declareBounded: no opaque depth given");
+    return declareLists(g, ctx_.settings.clusterDepthBounds ? opaqueDepth : graph::TextureId{});
+}
+
+ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+    // Read when the frame is recorded, after every reader of the graph has declared itself.
+    if (!opaqueDepth.valid()) wholeListsRead_ = true;
     if (declaredIn_ == &g) return declared_;
     declaredIn_ = &g;
+    bounded_ = opaqueDepth.valid();
+    wholeListsRead_ = !bounded_;
     declared_ = {.headers = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size),
                  .entries = g.importTexture("cluster light list entries", indices_, ctx_.device.desc(indices_))};
     g.markOutput(declared_.headers);  // statistics() reads it back
+    const graph::BufferId bounds =
+        bounded_ ? g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size) : graph::BufferId{};
+    if (bounded_)
+        g.addPass("cluster-bounds", [&](graph::PassBuilder& b) {
+            b.sample(opaqueDepth);
+            b.buffer(bounds, gdi::BufferAccess::StorageWrite);
+        }, [this, opaqueDepth](graph::PassContext& pc) {
+            pc.cmd.setPipeline(boundsPipeline_);
+            const UploadAllocation& fc = ctx_.frameConstants;
+            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+            pc.cmd.setTexture(kSlotDepth, pc.texture(opaqueDepth), ctx_.pointSampler);
+            pc.cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
+            pc.cmd.dispatch(tiles_.x, tiles_.y);
+        });
     g.addPass("light-assignment", [&](graph::PassBuilder& b) {
         b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
         b.storage(declared_.entries);
+        if (bounded_) b.buffer(bounds, gdi::BufferAccess::StorageRead);
     },
               [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
                   gdi::CommandList& cmd = pc.cmd;
@@ -105,6 +139,7 @@ ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
                   TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
                   cmd.setStorageBuffer(kSlotClusterLights, lists_);
                   cmd.setStorageBuffer(kSlotClusterColumns, columnMasks_);
+                  cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
                   cmd.setStorageTexture(kSlotClusterIndicesOut, indices_);
                   // Mark each column's lights, count each cluster's, place the lists in header
                   // order, fill them (cluster_light_assignment.comp): no atomics, the same layout
@@ -115,7 +150,7 @@ ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
                   const uint32_t groups[4] = {columns, columns, 1, columns};  // one to place
                   for (uint32_t phase = 0; phase < 4; ++phase) {
                       if (phase) cmd.barrier(between, 2);
-                      cmd.setConstants(glm::uvec4(phase, 0u, 0u, 0u));
+                      cmd.setConstants(glm::uvec4(phase, bounded_ ? 1u : 0u, wholeListsRead_ ? 1u : 0u, 0u));
                       cmd.dispatch(groups[phase]);
                   }
                   // The entries this frame asked for, for beginFrame framesInFlight frames on.
@@ -143,9 +178,9 @@ ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
     std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     Statistics s{.clusters = clusterCount(), .entries = words[0]};
-    uint64_t sum = 0;
+    uint64_t sum = 0, boundedSum = 0;
     for (uint32_t c = 0; c < s.clusters; ++c) {
-        const uint32_t count = words[2 + 2 * size_t(c)];
+        const uint32_t count = words[2 + kHeaderWords * size_t(c)], bounded = words[3 + kHeaderWords * size_t(c)];
         if (count == 0xffffffffu) {
             ++s.overflowed;
             continue;
@@ -153,8 +188,11 @@ ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
         s.nonEmpty += count > 0;
         s.maxLights = std::max(s.maxLights, count);
         sum += count;
+        boundedSum += bounded;
     }
     s.meanLights = s.nonEmpty ? double(sum) / s.nonEmpty : 0.0;
+    s.meanBoundedLights = s.nonEmpty ? double(boundedSum) / s.nonEmpty : 0.0;
+    s.bounded = bounded_;
     return s;
 }
 

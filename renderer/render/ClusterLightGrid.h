@@ -5,8 +5,9 @@
 // exponentially from there to the far side of the scene (FrameConstants::clusters; Doom 2016
 // and Olsson's paper use about as many). In builtin:atrium at 1280x720 with 1024 lights, 32
 // slices after the split walk 15.8 lights a pixel where 24 from the near plane walked 23.0 (9.0
-// reach each pixel; 16-pixel tiles walk 14.4 at 3.4x the assignment's cost), and 15.4 with each
-// column's side planes tested too (lavapipe). One compute pass
+// reach each pixel; 16-pixel tiles walk 14.4 at 3.4x the assignment's cost), 15.4 with each
+// column's side planes tested too, and 13.3 bounded by the opaque depth (below; 16-pixel tiles
+// then walk 11.4, the assignment taking 171 ms against 38) (lavapipe). One compute pass
 // ("light-assignment", shaders/scene/cluster_light_assignment.comp) files every light whose
 // range reaches a cluster's box into its list (headers in a storage buffer, the entries in an R32U
 // texture: a texel fetch, not a storage-buffer load, per light the shading passes walk) they read
@@ -14,8 +15,15 @@
 // column (the invocations taking the lights), then an invocation per cluster tests those against
 // its slice (all lanes on the same light): builtin:atrium, 1280x720, 1024 lights, lavapipe, on
 // one day: 189-201 -> 80-98 ms, where 64 invocations a column sharing the lights counted in
-// shared memory; the lists and images are unchanged, bit for bit. The grid does not depend on the opaque depth, so blended surfaces
-// use it as opaque ones do. The lists are compact: the pass counts each cluster's
+// shared memory; the lists and images are unchanged, bit for bit.
+// Bounded by the opaque depth (declareBounded: clustered-deferred, the visibility buffer,
+// clustered-forward at one sample): a pass ("cluster-bounds", shaders/scene/cluster_bounds.comp)
+// first finds the depths the opaque surfaces of each cluster hold, and each list begins with
+// the lights that reach the box of those depths (Olsson et al.'s tight cluster bounds), which
+// is all an opaque pixel walks; blended fragments, which lie in front of the opaque depth, walk
+// the whole list (the slice's box). Without it (declare) every reader walks the whole list, so
+// the grid serves techniques with no depth yet and multisampled ones. The lists are compact:
+// the pass counts each cluster's
 // lights, places the lists one after another in one shared index array (a prefix over the
 // clusters in order, so the layout is the same on every device and run), then fills them; a
 // crowded far cluster takes what near empty ones leave; the array holds kMeanListCapacity
@@ -38,6 +46,7 @@ public:
     static constexpr float kNearSplit = 1.0f / 32;     // slice 0 ends at this share of the far depth (at least)
     static constexpr uint32_t kMeanListCapacity = 64;  // index entries per cluster (at most the scene's lights)
     static constexpr uint32_t kIndexWidth = 4096;      // FE_CLUSTER_INDEX_WIDTH: texels a row of the entries
+    static constexpr uint32_t kHeaderWords = 3;        // FE_CLUSTER_HEADER: first entry, length, bounded length
 
     explicit ClusterLightGrid(TechniqueContext& context);
     ClusterLightGrid(const ClusterLightGrid&) = delete;
@@ -50,8 +59,14 @@ public:
         graph::TextureId entries;
     };
     // The lists and the pass that fills them: declared once per graph, later calls return the
-    // same (the clustered technique and the translucent pass share them).
+    // same (the clustered technique and the translucent pass share them). declare: for a reader
+    // that walks whole lists (blended or multisampled fragments: feClusterLightCount).
+    // declareBounded: for one that shades the opaque surfaces whose one-sample depth `opaqueDepth`
+    // holds and walks the bounded parts (feClusterBoundedLightCount); the first call of a graph
+    // that names a depth adds the bounds pass, which the lists then depend on. A graph whose
+    // readers are all bounded keeps only the bounded parts.
     Lists declare(graph::RenderGraph& g);
+    Lists declareBounded(graph::RenderGraph& g, graph::TextureId opaqueDepth);
     // A shading pass's reads of the lists (its setup declares them), and their bindings
     // (kSlotClusterLights, kSlotClusterIndices).
     static void read(graph::PassBuilder& b, const Lists& lists);
@@ -79,6 +94,8 @@ public:
         uint32_t maxLights = 0;
         uint32_t overflowed = 0;    // clusters that shade every light (no room left in the index array)
         uint32_t entries = 0;       // light indices the lists asked for (overflowed ones included)
+        double meanBoundedLights = 0;  // per non-empty cluster: the part that reaches its opaque surfaces
+        bool bounded = false;          // the lists were bounded by the opaque depth
     };
     Statistics statistics() const;
 
@@ -97,10 +114,13 @@ private:
     std::vector<gdi::BufferHandle> asked_;  // per frame in flight: the entries that frame asked for
     std::vector<bool> askedWritten_;
     gdi::BufferHandle columnMasks_;  // the assignment's: the lights that reach each tile column
-    gdi::ShaderHandle cs_;
-    gdi::PipelineHandle pipeline_;
+    gdi::BufferHandle bounds_;  // per cluster: the least and greatest opaque depth it holds
+    gdi::ShaderHandle cs_, boundsCs_;
+    gdi::PipelineHandle pipeline_, boundsPipeline_;
     graph::RenderGraph* declaredIn_ = nullptr;
     Lists declared_{};
+    bool bounded_ = false, wholeListsRead_ = false;  // of the graph declaredIn_
+    Lists declareLists(graph::RenderGraph& g, graph::TextureId opaqueDepth);
 };
 
 }  // namespace fe::render

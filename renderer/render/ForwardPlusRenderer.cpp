@@ -28,9 +28,12 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
     const graph::TextureId tiles = culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
     tiles_ = tiles;
     // Under MSAA a Forward+ fragment outside its tile's depth bounds walks its cluster's list
-    // (fe_forward_pass.glsl), so the grid is built then too.
+    // (fe_forward_pass.glsl), so the grid is built then too. At one sample clustered-forward's
+    // opaque fragments stand on the pre-pass's depth: the grid is bounded by it.
     const bool clustersRead = !culling_ || ctx_.settings.msaa > 1;
-    const ClusterLightGrid::Lists clusters = clustersRead ? ctx_.clusters->declare(g) : ClusterLightGrid::Lists{};
+    ClusterLightGrid::Lists clusters{};
+    if (clustersRead)
+        clusters = !culling_ && t.depth == t.sceneDepth ? ctx_.clusters->declareBounded(g, t.sceneDepth) : ctx_.clusters->declare(g);
     g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
         if (culling_) b.sample(tiles);
         if (clustersRead) ClusterLightGrid::read(b, clusters);

@@ -53,6 +53,11 @@ struct RenderSettings {
     // cluster grid, made for it when the technique has none); off: with every light, the way
     // it was measured against (the same image: a culled light adds exactly 0).
     bool translucentClusters = true;
+    // The light cluster grid of clustered-deferred, clustered-forward (at one sample) and the
+    // visibility buffer is bounded by the opaque depth each cluster holds (ClusterLightGrid::
+    // declareBounded: an opaque pixel walks only the lights reaching those depths); off: every
+    // pixel walks its slice's whole list, as before (the same image; measured both ways).
+    bool clusterDepthBounds = true;
     // A "light-list-statistics" pass after the technique's: per pixel, the lights its shading
     // loop walks (SceneRenderer::lightListStatistics). measureLightLists turns it on in a renderer of
     // its own (fe render --verbose, fe bench, the director), out of the timed frames.

@@ -39,4 +39,5 @@ constexpr uint32_t kSlotIndices = 39;       // ... and its indices
 constexpr uint32_t kSlotClusterColumns = 40; // the cluster light assignment's lights per tile column (storage buffer)
 constexpr uint32_t kSlotClusterIndices = 41; // the light cluster grid's list entries (R32U texture), sampled
 constexpr uint32_t kSlotClusterIndicesOut = 42; // ... and written, by the light assignment
+constexpr uint32_t kSlotClusterBounds = 43;  // the opaque depths each light cluster holds (storage buffer)
 }  // namespace fe::render

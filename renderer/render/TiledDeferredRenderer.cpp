@@ -30,7 +30,7 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
     gbuffer_.declare(g, ctx_, depth);
     const graph::TextureId lists = culling_ ? culling_->declare(g, depth) : graph::TextureId{};
     tiles_ = lists;
-    const ClusterLightGrid::Lists clusterLists = clusters_ ? ctx_.clusters->declare(g) : ClusterLightGrid::Lists{};
+    const ClusterLightGrid::Lists clusterLists = clusters_ ? ctx_.clusters->declareBounded(g, depth) : ClusterLightGrid::Lists{};
     g.addPass(clusters_ ? "clustered-lighting" : "tiled-lighting", [&](graph::PassBuilder& b) {
         gbuffer_.sampleIn(b, true);
         if (culling_) b.sample(lists);

@@ -38,7 +38,7 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
                            ctx_.eye, &objectUploads_);
         pc.cmd.endRenderPass();
     });
-    const ClusterLightGrid::Lists lists = ctx_.clusters->declare(g);
+    const ClusterLightGrid::Lists lists = ctx_.clusters->declareBounded(g, depth);
     g.addPass("visibility-resolve", [&](graph::PassBuilder& b) {
         b.sample(ids);
         b.sample(depth);

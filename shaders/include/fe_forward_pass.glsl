@@ -72,16 +72,23 @@ void main() {
         const uint count = feForwardPlusLightCount(end);
         for (uint k = 0u; k < count; ++k) {
             const uint i = feForwardPlusLight(k);
-            if (i >= end) break;
+            if (i >= end) continue;  // a cluster's whole list is two runs in light order
 #elif defined(FE_CLUSTER_LISTS)
         // clustered: the lights of the fragment's cluster (ClusterLightGrid), those of this
-        // pass's range (the list is ordered: the shadowed lights come last).
+        // pass's range (the shadowed lights have passes of their own). An opaque fragment stands
+        // on the depth the grid was bounded by (the pre-pass's, EQUAL test; at one sample) and
+        // walks the bounded part; a blended one lies in front of it and walks the whole list.
         feUseClusterList(ivec2(gl_FragCoord.xy), gl_FragCoord.z);
         const uint end = frame.lightRange.x + frame.lightRange.y;
-        const uint count = feClusterLightCount(end);
+#ifdef FE_MULTISAMPLED
+        const bool whole = true;
+#else
+        const bool whole = object.params.w == 2.0;
+#endif
+        const uint count = whole ? feClusterLightCount(end) : feClusterBoundedLightCount(end);
         for (uint k = 0u; k < count; ++k) {
             const uint i = feClusterLight(k);
-            if (i >= end) break;
+            if (i >= end) continue;
 #else
         const uint end = frame.lightRange.x + frame.lightRange.y;
         for (uint i = frame.lightRange.x; i < end; ++i) {

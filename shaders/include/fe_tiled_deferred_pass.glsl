@@ -28,7 +28,7 @@ void main() {
         const SurfaceBrdf brdf = fePrepareBrdf(s);
 #ifdef FE_CLUSTER_LISTS
         feUseClusterList(p, depth);
-        const uint count = feClusterLightCount(frame.counts.x);
+        const uint count = feClusterBoundedLightCount(frame.counts.x);
         for (uint k = 0u; k < count; ++k) {
             const uint i = feClusterLight(k);
             if (i >= frame.counts.x) break;  // the shadowed lights, last in the list, have passes of their own

@@ -105,7 +105,7 @@ void main() {
         const SurfacePoint s = feMaterialSurface(m, eye);
         const SurfaceBrdf brdf = fePrepareBrdf(s);
         feUseClusterList(p, texelFetch(depthTexture, p, 0).r);
-        const uint count = feClusterLightCount(frame.counts.x);
+        const uint count = feClusterBoundedLightCount(frame.counts.x);
         for (uint k = 0u; k < count; ++k) {
             const uint i = feClusterLight(k);
             if (i >= frame.counts.x) break;  // the shadowed lights, last in the list, have passes of their own

@@ -14,13 +14,15 @@
 //     every slice and its four side planes).
 //  1. Count: one invocation per slice. Every invocation walks the column's marked lights in
 //     order, together (the same light in every lane: a broadcast load); a light that spans the
-//     invocation's slice in view depth is tested against the slice's box. Each cluster's length
-//     goes to its header.
+//     invocation's slice in view depth is tested against the slice's box, and where the grid has
+//     the opaque depths' bounds (assignment.phase.y, cluster_bounds.comp) against the box of the
+//     depths the cluster's surfaces hold. Each cluster's length, and its bounded part's, go to
+//     its header; without blended readers (assignment.phase.z 0) a list holds only that part.
 //  2. Place: one work group turns the lengths, in header order, into each list's first word (an
 //     exclusive prefix), so the layout is the same on every device and every run (a capture's
 //     read-back compares byte by byte; atomic reservations land in the order threads happen to
 //     run); a list past the shared index array's end is marked to shade every light.
-//  3. Fill: as 1, each light written after the last, so lists are in increasing light order.
+//  3. Fill: as 1, the bounded part first, then the rest, each in increasing light order.
 // Each test has the lanes it suits: the column's test the lights, the slice's the slices; no
 // shared memory and no barrier but in 2. The pass it replaces (64 invocations a column, each a
 // 64th of the lights, counts per slice and share in shared memory, prefixes over the shares)
@@ -33,12 +35,17 @@
 #define FE_ASSIGN_LANES FE_CLUSTER_SLICES
 layout(local_size_x = FE_ASSIGN_LANES) in;
 FE_CONSTANTS(AssignmentConstants) {
-    uvec4 phase;  // x: 0 columns, 1 count, 2 place, 3 fill
+    uvec4 phase;  // x: 0 columns, 1 count, 2 place, 3 fill; y: bounded by the opaque depths; z: whole lists read
 } assignment;
 // Per tile column (row-major), (frame.counts.w + 31) / 32 words: bit i set where light i reaches
 // the column (ClusterLightGrid's column masks).
 layout(binding = FE_SLOT_CLUSTER_COLUMNS, std430) buffer ClusterColumns {
     uint columnWords[];
+};
+// Per cluster in header order: the least and greatest depth its opaque surfaces hold, as bits
+// (cluster_bounds.comp); bound only where assignment.phase.y says so.
+layout(binding = FE_SLOT_CLUSTER_BOUNDS, std430) readonly buffer ClusterBounds {
+    uint boundWords[];
 };
 
 // Depth-buffer depth of view depth v (the inverse of feViewDepth).
@@ -119,7 +126,7 @@ void placeLists() {
     const uint run = (clusters + FE_ASSIGN_LANES - 1u) / FE_ASSIGN_LANES;
     const uint begin = min(lane * run, clusters), end = min(begin + run, clusters);
     uint sum = 0u;
-    for (uint c = begin; c < end; ++c) sum += clusterWords[2u + 2u * c];
+    for (uint c = begin; c < end; ++c) sum += clusterWords[2u + FE_CLUSTER_HEADER * c];
     sTotal[lane] = sum;
     barrier();
     uint place = 0u, total = 0u;
@@ -129,9 +136,9 @@ void placeLists() {
     }
     const uint capacity = feClusterCapacity();
     for (uint c = begin; c < end; ++c) {
-        const uint count = clusterWords[2u + 2u * c];
-        clusterWords[1u + 2u * c] = place;
-        if (place + count > capacity) clusterWords[2u + 2u * c] = 0xffffffffu;  // no room: every light
+        const uint count = clusterWords[2u + FE_CLUSTER_HEADER * c];
+        clusterWords[1u + FE_CLUSTER_HEADER * c] = place;
+        if (place + count > capacity) clusterWords[2u + FE_CLUSTER_HEADER * c] = 0xffffffffu;  // no room: every light
         place += count;
     }
     if (lane == 0u) clusterWords[0] = total;  // the entries the lists asked for (statistics)
@@ -156,6 +163,17 @@ void markColumn() {
     }
 }
 
+// The box and view depths of the opaque surfaces cluster c holds, widened by 0.1 % of their view
+// depth as the slices' are; false where it holds none.
+bool feClusterSurfaceBox(uint c, out vec3 lo, out vec3 hi, out vec2 reach) {
+    const uint least = boundWords[2u * c], greatest = boundWords[2u * c + 1u];
+    if (least > greatest) return false;
+    const float v0 = feViewDepth(uintBitsToFloat(least)), v1 = feViewDepth(uintBitsToFloat(greatest));
+    reach = vec2(min(v0, v1) * 0.999, max(v0, v1) * 1.001);
+    feSliceBox(feColumnStart(), feColumnEnd(), min(v0, v1), max(v0, v1), lo, hi);
+    return true;
+}
+
 // Phases 1 and 3: this invocation's cluster (slice k of the work group's column).
 void assignCluster(bool fill) {
     const int k = int(gl_LocalInvocationIndex);
@@ -163,22 +181,37 @@ void assignCluster(bool fill) {
     feSliceBox(feColumnStart(), feColumnEnd(), feClusterSliceStart(k), feClusterSliceStart(k + 1), lo, hi);
     const vec2 reach = feSliceReach(k);
     const uint header = feClusterHeader(feColumnTile(), k);
+    const bool bounded = assignment.phase.y != 0u, whole = assignment.phase.z != 0u;
+    vec3 surfaceLo = vec3(0.0), surfaceHi = vec3(0.0);
+    vec2 surfaceReach = vec2(0.0);
+    const bool surfaces = bounded && feClusterSurfaceBox(feClusterIndex(feColumnTile(), k), surfaceLo, surfaceHi, surfaceReach);
     const bool noRoom = fill && clusterWords[header + 1u] == 0xffffffffu;
     const uint first = fill && !noRoom ? clusterWords[header] : 0u;
+    const uint boundedLength = fill ? clusterWords[header + 2u] : 0u;
     const uint words = feMaskWords(), base = gl_WorkGroupID.x * words;
-    uint count = 0u;
+    uint count = 0u, inBounds = 0u;
     for (uint w = 0u; w < words; ++w) {
         // Every light where the buffer is short (ClusterLightGrid sizes it for the scene's lights).
         uint bits = base + w < uint(columnWords.length()) ? columnWords[base + w] : 0xffffffffu;
         if (w == words - 1u && (frame.counts.w & 31u) != 0u) bits &= (1u << (frame.counts.w & 31u)) - 1u;
         for (; bits != 0u; bits &= bits - 1u) {
             const uint i = w * 32u + uint(findLSB(bits));
-            if (!feReachesSlice(feLight(i), reach, lo, hi)) continue;
-            if (fill && !noRoom) imageStore(clusterIndicesOut, feClusterEntryTexel(first + count), uvec4(i));
+            const GpuLight L = feLight(i);
+            if (!feReachesSlice(L, reach, lo, hi)) continue;
+            const bool reachesSurfaces = !bounded || (surfaces && feReachesSlice(L, surfaceReach, surfaceLo, surfaceHi));
+            if (!reachesSurfaces && !whole) continue;
+            if (fill && !noRoom) {
+                const uint e = reachesSurfaces ? inBounds : boundedLength + count - inBounds;
+                imageStore(clusterIndicesOut, feClusterEntryTexel(first + e), uvec4(i));
+            }
             ++count;
+            inBounds += reachesSurfaces ? 1u : 0u;
         }
     }
-    if (!fill) clusterWords[header + 1u] = count;
+    if (!fill) {
+        clusterWords[header + 1u] = count;
+        clusterWords[header + 2u] = inBounds;
+    }
 }
 
 void main() {

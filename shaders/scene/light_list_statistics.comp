@@ -35,7 +35,7 @@ void main() {
         uint walkedReaching = 0u;
 #if defined(FE_CLUSTER_LISTS)
         feUseClusterList(p, depth);
-        const uint count = feClusterLightCount(frame.counts.x);
+        const uint count = feClusterBoundedLightCount(frame.counts.x);
         n = 0u;
         for (uint k = 0u; k < count && feClusterLight(k) < frame.counts.x; ++k, ++n)
             if (feLightReaches(feLight(feClusterLight(k)), P)) ++walkedReaching;

@@ -99,7 +99,7 @@ TEST_P(RenderDirector, ManyLightsInTheDeepAtriumGetClusteredForwardAndSayWhy) {
         return;
     }
     EXPECT_EQ(b.technique, "clustered-forward") << b.reasons[0];
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "light-assignment", "clustered-shading", "transparent"}));
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "cluster-bounds", "light-assignment", "clustered-shading", "transparent"}));
     EXPECT_NE(b.reasons[0].find("a probe frame's lists walk"), std::string::npos) << b.reasons[0];
     EXPECT_NE(b.reasons[0].find("a deep scene"), std::string::npos) << b.reasons[0];
     EXPECT_TRUE(anyStartsWith(b.reasons, std::to_string(render::sceneNeeds(scene, 64.0f / 48.0f).blendPrimitives) +

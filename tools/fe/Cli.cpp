@@ -26,6 +26,7 @@ constexpr const char* kUsage =
     "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
     "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
     "      --one-pass-culling (deferred-tiled: each work group culls its tile in shared memory, no culling pass)\n"
+    "      --no-cluster-bounds (clustered techniques, visibility buffer: cluster lists not bounded by the opaque depth)\n"
     "      --rebuild-nov (redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer)\n"
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
@@ -159,6 +160,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--illum-split", {"", "redeferred-tiled: specular sums at full rate, diffuse at 1/scale"}},
     {"--rebuild-nov", {"", "redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer"}},
     {"--one-pass-culling", {"", "deferred-tiled: each work group culls its tile, no culling pass"}},
+    {"--no-cluster-bounds", {"", "clustered techniques: cluster lists not bounded by the opaque depth each cluster holds"}},
     {"--ibl-prefiltered", {"", "light by the environment through prefiltered maps, not by sampling it"}},
     {"--temporal", {"", "redeferred at illum-scale 2|4: jittered reduced-rate samples accumulate over frames"}},
     {"--screenshot", {"FILE.png", "write the last frame"}},
@@ -270,7 +272,7 @@ const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--
                                     "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
                                     "--renderdoc-capture"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
-                                    "--ibl-prefiltered", "--temporal"};
+                                    "--no-cluster-bounds", "--ibl-prefiltered", "--temporal"};
 
 RenderJob renderJob(const Args& a) {
     if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
@@ -361,6 +363,7 @@ RenderJob renderJob(const Args& a) {
     s.illumSplit = a.options.count("--illum-split") > 0;
     s.precomputedNoV = !a.options.count("--rebuild-nov");
     s.tileCullingPass = !a.options.count("--one-pass-culling");
+    s.clusterDepthBounds = !a.options.count("--no-cluster-bounds");
     s.temporal = a.options.count("--temporal") > 0;
     s.debugView = opt("--debug-view", "");
     const std::string orbitText = opt("--orbit", "0");

@@ -259,8 +259,9 @@ int cmdRender(const Args& a) {
         const render::ClusterLightGrid::Statistics c = grid->statistics();
         std::cout << "light clusters: " << c.clusters << " (" << render::ClusterLightGrid::kTilePixels << "x"
                   << render::ClusterLightGrid::kTilePixels << " px x " << render::ClusterLightGrid::kSlices << " slices), "
-                  << c.nonEmpty << " with lights, " << c.meanLights << " lights per such cluster (max " << c.maxLights
-                  << "), " << c.entries << " of " << grid->listCapacity() << " index entries used, " << c.overflowed
+                  << c.nonEmpty << " with lights, " << c.meanLights << " lights per such cluster (max " << c.maxLights << ")";
+        if (c.bounded) std::cout << ", " << c.meanBoundedLights << " of them reaching its opaque surfaces' depths";
+        std::cout << ", " << c.entries << " of " << grid->listCapacity() << " index entries used, " << c.overflowed
                   << " overflowed (no room left: shade every light)\n";
     }
     if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
