@@ -7,7 +7,8 @@
 //    walks its cluster's list (ClusterLightGrid, built then too), so an edge sample never loses
 //    a light and never walks every light.
 //  clustered-forward (Olsson, Billeter and Assarsson 2012): the same shading pass walking the
-//    fragment's cluster list (ClusterLightGrid: lists that need no depth, MeshPass::ForwardClustered).
+//    fragment's cluster list (ClusterLightGrid, MeshPass::ForwardClustered); at one sample the
+//    lists are bounded by the pre-pass depth (declareBounded), under MSAA they need none.
 #pragma once
 #include <memory>
 #include <vector>
