@@ -112,55 +112,58 @@ ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g, gr
     declared_ = {.headers = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size),
                  .entries = g.importTexture("cluster light list entries", indices_, ctx_.device.desc(indices_))};
     g.markOutput(declared_.headers);  // statistics() reads it back
-    const graph::BufferId bounds =
-        bounded_ ? g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size) : graph::BufferId{};
-    if (bounded_)
-        g.addPass("cluster-bounds", [&](graph::PassBuilder& b) {
-            b.sample(opaqueDepth);
-            b.buffer(bounds, gdi::BufferAccess::StorageWrite);
-        }, [this, opaqueDepth](graph::PassContext& pc) {
-            pc.cmd.setPipeline(boundsPipeline_);
-            const UploadAllocation& fc = ctx_.frameConstants;
-            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-            pc.cmd.setTexture(kSlotDepth, pc.texture(opaqueDepth), ctx_.pointSampler);
-            pc.cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
-            pc.cmd.dispatch(tiles_.x, tiles_.y);
-        });
+    const graph::BufferId bounds = bounded_ ? declareBounds(g, opaqueDepth) : graph::BufferId{};
     g.addPass("light-assignment", [&](graph::PassBuilder& b) {
         b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
         b.storage(declared_.entries);
         if (bounded_) b.buffer(bounds, gdi::BufferAccess::StorageRead);
-    },
-              [this, columns = tiles_.x * tiles_.y](graph::PassContext& pc) {
-                  gdi::CommandList& cmd = pc.cmd;
-                  cmd.setPipeline(pipeline_);
-                  const UploadAllocation& fc = ctx_.frameConstants;
-                  cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-                  TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
-                  cmd.setStorageBuffer(kSlotClusterLights, lists_);
-                  cmd.setStorageBuffer(kSlotClusterColumns, columnMasks_);
-                  cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
-                  cmd.setStorageTexture(kSlotClusterIndicesOut, indices_);
-                  // Mark each column's lights, count each cluster's, place the lists in header
-                  // order, fill them (cluster_light_assignment.comp): no atomics, the same layout
-                  // on every device.
-                  constexpr auto rw = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite;
-                  const gdi::BufferBarrier between[2] = {{.buffer = lists_, .before = rw, .after = rw},
-                                                         {.buffer = columnMasks_, .before = rw, .after = rw}};
-                  const uint32_t groups[4] = {columns, columns, 1, columns};  // one to place
-                  for (uint32_t phase = 0; phase < 4; ++phase) {
-                      if (phase) cmd.barrier(between, 2);
-                      cmd.setConstants(glm::uvec4(phase, bounded_ ? 1u : 0u, wholeListsRead_ ? 1u : 0u, 0u));
-                      cmd.dispatch(groups[phase]);
-                  }
-                  // The entries this frame asked for, for beginFrame framesInFlight frames on.
-                  const size_t slot = ctx_.queue.frameNumber() % asked_.size();
-                  cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = rw, .after = gdi::BufferAccess::CopySrc, .size = 4});
-                  cmd.copyBuffer(asked_[slot], 0, lists_, 0, sizeof(uint32_t));
-                  cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = gdi::BufferAccess::CopySrc, .after = rw, .size = 4});
-                  askedWritten_[slot] = true;
-              });
+    }, [this](graph::PassContext& pc) { recordAssignment(pc.cmd); });
     return declared_;
+}
+
+graph::BufferId ClusterLightGrid::declareBounds(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+    const graph::BufferId bounds = g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size);
+    g.addPass("cluster-bounds", [&](graph::PassBuilder& b) {
+        b.sample(opaqueDepth);
+        b.buffer(bounds, gdi::BufferAccess::StorageWrite);
+    }, [this, opaqueDepth](graph::PassContext& pc) {
+        pc.cmd.setPipeline(boundsPipeline_);
+        const UploadAllocation& fc = ctx_.frameConstants;
+        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+        pc.cmd.setTexture(kSlotDepth, pc.texture(opaqueDepth), ctx_.pointSampler);
+        pc.cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
+        pc.cmd.dispatch(tiles_.x, tiles_.y);
+    });
+    return bounds;
+}
+
+void ClusterLightGrid::recordAssignment(gdi::CommandList& cmd) {
+    cmd.setPipeline(pipeline_);
+    const UploadAllocation& fc = ctx_.frameConstants;
+    cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+    TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
+    cmd.setStorageBuffer(kSlotClusterLights, lists_);
+    cmd.setStorageBuffer(kSlotClusterColumns, columnMasks_);
+    cmd.setStorageBuffer(kSlotClusterBounds, bounds_);  // read only when bounded
+    cmd.setStorageTexture(kSlotClusterIndicesOut, indices_);
+    // Mark each column's lights, count each cluster's, place the lists in header order, fill
+    // them (cluster_light_assignment.comp): no atomics, the same layout on every device.
+    constexpr auto rw = gdi::BufferAccess::StorageRead | gdi::BufferAccess::StorageWrite;
+    const gdi::BufferBarrier between[2] = {{.buffer = lists_, .before = rw, .after = rw},
+                                           {.buffer = columnMasks_, .before = rw, .after = rw}};
+    const uint32_t columns = tiles_.x * tiles_.y;
+    const uint32_t groups[4] = {columns, columns, 1, columns};  // one to place
+    for (uint32_t phase = 0; phase < 4; ++phase) {
+        if (phase) cmd.barrier(between, 2);
+        cmd.setConstants(glm::uvec4(phase, bounded_ ? 1u : 0u, wholeListsRead_ ? 1u : 0u, 0u));
+        cmd.dispatch(groups[phase]);
+    }
+    // The entries this frame asked for, for beginFrame framesInFlight frames on.
+    const size_t slot = ctx_.queue.frameNumber() % asked_.size();
+    cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = rw, .after = gdi::BufferAccess::CopySrc, .size = 4});
+    cmd.copyBuffer(asked_[slot], 0, lists_, 0, sizeof(uint32_t));
+    cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = gdi::BufferAccess::CopySrc, .after = rw, .size = 4});
+    askedWritten_[slot] = true;
 }
 
 void ClusterLightGrid::read(graph::PassBuilder& b, const Lists& lists) {

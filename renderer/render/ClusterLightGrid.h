@@ -121,6 +121,8 @@ private:
     Lists declared_{};
     bool bounded_ = false, wholeListsRead_ = false;  // of the graph declaredIn_
     Lists declareLists(graph::RenderGraph& g, graph::TextureId opaqueDepth);
+    graph::BufferId declareBounds(graph::RenderGraph& g, graph::TextureId opaqueDepth);  // the cluster-bounds pass
+    void recordAssignment(gdi::CommandList& cmd);  // the light-assignment pass's commands
 };
 
 }  // namespace fe::render
