@@ -261,6 +261,7 @@ std::string inapplicable(const BenchCase& c) {
     const TechniqueInfo& t = findTechnique(c.settings.technique);
     if (c.settings.msaa > 1 && !t.msaa) return "takes no --msaa";
     if ((c.settings.illumScale > 1 || c.settings.illumSplit) && !t.illumScale) return "has no I-buffer (--illum-scale)";
+    if (!c.settings.clusterDepthBounds && !t.clusters) return "reads no cluster grid (--no-cluster-bounds)";
     return {};
 }
 

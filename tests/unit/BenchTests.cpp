@@ -158,6 +158,8 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
     EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"), std::string::npos);
     EXPECT_EQ(error(R"({"cases": [{"technique": "deferred", "msaa": 4}]})"),
               "sweep: case spheres/deferred/msaa4/96x72: deferred takes no --msaa");
+    EXPECT_EQ(error(R"({"cases": [{"technique": "forward-plus", "clusterDepthBounds": false}]})"),
+              "sweep: case spheres/forward-plus/no-cluster-bounds/96x72: forward-plus reads no cluster grid (--no-cluster-bounds)");
     EXPECT_EQ(error(R"({"cases": [{"technique": "forward"}, {"technique": "forward"}]})"),
               "sweep: case spheres/forward/96x72 is listed twice");
     EXPECT_EQ(error(R"({"cases": [{"lights": []}]})"), "sweep: \"lights\" lists no values");

@@ -372,6 +372,9 @@ RenderJob renderJob(const Args& a) {
         throw UsageError("--orbit takes degrees (at most 3600), got '" + orbitText + "'");
     if (!s.tileCullingPass && s.technique != "deferred-tiled")
         throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
+    if (!s.clusterDepthBounds && s.technique != "auto" && !render::findTechnique(s.technique).clusters)
+        throw UsageError("--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
+                         "clustered-deferred, visibility-buffer)");
     const std::string dumpGraph = opt("--dump-graph", "");
     return RenderJob{.spec = spec, .environment = environment, .settings = s, .director = director, .window = window, .backend = backend,
                      .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
