@@ -41,9 +41,6 @@ ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ct
     bounds_ = objects_.add(c.device.createBuffer({.size = 2 * uint64_t(clusterCount()) * sizeof(uint32_t),
                                                   .usage = gdi::BufferUsage::Storage,
                                                   .debugName = "cluster opaque depth bounds"}));
-    boundsCs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
-                                                    .binary = shaders::find("scene/cluster_bounds.comp")}));
-    boundsPipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = boundsCs_, .debugName = "cluster bounds"}));
     uniformLights_ = TileLightCulling::lightsFitUniformBlock(c);
     cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                               .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
@@ -122,6 +119,12 @@ ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g, gr
 }
 
 graph::BufferId ClusterLightGrid::declareBounds(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+    if (!boundsPipeline_) {  // made here: a grid only blended surfaces read never compiles it
+        boundsCs_ = objects_.add(ctx_.device.createShader({.stage = gdi::ShaderStage::Compute,
+                                                           .binary = shaders::find("scene/cluster_bounds.comp")}));
+        boundsPipeline_ =
+            objects_.add(ctx_.device.createComputePipeline({.computeShader = boundsCs_, .debugName = "cluster bounds"}));
+    }
     const graph::BufferId bounds = g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size);
     g.addPass("cluster-bounds", [&](graph::PassBuilder& b) {
         b.sample(opaqueDepth);
