@@ -95,7 +95,8 @@ void generateSmoothNormals(Primitive& prim) {
     for (size_t i = 0; i < n.size(); ++i) prim.vertices[i].normal = n[i];
 }
 
-size_t generateTangents(Primitive& prim) {
+size_t generateTangents(Primitive& prim, uint32_t texCoord) {
+    auto uvOf = [texCoord](const Vertex& v) { return texCoord == 1 ? v.uv1 : v.uv0; };
     const size_t n = prim.vertices.size();
     std::vector<glm::vec3> tAcc(n, glm::vec3(0.0f)), bAcc(n, glm::vec3(0.0f));
     for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
@@ -104,7 +105,7 @@ size_t generateTangents(Primitive& prim) {
         const Vertex& v1 = prim.vertices[idx[1]];
         const Vertex& v2 = prim.vertices[idx[2]];
         glm::vec3 e1 = v1.position - v0.position, e2 = v2.position - v0.position;
-        glm::vec2 d1 = v1.uv0 - v0.uv0, d2 = v2.uv0 - v0.uv0;
+        glm::vec2 d1 = uvOf(v1) - uvOf(v0), d2 = uvOf(v2) - uvOf(v0);
         float det = d1.x * d2.y - d2.x * d1.y;
         if (!(std::abs(det) > 1e-20f) || !std::isfinite(det)) continue;  // degenerate UVs
         float r = 1.0f / det;

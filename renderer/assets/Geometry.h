@@ -21,7 +21,7 @@ void generateFlatNormals(Primitive& prim);
 std::vector<glm::vec3> computeSmoothNormals(const Primitive& prim);
 void generateSmoothNormals(Primitive& prim);
 
-// Per-vertex tangent frames from positions, normals and uv0, MikkTSpace-like: each triangle's
+// Per-vertex tangent frames from positions, normals and a uv set, MikkTSpace-like: each triangle's
 // dP/du and image-up direction (-dP/dv: glTF's v axis points down the image) are projected into
 // the vertex's tangent plane, normalised and accumulated weighted by the corner angle; the sum
 // is Gram-Schmidt orthonormalised against the normal, and w = +-1 records whether the
@@ -31,7 +31,8 @@ void generateSmoothNormals(Primitive& prim);
 // seams), so results match MikkTSpace on ordinary meshes but can differ at such vertices.
 // Vertices whose triangles all have degenerate UVs get anyPerpendicular(n), w = +1.
 // Returns the number of vertices that needed that fallback.
-size_t generateTangents(Primitive& prim);
+// `texCoord`: the set the normal map samples (Vertex::uv0 or uv1).
+size_t generateTangents(Primitive& prim, uint32_t texCoord = 0);
 
 // Sets every tangent to anyPerpendicular(normal), w = +1: a well-formed frame for primitives
 // that have no UVs / no normal map, so a shader can always build a TBN.

@@ -50,6 +50,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
+    "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
 };
 
@@ -306,6 +307,10 @@ private:
     void traverseScene();
     void checkAsset();
     void addEmitter(int n, const tinygltf::Value& extras);
+    // v[key] into out: a finite number (count 0) or an array of `count` finite numbers; absent
+    // keys leave out as it is, anything else is an error naming where.
+    void readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count);
+    void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
 
@@ -554,11 +559,7 @@ void Loader::checkExtensions() {
     }
     for (const auto& e : model_.extensionsUsed) {
         if (kSupportedExtensions.count(e)) continue;
-        if (e == "KHR_texture_transform") {
-            warn("KHR_texture_transform is not supported: texture transforms are ignored");
-        } else {
-            warn("extension " + e + " is not supported and is ignored");
-        }
+        warn("extension " + e + " is not supported and is ignored");
     }
 }
 
@@ -715,26 +716,44 @@ void Loader::addCamera(int n) {
 // "colorStart": [r, g, b, a], "colorEnd": [r, g, b, a], "blend": "additive" | "alpha",
 // "softness": 0.2}}, every key optional (ParticleEmitter's defaults). It sits at the node's world
 // position; velocity and gravity are in world space. A malformed value is an error naming it.
+void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count) {
+    if (!v.Has(key)) return;
+    const tinygltf::Value& x = v.Get(key);
+    if (count == 0) {
+        if (!x.IsNumber() || !std::isfinite(x.GetNumberAsDouble())) fail(where + "." + key + " must be a number");
+        *out = float(x.GetNumberAsDouble());
+        return;
+    }
+    const std::string shape = where + "." + key + " must be an array of " + std::to_string(count) + " numbers";
+    if (!x.IsArray() || int(x.ArrayLen()) != count) fail(shape);
+    for (int i = 0; i < count; ++i) {
+        if (!x.Get(i).IsNumber() || !std::isfinite(x.Get(i).GetNumberAsDouble())) fail(shape);
+        out[i] = float(x.Get(i).GetNumberAsDouble());
+    }
+}
+
+// KHR_texture_transform on a textureInfo: offset, rotation, scale, and a texCoord that overrides
+// the textureInfo's.
+void Loader::readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what) {
+    const std::string where = what + ": KHR_texture_transform";
+    if (!t.IsObject()) fail(where + " must be an object");
+    readNumbers(t, "offset", where, &ref.transform.offset.x, 2);
+    readNumbers(t, "rotation", where, &ref.transform.rotation, 0);
+    readNumbers(t, "scale", where, &ref.transform.scale.x, 2);
+    if (t.Has("texCoord")) {
+        const int set = valueIndex(t.Get("texCoord"));
+        if (set < 0) fail(where + ".texCoord must be a non-negative integer");
+        texCoord = set;
+    }
+}
+
 void Loader::addEmitter(int n, const tinygltf::Value& v) {
     const std::string where = nodeLabel(n) + ": extras.fe_emitter";
     if (!v.IsObject()) fail(where + " must be an object");
     ParticleEmitter e;
     e.name = model_.nodes[size_t(n)].name.empty() ? "node " + std::to_string(n) : model_.nodes[size_t(n)].name;
-    auto number = [&](const char* key, float& out) {
-        if (!v.Has(key)) return;
-        const tinygltf::Value& x = v.Get(key);
-        if (!x.IsNumber()) fail(where + "." + key + " must be a number");
-        out = float(x.GetNumberAsDouble());
-    };
-    auto vector = [&](const char* key, float* out, int count) {
-        if (!v.Has(key)) return;
-        const tinygltf::Value& x = v.Get(key);
-        if (!x.IsArray() || int(x.ArrayLen()) != count) fail(where + "." + key + " must be an array of " + std::to_string(count) + " numbers");
-        for (int i = 0; i < count; ++i) {
-            if (!x.Get(i).IsNumber()) fail(where + "." + key + " must be an array of " + std::to_string(count) + " numbers");
-            out[i] = float(x.Get(i).GetNumberAsDouble());
-        }
-    };
+    auto number = [&](const char* key, float& out) { readNumbers(v, key, where, &out, 0); };
+    auto vector = [&](const char* key, float* out, int count) { readNumbers(v, key, where, out, count); };
     for (const std::string& key : v.Keys())
         if (key != "rate" && key != "lifetime" && key != "velocity" && key != "spread" && key != "gravity" && key != "size" &&
             key != "colorStart" && key != "colorEnd" && key != "blend" && key != "softness")
@@ -1023,7 +1042,6 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
         warn(label + ": no POSITION attribute; primitive skipped");
         return false;
     }
-    if (attr("COLOR_0") >= 0) warn("COLOR_0 vertex colours are ignored");
 
     const std::vector<float> pos = readAccessor<float>(aPos, "POSITION of " + label, TINYGLTF_TYPE_VEC3, F32);
     const size_t n = pos.size() / 3;
@@ -1049,6 +1067,16 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
     const std::vector<float> nrm = readMatching("NORMAL", TINYGLTF_TYPE_VEC3, F32, 3);
     const std::vector<float> tan = readMatching("TANGENT", TINYGLTF_TYPE_VEC4, F32, 4);
     const std::vector<float> uv = readMatching("TEXCOORD_0", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
+    const std::vector<float> uv1 = readMatching("TEXCOORD_1", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
+    // COLOR_0 is VEC3 or VEC4 (alpha 1 when absent), float or normalized unsigned integers.
+    std::vector<float> color;
+    size_t colorComps = 4;
+    if (const int a = attr("COLOR_0"); a >= 0) {
+        checkIndex(a, model_.accessors, "COLOR_0 of " + label + ": accessor");
+        const int type = model_.accessors[size_t(a)].type;
+        colorComps = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        color = readMatching("COLOR_0", colorComps == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, F32 | U8N | U16N, colorComps);
+    }
 
     out.vertices.resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -1057,6 +1085,11 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
         if (!nrm.empty()) v.normal = glm::vec3(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
         if (!tan.empty()) v.tangent = glm::vec4(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2], tan[i * 4 + 3]);
         if (!uv.empty()) v.uv0 = glm::vec2(uv[i * 2], uv[i * 2 + 1]);
+        if (!uv1.empty()) v.uv1 = glm::vec2(uv1[i * 2], uv1[i * 2 + 1]);
+        if (!color.empty()) {
+            const float* c = &color[i * colorComps];
+            v.color = glm::vec4(c[0], c[1], c[2], colorComps == 4 ? c[3] : 1.0f);
+        }
     }
 
     // Indices.
@@ -1176,11 +1209,12 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
             v.tangent = glm::vec4(tt, v.tangent.w < 0.0f ? -1.0f : 1.0f);
         }
     } else if (mat.normalTexture.valid()) {
-        if (uv.empty()) {
-            warn(label + ": normal map without TEXCOORD_0; tangents cannot be generated");
+        const uint32_t set = mat.normalTexture.texCoord;
+        if ((set == 0 ? uv : uv1).empty()) {
+            warn(label + ": normal map without TEXCOORD_" + std::to_string(set) + "; tangents cannot be generated");
             setFallbackTangents(out);
         } else {
-            generateTangents(out);
+            generateTangents(out, set);
         }
     } else {
         setFallbackTangents(out);
@@ -1268,11 +1302,10 @@ TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::E
     TextureRef ref;
     if (gt < 0) return ref;
     checkIndex(gt, model_.textures, what + ": texture");
-    if (findExtension(infoExt, "KHR_texture_transform")) {
-        warn("KHR_texture_transform is not supported: texture transforms are ignored");
-    }
-    if (texCoord != 0) {
-        warn(what + " uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 is supported and is used instead");
+    if (const tinygltf::Value* t = findExtension(infoExt, "KHR_texture_transform")) readTextureTransform(*t, texCoord, ref, what);
+    if (texCoord > 1) {
+        warn(what + " uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 and TEXCOORD_1 are read, TEXCOORD_0 is used instead");
+        texCoord = 0;
     }
     ref.texCoord = uint32_t(std::max(texCoord, 0));
 

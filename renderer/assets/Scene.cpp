@@ -134,6 +134,8 @@ void checkFinite(const Scene& scene) {
                 if (!finite(x.normal)) fail(where + "its normal");
                 if (!finite(x.tangent)) fail(where + "its tangent");
                 if (!finite(x.uv0)) fail(where + "its uv");
+                if (!finite(x.uv1)) fail(where + "its second uv set");
+                if (!finite(x.color)) fail(where + "its colour");
             }
         }
     for (const Material& m : scene.materials) {
@@ -143,6 +145,10 @@ void checkFinite(const Scene& scene) {
         if (!finite(m.emissiveFactor)) fail(where + "emissiveFactor");
         if (!finite(m.normalScale) || !finite(m.occlusionStrength) || !finite(m.alphaCutoff))
             fail(where + "normalScale, occlusionStrength or alphaCutoff");
+        for (const TextureRef* r : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
+                                    &m.occlusionTexture})
+            if (!finite(r->transform.offset) || !finite(r->transform.rotation) || !finite(r->transform.scale))
+                fail(where + "a texture transform");
     }
     for (const MeshInstance& i : scene.instances)
         if (!finite(i.world)) fail("node '" + i.name + "': its transform");

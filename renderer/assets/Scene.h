@@ -42,15 +42,19 @@ struct AABB {
 };
 using Bounds = AABB;
 
-// 48 bytes, tightly packed: uploadable as one interleaved vertex buffer
-// (position RGB32F @0, normal RGB32F @12, tangent RGBA32F @24, uv0 RG32F @40).
+// 72 bytes, tightly packed: uploadable as one interleaved vertex buffer (position RGB32F @0,
+// normal RGB32F @12, tangent RGBA32F @24, uv0 RG32F @40, uv1 RG32F @48, color RGBA32F @56).
+// Both glTF texture coordinate sets and COLOR_0 are always present (uv1 = 0 and colour = white
+// where the file has none), so every pipeline has one vertex layout and no shader variant.
 struct Vertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz unit, w = +-1: bitangent = w * cross(n, t)
     glm::vec2 uv0{0.0f};
+    glm::vec2 uv1{0.0f};
+    glm::vec4 color{1.0f};  // linear COLOR_0, multiplies the base colour (alpha too)
 };
-static_assert(sizeof(Vertex) == 48, "Vertex must stay tightly packed for direct upload");
+static_assert(sizeof(Vertex) == 72, "Vertex must stay tightly packed for direct upload");
 
 // Always an indexed triangle list (strips/fans are converted, non-indexed input gets 0..n-1).
 struct Primitive {
@@ -93,9 +97,24 @@ struct TextureImage {
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, as the extension defines it.
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+    bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+    // The two rows of the affine map: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
+    glm::vec3 row0() const { return {std::cos(rotation) * scale.x, -std::sin(rotation) * scale.y, offset.x}; }
+    glm::vec3 row1() const { return {std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+    glm::vec2 apply(const glm::vec2& uv) const {
+        return {glm::dot(row0(), glm::vec3(uv, 1.0f)), glm::dot(row1(), glm::vec3(uv, 1.0f))};
+    }
+};
+
 struct TextureRef {
     int32_t index = -1;     // into Scene::textures, -1 = none
-    uint32_t texCoord = 0;  // only set 0 exists in Vertex; the loader warns about others
+    uint32_t texCoord = 0;  // 0: Vertex::uv0, 1: Vertex::uv1 (KHR_texture_transform's override applied)
+    TextureTransform transform;
     bool valid() const { return index >= 0; }
 };
 
@@ -108,7 +127,7 @@ struct Material {
     glm::vec3 emissiveFactor{0.0f};     // already multiplied by KHR_materials_emissive_strength
     float emissiveStrength = 1.0f;      // informative: the factor already applied above
     float normalScale = 1.0f;
-    float occlusionStrength = 1.0f;
+    float occlusionStrength = 1.0f;     // indirect light x (1 + strength (occlusion - 1))
     TextureRef baseColorTexture;          // sRGB
     TextureRef metallicRoughnessTexture;  // linear, G = roughness, B = metallic
     TextureRef normalTexture;             // linear, tangent space

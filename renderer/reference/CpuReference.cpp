@@ -15,7 +15,8 @@ namespace {
 struct WorldTriangle {
     glm::dvec3 p[3], n[3];
     glm::dvec4 t[3];
-    glm::dvec2 uv[3];
+    glm::dvec2 uv[3], uv1[3];
+    glm::dvec4 color[3];
     uint32_t material;
     int32_t surface;
     bool mirrored;
@@ -58,6 +59,27 @@ glm::dvec4 sample(const assets::TextureImage& img, glm::dvec2 uv) {
     if (img.sampler.wrapS == assets::Wrap::ClampToEdge) x0 = std::clamp(x0, 0, int(img.width) - 2 < 0 ? 0 : int(img.width) - 2);
     if (img.sampler.wrapT == assets::Wrap::ClampToEdge) y0 = std::clamp(y0, 0, int(img.height) - 2 < 0 ? 0 : int(img.height) - 2);
     return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+// The point a material's texture samples at barycentrics (b1, b2): its texture coordinate set,
+// then its KHR_texture_transform, in double.
+glm::dvec2 textureCoord(const WorldTriangle& tri, const assets::TextureRef& ref, double b1, double b2) {
+    const glm::dvec2* set = ref.texCoord == 1 ? tri.uv1 : tri.uv;
+    const glm::dvec2 uv = (1.0 - b1 - b2) * set[0] + b1 * set[1] + b2 * set[2];
+    const assets::TextureTransform& x = ref.transform;
+    if (x.identity()) return uv;
+    const double c = std::cos(double(x.rotation)), s = std::sin(double(x.rotation));
+    const glm::dvec2 scaled = uv * glm::dvec2(x.scale);
+    return glm::dvec2(c * scaled.x - s * scaled.y, s * scaled.x + c * scaled.y) + glm::dvec2(x.offset);
+}
+
+// Base colour alpha times COLOR_0's at barycentrics (b1, b2): what MASK tests and BLEND blends.
+double coverageAlpha(const assets::Scene& scene, const WorldTriangle& tri, double b1, double b2) {
+    const assets::Material& mat = scene.materials[tri.material];
+    double a = mat.baseColorFactor.a * ((1.0 - b1 - b2) * tri.color[0].a + b1 * tri.color[1].a + b2 * tri.color[2].a);
+    if (mat.baseColorTexture.valid())
+        a *= sample(scene.textures[mat.baseColorTexture.index], textureCoord(tri, mat.baseColorTexture, b1, b2)).a;
+    return a;
 }
 
 // Moller-Trumbore; returns t and barycentrics (b1, b2), or t < 0 for a miss.
@@ -135,6 +157,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     t.n[k] = normalMat * glm::dvec3(v.normal);
                     t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
                     t.uv[k] = glm::dvec2(v.uv0);
+                    t.uv1[k] = glm::dvec2(v.uv1);
+                    t.color[k] = glm::dvec4(v.color);
                 }
                 t.material = prim.material;
                 t.surface = id;
@@ -181,10 +205,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     auto alphaPasses = [&](const WorldTriangle& tri, double b1, double b2) {
         const assets::Material& mat = scene.materials[tri.material];
         if (mat.alphaMode != assets::AlphaMode::Mask) return true;
-        glm::dvec2 uv = (1 - b1 - b2) * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
-        double a = mat.baseColorFactor.a;
-        if (mat.baseColorTexture.valid()) a *= sample(scene.textures[mat.baseColorTexture.index], uv).a;
-        return a >= mat.alphaCutoff;
+        return coverageAlpha(scene, tri, b1, b2) >= mat.alphaCutoff;
     };
     auto occluded = [&](const glm::dvec3& o, const glm::dvec3& d, double tMax) {
         const glm::dvec3 invD = 1.0 / d;
@@ -213,7 +234,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     out.surface.assign(size_t(width) * height, -1);
     out.textured.assign(size_t(width) * height, 0);
     out.occluded.assign(size_t(width) * height, 0);
-    const double aspect = camera.aspectRatio ? *camera.aspectRatio : double(width) / double(height);
+    // The viewport's aspect, as the renderer's projection (and the Sample Viewer's) takes it: a
+    // camera's authored aspectRatio would stretch the image against the GPU's.
+    const double aspect = double(width) / double(height);
     // Eye rays from the projection and the view's rotation alone (camera-relative, as the GPU
     // renders): a float view-projection holds the eye's distance from the origin in its
     // translation, which 1e5 from the origin moved these rays by 2 % of a pixel's radiance.
@@ -236,27 +259,29 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         const WorldTriangle* hit = &tri;
         const assets::Material& mat = scene.materials[hit->material];
         const double b0 = 1.0 - hb1 - hb2;
-        glm::dvec2 uv = b0 * hit->uv[0] + hb1 * hit->uv[1] + hb2 * hit->uv[2];
+        auto texel = [&](const assets::TextureRef& ref) {
+            return sample(scene.textures[ref.index], textureCoord(*hit, ref, hb1, hb2));
+        };
         glm::dvec3 n = glm::normalize(b0 * hit->n[0] + hb1 * hit->n[1] + hb2 * hit->n[2]);
         glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
         const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
         if (!front) n = -n;  // a double-sided back face shades with the flipped normal
 
-        glm::dvec4 bc = glm::dvec4(mat.baseColorFactor);
+        glm::dvec4 bc = glm::dvec4(mat.baseColorFactor) * (b0 * hit->color[0] + hb1 * hit->color[1] + hb2 * hit->color[2]);
         double metallic = mat.metallic, roughness = mat.roughness;
         glm::dvec3 emissive(mat.emissiveFactor);
         if (mat.baseColorTexture.valid()) {
-            bc *= sample(scene.textures[mat.baseColorTexture.index], uv);
+            bc *= texel(mat.baseColorTexture);
             out.textured = true;
         }
         if (mat.metallicRoughnessTexture.valid()) {
-            glm::dvec4 mr = sample(scene.textures[mat.metallicRoughnessTexture.index], uv);
+            glm::dvec4 mr = texel(mat.metallicRoughnessTexture);
             metallic *= mr.b;
             roughness *= mr.g;
             out.textured = true;
         }
         if (mat.emissiveTexture.valid()) {
-            emissive *= glm::dvec3(sample(scene.textures[mat.emissiveTexture.index], uv));
+            emissive *= glm::dvec3(texel(mat.emissiveTexture));
             out.textured = true;
         }
         if (mat.normalTexture.valid()) {
@@ -265,7 +290,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             if (glm::dot(t, t) > 1e-24) {
                 t = glm::normalize(t);
                 glm::dvec3 b = glm::cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
-                glm::dvec3 tn = glm::dvec3(sample(scene.textures[mat.normalTexture.index], uv)) * 2.0 - 1.0;
+                glm::dvec3 tn = glm::dvec3(texel(mat.normalTexture)) * 2.0 - 1.0;
                 tn.x *= mat.normalScale;
                 tn.y *= mat.normalScale;
                 n = glm::normalize(tn.x * t + tn.y * b + tn.z * n);
@@ -298,11 +323,17 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     continue;
                 }
             }
-            L += shading::shadeLight(s, ls);
+            L += shading::shadeLight(s, ls, options.brdf);
         }
-        if (options.iblSamples > 0 && scene.environment)
-            L += shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
-                                           options.iblSamples);
+        if (options.iblSamples > 0 && scene.environment) {
+            // The occlusion texture darkens indirect light only (glTF 2.0: 1 + strength (ao - 1)).
+            const double ao = mat.occlusionTexture.valid()
+                                  ? 1.0 + mat.occlusionStrength * (texel(mat.occlusionTexture).r - 1.0)
+                                  : 1.0;
+            if (mat.occlusionTexture.valid()) out.textured = true;
+            L += ao * shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
+                                                options.iblSamples);
+        }
         out.radiance = L;
         return out;
     };
@@ -358,12 +389,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     // Counter-clockwise seen from the eye; mirrored instances flip the winding.
                     bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
                     if (!mat.doubleSided && !front) continue;
-                    if (mat.alphaMode == assets::AlphaMode::Mask) {
-                        glm::dvec2 uv = (1 - b1 - b2) * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
-                        double a = mat.baseColorFactor.a;
-                        if (mat.baseColorTexture.valid()) a *= sample(scene.textures[mat.baseColorTexture.index], uv).a;
-                        if (a < mat.alphaCutoff) continue;
-                    }
+                    if (mat.alphaMode == assets::AlphaMode::Mask && coverageAlpha(scene, tri, b1, b2) < mat.alphaCutoff) continue;
                     best = t;
                     hit = &tri;
                     hb1 = b1;

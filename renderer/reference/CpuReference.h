@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "assets/Scene.h"
+#include "shading/ShadingModel.h"
 
 namespace fe::render {
 
@@ -39,6 +40,9 @@ struct ReferenceOptions {
     // materials by their alpha cutoff. Empty: no light casts shadows (render/ShadowPlan.h says
     // which lights the GPU shadows).
     std::vector<bool> castsShadow;
+    // The BRDF of the punctual lights (shading::Brdf): glTF 2.0's, or the separable model the
+    // redeferred and light-prepass techniques shade with (render::resolveShadingModel).
+    shading::Brdf brdf = shading::Brdf::Gltf;
 };
 
 ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,

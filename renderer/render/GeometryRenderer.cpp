@@ -109,7 +109,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                            .attributes = {{0, VertexFormat::Float3, 0},
                                           {1, VertexFormat::Float3, 12},
                                           {2, VertexFormat::Float4, 24},
-                                          {3, VertexFormat::Float2, 40}}}},
+                                          {3, VertexFormat::Float2, 40},
+                                          {4, VertexFormat::Float2, 48},
+                                          {5, VertexFormat::Float4, 56}}}},
         .raster = {.cullMode = cull, .frontFace = face},
         .multisample = {.sampleCount = targets.samples},
         .depthStencil = {.depthTest = true, .depthWrite = st.depthWrite, .depthCompare = st.compare},
@@ -216,11 +218,7 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
             o = queue.upload(scene_.objectConstants(*d));
         }
         cmd.setUniformBuffer(kSlotObject, o.buffer, o.offset, o.size);
-        const MaterialTextures& t = scene_.textures(d->material);
-        cmd.setTexture(kSlotBaseColor, t.baseColor, t.baseColorSampler);
-        cmd.setTexture(kSlotMetalRough, t.metallicRoughness, t.metallicRoughnessSampler);
-        cmd.setTexture(kSlotNormalMap, t.normal, t.normalSampler);
-        cmd.setTexture(kSlotEmissive, t.emissive, t.emissiveSampler);
+        scene_.textures(d->material).bind(cmd);
         if (pass == MeshPass::Visibility) cmd.draw(d->indexCount);  // unindexed: vertex id / 3 is the triangle
         else cmd.drawIndexed(d->indexCount, 1, d->firstIndex, d->baseVertex, 0);
     }

@@ -1,5 +1,7 @@
 #include "render/GpuScene.h"
 
+#include "render/ShaderSlots.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -170,23 +172,19 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.metallicRoughnessTexture, white_, mt.metallicRoughness, mt.metallicRoughnessSampler);
         pick(m.normalTexture, flatNormal_, mt.normal, mt.normalSampler);
         pick(m.emissiveTexture, white_, mt.emissive, mt.emissiveSampler);
+        pick(m.occlusionTexture, white_, mt.occlusion, mt.occlusionSampler);
         materialTextures_.push_back(mt);
     }
     for (DrawItem& d : draws_) {
         const MaterialTextures& mt = materialTextures_[d.material];
-        auto same = [&](const MaterialTextures& s) {
-            return s.baseColor == mt.baseColor && s.metallicRoughness == mt.metallicRoughness && s.normal == mt.normal &&
-                   s.emissive == mt.emissive && s.baseColorSampler == mt.baseColorSampler &&
-                   s.metallicRoughnessSampler == mt.metallicRoughnessSampler && s.normalSampler == mt.normalSampler &&
-                   s.emissiveSampler == mt.emissiveSampler;
-        };
-        auto it = std::find_if(textureSets_.begin(), textureSets_.end(), same);
+        auto it = std::find(textureSets_.begin(), textureSets_.end(), mt);
         d.textureSet = uint32_t(it - textureSets_.begin());
         if (it == textureSets_.end()) textureSets_.push_back(mt);
     }
     // A pass binding one set at a time still binds one in a scene without draws.
     if (textureSets_.empty())
-        textureSets_.push_back({white_, white_, flatNormal_, white_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_});
+        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, defaultSampler_, defaultSampler_, defaultSampler_,
+                                defaultSampler_, defaultSampler_});
     updateLights(scene.lights);
 }
 
@@ -223,7 +221,22 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
     o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) | (item.textureSet << 8),
                          item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
+    const assets::TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
+                                         &m.occlusionTexture};
+    for (int t = 0; t < 5; ++t) {
+        o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
+        o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
+    }
+    o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, 0.0f, 0.0f, 0.0f);
     return o;
+}
+
+void MaterialTextures::bind(gdi::CommandList& cmd) const {
+    cmd.setTexture(kSlotBaseColor, baseColor, baseColorSampler);
+    cmd.setTexture(kSlotMetalRough, metallicRoughness, metallicRoughnessSampler);
+    cmd.setTexture(kSlotNormalMap, normal, normalSampler);
+    cmd.setTexture(kSlotEmissive, emissive, emissiveSampler);
+    cmd.setTexture(kSlotOcclusion, occlusion, occlusionSampler);
 }
 
 bool GpuScene::hasBlend() const {

@@ -38,6 +38,7 @@ struct FrameConstants {
     // stability). World positions are cameraPosition + an eye-space offset.
     glm::mat4 viewProjFromEye{1.0f};
     glm::mat4 invViewProjFromEye{1.0f};
+    glm::uvec4 shading{0u};  // x: the BRDF, 0 glTF, 1 separable (resolveShadingModel)
 };
 
 struct ObjectConstants {
@@ -49,6 +50,11 @@ struct ObjectConstants {
     // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 the draw's texture set; y, z: the
     // draw's firstIndex and baseVertex; w: its first triangle's visibility id (DrawItem).
     glm::uvec4 flags;
+    // Per texture (base colour, metallic-roughness, normal, emissive, occlusion: FE_TEXTURE_* in
+    // fe_material.glsl) the rows of its KHR_texture_transform, (a, b, c, set) and (d, e, f, 0):
+    // it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
+    glm::vec4 uvTransform[10];
+    glm::vec4 occlusion;  // x: the occlusion texture's strength (0 without one)
 };
 
 struct GpuLight {
@@ -77,8 +83,11 @@ struct DrawItem {
 };
 
 struct MaterialTextures {
-    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive;
-    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler;
+    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion;
+    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler;
+    bool operator==(const MaterialTextures&) const = default;
+    // Binds the five at their shader slots (ShaderSlots.h).
+    void bind(gdi::CommandList& cmd) const;
 };
 
 class GpuScene {

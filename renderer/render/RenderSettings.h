@@ -30,6 +30,11 @@ struct SourceRates {
 // each frame with the reprojected, neighbourhood-clamped history (converges over frames).
 enum class AntiAliasing : uint32_t { None, Fxaa, Taa };
 
+// The BRDF a frame shades with (docs/SHADING.md). Auto: glTF 2.0's wherever the technique can
+// evaluate it, the separable model of ../shared/SHADING.md in the techniques whose light sums
+// factor it out of the material (TechniqueInfo::separableBrdf: redeferred, light-prepass).
+enum class ShadingModel : uint32_t { Auto, Gltf, Separable };
+
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
     uint32_t width = 320;
@@ -70,6 +75,9 @@ struct RenderSettings {
     // split-sum table, SH irradiance); iblSamples is then unused.
     bool iblPrefiltered = false;
     bool ibl() const { return iblSamples > 0 || iblPrefiltered; }
+    // Separable on any technique (to compare with the redeferred family under one model); Gltf
+    // on a technique with TechniqueInfo::separableBrdf is an Error.
+    ShadingModel shadingModel = ShadingModel::Auto;
     ShadowSettings shadows;
     SourceRates rates;
     // Redeferred at illumScale > 1: the reduced-rate sampling jitters through each I-buffer

@@ -10,6 +10,7 @@ constexpr uint32_t kSlotBaseColor = 3;
 constexpr uint32_t kSlotMetalRough = 4;
 constexpr uint32_t kSlotNormalMap = 5;
 constexpr uint32_t kSlotEmissive = 6;
+constexpr uint32_t kSlotOcclusion = 7;
 constexpr uint32_t kSlotGBuffer0 = 8;
 constexpr uint32_t kSlotGBuffer1 = 9;
 constexpr uint32_t kSlotGBuffer2 = 10;

@@ -113,6 +113,9 @@ struct TechniqueInfo {
     // Reads the grid with --msaa N > 1 only (forward-plus: a fragment outside its tile's depth
     // bounds walks its cluster's list).
     bool clustersUnderMsaa = false;
+    // Accumulates light sums the material multiplies afterwards (I-buffer, light buffer): only
+    // the separable BRDF factors that way, so glTF's is not available (RenderSettings::shadingModel).
+    bool separableBrdf = false;
     // Every technique lights the scene by its environment with --ibl-samples N (checked for
     // every line of the table by EnvironmentTests).
 };
@@ -121,5 +124,8 @@ const std::vector<TechniqueInfo>& techniques();
 // Throws gdi::Error listing the valid names.
 const TechniqueInfo& findTechnique(const std::string& name);
 std::string techniqueNames();  // "forward, deferred, ..."
+// The BRDF a frame of `settings` shades with (FE_BRDF_GLTF 0, FE_BRDF_SEPARABLE 1 in
+// fe_shading.glsl): Auto resolved by the technique; Gltf where it cannot be is a gdi::Error.
+ShadingModel resolveShadingModel(const RenderSettings& settings);
 
 }  // namespace fe::render

@@ -53,14 +53,14 @@ const std::vector<TechniqueInfo>& techniques() {
          makeTiledDeferred<TiledDeferredRenderer::Lists::Clusters>, false, false, true},
         {"visibility-buffer", "triangle id + depth per pixel, one compute pass rebuilding each pixel's surface and shading its cluster's lights",
          make<VisibilityBufferRenderer>, false, false, true},
-        {"light-prepass", "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
-         makeLightPrepass<true>, true},
-        {"light-prepass-unpacked", "light-prepass with an RGBA16F world-normal target, to measure packing",
-         makeLightPrepass<false>, true},
-        {"redeferred", "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass", makeRedeferred<false>, false,
-         true},
-        {"redeferred-tiled", "redeferred with the I-buffer filled by one compute pass culling lights per tile",
-         makeRedeferred<true>, false, true},
+        {.name = "light-prepass", .summary = "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
+         .create = makeLightPrepass<true>, .msaa = true, .separableBrdf = true},
+        {.name = "light-prepass-unpacked", .summary = "light-prepass with an RGBA16F world-normal target, to measure packing",
+         .create = makeLightPrepass<false>, .msaa = true, .separableBrdf = true},
+        {.name = "redeferred", .summary = "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass",
+         .create = makeRedeferred<false>, .illumScale = true, .separableBrdf = true},
+        {.name = "redeferred-tiled", .summary = "redeferred with the I-buffer filled by one compute pass culling lights per tile",
+         .create = makeRedeferred<true>, .illumScale = true, .separableBrdf = true},
     };
     return all;
 }
@@ -69,6 +69,16 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     for (const TechniqueInfo& t : techniques())
         if (name == t.name) return t;
     throw gdi::Error("unknown technique '" + name + "' (valid: " + techniqueNames() + ")");
+}
+
+ShadingModel resolveShadingModel(const RenderSettings& s) {
+    const TechniqueInfo& t = findTechnique(s.technique);
+    if (s.shadingModel == ShadingModel::Gltf && t.separableBrdf)
+        throw gdi::Error("technique " + s.technique +
+                         " shades with the separable BRDF only (its light sums need it to factor): the glTF BRDF needs "
+                         "forward, deferred, deferred-tiled, clustered or the visibility buffer");
+    if (s.shadingModel != ShadingModel::Auto) return s.shadingModel;
+    return t.separableBrdf ? ShadingModel::Separable : ShadingModel::Gltf;
 }
 
 std::string techniqueNames() {

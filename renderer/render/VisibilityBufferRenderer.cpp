@@ -59,11 +59,7 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
         const RenderSettings& rs = ctx_.settings;
         const std::vector<MaterialTextures>& sets = ctx_.scene.textureSets();
         for (uint32_t set = 0; set < sets.size(); ++set) {  // never empty (GpuScene::textureSets)
-            const MaterialTextures& t = sets[set];
-            cmd.setTexture(kSlotBaseColor, t.baseColor, t.baseColorSampler);
-            cmd.setTexture(kSlotMetalRough, t.metallicRoughness, t.metallicRoughnessSampler);
-            cmd.setTexture(kSlotNormalMap, t.normal, t.normalSampler);
-            cmd.setTexture(kSlotEmissive, t.emissive, t.emissiveSampler);
+            sets[set].bind(cmd);
             cmd.setConstants(glm::uvec4(set, set == 0 ? 1u : 0u, 0u, 0u));
             cmd.dispatch((rs.width + kGroupSize - 1) / kGroupSize, (rs.height + kGroupSize - 1) / kGroupSize);
         }

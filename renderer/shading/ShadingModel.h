@@ -1,6 +1,8 @@
-// The shading model of ../shared/SHADING.md on the CPU, in double precision: the independent
-// reference every GPU technique is tested against (and the source of truth when the GLSL in
-// shaders/include/fe_shading.glsl is changed: the two must stay in step).
+// The shading models on the CPU, in double precision: the independent reference every GPU
+// technique is tested against (and the source of truth when the GLSL in
+// shaders/include/fe_shading.glsl is changed: the two must stay in step). Two BRDFs
+// (docs/SHADING.md): glTF 2.0's (Appendix B), the default, and the separable one of
+// ../shared/SHADING.md, whose factorisation the redeferred techniques need.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -74,8 +76,22 @@ struct SurfacePoint {
 
 inline double clampRoughness(double r) { return std::clamp(r, kMinRoughness, 1.0); }
 
-// SHADING.md "Per light": f x E x NoL.
-inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l) {
+// Gltf: glTF 2.0 Appendix B, as the Khronos Sample Viewer and Filament evaluate it: Lambert
+// diffuse under the dielectric Fresnel (F0 = 0.04), GGX D, height-correlated Smith-GGX
+// visibility, Schlick Fresnel mixed by metallic. Separable: ../shared/SHADING.md, the seeds'
+// model (Schlick-GGX G with k = (r+1)^2/8, diffuse under the mixed Fresnel), whose light sums
+// factor out of the material (the redeferred split below).
+enum class Brdf { Gltf, Separable };
+
+// glTF's V = G / (4 NoL NoV), height-correlated Smith-GGX (Heitz 2014, eq. 99).
+inline double visibilityHeightCorrelated(double NoL, double NoV, double a2) {
+    const double gv = NoL * std::sqrt(NoV * NoV * (1.0 - a2) + a2);
+    const double gl = NoV * std::sqrt(NoL * NoL * (1.0 - a2) + a2);
+    return 0.5 / (gv + gl);
+}
+
+// Per light: f x E x NoL.
+inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf brdf = Brdf::Gltf) {
     double NoL = glm::dot(s.n, l.wi);
     if (NoL <= 0.0) return glm::dvec3(0.0);
     double r = clampRoughness(s.roughness);
@@ -89,6 +105,10 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l) {
     glm::dvec3 F = F0 + (1.0 - F0) * P;
     double dd = NoH * NoH * (a2 - 1.0) + 1.0;
     double D = a2 / (kPi * dd * dd);
+    if (brdf == Brdf::Gltf) {
+        const glm::dvec3 diffuse = (1.0 - s.metallic) * s.baseColor / kPi * (1.0 - (0.04 + 0.96 * P));
+        return (diffuse + D * F * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL;
+    }
     double G = NoV / (NoV * (1.0 - k) + k) * NoL / (NoL * (1.0 - k) + k);
     glm::dvec3 f = (1.0 - F) * (1.0 - s.metallic) * s.baseColor / kPi + D * F * G / (4.0 * NoV * NoL);
     return f * l.E * NoL;

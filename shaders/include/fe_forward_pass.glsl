@@ -48,7 +48,7 @@ uint feForwardPlusLight(uint k) {
 // their tile's list instead, forward_clustered*.frag (FE_CLUSTER_LISTS) over their cluster's.
 layout(location = 0) out vec4 outRadiance;
 void main() {
-    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    MaterialSample m = feSampleMaterial(vUv, vColor, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
     const bool first = frame.lightRange.z != 0u;
     vec3 L = first ? m.emissive : vec3(0.0);
@@ -101,7 +101,7 @@ void main() {
         }
 #ifdef FE_IBL
         // The environment's light, with the emissive term in the first pass (frame.counts.z samples).
-        if (first) L += feShadeEnvironment(s, frame.counts.z);
+        if (first) L += feOcclusion(vUv) * feShadeEnvironment(s, frame.counts.z);
 #endif
     }
     // Alpha only matters for BLEND draws (source-over); opaque targets ignore it.

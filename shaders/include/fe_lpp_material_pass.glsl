@@ -10,7 +10,7 @@
 layout(binding = FE_SLOT_IBUFFER0) uniform sampler2D lightBuffer;
 layout(location = 0) out vec4 outRadiance;
 void main() {
-    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    MaterialSample m = feSampleMaterial(vUv, vColor, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
     if (m.unlit) {
         outRadiance = vec4(m.baseColor, 1.0);
@@ -30,7 +30,7 @@ void main() {
     vec3 Ls = chroma * light.a * F / (NoV * (1.0 - k) + k);
     vec3 L = m.emissive + Ld + Ls;
 #ifdef FE_IBL
-    L += feShadeEnvironment(feMaterialSurface(m, vEye), frame.counts.z);
+    L += feOcclusion(vUv) * feShadeEnvironment(feMaterialSurface(m, vEye), frame.counts.z);
 #endif
     outRadiance = vec4(L, 1.0);
 }

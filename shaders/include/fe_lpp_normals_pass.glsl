@@ -4,7 +4,7 @@
 // scene depth written by the rasterizer.
 layout(location = 0) out vec4 outNormal;
 void main() {
-    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    MaterialSample m = feSampleMaterial(vUv, vColor, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
     outNormal = fePackNormalRoughness(m.n, m.roughness);
 }

@@ -9,7 +9,8 @@
 layout(location = 0) in vec3 vEye;  // camera-relative position: world minus frame.cameraPosition
 layout(location = 1) in vec3 vNormal;
 layout(location = 2) in vec4 vTangent;
-layout(location = 3) in vec2 vUv;
+layout(location = 3) in vec4 vUv;     // xy TEXCOORD_0, zw TEXCOORD_1
+layout(location = 4) in vec4 vColor;  // COLOR_0 (white without one)
 #endif
 
 #ifdef FE_MATERIAL_FROM_STORAGE
@@ -23,13 +24,14 @@ struct ObjectRecord {
     vec4 emissiveNormalScale;
     vec4 params;
     uvec4 flags;
+    vec4 uvTransform[10];
+    vec4 occlusion;
 };
 layout(binding = FE_SLOT_DRAWS, std430) readonly buffer DrawBlock {
     ObjectRecord draws[];
 };
 ObjectRecord object;
-vec2 feUvDx, feUvDy;
-#define FE_MATERIAL_TEXTURE(t, uv) textureGrad(t, uv, feUvDx, feUvDy)
+vec4 feUvDx, feUvDy;  // both texture coordinate sets' gradients
 #else
 layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     mat4 world;
@@ -38,14 +40,41 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     vec4 emissiveNormalScale;
     vec4 params;  // metallic, roughness, alpha cutoff, alpha mode
     uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 texture set; y, z, w: ObjectConstants
+    vec4 uvTransform[10];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
+    vec4 occlusion;        // x strength (0 without an occlusion texture)
 } object;
-#define FE_MATERIAL_TEXTURE(t, uv) texture(t, uv)
+#endif
+
+// The textures of a material, in ObjectConstants::uvTransform's order.
+const uint FE_TEXTURE_BASECOLOR = 0u;
+const uint FE_TEXTURE_METALROUGH = 1u;
+const uint FE_TEXTURE_NORMAL = 2u;
+const uint FE_TEXTURE_EMISSIVE = 3u;
+const uint FE_TEXTURE_OCCLUSION = 4u;
+
+// Where texture `t` samples: its coordinate set (uvs.xy or .zw), through its KHR_texture_transform.
+vec2 feTextureCoord(uint t, vec4 uvs) {
+    const vec4 r0 = object.uvTransform[2u * t], r1 = object.uvTransform[2u * t + 1u];
+    const vec3 uv = vec3(r0.w != 0.0 ? uvs.zw : uvs.xy, 1.0);
+    return vec2(dot(r0.xyz, uv), dot(r1.xyz, uv));
+}
+#ifdef FE_MATERIAL_FROM_STORAGE
+// A compute shader has no derivatives: the set's gradients, through the transform's linear part.
+vec4 feSampleTexture(sampler2D tex, uint t, vec4 uvs) {
+    const vec4 r0 = object.uvTransform[2u * t], r1 = object.uvTransform[2u * t + 1u];
+    const bool second = r0.w != 0.0;
+    const vec2 dx = second ? feUvDx.zw : feUvDx.xy, dy = second ? feUvDy.zw : feUvDy.xy;
+    return textureGrad(tex, feTextureCoord(t, uvs), vec2(dot(r0.xy, dx), dot(r1.xy, dx)), vec2(dot(r0.xy, dy), dot(r1.xy, dy)));
+}
+#else
+vec4 feSampleTexture(sampler2D tex, uint t, vec4 uvs) { return texture(tex, feTextureCoord(t, uvs)); }
 #endif
 
 layout(binding = FE_SLOT_BASECOLOR) uniform sampler2D baseColorTexture;
 layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
 layout(binding = FE_SLOT_NORMALMAP) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_EMISSIVE) uniform sampler2D emissiveTexture;
+layout(binding = FE_SLOT_OCCLUSION) uniform sampler2D occlusionTexture;
 
 struct MaterialSample {
     vec3 baseColor;
@@ -57,16 +86,28 @@ struct MaterialSample {
     bool unlit;
 };
 
+// Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
+float feCoverageAlpha(vec4 uvs, vec4 color) {
+    return object.baseColorFactor.a * color.a * feSampleTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs).a;
+}
+
+// The factor of indirect light (image-based) at uvs: glTF's 1 + strength (occlusion - 1).
+float feOcclusion(vec4 uvs) {
+    if (object.occlusion.x == 0.0) return 1.0;
+    return 1.0 + object.occlusion.x * (feSampleTexture(occlusionTexture, FE_TEXTURE_OCCLUSION, uvs).r - 1.0);
+}
+
 // Sampled textures are decoded by the sampler (sRGB formats), so everything here is linear.
-MaterialSample feSampleMaterial(vec2 uv, vec3 N, vec4 T, bool frontFacing) {
+// COLOR_0 multiplies the base colour and its alpha (glTF 2.0).
+MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool frontFacing) {
     MaterialSample m;
-    vec4 bc = object.baseColorFactor * FE_MATERIAL_TEXTURE(baseColorTexture, uv);
+    vec4 bc = object.baseColorFactor * color * feSampleTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs);
     m.baseColor = bc.rgb;
     m.alpha = bc.a;
-    vec4 mr = FE_MATERIAL_TEXTURE(metallicRoughnessTexture, uv);
+    vec4 mr = feSampleTexture(metallicRoughnessTexture, FE_TEXTURE_METALROUGH, uvs);
     m.metallic = clamp(object.params.x * mr.b, 0.0, 1.0);
     m.roughness = feClampRoughness(object.params.y * mr.g);
-    m.emissive = object.emissiveNormalScale.rgb * FE_MATERIAL_TEXTURE(emissiveTexture, uv).rgb;
+    m.emissive = object.emissiveNormalScale.rgb * feSampleTexture(emissiveTexture, FE_TEXTURE_EMISSIVE, uvs).rgb;
     vec3 n = normalize(N);
     if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
     if ((object.flags.x & 1u) != 0u) {
@@ -74,7 +115,7 @@ MaterialSample feSampleMaterial(vec2 uv, vec3 N, vec4 T, bool frontFacing) {
         if (dot(t, t) > 1e-12) {
             t = normalize(t);
             vec3 b = cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
-            vec3 tn = FE_MATERIAL_TEXTURE(normalTexture, uv).xyz * 2.0 - 1.0;
+            vec3 tn = feSampleTexture(normalTexture, FE_TEXTURE_NORMAL, uvs).xyz * 2.0 - 1.0;
             tn.xy *= object.emissiveNormalScale.a;
             n = normalize(tn.x * t + tn.y * b + tn.z * n);
         }

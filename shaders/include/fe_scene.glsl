@@ -10,6 +10,7 @@
 #define FE_SLOT_METALROUGH 4
 #define FE_SLOT_NORMALMAP 5
 #define FE_SLOT_EMISSIVE 6
+#define FE_SLOT_OCCLUSION 7
 #define FE_SLOT_GBUFFER0 8
 #define FE_SLOT_GBUFFER1 9
 #define FE_SLOT_GBUFFER2 10
@@ -50,7 +51,12 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 clusters;        // the light cluster grid's slicing (fe_clusters.glsl): x near, y (slices - 1) / ln(far / split), z far, w near split
     mat4 viewProjFromEye;     // clip from eye space (world - cameraPosition.xyz): camera-relative rendering
     mat4 invViewProjFromEye;  // and back
+    uvec4 shading;            // x: the BRDF (FE_BRDF_GLTF or FE_BRDF_SEPARABLE)
 } frame;
+
+// The surface's BRDF factors under the frame's shading model.
+SurfaceBrdf fePrepareBrdf(SurfacePoint s) { return fePrepareBrdf(s, frame.shading.x); }
+vec3 feShadeLight(SurfacePoint s, SurfaceLight l) { return feShadeLight(fePrepareBrdf(s), l); }
 
 // The representative pixel of I-buffer texel q is q * scale + feRepOffset() (clamped to the
 // screen): the block's centre, or this frame's jittered position with temporal accumulation.

@@ -89,6 +89,20 @@ RoughnessTerms feRoughnessTerms(float roughness) {
     return RoughnessTerms(a * a, (r + 1.0) * (r + 1.0) / 8.0);
 }
 
+// The two shading models (RenderSettings::shadingModel, frame.shading.x; docs/SHADING.md):
+// glTF 2.0's (Appendix B: height-correlated Smith-GGX visibility, the dielectric Fresnel on the
+// diffuse lobe) and the seeds' separable one (../shared/SHADING.md: Schlick-GGX G, k = (r+1)^2/8),
+// which the redeferred factorisation needs.
+const uint FE_BRDF_GLTF = 0u;
+const uint FE_BRDF_SEPARABLE = 1u;
+
+// glTF's V = G / (4 NoL NoV), height-correlated Smith-GGX (Heitz 2014), for NoL, NoV > 0.
+float feVisibilityHeightCorrelated(float NoL, float NoV, float a2) {
+    const float gv = NoL * sqrt(NoV * NoV * (1.0 - a2) + a2);
+    const float gl = NoV * sqrt(NoL * NoL * (1.0 - a2) + a2);
+    return 0.5 / (gv + gl);
+}
+
 // The factors of the per-light BRDF sum that depend on the surface alone. Loops over lights
 // (forward, tiled) prepare them once per pixel: CPU rasterizers' shader compilers do not move
 // them out of the loop (on lavapipe that measured 5 % of the tiled lighting pass).
@@ -100,11 +114,13 @@ struct SurfaceBrdf {
     float a2;      // alpha^2, alpha = clamped roughness^2
     float k;       // Schlick-GGX k
     float NoV;
-    float Gv;      // the view half of G
+    float Gv;      // the view half of G (separable)
+    bool gltf;     // FE_BRDF_GLTF, else FE_BRDF_SEPARABLE
 };
 
-SurfaceBrdf fePrepareBrdf(SurfacePoint s) {
+SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     SurfaceBrdf b;
+    b.gltf = model == FE_BRDF_GLTF;
     b.n = s.n;
     b.wo = s.wo;
     const RoughnessTerms t = feRoughnessTerms(s.roughness);
@@ -127,12 +143,16 @@ vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
     vec3 F = b.F0 + (1.0 - b.F0) * P;
     float dd = NoH * NoH * (b.a2 - 1.0) + 1.0;
     float D = b.a2 / (FE_PI * dd * dd);
+    if (b.gltf) {
+        // mix(dielectric, metal, metallic): the diffuse lobe under the dielectric's Fresnel
+        // (F0 = 0.04), the specular under F = mix(F_dielectric, F_metal, metallic) = F0 + (1 - F0) P.
+        const vec3 f = (0.96 - 0.96 * P) * b.diffuse + D * F * feVisibilityHeightCorrelated(NoL, b.NoV, b.a2);
+        return f * l.E * NoL;
+    }
     float G = b.Gv * NoL / (NoL * (1.0 - b.k) + b.k);
     vec3 f = (1.0 - F) * b.diffuse + D * F * G / (4.0 * b.NoV * NoL);
     return f * l.E * NoL;
 }
-
-vec3 feShadeLight(SurfacePoint s, SurfaceLight l) { return feShadeLight(fePrepareBrdf(s), l); }
 
 // Redeferred illumination: the light-only sums (SHADING.md "The redeferred split").
 // The specular sums are stored pre-multiplied by alpha^2 / (4 pi): their raw peak near

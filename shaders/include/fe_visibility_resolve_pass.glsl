@@ -20,7 +20,7 @@ layout(binding = FE_SLOT_VISIBILITY) uniform usampler2D visibility;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform writeonly image2D outRadiance;
 layout(binding = FE_SLOT_VERTICES, std430) readonly buffer VertexBlock {
-    float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv (12 floats)
+    float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv0, uv1, colour (18 floats)
 };
 layout(binding = FE_SLOT_INDICES, std430) readonly buffer IndexBlock {
     uint indices[];
@@ -45,16 +45,18 @@ struct TriangleVertex {
     vec3 eye;  // camera-relative position, as mesh.vert computes it
     vec3 normal;
     vec4 tangent;
-    vec2 uv;
+    vec4 uv;  // both sets
+    vec4 color;
 };
 TriangleVertex feTriangleVertex(uint index) {
-    const uint f = (index + object.flags.z) * 12u;
+    const uint f = (index + object.flags.z) * 18u;
     TriangleVertex v;
     const vec3 p = vec3(vertexFloats[f], vertexFloats[f + 1u], vertexFloats[f + 2u]);
     v.eye = mat3(object.world) * p + (object.world[3].xyz - frame.cameraPosition.xyz);
     v.normal = vec3(vertexFloats[f + 3u], vertexFloats[f + 4u], vertexFloats[f + 5u]);
     v.tangent = vec4(vertexFloats[f + 6u], vertexFloats[f + 7u], vertexFloats[f + 8u], vertexFloats[f + 9u]);
-    v.uv = vec2(vertexFloats[f + 10u], vertexFloats[f + 11u]);
+    v.uv = vec4(vertexFloats[f + 10u], vertexFloats[f + 11u], vertexFloats[f + 12u], vertexFloats[f + 13u]);
+    v.color = vec4(vertexFloats[f + 14u], vertexFloats[f + 15u], vertexFloats[f + 16u], vertexFloats[f + 17u]);
     return v;
 }
 
@@ -88,8 +90,8 @@ void main() {
     const vec2 bx = feRayBarycentrics(feEyeFromDepth(vec2(p) + vec2(1.5, 0.5), 0.5), v0.eye, e1, e2);
     const vec2 by = feRayBarycentrics(feEyeFromDepth(vec2(p) + vec2(0.5, 1.5), 0.5), v0.eye, e1, e2);
     const vec3 w = vec3(1.0 - b.x - b.y, b);
-    const vec2 uv = w.x * v0.uv + w.y * v1.uv + w.z * v2.uv;
-    const mat3x2 uvs = mat3x2(v0.uv, v1.uv, v2.uv);
+    const vec4 uv = w.x * v0.uv + w.y * v1.uv + w.z * v2.uv;
+    const mat3x4 uvs = mat3x4(v0.uv, v1.uv, v2.uv);
     feUvDx = uvs * vec3(1.0 - bx.x - bx.y, bx) - uv;
     feUvDy = uvs * vec3(1.0 - by.x - by.y, by) - uv;
     const vec3 eye = w.x * v0.eye + w.y * v1.eye + w.z * v2.eye;
@@ -97,7 +99,8 @@ void main() {
     const vec4 T = w.x * v0.tangent + w.y * v1.tangent + w.z * v2.tangent;
     // Counter-clockwise seen from the eye; mirrored instances flip the winding (CpuReference).
     const bool front = (dot(cross(e1, e2), dir) < 0.0) != ((object.flags.x & 4u) != 0u);
-    const MaterialSample m = feSampleMaterial(uv, N, vec4(mat3(object.world) * T.xyz, T.w), front);
+    const vec4 color = w.x * v0.color + w.y * v1.color + w.z * v2.color;
+    const MaterialSample m = feSampleMaterial(uv, color, N, vec4(mat3(object.world) * T.xyz, T.w), front);
     vec3 radiance = m.emissive;
     if (m.unlit) {
         radiance = m.baseColor;
@@ -114,7 +117,7 @@ void main() {
             radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
         }
 #ifdef FE_IBL
-        radiance += feShadeEnvironment(s, frame.counts.z);
+        radiance += feOcclusion(uv) * feShadeEnvironment(s, frame.counts.z);
 #endif
     }
     imageStore(outRadiance, p, vec4(radiance, 1.0));

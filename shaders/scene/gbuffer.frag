@@ -8,7 +8,7 @@ layout(location = 0) out vec4 outGb0;
 layout(location = 1) out vec4 outGb1;
 layout(location = 2) out vec4 outGb2;
 void main() {
-    MaterialSample m = feSampleMaterial(vUv, vNormal, vTangent, gl_FrontFacing);
+    MaterialSample m = feSampleMaterial(vUv, vColor, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
     outGb0 = vec4(m.baseColor, m.metallic);
     outGb1 = vec4(m.n, m.roughness);

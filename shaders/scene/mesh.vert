@@ -7,10 +7,13 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
+layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec4 inColor;
 layout(location = 0) out vec3 vEye;  // world minus the camera position
 layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vTangent;
-layout(location = 3) out vec2 vUv;
+layout(location = 3) out vec4 vUv;     // both texture coordinate sets
+layout(location = 4) out vec4 vColor;
 // The depth pre-pass and the EQUAL-tested passes after it must compute bit-identical depths.
 // `invariant` is GLSL's way, but Mesa 22.3 drops it: glslang puts it on the gl_PerVertex member,
 // and spirv_to_nir warns ("Decoration not allowed on struct members: SpvDecorationInvariant")
@@ -25,6 +28,7 @@ void main() {
     vEye = eye;
     vNormal = mat3(object.normalMatrix) * inNormal;
     vTangent = vec4(mat3(object.world) * inTangent.xyz, inTangent.w);
-    vUv = inUv;
+    vUv = vec4(inUv, inUv1);
+    vColor = inColor;
     gl_Position = frame.viewProjFromEye * vec4(eye, 1.0);
 }

@@ -9,20 +9,22 @@
 // in a fragment shader. Positions are computed exactly as mesh.vert's, so the shadowed lights'
 // forward passes after the resolve meet this depth with an EQUAL test.
 layout(binding = FE_SLOT_VERTICES, std430) readonly buffer VertexBlock {
-    float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv (12 floats)
+    float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv0, uv1, colour (18 floats)
 };
 layout(binding = FE_SLOT_INDICES, std430) readonly buffer IndexBlock {
     uint indices[];
 };
 layout(location = 0) flat out uint vTriangle;
-layout(location = 1) out vec2 vUv;  // for MASK materials' alpha test
+layout(location = 1) out vec4 vUv;  // for MASK materials' alpha test
+layout(location = 2) out vec4 vColor;
 invariant gl_Position;
 precise gl_Position;
 void main() {
     const uint v = indices[object.flags.y + uint(FE_VERTEX_ID)] + object.flags.z;
-    const uint f = v * 12u;
+    const uint f = v * 18u;
     const vec3 position = vec3(vertexFloats[f], vertexFloats[f + 1u], vertexFloats[f + 2u]);
-    vUv = vec2(vertexFloats[f + 10u], vertexFloats[f + 11u]);
+    vUv = vec4(vertexFloats[f + 10u], vertexFloats[f + 11u], vertexFloats[f + 12u], vertexFloats[f + 13u]);
+    vColor = vec4(vertexFloats[f + 14u], vertexFloats[f + 15u], vertexFloats[f + 16u], vertexFloats[f + 17u]);
     vTriangle = object.flags.w + uint(FE_VERTEX_ID) / 3u;
     const vec3 eye = mat3(object.world) * position + (object.world[3].xyz - frame.cameraPosition.xyz);
     gl_Position = frame.viewProjFromEye * vec4(eye, 1.0);

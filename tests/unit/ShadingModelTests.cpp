@@ -1,4 +1,5 @@
-// The redeferred split of SHADING.md is exact: L_d + L_s from the sums equals the per-light sum.
+// The redeferred split of SHADING.md is exact: L_d + L_s from the sums equals the separable
+// per-light sum; the glTF BRDF is glTF 2.0 Appendix B, checked against independent forms.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -30,7 +31,7 @@ TEST(ShadingModel, RedeferredSplitEqualsPerLightSum) {
             L.intensity = 10;
             L.color = {1, 0.5, 0.25};
             LightSample l = evaluateLight(L, s.P);
-            direct += shadeLight(s, l);
+            direct += shadeLight(s, l, Brdf::Separable);
             accumulateIllumination(acc, s, l);
         }
         glm::dvec3 split = resolveMaterial(acc, s);
@@ -64,4 +65,60 @@ TEST(ShadingModel, LambertianWhiteUnderOneLux) {
     // (1 - F) c / pi + specular at normal incidence, F = 0.04
     EXPECT_GT(Lo.x, 0.96 / kPi);
     EXPECT_LT(Lo.x, 1.0);
+}
+
+namespace {
+// The glTF specular lobe written from Heitz (2014) directly: G2 = 1 / (1 + Lambda(v) + Lambda(l)),
+// Lambda(x) = (-1 + sqrt(1 + alpha^2 tan^2 theta_x)) / 2, f_s = F D G2 / (4 NoL NoV); and the
+// diffuse lobe of Appendix B's fresnel_mix(0.04, ...): (1 - m) c / pi (1 - F_dielectric).
+glm::dvec3 gltfBrdfFromHeitz(const SurfacePoint& s, const glm::dvec3& wi) {
+    const double r = clampRoughness(s.roughness), a2 = r * r * r * r;
+    const double NoL = glm::dot(s.n, wi), NoV = glm::dot(s.n, s.wo);
+    const glm::dvec3 h = glm::normalize(wi + s.wo);
+    const double NoH = glm::dot(s.n, h), VoH = glm::dot(s.wo, h);
+    auto lambda = [&](double c) { return (-1.0 + std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c))) / 2.0; };
+    const double G2 = 1.0 / (1.0 + lambda(NoV) + lambda(NoL));
+    const double D = a2 / (kPi * std::pow(NoH * NoH * (a2 - 1.0) + 1.0, 2.0));
+    const double P = std::pow(1.0 - VoH, 5.0);
+    const glm::dvec3 Fmetal = s.baseColor + (1.0 - s.baseColor) * P;
+    const double Fdielectric = 0.04 + 0.96 * P;
+    const glm::dvec3 dielectric = s.baseColor / kPi * (1.0 - Fdielectric) + Fdielectric * D * G2 / (4.0 * NoL * NoV);
+    const glm::dvec3 metal = Fmetal * D * G2 / (4.0 * NoL * NoV);
+    return glm::mix(dielectric, metal, s.metallic);
+}
+}  // namespace
+
+TEST(ShadingModel, GltfBrdfIsAppendixB) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
+    double maxRel = 0, meanSeparableRatio = 0;
+    int n = 0;
+    for (int i = 0; i < 20000; ++i) {
+        SurfacePoint s;
+        s.n = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+        s.wo = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+        if (glm::dot(s.n, s.wo) < 0.05) continue;
+        s.baseColor = {u01(rng), u01(rng), u01(rng)};
+        s.metallic = u01(rng);
+        s.roughness = (i % 10 == 0) ? 0.0 : u01(rng);
+        LightSample l;
+        l.wi = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+        l.E = {1.0, 2.0, 0.5};
+        const double NoL = glm::dot(s.n, l.wi);
+        if (NoL < 0.05) continue;
+        const glm::dvec3 want = gltfBrdfFromHeitz(s, l.wi) * l.E * NoL;
+        const glm::dvec3 got = shadeLight(s, l, Brdf::Gltf);
+        for (int c = 0; c < 3; ++c) maxRel = std::max(maxRel, std::abs(got[c] - want[c]) / want[c]);
+        meanSeparableRatio += shadeLight(s, l, Brdf::Separable).y / got.y;
+        ++n;
+    }
+    EXPECT_LT(maxRel, 1e-9);
+    // The two models are not the same function (the test would pass if Gltf fell back to Separable).
+    EXPECT_GT(std::abs(meanSeparableRatio / n - 1.0), 0.01) << meanSeparableRatio / n;
+}
+
+// At alpha = 1 the height-correlated visibility is 1 / (2 (NoL + NoV)): a closed form.
+TEST(ShadingModel, HeightCorrelatedVisibilityAtFullRoughness) {
+    for (double NoL : {0.1, 0.5, 1.0})
+        for (double NoV : {0.2, 0.7, 1.0}) EXPECT_NEAR(visibilityHeightCorrelated(NoL, NoV, 1.0), 0.5 / (NoL + NoV), 1e-15);
 }

@@ -85,10 +85,16 @@ protected:
         scene = assets::makeBuiltinScene("shadows");
         plan = render::planShadows(scene.lights, *scene.camera, scene.bounds, {.enabled = true});
         reference = render::renderReference(scene, *scene.camera, kW, kH, {.castsShadow = plan.castsShadow()});
+        separableReference = render::renderReference(scene, *scene.camera, kW, kH,
+                                                     {.castsShadow = plan.castsShadow(), .brdf = shading::Brdf::Separable});
+    }
+    // The exact image under the technique's BRDF (render::resolveShadingModel).
+    const render::ReferenceImage& referenceFor(const std::string& technique) const {
+        return render::findTechnique(technique).separableBrdf ? separableReference : reference;
     }
     assets::Scene scene;
     render::ShadowPlan plan;
-    render::ReferenceImage reference;
+    render::ReferenceImage reference, separableReference;
 };
 }  // namespace
 
@@ -125,11 +131,19 @@ TEST_P(Shadows, ForwardMatchesRayCastShadows) {
 // does: with shadows it may differ from forward no more than without them (the light pre-pass
 // differs anyway: it rebuilds specular colour from one channel), plus 1 % of the pixels.
 TEST_P(Shadows, EveryTechniqueShadowsLikeForward) {
-    const render::RenderSettings off{.technique = "forward", .width = kW, .height = kH};
-    const gdi::Image f = renderShadowed(*device, scene, shadowSettings("forward"));
-    const gdi::Image fOff = renderShadowed(*device, scene, off);
+    render::RenderSettings off{.technique = "forward", .width = kW, .height = kH};
+    const gdi::Image fGltf = renderShadowed(*device, scene, shadowSettings("forward"));
+    const gdi::Image fOffGltf = renderShadowed(*device, scene, off);
+    render::RenderSettings separable = shadowSettings("forward");
+    separable.shadingModel = off.shadingModel = render::ShadingModel::Separable;
+    const gdi::Image fSeparable = renderShadowed(*device, scene, separable);
+    const gdi::Image fOffSeparable = renderShadowed(*device, scene, off);
+    off.shadingModel = render::ShadingModel::Auto;
     for (const render::TechniqueInfo& t : render::techniques()) {
         if (std::string(t.name) == "forward") continue;
+        // Compared with forward under the technique's BRDF.
+        const gdi::Image& f = t.separableBrdf ? fSeparable : fGltf;
+        const gdi::Image& fOff = t.separableBrdf ? fOffSeparable : fOffGltf;
         if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
         const gdi::Image img = renderShadowed(*device, scene, shadowSettings(t.name));
         render::RenderSettings o = off;
@@ -140,7 +154,7 @@ TEST_P(Shadows, EveryTechniqueShadowsLikeForward) {
         if (exact) {
             EXPECT_LE(dOn, 0.01) << t.name;  // G-buffer rounding, as in DeferredMatchesForward
         }
-        const ShadowError e = compare(img, reference);
+        const ShadowError e = compare(img, referenceFor(t.name));
         if (exact) {
             EXPECT_LE(e.interior, 0.005) << t.name;
         }
@@ -204,7 +218,7 @@ TEST_P(Shadows, RedeferredReducedRateErrorAtShadowEdgesIsMeasured) {
     for (uint32_t scale : {1u, 2u, 4u}) {
         render::RenderSettings s = shadowSettings("redeferred");
         s.illumScale = scale;
-        const ShadowError e = compare(renderShadowed(*device, scene, s), reference);
+        const ShadowError e = compare(renderShadowed(*device, scene, s), separableReference);
         std::cout << "  redeferred illum-scale " << scale << ": interior " << std::fixed << std::setprecision(3) << e.interior * 100
                   << " %, shadow edges " << e.edges * 100 << " %\n";
         RecordProperty("scale" + std::to_string(scale) + "_edges", std::to_string(e.edges));
@@ -220,7 +234,8 @@ TEST_P(Shadows, PerSourceRatesKeepShadowEdges) {
     assets::Scene lit = scene;
     lit.environment = assets::loadEnvironment("builtin:sky");
     const render::ReferenceImage ref =
-        render::renderReference(lit, *lit.camera, kW, kH, {.iblSamples = 64, .castsShadow = plan.castsShadow()});
+        render::renderReference(lit, *lit.camera, kW, kH,
+                                {.iblSamples = 64, .castsShadow = plan.castsShadow(), .brdf = shading::Brdf::Separable});
     auto run = [&](uint32_t scale, render::SourceRates rates) {
         render::RenderSettings s = shadowSettings("redeferred");
         s.iblSamples = 64;
@@ -269,7 +284,7 @@ TEST_P(Shadows, TemporalAccumulationConvergesAndDegradesGracefully) {
             r.renderFrame();
             differing.push_back(fractionDiffering(r.readOutput(), fullRate, 1e-4));
         }
-        const ShadowError e = compare(r.readOutput(), reference);  // maps of 512: edges as in MapSizeAndFilterErrorIsMeasured
+        const ShadowError e = compare(r.readOutput(), separableReference);  // maps of 512: edges as in MapSizeAndFilterErrorIsMeasured
         std::cout << "  still, scale " << scale << ": pixels off the full-rate image by more than 0.01 %: frame 1 "
                   << differing.front() * 100 << " %, frame " << scale * scale << " " << differing.back() * 100
                   << " %; shadow edges vs rays " << e.edges * 100 << " %\n";

@@ -30,10 +30,14 @@ TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
     const char* only = std::getenv("FE_STABILITY_CASES");
     for (const render::StabilityCase& c : render::stabilityCases(only ? only : "")) {
         const assets::Scene scene = c.scene();
-        std::vector<glm::dvec3> reference;
-        if (c.refusal.empty() && c.exactBound >= 0.0) reference = render::renderReference(scene, *scene.camera, c.width(kW), c.height(kH)).radiance;
+        std::map<bool, std::vector<glm::dvec3>> references;  // separable BRDF -> the exact image
         for (const render::TechniqueInfo& t : render::techniques()) {
             if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
+            std::vector<glm::dvec3>& reference = references[t.separableBrdf];
+            if (reference.empty() && c.refusal.empty() && c.exactBound >= 0.0)
+                reference = render::renderReference(scene, *scene.camera, c.width(kW), c.height(kH),
+                                                    {.brdf = t.separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf})
+                                .radiance;
             SCOPED_TRACE(c.name + ", " + t.name);
             const render::StabilityOutcome o = render::runStabilityCase(*device, scene, t.name, c.width(kW), c.height(kH), reference);
             std::string outcome;

@@ -42,6 +42,8 @@ constexpr const char* kUsage =
     "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
     "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --brdf auto|gltf|separable: glTF 2.0's BRDF (Appendix B) or the seeds' separable one, which redeferred and\n"
+    "        light-prepass need (auto: glTF wherever the technique can evaluate it; docs/SHADING.md)\n"
     "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
     "        fit or Khronos PBR Neutral) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
     "        frames blended with the reprojected history; it converges over --frames)\n"
@@ -151,6 +153,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
     {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default clamp)"}},
+    {"--brdf", {"auto|gltf|separable", "glTF 2.0's BRDF or the seeds' separable one (auto: glTF where the technique can, docs/SHADING.md)"}},
     {"--aa", {"none|fxaa|taa", "the .png's anti-aliasing (default none)"}},
     {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
     {"--no-aliasing", {"", "transient textures in memory of their own"}},
@@ -270,7 +273,7 @@ const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
                                     "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
-                                    "--renderdoc-capture"};
+                                    "--renderdoc-capture", "--brdf"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--no-cluster-bounds", "--ibl-prefiltered", "--temporal"};
 
@@ -330,6 +333,12 @@ RenderJob renderJob(const Args& a) {
     const std::string tonemap = opt("--tonemap", "clamp");
     if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
     else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
+    const std::string brdf = opt("--brdf", "auto");
+    if (brdf != "auto" && brdf != "gltf" && brdf != "separable")
+        throw UsageError("--brdf must be auto, gltf or separable, got '" + brdf + "'");
+    s.shadingModel = brdf == "gltf" ? render::ShadingModel::Gltf
+                     : brdf == "separable" ? render::ShadingModel::Separable
+                                           : render::ShadingModel::Auto;
     const std::string aa = opt("--aa", "none");
     if (aa != "none" && aa != "fxaa" && aa != "taa") throw UsageError("--aa must be none, fxaa or taa, got '" + aa + "'");
     s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : aa == "taa" ? render::AntiAliasing::Taa : render::AntiAliasing::None;
