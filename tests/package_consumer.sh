@@ -33,13 +33,21 @@ for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_turntable" --backend "$b" --validation --frames 2 --size 96x72 --out "$work/turntable_$b.png"
   "$work/examples/fe_example_threads" --backend "$b" --validation >"$work/threads_$b.txt"
   "$work/examples/fe_example_ported" --backend "$b" --validation >"$work/ported_$b.txt"
+  "$work/examples/fe_example_materials" --backend "$b" --validation >"$work/materials_$b.txt"
 done
 # Lists recorded on two threads and mistakes made on purpose: the same words on every backend.
 for b in gl-egl gl-osmesa; do
   diff "$work/threads_vulkan.txt" "$work/threads_$b.txt" || { echo "package consumer: vulkan and $b disagree"; exit 1; }
   diff "$work/ported_vulkan.txt" "$work/ported_$b.txt" || { echo "package consumer: vulkan and $b disagree (ported)"; exit 1; }
+  diff "$work/materials_vulkan.txt" "$work/materials_$b.txt" || { echo "package consumer: vulkan and $b disagree (materials)"; exit 1; }
 done
-cat "$work/threads_vulkan.txt" "$work/ported_vulkan.txt"
+cat "$work/threads_vulkan.txt" "$work/ported_vulkan.txt" "$work/materials_vulkan.txt"
+# What the materials example must see: vertex colours at the top corners, the texture's black
+# half at the bottom (second uv set, quarter-turn transform), two BRDFs, and both mistakes refused.
+for want in "top left blue, top right green, bottom dark" "BRDFs differ: yes" \
+            "mistake 1: technique redeferred shades with the separable BRDF only" "mistake 2: scene refused: " ; do
+  grep -qF "$want" "$work/materials_vulkan.txt" || { echo "package consumer: materials example lacks '$want'"; exit 1; }
+done
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046 # pkg-config's flags are words
 c++ -O1 $flags -o "$work/turntable_pkgconfig" "$src/examples/turntable/main.cpp" $(pkg-config --cflags --libs fe) $linkflags

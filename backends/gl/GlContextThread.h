@@ -70,6 +70,14 @@ public:
             task.run();  // runIn's wrapper catches and hands exceptions to the waiting caller
         }
     }
+    // Whether this thread's tasks hold a lock every GL context thread of the process shares
+    // (default: yes, until the device knows its driver). Mesa 22.3's llvmpipe is not safe with two
+    // contexts making their first calls at once: two GL devices made and rendering on two threads
+    // crashed a process in 1-3 of 12 runs on gl-egl and on gl-osmesa (a null function called inside
+    // glClearTexImage while the other context compiled), 0 of 88 serialized (the tests
+    // example_materials_*, eight processes each). A driver that is not a software rasterizer turns
+    // it off (GlDevice), keeping its contexts in parallel.
+    void serializeAcrossDevices(bool on) { serializeAcrossDevices_.store(on, std::memory_order_relaxed); }
     // Queues `task`; exceptions it throws are kept and rethrown by takeError().
     // `oneOfARun`: a call that others usually follow at once (destroying objects), after which
     // this thread polls briefly for the next before it sleeps, as after runCreation.
@@ -152,6 +160,8 @@ private:
                 urgentWaiting_.store(!urgent_.empty(), std::memory_order_relaxed);
             }
             try {
+                std::unique_lock processWide(processWideMutex(), std::defer_lock);
+                if (serializeAcrossDevices_.load(std::memory_order_relaxed)) processWide.lock();
                 task.run();
             } catch (...) {
                 std::lock_guard lock(mutex_);
@@ -162,6 +172,11 @@ private:
                             std::chrono::microseconds(20));
         }
     }
+    static std::mutex& processWideMutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::atomic<bool> serializeAcrossDevices_{true};
     std::mutex mutex_;
     std::condition_variable cv_;
     std::deque<Task> tasks_, urgent_;

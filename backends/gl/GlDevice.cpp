@@ -199,6 +199,7 @@ void GlDevice::initialize(bool validation) {
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
+    thread_.serializeAcrossDevices(info_.softwareRasterizer);  // GlContextThread: Mesa's software drivers
     auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
     info_.limits.maxTextureSize2D = get(GL_MAX_TEXTURE_SIZE);
     info_.limits.maxTextureSize3D = get(GL_MAX_3D_TEXTURE_SIZE);

@@ -711,23 +711,20 @@ void Loader::addCamera(int n) {
     scene_.camera = c;
 }
 
-// A particle emitter from a node's extras: {"fe_emitter": {"rate": 100, "lifetime": 2,
-// "velocity": [0, 1, 0], "spread": 0.3, "gravity": [0, -1, 0], "size": [0.1, 0.3],
-// "colorStart": [r, g, b, a], "colorEnd": [r, g, b, a], "blend": "additive" | "alpha",
-// "softness": 0.2}}, every key optional (ParticleEmitter's defaults). It sits at the node's world
-// position; velocity and gravity are in world space. A malformed value is an error naming it.
 void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count) {
     if (!v.Has(key)) return;
     const tinygltf::Value& x = v.Get(key);
+    // Finite as a float: what is kept (a finite double such as 1e39 overflows it).
+    auto finiteFloat = [](const tinygltf::Value& n) { return n.IsNumber() && std::isfinite(float(n.GetNumberAsDouble())); };
     if (count == 0) {
-        if (!x.IsNumber() || !std::isfinite(x.GetNumberAsDouble())) fail(where + "." + key + " must be a number");
+        if (!finiteFloat(x)) fail(where + "." + key + " must be a number, finite as a float");
         *out = float(x.GetNumberAsDouble());
         return;
     }
-    const std::string shape = where + "." + key + " must be an array of " + std::to_string(count) + " numbers";
+    const std::string shape = where + "." + key + " must be an array of " + std::to_string(count) + " numbers, finite as floats";
     if (!x.IsArray() || int(x.ArrayLen()) != count) fail(shape);
     for (int i = 0; i < count; ++i) {
-        if (!x.Get(i).IsNumber() || !std::isfinite(x.Get(i).GetNumberAsDouble())) fail(shape);
+        if (!finiteFloat(x.Get(i))) fail(shape);
         out[i] = float(x.Get(i).GetNumberAsDouble());
     }
 }
@@ -747,6 +744,11 @@ void Loader::readTextureTransform(const tinygltf::Value& t, int& texCoord, Textu
     }
 }
 
+// A particle emitter from a node's extras: {"fe_emitter": {"rate": 100, "lifetime": 2,
+// "velocity": [0, 1, 0], "spread": 0.3, "gravity": [0, -1, 0], "size": [0.1, 0.3],
+// "colorStart": [r, g, b, a], "colorEnd": [r, g, b, a], "blend": "additive" | "alpha",
+// "softness": 0.2}}, every key optional (ParticleEmitter's defaults). It sits at the node's world
+// position; velocity and gravity are in world space. A malformed value is an error naming it.
 void Loader::addEmitter(int n, const tinygltf::Value& v) {
     const std::string where = nodeLabel(n) + ": extras.fe_emitter";
     if (!v.IsObject()) fail(where + " must be an object");

@@ -43,11 +43,12 @@
 //
 // Defaults
 // --------
-// Camera, when the scene has none (LoadOptions::defaultCamera): yfov 45 degrees, looking along
-// -Z (from the +Z side, the glTF "front"), up +Y, aimed at the centre c of the world bounds; with
-// r = half the bounds diagonal (1 if empty), the eye is at c + (0, 0, d), d = r / sin(yfov / 2)
-// (the bounding sphere touches the top and bottom of the view), znear = (d - r) / 2,
-// zfar = d + 2r, aspect ratio unset.
+// Camera, when the scene has none (LoadOptions::defaultCamera): yfov 45 degrees, up +Y, aimed at
+// the centre c of the world bounds from the front (+Z, the glTF "front"), above and to the right:
+// with r = half the bounds diagonal (1 if empty), the eye is at c + d v, v = normalize(0.5, 0.45,
+// 1), d = r / sin(yfov / 2) (the bounding sphere touches the top and bottom of the view),
+// znear = (d - r) / 2, zfar = d + 2r, aspect ratio unset. (Straight along -Z until 2026-11-29: a
+// model lying in the XZ plane, TwoSidedPlane, was seen edge-on, an all-black image.)
 // Lights, when the scene has none (LoadOptions::defaultLights), fixed relative to the camera
 // (given in view space: +X right, +Y up, -Z forward; `direction` is where the light travels):
 //   key:  directional, colour (1.0, 0.956, 0.898), 2.5 lux, direction normalize(0.5, -1, -1)

@@ -13,6 +13,7 @@ namespace fe::assets {
 namespace {
 // The numbers below are the ones documented under "Defaults" in GltfLoader.h; keep in step.
 constexpr float kDefaultYfov = 0.78539816339f;  // 45 degrees
+const glm::vec3 kDefaultViewFrom = glm::normalize(glm::vec3(0.5f, 0.45f, 1.0f));  // bounds centre to the eye
 
 glm::vec3 toWorld(const Camera& cam, const glm::vec3& viewDir) {
     return glm::normalize(glm::mat3(cam.worldFromView) * glm::normalize(viewDir));
@@ -73,8 +74,11 @@ Camera makeDefaultCamera(const AABB& bounds) {
     if (!(radius > 1e-6f) || !std::isfinite(radius)) radius = 1.0f;  // empty or a single point
     // Distance at which the bounding sphere touches the top and bottom of the view.
     float dist = radius / std::sin(kDefaultYfov * 0.5f);
-    Camera c = Camera::lookAlong(center + glm::vec3(0.0f, 0.0f, dist), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0),
-                                 kDefaultYfov, 0.5f * (dist - radius), dist + 2.0f * radius);
+    // From the front (+Z), above and to the right: a flat model lying in any axis plane (a
+    // ground, TwoSidedPlane's XZ quad) is never seen edge-on, and a box shows three faces.
+    const glm::vec3 toEye = kDefaultViewFrom;
+    Camera c = Camera::lookAlong(center + toEye * dist, -toEye, glm::vec3(0, 1, 0), kDefaultYfov, 0.5f * (dist - radius),
+                                 dist + 2.0f * radius);
     c.name = "default";
     return c;
 }

@@ -51,7 +51,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         throw gdi::Error(std::string("scene refused: ") + e.what());
     }
     camera_ = *scene.camera;
-    resolveShadingModel(s);  // a BRDF the technique cannot evaluate is refused here, before any pass is made
+    resolveBrdf(s);  // a BRDF the technique cannot evaluate is refused here, before any pass is made
     if (s.msaa != 1 && s.msaa != 2 && s.msaa != 4 && s.msaa != 8)
         throw gdi::Error("--msaa must be 1, 2, 4 or 8 (got " + std::to_string(s.msaa) + ")");
     if (s.msaa > 1 && !technique.msaa) {
@@ -472,7 +472,7 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
                          projection(cam.yfov, float(s.width) / float(s.height), cam.znear, cam.zfar) * rotation;
     fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
-    fc.shading = glm::uvec4(resolveShadingModel(s) == ShadingModel::Separable ? 1u : 0u, 0u, 0u, 0u);
+    fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, 0u, 0u, 0u);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);

@@ -41,7 +41,7 @@ struct ReferenceOptions {
     // which lights the GPU shadows).
     std::vector<bool> castsShadow;
     // The BRDF of the punctual lights (shading::Brdf): glTF 2.0's, or the separable model the
-    // redeferred and light-prepass techniques shade with (render::resolveShadingModel).
+    // redeferred and light-prepass techniques shade with (render::resolveBrdf).
     shading::Brdf brdf = shading::Brdf::Gltf;
 };
 

@@ -38,7 +38,7 @@ struct FrameConstants {
     // stability). World positions are cameraPosition + an eye-space offset.
     glm::mat4 viewProjFromEye{1.0f};
     glm::mat4 invViewProjFromEye{1.0f};
-    glm::uvec4 shading{0u};  // x: the BRDF, 0 glTF, 1 separable (resolveShadingModel)
+    glm::uvec4 shading{0u};  // x: the BRDF, 0 glTF, 1 separable (resolveBrdf)
 };
 
 struct ObjectConstants {

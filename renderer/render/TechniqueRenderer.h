@@ -15,6 +15,7 @@
 #include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
+#include "shading/ShadingModel.h"
 #include "render/ShadowMaps.h"
 
 namespace fe::render {
@@ -116,6 +117,8 @@ struct TechniqueInfo {
     // Accumulates light sums the material multiplies afterwards (I-buffer, light buffer): only
     // the separable BRDF factors that way, so glTF's is not available (RenderSettings::shadingModel).
     bool separableBrdf = false;
+    // The BRDF it shades with when RenderSettings::shadingModel is Auto.
+    shading::Brdf defaultBrdf() const { return separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf; }
     // Every technique lights the scene by its environment with --ibl-samples N (checked for
     // every line of the table by EnvironmentTests).
 };
@@ -124,8 +127,9 @@ const std::vector<TechniqueInfo>& techniques();
 // Throws gdi::Error listing the valid names.
 const TechniqueInfo& findTechnique(const std::string& name);
 std::string techniqueNames();  // "forward, deferred, ..."
-// The BRDF a frame of `settings` shades with (FE_BRDF_GLTF 0, FE_BRDF_SEPARABLE 1 in
-// fe_shading.glsl): Auto resolved by the technique; Gltf where it cannot be is a gdi::Error.
-ShadingModel resolveShadingModel(const RenderSettings& settings);
+// The BRDF a frame of `settings` shades with (FE_BRDF_GLTF, FE_BRDF_SEPARABLE in fe_shading.glsl)
+// and the CPU reference to compare it with (ReferenceOptions::brdf): Auto resolved by the
+// technique; Gltf where the technique cannot evaluate it is a gdi::Error.
+shading::Brdf resolveBrdf(const RenderSettings& settings);
 
 }  // namespace fe::render

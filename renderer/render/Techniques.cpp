@@ -71,14 +71,17 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     throw gdi::Error("unknown technique '" + name + "' (valid: " + techniqueNames() + ")");
 }
 
-ShadingModel resolveShadingModel(const RenderSettings& s) {
+shading::Brdf resolveBrdf(const RenderSettings& s) {
     const TechniqueInfo& t = findTechnique(s.technique);
     if (s.shadingModel == ShadingModel::Gltf && t.separableBrdf)
         throw gdi::Error("technique " + s.technique +
                          " shades with the separable BRDF only (its light sums need it to factor): the glTF BRDF needs "
                          "forward, deferred, deferred-tiled, clustered or the visibility buffer");
-    if (s.shadingModel != ShadingModel::Auto) return s.shadingModel;
-    return t.separableBrdf ? ShadingModel::Separable : ShadingModel::Gltf;
+    switch (s.shadingModel) {
+        case ShadingModel::Gltf: return shading::Brdf::Gltf;
+        case ShadingModel::Separable: return shading::Brdf::Separable;
+        default: return t.defaultBrdf();
+    }
 }
 
 std::string techniqueNames() {

@@ -719,3 +719,75 @@ TEST(FuzzSeeds, EveryBrokenRuleIsRefusedOrWarnedAndValidFilesLoadCleanly) {
     EXPECT_GE(rules, 40);
     EXPECT_GE(valid, 4);
 }
+
+// COLOR_0 as normalized unsigned bytes (VEC4) and shorts (VEC3, alpha 1), and TEXCOORD_1 as
+// floats, decoded as glTF 2.0 defines; a SCALAR colour is an error naming the attribute.
+TEST_F(GltfSynthetic, VertexColoursAndSecondUvSet) {
+    std::vector<uint8_t> b = bin();  // positions (36) + u16 indices (8)
+    const size_t colors8 = b.size();
+    b.insert(b.end(), {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0});
+    const size_t colors16 = b.size();
+    const uint16_t c16[9] = {65535, 0, 0, 0, 32768, 0, 0, 0, 65535};
+    b.insert(b.end(), reinterpret_cast<const uint8_t*>(c16), reinterpret_cast<const uint8_t*>(c16) + 18);
+    b.resize((b.size() + 3) & ~size_t(3), 0);
+    const size_t uvs = b.size();
+    const float uv1[6] = {0.25f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f};
+    b.insert(b.end(), reinterpret_cast<const uint8_t*>(uv1), reinterpret_cast<const uint8_t*>(uv1) + 24);
+    writeBytes("colored.bin", b);
+    json j = gltf();
+    j["buffers"][0] = {{"uri", "colored.bin"}, {"byteLength", b.size()}};
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", colors8}, {"byteLength", 12}});
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", colors16}, {"byteLength", 18}});
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", uvs}, {"byteLength", 24}});
+    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}});
+    j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC3"}});
+    j["accessors"].push_back({{"bufferView", 4}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    j["meshes"][0]["primitives"] = json::array({{{"attributes", {{"POSITION", 1}, {"COLOR_0", 2}, {"TEXCOORD_1", 4}}}, {"indices", 0}},
+                                                {{"attributes", {{"POSITION", 1}, {"COLOR_0", 3}}}, {"indices", 0}}});
+    const Scene s = loadGltf(write("colored.gltf", j.dump()));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    const auto& a = s.meshes[0].primitives[0].vertices;
+    EXPECT_EQ(a[0].color, glm::vec4(1, 0, 0, 1));
+    EXPECT_NEAR(a[1].color.a, 128.0f / 255.0f, 1e-6f);
+    EXPECT_EQ(a[2].color, glm::vec4(0, 0, 1, 0));
+    EXPECT_EQ(a[0].uv1, glm::vec2(0.25f, 0.5f));
+    EXPECT_EQ(a[2].uv1, glm::vec2(0.0f, 1.0f));
+    const auto& c = s.meshes[0].primitives[1].vertices;
+    EXPECT_EQ(c[0].color, glm::vec4(1, 0, 0, 1));
+    EXPECT_NEAR(c[1].color.g, 32768.0f / 65535.0f, 1e-6f);
+    EXPECT_EQ(c[1].color.a, 1.0f);
+    EXPECT_EQ(c[0].uv1, glm::vec2(0.0f)) << "no TEXCOORD_1: zero";
+    j["accessors"][2]["type"] = "SCALAR";
+    j["accessors"][2]["count"] = 3;
+    expectError(write("scalar_colour.gltf", j.dump()), {"COLOR_0", "expected VEC4"});
+}
+
+// KHR_texture_transform: values of the wrong shape or non-finite are errors that name the texture
+// and the key; texCoord in the extension overrides the textureInfo's.
+TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
+    writeBytes("tri.bin", bin());
+    // A 1x1 PNG (data URI) so the texture resolves.
+    const std::string png =
+        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
+    json j = gltf();
+    j["images"] = json::array({{{"uri", png}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["extensionsUsed"] = json::array({"KHR_texture_transform"});
+    auto withTransform = [&](const json& t) {
+        json k = j;
+        k["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", t}}}}}}}}});
+        k["meshes"][0]["primitives"][0]["material"] = 0;
+        return k;
+    };
+    const Scene s = loadGltf(write("ok.gltf", withTransform({{"offset", {0.5, 0.25}}, {"rotation", 1.5}, {"scale", {2, 3}}, {"texCoord", 1}}).dump()));
+    const TextureRef& r = s.materials[0].baseColorTexture;
+    EXPECT_EQ(r.texCoord, 1u);
+    EXPECT_EQ(r.transform.offset, glm::vec2(0.5f, 0.25f));
+    EXPECT_EQ(r.transform.rotation, 1.5f);
+    EXPECT_EQ(r.transform.scale, glm::vec2(2.0f, 3.0f));
+    EXPECT_FALSE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) { return w.find("KHR_texture_transform") != std::string::npos; }));
+    expectError(write("short_offset.gltf", withTransform({{"offset", {0.5}}}).dump()), {"KHR_texture_transform", "offset", "array of 2"});
+    expectError(write("text_rotation.gltf", withTransform({{"rotation", "a lot"}}).dump()), {"KHR_texture_transform", "rotation"});
+    expectError(write("huge_scale.gltf", withTransform({{"scale", {1e39, 1}}}).dump()), {"KHR_texture_transform", "scale", "finite"});
+    expectError(write("bad_set.gltf", withTransform({{"texCoord", -1}}).dump()), {"texCoord"});
+}

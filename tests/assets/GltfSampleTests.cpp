@@ -64,22 +64,29 @@ TEST(GltfSamples, DefaultCameraAndLightRigAreTheDocumentedOnes) {
     Scene s = load("Box/glTF/Box.gltf");
     ASSERT_TRUE(s.hasDefaultCamera && s.hasDefaultLights);
     ASSERT_TRUE(s.camera);
-    // Bounds +-0.5: radius = half diagonal, distance = r / sin(22.5 deg), looking along -Z.
+    // Bounds +-0.5: radius = half diagonal, distance = r / sin(22.5 deg), from the front, above
+    // and to the right; up stays +Y's side (the camera's up is +Y made orthogonal to the view).
     const float r = std::sqrt(3.0f) * 0.5f;
     const float d = r / std::sin(3.14159265f / 8.0f);
-    expectNear(s.camera->eye(), glm::vec3(0, 0, d), 1e-4f);
-    expectNear(s.camera->forward(), glm::vec3(0, 0, -1));
-    expectNear(s.camera->up(), glm::vec3(0, 1, 0));
+    const glm::vec3 v = glm::normalize(glm::vec3(0.5f, 0.45f, 1.0f));
+    expectNear(s.camera->eye(), v * d, 1e-4f);
+    expectNear(s.camera->forward(), -v);
+    EXPECT_NEAR(glm::dot(s.camera->up(), s.camera->forward()), 0.0f, 1e-6f);
+    EXPECT_GT(s.camera->up().y, 0.8f);
+    EXPECT_NEAR(s.camera->up().x * s.camera->forward().z - s.camera->up().z * s.camera->forward().x, 0.0f, 1e-6f)
+        << "up leans only towards the view, not sideways";
     EXPECT_NEAR(s.camera->yfov, 3.14159265f / 4.0f, 1e-6f);
     EXPECT_NEAR(s.camera->znear, 0.5f * (d - r), 1e-4f);
     EXPECT_NEAR(s.camera->zfar, d + 2.0f * r, 1e-4f);
 
     ASSERT_EQ(s.lights.size(), 3u);
     EXPECT_EQ(s.lights[0].type, LightType::Directional);
-    expectNear(s.lights[0].direction, glm::normalize(glm::vec3(0.5f, -1.0f, -1.0f)));
+    // Given in view space, turned with the camera.
+    auto world = [&](glm::vec3 v) { return glm::normalize(glm::mat3(s.camera->worldFromView) * glm::normalize(v)); };
+    expectNear(s.lights[0].direction, world({0.5f, -1.0f, -1.0f}));
     EXPECT_EQ(s.lights[0].intensity, 2.5f);
     EXPECT_EQ(s.lights[1].type, LightType::Directional);
-    expectNear(s.lights[1].direction, glm::normalize(glm::vec3(-0.7f, 0.2f, -1.0f)));
+    expectNear(s.lights[1].direction, world({-0.7f, 0.2f, -1.0f}));
     EXPECT_EQ(s.lights[1].intensity, 0.8f);
     EXPECT_EQ(s.lights[2].type, LightType::Point);
     expectNear(s.lights[2].position, s.camera->eye());

@@ -61,6 +61,13 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
     EXPECT_GT(doc["results"][1]["error"]["percentOver5"].get<double>(), 1.0);
     EXPECT_EQ(doc["results"][2]["reference"], "cpu reference, image-based lighting at 4096 samples, shadow rays");
     EXPECT_LT(doc["results"][2]["error"]["flip"].get<double>(), 0.1);
+    // Each against its own BRDF's exact image, and against glTF's: the same for forward (glTF's
+    // own), farther for redeferred (the separable BRDF) than its own.
+    EXPECT_EQ(doc["results"][0]["brdf"], "gltf");
+    EXPECT_EQ(doc["results"][0]["errorAgainstGltf"], doc["results"][0]["error"]);
+    EXPECT_EQ(doc["results"][1]["brdf"], "separable");
+    EXPECT_GT(doc["results"][1]["errorAgainstGltf"]["percentOver5"].get<double>(),
+              doc["results"][1]["error"]["percentOver5"].get<double>());
     const std::string csv = render::resultsCsv(doc);
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
     EXPECT_NE(csv.find(GetParam() + ",spheres/redeferred/scale4/48x36,"), std::string::npos) << csv;
@@ -160,6 +167,11 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
               "sweep: case spheres/deferred/msaa4/96x72: deferred takes no --msaa");
     EXPECT_EQ(error(R"({"cases": [{"technique": "forward-plus", "clusterDepthBounds": false}]})"),
               "sweep: case spheres/forward-plus/no-cluster-bounds/96x72: forward-plus reads no cluster grid (--no-cluster-bounds)");
+    EXPECT_EQ(error(R"({"cases": [{"technique": "redeferred", "brdf": "gltf"}]})"),
+              "sweep: case spheres/redeferred/brdf-gltf/96x72: redeferred shades with the separable BRDF only (--brdf)");
+    EXPECT_EQ(error(R"({"cases": [{"brdf": "phong"}]})"), "sweep: \"brdf\" must be auto, gltf or separable, got \"phong\"");
+    EXPECT_EQ(render::sweepFromJson(gdi::Json::parse(R"({"cases": [{"technique": "deferred", "brdf": "separable"}]})"))[0].key(),
+              "spheres/deferred/brdf-separable/96x72");
     EXPECT_EQ(error(R"({"cases": [{"technique": "forward"}, {"technique": "forward"}]})"),
               "sweep: case spheres/forward/96x72 is listed twice");
     EXPECT_EQ(error(R"({"cases": [{"lights": []}]})"), "sweep: \"lights\" lists no values");

@@ -126,6 +126,28 @@ TEST(ShadowsAndSkyRender, BackendsAgree) {
     expectBackendsAgree(sample, s);
 }
 
+// A user's flat model with no options (no camera, no lights in the file) is seen, lit: the
+// default camera looks from above and to the side, so TwoSidedPlane (a quad in the XZ plane) is
+// not edge-on (it was: an all-black image). It covers 13.6 % of the image (419 of 3072 pixels
+// on every backend, 2026-11-29; framed by its bounding sphere): a tenth at least.
+TEST(GltfDefaultLook, FlatModelIsSeenAndLit) {
+    const std::string path = std::string(FE_SHARED_ASSETS) + "/TwoSidedPlane/glTF/TwoSidedPlane.gltf";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
+    const assets::Scene scene = assets::loadGltf(path);
+    ASSERT_TRUE(scene.hasDefaultCamera && scene.hasDefaultLights);
+    for (const std::string& b : gdi::backendNames()) {
+        gdi::BackendProbe p = gdi::probeBackend(b, true);
+        if (!p.available) continue;
+        render::SceneRenderer r(*p.device, scene, {.technique = "forward", .width = 64, .height = 48});
+        r.renderFrame();
+        const gdi::Image img = toDisplay(r.readOutput());
+        uint32_t lit = 0;
+        for (uint32_t i = 0; i < img.width * img.height; ++i) lit += img.data[i * 4] + img.data[i * 4 + 1] + img.data[i * 4 + 2] > 0;
+        EXPECT_GE(lit, img.width * img.height / 10) << b << ": " << lit << " lit pixels";
+        EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
+    }
+}
+
 // Vertex colours (COLOR_0, VEC3 and VEC4), the second texture coordinate set and
 // KHR_texture_transform, on every backend, in the techniques that shade in a fragment shader, a
 // G-buffer and a compute pass, against the CPU reference reading the same attributes. Textures

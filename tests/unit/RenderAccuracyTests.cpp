@@ -29,7 +29,7 @@ namespace {
 constexpr uint32_t kW = 96, kH = 72;
 
 // The separable BRDF for forward images the redeferred and light pre-pass techniques are
-// compared with (render::resolveShadingModel): the comparisons measure the technique, not the BRDF.
+// compared with (render::resolveBrdf): the comparisons measure the technique, not the BRDF.
 constexpr render::ShadingModel kSeparable = render::ShadingModel::Separable;
 gdi::Image renderImage(gdi::Device& d, const assets::Scene& scene, const std::string& t, uint32_t scale = 1,
                        bool split = false, bool precomputedNoV = true, render::ShadingModel model = render::ShadingModel::Auto) {

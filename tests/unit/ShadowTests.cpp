@@ -88,7 +88,7 @@ protected:
         separableReference = render::renderReference(scene, *scene.camera, kW, kH,
                                                      {.castsShadow = plan.castsShadow(), .brdf = shading::Brdf::Separable});
     }
-    // The exact image under the technique's BRDF (render::resolveShadingModel).
+    // The exact image under the technique's BRDF (render::resolveBrdf).
     const render::ReferenceImage& referenceFor(const std::string& technique) const {
         return render::findTechnique(technique).separableBrdf ? separableReference : reference;
     }

@@ -36,7 +36,7 @@ TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
             std::vector<glm::dvec3>& reference = references[t.separableBrdf];
             if (reference.empty() && c.refusal.empty() && c.exactBound >= 0.0)
                 reference = render::renderReference(scene, *scene.camera, c.width(kW), c.height(kH),
-                                                    {.brdf = t.separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf})
+                                                    {.brdf = t.defaultBrdf()})
                                 .radiance;
             SCOPED_TRACE(c.name + ", " + t.name);
             const render::StabilityOutcome o = render::runStabilityCase(*device, scene, t.name, c.width(kW), c.height(kH), reference);

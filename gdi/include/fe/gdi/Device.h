@@ -1046,6 +1046,9 @@ struct PipelineCacheStats {
 // throws Error; a call that looks the object up after its destroy throws Error at once, also
 // when another thread destroys it during the call, and nothing crashes). A submit that throws
 // runs none of its lists and leaves them as they were.
+// Several devices may be used from several threads at once. On Mesa's software GL drivers
+// (llvmpipe, softpipe) the GL devices of a process take turns (one lock they all share), since
+// two of their contexts starting work at once crashed Mesa 22.3; other GL drivers run in parallel.
 // Destroy command lists before their device; a list that outlives it is safe to destroy, and
 // recording into it throws Error.
 class Device {
