@@ -51,8 +51,8 @@ assets::Scene quadScene() {
     m.metallic = 0.0f;
     m.roughness = 0.5f;
     m.baseColorTexture = {.index = 0, .texCoord = 1};
-    // About the texture's centre: move it to the origin, turn a quarter, move back.
-    m.baseColorTexture.transform = {.offset = {0.0f, 1.0f}, .rotation = -1.5707963f, .scale = {1.0f, 1.0f}};
+    // A quarter turn: (u, v) -> (v, 1 - u), so the white left column lands on the top half.
+    m.baseColorTexture.transform = {.offset = {0.0f, 1.0f}, .rotation = 1.5707963f, .scale = {1.0f, 1.0f}};
     scene.materials.push_back(m);
     scene.instances.push_back({.meshIndex = 0, .name = "quad"});
     scene.lights.push_back({.name = "sun", .type = assets::LightType::Directional, .intensity = 3.0f,

@@ -97,15 +97,17 @@ struct TextureImage {
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 
-// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, as the extension defines it.
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, as the Khronos Sample Viewer
+// evaluates it: u' = cos(r) s_u u + sin(r) s_v v + o_u, v' = -sin(r) s_u u + cos(r) s_v v + o_v
+// (TextureTransformTest's arrows then point at their green markers).
 struct TextureTransform {
     glm::vec2 offset{0.0f};
     float rotation = 0.0f;  // radians
     glm::vec2 scale{1.0f};
     bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
     // The two rows of the affine map: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
-    glm::vec3 row0() const { return {std::cos(rotation) * scale.x, -std::sin(rotation) * scale.y, offset.x}; }
-    glm::vec3 row1() const { return {std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+    glm::vec3 row0() const { return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x}; }
+    glm::vec3 row1() const { return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
     glm::vec2 apply(const glm::vec2& uv) const {
         return {glm::dot(row0(), glm::vec3(uv, 1.0f)), glm::dot(row1(), glm::vec3(uv, 1.0f))};
     }

@@ -70,7 +70,7 @@ glm::dvec2 textureCoord(const WorldTriangle& tri, const assets::TextureRef& ref,
     if (x.identity()) return uv;
     const double c = std::cos(double(x.rotation)), s = std::sin(double(x.rotation));
     const glm::dvec2 scaled = uv * glm::dvec2(x.scale);
-    return glm::dvec2(c * scaled.x - s * scaled.y, s * scaled.x + c * scaled.y) + glm::dvec2(x.offset);
+    return glm::dvec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + glm::dvec2(x.offset);
 }
 
 // Base colour alpha times COLOR_0's at barycentrics (b1, b2): what MASK tests and BLEND blends.

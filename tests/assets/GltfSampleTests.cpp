@@ -549,14 +549,14 @@ TEST(GltfSamples, TextureTransformsAreRead) {
     EXPECT_EQ(all->baseColorTexture.transform.offset, glm::vec2(-0.2f, -0.1f));
     EXPECT_EQ(all->baseColorTexture.transform.scale, glm::vec2(1.5f));
     EXPECT_NEAR(all->baseColorTexture.transform.rotation, 0.3f, 1e-6f);
-    // The extension's matrix T R S: (0, 0) lands on the offset, (1, 0) rotated counter-clockwise
-    // in (u, v) (towards +v) and scaled.
+    // T R S as the Sample Viewer evaluates it: (0, 0) lands on the offset, (1, 0) scaled and
+    // turned towards -v (v grows down the image: counter-clockwise as the image is seen).
     const TextureTransform& t = all->baseColorTexture.transform;
     const glm::vec2 o = t.apply({0.0f, 0.0f}), u = t.apply({1.0f, 0.0f});
     EXPECT_NEAR(o.x, -0.2f, 1e-6f);
     EXPECT_NEAR(o.y, -0.1f, 1e-6f);
     EXPECT_NEAR(u.x, -0.2f + 1.5f * std::cos(0.3f), 1e-6f);
-    EXPECT_NEAR(u.y, -0.1f + 1.5f * std::sin(0.3f), 1e-6f);
+    EXPECT_NEAR(u.y, -0.1f - 1.5f * std::sin(0.3f), 1e-6f);
 }
 
 TEST(GltfSamples, SecondTextureCoordinateSetIsRead) {
