@@ -175,22 +175,24 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const st
     return img;
 }
 
-void writePng(const Image& image, const std::string& path, float exposure) {
+void writePng(const Image& image, const std::string& path, float exposure, bool alpha) {
     const FormatInfo& fi = formatInfo(image.format);
     if (image.width == 0 || image.height == 0 || image.data.size() < image.rowBytes() * image.height)
         throw Error("writePng: empty or truncated image for " + path);
-    std::vector<uint8_t> rgb(size_t(image.width) * image.height * 3);
+    const int channels = alpha ? 4 : 3;
+    std::vector<uint8_t> rgb(size_t(image.width) * image.height * channels);
     const bool eightBit = image.format == Format::RGBA8 || image.format == Format::RGBA8_SRGB;
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) {
             auto t = image.texel(x, y);
-            for (int c = 0; c < 3; ++c) {
+            for (int c = 0; c < channels; ++c) {
                 float v = (fi.channels == 1 && !fi.hasDepth) || fi.hasDepth ? t[0] : t[c];
-                float enc = eightBit ? v : linearToSrgb(exposure * v);
-                rgb[(size_t(y) * image.width + x) * 3 + c] = uint8_t(std::nearbyint(std::clamp(enc, 0.0f, 1.0f) * 255.0f));
+                if (c == 3) v = fi.channels == 4 ? t[3] : 1.0f;  // alpha is stored linear, never exposed
+                float enc = eightBit || c == 3 ? v : linearToSrgb(exposure * v);
+                rgb[(size_t(y) * image.width + x) * channels + c] = uint8_t(std::nearbyint(std::clamp(enc, 0.0f, 1.0f) * 255.0f));
             }
         }
-    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), 3, rgb.data(), int(image.width * 3)))
+    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), channels, rgb.data(), int(image.width * channels)))
         throw Error("cannot write PNG " + path);
 }
 

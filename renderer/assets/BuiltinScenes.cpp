@@ -231,6 +231,7 @@ Scene makeShadows() {
     const glm::vec3 eye(0.0f, 3.0f, 6.0f);
     s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 1.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
     s.camera->name = "shadows";
+    s.showsShadows = true;
     return s;
 }
 

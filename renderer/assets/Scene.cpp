@@ -114,6 +114,34 @@ void addDefaultLights(Scene& scene, const Camera& cam) {
     scene.hasDefaultLights = true;
 }
 
+bool useDefaultSkyAndSun(Scene& scene) {
+    if (!scene.hasDefaultLights) return false;
+    const Camera cam = scene.camera ? *scene.camera : makeDefaultCamera(scene.bounds);
+    // Where the key light of the rig came from (the viewer's upper left, behind the viewer), raised
+    // to at least kDefaultSunMinElevation above the horizon: a sun, whatever the camera's tilt.
+    glm::vec3 d = glm::normalize(toWorld(cam, glm::vec3(0.8f, -1.0f, -0.6f)));
+    if (d.y > -kDefaultSunMinElevation) {
+        glm::vec2 h(d.x, d.z);
+        h = glm::length(h) > 1e-6f ? glm::normalize(h) : glm::vec2(0.0f, -1.0f);
+        const float c = std::sqrt(1.0f - kDefaultSunMinElevation * kDefaultSunMinElevation);
+        d = glm::vec3(h.x * c, -kDefaultSunMinElevation, h.y * c);
+    }
+    Light sun;
+    sun.name = "default sun";
+    sun.type = LightType::Directional;
+    sun.color = glm::vec3(1.0f, 0.956f, 0.898f);
+    sun.intensity = kDefaultSunIlluminance;
+    sun.direction = d;
+    scene.lights.clear();
+    scene.lights.push_back(sun);
+    Environment sky = loadEnvironment("builtin:sky");
+    sky.sky.sunDirection = -glm::dvec3(d);
+    sky.sky.sunRadiance = glm::dvec3(0.0);
+    scene.environment = std::move(sky);
+    scene.showsShadows = true;
+    return true;
+}
+
 namespace {
 template <int N>
 bool finite(const glm::vec<N, float>& v) {

@@ -223,6 +223,9 @@ struct Scene {
     Bounds bounds;  // world space, union of the instances; empty if nothing is drawn
     bool hasDefaultLights = false;  // lights were added by the loader (the file had none)
     bool hasDefaultCamera = false;  // camera was made by the loader (the file had none)
+    // Made to show shadows (builtin:shadows, builtin:particles, the default look's sun): front
+    // ends (fe render, fe view) turn shadow maps on unless told otherwise.
+    bool showsShadows = false;
     std::vector<std::string> warnings;  // what was ignored or approximated, one line each
 };
 
@@ -237,6 +240,17 @@ Camera makeDefaultCamera(const AABB& worldBounds);
 // The light rig used when a scene has none, placed relative to `camera`: see "Defaults" in
 // GltfLoader.h. Appends to scene.lights and sets hasDefaultLights.
 void addDefaultLights(Scene& scene, const Camera& camera);
+
+// The default look of a model without lights of its own (hasDefaultLights), what fe render and
+// fe view show it with unless lighting is asked for: the default light rig is replaced by a sun
+// (a directional light from above, behind and to the left of the camera: kDefaultSun*) that casts
+// shadows (showsShadows), and the scene's environment becomes builtin:sky with that sun's
+// direction and no sun disc of its own (the directional light is the sun: the disc would count it
+// twice), to light the scene by image-based lighting and show behind it. Returns false, changing
+// nothing, when the scene has lights of its own.
+bool useDefaultSkyAndSun(Scene& scene);
+inline constexpr float kDefaultSunIlluminance = 3.0f;  // lux, colour (1, 0.956, 0.898)
+inline constexpr float kDefaultSunMinElevation = 0.6f;  // sin of the sun's elevation, at least
 
 // Throws AssetError naming the first non-finite number (NaN or infinity) in the scene: a vertex
 // position, normal, tangent or uv, a material factor, an instance transform, a light or the

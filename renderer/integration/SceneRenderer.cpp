@@ -100,6 +100,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")}));
     postProcess_ = std::make_unique<PostProcess>(device, settings_, fullscreenVs_, frameConstants_);
     if (scene.environment) environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
+    background_ = std::make_unique<BackgroundPass>(device, *queue_, settings_, environment_.get(), frameConstants_);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_, frameConstants_,
                                         scene.camera->eye(), pointSampler_, fullscreenVs_});
     if (s.ibl()) {
@@ -141,16 +142,7 @@ void SceneRenderer::buildGraph() {
     depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
     technique_->declare(g, output_, depth_);
     if (s.lightListStatistics || s.debugView == kLightsEvaluatedView) declareListStatistics(g);
-    if (environment_) {
-        g.addPass("background", [&](graph::PassBuilder& b) {
-            b.colorTarget(output_, gdi::LoadOp::Load);
-            b.depthTarget(depth_, gdi::LoadOp::Load);
-        }, [this](graph::PassContext& pc) {
-            pc.beginRenderPass();
-            environment_->drawBackground(pc.cmd, frameConstants_);
-            pc.cmd.endRenderPass();
-        });
-    }
+    background_->declare(g, output_, depth_);
     if (gpuScene_->hasBlend()) {
         const bool culled = clusters_ && s.translucentClusters;
         const ClusterLightGrid::Lists clusterLists = culled ? clusters_->declare(g) : ClusterLightGrid::Lists{};
@@ -472,7 +464,8 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
                          projection(cam.yfov, float(s.width) / float(s.height), cam.znear, cam.zfar) * rotation;
     fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
-    fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, 0u, 0u, 0u);
+    const glm::uvec2 background = background_->displayConstants();
+    fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, background.x, background.y, 0u);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);

@@ -1,8 +1,8 @@
 // Layer 8 (Integration): renders a Scene with one lighting technique (render/TechniqueRenderer.h),
 // every pass timed. The technique declares its passes; the scene renderer composes them with
 // what every technique shares: the transparent pass (BLEND primitives drawn forward after the
-// opaque ones, declared only when the scene has any), the background pass (the environment where
-// nothing was drawn, declared only when the scene has an environment) and post-processing
+// opaque ones, declared only when the scene has any), the background pass (BackgroundPass: the
+// environment, a colour or transparency where nothing was drawn) and post-processing
 // (PostProcess: tone mapping and antialiasing ending in the display image, culled unless a
 // displayable image is asked for). With shadows it plans which lights cast them (ShadowPlan),
 // stores those lights last in the light buffer and gives the technique the maps.
@@ -21,6 +21,7 @@
 #include "render/GpuScene.h"
 #include "render/RenderSettings.h"
 #include "render/ClusterLightGrid.h"
+#include "render/BackgroundPass.h"
 #include "render/EnvironmentMap.h"
 #include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
@@ -63,6 +64,7 @@ public:
     // Linear L_o (RGBA32F) of the last frame.
     gdi::Image readOutput();
     // The displayable image of the last frame (RenderSettings::displayImage).
+    const BackgroundPass& background() const { return *background_; }
     gdi::Image readDisplay();
     // The texture post-processing ends in (RGBA8_SRGB, CopySrc), e.g. for Device::present.
     gdi::TextureHandle displayTexture();
@@ -135,6 +137,7 @@ private:
     std::unique_ptr<TechniqueRenderer> technique_;
     std::unique_ptr<VfxRenderer> vfx_;             // when the scene has particle emitters
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
+    std::unique_ptr<BackgroundPass> background_;
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows

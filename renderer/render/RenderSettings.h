@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "shading/Tonemap.h"
 
 namespace fe::render {
@@ -34,6 +36,22 @@ enum class AntiAliasing : uint32_t { None, Fxaa, Taa };
 // evaluate it, the separable model of ../shared/SHADING.md in the techniques whose light sums
 // factor it out of the material (TechniqueInfo::separableBrdf: redeferred, light-prepass).
 enum class ShadingModel : uint32_t { Auto, Gltf, Separable };
+
+// What the frame shows where no surface is (SceneRenderer's "background" pass).
+struct Background {
+    enum class Kind : uint32_t {
+        Auto,         // the scene's environment where it has one, else black
+        Environment,  // the scene's environment (an Error without one)
+        Color,        // `color` in the display image
+        Transparent,  // alpha 0 in the display image (RGBA PNG); blended surfaces keep theirs
+    };
+    Kind kind = Kind::Auto;
+    // Kind::Color: the display image's sRGB-encoded value in [0, 1] (what "#rrggbb" says), 8 bits
+    // a channel. Color and Transparent keep coverage in L_o's alpha (0 where nothing is drawn,
+    // blended surfaces "over" it); the display pass composites the tone-mapped colour over the
+    // background colour, or writes the coverage as alpha. L_o (a .pfm) holds 0 there.
+    glm::vec3 color{0.0f};
+};
 
 struct RenderSettings {
     std::string technique = "forward";  // a name from techniques() (TechniqueRenderer.h)
@@ -98,6 +116,7 @@ struct RenderSettings {
     // mapper (clamp keeps the image comparable with the exact reference), then antialiasing.
     shading::Tonemap tonemap = shading::Tonemap::Clamp;
     AntiAliasing antiAliasing = AntiAliasing::None;
+    Background background;
     // A debug view: the display shows this intermediate texture of the frame's graph (by its
     // name, as RenderGraph::textures() lists them: "gbuffer1 normal+roughness", "depth", ...)
     // instead of L_o, scaled by the exposure; "light count": a heat map of how many lights reach

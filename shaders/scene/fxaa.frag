@@ -23,14 +23,15 @@ void main() {
     vec2 texel = 1.0 / vec2(size);
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec2 uv = gl_FragCoord.xy * texel;
-    vec3 centre = texelFetch(ldr, p, 0).rgb;
+    const vec4 centreRgba = texelFetch(ldr, p, 0);  // alpha: a transparent background's coverage, kept
+    vec3 centre = centreRgba.rgb;
     float m = luma(centre);
     float n = lumaAt(p + ivec2(0, 1), size), s = lumaAt(p + ivec2(0, -1), size);
     float e = lumaAt(p + ivec2(1, 0), size), w = lumaAt(p + ivec2(-1, 0), size);
     float lo = min(m, min(min(n, s), min(e, w))), hi = max(m, max(max(n, s), max(e, w)));
     float range = hi - lo;
     if (range < max(kEdgeThresholdMin, hi * kEdgeThreshold)) {
-        outColor = vec4(centre, 1.0);  // no edge: the pixel as it is
+        outColor = vec4(centre, centreRgba.a);  // no edge: the pixel as it is
         return;
     }
     float ne = lumaAt(p + ivec2(1, 1), size), nw = lumaAt(p + ivec2(-1, 1), size);
@@ -89,5 +90,5 @@ void main() {
     bool stepHere = ((nearer1 ? end1 : end2) < 0.0) != centreDarker;
     float amount = max(stepHere ? offset : 0.0, subpixel);
     vec2 at = uv + (horizontal ? vec2(0.0, amount * across) : vec2(amount * across, 0.0));
-    outColor = vec4(textureLod(ldr, at, 0.0).rgb, 1.0);
+    outColor = vec4(textureLod(ldr, at, 0.0).rgb, centreRgba.a);
 }

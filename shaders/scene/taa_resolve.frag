@@ -17,16 +17,18 @@ layout(location = 0) out vec4 outColor;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = textureSize(current, 0);
-    vec3 c = texelFetch(current, p, 0).rgb;
+    // RGBA: with a transparent or coloured background, alpha is coverage (premultiplied) and is
+    // resolved like the colour; otherwise it is 1 throughout.
+    vec4 c = texelFetch(current, p, 0);
     // No branch on the uniform alone: Mesa 22.3's lavapipe compiles a variant of a shader whose
     // control flow depends only on uniforms at draw time, whenever their buffer changes (here every
     // frame), and never frees it. Combined with the per-pixel test below, the condition is not
     // inlinable, and nothing is compiled or leaked per frame.
     bool historyValid = taa.params.x >= 0.5;
-    vec3 lo = c, hi = c;
+    vec4 lo = c, hi = c;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-            vec3 s = texelFetch(current, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0).rgb;
+            vec4 s = texelFetch(current, clamp(p + ivec2(dx, dy), ivec2(0), size - 1), 0);
             lo = min(lo, s);
             hi = max(hi, s);
         }
@@ -37,9 +39,9 @@ void main() {
     vec4 q = abs(h.w) < 1e-9 ? taa.prevViewProj * vec4(h.xyz, 0.0) : taa.prevViewProj * vec4(h.xyz / h.w, 1.0);
     vec2 uv = q.xy / q.w * 0.5 + 0.5;
     if (!historyValid || q.w <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
-        outColor = vec4(c, 1.0);  // nothing to reproject from: this frame's sample alone
+        outColor = c;  // nothing to reproject from: this frame's sample alone
         return;
     }
-    vec3 previous = clamp(textureLod(history, uv, 0.0).rgb, lo, hi);
-    outColor = vec4(mix(previous, c, taa.params.y), 1.0);
+    vec4 previous = clamp(textureLod(history, uv, 0.0), lo, hi);
+    outColor = mix(previous, c, taa.params.y);
 }

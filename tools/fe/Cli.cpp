@@ -22,7 +22,9 @@ constexpr const char* kUsage =
     "  info [--backend NAME] [--json]  every backend: available or why not, device, API, driver, limits, features\n"
     "  render [SCENE]             SCENE: a .gltf/.glb path or builtin:NAME; none: the quick start's image\n"
     "      (builtin:shadows, --environment builtin:sky --ibl-samples 256 --shadows on unless given)\n"
-    "      --backend NAME --technique NAME|auto (below; auto: the render director chooses, --verbose says why)\n"
+    "      a model without lights of its own, unless --environment or --ibl-* is given, gets the default look:\n"
+    "        the built-in sky as prefiltered image-based light and background, and a sun with shadows\n"
+    "      --backend NAME --technique NAME|auto (below; default auto: the render director chooses, --verbose says why)\n"
     "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
     "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
     "      --one-pass-culling (deferred-tiled: each work group culls its tile in shared memory, no culling pass)\n"
@@ -39,13 +41,17 @@ constexpr const char* kUsage =
     "      --temporal (redeferred, --illum-scale 2|4): the reduced-rate samples jitter and accumulate over frames\n"
     "      --orbit DEGREES: the camera turns about the scene's vertical axis over the --frames\n"
     "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
-    "        point lights (cubes); --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
+    "        point lights (cubes); default on for scenes made to show them (builtin:shadows, builtin:particles,\n"
+    "        the default look's sun) and when a --shadow-* option is given, else off\n"
+    "        --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
-    "      --size WxH --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --size WxH (default 960x540) --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --background auto|environment|transparent|#RRGGBB|R,G,B: the .png where nothing is drawn (auto: the\n"
+    "        environment, else black; transparent: an RGBA .png, alpha 0 there; a colour: exactly that sRGB value)\n"
     "      --brdf auto|gltf|separable: glTF 2.0's BRDF (Appendix B) or the seeds' separable one, which redeferred and\n"
     "        light-prepass need (auto: glTF wherever the technique can evaluate it; docs/SHADING.md)\n"
-    "      --tonemap clamp|aces|pbr-neutral (the .png: default clamp, comparable with the exact reference; the ACES\n"
-    "        fit or Khronos PBR Neutral) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
+    "      --tonemap clamp|aces|pbr-neutral (the .png: default Khronos PBR Neutral, as the glTF Sample Viewer;\n"
+    "        clamp keeps it comparable with the exact reference; aces: the ACES fit) --aa none|fxaa|taa (the .png: FXAA after tone mapping, or TAA: jittered\n"
     "        frames blended with the reprojected history; it converges over --frames)\n"
     "      --dump-graph FILE.dot (the compiled render graph) --no-aliasing (transients in memory of their own)\n"
     "      --renderdoc-capture FILE: the first frame captured by RenderDoc (librenderdoc) into FILE_capture.rdc;\n"
@@ -127,7 +133,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto: the render director chooses"}},
     {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
     {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},
-    {"--size", {"WxH", "image size in pixels (default 320x240)"}},
+    {"--size", {"WxH", "image size in pixels (default 960x540)"}},
     {"view --size", {"WxH", "window size in pixels (default 640x480)"}},
     {"--out", {"FILE", ".png (tone mapped) or .pfm (linear radiance) (default out.png)"}},
     {"bench --out", {"DIR", "where the results, charts and report go (default bench)"}},
@@ -145,15 +151,16 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--error-budget", {"PERCENT", "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},
     {"--environment", {"FILE.hdr|builtin:sky", "the light from far away, drawn as the background"}},
     {"--ibl-samples", {"N", "light the scene by the environment, N importance samples per term"}},
-    {"--shadows", {"on|off", "shadow maps for directional, spot and the most important point lights (default off)"}},
+    {"--shadows", {"on|off", "shadow maps for directional, spot and the most important point lights (default: on where the scene is made to show them)"}},
     {"--shadow-map-size", {"N", "shadow map size in texels (default 1024)"}},
     {"--shadow-cascades", {"1-4", "cascades of a directional light's shadow (default 4)"}},
     {"--shadow-point-budget", {"N", "point lights given cube shadow maps, the most important first (default 4)"}},
     {"--shadow-filter", {"pcf|none", "2x2 hardware comparison or one tap (default pcf)"}},
     {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
-    {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default clamp)"}},
+    {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default pbr-neutral)"}},
     {"--brdf", {"auto|gltf|separable", "glTF 2.0's BRDF or the seeds' separable one (auto: glTF where the technique can, docs/SHADING.md)"}},
+    {"--background", {"auto|environment|transparent|#RRGGBB|R,G,B", "what shows where nothing is drawn (default: the environment, else black)"}},
     {"--aa", {"none|fxaa|taa", "the .png's anti-aliasing (default none)"}},
     {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
     {"--no-aliasing", {"", "transient textures in memory of their own"}},
@@ -273,9 +280,43 @@ const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
                                     "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
-                                    "--renderdoc-capture", "--brdf"};
+                                    "--renderdoc-capture", "--brdf", "--background"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
                                     "--no-cluster-bounds", "--ibl-prefiltered", "--temporal"};
+
+render::Background parseBackground(const std::string& text) {
+    using Kind = render::Background::Kind;
+    if (text == "auto") return {};
+    if (text == "environment") return {.kind = Kind::Environment};
+    if (text == "transparent") return {.kind = Kind::Transparent};
+    const std::string usage = "--background takes auto, environment, transparent, #RRGGBB or R,G,B (sRGB, 0-1); got '" + text + "'";
+    render::Background b{.kind = Kind::Color};
+    if (text.size() == 7 && text[0] == '#') {
+        for (int c = 0; c < 3; ++c) {
+            const std::string hex = text.substr(1 + 2 * c, 2);
+            if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) throw UsageError(usage);
+            b.color[c] = float(std::stoul(hex, nullptr, 16)) / 255.0f;
+        }
+        return b;
+    }
+    std::stringstream list(text);
+    int c = 0;
+    for (std::string item; std::getline(list, item, ','); ++c) {
+        char* end = nullptr;
+        const float v = std::strtof(item.c_str(), &end);
+        if (c > 2 || item.empty() || *end || !(v >= 0.0f && v <= 1.0f)) throw UsageError(usage);
+        b.color[c] = v;
+    }
+    if (c != 3) throw UsageError(usage);
+    return b;
+}
+
+void RenderJob::applyScene(assets::Scene& scene) {
+    if (!environment.empty()) scene.environment = assets::loadEnvironment(environment);
+    defaultLookApplied = defaultLook && assets::useDefaultSkyAndSun(scene);
+    if (defaultLookApplied) settings.iblPrefiltered = true;
+    if (!shadowsGiven) settings.shadows.enabled = scene.showsShadows;
+}
 
 RenderJob renderJob(const Args& a) {
     if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
@@ -284,14 +325,16 @@ RenderJob renderJob(const Args& a) {
     render::RenderSettings s;
     auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
     const bool lightingAsked = a.options.count("--environment") || a.options.count("--ibl-samples") || a.options.count("--ibl-prefiltered");
-    s.technique = opt("--technique", "forward");
+    s.technique = opt("--technique", "auto");
     if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
     s.iblSamples = parseUint(opt("--ibl-samples", quickStart && !lightingAsked ? std::to_string(kQuickStartIblSamples) : "0"),
                              "--ibl-samples", 0, 65536);
     s.iblPrefiltered = a.options.count("--ibl-prefiltered") > 0;
-    const std::string shadows = opt("--shadows", quickStart ? "on" : "off");
+    // Unless given, shadows are on for a scene made to show them (assets::Scene::showsShadows,
+    // decided once the scene is loaded: RenderJob::applyScene).
+    const std::string shadows = opt("--shadows", "on");
     if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
     s.shadows.enabled = shadows == "on";
     s.shadows.mapSize = parseUint(opt("--shadow-map-size", "1024"), "--shadow-map-size", 16, 16384);
@@ -300,8 +343,13 @@ RenderJob renderJob(const Args& a) {
     const std::string filter = opt("--shadow-filter", "pcf");
     if (filter != "pcf" && filter != "none") throw UsageError("--shadow-filter must be pcf or none, got '" + filter + "'");
     s.shadows.pcf = filter == "pcf";
+    // A shadow option without --shadows asks for shadows; with --shadows off it is a mistake.
+    bool shadowsGiven = a.options.count("--shadows") > 0;
     for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
-        if (a.options.count(k) && !s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
+        if (a.options.count(k)) {
+            if (!s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
+            shadowsGiven = true;
+        }
     const std::string environment = opt("--environment", quickStart && !lightingAsked ? kQuickStartEnvironment : "");
     if (const std::string rates = opt("--rates", ""); !rates.empty()) {
         // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
@@ -321,7 +369,7 @@ RenderJob renderJob(const Args& a) {
             if (*r == 3) throw UsageError("--rates: a rate must be 1, 2 or 4, got 3");
         }
     }
-    std::string size = opt("--size", "320x240");
+    std::string size = opt("--size", kDefaultSize);
     size_t x = size.find('x');
     if (x == std::string::npos) throw UsageError("--size must be WxH, got '" + size + "'");
     s.width = parseUint(size.substr(0, x), "width", 1, 8192);
@@ -330,7 +378,7 @@ RenderJob renderJob(const Args& a) {
     std::string ex = opt("--exposure", "1");
     s.exposure = std::strtof(ex.c_str(), &end);
     if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
-    const std::string tonemap = opt("--tonemap", "clamp");
+    const std::string tonemap = opt("--tonemap", "pbr-neutral");
     if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
     else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
     const std::string brdf = opt("--brdf", "auto");
@@ -367,6 +415,9 @@ RenderJob renderJob(const Args& a) {
     if (!pfm && !(out.size() > 4 && out.substr(out.size() - 4) == ".png"))
         throw UsageError("--out must end in .png or .pfm, got '" + out + "'");
 
+    s.background = parseBackground(opt("--background", "auto"));
+    if (a.options.count("--background") && pfm)
+        throw UsageError("--background applies to the .png (a .pfm holds radiance, with no alpha or display colour)");
     s.displayImage = !pfm || window;  // the PNG (and the window) show the GPU's display pass output
     s.aliasing = !a.options.count("--no-aliasing");
     s.illumSplit = a.options.count("--illum-split") > 0;
@@ -385,7 +436,8 @@ RenderJob renderJob(const Args& a) {
         throw UsageError("--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
                          "clustered-deferred, visibility-buffer)");
     const std::string dumpGraph = opt("--dump-graph", "");
-    return RenderJob{.spec = spec, .environment = environment, .settings = s, .director = director, .window = window, .backend = backend,
+    return RenderJob{.spec = spec, .environment = environment, .defaultLook = !quickStart && !lightingAsked,
+                     .shadowsGiven = shadowsGiven, .settings = s, .director = director, .window = window, .backend = backend,
                      .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
                      .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph,
                      .pipelineCache = opt("--pipeline-cache", ""), .renderdocCapture = opt("--renderdoc-capture", "")};

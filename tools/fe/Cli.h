@@ -43,9 +43,21 @@ inline constexpr const char* kQuickStartScene = "builtin:shadows";
 inline constexpr const char* kQuickStartEnvironment = "builtin:sky";
 inline constexpr uint32_t kQuickStartIblSamples = 256;
 
+// `fe render`'s default image size: large enough to look at, small enough that the default look
+// (sky, sun, shadows) renders in about a second on a 2-core CPU rasterizer (docs/BENCHMARKS.md).
+inline constexpr const char* kDefaultSize = "960x540";
+
+// --background: auto, environment, transparent, #RRGGBB or R,G,B (sRGB-encoded, 0 to 1).
+render::Background parseBackground(const std::string& text);
+
 struct RenderJob {
     std::string spec;  // the scene: a path or builtin:NAME
     std::string environment;  // --environment, or the quick start's sky when no scene is named
+    // No lighting asked for (--environment, --ibl-*): a model without lights of its own gets the
+    // default look (assets::useDefaultSkyAndSun, prefiltered image-based lighting).
+    bool defaultLook = false;
+    bool defaultLookApplied = false;  // set by applyScene: the scene had no lights
+    bool shadowsGiven = false;  // --shadows given; else on exactly when the scene showsShadows
     render::RenderSettings settings;
     render::DirectorOptions director;
     bool window = false;
@@ -60,6 +72,10 @@ struct RenderJob {
     std::string dumpGraph;
     std::string pipelineCache;  // --pipeline-cache
     std::string renderdocCapture;  // --renderdoc-capture
+
+    // What the loaded scene decides: its --environment (or the quick start's), the default look,
+    // and shadows unless --shadows was given.
+    void applyScene(assets::Scene& scene);
 };
 RenderJob renderJob(const Args& a);
 

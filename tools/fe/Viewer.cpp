@@ -58,10 +58,13 @@ public:
         settings_.height = o.height;
         settings_.displayImage = true;
         settings_.debugView = o.debugView;
-        if (o.quickStartLighting) {
-            settings_.iblPrefiltered = true;
-            settings_.shadows.enabled = true;
-        }
+        // The look fe render gives: PBR Neutral; a model without lights of its own under the sky
+        // and a sun (assets::useDefaultSkyAndSun) unless --environment is given; shadows where
+        // the scene is made to show them.
+        settings_.tonemap = shading::Tonemap::PbrNeutral;
+        if (o.environment.empty() && assets::useDefaultSkyAndSun(scene_)) settings_.iblPrefiltered = true;
+        if (o.quickStartLighting) settings_.iblPrefiltered = true;
+        settings_.shadows.enabled = scene_.showsShadows;
         camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
         wantEnvironment_ = bool(scene_.environment);
         ImGui::CreateContext();

@@ -34,6 +34,7 @@
 #include "Viewer.h"
 #include "integration/Bench.h"
 #include "integration/RenderDirector.h"
+#include "integration/FrameWarnings.h"
 #include "integration/SceneRenderer.h"
 #include "integration/StabilitySuite.h"
 
@@ -144,7 +145,7 @@ int cmdRender(const Args& a) {
     if (a.options.count("--strict") && !scene.warnings.empty())
         throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
                                  scene.warnings.front());
-    if (!job.environment.empty()) scene.environment = assets::loadEnvironment(job.environment);
+    job.applyScene(scene);
     // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
     std::unique_ptr<gdi::FrameCapture> capture;
     if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
@@ -202,8 +203,14 @@ int cmdRender(const Args& a) {
     for (float v : std::vector<float>(reinterpret_cast<const float*>(img.data.data()),
                                       reinterpret_cast<const float*>(img.data.data() + img.data.size())))
         if (!std::isfinite(v)) throw gdi::Error("the rendered image contains NaN or infinite values");
+    const bool transparent = s.background.kind == render::Background::Kind::Transparent;
     if (pfm) gdi::writePfm(img, out);
-    else gdi::writePng(renderer.readDisplay(), out);
+    else {
+        const gdi::Image display = renderer.readDisplay();
+        gdi::writePng(display, out, 1.0f, transparent);
+        // A black frame, or one showing none of the scene, exits 0 like any other: say why.
+        for (const std::string& w : render::frameWarnings(scene, *scene.camera, s, display)) spdlog::warn("{}: {}", spec, w);
+    }
     const bool soft = device->info().softwareRasterizer;
     std::cout << "backend " << device->info().backend << " (" << device->info().deviceName << ")"
               << (soft ? " [software rasterizer timings]" : "") << "\n";
@@ -222,6 +229,14 @@ int cmdRender(const Args& a) {
     if (!pfm && s.antiAliasing == render::AntiAliasing::Fxaa) std::cout << ", fxaa";
     if (s.antiAliasing == render::AntiAliasing::Taa) std::cout << ", taa";
     if (s.ibl()) std::cout << ", environment light " << (s.iblPrefiltered ? std::string("prefiltered") : std::to_string(s.iblSamples) + " samples");
+    if (job.defaultLookApplied) std::cout << ", default look (builtin:sky and a sun: the scene has no lights)";
+    if (!pfm) {
+        const char* kinds[] = {"black", "environment", "colour", "transparent"};
+        const render::Background::Kind kind = renderer.background().kind();
+        std::cout << ", background " << kinds[int(kind)];
+        if (kind == render::Background::Kind::Color)
+            std::cout << " " << s.background.color.r << "," << s.background.color.g << "," << s.background.color.b;
+    }
     if (s.shadows.enabled)
         std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map " << s.shadows.mapSize
                   << (s.shadows.pcf ? " pcf" : " nearest");

@@ -23,7 +23,8 @@ struct Image {
 };
 
 // 8-bit sRGB PNG: stored values for 8-bit formats, sRGB_OETF(clamp(exposure x v)) for floats.
-void writePng(const Image& image, const std::string& path, float exposure = 1.0f);
+// alpha: an RGBA PNG with the image's fourth channel as stored (1 where it has none).
+void writePng(const Image& image, const std::string& path, float exposure = 1.0f, bool alpha = false);
 // Portable Float Map, linear RGB, little-endian (scale -1), rows bottom to top.
 void writePfm(const Image& image, const std::string& path);
 
