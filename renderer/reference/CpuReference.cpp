@@ -332,7 +332,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                                   : 1.0;
             if (mat.occlusionTexture.valid()) out.textured = true;
             L += ao * shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
-                                                options.iblSamples);
+                                                options.iblSamples, options.brdf);
         }
         out.radiance = L;
         return out;

@@ -40,7 +40,7 @@ struct ReferenceOptions {
     // materials by their alpha cutoff. Empty: no light casts shadows (render/ShadowPlan.h says
     // which lights the GPU shadows).
     std::vector<bool> castsShadow;
-    // The BRDF of the punctual lights (shading::Brdf): glTF 2.0's, or the separable model the
+    // The BRDF of the punctual lights and the environment (shading::Brdf): glTF 2.0's, or the separable model the
     // redeferred and light-prepass techniques shade with (render::resolveBrdf).
     shading::Brdf brdf = shading::Brdf::Gltf;
 };

@@ -68,7 +68,7 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
                                                       .mipLevels = kLevels,
                                                       .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
                                                       .debugName = "prefiltered environment"}));
-    lut_ = objects_.add(device.createTexture({.format = kLutFormat, .width = kLutSize, .height = kLutSize,
+    lut_ = objects_.add(device.createTexture({.format = kLutFormat, .width = kLutSize, .height = 2 * kLutSize,
                                               .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
                                               .debugName = "split-sum table"}));
     sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,

@@ -29,7 +29,7 @@ class PrefilteredEnvironment {
 public:
     static constexpr uint32_t kLevels = 6;          // roughness 0, 0.2, ... 1 (fe_ibl.glsl's FE_PREFILTER_LEVELS)
     static constexpr uint32_t kFaceSize = 128;      // level 0
-    static constexpr uint32_t kLutSize = 32;        // NoV x roughness
+    static constexpr uint32_t kLutSize = 32;        // NoV x roughness, for each BRDF (two tables in one texture)
     static constexpr uint32_t kPrefilterSamples = 64;
     static constexpr uint32_t kLutSamples = 1024;
 

@@ -176,8 +176,11 @@ inline void basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
 // of w_o about h; the estimator (1/n) sum F L_i NoL (w_o.h) / ((NoL (1-k) + k)(n.h)(NoV (1-k)
 // + k)), which is the seed's F0 L_sg1 + (1 - F0) L_sg2 form) and n cosine-weighted directions
 // for the diffuse term ((1/n) sum (1 - F)(1 - m) c L_i). k = alpha^2 / 2 (SHADING.md, IBL).
+// Brdf::Gltf: the same samples weighed by glTF's BRDF (docs/SHADING.md): specular F L 4 V NoL
+// (w_o.h) / (n.h) with V the height-correlated visibility, diffuse (1 - m) c (1 - F_d) L with the
+// dielectric's F_d = 0.04 + 0.96 P (Appendix B's mix of the dielectric and metal lobes).
 template <class Environment>
-glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n) {
+glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n, Brdf brdf = Brdf::Gltf) {
     const double r = clampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
     const double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
     const glm::dvec3 F0 = glm::mix(glm::dvec3(0.04), s.baseColor, s.metallic);
@@ -195,16 +198,18 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const double NoL = glm::dot(s.n, wi);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
-            specular += (F0 + (1.0 - F0) * P) * environment(wi) * (NoL * VoH / ((NoL * (1.0 - k) + k) * cosH));
+            const double weight = brdf == Brdf::Gltf ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
+                                                     : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
+            specular += (F0 + (1.0 - F0) * P) * environment(wi) * weight;
         }
         // Diffuse: a cosine-weighted direction.
         const double cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
         const glm::dvec3 wd = t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + s.n * cosD;
         const glm::dvec3 hd = glm::normalize(s.wo + wd);
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
-        diffuse += (1.0 - F0) * (1.0 - Pd) * environment(wd);
+        diffuse += (brdf == Brdf::Gltf ? glm::dvec3(0.96) : 1.0 - F0) * (1.0 - Pd) * environment(wd);
     }
-    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular / (NoV * (1.0 - k) + k)) / double(n);
+    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular) / double(n);
 }
 
 }  // namespace fe::shading

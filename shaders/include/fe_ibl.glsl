@@ -54,8 +54,10 @@ const float FE_PREFILTER_LEVELS = 6.0;  // PrefilteredEnvironment::kLevels
 layout(binding = FE_SLOT_IBL_SH, std140) uniform IrradianceBlock {
     vec4 sh[9];  // L2 spherical harmonics of the radiance, in Ramamoorthi-Hanrahan order
 } irradiance;
-// x: (1/n) sum g, y: (1/n) sum P g over GGX samples, g = NoL VoH / ((NoL (1-k) + k) n.h (NoV (1-k) + k));
-// z: (1/n) sum (1 - P) over cosine-weighted samples.
+// Two tables, one above the other: rows [0, H) the separable model's, [H, 2H) glTF's
+// (ibl_lut.frag). x: (1/n) sum g, y: (1/n) sum P g over GGX samples, g = NoL VoH / ((NoL (1-k) + k)
+// n.h (NoV (1-k) + k)) (separable) or 4 V NoL VoH / n.h (glTF); z: (1/n) sum (1 - P) over
+// cosine-weighted samples.
 layout(binding = FE_SLOT_IBL_LUT) uniform sampler2D iblLut;
 
 // E(n) = integral of L cos over the hemisphere about n, from the radiance's SH (R&H eq. 13).
@@ -74,17 +76,20 @@ struct FePrefiltered {
     vec3 lut;
     float NoV;
 };
-FePrefiltered fePrefiltered(vec3 n, vec3 wo, float roughness) {
+FePrefiltered fePrefiltered(vec3 n, vec3 wo, float roughness, bool gltf) {
     FePrefiltered p;
     const float r = feClampRoughness(roughness);
     p.NoV = max(dot(n, wo), 1e-4);
     p.radiance = textureLod(environment, reflect(-wo, n), r * (FE_PREFILTER_LEVELS - 1.0)).rgb;
     p.E = feShIrradiance(n);
-    p.lut = texture(iblLut, vec2(p.NoV, r)).xyz;
+    // Within the model's half, clamped to its outer texel centres so the filter never mixes halves.
+    const float h = float(textureSize(iblLut, 0).y) * 0.5;
+    const float row = clamp(r * h, 0.5, h - 0.5) + (gltf ? h : 0.0);
+    p.lut = texture(iblLut, vec2(p.NoV, row / (2.0 * h))).xyz;
     return p;
 }
 IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count) {
-    const FePrefiltered p = fePrefiltered(n, wo, roughness);
+    const FePrefiltered p = fePrefiltered(n, wo, roughness, false);
     const float r = feClampRoughness(roughness), kp = (r + 1.0) * (r + 1.0) / 8.0;
     const float toPunctual = p.NoV * (1.0 - kp) + kp;  // the material pass divides by it
     return IlluminationSums(p.E * p.lut.z, p.radiance * (p.lut.x * toPunctual), p.radiance * (p.lut.y * toPunctual));
@@ -128,10 +133,45 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
 }
 #endif  // FE_IBL_PREFILTERED
 
-// L_o from the environment (shading::shadeEnvironment): the sums resolved as the redeferred
-// material pass resolves them, L_d = (1 - m)(c / pi)(1 - F0) L_dg and L_s = (F0 L_sg1 + (1 - F0)
-// L_sg2) / (NoV (1 - k_p) + k_p), which with the sums' rescaling is the estimator's own form.
+// L_o from the environment under glTF's BRDF (shading::shadeEnvironment with Brdf::Gltf): specular
+// F L 4 V NoL (w_o.h) / (n.h), diffuse (1 - m) c 0.96 (1 - P) L, over the same samples; on the
+// fast path the same weights tabulated (the table's glTF half) against prefiltered radiance.
+vec3 feShadeEnvironmentGltf(SurfacePoint s, uint count) {
+    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    const vec3 diffuseColor = (1.0 - s.metallic) * s.baseColor * 0.96;
+#ifdef FE_IBL_PREFILTERED
+    const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness, true);
+    return diffuseColor / FE_PI * p.E * p.lut.z + p.radiance * (F0 * p.lut.x + (1.0 - F0) * p.lut.y);
+#else
+    const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a;
+    const float NoV = max(dot(s.n, s.wo), 1e-4);
+    vec3 t, b;
+    feBasis(s.n, t, b);
+    vec3 specular = vec3(0.0), diffuse = vec3(0.0);
+    for (uint i = 0u; i < count; ++i) {
+        const vec2 u = feHammersley(i, count);
+        float cosH;
+        const vec3 h = feGgxHalfVector(u, a2, t, b, s.n, cosH);
+        const float VoH = dot(s.wo, h);
+        const vec3 wi = 2.0 * VoH * h - s.wo;
+        const float NoL = dot(s.n, wi);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const float P = feFresnelPower(VoH);
+            specular += (F0 + (1.0 - F0) * P) * feEnvironment(wi) * (4.0 * feVisibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH);
+        }
+        const vec3 wd = feCosineDirection(u, t, b, s.n);
+        diffuse += (1.0 - feFresnelPower(dot(normalize(s.wo + wd), s.wo))) * feEnvironment(wd);
+    }
+    return (diffuseColor * diffuse + specular) / float(count);
+#endif
+}
+
+// L_o from the environment (shading::shadeEnvironment) under the frame's BRDF. Separable: the
+// sums resolved as the redeferred material pass resolves them, L_d = (1 - m)(c / pi)(1 - F0) L_dg
+// and L_s = (F0 L_sg1 + (1 - F0) L_sg2) / (NoV (1 - k_p) + k_p), which with the sums' rescaling
+// is the estimator's own form.
 vec3 feShadeEnvironment(SurfacePoint s, uint n) {
+    if (frame.shading.x == FE_BRDF_GLTF) return feShadeEnvironmentGltf(s, n);
     return feResolveMaterialNoV(feEnvironmentSums(s.n, s.wo, s.roughness, n), dot(s.n, s.wo), s.baseColor, s.metallic,
                                 s.roughness);
 }

@@ -5,6 +5,8 @@
 // end in a clear error.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <sstream>
 
 #include <algorithm>
@@ -220,8 +222,10 @@ assets::Scene skyLitSpheres() {
     return scene;
 }
 // L_o of `technique` with `samples` per term, or the fast path when samples is 0.
-gdi::Image renderIbl(gdi::Device& device, const assets::Scene& scene, const std::string& technique, uint32_t samples) {
+gdi::Image renderIbl(gdi::Device& device, const assets::Scene& scene, const std::string& technique, uint32_t samples,
+                     render::ShadingModel model = render::ShadingModel::Auto) {
     render::RenderSettings s{.technique = technique, .width = kIblW, .height = kIblH, .iblSamples = samples};
+    s.shadingModel = model;
     s.iblPrefiltered = samples == 0;
     render::SceneRenderer r(device, scene, s);
     r.renderFrame();
@@ -263,14 +267,27 @@ TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
     // rounded inputs (8-bit sRGB base colour, half-float normal and roughness): within 2 % of
     // forward on 99 % of lit pixels, as their punctual lighting is.
     const render::ReferenceImage ref64 = render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64});
+    const render::ReferenceImage ref64Separable =
+        render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64, .brdf = shading::Brdf::Separable});
+    // The two BRDFs light these spheres differently (so comparing each technique with its own is
+    // a test): measured 2026-11-29, 63 % of lit pixels more than 2 % apart.
+    const LitStats models = compareLit([&](uint32_t x, uint32_t y) { return ref64Separable.radiance[size_t(y) * W + x]; }, ref64, 0.02, W, H);
+    std::cout << "separable against glTF image-based light: " << models.fractionOver * 100 << " % beyond 2 %\n";
+    EXPECT_GE(models.fractionOver, 0.2);
+    // Forward under the separable model evaluates it too.
+    const LitStats forwardSeparable =
+        compareLit(asFunction(renderIbl(*device, scene, "forward", 64, render::ShadingModel::Separable)), ref64Separable, 0.02, W, H);
+    EXPECT_LE(forwardSeparable.fractionOver, 0.01);
     // Redeferred accumulates it into the I-buffer as the seed derives L_dg, L_sg1 and L_sg2.
     // The light pre-pass adds it in its material pass, exactly (the pass has the whole material).
-    // Every technique of the table: a new one must light by the environment to pass.
+    // Every technique of the table, against the reference under its own BRDF (glTF's, or the
+    // separable one where the technique needs it): a new one must light by the environment to pass.
     for (const render::TechniqueInfo& info : render::techniques()) {
         const std::string t = info.name;
         if (t.find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
         const gdi::Image other = gpu(64, t);
-        const LitStats d = compareLit(asFunction(other), ref64, 0.02, W, H);
+        const bool separable = render::resolveBrdf({.technique = t}) == shading::Brdf::Separable;
+        const LitStats d = compareLit(asFunction(other), separable ? ref64Separable : ref64, 0.02, W, H);
         std::cout << t << " at 64 samples against the reference's estimator: " << d.fractionOver * 100 << " % beyond 2 %\n";
         // Of the 144 lit pixels, the G-buffer's rounding puts one beyond 2 % on lavapipe and two
         // on an H100 (2026-11-27; forward: one on both): 2 % (2 pixels) for the deferred family.
@@ -284,7 +301,7 @@ TEST_P(Environment, ForwardImageBasedLightingIsTheReferenceEstimator) {
                                                  .iblSamples = 64});
         r.renderFrame();
         const gdi::Image img = r.readOutput();
-        const LitStats d = compareLit(asFunction(img), ref64, 0.05, W, H);
+        const LitStats d = compareLit(asFunction(img), ref64Separable, 0.05, W, H);
         std::cout << "redeferred illum-scale " << scale << " at 64 samples: " << d.fractionOver * 100
                   << " % of lit pixels beyond 5 % of the reference's estimator\n";
         RecordProperty("ibl_redeferred_scale" + std::to_string(scale), std::to_string(d.fractionOver));
@@ -343,9 +360,12 @@ TEST_P(Environment, OcclusionTextureDarkensImageBasedLight) {
     const render::ReferenceImage plain = render::renderReference(unoccluded, *unoccluded.camera, W, H, {.iblSamples = 64});
     const LitStats visible = compareLit([&](uint32_t x, uint32_t y) { return plain.radiance[size_t(y) * W + x]; }, ref, 0.02, W, H);
     EXPECT_GE(visible.fractionOver, 0.2) << "the occlusion texture hardly changes the reference";
+    const render::ReferenceImage refSeparable =
+        render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64, .brdf = shading::Brdf::Separable});
     for (const char* t : {"forward", "forward-plus", "light-prepass", "visibility-buffer"}) {
         const gdi::Image img = renderIbl(*device, scene, t, 64);
-        const LitStats d = compareLit(asFunction(img), ref, 0.02, W, H);
+        const bool separable = render::resolveBrdf({.technique = t}) == shading::Brdf::Separable;
+        const LitStats d = compareLit(asFunction(img), separable ? refSeparable : ref, 0.02, W, H);
         std::cout << t << " with an occlusion texture, 64 samples: " << d.fractionOver * 100 << " % beyond 2 %\n";
         EXPECT_LE(d.fractionOver, 0.01) << t << " max " << d.maxRel;
     }
@@ -359,7 +379,7 @@ TEST_P(Environment, PrefilteredFastPathBiasIsMeasured) {
     const assets::Scene scene = skyLitSpheres();
     auto gpu = [&](const std::string& technique, uint32_t samples) { return renderIbl(*device, scene, technique, samples); };
     const render::ReferenceImage converged = render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 4096});
-    const gdi::Image fast = gpu("forward", 0);
+    const gdi::Image fastGltf = gpu("forward", 0), &fast = fastGltf;
     std::ostringstream table;
     for (double tolerance : {0.02, 0.05, 0.10}) {
         const LitStats f = compareLit(asFunction(fast), converged, tolerance, W, H);
@@ -377,6 +397,9 @@ TEST_P(Environment, PrefilteredFastPathBiasIsMeasured) {
         const std::string t = info.name;
         if (t == "forward" || (t.find("tiled") != std::string::npos && !device->info().features.computeShaders)) continue;
         const gdi::Image other = gpu(t, 0);
+        // Against forward under the technique's own BRDF.
+        const bool separable = render::resolveBrdf({.technique = t}) == shading::Brdf::Separable;
+        const gdi::Image fast = separable ? renderIbl(*device, scene, "forward", 0, render::ShadingModel::Separable) : fastGltf;
         uint32_t differ = 0, lit = 0;
         for (uint32_t y = 0; y < H; ++y)
             for (uint32_t x = 0; x < W; ++x) {
@@ -389,6 +412,36 @@ TEST_P(Environment, PrefilteredFastPathBiasIsMeasured) {
                     }
             }
         EXPECT_LE(differ, lit / 100) << t;  // G-buffer rounding, as for the sampled estimator
+    }
+}
+
+// Under a constant environment the fast path's approximations vanish (prefiltered radiance is
+// the constant, SH irradiance pi times it): what is left is its table, which must be the BRDF's
+// own. Each BRDF's fast path against the reference of its BRDF, and against the other's (the
+// test would not notice a table read from the wrong half otherwise).
+TEST_P(Environment, PrefilteredTablesAreEachBrdfs) {
+    constexpr uint32_t W = kIblW, H = kIblH;
+    assets::Scene scene = skyLitSpheres();
+    assets::Environment white;
+    white.kind = assets::Environment::Kind::Image;
+    white.name = "constant";
+    white.width = 16;
+    white.height = 8;
+    white.rgb.assign(16 * 8 * 3, 1.0f);
+    scene.environment = white;
+    using shading::Brdf;
+    std::map<Brdf, render::ReferenceImage> reference;
+    for (Brdf b : {Brdf::Gltf, Brdf::Separable})
+        reference.emplace(b, render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 1024, .brdf = b}));
+    for (Brdf b : {Brdf::Gltf, Brdf::Separable}) {
+        const gdi::Image fast = renderIbl(*device, scene, "forward", 0, b == Brdf::Gltf ? render::ShadingModel::Gltf : render::ShadingModel::Separable);
+        const LitStats own = compareLit(asFunction(fast), reference.at(b), 0.06, W, H);
+        const LitStats other = compareLit(asFunction(fast), reference.at(b == Brdf::Gltf ? Brdf::Separable : Brdf::Gltf), 0.06, W, H);
+        std::cout << (b == Brdf::Gltf ? "glTF" : "separable") << " fast path under a constant environment: " << own.fractionOver * 100
+                  << " % beyond 6 % of its BRDF's reference (max " << own.maxRel * 100 << " %), " << other.fractionOver * 100
+                  << " % of the other's\n";
+        EXPECT_LE(own.fractionOver, 0.02);
+        EXPECT_GE(other.fractionOver, 0.2);
     }
 }
 
