@@ -21,6 +21,7 @@ void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, c
                                   std::vector<graph::TextureId> targets, FrameConstantsFn frame) {
     g.addPass(passName, [&](graph::PassBuilder& b) {
         gbuffer.sampleIn(b, albedo_);
+        gbuffer.sampleOcclusionIn(b);
         for (graph::TextureId t : targets) b.colorTarget(t, gdi::LoadOp::Load);
     }, [this, &gbuffer, frame](graph::PassContext& pc) {
         pc.beginRenderPass();
@@ -28,6 +29,7 @@ void EnvironmentLighting::declare(graph::RenderGraph& g, const char* passName, c
         const UploadAllocation fc = frame ? frame() : ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
         gbuffer.bind(pc.cmd, pc, ctx_.pointSampler, albedo_);
+        gbuffer.bindOcclusion(pc.cmd, pc, ctx_.pointSampler);
         ctx_.environmentLight.bind(pc.cmd);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();

@@ -73,7 +73,15 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
 
     State st = [&]() -> State {
         switch (pass) {
-            case MeshPass::GBuffer: return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
+            case MeshPass::GBuffer:
+                // A fourth target: the occlusion (GBuffer::gb3), written by the shader's variant.
+                if (targets.colorFormats.size() == 4) {
+                    if (!gbufferOcclusionFs_)
+                        gbufferOcclusionFs_ = objects_.add(device_.createShader(
+                            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/gbuffer.frag:FE_GBUFFER_OCCLUSION")}));
+                    return {gbufferOcclusionFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer with occlusion"};
+                }
+                return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
             case MeshPass::Transparent: return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
             case MeshPass::DepthPrepass: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
             case MeshPass::ForwardEqual: return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};

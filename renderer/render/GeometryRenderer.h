@@ -68,7 +68,7 @@ private:
     gdi::Device& device_;
     GpuScene& scene_;
     bool uniformLights_;  // the forward shaders read the lights as the uniform block (GpuScene)
-    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
+    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, gbufferOcclusionFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)

@@ -173,6 +173,7 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.normalTexture, flatNormal_, mt.normal, mt.normalSampler);
         pick(m.emissiveTexture, white_, mt.emissive, mt.emissiveSampler);
         pick(m.occlusionTexture, white_, mt.occlusion, mt.occlusionSampler);
+        hasOcclusion_ = hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
         materialTextures_.push_back(mt);
     }
     for (DrawItem& d : draws_) {

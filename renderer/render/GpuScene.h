@@ -134,6 +134,10 @@ public:
 
     bool hasBlend() const;
     bool hasOpaque() const;
+    // Some material darkens indirect light by an occlusion texture (strength not 0): the
+    // G-buffer techniques then store it (GBuffer::gb3).
+    bool hasOcclusion() const { return hasOcclusion_; }
+    gdi::TextureHandle white() const { return white_; }  // 1x1 opaque white, linear
 
     static constexpr uint32_t kVertexStride = sizeof(assets::Vertex);
 
@@ -151,6 +155,7 @@ private:
     std::vector<gdi::SamplerHandle> samplers_;
     std::vector<MaterialTextures> materialTextures_, textureSets_;
     gdi::TextureHandle white_, black_, flatNormal_;
+    bool hasOcclusion_ = false;
     gdi::SamplerHandle defaultSampler_;
 };
 

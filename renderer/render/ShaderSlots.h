@@ -31,6 +31,7 @@ constexpr uint32_t kSlotIblLut = 24;        // ... and its split-sum table (Pref
 constexpr uint32_t kSlotHistory0 = 25;      // redeferred temporal accumulation: last frame's sums
 constexpr uint32_t kSlotHistory1 = 26;
 constexpr uint32_t kSlotHistory2 = 27;
+constexpr uint32_t kSlotGBuffer3 = 28;      // the G-buffer's occlusion (GBuffer::gb3), or 1x1 white
 constexpr uint32_t kSlotTaa = 34;           // temporal antialiasing's constants (PostProcess)
 constexpr uint32_t kSlotClusterLights = 35; // the light cluster grid's lists (ClusterLightGrid), storage buffer
 constexpr uint32_t kSlotVisibility = 36;    // the visibility buffer's triangle ids (R32U, sampled)

@@ -6,6 +6,8 @@ layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
 layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+// The occlusion (GBuffer::gb3), or 1x1 white without one: sampled at the pixel's centre.
+layout(binding = FE_SLOT_GBUFFER3) uniform sampler2D gb3;
 layout(location = 0) out vec4 outRadiance;
 void main() {
     const ivec2 p = ivec2(gl_FragCoord.xy);
@@ -13,5 +15,6 @@ void main() {
     if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;
     const vec4 g0 = texelFetch(gb0, p, 0), g1 = texelFetch(gb1, p, 0);
     const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
-    outRadiance = vec4(feShadeEnvironment(s, frame.counts.z), 0.0);
+    const float occlusion = texture(gb3, (vec2(p) + 0.5) * frame.viewport.zw).r;
+    outRadiance = vec4(occlusion * feShadeEnvironment(s, frame.counts.z), 0.0);
 }

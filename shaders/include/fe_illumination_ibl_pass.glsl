@@ -7,6 +7,9 @@
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
 layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+// The occlusion (GBuffer::gb3), or 1x1 white without one, at the representative pixel: it
+// multiplies the environment's sums alone (the punctual ones are not occluded).
+layout(binding = FE_SLOT_GBUFFER3) uniform sampler2D gb3;
 // Per-source rates (redeferred --rates) may put the environment's diffuse and specular sums in
 // I-buffers of different rates: FE_IBL_DIFFUSE_ONLY writes L_dg alone, FE_IBL_SPECULAR_ONLY
 // L_sg1 and L_sg2 alone (the compiler drops the other half of the estimator).
@@ -28,7 +31,11 @@ void main() {
     const vec4 g1 = texelFetch(gb1, p, 0);
     const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
     const vec3 P = frame.cameraPosition.xyz + Pe;
-    const IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(-Pe), g1.a, frame.counts.z);
+    IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(-Pe), g1.a, frame.counts.z);
+    const float occlusion = texture(gb3, (vec2(p) + 0.5) * frame.viewport.zw).r;
+    acc.Ldg *= occlusion;
+    acc.Lsg1 *= occlusion;
+    acc.Lsg2 *= occlusion;
 #ifndef FE_IBL_SPECULAR_ONLY
     outLdg = vec4(acc.Ldg, 0.0);
 #endif

@@ -362,13 +362,29 @@ TEST_P(Environment, OcclusionTextureDarkensImageBasedLight) {
     EXPECT_GE(visible.fractionOver, 0.2) << "the occlusion texture hardly changes the reference";
     const render::ReferenceImage refSeparable =
         render::renderReference(scene, *scene.camera, W, H, {.iblSamples = 64, .brdf = shading::Brdf::Separable});
-    for (const char* t : {"forward", "forward-plus", "light-prepass", "visibility-buffer"}) {
+    // Every technique of the table: the G-buffer ones store the occlusion in a fourth target
+    // (GBuffer::gb3) for their image-based lighting pass; the G-buffer's rounding allows them 2 %.
+    for (const render::TechniqueInfo& info : render::techniques()) {
+        const std::string t = info.name;
+        if (t.find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
         const gdi::Image img = renderIbl(*device, scene, t, 64);
         const bool separable = render::resolveBrdf({.technique = t}) == shading::Brdf::Separable;
         const LitStats d = compareLit(asFunction(img), separable ? refSeparable : ref, 0.02, W, H);
         std::cout << t << " with an occlusion texture, 64 samples: " << d.fractionOver * 100 << " % beyond 2 %\n";
-        EXPECT_LE(d.fractionOver, 0.01) << t << " max " << d.maxRel;
+        EXPECT_LE(d.fractionOver, t.find("deferred") != std::string::npos ? 0.02 : 0.01) << t << " max " << d.maxRel;
     }
+    // The fourth target exists only where it is needed: with occlusion and image-based light.
+    auto hasOcclusionTarget = [&](const assets::Scene& sc, uint32_t samples) {
+        render::SceneRenderer r(*device, sc, {.technique = "deferred", .width = W, .height = H, .iblSamples = samples});
+        for (const graph::TextureInfo& t : r.graph().textures())
+            if (t.name == "gbuffer3 occlusion") return true;
+        return false;
+    };
+    EXPECT_TRUE(hasOcclusionTarget(scene, 8));
+    EXPECT_FALSE(hasOcclusionTarget(unoccluded, 8));
+    assets::Scene noIbl = scene;
+    noIbl.environment.reset();
+    EXPECT_FALSE(hasOcclusionTarget(noIbl, 0));
 }
 
 // The fast path (prefiltered cube, split-sum table, SH irradiance) against the converged
