@@ -49,6 +49,8 @@ namespace fs = std::filesystem;
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_specular",
     "KHR_materials_unlit",
     "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
@@ -311,6 +313,8 @@ private:
     // keys leave out as it is, anything else is an error naming where.
     void readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count);
     void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what);
+    // KHR_materials_ior and KHR_materials_specular into mat (the factors; the textures are warned).
+    void readDielectric(const tinygltf::Material& gm, Material& mat, const std::string& label);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
 
@@ -726,6 +730,25 @@ void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::s
     for (int i = 0; i < count; ++i) {
         if (!finiteFloat(x.Get(i))) fail(shape);
         out[i] = float(x.Get(i).GetNumberAsDouble());
+    }
+}
+
+void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const std::string& label) {
+    if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_ior")) {
+        readNumbers(*e, "ior", label + ": KHR_materials_ior", &mat.ior, 0);
+        // The extension allows 0 for an infinite index (F0 = 1); anything else below 1 is not a dielectric.
+        if (mat.ior == 0.0f) mat.ior = std::numeric_limits<float>::infinity();
+        else if (!(mat.ior >= 1.0f)) fail(label + ": KHR_materials_ior.ior " + std::to_string(mat.ior) + " must be at least 1 (or 0)");
+    }
+    if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_specular")) {
+        const std::string where = label + ": KHR_materials_specular";
+        readNumbers(*e, "specularFactor", where, &mat.specular, 0);
+        readNumbers(*e, "specularColorFactor", where, &mat.specularColor.x, 3);
+        if (!(mat.specular >= 0.0f && mat.specular <= 1.0f)) fail(where + ".specularFactor must lie in [0, 1]");
+        if (!(glm::all(glm::greaterThanEqual(mat.specularColor, glm::vec3(0.0f)))))
+            fail(where + ".specularColorFactor must not be negative");
+        for (const char* t : {"specularTexture", "specularColorTexture"})
+            if (e->Has(t)) warn(where + "." + t + " is not read: the factors alone are used");
     }
 }
 
@@ -1261,6 +1284,7 @@ uint32_t Loader::getMaterial(int gi) {
         mat.emissiveFactor *= mat.emissiveStrength;
     }
     mat.unlit = findExtension(gm.extensions, "KHR_materials_unlit") != nullptr;
+    readDielectric(gm, mat, label);
     mat.normalScale = float(gm.normalTexture.scale);
     mat.occlusionStrength = float(gm.occlusionTexture.strength);
     if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty()) {

@@ -139,6 +139,18 @@ struct Material {
     float alphaCutoff = 0.5f;
     bool doubleSided = false;
     bool unlit = false;  // KHR_materials_unlit: output = baseColor, no lighting
+    // KHR_materials_ior and KHR_materials_specular (factors): the dielectric's Fresnel, F0 =
+    // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular and F90 = specular (docs/SHADING.md).
+    float ior = 1.5f;  // at least 1; infinite for the extension's 0
+    float specular = 1.0f;
+    glm::vec3 specularColor{1.0f};
+    glm::vec3 dielectricF0() const {
+        const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);  // KHR_materials_ior's 0: infinite
+        return glm::min(glm::vec3(r * r) * specularColor, glm::vec3(1.0f)) * specular;
+    }
+    float dielectricF90() const { return specular; }
+    // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
+    bool defaultDielectric() const { return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f); }
 };
 
 struct MeshInstance {

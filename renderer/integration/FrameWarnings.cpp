@@ -3,6 +3,7 @@
 #include <array>
 
 #include "reference/CameraMath.h"
+#include "render/TechniqueRenderer.h"
 
 namespace fe::render {
 
@@ -45,6 +46,22 @@ std::string blackCause(const assets::Scene& scene, const RenderSettings& setting
            ": the lights may be out of range or behind the surfaces, or too faint for the exposure (--exposure)";
 }
 }  // namespace
+
+std::vector<std::string> materialWarnings(const assets::Scene& scene, const RenderSettings& settings) {
+    std::string names;
+    size_t count = 0;
+    for (const assets::Material& m : scene.materials)
+        if (!m.defaultDielectric() && !m.unlit && count++ < 3) names += (names.empty() ? "'" : ", '") + m.name + "'";
+    const TechniqueInfo& t = findTechnique(settings.technique);
+    if (count == 0 || t.fullMaterial(resolveBrdf(settings))) return {};
+    std::string capable;
+    for (const TechniqueInfo& c : techniques())
+        if (c.fullMaterial(shading::Brdf::Gltf)) capable += (capable.empty() ? "" : ", ") + std::string(c.name);
+    const std::string why = t.gbuffer ? "its G-buffer does not hold it" : "the separable BRDF has no such input";
+    return {std::to_string(count) + " material(s) (" + names + (count > 3 ? ", ..." : "") +
+            ") set the dielectric's Fresnel (KHR_materials_ior / KHR_materials_specular): technique " + t.name +
+            " shades them with F0 0.04, F90 1 (" + why + "); " + capable + " evaluate it under the glTF BRDF"};
+}
 
 std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,
                                        const gdi::Image& display) {

@@ -21,6 +21,11 @@ std::string outOfView(const assets::Scene& scene, const assets::Camera& camera, 
 // whose every pixel is black (no channel above 1/255), with the likely cause: no light and no
 // image-based light, lights of zero intensity, or lights that reach no visible surface at this
 // exposure.
+// What the frame's technique and BRDF cannot show of the scene's materials, one line per kind
+// naming the materials and the techniques that can: KHR_materials_ior / specular (a dielectric
+// other than F0 0.04, F90 1) on a G-buffer technique or under the separable BRDF.
+std::vector<std::string> materialWarnings(const assets::Scene& scene, const RenderSettings& settings);
+
 std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,
                                        const gdi::Image& display);
 

@@ -309,6 +309,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.baseColor = glm::dvec3(bc);
         s.metallic = std::clamp(metallic, 0.0, 1.0);
         s.roughness = roughness;
+        s.dielectricF0 = glm::dvec3(mat.dielectricF0());
+        s.dielectricF90 = mat.dielectricF90();
         glm::dvec3 L = emissive;
         // The side of the surface the eye sees, for the shadow rays' start.
         const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);

@@ -229,6 +229,7 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
     o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, 0.0f, 0.0f, 0.0f);
+    o.dielectric = glm::vec4(m.dielectricF0(), m.dielectricF90());
     return o;
 }
 

@@ -55,6 +55,7 @@ struct ObjectConstants {
     // it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
     glm::vec4 uvTransform[10];
     glm::vec4 occlusion;  // x: the occlusion texture's strength (0 without one)
+    glm::vec4 dielectric;  // rgb: the dielectric's F0, a: its F90 (Material::dielectricF0, KHR_materials_ior/specular)
 };
 
 struct GpuLight {

@@ -117,6 +117,11 @@ struct TechniqueInfo {
     // Accumulates light sums the material multiplies afterwards (I-buffer, light buffer): only
     // the separable BRDF factors that way, so glTF's is not available (RenderSettings::shadingModel).
     bool separableBrdf = false;
+    // Shades from a G-buffer (base colour, metallic, normal, roughness, emissive): the material's
+    // dielectric Fresnel (KHR_materials_ior / specular) is not there, so 0.04 and 1 are used.
+    bool gbuffer = false;
+    // Evaluates every material input of the glTF model under `brdf` (what materialWarnings asks).
+    bool fullMaterial(shading::Brdf brdf) const { return !gbuffer && !separableBrdf && brdf == shading::Brdf::Gltf; }
     // The BRDF it shades with when RenderSettings::shadingModel is Auto.
     shading::Brdf defaultBrdf() const { return separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf; }
     // Every technique lights the scene by its environment with --ibl-samples N (checked for

@@ -72,6 +72,10 @@ struct SurfacePoint {
     glm::dvec3 baseColor{1.0};
     double metallic = 0.0;
     double roughness = 1.0;  // perceptual; clamped here
+    // The dielectric's Fresnel under the glTF model (KHR_materials_ior / specular: Material::
+    // dielectricF0 and dielectricF90); the separable model keeps 0.04 and 1.
+    glm::dvec3 dielectricF0{0.04};
+    double dielectricF90 = 1.0;
 };
 
 inline double clampRoughness(double r) { return std::clamp(r, kMinRoughness, 1.0); }
@@ -106,8 +110,12 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf b
     double dd = NoH * NoH * (a2 - 1.0) + 1.0;
     double D = a2 / (kPi * dd * dd);
     if (brdf == Brdf::Gltf) {
-        const glm::dvec3 diffuse = (1.0 - s.metallic) * s.baseColor / kPi * (1.0 - (0.04 + 0.96 * P));
-        return (diffuse + D * F * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL;
+        const glm::dvec3 Fd = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * P;
+        const glm::dvec3 Fm = glm::mix(s.dielectricF0, s.baseColor, s.metallic) +
+                              (glm::mix(glm::dvec3(s.dielectricF90), glm::dvec3(1.0), s.metallic) -
+                               glm::mix(s.dielectricF0, s.baseColor, s.metallic)) * P;
+        const glm::dvec3 diffuse = (1.0 - s.metallic) * s.baseColor / kPi * (1.0 - Fd);
+        return (diffuse + D * Fm * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL;
     }
     double G = NoV / (NoV * (1.0 - k) + k) * NoL / (NoL * (1.0 - k) + k);
     glm::dvec3 f = (1.0 - F) * (1.0 - s.metallic) * s.baseColor / kPi + D * F * G / (4.0 * NoV * NoL);
@@ -183,7 +191,9 @@ template <class Environment>
 glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n, Brdf brdf = Brdf::Gltf) {
     const double r = clampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
     const double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
-    const glm::dvec3 F0 = glm::mix(glm::dvec3(0.04), s.baseColor, s.metallic);
+    const bool gltf = brdf == Brdf::Gltf;
+    const glm::dvec3 dF0 = gltf ? s.dielectricF0 : glm::dvec3(0.04), dF90(gltf ? s.dielectricF90 : 1.0);
+    const glm::dvec3 F0 = glm::mix(dF0, s.baseColor, s.metallic), F90 = glm::mix(dF90, glm::dvec3(1.0), s.metallic);
     glm::dvec3 t, b;
     basis(s.n, t, b);
     glm::dvec3 specular(0.0), diffuse(0.0);
@@ -200,14 +210,14 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
             const double weight = brdf == Brdf::Gltf ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
                                                      : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
-            specular += (F0 + (1.0 - F0) * P) * environment(wi) * weight;
+            specular += (F0 + (F90 - F0) * P) * environment(wi) * weight;
         }
         // Diffuse: a cosine-weighted direction.
         const double cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
         const glm::dvec3 wd = t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + s.n * cosD;
         const glm::dvec3 hd = glm::normalize(s.wo + wd);
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
-        diffuse += (brdf == Brdf::Gltf ? glm::dvec3(0.96) : 1.0 - F0) * (1.0 - Pd) * environment(wd);
+        diffuse += (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
     }
     return ((1.0 - s.metallic) * s.baseColor * diffuse + specular) / double(n);
 }

@@ -137,11 +137,15 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
 // F L 4 V NoL (w_o.h) / (n.h), diffuse (1 - m) c 0.96 (1 - P) L, over the same samples; on the
 // fast path the same weights tabulated (the table's glTF half) against prefiltered radiance.
 vec3 feShadeEnvironmentGltf(SurfacePoint s, uint count) {
-    const vec3 F0 = mix(vec3(0.04), s.baseColor, s.metallic);
-    const vec3 diffuseColor = (1.0 - s.metallic) * s.baseColor * 0.96;
+    // The dielectric's Fresnel F0 + (F90 - F0) P (KHR_materials_ior / specular; 0.04 and 1 by default).
+    const vec3 dF0 = s.dielectricF0, dF90 = vec3(s.dielectricF90);
+    const vec3 F0 = mix(dF0, s.baseColor, s.metallic), F90 = mix(dF90, vec3(1.0), s.metallic);
+    const vec3 diffuseColor = (1.0 - s.metallic) * s.baseColor;
 #ifdef FE_IBL_PREFILTERED
     const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness, true);
-    return diffuseColor / FE_PI * p.E * p.lut.z + p.radiance * (F0 * p.lut.x + (1.0 - F0) * p.lut.y);
+    // (1/n) sum (1 - F_d) = (1 - dF0) - (dF90 - dF0)(1 - z), z the table's (1/n) sum (1 - P).
+    const vec3 diffuseWeight = (1.0 - dF0) - (dF90 - dF0) * (1.0 - p.lut.z);
+    return diffuseColor / FE_PI * p.E * diffuseWeight + p.radiance * (F0 * p.lut.x + (F90 - F0) * p.lut.y);
 #else
     const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a;
     const float NoV = max(dot(s.n, s.wo), 1e-4);
@@ -157,10 +161,11 @@ vec3 feShadeEnvironmentGltf(SurfacePoint s, uint count) {
         const float NoL = dot(s.n, wi);
         if (NoL > 0.0 && VoH > 0.0) {
             const float P = feFresnelPower(VoH);
-            specular += (F0 + (1.0 - F0) * P) * feEnvironment(wi) * (4.0 * feVisibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH);
+            specular += (F0 + (F90 - F0) * P) * feEnvironment(wi) * (4.0 * feVisibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH);
         }
         const vec3 wd = feCosineDirection(u, t, b, s.n);
-        diffuse += (1.0 - feFresnelPower(dot(normalize(s.wo + wd), s.wo))) * feEnvironment(wd);
+        const float Pd = feFresnelPower(dot(normalize(s.wo + wd), s.wo));
+        diffuse += (1.0 - dF0 - (dF90 - dF0) * Pd) * feEnvironment(wd);
     }
     return (diffuseColor * diffuse + specular) / float(count);
 #endif

@@ -26,6 +26,7 @@ struct ObjectRecord {
     uvec4 flags;
     vec4 uvTransform[10];
     vec4 occlusion;
+    vec4 dielectric;
 };
 layout(binding = FE_SLOT_DRAWS, std430) readonly buffer DrawBlock {
     ObjectRecord draws[];
@@ -42,6 +43,7 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 texture set; y, z, w: ObjectConstants
     vec4 uvTransform[10];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
     vec4 occlusion;        // x strength (0 without an occlusion texture)
+    vec4 dielectric;       // rgb the dielectric's F0, a its F90 (KHR_materials_ior, KHR_materials_specular)
 } object;
 #endif
 
@@ -84,6 +86,8 @@ struct MaterialSample {
     vec3 emissive;
     vec3 n;
     bool unlit;
+    vec3 dielectricF0;  // KHR_materials_ior / KHR_materials_specular (ObjectConstants::dielectric)
+    float dielectricF90;
 };
 
 // Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
@@ -122,6 +126,8 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     }
     m.n = n;
     m.unlit = (object.flags.x & 2u) != 0u;
+    m.dielectricF0 = object.dielectric.rgb;
+    m.dielectricF90 = object.dielectric.a;
     return m;
 }
 
@@ -138,6 +144,8 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.baseColor = m.baseColor;
     s.metallic = m.metallic;
     s.roughness = m.roughness;
+    s.dielectricF0 = m.dielectricF0;
+    s.dielectricF90 = m.dielectricF90;
     return s;
 }
 #endif

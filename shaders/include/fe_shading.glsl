@@ -65,6 +65,10 @@ struct SurfacePoint {
     vec3 baseColor;  // linear
     float metallic;
     float roughness; // perceptual, clamped by feMakeSurface
+    // The dielectric's Fresnel (glTF model only): F0 and F90, 0.04 and 1 unless the material's
+    // KHR_materials_ior / KHR_materials_specular say otherwise (a G-buffer holds the defaults).
+    vec3 dielectricF0;
+    float dielectricF90;
 };
 
 float feClampRoughness(float r) { return clamp(r, FE_MIN_ROUGHNESS, 1.0); }
@@ -110,6 +114,9 @@ struct SurfaceBrdf {
     vec3 n;        // unit shading normal
     vec3 wo;       // unit vector to the eye
     vec3 F0;       // specular colour at normal incidence
+    vec3 F90;      // ... and at grazing incidence (glTF: 1 unless KHR_materials_specular lowers it)
+    vec3 dielectricF0;
+    float dielectricF90;
     vec3 diffuse;  // (1 - metallic) baseColor / pi
     float a2;      // alpha^2, alpha = clamped roughness^2
     float k;       // Schlick-GGX k
@@ -128,7 +135,10 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.k = t.k;
     b.NoV = max(dot(s.n, s.wo), 1e-4);
     b.Gv = b.NoV / (b.NoV * (1.0 - b.k) + b.k);
-    b.F0 = mix(vec3(0.04), s.baseColor, s.metallic);
+    b.dielectricF0 = b.gltf ? s.dielectricF0 : vec3(0.04);
+    b.dielectricF90 = b.gltf ? s.dielectricF90 : 1.0;
+    b.F0 = mix(b.dielectricF0, s.baseColor, s.metallic);
+    b.F90 = mix(vec3(b.dielectricF90), vec3(1.0), s.metallic);
     b.diffuse = (1.0 - s.metallic) * s.baseColor / FE_PI;
     return b;
 }
@@ -140,13 +150,15 @@ vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
     vec3 h = normalize(b.wo + l.wi);
     float NoH = dot(b.n, h);
     float P = feFresnelPower(dot(h, b.wo));
-    vec3 F = b.F0 + (1.0 - b.F0) * P;
+    vec3 F = b.F0 + (b.F90 - b.F0) * P;
     float dd = NoH * NoH * (b.a2 - 1.0) + 1.0;
     float D = b.a2 / (FE_PI * dd * dd);
     if (b.gltf) {
         // mix(dielectric, metal, metallic): the diffuse lobe under the dielectric's Fresnel
-        // (F0 = 0.04), the specular under F = mix(F_dielectric, F_metal, metallic) = F0 + (1 - F0) P.
-        const vec3 f = (0.96 - 0.96 * P) * b.diffuse + D * F * feVisibilityHeightCorrelated(NoL, b.NoV, b.a2);
+        // (F0 0.04, F90 1 by default), the specular under F = mix(F_dielectric, F_metal, metallic)
+        // = F0 + (F90 - F0) P.
+        const vec3 Fd = b.dielectricF0 + (b.dielectricF90 - b.dielectricF0) * P;
+        const vec3 f = (1.0 - Fd) * b.diffuse + D * F * feVisibilityHeightCorrelated(NoL, b.NoV, b.a2);
         return f * l.E * NoL;
     }
     float G = b.Gv * NoL / (NoL * (1.0 - b.k) + b.k);

@@ -791,3 +791,44 @@ TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
     expectError(write("huge_scale.gltf", withTransform({{"scale", {1e39, 1}}}).dump()), {"KHR_texture_transform", "scale", "finite"});
     expectError(write("bad_set.gltf", withTransform({{"texCoord", -1}}).dump()), {"texCoord"});
 }
+
+// KHR_materials_ior and KHR_materials_specular: the factors are read (ior 0 is the extension's
+// infinite index, F0 1), values out of their ranges are errors naming the key, and the textures,
+// not read yet, are warnings.
+TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
+    writeBytes("tri.bin", bin());
+    json j = gltf();
+    j["extensionsUsed"] = json::array({"KHR_materials_ior", "KHR_materials_specular"});
+    auto withMaterial = [&](const json& extensions) {
+        json k = j;
+        k["materials"] = json::array({{{"name", "glass"}, {"extensions", extensions}}});
+        k["meshes"][0]["primitives"][0]["material"] = 0;
+        return k;
+    };
+    const Scene s = loadGltf(write("ok.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 2.0}}},
+                                                          {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 4.0}}}}}).dump()));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.ior, 2.0f);
+    EXPECT_EQ(m.specular, 0.5f);
+    EXPECT_EQ(m.specularColor, glm::vec3(1.0f, 0.5f, 4.0f));
+    // F0 = min((1/3)^2 (1, 0.5, 4), 1) x 0.5; F90 = 0.5.
+    EXPECT_NEAR(m.dielectricF0().r, 0.5f / 9.0f, 1e-6f);
+    EXPECT_NEAR(m.dielectricF0().g, 0.25f / 9.0f, 1e-6f);
+    EXPECT_NEAR(m.dielectricF0().b, 2.0f / 9.0f, 1e-6f);
+    EXPECT_EQ(m.dielectricF90(), 0.5f);
+    EXPECT_FALSE(m.defaultDielectric());
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_NEAR(Material{}.dielectricF0().g, 0.04f, 1e-7f);
+    EXPECT_TRUE(Material{}.defaultDielectric());
+    const Scene infinite = loadGltf(write("ior0.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0}}}}).dump()));
+    EXPECT_EQ(infinite.materials[0].dielectricF0(), glm::vec3(1.0f));
+    const Scene textured = loadGltf(write("tex.gltf", withMaterial({{"KHR_materials_specular", {{"specularTexture", {{"index", 0}}}}}}).dump()));
+    ASSERT_FALSE(textured.warnings.empty());
+    EXPECT_NE(textured.warnings.front().find("specularTexture is not read"), std::string::npos) << textured.warnings.front();
+    expectError(write("ior_half.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0.5}}}}).dump()), {"glass", "ior", "at least 1"});
+    expectError(write("spec_big.gltf", withMaterial({{"KHR_materials_specular", {{"specularFactor", 2}}}}).dump()), {"specularFactor", "[0, 1]"});
+    expectError(write("spec_neg.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}).dump()),
+                {"specularColorFactor", "negative"});
+    expectError(write("spec_short.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, 1}}}}}).dump()),
+                {"specularColorFactor", "array of 3"});
+}

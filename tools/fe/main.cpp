@@ -158,6 +158,7 @@ int cmdRender(const Args& a) {
     if (a.options.count("--verbose") && spdlog::get_level() > spdlog::level::info) spdlog::set_level(spdlog::level::info);
     for (const std::string& r : choice.reasons) spdlog::info("director: {}", r);
     s = choice.settings;
+    for (const std::string& w : render::materialWarnings(scene, s)) spdlog::warn("{}: {}", spec, w);
     const bool verbose = a.options.count("--verbose") > 0;
     const auto rendererStart = std::chrono::steady_clock::now();
     render::SceneRenderer renderer(*device, scene, s);
