@@ -149,6 +149,11 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
                             "fragment's cluster list keeps hardware MSAA, exact, and measured fastest with MSAA "
                             "(builtin:atrium, 256 lights, 4x: 36.3 ms against forward-plus 47.0, forward-zprepass 507.5 "
                             "on lavapipe; the light pre-pass is inexact there, docs/BENCHMARKS.md)");
+    } else if (s.msaa > 1 && s.shadingModel == ShadingModel::Gltf) {
+        s.technique = "forward";
+        c.reasons.push_back("technique forward: " + lights + ", --msaa " + std::to_string(s.msaa) +
+                            " and --brdf gltf without compute shaders: the light pre-pass, which would keep MSAA with "
+                            "lights drawn once per pixel, needs the separable BRDF");
     } else if (s.msaa > 1) {
         const bool packed = n.minRoughness >= kPackedNormalsMinRoughness;
         s.technique = packed ? "light-prepass" : "light-prepass-unpacked";
@@ -197,7 +202,11 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
 
     // A reduced illumination rate: only where a probe frame shows it within the error budget.
     const bool candidate = exactOnly && (s.technique == "deferred-tiled" || s.technique == "deferred");
-    if (options.errorBudgetPercent > 0 && !candidate) {
+    if (options.errorBudgetPercent > 0 && s.shadingModel == ShadingModel::Gltf) {
+        c.reasons.push_back("error budget " + fixed(options.errorBudgetPercent, 2) +
+                            " %: unused, --brdf gltf asked for and the reduced-rate techniques (redeferred) need the "
+                            "separable BRDF");
+    } else if (options.errorBudgetPercent > 0 && !candidate) {
         c.reasons.push_back("error budget " + fixed(options.errorBudgetPercent, 2) + " %: unused, " +
                             (exactOnly ? s.technique + " has no reduced-rate alternative here" : "technique asked for"));
     } else if (options.errorBudgetPercent > 0 && !probeDevice) {

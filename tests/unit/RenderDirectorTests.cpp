@@ -212,6 +212,27 @@ TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
     EXPECT_EQ(strict.settings.rates.punctual + strict.settings.rates.iblDiffuse, 0u);
 }
 
+// --brdf gltf with auto: never a technique that needs the separable BRDF (the light pre-pass under
+// MSAA without compute shaders, redeferred under an error budget), which would refuse the frame.
+TEST_P(RenderDirector, GltfAskedNeverGetsASeparableTechnique) {
+    const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    gdi::DeviceInfo noCompute = device->info();
+    noCompute.features.computeShaders = false;
+    render::RenderSettings request{.technique = "auto", .width = 64, .height = 48, .msaa = 4};
+    request.shadingModel = render::ShadingModel::Gltf;
+    const render::DirectorChoice msaa = render::direct(scene, request, noCompute);
+    EXPECT_EQ(msaa.settings.technique, "forward") << msaa.reasons[0];
+    EXPECT_FALSE(render::findTechnique(msaa.settings.technique).separableBrdf);
+    request.msaa = 1;
+    const render::DirectorChoice budget = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 8.0});
+    std::string why;
+    for (const auto& r : budget.reasons) why += r + "\n";
+    EXPECT_FALSE(render::findTechnique(budget.settings.technique).separableBrdf) << why;
+    EXPECT_NE(why.find("unused, --brdf gltf asked for"), std::string::npos) << why;
+    render::SceneRenderer r(*device, scene, budget.settings);  // it renders: no refusal
+    r.renderFrame();
+}
+
 // BLEND primitives bring the transparent pass; without them there is none.
 TEST_P(RenderDirector, TransparentPassOnlyForBlendPrimitives) {
     assets::Scene scene = assets::makeBuiltinScene("plane");
