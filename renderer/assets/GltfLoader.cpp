@@ -49,6 +49,7 @@ namespace fs = std::filesystem;
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
+    "KHR_materials_clearcoat",
     "KHR_materials_ior",
     "KHR_materials_specular",
     "KHR_materials_unlit",
@@ -739,6 +740,16 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
         // The extension allows 0 for an infinite index (F0 = 1); anything else below 1 is not a dielectric.
         if (mat.ior == 0.0f) mat.ior = std::numeric_limits<float>::infinity();
         else if (!(mat.ior >= 1.0f)) fail(label + ": KHR_materials_ior.ior " + std::to_string(mat.ior) + " must be at least 1 (or 0)");
+    }
+    if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_clearcoat")) {
+        const std::string where = label + ": KHR_materials_clearcoat";
+        readNumbers(*e, "clearcoatFactor", where, &mat.clearcoat, 0);
+        readNumbers(*e, "clearcoatRoughnessFactor", where, &mat.clearcoatRoughness, 0);
+        if (!(mat.clearcoat >= 0.0f && mat.clearcoat <= 1.0f)) fail(where + ".clearcoatFactor must lie in [0, 1]");
+        if (!(mat.clearcoatRoughness >= 0.0f && mat.clearcoatRoughness <= 1.0f))
+            fail(where + ".clearcoatRoughnessFactor must lie in [0, 1]");
+        for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
+            if (e->Has(t)) warn(where + "." + t + " is not read: the factors alone are used");
     }
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_specular")) {
         const std::string where = label + ": KHR_materials_specular";

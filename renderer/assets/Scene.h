@@ -149,8 +149,18 @@ struct Material {
         return glm::min(glm::vec3(r * r) * specularColor, glm::vec3(1.0f)) * specular;
     }
     float dielectricF90() const { return specular; }
+    // KHR_materials_clearcoat (factors): a second, dielectric GGX layer over the whole material,
+    // on the interpolated vertex normal, its Fresnel F0 = ((ior - 1) / (ior + 1))^2 (docs/SHADING.md).
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f;
+    float clearcoatF0() const {
+        const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);
+        return r * r;
+    }
     // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
     bool defaultDielectric() const { return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f); }
+    // Inputs only the techniques that shade the whole material evaluate (TechniqueInfo::fullMaterial).
+    bool needsFullMaterial() const { return !defaultDielectric() || clearcoat > 0.0f; }
 };
 
 struct MeshInstance {

@@ -51,7 +51,7 @@ std::vector<std::string> materialWarnings(const assets::Scene& scene, const Rend
     std::string names;
     size_t count = 0;
     for (const assets::Material& m : scene.materials)
-        if (!m.defaultDielectric() && !m.unlit && count++ < 3) names += (names.empty() ? "'" : ", '") + m.name + "'";
+        if (m.needsFullMaterial() && !m.unlit && count++ < 3) names += (names.empty() ? "'" : ", '") + m.name + "'";
     const TechniqueInfo& t = findTechnique(settings.technique);
     if (count == 0 || t.fullMaterial(resolveBrdf(settings))) return {};
     std::string capable;
@@ -59,8 +59,8 @@ std::vector<std::string> materialWarnings(const assets::Scene& scene, const Rend
         if (c.fullMaterial(shading::Brdf::Gltf)) capable += (capable.empty() ? "" : ", ") + std::string(c.name);
     const std::string why = t.gbuffer ? "its G-buffer does not hold it" : "the separable BRDF has no such input";
     return {std::to_string(count) + " material(s) (" + names + (count > 3 ? ", ..." : "") +
-            ") set the dielectric's Fresnel (KHR_materials_ior / KHR_materials_specular): technique " + t.name +
-            " shades them with F0 0.04, F90 1 (" + why + "); " + capable + " evaluate it under the glTF BRDF"};
+            ") set the dielectric's Fresnel or a clearcoat (KHR_materials_ior / specular / clearcoat): technique " + t.name +
+            " shades them with F0 0.04, F90 1 and no clearcoat (" + why + "); " + capable + " evaluate them under the glTF BRDF"};
 }
 
 std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,

@@ -23,7 +23,8 @@ std::string outOfView(const assets::Scene& scene, const assets::Camera& camera, 
 // exposure.
 // What the frame's technique and BRDF cannot show of the scene's materials, one line per kind
 // naming the materials and the techniques that can: KHR_materials_ior / specular (a dielectric
-// other than F0 0.04, F90 1) on a G-buffer technique or under the separable BRDF.
+// other than F0 0.04, F90 1) or KHR_materials_clearcoat on a G-buffer technique or under the
+// separable BRDF.
 std::vector<std::string> materialWarnings(const assets::Scene& scene, const RenderSettings& settings);
 
 std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,

@@ -266,6 +266,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
         const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
         if (!front) n = -n;  // a double-sided back face shades with the flipped normal
+        const glm::dvec3 vertexNormal = n;  // the clearcoat's: the base's normal map does not bend it
 
         glm::dvec4 bc = glm::dvec4(mat.baseColorFactor) * (b0 * hit->color[0] + hb1 * hit->color[1] + hb2 * hit->color[2]);
         double metallic = mat.metallic, roughness = mat.roughness;
@@ -311,6 +312,11 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.roughness = roughness;
         s.dielectricF0 = glm::dvec3(mat.dielectricF0());
         s.dielectricF90 = mat.dielectricF90();
+        s.clearcoat = mat.clearcoat;
+        s.clearcoatRoughness = mat.clearcoatRoughness;
+        s.clearcoatNormal = vertexNormal;
+        s.clearcoatF0 = mat.clearcoatF0();
+        if (mat.clearcoat > 0.0f && options.brdf == shading::Brdf::Gltf) emissive *= 1.0 - s.clearcoat * shading::clearcoatViewFresnel(s);  // the layer covers emission too
         glm::dvec3 L = emissive;
         // The side of the surface the eye sees, for the shadow rays' start.
         const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);

@@ -228,7 +228,8 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
         o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
-    o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, 0.0f, 0.0f, 0.0f);
+    o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, m.clearcoat, m.clearcoatRoughness,
+                            m.clearcoatF0());
     o.dielectric = glm::vec4(m.dielectricF0(), m.dielectricF90());
     return o;
 }

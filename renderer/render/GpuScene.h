@@ -54,7 +54,9 @@ struct ObjectConstants {
     // fe_material.glsl) the rows of its KHR_texture_transform, (a, b, c, set) and (d, e, f, 0):
     // it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
     glm::vec4 uvTransform[10];
-    glm::vec4 occlusion;  // x: the occlusion texture's strength (0 without one)
+    // x: the occlusion texture's strength (0 without one); y, z, w: KHR_materials_clearcoat's factor,
+    // roughness and F0 (Material::clearcoatF0)
+    glm::vec4 occlusion;
     glm::vec4 dielectric;  // rgb: the dielectric's F0, a: its F90 (Material::dielectricF0, KHR_materials_ior/specular)
 };
 

@@ -76,7 +76,20 @@ struct SurfacePoint {
     // dielectricF0 and dielectricF90); the separable model keeps 0.04 and 1.
     glm::dvec3 dielectricF0{0.04};
     double dielectricF90 = 1.0;
+    // KHR_materials_clearcoat (glTF model only): weight, perceptual roughness, the layer's normal
+    // (the interpolated vertex normal, not the base's normal map) and its Fresnel F0 (F90 1).
+    double clearcoat = 0.0;
+    double clearcoatRoughness = 0.0;
+    glm::dvec3 clearcoatNormal{0.0, 0.0, 1.0};
+    double clearcoatF0 = 0.04;
 };
+
+// The clearcoat's Fresnel seen from w_o along its normal: the base under it is weighed by
+// 1 - clearcoat Fc (KHR_materials_clearcoat, as the Sample Viewer layers it).
+inline double clearcoatViewFresnel(const SurfacePoint& s) {
+    const double NoV = std::clamp(glm::dot(s.clearcoatNormal, s.wo), 0.0, 1.0);
+    return s.clearcoatF0 + (1.0 - s.clearcoatF0) * std::pow(1.0 - NoV, 5.0);
+}
 
 inline double clampRoughness(double r) { return std::clamp(r, kMinRoughness, 1.0); }
 
@@ -94,8 +107,30 @@ inline double visibilityHeightCorrelated(double NoL, double NoV, double a2) {
     return 0.5 / (gv + gl);
 }
 
-// Per light: f x E x NoL.
+// The clearcoat layer's light: Fc D V E n_c.l with its own normal and roughness (GGX, height-
+// correlated V, Fc = F0c + (1 - F0c) P at the half vector), the Sample Viewer's clearcoat BRDF.
+inline double clearcoatLight(const SurfacePoint& s, const glm::dvec3& wi) {
+    const glm::dvec3& n = s.clearcoatNormal;
+    const double NoL = glm::dot(n, wi);
+    if (NoL <= 0.0) return 0.0;
+    const double r = clampRoughness(s.clearcoatRoughness), a2 = r * r * r * r;
+    const double NoV = std::max(glm::dot(n, s.wo), 1e-4);
+    const glm::dvec3 h = glm::normalize(s.wo + wi);
+    const double NoH = glm::dot(n, h), P = std::pow(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0), 5.0);
+    const double dd = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (kPi * dd * dd);
+    return (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * D * visibilityHeightCorrelated(NoL, NoV, a2) * NoL;
+}
+
+inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Brdf brdf);
+
+// Per light: f x E x NoL; under the glTF model with a clearcoat, the base weighed by 1 - c Fc
+// and the layer's light added.
 inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf brdf = Brdf::Gltf) {
+    if (brdf != Brdf::Gltf || s.clearcoat <= 0.0) return shadeBaseLight(s, l, brdf);
+    return shadeBaseLight(s, l, brdf) * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * clearcoatLight(s, l.wi) * l.E;
+}
+
+inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Brdf brdf) {
     double NoL = glm::dot(s.n, l.wi);
     if (NoL <= 0.0) return glm::dvec3(0.0);
     double r = clampRoughness(s.roughness);
@@ -219,7 +254,28 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
         diffuse += (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
     }
-    return ((1.0 - s.metallic) * s.baseColor * diffuse + specular) / double(n);
+    const glm::dvec3 base = ((1.0 - s.metallic) * s.baseColor * diffuse + specular) / double(n);
+    if (!gltf || s.clearcoat <= 0.0) return base;
+    // The clearcoat layer: GGX samples about its normal at its roughness, Fresnel F0c .. 1.
+    const double rc = clampRoughness(s.clearcoatRoughness), a2c = rc * rc * rc * rc;
+    const double NoVc = std::max(glm::dot(s.clearcoatNormal, s.wo), 1e-4);
+    basis(s.clearcoatNormal, t, b);
+    glm::dvec3 layer(0.0);
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::dvec2 u = hammersley(i, n);
+        const double phi = 2.0 * kPi * u.y;
+        const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2c - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
+        const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + s.clearcoatNormal * cosH;
+        const double VoH = glm::dot(s.wo, h);
+        const glm::dvec3 wi = 2.0 * VoH * h - s.wo;
+        const double NoL = glm::dot(s.clearcoatNormal, wi);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
+            layer += (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * environment(wi) *
+                     (4.0 * visibilityHeightCorrelated(NoL, NoVc, a2c) * NoL * VoH / cosH);
+        }
+    }
+    return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * layer / double(n);
 }
 
 }  // namespace fe::shading

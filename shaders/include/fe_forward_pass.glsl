@@ -51,7 +51,7 @@ void main() {
     MaterialSample m = feSampleMaterial(vUv, vColor, vNormal, vTangent, gl_FrontFacing);
     if (feAlphaDiscard(m.alpha)) discard;
     const bool first = frame.lightRange.z != 0u;
-    vec3 L = first ? m.emissive : vec3(0.0);
+    vec3 L = first ? feCoatedEmission(m, vEye) : vec3(0.0);
     if (m.unlit) {
         L = first ? m.baseColor : vec3(0.0);
     } else {

@@ -136,7 +136,46 @@ IlluminationSums feEnvironmentSums(vec3 n, vec3 wo, float roughness, uint count)
 // L_o from the environment under glTF's BRDF (shading::shadeEnvironment with Brdf::Gltf): specular
 // F L 4 V NoL (w_o.h) / (n.h), diffuse (1 - m) c 0.96 (1 - P) L, over the same samples; on the
 // fast path the same weights tabulated (the table's glTF half) against prefiltered radiance.
+vec3 feClearcoatEnvironment(SurfacePoint s, uint count);
+vec3 feShadeEnvironmentBase(SurfacePoint s, uint count);
+
 vec3 feShadeEnvironmentGltf(SurfacePoint s, uint count) {
+    const vec3 base = feShadeEnvironmentBase(s, count);
+    if (s.clearcoat <= 0.0) return base;
+    return base * (1.0 - s.clearcoat * feClearcoatViewFresnel(s)) + s.clearcoat * feClearcoatEnvironment(s, count);
+}
+
+// The clearcoat layer's image-based light: the specular estimator about its normal, at its
+// roughness, Fresnel F0c .. 1 (shading::shadeEnvironment).
+vec3 feClearcoatEnvironment(SurfacePoint s, uint count) {
+    const float f0 = s.clearcoatF0;
+#ifdef FE_IBL_PREFILTERED
+    const FePrefiltered p = fePrefiltered(s.clearcoatNormal, s.wo, s.clearcoatRoughness, true);
+    return p.radiance * (f0 * p.lut.x + (1.0 - f0) * p.lut.y);
+#else
+    const float r = feClampRoughness(s.clearcoatRoughness), a2 = r * r * r * r;
+    const vec3 n = s.clearcoatNormal;
+    const float NoV = max(dot(n, s.wo), 1e-4);
+    vec3 t, b;
+    feBasis(n, t, b);
+    vec3 layer = vec3(0.0);
+    for (uint i = 0u; i < count; ++i) {
+        const vec2 u = feHammersley(i, count);
+        float cosH;
+        const vec3 h = feGgxHalfVector(u, a2, t, b, n, cosH);
+        const float VoH = dot(s.wo, h);
+        const vec3 wi = 2.0 * VoH * h - s.wo;
+        const float NoL = dot(n, wi);
+        if (NoL > 0.0 && VoH > 0.0)
+            layer += (f0 + (1.0 - f0) * feFresnelPower(VoH)) * feEnvironment(wi) *
+                     (4.0 * feVisibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH);
+    }
+    return layer / float(count);
+#endif
+}
+
+// The base material (under any clearcoat) lit by the environment.
+vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
     // The dielectric's Fresnel F0 + (F90 - F0) P (KHR_materials_ior / specular; 0.04 and 1 by default).
     const vec3 dF0 = s.dielectricF0, dF90 = vec3(s.dielectricF90);
     const vec3 F0 = mix(dF0, s.baseColor, s.metallic), F90 = mix(dF90, vec3(1.0), s.metallic);

@@ -88,6 +88,7 @@ struct MaterialSample {
     bool unlit;
     vec3 dielectricF0;  // KHR_materials_ior / KHR_materials_specular (ObjectConstants::dielectric)
     float dielectricF90;
+    vec3 clearcoatNormal;  // the interpolated vertex normal, facing the viewer's side
 };
 
 // Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
@@ -114,6 +115,7 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.emissive = object.emissiveNormalScale.rgb * feSampleTexture(emissiveTexture, FE_TEXTURE_EMISSIVE, uvs).rgb;
     vec3 n = normalize(N);
     if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
+    m.clearcoatNormal = n;  // KHR_materials_clearcoat: the layer keeps the vertex normal
     if ((object.flags.x & 1u) != 0u) {
         vec3 t = T.xyz - n * dot(n, T.xyz);
         if (dot(t, t) > 1e-12) {
@@ -146,6 +148,16 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.roughness = m.roughness;
     s.dielectricF0 = m.dielectricF0;
     s.dielectricF90 = m.dielectricF90;
+    s.clearcoat = object.occlusion.y;  // KHR_materials_clearcoat (ObjectConstants::occlusion)
+    s.clearcoatRoughness = object.occlusion.z;
+    s.clearcoatNormal = m.clearcoatNormal;
+    s.clearcoatF0 = object.occlusion.w;
     return s;
+}
+
+// The emission under the clearcoat: weighed by 1 - c Fc(n_c.v) as the base is (KHR_materials_clearcoat).
+vec3 feCoatedEmission(MaterialSample m, vec3 Pe) {
+    if (object.occlusion.y == 0.0 || frame.shading.x != FE_BRDF_GLTF) return m.emissive;
+    return m.emissive * (1.0 - object.occlusion.y * feClearcoatViewFresnel(feMaterialSurface(m, Pe)));
 }
 #endif

@@ -143,8 +143,12 @@ SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
     s.baseColor = g0.rgb;
     s.metallic = g0.a;
     s.roughness = g1.a;
-    s.dielectricF0 = vec3(0.04);  // the G-buffer holds no KHR_materials_ior / specular
+    s.dielectricF0 = vec3(0.04);  // the G-buffer holds no KHR_materials_ior / specular / clearcoat
     s.dielectricF90 = 1.0;
+    s.clearcoat = 0.0;
+    s.clearcoatRoughness = 0.0;
+    s.clearcoatNormal = s.n;
+    s.clearcoatF0 = 0.04;
     return s;
 }
 #endif

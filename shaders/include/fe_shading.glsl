@@ -69,6 +69,12 @@ struct SurfacePoint {
     // KHR_materials_ior / KHR_materials_specular say otherwise (a G-buffer holds the defaults).
     vec3 dielectricF0;
     float dielectricF90;
+    // KHR_materials_clearcoat (glTF model only; 0 in a G-buffer): weight, perceptual roughness,
+    // the layer's normal (the interpolated vertex normal) and its Fresnel F0 (F90 1).
+    float clearcoat;
+    float clearcoatRoughness;
+    vec3 clearcoatNormal;
+    float clearcoatF0;
 };
 
 float feClampRoughness(float r) { return clamp(r, FE_MIN_ROUGHNESS, 1.0); }
@@ -117,6 +123,14 @@ struct SurfaceBrdf {
     vec3 F90;      // ... and at grazing incidence (glTF: 1 unless KHR_materials_specular lowers it)
     vec3 dielectricF0;
     float dielectricF90;
+    // The clearcoat layer (clearcoat 0: none): its normal, alpha^2, n_c.v, F0, and the weight of
+    // the base under it, 1 - clearcoat Fc(n_c.v) (feClearcoatViewFresnel).
+    float clearcoat;
+    vec3 nc;
+    float a2c;
+    float NoVc;
+    float clearcoatF0;
+    float baseWeight;
     vec3 diffuse;  // (1 - metallic) baseColor / pi
     float a2;      // alpha^2, alpha = clamped roughness^2
     float k;       // Schlick-GGX k
@@ -124,6 +138,11 @@ struct SurfaceBrdf {
     float Gv;      // the view half of G (separable)
     bool gltf;     // FE_BRDF_GLTF, else FE_BRDF_SEPARABLE
 };
+
+// The clearcoat's Fresnel seen from w_o along its normal (shading::clearcoatViewFresnel).
+float feClearcoatViewFresnel(SurfacePoint s) {
+    return s.clearcoatF0 + (1.0 - s.clearcoatF0) * feFresnelPower(clamp(dot(s.clearcoatNormal, s.wo), 0.0, 1.0));
+}
 
 SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     SurfaceBrdf b;
@@ -140,11 +159,35 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.F0 = mix(b.dielectricF0, s.baseColor, s.metallic);
     b.F90 = mix(vec3(b.dielectricF90), vec3(1.0), s.metallic);
     b.diffuse = (1.0 - s.metallic) * s.baseColor / FE_PI;
+    b.clearcoat = b.gltf ? s.clearcoat : 0.0;
+    b.nc = s.clearcoatNormal;
+    const float rc = feClampRoughness(s.clearcoatRoughness);
+    b.a2c = rc * rc * rc * rc;
+    b.NoVc = max(dot(s.clearcoatNormal, s.wo), 1e-4);
+    b.clearcoatF0 = s.clearcoatF0;
+    b.baseWeight = 1.0 - b.clearcoat * feClearcoatViewFresnel(s);
     return b;
 }
 
-// Forward: the full per-light BRDF sum (SHADING.md "Per light").
+vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l);
+
+// Forward: the full per-light BRDF sum (SHADING.md "Per light"); with a clearcoat (glTF model)
+// the base weighed by 1 - c Fc(n_c.v) and the layer's Fc D V E n_c.l added (shading::shadeLight).
 vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
+    if (b.clearcoat <= 0.0) return feShadeBaseLight(b, l);
+    vec3 L = b.baseWeight * feShadeBaseLight(b, l);
+    const float NoLc = dot(b.nc, l.wi);
+    if (NoLc > 0.0) {
+        const vec3 h = normalize(b.wo + l.wi);
+        const float NoHc = dot(b.nc, h), P = feFresnelPower(dot(h, b.wo));
+        const float dd = NoHc * NoHc * (b.a2c - 1.0) + 1.0, D = b.a2c / (FE_PI * dd * dd);
+        const float Fc = b.clearcoatF0 + (1.0 - b.clearcoatF0) * P;
+        L += b.clearcoat * Fc * D * feVisibilityHeightCorrelated(NoLc, b.NoVc, b.a2c) * NoLc * l.E;
+    }
+    return L;
+}
+
+vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l) {
     float NoL = dot(b.n, l.wi);
     if (NoL <= 0.0) return vec3(0.0);
     vec3 h = normalize(b.wo + l.wi);

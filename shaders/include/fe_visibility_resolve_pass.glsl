@@ -101,7 +101,7 @@ void main() {
     const bool front = (dot(cross(e1, e2), dir) < 0.0) != ((object.flags.x & 4u) != 0u);
     const vec4 color = w.x * v0.color + w.y * v1.color + w.z * v2.color;
     const MaterialSample m = feSampleMaterial(uv, color, N, vec4(mat3(object.world) * T.xyz, T.w), front);
-    vec3 radiance = m.emissive;
+    vec3 radiance = feCoatedEmission(m, eye);
     if (m.unlit) {
         radiance = m.baseColor;
     } else {

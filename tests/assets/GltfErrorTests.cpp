@@ -831,4 +831,20 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
                 {"specularColorFactor", "negative"});
     expectError(write("spec_short.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, 1}}}}}).dump()),
                 {"specularColorFactor", "array of 3"});
+    // KHR_materials_clearcoat: its factors, its F0 from the material's ior, textures warned.
+    json c = withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.25},
+                                                        {"clearcoatNormalTexture", {{"index", 0}}}}},
+                           {"KHR_materials_ior", {{"ior", 2.0}}}});
+    c["extensionsUsed"] = json::array({"KHR_materials_clearcoat", "KHR_materials_ior"});
+    const Scene coated = loadGltf(write("coat.gltf", c.dump()));
+    EXPECT_EQ(coated.materials[0].clearcoat, 0.75f);
+    EXPECT_EQ(coated.materials[0].clearcoatRoughness, 0.25f);
+    EXPECT_NEAR(coated.materials[0].clearcoatF0(), 1.0f / 9.0f, 1e-6f);
+    EXPECT_TRUE(coated.materials[0].needsFullMaterial());
+    ASSERT_FALSE(coated.warnings.empty());
+    EXPECT_NE(coated.warnings.front().find("clearcoatNormalTexture is not read"), std::string::npos) << coated.warnings.front();
+    expectError(write("coat_big.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.5}}}}).dump()),
+                {"clearcoatFactor", "[0, 1]"});
+    expectError(write("coat_rough.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}}).dump()),
+                {"clearcoatRoughnessFactor", "[0, 1]"});
 }
