@@ -222,6 +222,22 @@ inline void basis(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
 // Brdf::Gltf: the same samples weighed by glTF's BRDF (docs/SHADING.md): specular F L 4 V NoL
 // (w_o.h) / (n.h) with V the height-correlated visibility, diffuse (1 - m) c (1 - F_d) L with the
 // dielectric's F_d = 0.04 + 0.96 P (Appendix B's mix of the dielectric and metal lobes).
+// The reflection w_i of w_o about the GGX half vector of Hammersley point u (theta_h from A,
+// phi_h = 2 pi B) about n with basis (t, b), with its n.l, w_o.h and n.h: each specular sample.
+struct GgxSample {
+    glm::dvec3 wi;
+    double NoL, VoH, NoH;
+};
+inline GgxSample ggxSample(const glm::dvec2& u, double a2, const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n,
+                           const glm::dvec3& wo) {
+    const double phi = 2.0 * kPi * u.y;
+    const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
+    const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + n * cosH;
+    const double VoH = glm::dot(wo, h);
+    const glm::dvec3 wi = 2.0 * VoH * h - wo;
+    return {wi, glm::dot(n, wi), VoH, cosH};
+}
+
 template <class Environment>
 glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n, Brdf brdf = Brdf::Gltf) {
     const double r = clampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
@@ -236,11 +252,7 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const glm::dvec2 u = hammersley(i, n);
         const double phi = 2.0 * kPi * u.y;
         // Specular: a GGX half vector.
-        const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
-        const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + s.n * cosH;
-        const double VoH = glm::dot(s.wo, h);
-        const glm::dvec3 wi = 2.0 * VoH * h - s.wo;
-        const double NoL = glm::dot(s.n, wi);
+        const auto [wi, NoL, VoH, cosH] = ggxSample(u, a2, t, b, s.n, s.wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
             const double weight = brdf == Brdf::Gltf ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
@@ -262,13 +274,7 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
     basis(s.clearcoatNormal, t, b);
     glm::dvec3 layer(0.0);
     for (uint32_t i = 0; i < n; ++i) {
-        const glm::dvec2 u = hammersley(i, n);
-        const double phi = 2.0 * kPi * u.y;
-        const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2c - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
-        const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + s.clearcoatNormal * cosH;
-        const double VoH = glm::dot(s.wo, h);
-        const glm::dvec3 wi = 2.0 * VoH * h - s.wo;
-        const double NoL = glm::dot(s.clearcoatNormal, wi);
+        const auto [wi, NoL, VoH, cosH] = ggxSample(hammersley(i, n), a2c, t, b, s.clearcoatNormal, s.wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
             layer += (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * environment(wi) *

@@ -854,6 +854,47 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
     }
 }
 
+namespace {
+// Every technique that shades the whole material (TechniqueInfo::fullMaterial) renders `scene`
+// within 2 % of the CPU reference on 99 % of pixels off silhouettes, under its punctual lights and
+// then 64 samples of its environment; `plain` (the scene without the inputs under test) must be
+// far from that reference (20 % of pixels), so that dropping the inputs fails. `what` names them.
+void expectFullMaterialTechniquesMatchTheReference(gdi::Device& device, const assets::Scene& scene, const assets::Scene& plain,
+                                                   const char* what) {
+    auto toImage = [](const render::ReferenceImage& ref) {
+        std::vector<std::array<float, 4>> texels;
+        for (auto& v : ref.radiance) texels.push_back({float(v.x), float(v.y), float(v.z), 1});
+        return gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, texels);
+    };
+    for (uint32_t samples : {0u, 64u}) {
+        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, kW, kH, {.iblSamples = samples});
+        const gdi::Image cpu = toImage(ref);
+        const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
+        const Stats without = compare(toImage(render::renderReference(plain, *plain.camera, kW, kH, {.iblSamples = samples})), cpu,
+                                      0.02, 0.01, edge);
+        EXPECT_GE(without.fractionOver, 0.2) << what << " hardly change the reference";
+        for (const render::TechniqueInfo& t : render::techniques()) {
+            if (!t.fullMaterial(shading::Brdf::Gltf) || (std::string(t.name).find("tiled") != std::string::npos &&
+                                                          !device.info().features.computeShaders))
+                continue;
+            render::SceneRenderer r(device, scene, {.technique = t.name, .width = kW, .height = kH, .iblSamples = samples});
+            r.renderFrame();
+            const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
+            std::cout << what << ", " << t.name << (samples ? " with 64 sky samples" : ", punctual") << ": " << st.fractionOver * 100
+                      << " % beyond 2 % of the reference (without them: " << without.fractionOver * 100 << " %)\n";
+            EXPECT_LE(st.fractionOver, 0.01) << what << ", " << t.name << " max " << st.maxRel;
+        }
+    }
+    // The fast path reads them too: against the same frame without them it differs.
+    render::RenderSettings fast{.technique = "forward", .width = kW, .height = kH, .iblPrefiltered = true};
+    render::SceneRenderer with(device, scene, fast), without(device, plain, fast);
+    with.renderFrame();
+    without.renderFrame();
+    EXPECT_GE(compare(with.readOutput(), without.readOutput(), 0.02, 0.01).fractionOver, 0.2) << what;
+}
+
+}  // namespace
+
 // KHR_materials_ior and KHR_materials_specular (factors): the dielectric's Fresnel F0 =
 // min(((ior - 1)/(ior + 1))^2 specularColor, 1) specular, F90 = specular, under punctual light
 // and image-based light (sampled and the fast path), on every technique that shades the whole
@@ -871,37 +912,7 @@ TEST_P(RenderAccuracy, DielectricIorAndSpecularMatchTheReference) {
     }
     assets::Scene plain = scene;
     for (assets::Material& m : plain.materials) m.ior = 1.5f, m.specular = 1.0f, m.specularColor = glm::vec3(1.0f);
-    auto toImage = [](const render::ReferenceImage& ref) {
-        std::vector<std::array<float, 4>> texels;
-        for (auto& v : ref.radiance) texels.push_back({float(v.x), float(v.y), float(v.z), 1});
-        return gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, texels);
-    };
-    for (uint32_t samples : {0u, 64u}) {
-        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, kW, kH, {.iblSamples = samples});
-        const gdi::Image cpu = toImage(ref);
-        const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
-        const Stats defaults = compare(toImage(render::renderReference(plain, *plain.camera, kW, kH, {.iblSamples = samples})), cpu,
-                                       0.02, 0.01, edge);
-        EXPECT_GE(defaults.fractionOver, 0.2) << "the inputs hardly change the reference";
-        for (const render::TechniqueInfo& t : render::techniques()) {
-            if (!t.fullMaterial(shading::Brdf::Gltf) || (std::string(t.name).find("tiled") != std::string::npos &&
-                                                          !device->info().features.computeShaders))
-                continue;
-            render::RenderSettings s{.technique = t.name, .width = kW, .height = kH, .iblSamples = samples};
-            render::SceneRenderer r(*device, scene, s);
-            r.renderFrame();
-            const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
-            std::cout << t.name << (samples ? " with 64 sky samples" : ", punctual") << ": " << st.fractionOver * 100
-                      << " % beyond 2 % of the reference (the default dielectric's: " << defaults.fractionOver * 100 << " %)\n";
-            EXPECT_LE(st.fractionOver, 0.01) << t.name << " max " << st.maxRel;
-        }
-    }
-    // The fast path reads F0 and F90 too: against its own default-dielectric image it differs.
-    render::RenderSettings fast{.technique = "forward", .width = kW, .height = kH, .iblPrefiltered = true};
-    render::SceneRenderer withInputs(*device, scene, fast), without(*device, plain, fast);
-    withInputs.renderFrame();
-    without.renderFrame();
-    EXPECT_GE(compare(withInputs.readOutput(), without.readOutput(), 0.02, 0.01).fractionOver, 0.2);
+    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "ior and specular");
     // A technique that cannot shows them with the default dielectric, and says which can.
     const std::vector<std::string> w = render::materialWarnings(scene, {.technique = "deferred"});
     ASSERT_EQ(w.size(), 1u);
@@ -930,35 +941,6 @@ TEST_P(RenderAccuracy, ClearcoatMatchesTheReference) {
     }
     assets::Scene plain = scene;
     for (assets::Material& m : plain.materials) m.clearcoat = 0.0f;
-    auto toImage = [](const render::ReferenceImage& ref) {
-        std::vector<std::array<float, 4>> texels;
-        for (auto& v : ref.radiance) texels.push_back({float(v.x), float(v.y), float(v.z), 1});
-        return gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, texels);
-    };
-    for (uint32_t samples : {0u, 64u}) {
-        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, kW, kH, {.iblSamples = samples});
-        const gdi::Image cpu = toImage(ref);
-        const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
-        const Stats without = compare(toImage(render::renderReference(plain, *plain.camera, kW, kH, {.iblSamples = samples})), cpu,
-                                      0.02, 0.01, edge);
-        EXPECT_GE(without.fractionOver, 0.2) << "the layer hardly changes the reference";
-        for (const render::TechniqueInfo& t : render::techniques()) {
-            if (!t.fullMaterial(shading::Brdf::Gltf) || (std::string(t.name).find("tiled") != std::string::npos &&
-                                                          !device->info().features.computeShaders))
-                continue;
-            render::SceneRenderer r(*device, scene, {.technique = t.name, .width = kW, .height = kH, .iblSamples = samples});
-            r.renderFrame();
-            const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
-            std::cout << t.name << (samples ? " with 64 sky samples" : ", punctual") << ": " << st.fractionOver * 100
-                      << " % beyond 2 % of the reference (without the layer: " << without.fractionOver * 100 << " %)\n";
-            EXPECT_LE(st.fractionOver, 0.01) << t.name << " max " << st.maxRel;
-        }
-    }
-    // The fast path layers it too: against the same frame without the layer it differs.
-    render::RenderSettings fast{.technique = "forward", .width = kW, .height = kH, .iblPrefiltered = true};
-    render::SceneRenderer withLayer(*device, scene, fast), without(*device, plain, fast);
-    withLayer.renderFrame();
-    without.renderFrame();
-    EXPECT_GE(compare(withLayer.readOutput(), without.readOutput(), 0.02, 0.01).fractionOver, 0.2);
+    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "a clearcoat");
     EXPECT_EQ(render::materialWarnings(scene, {.technique = "deferred-tiled"}).size(), 1u);
 }
