@@ -58,6 +58,9 @@
 //   headlight: point at the eye, white, range infinite, intensity 0.7 * D^2 candela with D the
 //         eye-to-bounds-centre distance (0.7 lux at the centre).
 // A white Lambertian surface facing the default camera then reflects about 0.96 (exposure 1).
+// fe render and fe view replace that rig by the default look unless lighting is asked for
+// (assets::useDefaultSkyAndSun: builtin:sky as image-based light and background, and a sun with
+// shadows); a library user calls it, or not, the same way.
 #pragma once
 #include <string>
 
