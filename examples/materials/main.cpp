@@ -2,7 +2,8 @@
 // (COLOR_0), a texture on the second uv set (TEXCOORD_1) through a KHR_texture_transform, and
 // both BRDFs (glTF 2.0's, the default, and the seeds' separable one). Two threads render at
 // once, each on a device of its own; then two mistakes are made on purpose. Everything printed
-// is the same on every backend (CI diffs it).
+// is the same on every backend (CI diffs it). Last, the quad as a user's model without lights:
+// the default look (the sky and a sun) on a transparent background, and the frame's warnings.
 //   fe_example_materials [--backend NAME] [--validation]
 #include <atomic>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "fe/gdi/Backend.h"
+#include "integration/FrameWarnings.h"
 #include "integration/SceneRenderer.h"
 
 using namespace fe;
@@ -129,8 +131,29 @@ int main(int argc, char** argv) {
         for (uint32_t y = 0; y < 64; ++y)
             for (uint32_t x = 0; x < 64; ++x) differ = std::max(differ, double(std::abs(images[0].texel(x, y)[2] - images[1].texel(x, y)[2])));
         std::printf("the glTF and separable BRDFs differ: %s\n", differ > 1e-3 ? "yes" : "no");
-        // Mistakes, made on purpose: each the same gdi::Error everywhere, before any native call.
         auto device = gdi::createDevice({.backend = backend, .validation = validation});
+        // The quad as a model whose file has no lights: the loader's rig, replaced by the default
+        // look; a transparent background leaves the corners clear and the quad opaque.
+        {
+            assets::Scene unlit = scene;
+            unlit.lights.clear();
+            assets::addDefaultLights(unlit, *unlit.camera);
+            const bool look = assets::useDefaultSkyAndSun(unlit);
+            render::RenderSettings s{.technique = "forward", .width = 64, .height = 64, .iblPrefiltered = true};
+            s.shadows.enabled = unlit.showsShadows;
+            s.tonemap = shading::Tonemap::PbrNeutral;
+            s.background.kind = render::Background::Kind::Transparent;
+            s.displayImage = true;
+            render::SceneRenderer r(*device, unlit, s);
+            r.renderFrame();
+            const gdi::Image display = r.readDisplay();
+            std::printf("default look: %s, %zu light(s), the sky %s, corner %s, quad %s, %zu warning(s)\n", look ? "yes" : "no",
+                        unlit.lights.size(), unlit.environment ? "lights it" : "missing",
+                        display.texel(0, 0)[3] == 0.0f ? "transparent" : "opaque",
+                        display.texel(32, 32)[3] == 1.0f ? "opaque" : "transparent",
+                        render::frameWarnings(unlit, *unlit.camera, s, display).size());
+        }
+        // Mistakes, made on purpose: each the same gdi::Error everywhere, before any native call.
         try {
             render::RenderSettings s{.technique = "redeferred", .width = 64, .height = 64};
             s.shadingModel = render::ShadingModel::Gltf;
