@@ -100,6 +100,7 @@ SceneNeeds sceneNeeds(const assets::Scene& scene, float aspect) {
             const assets::Material& m = scene.materials[p.material];
             n.blendPrimitives += m.alphaMode == assets::AlphaMode::Blend;
             if (m.unlit) continue;
+            n.fullMaterialPrimitives += m.needsFullMaterial();
             const auto [lo, hi] = roughnessRange(scene, m);
             n.minRoughness = std::min(n.minRoughness, lo);
             n.maxRoughness = std::max(n.maxRoughness, hi);
@@ -194,6 +195,17 @@ DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requeste
                             ": lights drawn as volumes");
     }
 
+    // Materials only the forward family and the visibility buffer show: never a G-buffer or
+    // separable technique when the choice is ours.
+    if (exactOnly && n.fullMaterialPrimitives && s.shadingModel != ShadingModel::Separable &&
+        !findTechnique(s.technique).fullMaterial(resolveBrdf(s))) {
+        const std::string was = s.technique;
+        s.technique = hasComputeShaders(info) ? "clustered-forward" : "forward";
+        c.reasons.push_back("technique " + s.technique + " rather than " + was + ": " + std::to_string(n.fullMaterialPrimitives) +
+                            " primitive(s) set the dielectric's Fresnel or a clearcoat (KHR_materials_ior / specular / "
+                            "clearcoat), which " + was + " cannot show; " + s.technique + " shades the whole material, exactly" +
+                            (hasComputeShaders(info) ? ", walking each fragment's cluster list" : ""));
+    }
     if (n.blendPrimitives)
         c.reasons.push_back(std::to_string(n.blendPrimitives) + " translucent primitive(s): " +
                             (hasComputeShaders(info) ? "their pass lights them from the light cluster grid whatever the technique, "

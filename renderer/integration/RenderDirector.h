@@ -53,6 +53,9 @@ struct SceneNeeds {
     uint32_t lights = 0;          // every light
     uint32_t boundedLights = 0;   // point and spot lights with a range (cullable per tile)
     uint32_t blendPrimitives = 0; // instances x primitives with BLEND materials
+    // Instances x primitives whose material only a full-material technique shows
+    // (assets::Material::needsFullMaterial: KHR_materials_ior / specular / clearcoat).
+    uint32_t fullMaterialPrimitives = 0;
     // Sum over lights of the screen fraction their range sphere covers (1 for lights without a
     // range, and for spheres around the eye): how many times over the lights cover the screen.
     // The projected disc is not clipped to the screen, so this errs high.

@@ -8,6 +8,7 @@
 #include "BackendTest.h"
 #include "assets/BuiltinScenes.h"
 #include "assets/Environment.h"
+#include "integration/FrameWarnings.h"
 #include "integration/RenderDirector.h"
 #include "integration/SceneRenderer.h"
 
@@ -231,6 +232,30 @@ TEST_P(RenderDirector, GltfAskedNeverGetsASeparableTechnique) {
     EXPECT_NE(why.find("unused, --brdf gltf asked for"), std::string::npos) << why;
     render::SceneRenderer r(*device, scene, budget.settings);  // it renders: no refusal
     r.renderFrame();
+}
+
+// Materials only the forward family and the visibility buffer show (KHR_materials_ior / specular /
+// clearcoat): auto never picks a G-buffer technique for them, and says why; without them the
+// choice is what it was.
+TEST_P(RenderDirector, FullMaterialsKeepAForwardTechnique) {
+    assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
+    const render::RenderSettings request{.technique = "auto", .width = 64, .height = 48};
+    gdi::DeviceInfo noCompute = device->info();
+    noCompute.features.computeShaders = false;
+    const std::string before = render::direct(scene, request, noCompute).settings.technique;
+    ASSERT_FALSE(render::findTechnique(before).fullMaterial(shading::Brdf::Gltf)) << before << ": the test needs a G-buffer choice";
+    scene.materials[0].clearcoat = 1.0f;
+    const render::DirectorChoice c = render::direct(scene, request, noCompute);
+    std::string why;
+    for (const auto& r : c.reasons) why += r + "\n";
+    EXPECT_EQ(c.settings.technique, "forward") << why;
+    EXPECT_NE(why.find("rather than " + before + ": "), std::string::npos) << why;
+    EXPECT_TRUE(render::materialWarnings(scene, c.settings).empty());
+    if (device->info().features.computeShaders) {
+        const render::DirectorChoice withCompute = render::direct(scene, request, device->info());
+        EXPECT_TRUE(render::findTechnique(withCompute.settings.technique).fullMaterial(shading::Brdf::Gltf))
+            << withCompute.settings.technique;
+    }
 }
 
 // BLEND primitives bring the transparent pass; without them there is none.
