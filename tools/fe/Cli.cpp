@@ -130,7 +130,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--tolerance", {"ABS[,FRACTION]", "per channel, and the fraction of pixels allowed beyond it (default 0.0196,0.001)"}},
     {"bisect --out", {"DIR", "where bisect.json and the images go (default bisect)"}},
     {"--perturb", {"BACKEND:DRAW", "leave draw DRAW out on BACKEND (tests the bisection)"}},
-    {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto: the render director chooses"}},
+    {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto, the default: the render director chooses"}},
     {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
     {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},
     {"--size", {"WxH", "image size in pixels (default 960x540)"}},
