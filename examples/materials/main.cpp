@@ -170,6 +170,14 @@ int main(int argc, char** argv) {
         } catch (const gdi::Error& e) {
             std::printf("mistake 2: %s\n", e.what());
         }
+        try {
+            render::RenderSettings s{.technique = "forward", .width = 64, .height = 64};
+            s.background.kind = render::Background::Kind::Environment;  // the quad's scene has none
+            render::SceneRenderer r(*device, scene, s);
+            std::printf("mistake 3 accepted\n");
+        } catch (const gdi::Error& e) {
+            std::printf("mistake 3: %s\n", e.what());
+        }
         if (validationErrors + device->validationErrorCount()) {
             std::fprintf(stderr, "fe_example_materials: validation errors\n");
             return 1;

@@ -148,6 +148,20 @@ TEST_P(Backgrounds, TransparentIsAlphaZeroWhereNothingIsDrawn) {
         EXPECT_GT(partial, n / 50) << int(aa) << ": the blended sphere over nothing keeps its alpha";
         if (aa == render::AntiAliasing::None) EXPECT_GT(double(sameColour), 0.95 * double(opaque));
     }
+    // Every technique: what each leaves in L_o's alpha differs (forward writes 1, the G-buffer
+    // and compute ones do not), so the coverage must come from the background pass itself.
+    s.antiAliasing = render::AntiAliasing::None;
+    for (const render::TechniqueInfo& t : render::techniques()) {
+        if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
+        s.technique = t.name;
+        const gdi::Image d = renderWith(*device, scene, s).display;
+        size_t clear = 0, opaque = 0;
+        for (uint32_t y = 0; y < d.height; ++y)
+            for (uint32_t x = 0; x < d.width; ++x) clear += d.texel(x, y)[3] == 0.0f, opaque += d.texel(x, y)[3] == 1.0f;
+        const size_t n = size_t(d.width) * d.height;
+        EXPECT_GT(clear, n / 5) << t.name;
+        EXPECT_GT(opaque, n / 5) << t.name;
+    }
 }
 
 // A colour: exactly that sRGB value where nothing is drawn, under every tone mapper and FXAA.
