@@ -52,7 +52,9 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_clearcoat",
     "KHR_materials_ior",
     "KHR_materials_specular",
+    "KHR_materials_transmission",
     "KHR_materials_unlit",
+    "KHR_materials_volume",
     "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
 };
@@ -316,6 +318,10 @@ private:
     void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what);
     // KHR_materials_ior and KHR_materials_specular into mat (the factors; the textures are warned).
     void readDielectric(const tinygltf::Material& gm, Material& mat, const std::string& label);
+    // KHR_materials_transmission and KHR_materials_volume into mat, with their textures.
+    void readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label);
+    // A textureInfo inside an extension (ext[key]), as getTexture reads the core ones.
+    TextureRef extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
 
@@ -761,6 +767,50 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
         for (const char* t : {"specularTexture", "specularColorTexture"})
             if (e->Has(t)) warn(where + "." + t + " is not read: the factors alone are used");
     }
+}
+
+void Loader::readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label) {
+    if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_transmission")) {
+        const std::string where = label + ": KHR_materials_transmission";
+        readNumbers(*e, "transmissionFactor", where, &mat.transmission, 0);
+        if (!(mat.transmission >= 0.0f && mat.transmission <= 1.0f)) fail(where + ".transmissionFactor must lie in [0, 1]");
+        mat.transmissionTexture = extensionTexture(*e, "transmissionTexture", where);
+        if (mat.alphaMode == AlphaMode::Blend && mat.transmission > 0.0f)
+            warn(where + " on a BLEND material is not drawn: it blends instead (make it OPAQUE to see through it)");
+    }
+    if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_volume")) {
+        const std::string where = label + ": KHR_materials_volume";
+        readNumbers(*e, "thicknessFactor", where, &mat.thickness, 0);
+        readNumbers(*e, "attenuationDistance", where, &mat.attenuationDistance, 0);
+        readNumbers(*e, "attenuationColor", where, &mat.attenuationColor.x, 3);
+        if (!(mat.thickness >= 0.0f)) fail(where + ".thicknessFactor must not be negative");
+        if (!(mat.attenuationDistance > 0.0f)) fail(where + ".attenuationDistance must be positive");
+        if (!glm::all(glm::greaterThanEqual(mat.attenuationColor, glm::vec3(0.0f))) ||
+            !glm::all(glm::lessThanEqual(mat.attenuationColor, glm::vec3(1.0f))))
+            fail(where + ".attenuationColor must lie in [0, 1]");
+        mat.thicknessTexture = extensionTexture(*e, "thicknessTexture", where);
+        if (mat.transmission == 0.0f) warn(where + " without KHR_materials_transmission has no effect here");
+    }
+}
+
+TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what) {
+    if (!ext.Has(key)) return {};
+    const tinygltf::Value& info = ext.Get(key);
+    const std::string where = what + "." + key;
+    if (!info.IsObject() || !info.Has("index")) fail(where + " must be an object with an index");
+    const int index = valueIndex(info.Get("index"));
+    if (index < 0) fail(where + ".index must be a non-negative integer");
+    int texCoord = 0;
+    if (info.Has("texCoord")) {
+        texCoord = valueIndex(info.Get("texCoord"));
+        if (texCoord < 0) fail(where + ".texCoord must be a non-negative integer");
+    }
+    tinygltf::ExtensionMap extensions;
+    if (info.Has("extensions") && info.Get("extensions").IsObject()) {
+        const tinygltf::Value& x = info.Get("extensions");
+        for (const std::string& k : x.Keys()) extensions[k] = x.Get(k);
+    }
+    return getTexture(index, texCoord, false, extensions, where);
 }
 
 // KHR_texture_transform on a textureInfo: offset, rotation, scale, and a texCoord that overrides
@@ -1309,6 +1359,7 @@ uint32_t Loader::getMaterial(int gi) {
     }
     mat.alphaCutoff = float(gm.alphaCutoff);
     mat.doubleSided = gm.doubleSided;
+    readTransmission(gm, mat, label);
 
     const float checks[] = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z, mat.baseColorFactor.w,
                             mat.metallic,          mat.roughness,         mat.emissiveFactor.x,  mat.emissiveFactor.y,

@@ -157,6 +157,18 @@ struct Material {
         const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);
         return r * r;
     }
+    // KHR_materials_transmission: the fraction of the dielectric's diffuse light replaced by light
+    // passing through the surface (times its texture's R); KHR_materials_volume: the volume's
+    // thickness in mesh units (times its texture's G; 0: thin-walled) and Beer-Lambert attenuation
+    // (attenuationColor reached after attenuationDistance, infinite: none). docs/SHADING.md.
+    float transmission = 0.0f;
+    TextureRef transmissionTexture;  // linear, R
+    float thickness = 0.0f;
+    TextureRef thicknessTexture;     // linear, G
+    glm::vec3 attenuationColor{1.0f};
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    // Drawn after the opaque scene, which it sees through (a BLEND material blends instead).
+    bool transmissive() const { return transmission > 0.0f && alphaMode != AlphaMode::Blend; }
     // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
     bool defaultDielectric() const { return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f); }
     // Inputs only the techniques that shade the whole material evaluate (TechniqueInfo::fullMaterial).

@@ -35,7 +35,9 @@ std::string kib(uint64_t bytes) {
 
 bool TextureAccess::reads() const { return state == gdi::ResourceState::ShaderRead || load == gdi::LoadOp::Load; }
 // (A resolve destination is a RenderTarget access with DontCare load: a write, not a read.)
-bool TextureAccess::writes() const { return isTarget(state) || state == gdi::ResourceState::Storage; }
+bool TextureAccess::writes() const {
+    return isTarget(state) || state == gdi::ResourceState::Storage || state == gdi::ResourceState::CopyDst;
+}
 
 // ---- declaration ------------------------------------------------------------------------------
 
@@ -59,6 +61,13 @@ void PassBuilder::sample(TextureId t) {
 }
 void PassBuilder::storage(TextureId t, bool readToo) {
     graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::Storage,
+                                              .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
+}
+void PassBuilder::copySource(TextureId t) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::CopySrc, .load = gdi::LoadOp::Load});
+}
+void PassBuilder::copyDestination(TextureId t, bool readToo) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::CopyDst,
                                               .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
 }
 void PassBuilder::buffer(BufferId b, gdi::BufferAccess access) {
@@ -216,6 +225,8 @@ void RenderGraph::computeLifetimes() {
             t.lastPass = int(p);
             if (t.imported) continue;
             t.desc.usage = t.desc.usage | (a.state == gdi::ResourceState::Storage ? gdi::TextureUsage::Storage
+                                           : a.state == gdi::ResourceState::CopySrc  ? gdi::TextureUsage::CopySrc
+                                           : a.state == gdi::ResourceState::CopyDst  ? gdi::TextureUsage::CopyDst
                                            : a.writes()                              ? gdi::TextureUsage::RenderTarget
                                                                                      : gdi::TextureUsage::Sampled);
         }
@@ -349,8 +360,9 @@ void RenderGraph::compile(const CompileOptions& options) {
             if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
                 throw gdi::Error("render graph: pass '" + pass.name + "' samples multisampled texture '" + t.name +
                                  "'; resolve it into a single-sample texture first");
-            // Storage images are addressed by the shader, not a render area: any sizes may mix.
-            if (!a.writes() || a.state == gdi::ResourceState::Storage) continue;
+            // Storage images are addressed by the shader and copies by their regions, not a
+            // render area: any sizes may mix.
+            if (!isTarget(a.state)) continue;
             const bool isDepth = gdi::isDepthFormat(t.desc.format);
             if ((a.state == gdi::ResourceState::DepthTarget) != isDepth)
                 throw gdi::Error("render graph: pass '" + pass.name + "': texture '" + t.name + "' (" +

@@ -98,6 +98,12 @@ public:
     void sample(TextureId texture);
     // Written as a storage image (compute); `readToo`: its earlier contents are read as well.
     void storage(TextureId texture, bool readToo = false);
+    // Read, or written, by copies (copyTexture) and mip generation (generateMips, which reads
+    // and writes its texture: the destination's state); `readToo`: earlier contents are kept.
+    // Ordering copies within the pass (a copy's destination read by the next) is the pass's own
+    // barrier.
+    void copySource(TextureId texture);
+    void copyDestination(TextureId texture, bool readToo = false);
     // Buffers: every access of the pass to the buffer, as flags (Indirect | StorageRead, ...).
     // Writes (StorageWrite, CopyDst) are taken as partial: earlier contents stay needed.
     void buffer(BufferId buffer, gdi::BufferAccess access);

@@ -124,6 +124,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
         context_->clusters = clusters_.get();
     }
     if (!scene.emitters.empty()) vfx_ = std::make_unique<VfxRenderer>(*context_, scene.emitters);
+    if (gpuScene_->hasTransmissive()) transmission_ = std::make_unique<TransmissionPass>(*context_);
     technique_ = technique.create(*context_);
     buildGraph();
     graph_.compile(device, s.aliasing);
@@ -143,6 +144,7 @@ void SceneRenderer::buildGraph() {
     technique_->declare(g, output_, depth_);
     if (s.lightListStatistics || s.debugView == kLightsEvaluatedView) declareListStatistics(g);
     background_->declare(g, output_, depth_);
+    if (transmission_) transmission_->declare(g, output_, depth_);
     if (gpuScene_->hasBlend()) {
         const bool culled = clusters_ && s.translucentClusters;
         const ClusterLightGrid::Lists clusterLists = culled ? clusters_->declare(g) : ClusterLightGrid::Lists{};

@@ -26,6 +26,7 @@
 #include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
 #include "render/TechniqueRenderer.h"
+#include "render/TransmissionPass.h"
 #include "render/VfxRenderer.h"
 
 namespace fe::render {
@@ -138,6 +139,7 @@ private:
     std::unique_ptr<VfxRenderer> vfx_;             // when the scene has particle emitters
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
     std::unique_ptr<BackgroundPass> background_;
+    std::unique_ptr<TransmissionPass> transmission_;  // with transmissive surfaces
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows

@@ -20,6 +20,7 @@ struct WorldTriangle {
     uint32_t material;
     int32_t surface;
     bool mirrored;
+    glm::dvec3 meshScale;  // the lengths of the instance's axes: KHR_materials_volume's thickness scale
 };
 
 struct SurfaceBox {
@@ -112,6 +113,55 @@ bool hitsBox(const SurfaceBox& b, const glm::dvec3& o, const glm::dvec3& invD, d
 
 }  // namespace
 
+// The opaque scene's copy that transmission samples, as the GPU builds it (render/
+// TransmissionPass): level 0 the image, each next level a 2x2 box average of the one above
+// (floor sizes, the last row or column of an odd level dropped), read trilinearly with
+// clamp-to-edge addressing in the GPU's pixel-centre convention.
+class MipChain {
+public:
+    MipChain(std::vector<glm::dvec3> base, uint32_t width, uint32_t height) {
+        levels_.push_back({width, height, std::move(base)});
+        while (levels_.back().width > 1 || levels_.back().height > 1) {
+            const Level& a = levels_.back();
+            Level b{std::max(a.width / 2, 1u), std::max(a.height / 2, 1u), {}};
+            b.texels.resize(size_t(b.width) * b.height);
+            for (uint32_t y = 0; y < b.height; ++y)
+                for (uint32_t x = 0; x < b.width; ++x) {
+                    glm::dvec3 sum(0.0);
+                    for (uint32_t k = 0; k < 4; ++k)
+                        sum += a.at(std::min(2 * x + (k & 1), a.width - 1), std::min(2 * y + (k >> 1), a.height - 1));
+                    b.texels[size_t(y) * b.width + x] = sum / 4.0;
+                }
+            levels_.push_back(std::move(b));
+        }
+    }
+    // uv in [0, 1] of the image (x right, y down the rows), lod in levels.
+    glm::dvec3 sample(glm::dvec2 uv, double lod) const {
+        lod = std::clamp(lod, 0.0, double(levels_.size() - 1));
+        const size_t l0 = size_t(std::floor(lod)), l1 = std::min(l0 + 1, levels_.size() - 1);
+        const double f = lod - double(l0);
+        const glm::dvec3 a = levels_[l0].bilinear(uv);
+        return f > 0.0 ? a * (1.0 - f) + levels_[l1].bilinear(uv) * f : a;
+    }
+
+private:
+    struct Level {
+        uint32_t width, height;
+        std::vector<glm::dvec3> texels;
+        const glm::dvec3& at(uint32_t x, uint32_t y) const { return texels[size_t(y) * width + x]; }
+        glm::dvec3 bilinear(glm::dvec2 uv) const {
+            const double fx = uv.x * width - 0.5, fy = uv.y * height - 0.5;
+            const double x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
+            auto texel = [&](double x, double y) {
+                return at(uint32_t(std::clamp(x, 0.0, double(width - 1))), uint32_t(std::clamp(y, 0.0, double(height - 1))));
+            };
+            return (texel(x0, y0) * (1.0 - tx) + texel(x0 + 1, y0) * tx) * (1.0 - ty) +
+                   (texel(x0, y0 + 1) * (1.0 - tx) + texel(x0 + 1, y0 + 1) * tx) * ty;
+        }
+    };
+    std::vector<Level> levels_;
+};
+
 bool ReferenceImage::nearShadowEdge(uint32_t x, uint32_t y, uint32_t radius) const {
     if (occluded.empty()) return false;
     const uint32_t own = occluded[size_t(y) * width + x];
@@ -141,6 +191,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     // World-space triangles grouped per (instance, primitive) with a bounding box each.
     std::vector<WorldTriangle> tris;
     std::vector<WorldTriangle> blended;  // BLEND surfaces: composited over the opaque result
+    std::vector<WorldTriangle> transmissive;  // seen in front of the opaque result, which they see through
     std::vector<SurfaceBox> boxes;
     int32_t surfaceId = 0;
     for (const assets::MeshInstance& inst : scene.instances) {
@@ -163,10 +214,13 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 t.material = prim.material;
                 t.surface = id;
                 t.mirrored = inst.mirrored;
+                t.meshScale = glm::dvec3(glm::length(world[0]), glm::length(world[1]), glm::length(world[2]));
                 return t;
             };
-            if (scene.materials[prim.material].alphaMode == assets::AlphaMode::Blend) {
-                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) blended.push_back(triangle(i));
+            const assets::Material& primMaterial = scene.materials[prim.material];
+            if (primMaterial.alphaMode == assets::AlphaMode::Blend || primMaterial.transmissive()) {
+                auto& list = primMaterial.transmissive() ? transmissive : blended;
+                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) list.push_back(triangle(i));
                 continue;
             }
             SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
@@ -248,10 +302,15 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     // The radiance a surface sends to the eye and its alpha: `shadows` (the opaque surfaces)
     // traces shadow rays for the casting lights, recording occluded ones in *occludedBits;
     // blended surfaces receive no shadows, as on the GPU.
+    // A transmissive surface also sees the opaque scene at `exit` (where the light leaves its
+    // volume), weighed by `sceneWeight`, through mip level `lod` of its copy.
     struct Shaded {
         glm::dvec3 radiance{0.0};
         double alpha = 1.0;
         bool textured = false;
+        glm::dvec3 sceneWeight{0.0};
+        glm::dvec3 exit{0.0};
+        double lod = 0.0;
     };
     auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance, const glm::dvec3& dir,
                      bool shadows, uint32_t* occludedBits) {
@@ -299,6 +358,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             out.textured = true;
         }
         out.alpha = bc.a;
+        double transmission = mat.transmissive() ? mat.transmission : 0.0, thickness = mat.thickness;
+        if (transmission > 0.0 && mat.transmissionTexture.valid()) transmission *= texel(mat.transmissionTexture).r;
+        if (transmission > 0.0 && mat.thicknessTexture.valid()) thickness *= texel(mat.thicknessTexture).g;
         if (mat.unlit) {
             out.radiance = glm::dvec3(bc);
             return out;
@@ -316,7 +378,20 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.clearcoatRoughness = mat.clearcoatRoughness;
         s.clearcoatNormal = vertexNormal;
         s.clearcoatF0 = mat.clearcoatF0();
-        if (mat.clearcoat > 0.0f && options.brdf == shading::Brdf::Gltf) emissive *= 1.0 - s.clearcoat * shading::clearcoatViewFresnel(s);  // the layer covers emission too
+        s.ior = mat.ior;
+        // Transmissive surfaces are drawn by the transmission pass under the glTF model, whatever
+        // the technique's (render/TransmissionPass.h).
+        const shading::Brdf brdf = mat.transmissive() ? shading::Brdf::Gltf : options.brdf;
+        if (transmission > 0.0) {
+            s.transmission = transmission;
+            s.transmissionRay = shading::transmissionRay(n, s.wo, thickness, mat.ior, hit->meshScale);
+            s.transmittance = shading::volumeTransmittance(glm::dvec3(mat.attenuationColor), mat.attenuationDistance,
+                                                           glm::length(s.transmissionRay));
+            out.sceneWeight = shading::transmittedSceneWeight(s);
+            out.exit = s.P + s.transmissionRay;
+            out.lod = shading::transmissionLod(roughness, mat.ior, width, height);
+        }
+        if (mat.clearcoat > 0.0f && brdf == shading::Brdf::Gltf) emissive *= 1.0 - s.clearcoat * shading::clearcoatViewFresnel(s);  // the layer covers emission too
         glm::dvec3 L = emissive;
         // The side of the surface the eye sees, for the shadow rays' start.
         const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);
@@ -331,7 +406,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     continue;
                 }
             }
-            L += shading::shadeLight(s, ls, options.brdf);
+            L += shading::shadeLight(s, ls, brdf);
         }
         if (options.iblSamples > 0 && scene.environment) {
             // The occlusion texture darkens indirect light only (glTF 2.0: 1 + strength (ao - 1)).
@@ -340,7 +415,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                                   : 1.0;
             if (mat.occlusionTexture.valid()) out.textured = true;
             L += ao * shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
-                                                options.iblSamples, options.brdf);
+                                                options.iblSamples, brdf);
         }
         out.radiance = L;
         return out;
@@ -371,15 +446,41 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         return radiance;
     };
 
+    // The nearest transmissive surface in front of `limit` along the ray, if any.
+    struct Hit {
+        double t = std::numeric_limits<double>::infinity(), b1 = 0, b2 = 0;
+        const WorldTriangle* tri = nullptr;
+    };
+    auto nearestTransmissive = [&](const glm::dvec3& dir, double limit) {
+        Hit best;
+        best.t = limit;
+        for (const WorldTriangle& tri : transmissive) {
+            double b1, b2;
+            const double t = intersect(tri, eye, dir, b1, b2);
+            if (!(t > camera.znear * 0.5) || t >= best.t) continue;
+            const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+            const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
+            if (!scene.materials[tri.material].doubleSided && !front) continue;
+            best = {t, b1, b2, &tri};
+        }
+        return best;
+    };
+    const glm::dmat4 projRotation = glm::inverse(invProjRotation);
+    auto pixelDirection = [&](uint32_t x, uint32_t y) {
+        glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+        glm::dvec4 farPoint = invProjRotation * glm::dvec4(ndc, 0.5, 1.0);
+        return glm::normalize(glm::dvec3(farPoint) / farPoint.w);
+    };
+
     // Every pixel is its own ray and writes only its own entries, and everything the rays read is
     // const: rows are shared out among the machine's threads (interleaved, as cost varies by row),
     // with the same result as one thread. 78 s on one thread for the 1280x720 atrium with 1024
     // lights was more than a 15-minute GPU lease could spend on each reference.
+    // First the opaque scene; with transmissive surfaces, a second pass sees them in front of it.
+    std::vector<double> opaqueDepth(size_t(width) * height, std::numeric_limits<double>::infinity());
     auto row = [&](uint32_t y) {
         for (uint32_t x = 0; x < width; ++x) {
-            glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
-            glm::dvec4 farPoint = invProjRotation * glm::dvec4(ndc, 0.5, 1.0);
-            glm::dvec3 dir = glm::normalize(glm::dvec3(farPoint) / farPoint.w);
+            const glm::dvec3 dir = pixelDirection(x, y);
             glm::dvec3 invD = 1.0 / dir;
             double best = std::numeric_limits<double>::infinity();
             const WorldTriangle* hit = nullptr;
@@ -414,10 +515,35 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 out.textured[pixel] = opaque.textured;
                 radiance = opaque.radiance;
             }
-            out.radiance[pixel] = composite(radiance, eye, dir, best);
+            opaqueDepth[pixel] = best;
+            out.radiance[pixel] = transmissive.empty() ? composite(radiance, eye, dir, best) : radiance;
         }
     };
     forEachRowInParallel(height, row);
+    if (transmissive.empty()) return out;
+
+    const MipChain opaqueScene(out.radiance, width, height);
+    auto transmissionRow = [&](uint32_t y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            const size_t pixel = size_t(y) * width + x;
+            const glm::dvec3 dir = pixelDirection(x, y);
+            double limit = opaqueDepth[pixel];
+            glm::dvec3 radiance = out.radiance[pixel];
+            const Hit h = nearestTransmissive(dir, limit);
+            if (h.tri) {
+                const Shaded s = shade(*h.tri, h.b1, h.b2, h.t, dir, false, nullptr);
+                // Where the light leaves the volume, on the screen (the GPU's pixel-centre convention).
+                const glm::dvec4 clip = projRotation * glm::dvec4(s.exit - eye, 1.0);
+                const glm::dvec2 uv = glm::dvec2(clip) / clip.w * 0.5 + 0.5;
+                radiance = s.radiance + s.sceneWeight * opaqueScene.sample(uv, s.lod);
+                limit = h.t;
+                out.surface[pixel] = h.tri->surface;
+                out.textured[pixel] = s.textured;
+            }
+            out.radiance[pixel] = composite(radiance, eye, dir, limit);
+        }
+    };
+    forEachRowInParallel(height, transmissionRow);
     return out;
 }
 

@@ -9,6 +9,13 @@ namespace fe::render {
 
 namespace {
 bool isTransparent(MeshPass pass) { return pass == MeshPass::Transparent || pass == MeshPass::TransparentClustered; }
+// Which draws a pass takes: BLEND ones the transparent passes, transmissive ones the
+// transmission pass, every other one the rest (opaque and MASK: shading, depth, shadow casting).
+bool drawnBy(MeshPass pass, const DrawItem& d) {
+    if (d.alphaMode == assets::AlphaMode::Blend) return isTransparent(pass);
+    if (d.transmissive) return pass == MeshPass::Transmission;
+    return !isTransparent(pass) && pass != MeshPass::Transmission;
+}
 
 // Shadow casters' depth bias (RasterState): 2 x the depth slope, plus 4 units of the format's
 // resolution (for D32F a few ulps of the depth; the slope term does the work).
@@ -105,10 +112,11 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::TransparentClustered:
                 return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::LessOrEqual, "transparent clustered"};
             case MeshPass::Visibility: return {visibilityShaders(), true, gdi::CompareOp::LessOrEqual, "visibility"};
+            case MeshPass::Transmission: return {transmissionShader(), true, gdi::CompareOp::LessOrEqual, "transmission"};
             default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
-    if (ibl) st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
+    if (ibl && pass != MeshPass::Transmission) st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
         .vertexShader = vs_,
@@ -165,6 +173,17 @@ gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const ch
     return made;
 }
 
+// The transmission pass's forward shader (FE_TRANSMISSION), with the environment's light when
+// the renderer has one; made at its first pipeline.
+gdi::ShaderHandle GeometryRenderer::transmissionShader() {
+    if (!transmissionFs_) {
+        const std::string path = forwardIblFs_ ? environment_.shader("scene/forward_ibl.frag") : "scene/forward.frag";
+        transmissionFs_ = objects_.add(device_.createShader(
+            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(lightsVariant(path, "FE_TRANSMISSION"))}));
+    }
+    return transmissionFs_;
+}
+
 // The visibility pass's shaders (its fragment shader returned), made at its first pipeline.
 gdi::ShaderHandle GeometryRenderer::visibilityShaders() {
     if (!visibilityFs_) {
@@ -176,19 +195,19 @@ gdi::ShaderHandle GeometryRenderer::visibilityShaders() {
 
 uint32_t GeometryRenderer::drawCount(MeshPass pass) const {
     uint32_t n = 0;
-    for (const DrawItem& d : scene_.draws())
-        n += isTransparent(pass) == (d.alphaMode == assets::AlphaMode::Blend);
+    for (const DrawItem& d : scene_.draws()) n += drawnBy(pass, d);
     return n;
 }
 
 std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::vec3& eye) const {
     std::vector<const DrawItem*> items;
     for (const DrawItem& d : scene_.draws())
-        if (isTransparent(pass) == (d.alphaMode == assets::AlphaMode::Blend)) items.push_back(&d);
+        if (drawnBy(pass, d)) items.push_back(&d);
     auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
     if (isTransparent(pass))  // back to front, so source-over blending composes correctly
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
-    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster || pass == MeshPass::Visibility)  // front to back: hidden surfaces fail early
+    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster || pass == MeshPass::Visibility ||
+        pass == MeshPass::Transmission)  // front to back: hidden surfaces fail early
         std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });
     return items;
 }

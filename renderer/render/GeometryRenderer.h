@@ -33,6 +33,8 @@ enum class MeshPass {
     ForwardClustered,         // ForwardEqual over the fragment's cluster list (kSlotClusterLights, clustered-forward)
     TransparentClustered,     // Transparent over the fragment's cluster list (any technique, with a cluster grid)
     Visibility,               // triangle ids (R32U) and depth, vertices pulled (kSlotVertices, kSlotIndices), front to back
+    Transmission,             // transmissive items (KHR_materials_transmission) over the opaque scene's copy
+                              // (kSlotTransmitted), every light, depth test <=, depth write
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -46,8 +48,8 @@ class GeometryRenderer {
 public:
     GeometryRenderer(gdi::Device& device, GpuScene& scene);
 
-    // Draws the scene's draw items that belong to `pass` (opaque+mask, or blend sorted back to
-    // front). `frameConstants` is the per-frame uniform allocation. Passes that draw the same
+    // Draws the scene's draw items that belong to `pass` (opaque+mask; blend sorted back to
+    // front; or transmissive). `frameConstants` is the per-frame uniform allocation. Passes that draw the same
     // items again in a frame share `objects` (cleared at the start of each frame): each item's
     // object constants are uploaded the first time it is drawn and reused after.
     // Image-based lighting in the forward-shaded passes (Forward, ForwardEqual, Transparent) and
@@ -74,9 +76,11 @@ private:
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
     gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;  // made at their first pipeline
     gdi::ShaderHandle visibilityVs_, visibilityFs_;          // likewise
+    gdi::ShaderHandle transmissionFs_;                       // likewise
     gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name, const char* variant = nullptr);
     std::string lightsVariant(const std::string& path, const char* variant = nullptr) const;
     gdi::ShaderHandle visibilityShaders();
+    gdi::ShaderHandle transmissionShader();
     EnvironmentLight environment_;
 };
 

@@ -109,6 +109,7 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             d.material = prim.material;
             d.instance = i;
             d.alphaMode = mat.alphaMode;
+            d.transmissive = mat.transmissive();
             d.doubleSided = mat.doubleSided;
             d.mirrored = inst.mirrored;
             d.worldCenter = glm::vec3(inst.world * glm::vec4(prim.bounds.center(), 1.0f));
@@ -173,6 +174,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.normalTexture, flatNormal_, mt.normal, mt.normalSampler);
         pick(m.emissiveTexture, white_, mt.emissive, mt.emissiveSampler);
         pick(m.occlusionTexture, white_, mt.occlusion, mt.occlusionSampler);
+        pick(m.transmissionTexture, white_, mt.transmission, mt.transmissionSampler);
+        pick(m.thicknessTexture, white_, mt.thickness, mt.thicknessSampler);
         hasOcclusion_ = hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
         materialTextures_.push_back(mt);
     }
@@ -184,8 +187,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     }
     // A pass binding one set at a time still binds one in a scene without draws.
     if (textureSets_.empty())
-        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, defaultSampler_, defaultSampler_, defaultSampler_,
-                                defaultSampler_, defaultSampler_});
+        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, white_, white_, defaultSampler_, defaultSampler_,
+                                defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_});
     updateLights(scene.lights);
 }
 
@@ -222,15 +225,18 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
     o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) | (item.textureSet << 8),
                          item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
-    const assets::TextureRef* refs[5] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
-                                         &m.occlusionTexture};
-    for (int t = 0; t < 5; ++t) {
+    const assets::TextureRef* refs[7] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
+                                         &m.occlusionTexture, &m.transmissionTexture, &m.thicknessTexture};
+    for (int t = 0; t < 7; ++t) {
         o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
     o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, m.clearcoat, m.clearcoatRoughness,
                             m.clearcoatF0());
     o.dielectric = glm::vec4(m.dielectricF0(), m.dielectricF90());
+    o.transmission = glm::vec4(m.transmissive() ? m.transmission : 0.0f, m.thickness, std::isinf(m.attenuationDistance) ? 0.0f : m.attenuationDistance,
+                               std::isinf(m.ior) ? 0.0f : m.ior);
+    o.attenuation = glm::vec4(m.attenuationColor, 0.0f);
     return o;
 }
 
@@ -240,13 +246,19 @@ void MaterialTextures::bind(gdi::CommandList& cmd) const {
     cmd.setTexture(kSlotNormalMap, normal, normalSampler);
     cmd.setTexture(kSlotEmissive, emissive, emissiveSampler);
     cmd.setTexture(kSlotOcclusion, occlusion, occlusionSampler);
+    cmd.setTexture(kSlotTransmission, transmission, transmissionSampler);
+    cmd.setTexture(kSlotThickness, thickness, thicknessSampler);
 }
 
 bool GpuScene::hasBlend() const {
     return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode == assets::AlphaMode::Blend; });
 }
 bool GpuScene::hasOpaque() const {
-    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode != assets::AlphaMode::Blend; });
+    return std::any_of(draws_.begin(), draws_.end(),
+                       [](const DrawItem& d) { return d.alphaMode != assets::AlphaMode::Blend && !d.transmissive; });
+}
+bool GpuScene::hasTransmissive() const {
+    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.transmissive; });
 }
 
 void GpuScene::bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBlock) const {

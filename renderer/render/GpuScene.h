@@ -50,14 +50,19 @@ struct ObjectConstants {
     // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 the draw's texture set; y, z: the
     // draw's firstIndex and baseVertex; w: its first triangle's visibility id (DrawItem).
     glm::uvec4 flags;
-    // Per texture (base colour, metallic-roughness, normal, emissive, occlusion: FE_TEXTURE_* in
-    // fe_material.glsl) the rows of its KHR_texture_transform, (a, b, c, set) and (d, e, f, 0):
-    // it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
-    glm::vec4 uvTransform[10];
+    // Per texture (base colour, metallic-roughness, normal, emissive, occlusion, transmission,
+    // thickness: FE_TEXTURE_* in fe_material.glsl) the rows of its KHR_texture_transform,
+    // (a, b, c, set) and (d, e, f, 0): it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
+    glm::vec4 uvTransform[2 * 7];
     // x: the occlusion texture's strength (0 without one); y, z, w: KHR_materials_clearcoat's factor,
     // roughness and F0 (Material::clearcoatF0)
     glm::vec4 occlusion;
     glm::vec4 dielectric;  // rgb: the dielectric's F0, a: its F90 (Material::dielectricF0, KHR_materials_ior/specular)
+    // KHR_materials_transmission and volume: x the factor, y the thickness (mesh units), z the
+    // attenuation distance (0: infinite), w the index of refraction (0: infinite); rgb of
+    // `attenuation` the attenuation colour.
+    glm::vec4 transmission;
+    glm::vec4 attenuation;
 };
 
 struct GpuLight {
@@ -76,6 +81,7 @@ struct DrawItem {
     uint32_t material = 0;
     uint32_t instance = 0;
     assets::AlphaMode alphaMode = assets::AlphaMode::Opaque;
+    bool transmissive = false;  // assets::Material::transmissive: drawn by MeshPass::Transmission alone
     bool doubleSided = false;
     bool mirrored = false;
     glm::vec3 worldCenter{0.0f};  // for back-to-front sorting of blended draws
@@ -86,10 +92,11 @@ struct DrawItem {
 };
 
 struct MaterialTextures {
-    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion;
-    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler;
+    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness;
+    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler,
+        transmissionSampler, thicknessSampler;
     bool operator==(const MaterialTextures&) const = default;
-    // Binds the five at their shader slots (ShaderSlots.h).
+    // Binds the seven at their shader slots (ShaderSlots.h).
     void bind(gdi::CommandList& cmd) const;
 };
 
@@ -136,7 +143,8 @@ public:
     const std::vector<assets::Light>& lights() const { return currentLights_; }
 
     bool hasBlend() const;
-    bool hasOpaque() const;
+    bool hasOpaque() const;  // neither blended nor transmissive
+    bool hasTransmissive() const;
     // Some material darkens indirect light by an occlusion texture (strength not 0): the
     // G-buffer techniques then store it (GBuffer::gb3).
     bool hasOcclusion() const { return hasOcclusion_; }

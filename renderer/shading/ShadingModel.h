@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace fe::shading {
 
@@ -19,6 +21,7 @@ enum class LightType { Directional, Point, Spot };
 struct LightSample {
     glm::dvec3 wi{0.0};  // unit vector to the light
     glm::dvec3 E{0.0};   // irradiance at normal incidence
+    double distance = std::numeric_limits<double>::infinity();  // to the light (directional: infinite)
 };
 
 struct PunctualLight {
@@ -55,6 +58,7 @@ inline LightSample evaluateLight(const PunctualLight& L, const glm::dvec3& P) {
     double d2 = std::max(glm::dot(toLight, toLight), 1e-12);
     double d = std::sqrt(d2);
     s.wi = toLight / d;
+    s.distance = d;
     E *= rangeWindow(d, L.range) / d2;
     if (L.type == LightType::Spot) {
         double cosTheta = glm::dot(glm::normalize(L.direction), -s.wi);
@@ -82,7 +86,35 @@ struct SurfacePoint {
     double clearcoatRoughness = 0.0;
     glm::dvec3 clearcoatNormal{0.0, 0.0, 1.0};
     double clearcoatF0 = 0.04;
+    // KHR_materials_transmission and volume (glTF model only): the factor, the ray from P to
+    // where the light leaves the volume (0 thin-walled; transmissionRay()), the index of
+    // refraction, the volume's transmittance along that ray (volumeTransmittance()).
+    double transmission = 0.0;
+    glm::dvec3 transmissionRay{0.0};
+    double ior = 1.5;
+    glm::dvec3 transmittance{1.0};
 };
+
+// KHR_materials_volume, as the Sample Viewer traces it: the refracted view ray (ior; infinite
+// leaves it unbent) scaled by the thickness in mesh units times the mesh's axis scales.
+inline glm::dvec3 transmissionRay(const glm::dvec3& n, const glm::dvec3& wo, double thickness, double ior,
+                                  const glm::dvec3& meshScale) {
+    if (thickness <= 0.0) return glm::dvec3(0.0);
+    const glm::dvec3 refracted = std::isinf(ior) ? -wo : glm::refract(-wo, n, 1.0 / ior);
+    const double len = glm::length(refracted);
+    return (len > 0.0 ? refracted / len : -wo) * thickness * meshScale;
+}
+// Beer-Lambert: attenuationColor^(distance / attenuationDistance) (infinite distance: 1).
+inline glm::dvec3 volumeTransmittance(const glm::dvec3& attenuationColor, double attenuationDistance, double distance) {
+    if (std::isinf(attenuationDistance) || distance <= 0.0) return glm::dvec3(1.0);
+    return glm::pow(attenuationColor, glm::dvec3(distance / attenuationDistance));
+}
+// Rough transmission's alpha: the surface's, scaled by clamp(2 ior - 2, 0, 1) (an index of 1
+// bends nothing; the Sample Viewer's applyIorToRoughness), never below the clamp's alpha.
+inline double transmissionAlpha(double alpha, double ior) {
+    const double scale = std::isinf(ior) ? 1.0 : std::clamp(2.0 * ior - 2.0, 0.0, 1.0);
+    return std::max(alpha * scale, kMinRoughness * kMinRoughness);
+}
 
 // The clearcoat's Fresnel seen from w_o along its normal: the base under it is weighed by
 // 1 - clearcoat Fc (KHR_materials_clearcoat, as the Sample Viewer layers it).
@@ -130,9 +162,34 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf b
     return shadeBaseLight(s, l, brdf) * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * clearcoatLight(s, l.wi) * l.E;
 }
 
+// A punctual light through a transmissive surface (glTF model): the thin-walled BTDF of
+// KHR_materials_transmission as the Sample Viewer evaluates it, (1 - F) baseColor D V with the
+// light direction mirrored through the surface (seen from where it leaves the volume) and the
+// transmission alpha, attenuated by the volume, under the diffuse lobe's (1 - F_d) and weighed
+// by (1 - metallic) transmission; no n.l (docs/SHADING.md).
+inline glm::dvec3 transmittedLight(const SurfacePoint& s, const LightSample& l) {
+    if (s.transmission <= 0.0 || s.metallic >= 1.0) return glm::dvec3(0.0);
+    const glm::dvec3 wi = std::isinf(l.distance) ? l.wi : glm::normalize(l.wi * l.distance - s.transmissionRay);
+    const glm::dvec3 mirrored = wi - 2.0 * s.n * glm::dot(wi, s.n);
+    const double r = clampRoughness(s.roughness), at = transmissionAlpha(r * r, s.ior), a2 = at * at;
+    const glm::dvec3 h = glm::normalize(mirrored + s.wo);
+    const double NoH = std::clamp(glm::dot(s.n, h), 0.0, 1.0);
+    const double NoL = std::clamp(glm::dot(s.n, mirrored), 0.0, 1.0), NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
+    const double dd = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (kPi * dd * dd);
+    auto power5 = [](double c) { return std::pow(std::clamp(1.0 - c, 0.0, 1.0), 5.0); };
+    const glm::dvec3 Ft = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * power5(glm::dot(s.wo, h));
+    // The reflection half vector's cosine with w_o, sqrt((1 + w_o.w_i) / 2): defined (0) where the
+    // light is straight behind the surface, where normalize(w_o + w_i) is not.
+    const double VoHr = std::sqrt(std::max(0.5 * (1.0 + glm::dot(s.wo, l.wi)), 0.0));
+    const glm::dvec3 Fd = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * power5(VoHr);
+    const glm::dvec3 btdf = (1.0 - Ft) * s.baseColor * D * visibilityHeightCorrelated(NoL, NoV, a2);
+    return (1.0 - s.metallic) * s.transmission * (1.0 - Fd) * btdf * s.transmittance * l.E;
+}
+
 inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Brdf brdf) {
     double NoL = glm::dot(s.n, l.wi);
-    if (NoL <= 0.0) return glm::dvec3(0.0);
+    const glm::dvec3 transmitted = brdf == Brdf::Gltf ? transmittedLight(s, l) : glm::dvec3(0.0);
+    if (NoL <= 0.0) return transmitted;
     double r = clampRoughness(s.roughness);
     double a = r * r, a2 = a * a;
     double k = (r + 1.0) * (r + 1.0) / 8.0;
@@ -149,8 +206,8 @@ inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Br
         const glm::dvec3 Fm = glm::mix(s.dielectricF0, s.baseColor, s.metallic) +
                               (glm::mix(glm::dvec3(s.dielectricF90), glm::dvec3(1.0), s.metallic) -
                                glm::mix(s.dielectricF0, s.baseColor, s.metallic)) * P;
-        const glm::dvec3 diffuse = (1.0 - s.metallic) * s.baseColor / kPi * (1.0 - Fd);
-        return (diffuse + D * Fm * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL;
+        const glm::dvec3 diffuse = (1.0 - s.metallic) * (1.0 - s.transmission) * s.baseColor / kPi * (1.0 - Fd);
+        return (diffuse + D * Fm * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL + transmitted;
     }
     double G = NoV / (NoV * (1.0 - k) + k) * NoL / (NoL * (1.0 - k) + k);
     glm::dvec3 f = (1.0 - F) * (1.0 - s.metallic) * s.baseColor / kPi + D * F * G / (4.0 * NoV * NoL);
@@ -266,7 +323,9 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
         diffuse += (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
     }
-    const glm::dvec3 base = ((1.0 - s.metallic) * s.baseColor * diffuse + specular) / double(n);
+    // Transmission replaces that much of the diffuse lobe (the light from behind: transmittedScene()).
+    const double transmission = gltf ? s.transmission : 0.0;
+    const glm::dvec3 base = ((1.0 - s.metallic) * (1.0 - transmission) * s.baseColor * diffuse + specular) / double(n);
     if (!gltf || s.clearcoat <= 0.0) return base;
     // The clearcoat layer: GGX samples about its normal at its roughness, Fresnel F0c .. 1.
     const double rc = clampRoughness(s.clearcoatRoughness), a2c = rc * rc * rc * rc;
@@ -282,6 +341,24 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         }
     }
     return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * layer / double(n);
+}
+
+// The weight of the opaque scene's radiance seen through a transmissive surface (glTF model):
+// (1 - metallic) transmission baseColor (1 - F(n.w_o)) times the volume's transmittance, the
+// light the dielectric does not reflect at the viewing angle (docs/SHADING.md: the Sample Viewer
+// weighs it by its split-sum tables instead, and shows it only under image-based light).
+inline glm::dvec3 transmittedSceneWeight(const SurfacePoint& s) {
+    if (s.transmission <= 0.0) return glm::dvec3(0.0);
+    const double NoV = std::clamp(glm::dot(s.n, s.wo), 0.0, 1.0);
+    const glm::dvec3 F = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * std::pow(1.0 - NoV, 5.0);
+    return (1.0 - s.metallic) * s.transmission * s.baseColor * (1.0 - F) * s.transmittance;
+}
+// The mip level of the opaque scene's copy that rough transmission reads: log2 of the copy's
+// larger side times the perceptual roughness scaled by clamp(2 ior - 2, 0, 1) (the Sample
+// Viewer's, which filters the copy by its mip chain).
+inline double transmissionLod(double perceptualRoughness, double ior, uint32_t width, uint32_t height) {
+    const double scale = std::isinf(ior) ? 1.0 : std::clamp(2.0 * ior - 2.0, 0.0, 1.0);
+    return std::log2(double(std::max(width, height))) * std::clamp(perceptualRoughness, 0.0, 1.0) * scale;
 }
 
 }  // namespace fe::shading

@@ -17,6 +17,23 @@
 #if defined(FE_CLUSTER_LISTS) || defined(FE_MULTISAMPLED)
 #include "fe_clusters.glsl"  // forward-plus: the fallback under MSAA
 #endif
+#ifdef FE_TRANSMISSION
+// The transmission pass (render/TransmissionPass.h): the opaque scene behind the surface, from
+// its mip-chained copy at the point where the light leaves the volume, rough transmission from
+// a coarser level (shading::transmittedSceneWeight, transmissionLod).
+layout(binding = FE_SLOT_TRANSMITTED) uniform sampler2D transmittedScene;
+vec3 feTransmittedScene(SurfacePoint s, float roughnessUnclamped) {
+    if (s.transmission <= 0.0) return vec3(0.0);
+    const vec4 clip = frame.viewProjFromEye * vec4(s.Pe + s.transmissionRay, 1.0);
+    const vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    const vec2 size = vec2(textureSize(transmittedScene, 0));
+    const float iorScale = s.ior == 0.0 ? 1.0 : clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
+    const float lod = log2(max(size.x, size.y)) * roughnessUnclamped * iorScale;
+    const vec3 F = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * feFresnelPower(clamp(dot(s.n, s.wo), 0.0, 1.0));
+    const vec3 weight = (1.0 - s.metallic) * s.transmission * s.baseColor * (1.0 - F) * s.transmittance;
+    return weight * textureLod(transmittedScene, uv, lod).rgb;
+}
+#endif
 #ifdef FE_TILE_LISTS
 // forward-plus's list for a fragment: its tile's; under MSAA (FE_MULTISAMPLED) its cluster's
 // where the fragment lies outside the depth bounds its tile was culled for.
@@ -102,6 +119,9 @@ void main() {
 #ifdef FE_IBL
         // The environment's light, with the emissive term in the first pass (frame.counts.z samples).
         if (first) L += feOcclusion(vUv) * feShadeEnvironment(s, frame.counts.z);
+#endif
+#ifdef FE_TRANSMISSION
+        L += feTransmittedScene(s, m.roughnessUnclamped);
 #endif
     }
     // Alpha only matters for BLEND draws (source-over); opaque targets ignore it.

@@ -179,7 +179,11 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
     // The dielectric's Fresnel F0 + (F90 - F0) P (KHR_materials_ior / specular; 0.04 and 1 by default).
     const vec3 dF0 = s.dielectricF0, dF90 = vec3(s.dielectricF90);
     const vec3 F0 = mix(dF0, s.baseColor, s.metallic), F90 = mix(dF90, vec3(1.0), s.metallic);
+#ifdef FE_TRANSMISSION
+    const vec3 diffuseColor = (1.0 - s.metallic) * (1.0 - s.transmission) * s.baseColor;  // the rest is transmitted
+#else
     const vec3 diffuseColor = (1.0 - s.metallic) * s.baseColor;
+#endif
 #ifdef FE_IBL_PREFILTERED
     const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness, true);
     // (1/n) sum (1 - F_d) = (1 - dF0) - (dF90 - dF0)(1 - z), z the table's (1/n) sum (1 - P).

@@ -24,9 +24,11 @@ struct ObjectRecord {
     vec4 emissiveNormalScale;
     vec4 params;
     uvec4 flags;
-    vec4 uvTransform[10];
+    vec4 uvTransform[14];
     vec4 occlusion;
     vec4 dielectric;
+    vec4 transmission;
+    vec4 attenuation;
 };
 layout(binding = FE_SLOT_DRAWS, std430) readonly buffer DrawBlock {
     ObjectRecord draws[];
@@ -41,9 +43,11 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     vec4 emissiveNormalScale;
     vec4 params;  // metallic, roughness, alpha cutoff, alpha mode
     uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 texture set; y, z, w: ObjectConstants
-    vec4 uvTransform[10];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
+    vec4 uvTransform[14];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
     vec4 occlusion;        // x strength (0 without an occlusion texture)
     vec4 dielectric;       // rgb the dielectric's F0, a its F90 (KHR_materials_ior, KHR_materials_specular)
+    vec4 transmission;     // x factor, y thickness, z attenuation distance (0: infinite), w ior (0: infinite)
+    vec4 attenuation;      // rgb the volume's attenuation colour
 } object;
 #endif
 
@@ -53,6 +57,8 @@ const uint FE_TEXTURE_METALROUGH = 1u;
 const uint FE_TEXTURE_NORMAL = 2u;
 const uint FE_TEXTURE_EMISSIVE = 3u;
 const uint FE_TEXTURE_OCCLUSION = 4u;
+const uint FE_TEXTURE_TRANSMISSION = 5u;
+const uint FE_TEXTURE_THICKNESS = 6u;
 
 // Where texture `t` samples: its coordinate set (uvs.xy or .zw), through its KHR_texture_transform.
 vec2 feTextureCoord(uint t, vec4 uvs) {
@@ -77,6 +83,10 @@ layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
 layout(binding = FE_SLOT_NORMALMAP) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_EMISSIVE) uniform sampler2D emissiveTexture;
 layout(binding = FE_SLOT_OCCLUSION) uniform sampler2D occlusionTexture;
+#ifdef FE_TRANSMISSION
+layout(binding = FE_SLOT_TRANSMISSION) uniform sampler2D transmissionTexture;
+layout(binding = FE_SLOT_THICKNESS) uniform sampler2D thicknessTexture;
+#endif
 
 struct MaterialSample {
     vec3 baseColor;
@@ -89,6 +99,12 @@ struct MaterialSample {
     vec3 dielectricF0;  // KHR_materials_ior / KHR_materials_specular (ObjectConstants::dielectric)
     float dielectricF90;
     vec3 clearcoatNormal;  // the interpolated vertex normal, facing the viewer's side
+    // KHR_materials_transmission / volume (the transmission pass: FE_TRANSMISSION; 0 elsewhere):
+    // the factor and thickness with their textures, and the perceptual roughness unclamped (the
+    // mip level rough transmission reads).
+    float transmission;
+    float thickness;
+    float roughnessUnclamped;
 };
 
 // Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
@@ -111,7 +127,8 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.alpha = bc.a;
     vec4 mr = feSampleTexture(metallicRoughnessTexture, FE_TEXTURE_METALROUGH, uvs);
     m.metallic = clamp(object.params.x * mr.b, 0.0, 1.0);
-    m.roughness = feClampRoughness(object.params.y * mr.g);
+    m.roughnessUnclamped = clamp(object.params.y * mr.g, 0.0, 1.0);
+    m.roughness = feClampRoughness(m.roughnessUnclamped);
     m.emissive = object.emissiveNormalScale.rgb * feSampleTexture(emissiveTexture, FE_TEXTURE_EMISSIVE, uvs).rgb;
     vec3 n = normalize(N);
     if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
@@ -130,6 +147,15 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.unlit = (object.flags.x & 2u) != 0u;
     m.dielectricF0 = object.dielectric.rgb;
     m.dielectricF90 = object.dielectric.a;
+    m.transmission = 0.0;
+    m.thickness = 0.0;
+#ifdef FE_TRANSMISSION
+    m.transmission = object.transmission.x;  // the draw's: a uniform branch
+    if (m.transmission > 0.0) {
+        m.transmission *= feSampleTexture(transmissionTexture, FE_TEXTURE_TRANSMISSION, uvs).r;
+        m.thickness = object.transmission.y * feSampleTexture(thicknessTexture, FE_TEXTURE_THICKNESS, uvs).g;
+    }
+#endif
     return m;
 }
 
@@ -152,6 +178,20 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.clearcoatRoughness = object.occlusion.z;
     s.clearcoatNormal = m.clearcoatNormal;
     s.clearcoatF0 = object.occlusion.w;
+    s.transmission = m.transmission;
+    s.ior = object.transmission.w;
+    s.transmissionRay = vec3(0.0);
+    s.transmittance = vec3(1.0);
+    if (m.thickness > 0.0) {
+        // KHR_materials_volume (shading::transmissionRay): the refracted view ray, thickness x the
+        // mesh's axis scales long; Beer-Lambert along it (shading::volumeTransmittance).
+        const vec3 refracted = s.ior == 0.0 ? -s.wo : refract(-s.wo, s.n, 1.0 / s.ior);
+        const float len = length(refracted);
+        const vec3 scale = vec3(length(object.world[0].xyz), length(object.world[1].xyz), length(object.world[2].xyz));
+        s.transmissionRay = (len > 0.0 ? refracted / len : -s.wo) * m.thickness * scale;
+        if (object.transmission.z > 0.0)
+            s.transmittance = pow(object.attenuation.rgb, vec3(length(s.transmissionRay) / object.transmission.z));
+    }
     return s;
 }
 

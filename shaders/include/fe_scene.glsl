@@ -28,6 +28,9 @@
 #define FE_SLOT_HISTORY1 26
 #define FE_SLOT_HISTORY2 27
 #define FE_SLOT_GBUFFER3 28
+#define FE_SLOT_TRANSMISSION 29
+#define FE_SLOT_THICKNESS 30
+#define FE_SLOT_TRANSMITTED 31
 #define FE_SLOT_TAA 34
 #define FE_SLOT_VISIBILITY 36
 #define FE_SLOT_DRAWS 37
@@ -149,6 +152,10 @@ SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
     s.clearcoatRoughness = 0.0;
     s.clearcoatNormal = s.n;
     s.clearcoatF0 = 0.04;
+    s.transmission = 0.0;  // transmissive surfaces are drawn by the transmission pass alone
+    s.transmissionRay = vec3(0.0);
+    s.ior = 1.5;
+    s.transmittance = vec3(1.0);
     return s;
 }
 #endif

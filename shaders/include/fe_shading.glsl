@@ -22,6 +22,7 @@ struct GpuLight {
 struct SurfaceLight {
     vec3 wi;  // unit vector to the light
     vec3 E;   // irradiance at normal incidence
+    float distance;  // to the light; 0 for a directional one
 };
 
 float feRangeWindow(float d, float range) {
@@ -40,12 +41,14 @@ SurfaceLight feEvaluateLightAt(GpuLight L, vec3 Pe, vec3 origin) {
     if (L.directionType.w == FE_LIGHT_DIRECTIONAL) {
         s.wi = -normalize(L.directionType.xyz);
         s.E = E;
+        s.distance = 0.0;
         return s;
     }
     vec3 toLight = (L.positionRange.xyz - origin) - Pe;
     float d2 = max(dot(toLight, toLight), 1e-12);
     float d = sqrt(d2);
     s.wi = toLight / d;
+    s.distance = d;
     E *= feRangeWindow(d, L.positionRange.w) / d2;
     if (L.directionType.w == FE_LIGHT_SPOT) {
         float cosTheta = dot(normalize(L.directionType.xyz), -s.wi);
@@ -75,6 +78,13 @@ struct SurfacePoint {
     float clearcoatRoughness;
     vec3 clearcoatNormal;
     float clearcoatF0;
+    // KHR_materials_transmission and volume (glTF model, the transmission pass: FE_TRANSMISSION;
+    // 0 elsewhere): the factor, the ray from P to where the light leaves the volume (0 thin-
+    // walled), the index of refraction (0: infinite), the volume's transmittance along the ray.
+    float transmission;
+    vec3 transmissionRay;
+    float ior;
+    vec3 transmittance;
 };
 
 float feClampRoughness(float r) { return clamp(r, FE_MIN_ROUGHNESS, 1.0); }
@@ -137,6 +147,13 @@ struct SurfaceBrdf {
     float NoV;
     float Gv;      // the view half of G (separable)
     bool gltf;     // FE_BRDF_GLTF, else FE_BRDF_SEPARABLE
+#ifdef FE_TRANSMISSION
+    // (1 - metallic) transmission baseColor x the volume's transmittance; the transmission
+    // alpha^2 (shading::transmissionAlpha); the ray to where the light leaves the volume.
+    vec3 transmitted;
+    float a2t;
+    vec3 transmissionRay;
+#endif
 };
 
 // The clearcoat's Fresnel seen from w_o along its normal (shading::clearcoatViewFresnel).
@@ -159,6 +176,16 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.F0 = mix(b.dielectricF0, s.baseColor, s.metallic);
     b.F90 = mix(vec3(b.dielectricF90), vec3(1.0), s.metallic);
     b.diffuse = (1.0 - s.metallic) * s.baseColor / FE_PI;
+#ifdef FE_TRANSMISSION
+    // Transmission replaces that much of the diffuse lobe (glTF model only).
+    const float transmission = b.gltf ? s.transmission : 0.0;
+    b.diffuse *= 1.0 - transmission;
+    b.transmitted = (1.0 - s.metallic) * transmission * s.baseColor * s.transmittance;
+    const float iorScale = s.ior == 0.0 ? 1.0 : clamp(2.0 * s.ior - 2.0, 0.0, 1.0);
+    const float at = max(sqrt(t.a2) * iorScale, FE_MIN_ROUGHNESS * FE_MIN_ROUGHNESS);
+    b.a2t = at * at;
+    b.transmissionRay = s.transmissionRay;
+#endif
     b.clearcoat = b.gltf ? s.clearcoat : 0.0;
     b.nc = s.clearcoatNormal;
     const float rc = feClampRoughness(s.clearcoatRoughness);
@@ -187,9 +214,33 @@ vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
     return L;
 }
 
+#ifdef FE_TRANSMISSION
+// A punctual light through a transmissive surface (shading::transmittedLight): (1 - F_t) D V
+// with the light mirrored through the surface, seen from where it leaves the volume, under the
+// diffuse lobe's (1 - F_d); no n.l.
+vec3 feTransmittedLight(SurfaceBrdf b, SurfaceLight l) {
+    const vec3 wi = l.distance > 0.0 ? normalize(l.wi * l.distance - b.transmissionRay) : l.wi;
+    const vec3 mirrored = wi - 2.0 * b.n * dot(wi, b.n);
+    const vec3 h = normalize(mirrored + b.wo);
+    const float NoH = clamp(dot(b.n, h), 0.0, 1.0), NoL = clamp(dot(b.n, mirrored), 0.0, 1.0);
+    const float dd = NoH * NoH * (b.a2t - 1.0) + 1.0, D = b.a2t / (FE_PI * dd * dd);
+    const vec3 Ft = b.dielectricF0 + (b.dielectricF90 - b.dielectricF0) * feFresnelPower(dot(b.wo, h));
+    // cos of the reflection half vector with w_o, defined where the light is straight behind.
+    const float VoHr = sqrt(max(0.5 * (1.0 + dot(b.wo, l.wi)), 0.0));
+    const vec3 Fd = b.dielectricF0 + (b.dielectricF90 - b.dielectricF0) * feFresnelPower(VoHr);
+    return (1.0 - Fd) * (1.0 - Ft) * b.transmitted * (D * feVisibilityHeightCorrelated(NoL, b.NoV, b.a2t)) * l.E;
+}
+#endif
+
 vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l) {
     float NoL = dot(b.n, l.wi);
+#ifdef FE_TRANSMISSION
+    const vec3 transmitted = b.gltf ? feTransmittedLight(b, l) : vec3(0.0);
+    if (NoL <= 0.0) return transmitted;
+#else
+    const vec3 transmitted = vec3(0.0);
     if (NoL <= 0.0) return vec3(0.0);
+#endif
     vec3 h = normalize(b.wo + l.wi);
     float NoH = dot(b.n, h);
     float P = feFresnelPower(dot(h, b.wo));
@@ -202,7 +253,7 @@ vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l) {
         // = F0 + (F90 - F0) P.
         const vec3 Fd = b.dielectricF0 + (b.dielectricF90 - b.dielectricF0) * P;
         const vec3 f = (1.0 - Fd) * b.diffuse + D * F * feVisibilityHeightCorrelated(NoL, b.NoV, b.a2);
-        return f * l.E * NoL;
+        return f * l.E * NoL + transmitted;
     }
     float G = b.Gv * NoL / (NoL * (1.0 - b.k) + b.k);
     vec3 f = (1.0 - F) * b.diffuse + D * F * G / (4.0 * b.NoV * NoL);

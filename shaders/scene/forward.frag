@@ -1,5 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
+// fe-variant: FE_TRANSMISSION (the transmission pass: render/TransmissionPass.h)
+// fe-variant: FE_TRANSMISSION+FE_LIGHTS_IN_STORAGE
 // Forward shading (fe_forward_pass.glsl).
 #include "fe_forward_pass.glsl"

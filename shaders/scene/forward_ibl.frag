@@ -1,6 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
+// fe-variant: FE_TRANSMISSION (the transmission pass: render/TransmissionPass.h)
+// fe-variant: FE_TRANSMISSION+FE_LIGHTS_IN_STORAGE
 // Forward shading with image-based lighting (fe_forward_pass.glsl with FE_IBL): a shader of its
 // own so that scenes without it pay nothing (on llvmpipe an untaken branch is not free).
 #define FE_IBL

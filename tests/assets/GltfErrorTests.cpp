@@ -848,3 +848,66 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     expectError(write("coat_rough.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}}).dump()),
                 {"clearcoatRoughnessFactor", "[0, 1]"});
 }
+
+// KHR_materials_transmission and KHR_materials_volume: factors and textures are read (the
+// textures with their texCoord and transform), out-of-range values are errors naming the key,
+// and transmission on a BLEND material (blended instead) or a volume without transmission is a
+// warning saying so.
+TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
+    writeBytes("tri.bin", bin());
+    const std::string png =
+        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
+    json j = gltf();
+    j["images"] = json::array({{{"uri", png}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["extensionsUsed"] = json::array({"KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"});
+    auto withMaterial = [&](const json& extensions, const char* alphaMode = "OPAQUE") {
+        json k = j;
+        k["materials"] = json::array({{{"name", "glass"}, {"alphaMode", alphaMode}, {"extensions", extensions}}});
+        k["meshes"][0]["primitives"][0]["material"] = 0;
+        return k;
+    };
+    const Scene s = loadGltf(write(
+        "ok.gltf",
+        withMaterial({{"KHR_materials_transmission",
+                       {{"transmissionFactor", 0.75},
+                        {"transmissionTexture", {{"index", 0}, {"texCoord", 1}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}}},
+                      {"KHR_materials_volume",
+                       {{"thicknessFactor", 0.5}, {"thicknessTexture", {{"index", 0}}}, {"attenuationDistance", 2.0},
+                        {"attenuationColor", {0.5, 0.75, 1.0}}}}})
+            .dump()));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.transmission, 0.75f);
+    EXPECT_TRUE(m.transmissive());
+    ASSERT_TRUE(m.transmissionTexture.valid());
+    EXPECT_EQ(m.transmissionTexture.texCoord, 1u);
+    EXPECT_EQ(m.transmissionTexture.transform.scale, glm::vec2(2.0f));
+    EXPECT_EQ(m.thickness, 0.5f);
+    EXPECT_TRUE(m.thicknessTexture.valid());
+    EXPECT_EQ(m.attenuationDistance, 2.0f);
+    EXPECT_EQ(m.attenuationColor, glm::vec3(0.5f, 0.75f, 1.0f));
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_FALSE(Material{}.transmissive());
+    EXPECT_TRUE(std::isinf(Material{}.attenuationDistance));
+
+    const Scene blended = loadGltf(write("blend.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}, "BLEND").dump()));
+    EXPECT_FALSE(blended.materials[0].transmissive());
+    ASSERT_FALSE(blended.warnings.empty());
+    EXPECT_NE(blended.warnings.front().find("BLEND material is not drawn"), std::string::npos) << blended.warnings.front();
+    const Scene volumeAlone = loadGltf(write("volume.gltf", withMaterial({{"KHR_materials_volume", {{"thicknessFactor", 1}}}}).dump()));
+    ASSERT_FALSE(volumeAlone.warnings.empty());
+    EXPECT_NE(volumeAlone.warnings.front().find("without KHR_materials_transmission"), std::string::npos);
+
+    expectError(write("t_big.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}).dump()),
+                {"glass", "transmissionFactor", "[0, 1]"});
+    expectError(write("t_tex.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 7}}}}}}).dump()),
+                {"transmissionTexture", "texture 7"});
+    expectError(write("t_info.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionTexture", 3}}}}).dump()),
+                {"transmissionTexture", "object with an index"});
+    expectError(write("v_neg.gltf", withMaterial({{"KHR_materials_volume", {{"thicknessFactor", -1}}}}).dump()),
+                {"thicknessFactor", "negative"});
+    expectError(write("v_dist.gltf", withMaterial({{"KHR_materials_volume", {{"attenuationDistance", 0}}}}).dump()),
+                {"attenuationDistance", "positive"});
+    expectError(write("v_color.gltf", withMaterial({{"KHR_materials_volume", {{"attenuationColor", {1, 2, 1}}}}}).dump()),
+                {"attenuationColor", "[0, 1]"});
+}

@@ -342,7 +342,12 @@ TEST(GltfSamples, LightsPunctualLamp) {
     // The node matrix maps local -Z to world -Y.
     expectNear(p.direction, glm::vec3(0, -1, 0), 1e-6f);
     EXPECT_EQ(s.lights[4].intensity, 180.0f);
-    EXPECT_TRUE(hasWarning(s, "KHR_materials_transmission"));
+    // The lamp's shade: KHR_materials_transmission with a texture (material 2).
+    EXPECT_FALSE(hasWarning(s, "KHR_materials_transmission"));
+    ASSERT_EQ(s.materials.size(), 3u);
+    EXPECT_EQ(s.materials[2].transmission, 1.0f);
+    EXPECT_TRUE(s.materials[2].transmissionTexture.valid());
+    EXPECT_TRUE(s.materials[2].transmissive());
 }
 
 TEST(GltfSamples, TextureSamplerSettings) {
