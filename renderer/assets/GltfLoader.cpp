@@ -51,6 +51,7 @@ const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_emissive_strength",
     "KHR_materials_clearcoat",
     "KHR_materials_ior",
+    "KHR_materials_sheen",
     "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_materials_unlit",
@@ -321,7 +322,9 @@ private:
     // KHR_materials_transmission and KHR_materials_volume into mat, with their textures.
     void readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label);
     // A textureInfo inside an extension (ext[key]), as getTexture reads the core ones.
-    TextureRef extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what);
+    TextureRef extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what, bool srgb = false);
+    // KHR_materials_sheen into mat, with its textures.
+    void readSheen(const tinygltf::Material& gm, Material& mat, const std::string& label);
     glm::mat4 localTransform(int n) const;
     glm::mat4 checkedFinite(const glm::mat4& m, int n) const;
 
@@ -793,7 +796,21 @@ void Loader::readTransmission(const tinygltf::Material& gm, Material& mat, const
     }
 }
 
-TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what) {
+void Loader::readSheen(const tinygltf::Material& gm, Material& mat, const std::string& label) {
+    const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_sheen");
+    if (!e) return;
+    const std::string where = label + ": KHR_materials_sheen";
+    readNumbers(*e, "sheenColorFactor", where, &mat.sheenColor.x, 3);
+    readNumbers(*e, "sheenRoughnessFactor", where, &mat.sheenRoughness, 0);
+    if (!glm::all(glm::greaterThanEqual(mat.sheenColor, glm::vec3(0.0f))) ||
+        !glm::all(glm::lessThanEqual(mat.sheenColor, glm::vec3(1.0f))))
+        fail(where + ".sheenColorFactor must lie in [0, 1]");
+    if (!(mat.sheenRoughness >= 0.0f && mat.sheenRoughness <= 1.0f)) fail(where + ".sheenRoughnessFactor must lie in [0, 1]");
+    mat.sheenColorTexture = extensionTexture(*e, "sheenColorTexture", where, true);
+    mat.sheenRoughnessTexture = extensionTexture(*e, "sheenRoughnessTexture", where);
+}
+
+TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what, bool srgb) {
     if (!ext.Has(key)) return {};
     const tinygltf::Value& info = ext.Get(key);
     const std::string where = what + "." + key;
@@ -810,7 +827,7 @@ TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key,
         const tinygltf::Value& x = info.Get("extensions");
         for (const std::string& k : x.Keys()) extensions[k] = x.Get(k);
     }
-    return getTexture(index, texCoord, false, extensions, where);
+    return getTexture(index, texCoord, srgb, extensions, where);
 }
 
 // KHR_texture_transform on a textureInfo: offset, rotation, scale, and a texCoord that overrides
@@ -1360,6 +1377,7 @@ uint32_t Loader::getMaterial(int gi) {
     mat.alphaCutoff = float(gm.alphaCutoff);
     mat.doubleSided = gm.doubleSided;
     readTransmission(gm, mat, label);
+    readSheen(gm, mat, label);
 
     const float checks[] = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z, mat.baseColorFactor.w,
                             mat.metallic,          mat.roughness,         mat.emissiveFactor.x,  mat.emissiveFactor.y,

@@ -167,12 +167,20 @@ struct Material {
     TextureRef thicknessTexture;     // linear, G
     glm::vec3 attenuationColor{1.0f};
     float attenuationDistance = std::numeric_limits<float>::infinity();
+    // KHR_materials_sheen: a Charlie-distribution sheen layer over the base (docs/SHADING.md), its
+    // colour times the colour texture's RGB (sRGB), its perceptual roughness times the roughness
+    // texture's A.
+    glm::vec3 sheenColor{0.0f};
+    float sheenRoughness = 0.0f;
+    TextureRef sheenColorTexture;      // sRGB
+    TextureRef sheenRoughnessTexture;  // linear, A
+    bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
     // Drawn after the opaque scene, which it sees through (a BLEND material blends instead).
     bool transmissive() const { return transmission > 0.0f && alphaMode != AlphaMode::Blend; }
     // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
     bool defaultDielectric() const { return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f); }
     // Inputs only the techniques that shade the whole material evaluate (TechniqueInfo::fullMaterial).
-    bool needsFullMaterial() const { return !defaultDielectric() || clearcoat > 0.0f; }
+    bool needsFullMaterial() const { return !defaultDielectric() || clearcoat > 0.0f || hasSheen(); }
 };
 
 struct MeshInstance {

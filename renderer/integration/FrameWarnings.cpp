@@ -59,8 +59,9 @@ std::vector<std::string> materialWarnings(const assets::Scene& scene, const Rend
         if (c.fullMaterial(shading::Brdf::Gltf)) capable += (capable.empty() ? "" : ", ") + std::string(c.name);
     const std::string why = t.gbuffer ? "its G-buffer does not hold it" : "the separable BRDF has no such input";
     return {std::to_string(count) + " material(s) (" + names + (count > 3 ? ", ..." : "") +
-            ") set the dielectric's Fresnel or a clearcoat (KHR_materials_ior / specular / clearcoat): technique " + t.name +
-            " shades them with F0 0.04, F90 1 and no clearcoat (" + why + "); " + capable + " evaluate them under the glTF BRDF"};
+            ") set the dielectric's Fresnel, a clearcoat or a sheen (KHR_materials_ior / specular / clearcoat / sheen): technique " +
+            t.name + " shades them with F0 0.04, F90 1, no clearcoat and no sheen (" + why + "); " + capable +
+            " evaluate them under the glTF BRDF"};
 }
 
 std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,

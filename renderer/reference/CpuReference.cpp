@@ -379,6 +379,12 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.clearcoatNormal = vertexNormal;
         s.clearcoatF0 = mat.clearcoatF0();
         s.ior = mat.ior;
+        if (mat.hasSheen()) {
+            s.sheenColor = glm::dvec3(mat.sheenColor);
+            s.sheenRoughness = mat.sheenRoughness;
+            if (mat.sheenColorTexture.valid()) s.sheenColor *= glm::dvec3(texel(mat.sheenColorTexture));
+            if (mat.sheenRoughnessTexture.valid()) s.sheenRoughness *= texel(mat.sheenRoughnessTexture).a;
+        }
         // Transmissive surfaces are drawn by the transmission pass under the glTF model, whatever
         // the technique's (render/TransmissionPass.h).
         const shading::Brdf brdf = mat.transmissive() ? shading::Brdf::Gltf : options.brdf;

@@ -1,6 +1,7 @@
 #include "render/GpuScene.h"
 
 #include "render/ShaderSlots.h"
+#include "shading/ShadingModel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -156,6 +157,14 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     black_ = solidTexture(objects_, 0, 0, 0, 255, true, "default black");
     flatNormal_ = solidTexture(objects_, 128, 128, 255, 255, false, "default normal");
     defaultSampler_ = objects_.add(device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest}));
+    // The sheen's albedo table (read texel by texel, fe_shading.glsl): made only for a scene with a sheen.
+    const bool sheen = std::any_of(scene.materials.begin(), scene.materials.end(), [](const assets::Material& m) { return m.hasSheen(); });
+    const std::vector<float> zero(1, 0.0f);
+    const std::vector<float>& table = sheen ? shading::sheenAlbedoTable() : zero;
+    const uint32_t side = sheen ? uint32_t(shading::kSheenTableSize) : 1u;
+    sheenAlbedo_ = objects_.add(device.createTexture({.format = gdi::Format::R32F, .width = side, .height = side,
+                                                      .debugName = "sheen albedo table"}));
+    device.writeTexture(sheenAlbedo_, {}, gdi::bytesOf(table));
 
     for (const assets::Material& m : scene.materials) {
         auto pick = [&](const assets::TextureRef& r, gdi::TextureHandle fallback, gdi::TextureHandle& tex,
@@ -176,6 +185,10 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.occlusionTexture, white_, mt.occlusion, mt.occlusionSampler);
         pick(m.transmissionTexture, white_, mt.transmission, mt.transmissionSampler);
         pick(m.thicknessTexture, white_, mt.thickness, mt.thicknessSampler);
+        pick(m.sheenColorTexture, white_, mt.sheenColor, mt.sheenColorSampler);
+        pick(m.sheenRoughnessTexture, white_, mt.sheenRoughness, mt.sheenRoughnessSampler);
+        mt.sheenAlbedo = sheenAlbedo_;
+        mt.sheenAlbedoSampler = defaultSampler_;
         hasOcclusion_ = hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
         materialTextures_.push_back(mt);
     }
@@ -187,8 +200,9 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     }
     // A pass binding one set at a time still binds one in a scene without draws.
     if (textureSets_.empty())
-        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, white_, white_, defaultSampler_, defaultSampler_,
-                                defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_});
+        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, white_, white_, white_, white_, defaultSampler_,
+                                defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_,
+                                defaultSampler_, defaultSampler_, sheenAlbedo_, defaultSampler_});
     updateLights(scene.lights);
 }
 
@@ -225,9 +239,10 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
     o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) | (item.textureSet << 8),
                          item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
-    const assets::TextureRef* refs[7] = {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
-                                         &m.occlusionTexture, &m.transmissionTexture, &m.thicknessTexture};
-    for (int t = 0; t < 7; ++t) {
+    const assets::TextureRef* refs[9] = {&m.baseColorTexture,    &m.metallicRoughnessTexture, &m.normalTexture,
+                                         &m.emissiveTexture,     &m.occlusionTexture,         &m.transmissionTexture,
+                                         &m.thicknessTexture,    &m.sheenColorTexture,        &m.sheenRoughnessTexture};
+    for (int t = 0; t < 9; ++t) {
         o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
@@ -237,6 +252,7 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.transmission = glm::vec4(m.transmissive() ? m.transmission : 0.0f, m.thickness, std::isinf(m.attenuationDistance) ? 0.0f : m.attenuationDistance,
                                std::isinf(m.ior) ? 0.0f : m.ior);
     o.attenuation = glm::vec4(m.attenuationColor, 0.0f);
+    o.sheen = glm::vec4(m.sheenColor, m.sheenRoughness);
     return o;
 }
 
@@ -248,6 +264,9 @@ void MaterialTextures::bind(gdi::CommandList& cmd) const {
     cmd.setTexture(kSlotOcclusion, occlusion, occlusionSampler);
     cmd.setTexture(kSlotTransmission, transmission, transmissionSampler);
     cmd.setTexture(kSlotThickness, thickness, thicknessSampler);
+    cmd.setTexture(kSlotSheenColor, sheenColor, sheenColorSampler);
+    cmd.setTexture(kSlotSheenRoughness, sheenRoughness, sheenRoughnessSampler);
+    cmd.setTexture(kSlotSheenAlbedo, sheenAlbedo, sheenAlbedoSampler);
 }
 
 bool GpuScene::hasBlend() const {

@@ -51,9 +51,9 @@ struct ObjectConstants {
     // draw's firstIndex and baseVertex; w: its first triangle's visibility id (DrawItem).
     glm::uvec4 flags;
     // Per texture (base colour, metallic-roughness, normal, emissive, occlusion, transmission,
-    // thickness: FE_TEXTURE_* in fe_material.glsl) the rows of its KHR_texture_transform,
+    // thickness, sheen colour, sheen roughness: FE_TEXTURE_* in fe_material.glsl) the rows of its KHR_texture_transform,
     // (a, b, c, set) and (d, e, f, 0): it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
-    glm::vec4 uvTransform[2 * 7];
+    glm::vec4 uvTransform[2 * 9];
     // x: the occlusion texture's strength (0 without one); y, z, w: KHR_materials_clearcoat's factor,
     // roughness and F0 (Material::clearcoatF0)
     glm::vec4 occlusion;
@@ -63,6 +63,7 @@ struct ObjectConstants {
     // `attenuation` the attenuation colour.
     glm::vec4 transmission;
     glm::vec4 attenuation;
+    glm::vec4 sheen;  // rgb KHR_materials_sheen's colour (0: none), a its roughness
 };
 
 struct GpuLight {
@@ -92,11 +93,16 @@ struct DrawItem {
 };
 
 struct MaterialTextures {
-    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness;
+    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness, sheenColor,
+        sheenRoughness;
     gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler,
-        transmissionSampler, thicknessSampler;
+        transmissionSampler, thicknessSampler, sheenColorSampler, sheenRoughnessSampler;
+    // The scene's sheen albedo table (the same in every set), bound with them: what samples a
+    // material may shade a sheen.
+    gdi::TextureHandle sheenAlbedo;
+    gdi::SamplerHandle sheenAlbedoSampler;
     bool operator==(const MaterialTextures&) const = default;
-    // Binds the seven at their shader slots (ShaderSlots.h).
+    // Binds them at their shader slots (ShaderSlots.h).
     void bind(gdi::CommandList& cmd) const;
 };
 
@@ -165,7 +171,7 @@ private:
     std::vector<gdi::TextureHandle> textures_;
     std::vector<gdi::SamplerHandle> samplers_;
     std::vector<MaterialTextures> materialTextures_, textureSets_;
-    gdi::TextureHandle white_, black_, flatNormal_;
+    gdi::TextureHandle white_, black_, flatNormal_, sheenAlbedo_;
     bool hasOcclusion_ = false;
     gdi::SamplerHandle defaultSampler_;
 };

@@ -35,6 +35,8 @@ constexpr uint32_t kSlotGBuffer3 = 28;      // the G-buffer's occlusion (GBuffer
 constexpr uint32_t kSlotTransmission = 29;  // KHR_materials_transmission's texture (R)
 constexpr uint32_t kSlotThickness = 30;     // KHR_materials_volume's thickness texture (G)
 constexpr uint32_t kSlotTransmitted = 31;   // the opaque scene's mip-chained copy the transmission pass samples
+constexpr uint32_t kSlotSheenColor = 32;    // KHR_materials_sheen's colour texture (RGB, sRGB)
+constexpr uint32_t kSlotSheenRoughness = 33; // ... and its roughness texture (A)
 constexpr uint32_t kSlotTaa = 34;           // temporal antialiasing's constants (PostProcess)
 constexpr uint32_t kSlotClusterLights = 35; // the light cluster grid's lists (ClusterLightGrid), storage buffer
 constexpr uint32_t kSlotVisibility = 36;    // the visibility buffer's triangle ids (R32U, sampled)
@@ -44,5 +46,6 @@ constexpr uint32_t kSlotIndices = 39;       // ... and its indices
 constexpr uint32_t kSlotClusterColumns = 40; // the cluster light assignment's lights per tile column (storage buffer)
 constexpr uint32_t kSlotClusterIndices = 41; // the light cluster grid's list entries (R32U texture), sampled
 constexpr uint32_t kSlotClusterIndicesOut = 42; // ... and written, by the light assignment
+constexpr uint32_t kSlotSheenAlbedo = 44;    // the sheen's albedo table (shading::sheenAlbedoTable, R32F), with every texture set
 constexpr uint32_t kSlotClusterBounds = 43;  // the opaque depths each light cluster holds (storage buffer)
 }  // namespace fe::render

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace fe::shading {
 
@@ -93,7 +94,91 @@ struct SurfacePoint {
     glm::dvec3 transmissionRay{0.0};
     double ior = 1.5;
     glm::dvec3 transmittance{1.0};
+    // KHR_materials_sheen (glTF model only): the sheen colour (0: none) and perceptual roughness.
+    glm::dvec3 sheenColor{0.0};
+    double sheenRoughness = 0.0;
 };
+
+// KHR_materials_sheen, as the Khronos Sample Viewer 1.1.0 evaluates it: the Charlie distribution
+// and the visibility of Estevez and Kulla ("Production Friendly Microfacet Sheen BRDF", 2017),
+// their fitted lambda, alpha = roughness^2 (roughness at least 1e-6).
+inline double sheenAlpha(double roughness) {
+    const double r = std::max(roughness, 1e-6);
+    return r * r;
+}
+inline double charlieD(double roughness, double NoH) {
+    const double invA = 1.0 / sheenAlpha(roughness), sin2 = std::max(1.0 - NoH * NoH, 0.0);
+    return (2.0 + invA) * std::pow(sin2, 0.5 * invA) / (2.0 * kPi);
+}
+inline double sheenLambdaFit(double x, double a) {
+    const double t = (1.0 - a) * (1.0 - a);
+    const double p = 21.5473 + (25.3245 - 21.5473) * t, q = 3.82987 + (3.32435 - 3.82987) * t,
+                 r = 0.19823 + (0.16801 - 0.19823) * t, u = -1.97760 + (-1.27393 + 1.97760) * t,
+                 w = -4.32054 + (-4.85967 + 4.32054) * t;
+    return p / (1.0 + q * std::pow(x, r)) + u * x + w;
+}
+inline double sheenLambda(double cosTheta, double a) {
+    if (std::abs(cosTheta) < 0.5) return std::exp(sheenLambdaFit(cosTheta, a));
+    return std::exp(2.0 * sheenLambdaFit(0.5, a) - sheenLambdaFit(1.0 - cosTheta, a));
+}
+inline double sheenVisibility(double NoL, double NoV, double roughness) {
+    const double a = sheenAlpha(roughness);
+    const double v = 1.0 / ((1.0 + sheenLambda(NoV, a) + sheenLambda(NoL, a)) * (4.0 * NoV * NoL));
+    return std::isnan(v) ? 1.0 : std::clamp(v, 0.0, 1.0);
+}
+
+// The sheen's directional albedo E(cos, roughness) with colour 1, the integral of D V n.l over the
+// hemisphere (midpoint rule, 48 x 48 directions), tabulated at kSheenTableSize^2 grid points
+// (cos = i / (n - 1) along a row, roughness = j / (n - 1) down the rows) and read bilinearly: the
+// base under the sheen keeps 1 - max(sheenColor) E (the Sample Viewer reads its own table). The
+// GPU reads the same table (GpuScene uploads it). The integral is clamped to 1: near grazing the
+// fitted visibility (clamped to 1 itself) lets the smoothest sheens' integral reach 2, which would
+// weigh the base negatively.
+constexpr int kSheenTableSize = 32;
+inline double sheenAlbedoIntegral(double NoV, double roughness) {
+    const int nTheta = 48, nPhi = 48;
+    const glm::dvec3 v(std::sqrt(std::max(1.0 - NoV * NoV, 0.0)), 0.0, NoV);
+    double sum = 0.0;
+    for (int i = 0; i < nTheta; ++i) {
+        const double theta = (i + 0.5) / nTheta * 0.5 * kPi, c = std::cos(theta), sn = std::sin(theta);
+        for (int k = 0; k < nPhi; ++k) {  // phi in [0, pi]: the integrand is even in phi
+            const double phi = (k + 0.5) / nPhi * kPi;
+            const glm::dvec3 l(sn * std::cos(phi), sn * std::sin(phi), c);
+            const glm::dvec3 h = glm::normalize(v + l);
+            sum += charlieD(roughness, h.z) * sheenVisibility(c, std::max(NoV, 1e-4), roughness) * c * sn;
+        }
+    }
+    return 2.0 * sum * (0.5 * kPi / nTheta) * (kPi / nPhi);
+}
+inline const std::vector<float>& sheenAlbedoTable() {
+    static const std::vector<float> table = [] {
+        std::vector<float> t(size_t(kSheenTableSize) * kSheenTableSize);
+        for (int j = 0; j < kSheenTableSize; ++j)
+            for (int i = 0; i < kSheenTableSize; ++i)
+                t[size_t(j) * kSheenTableSize + i] =
+                    float(std::min(sheenAlbedoIntegral(double(i) / (kSheenTableSize - 1), double(j) / (kSheenTableSize - 1)), 1.0));
+        return t;
+    }();
+    return table;
+}
+inline double sheenAlbedo(double NoV, double roughness) {
+    const std::vector<float>& t = sheenAlbedoTable();
+    const double x = std::clamp(NoV, 0.0, 1.0) * (kSheenTableSize - 1), y = std::clamp(roughness, 0.0, 1.0) * (kSheenTableSize - 1);
+    const int x0 = std::min(int(x), kSheenTableSize - 2), y0 = std::min(int(y), kSheenTableSize - 2);
+    const double fx = x - x0, fy = y - y0;
+    auto at = [&](int i, int j) { return double(t[size_t(j) * kSheenTableSize + i]); };
+    return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) + (at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
+}
+inline double maxComponent(const glm::dvec3& c) { return std::max({c.r, c.g, c.b}); }
+// A punctual light's sheen, sheenColor D V n.l E, and the weight of the base under it,
+// min(1 - max(sheenColor) E(n.w_o), 1 - max(sheenColor) E(n.l)).
+inline glm::dvec3 sheenLight(const SurfacePoint& s, const glm::dvec3& wi, double NoV, const glm::dvec3& E, double& baseWeight) {
+    const double NoL = std::clamp(glm::dot(s.n, wi), 0.0, 1.0), m = maxComponent(s.sheenColor);
+    baseWeight = std::min(1.0 - m * sheenAlbedo(NoV, s.sheenRoughness), 1.0 - m * sheenAlbedo(NoL, s.sheenRoughness));
+    if (NoL <= 0.0) return glm::dvec3(0.0);
+    const double NoH = glm::dot(s.n, glm::normalize(s.wo + wi));
+    return s.sheenColor * charlieD(s.sheenRoughness, NoH) * sheenVisibility(NoL, NoV, s.sheenRoughness) * NoL * E;
+}
 
 // KHR_materials_volume, as the Sample Viewer traces it: the refracted view ray (ior; infinite
 // leaves it unbent) scaled by the thickness in mesh units times the mesh's axis scales.
@@ -158,8 +243,15 @@ inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Br
 // Per light: f x E x NoL; under the glTF model with a clearcoat, the base weighed by 1 - c Fc
 // and the layer's light added.
 inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf brdf = Brdf::Gltf) {
-    if (brdf != Brdf::Gltf || s.clearcoat <= 0.0) return shadeBaseLight(s, l, brdf);
-    return shadeBaseLight(s, l, brdf) * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * clearcoatLight(s, l.wi) * l.E;
+    if (brdf != Brdf::Gltf) return shadeBaseLight(s, l, brdf);
+    glm::dvec3 base = shadeBaseLight(s, l, brdf);
+    if (s.sheenColor != glm::dvec3(0.0)) {  // the sheen over the base (KHR_materials_sheen)
+        double weight = 1.0;
+        const glm::dvec3 sheen = sheenLight(s, l.wi, std::max(glm::dot(s.n, s.wo), 1e-4), l.E, weight);
+        base = sheen + base * weight;
+    }
+    if (s.clearcoat <= 0.0) return base;
+    return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * clearcoatLight(s, l.wi) * l.E;
 }
 
 // A punctual light through a transmissive surface (glTF model): the thin-walled BTDF of
@@ -304,7 +396,8 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
     const glm::dvec3 F0 = glm::mix(dF0, s.baseColor, s.metallic), F90 = glm::mix(dF90, glm::dvec3(1.0), s.metallic);
     glm::dvec3 t, b;
     basis(s.n, t, b);
-    glm::dvec3 specular(0.0), diffuse(0.0);
+    glm::dvec3 specular(0.0), diffuse(0.0), sheen(0.0);
+    const bool sheenLayer = gltf && s.sheenColor != glm::dvec3(0.0);
     for (uint32_t i = 0; i < n; ++i) {
         const glm::dvec2 u = hammersley(i, n);
         const double phi = 2.0 * kPi * u.y;
@@ -322,10 +415,16 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const glm::dvec3 hd = glm::normalize(s.wo + wd);
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
         diffuse += (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
+        // The sheen by the same cosine-weighted directions: pi D V L (the pdf is n.l / pi).
+        if (sheenLayer)
+            sheen += kPi * charlieD(s.sheenRoughness, glm::dot(s.n, hd)) * sheenVisibility(cosD, NoV, s.sheenRoughness) *
+                     environment(wd);
     }
     // Transmission replaces that much of the diffuse lobe (the light from behind: transmittedScene()).
     const double transmission = gltf ? s.transmission : 0.0;
-    const glm::dvec3 base = ((1.0 - s.metallic) * (1.0 - transmission) * s.baseColor * diffuse + specular) / double(n);
+    glm::dvec3 base = ((1.0 - s.metallic) * (1.0 - transmission) * s.baseColor * diffuse + specular) / double(n);
+    if (sheenLayer)  // the sheen over the base, which keeps 1 - max(sheenColor) E(n.w_o)
+        base = s.sheenColor * sheen / double(n) + base * (1.0 - maxComponent(s.sheenColor) * sheenAlbedo(NoV, s.sheenRoughness));
     if (!gltf || s.clearcoat <= 0.0) return base;
     // The clearcoat layer: GGX samples about its normal at its roughness, Fresnel F0c .. 1.
     const double rc = clampRoughness(s.clearcoatRoughness), a2c = rc * rc * rc * rc;

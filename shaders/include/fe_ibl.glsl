@@ -188,13 +188,24 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
     const FePrefiltered p = fePrefiltered(s.n, s.wo, s.roughness, true);
     // (1/n) sum (1 - F_d) = (1 - dF0) - (dF90 - dF0)(1 - z), z the table's (1/n) sum (1 - P).
     const vec3 diffuseWeight = (1.0 - dF0) - (dF90 - dF0) * (1.0 - p.lut.z);
-    return diffuseColor / FE_PI * p.E * diffuseWeight + p.radiance * (F0 * p.lut.x + (F90 - F0) * p.lut.y);
+    const vec3 base = diffuseColor / FE_PI * p.E * diffuseWeight + p.radiance * (F0 * p.lut.x + (F90 - F0) * p.lut.y);
+#ifdef FE_SHEEN
+    // The sheen's broad lobe by the irradiance, sheenColor E(n.w_o) E_irr / pi (the Sample Viewer
+    // prefilters a cube by the Charlie lobe instead; docs/SHADING.md), over the base.
+    if (s.sheenColor != vec3(0.0)) {
+        const float albedo = feSheenAlbedo(max(dot(s.n, s.wo), 1e-4), s.sheenRoughness);
+        const float sheenMax = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b));
+        return s.sheenColor * albedo * p.E / FE_PI + base * (1.0 - sheenMax * albedo);
+    }
+#endif
+    return base;
 #else
     const float r = feClampRoughness(s.roughness), a = r * r, a2 = a * a;
     const float NoV = max(dot(s.n, s.wo), 1e-4);
     vec3 t, b;
     feBasis(s.n, t, b);
-    vec3 specular = vec3(0.0), diffuse = vec3(0.0);
+    vec3 specular = vec3(0.0), diffuse = vec3(0.0), sheen = vec3(0.0);
+    const bool sheenLayer = s.sheenColor != vec3(0.0);
     for (uint i = 0u; i < count; ++i) {
         const vec2 u = feHammersley(i, count);
         float cosH;
@@ -207,10 +218,24 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
             specular += (F0 + (F90 - F0) * P) * feEnvironment(wi) * (4.0 * feVisibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH);
         }
         const vec3 wd = feCosineDirection(u, t, b, s.n);
-        const float Pd = feFresnelPower(dot(normalize(s.wo + wd), s.wo));
-        diffuse += (1.0 - dF0 - (dF90 - dF0) * Pd) * feEnvironment(wd);
+        const vec3 hd = normalize(s.wo + wd);
+        const float Pd = feFresnelPower(dot(hd, s.wo));
+        const vec3 Ld = feEnvironment(wd);
+        diffuse += (1.0 - dF0 - (dF90 - dF0) * Pd) * Ld;
+#ifdef FE_SHEEN
+        // The sheen by the same directions: pi D V L (shading::shadeEnvironment).
+        if (sheenLayer)
+            sheen += (FE_PI * feCharlieD(s.sheenRoughness, dot(s.n, hd)) * feSheenVisibility(dot(s.n, wd), NoV, s.sheenRoughness)) * Ld;
+#endif
     }
-    return (diffuseColor * diffuse + specular) / float(count);
+    const vec3 base = (diffuseColor * diffuse + specular) / float(count);
+#ifdef FE_SHEEN
+    if (sheenLayer) {
+        const float sheenMax = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b));
+        return s.sheenColor * sheen / float(count) + base * (1.0 - sheenMax * feSheenAlbedo(NoV, s.sheenRoughness));
+    }
+#endif
+    return base;
 #endif
 }
 

@@ -1,6 +1,11 @@
 // Material evaluation for passes that draw scene meshes (forward, G-buffer, transparent).
 #ifndef FE_MATERIAL_GLSL
 #define FE_MATERIAL_GLSL
+// Where the material is sampled and shaded, the sheen lobe (KHR_materials_sheen) too: its
+// functions in fe_shading.glsl read the albedo table bound with the material's textures.
+#if !defined(FE_MESH_VERTEX_STAGE) && !defined(FE_VISIBILITY_PASS) && !defined(FE_SHEEN)
+#define FE_SHEEN
+#endif
 #include "fe_scene.glsl"
 
 // What scene/mesh.vert (FE_MESH_VERTEX_STAGE, which declares them as outputs) passes every
@@ -24,11 +29,12 @@ struct ObjectRecord {
     vec4 emissiveNormalScale;
     vec4 params;
     uvec4 flags;
-    vec4 uvTransform[14];
+    vec4 uvTransform[18];
     vec4 occlusion;
     vec4 dielectric;
     vec4 transmission;
     vec4 attenuation;
+    vec4 sheen;
 };
 layout(binding = FE_SLOT_DRAWS, std430) readonly buffer DrawBlock {
     ObjectRecord draws[];
@@ -43,11 +49,12 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     vec4 emissiveNormalScale;
     vec4 params;  // metallic, roughness, alpha cutoff, alpha mode
     uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 texture set; y, z, w: ObjectConstants
-    vec4 uvTransform[14];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
+    vec4 uvTransform[18];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
     vec4 occlusion;        // x strength (0 without an occlusion texture)
     vec4 dielectric;       // rgb the dielectric's F0, a its F90 (KHR_materials_ior, KHR_materials_specular)
     vec4 transmission;     // x factor, y thickness, z attenuation distance (0: infinite), w ior (0: infinite)
     vec4 attenuation;      // rgb the volume's attenuation colour
+    vec4 sheen;            // rgb KHR_materials_sheen's colour (0: none), a its roughness
 } object;
 #endif
 
@@ -59,6 +66,8 @@ const uint FE_TEXTURE_EMISSIVE = 3u;
 const uint FE_TEXTURE_OCCLUSION = 4u;
 const uint FE_TEXTURE_TRANSMISSION = 5u;
 const uint FE_TEXTURE_THICKNESS = 6u;
+const uint FE_TEXTURE_SHEEN_COLOR = 7u;
+const uint FE_TEXTURE_SHEEN_ROUGHNESS = 8u;
 
 // Where texture `t` samples: its coordinate set (uvs.xy or .zw), through its KHR_texture_transform.
 vec2 feTextureCoord(uint t, vec4 uvs) {
@@ -83,6 +92,10 @@ layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
 layout(binding = FE_SLOT_NORMALMAP) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_EMISSIVE) uniform sampler2D emissiveTexture;
 layout(binding = FE_SLOT_OCCLUSION) uniform sampler2D occlusionTexture;
+#ifdef FE_SHEEN
+layout(binding = FE_SLOT_SHEEN_COLOR) uniform sampler2D sheenColorTexture;
+layout(binding = FE_SLOT_SHEEN_ROUGHNESS) uniform sampler2D sheenRoughnessTexture;
+#endif
 #ifdef FE_TRANSMISSION
 layout(binding = FE_SLOT_TRANSMISSION) uniform sampler2D transmissionTexture;
 layout(binding = FE_SLOT_THICKNESS) uniform sampler2D thicknessTexture;
@@ -105,6 +118,8 @@ struct MaterialSample {
     float transmission;
     float thickness;
     float roughnessUnclamped;
+    vec3 sheenColor;  // KHR_materials_sheen (0: none) with its textures
+    float sheenRoughness;
 };
 
 // Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
@@ -149,6 +164,14 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.dielectricF90 = object.dielectric.a;
     m.transmission = 0.0;
     m.thickness = 0.0;
+    m.sheenColor = vec3(0.0);
+    m.sheenRoughness = 0.0;
+#ifdef FE_SHEEN
+    if (object.sheen.rgb != vec3(0.0)) {  // the draw's: a uniform branch
+        m.sheenColor = object.sheen.rgb * feSampleTexture(sheenColorTexture, FE_TEXTURE_SHEEN_COLOR, uvs).rgb;
+        m.sheenRoughness = object.sheen.a * feSampleTexture(sheenRoughnessTexture, FE_TEXTURE_SHEEN_ROUGHNESS, uvs).a;
+    }
+#endif
 #ifdef FE_TRANSMISSION
     m.transmission = object.transmission.x;  // the draw's: a uniform branch
     if (m.transmission > 0.0) {
@@ -178,6 +201,8 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.clearcoatRoughness = object.occlusion.z;
     s.clearcoatNormal = m.clearcoatNormal;
     s.clearcoatF0 = object.occlusion.w;
+    s.sheenColor = m.sheenColor;
+    s.sheenRoughness = m.sheenRoughness;
     s.transmission = m.transmission;
     s.ior = object.transmission.w;
     s.transmissionRay = vec3(0.0);

@@ -31,6 +31,9 @@
 #define FE_SLOT_TRANSMISSION 29
 #define FE_SLOT_THICKNESS 30
 #define FE_SLOT_TRANSMITTED 31
+#define FE_SLOT_SHEEN_COLOR 32
+#define FE_SLOT_SHEEN_ROUGHNESS 33
+// FE_SLOT_SHEEN_ALBEDO 44: fe_shading.glsl
 #define FE_SLOT_TAA 34
 #define FE_SLOT_VISIBILITY 36
 #define FE_SLOT_DRAWS 37
@@ -156,6 +159,8 @@ SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
     s.transmissionRay = vec3(0.0);
     s.ior = 1.5;
     s.transmittance = vec3(1.0);
+    s.sheenColor = vec3(0.0);
+    s.sheenRoughness = 0.0;
     return s;
 }
 #endif

@@ -85,6 +85,10 @@ struct SurfacePoint {
     vec3 transmissionRay;
     float ior;
     vec3 transmittance;
+    // KHR_materials_sheen (glTF model, where the material is sampled: FE_SHEEN; 0 elsewhere): the
+    // sheen colour (0: none) and perceptual roughness.
+    vec3 sheenColor;
+    float sheenRoughness;
 };
 
 float feClampRoughness(float r) { return clamp(r, FE_MIN_ROUGHNESS, 1.0); }
@@ -147,6 +151,11 @@ struct SurfaceBrdf {
     float NoV;
     float Gv;      // the view half of G (separable)
     bool gltf;     // FE_BRDF_GLTF, else FE_BRDF_SEPARABLE
+    // The sheen layer (sheenMax 0: none): colour, roughness, max(colour) and the albedo at n.w_o.
+    vec3 sheenColor;
+    float sheenRoughness;
+    float sheenMax;
+    float sheenAlbedoV;
 #ifdef FE_TRANSMISSION
     // (1 - metallic) transmission baseColor x the volume's transmittance; the transmission
     // alpha^2 (shading::transmissionAlpha); the ray to where the light leaves the volume.
@@ -155,6 +164,42 @@ struct SurfaceBrdf {
     vec3 transmissionRay;
 #endif
 };
+
+#ifdef FE_SHEEN
+// KHR_materials_sheen (shading::charlieD, sheenVisibility, sheenAlbedo): the Charlie distribution
+// and Estevez-Kulla visibility; the sheen's albedo from the table shading::sheenAlbedoTable makes
+// (GpuScene uploads it, bound with every material's textures), read bilinearly between its grid
+// points as the CPU reads it. Defined where the material is sampled (fe_material.glsl).
+#define FE_SLOT_SHEEN_ALBEDO 44
+const int FE_SHEEN_TABLE_SIZE = 32;
+layout(binding = FE_SLOT_SHEEN_ALBEDO) uniform sampler2D feSheenAlbedoTable;
+float feSheenAlbedo(float NoV, float roughness) {
+    const vec2 p = clamp(vec2(NoV, roughness), 0.0, 1.0) * float(FE_SHEEN_TABLE_SIZE - 1);
+    const ivec2 p0 = min(ivec2(p), ivec2(FE_SHEEN_TABLE_SIZE - 2));
+    const vec2 f = p - vec2(p0);
+    const float a = texelFetch(feSheenAlbedoTable, p0, 0).r, b = texelFetch(feSheenAlbedoTable, p0 + ivec2(1, 0), 0).r;
+    const float c = texelFetch(feSheenAlbedoTable, p0 + ivec2(0, 1), 0).r, d = texelFetch(feSheenAlbedoTable, p0 + ivec2(1, 1), 0).r;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+float feCharlieD(float roughness, float NoH) {
+    const float r = max(roughness, 1e-6), invA = 1.0 / (r * r), sin2 = max(1.0 - NoH * NoH, 0.0);
+    return (2.0 + invA) * pow(sin2, 0.5 * invA) / (2.0 * FE_PI);
+}
+float feSheenLambdaFit(float x, float a) {
+    const float t = (1.0 - a) * (1.0 - a);
+    const float p = mix(21.5473, 25.3245, t), q = mix(3.82987, 3.32435, t), r = mix(0.19823, 0.16801, t);
+    const float u = mix(-1.97760, -1.27393, t), w = mix(-4.32054, -4.85967, t);
+    return p / (1.0 + q * pow(x, r)) + u * x + w;
+}
+float feSheenLambda(float cosTheta, float a) {
+    return abs(cosTheta) < 0.5 ? exp(feSheenLambdaFit(cosTheta, a))
+                               : exp(2.0 * feSheenLambdaFit(0.5, a) - feSheenLambdaFit(1.0 - cosTheta, a));
+}
+float feSheenVisibility(float NoL, float NoV, float roughness) {
+    const float r = max(roughness, 1e-6), a = r * r;
+    return clamp(1.0 / ((1.0 + feSheenLambda(NoV, a) + feSheenLambda(NoL, a)) * (4.0 * NoV * NoL)), 0.0, 1.0);
+}
+#endif
 
 // The clearcoat's Fresnel seen from w_o along its normal (shading::clearcoatViewFresnel).
 float feClearcoatViewFresnel(SurfacePoint s) {
@@ -193,6 +238,13 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.NoVc = max(dot(s.clearcoatNormal, s.wo), 1e-4);
     b.clearcoatF0 = s.clearcoatF0;
     b.baseWeight = 1.0 - b.clearcoat * feClearcoatViewFresnel(s);
+    b.sheenColor = s.sheenColor;
+    b.sheenRoughness = s.sheenRoughness;
+    b.sheenMax = b.gltf ? max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) : 0.0;
+    b.sheenAlbedoV = 0.0;
+#ifdef FE_SHEEN
+    if (b.sheenMax > 0.0) b.sheenAlbedoV = feSheenAlbedo(b.NoV, b.sheenRoughness);
+#endif
     return b;
 }
 
@@ -201,8 +253,23 @@ vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l);
 // Forward: the full per-light BRDF sum (SHADING.md "Per light"); with a clearcoat (glTF model)
 // the base weighed by 1 - c Fc(n_c.v) and the layer's Fc D V E n_c.l added (shading::shadeLight).
 vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
-    if (b.clearcoat <= 0.0) return feShadeBaseLight(b, l);
-    vec3 L = b.baseWeight * feShadeBaseLight(b, l);
+    vec3 L = feShadeBaseLight(b, l);
+#ifdef FE_SHEEN
+    // The sheen over the base (shading::sheenLight): sheenColor D V n.l E added, the base weighed
+    // by min(1 - max(sheenColor) E(n.w_o), 1 - max(sheenColor) E(n.l)).
+    if (b.sheenMax > 0.0) {
+        const float NoL = clamp(dot(b.n, l.wi), 0.0, 1.0);
+        const float weight = min(1.0 - b.sheenMax * b.sheenAlbedoV, 1.0 - b.sheenMax * feSheenAlbedo(NoL, b.sheenRoughness));
+        vec3 sheen = vec3(0.0);
+        if (NoL > 0.0) {
+            const float NoH = dot(b.n, normalize(b.wo + l.wi));
+            sheen = b.sheenColor * (feCharlieD(b.sheenRoughness, NoH) * feSheenVisibility(NoL, b.NoV, b.sheenRoughness) * NoL) * l.E;
+        }
+        L = sheen + L * weight;
+    }
+#endif
+    if (b.clearcoat <= 0.0) return L;
+    L *= b.baseWeight;
     const float NoLc = dot(b.nc, l.wi);
     if (NoLc > 0.0) {
         const vec3 h = normalize(b.wo + l.wi);

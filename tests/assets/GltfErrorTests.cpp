@@ -911,3 +911,39 @@ TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
     expectError(write("v_color.gltf", withMaterial({{"KHR_materials_volume", {{"attenuationColor", {1, 2, 1}}}}}).dump()),
                 {"attenuationColor", "[0, 1]"});
 }
+
+// KHR_materials_sheen: colour and roughness factors and both textures (the colour sRGB) are
+// read; values out of [0, 1] are errors naming the key.
+TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
+    writeBytes("tri.bin", bin());
+    const std::string png =
+        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
+    json j = gltf();
+    j["images"] = json::array({{{"uri", png}}});
+    j["textures"] = json::array({{{"source", 0}}});
+    j["extensionsUsed"] = json::array({"KHR_materials_sheen"});
+    auto withSheen = [&](const json& sheen) {
+        json k = j;
+        k["materials"] = json::array({{{"name", "velvet"}, {"extensions", {{"KHR_materials_sheen", sheen}}}}});
+        k["meshes"][0]["primitives"][0]["material"] = 0;
+        return k;
+    };
+    const Scene s = loadGltf(write("ok.gltf", withSheen({{"sheenColorFactor", {1.0, 0.5, 0.25}}, {"sheenRoughnessFactor", 0.75},
+                                                         {"sheenColorTexture", {{"index", 0}}},
+                                                         {"sheenRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}})
+                                             .dump()));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.sheenColor, glm::vec3(1.0f, 0.5f, 0.25f));
+    EXPECT_EQ(m.sheenRoughness, 0.75f);
+    EXPECT_TRUE(m.hasSheen());
+    EXPECT_TRUE(m.needsFullMaterial());
+    ASSERT_TRUE(m.sheenColorTexture.valid());
+    EXPECT_TRUE(s.textures[m.sheenColorTexture.index].srgb);
+    ASSERT_TRUE(m.sheenRoughnessTexture.valid());
+    EXPECT_EQ(m.sheenRoughnessTexture.texCoord, 1u);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_FALSE(Material{}.hasSheen());
+    expectError(write("colour.gltf", withSheen({{"sheenColorFactor", {1.0, 1.5, 0.0}}}).dump()), {"velvet", "sheenColorFactor", "[0, 1]"});
+    expectError(write("rough.gltf", withSheen({{"sheenRoughnessFactor", -0.1}}).dump()), {"sheenRoughnessFactor", "[0, 1]"});
+    expectError(write("short.gltf", withSheen({{"sheenColorFactor", {1.0, 1.0}}}).dump()), {"sheenColorFactor", "array of 3"});
+}

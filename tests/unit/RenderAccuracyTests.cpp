@@ -919,7 +919,7 @@ TEST_P(RenderAccuracy, DielectricIorAndSpecularMatchTheReference) {
     // A technique that cannot shows them with the default dielectric, and says which can.
     const std::vector<std::string> w = render::materialWarnings(scene, {.technique = "deferred"});
     ASSERT_EQ(w.size(), 1u);
-    EXPECT_NE(w[0].find("technique deferred shades them with F0 0.04, F90 1 and no clearcoat (its G-buffer does not hold it); "
+    EXPECT_NE(w[0].find("technique deferred shades them with F0 0.04, F90 1, no clearcoat and no sheen (its G-buffer does not hold it); "
                         "forward, forward-multipass, forward-zprepass, forward-plus, clustered-forward, visibility-buffer "
                         "evaluate them"),
               std::string::npos)
@@ -1046,4 +1046,22 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
             EXPECT_GE(without.fractionOver, 0.3) << c.what << ": transmission hardly changes the reference";
         }
     }
+}
+
+// KHR_materials_sheen: the Charlie sheen over the base (punctual: sheenColor D V n.l E, the base
+// weighed by its albedo table; image-based: the same lobe by the cosine samples, the fast path by
+// the irradiance), on every technique that shades the whole material, against the CPU reference;
+// without the sheen the reference is far from it, so dropping the lobe fails.
+TEST_P(RenderAccuracy, SheenMatchesTheReference) {
+    scene.environment = assets::loadEnvironment("builtin:sky");
+    scene.environment->sky.sunRadiance = glm::dvec3(0.0);
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        assets::Material& m = scene.materials[i];
+        m.sheenColor = i % 2 ? glm::vec3(1.0f, 0.8f, 0.6f) : glm::vec3(0.3f, 0.6f, 1.0f);
+        m.sheenRoughness = 0.25f + float(i % 4) * 0.25f;
+    }
+    assets::Scene plain = scene;
+    for (assets::Material& m : plain.materials) m.sheenColor = glm::vec3(0.0f);
+    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "a sheen");
+    EXPECT_EQ(render::materialWarnings(scene, {.technique = "redeferred"}).size(), 1u);
 }
