@@ -317,7 +317,7 @@ private:
     // keys leave out as it is, anything else is an error naming where.
     void readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count);
     void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what);
-    // KHR_materials_ior and KHR_materials_specular into mat (the factors; the textures are warned).
+    // KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat into mat, with their textures.
     void readDielectric(const tinygltf::Material& gm, Material& mat, const std::string& label);
     // KHR_materials_transmission and KHR_materials_volume into mat, with their textures.
     void readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label);
@@ -757,8 +757,11 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
         if (!(mat.clearcoat >= 0.0f && mat.clearcoat <= 1.0f)) fail(where + ".clearcoatFactor must lie in [0, 1]");
         if (!(mat.clearcoatRoughness >= 0.0f && mat.clearcoatRoughness <= 1.0f))
             fail(where + ".clearcoatRoughnessFactor must lie in [0, 1]");
-        for (const char* t : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
-            if (e->Has(t)) warn(where + "." + t + " is not read: the factors alone are used");
+        mat.clearcoatTexture = extensionTexture(*e, "clearcoatTexture", where);
+        mat.clearcoatRoughnessTexture = extensionTexture(*e, "clearcoatRoughnessTexture", where);
+        mat.clearcoatNormalTexture = extensionTexture(*e, "clearcoatNormalTexture", where);
+        if (mat.clearcoatNormalTexture.valid()) readNumbers(e->Get("clearcoatNormalTexture"), "scale", where + ".clearcoatNormalTexture",
+                                                            &mat.clearcoatNormalScale, 0);
     }
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_specular")) {
         const std::string where = label + ": KHR_materials_specular";
@@ -767,8 +770,8 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
         if (!(mat.specular >= 0.0f && mat.specular <= 1.0f)) fail(where + ".specularFactor must lie in [0, 1]");
         if (!(glm::all(glm::greaterThanEqual(mat.specularColor, glm::vec3(0.0f)))))
             fail(where + ".specularColorFactor must not be negative");
-        for (const char* t : {"specularTexture", "specularColorTexture"})
-            if (e->Has(t)) warn(where + "." + t + " is not read: the factors alone are used");
+        mat.specularTexture = extensionTexture(*e, "specularTexture", where);
+        mat.specularColorTexture = extensionTexture(*e, "specularColorTexture", where, true);
     }
 }
 

@@ -144,15 +144,26 @@ struct Material {
     float ior = 1.5f;  // at least 1; infinite for the extension's 0
     float specular = 1.0f;
     glm::vec3 specularColor{1.0f};
-    glm::vec3 dielectricF0() const {
+    TextureRef specularTexture;       // linear, A: times specular
+    TextureRef specularColorTexture;  // sRGB, RGB: times specularColor
+    // ((ior - 1) / (ior + 1))^2 specularColor: F0 before the clamp and the specular factor.
+    glm::vec3 specularColorF0() const {
         const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);  // KHR_materials_ior's 0: infinite
-        return glm::min(glm::vec3(r * r) * specularColor, glm::vec3(1.0f)) * specular;
+        return glm::vec3(r * r) * specularColor;
     }
-    float dielectricF90() const { return specular; }
+    // With the textures' texels where they are sampled (1 without them).
+    glm::vec3 dielectricF0(glm::vec3 colorTexel = glm::vec3(1.0f), float specularTexel = 1.0f) const {
+        return glm::min(specularColorF0() * colorTexel, glm::vec3(1.0f)) * specular * specularTexel;
+    }
+    float dielectricF90(float specularTexel = 1.0f) const { return specular * specularTexel; }
     // KHR_materials_clearcoat (factors): a second, dielectric GGX layer over the whole material,
     // on the interpolated vertex normal, its Fresnel F0 = ((ior - 1) / (ior + 1))^2 (docs/SHADING.md).
     float clearcoat = 0.0f;
     float clearcoatRoughness = 0.0f;
+    TextureRef clearcoatTexture;           // linear, R: times clearcoat
+    TextureRef clearcoatRoughnessTexture;  // linear, G: times clearcoatRoughness
+    TextureRef clearcoatNormalTexture;     // linear, tangent space: the layer's normal (else the vertex normal)
+    float clearcoatNormalScale = 1.0f;
     float clearcoatF0() const {
         const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);
         return r * r;
@@ -178,7 +189,10 @@ struct Material {
     // Drawn after the opaque scene, which it sees through (a BLEND material blends instead).
     bool transmissive() const { return transmission > 0.0f && alphaMode != AlphaMode::Blend; }
     // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
-    bool defaultDielectric() const { return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f); }
+    bool defaultDielectric() const {
+        return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && !specularTexture.valid() &&
+               !specularColorTexture.valid();
+    }
     // Inputs only the techniques that shade the whole material evaluate (TechniqueInfo::fullMaterial).
     bool needsFullMaterial() const { return !defaultDielectric() || clearcoat > 0.0f || hasSheen(); }
 };

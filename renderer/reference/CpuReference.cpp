@@ -344,17 +344,20 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             emissive *= glm::dvec3(texel(mat.emissiveTexture));
             out.textured = true;
         }
+        // A normal map about the vertex normal (the base's, or the clearcoat layer's).
+        auto mapNormal = [&](const assets::TextureRef& map, double scale) {
+            const glm::dvec4 T = b0 * hit->t[0] + hb1 * hit->t[1] + hb2 * hit->t[2];
+            glm::dvec3 t = glm::dvec3(T) - vertexNormal * glm::dot(vertexNormal, glm::dvec3(T));
+            if (!(glm::dot(t, t) > 1e-24)) return vertexNormal;
+            t = glm::normalize(t);
+            const glm::dvec3 b = glm::cross(vertexNormal, t) * (T.w < 0.0 ? -1.0 : 1.0);
+            glm::dvec3 tn = glm::dvec3(texel(map)) * 2.0 - 1.0;
+            tn.x *= scale;
+            tn.y *= scale;
+            return glm::normalize(tn.x * t + tn.y * b + tn.z * vertexNormal);
+        };
         if (mat.normalTexture.valid()) {
-            glm::dvec4 T = b0 * hit->t[0] + hb1 * hit->t[1] + hb2 * hit->t[2];
-            glm::dvec3 t = glm::dvec3(T) - n * glm::dot(n, glm::dvec3(T));
-            if (glm::dot(t, t) > 1e-24) {
-                t = glm::normalize(t);
-                glm::dvec3 b = glm::cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
-                glm::dvec3 tn = glm::dvec3(texel(mat.normalTexture)) * 2.0 - 1.0;
-                tn.x *= mat.normalScale;
-                tn.y *= mat.normalScale;
-                n = glm::normalize(tn.x * t + tn.y * b + tn.z * n);
-            }
+            n = mapNormal(mat.normalTexture, mat.normalScale);
             out.textured = true;
         }
         out.alpha = bc.a;
@@ -372,11 +375,17 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.baseColor = glm::dvec3(bc);
         s.metallic = std::clamp(metallic, 0.0, 1.0);
         s.roughness = roughness;
-        s.dielectricF0 = glm::dvec3(mat.dielectricF0());
-        s.dielectricF90 = mat.dielectricF90();
-        s.clearcoat = mat.clearcoat;
-        s.clearcoatRoughness = mat.clearcoatRoughness;
-        s.clearcoatNormal = vertexNormal;
+        // KHR_materials_specular and clearcoat with their textures (1 where there is none).
+        for (const assets::TextureRef* t : {&mat.specularTexture, &mat.specularColorTexture, &mat.clearcoatTexture,
+                                            &mat.clearcoatRoughnessTexture, &mat.clearcoatNormalTexture})
+            out.textured = out.textured || t->valid();
+        const glm::dvec3 specularColorTexel = mat.specularColorTexture.valid() ? glm::dvec3(texel(mat.specularColorTexture)) : glm::dvec3(1.0);
+        const double specularTexel = mat.specularTexture.valid() ? texel(mat.specularTexture).a : 1.0;
+        s.dielectricF0 = glm::min(glm::dvec3(mat.specularColorF0()) * specularColorTexel, glm::dvec3(1.0)) * double(mat.specular) * specularTexel;
+        s.dielectricF90 = double(mat.specular) * specularTexel;
+        s.clearcoat = mat.clearcoat * (mat.clearcoatTexture.valid() ? texel(mat.clearcoatTexture).r : 1.0);
+        s.clearcoatRoughness = mat.clearcoatRoughness * (mat.clearcoatRoughnessTexture.valid() ? texel(mat.clearcoatRoughnessTexture).g : 1.0);
+        s.clearcoatNormal = mat.clearcoatNormalTexture.valid() ? mapNormal(mat.clearcoatNormalTexture, mat.clearcoatNormalScale) : vertexNormal;
         s.clearcoatF0 = mat.clearcoatF0();
         s.ior = mat.ior;
         if (mat.hasSheen()) {

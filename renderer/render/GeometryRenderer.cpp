@@ -44,8 +44,11 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene)
 
 // The forward shaders read the lights from the uniform block when they fit it, else from the
 // storage buffer (their FE_LIGHTS_IN_STORAGE variants; fe_forward_pass.glsl says why).
+// With layered materials (GpuScene::hasLayeredMaterials), their FE_LAYERED variants; the parts in
+// the order the shaders' fe-variant lines give them.
 std::string GeometryRenderer::lightsVariant(const std::string& path, const char* variant) const {
     std::string v = variant ? variant : "";
+    if (scene_.hasLayeredMaterials()) v += v.empty() ? "FE_LAYERED" : "+FE_LAYERED";
     if (!uniformLights_) v += v.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
     return v.empty() ? path : path + ":" + v;
 }

@@ -187,9 +187,15 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.thicknessTexture, white_, mt.thickness, mt.thicknessSampler);
         pick(m.sheenColorTexture, white_, mt.sheenColor, mt.sheenColorSampler);
         pick(m.sheenRoughnessTexture, white_, mt.sheenRoughness, mt.sheenRoughnessSampler);
+        pick(m.specularTexture, white_, mt.specular, mt.specularSampler);
+        pick(m.specularColorTexture, white_, mt.specularColor, mt.specularColorSampler);
+        pick(m.clearcoatTexture, white_, mt.clearcoat, mt.clearcoatSampler);
+        pick(m.clearcoatRoughnessTexture, white_, mt.clearcoatRoughness, mt.clearcoatRoughnessSampler);
+        pick(m.clearcoatNormalTexture, flatNormal_, mt.clearcoatNormal, mt.clearcoatNormalSampler);
         mt.sheenAlbedo = sheenAlbedo_;
         mt.sheenAlbedoSampler = defaultSampler_;
         hasOcclusion_ = hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
+        hasLayered_ = hasLayered_ || m.clearcoat > 0.0f || m.hasSheen();
         materialTextures_.push_back(mt);
     }
     for (DrawItem& d : draws_) {
@@ -199,10 +205,22 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         if (it == textureSets_.end()) textureSets_.push_back(mt);
     }
     // A pass binding one set at a time still binds one in a scene without draws.
-    if (textureSets_.empty())
-        textureSets_.push_back({white_, white_, flatNormal_, white_, white_, white_, white_, white_, white_, defaultSampler_,
-                                defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_, defaultSampler_,
-                                defaultSampler_, defaultSampler_, sheenAlbedo_, defaultSampler_});
+    if (textureSets_.empty()) {
+        MaterialTextures none;
+        for (gdi::TextureHandle* t : {&none.baseColor, &none.metallicRoughness, &none.emissive, &none.occlusion, &none.transmission,
+                                      &none.thickness, &none.sheenColor, &none.sheenRoughness, &none.specular, &none.specularColor,
+                                      &none.clearcoat, &none.clearcoatRoughness})
+            *t = white_;
+        none.normal = none.clearcoatNormal = flatNormal_;
+        none.sheenAlbedo = sheenAlbedo_;
+        for (gdi::SamplerHandle* s :
+             {&none.baseColorSampler, &none.metallicRoughnessSampler, &none.normalSampler, &none.emissiveSampler,
+              &none.occlusionSampler, &none.transmissionSampler, &none.thicknessSampler, &none.sheenColorSampler,
+              &none.sheenRoughnessSampler, &none.specularSampler, &none.specularColorSampler, &none.clearcoatSampler,
+              &none.clearcoatRoughnessSampler, &none.clearcoatNormalSampler, &none.sheenAlbedoSampler})
+            *s = defaultSampler_;
+        textureSets_.push_back(none);
+    }
     updateLights(scene.lights);
 }
 
@@ -237,22 +255,29 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.baseColorFactor = m.baseColorFactor;
     o.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
-    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) | (item.textureSet << 8),
+    const bool specularTextures = m.specularTexture.valid() || m.specularColorTexture.valid();
+    const bool clearcoatTextures = m.clearcoatTexture.valid() || m.clearcoatRoughnessTexture.valid();
+    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) |
+                             (specularTextures ? 8u : 0u) | (clearcoatTextures ? 16u : 0u) |
+                             (m.clearcoatNormalTexture.valid() ? 32u : 0u) | (item.textureSet << 8),
                          item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
-    const assets::TextureRef* refs[9] = {&m.baseColorTexture,    &m.metallicRoughnessTexture, &m.normalTexture,
-                                         &m.emissiveTexture,     &m.occlusionTexture,         &m.transmissionTexture,
-                                         &m.thicknessTexture,    &m.sheenColorTexture,        &m.sheenRoughnessTexture};
-    for (int t = 0; t < 9; ++t) {
+    const assets::TextureRef* refs[14] = {&m.baseColorTexture,    &m.metallicRoughnessTexture, &m.normalTexture,
+                                          &m.emissiveTexture,     &m.occlusionTexture,         &m.transmissionTexture,
+                                          &m.thicknessTexture,    &m.sheenColorTexture,        &m.sheenRoughnessTexture,
+                                          &m.specularTexture,     &m.specularColorTexture,     &m.clearcoatTexture,
+                                          &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture};
+    for (int t = 0; t < 14; ++t) {
         o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
     o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, m.clearcoat, m.clearcoatRoughness,
                             m.clearcoatF0());
-    o.dielectric = glm::vec4(m.dielectricF0(), m.dielectricF90());
+    o.dielectric = glm::vec4(m.specularColorF0(), m.specular);
     o.transmission = glm::vec4(m.transmissive() ? m.transmission : 0.0f, m.thickness, std::isinf(m.attenuationDistance) ? 0.0f : m.attenuationDistance,
                                std::isinf(m.ior) ? 0.0f : m.ior);
     o.attenuation = glm::vec4(m.attenuationColor, 0.0f);
     o.sheen = glm::vec4(m.sheenColor, m.sheenRoughness);
+    o.clearcoatNormal = glm::vec4(m.clearcoatNormalScale, 0.0f, 0.0f, 0.0f);
     return o;
 }
 
@@ -267,6 +292,11 @@ void MaterialTextures::bind(gdi::CommandList& cmd) const {
     cmd.setTexture(kSlotSheenColor, sheenColor, sheenColorSampler);
     cmd.setTexture(kSlotSheenRoughness, sheenRoughness, sheenRoughnessSampler);
     cmd.setTexture(kSlotSheenAlbedo, sheenAlbedo, sheenAlbedoSampler);
+    cmd.setTexture(kSlotSpecular, specular, specularSampler);
+    cmd.setTexture(kSlotSpecularColor, specularColor, specularColorSampler);
+    cmd.setTexture(kSlotClearcoat, clearcoat, clearcoatSampler);
+    cmd.setTexture(kSlotClearcoatRoughness, clearcoatRoughness, clearcoatRoughnessSampler);
+    cmd.setTexture(kSlotClearcoatNormal, clearcoatNormal, clearcoatNormalSampler);
 }
 
 bool GpuScene::hasBlend() const {

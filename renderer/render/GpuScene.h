@@ -47,23 +47,29 @@ struct ObjectConstants {
     glm::vec4 baseColorFactor;
     glm::vec4 emissiveNormalScale;  // rgb emissive factor, a normal scale
     glm::vec4 params;               // metallic, roughness, alpha cutoff, alpha mode (0,1,2)
-    // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 the draw's texture set; y, z: the
+    // x: bit0 normal map, bit1 unlit, bit2 mirrored, bit3 KHR_materials_specular textures, bit4
+    // clearcoat (factor or roughness) textures, bit5 a clearcoat normal map, bits 8-31 the draw's
+    // texture set; y, z: the
     // draw's firstIndex and baseVertex; w: its first triangle's visibility id (DrawItem).
     glm::uvec4 flags;
     // Per texture (base colour, metallic-roughness, normal, emissive, occlusion, transmission,
-    // thickness, sheen colour, sheen roughness: FE_TEXTURE_* in fe_material.glsl) the rows of its KHR_texture_transform,
+    // thickness, sheen colour, sheen roughness, specular, specular colour, clearcoat, clearcoat
+    // roughness, clearcoat normal: FE_TEXTURE_* in fe_material.glsl) the rows of its KHR_texture_transform,
     // (a, b, c, set) and (d, e, f, 0): it samples (a u + b v + c, d u + e v + f) of TEXCOORD_set.
-    glm::vec4 uvTransform[2 * 9];
+    glm::vec4 uvTransform[2 * 14];
     // x: the occlusion texture's strength (0 without one); y, z, w: KHR_materials_clearcoat's factor,
     // roughness and F0 (Material::clearcoatF0)
     glm::vec4 occlusion;
-    glm::vec4 dielectric;  // rgb: the dielectric's F0, a: its F90 (Material::dielectricF0, KHR_materials_ior/specular)
+    // rgb: the dielectric's F0 before its clamp and specular factor (Material::specularColorF0), a:
+    // the specular factor (KHR_materials_ior / specular: F0 = min(rgb x colour texel, 1) a x texel, F90 = a x texel)
+    glm::vec4 dielectric;
     // KHR_materials_transmission and volume: x the factor, y the thickness (mesh units), z the
     // attenuation distance (0: infinite), w the index of refraction (0: infinite); rgb of
     // `attenuation` the attenuation colour.
     glm::vec4 transmission;
     glm::vec4 attenuation;
     glm::vec4 sheen;  // rgb KHR_materials_sheen's colour (0: none), a its roughness
+    glm::vec4 clearcoatNormal;  // x: the clearcoat normal texture's scale
 };
 
 struct GpuLight {
@@ -94,9 +100,10 @@ struct DrawItem {
 
 struct MaterialTextures {
     gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness, sheenColor,
-        sheenRoughness;
+        sheenRoughness, specular, specularColor, clearcoat, clearcoatRoughness, clearcoatNormal;
     gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler,
-        transmissionSampler, thicknessSampler, sheenColorSampler, sheenRoughnessSampler;
+        transmissionSampler, thicknessSampler, sheenColorSampler, sheenRoughnessSampler, specularSampler, specularColorSampler,
+        clearcoatSampler, clearcoatRoughnessSampler, clearcoatNormalSampler;
     // The scene's sheen albedo table (the same in every set), bound with them: what samples a
     // material may shade a sheen.
     gdi::TextureHandle sheenAlbedo;
@@ -151,6 +158,10 @@ public:
     bool hasBlend() const;
     bool hasOpaque() const;  // neither blended nor transmissive
     bool hasTransmissive() const;
+    // Some material has a clearcoat or a sheen: the full-material shaders are then their FE_LAYERED
+    // variants, which alone evaluate those lobes (on CPU rasterizers a branch around them is not
+    // free: forward with 1024 lights measured 572 -> 1384 ms a frame with the sheen's untaken).
+    bool hasLayeredMaterials() const { return hasLayered_; }
     // Some material darkens indirect light by an occlusion texture (strength not 0): the
     // G-buffer techniques then store it (GBuffer::gb3).
     bool hasOcclusion() const { return hasOcclusion_; }
@@ -173,6 +184,7 @@ private:
     std::vector<MaterialTextures> materialTextures_, textureSets_;
     gdi::TextureHandle white_, black_, flatNormal_, sheenAlbedo_;
     bool hasOcclusion_ = false;
+    bool hasLayered_ = false;
     gdi::SamplerHandle defaultSampler_;
 };
 

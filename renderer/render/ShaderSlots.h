@@ -47,5 +47,10 @@ constexpr uint32_t kSlotClusterColumns = 40; // the cluster light assignment's l
 constexpr uint32_t kSlotClusterIndices = 41; // the light cluster grid's list entries (R32U texture), sampled
 constexpr uint32_t kSlotClusterIndicesOut = 42; // ... and written, by the light assignment
 constexpr uint32_t kSlotSheenAlbedo = 44;    // the sheen's albedo table (shading::sheenAlbedoTable, R32F), with every texture set
+constexpr uint32_t kSlotSpecular = 45;       // KHR_materials_specular's textures: specular (A)
+constexpr uint32_t kSlotSpecularColor = 46;  // ... and specular colour (RGB, sRGB)
+constexpr uint32_t kSlotClearcoat = 47;      // KHR_materials_clearcoat's textures: factor (R)
+constexpr uint32_t kSlotClearcoatRoughness = 48;  // ... roughness (G)
+constexpr uint32_t kSlotClearcoatNormal = 49;     // ... and the layer's normal map
 constexpr uint32_t kSlotClusterBounds = 43;  // the opaque depths each light cluster holds (storage buffer)
 }  // namespace fe::render

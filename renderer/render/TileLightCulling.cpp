@@ -19,8 +19,10 @@ bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {
     return GpuScene::lightsFitUniformBlock(c.scene.lightCount(), c.device.info().limits);
 }
 
-const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name, bool uniformLights) {
-    return shaders::find("scene/" + name + ".comp" + (uniformLights ? "" : ":FE_LIGHTS_IN_STORAGE"));
+const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name, bool uniformLights, bool layered) {
+    std::string variant = layered ? "FE_LAYERED" : "";
+    if (!uniformLights) variant += variant.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
+    return shaders::find("scene/" + name + ".comp" + (variant.empty() ? "" : ":" + variant));
 }
 
 const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const { return listPassShader(name, uniformLights_); }

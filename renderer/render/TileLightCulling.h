@@ -32,7 +32,8 @@ public:
     // The same choice for any list pass (ClusterLightGrid's too): whether the lights fit the
     // uniform block, the shader variant, and the binding of the lights alone.
     static bool lightsFitUniformBlock(const TechniqueContext& c);
-    static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights);
+    // `layered`: the FE_LAYERED variant (GpuScene::hasLayeredMaterials: clearcoat and sheen lobes).
+    static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights, bool layered = false);
     static void bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights);
 
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in

@@ -21,7 +21,7 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
                              : c.environmentLight.prefiltered() ? "visibility_resolve_ibl_prefiltered"
                                                                 : "visibility_resolve_ibl";
     cs_ = objects_.add(c.device.createShader(
-        {.stage = gdi::ShaderStage::Compute, .binary = TileLightCulling::listPassShader(name, uniformLights_)}));
+        {.stage = gdi::ShaderStage::Compute, .binary = TileLightCulling::listPassShader(name, uniformLights_, c.scene.hasLayeredMaterials())}));
     pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "visibility resolve"}));
 }
 

@@ -141,8 +141,12 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count);
 
 vec3 feShadeEnvironmentGltf(SurfacePoint s, uint count) {
     const vec3 base = feShadeEnvironmentBase(s, count);
+#ifdef FE_LAYERED  // the clearcoat in the layered variants alone (fe_shading.glsl says why)
     if (s.clearcoat <= 0.0) return base;
     return base * (1.0 - s.clearcoat * feClearcoatViewFresnel(s)) + s.clearcoat * feClearcoatEnvironment(s, count);
+#else
+    return base;
+#endif
 }
 
 // The clearcoat layer's image-based light: the specular estimator about its normal, at its
@@ -189,7 +193,7 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
     // (1/n) sum (1 - F_d) = (1 - dF0) - (dF90 - dF0)(1 - z), z the table's (1/n) sum (1 - P).
     const vec3 diffuseWeight = (1.0 - dF0) - (dF90 - dF0) * (1.0 - p.lut.z);
     const vec3 base = diffuseColor / FE_PI * p.E * diffuseWeight + p.radiance * (F0 * p.lut.x + (F90 - F0) * p.lut.y);
-#ifdef FE_SHEEN
+#if defined(FE_MATERIAL_EXTENSIONS) && defined(FE_LAYERED)
     // The sheen's broad lobe by the irradiance, sheenColor E(n.w_o) E_irr / pi (the Sample Viewer
     // prefilters a cube by the Charlie lobe instead; docs/SHADING.md), over the base.
     if (s.sheenColor != vec3(0.0)) {
@@ -222,14 +226,14 @@ vec3 feShadeEnvironmentBase(SurfacePoint s, uint count) {
         const float Pd = feFresnelPower(dot(hd, s.wo));
         const vec3 Ld = feEnvironment(wd);
         diffuse += (1.0 - dF0 - (dF90 - dF0) * Pd) * Ld;
-#ifdef FE_SHEEN
+#if defined(FE_MATERIAL_EXTENSIONS) && defined(FE_LAYERED)
         // The sheen by the same directions: pi D V L (shading::shadeEnvironment).
         if (sheenLayer)
             sheen += (FE_PI * feCharlieD(s.sheenRoughness, dot(s.n, hd)) * feSheenVisibility(dot(s.n, wd), NoV, s.sheenRoughness)) * Ld;
 #endif
     }
     const vec3 base = (diffuseColor * diffuse + specular) / float(count);
-#ifdef FE_SHEEN
+#if defined(FE_MATERIAL_EXTENSIONS) && defined(FE_LAYERED)
     if (sheenLayer) {
         const float sheenMax = max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b));
         return s.sheenColor * sheen / float(count) + base * (1.0 - sheenMax * feSheenAlbedo(NoV, s.sheenRoughness));

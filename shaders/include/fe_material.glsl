@@ -1,10 +1,11 @@
 // Material evaluation for passes that draw scene meshes (forward, G-buffer, transparent).
 #ifndef FE_MATERIAL_GLSL
 #define FE_MATERIAL_GLSL
-// Where the material is sampled and shaded, the sheen lobe (KHR_materials_sheen) too: its
-// functions in fe_shading.glsl read the albedo table bound with the material's textures.
-#if !defined(FE_MESH_VERTEX_STAGE) && !defined(FE_VISIBILITY_PASS) && !defined(FE_SHEEN)
-#define FE_SHEEN
+// Where the material is sampled and shaded: the KHR_materials_* extensions' textures, and the
+// sheen lobe, whose functions in fe_shading.glsl read the albedo table bound with the material's
+// textures.
+#if !defined(FE_MESH_VERTEX_STAGE) && !defined(FE_VISIBILITY_PASS) && !defined(FE_MATERIAL_EXTENSIONS)
+#define FE_MATERIAL_EXTENSIONS
 #endif
 #include "fe_scene.glsl"
 
@@ -29,12 +30,13 @@ struct ObjectRecord {
     vec4 emissiveNormalScale;
     vec4 params;
     uvec4 flags;
-    vec4 uvTransform[18];
+    vec4 uvTransform[28];
     vec4 occlusion;
     vec4 dielectric;
     vec4 transmission;
     vec4 attenuation;
     vec4 sheen;
+    vec4 clearcoatNormal;
 };
 layout(binding = FE_SLOT_DRAWS, std430) readonly buffer DrawBlock {
     ObjectRecord draws[];
@@ -48,13 +50,15 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
     vec4 baseColorFactor;
     vec4 emissiveNormalScale;
     vec4 params;  // metallic, roughness, alpha cutoff, alpha mode
-    uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bits 8-31 texture set; y, z, w: ObjectConstants
-    vec4 uvTransform[18];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
+    uvec4 flags;  // x: bit0 normal map, bit1 unlit, bit2 mirrored, bit3 specular textures, bit4 clearcoat textures,
+                  // bit5 clearcoat normal map, bits 8-31 texture set; y, z, w: ObjectConstants
+    vec4 uvTransform[28];  // per texture (FE_TEXTURE_*): rows (a, b, c, set) and (d, e, f, 0) of its uv map
     vec4 occlusion;        // x strength (0 without an occlusion texture)
-    vec4 dielectric;       // rgb the dielectric's F0, a its F90 (KHR_materials_ior, KHR_materials_specular)
+    vec4 dielectric;       // rgb the dielectric's F0 before its clamp, a the specular factor (ObjectConstants::dielectric)
     vec4 transmission;     // x factor, y thickness, z attenuation distance (0: infinite), w ior (0: infinite)
     vec4 attenuation;      // rgb the volume's attenuation colour
     vec4 sheen;            // rgb KHR_materials_sheen's colour (0: none), a its roughness
+    vec4 clearcoatNormal;  // x the clearcoat normal texture's scale
 } object;
 #endif
 
@@ -68,6 +72,11 @@ const uint FE_TEXTURE_TRANSMISSION = 5u;
 const uint FE_TEXTURE_THICKNESS = 6u;
 const uint FE_TEXTURE_SHEEN_COLOR = 7u;
 const uint FE_TEXTURE_SHEEN_ROUGHNESS = 8u;
+const uint FE_TEXTURE_SPECULAR = 9u;
+const uint FE_TEXTURE_SPECULAR_COLOR = 10u;
+const uint FE_TEXTURE_CLEARCOAT = 11u;
+const uint FE_TEXTURE_CLEARCOAT_ROUGHNESS = 12u;
+const uint FE_TEXTURE_CLEARCOAT_NORMAL = 13u;
 
 // Where texture `t` samples: its coordinate set (uvs.xy or .zw), through its KHR_texture_transform.
 vec2 feTextureCoord(uint t, vec4 uvs) {
@@ -92,9 +101,14 @@ layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
 layout(binding = FE_SLOT_NORMALMAP) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_EMISSIVE) uniform sampler2D emissiveTexture;
 layout(binding = FE_SLOT_OCCLUSION) uniform sampler2D occlusionTexture;
-#ifdef FE_SHEEN
+#ifdef FE_MATERIAL_EXTENSIONS
 layout(binding = FE_SLOT_SHEEN_COLOR) uniform sampler2D sheenColorTexture;
 layout(binding = FE_SLOT_SHEEN_ROUGHNESS) uniform sampler2D sheenRoughnessTexture;
+layout(binding = FE_SLOT_SPECULAR) uniform sampler2D specularTexture;
+layout(binding = FE_SLOT_SPECULAR_COLOR) uniform sampler2D specularColorTexture;
+layout(binding = FE_SLOT_CLEARCOAT) uniform sampler2D clearcoatTexture;
+layout(binding = FE_SLOT_CLEARCOAT_ROUGHNESS) uniform sampler2D clearcoatRoughnessTexture;
+layout(binding = FE_SLOT_CLEARCOAT_NORMAL) uniform sampler2D clearcoatNormalTexture;
 #endif
 #ifdef FE_TRANSMISSION
 layout(binding = FE_SLOT_TRANSMISSION) uniform sampler2D transmissionTexture;
@@ -111,7 +125,9 @@ struct MaterialSample {
     bool unlit;
     vec3 dielectricF0;  // KHR_materials_ior / KHR_materials_specular (ObjectConstants::dielectric)
     float dielectricF90;
-    vec3 clearcoatNormal;  // the interpolated vertex normal, facing the viewer's side
+    vec3 clearcoatNormal;  // the vertex normal facing the viewer's side, or the layer's normal map about it
+    float clearcoat;       // KHR_materials_clearcoat's factor and roughness, with their textures
+    float clearcoatRoughness;
     // KHR_materials_transmission / volume (the transmission pass: FE_TRANSMISSION; 0 elsewhere):
     // the factor and thickness with their textures, and the perceptual roughness unclamped (the
     // mip level rough transmission reads).
@@ -133,6 +149,17 @@ float feOcclusion(vec4 uvs) {
     return 1.0 + object.occlusion.x * (feSampleTexture(occlusionTexture, FE_TEXTURE_OCCLUSION, uvs).r - 1.0);
 }
 
+// A tangent-space normal map about the vertex normal n (tangent T from the vertex), its xy scaled.
+vec3 feMapNormal(sampler2D map, uint t, float scale, vec3 n, vec4 T, vec4 uvs) {
+    vec3 tangent = T.xyz - n * dot(n, T.xyz);
+    if (!(dot(tangent, tangent) > 1e-12)) return n;
+    tangent = normalize(tangent);
+    const vec3 b = cross(n, tangent) * (T.w < 0.0 ? -1.0 : 1.0);
+    vec3 tn = feSampleTexture(map, t, uvs).xyz * 2.0 - 1.0;
+    tn.xy *= scale;
+    return normalize(tn.x * tangent + tn.y * b + tn.z * n);
+}
+
 // Sampled textures are decoded by the sampler (sRGB formats), so everything here is linear.
 // COLOR_0 multiplies the base colour and its alpha (glTF 2.0).
 MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool frontFacing) {
@@ -148,25 +175,33 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     vec3 n = normalize(N);
     if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
     m.clearcoatNormal = n;  // KHR_materials_clearcoat: the layer keeps the vertex normal
-    if ((object.flags.x & 1u) != 0u) {
-        vec3 t = T.xyz - n * dot(n, T.xyz);
-        if (dot(t, t) > 1e-12) {
-            t = normalize(t);
-            vec3 b = cross(n, t) * (T.w < 0.0 ? -1.0 : 1.0);
-            vec3 tn = feSampleTexture(normalTexture, FE_TEXTURE_NORMAL, uvs).xyz * 2.0 - 1.0;
-            tn.xy *= object.emissiveNormalScale.a;
-            n = normalize(tn.x * t + tn.y * b + tn.z * n);
-        }
-    }
-    m.n = n;
+    m.n = (object.flags.x & 1u) != 0u ? feMapNormal(normalTexture, FE_TEXTURE_NORMAL, object.emissiveNormalScale.a, n, T, uvs) : n;
     m.unlit = (object.flags.x & 2u) != 0u;
-    m.dielectricF0 = object.dielectric.rgb;
-    m.dielectricF90 = object.dielectric.a;
+    // KHR_materials_ior / specular: F0 = min(ior's F0 x specularColor x colour texel, 1) x specular
+    // x texel, F90 = specular x texel; KHR_materials_clearcoat's factor, roughness and normal map.
+    vec3 specularColorTexel = vec3(1.0);
+    float specularTexel = 1.0;
+    m.clearcoat = object.occlusion.y;
+    m.clearcoatRoughness = object.occlusion.z;
+#ifdef FE_MATERIAL_EXTENSIONS
+    if ((object.flags.x & 8u) != 0u) {  // the draw's: uniform branches
+        specularColorTexel = feSampleTexture(specularColorTexture, FE_TEXTURE_SPECULAR_COLOR, uvs).rgb;
+        specularTexel = feSampleTexture(specularTexture, FE_TEXTURE_SPECULAR, uvs).a;
+    }
+    if ((object.flags.x & 16u) != 0u) {
+        m.clearcoat *= feSampleTexture(clearcoatTexture, FE_TEXTURE_CLEARCOAT, uvs).r;
+        m.clearcoatRoughness *= feSampleTexture(clearcoatRoughnessTexture, FE_TEXTURE_CLEARCOAT_ROUGHNESS, uvs).g;
+    }
+    if ((object.flags.x & 32u) != 0u)
+        m.clearcoatNormal = feMapNormal(clearcoatNormalTexture, FE_TEXTURE_CLEARCOAT_NORMAL, object.clearcoatNormal.x, n, T, uvs);
+#endif
+    m.dielectricF0 = min(object.dielectric.rgb * specularColorTexel, vec3(1.0)) * object.dielectric.a * specularTexel;
+    m.dielectricF90 = object.dielectric.a * specularTexel;
     m.transmission = 0.0;
     m.thickness = 0.0;
     m.sheenColor = vec3(0.0);
     m.sheenRoughness = 0.0;
-#ifdef FE_SHEEN
+#ifdef FE_MATERIAL_EXTENSIONS
     if (object.sheen.rgb != vec3(0.0)) {  // the draw's: a uniform branch
         m.sheenColor = object.sheen.rgb * feSampleTexture(sheenColorTexture, FE_TEXTURE_SHEEN_COLOR, uvs).rgb;
         m.sheenRoughness = object.sheen.a * feSampleTexture(sheenRoughnessTexture, FE_TEXTURE_SHEEN_ROUGHNESS, uvs).a;
@@ -197,8 +232,8 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.roughness = m.roughness;
     s.dielectricF0 = m.dielectricF0;
     s.dielectricF90 = m.dielectricF90;
-    s.clearcoat = object.occlusion.y;  // KHR_materials_clearcoat (ObjectConstants::occlusion)
-    s.clearcoatRoughness = object.occlusion.z;
+    s.clearcoat = m.clearcoat;  // KHR_materials_clearcoat (ObjectConstants::occlusion, its textures)
+    s.clearcoatRoughness = m.clearcoatRoughness;
     s.clearcoatNormal = m.clearcoatNormal;
     s.clearcoatF0 = object.occlusion.w;
     s.sheenColor = m.sheenColor;
@@ -222,7 +257,7 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
 
 // The emission under the clearcoat: weighed by 1 - c Fc(n_c.v) as the base is (KHR_materials_clearcoat).
 vec3 feCoatedEmission(MaterialSample m, vec3 Pe) {
-    if (object.occlusion.y == 0.0 || frame.shading.x != FE_BRDF_GLTF) return m.emissive;
-    return m.emissive * (1.0 - object.occlusion.y * feClearcoatViewFresnel(feMaterialSurface(m, Pe)));
+    if (m.clearcoat == 0.0 || frame.shading.x != FE_BRDF_GLTF) return m.emissive;
+    return m.emissive * (1.0 - m.clearcoat * feClearcoatViewFresnel(feMaterialSurface(m, Pe)));
 }
 #endif

@@ -85,8 +85,8 @@ struct SurfacePoint {
     vec3 transmissionRay;
     float ior;
     vec3 transmittance;
-    // KHR_materials_sheen (glTF model, where the material is sampled: FE_SHEEN; 0 elsewhere): the
-    // sheen colour (0: none) and perceptual roughness.
+    // KHR_materials_sheen (glTF model, where the material is sampled: FE_MATERIAL_EXTENSIONS; 0
+    // elsewhere): the sheen colour (0: none) and perceptual roughness.
     vec3 sheenColor;
     float sheenRoughness;
 };
@@ -165,7 +165,7 @@ struct SurfaceBrdf {
 #endif
 };
 
-#ifdef FE_SHEEN
+#ifdef FE_MATERIAL_EXTENSIONS
 // KHR_materials_sheen (shading::charlieD, sheenVisibility, sheenAlbedo): the Charlie distribution
 // and Estevez-Kulla visibility; the sheen's albedo from the table shading::sheenAlbedoTable makes
 // (GpuScene uploads it, bound with every material's textures), read bilinearly between its grid
@@ -231,7 +231,11 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.a2t = at * at;
     b.transmissionRay = s.transmissionRay;
 #endif
+#ifdef FE_LAYERED
     b.clearcoat = b.gltf ? s.clearcoat : 0.0;
+#else
+    b.clearcoat = 0.0;  // the scene has no layered material (GpuScene::hasLayeredMaterials)
+#endif
     b.nc = s.clearcoatNormal;
     const float rc = feClampRoughness(s.clearcoatRoughness);
     b.a2c = rc * rc * rc * rc;
@@ -240,9 +244,10 @@ SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     b.baseWeight = 1.0 - b.clearcoat * feClearcoatViewFresnel(s);
     b.sheenColor = s.sheenColor;
     b.sheenRoughness = s.sheenRoughness;
-    b.sheenMax = b.gltf ? max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) : 0.0;
+    b.sheenMax = 0.0;
     b.sheenAlbedoV = 0.0;
-#ifdef FE_SHEEN
+#if defined(FE_MATERIAL_EXTENSIONS) && defined(FE_LAYERED)
+    b.sheenMax = b.gltf ? max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) : 0.0;
     if (b.sheenMax > 0.0) b.sheenAlbedoV = feSheenAlbedo(b.NoV, b.sheenRoughness);
 #endif
     return b;
@@ -254,7 +259,9 @@ vec3 feShadeBaseLight(SurfaceBrdf b, SurfaceLight l);
 // the base weighed by 1 - c Fc(n_c.v) and the layer's Fc D V E n_c.l added (shading::shadeLight).
 vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
     vec3 L = feShadeBaseLight(b, l);
-#ifdef FE_SHEEN
+    // The layers exist in the FE_LAYERED variants only: on CPU rasterizers a branch around code
+    // in this loop costs what the code costs (GpuScene::hasLayeredMaterials).
+#if defined(FE_MATERIAL_EXTENSIONS) && defined(FE_LAYERED)
     // The sheen over the base (shading::sheenLight): sheenColor D V n.l E added, the base weighed
     // by min(1 - max(sheenColor) E(n.w_o), 1 - max(sheenColor) E(n.l)).
     if (b.sheenMax > 0.0) {
@@ -268,6 +275,7 @@ vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
         L = sheen + L * weight;
     }
 #endif
+#ifdef FE_LAYERED
     if (b.clearcoat <= 0.0) return L;
     L *= b.baseWeight;
     const float NoLc = dot(b.nc, l.wi);
@@ -278,6 +286,7 @@ vec3 feShadeLight(SurfaceBrdf b, SurfaceLight l) {
         const float Fc = b.clearcoatF0 + (1.0 - b.clearcoatF0) * P;
         L += b.clearcoat * Fc * D * feVisibilityHeightCorrelated(NoLc, b.NoVc, b.a2c) * NoLc * l.E;
     }
+#endif
     return L;
 }
 

@@ -8,7 +8,7 @@
 #define FE_TILE_LISTS  // the list passes' helpers and uniform lights (fe_tile_culling.glsl)
 #define FE_CLUSTER_LISTS
 #define FE_MATERIAL_FROM_STORAGE
-#define FE_SHEEN  // the sheen lobe (fe_shading.glsl), as fe_material.glsl defines it: included first here
+#define FE_MATERIAL_EXTENSIONS  // their textures and the sheen lobe, as fe_material.glsl defines it: included first here
 #include "fe_common.glsl"
 #include "fe_tile_culling.glsl"
 #include "fe_clusters.glsl"

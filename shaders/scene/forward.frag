@@ -3,5 +3,9 @@
 // fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
 // fe-variant: FE_TRANSMISSION (the transmission pass: render/TransmissionPass.h)
 // fe-variant: FE_TRANSMISSION+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_LAYERED (a material with a clearcoat or a sheen: GpuScene::hasLayeredMaterials)
+// fe-variant: FE_LAYERED+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_TRANSMISSION+FE_LAYERED
+// fe-variant: FE_TRANSMISSION+FE_LAYERED+FE_LIGHTS_IN_STORAGE
 // Forward shading (fe_forward_pass.glsl).
 #include "fe_forward_pass.glsl"

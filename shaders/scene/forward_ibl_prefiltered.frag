@@ -3,6 +3,10 @@
 // fe-variant: FE_LIGHTS_IN_STORAGE (more lights than the uniform block holds: fe_scene.glsl)
 // fe-variant: FE_TRANSMISSION (the transmission pass: render/TransmissionPass.h)
 // fe-variant: FE_TRANSMISSION+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_LAYERED (a material with a clearcoat or a sheen: GpuScene::hasLayeredMaterials)
+// fe-variant: FE_LAYERED+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_TRANSMISSION+FE_LAYERED
+// fe-variant: FE_TRANSMISSION+FE_LAYERED+FE_LIGHTS_IN_STORAGE
 // Forward shading with image-based lighting, the fast path.
 #define FE_IBL
 #define FE_IBL_PREFILTERED

@@ -793,11 +793,13 @@ TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
 }
 
 // KHR_materials_ior and KHR_materials_specular: the factors are read (ior 0 is the extension's
-// infinite index, F0 1), values out of their ranges are errors naming the key, and the textures,
-// not read yet, are warnings.
+// infinite index, F0 1), values out of their ranges are errors naming the key, and the textures
+// (specular colour sRGB; the clearcoat's three, its normal map's scale) are read.
 TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     writeBytes("tri.bin", bin());
     json j = gltf();
+    j["images"] = json::array({{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg=="}}});
+    j["textures"] = json::array({{{"source", 0}}});
     j["extensionsUsed"] = json::array({"KHR_materials_ior", "KHR_materials_specular"});
     auto withMaterial = [&](const json& extensions) {
         json k = j;
@@ -822,9 +824,15 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     EXPECT_TRUE(Material{}.defaultDielectric());
     const Scene infinite = loadGltf(write("ior0.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0}}}}).dump()));
     EXPECT_EQ(infinite.materials[0].dielectricF0(), glm::vec3(1.0f));
-    const Scene textured = loadGltf(write("tex.gltf", withMaterial({{"KHR_materials_specular", {{"specularTexture", {{"index", 0}}}}}}).dump()));
-    ASSERT_FALSE(textured.warnings.empty());
-    EXPECT_NE(textured.warnings.front().find("specularTexture is not read"), std::string::npos) << textured.warnings.front();
+    const Scene textured = loadGltf(write(
+        "tex.gltf", withMaterial({{"KHR_materials_specular", {{"specularTexture", {{"index", 0}}}, {"specularColorTexture", {{"index", 0}}}}}})
+                        .dump()));
+    EXPECT_TRUE(textured.warnings.empty()) << textured.warnings.front();
+    const Material& tm = textured.materials[0];
+    ASSERT_TRUE(tm.specularTexture.valid() && tm.specularColorTexture.valid());
+    EXPECT_TRUE(textured.textures[tm.specularColorTexture.index].srgb);
+    EXPECT_FALSE(tm.defaultDielectric());  // the textures alone make it a full material
+    EXPECT_NEAR(tm.dielectricF0(glm::vec3(0.5f), 0.5f).g, 0.04f * 0.5f * 0.5f, 1e-7f);
     expectError(write("ior_half.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0.5}}}}).dump()), {"glass", "ior", "at least 1"});
     expectError(write("spec_big.gltf", withMaterial({{"KHR_materials_specular", {{"specularFactor", 2}}}}).dump()), {"specularFactor", "[0, 1]"});
     expectError(write("spec_neg.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}).dump()),
@@ -833,7 +841,8 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
                 {"specularColorFactor", "array of 3"});
     // KHR_materials_clearcoat: its factors, its F0 from the material's ior, textures warned.
     json c = withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.25},
-                                                        {"clearcoatNormalTexture", {{"index", 0}}}}},
+                                                        {"clearcoatTexture", {{"index", 0}}}, {"clearcoatRoughnessTexture", {{"index", 0}}},
+                                                        {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}},
                            {"KHR_materials_ior", {{"ior", 2.0}}}});
     c["extensionsUsed"] = json::array({"KHR_materials_clearcoat", "KHR_materials_ior"});
     const Scene coated = loadGltf(write("coat.gltf", c.dump()));
@@ -841,8 +850,11 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     EXPECT_EQ(coated.materials[0].clearcoatRoughness, 0.25f);
     EXPECT_NEAR(coated.materials[0].clearcoatF0(), 1.0f / 9.0f, 1e-6f);
     EXPECT_TRUE(coated.materials[0].needsFullMaterial());
-    ASSERT_FALSE(coated.warnings.empty());
-    EXPECT_NE(coated.warnings.front().find("clearcoatNormalTexture is not read"), std::string::npos) << coated.warnings.front();
+    EXPECT_TRUE(coated.warnings.empty()) << coated.warnings.front();
+    EXPECT_TRUE(coated.materials[0].clearcoatTexture.valid());
+    EXPECT_TRUE(coated.materials[0].clearcoatRoughnessTexture.valid());
+    EXPECT_TRUE(coated.materials[0].clearcoatNormalTexture.valid());
+    EXPECT_EQ(coated.materials[0].clearcoatNormalScale, 0.5f);
     expectError(write("coat_big.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.5}}}}).dump()),
                 {"clearcoatFactor", "[0, 1]"});
     expectError(write("coat_rough.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}}).dump()),

@@ -1065,3 +1065,61 @@ TEST_P(RenderAccuracy, SheenMatchesTheReference) {
     expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "a sheen");
     EXPECT_EQ(render::materialWarnings(scene, {.technique = "redeferred"}).size(), 1u);
 }
+
+namespace {
+// A smooth 4x4 texture (each channel a gradient across it, linear filtering, no mips): magnified
+// on the spheres, so the GPU's filtering and the reference's bilinear level 0 agree.
+uint32_t addGradientTexture(assets::Scene& s, bool srgb, glm::vec4 from, glm::vec4 to) {
+    assets::TextureImage t;
+    t.name = "gradient";
+    t.width = t.height = 4;
+    t.srgb = srgb;
+    t.sampler.mipFilter = assets::MipFilter::None;
+    t.sampler.mipmaps = false;
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 4; ++x) {
+            const glm::vec4 v = glm::mix(from, to, glm::vec4(x / 3.0f, y / 3.0f, (x + y) / 6.0f, (3 - x + y) / 6.0f));
+            for (int c = 0; c < 4; ++c) t.pixels.push_back(uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f)));
+        }
+    s.textures.push_back(t);
+    return uint32_t(s.textures.size() - 1);
+}
+}  // namespace
+
+// The textures of KHR_materials_specular (specular A, specular colour RGB in sRGB) and of
+// KHR_materials_clearcoat (factor R, roughness G, the layer's normal map with its scale), on every
+// technique that shades the whole material, against the CPU reference reading the same texels;
+// without the textures the reference is far from it, so dropping them fails.
+TEST_P(RenderAccuracy, SpecularAndClearcoatTexturesMatchTheReference) {
+    scene.environment = assets::loadEnvironment("builtin:sky");
+    scene.environment->sky.sunRadiance = glm::dvec3(0.0);
+    const uint32_t colour = addGradientTexture(scene, true, glm::vec4(0.2f, 1.0f, 0.5f, 0.1f), glm::vec4(1.0f, 0.3f, 1.0f, 1.0f));
+    const uint32_t data = addGradientTexture(scene, false, glm::vec4(0.1f, 0.05f, 0.2f, 0.2f), glm::vec4(1.0f, 0.9f, 0.9f, 1.0f));
+    const uint32_t normals = addGradientTexture(scene, false, glm::vec4(0.2f, 0.3f, 0.8f, 1.0f), glm::vec4(0.8f, 0.7f, 1.0f, 1.0f));
+    assets::Scene plain = scene;
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        assets::Material& m = scene.materials[i];
+        m.metallic = 0.0f;
+        m.ior = 2.0f;
+        m.clearcoat = 1.0f;
+        m.clearcoatRoughness = 0.6f;
+        if (i % 2) {
+            m.specularTexture = {.index = int32_t(data)};
+            m.specularColorTexture = {.index = int32_t(colour)};
+        }
+        if (i % 3 != 1) {
+            m.clearcoatTexture = {.index = int32_t(data)};
+            m.clearcoatRoughnessTexture = {.index = int32_t(data)};
+        }
+        if (i % 3 != 2) {
+            m.clearcoatNormalTexture = {.index = int32_t(normals)};
+            m.clearcoatNormalScale = 0.8f;
+        }
+        assets::Material& p = plain.materials[i];
+        p.metallic = 0.0f;
+        p.ior = 2.0f;
+        p.clearcoat = 1.0f;
+        p.clearcoatRoughness = 0.6f;
+    }
+    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "specular and clearcoat textures");
+}
