@@ -192,7 +192,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     std::vector<WorldTriangle> tris;
     std::vector<WorldTriangle> blended;  // BLEND surfaces: composited over the opaque result
     std::vector<WorldTriangle> transmissive;  // seen in front of the opaque result, which they see through
-    std::vector<SurfaceBox> boxes;
+    std::vector<SurfaceBox> boxes, transmissiveBoxes;
     int32_t surfaceId = 0;
     for (const assets::MeshInstance& inst : scene.instances) {
         const glm::dmat4 world(inst.world);
@@ -218,23 +218,24 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 return t;
             };
             const assets::Material& primMaterial = scene.materials[prim.material];
-            if (primMaterial.alphaMode == assets::AlphaMode::Blend || primMaterial.transmissive()) {
-                auto& list = primMaterial.transmissive() ? transmissive : blended;
-                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) list.push_back(triangle(i));
+            if (primMaterial.alphaMode == assets::AlphaMode::Blend) {
+                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) blended.push_back(triangle(i));
                 continue;
             }
+            // Opaque and transmissive primitives: their triangles with a bounding box each.
+            std::vector<WorldTriangle>& list = primMaterial.transmissive() ? transmissive : tris;
             SurfaceBox box{glm::dvec3(std::numeric_limits<double>::infinity()),
-                           glm::dvec3(-std::numeric_limits<double>::infinity()), tris.size(), 0};
+                           glm::dvec3(-std::numeric_limits<double>::infinity()), list.size(), 0};
             for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) {
                 const WorldTriangle t = triangle(i);
                 for (int k = 0; k < 3; ++k) {
                     box.min = glm::min(box.min, t.p[k]);
                     box.max = glm::max(box.max, t.p[k]);
                 }
-                tris.push_back(t);
+                list.push_back(t);
             }
-            box.count = tris.size() - box.first;
-            if (box.count) boxes.push_back(box);
+            box.count = list.size() - box.first;
+            if (box.count) (primMaterial.transmissive() ? transmissiveBoxes : boxes).push_back(box);
         }
     }
 
@@ -469,14 +470,19 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     auto nearestTransmissive = [&](const glm::dvec3& dir, double limit) {
         Hit best;
         best.t = limit;
-        for (const WorldTriangle& tri : transmissive) {
-            double b1, b2;
-            const double t = intersect(tri, eye, dir, b1, b2);
-            if (!(t > camera.znear * 0.5) || t >= best.t) continue;
-            const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
-            const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
-            if (!scene.materials[tri.material].doubleSided && !front) continue;
-            best = {t, b1, b2, &tri};
+        const glm::dvec3 invD = 1.0 / dir;
+        for (const SurfaceBox& box : transmissiveBoxes) {
+            if (!hitsBox(box, eye, invD, best.t)) continue;
+            for (size_t i = box.first; i < box.first + box.count; ++i) {
+                const WorldTriangle& tri = transmissive[i];
+                double b1, b2;
+                const double t = intersect(tri, eye, dir, b1, b2);
+                if (!(t > camera.znear * 0.5) || t >= best.t) continue;
+                const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+                const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
+                if (!scene.materials[tri.material].doubleSided && !front) continue;
+                best = {t, b1, b2, &tri};
+            }
         }
         return best;
     };
