@@ -125,7 +125,16 @@ protected:
 }  // namespace
 
 // Same fixture, for small valid files that cover what the samples do not.
-class GltfSynthetic : public GltfErrors {};
+class GltfSynthetic : public GltfErrors {
+protected:
+    // gltf() with texture 0: a 1x1 PNG (data URI) that resolves, for materials that name a texture.
+    json gltfWithTexture() const {
+        json j = gltf();
+        j["images"] = json::array({{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg=="}}});
+        j["textures"] = json::array({{{"source", 0}}});
+        return j;
+    }
+};
 
 TEST_F(GltfSynthetic, BaselineFileLoads) {
     Scene s = loadGltf(writeGltf(gltf()));
@@ -766,12 +775,7 @@ TEST_F(GltfSynthetic, VertexColoursAndSecondUvSet) {
 // and the key; texCoord in the extension overrides the textureInfo's.
 TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
     writeBytes("tri.bin", bin());
-    // A 1x1 PNG (data URI) so the texture resolves.
-    const std::string png =
-        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
-    json j = gltf();
-    j["images"] = json::array({{{"uri", png}}});
-    j["textures"] = json::array({{{"source", 0}}});
+    json j = gltfWithTexture();
     j["extensionsUsed"] = json::array({"KHR_texture_transform"});
     auto withTransform = [&](const json& t) {
         json k = j;
@@ -797,9 +801,7 @@ TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
 // (specular colour sRGB; the clearcoat's three, its normal map's scale) are read.
 TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     writeBytes("tri.bin", bin());
-    json j = gltf();
-    j["images"] = json::array({{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg=="}}});
-    j["textures"] = json::array({{{"source", 0}}});
+    json j = gltfWithTexture();
     j["extensionsUsed"] = json::array({"KHR_materials_ior", "KHR_materials_specular"});
     auto withMaterial = [&](const json& extensions) {
         json k = j;
@@ -867,11 +869,7 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
 // warning saying so.
 TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
     writeBytes("tri.bin", bin());
-    const std::string png =
-        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
-    json j = gltf();
-    j["images"] = json::array({{{"uri", png}}});
-    j["textures"] = json::array({{{"source", 0}}});
+    json j = gltfWithTexture();
     j["extensionsUsed"] = json::array({"KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"});
     auto withMaterial = [&](const json& extensions, const char* alphaMode = "OPAQUE") {
         json k = j;
@@ -928,11 +926,7 @@ TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
 // read; values out of [0, 1] are errors naming the key.
 TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
     writeBytes("tri.bin", bin());
-    const std::string png =
-        "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg==";
-    json j = gltf();
-    j["images"] = json::array({{{"uri", png}}});
-    j["textures"] = json::array({{{"source", 0}}});
+    json j = gltfWithTexture();
     j["extensionsUsed"] = json::array({"KHR_materials_sheen"});
     auto withSheen = [&](const json& sheen) {
         json k = j;
