@@ -43,11 +43,13 @@ for b in gl-egl gl-osmesa; do
 done
 cat "$work/threads_vulkan.txt" "$work/ported_vulkan.txt" "$work/materials_vulkan.txt"
 # What the materials example must see: vertex colours at the top corners, the texture's black
-# half at the bottom (second uv set, quarter-turn transform), two BRDFs, the default look, and the mistakes refused.
+# half at the bottom (second uv set, quarter-turn transform), two BRDFs, the default look, a pane
+# of glass passing 1 - F0 of what is behind it, and the mistakes refused.
 for want in "top left blue, top right green, bottom dark" "BRDFs differ: yes" \
             "default look: yes, 1 light(s), the sky lights it, corner transparent, quad opaque, 0 warning(s)" \
             "mistake 1: technique redeferred shades with the separable BRDF only" "mistake 2: scene refused: " \
-            "mistake 3: an environment background needs an environment" ; do
+            "mistake 3: an environment background needs an environment" \
+            "the glass passes 96 % of the light behind it" "transmission must lie in [0, 1]" ; do
   grep -qF "$want" "$work/materials_vulkan.txt" || { echo "package consumer: materials example lacks '$want'"; exit 1; }
 done
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"

@@ -3,7 +3,9 @@
 // both BRDFs (glTF 2.0's, the default, and the seeds' separable one). Two threads render at
 // once, each on a device of its own; then two mistakes are made on purpose. Everything printed
 // is the same on every backend (CI diffs it). Last, the quad as a user's model without lights:
-// the default look (the sky and a sun) on a transparent background, and the frame's warnings.
+// the default look (the sky and a sun) on a transparent background, and the frame's warnings;
+// and a pane of glass (KHR_materials_transmission) in front of the quad, which passes what the
+// dielectric does not reflect.
 //   fe_example_materials [--backend NAME] [--validation]
 #include <atomic>
 #include <cmath>
@@ -153,6 +155,37 @@ int main(int argc, char** argv) {
                         display.texel(32, 32)[3] == 1.0f ? "opaque" : "transparent",
                         render::frameWarnings(unlit, *unlit.camera, s, display).size());
         }
+        // A clear pane (transmission 1, smooth, white) over the quad's left half: the quad is seen
+        // through it, darkened only by the light the pane reflects (F0 0.04 at normal incidence).
+        {
+            assets::Scene glass = scene;
+            assets::Material pane;
+            pane.name = "glass";
+            pane.metallic = 0.0f;
+            pane.roughness = 0.0f;
+            pane.transmission = 1.0f;
+            glass.materials.push_back(pane);
+            assets::Primitive quad = glass.meshes[0].primitives[0];
+            quad.material = 1;
+            for (assets::Vertex& v : quad.vertices) {
+                v.position = glm::vec3(v.position.x * 0.5f - 0.5f, v.position.y, 0.5f);
+                v.color = glm::vec4(1.0f);  // COLOR_0 would tint the glass as it tints a base colour
+            }
+            glass.meshes.push_back({.name = "pane", .primitives = {quad}});
+            glass.instances.push_back({.meshIndex = 1, .name = "pane"});
+            glass.lights.clear();  // no light on the pane's front: what it shows is the quad's
+            assets::Scene dark = scene;
+            dark.lights.clear();
+            dark.materials[0].emissiveFactor = glm::vec3(1.0f);  // the quad glows, so there is something behind
+            glass.materials[0].emissiveFactor = glm::vec3(1.0f);
+            assets::finalizeScene(glass, false, false);
+            render::SceneRenderer lit(*device, glass, {.technique = "forward", .width = 64, .height = 64});
+            render::SceneRenderer bare(*device, dark, {.technique = "forward", .width = 64, .height = 64});
+            lit.renderFrame();
+            bare.renderFrame();
+            const double through = mean(lit.readOutput(), 16, 14, 22, 20).r, behind = mean(bare.readOutput(), 16, 14, 22, 20).r;
+            std::printf("the glass passes %ld %% of the light behind it\n", std::lround(100.0 * through / behind));
+        }
         // Mistakes, made on purpose: each the same gdi::Error everywhere, before any native call.
         try {
             render::RenderSettings s{.technique = "redeferred", .width = 64, .height = 64};
@@ -177,6 +210,14 @@ int main(int argc, char** argv) {
             std::printf("mistake 3 accepted\n");
         } catch (const gdi::Error& e) {
             std::printf("mistake 3: %s\n", e.what());
+        }
+        try {
+            assets::Scene broken = scene;
+            broken.materials[0].transmission = 1.5f;  // a fraction
+            render::SceneRenderer r(*device, broken, {.technique = "forward", .width = 64, .height = 64});
+            std::printf("mistake 4 accepted\n");
+        } catch (const gdi::Error& e) {
+            std::printf("mistake 4: %s\n", e.what());
         }
         if (validationErrors + device->validationErrorCount()) {
             std::fprintf(stderr, "fe_example_materials: validation errors\n");

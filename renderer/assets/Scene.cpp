@@ -177,10 +177,37 @@ void checkFinite(const Scene& scene) {
         if (!finite(m.emissiveFactor)) fail(where + "emissiveFactor");
         if (!finite(m.normalScale) || !finite(m.occlusionStrength) || !finite(m.alphaCutoff))
             fail(where + "normalScale, occlusionStrength or alphaCutoff");
-        for (const TextureRef* r : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture,
-                                    &m.occlusionTexture})
+        for (const TextureRef* r :
+             {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture, &m.occlusionTexture,
+              &m.specularTexture, &m.specularColorTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture,
+              &m.clearcoatNormalTexture, &m.transmissionTexture, &m.thicknessTexture, &m.sheenColorTexture,
+              &m.sheenRoughnessTexture})
             if (!finite(r->transform.offset) || !finite(r->transform.rotation) || !finite(r->transform.scale))
                 fail(where + "a texture transform");
+        // The extensions' factors (an infinite ior and attenuation distance are meaningful), in
+        // the ranges the loader enforces, so a material built in code is refused as a file is.
+        if (!finite(m.specular) || !finite(m.specularColor) || !finite(m.clearcoat) || !finite(m.clearcoatRoughness) ||
+            !finite(m.clearcoatNormalScale) || !finite(m.transmission) || !finite(m.thickness) ||
+            !finite(m.attenuationColor) || !finite(m.sheenColor) || !finite(m.sheenRoughness) || std::isnan(m.ior) ||
+            std::isnan(m.attenuationDistance))
+            fail(where + "a factor of KHR_materials_ior, specular, clearcoat, transmission, volume or sheen");
+        auto unit = [&](float v, const char* name) {
+            if (!(v >= 0.0f && v <= 1.0f)) throw AssetError(where + name + " must lie in [0, 1]");
+        };
+        unit(m.specular, "specular");
+        unit(m.clearcoat, "clearcoat");
+        unit(m.clearcoatRoughness, "clearcoatRoughness");
+        unit(m.transmission, "transmission");
+        unit(m.sheenRoughness, "sheenRoughness");
+        for (int c = 0; c < 3; ++c) {
+            unit(m.sheenColor[c], "sheenColor");
+            unit(m.attenuationColor[c], "attenuationColor");
+        }
+        if (!(m.ior >= 1.0f)) throw AssetError(where + "ior must be at least 1 (infinite for a perfect mirror)");
+        if (!(m.thickness >= 0.0f)) throw AssetError(where + "thickness must not be negative");
+        if (!(m.attenuationDistance > 0.0f)) throw AssetError(where + "attenuationDistance must be positive (infinite: none)");
+        if (!glm::all(glm::greaterThanEqual(m.specularColor, glm::vec3(0.0f))))
+            throw AssetError(where + "specularColor must not be negative");
     }
     for (const MeshInstance& i : scene.instances)
         if (!finite(i.world)) fail("node '" + i.name + "': its transform");

@@ -311,7 +311,9 @@ inline constexpr float kDefaultSunMinElevation = 0.6f;  // sin of the sun's elev
 // Throws AssetError naming the first non-finite number (NaN or infinity) in the scene: a vertex
 // position, normal, tangent or uv, a material factor, an instance transform, a light or the
 // camera. Nothing downstream can shade such data into anything but garbage. Denormal numbers
-// are finite and pass.
+// are finite and pass. The material extensions' factors must also lie in the ranges the loader
+// enforces (transmission in [0, 1], ior at least 1, ...), so a material built in code is refused
+// as a file is.
 void checkFinite(const Scene& scene);
 // A camera a view can be made from: finite, an invertible transform, yfov in (0, pi),
 // 0 < znear < zfar (zfar may be infinite), a positive aspect ratio when set. Throws AssetError.

@@ -5,10 +5,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <functional>
 #include <set>
 #include <tuple>
 
 #include "TestSupport.h"
+#include "assets/AssetError.h"
 #include "assets/BuiltinScenes.h"
 
 using namespace fe::assets;
@@ -253,4 +255,33 @@ TEST(BuiltinScenes, LoadSceneDispatchesOnThePrefix) {
     EXPECT_THROW(loadScene("builtin:"), AssetError);
     EXPECT_THROW(loadScene(""), AssetError);
     EXPECT_THROW(loadScene("/nonexistent/dir/scene.gltf"), AssetError);
+}
+
+// A material built in code is held to what the loader enforces on a file: the extensions' factors
+// finite and in range (an infinite ior and attenuation distance are meaningful), each refusal
+// naming the material and the factor; and the defaults pass.
+TEST(SceneChecks, MaterialExtensionFactorsAreCheckedLikeTheLoaders) {
+    const fe::assets::Scene ok = fe::assets::makeBuiltinScene("spheres", {.sphereGrid = 2});
+    EXPECT_NO_THROW(fe::assets::checkFinite(ok));
+    auto refusal = [&](const std::function<void(fe::assets::Material&)>& change) {
+        fe::assets::Scene s = ok;
+        change(s.materials[0]);
+        try {
+            fe::assets::checkFinite(s);
+        } catch (const fe::assets::AssetError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    using M = fe::assets::Material;
+    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find("transmission must lie in [0, 1]"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.sheenColor.g = NAN; }).find("is not finite"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.sheenRoughness = -0.5f; }).find("sheenRoughness must lie in [0, 1]"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.ior = 0.5f; }).find("ior must be at least 1"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.attenuationDistance = 0.0f; }).find("attenuationDistance must be positive"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.thickness = -1.0f; }).find("thickness must not be negative"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.clearcoat = 2.0f; }).find("clearcoat must lie in [0, 1]"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.specularTexture.transform.scale.x = INFINITY; }).find("a texture transform"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find(ok.materials[0].name), std::string::npos);
+    EXPECT_EQ(refusal([](M& m) { m.ior = INFINITY; }), "(accepted)");
 }
