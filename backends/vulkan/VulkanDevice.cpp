@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <mutex>
 
 #include "VulkanBackend.h"
 #include "VulkanCommandList.h"
@@ -462,6 +463,12 @@ void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name)
     ni.objectType = type;
     ni.objectHandle = object;
     ni.pObjectName = name;
+    // One name at a time in the whole process: with two devices created from two threads, the
+    // loader's and validation layer's naming path crashed under ASan (a SEGV inside
+    // vkSetDebugUtilsObjectNameEXT, CI of 761697f). Naming happens at creation only, so the lock
+    // costs nothing per frame.
+    static std::mutex namingMutex;
+    std::lock_guard lock(namingMutex);
     setObjectName_(device_, &ni);
 }
 

@@ -20,6 +20,7 @@
 #endif
 
 #include "assets/GltfLoader.h"
+#include "assets/Animation.h"
 #include "assets/HdrDecode.h"
 #include "assets/JpegDecode.h"
 
@@ -262,11 +263,12 @@ public:
         parseFile();
         checkExtensions();
         buildHierarchy();
+        buildNodes();
+        readSkins();
         traverseScene();
-        if (!model_.animations.empty()) {
-            warn(std::to_string(model_.animations.size()) +
-                 " animation(s) ignored: the static pose is loaded");
-        }
+        readAnimations();
+        // The rest pose: joint matrices, morph weights and posed bounds of the deformed instances.
+        poseScene(scene_, {});
         if (scene_.instances.empty() && scene_.emitters.empty())
             warn("nothing to draw: no node of the scene has a mesh (an empty frame will be rendered)");
         finalizeScene(scene_, opt_.defaultCamera, opt_.defaultLights);
@@ -333,17 +335,25 @@ private:
     std::vector<T> readAccessor(int index, const std::string& what, int expectedType, uint32_t allowed);
     const unsigned char* bufferViewData(int bv, const std::string& ctx, uint64_t& length);
 
-    uint32_t getMesh(int gltfMesh, int skin);
-    bool loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, Primitive& out);
+    uint32_t getMesh(int gltfMesh);
+    bool loadPrimitive(int m, int p, Primitive& out);
     uint32_t getMaterial(int gltfMaterial);
     uint32_t defaultMaterial();
     TextureRef getTexture(int gltfTexture, int texCoord, bool srgb, const tinygltf::ExtensionMap& infoExt,
                           const std::string& what);
     void decodeImage(int image, const std::string& what, TextureImage& out);
-    std::vector<glm::mat4> jointMatrices(int skin);
     void addCamera(int node);
     void addLight(int node, const tinygltf::Value& ext);
     void addMeshInstances(int node);
+    void buildNodes();
+    void readSkins();
+    void readAnimations();
+    // samplers: which of out.samplers holds (glTF sampler, path, node for weights) already.
+    void readChannel(int a, const tinygltf::AnimationChannel& c, Animation& out, std::map<std::tuple<int, int, int>, uint32_t>& samplers);
+    AnimationSampler readSampler(int a, int s, AnimationPath path, int node);
+    // The morph targets of the primitive's attributes, and its skin influences.
+    void readMorphTargets(int m, int p, size_t vertexCount, Primitive& out);
+    void readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label, size_t vertexCount, Primitive& out);
 
     std::string path_;
     LoadOptions opt_;
@@ -354,12 +364,11 @@ private:
 
     std::vector<int> parent_;
     std::vector<glm::mat4> world_;
-    std::map<std::pair<int, int>, uint32_t> meshMap_;  // (glTF mesh, skin or -1) -> scene mesh
+    std::map<int, uint32_t> meshMap_;  // glTF mesh -> scene mesh
     std::map<int, uint32_t> materialMap_;
     int defaultMaterial_ = -1;
     std::map<std::tuple<int, int, bool>, int32_t> textureMap_;  // (image, sampler, sRGB) -> scene texture
     std::map<int, int32_t> imageTexture_;  // glTF image -> first scene texture holding its pixels
-    std::map<int, std::vector<glm::mat4>> skinCache_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -656,6 +665,141 @@ void Loader::buildHierarchy() {
     }
 }
 
+// Every node of the file (joints and animated nodes may lie outside the drawn scene), its
+// transform as the file gives it: TRS, with the rotation normalised, or a fixed matrix.
+void Loader::buildNodes() {
+    scene_.nodes.resize(model_.nodes.size());
+    for (size_t i = 0; i < model_.nodes.size(); ++i) {
+        const auto& gn = model_.nodes[i];
+        Node& node = scene_.nodes[i];
+        node.name = gn.name;
+        node.parent = parent_[i];
+        node.world = world_[i];
+        if (!gn.matrix.empty()) node.matrix = localTransform(int(i));
+        if (gn.translation.size() == 3) node.translation = glm::vec3(gn.translation[0], gn.translation[1], gn.translation[2]);
+        if (gn.scale.size() == 3) node.scale = glm::vec3(gn.scale[0], gn.scale[1], gn.scale[2]);
+        if (gn.rotation.size() == 4) {
+            glm::dquat q(gn.rotation[3], gn.rotation[0], gn.rotation[1], gn.rotation[2]);
+            if (glm::length(q) > 1e-12) node.rotation = glm::quat(q / glm::length(q));
+        }
+        for (double w : gn.weights) {
+            if (!std::isfinite(w)) fail(nodeLabel(int(i)) + ": non-finite morph weight");
+            node.weights.push_back(float(w));
+        }
+    }
+}
+
+void Loader::readSkins() {
+    for (size_t s = 0; s < model_.skins.size(); ++s) {
+        const auto& gs = model_.skins[s];
+        const std::string label = "skin " + std::to_string(s);
+        Skin skin;
+        skin.name = gs.name;
+        std::vector<float> ibm;
+        if (gs.inverseBindMatrices >= 0) {
+            ibm = readAccessor<float>(gs.inverseBindMatrices, "inverseBindMatrices of " + label, TINYGLTF_TYPE_MAT4, F32);
+            if (ibm.size() < gs.joints.size() * 16) fail(label + ": fewer inverseBindMatrices than joints");
+        }
+        for (size_t j = 0; j < gs.joints.size(); ++j) {
+            checkIndex(gs.joints[j], model_.nodes, label + ": joint node");
+            skin.joints.push_back(uint32_t(gs.joints[j]));
+            glm::mat4 inv = ibm.empty() ? glm::mat4(1.0f) : glm::make_mat4(&ibm[j * 16]);
+            for (int c = 0; c < 4; ++c)
+                if (!std::isfinite(inv[c].x + inv[c].y + inv[c].z + inv[c].w)) fail(label + ": non-finite inverse bind matrix");
+            skin.inverseBindMatrices.push_back(inv);
+        }
+        scene_.skins.push_back(std::move(skin));
+    }
+}
+
+void Loader::readAnimations() {
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+        const auto& ga = model_.animations[a];
+        Animation anim;
+        anim.name = ga.name;
+        std::map<std::tuple<int, int, int>, uint32_t> samplers;
+        for (const auto& c : ga.channels) readChannel(int(a), c, anim, samplers);
+        for (const AnimationSampler& sm : anim.samplers)
+            if (!sm.times.empty()) anim.duration = std::max(anim.duration, sm.times.back());
+        scene_.animations.push_back(std::move(anim));
+    }
+}
+
+void Loader::readChannel(int a, const tinygltf::AnimationChannel& c, Animation& anim,
+                         std::map<std::tuple<int, int, int>, uint32_t>& samplers) {
+    const auto& ga = model_.animations[size_t(a)];
+    const std::string label = "animation " + std::to_string(a) + (ga.name.empty() ? "" : " '" + ga.name + "'");
+    checkIndex(c.sampler, ga.samplers, label + ": channel sampler");
+    if (c.target_node < 0) return;  // glTF: a channel without a target node is ignored
+    checkIndex(c.target_node, model_.nodes, label + ": channel target node");
+    AnimationPath path;
+    if (c.target_path == "translation") path = AnimationPath::Translation;
+    else if (c.target_path == "rotation") path = AnimationPath::Rotation;
+    else if (c.target_path == "scale") path = AnimationPath::Scale;
+    else if (c.target_path == "weights") path = AnimationPath::Weights;
+    else {
+        warn(label + ": channel on '" + c.target_path + "' ignored");
+        return;
+    }
+    if (path != AnimationPath::Weights && !model_.nodes[size_t(c.target_node)].matrix.empty()) {
+        warn(label + ": " + nodeLabel(c.target_node) + " has a matrix, which glTF does not animate: its " + c.target_path +
+             " channel ignored");
+        return;
+    }
+    // A sampler is read once per path it animates (its output's layout depends on the path) and,
+    // for weights, per node (the width is its mesh's target count).
+    const auto key = std::make_tuple(c.sampler, int(path), path == AnimationPath::Weights ? c.target_node : -1);
+    auto found = samplers.find(key);
+    if (found == samplers.end()) {
+        anim.samplers.push_back(readSampler(a, c.sampler, path, c.target_node));
+        found = samplers.emplace(key, uint32_t(anim.samplers.size() - 1)).first;
+    }
+    anim.channels.push_back({.sampler = found->second, .node = uint32_t(c.target_node), .path = path});
+}
+
+AnimationSampler Loader::readSampler(int a, int si, AnimationPath path, int node) {
+    const auto& gs = model_.animations[size_t(a)].samplers[size_t(si)];
+    const std::string label = "animation " + std::to_string(a) + " sampler " + std::to_string(si);
+    AnimationSampler s;
+    if (gs.interpolation.empty() || gs.interpolation == "LINEAR") s.interpolation = Interpolation::Linear;
+    else if (gs.interpolation == "STEP") s.interpolation = Interpolation::Step;
+    else if (gs.interpolation == "CUBICSPLINE") s.interpolation = Interpolation::CubicSpline;
+    else fail(label + ": unknown interpolation '" + gs.interpolation + "'");
+    s.times = readAccessor<float>(gs.input, "input of " + label, TINYGLTF_TYPE_SCALAR, F32);
+    for (size_t k = 0; k < s.times.size(); ++k) {
+        if (!std::isfinite(s.times[k])) fail(label + ": non-finite key time");
+        if (k && s.times[k] < s.times[k - 1]) fail(label + ": key times decrease (" + std::to_string(s.times[k - 1]) +
+                                                   " then " + std::to_string(s.times[k]) + ")");
+    }
+    const bool weights = path == AnimationPath::Weights;
+    const int type = weights ? TINYGLTF_TYPE_SCALAR : path == AnimationPath::Rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+    const uint32_t allowed = weights || path == AnimationPath::Rotation ? F32 | S8N | U8N | S16N | U16N : F32;
+    s.values = readAccessor<float>(gs.output, "output of " + label, type, allowed);
+    for (float v : s.values)
+        if (!std::isfinite(v)) fail(label + ": non-finite output value");
+    const size_t perKey = s.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    const size_t elements = s.times.size() * perKey;
+    if (weights) {
+        // One weight per morph target of the node's mesh, per element.
+        if (elements == 0 || s.values.size() % elements != 0)
+            fail(label + ": " + std::to_string(s.values.size()) + " output weights for " + std::to_string(s.times.size()) +
+                 " keys is not a whole number per key");
+        s.width = uint32_t(s.values.size() / elements);
+        const int mesh = model_.nodes[size_t(node)].mesh;
+        if (mesh >= 0 && mesh < int(model_.meshes.size()))
+            for (const auto& p : model_.meshes[size_t(mesh)].primitives)
+                if (!p.targets.empty() && p.targets.size() != s.width)
+                    fail(label + ": " + std::to_string(s.width) + " weights per key for " + meshLabel(mesh) + "'s " +
+                         std::to_string(p.targets.size()) + " morph targets");
+    } else {
+        s.width = path == AnimationPath::Rotation ? 4 : 3;
+        if (s.values.size() != elements * s.width)
+            fail(label + ": output count " + std::to_string(s.values.size() / s.width) + " for " + std::to_string(s.times.size()) +
+                 " keys (" + std::to_string(perKey) + " per key expected)");
+    }
+    return s;
+}
+
 void Loader::traverseScene() {
     std::vector<int> roots;
     if (model_.scenes.empty()) {
@@ -695,34 +839,55 @@ void Loader::traverseScene() {
     }
 }
 
+// Every camera of the scene, in depth-first node order (the first is drawn from unless another
+// is chosen); the node's world transform with its scale removed.
 void Loader::addCamera(int n) {
     const auto& node = model_.nodes[size_t(n)];
     checkIndex(node.camera, model_.cameras, nodeLabel(n) + ": camera");
     const auto& cam = model_.cameras[size_t(node.camera)];
-    if (cam.type != "perspective") {
-        warn("camera " + std::to_string(node.camera) + " (" + cam.type + ") ignored: only perspective cameras are supported");
-        return;
-    }
-    if (scene_.camera) return;  // the first one wins
-    const auto& p = cam.perspective;
-    const double kPi = 3.14159265358979323846;
-    if (!(p.yfov > 0.0 && p.yfov < kPi) || !(p.znear > 0.0) || !(p.zfar == 0.0 || p.zfar > p.znear) ||
-        !std::isfinite(p.znear) || !std::isfinite(p.zfar)) {
-        warn("camera " + std::to_string(node.camera) + " ignored: invalid yfov/znear/zfar");
+    const std::string label = "camera " + std::to_string(node.camera);
+    Camera c;
+    if (cam.type == "perspective") {
+        const auto& p = cam.perspective;
+        const double kPi = 3.14159265358979323846;
+        if (!(p.yfov > 0.0 && p.yfov < kPi) || !(p.znear > 0.0) || !(p.zfar == 0.0 || p.zfar > p.znear) ||
+            !std::isfinite(p.znear) || !std::isfinite(p.zfar)) {
+            warn(label + " ignored: invalid yfov/znear/zfar");
+            return;
+        }
+        c.yfov = float(p.yfov);
+        c.znear = float(p.znear);
+        c.zfar = p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::infinity();
+        if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = float(p.aspectRatio);
+    } else if (cam.type == "orthographic") {
+        const auto& o = cam.orthographic;
+        if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)) || !(o.znear >= 0.0) ||
+            !(o.zfar > o.znear) || !std::isfinite(o.zfar)) {
+            warn(label + " ignored: invalid xmag/ymag/znear/zfar");
+            return;
+        }
+        c.orthographic = glm::vec2(float(o.xmag), float(o.ymag));
+        c.znear = float(o.znear);
+        c.zfar = float(o.zfar);
+    } else {
+        warn(label + " of unknown type '" + cam.type + "' ignored");
         return;
     }
     const glm::mat4& w = world_[size_t(n)];
     glm::vec3 eye(w[3]), back(w[2]), up(w[1]);
     if (!(glm::length(back) > 1e-12f) || !(glm::length(up) > 1e-12f) ||
         !(glm::length(glm::cross(up, back)) > 1e-12f)) {
-        warn("camera " + std::to_string(node.camera) + " ignored: degenerate node transform");
+        warn(label + " ignored: degenerate node transform");
         return;
     }
-    Camera c = Camera::lookAlong(eye, -back, up, float(p.yfov), float(p.znear),
-                                 p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::infinity());
-    if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = float(p.aspectRatio);
+    c.worldFromView = Camera::lookAlong(eye, -back, up, c.yfov, c.znear, c.zfar).worldFromView;
     c.name = cam.name.empty() ? node.name : cam.name;
-    scene_.camera = c;
+    c.node = n;
+    scene_.cameras.push_back(c);
+    if (!scene_.camera) {
+        scene_.camera = c;
+        scene_.cameraIndex = 0;
+    }
 }
 
 void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count) {
@@ -894,6 +1059,7 @@ void Loader::addLight(int n, const tinygltf::Value& ext) {
     const auto& gl = model_.lights[size_t(li)];
     Light l;
     l.name = gl.name.empty() ? model_.nodes[size_t(n)].name : gl.name;
+    l.node = n;
     if (gl.type == "directional") {
         l.type = LightType::Directional;
     } else if (gl.type == "point") {
@@ -928,13 +1094,26 @@ void Loader::addMeshInstances(int n) {
     if (node.skin >= 0) {
         checkIndex(node.skin, model_.skins, nodeLabel(n) + ": skin");
         skin = node.skin;
-        warn("skin " + std::to_string(skin) + ": rest pose skinned on the CPU (animation ignored)");
     }
-    uint32_t mi = getMesh(node.mesh, skin);
+    uint32_t mi = getMesh(node.mesh);
     if (scene_.meshes[mi].primitives.empty()) return;  // nothing drawable (e.g. only lines)
+    if (skin >= 0) {
+        const size_t joints = scene_.skins[size_t(skin)].joints.size();
+        for (const Primitive& p : scene_.meshes[mi].primitives)
+            for (const SkinInfluences& v : p.skin)
+                for (int set = 0; set < 2; ++set)
+                    for (int k = 0; k < 4; ++k)
+                        if (v.weights[set][k] != 0.0f && v.joints[set][k] >= joints)
+                            fail(nodeLabel(n) + ": " + meshLabel(node.mesh) + " names joint " + std::to_string(v.joints[set][k]) +
+                                 " of skin " + std::to_string(skin) + ", which has " + std::to_string(joints));
+        if (std::none_of(scene_.meshes[mi].primitives.begin(), scene_.meshes[mi].primitives.end(),
+                         [](const Primitive& p) { return !p.skin.empty(); }))
+            warn(nodeLabel(n) + ": skinned node whose mesh has no JOINTS_0/WEIGHTS_0; drawn unskinned");
+    }
 
-    // A skinned mesh is already in world space (glTF ignores the skinned node's own transform).
-    const glm::mat4 nodeWorld = skin >= 0 ? glm::mat4(1.0f) : world_[size_t(n)];
+    // The node's world is set by poseScene; instances of EXT_mesh_gpu_instancing add their own
+    // transform under it (ignored on a skinned node, whose transform the glTF spec ignores).
+    const glm::mat4 nodeWorld = world_[size_t(n)];
     std::vector<glm::mat4> worlds;
     const tinygltf::Value* inst = findExtension(node.extensions, "EXT_mesh_gpu_instancing");
     if (inst && inst->Get("attributes").IsObject() && skin < 0) {
@@ -963,18 +1142,22 @@ void Loader::addMeshInstances(int n) {
                 if (len > 1e-12f) m = m * glm::mat4_cast(q / len);
             }
             if (!s.empty()) m = glm::scale(m, glm::vec3(s[i * 3], s[i * 3 + 1], s[i * 3 + 2]));
-            worlds.push_back(nodeWorld * m);
+            worlds.push_back(m);
         }
     } else {
-        worlds.push_back(nodeWorld);
+        worlds.push_back(glm::mat4(1.0f));
     }
-    for (const auto& w : worlds) {
+    for (const auto& local : worlds) {
+        const glm::mat4 w = nodeWorld * local;
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r)
                 if (!std::isfinite(w[c][r])) fail(nodeLabel(n) + ": non-finite world transform");
         MeshInstance mi2;
         mi2.meshIndex = mi;
         mi2.world = w;
+        mi2.local = local;
+        mi2.node = n;
+        mi2.skin = skin;
         mi2.mirrored = glm::determinant(glm::mat3(w)) < 0.0f;
         mi2.name = node.name;
         scene_.instances.push_back(std::move(mi2));
@@ -1086,49 +1269,72 @@ std::vector<T> Loader::readAccessor(int index, const std::string& what, int expe
 // ---------------------------------------------------------------------------------------------
 // Meshes
 
-std::vector<glm::mat4> Loader::jointMatrices(int skinIndex) {
-    auto it = skinCache_.find(skinIndex);
-    if (it != skinCache_.end()) return it->second;
-    const auto& skin = model_.skins[size_t(skinIndex)];
-    const std::string label = "skin " + std::to_string(skinIndex);
-    std::vector<float> ibm;
-    if (skin.inverseBindMatrices >= 0) {
-        ibm = readAccessor<float>(skin.inverseBindMatrices, "inverseBindMatrices of " + label, TINYGLTF_TYPE_MAT4, F32);
-        if (ibm.size() < skin.joints.size() * 16) fail(label + ": fewer inverseBindMatrices than joints");
-    }
-    std::vector<glm::mat4> joints;
-    for (size_t j = 0; j < skin.joints.size(); ++j) {
-        checkIndex(skin.joints[j], model_.nodes, label + ": joint node");
-        glm::mat4 inv(1.0f);
-        if (!ibm.empty()) inv = glm::make_mat4(&ibm[j * 16]);
-        joints.push_back(world_[size_t(skin.joints[j])] * inv);
-    }
-    skinCache_[skinIndex] = joints;
-    return joints;
-}
-
-uint32_t Loader::getMesh(int m, int skin) {
-    auto key = std::make_pair(m, skin);
-    auto it = meshMap_.find(key);
+uint32_t Loader::getMesh(int m) {
+    auto it = meshMap_.find(m);
     if (it != meshMap_.end()) return it->second;
-
-    std::vector<glm::mat4> joints;
-    if (skin >= 0) joints = jointMatrices(skin);
     const auto& gm = model_.meshes[size_t(m)];
     Mesh mesh;
     mesh.name = gm.name;
     for (size_t p = 0; p < gm.primitives.size(); ++p) {
         Primitive prim;
-        if (loadPrimitive(m, int(p), skin >= 0 ? &joints : nullptr, prim)) mesh.primitives.push_back(std::move(prim));
+        if (loadPrimitive(m, int(p), prim)) mesh.primitives.push_back(std::move(prim));
+    }
+    for (double w : gm.weights) {
+        if (!std::isfinite(w)) fail(meshLabel(m) + ": non-finite morph weight");
+        mesh.weights.push_back(float(w));
     }
     computeBounds(mesh);
     uint32_t index = uint32_t(scene_.meshes.size());
     scene_.meshes.push_back(std::move(mesh));
-    meshMap_[key] = index;
+    meshMap_[m] = index;
     return index;
 }
 
-bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, Primitive& out) {
+void Loader::readMorphTargets(int m, int p, size_t n, Primitive& out) {
+    const auto& gp = model_.meshes[size_t(m)].primitives[size_t(p)];
+    const std::string label = meshLabel(m) + " primitive " + std::to_string(p);
+    for (size_t t = 0; t < gp.targets.size(); ++t) {
+        MorphTarget target;
+        auto read = [&](const char* name, std::vector<glm::vec3>& into) {
+            auto it = gp.targets[t].find(name);
+            if (it == gp.targets[t].end()) return;
+            const std::string what = std::string(name) + " of morph target " + std::to_string(t) + " of " + label;
+            const std::vector<float> d = readAccessor<float>(it->second, what, TINYGLTF_TYPE_VEC3, F32 | S8N | S16N);
+            if (d.size() / 3 != n) fail(label + ": morph target " + std::to_string(t) + " " + name + " count differs from POSITION");
+            into.resize(n);
+            for (size_t i = 0; i < n; ++i) {
+                into[i] = glm::vec3(d[i * 3], d[i * 3 + 1], d[i * 3 + 2]);
+                if (!std::isfinite(into[i].x + into[i].y + into[i].z)) fail("non-finite value in " + what);
+            }
+        };
+        read("POSITION", target.position);
+        read("NORMAL", target.normal);
+        read("TANGENT", target.tangent);
+        out.targets.push_back(std::move(target));
+    }
+}
+
+void Loader::readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label, size_t n, Primitive& out) {
+    for (int set = 0; set < 2; ++set) {
+        const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+        auto ja = gp.attributes.find(js), wa = gp.attributes.find(ws);
+        if (ja == gp.attributes.end() && wa == gp.attributes.end()) continue;
+        if (ja == gp.attributes.end() || wa == gp.attributes.end()) fail(label + ": " + js + " and " + ws + " come together");
+        const std::vector<uint32_t> j = readAccessor<uint32_t>(ja->second, js + " of " + label, TINYGLTF_TYPE_VEC4, U8 | U16);
+        const std::vector<float> w = readAccessor<float>(wa->second, ws + " of " + label, TINYGLTF_TYPE_VEC4, F32 | U8N | U16N);
+        if (j.size() != n * 4 || w.size() != n * 4) fail(label + ": " + js + "/" + ws + " count differs from POSITION");
+        out.skin.resize(n);
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 4; ++k) {
+                const float weight = w[i * 4 + size_t(k)];
+                if (!std::isfinite(weight)) fail("non-finite " + ws + " value in " + label);
+                out.skin[i].joints[set][k] = j[i * 4 + size_t(k)];
+                out.skin[i].weights[set][k] = weight;
+            }
+    }
+}
+
+bool Loader::loadPrimitive(int m, int p, Primitive& out) {
     const auto& gm = model_.meshes[size_t(m)];
     const auto& gp = gm.primitives[size_t(p)];
     const std::string label = meshLabel(m) + " primitive " + std::to_string(p);
@@ -1217,60 +1423,9 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
     }
     out.indices = std::move(idx);
 
-    // Morph targets: the static pose uses the mesh's default weights.
-    if (!gp.targets.empty()) {
-        warn(meshLabel(m) + ": morph targets applied with the default weights (animation ignored)");
-        for (size_t t = 0; t < gp.targets.size() && t < gm.weights.size(); ++t) {
-            const float w = float(gm.weights[t]);
-            if (w == 0.0f || !std::isfinite(w)) continue;
-            const auto& target = gp.targets[t];
-            auto apply = [&](const char* name, auto&& fn) {
-                auto it = target.find(name);
-                if (it == target.end()) return;
-                std::vector<float> d = readAccessor<float>(
-                    it->second, std::string(name) + " of morph target " + std::to_string(t) + " of " + label,
-                    TINYGLTF_TYPE_VEC3, F32);
-                if (d.size() / 3 != n) fail(label + ": morph target " + std::to_string(t) + " " + name + " count differs");
-                for (size_t i = 0; i < n; ++i) fn(out.vertices[i], glm::vec3(d[i * 3], d[i * 3 + 1], d[i * 3 + 2]) * w);
-            };
-            apply("POSITION", [](Vertex& v, const glm::vec3& d) { v.position += d; });
-            apply("NORMAL", [](Vertex& v, const glm::vec3& d) { v.normal += d; });
-            apply("TANGENT", [](Vertex& v, const glm::vec3& d) { v.tangent += glm::vec4(d, 0.0f); });
-        }
-    }
-
-    // Skinning into world space with the rest-pose joint matrices.
-    if (joints) {
-        const int aJ = attr("JOINTS_0"), aW = attr("WEIGHTS_0");
-        if (aJ < 0 || aW < 0) {
-            warn(label + ": skinned node without JOINTS_0/WEIGHTS_0; drawn unskinned");
-        } else {
-            std::vector<uint32_t> jv = readAccessor<uint32_t>(aJ, "JOINTS_0 of " + label, TINYGLTF_TYPE_VEC4, U8 | U16);
-            std::vector<float> wv = readAccessor<float>(aW, "WEIGHTS_0 of " + label, TINYGLTF_TYPE_VEC4, F32 | U8N | U16N);
-            if (jv.size() != n * 4 || wv.size() != n * 4) fail(label + ": JOINTS_0/WEIGHTS_0 count differs from POSITION");
-            for (size_t i = 0; i < n; ++i) {
-                glm::mat4 M(0.0f);
-                float sum = 0.0f;
-                for (int k = 0; k < 4; ++k) {
-                    float w = wv[i * 4 + size_t(k)];
-                    if (!(w > 0.0f)) continue;
-                    uint32_t j = jv[i * 4 + size_t(k)];
-                    if (j >= joints->size()) {
-                        fail("JOINTS_0 value " + std::to_string(j) + " >= joint count " + std::to_string(joints->size()) +
-                             " in " + label);
-                    }
-                    M += (*joints)[j] * w;
-                    sum += w;
-                }
-                M = sum > 0.0f ? M / sum : glm::mat4(1.0f);
-                Vertex& v = out.vertices[i];
-                v.position = glm::vec3(M * glm::vec4(v.position, 1.0f));
-                glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
-                v.normal = N * v.normal;
-                v.tangent = glm::vec4(glm::mat3(M) * glm::vec3(v.tangent), v.tangent.w);
-            }
-        }
-    }
+    // Deformation data, kept beside the rest pose (assets/Animation.h).
+    readMorphTargets(m, p, n, out);
+    readSkinInfluences(gp, label, n, out);
 
     // Material (needed to know whether tangents must be generated).
     if (gp.material >= 0) {
@@ -1286,7 +1441,22 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
         if (opt_.smoothNormals) {
             generateSmoothNormals(out);
         } else {
+            // Unwelded: corner k of triangle t becomes vertex 3t + k; its deformation data follows.
+            const std::vector<uint32_t> corners = out.indices;
             generateFlatNormals(out);
+            out.flatNormals = true;
+            auto remap = [&](auto& list) {
+                if (list.empty()) return;
+                std::remove_reference_t<decltype(list)> unwelded(corners.size());
+                for (size_t k = 0; k < corners.size(); ++k) unwelded[k] = list[corners[k]];
+                list = std::move(unwelded);
+            };
+            remap(out.skin);
+            for (MorphTarget& t : out.targets) {
+                remap(t.position);
+                remap(t.normal);
+                remap(t.tangent);
+            }
         }
     } else {
         std::vector<glm::vec3> smooth;
@@ -1309,7 +1479,7 @@ bool Loader::loadPrimitive(int m, int p, const std::vector<glm::mat4>* joints, P
     if (!tan.empty()) {
         for (auto& v : out.vertices) {
             glm::vec3 t(v.tangent);
-            t -= v.normal * glm::dot(v.normal, t);  // skinning/morphing can bend it off the plane
+            t -= v.normal * glm::dot(v.normal, t);  // an exporter's rounding can bend it off the plane
             float len = glm::length(t);
             glm::vec3 tt = len > 1e-8f ? t / len : anyPerpendicular(v.normal);
             v.tangent = glm::vec4(tt, v.tangent.w < 0.0f ? -1.0f : 1.0f);

@@ -60,10 +60,17 @@ Camera Camera::orbited(const glm::vec3& center, float radians) const {
     return c;
 }
 
+glm::mat4 Node::localTransform() const {
+    if (matrix) return *matrix;
+    return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+}
+
 AABB computeWorldBounds(const Scene& scene) {
     AABB b;
     for (const auto& inst : scene.instances) {
-        if (inst.meshIndex < scene.meshes.size()) b.extend(scene.meshes[inst.meshIndex].bounds.transformed(inst.world));
+        if (inst.meshIndex >= scene.meshes.size()) continue;
+        const AABB& local = inst.posedBounds.empty() ? scene.meshes[inst.meshIndex].bounds : inst.posedBounds;
+        b.extend(local.transformed(inst.world));
     }
     return b;
 }
@@ -216,6 +223,14 @@ void checkFinite(const Scene& scene) {
             !finite(l.innerConeAngle) || !finite(l.outerConeAngle))
             fail("light '" + l.name + "'");
     if (scene.camera) checkCamera(*scene.camera);
+    for (const Node& n : scene.nodes)
+        if (!finite(n.translation) || !finite(glm::vec4(n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w)) ||
+            !finite(n.scale) || (n.matrix && !finite(*n.matrix)))
+            fail("node '" + n.name + "': its transform");
+    for (const Animation& a : scene.animations)
+        for (const AnimationSampler& sm : a.samplers)
+            for (float v : sm.values)
+                if (!finite(v)) fail("animation '" + a.name + "': a key value");
 }
 
 void checkCamera(const Camera& c) {
@@ -225,6 +240,14 @@ void checkCamera(const Camera& c) {
     // The view matrix is inverted every frame: a singular one gives a NaN view, not a picture.
     if (!(std::abs(glm::determinant(glm::mat3(c.worldFromView))) > 1e-12f))
         throw AssetError(what + "its transform is singular (no view can be made from it)");
+    if (c.orthographic) {
+        if (!(c.orthographic->x != 0.0f && c.orthographic->y != 0.0f && finite(*c.orthographic)))
+            throw AssetError(what + "orthographic xmag and ymag must be finite and not zero");
+        if (!(c.znear >= 0.0f)) throw AssetError(what + "znear " + std::to_string(c.znear) + " is negative");
+        if (!(c.zfar > c.znear && std::isfinite(c.zfar)))
+            throw AssetError(what + "an orthographic camera needs a finite zfar beyond znear");
+        return;
+    }
     if (!(c.yfov > 0.0f && c.yfov < 3.14159265f))
         throw AssetError(what + "yfov " + std::to_string(c.yfov) + " is not in (0, pi) radians");
     if (!(c.znear > 0.0f)) throw AssetError(what + "znear " + std::to_string(c.znear) + " is not positive");

@@ -10,6 +10,7 @@
 #include "assets/Environment.h"
 #include <cmath>
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -56,18 +57,41 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 72, "Vertex must stay tightly packed for direct upload");
 
+// A vertex's skin influences: glTF's JOINTS_0/WEIGHTS_0 in [0] and JOINTS_1/WEIGHTS_1 in [1]
+// (zero weights where the file has no second set). Joints index the skin's joint list; weights
+// are used as stored (not renormalised), as the glTF spec asks. 64 bytes: uploadable as is.
+struct SkinInfluences {
+    glm::uvec4 joints[2]{glm::uvec4(0u), glm::uvec4(0u)};
+    glm::vec4 weights[2]{glm::vec4(0.0f), glm::vec4(0.0f)};
+};
+static_assert(sizeof(SkinInfluences) == 64, "SkinInfluences must stay tightly packed for direct upload");
+
+// A morph target: per-vertex displacements, each list empty when the target leaves that
+// attribute alone (glTF POSITION, NORMAL and TANGENT deltas; the tangent's w never changes).
+struct MorphTarget {
+    std::vector<glm::vec3> position, normal, tangent;
+};
+
 // Always an indexed triangle list (strips/fans are converted, non-indexed input gets 0..n-1).
 struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     uint32_t material = 0;  // always a valid index into Scene::materials
-    AABB bounds;            // object space
+    AABB bounds;            // object space, of the rest pose
+    // Deformation (assets/Animation.h), kept beside the rest pose in `vertices`: the skin
+    // influences per vertex (empty: the primitive cannot be skinned) and the morph targets.
+    std::vector<SkinInfluences> skin;
+    std::vector<MorphTarget> targets;
+    // The file had no NORMAL: the primitive is unwelded (vertex 3t + k is corner k of triangle
+    // t) and a deformed pose gets its face normals again from the deformed positions.
+    bool flatNormals = false;
 };
 
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
-    AABB bounds;  // object space, union of the primitives
+    AABB bounds;  // object space, union of the primitives (rest pose)
+    std::vector<float> weights;  // glTF mesh.weights: the morph targets' default weights
 };
 
 enum class Filter : uint8_t { Nearest, Linear };
@@ -204,6 +228,67 @@ struct MeshInstance {
     // screen; the renderer must flip its front-face (cull) setting for this instance.
     bool mirrored = false;
     std::string name;  // the glTF node name, for messages and debugging
+    // The node it hangs from (Scene::nodes; -1: none, world is fixed) and, for
+    // EXT_mesh_gpu_instancing, the instance's transform under it: world = node's world x local.
+    int32_t node = -1;
+    glm::mat4 local{1.0f};
+    // Deformation of the current pose (assets::poseScene keeps these): a skin (Scene::skins, -1:
+    // none) and its joint matrices, inverse(world of the node) x world of joint j x inverse bind
+    // matrix j, taking a rest-pose vertex to the node's space; the morph weights, one per target
+    // of the mesh (empty: no targets).
+    int32_t skin = -1;
+    std::vector<glm::mat4> joints;
+    std::vector<float> weights;
+    // Object-space bounds of the posed mesh (conservative: the rest bounds displaced by the
+    // weighted morph targets' extremes, then under each joint matrix); the mesh's when empty.
+    AABB posedBounds;
+    bool deformed() const { return skin >= 0 || !weights.empty(); }
+};
+
+// A glTF node: its transform as TRS (animation channels target these) or as a fixed matrix.
+struct Node {
+    std::string name;
+    int32_t parent = -1;
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+    glm::vec3 scale{1.0f};
+    std::optional<glm::mat4> matrix;  // set: the node's transform, TRS unused (not animatable)
+    std::vector<float> weights;       // node.weights: the morph weights of its mesh, else the mesh's
+    glm::mat4 world{1.0f};            // of the current pose (assets::poseScene)
+    glm::mat4 localTransform() const;
+};
+
+// A glTF skin: joints (node indices) and their inverse bind matrices (identity when absent).
+struct Skin {
+    std::string name;
+    std::vector<uint32_t> joints;
+    std::vector<glm::mat4> inverseBindMatrices;
+};
+
+enum class AnimationPath : uint8_t { Translation, Rotation, Scale, Weights };
+enum class Interpolation : uint8_t { Linear, Step, CubicSpline };
+
+// A keyframe sampler: `times` (seconds, strictly increasing) and `values`, `width` floats per
+// key (3 translation/scale, 4 rotation as x, y, z, w, the morph target count for weights); a
+// CUBICSPLINE sampler stores three elements per key: in-tangent, value, out-tangent.
+struct AnimationSampler {
+    std::vector<float> times;
+    std::vector<float> values;
+    Interpolation interpolation = Interpolation::Linear;
+    uint32_t width = 0;
+};
+
+struct AnimationChannel {
+    uint32_t sampler = 0;
+    uint32_t node = 0;
+    AnimationPath path = AnimationPath::Translation;
+};
+
+struct Animation {
+    std::string name;
+    std::vector<AnimationSampler> samplers;
+    std::vector<AnimationChannel> channels;
+    float duration = 0.0f;  // the last key time over all samplers (keys start at or after 0)
 };
 
 enum class LightType : uint8_t { Directional, Point, Spot };
@@ -211,6 +296,7 @@ enum class LightType : uint8_t { Directional, Point, Spot };
 // KHR_lights_punctual, already in world space.
 struct Light {
     std::string name;
+    int32_t node = -1;  // the node it hangs from (Scene::nodes; -1: none); posed with it
     LightType type = LightType::Point;
     glm::vec3 color{1.0f};
     float intensity = 1.0f;  // lux (directional) or candela (point, spot)
@@ -251,6 +337,11 @@ struct Camera {
     float znear = 0.1f;
     float zfar = std::numeric_limits<float>::infinity();  // +inf = infinite far plane
     std::optional<float> aspectRatio;                     // width / height; unset = the viewport's
+    // Orthographic (glTF camera.orthographic): the half width and half height of the view volume
+    // (xmag, ymag); yfov and aspectRatio are then unused.
+    std::optional<glm::vec2> orthographic;
+    // The node it hangs from (Scene::nodes; -1: none): assets::poseScene moves it with the node.
+    int32_t node = -1;
 
     glm::vec3 eye() const { return glm::vec3(worldFromView[3]); }
     glm::vec3 forward() const { return -glm::normalize(glm::vec3(worldFromView[2])); }
@@ -273,7 +364,16 @@ struct Scene {
     std::vector<TextureImage> textures;
     std::vector<MeshInstance> instances;
     std::vector<Light> lights;
-    std::optional<Camera> camera;
+    std::optional<Camera> camera;  // the camera drawn from
+    // The file's cameras, in depth-first node order (the first is `camera` after loading);
+    // assets::poseScene moves them with their nodes and, while `cameraIndex` names one, `camera`
+    // with it. Set cameraIndex to -1 for a camera of your own (fe render --camera-position).
+    std::vector<Camera> cameras;
+    int32_t cameraIndex = -1;
+    // The node hierarchy, skins and animations of a glTF file (assets/Animation.h poses them).
+    std::vector<Node> nodes;
+    std::vector<Skin> skins;
+    std::vector<Animation> animations;
     std::optional<Environment> environment;  // drawn as the background where nothing is drawn
     std::vector<ParticleEmitter> emitters;   // the VFX renderer's particle systems
     Bounds bounds;  // world space, union of the instances; empty if nothing is drawn

@@ -82,7 +82,11 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     const gdi::DeviceLimits& limits = device.info().limits;
     if (s.msaa > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & s.msaa))
         throw gdi::Error(std::to_string(s.msaa) + " samples are not supported on " + device.info().backend);
-    queue_ = std::make_unique<CommandQueue>(device, 2);
+    // The per-frame uploads hold the animated instances' joint matrices and weights as well.
+    uint64_t poseBytes = 0;
+    for (const assets::MeshInstance& i : scene.instances)
+        if (i.deformed()) poseBytes += i.joints.size() * sizeof(glm::mat4) + (i.weights.size() + 3) / 4 * 16 + 256;
+    queue_ = std::make_unique<CommandQueue>(device, 2, (4u << 20) + poseBytes);
     gpuScene_ = std::make_unique<GpuScene>(device, scene);
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
     shadowPlan_ = planShadows(scene.lights, *scene.camera, scene.bounds, s.shadows);
@@ -125,6 +129,7 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene, co
     }
     if (!scene.emitters.empty()) vfx_ = std::make_unique<VfxRenderer>(*context_, scene.emitters);
     if (gpuScene_->hasTransmissive()) transmission_ = std::make_unique<TransmissionPass>(*context_);
+    if (!gpuScene_->deformations().empty()) deformation_ = std::make_unique<MeshDeformation>(*context_);
     technique_ = technique.create(*context_);
     buildGraph();
     graph_.compile(device, s.aliasing);
@@ -141,6 +146,7 @@ void SceneRenderer::buildGraph() {
     graph::RenderGraph& g = graph_;
     output_ = g.importTexture("output L_o", outputTexture_, device_.desc(outputTexture_));
     depth_ = g.createTexture("depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
+    if (deformation_) deformation_->declare(g);  // first: every pass after it draws the deformed meshes
     technique_->declare(g, output_, depth_);
     if (s.lightListStatistics || s.debugView == kLightsEvaluatedView) declareListStatistics(g);
     background_->declare(g, output_, depth_);
@@ -396,6 +402,12 @@ void SceneRenderer::setCamera(const assets::Camera& camera) {
     context_->eye = camera.eye();
 }
 
+void SceneRenderer::updatePose() {
+    gpuScene_->updatePose();
+    updateLights(scene_.lights);
+    if (scene_.camera) setCamera(*scene_.camera);
+}
+
 void SceneRenderer::renderFrame() { recordFrame({}); }
 
 bool SceneRenderer::timersAccountForFrame(const std::vector<PassTiming>& passes, double frameMs) {
@@ -463,7 +475,7 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     glm::mat4 rotation = fc.view;  // eye space: the view without its translation
     rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     fc.viewProjFromEye = glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * jitter.x / float(s.width), 2.0f * jitter.y / float(s.height), 0.0f)) *
-                         projection(cam.yfov, float(s.width) / float(s.height), cam.znear, cam.zfar) * rotation;
+                         projection(cam, float(s.width) / float(s.height)) * rotation;
     fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
     const glm::uvec2 background = background_->displayConstants();
@@ -492,7 +504,7 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     frameConstants_ = queue_->upload(fc);
     // History from the second frame on; camera motion is handled by reprojection and clamping.
     postProcess_->beginFrame(*queue_, unjittered, frameIndex_ > 1);
-    if (shadows_) shadows_->update(cam, float(s.width) / float(s.height), scene_.bounds, sceneLights_);
+    if (shadows_) shadows_->update(cam, projectionAspect(cam, float(s.width) / float(s.height)), scene_.bounds, sceneLights_);
     graph_.execute(cmd, afterPass);
     lastFence_ = queue_->endFrame();
 }

@@ -26,6 +26,7 @@
 #include "render/PostProcess.h"
 #include "render/PrefilteredEnvironment.h"
 #include "render/TechniqueRenderer.h"
+#include "render/MeshDeformation.h"
 #include "render/TransmissionPass.h"
 #include "render/VfxRenderer.h"
 
@@ -103,6 +104,10 @@ public:
     VfxRenderer* vfx() { return vfx_.get(); }
     // The camera of the next frames (a camera path); the scene's until this is called.
     void setCamera(const assets::Camera& camera);
+    // After assets::poseScene moved the scene this renderer was made from (assets/Animation.h):
+    // the next frames show that pose: the instances' transforms, skins and morph weights (the
+    // meshes are deformed on the device each frame), the lights and the scene's camera.
+    void updatePose();
     // The light cluster grid (null unless a clustered technique or blended surfaces need it).
     // Lists that overflow grow for the frames framesInFlight() after (ClusterLightGrid::beginFrame).
     const ClusterLightGrid* clusters() const { return clusters_.get(); }
@@ -140,6 +145,7 @@ private:
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
     std::unique_ptr<BackgroundPass> background_;
     std::unique_ptr<TransmissionPass> transmission_;  // with transmissive surfaces
+    std::unique_ptr<MeshDeformation> deformation_;    // with skinned or morphed instances
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
     std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows

@@ -1,8 +1,10 @@
 #include "reference/CpuReference.h"
+#include "reference/AnimationReference.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "reference/CameraMath.h"
 #include "reference/ParallelRows.h"
@@ -199,14 +201,19 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         const glm::dmat3 normalMat = glm::transpose(glm::inverse(glm::dmat3(world)));
         for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
             const int32_t id = surfaceId++;
+            // An animated instance's pose (assets::poseScene) deforms the rest pose, in double.
+            const std::vector<DeformedVertex> deformed = inst.deformed() ? deformVertices(prim, inst) : std::vector<DeformedVertex>{};
             // Triangle i/3 of the primitive in world space.
             auto triangle = [&](size_t i) {
                 WorldTriangle t;
                 for (int k = 0; k < 3; ++k) {
                     const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
-                    t.p[k] = glm::dvec3(world * glm::dvec4(glm::dvec3(v.position), 1.0));
-                    t.n[k] = normalMat * glm::dvec3(v.normal);
-                    t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(v.tangent), v.tangent.w);
+                    const DeformedVertex d = deformed.empty()
+                                                 ? DeformedVertex{glm::dvec3(v.position), glm::dvec3(v.normal), glm::dvec4(v.tangent)}
+                                                 : deformed[prim.indices[i + k]];
+                    t.p[k] = glm::dvec3(world * glm::dvec4(d.position, 1.0));
+                    t.n[k] = normalMat * d.normal;
+                    t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(d.tangent), d.tangent.w);
                     t.uv[k] = glm::dvec2(v.uv0);
                     t.uv1[k] = glm::dvec2(v.uv1);
                     t.color[k] = glm::dvec4(v.color);
@@ -289,15 +296,16 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     out.surface.assign(size_t(width) * height, -1);
     out.textured.assign(size_t(width) * height, 0);
     out.occluded.assign(size_t(width) * height, 0);
-    // The viewport's aspect, as the renderer's projection (and the Sample Viewer's) takes it: a
-    // camera's authored aspectRatio would stretch the image against the GPU's.
-    const double aspect = double(width) / double(height);
+    // The camera's aspect ratio when it has one, else the viewport's, as the renderer projects
+    // (glTF 2.0 3.10.3: a given aspectRatio is the field of view's).
+    const double aspect = projectionAspect(camera, float(width) / float(height));
+    if (camera.orthographic) throw std::invalid_argument("renderReference: orthographic cameras are not traced yet");
     // Eye rays from the projection and the view's rotation alone (camera-relative, as the GPU
     // renders): a float view-projection holds the eye's distance from the origin in its
     // translation, which 1e5 from the origin moved these rays by 2 % of a pixel's radiance.
     glm::dmat4 rotation(glm::inverse(glm::dmat3(camera.worldFromView)));
     const glm::dmat4 invProjRotation =
-        glm::inverse(glm::dmat4(projection(camera.yfov, float(aspect), camera.znear, camera.zfar)) * rotation);
+        glm::inverse(glm::dmat4(projection(camera, float(aspect))) * rotation);
     const glm::dvec3 eye(camera.eye());
 
     // The radiance a surface sends to the eye and its alpha: `shadows` (the opaque surfaces)

@@ -4,6 +4,7 @@
 #include "shading/ShadingModel.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <string>
 
@@ -87,8 +88,54 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
             indices.insert(indices.end(), p.indices.begin(), p.indices.end());
         }
+    // Animated instances: each deformed primitive gets vertices of its own (initially its rest
+    // pose), the skin influences and morph deltas go to buffers the deformation reads.
+    std::vector<assets::SkinInfluences> influences;
+    std::vector<float> deltas;
+    std::map<std::pair<size_t, size_t>, std::pair<uint32_t, uint32_t>> sources;  // (mesh, primitive) -> (skin, morph)
+    std::map<std::pair<uint32_t, size_t>, int32_t> deformedBase;  // (instance, primitive) -> first deformed vertex
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const assets::MeshInstance& inst = scene.instances[i];
+        if (!inst.deformed()) continue;
+        const assets::Mesh& mesh = scene.meshes.at(inst.meshIndex);
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            const assets::Primitive& prim = mesh.primitives[p];
+            const bool skinned = inst.skin >= 0 && !prim.skin.empty();
+            if (!skinned && prim.targets.empty()) continue;
+            auto [src, fresh] = sources.try_emplace({inst.meshIndex, p}, ~0u, uint32_t(deltas.size()));
+            if (fresh) {
+                if (!prim.skin.empty()) {
+                    src->second.first = uint32_t(influences.size());
+                    influences.insert(influences.end(), prim.skin.begin(), prim.skin.end());
+                }
+                for (const assets::MorphTarget& t : prim.targets)
+                    for (size_t v = 0; v < prim.vertices.size(); ++v)
+                        for (const std::vector<glm::vec3>* d : {&t.position, &t.normal, &t.tangent}) {
+                            const glm::vec3 x = d->empty() ? glm::vec3(0.0f) : (*d)[v];
+                            deltas.insert(deltas.end(), {x.x, x.y, x.z});
+                        }
+            }
+            Deformation d{.instance = i, .restFirst = uint32_t(ranges[inst.meshIndex][p].baseVertex),
+                          .outputFirst = uint32_t(vertices.size()), .vertexCount = uint32_t(prim.vertices.size()),
+                          .flatNormals = prim.flatNormals, .skinFirst = skinned ? src->second.first : ~0u,
+                          .morphFirst = src->second.second, .targetCount = uint32_t(prim.targets.size())};
+            deformedBase[{i, p}] = int32_t(vertices.size());
+            vertices.insert(vertices.end(), prim.vertices.begin(), prim.vertices.end());
+            deformations_.push_back(d);
+        }
+    }
     if (vertices.empty()) vertices.push_back({});  // a buffer needs at least one byte
     if (indices.empty()) indices.push_back(0);
+    if (!deformations_.empty()) {
+        if (influences.empty()) influences.push_back({});
+        if (deltas.empty()) deltas.push_back(0.0f);
+        skin_ = objects_.add(device.createBuffer({.size = influences.size() * sizeof(assets::SkinInfluences),
+                                                  .usage = gdi::BufferUsage::Storage, .debugName = "skin influences"},
+                                                 gdi::bytesOf(influences)));
+        morph_ = objects_.add(device.createBuffer(
+            {.size = deltas.size() * sizeof(float), .usage = gdi::BufferUsage::Storage, .debugName = "morph target deltas"},
+            gdi::bytesOf(deltas)));
+    }
     vertices_ = objects_.add(device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex),
                                                   .usage = gdi::BufferUsage::Vertex | gdi::BufferUsage::Storage,
                                                   .debugName = "scene vertices"},
@@ -106,7 +153,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             DrawItem d;
             d.firstIndex = ranges[inst.meshIndex][p].firstIndex;
             d.indexCount = ranges[inst.meshIndex][p].indexCount;
-            d.baseVertex = ranges[inst.meshIndex][p].baseVertex;
+            const auto deformed = deformedBase.find({i, p});
+            d.baseVertex = deformed != deformedBase.end() ? deformed->second : ranges[inst.meshIndex][p].baseVertex;
             d.material = prim.material;
             d.instance = i;
             d.alphaMode = mat.alphaMode;
@@ -244,6 +292,15 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
     lightCount_ = uint32_t(lights.size());
     unshadowedCount_ = std::min(unshadowed, lightCount_);
     currentLights_ = lights;
+}
+
+void GpuScene::updatePose() {
+    for (DrawItem& d : draws_) {
+        const assets::MeshInstance& inst = scene_.instances[d.instance];
+        const assets::AABB& local = inst.posedBounds.empty() ? scene_.meshes[inst.meshIndex].bounds : inst.posedBounds;
+        d.worldCenter = glm::vec3(inst.world * glm::vec4(local.center(), 1.0f));
+        d.mirrored = inst.mirrored;
+    }
 }
 
 ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {

@@ -98,6 +98,20 @@ struct DrawItem {
     uint32_t textureSet = 0;  // which of GpuScene::textureSets() its material samples
 };
 
+// One primitive of one animated instance (MeshInstance::deformed()): the mesh deformation pass
+// (MeshDeformation.h) writes its rest pose, morphed and skinned, to vertices of its own, which
+// its draws use.
+struct Deformation {
+    uint32_t instance = 0;
+    uint32_t restFirst = 0;    // first rest-pose vertex in the vertex buffer
+    uint32_t outputFirst = 0;  // first deformed vertex
+    uint32_t vertexCount = 0;
+    bool flatNormals = false;  // assets::Primitive::flatNormals
+    uint32_t skinFirst = ~0u;  // first SkinInfluences record in skinBuffer(); ~0u: not skinned
+    uint32_t morphFirst = 0;   // first float of its targets' deltas in morphBuffer()
+    uint32_t targetCount = 0;
+};
+
 struct MaterialTextures {
     gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness, sheenColor,
         sheenRoughness, specular, specularColor, clearcoat, clearcoatRoughness, clearcoatNormal;
@@ -141,6 +155,14 @@ public:
     // the lights fit it (the renderer keeps the count it was made for).
     void bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBlock) const;
     const std::vector<DrawItem>& draws() const { return draws_; }
+    // Animation: the deformed primitives and the data their deformation reads (null handles
+    // when no instance is skinned or morphed).
+    const std::vector<Deformation>& deformations() const { return deformations_; }
+    gdi::BufferHandle skinBuffer() const { return skin_; }
+    gdi::BufferHandle morphBuffer() const { return morph_; }
+    // After assets::poseScene moved the scene: the draws' sorting centres follow the instances
+    // (their transforms are read per frame anyway).
+    void updatePose();
     const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
     // The distinct texture bindings of the materials (many share the defaults): a pass that
     // shades every material at once binds one set at a time (VisibilityBufferRenderer). Never
@@ -173,7 +195,8 @@ private:
     gdi::DeviceObjects objects_;
     gdi::Device& device_;
     const assets::Scene& scene_;
-    gdi::BufferHandle vertices_, indices_, lights_;
+    gdi::BufferHandle vertices_, indices_, lights_, skin_, morph_;
+    std::vector<Deformation> deformations_;
     uint64_t lightCapacity_ = 0;
     std::vector<assets::Light> currentLights_;
     uint32_t lightCount_ = 0;

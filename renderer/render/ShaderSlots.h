@@ -53,4 +53,7 @@ constexpr uint32_t kSlotClearcoat = 47;      // KHR_materials_clearcoat's textur
 constexpr uint32_t kSlotClearcoatRoughness = 48;  // ... roughness (G)
 constexpr uint32_t kSlotClearcoatNormal = 49;     // ... and the layer's normal map
 constexpr uint32_t kSlotClusterBounds = 43;  // the opaque depths each light cluster holds (storage buffer)
+constexpr uint32_t kSlotSkin = 50;            // mesh deformation: the skinned primitives' influences (storage buffer)
+constexpr uint32_t kSlotMorphTargets = 51;    // ... the morph targets' deltas
+constexpr uint32_t kSlotPose = 52;            // ... and the frame's joint matrices and morph weights
 }  // namespace fe::render

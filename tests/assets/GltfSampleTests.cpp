@@ -278,7 +278,10 @@ TEST(GltfSamples, CesiumMilkTruckHierarchy) {
         // Two glTF textures share one image and sampler: decoded once.
         ASSERT_EQ(s.textures.size(), 1u);
         EXPECT_EQ(s.textures[0].width, 2048u);
-        EXPECT_TRUE(hasWarning(s, "animation"));
+        // The wheels' animation is kept, not ignored.
+        EXPECT_FALSE(hasWarning(s, "animation"));
+        ASSERT_EQ(s.animations.size(), 1u);
+        EXPECT_EQ(s.animations[0].name, "Wheels");
         const Material* glass = findMaterial(s, "glass");
         ASSERT_NE(glass, nullptr);
         EXPECT_NEAR(glass->baseColorFactor.g, 0.0405063f, 1e-6f);
@@ -454,7 +457,7 @@ TEST(GltfSamples, SimpleInstancingExtension) {
     }
 }
 
-TEST(GltfSamples, CamerasFirstPerspectiveCameraWins) {
+TEST(GltfSamples, CamerasAreListedAndTheFirstIsDrawnFrom) {
     FE_REQUIRE_SAMPLES();
     Scene s = load("Cameras/glTF/Cameras.gltf");
     ASSERT_TRUE(s.camera);
@@ -466,7 +469,16 @@ TEST(GltfSamples, CamerasFirstPerspectiveCameraWins) {
     EXPECT_EQ(*s.camera->aspectRatio, 1.0f);
     expectNear(s.camera->eye(), glm::vec3(0.5f, 0.5f, 3.0f));
     expectNear(s.camera->forward(), glm::vec3(0, 0, -1));
-    EXPECT_TRUE(hasWarning(s, "orthographic"));
+    // Both cameras are listed, the orthographic one with its half extents.
+    EXPECT_FALSE(hasWarning(s, "orthographic"));
+    ASSERT_EQ(s.cameras.size(), 2u);
+    EXPECT_EQ(s.cameraIndex, 0);
+    EXPECT_FALSE(s.cameras[0].orthographic);
+    ASSERT_TRUE(s.cameras[1].orthographic);
+    EXPECT_EQ(*s.cameras[1].orthographic, glm::vec2(1.0f, 1.0f));
+    EXPECT_EQ(s.cameras[1].znear, 0.01f);
+    EXPECT_EQ(s.cameras[1].zfar, 100.0f);
+    expectNear(s.cameras[1].eye(), glm::vec3(0.5f, 0.5f, 3.0f));
     // No lights in the file: the default rig follows the file's camera (headlight at its eye).
     ASSERT_TRUE(s.hasDefaultLights);
     ASSERT_EQ(s.lights.size(), 3u);
@@ -516,29 +528,44 @@ TEST(GltfSamples, UnlitIsARequiredExtensionWeSupport) {
     EXPECT_TRUE(findMaterial(s, "Blue")->unlit);
 }
 
-TEST(GltfSamples, SkinsMorphsAndAnimationsLoadTheStaticPoseWithWarnings) {
+TEST(GltfSamples, SkinsMorphsAndAnimationsLoadInTheRestPose) {
     FE_REQUIRE_SAMPLES();
     Scene fox = load("Fox/glTF/Fox.gltf");
     EXPECT_EQ(totalVertices(fox), 1728u);
     EXPECT_EQ(fox.textures.size(), 1u);
-    EXPECT_TRUE(hasWarning(fox, "skin"));
-    EXPECT_TRUE(hasWarning(fox, "3 animation"));
-    EXPECT_GT(fox.bounds.size().y, 70.0f);  // standing fox, about 79 units tall
+    EXPECT_FALSE(hasWarning(fox, "skin"));
+    EXPECT_FALSE(hasWarning(fox, "animation"));
+    ASSERT_EQ(fox.animations.size(), 3u);
+    EXPECT_EQ(fox.animations[0].name, "Survey");
+    EXPECT_EQ(fox.animations[1].name, "Walk");
+    EXPECT_EQ(fox.animations[2].name, "Run");
+    ASSERT_EQ(fox.instances.size(), 1u);
+    EXPECT_EQ(fox.instances[0].skin, 0);
+    EXPECT_EQ(fox.instances[0].joints.size(), fox.skins[0].joints.size());
+    // The mesh keeps its rest pose and every vertex its influences (unwelded with the flat normals).
+    const Primitive& foxMesh = fox.meshes[0].primitives[0];
+    EXPECT_TRUE(foxMesh.flatNormals);
+    EXPECT_EQ(foxMesh.skin.size(), foxMesh.vertices.size());
+    EXPECT_GT(fox.bounds.size().y, 70.0f);  // standing fox, about 79 units tall (bounds are conservative)
 
     // RiggedSimple's mesh is a cylinder along +-4.575 on its own Z; the skeleton under the
-    // "Z_UP" node stands it up, so the skinned rest pose is long along world Y.
+    // "Z_UP" node stands it up: the posed bounds (conservative) hold it standing along Y.
     Scene rig = load("RiggedSimple/glTF/RiggedSimple.gltf");
-    EXPECT_NEAR(rig.bounds.size().y, 2.0f * 4.575077f, 1e-3f);
-    EXPECT_NEAR(rig.bounds.size().z, 2.0f, 1e-3f);
+    EXPECT_GE(rig.bounds.size().y, 2.0f * 4.575077f - 1e-3f);
+    EXPECT_EQ(rig.instances[0].joints.size(), 2u);
 
-    // SimpleMorph: mesh weights (0.5, 0.5); vertex 2 is (0.5, 0.5, 0) in the base and the
-    // targets move it by (-1, 1, 0) and (1, 1, 0): (0.5, 1.5, 0) in the static pose.
+    // SimpleMorph: mesh weights (0.5, 0.5) become the instance's; the vertices stay the base mesh
+    // and vertex 2, (0.5, 0.5, 0) in the base, moves by (-1, 1, 0) and (1, 1, 0) in the targets.
     Scene morph = load("SimpleMorph/glTF/SimpleMorph.gltf");
-    EXPECT_TRUE(hasWarning(morph, "morph targets"));
+    EXPECT_FALSE(hasWarning(morph, "morph targets"));
     ASSERT_EQ(totalVertices(morph), 3u);
+    const Primitive& tri = morph.meshes[0].primitives[0];
+    ASSERT_EQ(tri.targets.size(), 2u);
+    EXPECT_EQ(morph.instances[0].weights, (std::vector<float>{0.5f, 0.5f}));
     std::set<std::pair<float, float>> xy;
-    for (const auto& v : morph.meshes[0].primitives[0].vertices) xy.insert({v.position.x, v.position.y});
-    EXPECT_EQ(xy, (std::set<std::pair<float, float>>{{0.0f, 0.0f}, {1.0f, 0.0f}, {0.5f, 1.5f}}));
+    for (const auto& v : tri.vertices) xy.insert({v.position.x, v.position.y});
+    EXPECT_EQ(xy, (std::set<std::pair<float, float>>{{0.0f, 0.0f}, {1.0f, 0.0f}, {0.5f, 0.5f}}));
+    EXPECT_GE(morph.bounds.max.y, 1.5f);  // the posed bounds hold the morphed vertex
 }
 
 TEST(GltfSamples, TextureTransformsAreRead) {
@@ -598,7 +625,9 @@ TEST(GltfSamples, VertexColoursAreRead) {
 
 TEST(GltfSamples, IgnoredFeaturesAreReportedAsWarnings) {
     FE_REQUIRE_SAMPLES();
-    EXPECT_TRUE(hasWarning(load("BoxAnimated/glTF/BoxAnimated.gltf"), "animation"));
+    const Scene boxAnimated = load("BoxAnimated/glTF/BoxAnimated.gltf");
+    EXPECT_FALSE(hasWarning(boxAnimated, "animation"));
+    EXPECT_EQ(boxAnimated.animations.size(), 1u);
     EXPECT_TRUE(load("Box/glTF/Box.gltf").warnings.empty());
 }
 

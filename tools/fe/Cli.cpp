@@ -8,6 +8,12 @@
 #include <iostream>
 #include <sstream>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cctype>
+#include <limits>
+
+#include "assets/Animation.h"
 #include "fe/gdi/Backend.h"
 #include "render/TechniqueRenderer.h"
 #include "shading/Tonemap.h"
@@ -40,12 +46,22 @@ constexpr const char* kUsage =
     "        unset: --illum-scale): punctual, shadowed, ibl-diffuse, ibl-specular\n"
     "      --temporal (redeferred, --illum-scale 2|4): the reduced-rate samples jitter and accumulate over frames\n"
     "      --orbit DEGREES: the camera turns about the scene's vertical axis over the --frames\n"
+    "      --animation INDEX|NAME --time SECONDS: the file's animation at that instant (glTF 2.0: node transforms,\n"
+    "        skins, morph weights; before the first key the first value, after the last the last); --frames N\n"
+    "        --fps F (default 30): frame k at --time + k / F; --loop: the time wraps around the animation\n"
+    "      --camera INDEX|NAME: one of the file's cameras (default: its first; animated with its node)\n"
+    "      --camera-position X,Y,Z --camera-target X,Y,Z --camera-up X,Y,Z --fov DEGREES: a camera of your own\n"
+    "        (each unset one from the scene's camera; a position alone looks at the scene's centre)\n"
+    "      --azimuth DEGREES --elevation DEGREES: the camera turned about the scene's centre (vertical axis, then\n"
+    "        its own horizontal one)\n"
     "      --shadows on|off: shadow maps for directional lights (cascaded), spot lights and the most important\n"
     "        point lights (cubes); default on for scenes made to show them (builtin:shadows, builtin:particles,\n"
     "        the default look's sun) and when a --shadow-* option is given, else off\n"
     "        --shadow-map-size N (default 1024) --shadow-cascades 1-4 (default 4)\n"
     "        --shadow-point-budget N (default 4) --shadow-filter pcf|none (default pcf: 2x2 hardware comparison)\n"
     "      --size WxH (default 960x540) --out FILE(.png|.pfm) --exposure X --frames N --lights N\n"
+    "      --out 'DIR/f_{frame:04}.png': every frame of --frames N written, {frame} replaced by its number\n"
+    "        (from 0; {frame:0N} zero-padded to N digits); missing directories are created\n"
     "      --background auto|environment|transparent|#RRGGBB|R,G,B: the .png where nothing is drawn (auto: the\n"
     "        environment, else black; transparent: an RGBA .png, alpha 0 there; a colour: exactly that sRGB value)\n"
     "      --brdf auto|gltf|separable: glTF 2.0's BRDF (Appendix B) or the seeds' separable one, which redeferred and\n"
@@ -158,6 +174,17 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--shadow-filter", {"pcf|none", "2x2 hardware comparison or one tap (default pcf)"}},
     {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
+    {"--animation", {"INDEX|NAME", "play the file's animation (glTF node transforms, skins, morph weights)"}},
+    {"--time", {"SECONDS", "the animation's instant of the first frame (default 0)"}},
+    {"--fps", {"F", "frames per second of an animated sequence (default 30)"}},
+    {"--loop", {"", "the animation's time wraps around its duration"}},
+    {"--camera", {"INDEX|NAME", "one of the file's cameras (default: the first)"}},
+    {"--camera-position", {"X,Y,Z", "a camera of your own at this point"}},
+    {"--camera-target", {"X,Y,Z", "... looking at this point (default: the scene's centre)"}},
+    {"--camera-up", {"X,Y,Z", "... with this up direction (default +Y)"}},
+    {"--fov", {"DEGREES", "... and this vertical field of view"}},
+    {"--azimuth", {"DEGREES", "the camera turned about the scene's vertical axis"}},
+    {"--elevation", {"DEGREES", "the camera raised about the scene's centre"}},
     {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default pbr-neutral)"}},
     {"--brdf", {"auto|gltf|separable", "glTF 2.0's BRDF or the seeds' separable one (auto: glTF where the technique can, docs/SHADING.md)"}},
     {"--background", {"auto|environment|transparent|#RRGGBB|R,G,B", "what shows where nothing is drawn (default: the environment, else black)"}},
@@ -280,9 +307,11 @@ const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--
                                     "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
                                     "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
                                     "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
-                                    "--renderdoc-capture", "--brdf", "--background"};
+                                    "--renderdoc-capture", "--brdf", "--background", "--animation", "--time", "--fps",
+                                    "--camera", "--camera-position", "--camera-target", "--camera-up", "--fov", "--azimuth",
+                                    "--elevation"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
-                                    "--no-cluster-bounds", "--ibl-prefiltered", "--temporal"};
+                                    "--no-cluster-bounds", "--ibl-prefiltered", "--temporal", "--loop"};
 
 render::Background parseBackground(const std::string& text) {
     using Kind = render::Background::Kind;
@@ -311,12 +340,150 @@ render::Background parseBackground(const std::string& text) {
     return b;
 }
 
+namespace {
+
+double parseNumber(const std::string& text, const char* what, double lo, double hi) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end || !std::isfinite(v) || v < lo || v > hi)
+        throw UsageError(std::string(what) + " takes a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
+                         text + "'");
+    return v;
+}
+
+glm::vec3 parseVec3(const std::string& text, const char* what) {
+    std::stringstream list(text);
+    glm::vec3 v(0.0f);
+    int c = 0;
+    for (std::string item; std::getline(list, item, ','); ++c) {
+        if (c > 2) break;
+        char* end = nullptr;
+        v[c] = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end || !std::isfinite(v[c])) c = 4;
+    }
+    if (c != 3) throw UsageError(std::string(what) + " takes X,Y,Z (three finite numbers), got '" + text + "'");
+    return v;
+}
+
+// The camera asked for by --camera-position/-target/-up and --fov, each defaulting to `from`'s.
+assets::Camera customCamera(const RenderJob& job, const assets::Camera& from, const assets::AABB& bounds) {
+    const glm::vec3 eye = job.cameraPosition.value_or(from.eye());
+    const glm::vec3 target = job.cameraTarget ? *job.cameraTarget
+                             : job.cameraPosition ? bounds.center()
+                                                  : from.eye() + from.forward();
+    const glm::vec3 up = job.cameraUp.value_or(job.cameraPosition || job.cameraTarget ? glm::vec3(0.0f, 1.0f, 0.0f) : from.up());
+    const glm::vec3 forward = target - eye;
+    if (!(glm::length(forward) > 1e-6f)) throw UsageError("--camera-target must differ from the camera's position");
+    if (!(glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) > 1e-4f))
+        throw UsageError("--camera-up must not be parallel to the view direction (give --camera-up)");
+    const float yfov = job.fovDegrees ? float(*job.fovDegrees * 3.14159265358979 / 180.0) : from.yfov;
+    // Near and far planes around the scene as seen from the new position.
+    const float radius = std::max(0.5f * glm::length(bounds.size()), 1e-3f);
+    const float distance = glm::length(bounds.center() - eye);
+    const float znear = std::max(1e-3f * (distance + radius), 0.5f * (distance - radius));
+    assets::Camera c = assets::Camera::lookAlong(eye, forward, up, yfov, znear, std::numeric_limits<float>::infinity());
+    c.name = "command line";
+    return c;
+}
+
+// --azimuth turns the camera about the vertical axis through the scene's centre, --elevation
+// raises it about its own horizontal axis through that centre (positive: from above).
+assets::Camera turned(const assets::Camera& camera, const assets::AABB& bounds, double azimuth, double elevation) {
+    const glm::vec3 center = bounds.center();
+    assets::Camera c = camera.orbited(center, float(azimuth * 3.14159265358979 / 180.0));
+    if (elevation != 0.0) {
+        const glm::vec3 right = glm::normalize(glm::vec3(c.worldFromView[0]));
+        const glm::mat4 r = glm::rotate(glm::mat4(1.0f), float(-elevation * 3.14159265358979 / 180.0), right);
+        c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r * glm::translate(glm::mat4(1.0f), -center) * c.worldFromView;
+    }
+    return c;
+}
+
+}  // namespace
+
 void RenderJob::applyScene(assets::Scene& scene) {
     if (!environment.empty()) scene.environment = assets::loadEnvironment(environment);
+    // The animation and camera named: a name the file lacks is the command line's mistake.
+    try {
+        if (animated) {
+            if (scene.animations.empty()) throw UsageError("--animation, --time, --fps and --loop: " + spec + " has no animation");
+            animation = assets::findAnimation(scene, animationName.empty() ? "0" : animationName);
+        }
+        poseFrame(scene, 0);
+        if (!cameraName.empty()) {
+            scene.cameraIndex = assets::findCamera(scene, cameraName);
+            scene.camera = scene.cameras[size_t(scene.cameraIndex)];
+        }
+    } catch (const assets::AssetError& e) {
+        throw UsageError(e.what());
+    }
+    if (cameraPosition || cameraTarget || cameraUp || fovDegrees) {
+        scene.camera = customCamera(*this, *scene.camera, scene.bounds);
+        scene.cameraIndex = -1;  // not moved by the animation
+    }
+    if (azimuthDegrees != 0.0 || elevationDegrees != 0.0) {
+        scene.camera = turned(*scene.camera, scene.bounds, azimuthDegrees, elevationDegrees);
+        scene.cameraIndex = -1;
+    }
     defaultLookApplied = defaultLook && assets::useDefaultSkyAndSun(scene);
     if (defaultLookApplied) settings.iblPrefiltered = true;
     if (!shadowsGiven) settings.shadows.enabled = scene.showsShadows;
 }
+
+bool RenderJob::poseFrame(assets::Scene& scene, uint32_t k) const {
+    if (animation < 0) return false;
+    assets::poseScene(scene, {.animation = animation, .seconds = time + double(k) / fps, .loop = loop});
+    return true;
+}
+
+std::string RenderJob::outPath(uint32_t k) const {
+    if (!sequence) return out;
+    const size_t open = out.find("{frame"), close = out.find('}', open);
+    const std::string field = out.substr(open, close - open + 1);  // {frame} or {frame:0N}
+    std::string number = std::to_string(k);
+    if (field.size() > 7) {
+        const size_t width = size_t(std::stoul(field.substr(8, field.size() - 9)));
+        if (number.size() < width) number = std::string(width - number.size(), '0') + number;
+    }
+    return out.substr(0, open) + number + out.substr(close + 1);
+}
+
+namespace {
+// --animation, --time, --fps, --loop, the camera options and --out's {frame} field.
+void parseAnimationAndCamera(const Args& a, RenderJob& job) {
+    auto opt = [&](const char* k) { auto it = a.options.find(k); return it == a.options.end() ? std::string() : it->second; };
+    job.animated = a.options.count("--animation") || a.options.count("--time") || a.options.count("--fps") || a.options.count("--loop");
+    job.animationName = opt("--animation");
+    if (a.options.count("--time")) job.time = parseNumber(opt("--time"), "--time", -1e6, 1e6);
+    if (a.options.count("--fps")) job.fps = parseNumber(opt("--fps"), "--fps", 1e-3, 1e4);
+    job.loop = a.options.count("--loop") > 0;
+    job.cameraName = opt("--camera");
+    if (a.options.count("--camera-position")) job.cameraPosition = parseVec3(opt("--camera-position"), "--camera-position");
+    if (a.options.count("--camera-target")) job.cameraTarget = parseVec3(opt("--camera-target"), "--camera-target");
+    if (a.options.count("--camera-up")) job.cameraUp = parseVec3(opt("--camera-up"), "--camera-up");
+    if (job.cameraUp && !(glm::length(*job.cameraUp) > 0.0f)) throw UsageError("--camera-up must not be 0,0,0");
+    if (a.options.count("--fov")) job.fovDegrees = float(parseNumber(opt("--fov"), "--fov", 0.01, 179.0));
+    if (a.options.count("--azimuth")) job.azimuthDegrees = parseNumber(opt("--azimuth"), "--azimuth", -3600, 3600);
+    if (a.options.count("--elevation")) job.elevationDegrees = parseNumber(opt("--elevation"), "--elevation", -89.9, 89.9);
+    if (!job.cameraName.empty() && (job.cameraPosition || job.cameraTarget || job.cameraUp || job.fovDegrees))
+        throw UsageError("--camera picks a camera of the file; --camera-position/-target/-up and --fov make one: give one or the other");
+    // --out 'dir/f_{frame:04}.png': every frame; a field other than {frame} or {frame:0N} is a mistake.
+    const size_t open = job.out.find('{');
+    if (open != std::string::npos) {
+        const size_t close = job.out.find('}', open);
+        const std::string field = close == std::string::npos ? job.out.substr(open) : job.out.substr(open, close - open + 1);
+        const bool padded = field.size() == 11 && field.rfind("{frame:0", 0) == 0 && std::isdigit((unsigned char)field[8]) &&
+                            std::isdigit((unsigned char)field[9]) && field[10] == '}';
+        const bool padded1 = field.size() == 10 && field.rfind("{frame:0", 0) == 0 && std::isdigit((unsigned char)field[8]) &&
+                             field[9] == '}';
+        if (field != "{frame}" && !padded && !padded1)
+            throw UsageError("--out: the frame field is {frame} or {frame:0N} (N digits, zero padded), got '" + field + "'");
+        if (job.out.find('{', open + 1) != std::string::npos) throw UsageError("--out: one {frame} field at most");
+        if (job.window) throw UsageError("--out with {frame} writes files: not with --window");
+        job.sequence = true;
+    }
+}
+}  // namespace
 
 RenderJob renderJob(const Args& a) {
     if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
@@ -436,11 +603,13 @@ RenderJob renderJob(const Args& a) {
         throw UsageError("--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
                          "clustered-deferred, visibility-buffer)");
     const std::string dumpGraph = opt("--dump-graph", "");
-    return RenderJob{.spec = spec, .environment = environment, .defaultLook = !quickStart && !lightingAsked,
+    RenderJob job{.spec = spec, .environment = environment, .defaultLook = !quickStart && !lightingAsked,
                      .shadowsGiven = shadowsGiven, .settings = s, .director = director, .window = window, .backend = backend,
                      .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
                      .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph,
                      .pipelineCache = opt("--pipeline-cache", ""), .renderdocCapture = opt("--renderdoc-capture", "")};
+    parseAnimationAndCamera(a, job);
+    return job;
 
 }
 

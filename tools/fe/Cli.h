@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
+#include <optional>
+
 #include "assets/BuiltinScenes.h"
 #include "integration/RenderDirector.h"
 #include "render/RenderSettings.h"
@@ -72,10 +76,30 @@ struct RenderJob {
     std::string dumpGraph;
     std::string pipelineCache;  // --pipeline-cache
     std::string renderdocCapture;  // --renderdoc-capture
+    // Animation: --animation INDEX|NAME (empty: none; --time or --fps alone: the first), the
+    // instant of the first frame, frames per second of a sequence, --loop.
+    std::string animationName;
+    bool animated = false;
+    int32_t animation = -1;  // resolved by applyScene
+    double time = 0.0, fps = 30.0;
+    bool loop = false;
+    // Cameras: --camera INDEX|NAME, or one made of --camera-position/-target/-up and --fov (each
+    // defaulting to the scene's camera), turned by --azimuth and --elevation about the scene.
+    std::string cameraName;
+    std::optional<glm::vec3> cameraPosition, cameraTarget, cameraUp;
+    std::optional<float> fovDegrees;
+    double azimuthDegrees = 0.0, elevationDegrees = 0.0;
+    // --out with "{frame}" or "{frame:0N}": every frame written, frame k to outPath(k).
+    bool sequence = false;
 
     // What the loaded scene decides: its --environment (or the quick start's), the default look,
-    // and shadows unless --shadows was given.
+    // shadows unless --shadows was given, the animation's start pose and the camera.
     void applyScene(assets::Scene& scene);
+    // Frame k (from 0) of the output: the scene posed at time + k / fps (no-op unless animated).
+    // Returns whether it moved.
+    bool poseFrame(assets::Scene& scene, uint32_t k) const;
+    // The file frame k is written to (--out, its {frame} field replaced by k).
+    std::string outPath(uint32_t k) const;
 };
 RenderJob renderJob(const Args& a);
 

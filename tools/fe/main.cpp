@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -129,6 +130,23 @@ void printPassTimes(render::SceneRenderer& renderer, const std::vector<std::stri
 }
 
 
+// The output files can be written, before anything is rendered: their directories are created,
+// and a path that cannot be opened for writing is an error saying why.
+void checkWritable(const cli::RenderJob& job, uint32_t frames) {
+    for (uint32_t k : {0u, frames - 1}) {
+        const std::filesystem::path path(job.outPath(k));
+        std::error_code ec;
+        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+        if (ec) throw gdi::Error("cannot create the directory " + path.parent_path().string() + " for --out: " + ec.message());
+        if (std::filesystem::is_directory(path, ec)) throw gdi::Error("--out " + path.string() + " is a directory");
+        const bool existed = std::filesystem::exists(path, ec);
+        std::ofstream probe(path, std::ios::app);
+        if (!probe) throw gdi::Error("cannot write " + path.string() + ": " + std::strerror(errno));
+        probe.close();
+        if (!existed) std::filesystem::remove(path, ec);
+    }
+}
+
 int cmdRender(const Args& a) {
     cli::RenderJob job = cli::renderJob(a);
     const std::string& spec = job.spec;
@@ -146,6 +164,7 @@ int cmdRender(const Args& a) {
         throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) + " warning(s), the first: " +
                                  scene.warnings.front());
     job.applyScene(scene);
+    checkWritable(job, frames);
     // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
     std::unique_ptr<gdi::FrameCapture> capture;
     if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
@@ -173,18 +192,28 @@ int cmdRender(const Args& a) {
     std::vector<std::string> passOrder;  // execution order
     bool open = true;
     uint32_t presented = 0, lastFrame = 0;
-    // What changes from frame to frame: builtin:lights animates (light positions are a function of
-    // the frame index); --orbit turns the camera about the scene's vertical axis over the frames.
+    // What changes from frame to frame: an --animation poses the scene at its frame's instant;
+    // builtin:lights animates (light positions are a function of the frame index); --orbit turns
+    // the camera about the scene's vertical axis over the frames.
     auto animate = [&](render::SceneRenderer& r, uint32_t f) {
+        if (job.poseFrame(scene, f)) r.updatePose();
         if (spec == "builtin:lights") r.updateLights(assets::lightsSceneLights(builtin.lights, f));
         if (orbitDegrees != 0.0) {
             const double t = frames > 1 ? double(f) / double(frames) : 0.0;
             r.setCamera(scene.camera->orbited(scene.bounds.center(), float(orbitDegrees * t * 3.14159265358979 / 180.0)));
         }
     };
-    for (uint32_t f = 0; open && (untilClosed || f < frames + (frames > 1 ? 1 : 0)); ++f) {  // one warm-up frame when timing
+    // A sequence (--out with {frame}) writes each frame as it is rendered.
+    auto writeFrame = [&](render::SceneRenderer& r, const std::string& path) {
+        if (pfm) return gdi::writePfm(r.readOutput(), path);
+        gdi::writePng(r.readDisplay(), path, 1.0f, s.background.kind == render::Background::Kind::Transparent);
+    };
+    // One warm-up frame when timing (frame 0 again), so frame k of the output is loop index k + 1.
+    const uint32_t warmup = frames > 1 ? 1 : 0;
+    for (uint32_t f = 0; open && (untilClosed || f < frames + warmup); ++f) {
         auto t0 = std::chrono::steady_clock::now();
-        animate(renderer, f);
+        const uint32_t k = f < warmup ? 0 : f - warmup;
+        animate(renderer, k);
         lastFrame = f;
         if (capture && f == 0) capture->begin(*device);
         renderer.renderFrame();
@@ -192,7 +221,8 @@ int cmdRender(const Args& a) {
         if (capture && f == 0) captured = capture->end(*device);
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         if (window) open = device->present(renderer.displayTexture()), ++presented;
-        if (frames > 1 && f == 0) continue;
+        if (f < warmup) continue;
+        if (job.sequence) writeFrame(renderer, job.outPath(k));
         cpu.push_back(ms);
         for (auto& t : timings) {
             if (!gpu.count(t.name)) passOrder.push_back(t.name);
@@ -205,7 +235,9 @@ int cmdRender(const Args& a) {
                                       reinterpret_cast<const float*>(img.data.data() + img.data.size())))
         if (!std::isfinite(v)) throw gdi::Error("the rendered image contains NaN or infinite values");
     const bool transparent = s.background.kind == render::Background::Kind::Transparent;
-    if (pfm) gdi::writePfm(img, out);
+    if (job.sequence) {
+        if (!pfm) for (const std::string& w : render::frameWarnings(scene, *scene.camera, s, renderer.readDisplay())) spdlog::warn("{}: {}", spec, w);
+    } else if (pfm) gdi::writePfm(img, out);
     else {
         const gdi::Image display = renderer.readDisplay();
         gdi::writePng(display, out, 1.0f, transparent);
@@ -282,7 +314,8 @@ int cmdRender(const Args& a) {
     }
     if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
     if (!captured.empty()) std::cout << "RenderDoc capture of frame 0: " << captured << "\n";
-    std::cout              << "wrote " << out << "\n";
+    if (job.sequence) std::cout << "wrote " << frames << " frame(s): " << job.outPath(0) << " ... " << job.outPath(frames - 1) << "\n";
+    else std::cout << "wrote " << out << "\n";
     return 0;
 }
 

@@ -1,0 +1,35 @@
+// Layer 7: glTF skins and morph targets on the device. Every animated primitive
+// (GpuScene::deformations) has vertices of its own beside the rest pose; the "deform meshes"
+// pass, first in the frame, writes them: the rest pose morphed by the instance's weights and
+// skinned by its joint matrices (assets::MeshInstance, kept by assets::poseScene), one compute
+// dispatch each (scene/mesh_deform.comp). Every later pass (each technique, the shadow maps,
+// the visibility buffer's resolve, light assignment) reads those vertices as it reads any, so
+// they all see the same deformed mesh, and captures hold the dispatches like any other work.
+#pragma once
+#include "fe/gdi/Device.h"
+#include "fe/gdi/DeviceObjects.h"
+#include "graph/RenderGraph.h"
+#include "render/TechniqueRenderer.h"
+
+namespace fe::render {
+
+class MeshDeformation {
+public:
+    // Throws gdi::Error when the device has no compute shaders (no backend of ours lacks them).
+    explicit MeshDeformation(TechniqueContext& context);
+    MeshDeformation(const MeshDeformation&) = delete;
+    MeshDeformation& operator=(const MeshDeformation&) = delete;
+
+    // Adds the pass; it uploads the instances' current joints and weights every frame.
+    void declare(graph::RenderGraph& graph);
+
+private:
+    void record(gdi::CommandList& cmd);
+
+    gdi::DeviceObjects objects_;
+    TechniqueContext& ctx_;
+    gdi::ShaderHandle shader_;
+    gdi::PipelineHandle pipeline_;
+};
+
+}  // namespace fe::render
