@@ -18,25 +18,29 @@
 //   stb_image), alphaMode / alphaCutoff / doubleSided, KHR_materials_emissive_strength (folded
 //   into emissiveFactor), KHR_materials_unlit (Material::unlit).
 // - KHR_lights_punctual (position = node world translation, direction = node world -Z).
-// - The first perspective camera met in depth-first node order, with its node's world transform
-//   (scale removed); zfar absent = infinite.
+// - Every camera (perspective and orthographic) in depth-first node order (Scene::cameras), with
+//   its node's world transform (scale removed); the first is Scene::camera. zfar absent = infinite.
 // - EXT_mesh_gpu_instancing (one MeshInstance per instance).
 // - Particle emitters: a node whose extras hold "fe_emitter" gets a ParticleEmitter at its world
 //   position (keys in GltfLoader.cpp, addEmitter; docs/PARTICLES.md).
-// - Skins: the rest pose (joints at their node transforms) is skinned once on the CPU into a
-//   world-space mesh; morph targets: the mesh's default weights are applied. Animations are
-//   ignored. Each of these adds a warning.
+// - The node hierarchy (Scene::nodes), skins (JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1, u8/u16
+//   joints, float or normalized weights), morph targets (POSITION, NORMAL, TANGENT deltas) and
+//   animations (translation, rotation, scale and weights channels; LINEAR, STEP, CUBICSPLINE),
+//   all through sparse accessors where the file has them. Meshes keep their rest pose; the scene
+//   is returned posed at rest (assets::poseScene: joint matrices, morph weights from node.weights
+//   or mesh.weights) and assets/Animation.h moves it to any instant of an animation.
 //
-// Warnings (Scene::warnings) rather than errors: ignored extensions that are not required
-// (KHR_texture_transform, KHR_materials_transmission, ...), texCoord 1 references (sampled with
-// uv0), COLOR_0, orthographic cameras, skipped primitive modes, skins/morphs/animations.
+// Warnings (Scene::warnings) rather than errors: ignored extensions that are not required,
+// skipped primitive modes, cameras with invalid parameters, animation channels glTF does not
+// allow (a TRS channel on a node with a matrix) or we do not read (KHR_animation_pointer).
 //
 // Errors: AssetError, message "<path>: <element>: <what>": missing / unreadable file, .glb
 // without the glTF magic, malformed JSON (tinygltf's message), missing buffer file, accessor or
 // buffer view out of bounds, index out of range, non-finite positions or transforms,
 // unsupported component types, unsupported required extensions ("unsupported required extension
 // KHR_draco_mesh_compression"), images that are missing or fail to decode, broken node
-// hierarchies (cycles, two parents), dangling indices, JSON nested deeper than 256 levels
+// hierarchies (cycles, two parents), dangling indices, skins naming joints they lack, animation
+// samplers with decreasing key times or outputs that do not fit their keys, JSON nested deeper than 256 levels
 // (tinygltf would overflow the stack), accessors without a buffer view above 2^24 components,
 // images above 2^28 pixels. Bad input never crashes or hangs (fuzzed under ASan/UBSan).
 // Resources are looked up next to the glTF file only, and only regular files are read.

@@ -479,7 +479,8 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
     const glm::uvec2 background = background_->displayConstants();
-    fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, background.x, background.y, 0u);
+    fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, background.x, background.y,
+                            cam.orthographic ? 1u : 0u);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);
     const uint32_t iw = (s.width + s.illumScale - 1) / s.illumScale, ih = (s.height + s.illumScale - 1) / s.illumScale;
     fc.illumViewport = glm::vec4(iw, ih, 1.0f / iw, 1.0f / ih);

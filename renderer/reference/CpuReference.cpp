@@ -299,7 +299,6 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     // The camera's aspect ratio when it has one, else the viewport's, as the renderer projects
     // (glTF 2.0 3.10.3: a given aspectRatio is the field of view's).
     const double aspect = projectionAspect(camera, float(width) / float(height));
-    if (camera.orthographic) throw std::invalid_argument("renderReference: orthographic cameras are not traced yet");
     // Eye rays from the projection and the view's rotation alone (camera-relative, as the GPU
     // renders): a float view-projection holds the eye's distance from the origin in its
     // translation, which 1e5 from the origin moved these rays by 2 % of a pixel's radiance.
@@ -307,6 +306,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     const glm::dmat4 invProjRotation =
         glm::inverse(glm::dmat4(projection(camera, float(aspect))) * rotation);
     const glm::dvec3 eye(camera.eye());
+    // The nearest a hit may be along a ray: half the near plane from the eye, or from the near
+    // plane itself for an orthographic camera's rays, which start there.
+    const double nearestHit = camera.orthographic ? 0.0 : camera.znear * 0.5;
 
     // The radiance a surface sends to the eye and its alpha: `shadows` (the opaque surfaces)
     // traces shadow rays for the casting lights, recording occluded ones in *occludedBits;
@@ -321,7 +323,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         glm::dvec3 exit{0.0};
         double lod = 0.0;
     };
-    auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance, const glm::dvec3& dir,
+    auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance, const glm::dvec3& origin, const glm::dvec3& dir,
                      bool shadows, uint32_t* occludedBits) {
         Shaded out;
         const WorldTriangle* hit = &tri;
@@ -378,7 +380,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             return out;
         }
         shading::SurfacePoint s;
-        s.P = eye + dir * distance;
+        s.P = origin + dir * distance;
         s.n = n;
         s.wo = -dir;
         s.baseColor = glm::dvec3(bc);
@@ -455,7 +457,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         for (const WorldTriangle& tri : blended) {
             double b1, b2;
             const double t = intersect(tri, origin, dir, b1, b2);
-            if (!(t > camera.znear * 0.5) || t >= limit) continue;
+            if (!(t > nearestHit) || t >= limit) continue;
             const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
             const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
             if (!scene.materials[tri.material].doubleSided && !front) continue;
@@ -463,7 +465,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         }
         std::sort(layers.begin(), layers.end(), [](const Layer& a, const Layer& b) { return a.t > b.t; });
         for (const Layer& l : layers) {
-            const Shaded s = shade(*l.tri, l.b1, l.b2, l.t, dir, false, nullptr);
+            const Shaded s = shade(*l.tri, l.b1, l.b2, l.t, origin, dir, false, nullptr);
             const double a = std::clamp(s.alpha, 0.0, 1.0);
             radiance = s.radiance * a + radiance * (1.0 - a);
         }
@@ -475,17 +477,17 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         double t = std::numeric_limits<double>::infinity(), b1 = 0, b2 = 0;
         const WorldTriangle* tri = nullptr;
     };
-    auto nearestTransmissive = [&](const glm::dvec3& dir, double limit) {
+    auto nearestTransmissive = [&](const glm::dvec3& origin, const glm::dvec3& dir, double limit) {
         Hit best;
         best.t = limit;
         const glm::dvec3 invD = 1.0 / dir;
         for (const SurfaceBox& box : transmissiveBoxes) {
-            if (!hitsBox(box, eye, invD, best.t)) continue;
+            if (!hitsBox(box, origin, invD, best.t)) continue;
             for (size_t i = box.first; i < box.first + box.count; ++i) {
                 const WorldTriangle& tri = transmissive[i];
                 double b1, b2;
-                const double t = intersect(tri, eye, dir, b1, b2);
-                if (!(t > camera.znear * 0.5) || t >= best.t) continue;
+                const double t = intersect(tri, origin, dir, b1, b2);
+                if (!(t > nearestHit) || t >= best.t) continue;
                 const glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
                 const bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
                 if (!scene.materials[tri.material].doubleSided && !front) continue;
@@ -495,10 +497,19 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         return best;
     };
     const glm::dmat4 projRotation = glm::inverse(invProjRotation);
-    auto pixelDirection = [&](uint32_t x, uint32_t y) {
+    // The ray of a pixel centre: from the eye, or for an orthographic camera from the pixel's
+    // point on the near plane along the view axis.
+    struct Ray {
+        glm::dvec3 origin, dir;
+    };
+    auto pixelRay = [&](uint32_t x, uint32_t y) {
         glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+        if (camera.orthographic) {
+            const glm::dvec4 nearPoint = invProjRotation * glm::dvec4(ndc, 0.0, 1.0);
+            return Ray{eye + glm::dvec3(nearPoint) / nearPoint.w, glm::dvec3(camera.forward())};
+        }
         glm::dvec4 farPoint = invProjRotation * glm::dvec4(ndc, 0.5, 1.0);
-        return glm::normalize(glm::dvec3(farPoint) / farPoint.w);
+        return Ray{eye, glm::normalize(glm::dvec3(farPoint) / farPoint.w)};
     };
 
     // Every pixel is its own ray and writes only its own entries, and everything the rays read is
@@ -509,18 +520,18 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     std::vector<double> opaqueDepth(size_t(width) * height, std::numeric_limits<double>::infinity());
     auto row = [&](uint32_t y) {
         for (uint32_t x = 0; x < width; ++x) {
-            const glm::dvec3 dir = pixelDirection(x, y);
+            const auto [origin, dir] = pixelRay(x, y);
             glm::dvec3 invD = 1.0 / dir;
             double best = std::numeric_limits<double>::infinity();
             const WorldTriangle* hit = nullptr;
             double hb1 = 0, hb2 = 0;
             for (const SurfaceBox& box : boxes) {
-                if (!hitsBox(box, eye, invD, best)) continue;
+                if (!hitsBox(box, origin, invD, best)) continue;
                 for (size_t i = box.first; i < box.first + box.count; ++i) {
                     const WorldTriangle& tri = tris[i];
                     double b1, b2;
-                    double t = intersect(tri, eye, dir, b1, b2);
-                    if (!(t > camera.znear * 0.5) || t >= best) continue;
+                    double t = intersect(tri, origin, dir, b1, b2);
+                    if (!(t > nearestHit) || t >= best) continue;
                     const assets::Material& mat = scene.materials[tri.material];
                     // Back faces are culled for single-sided materials, as on the GPU.
                     glm::dvec3 ng = glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
@@ -540,12 +551,12 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 if (scene.environment) radiance = scene.environment->radiance(dir);
             } else {
                 out.surface[pixel] = hit->surface;
-                const Shaded opaque = shade(*hit, hb1, hb2, best, dir, true, &out.occluded[pixel]);
+                const Shaded opaque = shade(*hit, hb1, hb2, best, origin, dir, true, &out.occluded[pixel]);
                 out.textured[pixel] = opaque.textured;
                 radiance = opaque.radiance;
             }
             opaqueDepth[pixel] = best;
-            out.radiance[pixel] = transmissive.empty() ? composite(radiance, eye, dir, best) : radiance;
+            out.radiance[pixel] = transmissive.empty() ? composite(radiance, origin, dir, best) : radiance;
         }
     };
     forEachRowInParallel(height, row);
@@ -555,12 +566,12 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     auto transmissionRow = [&](uint32_t y) {
         for (uint32_t x = 0; x < width; ++x) {
             const size_t pixel = size_t(y) * width + x;
-            const glm::dvec3 dir = pixelDirection(x, y);
+            const auto [origin, dir] = pixelRay(x, y);
             double limit = opaqueDepth[pixel];
             glm::dvec3 radiance = out.radiance[pixel];
-            const Hit h = nearestTransmissive(dir, limit);
+            const Hit h = nearestTransmissive(origin, dir, limit);
             if (h.tri) {
-                const Shaded s = shade(*h.tri, h.b1, h.b2, h.t, dir, false, nullptr);
+                const Shaded s = shade(*h.tri, h.b1, h.b2, h.t, origin, dir, false, nullptr);
                 // Where the light leaves the volume, on the screen (the GPU's pixel-centre convention).
                 const glm::dvec4 clip = projRotation * glm::dvec4(s.exit - eye, 1.0);
                 const glm::dvec2 uv = glm::dvec2(clip) / clip.w * 0.5 + 0.5;
@@ -569,7 +580,7 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 out.surface[pixel] = h.tri->surface;
                 out.textured[pixel] = s.textured;
             }
-            out.radiance[pixel] = composite(radiance, eye, dir, limit);
+            out.radiance[pixel] = composite(radiance, origin, dir, limit);
         }
     };
     forEachRowInParallel(height, transmissionRow);

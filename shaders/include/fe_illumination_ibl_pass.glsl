@@ -31,7 +31,7 @@ void main() {
     const vec4 g1 = texelFetch(gb1, p, 0);
     const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
     const vec3 P = frame.cameraPosition.xyz + Pe;
-    IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), normalize(-Pe), g1.a, frame.counts.z);
+    IlluminationSums acc = feEnvironmentSums(normalize(g1.xyz), feViewDirection(Pe), g1.a, frame.counts.z);
     const float occlusion = texture(gb3, (vec2(p) + 0.5) * frame.viewport.zw).r;
     acc.Ldg *= occlusion;
     acc.Lsg1 *= occlusion;

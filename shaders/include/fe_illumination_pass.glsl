@@ -22,7 +22,7 @@ void main() {
     const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
     vec3 P = frame.cameraPosition.xyz + Pe;
     vec3 n = normalize(g1.xyz);
-    vec3 wo = normalize(-Pe);
+    vec3 wo = feViewDirection(Pe);
     IlluminationSums acc;
     acc.Ldg = vec3(0.0);
     acc.Lsg1 = vec3(0.0);

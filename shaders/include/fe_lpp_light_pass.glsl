@@ -16,7 +16,7 @@ void main() {
     vec3 n = feUnpackNormal(t);
     const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
     vec3 P = frame.cameraPosition.xyz + Pe;  // the eye ray at the stored depth
-    vec3 wo = normalize(-Pe);
+    vec3 wo = feViewDirection(Pe);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
     SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), Pe);
 #ifdef FE_SHADOWED

@@ -17,7 +17,7 @@ void main() {
         return;
     }
     vec4 light = texelFetch(lightBuffer, ivec2(gl_FragCoord.xy), 0);
-    vec3 wo = normalize(-vEye);
+    vec3 wo = feViewDirection(vEye);
     float r = feClampRoughness(m.roughness);
     float k = (r + 1.0) * (r + 1.0) / 8.0;
     float NoV = max(dot(m.n, wo), 1e-4);

@@ -226,7 +226,7 @@ SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {
     s.P = frame.cameraPosition.xyz + Pe;
     s.Pe = Pe;
     s.n = m.n;
-    s.wo = normalize(-Pe);
+    s.wo = feViewDirection(Pe);
     s.baseColor = m.baseColor;
     s.metallic = m.metallic;
     s.roughness = m.roughness;

@@ -49,7 +49,7 @@ void main() {
     const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
     vec3 P = frame.cameraPosition.xyz + Pe;
     vec3 n = normalize(g1.xyz);
-    vec3 wo = normalize(-Pe);
+    vec3 wo = feViewDirection(Pe);
     acc.Ldg = texelFetch(iLdg, p, 0).rgb;
     acc.Lsg1 = texelFetch(iLsg1, p, 0).rgb;
     acc.Lsg2 = texelFetch(iLsg2, p, 0).rgb;

@@ -63,8 +63,14 @@ layout(binding = FE_SLOT_FRAME, std140) uniform FrameBlock {
     vec4 clusters;        // the light cluster grid's slicing (fe_clusters.glsl): x near, y (slices - 1) / ln(far / split), z far, w near split
     mat4 viewProjFromEye;     // clip from eye space (world - cameraPosition.xyz): camera-relative rendering
     mat4 invViewProjFromEye;  // and back
-    uvec4 shading;            // x: the BRDF (FE_BRDF_GLTF or FE_BRDF_SEPARABLE)
+    uvec4 shading;            // x: the BRDF (FE_BRDF_GLTF or FE_BRDF_SEPARABLE), w: 1 = an orthographic camera
 } frame;
+
+// w_o, towards the viewer from the eye-space position Pe: back to the eye, or along the view axis
+// for an orthographic camera (whose rays are parallel).
+vec3 feViewDirection(vec3 Pe) {
+    return frame.shading.w == 1u ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]) : normalize(-Pe);
+}
 
 // The surface's BRDF factors under the frame's shading model.
 SurfaceBrdf fePrepareBrdf(SurfacePoint s) { return fePrepareBrdf(s, frame.shading.x); }
@@ -150,7 +156,7 @@ SurfacePoint feGBufferSurface(ivec2 p, float depth, vec4 g0, vec4 g1) {
     s.P = frame.cameraPosition.xyz + eye;
     s.Pe = eye;
     s.n = normalize(g1.xyz);
-    s.wo = normalize(-eye);
+    s.wo = feViewDirection(eye);
     s.baseColor = g0.rgb;
     s.metallic = g0.a;
     s.roughness = g1.a;

@@ -37,7 +37,7 @@ void main() {
         const vec3 Pe = feEyeFromDepth(vec2(p) + 0.5, depth);  // camera-relative
         const vec3 P = frame.cameraPosition.xyz + Pe;
         const vec3 n = normalize(g1.xyz);
-        const vec3 wo = normalize(-Pe);
+        const vec3 wo = feViewDirection(Pe);
         const RoughnessTerms terms = feRoughnessTerms(g1.a);
         const uint count = feTileLightCount();
         for (uint k = 0u; k < count; ++k) {

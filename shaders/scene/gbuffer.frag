@@ -16,7 +16,7 @@ void main() {
     if (feAlphaDiscard(m.alpha)) discard;
     outGb0 = vec4(m.baseColor, m.metallic);
     outGb1 = vec4(m.n, m.roughness);
-    const float NoV = clamp(dot(m.n, normalize(-vEye)), 0.0, 1.0);
+    const float NoV = clamp(dot(m.n, feViewDirection(vEye)), 0.0, 1.0);
     outGb2 = m.unlit ? vec4(m.baseColor, 2.0) : vec4(m.emissive, NoV);
 #ifdef FE_GBUFFER_OCCLUSION
     outGb3 = vec4(feOcclusion(vUv));

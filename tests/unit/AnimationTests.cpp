@@ -18,6 +18,7 @@
 #include "assets/GltfLoader.h"
 #include "integration/SceneRenderer.h"
 #include "reference/AnimationReference.h"
+#include "reference/CpuReference.h"
 
 using namespace fe;
 
@@ -215,3 +216,132 @@ TEST_P(MeshDeformationTest, DeviceDeformationMatchesTheReference) {
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(MeshDeformationTest);
+
+namespace {
+
+gdi::Image referenceImage(const render::ReferenceImage& ref) {
+    std::vector<std::array<float, 4>> texels;
+    for (const glm::dvec3& v : ref.radiance) texels.push_back({float(v.x), float(v.y), float(v.z), 1.0f});
+    return gdi::Image::fromTexels(ref.width, ref.height, gdi::Format::RGBA32F, texels);
+}
+
+// Pixels (off the reference's silhouettes) whose radiance differs by more than 1 % (0.01 floor),
+// and pixels whose coverage differs, as fractions of the image.
+struct Agreement {
+    double radiance = 0, coverage = 0;
+};
+Agreement agreement(const gdi::Image& gpu, const render::ReferenceImage& ref) {
+    const gdi::Image cpu = referenceImage(ref);
+    uint32_t radiance = 0, coverage = 0;
+    for (uint32_t y = 0; y < gpu.height; ++y)
+        for (uint32_t x = 0; x < gpu.width; ++x) {
+            if (ref.nearEdge(x, y)) continue;
+            const auto a = gpu.texel(x, y), b = cpu.texel(x, y);
+            const bool covered = a[0] + a[1] + a[2] > 0.0f, expected = ref.surface[size_t(y) * gpu.width + x] >= 0;
+            coverage += covered != expected;
+            bool bad = false;
+            for (int c = 0; c < 3; ++c)
+                bad = bad || !(std::abs(a[c] - b[c]) <= 0.01 * std::max({std::abs(double(a[c])), std::abs(double(b[c])), 0.01}));
+            radiance += bad;
+        }
+    const double n = double(gpu.width) * gpu.height;
+    return {radiance / n, coverage / n};
+}
+
+// The pixel box the glTF 2.0 specification's projection (3.10.3, written out here on its own)
+// puts the scene's vertices in: y up in NDC, pixel rows from the top.
+struct PixelBox {
+    double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+};
+PixelBox specBox(const assets::Scene& scene, const assets::Camera& camera, uint32_t w, uint32_t h) {
+    PixelBox b;
+    const glm::dmat4 view = glm::inverse(glm::dmat4(camera.worldFromView));
+    for (const assets::MeshInstance& inst : scene.instances)
+        for (const assets::Primitive& p : scene.meshes[inst.meshIndex].primitives)
+            for (const assets::Vertex& v : p.vertices) {
+                const glm::dvec4 e = view * glm::dmat4(inst.world) * glm::dvec4(glm::dvec3(v.position), 1.0);
+                double nx, ny;
+                if (camera.orthographic) {
+                    nx = e.x / camera.orthographic->x;
+                    ny = e.y / camera.orthographic->y;
+                } else {
+                    const double a = camera.aspectRatio ? double(*camera.aspectRatio) : double(w) / h;
+                    const double t = std::tan(0.5 * camera.yfov);
+                    nx = e.x / (a * t * -e.z);
+                    ny = e.y / (t * -e.z);
+                }
+                const double px = (nx * 0.5 + 0.5) * w, py = (0.5 - ny * 0.5) * h;
+                b.x0 = std::min(b.x0, px), b.x1 = std::max(b.x1, px), b.y0 = std::min(b.y0, py), b.y1 = std::max(b.y1, py);
+            }
+    return b;
+}
+PixelBox coveredBox(const gdi::Image& image) {
+    PixelBox b;
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const auto t = image.texel(x, y);
+            if (t[0] + t[1] + t[2] <= 0.0f) continue;
+            b.x0 = std::min(b.x0, double(x)), b.x1 = std::max(b.x1, x + 1.0), b.y0 = std::min(b.y0, double(y)),
+            b.y1 = std::max(b.y1, y + 1.0);
+        }
+    return b;
+}
+
+}  // namespace
+
+// What every technique draws of an animated model is what the reference traces of it: the
+// deformation reaches the G-buffer and visibility-buffer techniques as it reaches forward.
+class AnimatedRender : public fe::testing::BackendTest {};
+
+TEST_P(AnimatedRender, PosedModelsMatchTheReferenceOnEveryTechniqueKind) {
+    FE_REQUIRE_ASSETS();
+    struct Posed {
+        const char* path;
+        const char* animation;
+        double seconds;
+        std::vector<const char*> techniques;
+    };
+    for (const Posed& c : {Posed{"Fox/glTF/Fox.gltf", "Walk", 0.43, {"forward", "deferred", "visibility-buffer"}},
+                           Posed{"RiggedSimple/glTF/RiggedSimple.gltf", "0", 0.6, {"forward"}},
+                           Posed{"SimpleMorph/glTF/SimpleMorph.gltf", "0", 1.1, {"forward"}},
+                           Posed{"CesiumMilkTruck/glTF/CesiumMilkTruck.gltf", "Wheels", 0.5, {"forward"}}}) {
+        assets::Scene scene = loadSample(c.path);
+        // Untextured: texture filtering differs between rasterizer and ray tracer, and the
+        // deformed normals' shading is what is compared.
+        for (assets::Material& m : scene.materials) m.baseColorTexture = {};
+        assets::poseScene(scene, {.animation = assets::findAnimation(scene, c.animation), .seconds = c.seconds});
+        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, 64, 48);
+        for (const char* t : c.techniques) {
+            SCOPED_TRACE(std::string(c.path) + " " + t);
+            render::SceneRenderer r(*device, scene, {.technique = t, .width = 64, .height = 48});
+            r.renderFrame();
+            const Agreement a = agreement(r.readOutput(), ref);
+            EXPECT_EQ(a.coverage, 0.0);
+            EXPECT_LE(a.radiance, 0.002);
+        }
+    }
+}
+
+TEST_P(AnimatedRender, CamerasProjectAsTheSpecificationSays) {
+    FE_REQUIRE_ASSETS();
+    assets::Scene scene = loadSample("Cameras/glTF/Cameras.gltf");
+    // 96x48: the perspective camera's aspectRatio 1 is not the viewport's 2, and it is used.
+    for (int32_t camera : {0, 1}) {
+        SCOPED_TRACE("camera " + std::to_string(camera));
+        const assets::Camera& cam = scene.cameras[size_t(camera)];
+        render::SceneRenderer r(*device, scene, {.technique = "forward", .width = 96, .height = 48});
+        r.setCamera(cam);
+        r.renderFrame();
+        const gdi::Image gpu = r.readOutput();
+        const PixelBox want = specBox(scene, cam, 96, 48), got = coveredBox(gpu);
+        EXPECT_NEAR(got.x0, want.x0, 1.0);
+        EXPECT_NEAR(got.x1, want.x1, 1.0);
+        EXPECT_NEAR(got.y0, want.y0, 1.0);
+        EXPECT_NEAR(got.y1, want.y1, 1.0);
+        const Agreement a = agreement(gpu, render::renderReference(scene, cam, 96, 48));
+        EXPECT_EQ(a.coverage, 0.0);
+        EXPECT_LE(a.radiance, 0.002);
+    }
+}
+
+FE_INSTANTIATE_FOR_EVERY_BACKEND(AnimatedRender);
