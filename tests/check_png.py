@@ -2,6 +2,8 @@
 """Checks a PNG written by fe (stdlib only: zlib and struct, 8-bit RGB or RGBA, non-interlaced).
 
 check_png.py FILE [--size WxH] [--channels 3|4] [--pixel X,Y=R,G,B[,A] ...] [--not-black]
+             [--like OTHER.png FRACTION]
+--like: at most FRACTION of the pixels differ from OTHER's (same size) by more than 5 in a channel.
 Exit 0 when every check holds, 1 with the first that does not (a pixel within 1 of each value).
 """
 import struct
@@ -66,6 +68,13 @@ def main(argv):
         elif opt == '--not-black':
             if max(max(r[i] for i in range(len(r)) if ch == 3 or i % 4 != 3) for r in rows) <= 1:
                 sys.exit(f'{path}: every pixel is black')
+        elif opt == '--like':
+            other, fraction = args.pop(0), float(args.pop(0))
+            ow, oh, och, orows = read_png(other)
+            if (ow, oh, och) != (w, h, ch): sys.exit(f'{path}: {w}x{h}x{ch}, {other} is {ow}x{oh}x{och}')
+            differ = sum(any(abs(rows[y][x * ch + c] - orows[y][x * ch + c]) > 5 for c in range(ch))
+                         for y in range(h) for x in range(w))
+            if differ > fraction * w * h: sys.exit(f'{path}: {differ} of {w * h} pixels differ from {other} by more than 5')
         else:
             sys.exit(f'unknown option {opt}')
     print(f'{path}: {w}x{h}, {ch} channels: checks hold')

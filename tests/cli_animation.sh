@@ -35,6 +35,22 @@ expect 0 "wrote" -- render "$cams" $common --camera 1 --out "$out/cams_ortho.png
 expect 0 "wrote" -- render "$cams" $common --camera-position 0.5,0.5,2 --camera-target 0.5,0.5,0 --fov 60 --out "$out/cams_own.png"
 expect 0 "wrote" -- render "$fox" $common --azimuth 90 --elevation 30 --out "$out/fox_turned.png"
 cmp -s "$out/cams_ortho.png" "$out/cams_own.png" && fail "the cameras give the same image"
+# The deformation survives capture and replay: the capture of an animated render replays on
+# every backend to that backend's live image (byte for byte where it was captured).
+expect 0 "captured on $backend" -- capture --out "$out/fox.fecap" -- "$fe" render "$fox" $common --animation Run --time 0.25 \
+    --out "$out/fox_live.png"
+for to in vulkan gl-egl gl-osmesa; do
+    "$fe" info --backend "$to" --json >/dev/null 2>&1 || continue
+    expect 0 "replayed on $to" -- replay "$out/fox.fecap" --backend "$to" --out "$out/replay_$to" --validation
+    if [ "$to" = "$backend" ]; then
+        cmp -s "$out/fox_live.png" "$out/replay_$to"/frame1_1_*.png || fail "the replay on $to differs from the live image"
+    else
+        expect 0 "wrote" -- render "$fox" --backend "$to" --size 64x48 --technique forward --shadows off --animation Run \
+            --time 0.25 --out "$out/fox_live_$to.png"
+        python3 "$(dirname "$0")/check_png.py" "$out/fox_live_$to.png" --like "$out/replay_$to"/frame1_1_*.png 0.01 ||
+            fail "the replay on $to differs from $to's live image"
+    fi
+done
 # Mistakes: exit 2 saying what is wrong, before anything is rendered.
 expect 2 "no animation 'Jump' in the scene: it has 0 'Survey', 1 'Walk', 2 'Run'" -- render "$fox" $common --animation Jump
 expect 2 "has no animation" -- render "$cams" $common --time 1

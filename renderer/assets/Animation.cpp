@@ -169,7 +169,13 @@ void poseScene(Scene& scene, const PoseTime& time) {
         }
         std::vector<float> v;
         for (const AnimationChannel& c : a.channels) {
+            if (c.sampler >= a.samplers.size() || c.node >= scene.nodes.size())
+                throw AssetError("poseScene: animation '" + a.name + "' has a channel naming a sampler or node it lacks");
             const AnimationSampler& s = a.samplers[c.sampler];
+            const size_t elements = s.times.size() * (s.interpolation == Interpolation::CubicSpline ? 3 : 1);
+            if (s.times.empty() || s.values.size() != elements * s.width ||
+                (c.path == AnimationPath::Rotation ? s.width != 4 : c.path != AnimationPath::Weights && s.width != 3))
+                throw AssetError("poseScene: animation '" + a.name + "' has a sampler whose keys and values do not fit");
             v.assign(s.width, 0.0f);
             sampleAnimation(s, float(t), c.path == AnimationPath::Rotation, v.data());
             switch (c.path) {

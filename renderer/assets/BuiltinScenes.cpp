@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "assets/Animation.h"
 #include "assets/Geometry.h"
 
 namespace fe::assets {
@@ -342,6 +343,146 @@ Scene makeAtrium(const BuiltinOptions& o) {
     return s;
 }
 
+// "crowd": skinned, morphed reeds swaying (the mesh deformation's stress case; BuiltinScenes.h).
+constexpr uint32_t kReedRings = 32, kReedSegments = 16, kReedJoints = 4;
+constexpr float kReedHeight = 2.0f, kReedRadius = 0.08f;
+
+Primitive makeReed(uint32_t material) {
+    Primitive p;
+    p.material = material;
+    MorphTarget bulge;
+    for (uint32_t r = 0; r <= kReedRings; ++r) {
+        const float v = float(r) / kReedRings, y = v * kReedHeight;
+        // Linear blend between the two joints around this height (joints every height / kReedJoints).
+        const float j = std::min(y / (kReedHeight / kReedJoints), float(kReedJoints - 1) - 1e-4f);
+        const uint32_t j0 = uint32_t(j);
+        const float w1 = j - float(j0);
+        for (uint32_t k = 0; k <= kReedSegments; ++k) {
+            const float a = 2.0f * float(kPi) * float(k) / kReedSegments;
+            const glm::vec3 n(std::cos(a), 0.0f, std::sin(a));
+            Vertex vx;
+            vx.position = n * kReedRadius * (1.0f - 0.5f * v) + glm::vec3(0.0f, y, 0.0f);
+            vx.normal = n;
+            vx.tangent = glm::vec4(-n.z, 0.0f, n.x, 1.0f);
+            vx.uv0 = glm::vec2(float(k) / kReedSegments, 1.0f - v);
+            p.vertices.push_back(vx);
+            SkinInfluences inf;
+            inf.joints[0] = glm::uvec4(j0, j0 + 1, 0, 0);
+            inf.weights[0] = glm::vec4(1.0f - w1, w1, 0.0f, 0.0f);
+            p.skin.push_back(inf);
+            bulge.position.push_back(n * (kReedRadius * std::sin(float(kPi) * v)));  // fattest halfway up
+        }
+    }
+    for (uint32_t r = 0; r < kReedRings; ++r)
+        for (uint32_t k = 0; k < kReedSegments; ++k) {
+            const uint32_t a = r * (kReedSegments + 1) + k, b = a + kReedSegments + 1;
+            p.indices.insert(p.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+    p.targets.push_back(std::move(bulge));
+    computeBounds(p);
+    return p;
+}
+
+Scene makeCrowd(const BuiltinOptions& o) {
+    Scene s;
+    s.name = "crowd";
+    const uint32_t n = std::max(1u, o.crowd), side = uint32_t(std::ceil(std::sqrt(double(n))));
+    const float spacing = 0.5f, extent = spacing * float(side - 1);
+    Material reed;
+    reed.name = "reed";
+    reed.baseColorFactor = glm::vec4(0.35f, 0.6f, 0.2f, 1.0f);
+    reed.metallic = 0.0f;
+    reed.roughness = 0.6f;
+    s.materials.push_back(reed);
+    Mesh mesh;
+    mesh.name = "reed";
+    mesh.primitives.push_back(makeReed(0));
+    computeBounds(mesh);
+    mesh.weights = {0.0f};
+    s.meshes.push_back(std::move(mesh));
+    Animation sway;
+    sway.name = "sway";
+    constexpr uint32_t kKeys = 9;
+    constexpr float kPeriod = 2.0f;
+    for (uint32_t i = 0; i < n; ++i) {
+        const float phase = 2.0f * float(kPi) * unit(i, 20);
+        const uint32_t root = uint32_t(s.nodes.size());
+        Node r;
+        r.name = "reed " + std::to_string(i);
+        r.translation = glm::vec3(float(i % side) * spacing - 0.5f * extent, 0.0f, -float(i / side) * spacing);
+        s.nodes.push_back(r);
+        Skin skin;
+        for (uint32_t j = 0; j < kReedJoints; ++j) {
+            Node joint;
+            joint.name = r.name + " joint " + std::to_string(j);
+            joint.parent = int32_t(j == 0 ? root : s.nodes.size() - 1);
+            joint.translation = glm::vec3(0.0f, j == 0 ? 0.0f : kReedHeight / kReedJoints, 0.0f);
+            skin.joints.push_back(uint32_t(s.nodes.size()));
+            skin.inverseBindMatrices.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -float(j) * kReedHeight / kReedJoints, 0.0f)));
+            // Each joint bends about Z and X by up to 0.25 rad, out of phase up the chain.
+            AnimationSampler bend{.interpolation = Interpolation::Linear, .width = 4};
+            for (uint32_t k = 0; k < kKeys; ++k) {
+                const float t = kPeriod * float(k) / float(kKeys - 1), a = phase + 2.0f * float(kPi) * t / kPeriod + 0.6f * float(j);
+                const glm::quat q = glm::angleAxis(0.25f * std::sin(a), glm::vec3(0, 0, 1)) * glm::angleAxis(0.12f * std::cos(a), glm::vec3(1, 0, 0));
+                bend.times.push_back(t);
+                bend.values.insert(bend.values.end(), {q.x, q.y, q.z, q.w});
+            }
+            sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()), .node = skin.joints.back(), .path = AnimationPath::Rotation});
+            sway.samplers.push_back(std::move(bend));
+            s.nodes.push_back(joint);
+        }
+        s.skins.push_back(std::move(skin));
+        Node body;
+        body.name = r.name + " mesh";
+        body.parent = int32_t(root);
+        s.nodes.push_back(body);
+        // The bulge breathes once a period.
+        AnimationSampler breathe{.interpolation = Interpolation::Linear, .width = 1};
+        for (uint32_t k = 0; k < kKeys; ++k) {
+            const float t = kPeriod * float(k) / float(kKeys - 1);
+            breathe.times.push_back(t);
+            breathe.values.push_back(0.5f + 0.5f * std::sin(phase + 2.0f * float(kPi) * t / kPeriod));
+        }
+        sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()), .node = uint32_t(s.nodes.size() - 1), .path = AnimationPath::Weights});
+        sway.samplers.push_back(std::move(breathe));
+        MeshInstance inst;
+        inst.meshIndex = 0;
+        inst.node = int32_t(s.nodes.size() - 1);
+        inst.skin = int32_t(s.skins.size() - 1);
+        inst.name = body.name;
+        s.instances.push_back(inst);
+    }
+    sway.duration = kPeriod;
+    s.animations.push_back(std::move(sway));
+    Mesh ground;
+    ground.name = "ground";
+    Primitive quad = makeQuad(0.5f * extent + 1.0f, 0.5f * float(side) * spacing + 1.0f, 1);
+    for (Vertex& v : quad.vertices) v.position = glm::vec3(v.position.x, 0.0f, -v.position.y - 0.5f * extent);
+    for (Vertex& v : quad.vertices) v.normal = glm::vec3(0, 1, 0), v.tangent = glm::vec4(1, 0, 0, 1);
+    ground.primitives.push_back(quad);
+    computeBounds(ground);
+    s.meshes.push_back(std::move(ground));
+    Material soil;
+    soil.name = "soil";
+    soil.baseColorFactor = glm::vec4(0.3f, 0.25f, 0.2f, 1.0f);
+    soil.metallic = 0.0f;
+    soil.roughness = 0.9f;
+    s.materials.push_back(soil);
+    s.instances.push_back({.meshIndex = 1, .name = "ground"});
+    Light sun;
+    sun.name = "sun";
+    sun.type = LightType::Directional;
+    sun.intensity = 2.5f;
+    sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.5f));
+    s.lights.push_back(sun);
+    s.lights.push_back(point("fill", glm::vec3(0.0f, 4.0f, 3.0f), glm::vec3(0.8f, 0.9f, 1.0f), 8.0f, 0.0f));
+    const float d = 0.5f * extent + 2.0f;
+    s.camera = Camera::lookAlong({0.0f, 1.2f + 0.5f * d, d + 1.0f}, {0.0f, -0.45f, -1.0f}, {0, 1, 0}, radians(50.0f), 0.1f, 200.0f);
+    s.camera->name = "crowd";
+    poseScene(s, {});
+    return s;
+}
+
 }  // namespace
 
 std::vector<Light> atriumLights(uint32_t count) {
@@ -356,7 +497,8 @@ std::vector<Light> atriumLights(uint32_t count) {
 }
 
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles", "atrium"};
+    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles", "atrium",
+                                                   "crowd"};
     return names;
 }
 
@@ -394,6 +536,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
         s = makeParticles();
     } else if (name == "atrium") {
         s = makeAtrium(options);
+    } else if (name == "crowd") {
+        s = makeCrowd(options);
     } else {
         std::string valid;
         for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;

@@ -41,6 +41,14 @@
 //   3.2 x 2.4 m) hang facing the axis between the upper columns every other bay. Lights:
 //   BuiltinOptions::lights point lights (atriumLights()). Camera at (0, 1.7, 1.5) looking down
 //   the hall (along -z, slightly down), yfov 60 degrees, near 0.1, far 100. Boxes and quads only.
+// "crowd": BuiltinOptions::crowd reeds (tapered tubes 2 m tall, radius 0.08 m, 33 rings of 17
+//   vertices) in a square grid 0.5 m apart on a soil ground (y = 0), one shared mesh each reed
+//   drawn through a skin of its own (a chain of 4 joints 0.5 m apart, every vertex blended
+//   linearly between the two joints around its height) and a morph target (a bulge fattest
+//   halfway up). Its animation "sway" (2 s, LINEAR) bends each joint about Z and X and breathes
+//   the bulge, each reed out of phase: the mesh deformation's stress case (docs/BENCHMARKS.md).
+//   Lights: a directional sun (2.5 lux) and a point fill (8 cd at (0, 4, 3)). Camera in front,
+//   above, looking down the grid, yfov 50 degrees, near 0.1, far 200.
 #pragma once
 #include <string>
 #include <string_view>
@@ -57,6 +65,7 @@ struct BuiltinOptions {
     uint32_t frame = 0;       // "lights": animation frame (light positions)
     uint32_t sphereGrid = 7;  // "spheres": spheres per row and column (2..16)
     bool hangings = true;     // "atrium": the translucent banners
+    uint32_t crowd = 64;      // "crowd": the number of reeds
 };
 
 // The "atrium" scene's point lights: light i at a fixed-seed hash position uniform in the hall

@@ -766,6 +766,7 @@ AnimationSampler Loader::readSampler(int a, int si, AnimationPath path, int node
     else if (gs.interpolation == "CUBICSPLINE") s.interpolation = Interpolation::CubicSpline;
     else fail(label + ": unknown interpolation '" + gs.interpolation + "'");
     s.times = readAccessor<float>(gs.input, "input of " + label, TINYGLTF_TYPE_SCALAR, F32);
+    if (s.times.empty()) fail(label + ": no keys (an input accessor of count 0)");
     for (size_t k = 0; k < s.times.size(); ++k) {
         if (!std::isfinite(s.times[k])) fail(label + ": non-finite key time");
         if (k && s.times[k] < s.times[k - 1]) fail(label + ": key times decrease (" + std::to_string(s.times[k - 1]) +

@@ -16,6 +16,7 @@
 #include "fe/gdi/Image.h"
 #include "integration/SceneRenderer.h"
 #include "integration/StabilitySuite.h"
+#include "assets/Animation.h"
 #include "reference/CpuReference.h"
 #include "reference/ImageMetrics.h"
 #include "render/ShadowPlan.h"
@@ -49,6 +50,7 @@ BenchCase make(const std::string& scene, const std::string& technique, uint32_t 
 assets::BuiltinOptions builtinOptions(const BenchCase& c) {
     assets::BuiltinOptions o;
     if (c.lights) o.lights = c.lights;
+    if (c.crowd) o.crowd = c.crowd;
     o.sphereGrid = c.sphereGrid;
     return o;
 }
@@ -69,6 +71,9 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"environment", c.environment},
             {"lights", c.lights},
             {"sphereGrid", c.sphereGrid},
+            {"crowd", c.crowd},
+            {"animation", c.animation},
+            {"time", c.time},
             {"technique", s.technique},
             {"width", s.width},
             {"height", s.height},
@@ -130,6 +135,8 @@ gdi::Json finite(double v) { return std::isfinite(v) ? gdi::Json(v) : gdi::Json(
 std::string BenchCase::key() const {
     std::string name = scene.rfind("builtin:", 0) == 0 ? scene.substr(8) : scene;
     if (lights) name += std::to_string(lights);
+    if (crowd) name += std::to_string(crowd);
+    if (!animation.empty()) name += "/animation-" + animation;
     std::string k = name + "/" + settings.technique;
     const RenderSettings& s = settings;
     if (s.illumScale != 1) k += "/scale" + std::to_string(s.illumScale);
@@ -261,6 +268,12 @@ BenchCase caseFromJson(const gdi::Json& j) {
         else if (key == "temporal") s.temporal = boolean();
         else if (key == "lights") c.lights = uint(0, 100000);
         else if (key == "sphereGrid") c.sphereGrid = uint(2, 16);
+        else if (key == "crowd") c.crowd = uint(1, 100000);
+        else if (key == "animation") c.animation = v.is_number_unsigned() ? std::to_string(v.get<uint64_t>()) : text();
+        else if (key == "time") {
+            if (!v.is_number() || !std::isfinite(v.get<double>())) throw gdi::Error("sweep: \"time\" must be a number, got " + v.dump());
+            c.time = v.get<double>();
+        }
         else throw gdi::Error("sweep: unknown key \"" + key + "\" in a case");
     }
     return c;
@@ -381,6 +394,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
             std::vector<double> cpu;
             std::map<std::string, std::vector<double>> gpu;
             std::vector<std::string> order;
+            int32_t animation = -1;  // BenchCase::animation, found in the scene
         };
         auto refuse = [](Measurement& m, const char* why) {
             m.r["refused"] = why;  // e.g. a technique the backend cannot run: reported, not fatal
@@ -399,6 +413,10 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                 try {
                     m.scene = assets::loadScene(m.c->scene, {}, builtinOptions(*m.c));
                     if (!m.c->environment.empty()) m.scene.environment = assets::loadEnvironment(m.c->environment);
+                    if (!m.c->animation.empty()) {
+                        m.animation = assets::findAnimation(m.scene, m.c->animation);
+                        assets::poseScene(m.scene, {.animation = m.animation, .seconds = m.c->time, .loop = true});
+                    }
                     RenderSettings settings = m.c->settings;
                     settings.displayImage = postProcessed(m.c->settings);
                     m.renderer = std::make_unique<SceneRenderer>(device, m.scene, settings);
@@ -411,6 +429,10 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                 if (options.onFrame) options.onFrame(m.c->key(), f);
                 try {
                     const auto t0 = std::chrono::steady_clock::now();
+                    if (m.animation >= 0) {  // posing is part of an animated frame's cost
+                        assets::poseScene(m.scene, {.animation = m.animation, .seconds = m.c->time + f / 30.0, .loop = true});
+                        m.renderer->updatePose();
+                    }
                     m.renderer->renderFrame();
                     const auto timings = m.renderer->passTimings();  // waits for the frame
                     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

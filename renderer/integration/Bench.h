@@ -27,6 +27,11 @@ struct BenchCase {
     std::string environment;                // "", "builtin:sky" or an .hdr path
     uint32_t lights = 0;                    // builtin:lights: its light count (0: its default)
     uint32_t sphereGrid = 5;                // builtin:spheres: spheres per row
+    uint32_t crowd = 0;                     // builtin:crowd: its reed count (0: its default)
+    // An animation of the scene (index or name; empty: none) played from `time` seconds, each
+    // frame 1/30 s later (looping): every frame then poses the scene and deforms its meshes.
+    std::string animation;
+    double time = 0.0;
     RenderSettings settings;                // technique, size and every option
     // "spheres/redeferred/scale2", unique within a sweep: the key compareResults() matches on.
     std::string key() const;

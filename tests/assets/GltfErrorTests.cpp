@@ -953,3 +953,38 @@ TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
     expectError(write("rough.gltf", withSheen({{"sheenRoughnessFactor", -0.1}}).dump()), {"sheenRoughnessFactor", "[0, 1]"});
     expectError(write("short.gltf", withSheen({{"sheenColorFactor", {1.0, 1.0}}}).dump()), {"sheenColorFactor", "array of 3"});
 }
+
+// Animation samplers that do not fit their keys are refused, saying which; a channel glTF does
+// not allow (TRS on a node with a matrix) is a warning, the channel dropped.
+TEST_F(GltfErrors, AnimationSamplersThatDoNotFit) {
+    // Accessor 2: the 9 position floats read as key times (0, 0, 0, 1, 0, ...: decreasing).
+    json j = gltf();
+    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 9}, {"type", "SCALAR"}});
+    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}});
+    j["animations"] = json::array({{{"samplers", json::array({{{"input", 2}, {"output", 1}}})},
+                                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+    expectError(writeGltf(j, "decreasing.gltf"), {"animation 0 sampler 0", "key times decrease (1.000000 then 0.000000)"});
+    // Accessor 3: two keys (0, 0) for three translations.
+    j["animations"][0]["samplers"][0]["input"] = 3;
+    expectError(writeGltf(j, "count.gltf"), {"animation 0 sampler 0", "output count 3 for 2 keys"});
+    j["animations"][0]["samplers"][0]["interpolation"] = "BOUNCY";
+    expectError(writeGltf(j, "interpolation.gltf"), {"unknown interpolation 'BOUNCY'"});
+    j["animations"][0]["samplers"][0].erase("interpolation");
+    j["animations"][0]["samplers"][0]["output"] = 0;  // the u16 indices: not float VEC3
+    expectError(writeGltf(j, "type.gltf"), {"output of animation 0 sampler 0", "type SCALAR, expected VEC3"});
+}
+
+TEST_F(GltfSynthetic, AnimationOfANodeWithAMatrixIsDroppedWithAWarning) {
+    json j = gltf();
+    j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "SCALAR"}});
+    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "VEC3"}});
+    j["animations"] = json::array({{{"name", "slide"}, {"samplers", json::array({{{"input", 2}, {"output", 3}}})},
+                                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+    const Scene s = loadGltf(writeGltf(j));
+    ASSERT_EQ(s.animations.size(), 1u);
+    EXPECT_TRUE(s.animations[0].channels.empty());
+    bool warned = false;
+    for (const std::string& w : s.warnings) warned = warned || w.find("has a matrix, which glTF does not animate") != std::string::npos;
+    EXPECT_TRUE(warned);
+}

@@ -82,6 +82,8 @@ constexpr const char* kUsage =
     "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
     "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"|\"lights evaluated\"] [--no-ui] [--validation]\n"
     "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
+    "      [--animation INDEX|NAME] [--camera INDEX|NAME]: an animated file plays (its first animation unless named),\n"
+    "      looped; the panel picks the animation, plays, pauses, loops and scrubs it, and lists the file's cameras\n"
     "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
     "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
     "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
@@ -179,6 +181,8 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--fps", {"F", "frames per second of an animated sequence (default 30)"}},
     {"--loop", {"", "the animation's time wraps around its duration"}},
     {"--camera", {"INDEX|NAME", "one of the file's cameras (default: the first)"}},
+    {"view --camera", {"INDEX|NAME", "look through one of the file's cameras (default: the orbit camera)"}},
+    {"view --animation", {"INDEX|NAME", "the animation played (default: the file's first)"}},
     {"--camera-position", {"X,Y,Z", "a camera of your own at this point"}},
     {"--camera-target", {"X,Y,Z", "... looking at this point (default: the scene's centre)"}},
     {"--camera-up", {"X,Y,Z", "... with this up direction (default +Y)"}},

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 
+#include "assets/Animation.h"
 #include "assets/BuiltinScenes.h"
 #include "assets/Environment.h"
 #include "fe/gdi/Backend.h"
@@ -67,6 +68,11 @@ public:
         settings_.shadows.enabled = scene_.showsShadows;
         camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
         wantEnvironment_ = bool(scene_.environment);
+        // Animated files play their first animation (or --animation) in a loop; --camera looks
+        // through one of the file's cameras instead of the orbit camera.
+        if (!scene_.animations.empty()) animation_ = assets::findAnimation(scene_, o.animation.empty() ? "0" : o.animation);
+        else if (!o.animation.empty()) throw assets::AssetError(o.scene + " has no animation");
+        if (!o.camera.empty()) fileCamera_ = assets::findCamera(scene_, o.camera);
         ImGui::CreateContext();
         ImGuiIO& io = ImGui::GetIO();
         io.IniFilename = nullptr;  // no imgui.ini beside the user's files
@@ -108,7 +114,15 @@ public:
             moveCamera(in, dt);
 
             const auto t0 = Clock::now();
-            renderer_->setCamera(camera_.camera());
+            if (animation_ >= 0) {
+                if (playing_) time_ += dt;
+                const double duration = scene_.animations[size_t(animation_)].duration;
+                if (loop_ && duration > 0.0) time_ = std::fmod(time_, duration);
+                else if (time_ > duration) time_ = duration, playing_ = false;
+                assets::poseScene(scene_, {.animation = animation_, .seconds = time_, .loop = loop_});
+                renderer_->updatePose();
+            }
+            renderer_->setCamera(fileCamera_ >= 0 ? scene_.cameras[size_t(fileCamera_)] : camera_.camera());
             renderer_->renderFrame();
             timings_ = renderer_->passTimings();  // waits for the frame
             frameMs_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -290,6 +304,7 @@ private:
         }
         if (changed) pendingSettings_ = s;
         else if (s.exposure != settings_.exposure) settings_.exposure = s.exposure, pendingSettings_ = s;
+        animationPanel();
         if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
         ImGui::Separator();
         ImGui::Text("frame %.1f ms (CPU)", frameMs_);
@@ -308,10 +323,46 @@ private:
         ImGui::End();
     }
 
+    // The file's animations (pick, play or pause, loop, scrub) and cameras (look through one).
+    void animationPanel() {
+        if (!scene_.animations.empty()) {
+            ImGui::Separator();
+            auto name = [&](int32_t i) {
+                const std::string& n = scene_.animations[size_t(i)].name;
+                return std::to_string(i) + (n.empty() ? "" : " " + n);
+            };
+            if (ImGui::BeginCombo("animation", animation_ < 0 ? "rest pose" : name(animation_).c_str())) {
+                if (ImGui::Selectable("rest pose", animation_ < 0)) animation_ = -1, assets::poseScene(scene_, {}), renderer_->updatePose();
+                for (int32_t i = 0; i < int32_t(scene_.animations.size()); ++i)
+                    if (ImGui::Selectable(name(i).c_str(), animation_ == i)) animation_ = i, time_ = 0.0;
+                ImGui::EndCombo();
+            }
+            if (animation_ >= 0) {
+                ImGui::Checkbox("play", &playing_);
+                ImGui::SameLine();
+                ImGui::Checkbox("loop", &loop_);
+                float t = float(time_);
+                if (ImGui::SliderFloat("time", &t, 0.0f, scene_.animations[size_t(animation_)].duration, "%.2f s")) time_ = t;
+            }
+        }
+        if (!scene_.cameras.empty()) {
+            auto label = [&](int32_t i) { return std::to_string(i) + " " + scene_.cameras[size_t(i)].name; };
+            if (ImGui::BeginCombo("camera", fileCamera_ < 0 ? "orbit (drag)" : label(fileCamera_).c_str())) {
+                if (ImGui::Selectable("orbit (drag)", fileCamera_ < 0)) fileCamera_ = -1;
+                for (int32_t i = 0; i < int32_t(scene_.cameras.size()); ++i)
+                    if (ImGui::Selectable(label(i).c_str(), fileCamera_ == i)) fileCamera_ = i;
+                ImGui::EndCombo();
+            }
+        }
+    }
+
     void screenshot(const std::string& path) {
         gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
         std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique
-                  << (settings_.ibl() ? ", environment light" : "") << (settings_.shadows.enabled ? ", shadows" : "") << ")\n";
+                  << (settings_.ibl() ? ", environment light" : "") << (settings_.shadows.enabled ? ", shadows" : "");
+        if (animation_ >= 0) std::cout << ", animation " << animation_ << " at " << time_ << " s";
+        if (fileCamera_ >= 0) std::cout << ", camera " << fileCamera_;
+        std::cout << ")\n";
     }
 
     ViewerOptions options_;
@@ -323,6 +374,10 @@ private:
     std::unique_ptr<render::SceneRenderer> renderer_;
     std::vector<graph::PassTiming> timings_;
     double frameMs_ = 0;
+    int32_t animation_ = -1;   // playing (Scene::animations), -1: the rest pose
+    double time_ = 0.0;        // its time, seconds
+    bool playing_ = true, loop_ = true;
+    int32_t fileCamera_ = -1;  // looking through Scene::cameras[i], -1: the orbit camera
     std::optional<render::RenderSettings> pendingSettings_;
     std::string pendingBackend_, message_;
     bool wantEnvironment_ = false;

@@ -22,6 +22,8 @@ struct ViewerOptions {
     bool validation = false;           // Khronos layer / GL debug output on; an error fails the run (tests)
     bool ui = true;                    // the panel (false: the scene alone, e.g. to compare)
     std::string debugView;             // a texture of the frame's graph to show instead of L_o
+    std::string animation;             // index or name: played from the start (default: the first, if any)
+    std::string camera;                // index or name of the file's camera to look through (default: orbit)
     uint32_t switchBackendAt = 0;      // tests: at this frame, switch to the other API as the panel does
 };
 

@@ -165,6 +165,9 @@ int cmdRender(const Args& a) {
                                  scene.warnings.front());
     job.applyScene(scene);
     checkWritable(job, frames);
+    if (const auto& c = scene.camera; c && c->aspectRatio && std::abs(*c->aspectRatio * s.height / s.width - 1.0f) > 0.01f)
+        spdlog::warn("{}: camera '{}' has aspectRatio {}: the {}x{} image stretches its view, as glTF asks (a --size of that "
+                     "ratio shows it undistorted)", spec, c->name, *c->aspectRatio, s.width, s.height);
     // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
     std::unique_ptr<gdi::FrameCapture> capture;
     if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
@@ -450,6 +453,8 @@ int cmdView(const Args& a) {
     o.debugView = opt("--debug-view", "");
     o.ui = !a.options.count("--no-ui");
     o.validation = a.options.count("--validation") > 0;
+    o.animation = opt("--animation", "");
+    o.camera = opt("--camera", "");
     if (a.options.count("--switch-backend-at")) o.switchBackendAt = parseUint(a.options.at("--switch-backend-at"), "--switch-backend-at", 1, 1000000);
     return tools::runViewer(o);
 }
@@ -638,7 +643,8 @@ int main(int argc, char** argv) {
         if (command == "render")
             return cmdRender(parse(argc, argv, 2, cli::kRenderOptions, cli::kRenderFlags));
         if (command == "view") return cmdView(parse(argc, argv, 2, {"--backend", "--technique", "--size", "--environment", "--frames",
-                                                                     "--screenshot", "--debug-view", "--switch-backend-at"},
+                                                                     "--screenshot", "--debug-view", "--switch-backend-at",
+                                                                     "--animation", "--camera"},
                                                         {"--no-ui", "--validation"}));
         if (command == "bench")
             return cmdBench(parse(argc, argv, 2, {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare", "--time-ratio", "--error-points",
