@@ -424,13 +424,17 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     refuse(m, e.what());
                 }
             }
+            uint32_t firstTimed = 0;  // the first timed frame's number
             auto frame = [&](Measurement& m, uint32_t f, bool timed) {
                 if (!m.renderer) return;
                 if (options.onFrame) options.onFrame(m.c->key(), f);
                 try {
                     const auto t0 = std::chrono::steady_clock::now();
-                    if (m.animation >= 0) {  // posing is part of an animated frame's cost
-                        assets::poseScene(m.scene, {.animation = m.animation, .seconds = m.c->time + f / 30.0, .loop = true});
+                    // Posing is part of an animated frame's cost. Warm-up frames (as many as a
+                    // GPU's clocks need) hold the first pose; timed frame f shows time + f / 30 s,
+                    // so the last image, the one measured, is the same pose on every backend.
+                    if (m.animation >= 0) {
+                        assets::poseScene(m.scene, {.animation = m.animation, .seconds = m.c->time + (timed ? (f - firstTimed) / 30.0 : 0.0), .loop = true});
                         m.renderer->updatePose();
                     }
                     m.renderer->renderFrame();
@@ -458,6 +462,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
             };
             for (; warming(); ++f)
                 for (Measurement& m : group) frame(m, f, false);
+            firstTimed = f;
             for (const uint32_t end = f + options.frames; f < end; ++f)
                 for (Measurement& m : group) frame(m, f, true);
             for (Measurement& m : group) {
@@ -488,7 +493,8 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                             ro.brdf = brdf;
                             const bool gltf = brdf == shading::Brdf::Gltf;
                             std::ostringstream refKey;
-                            refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|"
+                            refKey << c.scene << "|" << c.environment << "|" << c.lights << "|" << c.sphereGrid << "|" << c.crowd << "|"
+                                   << c.animation << "@" << c.time << "+" << options.frames << "|"
                                    << c.settings.width << "x" << c.settings.height << "|" << ro.iblSamples << "|" << c.settings.exposure
                                    << "|" << int(c.settings.tonemap) << "|" << (gltf ? "gltf" : "separable") << "|";
                             for (bool b : ro.castsShadow) refKey << b;

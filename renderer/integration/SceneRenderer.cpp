@@ -404,6 +404,7 @@ void SceneRenderer::setCamera(const assets::Camera& camera) {
 
 void SceneRenderer::updatePose() {
     gpuScene_->updatePose();
+    if (deformation_) deformation_->poseChanged();
     updateLights(scene_.lights);
     if (scene_.camera) setCamera(*scene_.camera);
 }

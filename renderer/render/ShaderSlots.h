@@ -55,5 +55,7 @@ constexpr uint32_t kSlotClearcoatNormal = 49;     // ... and the layer's normal 
 constexpr uint32_t kSlotClusterBounds = 43;  // the opaque depths each light cluster holds (storage buffer)
 constexpr uint32_t kSlotSkin = 50;            // mesh deformation: the skinned primitives' influences (storage buffer)
 constexpr uint32_t kSlotMorphTargets = 51;    // ... the morph targets' deltas
-constexpr uint32_t kSlotPose = 52;            // ... and the frame's joint matrices and morph weights
+constexpr uint32_t kSlotPose = 52;            // ... the frame's joint matrices and morph weights
+constexpr uint32_t kSlotDeformations = 53;    // ... what each deformed primitive reads and writes
+constexpr uint32_t kSlotDeformGroups = 54;    // ... and which of them each work group deforms
 }  // namespace fe::render

@@ -17,11 +17,20 @@ layout(binding = 51, std430) readonly buffer Morph { float deltas[]; };
 // The joint matrices (4 vec4 each) and the morph weights (4 per vec4) of the frame.
 layout(binding = 52, std430) readonly buffer Pose { vec4 pose[]; };
 
-FE_CONSTANTS(DeformConstants) {
+// Every deformed primitive of the scene in one dispatch: each work group deforms 64 vertices of
+// one of them (render::MeshDeformation's records, fixed for the scene; only the pose changes).
+struct Deformation {
     uvec4 vertexRange;  // x: rest pose's first vertex, y: the output's, z: vertex count, w: 1 = flat normals
     uvec4 sources;      // x: first influence record (~0: not skinned), y: first joint's vec4, z: first delta, w: targets
-    uvec4 weights;      // x: first weight (in floats of the pose buffer)
-} c;
+    uvec4 weights;      // x: first weight (in floats of the pose buffer), y: its first work group
+};
+layout(binding = 53, std430) readonly buffer Deformations { Deformation deformations[]; };
+layout(binding = 54, std430) readonly buffer Groups { uint groupDeformation[]; };
+FE_CONSTANTS(DeformDispatch) {
+    uvec4 firstGroup;  // x: the first work group of this dispatch (dispatches hold at most 65535)
+} dispatchInfo;
+
+Deformation c;
 
 struct Deformed {
     vec3 position;
@@ -70,7 +79,9 @@ Deformed deform(uint vertex) {
 }
 
 void main() {
-    uint vertex = gl_GlobalInvocationID.x;
+    uint group = dispatchInfo.firstGroup.x + gl_WorkGroupID.x;
+    c = deformations[groupDeformation[group]];
+    uint vertex = (group - c.weights.y) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
     if (vertex >= c.vertexRange.z) return;
     Deformed d = deform(vertex);
     vec3 restNormal = restVec3(vertex, 3u), restTangent = restVec3(vertex, 6u);
