@@ -136,6 +136,39 @@ TEST(AnimationSampling, AnimationsAndCamerasAreFoundByIndexOrName) {
     EXPECT_THROW(assets::poseScene(const_cast<assets::Scene&>(fox), {.animation = 7}), assets::AssetError);
 }
 
+// Cameras and lights hung from animated nodes follow them; a camera of one's own (cameraIndex
+// -1) stays where it was put.
+TEST(AnimationSampling, CamerasAndLightsFollowTheirNodes) {
+    assets::Scene scene;
+    assets::Node parent, child;
+    parent.name = "rig";
+    child.name = "head";
+    child.parent = 0;
+    child.translation = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.nodes = {parent, child};
+    assets::Camera camera = assets::Camera::lookAlong({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, 0.8f, 0.1f, 100.0f);
+    camera.node = 1;
+    scene.cameras = {camera};
+    scene.cameraIndex = 0;
+    scene.camera = camera;
+    assets::Light lamp;
+    lamp.node = 1;
+    scene.lights = {lamp};
+    assets::Animation slide{.name = "slide", .duration = 2.0f};
+    slide.samplers.push_back(sampler(assets::Interpolation::Linear, {0, 2}, {0, 0, 0, 4, 0, 0}, 3));
+    slide.channels.push_back({.sampler = 0, .node = 0, .path = assets::AnimationPath::Translation});
+    scene.animations = {slide};
+    assets::poseScene(scene, {.animation = 0, .seconds = 1.0});
+    EXPECT_EQ(scene.camera->eye(), glm::vec3(2.0f, 1.0f, 0.0f));  // the parent's translation under the child's
+    EXPECT_EQ(scene.cameras[0].eye(), glm::vec3(2.0f, 1.0f, 0.0f));
+    EXPECT_EQ(scene.lights[0].position, glm::vec3(2.0f, 1.0f, 0.0f));
+    scene.cameraIndex = -1;
+    scene.camera = assets::Camera::lookAlong({5, 5, 5}, {-1, -1, -1}, {0, 1, 0}, 0.8f, 0.1f, 100.0f);
+    assets::poseScene(scene, {.animation = 0, .seconds = 2.0});
+    EXPECT_EQ(scene.camera->eye(), glm::vec3(5.0f));
+    EXPECT_EQ(scene.cameras[0].eye(), glm::vec3(4.0f, 1.0f, 0.0f));
+}
+
 // assets::poseScene (float, what the renderer draws) against the reference (double, from the keys).
 TEST(AnimationReference, CpuPosingMatchesTheReference) {
     FE_REQUIRE_ASSETS();
