@@ -62,7 +62,10 @@ void computeWorlds(Scene& scene, const std::vector<glm::mat4>& locals) {
     std::vector<char> done(scene.nodes.size(), 0);
     std::vector<uint32_t> chain;
     for (size_t i = 0; i < scene.nodes.size(); ++i) {
-        for (int32_t n = int32_t(i); n >= 0 && !done[size_t(n)]; n = scene.nodes[size_t(n)].parent) chain.push_back(uint32_t(n));
+        for (int32_t n = int32_t(i); n >= 0 && !done[size_t(n)]; n = scene.nodes[size_t(n)].parent) {
+            chain.push_back(uint32_t(n));
+            if (chain.size() > scene.nodes.size()) throw AssetError("poseScene: the node hierarchy has a cycle");
+        }
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
             const Node& node = scene.nodes[*it];
             const glm::mat4 parent = node.parent >= 0 ? scene.nodes[size_t(node.parent)].world : glm::mat4(1.0f);
@@ -151,6 +154,9 @@ void poseScene(Scene& scene, const PoseTime& time) {
         throw AssetError("poseScene: animation " + std::to_string(time.animation) + " does not exist (the scene has " +
                          std::to_string(scene.animations.size()) + ")");
     if (!std::isfinite(time.seconds)) throw AssetError("poseScene: the time is not finite");
+    for (size_t i = 0; i < scene.nodes.size(); ++i)
+        if (scene.nodes[i].parent >= int32_t(scene.nodes.size()) || scene.nodes[i].parent == int32_t(i))
+            throw AssetError("poseScene: node '" + scene.nodes[i].name + "' has a parent the scene lacks");
     std::vector<glm::vec3> translation(scene.nodes.size()), scale(scene.nodes.size());
     std::vector<glm::quat> rotation(scene.nodes.size());
     std::vector<std::vector<float>> weights(scene.nodes.size());
@@ -215,6 +221,11 @@ void poseScene(Scene& scene, const PoseTime& time) {
         }
         if (inst.skin >= 0 && size_t(inst.skin) < scene.skins.size()) {
             const Skin& skin = scene.skins[size_t(inst.skin)];
+            if (skin.inverseBindMatrices.size() != skin.joints.size() ||
+                std::any_of(skin.joints.begin(), skin.joints.end(), [&](uint32_t j) { return j >= scene.nodes.size(); }))
+                throw AssetError("poseScene: skin '" + skin.name + "' names a node the scene lacks or has " +
+                                 std::to_string(skin.inverseBindMatrices.size()) + " inverse bind matrices for " +
+                                 std::to_string(skin.joints.size()) + " joints");
             // inverse(world of the mesh's node): a singular one (scale 0) leaves the joints in world space.
             const bool invertible = std::abs(glm::determinant(glm::mat3(node.world))) > 1e-30f;
             const glm::mat4 toNode = invertible ? glm::inverse(node.world) : glm::mat4(1.0f);

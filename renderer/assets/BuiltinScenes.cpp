@@ -388,12 +388,7 @@ Scene makeCrowd(const BuiltinOptions& o) {
     s.name = "crowd";
     const uint32_t n = std::max(1u, o.crowd), side = uint32_t(std::ceil(std::sqrt(double(n))));
     const float spacing = 0.5f, extent = spacing * float(side - 1);
-    Material reed;
-    reed.name = "reed";
-    reed.baseColorFactor = glm::vec4(0.35f, 0.6f, 0.2f, 1.0f);
-    reed.metallic = 0.0f;
-    reed.roughness = 0.6f;
-    s.materials.push_back(reed);
+    s.materials.push_back(makeMaterial("reed", glm::vec4(0.35f, 0.6f, 0.2f, 1.0f), 0.0f, 0.6f));
     Mesh mesh;
     mesh.name = "reed";
     mesh.primitives.push_back(makeReed(0));
@@ -462,12 +457,7 @@ Scene makeCrowd(const BuiltinOptions& o) {
     ground.primitives.push_back(quad);
     computeBounds(ground);
     s.meshes.push_back(std::move(ground));
-    Material soil;
-    soil.name = "soil";
-    soil.baseColorFactor = glm::vec4(0.3f, 0.25f, 0.2f, 1.0f);
-    soil.metallic = 0.0f;
-    soil.roughness = 0.9f;
-    s.materials.push_back(soil);
+    s.materials.push_back(makeMaterial("soil", glm::vec4(0.3f, 0.25f, 0.2f, 1.0f), 0.0f, 0.9f));
     s.instances.push_back({.meshIndex = 1, .name = "ground"});
     Light sun;
     sun.name = "sun";
