@@ -31,6 +31,9 @@ step "$work/build.log" cmake --build "$work/examples" -j2
 for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
   "$work/examples/fe_example_turntable" --backend "$b" --validation --frames 2 --size 96x72 --out "$work/turntable_$b.png"
+  "$work/examples/fe_example_turntable" builtin:crowd --backend "$b" --validation --frames 2 --size 96x72 \
+    --out "$work/crowd_$b.png" >"$work/crowd_$b.txt"
+  grep -qF "animation 'sway' played" "$work/crowd_$b.txt" || { echo "package consumer: the turntable did not play the crowd's animation"; exit 1; }
   "$work/examples/fe_example_threads" --backend "$b" --validation >"$work/threads_$b.txt"
   "$work/examples/fe_example_ported" --backend "$b" --validation >"$work/ported_$b.txt"
   "$work/examples/fe_example_materials" --backend "$b" --validation >"$work/materials_$b.txt"
