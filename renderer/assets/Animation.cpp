@@ -87,6 +87,8 @@ void poseCamera(Camera& camera, const glm::mat4& world) {
 }  // namespace
 
 int32_t findAnimation(const Scene& scene, const std::string& key) {
+    if (key == "all" && std::none_of(scene.animations.begin(), scene.animations.end(), [](const Animation& a) { return a.name == "all"; }))
+        return kAllAnimations;
     return findByIndexOrName(scene.animations.size(), [&](size_t i) { return scene.animations[i].name; }, "animation", key);
 }
 
@@ -150,7 +152,7 @@ AABB deformedBounds(const Primitive& prim, const MeshInstance& inst) {
 }
 
 void poseScene(Scene& scene, const PoseTime& time) {
-    if (time.animation >= int32_t(scene.animations.size()) || time.animation < -1)
+    if (time.animation >= int32_t(scene.animations.size()) || time.animation < kAllAnimations)
         throw AssetError("poseScene: animation " + std::to_string(time.animation) + " does not exist (the scene has " +
                          std::to_string(scene.animations.size()) + ")");
     if (!std::isfinite(time.seconds)) throw AssetError("poseScene: the time is not finite");
@@ -166,8 +168,10 @@ void poseScene(Scene& scene, const PoseTime& time) {
         rotation[i] = scene.nodes[i].rotation;
         scale[i] = scene.nodes[i].scale;
     }
-    if (time.animation >= 0) {
-        const Animation& a = scene.animations[size_t(time.animation)];
+    const size_t first = time.animation == kAllAnimations ? 0 : size_t(std::max(time.animation, 0));
+    const size_t end = time.animation == kAllAnimations ? scene.animations.size() : time.animation < 0 ? 0 : first + 1;
+    for (size_t index = first; index < end; ++index) {
+        const Animation& a = scene.animations[index];
         double t = time.seconds;
         if (time.loop && a.duration > 0.0f) {
             t = std::fmod(t, double(a.duration));

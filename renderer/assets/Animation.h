@@ -30,14 +30,21 @@
 
 namespace fe::assets {
 
+// PoseTime::animation for every animation of the scene at once (each wrapping on its own
+// duration with `loop`; where two animate the same property, the later one wins), as the Khronos
+// Sample Viewer plays a file by default.
+inline constexpr int32_t kAllAnimations = -2;
+
 struct PoseTime {
-    int32_t animation = -1;  // into Scene::animations; -1: the rest pose (the nodes' own transforms)
+    // Into Scene::animations; -1: the rest pose (the nodes' own transforms); kAllAnimations.
+    int32_t animation = -1;
     double seconds = 0.0;
     bool loop = false;  // wrap the time into [0, duration); else hold the first / last key
 };
 
-// The animation named by `indexOrName` (a number is an index, else a name, exactly). Throws
-// AssetError listing the scene's animations when there is no such one.
+// The animation named by `indexOrName` (a number is an index, else a name, exactly; "all":
+// kAllAnimations unless one is named so). Throws AssetError listing the scene's animations when
+// there is no such one.
 int32_t findAnimation(const Scene& scene, const std::string& indexOrName);
 // The same for Scene::cameras.
 int32_t findCamera(const Scene& scene, const std::string& indexOrName);

@@ -433,7 +433,7 @@ gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::s
                     // Posing is part of an animated frame's cost. Warm-up frames (as many as a
                     // GPU's clocks need) hold the first pose; timed frame f shows time + f / 30 s,
                     // so the last image, the one measured, is the same pose on every backend.
-                    if (m.animation >= 0) {
+                    if (m.animation != -1) {
                         assets::poseScene(m.scene, {.animation = m.animation, .seconds = m.c->time + (timed ? (f - firstTimed) / 30.0 : 0.0), .loop = true});
                         m.renderer->updatePose();
                     }

@@ -74,8 +74,13 @@ ReferencePose evaluatePose(const assets::Scene& scene, const assets::PoseTime& t
         scale[i] = scene.nodes[i].scale;
         rotation[i] = dquat(scene.nodes[i].rotation);
     }
-    if (time.animation >= 0) {
-        const assets::Animation& a = scene.animations.at(size_t(time.animation));
+    std::vector<size_t> played;
+    if (time.animation == assets::kAllAnimations)
+        for (size_t i = 0; i < scene.animations.size(); ++i) played.push_back(i);
+    else if (time.animation >= 0)
+        played.push_back(size_t(time.animation));
+    for (size_t index : played) {
+        const assets::Animation& a = scene.animations.at(index);
         double t = time.seconds;
         if (time.loop && a.duration > 0.0f) t -= std::floor(t / a.duration) * a.duration;
         for (const assets::AnimationChannel& c : a.channels) {

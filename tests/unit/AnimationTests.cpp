@@ -133,6 +133,7 @@ TEST(AnimationSampling, AnimationsAndCamerasAreFoundByIndexOrName) {
         EXPECT_NE(std::string(e.what()).find("'Survey', 1 'Walk', 2 'Run'"), std::string::npos) << e.what();
     }
     EXPECT_THROW(assets::findAnimation(fox, "3"), assets::AssetError);
+    EXPECT_EQ(assets::findAnimation(fox, "all"), assets::kAllAnimations);
     EXPECT_THROW(assets::poseScene(const_cast<assets::Scene&>(fox), {.animation = 7}), assets::AssetError);
 }
 
@@ -175,9 +176,12 @@ TEST(AnimationReference, CpuPosingMatchesTheReference) {
     for (const Case& c : kCases) {
         assets::Scene scene = loadSample(c.path);
         const double size = modelSize(scene);
-        for (int32_t a = 0; a < int32_t(scene.animations.size()); ++a)
+        // Each animation, and all of them at once (the later wins where two animate the same).
+        for (int32_t a = assets::kAllAnimations; a < int32_t(scene.animations.size()); ++a)
             for (double f : c.fractions) {
-                const assets::PoseTime time{.animation = a, .seconds = f * scene.animations[size_t(a)].duration};
+                if (a == -1) continue;
+                const float duration = a >= 0 ? scene.animations[size_t(a)].duration : scene.animations.back().duration;
+                const assets::PoseTime time{.animation = a, .seconds = f * duration};
                 SCOPED_TRACE(std::string(c.path) + " animation " + std::to_string(a) + " at " + std::to_string(time.seconds) + " s");
                 assets::poseScene(scene, time);
                 const render::ReferencePose ref = render::evaluatePose(scene, time);

@@ -46,7 +46,7 @@ constexpr const char* kUsage =
     "        unset: --illum-scale): punctual, shadowed, ibl-diffuse, ibl-specular\n"
     "      --temporal (redeferred, --illum-scale 2|4): the reduced-rate samples jitter and accumulate over frames\n"
     "      --orbit DEGREES: the camera turns about the scene's vertical axis over the --frames\n"
-    "      --animation INDEX|NAME --time SECONDS: the file's animation at that instant (glTF 2.0: node transforms,\n"
+    "      --animation INDEX|NAME|all --time SECONDS: the file's animation (all: every one at once) at that instant (glTF 2.0: node transforms,\n"
     "        skins, morph weights; before the first key the first value, after the last the last); --frames N\n"
     "        --fps F (default 30): frame k at --time + k / F; --loop: the time wraps around the animation\n"
     "      --camera INDEX|NAME: one of the file's cameras (default: its first; animated with its node)\n"
@@ -176,7 +176,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--shadow-filter", {"pcf|none", "2x2 hardware comparison or one tap (default pcf)"}},
     {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
-    {"--animation", {"INDEX|NAME", "play the file's animation (glTF node transforms, skins, morph weights)"}},
+    {"--animation", {"INDEX|NAME|all", "play the file's animation, or all at once (glTF node transforms, skins, morph weights)"}},
     {"--time", {"SECONDS", "the animation's instant of the first frame (default 0)"}},
     {"--fps", {"F", "frames per second of an animated sequence (default 30)"}},
     {"--loop", {"", "the animation's time wraps around its duration"}},
@@ -435,7 +435,7 @@ void RenderJob::applyScene(assets::Scene& scene) {
 }
 
 bool RenderJob::poseFrame(assets::Scene& scene, uint32_t k) const {
-    if (animation < 0) return false;
+    if (!animated) return false;
     assets::poseScene(scene, {.animation = animation, .seconds = time + double(k) / fps, .loop = loop});
     return true;
 }

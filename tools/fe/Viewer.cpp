@@ -114,9 +114,9 @@ public:
             moveCamera(in, dt);
 
             const auto t0 = Clock::now();
-            if (animation_ >= 0) {
+            if (animation_ != -1) {
                 if (playing_) time_ += dt;
-                const double duration = scene_.animations[size_t(animation_)].duration;
+                const double duration = animationDuration();
                 if (loop_ && duration > 0.0) time_ = std::fmod(time_, duration);
                 else if (time_ > duration) time_ = duration, playing_ = false;
                 assets::poseScene(scene_, {.animation = animation_, .seconds = time_, .loop = loop_});
@@ -323,6 +323,14 @@ private:
         ImGui::End();
     }
 
+    // The playing animation's duration (all of them: the longest).
+    double animationDuration() const {
+        double d = 0.0;
+        for (size_t i = 0; i < scene_.animations.size(); ++i)
+            if (animation_ == assets::kAllAnimations || int32_t(i) == animation_) d = std::max(d, double(scene_.animations[i].duration));
+        return d;
+    }
+
     // The file's animations (pick, play or pause, loop, scrub) and cameras (look through one).
     void animationPanel() {
         if (!scene_.animations.empty()) {
@@ -331,18 +339,20 @@ private:
                 const std::string& n = scene_.animations[size_t(i)].name;
                 return std::to_string(i) + (n.empty() ? "" : " " + n);
             };
-            if (ImGui::BeginCombo("animation", animation_ < 0 ? "rest pose" : name(animation_).c_str())) {
-                if (ImGui::Selectable("rest pose", animation_ < 0)) animation_ = -1, assets::poseScene(scene_, {}), renderer_->updatePose();
+            const std::string current = animation_ == -1 ? "rest pose" : animation_ == assets::kAllAnimations ? "all" : name(animation_);
+            if (ImGui::BeginCombo("animation", current.c_str())) {
+                if (ImGui::Selectable("rest pose", animation_ == -1)) animation_ = -1, assets::poseScene(scene_, {}), renderer_->updatePose();
+                if (ImGui::Selectable("all", animation_ == assets::kAllAnimations)) animation_ = assets::kAllAnimations, time_ = 0.0;
                 for (int32_t i = 0; i < int32_t(scene_.animations.size()); ++i)
                     if (ImGui::Selectable(name(i).c_str(), animation_ == i)) animation_ = i, time_ = 0.0;
                 ImGui::EndCombo();
             }
-            if (animation_ >= 0) {
+            if (animation_ != -1) {
                 ImGui::Checkbox("play", &playing_);
                 ImGui::SameLine();
                 ImGui::Checkbox("loop", &loop_);
                 float t = float(time_);
-                if (ImGui::SliderFloat("time", &t, 0.0f, scene_.animations[size_t(animation_)].duration, "%.2f s")) time_ = t;
+                if (ImGui::SliderFloat("time", &t, 0.0f, float(animationDuration()), "%.2f s")) time_ = t;
             }
         }
         if (!scene_.cameras.empty()) {
@@ -360,7 +370,7 @@ private:
         gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
         std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique
                   << (settings_.ibl() ? ", environment light" : "") << (settings_.shadows.enabled ? ", shadows" : "");
-        if (animation_ >= 0) std::cout << ", animation " << animation_ << " at " << time_ << " s";
+        if (animation_ != -1) std::cout << ", animation " << animation_ << " at " << time_ << " s";
         if (fileCamera_ >= 0) std::cout << ", camera " << fileCamera_;
         std::cout << ")\n";
     }
