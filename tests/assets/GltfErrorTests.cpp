@@ -988,3 +988,33 @@ TEST_F(GltfSynthetic, AnimationOfANodeWithAMatrixIsDroppedWithAWarning) {
     for (const std::string& w : s.warnings) warned = warned || w.find("has a matrix, which glTF does not animate") != std::string::npos;
     EXPECT_TRUE(warned);
 }
+
+// A skinned mesh whose JOINTS_0 names a joint its node's skin lacks is refused, naming both.
+TEST_F(GltfErrors, SkinJointBeyondTheSkin) {
+    std::vector<uint8_t> skinData = {5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};  // JOINTS_0: vertex 0 names joint 5
+    for (int v = 0; v < 3; ++v)
+        for (float w : {1.0f, 0.0f, 0.0f, 0.0f}) {
+            uint8_t b[4];
+            std::memcpy(b, &w, 4);
+            skinData.insert(skinData.end(), b, b + 4);
+        }
+    static const char* kBase64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string uri = "data:application/octet-stream;base64,";
+    for (size_t i = 0; i < skinData.size(); i += 3) {
+        const uint32_t n = uint32_t(skinData[i]) << 16 | uint32_t(i + 1 < skinData.size() ? skinData[i + 1] : 0) << 8 |
+                           uint32_t(i + 2 < skinData.size() ? skinData[i + 2] : 0);
+        uri += {kBase64[n >> 18 & 63], kBase64[n >> 12 & 63], i + 1 < skinData.size() ? kBase64[n >> 6 & 63] : '=',
+                i + 2 < skinData.size() ? kBase64[n & 63] : '='};
+    }
+    json j = gltf();
+    j["buffers"].push_back({{"uri", uri}, {"byteLength", skinData.size()}});
+    j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", 12}});
+    j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 12}, {"byteLength", 48}});
+    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
+    j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}});
+    j["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 2;
+    j["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = 3;
+    j["skins"] = json::array({{{"joints", {0}}}});
+    j["nodes"][0]["skin"] = 0;
+    expectError(writeGltf(j, "skin.gltf"), {"node 0 'TriNode'", "names joint 5 of skin 0, which has 1"});
+}
