@@ -36,7 +36,11 @@ expect 0 "wrote" -- render "$cams" $common --camera-position 0.5,0.5,2 --camera-
 expect 0 "wrote" -- render "$fox" $common --azimuth 90 --elevation 30 --out "$out/fox_turned.png"
 cmp -s "$out/cams_ortho.png" "$out/cams_own.png" && fail "the cameras give the same image"
 # The deformation survives capture and replay: the capture of an animated render replays on
-# every backend to that backend's live image (byte for byte where it was captured).
+# every backend to that backend's live image (byte for byte where it was captured). Once, from
+# the first backend available: each capture is replayed on all of them anyway.
+first=
+for b in vulkan gl-egl gl-osmesa; do "$fe" info --backend "$b" --json >/dev/null 2>&1 && { first=$b; break; }; done
+if [ "$backend" = "$first" ]; then
 expect 0 "captured on $backend" -- capture --out "$out/fox.fecap" -- "$fe" render "$fox" $common --animation Run --time 0.25 \
     --out "$out/fox_live.png"
 for to in vulkan gl-egl gl-osmesa; do
@@ -51,6 +55,7 @@ for to in vulkan gl-egl gl-osmesa; do
             fail "the replay on $to differs from $to's live image"
     fi
 done
+fi
 # Mistakes: exit 2 saying what is wrong, before anything is rendered.
 expect 2 "no animation 'Jump' in the scene: it has 0 'Survey', 1 'Walk', 2 'Run'" -- render "$fox" $common --animation Jump
 expect 2 "has no animation" -- render "$cams" $common --time 1
