@@ -84,6 +84,11 @@ void poseCamera(Camera& camera, const glm::mat4& world) {
     camera.worldFromView = moved.worldFromView;
 }
 
+bool sameCamera(const Camera& a, const Camera& b) {
+    return a.worldFromView == b.worldFromView && a.yfov == b.yfov && a.znear == b.znear && a.zfar == b.zfar &&
+           a.aspectRatio == b.aspectRatio && a.orthographic == b.orthographic && a.node == b.node;
+}
+
 }  // namespace
 
 int32_t findAnimation(const Scene& scene, const std::string& key) {
@@ -249,10 +254,13 @@ void poseScene(Scene& scene, const PoseTime& time) {
         const glm::vec3 d = -glm::vec3(w[2]);
         if (glm::length(d) > 1e-12f) l.direction = glm::normalize(d);
     }
+    // Scene::camera follows the file's camera it was taken from; one a caller put there instead
+    // (another transform or projection) stays.
+    const bool follows = scene.cameraIndex >= 0 && size_t(scene.cameraIndex) < scene.cameras.size() && scene.camera &&
+                         sameCamera(*scene.camera, scene.cameras[size_t(scene.cameraIndex)]);
     for (Camera& c : scene.cameras)
         if (c.node >= 0 && size_t(c.node) < scene.nodes.size()) poseCamera(c, scene.nodes[size_t(c.node)].world);
-    if (scene.cameraIndex >= 0 && size_t(scene.cameraIndex) < scene.cameras.size())
-        scene.camera = scene.cameras[size_t(scene.cameraIndex)];
+    if (follows) scene.camera = scene.cameras[size_t(scene.cameraIndex)];
     scene.bounds = computeWorldBounds(scene);
 }
 

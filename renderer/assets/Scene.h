@@ -366,8 +366,8 @@ struct Scene {
     std::vector<Light> lights;
     std::optional<Camera> camera;  // the camera drawn from
     // The file's cameras, in depth-first node order (the first is `camera` after loading);
-    // assets::poseScene moves them with their nodes and, while `cameraIndex` names one, `camera`
-    // with it. Set cameraIndex to -1 for a camera of your own (fe render --camera-position).
+    // assets::poseScene moves them with their nodes and `camera` with the one `cameraIndex`
+    // names, while `camera` is that one (a camera of your own put in `camera` stays; -1: none).
     std::vector<Camera> cameras;
     int32_t cameraIndex = -1;
     // The node hierarchy, skins and animations of a glTF file (assets/Animation.h poses them).

@@ -163,11 +163,14 @@ TEST(AnimationSampling, CamerasAndLightsFollowTheirNodes) {
     EXPECT_EQ(scene.camera->eye(), glm::vec3(2.0f, 1.0f, 0.0f));  // the parent's translation under the child's
     EXPECT_EQ(scene.cameras[0].eye(), glm::vec3(2.0f, 1.0f, 0.0f));
     EXPECT_EQ(scene.lights[0].position, glm::vec3(2.0f, 1.0f, 0.0f));
-    scene.cameraIndex = -1;
+    // A camera of one's own stays, whether or not cameraIndex still names the file's.
     scene.camera = assets::Camera::lookAlong({5, 5, 5}, {-1, -1, -1}, {0, 1, 0}, 0.8f, 0.1f, 100.0f);
     assets::poseScene(scene, {.animation = 0, .seconds = 2.0});
     EXPECT_EQ(scene.camera->eye(), glm::vec3(5.0f));
-    EXPECT_EQ(scene.cameras[0].eye(), glm::vec3(4.0f, 1.0f, 0.0f));
+    scene.cameraIndex = -1;
+    assets::poseScene(scene, {.animation = 0, .seconds = 1.5});
+    EXPECT_EQ(scene.camera->eye(), glm::vec3(5.0f));
+    EXPECT_EQ(scene.cameras[0].eye(), glm::vec3(3.0f, 1.0f, 0.0f));  // the file's camera still follows its node
 }
 
 // assets::poseScene (float, what the renderer draws) against the reference (double, from the keys).
