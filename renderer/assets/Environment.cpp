@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "assets/AssetError.h"
-#include "assets/HdrDecode.h"
+#include "assets/ImageDecode.h"
 
 namespace fe::assets {
 

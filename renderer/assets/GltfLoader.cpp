@@ -3,25 +3,13 @@
 // hierarchy sanity, finite values) is validated here before use, so malformed files end in an
 // AssetError instead of a crash.
 
-// The single translation unit with the tinygltf and stb_image implementations. stb_image is
-// made static so another module embedding its own copy cannot clash at link time.
-#define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define STB_IMAGE_IMPLEMENTATION
-#define STB_IMAGE_STATIC
-#define STBI_NO_JPEG  // JPEG goes to libjpeg-turbo (JpegDecode.h says why)
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#endif
+// tinygltf's implementation is in TinyGltf.cpp, stb_image's in ImageDecode.cpp.
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 #include "assets/GltfLoader.h"
 #include "assets/Animation.h"
-#include "assets/HdrDecode.h"
+#include "assets/ImageDecode.h"
 #include "assets/JpegDecode.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -1681,24 +1669,14 @@ void Loader::decodeImage(int ii, const std::string& what, TextureImage& out) {
         model_.images[size_t(ii)].image.shrink_to_fit();
         return;
     }
-    const int len = int(gi.image.size());
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, len, &w, &h, &comp)) {
-        const char* why = stbi_failure_reason();
-        fail(label + ": cannot decode (" + std::string(why ? why : "unknown format") + ")");
+    try {
+        DecodedImage image = assets::decodeImage(bytes, gi.image.size(), kMaxImagePixels);
+        out.width = image.width;
+        out.height = image.height;
+        out.pixels = std::move(image.rgba);
+    } catch (const std::runtime_error& e) {
+        fail(label + ": cannot decode (" + e.what() + ")");
     }
-    if (w <= 0 || h <= 0 || uint64_t(w) * uint64_t(h) > kMaxImagePixels) {
-        fail(label + ": unsupported image size " + std::to_string(w) + "x" + std::to_string(h));
-    }
-    unsigned char* px = stbi_load_from_memory(bytes, len, &w, &h, &comp, 4);
-    if (!px) {
-        const char* why = stbi_failure_reason();
-        fail(label + ": cannot decode (" + std::string(why ? why : "unknown error") + ")");
-    }
-    out.width = uint32_t(w);
-    out.height = uint32_t(h);
-    out.pixels.assign(px, px + size_t(w) * size_t(h) * 4);
-    stbi_image_free(px);
     // Only the decoded copy is needed from now on.
     model_.images[size_t(ii)].image.clear();
     model_.images[size_t(ii)].image.shrink_to_fit();
@@ -1717,15 +1695,6 @@ Scene loadGltf(const std::string& path, const LoadOptions& options) {
     } catch (const std::exception& e) {
         throw AssetError(path + ": " + e.what());
     }
-}
-
-HdrImage decodeRadianceHdr(const std::string& path) {
-    int w = 0, h = 0, comp = 0;
-    float* px = stbi_loadf(path.c_str(), &w, &h, &comp, 3);
-    if (!px) throw AssetError(path + ": cannot read the Radiance HDR image: " + std::string(stbi_failure_reason()));
-    HdrImage img{uint32_t(w), uint32_t(h), std::vector<float>(px, px + size_t(w) * h * 3)};
-    stbi_image_free(px);
-    return img;
 }
 
 }  // namespace fe::assets
