@@ -60,6 +60,8 @@ GLenum textureTarget(const gdi::TextureDesc& d);
 // Where a depth/stencil format attaches: GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH_ATTACHMENT or (S8)
 // GL_STENCIL_ATTACHMENT.
 GLenum depthAttachmentPoint(gdi::Format f);
+// GL_OUT_OF_MEMORY and the other glGetError / reset-status values by name, for messages.
+const char* glErrorName(GLenum e);
 // One framebuffer attachment: a texture's mip level and, for layered textures, its layer.
 struct FboAttachment {
     GLuint texture = 0;
