@@ -1,5 +1,5 @@
 // Conformance cases for fixed-function behaviour where Vulkan and GL differ by default and the
-// device makes them agree (issue 25): firstInstance, point sprites, depth writes without the
+// device makes them agree: firstInstance, point sprites, depth writes without the
 // depth test, MipFilter::None minification, textures that are only copied.
 #include <cstring>
 

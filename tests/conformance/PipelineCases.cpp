@@ -1,4 +1,4 @@
-// Conformance cases for pipelines checked against their shaders (issue 25): binding slots taken
+// Conformance cases for pipelines checked against their shaders: binding slots taken
 // from SPIR-V reflection, and every mismatch between a pipeline and its shaders or its pass
 // refused with the same gdi::Error on every backend, before any native call (the runner fails
 // a case on any validation or GL debug message, and fe conformance --no-validation runs them

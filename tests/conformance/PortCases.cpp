@@ -1,4 +1,4 @@
-// Conformance cases for the vocabulary a port needs (issue 26): per-draw constants and
+// Conformance cases for the vocabulary a port needs: per-draw constants and
 // specialization constants, with analytic expectations and the same errors on every backend.
 #include <algorithm>
 #include <cmath>
@@ -834,7 +834,7 @@ std::vector<CaseImage> viewAsAttachment(Device& d) {
     return images;
 }
 
-// Capture groundwork (issue 27): a list recorded through RecordingCommandList (constants, a
+// Capture groundwork: a list recorded through RecordingCommandList (constants, a
 // debug group and label, a pass of two secondary lists, a region copy, an occlusion query) is
 // turned into capture bytes and back, then applied to a fresh list: the same picture, the same
 // copy and the same query count as the live submission.

@@ -1,4 +1,4 @@
-// glTF animation (issue 48): keyframe sampling as the glTF 2.0 specification defines it, the
+// glTF animation: keyframe sampling as the glTF 2.0 specification defines it, the
 // CPU posing (assets::poseScene, float) against the double-precision reference evaluated from the
 // keys on its own (reference/AnimationReference.h), and the device's deformation pass
 // (render/MeshDeformation.h) against that reference on every backend: the deformed vertices the
@@ -39,7 +39,7 @@ std::vector<float> at(const assets::AnimationSampler& s, float t, bool rotation 
     return out;
 }
 
-// The models and animations the issue names, each at several instants (the last after its end).
+// The animated sample models, each at several instants (the last after its end).
 struct Case {
     const char* path;
     std::vector<double> fractions;  // of the animation's duration

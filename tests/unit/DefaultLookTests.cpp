@@ -1,4 +1,4 @@
-// The default look of a user's model (issue 47, item 4): a model without lights under the sky
+// The default look of a user's model: a model without lights under the sky
 // and a sun with shadows (assets::useDefaultSkyAndSun), backgrounds of every kind
 // (RenderSettings::Background) on every backend, and the warnings a black or empty frame gets
 // (render::frameWarnings).

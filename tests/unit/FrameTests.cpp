@@ -62,7 +62,7 @@ TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Frames);
 
-// Pass times you can trust (issue 28): a flush-and-wait profiling frame times every pass the
+// Pass times you can trust: a flush-and-wait profiling frame times every pass the
 // graph executes, in order, and leaves the image as a plain frame draws it; the method is chosen
 // from whether the timestamps account for the frame.
 class PassTimes : public fe::testing::BackendTest {};

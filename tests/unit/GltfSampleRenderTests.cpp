@@ -141,7 +141,7 @@ TEST_P(GltfSampleRender, BackendsAgree) {
 // default camera before 2026-11-29), the view this bound was measured in: from the default
 // camera's three-quarter view, BoxTextured's minified, oblique faces differ on 1.03 % of pixels
 // (95 of 9216, max 16/255, every backend): the two ways of taking gradients pick mip levels
-// further apart there (issue 47's note).
+// further apart there.
 TEST_P(GltfSampleRender, VisibilityBufferMatchesForward) {
     const std::string path = std::string(FE_SHARED_ASSETS) + "/" + GetParam();
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;

@@ -1,4 +1,4 @@
-// The Khronos glTF Sample Viewer as the reference renderer (issue 47): the sample models rendered
+// The Khronos glTF Sample Viewer as the reference renderer: the sample models rendered
 // by fe with the cameras and lights the Sample Viewer was given (tools/sample-viewer/views.json),
 // tone mapped as it does (Khronos PBR Neutral, then its 2.2 gamma), compared with its images
 // (tests/data/sample-viewer/, made by tools/sample-viewer/render.sh; docs/SAMPLE_VIEWER.md).
@@ -93,7 +93,7 @@ Diff compareWithViewer(const gdi::Image& linear, const fs::path& reference, int 
 // differs from its image by more than 8/255, measured 2026-11-29 (the same on vulkan, gl-egl and
 // gl-osmesa; lavapipe / llvmpipe against SwiftShader): silhouettes, texture filtering (the
 // textured boxes: mip selection) and float rounding. The bound is 1.5x, at least 0.05 %. Each
-// real difference fixed in issue 47 showed far over its bound first (docs/SAMPLE_VIEWER.md).
+// real difference fixed since showed far over its bound first (docs/SAMPLE_VIEWER.md).
 struct ViewerCase {
     const char* name;
     double measuredPercent;  // < 0: a known real difference, measured and printed, not bounded

@@ -1,4 +1,4 @@
-// Layer 2 (GDI abstraction): a recorded command list as bytes, for capture files (issue 27).
+// Layer 2 (GDI abstraction): a recorded command list as bytes, for capture files.
 // The records are written exactly as CommandStream holds them (CommandSet.inc defines them;
 // payload offsets are relative to each record), followed by the secondary streams the list
 // executed. Reading checks every record before it becomes a CommandStream again, so a damaged or

@@ -1,5 +1,5 @@
 // Layer 3 (device-independent recording): command lists as data on any backend, for capture and
-// replay (issue 27).
+// replay.
 //  - RecordingCommandList wraps a device's list: each call goes to that list first (so its
 //    checks and errors are the device's), then becomes a record of CommandSet.inc in a stream.
 //    Like any list it is used by one thread at a time; gdi::exclusiveUse (ExclusiveUse.h) checks

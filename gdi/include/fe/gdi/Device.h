@@ -1,5 +1,12 @@
 // Fools Engine graphics device interface (layers 1-4): the whole device API in one header.
 //
+// Contents (grep for the heading):
+//   Usage / Conventions / Errors and device loss / Threads and recording / Textures and views /
+//   Pipelines and shaders / Per-draw constants and specialization / Queries / Pipeline cache /
+//   Captures / Fixed function / Windows
+// Each section ends with the conformance cases (tests/conformance, `fe conformance --case NAME`)
+// that show it on every backend.
+//
 // Usage
 // -----
 //   auto device = fe::gdi::createDevice({.backend = "auto"});     // Backend.h
@@ -15,7 +22,47 @@
 //   cmd->endRenderPass();
 //   device->wait(device->submit(*cmd));
 //   fe::gdi::Image img = device->readTexture(target);
+// Shown by: culling_winding, indexed_instanced_base_vertex, render_to_texture_then_sample, copies.
 //
+// Conventions
+// -----------
+// Identical on every backend, so images match pixel for pixel:
+//  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
+//  - Image rows are stored top to bottom; texture coordinate (0,0) is the first texel in memory.
+//  - Counter-clockwise in framebuffer coordinates (y down) is FrontFace::CounterClockwise.
+//  - Resource bindings are flat slots: `layout(binding = N)` in GLSL, one namespace per pipeline.
+//  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op;
+//    destroying one that is not live (destroyed already) is an Error.
+//    A handle belongs to the device that made it: given to another device it is refused as
+//    "invalid or destroyed" (ids are salted per device; a 12-bit generation, so this catches
+//    the mistake with near certainty rather than always).
+//  - Data passed to the device is a ByteSpan (bytesOf(x) for a value, array or vector) and its
+//    length must be exactly what the call reads: createBuffer's initial data is desc.size bytes,
+//    writeTexture's the subresource's textureByteSize.
+// Shown by: culling_winding, scissor_viewport_stencil, sampled_quadrants, upload_lengths_checked.
+//
+// Errors and device loss
+// ----------------------
+//  - Errors (invalid descriptions, unsupported formats, missing bindings, backend failures)
+//    throw fe::gdi::Error with a message saying what was wrong; nothing is silently ignored.
+//  - Native API failures are errors, never aborts. Out of memory (VK_ERROR_OUT_OF_DEVICE_MEMORY
+//    or _HOST_MEMORY, GL_OUT_OF_MEMORY) is an Error naming the native call and the object, e.g.
+//    "gl-egl: glTextureStorage2D failed for texture 'albedo' (1024x1024 RGBA8): GL_OUT_OF_MEMORY";
+//    nothing of the failed object is left behind and the device stays usable. A buffer or
+//    texture larger than limits.maxAllocationSize is an Error before any native call.
+//  - A lost device (VK_ERROR_DEVICE_LOST; a GL context reset, which a robust context reports
+//    through glGetGraphicsResetStatus, polled at submit and wait) throws DeviceLostError, and so
+//    does every later call that creates, transfers, submits or waits on that device. Recording
+//    is not checked, to keep per-draw calls cheap: recording on a lost device is harmless and
+//    its submit throws. destroy(), info(), desc() and the other queries keep working, so objects
+//    made before the loss are released normally; destructors wait with waitIdleOrLost().
+//  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
+//    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
+// Shown by: binding_mismatch_errors, constants_errors, query_errors, upload_lengths_checked
+// (and the fault-injection tests, tests/unit/NativeFaultTests.cpp).
+//
+// Threads and recording
+// ---------------------
 // Recording is not executing, on every backend: nothing recorded runs before submit, and what
 // a command reads is read when it runs. Lists may be recorded on any threads at once:
 //   std::vector<std::unique_ptr<CommandList>> lists;  // one per thread, recorded in parallel
@@ -23,8 +70,13 @@
 //   FenceValue f = device->submit(order);             // one submission, in this order
 //   auto* bytes = static_cast<uint8_t*>(device->map(uploadRing));  // Upload: persistent pointer
 //   if (device->isComplete(f)) { /* read a Readback buffer through map() */ }
+// Every Device member may be called from any thread (CommandList's own rules: its section below).
+// Shown by: submission_order, unsubmitted_list_has_no_effect, data_read_at_execution,
+// record_on_threads, secondary_lists_in_one_pass, create_while_recording, destroy_while_in_flight,
+// mapped_upload_ring, async_readback, buffer_barrier_compute_to_indirect, subresource_barrier.
 //
-// Texture kinds, subresources and multisampling
+// Textures and views
+// ------------------
 //   auto cube = device->createTexture({.dimension = TextureDimension::TextureCube, .format = Format::RGBA16F,
 //                                      .width = 256, .height = 256, .depthOrLayers = 6, .mipLevels = 9,
 //                                      .usage = TextureUsage::Sampled | TextureUsage::RenderTarget});
@@ -54,67 +106,21 @@
 //    index buffer bound at offset 0 (the records' firstIndex offsets it).
 //  - Block-compressed formats (BC1/3/4/5/7, sRGB forms) are sampled-only
 //    (DeviceFeatures::textureCompressionBC); uploads are rows of 4x4 blocks.
-//  - Data passed to the device is a ByteSpan (bytesOf(x) for a value, array or vector) and its
-//    length must be exactly what the call reads: createBuffer's initial data is desc.size bytes,
-//    writeTexture's the subresource's textureByteSize.
-//
-// What ports need (issue 26), the same on every backend:
-//   cmd->setConstants(drawData);          // per-draw bytes (<= 128): FE_CONSTANTS(Name) { ... } in GLSL
-//   device->createGraphicsPipeline({..., .specialization = {SpecializationConstant::of(0, 4u)}});
 //   auto mip1 = device->createTextureView(chain, {.baseMip = 1, .mipCount = 1});  // bind anywhere
 //   device->writeTextureRegion(tex, {.x = 8, .y = 8, .width = 16, .height = 16}, bytes, {.bytesPerRow = 256});
 //   cmd->copyTexture(tex, {.mipLevel = 1}, tex, {.width = 32, .height = 32});   // regions, mips, layers
-//   auto occlusion = device->createQuerySet({.type = QueryType::Occlusion, .count = 64});
-//   cmd->beginQuery(occlusion, 0); ... cmd->endQuery(occlusion, 0);
-//   device->queryResults(occlusion, 0, 1, samples);   // false until its submission completed
-//   device->openPipelineCache("pipelines.bin");         // or DeviceCreateDesc::pipelineCache
-//   auto capture = FrameCapture::load("frame");         // RenderDoc (Backend.h), before createDevice
-//   createDevice({.capture = "frame.fecap"});             // or FE_CAPTURE: every call into a file that
-//   replayCapture("frame.fecap", *other);                 // replays on any backend (Capture.h)
-//  - Per-draw constants: std140, one block per stage, at most kMaxConstantBytes; each recording
-//    starts with zeros and values persist across setPipeline. Vulkan push constants; GL a uniform
-//    block at binding 64 fed from a ring (slots stay 0..63 for the application).
 //  - Regions and layouts (TextureRegion, TexelLayout): offsets multiples of 4 and of the texel
 //    size, bytesPerRow a multiple of the texel size, compressed data tightly packed.
 //  - Views: TextureDesc::viewFormats lists the other formats a view may take; copies, uploads,
 //    readback and barriers take the texture, not a view; views go before their texture.
-//  - Queries: a query is written once per submission (the device resets it before the
-//    submission runs); occlusion queries inside one pass; none in secondary lists.
+// Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
+// render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
+// compressed_bc, msaa_resolve, msaa_multiple_targets, view_mip_range, view_layer_and_face,
+// view_format_srgb_unorm, view_swizzle, view_as_attachment, region_upload_row_pitch,
+// region_copies, texture_copy_between_mips, shadow_compare_pcf, draw_indirect, dispatch_indirect.
 //
-// Windows (vulkan-glfw, gl-glfw; Backend.h): show a texture on screen with present().
-//   auto device = fe::gdi::createDevice({.backend = "auto", .window = true, .vsync = true});
-//   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
-// present() takes an RGBA8 or RGBA8_SRGB texture with CopySrc usage and shows its bytes as they
-// are (no sRGB conversion), upright, in a window sized to it (resized when the size changes).
-// device->input() then says where the mouse is, which buttons and keys are down, how far the
-// wheel turned and what was typed (InputState), for UIs and cameras (fe view).
-//
-// Conventions (identical on every backend, so images match pixel for pixel):
-//  - Clip space is Vulkan's: y points down in framebuffer space, depth range [0, 1].
-//  - Image rows are stored top to bottom; texture coordinate (0,0) is the first texel in memory.
-//  - Counter-clockwise in framebuffer coordinates (y down) is FrontFace::CounterClockwise.
-//  - Resource bindings are flat slots: `layout(binding = N)` in GLSL, one namespace per pipeline.
-//  - Errors (invalid descriptions, unsupported formats, missing bindings, backend failures)
-//    throw fe::gdi::Error with a message saying what was wrong; nothing is silently ignored.
-//  - Native API failures are errors, never aborts. Out of memory (VK_ERROR_OUT_OF_DEVICE_MEMORY
-//    or _HOST_MEMORY, GL_OUT_OF_MEMORY) is an Error naming the native call and the object, e.g.
-//    "gl-egl: glTextureStorage2D failed for texture 'albedo' (1024x1024 RGBA8): GL_OUT_OF_MEMORY";
-//    nothing of the failed object is left behind and the device stays usable. A buffer or
-//    texture larger than limits.maxAllocationSize is an Error before any native call.
-//  - A lost device (VK_ERROR_DEVICE_LOST; a GL context reset, which a robust context reports
-//    through glGetGraphicsResetStatus, polled at submit and wait) throws DeviceLostError, and so
-//    does every later call that creates, transfers, submits or waits on that device. Recording
-//    is not checked, to keep per-draw calls cheap: recording on a lost device is harmless and
-//    its submit throws. destroy(), info(), desc() and the other queries keep working, so objects
-//    made before the loss are released normally; destructors wait with waitIdleOrLost().
-//  - Tests make the N-th native allocation or submission fail: FE_FAULT_ALLOC=N,
-//    FE_FAULT_SUBMIT=N, or fault::arm() (fe/gdi/Faults.h).
-//  - Handles are small typed ids; 0 is the null handle. Destroying a null handle is a no-op;
-//    destroying one that is not live (destroyed already) is an Error.
-//    A handle belongs to the device that made it: given to another device it is refused as
-//    "invalid or destroyed" (ids are salted per device; a 12-bit generation, so this catches
-//    the mistake with near certainty rather than always).
-//
+// Pipelines and shaders
+// ---------------------
 // Pipelines are checked against their shaders (SPIR-V reflected with SPIRV-Cross, at
 // createShader), before any native call and with the same Error on every backend:
 //  - GraphicsPipelineDesc::bindings and ComputePipelineDesc::bindings may be left empty: the
@@ -137,8 +143,46 @@
 //    same texture may be read (render mip 1 while sampling a view of mip 0). The exception is
 //    read-only depth: a pipeline that writes neither depth nor stencil may sample the depth
 //    attachment (soft particles, decals). A pass may not name one subresource twice.
+// Shown by: pipeline_layout_from_shader, binding_mismatch_errors, storage_textures_at_any_slot,
+// format_caps, vertex_formats.
 //
-// Fixed function that differs between the APIs behaves as Vulkan's on every backend:
+// Per-draw constants and specialization
+// -------------------------------------
+//   cmd->setConstants(drawData);          // per-draw bytes (<= 128): FE_CONSTANTS(Name) { ... } in GLSL
+//   device->createGraphicsPipeline({..., .specialization = {SpecializationConstant::of(0, 4u)}});
+//  - Per-draw constants: std140, one block per stage, at most kMaxConstantBytes; each recording
+//    starts with zeros and values persist across setPipeline. Vulkan push constants; GL a uniform
+//    block at binding 64 fed from a ring (slots stay 0..63 for the application).
+// Shown by: constants_per_draw, constants_errors, specialization.
+//
+// Queries
+// -------
+//   auto occlusion = device->createQuerySet({.type = QueryType::Occlusion, .count = 64});
+//   cmd->beginQuery(occlusion, 0); ... cmd->endQuery(occlusion, 0);
+//   device->queryResults(occlusion, 0, 1, samples);   // false until its submission completed
+//  - Queries: a query is written once per submission (the device resets it before the
+//    submission runs); occlusion queries inside one pass; none in secondary lists.
+// Shown by: occlusion_query, pipeline_statistics, timestamps_in_query_set, query_errors.
+//
+// Pipeline cache
+// --------------
+//   device->openPipelineCache("pipelines.bin");         // or DeviceCreateDesc::pipelineCache
+//  - Compiled pipelines (Vulkan's VkPipelineCache data, GL program binaries) kept across runs: a
+//    file made for another device, driver or build is ignored with a warning (PipelineCacheFile.h).
+// Shown by: pipeline_cache_roundtrip.
+//
+// Captures
+// --------
+//   auto capture = FrameCapture::load("frame");         // RenderDoc (Backend.h), before createDevice
+//   createDevice({.capture = "frame.fecap"});             // or FE_CAPTURE: every call into a file that
+//   replayCapture("frame.fecap", *other);                 // replays on any backend (Capture.h)
+//  - Every call of a device, with its data, into a file (Capture.h, docs/CAPTURE.md) that
+//    replays on any backend; RenderDoc captures through FrameCapture (Backend.h).
+// Shown by: recorded_list_replays (and the capture tests, tests/unit/CaptureTests.cpp).
+//
+// Fixed function
+// --------------
+// Where the APIs differ, every backend behaves as Vulkan does:
 //  - FE_INSTANCE_ID (fe_common.glsl) counts from firstInstance, FE_VERTEX_ID from firstVertex.
 //  - Points obey gl_PointSize; gl_PointCoord (0, 0) is the point's top-left texel.
 //  - depthWrite without depthTest writes every fragment's depth (the test always passes).
@@ -161,6 +205,21 @@
 //    depth-stencil texels in the same layout (Image::fromTexels makes them).
 //  - Validation-layer and GL debug messages are printed once each; the count of repeats is
 //    printed when the device is destroyed (validationErrorCount() counts every one).
+// Shown by: first_instance, flat_first_vertex, unwritten_target_keeps_contents,
+// point_size_and_coord, depth_write_without_test, mip_filter_none, sample_mask, primitive_restart,
+// zero_initialised, stencil8_and_readback, depth16, dynamic_blend_stencil_bias, stride_zero_vertex,
+// border_color, lod_bias_and_clamp, depth_bias, depth_clamp.
+//
+// Windows
+// -------
+// Windows (vulkan-glfw, gl-glfw; Backend.h): show a texture on screen with present().
+//   auto device = fe::gdi::createDevice({.backend = "auto", .window = true, .vsync = true});
+//   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
+// present() takes an RGBA8 or RGBA8_SRGB texture with CopySrc usage and shows its bytes as they
+// are (no sRGB conversion), upright, in a window sized to it (resized when the size changes).
+// device->input() then says where the mouse is, which buttons and keys are down, how far the
+// wheel turned and what was typed (InputState), for UIs and cameras (fe view).
+// Shown by: the window tests (tests/unit/WindowTests.cpp), which need a display.
 #pragma once
 
 #include <array>
@@ -204,7 +263,7 @@ struct InputState {
 struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
-// The device is lost: recreate it (see Errors at the top).
+// The device is lost: recreate it (see "Errors and device loss" at the top).
 struct DeviceLostError : Error {
     using Error::Error;
 };
