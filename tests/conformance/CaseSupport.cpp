@@ -89,4 +89,22 @@ Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, s
     return img;
 }
 
+void expectError(const std::function<void()>& fn, const std::string& text) {
+    std::string got = "(no error)";
+    try {
+        fn();
+    } catch (const gdi::Error& e) {
+        got = e.what();
+    }
+    FE_CONFORMANCE_CHECK(got.find(text) != std::string::npos, ("expected \"" + text + "\", got \"" + got + "\"").c_str());
+}
+
+QuadConstants pixelQuad(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, Texel color) {
+    QuadConstants q{};
+    const auto ndc = [](uint32_t p) { return -1.0f + 2.0f * float(p) / float(kCaseSize); };
+    q.rect[0] = ndc(x0), q.rect[1] = ndc(y0), q.rect[2] = ndc(x1), q.rect[3] = ndc(y1);
+    std::copy(color.begin(), color.end(), q.color);
+    return q;
+}
+
 }  // namespace fe::conformance

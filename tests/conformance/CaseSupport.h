@@ -33,6 +33,19 @@ gdi::TextureHandle caseTarget(gdi::DeviceObjects& o, gdi::Format f = gdi::Format
 CaseImage drawn8(const std::string& name, gdi::Image image, gdi::Image expected, double steps = 1.0);
 // True when fn throws gdi::Error (the device's clear error for bad input).
 bool throws(const std::function<void()>& fn);
+// Messages that must be the same gdi::Error on every backend: fn throws one containing `text`.
+void expectError(const std::function<void()>& fn, const std::string& text);
+
+// The 128-byte block of constants_quad.vert/.frag.
+struct QuadConstants {
+    float rect[4];   // x0, y0, x1, y1 in clip space
+    float color[4];
+    float unused[20];
+    float tail[4];   // added to the colour: proves the last bytes arrive
+};
+static_assert(sizeof(QuadConstants) == gdi::kMaxConstantBytes);
+// A quad of constants_quad.vert covering pixels [x0, x1) x [y0, y1) of the 64x64 target.
+QuadConstants pixelQuad(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, Texel color = {1, 1, 1, 1});
 
 // fullscreen_ubo.vert + a fragment shader with a uniform block at slot 0 (vec4 a, vec4 b; the
 // triangle's depth is b.x) and a sampled texture at slot 1, drawn into a new 64x64 target.

@@ -235,7 +235,9 @@ std::vector<Case> executionCases();  // ExecutionCases.cpp
 std::vector<Case> fixedFunctionCases();  // FixedFunctionCases.cpp
 std::vector<Case> pipelineCases();  // PipelineCases.cpp
 std::vector<Case> samplerStateCases();  // SamplerStateCases.cpp
-std::vector<Case> portCases();  // PortCases.cpp
+std::vector<Case> constantsCases();  // ConstantsCases.cpp
+std::vector<Case> queryCases();  // QueryCases.cpp
+std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -247,7 +249,7 @@ const std::vector<Case>& cases() {
             {"timestamps", timestamps},
         };
         for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, pipelineCases, samplerStateCases,
-                              portCases})
+                              constantsCases, queryCases, regionAndViewCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();
