@@ -32,12 +32,14 @@ MeshDeformation::MeshDeformation(TechniqueContext& c) : objects_(c.device), ctx_
     const assets::Scene& scene = gpu.scene();
     jointFirst_.assign(scene.instances.size(), 0);
     weightFirst_.assign(scene.instances.size(), 0);
+    jointCount_.assign(scene.instances.size(), 0);
     uint32_t vec4s = 0, previous = ~0u;
     for (const Deformation& d : gpu.deformations()) {
         if (d.instance == previous) continue;
         previous = d.instance;
         const assets::MeshInstance& inst = scene.instances[d.instance];
         jointFirst_[d.instance] = vec4s;
+        jointCount_[d.instance] = uint32_t(inst.joints.size());
         vec4s += uint32_t(inst.joints.size()) * 4;
         weightFirst_[d.instance] = vec4s * 4;
         vec4s += uint32_t(inst.weights.size() + 3) / 4;
@@ -83,6 +85,13 @@ void MeshDeformation::record(gdi::CommandList& cmd) {
         if (d.instance == previous) continue;
         previous = d.instance;
         const assets::MeshInstance& inst = scene.instances[d.instance];
+        // The records were laid out for these counts (poseScene keeps them: one matrix per joint
+        // of the skin, one weight per target); a scene changed by hand otherwise would deform
+        // with another instance's matrices.
+        if (inst.joints.size() != jointCount_[d.instance])
+            throw gdi::Error("mesh deformation: instance '" + inst.name + "' has " + std::to_string(inst.joints.size()) +
+                             " joint matrices where the renderer was made for " + std::to_string(jointCount_[d.instance]) +
+                             " (change a scene's skins by posing it, not by hand)");
         pose.resize(jointFirst_[d.instance]);
         for (const glm::mat4& m : inst.joints) pose.insert(pose.end(), {m[0], m[1], m[2], m[3]});
         for (size_t w = 0; w < inst.weights.size(); w += 4) {

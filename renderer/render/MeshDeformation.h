@@ -40,6 +40,7 @@ private:
     uint32_t groupCount_ = 0;
     bool dirty_ = true;
     std::vector<uint32_t> jointFirst_, weightFirst_;  // per instance: where its joints and weights go in the pose
+    std::vector<uint32_t> jointCount_;                // ... and how many joints it was laid out for
 };
 
 }  // namespace fe::render

@@ -255,6 +255,18 @@ TEST_P(MeshDeformationTest, DeviceDeformationMatchesTheReference) {
     }
 }
 
+// A skin changed by hand after the renderer was made (more joint matrices than it laid out) is
+// the same gdi::Error on every backend, not another instance's matrices.
+TEST_P(MeshDeformationTest, AJointCountChangedByHandIsRefused) {
+    FE_REQUIRE_ASSETS();
+    assets::Scene scene = loadSample("SimpleSkin/glTF/SimpleSkin.gltf");
+    render::SceneRenderer renderer(*device, scene, {.technique = "forward", .width = 32, .height = 32});
+    scene.instances[0].joints.push_back(glm::mat4(1.0f));
+    renderer.updatePose();
+    EXPECT_NE(fe::testing::errorOf([&] { renderer.renderFrame(); }).find("joint matrices where the renderer was made for 2"),
+              std::string::npos);
+}
+
 FE_INSTANTIATE_FOR_EVERY_BACKEND(MeshDeformationTest);
 
 namespace {
