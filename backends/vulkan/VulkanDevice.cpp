@@ -79,6 +79,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSe
 }
 
 VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window) : swapchain_(std::move(window)) {
+    const gdi::NativeLayerLock::Change layerChange(validation);  // the layer adds this device and instance
     try {
         createInstance(validation);
         pickPhysicalDevice();
@@ -291,7 +292,7 @@ void VulkanDevice::createLogicalDevice() {
 // The file's data seeds a new cache, which takes in what the old one holds (pipelines made
 // before the call); a file that is not this device's is never handed to the driver.
 gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     // Read first: a path refused with an Error leaves the cache as it was (GL's order too).
     const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
     cacheStats_ = {.path = path};
@@ -316,7 +317,7 @@ gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path)
 }
 
 void VulkanDevice::savePipelineCache() {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (cacheStats_.path.empty()) return;
     size_t size = 0;
     check(vkGetPipelineCacheData(device_, pipelineCache_, &size, nullptr), "vkGetPipelineCacheData");
@@ -327,7 +328,7 @@ void VulkanDevice::savePipelineCache() {
 }
 
 gdi::PipelineCacheStats VulkanDevice::pipelineCacheStats() const {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     return cacheStats_;
 }
 
@@ -394,6 +395,7 @@ void VulkanDevice::fillInfo() {
 }
 
 VulkanDevice::~VulkanDevice() {
+    const gdi::NativeLayerLock::Change layerChange(info_.features.validation);  // the layer forgets them
     liveLists_.orphanAll();  // lists that outlive the device let go of it now
     if (device_) {  // what was destroyed is not a leak: release it first
         vkDeviceWaitIdle(device_);
@@ -478,11 +480,11 @@ void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name)
 std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
     loss_.check("createCommandList");
     auto list = std::make_unique<VulkanCommandList>(*this);
-    return info_.features.validation ? gdi::exclusiveUse(std::move(list)) : std::move(list);
+    return info_.features.validation ? gdi::exclusiveUse(std::move(list), true) : std::move(list);
 }
 
 gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("submit");
     std::vector<VulkanCommandList*> vk;
     std::vector<VkCommandBuffer> cbs;
@@ -540,7 +542,7 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
 }
 
 void VulkanDevice::wait(gdi::FenceValue fence) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("wait");
     gdi::validate::issuedFence(fence, nextFence_ - 1, "wait");
     settle(fence);
@@ -549,7 +551,7 @@ void VulkanDevice::wait(gdi::FenceValue fence) {
 }
 
 bool VulkanDevice::isComplete(gdi::FenceValue fence) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("isComplete");
     gdi::validate::issuedFence(fence, nextFence_ - 1, "isComplete");
     pollFences();
@@ -559,7 +561,7 @@ bool VulkanDevice::isComplete(gdi::FenceValue fence) {
 }
 
 bool VulkanDevice::completedNoThrow(gdi::FenceValue fence) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (loss_.lost()) return true;
     pollFences();
     return completed_ >= fence;
@@ -591,12 +593,12 @@ void VulkanDevice::retire(std::function<void()> release) {
 }
 
 void VulkanDevice::openRecording(uint64_t since) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     openRecordings_.insert(since);
 }
 
 void VulkanDevice::closeRecording(uint64_t since) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     openRecordings_.erase(openRecordings_.find(since));
     collectRetired();
 }
@@ -619,7 +621,7 @@ void VulkanDevice::releaseRetiredNow() {
 }
 
 void VulkanDevice::settle(gdi::FenceValue fence) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     while (!inFlight_.empty() && inFlight_.front().value <= fence) {
         Submission s = inFlight_.front();
         const VkResult r = vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX);
@@ -635,7 +637,7 @@ void VulkanDevice::settle(gdi::FenceValue fence) {
 }
 
 void VulkanDevice::waitIdle() {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("waitIdle");
     if (!pendingInit_.empty()) return releaseRetiredNow();  // submits the pending transitions too
     wait(nextFence_ - 1);
@@ -656,7 +658,7 @@ void VulkanDevice::fail(VkResult r, const char* call, const std::string& object)
 }
 
 gdi::LiveObjects VulkanDevice::liveObjects() const {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     // Destroyed objects whose submissions have completed are gone: release them first.
     auto* self = const_cast<VulkanDevice*>(this);
     if (!loss_.lost()) self->pollFences();
@@ -760,7 +762,7 @@ void* VulkanDevice::map(gdi::BufferHandle h) {
 }
 
 void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan data) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("writeBuffer");
     Buffer& b = buffer(h);
     const uint64_t size = data.size();
@@ -782,7 +784,7 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSp
 }
 
 void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("writeTexture");
     Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
@@ -822,7 +824,7 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
 
 void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region, gdi::ByteSpan data,
                                 const gdi::TexelLayout& layout) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("writeTextureRegion");
     Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
@@ -843,7 +845,7 @@ void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRe
 }
 
 std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("readBuffer");
     Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
@@ -860,7 +862,7 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
 }
 
 gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("readTexture");
     Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.name, "readTexture");
@@ -929,7 +931,7 @@ uint64_t VulkanDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
 }
 
 std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("timerNanoseconds");
     Timer& t = timer(h);
     // Not before its submission completed: lavapipe's vkGetQueryPoolResults waited for it.
@@ -954,7 +956,7 @@ VulkanDevice::SecondaryRecording VulkanDevice::acquireSecondary() {
         // A free recording this thread made before comes first: lavapipe, like most drivers,
         // allocates commands with malloc, and a pool reset on another thread frees into a
         // foreign arena (measured: secondary lists recorded slower than primary ones).
-        std::lock_guard lock(mutex_);
+        const DeviceCall call(*this);
         size_t pick = secondaries_.size();
         for (size_t i = 0; i < secondaries_.size(); ++i)
             if (!secondaries_[i].fence || completedNoThrow(secondaries_[i].fence)) {
@@ -991,7 +993,7 @@ VulkanDevice::SecondaryRecording VulkanDevice::acquireSecondary() {
 
 void VulkanDevice::releaseSecondary(std::span<const SecondaryRecording> recordings, gdi::FenceValue fence) {
     if (recordings.empty()) return;
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     for (SecondaryRecording r : recordings) {
         r.fence = fence;
         secondaries_.push_back(r);

@@ -27,6 +27,7 @@
 #include "VulkanMemory.h"
 #include "fe/gdi/LiveLists.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/ExclusiveUse.h"
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/HandlePool.h"
 #include "fe/gdi/MessageLog.h"
@@ -317,6 +318,16 @@ private:
     // One lock for everything but recording: creation, destruction, transfers, submission and
     // fences, attachment views made while recording. Recursive: transfers wait through waitIdle.
     mutable std::recursive_mutex mutex_;
+    // Every device call: the validation layer's lock (gdi::NativeLayerLock, shared) when the layer
+    // is loaded, then this device's mutex.
+    class DeviceCall {
+    public:
+        explicit DeviceCall(const VulkanDevice& d) : layer_(d.info_.features.validation), lock_(d.mutex_) {}
+
+    private:
+        gdi::NativeLayerLock::Call layer_;
+        std::lock_guard<std::recursive_mutex> lock_;
+    };
 
     gdi::DeviceInfo info_;
     std::unique_ptr<VulkanSwapchain> swapchain_;  // vulkan-glfw only

@@ -73,7 +73,7 @@ VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
 }  // namespace
 
 gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createShader");
     gdi::validate::shaderDesc(desc);
     const std::string name = desc.binary.name ? desc.binary.name : "";
@@ -147,7 +147,7 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
 }
 
 gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createGraphicsPipeline");
     gdi::validate::graphicsPipelineDesc(d, info_);
     gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
@@ -315,7 +315,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 }
 
 gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createComputePipeline");
     gdi::validate::computePipelineDesc(d);
     Shader& cs = shaders_.get(d.computeShader, "compute shader");

@@ -91,7 +91,7 @@ void VulkanDevice::freeBuffer(Buffer& b) {
 }
 
 gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc, info_.limits);
     gdi::validate::initialData(desc, initialData.size());
@@ -158,7 +158,7 @@ VkImageViewType viewType(gdi::TextureDimension d) {
 }  // namespace
 
 VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t layer) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     const uint32_t layers = t.desc.depthOrLayers;
     if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
     VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
@@ -210,7 +210,7 @@ gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::Textu
 }
 
 gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createHeap");
     const std::string name = desc.debugName ? desc.debugName : "";
     if (desc.size == 0) throw gdi::Error("heap '" + name + "': size is 0");
@@ -240,7 +240,7 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
 }
 
 void VulkanDevice::destroy(gdi::HeapHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     Heap heap;
     if (!h) return;
     if (!heaps_.find(h)) gdi::validate::destroyedHandle("heap", h.id);
@@ -252,7 +252,7 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
 }
 
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createTexture");
     gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
@@ -325,7 +325,7 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
 }
 
 gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createTextureView");
     Texture& parent = texture(h);
     Texture t;
@@ -396,7 +396,7 @@ void VulkanDevice::clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format fo
 }
 
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
     auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
@@ -440,7 +440,7 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
 }
 
 gdi::TimerHandle VulkanDevice::createTimer() {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createTimer");
     if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
     Timer t{freeTimerSlots_.back()};
@@ -455,7 +455,7 @@ gdi::TimerHandle VulkanDevice::createTimer() {
 // Destruction is deferred past the submissions that may use the object (retire()); the
 // handle is invalid at once.
 void VulkanDevice::destroy(gdi::BufferHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (!h) return;
     if (!buffers_.retire(h)) gdi::validate::destroyedHandle("buffer", h.id);
     dropInitialCommands(0, h.id);  // a zero fill not yet submitted never runs
@@ -467,7 +467,7 @@ void VulkanDevice::destroy(gdi::BufferHandle h) {
 }
 
 void VulkanDevice::destroy(gdi::TextureHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (const Texture* live = h ? textures_.find(h) : nullptr; live && live->views)
         gdi::validate::viewsAlive(live->name, live->views);
     if (!h) return;
@@ -482,7 +482,7 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
 }
 
 void VulkanDevice::destroy(gdi::SamplerHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (!h) return;
     if (!samplers_.retire(h)) gdi::validate::destroyedHandle("sampler", h.id);
     retire([this, h] {
@@ -493,7 +493,7 @@ void VulkanDevice::destroy(gdi::SamplerHandle h) {
 }
 
 void VulkanDevice::destroy(gdi::ShaderHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     Shader s;
     if (!h) return;
     if (!shaders_.remove(h, s)) gdi::validate::destroyedHandle("shader", h.id);
@@ -501,7 +501,7 @@ void VulkanDevice::destroy(gdi::ShaderHandle h) {
 }
 
 void VulkanDevice::destroy(gdi::PipelineHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (!h) return;
     if (!pipelines_.retire(h)) gdi::validate::destroyedHandle("pipeline", h.id);
     retire([this, h] {
@@ -514,7 +514,7 @@ void VulkanDevice::destroy(gdi::PipelineHandle h) {
 }
 
 void VulkanDevice::destroy(gdi::TimerHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (!h) return;
     if (!timers_.retire(h)) gdi::validate::destroyedHandle("timer", h.id);
     retire([this, h] {
@@ -525,7 +525,7 @@ void VulkanDevice::destroy(gdi::TimerHandle h) {
 }
 
 gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("createQuerySet");
     gdi::validate::querySetDesc(desc, info_.features);
     QuerySet q;
@@ -555,7 +555,7 @@ gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) 
 }
 
 void VulkanDevice::destroy(gdi::QuerySetHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     if (!h) return;
     if (!querySets_.retire(h)) gdi::validate::destroyedHandle("query set", h.id);
     retire([this, h] {
@@ -566,7 +566,7 @@ void VulkanDevice::destroy(gdi::QuerySetHandle h) {
 }
 
 bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("queryResults");
     QuerySet& q = querySets_.get(h, "query set");
     gdi::validate::queryRead(q.desc, q.name, first, count, out.size());

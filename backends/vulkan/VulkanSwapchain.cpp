@@ -363,7 +363,7 @@ std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsyn
 }
 
 bool VulkanDevice::present(gdi::TextureHandle h) {
-    std::lock_guard lock(mutex_);
+    const DeviceCall call(*this);
     loss_.check("present");
     if (!swapchain_) return gdi::Device::present(h);
     Texture& t = texture(h);

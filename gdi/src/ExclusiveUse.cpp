@@ -9,6 +9,38 @@ namespace fe::gdi {
 
 namespace {
 
+std::shared_mutex& layerMutex() {
+    static std::shared_mutex m;
+    return m;
+}
+thread_local uint32_t layerCallDepth = 0;  // NativeLayerLock::Call nesting on this thread
+
+}  // namespace
+
+NativeLayerLock::Call::Call(bool active) : active_(active) {
+    if (active_ && layerCallDepth++ == 0) layerMutex().lock_shared();
+}
+
+NativeLayerLock::Call::~Call() {
+    if (active_ && --layerCallDepth == 0) layerMutex().unlock_shared();
+}
+
+// Holding it alone counts as being inside a call, so that the device's own calls during its
+// making or destruction pass on this thread.
+NativeLayerLock::Change::Change(bool active) : active_(active && layerCallDepth == 0) {
+    if (!active_) return;
+    layerMutex().lock();
+    ++layerCallDepth;
+}
+
+NativeLayerLock::Change::~Change() {
+    if (!active_) return;
+    --layerCallDepth;
+    layerMutex().unlock();
+}
+
+namespace {
+
 [[noreturn, gnu::cold, gnu::noinline]] void inUse(const char* what) {
     throw Error(std::string(what) +
                 ": the command list is in use by another thread at the same time (a list is used by one thread at "
@@ -34,15 +66,21 @@ private:
 
 // Every CommandList call, claimed, then passed to the backend's list (whose checks and errors
 // are the backend's, unchanged). __func__ names the call in the Error.
-#define FE_CLAIMED(call)                   \
-    {                                      \
-        const Claim claim(busy_, __func__); \
-        return inner_->call;               \
+#define FE_CLAIMED(call)                                \
+    {                                                   \
+        const NativeLayerLock::Call layer(layerLock_); \
+        const Claim claim(busy_, __func__);             \
+        return inner_->call;                            \
     }
 
 class ExclusiveCommandList final : public CommandList {
 public:
-    explicit ExclusiveCommandList(std::unique_ptr<CommandList> inner) : inner_(std::move(inner)) {}
+    ExclusiveCommandList(std::unique_ptr<CommandList> inner, bool layerLock)
+        : inner_(std::move(inner)), layerLock_(layerLock) {}
+    ~ExclusiveCommandList() override {
+        const NativeLayerLock::Call layer(layerLock_);  // the backend's list frees native objects
+        inner_.reset();
+    }
     CommandList& inner() { return *inner_; }
     std::atomic<bool>& busy() { return busy_; }
 
@@ -108,6 +146,7 @@ public:
     void endSecondary() override FE_CLAIMED(endSecondary())
     // The executed lists are taken too: one still being recorded by a worker is refused.
     void executeSecondary(std::span<CommandList* const> lists) override {
+        const NativeLayerLock::Call layer(layerLock_);
         const Claim claim(busy_, __func__);
         const ClaimedLists parts(lists, __func__, this);
         inner_->executeSecondary(parts.lists());
@@ -116,6 +155,7 @@ public:
 
 private:
     std::unique_ptr<CommandList> inner_;
+    bool layerLock_;
     std::atomic<bool> busy_{false};
 };
 
@@ -123,8 +163,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list) {
-    return std::make_unique<ExclusiveCommandList>(std::move(list));
+std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list, bool layerLock) {
+    return std::make_unique<ExclusiveCommandList>(std::move(list), layerLock);
 }
 
 ClaimedLists::ClaimedLists(std::span<CommandList* const> lists, const char* what, const CommandList* self) {

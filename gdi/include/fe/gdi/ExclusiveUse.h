@@ -14,6 +14,7 @@
 #pragma once
 #include <atomic>
 #include <memory>
+#include <shared_mutex>
 #include <span>
 #include <vector>
 
@@ -21,8 +22,43 @@
 
 namespace fe::gdi {
 
-// `list` behind the check: each call claims it for its duration.
-std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list);
+// A process-wide lock for a native layer whose own global state is not thread-safe across
+// devices. Vulkan's validation layer 1.3.239 (Debian 12) keeps every device's data in one map
+// that it changes, unlocked, when a device or instance is made or destroyed and reads in every
+// call (KhronosGroup/Vulkan-ValidationLayers#4391): a device made or destroyed on one thread
+// while another thread's device works crashed inside the layer (examples/materials under ASan).
+// Calls hold it shared, re-entrantly on one thread; making or destroying a device holds it
+// alone. Taken only where the layer is loaded, so a device without validation pays nothing.
+class NativeLayerLock {
+public:
+    // Around every call into a device or list: shared, nesting on one thread counted.
+    class Call {
+    public:
+        explicit Call(bool active);
+        ~Call();
+        Call(const Call&) = delete;
+        Call& operator=(const Call&) = delete;
+
+    private:
+        bool active_;
+    };
+    // Around making and destroying a device: exclusive. On a thread already inside a call (a
+    // device made from a callback) it is not taken, since waiting there would wait on itself.
+    class Change {
+    public:
+        explicit Change(bool active);
+        ~Change();
+        Change(const Change&) = delete;
+        Change& operator=(const Change&) = delete;
+
+    private:
+        bool active_;
+    };
+};
+
+// `list` behind the check: each call claims it for its duration (and, with `layerLock`, holds
+// NativeLayerLock::Call too).
+std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list, bool layerLock = false);
 
 // For Device::submit and CommandList::executeSecondary: checks the array (no null, no list
 // twice), claims every checked list for the lifetime of this object (an Error names the one
