@@ -22,115 +22,18 @@ void RecordingCommandList::beginRenderPass(const RenderPassDesc& d) {
     r->colors = stream_->payload(*r, std::span<const ColorAttachment>(d.colors));
     r->debugName = stream_->payload(*r, d.debugName);
 }
-void RecordingCommandList::endRenderPass() { inner_->endRenderPass(), stream_->push(cmd::EndRenderPass{}); }
-void RecordingCommandList::setPipeline(PipelineHandle p) { inner_->setPipeline(p), stream_->push(cmd::SetPipeline{p}); }
-void RecordingCommandList::setViewport(const Viewport& v) { inner_->setViewport(v), stream_->push(cmd::SetViewport{v}); }
-void RecordingCommandList::setScissor(const Rect& r) { inner_->setScissor(r), stream_->push(cmd::SetScissor{r}); }
-void RecordingCommandList::setBlendConstant(const std::array<float, 4>& c) {
-    inner_->setBlendConstant(c), stream_->push(cmd::SetBlendConstant{c});
-}
-void RecordingCommandList::setStencilReference(uint8_t v) { inner_->setStencilReference(v), stream_->push(cmd::SetStencilReference{v}); }
-void RecordingCommandList::setDepthBias(float c, float s, float k) { inner_->setDepthBias(c, s, k), stream_->push(cmd::SetDepthBias{c, s, k}); }
-void RecordingCommandList::setConstants(uint32_t offset, ByteSpan data) {
-    inner_->setConstants(offset, data);
-    auto* r = stream_->push(cmd::SetConstants{offset}, cmd::CommandStream::payloadSize(data.size()));
-    r->data = stream_->payload(*r, data);
-}
-void RecordingCommandList::setVertexBuffer(uint32_t i, BufferHandle b, uint64_t o) {
-    inner_->setVertexBuffer(i, b, o), stream_->push(cmd::SetVertexBuffer{i, b, o});
-}
-void RecordingCommandList::setIndexBuffer(BufferHandle b, IndexType t, uint64_t o) {
-    inner_->setIndexBuffer(b, t, o), stream_->push(cmd::SetIndexBuffer{b, t, o});
-}
 // Offsets are checked against the recording device's limits too: a capture device reports the
 // alignments every backend takes, stricter than its inner device's own.
-void RecordingCommandList::setUniformBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) {
-    validate::bindingLimits(o, n, validate::uniformBindingLimits(device_.info().limits), "setUniformBuffer");
-    inner_->setUniformBuffer(s, b, o, n), stream_->push(cmd::SetUniformBuffer{s, b, o, n});
+template <class R>
+    requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
+void RecordingCommandList::check(uint32_t, BufferHandle, uint64_t offset, uint64_t size) {
+    if constexpr (std::is_same_v<R, cmd::SetUniformBuffer>)
+        validate::bindingLimits(offset, size, validate::uniformBindingLimits(device_.info().limits), "setUniformBuffer");
+    else
+        validate::bindingLimits(offset, size, validate::storageBindingLimits(device_.info().limits), "setStorageBuffer");
 }
-void RecordingCommandList::setStorageBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) {
-    validate::bindingLimits(o, n, validate::storageBindingLimits(device_.info().limits), "setStorageBuffer");
-    inner_->setStorageBuffer(s, b, o, n), stream_->push(cmd::SetStorageBuffer{s, b, o, n});
-}
-void RecordingCommandList::setTexture(uint32_t s, TextureHandle t, SamplerHandle p) {
-    inner_->setTexture(s, t, p), stream_->push(cmd::SetTexture{s, t, p});
-}
-void RecordingCommandList::setStorageTexture(uint32_t s, TextureHandle t, uint32_t m) {
-    inner_->setStorageTexture(s, t, m), stream_->push(cmd::SetStorageTexture{s, t, m});
-}
-void RecordingCommandList::draw(uint32_t v, uint32_t i, uint32_t fv, uint32_t fi) {
-    inner_->draw(v, i, fv, fi), stream_->push(cmd::Draw{v, i, fv, fi});
-}
-void RecordingCommandList::drawIndexed(uint32_t n, uint32_t i, uint32_t f, int32_t b, uint32_t fi) {
-    inner_->drawIndexed(n, i, f, b, fi), stream_->push(cmd::DrawIndexed{n, i, f, b, fi});
-}
-void RecordingCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) { inner_->dispatch(x, y, z), stream_->push(cmd::Dispatch{x, y, z}); }
-void RecordingCommandList::drawIndirect(BufferHandle a, uint64_t o, uint32_t n, uint32_t s) {
-    inner_->drawIndirect(a, o, n, s), stream_->push(cmd::DrawIndirect{a, o, n, s});
-}
-void RecordingCommandList::drawIndexedIndirect(BufferHandle a, uint64_t o, uint32_t n, uint32_t s) {
-    inner_->drawIndexedIndirect(a, o, n, s), stream_->push(cmd::DrawIndexedIndirect{a, o, n, s});
-}
-void RecordingCommandList::drawIndirectCount(BufferHandle a, uint64_t o, BufferHandle c, uint64_t co, uint32_t m, uint32_t s) {
-    inner_->drawIndirectCount(a, o, c, co, m, s), stream_->push(cmd::DrawIndirectCount{a, o, c, co, m, s});
-}
-void RecordingCommandList::drawIndexedIndirectCount(BufferHandle a, uint64_t o, BufferHandle c, uint64_t co, uint32_t m,
-                                                    uint32_t s) {
-    inner_->drawIndexedIndirectCount(a, o, c, co, m, s), stream_->push(cmd::DrawIndexedIndirectCount{a, o, c, co, m, s});
-}
-void RecordingCommandList::dispatchIndirect(BufferHandle a, uint64_t o) {
-    inner_->dispatchIndirect(a, o), stream_->push(cmd::DispatchIndirect{a, o});
-}
-void RecordingCommandList::generateMips(TextureHandle t) { inner_->generateMips(t), stream_->push(cmd::GenerateMips{t}); }
-void RecordingCommandList::copyBuffer(BufferHandle d, uint64_t dO, BufferHandle s, uint64_t sO, uint64_t n) {
-    inner_->copyBuffer(d, dO, s, sO, n), stream_->push(cmd::CopyBuffer{d, dO, s, sO, n});
-}
-void RecordingCommandList::clearBuffer(BufferHandle b, uint64_t o, uint64_t n, uint32_t v) {
-    inner_->clearBuffer(b, o, n, v), stream_->push(cmd::ClearBuffer{b, o, n, v});
-}
-void RecordingCommandList::copyTexture(TextureHandle d, TextureHandle s, uint32_t m) {
-    inner_->copyTexture(d, s, m), stream_->push(cmd::CopyTexture{d, s, m});
-}
-void RecordingCommandList::copyBufferToTexture(TextureHandle d, Subresource at, BufferHandle s, uint64_t o) {
-    inner_->copyBufferToTexture(d, at, s, o), stream_->push(cmd::CopyBufferToTexture{d, at, s, o});
-}
-void RecordingCommandList::copyTextureToBuffer(BufferHandle d, uint64_t o, TextureHandle s, Subresource at) {
-    inner_->copyTextureToBuffer(d, o, s, at), stream_->push(cmd::CopyTextureToBuffer{d, o, s, at});
-}
-void RecordingCommandList::copyBufferToTexture(TextureHandle d, const TextureRegion& r, BufferHandle s, const TexelLayout& l) {
-    inner_->copyBufferToTexture(d, r, s, l), stream_->push(cmd::CopyBufferToTextureRegion{d, r, s, l});
-}
-void RecordingCommandList::copyTextureToBuffer(BufferHandle d, const TexelLayout& l, TextureHandle s, const TextureRegion& r) {
-    inner_->copyTextureToBuffer(d, l, s, r), stream_->push(cmd::CopyTextureToBufferRegion{d, l, s, r});
-}
-void RecordingCommandList::copyTexture(TextureHandle d, const TextureRegion& at, TextureHandle s, const TextureRegion& r) {
-    inner_->copyTexture(d, at, s, r), stream_->push(cmd::CopyTextureRegion{d, at, s, r});
-}
-void RecordingCommandList::beginTimer(TimerHandle t) { inner_->beginTimer(t), stream_->push(cmd::BeginTimer{t}); }
-void RecordingCommandList::endTimer(TimerHandle t) { inner_->endTimer(t), stream_->push(cmd::EndTimer{t}); }
-void RecordingCommandList::beginQuery(QuerySetHandle q, uint32_t i) { inner_->beginQuery(q, i), stream_->push(cmd::BeginQuery{q, i}); }
-void RecordingCommandList::endQuery(QuerySetHandle q, uint32_t i) { inner_->endQuery(q, i), stream_->push(cmd::EndQuery{q, i}); }
-void RecordingCommandList::writeTimestamp(QuerySetHandle q, uint32_t i) {
-    inner_->writeTimestamp(q, i), stream_->push(cmd::WriteTimestamp{q, i});
-}
-void RecordingCommandList::resolveQueries(QuerySetHandle q, uint32_t f, uint32_t n, BufferHandle d, uint64_t o) {
-    inner_->resolveQueries(q, f, n, d, o), stream_->push(cmd::ResolveQueries{q, f, n, d, o});
-}
-void RecordingCommandList::pushName(const char* name, bool label) {
-    const char* text = name ? name : "";
-    if (label) {
-        auto* r = stream_->push(cmd::InsertDebugLabel{}, cmd::CommandStream::payloadSize(text));
-        r->name = stream_->payload(*r, text);
-    } else {
-        auto* r = stream_->push(cmd::PushDebugGroup{}, cmd::CommandStream::payloadSize(text));
-        r->name = stream_->payload(*r, text);
-    }
-}
-void RecordingCommandList::pushDebugGroup(const char* name) { inner_->pushDebugGroup(name), pushName(name, false); }
-void RecordingCommandList::popDebugGroup() { inner_->popDebugGroup(), stream_->push(cmd::PopDebugGroup{}); }
-void RecordingCommandList::insertDebugLabel(const char* name) { inner_->insertDebugLabel(name), pushName(name, true); }
-void RecordingCommandList::discardTexture(TextureHandle t) { inner_->discardTexture(t), stream_->push(cmd::DiscardTexture{t}); }
-void RecordingCommandList::setAutomaticBarriers(bool e) { inner_->setAutomaticBarriers(e), stream_->push(cmd::SetAutomaticBarriers{e}); }
+template void RecordingCommandList::check<cmd::SetUniformBuffer>(uint32_t, BufferHandle, uint64_t, uint64_t);
+template void RecordingCommandList::check<cmd::SetStorageBuffer>(uint32_t, BufferHandle, uint64_t, uint64_t);
 template <class R, class T>
 void RecordingCommandList::pushArray(std::span<const T> items) {
     auto* r = stream_->push(R{}, cmd::CommandStream::payloadSize(items.size_bytes()));
@@ -196,54 +99,32 @@ struct Applier {
         if (observer) observer->adjustPass(pass);
         list.beginRenderPass(pass);
     }
-    void operator()(const cmd::EndRenderPass&) { list.endRenderPass(); }
-    void operator()(const cmd::SetPipeline& r) { list.setPipeline(m()[r.pipeline]); }
-    void operator()(const cmd::SetViewport& r) { list.setViewport(r.viewport); }
-    void operator()(const cmd::SetScissor& r) { list.setScissor(r.rect); }
-    void operator()(const cmd::SetBlendConstant& r) { list.setBlendConstant(r.rgba); }
-    void operator()(const cmd::SetStencilReference& r) { list.setStencilReference(r.reference); }
-    void operator()(const cmd::SetDepthBias& r) { list.setDepthBias(r.constant, r.slope, r.clamp); }
-    void operator()(const cmd::SetConstants& r) { list.setConstants(r.offset, cmd::view(r, r.data)); }
-    void operator()(const cmd::SetVertexBuffer& r) { list.setVertexBuffer(r.index, m()[r.buffer], r.offset); }
-    void operator()(const cmd::SetIndexBuffer& r) { list.setIndexBuffer(m()[r.buffer], r.type, r.offset); }
-    void operator()(const cmd::SetUniformBuffer& r) { list.setUniformBuffer(r.slot, m()[r.buffer], r.offset, r.size); }
-    void operator()(const cmd::SetStorageBuffer& r) { list.setStorageBuffer(r.slot, m()[r.buffer], r.offset, r.size); }
-    void operator()(const cmd::SetTexture& r) { list.setTexture(r.slot, m()[r.texture], m()[r.sampler]); }
-    void operator()(const cmd::SetStorageTexture& r) { list.setStorageTexture(r.slot, m()[r.texture], r.mipLevel); }
-    void operator()(const cmd::Draw& r) { list.draw(r.vertexCount, r.instanceCount, r.firstVertex, r.firstInstance); }
-    void operator()(const cmd::DrawIndexed& r) {
-        list.drawIndexed(r.indexCount, r.instanceCount, r.firstIndex, r.baseVertex, r.firstInstance);
-    }
-    void operator()(const cmd::Dispatch& r) { list.dispatch(r.groupsX, r.groupsY, r.groupsZ); }
-    void operator()(const cmd::DrawIndirect& r) { list.drawIndirect(m()[r.args], r.offset, r.drawCount, r.stride); }
-    void operator()(const cmd::DrawIndexedIndirect& r) { list.drawIndexedIndirect(m()[r.args], r.offset, r.drawCount, r.stride); }
-    void operator()(const cmd::DrawIndirectCount& r) {
-        list.drawIndirectCount(m()[r.args], r.offset, m()[r.countBuffer], r.countOffset, r.maxDrawCount, r.stride);
-    }
-    void operator()(const cmd::DrawIndexedIndirectCount& r) {
-        list.drawIndexedIndirectCount(m()[r.args], r.offset, m()[r.countBuffer], r.countOffset, r.maxDrawCount, r.stride);
-    }
-    void operator()(const cmd::DispatchIndirect& r) { list.dispatchIndirect(m()[r.args], r.offset); }
-    void operator()(const cmd::GenerateMips& r) { list.generateMips(m()[r.texture]); }
-    void operator()(const cmd::CopyBuffer& r) { list.copyBuffer(m()[r.dst], r.dstOffset, m()[r.src], r.srcOffset, r.size); }
-    void operator()(const cmd::CopyTexture& r) { list.copyTexture(m()[r.dst], m()[r.src], r.mipLevel); }
-    void operator()(const cmd::CopyBufferToTexture& r) { list.copyBufferToTexture(m()[r.dst], r.at, m()[r.src], r.srcOffset); }
-    void operator()(const cmd::CopyTextureToBuffer& r) { list.copyTextureToBuffer(m()[r.dst], r.dstOffset, m()[r.src], r.at); }
-    void operator()(const cmd::CopyBufferToTextureRegion& r) { list.copyBufferToTexture(m()[r.dst], r.region, m()[r.src], r.layout); }
-    void operator()(const cmd::CopyTextureToBufferRegion& r) { list.copyTextureToBuffer(m()[r.dst], r.layout, m()[r.src], r.region); }
-    void operator()(const cmd::CopyTextureRegion& r) { list.copyTexture(m()[r.dst], r.dstAt, m()[r.src], r.srcRegion); }
-    void operator()(const cmd::BeginTimer& r) { list.beginTimer(m()[r.timer]); }
-    void operator()(const cmd::EndTimer& r) { list.endTimer(m()[r.timer]); }
-    void operator()(const cmd::BeginQuery& r) { list.beginQuery(m()[r.set], r.index); }
-    void operator()(const cmd::EndQuery& r) { list.endQuery(m()[r.set], r.index); }
-    void operator()(const cmd::WriteTimestamp& r) { list.writeTimestamp(m()[r.set], r.index); }
-    void operator()(const cmd::ResolveQueries& r) { list.resolveQueries(m()[r.set], r.first, r.count, m()[r.dst], r.dstOffset); }
-    void operator()(const cmd::PushDebugGroup& r) { list.pushDebugGroup(cmd::view(r, r.name)); }
-    void operator()(const cmd::PopDebugGroup&) { list.popDebugGroup(); }
-    void operator()(const cmd::InsertDebugLabel& r) { list.insertDebugLabel(cmd::view(r, r.name)); }
-    void operator()(const cmd::ClearBuffer& r) { list.clearBuffer(m()[r.buffer], r.offset, r.size, r.value); }
-    void operator()(const cmd::DiscardTexture& r) { list.discardTexture(m()[r.texture]); }
-    void operator()(const cmd::SetAutomaticBarriers& r) { list.setAutomaticBarriers(r.enabled); }
+    // A record's field as its call's argument: handles mapped, payloads viewed, the rest as is.
+    template <class R, class T>
+    static const T& arg(const R&, const T& value) { return value; }
+    template <class R> BufferHandle arg(const R&, BufferHandle h) const { return m()[h]; }
+    template <class R> TextureHandle arg(const R&, TextureHandle h) const { return m()[h]; }
+    template <class R> SamplerHandle arg(const R&, SamplerHandle h) const { return m()[h]; }
+    template <class R> PipelineHandle arg(const R&, PipelineHandle h) const { return m()[h]; }
+    template <class R> TimerHandle arg(const R&, TimerHandle h) const { return m()[h]; }
+    template <class R> QuerySetHandle arg(const R&, QuerySetHandle h) const { return m()[h]; }
+    template <class R, class T>
+    static std::span<const T> arg(const R& r, cmd::Array<T> a) { return cmd::view(r, a); }
+    template <class R>
+    static const char* arg(const R& r, cmd::String s) { return cmd::view(r, s); }
+
+    FE_CMD_TYPE_NAMES
+    // The calls that map field for field, generated from the command set.
+#define FE_FIELD(Type, name) (Type, name)
+#define FE_COMMAND(Name, Fields)
+#define FE_CALL(Name, method, Fields) \
+    void operator()([[maybe_unused]] const cmd::Name& r) { list.method(FE_CMD_RECORD_ARGS(Fields)); }
+#include "fe/gdi/CommandSet.inc"
+#undef FE_CALL
+#undef FE_COMMAND
+#undef FE_FIELD
+
+    // The rest, by hand.
     void operator()(const cmd::TextureBarriers& r) {
         std::vector<TextureBarrier> b(cmd::view(r, r.barriers).begin(), cmd::view(r, r.barriers).end());
         for (TextureBarrier& x : b) x.texture = m()[x.texture];

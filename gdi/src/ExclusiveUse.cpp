@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::gdi {
@@ -84,62 +85,18 @@ public:
     CommandList& inner() { return *inner_; }
     std::atomic<bool>& busy() { return busy_; }
 
+    FE_CMD_TYPE_NAMES
+    // The calls that map field for field to a record, generated from the command set.
+#define FE_FIELD(Type, name) (Type, name)
+#define FE_COMMAND(Name, Fields)
+#define FE_CALL(Name, method, Fields) \
+    void method(FE_CMD_PARAMS(Fields)) override FE_CLAIMED(method(FE_CMD_ARGS(Fields)))
+#include "fe/gdi/CommandSet.inc"
+#undef FE_CALL
+#undef FE_COMMAND
+#undef FE_FIELD
+    // The rest, by hand.
     void beginRenderPass(const RenderPassDesc& d) override FE_CLAIMED(beginRenderPass(d))
-    void endRenderPass() override FE_CLAIMED(endRenderPass())
-    void setPipeline(PipelineHandle p) override FE_CLAIMED(setPipeline(p))
-    void setViewport(const Viewport& v) override FE_CLAIMED(setViewport(v))
-    void setScissor(const Rect& r) override FE_CLAIMED(setScissor(r))
-    void setBlendConstant(const std::array<float, 4>& c) override FE_CLAIMED(setBlendConstant(c))
-    void setStencilReference(uint8_t r) override FE_CLAIMED(setStencilReference(r))
-    void setDepthBias(float c, float s, float k) override FE_CLAIMED(setDepthBias(c, s, k))
-    void setConstants(uint32_t o, ByteSpan d) override FE_CLAIMED(setConstants(o, d))
-    void setVertexBuffer(uint32_t i, BufferHandle b, uint64_t o) override FE_CLAIMED(setVertexBuffer(i, b, o))
-    void setIndexBuffer(BufferHandle b, IndexType t, uint64_t o) override FE_CLAIMED(setIndexBuffer(b, t, o))
-    void setUniformBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) override
-        FE_CLAIMED(setUniformBuffer(s, b, o, n))
-    void setStorageBuffer(uint32_t s, BufferHandle b, uint64_t o, uint64_t n) override
-        FE_CLAIMED(setStorageBuffer(s, b, o, n))
-    void setTexture(uint32_t s, TextureHandle t, SamplerHandle p) override FE_CLAIMED(setTexture(s, t, p))
-    void setStorageTexture(uint32_t s, TextureHandle t, uint32_t m) override FE_CLAIMED(setStorageTexture(s, t, m))
-    void draw(uint32_t v, uint32_t i, uint32_t fv, uint32_t fi) override FE_CLAIMED(draw(v, i, fv, fi))
-    void drawIndexed(uint32_t n, uint32_t i, uint32_t fi, int32_t bv, uint32_t fin) override
-        FE_CLAIMED(drawIndexed(n, i, fi, bv, fin))
-    void dispatch(uint32_t x, uint32_t y, uint32_t z) override FE_CLAIMED(dispatch(x, y, z))
-    void drawIndirect(BufferHandle a, uint64_t o, uint32_t n, uint32_t s) override FE_CLAIMED(drawIndirect(a, o, n, s))
-    void drawIndexedIndirect(BufferHandle a, uint64_t o, uint32_t n, uint32_t s) override
-        FE_CLAIMED(drawIndexedIndirect(a, o, n, s))
-    void drawIndirectCount(BufferHandle a, uint64_t o, BufferHandle c, uint64_t co, uint32_t m, uint32_t s) override
-        FE_CLAIMED(drawIndirectCount(a, o, c, co, m, s))
-    void drawIndexedIndirectCount(BufferHandle a, uint64_t o, BufferHandle c, uint64_t co, uint32_t m,
-                                  uint32_t s) override FE_CLAIMED(drawIndexedIndirectCount(a, o, c, co, m, s))
-    void dispatchIndirect(BufferHandle a, uint64_t o) override FE_CLAIMED(dispatchIndirect(a, o))
-    void generateMips(TextureHandle t) override FE_CLAIMED(generateMips(t))
-    void copyBuffer(BufferHandle d, uint64_t doff, BufferHandle s, uint64_t soff, uint64_t n) override
-        FE_CLAIMED(copyBuffer(d, doff, s, soff, n))
-    void clearBuffer(BufferHandle b, uint64_t o, uint64_t n, uint32_t v) override FE_CLAIMED(clearBuffer(b, o, n, v))
-    void copyTexture(TextureHandle d, TextureHandle s, uint32_t m) override FE_CLAIMED(copyTexture(d, s, m))
-    void copyBufferToTexture(TextureHandle d, Subresource at, BufferHandle s, uint64_t o) override
-        FE_CLAIMED(copyBufferToTexture(d, at, s, o))
-    void copyTextureToBuffer(BufferHandle d, uint64_t o, TextureHandle s, Subresource at) override
-        FE_CLAIMED(copyTextureToBuffer(d, o, s, at))
-    void copyBufferToTexture(TextureHandle d, const TextureRegion& r, BufferHandle s, const TexelLayout& l) override
-        FE_CLAIMED(copyBufferToTexture(d, r, s, l))
-    void copyTextureToBuffer(BufferHandle d, const TexelLayout& l, TextureHandle s, const TextureRegion& r) override
-        FE_CLAIMED(copyTextureToBuffer(d, l, s, r))
-    void copyTexture(TextureHandle d, const TextureRegion& at, TextureHandle s, const TextureRegion& r) override
-        FE_CLAIMED(copyTexture(d, at, s, r))
-    void beginTimer(TimerHandle t) override FE_CLAIMED(beginTimer(t))
-    void endTimer(TimerHandle t) override FE_CLAIMED(endTimer(t))
-    void beginQuery(QuerySetHandle q, uint32_t i) override FE_CLAIMED(beginQuery(q, i))
-    void endQuery(QuerySetHandle q, uint32_t i) override FE_CLAIMED(endQuery(q, i))
-    void writeTimestamp(QuerySetHandle q, uint32_t i) override FE_CLAIMED(writeTimestamp(q, i))
-    void resolveQueries(QuerySetHandle q, uint32_t f, uint32_t n, BufferHandle d, uint64_t o) override
-        FE_CLAIMED(resolveQueries(q, f, n, d, o))
-    void pushDebugGroup(const char* name) override FE_CLAIMED(pushDebugGroup(name))
-    void popDebugGroup() override FE_CLAIMED(popDebugGroup())
-    void insertDebugLabel(const char* name) override FE_CLAIMED(insertDebugLabel(name))
-    void discardTexture(TextureHandle t) override FE_CLAIMED(discardTexture(t))
-    void setAutomaticBarriers(bool on) override FE_CLAIMED(setAutomaticBarriers(on))
     void barrier(const TextureBarrier* b, uint32_t n) override FE_CLAIMED(barrier(b, n))
     void barrier(const BufferBarrier* b, uint32_t n) override FE_CLAIMED(barrier(b, n))
     void beginSecondary(const RenderPassDesc& pass) override FE_CLAIMED(beginSecondary(pass))

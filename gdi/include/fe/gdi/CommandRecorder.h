@@ -27,52 +27,23 @@ public:
     // The calls recorded since the last take (secondary lists executed here included).
     std::unique_ptr<cmd::CommandStream> takeStream();
 
+    FE_CMD_TYPE_NAMES
+    // The calls that map field for field to a record, generated from the command set: each goes
+    // to the inner list, then (if it did not throw) becomes its record.
+#define FE_FIELD(Type, name) (Type, name)
+#define FE_COMMAND(Name, Fields)
+#define FE_CALL(Name, method, Fields)              \
+    void method(FE_CMD_PARAMS(Fields)) override {  \
+        check<cmd::Name>(FE_CMD_ARGS(Fields));     \
+        inner_->method(FE_CMD_ARGS(Fields));       \
+        stream_->record<cmd::Name>(FE_CMD_ARGS(Fields)); \
+    }
+#include "fe/gdi/CommandSet.inc"
+#undef FE_CALL
+#undef FE_COMMAND
+#undef FE_FIELD
+    // The rest, by hand.
     void beginRenderPass(const RenderPassDesc& desc) override;
-    void endRenderPass() override;
-    void setPipeline(PipelineHandle pipeline) override;
-    void setViewport(const Viewport& viewport) override;
-    void setScissor(const Rect& rect) override;
-    void setBlendConstant(const std::array<float, 4>& rgba) override;
-    void setStencilReference(uint8_t reference) override;
-    void setDepthBias(float constant, float slope, float clamp) override;
-    void setConstants(uint32_t offset, ByteSpan data) override;
-    void setVertexBuffer(uint32_t index, BufferHandle buffer, uint64_t offset) override;
-    void setIndexBuffer(BufferHandle buffer, IndexType type, uint64_t offset) override;
-    void setUniformBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    void setStorageBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    void setTexture(uint32_t slot, TextureHandle texture, SamplerHandle sampler) override;
-    void setStorageTexture(uint32_t slot, TextureHandle texture, uint32_t mipLevel) override;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override;
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
-                     uint32_t firstInstance) override;
-    void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
-    void drawIndirect(BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndexedIndirect(BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndirectCount(BufferHandle args, uint64_t offset, BufferHandle count, uint64_t countOffset, uint32_t maxDrawCount,
-                           uint32_t stride) override;
-    void drawIndexedIndirectCount(BufferHandle args, uint64_t offset, BufferHandle count, uint64_t countOffset,
-                                  uint32_t maxDrawCount, uint32_t stride) override;
-    void dispatchIndirect(BufferHandle args, uint64_t offset) override;
-    void generateMips(TextureHandle texture) override;
-    void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset, uint64_t size) override;
-    void clearBuffer(BufferHandle buffer, uint64_t offset, uint64_t size, uint32_t value) override;
-    void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel) override;
-    void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src, uint64_t srcOffset) override;
-    void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, Subresource at) override;
-    void copyBufferToTexture(TextureHandle dst, const TextureRegion& region, BufferHandle src, const TexelLayout& layout) override;
-    void copyTextureToBuffer(BufferHandle dst, const TexelLayout& layout, TextureHandle src, const TextureRegion& region) override;
-    void copyTexture(TextureHandle dst, const TextureRegion& dstAt, TextureHandle src, const TextureRegion& srcRegion) override;
-    void beginTimer(TimerHandle timer) override;
-    void endTimer(TimerHandle timer) override;
-    void beginQuery(QuerySetHandle set, uint32_t index) override;
-    void endQuery(QuerySetHandle set, uint32_t index) override;
-    void writeTimestamp(QuerySetHandle set, uint32_t index) override;
-    void resolveQueries(QuerySetHandle set, uint32_t first, uint32_t count, BufferHandle dst, uint64_t dstOffset) override;
-    void pushDebugGroup(const char* name) override;
-    void popDebugGroup() override;
-    void insertDebugLabel(const char* name) override;
-    void discardTexture(TextureHandle texture) override;
-    void setAutomaticBarriers(bool enabled) override;
     void barrier(const TextureBarrier* barriers, uint32_t count) override;
     void barrier(const BufferBarrier* barriers, uint32_t count) override;
     void beginSecondary(const RenderPassDesc& pass) override;
@@ -82,9 +53,14 @@ public:
     using CommandList::executeSecondary;
 
 private:
+    // Checks of the recording device beyond the inner list's own: none but for buffer bindings.
+    template <class R, class... A>
+    void check(const A&...) {}
+    template <class R>
+        requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
+    void check(uint32_t slot, BufferHandle buffer, uint64_t offset, uint64_t size);
     template <class R, class T>
     void pushArray(std::span<const T> items);
-    void pushName(const char* name, bool label);
     Device& device_;
     std::unique_ptr<CommandList> inner_;
     std::unique_ptr<cmd::CommandStream> stream_;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <span>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -31,6 +32,66 @@ struct Array {
 };
 using String = Array<char>;  // NUL-terminated; count includes the NUL; empty: no string
 using Rgba = std::array<float, 4>;
+
+// How CommandList's methods take a field of each type (CommandSet.inc, FE_CALL): by value; the
+// larger structs by const reference; payloads as a span or a C string.
+template <class T>
+struct ParamOf {
+    using type = T;
+};
+template <class T>
+struct ParamOf<Array<T>> {
+    using type = std::span<const T>;
+};
+template <>
+struct ParamOf<String> {
+    using type = const char*;
+};
+template <class T>
+struct ParamOfConstRef {
+    using type = const T&;
+};
+template <> struct ParamOf<Viewport> : ParamOfConstRef<Viewport> {};
+template <> struct ParamOf<Rect> : ParamOfConstRef<Rect> {};
+template <> struct ParamOf<Rgba> : ParamOfConstRef<Rgba> {};
+template <> struct ParamOf<TextureRegion> : ParamOfConstRef<TextureRegion> {};
+template <> struct ParamOf<TexelLayout> : ParamOfConstRef<TexelLayout> {};
+template <class T>
+using Param = typename ParamOf<T>::type;
+
+// Generating code from the command set. FE_CMD_LIST(, a, b) drops the leading comma of a list a
+// field macro built. For code that needs a call's parameters and its arguments at once, define
+// FE_FIELD(Type, name) as (Type, name): the fields become a sequence of pairs, which
+// FE_CMD_PARAMS(fields) turns into "Param<T1> n1, Param<T2> n2" and FE_CMD_ARGS(fields) into
+// "n1, n2" (the alternating-macro walk over a sequence, as Boost.Preprocessor's SEQ does).
+// FE_CMD_TYPE_NAMES, in a generating class, names the command set's own types as it does.
+#define FE_CMD_TYPE_NAMES                                \
+    template <class T>                                   \
+    using Array = ::fe::gdi::cmd::Array<T>;              \
+    using String = ::fe::gdi::cmd::String;               \
+    using Rgba = ::fe::gdi::cmd::Rgba;
+#define FE_CMD_DROP_FIRST(first, ...) __VA_ARGS__
+#define FE_CMD_APPLY(macro, args) macro args
+#define FE_CMD_LIST(...) FE_CMD_APPLY(FE_CMD_DROP_FIRST, (~__VA_ARGS__))
+#define FE_CMD_END(...) FE_CMD_END_I(__VA_ARGS__)
+#define FE_CMD_END_I(...) __VA_ARGS__##_END
+#define FE_CMD_PARAMS(seq) FE_CMD_LIST(FE_CMD_END(FE_CMD_PARAM_A seq))
+#define FE_CMD_PARAM_A(Type, name) , ::fe::gdi::cmd::Param<Type> name FE_CMD_PARAM_B
+#define FE_CMD_PARAM_B(Type, name) , ::fe::gdi::cmd::Param<Type> name FE_CMD_PARAM_A
+#define FE_CMD_PARAM_A_END
+#define FE_CMD_PARAM_B_END
+#define FE_CMD_ARGS(seq) FE_CMD_LIST(FE_CMD_END(FE_CMD_ARG_A seq))
+#define FE_CMD_ARG_A(Type, name) , name FE_CMD_ARG_B
+#define FE_CMD_ARG_B(Type, name) , name FE_CMD_ARG_A
+#define FE_CMD_ARG_A_END
+#define FE_CMD_ARG_B_END
+// "arg(r, r.n1), arg(r, r.n2)": a record r's fields as the arguments of its call, each through
+// an arg() the generating code provides (replay maps handles and views payloads there).
+#define FE_CMD_RECORD_ARGS(seq) FE_CMD_LIST(FE_CMD_END(FE_CMD_RECORD_ARG_A seq))
+#define FE_CMD_RECORD_ARG_A(Type, name) , arg(r, r.name) FE_CMD_RECORD_ARG_B
+#define FE_CMD_RECORD_ARG_B(Type, name) , arg(r, r.name) FE_CMD_RECORD_ARG_A
+#define FE_CMD_RECORD_ARG_A_END
+#define FE_CMD_RECORD_ARG_B_END
 
 enum class Op : uint16_t {
 #define FE_COMMAND(Name, Fields) Name,
@@ -57,6 +118,14 @@ const char* opName(Op op);
 #define FE_COMMAND(Name, Fields)                                      \
     template <class F>                                                \
     void forEachField([[maybe_unused]] const Name& record, [[maybe_unused]] F&& f) { Fields }
+#include "fe/gdi/CommandSet.inc"
+#undef FE_COMMAND
+#undef FE_FIELD
+
+// A record's fields as references, in declaration order (CommandStream::record fills them).
+#define FE_FIELD(Type, name) , record.name
+#define FE_COMMAND(Name, ...) \
+    inline auto fieldRefs([[maybe_unused]] Name& record) { return std::tie(FE_CMD_LIST(__VA_ARGS__)); }
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
 #undef FE_FIELD
@@ -108,6 +177,18 @@ public:
     String payload(const R& record, const char* text) {
         if (!text) return {};
         return payload(record, std::span<const char>(text, std::strlen(text) + 1));
+    }
+    // Appends record R with its fields set from `args` in order (CommandList's parameters, as
+    // cmd::Param gives them): payloads are copied after the record; a null String is stored as "".
+    template <class R, class... A>
+    R* record(const A&... args) {
+        auto* r = push(R{}, (size_t(0) + ... + payloadBytes(args)));
+        auto fields = fieldRefs(*r);
+        static_assert(std::tuple_size_v<decltype(fields)> == sizeof...(A), "one argument per field");
+        [&]<size_t... I>(std::index_sequence<I...>) {
+            (store(*r, std::get<I>(fields), args), ...);
+        }(std::index_sequence_for<A...>{});
+        return r;
     }
     static size_t payloadSize(size_t bytes) { return align(bytes); }
     static size_t payloadSize(const char* text) { return text ? align(std::strlen(text) + 1) : 0; }
@@ -173,6 +254,17 @@ public:
     }
 
 private:
+    template <class T>
+    static size_t payloadBytes(const T&) { return 0; }
+    template <class T>
+    static size_t payloadBytes(const std::span<const T>& data) { return align(data.size_bytes()); }
+    static size_t payloadBytes(const char* text) { return align(std::strlen(text ? text : "") + 1); }
+    template <class R, class T, class V>
+    void store(const R&, T& field, const V& value) { field = value; }
+    template <class R, class T>
+    void store(const R& record, Array<T>& field, const std::span<const T>& data) { field = payload(record, data); }
+    template <class R>
+    void store(const R& record, String& field, const char* text) { field = payload(record, text ? text : ""); }
     static constexpr size_t kBlockSize = 64 * 1024;
     static constexpr size_t align(size_t n) { return (n + 7) & ~size_t(7); }
     struct Block {
