@@ -25,6 +25,16 @@ namespace {
 using platform::openLibrary;
 using platform::symbol;
 
+// Every device in the process gets the same surfaceless EGLDisplay, and eglTerminate is not
+// counted: one device's terminate while another device was being made on another thread failed
+// the other's eglMakeCurrent (ExecutionModel.DevicesComeAndGoWhileAnotherWorks). So the display
+// is initialized and terminated by count: the last device to go terminates it.
+std::mutex& eglDisplayMutex() {
+    static std::mutex m;
+    return m;
+}
+uint32_t eglDisplayUsers = 0;  // guarded by eglDisplayMutex()
+
 class EglPlatform final : public GlPlatform {
 public:
     explicit EglPlatform(bool debug) {
@@ -42,32 +52,37 @@ public:
         if (!getPlatformDisplay) throw gdi::Error("EGL: eglGetPlatformDisplayEXT unavailable");
         display_ = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
-        if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor))
-            throw gdi::Error("EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless required)");
-        if (!bindApi(EGL_OPENGL_API)) throw gdi::Error("EGL: desktop OpenGL API unavailable");
-        // Robust first (EGL 1.5 / KHR_create_context): a GPU reset is then reported through
-        // glGetGraphicsResetStatus and the device becomes lost instead of undefined. Drivers
-        // without robustness refuse it: a plain context then.
-        const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                 EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
-                                 EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
-                                 EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET, EGL_NONE};
-        const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                  EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
-        context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust);
-        if (context_ == EGL_NO_CONTEXT) context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
-        if (context_ == EGL_NO_CONTEXT) throw gdi::Error("EGL: cannot create an OpenGL 4.5 core context");
-        makeCurrent();
-    }
-    ~EglPlatform() override {
-        if (context_ != EGL_NO_CONTEXT) {
-            makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            destroyContext_(display_, context_);
+        {
+            const std::lock_guard lock(eglDisplayMutex());
+            if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor)) {
+                display_ = EGL_NO_DISPLAY;  // not ours to terminate
+                throw gdi::Error("EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless required)");
+            }
+            ++eglDisplayUsers;
         }
-        if (display_ != EGL_NO_DISPLAY) terminate_(display_);
+        try {
+            if (!bindApi(EGL_OPENGL_API)) throw gdi::Error("EGL: desktop OpenGL API unavailable");
+            // Robust first (EGL 1.5 / KHR_create_context): a GPU reset is then reported through
+            // glGetGraphicsResetStatus and the device becomes lost instead of undefined. Drivers
+            // without robustness refuse it: a plain context then.
+            const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                                     EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
+                                     EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET, EGL_NONE};
+            const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+            context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust);
+            if (context_ == EGL_NO_CONTEXT) context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+            if (context_ == EGL_NO_CONTEXT) throw gdi::Error("EGL: cannot create an OpenGL 4.5 core context");
+            makeCurrent();
+        } catch (...) {
+            release();  // the destructor does not run when the constructor throws
+            throw;
+        }
     }
+    ~EglPlatform() override { release(); }
     const char* name() const override { return "gl-egl"; }
     void* getProcAddress(const char* n) override { return reinterpret_cast<void*>(getProc_(n)); }
     void makeCurrent() override {
@@ -77,6 +92,16 @@ public:
     void releaseCurrent() override { makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
 private:
+    void release() {
+        if (context_ != EGL_NO_CONTEXT) {
+            makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            destroyContext_(display_, std::exchange(context_, EGL_NO_CONTEXT));
+        }
+        if (display_ == EGL_NO_DISPLAY) return;
+        const std::lock_guard lock(eglDisplayMutex());
+        if (--eglDisplayUsers == 0) terminate_(std::exchange(display_, EGL_NO_DISPLAY));
+        display_ = EGL_NO_DISPLAY;
+    }
     void* lib_ = nullptr;
     PFNEGLGETPROCADDRESSPROC getProc_ = nullptr;
     PFNEGLMAKECURRENTPROC makeCurrent_ = nullptr;

@@ -119,7 +119,9 @@ TEST_P(ListOnTwoThreads, SubmitWhileRecordingIsRefused) {
 // validation on (what examples/materials does with two renderers). Vulkan's validation layer
 // (1.3.239, Debian 12) keeps its per-device data in one process-wide map that it changes when a
 // device or instance is made or destroyed and reads in every call, unlocked; the backend
-// excludes the two (VulkanDevice.h, LayerCallLock). Without that, this crashed inside the layer.
+// excludes the two (gdi::NativeLayerLock); without that, this crashed inside the layer. On
+// gl-egl every device shares one EGLDisplay, which one device's eglTerminate took from the other
+// (eglMakeCurrent failed) until the display was counted (GlPlatform.cpp).
 TEST_P(ExecutionModel, DevicesComeAndGoWhileAnotherWorks) {
     const std::string backend = GetParam();
     if (!gdi::probeBackend(backend, false).available) GTEST_SKIP() << backend << " is not available here";
