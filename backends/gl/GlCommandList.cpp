@@ -91,7 +91,7 @@ gdi::validate::PassSignature GlCommandList::checkPass(const gdi::RenderPassDesc&
 void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     checkDevice("beginRenderPass");
     if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
-    if (inPass_) throw gdi::Error("beginRenderPass is not allowed inside a render pass");
+    if (inPass_) gdi::validate::insidePass("beginRenderPass");
     signature_ = checkPass(desc);
     beginPassFeedback(desc);
     passSamples_ = signature_.samples;
@@ -267,7 +267,7 @@ void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uin
 }
 void GlCommandList::prepareCompute(const char* what) {
     checkDevice(what);
-    if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
+    if (inPass_) gdi::validate::insidePass(what);
     if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
     if (!pipeline_->compute) throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
 }
@@ -280,28 +280,28 @@ void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
 
 void GlCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
                                uint64_t size) {
-    outside("copyBuffer");
+    outsidePass("copyBuffer");
     const Buffer& d = dev_.buffer(dst);
     const Buffer& s = dev_.buffer(src);
     gdi::validate::bufferCopy(d.desc, d.label, dstOffset, s.desc, s.label, srcOffset, size, &d == &s);
     stream_->push(cmd::CopyBuffer{dst, dstOffset, src, srcOffset, size});
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
-    outside("copyTexture");
+    outsidePass("copyTexture");
     const Texture& d = copied(dst);
     const Texture& s = copied(src);
     gdi::validate::wholeTextureCopy(d.desc, d.label, s.desc, s.label, mip);
     stream_->push(cmd::CopyTexture{dst, src, mip});
 }
 void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
-    outside("copyBufferToTexture");
+    outsidePass("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
     gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, srcOffset, true, "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTexture{dst, at, src, srcOffset});
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
-    outside("copyTextureToBuffer");
+    outsidePass("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
     gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, dstOffset, false, "copyTextureToBuffer");
@@ -310,7 +310,7 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffse
 // Regions: the shared rules resolve them, and the records carry the resolved values.
 void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
                                         const gdi::TexelLayout& layout) {
-    outside("copyBufferToTexture");
+    outsidePass("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
     const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, true,
@@ -319,7 +319,7 @@ void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::Textu
 }
 void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
                                         const gdi::TextureRegion& region) {
-    outside("copyTextureToBuffer");
+    outsidePass("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
     const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, false,
@@ -328,7 +328,7 @@ void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelL
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
                                 const gdi::TextureRegion& srcRegion) {
-    outside("copyTexture");
+    outsidePass("copyTexture");
     const Texture& d = copied(dst);
     const Texture& s = copied(src);
     const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
@@ -336,7 +336,7 @@ void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion
 }
 
 void GlCommandList::generateMips(gdi::TextureHandle h) {
-    outside("generateMips");
+    outsidePass("generateMips");
     const Texture& t = copied(h);
     gdi::validate::mipGeneration(t.desc, t.label);
     stream_->push(cmd::GenerateMips{h});
@@ -389,7 +389,7 @@ void GlCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
 }
 
 void GlCommandList::beginTimer(gdi::TimerHandle h) {
-    outside("beginTimer");
+    outsidePass("beginTimer");
     (void)dev_.timer(h);
     queries_.beginTimer(h.id);
     stream_->push(cmd::BeginTimer{h});
@@ -423,7 +423,7 @@ void GlCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
 }
 void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count, gdi::BufferHandle dst,
                                    uint64_t dstOffset) {
-    outside("resolveQueries");
+    outsidePass("resolveQueries");
     const QuerySet& q = usedQuerySet(h, "resolveQueries");
     const Buffer& b = dev_.buffer(dst);
     queries_.resolve(q.desc, q.label, h.id, first, count);
@@ -449,22 +449,22 @@ void GlCommandList::insertDebugLabel(const char* name) {
     r->name = stream_->payload(*r, name ? name : "");
 }
 void GlCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size, uint32_t value) {
-    outside("clearBuffer");
+    outsidePass("clearBuffer");
     const Buffer& b = dev_.buffer(h);
     const uint64_t bytes = gdi::validate::clearRange(b.desc, b.label, offset, size);
     stream_->push(cmd::ClearBuffer{h, offset, bytes, value});
 }
 void GlCommandList::discardTexture(gdi::TextureHandle h) {
-    outside("discardTexture");
+    outsidePass("discardTexture");
     (void)copied(h);
     stream_->push(cmd::DiscardTexture{h});
 }
 void GlCommandList::setAutomaticBarriers(bool enabled) {
-    outside("setAutomaticBarriers");
+    outsidePass("setAutomaticBarriers");
     stream_->push(cmd::SetAutomaticBarriers{enabled});
 }
 void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count) {
-    outside("barrier");
+    outsidePass("barrier");
     gdi::validate::barrierArray(barriers, count);
     for (const gdi::TextureBarrier& b : std::span(barriers, count)) {
         const Texture& t = copied(b.texture);
@@ -473,7 +473,7 @@ void GlCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t count)
     pushArray<cmd::TextureBarriers>(std::span(barriers, count));
 }
 void GlCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t count) {
-    outside("barrier");
+    outsidePass("barrier");
     gdi::validate::barrierArray(barriers, count);
     for (const gdi::BufferBarrier& b : std::span(barriers, count)) {
         const Buffer& buffer = dev_.buffer(b.buffer);
@@ -505,9 +505,9 @@ void GlCommandList::endPassFeedback() {
 void GlCommandList::checkSlot(uint32_t slot, const char* what) const {
     if (slot >= 64) throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
 }
-void GlCommandList::outside(const char* what) const {
+void GlCommandList::outsidePass(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
-    if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
+    if (inPass_) gdi::validate::insidePass(what);
 }
 // Every slot the pipeline uses must be bound with the kind it declares (GL would otherwise
 // read whatever the other binding namespace holds). Only slots changed since the last check

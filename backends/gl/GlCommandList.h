@@ -124,12 +124,12 @@ private:
     }
     [[noreturn, gnu::cold, gnu::noinline]] void restrictedCall(const char* what) const;
     // A list whose device was destroyed (orphan()) throws at every call, naming it, before it
-    // touches the device (calls that check `restricted_` or `outside` get this from there).
+    // touches the device (calls that check `restricted_` or `outsidePass` get this from there).
     void checkDevice(const char* what) const {
         if (orphaned_) [[unlikely]]
             gdi::validate::listOfDestroyedDevice(what);
     }
-    void outside(const char* what) const;
+    void outsidePass(const char* what) const;
     QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
     // Copies, mips, discards and barriers address the texture itself, never a view of it.
     const Texture& copied(gdi::TextureHandle h) {

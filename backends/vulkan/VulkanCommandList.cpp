@@ -322,7 +322,7 @@ void VulkanCommandList::outsidePass(const char* what) {
     if (orphaned_) [[unlikely]]
         gdi::validate::listOfDestroyedDevice(what);
     ensureRecording(what);
-    if (inPass_) throw gdi::Error(std::string(what) + " is not allowed inside a render pass");
+    if (inPass_) gdi::validate::insidePass(what);
 }
 
 void VulkanCommandList::barrierIfWritten() {

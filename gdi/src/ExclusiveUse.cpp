@@ -85,6 +85,8 @@ public:
     CommandList& inner() { return *inner_; }
     std::atomic<bool>& busy() { return busy_; }
 
+    // Methods whose bodies are macros, one line each (clang-format reads them as one statement).
+    // clang-format off
     FE_CMD_TYPE_NAMES
     // The calls that map field for field to a record, generated from the command set.
 #define FE_FIELD(Type, name) (Type, name)
@@ -114,6 +116,7 @@ private:
     std::unique_ptr<CommandList> inner_;
     bool layerLock_;
     std::atomic<bool> busy_{false};
+    // clang-format on
 };
 
 #undef FE_CLAIMED

@@ -555,6 +555,9 @@ void submittedLists(std::span<CommandList* const> lists);
 // Dynamic state (viewport, scissor, blend constant, stencil reference, depth bias) is set
 // inside a render pass: each pass starts from its pipeline's values.
 [[noreturn]] void stateOutsidePass(const char* what);
+// A call only allowed outside a render pass (copies, barriers, compute, queries' resolve, ...)
+// made inside one.
+[[noreturn]] void insidePass(const char* what);
 // Submitting a list that uses an object destroyed after it was recorded.
 [[noreturn]] void destroyedBeforeSubmit(const char* kind, uint32_t id);
 
