@@ -19,6 +19,7 @@ PACKAGES=(
   libspirv-cross-c-shared-dev  # shader reflection (bindings, inputs, outputs) checked against pipelines
   spirv-tools                  # SPIR-V validated before reflection (SPIRV-Cross trusts its input)
   clang libclang-rt-14-dev     # the fuzzers (libFuzzer); gcc's own sanitizer runtimes come with g++
+  clang-format                 # the house style (.clang-format), checked in CI (tools/check-format.sh)
   librenderdoc librenderdoc-dev python3-renderdoc  # fe render --renderdoc-capture, and its test
 )
 
