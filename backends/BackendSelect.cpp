@@ -20,7 +20,9 @@ const std::vector<std::string>& windowBackendNames() {
     return names;
 }
 
-std::string validBackendList() { return "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw"; }
+std::string validBackendList() {
+    return "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw, gl-glfw";
+}
 
 namespace {
 
@@ -31,12 +33,13 @@ uint32_t frameCount(const char* variable) {
     if (!text || !*text) return 0;
     char* end = nullptr;
     const unsigned long n = std::strtoul(text, &end, 10);
-    if (*end || n > UINT32_MAX) throw Error(std::string(variable) + ": not a frame count: '" + text + "'");
+    if (*end || n > UINT32_MAX)
+        throw Error(std::string(variable) + ": not a frame count: '" + text + "'");
     return uint32_t(n);
 }
 
-std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::string& path, uint32_t frames,
-                                    uint32_t firstFrame, bool verbose) {
+std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::string& path,
+                                    uint32_t frames, uint32_t firstFrame, bool verbose) {
     CaptureDesc capture{.path = path, .frames = frames, .firstFrame = firstFrame};
     static std::atomic<bool> environmentUsed = false;
     if (capture.path.empty()) {
@@ -45,8 +48,11 @@ std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::s
         capture.path = env;
         capture.frames = frameCount("FE_CAPTURE_FRAMES");
         capture.firstFrame = frameCount("FE_CAPTURE_FIRST_FRAME");
-        if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0") capture.compress = false;
-        if (verbose) std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path << "\n";
+        if (const char* c = std::getenv("FE_CAPTURE_COMPRESS"); c && std::string(c) == "0")
+            capture.compress = false;
+        if (verbose)
+            std::cerr << "fe: capturing " << device->info().backend << " into " << capture.path
+                      << "\n";
     }
     return makeCaptureDevice(std::move(device), capture);
 }
@@ -56,7 +62,9 @@ BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsyn
     BackendProbe p;
     p.name = name;
     try {
-        fault::fired(fault::Site::Allocation);  // a bad FE_FAULT_* value is reported here, before any device work
+        fault::fired(
+            fault::Site::
+                Allocation);  // a bad FE_FAULT_* value is reported here, before any device work
         if (name == "vulkan")
             p.device = vk::createVulkanDevice(validation);
         else if (name == "gl-egl")
@@ -93,7 +101,8 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) 
 static std::vector<std::string> candidates(const std::string& name) {
     if (name == "auto") return backendNames();
     if (name == "gl") return {"gl-egl", "gl-osmesa"};
-    if (name == "vulkan" || name == "gl-egl" || name == "gl-osmesa" || name == "vulkan-glfw" || name == "gl-glfw")
+    if (name == "vulkan" || name == "gl-egl" || name == "gl-osmesa" || name == "vulkan-glfw" ||
+        name == "gl-glfw")
         return {name};
     throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
 }
@@ -115,7 +124,8 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
     if (name.empty()) name = "auto";
     std::vector<std::string> list = desc.window ? windowCandidates(name) : candidates(name);
     if (list.empty())
-        throw Error("backend '" + name + "' is headless; a window needs auto, vulkan, gl, vulkan-glfw or gl-glfw");
+        throw Error("backend '" + name +
+                    "' is headless; a window needs auto, vulkan, gl, vulkan-glfw or gl-glfw");
     std::string failures;
     for (const std::string& c : list) {
         BackendProbe p = probeUncaptured(c, desc.validation, desc.vsync);
@@ -123,7 +133,8 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
             if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
-            return withCapture(std::move(p.device), desc.capture, desc.captureFrames, desc.captureFirstFrame, desc.verbose);
+            return withCapture(std::move(p.device), desc.capture, desc.captureFrames,
+                               desc.captureFirstFrame, desc.verbose);
         }
         failures += "\n  " + c + " unavailable: " + p.reason;
     }
@@ -136,7 +147,8 @@ std::vector<std::string> expandBackendList(const std::string& nameOrAll) {
     size_t start = 0;
     while (start <= nameOrAll.size()) {
         size_t comma = nameOrAll.find(',', start);
-        std::string item = nameOrAll.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        std::string item =
+            nameOrAll.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         if (item == "auto" || item == "gl") {
             for (auto& c : candidates(item)) out.push_back(c);
         } else {

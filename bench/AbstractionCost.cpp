@@ -56,8 +56,11 @@ Scene makeScene(const std::string& backend) {
     Device& d = *s.device;
     // 100 x 100 pixels, one per draw: draw i covers exactly pixel (i % 100, i / 100) (legs of
     // 1.5 pixels from the pixel's corner reach its centre and no other), so --check sees every draw.
-    s.target = d.createTexture({.format = Format::RGBA8, .width = 100, .height = 100,
-                                .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = "bench target"});
+    s.target = d.createTexture({.format = Format::RGBA8,
+                                .width = 100,
+                                .height = 100,
+                                .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                                .debugName = "bench target"});
     const float tri[] = {0, 0, 1, 0, 0, 1};
     s.vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, bytesOf(tri));
     std::vector<float> objects(kDraws * kObjectStride / 4, 0.0f);
@@ -65,18 +68,22 @@ Scene makeScene(const std::string& backend) {
         float* o = &objects[i * kObjectStride / 4];
         o[0] = -1.0f + 2.0f * float(i % 100) / 100.0f;  // offset
         o[1] = -1.0f + 2.0f * float(i / 100) / 100.0f;
-        o[2] = o[3] = 0.03f;                               // scale: 1.5 pixels
+        o[2] = o[3] = 0.03f;  // scale: 1.5 pixels
         o[4] = float(i % 7) / 7.0f, o[5] = 0.5f, o[6] = 1.0f, o[7] = 1.0f;
     }
-    s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform}, bytesOf(objects));
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
-    s.pipeline = d.createGraphicsPipeline({
-        .vertexShader = vs,
-        .fragmentShader = fs,
-        .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
-        .colorFormats = {Format::RGBA8},
-        .debugName = "bench draw"});
+    s.objects = d.createBuffer({.size = objects.size() * 4, .usage = BufferUsage::Uniform},
+                               bytesOf(objects));
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
+    s.pipeline = d.createGraphicsPipeline(
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .vertexBuffers = {{.stride = 8,
+                            .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+         .colorFormats = {Format::RGBA8},
+         .debugName = "bench draw"});
     s.cmd = d.createCommandList();
     return s;
 }
@@ -120,7 +127,8 @@ FramePath abstractPath(Scene& s) {
                     // GL replays the stream on its context thread after submit returns: the
                     // replay is part of the abstraction's cost, so submit counts until it ran
                     // (not the GPU's execution: that is the wait's).
-                    if (s.device->info().backend != "vulkan") fe::gl::runOnContextThread(*s.device, [] {});
+                    if (s.device->info().backend != "vulkan")
+                        fe::gl::runOnContextThread(*s.device, [] {});
                 },
             .wait = [&s, fence] { s.device->wait(*fence); }};
 }
@@ -133,9 +141,11 @@ void runFrames(benchmark::State& state, Scene& s, const FramePath& path) {
         path.wait();
         state.ResumeTiming();
     }
-    state.counters["ns_per_draw"] = benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
-                                                                           benchmark::Counter::kInvert);
-    state.SetLabel(s.device->info().softwareRasterizer ? "software rasterizer" : s.device->info().deviceName);
+    state.counters["ns_per_draw"] =
+        benchmark::Counter(double(kDraws), benchmark::Counter::kIsIterationInvariantRate |
+                                               benchmark::Counter::kInvert);
+    state.SetLabel(s.device->info().softwareRasterizer ? "software rasterizer"
+                                                       : s.device->info().deviceName);
 }
 
 // ---- direct Vulkan -------------------------------------------------------------------------
@@ -147,9 +157,10 @@ void runFrames(benchmark::State& state, Scene& s, const FramePath& path) {
 FramePath vulkanDirectPath(Scene& s) {
     Device& d = *s.device;
     const auto device = reinterpret_cast<VkDevice>(d.nativeObject(NativeObject::Device));
-    const auto push =
-        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device, "vkCmdPushDescriptorSetKHR"));
-    const auto layout = reinterpret_cast<VkPipelineLayout>(d.nativeObject(NativeObject::PipelineLayout, s.pipeline.id));
+    const auto push = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(device, "vkCmdPushDescriptorSetKHR"));
+    const auto layout = reinterpret_cast<VkPipelineLayout>(
+        d.nativeObject(NativeObject::PipelineLayout, s.pipeline.id));
     const auto ubo = reinterpret_cast<VkBuffer>(d.nativeObject(NativeObject::Buffer, s.objects.id));
     if (!push || !layout || !ubo) throw Error("Vulkan backend does not expose native objects");
     auto fence = std::make_shared<FenceValue>(0);
@@ -205,7 +216,8 @@ struct GlDirect {
         bindVertexArray = reinterpret_cast<BindVertexArray>(get("glBindVertexArray"));
         bindBufferRange = reinterpret_cast<BindBufferRange>(get("glBindBufferRange"));
         drawArrays = reinterpret_cast<DrawArrays>(get("glDrawArrays"));
-        vertexArrayVertexBuffer = reinterpret_cast<VertexArrayVertexBuffer>(get("glVertexArrayVertexBuffer"));
+        vertexArrayVertexBuffer =
+            reinterpret_cast<VertexArrayVertexBuffer>(get("glVertexArrayVertexBuffer"));
     }
 };
 
@@ -234,7 +246,8 @@ FramePath glDirectPath(Scene& s, const std::string& backend) {
                         gl->bindVertexArray(vao);
                         gl->vertexArrayVertexBuffer(vao, 0, vb, 0, 8);
                         for (uint32_t i = 0; i < kDraws; ++i) {
-                            gl->bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo, intptr_t(i) * kObjectStride, 64);
+                            gl->bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo,
+                                                intptr_t(i) * kObjectStride, 64);
                             gl->drawArrays(GL_TRIANGLES, 0, 3);
                         }
                     });
@@ -264,8 +277,9 @@ public:
         for (const char* b : {"vulkan", "gl-egl", "gl-osmesa"}) {
             double a = find(std::string("Abstract/") + b), d = find(std::string("Direct/") + b);
             if (a > 0 && d > 0)
-                std::cout << "  " << b << ": " << a / kDraws * 1e6 << " ns/draw vs " << d / kDraws * 1e6
-                          << " ns/draw -> ratio " << a / d << " (" << (a / d - 1.0) * 100.0 << "% overhead)\n";
+                std::cout << "  " << b << ": " << a / kDraws * 1e6 << " ns/draw vs "
+                          << d / kDraws * 1e6 << " ns/draw -> ratio " << a / d << " ("
+                          << (a / d - 1.0) * 100.0 << "% overhead)\n";
         }
     }
 
@@ -288,8 +302,9 @@ private:
 int countInstructions(uint32_t frames) {
 #if FE_HAVE_CALLGRIND
     if (!RUNNING_ON_VALGRIND) {
-        std::cerr << "--count-instructions must run under valgrind --tool=callgrind --collect-atstart=no "
-                     "(tools/bench-abstraction-instructions.sh does)\n";
+        std::cerr
+            << "--count-instructions must run under valgrind --tool=callgrind --collect-atstart=no "
+               "(tools/bench-abstraction-instructions.sh does)\n";
         return 2;
     }
     for (const std::string& b : backendNames()) {
@@ -299,13 +314,15 @@ int countInstructions(uint32_t frames) {
             FramePath path = std::string(kind) == "abstract" ? abstractPath(s) : directPath(s, b);
             path.record(), path.submit(), path.wait();  // warm-up: first-use allocations
             for (int withSubmit = 0; withSubmit < 2; ++withSubmit) {
-                const std::string name = b + " " + kind + (withSubmit ? " record+submit" : " record");
+                const std::string name =
+                    b + " " + kind + (withSubmit ? " record+submit" : " record");
                 for (uint32_t f = 0; f < frames; ++f) {
                     const std::string frame = name + " #" + std::to_string(f);
                     // Collection is a per-thread state in callgrind: on GL the context thread's is
                     // switched too, around the recording thread's window.
                     auto toggleContextThread = [&] {
-                        if (b != "vulkan") fe::gl::runOnContextThread(*s.device, [] { CALLGRIND_TOGGLE_COLLECT; });
+                        if (b != "vulkan")
+                            fe::gl::runOnContextThread(*s.device, [] { CALLGRIND_TOGGLE_COLLECT; });
                     };
                     toggleContextThread();
                     CALLGRIND_TOGGLE_COLLECT;
@@ -317,7 +334,9 @@ int countInstructions(uint32_t frames) {
                     // recording thread's, and on GL the context thread's, which replays the lists
                     // and makes the direct path's calls. The script sums a frame's profiles.
                     CALLGRIND_DUMP_STATS_AT(frame.c_str());
-                    if (b != "vulkan") fe::gl::runOnContextThread(*s.device, [&] { CALLGRIND_DUMP_STATS_AT(frame.c_str()); });
+                    if (b != "vulkan")
+                        fe::gl::runOnContextThread(*s.device,
+                                                   [&] { CALLGRIND_DUMP_STATS_AT(frame.c_str()); });
                     if (!withSubmit) path.submit();
                     path.wait();
                 }
@@ -327,7 +346,8 @@ int countInstructions(uint32_t frames) {
     std::cout << "frames " << frames << " draws " << kDraws << "\n";  // draws per frame
     return 0;
 #else
-    std::cerr << "--count-instructions needs valgrind/callgrind.h at build time (apt-get install valgrind)\n";
+    std::cerr
+        << "--count-instructions needs valgrind/callgrind.h at build time (apt-get install valgrind)\n";
     return 2;
 #endif
 }
@@ -347,14 +367,16 @@ int checkSameImage() {
             images[k] = s.device->readTexture(s.target);
         }
         size_t lit = 0;
-        for (size_t i = 0; i < images[0].data.size(); i += 4) lit += images[0].data[i + 2] != 0;  // blue = 1 where drawn
+        for (size_t i = 0; i < images[0].data.size(); i += 4)
+            lit += images[0].data[i + 2] != 0;  // blue = 1 where drawn
         const bool same = images[0].data == images[1].data;
         const uint32_t errors = s.device->validationErrorCount();
         if (errors) std::cout << b << ": " << errors << " validation error(s)\n";
         failures += errors != 0;
-        std::cout << b << ": abstract and direct images " << (same ? "identical" : "DIFFER") << ", " << lit
-                  << " pixels drawn\n";
-        if (lit != kDraws) std::cout << b << ": expected one pixel per draw, " << kDraws << " pixels\n";
+        std::cout << b << ": abstract and direct images " << (same ? "identical" : "DIFFER") << ", "
+                  << lit << " pixels drawn\n";
+        if (lit != kDraws)
+            std::cout << b << ": expected one pixel per draw, " << kDraws << " pixels\n";
         failures += !same || lit != kDraws;
     }
     return failures ? 1 : 0;
@@ -374,9 +396,10 @@ double threadSeconds() {
 }
 
 int pairedRatios(uint32_t pairs) {
-    std::cout << "abstraction cost, " << pairs << " pairs of frames of " << kDraws
-              << " draws, CPU time of the recording thread (and GL's context thread), median (and quartiles) of per-pair "
-                 "abstract / direct:\n";
+    std::cout
+        << "abstraction cost, " << pairs << " pairs of frames of " << kDraws
+        << " draws, CPU time of the recording thread (and GL's context thread), median (and quartiles) of per-pair "
+           "abstract / direct:\n";
     for (const std::string& b : backendNames()) {
         if (!probeBackend(b, false).available) continue;
         Scene& s = scene(b);
@@ -408,10 +431,11 @@ int pairedRatios(uint32_t pairs) {
             std::sort(v.begin(), v.end());
             return v[size_t(q * double(v.size() - 1) + 0.5)];
         };
-        std::cout << "  " << b << (s.device->info().softwareRasterizer ? " (software rasterizer)" : "") << ": "
-                  << quantile(abstractNs, 0.5) << " vs " << quantile(directNs, 0.5) << " ns/draw, ratio "
-                  << quantile(ratios, 0.5) << " (quartiles " << quantile(ratios, 0.25) << " - " << quantile(ratios, 0.75)
-                  << ")\n";
+        std::cout << "  " << b
+                  << (s.device->info().softwareRasterizer ? " (software rasterizer)" : "") << ": "
+                  << quantile(abstractNs, 0.5) << " vs " << quantile(directNs, 0.5)
+                  << " ns/draw, ratio " << quantile(ratios, 0.5) << " (quartiles "
+                  << quantile(ratios, 0.25) << " - " << quantile(ratios, 0.75) << ")\n";
     }
     return 0;
 }
@@ -442,7 +466,10 @@ int main(int argc, char** argv) {
         p.device.reset();
         // Interleaved registration (abstract, direct per backend) so both see the same machine state.
         auto reg = [](benchmark::internal::Benchmark* bm) {
-            bm->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true)->MinTime(0.5);
+            bm->Unit(benchmark::kMillisecond)
+                ->Repetitions(5)
+                ->ReportAggregatesOnly(true)
+                ->MinTime(0.5);
         };
         reg(benchmark::RegisterBenchmark(("Abstract/" + b).c_str(), [b](benchmark::State& st) {
             Scene& s = scene(b);

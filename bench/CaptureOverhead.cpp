@@ -32,10 +32,13 @@ struct Row {
     double rawBytesPerFrame = 0, fileBytes = 0, rawBytes = 0;
 };
 
-Row measure(const std::string& backend, const assets::Scene& scene, const render::RenderSettings& settings, uint32_t frames) {
-    const std::string file = (std::filesystem::temp_directory_path() / "fe_bench_capture.fecap").string();
+Row measure(const std::string& backend, const assets::Scene& scene,
+            const render::RenderSettings& settings, uint32_t frames) {
+    const std::string file =
+        (std::filesystem::temp_directory_path() / "fe_bench_capture.fecap").string();
     auto plainDevice = gdi::createDevice({.backend = backend, .verbose = false});
-    auto capturedDevice = gdi::createDevice({.backend = backend, .verbose = false, .capture = file});
+    auto capturedDevice =
+        gdi::createDevice({.backend = backend, .verbose = false, .capture = file});
     render::SceneRenderer plain(*plainDevice, scene, settings);
     render::SceneRenderer captured(*capturedDevice, scene, settings);
     auto frame = [](render::SceneRenderer& r, gdi::Device& d) {
@@ -58,7 +61,8 @@ Row measure(const std::string& backend, const assets::Scene& scene, const render
         }
     }
     Row row{median(plainMs), median(capturedMs)};
-    row.rawBytesPerFrame = double(gdi::captureStats(*capturedDevice)->rawBytes - rawBefore) / frames;
+    row.rawBytesPerFrame =
+        double(gdi::captureStats(*capturedDevice)->rawBytes - rawBefore) / frames;
     gdi::finishCapture(*capturedDevice);
     const gdi::CaptureStats s = *gdi::captureStats(*capturedDevice);
     row.fileBytes = double(s.fileBytes), row.rawBytes = double(s.rawBytes);
@@ -73,28 +77,39 @@ int main(int argc, char** argv) {
     uint32_t width = 1280, height = 720, frames = 20;
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string a = argv[i], v = argv[i + 1];
-        if (a == "--backend") which = v;
-        else if (a == "--technique") technique = v;
-        else if (a == "--scenes") scenes = v;
-        else if (a == "--frames") frames = uint32_t(std::stoul(v));
+        if (a == "--backend")
+            which = v;
+        else if (a == "--technique")
+            technique = v;
+        else if (a == "--scenes")
+            scenes = v;
+        else if (a == "--frames")
+            frames = uint32_t(std::stoul(v));
         else if (a == "--size" && std::sscanf(v.c_str(), "%ux%u", &width, &height) == 2) {
         } else {
-            std::fprintf(stderr, "usage: fe_bench_capture [--backend NAME|all] [--size WxH] [--frames N] [--technique NAME] [--scenes spheres,lights]\n");
+            std::fprintf(
+                stderr,
+                "usage: fe_bench_capture [--backend NAME|all] [--size WxH] [--frames N] [--technique NAME] [--scenes spheres,lights]\n");
             return 2;
         }
     }
     try {
-        std::printf("| backend | scene | %ux%u %s: frame, not captured | captured | ratio | bytes a frame adds (raw) | file: setup + frames, zstd |\n",
-                    width, height, technique.c_str());
+        std::printf(
+            "| backend | scene | %ux%u %s: frame, not captured | captured | ratio | bytes a frame adds (raw) | file: setup + frames, zstd |\n",
+            width, height, technique.c_str());
         std::printf("|---|---|---|---|---|---|---|\n");
         for (const std::string& backend : gdi::expandBackendList(which)) {
             for (const std::string& name : {std::string("spheres"), std::string("lights")}) {
                 if (scenes.find(name) == std::string::npos) continue;
                 const assets::Scene scene = assets::makeBuiltinScene(name, {});
-                const Row r = measure(backend, scene, {.technique = technique, .width = width, .height = height}, frames);
-                std::printf("| %s | builtin:%s | %.2f ms | %.2f ms | %.3fx | %.0f | %.0f KiB of %.0f KiB |\n", backend.c_str(), name.c_str(),
-                            r.plainMs, r.capturedMs, r.capturedMs / r.plainMs, r.rawBytesPerFrame, r.fileBytes / 1024,
-                            r.rawBytes / 1024);
+                const Row r =
+                    measure(backend, scene,
+                            {.technique = technique, .width = width, .height = height}, frames);
+                std::printf(
+                    "| %s | builtin:%s | %.2f ms | %.2f ms | %.3fx | %.0f | %.0f KiB of %.0f KiB |\n",
+                    backend.c_str(), name.c_str(), r.plainMs, r.capturedMs,
+                    r.capturedMs / r.plainMs, r.rawBytesPerFrame, r.fileBytes / 1024,
+                    r.rawBytes / 1024);
             }
         }
     } catch (const std::exception& e) {

@@ -46,7 +46,9 @@ constexpr uint32_t kDraws = 20000;
 constexpr uint32_t kStride = 256;  // >= every device's uniform offset alignment
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.size() % 2 ? v[v.size() / 2] : (v[v.size() / 2 - 1] + v[v.size() / 2]) / 2;
@@ -61,21 +63,29 @@ struct Scene {
     explicit Scene(const std::string& backend) {
         device = createDevice({.backend = backend, .validation = false, .verbose = false});
         Device& d = *device;
-        target = d.createTexture({.width = 100, .height = 100, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+        target = d.createTexture({.width = 100,
+                                  .height = 100,
+                                  .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
         const float tri[] = {0, 0, 1, 0, 0, 1};
-        vertices = d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, bytesOf(tri));
+        vertices =
+            d.createBuffer({.size = sizeof(tri), .usage = BufferUsage::Vertex}, bytesOf(tri));
         std::vector<float> o(size_t(kDraws) * kStride / 4, 0.0f);
         for (uint32_t i = 0; i < kDraws; ++i) {
             float* p = &o[size_t(i) * kStride / 4];
-            p[0] = -1 + 2 * float(i % 100) / 100, p[1] = -1 + 2 * float(i / 100 % 100) / 100, p[2] = p[3] = 0.03f;
+            p[0] = -1 + 2 * float(i % 100) / 100, p[1] = -1 + 2 * float(i / 100 % 100) / 100,
+            p[2] = p[3] = 0.03f;
             p[4] = p[5] = p[6] = p[7] = 1;
         }
         objects = d.createBuffer({.size = o.size() * 4, .usage = BufferUsage::Uniform}, bytesOf(o));
-        vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
-        fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
+        vs = d.createShader(
+            {.stage = ShaderStage::Vertex, .binary = fe::shaders::find("bench/draw.vert")});
+        fs = d.createShader(
+            {.stage = ShaderStage::Fragment, .binary = fe::shaders::find("bench/draw.frag")});
         pipeline = d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs,
-             .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+            {.vertexShader = vs,
+             .fragmentShader = fs,
+             .vertexBuffers = {{.stride = 8,
+                                .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
              .colorFormats = {Format::RGBA8}});
     }
     ~Scene() {
@@ -88,7 +98,8 @@ struct Scene {
     }
     // Draws [first, first + count) into the target; `clear` on the first list of a frame.
     void record(CommandList& c, uint32_t first, uint32_t count, bool clear) const {
-        c.beginRenderPass({.colors = {{.texture = target, .load = clear ? LoadOp::Clear : LoadOp::Load}}});
+        c.beginRenderPass(
+            {.colors = {{.texture = target, .load = clear ? LoadOp::Clear : LoadOp::Load}}});
         c.setPipeline(pipeline);
         c.setVertexBuffer(0, vertices);
         for (uint32_t i = first; i < first + count; ++i) {
@@ -97,7 +108,9 @@ struct Scene {
         }
         c.endRenderPass();
     }
-    RenderPassDesc secondaryPass() const { return {.colors = {{.texture = target}}, .secondaryLists = true}; }
+    RenderPassDesc secondaryPass() const {
+        return {.colors = {{.texture = target}}, .secondaryLists = true};
+    }
     // The same draws as a secondary list of secondaryPass().
     void recordSecondary(CommandList& c, uint32_t first, uint32_t count) const {
         c.beginSecondary(secondaryPass());
@@ -114,7 +127,8 @@ struct Scene {
 struct Row {
     std::string backend;
     double oneThread = 0, twoThreads = 0, secondaryTwoThreads = 0, fromSleep = 0;  // medians, ms
-    double twoRatio = 0, secondaryRatio = 0, fromSleepRatio = 0;  // medians of each round's ratio to oneThread
+    double twoRatio = 0, secondaryRatio = 0,
+           fromSleepRatio = 0;  // medians of each round's ratio to oneThread
     double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
     double plainFrame = 0, churnFrame = 0;
     double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
@@ -144,7 +158,8 @@ bool pinCallingThread(int place) {
     std::vector<int> cpus;
     for (int c = 0; c < CPU_SETSIZE; ++c)
         if (CPU_ISSET(c, &allowed)) cpus.push_back(c);
-    if (place == -1 || cpus.size() < 2) return pthread_setaffinity_np(pthread_self(), sizeof(allowed), &allowed) == 0;
+    if (place == -1 || cpus.size() < 2)
+        return pthread_setaffinity_np(pthread_self(), sizeof(allowed), &allowed) == 0;
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(place == -2 ? cpus.back() : cpus[size_t(place) % cpus.size()], &one);
@@ -154,10 +169,11 @@ bool pinCallingThread(int place) {
 class JobThread {
 public:
     // The worker keeps to the last CPU; a caller of pinned phases keeps to the first.
-    JobThread() : thread_([this] {
-        pinned_ = pinCallingThread(-2);
-        run();
-    }) {}
+    JobThread()
+        : thread_([this] {
+              pinned_ = pinCallingThread(-2);
+              run();
+          }) {}
     ~JobThread() {
         stop_ = true;
         signal();
@@ -195,7 +211,8 @@ private:
     }
     void run() {
         for (;;) {
-            const uint32_t seen = signals_.load();  // before the checks: a signal after them ends the wait
+            const uint32_t seen =
+                signals_.load();  // before the checks: a signal after them ends the wait
             if (stop_) return;
             if (pending_.load(std::memory_order_acquire)) {
                 try {
@@ -231,16 +248,19 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     Device& d = *s.device;
     std::vector<double> one, two, parts, cold, callerHalves, workerHalves;
     auto single = d.createCommandList();
-    std::array<std::unique_ptr<CommandList>, 4> quarter = {d.createCommandList(), d.createCommandList(), d.createCommandList(),
-                                                           d.createCommandList()};
-    std::array<CommandList*, 4> all = {quarter[0].get(), quarter[1].get(), quarter[2].get(), quarter[3].get()};
+    std::array<std::unique_ptr<CommandList>, 4> quarter = {
+        d.createCommandList(), d.createCommandList(), d.createCommandList(), d.createCommandList()};
+    std::array<CommandList*, 4> all = {quarter[0].get(), quarter[1].get(), quarter[2].get(),
+                                       quarter[3].get()};
     auto primary = d.createCommandList();
     JobThread worker;
     auto halves = [&](bool secondary, bool keepHalves = false) {
         auto recordPair = [&](uint32_t first) {
             for (uint32_t l = first; l < first + 2; ++l)
-                if (secondary) s.recordSecondary(*quarter[l], l * kDraws / 4, kDraws / 4);
-                else s.record(*quarter[l], l * kDraws / 4, kDraws / 4, l == 0);
+                if (secondary)
+                    s.recordSecondary(*quarter[l], l * kDraws / 4, kDraws / 4);
+                else
+                    s.record(*quarter[l], l * kDraws / 4, kDraws / 4, l == 0);
         };
         double workerMs = 0;
         Clock::time_point t0 = Clock::now();
@@ -277,7 +297,8 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
         worker.sleep();
         d.wait(d.submit(*primary));
 
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));  // the job thread is asleep by now
+        std::this_thread::sleep_for(
+            std::chrono::milliseconds(1));  // the job thread is asleep by now
         t = Clock::now();
         halves(false);
         if (r) cold.push_back(msSince(t));
@@ -288,13 +309,15 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     uint32_t lit = 0;
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) lit += image.texel(x, y)[0] > 0.5f;
-    if (lit != 10000) throw Error("parallel recording drew " + std::to_string(lit) + " of 10000 pixels");
+    if (lit != 10000)
+        throw Error("parallel recording drew " + std::to_string(lit) + " of 10000 pixels");
     auto ratios = [&](const std::vector<double>& two) {
         std::vector<double> r;
         for (size_t i = 0; i < two.size(); ++i) r.push_back(two[i] / one[i]);
         return median(r);
     };
-    row.twoRatio = ratios(two), row.secondaryRatio = ratios(parts), row.fromSleepRatio = ratios(cold);
+    row.twoRatio = ratios(two), row.secondaryRatio = ratios(parts),
+    row.fromSleepRatio = ratios(cold);
     row.oneThread = median(one);
     row.twoThreads = median(two);
     row.secondaryTwoThreads = median(parts);
@@ -307,14 +330,14 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
 // The application's own CPU work per frame (simulation, culling), a busy loop of `ms`.
 void applicationWork(double ms) {
     const Clock::time_point t = Clock::now();
-    while (msSince(t) < ms) {
-    }
+    while (msSince(t) < ms) {}
 }
 
 // Frames of kDraws / 4 draws after `cpuMs` of application work: `inFlight` 1 waits for each
 // frame before the next begins; with 2 the next frame's work and recording overlap this one's
 // execution (GL: its replay on the context thread and the rasterizer).
-double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t churnPerFrame, double cpuMs) {
+double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t churnPerFrame,
+              double cpuMs) {
     Device& d = *s.device;
     std::vector<std::unique_ptr<CommandList>> lists;
     for (uint32_t i = 0; i < inFlight; ++i) lists.push_back(d.createCommandList());
@@ -326,7 +349,9 @@ double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t 
         d.wait(fences[f % inFlight]);
         const double w = msSince(t);
         for (uint32_t c = 0; c < churnPerFrame; ++c)
-            d.destroy(d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+            d.destroy(d.createTexture({.width = 64,
+                                       .height = 64,
+                                       .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
         applicationWork(cpuMs);
         t = Clock::now();
         s.record(*lists[f % inFlight], 0, kDraws / 4, true);
@@ -335,10 +360,13 @@ double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t 
         fences[f % inFlight] = d.submit(*lists[f % inFlight]);
         const double sub = msSince(t);
         if (f < 2) continue;
-        frameMs.push_back(msSince(start)), recordMs.push_back(r), submitMs.push_back(sub), waitMs.push_back(w);
+        frameMs.push_back(msSince(start)), recordMs.push_back(r), submitMs.push_back(sub),
+            waitMs.push_back(w);
     }
     d.waitIdle();
-    if (split) split->record = median(recordMs), split->submit = median(submitMs), split->wait = median(waitMs);
+    if (split)
+        split->record = median(recordMs), split->submit = median(submitMs),
+        split->wait = median(waitMs);
     return median(frameMs);
 }
 
@@ -350,11 +378,15 @@ int main(int argc, char** argv) {
     double cpuMs = 1.0;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--backend" && i + 1 < argc) which = argv[++i];
-        else if (a == "--rounds" && i + 1 < argc) rounds = uint32_t(std::max(1, std::atoi(argv[++i])));
-        else if (a == "--cpu-ms" && i + 1 < argc) cpuMs = std::max(0.0, std::atof(argv[++i]));
+        if (a == "--backend" && i + 1 < argc)
+            which = argv[++i];
+        else if (a == "--rounds" && i + 1 < argc)
+            rounds = uint32_t(std::max(1, std::atoi(argv[++i])));
+        else if (a == "--cpu-ms" && i + 1 < argc)
+            cpuMs = std::max(0.0, std::atof(argv[++i]));
         else {
-            std::fprintf(stderr, "usage: %s [--backend NAME|all] [--rounds N] [--cpu-ms MS]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--backend NAME|all] [--rounds N] [--cpu-ms MS]\n",
+                         argv[0]);
             return 2;
         }
     }
@@ -371,24 +403,33 @@ int main(int argc, char** argv) {
             row.churnFrame = frames(s, 20, 2, nullptr, 50, cpuMs);
             rows.push_back(row);
         }
-        std::printf("Parallel recording (%u rounds; times are medians, a ratio is the median of the rounds' own ratios)\n\n"
-                    "| backend | 20,000 draws, 1 list on 1 thread, ms | 4 lists on 2 threads, ms | ratio | 1 pass of 4 "
-                    "secondary lists on 2 threads, ms | ratio | 4 lists, job thread woken from sleep, ms | ratio |\n"
-                    "|---|---|---|---|---|---|---|---|\n",
-                    rounds);
+        std::printf(
+            "Parallel recording (%u rounds; times are medians, a ratio is the median of the rounds' own ratios)\n\n"
+            "| backend | 20,000 draws, 1 list on 1 thread, ms | 4 lists on 2 threads, ms | ratio | 1 pass of 4 "
+            "secondary lists on 2 threads, ms | ratio | 4 lists, job thread woken from sleep, ms | ratio |\n"
+            "|---|---|---|---|---|---|---|---|\n",
+            rounds);
         for (const Row& r : rows)
-            std::printf("| %s | %.3f | %.3f | **%.2f** | %.3f | **%.2f** | %.3f | %.2f |\n", r.backend.c_str(), r.oneThread,
-                        r.twoThreads, r.twoRatio, r.secondaryTwoThreads, r.secondaryRatio, r.fromSleep, r.fromSleepRatio);
-        std::printf("\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
+            std::printf("| %s | %.3f | %.3f | **%.2f** | %.3f | **%.2f** | %.3f | %.2f |\n",
+                        r.backend.c_str(), r.oneThread, r.twoThreads, r.twoRatio,
+                        r.secondaryTwoThreads, r.secondaryRatio, r.fromSleep, r.fromSleepRatio);
+        std::printf(
+            "\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
         for (const Row& r : rows)
-            std::printf("- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s\n", r.backend.c_str(),
-                        r.callerHalf, r.workerHalf, r.pinned ? "pinned to the first and last allowed CPUs" : "NOT pinned (the pin failed)");
-        std::printf("\nFrames of 5,000 draws after %.1f ms of application work (medians)\n\n| backend | 1 frame in flight, ms | "
-                    "2 in flight, ms | 2 in flight: record / submit / wait, ms | 2 in flight, again, ms | same, creating and "
-                    "destroying 50 textures per frame, ms |\n|---|---|---|---|---|---|\n", cpuMs);
+            std::printf(
+                "- %s: calling thread %.3f, job thread %.3f (start to end of its job); threads %s\n",
+                r.backend.c_str(), r.callerHalf, r.workerHalf,
+                r.pinned ? "pinned to the first and last allowed CPUs"
+                         : "NOT pinned (the pin failed)");
+        std::printf(
+            "\nFrames of 5,000 draws after %.1f ms of application work (medians)\n\n| backend | 1 frame in flight, ms | "
+            "2 in flight, ms | 2 in flight: record / submit / wait, ms | 2 in flight, again, ms | same, creating and "
+            "destroying 50 textures per frame, ms |\n|---|---|---|---|---|---|\n",
+            cpuMs);
         for (const Row& r : rows)
-            std::printf("| %s | %.2f | %.2f | %.2f / %.2f / %.2f | %.2f | %.2f |\n", r.backend.c_str(), r.seqFrame, r.pipeFrame,
-                        r.record, r.submit, r.wait, r.plainFrame, r.churnFrame);
+            std::printf("| %s | %.2f | %.2f | %.2f / %.2f / %.2f | %.2f | %.2f |\n",
+                        r.backend.c_str(), r.seqFrame, r.pipeFrame, r.record, r.submit, r.wait,
+                        r.plainFrame, r.churnFrame);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fe_bench_execution: %s\n", e.what());

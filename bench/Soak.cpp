@@ -171,13 +171,20 @@ int main(int argc, char** argv) {
             }
             return argv[++i];
         };
-        if (a == "--backend") o.backend = value();
-        else if (a == "--frames") o.frames = number("--frames", value());
-        else if (a == "--cycles") o.cycles = number("--cycles", value());
-        else if (a == "--scene") o.scene = value();
-        else if (a == "--technique") o.technique = value();
-        else if (a == "--out") o.out = value();
-        else if (a == "--check") o.check = true;
+        if (a == "--backend")
+            o.backend = value();
+        else if (a == "--frames")
+            o.frames = number("--frames", value());
+        else if (a == "--cycles")
+            o.cycles = number("--cycles", value());
+        else if (a == "--scene")
+            o.scene = value();
+        else if (a == "--technique")
+            o.technique = value();
+        else if (a == "--out")
+            o.out = value();
+        else if (a == "--check")
+            o.check = true;
         else if (a == "--size") {
             const std::string s = value();
             const size_t x = s.find('x');
@@ -204,13 +211,15 @@ int main(int argc, char** argv) {
                 if (p.steps == 0) continue;
                 const gdi::Json j = p.json();
                 grew = grew || j["liveObjectsGrew"].get<bool>();
-                std::printf("%-10s %-6s %6u steps: resident %.1f -> %.1f MiB, slope %+.1f bytes/step; heap in use %.1f -> %.1f MiB, "
-                            "slope %+.1f bytes/step; %.1f minor faults/step, live objects %s -> %s\n",
-                            backend.c_str(), p.name.c_str(), p.steps, j["residentStartMiB"].get<double>(),
-                            j["residentEndMiB"].get<double>(), j["slopeBytesPerStep"].get<double>(),
-                            j["heapInUseStartMiB"].get<double>(), j["heapInUseEndMiB"].get<double>(),
-                            j["heapSlopeBytesPerStep"].get<double>(), p.faultsPerStep,
-                            j["liveBefore"].get<std::string>().c_str(), j["liveAfter"].get<std::string>().c_str());
+                std::printf(
+                    "%-10s %-6s %6u steps: resident %.1f -> %.1f MiB, slope %+.1f bytes/step; heap in use %.1f -> %.1f MiB, "
+                    "slope %+.1f bytes/step; %.1f minor faults/step, live objects %s -> %s\n",
+                    backend.c_str(), p.name.c_str(), p.steps, j["residentStartMiB"].get<double>(),
+                    j["residentEndMiB"].get<double>(), j["slopeBytesPerStep"].get<double>(),
+                    j["heapInUseStartMiB"].get<double>(), j["heapInUseEndMiB"].get<double>(),
+                    j["heapSlopeBytesPerStep"].get<double>(), p.faultsPerStep,
+                    j["liveBefore"].get<std::string>().c_str(),
+                    j["liveAfter"].get<std::string>().c_str());
                 b[p.name] = j;
             }
             results[backend] = b;

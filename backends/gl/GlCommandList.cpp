@@ -49,9 +49,11 @@ void GlCommandList::unbindAll() {
 void GlCommandList::checkSubmittable() const {
     if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
-    if (depth_) throw gdi::Error("submit: " + std::to_string(depth_) + " debug group(s) not popped");
+    if (depth_)
+        throw gdi::Error("submit: " + std::to_string(depth_) + " debug group(s) not popped");
     queries_.finish();
-    if (dev_.destroyEpoch() != destroyEpoch_) dev_.checkAlive(*stream_);  // only when something was destroyed
+    if (dev_.destroyEpoch() != destroyEpoch_)
+        dev_.checkAlive(*stream_);  // only when something was destroyed
 }
 
 std::unique_ptr<cmd::CommandStream> GlCommandList::finish() {
@@ -71,20 +73,25 @@ gdi::validate::PassSignature GlCommandList::checkPass(const gdi::RenderPassDesc&
         if (c.resolveTexture) {
             const Texture& r = dev_.texture(c.resolveTexture);
             const gdi::Subresource at = c.resolveSubresource;
-            resolveInfos[i] = attachment(r.desc, at.mipLevel, at.layer, "beginRenderPass resolve", r.label);
+            resolveInfos[i] =
+                attachment(r.desc, at.mipLevel, at.layer, "beginRenderPass resolve", r.label);
         }
     }
     const Texture* depth = desc.depth.texture ? &dev_.texture(desc.depth.texture) : nullptr;
     gdi::validate::AttachmentInfo di{}, dri{};
-    if (depth) di = attachment(depth->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", depth->label);
+    if (depth)
+        di = attachment(depth->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass",
+                        depth->label);
     if (desc.depth.resolveTexture) {
         const Texture& r = dev_.texture(desc.depth.resolveTexture);
-        if (!depth) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
+        if (!depth)
+            throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
         const gdi::Subresource at = desc.depth.resolveSubresource;
         dri = attachment(r.desc, at.mipLevel, at.layer, "beginRenderPass resolve", r.label);
     }
-    const gdi::Rect area = gdi::validate::renderPass(desc, infos, resolveInfos, depth ? &di : nullptr,
-                                                     desc.depth.resolveTexture ? &dri : nullptr, dev_.info().limits);
+    const gdi::Rect area =
+        gdi::validate::renderPass(desc, infos, resolveInfos, depth ? &di : nullptr,
+                                  desc.depth.resolveTexture ? &dri : nullptr, dev_.info().limits);
     return gdi::validate::passSignature(infos, depth ? &di : nullptr, area);
 }
 
@@ -96,9 +103,10 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     beginPassFeedback(desc);
     passSamples_ = signature_.samples;
     const std::span<const gdi::ColorAttachment> colors(desc.colors);
-    auto* r = stream_->push(cmd::BeginRenderPass{.depth = desc.depth, .secondaryLists = desc.secondaryLists},
-                            cmd::CommandStream::payloadSize(colors.size_bytes()) +
-                                cmd::CommandStream::payloadSize(desc.debugName));
+    auto* r = stream_->push(
+        cmd::BeginRenderPass{.depth = desc.depth, .secondaryLists = desc.secondaryLists},
+        cmd::CommandStream::payloadSize(colors.size_bytes()) +
+            cmd::CommandStream::payloadSize(desc.debugName));
     r->colors = stream_->payload(*r, colors);
     r->debugName = stream_->payload(*r, desc.debugName);
     inPass_ = true;
@@ -124,7 +132,8 @@ void GlCommandList::endRenderPass() {
 
 void GlCommandList::restrictedCall(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
-    if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
+    if (ended_)
+        throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
     gdi::validate::onlyExecuteSecondary(what);
 }
 
@@ -144,7 +153,8 @@ void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
 void GlCommandList::endSecondary() {
     checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
-    if (depth_) throw gdi::Error("endSecondary: " + std::to_string(depth_) + " debug group(s) not popped");
+    if (depth_)
+        throw gdi::Error("endSecondary: " + std::to_string(depth_) + " debug group(s) not popped");
     ended_ = restricted_ = true;
     readyToDraw_ = false;
     endPassFeedback();
@@ -156,15 +166,19 @@ void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
     std::vector<GlCommandList*> parts;
     for (size_t i = 0; i < lists.size(); ++i) {
         auto* l = dynamic_cast<GlCommandList*>(lists[i]);
-        if (!l || &l->dev_ != &dev_) throw gdi::Error("executeSecondary: list " + std::to_string(i) + " belongs to another device");
+        if (!l || &l->dev_ != &dev_)
+            throw gdi::Error("executeSecondary: list " + std::to_string(i) +
+                             " belongs to another device");
         if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
-        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_, l->signature_, signature_, i);
+        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_,
+                                         l->signature_, signature_, i);
         parts.push_back(l);
     }
     // Each recording moves, uncopied, into this list's stream; the secondary list records anew.
     for (GlCommandList* l : parts) {
         destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);
-        stream_->push(cmd::ExecuteSecondary{stream_->adopt(std::exchange(l->stream_, dev_.takeStream()))});
+        stream_->push(
+            cmd::ExecuteSecondary{stream_->adopt(std::exchange(l->stream_, dev_.takeStream()))});
         l->secondary_ = l->ended_ = l->restricted_ = l->inPass_ = false;
         l->depth_ = 0;
         l->restart();
@@ -174,7 +188,8 @@ void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
 void GlCommandList::setPipeline(gdi::PipelineHandle h) {
     checkUnrestricted("setPipeline");
     const Pipeline& p = dev_.pipeline(h);
-    if (inPass_ && !p.compute) gdi::validate::pipelineFitsPass(p.signature, signature_, p.label.c_str());
+    if (inPass_ && !p.compute)
+        gdi::validate::pipelineFitsPass(p.signature, signature_, p.label.c_str());
     if (pipeline_ != &p) unchecked_ = ~uint64_t(0);  // other slots, other kinds
     unchecked_ |= feedback_.reaching();  // checked again against this pipeline's depth writes
     pipeline_ = &p;
@@ -203,30 +218,40 @@ void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uin
 // replay binds exactly what was validated.
 template <gdi::BindingType kKind>
 void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer, cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
+    using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer,
+                                      cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
     checkDevice(kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer");
     const Buffer* b = dev_.findBuffer(h);
-    const gdi::validate::BindingLimits& limits = kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
-    uint64_t bindSize = b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
+    const gdi::validate::BindingLimits& limits =
+        kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
+    uint64_t bindSize =
+        b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
     constexpr size_t kind = kKind == gdi::BindingType::UniformBuffer ? 0 : 1;
-    if (!bindSize || h.id != lastBound_[kind]) [[unlikely]] {  // another buffer: its usage is checked
-        const char* what = kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
+    if (!bindSize || h.id != lastBound_[kind])
+        [[unlikely]] {  // another buffer: its usage is checked
+        const char* what =
+            kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
         checkSlot(slot, what);
         const Buffer& checked = dev_.buffer(h);
-        gdi::validate::bufferUsage(checked.desc, kind == 0 ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage,
-                                   checked.label, what);
+        gdi::validate::bufferUsage(
+            checked.desc, kind == 0 ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage,
+            checked.label, what);
         lastBound_[kind] = h.id;
-        bindSize = size == 0 ? std::min(checked.desc.size - std::min(offset, checked.desc.size), limits.maxRange) : size;
+        bindSize = size == 0 ? std::min(checked.desc.size - std::min(offset, checked.desc.size),
+                                        limits.maxRange)
+                             : size;
         gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
         gdi::validate::bindingLimits(offset, bindSize, limits, what);
     }
     boundBuffer(slot, kKind);
     stream_->push(Record{slot, h, offset, bindSize});
 }
-void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                     uint64_t size) {
     setBuffer<gdi::BindingType::UniformBuffer>(slot, h, offset, size);
 }
-void GlCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+void GlCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                     uint64_t size) {
     setBuffer<gdi::BindingType::StorageBuffer>(slot, h, offset, size);
 }
 void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) {
@@ -236,9 +261,11 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.label + "' lacks Sampled usage");
     const Sampler& s = dev_.sampler(sh);
-    if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.label, t.desc.format, s.label);
+    if (s.filtersLinearly && !t.linearFilter)
+        gdi::validate::notFilterable(t.label, t.desc.format, s.label);
     bound(slot, gdi::BindingType::SampledTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
-    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.label, s.readsMips ? std::nullopt : std::optional(0u));
+    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.label,
+                                                   s.readsMips ? std::nullopt : std::optional(0u));
     if (feedback_.bind(slot, span, false)) kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetTexture{slot, th, sh});
 }
@@ -250,26 +277,31 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
         throw gdi::Error("setStorageTexture: texture '" + t.label + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
     bound(slot, gdi::BindingType::StorageTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
-    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.label, mip), true)) kinds_[slot] |= kFeedback;
+    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.label, mip), true))
+        kinds_[slot] |= kFeedback;
     stream_->push(cmd::SetStorageTexture{slot, th, mip});
 }
 
-void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
+void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                         uint32_t firstInstance) {
     prepareDraw("draw");
     vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
     stream_->push(cmd::Draw{vertexCount, instanceCount, firstVertex, firstInstance});
 }
-void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
-                                uint32_t firstInstance) {
+void GlCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                                int32_t baseVertex, uint32_t firstInstance) {
     prepareDraw("drawIndexed");
     vertexInputs_.drawIndexed(indexCount, instanceCount, firstIndex, firstInstance);
-    stream_->push(cmd::DrawIndexed{indexCount, instanceCount, firstIndex, baseVertex, firstInstance});
+    stream_->push(
+        cmd::DrawIndexed{indexCount, instanceCount, firstIndex, baseVertex, firstInstance});
 }
 void GlCommandList::prepareCompute(const char* what) {
     checkDevice(what);
     if (inPass_) gdi::validate::insidePass(what);
-    if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
-    if (!pipeline_->compute) throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
+    if (!pipeline_)
+        throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
+    if (!pipeline_->compute)
+        throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
 }
 void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     prepareCompute("dispatch");
@@ -278,12 +310,13 @@ void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     stream_->push(cmd::Dispatch{x, y, z});
 }
 
-void GlCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
-                               uint64_t size) {
+void GlCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src,
+                               uint64_t srcOffset, uint64_t size) {
     outsidePass("copyBuffer");
     const Buffer& d = dev_.buffer(dst);
     const Buffer& s = dev_.buffer(src);
-    gdi::validate::bufferCopy(d.desc, d.label, dstOffset, s.desc, s.label, srcOffset, size, &d == &s);
+    gdi::validate::bufferCopy(d.desc, d.label, dstOffset, s.desc, s.label, srcOffset, size,
+                              &d == &s);
     stream_->push(cmd::CopyBuffer{dst, dstOffset, src, srcOffset, size});
 }
 void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) {
@@ -293,45 +326,50 @@ void GlCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, 
     gdi::validate::wholeTextureCopy(d.desc, d.label, s.desc, s.label, mip);
     stream_->push(cmd::CopyTexture{dst, src, mip});
 }
-void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
+void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at,
+                                        gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
-    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, srcOffset, true, "copyBufferToTexture");
+    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, srcOffset, true,
+                                         "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTexture{dst, at, src, srcOffset});
 }
-void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
+void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset,
+                                        gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
-    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, dstOffset, false, "copyTextureToBuffer");
+    gdi::validate::subresourceBufferCopy(t.desc, t.label, at, b.desc, b.label, dstOffset, false,
+                                         "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBuffer{dst, dstOffset, src, at});
 }
 // Regions: the shared rules resolve them, and the records carry the resolved values.
-void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
-                                        const gdi::TexelLayout& layout) {
+void GlCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region,
+                                        gdi::BufferHandle src, const gdi::TexelLayout& layout) {
     outsidePass("copyBufferToTexture");
     const Texture& t = copied(dst);
     const Buffer& b = dev_.buffer(src);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, true,
-                                                        "copyBufferToTexture");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region,
+                                                           layout, true, "copyBufferToTexture");
     stream_->push(cmd::CopyBufferToTextureRegion{dst, r, src, l});
 }
-void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
-                                        const gdi::TextureRegion& region) {
+void GlCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout,
+                                        gdi::TextureHandle src, const gdi::TextureRegion& region) {
     outsidePass("copyTextureToBuffer");
     const Texture& t = copied(src);
     const Buffer& b = dev_.buffer(dst);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region, layout, false,
-                                                        "copyTextureToBuffer");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.label, b.desc, b.label, region,
+                                                           layout, false, "copyTextureToBuffer");
     stream_->push(cmd::CopyTextureToBufferRegion{dst, l, src, r});
 }
-void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
-                                const gdi::TextureRegion& srcRegion) {
+void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                                gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) {
     outsidePass("copyTexture");
     const Texture& d = copied(dst);
     const Texture& s = copied(src);
-    const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
+    const auto [dr, sr] =
+        gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
     stream_->push(cmd::CopyTextureRegion{dst, dr, src, sr});
 }
 
@@ -344,46 +382,57 @@ void GlCommandList::generateMips(gdi::TextureHandle h) {
 
 // Indirect work. GL reads indexed records relative to the element buffer's start, so the
 // index buffer must be bound at offset 0 (checked on every backend, so both behave alike).
-void GlCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
-                                 uint32_t recordSize, const char* what) {
+void GlCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount,
+                                 uint32_t stride, uint32_t recordSize, const char* what) {
     // Same order of checks as Vulkan: draw state, index buffer, then the arguments.
     prepareDraw(what);
     if (recordSize == sizeof(gdi::DrawIndexedIndirectArgs)) vertexInputs_.indexedIndirect(what);
     const Buffer& b = dev_.buffer(h);
-    gdi::validate::indirect(b.desc, b.label, offset, drawCount, stride, recordSize, dev_.info().features, what);
+    gdi::validate::indirect(b.desc, b.label, offset, drawCount, stride, recordSize,
+                            dev_.info().features, what);
 }
 void GlCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const {
     checkDevice(what);
     if (!dev_.info().features.drawIndirectCount)
-        throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
+        throw gdi::Error(std::string(what) +
+                         ": not supported on this device (DeviceFeatures::drawIndirectCount)");
     const Buffer& b = dev_.buffer(h);
     gdi::validate::indirect(b.desc, b.label, offset, 1, 4, 4, dev_.info().features, what);
 }
-void GlCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
+void GlCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                                 uint32_t stride) {
     indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirect");
     stream_->push(cmd::DrawIndirect{args, offset, drawCount, stride});
 }
-void GlCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
-    indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirect");
+void GlCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                                        uint32_t stride) {
+    indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs),
+                 "drawIndexedIndirect");
     stream_->push(cmd::DrawIndexedIndirect{args, offset, drawCount, stride});
 }
-void GlCommandList::drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
+void GlCommandList::drawIndirectCount(gdi::BufferHandle args, uint64_t offset,
+                                      gdi::BufferHandle count, uint64_t countOffset,
                                       uint32_t maxDrawCount, uint32_t stride) {
     countBuffer(count, countOffset, "drawIndirectCount");
-    indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirectCount");
+    indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndirectArgs),
+                 "drawIndirectCount");
     stream_->push(cmd::DrawIndirectCount{args, offset, count, countOffset, maxDrawCount, stride});
 }
-void GlCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
-                                             uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+void GlCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset,
+                                             gdi::BufferHandle count, uint64_t countOffset,
+                                             uint32_t maxDrawCount, uint32_t stride) {
     countBuffer(count, countOffset, "drawIndexedIndirectCount");
-    indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirectCount");
-    stream_->push(cmd::DrawIndexedIndirectCount{args, offset, count, countOffset, maxDrawCount, stride});
+    indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs),
+                 "drawIndexedIndirectCount");
+    stream_->push(
+        cmd::DrawIndexedIndirectCount{args, offset, count, countOffset, maxDrawCount, stride});
 }
 void GlCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
     prepareCompute("dispatchIndirect");
     const Buffer& b = dev_.buffer(args);
-    gdi::validate::indirect(b.desc, b.label, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
-                            dev_.info().features, "dispatchIndirect");
+    gdi::validate::indirect(b.desc, b.label, offset, 1, sizeof(gdi::DispatchIndirectArgs),
+                            sizeof(gdi::DispatchIndirectArgs), dev_.info().features,
+                            "dispatchIndirect");
     checkBindings();
     stream_->push(cmd::DispatchIndirect{args, offset});
 }
@@ -421,20 +470,22 @@ void GlCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
     queries_.timestamp(q.desc, q.label, h.id, index, inPass_);
     stream_->push(cmd::WriteTimestamp{h, index});
 }
-void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count, gdi::BufferHandle dst,
-                                   uint64_t dstOffset) {
+void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
+                                   gdi::BufferHandle dst, uint64_t dstOffset) {
     outsidePass("resolveQueries");
     const QuerySet& q = usedQuerySet(h, "resolveQueries");
     const Buffer& b = dev_.buffer(dst);
     queries_.resolve(q.desc, q.label, h.id, first, count);
-    gdi::validate::queryDestination(b.desc, b.label, dstOffset, 8ull * gdi::validate::queryValues(q.desc.type) * count);
+    gdi::validate::queryDestination(b.desc, b.label, dstOffset,
+                                    8ull * gdi::validate::queryValues(q.desc.type) * count);
     stream_->push(cmd::ResolveQueries{h, first, count, dst, dstOffset});
 }
 
 void GlCommandList::pushDebugGroup(const char* name) {
     checkUnrestricted("pushDebugGroup");
     ++depth_;
-    auto* r = stream_->push(cmd::PushDebugGroup{}, cmd::CommandStream::payloadSize(name ? name : ""));
+    auto* r =
+        stream_->push(cmd::PushDebugGroup{}, cmd::CommandStream::payloadSize(name ? name : ""));
     r->name = stream_->payload(*r, name ? name : "");
 }
 void GlCommandList::popDebugGroup() {
@@ -445,10 +496,12 @@ void GlCommandList::popDebugGroup() {
 }
 void GlCommandList::insertDebugLabel(const char* name) {
     checkUnrestricted("insertDebugLabel");
-    auto* r = stream_->push(cmd::InsertDebugLabel{}, cmd::CommandStream::payloadSize(name ? name : ""));
+    auto* r =
+        stream_->push(cmd::InsertDebugLabel{}, cmd::CommandStream::payloadSize(name ? name : ""));
     r->name = stream_->payload(*r, name ? name : "");
 }
-void GlCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size, uint32_t value) {
+void GlCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size,
+                                uint32_t value) {
     outsidePass("clearBuffer");
     const Buffer& b = dev_.buffer(h);
     const uint64_t bytes = gdi::validate::clearRange(b.desc, b.label, offset, size);
@@ -486,14 +539,17 @@ void GlCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
     uint64_t textures = 0;
     for (uint32_t slot = 0; slot < 64; ++slot) {
         const uint8_t kind = kinds_[slot] & ~kFeedback;
-        if (kind == 1 + uint8_t(gdi::BindingType::SampledTexture) || kind == 1 + uint8_t(gdi::BindingType::StorageTexture))
+        if (kind == 1 + uint8_t(gdi::BindingType::SampledTexture) ||
+            kind == 1 + uint8_t(gdi::BindingType::StorageTexture))
             textures |= uint64_t(1) << slot;
     }
-    const uint64_t reach =
-        feedback_.beginPass(desc, [&](gdi::TextureHandle h) {
+    const uint64_t reach = feedback_.beginPass(
+        desc,
+        [&](gdi::TextureHandle h) {
             const Texture& t = dev_.texture(h);
             return gdi::validate::bindingSpanOf(h.id, t, t.label);
-        }, textures);
+        },
+        textures);
     for (uint64_t m = reach; m; m &= m - 1) kinds_[std::countr_zero(m)] |= kFeedback;
     unchecked_ |= reach;
 }
@@ -503,7 +559,8 @@ void GlCommandList::endPassFeedback() {
 }
 
 void GlCommandList::checkSlot(uint32_t slot, const char* what) const {
-    if (slot >= 64) throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
+    if (slot >= 64)
+        throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
 }
 void GlCommandList::outsidePass(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
@@ -536,18 +593,22 @@ void GlCommandList::checkEachSlot(uint64_t check) const {  // throws for the fir
         if (kinds_[slot] & kFeedback) [[unlikely]]
             feedback_.check(slot, pipeline_->writesDepthStencil, pipeline_->label.c_str());
         if (kind != pipeline_->slotKinds[slot]) [[unlikely]]
-            gdi::validate::wrongBindingKindFailed(slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1),
-                                                  gdi::BindingType(kind - 1), pipeline_->label.c_str());
-        if (pipeline_->slotDimensions[slot] && dims_[slot] != pipeline_->slotDimensions[slot]) [[unlikely]]
-            gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot], dims_[slot],
-                                                       pipeline_->label.c_str());
+            gdi::validate::wrongBindingKindFailed(
+                slot, gdi::BindingType(pipeline_->slotKinds[slot] - 1), gdi::BindingType(kind - 1),
+                pipeline_->label.c_str());
+        if (pipeline_->slotDimensions[slot] && dims_[slot] != pipeline_->slotDimensions[slot])
+            [[unlikely]]
+            gdi::validate::wrongTextureDimensionFailed(slot, pipeline_->slotDimensions[slot],
+                                                       dims_[slot], pipeline_->label.c_str());
     }
 }
 void GlCommandList::notReadyToDraw(const char* what) const {
     checkUnrestricted(what);
     if (!inPass_) throw gdi::Error(std::string(what) + " outside a render pass");
-    if (!pipeline_) throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
-    if (pipeline_->compute) throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
+    if (!pipeline_)
+        throw gdi::Error(std::string(what) + " without a pipeline (call setPipeline first)");
+    if (pipeline_->compute)
+        throw gdi::Error(std::string(what) + " with compute pipeline '" + pipeline_->label + "'");
     vertexInputs_.notReady(what);
 }
 

@@ -15,7 +15,9 @@ namespace fe::gl {
 class GlCommandList final : public gdi::CommandList {
 public:
     explicit GlCommandList(GlDevice& d);
-    bool madeBy(const GlDevice& d) const { return !orphaned_ && &dev_ == &d; }  // a new device may reuse the address
+    bool madeBy(const GlDevice& d) const {
+        return !orphaned_ && &dev_ == &d;
+    }  // a new device may reuse the address
     ~GlCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -38,7 +40,8 @@ public:
     void setConstants(uint32_t offset, gdi::ByteSpan data) override {
         gdi::validate::constantsRange(offset, data.size());
         checkUnrestricted("setConstants");
-        auto* r = stream_->push(gdi::cmd::SetConstants{offset}, gdi::cmd::CommandStream::payloadSize(data.size()));
+        auto* r = stream_->push(gdi::cmd::SetConstants{offset},
+                                gdi::cmd::CommandStream::payloadSize(data.size()));
         r->data = stream_->payload(*r, data);
     }
     void setBlendConstant(const std::array<float, 4>& rgba) override {
@@ -63,44 +66,54 @@ public:
     }
     void setVertexBuffer(uint32_t index, gdi::BufferHandle h, uint64_t offset) override;
     void setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uint64_t offset) override;
-    void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;
-    void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) override;
+    void setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                          uint64_t size) override;
+    void setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                          uint64_t size) override;
     void setTexture(uint32_t slot, gdi::TextureHandle th, gdi::SamplerHandle sh) override;
     void setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) override;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override;
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
-                     uint32_t firstInstance) override;
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+              uint32_t firstInstance) override;
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                     int32_t baseVertex, uint32_t firstInstance) override;
     void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
-    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
-                           uint32_t maxDrawCount, uint32_t stride) override;
-    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
-                                  uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                      uint32_t stride) override;
+    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                             uint32_t stride) override;
+    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                           uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                                  uint64_t countOffset, uint32_t maxDrawCount,
+                                  uint32_t stride) override;
     void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override;
     void generateMips(gdi::TextureHandle h) override;
-    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset, uint64_t size) override;
+    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src,
+                    uint64_t srcOffset, uint64_t size) override;
     void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mip) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
-                             const gdi::TexelLayout& layout) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
-                             const gdi::TextureRegion& region) override;
-    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
-                     const gdi::TextureRegion& srcRegion) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src,
+                             uint64_t srcOffset) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src,
+                             gdi::Subresource at) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region,
+                             gdi::BufferHandle src, const gdi::TexelLayout& layout) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout,
+                             gdi::TextureHandle src, const gdi::TextureRegion& region) override;
+    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                     gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) override;
     void beginTimer(gdi::TimerHandle h) override;
     void endTimer(gdi::TimerHandle h) override;
     void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;
-    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count, gdi::BufferHandle dst,
-                        uint64_t dstOffset) override;
+    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
+                        gdi::BufferHandle dst, uint64_t dstOffset) override;
     const gdi::validate::QueryRecording& queries() const { return queries_; }
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
     void insertDebugLabel(const char* name) override;
-    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size, uint32_t value) override;
+    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size,
+                     uint32_t value) override;
     void discardTexture(gdi::TextureHandle h) override;
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
@@ -171,8 +184,8 @@ private:
         checkBindings();
     }
     void prepareCompute(const char* what);
-    void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride, uint32_t recordSize,
-                      const char* what);
+    void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
+                      uint32_t recordSize, const char* what);
     void countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) const;
     void restart();    // a new recording
     void unbindAll();  // no pipeline, bindings or index buffer
@@ -192,19 +205,22 @@ private:
     int depth_ = 0;
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
     const Pipeline* pipeline_ = nullptr;
-    bool readyToDraw_ = false;    // in a render pass with a graphics pipeline
-    bool orphaned_ = false;       // the device was destroyed first (orphan())
-    uint64_t requiredSlots_ = 0;  // pipeline_->requiredSlots
-    std::array<uint8_t, 64> kinds_{};    // per slot: 1 + BindingType bound, 0 = unbound
-    std::array<uint8_t, 64> dims_{};     // per slot: 1 + TextureDimension of the bound texture, 0 = a buffer
-    uint64_t unchecked_ = ~uint64_t(0);  // slots to check at the next draw/dispatch
+    bool readyToDraw_ = false;         // in a render pass with a graphics pipeline
+    bool orphaned_ = false;            // the device was destroyed first (orphan())
+    uint64_t requiredSlots_ = 0;       // pipeline_->requiredSlots
+    std::array<uint8_t, 64> kinds_{};  // per slot: 1 + BindingType bound, 0 = unbound
+    std::array<uint8_t, 64>
+        dims_{};  // per slot: 1 + TextureDimension of the bound texture, 0 = a buffer
+    uint64_t unchecked_ = ~uint64_t(0);         // slots to check at the next draw/dispatch
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     gdi::validate::FeedbackLoops feedback_;
-    std::array<uint32_t, 2> lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
+    std::array<uint32_t, 2>
+        lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
-    gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
+    gdi::validate::PassSignature
+        signature_;  // of the open pass, or the pass a secondary list is for
     gdi::validate::QueryRecording queries_;
 };
 

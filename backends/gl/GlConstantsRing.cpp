@@ -6,7 +6,8 @@
 
 namespace fe::gl {
 
-void GlConstantsRing::bind(const GlFunctions& gl, const void* data, uint32_t bytes, uint32_t alignment) {
+void GlConstantsRing::bind(const GlFunctions& gl, const void* data, uint32_t bytes,
+                           uint32_t alignment) {
     if (!buffer_) {
         const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
         gl.CreateBuffers(1, &buffer_);
@@ -16,20 +17,22 @@ void GlConstantsRing::bind(const GlFunctions& gl, const void* data, uint32_t byt
     }
     const uint32_t align = alignment ? alignment : 256;
     uint32_t at = (head_ + align - 1) / align * align;
-    if (at / kQuarter != (at + bytes - 1) / kQuarter) at = (at / kQuarter + 1) * kQuarter;  // never straddle
+    if (at / kQuarter != (at + bytes - 1) / kQuarter)
+        at = (at / kQuarter + 1) * kQuarter;  // never straddle
     if (at + bytes > kSize) at = 0;
     if (at / kQuarter != quarter_) enterQuarter(gl, at / kQuarter);
     std::memcpy(mapped_ + at, data, bytes);
     head_ = at + bytes;
-    gl.BindBufferRange(GL_UNIFORM_BUFFER, gdi::kConstantsGlBinding, buffer_, GLintptr(at), GLsizeiptr(bytes));
+    gl.BindBufferRange(GL_UNIFORM_BUFFER, gdi::kConstantsGlBinding, buffer_, GLintptr(at),
+                       GLsizeiptr(bytes));
 }
 
 // Fences the quarter being left, then waits for the GPU to be done with the one entered.
 void GlConstantsRing::enterQuarter(const GlFunctions& gl, uint32_t quarter) {
     fences_[quarter_] = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     if (GLsync f = fences_[quarter]) {
-        while (gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) == GL_TIMEOUT_EXPIRED) {
-        }
+        while (gl.ClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) ==
+               GL_TIMEOUT_EXPIRED) {}
         gl.DeleteSync(f);
         fences_[quarter] = nullptr;
     }

@@ -24,8 +24,8 @@ private:
     void enterQuarter(const GlFunctions& gl, uint32_t quarter);
     GLuint buffer_ = 0;
     std::byte* mapped_ = nullptr;
-    uint32_t head_ = 0;     // next free byte
-    uint32_t quarter_ = 0;  // the quarter head_ is in
+    uint32_t head_ = 0;               // next free byte
+    uint32_t quarter_ = 0;            // the quarter head_ is in
     std::array<GLsync, 4> fences_{};  // after the last use of each quarter, until it is reused
 };
 

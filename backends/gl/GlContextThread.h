@@ -77,11 +77,15 @@ public:
     // glClearTexImage while the other context compiled), 0 of 88 serialized (the tests
     // example_materials_*, eight processes each). A driver that is not a software rasterizer turns
     // it off (GlDevice), keeping its contexts in parallel.
-    void serializeAcrossDevices(bool on) { serializeAcrossDevices_.store(on, std::memory_order_relaxed); }
+    void serializeAcrossDevices(bool on) {
+        serializeAcrossDevices_.store(on, std::memory_order_relaxed);
+    }
     // Queues `task`; exceptions it throws are kept and rethrown by takeError().
     // `oneOfARun`: a call that others usually follow at once (destroying objects), after which
     // this thread polls briefly for the next before it sleeps, as after runCreation.
-    void post(std::function<void()> task, bool oneOfARun = false) { push(tasks_, {std::move(task), oneOfARun}); }
+    void post(std::function<void()> task, bool oneOfARun = false) {
+        push(tasks_, {std::move(task), oneOfARun});
+    }
     // The first exception an asynchronous task threw since the last call, if any.
     std::exception_ptr takeError() {
         std::lock_guard lock(mutex_);
@@ -109,17 +113,23 @@ private:
         std::exception_ptr error;
         std::conditional_t<std::is_void_v<R>, bool, std::optional<R>> result{};
         push(queue, {[&] {
-            try {
-                if constexpr (std::is_void_v<R>) task();
-                else result.emplace(task());
-            } catch (...) {
-                error = std::current_exception();
-            }
-            std::lock_guard lock(doneMutex);  // notified under the lock: the caller's frame outlives it
-            done.store(true, std::memory_order_release);
-            doneCv.notify_one();
-        }, oneOfARun});
-        if (oneOfARun) spinBriefly([&] { return done.load(std::memory_order_acquire); }, std::chrono::microseconds(50));
+                         try {
+                             if constexpr (std::is_void_v<R>)
+                                 task();
+                             else
+                                 result.emplace(task());
+                         } catch (...) {
+                             error = std::current_exception();
+                         }
+                         std::lock_guard lock(
+                             doneMutex);  // notified under the lock: the caller's frame outlives it
+                         done.store(true, std::memory_order_release);
+                         doneCv.notify_one();
+                     },
+                     oneOfARun});
+        if (oneOfARun)
+            spinBriefly([&] { return done.load(std::memory_order_acquire); },
+                        std::chrono::microseconds(50));
         std::unique_lock lock(doneMutex);  // also waits for the task's notify to finish
         doneCv.wait(lock, [&] { return done.load(std::memory_order_relaxed); });
         if (error) std::rethrow_exception(error);
@@ -168,8 +178,12 @@ private:
                 if (!error_) error_ = std::current_exception();
             }
             if (task.oneOfARun)
-                spinBriefly([&] { return queued_.load(std::memory_order_acquire) != 0 || stopRequested_.load(std::memory_order_relaxed); },
-                            std::chrono::microseconds(20));
+                spinBriefly(
+                    [&] {
+                        return queued_.load(std::memory_order_acquire) != 0 ||
+                               stopRequested_.load(std::memory_order_relaxed);
+                    },
+                    std::chrono::microseconds(20));
         }
     }
     static std::mutex& processWideMutex() {

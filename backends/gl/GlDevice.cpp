@@ -22,26 +22,29 @@ std::unique_ptr<gdi::Device> createGlDevice(PlatformKind platform, bool validati
     return std::make_unique<GlDevice>(platform, validation, vsync);
 }
 
-
-
-
 void GlDevice::checkReset(bool injected) {
     const GLenum status = injected ? GL_UNKNOWN_CONTEXT_RESET : gl_.GetGraphicsResetStatus();
     if (status != GL_NO_ERROR)
-        throw loss_.lose(info_.backend, std::string("glGetGraphicsResetStatus returned ") + glErrorName(status));
+        throw loss_.lose(info_.backend,
+                         std::string("glGetGraphicsResetStatus returned ") + glErrorName(status));
 }
 
 gdi::LiveObjects GlDevice::liveObjects() const {
     // After the queue: destroys already called count as done.
     if (!thread_.onThisThread()) return thread_.run([&] { return liveObjects(); });
-    return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
-            .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(), .heaps = 0,
+    return {.buffers = buffers_.size(),
+            .textures = textures_.size(),
+            .samplers = samplers_.size(),
+            .shaders = shaders_.size(),
+            .pipelines = pipelines_.size(),
+            .timers = timers_.size(),
+            .heaps = 0,
             .querySets = querySets_.size(),
             .nativeObjects = nativeObjects_};
 }
 
-void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message,
-                                        const void* user) {
+void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
+                                      const GLchar* message, const void* user) {
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
         auto* device = const_cast<GlDevice*>(static_cast<const GlDevice*>(user));
         device->errors_++;
@@ -51,7 +54,8 @@ void APIENTRY GlDevice::debugCallback(GLenum, GLenum type, GLuint, GLenum severi
 
 void runOnContextThread(gdi::Device& device, const std::function<void()>& task) {
     auto* gl = dynamic_cast<GlDevice*>(&device);
-    if (!gl) throw gdi::Error(device.info().backend + ": runOnContextThread needs an OpenGL device");
+    if (!gl)
+        throw gdi::Error(device.info().backend + ": runOnContextThread needs an OpenGL device");
     gl->runOnContextThread(task);
 }
 
@@ -73,30 +77,38 @@ GlDevice::GlDevice(PlatformKind kind, bool validation, bool vsync) {
 }
 
 void GlDevice::initialize(bool validation) {
-#define FE_GL_LOAD(type, fn)                                                                          \
-    gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn));                             \
-    if (!gl_.fn) throw gdi::Error(std::string(platform_->name()) + ": GL entry point gl" #fn " missing");
+#define FE_GL_LOAD(type, fn)                                              \
+    gl_.fn = reinterpret_cast<type>(platform_->getProcAddress("gl" #fn)); \
+    if (!gl_.fn)                                                          \
+        throw gdi::Error(std::string(platform_->name()) + ": GL entry point gl" #fn " missing");
     FE_GL_FUNCTIONS(FE_GL_LOAD)
 #undef FE_GL_LOAD
     GLint major = 0, minor = 0, n = 0;
     gl_.GetIntegerv(GL_MAJOR_VERSION, &major);
     gl_.GetIntegerv(GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < 45)
-        throw gdi::Error(std::string(platform_->name()) + ": OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
-                         " < 4.5");
+        throw gdi::Error(std::string(platform_->name()) + ": OpenGL " + std::to_string(major) +
+                         "." + std::to_string(minor) + " < 4.5");
     std::vector<std::string> extensions;
     gl_.GetIntegerv(GL_NUM_EXTENSIONS, &n);
-    for (GLint i = 0; i < n; ++i) extensions.emplace_back(reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, i)));
-    auto has = [&](const char* e) { return std::find(extensions.begin(), extensions.end(), e) != extensions.end(); };
-    if (!has("GL_ARB_gl_spirv")) throw gdi::Error(std::string(platform_->name()) + ": GL_ARB_gl_spirv missing (shaders are SPIR-V)");
+    for (GLint i = 0; i < n; ++i)
+        extensions.emplace_back(reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, i)));
+    auto has = [&](const char* e) {
+        return std::find(extensions.begin(), extensions.end(), e) != extensions.end();
+    };
+    if (!has("GL_ARB_gl_spirv"))
+        throw gdi::Error(std::string(platform_->name()) +
+                         ": GL_ARB_gl_spirv missing (shaders are SPIR-V)");
     if (has("GL_ARB_indirect_parameters")) {
         gl_.MultiDrawArraysIndirectCount = reinterpret_cast<PFNGLMULTIDRAWARRAYSINDIRECTCOUNTPROC>(
             platform_->getProcAddress("glMultiDrawArraysIndirectCountARB"));
-        gl_.MultiDrawElementsIndirectCount = reinterpret_cast<PFNGLMULTIDRAWELEMENTSINDIRECTCOUNTPROC>(
-            platform_->getProcAddress("glMultiDrawElementsIndirectCountARB"));
+        gl_.MultiDrawElementsIndirectCount =
+            reinterpret_cast<PFNGLMULTIDRAWELEMENTSINDIRECTCOUNTPROC>(
+                platform_->getProcAddress("glMultiDrawElementsIndirectCountARB"));
     }
     if (has("GL_ARB_polygon_offset_clamp"))
-        gl_.PolygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPPROC>(platform_->getProcAddress("glPolygonOffsetClamp"));
+        gl_.PolygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPPROC>(
+            platform_->getProcAddress("glPolygonOffsetClamp"));
     // S3TC (BC1, BC3) and its sRGB forms are extensions; RGTC (BC4, BC5) and BPTC (BC7) are core.
     const bool bc = has("GL_EXT_texture_compression_s3tc") &&
                     (has("GL_EXT_texture_sRGB") || has("GL_EXT_texture_compression_s3tc_srgb"));
@@ -106,8 +118,9 @@ void GlDevice::initialize(bool validation) {
         gl_.DebugMessageCallback(&GlDevice::debugCallback, this);
     }
     gl_.ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);  // NDC y=-1 lands in memory row 0, as on Vulkan
-    gl_.Enable(GL_FRAMEBUFFER_SRGB);  // sRGB targets encode on write, as on Vulkan
-    gl_.ProvokingVertex(GL_FIRST_VERTEX_CONVENTION);  // flat outputs come from a primitive's first vertex, as on Vulkan
+    gl_.Enable(GL_FRAMEBUFFER_SRGB);                 // sRGB targets encode on write, as on Vulkan
+    gl_.ProvokingVertex(
+        GL_FIRST_VERTEX_CONVENTION);  // flat outputs come from a primitive's first vertex, as on Vulkan
     gl_.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     gl_.Enable(GL_SCISSOR_TEST);
     // Points: gl_PointSize is honoured (Vulkan always does), and gl_PointCoord's (0, 0) is the
@@ -120,18 +133,26 @@ void GlDevice::initialize(bool validation) {
 
     info_.backend = platform_->name();
     info_.deviceName = reinterpret_cast<const char*>(gl_.GetString(GL_RENDERER));
-    info_.apiVersion = std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
+    info_.apiVersion =
+        std::string("OpenGL ") + reinterpret_cast<const char*>(gl_.GetString(GL_VERSION));
     GLint strategy = 0, flags = 0;
     gl_.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
     gl_.GetIntegerv(GL_CONTEXT_FLAGS, &flags);
-    info_.driverInfo = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
-                       std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", resets are reported" : ", no reset notification") +
-                       std::string((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) ? ", robust buffer access" : "");
+    info_.driverInfo =
+        reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
+        std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", resets are reported"
+                                                         : ", no reset notification") +
+        std::string((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) ? ", robust buffer access" : "");
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
-    thread_.serializeAcrossDevices(info_.softwareRasterizer);  // GlContextThread: Mesa's software drivers
-    auto get = [&](GLenum e) { GLint v = 0; gl_.GetIntegerv(e, &v); return uint32_t(std::max(v, 0)); };
+    thread_.serializeAcrossDevices(
+        info_.softwareRasterizer);  // GlContextThread: Mesa's software drivers
+    auto get = [&](GLenum e) {
+        GLint v = 0;
+        gl_.GetIntegerv(e, &v);
+        return uint32_t(std::max(v, 0));
+    };
     info_.limits.maxTextureSize2D = get(GL_MAX_TEXTURE_SIZE);
     info_.limits.maxTextureSize3D = get(GL_MAX_3D_TEXTURE_SIZE);
     info_.limits.maxTextureSizeCube = get(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
@@ -145,10 +166,12 @@ void GlDevice::initialize(bool validation) {
             bool all = true;
             for (gdi::Format f : formats) {  // the counts a format supports, from the driver
                 GLint num = 0;
-                gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal, GL_NUM_SAMPLE_COUNTS, 1, &num);
+                gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal,
+                                        GL_NUM_SAMPLE_COUNTS, 1, &num);
                 std::vector<GLint> counts(size_t(std::max(num, 0)));
                 if (num > 0)
-                    gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal, GL_SAMPLES, num, counts.data());
+                    gl_.GetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, toGlFormat(f).internal,
+                                            GL_SAMPLES, num, counts.data());
                 all = all && std::find(counts.begin(), counts.end(), GLint(c)) != counts.end();
             }
             if (all) bits |= c;
@@ -156,8 +179,9 @@ void GlDevice::initialize(bool validation) {
         return bits;
     };
     using F = gdi::Format;
-    info_.limits.colorSampleCounts = countsFor(maxColor, {F::RGBA8, F::RGBA8_SRGB, F::RGBA16F, F::RG16F, F::R16F, F::RGBA32F,
-                                                          F::RG32F, F::R32F, F::R32U, F::R11G11B10F});
+    info_.limits.colorSampleCounts =
+        countsFor(maxColor, {F::RGBA8, F::RGBA8_SRGB, F::RGBA16F, F::RG16F, F::R16F, F::RGBA32F,
+                             F::RG32F, F::R32F, F::R32U, F::R11G11B10F});
     info_.limits.depthSampleCounts = countsFor(maxDepth, {F::D32F, F::D24S8});
     info_.limits.maxColorAttachments = get(GL_MAX_COLOR_ATTACHMENTS);
     GLint dims[2] = {0, 0};
@@ -172,31 +196,41 @@ void GlDevice::initialize(bool validation) {
         gl_.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, axis, &groups);
         info_.limits.maxComputeWorkGroupCount[axis] = uint32_t(std::max(groups, 0));
     }
-    info_.limits.maxStorageTextures = uint32_t(std::min({get(GL_MAX_IMAGE_UNITS), get(GL_MAX_FRAGMENT_IMAGE_UNIFORMS),
-                                                         get(GL_MAX_COMPUTE_IMAGE_UNIFORMS), get(GL_MAX_COMBINED_IMAGE_UNIFORMS)}));
+    info_.limits.maxStorageTextures = uint32_t(
+        std::min({get(GL_MAX_IMAGE_UNITS), get(GL_MAX_FRAGMENT_IMAGE_UNIFORMS),
+                  get(GL_MAX_COMPUTE_IMAGE_UNIFORMS), get(GL_MAX_COMBINED_IMAGE_UNIFORMS)}));
     info_.limits.maxUniformBufferRange = get(GL_MAX_UNIFORM_BLOCK_SIZE);
     info_.limits.maxStorageBufferRange = get(GL_MAX_SHADER_STORAGE_BLOCK_SIZE);
     // GL states no allocation limit: the video memory where the driver says it (NVIDIA, and
     // Mesa's hardware drivers), else the machine's memory (llvmpipe's buffers live there).
-    constexpr GLenum kDedicatedVideoMemoryNvx = 0x9047;  // GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX (not in glcorearb.h)
+    constexpr GLenum kDedicatedVideoMemoryNvx =
+        0x9047;  // GL_GPU_MEMORY_INFO_DEDICATED_VIDMEM_NVX (not in glcorearb.h)
     GLint videoKiB = 0;
     if (has("GL_NVX_gpu_memory_info")) gl_.GetIntegerv(kDedicatedVideoMemoryNvx, &videoKiB);
-    info_.limits.maxAllocationSize = videoKiB > 0 ? uint64_t(videoKiB) * 1024
-                                                  : uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+    info_.limits.maxAllocationSize =
+        videoKiB > 0 ? uint64_t(videoKiB) * 1024
+                     : uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
     info_.limits.uniformBufferOffsetAlignment = get(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT);
     info_.limits.storageBufferOffsetAlignment = get(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT);
     // Mesa 22.3 crashes (strlen in the driver) serialising a SPIR-V program that has uniform
     // blocks for glGetProgramBinary (seen on llvmpipe): no program binaries there.
-    binaryFormats_ = info_.apiVersion.find("Mesa") == std::string::npos ? get(GL_NUM_PROGRAM_BINARY_FORMATS) : 0;
-    info_.features = {.timestamps = true, .computeShaders = true, .debugLabels = true, .validation = validation,
-                      .memoryAliasing = false, .window = platform_->hasWindow(),
-                      .textureCubeArray = true, .depthClamp = true,  // core in 4.0 and 3.2
-                      .depthBiasClamp = gl_.PolygonOffsetClamp != nullptr,
-                      .multiDrawIndirect = true,  // core in 4.3
-                      .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
-                      .textureCompressionBC = bc,
-                      .occlusionQueries = true,  // GL_SAMPLES_PASSED counts exactly
-                      .pipelineStatistics = has("GL_ARB_pipeline_statistics_query")};
+    binaryFormats_ =
+        info_.apiVersion.find("Mesa") == std::string::npos ? get(GL_NUM_PROGRAM_BINARY_FORMATS) : 0;
+    info_.features = {
+        .timestamps = true,
+        .computeShaders = true,
+        .debugLabels = true,
+        .validation = validation,
+        .memoryAliasing = false,
+        .window = platform_->hasWindow(),
+        .textureCubeArray = true,
+        .depthClamp = true,  // core in 4.0 and 3.2
+        .depthBiasClamp = gl_.PolygonOffsetClamp != nullptr,
+        .multiDrawIndirect = true,  // core in 4.3
+        .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
+        .textureCompressionBC = bc,
+        .occlusionQueries = true,  // GL_SAMPLES_PASSED counts exactly
+        .pipelineStatistics = has("GL_ARB_pipeline_statistics_query")};
     // What each format can do, from the driver's internal-format queries (ARB_internalformat_query2).
     auto supported = [&](GLenum target, GLenum internal, GLenum pname) {
         GLint v = GL_NONE;
@@ -212,9 +246,11 @@ void GlDevice::initialize(bool validation) {
         c.sampled = true;
         c.linearFilter = !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FILTER);
         c.renderTarget = supportsFormat(f, gdi::TextureUsage::RenderTarget);
-        c.blend = c.renderTarget && !gdi::isDepthFormat(f) && !fi.isInteger && supported(GL_TEXTURE_2D, internal, GL_FRAMEBUFFER_BLEND);
+        c.blend = c.renderTarget && !gdi::isDepthFormat(f) && !fi.isInteger &&
+                  supported(GL_TEXTURE_2D, internal, GL_FRAMEBUFFER_BLEND);
         c.storage = supportsFormat(f, gdi::TextureUsage::Storage);
-        if (c.renderTarget) c.sampleCounts = countsFor(gdi::isDepthFormat(f) ? maxDepth : maxColor, {f});
+        if (c.renderTarget)
+            c.sampleCounts = countsFor(gdi::isDepthFormat(f) ? maxDepth : maxColor, {f});
     }
 }
 
@@ -254,7 +290,8 @@ void GlDevice::releaseAll() {
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
     timers_.forEach([&](Timer& t) { gl_.DeleteQueries(2, t.queries); });
-    querySets_.forEach([&](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
+    querySets_.forEach(
+        [&](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
     for (auto& f : fbos_) gl_.DeleteFramebuffers(1, &f.fbo);
     for (auto& [v, s] : fences_) gl_.DeleteSync(s);
 }
@@ -262,7 +299,8 @@ void GlDevice::releaseAll() {
 bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const {
     if (toGlFormat(format).internal == 0) return false;
     if (gdi::isCompressedFormat(format))
-        return info_.features.textureCompressionBC && !any(usage, gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Storage);
+        return info_.features.textureCompressionBC &&
+               !any(usage, gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Storage);
     // GL 4.5 core requires every format here as texture and render target; image load/store
     // has no sRGB, packed-float-to-RGB or depth formats.
     if (any(usage, gdi::TextureUsage::Storage) &&
@@ -294,12 +332,18 @@ void GlDevice::checkAlive(const gdi::cmd::CommandStream& stream) const {
     };
     auto field = [&](const char*, const auto& value) {
         using T = std::decay_t<decltype(value)>;
-        if constexpr (std::is_same_v<T, gdi::BufferHandle>) check(buffers_, value, "buffer");
-        else if constexpr (std::is_same_v<T, gdi::TextureHandle>) check(textures_, value, "texture");
-        else if constexpr (std::is_same_v<T, gdi::SamplerHandle>) check(samplers_, value, "sampler");
-        else if constexpr (std::is_same_v<T, gdi::PipelineHandle>) check(pipelines_, value, "pipeline");
-        else if constexpr (std::is_same_v<T, gdi::TimerHandle>) check(timers_, value, "timer");
-        else if constexpr (std::is_same_v<T, gdi::QuerySetHandle>) check(querySets_, value, "query set");
+        if constexpr (std::is_same_v<T, gdi::BufferHandle>)
+            check(buffers_, value, "buffer");
+        else if constexpr (std::is_same_v<T, gdi::TextureHandle>)
+            check(textures_, value, "texture");
+        else if constexpr (std::is_same_v<T, gdi::SamplerHandle>)
+            check(samplers_, value, "sampler");
+        else if constexpr (std::is_same_v<T, gdi::PipelineHandle>)
+            check(pipelines_, value, "pipeline");
+        else if constexpr (std::is_same_v<T, gdi::TimerHandle>)
+            check(timers_, value, "timer");
+        else if constexpr (std::is_same_v<T, gdi::QuerySetHandle>)
+            check(querySets_, value, "query set");
         else if constexpr (std::is_same_v<T, gdi::DepthAttachment>) {
             check(textures_, value.texture, "texture");
             check(textures_, value.resolveTexture, "texture");
@@ -308,16 +352,19 @@ void GlDevice::checkAlive(const gdi::cmd::CommandStream& stream) const {
     stream.forEach([&](const auto& record) {
         gdi::cmd::forEachField(record, field);
         using R = std::decay_t<decltype(record)>;
-        if constexpr (std::is_same_v<R, gdi::cmd::ExecuteSecondary>) checkAlive(stream.child(record.child));
+        if constexpr (std::is_same_v<R, gdi::cmd::ExecuteSecondary>)
+            checkAlive(stream.child(record.child));
         if constexpr (std::is_same_v<R, gdi::cmd::BeginRenderPass>)
             for (const auto& c : gdi::cmd::view(record, record.colors)) {
                 check(textures_, c.texture, "texture");
                 check(textures_, c.resolveTexture, "texture");
             }
         if constexpr (std::is_same_v<R, gdi::cmd::TextureBarriers>)
-            for (const auto& b : gdi::cmd::view(record, record.barriers)) check(textures_, b.texture, "texture");
+            for (const auto& b : gdi::cmd::view(record, record.barriers))
+                check(textures_, b.texture, "texture");
         if constexpr (std::is_same_v<R, gdi::cmd::BufferBarriers>)
-            for (const auto& b : gdi::cmd::view(record, record.barriers)) check(buffers_, b.buffer, "buffer");
+            for (const auto& b : gdi::cmd::view(record, record.barriers))
+                check(buffers_, b.buffer, "buffer");
     });
 }
 
@@ -344,7 +391,8 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (GlCommandList* gl : gls) queries.push_back(&gl->queries());
     gdi::validate::queriesOncePerSubmission(queries);
     std::vector<gdi::validate::QueryRecording::Use> usedQueries;
-    for (const auto* q : queries) usedQueries.insert(usedQueries.end(), q->used().begin(), q->used().end());
+    for (const auto* q : queries)
+        usedQueries.insert(usedQueries.end(), q->used().begin(), q->used().end());
     std::vector<uint32_t> usedTimers;  // copied: finishing a list starts its next recording
     for (const auto* q : queries)
         for (const auto& t : q->timers()) usedTimers.push_back(t.first);
@@ -352,7 +400,8 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (GlCommandList* gl : gls) streams.push_back(gl->finish());
     if (gdi::fault::hit(gdi::fault::Site::Submission, "Device::submit")) {
         for (auto& s : streams) returnStream(std::move(s));
-        throw loss_.lose(info_.backend, "glGetGraphicsResetStatus returned GL_UNKNOWN_CONTEXT_RESET");
+        throw loss_.lose(info_.backend,
+                         "glGetGraphicsResetStatus returned GL_UNKNOWN_CONTEXT_RESET");
     }
     const gdi::FenceValue value = nextFence_++;
     {
@@ -365,7 +414,8 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     auto shared = std::make_shared<decltype(streams)>(std::move(streams));
     thread_.post([this, value, shared] {
         for (auto& stream : *shared) {
-            GlReplay(*this).run(*stream, &thread_.urgentWaiting(), [this] { thread_.serviceUrgent(); });
+            GlReplay(*this).run(*stream, &thread_.urgentWaiting(),
+                                [this] { thread_.serviceUrgent(); });
             returnStream(std::move(stream));
         }
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // shader stores reach readback and mapped memory
@@ -383,11 +433,15 @@ void GlDevice::wait(gdi::FenceValue fence) {
     gdi::validate::issuedFence(fence, nextFence_.load() - 1, "wait");
     // Once its submission has been replayed, a fence is waited on ahead of the queue (and in
     // between the commands of a replay in progress): not behind the next frame's replay.
-    auto waitFor = [&](auto&& task) { fence <= replayed_.load(std::memory_order_acquire) ? thread_.runUrgent(task) : thread_.run(task); };
+    auto waitFor = [&](auto&& task) {
+        fence <= replayed_.load(std::memory_order_acquire) ? thread_.runUrgent(task)
+                                                           : thread_.run(task);
+    };
     waitFor([&] {
         while (!fences_.empty() && fences_.front().first <= fence) {
             GLsync s = fences_.front().second;
-            while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) == GL_TIMEOUT_EXPIRED)
+            while (gl_.ClientWaitSync(s, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000ull) ==
+                   GL_TIMEOUT_EXPIRED)
                 checkReset(false);  // a reset context may never signal
             gl_.DeleteSync(s);
             completed_.store(fences_.front().first, std::memory_order_release);
@@ -405,7 +459,9 @@ bool GlDevice::isComplete(gdi::FenceValue fence) {
     if (fence > replayed_.load(std::memory_order_acquire)) return false;  // not even replayed yet
     return thread_.runUrgent([&] {
         while (!fences_.empty()) {
-            if (gl_.ClientWaitSync(fences_.front().second, GL_SYNC_FLUSH_COMMANDS_BIT, 0) == GL_TIMEOUT_EXPIRED) break;
+            if (gl_.ClientWaitSync(fences_.front().second, GL_SYNC_FLUSH_COMMANDS_BIT, 0) ==
+                GL_TIMEOUT_EXPIRED)
+                break;
             gl_.DeleteSync(fences_.front().second);
             completed_.store(fences_.front().first, std::memory_order_release);
             fences_.erase(fences_.begin());
@@ -420,7 +476,8 @@ void GlDevice::waitIdle() {
     loss_.check("waitIdle");
     thread_.run([&] {
         gl_.Finish();
-        for (auto& [v, s] : fences_) gl_.DeleteSync(s), completed_.store(v, std::memory_order_release);
+        for (auto& [v, s] : fences_)
+            gl_.DeleteSync(s), completed_.store(v, std::memory_order_release);
         fences_.clear();
         checkReset(false);
     });
@@ -439,7 +496,8 @@ std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
         loss_.check("timerNanoseconds");
         Timer& t = timer(h);
         if (!t.used) return std::nullopt;
-        if (info_.softwareRasterizer) return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
+        if (info_.softwareRasterizer)
+            return std::chrono::duration<double, std::nano>(t.end - t.begin).count();
         GLint available = 0;
         gl_.GetQueryObjectiv(t.queries[1], GL_QUERY_RESULT_AVAILABLE, &available);
         if (!available) return std::nullopt;
@@ -453,11 +511,20 @@ std::optional<double> GlDevice::timerNanoseconds(gdi::TimerHandle h) {
 uint64_t GlDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
     using N = gdi::NativeObject;
     switch (what) {
-        case N::Buffer: if (auto* b = buffers_.find(gdi::BufferHandle{id})) return b->name; break;
-        case N::Texture: if (auto* t = textures_.find(gdi::TextureHandle{id})) return t->name; break;
-        case N::Pipeline: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->program; break;
-        case N::VertexArray: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->vao; break;
-        default: break;
+        case N::Buffer:
+            if (auto* b = buffers_.find(gdi::BufferHandle{id})) return b->name;
+            break;
+        case N::Texture:
+            if (auto* t = textures_.find(gdi::TextureHandle{id})) return t->name;
+            break;
+        case N::Pipeline:
+            if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->program;
+            break;
+        case N::VertexArray:
+            if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return p->vao;
+            break;
+        default:
+            break;
     }
     return 0;
 }
@@ -475,7 +542,8 @@ bool GlDevice::present(gdi::TextureHandle h) {
     gdi::validate::notAView(t.viewOf != 0, t.label, "present");
     gdi::validate::presentTexture(t.desc, t.label);
     // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda (P1381, clang 16).
-    const std::pair<uint32_t, uint32_t> framebufferSize = platform_->prepareWindow(t.desc.width, t.desc.height);
+    const std::pair<uint32_t, uint32_t> framebufferSize =
+        platform_->prepareWindow(t.desc.width, t.desc.height);
     const uint32_t fbWidth = framebufferSize.first, fbHeight = framebufferSize.second;
     thread_.run([&] {
         platform_->beforeDraw();
@@ -487,7 +555,8 @@ bool GlDevice::present(gdi::TextureHandle h) {
         gl_.Disable(GL_SCISSOR_TEST);
         // Texture row 0 is the image's top; the window's top row is GL row fbHeight - 1.
         const GLint w = GLint(t.desc.width), hgt = GLint(t.desc.height), top = GLint(fbHeight);
-        gl_.BlitNamedFramebuffer(fbo, 0, 0, 0, w, hgt, 0, top, w, top - hgt, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        gl_.BlitNamedFramebuffer(fbo, 0, 0, 0, w, hgt, 0, top, w, top - hgt, GL_COLOR_BUFFER_BIT,
+                                 GL_NEAREST);
         gl_.Enable(GL_SCISSOR_TEST);
         gl_.Enable(GL_FRAMEBUFFER_SRGB);
         windowWidth_ = std::min(t.desc.width, fbWidth);
@@ -502,7 +571,9 @@ bool GlDevice::present(gdi::TextureHandle h) {
 gdi::Image GlDevice::readWindow() {
     loss_.check("readWindow");
     if (!platform_->hasWindow()) return gdi::Device::readWindow();
-    const auto [width, height] = thread_.run([&] { return std::pair{windowWidth_, windowHeight_}; });
+    const auto [width, height] = thread_.run([&] {
+        return std::pair{windowWidth_, windowHeight_};
+    });
     return platform_->readWindow(width, height);
 }
 

@@ -52,9 +52,9 @@ struct Texture {
     gdi::TextureDesc desc;
     std::string label;
     bool linearFilter = false;  // FormatCaps::linearFilter of its format
-    uint32_t viewOf = 0;  // a view (glTextureView) of this texture handle id; 0: a texture
+    uint32_t viewOf = 0;        // a view (glTextureView) of this texture handle id; 0: a texture
     uint32_t baseMip = 0, baseLayer = 0;  // a view: where it starts in its texture
-    uint32_t views = 0;   // live views of this texture
+    uint32_t views = 0;                   // live views of this texture
 };
 GLenum textureTarget(const gdi::TextureDesc& d);
 // Where a depth/stencil format attaches: GL_DEPTH_STENCIL_ATTACHMENT, GL_DEPTH_ATTACHMENT or (S8)
@@ -71,8 +71,9 @@ struct FboAttachment {
 };
 struct Sampler {
     GLuint name = 0;
-    bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
-    bool readsMips = false;        // a MipFilter other than None: reads more than the base mip
+    bool filtersLinearly =
+        false;               // a Linear filter without comparison: needs FormatCaps::linearFilter
+    bool readsMips = false;  // a MipFilter other than None: reads more than the base mip
     std::string label;
 };
 struct Shader {
@@ -94,9 +95,12 @@ struct Pipeline {
     std::vector<uint32_t> strides;
     uint64_t requiredSlots = 0;
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
-    std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
-    gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
-    bool writesDepthStencil = false;         // validate::writesDepthStencil: may not sample its depth attachment
+    std::array<uint8_t, 64>
+        slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
+    gdi::validate::PassSignature
+        signature;  // attachment formats and samples, checked at setPipeline
+    bool writesDepthStencil =
+        false;  // validate::writesDepthStencil: may not sample its depth attachment
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     uint32_t constantBytes = 0;  // the shaders' constants block (FE_CONSTANTS)
     // The storage-texture slots its shaders use, in slot order: slot imageSlots[u] is bound to
@@ -113,10 +117,12 @@ struct Timer {
 };
 
 struct QuerySet {
-    std::vector<GLuint> names;  // validate::queryValues(type) per query (statistics: one per counter)
+    std::vector<GLuint>
+        names;  // validate::queryValues(type) per query (statistics: one per counter)
     gdi::QuerySetDesc desc;
     std::string label;
-    std::vector<gdi::FenceValue> submitted;  // per query: the submission that last wrote it (0: none)
+    std::vector<gdi::FenceValue>
+        submitted;  // per query: the submission that last wrote it (0: none)
 };
 // The GL query targets of a set's type: one, or the four statistics in PipelineStatistics order.
 std::span<const GLenum> queryTargets(gdi::QueryType t);
@@ -128,10 +134,13 @@ public:
 
     const gdi::DeviceInfo& info() const override { return info_; }
     bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
-    gdi::FormatCaps formatCaps(gdi::Format format) const override { return formatCaps_[size_t(format)]; }
+    gdi::FormatCaps formatCaps(gdi::Format format) const override {
+        return formatCaps_[size_t(format)];
+    }
     gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
-    gdi::TextureHandle createTextureView(gdi::TextureHandle texture, const gdi::TextureViewDesc& desc) override;
+    gdi::TextureHandle createTextureView(gdi::TextureHandle texture,
+                                         const gdi::TextureViewDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
     gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
@@ -143,7 +152,8 @@ public:
     void savePipelineCache() override;
     gdi::PipelineCacheStats pipelineCacheStats() const override;
     void destroy(gdi::QuerySetHandle) override;
-    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) override;
+    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
+                      std::span<uint64_t> out) override;
     gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc&) const override;
     void destroy(gdi::BufferHandle) override;
     void destroy(gdi::TextureHandle) override;
@@ -154,21 +164,29 @@ public:
     void destroy(gdi::HeapHandle h) override {  // no heaps on GL: only the null handle is valid
         if (h) gdi::validate::destroyedHandle("heap", h.id);
     }
-    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
-    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
+    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override {
+        return buffers_.get(h, "buffer").desc;
+    }
+    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
+        return textures_.get(h, "texture").desc;
+    }
     void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
     void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
-    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region, gdi::ByteSpan data,
-                      const gdi::TexelLayout& layout) override;
-    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region,
+                            gdi::ByteSpan data, const gdi::TexelLayout& layout) override;
+    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset,
+                                    uint64_t size) override;
     gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
     // Upload/readback of one subresource through the pixel unpack/pack state (pointer or, with a
     // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
-    void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes);
+    void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels,
+                           uint64_t bytes);
     // Regions (resolved region and layout): the pixel store's row length and image height say the
     // pitch; `pixels` is where the layout's offset points (a pointer, or a pixel-buffer offset).
-    void uploadRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, const void* pixels, uint64_t bytes);
-    void readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, void* pixels, uint64_t bytes);
+    void uploadRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                      const void* pixels, uint64_t bytes);
+    void readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                    void* pixels, uint64_t bytes);
     void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
     void* map(gdi::BufferHandle buffer) override;
     std::unique_ptr<gdi::CommandList> createCommandList() override;
@@ -204,20 +222,23 @@ public:
     // Throws the submit error when the stream uses a destroyed object.
     void checkAlive(const gdi::cmd::CommandStream& stream) const;
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
-    const Buffer* findBuffer(gdi::BufferHandle h) const { return buffers_.find(h); }  // null if invalid
+    const Buffer* findBuffer(gdi::BufferHandle h) const {
+        return buffers_.find(h);
+    }  // null if invalid
     Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
     Sampler& sampler(gdi::SamplerHandle h) { return samplers_.get(h, "sampler"); }
     Pipeline& pipeline(gdi::PipelineHandle h) { return pipelines_.get(h, "pipeline"); }
     Timer& timer(gdi::TimerHandle h) { return timers_.get(h, "timer"); }
     FboAttachment fboAttachment(const Texture& t, uint32_t mipLevel, uint32_t layer) const;
-    GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, GLenum depthPoint);
+    GLuint framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth,
+                       GLenum depthPoint);
     GlConstantsRing& constantsRing() { return constantsRing_; }  // context thread (GlReplay)
     // Runs `task` on the context thread (gl-specific escape hatch: bench/ issues direct GL calls).
     void runOnContextThread(const std::function<void()>& task) { thread_.run(task); }
 
 private:
-    static void APIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
-                                         const GLchar* message, const void* user);
+    static void APIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity,
+                                       GLsizei length, const GLchar* message, const void* user);
     void initialize(bool validation);  // on the context thread
     void releaseAll();                 // on the context thread, at destruction
     // Destroy: the handle is dead at once; the GL object goes after the work queued before.
@@ -226,7 +247,8 @@ private:
     void rethrowAsyncError();
     GLuint specializedShader(const Shader& s, std::span<const uint32_t> code,
                              const std::vector<gdi::SpecializationConstant>& values);
-    GLuint linkPipeline(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+    GLuint linkPipeline(std::initializer_list<const Shader*> shaders,
+                        const std::vector<gdi::SpecializationConstant>& values,
                         const std::string& label);
     GLuint checkLinked(GLuint program, const std::string& label);
     std::unique_ptr<GlPlatform> platform_;
@@ -246,7 +268,8 @@ private:
     void checkReset(bool injected);
     std::vector<std::pair<gdi::FenceValue, GLsync>> fences_;  // context thread only
     std::mutex submitMutex_;  // fence values are handed out in the order streams are queued
-    std::atomic<gdi::FenceValue> nextFence_{1};  // taken under submitMutex_; wait and isComplete read it
+    std::atomic<gdi::FenceValue> nextFence_{
+        1};  // taken under submitMutex_; wait and isComplete read it
     std::atomic<gdi::FenceValue> completed_{0};  // every fence up to it has signalled
     std::atomic<gdi::FenceValue> replayed_{0};   // every submission up to it has been replayed
     std::atomic<uint64_t> destroyEpoch_{0};
@@ -260,13 +283,14 @@ private:
     };
     std::vector<CachedFbo> fbos_;
     GlConstantsRing constantsRing_;
-    uint32_t windowWidth_ = 0, windowHeight_ = 0;  // size of the last presented image
+    uint32_t windowWidth_ = 0, windowHeight_ = 0;        // size of the last presented image
     const uint32_t handleSalt_ = gdi::nextHandleSalt();  // before the pools it salts
     gdi::HandlePool<gdi::BufferHandle, Buffer> buffers_{handleSalt_};
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_{handleSalt_};
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_{handleSalt_};
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_{handleSalt_};
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{handleSalt_};  // command lists point at the bound one (objects never move)
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{
+        handleSalt_};  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_{handleSalt_};
     gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_{handleSalt_};
     std::mutex queriesMutex_;
@@ -275,12 +299,15 @@ private:
     std::map<uint64_t, gdi::ProgramBinary> programs_;
     gdi::PipelineCacheStats cacheStats_;
     mutable std::mutex cacheMutex_;  // cacheStats_
-    GLint binaryFormats_ = 0;        // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
-    GLuint cachedProgram(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+    GLint binaryFormats_ = 0;  // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
+    GLuint cachedProgram(std::initializer_list<const Shader*> shaders,
+                         const std::vector<gdi::SpecializationConstant>& values,
                          const std::string& label);
-    void savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
+    void
+    savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
     void forgetFramebuffers(GLuint texture);
-    mutable GlContextThread thread_;  // last member: stopped (in the destructor) before the rest goes
+    mutable GlContextThread
+        thread_;  // last member: stopped (in the destructor) before the rest goes
 };
 
 }  // namespace fe::gl

@@ -21,18 +21,22 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     // damaged binary reads the same here as on Vulkan (see validateShaderBinary); then this one's.
     gdi::validateShaderBinary(desc, gdi::SpirvRules::Vulkan13, info_.features);
     if (code.size() < 5 || code[0] != 0x07230203)
-        throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" + std::to_string(code.size()) +
-                         " words, missing magic number)");
+        throw gdi::Error("shader '" + label + "': not a SPIR-V binary for OpenGL (" +
+                         std::to_string(code.size()) + " words, missing magic number)");
     Shader s;
-    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label, gdi::SpirvRules::OpenGL45);  // on this thread: no GL needed
+    s.iface = gdi::reflectShader(code, desc.stage, desc.entryPoint, label,
+                                 gdi::SpirvRules::OpenGL45);  // on this thread: no GL needed
     s.stage = desc.stage;
     s.label = label;
     s.entry = desc.entryPoint ? desc.entryPoint : "main";
-    s.codeHash = gdi::fnv1a({reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
-                            gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()}));
-    const std::vector<uint32_t> stageNamed = gdi::withNamesPrefixed(code, std::string(gdi::shaderStageName(desc.stage)) + ".");
-    const bool images = std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
-                                    [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
+    s.codeHash =
+        gdi::fnv1a({reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
+                   gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()}));
+    const std::vector<uint32_t> stageNamed =
+        gdi::withNamesPrefixed(code, std::string(gdi::shaderStageName(desc.stage)) + ".");
+    const bool images =
+        std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
+                    [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
     if (!s.iface.specConstants.empty() || images) s.spirv = stageNamed;
     return thread_.runCreation([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
@@ -53,7 +57,8 @@ GLuint GlDevice::specializedShader(const Shader& s, std::span<const uint32_t> co
         for (const auto& c : s.iface.specConstants)
             if (c.id == v.id) ids.push_back(v.id), bits.push_back(v.bits);
     const GLuint name = gl_.CreateShader(type);
-    gl_.ShaderBinary(1, &name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(), GLsizei(code.size_bytes()));
+    gl_.ShaderBinary(1, &name, GL_SHADER_BINARY_FORMAT_SPIR_V, code.data(),
+                     GLsizei(code.size_bytes()));
     gl_.SpecializeShader(name, s.entry.c_str(), GLuint(ids.size()), ids.data(), bits.data());
     GLint ok = 0;
     gl_.GetShaderiv(name, GL_COMPILE_STATUS, &ok);
@@ -88,7 +93,8 @@ static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shad
     std::bitset<64> used;
     for (const Shader* sh : shaders)
         for (const auto& b : sh ? sh->iface.bindings : std::vector<gdi::ShaderInterface::Binding>{})
-            if (b.type == gdi::BindingType::StorageTexture && b.slot < used.size()) used.set(b.slot);
+            if (b.type == gdi::BindingType::StorageTexture && b.slot < used.size())
+                used.set(b.slot);
     std::vector<uint8_t> slots;
     for (uint8_t slot = 0; slot < used.size(); ++slot)
         if (used[slot]) slots.push_back(slot);
@@ -106,7 +112,8 @@ static std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> s
 // Links the pipeline's shaders: each one's own shader object, or one of its own (deleted once
 // linked) for the stages that declare the pipeline's specialization constants or whose storage
 // textures take other image units in this pipeline than their slot numbers.
-GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
+                              const std::vector<gdi::SpecializationConstant>& values,
                               const std::string& label) {
     std::vector<GLuint> names, owned;
     auto dropOwned = [&] {
@@ -116,19 +123,26 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, cons
     try {
         for (const Shader* sh : shaders) {
             if (!sh) continue;
-            const bool specialize = std::any_of(values.begin(), values.end(), [&](const gdi::SpecializationConstant& v) {
-                return std::any_of(sh->iface.specConstants.begin(), sh->iface.specConstants.end(),
-                                   [&](const auto& c) { return c.id == v.id; });
-            });
-            const bool renumber = std::any_of(sh->iface.bindings.begin(), sh->iface.bindings.end(), [&](const auto& b) {
-                return b.type == gdi::BindingType::StorageTexture && units[b.slot] != b.slot;
-            });
-            if (renumber) owned.push_back(specializedShader(*sh, gdi::withStorageTextureSlots(sh->spirv, units), values));
-            else if (specialize) owned.push_back(specializedShader(*sh, sh->spirv, values));
+            const bool specialize = std::any_of(
+                values.begin(), values.end(), [&](const gdi::SpecializationConstant& v) {
+                    return std::any_of(sh->iface.specConstants.begin(),
+                                       sh->iface.specConstants.end(),
+                                       [&](const auto& c) { return c.id == v.id; });
+                });
+            const bool renumber = std::any_of(
+                sh->iface.bindings.begin(), sh->iface.bindings.end(), [&](const auto& b) {
+                    return b.type == gdi::BindingType::StorageTexture && units[b.slot] != b.slot;
+                });
+            if (renumber)
+                owned.push_back(
+                    specializedShader(*sh, gdi::withStorageTextureSlots(sh->spirv, units), values));
+            else if (specialize)
+                owned.push_back(specializedShader(*sh, sh->spirv, values));
             names.push_back(specialize || renumber ? owned.back() : sh->name);
         }
         GLuint program = gl_.CreateProgram();
-        gl_.ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);  // for the pipeline cache
+        gl_.ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT,
+                              GL_TRUE);  // for the pipeline cache
         for (GLuint n : names) gl_.AttachShader(program, n);
         program = checkLinked(program, label);
         dropOwned();
@@ -140,20 +154,24 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders, cons
 }
 
 // A program's cache key: its shaders' code and entry points, and the specialization values.
-static uint64_t programKey(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values) {
+static uint64_t programKey(std::initializer_list<const Shader*> shaders,
+                           const std::vector<gdi::SpecializationConstant>& values) {
     uint64_t key = 0xcbf29ce484222325ull;
     for (const Shader* s : shaders) key = (key ^ (s ? s->codeHash : 0)) * 0x100000001b3ull;
-    return gdi::fnv1a({reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(values[0])}, key);
+    return gdi::fnv1a(
+        {reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(values[0])}, key);
 }
 
 // The program for `key`: from its cached binary when the driver takes it back, else linked by
 // `link` and its binary kept for the cache (context thread).
-GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders, const std::vector<gdi::SpecializationConstant>& values,
+GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders,
+                               const std::vector<gdi::SpecializationConstant>& values,
                                const std::string& label) {
     const uint64_t key = programKey(shaders, values);
     if (auto it = programs_.find(key); it != programs_.end()) {
         const GLuint p = gl_.CreateProgram();
-        gl_.ProgramBinary(p, it->second.format, it->second.bytes.data(), GLsizei(it->second.bytes.size()));
+        gl_.ProgramBinary(p, it->second.format, it->second.bytes.data(),
+                          GLsizei(it->second.bytes.size()));
         GLint ok = 0;
         gl_.GetProgramiv(p, GL_LINK_STATUS, &ok);
         if (ok) {
@@ -183,7 +201,8 @@ GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders, con
 }
 
 gdi::PipelineCacheStats GlDevice::openPipelineCache(const std::string& path) {
-    const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
+    const gdi::PipelineCacheLoad file =
+        gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
     gdi::PipelineCacheStats stats{.path = path, .warning = file.warning};
     std::map<uint64_t, gdi::ProgramBinary> programs;
     std::string why;
@@ -192,12 +211,15 @@ gdi::PipelineCacheStats GlDevice::openPipelineCache(const std::string& path) {
     else if (!file.payload.empty())
         stats.loaded = true, stats.loadedBytes = file.payload.size();
     if (binaryFormats_ == 0 && stats.warning.empty() && !path.empty())
-        stats.warning = "pipeline cache '" + path + "': GL programs are not cached here: " +
-                        (info_.apiVersion.find("Mesa") != std::string::npos
-                             ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with uniform blocks"
-                             : "the driver offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS is 0)");
+        stats.warning =
+            "pipeline cache '" + path + "': GL programs are not cached here: " +
+            (info_.apiVersion.find("Mesa") != std::string::npos
+                 ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with uniform blocks"
+                 : "the driver offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS is 0)");
     if (!stats.warning.empty()) std::cerr << "fe: " << stats.warning << "\n";
-    thread_.run([&] { programs_ = stats.loaded ? std::move(programs) : std::map<uint64_t, gdi::ProgramBinary>{}; });
+    thread_.run([&] {
+        programs_ = stats.loaded ? std::move(programs) : std::map<uint64_t, gdi::ProgramBinary>{};
+    });
     std::lock_guard lock(cacheMutex_);
     cacheStats_ = stats;
     return stats;
@@ -209,7 +231,9 @@ void GlDevice::savePipelineCacheOnContext() {
         std::lock_guard lock(cacheMutex_);
         path = cacheStats_.path;
     }
-    if (!path.empty()) gdi::writePipelineCache(path, gdi::pipelineCacheIdentity(info_), gdi::encodeProgramBinaries(programs_));
+    if (!path.empty())
+        gdi::writePipelineCache(path, gdi::pipelineCacheIdentity(info_),
+                                gdi::encodeProgramBinaries(programs_));
 }
 
 void GlDevice::savePipelineCache() {
@@ -222,88 +246,121 @@ gdi::PipelineCacheStats GlDevice::pipelineCacheStats() const {
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
-    return thread_.runCreation([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
-        loss_.check("createGraphicsPipeline");
-        gdi::validate::graphicsPipelineDesc(d, info_);
-        gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
-        Pipeline p;
-        p.label = d.debugName ? d.debugName : "";
-        Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
-        if (vs.stage != gdi::ShaderStage::Vertex) throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
-        const Shader* fsShader = nullptr;
-        const gdi::ShaderInterface* fsIface = nullptr;
-        if (d.fragmentShader) {
-            fsShader = &shaders_.get(d.fragmentShader, "fragment shader");
-            if (fsShader->stage != gdi::ShaderStage::Fragment)
-                throw gdi::Error("pipeline '" + p.label + "': fragmentShader is not a fragment shader");
-            fsIface = &fsShader->iface;
-        }
-        gdi::validate::vertexInputs(d, vs.iface, p.label);
-        if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
-        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&vs.iface, fsIface}, p.label, info_.limits);
-        p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
-        gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
-        p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label);
-        p.imageSlots = imageSlots({&vs, fsShader});
-        gl_.CreateVertexArrays(1, &p.vao);
-        for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
-            const auto& vb = d.vertexBuffers[i];
-            p.strides.push_back(vb.stride);
-            gl_.VertexArrayBindingDivisor(p.vao, i, vb.perInstance ? 1 : 0);
-            for (const auto& a : vb.attributes) {
-                using V = gdi::VertexFormat;
-                gl_.EnableVertexArrayAttrib(p.vao, a.location);
-                gl_.VertexArrayAttribBinding(p.vao, a.location, i);
-                switch (a.format) {
-                    case V::Float: case V::Float2: case V::Float3: case V::Float4:
-                        gl_.VertexArrayAttribFormat(p.vao, a.location, GLint(int(a.format) - int(V::Float) + 1), GL_FLOAT, GL_FALSE, a.offset);
-                        break;
-                    case V::Half2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
-                    case V::Half4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_HALF_FLOAT, GL_FALSE, a.offset); break;
-                    case V::UNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_UNSIGNED_BYTE, GL_TRUE, a.offset); break;
-                    case V::SNorm8x4: gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_BYTE, GL_TRUE, a.offset); break;
-                    case V::UNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_UNSIGNED_SHORT, GL_TRUE, a.offset); break;
-                    case V::SNorm16x2: gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_SHORT, GL_TRUE, a.offset); break;
-                    case V::UInt32: gl_.VertexArrayAttribIFormat(p.vao, a.location, 1, GL_UNSIGNED_INT, a.offset); break;
-                    default: break;
+    return thread_.runCreation(
+        [&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
+            loss_.check("createGraphicsPipeline");
+            gdi::validate::graphicsPipelineDesc(d, info_);
+            gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
+            Pipeline p;
+            p.label = d.debugName ? d.debugName : "";
+            Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
+            if (vs.stage != gdi::ShaderStage::Vertex)
+                throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
+            const Shader* fsShader = nullptr;
+            const gdi::ShaderInterface* fsIface = nullptr;
+            if (d.fragmentShader) {
+                fsShader = &shaders_.get(d.fragmentShader, "fragment shader");
+                if (fsShader->stage != gdi::ShaderStage::Fragment)
+                    throw gdi::Error("pipeline '" + p.label +
+                                     "': fragmentShader is not a fragment shader");
+                fsIface = &fsShader->iface;
+            }
+            gdi::validate::vertexInputs(d, vs.iface, p.label);
+            if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
+            const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(
+                d.bindings, {&vs.iface, fsIface}, p.label, info_.limits);
+            p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
+            gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
+            p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label);
+            p.imageSlots = imageSlots({&vs, fsShader});
+            gl_.CreateVertexArrays(1, &p.vao);
+            for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
+                const auto& vb = d.vertexBuffers[i];
+                p.strides.push_back(vb.stride);
+                gl_.VertexArrayBindingDivisor(p.vao, i, vb.perInstance ? 1 : 0);
+                for (const auto& a : vb.attributes) {
+                    using V = gdi::VertexFormat;
+                    gl_.EnableVertexArrayAttrib(p.vao, a.location);
+                    gl_.VertexArrayAttribBinding(p.vao, a.location, i);
+                    switch (a.format) {
+                        case V::Float:
+                        case V::Float2:
+                        case V::Float3:
+                        case V::Float4:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location,
+                                                        GLint(int(a.format) - int(V::Float) + 1),
+                                                        GL_FLOAT, GL_FALSE, a.offset);
+                            break;
+                        case V::Half2:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_HALF_FLOAT,
+                                                        GL_FALSE, a.offset);
+                            break;
+                        case V::Half4:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_HALF_FLOAT,
+                                                        GL_FALSE, a.offset);
+                            break;
+                        case V::UNorm8x4:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_UNSIGNED_BYTE,
+                                                        GL_TRUE, a.offset);
+                            break;
+                        case V::SNorm8x4:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 4, GL_BYTE, GL_TRUE,
+                                                        a.offset);
+                            break;
+                        case V::UNorm16x2:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_UNSIGNED_SHORT,
+                                                        GL_TRUE, a.offset);
+                            break;
+                        case V::SNorm16x2:
+                            gl_.VertexArrayAttribFormat(p.vao, a.location, 2, GL_SHORT, GL_TRUE,
+                                                        a.offset);
+                            break;
+                        case V::UInt32:
+                            gl_.VertexArrayAttribIFormat(p.vao, a.location, 1, GL_UNSIGNED_INT,
+                                                         a.offset);
+                            break;
+                        default:
+                            break;
+                    }
                 }
             }
-        }
-        p.desc = d;
-        p.desc.blend = gdi::validate::writtenTargetBlends(d, fsIface);
-        p.desc.debugName = nullptr;
-        p.desc.bindings = bindings;
-        p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
-        p.slotKinds = gdi::validate::slotKinds(bindings);
-        p.slotDimensions = gdi::validate::slotDimensions({&vs.iface, fsIface}, p.label);
-        p.signature = gdi::validate::pipelineSignature(d);
-        p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
-        p.vertexBindings = gdi::validate::vertexBindings(d);
-        return pipelines_.add(std::move(p));
-    });
+            p.desc = d;
+            p.desc.blend = gdi::validate::writtenTargetBlends(d, fsIface);
+            p.desc.debugName = nullptr;
+            p.desc.bindings = bindings;
+            p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
+            p.slotKinds = gdi::validate::slotKinds(bindings);
+            p.slotDimensions = gdi::validate::slotDimensions({&vs.iface, fsIface}, p.label);
+            p.signature = gdi::validate::pipelineSignature(d);
+            p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
+            p.vertexBindings = gdi::validate::vertexBindings(d);
+            return pipelines_.add(std::move(p));
+        });
 }
 
 gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
-    return thread_.runCreation([&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
-        loss_.check("createComputePipeline");
-        gdi::validate::computePipelineDesc(d);
-        Pipeline p;
-        p.label = d.debugName ? d.debugName : "";
-        Shader& cs = shaders_.get(d.computeShader, "compute shader");
-        gdi::validate::computeShaderStage(cs.stage, d);
-        gdi::validate::workgroup(cs.iface, info_.limits, p.label);
-        const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label, info_.limits);
-        p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
-        gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
-        p.program = cachedProgram({&cs}, d.specialization, p.label);
-        p.imageSlots = imageSlots({&cs});
-        p.compute = true;
-        p.desc.bindings = bindings;
-        p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
-        p.slotKinds = gdi::validate::slotKinds(bindings);
-        p.slotDimensions = gdi::validate::slotDimensions({&cs.iface}, p.label);
-        return pipelines_.add(std::move(p));
-    });
+    return thread_.runCreation(
+        [&]() -> gdi::PipelineHandle {  // a new object: no queued work uses it
+            loss_.check("createComputePipeline");
+            gdi::validate::computePipelineDesc(d);
+            Pipeline p;
+            p.label = d.debugName ? d.debugName : "";
+            Shader& cs = shaders_.get(d.computeShader, "compute shader");
+            gdi::validate::computeShaderStage(cs.stage, d);
+            gdi::validate::workgroup(cs.iface, info_.limits, p.label);
+            const std::vector<gdi::BindingSlot> bindings =
+                gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label, info_.limits);
+            p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
+            gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
+            p.program = cachedProgram({&cs}, d.specialization, p.label);
+            p.imageSlots = imageSlots({&cs});
+            p.compute = true;
+            p.desc.bindings = bindings;
+            p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
+            p.slotKinds = gdi::validate::slotKinds(bindings);
+            p.slotDimensions = gdi::validate::slotDimensions({&cs.iface}, p.label);
+            return pipelines_.add(std::move(p));
+        });
 }
 
 }  // namespace fe::gl

@@ -56,7 +56,8 @@ public:
             const std::lock_guard lock(eglDisplayMutex());
             if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor)) {
                 display_ = EGL_NO_DISPLAY;  // not ours to terminate
-                throw gdi::Error("EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless required)");
+                throw gdi::Error(
+                    "EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless required)");
             }
             ++eglDisplayUsers;
         }
@@ -65,17 +66,33 @@ public:
             // Robust first (EGL 1.5 / KHR_create_context): a GPU reset is then reported through
             // glGetGraphicsResetStatus and the device becomes lost instead of undefined. Drivers
             // without robustness refuse it: a plain context then.
-            const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
-                                     EGL_CONTEXT_OPENGL_ROBUST_ACCESS, EGL_TRUE,
-                                     EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY, EGL_LOSE_CONTEXT_ON_RESET, EGL_NONE};
-            const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                      EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+            const EGLint robust[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     debug ? EGL_TRUE : EGL_FALSE,
+                                     EGL_CONTEXT_OPENGL_ROBUST_ACCESS,
+                                     EGL_TRUE,
+                                     EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY,
+                                     EGL_LOSE_CONTEXT_ON_RESET,
+                                     EGL_NONE};
+            const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                      4,
+                                      EGL_CONTEXT_MINOR_VERSION,
+                                      5,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_CONTEXT_OPENGL_DEBUG,
+                                      debug ? EGL_TRUE : EGL_FALSE,
+                                      EGL_NONE};
             context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, robust);
-            if (context_ == EGL_NO_CONTEXT) context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
-            if (context_ == EGL_NO_CONTEXT) throw gdi::Error("EGL: cannot create an OpenGL 4.5 core context");
+            if (context_ == EGL_NO_CONTEXT)
+                context_ = createContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+            if (context_ == EGL_NO_CONTEXT)
+                throw gdi::Error("EGL: cannot create an OpenGL 4.5 core context");
             makeCurrent();
         } catch (...) {
             release();  // the destructor does not run when the constructor throws
@@ -89,7 +106,9 @@ public:
         if (!makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
             throw gdi::Error("EGL: eglMakeCurrent failed");
     }
-    void releaseCurrent() override { makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+    void releaseCurrent() override {
+        makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
 
 private:
     void release() {
@@ -119,14 +138,22 @@ class OsmesaPlatform final : public GlPlatform {
 
 public:
     explicit OsmesaPlatform(bool) {
-        static const char* const names[] = {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so", nullptr};
+        static const char* const names[] = {"libOSMesa.so.8", "libOSMesa.so.6", "libOSMesa.so",
+                                            nullptr};
         lib_ = openLibrary(names, "libosmesa6");
         auto create = symbol<CreateFn>(lib_, "OSMesaCreateContextAttribs");
         makeCurrent_ = symbol<MakeCurrentFn>(lib_, "OSMesaMakeCurrent");
         getProc_ = symbol<GetProcFn>(lib_, "OSMesaGetProcAddress");
         destroy_ = symbol<DestroyFn>(lib_, "OSMesaDestroyContext");
-        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                               OSMESA_CONTEXT_MAJOR_VERSION, 4, OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+        const int attribs[] = {OSMESA_FORMAT,
+                               OSMESA_RGBA,
+                               OSMESA_PROFILE,
+                               OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION,
+                               4,
+                               OSMESA_CONTEXT_MINOR_VERSION,
+                               5,
+                               0};
         context_ = create(attribs, nullptr);
         if (!context_) throw gdi::Error("OSMesa: cannot create an OpenGL 4.5 core context");
         makeCurrent();
@@ -138,9 +165,12 @@ public:
     void* getProcAddress(const char* n) override { return reinterpret_cast<void*>(getProc_(n)); }
     void makeCurrent() override {
         // OSMesa needs a colour buffer to be current; all rendering goes to framebuffer objects.
-        if (!makeCurrent_(context_, buffer_, GL_UNSIGNED_BYTE, 4, 4)) throw gdi::Error("OSMesa: OSMesaMakeCurrent failed");
+        if (!makeCurrent_(context_, buffer_, GL_UNSIGNED_BYTE, 4, 4))
+            throw gdi::Error("OSMesa: OSMesaMakeCurrent failed");
     }
-    void releaseCurrent() override { makeCurrent_(nullptr, nullptr, 0, 0, 0); }  // no context, no buffer: unbind
+    void releaseCurrent() override {
+        makeCurrent_(nullptr, nullptr, 0, 0, 0);
+    }  // no context, no buffer: unbind
 
 private:
     void* lib_ = nullptr;
@@ -180,11 +210,14 @@ public:
     // Mesa's software GLX drops the first frame swapped to a newly mapped window; an empty
     // swap first makes the first real frame appear.
     void beforeDraw() override {
-        if (std::exchange(emptySwapFirst_, false)) swap_(static_cast<GLFWwindow*>(window_.handle()));
+        if (std::exchange(emptySwapFirst_, false))
+            swap_(static_cast<GLFWwindow*>(window_.handle()));
     }
     void swap() override { swap_(static_cast<GLFWwindow*>(window_.handle())); }
     bool poll() override { return window_.poll(); }
-    gdi::Image readWindow(uint32_t width, uint32_t height) override { return window_.read(width, height); }
+    gdi::Image readWindow(uint32_t width, uint32_t height) override {
+        return window_.read(width, height);
+    }
     gdi::InputState input() const override { return window_.input(); }
 
 private:
@@ -200,9 +233,12 @@ private:
 
 std::unique_ptr<GlPlatform> createPlatform(PlatformKind kind, bool debug, bool vsync) {
     switch (kind) {
-        case PlatformKind::Egl: return std::make_unique<EglPlatform>(debug);
-        case PlatformKind::OSMesa: return std::make_unique<OsmesaPlatform>(debug);
-        case PlatformKind::Glfw: return std::make_unique<GlfwPlatform>(debug, vsync);
+        case PlatformKind::Egl:
+            return std::make_unique<EglPlatform>(debug);
+        case PlatformKind::OSMesa:
+            return std::make_unique<OsmesaPlatform>(debug);
+        case PlatformKind::Glfw:
+            return std::make_unique<GlfwPlatform>(debug, vsync);
     }
     throw gdi::Error("unknown GL platform");
 }

@@ -29,7 +29,9 @@ public:
     // Sizes the window to width x height (first call also shows it) before a frame is drawn to
     // it; returns the framebuffer size the window really has (a window manager may refuse).
     // Window calls: on the thread that made the platform.
-    virtual std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) { return {0, 0}; }
+    virtual std::pair<uint32_t, uint32_t> prepareWindow(uint32_t width, uint32_t height) {
+        return {0, 0};
+    }
     // Where the context is current: before a frame is drawn to the window, and the swap.
     virtual void beforeDraw() {}
     virtual void swap() {}

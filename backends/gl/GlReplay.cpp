@@ -11,27 +11,41 @@ namespace fe::gl {
 namespace cmd = gdi::cmd;
 
 namespace {
-GLenum compare(gdi::CompareOp c) { return GLenum(GL_NEVER + int(c)); }  // same order as GL_NEVER..GL_ALWAYS
+GLenum compare(gdi::CompareOp c) {
+    return GLenum(GL_NEVER + int(c));
+}  // same order as GL_NEVER..GL_ALWAYS
 GLenum stencilOp(gdi::StencilOp o) {
     switch (o) {
-        case gdi::StencilOp::Zero: return GL_ZERO;
-        case gdi::StencilOp::Replace: return GL_REPLACE;
-        case gdi::StencilOp::IncrementClamp: return GL_INCR;
-        case gdi::StencilOp::DecrementClamp: return GL_DECR;
-        case gdi::StencilOp::Invert: return GL_INVERT;
-        case gdi::StencilOp::IncrementWrap: return GL_INCR_WRAP;
-        case gdi::StencilOp::DecrementWrap: return GL_DECR_WRAP;
-        default: return GL_KEEP;
+        case gdi::StencilOp::Zero:
+            return GL_ZERO;
+        case gdi::StencilOp::Replace:
+            return GL_REPLACE;
+        case gdi::StencilOp::IncrementClamp:
+            return GL_INCR;
+        case gdi::StencilOp::DecrementClamp:
+            return GL_DECR;
+        case gdi::StencilOp::Invert:
+            return GL_INVERT;
+        case gdi::StencilOp::IncrementWrap:
+            return GL_INCR_WRAP;
+        case gdi::StencilOp::DecrementWrap:
+            return GL_DECR_WRAP;
+        default:
+            return GL_KEEP;
     }
 }
 GLenum blendFactor(gdi::BlendFactor f) {
-    static const GLenum t[] = {GL_ZERO, GL_ONE, GL_SRC_COLOR, GL_ONE_MINUS_SRC_COLOR, GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR,
-                               GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA,
+    static const GLenum t[] = {GL_ZERO,           GL_ONE,
+                               GL_SRC_COLOR,      GL_ONE_MINUS_SRC_COLOR,
+                               GL_DST_COLOR,      GL_ONE_MINUS_DST_COLOR,
+                               GL_SRC_ALPHA,      GL_ONE_MINUS_SRC_ALPHA,
+                               GL_DST_ALPHA,      GL_ONE_MINUS_DST_ALPHA,
                                GL_CONSTANT_COLOR, GL_ONE_MINUS_CONSTANT_COLOR};
     return t[int(f)];
 }
 GLenum blendOp(gdi::BlendOp o) {
-    static const GLenum t[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
+    static const GLenum t[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN,
+                               GL_MAX};
     return t[int(o)];
 }
 GLenum topology(gdi::PrimitiveTopology p) {
@@ -40,7 +54,8 @@ GLenum topology(gdi::PrimitiveTopology p) {
 }
 }  // namespace
 
-void GlReplay::run(const cmd::CommandStream& stream, const std::atomic<bool>* waiting, const std::function<void()>& serve) {
+void GlReplay::run(const cmd::CommandStream& stream, const std::atomic<bool>* waiting,
+                   const std::function<void()>& serve) {
     stream_ = &stream;
     waiting_ = waiting;
     serve_ = &serve;
@@ -70,7 +85,8 @@ void GlReplay::replayRecords(const cmd::CommandStream& stream) {
 // A secondary list's records, in place (it sets its own viewport, scissor, pipeline and bindings).
 void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
     const cmd::CommandStream* primary = stream_;
-    const auto primaryConstants = constants_;  // a secondary starts from zeros and leaves the primary's alone
+    const auto primaryConstants =
+        constants_;  // a secondary starts from zeros and leaves the primary's alone
     constants_ = {};
     constantsDirty_ = true;
     stream_ = &primary->child(r.child);
@@ -93,7 +109,8 @@ void GlReplay::flushConstants() {
 }
 
 void GlReplay::operator()(const cmd::BeginRenderPass& r) {
-    gl_.Disable(GL_RASTERIZER_DISCARD);  // a pipeline's empty sample mask must not discard the clears
+    gl_.Disable(
+        GL_RASTERIZER_DISCARD);  // a pipeline's empty sample mask must not discard the clears
     const auto colorsIn = cmd::view(r, r.colors);
     std::vector<FboAttachment> colors;
     resolves_.clear();
@@ -101,19 +118,22 @@ void GlReplay::operator()(const cmd::BeginRenderPass& r) {
         const auto& c = colorsIn[i];
         colors.push_back(dev_.fboAttachment(dev_.textureAt(c.texture), c.mipLevel, c.layer));
         if (c.resolveTexture)
-            resolves_.push_back({GLenum(GL_COLOR_ATTACHMENT0 + i),
-                                 dev_.fboAttachment(dev_.textureAt(c.resolveTexture), c.resolveSubresource.mipLevel,
-                                                    c.resolveSubresource.layer)});
+            resolves_.push_back(
+                {GLenum(GL_COLOR_ATTACHMENT0 + i),
+                 dev_.fboAttachment(dev_.textureAt(c.resolveTexture), c.resolveSubresource.mipLevel,
+                                    c.resolveSubresource.layer)});
     }
     const gdi::DepthAttachment& d = r.depth;
     const Texture* depth = d.texture ? &dev_.textureAt(d.texture) : nullptr;
     const GLenum depthPoint = depth ? depthAttachmentPoint(depth->desc.format) : GL_NONE;
-    const GLuint fbo = dev_.framebuffer(colors, depth ? dev_.fboAttachment(*depth, d.mipLevel, d.layer) : FboAttachment{}, depthPoint);
+    const GLuint fbo = dev_.framebuffer(
+        colors, depth ? dev_.fboAttachment(*depth, d.mipLevel, d.layer) : FboAttachment{},
+        depthPoint);
     fbo_ = fbo;
     if (d.resolveTexture)
-        resolves_.push_back({depthPoint,
-                             dev_.fboAttachment(dev_.textureAt(d.resolveTexture), d.resolveSubresource.mipLevel,
-                                                d.resolveSubresource.layer)});
+        resolves_.push_back({depthPoint, dev_.fboAttachment(dev_.textureAt(d.resolveTexture),
+                                                            d.resolveSubresource.mipLevel,
+                                                            d.resolveSubresource.layer)});
     // The render area: the attachments' common size (validated when recorded).
     const Texture& first = colorsIn.empty() ? *depth : dev_.textureAt(colorsIn[0].texture);
     const uint32_t mip = colorsIn.empty() ? d.mipLevel : colorsIn[0].mipLevel;
@@ -149,7 +169,8 @@ void GlReplay::operator()(const cmd::BeginRenderPass& r) {
             gl_.ClearNamedFramebufferiv(fbo, GL_STENCIL, 0, &s);
         }
     }
-    pipeline_ = nullptr;  // a render pass starts with no pipeline (the clears above changed its state)
+    pipeline_ =
+        nullptr;  // a render pass starts with no pipeline (the clears above changed its state)
     vertexDirty_ = indexDirty_ = true;
     (*this)(cmd::SetViewport{{0, 0, float(area_.width), float(area_.height), 0, 1}});
     (*this)(cmd::SetScissor{area_});
@@ -165,7 +186,9 @@ void GlReplay::operator()(const cmd::EndRenderPass&) {
 
 void GlReplay::operator()(const cmd::SetPipeline& r) {
     const Pipeline& p = dev_.pipelineAt(r.pipeline);
-    if (pipeline_ != &p) vertexDirty_ = indexDirty_ = constantsDirty_ = imagesDirty_ = true;  // another VAO, block size, units
+    if (pipeline_ != &p)
+        vertexDirty_ = indexDirty_ = constantsDirty_ = imagesDirty_ =
+            true;  // another VAO, block size, units
     pipeline_ = &p;
     gl_.UseProgram(p.program);
     if (p.compute) return;
@@ -186,10 +209,14 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     // same (row-index) coordinates, so the GL enum is the opposite one.
     gl_.FrontFace(d.raster.frontFace == gdi::FrontFace::CounterClockwise ? GL_CW : GL_CCW);
     applyDepthBias(d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp);
-    if (d.raster.depthClamp) gl_.Enable(GL_DEPTH_CLAMP);
-    else gl_.Disable(GL_DEPTH_CLAMP);
-    if (d.multisample.alphaToCoverage) gl_.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    else gl_.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (d.raster.depthClamp)
+        gl_.Enable(GL_DEPTH_CLAMP);
+    else
+        gl_.Disable(GL_DEPTH_CLAMP);
+    if (d.multisample.alphaToCoverage)
+        gl_.Enable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    else
+        gl_.Disable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     if (d.multisample.sampleMask != ~0u) {
         gl_.Enable(GL_SAMPLE_MASK);
         gl_.SampleMaski(0, d.multisample.sampleMask);
@@ -199,10 +226,14 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     // GL ignores the sample mask without sample buffers; Vulkan applies bit 0 to single-sample
     // targets, where a clear bit writes nothing at all. Discarding every primitive does the same.
     // (Clears are discarded too, so BeginRenderPass and EndRenderPass turn it off again.)
-    if (d.multisample.sampleCount == 1 && !(d.multisample.sampleMask & 1)) gl_.Enable(GL_RASTERIZER_DISCARD);
-    else gl_.Disable(GL_RASTERIZER_DISCARD);
-    if (d.primitiveRestart) gl_.Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // 0xFFFF / 0xFFFFFFFF, as on Vulkan
-    else gl_.Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    if (d.multisample.sampleCount == 1 && !(d.multisample.sampleMask & 1))
+        gl_.Enable(GL_RASTERIZER_DISCARD);
+    else
+        gl_.Disable(GL_RASTERIZER_DISCARD);
+    if (d.primitiveRestart)
+        gl_.Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);  // 0xFFFF / 0xFFFFFFFF, as on Vulkan
+    else
+        gl_.Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     const auto& ds = d.depthStencil;
     if (ds.depthTest || ds.depthWrite) {
         gl_.Enable(GL_DEPTH_TEST);
@@ -214,7 +245,8 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     if (ds.stencilTest) {
         gl_.Enable(GL_STENCIL_TEST);
         for (auto [face, s] : {std::pair{GL_FRONT, ds.front}, std::pair{GL_BACK, ds.back}})
-            gl_.StencilOpSeparate(face, stencilOp(s.failOp), stencilOp(s.depthFailOp), stencilOp(s.passOp));
+            gl_.StencilOpSeparate(face, stencilOp(s.failOp), stencilOp(s.depthFailOp),
+                                  stencilOp(s.passOp));
         applyStencil(ds.stencilReference);
         gl_.StencilMask(ds.stencilWriteMask);
     } else {
@@ -224,8 +256,8 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
         gdi::BlendTargetState b = i < d.blend.size() ? d.blend[i] : gdi::BlendTargetState{};
         if (b.enable) {
             gl_.Enablei(GL_BLEND, GLuint(i));
-            gl_.BlendFuncSeparatei(GLuint(i), blendFactor(b.srcColor), blendFactor(b.dstColor), blendFactor(b.srcAlpha),
-                                   blendFactor(b.dstAlpha));
+            gl_.BlendFuncSeparatei(GLuint(i), blendFactor(b.srcColor), blendFactor(b.dstColor),
+                                   blendFactor(b.srcAlpha), blendFactor(b.dstAlpha));
             gl_.BlendEquationSeparatei(GLuint(i), blendOp(b.colorOp), blendOp(b.alphaOp));
         } else {
             gl_.Disablei(GL_BLEND, GLuint(i));
@@ -247,20 +279,28 @@ void GlReplay::applyStencil(uint8_t reference) {
 // enabled, as Vulkan's depth bias is (0 and 0 is no bias), so setDepthBias works with any pipeline.
 void GlReplay::applyDepthBias(float constant, float slope, float clamp) {
     gl_.Enable(GL_POLYGON_OFFSET_FILL);
-    if (gl_.PolygonOffsetClamp) gl_.PolygonOffsetClamp(slope, constant, clamp);
-    else gl_.PolygonOffset(slope, constant);
+    if (gl_.PolygonOffsetClamp)
+        gl_.PolygonOffsetClamp(slope, constant, clamp);
+    else
+        gl_.PolygonOffset(slope, constant);
 }
 
-void GlReplay::operator()(const cmd::SetBlendConstant& r) { gl_.BlendColor(r.rgba[0], r.rgba[1], r.rgba[2], r.rgba[3]); }
+void GlReplay::operator()(const cmd::SetBlendConstant& r) {
+    gl_.BlendColor(r.rgba[0], r.rgba[1], r.rgba[2], r.rgba[3]);
+}
 // Without a stencil test the reference has no effect, and the next setPipeline sets its own.
 void GlReplay::operator()(const cmd::SetStencilReference& r) {
-    if (pipeline_ && !pipeline_->compute && pipeline_->desc.depthStencil.stencilTest) applyStencil(r.reference);
+    if (pipeline_ && !pipeline_->compute && pipeline_->desc.depthStencil.stencilTest)
+        applyStencil(r.reference);
 }
-void GlReplay::operator()(const cmd::SetDepthBias& r) { applyDepthBias(r.constant, r.slope, r.clamp); }
+void GlReplay::operator()(const cmd::SetDepthBias& r) {
+    applyDepthBias(r.constant, r.slope, r.clamp);
+}
 
 void GlReplay::operator()(const cmd::SetViewport& r) {
     const gdi::Viewport& v = r.viewport;
-    gl_.ViewportIndexedf(0, v.x, v.y, v.width, v.height);  // fractional, as Vulkan's (glViewport rounds)
+    gl_.ViewportIndexedf(0, v.x, v.y, v.width,
+                         v.height);  // fractional, as Vulkan's (glViewport rounds)
     gl_.DepthRangef(v.minDepth, v.maxDepth);
 }
 void GlReplay::operator()(const cmd::SetScissor& r) {
@@ -279,10 +319,12 @@ void GlReplay::operator()(const cmd::SetIndexBuffer& r) {
     indexType_ = r.type;
 }
 void GlReplay::operator()(const cmd::SetUniformBuffer& r) {
-    gl_.BindBufferRange(GL_UNIFORM_BUFFER, r.slot, dev_.bufferAt(r.buffer).name, GLintptr(r.offset), GLsizeiptr(r.size));
+    gl_.BindBufferRange(GL_UNIFORM_BUFFER, r.slot, dev_.bufferAt(r.buffer).name, GLintptr(r.offset),
+                        GLsizeiptr(r.size));
 }
 void GlReplay::operator()(const cmd::SetStorageBuffer& r) {
-    gl_.BindBufferRange(GL_SHADER_STORAGE_BUFFER, r.slot, dev_.bufferAt(r.buffer).name, GLintptr(r.offset), GLsizeiptr(r.size));
+    gl_.BindBufferRange(GL_SHADER_STORAGE_BUFFER, r.slot, dev_.bufferAt(r.buffer).name,
+                        GLintptr(r.offset), GLsizeiptr(r.size));
 }
 void GlReplay::operator()(const cmd::SetTexture& r) {
     gl_.BindTextureUnit(r.slot, dev_.textureAt(r.texture).name);
@@ -300,7 +342,9 @@ void GlReplay::bindImages() {
     if (!pipeline_) return;
     for (size_t unit = 0; unit < pipeline_->imageSlots.size(); ++unit) {
         const ImageBinding& b = images_[pipeline_->imageSlots[unit]];
-        if (b.texture) gl_.BindImageTexture(GLuint(unit), b.texture, b.mipLevel, b.layered, 0, GL_READ_WRITE, b.format);
+        if (b.texture)
+            gl_.BindImageTexture(GLuint(unit), b.texture, b.mipLevel, b.layered, 0, GL_READ_WRITE,
+                                 b.format);
     }
 }
 
@@ -308,7 +352,8 @@ void GlReplay::bindVertexBuffers() {
     flushBindings();
     if (!vertexDirty_) return;  // re-binding unchanged buffers per draw is measurable CPU cost
     for (size_t i = 0; i < pipeline_->strides.size(); ++i)
-        gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first, GLintptr(vertexBuffers_[i].second),
+        gl_.VertexArrayVertexBuffer(pipeline_->vao, GLuint(i), vertexBuffers_[i].first,
+                                    GLintptr(vertexBuffers_[i].second),
                                     GLsizei(pipeline_->strides[i]));
     vertexDirty_ = false;
 }
@@ -318,8 +363,8 @@ void GlReplay::bindIndexBuffer() {
 }
 void GlReplay::operator()(const cmd::Draw& r) {
     bindVertexBuffers();
-    gl_.DrawArraysInstancedBaseInstance(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount), GLsizei(r.instanceCount),
-                                        r.firstInstance);
+    gl_.DrawArraysInstancedBaseInstance(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount),
+                                        GLsizei(r.instanceCount), r.firstInstance);
 }
 void GlReplay::operator()(const cmd::DrawIndexed& r) {
     bindVertexBuffers();
@@ -327,8 +372,8 @@ void GlReplay::operator()(const cmd::DrawIndexed& r) {
     const uint32_t size = indexType_ == gdi::IndexType::U16 ? 2 : 4;
     gl_.DrawElementsInstancedBaseVertexBaseInstance(
         topology_, GLsizei(r.indexCount), indexType(),
-        reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(r.firstIndex) * size)), GLsizei(r.instanceCount),
-        r.baseVertex, r.firstInstance);
+        reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(r.firstIndex) * size)),
+        GLsizei(r.instanceCount), r.baseVertex, r.firstInstance);
 }
 // Dispatches and copies keep full barriers even with automatic barriers off: glMemoryBarrier
 // is cheap next to them, and GL has no finer ordering to gain.
@@ -343,30 +388,33 @@ void GlReplay::operator()(const cmd::Dispatch& r) {
 void GlReplay::operator()(const cmd::DrawIndirect& r) {
     bindVertexBuffers();
     gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
-    gl_.MultiDrawArraysIndirect(topology_, reinterpret_cast<const void*>(uintptr_t(r.offset)), GLsizei(r.drawCount),
-                                GLsizei(r.stride));
+    gl_.MultiDrawArraysIndirect(topology_, reinterpret_cast<const void*>(uintptr_t(r.offset)),
+                                GLsizei(r.drawCount), GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DrawIndexedIndirect& r) {
     bindVertexBuffers();
     bindIndexBuffer();
     gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
-    gl_.MultiDrawElementsIndirect(topology_, indexType(), reinterpret_cast<const void*>(uintptr_t(r.offset)),
+    gl_.MultiDrawElementsIndirect(topology_, indexType(),
+                                  reinterpret_cast<const void*>(uintptr_t(r.offset)),
                                   GLsizei(r.drawCount), GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DrawIndirectCount& r) {
     bindVertexBuffers();
     gl_.BindBuffer(GL_PARAMETER_BUFFER, dev_.bufferAt(r.countBuffer).name);
     gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
-    gl_.MultiDrawArraysIndirectCount(topology_, reinterpret_cast<const void*>(uintptr_t(r.offset)), GLintptr(r.countOffset),
-                                     GLsizei(r.maxDrawCount), GLsizei(r.stride));
+    gl_.MultiDrawArraysIndirectCount(topology_, reinterpret_cast<const void*>(uintptr_t(r.offset)),
+                                     GLintptr(r.countOffset), GLsizei(r.maxDrawCount),
+                                     GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DrawIndexedIndirectCount& r) {
     bindVertexBuffers();
     bindIndexBuffer();
     gl_.BindBuffer(GL_PARAMETER_BUFFER, dev_.bufferAt(r.countBuffer).name);
     gl_.BindBuffer(GL_DRAW_INDIRECT_BUFFER, dev_.bufferAt(r.args).name);
-    gl_.MultiDrawElementsIndirectCount(topology_, indexType(), reinterpret_cast<const void*>(uintptr_t(r.offset)),
-                                       GLintptr(r.countOffset), GLsizei(r.maxDrawCount), GLsizei(r.stride));
+    gl_.MultiDrawElementsIndirectCount(
+        topology_, indexType(), reinterpret_cast<const void*>(uintptr_t(r.offset)),
+        GLintptr(r.countOffset), GLsizei(r.maxDrawCount), GLsizei(r.stride));
 }
 void GlReplay::operator()(const cmd::DispatchIndirect& r) {
     flushBindings();
@@ -384,33 +432,36 @@ void GlReplay::operator()(const cmd::GenerateMips& r) {
 // among the calls.
 void GlReplay::operator()(const cmd::InsertDebugLabel& r) {
     const char* name = cmd::view(r, r.name);
-    gl_.DebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 0, GL_DEBUG_SEVERITY_NOTIFICATION, -1,
-                           name ? name : "");
+    gl_.DebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, GL_DEBUG_TYPE_MARKER, 0,
+                           GL_DEBUG_SEVERITY_NOTIFICATION, -1, name ? name : "");
 }
 void GlReplay::operator()(const cmd::ClearBuffer& r) {
     if (r.size)
-        gl_.ClearNamedBufferSubData(dev_.bufferAt(r.buffer).name, GL_R32UI, GLintptr(r.offset), GLsizeiptr(r.size),
-                                    GL_RED_INTEGER, GL_UNSIGNED_INT, &r.value);
+        gl_.ClearNamedBufferSubData(dev_.bufferAt(r.buffer).name, GL_R32UI, GLintptr(r.offset),
+                                    GLsizeiptr(r.size), GL_RED_INTEGER, GL_UNSIGNED_INT, &r.value);
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 void GlReplay::operator()(const cmd::CopyBuffer& r) {
     if (r.size)
-        gl_.CopyNamedBufferSubData(dev_.bufferAt(r.src).name, dev_.bufferAt(r.dst).name, GLintptr(r.srcOffset),
-                                   GLintptr(r.dstOffset), GLsizeiptr(r.size));
+        gl_.CopyNamedBufferSubData(dev_.bufferAt(r.src).name, dev_.bufferAt(r.dst).name,
+                                   GLintptr(r.srcOffset), GLintptr(r.dstOffset),
+                                   GLsizeiptr(r.size));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 void GlReplay::operator()(const cmd::CopyTexture& r) {
     const Texture& d = dev_.textureAt(r.dst);
     const Texture& s = dev_.textureAt(r.src);
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(d.desc, r.mipLevel);
-    gl_.CopyImageSubData(s.name, s.target, GLint(r.mipLevel), 0, 0, 0, d.name, d.target, GLint(r.mipLevel), 0, 0, 0,
-                         GLsizei(e.width), GLsizei(e.height), GLsizei(e.depthOrLayers));
+    gl_.CopyImageSubData(s.name, s.target, GLint(r.mipLevel), 0, 0, 0, d.name, d.target,
+                         GLint(r.mipLevel), 0, 0, 0, GLsizei(e.width), GLsizei(e.height),
+                         GLsizei(e.depthOrLayers));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 void GlReplay::operator()(const cmd::CopyBufferToTexture& r) {
     const Texture& t = dev_.textureAt(r.dst);
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, r.at.mipLevel);
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
+    gl_.MemoryBarrier(
+        GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
     gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, dev_.bufferAt(r.src).name);
     dev_.uploadSubresource(t, r.at, reinterpret_cast<const void*>(uintptr_t(r.srcOffset)),
                            gdi::imageByteSize(t.desc.format, e.width, e.height));
@@ -432,9 +483,11 @@ static uint64_t spanBytes(gdi::Format f, const gdi::TextureRegion& r, const gdi:
 }
 void GlReplay::operator()(const cmd::CopyBufferToTextureRegion& r) {
     const Texture& t = dev_.textureAt(r.dst);
-    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
+    gl_.MemoryBarrier(
+        GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
     gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, dev_.bufferAt(r.src).name);
-    dev_.uploadRegion(t, r.region, r.layout, reinterpret_cast<const void*>(uintptr_t(r.layout.offset)),
+    dev_.uploadRegion(t, r.region, r.layout,
+                      reinterpret_cast<const void*>(uintptr_t(r.layout.offset)),
                       spanBytes(t.desc.format, r.region, r.layout));
     gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
 }
@@ -451,9 +504,9 @@ void GlReplay::operator()(const cmd::CopyTextureRegion& r) {
     const Texture& s = dev_.textureAt(r.src);
     const auto& a = r.srcRegion;
     const auto& b = r.dstAt;
-    gl_.CopyImageSubData(s.name, s.target, GLint(a.mipLevel), GLint(a.x), GLint(a.y), GLint(a.z), d.name, d.target,
-                         GLint(b.mipLevel), GLint(b.x), GLint(b.y), GLint(b.z), GLsizei(a.width), GLsizei(a.height),
-                         GLsizei(a.depth));
+    gl_.CopyImageSubData(s.name, s.target, GLint(a.mipLevel), GLint(a.x), GLint(a.y), GLint(a.z),
+                         d.name, d.target, GLint(b.mipLevel), GLint(b.x), GLint(b.y), GLint(b.z),
+                         GLsizei(a.width), GLsizei(a.height), GLsizei(a.depth));
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
@@ -481,7 +534,8 @@ void GlReplay::operator()(const cmd::EndTimer& r) {
 void GlReplay::operator()(const cmd::BeginQuery& r) {
     const QuerySet& q = dev_.querySetAt(r.set);
     const auto targets = queryTargets(q.desc.type);
-    for (size_t k = 0; k < targets.size(); ++k) gl_.BeginQuery(targets[k], q.names[r.index * targets.size() + k]);
+    for (size_t k = 0; k < targets.size(); ++k)
+        gl_.BeginQuery(targets[k], q.names[r.index * targets.size() + k]);
 }
 void GlReplay::operator()(const cmd::EndQuery& r) {
     for (GLenum target : queryTargets(dev_.querySetAt(r.set).desc.type)) gl_.EndQuery(target);
@@ -494,7 +548,8 @@ void GlReplay::operator()(const cmd::ResolveQueries& r) {
     const GLuint buffer = dev_.bufferAt(r.dst).name;
     const size_t values = queryTargets(q.desc.type).size();
     for (size_t i = 0; i < r.count * values; ++i)  // the GPU waits for each result, not this thread
-        gl_.GetQueryBufferObjectui64v(q.names[r.first * values + i], buffer, GL_QUERY_RESULT, GLintptr(r.dstOffset + 8 * i));
+        gl_.GetQueryBufferObjectui64v(q.names[r.first * values + i], buffer, GL_QUERY_RESULT,
+                                      GLintptr(r.dstOffset + 8 * i));
 }
 
 void GlReplay::operator()(const cmd::PushDebugGroup& r) {
@@ -516,12 +571,14 @@ void GlReplay::operator()(const cmd::TextureBarriers& r) {
         if (b.before == gdi::ResourceState::Undefined) {
             const auto range = gdi::validate::textureBarrier(t.desc, b, t.label);
             for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
-                if (range.whole || t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_2D_MULTISAMPLE) {
+                if (range.whole || t.target == GL_TEXTURE_2D ||
+                    t.target == GL_TEXTURE_2D_MULTISAMPLE) {
                     gl_.InvalidateTexImage(t.name, GLint(m));
                 } else {
                     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, m);
-                    gl_.InvalidateTexSubImage(t.name, GLint(m), 0, 0, GLint(range.baseLayer), GLsizei(e.width),
-                                              GLsizei(e.height), GLsizei(range.layerCount));
+                    gl_.InvalidateTexSubImage(t.name, GLint(m), 0, 0, GLint(range.baseLayer),
+                                              GLsizei(e.width), GLsizei(e.height),
+                                              GLsizei(range.layerCount));
                 }
             }
         }
@@ -540,7 +597,8 @@ void GlReplay::operator()(const cmd::BufferBarriers& r) {
         if (any(b.after, A::Indirect)) bits |= GL_COMMAND_BARRIER_BIT;
         if (any(b.after, A::Uniform)) bits |= GL_UNIFORM_BARRIER_BIT;
         if (any(b.after, A::StorageRead | A::StorageWrite)) bits |= GL_SHADER_STORAGE_BARRIER_BIT;
-        if (any(b.after, A::CopySrc | A::CopyDst)) bits |= GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
+        if (any(b.after, A::CopySrc | A::CopyDst))
+            bits |= GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
     }
     if (bits) gl_.MemoryBarrier(bits);
 }
@@ -558,17 +616,20 @@ void GlReplay::resolve() {
         const GLenum depthPoint = color ? GLenum(GL_NONE) : point;
         std::vector<FboAttachment> colors;
         FboAttachment depth{};
-        if (color) colors.push_back(target);
-        else depth = target;
+        if (color)
+            colors.push_back(target);
+        else
+            depth = target;
         const GLuint dst = dev_.framebuffer(colors, depth, depthPoint);
         if (color) gl_.NamedFramebufferReadBuffer(fbo_, point);
         // Depth-stencil resolves carry stencil too, as Vulkan's (SAMPLE_ZERO for both aspects).
-        const GLbitfield mask = color                              ? GL_COLOR_BUFFER_BIT
-                                : point == GL_DEPTH_STENCIL_ATTACHMENT ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
-                                : point == GL_DEPTH_ATTACHMENT       ? GL_DEPTH_BUFFER_BIT
-                                                                     : GL_STENCIL_BUFFER_BIT;
-        gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0, GLint(area_.width),
-                                 GLint(area_.height), mask, GL_NEAREST);
+        const GLbitfield mask = color ? GL_COLOR_BUFFER_BIT
+                                : point == GL_DEPTH_STENCIL_ATTACHMENT
+                                    ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT
+                                : point == GL_DEPTH_ATTACHMENT ? GL_DEPTH_BUFFER_BIT
+                                                               : GL_STENCIL_BUFFER_BIT;
+        gl_.BlitNamedFramebuffer(fbo_, dst, 0, 0, GLint(area_.width), GLint(area_.height), 0, 0,
+                                 GLint(area_.width), GLint(area_.height), mask, GL_NEAREST);
     }
     gl_.Enable(GL_SCISSOR_TEST);
     resolves_.clear();

@@ -63,7 +63,8 @@ public:
     void operator()(const gdi::cmd::ResolveQueries& r);
     void operator()(const gdi::cmd::PushDebugGroup& r);
     void operator()(const gdi::cmd::PopDebugGroup&);
-    void operator()(const gdi::cmd::DiscardTexture&) {}  // GL reuses whole objects; contents are simply overwritten
+    void operator()(const gdi::cmd::DiscardTexture&) {
+    }  // GL reuses whole objects; contents are simply overwritten
     void operator()(const gdi::cmd::SetAutomaticBarriers& r);
     void operator()(const gdi::cmd::TextureBarriers& r);
     void operator()(const gdi::cmd::BufferBarriers& r);
@@ -80,7 +81,9 @@ private:
     void bindVertexBuffers();
     void bindIndexBuffer();
     bool drainSoftwareRasterizer();
-    GLenum indexType() const { return indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT; }
+    GLenum indexType() const {
+        return indexType_ == gdi::IndexType::U16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+    }
 
     GlDevice& dev_;
     const GlFunctions& gl_;
@@ -88,7 +91,8 @@ private:
     bool labelled_ = false;  // the open pass pushed a debug group
     gdi::Rect area_;
     GLuint fbo_ = 0;  // the open pass's framebuffer
-    std::vector<std::pair<GLenum, FboAttachment>> resolves_;  // attachment point -> resolve target, at EndRenderPass
+    std::vector<std::pair<GLenum, FboAttachment>>
+        resolves_;  // attachment point -> resolve target, at EndRenderPass
     const Pipeline* pipeline_ = nullptr;
     GLenum topology_ = GL_TRIANGLES;
     std::array<std::pair<GLuint, uint64_t>, 16> vertexBuffers_{};

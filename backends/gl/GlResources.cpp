@@ -14,8 +14,7 @@ GLenum GlDevice::allocateStorage(const char* name, Call&& call) {
     if (gdi::fault::hit(gdi::fault::Site::Allocation, name)) return GL_OUT_OF_MEMORY;
     // Errors of earlier calls are not this one's (the debug output reports them); a lost
     // context may repeat GL_CONTEXT_LOST, hence the bound.
-    for (int i = 0; i < 8 && gl_.GetError() != GL_NO_ERROR; ++i) {
-    }
+    for (int i = 0; i < 8 && gl_.GetError() != GL_NO_ERROR; ++i) {}
     call();
     return gl_.GetError();
 }
@@ -31,34 +30,48 @@ gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteS
         b.desc.debugName = nullptr;
         // Upload and Readback memory is mapped once, persistently and coherently (map()).
         const GLbitfield persistent = GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-        const GLbitfield mapFlags = desc.access == gdi::MemoryAccess::Upload     ? GL_MAP_WRITE_BIT | persistent
-                                    : desc.access == gdi::MemoryAccess::Readback ? GL_MAP_READ_BIT | persistent
-                                                                                 : 0;
+        const GLbitfield mapFlags =
+            desc.access == gdi::MemoryAccess::Upload     ? GL_MAP_WRITE_BIT | persistent
+            : desc.access == gdi::MemoryAccess::Readback ? GL_MAP_READ_BIT | persistent
+                                                         : 0;
         gl_.CreateBuffers(1, &b.name);
         ++nativeObjects_;
-        if (GLenum e = allocateStorage("glNamedBufferStorage", [&] { gl_.NamedBufferStorage(b.name, GLsizeiptr(desc.size), initialData.empty() ? nullptr : initialData.data(),
-                                                                     GL_DYNAMIC_STORAGE_BIT | mapFlags); });
+        if (GLenum e = allocateStorage("glNamedBufferStorage",
+                                       [&] {
+                                           gl_.NamedBufferStorage(
+                                               b.name, GLsizeiptr(desc.size),
+                                               initialData.empty() ? nullptr : initialData.data(),
+                                               GL_DYNAMIC_STORAGE_BIT | mapFlags);
+                                       });
             e != GL_NO_ERROR) {
             gl_.DeleteBuffers(1, &b.name);
             --nativeObjects_;
-            if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
-            throw gdi::Error(info_.backend + ": glNamedBufferStorage failed for " +
-                             gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") + ": " + glErrorName(e));
+            if (e == GL_CONTEXT_LOST)
+                throw loss_.lose(info_.backend, "glNamedBufferStorage raised GL_CONTEXT_LOST");
+            throw gdi::Error(
+                info_.backend + ": glNamedBufferStorage failed for " +
+                gdi::describeObject("buffer", b.label, std::to_string(desc.size) + " bytes") +
+                ": " + glErrorName(e));
         }
         // New buffers read as zeros on every backend (Device.h); a null clear value is zero.
-        if (initialData.empty()) gl_.ClearNamedBufferData(b.name, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);
+        if (initialData.empty())
+            gl_.ClearNamedBufferData(b.name, GL_R8, GL_RED, GL_UNSIGNED_BYTE, nullptr);
         if (!b.label.empty()) gl_.ObjectLabel(GL_BUFFER, b.name, -1, b.label.c_str());
-        if (mapFlags) b.mapped = gl_.MapNamedBufferRange(b.name, 0, GLsizeiptr(desc.size), mapFlags);
+        if (mapFlags)
+            b.mapped = gl_.MapNamedBufferRange(b.name, 0, GLsizeiptr(desc.size), mapFlags);
         return buffers_.add(std::move(b));
     });
 }
 
 gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
-    return thread_.runCreation([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
+    return thread_.runCreation([&]()
+                                   -> gdi::TextureHandle {  // a new object: no queued work uses it
         loss_.check("createTexture");
         gdi::validate::textureDesc(desc, info_);
         const std::string label = desc.debugName ? desc.debugName : "";
-        if (desc.heap) throw gdi::Error("texture '" + label + "': heaps (memory aliasing) are not supported on OpenGL");
+        if (desc.heap)
+            throw gdi::Error("texture '" + label +
+                             "': heaps (memory aliasing) are not supported on OpenGL");
         if (!supportsFormat(desc.format, desc.usage)) gdi::validate::unsupportedTextureUsage(desc);
         Texture t;
         t.desc = desc;
@@ -69,115 +82,145 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
         gl_.CreateTextures(t.target, 1, &t.name);
         ++nativeObjects_;
         const GLenum internal = toGlFormat(desc.format).internal;
-        const auto w = GLsizei(desc.width), h = GLsizei(desc.height), levels = GLsizei(desc.mipLevels);
-        const char* call = t.target == GL_TEXTURE_2D_MULTISAMPLE                                ? "glTextureStorage2DMultisample"
-                           : (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_CUBE_MAP) ? "glTextureStorage2D"
-                                                                                              : "glTextureStorage3D";
-        if (GLenum e = allocateStorage(call, [&] {
-                switch (t.target) {
-                    case GL_TEXTURE_2D_MULTISAMPLE:
-                        gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount), internal, w, h, GL_TRUE);
-                        break;
-                    case GL_TEXTURE_2D:
-                    case GL_TEXTURE_CUBE_MAP: gl_.TextureStorage2D(t.name, levels, internal, w, h); break;
-                    default:  // layers or depth
-                        gl_.TextureStorage3D(t.name, levels, internal, w, h, GLsizei(desc.depthOrLayers));
-                        break;
-                }
-            });
+        const auto w = GLsizei(desc.width), h = GLsizei(desc.height),
+                   levels = GLsizei(desc.mipLevels);
+        const char* call = t.target == GL_TEXTURE_2D_MULTISAMPLE ? "glTextureStorage2DMultisample"
+                           : (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_CUBE_MAP)
+                               ? "glTextureStorage2D"
+                               : "glTextureStorage3D";
+        if (GLenum e = allocateStorage(
+                call,
+                [&] {
+                    switch (t.target) {
+                        case GL_TEXTURE_2D_MULTISAMPLE:
+                            gl_.TextureStorage2DMultisample(t.name, GLsizei(desc.sampleCount),
+                                                            internal, w, h, GL_TRUE);
+                            break;
+                        case GL_TEXTURE_2D:
+                        case GL_TEXTURE_CUBE_MAP:
+                            gl_.TextureStorage2D(t.name, levels, internal, w, h);
+                            break;
+                        default:  // layers or depth
+                            gl_.TextureStorage3D(t.name, levels, internal, w, h,
+                                                 GLsizei(desc.depthOrLayers));
+                            break;
+                    }
+                });
             e != GL_NO_ERROR) {
             gl_.DeleteTextures(1, &t.name);
             --nativeObjects_;
-            if (e == GL_CONTEXT_LOST) throw loss_.lose(info_.backend, std::string(call) + " raised GL_CONTEXT_LOST");
-            throw gdi::Error(info_.backend + ": " + call + " failed for " +
-                             gdi::describeObject("texture", label, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                                                                       (desc.depthOrLayers > 1 ? "x" + std::to_string(desc.depthOrLayers) : "") +
-                                                                       " " + std::string(gdi::formatInfo(desc.format).name)) +
-                             ": " + glErrorName(e));
+            if (e == GL_CONTEXT_LOST)
+                throw loss_.lose(info_.backend, std::string(call) + " raised GL_CONTEXT_LOST");
+            throw gdi::Error(
+                info_.backend + ": " + call + " failed for " +
+                gdi::describeObject(
+                    "texture", label,
+                    std::to_string(desc.width) + "x" + std::to_string(desc.height) +
+                        (desc.depthOrLayers > 1 ? "x" + std::to_string(desc.depthOrLayers) : "") +
+                        " " + std::string(gdi::formatInfo(desc.format).name)) +
+                ": " + glErrorName(e));
         }
-        if (t.target != GL_TEXTURE_2D_MULTISAMPLE) gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
+        if (t.target != GL_TEXTURE_2D_MULTISAMPLE)
+            gl_.TextureParameteri(t.name, GL_TEXTURE_MAX_LEVEL, GLint(desc.mipLevels - 1));
         // New textures read as zeros on every backend (Device.h; block-compressed ones cannot be
         // cleared and are uploaded before use). A null clear value is zero in any format.
         if (!gdi::isCompressedFormat(desc.format)) {
             const GlFormat f = toGlFormat(desc.format);
-            for (uint32_t m = 0; m < desc.mipLevels; ++m) gl_.ClearTexImage(t.name, GLint(m), f.format, f.type, nullptr);
+            for (uint32_t m = 0; m < desc.mipLevels; ++m)
+                gl_.ClearTexImage(t.name, GLint(m), f.format, f.type, nullptr);
         }
         if (!label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, label.c_str());
         return textures_.add(std::move(t));
     });
 }
 
-gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
-    return thread_.runCreation([&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
-        loss_.check("createTextureView");
-        Texture& parent = texture(h);
-        Texture t;
-        t.desc = gdi::validate::textureView(parent.desc, parent.label, parent.viewOf != 0, v);
-        t.label = v.debugName ? v.debugName : "";
-        t.linearFilter = formatCaps_[size_t(t.desc.format)].linearFilter;
-        t.target = textureTarget(t.desc);
-        t.viewOf = h.id;
-        const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
-        t.baseMip = v.baseMip;
-        t.baseLayer = is3D ? 0 : v.baseLayer;
-        gl_.GenTextures(1, &t.name);  // glTextureView wants a name that is not yet a texture
-        gl_.TextureView(t.name, t.target, parent.name, toGlFormat(t.desc.format).internal, v.baseMip, t.desc.mipLevels,
-                        is3D ? 0 : v.baseLayer, is3D ? 1 : t.desc.depthOrLayers);
-        static constexpr GLenum kParams[] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
-        static constexpr GLint kChannels[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
-        for (size_t i = 0; i < 4; ++i) {
-            const gdi::Swizzle c = v.swizzle[i];
-            const GLint value = c == gdi::Swizzle::Identity ? kChannels[i]
-                                : c == gdi::Swizzle::Zero   ? GL_ZERO
-                                : c == gdi::Swizzle::One    ? GL_ONE
-                                                            : kChannels[int(c) - int(gdi::Swizzle::R)];
-            if (value != kChannels[i]) gl_.TextureParameteri(t.name, kParams[i], value);
-        }
-        if (!t.label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, t.label.c_str());
-        std::lock_guard lock(viewsMutex_);
-        ++parent.views;
-        return textures_.add(std::move(t));
-    });
+gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h,
+                                               const gdi::TextureViewDesc& v) {
+    return thread_.runCreation(
+        [&]() -> gdi::TextureHandle {  // a new object: no queued work uses it
+            loss_.check("createTextureView");
+            Texture& parent = texture(h);
+            Texture t;
+            t.desc = gdi::validate::textureView(parent.desc, parent.label, parent.viewOf != 0, v);
+            t.label = v.debugName ? v.debugName : "";
+            t.linearFilter = formatCaps_[size_t(t.desc.format)].linearFilter;
+            t.target = textureTarget(t.desc);
+            t.viewOf = h.id;
+            const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
+            t.baseMip = v.baseMip;
+            t.baseLayer = is3D ? 0 : v.baseLayer;
+            gl_.GenTextures(1, &t.name);  // glTextureView wants a name that is not yet a texture
+            gl_.TextureView(t.name, t.target, parent.name, toGlFormat(t.desc.format).internal,
+                            v.baseMip, t.desc.mipLevels, is3D ? 0 : v.baseLayer,
+                            is3D ? 1 : t.desc.depthOrLayers);
+            static constexpr GLenum kParams[] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G,
+                                                 GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
+            static constexpr GLint kChannels[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+            for (size_t i = 0; i < 4; ++i) {
+                const gdi::Swizzle c = v.swizzle[i];
+                const GLint value = c == gdi::Swizzle::Identity ? kChannels[i]
+                                    : c == gdi::Swizzle::Zero   ? GL_ZERO
+                                    : c == gdi::Swizzle::One
+                                        ? GL_ONE
+                                        : kChannels[int(c) - int(gdi::Swizzle::R)];
+                if (value != kChannels[i]) gl_.TextureParameteri(t.name, kParams[i], value);
+            }
+            if (!t.label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, t.label.c_str());
+            std::lock_guard lock(viewsMutex_);
+            ++parent.views;
+            return textures_.add(std::move(t));
+        });
 }
 
 gdi::SamplerHandle GlDevice::createSampler(const gdi::SamplerDesc& d) {
-    return thread_.runCreation([&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
-        loss_.check("createSampler");
-        gdi::validate::samplerDesc(d);
-        Sampler s;
-        s.filtersLinearly = gdi::validate::filtersLinearly(d);
-        s.readsMips = d.mipFilter != gdi::MipFilter::None;
-        s.label = d.debugName ? d.debugName : "";
-        gl_.CreateSamplers(1, &s.name);
-        auto wrap = [](gdi::AddressMode a) {
-            return a == gdi::AddressMode::ClampToEdge     ? GL_CLAMP_TO_EDGE
-                   : a == gdi::AddressMode::ClampToBorder ? GL_CLAMP_TO_BORDER
-                   : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT : GL_REPEAT;
-        };
-        GLint minf;
-        const bool lin = d.minFilter == gdi::Filter::Linear;
-        switch (d.mipFilter) {
-            case gdi::MipFilter::None: minf = lin ? GL_LINEAR : GL_NEAREST; break;
-            case gdi::MipFilter::Nearest: minf = lin ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST; break;
-            default: minf = lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR; break;
-        }
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, minf);
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
-        gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_R, wrap(d.addressW));
-        if (d.compareEnable) {
-            gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-            gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, GLint(GL_NEVER + int(d.compare)));  // same order
-        }
-        if (d.maxAnisotropy > 1.0f) gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
-        static constexpr GLfloat kBorder[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
-        gl_.SamplerParameterfv(s.name, GL_TEXTURE_BORDER_COLOR, kBorder[int(d.borderColor)]);
-        gl_.SamplerParameterf(s.name, GL_TEXTURE_LOD_BIAS, d.lodBias);
-        gl_.SamplerParameterf(s.name, GL_TEXTURE_MIN_LOD, d.minLod);
-        gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_LOD, d.maxLod);
-        return samplers_.add(std::move(s));
-    });
+    return thread_.runCreation(
+        [&]() -> gdi::SamplerHandle {  // a new object: no queued work uses it
+            loss_.check("createSampler");
+            gdi::validate::samplerDesc(d);
+            Sampler s;
+            s.filtersLinearly = gdi::validate::filtersLinearly(d);
+            s.readsMips = d.mipFilter != gdi::MipFilter::None;
+            s.label = d.debugName ? d.debugName : "";
+            gl_.CreateSamplers(1, &s.name);
+            auto wrap = [](gdi::AddressMode a) {
+                return a == gdi::AddressMode::ClampToEdge      ? GL_CLAMP_TO_EDGE
+                       : a == gdi::AddressMode::ClampToBorder  ? GL_CLAMP_TO_BORDER
+                       : a == gdi::AddressMode::MirroredRepeat ? GL_MIRRORED_REPEAT
+                                                               : GL_REPEAT;
+            };
+            GLint minf;
+            const bool lin = d.minFilter == gdi::Filter::Linear;
+            switch (d.mipFilter) {
+                case gdi::MipFilter::None:
+                    minf = lin ? GL_LINEAR : GL_NEAREST;
+                    break;
+                case gdi::MipFilter::Nearest:
+                    minf = lin ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
+                    break;
+                default:
+                    minf = lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR;
+                    break;
+            }
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, minf);
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER,
+                                  d.magFilter == gdi::Filter::Linear ? GL_LINEAR : GL_NEAREST);
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_S, wrap(d.addressU));
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_T, wrap(d.addressV));
+            gl_.SamplerParameteri(s.name, GL_TEXTURE_WRAP_R, wrap(d.addressW));
+            if (d.compareEnable) {
+                gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+                gl_.SamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC,
+                                      GLint(GL_NEVER + int(d.compare)));  // same order
+            }
+            if (d.maxAnisotropy > 1.0f)
+                gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY, d.maxAnisotropy);
+            static constexpr GLfloat kBorder[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1, 1}};
+            gl_.SamplerParameterfv(s.name, GL_TEXTURE_BORDER_COLOR, kBorder[int(d.borderColor)]);
+            gl_.SamplerParameterf(s.name, GL_TEXTURE_LOD_BIAS, d.lodBias);
+            gl_.SamplerParameterf(s.name, GL_TEXTURE_MIN_LOD, d.minLod);
+            gl_.SamplerParameterf(s.name, GL_TEXTURE_MAX_LOD, d.maxLod);
+            return samplers_.add(std::move(s));
+        });
 }
 
 gdi::TimerHandle GlDevice::createTimer() {
@@ -190,7 +233,8 @@ gdi::TimerHandle GlDevice::createTimer() {
 }
 
 gdi::HeapHandle GlDevice::createHeap(const gdi::HeapDesc&) {
-    throw gdi::Error(info_.backend + ": heaps (memory aliasing) are not supported on OpenGL; reuse whole textures");
+    throw gdi::Error(info_.backend +
+                     ": heaps (memory aliasing) are not supported on OpenGL; reuse whole textures");
 }
 gdi::MemoryRequirements GlDevice::textureMemoryRequirements(const gdi::TextureDesc&) const {
     throw gdi::Error(info_.backend + ": texture memory requirements are not exposed on OpenGL");
@@ -233,7 +277,8 @@ void GlDevice::destroy(gdi::TextureHandle h) {
     if (const Texture* live = h ? textures_.find(h) : nullptr) {
         std::lock_guard lock(viewsMutex_);  // views are counted on the context thread too
         if (live->views) gdi::validate::viewsAlive(live->label, live->views);
-        if (Texture* parent = live->viewOf ? textures_.find({live->viewOf}) : nullptr) --parent->views;
+        if (Texture* parent = live->viewOf ? textures_.find({live->viewOf}) : nullptr)
+            --parent->views;
     }
     retire(textures_, h, "texture", [this](Texture& t) {
         forgetFramebuffers(t.name);
@@ -256,31 +301,34 @@ void GlDevice::destroy(gdi::PipelineHandle h) {
 
 gdi::QuerySetHandle GlDevice::createQuerySet(const gdi::QuerySetDesc& desc) {
     gdi::validate::querySetDesc(desc, info_.features);
-    return thread_.runCreation([&]() -> gdi::QuerySetHandle {  // a new object: no queued work uses it
-        loss_.check("createQuerySet");
-        QuerySet q;
-        q.desc = desc;
-        q.label = desc.debugName ? desc.debugName : "";
-        q.desc.debugName = nullptr;
-        q.submitted.assign(desc.count, 0);
-        const auto targets = queryTargets(desc.type);
-        q.names.resize(size_t(desc.count) * targets.size());
-        if (desc.type == gdi::QueryType::PipelineStatistics) {
-            // Mesa's glCreateQueries refuses the statistics targets (GL_INVALID_ENUM) although it
-            // counts them: names from glGenQueries become queries at their first glBeginQuery.
-            gl_.GenQueries(GLsizei(q.names.size()), q.names.data());
-        } else {
-            gl_.CreateQueries(targets[0], GLsizei(q.names.size()), q.names.data());
-        }
-        return querySets_.add(std::move(q));
-    });
+    return thread_.runCreation(
+        [&]() -> gdi::QuerySetHandle {  // a new object: no queued work uses it
+            loss_.check("createQuerySet");
+            QuerySet q;
+            q.desc = desc;
+            q.label = desc.debugName ? desc.debugName : "";
+            q.desc.debugName = nullptr;
+            q.submitted.assign(desc.count, 0);
+            const auto targets = queryTargets(desc.type);
+            q.names.resize(size_t(desc.count) * targets.size());
+            if (desc.type == gdi::QueryType::PipelineStatistics) {
+                // Mesa's glCreateQueries refuses the statistics targets (GL_INVALID_ENUM) although it
+                // counts them: names from glGenQueries become queries at their first glBeginQuery.
+                gl_.GenQueries(GLsizei(q.names.size()), q.names.data());
+            } else {
+                gl_.CreateQueries(targets[0], GLsizei(q.names.size()), q.names.data());
+            }
+            return querySets_.add(std::move(q));
+        });
 }
 
 void GlDevice::destroy(gdi::QuerySetHandle h) {
-    retire(querySets_, h, "query set", [this](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
+    retire(querySets_, h, "query set",
+           [this](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });
 }
 
-bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
+bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
+                            std::span<uint64_t> out) {
     loss_.check("queryResults");
     const QuerySet& q = querySets_.get(h, "query set");
     gdi::validate::queryRead(q.desc, q.label, first, count, out.size());
@@ -291,7 +339,8 @@ bool GlDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t coun
     }
     const size_t values = queryTargets(q.desc.type).size();
     thread_.runUrgent([&] {  // complete: the results are there, nothing waits
-        for (size_t i = 0; i < count * values; ++i) gl_.GetQueryObjectui64v(q.names[first * values + i], GL_QUERY_RESULT, &out[i]);
+        for (size_t i = 0; i < count * values; ++i)
+            gl_.GetQueryObjectui64v(q.names[first * values + i], GL_QUERY_RESULT, &out[i]);
     });
     return true;
 }
@@ -305,16 +354,18 @@ FboAttachment GlDevice::fboAttachment(const Texture& t, uint32_t mipLevel, uint3
     return {t.name, mipLevel, layered ? int32_t(layer) : -1};
 }
 
-
-GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth, GLenum depthPoint) {
+GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttachment depth,
+                             GLenum depthPoint) {
     for (auto& f : fbos_)
         if (f.colors == colors && f.depth == depth) return f.fbo;
     GLuint fbo;
     gl_.CreateFramebuffers(1, &fbo);
     auto attach = [&](GLenum point, const FboAttachment& a) {
         // A layer of an array, cube (faces are layers 0-5 in DSA) or 3D texture; 2D textures whole.
-        if (a.layer >= 0) gl_.NamedFramebufferTextureLayer(fbo, point, a.texture, GLint(a.mipLevel), a.layer);
-        else gl_.NamedFramebufferTexture(fbo, point, a.texture, GLint(a.mipLevel));
+        if (a.layer >= 0)
+            gl_.NamedFramebufferTextureLayer(fbo, point, a.texture, GLint(a.mipLevel), a.layer);
+        else
+            gl_.NamedFramebufferTexture(fbo, point, a.texture, GLint(a.mipLevel));
     };
     std::vector<GLenum> draw;
     for (size_t i = 0; i < colors.size(); ++i) {
@@ -325,7 +376,8 @@ GLuint GlDevice::framebuffer(const std::vector<FboAttachment>& colors, FboAttach
     gl_.NamedFramebufferDrawBuffers(fbo, GLsizei(draw.size()), draw.data());
     if (gl_.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         gl_.DeleteFramebuffers(1, &fbo);
-        throw gdi::Error(info_.backend + ": incomplete framebuffer for this attachment combination");
+        throw gdi::Error(info_.backend +
+                         ": incomplete framebuffer for this attachment combination");
     }
     fbos_.push_back({colors, depth, fbo});
     return fbo;
@@ -337,19 +389,27 @@ void GlDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSpan d
     const Buffer& b = buffer(h);
     gdi::validate::bufferRange(b.desc, offset, data.size(), "writeBuffer");
     if (data.empty()) return;
-    thread_.post([this, name = b.name, offset, bytes = std::vector<std::byte>(data.begin(), data.end())] {
-        gl_.NamedBufferSubData(name, GLintptr(offset), GLsizeiptr(bytes.size()), bytes.data());
-    });
+    thread_.post(
+        [this, name = b.name, offset, bytes = std::vector<std::byte>(data.begin(), data.end())] {
+            gl_.NamedBufferSubData(name, GLintptr(offset), GLsizeiptr(bytes.size()), bytes.data());
+        });
 }
 
-void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels, uint64_t bytes) {
+void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels,
+                                 uint64_t bytes) {
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     const GlFormat f = toGlFormat(t.desc.format);
-    const auto w = GLsizei(e.width), h = GLsizei(e.height), mip = GLint(at.mipLevel), layer = GLint(at.layer);
-    const bool flat = t.target == GL_TEXTURE_2D;  // every other kind addresses layers, faces or slices as z
+    const auto w = GLsizei(e.width), h = GLsizei(e.height), mip = GLint(at.mipLevel),
+               layer = GLint(at.layer);
+    const bool flat =
+        t.target == GL_TEXTURE_2D;  // every other kind addresses layers, faces or slices as z
     if (gdi::isCompressedFormat(t.desc.format)) {
-        if (flat) gl_.CompressedTextureSubImage2D(t.name, mip, 0, 0, w, h, f.internal, GLsizei(bytes), pixels);
-        else gl_.CompressedTextureSubImage3D(t.name, mip, 0, 0, layer, w, h, 1, f.internal, GLsizei(bytes), pixels);
+        if (flat)
+            gl_.CompressedTextureSubImage2D(t.name, mip, 0, 0, w, h, f.internal, GLsizei(bytes),
+                                            pixels);
+        else
+            gl_.CompressedTextureSubImage3D(t.name, mip, 0, 0, layer, w, h, 1, f.internal,
+                                            GLsizei(bytes), pixels);
     } else if (flat) {
         gl_.TextureSubImage2D(t.name, mip, 0, 0, w, h, f.format, f.type, pixels);
     } else {
@@ -360,54 +420,68 @@ void GlDevice::uploadSubresource(const Texture& t, gdi::Subresource at, const vo
 // Row length in texels and image height in rows: GL's pixel store, reset after each use.
 static void pixelPitch(const GlFunctions& gl, bool pack, const gdi::TexelLayout& l, gdi::Format f) {
     const uint32_t texel = gdi::formatInfo(f).bytesPerPixel;
-    gl.PixelStorei(pack ? GL_PACK_ROW_LENGTH : GL_UNPACK_ROW_LENGTH, texel ? GLint(l.bytesPerRow / texel) : 0);
-    gl.PixelStorei(pack ? GL_PACK_IMAGE_HEIGHT : GL_UNPACK_IMAGE_HEIGHT, texel ? GLint(l.rowsPerImage) : 0);
+    gl.PixelStorei(pack ? GL_PACK_ROW_LENGTH : GL_UNPACK_ROW_LENGTH,
+                   texel ? GLint(l.bytesPerRow / texel) : 0);
+    gl.PixelStorei(pack ? GL_PACK_IMAGE_HEIGHT : GL_UNPACK_IMAGE_HEIGHT,
+                   texel ? GLint(l.rowsPerImage) : 0);
 }
 
-void GlDevice::uploadRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, const void* pixels,
-                            uint64_t bytes) {
+void GlDevice::uploadRegion(const Texture& t, const gdi::TextureRegion& r,
+                            const gdi::TexelLayout& l, const void* pixels, uint64_t bytes) {
     const GlFormat f = toGlFormat(t.desc.format);
     const bool flat = t.target == GL_TEXTURE_2D;
     const auto mip = GLint(r.mipLevel), x = GLint(r.x), y = GLint(r.y), z = GLint(r.z);
     const auto w = GLsizei(r.width), h = GLsizei(r.height), d = GLsizei(r.depth);
     if (gdi::isCompressedFormat(t.desc.format)) {  // packed tightly (validate::texelLayout)
-        if (flat) gl_.CompressedTextureSubImage2D(t.name, mip, x, y, w, h, f.internal, GLsizei(bytes), pixels);
-        else gl_.CompressedTextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.internal, GLsizei(bytes), pixels);
+        if (flat)
+            gl_.CompressedTextureSubImage2D(t.name, mip, x, y, w, h, f.internal, GLsizei(bytes),
+                                            pixels);
+        else
+            gl_.CompressedTextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.internal,
+                                            GLsizei(bytes), pixels);
         return;
     }
     pixelPitch(gl_, false, l, t.desc.format);
-    if (flat) gl_.TextureSubImage2D(t.name, mip, x, y, w, h, f.format, f.type, pixels);
-    else gl_.TextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.format, f.type, pixels);
+    if (flat)
+        gl_.TextureSubImage2D(t.name, mip, x, y, w, h, f.format, f.type, pixels);
+    else
+        gl_.TextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.format, f.type, pixels);
     pixelPitch(gl_, false, {}, t.desc.format);
 }
 
-void GlDevice::readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l, void* pixels, uint64_t bytes) {
+void GlDevice::readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                          void* pixels, uint64_t bytes) {
     const GlFormat f = toGlFormat(t.desc.format);
     pixelPitch(gl_, true, l, t.desc.format);
-    gl_.GetTextureSubImage(t.name, GLint(r.mipLevel), GLint(r.x), GLint(r.y), GLint(r.z), GLsizei(r.width), GLsizei(r.height),
-                           GLsizei(r.depth), f.format, f.type, GLsizei(bytes), pixels);
+    gl_.GetTextureSubImage(t.name, GLint(r.mipLevel), GLint(r.x), GLint(r.y), GLint(r.z),
+                           GLsizei(r.width), GLsizei(r.height), GLsizei(r.depth), f.format, f.type,
+                           GLsizei(bytes), pixels);
     pixelPitch(gl_, true, {}, t.desc.format);
 }
 
-void GlDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region, gdi::ByteSpan data,
-                            const gdi::TexelLayout& layout) {
+void GlDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region,
+                                  gdi::ByteSpan data, const gdi::TexelLayout& layout) {
     loss_.check("writeTextureRegion");
     const Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.label, "writeTexture");
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.label, "writeTextureRegion");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
+    const gdi::TextureRegion r =
+        gdi::validate::textureRegion(t.desc, region, t.label, "writeTextureRegion");
+    const gdi::validate::ResolvedLayout l =
+        gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
     gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
-    std::vector<std::byte> bytes(data.begin() + std::ptrdiff_t(l.layout.offset), data.begin() + std::ptrdiff_t(l.end));
+    std::vector<std::byte> bytes(data.begin() + std::ptrdiff_t(l.layout.offset),
+                                 data.begin() + std::ptrdiff_t(l.end));
     thread_.post([this, h, r, pitch = l.layout, bytes = std::move(bytes)] {
         uploadRegion(textures_.at(h), r, pitch, bytes.data(), bytes.size());
     });
 }
 
-void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes) {
+void GlDevice::readSubresource(const Texture& t, gdi::Subresource at, void* pixels,
+                               uint64_t bytes) {
     const gdi::validate::Extent3 e = gdi::validate::mipExtent(t.desc, at.mipLevel);
     const GlFormat f = toGlFormat(t.desc.format);
-    gl_.GetTextureSubImage(t.name, GLint(at.mipLevel), 0, 0, GLint(at.layer), GLsizei(e.width), GLsizei(e.height), 1, f.format,
-                           f.type, GLsizei(bytes), pixels);
+    gl_.GetTextureSubImage(t.name, GLint(at.mipLevel), 0, 0, GLint(at.layer), GLsizei(e.width),
+                           GLsizei(e.height), 1, f.format, f.type, GLsizei(bytes), pixels);
 }
 
 void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
@@ -415,9 +489,11 @@ void GlDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::Byte
     const Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.label, "writeTexture");
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.label);
-    if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
+    if (t.desc.sampleCount > 1)
+        throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
     std::vector<std::byte> bytes(data.begin(), data.end());
-    if (t.desc.format == gdi::Format::D24S8)  // gdi's X8D24 with stencil high -> GL's depth high, stencil low
+    if (t.desc.format ==
+        gdi::Format::D24S8)  // gdi's X8D24 with stencil high -> GL's depth high, stencil low
         for (size_t i = 0; i + 4 <= bytes.size(); i += 4) {
             uint32_t v;
             std::memcpy(&v, &bytes[i], 4);
@@ -455,7 +531,8 @@ gdi::Image GlDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) {
         img.data.resize(gdi::imageByteSize(t.desc.format, e.width, e.height));
         gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
         readSubresource(t, at, img.data.data(), img.data.size());
-        if (t.desc.format == gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
+        if (t.desc.format ==
+            gdi::Format::D24S8)  // GL packs depth high, stencil low; gdi uses Vulkan's X8D24
             for (size_t i = 0; i < img.data.size(); i += 4) {
                 uint32_t v;
                 std::memcpy(&v, &img.data[i], 4);

@@ -93,7 +93,8 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
     const char* x11 = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!x11 || !*x11) && (!wayland || !*wayland))
-        throw gdi::Error("GLFW: no display (DISPLAY and WAYLAND_DISPLAY are unset; run under a desktop or xvfb-run)");
+        throw gdi::Error(
+            "GLFW: no display (DISPLAY and WAYLAND_DISPLAY are unset; run under a desktop or xvfb-run)");
     const Glfw& g = glfw();
     lib_ = g.lib;
     if (!g.init()) throw glfwError(g, "glfwInit failed");
@@ -101,10 +102,13 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
     ++liveWindows;
     try {
         g.defaultHints();
-        g.hint(GLFW_VISIBLE, GLFW_FALSE);  // shown on the first present; offscreen work needs no window
+        g.hint(GLFW_VISIBLE,
+               GLFW_FALSE);  // shown on the first present; offscreen work needs no window
         if (api == Api::Vulkan) {
             // GLFW finds the Vulkan loader itself; without it no surface can be made.
-            if (!g.vulkanSupported()) throw glfwError(g, "no Vulkan loader for window surfaces (apt-get install libvulkan1)");
+            if (!g.vulkanSupported())
+                throw glfwError(
+                    g, "no Vulkan loader for window surfaces (apt-get install libvulkan1)");
             g.hint(GLFW_CLIENT_API, GLFW_NO_API);
         } else {
             g.hint(GLFW_CONTEXT_VERSION_MAJOR, 4);
@@ -122,7 +126,9 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
             window_ = g.create(320, 240, "fe", nullptr, nullptr);
         }
         if (!window_)
-            throw glfwError(g, api == Api::Vulkan ? "cannot create a window" : "cannot create a window with an OpenGL 4.5 core context");
+            throw glfwError(g, api == Api::Vulkan
+                                   ? "cannot create a window"
+                                   : "cannot create a window with an OpenGL 4.5 core context");
         // The wheel and typed text arrive as events: gathered here until the next poll().
         auto* window = static_cast<GLFWwindow*>(window_);
         g.setUserPointer(window, this);
@@ -131,10 +137,16 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
         });
         g.setCharCallback(window, [](GLFWwindow* w, unsigned int c) {
             std::string& text = static_cast<GlfwWindow*>(glfw().getUserPointer(w))->text_;
-            if (c < 0x80) text += char(c);  // UTF-8 encoding of one code point
-            else if (c < 0x800) text += char(0xC0 | (c >> 6)), text += char(0x80 | (c & 0x3F));
-            else if (c < 0x10000) text += char(0xE0 | (c >> 12)), text += char(0x80 | ((c >> 6) & 0x3F)), text += char(0x80 | (c & 0x3F));
-            else text += char(0xF0 | (c >> 18)), text += char(0x80 | ((c >> 12) & 0x3F)), text += char(0x80 | ((c >> 6) & 0x3F)), text += char(0x80 | (c & 0x3F));
+            if (c < 0x80)
+                text += char(c);  // UTF-8 encoding of one code point
+            else if (c < 0x800)
+                text += char(0xC0 | (c >> 6)), text += char(0x80 | (c & 0x3F));
+            else if (c < 0x10000)
+                text += char(0xE0 | (c >> 12)), text += char(0x80 | ((c >> 6) & 0x3F)),
+                    text += char(0x80 | (c & 0x3F));
+            else
+                text += char(0xF0 | (c >> 18)), text += char(0x80 | ((c >> 12) & 0x3F)),
+                    text += char(0x80 | ((c >> 6) & 0x3F)), text += char(0x80 | (c & 0x3F));
         });
     } catch (...) {
         release();  // the destructor does not run when the constructor throws
@@ -175,8 +187,10 @@ GlfwWindow::Size GlfwWindow::prepare(uint32_t width, uint32_t height, bool* firs
     // The window system applies a resize asynchronously: wait (up to 1 s) for it, so the frame
     // is not drawn for the old size. A window manager may still refuse the size.
     for (int i = 0; i < 100; ++i) {
-        if (resize) g.waitTimeout(0.01);
-        else g.poll();
+        if (resize)
+            g.waitTimeout(0.01);
+        else
+            g.poll();
         size = framebufferSize();
         if (!resize || (size.width == width && size.height == height)) break;
     }
@@ -197,12 +211,34 @@ bool GlfwWindow::poll() {
     in.mouseX = float(x * (ww > 0 ? double(fb.width) / ww : 1.0));
     in.mouseY = float(y * (wh > 0 ? double(fb.height) / wh : 1.0));
     for (int b = 0; b < 3; ++b) in.mouse[b] = g.getMouseButton(window, b) == GLFW_PRESS;
-    static const int keys[size_t(gdi::Key::Count)] = {
-        GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E, GLFW_KEY_R, GLFW_KEY_F, GLFW_KEY_P,
-        GLFW_KEY_SPACE, GLFW_KEY_ESCAPE, GLFW_KEY_TAB, GLFW_KEY_ENTER, GLFW_KEY_BACKSPACE, GLFW_KEY_DELETE,
-        GLFW_KEY_LEFT, GLFW_KEY_RIGHT, GLFW_KEY_UP, GLFW_KEY_DOWN, GLFW_KEY_HOME, GLFW_KEY_END,
-        GLFW_KEY_LEFT_SHIFT, GLFW_KEY_LEFT_CONTROL, GLFW_KEY_F1, GLFW_KEY_F2, GLFW_KEY_F12};
-    for (size_t k = 0; k < size_t(gdi::Key::Count); ++k) in.keys[k] = g.getKey(window, keys[k]) == GLFW_PRESS;
+    static const int keys[size_t(gdi::Key::Count)] = {GLFW_KEY_W,
+                                                      GLFW_KEY_A,
+                                                      GLFW_KEY_S,
+                                                      GLFW_KEY_D,
+                                                      GLFW_KEY_Q,
+                                                      GLFW_KEY_E,
+                                                      GLFW_KEY_R,
+                                                      GLFW_KEY_F,
+                                                      GLFW_KEY_P,
+                                                      GLFW_KEY_SPACE,
+                                                      GLFW_KEY_ESCAPE,
+                                                      GLFW_KEY_TAB,
+                                                      GLFW_KEY_ENTER,
+                                                      GLFW_KEY_BACKSPACE,
+                                                      GLFW_KEY_DELETE,
+                                                      GLFW_KEY_LEFT,
+                                                      GLFW_KEY_RIGHT,
+                                                      GLFW_KEY_UP,
+                                                      GLFW_KEY_DOWN,
+                                                      GLFW_KEY_HOME,
+                                                      GLFW_KEY_END,
+                                                      GLFW_KEY_LEFT_SHIFT,
+                                                      GLFW_KEY_LEFT_CONTROL,
+                                                      GLFW_KEY_F1,
+                                                      GLFW_KEY_F2,
+                                                      GLFW_KEY_F12};
+    for (size_t k = 0; k < size_t(gdi::Key::Count); ++k)
+        in.keys[k] = g.getKey(window, keys[k]) == GLFW_PRESS;
     in.wheel = wheel_;
     in.text = std::move(text_);
     wheel_ = 0;
@@ -217,18 +253,21 @@ gdi::Image GlfwWindow::read(uint32_t width, uint32_t height) const {
     auto getDisplay = reinterpret_cast<Display* (*)()>(dlsym(lib_, "glfwGetX11Display"));
     auto getWindow = reinterpret_cast<Window (*)(GLFWwindow*)>(dlsym(lib_, "glfwGetX11Window"));
     Display* display = getDisplay && getWindow ? getDisplay() : nullptr;
-    if (!display) throw gdi::Error("GLFW: reading the window back needs X11 (this is not an X11 window)");
+    if (!display)
+        throw gdi::Error("GLFW: reading the window back needs X11 (this is not an X11 window)");
     static const char* const names[] = {"libX11.so.6", "libX11.so", nullptr};
     void* x11 = openLibrary(names, "libx11-6");  // already loaded by GLFW: this only finds it
     auto sync = platform::symbol<int (*)(Display*, Bool)>(x11, "XSync");
-    auto getImage = platform::symbol<XImage* (*)(Display*, Drawable, int, int, unsigned, unsigned, unsigned long, int)>(x11, "XGetImage");
+    auto getImage = platform::symbol<XImage* (*)(Display*, Drawable, int, int, unsigned, unsigned,
+                                                 unsigned long, int)>(x11, "XGetImage");
     auto setHandler = platform::symbol<XErrorHandler (*)(XErrorHandler)>(x11, "XSetErrorHandler");
     // The server has handled every request sent so far (GL swaps, and the Vulkan WSI's
     // images, which Mesa sends on this same connection).
     sync(display, False);
     // Xlib's default handler exits the process on BadMatch (window not fully on screen).
     XErrorHandler old = setHandler([](Display*, XErrorEvent*) { return 0; });
-    XImage* image = getImage(display, getWindow(static_cast<GLFWwindow*>(window_)), 0, 0, width, height, AllPlanes, ZPixmap);
+    XImage* image = getImage(display, getWindow(static_cast<GLFWwindow*>(window_)), 0, 0, width,
+                             height, AllPlanes, ZPixmap);
     sync(display, False);
     setHandler(old);
     if (!image) throw gdi::Error("GLFW: XGetImage failed (is the window fully on screen?)");
@@ -242,7 +281,8 @@ gdi::Image GlfwWindow::read(uint32_t width, uint32_t height) const {
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             unsigned long p = image->f.get_pixel(image, int(x), int(y));
-            for (uint8_t v : {channel(p, image->red_mask), channel(p, image->green_mask), channel(p, image->blue_mask), uint8_t(255)})
+            for (uint8_t v : {channel(p, image->red_mask), channel(p, image->green_mask),
+                              channel(p, image->blue_mask), uint8_t(255)})
                 rgba.push_back(v);
         }
     image->f.destroy_image(image);

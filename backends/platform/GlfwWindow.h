@@ -54,7 +54,7 @@ private:
     bool initialised_ = false;
     bool shown_ = false;
     gdi::InputState input_;
-    float wheel_ = 0;    // gathered by GLFW's callbacks between polls
+    float wheel_ = 0;  // gathered by GLFW's callbacks between polls
     std::string text_;
 };
 

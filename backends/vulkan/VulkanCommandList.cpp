@@ -16,27 +16,36 @@ namespace {
 [[noreturn, gnu::cold, gnu::noinline]] void slotOutOfRange(const char* what, uint32_t slot) {
     throw gdi::Error(std::string(what) + ": slot " + std::to_string(slot) + " out of range");
 }
-[[noreturn, gnu::cold, gnu::noinline]] void wrongPipelineKind(const char* what, const std::string& pipeline) {
+[[noreturn, gnu::cold, gnu::noinline]] void wrongPipelineKind(const char* what,
+                                                              const std::string& pipeline) {
     throw gdi::Error(std::string(what) + " pipeline '" + pipeline + "'");
 }
 gdi::BindingType kindOf(VkDescriptorType t) {
     switch (t) {
-        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return gdi::BindingType::StorageBuffer;
-        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return gdi::BindingType::SampledTexture;
-        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return gdi::BindingType::StorageTexture;
-        default: return gdi::BindingType::UniformBuffer;
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+            return gdi::BindingType::StorageBuffer;
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+            return gdi::BindingType::SampledTexture;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+            return gdi::BindingType::StorageTexture;
+        default:
+            return gdi::BindingType::UniformBuffer;
     }
 }
 
 VkAttachmentLoadOp toLoad(gdi::LoadOp op) {
     switch (op) {
-        case gdi::LoadOp::Load: return VK_ATTACHMENT_LOAD_OP_LOAD;
-        case gdi::LoadOp::DontCare: return VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-        default: return VK_ATTACHMENT_LOAD_OP_CLEAR;
+        case gdi::LoadOp::Load:
+            return VK_ATTACHMENT_LOAD_OP_LOAD;
+        case gdi::LoadOp::DontCare:
+            return VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+        default:
+            return VK_ATTACHMENT_LOAD_OP_CLEAR;
     }
 }
 VkAttachmentStoreOp toStore(gdi::StoreOp op) {
-    return op == gdi::StoreOp::DontCare ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+    return op == gdi::StoreOp::DontCare ? VK_ATTACHMENT_STORE_OP_DONT_CARE
+                                        : VK_ATTACHMENT_STORE_OP_STORE;
 }
 }  // namespace
 
@@ -58,14 +67,20 @@ void VulkanCommandList::addRecordingBuffer() {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pci.queueFamilyIndex = dev_.queueFamily();
-    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &b.pool); }), "vkCreateCommandPool");
+    check(nativeAllocation(
+              "vkCreateCommandPool",
+              [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &b.pool); }),
+          "vkCreateCommandPool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = b.pool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
-    if (VkResult r = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &b.cb); });
+    if (VkResult r =
+            nativeAllocation("vkAllocateCommandBuffers",
+                             [&] { return vkAllocateCommandBuffers(dev_.vkDevice(), &ai, &b.cb); });
         r != VK_SUCCESS) {
-        vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);  // not yet in buffers_: nothing else frees it
+        vkDestroyCommandPool(dev_.vkDevice(), b.pool,
+                             nullptr);  // not yet in buffers_: nothing else frees it
         check(r, "vkAllocateCommandBuffers");
     }
     buffers_.push_back(b);
@@ -101,7 +116,8 @@ void VulkanCommandList::releaseNative() {
     executed_.clear();
     lease_ = {};
     if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
-    for (const RecordingBuffer& b : buffers_) vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
+    for (const RecordingBuffer& b : buffers_)
+        vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
     buffers_.clear();
 }
 
@@ -110,7 +126,8 @@ void VulkanCommandList::orphan() {
     releaseNative();
     orphaned_ = restricted_ = true;
     recording_ = inPass_ = false;
-    lastBound_[0].id = lastBound_[1].id = ~0u;  // no device makes it: the setters take the checked path, which throws
+    lastBound_[0].id = lastBound_[1].id =
+        ~0u;                // no device makes it: the setters take the checked path, which throws
     openSince_ = kNotOpen;  // the device releases everything as it goes
     setNotReady();
     cb_ = VK_NULL_HANDLE;
@@ -120,8 +137,8 @@ void VulkanCommandList::fullBarrier(VkCommandBuffer cb) {
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     mb.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
     mb.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &mb, 0,
-                         nullptr, 0, nullptr);
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         0, 1, &mb, 0, nullptr, 0, nullptr);
 }
 
 void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format) {
@@ -132,9 +149,10 @@ void VulkanCommandList::toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format
     b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = image;
-    b.subresourceRange = {aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
-                         nullptr, 1, &b);
+    b.subresourceRange = {aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0,
+                          VK_REMAINING_ARRAY_LAYERS};
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
 void VulkanCommandList::discardTexture(gdi::TextureHandle h) {
@@ -151,20 +169,28 @@ struct StateScope {
     VkAccessFlags access;
 };
 StateScope scopeOf(gdi::ResourceState s) {
-    constexpr VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+    constexpr VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                                             VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     switch (s) {
         case gdi::ResourceState::RenderTarget:
             return {VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                     VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT};
         case gdi::ResourceState::DepthTarget:
-            return {VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-        case gdi::ResourceState::ShaderRead: return {shaders, VK_ACCESS_SHADER_READ_BIT};
-        case gdi::ResourceState::Storage: return {shaders, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-        case gdi::ResourceState::CopySrc: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
-        case gdi::ResourceState::CopyDst: return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
-        case gdi::ResourceState::Undefined: break;
+            return {VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                        VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+        case gdi::ResourceState::ShaderRead:
+            return {shaders, VK_ACCESS_SHADER_READ_BIT};
+        case gdi::ResourceState::Storage:
+            return {shaders, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+        case gdi::ResourceState::CopySrc:
+            return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+        case gdi::ResourceState::CopyDst:
+            return {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+        case gdi::ResourceState::Undefined:
+            break;
     }
     // Undefined: whatever last used these bytes (another texture aliasing the memory).
     return {VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT};
@@ -194,11 +220,13 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
         b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
         b.srcAccessMask = before.access;
         b.dstAccessMask = after.access;
-        b.oldLayout = in.before == gdi::ResourceState::Undefined ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_GENERAL;
+        b.oldLayout = in.before == gdi::ResourceState::Undefined ? VK_IMAGE_LAYOUT_UNDEFINED
+                                                                 : VK_IMAGE_LAYOUT_GENERAL;
         b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
         b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         b.image = t.image;
-        b.subresourceRange = {aspectOf(t.desc.format), range.baseMip, range.mipCount, range.baseLayer, range.layerCount};
+        b.subresourceRange = {aspectOf(t.desc.format), range.baseMip, range.mipCount,
+                              range.baseLayer, range.layerCount};
         if (t.desc.dimension == gdi::TextureDimension::Texture3D) b.subresourceRange.layerCount = 1;
         src |= before.stages;
         dst |= after.stages;
@@ -214,8 +242,9 @@ StateScope bufferScope(gdi::BufferAccess a) {
     auto add = [&](A bit, VkPipelineStageFlags stages, VkAccessFlags access) {
         if (any(a, bit)) s.stages |= stages, s.access |= access;
     };
-    constexpr VkPipelineStageFlags kShaders =
-        VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    constexpr VkPipelineStageFlags kShaders = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     add(A::Vertex, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT);
     add(A::Index, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
     add(A::Indirect, VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
@@ -259,12 +288,24 @@ void VulkanCommandList::checkAlive() const {
     for (uint64_t u : used_) {
         const uint32_t id = uint32_t(u);
         switch (UsedKind(u >> 32)) {
-            case UsedKind::Buffer: if (!dev_.findBuffer({id})) gdi::validate::destroyedBeforeSubmit("buffer", id); break;
-            case UsedKind::Texture: if (!dev_.findTexture({id})) gdi::validate::destroyedBeforeSubmit("texture", id); break;
-            case UsedKind::Sampler: if (!dev_.findSampler({id})) gdi::validate::destroyedBeforeSubmit("sampler", id); break;
-            case UsedKind::Pipeline: if (!dev_.findPipeline({id})) gdi::validate::destroyedBeforeSubmit("pipeline", id); break;
-            case UsedKind::Timer: if (!dev_.findTimer({id})) gdi::validate::destroyedBeforeSubmit("timer", id); break;
-            case UsedKind::QuerySet: if (!dev_.findQuerySet({id})) gdi::validate::destroyedBeforeSubmit("query set", id); break;
+            case UsedKind::Buffer:
+                if (!dev_.findBuffer({id})) gdi::validate::destroyedBeforeSubmit("buffer", id);
+                break;
+            case UsedKind::Texture:
+                if (!dev_.findTexture({id})) gdi::validate::destroyedBeforeSubmit("texture", id);
+                break;
+            case UsedKind::Sampler:
+                if (!dev_.findSampler({id})) gdi::validate::destroyedBeforeSubmit("sampler", id);
+                break;
+            case UsedKind::Pipeline:
+                if (!dev_.findPipeline({id})) gdi::validate::destroyedBeforeSubmit("pipeline", id);
+                break;
+            case UsedKind::Timer:
+                if (!dev_.findTimer({id})) gdi::validate::destroyedBeforeSubmit("timer", id);
+                break;
+            case UsedKind::QuerySet:
+                if (!dev_.findQuerySet({id})) gdi::validate::destroyedBeforeSubmit("query set", id);
+                break;
         }
     }
 }
@@ -284,7 +325,8 @@ void VulkanCommandList::beginRecording(const char* what) {
     check(vkResetCommandPool(dev_.vkDevice(), buffers_[current_].pool, 0), "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb_, &bi); }), "vkBeginCommandBuffer");
+    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb_, &bi); }),
+          "vkBeginCommandBuffer");
     openRecording();
     recording_ = true;
     written_ = true;  // order after earlier submissions
@@ -303,7 +345,8 @@ void VulkanCommandList::submitted(gdi::FenceValue value) {
 void VulkanCommandList::checkSubmittable() const {
     if (secondary_) gdi::validate::submittedSecondary();
     if (inPass_) throw gdi::Error("submit: render pass still open (missing endRenderPass)");
-    if (debugDepth_ != 0) throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
+    if (debugDepth_ != 0)
+        throw gdi::Error("submit: " + std::to_string(debugDepth_) + " debug group(s) not popped");
     queries_.finish();
     if (dev_.destroyEpoch() != destroyEpoch_) checkAlive();
 }
@@ -314,7 +357,8 @@ VkCommandBuffer VulkanCommandList::finish() {
     // dispatch (written_ is set when recording begins), and readback (immediate()) starts with
     // one too. A trailing barrier would also make lavapipe, which executes on submit, wait for
     // the rasterizer inside vkQueueSubmit.
-    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }),
+          "vkEndCommandBuffer");
     return cb_;
 }
 
@@ -333,7 +377,8 @@ void VulkanCommandList::barrierIfWritten() {
 
 // The pass's attachments, validated (the same checks and messages as GL's): its signature, and
 // the textures when `textures` is given.
-gdi::validate::PassSignature VulkanCommandList::checkPass(const gdi::RenderPassDesc& desc, PassTextures* textures) {
+gdi::validate::PassSignature VulkanCommandList::checkPass(const gdi::RenderPassDesc& desc,
+                                                          PassTextures* textures) {
     using gdi::validate::attachment;
     std::vector<gdi::validate::AttachmentInfo> infos, resolveInfos(desc.colors.size());
     PassTextures local;
@@ -346,20 +391,26 @@ gdi::validate::PassSignature VulkanCommandList::checkPass(const gdi::RenderPassD
         pt.colors.push_back(&t);
         if (c.resolveTexture) {
             pt.resolve[i] = &usedTexture(c.resolveTexture);
-            resolveInfos[i] = attachment(pt.resolve[i]->desc, c.resolveSubresource.mipLevel, c.resolveSubresource.layer,
-                                         "beginRenderPass resolve", pt.resolve[i]->name);
+            resolveInfos[i] = attachment(pt.resolve[i]->desc, c.resolveSubresource.mipLevel,
+                                         c.resolveSubresource.layer, "beginRenderPass resolve",
+                                         pt.resolve[i]->name);
         }
     }
     pt.depth = desc.depth.texture ? &usedTexture(desc.depth.texture) : nullptr;
     pt.depthResolve = desc.depth.resolveTexture ? &usedTexture(desc.depth.resolveTexture) : nullptr;
     gdi::validate::AttachmentInfo depthInfo{}, depthResolveInfo{};
-    if (pt.depth) depthInfo = attachment(pt.depth->desc, desc.depth.mipLevel, desc.depth.layer, "beginRenderPass", pt.depth->name);
+    if (pt.depth)
+        depthInfo = attachment(pt.depth->desc, desc.depth.mipLevel, desc.depth.layer,
+                               "beginRenderPass", pt.depth->name);
     if (pt.depthResolve)
         depthResolveInfo = attachment(pt.depthResolve->desc, desc.depth.resolveSubresource.mipLevel,
-                                      desc.depth.resolveSubresource.layer, "beginRenderPass resolve", pt.depthResolve->name);
-    if (pt.depthResolve && !pt.depth) throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
-    const gdi::Rect area = gdi::validate::renderPass(desc, infos, resolveInfos, pt.depth ? &depthInfo : nullptr,
-                                                     pt.depthResolve ? &depthResolveInfo : nullptr, dev_.info().limits);
+                                      desc.depth.resolveSubresource.layer,
+                                      "beginRenderPass resolve", pt.depthResolve->name);
+    if (pt.depthResolve && !pt.depth)
+        throw gdi::Error("beginRenderPass: a depth resolve target without a depth attachment");
+    const gdi::Rect area = gdi::validate::renderPass(
+        desc, infos, resolveInfos, pt.depth ? &depthInfo : nullptr,
+        pt.depthResolve ? &depthResolveInfo : nullptr, dev_.info().limits);
     return gdi::validate::passSignature(infos, pt.depth ? &depthInfo : nullptr, area);
 }
 
@@ -394,7 +445,8 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
         if (resolveTex[i]) {
             // Integer formats cannot be averaged: they resolve to sample 0, like depth.
             a.resolveMode = integer ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_AVERAGE_BIT;
-            a.resolveImageView = dev_.attachmentView(*resolveTex[i], c.resolveSubresource.mipLevel, c.resolveSubresource.layer);
+            a.resolveImageView = dev_.attachmentView(*resolveTex[i], c.resolveSubresource.mipLevel,
+                                                     c.resolveSubresource.layer);
             a.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
         }
     }
@@ -409,14 +461,17 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
         depth.clearValue.depthStencil = {desc.depth.clearDepth, desc.depth.clearStencil};
         if (depthResolveTex) {
             depth.resolveMode = VK_RESOLVE_MODE_SAMPLE_ZERO_BIT;  // see DepthAttachment in Device.h
-            depth.resolveImageView = dev_.attachmentView(*depthResolveTex, desc.depth.resolveSubresource.mipLevel,
-                                                         desc.depth.resolveSubresource.layer);
+            depth.resolveImageView =
+                dev_.attachmentView(*depthResolveTex, desc.depth.resolveSubresource.mipLevel,
+                                    desc.depth.resolveSubresource.layer);
             depth.resolveImageLayout = VK_IMAGE_LAYOUT_GENERAL;
         }
-        if (gdi::formatInfo(depthTex->desc.format).hasDepth) ri.pDepthAttachment = &depth;  // S8: stencil only
+        if (gdi::formatInfo(depthTex->desc.format).hasDepth)
+            ri.pDepthAttachment = &depth;  // S8: stencil only
         if (gdi::formatInfo(depthTex->desc.format).hasStencil) {
             stencil = depth;
-            stencil.resolveMode = depthResolveTex ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
+            stencil.resolveMode =
+                depthResolveTex ? VK_RESOLVE_MODE_SAMPLE_ZERO_BIT : VK_RESOLVE_MODE_NONE;
             ri.pStencilAttachment = &stencil;
         }
     }
@@ -465,8 +520,7 @@ void VulkanCommandList::beginPassFeedback(const gdi::RenderPassDesc& desc) {
         const Texture& t = dev_.texture(h);
         return gdi::validate::bindingSpanOf(h.id, t, t.name);
     };
-    if (feedback_.beginPass(desc, spanOf, textures))
-        refreshFeedback();
+    if (feedback_.beginPass(desc, spanOf, textures)) refreshFeedback();
 }
 
 void VulkanCommandList::refreshFeedback() {
@@ -474,7 +528,9 @@ void VulkanCommandList::refreshFeedback() {
     for (uint64_t m = feedback_.reaching(); m; m &= m - 1) {
         Binding& b = bindings_[std::countr_zero(m)];
         if (!holdsTexture(b.kind)) continue;  // a buffer replaced the texture
-        b.kind = feedback_.refused(uint32_t(std::countr_zero(m)), writesDepth) ? b.kind | kFeedback : b.kind & ~kFeedback;
+        b.kind = feedback_.refused(uint32_t(std::countr_zero(m)), writesDepth)
+                     ? b.kind | kFeedback
+                     : b.kind & ~kFeedback;
     }
     dirtySlots_ |= feedback_.reaching();
 }
@@ -499,7 +555,8 @@ void VulkanCommandList::unbindAll() {
 // A call that a pass of secondary lists (primary side) or an ended secondary list refuses.
 void VulkanCommandList::restrictedCall(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
-    if (ended_) throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
+    if (ended_)
+        throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
     gdi::validate::onlyExecuteSecondary(what);
 }
 
@@ -512,8 +569,10 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     beginPassFeedback(desc);  // no texture is bound yet: checks the attachments
     lease_ = dev_.acquireSecondary();
     std::array<VkFormat, 8> formats{};
-    for (uint32_t i = 0; i < signature_.colorCount; ++i) formats[i] = toVkFormat(signature_.colors[i]);
-    VkCommandBufferInheritanceRenderingInfo ir{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_RENDERING_INFO};
+    for (uint32_t i = 0; i < signature_.colorCount; ++i)
+        formats[i] = toVkFormat(signature_.colors[i]);
+    VkCommandBufferInheritanceRenderingInfo ir{
+        VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_RENDERING_INFO};
     ir.colorAttachmentCount = signature_.colorCount;
     ir.pColorAttachmentFormats = formats.data();
     if (signature_.depth != gdi::Format::Undefined) {
@@ -525,9 +584,11 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     VkCommandBufferInheritanceInfo ii{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
     ii.pNext = &ir;
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT | VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT;
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT |
+               VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT;
     bi.pInheritanceInfo = &ii;
-    if (VkResult r = nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(lease_.cb, &bi); });
+    if (VkResult r = nativeAllocation("vkBeginCommandBuffer",
+                                      [&] { return vkBeginCommandBuffer(lease_.cb, &bi); });
         r != VK_SUCCESS) {
         dev_.releaseSecondary(std::span(&lease_, 1), 0);
         lease_ = {};
@@ -549,8 +610,11 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
 void VulkanCommandList::endSecondary() {
     checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");
-    if (debugDepth_ != 0) throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) + " debug group(s) not popped");
-    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }), "vkEndCommandBuffer");
+    if (debugDepth_ != 0)
+        throw gdi::Error("endSecondary: " + std::to_string(debugDepth_) +
+                         " debug group(s) not popped");
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb_); }),
+          "vkEndCommandBuffer");
     ended_ = restricted_ = true;
     endPassFeedback();
     setNotReady();
@@ -562,9 +626,12 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
     std::vector<VulkanCommandList*> parts;
     for (size_t i = 0; i < lists.size(); ++i) {
         auto* l = dynamic_cast<VulkanCommandList*>(lists[i]);
-        if (!l || &l->dev_ != &dev_) throw gdi::Error("executeSecondary: list " + std::to_string(i) + " belongs to another device");
+        if (!l || &l->dev_ != &dev_)
+            throw gdi::Error("executeSecondary: list " + std::to_string(i) +
+                             " belongs to another device");
         if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
-        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_, l->signature_, signature_, i);
+        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_,
+                                         l->signature_, signature_, i);
         parts.push_back(l);
     }
     std::vector<VkCommandBuffer> cbs;
@@ -606,7 +673,8 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     ensureRecording("setPipeline");
     checkUnrestricted("setPipeline");
     Pipeline& p = usedPipeline(h);
-    if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
+    if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS)
+        gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
     if (p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) {
         vkCmdSetBlendConstants(cb_, p.blendConstant.data());
@@ -615,7 +683,8 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     // The list's constants, whatever the previous pipeline was (a list's values outlive it).
-    if (p.constantBytes) vkCmdPushConstants(cb_, p.layout, p.constantStages, 0, p.constantBytes, constants_.data());
+    if (p.constantBytes)
+        vkCmdPushConstants(cb_, p.layout, p.constantStages, 0, p.constantBytes, constants_.data());
     pipeline_ = &p;
     requiredSlots_ = p.requiredSlots;
     layout_ = p.layout;
@@ -625,12 +694,15 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     vertexInputs_.setPipeline(computeBound_ ? nullptr : &p.vertexBindings, &p.name);
     updateReadyToDraw();
     // By handle id, not address: a destroyed pipeline's slot (same address) may hold a new one.
-    if (writesFor_ != h.id) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
+    if (writesFor_ !=
+        h.id) {  // writes_[slot] = the pipeline's write for slot, pointing at bindings_[slot]
         for (uint64_t m = p.requiredSlots; m; m &= m - 1) {
             const uint32_t slot = uint32_t(std::countr_zero(m));
             writes_[slot] = p.writeTemplates[slot];
-            expectedKinds_[slot] = kindCode(p.writeTemplates[slot].descriptorType, p.slotDimensions[slot]);
-            writes_[slot].pBufferInfo = &bindings_[slot].buffer;  // the one the type does not use is ignored
+            expectedKinds_[slot] =
+                kindCode(p.writeTemplates[slot].descriptorType, p.slotDimensions[slot]);
+            writes_[slot].pBufferInfo =
+                &bindings_[slot].buffer;  // the one the type does not use is ignored
             writes_[slot].pImageInfo = &bindings_[slot].image;
         }
         writesFor_ = h.id;
@@ -656,7 +728,8 @@ void VulkanCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
     std::memcpy(constants_.data() + offset, data.data(), data.size());
     if (pipeline_ && offset < pipeline_->constantBytes)
         vkCmdPushConstants(cb_, layout_, pipeline_->constantStages, offset,
-                           std::min(uint32_t(data.size()), pipeline_->constantBytes - offset), data.data());
+                           std::min(uint32_t(data.size()), pipeline_->constantBytes - offset),
+                           data.data());
 }
 
 void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
@@ -710,14 +783,16 @@ void VulkanCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type,
     checkUnrestricted("setIndexBuffer");
     Buffer& b = usedBuffer(h);
     vertexInputs_.setIndexBuffer(b.desc, b.name, type, offset);
-    vkCmdBindIndexBuffer(cb_, b.buffer, offset, type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
+    vkCmdBindIndexBuffer(cb_, b.buffer, offset,
+                         type == gdi::IndexType::U16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32);
 }
 
 // The setters below are the per-object path: the fast path is a leaf (no call, no saved
 // registers) that takes the arguments as they are when all of them are plainly valid; the
 // checked path handles the rest and owns every error message.
 template <VkDescriptorType kType>
-inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                         uint64_t size) {
     // The per-object case binds one buffer at many offsets: the buffer the checked path passed
     // last, with nothing destroyed since, is still alive and of the usage checked then, so only
     // the range is checked here (no handle lookup). Anything else goes to the checked path, which
@@ -727,34 +802,42 @@ inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uin
     if (h.id != last.id || last.destroyEpoch != dev_.destroyEpoch()) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
     const gdi::validate::BindingLimits& limits = kind == 0 ? uniformLimits_ : storageLimits_;
-    const uint64_t bindSize = gdi::validate::plainBindingSize(slot, last.size, offset, size, limits);
+    const uint64_t bindSize =
+        gdi::validate::plainBindingSize(slot, last.size, offset, size, limits);
     if (!bindSize) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
     bindBuffer(slot, kType, last.buffer, offset, bindSize);
 }
 
 template <VkDescriptorType kType>
-void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
-    const char* what = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
+void VulkanCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                         uint64_t size) {
+    const char* what =
+        kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? "setUniformBuffer" : "setStorageBuffer";
     checkDevice(what);
     if (slot >= 64) slotOutOfRange(what, slot);
-    const uint64_t epoch = dev_.destroyEpoch();  // before the lookup: a destroy after it invalidates
+    const uint64_t epoch =
+        dev_.destroyEpoch();  // before the lookup: a destroy after it invalidates
     Buffer& b = usedBuffer(h);
     const bool uniform = kType == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    gdi::validate::bufferUsage(b.desc, uniform ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage, b.name, what);
+    gdi::validate::bufferUsage(
+        b.desc, uniform ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage, b.name, what);
     const gdi::validate::BindingLimits& limits = uniform ? uniformLimits_ : storageLimits_;
     if (size == 0) size = std::min(b.desc.size - std::min(offset, b.desc.size), limits.maxRange);
     gdi::validate::bindingRange(b.desc, offset, size, what);
     gdi::validate::bindingLimits(offset, size, limits, what);
-    lastBound_[uniform ? 0 : 1] = {.id = h.id, .destroyEpoch = epoch, .buffer = b.buffer, .size = b.desc.size};
+    lastBound_[uniform ? 0 : 1] = {
+        .id = h.id, .destroyEpoch = epoch, .buffer = b.buffer, .size = b.desc.size};
     bindBuffer(slot, kType, b.buffer, offset, size);
 }
 
-void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+void VulkanCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                         uint64_t size) {
     setBuffer<VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER>(slot, h, offset, size);
 }
 
-void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+void VulkanCommandList::setStorageBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                         uint64_t size) {
     setBuffer<VK_DESCRIPTOR_TYPE_STORAGE_BUFFER>(slot, h, offset, size);
 }
 
@@ -765,32 +848,42 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
     Sampler& s = usedSampler(sh);
     if (!any(t.desc.usage, gdi::TextureUsage::Sampled))
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
-    if (s.filtersLinearly && !t.linearFilter) gdi::validate::notFilterable(t.name, t.desc.format, s.name);
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))), {},
-                       {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
-    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.name, s.readsMips ? std::nullopt : std::optional(0u));
+    if (s.filtersLinearly && !t.linearFilter)
+        gdi::validate::notFilterable(t.name, t.desc.format, s.name);
+    bindings_[slot] = {
+        kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))),
+        {},
+        {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    const auto span = gdi::validate::bindingSpanOf(th.id, t, t.name,
+                                                   s.readsMips ? std::nullopt : std::optional(0u));
     if (feedback_.bind(slot, span, false)) refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint32_t mip) {
     checkDevice("setStorageTexture");
-    if (slot >= 64) throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
+    if (slot >= 64)
+        throw gdi::Error("setStorageTexture: slot " + std::to_string(slot) + " out of range");
     Texture& t = usedTexture(th);
     if (!any(t.desc.usage, gdi::TextureUsage::Storage))
         throw gdi::Error("setStorageTexture: texture '" + t.name + "' lacks Storage usage");
     if (mip >= t.desc.mipLevels) throw gdi::Error("setStorageTexture: mip level out of range");
-    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))), {},
-                       {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
-    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.name, mip), true)) refreshFeedback();
+    bindings_[slot] = {
+        kindCode(VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, uint8_t(1 + uint8_t(t.desc.dimension))),
+        {},
+        {VK_NULL_HANDLE, t.mipViews[mip], VK_IMAGE_LAYOUT_GENERAL}};
+    if (feedback_.bind(slot, gdi::validate::bindingSpanOf(th.id, t, t.name, mip), true))
+        refreshFeedback();
     dirtySlots_ |= uint64_t(1) << slot;
 }
 
 void VulkanCommandList::notReadyToDraw(const char* what) const {
     checkUnrestricted(what);
     if (!inPass_) fail((std::string(what) + " outside a render pass").c_str());
-    if (!pipeline_) fail((std::string(what) + " without a pipeline (call setPipeline first)").c_str());
-    if (computeBound_) wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
+    if (!pipeline_)
+        fail((std::string(what) + " without a pipeline (call setPipeline first)").c_str());
+    if (computeBound_)
+        wrongPipelineKind((std::string(what) + " with compute").c_str(), pipeline_->name);
     vertexInputs_.notReady(what);
 }
 
@@ -809,10 +902,12 @@ void VulkanCommandList::badBindings() const {
         const uint32_t slot = uint32_t(std::countr_zero(m));
         const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
         if ((bound & 0xFFFFFFu) != (expected & 0xFFFFFFu))
-            gdi::validate::wrongBindingKindFailed(slot, kindOf(VkDescriptorType(expected & 0xFFFFFFu)),
-                                                  kindOf(VkDescriptorType(bound & 0xFFFFFFu)), pipeline_->name.c_str());
+            gdi::validate::wrongBindingKindFailed(
+                slot, kindOf(VkDescriptorType(expected & 0xFFFFFFu)),
+                kindOf(VkDescriptorType(bound & 0xFFFFFFu)), pipeline_->name.c_str());
         if (!slotAcceptable(slot))
-            gdi::validate::wrongTextureDimensionFailed(slot, uint8_t(expected >> 24), uint8_t(bound >> 24), pipeline_->name.c_str());
+            gdi::validate::wrongTextureDimensionFailed(
+                slot, uint8_t(expected >> 24), uint8_t(bound >> 24), pipeline_->name.c_str());
     }
     fail("internal: badBindings found nothing wrong");
 }
@@ -845,15 +940,16 @@ void VulkanCommandList::pushGathered(uint64_t push) {
 
 // Draws: one state check (render pass open, graphics pipeline bound), then only the slots
 // that changed since the last draw are checked and pushed.
-void VulkanCommandList::drawRefused(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
-                                    uint32_t firstInstance) const {
+void VulkanCommandList::drawRefused(uint32_t vertexCount, uint32_t instanceCount,
+                                    uint32_t firstVertex, uint32_t firstInstance) const {
     if (!readyToDraw_) notReadyToDraw("draw");
     vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
     fail("internal: drawRefused found nothing wrong");
 }
 
 // One comparison covers the draw state and the vertices (drawVertexLimit_), one the instances.
-void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) {
+void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                             uint32_t firstInstance) {
     if (int64_t(firstVertex) + vertexCount > drawVertexLimit_ ||
         uint64_t(firstInstance) + instanceCount > vertexInputs_.instanceCapacity()) [[unlikely]]
         drawRefused(vertexCount, instanceCount, firstVertex, firstInstance);
@@ -865,37 +961,46 @@ void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint3
     vkCmdDraw(cb_, draw_[0], draw_[1], draw_[2], draw_[3]);
 }
 
-void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
-                                    int32_t baseVertex, uint32_t firstInstance) {
+void VulkanCommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount,
+                                    uint32_t firstIndex, int32_t baseVertex,
+                                    uint32_t firstInstance) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw("drawIndexed");
     vertexInputs_.drawIndexed(indexCount, instanceCount, firstIndex, firstInstance);
-    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    if (const uint64_t push = dirtySlots_ & requiredSlots_)
+        pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     vkCmdDrawIndexed(cb_, indexCount, instanceCount, firstIndex, baseVertex, firstInstance);
 }
 
 // Indirect draws: the buffer checks of validate::indirect, then the same binding push as draw().
-const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
+const Buffer& VulkanCommandList::indirectArgs(gdi::BufferHandle h, uint64_t offset,
+                                              uint32_t drawCount, uint32_t stride,
                                               uint32_t recordSize, const char* what) {
     if (!readyToDraw_) [[unlikely]]
         notReadyToDraw(what);
     const Buffer& b = usedBuffer(h);
-    gdi::validate::indirect(b.desc, b.name, offset, drawCount, stride, recordSize, dev_.info().features, what);
-    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    gdi::validate::indirect(b.desc, b.name, offset, drawCount, stride, recordSize,
+                            dev_.info().features, what);
+    if (const uint64_t push = dirtySlots_ & requiredSlots_)
+        pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
     return b;
 }
 
-const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what) {
+const Buffer& VulkanCommandList::countBuffer(gdi::BufferHandle h, uint64_t offset,
+                                             const char* what) {
     checkDevice(what);
     if (!dev_.info().features.drawIndirectCount)
-        throw gdi::Error(std::string(what) + ": not supported on this device (DeviceFeatures::drawIndirectCount)");
+        throw gdi::Error(std::string(what) +
+                         ": not supported on this device (DeviceFeatures::drawIndirectCount)");
     const Buffer& b = usedBuffer(h);
     gdi::validate::indirect(b.desc, b.name, offset, 1, 4, 4, dev_.info().features, what);
     return b;
 }
 
-void VulkanCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
-    const Buffer& b = indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirect");
+void VulkanCommandList::drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                                     uint32_t stride) {
+    const Buffer& b = indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndirectArgs),
+                                   "drawIndirect");
     vkCmdDrawIndirect(cb_, b.buffer, offset, drawCount, stride);
 }
 
@@ -906,26 +1011,33 @@ void VulkanCommandList::indexedIndirect(const char* what) const {
     vertexInputs_.indexedIndirect(what);
 }
 
-void VulkanCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) {
+void VulkanCommandList::drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset,
+                                            uint32_t drawCount, uint32_t stride) {
     indexedIndirect("drawIndexedIndirect");
-    const Buffer& b = indirectArgs(args, offset, drawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirect");
+    const Buffer& b = indirectArgs(args, offset, drawCount, stride,
+                                   sizeof(gdi::DrawIndexedIndirectArgs), "drawIndexedIndirect");
     vkCmdDrawIndexedIndirect(cb_, b.buffer, offset, drawCount, stride);
 }
 
-void VulkanCommandList::drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
-                                          uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+void VulkanCommandList::drawIndirectCount(gdi::BufferHandle args, uint64_t offset,
+                                          gdi::BufferHandle count, uint64_t countOffset,
+                                          uint32_t maxDrawCount, uint32_t stride) {
     const Buffer& c = countBuffer(count, countOffset, "drawIndirectCount");
-    const Buffer& b = indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndirectArgs), "drawIndirectCount");
+    const Buffer& b = indirectArgs(args, offset, maxDrawCount, stride,
+                                   sizeof(gdi::DrawIndirectArgs), "drawIndirectCount");
     dev_.cmdDrawIndirectCount(cb_, b.buffer, offset, c.buffer, countOffset, maxDrawCount, stride);
 }
 
-void VulkanCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
-                                                 uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) {
+void VulkanCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset,
+                                                 gdi::BufferHandle count, uint64_t countOffset,
+                                                 uint32_t maxDrawCount, uint32_t stride) {
     indexedIndirect("drawIndexedIndirectCount");
     const Buffer& c = countBuffer(count, countOffset, "drawIndexedIndirectCount");
-    const Buffer& b = indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs),
-                                   "drawIndexedIndirectCount");
-    dev_.cmdDrawIndexedIndirectCount(cb_, b.buffer, offset, c.buffer, countOffset, maxDrawCount, stride);
+    const Buffer& b =
+        indirectArgs(args, offset, maxDrawCount, stride, sizeof(gdi::DrawIndexedIndirectArgs),
+                     "drawIndexedIndirectCount");
+    dev_.cmdDrawIndexedIndirectCount(cb_, b.buffer, offset, c.buffer, countOffset, maxDrawCount,
+                                     stride);
 }
 
 void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
@@ -934,9 +1046,11 @@ void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset
     if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatchIndirect with graphics pipeline '" + pipeline_->name + "'");
     const Buffer& b = usedBuffer(args);
-    gdi::validate::indirect(b.desc, b.name, offset, 1, sizeof(gdi::DispatchIndirectArgs), sizeof(gdi::DispatchIndirectArgs),
-                            dev_.info().features, "dispatchIndirect");
-    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
+    gdi::validate::indirect(b.desc, b.name, offset, 1, sizeof(gdi::DispatchIndirectArgs),
+                            sizeof(gdi::DispatchIndirectArgs), dev_.info().features,
+                            "dispatchIndirect");
+    if (const uint64_t push = dirtySlots_ & requiredSlots_)
+        pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
     barrierIfWritten();
     vkCmdDispatchIndirect(cb_, b.buffer, offset);
     written_ = true;
@@ -948,14 +1062,15 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
         throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->name + "'");
     if (!pipeline_) fail("dispatch without a pipeline (call setPipeline first)");
     gdi::validate::dispatchSize(x, y, z, dev_.info().limits);
-    if (const uint64_t push = dirtySlots_ & requiredSlots_) pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
+    if (const uint64_t push = dirtySlots_ & requiredSlots_)
+        pushDirty(push, VK_PIPELINE_BIND_POINT_COMPUTE);
     barrierIfWritten();
     vkCmdDispatch(cb_, x, y, z);
     written_ = true;
 }
 
-void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
-                                   uint64_t size) {
+void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src,
+                                   uint64_t srcOffset, uint64_t size) {
     outsidePass("copyBuffer");
     Buffer& d = usedBuffer(dst);
     Buffer& s = usedBuffer(src);
@@ -968,7 +1083,8 @@ void VulkanCommandList::copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gd
     if (d.desc.access == gdi::MemoryAccess::Readback) hostReadable(d);
 }
 
-void VulkanCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size, uint32_t value) {
+void VulkanCommandList::clearBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size,
+                                    uint32_t value) {
     outsidePass("clearBuffer");
     Buffer& b = usedBuffer(h);
     const uint64_t bytes = gdi::validate::clearRange(b.desc, b.name, offset, size);
@@ -1004,27 +1120,32 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, gdi::TextureHandle s
 }
 
 // One whole subresource (checked by the shared rules) as a copy region.
-static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource at, const Buffer& b, uint64_t offset,
-                                             bool toTexture, const char* what) {
-    gdi::validate::subresourceBufferCopy(t.desc, t.name, at, b.desc, b.name, offset, toTexture, what);
+static VkBufferImageCopy bufferTextureRegion(const Texture& t, gdi::Subresource at, const Buffer& b,
+                                             uint64_t offset, bool toTexture, const char* what) {
+    gdi::validate::subresourceBufferCopy(t.desc, t.name, at, b.desc, b.name, offset, toTexture,
+                                         what);
     return copyRegion(t.desc, at, offset);
 }
 
-void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) {
+void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at,
+                                            gdi::BufferHandle src, uint64_t srcOffset) {
     outsidePass("copyBufferToTexture");
     Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
-    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, srcOffset, true, "copyBufferToTexture");
+    const VkBufferImageCopy r =
+        bufferTextureRegion(t, at, b, srcOffset, true, "copyBufferToTexture");
     barrierIfWritten();
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     written_ = true;
 }
 
-void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) {
+void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset,
+                                            gdi::TextureHandle src, gdi::Subresource at) {
     outsidePass("copyTextureToBuffer");
     Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
-    const VkBufferImageCopy r = bufferTextureRegion(t, at, b, dstOffset, false, "copyTextureToBuffer");
+    const VkBufferImageCopy r =
+        bufferTextureRegion(t, at, b, dstOffset, false, "copyTextureToBuffer");
     barrierIfWritten();
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &r);
     written_ = true;
@@ -1032,26 +1153,28 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstO
 }
 
 // Regions (validated and resolved by the shared rules, then one copy each).
-void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
+void VulkanCommandList::copyBufferToTexture(gdi::TextureHandle dst,
+                                            const gdi::TextureRegion& region, gdi::BufferHandle src,
                                             const gdi::TexelLayout& layout) {
     outsidePass("copyBufferToTexture");
     Texture& t = copiedTexture(dst);
     Buffer& b = usedBuffer(src);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region, layout, true,
-                                                        "copyBufferToTexture");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region,
+                                                           layout, true, "copyBufferToTexture");
     barrierIfWritten();
     const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyBufferToImage(cb_, b.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
     written_ = true;
 }
 
-void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
+void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout,
+                                            gdi::TextureHandle src,
                                             const gdi::TextureRegion& region) {
     outsidePass("copyTextureToBuffer");
     Texture& t = copiedTexture(src);
     Buffer& b = usedBuffer(dst);
-    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region, layout, false,
-                                                        "copyTextureToBuffer");
+    const auto [r, l] = gdi::validate::bufferTextureRegion(t.desc, t.name, b.desc, b.name, region,
+                                                           layout, false, "copyTextureToBuffer");
     barrierIfWritten();
     const VkBufferImageCopy c = regionCopy(t.desc, r, l);
     vkCmdCopyImageToBuffer(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, b.buffer, 1, &c);
@@ -1059,12 +1182,13 @@ void VulkanCommandList::copyTextureToBuffer(gdi::BufferHandle dst, const gdi::Te
     if (b.desc.access == gdi::MemoryAccess::Readback) hostReadable(b);
 }
 
-void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
-                                    const gdi::TextureRegion& srcRegion) {
+void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                                    gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) {
     outsidePass("copyTexture");
     Texture& d = copiedTexture(dst);
     Texture& s = copiedTexture(src);
-    const auto [dr, sr] = gdi::validate::textureCopy(d.desc, d.name, dstAt, dst == src, s.desc, s.name, srcRegion);
+    const auto [dr, sr] =
+        gdi::validate::textureCopy(d.desc, d.name, dstAt, dst == src, s.desc, s.name, srcRegion);
     barrierIfWritten();
     const VkImageCopy c = imageCopy(d.desc, dr, s.desc, sr);
     vkCmdCopyImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
@@ -1080,7 +1204,8 @@ void VulkanCommandList::hostReadable(const Buffer& b) {
     mb.srcQueueFamilyIndex = mb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     mb.buffer = b.buffer;
     mb.size = VK_WHOLE_SIZE;
-    vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &mb, 0, nullptr);
+    vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
+                         nullptr, 1, &mb, 0, nullptr);
 }
 
 // Each level is a linear blit of the one above (an exact 2x2 or 2x2x2 average where sizes
@@ -1090,23 +1215,28 @@ void VulkanCommandList::generateMips(gdi::TextureHandle h) {
     Texture& t = copiedTexture(h);
     gdi::validate::mipGeneration(t.desc, t.name);
     if (!dev_.linearBlit(t.desc.format))
-        throw gdi::Error("generateMips: format " + std::string(gdi::formatInfo(t.desc.format).name) +
+        throw gdi::Error("generateMips: format " +
+                         std::string(gdi::formatInfo(t.desc.format).name) +
                          " cannot be filtered by a blit on this device");
     barrierIfWritten();
     const bool is3D = t.desc.dimension == gdi::TextureDimension::Texture3D;
     for (uint32_t m = 1; m < t.desc.mipLevels; ++m) {
-        const gdi::validate::Extent3 a = gdi::validate::mipExtent(t.desc, m - 1), b = gdi::validate::mipExtent(t.desc, m);
+        const gdi::validate::Extent3 a = gdi::validate::mipExtent(t.desc, m - 1),
+                                     b = gdi::validate::mipExtent(t.desc, m);
         VkImageBlit blit{};
         blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, arrayLayers(t.desc)};
         blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, arrayLayers(t.desc)};
-        blit.srcOffsets[1] = {int32_t(a.width), int32_t(a.height), is3D ? int32_t(a.depthOrLayers) : 1};
-        blit.dstOffsets[1] = {int32_t(b.width), int32_t(b.height), is3D ? int32_t(b.depthOrLayers) : 1};
-        vkCmdBlitImage(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &blit, VK_FILTER_LINEAR);
+        blit.srcOffsets[1] = {int32_t(a.width), int32_t(a.height),
+                              is3D ? int32_t(a.depthOrLayers) : 1};
+        blit.dstOffsets[1] = {int32_t(b.width), int32_t(b.height),
+                              is3D ? int32_t(b.depthOrLayers) : 1};
+        vkCmdBlitImage(cb_, t.image, VK_IMAGE_LAYOUT_GENERAL, t.image, VK_IMAGE_LAYOUT_GENERAL, 1,
+                       &blit, VK_FILTER_LINEAR);
         VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
         mb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0,
-                             nullptr);
+        vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                             1, &mb, 0, nullptr, 0, nullptr);
     }
     written_ = true;
 }
@@ -1125,7 +1255,8 @@ void VulkanCommandList::endTimer(gdi::TimerHandle h) {
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     Timer& t = usedTimer(h);
     queries_.endTimer(h.id);
-    vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(), t.firstQuery + 1);
+    vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, dev_.queryPool(),
+                        t.firstQuery + 1);
 }
 
 // Queries: the device resets every query a submission uses before it runs (VulkanDevice::submit).
@@ -1141,7 +1272,8 @@ QuerySet& VulkanCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* wha
 void VulkanCommandList::beginQuery(gdi::QuerySetHandle h, uint32_t index) {
     QuerySet& q = usedQuerySet(h, "beginQuery");
     queries_.begin(q.desc, q.name, h.id, index, inPass_);
-    vkCmdBeginQuery(cb_, q.pool, index, q.desc.type == gdi::QueryType::Occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+    vkCmdBeginQuery(cb_, q.pool, index,
+                    q.desc.type == gdi::QueryType::Occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
 }
 
 void VulkanCommandList::endQuery(gdi::QuerySetHandle h, uint32_t index) {
@@ -1156,8 +1288,8 @@ void VulkanCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, q.pool, index);
 }
 
-void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count, gdi::BufferHandle dst,
-                                       uint64_t dstOffset) {
+void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
+                                       gdi::BufferHandle dst, uint64_t dstOffset) {
     outsidePass("resolveQueries");
     QuerySet& q = usedQuerySet(h, "resolveQueries");
     Buffer& b = usedBuffer(dst);

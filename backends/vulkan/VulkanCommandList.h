@@ -11,7 +11,9 @@ namespace fe::vk {
 class VulkanCommandList final : public gdi::CommandList {
 public:
     explicit VulkanCommandList(VulkanDevice& device);
-    bool madeBy(const VulkanDevice& d) const { return !orphaned_ && &dev_ == &d; }  // a new device may reuse the address
+    bool madeBy(const VulkanDevice& d) const {
+        return !orphaned_ && &dev_ == &d;
+    }  // a new device may reuse the address
     ~VulkanCommandList() override;
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
@@ -21,49 +23,58 @@ public:
     void setViewport(const gdi::Viewport& viewport) override;
     void setScissor(const gdi::Rect& rect) override;
     void setConstants(uint32_t offset, gdi::ByteSpan data) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region, gdi::BufferHandle src,
-                             const gdi::TexelLayout& layout) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout, gdi::TextureHandle src,
-                             const gdi::TextureRegion& region) override;
-    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt, gdi::TextureHandle src,
-                     const gdi::TextureRegion& srcRegion) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region,
+                             gdi::BufferHandle src, const gdi::TexelLayout& layout) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout,
+                             gdi::TextureHandle src, const gdi::TextureRegion& region) override;
+    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                     gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) override;
     void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
     void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;
-    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count, gdi::BufferHandle dst,
-                        uint64_t dstOffset) override;
+    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
+                        gdi::BufferHandle dst, uint64_t dstOffset) override;
     void setBlendConstant(const std::array<float, 4>& rgba) override;
     void setStencilReference(uint8_t reference) override;
     void setDepthBias(float constant, float slope, float clamp) override;
     void setVertexBuffer(uint32_t index, gdi::BufferHandle buffer, uint64_t offset) override;
     void setIndexBuffer(gdi::BufferHandle buffer, gdi::IndexType type, uint64_t offset) override;
-    void setUniformBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
-    void setStorageBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    void setUniformBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset,
+                          uint64_t size) override;
+    void setStorageBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset,
+                          uint64_t size) override;
     void setTexture(uint32_t slot, gdi::TextureHandle texture, gdi::SamplerHandle sampler) override;
     void setStorageTexture(uint32_t slot, gdi::TextureHandle texture, uint32_t mipLevel) override;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) override;
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t baseVertex,
-                     uint32_t firstInstance) override;
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+              uint32_t firstInstance) override;
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                     int32_t baseVertex, uint32_t firstInstance) override;
     void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
-    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount, uint32_t stride) override;
-    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
-                           uint32_t maxDrawCount, uint32_t stride) override;
-    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count, uint64_t countOffset,
-                                  uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                      uint32_t stride) override;
+    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
+                             uint32_t stride) override;
+    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                           uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) override;
+    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
+                                  uint64_t countOffset, uint32_t maxDrawCount,
+                                  uint32_t stride) override;
     void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override;
     void generateMips(gdi::TextureHandle texture) override;
-    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src, uint64_t srcOffset,
-                    uint64_t size) override;
+    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src,
+                    uint64_t srcOffset, uint64_t size) override;
     void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mipLevel) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src, uint64_t srcOffset) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src, gdi::Subresource at) override;
+    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src,
+                             uint64_t srcOffset) override;
+    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src,
+                             gdi::Subresource at) override;
     void beginTimer(gdi::TimerHandle timer) override;
     void endTimer(gdi::TimerHandle timer) override;
     void pushDebugGroup(const char* name) override;
     void popDebugGroup() override;
     void insertDebugLabel(const char* name) override;
-    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size, uint32_t value) override;
+    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size,
+                     uint32_t value) override;
     void beginSecondary(const gdi::RenderPassDesc& pass) override;
     void endSecondary() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;
@@ -79,7 +90,8 @@ public:
     VkCommandBuffer finish();
     void submitted(gdi::FenceValue value);
     static void fullBarrier(VkCommandBuffer cb);
-    static void toGeneral(VkCommandBuffer cb, VkImage image, gdi::Format format);  // every subresource
+    static void toGeneral(VkCommandBuffer cb, VkImage image,
+                          gdi::Format format);  // every subresource
     void discardTexture(gdi::TextureHandle texture) override;
     void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
@@ -101,17 +113,37 @@ private:
         if (id != lastBuffer_) [[unlikely]]
             note(UsedKind::Buffer, lastBuffer_ = id);
     }
-    Buffer& usedBuffer(gdi::BufferHandle h) { Buffer& b = dev_.buffer(h); noteBuffer(h.id); return b; }
-    Texture& usedTexture(gdi::TextureHandle h) { Texture& t = dev_.texture(h); note(UsedKind::Texture, h.id); return t; }
+    Buffer& usedBuffer(gdi::BufferHandle h) {
+        Buffer& b = dev_.buffer(h);
+        noteBuffer(h.id);
+        return b;
+    }
+    Texture& usedTexture(gdi::TextureHandle h) {
+        Texture& t = dev_.texture(h);
+        note(UsedKind::Texture, h.id);
+        return t;
+    }
     // Copies, mips, discards and barriers address the texture itself, never a view of it.
     Texture& copiedTexture(gdi::TextureHandle h) {
         Texture& t = usedTexture(h);
         gdi::validate::notAView(t.viewOf != 0, t.name, "copy, mip generation or barrier");
         return t;
     }
-    Sampler& usedSampler(gdi::SamplerHandle h) { Sampler& s = dev_.sampler(h); note(UsedKind::Sampler, h.id); return s; }
-    Pipeline& usedPipeline(gdi::PipelineHandle h) { Pipeline& p = dev_.pipeline(h); note(UsedKind::Pipeline, h.id); return p; }
-    Timer& usedTimer(gdi::TimerHandle h) { Timer& t = dev_.timer(h); note(UsedKind::Timer, h.id); return t; }
+    Sampler& usedSampler(gdi::SamplerHandle h) {
+        Sampler& s = dev_.sampler(h);
+        note(UsedKind::Sampler, h.id);
+        return s;
+    }
+    Pipeline& usedPipeline(gdi::PipelineHandle h) {
+        Pipeline& p = dev_.pipeline(h);
+        note(UsedKind::Pipeline, h.id);
+        return p;
+    }
+    Timer& usedTimer(gdi::TimerHandle h) {
+        Timer& t = dev_.timer(h);
+        note(UsedKind::Timer, h.id);
+        return t;
+    }
     QuerySet& usedQuerySet(gdi::QuerySetHandle h, const char* what);
     void checkAlive() const;
     struct PassTextures {
@@ -147,19 +179,22 @@ private:
     void barrierIfWritten();
     void pushDirty(uint64_t push, VkPipelineBindPoint bindPoint);
     void pushGathered(uint64_t push);
-    const Buffer& indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
-                               uint32_t recordSize, const char* what);
+    const Buffer& indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount,
+                               uint32_t stride, uint32_t recordSize, const char* what);
     const Buffer& countBuffer(gdi::BufferHandle h, uint64_t offset, const char* what);
     void indexedIndirect(const char* what) const;
     [[noreturn, gnu::cold, gnu::noinline]] void badBindings() const;
     // A slot's kind: its descriptor type, and for textures 1 + TextureDimension in the top byte.
-    static uint32_t kindCode(VkDescriptorType type, uint8_t dimension = 0) { return uint32_t(type) | uint32_t(dimension) << 24; }
+    static uint32_t kindCode(VkDescriptorType type, uint8_t dimension = 0) {
+        return uint32_t(type) | uint32_t(dimension) << 24;
+    }
     // The slot holds exactly what the pipeline declares (one compare per pushed slot); when not,
     // slotAcceptable decides: a slot no shader gives a texture kind takes any kind of texture.
     bool slotMatches(uint32_t slot) const { return bindings_[slot].kind == expectedKinds_[slot]; }
     bool slotAcceptable(uint32_t slot) const {
         const uint32_t bound = bindings_[slot].kind, expected = expectedKinds_[slot];
-        return (bound & 0xFFFFFFu) == (expected & 0xFFFFFFu) && (!(expected >> 24) || bound == expected);
+        return (bound & 0xFFFFFFu) == (expected & 0xFFFFFFu) &&
+               (!(expected >> 24) || bound == expected);
     }
     void checkSlots(uint64_t slots) const {
         for (; slots; slots &= slots - 1)
@@ -173,7 +208,8 @@ private:
     static constexpr uint32_t kFeedback = 1u << 23;
     static bool holdsTexture(uint32_t kind) {
         const uint32_t type = kind & 0xFFFFFFu & ~kFeedback;
-        return type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER || type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        return type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER ||
+               type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
     void refreshFeedback();
     void beginPassFeedback(const gdi::RenderPassDesc& desc);
@@ -182,10 +218,14 @@ private:
     // so that every draw takes the checked path, which names the problem.
     void updateReadyToDraw() {
         readyToDraw_ = inPass_ && pipeline_ && !computeBound_ && vertexInputs_.ready();
-        drawVertexLimit_ = readyToDraw_ ? int64_t(std::min<uint64_t>(vertexInputs_.vertexCapacity(), INT64_MAX)) : -1;
+        drawVertexLimit_ =
+            readyToDraw_ ? int64_t(std::min<uint64_t>(vertexInputs_.vertexCapacity(), INT64_MAX))
+                         : -1;
     }
     void setNotReady() { readyToDraw_ = false, drawVertexLimit_ = -1; }
-    [[noreturn, gnu::cold, gnu::noinline]] void drawRefused(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+    [[noreturn, gnu::cold, gnu::noinline]] void drawRefused(uint32_t vertexCount,
+                                                            uint32_t instanceCount,
+                                                            uint32_t firstVertex,
                                                             uint32_t firstInstance) const;
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
@@ -193,8 +233,10 @@ private:
     template <VkDescriptorType kType>
     void setBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
     template <VkDescriptorType kType>
-    [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset, uint64_t size);
-    void bindBuffer(uint32_t slot, VkDescriptorType type, VkBuffer buffer, uint64_t offset, uint64_t size) {
+    [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle buffer,
+                                            uint64_t offset, uint64_t size);
+    void bindBuffer(uint32_t slot, VkDescriptorType type, VkBuffer buffer, uint64_t offset,
+                    uint64_t size) {
         bindings_[slot].kind = type;
         bindings_[slot].buffer = {buffer, offset, size};
         dirtySlots_ |= uint64_t(1) << slot;
@@ -220,8 +262,8 @@ private:
     std::vector<RecordingBuffer> buffers_;
     size_t current_ = 0;
     VkCommandBuffer cb_ = VK_NULL_HANDLE;  // buffers_[current_].cb
-    std::vector<uint64_t> used_;  // UsedKind << 32 | handle id, per use
-    uint32_t lastBuffer_ = 0;     // the buffer noted last (0: none yet this recording)
+    std::vector<uint64_t> used_;           // UsedKind << 32 | handle id, per use
+    uint32_t lastBuffer_ = 0;              // the buffer noted last (0: none yet this recording)
     // Per kind (uniform, storage): the last buffer the checked path passed, as it was then. While
     // no object has been destroyed since (the device's destroy epoch), a bind of the same handle
     // takes its size and VkBuffer from here instead of looking the handle up again.
@@ -247,14 +289,16 @@ private:
     bool computeBound_ = false;  // pipeline_ is a compute pipeline (draws are errors)
     bool readyToDraw_ = false;
     int64_t drawVertexLimit_ = -1;  // updateReadyToDraw
-    bool orphaned_ = false;  // the device was destroyed first (orphan())   // in a render pass with a graphics pipeline: the one per-draw state check
-    uint64_t requiredSlots_ = 0; // pipeline_->requiredSlots, kept here for the per-draw path
+    bool orphaned_ =
+        false;  // the device was destroyed first (orphan())   // in a render pass with a graphics pipeline: the one per-draw state check
+    uint64_t requiredSlots_ = 0;      // pipeline_->requiredSlots, kept here for the per-draw path
     std::array<uint32_t, 4> draw_{};  // draw arguments while the draw pushes descriptors
     VkPipelineLayout layout_ = VK_NULL_HANDLE;  // pipeline_->layout
     PFN_vkCmdPushDescriptorSetKHR pushDescriptorSet_ = nullptr;
     gdi::Rect renderArea_;
     uint32_t passSamples_ = 1;  // sample count of the open pass's attachments
-    std::array<uint32_t, 64> expectedKinds_{};  // per slot the pipeline uses: its kindCode (set with writes_)
+    std::array<uint32_t, 64>
+        expectedKinds_{};  // per slot the pipeline uses: its kindCode (set with writes_)
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     std::array<Binding, 64> bindings_{};
     // Descriptor writes for the pipeline with handle id writesFor_ (prepared by setPipeline), each pointing
@@ -266,11 +310,13 @@ private:
     uint64_t dirtySlots_ = ~uint64_t(0);
     int debugDepth_ = 0;
     gdi::validate::QueryRecording queries_;
-    std::array<std::byte, gdi::kMaxConstantBytes> constants_{};  // setConstants' bytes, pushed at setPipeline
+    std::array<std::byte, gdi::kMaxConstantBytes>
+        constants_{};  // setConstants' bytes, pushed at setPipeline
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
-    gdi::validate::PassSignature signature_;  // of the open pass, or the pass a secondary list is for
+    gdi::validate::PassSignature
+        signature_;  // of the open pass, or the pass a secondary list is for
     VulkanDevice::SecondaryRecording lease_;  // the secondary command buffer being recorded
     std::vector<VulkanDevice::SecondaryRecording> executed_;  // owned until this list's submission
     gdi::validate::FeedbackLoops feedback_;  // last: keeps it off the per-draw members' cache lines

@@ -26,7 +26,8 @@ bool hasLayer(const char* name) {
     vkEnumerateInstanceLayerProperties(&n, nullptr);
     std::vector<VkLayerProperties> layers(n);
     vkEnumerateInstanceLayerProperties(&n, layers.data());
-    return std::any_of(layers.begin(), layers.end(), [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(),
+                       [&](auto& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 // `layer`: an extension the layer provides (null: the loader's and drivers').
@@ -35,7 +36,8 @@ bool hasInstanceExtension(const char* name, const char* layer = nullptr) {
     vkEnumerateInstanceExtensionProperties(layer, &n, nullptr);
     std::vector<VkExtensionProperties> ext(n);
     vkEnumerateInstanceExtensionProperties(layer, &n, ext.data());
-    return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+    return std::any_of(ext.begin(), ext.end(),
+                       [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
@@ -43,7 +45,8 @@ bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
     vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
     std::vector<VkExtensionProperties> ext(n);
     vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, ext.data());
-    return std::any_of(ext.begin(), ext.end(), [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+    return std::any_of(ext.begin(), ext.end(),
+                       [&](auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 // Runs `f` when the scope ends, however it ends (staging buffers of transfers that may throw).
@@ -56,17 +59,18 @@ template <class F>
 OnExit(F) -> OnExit<F>;
 
 std::string versionString(uint32_t v) {
-    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
-           std::to_string(VK_API_VERSION_PATCH(v));
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+           "." + std::to_string(VK_API_VERSION_PATCH(v));
 }
 }  // namespace
 
-std::unique_ptr<gdi::Device> createVulkanDevice(bool validation) { return std::make_unique<VulkanDevice>(validation); }
+std::unique_ptr<gdi::Device> createVulkanDevice(bool validation) {
+    return std::make_unique<VulkanDevice>(validation);
+}
 
-VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                           VkDebugUtilsMessageTypeFlagsEXT,
-                                                           const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                           void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* device = static_cast<VulkanDevice*>(user);
     const char* message = data && data->pMessage ? data->pMessage : "";
     if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
@@ -78,8 +82,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(VkDebugUtilsMessageSe
     return VK_FALSE;
 }
 
-VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window) : swapchain_(std::move(window)) {
-    const gdi::NativeLayerLock::Change layerChange(validation);  // the layer adds this device and instance
+VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window)
+    : swapchain_(std::move(window)) {
+    const gdi::NativeLayerLock::Change layerChange(
+        validation);  // the layer adds this device and instance
     try {
         createInstance(validation);
         pickPhysicalDevice();
@@ -93,8 +99,10 @@ VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> win
 
 void VulkanDevice::createInstance(bool validation) {
     uint32_t loaderVersion = 0;
-    if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS || loaderVersion < VK_API_VERSION_1_2)
-        throw gdi::Error("Vulkan: loader reports version " + versionString(loaderVersion) + ", 1.2 or newer is required");
+    if (vkEnumerateInstanceVersion(&loaderVersion) != VK_SUCCESS ||
+        loaderVersion < VK_API_VERSION_1_2)
+        throw gdi::Error("Vulkan: loader reports version " + versionString(loaderVersion) +
+                         ", 1.2 or newer is required");
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "fe";
     app.pEngineName = "Fools Engine";
@@ -114,9 +122,11 @@ void VulkanDevice::createInstance(bool validation) {
         for (const char* e : swapchain_->instanceExtensions()) extensions.push_back(e);
 
     VkDebugUtilsMessengerCreateInfoEXT mci{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    mci.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
+                          VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
     // Performance messages are left out: they flag the GENERAL layout policy on every use.
-    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+    mci.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
     mci.pfnUserCallback = &VulkanDevice::debugCallback;
     mci.pUserData = this;
 
@@ -130,7 +140,8 @@ void VulkanDevice::createInstance(bool validation) {
     // With validation, synchronization validation too: a missing or wrong barrier (a hazard) is
     // reported as an error like any other, so tests fail on it. FE_VK_SYNC_VALIDATION=0 turns
     // it off (it slows recording down).
-    const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    const VkValidationFeatureEnableEXT sync =
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
     const char* syncSetting = std::getenv("FE_VK_SYNC_VALIDATION");
     if (validation && !(syncSetting && std::string(syncSetting) == "0") &&
@@ -143,12 +154,15 @@ void VulkanDevice::createInstance(bool validation) {
         features.pNext = ci.pNext;
         ci.pNext = &features;
     }
-    check(nativeAllocation("vkCreateInstance", [&] { return vkCreateInstance(&ci, nullptr, &instance_); }), "vkCreateInstance");
+    check(nativeAllocation("vkCreateInstance",
+                           [&] { return vkCreateInstance(&ci, nullptr, &instance_); }),
+          "vkCreateInstance");
 
     if (debugUtils_) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-        if (validation && create) check(create(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+        if (validation && create)
+            check(create(instance_, &mci, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
         setObjectName_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
             vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
         cmdBeginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
@@ -165,7 +179,9 @@ void VulkanDevice::createInstance(bool validation) {
 void VulkanDevice::pickPhysicalDevice() {
     uint32_t n = 0;
     vkEnumeratePhysicalDevices(instance_, &n, nullptr);
-    if (n == 0) throw gdi::Error("Vulkan: no physical device (no ICD installed? apt-get install mesa-vulkan-drivers)");
+    if (n == 0)
+        throw gdi::Error(
+            "Vulkan: no physical device (no ICD installed? apt-get install mesa-vulkan-drivers)");
     std::vector<VkPhysicalDevice> devices(n);
     vkEnumeratePhysicalDevices(instance_, &n, devices.data());
     std::string rejected;
@@ -174,23 +190,30 @@ void VulkanDevice::pickPhysicalDevice() {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(pd, &p);
         std::string why;
-        if (p.apiVersion < VK_API_VERSION_1_3 && !hasDeviceExtension(pd, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
+        if (p.apiVersion < VK_API_VERSION_1_3 &&
+            !hasDeviceExtension(pd, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME))
             why = "no dynamic rendering";
-        if (p.apiVersion < VK_API_VERSION_1_2) why = "Vulkan " + versionString(p.apiVersion) + " < 1.2";
-        if (!hasDeviceExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) why = "no VK_KHR_push_descriptor";
-        if (swapchain_ && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) why = "no VK_KHR_swapchain";
+        if (p.apiVersion < VK_API_VERSION_1_2)
+            why = "Vulkan " + versionString(p.apiVersion) + " < 1.2";
+        if (!hasDeviceExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+            why = "no VK_KHR_push_descriptor";
+        if (swapchain_ && !hasDeviceExtension(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+            why = "no VK_KHR_swapchain";
         uint32_t qn = 0;
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, nullptr);
         std::vector<VkQueueFamilyProperties> qf(qn);
         vkGetPhysicalDeviceQueueFamilyProperties(pd, &qn, qf.data());
         int family = -1;
         for (uint32_t i = 0; i < qn; ++i)
-            if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
+            if ((qf[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+                (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) &&
                 (!swapchain_ || swapchain_->canPresent(pd, i))) {  // one queue draws and presents
                 family = int(i);
                 break;
             }
-        if (family < 0) why = swapchain_ ? "no graphics+compute queue that can present to the window" : "no graphics+compute queue";
+        if (family < 0)
+            why = swapchain_ ? "no graphics+compute queue that can present to the window"
+                             : "no graphics+compute queue";
         if (!why.empty()) {
             rejected += std::string("; ") + p.deviceName + ": " + why;
             continue;
@@ -223,7 +246,8 @@ void VulkanDevice::createLogicalDevice() {
     features.features.samplerAnisotropy = supported.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
-    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    features.features.shaderStorageImageWriteWithoutFormat =
+        supported.shaderStorageImageWriteWithoutFormat;
     features.features.independentBlend = supported.independentBlend;
     features.features.imageCubeArray = supported.imageCubeArray;
     features.features.depthClamp = supported.depthClamp;
@@ -235,7 +259,8 @@ void VulkanDevice::createLogicalDevice() {
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     features.features.alphaToOne = VK_FALSE;
     enabled_ = features.features;
-    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceVulkan12Features supported12{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     query.pNext = &supported12;
     vkGetPhysicalDeviceFeatures2(physical_, &query);
@@ -243,13 +268,15 @@ void VulkanDevice::createLogicalDevice() {
     f12.hostQueryReset = VK_TRUE;
     f12.drawIndirectCount = supported12.drawIndirectCount;
     drawIndirectCount_ = supported12.drawIndirectCount;
-    VkPhysicalDeviceDynamicRenderingFeatures dyn{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+    VkPhysicalDeviceDynamicRenderingFeatures dyn{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
     dyn.dynamicRendering = VK_TRUE;
     features.pNext = &f12;
     f12.pNext = &dyn;
 
     std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-    if (props_.apiVersion < VK_API_VERSION_1_3) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+    if (props_.apiVersion < VK_API_VERSION_1_3)
+        extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
     if (swapchain_) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
     VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
@@ -258,13 +285,16 @@ void VulkanDevice::createLogicalDevice() {
     ci.pQueueCreateInfos = &qci;
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
-    check(nativeAllocation("vkCreateDevice", [&] { return vkCreateDevice(physical_, &ci, nullptr, &device_); }), "vkCreateDevice");
+    check(nativeAllocation("vkCreateDevice",
+                           [&] { return vkCreateDevice(physical_, &ci, nullptr, &device_); }),
+          "vkCreateDevice");
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
-    cmdPushDescriptorSet =
-        reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
     if (!cmdPushDescriptorSet) throw gdi::Error("Vulkan: vkCmdPushDescriptorSetKHR not found");
     if (drawIndirectCount_) {
-        cmdDrawIndirectCount = reinterpret_cast<PFN_vkCmdDrawIndirectCount>(vkGetDeviceProcAddr(device_, "vkCmdDrawIndirectCount"));
+        cmdDrawIndirectCount = reinterpret_cast<PFN_vkCmdDrawIndirectCount>(
+            vkGetDeviceProcAddr(device_, "vkCmdDrawIndirectCount"));
         cmdDrawIndexedIndirectCount = reinterpret_cast<PFN_vkCmdDrawIndexedIndirectCount>(
             vkGetDeviceProcAddr(device_, "vkCmdDrawIndexedIndirectCount"));
         drawIndirectCount_ = cmdDrawIndirectCount && cmdDrawIndexedIndirectCount;
@@ -273,18 +303,26 @@ void VulkanDevice::createLogicalDevice() {
     allocator_ = std::make_unique<MemoryAllocator>(physical_, device_);
 
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pci.flags =
+        VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     pci.queueFamilyIndex = queueFamily_;
-    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_); }), "vkCreateCommandPool");
+    check(nativeAllocation(
+              "vkCreateCommandPool",
+              [&] { return vkCreateCommandPool(device_, &pci, nullptr, &immediatePool_); }),
+          "vkCreateCommandPool");
 
     VkQueryPoolCreateInfo qpi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qpi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qpi.queryCount = kMaxTimers * 2;
-    check(nativeAllocation("vkCreateQueryPool", [&] { return vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_); }), "vkCreateQueryPool");
+    check(nativeAllocation("vkCreateQueryPool",
+                           [&] { return vkCreateQueryPool(device_, &qpi, nullptr, &queryPool_); }),
+          "vkCreateQueryPool");
     vkResetQueryPool(device_, queryPool_, 0, kMaxTimers * 2);
     for (uint32_t i = kMaxTimers; i-- > 0;) freeTimerSlots_.push_back(i * 2);
     VkPipelineCacheCreateInfo cci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
-    check(nativeAllocation("vkCreatePipelineCache", [&] { return vkCreatePipelineCache(device_, &cci, nullptr, &pipelineCache_); }),
+    check(nativeAllocation(
+              "vkCreatePipelineCache",
+              [&] { return vkCreatePipelineCache(device_, &cci, nullptr, &pipelineCache_); }),
           "vkCreatePipelineCache");
     if (swapchain_) swapchain_->attach(physical_, device_, queue_, queueFamily_);
 }
@@ -294,7 +332,8 @@ void VulkanDevice::createLogicalDevice() {
 gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path) {
     const DeviceCall call(*this);
     // Read first: a path refused with an Error leaves the cache as it was (GL's order too).
-    const gdi::PipelineCacheLoad file = gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
+    const gdi::PipelineCacheLoad file =
+        gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
     cacheStats_ = {.path = path};
     cacheStats_.warning = file.warning;
     if (!file.warning.empty()) std::cerr << "fe: " << file.warning << "\n";
@@ -320,9 +359,11 @@ void VulkanDevice::savePipelineCache() {
     const DeviceCall call(*this);
     if (cacheStats_.path.empty()) return;
     size_t size = 0;
-    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, nullptr), "vkGetPipelineCacheData");
+    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, nullptr),
+          "vkGetPipelineCacheData");
     std::vector<uint8_t> data(size);
-    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, data.data()), "vkGetPipelineCacheData");
+    check(vkGetPipelineCacheData(device_, pipelineCache_, &size, data.data()),
+          "vkGetPipelineCacheData");
     data.resize(size);
     gdi::writePipelineCache(cacheStats_.path, gdi::pipelineCacheIdentity(info_), data);
 }
@@ -336,8 +377,10 @@ gdi::PipelineCacheStats VulkanDevice::pipelineCacheStats() const {
 // in 1.3): counted in the stats.
 void VulkanDevice::countCacheUse(const VkPipelineCreationFeedback& feedback) {
     if (!(feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_VALID_BIT)) return;
-    if (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT) ++cacheStats_.hits;
-    else ++cacheStats_.misses;
+    if (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT)
+        ++cacheStats_.hits;
+    else
+        ++cacheStats_.misses;
 }
 
 void VulkanDevice::fillInfo() {
@@ -352,23 +395,29 @@ void VulkanDevice::fillInfo() {
     info_.limits.maxTextureSizeCube = l.maxImageDimensionCube;
     info_.limits.maxTextureArrayLayers = l.maxImageArrayLayers;
     // Counts every render-target format supports; each is one sample-count bit, as in Vulkan.
-    info_.limits.colorSampleCounts = l.framebufferColorSampleCounts & l.framebufferNoAttachmentsSampleCounts & 0xf;
+    info_.limits.colorSampleCounts =
+        l.framebufferColorSampleCounts & l.framebufferNoAttachmentsSampleCounts & 0xf;
     info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
     info_.limits.maxViewportSize = std::min(l.maxViewportDimensions[0], l.maxViewportDimensions[1]);
     info_.limits.viewportBounds = {l.viewportBoundsRange[0], l.viewportBoundsRange[1]};
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
-    for (int axis = 0; axis < 3; ++axis) info_.limits.maxComputeWorkGroupCount[axis] = l.maxComputeWorkGroupCount[axis];
-    info_.limits.maxStorageTextures = std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
+    for (int axis = 0; axis < 3; ++axis)
+        info_.limits.maxComputeWorkGroupCount[axis] = l.maxComputeWorkGroupCount[axis];
+    info_.limits.maxStorageTextures =
+        std::min(l.maxPerStageDescriptorStorageImages, l.maxDescriptorSetStorageImages);
     info_.limits.maxUniformBufferRange = l.maxUniformBufferRange;
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
-    VkPhysicalDeviceMaintenance3Properties m3{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
-    VkPhysicalDeviceProperties2 p2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &m3};
+    VkPhysicalDeviceMaintenance3Properties m3{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 p2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+                                   .pNext = &m3};
     vkGetPhysicalDeviceProperties2(physical_, &p2);
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory);
     VkDeviceSize largestHeap = 0;
-    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h) largestHeap = std::max(largestHeap, memory.memoryHeaps[h].size);
+    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+        largestHeap = std::max(largestHeap, memory.memoryHeaps[h].size);
     info_.limits.maxAllocationSize = std::min(m3.maxMemoryAllocationSize, largestHeap);
     info_.limits.uniformBufferOffsetAlignment = uint32_t(l.minUniformBufferOffsetAlignment);
     info_.limits.storageBufferOffsetAlignment = uint32_t(l.minStorageBufferOffsetAlignment);
@@ -385,7 +434,8 @@ void VulkanDevice::fillInfo() {
     info_.features.depthClamp = enabled_.depthClamp;
     info_.features.depthBiasClamp = enabled_.depthBiasClamp;
     // Multi-draw needs a firstInstance in the records too (the engine's instancing uses it).
-    info_.features.multiDrawIndirect = enabled_.multiDrawIndirect && enabled_.drawIndirectFirstInstance;
+    info_.features.multiDrawIndirect =
+        enabled_.multiDrawIndirect && enabled_.drawIndirectFirstInstance;
     info_.features.drawIndirectCount = drawIndirectCount_ && info_.features.multiDrawIndirect;
     info_.features.textureCompressionBC = enabled_.textureCompressionBC;
     info_.features.occlusionQueries = enabled_.occlusionQueryPrecise;
@@ -395,9 +445,10 @@ void VulkanDevice::fillInfo() {
 }
 
 VulkanDevice::~VulkanDevice() {
-    const gdi::NativeLayerLock::Change layerChange(info_.features.validation);  // the layer forgets them
-    liveLists_.orphanAll();  // lists that outlive the device let go of it now
-    if (device_) {  // what was destroyed is not a leak: release it first
+    const gdi::NativeLayerLock::Change layerChange(
+        info_.features.validation);  // the layer forgets them
+    liveLists_.orphanAll();          // lists that outlive the device let go of it now
+    if (device_) {                   // what was destroyed is not a leak: release it first
         vkDeviceWaitIdle(device_);
         for (Retired& r : retired_) r.release();
         retired_.clear();
@@ -412,7 +463,8 @@ VulkanDevice::~VulkanDevice() {
 }
 
 void VulkanDevice::release() {
-    if (swapchain_) swapchain_->release();  // swap chain and surface go before the device and instance
+    if (swapchain_)
+        swapchain_->release();  // swap chain and surface go before the device and instance
     if (device_ && !cacheStats_.path.empty() && !loss_.lost()) {
         try {
             savePipelineCache();
@@ -425,7 +477,8 @@ void VulkanDevice::release() {
         for (Retired& r : retired_) r.release();
         retired_.clear();
         pendingInit_.clear();
-        for (const SecondaryRecording& r : secondaries_) vkDestroyCommandPool(device_, r.pool, nullptr);
+        for (const SecondaryRecording& r : secondaries_)
+            vkDestroyCommandPool(device_, r.pool, nullptr);
         secondaries_.clear();
         buffers_.forEach([&](Buffer& b) { freeBuffer(b); });
         textures_.forEach([&](Texture& t) { destroyTexture(t); });
@@ -491,7 +544,8 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     const gdi::ClaimedLists claimed(lists, "submit");  // null, twice, in use on another thread
     for (gdi::CommandList* l : claimed.lists()) {
         auto* list = dynamic_cast<VulkanCommandList*>(l);
-        if (!list || !list->madeBy(*this)) throw gdi::Error("submit: a command list of another device");
+        if (!list || !list->madeBy(*this))
+            throw gdi::Error("submit: a command list of another device");
         vk.push_back(list);
     }
     for (VulkanCommandList* list : vk) list->checkSubmittable();
@@ -499,9 +553,11 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (VulkanCommandList* list : vk) queries.push_back(&list->queries());
     gdi::validate::queriesOncePerSubmission(queries);
     std::vector<std::pair<QuerySet*, uint32_t>> usedQueries;  // reset before the lists run
-    std::vector<std::pair<VkQueryPool, uint32_t>> resets;        // (the closure outlives this call on failure)
+    std::vector<std::pair<VkQueryPool, uint32_t>>
+        resets;  // (the closure outlives this call on failure)
     for (const auto* q : queries)
-        for (const auto& u : q->used()) usedQueries.push_back({&querySets_.get({u.set}, "query set"), u.index});
+        for (const auto& u : q->used())
+            usedQueries.push_back({&querySets_.get({u.set}, "query set"), u.index});
     for (auto [set, index] : usedQueries) resets.push_back({set->pool, index});
     std::vector<Timer*> usedTimers;  // copied: finishing a list may start its next recording
     for (const auto* q : queries)
@@ -519,14 +575,19 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
         freeFences_.pop_back();
     } else {
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        check(nativeAllocation("vkCreateFence", [&] { return vkCreateFence(device_, &fci, nullptr, &fence); }), "vkCreateFence");
+        check(nativeAllocation("vkCreateFence",
+                               [&] { return vkCreateFence(device_, &fci, nullptr, &fence); }),
+              "vkCreateFence");
     }
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = uint32_t(cbs.size());
     si.pCommandBuffers = cbs.data();
-    if (VkResult r = nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, fence); }); r != VK_SUCCESS) {
+    if (VkResult r =
+            nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, fence); });
+        r != VK_SUCCESS) {
         freeFences_.push_back(fence);  // never submitted
-        for (VulkanCommandList* list : vk) list->submitted(nextFence_ - 1);  // the recordings are dropped
+        for (VulkanCommandList* list : vk)
+            list->submitted(nextFence_ - 1);  // the recordings are dropped
         if (init) vkFreeCommandBuffers(device_, immediatePool_, 1, &init);
         check(r, "vkQueueSubmit");
     }
@@ -572,8 +633,10 @@ void VulkanDevice::pollFences() {
         Submission s = inFlight_.front();
         const VkResult r = vkGetFenceStatus(device_, s.fence);
         if (r == VK_NOT_READY) break;
-        if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkGetFenceStatus returned VK_ERROR_DEVICE_LOST");
-        else check(r, "vkGetFenceStatus");
+        if (r == VK_ERROR_DEVICE_LOST)
+            (void)loss_.lose("vulkan", "vkGetFenceStatus returned VK_ERROR_DEVICE_LOST");
+        else
+            check(r, "vkGetFenceStatus");
         vkResetFences(device_, 1, &s.fence);
         freeFences_.push_back(s.fence);
         completed_ = s.value;
@@ -606,7 +669,8 @@ void VulkanDevice::closeRecording(uint64_t since) {
 // In destroy order: a release held back by a recording holds back the later ones too.
 void VulkanDevice::collectRetired() {
     while (!retired_.empty() &&
-           ((retired_.front().after <= completed_ && !heldByRecording(retired_.front().epoch)) || loss_.lost())) {
+           ((retired_.front().after <= completed_ && !heldByRecording(retired_.front().epoch)) ||
+            loss_.lost())) {
         auto release = std::move(retired_.front().release);
         retired_.pop_front();
         release();
@@ -614,7 +678,8 @@ void VulkanDevice::collectRetired() {
 }
 
 void VulkanDevice::releaseRetiredNow() {
-    if (!pendingInit_.empty()) immediate("pending layout transitions", [](VkCommandBuffer) {});  // waits: waitIdle
+    if (!pendingInit_.empty())
+        immediate("pending layout transitions", [](VkCommandBuffer) {});  // waits: waitIdle
     idle();
     for (Retired& r : retired_) r.release();
     retired_.clear();
@@ -626,8 +691,10 @@ void VulkanDevice::settle(gdi::FenceValue fence) {
         Submission s = inFlight_.front();
         const VkResult r = vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX);
         // A lost device runs nothing more: its submissions count as done.
-        if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkWaitForFences returned VK_ERROR_DEVICE_LOST");
-        else check(r, "vkWaitForFences");
+        if (r == VK_ERROR_DEVICE_LOST)
+            (void)loss_.lose("vulkan", "vkWaitForFences returned VK_ERROR_DEVICE_LOST");
+        else
+            check(r, "vkWaitForFences");
         vkResetFences(device_, 1, &s.fence);
         freeFences_.push_back(s.fence);
         completed_ = s.value;
@@ -648,12 +715,15 @@ void VulkanDevice::waitIdle() {
 void VulkanDevice::idle() {
     settle(nextFence_ - 1);
     const VkResult r = vkQueueWaitIdle(queue_);
-    if (r == VK_ERROR_DEVICE_LOST) (void)loss_.lose("vulkan", "vkQueueWaitIdle returned VK_ERROR_DEVICE_LOST");
-    else check(r, "vkQueueWaitIdle");
+    if (r == VK_ERROR_DEVICE_LOST)
+        (void)loss_.lose("vulkan", "vkQueueWaitIdle returned VK_ERROR_DEVICE_LOST");
+    else
+        check(r, "vkQueueWaitIdle");
 }
 
 void VulkanDevice::fail(VkResult r, const char* call, const std::string& object) const {
-    if (r == VK_ERROR_DEVICE_LOST) throw loss_.lose("vulkan", std::string(call) + " returned VK_ERROR_DEVICE_LOST");
+    if (r == VK_ERROR_DEVICE_LOST)
+        throw loss_.lose("vulkan", std::string(call) + " returned VK_ERROR_DEVICE_LOST");
     throwVk(r, call, object);
 }
 
@@ -663,12 +733,19 @@ gdi::LiveObjects VulkanDevice::liveObjects() const {
     auto* self = const_cast<VulkanDevice*>(this);
     if (!loss_.lost()) self->pollFences();
     self->collectRetired();
-    return {.buffers = buffers_.size(), .textures = textures_.size(), .samplers = samplers_.size(),
-            .shaders = shaders_.size(), .pipelines = pipelines_.size(), .timers = timers_.size(),
-            .heaps = heaps_.size(), .querySets = querySets_.size(), .nativeObjects = nativeObjects_ + allocator_->stats().placements};
+    return {.buffers = buffers_.size(),
+            .textures = textures_.size(),
+            .samplers = samplers_.size(),
+            .shaders = shaders_.size(),
+            .pipelines = pipelines_.size(),
+            .timers = timers_.size(),
+            .heaps = heaps_.size(),
+            .querySets = querySets_.size(),
+            .nativeObjects = nativeObjects_ + allocator_->stats().placements};
 }
 
-void VulkanDevice::recordInitialTransition(std::function<void(VkCommandBuffer)> record, uint32_t texture, uint32_t buffer) {
+void VulkanDevice::recordInitialTransition(std::function<void(VkCommandBuffer)> record,
+                                           uint32_t texture, uint32_t buffer) {
     pendingInit_.push_back({texture, buffer, std::move(record)});
 }
 
@@ -687,7 +764,8 @@ VkCommandBuffer VulkanDevice::takeInitialTransitions(const std::string& object) 
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     VkCommandBuffer cb;
-    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }),
+    check(nativeAllocation("vkAllocateCommandBuffers",
+                           [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }),
           "vkAllocateCommandBuffers", object);
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -709,16 +787,21 @@ VkCommandBuffer VulkanDevice::takeInitialTransitions(const std::string& object) 
 
 void VulkanDevice::freeAfter(gdi::FenceValue fence, VkCommandBuffer cb) {
     // Epoch 0: no list records into an immediate command buffer, so none holds it back.
-    retired_.push_back({fence, 0, [this, cb]() mutable { vkFreeCommandBuffers(device_, immediatePool_, 1, &cb); }});
+    retired_.push_back({fence, 0, [this, cb]() mutable {
+                            vkFreeCommandBuffers(device_, immediatePool_, 1, &cb);
+                        }});
 }
 
-void VulkanDevice::immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record) {
+void VulkanDevice::immediate(const std::string& object,
+                             const std::function<void(VkCommandBuffer)>& record) {
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = immediatePool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     VkCommandBuffer cb;
-    check(nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }), "vkAllocateCommandBuffers", object);
+    check(nativeAllocation("vkAllocateCommandBuffers",
+                           [&] { return vkAllocateCommandBuffers(device_, &ai, &cb); }),
+          "vkAllocateCommandBuffers", object);
     // Freed however this ends: after the wait, or unsubmitted when a step before it throws.
     struct Release {
         VkDevice device;
@@ -728,11 +811,13 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
     } release{device_, immediatePool_, cb};
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }), "vkBeginCommandBuffer", object);
+    check(nativeAllocation("vkBeginCommandBuffer", [&] { return vkBeginCommandBuffer(cb, &bi); }),
+          "vkBeginCommandBuffer", object);
     VulkanCommandList::fullBarrier(cb);  // order after everything submitted before
     record(cb);
     VulkanCommandList::fullBarrier(cb);
-    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }), "vkEndCommandBuffer", object);
+    check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }),
+          "vkEndCommandBuffer", object);
     // Textures made since the last submission get their first transitions first, in the same
     // submission (taken only now, so a failure above leaves them pending); freed after the wait.
     const VkCommandBuffer init = takeInitialTransitions(object);
@@ -748,7 +833,9 @@ void VulkanDevice::immediate(const std::string& object, const std::function<void
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.commandBufferCount = init ? 2 : 1;
     si.pCommandBuffers = init ? both : &cb;
-    check(nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }), "vkQueueSubmit");
+    check(nativeSubmission("vkQueueSubmit",
+                           [&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); }),
+          "vkQueueSubmit");
     waitIdle();
 }
 
@@ -774,13 +861,15 @@ void VulkanDevice::writeBuffer(gdi::BufferHandle h, uint64_t offset, gdi::ByteSp
         std::memcpy(static_cast<uint8_t*>(b.memory.mapped) + offset, data.data(), size);
         return;
     }
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for buffer", b.name);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
+                                "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data(), size);
-    immediate("writeBuffer of " + gdi::describeObject("buffer", b.name, {}), [&](VkCommandBuffer cb) {
-        VkBufferCopy region{0, offset, size};
-        vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
-    });
+    immediate("writeBuffer of " + gdi::describeObject("buffer", b.name, {}),
+              [&](VkCommandBuffer cb) {
+                  VkBufferCopy region{0, offset, size};
+                  vkCmdCopyBuffer(cb, staging.buffer, b.buffer, 1, &region);
+              });
 }
 
 void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::ByteSpan data) {
@@ -789,15 +878,16 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
     gdi::validate::uploadSize(t.desc, at, data.size(), "writeTexture", t.name);
-    if (t.desc.sampleCount > 1) throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
+    if (t.desc.sampleCount > 1)
+        throw gdi::Error("writeTexture: multisampled textures cannot be uploaded");
     // Depth-stencil texels (gdi's readback layout, Device.h) go in as two aspects: the depth
     // words first (D32F_S8: packed from 8-byte texels), then one stencil byte per texel.
     const gdi::FormatInfo& fi = gdi::formatInfo(t.desc.format);
     const bool split = fi.hasDepth && fi.hasStencil;  // S8 is one (stencil) aspect, copied as it is
     const uint64_t texels = split ? data.size() / fi.bytesPerPixel : 0;
     const uint64_t depthBytes = split ? texels * 4 : data.size();
-    Buffer staging = makeBuffer(depthBytes + texels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
-                                "staging buffer for texture", t.name);
+    Buffer staging = makeBuffer(depthBytes + texels, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                MemoryUsage::Upload, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     auto* staged = static_cast<uint8_t*>(staging.memory.mapped);
     const auto* in = reinterpret_cast<const uint8_t*>(data.data());
@@ -806,42 +896,48 @@ void VulkanDevice::writeTexture(gdi::TextureHandle h, gdi::Subresource at, gdi::
     } else {
         for (uint64_t i = 0; i < texels; ++i) {
             const uint8_t* texel = in + i * fi.bytesPerPixel;
-            std::memcpy(staged + 4 * i, texel, 4);  // D24S8: the high byte is ignored by the depth copy
+            std::memcpy(staged + 4 * i, texel,
+                        4);  // D24S8: the high byte is ignored by the depth copy
             staged[depthBytes + i] = t.desc.format == gdi::Format::D24S8 ? texel[3] : texel[4];
         }
     }
-    immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
-        const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
-        vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
-        if (split) {
-            VkBufferImageCopy s = r;
-            s.bufferOffset = depthBytes;
-            s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
-            vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &s);
-        }
-    });
+    immediate(
+        "writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
+            const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
+            vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+            if (split) {
+                VkBufferImageCopy s = r;
+                s.bufferOffset = depthBytes;
+                s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+                vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &s);
+            }
+        });
 }
 
-void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region, gdi::ByteSpan data,
-                                const gdi::TexelLayout& layout) {
+void VulkanDevice::writeTextureRegion(gdi::TextureHandle h, const gdi::TextureRegion& region,
+                                      gdi::ByteSpan data, const gdi::TexelLayout& layout) {
     const DeviceCall call(*this);
     loss_.check("writeTextureRegion");
     Texture& t = texture(h);
     gdi::validate::notAView(t.viewOf != 0, t.name, "writeTexture");
-    const gdi::TextureRegion r = gdi::validate::textureRegion(t.desc, region, t.name, "writeTextureRegion");
-    const gdi::validate::ResolvedLayout l = gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
+    const gdi::TextureRegion r =
+        gdi::validate::textureRegion(t.desc, region, t.name, "writeTextureRegion");
+    const gdi::validate::ResolvedLayout l =
+        gdi::validate::texelLayout(t.desc.format, r, layout, "writeTextureRegion");
     gdi::validate::dataSpan(data.size(), l.end, "writeTextureRegion");
     // The spanned bytes are staged as they are; the copy reads them with the caller's pitch.
     const uint64_t bytes = l.end - l.layout.offset;
-    Buffer staging = makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload, "staging buffer for texture", t.name);
+    Buffer staging = makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::Upload,
+                                "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
     std::memcpy(staging.memory.mapped, data.data() + l.layout.offset, bytes);
     gdi::TexelLayout staged = l.layout;
     staged.offset = 0;
-    immediate("writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
-        const VkBufferImageCopy c = regionCopy(t.desc, r, staged);
-        vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
-    });
+    immediate(
+        "writeTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
+            const VkBufferImageCopy c = regionCopy(t.desc, r, staged);
+            vkCmdCopyBufferToImage(cb, staging.buffer, t.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
+        });
 }
 
 std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offset, uint64_t size) {
@@ -851,12 +947,14 @@ std::vector<uint8_t> VulkanDevice::readBuffer(gdi::BufferHandle h, uint64_t offs
     gdi::validate::bufferRange(b.desc, offset, size, "readBuffer");
     std::vector<uint8_t> out(size);
     if (size == 0) return out;
-    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback, "staging buffer for buffer", b.name);
+    Buffer staging = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
+                                "staging buffer for buffer", b.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
-    immediate("readBuffer of " + gdi::describeObject("buffer", b.name, {}), [&](VkCommandBuffer cb) {
-        VkBufferCopy region{offset, 0, size};
-        vkCmdCopyBuffer(cb, b.buffer, staging.buffer, 1, &region);
-    });
+    immediate("readBuffer of " + gdi::describeObject("buffer", b.name, {}),
+              [&](VkCommandBuffer cb) {
+                  VkBufferCopy region{offset, 0, size};
+                  vkCmdCopyBuffer(cb, b.buffer, staging.buffer, 1, &region);
+              });
     std::memcpy(out.data(), staging.memory.mapped, size);
     return out;
 }
@@ -875,24 +973,27 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
     const uint64_t size = gdi::imageByteSize(t.desc.format, e.width, e.height);
     // Depth/stencil: the depth aspect (D24S8 lands as X8D24, depth in the low 24 bits), then the
     // stencil aspect (one byte per texel) after it, merged into the high byte as GL returns it.
-    const bool stencil = gdi::formatInfo(t.desc.format).hasStencil && gdi::formatInfo(t.desc.format).hasDepth;  // S8: one aspect
+    const bool stencil = gdi::formatInfo(t.desc.format).hasStencil &&
+                         gdi::formatInfo(t.desc.format).hasDepth;  // S8: one aspect
     const uint64_t stencilBytes = stencil ? uint64_t(e.width) * e.height : 0;
-    Buffer staging = makeBuffer(size + stencilBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::Readback,
-                                "staging buffer for texture", t.name);
+    Buffer staging = makeBuffer(size + stencilBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                MemoryUsage::Readback, "staging buffer for texture", t.name);
     OnExit freeStaging{[&] { freeBuffer(staging); }};
-    immediate("readTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
-        const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
-        vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);
-        if (stencil) {
-            VkBufferImageCopy s = r;
-            s.bufferOffset = size;
-            s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
-            vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &s);
-        }
-    });
+    immediate(
+        "readTexture of " + gdi::describeObject("texture", t.name, {}), [&](VkCommandBuffer cb) {
+            const VkBufferImageCopy r = copyRegion(t.desc, at, 0);
+            vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &r);
+            if (stencil) {
+                VkBufferImageCopy s = r;
+                s.bufferOffset = size;
+                s.imageSubresource.aspectMask = VK_IMAGE_ASPECT_STENCIL_BIT;
+                vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_GENERAL, staging.buffer, 1, &s);
+            }
+        });
     img.data.resize(size);
     const auto* staged = static_cast<const uint8_t*>(staging.memory.mapped);
-    if (t.desc.format == gdi::Format::D32F_S8) {  // depth aspect packed as floats: spread to 8-byte texels
+    if (t.desc.format ==
+        gdi::Format::D32F_S8) {  // depth aspect packed as floats: spread to 8-byte texels
         std::fill(img.data.begin(), img.data.end(), uint8_t(0));
         for (uint64_t i = 0; i < stencilBytes; ++i) {
             std::memcpy(&img.data[8 * i], staged + 4 * i, 4);
@@ -916,16 +1017,31 @@ gdi::Image VulkanDevice::readTexture(gdi::TextureHandle h, gdi::Subresource at) 
 uint64_t VulkanDevice::nativeObject(gdi::NativeObject what, uint32_t id) const {
     using N = gdi::NativeObject;
     switch (what) {
-        case N::Device: return uint64_t(device_);
-        case N::PhysicalDevice: return uint64_t(physical_);
-        case N::Queue: return uint64_t(queue_);
-        case N::QueueFamily: return queueFamily_;
-        case N::Buffer: if (auto* b = buffers_.find(gdi::BufferHandle{id})) return uint64_t(b->buffer); break;
-        case N::Texture: if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->image); break;
-        case N::TextureView: if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->view); break;
-        case N::Pipeline: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->pipeline); break;
-        case N::PipelineLayout: if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->layout); break;
-        default: break;
+        case N::Device:
+            return uint64_t(device_);
+        case N::PhysicalDevice:
+            return uint64_t(physical_);
+        case N::Queue:
+            return uint64_t(queue_);
+        case N::QueueFamily:
+            return queueFamily_;
+        case N::Buffer:
+            if (auto* b = buffers_.find(gdi::BufferHandle{id})) return uint64_t(b->buffer);
+            break;
+        case N::Texture:
+            if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->image);
+            break;
+        case N::TextureView:
+            if (auto* t = textures_.find(gdi::TextureHandle{id})) return uint64_t(t->view);
+            break;
+        case N::Pipeline:
+            if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->pipeline);
+            break;
+        case N::PipelineLayout:
+            if (auto* p = pipelines_.find(gdi::PipelineHandle{id})) return uint64_t(p->layout);
+            break;
+        default:
+            break;
     }
     return 0;
 }
@@ -938,8 +1054,8 @@ std::optional<double> VulkanDevice::timerNanoseconds(gdi::TimerHandle h) {
     pollFences();
     if (t.submitted == 0 || t.submitted > completed_) return std::nullopt;
     uint64_t ticks[2];
-    VkResult r = vkGetQueryPoolResults(device_, queryPool_, t.firstQuery, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT);
+    VkResult r = vkGetQueryPoolResults(device_, queryPool_, t.firstQuery, 2, sizeof(ticks), ticks,
+                                       sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
     if (r == VK_ERROR_DEVICE_LOST) check(r, "vkGetQueryPoolResults");
     if (r != VK_SUCCESS) return std::nullopt;
     return double(ticks[1] - ticks[0]) * double(props_.limits.timestampPeriod);
@@ -977,13 +1093,16 @@ VulkanDevice::SecondaryRecording VulkanDevice::acquireSecondary() {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
     pci.queueFamilyIndex = queueFamily_;
-    check(nativeAllocation("vkCreateCommandPool", [&] { return vkCreateCommandPool(device_, &pci, nullptr, &r.pool); }),
+    check(nativeAllocation("vkCreateCommandPool",
+                           [&] { return vkCreateCommandPool(device_, &pci, nullptr, &r.pool); }),
           "vkCreateCommandPool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = r.pool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_SECONDARY;
     ai.commandBufferCount = 1;
-    if (VkResult res = nativeAllocation("vkAllocateCommandBuffers", [&] { return vkAllocateCommandBuffers(device_, &ai, &r.cb); });
+    if (VkResult res =
+            nativeAllocation("vkAllocateCommandBuffers",
+                             [&] { return vkAllocateCommandBuffers(device_, &ai, &r.cb); });
         res != VK_SUCCESS) {
         vkDestroyCommandPool(device_, r.pool, nullptr);
         check(res, "vkAllocateCommandBuffers");
@@ -991,7 +1110,8 @@ VulkanDevice::SecondaryRecording VulkanDevice::acquireSecondary() {
     return r;
 }
 
-void VulkanDevice::releaseSecondary(std::span<const SecondaryRecording> recordings, gdi::FenceValue fence) {
+void VulkanDevice::releaseSecondary(std::span<const SecondaryRecording> recordings,
+                                    gdi::FenceValue fence) {
     if (recordings.empty()) return;
     const DeviceCall call(*this);
     for (SecondaryRecording r : recordings) {

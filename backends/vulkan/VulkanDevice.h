@@ -46,12 +46,14 @@ VkImageAspectFlags aspectOf(gdi::Format f);
 // The aspect views, copies and readback address: depth only for depth/stencil formats.
 VkImageAspectFlags viewAspectOf(gdi::Format f);
 // Buffer <-> image copy region of one subresource (3D: `layer` is the depth slice).
-VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at, VkDeviceSize bufferOffset);
+VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at,
+                             VkDeviceSize bufferOffset);
 uint32_t arrayLayers(const gdi::TextureDesc& d);  // Vulkan array layers (1 for 3D)
 // A resolved region (validate::textureRegion) and layout (validate::texelLayout) as a copy.
-VkBufferImageCopy regionCopy(const gdi::TextureDesc& d, const gdi::TextureRegion& r, const gdi::TexelLayout& l);
-VkImageCopy imageCopy(const gdi::TextureDesc& dst, const gdi::TextureRegion& d, const gdi::TextureDesc& src,
-                      const gdi::TextureRegion& s);
+VkBufferImageCopy regionCopy(const gdi::TextureDesc& d, const gdi::TextureRegion& r,
+                             const gdi::TexelLayout& l);
+VkImageCopy imageCopy(const gdi::TextureDesc& dst, const gdi::TextureRegion& d,
+                      const gdi::TextureDesc& src, const gdi::TextureRegion& s);
 
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
@@ -63,8 +65,10 @@ struct Buffer {
 struct Texture {
     VkImage image = VK_NULL_HANDLE;
     bool ownsMemory = true;  // false when placed in a Heap
-    VkImageView view = VK_NULL_HANDLE;  // every mip and layer, of the texture's dimension: for sampling
-    std::vector<VkImageView> mipViews;  // one per mip, every layer, same view type: for storage images
+    VkImageView view =
+        VK_NULL_HANDLE;  // every mip and layer, of the texture's dimension: for sampling
+    std::vector<VkImageView>
+        mipViews;  // one per mip, every layer, same view type: for storage images
     // One 2D view per (mip, layer), made on first use as an attachment: index mip * layers + layer.
     std::vector<VkImageView> attachmentViews;
     Allocation memory;
@@ -80,8 +84,9 @@ struct Texture {
 
 struct Sampler {
     VkSampler sampler = VK_NULL_HANDLE;
-    bool filtersLinearly = false;  // a Linear filter without comparison: needs FormatCaps::linearFilter
-    bool readsMips = false;        // a MipFilter other than None: reads more than the base mip
+    bool filtersLinearly =
+        false;               // a Linear filter without comparison: needs FormatCaps::linearFilter
+    bool readsMips = false;  // a MipFilter other than None: reads more than the base mip
     std::string name;
 };
 
@@ -103,10 +108,13 @@ struct Pipeline {
     // Per slot: the descriptor write flushBindings copies (type, binding; pointers filled at
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
-    gdi::validate::PassSignature signature;  // attachment formats and samples, checked at setPipeline
-    bool writesDepthStencil = false;         // validate::writesDepthStencil: may not sample its depth attachment
+    gdi::validate::PassSignature
+        signature;  // attachment formats and samples, checked at setPipeline
+    bool writesDepthStencil =
+        false;  // validate::writesDepthStencil: may not sample its depth attachment
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
-    std::array<uint8_t, 64> slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
+    std::array<uint8_t, 64>
+        slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
     // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).
     std::array<float, 4> blendConstant{};
     uint8_t stencilReference = 0;
@@ -125,7 +133,8 @@ struct QuerySet {
     VkQueryPool pool = VK_NULL_HANDLE;
     gdi::QuerySetDesc desc;
     std::string name;
-    std::vector<gdi::FenceValue> submitted;  // per query: the submission that last wrote it (0: none)
+    std::vector<gdi::FenceValue>
+        submitted;  // per query: the submission that last wrote it (0: none)
 };
 
 struct Heap {
@@ -149,7 +158,8 @@ public:
 
     gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
     gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
-    gdi::TextureHandle createTextureView(gdi::TextureHandle texture, const gdi::TextureViewDesc& desc) override;
+    gdi::TextureHandle createTextureView(gdi::TextureHandle texture,
+                                         const gdi::TextureViewDesc& desc) override;
     gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
     gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
     gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
@@ -160,7 +170,8 @@ public:
     gdi::PipelineCacheStats openPipelineCache(const std::string& path) override;
     void savePipelineCache() override;
     gdi::PipelineCacheStats pipelineCacheStats() const override;
-    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) override;
+    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
+                      std::span<uint64_t> out) override;
     gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc& desc) const override;
 
     void destroy(gdi::BufferHandle) override;
@@ -172,14 +183,19 @@ public:
     void destroy(gdi::HeapHandle) override;
     void destroy(gdi::QuerySetHandle) override;
 
-    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override { return buffers_.get(h, "buffer").desc; }
-    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override { return textures_.get(h, "texture").desc; }
+    const gdi::BufferDesc& desc(gdi::BufferHandle h) const override {
+        return buffers_.get(h, "buffer").desc;
+    }
+    const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
+        return textures_.get(h, "texture").desc;
+    }
 
     void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
     void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
-    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region, gdi::ByteSpan data,
-                      const gdi::TexelLayout& layout) override;
-    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region,
+                            gdi::ByteSpan data, const gdi::TexelLayout& layout) override;
+    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset,
+                                    uint64_t size) override;
     gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
 
     void* map(gdi::BufferHandle buffer) override;
@@ -199,7 +215,9 @@ public:
 
     // Internal, for the command list.
     Buffer& buffer(gdi::BufferHandle h) { return buffers_.get(h, "buffer"); }
-    const Buffer* findBuffer(gdi::BufferHandle h) const { return buffers_.find(h); }  // null if invalid
+    const Buffer* findBuffer(gdi::BufferHandle h) const {
+        return buffers_.find(h);
+    }  // null if invalid
     Texture& texture(gdi::TextureHandle h) { return textures_.get(h, "texture"); }
     const Texture* findTexture(gdi::TextureHandle h) const { return textures_.find(h); }
     const Sampler* findSampler(gdi::SamplerHandle h) const { return samplers_.find(h); }
@@ -231,7 +249,8 @@ public:
     PFN_vkCmdInsertDebugUtilsLabelEXT cmdInsertLabel = nullptr;
     uint32_t queueFamily() const { return queueFamily_; }
     bool linearBlit(gdi::Format format) const;
-    gdi::FormatCaps formatCaps(gdi::Format format) const override;  // vkCmdBlitImage with VK_FILTER_LINEAR works
+    gdi::FormatCaps formatCaps(
+        gdi::Format format) const override;  // vkCmdBlitImage with VK_FILTER_LINEAR works
     // The 2D view of one subresource, for attachments (made on first use, kept with the texture).
     VkImageView attachmentView(Texture& t, uint32_t mipLevel, uint32_t layer);
     PFN_vkCmdDrawIndirectCount cmdDrawIndirectCount = nullptr;
@@ -243,7 +262,8 @@ public:
         VkCommandPool pool = VK_NULL_HANDLE;
         VkCommandBuffer cb = VK_NULL_HANDLE;
         gdi::FenceValue fence = 0;  // of the submission that ran it; 0: none pending
-        std::thread::id recordedOn;  // a recording goes back to its thread: malloc arenas stay local
+        std::thread::id
+            recordedOn;  // a recording goes back to its thread: malloc arenas stay local
     };
     SecondaryRecording acquireSecondary();  // reset, ready to begin
     void releaseSecondary(std::span<const SecondaryRecording> recordings, gdi::FenceValue fence);
@@ -251,9 +271,9 @@ public:
     // for destruction and recording, which must work on a lost device.
     void settle(gdi::FenceValue fence);
 
-    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                        VkDebugUtilsMessageTypeFlagsEXT type,
-                                                        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+    static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT type,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
 
 private:
     void createInstance(bool validation);
@@ -261,8 +281,9 @@ private:
     void createLogicalDevice();
     void fillInfo();
     void setName(VkObjectType type, uint64_t object, const char* name);
-    VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
-                         const std::string& object, VkComponentMapping swizzle = {});
+    VkImageView makeView(VkImage image, VkImageViewType type, gdi::Format format,
+                         VkImageSubresourceRange range, const std::string& object,
+                         VkComponentMapping swizzle = {});
     // Records with `record` into a one-time command buffer, submits it and waits.
     // Records, submits and waits for a one-off command buffer; `object` names it in errors.
     void immediate(const std::string& object, const std::function<void(VkCommandBuffer)>& record);
@@ -275,16 +296,18 @@ private:
         uint32_t texture = 0, buffer = 0;  // the object they are for (0: none)
         std::function<void(VkCommandBuffer)> record;
     };
-    void recordInitialTransition(std::function<void(VkCommandBuffer)> record, uint32_t texture = 0, uint32_t buffer = 0);
+    void recordInitialTransition(std::function<void(VkCommandBuffer)> record, uint32_t texture = 0,
+                                 uint32_t buffer = 0);
     void dropInitialCommands(uint32_t texture, uint32_t buffer);
     static void clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format format);
     // Ended, ready to submit; null when none. `object`: what errors name (the transfer's object).
-    VkCommandBuffer takeInitialTransitions(const std::string& object = "first commands of new objects");
+    VkCommandBuffer takeInitialTransitions(
+        const std::string& object = "first commands of new objects");
     void freeAfter(gdi::FenceValue fence, VkCommandBuffer cb);
     std::vector<InitialCommands> pendingInit_;
     // kind and name say what the buffer is in errors (gdi::describeObject).
-    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
-                      const std::string& name);
+    Buffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem,
+                      const char* kind, const std::string& name);
     void freeBuffer(Buffer& b);
     void release();
     // VkResults of the device's own calls: vk::check, and VK_ERROR_DEVICE_LOST marks the device
@@ -297,19 +320,21 @@ private:
     void idle();  // destroy's wait: settle() everything
     // Deferred destruction: `release` runs once every submission made so far has completed.
     void retire(std::function<void()> release);
-    void collectRetired();  // runs the releases whose submissions have completed
+    void collectRetired();     // runs the releases whose submissions have completed
     void releaseRetiredNow();  // waits for the queue (pending transitions included), releases all
-    void pollFences();      // completes finished submissions without waiting
+    void pollFences();         // completes finished submissions without waiting
     struct Retired {
         gdi::FenceValue after;
         uint64_t epoch;  // the destroy's: recordings open since before it hold the release back
         std::function<void()> release;
     };
     std::deque<Retired> retired_;
-    bool heldByRecording(uint64_t epoch) const { return !openRecordings_.empty() && *openRecordings_.begin() < epoch; }
-    std::multiset<uint64_t> openRecordings_;  // the `since` of each open recording
+    bool heldByRecording(uint64_t epoch) const {
+        return !openRecordings_.empty() && *openRecordings_.begin() < epoch;
+    }
+    std::multiset<uint64_t> openRecordings_;         // the `since` of each open recording
     gdi::MessageLog messages_{"Vulkan validation"};  // each message once; repeats counted
-    std::vector<SecondaryRecording> secondaries_;  // free, or pending until their fence
+    std::vector<SecondaryRecording> secondaries_;    // free, or pending until their fence
     // present() copies through the swap chain's own submissions, which no device fence covers:
     // the next destroy waits for the queue, as every destroy did before deferred release.
     bool presentedSinceIdle_ = false;
@@ -322,7 +347,8 @@ private:
     // is loaded, then this device's mutex.
     class DeviceCall {
     public:
-        explicit DeviceCall(const VulkanDevice& d) : layer_(d.info_.features.validation), lock_(d.mutex_) {}
+        explicit DeviceCall(const VulkanDevice& d)
+            : layer_(d.info_.features.validation), lock_(d.mutex_) {}
 
     private:
         gdi::NativeLayerLock::Call layer_;
@@ -350,7 +376,8 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
     std::atomic<uint32_t> validationErrors_{0};  // the layer calls back on recording threads too
     mutable gdi::DeviceLoss loss_;
-    uint32_t nativeObjects_ = 0;  // VkBuffers and VkImages of buffers, textures and staging (liveObjects)
+    uint32_t nativeObjects_ =
+        0;  // VkBuffers and VkImages of buffers, textures and staging (liveObjects)
 
     struct Submission {
         gdi::FenceValue value;
@@ -366,7 +393,8 @@ private:
     gdi::HandlePool<gdi::TextureHandle, Texture> textures_{handleSalt_};
     gdi::HandlePool<gdi::SamplerHandle, Sampler> samplers_{handleSalt_};
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_{handleSalt_};
-    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{handleSalt_};  // command lists point at the bound one (objects never move)
+    gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{
+        handleSalt_};  // command lists point at the bound one (objects never move)
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_{handleSalt_};
     gdi::HandlePool<gdi::HeapHandle, Heap> heaps_{handleSalt_};
     gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_{handleSalt_};

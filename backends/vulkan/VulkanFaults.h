@@ -10,7 +10,8 @@ namespace fe::vk {
 // `name`: the Vulkan call, as the fault trace names the site.
 template <class Call>
 VkResult nativeAllocation(const char* name, Call&& call) {
-    return gdi::fault::hit(gdi::fault::Site::Allocation, name) ? VK_ERROR_OUT_OF_DEVICE_MEMORY : call();
+    return gdi::fault::hit(gdi::fault::Site::Allocation, name) ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                                               : call();
 }
 
 template <class Call>

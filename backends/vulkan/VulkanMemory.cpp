@@ -7,7 +7,8 @@
 
 namespace fe::vk {
 
-MemoryAllocator::MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device) : device_(device) {
+MemoryAllocator::MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device)
+    : device_(device) {
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &props_);
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(physicalDevice, &p);
@@ -24,8 +25,12 @@ MemoryAllocator::~MemoryAllocator() {
 uint32_t MemoryAllocator::chooseType(uint32_t typeBits, MemoryUsage usage) const {
     VkMemoryPropertyFlags required = 0, preferred = 0;
     switch (usage) {
-        case MemoryUsage::GpuOnly: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
-        case MemoryUsage::Upload: required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT; break;
+        case MemoryUsage::GpuOnly:
+            preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+            break;
+        case MemoryUsage::Upload:
+            required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+            break;
         case MemoryUsage::Readback:
             required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
             preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
@@ -43,13 +48,16 @@ uint32_t MemoryAllocator::chooseType(uint32_t typeBits, MemoryUsage usage) const
     return best;
 }
 
-uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated, const std::string& object) {
+uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated,
+                                   const std::string& object) {
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = size;
     ai.memoryTypeIndex = typeIndex;
     auto b = std::make_unique<Block>();
     const std::string call = "vkAllocateMemory (" + std::to_string(size) + "-byte block)";
-    check(nativeAllocation("vkAllocateMemory", [&] { return vkAllocateMemory(device_, &ai, nullptr, &b->memory); }), call.c_str(), object);
+    check(nativeAllocation("vkAllocateMemory",
+                           [&] { return vkAllocateMemory(device_, &ai, nullptr, &b->memory); }),
+          call.c_str(), object);
     b->size = size;
     b->typeIndex = typeIndex;
     b->dedicated = dedicated;
@@ -72,7 +80,8 @@ uint32_t MemoryAllocator::newBlock(uint32_t typeIndex, VkDeviceSize size, bool d
     return uint32_t(blocks_.size() - 1);
 }
 
-Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage, const std::string& object) {
+Allocation MemoryAllocator::allocate(const VkMemoryRequirements& req, MemoryUsage usage,
+                                     const std::string& object) {
     const uint32_t type = chooseType(req.memoryTypeBits, usage);
     const VkDeviceSize align = std::max<VkDeviceSize>(req.alignment, granularity_);
     const VkDeviceSize size = (req.size + granularity_ - 1) / granularity_ * granularity_;

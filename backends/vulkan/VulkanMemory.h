@@ -32,7 +32,8 @@ public:
     MemoryAllocator& operator=(const MemoryAllocator&) = delete;
 
     // `object` names what the memory is for, in errors (gdi::describeObject).
-    Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage, const std::string& object);
+    Allocation allocate(const VkMemoryRequirements& req, MemoryUsage usage,
+                        const std::string& object);
     void free(const Allocation& a);
 
     struct Stats {
@@ -54,7 +55,8 @@ private:
         uint32_t live = 0;
     };
     uint32_t chooseType(uint32_t typeBits, MemoryUsage usage) const;
-    uint32_t newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated, const std::string& object);
+    uint32_t newBlock(uint32_t typeIndex, VkDeviceSize size, bool dedicated,
+                      const std::string& object);
 
     VkDevice device_;
     VkPhysicalDeviceMemoryProperties props_{};

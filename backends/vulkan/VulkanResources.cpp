@@ -15,7 +15,8 @@ VkFormatFeatureFlags requiredFeatures(gdi::Format f, gdi::TextureUsage u) {
     if (any(u, gdi::TextureUsage::Sampled)) r |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     if (any(u, gdi::TextureUsage::Storage)) r |= VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
     if (any(u, gdi::TextureUsage::RenderTarget))
-        r |= gdi::isDepthFormat(f) ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
+        r |= gdi::isDepthFormat(f) ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
+                                   : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
     return r | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
 }
 
@@ -34,21 +35,26 @@ bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) c
 gdi::FormatCaps VulkanDevice::formatCaps(gdi::Format format) const {
     gdi::FormatCaps c;
     const VkFormat vf = toVkFormat(format);
-    if (vf == VK_FORMAT_UNDEFINED || (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC)) return c;
+    if (vf == VK_FORMAT_UNDEFINED ||
+        (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC))
+        return c;
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
     const VkFormatFeatureFlags f = p.optimalTilingFeatures;
     const bool depth = gdi::isDepthFormat(format);
     c.sampled = f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     c.linearFilter = c.sampled && (f & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT);
-    c.renderTarget = f & (depth ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
+    c.renderTarget = f & (depth ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
+                                : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
     c.blend = !depth && (f & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT);
     c.storage = f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
     if (c.renderTarget) {
         VkImageFormatProperties ip{};
-        const VkImageUsageFlags usage = depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        if (vkGetPhysicalDeviceImageFormatProperties(physical_, vf, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL, usage, 0, &ip) ==
-            VK_SUCCESS)
+        const VkImageUsageFlags usage = depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT
+                                              : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        if (vkGetPhysicalDeviceImageFormatProperties(physical_, vf, VK_IMAGE_TYPE_2D,
+                                                     VK_IMAGE_TILING_OPTIMAL, usage, 0,
+                                                     &ip) == VK_SUCCESS)
             c.sampleCounts = uint32_t(ip.sampleCounts) & 0xf;  // 1, 2, 4, 8: what the engine offers
     }
     return c;
@@ -57,26 +63,30 @@ gdi::FormatCaps VulkanDevice::formatCaps(gdi::Format format) const {
 bool VulkanDevice::linearBlit(gdi::Format format) const {
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, toVkFormat(format), &p);
-    const VkFormatFeatureFlags need =
-        VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_BLIT_SRC_BIT |
+                                      VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
     return (p.optimalTilingFeatures & need) == need;
 }
 
-Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem, const char* kind,
-                                const std::string& name) {
+Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage mem,
+                                const char* kind, const std::string& name) {
     const std::string object = gdi::describeObject(kind, name, std::to_string(size) + " bytes");
     Buffer b;
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size;
     ci.usage = usage;
     ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    check(nativeAllocation("vkCreateBuffer", [&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }), "vkCreateBuffer", object);
+    check(nativeAllocation("vkCreateBuffer",
+                           [&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }),
+          "vkCreateBuffer", object);
     ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
     try {
         b.memory = allocator_->allocate(req, mem, object);
-        check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset), "vkBindBufferMemory", object);
+        check(vkBindBufferMemory(device_, b.buffer, b.memory.memory, b.memory.offset),
+              "vkBindBufferMemory", object);
     } catch (...) {
         freeBuffer(b);
         throw;
@@ -90,7 +100,8 @@ void VulkanDevice::freeBuffer(Buffer& b) {
     b = Buffer{};
 }
 
-gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
+gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc,
+                                             gdi::ByteSpan initialData) {
     const DeviceCall call(*this);
     loss_.check("createBuffer");
     gdi::validate::bufferDesc(desc, info_.limits);
@@ -121,7 +132,9 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     try {
         if (!zero) writeBuffer(h, 0, initialData);
         if (fill) {
-            recordInitialTransition([native](VkCommandBuffer cb) { vkCmdFillBuffer(cb, native, 0, VK_WHOLE_SIZE, 0); }, 0, h.id);
+            recordInitialTransition(
+                [native](VkCommandBuffer cb) { vkCmdFillBuffer(cb, native, 0, VK_WHOLE_SIZE, 0); },
+                0, h.id);
         }
     } catch (...) {
         destroy(h);
@@ -130,8 +143,9 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc, gdi::B
     return h;
 }
 
-VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format, VkImageSubresourceRange range,
-                                   const std::string& object, VkComponentMapping swizzle) {
+VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::Format format,
+                                   VkImageSubresourceRange range, const std::string& object,
+                                   VkComponentMapping swizzle) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
     vi.viewType = type;
@@ -141,18 +155,25 @@ VkImageView VulkanDevice::makeView(VkImage image, VkImageViewType type, gdi::For
     range.aspectMask = viewAspectOf(format);
     vi.subresourceRange = range;
     VkImageView v;
-    check(nativeAllocation("vkCreateImageView", [&] { return vkCreateImageView(device_, &vi, nullptr, &v); }), "vkCreateImageView", object);
+    check(nativeAllocation("vkCreateImageView",
+                           [&] { return vkCreateImageView(device_, &vi, nullptr, &v); }),
+          "vkCreateImageView", object);
     return v;
 }
 
 namespace {
 VkImageViewType viewType(gdi::TextureDimension d) {
     switch (d) {
-        case gdi::TextureDimension::Texture2DArray: return VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-        case gdi::TextureDimension::TextureCube: return VK_IMAGE_VIEW_TYPE_CUBE;
-        case gdi::TextureDimension::TextureCubeArray: return VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
-        case gdi::TextureDimension::Texture3D: return VK_IMAGE_VIEW_TYPE_3D;
-        default: return VK_IMAGE_VIEW_TYPE_2D;
+        case gdi::TextureDimension::Texture2DArray:
+            return VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+        case gdi::TextureDimension::TextureCube:
+            return VK_IMAGE_VIEW_TYPE_CUBE;
+        case gdi::TextureDimension::TextureCubeArray:
+            return VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
+        case gdi::TextureDimension::Texture3D:
+            return VK_IMAGE_VIEW_TYPE_3D;
+        default:
+            return VK_IMAGE_VIEW_TYPE_2D;
     }
 }
 }  // namespace
@@ -160,11 +181,13 @@ VkImageViewType viewType(gdi::TextureDimension d) {
 VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t layer) {
     const DeviceCall call(*this);
     const uint32_t layers = t.desc.depthOrLayers;
-    if (t.attachmentViews.empty()) t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
+    if (t.attachmentViews.empty())
+        t.attachmentViews.assign(size_t(t.desc.mipLevels) * layers, VK_NULL_HANDLE);
     VkImageView& v = t.attachmentViews[size_t(mip) * layers + layer];
     // A 3D slice is a 2D view of one layer of the 2D-array-compatible image (VK_KHR_maintenance1).
     if (!v)
-        v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format, {0, t.baseMip + mip, 1, t.baseLayer + layer, 1},
+        v = makeView(t.image, VK_IMAGE_VIEW_TYPE_2D, t.desc.format,
+                     {0, t.baseMip + mip, 1, t.baseLayer + layer, 1},
                      gdi::describeObject("texture", t.name, {}));
     return v;
 }
@@ -181,10 +204,12 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     // Cube views of square arrays, and views in the formats TextureDesc::viewFormats lists.
     if (gdi::validate::isCube(desc.dimension) ||
-        (desc.dimension == gdi::TextureDimension::Texture2DArray && desc.width == desc.height && desc.depthOrLayers >= 6))
+        (desc.dimension == gdi::TextureDimension::Texture2DArray && desc.width == desc.height &&
+         desc.depthOrLayers >= 6))
         ci.flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
     if (!desc.viewFormats.empty()) ci.flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
-    if (is3D && any(desc.usage, U::RenderTarget)) ci.flags |= VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
+    if (is3D && any(desc.usage, U::RenderTarget))
+        ci.flags |= VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
     ci.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     ci.format = toVkFormat(desc.format);
     ci.extent = {desc.width, desc.height, is3D ? desc.depthOrLayers : 1};
@@ -197,12 +222,16 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     return ci;
 }
 
-gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(const gdi::TextureDesc& desc) const {
+gdi::MemoryRequirements VulkanDevice::textureMemoryRequirements(
+    const gdi::TextureDesc& desc) const {
     gdi::validate::textureDesc(desc, info_);
     VkImageCreateInfo ci = imageInfo(desc);
     VkImage image;
-    check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
-          gdi::describeObject("texture", desc.debugName ? desc.debugName : "", "memory requirements"));
+    check(nativeAllocation("vkCreateImage",
+                           [&] { return vkCreateImage(device_, &ci, nullptr, &image); }),
+          "vkCreateImage",
+          gdi::describeObject("texture", desc.debugName ? desc.debugName : "",
+                              "memory requirements"));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, image, &req);
     vkDestroyImage(device_, image, nullptr);
@@ -217,13 +246,18 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
     // Memory types every render-target/sampled image kind accepts, found from sample images.
     uint32_t typeBits = ~0u;
     VkDeviceSize alignment = 1;
-    for (gdi::Format f : {gdi::Format::RGBA8, gdi::Format::RGBA16F, gdi::Format::R32F, gdi::Format::D32F}) {
-        gdi::TextureDesc probe{.format = f, .width = 64, .height = 64,
-                               .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
+    for (gdi::Format f :
+         {gdi::Format::RGBA8, gdi::Format::RGBA16F, gdi::Format::R32F, gdi::Format::D32F}) {
+        gdi::TextureDesc probe{
+            .format = f,
+            .width = 64,
+            .height = 64,
+            .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled};
         VkImageCreateInfo ci = imageInfo(probe);
         VkImage image;
-        check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &image); }), "vkCreateImage",
-              gdi::describeObject("heap", name, "memory type probe"));
+        check(nativeAllocation("vkCreateImage",
+                               [&] { return vkCreateImage(device_, &ci, nullptr, &image); }),
+              "vkCreateImage", gdi::describeObject("heap", name, "memory type probe"));
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(device_, image, &req);
         vkDestroyImage(device_, image, nullptr);
@@ -232,8 +266,9 @@ gdi::HeapHandle VulkanDevice::createHeap(const gdi::HeapDesc& desc) {
     }
     if (!typeBits) throw gdi::Error("heap '" + name + "': no memory type fits all texture kinds");
     Heap h;
-    h.memory = allocator_->allocate({desc.size, alignment, typeBits}, MemoryUsage::GpuOnly,
-                                    gdi::describeObject("heap", name, std::to_string(desc.size) + " bytes"));
+    h.memory = allocator_->allocate(
+        {desc.size, alignment, typeBits}, MemoryUsage::GpuOnly,
+        gdi::describeObject("heap", name, std::to_string(desc.size) + " bytes"));
     h.size = desc.size;
     h.name = name;
     return heaps_.add(std::move(h));
@@ -245,7 +280,9 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
     if (!h) return;
     if (!heaps_.find(h)) gdi::validate::destroyedHandle("heap", h.id);
     releaseRetiredNow();  // textures destroyed before the heap are released now, not later
-    if (heaps_.find(h)->placed) throw gdi::Error("destroy heap '" + heaps_.find(h)->name + "': textures are still placed in it");
+    if (heaps_.find(h)->placed)
+        throw gdi::Error("destroy heap '" + heaps_.find(h)->name +
+                         "': textures are still placed in it");
     idle();
     heaps_.remove(h, heap);
     allocator_->free(heap.memory);
@@ -271,18 +308,24 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     formatList.viewFormatCount = uint32_t(viewFormats.size());
     formatList.pViewFormats = viewFormats.data();
     if (!desc.viewFormats.empty()) ci.pNext = &formatList;
-    const std::string object = gdi::describeObject("texture", name, std::to_string(desc.width) + "x" + std::to_string(desc.height) +
-                                                                        " " + std::string(gdi::formatInfo(desc.format).name));
-    check(nativeAllocation("vkCreateImage", [&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }), "vkCreateImage", object);
+    const std::string object =
+        gdi::describeObject("texture", name,
+                            std::to_string(desc.width) + "x" + std::to_string(desc.height) + " " +
+                                std::string(gdi::formatInfo(desc.format).name));
+    check(nativeAllocation("vkCreateImage",
+                           [&] { return vkCreateImage(device_, &ci, nullptr, &t.image); }),
+          "vkCreateImage", object);
     ++nativeObjects_;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, t.image, &req);
     try {
         if (heap) {
             if (desc.heapOffset % req.alignment != 0 || desc.heapOffset + req.size > heap->size)
-                throw gdi::Error("texture '" + name + "': placement at offset " + std::to_string(desc.heapOffset) +
-                                 " (size " + std::to_string(req.size) + ", alignment " + std::to_string(req.alignment) +
-                                 ") does not fit heap '" + heap->name + "' of " + std::to_string(heap->size) + " bytes");
+                throw gdi::Error("texture '" + name + "': placement at offset " +
+                                 std::to_string(desc.heapOffset) + " (size " +
+                                 std::to_string(req.size) + ", alignment " +
+                                 std::to_string(req.alignment) + ") does not fit heap '" +
+                                 heap->name + "' of " + std::to_string(heap->size) + " bytes");
             t.ownsMemory = false;
             heap->placed++;  // from here on destroyTexture() counts it out again, also when this fails
             t.memory = heap->memory;
@@ -291,19 +334,22 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
         } else {
             t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly, object);
         }
-        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset), "vkBindImageMemory", object);
+        check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset),
+              "vkBindImageMemory", object);
         const VkImageViewType type = viewType(desc.dimension);
         const uint32_t layers = arrayLayers(desc);
         // Multisampled images are only attachments (gdi does not sample them); an image only
         // copied to and from has no usage a view may have (VUID-VkImageViewCreateInfo-image-04441).
         using U = gdi::TextureUsage;
         if (desc.sampleCount == 1 && any(desc.usage, U::Sampled | U::Storage | U::RenderTarget)) {
-            t.view = makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers}, object);
+            t.view =
+                makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers}, object);
             // Storage images bind one mip, every layer, of the texture's kind (image2DArray,
             // imageCube, image3D...), as GL's layered image bindings do.
             if (any(desc.usage, gdi::TextureUsage::Storage))
                 for (uint32_t m = 0; m < desc.mipLevels; ++m)
-                    t.mipViews.push_back(makeView(t.image, type, desc.format, {0, m, 1, 0, layers}, object));
+                    t.mipViews.push_back(
+                        makeView(t.image, type, desc.format, {0, m, 1, 0, layers}, object));
         }
     } catch (...) {
         destroyTexture(t);
@@ -324,7 +370,8 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     return h;
 }
 
-gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h, const gdi::TextureViewDesc& v) {
+gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h,
+                                                   const gdi::TextureViewDesc& v) {
     const DeviceCall call(*this);
     loss_.check("createTextureView");
     Texture& parent = texture(h);
@@ -338,20 +385,25 @@ gdi::TextureHandle VulkanDevice::createTextureView(gdi::TextureHandle h, const g
     t.baseLayer = t.desc.dimension == gdi::TextureDimension::Texture3D ? 0 : v.baseLayer;
     t.linearFilter = formatCaps(t.desc.format).linearFilter;
     auto channel = [](gdi::Swizzle s) {
-        static constexpr VkComponentSwizzle k[] = {VK_COMPONENT_SWIZZLE_IDENTITY, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ONE,
-                                                   VK_COMPONENT_SWIZZLE_R, VK_COMPONENT_SWIZZLE_G, VK_COMPONENT_SWIZZLE_B,
-                                                   VK_COMPONENT_SWIZZLE_A};
+        static constexpr VkComponentSwizzle k[] = {
+            VK_COMPONENT_SWIZZLE_IDENTITY, VK_COMPONENT_SWIZZLE_ZERO, VK_COMPONENT_SWIZZLE_ONE,
+            VK_COMPONENT_SWIZZLE_R,        VK_COMPONENT_SWIZZLE_G,    VK_COMPONENT_SWIZZLE_B,
+            VK_COMPONENT_SWIZZLE_A};
         return k[int(s)];
     };
-    const VkComponentMapping swizzle{channel(v.swizzle[0]), channel(v.swizzle[1]), channel(v.swizzle[2]), channel(v.swizzle[3])};
-    const std::string object = gdi::describeObject("texture view", t.name, "of '" + parent.name + "'");
+    const VkComponentMapping swizzle{channel(v.swizzle[0]), channel(v.swizzle[1]),
+                                     channel(v.swizzle[2]), channel(v.swizzle[3])};
+    const std::string object =
+        gdi::describeObject("texture view", t.name, "of '" + parent.name + "'");
     const VkImageViewType type = viewType(t.desc.dimension);
     const uint32_t layers = arrayLayers(t.desc);
     try {
-        t.view = makeView(t.image, type, t.desc.format, {0, t.baseMip, t.desc.mipLevels, t.baseLayer, layers}, object, swizzle);
+        t.view = makeView(t.image, type, t.desc.format,
+                          {0, t.baseMip, t.desc.mipLevels, t.baseLayer, layers}, object, swizzle);
         if (any(t.desc.usage, gdi::TextureUsage::Storage))
             for (uint32_t m = 0; m < t.desc.mipLevels; ++m)
-                t.mipViews.push_back(makeView(t.image, type, t.desc.format, {0, t.baseMip + m, 1, t.baseLayer, layers}, object));
+                t.mipViews.push_back(makeView(t.image, type, t.desc.format,
+                                              {0, t.baseMip + m, 1, t.baseLayer, layers}, object));
     } catch (...) {
         destroyTexture(t);
         throw;
@@ -385,7 +437,8 @@ void VulkanDevice::destroyTexture(Texture& t) {
 // pending object's commands orders it before use.
 void VulkanDevice::clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format format) {
     if (gdi::isCompressedFormat(format)) return;
-    const VkImageSubresourceRange all{aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+    const VkImageSubresourceRange all{aspectOf(format), 0, VK_REMAINING_MIP_LEVELS, 0,
+                                      VK_REMAINING_ARRAY_LAYERS};
     if (gdi::isDepthFormat(format)) {
         const VkClearDepthStencilValue zero{0.0f, 0};
         vkCmdClearDepthStencilImage(cb, image, VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &all);
@@ -399,19 +452,26 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     const DeviceCall call(*this);
     loss_.check("createSampler");
     gdi::validate::samplerDesc(d);
-    auto filter = [](gdi::Filter f) { return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; };
+    auto filter = [](gdi::Filter f) {
+        return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+    };
     auto address = [](gdi::AddressMode a) {
         switch (a) {
-            case gdi::AddressMode::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-            case gdi::AddressMode::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-            case gdi::AddressMode::ClampToBorder: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-            default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+            case gdi::AddressMode::MirroredRepeat:
+                return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+            case gdi::AddressMode::ClampToEdge:
+                return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+            case gdi::AddressMode::ClampToBorder:
+                return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+            default:
+                return VK_SAMPLER_ADDRESS_MODE_REPEAT;
         }
     };
     VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     ci.magFilter = filter(d.magFilter);
     ci.minFilter = filter(d.minFilter);
-    ci.mipmapMode = d.mipFilter == gdi::MipFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    ci.mipmapMode = d.mipFilter == gdi::MipFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                                          : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     ci.addressModeU = address(d.addressU);
     ci.addressModeV = address(d.addressV);
     ci.addressModeW = address(d.addressW);
@@ -419,10 +479,12 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     ci.compareOp = VkCompareOp(int(d.compare));  // same order as VkCompareOp
     ci.anisotropyEnable = anisotropy_ && d.maxAnisotropy > 1.0f;
     ci.maxAnisotropy = std::min(d.maxAnisotropy, props_.limits.maxSamplerAnisotropy);
-    static constexpr VkBorderColor kBorder[] = {VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK, VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK,
+    static constexpr VkBorderColor kBorder[] = {VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK,
+                                                VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK,
                                                 VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
     ci.borderColor = kBorder[int(d.borderColor)];
-    ci.mipLodBias = std::clamp(d.lodBias, -props_.limits.maxSamplerLodBias, props_.limits.maxSamplerLodBias);
+    ci.mipLodBias =
+        std::clamp(d.lodBias, -props_.limits.maxSamplerLodBias, props_.limits.maxSamplerLodBias);
     // MipFilter::None samples the base level only, with minFilter when minifying, as GL's
     // non-mipmap filters do. Clamping the level of detail to 0 would make every lookup a
     // magnification (magFilter); 0.25 keeps minification visible while NEAREST mipmapping still
@@ -434,7 +496,9 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     s.filtersLinearly = gdi::validate::filtersLinearly(d);
     s.readsMips = d.mipFilter != gdi::MipFilter::None;
     s.name = d.debugName ? d.debugName : "";
-    check(nativeAllocation("vkCreateSampler", [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }), "vkCreateSampler");
+    check(nativeAllocation("vkCreateSampler",
+                           [&] { return vkCreateSampler(device_, &ci, nullptr, &s.sampler); }),
+          "vkCreateSampler");
     setName(VK_OBJECT_TYPE_SAMPLER, uint64_t(s.sampler), d.debugName);
     return samplers_.add(std::move(s));
 }
@@ -442,7 +506,8 @@ gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
 gdi::TimerHandle VulkanDevice::createTimer() {
     const DeviceCall call(*this);
     loss_.check("createTimer");
-    if (freeTimerSlots_.empty()) throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
+    if (freeTimerSlots_.empty())
+        throw gdi::Error("Vulkan: out of timers (" + std::to_string(kMaxTimers) + " live)");
     Timer t{freeTimerSlots_.back()};
     freeTimerSlots_.pop_back();
     vkResetQueryPool(device_, queryPool_, t.firstQuery, 2);
@@ -472,7 +537,9 @@ void VulkanDevice::destroy(gdi::TextureHandle h) {
         gdi::validate::viewsAlive(live->name, live->views);
     if (!h) return;
     if (!textures_.retire(h)) gdi::validate::destroyedHandle("texture", h.id);
-    if (Texture* parent = textures_.at(h).viewOf ? textures_.find({textures_.at(h).viewOf}) : nullptr) --parent->views;
+    if (Texture* parent =
+            textures_.at(h).viewOf ? textures_.find({textures_.at(h).viewOf}) : nullptr)
+        --parent->views;
     dropInitialCommands(h.id, 0);  // nor a first transition and clear
     retire([this, h] {
         Texture t;
@@ -536,8 +603,13 @@ gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) 
     VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     ci.queryCount = desc.count;
     switch (desc.type) {
-        case gdi::QueryType::Occlusion: case gdi::QueryType::AnySamplesPassed: ci.queryType = VK_QUERY_TYPE_OCCLUSION; break;
-        case gdi::QueryType::Timestamp: ci.queryType = VK_QUERY_TYPE_TIMESTAMP; break;
+        case gdi::QueryType::Occlusion:
+        case gdi::QueryType::AnySamplesPassed:
+            ci.queryType = VK_QUERY_TYPE_OCCLUSION;
+            break;
+        case gdi::QueryType::Timestamp:
+            ci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            break;
         case gdi::QueryType::PipelineStatistics:
             ci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
             // Results come in bit order: primitives, vertex, fragment, compute (PipelineStatistics).
@@ -547,7 +619,8 @@ gdi::QuerySetHandle VulkanDevice::createQuerySet(const gdi::QuerySetDesc& desc) 
                                     VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;
             break;
     }
-    check(nativeAllocation("vkCreateQueryPool", [&] { return vkCreateQueryPool(device_, &ci, nullptr, &q.pool); }),
+    check(nativeAllocation("vkCreateQueryPool",
+                           [&] { return vkCreateQueryPool(device_, &ci, nullptr, &q.pool); }),
           "vkCreateQueryPool", q.name);
     vkResetQueryPool(device_, q.pool, 0, desc.count);
     setName(VK_OBJECT_TYPE_QUERY_POOL, uint64_t(q.pool), desc.debugName);
@@ -565,7 +638,8 @@ void VulkanDevice::destroy(gdi::QuerySetHandle h) {
     });
 }
 
-bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count, std::span<uint64_t> out) {
+bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
+                                std::span<uint64_t> out) {
     const DeviceCall call(*this);
     loss_.check("queryResults");
     QuerySet& q = querySets_.get(h, "query set");
@@ -574,8 +648,8 @@ bool VulkanDevice::queryResults(gdi::QuerySetHandle h, uint32_t first, uint32_t 
     for (uint32_t i = first; i < first + count; ++i)
         if (q.submitted[i] == 0 || q.submitted[i] > completed_) return false;
     const uint32_t values = gdi::validate::queryValues(q.desc.type);
-    const VkResult r = vkGetQueryPoolResults(device_, q.pool, first, count, count * values * 8, out.data(), values * 8,
-                                             VK_QUERY_RESULT_64_BIT);
+    const VkResult r = vkGetQueryPoolResults(device_, q.pool, first, count, count * values * 8,
+                                             out.data(), values * 8, VK_QUERY_RESULT_64_BIT);
     if (r == VK_NOT_READY) return false;
     check(r, "vkGetQueryPoolResults", q.name);
     for (uint32_t i = 0; i < count * values; ++i) {

@@ -76,7 +76,7 @@ private:
 
     struct Frame {
         VkCommandBuffer commands = VK_NULL_HANDLE;
-        VkFence done = VK_NULL_HANDLE;         // created signalled
+        VkFence done = VK_NULL_HANDLE;  // created signalled
         VkSemaphore acquired = VK_NULL_HANDLE;
     };
     static constexpr uint32_t kFrames = 2;

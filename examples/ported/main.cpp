@@ -45,30 +45,44 @@ int main(int argc, char** argv) {
     bool validation = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--backend" && i + 1 < argc) backend = argv[++i];
-        else if (a == "--validation") validation = true;
-        else return std::fprintf(stderr, "usage: %s [--backend NAME] [--validation]\n", argv[0]), 2;
+        if (a == "--backend" && i + 1 < argc)
+            backend = argv[++i];
+        else if (a == "--validation")
+            validation = true;
+        else
+            return std::fprintf(stderr, "usage: %s [--backend NAME] [--validation]\n", argv[0]), 2;
     }
     try {
-        auto device = createDevice({.backend = backend, .validation = validation, .verbose = false});
+        auto device =
+            createDevice({.backend = backend, .validation = validation, .verbose = false});
         Device& d = *device;
         DeviceObjects o(d);
-        const ShaderHandle vs = o.add(d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("ported/ported.vert")}));
-        const ShaderHandle fs = o.add(d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("ported/ported.frag")}));
+        const ShaderHandle vs = o.add(d.createShader(
+            {.stage = ShaderStage::Vertex, .binary = fe::shaders::find("ported/ported.vert")}));
+        const ShaderHandle fs = o.add(d.createShader(
+            {.stage = ShaderStage::Fragment, .binary = fe::shaders::find("ported/ported.frag")}));
         auto pipeline = [&](float brightness) {
-            return o.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                                   .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8},
-                                                   .specialization = {SpecializationConstant::of(0, brightness)}}));
+            return o.add(d.createGraphicsPipeline(
+                {.vertexShader = vs,
+                 .fragmentShader = fs,
+                 .topology = PrimitiveTopology::TriangleStrip,
+                 .colorFormats = {Format::RGBA8},
+                 .specialization = {SpecializationConstant::of(0, brightness)}}));
         };
         const PipelineHandle full = pipeline(1.0f), half = pipeline(0.5f);
         // A 2-layer array; layer 1 is drawn through a Texture2D view of it.
-        const TextureHandle layers = o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray, .width = 32, .height = 32,
-                                                            .depthOrLayers = 2,
-                                                            .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
-        const TextureHandle layer1 = o.add(d.createTextureView(layers, {.dimension = TextureDimension::Texture2D, .baseLayer = 1,
-                                                                        .layerCount = 1}));
-        const QuerySetHandle occlusion = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 1}));
-        const BufferHandle readback = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback}));
+        const TextureHandle layers =
+            o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray,
+                                   .width = 32,
+                                   .height = 32,
+                                   .depthOrLayers = 2,
+                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+        const TextureHandle layer1 = o.add(d.createTextureView(
+            layers, {.dimension = TextureDimension::Texture2D, .baseLayer = 1, .layerCount = 1}));
+        const QuerySetHandle occlusion =
+            o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 1}));
+        const BufferHandle readback = o.add(d.createBuffer(
+            {.size = 256, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback}));
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = layer1}}});
         cmd->beginQuery(occlusion, 0);
@@ -81,16 +95,19 @@ int main(int argc, char** argv) {
         cmd->endQuery(occlusion, 0);
         cmd->endRenderPass();
         // Texels (14..17, 15) and (14..17, 16) of layer 1: two rows of 4, with 64-byte rows.
-        cmd->copyTextureToBuffer(readback, {.bytesPerRow = 64}, layers, {.x = 14, .y = 15, .z = 1, .width = 4, .height = 2, .depth = 1});
+        cmd->copyTextureToBuffer(readback, {.bytesPerRow = 64}, layers,
+                                 {.x = 14, .y = 15, .z = 1, .width = 4, .height = 2, .depth = 1});
         d.wait(d.submit(*cmd));
         std::array<uint64_t, 1> samples{};
         const bool ready = d.queryResults(occlusion, 0, 1, samples);
-        std::printf("occlusion: %s, %llu samples passed\n", ready ? "ready" : "not ready", (unsigned long long)samples[0]);
+        std::printf("occlusion: %s, %llu samples passed\n", ready ? "ready" : "not ready",
+                    (unsigned long long)samples[0]);
         const auto* texels = static_cast<const uint8_t*>(d.map(readback));
         for (int row = 0; row < 2; ++row) {
             std::printf("row %d:", row);
             for (int x = 0; x < 4; ++x)
-                std::printf(" %02x%02x%02x%02x", texels[row * 64 + x * 4], texels[row * 64 + x * 4 + 1], texels[row * 64 + x * 4 + 2],
+                std::printf(" %02x%02x%02x%02x", texels[row * 64 + x * 4],
+                            texels[row * 64 + x * 4 + 1], texels[row * 64 + x * 4 + 2],
                             texels[row * 64 + x * 4 + 3]);
             std::printf("\n");
         }
@@ -98,21 +115,29 @@ int main(int argc, char** argv) {
 
         // Two threads record a list each (constants per draw, a query each), submitted together.
         const std::array<TextureHandle, 2> halves = {
-            o.add(d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc})),
-            o.add(d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}))};
-        const QuerySetHandle counts = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 2}));
-        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(), d.createCommandList()};
+            o.add(d.createTexture({.width = 16,
+                                   .height = 16,
+                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc})),
+            o.add(d.createTexture({.width = 16,
+                                   .height = 16,
+                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}))};
+        const QuerySetHandle counts =
+            o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 2}));
+        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(),
+                                                             d.createCommandList()};
         auto record = [&](uint32_t k, uint32_t query) {
             CommandList& l = *lists[k];
             l.beginRenderPass({.colors = {{.texture = halves[k]}}});
             l.setPipeline(full);
             l.beginQuery(counts, query);
-            l.setConstants(Quad{{-1, -1, k ? 1.0f : 0.0f, 1}, {float(k), 1, 0, 1}});  // all, or the left half
+            l.setConstants(
+                Quad{{-1, -1, k ? 1.0f : 0.0f, 1}, {float(k), 1, 0, 1}});  // all, or the left half
             l.draw(4);
             l.endQuery(counts, query);
             l.endRenderPass();
         };
-        std::array<std::thread, 2> workers = {std::thread(record, 0u, 0u), std::thread(record, 1u, 0u)};
+        std::array<std::thread, 2> workers = {std::thread(record, 0u, 0u),
+                                              std::thread(record, 1u, 0u)};
         for (std::thread& t : workers) t.join();
         std::array<CommandList*, 2> both = {lists[0].get(), lists[1].get()};
         ok &= reported("one query written by both lists of a submission", [&] { d.submit(both); });
@@ -122,17 +147,23 @@ int main(int argc, char** argv) {
         both = {lists[0].get(), lists[1].get()};
         d.wait(d.submit(both));
         std::array<uint64_t, 2> covered{};
-        ok &= d.queryResults(counts, 0, 2, covered) && covered[0] == 8 * 16 && covered[1] == 16 * 16;
-        std::printf("two threads: %llu and %llu samples\n", (unsigned long long)covered[0], (unsigned long long)covered[1]);
-        ok &= reported("constants at an offset that is not a multiple of 4", [&] { cmd->setConstants(2, bytesOf(1.0f)); });
+        ok &=
+            d.queryResults(counts, 0, 2, covered) && covered[0] == 8 * 16 && covered[1] == 16 * 16;
+        std::printf("two threads: %llu and %llu samples\n", (unsigned long long)covered[0],
+                    (unsigned long long)covered[1]);
+        ok &= reported("constants at an offset that is not a multiple of 4",
+                       [&] { cmd->setConstants(2, bytesOf(1.0f)); });
         ok &= reported("a view drawn into, then copied from", [&] {
             cmd->copyTextureToBuffer(readback, {}, layer1, {.width = 4, .height = 4, .depth = 1});
         });
         ok &= reported("a specialization constant the shaders do not declare", [&] {
-            d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+            d.createGraphicsPipeline({.vertexShader = vs,
+                                      .fragmentShader = fs,
+                                      .colorFormats = {Format::RGBA8},
                                       .specialization = {SpecializationConstant::of(7, 1.0f)}});
         });
-        if (validation && d.validationErrorCount()) ok = false, std::printf("the validation layer reported errors\n");
+        if (validation && d.validationErrorCount())
+            ok = false, std::printf("the validation layer reported errors\n");
         return ok ? 0 : 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fe_example_ported: %s\n", e.what());

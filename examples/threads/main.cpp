@@ -38,25 +38,37 @@ int main(int argc, char** argv) {
     bool validation = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--backend" && i + 1 < argc) backend = argv[++i];
-        else if (a == "--validation") validation = true;
+        if (a == "--backend" && i + 1 < argc)
+            backend = argv[++i];
+        else if (a == "--validation")
+            validation = true;
         else {
             std::fprintf(stderr, "usage: %s [--backend NAME] [--validation]\n", argv[0]);
             return 2;
         }
     }
     try {
-        auto device = createDevice({.backend = backend, .validation = validation, .verbose = false});
+        auto device =
+            createDevice({.backend = backend, .validation = validation, .verbose = false});
         Device& d = *device;
-        const ShaderHandle vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("triangle/triangle.vert")});
-        const ShaderHandle fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("triangle/triangle.frag")});
-        const PipelineHandle pipeline = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+        const ShaderHandle vs = d.createShader(
+            {.stage = ShaderStage::Vertex, .binary = fe::shaders::find("triangle/triangle.vert")});
+        const ShaderHandle fs =
+            d.createShader({.stage = ShaderStage::Fragment,
+                            .binary = fe::shaders::find("triangle/triangle.frag")});
+        const PipelineHandle pipeline = d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
         auto target = [&](const char* name) {
-            return d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc, .debugName = name});
+            return d.createTexture({.width = 64,
+                                    .height = 64,
+                                    .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                                    .debugName = name});
         };
         const std::array<TextureHandle, 2> halves = {target("left"), target("right")};
-        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(), d.createCommandList()};
-        std::array<FenceValue, 3> inFlight{};  // three frames in flight: frame f waits for frame f - 3
+        std::array<std::unique_ptr<CommandList>, 2> lists = {d.createCommandList(),
+                                                             d.createCommandList()};
+        std::array<FenceValue, 3>
+            inFlight{};  // three frames in flight: frame f waits for frame f - 3
 
         for (uint32_t frame = 0; frame < 6; ++frame) {
             d.wait(inFlight[frame % 3]);
@@ -65,7 +77,8 @@ int main(int argc, char** argv) {
             for (size_t i = 0; i < 2; ++i)
                 recorders[i] = std::thread([&, i] {
                     CommandList& c = *lists[i];
-                    c.beginRenderPass({.colors = {{.texture = halves[i], .clear = {0.1f * float(i), 0, 0, 1}}}});
+                    c.beginRenderPass(
+                        {.colors = {{.texture = halves[i], .clear = {0.1f * float(i), 0, 0, 1}}}});
                     c.setPipeline(pipeline);
                     c.draw(3);
                     c.endRenderPass();
@@ -78,7 +91,8 @@ int main(int argc, char** argv) {
 
         // One pass, its draws recorded on two threads as secondary lists (left and right half).
         const TextureHandle whole = target("whole");
-        const RenderPassDesc pass{.colors = {{.texture = whole, .clear = {0, 0, 0, 1}}}, .secondaryLists = true};
+        const RenderPassDesc pass{.colors = {{.texture = whole, .clear = {0, 0, 0, 1}}},
+                                  .secondaryLists = true};
         auto primary = d.createCommandList();
         primary->beginRenderPass(pass);
         std::array<std::thread, 2> recorders;
@@ -98,7 +112,10 @@ int main(int argc, char** argv) {
 
         bool ok = true;
         // Mistake 1: a draw outside a render pass, recorded on a worker thread.
-        std::thread([&] { ok &= reported("draw outside a pass", [&] { lists[0]->setPipeline(pipeline), lists[0]->draw(3); }); }).join();
+        std::thread([&] {
+            ok &= reported("draw outside a pass",
+                           [&] { lists[0]->setPipeline(pipeline), lists[0]->draw(3); });
+        }).join();
         // Mistake 2: a list whose target is destroyed between recording and submit.
         const TextureHandle doomed = target("doomed");
         auto late = d.createCommandList();
@@ -112,8 +129,11 @@ int main(int argc, char** argv) {
         // Mistake 4: a pipeline whose colour format is not the pass's (Vulkan's validation layer
         // would report it at the draw; GL would draw).
         ok &= reported("pipeline formats against the pass", [&] {
-            const TextureHandle hdr = d.createTexture({.format = Format::RGBA16F, .width = 64, .height = 64,
-                                                       .usage = TextureUsage::RenderTarget, .debugName = "hdr"});
+            const TextureHandle hdr = d.createTexture({.format = Format::RGBA16F,
+                                                       .width = 64,
+                                                       .height = 64,
+                                                       .usage = TextureUsage::RenderTarget,
+                                                       .debugName = "hdr"});
             auto c = d.createCommandList();
             c->beginRenderPass({.colors = {{.texture = hdr}}});
             try {
@@ -145,7 +165,8 @@ int main(int argc, char** argv) {
         for (uint32_t x : {24u, 40u}) {  // either side of the split, inside the triangle
             const auto t = all.texel(x, 40);
             const bool drawn = t[1] > 0.15f || t[2] > 0.15f;
-            std::printf("secondary list %s: %s\n", x < 32 ? "left" : "right", drawn ? "drawn" : "MISSING");
+            std::printf("secondary list %s: %s\n", x < 32 ? "left" : "right",
+                        drawn ? "drawn" : "MISSING");
             ok &= drawn;
         }
         lists = {};
@@ -157,7 +178,8 @@ int main(int argc, char** argv) {
         d.destroy(pipeline);
         d.destroy(vs);
         d.destroy(fs);
-        if (d.validationErrorCount()) std::printf("%u validation error(s)\n", unsigned(d.validationErrorCount()));
+        if (d.validationErrorCount())
+            std::printf("%u validation error(s)\n", unsigned(d.validationErrorCount()));
         return ok && d.validationErrorCount() == 0 ? 0 : 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fe_example_threads: %s\n", e.what());

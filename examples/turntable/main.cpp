@@ -37,17 +37,29 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const bool value = i + 1 < argc;
-        if (a == "--backend" && value) backend = argv[++i];
-        else if (a == "--technique" && value) settings.technique = argv[++i];
-        else if (a == "--frames" && value) frames = uint32_t(std::strtoul(argv[++i], nullptr, 10));
-        else if (a == "--size" && value && std::sscanf(argv[++i], "%ux%u", &settings.width, &settings.height) == 2) continue;
-        else if (a == "--out" && value) out = argv[++i];
-        else if (a == "--window") window = true;
-        else if (a == "--validation") validation = true;  // tests: Khronos layer / GL debug output on, errors fail
-        else if (a[0] != '-') model = a;
+        if (a == "--backend" && value)
+            backend = argv[++i];
+        else if (a == "--technique" && value)
+            settings.technique = argv[++i];
+        else if (a == "--frames" && value)
+            frames = uint32_t(std::strtoul(argv[++i], nullptr, 10));
+        else if (a == "--size" && value &&
+                 std::sscanf(argv[++i], "%ux%u", &settings.width, &settings.height) == 2)
+            continue;
+        else if (a == "--out" && value)
+            out = argv[++i];
+        else if (a == "--window")
+            window = true;
+        else if (a == "--validation")
+            validation = true;  // tests: Khronos layer / GL debug output on, errors fail
+        else if (a[0] != '-')
+            model = a;
         else {
-            std::fprintf(stderr, "usage: %s [MODEL] [--backend NAME] [--technique NAME] [--frames N] [--size WxH] "
-                                 "[--out FILE.png] [--window] [--validation]\n", argv[0]);
+            std::fprintf(
+                stderr,
+                "usage: %s [MODEL] [--backend NAME] [--technique NAME] [--frames N] [--size WxH] "
+                "[--out FILE.png] [--window] [--validation]\n",
+                argv[0]);
             return 2;
         }
     }
@@ -55,7 +67,8 @@ int main(int argc, char** argv) {
     if (frames == 0) frames = 24;
     try {
         assets::Scene scene = assets::loadScene(model);
-        auto device = gdi::createDevice({.backend = backend, .validation = validation, .window = window});
+        auto device =
+            gdi::createDevice({.backend = backend, .validation = validation, .window = window});
         render::SceneRenderer renderer(*device, scene, settings);
         ImGui::CreateContext();
         struct ImGuiContextGuard {
@@ -70,14 +83,17 @@ int main(int argc, char** argv) {
         for (uint32_t f = 0; open && (untilClosed || f < frames); ++f) {
             const auto t0 = std::chrono::steady_clock::now();
             if (!scene.animations.empty() && !paused) {
-                assets::poseScene(scene, {.animation = 0, .seconds = animationSeconds, .loop = true});
+                assets::poseScene(scene,
+                                  {.animation = 0, .seconds = animationSeconds, .loop = true});
                 renderer.updatePose();
                 animationSeconds += 1.0 / 30.0;
             }
             renderer.setCamera(scene.camera->orbited(centre, angle * 0.0174532925f));
             renderer.renderFrame();
             renderer.passTimings();  // waits for the frame, so the time below is the frame's
-            frameMs = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            frameMs =
+                std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
             // The panel, fed by the window's input (none headless).
             const gdi::InputState in = device->input();
             ImGuiIO& io = ImGui::GetIO();
@@ -100,12 +116,16 @@ int main(int argc, char** argv) {
         }
         gdi::writePng(device->readTexture(renderer.displayTexture()), out);
         if (device->validationErrorCount()) {
-            std::fprintf(stderr, "fe_example_turntable: %u validation error(s)\n", unsigned(device->validationErrorCount()));
+            std::fprintf(stderr, "fe_example_turntable: %u validation error(s)\n",
+                         unsigned(device->validationErrorCount()));
             return 1;
         }
-        std::printf("%s: %s with %s, %u frame(s)%s, wrote %s\n", device->info().backend.c_str(), model.c_str(),
-                    settings.technique.c_str(), frames,
-                    scene.animations.empty() ? "" : (", animation '" + scene.animations[0].name + "' played").c_str(), out.c_str());
+        std::printf("%s: %s with %s, %u frame(s)%s, wrote %s\n", device->info().backend.c_str(),
+                    model.c_str(), settings.technique.c_str(), frames,
+                    scene.animations.empty()
+                        ? ""
+                        : (", animation '" + scene.animations[0].name + "' played").c_str(),
+                    out.c_str());
         return 0;
     } catch (const assets::AssetError& e) {
         std::fprintf(stderr, "fe_example_turntable: %s\n", e.what());

@@ -5,7 +5,6 @@
 
 namespace fe::gdi {
 
-
 RecordingCommandList::RecordingCommandList(Device& device, std::unique_ptr<CommandList> inner)
     : device_(device), inner_(std::move(inner)), stream_(std::make_unique<cmd::CommandStream>()) {}
 
@@ -16,24 +15,30 @@ std::unique_ptr<cmd::CommandStream> RecordingCommandList::takeStream() {
 // Each call reaches the device's list first: a mistake throws there and is not recorded.
 void RecordingCommandList::beginRenderPass(const RenderPassDesc& d) {
     inner_->beginRenderPass(d);
-    const size_t payload = cmd::CommandStream::payloadSize(d.colors.size() * sizeof(ColorAttachment)) +
-                           cmd::CommandStream::payloadSize(d.debugName);
-    auto* r = stream_->push(cmd::BeginRenderPass{.depth = d.depth, .secondaryLists = d.secondaryLists}, payload);
+    const size_t payload =
+        cmd::CommandStream::payloadSize(d.colors.size() * sizeof(ColorAttachment)) +
+        cmd::CommandStream::payloadSize(d.debugName);
+    auto* r = stream_->push(
+        cmd::BeginRenderPass{.depth = d.depth, .secondaryLists = d.secondaryLists}, payload);
     r->colors = stream_->payload(*r, std::span<const ColorAttachment>(d.colors));
     r->debugName = stream_->payload(*r, d.debugName);
 }
 // Offsets are checked against the recording device's limits too: a capture device reports the
 // alignments every backend takes, stricter than its inner device's own.
 template <class R>
-    requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
+requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
 void RecordingCommandList::check(uint32_t, BufferHandle, uint64_t offset, uint64_t size) {
     if constexpr (std::is_same_v<R, cmd::SetUniformBuffer>)
-        validate::bindingLimits(offset, size, validate::uniformBindingLimits(device_.info().limits), "setUniformBuffer");
+        validate::bindingLimits(offset, size, validate::uniformBindingLimits(device_.info().limits),
+                                "setUniformBuffer");
     else
-        validate::bindingLimits(offset, size, validate::storageBindingLimits(device_.info().limits), "setStorageBuffer");
+        validate::bindingLimits(offset, size, validate::storageBindingLimits(device_.info().limits),
+                                "setStorageBuffer");
 }
-template void RecordingCommandList::check<cmd::SetUniformBuffer>(uint32_t, BufferHandle, uint64_t, uint64_t);
-template void RecordingCommandList::check<cmd::SetStorageBuffer>(uint32_t, BufferHandle, uint64_t, uint64_t);
+template void RecordingCommandList::check<cmd::SetUniformBuffer>(uint32_t, BufferHandle, uint64_t,
+                                                                 uint64_t);
+template void RecordingCommandList::check<cmd::SetStorageBuffer>(uint32_t, BufferHandle, uint64_t,
+                                                                 uint64_t);
 template <class R, class T>
 void RecordingCommandList::pushArray(std::span<const T> items) {
     auto* r = stream_->push(R{}, cmd::CommandStream::payloadSize(items.size_bytes()));
@@ -46,7 +51,9 @@ void RecordingCommandList::barrier(const BufferBarrier* b, uint32_t n) {
     inner_->barrier(b, n), pushArray<cmd::BufferBarriers>(std::span(b, n));
 }
 // A secondary list's records go to its own stream, which the executing list adopts.
-void RecordingCommandList::beginSecondary(const RenderPassDesc& pass) { inner_->beginSecondary(pass); }
+void RecordingCommandList::beginSecondary(const RenderPassDesc& pass) {
+    inner_->beginSecondary(pass);
+}
 void RecordingCommandList::endSecondary() { inner_->endSecondary(); }
 void RecordingCommandList::executeSecondary(std::span<CommandList* const> lists) {
     std::vector<RecordingCommandList*> recorded;
@@ -58,7 +65,8 @@ void RecordingCommandList::executeSecondary(std::span<CommandList* const> lists)
         inner.push_back(r->inner_.get());
     }
     inner_->executeSecondary(inner);
-    for (RecordingCommandList* r : recorded) stream_->push(cmd::ExecuteSecondary{stream_->adopt(r->takeStream())});
+    for (RecordingCommandList* r : recorded)
+        stream_->push(cmd::ExecuteSecondary{stream_->adopt(r->takeStream())});
 }
 
 namespace {
@@ -93,7 +101,8 @@ struct Applier {
             pass.colors.push_back(c);
         }
         pass.depth = r.depth;
-        pass.depth.texture = m()[r.depth.texture], pass.depth.resolveTexture = m()[r.depth.resolveTexture];
+        pass.depth.texture = m()[r.depth.texture],
+        pass.depth.resolveTexture = m()[r.depth.resolveTexture];
         pass.debugName = cmd::view(r, r.debugName);
         pass.secondaryLists = r.secondaryLists;
         if (observer) observer->adjustPass(pass);
@@ -101,24 +110,50 @@ struct Applier {
     }
     // A record's field as its call's argument: handles mapped, payloads viewed, the rest as is.
     template <class R, class T>
-    static const T& arg(const R&, const T& value) { return value; }
-    template <class R> BufferHandle arg(const R&, BufferHandle h) const { return m()[h]; }
-    template <class R> TextureHandle arg(const R&, TextureHandle h) const { return m()[h]; }
-    template <class R> SamplerHandle arg(const R&, SamplerHandle h) const { return m()[h]; }
-    template <class R> PipelineHandle arg(const R&, PipelineHandle h) const { return m()[h]; }
-    template <class R> TimerHandle arg(const R&, TimerHandle h) const { return m()[h]; }
-    template <class R> QuerySetHandle arg(const R&, QuerySetHandle h) const { return m()[h]; }
-    template <class R, class T>
-    static std::span<const T> arg(const R& r, cmd::Array<T> a) { return cmd::view(r, a); }
+    static const T& arg(const R&, const T& value) {
+        return value;
+    }
     template <class R>
-    static const char* arg(const R& r, cmd::String s) { return cmd::view(r, s); }
+    BufferHandle arg(const R&, BufferHandle h) const {
+        return m()[h];
+    }
+    template <class R>
+    TextureHandle arg(const R&, TextureHandle h) const {
+        return m()[h];
+    }
+    template <class R>
+    SamplerHandle arg(const R&, SamplerHandle h) const {
+        return m()[h];
+    }
+    template <class R>
+    PipelineHandle arg(const R&, PipelineHandle h) const {
+        return m()[h];
+    }
+    template <class R>
+    TimerHandle arg(const R&, TimerHandle h) const {
+        return m()[h];
+    }
+    template <class R>
+    QuerySetHandle arg(const R&, QuerySetHandle h) const {
+        return m()[h];
+    }
+    template <class R, class T>
+    static std::span<const T> arg(const R& r, cmd::Array<T> a) {
+        return cmd::view(r, a);
+    }
+    template <class R>
+    static const char* arg(const R& r, cmd::String s) {
+        return cmd::view(r, s);
+    }
 
     FE_CMD_TYPE_NAMES
     // The calls that map field for field, generated from the command set.
 #define FE_FIELD(Type, name) (Type, name)
 #define FE_COMMAND(Name, Fields)
-#define FE_CALL(Name, method, Fields) \
-    void operator()([[maybe_unused]] const cmd::Name& r) { list.method(FE_CMD_RECORD_ARGS(Fields)); }
+#define FE_CALL(Name, method, Fields)                      \
+    void operator()([[maybe_unused]] const cmd::Name& r) { \
+        list.method(FE_CMD_RECORD_ARGS(Fields));           \
+    }
 #include "fe/gdi/CommandSet.inc"
 #undef FE_CALL
 #undef FE_COMMAND
@@ -126,12 +161,14 @@ struct Applier {
 
     // The rest, by hand.
     void operator()(const cmd::TextureBarriers& r) {
-        std::vector<TextureBarrier> b(cmd::view(r, r.barriers).begin(), cmd::view(r, r.barriers).end());
+        std::vector<TextureBarrier> b(cmd::view(r, r.barriers).begin(),
+                                      cmd::view(r, r.barriers).end());
         for (TextureBarrier& x : b) x.texture = m()[x.texture];
         list.barrier(b.data(), uint32_t(b.size()));
     }
     void operator()(const cmd::BufferBarriers& r) {
-        std::vector<BufferBarrier> b(cmd::view(r, r.barriers).begin(), cmd::view(r, r.barriers).end());
+        std::vector<BufferBarrier> b(cmd::view(r, r.barriers).begin(),
+                                     cmd::view(r, r.barriers).end());
         for (BufferBarrier& x : b) x.buffer = m()[x.buffer];
         list.barrier(b.data(), uint32_t(b.size()));
     }
@@ -146,8 +183,8 @@ struct Applier {
 
 }  // namespace
 
-void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map,
-                 ApplyObserver* observer) {
+void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list,
+                 const HandleMap& map, ApplyObserver* observer) {
     Applier a{device, list, map, stream, {}, observer};
     if (!observer) {
         stream.forEach([&](const auto& record) { a(record); });

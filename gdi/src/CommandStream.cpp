@@ -5,10 +5,12 @@ namespace fe::gdi::cmd {
 const char* opName(Op op) {
     switch (op) {
 #define FE_COMMAND(Name, Fields) \
-    case Op::Name: return #Name;
+    case Op::Name:               \
+        return #Name;
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
-        default: return "unknown";
+        default:
+            return "unknown";
     }
 }
 

@@ -43,9 +43,10 @@ NativeLayerLock::Change::~Change() {
 namespace {
 
 [[noreturn, gnu::cold, gnu::noinline]] void inUse(const char* what) {
-    throw Error(std::string(what) +
-                ": the command list is in use by another thread at the same time (a list is used by one thread at "
-                "a time: record each thread's work in its own list, or hand the list over when a call has returned)");
+    throw Error(
+        std::string(what) +
+        ": the command list is in use by another thread at the same time (a list is used by one thread at "
+        "a time: record each thread's work in its own list, or hand the list over when a call has returned)");
 }
 
 // Holds a list's flag for one call. The exchange is exact: of two threads arriving at once one
@@ -67,11 +68,11 @@ private:
 
 // Every CommandList call, claimed, then passed to the backend's list (whose checks and errors
 // are the backend's, unchanged). __func__ names the call in the Error.
-#define FE_CLAIMED(call)                                \
-    {                                                   \
+#define FE_CLAIMED(call)                               \
+    {                                                  \
         const NativeLayerLock::Call layer(layerLock_); \
-        const Claim claim(busy_, __func__);             \
-        return inner_->call;                            \
+        const Claim claim(busy_, __func__);            \
+        return inner_->call;                           \
     }
 
 class ExclusiveCommandList final : public CommandList {
@@ -127,7 +128,8 @@ std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list, boo
     return std::make_unique<ExclusiveCommandList>(std::move(list), layerLock);
 }
 
-ClaimedLists::ClaimedLists(std::span<CommandList* const> lists, const char* what, const CommandList* self) {
+ClaimedLists::ClaimedLists(std::span<CommandList* const> lists, const char* what,
+                           const CommandList* self) {
     validate::submittedLists(lists);
     inner_.reserve(lists.size());
     try {

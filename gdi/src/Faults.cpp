@@ -31,7 +31,8 @@ public:
     ~Trace() {
         if (path_.empty()) return;
         std::ofstream out(path_);
-        for (const auto& [site, ordinal, call] : lines_) out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call << '\n';
+        for (const auto& [site, ordinal, call] : lines_)
+            out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call << '\n';
     }
     void record(Site site, uint64_t ordinal, const char* call) {
         if (path_.empty()) return;
@@ -61,8 +62,10 @@ uint64_t fromEnvironment(const char* name, const char* what) {
     char* end = nullptr;
     const unsigned long long n = std::strtoull(text, &end, 10);
     if (*end || n == 0 || text[0] == '-')
-        throw Error(std::string(name) + " must be a positive integer (the N-th native " + what + " fails), got '" + text + "'");
-    std::cerr << "fe: fault injection: native " << what << " number " << n << " will fail (" << name << ")\n";
+        throw Error(std::string(name) + " must be a positive integer (the N-th native " + what +
+                    " fails), got '" + text + "'");
+    std::cerr << "fe: fault injection: native " << what << " number " << n << " will fail (" << name
+              << ")\n";
     return n;
 }
 
@@ -85,8 +88,8 @@ bool hit(Site site, const char* call) {
         if (c.remaining.compare_exchange_weak(r, r - 1)) {
             if (r != 1) return false;
             c.fired++;
-            std::cerr << "fe: fault injection: native " << kSiteNames[size_t(site)] << " " << c.calls << " (" << call
-                      << ") fails\n";
+            std::cerr << "fe: fault injection: native " << kSiteNames[size_t(site)] << " "
+                      << c.calls << " (" << call << ") fails\n";
             return true;
         }
     }
@@ -102,14 +105,16 @@ uint64_t calls(Site site) { return counters()[size_t(site)].calls; }
 namespace fe::gdi {
 
 std::string describeObject(const char* kind, const std::string& name, const std::string& detail) {
-    return std::string(kind) + (name.empty() ? "" : " '" + name + "'") + (detail.empty() ? "" : " (" + detail + ")");
+    return std::string(kind) + (name.empty() ? "" : " '" + name + "'") +
+           (detail.empty() ? "" : " (" + detail + ")");
 }
 
 std::string toString(const LiveObjects& o) {
-    return "{buffers " + std::to_string(o.buffers) + ", textures " + std::to_string(o.textures) + ", samplers " +
-           std::to_string(o.samplers) + ", shaders " + std::to_string(o.shaders) + ", pipelines " +
-           std::to_string(o.pipelines) + ", timers " + std::to_string(o.timers) + ", heaps " + std::to_string(o.heaps) +
-           ", native objects " + std::to_string(o.nativeObjects) + "}";
+    return "{buffers " + std::to_string(o.buffers) + ", textures " + std::to_string(o.textures) +
+           ", samplers " + std::to_string(o.samplers) + ", shaders " + std::to_string(o.shaders) +
+           ", pipelines " + std::to_string(o.pipelines) + ", timers " + std::to_string(o.timers) +
+           ", heaps " + std::to_string(o.heaps) + ", native objects " +
+           std::to_string(o.nativeObjects) + "}";
 }
 
 bool leakCheckEnabled() {
@@ -120,11 +125,13 @@ bool leakCheckEnabled() {
     return enabled;
 }
 
-void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live, const std::vector<std::string>& named) {
+void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live,
+                              const std::vector<std::string>& named) {
     if (live == LiveObjects{}) return;
     std::string names;
     for (const auto& n : named) names += (names.empty() ? ": " : ", ") + n;
-    std::cerr << "fe leak check: " << backend << " device destroyed with " << toString(live) << " still alive" << names << "\n";
+    std::cerr << "fe leak check: " << backend << " device destroyed with " << toString(live)
+              << " still alive" << names << "\n";
 }
 
 DeviceLostError DeviceLoss::lose(const std::string& backend, const std::string& cause) {
@@ -139,7 +146,8 @@ DeviceLostError DeviceLoss::lose(const std::string& backend, const std::string& 
 
 void DeviceLoss::throwLost(const char* call) const {
     std::lock_guard lock(mutex_);
-    throw DeviceLostError(backend_ + ": " + call + ": device lost (" + cause_ + "); nothing more runs on this device");
+    throw DeviceLostError(backend_ + ": " + call + ": device lost (" + cause_ +
+                          "); nothing more runs on this device");
 }
 
 }  // namespace fe::gdi

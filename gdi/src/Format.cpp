@@ -33,8 +33,8 @@ const FormatInfo kFormats[] = {
 static_assert(sizeof(kFormats) / sizeof(kFormats[0]) == size_t(Format::Count));
 
 const VertexFormatInfo kVertexFormats[] = {
-    {"Float", 4, 1},     {"Float2", 8, 2},    {"Float3", 12, 3},    {"Float4", 16, 4},
-    {"Half2", 4, 2},     {"Half4", 8, 4},     {"UNorm8x4", 4, 4},   {"SNorm8x4", 4, 4},
+    {"Float", 4, 1},     {"Float2", 8, 2},    {"Float3", 12, 3},  {"Float4", 16, 4},
+    {"Half2", 4, 2},     {"Half4", 8, 4},     {"UNorm8x4", 4, 4}, {"SNorm8x4", 4, 4},
     {"UNorm16x2", 4, 2}, {"SNorm16x2", 4, 2}, {"UInt32", 4, 1},
 };
 static_assert(sizeof(kVertexFormats) / sizeof(kVertexFormats[0]) == size_t(VertexFormat::Count));
@@ -48,7 +48,8 @@ const FormatInfo& formatInfo(Format f) {
 uint64_t imageByteSize(Format f, uint32_t width, uint32_t height) {
     const FormatInfo& i = formatInfo(f);
     if (i.blockSize > 1)
-        return uint64_t((width + i.blockSize - 1) / i.blockSize) * ((height + i.blockSize - 1) / i.blockSize) * i.bytesPerBlock;
+        return uint64_t((width + i.blockSize - 1) / i.blockSize) *
+               ((height + i.blockSize - 1) / i.blockSize) * i.bytesPerBlock;
     return uint64_t(width) * height * i.bytesPerPixel;
 }
 
@@ -66,23 +67,33 @@ const VertexFormatInfo& vertexFormatInfo(VertexFormat f) {
 
 Format srgbPair(Format f) {
     switch (f) {
-        case Format::RGBA8: return Format::RGBA8_SRGB;
-        case Format::RGBA8_SRGB: return Format::RGBA8;
-        case Format::BC1: return Format::BC1_SRGB;
-        case Format::BC1_SRGB: return Format::BC1;
-        case Format::BC3: return Format::BC3_SRGB;
-        case Format::BC3_SRGB: return Format::BC3;
-        case Format::BC7: return Format::BC7_SRGB;
-        case Format::BC7_SRGB: return Format::BC7;
-        default: return Format::Undefined;
+        case Format::RGBA8:
+            return Format::RGBA8_SRGB;
+        case Format::RGBA8_SRGB:
+            return Format::RGBA8;
+        case Format::BC1:
+            return Format::BC1_SRGB;
+        case Format::BC1_SRGB:
+            return Format::BC1;
+        case Format::BC3:
+            return Format::BC3_SRGB;
+        case Format::BC3_SRGB:
+            return Format::BC3;
+        case Format::BC7:
+            return Format::BC7_SRGB;
+        case Format::BC7_SRGB:
+            return Format::BC7;
+        default:
+            return Format::Undefined;
     }
 }
 
 bool formatsCompatible(Format a, Format b) {
     if (a == b || (srgbPair(a) == b && b != Format::Undefined)) return true;
     const FormatInfo &fa = formatInfo(a), &fb = formatInfo(b);
-    return !isDepthFormat(a) && !isDepthFormat(b) && !isCompressedFormat(a) && !isCompressedFormat(b) &&
-           a != Format::Undefined && b != Format::Undefined && fa.bytesPerPixel == fb.bytesPerPixel;
+    return !isDepthFormat(a) && !isDepthFormat(b) && !isCompressedFormat(a) &&
+           !isCompressedFormat(b) && a != Format::Undefined && b != Format::Undefined &&
+           fa.bytesPerPixel == fb.bytesPerPixel;
 }
 
 }  // namespace fe::gdi

@@ -20,9 +20,12 @@ namespace {
 float halfToFloat(uint16_t h) {
     uint32_t sign = (h >> 15) & 1, exp = (h >> 10) & 0x1f, man = h & 0x3ff;
     float v;
-    if (exp == 0) v = std::ldexp(float(man), -24);
-    else if (exp == 31) v = man ? NAN : INFINITY;
-    else v = std::ldexp(float(man | 0x400), int(exp) - 25);
+    if (exp == 0)
+        v = std::ldexp(float(man), -24);
+    else if (exp == 31)
+        v = man ? NAN : INFINITY;
+    else
+        v = std::ldexp(float(man | 0x400), int(exp) - 25);
     return sign ? -v : v;
 }
 
@@ -42,7 +45,10 @@ uint16_t floatToHalf(float f) {
         return uint16_t(sign | man);
     }
     uint32_t man = uint32_t(std::nearbyint((m * 2.0f - 1.0f) * 1024.0f));
-    if (man == 1024) { man = 0; ++exp; }
+    if (man == 1024) {
+        man = 0;
+        ++exp;
+    }
     if (exp >= 31) return uint16_t(sign | 0x7c00);
     return uint16_t(sign | (uint32_t(exp) << 10) | man);
 }
@@ -63,7 +69,10 @@ uint32_t toSmallFloat(float f, int bits) {
     int exp = e - 1 + 15;
     if (exp <= 0) return uint32_t(std::nearbyint(std::ldexp(f, 14 + bits))) & ((1u << bits) - 1);
     uint32_t man = uint32_t(std::nearbyint((std::ldexp(f, -(e - 1)) - 1.0f) * float(1u << bits)));
-    if (man == (1u << bits)) { man = 0; ++exp; }
+    if (man == (1u << bits)) {
+        man = 0;
+        ++exp;
+    }
     if (exp >= 31) return (30u << bits) | ((1u << bits) - 1);  // clamp to max finite
     return (uint32_t(exp) << bits) | man;
 }
@@ -80,80 +89,154 @@ size_t Image::rowBytes() const { return size_t(width) * formatInfo(format).bytes
 std::array<float, 4> Image::texel(uint32_t x, uint32_t y) const {
     std::array<float, 4> out{0, 0, 0, 1};
     const uint8_t* p = data.data() + y * rowBytes() + size_t(x) * formatInfo(format).bytesPerPixel;
-    auto f32 = [&](int i) { float v; std::memcpy(&v, p + 4 * i, 4); return v; };
-    auto f16 = [&](int i) { uint16_t v; std::memcpy(&v, p + 2 * i, 2); return halfToFloat(v); };
+    auto f32 = [&](int i) {
+        float v;
+        std::memcpy(&v, p + 4 * i, 4);
+        return v;
+    };
+    auto f16 = [&](int i) {
+        uint16_t v;
+        std::memcpy(&v, p + 2 * i, 2);
+        return halfToFloat(v);
+    };
     switch (format) {
         case Format::RGBA8:
         case Format::RGBA8_SRGB:
             for (int i = 0; i < 4; ++i) out[i] = p[i] / 255.0f;
             break;
-        case Format::RGBA16F: for (int i = 0; i < 4; ++i) out[i] = f16(i); break;
-        case Format::RG16F: out[0] = f16(0); out[1] = f16(1); out[2] = 0; break;
-        case Format::R16F: out[0] = f16(0); out[1] = out[2] = 0; break;
-        case Format::RGBA32F: for (int i = 0; i < 4; ++i) out[i] = f32(i); break;
-        case Format::RG32F: out[0] = f32(0); out[1] = f32(1); out[2] = 0; break;
+        case Format::RGBA16F:
+            for (int i = 0; i < 4; ++i) out[i] = f16(i);
+            break;
+        case Format::RG16F:
+            out[0] = f16(0);
+            out[1] = f16(1);
+            out[2] = 0;
+            break;
+        case Format::R16F:
+            out[0] = f16(0);
+            out[1] = out[2] = 0;
+            break;
+        case Format::RGBA32F:
+            for (int i = 0; i < 4; ++i) out[i] = f32(i);
+            break;
+        case Format::RG32F:
+            out[0] = f32(0);
+            out[1] = f32(1);
+            out[2] = 0;
+            break;
         case Format::R32F:
-        case Format::D32F: out[0] = f32(0); out[1] = out[2] = 0; break;
-        case Format::R32U: { uint32_t v; std::memcpy(&v, p, 4); out[0] = float(v); out[1] = out[2] = 0; break; }
+        case Format::D32F:
+            out[0] = f32(0);
+            out[1] = out[2] = 0;
+            break;
+        case Format::R32U: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            out[0] = float(v);
+            out[1] = out[2] = 0;
+            break;
+        }
         case Format::R11G11B10F: {
-            uint32_t v; std::memcpy(&v, p, 4);
+            uint32_t v;
+            std::memcpy(&v, p, 4);
             out[0] = smallFloat(v & 0x7ff, 6);
             out[1] = smallFloat((v >> 11) & 0x7ff, 6);
             out[2] = smallFloat((v >> 22) & 0x3ff, 5);
             break;
         }
-        case Format::D24S8: {  // depth in the low 24 bits, stencil in the high 8 (Vulkan copy layout)
-            uint32_t v; std::memcpy(&v, p, 4);
+        case Format::
+            D24S8: {  // depth in the low 24 bits, stencil in the high 8 (Vulkan copy layout)
+            uint32_t v;
+            std::memcpy(&v, p, 4);
             out[0] = float(v & 0xffffff) / float(0xffffff);
             out[1] = float(v >> 24);
             out[2] = 0;
             break;
         }
-        case Format::D16: { uint16_t v; std::memcpy(&v, p, 2); out[0] = float(v) / 65535.0f; out[1] = out[2] = 0; break; }
-        case Format::S8: out[0] = 0; out[1] = float(p[0]); out[2] = 0; break;  // stencil in [1], as with depth
-        case Format::D32F_S8: {  // float depth, then stencil in the low 8 bits of the next word (GL's layout)
-            uint32_t s; std::memcpy(&s, p + 4, 4);
+        case Format::D16: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            out[0] = float(v) / 65535.0f;
+            out[1] = out[2] = 0;
+            break;
+        }
+        case Format::S8:
+            out[0] = 0;
+            out[1] = float(p[0]);
+            out[2] = 0;
+            break;  // stencil in [1], as with depth
+        case Format::
+            D32F_S8: {  // float depth, then stencil in the low 8 bits of the next word (GL's layout)
+            uint32_t s;
+            std::memcpy(&s, p + 4, 4);
             out[0] = f32(0);
             out[1] = float(s & 0xff);
             out[2] = 0;
             break;
         }
-        default: break;
+        default:
+            break;
     }
     return out;
 }
 
-Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const std::vector<std::array<float, 4>>& texels) {
+Image Image::fromTexels(uint32_t width, uint32_t height, Format format,
+                        const std::vector<std::array<float, 4>>& texels) {
     Image img{width, height, format, {}};
     const uint32_t bpp = formatInfo(format).bytesPerPixel;
     if (bpp == 0) throw Error("Image::fromTexels: format has no pixel size");
-    if (texels.size() != size_t(width) * height) throw Error("Image::fromTexels: texel count does not match the size");
+    if (texels.size() != size_t(width) * height)
+        throw Error("Image::fromTexels: texel count does not match the size");
     img.data.resize(size_t(width) * height * bpp);
     for (size_t i = 0; i < texels.size(); ++i) {
         uint8_t* p = img.data.data() + i * bpp;
         const auto& t = texels[i];
         auto put32 = [&](int c, float v) { std::memcpy(p + 4 * c, &v, 4); };
-        auto put16 = [&](int c, float v) { uint16_t h = floatToHalf(v); std::memcpy(p + 2 * c, &h, 2); };
+        auto put16 = [&](int c, float v) {
+            uint16_t h = floatToHalf(v);
+            std::memcpy(p + 2 * c, &h, 2);
+        };
         switch (format) {
             case Format::RGBA8:
             case Format::RGBA8_SRGB:
-                for (int c = 0; c < 4; ++c) p[c] = uint8_t(std::nearbyint(std::clamp(t[c], 0.0f, 1.0f) * 255.0f));
+                for (int c = 0; c < 4; ++c)
+                    p[c] = uint8_t(std::nearbyint(std::clamp(t[c], 0.0f, 1.0f) * 255.0f));
                 break;
-            case Format::RGBA16F: for (int c = 0; c < 4; ++c) put16(c, t[c]); break;
-            case Format::RG16F: put16(0, t[0]); put16(1, t[1]); break;
-            case Format::R16F: put16(0, t[0]); break;
-            case Format::RGBA32F: for (int c = 0; c < 4; ++c) put32(c, t[c]); break;
-            case Format::RG32F: put32(0, t[0]); put32(1, t[1]); break;
+            case Format::RGBA16F:
+                for (int c = 0; c < 4; ++c) put16(c, t[c]);
+                break;
+            case Format::RG16F:
+                put16(0, t[0]);
+                put16(1, t[1]);
+                break;
+            case Format::R16F:
+                put16(0, t[0]);
+                break;
+            case Format::RGBA32F:
+                for (int c = 0; c < 4; ++c) put32(c, t[c]);
+                break;
+            case Format::RG32F:
+                put32(0, t[0]);
+                put32(1, t[1]);
+                break;
             case Format::R32F:
-            case Format::D32F: put32(0, t[0]); break;
-            case Format::R32U: { uint32_t v = uint32_t(std::max(0.0f, t[0])); std::memcpy(p, &v, 4); break; }
+            case Format::D32F:
+                put32(0, t[0]);
+                break;
+            case Format::R32U: {
+                uint32_t v = uint32_t(std::max(0.0f, t[0]));
+                std::memcpy(p, &v, 4);
+                break;
+            }
             case Format::R11G11B10F: {
-                uint32_t v = toSmallFloat(t[0], 6) | (toSmallFloat(t[1], 6) << 11) | (toSmallFloat(t[2], 5) << 22);
+                uint32_t v = toSmallFloat(t[0], 6) | (toSmallFloat(t[1], 6) << 11) |
+                             (toSmallFloat(t[2], 5) << 22);
                 std::memcpy(p, &v, 4);
                 break;
             }
             case Format::D24S8: {
-                uint32_t v = uint32_t(std::nearbyint(std::clamp(t[0], 0.0f, 1.0f) * 0xffffff)) | (uint32_t(t[1]) << 24);
+                uint32_t v = uint32_t(std::nearbyint(std::clamp(t[0], 0.0f, 1.0f) * 0xffffff)) |
+                             (uint32_t(t[1]) << 24);
                 std::memcpy(p, &v, 4);
                 break;
             }
@@ -162,14 +245,17 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const st
                 std::memcpy(p, &v, 2);
                 break;
             }
-            case Format::S8: p[0] = uint8_t(std::clamp(t[1], 0.0f, 255.0f)); break;
+            case Format::S8:
+                p[0] = uint8_t(std::clamp(t[1], 0.0f, 255.0f));
+                break;
             case Format::D32F_S8: {
                 put32(0, t[0]);
                 const uint32_t s = uint32_t(std::clamp(t[1], 0.0f, 255.0f)) & 0xff;
                 std::memcpy(p + 4, &s, 4);
                 break;
             }
-            default: break;
+            default:
+                break;
         }
     }
     return img;
@@ -177,7 +263,8 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format, const st
 
 void writePng(const Image& image, const std::string& path, float exposure, bool alpha) {
     const FormatInfo& fi = formatInfo(image.format);
-    if (image.width == 0 || image.height == 0 || image.data.size() < image.rowBytes() * image.height)
+    if (image.width == 0 || image.height == 0 ||
+        image.data.size() < image.rowBytes() * image.height)
         throw Error("writePng: empty or truncated image for " + path);
     const int channels = alpha ? 4 : 3;
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * channels);
@@ -187,12 +274,15 @@ void writePng(const Image& image, const std::string& path, float exposure, bool 
             auto t = image.texel(x, y);
             for (int c = 0; c < channels; ++c) {
                 float v = (fi.channels == 1 && !fi.hasDepth) || fi.hasDepth ? t[0] : t[c];
-                if (c == 3) v = fi.channels == 4 ? t[3] : 1.0f;  // alpha is stored linear, never exposed
+                if (c == 3)
+                    v = fi.channels == 4 ? t[3] : 1.0f;  // alpha is stored linear, never exposed
                 float enc = eightBit || c == 3 ? v : linearToSrgb(exposure * v);
-                rgb[(size_t(y) * image.width + x) * channels + c] = uint8_t(std::nearbyint(std::clamp(enc, 0.0f, 1.0f) * 255.0f));
+                rgb[(size_t(y) * image.width + x) * channels + c] =
+                    uint8_t(std::nearbyint(std::clamp(enc, 0.0f, 1.0f) * 255.0f));
             }
         }
-    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), channels, rgb.data(), int(image.width * channels)))
+    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), channels, rgb.data(),
+                        int(image.width * channels)))
         throw Error("cannot write PNG " + path);
 }
 
@@ -212,11 +302,12 @@ void writePfm(const Image& image, const std::string& path) {
     }
 }
 
-ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, double relTolerance, Image* diffImage) {
+ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, double relTolerance,
+                        Image* diffImage) {
     if (a.width != b.width || a.height != b.height || a.format != b.format)
-        throw Error("compareImages: images differ in size or format (" + std::to_string(a.width) + "x" +
-                    std::to_string(a.height) + " " + std::string(formatInfo(a.format).name) + " vs " +
-                    std::to_string(b.width) + "x" + std::to_string(b.height) + " " +
+        throw Error("compareImages: images differ in size or format (" + std::to_string(a.width) +
+                    "x" + std::to_string(a.height) + " " + std::string(formatInfo(a.format).name) +
+                    " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) + " " +
                     std::string(formatInfo(b.format).name) + ")");
     const FormatInfo& fi = formatInfo(a.format);
     // Depth formats compare depth, and stencil (texel channel 1) where they have one.
@@ -233,15 +324,19 @@ ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, dou
             for (int c = 0; c < channels; ++c) {
                 double va = ta[c], vb = tb[c];
                 double err = std::fabs(va - vb);
-                if (std::isnan(va) != std::isnan(vb)) err = INFINITY;
-                else if (std::isnan(va)) err = 0;
-                else if (std::isinf(va) || std::isinf(vb)) err = (va == vb) ? 0 : INFINITY;
+                if (std::isnan(va) != std::isnan(vb))
+                    err = INFINITY;
+                else if (std::isnan(va))
+                    err = 0;
+                else if (std::isinf(va) || std::isinf(vb))
+                    err = (va == vb) ? 0 : INFINITY;
                 double rel = err / std::max({std::fabs(va), std::fabs(vb), 1e-6});
                 d.maxAbsError = std::max(d.maxAbsError, err);
                 d.maxRelError = std::max(d.maxRelError, rel);
                 // A tolerance of whole 8-bit steps holds for decoded values: 128/255 - 127/255 in
                 // float is 1/255 plus rounding, which must not count as over one step.
-                bool bad = err > absTolerance * (1 + 1e-4) && (relTolerance <= 0 || rel > relTolerance);
+                bool bad =
+                    err > absTolerance * (1 + 1e-4) && (relTolerance <= 0 || rel > relTolerance);
                 over = over || bad;
                 dt[std::min(c, 2)] = float(std::min(1.0, err * 16.0));  // magnified for visibility
             }

@@ -46,8 +46,9 @@ Json probeJson(const BackendProbe& probe) {
         for (uint32_t i = 1; i < uint32_t(Format::Count); ++i) {
             const FormatCaps c = probe.device->formatCaps(Format(i));
             formats[std::string(formatInfo(Format(i)).name)] = {
-                {"sampled", c.sampled}, {"linearFilter", c.linearFilter}, {"renderTarget", c.renderTarget},
-                {"blend", c.blend}, {"storage", c.storage}, {"sampleCounts", c.sampleCounts}};
+                {"sampled", c.sampled},           {"linearFilter", c.linearFilter},
+                {"renderTarget", c.renderTarget}, {"blend", c.blend},
+                {"storage", c.storage},           {"sampleCounts", c.sampleCounts}};
         }
         j["device"]["formats"] = formats;
     } else {

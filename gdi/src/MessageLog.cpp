@@ -40,7 +40,8 @@ void MessageLog::printRepeats() {
         if (n < 2) continue;
         constexpr size_t kShown = 160;  // the whole text was printed the first time
         std::cerr << source_ << " message repeated " << n << " times in all: "
-                  << (message.size() > kShown ? message.substr(0, kShown) + "..." : message) << "\n";
+                  << (message.size() > kShown ? message.substr(0, kShown) + "..." : message)
+                  << "\n";
     }
 }
 

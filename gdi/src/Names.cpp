@@ -5,34 +5,50 @@ namespace fe::gdi {
 
 const char* resourceStateName(ResourceState s) {
     switch (s) {
-        case ResourceState::Undefined: return "Undefined";
-        case ResourceState::RenderTarget: return "RenderTarget";
-        case ResourceState::DepthTarget: return "DepthTarget";
-        case ResourceState::ShaderRead: return "ShaderRead";
-        case ResourceState::Storage: return "Storage";
-        case ResourceState::CopySrc: return "CopySrc";
-        case ResourceState::CopyDst: return "CopyDst";
+        case ResourceState::Undefined:
+            return "Undefined";
+        case ResourceState::RenderTarget:
+            return "RenderTarget";
+        case ResourceState::DepthTarget:
+            return "DepthTarget";
+        case ResourceState::ShaderRead:
+            return "ShaderRead";
+        case ResourceState::Storage:
+            return "Storage";
+        case ResourceState::CopySrc:
+            return "CopySrc";
+        case ResourceState::CopyDst:
+            return "CopyDst";
     }
     return "?";
 }
 
 const char* textureDimensionName(TextureDimension d) {
     switch (d) {
-        case TextureDimension::Texture2D: return "Texture2D";
-        case TextureDimension::Texture2DArray: return "Texture2DArray";
-        case TextureDimension::TextureCube: return "TextureCube";
-        case TextureDimension::TextureCubeArray: return "TextureCubeArray";
-        case TextureDimension::Texture3D: return "Texture3D";
+        case TextureDimension::Texture2D:
+            return "Texture2D";
+        case TextureDimension::Texture2DArray:
+            return "Texture2DArray";
+        case TextureDimension::TextureCube:
+            return "TextureCube";
+        case TextureDimension::TextureCubeArray:
+            return "TextureCubeArray";
+        case TextureDimension::Texture3D:
+            return "Texture3D";
     }
     return "?";
 }
 
 const char* queryTypeName(QueryType t) {
     switch (t) {
-        case QueryType::Occlusion: return "Occlusion";
-        case QueryType::AnySamplesPassed: return "AnySamplesPassed";
-        case QueryType::PipelineStatistics: return "PipelineStatistics";
-        case QueryType::Timestamp: return "Timestamp";
+        case QueryType::Occlusion:
+            return "Occlusion";
+        case QueryType::AnySamplesPassed:
+            return "AnySamplesPassed";
+        case QueryType::PipelineStatistics:
+            return "PipelineStatistics";
+        case QueryType::Timestamp:
+            return "Timestamp";
     }
     return "?";
 }

@@ -45,7 +45,8 @@ uint64_t fnv1a(std::span<const uint8_t> bytes, uint64_t seed) {
 }
 
 std::string pipelineCacheIdentity(const DeviceInfo& info) {
-    return info.backend + "|" + info.deviceName + "|" + info.apiVersion + "|" + info.driverInfo + "|" FE_VERSION "|" FE_GIT_DESCRIBE;
+    return info.backend + "|" + info.deviceName + "|" + info.apiVersion + "|" + info.driverInfo +
+           "|" FE_VERSION "|" FE_GIT_DESCRIBE;
 }
 
 PipelineCacheLoad parsePipelineCache(std::span<const uint8_t> bytes, const std::string& identity) {
@@ -55,12 +56,18 @@ PipelineCacheLoad parsePipelineCache(std::span<const uint8_t> bytes, const std::
     uint32_t identityBytes = 0;
     std::span<const uint8_t> id, payload;
     uint64_t payloadBytes = 0, hash = 0;
-    if (!in.read(magic) || std::memcmp(magic, kMagic, 8) != 0) return {{}, "not a pipeline cache file of this engine"};
+    if (!in.read(magic) || std::memcmp(magic, kMagic, 8) != 0)
+        return {{}, "not a pipeline cache file of this engine"};
     if (!in.read(identityBytes) || !in.take(identityBytes, id)) return {{}, "truncated header"};
     if (std::string(id.begin(), id.end()) != identity)
-        return {{}, "made for another device, driver or engine build (" + std::string(id.begin(), id.end()) + ")"};
+        return {{},
+                "made for another device, driver or engine build (" +
+                    std::string(id.begin(), id.end()) + ")"};
     if (!in.read(payloadBytes) || !in.read(hash)) return {{}, "truncated header"};
-    if (payloadBytes != bytes.size() - in.at) return {{}, "truncated or extended: the header states " + std::to_string(payloadBytes) + " bytes of data"};
+    if (payloadBytes != bytes.size() - in.at)
+        return {{},
+                "truncated or extended: the header states " + std::to_string(payloadBytes) +
+                    " bytes of data"};
     in.take(payloadBytes, payload);
     if (fnv1a(payload) != hash) return {{}, "checksum mismatch (the file is damaged)"};
     r.payload.assign(payload.begin(), payload.end());
@@ -73,7 +80,8 @@ PipelineCacheLoad readPipelineCache(const std::string& path, const std::string& 
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-        throw Error("pipeline cache '" + path + "': not a regular file (give a file path; it is created if missing)");
+        throw Error("pipeline cache '" + path +
+                    "': not a regular file (give a file path; it is created if missing)");
     std::ifstream f(path, std::ios::binary);
     if (!f) return {};  // no cache yet: not worth a warning
     std::vector<uint8_t> bytes;
@@ -87,7 +95,8 @@ PipelineCacheLoad readPipelineCache(const std::string& path, const std::string& 
     return r;
 }
 
-std::vector<uint8_t> encodePipelineCache(const std::string& identity, std::span<const uint8_t> payload) {
+std::vector<uint8_t> encodePipelineCache(const std::string& identity,
+                                         std::span<const uint8_t> payload) {
     std::vector<uint8_t> out(kMagic, kMagic + 8);
     put(out, uint32_t(identity.size()));
     out.insert(out.end(), identity.begin(), identity.end());
@@ -97,7 +106,8 @@ std::vector<uint8_t> encodePipelineCache(const std::string& identity, std::span<
     return out;
 }
 
-void writePipelineCache(const std::string& path, const std::string& identity, std::span<const uint8_t> payload) {
+void writePipelineCache(const std::string& path, const std::string& identity,
+                        std::span<const uint8_t> payload) {
     const std::vector<uint8_t> bytes = encodePipelineCache(identity, payload);
     const std::string temporary = path + ".tmp";
     {
@@ -123,7 +133,8 @@ std::vector<uint8_t> encodeProgramBinaries(const std::map<uint64_t, ProgramBinar
     return out;
 }
 
-bool decodeProgramBinaries(std::span<const uint8_t> payload, std::map<uint64_t, ProgramBinary>& out, std::string& why) {
+bool decodeProgramBinaries(std::span<const uint8_t> payload, std::map<uint64_t, ProgramBinary>& out,
+                           std::string& why) {
     Reader in{payload};
     uint32_t count = 0;
     if (!in.read(count)) return why = "no entry count", false;
@@ -132,10 +143,13 @@ bool decodeProgramBinaries(std::span<const uint8_t> payload, std::map<uint64_t, 
         uint32_t format = 0, size = 0;
         std::span<const uint8_t> bytes;
         if (!in.read(key) || !in.read(format) || !in.read(size) || !in.take(size, bytes))
-            return why = "entry " + std::to_string(i) + " of " + std::to_string(count) + " is truncated", false;
+            return why = "entry " + std::to_string(i) + " of " + std::to_string(count) +
+                         " is truncated",
+                   false;
         out[key] = {format, {bytes.begin(), bytes.end()}};
     }
-    if (in.at != payload.size()) return why = std::to_string(payload.size() - in.at) + " bytes after the last entry", false;
+    if (in.at != payload.size())
+        return why = std::to_string(payload.size() - in.at) + " bytes after the last entry", false;
     return true;
 }
 

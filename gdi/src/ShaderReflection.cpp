@@ -16,28 +16,40 @@ namespace fe::gdi {
 
 const char* scalarKindName(ScalarKind k) {
     switch (k) {
-        case ScalarKind::Float: return "float";
-        case ScalarKind::Int: return "int";
-        case ScalarKind::Uint: return "uint";
-        default: return "other";
+        case ScalarKind::Float:
+            return "float";
+        case ScalarKind::Int:
+            return "int";
+        case ScalarKind::Uint:
+            return "uint";
+        default:
+            return "other";
     }
 }
 
 const char* shaderStageName(ShaderStage s) {
     switch (s) {
-        case ShaderStage::Vertex: return "vertex";
-        case ShaderStage::Fragment: return "fragment";
-        case ShaderStage::Compute: return "compute";
-        default: return "unknown-stage";
+        case ShaderStage::Vertex:
+            return "vertex";
+        case ShaderStage::Fragment:
+            return "fragment";
+        case ShaderStage::Compute:
+            return "compute";
+        default:
+            return "unknown-stage";
     }
 }
 
 const char* bindingTypeName(BindingType t) {
     switch (t) {
-        case BindingType::UniformBuffer: return "uniform buffer";
-        case BindingType::StorageBuffer: return "storage buffer";
-        case BindingType::SampledTexture: return "sampled texture";
-        default: return "storage texture";
+        case BindingType::UniformBuffer:
+            return "uniform buffer";
+        case BindingType::StorageBuffer:
+            return "storage buffer";
+        case BindingType::SampledTexture:
+            return "sampled texture";
+        default:
+            return "storage texture";
     }
 }
 
@@ -51,10 +63,22 @@ struct Context {
 
 ScalarKind kindOf(spvc_basetype t) {
     switch (t) {
-        case SPVC_BASETYPE_FP16: case SPVC_BASETYPE_FP32: case SPVC_BASETYPE_FP64: return ScalarKind::Float;
-        case SPVC_BASETYPE_INT8: case SPVC_BASETYPE_INT16: case SPVC_BASETYPE_INT32: case SPVC_BASETYPE_INT64: return ScalarKind::Int;
-        case SPVC_BASETYPE_UINT8: case SPVC_BASETYPE_UINT16: case SPVC_BASETYPE_UINT32: case SPVC_BASETYPE_UINT64: return ScalarKind::Uint;
-        default: return ScalarKind::Other;
+        case SPVC_BASETYPE_FP16:
+        case SPVC_BASETYPE_FP32:
+        case SPVC_BASETYPE_FP64:
+            return ScalarKind::Float;
+        case SPVC_BASETYPE_INT8:
+        case SPVC_BASETYPE_INT16:
+        case SPVC_BASETYPE_INT32:
+        case SPVC_BASETYPE_INT64:
+            return ScalarKind::Int;
+        case SPVC_BASETYPE_UINT8:
+        case SPVC_BASETYPE_UINT16:
+        case SPVC_BASETYPE_UINT32:
+        case SPVC_BASETYPE_UINT64:
+            return ScalarKind::Uint;
+        default:
+            return ScalarKind::Other;
     }
 }
 
@@ -69,10 +93,14 @@ spv_context spirvContext(SpirvRules rules) {
     static const spv_context vulkan12 = spvContextCreate(SPV_ENV_VULKAN_1_2);
     static const spv_context vulkan13 = spvContextCreate(SPV_ENV_VULKAN_1_3);
     switch (rules) {
-        case SpirvRules::OpenGL45: return opengl45;
-        case SpirvRules::Vulkan12: return vulkan12;
-        case SpirvRules::Vulkan13: return vulkan13;
-        case SpirvRules::Universal: break;
+        case SpirvRules::OpenGL45:
+            return opengl45;
+        case SpirvRules::Vulkan12:
+            return vulkan12;
+        case SpirvRules::Vulkan13:
+            return vulkan13;
+        case SpirvRules::Universal:
+            break;
     }
     return universal;
 }
@@ -87,8 +115,10 @@ void checkLocationLiterals(std::span<const uint32_t> spirv, const std::string& n
         const size_t decoration = op == kOpDecorate ? 2 : op == kOpMemberDecorate ? 3 : 0;
         if (decoration && words > decoration + 1 && spirv[i + decoration] == kLocation &&
             spirv[i + decoration + 1] >= kMaxInterfaceLocations)
-            throw Error("shader '" + name + "': location " + std::to_string(spirv[i + decoration + 1]) + "; every device has " +
-                        std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
+            throw Error("shader '" + name + "': location " +
+                        std::to_string(spirv[i + decoration + 1]) + "; every device has " +
+                        std::to_string(kMaxInterfaceLocations) + " (0 to " +
+                        std::to_string(kMaxInterfaceLocations - 1) + ")");
         i += words;
     }
 }
@@ -97,8 +127,10 @@ void checkLocationLiterals(std::span<const uint32_t> spirv, const std::string& n
 // APIs guarantee); a longer one is the driver's error otherwise (the capture-file fuzzer made a
 // module with 14337). Found by walking the module's types, as reflection does not list built-ins.
 void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& name) {
-    constexpr uint32_t kOpConstant = 43, kOpTypeArray = 28, kOpTypeStruct = 30, kOpTypePointer = 32, kOpVariable = 59;
-    constexpr uint32_t kOpDecorate = 71, kOpMemberDecorate = 72, kBuiltIn = 11, kClip = 3, kCull = 4;
+    constexpr uint32_t kOpConstant = 43, kOpTypeArray = 28, kOpTypeStruct = 30, kOpTypePointer = 32,
+                       kOpVariable = 59;
+    constexpr uint32_t kOpDecorate = 71, kOpMemberDecorate = 72, kBuiltIn = 11, kClip = 3,
+                       kCull = 4;
     constexpr uint32_t kMaxDistances = 8;
     std::unordered_map<uint32_t, uint32_t> constants, arrayLength, pointee, variableType;
     std::unordered_map<uint32_t, std::vector<uint32_t>> structMembers;
@@ -109,23 +141,32 @@ void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& nam
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
         if (words == 0 || i + words > spirv.size()) break;
         const uint32_t* w = &spirv[i];
-        if (op == kOpConstant && words == 4) constants[w[2]] = w[3];
-        else if (op == kOpTypeArray && words == 4) arrayLength[w[1]] = w[3];
-        else if (op == kOpTypeStruct) structMembers[w[1]].assign(w + 2, w + words);
-        else if (op == kOpTypePointer && words == 4) pointee[w[1]] = w[3];
-        else if (op == kOpVariable && words >= 4) variableType[w[2]] = w[1];
-        else if (op == kOpMemberDecorate && words == 5 && w[3] == kBuiltIn && (w[4] == kClip || w[4] == kCull))
+        if (op == kOpConstant && words == 4)
+            constants[w[2]] = w[3];
+        else if (op == kOpTypeArray && words == 4)
+            arrayLength[w[1]] = w[3];
+        else if (op == kOpTypeStruct)
+            structMembers[w[1]].assign(w + 2, w + words);
+        else if (op == kOpTypePointer && words == 4)
+            pointee[w[1]] = w[3];
+        else if (op == kOpVariable && words >= 4)
+            variableType[w[2]] = w[1];
+        else if (op == kOpMemberDecorate && words == 5 && w[3] == kBuiltIn &&
+                 (w[4] == kClip || w[4] == kCull))
             memberDistances.push_back({w[1], w[2]});
-        else if (op == kOpDecorate && words == 4 && w[2] == kBuiltIn && (w[3] == kClip || w[3] == kCull))
+        else if (op == kOpDecorate && words == 4 && w[2] == kBuiltIn &&
+                 (w[3] == kClip || w[3] == kCull))
             variableDistances.push_back(w[1]);
         i += words;
     }
     for (const auto& [s, m] : memberDistances)
-        if (const auto it = structMembers.find(s); it != structMembers.end() && m < it->second.size())
+        if (const auto it = structMembers.find(s);
+            it != structMembers.end() && m < it->second.size())
             distanceTypes.push_back(it->second[m]);
     for (uint32_t v : variableDistances)
         if (const auto t = variableType.find(v); t != variableType.end())
-            if (const auto p = pointee.find(t->second); p != pointee.end()) distanceTypes.push_back(p->second);
+            if (const auto p = pointee.find(t->second); p != pointee.end())
+                distanceTypes.push_back(p->second);
     uint64_t total = 0;
     for (uint32_t type : distanceTypes) {
         // Per-vertex arrays of stages with several vertices nest one array deeper: the inner one counts.
@@ -137,8 +178,9 @@ void checkDistanceArrays(std::span<const uint32_t> spirv, const std::string& nam
         total += length;
     }
     if (total > kMaxDistances)
-        throw Error("shader '" + name + "': gl_ClipDistance and gl_CullDistance hold " + std::to_string(total) +
-                    " distances; every device has " + std::to_string(kMaxDistances));
+        throw Error("shader '" + name + "': gl_ClipDistance and gl_CullDistance hold " +
+                    std::to_string(total) + " distances; every device has " +
+                    std::to_string(kMaxDistances));
 }
 
 // An image write's texel has at least as many components as the image's declared format (a
@@ -152,23 +194,72 @@ void checkImageWrites(std::span<const uint32_t> spirv, SpirvRules rules, const s
     } walk;
     auto instruction = [](void* user, const spv_parsed_instruction_t* in) -> spv_result_t {
         Walk& w = *static_cast<Walk*>(user);
-        constexpr uint16_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23, kOpTypeImage = 25, kOpImageWrite = 99;
+        constexpr uint16_t kOpTypeInt = 21, kOpTypeFloat = 22, kOpTypeVector = 23,
+                           kOpTypeImage = 25, kOpImageWrite = 99;
         const uint32_t* words = in->words;
-        if (in->opcode == kOpTypeInt || in->opcode == kOpTypeFloat) w.components[words[1]] = 1;
-        else if (in->opcode == kOpTypeVector && in->num_words >= 4) w.components[words[1]] = words[3];
-        else if (in->opcode == kOpTypeImage && in->num_words >= 9) w.imageFormat[words[1]] = words[8];
-        else if (in->opcode == kOpImageWrite && in->num_words >= 4) w.writes.push_back({words[1], words[3]});
+        if (in->opcode == kOpTypeInt || in->opcode == kOpTypeFloat)
+            w.components[words[1]] = 1;
+        else if (in->opcode == kOpTypeVector && in->num_words >= 4)
+            w.components[words[1]] = words[3];
+        else if (in->opcode == kOpTypeImage && in->num_words >= 9)
+            w.imageFormat[words[1]] = words[8];
+        else if (in->opcode == kOpImageWrite && in->num_words >= 4)
+            w.writes.push_back({words[1], words[3]});
         if (in->result_id && in->type_id) w.resultType[in->result_id] = in->type_id;
         return SPV_SUCCESS;
     };
-    if (spvBinaryParse(spirvContext(rules), &walk, spirv.data(), spirv.size(), nullptr, instruction, nullptr) != SPV_SUCCESS) return;
+    if (spvBinaryParse(spirvContext(rules), &walk, spirv.data(), spirv.size(), nullptr, instruction,
+                       nullptr) != SPV_SUCCESS)
+        return;
     auto formatComponents = [](uint32_t f) -> uint32_t {  // spv::ImageFormat; 0 where unknown
         switch (f) {
-            case 1: case 2: case 4: case 5: case 10: case 11: case 16: case 21: case 22: case 23: case 30: case 31: case 32: case 34: return 4;
-            case 8: return 3;
-            case 6: case 7: case 12: case 13: case 17: case 18: case 25: case 26: case 27: case 35: case 36: case 37: return 2;
-            case 3: case 9: case 14: case 15: case 19: case 20: case 24: case 28: case 29: case 33: case 38: case 39: case 40: case 41: return 1;
-            default: return 0;
+            case 1:
+            case 2:
+            case 4:
+            case 5:
+            case 10:
+            case 11:
+            case 16:
+            case 21:
+            case 22:
+            case 23:
+            case 30:
+            case 31:
+            case 32:
+            case 34:
+                return 4;
+            case 8:
+                return 3;
+            case 6:
+            case 7:
+            case 12:
+            case 13:
+            case 17:
+            case 18:
+            case 25:
+            case 26:
+            case 27:
+            case 35:
+            case 36:
+            case 37:
+                return 2;
+            case 3:
+            case 9:
+            case 14:
+            case 15:
+            case 19:
+            case 20:
+            case 24:
+            case 28:
+            case 29:
+            case 33:
+            case 38:
+            case 39:
+            case 40:
+            case 41:
+                return 1;
+            default:
+                return 0;
         }
     };
     for (const auto& [image, texel] : walk.writes) {
@@ -179,7 +270,8 @@ void checkImageWrites(std::span<const uint32_t> spirv, SpirvRules rules, const s
         if (format == walk.imageFormat.end() || texelComponents == walk.components.end()) continue;
         const uint32_t needed = formatComponents(format->second);
         if (texelComponents->second < needed)
-            throw Error("shader '" + name + "': an image write gives " + std::to_string(texelComponents->second) +
+            throw Error("shader '" + name + "': an image write gives " +
+                        std::to_string(texelComponents->second) +
                         " component(s) to an image whose format has " + std::to_string(needed));
     }
 }
@@ -188,9 +280,10 @@ void checkImageWrites(std::span<const uint32_t> spirv, SpirvRules rules, const s
 
 void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name) {
     const std::string what = std::string("shader '") + name + "': not a valid SPIR-V module" +
-                             (rules == SpirvRules::OpenGL45 ? " for OpenGL"
+                             (rules == SpirvRules::OpenGL45    ? " for OpenGL"
                               : rules == SpirvRules::Universal ? ""
-                                                               : " for Vulkan") + ": ";
+                                                               : " for Vulkan") +
+                             ": ";
     // The header's schema word is 0 (the validator lets any value through; Mesa refuses others).
     if (spirv.size() >= 5 && spirv[4] != 0)
         throw Error(what + "header word 4 (schema) is " + std::to_string(spirv[4]) + ", not 0");
@@ -202,7 +295,8 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
     static const Options options;
     spv_const_binary_t binary{spirv.data(), spirv.size()};
     spv_diagnostic diagnostic = nullptr;
-    const spv_result_t result = spvValidateWithOptions(spirvContext(rules), options.options, &binary, &diagnostic);
+    const spv_result_t result =
+        spvValidateWithOptions(spirvContext(rules), options.options, &binary, &diagnostic);
     if (result == SPV_SUCCESS) {
         spvDiagnosticDestroy(diagnostic);
         checkLocationLiterals(spirv, name);
@@ -210,7 +304,8 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
         checkImageWrites(spirv, rules, name);
         return;
     }
-    const std::string why = diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
+    const std::string why =
+        diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
     spvDiagnosticDestroy(diagnostic);
     throw Error(what + why);
 }
@@ -218,9 +313,12 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
 namespace {
 
 // The module (valid here) declares an entry point of this name for this stage.
-void checkEntryPoint(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint, const std::string& name) {
+void checkEntryPoint(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
+                     const std::string& name) {
     constexpr uint32_t kOpEntryPoint = 15;
-    const uint32_t model = stage == ShaderStage::Vertex ? 0u : stage == ShaderStage::Fragment ? 4u : 5u;  // GLCompute
+    const uint32_t model = stage == ShaderStage::Vertex     ? 0u
+                           : stage == ShaderStage::Fragment ? 4u
+                                                            : 5u;  // GLCompute
     const std::string_view wanted = entryPoint ? entryPoint : "main";
     for (size_t i = 5; i < spirv.size();) {
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
@@ -233,18 +331,33 @@ void checkEntryPoint(std::span<const uint32_t> spirv, ShaderStage stage, const c
         }
         i += words;
     }
-    throw Error("shader '" + name + "': no " + shaderStageName(stage) + " entry point '" + std::string(wanted) + "'");
+    throw Error("shader '" + name + "': no " + shaderStageName(stage) + " entry point '" +
+                std::string(wanted) + "'");
 }
 
 // The capabilities a module may declare: what every device of the API offers with the features
 // the backends enable (a declared one the device lacks is a validation-layer error on Vulkan,
 // found by the capture-file fuzzer: CullDistance without shaderCullDistance). GL SPIR-V may use
 // draw parameters (ARB_shader_draw_parameters); Vulkan's need a feature the device leaves off.
-void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const DeviceFeatures& features, const std::string& name) {
+void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const DeviceFeatures& features,
+                       const std::string& name) {
     constexpr uint32_t kOpCapability = 17;
-    enum : uint32_t { Matrix = 0, Shader = 1, ClipDistance = 32, CullDistance = 33, ImageCubeArray = 34, Sampled1D = 43,
-                      Image1D = 44, SampledCubeArray = 45, SampledBuffer = 46, ImageBuffer = 47, ImageQuery = 50,
-                      DerivativeControl = 51, InterpolationFunction = 52, DrawParameters = 4427 };
+    enum : uint32_t {
+        Matrix = 0,
+        Shader = 1,
+        ClipDistance = 32,
+        CullDistance = 33,
+        ImageCubeArray = 34,
+        Sampled1D = 43,
+        Image1D = 44,
+        SampledCubeArray = 45,
+        SampledBuffer = 46,
+        ImageBuffer = 47,
+        ImageQuery = 50,
+        DerivativeControl = 51,
+        InterpolationFunction = 52,
+        DrawParameters = 4427
+    };
     for (size_t i = 5; i < spirv.size();) {
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
         if (words == 0 || i + words > spirv.size()) break;
@@ -252,18 +365,37 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
             const uint32_t c = spirv[i + 1];
             bool offered = false;
             switch (c) {
-                case Matrix: case Shader: case Sampled1D: case Image1D: case SampledBuffer: case ImageBuffer: case ImageQuery:
-                case DerivativeControl: case InterpolationFunction: offered = true; break;
-                case ImageCubeArray: case SampledCubeArray: offered = features.textureCubeArray; break;
-                case DrawParameters: offered = !vulkan; break;
-                default: break;
+                case Matrix:
+                case Shader:
+                case Sampled1D:
+                case Image1D:
+                case SampledBuffer:
+                case ImageBuffer:
+                case ImageQuery:
+                case DerivativeControl:
+                case InterpolationFunction:
+                    offered = true;
+                    break;
+                case ImageCubeArray:
+                case SampledCubeArray:
+                    offered = features.textureCubeArray;
+                    break;
+                case DrawParameters:
+                    offered = !vulkan;
+                    break;
+                default:
+                    break;
             }
             if (!offered) {
-                const char* known = c == ClipDistance ? " (ClipDistance)" : c == CullDistance ? " (CullDistance)"
-                                  : c == DrawParameters ? " (DrawParameters)" : c == ImageCubeArray ? " (ImageCubeArray)"
-                                  : c == SampledCubeArray ? " (SampledCubeArray)" : "";
-                throw Error("shader '" + name + "': its " + (vulkan ? "Vulkan" : "OpenGL") + " SPIR-V declares capability " +
-                            std::to_string(c) + known + ", which the device does not offer");
+                const char* known = c == ClipDistance       ? " (ClipDistance)"
+                                    : c == CullDistance     ? " (CullDistance)"
+                                    : c == DrawParameters   ? " (DrawParameters)"
+                                    : c == ImageCubeArray   ? " (ImageCubeArray)"
+                                    : c == SampledCubeArray ? " (SampledCubeArray)"
+                                                            : "";
+                throw Error("shader '" + name + "': its " + (vulkan ? "Vulkan" : "OpenGL") +
+                            " SPIR-V declares capability " + std::to_string(c) + known +
+                            ", which the device does not offer");
             }
         }
         i += words;
@@ -272,7 +404,8 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
 
 }  // namespace
 
-void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const DeviceFeatures& features) {
+void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules,
+                          const DeviceFeatures& features) {
     constexpr uint32_t kSpirvMagic = 0x07230203;
     const std::string name = desc.binary.name ? desc.binary.name : "";
     struct Half {
@@ -280,11 +413,12 @@ void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const 
         SpirvRules rules;
         const char* api;
     };
-    for (const Half& half : {Half{desc.binary.vulkan, vulkanRules, "Vulkan"}, Half{desc.binary.opengl, SpirvRules::OpenGL45, "OpenGL"}}) {
+    for (const Half& half : {Half{desc.binary.vulkan, vulkanRules, "Vulkan"},
+                             Half{desc.binary.opengl, SpirvRules::OpenGL45, "OpenGL"}}) {
         if (half.words.empty()) continue;
         if (half.words.size() < 5 || half.words[0] != kSpirvMagic)
-            throw Error("shader '" + name + "': not a SPIR-V binary for " + half.api + " (" + std::to_string(half.words.size()) +
-                        " words, missing magic number)");
+            throw Error("shader '" + name + "': not a SPIR-V binary for " + half.api + " (" +
+                        std::to_string(half.words.size()) + " words, missing magic number)");
         validateSpirv(half.words, half.rules, name);
         checkCapabilities(half.words, half.rules != SpirvRules::OpenGL45, features, name);
         checkEntryPoint(half.words, desc.stage, desc.entryPoint, name);
@@ -293,12 +427,14 @@ void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const 
 
 // Some of SPIRV-Cross's C API entry points let its C++ exceptions through (set_entry_point on a
 // valid module whose entry point is of another stage, say): reflectShader turns them into Error.
-static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                                        const std::string& name, SpirvRules rules) {
+static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderStage stage,
+                                        const char* entryPoint, const std::string& name,
+                                        SpirvRules rules) {
     Context c;
     auto fail = [&](const std::string& what) -> Error {
         const char* detail = c.ctx ? spvc_context_get_last_error_string(c.ctx) : "";
-        return Error("shader '" + name + "': " + what + (detail && *detail ? std::string(": ") + detail : std::string()));
+        return Error("shader '" + name + "': " + what +
+                     (detail && *detail ? std::string(": ") + detail : std::string()));
     };
     if (!c.ctx) throw fail("SPIRV-Cross could not start");
     validateSpirv(spirv, rules, name);
@@ -306,17 +442,21 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     spvc_compiler comp = nullptr;
     if (spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS)
         throw fail("not a valid SPIR-V module");
-    if (spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) != SPVC_SUCCESS)
+    if (spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP,
+                                     &comp) != SPVC_SUCCESS)
         throw fail("SPIR-V reflection failed");
     const SpvExecutionModel model = stage == ShaderStage::Vertex     ? SpvExecutionModelVertex
                                     : stage == ShaderStage::Fragment ? SpvExecutionModelFragment
                                                                      : SpvExecutionModelGLCompute;
-    if (spvc_compiler_set_entry_point(comp, entryPoint ? entryPoint : "main", model) != SPVC_SUCCESS)
-        throw fail(std::string("no ") + shaderStageName(stage) + " entry point '" + (entryPoint ? entryPoint : "main") + "'");
+    if (spvc_compiler_set_entry_point(comp, entryPoint ? entryPoint : "main", model) !=
+        SPVC_SUCCESS)
+        throw fail(std::string("no ") + shaderStageName(stage) + " entry point '" +
+                   (entryPoint ? entryPoint : "main") + "'");
     spvc_set active = nullptr;
     spvc_resources res = nullptr;
     if (spvc_compiler_get_active_interface_variables(comp, &active) != SPVC_SUCCESS ||
-        spvc_compiler_create_shader_resources_for_active_variables(comp, &res, active) != SPVC_SUCCESS)
+        spvc_compiler_create_shader_resources_for_active_variables(comp, &res, active) !=
+            SPVC_SUCCESS)
         throw fail("SPIR-V reflection failed");
 
     ShaderInterface out;
@@ -329,17 +469,21 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     };
     auto declaredSize = [&](spvc_type_id type) {
         size_t size = 0;
-        spvc_compiler_get_declared_struct_size(comp, spvc_compiler_get_type_handle(comp, type), &size);
+        spvc_compiler_get_declared_struct_size(comp, spvc_compiler_get_type_handle(comp, type),
+                                               &size);
         return size;
     };
     auto binding = [&](BindingType type) {
         return [&, type](const spvc_reflected_resource& r) {
-            const uint32_t set = spvc_compiler_get_decoration(comp, r.id, SpvDecorationDescriptorSet);
+            const uint32_t set =
+                spvc_compiler_get_decoration(comp, r.id, SpvDecorationDescriptorSet);
             if (set != 0)
-                throw fail("'" + std::string(r.name) + "' is in descriptor set " + std::to_string(set) +
+                throw fail("'" + std::string(r.name) + "' is in descriptor set " +
+                           std::to_string(set) +
                            "; the device binds set 0 only (layout(binding = slot))");
             const uint32_t slot = spvc_compiler_get_decoration(comp, r.id, SpvDecorationBinding);
-            if (type == BindingType::UniformBuffer && slot == kConstantsGlBinding) {  // FE_CONSTANTS on GL
+            if (type == BindingType::UniformBuffer &&
+                slot == kConstantsGlBinding) {  // FE_CONSTANTS on GL
                 out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id));
                 return;
             }
@@ -347,19 +491,30 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
             if (type == BindingType::SampledTexture || type == BindingType::StorageTexture) {
                 const spvc_type t = spvc_compiler_get_type_handle(comp, r.base_type_id);
                 const bool arrayed = spvc_type_get_image_arrayed(t);
-                if (!spvc_type_get_image_multisampled(t)) switch (spvc_type_get_image_dimension(t)) {
-                    case SpvDim2D: dimension = 1 + uint8_t(arrayed ? TextureDimension::Texture2DArray : TextureDimension::Texture2D); break;
-                    case SpvDimCube: dimension = 1 + uint8_t(arrayed ? TextureDimension::TextureCubeArray : TextureDimension::TextureCube); break;
-                    case SpvDim3D: dimension = 1 + uint8_t(TextureDimension::Texture3D); break;
-                    default: break;
-                }
+                if (!spvc_type_get_image_multisampled(t))
+                    switch (spvc_type_get_image_dimension(t)) {
+                        case SpvDim2D:
+                            dimension = 1 + uint8_t(arrayed ? TextureDimension::Texture2DArray
+                                                            : TextureDimension::Texture2D);
+                            break;
+                        case SpvDimCube:
+                            dimension = 1 + uint8_t(arrayed ? TextureDimension::TextureCubeArray
+                                                            : TextureDimension::TextureCube);
+                            break;
+                        case SpvDim3D:
+                            dimension = 1 + uint8_t(TextureDimension::Texture3D);
+                            break;
+                        default:
+                            break;
+                    }
                 // No texture of the device can be bound there: refused here, not left to the draw
                 // (Vulkan's validation layer complained, GL read zeros).
                 if (dimension == 0)
-                    throw fail("'" + std::string(r.name) + "' is a " +
-                               (spvc_type_get_image_multisampled(t) ? "multisampled" : "1D or buffer") +
-                               " texture, which the device has none of: bind 2D, 2D array, cube, cube array or 3D "
-                               "textures (a multisampled target is resolved into one by its render pass)");
+                    throw fail(
+                        "'" + std::string(r.name) + "' is a " +
+                        (spvc_type_get_image_multisampled(t) ? "multisampled" : "1D or buffer") +
+                        " texture, which the device has none of: bind 2D, 2D array, cube, cube array or 3D "
+                        "textures (a multisampled target is resolved into one by its render pass)");
             }
             out.bindings.push_back({slot, type, r.name, dimension});
         };
@@ -368,10 +523,12 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     each(SPVC_RESOURCE_TYPE_STORAGE_BUFFER, binding(BindingType::StorageBuffer));
     each(SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, binding(BindingType::SampledTexture));
     each(SPVC_RESOURCE_TYPE_STORAGE_IMAGE, binding(BindingType::StorageTexture));
-    for (spvc_resource_type t : {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS})
+    for (spvc_resource_type t :
+         {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS})
         each(t, [&](const spvc_reflected_resource& r) {
-            throw fail("'" + std::string(r.name) + "' is a separate image or sampler; the device binds combined "
-                                                   "image samplers (sampler2D and the like)");
+            throw fail("'" + std::string(r.name) +
+                       "' is a separate image or sampler; the device binds combined "
+                       "image samplers (sampler2D and the like)");
         });
     // Stage inputs and outputs stay within the 16 locations (64 components) every Vulkan and GL
     // 4.5 device has; beyond that the pipeline would be the driver's error, not ours. Every
@@ -383,13 +540,17 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
         for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
             locations *= std::max<uint64_t>(1, spvc_type_get_array_dimension(t, d));
         if (uint64_t(location) + locations > kMaxInterfaceLocations)
-            throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) + " takes locations up to " +
+            throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) +
+                       " takes locations up to " +
                        std::to_string(uint64_t(location) + locations - 1) + "; every device has " +
-                       std::to_string(kMaxInterfaceLocations) + " (0 to " + std::to_string(kMaxInterfaceLocations - 1) + ")");
+                       std::to_string(kMaxInterfaceLocations) + " (0 to " +
+                       std::to_string(kMaxInterfaceLocations - 1) + ")");
     };
     spvc_resources all = nullptr;
-    if (spvc_compiler_create_shader_resources(comp, &all) != SPVC_SUCCESS) throw fail("SPIR-V reflection failed");
-    for (spvc_resource_type type : {SPVC_RESOURCE_TYPE_STAGE_INPUT, SPVC_RESOURCE_TYPE_STAGE_OUTPUT}) {
+    if (spvc_compiler_create_shader_resources(comp, &all) != SPVC_SUCCESS)
+        throw fail("SPIR-V reflection failed");
+    for (spvc_resource_type type :
+         {SPVC_RESOURCE_TYPE_STAGE_INPUT, SPVC_RESOURCE_TYPE_STAGE_OUTPUT}) {
         const spvc_reflected_resource* list = nullptr;
         size_t count = 0;
         spvc_resources_get_resource_list_for_type(all, type, &list, &count);
@@ -398,47 +559,57 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     auto variable = [&](std::vector<ShaderInterface::Variable>& into) {
         return [&](const spvc_reflected_resource& r) {
             const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
-            const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
+            const uint32_t location =
+                spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
             uint32_t locations = std::max(1u, spvc_type_get_columns(t));
             for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
                 locations *= std::max(1u, spvc_type_get_array_dimension(t, d));
-            into.push_back({location, kindOf(spvc_type_get_basetype(t)), spvc_type_get_vector_size(t), r.name, locations});
+            into.push_back({location, kindOf(spvc_type_get_basetype(t)),
+                            spvc_type_get_vector_size(t), r.name, locations});
         };
     };
     each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));
     each(SPVC_RESOURCE_TYPE_STAGE_OUTPUT, variable(out.outputs));
-    each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT,
-         [&](const spvc_reflected_resource& r) { out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id)); });
+    each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT, [&](const spvc_reflected_resource& r) {
+        out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id));
+    });
     const spvc_specialization_constant* specs = nullptr;
     size_t specCount = 0;
     spvc_compiler_get_specialization_constants(comp, &specs, &specCount);
     for (size_t i = 0; i < specCount; ++i) {
         const spvc_constant c = spvc_compiler_get_constant_handle(comp, specs[i].id);
-        const spvc_basetype base = spvc_type_get_basetype(spvc_compiler_get_type_handle(comp, spvc_constant_get_type(c)));
+        const spvc_basetype base =
+            spvc_type_get_basetype(spvc_compiler_get_type_handle(comp, spvc_constant_get_type(c)));
         const char* name = spvc_compiler_get_name(comp, specs[i].id);
-        const bool word = base == SPVC_BASETYPE_FP32 || base == SPVC_BASETYPE_INT32 || base == SPVC_BASETYPE_UINT32;
+        const bool word = base == SPVC_BASETYPE_FP32 || base == SPVC_BASETYPE_INT32 ||
+                          base == SPVC_BASETYPE_UINT32;
         out.specConstants.push_back({specs[i].constant_id, word ? kindOf(base) : ScalarKind::Other,
                                      base == SPVC_BASETYPE_BOOLEAN, name ? name : ""});
     }
     if (stage == ShaderStage::Compute)
         for (uint32_t i = 0; i < 3; ++i)
-            out.workgroupSize[i] = spvc_compiler_get_execution_mode_argument_by_index(comp, SpvExecutionModeLocalSize, i);
+            out.workgroupSize[i] = spvc_compiler_get_execution_mode_argument_by_index(
+                comp, SpvExecutionModeLocalSize, i);
     auto bySlot = [](const auto& a, const auto& b) { return a.slot < b.slot; };
     auto byLocation = [](const auto& a, const auto& b) { return a.location < b.location; };
     std::sort(out.bindings.begin(), out.bindings.end(), bySlot);
     std::sort(out.inputs.begin(), out.inputs.end(), byLocation);
     std::sort(out.outputs.begin(), out.outputs.end(), byLocation);
-    std::sort(out.specConstants.begin(), out.specConstants.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+    std::sort(out.specConstants.begin(), out.specConstants.end(),
+              [](const auto& a, const auto& b) { return a.id < b.id; });
     return out;
 }
 
-std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const std::string& prefix) {
+std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv,
+                                        const std::string& prefix) {
     constexpr uint32_t kOpName = 5;
     std::vector<uint32_t> out(spirv.begin(), spirv.begin() + std::min<size_t>(5, spirv.size()));
     for (size_t i = 5; i < spirv.size();) {
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
-        if (words == 0 || i + words > spirv.size()) throw Error("SPIR-V instruction stream is damaged at word " + std::to_string(i));
-        if (op == kOpName && words >= 3 && spirv[i + 2] != 0) {  // an empty name stays empty (anonymous)
+        if (words == 0 || i + words > spirv.size())
+            throw Error("SPIR-V instruction stream is damaged at word " + std::to_string(i));
+        if (op == kOpName && words >= 3 &&
+            spirv[i + 2] != 0) {  // an empty name stays empty (anonymous)
             // OpName <target> "string": a nul-terminated UTF-8 literal padded to whole words.
             const char* old = reinterpret_cast<const char*>(&spirv[i + 2]);
             const std::string name = prefix + std::string(old, strnlen(old, size_t(words - 2) * 4));
@@ -458,14 +629,17 @@ std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const s
 
 // SPIRV-Cross knows where each decoration's literal sits in the module (the word offset it
 // reports is the one to patch), so the renumbering needs no instruction walk of its own.
-std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv, const std::array<uint8_t, 64>& newSlot) {
+std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv,
+                                              const std::array<uint8_t, 64>& newSlot) {
     std::vector<uint32_t> out(spirv.begin(), spirv.end());
     Context c;
     spvc_parsed_ir ir = nullptr;
     spvc_compiler comp = nullptr;
     spvc_resources all = nullptr;
-    if (!c.ctx || spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
-        spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &comp) != SPVC_SUCCESS ||
+    if (!c.ctx ||
+        spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
+        spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP,
+                                     &comp) != SPVC_SUCCESS ||
         spvc_compiler_create_shader_resources(comp, &all) != SPVC_SUCCESS)
         throw Error("SPIR-V reflection failed while renumbering storage textures");
     const spvc_reflected_resource* list = nullptr;
@@ -475,14 +649,16 @@ std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv, c
         const uint32_t slot = spvc_compiler_get_decoration(comp, list[i].id, SpvDecorationBinding);
         uint32_t offset = 0;
         if (slot < newSlot.size() && newSlot[slot] != 0xff &&
-            spvc_compiler_get_binary_offset_for_decoration(comp, list[i].id, SpvDecorationBinding, &offset) && offset < out.size())
+            spvc_compiler_get_binary_offset_for_decoration(comp, list[i].id, SpvDecorationBinding,
+                                                           &offset) &&
+            offset < out.size())
             out[offset] = newSlot[slot];
     }
     return out;
 }
 
-ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                              const std::string& name, SpirvRules rules) {
+ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage,
+                              const char* entryPoint, const std::string& name, SpirvRules rules) {
     try {
         return reflectUnguarded(spirv, stage, entryPoint, name, rules);
     } catch (const Error&) {

@@ -39,16 +39,23 @@ glm::vec3 hsv(float h, float s, float v) {
     float f = h6 - std::floor(h6);
     float p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
     switch (i) {
-        case 0: return {v, t, p};
-        case 1: return {q, v, p};
-        case 2: return {p, v, t};
-        case 3: return {p, q, v};
-        case 4: return {t, p, v};
-        default: return {v, p, q};
+        case 0:
+            return {v, t, p};
+        case 1:
+            return {q, v, p};
+        case 2:
+            return {p, v, t};
+        case 3:
+            return {p, q, v};
+        case 4:
+            return {t, p, v};
+        default:
+            return {v, p, q};
     }
 }
 
-Material makeMaterial(const std::string& name, const glm::vec4& base, float metallic, float roughness) {
+Material makeMaterial(const std::string& name, const glm::vec4& base, float metallic,
+                      float roughness) {
     Material m;
     m.name = name;
     m.baseColorFactor = base;
@@ -76,7 +83,8 @@ uint32_t addMesh(Scene& s, const char* name, Primitive p) {
     return uint32_t(s.meshes.size() - 1);
 }
 
-Light directional(const std::string& name, const glm::vec3& travel, const glm::vec3& color, float lux) {
+Light directional(const std::string& name, const glm::vec3& travel, const glm::vec3& color,
+                  float lux) {
     Light l;
     l.name = name;
     l.type = LightType::Directional;
@@ -86,7 +94,8 @@ Light directional(const std::string& name, const glm::vec3& travel, const glm::v
     return l;
 }
 
-Light point(const std::string& name, const glm::vec3& pos, const glm::vec3& color, float cd, float range) {
+Light point(const std::string& name, const glm::vec3& pos, const glm::vec3& color, float cd,
+            float range) {
     Light l;
     l.name = name;
     l.type = LightType::Point;
@@ -109,8 +118,9 @@ Scene makeSpheres(const BuiltinOptions& o) {
             float roughness = float(col) / float(n - 1);
             float metallic = float(row) / float(n - 1);
             uint32_t mat = uint32_t(s.materials.size());
-            s.materials.push_back(makeMaterial("m" + std::to_string(row) + "_r" + std::to_string(col),
-                                               glm::vec4(0.9f, 0.3f, 0.1f, 1.0f), metallic, roughness));
+            s.materials.push_back(
+                makeMaterial("m" + std::to_string(row) + "_r" + std::to_string(col),
+                             glm::vec4(0.9f, 0.3f, 0.1f, 1.0f), metallic, roughness));
             Mesh mesh;
             mesh.name = "sphere_" + std::to_string(row) + "_" + std::to_string(col);
             mesh.primitives.push_back(sphere);
@@ -151,7 +161,8 @@ Scene makeLights(const BuiltinOptions& o) {
         }
     }
     s.lights = lightsSceneLights(o.lights, o.frame);
-    s.camera = Camera::lookAlong({0.0f, 0.0f, -15.0f}, {0, 0, 1}, {0, 1, 0}, radians(60.0f), 0.1f, 100.0f);
+    s.camera =
+        Camera::lookAlong({0.0f, 0.0f, -15.0f}, {0, 0, 1}, {0, 1, 0}, radians(60.0f), 0.1f, 100.0f);
     s.camera->name = "lights";
     return s;
 }
@@ -167,7 +178,8 @@ Scene makePlane() {
     s.meshes.push_back(std::move(quad));
     addInstance(s, 0, glm::mat4(1.0f), "quad");
     s.lights.push_back(point("point", {0.0f, 0.0f, 1.0f}, glm::vec3(1.0f), 1.0f, 0.0f));
-    s.camera = Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera =
+        Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
     s.camera->name = "plane";
     return s;
 }
@@ -195,13 +207,14 @@ Scene makeTriangle() {
     s.meshes.push_back(std::move(m));
     addInstance(s, 0, glm::mat4(1.0f), "triangle");
     s.lights.push_back(directional("sun", {0, 0, -1}, glm::vec3(1.0f), 1.0f));
-    s.camera = Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera =
+        Camera::lookAlong({0.0f, 0.0f, 3.0f}, {0, 0, -1}, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
     s.camera->name = "triangle";
     return s;
 }
 
-Light spot(const std::string& name, const glm::vec3& pos, const glm::vec3& target, const glm::vec3& color, float cd,
-           float innerDegrees, float outerDegrees) {
+Light spot(const std::string& name, const glm::vec3& pos, const glm::vec3& target,
+           const glm::vec3& color, float cd, float innerDegrees, float outerDegrees) {
     Light l = point(name, pos, color, cd, 0.0f);
     l.type = LightType::Spot;
     l.direction = glm::normalize(target - pos);
@@ -218,19 +231,35 @@ Scene makeShadows() {
         s.materials.push_back(std::move(m));
         return addMesh(s, name, std::move(p));
     };
-    const uint32_t ground = mesh("ground", makeQuad(5.0f, 5.0f, 0), makeMaterial("ground", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 0.0f, 0.7f));
-    addInstance(s, ground, glm::rotate(glm::mat4(1.0f), radians(-90.0f), glm::vec3(1, 0, 0)), "ground");
-    const uint32_t sphere = mesh("sphere", makeUVSphere(0.6f, 48, 24, 0), makeMaterial("gold", glm::vec4(1.0f, 0.78f, 0.34f, 1.0f), 1.0f, 0.3f));
+    const uint32_t ground =
+        mesh("ground", makeQuad(5.0f, 5.0f, 0),
+             makeMaterial("ground", glm::vec4(0.5f, 0.5f, 0.5f, 1.0f), 0.0f, 0.7f));
+    addInstance(s, ground, glm::rotate(glm::mat4(1.0f), radians(-90.0f), glm::vec3(1, 0, 0)),
+                "ground");
+    const uint32_t sphere =
+        mesh("sphere", makeUVSphere(0.6f, 48, 24, 0),
+             makeMaterial("gold", glm::vec4(1.0f, 0.78f, 0.34f, 1.0f), 1.0f, 0.3f));
     addInstance(s, sphere, glm::translate(glm::mat4(1.0f), {-1.3f, 0.6f, 0.2f}), "sphere");
-    const uint32_t cube = mesh("cube", makeCube(0.45f, 0), makeMaterial("red", glm::vec4(0.7f, 0.2f, 0.15f, 1.0f), 0.0f, 0.5f));
-    addInstance(s, cube, glm::rotate(glm::translate(glm::mat4(1.0f), {1.1f, 0.45f, -0.4f}), radians(30.0f), glm::vec3(0, 1, 0)), "cube");
-    const uint32_t pole = mesh("pole", makeCube(1.0f, 0), makeMaterial("white", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), 0.0f, 0.4f));
-    addInstance(s, pole, glm::scale(glm::translate(glm::mat4(1.0f), {0.2f, 1.0f, 1.3f}), {0.06f, 1.0f, 0.06f}), "pole");
+    const uint32_t cube = mesh("cube", makeCube(0.45f, 0),
+                               makeMaterial("red", glm::vec4(0.7f, 0.2f, 0.15f, 1.0f), 0.0f, 0.5f));
+    addInstance(s, cube,
+                glm::rotate(glm::translate(glm::mat4(1.0f), {1.1f, 0.45f, -0.4f}), radians(30.0f),
+                            glm::vec3(0, 1, 0)),
+                "cube");
+    const uint32_t pole =
+        mesh("pole", makeCube(1.0f, 0),
+             makeMaterial("white", glm::vec4(0.8f, 0.8f, 0.8f, 1.0f), 0.0f, 0.4f));
+    addInstance(
+        s, pole,
+        glm::scale(glm::translate(glm::mat4(1.0f), {0.2f, 1.0f, 1.3f}), {0.06f, 1.0f, 0.06f}),
+        "pole");
     s.lights.push_back(directional("sun", {-0.5f, -1.0f, -0.35f}, {1.0f, 0.95f, 0.85f}, 2.5f));
-    s.lights.push_back(spot("spot", {2.6f, 3.2f, 2.4f}, {0.0f, 0.0f, 0.0f}, {0.9f, 0.95f, 1.0f}, 60.0f, 20.0f, 30.0f));
+    s.lights.push_back(spot("spot", {2.6f, 3.2f, 2.4f}, {0.0f, 0.0f, 0.0f}, {0.9f, 0.95f, 1.0f},
+                            60.0f, 20.0f, 30.0f));
     s.lights.push_back(point("lamp", {-2.4f, 1.6f, 1.8f}, {1.0f, 0.6f, 0.3f}, 6.0f, 0.0f));
     const glm::vec3 eye(0.0f, 3.0f, 6.0f);
-    s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 1.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f), 0.1f, 100.0f);
+    s.camera = Camera::lookAlong(eye, glm::vec3(0.0f, 1.4f, 0.0f) - eye, {0, 1, 0}, radians(45.0f),
+                                 0.1f, 100.0f);
     s.camera->name = "shadows";
     s.showsShadows = true;
     return s;
@@ -278,33 +307,44 @@ Scene makeAtrium(const BuiltinOptions& o) {
         s.materials.push_back(std::move(m));
         return uint32_t(s.materials.size() - 1);
     };
-    const uint32_t stone = material(makeMaterial("stone", glm::vec4(0.62f, 0.6f, 0.56f, 1.0f), 0.0f, 0.8f));
-    const uint32_t plaster = material(makeMaterial("plaster", glm::vec4(0.78f, 0.72f, 0.62f, 1.0f), 0.0f, 0.9f));
-    const uint32_t marble = material(makeMaterial("marble", glm::vec4(0.85f, 0.85f, 0.82f, 1.0f), 0.0f, 0.35f));
+    const uint32_t stone =
+        material(makeMaterial("stone", glm::vec4(0.62f, 0.6f, 0.56f, 1.0f), 0.0f, 0.8f));
+    const uint32_t plaster =
+        material(makeMaterial("plaster", glm::vec4(0.78f, 0.72f, 0.62f, 1.0f), 0.0f, 0.9f));
+    const uint32_t marble =
+        material(makeMaterial("marble", glm::vec4(0.85f, 0.85f, 0.82f, 1.0f), 0.0f, 0.35f));
     const uint32_t box = addMesh(s, "box", makeCube(1.0f, 0));  // scaled per instance: half extents
     const uint32_t quad = addMesh(s, "quad", makeQuad(1.0f, 1.0f, 0));
-    auto addBox = [&](uint32_t mat, const glm::vec3& centre, const glm::vec3& half, const std::string& name) {
+    auto addBox = [&](uint32_t mat, const glm::vec3& centre, const glm::vec3& half,
+                      const std::string& name) {
         // One mesh per material: the primitive's material is the instance's here.
         Mesh m = s.meshes[box];
         m.primitives[0].material = mat;
         m.name = name;
         s.meshes.push_back(std::move(m));
-        addInstance(s, uint32_t(s.meshes.size() - 1), glm::scale(glm::translate(glm::mat4(1.0f), centre), half), name);
+        addInstance(s, uint32_t(s.meshes.size() - 1),
+                    glm::scale(glm::translate(glm::mat4(1.0f), centre), half), name);
     };
     constexpr float kHalfWidth = 6.0f, kLength = 60.0f, kStorey = 4.0f, kHeight = 8.0f, kBay = 4.0f;
     addBox(stone, {0.0f, -0.1f, -kLength / 2}, {kHalfWidth, 0.1f, kLength / 2}, "floor");
-    addBox(plaster, {-kHalfWidth - 0.1f, kHeight / 2, -kLength / 2}, {0.1f, kHeight / 2, kLength / 2}, "wall_left");
-    addBox(plaster, {kHalfWidth + 0.1f, kHeight / 2, -kLength / 2}, {0.1f, kHeight / 2, kLength / 2}, "wall_right");
-    addBox(plaster, {0.0f, kHeight / 2, -kLength - 0.1f}, {kHalfWidth, kHeight / 2, 0.1f}, "wall_end");
+    addBox(plaster, {-kHalfWidth - 0.1f, kHeight / 2, -kLength / 2},
+           {0.1f, kHeight / 2, kLength / 2}, "wall_left");
+    addBox(plaster, {kHalfWidth + 0.1f, kHeight / 2, -kLength / 2},
+           {0.1f, kHeight / 2, kLength / 2}, "wall_right");
+    addBox(plaster, {0.0f, kHeight / 2, -kLength - 0.1f}, {kHalfWidth, kHeight / 2, 0.1f},
+           "wall_end");
     for (float side : {-1.0f, 1.0f}) {
         const std::string tag = side < 0 ? "left" : "right";
         // The gallery floor of the upper storey, and the beam along the arcade under it.
-        addBox(stone, {side * 4.75f, kStorey, -kLength / 2}, {1.25f, 0.15f, kLength / 2}, "gallery_" + tag);
-        addBox(marble, {side * 3.5f, kStorey - 0.35f, -kLength / 2}, {0.3f, 0.2f, kLength / 2}, "beam_" + tag);
+        addBox(stone, {side * 4.75f, kStorey, -kLength / 2}, {1.25f, 0.15f, kLength / 2},
+               "gallery_" + tag);
+        addBox(marble, {side * 3.5f, kStorey - 0.35f, -kLength / 2}, {0.3f, 0.2f, kLength / 2},
+               "beam_" + tag);
         for (int bay = 0; bay < int(kLength / kBay) - 1; ++bay) {
             const float z = -kBay * float(bay + 1);
             const std::string at = tag + "_" + std::to_string(bay);
-            addBox(marble, {side * 3.5f, (kStorey - 0.55f) / 2, z}, {0.3f, (kStorey - 0.55f) / 2, 0.3f}, "column_" + at);
+            addBox(marble, {side * 3.5f, (kStorey - 0.55f) / 2, z},
+                   {0.3f, (kStorey - 0.55f) / 2, 0.3f}, "column_" + at);
             addBox(marble, {side * 3.5f, kStorey + 0.15f + (kHeight - kStorey - 0.15f) / 2, z},
                    {0.22f, (kHeight - kStorey - 0.15f) / 2, 0.22f}, "upper_column_" + at);
         }
@@ -313,13 +353,15 @@ Scene makeAtrium(const BuiltinOptions& o) {
     // from both sides (drawn in the translucent pass, lit with the light clusters' lists).
     if (o.hangings) {
         const uint32_t red = material([] {
-            Material m = makeMaterial("banner_red", glm::vec4(0.8f, 0.12f, 0.1f, 0.55f), 0.0f, 0.9f);
+            Material m =
+                makeMaterial("banner_red", glm::vec4(0.8f, 0.12f, 0.1f, 0.55f), 0.0f, 0.9f);
             m.alphaMode = AlphaMode::Blend;
             m.doubleSided = true;
             return m;
         }());
         const uint32_t blue = material([] {
-            Material m = makeMaterial("banner_blue", glm::vec4(0.1f, 0.2f, 0.75f, 0.55f), 0.0f, 0.9f);
+            Material m =
+                makeMaterial("banner_blue", glm::vec4(0.1f, 0.2f, 0.75f, 0.55f), 0.0f, 0.9f);
             m.alphaMode = AlphaMode::Blend;
             m.doubleSided = true;
             return m;
@@ -331,14 +373,18 @@ Scene makeAtrium(const BuiltinOptions& o) {
                 m.name = "banner";
                 s.meshes.push_back(std::move(m));
                 // The quad faces +Z; turned to face the axis, 1.2 m wide and 2.4 m tall.
-                const glm::mat4 world = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {side * 3.3f, 6.2f, -kBay * (bay + 1.5f)}),
-                                                               radians(-90.0f * side), glm::vec3(0, 1, 0)),
-                                                   {1.6f, 1.2f, 1.0f});
-                addInstance(s, uint32_t(s.meshes.size() - 1), world, "banner_" + std::to_string(bay) + (side < 0 ? "_left" : "_right"));
+                const glm::mat4 world = glm::scale(
+                    glm::rotate(
+                        glm::translate(glm::mat4(1.0f), {side * 3.3f, 6.2f, -kBay * (bay + 1.5f)}),
+                        radians(-90.0f * side), glm::vec3(0, 1, 0)),
+                    {1.6f, 1.2f, 1.0f});
+                addInstance(s, uint32_t(s.meshes.size() - 1), world,
+                            "banner_" + std::to_string(bay) + (side < 0 ? "_left" : "_right"));
             }
     }
     s.lights = atriumLights(o.lights);
-    s.camera = Camera::lookAlong({0.0f, 1.7f, 1.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f), 0.1f, 100.0f);
+    s.camera = Camera::lookAlong({0.0f, 1.7f, 1.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0},
+                                 radians(60.0f), 0.1f, 100.0f);
     s.camera->name = "atrium";
     return s;
 }
@@ -370,7 +416,8 @@ Primitive makeReed(uint32_t material) {
             inf.joints[0] = glm::uvec4(j0, j0 + 1, 0, 0);
             inf.weights[0] = glm::vec4(1.0f - w1, w1, 0.0f, 0.0f);
             p.skin.push_back(inf);
-            bulge.position.push_back(n * (kReedRadius * std::sin(float(kPi) * v)));  // fattest halfway up
+            bulge.position.push_back(
+                n * (kReedRadius * std::sin(float(kPi) * v)));  // fattest halfway up
         }
     }
     for (uint32_t r = 0; r < kReedRings; ++r)
@@ -404,7 +451,8 @@ Scene makeCrowd(const BuiltinOptions& o) {
         const uint32_t root = uint32_t(s.nodes.size());
         Node r;
         r.name = "reed " + std::to_string(i);
-        r.translation = glm::vec3(float(i % side) * spacing - 0.5f * extent, 0.0f, -float(i / side) * spacing);
+        r.translation =
+            glm::vec3(float(i % side) * spacing - 0.5f * extent, 0.0f, -float(i / side) * spacing);
         s.nodes.push_back(r);
         Skin skin;
         for (uint32_t j = 0; j < kReedJoints; ++j) {
@@ -413,16 +461,21 @@ Scene makeCrowd(const BuiltinOptions& o) {
             joint.parent = int32_t(j == 0 ? root : s.nodes.size() - 1);
             joint.translation = glm::vec3(0.0f, j == 0 ? 0.0f : kReedHeight / kReedJoints, 0.0f);
             skin.joints.push_back(uint32_t(s.nodes.size()));
-            skin.inverseBindMatrices.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -float(j) * kReedHeight / kReedJoints, 0.0f)));
+            skin.inverseBindMatrices.push_back(glm::translate(
+                glm::mat4(1.0f), glm::vec3(0.0f, -float(j) * kReedHeight / kReedJoints, 0.0f)));
             // Each joint bends about Z and X by up to 0.25 rad, out of phase up the chain.
             AnimationSampler bend{.interpolation = Interpolation::Linear, .width = 4};
             for (uint32_t k = 0; k < kKeys; ++k) {
-                const float t = kPeriod * float(k) / float(kKeys - 1), a = phase + 2.0f * float(kPi) * t / kPeriod + 0.6f * float(j);
-                const glm::quat q = glm::angleAxis(0.25f * std::sin(a), glm::vec3(0, 0, 1)) * glm::angleAxis(0.12f * std::cos(a), glm::vec3(1, 0, 0));
+                const float t = kPeriod * float(k) / float(kKeys - 1),
+                            a = phase + 2.0f * float(kPi) * t / kPeriod + 0.6f * float(j);
+                const glm::quat q = glm::angleAxis(0.25f * std::sin(a), glm::vec3(0, 0, 1)) *
+                                    glm::angleAxis(0.12f * std::cos(a), glm::vec3(1, 0, 0));
                 bend.times.push_back(t);
                 bend.values.insert(bend.values.end(), {q.x, q.y, q.z, q.w});
             }
-            sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()), .node = skin.joints.back(), .path = AnimationPath::Rotation});
+            sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()),
+                                     .node = skin.joints.back(),
+                                     .path = AnimationPath::Rotation});
             sway.samplers.push_back(std::move(bend));
             s.nodes.push_back(joint);
         }
@@ -436,9 +489,12 @@ Scene makeCrowd(const BuiltinOptions& o) {
         for (uint32_t k = 0; k < kKeys; ++k) {
             const float t = kPeriod * float(k) / float(kKeys - 1);
             breathe.times.push_back(t);
-            breathe.values.push_back(0.5f + 0.5f * std::sin(phase + 2.0f * float(kPi) * t / kPeriod));
+            breathe.values.push_back(0.5f +
+                                     0.5f * std::sin(phase + 2.0f * float(kPi) * t / kPeriod));
         }
-        sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()), .node = uint32_t(s.nodes.size() - 1), .path = AnimationPath::Weights});
+        sway.channels.push_back({.sampler = uint32_t(sway.samplers.size()),
+                                 .node = uint32_t(s.nodes.size() - 1),
+                                 .path = AnimationPath::Weights});
         sway.samplers.push_back(std::move(breathe));
         MeshInstance inst;
         inst.meshIndex = 0;
@@ -452,8 +508,10 @@ Scene makeCrowd(const BuiltinOptions& o) {
     Mesh ground;
     ground.name = "ground";
     Primitive quad = makeQuad(0.5f * extent + 1.0f, 0.5f * float(side) * spacing + 1.0f, 1);
-    for (Vertex& v : quad.vertices) v.position = glm::vec3(v.position.x, 0.0f, -v.position.y - 0.5f * extent);
-    for (Vertex& v : quad.vertices) v.normal = glm::vec3(0, 1, 0), v.tangent = glm::vec4(1, 0, 0, 1);
+    for (Vertex& v : quad.vertices)
+        v.position = glm::vec3(v.position.x, 0.0f, -v.position.y - 0.5f * extent);
+    for (Vertex& v : quad.vertices)
+        v.normal = glm::vec3(0, 1, 0), v.tangent = glm::vec4(1, 0, 0, 1);
     ground.primitives.push_back(quad);
     computeBounds(ground);
     s.meshes.push_back(std::move(ground));
@@ -465,9 +523,11 @@ Scene makeCrowd(const BuiltinOptions& o) {
     sun.intensity = 2.5f;
     sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.5f));
     s.lights.push_back(sun);
-    s.lights.push_back(point("fill", glm::vec3(0.0f, 4.0f, 3.0f), glm::vec3(0.8f, 0.9f, 1.0f), 8.0f, 0.0f));
+    s.lights.push_back(
+        point("fill", glm::vec3(0.0f, 4.0f, 3.0f), glm::vec3(0.8f, 0.9f, 1.0f), 8.0f, 0.0f));
     const float d = 0.5f * extent + 2.0f;
-    s.camera = Camera::lookAlong({0.0f, 1.2f + 0.5f * d, d + 1.0f}, {0.0f, -0.45f, -1.0f}, {0, 1, 0}, radians(50.0f), 0.1f, 200.0f);
+    s.camera = Camera::lookAlong({0.0f, 1.2f + 0.5f * d, d + 1.0f}, {0.0f, -0.45f, -1.0f},
+                                 {0, 1, 0}, radians(50.0f), 0.1f, 200.0f);
     s.camera->name = "crowd";
     poseScene(s, {});
     return s;
@@ -480,15 +540,17 @@ std::vector<Light> atriumLights(uint32_t count) {
     out.reserve(count);
     for (uint32_t i = 0; i < count; ++i) {
         // Spread through the whole hall: across, up both storeys, and along its depth.
-        const glm::vec3 pos(-5.5f + 11.0f * unit(i, 10), 0.3f + 7.2f * unit(i, 11), -1.0f - 57.0f * unit(i, 12));
-        out.push_back(point("light" + std::to_string(i), pos, hsv(unit(i, 13), 0.6f, 1.0f), 3.0f, 2.5f));
+        const glm::vec3 pos(-5.5f + 11.0f * unit(i, 10), 0.3f + 7.2f * unit(i, 11),
+                            -1.0f - 57.0f * unit(i, 12));
+        out.push_back(
+            point("light" + std::to_string(i), pos, hsv(unit(i, 13), 0.6f, 1.0f), 3.0f, 2.5f));
     }
     return out;
 }
 
 const std::vector<std::string>& builtinSceneNames() {
-    static const std::vector<std::string> names = {"spheres", "lights", "plane", "triangle", "shadows", "particles", "atrium",
-                                                   "crowd"};
+    static const std::vector<std::string> names = {"spheres", "lights",    "plane",  "triangle",
+                                                   "shadows", "particles", "atrium", "crowd"};
     return names;
 }
 
@@ -505,7 +567,8 @@ std::vector<Light> lightsSceneLights(uint32_t count, uint32_t frame) {
         // fmod keeps the angle small, so precision does not decay with the frame number.
         double angle = std::fmod(phase + speed * double(frame), 2.0 * kPi);
         glm::vec3 pos(cx + float(std::cos(angle)), cy + float(std::sin(angle)), z);
-        out.push_back(point("light" + std::to_string(i), pos, hsv(unit(i, 6), 0.7f, 1.0f), 4.0f, 2.0f));
+        out.push_back(
+            point("light" + std::to_string(i), pos, hsv(unit(i, 6), 0.7f, 1.0f), 4.0f, 2.0f));
     }
     return out;
 }
@@ -531,7 +594,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
     } else {
         std::string valid;
         for (const auto& n : builtinSceneNames()) valid += (valid.empty() ? "" : ", ") + n;
-        throw AssetError("unknown builtin scene '" + std::string(name) + "' (valid: " + valid + ")");
+        throw AssetError("unknown builtin scene '" + std::string(name) + "' (valid: " + valid +
+                         ")");
     }
     // Every builtin brings its own camera and lights; only the bounds are derived.
     finalizeScene(s, false, false);
@@ -540,8 +604,10 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options) {
 
 Scene loadScene(std::string_view spec, const LoadOptions& load, const BuiltinOptions& builtin) {
     constexpr std::string_view prefix = "builtin:";
-    if (spec.substr(0, prefix.size()) == prefix) return makeBuiltinScene(spec.substr(prefix.size()), builtin);
-    if (spec.empty()) throw AssetError("empty scene name (expected 'builtin:NAME' or a glTF file path)");
+    if (spec.substr(0, prefix.size()) == prefix)
+        return makeBuiltinScene(spec.substr(prefix.size()), builtin);
+    if (spec.empty())
+        throw AssetError("empty scene name (expected 'builtin:NAME' or a glTF file path)");
     return loadGltf(std::string(spec), load);
 }
 

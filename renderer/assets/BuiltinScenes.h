@@ -91,6 +91,7 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinOptions& options = {}
 std::vector<Light> lightsSceneLights(uint32_t count, uint32_t frame);
 
 // "builtin:NAME" -> makeBuiltinScene(NAME, builtin); anything else is a glTF file path.
-Scene loadScene(std::string_view spec, const LoadOptions& load = {}, const BuiltinOptions& builtin = {});
+Scene loadScene(std::string_view spec, const LoadOptions& load = {},
+                const BuiltinOptions& builtin = {});
 
 }  // namespace fe::assets

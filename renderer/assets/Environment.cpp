@@ -24,7 +24,8 @@ glm::dvec3 SkyModel::radiance(const glm::dvec3& d) const {
     // Sky: horizon to zenith by the square root of the elevation's sine; ground: constant.
     glm::dvec3 l = d.y >= 0.0 ? glm::mix(horizon, zenith, std::sqrt(d.y)) : ground;
     const double c = glm::dot(d, sunDirection);
-    const double limb = smoothstep(std::cos(sunOuterDegrees * kPi / 180.0), std::cos(sunInnerDegrees * kPi / 180.0), c);
+    const double limb = smoothstep(std::cos(sunOuterDegrees * kPi / 180.0),
+                                   std::cos(sunInnerDegrees * kPi / 180.0), c);
     return l + limb * sunRadiance;
 }
 
@@ -41,7 +42,8 @@ glm::dvec3 Environment::radiance(const glm::dvec3& d) const {
     if (kind == Kind::Sky) return sky.radiance(d);
     // Bilinear, texel centres at (i + 0.5) / width; wrap in u, clamp in v (as the GPU samples).
     const glm::dvec2 uv = equirectFromDirection(d);
-    const double x = uv.x * width - 0.5, y = std::clamp(uv.y * height - 0.5, 0.0, double(height - 1));
+    const double x = uv.x * width - 0.5,
+                 y = std::clamp(uv.y * height - 0.5, 0.0, double(height - 1));
     const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     const double fx = x - x0, fy = y - y0;
     auto texel = [&](int xi, int yi) {
@@ -50,21 +52,25 @@ glm::dvec3 Environment::radiance(const glm::dvec3& d) const {
         const float* p = &rgb[(size_t(yi) * width + xi) * 3];
         return glm::dvec3(p[0], p[1], p[2]);
     };
-    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                    glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
 }
 
 Environment loadEnvironment(std::string_view spec) {
     Environment e;
     e.name = std::string(spec);
     if (spec == "builtin:sky") return e;
-    if (spec.rfind("builtin:", 0) == 0) throw AssetError("unknown environment '" + e.name + "' (builtin: sky)");
+    if (spec.rfind("builtin:", 0) == 0)
+        throw AssetError("unknown environment '" + e.name + "' (builtin: sky)");
     const std::string path(spec);
-    if (!std::filesystem::is_regular_file(path)) throw AssetError(path + ": environment file not found");
+    if (!std::filesystem::is_regular_file(path))
+        throw AssetError(path + ": environment file not found");
     // stb_image would also read PNG or JPEG as floats; an environment must be a Radiance HDR.
     std::ifstream f(path, std::ios::binary);
     char magic[10] = {};
     f.read(magic, 10);
-    if (std::string(magic, 2) != "#?") throw AssetError(path + ": not a Radiance HDR file (no '#?' signature)");
+    if (std::string(magic, 2) != "#?")
+        throw AssetError(path + ": not a Radiance HDR file (no '#?' signature)");
     // stb_image reads a truncated uncompressed (flat) file as zeros: check its length first. Run-
     // length encoded scanlines (2, 2 and the width) it checks itself.
     {
@@ -75,7 +81,8 @@ Environment loadEnvironment(std::string_view spec) {
         std::getline(in, resolution);
         int h = 0, w = 0;
         char ys[4] = {}, xs[4] = {};
-        if (std::sscanf(resolution.c_str(), "%2s %d %2s %d", ys, &h, xs, &w) == 4 && w > 0 && h > 0) {
+        if (std::sscanf(resolution.c_str(), "%2s %d %2s %d", ys, &h, xs, &w) == 4 && w > 0 &&
+            h > 0) {
             const std::streampos data = in.tellg();
             in.seekg(0, std::ios::end);
             const uint64_t bytes = uint64_t(in.tellg() - data);
@@ -84,9 +91,9 @@ Environment loadEnvironment(std::string_view spec) {
             in.read(reinterpret_cast<char*>(head), 2);
             const bool rle = w >= 8 && w < 32768 && head[0] == 2 && head[1] == 2;
             if (!rle && bytes < uint64_t(w) * uint64_t(h) * 4)
-                throw AssetError(path + ": truncated Radiance HDR image: " + std::to_string(bytes) + " bytes of pixels, " +
-                                 std::to_string(uint64_t(w) * h * 4) + " needed for " + std::to_string(w) + "x" +
-                                 std::to_string(h));
+                throw AssetError(path + ": truncated Radiance HDR image: " + std::to_string(bytes) +
+                                 " bytes of pixels, " + std::to_string(uint64_t(w) * h * 4) +
+                                 " needed for " + std::to_string(w) + "x" + std::to_string(h));
         }
     }
     HdrImage img = decodeRadianceHdr(path);
@@ -95,10 +102,13 @@ Environment loadEnvironment(std::string_view spec) {
     e.height = img.height;
     e.rgb = std::move(img.rgb);
     const int w = int(e.width), h = int(e.height);
-    if (w < 2 || h < 1) throw AssetError(path + ": environment image of " + std::to_string(w) + "x" + std::to_string(h));
+    if (w < 2 || h < 1)
+        throw AssetError(path + ": environment image of " + std::to_string(w) + "x" +
+                         std::to_string(h));
     for (size_t i = 0; i < e.rgb.size(); ++i)
         if (!std::isfinite(e.rgb[i]) || e.rgb[i] < 0.0f)
-            throw AssetError(path + ": texel " + std::to_string(i / 3 % e.width) + "," + std::to_string(i / 3 / e.width) +
+            throw AssetError(path + ": texel " + std::to_string(i / 3 % e.width) + "," +
+                             std::to_string(i / 3 / e.width) +
                              " is not a finite non-negative radiance");
     return e;
 }

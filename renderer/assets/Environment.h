@@ -32,9 +32,9 @@ struct Environment {
     enum class Kind { Image, Sky };
     std::string name;  // the file, or "builtin:sky"
     Kind kind = Kind::Sky;
-    SkyModel sky;                // Kind::Sky
+    SkyModel sky;  // Kind::Sky
     uint32_t width = 0, height = 0;
-    std::vector<float> rgb;      // Kind::Image: width x height RGB, rows top to bottom
+    std::vector<float> rgb;  // Kind::Image: width x height RGB, rows top to bottom
 
     // Radiance arriving from `direction` (unit): the sky's closed form, or the image sampled
     // bilinearly (wrapping in u, clamped in v).

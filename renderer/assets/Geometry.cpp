@@ -48,7 +48,8 @@ std::vector<uint32_t> triangleFanToList(const std::vector<uint32_t>& fan) {
     std::vector<uint32_t> out;
     if (fan.size() < 3) return out;
     out.reserve((fan.size() - 2) * 3);
-    for (size_t i = 0; i + 2 < fan.size(); ++i) out.insert(out.end(), {fan[i + 1], fan[i + 2], fan[0]});
+    for (size_t i = 0; i + 2 < fan.size(); ++i)
+        out.insert(out.end(), {fan[i + 1], fan[i + 2], fan[0]});
     return out;
 }
 
@@ -65,8 +66,8 @@ void generateFlatNormals(Primitive& prim) {
         Vertex v0 = prim.vertices[prim.indices[t]];
         Vertex v1 = prim.vertices[prim.indices[t + 1]];
         Vertex v2 = prim.vertices[prim.indices[t + 2]];
-        glm::vec3 n = safeNormalize(glm::cross(v1.position - v0.position, v2.position - v0.position),
-                                    glm::vec3(0, 0, 1));
+        glm::vec3 n = safeNormalize(
+            glm::cross(v1.position - v0.position, v2.position - v0.position), glm::vec3(0, 0, 1));
         v0.normal = v1.normal = v2.normal = n;
         out.insert(out.end(), {v0, v1, v2});
     }
@@ -170,9 +171,9 @@ Primitive makeCube(float h, uint32_t material) {
         glm::vec3 n, right, up;  // right = +u, up = -v (image up)
     };
     const Face faces[6] = {
-        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-        {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
+        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+        {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
     };
     Primitive p;
     p.material = material;
@@ -206,7 +207,8 @@ Primitive makeUVSphere(float radius, uint32_t slices, uint32_t stacks, uint32_t 
             float u = float(j) / float(slices);
             float phi = u * 2.0f * kPi;
             // phi = 0 at +Z, growing towards +X: u increases to the right seen from outside.
-            glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta), std::sin(theta) * std::cos(phi));
+            glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
+                        std::sin(theta) * std::cos(phi));
             Vertex vert;
             vert.position = n * radius;
             vert.normal = n;
@@ -219,8 +221,9 @@ Primitive makeUVSphere(float radius, uint32_t slices, uint32_t stacks, uint32_t 
     const uint32_t row = slices + 1;
     for (uint32_t i = 0; i < stacks; ++i) {
         for (uint32_t j = 0; j < slices; ++j) {
-            uint32_t a = i * row + j, b = (i + 1) * row + j, c = (i + 1) * row + j + 1, d = i * row + j + 1;
-            if (i != 0) p.indices.insert(p.indices.end(), {a, b, d});               // skip pole slivers
+            uint32_t a = i * row + j, b = (i + 1) * row + j, c = (i + 1) * row + j + 1,
+                     d = i * row + j + 1;
+            if (i != 0) p.indices.insert(p.indices.end(), {a, b, d});  // skip pole slivers
             if (i + 1 != stacks) p.indices.insert(p.indices.end(), {d, b, c});
         }
     }

@@ -17,16 +17,16 @@ namespace gltf {
 // ---------------------------------------------------------------------------------------------
 // tinygltf glue
 
-bool imageLoaderTrampoline(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
-                           const unsigned char* bytes, int size, void* user) {
+bool imageLoaderTrampoline(tinygltf::Image* image, const int index, std::string* err, std::string*,
+                           int, int, const unsigned char* bytes, int size, void* user) {
     return static_cast<Loader*>(user)->storeImageBytes(image, index, err, bytes, size);
 }
 
 // Images are kept encoded at parse time and decoded only if a material uses them, with our own
 // error messages. Images stored in a buffer view are range-checked here because tinygltf 2.7
 // hands us a pointer into the buffer without checking the view against the buffer size.
-bool Loader::storeImageBytes(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes,
-                             int size) {
+bool Loader::storeImageBytes(tinygltf::Image* image, int index, std::string* err,
+                             const unsigned char* bytes, int size) {
     if (image->bufferView >= 0) {
         // tinygltf has already checked both indices.
         const auto& bv = model_.bufferViews[size_t(image->bufferView)];
@@ -34,8 +34,9 @@ bool Loader::storeImageBytes(tinygltf::Image* image, int index, std::string* err
         uint64_t end = 0;
         if (addOverflows(bv.byteOffset, bv.byteLength, end) || end > buf.data.size()) {
             if (err) {
-                *err += "image " + std::to_string(index) + ": bufferView " + std::to_string(image->bufferView) +
-                        " exceeds buffer " + std::to_string(bv.buffer) + "\n";
+                *err += "image " + std::to_string(index) + ": bufferView " +
+                        std::to_string(image->bufferView) + " exceeds buffer " +
+                        std::to_string(bv.buffer) + "\n";
             }
             return false;
         }
@@ -50,10 +51,12 @@ bool fileExistsTrampoline(const std::string& absPath, void* user) {
     return static_cast<Loader*>(user)->fileExists(absPath);
 }
 std::string expandTrampoline(const std::string& p, void*) { return p; }
-bool readTrampoline(std::vector<unsigned char>* out, std::string* err, const std::string& p, void* user) {
+bool readTrampoline(std::vector<unsigned char>* out, std::string* err, const std::string& p,
+                    void* user) {
     return static_cast<Loader*>(user)->readWholeFile(out, err, p);
 }
-bool writeTrampoline(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+bool writeTrampoline(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                     void*) {
     if (err) *err += "writing is disabled";
     return false;
 }
@@ -66,7 +69,8 @@ bool Loader::fileExists(const std::string& absPath) const {
     return fs::is_regular_file(fs::path(absPath), ec);
 }
 
-bool Loader::readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& p) const {
+bool Loader::readWholeFile(std::vector<unsigned char>* out, std::string* err,
+                           const std::string& p) const {
     std::error_code ec;
     fs::path fp = fs::path(p);
     if (!fs::is_regular_file(fp, ec)) {
@@ -98,31 +102,38 @@ void Loader::checkGlbLayout(const std::vector<unsigned char>& bytes) const {
         std::memcpy(&v, bytes.data() + at, 4);
         return v;
     };
-    if (bytes.size() < 12) fail("GLB header truncated: " + std::to_string(bytes.size()) + " bytes, 12 needed");
+    if (bytes.size() < 12)
+        fail("GLB header truncated: " + std::to_string(bytes.size()) + " bytes, 12 needed");
     if (const uint32_t version = u32(4); version != 2)
-        fail("GLB header version " + std::to_string(version) + " (glTF 2.0 binaries have version 2)");
+        fail("GLB header version " + std::to_string(version) +
+             " (glTF 2.0 binaries have version 2)");
     if (const uint32_t length = u32(8); length != bytes.size())
-        fail("GLB header length " + std::to_string(length) + " but the file has " + std::to_string(bytes.size()) +
-             " bytes");
+        fail("GLB header length " + std::to_string(length) + " but the file has " +
+             std::to_string(bytes.size()) + " bytes");
     bool bin = false;
     size_t index = 0;
     for (size_t at = 12; at < bytes.size(); ++index) {
-        const std::string where = "GLB chunk " + std::to_string(index) + " at byte " + std::to_string(at);
+        const std::string where =
+            "GLB chunk " + std::to_string(index) + " at byte " + std::to_string(at);
         if (bytes.size() - at < 8) fail(where + ": truncated chunk header");
         const uint32_t length = u32(at), type = u32(at + 4);
         std::string name;
         for (int i = 0; i < 4; ++i) {
             const char c = char((type >> (8 * i)) & 0xff);
-            name += (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(unsigned(uint8_t(c)));
+            name += (c >= 32 && c < 127) ? std::string(1, c)
+                                         : "\\x" + std::to_string(unsigned(uint8_t(c)));
         }
         const bool isJson = type == 0x4E4F534Au, isBin = type == 0x004E4942u;
         const std::string chunk = where + " (" + (isBin ? std::string("BIN") : name) + ")";
         if (index == 0 && !isJson) fail(chunk + ": the first chunk must be JSON");
-        if (index > 0 && isJson) fail(chunk + ": duplicate JSON chunk (a GLB has exactly one, the first)");
+        if (index > 0 && isJson)
+            fail(chunk + ": duplicate JSON chunk (a GLB has exactly one, the first)");
         if (isBin && bin) fail(chunk + ": duplicate BIN chunk (a GLB has at most one)");
-        if (isBin && index != 1) fail(chunk + ": the BIN chunk must directly follow the JSON chunk");
+        if (isBin && index != 1)
+            fail(chunk + ": the BIN chunk must directly follow the JSON chunk");
         if (length % 4 != 0)
-            fail(chunk + ": length " + std::to_string(length) + " is not a multiple of 4 (chunks are 4-byte aligned)");
+            fail(chunk + ": length " + std::to_string(length) +
+                 " is not a multiple of 4 (chunks are 4-byte aligned)");
         if (length > bytes.size() - at - 8)
             fail(chunk + ": length " + std::to_string(length) + " runs past the end of the file");
         bin = bin || isBin;
@@ -146,18 +157,21 @@ void Loader::parseFile() {
         std::string found;
         for (size_t i = 0; i < std::min<size_t>(4, bytes.size()); ++i) {
             char c = char(bytes[i]);
-            found += (c >= 32 && c < 127) ? std::string(1, c) : "\\x" + std::to_string(unsigned(bytes[i]));
+            found += (c >= 32 && c < 127) ? std::string(1, c)
+                                          : "\\x" + std::to_string(unsigned(bytes[i]));
         }
         fail("not a binary glTF: bad magic '" + found + "' (expected 'glTF')");
     }
-    if (magic && ext != ".glb") warn("binary glTF content in a file named '" + fp.filename().string() + "'");
+    if (magic && ext != ".glb")
+        warn("binary glTF content in a file named '" + fp.filename().string() + "'");
 
     if (magic) checkGlbLayout(bytes);
     const std::string_view json = jsonText(bytes, magic);
     // 3.1 JSON encoding: UTF-8 without a byte order mark; exporters must not write one, and
     // clients may ignore it rather than fail, so it is a warning (an error under --strict).
     if (json.substr(0, 3) == "\xEF\xBB\xBF")
-        warn("the JSON starts with a UTF-8 byte order mark, which glTF 2.0 forbids; it was ignored");
+        warn(
+            "the JSON starts with a UTF-8 byte order mark, which glTF 2.0 forbids; it was ignored");
     if (jsonNestingDepth(json) > kMaxJsonDepth) {
         fail("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     }
@@ -182,9 +196,11 @@ void Loader::parseFile() {
     try {
         // The model being filled is our member, so storeImageBytes() can look at its buffers.
         if (magic) {
-            ok = gltf.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), unsigned(bytes.size()), baseDir_);
+            ok = gltf.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(),
+                                           unsigned(bytes.size()), baseDir_);
         } else {
-            ok = gltf.LoadASCIIFromString(&model_, &err, &warnings, reinterpret_cast<const char*>(bytes.data()),
+            ok = gltf.LoadASCIIFromString(&model_, &err, &warnings,
+                                          reinterpret_cast<const char*>(bytes.data()),
                                           unsigned(bytes.size()), baseDir_);
         }
     } catch (const std::exception& e) {
@@ -202,7 +218,9 @@ void Loader::parseFile() {
     if (scene_.name.empty()) scene_.name = fp.stem().string();
     checkAsset();
     for (size_t n : nodesWithMatrixAndTrs(json))
-        warn(nodeLabel(int(n)) + " has both a matrix and translation/rotation/scale, which glTF 2.0 forbids; the matrix is used");
+        warn(
+            nodeLabel(int(n)) +
+            " has both a matrix and translation/rotation/scale, which glTF 2.0 forbids; the matrix is used");
 }
 
 // What the glTF 2.0 specification requires and the parser lets through.
@@ -211,12 +229,15 @@ void Loader::checkAsset() {
     // it does not implement, and "minVersion" names the least version a loader must support.
     const std::string& v = model_.asset.version;
     if (v.empty()) fail("asset.version is missing (glTF 2.0 requires it)");
-    if (v.rfind("2.", 0) != 0 || v.size() < 3) fail("asset.version '" + v + "': this loader reads glTF 2.x only");
+    if (v.rfind("2.", 0) != 0 || v.size() < 3)
+        fail("asset.version '" + v + "': this loader reads glTF 2.x only");
     const std::string& min = model_.asset.minVersion;
-    if (!min.empty() && min != "2.0") fail("asset.minVersion '" + min + "': this loader implements glTF 2.0");
+    if (!min.empty() && min != "2.0")
+        fail("asset.minVersion '" + min + "': this loader implements glTF 2.0");
     // 5.x glTF: "scene" (the default scene) must be defined only when "scenes" is.
     if (model_.defaultScene >= 0 && model_.scenes.empty())
-        fail("scene " + std::to_string(model_.defaultScene) + " is set but the file has no scenes (glTF 2.0 forbids it)");
+        fail("scene " + std::to_string(model_.defaultScene) +
+             " is set but the file has no scenes (glTF 2.0 forbids it)");
 }
 
 void Loader::checkExtensions() {
@@ -242,7 +263,8 @@ glm::mat4 Loader::localTransform(int n) const {
     auto finite = [](const std::vector<double>& v) {
         return std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); });
     };
-    if (!finite(node.matrix) || !finite(node.translation) || !finite(node.rotation) || !finite(node.scale)) {
+    if (!finite(node.matrix) || !finite(node.translation) || !finite(node.rotation) ||
+        !finite(node.scale)) {
         fail(nodeLabel(n) + ": non-finite transform");
     }
     if (!node.matrix.empty()) {
@@ -253,11 +275,13 @@ glm::mat4 Loader::localTransform(int n) const {
     glm::mat4 t(1.0f), r(1.0f), s(1.0f);
     if (!node.translation.empty()) {
         if (node.translation.size() != 3) fail(nodeLabel(n) + ": translation must have 3 numbers");
-        t = glm::translate(glm::mat4(1.0f), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+        t = glm::translate(glm::mat4(1.0f), glm::vec3(node.translation[0], node.translation[1],
+                                                      node.translation[2]));
     }
     if (!node.rotation.empty()) {
         if (node.rotation.size() != 4) fail(nodeLabel(n) + ": rotation must have 4 numbers");
-        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // w, x, y, z
+        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1],
+                     node.rotation[2]);  // w, x, y, z
         double len = glm::length(q);
         if (len > 1e-12) r = glm::mat4(glm::mat4_cast(q / len));  // exporters round; renormalise
     }
@@ -279,8 +303,8 @@ void Loader::buildHierarchy() {
             checkIndex(c, model_.nodes, nodeLabel(int(i)) + ": child node");
             if (size_t(c) == i) fail(nodeLabel(c) + " is its own child");
             if (parent_[size_t(c)] != -1) {
-                fail(nodeLabel(c) + " has two parents (" + nodeLabel(parent_[size_t(c)]) +
-                     " and " + nodeLabel(int(i)) + ")");
+                fail(nodeLabel(c) + " has two parents (" + nodeLabel(parent_[size_t(c)]) + " and " +
+                     nodeLabel(int(i)) + ")");
             }
             parent_[size_t(c)] = int(i);
         }
@@ -295,8 +319,10 @@ void Loader::buildHierarchy() {
         while (!stack.empty()) {
             int i = stack.back();
             stack.pop_back();
-            glm::mat4 parentWorld = parent_[size_t(i)] >= 0 ? world_[size_t(parent_[size_t(i)])] : glm::mat4(1.0f);
-            world_[size_t(i)] = checkedFinite(parentWorld * localTransform(i), i);  // products can overflow too
+            glm::mat4 parentWorld =
+                parent_[size_t(i)] >= 0 ? world_[size_t(parent_[size_t(i)])] : glm::mat4(1.0f);
+            world_[size_t(i)] =
+                checkedFinite(parentWorld * localTransform(i), i);  // products can overflow too
             done[size_t(i)] = 1;
             ++reached;
             for (int c : model_.nodes[size_t(i)].children) stack.push_back(c);
@@ -341,10 +367,13 @@ void Loader::traverseScene() {
             visited[size_t(n)] = 1;
             const auto& node = model_.nodes[size_t(n)];
             if (node.camera >= 0) addCamera(n);
-            if (auto* ext = findExtension(node.extensions, "KHR_lights_punctual")) addLight(n, *ext);
-            if (node.extras.IsObject() && node.extras.Has("fe_emitter")) addEmitter(n, node.extras.Get("fe_emitter"));
+            if (auto* ext = findExtension(node.extensions, "KHR_lights_punctual"))
+                addLight(n, *ext);
+            if (node.extras.IsObject() && node.extras.Has("fe_emitter"))
+                addEmitter(n, node.extras.Get("fe_emitter"));
             if (node.mesh >= 0) addMeshInstances(n);
-            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
+                stack.push_back(*it);
         }
     }
 }
@@ -360,19 +389,21 @@ void Loader::addCamera(int n) {
     if (cam.type == "perspective") {
         const auto& p = cam.perspective;
         const double kPi = 3.14159265358979323846;
-        if (!(p.yfov > 0.0 && p.yfov < kPi) || !(p.znear > 0.0) || !(p.zfar == 0.0 || p.zfar > p.znear) ||
-            !std::isfinite(p.znear) || !std::isfinite(p.zfar)) {
+        if (!(p.yfov > 0.0 && p.yfov < kPi) || !(p.znear > 0.0) ||
+            !(p.zfar == 0.0 || p.zfar > p.znear) || !std::isfinite(p.znear) ||
+            !std::isfinite(p.zfar)) {
             warn(label + " ignored: invalid yfov/znear/zfar");
             return;
         }
         c.yfov = float(p.yfov);
         c.znear = float(p.znear);
         c.zfar = p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::infinity();
-        if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio)) c.aspectRatio = float(p.aspectRatio);
+        if (p.aspectRatio > 0.0 && std::isfinite(p.aspectRatio))
+            c.aspectRatio = float(p.aspectRatio);
     } else if (cam.type == "orthographic") {
         const auto& o = cam.orthographic;
-        if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)) || !(o.znear >= 0.0) ||
-            !(o.zfar > o.znear) || !std::isfinite(o.zfar)) {
+        if (!(o.xmag != 0.0 && o.ymag != 0.0 && std::isfinite(o.xmag) && std::isfinite(o.ymag)) ||
+            !(o.znear >= 0.0) || !(o.zfar > o.znear) || !std::isfinite(o.zfar)) {
             warn(label + " ignored: invalid xmag/ymag/znear/zfar");
             return;
         }
@@ -404,12 +435,16 @@ void Loader::addEmitter(int n, const tinygltf::Value& v) {
     const std::string where = nodeLabel(n) + ": extras.fe_emitter";
     if (!v.IsObject()) fail(where + " must be an object");
     ParticleEmitter e;
-    e.name = model_.nodes[size_t(n)].name.empty() ? "node " + std::to_string(n) : model_.nodes[size_t(n)].name;
+    e.name = model_.nodes[size_t(n)].name.empty() ? "node " + std::to_string(n)
+                                                  : model_.nodes[size_t(n)].name;
     auto number = [&](const char* key, float& out) { readNumbers(v, key, where, &out, 0); };
-    auto vector = [&](const char* key, float* out, int count) { readNumbers(v, key, where, out, count); };
+    auto vector = [&](const char* key, float* out, int count) {
+        readNumbers(v, key, where, out, count);
+    };
     for (const std::string& key : v.Keys())
-        if (key != "rate" && key != "lifetime" && key != "velocity" && key != "spread" && key != "gravity" && key != "size" &&
-            key != "colorStart" && key != "colorEnd" && key != "blend" && key != "softness")
+        if (key != "rate" && key != "lifetime" && key != "velocity" && key != "spread" &&
+            key != "gravity" && key != "size" && key != "colorStart" && key != "colorEnd" &&
+            key != "blend" && key != "softness")
             fail(where + ": unknown key '" + key + "'");
     number("rate", e.rate);
     number("lifetime", e.lifetime);
@@ -424,9 +459,11 @@ void Loader::addEmitter(int n, const tinygltf::Value& v) {
     vector("colorEnd", &e.colorEnd.x, 4);
     if (v.Has("blend")) {
         const tinygltf::Value& b = v.Get("blend");
-        if (!b.IsString() || (b.Get<std::string>() != "additive" && b.Get<std::string>() != "alpha"))
+        if (!b.IsString() ||
+            (b.Get<std::string>() != "additive" && b.Get<std::string>() != "alpha"))
             fail(where + ".blend must be \"additive\" or \"alpha\"");
-        e.blend = b.Get<std::string>() == "alpha" ? ParticleEmitter::Blend::Alpha : ParticleEmitter::Blend::Additive;
+        e.blend = b.Get<std::string>() == "alpha" ? ParticleEmitter::Blend::Alpha
+                                                  : ParticleEmitter::Blend::Additive;
     }
     if (!(e.rate > 0.0f) || !(e.lifetime > 0.0f) || !std::isfinite(e.rate * e.lifetime))
         fail(where + ": rate and lifetime must be positive numbers");
@@ -435,7 +472,8 @@ void Loader::addEmitter(int n, const tinygltf::Value& v) {
 }
 
 void Loader::addLight(int n, const tinygltf::Value& ext) {
-    if (!ext.Get("light").IsNumber()) fail(nodeLabel(n) + ": KHR_lights_punctual without a light index");
+    if (!ext.Get("light").IsNumber())
+        fail(nodeLabel(n) + ": KHR_lights_punctual without a light index");
     int li = valueIndex(ext.Get("light"));
     checkIndex(li, model_.lights, nodeLabel(n) + ": KHR_lights_punctual light");
     const auto& gl = model_.lights[size_t(li)];
@@ -463,7 +501,8 @@ void Loader::addLight(int n, const tinygltf::Value& ext) {
     l.position = glm::vec3(w[3]);
     glm::vec3 d = glm::mat3(w) * glm::vec3(0.0f, 0.0f, -1.0f);
     l.direction = glm::length(d) > 1e-12f ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, -1.0f);
-    if (!std::isfinite(l.intensity) || !std::isfinite(l.range) || !std::isfinite(l.color.x + l.color.y + l.color.z)) {
+    if (!std::isfinite(l.intensity) || !std::isfinite(l.range) ||
+        !std::isfinite(l.color.x + l.color.y + l.color.z)) {
         fail("light " + std::to_string(li) + ": non-finite colour, intensity or range");
     }
     scene_.lights.push_back(l);
@@ -486,11 +525,13 @@ void Loader::addMeshInstances(int n) {
                 for (int set = 0; set < 2; ++set)
                     for (int k = 0; k < 4; ++k)
                         if (v.weights[set][k] != 0.0f && v.joints[set][k] >= joints)
-                            fail(nodeLabel(n) + ": " + meshLabel(node.mesh) + " names joint " + std::to_string(v.joints[set][k]) +
-                                 " of skin " + std::to_string(skin) + ", which has " + std::to_string(joints));
+                            fail(nodeLabel(n) + ": " + meshLabel(node.mesh) + " names joint " +
+                                 std::to_string(v.joints[set][k]) + " of skin " +
+                                 std::to_string(skin) + ", which has " + std::to_string(joints));
         if (std::none_of(scene_.meshes[mi].primitives.begin(), scene_.meshes[mi].primitives.end(),
                          [](const Primitive& p) { return !p.skin.empty(); }))
-            warn(nodeLabel(n) + ": skinned node whose mesh has no JOINTS_0/WEIGHTS_0; drawn unskinned");
+            warn(nodeLabel(n) +
+                 ": skinned node whose mesh has no JOINTS_0/WEIGHTS_0; drawn unskinned");
     }
 
     // The node's world is set by poseScene; instances of EXT_mesh_gpu_instancing add their own
@@ -502,13 +543,16 @@ void Loader::addMeshInstances(int n) {
         const tinygltf::Value& attrs = inst->Get("attributes");
         std::vector<float> t, r, s;
         size_t count = SIZE_MAX;
-        auto read = [&](const char* name, int type, uint32_t allowed, std::vector<float>& out, size_t comps) {
+        auto read = [&](const char* name, int type, uint32_t allowed, std::vector<float>& out,
+                        size_t comps) {
             const tinygltf::Value& a = attrs.Get(name);
             if (!a.IsNumber()) return;
-            out = readAccessor<float>(valueIndex(a), std::string(name) + " of EXT_mesh_gpu_instancing on " + nodeLabel(n),
-                                      type, allowed);
+            out = readAccessor<float>(
+                valueIndex(a), std::string(name) + " of EXT_mesh_gpu_instancing on " + nodeLabel(n),
+                type, allowed);
             size_t c = out.size() / comps;
-            if (count != SIZE_MAX && c != count) fail(nodeLabel(n) + ": EXT_mesh_gpu_instancing attribute counts differ");
+            if (count != SIZE_MAX && c != count)
+                fail(nodeLabel(n) + ": EXT_mesh_gpu_instancing attribute counts differ");
             count = c;
         };
         read("TRANSLATION", TINYGLTF_TYPE_VEC3, F32, t, 3);

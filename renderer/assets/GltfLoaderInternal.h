@@ -31,16 +31,11 @@ namespace fs = std::filesystem;
 
 // Extensions whose data the loader understands, so a file may require them.
 inline const std::set<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",
-    "KHR_materials_emissive_strength",
-    "KHR_materials_clearcoat",
-    "KHR_materials_ior",
-    "KHR_materials_sheen",
-    "KHR_materials_specular",
-    "KHR_materials_transmission",
-    "KHR_materials_unlit",
-    "KHR_materials_volume",
-    "KHR_texture_transform",
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+    "KHR_materials_clearcoat",    "KHR_materials_ior",
+    "KHR_materials_sheen",        "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_unlit",
+    "KHR_materials_volume",       "KHR_texture_transform",
     "EXT_mesh_gpu_instancing",
 };
 
@@ -64,13 +59,26 @@ enum Comp : uint32_t {
 inline uint32_t compBit(int componentType, bool normalized) {
     uint32_t bit = 0;
     switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: bit = normalized ? 0u : uint32_t(F32); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: bit = normalized ? U8N : U8; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: bit = normalized ? U16N : U16; break;
-        case TINYGLTF_COMPONENT_TYPE_BYTE: bit = normalized ? uint32_t(S8N) : 0u; break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: bit = normalized ? uint32_t(S16N) : 0u; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: bit = normalized ? 0u : uint32_t(U32); break;
-        default: break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            bit = normalized ? 0u : uint32_t(F32);
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            bit = normalized ? U8N : U8;
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            bit = normalized ? U16N : U16;
+            break;
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            bit = normalized ? uint32_t(S8N) : 0u;
+            break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            bit = normalized ? uint32_t(S16N) : 0u;
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            bit = normalized ? 0u : uint32_t(U32);
+            break;
+        default:
+            break;
     }
     return bit;
 }
@@ -78,15 +86,33 @@ inline uint32_t compBit(int componentType, bool normalized) {
 inline std::string componentTypeName(int componentType, bool normalized) {
     std::string s;
     switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: s = "byte"; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: s = "unsigned byte"; break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: s = "short"; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: s = "unsigned short"; break;
-        case TINYGLTF_COMPONENT_TYPE_INT: s = "int"; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: s = "unsigned int"; break;
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: s = "float"; break;
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: s = "double"; break;
-        default: s = "unknown"; break;
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            s = "byte";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            s = "unsigned byte";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            s = "short";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            s = "unsigned short";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+            s = "int";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            s = "unsigned int";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            s = "float";
+            break;
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            s = "double";
+            break;
+        default:
+            s = "unknown";
+            break;
     }
     s += " (" + std::to_string(componentType) + ")";
     if (normalized) s += " normalized";
@@ -95,14 +121,22 @@ inline std::string componentTypeName(int componentType, bool normalized) {
 
 inline std::string typeName(int type) {
     switch (type) {
-        case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-        case TINYGLTF_TYPE_VEC2: return "VEC2";
-        case TINYGLTF_TYPE_VEC3: return "VEC3";
-        case TINYGLTF_TYPE_VEC4: return "VEC4";
-        case TINYGLTF_TYPE_MAT2: return "MAT2";
-        case TINYGLTF_TYPE_MAT3: return "MAT3";
-        case TINYGLTF_TYPE_MAT4: return "MAT4";
-        default: return "type " + std::to_string(type);
+        case TINYGLTF_TYPE_SCALAR:
+            return "SCALAR";
+        case TINYGLTF_TYPE_VEC2:
+            return "VEC2";
+        case TINYGLTF_TYPE_VEC3:
+            return "VEC3";
+        case TINYGLTF_TYPE_VEC4:
+            return "VEC4";
+        case TINYGLTF_TYPE_MAT2:
+            return "MAT2";
+        case TINYGLTF_TYPE_MAT3:
+            return "MAT3";
+        case TINYGLTF_TYPE_MAT4:
+            return "MAT4";
+        default:
+            return "type " + std::to_string(type);
     }
 }
 
@@ -137,12 +171,17 @@ inline double readComponent(const unsigned char* p, int componentType, bool norm
             std::memcpy(&u, p, 4);
             return double(u);
         }
-        default: return 0.0;
+        default:
+            return 0.0;
     }
 }
 
-inline bool addOverflows(uint64_t a, uint64_t b, uint64_t& out) { return __builtin_add_overflow(a, b, &out); }
-inline bool mulOverflows(uint64_t a, uint64_t b, uint64_t& out) { return __builtin_mul_overflow(a, b, &out); }
+inline bool addOverflows(uint64_t a, uint64_t b, uint64_t& out) {
+    return __builtin_add_overflow(a, b, &out);
+}
+inline bool mulOverflows(uint64_t a, uint64_t b, uint64_t& out) {
+    return __builtin_mul_overflow(a, b, &out);
+}
 
 inline std::string trimTrailing(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
@@ -158,7 +197,8 @@ inline std::string oneLine(std::string s) {
 
 inline std::string lowerExtension(const fs::path& p) {
     std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return e;
 }
 
@@ -195,9 +235,12 @@ inline size_t jsonNestingDepth(std::string_view text) {
     bool inString = false, escaped = false;
     for (char c : text) {
         if (inString) {
-            if (escaped) escaped = false;
-            else if (c == '\\') escaped = true;
-            else if (c == '"') inString = false;
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
         } else if (c == '"') {
             inString = true;
         } else if (c == '[' || c == '{') {
@@ -215,7 +258,8 @@ constexpr size_t kMaxJsonDepth = 256;  // glTF itself needs about 10
 // whether an unsupported required extension is the real reason. Malformed JSON: empty list.
 inline std::vector<std::string> requiredExtensions(std::string_view text) {
     std::vector<std::string> out;
-    nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+    nlohmann::json j =
+        nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
     if (!j.is_object()) return out;
     auto it = j.find("extensionsRequired");
     if (it == j.end() || !it->is_array()) return out;
@@ -228,12 +272,14 @@ inline std::vector<std::string> requiredExtensions(std::string_view text) {
 // (5.25). tinygltf keeps the matrix and drops the rest without a word, so this reads the JSON.
 inline std::vector<size_t> nodesWithMatrixAndTrs(std::string_view text) {
     std::vector<size_t> out;
-    nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
+    nlohmann::json j =
+        nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
     if (!j.is_object() || !j.contains("nodes") || !j["nodes"].is_array()) return out;
     const nlohmann::json& nodes = j["nodes"];
     for (size_t n = 0; n < nodes.size(); ++n)
         if (nodes[n].is_object() && nodes[n].contains("matrix") &&
-            (nodes[n].contains("translation") || nodes[n].contains("rotation") || nodes[n].contains("scale")))
+            (nodes[n].contains("translation") || nodes[n].contains("rotation") ||
+             nodes[n].contains("scale")))
             out.push_back(n);
     return out;
 }
@@ -252,15 +298,18 @@ public:
         // The rest pose: joint matrices, morph weights and posed bounds of the deformed instances.
         poseScene(scene_, {});
         if (scene_.instances.empty() && scene_.emitters.empty())
-            warn("nothing to draw: no node of the scene has a mesh (an empty frame will be rendered)");
+            warn(
+                "nothing to draw: no node of the scene has a mesh (an empty frame will be rendered)");
         finalizeScene(scene_, opt_.defaultCamera, opt_.defaultLights);
         return std::move(scene_);
     }
 
     // tinygltf callbacks (static trampolines below).
-    bool storeImageBytes(tinygltf::Image* image, int index, std::string* err, const unsigned char* bytes, int size);
+    bool storeImageBytes(tinygltf::Image* image, int index, std::string* err,
+                         const unsigned char* bytes, int size);
     bool fileExists(const std::string& absPath) const;
-    bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path) const;
+    bool readWholeFile(std::vector<unsigned char>* out, std::string* err,
+                       const std::string& path) const;
 
 private:
     [[noreturn]] void fail(const std::string& msg) const { throw AssetError(path_ + ": " + msg); }
@@ -277,7 +326,8 @@ private:
     }
     std::string nodeLabel(int n) const {
         const auto& name = model_.nodes[size_t(n)].name;
-        return name.empty() ? "node " + std::to_string(n) : "node " + std::to_string(n) + " '" + name + "'";
+        return name.empty() ? "node " + std::to_string(n)
+                            : "node " + std::to_string(n) + " '" + name + "'";
     }
     std::string materialLabel(int m) const {
         const auto& name = model_.materials[size_t(m)].name;
@@ -287,7 +337,8 @@ private:
     template <class Vec>
     void checkIndex(int index, const Vec& v, const std::string& what) const {
         if (index < 0 || size_t(index) >= v.size()) {
-            fail(what + " " + std::to_string(index) + " does not exist (the file has " + std::to_string(v.size()) + ")");
+            fail(what + " " + std::to_string(index) + " does not exist (the file has " +
+                 std::to_string(v.size()) + ")");
         }
     }
 
@@ -299,14 +350,17 @@ private:
     void addEmitter(int n, const tinygltf::Value& extras);
     // v[key] into out: a finite number (count 0) or an array of `count` finite numbers; absent
     // keys leave out as it is, anything else is an error naming where.
-    void readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count);
-    void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what);
+    void readNumbers(const tinygltf::Value& v, const char* key, const std::string& where,
+                     float* out, int count);
+    void readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref,
+                              const std::string& what);
     // KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat into mat, with their textures.
     void readDielectric(const tinygltf::Material& gm, Material& mat, const std::string& label);
     // KHR_materials_transmission and KHR_materials_volume into mat, with their textures.
     void readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label);
     // A textureInfo inside an extension (ext[key]), as getTexture reads the core ones.
-    TextureRef extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what, bool srgb = false);
+    TextureRef extensionTexture(const tinygltf::Value& ext, const char* key,
+                                const std::string& what, bool srgb = false);
     // KHR_materials_sheen into mat, with its textures.
     void readSheen(const tinygltf::Material& gm, Material& mat, const std::string& label);
     glm::mat4 localTransform(int n) const;
@@ -314,15 +368,16 @@ private:
 
     // Validated, converted accessor contents: count * components values, row-major per element.
     template <class T>
-    std::vector<T> readAccessor(int index, const std::string& what, int expectedType, uint32_t allowed);
+    std::vector<T> readAccessor(int index, const std::string& what, int expectedType,
+                                uint32_t allowed);
     const unsigned char* bufferViewData(int bv, const std::string& ctx, uint64_t& length);
 
     uint32_t getMesh(int gltfMesh);
     bool loadPrimitive(int m, int p, Primitive& out);
     uint32_t getMaterial(int gltfMaterial);
     uint32_t defaultMaterial();
-    TextureRef getTexture(int gltfTexture, int texCoord, bool srgb, const tinygltf::ExtensionMap& infoExt,
-                          const std::string& what);
+    TextureRef getTexture(int gltfTexture, int texCoord, bool srgb,
+                          const tinygltf::ExtensionMap& infoExt, const std::string& what);
     void decodeImage(int image, const std::string& what, TextureImage& out);
     void addCamera(int node);
     void addLight(int node, const tinygltf::Value& ext);
@@ -331,11 +386,13 @@ private:
     void readSkins();
     void readAnimations();
     // samplers: which of out.samplers holds (glTF sampler, path, node for weights) already.
-    void readChannel(int a, const tinygltf::AnimationChannel& c, Animation& out, std::map<std::tuple<int, int, int>, uint32_t>& samplers);
+    void readChannel(int a, const tinygltf::AnimationChannel& c, Animation& out,
+                     std::map<std::tuple<int, int, int>, uint32_t>& samplers);
     AnimationSampler readSampler(int a, int s, AnimationPath path, int node);
     // The morph targets of the primitive's attributes, and its skin influences.
     void readMorphTargets(int m, int p, size_t vertexCount, Primitive& out);
-    void readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label, size_t vertexCount, Primitive& out);
+    void readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label,
+                            size_t vertexCount, Primitive& out);
 
     std::string path_;
     LoadOptions opt_;
@@ -349,7 +406,8 @@ private:
     std::map<int, uint32_t> meshMap_;  // glTF mesh -> scene mesh
     std::map<int, uint32_t> materialMap_;
     int defaultMaterial_ = -1;
-    std::map<std::tuple<int, int, bool>, int32_t> textureMap_;  // (image, sampler, sRGB) -> scene texture
+    std::map<std::tuple<int, int, bool>, int32_t>
+        textureMap_;                       // (image, sampler, sRGB) -> scene texture
     std::map<int, int32_t> imageTexture_;  // glTF image -> first scene texture holding its pixels
 };
 
@@ -357,13 +415,16 @@ private:
 // Accessors (a template: every file reads them)
 
 template <class T>
-std::vector<T> Loader::readAccessor(int index, const std::string& what, int expectedType, uint32_t allowed) {
+std::vector<T> Loader::readAccessor(int index, const std::string& what, int expectedType,
+                                    uint32_t allowed) {
     checkIndex(index, model_.accessors, what + ": accessor");
     const auto& a = model_.accessors[size_t(index)];
     const std::string ctx = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (a.type != expectedType) fail(ctx + ": type " + typeName(a.type) + ", expected " + typeName(expectedType));
+    if (a.type != expectedType)
+        fail(ctx + ": type " + typeName(a.type) + ", expected " + typeName(expectedType));
     if (!(compBit(a.componentType, a.normalized) & allowed)) {
-        fail(ctx + ": unsupported component type " + componentTypeName(a.componentType, a.normalized));
+        fail(ctx + ": unsupported component type " +
+             componentTypeName(a.componentType, a.normalized));
     }
     const uint64_t comps = uint64_t(tinygltf::GetNumComponentsInType(uint32_t(a.type)));
     const uint64_t csize = uint64_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)));
@@ -378,18 +439,22 @@ std::vector<T> Loader::readAccessor(int index, const std::string& what, int expe
         const auto& bv = model_.bufferViews[size_t(a.bufferView)];
         if (bv.byteStride != 0) {
             if (bv.byteStride < elemSize) {
-                fail(ctx + ": bufferView " + std::to_string(a.bufferView) + " byteStride " + std::to_string(bv.byteStride) +
-                     " is smaller than the element size " + std::to_string(elemSize));
+                fail(ctx + ": bufferView " + std::to_string(a.bufferView) + " byteStride " +
+                     std::to_string(bv.byteStride) + " is smaller than the element size " +
+                     std::to_string(elemSize));
             }
             stride = bv.byteStride;
         }
         // Last element ends at byteOffset + (count-1)*stride + elemSize.
         uint64_t need = 0, span = 0;
-        bool overflow = count > 0 && (mulOverflows(count - 1, stride, span) || addOverflows(span, elemSize, span) ||
+        bool overflow = count > 0 && (mulOverflows(count - 1, stride, span) ||
+                                      addOverflows(span, elemSize, span) ||
                                       addOverflows(span, a.byteOffset, need));
         if (overflow || need > viewLen || a.byteOffset > viewLen) {
-            fail(ctx + ": byteOffset+count*stride exceeds bufferView " + std::to_string(a.bufferView) + " length (" +
-                 (overflow ? std::string("overflow") : std::to_string(need)) + " > " + std::to_string(viewLen) + ")");
+            fail(ctx + ": byteOffset+count*stride exceeds bufferView " +
+                 std::to_string(a.bufferView) + " length (" +
+                 (overflow ? std::string("overflow") : std::to_string(need)) + " > " +
+                 std::to_string(viewLen) + ")");
         }
         data += a.byteOffset;
     } else if (count * comps > kMaxVirtualAccessorComponents) {  // count < 2^64 / 16 after tinygltf
@@ -401,40 +466,50 @@ std::vector<T> Loader::readAccessor(int index, const std::string& what, int expe
         for (uint64_t e = 0; e < count; ++e) {
             const unsigned char* p = data + e * stride;
             for (uint64_t c = 0; c < comps; ++c) {
-                out[size_t(e * comps + c)] = static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
+                out[size_t(e * comps + c)] =
+                    static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
             }
         }
     }
 
     if (a.sparse.isSparse) {
         const uint64_t sc = uint64_t(std::max(a.sparse.count, 0));
-        if (a.sparse.count < 0 || sc > count) fail(ctx + ": sparse count " + std::to_string(a.sparse.count) + " exceeds count");
+        if (a.sparse.count < 0 || sc > count)
+            fail(ctx + ": sparse count " + std::to_string(a.sparse.count) + " exceeds count");
         const int ict = a.sparse.indices.componentType;
-        if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        if (ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             ict != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-            fail(ctx + ": unsupported sparse index component type " + componentTypeName(ict, false));
+            fail(ctx + ": unsupported sparse index component type " +
+                 componentTypeName(ict, false));
         }
         const uint64_t isize = uint64_t(tinygltf::GetComponentSizeInBytes(uint32_t(ict)));
         uint64_t ilen = 0, vlen = 0;
-        const unsigned char* idata = bufferViewData(a.sparse.indices.bufferView, ctx + " sparse indices", ilen);
-        const unsigned char* vdata = bufferViewData(a.sparse.values.bufferView, ctx + " sparse values", vlen);
+        const unsigned char* idata =
+            bufferViewData(a.sparse.indices.bufferView, ctx + " sparse indices", ilen);
+        const unsigned char* vdata =
+            bufferViewData(a.sparse.values.bufferView, ctx + " sparse values", vlen);
         uint64_t ioff = uint64_t(std::max(a.sparse.indices.byteOffset, 0));
         uint64_t voff = uint64_t(std::max(a.sparse.values.byteOffset, 0));
         uint64_t ineed = 0, vneed = 0;
         if (mulOverflows(sc, isize, ineed) || addOverflows(ineed, ioff, ineed) || ineed > ilen) {
-            fail(ctx + ": sparse indices exceed bufferView " + std::to_string(a.sparse.indices.bufferView) + " length");
+            fail(ctx + ": sparse indices exceed bufferView " +
+                 std::to_string(a.sparse.indices.bufferView) + " length");
         }
         if (mulOverflows(sc, elemSize, vneed) || addOverflows(vneed, voff, vneed) || vneed > vlen) {
-            fail(ctx + ": sparse values exceed bufferView " + std::to_string(a.sparse.values.bufferView) + " length");
+            fail(ctx + ": sparse values exceed bufferView " +
+                 std::to_string(a.sparse.values.bufferView) + " length");
         }
         for (uint64_t k = 0; k < sc; ++k) {
             uint64_t target = uint64_t(readComponent(idata + ioff + k * isize, ict, false));
             if (target >= count) {
-                fail(ctx + ": sparse index " + std::to_string(target) + " >= count " + std::to_string(count));
+                fail(ctx + ": sparse index " + std::to_string(target) + " >= count " +
+                     std::to_string(count));
             }
             const unsigned char* p = vdata + voff + k * elemSize;
             for (uint64_t c = 0; c < comps; ++c) {
-                out[size_t(target * comps + c)] = static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
+                out[size_t(target * comps + c)] =
+                    static_cast<T>(readComponent(p + c * csize, a.componentType, a.normalized));
             }
         }
     }

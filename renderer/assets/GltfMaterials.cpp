@@ -6,17 +6,21 @@
 
 namespace fe::assets::gltf {
 
-void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::string& where, float* out, int count) {
+void Loader::readNumbers(const tinygltf::Value& v, const char* key, const std::string& where,
+                         float* out, int count) {
     if (!v.Has(key)) return;
     const tinygltf::Value& x = v.Get(key);
     // Finite as a float: what is kept (a finite double such as 1e39 overflows it).
-    auto finiteFloat = [](const tinygltf::Value& n) { return n.IsNumber() && std::isfinite(float(n.GetNumberAsDouble())); };
+    auto finiteFloat = [](const tinygltf::Value& n) {
+        return n.IsNumber() && std::isfinite(float(n.GetNumberAsDouble()));
+    };
     if (count == 0) {
         if (!finiteFloat(x)) fail(where + "." + key + " must be a number, finite as a float");
         *out = float(x.GetNumberAsDouble());
         return;
     }
-    const std::string shape = where + "." + key + " must be an array of " + std::to_string(count) + " numbers, finite as floats";
+    const std::string shape = where + "." + key + " must be an array of " + std::to_string(count) +
+                              " numbers, finite as floats";
     if (!x.IsArray() || int(x.ArrayLen()) != count) fail(shape);
     for (int i = 0; i < count; ++i) {
         if (!finiteFloat(x.Get(i))) fail(shape);
@@ -28,27 +32,33 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_ior")) {
         readNumbers(*e, "ior", label + ": KHR_materials_ior", &mat.ior, 0);
         // The extension allows 0 for an infinite index (F0 = 1); anything else below 1 is not a dielectric.
-        if (mat.ior == 0.0f) mat.ior = std::numeric_limits<float>::infinity();
-        else if (!(mat.ior >= 1.0f)) fail(label + ": KHR_materials_ior.ior " + std::to_string(mat.ior) + " must be at least 1 (or 0)");
+        if (mat.ior == 0.0f)
+            mat.ior = std::numeric_limits<float>::infinity();
+        else if (!(mat.ior >= 1.0f))
+            fail(label + ": KHR_materials_ior.ior " + std::to_string(mat.ior) +
+                 " must be at least 1 (or 0)");
     }
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_clearcoat")) {
         const std::string where = label + ": KHR_materials_clearcoat";
         readNumbers(*e, "clearcoatFactor", where, &mat.clearcoat, 0);
         readNumbers(*e, "clearcoatRoughnessFactor", where, &mat.clearcoatRoughness, 0);
-        if (!(mat.clearcoat >= 0.0f && mat.clearcoat <= 1.0f)) fail(where + ".clearcoatFactor must lie in [0, 1]");
+        if (!(mat.clearcoat >= 0.0f && mat.clearcoat <= 1.0f))
+            fail(where + ".clearcoatFactor must lie in [0, 1]");
         if (!(mat.clearcoatRoughness >= 0.0f && mat.clearcoatRoughness <= 1.0f))
             fail(where + ".clearcoatRoughnessFactor must lie in [0, 1]");
         mat.clearcoatTexture = extensionTexture(*e, "clearcoatTexture", where);
         mat.clearcoatRoughnessTexture = extensionTexture(*e, "clearcoatRoughnessTexture", where);
         mat.clearcoatNormalTexture = extensionTexture(*e, "clearcoatNormalTexture", where);
-        if (mat.clearcoatNormalTexture.valid()) readNumbers(e->Get("clearcoatNormalTexture"), "scale", where + ".clearcoatNormalTexture",
-                                                            &mat.clearcoatNormalScale, 0);
+        if (mat.clearcoatNormalTexture.valid())
+            readNumbers(e->Get("clearcoatNormalTexture"), "scale",
+                        where + ".clearcoatNormalTexture", &mat.clearcoatNormalScale, 0);
     }
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_specular")) {
         const std::string where = label + ": KHR_materials_specular";
         readNumbers(*e, "specularFactor", where, &mat.specular, 0);
         readNumbers(*e, "specularColorFactor", where, &mat.specularColor.x, 3);
-        if (!(mat.specular >= 0.0f && mat.specular <= 1.0f)) fail(where + ".specularFactor must lie in [0, 1]");
+        if (!(mat.specular >= 0.0f && mat.specular <= 1.0f))
+            fail(where + ".specularFactor must lie in [0, 1]");
         if (!(glm::all(glm::greaterThanEqual(mat.specularColor, glm::vec3(0.0f)))))
             fail(where + ".specularColorFactor must not be negative");
         mat.specularTexture = extensionTexture(*e, "specularTexture", where);
@@ -56,14 +66,18 @@ void Loader::readDielectric(const tinygltf::Material& gm, Material& mat, const s
     }
 }
 
-void Loader::readTransmission(const tinygltf::Material& gm, Material& mat, const std::string& label) {
+void Loader::readTransmission(const tinygltf::Material& gm, Material& mat,
+                              const std::string& label) {
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_transmission")) {
         const std::string where = label + ": KHR_materials_transmission";
         readNumbers(*e, "transmissionFactor", where, &mat.transmission, 0);
-        if (!(mat.transmission >= 0.0f && mat.transmission <= 1.0f)) fail(where + ".transmissionFactor must lie in [0, 1]");
+        if (!(mat.transmission >= 0.0f && mat.transmission <= 1.0f))
+            fail(where + ".transmissionFactor must lie in [0, 1]");
         mat.transmissionTexture = extensionTexture(*e, "transmissionTexture", where);
         if (mat.alphaMode == AlphaMode::Blend && mat.transmission > 0.0f)
-            warn(where + " on a BLEND material is not drawn: it blends instead (make it OPAQUE to see through it)");
+            warn(
+                where +
+                " on a BLEND material is not drawn: it blends instead (make it OPAQUE to see through it)");
     }
     if (const tinygltf::Value* e = findExtension(gm.extensions, "KHR_materials_volume")) {
         const std::string where = label + ": KHR_materials_volume";
@@ -71,12 +85,14 @@ void Loader::readTransmission(const tinygltf::Material& gm, Material& mat, const
         readNumbers(*e, "attenuationDistance", where, &mat.attenuationDistance, 0);
         readNumbers(*e, "attenuationColor", where, &mat.attenuationColor.x, 3);
         if (!(mat.thickness >= 0.0f)) fail(where + ".thicknessFactor must not be negative");
-        if (!(mat.attenuationDistance > 0.0f)) fail(where + ".attenuationDistance must be positive");
+        if (!(mat.attenuationDistance > 0.0f))
+            fail(where + ".attenuationDistance must be positive");
         if (!glm::all(glm::greaterThanEqual(mat.attenuationColor, glm::vec3(0.0f))) ||
             !glm::all(glm::lessThanEqual(mat.attenuationColor, glm::vec3(1.0f))))
             fail(where + ".attenuationColor must lie in [0, 1]");
         mat.thicknessTexture = extensionTexture(*e, "thicknessTexture", where);
-        if (mat.transmission == 0.0f) warn(where + " without KHR_materials_transmission has no effect here");
+        if (mat.transmission == 0.0f)
+            warn(where + " without KHR_materials_transmission has no effect here");
     }
 }
 
@@ -89,12 +105,14 @@ void Loader::readSheen(const tinygltf::Material& gm, Material& mat, const std::s
     if (!glm::all(glm::greaterThanEqual(mat.sheenColor, glm::vec3(0.0f))) ||
         !glm::all(glm::lessThanEqual(mat.sheenColor, glm::vec3(1.0f))))
         fail(where + ".sheenColorFactor must lie in [0, 1]");
-    if (!(mat.sheenRoughness >= 0.0f && mat.sheenRoughness <= 1.0f)) fail(where + ".sheenRoughnessFactor must lie in [0, 1]");
+    if (!(mat.sheenRoughness >= 0.0f && mat.sheenRoughness <= 1.0f))
+        fail(where + ".sheenRoughnessFactor must lie in [0, 1]");
     mat.sheenColorTexture = extensionTexture(*e, "sheenColorTexture", where, true);
     mat.sheenRoughnessTexture = extensionTexture(*e, "sheenRoughnessTexture", where);
 }
 
-TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key, const std::string& what, bool srgb) {
+TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key,
+                                    const std::string& what, bool srgb) {
     if (!ext.Has(key)) return {};
     const tinygltf::Value& info = ext.Get(key);
     const std::string where = what + "." + key;
@@ -116,7 +134,8 @@ TextureRef Loader::extensionTexture(const tinygltf::Value& ext, const char* key,
 
 // KHR_texture_transform on a textureInfo: offset, rotation, scale, and a texCoord that overrides
 // the textureInfo's.
-void Loader::readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref, const std::string& what) {
+void Loader::readTextureTransform(const tinygltf::Value& t, int& texCoord, TextureRef& ref,
+                                  const std::string& what) {
     const std::string where = what + ": KHR_texture_transform";
     if (!t.IsObject()) fail(where + " must be an object");
     readNumbers(t, "offset", where, &ref.transform.offset.x, 2);
@@ -157,13 +176,14 @@ uint32_t Loader::getMaterial(int gi) {
     Material mat;
     mat.name = gm.name;
     if (pbr.baseColorFactor.size() == 4) {
-        mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
-                                        pbr.baseColorFactor[3]);
+        mat.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1],
+                                        pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
     }
     mat.metallic = float(pbr.metallicFactor);
     mat.roughness = float(pbr.roughnessFactor);
     if (gm.emissiveFactor.size() == 3) {
-        mat.emissiveFactor = glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
+        mat.emissiveFactor =
+            glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
     }
     if (auto* es = findExtension(gm.extensions, "KHR_materials_emissive_strength")) {
         const auto& v = es->Get("emissiveStrength");
@@ -188,21 +208,24 @@ uint32_t Loader::getMaterial(int gi) {
     readTransmission(gm, mat, label);
     readSheen(gm, mat, label);
 
-    const float checks[] = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z, mat.baseColorFactor.w,
-                            mat.metallic,          mat.roughness,         mat.emissiveFactor.x,  mat.emissiveFactor.y,
-                            mat.emissiveFactor.z,  mat.normalScale,       mat.occlusionStrength, mat.alphaCutoff};
+    const float checks[] = {mat.baseColorFactor.x, mat.baseColorFactor.y, mat.baseColorFactor.z,
+                            mat.baseColorFactor.w, mat.metallic,          mat.roughness,
+                            mat.emissiveFactor.x,  mat.emissiveFactor.y,  mat.emissiveFactor.z,
+                            mat.normalScale,       mat.occlusionStrength, mat.alphaCutoff};
     for (float f : checks)
         if (!std::isfinite(f)) fail(label + ": non-finite factor");
 
-    mat.baseColorTexture = getTexture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
-                                      pbr.baseColorTexture.extensions, "baseColorTexture of " + label);
+    mat.baseColorTexture =
+        getTexture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
+                   pbr.baseColorTexture.extensions, "baseColorTexture of " + label);
     mat.metallicRoughnessTexture =
         getTexture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
                    pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture of " + label);
-    mat.normalTexture = getTexture(gm.normalTexture.index, gm.normalTexture.texCoord, false, gm.normalTexture.extensions,
-                                   "normalTexture of " + label);
-    mat.occlusionTexture = getTexture(gm.occlusionTexture.index, gm.occlusionTexture.texCoord, false,
-                                      gm.occlusionTexture.extensions, "occlusionTexture of " + label);
+    mat.normalTexture = getTexture(gm.normalTexture.index, gm.normalTexture.texCoord, false,
+                                   gm.normalTexture.extensions, "normalTexture of " + label);
+    mat.occlusionTexture =
+        getTexture(gm.occlusionTexture.index, gm.occlusionTexture.texCoord, false,
+                   gm.occlusionTexture.extensions, "occlusionTexture of " + label);
     mat.emissiveTexture = getTexture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, true,
                                      gm.emissiveTexture.extensions, "emissiveTexture of " + label);
 
@@ -212,25 +235,29 @@ uint32_t Loader::getMaterial(int gi) {
     return index;
 }
 
-TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::ExtensionMap& infoExt,
-                              const std::string& what) {
+TextureRef Loader::getTexture(int gt, int texCoord, bool srgb,
+                              const tinygltf::ExtensionMap& infoExt, const std::string& what) {
     TextureRef ref;
     if (gt < 0) return ref;
     checkIndex(gt, model_.textures, what + ": texture");
-    if (const tinygltf::Value* t = findExtension(infoExt, "KHR_texture_transform")) readTextureTransform(*t, texCoord, ref, what);
+    if (const tinygltf::Value* t = findExtension(infoExt, "KHR_texture_transform"))
+        readTextureTransform(*t, texCoord, ref, what);
     if (texCoord > 1) {
-        warn(what + " uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 and TEXCOORD_1 are read, TEXCOORD_0 is used instead");
+        warn(what + " uses TEXCOORD_" + std::to_string(texCoord) +
+             "; only TEXCOORD_0 and TEXCOORD_1 are read, TEXCOORD_0 is used instead");
         texCoord = 0;
     }
     ref.texCoord = uint32_t(std::max(texCoord, 0));
 
     const auto& tex = model_.textures[size_t(gt)];
     if (tex.source < 0) {
-        warn("texture " + std::to_string(gt) + " has no image source (extension-only image?); " + what + " ignored");
+        warn("texture " + std::to_string(gt) + " has no image source (extension-only image?); " +
+             what + " ignored");
         return ref;
     }
     checkIndex(tex.source, model_.images, "texture " + std::to_string(gt) + ": image");
-    if (tex.sampler >= 0) checkIndex(tex.sampler, model_.samplers, "texture " + std::to_string(gt) + ": sampler");
+    if (tex.sampler >= 0)
+        checkIndex(tex.sampler, model_.samplers, "texture " + std::to_string(gt) + ": sampler");
     // Keyed by what the GPU texture depends on, so glTF textures repeating the same image and
     // sampler (CesiumMilkTruck) share one decoded copy.
     auto key = std::make_tuple(tex.source, tex.sampler, srgb);
@@ -246,10 +273,12 @@ TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::E
     ti.srgb = srgb;
     if (tex.sampler >= 0) {
         const auto& s = model_.samplers[size_t(tex.sampler)];
-        ti.sampler.magFilter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+        ti.sampler.magFilter =
+            s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
         switch (s.minFilter) {
             case TINYGLTF_TEXTURE_FILTER_NEAREST:
-                ti.sampler = {Filter::Nearest, ti.sampler.magFilter, MipFilter::None, {}, {}, false};
+                ti.sampler = {
+                    Filter::Nearest, ti.sampler.magFilter, MipFilter::None, {}, {}, false};
                 break;
             case TINYGLTF_TEXTURE_FILTER_LINEAR:
                 ti.sampler = {Filter::Linear, ti.sampler.magFilter, MipFilter::None, {}, {}, false};
@@ -269,9 +298,12 @@ TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::E
         }
         auto wrap = [](int w) {
             switch (w) {
-                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
-                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
-                default: return Wrap::Repeat;
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+                    return Wrap::ClampToEdge;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+                    return Wrap::MirroredRepeat;
+                default:
+                    return Wrap::Repeat;
             }
         };
         ti.sampler.wrapS = wrap(s.wrapS);
@@ -297,8 +329,10 @@ TextureRef Loader::getTexture(int gt, int texCoord, bool srgb, const tinygltf::E
 void Loader::decodeImage(int ii, const std::string& what, TextureImage& out) {
     const auto& gi = model_.images[size_t(ii)];
     std::string label = "image " + std::to_string(ii);
-    if (!gi.uri.empty() && gi.uri.compare(0, 5, "data:") != 0) label += " ('" + gi.uri + "')";
-    else if (!gi.name.empty()) label += " ('" + gi.name + "')";
+    if (!gi.uri.empty() && gi.uri.compare(0, 5, "data:") != 0)
+        label += " ('" + gi.uri + "')";
+    else if (!gi.name.empty())
+        label += " ('" + gi.name + "')";
     label += " used by " + what;
     if (gi.image.empty()) fail(label + ": image file missing, empty or unreadable");
     if (gi.image.size() > size_t(INT32_MAX)) fail(label + ": encoded image too large");

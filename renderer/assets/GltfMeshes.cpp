@@ -11,18 +11,18 @@ namespace fe::assets::gltf {
 const unsigned char* Loader::bufferViewData(int bvIndex, const std::string& ctx, uint64_t& length) {
     checkIndex(bvIndex, model_.bufferViews, ctx + ": bufferView");
     const auto& bv = model_.bufferViews[size_t(bvIndex)];
-    checkIndex(bv.buffer, model_.buffers, ctx + ": bufferView " + std::to_string(bvIndex) + ": buffer");
+    checkIndex(bv.buffer, model_.buffers,
+               ctx + ": bufferView " + std::to_string(bvIndex) + ": buffer");
     const auto& buf = model_.buffers[size_t(bv.buffer)];
     uint64_t end = 0;
     if (addOverflows(bv.byteOffset, bv.byteLength, end) || end > buf.data.size()) {
-        fail("bufferView " + std::to_string(bvIndex) + ": byteOffset+byteLength (" + std::to_string(end) +
-             ") exceeds buffer " + std::to_string(bv.buffer) + " length " + std::to_string(buf.data.size()));
+        fail("bufferView " + std::to_string(bvIndex) + ": byteOffset+byteLength (" +
+             std::to_string(end) + ") exceeds buffer " + std::to_string(bv.buffer) + " length " +
+             std::to_string(buf.data.size()));
     }
     length = bv.byteLength;
     return buf.data.data() + bv.byteOffset;
 }
-
-
 
 // ---------------------------------------------------------------------------------------------
 // Meshes
@@ -56,13 +56,18 @@ void Loader::readMorphTargets(int m, int p, size_t n, Primitive& out) {
         auto read = [&](const char* name, std::vector<glm::vec3>& into) {
             auto it = gp.targets[t].find(name);
             if (it == gp.targets[t].end()) return;
-            const std::string what = std::string(name) + " of morph target " + std::to_string(t) + " of " + label;
-            const std::vector<float> d = readAccessor<float>(it->second, what, TINYGLTF_TYPE_VEC3, F32 | S8N | S16N);
-            if (d.size() / 3 != n) fail(label + ": morph target " + std::to_string(t) + " " + name + " count differs from POSITION");
+            const std::string what =
+                std::string(name) + " of morph target " + std::to_string(t) + " of " + label;
+            const std::vector<float> d =
+                readAccessor<float>(it->second, what, TINYGLTF_TYPE_VEC3, F32 | S8N | S16N);
+            if (d.size() / 3 != n)
+                fail(label + ": morph target " + std::to_string(t) + " " + name +
+                     " count differs from POSITION");
             into.resize(n);
             for (size_t i = 0; i < n; ++i) {
                 into[i] = glm::vec3(d[i * 3], d[i * 3 + 1], d[i * 3 + 2]);
-                if (!std::isfinite(into[i].x + into[i].y + into[i].z)) fail("non-finite value in " + what);
+                if (!std::isfinite(into[i].x + into[i].y + into[i].z))
+                    fail("non-finite value in " + what);
             }
         };
         read("POSITION", target.position);
@@ -72,15 +77,21 @@ void Loader::readMorphTargets(int m, int p, size_t n, Primitive& out) {
     }
 }
 
-void Loader::readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label, size_t n, Primitive& out) {
+void Loader::readSkinInfluences(const tinygltf::Primitive& gp, const std::string& label, size_t n,
+                                Primitive& out) {
     for (int set = 0; set < 2; ++set) {
-        const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+        const std::string js = "JOINTS_" + std::to_string(set),
+                          ws = "WEIGHTS_" + std::to_string(set);
         auto ja = gp.attributes.find(js), wa = gp.attributes.find(ws);
         if (ja == gp.attributes.end() && wa == gp.attributes.end()) continue;
-        if (ja == gp.attributes.end() || wa == gp.attributes.end()) fail(label + ": " + js + " and " + ws + " come together");
-        const std::vector<uint32_t> j = readAccessor<uint32_t>(ja->second, js + " of " + label, TINYGLTF_TYPE_VEC4, U8 | U16);
-        const std::vector<float> w = readAccessor<float>(wa->second, ws + " of " + label, TINYGLTF_TYPE_VEC4, F32 | U8N | U16N);
-        if (j.size() != n * 4 || w.size() != n * 4) fail(label + ": " + js + "/" + ws + " count differs from POSITION");
+        if (ja == gp.attributes.end() || wa == gp.attributes.end())
+            fail(label + ": " + js + " and " + ws + " come together");
+        const std::vector<uint32_t> j =
+            readAccessor<uint32_t>(ja->second, js + " of " + label, TINYGLTF_TYPE_VEC4, U8 | U16);
+        const std::vector<float> w = readAccessor<float>(wa->second, ws + " of " + label,
+                                                         TINYGLTF_TYPE_VEC4, F32 | U8N | U16N);
+        if (j.size() != n * 4 || w.size() != n * 4)
+            fail(label + ": " + js + "/" + ws + " count differs from POSITION");
         out.skin.resize(n);
         for (size_t i = 0; i < n; ++i)
             for (int k = 0; k < 4; ++k) {
@@ -97,7 +108,8 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
     const auto& gp = gm.primitives[size_t(p)];
     const std::string label = meshLabel(m) + " primitive " + std::to_string(p);
     const int mode = gp.mode < 0 ? TINYGLTF_MODE_TRIANGLES : gp.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
         static const char* names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
         std::string name = mode >= 0 && mode < 4 ? names[mode] : "mode " + std::to_string(mode);
         warn(label + ": " + name + " primitive skipped (only triangles are drawn)");
@@ -113,12 +125,13 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
         return false;
     }
 
-    const std::vector<float> pos = readAccessor<float>(aPos, "POSITION of " + label, TINYGLTF_TYPE_VEC3, F32);
+    const std::vector<float> pos =
+        readAccessor<float>(aPos, "POSITION of " + label, TINYGLTF_TYPE_VEC3, F32);
     const size_t n = pos.size() / 3;
     for (size_t i = 0; i < pos.size(); ++i) {
         if (!std::isfinite(pos[i])) {
-            fail("non-finite POSITION value (vertex " + std::to_string(i / 3) + ") in " + label + " (accessor " +
-                 std::to_string(aPos) + ")");
+            fail("non-finite POSITION value (vertex " + std::to_string(i / 3) + ") in " + label +
+                 " (accessor " + std::to_string(aPos) + ")");
         }
     }
     auto readMatching = [&](const char* name, int type, uint32_t allowed, size_t comps) {
@@ -127,8 +140,9 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
         if (a < 0) return v;
         v = readAccessor<float>(a, std::string(name) + " of " + label, type, allowed);
         if (v.size() / comps != n) {
-            fail("accessor " + std::to_string(a) + " (" + name + " of " + label + "): count " + std::to_string(v.size() / comps) +
-                 " differs from POSITION count " + std::to_string(n));
+            fail("accessor " + std::to_string(a) + " (" + name + " of " + label + "): count " +
+                 std::to_string(v.size() / comps) + " differs from POSITION count " +
+                 std::to_string(n));
         }
         for (float f : v)
             if (!std::isfinite(f)) fail(std::string("non-finite ") + name + " value in " + label);
@@ -136,8 +150,10 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
     };
     const std::vector<float> nrm = readMatching("NORMAL", TINYGLTF_TYPE_VEC3, F32, 3);
     const std::vector<float> tan = readMatching("TANGENT", TINYGLTF_TYPE_VEC4, F32, 4);
-    const std::vector<float> uv = readMatching("TEXCOORD_0", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
-    const std::vector<float> uv1 = readMatching("TEXCOORD_1", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
+    const std::vector<float> uv =
+        readMatching("TEXCOORD_0", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
+    const std::vector<float> uv1 =
+        readMatching("TEXCOORD_1", TINYGLTF_TYPE_VEC2, F32 | U8N | U16N, 2);
     // COLOR_0 is VEC3 or VEC4 (alpha 1 when absent), float or normalized unsigned integers.
     std::vector<float> color;
     size_t colorComps = 4;
@@ -145,7 +161,8 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
         checkIndex(a, model_.accessors, "COLOR_0 of " + label + ": accessor");
         const int type = model_.accessors[size_t(a)].type;
         colorComps = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-        color = readMatching("COLOR_0", colorComps == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4, F32 | U8N | U16N, colorComps);
+        color = readMatching("COLOR_0", colorComps == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4,
+                             F32 | U8N | U16N, colorComps);
     }
 
     out.vertices.resize(n);
@@ -153,7 +170,8 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
         Vertex& v = out.vertices[i];
         v.position = glm::vec3(pos[i * 3], pos[i * 3 + 1], pos[i * 3 + 2]);
         if (!nrm.empty()) v.normal = glm::vec3(nrm[i * 3], nrm[i * 3 + 1], nrm[i * 3 + 2]);
-        if (!tan.empty()) v.tangent = glm::vec4(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2], tan[i * 4 + 3]);
+        if (!tan.empty())
+            v.tangent = glm::vec4(tan[i * 4], tan[i * 4 + 1], tan[i * 4 + 2], tan[i * 4 + 3]);
         if (!uv.empty()) v.uv0 = glm::vec2(uv[i * 2], uv[i * 2 + 1]);
         if (!uv1.empty()) v.uv1 = glm::vec2(uv1[i * 2], uv1[i * 2 + 1]);
         if (!color.empty()) {
@@ -165,9 +183,12 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
     // Indices.
     std::vector<uint32_t> idx;
     if (gp.indices >= 0) {
-        idx = readAccessor<uint32_t>(gp.indices, "indices of " + label, TINYGLTF_TYPE_SCALAR, U8 | U16 | U32);
+        idx = readAccessor<uint32_t>(gp.indices, "indices of " + label, TINYGLTF_TYPE_SCALAR,
+                                     U8 | U16 | U32);
         for (uint32_t i : idx) {
-            if (i >= n) fail("index " + std::to_string(i) + " >= vertex count " + std::to_string(n) + " in " + label);
+            if (i >= n)
+                fail("index " + std::to_string(i) + " >= vertex count " + std::to_string(n) +
+                     " in " + label);
         }
     } else {
         idx.resize(n);
@@ -230,14 +251,17 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
             nv = smooth[i];
             ++repaired;
         }
-        if (repaired) warn(label + ": " + std::to_string(repaired) + " zero-length normal(s) replaced by smooth normals");
+        if (repaired)
+            warn(label + ": " + std::to_string(repaired) +
+                 " zero-length normal(s) replaced by smooth normals");
     }
 
     // Tangents.
     if (!tan.empty()) {
         for (auto& v : out.vertices) {
             glm::vec3 t(v.tangent);
-            t -= v.normal * glm::dot(v.normal, t);  // an exporter's rounding can bend it off the plane
+            t -= v.normal *
+                 glm::dot(v.normal, t);  // an exporter's rounding can bend it off the plane
             float len = glm::length(t);
             glm::vec3 tt = len > 1e-8f ? t / len : anyPerpendicular(v.normal);
             v.tangent = glm::vec4(tt, v.tangent.w < 0.0f ? -1.0f : 1.0f);
@@ -245,7 +269,8 @@ bool Loader::loadPrimitive(int m, int p, Primitive& out) {
     } else if (mat.normalTexture.valid()) {
         const uint32_t set = mat.normalTexture.texCoord;
         if ((set == 0 ? uv : uv1).empty()) {
-            warn(label + ": normal map without TEXCOORD_" + std::to_string(set) + "; tangents cannot be generated");
+            warn(label + ": normal map without TEXCOORD_" + std::to_string(set) +
+                 "; tangents cannot be generated");
             setFallbackTangents(out);
         } else {
             generateTangents(out, set);

@@ -13,7 +13,8 @@ namespace fe::assets {
 namespace {
 // The numbers below are the ones documented under "Defaults" in GltfLoader.h; keep in step.
 constexpr float kDefaultYfov = 0.78539816339f;  // 45 degrees
-const glm::vec3 kDefaultViewFrom = glm::normalize(glm::vec3(0.5f, 0.45f, 1.0f));  // bounds centre to the eye
+const glm::vec3 kDefaultViewFrom =
+    glm::normalize(glm::vec3(0.5f, 0.45f, 1.0f));  // bounds centre to the eye
 
 glm::vec3 toWorld(const Camera& cam, const glm::vec3& viewDir) {
     return glm::normalize(glm::mat3(cam.worldFromView) * glm::normalize(viewDir));
@@ -39,14 +40,14 @@ glm::mat4 Camera::viewFromWorld() const {
     return v;
 }
 
-Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up, float yfov,
-                         float znear, float zfar) {
+Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const glm::vec3& up,
+                         float yfov, float znear, float zfar) {
     glm::vec3 back = -glm::normalize(forward);
     glm::vec3 right = glm::normalize(glm::cross(up, back));
     glm::vec3 trueUp = glm::cross(back, right);
     Camera c;
-    c.worldFromView = glm::mat4(glm::vec4(right, 0.0f), glm::vec4(trueUp, 0.0f), glm::vec4(back, 0.0f),
-                                glm::vec4(eye, 1.0f));
+    c.worldFromView = glm::mat4(glm::vec4(right, 0.0f), glm::vec4(trueUp, 0.0f),
+                                glm::vec4(back, 0.0f), glm::vec4(eye, 1.0f));
     c.yfov = yfov;
     c.znear = znear;
     c.zfar = zfar;
@@ -56,20 +57,23 @@ Camera Camera::lookAlong(const glm::vec3& eye, const glm::vec3& forward, const g
 Camera Camera::orbited(const glm::vec3& center, float radians) const {
     const glm::mat4 r = glm::rotate(glm::mat4(1.0f), radians, glm::vec3(0.0f, 1.0f, 0.0f));
     Camera c = *this;
-    c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r * glm::translate(glm::mat4(1.0f), -center) * worldFromView;
+    c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r *
+                      glm::translate(glm::mat4(1.0f), -center) * worldFromView;
     return c;
 }
 
 glm::mat4 Node::localTransform() const {
     if (matrix) return *matrix;
-    return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+    return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) *
+           glm::scale(glm::mat4(1.0f), scale);
 }
 
 AABB computeWorldBounds(const Scene& scene) {
     AABB b;
     for (const auto& inst : scene.instances) {
         if (inst.meshIndex >= scene.meshes.size()) continue;
-        const AABB& local = inst.posedBounds.empty() ? scene.meshes[inst.meshIndex].bounds : inst.posedBounds;
+        const AABB& local =
+            inst.posedBounds.empty() ? scene.meshes[inst.meshIndex].bounds : inst.posedBounds;
         b.extend(local.transformed(inst.world));
     }
     return b;
@@ -84,8 +88,8 @@ Camera makeDefaultCamera(const AABB& bounds) {
     // From the front (+Z), above and to the right: a flat model lying in any axis plane (a
     // ground, TwoSidedPlane's XZ quad) is never seen edge-on, and a box shows three faces.
     const glm::vec3 toEye = kDefaultViewFrom;
-    Camera c = Camera::lookAlong(center + toEye * dist, -toEye, glm::vec3(0, 1, 0), kDefaultYfov, 0.5f * (dist - radius),
-                                 dist + 2.0f * radius);
+    Camera c = Camera::lookAlong(center + toEye * dist, -toEye, glm::vec3(0, 1, 0), kDefaultYfov,
+                                 0.5f * (dist - radius), dist + 2.0f * radius);
     c.name = "default";
     return c;
 }
@@ -157,18 +161,22 @@ bool finite(const glm::vec<N, float>& v) {
     return true;
 }
 bool finite(float v) { return std::isfinite(v); }
-bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
+bool finite(const glm::mat4& m) {
+    return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]);
+}
 }  // namespace
 
 void checkFinite(const Scene& scene) {
-    auto fail = [](const std::string& what) { throw AssetError(what + " is not finite (NaN or infinity)"); };
+    auto fail = [](const std::string& what) {
+        throw AssetError(what + " is not finite (NaN or infinity)");
+    };
     for (size_t m = 0; m < scene.meshes.size(); ++m)
         for (size_t p = 0; p < scene.meshes[m].primitives.size(); ++p) {
             const Primitive& prim = scene.meshes[m].primitives[p];
             for (size_t v = 0; v < prim.vertices.size(); ++v) {
                 const Vertex& x = prim.vertices[v];
-                const std::string where = "mesh '" + scene.meshes[m].name + "' primitive " + std::to_string(p) + " vertex " +
-                                          std::to_string(v) + ": ";
+                const std::string where = "mesh '" + scene.meshes[m].name + "' primitive " +
+                                          std::to_string(p) + " vertex " + std::to_string(v) + ": ";
                 if (!finite(x.position)) fail(where + "its position");
                 if (!finite(x.normal)) fail(where + "its normal");
                 if (!finite(x.tangent)) fail(where + "its tangent");
@@ -185,19 +193,24 @@ void checkFinite(const Scene& scene) {
         if (!finite(m.normalScale) || !finite(m.occlusionStrength) || !finite(m.alphaCutoff))
             fail(where + "normalScale, occlusionStrength or alphaCutoff");
         for (const TextureRef* r :
-             {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.emissiveTexture, &m.occlusionTexture,
-              &m.specularTexture, &m.specularColorTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture,
-              &m.clearcoatNormalTexture, &m.transmissionTexture, &m.thicknessTexture, &m.sheenColorTexture,
+             {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+              &m.emissiveTexture, &m.occlusionTexture, &m.specularTexture, &m.specularColorTexture,
+              &m.clearcoatTexture, &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture,
+              &m.transmissionTexture, &m.thicknessTexture, &m.sheenColorTexture,
               &m.sheenRoughnessTexture})
-            if (!finite(r->transform.offset) || !finite(r->transform.rotation) || !finite(r->transform.scale))
+            if (!finite(r->transform.offset) || !finite(r->transform.rotation) ||
+                !finite(r->transform.scale))
                 fail(where + "a texture transform");
         // The extensions' factors (an infinite ior and attenuation distance are meaningful), in
         // the ranges the loader enforces, so a material built in code is refused as a file is.
-        if (!finite(m.specular) || !finite(m.specularColor) || !finite(m.clearcoat) || !finite(m.clearcoatRoughness) ||
-            !finite(m.clearcoatNormalScale) || !finite(m.transmission) || !finite(m.thickness) ||
-            !finite(m.attenuationColor) || !finite(m.sheenColor) || !finite(m.sheenRoughness) || std::isnan(m.ior) ||
+        if (!finite(m.specular) || !finite(m.specularColor) || !finite(m.clearcoat) ||
+            !finite(m.clearcoatRoughness) || !finite(m.clearcoatNormalScale) ||
+            !finite(m.transmission) || !finite(m.thickness) || !finite(m.attenuationColor) ||
+            !finite(m.sheenColor) || !finite(m.sheenRoughness) || std::isnan(m.ior) ||
             std::isnan(m.attenuationDistance))
-            fail(where + "a factor of KHR_materials_ior, specular, clearcoat, transmission, volume or sheen");
+            fail(
+                where +
+                "a factor of KHR_materials_ior, specular, clearcoat, transmission, volume or sheen");
         auto unit = [&](float v, const char* name) {
             if (!(v >= 0.0f && v <= 1.0f)) throw AssetError(where + name + " must lie in [0, 1]");
         };
@@ -210,21 +223,24 @@ void checkFinite(const Scene& scene) {
             unit(m.sheenColor[c], "sheenColor");
             unit(m.attenuationColor[c], "attenuationColor");
         }
-        if (!(m.ior >= 1.0f)) throw AssetError(where + "ior must be at least 1 (infinite for a perfect mirror)");
+        if (!(m.ior >= 1.0f))
+            throw AssetError(where + "ior must be at least 1 (infinite for a perfect mirror)");
         if (!(m.thickness >= 0.0f)) throw AssetError(where + "thickness must not be negative");
-        if (!(m.attenuationDistance > 0.0f)) throw AssetError(where + "attenuationDistance must be positive (infinite: none)");
+        if (!(m.attenuationDistance > 0.0f))
+            throw AssetError(where + "attenuationDistance must be positive (infinite: none)");
         if (!glm::all(glm::greaterThanEqual(m.specularColor, glm::vec3(0.0f))))
             throw AssetError(where + "specularColor must not be negative");
     }
     for (const MeshInstance& i : scene.instances)
         if (!finite(i.world)) fail("node '" + i.name + "': its transform");
     for (const Light& l : scene.lights)
-        if (!finite(l.color) || !finite(l.intensity) || !finite(l.range) || !finite(l.position) || !finite(l.direction) ||
-            !finite(l.innerConeAngle) || !finite(l.outerConeAngle))
+        if (!finite(l.color) || !finite(l.intensity) || !finite(l.range) || !finite(l.position) ||
+            !finite(l.direction) || !finite(l.innerConeAngle) || !finite(l.outerConeAngle))
             fail("light '" + l.name + "'");
     if (scene.camera) checkCamera(*scene.camera);
     for (const Node& n : scene.nodes)
-        if (!finite(n.translation) || !finite(glm::vec4(n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w)) ||
+        if (!finite(n.translation) ||
+            !finite(glm::vec4(n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w)) ||
             !finite(n.scale) || (n.matrix && !finite(*n.matrix)))
             fail("node '" + n.name + "': its transform");
     for (const Animation& a : scene.animations)
@@ -243,17 +259,21 @@ void checkCamera(const Camera& c) {
     if (c.orthographic) {
         if (!(c.orthographic->x != 0.0f && c.orthographic->y != 0.0f && finite(*c.orthographic)))
             throw AssetError(what + "orthographic xmag and ymag must be finite and not zero");
-        if (!(c.znear >= 0.0f)) throw AssetError(what + "znear " + std::to_string(c.znear) + " is negative");
+        if (!(c.znear >= 0.0f))
+            throw AssetError(what + "znear " + std::to_string(c.znear) + " is negative");
         if (!(c.zfar > c.znear && std::isfinite(c.zfar)))
             throw AssetError(what + "an orthographic camera needs a finite zfar beyond znear");
         return;
     }
     if (!(c.yfov > 0.0f && c.yfov < 3.14159265f))
         throw AssetError(what + "yfov " + std::to_string(c.yfov) + " is not in (0, pi) radians");
-    if (!(c.znear > 0.0f)) throw AssetError(what + "znear " + std::to_string(c.znear) + " is not positive");
-    if (!(c.zfar > c.znear)) throw AssetError(what + "zfar " + std::to_string(c.zfar) + " is not beyond znear");
+    if (!(c.znear > 0.0f))
+        throw AssetError(what + "znear " + std::to_string(c.znear) + " is not positive");
+    if (!(c.zfar > c.znear))
+        throw AssetError(what + "zfar " + std::to_string(c.zfar) + " is not beyond znear");
     if (c.aspectRatio && !(*c.aspectRatio > 0.0f && std::isfinite(*c.aspectRatio)))
-        throw AssetError(what + "aspectRatio " + std::to_string(*c.aspectRatio) + " is not a positive number");
+        throw AssetError(what + "aspectRatio " + std::to_string(*c.aspectRatio) +
+                         " is not a positive number");
 }
 
 void finalizeScene(Scene& scene, bool addCamera, bool addLights) {

@@ -64,7 +64,8 @@ struct SkinInfluences {
     glm::uvec4 joints[2]{glm::uvec4(0u), glm::uvec4(0u)};
     glm::vec4 weights[2]{glm::vec4(0.0f), glm::vec4(0.0f)};
 };
-static_assert(sizeof(SkinInfluences) == 64, "SkinInfluences must stay tightly packed for direct upload");
+static_assert(sizeof(SkinInfluences) == 64,
+              "SkinInfluences must stay tightly packed for direct upload");
 
 // A morph target: per-vertex displacements, each list empty when the target leaves that
 // attribute alone (glTF POSITION, NORMAL and TANGENT deltas; the tangent's w never changes).
@@ -90,7 +91,7 @@ struct Primitive {
 struct Mesh {
     std::string name;
     std::vector<Primitive> primitives;
-    AABB bounds;  // object space, union of the primitives (rest pose)
+    AABB bounds;                 // object space, union of the primitives (rest pose)
     std::vector<float> weights;  // glTF mesh.weights: the morph targets' default weights
 };
 
@@ -128,18 +129,25 @@ struct TextureTransform {
     glm::vec2 offset{0.0f};
     float rotation = 0.0f;  // radians
     glm::vec2 scale{1.0f};
-    bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+    bool identity() const {
+        return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+    }
     // The two rows of the affine map: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
-    glm::vec3 row0() const { return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x}; }
-    glm::vec3 row1() const { return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+    glm::vec3 row0() const {
+        return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x};
+    }
+    glm::vec3 row1() const {
+        return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y};
+    }
     glm::vec2 apply(const glm::vec2& uv) const {
         return {glm::dot(row0(), glm::vec3(uv, 1.0f)), glm::dot(row1(), glm::vec3(uv, 1.0f))};
     }
 };
 
 struct TextureRef {
-    int32_t index = -1;     // into Scene::textures, -1 = none
-    uint32_t texCoord = 0;  // 0: Vertex::uv0, 1: Vertex::uv1 (KHR_texture_transform's override applied)
+    int32_t index = -1;  // into Scene::textures, -1 = none
+    uint32_t texCoord =
+        0;  // 0: Vertex::uv0, 1: Vertex::uv1 (KHR_texture_transform's override applied)
     TextureTransform transform;
     bool valid() const { return index >= 0; }
 };
@@ -149,11 +157,11 @@ struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
     float metallic = 1.0f;
-    float roughness = 1.0f;             // perceptual, unclamped
-    glm::vec3 emissiveFactor{0.0f};     // already multiplied by KHR_materials_emissive_strength
-    float emissiveStrength = 1.0f;      // informative: the factor already applied above
+    float roughness = 1.0f;          // perceptual, unclamped
+    glm::vec3 emissiveFactor{0.0f};  // already multiplied by KHR_materials_emissive_strength
+    float emissiveStrength = 1.0f;   // informative: the factor already applied above
     float normalScale = 1.0f;
-    float occlusionStrength = 1.0f;     // indirect light x (1 + strength (occlusion - 1))
+    float occlusionStrength = 1.0f;       // indirect light x (1 + strength (occlusion - 1))
     TextureRef baseColorTexture;          // sRGB
     TextureRef metallicRoughnessTexture;  // linear, G = roughness, B = metallic
     TextureRef normalTexture;             // linear, tangent space
@@ -172,11 +180,14 @@ struct Material {
     TextureRef specularColorTexture;  // sRGB, RGB: times specularColor
     // ((ior - 1) / (ior + 1))^2 specularColor: F0 before the clamp and the specular factor.
     glm::vec3 specularColorF0() const {
-        const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);  // KHR_materials_ior's 0: infinite
+        const float r = std::isinf(ior)
+                            ? 1.0f
+                            : (ior - 1.0f) / (ior + 1.0f);  // KHR_materials_ior's 0: infinite
         return glm::vec3(r * r) * specularColor;
     }
     // With the textures' texels where they are sampled (1 without them).
-    glm::vec3 dielectricF0(glm::vec3 colorTexel = glm::vec3(1.0f), float specularTexel = 1.0f) const {
+    glm::vec3 dielectricF0(glm::vec3 colorTexel = glm::vec3(1.0f),
+                           float specularTexel = 1.0f) const {
         return glm::min(specularColorF0() * colorTexel, glm::vec3(1.0f)) * specular * specularTexel;
     }
     float dielectricF90(float specularTexel = 1.0f) const { return specular * specularTexel; }
@@ -186,7 +197,8 @@ struct Material {
     float clearcoatRoughness = 0.0f;
     TextureRef clearcoatTexture;           // linear, R: times clearcoat
     TextureRef clearcoatRoughnessTexture;  // linear, G: times clearcoatRoughness
-    TextureRef clearcoatNormalTexture;     // linear, tangent space: the layer's normal (else the vertex normal)
+    TextureRef
+        clearcoatNormalTexture;  // linear, tangent space: the layer's normal (else the vertex normal)
     float clearcoatNormalScale = 1.0f;
     float clearcoatF0() const {
         const float r = std::isinf(ior) ? 1.0f : (ior - 1.0f) / (ior + 1.0f);
@@ -199,7 +211,7 @@ struct Material {
     float transmission = 0.0f;
     TextureRef transmissionTexture;  // linear, R
     float thickness = 0.0f;
-    TextureRef thicknessTexture;     // linear, G
+    TextureRef thicknessTexture;  // linear, G
     glm::vec3 attenuationColor{1.0f};
     float attenuationDistance = std::numeric_limits<float>::infinity();
     // KHR_materials_sheen: a Charlie-distribution sheen layer over the base (docs/SHADING.md), its
@@ -214,11 +226,13 @@ struct Material {
     bool transmissive() const { return transmission > 0.0f && alphaMode != AlphaMode::Blend; }
     // The defaults' dielectric (F0 0.04, F90 1): what a G-buffer technique shades with.
     bool defaultDielectric() const {
-        return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) && !specularTexture.valid() &&
-               !specularColorTexture.valid();
+        return ior == 1.5f && specular == 1.0f && specularColor == glm::vec3(1.0f) &&
+               !specularTexture.valid() && !specularColorTexture.valid();
     }
     // Inputs only the techniques that shade the whole material evaluate (TechniqueInfo::fullMaterial).
-    bool needsFullMaterial() const { return !defaultDielectric() || clearcoat > 0.0f || hasSheen(); }
+    bool needsFullMaterial() const {
+        return !defaultDielectric() || clearcoat > 0.0f || hasSheen();
+    }
 };
 
 struct MeshInstance {
@@ -253,8 +267,8 @@ struct Node {
     glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
     glm::vec3 scale{1.0f};
     std::optional<glm::mat4> matrix;  // set: the node's transform, TRS unused (not animatable)
-    std::vector<float> weights;       // node.weights: the morph weights of its mesh, else the mesh's
-    glm::mat4 world{1.0f};            // of the current pose (assets::poseScene)
+    std::vector<float> weights;  // node.weights: the morph weights of its mesh, else the mesh's
+    glm::mat4 world{1.0f};       // of the current pose (assets::poseScene)
     glm::mat4 localTransform() const;
 };
 
@@ -299,12 +313,12 @@ struct Light {
     int32_t node = -1;  // the node it hangs from (Scene::nodes; -1: none); posed with it
     LightType type = LightType::Point;
     glm::vec3 color{1.0f};
-    float intensity = 1.0f;  // lux (directional) or candela (point, spot)
-    float range = 0.0f;      // 0 = infinite
-    glm::vec3 position{0.0f};                   // point, spot
-    glm::vec3 direction{0.0f, 0.0f, -1.0f};     // unit, where the light travels (spot, directional)
-    float innerConeAngle = 0.0f;                // radians (spot)
-    float outerConeAngle = 0.78539816339f;      // radians (spot), pi/4 as in glTF
+    float intensity = 1.0f;                  // lux (directional) or candela (point, spot)
+    float range = 0.0f;                      // 0 = infinite
+    glm::vec3 position{0.0f};                // point, spot
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit, where the light travels (spot, directional)
+    float innerConeAngle = 0.0f;             // radians (spot)
+    float outerConeAngle = 0.78539816339f;   // radians (spot), pi/4 as in glTF
 };
 
 // A particle emitter (the VFX renderer, render/VfxRenderer.h): particles born at `rate` per
@@ -316,13 +330,14 @@ struct ParticleEmitter {
     enum class Blend { Additive, Alpha };
     std::string name;
     glm::vec3 position{0.0f};
-    glm::vec3 velocity{0.0f, 1.0f, 0.0f};  // m/s
-    float spread = 0.3f;                   // radians
-    float rate = 100.0f;                   // particles per second
-    float lifetime = 2.0f;                 // seconds
-    glm::vec3 gravity{0.0f, -1.0f, 0.0f};  // m/s^2
+    glm::vec3 velocity{0.0f, 1.0f, 0.0f};    // m/s
+    float spread = 0.3f;                     // radians
+    float rate = 100.0f;                     // particles per second
+    float lifetime = 2.0f;                   // seconds
+    glm::vec3 gravity{0.0f, -1.0f, 0.0f};    // m/s^2
     float sizeStart = 0.1f, sizeEnd = 0.3f;  // billboard half-width, metres
-    glm::vec4 colorStart{1.0f}, colorEnd{1.0f, 1.0f, 1.0f, 0.0f};  // linear; additive: radiance, alpha: albedo
+    glm::vec4 colorStart{1.0f},
+        colorEnd{1.0f, 1.0f, 1.0f, 0.0f};  // linear; additive: radiance, alpha: albedo
     Blend blend = Blend::Additive;
     float softness = 0.2f;  // metres over which a particle fades out in front of scene depth
     uint32_t maxParticles() const { return uint32_t(std::ceil(rate * lifetime)); }
@@ -405,7 +420,7 @@ void addDefaultLights(Scene& scene, const Camera& camera);
 // twice), to light the scene by image-based lighting and show behind it. Returns false, changing
 // nothing, when the scene has lights of its own.
 bool useDefaultSkyAndSun(Scene& scene);
-inline constexpr float kDefaultSunIlluminance = 3.0f;  // lux, colour (1, 0.956, 0.898)
+inline constexpr float kDefaultSunIlluminance = 3.0f;   // lux, colour (1, 0.956, 0.898)
 inline constexpr float kDefaultSunMinElevation = 0.6f;  // sin of the sun's elevation, at least
 
 // Throws AssetError naming the first non-finite number (NaN or infinity) in the scene: a vertex

@@ -7,18 +7,22 @@
 
 namespace fe::render {
 
-CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight, uint64_t uploadBytesPerFrame)
+CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight,
+                           uint64_t uploadBytesPerFrame)
     : objects_(device), device_(device), regionSize_(uploadBytesPerFrame) {
-    if (framesInFlight == 0 || framesInFlight > 8) throw gdi::Error("CommandQueue: framesInFlight must be 1..8");
+    if (framesInFlight == 0 || framesInFlight > 8)
+        throw gdi::Error("CommandQueue: framesInFlight must be 1..8");
     const auto& l = device.info().limits;
-    alignment_ = std::max<uint64_t>({64, l.uniformBufferOffsetAlignment, l.storageBufferOffsetAlignment});
+    alignment_ =
+        std::max<uint64_t>({64, l.uniformBufferOffsetAlignment, l.storageBufferOffsetAlignment});
     slots_.resize(framesInFlight);
     for (Slot& s : slots_) s.commands = device.createCommandList();
-    uploadBuffer_ = objects_.add(device.createBuffer({.size = regionSize_ * framesInFlight,
-                                                      .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage |
-                                                               gdi::BufferUsage::Vertex | gdi::BufferUsage::Index,
-                                                      .access = gdi::MemoryAccess::Upload,
-                                                      .debugName = "per-frame uploads"}));
+    uploadBuffer_ = objects_.add(
+        device.createBuffer({.size = regionSize_ * framesInFlight,
+                             .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage |
+                                      gdi::BufferUsage::Vertex | gdi::BufferUsage::Index,
+                             .access = gdi::MemoryAccess::Upload,
+                             .debugName = "per-frame uploads"}));
 }
 
 CommandQueue::~CommandQueue() {

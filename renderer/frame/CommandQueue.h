@@ -20,7 +20,8 @@ struct UploadAllocation {
 
 class CommandQueue {
 public:
-    CommandQueue(gdi::Device& device, uint32_t framesInFlight = 2, uint64_t uploadBytesPerFrame = 4u << 20);
+    CommandQueue(gdi::Device& device, uint32_t framesInFlight = 2,
+                 uint64_t uploadBytesPerFrame = 4u << 20);
     ~CommandQueue();
     CommandQueue(const CommandQueue&) = delete;
     CommandQueue& operator=(const CommandQueue&) = delete;
@@ -35,7 +36,9 @@ public:
     // Copies `size` bytes into this frame's upload region; aligned for uniform/storage binding.
     UploadAllocation upload(gdi::ByteSpan data);
     template <class T>
-    UploadAllocation upload(const T& value) { return upload(gdi::bytesOf(value)); }
+    UploadAllocation upload(const T& value) {
+        return upload(gdi::bytesOf(value));
+    }
 
     uint64_t frameNumber() const { return frameNumber_; }
     uint32_t framesInFlight() const { return uint32_t(slots_.size()); }

@@ -4,14 +4,19 @@
 
 namespace fe::render {
 
-SwapChain::SwapChain(gdi::Device& device, const SwapChainDesc& desc) : objects_(device), device_(device), desc_(desc) {
-    if (desc.imageCount == 0 || desc.imageCount > 8) throw gdi::Error("SwapChain: imageCount must be 1..8");
+SwapChain::SwapChain(gdi::Device& device, const SwapChainDesc& desc)
+    : objects_(device), device_(device), desc_(desc) {
+    if (desc.imageCount == 0 || desc.imageCount > 8)
+        throw gdi::Error("SwapChain: imageCount must be 1..8");
     for (uint32_t i = 0; i < desc.imageCount; ++i) {
         std::string name = "swapchain " + std::to_string(i);
-        images_.push_back({objects_.add(device.createTexture({.format = desc.format, .width = desc.width, .height = desc.height,
-                                                              .usage = gdi::TextureUsage::RenderTarget |
-                                                                       gdi::TextureUsage::Sampled | gdi::TextureUsage::CopySrc,
-                                                              .debugName = name.c_str()})),
+        images_.push_back({objects_.add(device.createTexture(
+                               {.format = desc.format,
+                                .width = desc.width,
+                                .height = desc.height,
+                                .usage = gdi::TextureUsage::RenderTarget |
+                                         gdi::TextureUsage::Sampled | gdi::TextureUsage::CopySrc,
+                                .debugName = name.c_str()})),
                            0});
     }
 }

@@ -28,8 +28,8 @@ struct BufferInfo {
     uint64_t size = 0;
     gdi::BufferUsage usage = gdi::BufferUsage::None;  // transient: derived from the passes
     bool imported = false;
-    bool output = false;                 // read after the frame (e.g. read back): writers survive
-    int firstPass = -1, lastPass = -1;   // indices into passes(), -1: unused
+    bool output = false;                // read after the frame (e.g. read back): writers survive
+    int firstPass = -1, lastPass = -1;  // indices into passes(), -1: unused
     bool used() const { return firstPass >= 0; }
 };
 
@@ -41,7 +41,7 @@ enum class AliasingMode : uint8_t {
 
 struct TextureInfo {
     std::string name;
-    gdi::TextureDesc desc;       // usage as derived from the passes
+    gdi::TextureDesc desc;  // usage as derived from the passes
     bool imported = false;
     bool output = false;
     int firstPass = -1, lastPass = -1;  // indices into passes(), -1: unused
@@ -49,14 +49,17 @@ struct TextureInfo {
     uint64_t offset = 0;                // in the heap (AliasingMode::Memory)
     int physical = -1;                  // shared object index (ObjectReuse), own index otherwise
     bool used() const { return firstPass >= 0; }
-    bool overlaps(const TextureInfo& o) const { return used() && o.used() && firstPass <= o.lastPass && o.firstPass <= lastPass; }
+    bool overlaps(const TextureInfo& o) const {
+        return used() && o.used() && firstPass <= o.lastPass && o.firstPass <= lastPass;
+    }
 };
 
 struct MemoryReport {
-    uint64_t withoutAliasing = 0;  // every used transient texture in memory of its own (Memory: back to back in one heap, aligned)
-    uint64_t withAliasing = 0;     // what the plan allocates (heap size, or the shared objects)
+    uint64_t withoutAliasing =
+        0;  // every used transient texture in memory of its own (Memory: back to back in one heap, aligned)
+    uint64_t withAliasing = 0;  // what the plan allocates (heap size, or the shared objects)
     uint32_t transientTextures = 0;
-    uint32_t allocations = 0;      // distinct memory blocks / objects after aliasing
+    uint32_t allocations = 0;  // distinct memory blocks / objects after aliasing
 };
 
 }  // namespace fe::graph

@@ -11,8 +11,9 @@ uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) / a * a; }
 bool transient(const TextureInfo& t) { return !t.imported && t.used(); }
 
 bool sameObject(const gdi::TextureDesc& a, const gdi::TextureDesc& b) {
-    return a.dimension == b.dimension && a.depthOrLayers == b.depthOrLayers && a.format == b.format && a.width == b.width && a.height == b.height && a.mipLevels == b.mipLevels &&
-           a.sampleCount == b.sampleCount;
+    return a.dimension == b.dimension && a.depthOrLayers == b.depthOrLayers &&
+           a.format == b.format && a.width == b.width && a.height == b.height &&
+           a.mipLevels == b.mipLevels && a.sampleCount == b.sampleCount;
 }
 
 MemoryReport placeInHeap(std::vector<TextureInfo>& textures, std::vector<uint32_t>& order) {
@@ -62,7 +63,9 @@ MemoryReport placeInHeap(std::vector<TextureInfo>& textures, std::vector<uint32_
 
 MemoryReport reuseObjects(std::vector<TextureInfo>& textures, std::vector<uint32_t>& order) {
     MemoryReport r;
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return textures[a].firstPass < textures[b].firstPass; });
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return textures[a].firstPass < textures[b].firstPass;
+    });
     struct Object {
         uint32_t owner;  // first texture of the object: its description and index
         int busyUntil;
@@ -84,7 +87,9 @@ MemoryReport reuseObjects(std::vector<TextureInfo>& textures, std::vector<uint32
         t.offset = 0;
     }
     // A shared object is created with every usage of the textures it stands for.
-    for (uint32_t i : order) textures[textures[i].physical].desc.usage = textures[textures[i].physical].desc.usage | textures[i].desc.usage;
+    for (uint32_t i : order)
+        textures[textures[i].physical].desc.usage =
+            textures[textures[i].physical].desc.usage | textures[i].desc.usage;
     for (uint32_t i : order) textures[i].desc.usage = textures[textures[i].physical].desc.usage;
     r.allocations = uint32_t(objects.size());
     return r;

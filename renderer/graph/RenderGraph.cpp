@@ -23,7 +23,9 @@ gdi::BufferUsage usageFor(gdi::BufferAccess a) {
     return u;
 }
 
-bool isTarget(gdi::ResourceState s) { return s == gdi::ResourceState::RenderTarget || s == gdi::ResourceState::DepthTarget; }
+bool isTarget(gdi::ResourceState s) {
+    return s == gdi::ResourceState::RenderTarget || s == gdi::ResourceState::DepthTarget;
+}
 
 std::string kib(uint64_t bytes) {
     std::ostringstream o;
@@ -33,42 +35,60 @@ std::string kib(uint64_t bytes) {
 }
 }  // namespace
 
-bool TextureAccess::reads() const { return state == gdi::ResourceState::ShaderRead || load == gdi::LoadOp::Load; }
+bool TextureAccess::reads() const {
+    return state == gdi::ResourceState::ShaderRead || load == gdi::LoadOp::Load;
+}
 // (A resolve destination is a RenderTarget access with DontCare load: a write, not a read.)
 bool TextureAccess::writes() const {
-    return isTarget(state) || state == gdi::ResourceState::Storage || state == gdi::ResourceState::CopyDst;
+    return isTarget(state) || state == gdi::ResourceState::Storage ||
+           state == gdi::ResourceState::CopyDst;
 }
 
 // ---- declaration ------------------------------------------------------------------------------
 
-void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4> clear, uint32_t layer) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::RenderTarget, .load = load,
-                                              .clearColor = clear, .layer = layer});
+void PassBuilder::colorTarget(TextureId t, gdi::LoadOp load, std::array<float, 4> clear,
+                              uint32_t layer) {
+    graph_.passes_[pass_].accesses.push_back({.texture = t,
+                                              .state = gdi::ResourceState::RenderTarget,
+                                              .load = load,
+                                              .clearColor = clear,
+                                              .layer = layer});
 }
 void PassBuilder::depthTarget(TextureId t, gdi::LoadOp load, float clearDepth, uint32_t layer) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::DepthTarget, .load = load,
-                                              .clearDepth = clearDepth, .layer = layer});
+    graph_.passes_[pass_].accesses.push_back({.texture = t,
+                                              .state = gdi::ResourceState::DepthTarget,
+                                              .load = load,
+                                              .clearDepth = clearDepth,
+                                              .layer = layer});
 }
 void PassBuilder::resolve(TextureId source, TextureId destination) {
     // A depth resolve writes its destination as a depth attachment (the state its barriers name).
     const bool depth = gdi::isDepthFormat(graph_.textures_.at(destination.index).desc.format);
-    graph_.passes_[pass_].accesses.push_back({.texture = destination,
-                                              .state = depth ? gdi::ResourceState::DepthTarget : gdi::ResourceState::RenderTarget,
-                                              .load = gdi::LoadOp::DontCare, .resolveSource = source});
+    graph_.passes_[pass_].accesses.push_back(
+        {.texture = destination,
+         .state = depth ? gdi::ResourceState::DepthTarget : gdi::ResourceState::RenderTarget,
+         .load = gdi::LoadOp::DontCare,
+         .resolveSource = source});
 }
 void PassBuilder::sample(TextureId t) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::ShaderRead});
+    graph_.passes_[pass_].accesses.push_back(
+        {.texture = t, .state = gdi::ResourceState::ShaderRead});
 }
 void PassBuilder::storage(TextureId t, bool readToo) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::Storage,
-                                              .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
+    graph_.passes_[pass_].accesses.push_back(
+        {.texture = t,
+         .state = gdi::ResourceState::Storage,
+         .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
 }
 void PassBuilder::copySource(TextureId t) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::CopySrc, .load = gdi::LoadOp::Load});
+    graph_.passes_[pass_].accesses.push_back(
+        {.texture = t, .state = gdi::ResourceState::CopySrc, .load = gdi::LoadOp::Load});
 }
 void PassBuilder::copyDestination(TextureId t, bool readToo) {
-    graph_.passes_[pass_].accesses.push_back({.texture = t, .state = gdi::ResourceState::CopyDst,
-                                              .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
+    graph_.passes_[pass_].accesses.push_back(
+        {.texture = t,
+         .state = gdi::ResourceState::CopyDst,
+         .load = readToo ? gdi::LoadOp::Load : gdi::LoadOp::DontCare});
 }
 void PassBuilder::buffer(BufferId b, gdi::BufferAccess access) {
     graph_.passes_[pass_].buffers.push_back({b, access});
@@ -84,21 +104,31 @@ TextureId RenderGraph::createTexture(std::string name, const TransientTextureDes
     TextureInfo t;
     t.name = std::move(name);
     if (d.sampleCount != 1 && d.sampleCount != 2 && d.sampleCount != 4 && d.sampleCount != 8)
-        throw gdi::Error("render graph: texture '" + name + "' has sample count " + std::to_string(d.sampleCount));
+        throw gdi::Error("render graph: texture '" + name + "' has sample count " +
+                         std::to_string(d.sampleCount));
     const bool cube = d.dimension == gdi::TextureDimension::TextureCube;
-    if (d.layers == 0 || (cube && d.layers != 6) || d.dimension == gdi::TextureDimension::Texture3D ||
+    if (d.layers == 0 || (cube && d.layers != 6) ||
+        d.dimension == gdi::TextureDimension::Texture3D ||
         (d.dimension == gdi::TextureDimension::Texture2D && d.layers != 1))
-        throw gdi::Error("render graph: texture '" + t.name + "' has " + std::to_string(d.layers) +
-                         " layers, which its dimension does not allow (2D: 1, cube: 6, arrays: 1 or more)");
-    t.desc = {.dimension = d.dimension, .format = d.format, .width = d.width, .height = d.height,
-              .depthOrLayers = d.layers, .sampleCount = d.sampleCount, .usage = gdi::TextureUsage::None};
+        throw gdi::Error(
+            "render graph: texture '" + t.name + "' has " + std::to_string(d.layers) +
+            " layers, which its dimension does not allow (2D: 1, cube: 6, arrays: 1 or more)");
+    t.desc = {.dimension = d.dimension,
+              .format = d.format,
+              .width = d.width,
+              .height = d.height,
+              .depthOrLayers = d.layers,
+              .sampleCount = d.sampleCount,
+              .usage = gdi::TextureUsage::None};
     textures_.push_back(std::move(t));
     compiled_ = false;
     return {uint32_t(textures_.size() - 1)};
 }
 
-TextureId RenderGraph::importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc) {
-    if (!texture) throw gdi::Error("render graph: imported texture '" + name + "' is a null handle");
+TextureId RenderGraph::importTexture(std::string name, gdi::TextureHandle texture,
+                                     const gdi::TextureDesc& desc) {
+    if (!texture)
+        throw gdi::Error("render graph: imported texture '" + name + "' is a null handle");
     TextureInfo t;
     t.name = std::move(name);
     t.desc = desc;
@@ -111,7 +141,8 @@ TextureId RenderGraph::importTexture(std::string name, gdi::TextureHandle textur
 }
 
 void RenderGraph::markOutput(TextureId t) {
-    if (t.index >= textures_.size()) throw gdi::Error("render graph: markOutput with an invalid texture id");
+    if (t.index >= textures_.size())
+        throw gdi::Error("render graph: markOutput with an invalid texture id");
     textures_[t.index].output = true;
     compiled_ = false;
 }
@@ -134,7 +165,8 @@ BufferId RenderGraph::importBuffer(std::string name, gdi::BufferHandle buffer, u
 }
 
 void RenderGraph::markOutput(BufferId b) {
-    if (b.index >= buffers_.size()) throw gdi::Error("render graph: markOutput with an invalid buffer id");
+    if (b.index >= buffers_.size())
+        throw gdi::Error("render graph: markOutput with an invalid buffer id");
     buffers_[b.index].output = true;
     compiled_ = false;
 }
@@ -147,7 +179,8 @@ const BufferInfo& RenderGraph::buffer(BufferId id) const {
 gdi::BufferHandle RenderGraph::handle(BufferId id) const {
     const BufferInfo& b = buffer(id);
     if (!bufferHandles_[id.index])
-        throw gdi::Error("render graph: buffer '" + b.name + "' has no GPU buffer (unused, culled or not compiled for a device)");
+        throw gdi::Error("render graph: buffer '" + b.name +
+                         "' has no GPU buffer (unused, culled or not compiled for a device)");
     return bufferHandles_[id.index];
 }
 
@@ -159,18 +192,19 @@ void RenderGraph::addPass(std::string name, const std::function<void(PassBuilder
     if (setup) setup(b);
     compiled_ = false;
 }
-void RenderGraph::replaceImport(TextureId id, gdi::TextureHandle texture, const gdi::TextureDesc& desc) {
+void RenderGraph::replaceImport(TextureId id, gdi::TextureHandle texture,
+                                const gdi::TextureDesc& desc) {
     if (id.index >= textures_.size()) throw gdi::Error("render graph: invalid texture id");
     TextureInfo& t = textures_[id.index];
     const std::string what = "render graph: replacing imported texture '" + t.name + "': ";
     if (!t.imported) throw gdi::Error(what + "it is not imported");
     if (!texture) throw gdi::Error(what + "a null handle");
-    if (desc.dimension != t.desc.dimension || desc.format != t.desc.format || desc.sampleCount != t.desc.sampleCount)
+    if (desc.dimension != t.desc.dimension || desc.format != t.desc.format ||
+        desc.sampleCount != t.desc.sampleCount)
         throw gdi::Error(what + "the new texture differs in dimension, format or samples");
     t.desc = desc;
     handles_[id.index] = texture;
 }
-
 
 const TextureInfo& RenderGraph::texture(TextureId id) const {
     if (id.index >= textures_.size()) throw gdi::Error("render graph: invalid texture id");
@@ -180,7 +214,8 @@ const TextureInfo& RenderGraph::texture(TextureId id) const {
 gdi::TextureHandle RenderGraph::handle(TextureId id) const {
     const TextureInfo& t = texture(id);
     if (id.index >= handles_.size() || !handles_[id.index])
-        throw gdi::Error("render graph: texture '" + t.name + "' has no GPU texture (unused, culled or not compiled for a device)");
+        throw gdi::Error("render graph: texture '" + t.name +
+                         "' has no GPU texture (unused, culled or not compiled for a device)");
     return handles_[id.index];
 }
 
@@ -196,8 +231,10 @@ void RenderGraph::cull() {
     for (size_t p = passes_.size(); p-- > 0;) {
         PassInfo& pass = passes_[p];
         bool alive = pass.sideEffect;
-        for (const TextureAccess& a : pass.accesses) alive = alive || (a.writes() && needed[a.texture.index]);
-        for (const BufferUse& u : pass.buffers) alive = alive || (u.writes() && bufferNeeded[u.buffer.index]);
+        for (const TextureAccess& a : pass.accesses)
+            alive = alive || (a.writes() && needed[a.texture.index]);
+        for (const BufferUse& u : pass.buffers)
+            alive = alive || (u.writes() && bufferNeeded[u.buffer.index]);
         pass.culled = !alive;
         if (!alive) continue;
         for (const TextureAccess& a : pass.accesses)
@@ -219,16 +256,18 @@ void RenderGraph::computeLifetimes() {
             if (t.firstPass < 0) {
                 t.firstPass = int(p);
                 if (a.reads() && !t.imported)
-                    throw gdi::Error("render graph: pass '" + passes_[p].name + "' reads transient texture '" + t.name +
+                    throw gdi::Error("render graph: pass '" + passes_[p].name +
+                                     "' reads transient texture '" + t.name +
                                      "' before any pass writes it");
             }
             t.lastPass = int(p);
             if (t.imported) continue;
-            t.desc.usage = t.desc.usage | (a.state == gdi::ResourceState::Storage ? gdi::TextureUsage::Storage
-                                           : a.state == gdi::ResourceState::CopySrc  ? gdi::TextureUsage::CopySrc
-                                           : a.state == gdi::ResourceState::CopyDst  ? gdi::TextureUsage::CopyDst
-                                           : a.writes()                              ? gdi::TextureUsage::RenderTarget
-                                                                                     : gdi::TextureUsage::Sampled);
+            t.desc.usage = t.desc.usage |
+                           (a.state == gdi::ResourceState::Storage   ? gdi::TextureUsage::Storage
+                            : a.state == gdi::ResourceState::CopySrc ? gdi::TextureUsage::CopySrc
+                            : a.state == gdi::ResourceState::CopyDst ? gdi::TextureUsage::CopyDst
+                            : a.writes() ? gdi::TextureUsage::RenderTarget
+                                         : gdi::TextureUsage::Sampled);
         }
     }
     for (size_t p = 0; p < passes_.size(); ++p) {
@@ -265,8 +304,10 @@ void RenderGraph::planBufferBarriers() {
             const uint32_t reads = access & ~BufferUse::kWriteBits;
             if (u.writes()) {
                 if (t.lastWrite || t.readsSince)
-                    pass.bufferBarriers.push_back({u.buffer, gdi::BufferAccess(t.lastWrite | t.readsSince), u.access});
-                t = {access & BufferUse::kWriteBits, reads, 0};  // its own reads are the pass's business
+                    pass.bufferBarriers.push_back(
+                        {u.buffer, gdi::BufferAccess(t.lastWrite | t.readsSince), u.access});
+                t = {access & BufferUse::kWriteBits, reads,
+                     0};  // its own reads are the pass's business
             } else if (t.lastWrite && (reads & ~t.visibleTo)) {
                 pass.bufferBarriers.push_back({u.buffer, gdi::BufferAccess(t.lastWrite), u.access});
                 t.visibleTo |= reads;
@@ -283,14 +324,16 @@ void RenderGraph::checkBufferUses() const {
         for (size_t k = 0; k < pass.buffers.size(); ++k) {
             const BufferUse& u = pass.buffers[k];
             if (u.buffer.index >= buffers_.size())
-                throw gdi::Error("render graph: pass '" + pass.name + "' uses an invalid buffer id");
+                throw gdi::Error("render graph: pass '" + pass.name +
+                                 "' uses an invalid buffer id");
             if (u.access == gdi::BufferAccess::None)
-                throw gdi::Error("render graph: pass '" + pass.name + "' uses buffer '" + buffers_[u.buffer.index].name +
-                                 "' with no access");
+                throw gdi::Error("render graph: pass '" + pass.name + "' uses buffer '" +
+                                 buffers_[u.buffer.index].name + "' with no access");
             for (size_t m = 0; m < k; ++m)
                 if (pass.buffers[m].buffer == u.buffer)
                     throw gdi::Error("render graph: pass '" + pass.name + "' declares buffer '" +
-                                     buffers_[u.buffer.index].name + "' twice (give every access in one call)");
+                                     buffers_[u.buffer.index].name +
+                                     "' twice (give every access in one call)");
         }
 }
 
@@ -310,7 +353,8 @@ void RenderGraph::planBarriers() {
                 // Imported textures: earlier work is ordered by the backend when the graph
                 // switches automatic barriers off. Transients start Undefined: their memory may
                 // hold another texture's bytes.
-                if (!t.imported) pass.barriers.push_back({a.texture, gdi::ResourceState::Undefined, a.state});
+                if (!t.imported)
+                    pass.barriers.push_back({a.texture, gdi::ResourceState::Undefined, a.state});
             } else if (state[i] != a.state || a.writes()) {
                 pass.barriers.push_back({a.texture, state[i], a.state});
             }
@@ -321,18 +365,22 @@ void RenderGraph::planBarriers() {
 
 // A resolve's source is a multisampled target of the same pass; its destination a
 // single-sample texture of the same format and size.
-void RenderGraph::checkResolve(const PassInfo& pass, const TextureAccess& a, const TextureInfo& dst) const {
+void RenderGraph::checkResolve(const PassInfo& pass, const TextureAccess& a,
+                               const TextureInfo& dst) const {
     if (a.resolveSource.index >= textures_.size())
         throw gdi::Error("render graph: pass '" + pass.name + "' resolves an invalid texture id");
     const TextureInfo& src = textures_[a.resolveSource.index];
-    const std::string what = "render graph: pass '" + pass.name + "' resolves '" + src.name + "' into '" + dst.name + "': ";
-    const bool target = std::any_of(pass.accesses.begin(), pass.accesses.end(), [&](const TextureAccess& o) {
-        return o.texture == a.resolveSource && o.writes() && !o.resolveSource.valid();
-    });
+    const std::string what = "render graph: pass '" + pass.name + "' resolves '" + src.name +
+                             "' into '" + dst.name + "': ";
+    const bool target =
+        std::any_of(pass.accesses.begin(), pass.accesses.end(), [&](const TextureAccess& o) {
+            return o.texture == a.resolveSource && o.writes() && !o.resolveSource.valid();
+        });
     if (!target) throw gdi::Error(what + "the source is not a target of this pass");
     if (src.desc.sampleCount == 1) throw gdi::Error(what + "the source is single-sample");
     if (dst.desc.sampleCount != 1) throw gdi::Error(what + "the destination is multisampled");
-    if (src.desc.format != dst.desc.format || src.desc.width != dst.desc.width || src.desc.height != dst.desc.height)
+    if (src.desc.format != dst.desc.format || src.desc.width != dst.desc.width ||
+        src.desc.height != dst.desc.height)
         throw gdi::Error(what + "format or size differ");
 }
 
@@ -344,43 +392,50 @@ void RenderGraph::compile(const CompileOptions& options) {
         for (size_t k = 0; k < pass.accesses.size(); ++k) {
             const TextureAccess& a = pass.accesses[k];
             if (a.texture.index >= textures_.size())
-                throw gdi::Error("render graph: pass '" + pass.name + "' uses an invalid texture id");
+                throw gdi::Error("render graph: pass '" + pass.name +
+                                 "' uses an invalid texture id");
             const TextureInfo& t = textures_[a.texture.index];
             for (size_t m = 0; m < k; ++m)
                 if (pass.accesses[m].texture == a.texture)
-                    throw gdi::Error("render graph: pass '" + pass.name + "' uses texture '" + t.name +
+                    throw gdi::Error("render graph: pass '" + pass.name + "' uses texture '" +
+                                     t.name +
                                      "' twice (a target cannot also be sampled in the same pass)");
             if (a.resolveSource.valid()) {
                 checkResolve(pass, a, t);
                 continue;
             }
-            if (a.writes() && a.state != gdi::ResourceState::Storage && a.layer >= t.desc.depthOrLayers)
-                throw gdi::Error("render graph: pass '" + pass.name + "' renders into layer " + std::to_string(a.layer) +
-                                 " of '" + t.name + "', which has " + std::to_string(t.desc.depthOrLayers));
+            if (a.writes() && a.state != gdi::ResourceState::Storage &&
+                a.layer >= t.desc.depthOrLayers)
+                throw gdi::Error("render graph: pass '" + pass.name + "' renders into layer " +
+                                 std::to_string(a.layer) + " of '" + t.name + "', which has " +
+                                 std::to_string(t.desc.depthOrLayers));
             if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
-                throw gdi::Error("render graph: pass '" + pass.name + "' samples multisampled texture '" + t.name +
+                throw gdi::Error("render graph: pass '" + pass.name +
+                                 "' samples multisampled texture '" + t.name +
                                  "'; resolve it into a single-sample texture first");
             // Storage images are addressed by the shader and copies by their regions, not a
             // render area: any sizes may mix.
             if (!isTarget(a.state)) continue;
             const bool isDepth = gdi::isDepthFormat(t.desc.format);
             if ((a.state == gdi::ResourceState::DepthTarget) != isDepth)
-                throw gdi::Error("render graph: pass '" + pass.name + "': texture '" + t.name + "' (" +
-                                 std::string(gdi::formatInfo(t.desc.format).name) + ") cannot be a " +
-                                 (isDepth ? "colour" : "depth") + " target");
+                throw gdi::Error("render graph: pass '" + pass.name + "': texture '" + t.name +
+                                 "' (" + std::string(gdi::formatInfo(t.desc.format).name) +
+                                 ") cannot be a " + (isDepth ? "colour" : "depth") + " target");
             if (a.state == gdi::ResourceState::DepthTarget && depth)
                 throw gdi::Error("render graph: pass '" + pass.name + "' has two depth targets");
             depth = depth || isDepth;
             if (w == 0) w = t.desc.width, h = t.desc.height;
             if (t.desc.width != w || t.desc.height != h)
-                throw gdi::Error("render graph: pass '" + pass.name + "': target '" + t.name + "' is " +
-                                 std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height) + ", the others " +
+                throw gdi::Error("render graph: pass '" + pass.name + "': target '" + t.name +
+                                 "' is " + std::to_string(t.desc.width) + "x" +
+                                 std::to_string(t.desc.height) + ", the others " +
                                  std::to_string(w) + "x" + std::to_string(h));
         }
     }
     for (PassInfo& pass : passes_)
         for (TextureAccess& a : pass.accesses)
-            a.partial = a.writes() && a.state != gdi::ResourceState::Storage && textures_[a.texture.index].desc.depthOrLayers > 1;
+            a.partial = a.writes() && a.state != gdi::ResourceState::Storage &&
+                        textures_[a.texture.index].desc.depthOrLayers > 1;
     for (TextureInfo& t : textures_) {
         t.firstPass = t.lastPass = -1;
         t.offset = 0;
@@ -401,8 +456,9 @@ void RenderGraph::compile(const CompileOptions& options) {
             t.size = r.size;
             t.alignment = std::max<uint64_t>(1, r.alignment);
         } else {
-            t.size = uint64_t(t.desc.width) * t.desc.height * gdi::formatInfo(t.desc.format).bytesPerPixel *
-                     t.desc.sampleCount * t.desc.depthOrLayers;
+            t.size = uint64_t(t.desc.width) * t.desc.height *
+                     gdi::formatInfo(t.desc.format).bytesPerPixel * t.desc.sampleCount *
+                     t.desc.depthOrLayers;
             t.alignment = 256;
         }
     }
@@ -416,7 +472,7 @@ void RenderGraph::compile(const CompileOptions& options) {
 void RenderGraph::release() {
     if (!device_) return;
     device_->waitIdleOrLost();  // also run by the destructor, which must not throw
-    objects_.reset();  // newest first: the placed textures before their heap
+    objects_.reset();           // newest first: the placed textures before their heap
     for (Executor& e : executors_) e.timer = {};
     for (size_t i = 0; i < textures_.size(); ++i)
         if (i < handles_.size() && !textures_[i].imported) handles_[i] = {};
@@ -429,8 +485,13 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
     release();
     const bool heaps = device.info().features.memoryAliasing;
     CompileOptions options;
-    options.aliasing = !aliasing ? AliasingMode::None : heaps ? AliasingMode::Memory : AliasingMode::ObjectReuse;
-    if (heaps) options.requirements = [&](const gdi::TextureDesc& d) { return device.textureMemoryRequirements(d); };
+    options.aliasing = !aliasing ? AliasingMode::None
+                       : heaps   ? AliasingMode::Memory
+                                 : AliasingMode::ObjectReuse;
+    if (heaps)
+        options.requirements = [&](const gdi::TextureDesc& d) {
+            return device.textureMemoryRequirements(d);
+        };
     compile(options);
 
     device_ = &device;
@@ -438,22 +499,26 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
     handles_.resize(textures_.size());
     gdi::HeapHandle heap;
     if (aliasing_ == AliasingMode::Memory && memory_.withAliasing > 0)
-        heap = objects_->add(device.createHeap({.size = memory_.withAliasing, .debugName = "render graph transients"}));
+        heap = objects_->add(device.createHeap(
+            {.size = memory_.withAliasing, .debugName = "render graph transients"}));
     for (size_t i = 0; i < textures_.size(); ++i) {
         const TextureInfo& t = textures_[i];
         if (t.imported || !t.used()) continue;
-        if (aliasing_ == AliasingMode::ObjectReuse && t.physical != int(i)) continue;  // shares below
+        if (aliasing_ == AliasingMode::ObjectReuse && t.physical != int(i))
+            continue;  // shares below
         gdi::TextureDesc d = t.desc;
         d.debugName = t.name.c_str();
         if (heap) d.heap = heap, d.heapOffset = t.offset;
         handles_[i] = objects_->add(device.createTexture(d));
     }
     for (size_t i = 0; i < textures_.size(); ++i)
-        if (!textures_[i].imported && textures_[i].used() && !handles_[i]) handles_[i] = handles_[textures_[i].physical];
+        if (!textures_[i].imported && textures_[i].used() && !handles_[i])
+            handles_[i] = handles_[textures_[i].physical];
     for (size_t i = 0; i < buffers_.size(); ++i) {
         const BufferInfo& b = buffers_[i];
         if (b.imported || !b.used()) continue;
-        bufferHandles_[i] = objects_->add(device.createBuffer({.size = b.size, .usage = b.usage, .debugName = b.name.c_str()}));
+        bufferHandles_[i] = objects_->add(
+            device.createBuffer({.size = b.size, .usage = b.usage, .debugName = b.name.c_str()}));
     }
     if (device.info().features.timestamps)
         for (size_t p = 0; p < passes_.size(); ++p)
@@ -470,17 +535,22 @@ void PassContext::beginRenderPass() {
     gdi::RenderPassDesc rp;
     std::vector<TextureId> colorIds;
     for (const TextureAccess& a : pass.accesses) {
-        if (!isTarget(a.state) || a.resolveSource.valid()) continue;  // storage images are no attachments
+        if (!isTarget(a.state) || a.resolveSource.valid())
+            continue;  // storage images are no attachments
         const TextureInfo& t = graph_.textures_[a.texture.index];
         // Contents nobody reads after this pass need not reach memory (a resolved multisampled
         // target's samples usually are not).
         const bool keep = t.imported || t.output || t.lastPass > int(pass_);
         const gdi::StoreOp store = keep ? gdi::StoreOp::Store : gdi::StoreOp::DontCare;
         if (a.state == gdi::ResourceState::DepthTarget) {
-            rp.depth = {.texture = texture(a.texture), .layer = a.layer, .load = a.load, .store = store,
+            rp.depth = {.texture = texture(a.texture),
+                        .layer = a.layer,
+                        .load = a.load,
+                        .store = store,
                         .clearDepth = a.clearDepth};
         } else {
-            gdi::ColorAttachment c{.texture = texture(a.texture), .layer = a.layer, .load = a.load, .store = store};
+            gdi::ColorAttachment c{
+                .texture = texture(a.texture), .layer = a.layer, .load = a.load, .store = store};
             std::copy(a.clearColor.begin(), a.clearColor.end(), c.clear);
             rp.colors.push_back(c);
             colorIds.push_back(a.texture);
@@ -489,15 +559,19 @@ void PassContext::beginRenderPass() {
     for (const TextureAccess& a : pass.accesses) {
         if (!a.resolveSource.valid()) continue;
         const auto it = std::find(colorIds.begin(), colorIds.end(), a.resolveSource);
-        if (it != colorIds.end()) rp.colors[size_t(it - colorIds.begin())].resolveTexture = texture(a.texture);
-        else rp.depth.resolveTexture = texture(a.texture);
+        if (it != colorIds.end())
+            rp.colors[size_t(it - colorIds.begin())].resolveTexture = texture(a.texture);
+        else
+            rp.depth.resolveTexture = texture(a.texture);
     }
     if (rp.colors.empty() && !rp.depth.texture)
-        throw gdi::Error("render graph: pass '" + pass.name + "' begins a render pass but declared no targets");
+        throw gdi::Error("render graph: pass '" + pass.name +
+                         "' begins a render pass but declared no targets");
     cmd.beginRenderPass(rp);
 }
 
-void RenderGraph::execute(gdi::CommandList& cmd, const std::function<void(const std::string&)>& afterPass) {
+void RenderGraph::execute(gdi::CommandList& cmd,
+                          const std::function<void(const std::string&)>& afterPass) {
     if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
     cmd.setAutomaticBarriers(false);
     std::vector<gdi::TextureBarrier> barriers;
@@ -506,11 +580,13 @@ void RenderGraph::execute(gdi::CommandList& cmd, const std::function<void(const 
         const PassInfo& pass = passes_[p];
         if (pass.culled) continue;
         barriers.clear();
-        for (const PlannedBarrier& b : pass.barriers) barriers.push_back({handle(b.texture), b.before, b.after});
+        for (const PlannedBarrier& b : pass.barriers)
+            barriers.push_back({handle(b.texture), b.before, b.after});
         cmd.barrier(barriers.data(), uint32_t(barriers.size()));
         bufferBarriers.clear();
         for (const PlannedBufferBarrier& b : pass.bufferBarriers)
-            bufferBarriers.push_back({.buffer = handle(b.buffer), .before = b.before, .after = b.after});
+            bufferBarriers.push_back(
+                {.buffer = handle(b.buffer), .before = b.before, .after = b.after});
         cmd.barrier(bufferBarriers.data(), uint32_t(bufferBarriers.size()));
         cmd.pushDebugGroup(pass.name.c_str());
         Executor& e = executors_[p];
@@ -533,7 +609,8 @@ std::vector<PassTiming> RenderGraph::passTimings() const {
     if (!device_) return out;
     for (size_t p = 0; p < passes_.size(); ++p)
         if (executors_[p].timed)
-            if (auto ns = device_->timerNanoseconds(executors_[p].timer)) out.push_back({passes_[p].name, *ns / 1e6});
+            if (auto ns = device_->timerNanoseconds(executors_[p].timer))
+                out.push_back({passes_[p].name, *ns / 1e6});
     return out;
 }
 
@@ -548,27 +625,32 @@ std::string RenderGraph::toDot() const {
     static const char* modeNames[] = {"none", "memory", "object reuse"};
     std::ostringstream o;
     o << "digraph RenderGraph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
-    o << "  label=" << quote("transient memory: " + kib(memory_.withoutAliasing) + " without aliasing, " +
-                             kib(memory_.withAliasing) + " with (" + modeNames[int(aliasing_)] + ")")
+    o << "  label="
+      << quote("transient memory: " + kib(memory_.withoutAliasing) + " without aliasing, " +
+               kib(memory_.withAliasing) + " with (" + modeNames[int(aliasing_)] + ")")
       << ";\n";
     for (size_t p = 0; p < passes_.size(); ++p) {
         const PassInfo& pass = passes_[p];
         std::string label = std::to_string(p) + ": " + pass.name;
         for (const PlannedBarrier& b : pass.barriers)
-            label += "\\n" + textures_[b.texture.index].name + ": " + gdi::resourceStateName(b.before) + " -> " +
-                     gdi::resourceStateName(b.after);
+            label += "\\n" + textures_[b.texture.index].name + ": " +
+                     gdi::resourceStateName(b.before) + " -> " + gdi::resourceStateName(b.after);
         if (pass.culled) label += "\\n(culled)";
         o << "  p" << p << " [shape=box, label=" << quote(label)
-          << (pass.culled ? ", style=dashed, color=gray50, fontcolor=gray50" : ", style=filled, fillcolor=lightblue")
+          << (pass.culled ? ", style=dashed, color=gray50, fontcolor=gray50"
+                          : ", style=filled, fillcolor=lightblue")
           << "];\n";
     }
     for (size_t i = 0; i < textures_.size(); ++i) {
         const TextureInfo& t = textures_[i];
-        std::string label = t.name + "\\n" + std::string(gdi::formatInfo(t.desc.format).name) + " " +
-                            std::to_string(t.desc.width) + "x" + std::to_string(t.desc.height);
+        std::string label = t.name + "\\n" + std::string(gdi::formatInfo(t.desc.format).name) +
+                            " " + std::to_string(t.desc.width) + "x" +
+                            std::to_string(t.desc.height);
         if (t.imported) label += "\\nimported";
-        if (!t.used()) label += "\\nunused";
-        else label += "\\npasses " + std::to_string(t.firstPass) + "-" + std::to_string(t.lastPass);
+        if (!t.used())
+            label += "\\nunused";
+        else
+            label += "\\npasses " + std::to_string(t.firstPass) + "-" + std::to_string(t.lastPass);
         if (!t.imported && t.used()) {
             label += "\\n" + kib(t.size);
             if (aliasing_ == AliasingMode::Memory) label += " @ " + std::to_string(t.offset);
@@ -576,13 +658,15 @@ std::string RenderGraph::toDot() const {
                 label += "\\nreuses " + textures_[t.physical].name;
         }
         o << "  t" << i << " [shape=ellipse, label=" << quote(label)
-          << (t.output ? ", peripheries=2" : "") << (t.used() ? "" : ", style=dashed, color=gray50") << "];\n";
+          << (t.output ? ", peripheries=2" : "") << (t.used() ? "" : ", style=dashed, color=gray50")
+          << "];\n";
     }
     for (size_t i = 0; i < buffers_.size(); ++i) {
         const BufferInfo& b = buffers_[i];
-        std::string label = b.name + "\\nbuffer " + std::to_string(b.size) + " B" + (b.imported ? "\\nimported" : "");
-        o << "  b" << i << " [shape=cylinder, label=" << quote(label) << (b.used() ? "" : ", style=dashed, color=gray50")
-          << "];\n";
+        std::string label = b.name + "\\nbuffer " + std::to_string(b.size) + " B" +
+                            (b.imported ? "\\nimported" : "");
+        o << "  b" << i << " [shape=cylinder, label=" << quote(label)
+          << (b.used() ? "" : ", style=dashed, color=gray50") << "];\n";
     }
     for (size_t p = 0; p < passes_.size(); ++p)
         for (const BufferUse& u : passes_[p].buffers) {

@@ -79,19 +79,20 @@ struct TextureAccess {
     // Valid for a resolve destination: the multisampled target of the same pass it receives.
     // Resolves write in the colour-output stage on Vulkan, depth too, so the state is RenderTarget.
     TextureId resolveSource;
-    uint32_t layer = 0;     // targets: the layer rendered into (layered textures)
-    bool partial = false;   // a target that is one layer of several: the others keep their contents
-    bool reads() const;   // sampled, or a target or storage image whose old contents are loaded
-    bool writes() const;  // a target or a storage image
+    uint32_t layer = 0;    // targets: the layer rendered into (layered textures)
+    bool partial = false;  // a target that is one layer of several: the others keep their contents
+    bool reads() const;    // sampled, or a target or storage image whose old contents are loaded
+    bool writes() const;   // a target or a storage image
 };
 
 class PassBuilder {
 public:
     // Attachments in declaration order (colour index 0, 1, ...). `layer`: the layer of a layered
     // texture this pass renders into; passes writing different layers all survive culling.
-    void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, std::array<float, 4> clear = {0, 0, 0, 0},
-                     uint32_t layer = 0);
-    void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear, float clearDepth = 1.0f, uint32_t layer = 0);
+    void colorTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear,
+                     std::array<float, 4> clear = {0, 0, 0, 0}, uint32_t layer = 0);
+    void depthTarget(TextureId texture, gdi::LoadOp load = gdi::LoadOp::Clear,
+                     float clearDepth = 1.0f, uint32_t layer = 0);
     // At the end of the pass, the multisampled target `source` (colour: the average of each
     // pixel's samples; depth: sample 0) is written into single-sample `destination`.
     void resolve(TextureId source, TextureId destination);
@@ -127,7 +128,8 @@ public:
 
 private:
     friend class RenderGraph;
-    PassContext(gdi::CommandList& c, const class RenderGraph& g, uint32_t pass) : cmd(c), graph_(g), pass_(pass) {}
+    PassContext(gdi::CommandList& c, const class RenderGraph& g, uint32_t pass)
+        : cmd(c), graph_(g), pass_(pass) {}
     const RenderGraph& graph_;
     uint32_t pass_;
 };
@@ -174,7 +176,8 @@ public:
     RenderGraph& operator=(const RenderGraph&) = delete;
 
     TextureId createTexture(std::string name, const TransientTextureDesc& desc);
-    TextureId importTexture(std::string name, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
+    TextureId importTexture(std::string name, gdi::TextureHandle texture,
+                            const gdi::TextureDesc& desc);
     // Points an imported texture at another of the same kind, format and samples (a buffer that
     // grew: its size may differ) for the frames recorded from now on; no recompile is needed.
     void replaceImport(TextureId id, gdi::TextureHandle texture, const gdi::TextureDesc& desc);
@@ -194,7 +197,8 @@ public:
     // Records every surviving pass. Requires compile(device). `afterPass`, when given, runs after
     // each pass with its name (a profiling run flushes and waits there); the graph then records
     // on into the same list.
-    void execute(gdi::CommandList& cmd, const std::function<void(const std::string& pass)>& afterPass = {});
+    void execute(gdi::CommandList& cmd,
+                 const std::function<void(const std::string& pass)>& afterPass = {});
 
     const std::vector<PassInfo>& passes() const { return passes_; }
     const std::vector<TextureInfo>& textures() const { return textures_; }
@@ -230,7 +234,7 @@ private:
     // are placed in), released on recompile and destruction.
     std::optional<gdi::DeviceObjects> objects_;
     std::vector<TextureInfo> textures_;
-    std::vector<gdi::TextureHandle> handles_;   // per texture
+    std::vector<gdi::TextureHandle> handles_;  // per texture
     std::vector<BufferInfo> buffers_;
     std::vector<gdi::BufferHandle> bufferHandles_;  // per buffer
     std::vector<PassInfo> passes_;

@@ -32,7 +32,7 @@ struct BenchCase {
     // frame 1/30 s later (looping): every frame then poses the scene and deforms its meshes.
     std::string animation;
     double time = 0.0;
-    RenderSettings settings;                // technique, size and every option
+    RenderSettings settings;  // technique, size and every option
     // "spheres/redeferred/scale2", unique within a sweep: the key compareResults() matches on.
     std::string key() const;
 };
@@ -43,7 +43,8 @@ struct BenchOptions {
     // lasts at least this long, so that the GPU's clocks have risen before the timed frames.
     double warmupSeconds = 1.0;
     uint32_t frames = 5;
-    uint32_t referenceIblSamples = 4096;  // the converged integral (EnvironmentTests: 8192 changes it by < 1 %)
+    uint32_t referenceIblSamples =
+        4096;  // the converged integral (EnvironmentTests: 8192 changes it by < 1 %)
     // The Khronos validation layer / GL debug output on (tests); each backend's record then
     // counts its validation errors. Off for measuring: the layer's cost is not the engine's.
     bool validation = false;
@@ -86,7 +87,8 @@ std::vector<BenchCase> quickSweep();
 // an illumination scale without an I-buffer). bench/sweeps/ holds the documented sweeps.
 std::vector<BenchCase> sweepFromJson(const gdi::Json& sweep);
 
-gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends, const BenchOptions& options,
+gdi::Json runBench(const std::vector<BenchCase>& cases, const std::vector<std::string>& backends,
+                   const BenchOptions& options,
                    const std::function<void(const BenchProgress&)>& progress = {});
 std::string resultsCsv(const gdi::Json& results);
 
@@ -95,15 +97,18 @@ std::string resultsCsv(const gdi::Json& results);
 // refusal, or non-finite pixels) and the case's bound; fe bench adds them to its results as
 // "stability", and the report shows them as a technique x case table. `caseNames`: only the
 // cases named by one of its comma-separated parts (stabilityCases(names)); empty: every case.
-gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width = 48, uint32_t height = 36,
-                       const std::function<void(const BenchProgress&)>& progress = {}, const std::string& caseNames = {});
+gdi::Json runStability(const std::vector<std::string>& backends, uint32_t width = 48,
+                       uint32_t height = 36,
+                       const std::function<void(const BenchProgress&)>& progress = {},
+                       const std::string& caseNames = {});
 
 struct BenchComparison {
-    std::string report;      // one line per matched measurement that changed, then a summary
+    std::string report;  // one line per matched measurement that changed, then a summary
     bool regression = false;
 };
 // B against A, matched by backend and case key: CPU frame-time ratio B/A beyond `timeRatio` or
 // an error increase (percentage of pixels over 5/255) beyond `errorPoints` is a regression.
-BenchComparison compareResults(const gdi::Json& a, const gdi::Json& b, double timeRatio = 1.25, double errorPoints = 0.5);
+BenchComparison compareResults(const gdi::Json& a, const gdi::Json& b, double timeRatio = 1.25,
+                               double errorPoints = 0.5);
 
 }  // namespace fe::render

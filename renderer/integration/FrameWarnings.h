@@ -25,9 +25,10 @@ std::string outOfView(const assets::Scene& scene, const assets::Camera& camera, 
 // naming the materials and the techniques that can: KHR_materials_ior / specular (a dielectric
 // other than F0 0.04, F90 1) or KHR_materials_clearcoat on a G-buffer technique or under the
 // separable BRDF.
-std::vector<std::string> materialWarnings(const assets::Scene& scene, const RenderSettings& settings);
+std::vector<std::string> materialWarnings(const assets::Scene& scene,
+                                          const RenderSettings& settings);
 
-std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera, const RenderSettings& settings,
-                                       const gdi::Image& display);
+std::vector<std::string> frameWarnings(const assets::Scene& scene, const assets::Camera& camera,
+                                       const RenderSettings& settings, const gdi::Image& display);
 
 }  // namespace fe::render

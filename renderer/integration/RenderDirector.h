@@ -50,9 +50,9 @@ struct DirectorOptions {
 
 // What in a scene drives the choice.
 struct SceneNeeds {
-    uint32_t lights = 0;          // every light
-    uint32_t boundedLights = 0;   // point and spot lights with a range (cullable per tile)
-    uint32_t blendPrimitives = 0; // instances x primitives with BLEND materials
+    uint32_t lights = 0;           // every light
+    uint32_t boundedLights = 0;    // point and spot lights with a range (cullable per tile)
+    uint32_t blendPrimitives = 0;  // instances x primitives with BLEND materials
     // Instances x primitives whose material only a full-material technique shows
     // (assets::Material::needsFullMaterial: KHR_materials_ior / specular / clearcoat).
     uint32_t fullMaterialPrimitives = 0;
@@ -68,8 +68,9 @@ SceneNeeds sceneNeeds(const assets::Scene& scene, float aspect);
 
 // Settings with technique "auto" get one chosen; any other technique is kept as asked. With a
 // device, an error budget is checked by probe frames; without one it is reported as unused.
-DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested, const gdi::DeviceInfo& info,
-                      gdi::Device* probeDevice = nullptr, const DirectorOptions& options = {});
+DirectorChoice direct(const assets::Scene& scene, const RenderSettings& requested,
+                      const gdi::DeviceInfo& info, gdi::Device* probeDevice = nullptr,
+                      const DirectorOptions& options = {});
 
 // The error-budget metric (DirectorOptions::errorBudgetPercent) between two linear L_o images.
 double percentPixelsOver5Of255(const gdi::Image& a, const gdi::Image& b, float exposure);

@@ -36,9 +36,9 @@ using graph::PassTiming;
 
 // Lights evaluated per pixel with a surface in the last frame (RenderSettings::lightListStatistics).
 struct LightListStatistics {
-    std::string lists;       // "every light", "tile lists", "cluster lists" or "not measured (...)"
+    std::string lists;  // "every light", "tile lists", "cluster lists" or "not measured (...)"
     bool measured = false;
-    uint32_t pixels = 0;     // pixels with a surface
+    uint32_t pixels = 0;  // pixels with a surface
     double mean = 0;
     uint32_t p95 = 0, max = 0;
     // Mean lights whose range reaches the pixel's surface: what any exact culling walks at least,
@@ -87,12 +87,14 @@ public:
     // for the frame, else `profiled` flush-and-wait frames rendered now.
     using PassSamples = std::vector<std::pair<std::string, std::vector<double>>>;
     struct PassTimes {
-        std::string method;         // "gpu-timestamps" or "flush-and-wait"
-        double timestampShare = 0;  // the timestamps' medians summed, over the frames' median wall time
-        PassSamples passes;         // by that method
-        PassSamples timestamps;     // as given
+        std::string method;  // "gpu-timestamps" or "flush-and-wait"
+        double timestampShare =
+            0;               // the timestamps' medians summed, over the frames' median wall time
+        PassSamples passes;  // by that method
+        PassSamples timestamps;  // as given
     };
-    PassTimes measurePassTimes(const PassSamples& timestamps, const std::vector<double>& frameMs, uint32_t profiled);
+    PassTimes measurePassTimes(const PassSamples& timestamps, const std::vector<double>& frameMs,
+                               uint32_t profiled);
     const graph::RenderGraph& graph() const { return graph_; }
     GpuScene& gpuScene() { return *gpuScene_; }
     // Replaces the scene's lights (scene order, e.g. an animation frame): uploaded in the order
@@ -132,32 +134,34 @@ private:
     std::unique_ptr<CommandQueue> queue_;
     std::unique_ptr<GpuScene> gpuScene_;
     std::unique_ptr<GeometryRenderer> geometry_;
-    FrameConstants frame_{};            // of the frame being recorded
-    UploadAllocation frameConstants_;   // its upload
+    FrameConstants frame_{};           // of the frame being recorded
+    UploadAllocation frameConstants_;  // its upload
     gdi::SamplerHandle pointSampler_;
     gdi::ShaderHandle fullscreenVs_;
     std::unique_ptr<PostProcess> postProcess_;
-    gdi::ShaderHandle debugViewFs_;       // RenderSettings::debugView
-    gdi::PipelineHandle debugViewPipeline_;  // tone mapping and antialiasing, ending in the display image
+    gdi::ShaderHandle debugViewFs_;  // RenderSettings::debugView
+    gdi::PipelineHandle
+        debugViewPipeline_;  // tone mapping and antialiasing, ending in the display image
     std::unique_ptr<TechniqueContext> context_;
     std::unique_ptr<TechniqueRenderer> technique_;
     std::unique_ptr<VfxRenderer> vfx_;             // when the scene has particle emitters
     std::unique_ptr<EnvironmentMap> environment_;  // when the scene has an environment
     std::unique_ptr<BackgroundPass> background_;
-    std::unique_ptr<TransmissionPass> transmission_;  // with transmissive surfaces
-    std::unique_ptr<MeshDeformation> deformation_;    // with skinned or morphed instances
+    std::unique_ptr<TransmissionPass> transmission_;       // with transmissive surfaces
+    std::unique_ptr<MeshDeformation> deformation_;         // with skinned or morphed instances
     std::unique_ptr<PrefilteredEnvironment> prefiltered_;  // image-based lighting's fast path
     ShadowPlan shadowPlan_;
-    std::unique_ptr<ShadowMaps> shadows_;          // when some light casts shadows
-    std::unique_ptr<ClusterLightGrid> clusters_;   // TechniqueContext::clusters
-    gdi::TextureHandle listCounts_;                // lights evaluated per pixel (R32U), with statistics
-    gdi::TextureHandle reachingCounts_;            // lights reaching each pixel's surface (R32U), with statistics
-    graph::TextureId listCountsId_;                // listCounts_ in the graph
+    std::unique_ptr<ShadowMaps> shadows_;         // when some light casts shadows
+    std::unique_ptr<ClusterLightGrid> clusters_;  // TechniqueContext::clusters
+    gdi::TextureHandle listCounts_;  // lights evaluated per pixel (R32U), with statistics
+    gdi::TextureHandle
+        reachingCounts_;             // lights reaching each pixel's surface (R32U), with statistics
+    graph::TextureId listCountsId_;  // listCounts_ in the graph
     gdi::ShaderHandle listStatisticsCs_;
     gdi::PipelineHandle listStatisticsPipeline_;
-    std::vector<assets::Light> sceneLights_;       // the current lights, scene order
-    assets::Camera camera_;                        // the current camera
-    uint64_t frameIndex_ = 0;                      // frames rendered
+    std::vector<assets::Light> sceneLights_;  // the current lights, scene order
+    assets::Camera camera_;                   // the current camera
+    uint64_t frameIndex_ = 0;                 // frames rendered
     glm::mat4 prevViewProj_{1.0f};
     graph::RenderGraph graph_;
     graph::TextureId output_, display_, depth_;
@@ -170,7 +174,8 @@ private:
 // light at every pixel, far slower than the technique it measures, so a caller that times frames
 // measures them here rather than in its timed renderer. `prepare`, when given, sets that renderer
 // up as the caller's last frame was (updateLights, setCamera) before it renders.
-LightListStatistics measureLightLists(gdi::Device& device, const assets::Scene& scene, RenderSettings settings,
+LightListStatistics measureLightLists(gdi::Device& device, const assets::Scene& scene,
+                                      RenderSettings settings,
                                       const std::function<void(SceneRenderer&)>& prepare = {});
 
 }  // namespace fe::render

@@ -15,7 +15,8 @@ namespace fe::render {
 
 struct StabilityCase {
     std::string name;
-    std::function<assets::Scene()> scene;  // built without finalizeScene's checks where it must be broken
+    std::function<assets::Scene()>
+        scene;  // built without finalizeScene's checks where it must be broken
     // Bound on the percentage of pixels beyond 5/255 of the reference for the exact techniques
     // (negative: not compared).
     double exactBound = 1.0;
@@ -38,13 +39,14 @@ std::vector<StabilityCase> stabilityCases(const std::string& names);
 
 struct StabilityOutcome {
     bool refused = false;
-    std::string message;      // the refusal
-    uint32_t nonFinite = 0;   // channels that are NaN or infinite
-    double percentOver5 = -1; // against the reference (-1: not compared)
+    std::string message;       // the refusal
+    uint32_t nonFinite = 0;    // channels that are NaN or infinite
+    double percentOver5 = -1;  // against the reference (-1: not compared)
 };
 // Renders one case with one technique at width x height (`reference`: the case's CPU reference
 // radiance, empty when not compared).
-StabilityOutcome runStabilityCase(gdi::Device& device, const assets::Scene& scene, const std::string& technique,
-                                  uint32_t width, uint32_t height, const std::vector<glm::dvec3>& reference);
+StabilityOutcome runStabilityCase(gdi::Device& device, const assets::Scene& scene,
+                                  const std::string& technique, uint32_t width, uint32_t height,
+                                  const std::vector<glm::dvec3>& reference);
 
 }  // namespace fe::render

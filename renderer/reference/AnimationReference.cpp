@@ -12,7 +12,9 @@ namespace {
 
 using glm::dquat;
 
-dquat quatAt(const std::vector<double>& v, size_t at) { return dquat(v[at + 3], v[at], v[at + 1], v[at + 2]); }
+dquat quatAt(const std::vector<double>& v, size_t at) {
+    return dquat(v[at + 3], v[at], v[at + 1], v[at + 2]);
+}
 
 // glTF 2.0 Appendix C's slerp, in double: the shorter arc; a lerp where the arc vanishes.
 dquat slerp(dquat a, dquat b, double u) {
@@ -27,7 +29,10 @@ dquat slerp(dquat a, dquat b, double u) {
 std::vector<double> sample(const assets::AnimationSampler& s, double t, bool rotation) {
     const size_t w = s.width, keys = s.times.size();
     const bool cubic = s.interpolation == assets::Interpolation::CubicSpline;
-    auto element = [&](size_t e) { return std::vector<double>(s.values.begin() + long(e * w), s.values.begin() + long((e + 1) * w)); };
+    auto element = [&](size_t e) {
+        return std::vector<double>(s.values.begin() + long(e * w),
+                                   s.values.begin() + long((e + 1) * w));
+    };
     auto value = [&](size_t k) { return element(cubic ? 3 * k + 1 : k); };
     if (t <= s.times.front()) return value(0);
     if (t >= s.times.back()) return value(keys - 1);
@@ -50,8 +55,8 @@ std::vector<double> sample(const assets::AnimationSampler& s, double t, bool rot
     const std::vector<double> b0 = element(3 * k + 2), a1 = element(3 * (k + 1));
     const double u2 = u * u, u3 = u2 * u;
     for (size_t c = 0; c < w; ++c)
-        out[c] = (2 * u3 - 3 * u2 + 1) * v0[c] + dt * (u3 - 2 * u2 + u) * b0[c] + (-2 * u3 + 3 * u2) * v1[c] +
-                 dt * (u3 - u2) * a1[c];
+        out[c] = (2 * u3 - 3 * u2 + 1) * v0[c] + dt * (u3 - 2 * u2 + u) * b0[c] +
+                 (-2 * u3 + 3 * u2) * v1[c] + dt * (u3 - u2) * a1[c];
     if (rotation) {
         const dquat q = glm::normalize(quatAt(out, 0));
         return {q.x, q.y, q.z, q.w};
@@ -59,7 +64,9 @@ std::vector<double> sample(const assets::AnimationSampler& s, double t, bool rot
     return out;
 }
 
-glm::dmat4 cofactorNormalMatrix(const glm::dmat4& m) { return glm::dmat4(glm::transpose(glm::inverse(glm::dmat3(m)))); }
+glm::dmat4 cofactorNormalMatrix(const glm::dmat4& m) {
+    return glm::dmat4(glm::transpose(glm::inverse(glm::dmat3(m))));
+}
 
 }  // namespace
 
@@ -84,11 +91,15 @@ ReferencePose evaluatePose(const assets::Scene& scene, const assets::PoseTime& t
         double t = time.seconds;
         if (time.loop && a.duration > 0.0f) t -= std::floor(t / a.duration) * a.duration;
         for (const assets::AnimationChannel& c : a.channels) {
-            const std::vector<double> v = sample(a.samplers[c.sampler], t, c.path == assets::AnimationPath::Rotation);
-            if (c.path == assets::AnimationPath::Translation) translation[c.node] = {v[0], v[1], v[2]};
+            const std::vector<double> v =
+                sample(a.samplers[c.sampler], t, c.path == assets::AnimationPath::Rotation);
+            if (c.path == assets::AnimationPath::Translation)
+                translation[c.node] = {v[0], v[1], v[2]};
             if (c.path == assets::AnimationPath::Scale) scale[c.node] = {v[0], v[1], v[2]};
-            if (c.path == assets::AnimationPath::Rotation) rotation[c.node] = glm::normalize(quatAt(v, 0));
-            if (c.path == assets::AnimationPath::Weights) nodeWeights[c.node] = v, animated[c.node] = 1;
+            if (c.path == assets::AnimationPath::Rotation)
+                rotation[c.node] = glm::normalize(quatAt(v, 0));
+            if (c.path == assets::AnimationPath::Weights)
+                nodeWeights[c.node] = v, animated[c.node] = 1;
         }
     }
     ReferencePose pose;
@@ -99,9 +110,11 @@ ReferencePose evaluatePose(const assets::Scene& scene, const assets::PoseTime& t
         for (size_t i = 0; i < n; ++i) {
             const int32_t p = scene.nodes[i].parent;
             if (done[i] || (p >= 0 && !done[size_t(p)])) continue;
-            const glm::dmat4 local = scene.nodes[i].matrix ? glm::dmat4(*scene.nodes[i].matrix)
-                                                           : glm::translate(glm::dmat4(1.0), translation[i]) *
-                                                                 glm::mat4_cast(rotation[i]) * glm::scale(glm::dmat4(1.0), scale[i]);
+            const glm::dmat4 local = scene.nodes[i].matrix
+                                         ? glm::dmat4(*scene.nodes[i].matrix)
+                                         : glm::translate(glm::dmat4(1.0), translation[i]) *
+                                               glm::mat4_cast(rotation[i]) *
+                                               glm::scale(glm::dmat4(1.0), scale[i]);
             pose.nodeWorld[i] = (p >= 0 ? pose.nodeWorld[size_t(p)] : glm::dmat4(1.0)) * local;
             done[i] = 1, --remaining;
         }
@@ -114,12 +127,15 @@ ReferencePose evaluatePose(const assets::Scene& scene, const assets::PoseTime& t
             world = nodeWorld * glm::dmat4(inst.local);
             const assets::Mesh& mesh = scene.meshes[inst.meshIndex];
             size_t targets = 0;
-            for (const assets::Primitive& p : mesh.primitives) targets = std::max(targets, p.targets.size());
+            for (const assets::Primitive& p : mesh.primitives)
+                targets = std::max(targets, p.targets.size());
             if (targets) {
                 const assets::Node& node = scene.nodes[size_t(inst.node)];
-                std::vector<double> given = animated[size_t(inst.node)] ? nodeWeights[size_t(inst.node)]
-                                          : !node.weights.empty() ? std::vector<double>(node.weights.begin(), node.weights.end())
-                                                                  : std::vector<double>(mesh.weights.begin(), mesh.weights.end());
+                std::vector<double> given =
+                    animated[size_t(inst.node)] ? nodeWeights[size_t(inst.node)]
+                    : !node.weights.empty()
+                        ? std::vector<double>(node.weights.begin(), node.weights.end())
+                        : std::vector<double>(mesh.weights.begin(), mesh.weights.end());
                 given.resize(targets, 0.0);
                 weights = given;
             }
@@ -137,7 +153,8 @@ ReferencePose evaluatePose(const assets::Scene& scene, const assets::PoseTime& t
     return pose;
 }
 
-std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim, const std::vector<glm::dmat4>& joints,
+std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim,
+                                           const std::vector<glm::dmat4>& joints,
                                            const std::vector<double>& weights) {
     std::vector<DeformedVertex> out(prim.vertices.size());
     for (size_t i = 0; i < prim.vertices.size(); ++i) {
@@ -154,7 +171,8 @@ std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim, const 
             for (int set = 0; set < 2; ++set)
                 for (int k = 0; k < 4; ++k)
                     if (prim.skin[i].weights[set][k] != 0.0f)
-                        m += double(prim.skin[i].weights[set][k]) * joints.at(prim.skin[i].joints[set][k]);
+                        m += double(prim.skin[i].weights[set][k]) *
+                             joints.at(prim.skin[i].joints[set][k]);
             p = glm::dvec3(m * glm::dvec4(p, 1.0));
             nrm = glm::dmat3(cofactorNormalMatrix(m)) * nrm;
             tan = glm::dmat3(m) * tan;
@@ -162,25 +180,32 @@ std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim, const 
         out[i].position = p;
         out[i].normal = glm::length(nrm) > 0.0 ? glm::normalize(nrm) : glm::dvec3(v.normal);
         tan -= out[i].normal * glm::dot(out[i].normal, tan);
-        out[i].tangent = glm::dvec4(glm::length(tan) > 1e-12 ? glm::normalize(tan) : glm::dvec3(v.tangent), v.tangent.w);
+        out[i].tangent = glm::dvec4(
+            glm::length(tan) > 1e-12 ? glm::normalize(tan) : glm::dvec3(v.tangent), v.tangent.w);
     }
     if (prim.flatNormals)
         for (size_t t = 0; t + 2 < out.size(); t += 3) {
-            const glm::dvec3 f = glm::cross(out[t + 1].position - out[t].position, out[t + 2].position - out[t].position);
+            const glm::dvec3 f = glm::cross(out[t + 1].position - out[t].position,
+                                            out[t + 2].position - out[t].position);
             if (!(glm::length(f) > 0.0)) continue;
             for (size_t k = 0; k < 3; ++k) {
                 out[t + k].normal = glm::normalize(f);
-                glm::dvec3 tan = glm::dvec3(out[t + k].tangent) - out[t + k].normal * glm::dot(out[t + k].normal, glm::dvec3(out[t + k].tangent));
-                if (glm::length(tan) > 1e-12) out[t + k].tangent = glm::dvec4(glm::normalize(tan), out[t + k].tangent.w);
+                glm::dvec3 tan =
+                    glm::dvec3(out[t + k].tangent) -
+                    out[t + k].normal * glm::dot(out[t + k].normal, glm::dvec3(out[t + k].tangent));
+                if (glm::length(tan) > 1e-12)
+                    out[t + k].tangent = glm::dvec4(glm::normalize(tan), out[t + k].tangent.w);
             }
         }
     return out;
 }
 
-std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim, const assets::MeshInstance& inst) {
+std::vector<DeformedVertex> deformVertices(const assets::Primitive& prim,
+                                           const assets::MeshInstance& inst) {
     std::vector<glm::dmat4> joints(inst.joints.begin(), inst.joints.end());
     if (inst.skin < 0) joints.clear();
-    return deformVertices(prim, joints, std::vector<double>(inst.weights.begin(), inst.weights.end()));
+    return deformVertices(prim, joints,
+                          std::vector<double>(inst.weights.begin(), inst.weights.end()));
 }
 
 }  // namespace fe::render

@@ -31,9 +31,11 @@ struct DeformedVertex {
 // The primitive's vertices morphed by `weights` then skinned by `joints` (either may be empty),
 // in the space of the instance's node; normals and tangents unit length, a flat primitive's
 // normals those of its deformed faces.
-std::vector<DeformedVertex> deformVertices(const assets::Primitive& primitive, const std::vector<glm::dmat4>& joints,
+std::vector<DeformedVertex> deformVertices(const assets::Primitive& primitive,
+                                           const std::vector<glm::dmat4>& joints,
                                            const std::vector<double>& weights);
 // The same with an instance's pose as the scene holds it (assets::poseScene's float matrices).
-std::vector<DeformedVertex> deformVertices(const assets::Primitive& primitive, const assets::MeshInstance& instance);
+std::vector<DeformedVertex> deformVertices(const assets::Primitive& primitive,
+                                           const assets::MeshInstance& instance);
 
 }  // namespace fe::render

@@ -49,8 +49,10 @@ inline float projectionAspect(const assets::Camera& camera, float viewportAspect
 
 // The camera's projection for a viewport of `viewportAspect` (width / height).
 inline glm::mat4 projection(const assets::Camera& camera, float viewportAspect) {
-    if (camera.orthographic) return orthographicProjection(*camera.orthographic, camera.znear, camera.zfar);
-    return projection(camera.yfov, projectionAspect(camera, viewportAspect), camera.znear, camera.zfar);
+    if (camera.orthographic)
+        return orthographicProjection(*camera.orthographic, camera.znear, camera.zfar);
+    return projection(camera.yfov, projectionAspect(camera, viewportAspect), camera.znear,
+                      camera.zfar);
 }
 
 inline glm::mat4 viewProjection(const assets::Camera& camera, float aspect) {

@@ -22,7 +22,8 @@ struct WorldTriangle {
     uint32_t material;
     int32_t surface;
     bool mirrored;
-    glm::dvec3 meshScale;  // the lengths of the instance's axes: KHR_materials_volume's thickness scale
+    glm::dvec3
+        meshScale;  // the lengths of the instance's axes: KHR_materials_volume's thickness scale
 };
 
 struct SurfaceBox {
@@ -30,16 +31,20 @@ struct SurfaceBox {
     size_t first, count;
 };
 
-double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double srgbToLinear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
 
 double wrapCoord(double u, assets::Wrap w) {
     switch (w) {
-        case assets::Wrap::ClampToEdge: return std::clamp(u, 0.0, 1.0);
+        case assets::Wrap::ClampToEdge:
+            return std::clamp(u, 0.0, 1.0);
         case assets::Wrap::MirroredRepeat: {
             double f = u - 2.0 * std::floor(u / 2.0);
             return f > 1.0 ? 2.0 - f : f;
         }
-        default: return u - std::floor(u);
+        default:
+            return u - std::floor(u);
     }
 }
 
@@ -56,37 +61,47 @@ glm::dvec4 sample(const assets::TextureImage& img, glm::dvec2 uv) {
     };
     double u = wrapCoord(uv.x, img.sampler.wrapS) * img.width - 0.5;
     double v = wrapCoord(uv.y, img.sampler.wrapT) * img.height - 0.5;
-    if (img.sampler.magFilter == assets::Filter::Nearest) return texel(int(std::floor(u + 0.5)), int(std::floor(v + 0.5)));
+    if (img.sampler.magFilter == assets::Filter::Nearest)
+        return texel(int(std::floor(u + 0.5)), int(std::floor(v + 0.5)));
     int x0 = int(std::floor(u)), y0 = int(std::floor(v));
     double fx = u - x0, fy = v - y0;
-    if (img.sampler.wrapS == assets::Wrap::ClampToEdge) x0 = std::clamp(x0, 0, int(img.width) - 2 < 0 ? 0 : int(img.width) - 2);
-    if (img.sampler.wrapT == assets::Wrap::ClampToEdge) y0 = std::clamp(y0, 0, int(img.height) - 2 < 0 ? 0 : int(img.height) - 2);
-    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+    if (img.sampler.wrapS == assets::Wrap::ClampToEdge)
+        x0 = std::clamp(x0, 0, int(img.width) - 2 < 0 ? 0 : int(img.width) - 2);
+    if (img.sampler.wrapT == assets::Wrap::ClampToEdge)
+        y0 = std::clamp(y0, 0, int(img.height) - 2 < 0 ? 0 : int(img.height) - 2);
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                    glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
 }
 
 // The point a material's texture samples at barycentrics (b1, b2): its texture coordinate set,
 // then its KHR_texture_transform, in double.
-glm::dvec2 textureCoord(const WorldTriangle& tri, const assets::TextureRef& ref, double b1, double b2) {
+glm::dvec2 textureCoord(const WorldTriangle& tri, const assets::TextureRef& ref, double b1,
+                        double b2) {
     const glm::dvec2* set = ref.texCoord == 1 ? tri.uv1 : tri.uv;
     const glm::dvec2 uv = (1.0 - b1 - b2) * set[0] + b1 * set[1] + b2 * set[2];
     const assets::TextureTransform& x = ref.transform;
     if (x.identity()) return uv;
     const double c = std::cos(double(x.rotation)), s = std::sin(double(x.rotation));
     const glm::dvec2 scaled = uv * glm::dvec2(x.scale);
-    return glm::dvec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + glm::dvec2(x.offset);
+    return glm::dvec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) +
+           glm::dvec2(x.offset);
 }
 
 // Base colour alpha times COLOR_0's at barycentrics (b1, b2): what MASK tests and BLEND blends.
 double coverageAlpha(const assets::Scene& scene, const WorldTriangle& tri, double b1, double b2) {
     const assets::Material& mat = scene.materials[tri.material];
-    double a = mat.baseColorFactor.a * ((1.0 - b1 - b2) * tri.color[0].a + b1 * tri.color[1].a + b2 * tri.color[2].a);
+    double a = mat.baseColorFactor.a *
+               ((1.0 - b1 - b2) * tri.color[0].a + b1 * tri.color[1].a + b2 * tri.color[2].a);
     if (mat.baseColorTexture.valid())
-        a *= sample(scene.textures[mat.baseColorTexture.index], textureCoord(tri, mat.baseColorTexture, b1, b2)).a;
+        a *= sample(scene.textures[mat.baseColorTexture.index],
+                    textureCoord(tri, mat.baseColorTexture, b1, b2))
+                 .a;
     return a;
 }
 
 // Moller-Trumbore; returns t and barycentrics (b1, b2), or t < 0 for a miss.
-double intersect(const WorldTriangle& tri, const glm::dvec3& o, const glm::dvec3& d, double& b1, double& b2) {
+double intersect(const WorldTriangle& tri, const glm::dvec3& o, const glm::dvec3& d, double& b1,
+                 double& b2) {
     glm::dvec3 e1 = tri.p[1] - tri.p[0], e2 = tri.p[2] - tri.p[0];
     glm::dvec3 pv = glm::cross(d, e2);
     double det = glm::dot(e1, pv);
@@ -131,7 +146,8 @@ public:
                 for (uint32_t x = 0; x < b.width; ++x) {
                     glm::dvec3 sum(0.0);
                     for (uint32_t k = 0; k < 4; ++k)
-                        sum += a.at(std::min(2 * x + (k & 1), a.width - 1), std::min(2 * y + (k >> 1), a.height - 1));
+                        sum += a.at(std::min(2 * x + (k & 1), a.width - 1),
+                                    std::min(2 * y + (k >> 1), a.height - 1));
                     b.texels[size_t(y) * b.width + x] = sum / 4.0;
                 }
             levels_.push_back(std::move(b));
@@ -155,7 +171,8 @@ private:
             const double fx = uv.x * width - 0.5, fy = uv.y * height - 0.5;
             const double x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
             auto texel = [&](double x, double y) {
-                return at(uint32_t(std::clamp(x, 0.0, double(width - 1))), uint32_t(std::clamp(y, 0.0, double(height - 1))));
+                return at(uint32_t(std::clamp(x, 0.0, double(width - 1))),
+                          uint32_t(std::clamp(y, 0.0, double(height - 1))));
             };
             return (texel(x0, y0) * (1.0 - tx) + texel(x0 + 1, y0) * tx) * (1.0 - ty) +
                    (texel(x0, y0 + 1) * (1.0 - tx) + texel(x0 + 1, y0 + 1) * tx) * ty;
@@ -188,12 +205,13 @@ bool ReferenceImage::nearEdge(uint32_t x, uint32_t y) const {
     return false;
 }
 
-ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
-                               uint32_t height, const ReferenceOptions& options) {
+ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera,
+                               uint32_t width, uint32_t height, const ReferenceOptions& options) {
     // World-space triangles grouped per (instance, primitive) with a bounding box each.
     std::vector<WorldTriangle> tris;
     std::vector<WorldTriangle> blended;  // BLEND surfaces: composited over the opaque result
-    std::vector<WorldTriangle> transmissive;  // seen in front of the opaque result, which they see through
+    std::vector<WorldTriangle>
+        transmissive;  // seen in front of the opaque result, which they see through
     std::vector<SurfaceBox> boxes, transmissiveBoxes;
     int32_t surfaceId = 0;
     for (const assets::MeshInstance& inst : scene.instances) {
@@ -202,15 +220,18 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
             const int32_t id = surfaceId++;
             // An animated instance's pose (assets::poseScene) deforms the rest pose, in double.
-            const std::vector<DeformedVertex> deformed = inst.deformed() ? deformVertices(prim, inst) : std::vector<DeformedVertex>{};
+            const std::vector<DeformedVertex> deformed =
+                inst.deformed() ? deformVertices(prim, inst) : std::vector<DeformedVertex>{};
             // Triangle i/3 of the primitive in world space.
             auto triangle = [&](size_t i) {
                 WorldTriangle t;
                 for (int k = 0; k < 3; ++k) {
                     const assets::Vertex& v = prim.vertices[prim.indices[i + k]];
-                    const DeformedVertex d = deformed.empty()
-                                                 ? DeformedVertex{glm::dvec3(v.position), glm::dvec3(v.normal), glm::dvec4(v.tangent)}
-                                                 : deformed[prim.indices[i + k]];
+                    const DeformedVertex d =
+                        deformed.empty()
+                            ? DeformedVertex{glm::dvec3(v.position), glm::dvec3(v.normal),
+                                             glm::dvec4(v.tangent)}
+                            : deformed[prim.indices[i + k]];
                     t.p[k] = glm::dvec3(world * glm::dvec4(d.position, 1.0));
                     t.n[k] = normalMat * d.normal;
                     t.t[k] = glm::dvec4(glm::dmat3(world) * glm::dvec3(d.tangent), d.tangent.w);
@@ -221,12 +242,14 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 t.material = prim.material;
                 t.surface = id;
                 t.mirrored = inst.mirrored;
-                t.meshScale = glm::dvec3(glm::length(world[0]), glm::length(world[1]), glm::length(world[2]));
+                t.meshScale =
+                    glm::dvec3(glm::length(world[0]), glm::length(world[1]), glm::length(world[2]));
                 return t;
             };
             const assets::Material& primMaterial = scene.materials[prim.material];
             if (primMaterial.alphaMode == assets::AlphaMode::Blend) {
-                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3) blended.push_back(triangle(i));
+                for (size_t i = 0; i + 2 < prim.indices.size(); i += 3)
+                    blended.push_back(triangle(i));
                 continue;
             }
             // Opaque and transmissive primitives: their triangles with a bounding box each.
@@ -323,8 +346,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         glm::dvec3 exit{0.0};
         double lod = 0.0;
     };
-    auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance, const glm::dvec3& origin, const glm::dvec3& dir,
-                     bool shadows, uint32_t* occludedBits) {
+    auto shade = [&](const WorldTriangle& tri, double hb1, double hb2, double distance,
+                     const glm::dvec3& origin, const glm::dvec3& dir, bool shadows,
+                     uint32_t* occludedBits) {
         Shaded out;
         const WorldTriangle* hit = &tri;
         const assets::Material& mat = scene.materials[hit->material];
@@ -336,9 +360,11 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         glm::dvec3 ng = glm::cross(hit->p[1] - hit->p[0], hit->p[2] - hit->p[0]);
         const bool front = (glm::dot(ng, dir) < 0.0) != hit->mirrored;
         if (!front) n = -n;  // a double-sided back face shades with the flipped normal
-        const glm::dvec3 vertexNormal = n;  // the clearcoat's: the base's normal map does not bend it
+        const glm::dvec3 vertexNormal =
+            n;  // the clearcoat's: the base's normal map does not bend it
 
-        glm::dvec4 bc = glm::dvec4(mat.baseColorFactor) * (b0 * hit->color[0] + hb1 * hit->color[1] + hb2 * hit->color[2]);
+        glm::dvec4 bc = glm::dvec4(mat.baseColorFactor) *
+                        (b0 * hit->color[0] + hb1 * hit->color[1] + hb2 * hit->color[2]);
         double metallic = mat.metallic, roughness = mat.roughness;
         glm::dvec3 emissive(mat.emissiveFactor);
         if (mat.baseColorTexture.valid()) {
@@ -372,9 +398,12 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             out.textured = true;
         }
         out.alpha = bc.a;
-        double transmission = mat.transmissive() ? mat.transmission : 0.0, thickness = mat.thickness;
-        if (transmission > 0.0 && mat.transmissionTexture.valid()) transmission *= texel(mat.transmissionTexture).r;
-        if (transmission > 0.0 && mat.thicknessTexture.valid()) thickness *= texel(mat.thicknessTexture).g;
+        double transmission = mat.transmissive() ? mat.transmission : 0.0,
+               thickness = mat.thickness;
+        if (transmission > 0.0 && mat.transmissionTexture.valid())
+            transmission *= texel(mat.transmissionTexture).r;
+        if (transmission > 0.0 && mat.thicknessTexture.valid())
+            thickness *= texel(mat.thicknessTexture).g;
         if (mat.unlit) {
             out.radiance = glm::dvec3(bc);
             return out;
@@ -387,37 +416,54 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         s.metallic = std::clamp(metallic, 0.0, 1.0);
         s.roughness = roughness;
         // KHR_materials_specular and clearcoat with their textures (1 where there is none).
-        for (const assets::TextureRef* t : {&mat.specularTexture, &mat.specularColorTexture, &mat.clearcoatTexture,
-                                            &mat.clearcoatRoughnessTexture, &mat.clearcoatNormalTexture})
+        for (const assets::TextureRef* t :
+             {&mat.specularTexture, &mat.specularColorTexture, &mat.clearcoatTexture,
+              &mat.clearcoatRoughnessTexture, &mat.clearcoatNormalTexture})
             out.textured = out.textured || t->valid();
-        const glm::dvec3 specularColorTexel = mat.specularColorTexture.valid() ? glm::dvec3(texel(mat.specularColorTexture)) : glm::dvec3(1.0);
-        const double specularTexel = mat.specularTexture.valid() ? texel(mat.specularTexture).a : 1.0;
-        s.dielectricF0 = glm::min(glm::dvec3(mat.specularColorF0()) * specularColorTexel, glm::dvec3(1.0)) * double(mat.specular) * specularTexel;
+        const glm::dvec3 specularColorTexel = mat.specularColorTexture.valid()
+                                                  ? glm::dvec3(texel(mat.specularColorTexture))
+                                                  : glm::dvec3(1.0);
+        const double specularTexel =
+            mat.specularTexture.valid() ? texel(mat.specularTexture).a : 1.0;
+        s.dielectricF0 =
+            glm::min(glm::dvec3(mat.specularColorF0()) * specularColorTexel, glm::dvec3(1.0)) *
+            double(mat.specular) * specularTexel;
         s.dielectricF90 = double(mat.specular) * specularTexel;
-        s.clearcoat = mat.clearcoat * (mat.clearcoatTexture.valid() ? texel(mat.clearcoatTexture).r : 1.0);
-        s.clearcoatRoughness = mat.clearcoatRoughness * (mat.clearcoatRoughnessTexture.valid() ? texel(mat.clearcoatRoughnessTexture).g : 1.0);
-        s.clearcoatNormal = mat.clearcoatNormalTexture.valid() ? mapNormal(mat.clearcoatNormalTexture, mat.clearcoatNormalScale) : vertexNormal;
+        s.clearcoat =
+            mat.clearcoat * (mat.clearcoatTexture.valid() ? texel(mat.clearcoatTexture).r : 1.0);
+        s.clearcoatRoughness =
+            mat.clearcoatRoughness *
+            (mat.clearcoatRoughnessTexture.valid() ? texel(mat.clearcoatRoughnessTexture).g : 1.0);
+        s.clearcoatNormal = mat.clearcoatNormalTexture.valid()
+                                ? mapNormal(mat.clearcoatNormalTexture, mat.clearcoatNormalScale)
+                                : vertexNormal;
         s.clearcoatF0 = mat.clearcoatF0();
         s.ior = mat.ior;
         if (mat.hasSheen()) {
             s.sheenColor = glm::dvec3(mat.sheenColor);
             s.sheenRoughness = mat.sheenRoughness;
-            if (mat.sheenColorTexture.valid()) s.sheenColor *= glm::dvec3(texel(mat.sheenColorTexture));
-            if (mat.sheenRoughnessTexture.valid()) s.sheenRoughness *= texel(mat.sheenRoughnessTexture).a;
+            if (mat.sheenColorTexture.valid())
+                s.sheenColor *= glm::dvec3(texel(mat.sheenColorTexture));
+            if (mat.sheenRoughnessTexture.valid())
+                s.sheenRoughness *= texel(mat.sheenRoughnessTexture).a;
         }
         // Transmissive surfaces are drawn by the transmission pass under the glTF model, whatever
         // the technique's (render/TransmissionPass.h).
         const shading::Brdf brdf = mat.transmissive() ? shading::Brdf::Gltf : options.brdf;
         if (transmission > 0.0) {
             s.transmission = transmission;
-            s.transmissionRay = shading::transmissionRay(n, s.wo, thickness, mat.ior, hit->meshScale);
-            s.transmittance = shading::volumeTransmittance(glm::dvec3(mat.attenuationColor), mat.attenuationDistance,
+            s.transmissionRay =
+                shading::transmissionRay(n, s.wo, thickness, mat.ior, hit->meshScale);
+            s.transmittance = shading::volumeTransmittance(glm::dvec3(mat.attenuationColor),
+                                                           mat.attenuationDistance,
                                                            glm::length(s.transmissionRay));
             out.sceneWeight = shading::transmittedSceneWeight(s);
             out.exit = s.P + s.transmissionRay;
             out.lod = shading::transmissionLod(roughness, mat.ior, width, height);
         }
-        if (mat.clearcoat > 0.0f && brdf == shading::Brdf::Gltf) emissive *= 1.0 - s.clearcoat * shading::clearcoatViewFresnel(s);  // the layer covers emission too
+        if (mat.clearcoat > 0.0f && brdf == shading::Brdf::Gltf)
+            emissive *= 1.0 - s.clearcoat * shading::clearcoatViewFresnel(
+                                                s);  // the layer covers emission too
         glm::dvec3 L = emissive;
         // The side of the surface the eye sees, for the shadow rays' start.
         const glm::dvec3 ngEye = glm::normalize(glm::dot(ng, dir) < 0.0 ? ng : -ng);
@@ -436,19 +482,22 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         }
         if (options.iblSamples > 0 && scene.environment) {
             // The occlusion texture darkens indirect light only (glTF 2.0: 1 + strength (ao - 1)).
-            const double ao = mat.occlusionTexture.valid()
-                                  ? 1.0 + mat.occlusionStrength * (texel(mat.occlusionTexture).r - 1.0)
-                                  : 1.0;
+            const double ao =
+                mat.occlusionTexture.valid()
+                    ? 1.0 + mat.occlusionStrength * (texel(mat.occlusionTexture).r - 1.0)
+                    : 1.0;
             if (mat.occlusionTexture.valid()) out.textured = true;
-            L += ao * shading::shadeEnvironment(s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
-                                                options.iblSamples, brdf);
+            L += ao * shading::shadeEnvironment(
+                          s, [&](const glm::dvec3& d) { return scene.environment->radiance(d); },
+                          options.iblSamples, brdf);
         }
         out.radiance = L;
         return out;
     };
     // Blended surfaces in front of the opaque result, composited far to near (source-over, the
     // GPU's translucent pass, which sorts whole objects: the same wherever they do not interleave).
-    auto composite = [&](glm::dvec3 radiance, const glm::dvec3& origin, const glm::dvec3& dir, double limit) {
+    auto composite = [&](glm::dvec3 radiance, const glm::dvec3& origin, const glm::dvec3& dir,
+                         double limit) {
         struct Layer {
             double t, b1, b2;
             const WorldTriangle* tri;
@@ -463,7 +512,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
             if (!scene.materials[tri.material].doubleSided && !front) continue;
             layers.push_back({t, b1, b2, &tri});
         }
-        std::sort(layers.begin(), layers.end(), [](const Layer& a, const Layer& b) { return a.t > b.t; });
+        std::sort(layers.begin(), layers.end(),
+                  [](const Layer& a, const Layer& b) { return a.t > b.t; });
         for (const Layer& l : layers) {
             const Shaded s = shade(*l.tri, l.b1, l.b2, l.t, origin, dir, false, nullptr);
             const double a = std::clamp(s.alpha, 0.0, 1.0);
@@ -517,7 +567,8 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
     // with the same result as one thread. 78 s on one thread for the 1280x720 atrium with 1024
     // lights was more than a 15-minute GPU lease could spend on each reference.
     // First the opaque scene; with transmissive surfaces, a second pass sees them in front of it.
-    std::vector<double> opaqueDepth(size_t(width) * height, std::numeric_limits<double>::infinity());
+    std::vector<double> opaqueDepth(size_t(width) * height,
+                                    std::numeric_limits<double>::infinity());
     auto row = [&](uint32_t y) {
         for (uint32_t x = 0; x < width; ++x) {
             const auto [origin, dir] = pixelRay(x, y);
@@ -538,7 +589,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                     // Counter-clockwise seen from the eye; mirrored instances flip the winding.
                     bool front = (glm::dot(ng, dir) < 0.0) != tri.mirrored;
                     if (!mat.doubleSided && !front) continue;
-                    if (mat.alphaMode == assets::AlphaMode::Mask && coverageAlpha(scene, tri, b1, b2) < mat.alphaCutoff) continue;
+                    if (mat.alphaMode == assets::AlphaMode::Mask &&
+                        coverageAlpha(scene, tri, b1, b2) < mat.alphaCutoff)
+                        continue;
                     best = t;
                     hit = &tri;
                     hb1 = b1;
@@ -551,12 +604,14 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
                 if (scene.environment) radiance = scene.environment->radiance(dir);
             } else {
                 out.surface[pixel] = hit->surface;
-                const Shaded opaque = shade(*hit, hb1, hb2, best, origin, dir, true, &out.occluded[pixel]);
+                const Shaded opaque =
+                    shade(*hit, hb1, hb2, best, origin, dir, true, &out.occluded[pixel]);
                 out.textured[pixel] = opaque.textured;
                 radiance = opaque.radiance;
             }
             opaqueDepth[pixel] = best;
-            out.radiance[pixel] = transmissive.empty() ? composite(radiance, origin, dir, best) : radiance;
+            out.radiance[pixel] =
+                transmissive.empty() ? composite(radiance, origin, dir, best) : radiance;
         }
     };
     forEachRowInParallel(height, row);

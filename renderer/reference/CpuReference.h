@@ -17,10 +17,11 @@ namespace fe::render {
 
 struct ReferenceImage {
     uint32_t width = 0, height = 0;
-    std::vector<glm::dvec3> radiance;  // L_o per pixel, rows top to bottom; where nothing is hit, the
-                                       // scene's environment along the ray (or 0)
-    std::vector<int32_t> surface;      // id of the hit (instance, primitive) pair, -1 for background
-    std::vector<uint8_t> textured;     // 1 where the hit material samples a texture
+    std::vector<glm::dvec3>
+        radiance;                   // L_o per pixel, rows top to bottom; where nothing is hit, the
+                                    // scene's environment along the ray (or 0)
+    std::vector<int32_t> surface;   // id of the hit (instance, primitive) pair, -1 for background
+    std::vector<uint8_t> textured;  // 1 where the hit material samples a texture
     // Bit k set: the k-th shadow-casting light (ReferenceOptions::castsShadow, counted in scene
     // order, the first 32) is hidden from the surface seen in the pixel by a shadow ray.
     std::vector<uint32_t> occluded;
@@ -45,7 +46,8 @@ struct ReferenceOptions {
     shading::Brdf brdf = shading::Brdf::Gltf;
 };
 
-ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera, uint32_t width,
-                               uint32_t height, const ReferenceOptions& options = {});
+ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera& camera,
+                               uint32_t width, uint32_t height,
+                               const ReferenceOptions& options = {});
 
 }  // namespace fe::render

@@ -14,24 +14,33 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 void checkSizes(const DisplayImage& a, const DisplayImage& b) {
-    if (a.width != b.width || a.height != b.height || a.rgb.size() != size_t(a.width) * a.height || b.rgb.size() != a.rgb.size())
+    if (a.width != b.width || a.height != b.height || a.rgb.size() != size_t(a.width) * a.height ||
+        b.rgb.size() != a.rgb.size())
         throw std::invalid_argument("image metrics: the images differ in size");
 }
 
-double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
-double linearToSrgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
+double srgbToLinear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+double linearToSrgb(double l) {
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+}
 
 // A single-channel image and a 2D convolution with clamped edges (the kernels here are small
 // and the images bench-sized: written out, no FFT).
 struct Plane {
     int w = 0, h = 0;
     std::vector<double> v;
-    double at(int x, int y) const { return v[size_t(std::clamp(y, 0, h - 1)) * w + size_t(std::clamp(x, 0, w - 1))]; }
+    double at(int x, int y) const {
+        return v[size_t(std::clamp(y, 0, h - 1)) * w + size_t(std::clamp(x, 0, w - 1))];
+    }
 };
 struct Kernel {
     int radius = 0;
     std::vector<double> k;  // (2r + 1)^2, rows
-    double at(int dx, int dy) const { return k[size_t(dy + radius) * (2 * radius + 1) + size_t(dx + radius)]; }
+    double at(int dx, int dy) const {
+        return k[size_t(dy + radius) * (2 * radius + 1) + size_t(dx + radius)];
+    }
 };
 Plane convolve(const Plane& p, const Kernel& k) {
     Plane out{p.w, p.h, std::vector<double>(p.v.size(), 0.0)};
@@ -41,7 +50,8 @@ Plane convolve(const Plane& p, const Kernel& k) {
         for (int x = 0; x < p.w; ++x) {
             double s = 0.0;
             for (int dy = -k.radius; dy <= k.radius; ++dy)
-                for (int dx = -k.radius; dx <= k.radius; ++dx) s += k.at(dx, dy) * p.at(x + dx, y + dy);
+                for (int dx = -k.radius; dx <= k.radius; ++dx)
+                    s += k.at(dx, dy) * p.at(x + dx, y + dy);
             out.v[size_t(y) * p.w + x] = s;
         }
     });
@@ -53,11 +63,13 @@ Plane convolve(const Plane& p, const Kernel& k) {
 const glm::dvec3 kWhite{0.950428545, 1.0, 1.088900371};
 
 glm::dvec3 linearRgbToXyz(const glm::dvec3& c) {
-    return {0.4124564 * c.r + 0.3575761 * c.g + 0.1804375 * c.b, 0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b,
+    return {0.4124564 * c.r + 0.3575761 * c.g + 0.1804375 * c.b,
+            0.2126729 * c.r + 0.7151522 * c.g + 0.0721750 * c.b,
             0.0193339 * c.r + 0.1191920 * c.g + 0.9503041 * c.b};
 }
 glm::dvec3 xyzToLinearRgb(const glm::dvec3& c) {
-    return {3.2404542 * c.x - 1.5371385 * c.y - 0.4985314 * c.z, -0.9692660 * c.x + 1.8760108 * c.y + 0.0415560 * c.z,
+    return {3.2404542 * c.x - 1.5371385 * c.y - 0.4985314 * c.z,
+            -0.9692660 * c.x + 1.8760108 * c.y + 0.0415560 * c.z,
             0.0556434 * c.x - 0.2040259 * c.y + 1.0572252 * c.z};
 }
 // YCxCz: the linearized opponent space the contrast sensitivity filters work in.
@@ -71,12 +83,16 @@ glm::dvec3 ycxczToXyz(const glm::dvec3& c) {
 }
 glm::dvec3 xyzToLab(const glm::dvec3& c) {
     const double d = 6.0 / 29.0;
-    auto f = [d](double t) { return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0; };
+    auto f = [d](double t) {
+        return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+    };
     const glm::dvec3 n = c / kWhite;
     return {116.0 * f(n.y) - 16.0, 500.0 * (f(n.x) - f(n.y)), 200.0 * (f(n.y) - f(n.z))};
 }
 // The Hunt effect: chroma matters less in the dark.
-glm::dvec3 hunt(const glm::dvec3& lab) { return {lab.x, 0.01 * lab.x * lab.y, 0.01 * lab.x * lab.z}; }
+glm::dvec3 hunt(const glm::dvec3& lab) {
+    return {lab.x, 0.01 * lab.x * lab.y, 0.01 * lab.x * lab.z};
+}
 double hyab(const glm::dvec3& a, const glm::dvec3& b) {
     return std::abs(a.x - b.x) + std::sqrt((a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
 }
@@ -116,8 +132,8 @@ Kernel featureKernel(int order, double sigma, int radius, bool alongY) {
 }
 }  // namespace
 
-DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure,
-                       shading::Tonemap tonemap) {
+DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear,
+                       double exposure, shading::Tonemap tonemap) {
     DisplayImage d{width, height, {}};
     d.rgb.reserve(linear.size());
     for (const glm::dvec3& l : linear) {
@@ -136,7 +152,8 @@ double psnr(const DisplayImage& a, const DisplayImage& b) {
     checkSizes(a, b);
     double se = 0.0;
     for (size_t i = 0; i < a.rgb.size(); ++i)
-        for (int c = 0; c < 3; ++c) se += double(a.rgb[i][c] - b.rgb[i][c]) * double(a.rgb[i][c] - b.rgb[i][c]);
+        for (int c = 0; c < 3; ++c)
+            se += double(a.rgb[i][c] - b.rgb[i][c]) * double(a.rgb[i][c] - b.rgb[i][c]);
     const double mse = se / (3.0 * double(a.rgb.size()));
     return mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
 }
@@ -147,10 +164,12 @@ double ssim(const DisplayImage& a, const DisplayImage& b) {
     constexpr double kSigma = 1.5, C1 = 0.01 * 0.01, C2 = 0.03 * 0.03;
     std::array<double, 2 * kRadius + 1> g{};
     double gs = 0.0;
-    for (int i = -kRadius; i <= kRadius; ++i) gs += g[i + kRadius] = std::exp(-i * i / (2.0 * kSigma * kSigma));
+    for (int i = -kRadius; i <= kRadius; ++i)
+        gs += g[i + kRadius] = std::exp(-i * i / (2.0 * kSigma * kSigma));
     auto luma = [](const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
     const int w = int(a.width), h = int(a.height);
-    if (w < 2 * kRadius + 1 || h < 2 * kRadius + 1) throw std::invalid_argument("SSIM needs images of at least 11x11 pixels");
+    if (w < 2 * kRadius + 1 || h < 2 * kRadius + 1)
+        throw std::invalid_argument("SSIM needs images of at least 11x11 pixels");
     double sum = 0.0;
     size_t n = 0;
     for (int y = kRadius; y < h - kRadius; ++y)
@@ -165,13 +184,15 @@ double ssim(const DisplayImage& a, const DisplayImage& b) {
                     xx += wgt * va * va, yy += wgt * vb * vb, xy += wgt * va * vb;
                 }
             const double sx = xx - mx * mx, sy = yy - my * my, sxy = xy - mx * my;
-            sum += ((2 * mx * my + C1) * (2 * sxy + C2)) / ((mx * mx + my * my + C1) * (sx + sy + C2));
+            sum +=
+                ((2 * mx * my + C1) * (2 * sxy + C2)) / ((mx * mx + my * my + C1) * (sx + sy + C2));
             ++n;
         }
     return sum / double(n);
 }
 
-std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& reference, double ppd) {
+std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& reference,
+                                double ppd) {
     checkSizes(test, reference);
     const int w = int(test.width), h = int(test.height);
     // The paper's constants.
@@ -181,7 +202,8 @@ std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& re
         std::array<Plane, 3> p;
         for (Plane& q : p) q = {w, h, std::vector<double>(size_t(w) * h)};
         for (size_t i = 0; i < img.rgb.size(); ++i) {
-            const glm::dvec3 lin(srgbToLinear(img.rgb[i].r), srgbToLinear(img.rgb[i].g), srgbToLinear(img.rgb[i].b));
+            const glm::dvec3 lin(srgbToLinear(img.rgb[i].r), srgbToLinear(img.rgb[i].g),
+                                 srgbToLinear(img.rgb[i].b));
             const glm::dvec3 o = xyzToYcxcz(linearRgbToXyz(lin));
             for (int c = 0; c < 3; ++c) p[c].v[i] = o[c];
         }
@@ -203,7 +225,9 @@ std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& re
         const glm::dvec3 rgb = glm::clamp(xyzToLinearRgb(ycxczToXyz(ycxcz)), 0.0, 1.0);
         return hunt(xyzToLab(linearRgbToXyz(rgb)));
     };
-    const double cmax = std::pow(hyab(hunt(xyzToLab(linearRgbToXyz({0, 1, 0}))), hunt(xyzToLab(linearRgbToXyz({0, 0, 1})))), qc);
+    const double cmax = std::pow(
+        hyab(hunt(xyzToLab(linearRgbToXyz({0, 1, 0}))), hunt(xyzToLab(linearRgbToXyz({0, 0, 1})))),
+        qc);
     // Feature pipeline on the achromatic channel, normalised to [0, 1].
     const double sigma = 0.5 * featureWidth * ppd;
     const int featureRadius = int(std::ceil(3.0 * sigma));
@@ -218,10 +242,16 @@ std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& re
     const std::array<Plane, 4> et = features(ot[0]), er = features(orf[0]);
     std::vector<float> map(size_t(w) * h);
     for (size_t i = 0; i < map.size(); ++i) {
-        const double dE = std::pow(hyab(huntLab({ft[0].v[i], ft[1].v[i], ft[2].v[i]}), huntLab({fr[0].v[i], fr[1].v[i], fr[2].v[i]})), qc);
-        const double colour = dE < pc * cmax ? pt / (pc * cmax) * dE : pt + (dE - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
-        const double edge = std::abs(std::hypot(et[0].v[i], et[1].v[i]) - std::hypot(er[0].v[i], er[1].v[i]));
-        const double point = std::abs(std::hypot(et[2].v[i], et[3].v[i]) - std::hypot(er[2].v[i], er[3].v[i]));
+        const double dE = std::pow(hyab(huntLab({ft[0].v[i], ft[1].v[i], ft[2].v[i]}),
+                                        huntLab({fr[0].v[i], fr[1].v[i], fr[2].v[i]})),
+                                   qc);
+        const double colour = dE < pc * cmax
+                                  ? pt / (pc * cmax) * dE
+                                  : pt + (dE - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+        const double edge =
+            std::abs(std::hypot(et[0].v[i], et[1].v[i]) - std::hypot(er[0].v[i], er[1].v[i]));
+        const double point =
+            std::abs(std::hypot(et[2].v[i], et[3].v[i]) - std::hypot(er[2].v[i], er[3].v[i]));
         const double feature = std::pow(std::max(edge, point) / std::sqrt(2.0), qf);
         map[i] = float(std::pow(colour, 1.0 - feature));
     }
@@ -244,7 +274,8 @@ ImageMetrics compareImages(const DisplayImage& test, const DisplayImage& referen
     size_t over = 0;
     for (size_t i = 0; i < test.rgb.size(); ++i) {
         double d = 0.0;
-        for (int c = 0; c < 3; ++c) d = std::max(d, double(std::abs(test.rgb[i][c] - reference.rgb[i][c])));
+        for (int c = 0; c < 3; ++c)
+            d = std::max(d, double(std::abs(test.rgb[i][c] - reference.rgb[i][c])));
         m.maxAbs = std::max(m.maxAbs, d);
         over += d > 5.0 / 255.0;
     }

@@ -26,8 +26,8 @@ struct DisplayImage {
 };
 
 // sRGB(tonemap(exposure x linear)); non-finite values show as 1 (white), as a display would clip.
-DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear, double exposure = 1.0,
-                       shading::Tonemap tonemap = shading::Tonemap::Clamp);
+DisplayImage toDisplay(uint32_t width, uint32_t height, const std::vector<glm::dvec3>& linear,
+                       double exposure = 1.0, shading::Tonemap tonemap = shading::Tonemap::Clamp);
 
 struct ImageMetrics {
     double psnr = 0;  // dB; +inf when identical
@@ -41,7 +41,8 @@ double psnr(const DisplayImage& a, const DisplayImage& b);
 double ssim(const DisplayImage& a, const DisplayImage& b);
 // FLIP's per-pixel error map of `test` against `reference`; `pixelsPerDegree` is the viewing
 // condition (the paper's default 67: a 0.7 m wide 4K monitor seen from 0.7 m).
-std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& reference, double pixelsPerDegree = 67.0);
+std::vector<float> flipErrorMap(const DisplayImage& test, const DisplayImage& reference,
+                                double pixelsPerDegree = 67.0);
 double flip(const DisplayImage& test, const DisplayImage& reference, double pixelsPerDegree = 67.0);
 ImageMetrics compareImages(const DisplayImage& test, const DisplayImage& reference);
 

@@ -12,7 +12,8 @@ namespace fe::render {
 
 template <class RowFn>
 void forEachRowInParallel(uint32_t height, RowFn&& row) {
-    const uint32_t threads = std::clamp(std::thread::hardware_concurrency(), 1u, std::max(height, 1u));
+    const uint32_t threads =
+        std::clamp(std::thread::hardware_concurrency(), 1u, std::max(height, 1u));
     std::vector<std::exception_ptr> failures(threads);
     auto rows = [&](uint32_t first) {
         try {

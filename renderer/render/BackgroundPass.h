@@ -22,8 +22,8 @@ Background::Kind resolveBackground(const Background& background, bool sceneHasEn
 class BackgroundPass {
 public:
     // `environment` is the scene's (null without one); read when the pass executes.
-    BackgroundPass(gdi::Device& device, CommandQueue& queue, const RenderSettings& settings, const EnvironmentMap* environment,
-                   const UploadAllocation& frameConstants);
+    BackgroundPass(gdi::Device& device, CommandQueue& queue, const RenderSettings& settings,
+                   const EnvironmentMap* environment, const UploadAllocation& frameConstants);
     BackgroundPass(const BackgroundPass&) = delete;
     BackgroundPass& operator=(const BackgroundPass&) = delete;
 
@@ -43,7 +43,8 @@ private:
     const UploadAllocation& frameConstants_;
     Background::Kind kind_;
     gdi::ShaderHandle vs_, fs_;
-    gdi::PipelineHandle uncovered_, covered_;  // colour or transparent: depth 1 / a surface's pixels
+    gdi::PipelineHandle uncovered_,
+        covered_;  // colour or transparent: depth 1 / a surface's pixels
 };
 
 }  // namespace fe::render

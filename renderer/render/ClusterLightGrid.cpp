@@ -13,45 +13,59 @@ namespace fe::render {
 
 ClusterLightGrid::ClusterLightGrid(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
-        throw gdi::Error("clustered light lists need compute shaders, which " + c.device.info().backend + " lacks");
+        throw gdi::Error("clustered light lists need compute shaders, which " +
+                         c.device.info().backend + " lacks");
     const RenderSettings& s = c.settings;
-    tiles_ = {(s.width + kTilePixels - 1) / kTilePixels, (s.height + kTilePixels - 1) / kTilePixels};
+    tiles_ = {(s.width + kTilePixels - 1) / kTilePixels,
+              (s.height + kTilePixels - 1) / kTilePixels};
     // Every light of the scene is assigned, shadowed ones too (the translucent pass lights with
     // them). The buffer: the entries asked for, (first entry, count) per cluster; the entries in a
     // texture of kIndexWidth texels a row (fe_clusters.glsl says why), as many rows as the
     // device allows (the lists past its end shade every light, counted).
     mostEntries_ = std::max<uint64_t>(1, uint64_t(clusterCount()) * c.scene.lightCount());
     maxRows_ = std::max(1u, c.device.info().limits.maxTextureSize2D);
-    const uint64_t wanted = uint64_t(clusterCount()) * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
-    createEntries(uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1, maxRows_)));
-    lists_ = objects_.add(c.device.createBuffer({.size = (1 + kHeaderWords * uint64_t(clusterCount())) * sizeof(uint32_t),
-                                                 .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
-                                                 .debugName = "cluster light lists"}));
+    const uint64_t wanted =
+        uint64_t(clusterCount()) * std::max(1u, std::min(c.scene.lightCount(), kMeanListCapacity));
+    createEntries(
+        uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, 1, maxRows_)));
+    lists_ = objects_.add(c.device.createBuffer(
+        {.size = (1 + kHeaderWords * uint64_t(clusterCount())) * sizeof(uint32_t),
+         .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc,
+         .debugName = "cluster light lists"}));
     for (uint32_t i = 0; i < c.queue.framesInFlight(); ++i)
-        asked_.push_back(objects_.add(c.device.createBuffer({.size = sizeof(uint32_t), .usage = gdi::BufferUsage::CopyDst,
-                                                             .access = gdi::MemoryAccess::Readback,
-                                                             .debugName = "cluster light entries asked"})));
+        asked_.push_back(
+            objects_.add(c.device.createBuffer({.size = sizeof(uint32_t),
+                                                .usage = gdi::BufferUsage::CopyDst,
+                                                .access = gdi::MemoryAccess::Readback,
+                                                .debugName = "cluster light entries asked"})));
     askedWritten_.assign(asked_.size(), false);
     // The assignment's scratch: per tile column, a bit per light.
     const uint64_t columns = uint64_t(tiles_.x) * tiles_.y;
-    columnMasks_ = objects_.add(c.device.createBuffer({.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
-                                                       .usage = gdi::BufferUsage::Storage,
-                                                       .debugName = "cluster light assignment columns"}));
+    columnMasks_ = objects_.add(c.device.createBuffer(
+        {.size = std::max<uint64_t>(4, columns * ((c.scene.lightCount() + 31) / 32) * 4),
+         .usage = gdi::BufferUsage::Storage,
+         .debugName = "cluster light assignment columns"}));
     // Bound to the assignment whether or not a bounds pass fills it (it reads it only then).
-    bounds_ = objects_.add(c.device.createBuffer({.size = 2 * uint64_t(clusterCount()) * sizeof(uint32_t),
-                                                  .usage = gdi::BufferUsage::Storage,
-                                                  .debugName = "cluster opaque depth bounds"}));
+    bounds_ =
+        objects_.add(c.device.createBuffer({.size = 2 * uint64_t(clusterCount()) * sizeof(uint32_t),
+                                            .usage = gdi::BufferUsage::Storage,
+                                            .debugName = "cluster opaque depth bounds"}));
     uniformLights_ = TileLightCulling::lightsFitUniformBlock(c);
-    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute,
-                                              .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "cluster light assignment"}));
+    cs_ = objects_.add(c.device.createShader(
+        {.stage = gdi::ShaderStage::Compute,
+         .binary = TileLightCulling::listPassShader("cluster_light_assignment", uniformLights_)}));
+    pipeline_ = objects_.add(c.device.createComputePipeline(
+        {.computeShader = cs_, .debugName = "cluster light assignment"}));
 }
 
 void ClusterLightGrid::createEntries(uint32_t rows) {
     objects_.destroy(indices_);  // retired once the frames in flight that read it complete
-    indices_ = objects_.add(ctx_.device.createTexture({.format = gdi::Format::R32U, .width = kIndexWidth, .height = rows,
-                                                       .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled,
-                                                       .debugName = "cluster light list entries"}));
+    indices_ = objects_.add(
+        ctx_.device.createTexture({.format = gdi::Format::R32U,
+                                   .width = kIndexWidth,
+                                   .height = rows,
+                                   .usage = gdi::TextureUsage::Storage | gdi::TextureUsage::Sampled,
+                                   .debugName = "cluster light list entries"}));
     capacity_ = rows * kIndexWidth;
 }
 
@@ -64,8 +78,10 @@ void ClusterLightGrid::beginFrame() {
     const uint32_t rows = capacity_ / kIndexWidth;
     if (asked <= capacity_ || rows >= maxRows_) return;
     const uint64_t wanted = std::min<uint64_t>(uint64_t(asked) + asked / 4, mostEntries_);
-    createEntries(uint32_t(std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, rows + 1, maxRows_)));
-    if (declaredIn_) declaredIn_->replaceImport(declared_.entries, indices_, ctx_.device.desc(indices_));
+    createEntries(uint32_t(
+        std::clamp<uint64_t>((wanted + kIndexWidth - 1) / kIndexWidth, rows + 1, maxRows_)));
+    if (declaredIn_)
+        declaredIn_->replaceImport(declared_.entries, indices_, ctx_.device.desc(indices_));
 }
 
 glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::Bounds& bounds) {
@@ -75,68 +91,87 @@ glm::vec4 ClusterLightGrid::slicing(const assets::Camera& camera, const assets::
         const glm::mat4 view = camera.viewFromWorld();
         nearestDepth = std::numeric_limits<float>::max();
         for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x, (c & 2) ? bounds.max.y : bounds.min.y,
+            const glm::vec3 corner((c & 1) ? bounds.max.x : bounds.min.x,
+                                   (c & 2) ? bounds.max.y : bounds.min.y,
                                    (c & 4) ? bounds.max.z : bounds.min.z);
             const float depth = -(view * glm::vec4(corner, 1.0f)).z;
             farDepth = std::max(farDepth, depth);
             nearestDepth = std::min(nearestDepth, depth);
         }
     }
-    farDepth = std::min(farDepth * 1.01f, camera.zfar);  // a margin for rounding; never past the far plane
+    farDepth =
+        std::min(farDepth * 1.01f, camera.zfar);  // a margin for rounding; never past the far plane
     farDepth = std::max(farDepth, 2.0f * nearDepth);
     // The near split: slice 0 takes everything before it, so the exponential slices are not
     // spent on the first metres in front of the camera, where little is seen (Doom 2016 does
     // the same). It lies at kNearSplit of the far depth, or where the scene begins when the
     // camera looks at it from outside (rounding margin kept), never before the near plane.
-    const float split = std::clamp(std::max(farDepth * kNearSplit, nearestDepth * 0.99f), nearDepth, 0.5f * farDepth);
+    const float split = std::clamp(std::max(farDepth * kNearSplit, nearestDepth * 0.99f), nearDepth,
+                                   0.5f * farDepth);
     return {nearDepth, float(kSlices - 1) / std::log(farDepth / split), farDepth, split};
 }
 
-ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) { return declareLists(g, {}); }
+ClusterLightGrid::Lists ClusterLightGrid::declare(graph::RenderGraph& g) {
+    return declareLists(g, {});
+}
 
-ClusterLightGrid::Lists ClusterLightGrid::declareBounded(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
-    if (!opaqueDepth.valid()) throw gdi::Error("ClusterLightGrid::declareBounded: no opaque depth given");
+ClusterLightGrid::Lists ClusterLightGrid::declareBounded(graph::RenderGraph& g,
+                                                         graph::TextureId opaqueDepth) {
+    if (!opaqueDepth.valid())
+        throw gdi::Error("ClusterLightGrid::declareBounded: no opaque depth given");
     return declareLists(g, ctx_.settings.clusterDepthBounds ? opaqueDepth : graph::TextureId{});
 }
 
-ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g,
+                                                       graph::TextureId opaqueDepth) {
     // Read when the frame is recorded, after every reader of the graph has declared itself.
     if (!opaqueDepth.valid()) wholeListsRead_ = true;
     if (declaredIn_ == &g) return declared_;
     declaredIn_ = &g;
     bounded_ = opaqueDepth.valid();
     wholeListsRead_ = !bounded_;
-    declared_ = {.headers = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size),
-                 .entries = g.importTexture("cluster light list entries", indices_, ctx_.device.desc(indices_))};
+    declared_ = {
+        .headers = g.importBuffer("cluster light lists", lists_, ctx_.device.desc(lists_).size),
+        .entries =
+            g.importTexture("cluster light list entries", indices_, ctx_.device.desc(indices_))};
     g.markOutput(declared_.headers);  // statistics() reads it back
     const graph::BufferId bounds = bounded_ ? declareBounds(g, opaqueDepth) : graph::BufferId{};
-    g.addPass("light-assignment", [&](graph::PassBuilder& b) {
-        b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
-        b.storage(declared_.entries);
-        if (bounded_) b.buffer(bounds, gdi::BufferAccess::StorageRead);
-    }, [this](graph::PassContext& pc) { recordAssignment(pc.cmd); });
+    g.addPass(
+        "light-assignment",
+        [&](graph::PassBuilder& b) {
+            b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
+            b.storage(declared_.entries);
+            if (bounded_) b.buffer(bounds, gdi::BufferAccess::StorageRead);
+        },
+        [this](graph::PassContext& pc) { recordAssignment(pc.cmd); });
     return declared_;
 }
 
-graph::BufferId ClusterLightGrid::declareBounds(graph::RenderGraph& g, graph::TextureId opaqueDepth) {
+graph::BufferId ClusterLightGrid::declareBounds(graph::RenderGraph& g,
+                                                graph::TextureId opaqueDepth) {
     if (!boundsPipeline_) {  // made here: a grid only blended surfaces read never compiles it
-        boundsCs_ = objects_.add(ctx_.device.createShader({.stage = gdi::ShaderStage::Compute,
-                                                           .binary = shaders::find("scene/cluster_bounds.comp")}));
-        boundsPipeline_ =
-            objects_.add(ctx_.device.createComputePipeline({.computeShader = boundsCs_, .debugName = "cluster bounds"}));
+        boundsCs_ = objects_.add(
+            ctx_.device.createShader({.stage = gdi::ShaderStage::Compute,
+                                      .binary = shaders::find("scene/cluster_bounds.comp")}));
+        boundsPipeline_ = objects_.add(ctx_.device.createComputePipeline(
+            {.computeShader = boundsCs_, .debugName = "cluster bounds"}));
     }
-    const graph::BufferId bounds = g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size);
-    g.addPass("cluster-bounds", [&](graph::PassBuilder& b) {
-        b.sample(opaqueDepth);
-        b.buffer(bounds, gdi::BufferAccess::StorageWrite);
-    }, [this, opaqueDepth](graph::PassContext& pc) {
-        pc.cmd.setPipeline(boundsPipeline_);
-        const UploadAllocation& fc = ctx_.frameConstants;
-        pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-        pc.cmd.setTexture(kSlotDepth, pc.texture(opaqueDepth), ctx_.pointSampler);
-        pc.cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
-        pc.cmd.dispatch(tiles_.x, tiles_.y);
-    });
+    const graph::BufferId bounds =
+        g.importBuffer("cluster opaque depth bounds", bounds_, ctx_.device.desc(bounds_).size);
+    g.addPass(
+        "cluster-bounds",
+        [&](graph::PassBuilder& b) {
+            b.sample(opaqueDepth);
+            b.buffer(bounds, gdi::BufferAccess::StorageWrite);
+        },
+        [this, opaqueDepth](graph::PassContext& pc) {
+            pc.cmd.setPipeline(boundsPipeline_);
+            const UploadAllocation& fc = ctx_.frameConstants;
+            pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
+            pc.cmd.setTexture(kSlotDepth, pc.texture(opaqueDepth), ctx_.pointSampler);
+            pc.cmd.setStorageBuffer(kSlotClusterBounds, bounds_);
+            pc.cmd.dispatch(tiles_.x, tiles_.y);
+        });
     return bounds;
 }
 
@@ -163,9 +198,11 @@ void ClusterLightGrid::recordAssignment(gdi::CommandList& cmd) {
     }
     // The entries this frame asked for, for beginFrame framesInFlight frames on.
     const size_t slot = ctx_.queue.frameNumber() % asked_.size();
-    cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = rw, .after = gdi::BufferAccess::CopySrc, .size = 4});
+    cmd.barrier(gdi::BufferBarrier{
+        .buffer = lists_, .before = rw, .after = gdi::BufferAccess::CopySrc, .size = 4});
     cmd.copyBuffer(asked_[slot], 0, lists_, 0, sizeof(uint32_t));
-    cmd.barrier(gdi::BufferBarrier{.buffer = lists_, .before = gdi::BufferAccess::CopySrc, .after = rw, .size = 4});
+    cmd.barrier(gdi::BufferBarrier{
+        .buffer = lists_, .before = gdi::BufferAccess::CopySrc, .after = rw, .size = 4});
     askedWritten_[slot] = true;
 }
 
@@ -180,13 +217,15 @@ void ClusterLightGrid::bindLists(gdi::CommandList& cmd) const {
 }
 
 ClusterLightGrid::Statistics ClusterLightGrid::statistics() const {
-    const std::vector<uint8_t> bytes = ctx_.device.readBuffer(lists_, 0, ctx_.device.desc(lists_).size);
+    const std::vector<uint8_t> bytes =
+        ctx_.device.readBuffer(lists_, 0, ctx_.device.desc(lists_).size);
     std::vector<uint32_t> words(bytes.size() / sizeof(uint32_t));
     std::memcpy(words.data(), bytes.data(), words.size() * sizeof(uint32_t));
     Statistics s{.clusters = clusterCount(), .entries = words[0]};
     uint64_t sum = 0, boundedSum = 0;
     for (uint32_t c = 0; c < s.clusters; ++c) {
-        const uint32_t count = words[2 + kHeaderWords * size_t(c)], bounded = words[3 + kHeaderWords * size_t(c)];
+        const uint32_t count = words[2 + kHeaderWords * size_t(c)],
+                       bounded = words[3 + kHeaderWords * size_t(c)];
         if (count == 0xffffffffu) {
             ++s.overflowed;
             continue;

@@ -41,12 +41,16 @@ namespace fe::render {
 
 class ClusterLightGrid {
 public:
-    static constexpr uint32_t kTilePixels = 32;        // FE_CLUSTER_TILE
-    static constexpr uint32_t kSlices = 32;            // FE_CLUSTER_SLICES
-    static constexpr float kNearSplit = 1.0f / 32;     // slice 0 ends at this share of the far depth (at least)
-    static constexpr uint32_t kMeanListCapacity = 64;  // index entries per cluster (at most the scene's lights)
-    static constexpr uint32_t kIndexWidth = 4096;      // FE_CLUSTER_INDEX_WIDTH: texels a row of the entries
-    static constexpr uint32_t kHeaderWords = 3;        // FE_CLUSTER_HEADER: first entry, length, bounded length
+    static constexpr uint32_t kTilePixels = 32;  // FE_CLUSTER_TILE
+    static constexpr uint32_t kSlices = 32;      // FE_CLUSTER_SLICES
+    static constexpr float kNearSplit =
+        1.0f / 32;  // slice 0 ends at this share of the far depth (at least)
+    static constexpr uint32_t kMeanListCapacity =
+        64;  // index entries per cluster (at most the scene's lights)
+    static constexpr uint32_t kIndexWidth =
+        4096;  // FE_CLUSTER_INDEX_WIDTH: texels a row of the entries
+    static constexpr uint32_t kHeaderWords =
+        3;  // FE_CLUSTER_HEADER: first entry, length, bounded length
 
     explicit ClusterLightGrid(TechniqueContext& context);
     ClusterLightGrid(const ClusterLightGrid&) = delete;
@@ -89,13 +93,15 @@ public:
     // What the last frame's lists hold (read back: after the frame completes).
     struct Statistics {
         uint32_t clusters = 0;
-        uint32_t nonEmpty = 0;      // clusters with at least one light
-        double meanLights = 0;      // per non-empty cluster
+        uint32_t nonEmpty = 0;  // clusters with at least one light
+        double meanLights = 0;  // per non-empty cluster
         uint32_t maxLights = 0;
-        uint32_t overflowed = 0;    // clusters that shade every light (no room left in the index array)
-        uint32_t entries = 0;       // light indices the lists asked for (overflowed ones included)
-        double meanBoundedLights = 0;  // per non-empty cluster: the part that reaches its opaque surfaces
-        bool bounded = false;          // the lists were bounded by the opaque depth
+        uint32_t overflowed =
+            0;                 // clusters that shade every light (no room left in the index array)
+        uint32_t entries = 0;  // light indices the lists asked for (overflowed ones included)
+        double meanBoundedLights =
+            0;                 // per non-empty cluster: the part that reaches its opaque surfaces
+        bool bounded = false;  // the lists were bounded by the opaque depth
     };
     Statistics statistics() const;
 
@@ -114,14 +120,15 @@ private:
     std::vector<gdi::BufferHandle> asked_;  // per frame in flight: the entries that frame asked for
     std::vector<bool> askedWritten_;
     gdi::BufferHandle columnMasks_;  // the assignment's: the lights that reach each tile column
-    gdi::BufferHandle bounds_;  // per cluster: the least and greatest opaque depth it holds
+    gdi::BufferHandle bounds_;       // per cluster: the least and greatest opaque depth it holds
     gdi::ShaderHandle cs_, boundsCs_;
     gdi::PipelineHandle pipeline_, boundsPipeline_;
     graph::RenderGraph* declaredIn_ = nullptr;
     Lists declared_{};
     bool bounded_ = false, wholeListsRead_ = false;  // of the graph declaredIn_
     Lists declareLists(graph::RenderGraph& g, graph::TextureId opaqueDepth);
-    graph::BufferId declareBounds(graph::RenderGraph& g, graph::TextureId opaqueDepth);  // the cluster-bounds pass
+    graph::BufferId declareBounds(graph::RenderGraph& g,
+                                  graph::TextureId opaqueDepth);  // the cluster-bounds pass
     void recordAssignment(gdi::CommandList& cmd);  // the light-assignment pass's commands
 };
 

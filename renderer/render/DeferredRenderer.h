@@ -14,7 +14,8 @@ namespace fe::render {
 class DeferredRenderer final : public TechniqueRenderer {
 public:
     explicit DeferredRenderer(TechniqueContext& context);
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     LightLists lightLists() const override { return {LightLists::Kind::NotMeasured, {}}; }
 
 private:

@@ -13,14 +13,14 @@ namespace fe::render {
 class EnvironmentLighting {
 public:
     // `albedo`: whether the shader reads G-buffer 0 (base colour and metallic).
-    EnvironmentLighting(TechniqueContext& context, const char* fragmentShader, std::vector<gdi::Format> targetFormats,
-                        bool albedo);
+    EnvironmentLighting(TechniqueContext& context, const char* fragmentShader,
+                        std::vector<gdi::Format> targetFormats, bool albedo);
     EnvironmentLighting(const EnvironmentLighting&) = delete;
     EnvironmentLighting& operator=(const EnvironmentLighting&) = delete;
     // Declares the pass after the lighting passes: reads the G-buffer, adds into `targets`.
     // `frame`: the pass's frame constants (default: the frame's own).
-    void declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer, std::vector<graph::TextureId> targets,
-                 FrameConstantsFn frame = {});
+    void declare(graph::RenderGraph& g, const char* passName, const GBuffer& gbuffer,
+                 std::vector<graph::TextureId> targets, FrameConstantsFn frame = {});
 
 private:
     gdi::DeviceObjects objects_;

@@ -38,8 +38,8 @@ public:
     static constexpr uint32_t kDefaultFaceSize = 256;
     static constexpr gdi::Format kFormat = gdi::Format::RGBA32F;  // HDR suns exceed half floats
 
-    EnvironmentMap(gdi::Device& device, const assets::Environment& environment, gdi::ShaderHandle fullscreenVs,
-                   uint32_t faceSize = kDefaultFaceSize);
+    EnvironmentMap(gdi::Device& device, const assets::Environment& environment,
+                   gdi::ShaderHandle fullscreenVs, uint32_t faceSize = kDefaultFaceSize);
     EnvironmentMap(const EnvironmentMap&) = delete;
     EnvironmentMap& operator=(const EnvironmentMap&) = delete;
 

@@ -12,7 +12,8 @@ namespace fe::render {
 class ForwardMultipassRenderer final : public TechniqueRenderer {
 public:
     using TechniqueRenderer::TechniqueRenderer;
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     // More lights than this are refused with the reason: each would be a pass over the scene
     // (the stability suite's 4096 and 65536 lights).
     static constexpr uint32_t kMaxLights = 1024;

@@ -7,25 +7,33 @@ namespace fe::render {
 ForwardPlusRenderer::ForwardPlusRenderer(TechniqueContext& c, Lists lists) : TechniqueRenderer(c) {
     if (lists == Lists::Tiles) culling_ = std::make_unique<TileLightCulling>(c);
     if ((lists == Lists::Clusters || c.settings.msaa > 1) && !c.clusters)
-        throw gdi::Error(std::string(lists == Lists::Clusters ? "clustered-forward" : "forward-plus") +
-                         ": the renderer made no light cluster grid");
+        throw gdi::Error(
+            std::string(lists == Lists::Clusters ? "clustered-forward" : "forward-plus") +
+            ": the renderer made no light cluster grid");
 }
 
-void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
+                                  graph::TextureId depth) {
     const ForwardTargets t = forwardTargets(g, output, depth);
     const MeshPassTargets targets = t.formats;
     // As forward-zprepass: the pre-pass clears the radiance target too (one attachment layout).
-    g.addPass("zprepass", [&](graph::PassBuilder& b) {
-        b.colorTarget(t.color);
-        b.depthTarget(t.depth);
-        if (culling_ && t.depth != t.sceneDepth) b.resolve(t.depth, t.sceneDepth);  // culling reads one sample
-    }, [this, targets](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        objects_.clear();
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::DepthPrepass, targets, ctx_.frameConstants, ctx_.eye, &objects_);
-        pc.cmd.endRenderPass();
-    });
-    const graph::TextureId tiles = culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
+    g.addPass(
+        "zprepass",
+        [&](graph::PassBuilder& b) {
+            b.colorTarget(t.color);
+            b.depthTarget(t.depth);
+            if (culling_ && t.depth != t.sceneDepth)
+                b.resolve(t.depth, t.sceneDepth);  // culling reads one sample
+        },
+        [this, targets](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            objects_.clear();
+            ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::DepthPrepass, targets,
+                               ctx_.frameConstants, ctx_.eye, &objects_);
+            pc.cmd.endRenderPass();
+        });
+    const graph::TextureId tiles =
+        culling_ ? culling_->declare(g, t.sceneDepth) : graph::TextureId{};
     tiles_ = tiles;
     // Under MSAA a Forward+ fragment outside its tile's depth bounds walks its cluster's list
     // (fe_forward_pass.glsl), so the grid is built then too. At one sample clustered-forward's
@@ -33,21 +41,27 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
     const bool clustersRead = !culling_ || ctx_.settings.msaa > 1;
     ClusterLightGrid::Lists clusters{};
     if (clustersRead)
-        clusters = !culling_ && t.depth == t.sceneDepth ? ctx_.clusters->declareBounded(g, t.sceneDepth) : ctx_.clusters->declare(g);
-    g.addPass(culling_ ? "forward-plus-shading" : "clustered-shading", [&](graph::PassBuilder& b) {
-        if (culling_) b.sample(tiles);
-        if (clustersRead) ClusterLightGrid::read(b, clusters);
-        b.colorTarget(t.color, gdi::LoadOp::Load);
-        b.depthTarget(t.depth, gdi::LoadOp::Load);
-        t.resolveIn(b);
-    }, [this, targets, tiles, clustersRead](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        if (culling_) culling_->bindLists(pc.cmd, pc, tiles);
-        if (clustersRead) ctx_.clusters->bindLists(pc.cmd);
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, culling_ ? MeshPass::ForwardTiled : MeshPass::ForwardClustered, targets,
-                           ctx_.frameConstants, ctx_.eye, &objects_);
-        pc.cmd.endRenderPass();
-    });
+        clusters = !culling_ && t.depth == t.sceneDepth
+                       ? ctx_.clusters->declareBounded(g, t.sceneDepth)
+                       : ctx_.clusters->declare(g);
+    g.addPass(
+        culling_ ? "forward-plus-shading" : "clustered-shading",
+        [&](graph::PassBuilder& b) {
+            if (culling_) b.sample(tiles);
+            if (clustersRead) ClusterLightGrid::read(b, clusters);
+            b.colorTarget(t.color, gdi::LoadOp::Load);
+            b.depthTarget(t.depth, gdi::LoadOp::Load);
+            t.resolveIn(b);
+        },
+        [this, targets, tiles, clustersRead](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            if (culling_) culling_->bindLists(pc.cmd, pc, tiles);
+            if (clustersRead) ctx_.clusters->bindLists(pc.cmd);
+            ctx_.geometry.draw(pc.cmd, ctx_.queue,
+                               culling_ ? MeshPass::ForwardTiled : MeshPass::ForwardClustered,
+                               targets, ctx_.frameConstants, ctx_.eye, &objects_);
+            pc.cmd.endRenderPass();
+        });
     declareShadowedForward(g, t, &objects_);
 }
 

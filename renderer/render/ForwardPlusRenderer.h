@@ -22,15 +22,17 @@ class ForwardPlusRenderer final : public TechniqueRenderer {
 public:
     enum class Lists { Tiles, Clusters };
     ForwardPlusRenderer(TechniqueContext& context, Lists lists);
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     LightLists lightLists() const override {
-        return culling_ ? LightLists{LightLists::Kind::Tiles, tiles_} : LightLists{LightLists::Kind::Clusters, {}};
+        return culling_ ? LightLists{LightLists::Kind::Tiles, tiles_}
+                        : LightLists{LightLists::Kind::Clusters, {}};
     }
 
 private:
     graph::TextureId tiles_;
     std::unique_ptr<TileLightCulling> culling_;  // the tile lists; null: the cluster grid's
-    std::vector<UploadAllocation> objects_;      // object constants, shared by the passes of a frame
+    std::vector<UploadAllocation> objects_;  // object constants, shared by the passes of a frame
 };
 
 }  // namespace fe::render

@@ -7,7 +7,8 @@ namespace fe::render {
 class ForwardRenderer final : public TechniqueRenderer {
 public:
     using TechniqueRenderer::TechniqueRenderer;
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
 };
 
 }  // namespace fe::render

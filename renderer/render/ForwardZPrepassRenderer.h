@@ -12,7 +12,8 @@ namespace fe::render {
 class ForwardZPrepassRenderer final : public TechniqueRenderer {
 public:
     using TechniqueRenderer::TechniqueRenderer;
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
 
 private:
     std::vector<UploadAllocation> objects_;  // object constants, shared by both passes of a frame

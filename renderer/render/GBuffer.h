@@ -9,18 +9,21 @@
 namespace fe::render {
 
 struct GBuffer {
-    static constexpr gdi::Format kFormat0 = gdi::Format::RGBA8_SRGB, kFormat1 = gdi::Format::RGBA16F,
-                                 kFormat2 = gdi::Format::RGBA16F, kFormat3 = gdi::Format::R16F;
+    static constexpr gdi::Format kFormat0 = gdi::Format::RGBA8_SRGB,
+                                 kFormat1 = gdi::Format::RGBA16F, kFormat2 = gdi::Format::RGBA16F,
+                                 kFormat3 = gdi::Format::R16F;
     graph::TextureId gb0, gb1, gb2, gb3, depth;  // gb3: only with occlusion and image-based light
-    gdi::TextureHandle noOcclusion;               // bound in gb3's place without it
+    gdi::TextureHandle noOcclusion;              // bound in gb3's place without it
 
     // Declares the textures and the "gbuffer" pass writing them.
     void declare(graph::RenderGraph& g, TechniqueContext& ctx, graph::TextureId sceneDepth);
     // Binds the G-buffer (base colour only when `albedo`) and depth at their shader slots.
-    void bind(gdi::CommandList& cmd, const graph::PassContext& pc, gdi::SamplerHandle sampler, bool albedo) const;
+    void bind(gdi::CommandList& cmd, const graph::PassContext& pc, gdi::SamplerHandle sampler,
+              bool albedo) const;
     void sampleIn(graph::PassBuilder& b, bool albedo) const;
     // The occlusion (gb3, or white) at kSlotGBuffer3, for the image-based lighting pass.
-    void bindOcclusion(gdi::CommandList& cmd, const graph::PassContext& pc, gdi::SamplerHandle sampler) const;
+    void bindOcclusion(gdi::CommandList& cmd, const graph::PassContext& pc,
+                       gdi::SamplerHandle sampler) const;
     void sampleOcclusionIn(graph::PassBuilder& b) const;
 };
 

@@ -8,7 +8,9 @@
 namespace fe::render {
 
 namespace {
-bool isTransparent(MeshPass pass) { return pass == MeshPass::Transparent || pass == MeshPass::TransparentClustered; }
+bool isTransparent(MeshPass pass) {
+    return pass == MeshPass::Transparent || pass == MeshPass::TransparentClustered;
+}
 // Which draws a pass takes: BLEND ones the transparent passes, transmissive ones the
 // transmission pass, every other one the rest (opaque and MASK: shading, depth, shadow casting).
 bool drawnBy(MeshPass pass, const DrawItem& d) {
@@ -26,11 +28,16 @@ constexpr float kShadowConstantBias = 4.0f;
 // The light count comes from the scene asset: the GpuScene's is set after this constructor
 // (SceneRenderer::updateLights, which keeps it).
 GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene)
-    : objects_(device), device_(device), scene_(scene),
-      uniformLights_(GpuScene::lightsFitUniformBlock(uint32_t(scene.scene().lights.size()), device.info().limits)) {
-    vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
+    : objects_(device),
+      device_(device),
+      scene_(scene),
+      uniformLights_(GpuScene::lightsFitUniformBlock(uint32_t(scene.scene().lights.size()),
+                                                     device.info().limits)) {
+    vs_ = objects_.add(device.createShader(
+        {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
     auto fragment = [&](const std::string& name) {
-        return objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
+        return objects_.add(device.createShader(
+            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
     forwardFs_ = fragment(lightsVariant("scene/forward.frag"));
     gbufferFs_ = fragment("scene/gbuffer.frag");
@@ -54,18 +61,21 @@ std::string GeometryRenderer::lightsVariant(const std::string& path, const char*
 }
 
 void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
-    if (!pipelines_.empty()) throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
+    if (!pipelines_.empty())
+        throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
     auto fragment = [&](const std::string& path) {
-        return objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
+        return objects_.add(device_.createShader(
+            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
     };
     forwardIblFs_ = fragment(lightsVariant(light.shader("scene/forward_ibl.frag")));
     lppMaterialIblFs_ = fragment(light.shader("scene/lpp_material_ibl.frag"));
     environment_ = light;
 }
 
-gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
-                                               gdi::FrontFace face) {
-    std::vector<uint32_t> key = {uint32_t(pass), uint32_t(cull), uint32_t(face), uint32_t(targets.depthFormat), targets.samples};
+gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets,
+                                               gdi::CullMode cull, gdi::FrontFace face) {
+    std::vector<uint32_t> key = {uint32_t(pass), uint32_t(cull), uint32_t(face),
+                                 uint32_t(targets.depthFormat), targets.samples};
     for (gdi::Format f : targets.colorFormats) key.push_back(uint32_t(f));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
@@ -78,8 +88,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     };
     // The forward-shaded passes that add the environment's light (with the emissive term: not
     // multi-pass forward's additive passes).
-    const bool ibl = forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual || pass == MeshPass::Transparent ||
-                                       pass == MeshPass::LightPrepassMaterial);
+    const bool ibl =
+        forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual ||
+                          pass == MeshPass::Transparent || pass == MeshPass::LightPrepassMaterial);
 
     State st = [&]() -> State {
         switch (pass) {
@@ -88,38 +99,58 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                 if (targets.colorFormats.size() == 4) {
                     if (!gbufferOcclusionFs_)
                         gbufferOcclusionFs_ = objects_.add(device_.createShader(
-                            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/gbuffer.frag:FE_GBUFFER_OCCLUSION")}));
-                    return {gbufferOcclusionFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer with occlusion"};
+                            {.stage = gdi::ShaderStage::Fragment,
+                             .binary = shaders::find("scene/gbuffer.frag:FE_GBUFFER_OCCLUSION")}));
+                    return {gbufferOcclusionFs_, true, gdi::CompareOp::LessOrEqual,
+                            "gbuffer with occlusion"};
                 }
                 return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
-            case MeshPass::Transparent: return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
-            case MeshPass::DepthPrepass: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
-            case MeshPass::ForwardEqual: return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};
-            case MeshPass::ForwardAdditive: return {forwardFs_, false, gdi::CompareOp::Equal, "forward additive"};
-            case MeshPass::NormalRoughness: return {lppNormalsFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals"};
+            case MeshPass::Transparent:
+                return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
+            case MeshPass::DepthPrepass:
+                return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
+            case MeshPass::ForwardEqual:
+                return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};
+            case MeshPass::ForwardAdditive:
+                return {forwardFs_, false, gdi::CompareOp::Equal, "forward additive"};
+            case MeshPass::NormalRoughness:
+                return {lppNormalsFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals"};
             case MeshPass::NormalRoughnessUnpacked:
-                return {lppNormalsUnpackedFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals unpacked"};
-            case MeshPass::LightPrepassMaterial: return {lppMaterialFs_, false, gdi::CompareOp::Equal, "lpp material"};
-            case MeshPass::ShadowCaster: return {depthFs_, true, gdi::CompareOp::LessOrEqual, "shadow caster"};
-            case MeshPass::ForwardShadowed: return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
+                return {lppNormalsUnpackedFs_, true, gdi::CompareOp::LessOrEqual,
+                        "lpp normals unpacked"};
+            case MeshPass::LightPrepassMaterial:
+                return {lppMaterialFs_, false, gdi::CompareOp::Equal, "lpp material"};
+            case MeshPass::ShadowCaster:
+                return {depthFs_, true, gdi::CompareOp::LessOrEqual, "shadow caster"};
+            case MeshPass::ForwardShadowed:
+                return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
             case MeshPass::ForwardShadowedCube:
-                return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal, "forward shadowed cube"};
+                return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal,
+                        "forward shadowed cube"};
             case MeshPass::ForwardTiled:
                 // Multisampled: the variant whose fragments outside their tile's bounds walk their cluster's list.
-                return targets.samples > 1 ? State{listShader(forwardTiledMsaaFs_, "forward_plus", "FE_MULTISAMPLED"), false,
-                                                   gdi::CompareOp::Equal, "forward tiled multisampled"}
-                                           : State{listShader(forwardTiledFs_, "forward_plus"), false, gdi::CompareOp::Equal,
-                                                   "forward tiled"};
+                return targets.samples > 1
+                           ? State{listShader(forwardTiledMsaaFs_, "forward_plus",
+                                              "FE_MULTISAMPLED"),
+                                   false, gdi::CompareOp::Equal, "forward tiled multisampled"}
+                           : State{listShader(forwardTiledFs_, "forward_plus"), false,
+                                   gdi::CompareOp::Equal, "forward tiled"};
             case MeshPass::ForwardClustered:
-                return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::Equal, "forward clustered"};
+                return {listShader(forwardClusteredFs_, "forward_clustered"), false,
+                        gdi::CompareOp::Equal, "forward clustered"};
             case MeshPass::TransparentClustered:
-                return {listShader(forwardClusteredFs_, "forward_clustered"), false, gdi::CompareOp::LessOrEqual, "transparent clustered"};
-            case MeshPass::Visibility: return {visibilityShaders(), true, gdi::CompareOp::LessOrEqual, "visibility"};
-            case MeshPass::Transmission: return {transmissionShader(), true, gdi::CompareOp::LessOrEqual, "transmission"};
-            default: return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
+                return {listShader(forwardClusteredFs_, "forward_clustered"), false,
+                        gdi::CompareOp::LessOrEqual, "transparent clustered"};
+            case MeshPass::Visibility:
+                return {visibilityShaders(), true, gdi::CompareOp::LessOrEqual, "visibility"};
+            case MeshPass::Transmission:
+                return {transmissionShader(), true, gdi::CompareOp::LessOrEqual, "transmission"};
+            default:
+                return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
-    if (ibl && pass != MeshPass::Transmission) st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
+    if (ibl && pass != MeshPass::Transmission)
+        st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
         .vertexShader = vs_,
@@ -133,7 +164,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                                           {5, VertexFormat::Float4, 56}}}},
         .raster = {.cullMode = cull, .frontFace = face},
         .multisample = {.sampleCount = targets.samples},
-        .depthStencil = {.depthTest = true, .depthWrite = st.depthWrite, .depthCompare = st.compare},
+        .depthStencil = {.depthTest = true,
+                         .depthWrite = st.depthWrite,
+                         .depthCompare = st.compare},
         .colorFormats = targets.colorFormats,
         .depthFormat = targets.depthFormat,
         .debugName = st.name,
@@ -156,10 +189,15 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         d.raster.depthBiasSlope = kShadowSlopeBias;
         d.raster.depthBiasConstant = kShadowConstantBias;
     }
-    if (pass == MeshPass::ForwardAdditive || pass == MeshPass::ForwardShadowed || pass == MeshPass::ForwardShadowedCube)
-        d.blend = {{.enable = true, .srcColor = gdi::BlendFactor::One, .dstColor = gdi::BlendFactor::One,
-                    .srcAlpha = gdi::BlendFactor::One, .dstAlpha = gdi::BlendFactor::Zero}};
-    if (pass == MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
+    if (pass == MeshPass::ForwardAdditive || pass == MeshPass::ForwardShadowed ||
+        pass == MeshPass::ForwardShadowedCube)
+        d.blend = {{.enable = true,
+                    .srcColor = gdi::BlendFactor::One,
+                    .dstColor = gdi::BlendFactor::One,
+                    .srcAlpha = gdi::BlendFactor::One,
+                    .dstAlpha = gdi::BlendFactor::Zero}};
+    if (pass ==
+        MeshPass::DepthPrepass)  // the colour targets stay attached (one pass layout), unwritten
         d.blend.assign(targets.colorFormats.size(), {.writeMask = gdi::ColorMask::None});
     gdi::PipelineHandle p = objects_.add(device_.createGraphicsPipeline(d));
     pipelines_[key] = p;
@@ -168,11 +206,15 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
 
 // The forward shader walking a light list (scene/NAME.frag, its `variant` if given), with the
 // environment's light when the renderer has one; made once, at its first pipeline.
-gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name, const char* variant) {
+gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const char* name,
+                                               const char* variant) {
     if (made) return made;
     const std::string plain = std::string("scene/") + name + ".frag";
-    const std::string path = lightsVariant(forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain, variant);
-    made = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
+    const std::string path = lightsVariant(
+        forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain,
+        variant);
+    made = objects_.add(
+        device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
     return made;
 }
 
@@ -180,9 +222,11 @@ gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const ch
 // the renderer has one; made at its first pipeline.
 gdi::ShaderHandle GeometryRenderer::transmissionShader() {
     if (!transmissionFs_) {
-        const std::string path = forwardIblFs_ ? environment_.shader("scene/forward_ibl.frag") : "scene/forward.frag";
+        const std::string path =
+            forwardIblFs_ ? environment_.shader("scene/forward_ibl.frag") : "scene/forward.frag";
         transmissionFs_ = objects_.add(device_.createShader(
-            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(lightsVariant(path, "FE_TRANSMISSION"))}));
+            {.stage = gdi::ShaderStage::Fragment,
+             .binary = shaders::find(lightsVariant(path, "FE_TRANSMISSION"))}));
     }
     return transmissionFs_;
 }
@@ -190,8 +234,11 @@ gdi::ShaderHandle GeometryRenderer::transmissionShader() {
 // The visibility pass's shaders (its fragment shader returned), made at its first pipeline.
 gdi::ShaderHandle GeometryRenderer::visibilityShaders() {
     if (!visibilityFs_) {
-        visibilityVs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/visibility.vert")}));
-        visibilityFs_ = objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/visibility.frag")}));
+        visibilityVs_ = objects_.add(device_.createShader(
+            {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/visibility.vert")}));
+        visibilityFs_ =
+            objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment,
+                                               .binary = shaders::find("scene/visibility.frag")}));
     }
     return visibilityFs_;
 }
@@ -208,17 +255,22 @@ std::vector<const DrawItem*> GeometryRenderer::items(MeshPass pass, const glm::v
         if (drawnBy(pass, d)) items.push_back(&d);
     auto distance = [&](const DrawItem* d) { return glm::distance(d->worldCenter, eye); };
     if (isTransparent(pass))  // back to front, so source-over blending composes correctly
-        std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
-    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster || pass == MeshPass::Visibility ||
+        std::stable_sort(items.begin(), items.end(),
+                         [&](auto* a, auto* b) { return distance(a) > distance(b); });
+    if (pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster ||
+        pass == MeshPass::Visibility ||
         pass == MeshPass::Transmission)  // front to back: hidden surfaces fail early
-        std::stable_sort(items.begin(), items.end(), [&](auto* a, auto* b) { return distance(a) < distance(b); });
+        std::stable_sort(items.begin(), items.end(),
+                         [&](auto* a, auto* b) { return distance(a) < distance(b); });
     return items;
 }
 
-void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
-                            const UploadAllocation& frame, const glm::vec3& eye, std::vector<UploadAllocation>* objects) {
+void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass,
+                            const MeshPassTargets& targets, const UploadAllocation& frame,
+                            const glm::vec3& eye, std::vector<UploadAllocation>* objects) {
     const std::vector<const DrawItem*> list = items(pass, eye);
-    if (objects && objects->size() != scene_.draws().size()) objects->assign(scene_.draws().size(), {});
+    if (objects && objects->size() != scene_.draws().size())
+        objects->assign(scene_.draws().size(), {});
     cmd.setVertexBuffer(0, scene_.vertexBuffer());
     cmd.setIndexBuffer(scene_.indexBuffer(), gdi::IndexType::U32);
     cmd.setUniformBuffer(kSlotFrame, frame.buffer, frame.offset, frame.size);
@@ -233,7 +285,8 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
         const DrawItem* d = list[i];
         // glTF front faces are counter-clockwise; a mirroring transform turns them clockwise.
         gdi::CullMode cull = d->doubleSided ? gdi::CullMode::None : gdi::CullMode::Back;
-        gdi::FrontFace face = d->mirrored ? gdi::FrontFace::Clockwise : gdi::FrontFace::CounterClockwise;
+        gdi::FrontFace face =
+            d->mirrored ? gdi::FrontFace::Clockwise : gdi::FrontFace::CounterClockwise;
         gdi::PipelineHandle p = pipeline(pass, targets, cull, face);
         if (!(p == current)) {
             cmd.setPipeline(p);
@@ -249,8 +302,10 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
         }
         cmd.setUniformBuffer(kSlotObject, o.buffer, o.offset, o.size);
         scene_.textures(d->material).bind(cmd);
-        if (pass == MeshPass::Visibility) cmd.draw(d->indexCount);  // unindexed: vertex id / 3 is the triangle
-        else cmd.drawIndexed(d->indexCount, 1, d->firstIndex, d->baseVertex, 0);
+        if (pass == MeshPass::Visibility)
+            cmd.draw(d->indexCount);  // unindexed: vertex id / 3 is the triangle
+        else
+            cmd.drawIndexed(d->indexCount, 1, d->firstIndex, d->baseVertex, 0);
     }
 }
 

@@ -23,18 +23,18 @@ enum class MeshPass {
     DepthPrepass,     // opaque items front to back, depth only (alpha test for MASK)
     ForwardEqual,     // shade where depth EQUALs the pre-pass depth, no depth write
     ForwardAdditive,  // shade and add (One, One) where depth is EQUAL: further lights of multipass
-    NormalRoughness,          // light pre-pass 1: packed normal + roughness, depth write
+    NormalRoughness,  // light pre-pass 1: packed normal + roughness, depth write
     NormalRoughnessUnpacked,  // ... the RGBA16F variant
-    LightPrepassMaterial,     // light pre-pass 3: material x light buffer (slot kSlotIBuffer0), depth EQUAL
-    ShadowCaster,             // depth only into a shadow map: no culling, slope-scaled depth bias
-    ForwardShadowed,          // ForwardAdditive for one light with its shadow map (kSlotShadow, kSlotShadowMap)
-    ForwardShadowedCube,      // ... a point light with its shadow cube
-    ForwardTiled,             // ForwardEqual over the pixel's tile light list (kSlotTileLights, forward-plus)
-    ForwardClustered,         // ForwardEqual over the fragment's cluster list (kSlotClusterLights, clustered-forward)
-    TransparentClustered,     // Transparent over the fragment's cluster list (any technique, with a cluster grid)
-    Visibility,               // triangle ids (R32U) and depth, vertices pulled (kSlotVertices, kSlotIndices), front to back
-    Transmission,             // transmissive items (KHR_materials_transmission) over the opaque scene's copy
-                              // (kSlotTransmitted), every light, depth test <=, depth write
+    LightPrepassMaterial,  // light pre-pass 3: material x light buffer (slot kSlotIBuffer0), depth EQUAL
+    ShadowCaster,          // depth only into a shadow map: no culling, slope-scaled depth bias
+    ForwardShadowed,  // ForwardAdditive for one light with its shadow map (kSlotShadow, kSlotShadowMap)
+    ForwardShadowedCube,  // ... a point light with its shadow cube
+    ForwardTiled,  // ForwardEqual over the pixel's tile light list (kSlotTileLights, forward-plus)
+    ForwardClustered,  // ForwardEqual over the fragment's cluster list (kSlotClusterLights, clustered-forward)
+    TransparentClustered,  // Transparent over the fragment's cluster list (any technique, with a cluster grid)
+    Visibility,  // triangle ids (R32U) and depth, vertices pulled (kSlotVertices, kSlotIndices), front to back
+    Transmission,  // transmissive items (KHR_materials_transmission) over the opaque scene's copy
+                   // (kSlotTransmitted), every light, depth test <=, depth write
 };
 
 // What the pass renders into; pipelines are specialised to these formats.
@@ -56,28 +56,32 @@ public:
     // the light pre-pass material pass: forward_ibl.frag / lpp_material_ibl.frag reading this
     // cube (frame.counts.z samples per term). Before any draw.
     void setEnvironment(const EnvironmentLight& light);
-    void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass, const MeshPassTargets& targets,
-              const UploadAllocation& frameConstants, const glm::vec3& eye,
-              std::vector<UploadAllocation>* objects = nullptr);
+    void draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass pass,
+              const MeshPassTargets& targets, const UploadAllocation& frameConstants,
+              const glm::vec3& eye, std::vector<UploadAllocation>* objects = nullptr);
 
     uint32_t drawCount(MeshPass pass) const;
 
 private:
-    gdi::PipelineHandle pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull, gdi::FrontFace face);
+    gdi::PipelineHandle pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
+                                 gdi::FrontFace face);
     std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
 
     gdi::DeviceObjects objects_;
     gdi::Device& device_;
     GpuScene& scene_;
     bool uniformLights_;  // the forward shaders read the lights as the uniform block (GpuScene)
-    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, gbufferOcclusionFs_, depthFs_, lppNormalsFs_, lppNormalsUnpackedFs_, lppMaterialFs_;
+    gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, gbufferOcclusionFs_, depthFs_, lppNormalsFs_,
+        lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;  // made at their first pipeline
-    gdi::ShaderHandle visibilityVs_, visibilityFs_;          // likewise
-    gdi::ShaderHandle transmissionFs_;                       // likewise
-    gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name, const char* variant = nullptr);
+    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_,
+        forwardClusteredFs_;                         // made at their first pipeline
+    gdi::ShaderHandle visibilityVs_, visibilityFs_;  // likewise
+    gdi::ShaderHandle transmissionFs_;               // likewise
+    gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name,
+                                 const char* variant = nullptr);
     std::string lightsVariant(const std::string& path, const char* variant = nullptr) const;
     gdi::ShaderHandle visibilityShaders();
     gdi::ShaderHandle transmissionShader();

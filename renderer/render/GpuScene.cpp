@@ -12,14 +12,17 @@ namespace fe::render {
 
 namespace {
 
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 float linearToSrgb(float c) {
     c = std::clamp(c, 0.0f, 1.0f);
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
 // Next mip level by a 2x2 box filter; sRGB colour channels are averaged in linear space.
-std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uint32_t h, bool srgb) {
+std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uint32_t h,
+                                bool srgb) {
     uint32_t nw = std::max(1u, w / 2), nh = std::max(1u, h / 2);
     std::vector<uint8_t> dst(size_t(nw) * nh * 4);
     for (uint32_t y = 0; y < nh; ++y)
@@ -36,25 +39,34 @@ std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uin
                     }
                 float v = sum / float(n);
                 if (srgb && c < 3) v = linearToSrgb(v);
-                dst[(size_t(y) * nw + x) * 4 + c] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+                dst[(size_t(y) * nw + x) * 4 + c] =
+                    uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
             }
     return dst;
 }
 
-gdi::Filter toFilter(assets::Filter f) { return f == assets::Filter::Nearest ? gdi::Filter::Nearest : gdi::Filter::Linear; }
+gdi::Filter toFilter(assets::Filter f) {
+    return f == assets::Filter::Nearest ? gdi::Filter::Nearest : gdi::Filter::Linear;
+}
 gdi::AddressMode toAddress(assets::Wrap w) {
     switch (w) {
-        case assets::Wrap::ClampToEdge: return gdi::AddressMode::ClampToEdge;
-        case assets::Wrap::MirroredRepeat: return gdi::AddressMode::MirroredRepeat;
-        default: return gdi::AddressMode::Repeat;
+        case assets::Wrap::ClampToEdge:
+            return gdi::AddressMode::ClampToEdge;
+        case assets::Wrap::MirroredRepeat:
+            return gdi::AddressMode::MirroredRepeat;
+        default:
+            return gdi::AddressMode::Repeat;
     }
 }
 
-gdi::TextureHandle solidTexture(gdi::DeviceObjects& objects, uint8_t r, uint8_t g, uint8_t b, uint8_t a, bool srgb,
-                                const char* name) {
+gdi::TextureHandle solidTexture(gdi::DeviceObjects& objects, uint8_t r, uint8_t g, uint8_t b,
+                                uint8_t a, bool srgb, const char* name) {
     gdi::Device& device = objects.device();
-    gdi::TextureHandle t = objects.add(device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
-                                                             .width = 1, .height = 1, .debugName = name}));
+    gdi::TextureHandle t = objects.add(
+        device.createTexture({.format = srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                              .width = 1,
+                              .height = 1,
+                              .debugName = name}));
     const uint8_t px[4] = {r, g, b, a};
     device.writeTexture(t, {}, gdi::bytesOf(px));
     return t;
@@ -66,14 +78,17 @@ GpuLight toGpuLight(const assets::Light& l) {
     GpuLight g{};
     g.positionRange = glm::vec4(l.position, l.range);
     g.colorIntensity = glm::vec4(l.color, l.intensity);
-    float type = l.type == assets::LightType::Directional ? 0.0f : l.type == assets::LightType::Point ? 1.0f : 2.0f;
+    float type = l.type == assets::LightType::Directional ? 0.0f
+                 : l.type == assets::LightType::Point     ? 1.0f
+                                                          : 2.0f;
     g.directionType = glm::vec4(l.direction, type);
     float s = 1.0f / std::max(0.001f, std::cos(l.innerConeAngle) - std::cos(l.outerConeAngle));
     g.spotScaleOffset = glm::vec4(s, -std::cos(l.outerConeAngle) * s, 0.0f, 0.0f);
     return g;
 }
 
-GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(device), device_(device), scene_(scene) {
+GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene)
+    : objects_(device), device_(device), scene_(scene) {
     // Geometry: every primitive appended to one vertex and one index buffer.
     std::vector<assets::Vertex> vertices;
     std::vector<uint32_t> indices;
@@ -84,7 +99,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     std::vector<std::vector<Range>> ranges(scene.meshes.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m)
         for (const assets::Primitive& p : scene.meshes[m].primitives) {
-            ranges[m].push_back({uint32_t(indices.size()), uint32_t(p.indices.size()), int32_t(vertices.size())});
+            ranges[m].push_back(
+                {uint32_t(indices.size()), uint32_t(p.indices.size()), int32_t(vertices.size())});
             vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
             indices.insert(indices.end(), p.indices.begin(), p.indices.end());
         }
@@ -92,8 +108,10 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     // pose), the skin influences and morph deltas go to buffers the deformation reads.
     std::vector<assets::SkinInfluences> influences;
     std::vector<float> deltas;
-    std::map<std::pair<size_t, size_t>, std::pair<uint32_t, uint32_t>> sources;  // (mesh, primitive) -> (skin, morph)
-    std::map<std::pair<uint32_t, size_t>, int32_t> deformedBase;  // (instance, primitive) -> first deformed vertex
+    std::map<std::pair<size_t, size_t>, std::pair<uint32_t, uint32_t>>
+        sources;  // (mesh, primitive) -> (skin, morph)
+    std::map<std::pair<uint32_t, size_t>, int32_t>
+        deformedBase;  // (instance, primitive) -> first deformed vertex
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const assets::MeshInstance& inst = scene.instances[i];
         if (!inst.deformed()) continue;
@@ -102,7 +120,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             const assets::Primitive& prim = mesh.primitives[p];
             const bool skinned = inst.skin >= 0 && !prim.skin.empty();
             if (!skinned && prim.targets.empty()) continue;
-            auto [src, fresh] = sources.try_emplace({inst.meshIndex, p}, ~0u, uint32_t(deltas.size()));
+            auto [src, fresh] =
+                sources.try_emplace({inst.meshIndex, p}, ~0u, uint32_t(deltas.size()));
             if (fresh) {
                 if (!prim.skin.empty()) {
                     src->second.first = uint32_t(influences.size());
@@ -110,15 +129,20 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
                 }
                 for (const assets::MorphTarget& t : prim.targets)
                     for (size_t v = 0; v < prim.vertices.size(); ++v)
-                        for (const std::vector<glm::vec3>* d : {&t.position, &t.normal, &t.tangent}) {
+                        for (const std::vector<glm::vec3>* d :
+                             {&t.position, &t.normal, &t.tangent}) {
                             const glm::vec3 x = d->empty() ? glm::vec3(0.0f) : (*d)[v];
                             deltas.insert(deltas.end(), {x.x, x.y, x.z});
                         }
             }
-            Deformation d{.instance = i, .restFirst = uint32_t(ranges[inst.meshIndex][p].baseVertex),
-                          .outputFirst = uint32_t(vertices.size()), .vertexCount = uint32_t(prim.vertices.size()),
-                          .flatNormals = prim.flatNormals, .skinFirst = skinned ? src->second.first : ~0u,
-                          .morphFirst = src->second.second, .targetCount = uint32_t(prim.targets.size())};
+            Deformation d{.instance = i,
+                          .restFirst = uint32_t(ranges[inst.meshIndex][p].baseVertex),
+                          .outputFirst = uint32_t(vertices.size()),
+                          .vertexCount = uint32_t(prim.vertices.size()),
+                          .flatNormals = prim.flatNormals,
+                          .skinFirst = skinned ? src->second.first : ~0u,
+                          .morphFirst = src->second.second,
+                          .targetCount = uint32_t(prim.targets.size())};
             deformedBase[{i, p}] = int32_t(vertices.size());
             vertices.insert(vertices.end(), prim.vertices.begin(), prim.vertices.end());
             deformations_.push_back(d);
@@ -129,19 +153,26 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     if (!deformations_.empty()) {
         if (influences.empty()) influences.push_back({});
         if (deltas.empty()) deltas.push_back(0.0f);
-        skin_ = objects_.add(device.createBuffer({.size = influences.size() * sizeof(assets::SkinInfluences),
-                                                  .usage = gdi::BufferUsage::Storage, .debugName = "skin influences"},
-                                                 gdi::bytesOf(influences)));
-        morph_ = objects_.add(device.createBuffer(
-            {.size = deltas.size() * sizeof(float), .usage = gdi::BufferUsage::Storage, .debugName = "morph target deltas"},
-            gdi::bytesOf(deltas)));
+        skin_ = objects_.add(
+            device.createBuffer({.size = influences.size() * sizeof(assets::SkinInfluences),
+                                 .usage = gdi::BufferUsage::Storage,
+                                 .debugName = "skin influences"},
+                                gdi::bytesOf(influences)));
+        morph_ = objects_.add(device.createBuffer({.size = deltas.size() * sizeof(float),
+                                                   .usage = gdi::BufferUsage::Storage,
+                                                   .debugName = "morph target deltas"},
+                                                  gdi::bytesOf(deltas)));
     }
-    vertices_ = objects_.add(device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex),
-                                                  .usage = gdi::BufferUsage::Vertex | gdi::BufferUsage::Storage,
-                                                  .debugName = "scene vertices"},
-                                                 gdi::bytesOf(vertices)));
-    indices_ = objects_.add(device.createBuffer(
-        {.size = indices.size() * 4, .usage = gdi::BufferUsage::Index | gdi::BufferUsage::Storage, .debugName = "scene indices"}, gdi::bytesOf(indices)));
+    vertices_ = objects_.add(
+        device.createBuffer({.size = vertices.size() * sizeof(assets::Vertex),
+                             .usage = gdi::BufferUsage::Vertex | gdi::BufferUsage::Storage,
+                             .debugName = "scene vertices"},
+                            gdi::bytesOf(vertices)));
+    indices_ = objects_.add(
+        device.createBuffer({.size = indices.size() * 4,
+                             .usage = gdi::BufferUsage::Index | gdi::BufferUsage::Storage,
+                             .debugName = "scene indices"},
+                            gdi::bytesOf(indices)));
 
     uint64_t triangles = 0;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
@@ -154,7 +185,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             d.firstIndex = ranges[inst.meshIndex][p].firstIndex;
             d.indexCount = ranges[inst.meshIndex][p].indexCount;
             const auto deformed = deformedBase.find({i, p});
-            d.baseVertex = deformed != deformedBase.end() ? deformed->second : ranges[inst.meshIndex][p].baseVertex;
+            d.baseVertex = deformed != deformedBase.end() ? deformed->second
+                                                          : ranges[inst.meshIndex][p].baseVertex;
             d.material = prim.material;
             d.instance = i;
             d.alphaMode = mat.alphaMode;
@@ -164,7 +196,8 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
             d.worldCenter = glm::vec3(inst.world * glm::vec4(prim.bounds.center(), 1.0f));
             if (!d.indexCount) continue;
             if (triangles + d.indexCount / 3 >= uint64_t(1) << 32)
-                throw gdi::Error("scene has more than 2^32 - 1 triangles (the visibility buffer's ids)");
+                throw gdi::Error(
+                    "scene has more than 2^32 - 1 triangles (the visibility buffer's ids)");
             d.firstTriangle = uint32_t(triangles + 1);
             triangles += d.indexCount / 3;
             draws_.push_back(d);
@@ -176,9 +209,12 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         uint32_t mips = 1;
         if (img.sampler.mipmaps && img.sampler.mipFilter != assets::MipFilter::None)
             for (uint32_t s = std::max(img.width, img.height); s > 1; s >>= 1) ++mips;
-        gdi::TextureHandle t = objects_.add(device.createTexture({.format = img.srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
-                                                                  .width = img.width, .height = img.height, .mipLevels = mips,
-                                                                  .debugName = img.name.c_str()}));
+        gdi::TextureHandle t = objects_.add(
+            device.createTexture({.format = img.srgb ? gdi::Format::RGBA8_SRGB : gdi::Format::RGBA8,
+                                  .width = img.width,
+                                  .height = img.height,
+                                  .mipLevels = mips,
+                                  .debugName = img.name.c_str()}));
         std::vector<uint8_t> level = img.pixels;
         uint32_t w = img.width, h = img.height;
         for (uint32_t m = 0; m < mips; ++m) {
@@ -194,9 +230,9 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         samplers_.push_back(objects_.add(device.createSampler({
             .minFilter = toFilter(s.minFilter),
             .magFilter = toFilter(s.magFilter),
-            .mipFilter = mips == 1 ? gdi::MipFilter::None
+            .mipFilter = mips == 1                                   ? gdi::MipFilter::None
                          : s.mipFilter == assets::MipFilter::Nearest ? gdi::MipFilter::Nearest
-                                                                      : gdi::MipFilter::Linear,
+                                                                     : gdi::MipFilter::Linear,
             .addressU = toAddress(s.wrapS),
             .addressV = toAddress(s.wrapT),
         })));
@@ -204,19 +240,23 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     white_ = solidTexture(objects_, 255, 255, 255, 255, true, "default white");
     black_ = solidTexture(objects_, 0, 0, 0, 255, true, "default black");
     flatNormal_ = solidTexture(objects_, 128, 128, 255, 255, false, "default normal");
-    defaultSampler_ = objects_.add(device.createSampler({.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest}));
+    defaultSampler_ = objects_.add(device.createSampler(
+        {.minFilter = gdi::Filter::Nearest, .magFilter = gdi::Filter::Nearest}));
     // The sheen's albedo table (read texel by texel, fe_shading.glsl): made only for a scene with a sheen.
-    const bool sheen = std::any_of(scene.materials.begin(), scene.materials.end(), [](const assets::Material& m) { return m.hasSheen(); });
+    const bool sheen = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                   [](const assets::Material& m) { return m.hasSheen(); });
     const std::vector<float> zero(1, 0.0f);
     const std::vector<float>& table = sheen ? shading::sheenAlbedoTable() : zero;
     const uint32_t side = sheen ? uint32_t(shading::kSheenTableSize) : 1u;
-    sheenAlbedo_ = objects_.add(device.createTexture({.format = gdi::Format::R32F, .width = side, .height = side,
+    sheenAlbedo_ = objects_.add(device.createTexture({.format = gdi::Format::R32F,
+                                                      .width = side,
+                                                      .height = side,
                                                       .debugName = "sheen albedo table"}));
     device.writeTexture(sheenAlbedo_, {}, gdi::bytesOf(table));
 
     for (const assets::Material& m : scene.materials) {
-        auto pick = [&](const assets::TextureRef& r, gdi::TextureHandle fallback, gdi::TextureHandle& tex,
-                        gdi::SamplerHandle& smp) {
+        auto pick = [&](const assets::TextureRef& r, gdi::TextureHandle fallback,
+                        gdi::TextureHandle& tex, gdi::SamplerHandle& smp) {
             if (r.valid() && size_t(r.index) < textures_.size()) {
                 tex = textures_[r.index];
                 smp = samplers_[r.index];
@@ -238,11 +278,13 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
         pick(m.specularTexture, white_, mt.specular, mt.specularSampler);
         pick(m.specularColorTexture, white_, mt.specularColor, mt.specularColorSampler);
         pick(m.clearcoatTexture, white_, mt.clearcoat, mt.clearcoatSampler);
-        pick(m.clearcoatRoughnessTexture, white_, mt.clearcoatRoughness, mt.clearcoatRoughnessSampler);
+        pick(m.clearcoatRoughnessTexture, white_, mt.clearcoatRoughness,
+             mt.clearcoatRoughnessSampler);
         pick(m.clearcoatNormalTexture, flatNormal_, mt.clearcoatNormal, mt.clearcoatNormalSampler);
         mt.sheenAlbedo = sheenAlbedo_;
         mt.sheenAlbedoSampler = defaultSampler_;
-        hasOcclusion_ = hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
+        hasOcclusion_ =
+            hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
         hasLayered_ = hasLayered_ || m.clearcoat > 0.0f || m.hasSheen();
         materialTextures_.push_back(mt);
     }
@@ -255,17 +297,20 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene) : objects_(d
     // A pass binding one set at a time still binds one in a scene without draws.
     if (textureSets_.empty()) {
         MaterialTextures none;
-        for (gdi::TextureHandle* t : {&none.baseColor, &none.metallicRoughness, &none.emissive, &none.occlusion, &none.transmission,
-                                      &none.thickness, &none.sheenColor, &none.sheenRoughness, &none.specular, &none.specularColor,
-                                      &none.clearcoat, &none.clearcoatRoughness})
+        for (gdi::TextureHandle* t :
+             {&none.baseColor, &none.metallicRoughness, &none.emissive, &none.occlusion,
+              &none.transmission, &none.thickness, &none.sheenColor, &none.sheenRoughness,
+              &none.specular, &none.specularColor, &none.clearcoat, &none.clearcoatRoughness})
             *t = white_;
         none.normal = none.clearcoatNormal = flatNormal_;
         none.sheenAlbedo = sheenAlbedo_;
         for (gdi::SamplerHandle* s :
-             {&none.baseColorSampler, &none.metallicRoughnessSampler, &none.normalSampler, &none.emissiveSampler,
-              &none.occlusionSampler, &none.transmissionSampler, &none.thicknessSampler, &none.sheenColorSampler,
-              &none.sheenRoughnessSampler, &none.specularSampler, &none.specularColorSampler, &none.clearcoatSampler,
-              &none.clearcoatRoughnessSampler, &none.clearcoatNormalSampler, &none.sheenAlbedoSampler})
+             {&none.baseColorSampler, &none.metallicRoughnessSampler, &none.normalSampler,
+              &none.emissiveSampler, &none.occlusionSampler, &none.transmissionSampler,
+              &none.thicknessSampler, &none.sheenColorSampler, &none.sheenRoughnessSampler,
+              &none.specularSampler, &none.specularColorSampler, &none.clearcoatSampler,
+              &none.clearcoatRoughnessSampler, &none.clearcoatNormalSampler,
+              &none.sheenAlbedoSampler})
             *s = defaultSampler_;
         textureSets_.push_back(none);
     }
@@ -284,8 +329,10 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
     if (bytes > lightCapacity_) {
         objects_.destroy(lights_);
         lightCapacity_ = 0;  // until the new buffer exists
-        lights_ = objects_.add(device_.createBuffer(
-            {.size = bytes, .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::Uniform, .debugName = "scene lights"}));
+        lights_ = objects_.add(
+            device_.createBuffer({.size = bytes,
+                                  .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::Uniform,
+                                  .debugName = "scene lights"}));
         lightCapacity_ = bytes;
     }
     device_.writeBuffer(lights_, 0, gdi::bytesOf(records));
@@ -297,7 +344,8 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
 void GpuScene::updatePose() {
     for (DrawItem& d : draws_) {
         const assets::MeshInstance& inst = scene_.instances[d.instance];
-        const assets::AABB& local = inst.posedBounds.empty() ? scene_.meshes[inst.meshIndex].bounds : inst.posedBounds;
+        const assets::AABB& local =
+            inst.posedBounds.empty() ? scene_.meshes[inst.meshIndex].bounds : inst.posedBounds;
         d.worldCenter = glm::vec3(inst.world * glm::vec4(local.center(), 1.0f));
         d.mirrored = inst.mirrored;
     }
@@ -313,24 +361,29 @@ ObjectConstants GpuScene::objectConstants(const DrawItem& item) const {
     o.emissiveNormalScale = glm::vec4(m.emissiveFactor, m.normalScale);
     o.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, float(int(m.alphaMode)));
     const bool specularTextures = m.specularTexture.valid() || m.specularColorTexture.valid();
-    const bool clearcoatTextures = m.clearcoatTexture.valid() || m.clearcoatRoughnessTexture.valid();
-    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) | (item.mirrored ? 4u : 0u) |
-                             (specularTextures ? 8u : 0u) | (clearcoatTextures ? 16u : 0u) |
+    const bool clearcoatTextures =
+        m.clearcoatTexture.valid() || m.clearcoatRoughnessTexture.valid();
+    o.flags = glm::uvec4((m.normalTexture.valid() ? 1u : 0u) | (m.unlit ? 2u : 0u) |
+                             (item.mirrored ? 4u : 0u) | (specularTextures ? 8u : 0u) |
+                             (clearcoatTextures ? 16u : 0u) |
                              (m.clearcoatNormalTexture.valid() ? 32u : 0u) | (item.textureSet << 8),
                          item.firstIndex, uint32_t(item.baseVertex), item.firstTriangle);
-    const assets::TextureRef* refs[14] = {&m.baseColorTexture,    &m.metallicRoughnessTexture, &m.normalTexture,
-                                          &m.emissiveTexture,     &m.occlusionTexture,         &m.transmissionTexture,
-                                          &m.thicknessTexture,    &m.sheenColorTexture,        &m.sheenRoughnessTexture,
-                                          &m.specularTexture,     &m.specularColorTexture,     &m.clearcoatTexture,
-                                          &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture};
+    const assets::TextureRef* refs[14] = {
+        &m.baseColorTexture,          &m.metallicRoughnessTexture, &m.normalTexture,
+        &m.emissiveTexture,           &m.occlusionTexture,         &m.transmissionTexture,
+        &m.thicknessTexture,          &m.sheenColorTexture,        &m.sheenRoughnessTexture,
+        &m.specularTexture,           &m.specularColorTexture,     &m.clearcoatTexture,
+        &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture};
     for (int t = 0; t < 14; ++t) {
-        o.uvTransform[2 * t] = glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
+        o.uvTransform[2 * t] =
+            glm::vec4(refs[t]->transform.row0(), float(refs[t]->texCoord == 1 ? 1 : 0));
         o.uvTransform[2 * t + 1] = glm::vec4(refs[t]->transform.row1(), 0.0f);
     }
-    o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, m.clearcoat, m.clearcoatRoughness,
-                            m.clearcoatF0());
+    o.occlusion = glm::vec4(m.occlusionTexture.valid() ? m.occlusionStrength : 0.0f, m.clearcoat,
+                            m.clearcoatRoughness, m.clearcoatF0());
     o.dielectric = glm::vec4(m.specularColorF0(), m.specular);
-    o.transmission = glm::vec4(m.transmissive() ? m.transmission : 0.0f, m.thickness, std::isinf(m.attenuationDistance) ? 0.0f : m.attenuationDistance,
+    o.transmission = glm::vec4(m.transmissive() ? m.transmission : 0.0f, m.thickness,
+                               std::isinf(m.attenuationDistance) ? 0.0f : m.attenuationDistance,
                                std::isinf(m.ior) ? 0.0f : m.ior);
     o.attenuation = glm::vec4(m.attenuationColor, 0.0f);
     o.sheen = glm::vec4(m.sheenColor, m.sheenRoughness);
@@ -357,14 +410,17 @@ void MaterialTextures::bind(gdi::CommandList& cmd) const {
 }
 
 bool GpuScene::hasBlend() const {
-    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.alphaMode == assets::AlphaMode::Blend; });
+    return std::any_of(draws_.begin(), draws_.end(),
+                       [](const DrawItem& d) { return d.alphaMode == assets::AlphaMode::Blend; });
 }
 bool GpuScene::hasOpaque() const {
-    return std::any_of(draws_.begin(), draws_.end(),
-                       [](const DrawItem& d) { return d.alphaMode != assets::AlphaMode::Blend && !d.transmissive; });
+    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) {
+        return d.alphaMode != assets::AlphaMode::Blend && !d.transmissive;
+    });
 }
 bool GpuScene::hasTransmissive() const {
-    return std::any_of(draws_.begin(), draws_.end(), [](const DrawItem& d) { return d.transmissive; });
+    return std::any_of(draws_.begin(), draws_.end(),
+                       [](const DrawItem& d) { return d.transmissive; });
 }
 
 void GpuScene::bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBlock) const {
@@ -373,8 +429,9 @@ void GpuScene::bindLights(gdi::CommandList& cmd, uint32_t slot, bool uniformBloc
         return;
     }
     if (lightCount_ > kUniformLights)
-        throw gdi::Error("lights as a uniform block: " + std::to_string(lightCount_) + " lights where it holds " +
-                         std::to_string(kUniformLights) + " (the pass was made for fewer)");
+        throw gdi::Error("lights as a uniform block: " + std::to_string(lightCount_) +
+                         " lights where it holds " + std::to_string(kUniformLights) +
+                         " (the pass was made for fewer)");
     cmd.setUniformBuffer(slot, lights_, 0, kUniformLightBytes);
 }
 

@@ -19,9 +19,11 @@ struct FrameConstants {
     glm::vec4 cameraPosition;  // xyz, w = exposure
     glm::vec4 viewport;        // width, height, 1/width, 1/height (full resolution)
     glm::vec4 illumViewport;   // the same for the I-buffer (redeferred)
-    glm::uvec4 counts;         // x = light count, y = illumination scale, z = image-based lighting samples, w = all lights
-    glm::uvec4 lightRange;     // forward shading: x first light, y count, z 1 = add emissive/unlit, w 1 = MSAA (forward-plus)
-    glm::mat4 view;            // view from world (rigid)
+    glm::uvec4
+        counts;  // x = light count, y = illumination scale, z = image-based lighting samples, w = all lights
+    glm::uvec4
+        lightRange;  // forward shading: x first light, y count, z 1 = add emissive/unlit, w 1 = MSAA (forward-plus)
+    glm::mat4 view;  // view from world (rigid)
     // Redeferred's reduced-rate sampling: xy the offset of each I-buffer texel's representative
     // pixel within its scale x scale block (scale / 2, or a jitter cycling through the block
     // with temporal accumulation), z the previous frame's history: 0 none, 1 valid from a still
@@ -43,7 +45,7 @@ struct FrameConstants {
 
 struct ObjectConstants {
     glm::mat4 world;
-    glm::mat4 normalMatrix;      // inverse transpose of world (upper 3x3 used)
+    glm::mat4 normalMatrix;  // inverse transpose of world (upper 3x3 used)
     glm::vec4 baseColorFactor;
     glm::vec4 emissiveNormalScale;  // rgb emissive factor, a normal scale
     glm::vec4 params;               // metallic, roughness, alpha cutoff, alpha mode (0,1,2)
@@ -68,7 +70,7 @@ struct ObjectConstants {
     // `attenuation` the attenuation colour.
     glm::vec4 transmission;
     glm::vec4 attenuation;
-    glm::vec4 sheen;  // rgb KHR_materials_sheen's colour (0: none), a its roughness
+    glm::vec4 sheen;            // rgb KHR_materials_sheen's colour (0: none), a its roughness
     glm::vec4 clearcoatNormal;  // x: the clearcoat normal texture's scale
 };
 
@@ -88,7 +90,8 @@ struct DrawItem {
     uint32_t material = 0;
     uint32_t instance = 0;
     assets::AlphaMode alphaMode = assets::AlphaMode::Opaque;
-    bool transmissive = false;  // assets::Material::transmissive: drawn by MeshPass::Transmission alone
+    bool transmissive =
+        false;  // assets::Material::transmissive: drawn by MeshPass::Transmission alone
     bool doubleSided = false;
     bool mirrored = false;
     glm::vec3 worldCenter{0.0f};  // for back-to-front sorting of blended draws
@@ -113,11 +116,13 @@ struct Deformation {
 };
 
 struct MaterialTextures {
-    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission, thickness, sheenColor,
-        sheenRoughness, specular, specularColor, clearcoat, clearcoatRoughness, clearcoatNormal;
-    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler, occlusionSampler,
-        transmissionSampler, thicknessSampler, sheenColorSampler, sheenRoughnessSampler, specularSampler, specularColorSampler,
-        clearcoatSampler, clearcoatRoughnessSampler, clearcoatNormalSampler;
+    gdi::TextureHandle baseColor, metallicRoughness, normal, emissive, occlusion, transmission,
+        thickness, sheenColor, sheenRoughness, specular, specularColor, clearcoat,
+        clearcoatRoughness, clearcoatNormal;
+    gdi::SamplerHandle baseColorSampler, metallicRoughnessSampler, normalSampler, emissiveSampler,
+        occlusionSampler, transmissionSampler, thicknessSampler, sheenColorSampler,
+        sheenRoughnessSampler, specularSampler, specularColorSampler, clearcoatSampler,
+        clearcoatRoughnessSampler, clearcoatNormalSampler;
     // The scene's sheen albedo table (the same in every set), bound with them: what samples a
     // material may shade a sheen.
     gdi::TextureHandle sheenAlbedo;
@@ -163,7 +168,9 @@ public:
     // After assets::poseScene moved the scene: the draws' sorting centres follow the instances
     // (their transforms are read per frame anyway).
     void updatePose();
-    const MaterialTextures& textures(uint32_t material) const { return materialTextures_[material]; }
+    const MaterialTextures& textures(uint32_t material) const {
+        return materialTextures_[material];
+    }
     // The distinct texture bindings of the materials (many share the defaults): a pass that
     // shades every material at once binds one set at a time (VisibilityBufferRenderer). Never
     // empty: a scene without draws has the defaults' set.

@@ -19,10 +19,12 @@ public:
     // packed: RGBA8 view-space normal.xy (the deck's layout); otherwise RGBA16F world normal.
     LightPrepassRenderer(TechniqueContext& context, bool packed);
     ~LightPrepassRenderer() override;
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     LightLists lightLists() const override { return {LightLists::Kind::NotMeasured, {}}; }
 
-    static constexpr gdi::Format kPackedNormals = gdi::Format::RGBA8, kUnpackedNormals = gdi::Format::RGBA16F;
+    static constexpr gdi::Format kPackedNormals = gdi::Format::RGBA8,
+                                 kUnpackedNormals = gdi::Format::RGBA16F;
     static constexpr gdi::Format kLightBuffer = gdi::Format::RGBA32F;
 
 private:

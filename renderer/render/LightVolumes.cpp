@@ -17,12 +17,14 @@ constexpr float kMaxConeAngle = 1.2f;
 // Icosphere (one subdivision, 80 faces) scaled so the polytope contains the unit sphere.
 std::vector<glm::vec3> icosphere() {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (auto& p : v) p = glm::normalize(p);
-    std::vector<glm::uvec3> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<glm::uvec3> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
     auto midpoint = [&](uint32_t a, uint32_t b) {
         auto key = std::minmax(a, b);
@@ -57,8 +59,9 @@ std::vector<glm::vec3> cone() {
     std::vector<glm::vec3> out;
     for (int i = 0; i < n; ++i) {
         float a0 = 2.0f * 3.14159265f * i / n, a1 = 2.0f * 3.14159265f * (i + 1) / n;
-        glm::vec3 p0(r * std::cos(a0), r * std::sin(a0), 1.0f), p1(r * std::cos(a1), r * std::sin(a1), 1.0f);
-        out.insert(out.end(), {glm::vec3(0.0f), p1, p0});           // side, facing outwards
+        glm::vec3 p0(r * std::cos(a0), r * std::sin(a0), 1.0f),
+            p1(r * std::cos(a1), r * std::sin(a1), 1.0f);
+        out.insert(out.end(), {glm::vec3(0.0f), p1, p0});              // side, facing outwards
         out.insert(out.end(), {glm::vec3(0.0f, 0.0f, 1.0f), p0, p1});  // cap, facing +Z
     }
     return out;
@@ -97,7 +100,8 @@ LightVolumes::Counts LightVolumes::classify(const std::vector<assets::Light>& li
     return c;
 }
 
-LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets)
+LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader,
+                           std::vector<gdi::Format> targets)
     : objects_(device) {
     std::vector<glm::vec3> verts = {{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}};  // full-screen triangle
     sphereFirst_ = uint32_t(verts.size());
@@ -108,12 +112,15 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
     auto c = cone();
     verts.insert(verts.end(), c.begin(), c.end());
     coneCount_ = uint32_t(c.size());
-    mesh_ = objects_.add(device.createBuffer({.size = verts.size() * sizeof(glm::vec3), .usage = gdi::BufferUsage::Vertex,
+    mesh_ = objects_.add(device.createBuffer({.size = verts.size() * sizeof(glm::vec3),
+                                              .usage = gdi::BufferUsage::Vertex,
                                               .debugName = "light volume meshes"},
                                              gdi::bytesOf(verts)));
 
-    vs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")}));
-    fs_ = objects_.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
+    vs_ = objects_.add(device.createShader(
+        {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/light_volume.vert")}));
+    fs_ = objects_.add(device.createShader(
+        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
     std::vector<gdi::BlendTargetState> blend(targets.size(), gdi::BlendTargetState{
                                                                  .enable = true,
                                                                  .srcColor = gdi::BlendFactor::One,
@@ -125,8 +132,10 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
         .vertexShader = vs_,
         .fragmentShader = fs_,
         .vertexBuffers = {{.stride = 12, .attributes = {{0, gdi::VertexFormat::Float3, 0}}},
-                          {.stride = 8, .perInstance = true,
-                           .attributes = {{1, gdi::VertexFormat::UInt32, 0}, {2, gdi::VertexFormat::UInt32, 4}}}},
+                          {.stride = 8,
+                           .perInstance = true,
+                           .attributes = {{1, gdi::VertexFormat::UInt32, 0},
+                                          {2, gdi::VertexFormat::UInt32, 4}}}},
         // Back faces only: each covered pixel is shaded once, also with the eye inside a volume.
         .raster = {.cullMode = gdi::CullMode::Front},
         .blend = blend,
@@ -139,14 +148,16 @@ LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader, std:
     fullscreenPipeline_ = objects_.add(device.createGraphicsPipeline(d));
 }
 
-void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame) {
+void LightVolumes::draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
+                        const UploadAllocation& frame) {
     drawRange(cmd, queue, scene, frame, 0, scene.unshadowedLightCount());
 }
 
-void LightVolumes::drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame,
-                             uint32_t first, uint32_t count) {
+void LightVolumes::drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
+                             const UploadAllocation& frame, uint32_t first, uint32_t count) {
     const auto& lights = scene.lights();
-    const uint32_t end = std::min<uint32_t>({first + count, scene.lightCount(), uint32_t(lights.size())});
+    const uint32_t end =
+        std::min<uint32_t>({first + count, scene.lightCount(), uint32_t(lights.size())});
     if (first >= end) return;
     const assets::Camera* camera = scene.scene().camera ? &*scene.scene().camera : nullptr;
     // Instances grouped by shape: spheres, cones, full screen.

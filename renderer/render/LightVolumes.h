@@ -19,10 +19,11 @@ public:
     LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets);
 
     // Draws the lights without shadows, [0, scene.unshadowedLightCount()).
-    void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame);
+    void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
+              const UploadAllocation& frame);
     // Draws lights [first, first + count) of the light buffer (a shadowed light's own pass).
-    void drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene, const UploadAllocation& frame,
-                   uint32_t first, uint32_t count);
+    void drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
+                   const UploadAllocation& frame, uint32_t first, uint32_t count);
 
     struct Counts {
         uint32_t spheres = 0, cones = 0, fullscreen = 0;

@@ -15,7 +15,7 @@ struct DeformationRecord {
     glm::uvec4 sources;      // first influence (~0: none), first joint vec4, first delta, targets
     glm::uvec4 weights;      // first weight (floats), first work group
 };
-constexpr uint32_t kGroupSize = 64;        // mesh_deform.comp's local_size_x
+constexpr uint32_t kGroupSize = 64;  // mesh_deform.comp's local_size_x
 constexpr uint32_t kMaxGroupsPerDispatch = 65535;
 }  // namespace
 
@@ -25,9 +25,12 @@ constexpr uint32_t kMaxGroupsPerDispatch = 65535;
 // groups (builtin:crowd, 256 reeds) took 22 ms a frame.
 MeshDeformation::MeshDeformation(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
-        throw gdi::Error("skinned or morphed meshes are deformed by a compute shader, which this device lacks");
-    shader_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/mesh_deform.comp")}));
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = shader_, .debugName = "mesh deformation"}));
+        throw gdi::Error(
+            "skinned or morphed meshes are deformed by a compute shader, which this device lacks");
+    shader_ = objects_.add(c.device.createShader(
+        {.stage = gdi::ShaderStage::Compute, .binary = shaders::find("scene/mesh_deform.comp")}));
+    pipeline_ = objects_.add(c.device.createComputePipeline(
+        {.computeShader = shader_, .debugName = "mesh deformation"}));
     const GpuScene& gpu = c.scene;
     const assets::Scene& scene = gpu.scene();
     jointFirst_.assign(scene.instances.size(), 0);
@@ -50,17 +53,23 @@ MeshDeformation::MeshDeformation(TechniqueContext& c) : objects_(c.device), ctx_
         const assets::MeshInstance& inst = scene.instances[d.instance];
         const bool skinned = d.skinFirst != ~0u && !inst.joints.empty();
         const uint32_t targets = std::min<uint32_t>(d.targetCount, uint32_t(inst.weights.size()));
-        records.push_back({.vertexRange = {d.restFirst, d.outputFirst, d.vertexCount, d.flatNormals ? 1u : 0u},
-                           .sources = {skinned ? d.skinFirst : ~0u, jointFirst_[d.instance], d.morphFirst, targets},
-                           .weights = {weightFirst_[d.instance], uint32_t(groups.size()), 0u, 0u}});
-        groups.insert(groups.end(), (d.vertexCount + kGroupSize - 1) / kGroupSize, uint32_t(records.size() - 1));
+        records.push_back(
+            {.vertexRange = {d.restFirst, d.outputFirst, d.vertexCount, d.flatNormals ? 1u : 0u},
+             .sources = {skinned ? d.skinFirst : ~0u, jointFirst_[d.instance], d.morphFirst,
+                         targets},
+             .weights = {weightFirst_[d.instance], uint32_t(groups.size()), 0u, 0u}});
+        groups.insert(groups.end(), (d.vertexCount + kGroupSize - 1) / kGroupSize,
+                      uint32_t(records.size() - 1));
     }
     groupCount_ = uint32_t(groups.size());
     if (groups.empty()) groups.push_back(0), records.emplace_back();
-    records_ = objects_.add(c.device.createBuffer({.size = records.size() * sizeof(DeformationRecord),
-                                                   .usage = gdi::BufferUsage::Storage, .debugName = "mesh deformations"},
-                                                  gdi::bytesOf(records)));
-    groups_ = objects_.add(c.device.createBuffer({.size = groups.size() * sizeof(uint32_t), .usage = gdi::BufferUsage::Storage,
+    records_ =
+        objects_.add(c.device.createBuffer({.size = records.size() * sizeof(DeformationRecord),
+                                            .usage = gdi::BufferUsage::Storage,
+                                            .debugName = "mesh deformations"},
+                                           gdi::bytesOf(records)));
+    groups_ = objects_.add(c.device.createBuffer({.size = groups.size() * sizeof(uint32_t),
+                                                  .usage = gdi::BufferUsage::Storage,
                                                   .debugName = "mesh deformation work groups"},
                                                  gdi::bytesOf(groups)));
 }
@@ -68,8 +77,9 @@ MeshDeformation::MeshDeformation(TechniqueContext& c) : objects_(c.device), ctx_
 void MeshDeformation::declare(graph::RenderGraph& g) {
     // The vertices are read by nearly every pass, which do not declare it: the pass orders its
     // writes after the previous frame's reads and before this frame's with barriers of its own.
-    g.addPass("deform meshes", [&](graph::PassBuilder& b) { b.sideEffect(); },
-              [this](graph::PassContext& pc) { record(pc.cmd); });
+    g.addPass(
+        "deform meshes", [&](graph::PassBuilder& b) { b.sideEffect(); },
+        [this](graph::PassContext& pc) { record(pc.cmd); });
 }
 
 void MeshDeformation::record(gdi::CommandList& cmd) {
@@ -89,14 +99,17 @@ void MeshDeformation::record(gdi::CommandList& cmd) {
         // of the skin, one weight per target); a scene changed by hand otherwise would deform
         // with another instance's matrices.
         if (inst.joints.size() != jointCount_[d.instance])
-            throw gdi::Error("mesh deformation: instance '" + inst.name + "' has " + std::to_string(inst.joints.size()) +
-                             " joint matrices where the renderer was made for " + std::to_string(jointCount_[d.instance]) +
+            throw gdi::Error("mesh deformation: instance '" + inst.name + "' has " +
+                             std::to_string(inst.joints.size()) +
+                             " joint matrices where the renderer was made for " +
+                             std::to_string(jointCount_[d.instance]) +
                              " (change a scene's skins by posing it, not by hand)");
         pose.resize(jointFirst_[d.instance]);
         for (const glm::mat4& m : inst.joints) pose.insert(pose.end(), {m[0], m[1], m[2], m[3]});
         for (size_t w = 0; w < inst.weights.size(); w += 4) {
             glm::vec4 v(0.0f);
-            for (size_t k = 0; k < 4 && w + k < inst.weights.size(); ++k) v[int(k)] = inst.weights[w + k];
+            for (size_t k = 0; k < 4 && w + k < inst.weights.size(); ++k)
+                v[int(k)] = inst.weights[w + k];
             pose.push_back(v);
         }
     }
@@ -104,7 +117,9 @@ void MeshDeformation::record(gdi::CommandList& cmd) {
     const UploadAllocation posed = ctx_.queue.upload(gdi::bytesOf(pose));
     const gdi::BufferHandle vertices = gpu.vertexBuffer();
     using A = gdi::BufferAccess;
-    cmd.barrier(gdi::BufferBarrier{.buffer = vertices, .before = A::Vertex | A::StorageRead, .after = A::StorageRead | A::StorageWrite});
+    cmd.barrier(gdi::BufferBarrier{.buffer = vertices,
+                                   .before = A::Vertex | A::StorageRead,
+                                   .after = A::StorageRead | A::StorageWrite});
     cmd.setPipeline(pipeline_);
     cmd.setStorageBuffer(kSlotVertices, vertices);
     cmd.setStorageBuffer(kSlotSkin, gpu.skinBuffer());
@@ -116,7 +131,8 @@ void MeshDeformation::record(gdi::CommandList& cmd) {
         cmd.setConstants(glm::uvec4(first, 0u, 0u, 0u));
         cmd.dispatch(std::min(kMaxGroupsPerDispatch, groupCount_ - first));
     }
-    cmd.barrier(gdi::BufferBarrier{.buffer = vertices, .before = A::StorageWrite, .after = A::Vertex | A::StorageRead});
+    cmd.barrier(gdi::BufferBarrier{
+        .buffer = vertices, .before = A::StorageWrite, .after = A::Vertex | A::StorageRead});
 }
 
 }  // namespace fe::render

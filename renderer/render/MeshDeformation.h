@@ -36,11 +36,13 @@ private:
     TechniqueContext& ctx_;
     gdi::ShaderHandle shader_;
     gdi::PipelineHandle pipeline_;
-    gdi::BufferHandle records_, groups_;  // what each deformation reads and writes; each work group's deformation
+    gdi::BufferHandle records_,
+        groups_;  // what each deformation reads and writes; each work group's deformation
     uint32_t groupCount_ = 0;
     bool dirty_ = true;
-    std::vector<uint32_t> jointFirst_, weightFirst_;  // per instance: where its joints and weights go in the pose
-    std::vector<uint32_t> jointCount_;                // ... and how many joints it was laid out for
+    std::vector<uint32_t> jointFirst_,
+        weightFirst_;                   // per instance: where its joints and weights go in the pose
+    std::vector<uint32_t> jointCount_;  // ... and how many joints it was laid out for
 };
 
 }  // namespace fe::render

@@ -19,8 +19,9 @@ constexpr gdi::Format kDisplayFormat = gdi::Format::RGBA8_SRGB;  // what a scree
 // One full-screen triangle into `target` with `pipeline`, sampling `source` at kSlotRadiance
 // with `sampler` and reading the frame's constants (as they are when the pass executes): each
 // step of post-processing, and the scene renderer's debug view.
-void addFullscreenPass(graph::RenderGraph& graph, const char* name, graph::TextureId source, graph::TextureId target,
-                       gdi::PipelineHandle pipeline, gdi::SamplerHandle sampler, const UploadAllocation& frameConstants);
+void addFullscreenPass(graph::RenderGraph& graph, const char* name, graph::TextureId source,
+                       graph::TextureId target, gdi::PipelineHandle pipeline,
+                       gdi::SamplerHandle sampler, const UploadAllocation& frameConstants);
 
 class PostProcess {
 public:
@@ -32,7 +33,8 @@ public:
 
     // Declares the chain reading `radiance` (and, for TAA, the scene `depth`); returns the
     // display image (kDisplayFormat).
-    graph::TextureId declare(graph::RenderGraph& graph, graph::TextureId radiance, graph::TextureId depth);
+    graph::TextureId declare(graph::RenderGraph& graph, graph::TextureId radiance,
+                             graph::TextureId depth);
 
     // TAA: the sub-pixel offset (in pixels, within [-0.5, 0.5)) the projection is jittered by
     // for frame `frameIndex` (Halton 2, 3 over 8 frames); zero without TAA.
@@ -50,8 +52,8 @@ private:
     gdi::SamplerHandle pointSampler_, linearSampler_;
     gdi::ShaderHandle tonemapFs_, fxaaFs_, taaFs_, copyFs_;
     gdi::PipelineHandle tonemapPipeline_, fxaaPipeline_, taaPipeline_, copyPipeline_;
-    gdi::TextureHandle history_;          // TAA: last frame's result (RGBA32F, kept across frames)
-    UploadAllocation taaConstants_;       // TAA: this frame's
+    gdi::TextureHandle history_;     // TAA: last frame's result (RGBA32F, kept across frames)
+    UploadAllocation taaConstants_;  // TAA: this frame's
     glm::mat4 previousViewProj_{1.0f};
 };
 

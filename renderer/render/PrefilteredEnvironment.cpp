@@ -16,20 +16,31 @@ constexpr gdi::Format kLutFormat = gdi::Format::RGBA32F;
 
 // The nine real SH basis functions at unit d (R&H 2001's constants).
 std::array<double, 9> basis(const glm::dvec3& d) {
-    return {0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x, 1.092548 * d.x * d.y, 1.092548 * d.y * d.z,
-            0.315392 * (3.0 * d.z * d.z - 1.0), 1.092548 * d.x * d.z, 0.546274 * (d.x * d.x - d.y * d.y)};
+    return {0.282095,
+            0.488603 * d.y,
+            0.488603 * d.z,
+            0.488603 * d.x,
+            1.092548 * d.x * d.y,
+            1.092548 * d.y * d.z,
+            0.315392 * (3.0 * d.z * d.z - 1.0),
+            1.092548 * d.x * d.z,
+            0.546274 * (d.x * d.x - d.y * d.y)};
 }
 
 // Blocks of std140 uniforms, one per draw, each at an offset the device allows.
 template <class T>
-gdi::BufferHandle uniformBlocks(gdi::DeviceObjects& objects, const std::vector<T>& blocks, uint64_t& stride, const char* name) {
+gdi::BufferHandle uniformBlocks(gdi::DeviceObjects& objects, const std::vector<T>& blocks,
+                                uint64_t& stride, const char* name) {
     gdi::Device& device = objects.device();
-    const uint64_t align = std::max<uint64_t>(16, device.info().limits.uniformBufferOffsetAlignment);
+    const uint64_t align =
+        std::max<uint64_t>(16, device.info().limits.uniformBufferOffsetAlignment);
     stride = (sizeof(T) + align - 1) / align * align;
     std::vector<std::byte> bytes(stride * blocks.size());
-    for (size_t i = 0; i < blocks.size(); ++i) std::memcpy(bytes.data() + i * stride, &blocks[i], sizeof(T));
-    return objects.add(device.createBuffer({.size = bytes.size(), .usage = gdi::BufferUsage::Uniform, .debugName = name},
-                                           gdi::ByteSpan(bytes)));
+    for (size_t i = 0; i < blocks.size(); ++i)
+        std::memcpy(bytes.data() + i * stride, &blocks[i], sizeof(T));
+    return objects.add(device.createBuffer(
+        {.size = bytes.size(), .usage = gdi::BufferUsage::Uniform, .debugName = name},
+        gdi::ByteSpan(bytes)));
 }
 }  // namespace
 
@@ -44,7 +55,8 @@ std::array<glm::dvec3, 9> radianceSH(const assets::Environment& e) {
     const uint32_t rows = image ? e.height : 512, cols = image ? e.width : 1024;
     for (uint32_t v = 0; v < rows; ++v) {
         // The row's exact solid angle, shared by its columns.
-        const double solidAngle = (std::cos(v * kPi / rows) - std::cos((v + 1) * kPi / rows)) * (2.0 * kPi / cols);
+        const double solidAngle =
+            (std::cos(v * kPi / rows) - std::cos((v + 1) * kPi / rows)) * (2.0 * kPi / cols);
         for (uint32_t u = 0; u < cols; ++u)
             add(assets::directionFromEquirect({(u + 0.5) / cols, (v + 0.5) / rows}), solidAngle);
     }
@@ -53,34 +65,46 @@ std::array<glm::dvec3, 9> radianceSH(const assets::Environment& e) {
 
 glm::dvec3 irradianceFromSH(const std::array<glm::dvec3, 9>& L, const glm::dvec3& n) {
     const double c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
-    const glm::dvec3 E = c1 * L[8] * (n.x * n.x - n.y * n.y) + c3 * L[6] * n.z * n.z + c4 * L[0] - c5 * L[6] +
+    const glm::dvec3 E = c1 * L[8] * (n.x * n.x - n.y * n.y) + c3 * L[6] * n.z * n.z + c4 * L[0] -
+                         c5 * L[6] +
                          2.0 * c1 * (L[4] * n.x * n.y + L[7] * n.x * n.z + L[5] * n.y * n.z) +
                          2.0 * c2 * (L[3] * n.x + L[1] * n.y + L[2] * n.z);
     return glm::max(E, glm::dvec3(0.0));
 }
 
-PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets::Environment& environment,
-                                               gdi::TextureHandle cube, gdi::SamplerHandle cubeSampler,
+PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device,
+                                               const assets::Environment& environment,
+                                               gdi::TextureHandle cube,
+                                               gdi::SamplerHandle cubeSampler,
                                                gdi::ShaderHandle fullscreenVs)
     : objects_(device) {
-    prefiltered_ = objects_.add(device.createTexture({.dimension = gdi::TextureDimension::TextureCube, .format = kPrefilteredFormat,
-                                                      .width = kFaceSize, .height = kFaceSize, .depthOrLayers = 6,
-                                                      .mipLevels = kLevels,
-                                                      .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                                      .debugName = "prefiltered environment"}));
-    lut_ = objects_.add(device.createTexture({.format = kLutFormat, .width = kLutSize, .height = 2 * kLutSize,
-                                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                                              .debugName = "split-sum table"}));
-    sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear, .addressU = gdi::AddressMode::ClampToEdge,
+    prefiltered_ = objects_.add(
+        device.createTexture({.dimension = gdi::TextureDimension::TextureCube,
+                              .format = kPrefilteredFormat,
+                              .width = kFaceSize,
+                              .height = kFaceSize,
+                              .depthOrLayers = 6,
+                              .mipLevels = kLevels,
+                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                              .debugName = "prefiltered environment"}));
+    lut_ = objects_.add(
+        device.createTexture({.format = kLutFormat,
+                              .width = kLutSize,
+                              .height = 2 * kLutSize,
+                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
+                              .debugName = "split-sum table"}));
+    sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear,
+                                                  .addressU = gdi::AddressMode::ClampToEdge,
                                                   .addressV = gdi::AddressMode::ClampToEdge,
                                                   .addressW = gdi::AddressMode::ClampToEdge,
                                                   .debugName = "prefiltered environment"}));
     std::array<glm::vec4, 9> coefficients;
     const std::array<glm::dvec3, 9> sh = radianceSH(environment);
     for (int i = 0; i < 9; ++i) coefficients[i] = glm::vec4(glm::vec3(sh[i]), 0.0f);
-    sh_ = objects_.add(device.createBuffer(
-        {.size = sizeof(coefficients), .usage = gdi::BufferUsage::Uniform, .debugName = "irradiance SH"},
-        gdi::bytesOf(coefficients)));
+    sh_ = objects_.add(device.createBuffer({.size = sizeof(coefficients),
+                                            .usage = gdi::BufferUsage::Uniform,
+                                            .debugName = "irradiance SH"},
+                                           gdi::bytesOf(coefficients)));
 
     struct Block {
         glm::vec4 params;
@@ -92,27 +116,38 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
     std::vector<Block> blocks;
     for (uint32_t level = 0; level < kLevels; ++level)
         for (uint32_t face = 0; face < 6; ++face)
-            blocks.push_back({glm::vec4(float(face), float(kFaceSize >> level), float(level) / float(kLevels - 1), texelSolidAngle),
+            blocks.push_back({glm::vec4(float(face), float(kFaceSize >> level),
+                                        float(level) / float(kLevels - 1), texelSolidAngle),
                               glm::uvec4(kPrefilterSamples, 0, 0, 0)});
-    blocks.push_back({glm::vec4(float(kLutSize), float(kLutSize), 0, 0), glm::uvec4(kLutSamples, 0, 0, 0)});
+    blocks.push_back(
+        {glm::vec4(float(kLutSize), float(kLutSize), 0, 0), glm::uvec4(kLutSamples, 0, 0, 0)});
     // What draws the cube and the table: freed once they are drawn, or when something throws before.
     gdi::DeviceObjects temporary(device);
     uint64_t stride = 0;
     const gdi::BufferHandle ubo = uniformBlocks(temporary, blocks, stride, "prefilter blocks");
     auto shader = [&](const char* name) {
-        return temporary.add(device.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
+        return temporary.add(device.createShader(
+            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
-    const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag"), lutFs = shader("scene/ibl_lut.frag");
-    const gdi::PipelineHandle prefilter = temporary.add(device.createGraphicsPipeline(
-        {.vertexShader = fullscreenVs, .fragmentShader = prefilterFs, .colorFormats = {kPrefilteredFormat},
-         .debugName = "prefilter environment"}));
-    const gdi::PipelineHandle table = temporary.add(device.createGraphicsPipeline(
-        {.vertexShader = fullscreenVs, .fragmentShader = lutFs, .colorFormats = {kLutFormat},
-         .debugName = "split-sum table"}));
+    const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag"),
+                            lutFs = shader("scene/ibl_lut.frag");
+    const gdi::PipelineHandle prefilter =
+        temporary.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs,
+                                                     .fragmentShader = prefilterFs,
+                                                     .colorFormats = {kPrefilteredFormat},
+                                                     .debugName = "prefilter environment"}));
+    const gdi::PipelineHandle table =
+        temporary.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs,
+                                                     .fragmentShader = lutFs,
+                                                     .colorFormats = {kLutFormat},
+                                                     .debugName = "split-sum table"}));
     auto cmd = device.createCommandList();
     for (uint32_t level = 0; level < kLevels; ++level)
         for (uint32_t face = 0; face < 6; ++face) {
-            cmd->beginRenderPass({.colors = {{.texture = prefiltered_, .mipLevel = level, .layer = face, .load = gdi::LoadOp::DontCare}},
+            cmd->beginRenderPass({.colors = {{.texture = prefiltered_,
+                                              .mipLevel = level,
+                                              .layer = face,
+                                              .load = gdi::LoadOp::DontCare}},
                                   .debugName = "prefilter face"});
             cmd->setPipeline(prefilter);
             cmd->setUniformBuffer(kSlotObject, ubo, (level * 6 + face) * stride, sizeof(Block));
@@ -120,7 +155,8 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device, const assets
             cmd->draw(3);
             cmd->endRenderPass();
         }
-    cmd->beginRenderPass({.colors = {{.texture = lut_, .load = gdi::LoadOp::DontCare}}, .debugName = "split-sum table"});
+    cmd->beginRenderPass({.colors = {{.texture = lut_, .load = gdi::LoadOp::DontCare}},
+                          .debugName = "split-sum table"});
     cmd->setPipeline(table);
     cmd->setUniformBuffer(kSlotObject, ubo, kLevels * 6 * stride, sizeof(Block));
     cmd->draw(3);

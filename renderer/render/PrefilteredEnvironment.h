@@ -27,22 +27,27 @@ glm::dvec3 irradianceFromSH(const std::array<glm::dvec3, 9>& sh, const glm::dvec
 
 class PrefilteredEnvironment {
 public:
-    static constexpr uint32_t kLevels = 6;          // roughness 0, 0.2, ... 1 (fe_ibl.glsl's FE_PREFILTER_LEVELS)
-    static constexpr uint32_t kFaceSize = 128;      // level 0
-    static constexpr uint32_t kLutSize = 32;        // NoV x roughness, for each BRDF (two tables in one texture)
+    static constexpr uint32_t kLevels =
+        6;  // roughness 0, 0.2, ... 1 (fe_ibl.glsl's FE_PREFILTER_LEVELS)
+    static constexpr uint32_t kFaceSize = 128;  // level 0
+    static constexpr uint32_t kLutSize =
+        32;  // NoV x roughness, for each BRDF (two tables in one texture)
     static constexpr uint32_t kPrefilterSamples = 64;
     static constexpr uint32_t kLutSamples = 1024;
 
     // `cube`: the environment's cube with its mips (EnvironmentMap), sampled by `cubeSampler`.
-    PrefilteredEnvironment(gdi::Device& device, const assets::Environment& environment, gdi::TextureHandle cube,
-                           gdi::SamplerHandle cubeSampler, gdi::ShaderHandle fullscreenVs);
+    PrefilteredEnvironment(gdi::Device& device, const assets::Environment& environment,
+                           gdi::TextureHandle cube, gdi::SamplerHandle cubeSampler,
+                           gdi::ShaderHandle fullscreenVs);
     PrefilteredEnvironment(const PrefilteredEnvironment&) = delete;
     PrefilteredEnvironment& operator=(const PrefilteredEnvironment&) = delete;
 
     gdi::TextureHandle cube() const { return prefiltered_; }
-    gdi::SamplerHandle sampler() const { return sampler_; }  // trilinear, clamped: the cube and the table
+    gdi::SamplerHandle sampler() const {
+        return sampler_;
+    }  // trilinear, clamped: the cube and the table
     gdi::TextureHandle lut() const { return lut_; }
-    gdi::BufferHandle sh() const { return sh_; }              // vec4 sh[9], std140
+    gdi::BufferHandle sh() const { return sh_; }  // vec4 sh[9], std140
 
 private:
     gdi::DeviceObjects objects_;

@@ -22,7 +22,8 @@ namespace fe::render {
 class RedeferredRenderer final : public TechniqueRenderer {
 public:
     RedeferredRenderer(TechniqueContext& context, bool tiled);
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     LightLists lightLists() const override { return {LightLists::Kind::NotMeasured, {}}; }
 
     // I-buffer: L_dg fits half floats; the alpha^2/(4 pi)-scaled specular sums reach ~2e4 x E at
@@ -30,7 +31,8 @@ public:
     // L_dg is an irradiance: E = I / d^2 passes half-float range (65504) for the lights the engine
     // accepts (the stability suite's 1e7 cd), and NVIDIA's additive blending of half floats
     // then stores infinity where lavapipe saturates (H100, 2026-11-27). All three are 32-bit.
-    static constexpr gdi::Format kI0 = gdi::Format::RGBA32F, kI1 = gdi::Format::RGBA32F, kI2 = gdi::Format::RGBA32F;
+    static constexpr gdi::Format kI0 = gdi::Format::RGBA32F, kI1 = gdi::Format::RGBA32F,
+                                 kI2 = gdi::Format::RGBA32F;
 
 private:
     // One I-buffer: L_dg, L_sg1, L_sg2 at 1/rate (the specular sums' size in width, height).
@@ -57,9 +59,10 @@ private:
     gdi::PipelineHandle illumination_;  // tiled
     gdi::ShaderHandle materialFs_;
     gdi::PipelineHandle material_;
-    std::unique_ptr<EnvironmentLighting> ibl_;  // with IBL: the environment into the I-buffer (or its L_dg alone)
+    std::unique_ptr<EnvironmentLighting>
+        ibl_;  // with IBL: the environment into the I-buffer (or its L_dg alone)
     std::unique_ptr<EnvironmentLighting> iblSpecular_;  // per-source rates apart: its L_sg1, L_sg2
-    std::unique_ptr<TemporalAccumulation> temporal_;  // RenderSettings::temporal
+    std::unique_ptr<TemporalAccumulation> temporal_;    // RenderSettings::temporal
     gdi::ShaderHandle upsampleFs_;  // per-source rates: a reduced I-buffer into the full-rate one
     gdi::PipelineHandle upsample_;
 };

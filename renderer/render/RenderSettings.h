@@ -15,7 +15,7 @@ struct ShadowSettings {
     uint32_t mapSize = 1024;   // texels per side of each map: a cascade, a spot map, a cube face
     uint32_t cascades = 4;     // per directional light, 1..4
     uint32_t pointBudget = 4;  // point lights with a shadow cube, the most important first
-    bool pcf = true;           // the device's 2x2 bilinear comparison; false: one nearest comparison
+    bool pcf = true;  // the device's 2x2 bilinear comparison; false: one nearest comparison
 };
 
 // Redeferred: an I-buffer rate per illumination source (1, 2 or 4 per axis; 0: illumScale's), the

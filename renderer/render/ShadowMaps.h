@@ -33,11 +33,12 @@ public:
         uint32_t gpuLight = 0;  // the light's index in the light buffer
         ShadowKind kind = ShadowKind::Spot;
         graph::TextureId map;
-        bool last = false;      // the last shadowed light (a forward technique resolves MSAA there)
+        bool last = false;  // the last shadowed light (a forward technique resolves MSAA there)
     };
     using Accumulate = std::function<void(graph::RenderGraph&, const Light&)>;
 
-    ShadowMaps(gdi::Device& device, CommandQueue& queue, GeometryRenderer& geometry, const ShadowPlan& plan, const ShadowSettings& settings);
+    ShadowMaps(gdi::Device& device, CommandQueue& queue, GeometryRenderer& geometry,
+               const ShadowPlan& plan, const ShadowSettings& settings);
     ShadowMaps(const ShadowMaps&) = delete;
     ShadowMaps& operator=(const ShadowMaps&) = delete;
 
@@ -59,10 +60,11 @@ private:
     ShadowPlan plan_;
     ShadowSettings settings_;
     gdi::SamplerHandle sampler_;
-    std::vector<UploadAllocation> constants_;            // per shadowed light
-    std::vector<std::vector<UploadAllocation>> layers_;  // per shadowed light and layer: the casters' frame constants
-    std::vector<glm::vec3> lightPositions_;              // per shadowed light, for the casters' draw order
-    std::vector<UploadAllocation> objectConstants_;      // shared by every caster pass of a frame
+    std::vector<UploadAllocation> constants_;  // per shadowed light
+    std::vector<std::vector<UploadAllocation>>
+        layers_;  // per shadowed light and layer: the casters' frame constants
+    std::vector<glm::vec3> lightPositions_;  // per shadowed light, for the casters' draw order
+    std::vector<UploadAllocation> objectConstants_;  // shared by every caster pass of a frame
 };
 
 }  // namespace fe::render

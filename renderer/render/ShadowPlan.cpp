@@ -13,7 +13,8 @@ namespace {
 std::array<glm::vec3, 8> corners(const assets::AABB& b) {
     std::array<glm::vec3, 8> c;
     for (int i = 0; i < 8; ++i)
-        c[i] = glm::vec3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z);
+        c[i] = glm::vec3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                         i & 4 ? b.max.z : b.min.z);
     return c;
 }
 
@@ -22,7 +23,8 @@ float viewExtent(const assets::Camera& camera, const assets::AABB& bounds) {
     const float zfar = camera.infiniteFar() ? 1e30f : camera.zfar;
     if (bounds.empty()) return std::min(zfar, camera.znear * 1000.0f);
     float far = 0.0f;
-    for (const glm::vec3& c : corners(bounds)) far = std::max(far, glm::dot(c - camera.eye(), camera.forward()));
+    for (const glm::vec3& c : corners(bounds))
+        far = std::max(far, glm::dot(c - camera.eye(), camera.forward()));
     return std::clamp(far, camera.znear * 1.01f, zfar);
 }
 
@@ -37,11 +39,13 @@ float perspectiveFar(const assets::Light& light, const assets::AABB& bounds) {
     if (light.range > 0.0f) return light.range;
     if (bounds.empty()) return 100.0f;
     float far = 0.0f;
-    for (const glm::vec3& c : corners(bounds)) far = std::max(far, glm::distance(c, light.position));
+    for (const glm::vec3& c : corners(bounds))
+        far = std::max(far, glm::distance(c, light.position));
     return std::max(far * 1.01f, 1e-3f);
 }
 
-glm::mat4 fromRows(const glm::vec4& r0, const glm::vec4& r1, const glm::vec4& r2, const glm::vec4& r3) {
+glm::mat4 fromRows(const glm::vec4& r0, const glm::vec4& r1, const glm::vec4& r2,
+                   const glm::vec4& r3) {
     return glm::transpose(glm::mat4(r0, r1, r2, r3));
 }
 
@@ -53,7 +57,8 @@ std::vector<bool> ShadowPlan::castsShadow() const {
     return casts;
 }
 
-double shadowImportance(const assets::Light& light, const assets::Camera& camera, const assets::AABB& bounds) {
+double shadowImportance(const assets::Light& light, const assets::Camera& camera,
+                        const assets::AABB& bounds) {
     const glm::dvec3 color(light.color);
     const double luminance = 0.2126 * color.r + 0.7152 * color.g + 0.0722 * color.b;
     if (light.type == assets::LightType::Directional) return light.intensity * luminance;
@@ -69,20 +74,23 @@ double shadowImportance(const assets::Light& light, const assets::Camera& camera
     return light.intensity * luminance * window / (d * d);
 }
 
-ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::Camera& camera, const assets::AABB& bounds,
-                       const ShadowSettings& s) {
+ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::Camera& camera,
+                       const assets::AABB& bounds, const ShadowSettings& s) {
     ShadowPlan plan;
     const uint32_t n = uint32_t(lights.size());
     std::vector<bool> shadowed(n, false);
     if (s.enabled) {
         std::vector<uint32_t> points;
         for (uint32_t i = 0; i < n; ++i)
-            if (lights[i].type == assets::LightType::Point) points.push_back(i);
-            else shadowed[i] = true;
+            if (lights[i].type == assets::LightType::Point)
+                points.push_back(i);
+            else
+                shadowed[i] = true;
         std::vector<double> importance(n, 0.0);
         for (uint32_t i : points) importance[i] = shadowImportance(lights[i], camera, bounds);
         // Most important first; ties keep the scene's order, so the choice is deterministic.
-        std::stable_sort(points.begin(), points.end(), [&](uint32_t a, uint32_t b) { return importance[a] > importance[b]; });
+        std::stable_sort(points.begin(), points.end(),
+                         [&](uint32_t a, uint32_t b) { return importance[a] > importance[b]; });
         for (size_t k = 0; k < points.size() && k < s.pointBudget; ++k) shadowed[points[k]] = true;
     }
     for (uint32_t i = 0; i < n; ++i)
@@ -96,9 +104,10 @@ ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::C
                                  .kind = t == assets::LightType::Directional ? ShadowKind::Cascades
                                          : t == assets::LightType::Spot      ? ShadowKind::Spot
                                                                              : ShadowKind::Cube,
-                                 .layers = t == assets::LightType::Directional ? std::clamp(s.cascades, 1u, 4u)
-                                           : t == assets::LightType::Spot      ? 1u
-                                                                               : 6u});
+                                 .layers = t == assets::LightType::Directional
+                                               ? std::clamp(s.cascades, 1u, 4u)
+                                           : t == assets::LightType::Spot ? 1u
+                                                                          : 6u});
     }
     return plan;
 }
@@ -106,17 +115,22 @@ ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::C
 glm::mat4 cubeFaceProjection(uint32_t face, const glm::vec3& light, float n, float f) {
     // Face f sees d = P - light with major axis m; its texel (s, t) has (2s - 1, 2t - 1) =
     // (a.d, b.d) / m.d, the inverse of the face selection (fe_environment.glsl's table).
-    static const glm::vec3 m[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    static const glm::vec3 a[6] = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {-1, 0, 0}};
-    static const glm::vec3 b[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    static const glm::vec3 m[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                   {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+    static const glm::vec3 a[6] = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0},
+                                   {1, 0, 0},  {1, 0, 0}, {-1, 0, 0}};
+    static const glm::vec3 b[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
+                                   {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
     const float A = f / (f - n), B = -n * f / (f - n);  // depth A + B / w: 0 at w = n, 1 at w = f
-    return fromRows(glm::vec4(a[face], -glm::dot(a[face], light)), glm::vec4(b[face], -glm::dot(b[face], light)),
-                    glm::vec4(A * m[face], -A * glm::dot(m[face], light) + B), glm::vec4(m[face], -glm::dot(m[face], light)));
+    return fromRows(glm::vec4(a[face], -glm::dot(a[face], light)),
+                    glm::vec4(b[face], -glm::dot(b[face], light)),
+                    glm::vec4(A * m[face], -A * glm::dot(m[face], light) + B),
+                    glm::vec4(m[face], -glm::dot(m[face], light)));
 }
 
 ShadowProjection shadowProjection(const assets::Light& light, ShadowKind kind, uint32_t layers,
-                                  const assets::Camera& camera, float aspect, const assets::AABB& bounds,
-                                  uint32_t mapSize) {
+                                  const assets::Camera& camera, float aspect,
+                                  const assets::AABB& bounds, uint32_t mapSize) {
     ShadowProjection p;
     p.layers = layers;
     const float size = float(mapSize);
@@ -142,7 +156,8 @@ ShadowProjection shadowProjection(const assets::Light& light, ShadowKind kind, u
             glm::vec3 center(0.0f);
             for (int k = 0; k < 8; ++k) {
                 const float z = k & 4 ? end : begin;
-                c[k] = eye + f * z + r * (k & 1 ? 1.0f : -1.0f) * z * tanX + u * (k & 2 ? 1.0f : -1.0f) * z * tanY;
+                c[k] = eye + f * z + r * (k & 1 ? 1.0f : -1.0f) * z * tanX +
+                       u * (k & 2 ? 1.0f : -1.0f) * z * tanY;
                 center += c[k] * 0.125f;
             }
             float radius = 0.0f;
@@ -159,8 +174,9 @@ ShadowProjection shadowProjection(const assets::Light& light, ShadowKind kind, u
             const float pad = 0.01f * (t1 - t0) + 1e-4f;
             t0 -= pad;
             t1 += pad;
-            p.viewProj[i] = fromRows(glm::vec4(lx / radius, -cx / radius), glm::vec4(ly / radius, -cy / radius),
-                                     glm::vec4(L / (t1 - t0), -t0 / (t1 - t0)), glm::vec4(0, 0, 0, 1));
+            p.viewProj[i] =
+                fromRows(glm::vec4(lx / radius, -cx / radius), glm::vec4(ly / radius, -cy / radius),
+                         glm::vec4(L / (t1 - t0), -t0 / (t1 - t0)), glm::vec4(0, 0, 0, 1));
             p.cascadeEnds[int(i)] = end;
             p.texelWorld[int(i)] = texel;
             begin = end;
@@ -177,13 +193,15 @@ ShadowProjection shadowProjection(const assets::Light& light, ShadowKind kind, u
         const float half = std::min(light.outerConeAngle + 2.0f / size, glm::radians(85.0f));
         const glm::vec3 x = perpendicular(d), y = glm::cross(d, x);
         // View space looks along -Z: rows x, y, -d.
-        const glm::mat4 view = fromRows(glm::vec4(x, -glm::dot(x, light.position)), glm::vec4(y, -glm::dot(y, light.position)),
-                                        glm::vec4(-d, glm::dot(d, light.position)), glm::vec4(0, 0, 0, 1));
+        const glm::mat4 view = fromRows(
+            glm::vec4(x, -glm::dot(x, light.position)), glm::vec4(y, -glm::dot(y, light.position)),
+            glm::vec4(-d, glm::dot(d, light.position)), glm::vec4(0, 0, 0, 1));
         p.viewProj[0] = projection(2.0f * half, 1.0f, p.nearPlane, p.farPlane) * view;
         p.texelWorld.x = 2.0f * std::tan(half) / size;
         return p;
     }
-    for (uint32_t face = 0; face < 6; ++face) p.viewProj[face] = cubeFaceProjection(face, light.position, p.nearPlane, p.farPlane);
+    for (uint32_t face = 0; face < 6; ++face)
+        p.viewProj[face] = cubeFaceProjection(face, light.position, p.nearPlane, p.farPlane);
     p.texelWorld.x = 2.0f / size;  // a 90-degree face: tan(45) = 1
     return p;
 }

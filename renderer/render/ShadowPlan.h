@@ -45,15 +45,17 @@ struct ShadowPlan {
 // The importance of a point light, by which the budget is filled: what it gives the middle of
 // the view, intensity x luminance x range window / d^2, d its distance to the camera's central
 // ray through the scene (clamped below at 1 % of that ray's length).
-double shadowImportance(const assets::Light& light, const assets::Camera& camera, const assets::AABB& bounds);
+double shadowImportance(const assets::Light& light, const assets::Camera& camera,
+                        const assets::AABB& bounds);
 
-ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::Camera& camera, const assets::AABB& bounds,
-                       const ShadowSettings& settings);
+ShadowPlan planShadows(const std::vector<assets::Light>& lights, const assets::Camera& camera,
+                       const assets::AABB& bounds, const ShadowSettings& settings);
 
 // One shadowed light's projections for the current camera and light positions.
 struct ShadowProjection {
-    std::array<glm::mat4, 6> viewProj{};  // per layer: world -> the map's clip space (Vulkan conventions)
-    glm::vec4 cascadeEnds{0.0f};          // cascades: the view depth at which cascade i ends
+    std::array<glm::mat4, 6>
+        viewProj{};               // per layer: world -> the map's clip space (Vulkan conventions)
+    glm::vec4 cascadeEnds{0.0f};  // cascades: the view depth at which cascade i ends
     // World size of one texel: per cascade (orthographic), or at unit distance from the light.
     glm::vec4 texelWorld{0.0f};
     float nearPlane = 0.0f, farPlane = 0.0f;  // spot and cube: the perspective depth range
@@ -61,11 +63,12 @@ struct ShadowProjection {
 };
 
 ShadowProjection shadowProjection(const assets::Light& light, ShadowKind kind, uint32_t layers,
-                                  const assets::Camera& camera, float aspect, const assets::AABB& bounds,
-                                  uint32_t mapSize);
+                                  const assets::Camera& camera, float aspect,
+                                  const assets::AABB& bounds, uint32_t mapSize);
 
 // Cube faces (+X -X +Y -Y +Z -Z): the projection of direction d = P - light into face f's clip
 // space, matching the cube map face selection of both APIs, depth 0 at `nearPlane`, 1 at `farPlane`.
-glm::mat4 cubeFaceProjection(uint32_t face, const glm::vec3& light, float nearPlane, float farPlane);
+glm::mat4 cubeFaceProjection(uint32_t face, const glm::vec3& light, float nearPlane,
+                             float farPlane);
 
 }  // namespace fe::render

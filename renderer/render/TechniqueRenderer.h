@@ -33,8 +33,8 @@ struct TechniqueContext {
     GpuScene& scene;
     GeometryRenderer& geometry;
     const RenderSettings& settings;
-    const FrameConstants& frame;               // this frame's constants on the CPU
-    const UploadAllocation& frameConstants;    // ... and their upload
+    const FrameConstants& frame;             // this frame's constants on the CPU
+    const UploadAllocation& frameConstants;  // ... and their upload
     glm::vec3 eye;
     gdi::SamplerHandle pointSampler;  // nearest, clamped: reads of full-resolution buffers
     gdi::ShaderHandle fullscreenVs;   // scene/fullscreen.vert
@@ -80,23 +80,27 @@ public:
     explicit TechniqueRenderer(TechniqueContext& context) : ctx_(context) {}
     virtual ~TechniqueRenderer() = default;
     // Declares the passes that fill `output` (L_o, kRadianceFormat) and `depth` (transient).
-    virtual void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) = 0;
+    virtual void declare(graph::RenderGraph& graph, graph::TextureId output,
+                         graph::TextureId depth) = 0;
     // What the shading loop walks (valid after declare).
     virtual LightLists lightLists() const { return {}; }
 
 protected:
     // resolveLater is set when shadowed lights follow (declareShadowedForward).
-    ForwardTargets forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const;
+    ForwardTargets forwardTargets(graph::RenderGraph& g, graph::TextureId output,
+                                  graph::TextureId depth) const;
     bool hasShadowedLights() const { return ctx_.shadows && ctx_.shadows->any(); }
     // Forward techniques, after their own passes: each shadowed light's map and a pass adding
     // that light into t.color where depth is EQUAL (MeshPass::ForwardShadowed); the last one
     // resolves t. `objects`: the technique's object constants of this frame, if it keeps them.
-    void declareShadowedForward(graph::RenderGraph& g, const ForwardTargets& t, std::vector<UploadAllocation>* objects);
+    void declareShadowedForward(graph::RenderGraph& g, const ForwardTargets& t,
+                                std::vector<UploadAllocation>* objects);
     // Sets a pipeline and binds the frame constants and the scene's lights at their slots.
     void bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const;
     // A pass body: one full-screen triangle with the frame constants and graph textures bound.
     using SlotTextures = std::vector<std::pair<uint32_t, graph::TextureId>>;
-    std::function<void(graph::PassContext&)> fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const;
+    std::function<void(graph::PassContext&)> fullscreen(gdi::PipelineHandle pipeline,
+                                                        SlotTextures inputs) const;
     TechniqueContext& ctx_;
 };
 
@@ -121,9 +125,13 @@ struct TechniqueInfo {
     // dielectric Fresnel (KHR_materials_ior / specular) is not there, so 0.04 and 1 are used.
     bool gbuffer = false;
     // Evaluates every material input of the glTF model under `brdf` (what materialWarnings asks).
-    bool fullMaterial(shading::Brdf brdf) const { return !gbuffer && !separableBrdf && brdf == shading::Brdf::Gltf; }
+    bool fullMaterial(shading::Brdf brdf) const {
+        return !gbuffer && !separableBrdf && brdf == shading::Brdf::Gltf;
+    }
     // The BRDF it shades with when RenderSettings::shadingModel is Auto.
-    shading::Brdf defaultBrdf() const { return separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf; }
+    shading::Brdf defaultBrdf() const {
+        return separableBrdf ? shading::Brdf::Separable : shading::Brdf::Gltf;
+    }
     // Every technique lights the scene by its environment with --ibl-samples N (checked for
     // every line of the table by EnvironmentTests).
 };

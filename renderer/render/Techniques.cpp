@@ -39,30 +39,61 @@ std::unique_ptr<TechniqueRenderer> makeLightPrepass(TechniqueContext& c) {
 const std::vector<TechniqueInfo>& techniques() {
     static const std::vector<TechniqueInfo> all = {
         {"forward", "one pass, every light in the shader loop", make<ForwardRenderer>, true},
-        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)", make<ForwardMultipassRenderer>, true},
-        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL", make<ForwardZPrepassRenderer>, true},
+        {"forward-multipass", "one additive pass per light (cost grows with objects x lights)",
+         make<ForwardMultipassRenderer>, true},
+        {"forward-zprepass", "depth-only pass front to back, then shading with depth test EQUAL",
+         make<ForwardZPrepassRenderer>, true},
         {.name = "forward-plus",
-         .summary = "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
-         .create = makeForwardLists<ForwardPlusRenderer::Lists::Tiles>, .msaa = true, .clustersUnderMsaa = true},
-        {"clustered-forward", "depth pre-pass, lights assigned to 32x32-pixel x 32-slice clusters, one forward pass over the cluster's list",
+         .summary =
+             "Forward+: depth pre-pass, lights culled per 8x8 tile, one forward pass over the tile's list",
+         .create = makeForwardLists<ForwardPlusRenderer::Lists::Tiles>,
+         .msaa = true,
+         .clustersUnderMsaa = true},
+        {"clustered-forward",
+         "depth pre-pass, lights assigned to 32x32-pixel x 32-slice clusters, one forward pass over the cluster's list",
          makeForwardLists<ForwardPlusRenderer::Lists::Clusters>, true, false, true},
-        {.name = "deferred", .summary = "G-buffer, lights drawn as volumes, emissive", .create = make<DeferredRenderer>,
+        {.name = "deferred",
+         .summary = "G-buffer, lights drawn as volumes, emissive",
+         .create = make<DeferredRenderer>,
          .gbuffer = true},
-        {.name = "deferred-tiled", .summary = "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once",
-         .create = makeTiledDeferred<TiledDeferredRenderer::Lists::Tiles>, .gbuffer = true},
+        {.name = "deferred-tiled",
+         .summary =
+             "G-buffer, one compute pass: lights culled per 16x16 tile, each pixel shaded once",
+         .create = makeTiledDeferred<TiledDeferredRenderer::Lists::Tiles>,
+         .gbuffer = true},
         {.name = "clustered-deferred",
-         .summary = "G-buffer, lights assigned to clusters, one compute pass: each pixel shades its cluster's lights",
-         .create = makeTiledDeferred<TiledDeferredRenderer::Lists::Clusters>, .clusters = true, .gbuffer = true},
-        {"visibility-buffer", "triangle id + depth per pixel, one compute pass rebuilding each pixel's surface and shading its cluster's lights",
+         .summary =
+             "G-buffer, lights assigned to clusters, one compute pass: each pixel shades its cluster's lights",
+         .create = makeTiledDeferred<TiledDeferredRenderer::Lists::Clusters>,
+         .clusters = true,
+         .gbuffer = true},
+        {"visibility-buffer",
+         "triangle id + depth per pixel, one compute pass rebuilding each pixel's surface and shading its cluster's lights",
          make<VisibilityBufferRenderer>, false, false, true},
-        {.name = "light-prepass", .summary = "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
-         .create = makeLightPrepass<true>, .msaa = true, .separableBrdf = true},
-        {.name = "light-prepass-unpacked", .summary = "light-prepass with an RGBA16F world-normal target, to measure packing",
-         .create = makeLightPrepass<false>, .msaa = true, .separableBrdf = true},
-        {.name = "redeferred", .summary = "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass",
-         .create = makeRedeferred<false>, .illumScale = true, .separableBrdf = true, .gbuffer = true},
-        {.name = "redeferred-tiled", .summary = "redeferred with the I-buffer filled by one compute pass culling lights per tile",
-         .create = makeRedeferred<true>, .illumScale = true, .separableBrdf = true, .gbuffer = true},
+        {.name = "light-prepass",
+         .summary =
+             "normals+depth (RGBA8 packed), lights into a light buffer, scene again with materials",
+         .create = makeLightPrepass<true>,
+         .msaa = true,
+         .separableBrdf = true},
+        {.name = "light-prepass-unpacked",
+         .summary = "light-prepass with an RGBA16F world-normal target, to measure packing",
+         .create = makeLightPrepass<false>,
+         .msaa = true,
+         .separableBrdf = true},
+        {.name = "redeferred",
+         .summary = "G-buffer, I-buffer sums at 1/--illum-scale resolution, material pass",
+         .create = makeRedeferred<false>,
+         .illumScale = true,
+         .separableBrdf = true,
+         .gbuffer = true},
+        {.name = "redeferred-tiled",
+         .summary =
+             "redeferred with the I-buffer filled by one compute pass culling lights per tile",
+         .create = makeRedeferred<true>,
+         .illumScale = true,
+         .separableBrdf = true,
+         .gbuffer = true},
     };
     return all;
 }
@@ -76,13 +107,17 @@ const TechniqueInfo& findTechnique(const std::string& name) {
 shading::Brdf resolveBrdf(const RenderSettings& s) {
     const TechniqueInfo& t = findTechnique(s.technique);
     if (s.shadingModel == ShadingModel::Gltf && t.separableBrdf)
-        throw gdi::Error("technique " + s.technique +
-                         " shades with the separable BRDF only (its light sums need it to factor): the glTF BRDF needs "
-                         "forward, deferred, deferred-tiled, clustered or the visibility buffer");
+        throw gdi::Error(
+            "technique " + s.technique +
+            " shades with the separable BRDF only (its light sums need it to factor): the glTF BRDF needs "
+            "forward, deferred, deferred-tiled, clustered or the visibility buffer");
     switch (s.shadingModel) {
-        case ShadingModel::Gltf: return shading::Brdf::Gltf;
-        case ShadingModel::Separable: return shading::Brdf::Separable;
-        default: return t.defaultBrdf();
+        case ShadingModel::Gltf:
+            return shading::Brdf::Gltf;
+        case ShadingModel::Separable:
+            return shading::Brdf::Separable;
+        default:
+            return t.defaultBrdf();
     }
 }
 
@@ -92,12 +127,23 @@ std::string techniqueNames() {
     return s;
 }
 
-ForwardTargets TechniqueRenderer::forwardTargets(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) const {
+ForwardTargets TechniqueRenderer::forwardTargets(graph::RenderGraph& g, graph::TextureId output,
+                                                 graph::TextureId depth) const {
     const RenderSettings& s = ctx_.settings;
-    ForwardTargets t{output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, s.msaa}, hasShadowedLights()};
+    ForwardTargets t{output,
+                     depth,
+                     output,
+                     depth,
+                     {{kRadianceFormat}, kSceneDepthFormat, s.msaa},
+                     hasShadowedLights()};
     if (s.msaa > 1) {
-        t.color = g.createTexture("msaa L_o", {.format = kRadianceFormat, .width = s.width, .height = s.height, .sampleCount = s.msaa});
-        t.depth = g.createTexture("msaa depth", {.format = kSceneDepthFormat, .width = s.width, .height = s.height,
+        t.color = g.createTexture("msaa L_o", {.format = kRadianceFormat,
+                                               .width = s.width,
+                                               .height = s.height,
+                                               .sampleCount = s.msaa});
+        t.depth = g.createTexture("msaa depth", {.format = kSceneDepthFormat,
+                                                 .width = s.width,
+                                                 .height = s.height,
                                                  .sampleCount = s.msaa});
     }
     return t;
@@ -113,42 +159,51 @@ void TechniqueRenderer::declareShadowedForward(graph::RenderGraph& g, const Forw
                                                std::vector<UploadAllocation>* objects) {
     if (!hasShadowedLights()) return;
     ctx_.shadows->declare(g, [&](graph::RenderGraph& graph, const ShadowMaps::Light& light) {
-        graph.addPass("shadowed light " + std::to_string(light.index), [&](graph::PassBuilder& b) {
-            b.sample(light.map);
-            b.colorTarget(t.color, gdi::LoadOp::Load);
-            b.depthTarget(t.depth, gdi::LoadOp::Load);
-            if (light.last) {
-                ForwardTargets now = t;
-                now.resolveLater = false;
-                now.resolveIn(b);
-            }
-        }, [this, t, light, objects](graph::PassContext& pc) {
-            pc.beginRenderPass();
-            FrameConstants fc = ctx_.frame;
-            fc.lightRange = glm::uvec4(light.gpuLight, 1u, 0u, 0u);  // this light alone, no emissive
-            const UploadAllocation perLight = ctx_.queue.upload(fc);
-            ctx_.shadows->bind(pc.cmd, pc, light);
-            ctx_.geometry.draw(pc.cmd, ctx_.queue, light.kind == ShadowKind::Cube ? MeshPass::ForwardShadowedCube : MeshPass::ForwardShadowed,
-                               t.formats, perLight, ctx_.eye, objects);
-            pc.cmd.endRenderPass();
-        });
+        graph.addPass(
+            "shadowed light " + std::to_string(light.index),
+            [&](graph::PassBuilder& b) {
+                b.sample(light.map);
+                b.colorTarget(t.color, gdi::LoadOp::Load);
+                b.depthTarget(t.depth, gdi::LoadOp::Load);
+                if (light.last) {
+                    ForwardTargets now = t;
+                    now.resolveLater = false;
+                    now.resolveIn(b);
+                }
+            },
+            [this, t, light, objects](graph::PassContext& pc) {
+                pc.beginRenderPass();
+                FrameConstants fc = ctx_.frame;
+                fc.lightRange =
+                    glm::uvec4(light.gpuLight, 1u, 0u, 0u);  // this light alone, no emissive
+                const UploadAllocation perLight = ctx_.queue.upload(fc);
+                ctx_.shadows->bind(pc.cmd, pc, light);
+                ctx_.geometry.draw(pc.cmd, ctx_.queue,
+                                   light.kind == ShadowKind::Cube ? MeshPass::ForwardShadowedCube
+                                                                  : MeshPass::ForwardShadowed,
+                                   t.formats, perLight, ctx_.eye, objects);
+                pc.cmd.endRenderPass();
+            });
     });
 }
 
-void TechniqueRenderer::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
+void TechniqueRenderer::bindFrameAndLights(gdi::CommandList& cmd,
+                                           gdi::PipelineHandle pipeline) const {
     cmd.setPipeline(pipeline);
     const UploadAllocation& fc = ctx_.frameConstants;
     cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
     cmd.setStorageBuffer(kSlotLights, ctx_.scene.lightBuffer());
 }
 
-std::function<void(graph::PassContext&)> TechniqueRenderer::fullscreen(gdi::PipelineHandle pipeline, SlotTextures inputs) const {
+std::function<void(graph::PassContext&)> TechniqueRenderer::fullscreen(gdi::PipelineHandle pipeline,
+                                                                       SlotTextures inputs) const {
     return [this, pipeline, inputs](graph::PassContext& pc) {
         pc.beginRenderPass();
         pc.cmd.setPipeline(pipeline);
         const UploadAllocation& fc = ctx_.frameConstants;
         pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
-        for (const auto& [slot, id] : inputs) pc.cmd.setTexture(slot, pc.texture(id), ctx_.pointSampler);
+        for (const auto& [slot, id] : inputs)
+            pc.cmd.setTexture(slot, pc.texture(id), ctx_.pointSampler);
         pc.cmd.draw(3);
         pc.cmd.endRenderPass();
     };

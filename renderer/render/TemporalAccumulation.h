@@ -23,7 +23,8 @@ glm::uvec2 temporalOffset(uint32_t scale, uint64_t frame);
 class TemporalAccumulation {
 public:
     static constexpr gdi::Format kFormat = gdi::Format::RGBA32F;
-    static constexpr float kMaxFrames = 8.0f;  // history cap under motion (FrameConstants::temporal.w)
+    static constexpr float kMaxFrames =
+        8.0f;  // history cap under motion (FrameConstants::temporal.w)
 
     explicit TemporalAccumulation(TechniqueContext& context);
     TemporalAccumulation(const TemporalAccumulation&) = delete;

@@ -9,29 +9,38 @@ namespace fe::render {
 
 TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ctx_(c) {
     if (!c.device.info().features.computeShaders)
-        throw gdi::Error("tiled light culling needs compute shaders, which " + c.device.info().backend + " lacks");
+        throw gdi::Error("tiled light culling needs compute shaders, which " +
+                         c.device.info().backend + " lacks");
     uniformLights_ = lightsFitUniformBlock(c);
-    cs_ = objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
+    cs_ = objects_.add(c.device.createShader(
+        {.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
+    pipeline_ = objects_.add(
+        c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
 }
 
 bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {
     return GpuScene::lightsFitUniformBlock(c.scene.lightCount(), c.device.info().limits);
 }
 
-const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name, bool uniformLights, bool layered) {
+const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name,
+                                                          bool uniformLights, bool layered) {
     std::string variant = layered ? "FE_LAYERED" : "";
-    if (!uniformLights) variant += variant.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
+    if (!uniformLights)
+        variant += variant.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
     return shaders::find("scene/" + name + ".comp" + (variant.empty() ? "" : ":" + variant));
 }
 
-const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const { return listPassShader(name, uniformLights_); }
+const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const {
+    return listPassShader(name, uniformLights_);
+}
 
-void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights) {
+void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext& c,
+                                  bool uniformLights) {
     c.scene.bindLights(cmd, kSlotLights, uniformLights);
 }
 
-void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHandle pipeline) const {
+void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd,
+                                          gdi::PipelineHandle pipeline) const {
     cmd.setPipeline(pipeline);
     const UploadAllocation& fc = ctx_.frameConstants;
     cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);
@@ -41,31 +50,40 @@ void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd, gdi::PipelineHa
 graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
     // One block of the list texture per list tile; the pass runs one invocation per 16x16 tile.
-    const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize, tilesY = (s.height + kTileSize - 1) / kTileSize;
+    const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize,
+                   tilesY = (s.height + kTileSize - 1) / kTileSize;
     // Room for every light (up to kMaxListLength) and the header, within the device's texture limit.
     const uint32_t entries = std::min(ctx_.scene.lightCount(), kMaxListLength) + kListHeader;
     const uint32_t maxDim = ctx_.device.info().limits.maxTextureSize2D;
-    const uint32_t blockHeight = std::max(1u, std::min((entries + kBlockWidth - 1) / kBlockWidth, maxDim / tilesY));
+    const uint32_t blockHeight =
+        std::max(1u, std::min((entries + kBlockWidth - 1) / kBlockWidth, maxDim / tilesY));
     if (tilesX * kBlockWidth > maxDim)
-        throw gdi::Error("tiled light culling: " + std::to_string(s.width) + " pixels wide needs a list texture wider than " +
-                         std::to_string(maxDim));
-    const graph::TextureId lists = g.createTexture(
-        "tile light lists", {.format = gdi::Format::R32U, .width = tilesX * kBlockWidth, .height = tilesY * blockHeight});
-    g.addPass("light-culling", [&](graph::PassBuilder& b) {
-        b.sample(depth);
-        b.storage(lists);
-    }, [this, depth, lists, tiles = ((s.width + 15) / 16) * ((s.height + 15) / 16)](graph::PassContext& pc) {
-        bindFrameAndLights(pc.cmd, pipeline_);
-        pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
-        pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
-        // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres.
-        pc.cmd.setConstants(glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
-        pc.cmd.dispatch((tiles + 63) / 64, 1);
-    });
+        throw gdi::Error("tiled light culling: " + std::to_string(s.width) +
+                         " pixels wide needs a list texture wider than " + std::to_string(maxDim));
+    const graph::TextureId lists =
+        g.createTexture("tile light lists", {.format = gdi::Format::R32U,
+                                             .width = tilesX * kBlockWidth,
+                                             .height = tilesY * blockHeight});
+    g.addPass(
+        "light-culling",
+        [&](graph::PassBuilder& b) {
+            b.sample(depth);
+            b.storage(lists);
+        },
+        [this, depth, lists,
+         tiles = ((s.width + 15) / 16) * ((s.height + 15) / 16)](graph::PassContext& pc) {
+            bindFrameAndLights(pc.cmd, pipeline_);
+            pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
+            pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
+            // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres.
+            pc.cmd.setConstants(glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
+            pc.cmd.dispatch((tiles + 63) / 64, 1);
+        });
     return lists;
 }
 
-void TileLightCulling::bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const {
+void TileLightCulling::bindLists(gdi::CommandList& cmd, const graph::PassContext& pc,
+                                 graph::TextureId lists) const {
     cmd.setTexture(kSlotTileLights, pc.texture(lists), ctx_.pointSampler);
 }
 

@@ -20,7 +20,8 @@ public:
     // Declares the list texture and the "light-culling" pass reading `depth`.
     graph::TextureId declare(graph::RenderGraph& g, graph::TextureId depth);
     // Binds the lists for a shading pass.
-    void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc, graph::TextureId lists) const;
+    void bindLists(gdi::CommandList& cmd, const graph::PassContext& pc,
+                   graph::TextureId lists) const;
 
     // The passes that walk the lists (this one and the shading passes) read the lights from a
     // uniform block when the scene's lights fit one (GpuScene::kUniformLights) and the device
@@ -33,14 +34,15 @@ public:
     // uniform block, the shader variant, and the binding of the lights alone.
     static bool lightsFitUniformBlock(const TechniqueContext& c);
     // `layered`: the FE_LAYERED variant (GpuScene::hasLayeredMaterials: clearcoat and sheen lobes).
-    static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights, bool layered = false);
+    static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights,
+                                                   bool layered = false);
     static void bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights);
 
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
     // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.
     static constexpr uint32_t kTileSize = 8;
-    static constexpr uint32_t kBlockWidth = 32;       // texels per tile block row
-    static constexpr uint32_t kListHeader = 3;        // count, depth min, depth max (FE_TILE_HEADER)
+    static constexpr uint32_t kBlockWidth = 32;  // texels per tile block row
+    static constexpr uint32_t kListHeader = 3;   // count, depth min, depth max (FE_TILE_HEADER)
     static constexpr uint32_t kMaxListLength = 1021;  // lights per tile list at most
 
 private:

@@ -20,7 +20,8 @@ class TiledDeferredRenderer final : public TechniqueRenderer {
 public:
     enum class Lists { Tiles, Clusters };
     explicit TiledDeferredRenderer(TechniqueContext& context, Lists lists = Lists::Tiles);
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     // The one-pass form culls in shared memory: its lists are not kept (reported as every light).
     LightLists lightLists() const override {
         if (clusters_) return {LightLists::Kind::Clusters, {}};
@@ -33,8 +34,9 @@ private:
     std::unique_ptr<ShadowedLightVolumes> shadowed_;  // with shadows: each shadowed light's pass
     GBuffer gbuffer_;
     std::unique_ptr<EnvironmentLighting> ibl_;  // with --ibl-samples
-    std::unique_ptr<TileLightCulling> culling_;  // null: culled in the shading dispatch, or clusters
-    bool clusters_ = false;                      // the lists of ctx_.clusters
+    std::unique_ptr<TileLightCulling>
+        culling_;            // null: culled in the shading dispatch, or clusters
+    bool clusters_ = false;  // the lists of ctx_.clusters
     graph::TextureId tiles_;
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;

@@ -54,7 +54,8 @@ private:
     std::vector<assets::ParticleEmitter> emitters_;
     uint32_t slots_ = 0, additiveSlots_ = 0;
     double time_ = 0.0;
-    UploadAllocation frame_;  // this frame's constants: uploaded by the simulation, read by the draws
+    UploadAllocation
+        frame_;  // this frame's constants: uploaded by the simulation, read by the draws
     gdi::BufferHandle emitterBuffer_, additive_, alpha_, sorted_, args_, argsReset_;
     gdi::ShaderHandle simulateCs_, sortCs_, vs_, additiveFs_, alphaFs_;
     gdi::PipelineHandle simulate_, sort_, drawAdditive_, drawAlpha_;

@@ -7,65 +7,87 @@
 namespace fe::render {
 
 VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
-    : TechniqueRenderer(c), objects_(c.device), uniformLights_(TileLightCulling::lightsFitUniformBlock(c)) {
+    : TechniqueRenderer(c),
+      objects_(c.device),
+      uniformLights_(TileLightCulling::lightsFitUniformBlock(c)) {
     if (!c.device.info().features.computeShaders)
-        throw gdi::Error("technique visibility-buffer needs compute shaders, which " + c.device.info().backend + " lacks");
+        throw gdi::Error("technique visibility-buffer needs compute shaders, which " +
+                         c.device.info().backend + " lacks");
     if (!c.clusters) throw gdi::Error("visibility-buffer: the renderer made no light cluster grid");
     std::vector<ObjectConstants> records;
     for (const DrawItem& d : c.scene.draws()) records.push_back(c.scene.objectConstants(d));
     if (records.empty()) records.emplace_back();  // a buffer needs at least one byte
-    draws_ = objects_.add(c.device.createBuffer(
-        {.size = records.size() * sizeof(ObjectConstants), .usage = gdi::BufferUsage::Storage, .debugName = "visibility draws"},
-        gdi::bytesOf(records)));
-    const std::string name = !c.settings.ibl()                      ? "visibility_resolve"
-                             : c.environmentLight.prefiltered() ? "visibility_resolve_ibl_prefiltered"
-                                                                : "visibility_resolve_ibl";
-    cs_ = objects_.add(c.device.createShader(
-        {.stage = gdi::ShaderStage::Compute, .binary = TileLightCulling::listPassShader(name, uniformLights_, c.scene.hasLayeredMaterials())}));
-    pipeline_ = objects_.add(c.device.createComputePipeline({.computeShader = cs_, .debugName = "visibility resolve"}));
+    draws_ = objects_.add(c.device.createBuffer({.size = records.size() * sizeof(ObjectConstants),
+                                                 .usage = gdi::BufferUsage::Storage,
+                                                 .debugName = "visibility draws"},
+                                                gdi::bytesOf(records)));
+    const std::string name = !c.settings.ibl() ? "visibility_resolve"
+                             : c.environmentLight.prefiltered()
+                                 ? "visibility_resolve_ibl_prefiltered"
+                                 : "visibility_resolve_ibl";
+    cs_ = objects_.add(
+        c.device.createShader({.stage = gdi::ShaderStage::Compute,
+                               .binary = TileLightCulling::listPassShader(
+                                   name, uniformLights_, c.scene.hasLayeredMaterials())}));
+    pipeline_ = objects_.add(
+        c.device.createComputePipeline({.computeShader = cs_, .debugName = "visibility resolve"}));
 }
 
-void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph::TextureId depth) {
+void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
+                                       graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
-    const graph::TextureId ids = g.createTexture("visibility triangle ids", {.format = kIdFormat, .width = s.width, .height = s.height});
-    g.addPass("visibility", [&](graph::PassBuilder& b) {
-        b.colorTarget(ids);  // cleared to 0: no surface
-        b.depthTarget(depth);
-    }, [this](graph::PassContext& pc) {
-        pc.beginRenderPass();
-        objectUploads_.clear();
-        ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Visibility, {{kIdFormat}, kSceneDepthFormat}, ctx_.frameConstants,
-                           ctx_.eye, &objectUploads_);
-        pc.cmd.endRenderPass();
-    });
+    const graph::TextureId ids = g.createTexture(
+        "visibility triangle ids", {.format = kIdFormat, .width = s.width, .height = s.height});
+    g.addPass(
+        "visibility",
+        [&](graph::PassBuilder& b) {
+            b.colorTarget(ids);  // cleared to 0: no surface
+            b.depthTarget(depth);
+        },
+        [this](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            objectUploads_.clear();
+            ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Visibility,
+                               {{kIdFormat}, kSceneDepthFormat}, ctx_.frameConstants, ctx_.eye,
+                               &objectUploads_);
+            pc.cmd.endRenderPass();
+        });
     const ClusterLightGrid::Lists lists = ctx_.clusters->declareBounded(g, depth);
-    g.addPass("visibility-resolve", [&](graph::PassBuilder& b) {
-        b.sample(ids);
-        b.sample(depth);
-        ClusterLightGrid::read(b, lists);
-        b.storage(output);
-    }, [this, ids, depth, output](graph::PassContext& pc) {
-        gdi::CommandList& cmd = pc.cmd;
-        bindFrameAndLights(cmd, pipeline_);
-        TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
-        ctx_.clusters->bindLists(cmd);
-        if (ctx_.settings.ibl()) ctx_.environmentLight.bind(cmd);
-        cmd.setTexture(kSlotVisibility, pc.texture(ids), ctx_.pointSampler);
-        cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
-        cmd.setStorageBuffer(kSlotDraws, draws_);
-        cmd.setStorageBuffer(kSlotVertices, ctx_.scene.vertexBuffer());
-        cmd.setStorageBuffer(kSlotIndices, ctx_.scene.indexBuffer());
-        cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));
-        const RenderSettings& rs = ctx_.settings;
-        const std::vector<MaterialTextures>& sets = ctx_.scene.textureSets();
-        for (uint32_t set = 0; set < sets.size(); ++set) {  // never empty (GpuScene::textureSets)
-            sets[set].bind(cmd);
-            cmd.setConstants(glm::uvec4(set, set == 0 ? 1u : 0u, 0u, 0u));
-            cmd.dispatch((rs.width + kGroupSize - 1) / kGroupSize, (rs.height + kGroupSize - 1) / kGroupSize);
-        }
-    });
-    declareShadowedForward(g, ForwardTargets{output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, 1}, false},
-                           &objectUploads_);
+    g.addPass(
+        "visibility-resolve",
+        [&](graph::PassBuilder& b) {
+            b.sample(ids);
+            b.sample(depth);
+            ClusterLightGrid::read(b, lists);
+            b.storage(output);
+        },
+        [this, ids, depth, output](graph::PassContext& pc) {
+            gdi::CommandList& cmd = pc.cmd;
+            bindFrameAndLights(cmd, pipeline_);
+            TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
+            ctx_.clusters->bindLists(cmd);
+            if (ctx_.settings.ibl()) ctx_.environmentLight.bind(cmd);
+            cmd.setTexture(kSlotVisibility, pc.texture(ids), ctx_.pointSampler);
+            cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
+            cmd.setStorageBuffer(kSlotDraws, draws_);
+            cmd.setStorageBuffer(kSlotVertices, ctx_.scene.vertexBuffer());
+            cmd.setStorageBuffer(kSlotIndices, ctx_.scene.indexBuffer());
+            cmd.setStorageTexture(kSlotRadianceOut, pc.texture(output));
+            const RenderSettings& rs = ctx_.settings;
+            const std::vector<MaterialTextures>& sets = ctx_.scene.textureSets();
+            for (uint32_t set = 0; set < sets.size();
+                 ++set) {  // never empty (GpuScene::textureSets)
+                sets[set].bind(cmd);
+                cmd.setConstants(glm::uvec4(set, set == 0 ? 1u : 0u, 0u, 0u));
+                cmd.dispatch((rs.width + kGroupSize - 1) / kGroupSize,
+                             (rs.height + kGroupSize - 1) / kGroupSize);
+            }
+        });
+    declareShadowedForward(
+        g,
+        ForwardTargets{
+            output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, 1}, false},
+        &objectUploads_);
 }
 
 }  // namespace fe::render

@@ -18,10 +18,12 @@ namespace fe::render {
 class VisibilityBufferRenderer final : public TechniqueRenderer {
 public:
     explicit VisibilityBufferRenderer(TechniqueContext& context);
-    void declare(graph::RenderGraph& graph, graph::TextureId output, graph::TextureId depth) override;
+    void declare(graph::RenderGraph& graph, graph::TextureId output,
+                 graph::TextureId depth) override;
     LightLists lightLists() const override { return {LightLists::Kind::Clusters, {}}; }
     static constexpr gdi::Format kIdFormat = gdi::Format::R32U;
-    static constexpr uint32_t kGroupSize = 16;  // pixels per work group side (fe_visibility_resolve_pass.glsl)
+    static constexpr uint32_t kGroupSize =
+        16;  // pixels per work group side (fe_visibility_resolve_pass.glsl)
 
 private:
     gdi::DeviceObjects objects_;
@@ -29,7 +31,8 @@ private:
     gdi::BufferHandle draws_;  // every draw's ObjectConstants, in scene order
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
-    std::vector<UploadAllocation> objectUploads_;  // the visibility pass's, reused by the shadowed lights' passes
+    std::vector<UploadAllocation>
+        objectUploads_;  // the visibility pass's, reused by the shadowed lights' passes
 };
 
 }  // namespace fe::render

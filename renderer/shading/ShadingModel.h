@@ -22,7 +22,8 @@ enum class LightType { Directional, Point, Spot };
 struct LightSample {
     glm::dvec3 wi{0.0};  // unit vector to the light
     glm::dvec3 E{0.0};   // irradiance at normal incidence
-    double distance = std::numeric_limits<double>::infinity();  // to the light (directional: infinite)
+    double distance =
+        std::numeric_limits<double>::infinity();  // to the light (directional: infinite)
 };
 
 struct PunctualLight {
@@ -36,7 +37,9 @@ struct PunctualLight {
     double outerConeAngle = kPi / 4.0;
 
     // s and o of SHADING.md's spot falloff.
-    double spotScale() const { return 1.0 / std::max(0.001, std::cos(innerConeAngle) - std::cos(outerConeAngle)); }
+    double spotScale() const {
+        return 1.0 / std::max(0.001, std::cos(innerConeAngle) - std::cos(outerConeAngle));
+    }
     double spotOffset() const { return -std::cos(outerConeAngle) * spotScale(); }
 };
 
@@ -140,12 +143,14 @@ inline double sheenAlbedoIntegral(double NoV, double roughness) {
     const glm::dvec3 v(std::sqrt(std::max(1.0 - NoV * NoV, 0.0)), 0.0, NoV);
     double sum = 0.0;
     for (int i = 0; i < nTheta; ++i) {
-        const double theta = (i + 0.5) / nTheta * 0.5 * kPi, c = std::cos(theta), sn = std::sin(theta);
+        const double theta = (i + 0.5) / nTheta * 0.5 * kPi, c = std::cos(theta),
+                     sn = std::sin(theta);
         for (int k = 0; k < nPhi; ++k) {  // phi in [0, pi]: the integrand is even in phi
             const double phi = (k + 0.5) / nPhi * kPi;
             const glm::dvec3 l(sn * std::cos(phi), sn * std::sin(phi), c);
             const glm::dvec3 h = glm::normalize(v + l);
-            sum += charlieD(roughness, h.z) * sheenVisibility(c, std::max(NoV, 1e-4), roughness) * c * sn;
+            sum += charlieD(roughness, h.z) * sheenVisibility(c, std::max(NoV, 1e-4), roughness) *
+                   c * sn;
         }
     }
     return 2.0 * sum * (0.5 * kPi / nTheta) * (kPi / nPhi);
@@ -156,41 +161,50 @@ inline const std::vector<float>& sheenAlbedoTable() {
         for (int j = 0; j < kSheenTableSize; ++j)
             for (int i = 0; i < kSheenTableSize; ++i)
                 t[size_t(j) * kSheenTableSize + i] =
-                    float(std::min(sheenAlbedoIntegral(double(i) / (kSheenTableSize - 1), double(j) / (kSheenTableSize - 1)), 1.0));
+                    float(std::min(sheenAlbedoIntegral(double(i) / (kSheenTableSize - 1),
+                                                       double(j) / (kSheenTableSize - 1)),
+                                   1.0));
         return t;
     }();
     return table;
 }
 inline double sheenAlbedo(double NoV, double roughness) {
     const std::vector<float>& t = sheenAlbedoTable();
-    const double x = std::clamp(NoV, 0.0, 1.0) * (kSheenTableSize - 1), y = std::clamp(roughness, 0.0, 1.0) * (kSheenTableSize - 1);
-    const int x0 = std::min(int(x), kSheenTableSize - 2), y0 = std::min(int(y), kSheenTableSize - 2);
+    const double x = std::clamp(NoV, 0.0, 1.0) * (kSheenTableSize - 1),
+                 y = std::clamp(roughness, 0.0, 1.0) * (kSheenTableSize - 1);
+    const int x0 = std::min(int(x), kSheenTableSize - 2),
+              y0 = std::min(int(y), kSheenTableSize - 2);
     const double fx = x - x0, fy = y - y0;
     auto at = [&](int i, int j) { return double(t[size_t(j) * kSheenTableSize + i]); };
-    return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) + (at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
+    return (at(x0, y0) * (1 - fx) + at(x0 + 1, y0) * fx) * (1 - fy) +
+           (at(x0, y0 + 1) * (1 - fx) + at(x0 + 1, y0 + 1) * fx) * fy;
 }
 inline double maxComponent(const glm::dvec3& c) { return std::max({c.r, c.g, c.b}); }
 // A punctual light's sheen, sheenColor D V n.l E, and the weight of the base under it,
 // min(1 - max(sheenColor) E(n.w_o), 1 - max(sheenColor) E(n.l)).
-inline glm::dvec3 sheenLight(const SurfacePoint& s, const glm::dvec3& wi, double NoV, const glm::dvec3& E, double& baseWeight) {
+inline glm::dvec3 sheenLight(const SurfacePoint& s, const glm::dvec3& wi, double NoV,
+                             const glm::dvec3& E, double& baseWeight) {
     const double NoL = std::clamp(glm::dot(s.n, wi), 0.0, 1.0), m = maxComponent(s.sheenColor);
-    baseWeight = std::min(1.0 - m * sheenAlbedo(NoV, s.sheenRoughness), 1.0 - m * sheenAlbedo(NoL, s.sheenRoughness));
+    baseWeight = std::min(1.0 - m * sheenAlbedo(NoV, s.sheenRoughness),
+                          1.0 - m * sheenAlbedo(NoL, s.sheenRoughness));
     if (NoL <= 0.0) return glm::dvec3(0.0);
     const double NoH = glm::dot(s.n, glm::normalize(s.wo + wi));
-    return s.sheenColor * charlieD(s.sheenRoughness, NoH) * sheenVisibility(NoL, NoV, s.sheenRoughness) * NoL * E;
+    return s.sheenColor * charlieD(s.sheenRoughness, NoH) *
+           sheenVisibility(NoL, NoV, s.sheenRoughness) * NoL * E;
 }
 
 // KHR_materials_volume, as the Sample Viewer traces it: the refracted view ray (ior; infinite
 // leaves it unbent) scaled by the thickness in mesh units times the mesh's axis scales.
-inline glm::dvec3 transmissionRay(const glm::dvec3& n, const glm::dvec3& wo, double thickness, double ior,
-                                  const glm::dvec3& meshScale) {
+inline glm::dvec3 transmissionRay(const glm::dvec3& n, const glm::dvec3& wo, double thickness,
+                                  double ior, const glm::dvec3& meshScale) {
     if (thickness <= 0.0) return glm::dvec3(0.0);
     const glm::dvec3 refracted = std::isinf(ior) ? -wo : glm::refract(-wo, n, 1.0 / ior);
     const double len = glm::length(refracted);
     return (len > 0.0 ? refracted / len : -wo) * thickness * meshScale;
 }
 // Beer-Lambert: attenuationColor^(distance / attenuationDistance) (infinite distance: 1).
-inline glm::dvec3 volumeTransmittance(const glm::dvec3& attenuationColor, double attenuationDistance, double distance) {
+inline glm::dvec3 volumeTransmittance(const glm::dvec3& attenuationColor,
+                                      double attenuationDistance, double distance) {
     if (std::isinf(attenuationDistance) || distance <= 0.0) return glm::dvec3(1.0);
     return glm::pow(attenuationColor, glm::dvec3(distance / attenuationDistance));
 }
@@ -233,9 +247,11 @@ inline double clearcoatLight(const SurfacePoint& s, const glm::dvec3& wi) {
     const double r = clampRoughness(s.clearcoatRoughness), a2 = r * r * r * r;
     const double NoV = std::max(glm::dot(n, s.wo), 1e-4);
     const glm::dvec3 h = glm::normalize(s.wo + wi);
-    const double NoH = glm::dot(n, h), P = std::pow(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0), 5.0);
+    const double NoH = glm::dot(n, h),
+                 P = std::pow(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0), 5.0);
     const double dd = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (kPi * dd * dd);
-    return (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * D * visibilityHeightCorrelated(NoL, NoV, a2) * NoL;
+    return (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * D *
+           visibilityHeightCorrelated(NoL, NoV, a2) * NoL;
 }
 
 inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Brdf brdf);
@@ -247,11 +263,13 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf b
     glm::dvec3 base = shadeBaseLight(s, l, brdf);
     if (s.sheenColor != glm::dvec3(0.0)) {  // the sheen over the base (KHR_materials_sheen)
         double weight = 1.0;
-        const glm::dvec3 sheen = sheenLight(s, l.wi, std::max(glm::dot(s.n, s.wo), 1e-4), l.E, weight);
+        const glm::dvec3 sheen =
+            sheenLight(s, l.wi, std::max(glm::dot(s.n, s.wo), 1e-4), l.E, weight);
         base = sheen + base * weight;
     }
     if (s.clearcoat <= 0.0) return base;
-    return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * clearcoatLight(s, l.wi) * l.E;
+    return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) +
+           s.clearcoat * clearcoatLight(s, l.wi) * l.E;
 }
 
 // A punctual light through a transmissive surface (glTF model): the thin-walled BTDF of
@@ -261,15 +279,19 @@ inline glm::dvec3 shadeLight(const SurfacePoint& s, const LightSample& l, Brdf b
 // by (1 - metallic) transmission; no n.l (docs/SHADING.md).
 inline glm::dvec3 transmittedLight(const SurfacePoint& s, const LightSample& l) {
     if (s.transmission <= 0.0 || s.metallic >= 1.0) return glm::dvec3(0.0);
-    const glm::dvec3 wi = std::isinf(l.distance) ? l.wi : glm::normalize(l.wi * l.distance - s.transmissionRay);
+    const glm::dvec3 wi =
+        std::isinf(l.distance) ? l.wi : glm::normalize(l.wi * l.distance - s.transmissionRay);
     const glm::dvec3 mirrored = wi - 2.0 * s.n * glm::dot(wi, s.n);
-    const double r = clampRoughness(s.roughness), at = transmissionAlpha(r * r, s.ior), a2 = at * at;
+    const double r = clampRoughness(s.roughness), at = transmissionAlpha(r * r, s.ior),
+                 a2 = at * at;
     const glm::dvec3 h = glm::normalize(mirrored + s.wo);
     const double NoH = std::clamp(glm::dot(s.n, h), 0.0, 1.0);
-    const double NoL = std::clamp(glm::dot(s.n, mirrored), 0.0, 1.0), NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
+    const double NoL = std::clamp(glm::dot(s.n, mirrored), 0.0, 1.0),
+                 NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
     const double dd = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (kPi * dd * dd);
     auto power5 = [](double c) { return std::pow(std::clamp(1.0 - c, 0.0, 1.0), 5.0); };
-    const glm::dvec3 Ft = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * power5(glm::dot(s.wo, h));
+    const glm::dvec3 Ft =
+        s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * power5(glm::dot(s.wo, h));
     // The reflection half vector's cosine with w_o, sqrt((1 + w_o.w_i) / 2): defined (0) where the
     // light is straight behind the surface, where normalize(w_o + w_i) is not.
     const double VoHr = std::sqrt(std::max(0.5 * (1.0 + glm::dot(s.wo, l.wi)), 0.0));
@@ -297,12 +319,16 @@ inline glm::dvec3 shadeBaseLight(const SurfacePoint& s, const LightSample& l, Br
         const glm::dvec3 Fd = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * P;
         const glm::dvec3 Fm = glm::mix(s.dielectricF0, s.baseColor, s.metallic) +
                               (glm::mix(glm::dvec3(s.dielectricF90), glm::dvec3(1.0), s.metallic) -
-                               glm::mix(s.dielectricF0, s.baseColor, s.metallic)) * P;
-        const glm::dvec3 diffuse = (1.0 - s.metallic) * (1.0 - s.transmission) * s.baseColor / kPi * (1.0 - Fd);
-        return (diffuse + D * Fm * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL + transmitted;
+                               glm::mix(s.dielectricF0, s.baseColor, s.metallic)) *
+                                  P;
+        const glm::dvec3 diffuse =
+            (1.0 - s.metallic) * (1.0 - s.transmission) * s.baseColor / kPi * (1.0 - Fd);
+        return (diffuse + D * Fm * visibilityHeightCorrelated(NoL, NoV, a2)) * l.E * NoL +
+               transmitted;
     }
     double G = NoV / (NoV * (1.0 - k) + k) * NoL / (NoL * (1.0 - k) + k);
-    glm::dvec3 f = (1.0 - F) * (1.0 - s.metallic) * s.baseColor / kPi + D * F * G / (4.0 * NoV * NoL);
+    glm::dvec3 f =
+        (1.0 - F) * (1.0 - s.metallic) * s.baseColor / kPi + D * F * G / (4.0 * NoV * NoL);
     return f * l.E * NoL;
 }
 
@@ -311,7 +337,8 @@ struct IlluminationSums {
     glm::dvec3 Ldg{0.0}, Lsg1{0.0}, Lsg2{0.0};
 };
 
-inline void accumulateIllumination(IlluminationSums& acc, const SurfacePoint& s, const LightSample& l) {
+inline void accumulateIllumination(IlluminationSums& acc, const SurfacePoint& s,
+                                   const LightSample& l) {
     double NoL = glm::dot(s.n, l.wi);
     if (NoL <= 0.0) return;
     double r = clampRoughness(s.roughness);
@@ -334,7 +361,8 @@ inline glm::dvec3 resolveMaterial(const IlluminationSums& acc, const SurfacePoin
     double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
     glm::dvec3 F0 = glm::mix(glm::dvec3(0.04), s.baseColor, s.metallic);
     glm::dvec3 Ld = (1.0 - s.metallic) * (s.baseColor / kPi) * (1.0 - F0) * acc.Ldg;
-    glm::dvec3 Ls = a2 / (4.0 * kPi * (NoV * (1.0 - k) + k)) * (F0 * acc.Lsg1 + (1.0 - F0) * acc.Lsg2);
+    glm::dvec3 Ls =
+        a2 / (4.0 * kPi * (NoV * (1.0 - k) + k)) * (F0 * acc.Lsg1 + (1.0 - F0) * acc.Lsg2);
     return Ld + Ls;
 }
 
@@ -377,10 +405,11 @@ struct GgxSample {
     glm::dvec3 wi;
     double NoL, VoH, NoH;
 };
-inline GgxSample ggxSample(const glm::dvec2& u, double a2, const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n,
-                           const glm::dvec3& wo) {
+inline GgxSample ggxSample(const glm::dvec2& u, double a2, const glm::dvec3& t, const glm::dvec3& b,
+                           const glm::dvec3& n, const glm::dvec3& wo) {
     const double phi = 2.0 * kPi * u.y;
-    const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)), sinH = std::sqrt(1.0 - cosH * cosH);
+    const double cosH = std::sqrt((1.0 - u.x) / (u.x * (a2 - 1.0) + 1.0)),
+                 sinH = std::sqrt(1.0 - cosH * cosH);
     const glm::dvec3 h = t * (sinH * std::cos(phi)) + b * (sinH * std::sin(phi)) + n * cosH;
     const double VoH = glm::dot(wo, h);
     const glm::dvec3 wi = 2.0 * VoH * h - wo;
@@ -388,12 +417,15 @@ inline GgxSample ggxSample(const glm::dvec2& u, double a2, const glm::dvec3& t, 
 }
 
 template <class Environment>
-glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n, Brdf brdf = Brdf::Gltf) {
+glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n,
+                            Brdf brdf = Brdf::Gltf) {
     const double r = clampRoughness(s.roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
     const double NoV = std::max(glm::dot(s.n, s.wo), 1e-4);
     const bool gltf = brdf == Brdf::Gltf;
-    const glm::dvec3 dF0 = gltf ? s.dielectricF0 : glm::dvec3(0.04), dF90(gltf ? s.dielectricF90 : 1.0);
-    const glm::dvec3 F0 = glm::mix(dF0, s.baseColor, s.metallic), F90 = glm::mix(dF90, glm::dvec3(1.0), s.metallic);
+    const glm::dvec3 dF0 = gltf ? s.dielectricF0 : glm::dvec3(0.04),
+                     dF90(gltf ? s.dielectricF90 : 1.0);
+    const glm::dvec3 F0 = glm::mix(dF0, s.baseColor, s.metallic),
+                     F90 = glm::mix(dF90, glm::dvec3(1.0), s.metallic);
     glm::dvec3 t, b;
     basis(s.n, t, b);
     glm::dvec3 specular(0.0), diffuse(0.0), sheen(0.0);
@@ -405,8 +437,10 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const auto [wi, NoL, VoH, cosH] = ggxSample(u, a2, t, b, s.n, s.wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
-            const double weight = brdf == Brdf::Gltf ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
-                                                     : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
+            const double weight =
+                brdf == Brdf::Gltf
+                    ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
+                    : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
             specular += (F0 + (F90 - F0) * P) * environment(wi) * weight;
         }
         // Diffuse: a cosine-weighted direction.
@@ -414,17 +448,20 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
         const glm::dvec3 wd = t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + s.n * cosD;
         const glm::dvec3 hd = glm::normalize(s.wo + wd);
         const double Pd = std::pow(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0), 5.0);
-        diffuse += (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
+        diffuse +=
+            (gltf ? 1.0 - dF0 - (dF90 - dF0) * Pd : (1.0 - F0) * (1.0 - Pd)) * environment(wd);
         // The sheen by the same cosine-weighted directions: pi D V L (the pdf is n.l / pi).
         if (sheenLayer)
-            sheen += kPi * charlieD(s.sheenRoughness, glm::dot(s.n, hd)) * sheenVisibility(cosD, NoV, s.sheenRoughness) *
-                     environment(wd);
+            sheen += kPi * charlieD(s.sheenRoughness, glm::dot(s.n, hd)) *
+                     sheenVisibility(cosD, NoV, s.sheenRoughness) * environment(wd);
     }
     // Transmission replaces that much of the diffuse lobe (the light from behind: transmittedScene()).
     const double transmission = gltf ? s.transmission : 0.0;
-    glm::dvec3 base = ((1.0 - s.metallic) * (1.0 - transmission) * s.baseColor * diffuse + specular) / double(n);
+    glm::dvec3 base =
+        ((1.0 - s.metallic) * (1.0 - transmission) * s.baseColor * diffuse + specular) / double(n);
     if (sheenLayer)  // the sheen over the base, which keeps 1 - max(sheenColor) E(n.w_o)
-        base = s.sheenColor * sheen / double(n) + base * (1.0 - maxComponent(s.sheenColor) * sheenAlbedo(NoV, s.sheenRoughness));
+        base = s.sheenColor * sheen / double(n) +
+               base * (1.0 - maxComponent(s.sheenColor) * sheenAlbedo(NoV, s.sheenRoughness));
     if (!gltf || s.clearcoat <= 0.0) return base;
     // The clearcoat layer: GGX samples about its normal at its roughness, Fresnel F0c .. 1.
     const double rc = clampRoughness(s.clearcoatRoughness), a2c = rc * rc * rc * rc;
@@ -432,7 +469,8 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
     basis(s.clearcoatNormal, t, b);
     glm::dvec3 layer(0.0);
     for (uint32_t i = 0; i < n; ++i) {
-        const auto [wi, NoL, VoH, cosH] = ggxSample(hammersley(i, n), a2c, t, b, s.clearcoatNormal, s.wo);
+        const auto [wi, NoL, VoH, cosH] =
+            ggxSample(hammersley(i, n), a2c, t, b, s.clearcoatNormal, s.wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = std::pow(std::clamp(1.0 - VoH, 0.0, 1.0), 5.0);
             layer += (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * environment(wi) *
@@ -449,15 +487,18 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
 inline glm::dvec3 transmittedSceneWeight(const SurfacePoint& s) {
     if (s.transmission <= 0.0) return glm::dvec3(0.0);
     const double NoV = std::clamp(glm::dot(s.n, s.wo), 0.0, 1.0);
-    const glm::dvec3 F = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * std::pow(1.0 - NoV, 5.0);
+    const glm::dvec3 F =
+        s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * std::pow(1.0 - NoV, 5.0);
     return (1.0 - s.metallic) * s.transmission * s.baseColor * (1.0 - F) * s.transmittance;
 }
 // The mip level of the opaque scene's copy that rough transmission reads: log2 of the copy's
 // larger side times the perceptual roughness scaled by clamp(2 ior - 2, 0, 1) (the Sample
 // Viewer's, which filters the copy by its mip chain).
-inline double transmissionLod(double perceptualRoughness, double ior, uint32_t width, uint32_t height) {
+inline double transmissionLod(double perceptualRoughness, double ior, uint32_t width,
+                              uint32_t height) {
     const double scale = std::isinf(ior) ? 1.0 : std::clamp(2.0 * ior - 2.0, 0.0, 1.0);
-    return std::log2(double(std::max(width, height))) * std::clamp(perceptualRoughness, 0.0, 1.0) * scale;
+    return std::log2(double(std::max(width, height))) * std::clamp(perceptualRoughness, 0.0, 1.0) *
+           scale;
 }
 
 }  // namespace fe::shading

@@ -19,9 +19,12 @@ enum class Tonemap : uint32_t {
 
 inline const char* tonemapName(Tonemap t) {
     switch (t) {
-        case Tonemap::Clamp: return "clamp";
-        case Tonemap::Aces: return "aces";
-        case Tonemap::PbrNeutral: return "pbr-neutral";
+        case Tonemap::Clamp:
+            return "clamp";
+        case Tonemap::Aces:
+            return "aces";
+        case Tonemap::PbrNeutral:
+            return "pbr-neutral";
     }
     return "?";
 }

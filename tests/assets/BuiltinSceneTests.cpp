@@ -88,8 +88,8 @@ TEST(BuiltinLights, LightsArePointLightsOfRange2InsideTheBoxForAnyFrame) {
             ASSERT_TRUE(l.position.x >= -15.0f && l.position.x <= 15.0f) << frame;
             ASSERT_TRUE(l.position.y >= -15.0f && l.position.y <= 15.0f) << frame;
             ASSERT_TRUE(l.position.z >= -2.0f && l.position.z <= 2.0f) << frame;
-            ASSERT_TRUE(l.color.r >= 0 && l.color.r <= 1 && l.color.g >= 0 && l.color.g <= 1 && l.color.b >= 0 &&
-                        l.color.b <= 1);
+            ASSERT_TRUE(l.color.r >= 0 && l.color.r <= 1 && l.color.g >= 0 && l.color.g <= 1 &&
+                        l.color.b >= 0 && l.color.b <= 1);
             ASSERT_GT(l.color.r + l.color.g + l.color.b, 0.5f);
         }
     }
@@ -208,7 +208,8 @@ TEST(BuiltinSpheres, CameraFramesEverySphere) {
         for (const auto& inst : s.instances) {
             AABB b = s.meshes[inst.meshIndex].bounds.transformed(inst.world);
             for (int i = 0; i < 8; ++i) {
-                glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+                glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                                 (i & 4) ? b.max.z : b.min.z);
                 glm::vec4 clip = vp * glm::vec4(corner, 1.0f);
                 ASSERT_GT(clip.w, 0.0f);
                 EXPECT_LE(std::abs(clip.x / clip.w), 1.0f) << n;
@@ -274,14 +275,27 @@ TEST(SceneChecks, MaterialExtensionFactorsAreCheckedLikeTheLoaders) {
         return std::string("(accepted)");
     };
     using M = fe::assets::Material;
-    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find("transmission must lie in [0, 1]"), std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find("transmission must lie in [0, 1]"),
+              std::string::npos);
     EXPECT_NE(refusal([](M& m) { m.sheenColor.g = NAN; }).find("is not finite"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.sheenRoughness = -0.5f; }).find("sheenRoughness must lie in [0, 1]"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.ior = 0.5f; }).find("ior must be at least 1"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.attenuationDistance = 0.0f; }).find("attenuationDistance must be positive"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.thickness = -1.0f; }).find("thickness must not be negative"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.clearcoat = 2.0f; }).find("clearcoat must lie in [0, 1]"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.specularTexture.transform.scale.x = INFINITY; }).find("a texture transform"), std::string::npos);
-    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find(ok.materials[0].name), std::string::npos);
+    EXPECT_NE(
+        refusal([](M& m) { m.sheenRoughness = -0.5f; }).find("sheenRoughness must lie in [0, 1]"),
+        std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.ior = 0.5f; }).find("ior must be at least 1"),
+              std::string::npos);
+    EXPECT_NE(refusal([](M& m) {
+                  m.attenuationDistance = 0.0f;
+              }).find("attenuationDistance must be positive"),
+              std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.thickness = -1.0f; }).find("thickness must not be negative"),
+              std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.clearcoat = 2.0f; }).find("clearcoat must lie in [0, 1]"),
+              std::string::npos);
+    EXPECT_NE(refusal([](M& m) {
+                  m.specularTexture.transform.scale.x = INFINITY;
+              }).find("a texture transform"),
+              std::string::npos);
+    EXPECT_NE(refusal([](M& m) { m.transmission = 1.5f; }).find(ok.materials[0].name),
+              std::string::npos);
     EXPECT_EQ(refusal([](M& m) { m.ior = INFINITY; }), "(accepted)");
 }

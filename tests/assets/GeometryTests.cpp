@@ -39,7 +39,8 @@ Primitive uvQuad(bool mirrorU) {
 }  // namespace
 
 TEST(Geometry, StripToListKeepsWindingPerGltfSpec) {
-    EXPECT_EQ(triangleStripToList({0, 1, 2, 3, 4}), (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4}));
+    EXPECT_EQ(triangleStripToList({0, 1, 2, 3, 4}),
+              (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 2, 3, 4}));
     EXPECT_TRUE(triangleStripToList({0, 1}).empty());
 }
 
@@ -51,7 +52,8 @@ TEST(Geometry, FanToListKeepsWindingPerGltfSpec) {
 TEST(Geometry, FlatNormalsUnweldAndFollowWinding) {
     // Two triangles folded along the x axis: one in z = 0 facing +Z, one in y = 0 facing -Y.
     Primitive p;
-    for (glm::vec3 q : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
+    for (glm::vec3 q :
+         {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
         Vertex v;
         v.position = q;
         p.vertices.push_back(v);
@@ -66,7 +68,8 @@ TEST(Geometry, FlatNormalsUnweldAndFollowWinding) {
 
 TEST(Geometry, SmoothNormalsAverageSharedVertices) {
     Primitive p;
-    for (glm::vec3 q : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
+    for (glm::vec3 q :
+         {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
         Vertex v;
         v.position = q;
         p.vertices.push_back(v);
@@ -131,8 +134,9 @@ TEST(Geometry, DegenerateUvsFallBackToAFrameOrthogonalToTheNormal) {
 }
 
 TEST(Geometry, AnyPerpendicularIsUnitAndOrthogonal) {
-    for (glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1),
-                        glm::normalize(glm::vec3(0.95f, 0.1f, -0.3f)), glm::normalize(glm::vec3(-1, 1, 1))}) {
+    for (glm::vec3 n :
+         {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1),
+          glm::normalize(glm::vec3(0.95f, 0.1f, -0.3f)), glm::normalize(glm::vec3(-1, 1, 1))}) {
         glm::vec3 t = anyPerpendicular(n);
         EXPECT_NEAR(glm::length(t), 1.0f, 1e-6f);
         EXPECT_NEAR(glm::dot(t, n), 0.0f, 1e-6f);
@@ -147,7 +151,7 @@ TEST(Geometry, CubeHasOutwardCcwFacesAndConsistentTangents) {
         glm::vec3 n = faceNormal(c, t);
         const auto& v = c.vertices[c.indices[t]];
         EXPECT_NEAR(glm::distance(n, v.normal), 0.0f, 1e-6f);  // winding agrees with the normal
-        EXPECT_GT(glm::dot(n, v.position), 0.0f);               // and points outwards
+        EXPECT_GT(glm::dot(n, v.position), 0.0f);              // and points outwards
     }
     // The hand-set tangents must follow the same convention as generateTangents().
     Primitive g = c;
@@ -164,8 +168,10 @@ TEST(Geometry, UvSphereHasOutwardCcwFacesAndConsistentTangents) {
     EXPECT_EQ(s.vertices.size(), 17u * 9u);
     EXPECT_EQ(s.indices.size(), (16u * 8u * 2u - 2u * 16u) * 3u);  // no pole slivers
     for (size_t t = 0; t < s.indices.size(); t += 3) {
-        glm::vec3 centroid = (s.vertices[s.indices[t]].position + s.vertices[s.indices[t + 1]].position +
-                              s.vertices[s.indices[t + 2]].position) / 3.0f;
+        glm::vec3 centroid =
+            (s.vertices[s.indices[t]].position + s.vertices[s.indices[t + 1]].position +
+             s.vertices[s.indices[t + 2]].position) /
+            3.0f;
         EXPECT_GT(glm::dot(faceNormal(s, t), centroid), 0.0f) << "triangle " << t / 3;
     }
     Primitive g = s;
@@ -173,7 +179,7 @@ TEST(Geometry, UvSphereHasOutwardCcwFacesAndConsistentTangents) {
     for (size_t i = 0; i < s.vertices.size(); ++i) {
         const auto& v = s.vertices[i];
         EXPECT_NEAR(glm::length(v.position), 2.0f, 1e-5f);
-        if (std::abs(v.normal.y) > 0.999f) continue;        // poles: frame undefined
+        if (std::abs(v.normal.y) > 0.999f) continue;       // poles: frame undefined
         if (v.uv0.x == 0.0f || v.uv0.x == 1.0f) continue;  // seam: faces on one side only
         EXPECT_NEAR(glm::distance(v.tangent, g.vertices[i].tangent), 0.0f, 0.05f) << i;
     }

@@ -26,8 +26,8 @@ class GltfErrors : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("fe_assets_" + std::string(info->name()) + "_" + std::to_string(std::random_device{}()));
+        dir_ = fs::temp_directory_path() / ("fe_assets_" + std::string(info->name()) + "_" +
+                                            std::to_string(std::random_device{}()));
         fs::create_directories(dir_);
         positions_ = {0, 0, 0, 1, 0, 0, 0, 1, 0};
         indices_ = {0, 1, 2};
@@ -59,10 +59,18 @@ protected:
                                      {"primitives", json::array({{{"attributes", {{"POSITION", 1}}},
                                                                   {"indices", 0}}})}}})},
             {"buffers", json::array({{{"uri", "tri.bin"}, {"byteLength", bin().size()}}})},
-            {"bufferViews", json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", posBytes}},
-                                         {{"buffer", 0}, {"byteOffset", posBytes}, {"byteLength", indices_.size() * 2}}})},
-            {"accessors", json::array({{{"bufferView", 1}, {"componentType", 5123}, {"count", indices_.size()}, {"type", "SCALAR"}},
-                                       {{"bufferView", 0}, {"componentType", 5126}, {"count", positions_.size() / 3}, {"type", "VEC3"}}})},
+            {"bufferViews",
+             json::array(
+                 {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", posBytes}},
+                  {{"buffer", 0}, {"byteOffset", posBytes}, {"byteLength", indices_.size() * 2}}})},
+            {"accessors", json::array({{{"bufferView", 1},
+                                        {"componentType", 5123},
+                                        {"count", indices_.size()},
+                                        {"type", "SCALAR"}},
+                                       {{"bufferView", 0},
+                                        {"componentType", 5126},
+                                        {"count", positions_.size() / 3},
+                                        {"type", "VEC3"}}})},
         };
     }
 
@@ -71,7 +79,8 @@ protected:
         return (dir_ / name).string();
     }
     std::string writeBytes(const std::string& name, const std::vector<uint8_t>& bytes) const {
-        std::ofstream(dir_ / name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        std::ofstream(dir_ / name, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         return (dir_ / name).string();
     }
     // Writes tri.bin and the JSON; returns the .gltf path.
@@ -110,8 +119,10 @@ protected:
             ADD_FAILURE() << "expected AssetError for " << path;
         } catch (const AssetError& e) {
             std::string msg = e.what();
-            EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << "file not named: " << msg;
-            for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "missing '" << n << "' in: " << msg;
+            EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos)
+                << "file not named: " << msg;
+            for (const auto& n : needles)
+                EXPECT_NE(msg.find(n), std::string::npos) << "missing '" << n << "' in: " << msg;
         } catch (const std::exception& e) {
             ADD_FAILURE() << "wrong exception type: " << e.what();
         }
@@ -130,7 +141,9 @@ protected:
     // gltf() with texture 0: a 1x1 PNG (data URI) that resolves, for materials that name a texture.
     json gltfWithTexture() const {
         json j = gltf();
-        j["images"] = json::array({{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg=="}}});
+        j["images"] = json::array(
+            {{{"uri",
+               "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP43+DwHwAHAAK/K9fH4gAAAABJRU5ErkJggg=="}}});
         j["textures"] = json::array({{{"source", 0}}});
         return j;
     }
@@ -141,15 +154,19 @@ TEST_F(GltfSynthetic, BaselineFileLoads) {
     ASSERT_EQ(s.instances.size(), 1u);
     EXPECT_EQ(s.meshes[0].primitives[0].indices, (std::vector<uint32_t>{0, 1, 2}));
     EXPECT_EQ(s.meshes[0].name, "Tri");
-    Scene g = loadGltf(writeBytes("tri.glb", glb([&] {
-        json j = gltf();
-        j["buffers"][0].erase("uri");
-        return j.dump();
-    }(), bin())));
+    Scene g = loadGltf(writeBytes("tri.glb", glb(
+                                                 [&] {
+                                                     json j = gltf();
+                                                     j["buffers"][0].erase("uri");
+                                                     return j.dump();
+                                                 }(),
+                                                 bin())));
     EXPECT_EQ(g.meshes[0].primitives[0].vertices.size(), 3u);
 }
 
-TEST_F(GltfErrors, NonExistentPath) { expectError((dir_ / "nope.gltf").string(), {"file not found"}); }
+TEST_F(GltfErrors, NonExistentPath) {
+    expectError((dir_ / "nope.gltf").string(), {"file not found"});
+}
 
 TEST_F(GltfErrors, DirectoryInsteadOfFile) {
     fs::create_directories(dir_ / "folder.gltf");
@@ -177,7 +194,8 @@ TEST_F(GltfErrors, AccessorPastBufferViewEnd) {
 TEST_F(GltfErrors, AccessorByteOffsetPastEnd) {
     json j = gltf();
     j["accessors"][1]["byteOffset"] = 4;
-    expectError(writeGltf(j), {"accessor 1 (POSITION of mesh 'Tri' primitive 0)", "exceeds bufferView 0"});
+    expectError(writeGltf(j),
+                {"accessor 1 (POSITION of mesh 'Tri' primitive 0)", "exceeds bufferView 0"});
 }
 
 TEST_F(GltfErrors, BufferViewPastBufferEnd) {
@@ -193,7 +211,8 @@ TEST_F(GltfErrors, IndexOutOfRange) {
 
 TEST_F(GltfErrors, NaNAndInfinitePositions) {
     positions_[4] = std::numeric_limits<float>::quiet_NaN();
-    expectError(writeGltf(gltf(), "nan.gltf"), {"non-finite POSITION", "vertex 1", "mesh 'Tri' primitive 0"});
+    expectError(writeGltf(gltf(), "nan.gltf"),
+                {"non-finite POSITION", "vertex 1", "mesh 'Tri' primitive 0"});
     positions_[4] = 0.0f;
     positions_[8] = std::numeric_limits<float>::infinity();
     expectError(writeGltf(gltf(), "inf.gltf"), {"non-finite POSITION", "vertex 2"});
@@ -203,11 +222,13 @@ TEST_F(GltfErrors, UnsupportedComponentType) {
     json j = gltf();
     j["accessors"][1]["componentType"] = 5123;  // unsigned short positions (KHR_mesh_quantization)
     j["accessors"][1]["count"] = 3;
-    expectError(writeGltf(j), {"accessor 1 (POSITION", "unsupported component type unsigned short"});
+    expectError(writeGltf(j),
+                {"accessor 1 (POSITION", "unsupported component type unsigned short"});
     json k = gltf();
     k["accessors"][0]["componentType"] = 5126;  // float indices
     k["bufferViews"][1]["byteLength"] = 12;
-    expectError(writeGltf(k, "floatidx.gltf"), {"accessor 0 (indices of mesh 'Tri' primitive 0)", "unsupported component type float"});
+    expectError(writeGltf(k, "floatidx.gltf"), {"accessor 0 (indices of mesh 'Tri' primitive 0)",
+                                                "unsupported component type float"});
 }
 
 TEST_F(GltfErrors, WrongAccessorType) {
@@ -297,9 +318,11 @@ TEST_F(GltfErrors, ImageThatFailsToDecode) {
     json j = gltf();
     j["images"] = json::array({{{"uri", "bad.png"}}});
     j["textures"] = json::array({{{"source", 0}}});
-    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["materials"] = json::array(
+        {{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
-    expectError(writeGltf(j), {"image 0 ('bad.png')", "baseColorTexture of material 'M'", "cannot decode"});
+    expectError(writeGltf(j),
+                {"image 0 ('bad.png')", "baseColorTexture of material 'M'", "cannot decode"});
 }
 
 namespace {
@@ -330,7 +353,8 @@ TEST_F(GltfSynthetic, JpegTextureDecodesToItsColour) {
     json j = gltf();
     j["images"] = json::array({{{"uri", "red.jpg"}}});
     j["textures"] = json::array({{{"source", 0}}});
-    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["materials"] =
+        json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     Scene s = loadGltf(writeGltf(j));
     ASSERT_EQ(s.textures.size(), 1u);
@@ -357,7 +381,8 @@ TEST_F(GltfErrors, JpegWithOversizedHuffmanTable) {
     json j = gltf();
     j["images"] = json::array({{{"uri", "bogus.jpg"}}});
     j["textures"] = json::array({{{"source", 0}}});
-    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["materials"] = json::array(
+        {{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     expectError(writeGltf(j), {"image 0 ('bogus.jpg')", "cannot decode JPEG", "Huffman"});
 }
@@ -371,7 +396,8 @@ TEST_F(GltfErrors, TruncatedJpegIsRefused) {
     json j = gltf();
     j["images"] = json::array({{{"uri", "cut.jpg"}}});
     j["textures"] = json::array({{{"source", 0}}});
-    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["materials"] =
+        json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     expectError(writeGltf(j), {"image 0 ('cut.jpg')", "cannot decode JPEG"});
 }
@@ -380,7 +406,8 @@ TEST_F(GltfErrors, MissingImageFile) {
     json j = gltf();
     j["images"] = json::array({{{"uri", "gone.png"}}});
     j["textures"] = json::array({{{"source", 0}}});
-    j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    j["materials"] =
+        json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     expectError(writeGltf(j), {"image 0 ('gone.png')", "missing"});
 }
@@ -402,7 +429,8 @@ TEST_F(GltfErrors, SparseIndexOutOfRange) {
     j["accessors"][1]["sparse"] = {{"count", 1},
                                    {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
                                    {"values", {{"bufferView", 3}}}};
-    expectError(write("sparse.gltf", j.dump()), {"accessor 1 (POSITION", "sparse index 7 >= count 3"});
+    expectError(write("sparse.gltf", j.dump()),
+                {"accessor 1 (POSITION", "sparse index 7 >= count 3"});
 }
 
 TEST_F(GltfSynthetic, SparseAccessorWithoutBufferViewIsZerosPlusSparse) {
@@ -465,7 +493,8 @@ protected:
     }
     static std::vector<uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.end()}; }
     // A GLB of `chunks` as given (no padding added); `lengthDelta` corrupts the header's length.
-    static std::vector<uint8_t> container(const std::vector<Chunk>& chunks, int lengthDelta = 0, uint32_t version = 2) {
+    static std::vector<uint8_t> container(const std::vector<Chunk>& chunks, int lengthDelta = 0,
+                                          uint32_t version = 2) {
         std::vector<uint8_t> out{'g', 'l', 'T', 'F'};
         auto u32 = [&](uint32_t v) {
             uint8_t b[4];
@@ -489,8 +518,10 @@ protected:
 
 TEST_F(GlbLayout, WellFormedLoadsAndUnknownChunksAreIgnored) {
     EXPECT_NO_THROW(loadGltf(writeBytes("ok.glb", container({jsonChunk(), binChunk()}))));
-    Scene s = loadGltf(writeBytes("extra.glb", container({jsonChunk(), binChunk(), {"XTRA", {1, 2, 3, 4}}})));
-    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();  // the specification requires ignoring them
+    Scene s = loadGltf(
+        writeBytes("extra.glb", container({jsonChunk(), binChunk(), {"XTRA", {1, 2, 3, 4}}})));
+    EXPECT_TRUE(s.warnings.empty())
+        << s.warnings.front();  // the specification requires ignoring them
 }
 
 TEST_F(GlbLayout, DuplicateChunksAreRefused) {
@@ -501,24 +532,31 @@ TEST_F(GlbLayout, DuplicateChunksAreRefused) {
 }
 
 TEST_F(GlbLayout, ChunkOrderIsEnforced) {
-    expectError(writeBytes("binfirst.glb", container({binChunk(), jsonChunk()})), {"GLB chunk 0", "first chunk must be JSON"});
-    expectError(writeBytes("binlate.glb", container({jsonChunk(), {"XTRA", {0, 0, 0, 0}}, binChunk()})),
-                {"GLB chunk 2", "must directly follow"});
+    expectError(writeBytes("binfirst.glb", container({binChunk(), jsonChunk()})),
+                {"GLB chunk 0", "first chunk must be JSON"});
+    expectError(
+        writeBytes("binlate.glb", container({jsonChunk(), {"XTRA", {0, 0, 0, 0}}, binChunk()})),
+        {"GLB chunk 2", "must directly follow"});
 }
 
 TEST_F(GlbLayout, MisalignedChunkIsRefused) {
     Chunk j = jsonChunk();
     j.data.push_back(' ');  // 4n + 1 bytes: BIN would start unaligned
-    expectError(writeBytes("misaligned.glb", container({j, binChunk()})), {"GLB chunk 0", "not a multiple of 4"});
+    expectError(writeBytes("misaligned.glb", container({j, binChunk()})),
+                {"GLB chunk 0", "not a multiple of 4"});
     Chunk b = binChunk();
     b.data.resize(b.data.size() - 2);
-    expectError(writeBytes("misbin.glb", container({jsonChunk(), b})), {"GLB chunk 1 at byte", "(BIN)", "multiple of 4"});
+    expectError(writeBytes("misbin.glb", container({jsonChunk(), b})),
+                {"GLB chunk 1 at byte", "(BIN)", "multiple of 4"});
 }
 
 TEST_F(GlbLayout, HeaderMustDescribeTheFile) {
-    expectError(writeBytes("long.glb", container({jsonChunk(), binChunk()}, +4)), {"GLB header length"});
-    expectError(writeBytes("short.glb", container({jsonChunk(), binChunk()}, -8)), {"GLB header length"});
-    expectError(writeBytes("v1.glb", container({jsonChunk(), binChunk()}, 0, 1)), {"GLB header version 1"});
+    expectError(writeBytes("long.glb", container({jsonChunk(), binChunk()}, +4)),
+                {"GLB header length"});
+    expectError(writeBytes("short.glb", container({jsonChunk(), binChunk()}, -8)),
+                {"GLB header length"});
+    expectError(writeBytes("v1.glb", container({jsonChunk(), binChunk()}, 0, 1)),
+                {"GLB header version 1"});
     std::vector<uint8_t> tail = container({jsonChunk(), binChunk()}, 4);
     tail.insert(tail.end(), {0, 0, 0, 0});  // length matches, but 4 bytes are no chunk
     expectError(writeBytes("tail.glb", tail), {"GLB chunk 2", "truncated chunk header"});
@@ -528,11 +566,13 @@ TEST_F(GlbLayout, HeaderMustDescribeTheFile) {
 TEST_F(GlbLayout, ByteOrderMarkIsAWarning) {
     Scene plain = loadGltf(writeGltf(gltf()));
     EXPECT_TRUE(plain.warnings.empty());
-    Scene text = loadGltf(write("bom.gltf", "\xEF\xBB\xBF" + gltf().dump()));  // tri.bin is written above
+    Scene text =
+        loadGltf(write("bom.gltf", "\xEF\xBB\xBF" + gltf().dump()));  // tri.bin is written above
     ASSERT_EQ(text.warnings.size(), 1u);
     EXPECT_NE(text.warnings[0].find("byte order mark"), std::string::npos) << text.warnings[0];
     EXPECT_EQ(text.instances.size(), 1u);
-    Scene binary = loadGltf(writeBytes("bom.glb", container({{"JSON", bytesOf("\xEF\xBB\xBF" + jsonNoUri() + " ")}, binChunk()})));
+    Scene binary = loadGltf(writeBytes(
+        "bom.glb", container({{"JSON", bytesOf("\xEF\xBB\xBF" + jsonNoUri() + " ")}, binChunk()})));
     ASSERT_EQ(binary.warnings.size(), 1u);
     EXPECT_NE(binary.warnings[0].find("byte order mark"), std::string::npos) << binary.warnings[0];
 }
@@ -541,7 +581,8 @@ TEST_F(GlbLayout, ByteOrderMarkIsAWarning) {
 // (crashes and other exceptions fail the test). Fixed seed, so failures reproduce.
 TEST_F(GltfErrors, CorruptedFilesOnlyThrowAssetError) {
     json j = gltf();
-    j["materials"] = json::array({{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0.25, 1}}}}}});
+    j["materials"] = json::array(
+        {{{"name", "M"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0.5, 0.25, 1}}}}}});
     j["meshes"][0]["primitives"][0]["material"] = 0;
     const std::string text = j.dump();
     const std::vector<uint8_t> goodBin = bin();
@@ -567,7 +608,9 @@ TEST_F(GltfErrors, CorruptedFilesOnlyThrowAssetError) {
         } catch (const AssetError&) {
             ++refused;
         } catch (const std::exception& e) {
-            ADD_FAILURE() << "iteration " << iter << ": non-AssetError exception " << e.what() << "\n" << t;
+            ADD_FAILURE() << "iteration " << iter << ": non-AssetError exception " << e.what()
+                          << "\n"
+                          << t;
         }
     }
     EXPECT_GT(refused, 0);
@@ -580,7 +623,11 @@ TEST_F(GltfSynthetic, TrsOrderAndParentTimesChild) {
     // Node 0: T (1,2,3) * R (90 deg about Z) * S (2,1,1). Point (1,0,0) -> S (2,0,0) -> R (0,2,0)
     // -> T (1,4,3). Node 1 (parent, 90 deg about Y) of node 2 (translation (1,0,0)): the child's
     // origin is R_y(90) (1,0,0) = (0,0,-1).
-    j["nodes"] = json::array({{{"name", "trs"}, {"mesh", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, h, h}}, {"scale", {2, 1, 1}}},
+    j["nodes"] = json::array({{{"name", "trs"},
+                               {"mesh", 0},
+                               {"translation", {1, 2, 3}},
+                               {"rotation", {0, 0, h, h}},
+                               {"scale", {2, 1, 1}}},
                               {{"name", "parent"}, {"rotation", {0, h, 0, h}}, {"children", {2}}},
                               {{"name", "child"}, {"mesh", 0}, {"translation", {1, 0, 0}}}});
     j["scenes"][0]["nodes"] = {0, 1};
@@ -598,14 +645,22 @@ TEST_F(GltfSynthetic, SpotAndDirectionalLightsFromNodes) {
     const float h = std::sqrt(0.5f);
     json j = gltf();
     j["extensionsUsed"] = {"KHR_lights_punctual"};
-    j["extensions"] = {{"KHR_lights_punctual",
-                        {{"lights", json::array({{{"type", "spot"}, {"name", "S"}, {"color", {1, 0.5, 0.25}}, {"intensity", 7}, {"range", 9},
-                                                  {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
-                                                 {{"type", "directional"}, {"intensity", 3}, {"range", 5}}})}}}};
+    j["extensions"] = {
+        {"KHR_lights_punctual",
+         {{"lights", json::array({{{"type", "spot"},
+                                   {"name", "S"},
+                                   {"color", {1, 0.5, 0.25}},
+                                   {"intensity", 7},
+                                   {"range", 9},
+                                   {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+                                  {{"type", "directional"}, {"intensity", 3}, {"range", 5}}})}}}};
     // Spot at (1,2,3) turned 90 deg about Y: local -Z -> world -X. Sun turned -90 deg about X:
     // local -Z -> world -Y (straight down).
-    j["nodes"].push_back({{"translation", {1, 2, 3}}, {"rotation", {0, h, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-    j["nodes"].push_back({{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    j["nodes"].push_back({{"translation", {1, 2, 3}},
+                          {"rotation", {0, h, 0, h}},
+                          {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    j["nodes"].push_back(
+        {{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
     j["scenes"][0]["nodes"] = {0, 1, 2};
     Scene s = loadGltf(writeGltf(j));
     EXPECT_FALSE(s.hasDefaultLights);
@@ -628,7 +683,8 @@ TEST_F(GltfSynthetic, SpotAndDirectionalLightsFromNodes) {
 
 TEST_F(GltfSynthetic, CameraWithInfiniteFarAndScaledNode) {
     json j = gltf();
-    j["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}});
+    j["cameras"] =
+        json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}});
     j["nodes"].push_back({{"camera", 0}, {"translation", {0, 1, 5}}, {"scale", {2, 2, 2}}});
     j["scenes"][0]["nodes"] = {0, 1};
     Scene s = loadGltf(writeGltf(j));
@@ -661,13 +717,23 @@ TEST_F(GltfSynthetic, NormalizedByteTexcoordsAndByteAndIntIndices) {
                                     {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 12}},
                                     {{"buffer", 0}, {"byteOffset", 52}, {"byteLength", 6}},
                                     {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 12}}});
-    j["accessors"] = json::array({{{"bufferView", 1}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}},
-                                  {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
-                                  {{"bufferView", 2}, {"componentType", 5125}, {"count", 3}, {"type", "SCALAR"}},
-                                  {{"bufferView", 3}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}},
-                                  {{"bufferView", 4}, {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}}});
-    j["meshes"][0]["primitives"] = json::array({{{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 3}}}, {"indices", 0}},
-                                                {{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 4}}}, {"indices", 2}}});
+    j["accessors"] =
+        json::array({{{"bufferView", 1}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}},
+                     {{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+                     {{"bufferView", 2}, {"componentType", 5125}, {"count", 3}, {"type", "SCALAR"}},
+                     {{"bufferView", 3},
+                      {"componentType", 5121},
+                      {"normalized", true},
+                      {"count", 3},
+                      {"type", "VEC2"}},
+                     {{"bufferView", 4},
+                      {"componentType", 5123},
+                      {"normalized", true},
+                      {"count", 3},
+                      {"type", "VEC2"}}});
+    j["meshes"][0]["primitives"] =
+        json::array({{{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 3}}}, {"indices", 0}},
+                     {{"attributes", {{"POSITION", 1}, {"TEXCOORD_0", 4}}}, {"indices", 2}}});
     Scene s = loadGltf(write("mixed.gltf", j.dump()));
     ASSERT_EQ(s.meshes[0].primitives.size(), 2u);
     const auto& a = s.meshes[0].primitives[0].vertices;  // flat normals: vertices in index order
@@ -681,15 +747,20 @@ TEST_F(GltfSynthetic, NormalizedByteTexcoordsAndByteAndIntIndices) {
     EXPECT_EQ(c[0].normal, glm::vec3(0, 0, -1)) << "reversed winding faces -Z";
     // Texcoords that are integers but not normalized are not valid glTF.
     j["accessors"][3]["normalized"] = false;
-    expectError(write("unnormalized.gltf", j.dump()), {"TEXCOORD_0", "unsupported component type unsigned byte"});
+    expectError(write("unnormalized.gltf", j.dump()),
+                {"TEXCOORD_0", "unsupported component type unsigned byte"});
 }
 
 TEST_F(GltfSynthetic, FirstPerspectiveCameraInDepthFirstNodeOrderWins) {
     // Roots [0, 1, 2]; node 1's child 3 holds camera "deep", root 2 holds camera "late".
     // Depth-first order visits 0, 1, 3, 2: "deep" wins (breadth-first would pick "late").
     json j = gltf();
-    j["cameras"] = json::array({{{"type", "perspective"}, {"name", "late"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
-                                {{"type", "perspective"}, {"name", "deep"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
+    j["cameras"] = json::array({{{"type", "perspective"},
+                                 {"name", "late"},
+                                 {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                                {{"type", "perspective"},
+                                 {"name", "deep"},
+                                 {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}}});
     j["nodes"].push_back({{"children", {3}}});
     j["nodes"].push_back({{"camera", 0}});
     j["nodes"].push_back({{"camera", 1}, {"translation", {0, 0, 7}}});
@@ -722,7 +793,8 @@ TEST(FuzzSeeds, EveryBrokenRuleIsRefusedOrWarnedAndValidFilesLoadCleanly) {
             Scene s = loadGltf(entry.path().string());
             EXPECT_FALSE(s.warnings.empty()) << "an invalid file loaded without a warning";
         } catch (const AssetError& e) {
-            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << "the error names the file: " << e.what();
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos)
+                << "the error names the file: " << e.what();
         }
     }
     EXPECT_GE(rules, 40);
@@ -737,22 +809,34 @@ TEST_F(GltfSynthetic, VertexColoursAndSecondUvSet) {
     b.insert(b.end(), {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0});
     const size_t colors16 = b.size();
     const uint16_t c16[9] = {65535, 0, 0, 0, 32768, 0, 0, 0, 65535};
-    b.insert(b.end(), reinterpret_cast<const uint8_t*>(c16), reinterpret_cast<const uint8_t*>(c16) + 18);
+    b.insert(b.end(), reinterpret_cast<const uint8_t*>(c16),
+             reinterpret_cast<const uint8_t*>(c16) + 18);
     b.resize((b.size() + 3) & ~size_t(3), 0);
     const size_t uvs = b.size();
     const float uv1[6] = {0.25f, 0.5f, 1.0f, 0.0f, 0.0f, 1.0f};
-    b.insert(b.end(), reinterpret_cast<const uint8_t*>(uv1), reinterpret_cast<const uint8_t*>(uv1) + 24);
+    b.insert(b.end(), reinterpret_cast<const uint8_t*>(uv1),
+             reinterpret_cast<const uint8_t*>(uv1) + 24);
     writeBytes("colored.bin", b);
     json j = gltf();
     j["buffers"][0] = {{"uri", "colored.bin"}, {"byteLength", b.size()}};
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", colors8}, {"byteLength", 12}});
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", colors16}, {"byteLength", 18}});
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", uvs}, {"byteLength", 24}});
-    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}});
-    j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC3"}});
-    j["accessors"].push_back({{"bufferView", 4}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
-    j["meshes"][0]["primitives"] = json::array({{{"attributes", {{"POSITION", 1}, {"COLOR_0", 2}, {"TEXCOORD_1", 4}}}, {"indices", 0}},
-                                                {{"attributes", {{"POSITION", 1}, {"COLOR_0", 3}}}, {"indices", 0}}});
+    j["accessors"].push_back({{"bufferView", 2},
+                              {"componentType", 5121},
+                              {"normalized", true},
+                              {"count", 3},
+                              {"type", "VEC4"}});
+    j["accessors"].push_back({{"bufferView", 3},
+                              {"componentType", 5123},
+                              {"normalized", true},
+                              {"count", 3},
+                              {"type", "VEC3"}});
+    j["accessors"].push_back(
+        {{"bufferView", 4}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+    j["meshes"][0]["primitives"] = json::array(
+        {{{"attributes", {{"POSITION", 1}, {"COLOR_0", 2}, {"TEXCOORD_1", 4}}}, {"indices", 0}},
+         {{"attributes", {{"POSITION", 1}, {"COLOR_0", 3}}}, {"indices", 0}}});
     const Scene s = loadGltf(write("colored.gltf", j.dump()));
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     const auto& a = s.meshes[0].primitives[0].vertices;
@@ -779,20 +863,32 @@ TEST_F(GltfSynthetic, TextureTransformIsReadOrRefused) {
     j["extensionsUsed"] = json::array({"KHR_texture_transform"});
     auto withTransform = [&](const json& t) {
         json k = j;
-        k["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", t}}}}}}}}});
+        k["materials"] =
+            json::array({{{"pbrMetallicRoughness",
+                           {{"baseColorTexture",
+                             {{"index", 0}, {"extensions", {{"KHR_texture_transform", t}}}}}}}}});
         k["meshes"][0]["primitives"][0]["material"] = 0;
         return k;
     };
-    const Scene s = loadGltf(write("ok.gltf", withTransform({{"offset", {0.5, 0.25}}, {"rotation", 1.5}, {"scale", {2, 3}}, {"texCoord", 1}}).dump()));
+    const Scene s = loadGltf(
+        write("ok.gltf",
+              withTransform(
+                  {{"offset", {0.5, 0.25}}, {"rotation", 1.5}, {"scale", {2, 3}}, {"texCoord", 1}})
+                  .dump()));
     const TextureRef& r = s.materials[0].baseColorTexture;
     EXPECT_EQ(r.texCoord, 1u);
     EXPECT_EQ(r.transform.offset, glm::vec2(0.5f, 0.25f));
     EXPECT_EQ(r.transform.rotation, 1.5f);
     EXPECT_EQ(r.transform.scale, glm::vec2(2.0f, 3.0f));
-    EXPECT_FALSE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) { return w.find("KHR_texture_transform") != std::string::npos; }));
-    expectError(write("short_offset.gltf", withTransform({{"offset", {0.5}}}).dump()), {"KHR_texture_transform", "offset", "array of 2"});
-    expectError(write("text_rotation.gltf", withTransform({{"rotation", "a lot"}}).dump()), {"KHR_texture_transform", "rotation"});
-    expectError(write("huge_scale.gltf", withTransform({{"scale", {1e39, 1}}}).dump()), {"KHR_texture_transform", "scale", "finite"});
+    EXPECT_FALSE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+        return w.find("KHR_texture_transform") != std::string::npos;
+    }));
+    expectError(write("short_offset.gltf", withTransform({{"offset", {0.5}}}).dump()),
+                {"KHR_texture_transform", "offset", "array of 2"});
+    expectError(write("text_rotation.gltf", withTransform({{"rotation", "a lot"}}).dump()),
+                {"KHR_texture_transform", "rotation"});
+    expectError(write("huge_scale.gltf", withTransform({{"scale", {1e39, 1}}}).dump()),
+                {"KHR_texture_transform", "scale", "finite"});
     expectError(write("bad_set.gltf", withTransform({{"texCoord", -1}}).dump()), {"texCoord"});
 }
 
@@ -809,8 +905,12 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
         k["meshes"][0]["primitives"][0]["material"] = 0;
         return k;
     };
-    const Scene s = loadGltf(write("ok.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 2.0}}},
-                                                          {"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 4.0}}}}}).dump()));
+    const Scene s = loadGltf(
+        write("ok.gltf",
+              withMaterial({{"KHR_materials_ior", {{"ior", 2.0}}},
+                            {"KHR_materials_specular",
+                             {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 4.0}}}}})
+                  .dump()));
     const Material& m = s.materials[0];
     EXPECT_EQ(m.ior, 2.0f);
     EXPECT_EQ(m.specular, 0.5f);
@@ -824,27 +924,42 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_NEAR(Material{}.dielectricF0().g, 0.04f, 1e-7f);
     EXPECT_TRUE(Material{}.defaultDielectric());
-    const Scene infinite = loadGltf(write("ior0.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0}}}}).dump()));
+    const Scene infinite =
+        loadGltf(write("ior0.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0}}}}).dump()));
     EXPECT_EQ(infinite.materials[0].dielectricF0(), glm::vec3(1.0f));
-    const Scene textured = loadGltf(write(
-        "tex.gltf", withMaterial({{"KHR_materials_specular", {{"specularTexture", {{"index", 0}}}, {"specularColorTexture", {{"index", 0}}}}}})
-                        .dump()));
+    const Scene textured =
+        loadGltf(write("tex.gltf", withMaterial({{"KHR_materials_specular",
+                                                  {{"specularTexture", {{"index", 0}}},
+                                                   {"specularColorTexture", {{"index", 0}}}}}})
+                                       .dump()));
     EXPECT_TRUE(textured.warnings.empty()) << textured.warnings.front();
     const Material& tm = textured.materials[0];
     ASSERT_TRUE(tm.specularTexture.valid() && tm.specularColorTexture.valid());
     EXPECT_TRUE(textured.textures[tm.specularColorTexture.index].srgb);
     EXPECT_FALSE(tm.defaultDielectric());  // the textures alone make it a full material
     EXPECT_NEAR(tm.dielectricF0(glm::vec3(0.5f), 0.5f).g, 0.04f * 0.5f * 0.5f, 1e-7f);
-    expectError(write("ior_half.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0.5}}}}).dump()), {"glass", "ior", "at least 1"});
-    expectError(write("spec_big.gltf", withMaterial({{"KHR_materials_specular", {{"specularFactor", 2}}}}).dump()), {"specularFactor", "[0, 1]"});
-    expectError(write("spec_neg.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}).dump()),
-                {"specularColorFactor", "negative"});
-    expectError(write("spec_short.gltf", withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, 1}}}}}).dump()),
-                {"specularColorFactor", "array of 3"});
+    expectError(
+        write("ior_half.gltf", withMaterial({{"KHR_materials_ior", {{"ior", 0.5}}}}).dump()),
+        {"glass", "ior", "at least 1"});
+    expectError(write("spec_big.gltf",
+                      withMaterial({{"KHR_materials_specular", {{"specularFactor", 2}}}}).dump()),
+                {"specularFactor", "[0, 1]"});
+    expectError(
+        write("spec_neg.gltf",
+              withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}})
+                  .dump()),
+        {"specularColorFactor", "negative"});
+    expectError(
+        write("spec_short.gltf",
+              withMaterial({{"KHR_materials_specular", {{"specularColorFactor", {1, 1}}}}}).dump()),
+        {"specularColorFactor", "array of 3"});
     // KHR_materials_clearcoat: its factors, its F0 from the material's ior, textures warned.
-    json c = withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.25},
-                                                        {"clearcoatTexture", {{"index", 0}}}, {"clearcoatRoughnessTexture", {{"index", 0}}},
-                                                        {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}},
+    json c = withMaterial({{"KHR_materials_clearcoat",
+                            {{"clearcoatFactor", 0.75},
+                             {"clearcoatRoughnessFactor", 0.25},
+                             {"clearcoatTexture", {{"index", 0}}},
+                             {"clearcoatRoughnessTexture", {{"index", 0}}},
+                             {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}},
                            {"KHR_materials_ior", {{"ior", 2.0}}}});
     c["extensionsUsed"] = json::array({"KHR_materials_clearcoat", "KHR_materials_ior"});
     const Scene coated = loadGltf(write("coat.gltf", c.dump()));
@@ -857,10 +972,15 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
     EXPECT_TRUE(coated.materials[0].clearcoatRoughnessTexture.valid());
     EXPECT_TRUE(coated.materials[0].clearcoatNormalTexture.valid());
     EXPECT_EQ(coated.materials[0].clearcoatNormalScale, 0.5f);
-    expectError(write("coat_big.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.5}}}}).dump()),
-                {"clearcoatFactor", "[0, 1]"});
-    expectError(write("coat_rough.gltf", withMaterial({{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}}).dump()),
-                {"clearcoatRoughnessFactor", "[0, 1]"});
+    expectError(
+        write("coat_big.gltf",
+              withMaterial({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.5}}}}).dump()),
+        {"clearcoatFactor", "[0, 1]"});
+    expectError(
+        write("coat_rough.gltf",
+              withMaterial({{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.5}}}})
+                  .dump()),
+        {"clearcoatRoughnessFactor", "[0, 1]"});
 }
 
 // KHR_materials_transmission and KHR_materials_volume: factors and textures are read (the
@@ -870,10 +990,12 @@ TEST_F(GltfSynthetic, DielectricIorAndSpecularAreReadOrRefused) {
 TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
     writeBytes("tri.bin", bin());
     json j = gltfWithTexture();
-    j["extensionsUsed"] = json::array({"KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"});
+    j["extensionsUsed"] = json::array(
+        {"KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"});
     auto withMaterial = [&](const json& extensions, const char* alphaMode = "OPAQUE") {
         json k = j;
-        k["materials"] = json::array({{{"name", "glass"}, {"alphaMode", alphaMode}, {"extensions", extensions}}});
+        k["materials"] = json::array(
+            {{{"name", "glass"}, {"alphaMode", alphaMode}, {"extensions", extensions}}});
         k["meshes"][0]["primitives"][0]["material"] = 0;
         return k;
     };
@@ -881,9 +1003,14 @@ TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
         "ok.gltf",
         withMaterial({{"KHR_materials_transmission",
                        {{"transmissionFactor", 0.75},
-                        {"transmissionTexture", {{"index", 0}, {"texCoord", 1}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}}},
+                        {"transmissionTexture",
+                         {{"index", 0},
+                          {"texCoord", 1},
+                          {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}}},
                       {"KHR_materials_volume",
-                       {{"thicknessFactor", 0.5}, {"thicknessTexture", {{"index", 0}}}, {"attenuationDistance", 2.0},
+                       {{"thicknessFactor", 0.5},
+                        {"thicknessTexture", {{"index", 0}}},
+                        {"attenuationDistance", 2.0},
                         {"attenuationColor", {0.5, 0.75, 1.0}}}}})
             .dump()));
     const Material& m = s.materials[0];
@@ -900,26 +1027,43 @@ TEST_F(GltfSynthetic, TransmissionAndVolumeAreReadOrRefused) {
     EXPECT_FALSE(Material{}.transmissive());
     EXPECT_TRUE(std::isinf(Material{}.attenuationDistance));
 
-    const Scene blended = loadGltf(write("blend.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}, "BLEND").dump()));
+    const Scene blended = loadGltf(
+        write("blend.gltf",
+              withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}, "BLEND")
+                  .dump()));
     EXPECT_FALSE(blended.materials[0].transmissive());
     ASSERT_FALSE(blended.warnings.empty());
-    EXPECT_NE(blended.warnings.front().find("BLEND material is not drawn"), std::string::npos) << blended.warnings.front();
-    const Scene volumeAlone = loadGltf(write("volume.gltf", withMaterial({{"KHR_materials_volume", {{"thicknessFactor", 1}}}}).dump()));
+    EXPECT_NE(blended.warnings.front().find("BLEND material is not drawn"), std::string::npos)
+        << blended.warnings.front();
+    const Scene volumeAlone = loadGltf(write(
+        "volume.gltf", withMaterial({{"KHR_materials_volume", {{"thicknessFactor", 1}}}}).dump()));
     ASSERT_FALSE(volumeAlone.warnings.empty());
-    EXPECT_NE(volumeAlone.warnings.front().find("without KHR_materials_transmission"), std::string::npos);
+    EXPECT_NE(volumeAlone.warnings.front().find("without KHR_materials_transmission"),
+              std::string::npos);
 
-    expectError(write("t_big.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}).dump()),
-                {"glass", "transmissionFactor", "[0, 1]"});
-    expectError(write("t_tex.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 7}}}}}}).dump()),
+    expectError(
+        write("t_big.gltf",
+              withMaterial({{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}).dump()),
+        {"glass", "transmissionFactor", "[0, 1]"});
+    expectError(write("t_tex.gltf", withMaterial({{"KHR_materials_transmission",
+                                                   {{"transmissionTexture", {{"index", 7}}}}}})
+                                        .dump()),
                 {"transmissionTexture", "texture 7"});
-    expectError(write("t_info.gltf", withMaterial({{"KHR_materials_transmission", {{"transmissionTexture", 3}}}}).dump()),
-                {"transmissionTexture", "object with an index"});
-    expectError(write("v_neg.gltf", withMaterial({{"KHR_materials_volume", {{"thicknessFactor", -1}}}}).dump()),
+    expectError(
+        write("t_info.gltf",
+              withMaterial({{"KHR_materials_transmission", {{"transmissionTexture", 3}}}}).dump()),
+        {"transmissionTexture", "object with an index"});
+    expectError(write("v_neg.gltf",
+                      withMaterial({{"KHR_materials_volume", {{"thicknessFactor", -1}}}}).dump()),
                 {"thicknessFactor", "negative"});
-    expectError(write("v_dist.gltf", withMaterial({{"KHR_materials_volume", {{"attenuationDistance", 0}}}}).dump()),
-                {"attenuationDistance", "positive"});
-    expectError(write("v_color.gltf", withMaterial({{"KHR_materials_volume", {{"attenuationColor", {1, 2, 1}}}}}).dump()),
-                {"attenuationColor", "[0, 1]"});
+    expectError(
+        write("v_dist.gltf",
+              withMaterial({{"KHR_materials_volume", {{"attenuationDistance", 0}}}}).dump()),
+        {"attenuationDistance", "positive"});
+    expectError(
+        write("v_color.gltf",
+              withMaterial({{"KHR_materials_volume", {{"attenuationColor", {1, 2, 1}}}}}).dump()),
+        {"attenuationColor", "[0, 1]"});
 }
 
 // KHR_materials_sheen: colour and roughness factors and both textures (the colour sRGB) are
@@ -930,14 +1074,17 @@ TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
     j["extensionsUsed"] = json::array({"KHR_materials_sheen"});
     auto withSheen = [&](const json& sheen) {
         json k = j;
-        k["materials"] = json::array({{{"name", "velvet"}, {"extensions", {{"KHR_materials_sheen", sheen}}}}});
+        k["materials"] =
+            json::array({{{"name", "velvet"}, {"extensions", {{"KHR_materials_sheen", sheen}}}}});
         k["meshes"][0]["primitives"][0]["material"] = 0;
         return k;
     };
-    const Scene s = loadGltf(write("ok.gltf", withSheen({{"sheenColorFactor", {1.0, 0.5, 0.25}}, {"sheenRoughnessFactor", 0.75},
-                                                         {"sheenColorTexture", {{"index", 0}}},
-                                                         {"sheenRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}})
-                                             .dump()));
+    const Scene s = loadGltf(
+        write("ok.gltf", withSheen({{"sheenColorFactor", {1.0, 0.5, 0.25}},
+                                    {"sheenRoughnessFactor", 0.75},
+                                    {"sheenColorTexture", {{"index", 0}}},
+                                    {"sheenRoughnessTexture", {{"index", 0}, {"texCoord", 1}}}})
+                             .dump()));
     const Material& m = s.materials[0];
     EXPECT_EQ(m.sheenColor, glm::vec3(1.0f, 0.5f, 0.25f));
     EXPECT_EQ(m.sheenRoughness, 0.75f);
@@ -949,9 +1096,12 @@ TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
     EXPECT_EQ(m.sheenRoughnessTexture.texCoord, 1u);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
     EXPECT_FALSE(Material{}.hasSheen());
-    expectError(write("colour.gltf", withSheen({{"sheenColorFactor", {1.0, 1.5, 0.0}}}).dump()), {"velvet", "sheenColorFactor", "[0, 1]"});
-    expectError(write("rough.gltf", withSheen({{"sheenRoughnessFactor", -0.1}}).dump()), {"sheenRoughnessFactor", "[0, 1]"});
-    expectError(write("short.gltf", withSheen({{"sheenColorFactor", {1.0, 1.0}}}).dump()), {"sheenColorFactor", "array of 3"});
+    expectError(write("colour.gltf", withSheen({{"sheenColorFactor", {1.0, 1.5, 0.0}}}).dump()),
+                {"velvet", "sheenColorFactor", "[0, 1]"});
+    expectError(write("rough.gltf", withSheen({{"sheenRoughnessFactor", -0.1}}).dump()),
+                {"sheenRoughnessFactor", "[0, 1]"});
+    expectError(write("short.gltf", withSheen({{"sheenColorFactor", {1.0, 1.0}}}).dump()),
+                {"sheenColorFactor", "array of 3"});
 }
 
 // Animation samplers that do not fit their keys are refused, saying which; a channel glTF does
@@ -959,11 +1109,16 @@ TEST_F(GltfSynthetic, SheenIsReadOrRefused) {
 TEST_F(GltfErrors, AnimationSamplersThatDoNotFit) {
     // Accessor 2: the 9 position floats read as key times (0, 0, 0, 1, 0, ...: decreasing).
     json j = gltf();
-    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 9}, {"type", "SCALAR"}});
-    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}});
-    j["animations"] = json::array({{{"samplers", json::array({{{"input", 2}, {"output", 1}}})},
-                                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
-    expectError(writeGltf(j, "decreasing.gltf"), {"animation 0 sampler 0", "key times decrease (1.000000 then 0.000000)"});
+    j["accessors"].push_back(
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 9}, {"type", "SCALAR"}});
+    j["accessors"].push_back(
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}});
+    j["animations"] = json::array(
+        {{{"samplers", json::array({{{"input", 2}, {"output", 1}}})},
+          {"channels",
+           json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+    expectError(writeGltf(j, "decreasing.gltf"),
+                {"animation 0 sampler 0", "key times decrease (1.000000 then 0.000000)"});
     // Accessor 3: two keys (0, 0) for three translations.
     j["animations"][0]["samplers"][0]["input"] = 3;
     expectError(writeGltf(j, "count.gltf"), {"animation 0 sampler 0", "output count 3 for 2 keys"});
@@ -971,27 +1126,35 @@ TEST_F(GltfErrors, AnimationSamplersThatDoNotFit) {
     expectError(writeGltf(j, "interpolation.gltf"), {"unknown interpolation 'BOUNCY'"});
     j["animations"][0]["samplers"][0].erase("interpolation");
     j["animations"][0]["samplers"][0]["output"] = 0;  // the u16 indices: not float VEC3
-    expectError(writeGltf(j, "type.gltf"), {"output of animation 0 sampler 0", "type SCALAR, expected VEC3"});
+    expectError(writeGltf(j, "type.gltf"),
+                {"output of animation 0 sampler 0", "type SCALAR, expected VEC3"});
 }
 
 TEST_F(GltfSynthetic, AnimationOfANodeWithAMatrixIsDroppedWithAWarning) {
     json j = gltf();
     j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "SCALAR"}});
-    j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "VEC3"}});
-    j["animations"] = json::array({{{"name", "slide"}, {"samplers", json::array({{{"input", 2}, {"output", 3}}})},
-                                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
+    j["accessors"].push_back(
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "SCALAR"}});
+    j["accessors"].push_back(
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 1}, {"type", "VEC3"}});
+    j["animations"] = json::array(
+        {{{"name", "slide"},
+          {"samplers", json::array({{{"input", 2}, {"output", 3}}})},
+          {"channels",
+           json::array({{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}})}}});
     const Scene s = loadGltf(writeGltf(j));
     ASSERT_EQ(s.animations.size(), 1u);
     EXPECT_TRUE(s.animations[0].channels.empty());
     bool warned = false;
-    for (const std::string& w : s.warnings) warned = warned || w.find("has a matrix, which glTF does not animate") != std::string::npos;
+    for (const std::string& w : s.warnings)
+        warned = warned || w.find("has a matrix, which glTF does not animate") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 
 // A skinned mesh whose JOINTS_0 names a joint its node's skin lacks is refused, naming both.
 TEST_F(GltfErrors, SkinJointBeyondTheSkin) {
-    std::vector<uint8_t> skinData = {5, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};  // JOINTS_0: vertex 0 names joint 5
+    std::vector<uint8_t> skinData = {5, 0, 0, 0, 0, 0,
+                                     0, 0, 0, 0, 0, 0};  // JOINTS_0: vertex 0 names joint 5
     for (int v = 0; v < 3; ++v)
         for (float w : {1.0f, 0.0f, 0.0f, 0.0f}) {
             uint8_t b[4];
@@ -1001,20 +1164,25 @@ TEST_F(GltfErrors, SkinJointBeyondTheSkin) {
     static const char* kBase64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string uri = "data:application/octet-stream;base64,";
     for (size_t i = 0; i < skinData.size(); i += 3) {
-        const uint32_t n = uint32_t(skinData[i]) << 16 | uint32_t(i + 1 < skinData.size() ? skinData[i + 1] : 0) << 8 |
+        const uint32_t n = uint32_t(skinData[i]) << 16 |
+                           uint32_t(i + 1 < skinData.size() ? skinData[i + 1] : 0) << 8 |
                            uint32_t(i + 2 < skinData.size() ? skinData[i + 2] : 0);
-        uri += {kBase64[n >> 18 & 63], kBase64[n >> 12 & 63], i + 1 < skinData.size() ? kBase64[n >> 6 & 63] : '=',
+        uri += {kBase64[n >> 18 & 63], kBase64[n >> 12 & 63],
+                i + 1 < skinData.size() ? kBase64[n >> 6 & 63] : '=',
                 i + 2 < skinData.size() ? kBase64[n & 63] : '='};
     }
     json j = gltf();
     j["buffers"].push_back({{"uri", uri}, {"byteLength", skinData.size()}});
     j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", 12}});
     j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 12}, {"byteLength", 48}});
-    j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
-    j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}});
+    j["accessors"].push_back(
+        {{"bufferView", 2}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
+    j["accessors"].push_back(
+        {{"bufferView", 3}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}});
     j["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"] = 2;
     j["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_0"] = 3;
     j["skins"] = json::array({{{"joints", {0}}}});
     j["nodes"][0]["skin"] = 0;
-    expectError(writeGltf(j, "skin.gltf"), {"node 0 'TriNode'", "names joint 5 of skin 0, which has 1"});
+    expectError(writeGltf(j, "skin.gltf"),
+                {"node 0 'TriNode'", "names joint 5 of skin 0, which has 1"});
 }

@@ -39,7 +39,8 @@ void expectNear(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) {
 
 TEST(GltfSamples, BoxInAllThreeContainers) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"Box/glTF/Box.gltf", "Box/glTF-Binary/Box.glb", "Box/glTF-Embedded/Box.gltf"}) {
+    for (const char* rel :
+         {"Box/glTF/Box.gltf", "Box/glTF-Binary/Box.glb", "Box/glTF-Embedded/Box.gltf"}) {
         SCOPED_TRACE(rel);
         Scene s = load(rel);
         ASSERT_EQ(s.meshes.size(), 1u);
@@ -73,7 +74,8 @@ TEST(GltfSamples, DefaultCameraAndLightRigAreTheDocumentedOnes) {
     expectNear(s.camera->forward(), -v);
     EXPECT_NEAR(glm::dot(s.camera->up(), s.camera->forward()), 0.0f, 1e-6f);
     EXPECT_GT(s.camera->up().y, 0.8f);
-    EXPECT_NEAR(s.camera->up().x * s.camera->forward().z - s.camera->up().z * s.camera->forward().x, 0.0f, 1e-6f)
+    EXPECT_NEAR(s.camera->up().x * s.camera->forward().z - s.camera->up().z * s.camera->forward().x,
+                0.0f, 1e-6f)
         << "up leans only towards the view, not sideways";
     EXPECT_NEAR(s.camera->yfov, 3.14159265f / 4.0f, 1e-6f);
     EXPECT_NEAR(s.camera->znear, 0.5f * (d - r), 1e-4f);
@@ -82,7 +84,9 @@ TEST(GltfSamples, DefaultCameraAndLightRigAreTheDocumentedOnes) {
     ASSERT_EQ(s.lights.size(), 3u);
     EXPECT_EQ(s.lights[0].type, LightType::Directional);
     // Given in view space, turned with the camera.
-    auto world = [&](glm::vec3 v) { return glm::normalize(glm::mat3(s.camera->worldFromView) * glm::normalize(v)); };
+    auto world = [&](glm::vec3 v) {
+        return glm::normalize(glm::mat3(s.camera->worldFromView) * glm::normalize(v));
+    };
     expectNear(s.lights[0].direction, world({0.5f, -1.0f, -1.0f}));
     EXPECT_EQ(s.lights[0].intensity, 2.5f);
     EXPECT_EQ(s.lights[1].type, LightType::Directional);
@@ -103,7 +107,8 @@ TEST(GltfSamples, DefaultCameraAndLightRigAreTheDocumentedOnes) {
 
 TEST(GltfSamples, BoxInterleavedMatchesBox) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"BoxInterleaved/glTF/BoxInterleaved.gltf", "BoxInterleaved/glTF-Binary/BoxInterleaved.glb"}) {
+    for (const char* rel : {"BoxInterleaved/glTF/BoxInterleaved.gltf",
+                            "BoxInterleaved/glTF-Binary/BoxInterleaved.glb"}) {
         SCOPED_TRACE(rel);
         Scene s = load(rel);
         Scene box = load("Box/glTF/Box.gltf");
@@ -112,17 +117,20 @@ TEST(GltfSamples, BoxInterleavedMatchesBox) {
         // Same cube: every (position, normal) pair of Box appears in the interleaved file.
         std::set<std::tuple<float, float, float, float, float, float>> a, b;
         for (const auto& v : s.meshes[0].primitives[0].vertices)
-            a.insert({v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y, v.normal.z});
+            a.insert(
+                {v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y, v.normal.z});
         for (const auto& v : box.meshes[0].primitives[0].vertices)
-            b.insert({v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y, v.normal.z});
+            b.insert(
+                {v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y, v.normal.z});
         EXPECT_EQ(a, b);
     }
 }
 
 TEST(GltfSamples, BoxTexturedDecodesItsSrgbTextureAndSampler) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"BoxTextured/glTF/BoxTextured.gltf", "BoxTextured/glTF-Binary/BoxTextured.glb",
-                            "BoxTextured/glTF-Embedded/BoxTextured.gltf"}) {
+    for (const char* rel :
+         {"BoxTextured/glTF/BoxTextured.gltf", "BoxTextured/glTF-Binary/BoxTextured.glb",
+          "BoxTextured/glTF-Embedded/BoxTextured.gltf"}) {
         SCOPED_TRACE(rel);
         Scene s = load(rel);
         ASSERT_EQ(s.textures.size(), 1u);
@@ -139,13 +147,15 @@ TEST(GltfSamples, BoxTexturedDecodesItsSrgbTextureAndSampler) {
         // Not a blank image: the Cesium logo has several colours.
         std::set<uint32_t> colours;
         for (size_t i = 0; i < t.pixels.size(); i += 4 * 97)
-            colours.insert(uint32_t(t.pixels[i]) | uint32_t(t.pixels[i + 1]) << 8 | uint32_t(t.pixels[i + 2]) << 16);
+            colours.insert(uint32_t(t.pixels[i]) | uint32_t(t.pixels[i + 1]) << 8 |
+                           uint32_t(t.pixels[i + 2]) << 16);
         EXPECT_GT(colours.size(), 3u);
         const Material& m = s.materials[s.meshes[0].primitives[0].material];
         EXPECT_EQ(m.baseColorTexture.index, 0);
         // TEXCOORD_0 accessor min (0, 0), max (6, 1): u repeats the logo six times.
         glm::vec2 lo(1e9f), hi(-1e9f);
-        for (const auto& v : s.meshes[0].primitives[0].vertices) lo = glm::min(lo, v.uv0), hi = glm::max(hi, v.uv0);
+        for (const auto& v : s.meshes[0].primitives[0].vertices)
+            lo = glm::min(lo, v.uv0), hi = glm::max(hi, v.uv0);
         EXPECT_EQ(lo, glm::vec2(0.0f, 0.0f));
         EXPECT_EQ(hi, glm::vec2(6.0f, 1.0f));
     }
@@ -166,10 +176,13 @@ TEST(GltfSamples, HardFileNames) {
     FE_REQUIRE_SAMPLES();
     Scene spaces = load("Box With Spaces/glTF/Box With Spaces.gltf");
     EXPECT_EQ(totalVertices(spaces), 24u);
-    EXPECT_EQ(spaces.textures.size(), 3u);  // "glTF Logo With Spaces.png", "Normal Map.png", "Roughness Metallic.png"
+    EXPECT_EQ(spaces.textures.size(),
+              3u);  // "glTF Logo With Spaces.png", "Normal Map.png", "Roughness Metallic.png"
     const Material& m = spaces.materials[spaces.meshes[0].primitives[0].material];
-    EXPECT_TRUE(m.baseColorTexture.valid() && m.normalTexture.valid() && m.metallicRoughnessTexture.valid());
-    for (const char* rel : {"Unicode❤♻Test/glTF/Unicode❤♻Test.gltf", "Unicode❤♻Test/glTF-Binary/Unicode❤♻Test.glb"}) {
+    EXPECT_TRUE(m.baseColorTexture.valid() && m.normalTexture.valid() &&
+                m.metallicRoughnessTexture.valid());
+    for (const char* rel :
+         {"Unicode❤♻Test/glTF/Unicode❤♻Test.gltf", "Unicode❤♻Test/glTF-Binary/Unicode❤♻Test.glb"}) {
         Scene u = load(rel);
         EXPECT_EQ(totalVertices(u), 4u);
         EXPECT_EQ(totalIndices(u), 6u);
@@ -222,7 +235,8 @@ TEST(GltfSamples, GeneratedTangentsForNormalTangentTest) {
             glm::vec2 d1 = b.uv0 - a.uv0, d2 = c.uv0 - a.uv0;
             float det = d1.x * d2.y - d2.x * d1.y;
             if (std::abs(det) < 1e-12f) continue;
-            glm::vec3 dPdu = ((b.position - a.position) * d2.y - (c.position - a.position) * d1.y) / det;
+            glm::vec3 dPdu =
+                ((b.position - a.position) * d2.y - (c.position - a.position) * d1.y) / det;
             ++triangles;
             aligned += glm::dot(dPdu, glm::vec3(a.tangent)) > 0.0f;
         }
@@ -250,7 +264,8 @@ TEST(GltfSamples, OrientationTestNodeTransforms) {
     ASSERT_NE(x1, nullptr);
     expectNear(glm::vec3(x1->world[3]), glm::vec3(5, 0, 0));
     const float a = 2.0f * std::asin(-0.30070576f);
-    expectNear(glm::mat3(x1->world) * glm::vec3(0, 1, 0), glm::vec3(0, std::cos(a), std::sin(a)), 1e-4f);
+    expectNear(glm::mat3(x1->world) * glm::vec3(0, 1, 0), glm::vec3(0, std::cos(a), std::sin(a)),
+               1e-4f);
     // ArrowX2 uses a matrix: translation (-5,0,0) in the last column.
     const MeshInstance* x2 = findInstance(s, "ArrowX2");
     ASSERT_NE(x2, nullptr);
@@ -261,7 +276,8 @@ TEST(GltfSamples, OrientationTestNodeTransforms) {
 
 TEST(GltfSamples, CesiumMilkTruckHierarchy) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"CesiumMilkTruck/glTF/CesiumMilkTruck.gltf", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
+    for (const char* rel : {"CesiumMilkTruck/glTF/CesiumMilkTruck.gltf",
+                            "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb"}) {
         SCOPED_TRACE(rel);
         Scene s = load(rel);
         EXPECT_EQ(s.meshes.size(), 2u);
@@ -271,7 +287,8 @@ TEST(GltfSamples, CesiumMilkTruckHierarchy) {
         ASSERT_TRUE(w0 && w1);
         EXPECT_EQ(w0->meshIndex, w1->meshIndex);
         // Their parents are translated by x = 1.43267 and -1.35233 under a common rotation.
-        EXPECT_NEAR(glm::distance(glm::vec3(w0->world[3]), glm::vec3(w1->world[3])), 1.43267f + 1.35233f, 1e-4f);
+        EXPECT_NEAR(glm::distance(glm::vec3(w0->world[3]), glm::vec3(w1->world[3])),
+                    1.43267f + 1.35233f, 1e-4f);
         // Yup2Zup rotates the truck so it stands on y = 0 (wheels touch the ground near y = 0).
         EXPECT_NEAR(s.bounds.min.y, 0.0f, 0.1f);
         EXPECT_GT(s.bounds.max.y, 2.0f);
@@ -290,12 +307,14 @@ TEST(GltfSamples, CesiumMilkTruckHierarchy) {
 
 TEST(GltfSamples, NegativeScaleTestMirroredInstances) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"NegativeScaleTest/glTF/NegativeScaleTest.gltf", "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb"}) {
+    for (const char* rel : {"NegativeScaleTest/glTF/NegativeScaleTest.gltf",
+                            "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb"}) {
         SCOPED_TRACE(rel);
         Scene s = load(rel);
         EXPECT_EQ(s.instances.size(), 11u);
         // One negative scale (own or parent's) mirrors; two cancel out.
-        std::set<std::string> mirrored, expected = {"NegativeScaleFront", "NotShinyMinus1", "Shiny1", "Dark1"};
+        std::set<std::string> mirrored,
+            expected = {"NegativeScaleFront", "NotShinyMinus1", "Shiny1", "Dark1"};
         for (const auto& i : s.instances)
             if (i.mirrored) mirrored.insert(i.name);
         EXPECT_EQ(mirrored, expected);
@@ -313,9 +332,12 @@ TEST(GltfSamples, AlphaModes) {
         AlphaMode mode;
         float cutoff;
     };
-    for (const Expect& e : {Expect{"MatBlend", AlphaMode::Blend, 0.5f}, Expect{"MatCutoff25", AlphaMode::Mask, 0.25f},
-                            Expect{"MatCutoff75", AlphaMode::Mask, 0.75f}, Expect{"MatCutoffDefault", AlphaMode::Mask, 0.5f},
-                            Expect{"MatOpaque", AlphaMode::Opaque, 0.5f}, Expect{"MatBed", AlphaMode::Opaque, 0.5f}}) {
+    for (const Expect& e :
+         {Expect{"MatBlend", AlphaMode::Blend, 0.5f}, Expect{"MatCutoff25", AlphaMode::Mask, 0.25f},
+          Expect{"MatCutoff75", AlphaMode::Mask, 0.75f},
+          Expect{"MatCutoffDefault", AlphaMode::Mask, 0.5f},
+          Expect{"MatOpaque", AlphaMode::Opaque, 0.5f},
+          Expect{"MatBed", AlphaMode::Opaque, 0.5f}}) {
         const Material* m = findMaterial(s, e.name);
         ASSERT_NE(m, nullptr) << e.name;
         EXPECT_EQ(m->alphaMode, e.mode) << e.name;
@@ -412,7 +434,8 @@ TEST(GltfSamples, SparseAccessorIsApplied) {
         // Base positions are a 7x2 grid with y in {0, 1}; the sparse part moves vertices
         // 8, 10, 12 to (1,2,0), (3,3,0), (5,4,0).
         std::set<std::pair<float, float>> xy;
-        for (const auto& v : s.meshes.at(0).primitives.at(0).vertices) xy.insert({v.position.x, v.position.y});
+        for (const auto& v : s.meshes.at(0).primitives.at(0).vertices)
+            xy.insert({v.position.x, v.position.y});
         EXPECT_TRUE(xy.count({1.0f, 2.0f}));
         EXPECT_TRUE(xy.count({3.0f, 3.0f}));
         EXPECT_TRUE(xy.count({5.0f, 4.0f}));
@@ -445,7 +468,8 @@ TEST(GltfSamples, TwoSidedPlaneAndSuzanneKeepFileTangents) {
 
 TEST(GltfSamples, SimpleInstancingExtension) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"SimpleInstancing/glTF/SimpleInstancing.gltf", "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"}) {
+    for (const char* rel : {"SimpleInstancing/glTF/SimpleInstancing.gltf",
+                            "SimpleInstancing/glTF-Binary/SimpleInstancing.glb"}) {
         Scene s = load(rel);
         ASSERT_EQ(s.instances.size(), 125u);
         std::set<std::tuple<float, float, float>> origins;
@@ -511,7 +535,11 @@ TEST(GltfSamples, EmissiveStrength) {
                             "EmissiveStrengthTest/glTF-Binary/EmissiveStrengthTest.glb"}) {
         Scene s = load(rel);
         const glm::vec3 base(0.1f, 0.5f, 0.9f);
-        for (auto [name, k] : {std::pair{"Emit1", 1.0f}, {"Emit2", 2.0f}, {"Emit4", 4.0f}, {"Emit8", 8.0f}, {"Emit16", 16.0f}}) {
+        for (auto [name, k] : {std::pair{"Emit1", 1.0f},
+                               {"Emit2", 2.0f},
+                               {"Emit4", 4.0f},
+                               {"Emit8", 8.0f},
+                               {"Emit16", 16.0f}}) {
             const Material* m = findMaterial(s, name);
             ASSERT_NE(m, nullptr) << name;
             expectNear(m->emissiveFactor, base * k, 1e-5f);
@@ -546,7 +574,8 @@ TEST(GltfSamples, SkinsMorphsAndAnimationsLoadInTheRestPose) {
     const Primitive& foxMesh = fox.meshes[0].primitives[0];
     EXPECT_TRUE(foxMesh.flatNormals);
     EXPECT_EQ(foxMesh.skin.size(), foxMesh.vertices.size());
-    EXPECT_GT(fox.bounds.size().y, 70.0f);  // standing fox, about 79 units tall (bounds are conservative)
+    EXPECT_GT(fox.bounds.size().y,
+              70.0f);  // standing fox, about 79 units tall (bounds are conservative)
 
     // RiggedSimple's mesh is a cylinder along +-4.575 on its own Z; the skeleton under the
     // "Z_UP" node stands it up: the posed bounds (conservative) hold it standing along Y.
@@ -611,7 +640,8 @@ TEST(GltfSamples, VertexColoursAreRead) {
     std::set<std::tuple<float, float, float, float>> colours;
     for (const Mesh& m : test.meshes)
         for (const Primitive& p : m.primitives)
-            for (const Vertex& v : p.vertices) colours.insert({v.color.r, v.color.g, v.color.b, v.color.a});
+            for (const Vertex& v : p.vertices)
+                colours.insert({v.color.r, v.color.g, v.color.b, v.color.a});
     EXPECT_GT(colours.size(), 2u);  // white (the label without COLOR_0) and the file's colours
     // BoxVertexColors: VEC3 colours, alpha 1.
     const Scene box = load("BoxVertexColors/glTF/BoxVertexColors.gltf");
@@ -633,13 +663,16 @@ TEST(GltfSamples, IgnoredFeaturesAreReportedAsWarnings) {
 
 TEST(GltfSamples, DracoVariantsFailWithUnsupportedRequiredExtension) {
     FE_REQUIRE_SAMPLES();
-    for (const char* rel : {"Box/glTF-Draco/Box.gltf", "RiggedSimple/glTF-Draco/RiggedSimple.gltf"}) {
+    for (const char* rel :
+         {"Box/glTF-Draco/Box.gltf", "RiggedSimple/glTF-Draco/RiggedSimple.gltf"}) {
         try {
             loadGltf(samplePath(rel));
             FAIL() << rel << " should not load";
         } catch (const AssetError& e) {
             std::string msg = e.what();
-            EXPECT_NE(msg.find("unsupported required extension KHR_draco_mesh_compression"), std::string::npos) << msg;
+            EXPECT_NE(msg.find("unsupported required extension KHR_draco_mesh_compression"),
+                      std::string::npos)
+                << msg;
             EXPECT_NE(msg.find(rel), std::string::npos) << "names the file: " << msg;
         }
     }

@@ -22,15 +22,18 @@ inline bool sharedAssetsPresent() {
     return std::filesystem::is_directory(sharedAssetsDir(), ec);
 }
 
-inline std::string samplePath(const std::string& relative) { return (sharedAssetsDir() / relative).string(); }
+inline std::string samplePath(const std::string& relative) {
+    return (sharedAssetsDir() / relative).string();
+}
 
 // The samples are optional (the product works without them): skip, but only when the whole
 // folder is absent. A present folder with a missing file is a failure, not a skip.
-#define FE_REQUIRE_SAMPLES()                                                                            \
-    do {                                                                                                \
-        if (!::fe::assets::test::sharedAssetsPresent())                                                 \
-            GTEST_SKIP() << "Khronos sample assets not found at " << ::fe::assets::test::sharedAssetsDir() \
-                         << " (set FE_SHARED_ASSETS or FE_SHARED_ASSETS_DIR)";                          \
+#define FE_REQUIRE_SAMPLES()                                                   \
+    do {                                                                       \
+        if (!::fe::assets::test::sharedAssetsPresent())                        \
+            GTEST_SKIP() << "Khronos sample assets not found at "              \
+                         << ::fe::assets::test::sharedAssetsDir()              \
+                         << " (set FE_SHARED_ASSETS or FE_SHARED_ASSETS_DIR)"; \
     } while (0)
 
 inline size_t totalVertices(const Scene& s) {
@@ -73,7 +76,8 @@ inline void expectSceneInvariants(const Scene& s, const std::string& what) {
             ASSERT_FALSE(p.vertices.empty());
             for (uint32_t i : p.indices) ASSERT_LT(i, p.vertices.size()) << m.name;
             for (const auto& v : p.vertices) {
-                ASSERT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z));
+                ASSERT_TRUE(std::isfinite(v.position.x) && std::isfinite(v.position.y) &&
+                            std::isfinite(v.position.z));
                 ASSERT_NEAR(glm::length(v.normal), 1.0f, 1e-3f) << m.name;
                 ASSERT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-3f) << m.name;
                 ASSERT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0f, 1e-3f) << m.name;
@@ -83,8 +87,9 @@ inline void expectSceneInvariants(const Scene& s, const std::string& what) {
         }
     }
     for (const auto& mat : s.materials) {
-        for (const TextureRef* t : {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
-                                    &mat.emissiveTexture, &mat.occlusionTexture}) {
+        for (const TextureRef* t :
+             {&mat.baseColorTexture, &mat.metallicRoughnessTexture, &mat.normalTexture,
+              &mat.emissiveTexture, &mat.occlusionTexture}) {
             if (t->valid()) {
                 ASSERT_LT(size_t(t->index), s.textures.size()) << mat.name;
             }

@@ -10,7 +10,8 @@ Image solid(Format f, Texel c, uint32_t w, uint32_t h) {
     return Image::fromTexels(w, h, f, std::vector<Texel>(size_t(w) * h, c));
 }
 
-Image expectImage(Format f, const std::function<Texel(uint32_t, uint32_t)>& fn, uint32_t w, uint32_t h) {
+Image expectImage(Format f, const std::function<Texel(uint32_t, uint32_t)>& fn, uint32_t w,
+                  uint32_t h) {
     std::vector<Texel> t;
     t.reserve(size_t(w) * h);
     for (uint32_t y = 0; y < h; ++y)
@@ -22,11 +23,13 @@ CaseImage exact(const std::string& name, Image image, Image expected) {
     CaseImage ci{name, std::move(image), std::move(expected)};
     ci.absTolerance = 1e-6;
     ci.maxFractionOver = 0;
-    ci.toleranceReason = "data written and read back, or values exact in the format: no difference allowed";
+    ci.toleranceReason =
+        "data written and read back, or values exact in the format: no difference allowed";
     return ci;
 }
 
-CaseImage within(const std::string& name, Image image, Image expected, double absTolerance, std::string reason) {
+CaseImage within(const std::string& name, Image image, Image expected, double absTolerance,
+                 std::string reason) {
     CaseImage ci{name, std::move(image), std::move(expected)};
     ci.absTolerance = absTolerance;
     ci.maxFractionOver = 0;
@@ -39,8 +42,11 @@ ShaderHandle registryShader(DeviceObjects& o, ShaderStage stage, const char* pat
 }
 
 TextureHandle caseTarget(DeviceObjects& o, Format f) {
-    return o.add(o.device().createTexture({.format = f, .width = kCaseSize, .height = kCaseSize,
-                                           .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+    return o.add(
+        o.device().createTexture({.format = f,
+                                  .width = kCaseSize,
+                                  .height = kCaseSize,
+                                  .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
 }
 
 CaseImage drawn8(const std::string& name, Image image, Image expected, double steps) {
@@ -57,24 +63,34 @@ bool throws(const std::function<void()>& fn) {
     return false;
 }
 
-FullscreenSampler::FullscreenSampler(Device& d, const char* fragmentShader, const SamplerDesc& samplerDesc)
+FullscreenSampler::FullscreenSampler(Device& d, const char* fragmentShader,
+                                     const SamplerDesc& samplerDesc)
     : objects(d), fragment(fragmentShader) {
-    vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-    fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
+    vs = objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                     .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    fs = objects.add(
+        d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragmentShader)}));
     sampler = objects.add(d.createSampler(samplerDesc));
 }
 
-Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target, std::array<float, 4> a, std::array<float, 4> b) {
+Image FullscreenSampler::draw(Device& d, TextureHandle texture, Format target,
+                              std::array<float, 4> a, std::array<float, 4> b) {
     DeviceObjects drawing(d);
     PipelineHandle p = drawing.add(d.createGraphicsPipeline(
-        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {target},
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = {target},
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                       {1, BindingType::SampledTexture, ShaderStage::Fragment}},
          .debugName = fragment.c_str()}));
     const std::array<float, 8> params = {a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]};
-    BufferHandle ubo = drawing.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
-    TextureHandle t = drawing.add(d.createTexture({.format = target, .width = kCaseSize, .height = kCaseSize,
-                                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+    BufferHandle ubo = drawing.add(
+        d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+    TextureHandle t =
+        drawing.add(d.createTexture({.format = target,
+                                     .width = kCaseSize,
+                                     .height = kCaseSize,
+                                     .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 0}}}});
     cmd->setPipeline(p);
@@ -96,7 +112,8 @@ void expectError(const std::function<void()>& fn, const std::string& text) {
     } catch (const gdi::Error& e) {
         got = e.what();
     }
-    FE_CONFORMANCE_CHECK(got.find(text) != std::string::npos, ("expected \"" + text + "\", got \"" + got + "\"").c_str());
+    FE_CONFORMANCE_CHECK(got.find(text) != std::string::npos,
+                         ("expected \"" + text + "\", got \"" + got + "\"").c_str());
 }
 
 QuadConstants pixelQuad(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, Texel color) {

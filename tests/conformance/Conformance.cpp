@@ -22,7 +22,9 @@ Image solid(Format f, std::array<float, 4> c, uint32_t w = kSize, uint32_t h = k
 // Cases own what they create through a DeviceObjects (CaseSupport.h says why).
 TextureHandle target(DeviceObjects& objects, Format f) {
     return objects.add(objects.device().createTexture(
-        {.format = f, .width = kSize, .height = kSize,
+        {.format = f,
+         .width = kSize,
+         .height = kSize,
          .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled}));
 }
 
@@ -35,8 +37,9 @@ struct Params {
 std::vector<CaseImage> clearEveryFormat(Device& d) {
     std::vector<CaseImage> out;
     const std::array<float, 4> c{0.25f, 0.5f, 0.75f, 1.0f};
-    for (Format f : {Format::RGBA8, Format::RGBA8_SRGB, Format::RGBA16F, Format::RG16F, Format::R16F, Format::RGBA32F,
-                     Format::RG32F, Format::R32F, Format::R11G11B10F}) {
+    for (Format f :
+         {Format::RGBA8, Format::RGBA8_SRGB, Format::RGBA16F, Format::RG16F, Format::R16F,
+          Format::RGBA32F, Format::RG32F, Format::R32F, Format::R11G11B10F}) {
         DeviceObjects iteration(d);
         TextureHandle t = target(iteration, f);
         auto cmd = d.createCommandList();
@@ -47,12 +50,14 @@ std::vector<CaseImage> clearEveryFormat(Device& d) {
         std::array<float, 4> stored = c;
         if (f == Format::RGBA8_SRGB)
             for (int k = 0; k < 3; ++k)
-                stored[k] = c[k] <= 0.0031308f ? 12.92f * c[k] : 1.055f * std::pow(c[k], 1.0f / 2.4f) - 0.055f;
+                stored[k] = c[k] <= 0.0031308f ? 12.92f * c[k]
+                                               : 1.055f * std::pow(c[k], 1.0f / 2.4f) - 0.055f;
         CaseImage ci{std::string(formatInfo(f).name), d.readTexture(t), solid(f, stored)};
         if (formatInfo(f).isFloat) {
             ci.absTolerance = 1e-3;
             ci.maxFractionOver = 0;
-            ci.toleranceReason = "float clear of values exact in 16/11-bit floats: 1e-3 absolute, no pixel over";
+            ci.toleranceReason =
+                "float clear of values exact in 16/11-bit floats: 1e-3 absolute, no pixel over";
         }
         out.push_back(std::move(ci));
     }
@@ -62,9 +67,12 @@ std::vector<CaseImage> clearEveryFormat(Device& d) {
 std::vector<CaseImage> triangle(Device& d) {
     DeviceObjects objects(d);
     TextureHandle t = target(objects, Format::RGBA8);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
-    auto p = objects.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
+    auto vs = objects.add(d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+    auto p = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
     cmd->setPipeline(p);
@@ -84,9 +92,12 @@ std::vector<CaseImage> triangle(Device& d) {
             double l1 = ((cy - ay) * (px - cx) + (ax - cx) * (py - cy)) / den;
             double l2 = 1 - l0 - l1;
             double m = std::min({l0, l1, l2});
-            if (std::abs(m) < 0.03) texels[y * kSize + x] = img.texel(x, y);
-            else if (m > 0) texels[y * kSize + x] = {float(l0), float(l1), float(l2), 1.0f};
-            else texels[y * kSize + x] = {0, 0, 0, 1};
+            if (std::abs(m) < 0.03)
+                texels[y * kSize + x] = img.texel(x, y);
+            else if (m > 0)
+                texels[y * kSize + x] = {float(l0), float(l1), float(l2), 1.0f};
+            else
+                texels[y * kSize + x] = {0, 0, 0, 1};
         }
     CaseImage ci{"triangle", img, Image::fromTexels(kSize, kSize, Format::RGBA8, texels)};
     return {ci};
@@ -95,20 +106,29 @@ std::vector<CaseImage> triangle(Device& d) {
 // Uniform buffer colour, additive accumulation into RGBA16F beyond 1.0, and the depth test.
 std::vector<CaseImage> uniformBlendDepth(Device& d) {
     DeviceObjects objects(d);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
-    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
+    auto vs =
+        objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                    .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
+    const std::vector<BindingSlot> slots = {
+        {0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
     std::vector<CaseImage> out;
 
     // Additive: three draws of 0.75 into RGBA16F = 2.25 (exact in half floats).
     TextureHandle acc = target(objects, Format::RGBA16F);
-    auto add = objects.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                                     .blend = {{.enable = true, .srcColor = BlendFactor::One,
-                                                                .dstColor = BlendFactor::One, .srcAlpha = BlendFactor::One,
+    auto add = objects.add(d.createGraphicsPipeline({.vertexShader = vs,
+                                                     .fragmentShader = fs,
+                                                     .blend = {{.enable = true,
+                                                                .srcColor = BlendFactor::One,
+                                                                .dstColor = BlendFactor::One,
+                                                                .srcAlpha = BlendFactor::One,
                                                                 .dstAlpha = BlendFactor::One}},
-                                                     .colorFormats = {Format::RGBA16F}, .bindings = slots}));
+                                                     .colorFormats = {Format::RGBA16F},
+                                                     .bindings = slots}));
     Params params{{0.75f, 0.5f, 0.25f, 1.0f}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+    BufferHandle ubo = objects.add(d.createBuffer(
+        {.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = acc}}});
     cmd->setPipeline(add);
@@ -116,7 +136,8 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
     for (int i = 0; i < 3; ++i) cmd->draw(3);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    CaseImage ci{"additive_rgba16f", d.readTexture(acc), solid(Format::RGBA16F, {2.25f, 1.5f, 0.75f, 3.0f})};
+    CaseImage ci{"additive_rgba16f", d.readTexture(acc),
+                 solid(Format::RGBA16F, {2.25f, 1.5f, 0.75f, 3.0f})};
     ci.absTolerance = 1e-3;
     ci.maxFractionOver = 0;
     ci.toleranceReason = "sums of values exact in half floats: 1e-3 absolute, no pixel over";
@@ -126,17 +147,24 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
     for (Format df : {Format::D32F, Format::D24S8}) {
         DeviceObjects iteration(d);
         TextureHandle color = target(iteration, Format::RGBA8);
-        TextureHandle depth = iteration.add(
-            d.createTexture({.format = df, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget}));
-        auto dp = iteration.add(d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs,
-             .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
-             .colorFormats = {Format::RGBA8}, .depthFormat = df, .bindings = slots}));
+        TextureHandle depth = iteration.add(d.createTexture(
+            {.format = df, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget}));
+        auto dp = iteration.add(
+            d.createGraphicsPipeline({.vertexShader = vs,
+                                      .fragmentShader = fs,
+                                      .depthStencil = {.depthTest = true,
+                                                       .depthWrite = true,
+                                                       .depthCompare = CompareOp::Less},
+                                      .colorFormats = {Format::RGBA8},
+                                      .depthFormat = df,
+                                      .bindings = slots}));
         Params nearP{{1, 0, 0, 1}, {0.25f, 0, 0, 0}}, farP{{0, 1, 0, 1}, {0.75f, 0, 0, 0}};
-        BufferHandle u2 = iteration.add(d.createBuffer({.size = 512, .usage = BufferUsage::Uniform}));
+        BufferHandle u2 =
+            iteration.add(d.createBuffer({.size = 512, .usage = BufferUsage::Uniform}));
         d.writeBuffer(u2, 0, gdi::bytesOf(nearP));
         d.writeBuffer(u2, 256, gdi::bytesOf(farP));
-        cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
+        cmd->beginRenderPass(
+            {.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
         cmd->setPipeline(dp);
         cmd->setUniformBuffer(0, u2, 0, sizeof(Params));
         cmd->draw(3);
@@ -144,8 +172,8 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
         cmd->draw(3);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back({std::string("depth_") + std::string(formatInfo(df).name), d.readTexture(color),
-                       solid(Format::RGBA8, {1, 0, 0, 1})});
+        out.push_back({std::string("depth_") + std::string(formatInfo(df).name),
+                       d.readTexture(color), solid(Format::RGBA8, {1, 0, 0, 1})});
     }
     return out;
 }
@@ -153,12 +181,17 @@ std::vector<CaseImage> uniformBlendDepth(Device& d) {
 // Texture upload, nearest sampling, and sRGB decode on sampling.
 std::vector<CaseImage> textureSampling(Device& d) {
     DeviceObjects objects(d);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")}));
+    auto vs =
+        objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                    .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")}));
     std::vector<CaseImage> out;
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
-    SamplerHandle nearest = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
+    BufferHandle ubo = objects.add(d.createBuffer(
+        {.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+    SamplerHandle nearest =
+        objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
     for (Format tf : {Format::RGBA8, Format::RGBA8_SRGB}) {
         DeviceObjects iteration(d);
         // 4x4 checker of 16 distinct values, magnified 16x with nearest filtering.
@@ -173,7 +206,9 @@ std::vector<CaseImage> textureSampling(Device& d) {
         d.writeTexture(tex, {}, gdi::bytesOf(px));
         TextureHandle t = target(iteration, Format::RGBA32F);
         auto p = iteration.add(d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA32F},
+            {.vertexShader = vs,
+             .fragmentShader = fs,
+             .colorFormats = {Format::RGBA32F},
              .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
                           {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
         auto cmd = d.createCommandList();
@@ -187,19 +222,22 @@ std::vector<CaseImage> textureSampling(Device& d) {
         std::vector<std::array<float, 4>> texels(kSize * kSize);
         auto decode = [&](uint8_t v, bool colour) {
             double c = v / 255.0;
-            if (tf == Format::RGBA8_SRGB && colour) c = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+            if (tf == Format::RGBA8_SRGB && colour)
+                c = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
             return float(c);
         };
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x) {
                 const uint8_t* s = &px[((y / 16) * 4 + x / 16) * 4];
-                texels[y * kSize + x] = {decode(s[0], true), decode(s[1], true), decode(s[2], true), decode(s[3], false)};
+                texels[y * kSize + x] = {decode(s[0], true), decode(s[1], true), decode(s[2], true),
+                                         decode(s[3], false)};
             }
         CaseImage ci{std::string("nearest_") + std::string(formatInfo(tf).name), d.readTexture(t),
                      Image::fromTexels(kSize, kSize, Format::RGBA32F, texels)};
         ci.absTolerance = 2e-3;
         ci.maxFractionOver = 0;
-        ci.toleranceReason = "8-bit texels decoded to float: sRGB decode may be table-based, 2e-3 absolute";
+        ci.toleranceReason =
+            "8-bit texels decoded to float: sRGB decode may be table-based, 2e-3 absolute";
         out.push_back(ci);
     }
     return out;
@@ -221,22 +259,23 @@ std::vector<CaseImage> timestamps(Device& d) {
     d.wait(d.submit(*cmd));
     auto ns = d.timerNanoseconds(timer);
     FE_CONFORMANCE_CHECK(ns.has_value(), "the timer has a result after wait");
-    FE_CONFORMANCE_CHECK(*ns > 0.0, "the timer measured a non-zero duration around four render passes");
+    FE_CONFORMANCE_CHECK(*ns > 0.0,
+                         "the timer measured a non-zero duration around four render passes");
     CaseImage ci{"cleared", d.readTexture(t), solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1})};
     return {ci};
 }
 
 }  // namespace
 
-std::vector<Case> drawCases();     // DrawCases.cpp
-std::vector<Case> textureCases();  // TextureCases.cpp
-std::vector<Case> stateCases();    // StateCases.cpp
-std::vector<Case> executionCases();  // ExecutionCases.cpp
+std::vector<Case> drawCases();           // DrawCases.cpp
+std::vector<Case> textureCases();        // TextureCases.cpp
+std::vector<Case> stateCases();          // StateCases.cpp
+std::vector<Case> executionCases();      // ExecutionCases.cpp
 std::vector<Case> fixedFunctionCases();  // FixedFunctionCases.cpp
-std::vector<Case> pipelineCases();  // PipelineCases.cpp
-std::vector<Case> samplerStateCases();  // SamplerStateCases.cpp
-std::vector<Case> constantsCases();  // ConstantsCases.cpp
-std::vector<Case> queryCases();  // QueryCases.cpp
+std::vector<Case> pipelineCases();       // PipelineCases.cpp
+std::vector<Case> samplerStateCases();   // SamplerStateCases.cpp
+std::vector<Case> constantsCases();      // ConstantsCases.cpp
+std::vector<Case> queryCases();          // QueryCases.cpp
 std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
 
 const std::vector<Case>& cases() {
@@ -248,8 +287,9 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases, pipelineCases, samplerStateCases,
-                              constantsCases, queryCases, regionAndViewCases})
+        for (auto* group :
+             {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
+              pipelineCases, samplerStateCases, constantsCases, queryCases, regionAndViewCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();
@@ -258,8 +298,8 @@ const std::vector<Case>& cases() {
 
 void checkFailed(const char* file, int line, const char* condition, const char* what) {
     const char* slash = std::strrchr(file, '/');
-    throw Error(std::string(slash ? slash + 1 : file) + ":" + std::to_string(line) + ": check failed: " + what + " (" +
-                condition + ")");
+    throw Error(std::string(slash ? slash + 1 : file) + ":" + std::to_string(line) +
+                ": check failed: " + what + " (" + condition + ")");
 }
 
 CaseResult runCase(Device& device, const Case& c) {
@@ -279,13 +319,14 @@ CaseResult runCase(Device& device, const Case& c) {
         if (!ci.passed()) {
             r.passed = false;
             r.message += ci.name + ": " + std::to_string(ci.diff->pixelsOverTolerance) + " of " +
-                         std::to_string(ci.diff->pixels) + " pixels off (max error " + std::to_string(ci.diff->maxAbsError) +
-                         "); ";
+                         std::to_string(ci.diff->pixels) + " pixels off (max error " +
+                         std::to_string(ci.diff->maxAbsError) + "); ";
         }
     }
     if (device.validationErrorCount() != errorsBefore) {
         r.passed = false;
-        r.message += std::to_string(device.validationErrorCount() - errorsBefore) + " validation error(s)";
+        r.message +=
+            std::to_string(device.validationErrorCount() - errorsBefore) + " validation error(s)";
     }
     return r;
 }

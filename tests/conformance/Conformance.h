@@ -14,7 +14,7 @@ namespace fe::conformance {
 struct CaseImage {
     std::string name;
     gdi::Image image;
-    gdi::Image expected;        // empty: no analytic expectation
+    gdi::Image expected;  // empty: no analytic expectation
     double absTolerance = 5.0 / 255.0;
     double maxFractionOver = 0.001;  // 8-bit rule: at most 0.1% of pixels over 5/255
     std::string toleranceReason = "8-bit target: 0.1% of pixels may differ by more than 5/255";
@@ -38,9 +38,9 @@ struct Case {
 // A check inside a case for what an image cannot show (a duration, a byte count, a feature):
 // failing it fails the case, and the message names the file and line.
 [[noreturn]] void checkFailed(const char* file, int line, const char* condition, const char* what);
-#define FE_CONFORMANCE_CHECK(condition, what)                                                       \
-    do {                                                                                            \
-        if (!(condition)) ::fe::conformance::checkFailed(__FILE__, __LINE__, #condition, what);     \
+#define FE_CONFORMANCE_CHECK(condition, what)                                                   \
+    do {                                                                                        \
+        if (!(condition)) ::fe::conformance::checkFailed(__FILE__, __LINE__, #condition, what); \
     } while (0)
 
 const std::vector<Case>& cases();

@@ -25,7 +25,9 @@ struct Vertex {
 // Cases own what they create through a DeviceObjects (CaseSupport.h says why).
 TextureHandle colorTarget(DeviceObjects& objects, Format f = Format::RGBA8) {
     return objects.add(objects.device().createTexture(
-        {.format = f, .width = kSize, .height = kSize,
+        {.format = f,
+         .width = kSize,
+         .height = kSize,
          .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled}));
 }
 
@@ -40,15 +42,19 @@ double insideness(const float* v, double px, double py) {
 
 // Expected image: listed triangles in their colour (later ones on top), background elsewhere;
 // pixels on an edge take the rendered value (coverage rules are the API's, not ours).
-Image expectTriangles(const Image& rendered, const std::vector<std::pair<std::array<float, 6>, Texel>>& tris, Texel background) {
+Image expectTriangles(const Image& rendered,
+                      const std::vector<std::pair<std::array<float, 6>, Texel>>& tris,
+                      Texel background) {
     std::vector<Texel> t(kSize * kSize, background);
     for (uint32_t y = 0; y < kSize; ++y)
         for (uint32_t x = 0; x < kSize; ++x) {
             double px = (x + 0.5) / kSize * 2 - 1, py = (y + 0.5) / kSize * 2 - 1;
             for (const auto& [v, c] : tris) {
                 double m = insideness(v.data(), px, py);
-                if (std::abs(m) < 0.03) t[y * kSize + x] = rendered.texel(x, y);
-                else if (m > 0) t[y * kSize + x] = c;
+                if (std::abs(m) < 0.03)
+                    t[y * kSize + x] = rendered.texel(x, y);
+                else if (m > 0)
+                    t[y * kSize + x] = c;
             }
         }
     return Image::fromTexels(kSize, kSize, rendered.format, t);
@@ -59,14 +65,19 @@ struct VertexColorPipeline {
     ShaderHandle vs, fs;
     GraphicsPipelineDesc desc;
     explicit VertexColorPipeline(Device& d) : objects(d) {
-        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_color.vert")}));
-        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
-        desc = {.vertexShader = vs,
-                .fragmentShader = fs,
-                .vertexBuffers = {{.stride = sizeof(Vertex),
-                                   .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
-                                  {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
-                .colorFormats = {Format::RGBA8}};
+        vs =
+            objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                        .binary = shaders::find("conformance/vertex_color.vert")}));
+        fs = objects.add(d.createShader(
+            {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+        desc = {
+            .vertexShader = vs,
+            .fragmentShader = fs,
+            .vertexBuffers =
+                {{.stride = sizeof(Vertex),
+                  .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
+                 {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
+            .colorFormats = {Format::RGBA8}};
     }
 };
 
@@ -79,9 +90,11 @@ std::vector<CaseImage> cullingWinding(Device& d) {
     std::vector<Vertex> v;
     for (int i = 0; i < 3; ++i) v.push_back({ccw[i * 2], ccw[i * 2 + 1], 1, 0, 0, 1});
     for (int i = 0; i < 3; ++i) v.push_back({cw[i * 2], cw[i * 2 + 1], 0, 1, 0, 1});
-    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
+    BufferHandle vb = objects.add(d.createBuffer(
+        {.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
     const float zero[2] = {0, 0};
-    BufferHandle ib = objects.add(d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, gdi::bytesOf(zero)));
+    BufferHandle ib =
+        objects.add(d.createBuffer({.size = 8, .usage = BufferUsage::Vertex}, gdi::bytesOf(zero)));
     std::vector<CaseImage> out;
     struct Variant {
         const char* name;
@@ -89,10 +102,11 @@ std::vector<CaseImage> cullingWinding(Device& d) {
         FrontFace face;
         bool showCcw, showCw;
     };
-    for (Variant var : {Variant{"back_ccw", CullMode::Back, FrontFace::CounterClockwise, true, false},
-                        Variant{"back_cw", CullMode::Back, FrontFace::Clockwise, false, true},
-                        Variant{"front_ccw", CullMode::Front, FrontFace::CounterClockwise, false, true},
-                        Variant{"none", CullMode::None, FrontFace::CounterClockwise, true, true}}) {
+    for (Variant var :
+         {Variant{"back_ccw", CullMode::Back, FrontFace::CounterClockwise, true, false},
+          Variant{"back_cw", CullMode::Back, FrontFace::Clockwise, false, true},
+          Variant{"front_ccw", CullMode::Front, FrontFace::CounterClockwise, false, true},
+          Variant{"none", CullMode::None, FrontFace::CounterClockwise, true, true}}) {
         DeviceObjects iteration(d);
         GraphicsPipelineDesc pd = vc.desc;
         pd.raster = {.cullMode = var.cull, .frontFace = var.face};
@@ -121,15 +135,20 @@ std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
     PipelineHandle p = objects.add(d.createGraphicsPipeline(vc.desc));
     // Four junk vertices, then a quad: indices address the quad through baseVertex = 4.
     std::vector<Vertex> v(4, Vertex{5, 5, 1, 1, 1, 1});
-    for (auto [x, y] : {std::pair{-0.9f, -0.4f}, std::pair{-0.1f, -0.4f}, std::pair{-0.9f, 0.4f}, std::pair{-0.1f, 0.4f}})
+    for (auto [x, y] : {std::pair{-0.9f, -0.4f}, std::pair{-0.1f, -0.4f}, std::pair{-0.9f, 0.4f},
+                        std::pair{-0.1f, 0.4f}})
         v.push_back({x, y, 0.25f, 0.5f, 1.0f, 1});
-    BufferHandle vb = objects.add(d.createBuffer({.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
+    BufferHandle vb = objects.add(d.createBuffer(
+        {.size = v.size() * sizeof(Vertex), .usage = BufferUsage::Vertex}, gdi::bytesOf(v)));
     const float offsets[4] = {0, 0, 1.0f, 0};  // two instances: left and right half
-    BufferHandle inst = objects.add(d.createBuffer({.size = sizeof offsets, .usage = BufferUsage::Vertex}, gdi::bytesOf(offsets)));
+    BufferHandle inst = objects.add(d.createBuffer(
+        {.size = sizeof offsets, .usage = BufferUsage::Vertex}, gdi::bytesOf(offsets)));
     const uint16_t i16[6] = {0, 1, 2, 2, 1, 3};
     const uint32_t i32[6] = {0, 1, 2, 2, 1, 3};
-    BufferHandle b16 = objects.add(d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, gdi::bytesOf(i16)));
-    BufferHandle b32 = objects.add(d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, gdi::bytesOf(i32)));
+    BufferHandle b16 = objects.add(
+        d.createBuffer({.size = sizeof i16, .usage = BufferUsage::Index}, gdi::bytesOf(i16)));
+    BufferHandle b32 = objects.add(
+        d.createBuffer({.size = sizeof i32, .usage = BufferUsage::Index}, gdi::bytesOf(i32)));
     std::vector<CaseImage> out;
     for (bool wide : {false, true}) {
         DeviceObjects iteration(d);
@@ -158,7 +177,8 @@ std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
                 double px = (x + 0.5) / kSize * 2 - 1, py = (y + 0.5) / kSize * 2 - 1;
                 bool inside = false, edge = false;
                 for (float o : {0.0f, 1.0f}) {
-                    double dx = std::min(px - (-0.9 + o), (-0.1 + o) - px), dy = std::min(py + 0.4, 0.4 - py);
+                    double dx = std::min(px - (-0.9 + o), (-0.1 + o) - px),
+                           dy = std::min(py + 0.4, 0.4 - py);
                     double m = std::min(dx, dy);
                     inside = inside || m > 0.03;
                     edge = edge || std::abs(m) <= 0.03;
@@ -166,7 +186,8 @@ std::vector<CaseImage> indexedInstancedBaseVertex(Device& d) {
                 e[y * kSize + x] = inside ? c : edge ? img.texel(x, y) : Texel{0, 0, 0, 1};
             }
         (void)expected;
-        out.push_back({wide ? "u32_indices" : "u16_indices", img, Image::fromTexels(kSize, kSize, Format::RGBA8, e)});
+        out.push_back({wide ? "u32_indices" : "u16_indices", img,
+                       Image::fromTexels(kSize, kSize, Format::RGBA8, e)});
     }
     return out;
 }
@@ -178,23 +199,31 @@ struct Params {
 
 std::vector<CaseImage> scissorViewportStencil(Device& d) {
     DeviceObjects objects(d);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
-    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
+    auto vs =
+        objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                    .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
+    const std::vector<BindingSlot> slots = {
+        {0, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
     Params params{{1, 0.5f, 0, 1}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+    BufferHandle ubo = objects.add(d.createBuffer(
+        {.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
     std::vector<CaseImage> out;
     auto rectImage = [&](Rect r, Texel inside) {
         std::vector<Texel> t(kSize * kSize, Texel{0, 0, 0, 1});
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x)
-                if (int(x) >= r.x && x < r.x + r.width && int(y) >= r.y && y < r.y + r.height) t[y * kSize + x] = inside;
+                if (int(x) >= r.x && x < r.x + r.width && int(y) >= r.y && y < r.y + r.height)
+                    t[y * kSize + x] = inside;
         return Image::fromTexels(kSize, kSize, Format::RGBA8, t);
     };
     const Texel orange{1, 0.5f, 0, 1};
     {
-        PipelineHandle p = objects.add(
-            d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}, .bindings = slots}));
+        PipelineHandle p = objects.add(d.createGraphicsPipeline({.vertexShader = vs,
+                                                                 .fragmentShader = fs,
+                                                                 .colorFormats = {Format::RGBA8},
+                                                                 .bindings = slots}));
         for (int mode = 0; mode < 2; ++mode) {
             TextureHandle t = colorTarget(objects);
             auto cmd = d.createCommandList();
@@ -212,27 +241,36 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
             cmd->draw(3);
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
-            out.push_back({mode == 0 ? "scissor" : "viewport", d.readTexture(t), rectImage(expect, orange)});
+            out.push_back(
+                {mode == 0 ? "scissor" : "viewport", d.readTexture(t), rectImage(expect, orange)});
         }
     }
     {
         // Stencil: write 1 inside a scissor rect with colour writes off, then colour where == 1.
         TextureHandle t = colorTarget(objects);
-        TextureHandle ds = objects.add(
-            d.createTexture({.format = Format::D24S8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget}));
-        GraphicsPipelineDesc write{.vertexShader = vs, .fragmentShader = fs,
-                                   .depthStencil = {.stencilTest = true,
-                                                    .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
-                                                    .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
-                                                    .stencilReference = 1},
-                                   .blend = {{.writeMask = ColorMask::None}},
-                                   .colorFormats = {Format::RGBA8}, .depthFormat = Format::D24S8, .bindings = slots};
+        TextureHandle ds = objects.add(d.createTexture({.format = Format::D24S8,
+                                                        .width = kSize,
+                                                        .height = kSize,
+                                                        .usage = TextureUsage::RenderTarget}));
+        GraphicsPipelineDesc write{
+            .vertexShader = vs,
+            .fragmentShader = fs,
+            .depthStencil = {.stencilTest = true,
+                             .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                             .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
+                             .stencilReference = 1},
+            .blend = {{.writeMask = ColorMask::None}},
+            .colorFormats = {Format::RGBA8},
+            .depthFormat = Format::D24S8,
+            .bindings = slots};
         GraphicsPipelineDesc test = write;
         test.depthStencil.front = test.depthStencil.back = {.compare = CompareOp::Equal};
         test.blend = {};
-        PipelineHandle pw = objects.add(d.createGraphicsPipeline(write)), pt = objects.add(d.createGraphicsPipeline(test));
+        PipelineHandle pw = objects.add(d.createGraphicsPipeline(write)),
+                       pt = objects.add(d.createGraphicsPipeline(test));
         auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}, .depth = {.texture = ds}});
+        cmd->beginRenderPass(
+            {.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}, .depth = {.texture = ds}});
         cmd->setPipeline(pw);
         cmd->setUniformBuffer(0, ubo);
         const Rect r{10, 20, 30, 12};
@@ -250,13 +288,20 @@ std::vector<CaseImage> scissorViewportStencil(Device& d) {
 
 std::vector<CaseImage> mrtMixedFormats(Device& d) {
     DeviceObjects objects(d);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")}));
+    auto vs =
+        objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                    .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/mrt.frag")}));
     Params params{{0, 0, 0, 0}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
-    const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F, Format::R32F};
+    BufferHandle ubo = objects.add(d.createBuffer(
+        {.size = sizeof params, .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+    const std::vector<Format> formats = {Format::RGBA8, Format::RGBA16F, Format::RG16F,
+                                         Format::R32F};
     PipelineHandle p = objects.add(d.createGraphicsPipeline(
-        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = formats,
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = formats,
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex}}}));
     std::vector<TextureHandle> ts;
     RenderPassDesc rp;
@@ -271,15 +316,21 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
     cmd->draw(3);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    const Texel values[4] = {{0.2f, 0.4f, 0.6f, 0.8f}, {1.5f, -2.0f, 3.25f, 1.0f}, {0.125f, 4.5f, 0, 1}, {-7.75f, 0, 0, 1}};
+    const Texel values[4] = {{0.2f, 0.4f, 0.6f, 0.8f},
+                             {1.5f, -2.0f, 3.25f, 1.0f},
+                             {0.125f, 4.5f, 0, 1},
+                             {-7.75f, 0, 0, 1}};
     std::vector<CaseImage> out;
     for (size_t i = 0; i < formats.size(); ++i) {
-        CaseImage ci{"target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name), d.readTexture(ts[i]),
-                     Image::fromTexels(kSize, kSize, formats[i], std::vector<Texel>(kSize * kSize, values[i]))};
+        CaseImage ci{"target" + std::to_string(i) + "_" + std::string(formatInfo(formats[i]).name),
+                     d.readTexture(ts[i]),
+                     Image::fromTexels(kSize, kSize, formats[i],
+                                       std::vector<Texel>(kSize * kSize, values[i]))};
         if (formatInfo(formats[i]).isFloat) {
             ci.absTolerance = 1e-3;
             ci.maxFractionOver = 0;
-            ci.toleranceReason = "values exact in the target's float format: 1e-3 absolute, no pixel over";
+            ci.toleranceReason =
+                "values exact in the target's float format: 1e-3 absolute, no pixel over";
         }
         out.push_back(ci);
     }
@@ -288,13 +339,19 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
 
 std::vector<CaseImage> computeBufferAndImage(Device& d) {
     DeviceObjects objects(d);
-    auto cs = objects.add(d.createShader({.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")}));
-    PipelineHandle p = objects.add(d.createComputePipeline({.computeShader = cs,
-                                                            .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
-                                                                         {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
-    BufferHandle buf = objects.add(d.createBuffer({.size = kSize * kSize * 4, .usage = BufferUsage::Storage}));
-    TextureHandle img = objects.add(d.createTexture({.format = Format::RGBA32F, .width = kSize, .height = kSize,
-                                                     .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
+    auto cs = objects.add(d.createShader(
+        {.stage = ShaderStage::Compute, .binary = shaders::find("conformance/fill.comp")}));
+    PipelineHandle p = objects.add(d.createComputePipeline(
+        {.computeShader = cs,
+         .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                      {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
+    BufferHandle buf =
+        objects.add(d.createBuffer({.size = kSize * kSize * 4, .usage = BufferUsage::Storage}));
+    TextureHandle img =
+        objects.add(d.createTexture({.format = Format::RGBA32F,
+                                     .width = kSize,
+                                     .height = kSize,
+                                     .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
     auto cmd = d.createCommandList();
     cmd->setPipeline(p);
     cmd->setStorageBuffer(0, buf);
@@ -302,7 +359,8 @@ std::vector<CaseImage> computeBufferAndImage(Device& d) {
     cmd->dispatch(kSize / 8, kSize / 8);
     d.wait(d.submit(*cmd));
     std::vector<uint8_t> bytes = d.readBuffer(buf, 0, kSize * kSize * 4);
-    FE_CONFORMANCE_CHECK(bytes.size() == kSize * kSize * 4, "readBuffer returns the bytes asked for");
+    FE_CONFORMANCE_CHECK(bytes.size() == kSize * kSize * 4,
+                         "readBuffer returns the bytes asked for");
     Image values{kSize, kSize, Format::R32U, bytes};
     std::vector<Texel> ev, ei;
     for (uint32_t y = 0; y < kSize; ++y)
@@ -326,7 +384,8 @@ std::vector<CaseImage> copies(Device& d) {
     for (size_t i = 0; i < pattern.size(); ++i) pattern[i] = uint8_t((i * 37) ^ (i >> 7));
     const uint64_t bytes = pattern.size();
     DeviceObjects objects(d);
-    BufferHandle src = objects.add(d.createBuffer({.size = bytes + 256})), mid = objects.add(d.createBuffer({.size = bytes})),
+    BufferHandle src = objects.add(d.createBuffer({.size = bytes + 256})),
+                 mid = objects.add(d.createBuffer({.size = bytes})),
                  dst = objects.add(d.createBuffer({.size = bytes}));
     d.writeBuffer(src, 256, gdi::bytesOf(pattern));
     TextureHandle a = objects.add(d.createTexture({.width = kSize, .height = kSize})),
@@ -340,7 +399,8 @@ std::vector<CaseImage> copies(Device& d) {
     Image expected{kSize, kSize, Format::RGBA8, pattern};
     std::vector<uint8_t> roundTrip = d.readBuffer(dst, 0, bytes);
     FE_CONFORMANCE_CHECK(roundTrip.size() == bytes, "readBuffer returns the bytes asked for");
-    CaseImage ci{"buffer_texture_roundtrip", Image{kSize, kSize, Format::RGBA8, std::move(roundTrip)}, expected};
+    CaseImage ci{"buffer_texture_roundtrip",
+                 Image{kSize, kSize, Format::RGBA8, std::move(roundTrip)}, expected};
     ci.absTolerance = 0;
     ci.maxFractionOver = 0;
     ci.toleranceReason = "copies are exact";
@@ -361,7 +421,9 @@ CaseImage exactFloat(std::string name, Image img, Image expected, double tol, co
     return ci;
 }
 
-Image solidImage(Format f, Texel c) { return Image::fromTexels(kSize, kSize, f, std::vector<Texel>(kSize * kSize, c)); }
+Image solidImage(Format f, Texel c) {
+    return Image::fromTexels(kSize, kSize, f, std::vector<Texel>(kSize * kSize, c));
+}
 
 uint16_t toHalf(float f) {  // exact for the small values used below
     Image one = Image::fromTexels(1, 1, Format::R16F, {{f, 0, 0, 1}});
@@ -372,9 +434,12 @@ uint16_t toHalf(float f) {  // exact for the small values used below
 
 std::vector<CaseImage> vertexFormats(Device& d) {
     DeviceObjects objects(d);
-    auto vsF = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_attr.vert")}));
-    auto vsU = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_uint.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/value.frag")}));
+    auto vsF = objects.add(d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_attr.vert")}));
+    auto vsU = objects.add(d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/vertex_uint.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/value.frag")}));
     std::vector<CaseImage> out;
     for (int fi = 0; fi < int(VertexFormat::Count); ++fi) {
         const VertexFormat vf = VertexFormat(fi);
@@ -385,11 +450,15 @@ std::vector<CaseImage> vertexFormats(Device& d) {
         const float v[4] = {0.25f, 0.5f, -0.5f, 0.75f};
         const uint32_t n = vertexFormatInfo(vf).components;
         switch (vf) {
-            case VertexFormat::Float: case VertexFormat::Float2: case VertexFormat::Float3: case VertexFormat::Float4:
+            case VertexFormat::Float:
+            case VertexFormat::Float2:
+            case VertexFormat::Float3:
+            case VertexFormat::Float4:
                 std::memcpy(attr, v, n * 4);
                 for (uint32_t c = 0; c < n; ++c) expect[c] = v[c];
                 break;
-            case VertexFormat::Half2: case VertexFormat::Half4:
+            case VertexFormat::Half2:
+            case VertexFormat::Half4:
                 for (uint32_t c = 0; c < n; ++c) {
                     uint16_t h = toHalf(v[c]);
                     std::memcpy(attr + 2 * c, &h, 2);
@@ -397,16 +466,31 @@ std::vector<CaseImage> vertexFormats(Device& d) {
                 }
                 break;
             case VertexFormat::UNorm8x4:
-                for (int c = 0; c < 4; ++c) { attr[c] = uint8_t(std::lround(std::fabs(v[c]) * 255)); expect[c] = attr[c] / 255.0f; }
+                for (int c = 0; c < 4; ++c) {
+                    attr[c] = uint8_t(std::lround(std::fabs(v[c]) * 255));
+                    expect[c] = attr[c] / 255.0f;
+                }
                 break;
             case VertexFormat::SNorm8x4:
-                for (int c = 0; c < 4; ++c) { int8_t q = int8_t(std::lround(v[c] * 127)); std::memcpy(attr + c, &q, 1); expect[c] = std::max(q / 127.0f, -1.0f); }
+                for (int c = 0; c < 4; ++c) {
+                    int8_t q = int8_t(std::lround(v[c] * 127));
+                    std::memcpy(attr + c, &q, 1);
+                    expect[c] = std::max(q / 127.0f, -1.0f);
+                }
                 break;
             case VertexFormat::UNorm16x2:
-                for (int c = 0; c < 2; ++c) { uint16_t q = uint16_t(std::lround(std::fabs(v[c]) * 65535)); std::memcpy(attr + 2 * c, &q, 2); expect[c] = q / 65535.0f; }
+                for (int c = 0; c < 2; ++c) {
+                    uint16_t q = uint16_t(std::lround(std::fabs(v[c]) * 65535));
+                    std::memcpy(attr + 2 * c, &q, 2);
+                    expect[c] = q / 65535.0f;
+                }
                 break;
             case VertexFormat::SNorm16x2:
-                for (int c = 0; c < 2; ++c) { int16_t q = int16_t(std::lround(-v[c] * 32767)); std::memcpy(attr + 2 * c, &q, 2); expect[c] = q / 32767.0f; }
+                for (int c = 0; c < 2; ++c) {
+                    int16_t q = int16_t(std::lround(-v[c] * 32767));
+                    std::memcpy(attr + 2 * c, &q, 2);
+                    expect[c] = q / 32767.0f;
+                }
                 break;
             case VertexFormat::UInt32: {
                 uint32_t q = 625;
@@ -414,7 +498,8 @@ std::vector<CaseImage> vertexFormats(Device& d) {
                 expect = {0.625f, 0, 0, 1};
                 break;
             }
-            default: break;
+            default:
+                break;
         }
         const uint32_t stride = 8 + 16;
         std::vector<uint8_t> vb(3 * stride);
@@ -424,10 +509,13 @@ std::vector<CaseImage> vertexFormats(Device& d) {
             std::memcpy(&vb[i * stride + 8], attr, 16);
         }
         DeviceObjects iteration(d);
-        BufferHandle b = iteration.add(d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, gdi::bytesOf(vb)));
+        BufferHandle b = iteration.add(
+            d.createBuffer({.size = vb.size(), .usage = BufferUsage::Vertex}, gdi::bytesOf(vb)));
         PipelineHandle p = iteration.add(d.createGraphicsPipeline(
-            {.vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF, .fragmentShader = fs,
-             .vertexBuffers = {{.stride = stride, .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
+            {.vertexShader = vf == VertexFormat::UInt32 ? vsU : vsF,
+             .fragmentShader = fs,
+             .vertexBuffers = {{.stride = stride,
+                                .attributes = {{0, VertexFormat::Float2, 0}, {1, vf, 8}}}},
              .colorFormats = {Format::RGBA32F}}));
         TextureHandle t = colorTarget(iteration, Format::RGBA32F);
         auto cmd = d.createCommandList();
@@ -437,8 +525,9 @@ std::vector<CaseImage> vertexFormats(Device& d) {
         cmd->draw(3);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(exactFloat(std::string(vertexFormatInfo(vf).name), d.readTexture(t), solidImage(Format::RGBA32F, expect),
-                                 1e-5, "attribute decode is exact up to float rounding"));
+        out.push_back(exactFloat(std::string(vertexFormatInfo(vf).name), d.readTexture(t),
+                                 solidImage(Format::RGBA32F, expect), 1e-5,
+                                 "attribute decode is exact up to float rounding"));
     }
     return out;
 }
@@ -449,9 +538,13 @@ struct FullScreen {
     ShaderHandle vs, fs;
     BufferHandle ubo;
     FullScreen(Device& d, const char* fragment, Params params) : objects(d) {
-        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)}));
-        ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params)));
+        vs = objects.add(
+            d.createShader({.stage = ShaderStage::Vertex,
+                            .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+        fs = objects.add(
+            d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find(fragment)}));
+        ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform},
+                                         gdi::bytesOf(params)));
     }
 };
 
@@ -459,9 +552,12 @@ std::vector<CaseImage> storageBufferInFragment(Device& d) {
     FullScreen fsq(d, "conformance/ssbo_read.frag", {{0, 0, 0, 0}, {0.5f, 0, 0, 0}});
     DeviceObjects objects(d);
     const float colors[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 0.5f, 0.25f, 0.125f, 1};
-    BufferHandle ssbo = objects.add(d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Storage}, gdi::bytesOf(colors)));
+    BufferHandle ssbo = objects.add(d.createBuffer(
+        {.size = sizeof colors, .usage = BufferUsage::Storage}, gdi::bytesOf(colors)));
     PipelineHandle p = objects.add(d.createGraphicsPipeline(
-        {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+        {.vertexShader = fsq.vs,
+         .fragmentShader = fsq.fs,
+         .colorFormats = {Format::RGBA32F},
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
                       {2, BindingType::StorageBuffer, ShaderStage::Fragment}}}));
     TextureHandle t = colorTarget(objects, Format::RGBA32F);
@@ -475,8 +571,12 @@ std::vector<CaseImage> storageBufferInFragment(Device& d) {
     d.wait(d.submit(*cmd));
     std::vector<Texel> e;
     for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) e.push_back({colors[(x / 16) * 4], colors[(x / 16) * 4 + 1], colors[(x / 16) * 4 + 2], 1});
-    CaseImage ci = exactFloat("columns", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-6, "copied floats: exact");
+        for (uint32_t x = 0; x < kSize; ++x)
+            e.push_back(
+                {colors[(x / 16) * 4], colors[(x / 16) * 4 + 1], colors[(x / 16) * 4 + 2], 1});
+    CaseImage ci =
+        exactFloat("columns", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e),
+                   1e-6, "copied floats: exact");
     return {ci};
 }
 
@@ -500,16 +600,22 @@ std::vector<CaseImage> samplingModes(Device& d) {
         px[i * 4 + 3] = 255;
     }
     DeviceObjects objects(d);
-    TextureHandle tex = objects.add(d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4}));
+    TextureHandle tex =
+        objects.add(d.createTexture({.format = Format::RGBA8, .width = 4, .height = 4}));
     d.writeTexture(tex, {}, gdi::bytesOf(px));
-    for (AddressMode mode : {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge}) {
+    for (AddressMode mode :
+         {AddressMode::Repeat, AddressMode::MirroredRepeat, AddressMode::ClampToEdge}) {
         // uv = pixel/64 * 3 - 1: texel centres of the magnified texture land on pixel centres.
         FullScreen fsq(d, "conformance/textured_uv.frag", {{3, 3, -1, -1}, {0.5f, 0, 0, 0}});
         DeviceObjects iteration(d);
-        SamplerHandle smp = iteration.add(
-            d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .addressU = mode, .addressV = mode}));
+        SamplerHandle smp = iteration.add(d.createSampler({.minFilter = Filter::Nearest,
+                                                           .magFilter = Filter::Nearest,
+                                                           .addressU = mode,
+                                                           .addressV = mode}));
         PipelineHandle p = iteration.add(d.createGraphicsPipeline(
-            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+            {.vertexShader = fsq.vs,
+             .fragmentShader = fsq.fs,
+             .colorFormats = {Format::RGBA32F},
              .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                           {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
         TextureHandle t = colorTarget(iteration, Format::RGBA32F);
@@ -532,23 +638,31 @@ std::vector<CaseImage> samplingModes(Device& d) {
                     e.push_back(img.texel(x, y));
                     continue;
                 }
-                int tx = std::min(3, int(wrapCoord(u, mode) * 4)), ty = std::min(3, int(wrapCoord(v, mode) * 4));
+                int tx = std::min(3, int(wrapCoord(u, mode) * 4)),
+                    ty = std::min(3, int(wrapCoord(v, mode) * 4));
                 const uint8_t* s = &px[(ty * 4 + tx) * 4];
                 e.push_back({s[0] / 255.0f, s[1] / 255.0f, s[2] / 255.0f, 1});
             }
-        const char* name = mode == AddressMode::Repeat ? "nearest_repeat" : mode == AddressMode::MirroredRepeat ? "nearest_mirrored" : "nearest_clamp";
-        out.push_back(exactFloat(name, img, Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 1e-3, "8-bit texels: 1e-3 absolute"));
+        const char* name = mode == AddressMode::Repeat           ? "nearest_repeat"
+                           : mode == AddressMode::MirroredRepeat ? "nearest_mirrored"
+                                                                 : "nearest_clamp";
+        out.push_back(exactFloat(name, img, Image::fromTexels(kSize, kSize, Format::RGBA32F, e),
+                                 1e-3, "8-bit texels: 1e-3 absolute"));
     }
     // Linear filtering: a 2x2 texture magnified over the target with clamping: bilinear ramps.
     {
         FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
         DeviceObjects linear(d);
         const uint8_t q[16] = {0, 0, 0, 255, 255, 0, 0, 255, 0, 255, 0, 255, 255, 255, 255, 255};
-        TextureHandle t2 = linear.add(d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2}));
+        TextureHandle t2 =
+            linear.add(d.createTexture({.format = Format::RGBA8, .width = 2, .height = 2}));
         d.writeTexture(t2, {}, gdi::bytesOf(q));
-        SamplerHandle smp = linear.add(d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
+        SamplerHandle smp = linear.add(d.createSampler(
+            {.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
         PipelineHandle p = linear.add(d.createGraphicsPipeline(
-            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+            {.vertexShader = fsq.vs,
+             .fragmentShader = fsq.fs,
+             .colorFormats = {Format::RGBA32F},
              .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                           {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
         TextureHandle t = colorTarget(linear, Format::RGBA32F);
@@ -563,17 +677,22 @@ std::vector<CaseImage> samplingModes(Device& d) {
         std::vector<Texel> e;
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x) {
-                double a = std::clamp((x + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0), b = std::clamp((y + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0);
-                double r = (1 - b) * a + b * a, g = b, bl = a * b;  // corners: (0,0,0) (1,0,0) / (0,1,0) (1,1,1)
+                double a = std::clamp((x + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0),
+                       b = std::clamp((y + 0.5) / 64.0 * 2 - 0.5, 0.0, 1.0);
+                double r = (1 - b) * a + b * a, g = b,
+                       bl = a * b;  // corners: (0,0,0) (1,0,0) / (0,1,0) (1,1,1)
                 e.push_back({float(r), float(g), float(bl), 1});
             }
-        out.push_back(exactFloat("linear_clamp", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e), 0.01,
-                                 "filter weights have limited sub-texel precision (8 bits on llvmpipe): 0.01 absolute"));
+        out.push_back(exactFloat(
+            "linear_clamp", d.readTexture(t), Image::fromTexels(kSize, kSize, Format::RGBA32F, e),
+            0.01,
+            "filter weights have limited sub-texel precision (8 bits on llvmpipe): 0.01 absolute"));
     }
     // Mipmaps: each level uploaded with its own colour, chosen by an explicit level of detail.
     {
         DeviceObjects mips(d);
-        TextureHandle mip = mips.add(d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .mipLevels = 4}));
+        TextureHandle mip = mips.add(
+            d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .mipLevels = 4}));
         const Texel levels[4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}};
         for (uint32_t l = 0; l < 4; ++l) {
             uint32_t s = 8 >> l;
@@ -582,10 +701,13 @@ std::vector<CaseImage> samplingModes(Device& d) {
         }
         SamplerHandle smp = mips.add(d.createSampler({.mipFilter = MipFilter::Nearest}));
         for (uint32_t l = 0; l < 4; ++l) {
-            FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, float(l), 0, 0}});
+            FullScreen fsq(d, "conformance/textured_uv.frag",
+                           {{1, 1, 0, 0}, {0.5f, float(l), 0, 0}});
             DeviceObjects level(d);
             PipelineHandle p = level.add(d.createGraphicsPipeline(
-                {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA32F},
+                {.vertexShader = fsq.vs,
+                 .fragmentShader = fsq.fs,
+                 .colorFormats = {Format::RGBA32F},
                  .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                               {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
             TextureHandle t = colorTarget(level, Format::RGBA32F);
@@ -597,7 +719,8 @@ std::vector<CaseImage> samplingModes(Device& d) {
             cmd->draw(3);
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
-            out.push_back(exactFloat("mip_level_" + std::to_string(l), d.readTexture(t), solidImage(Format::RGBA32F, levels[l]), 1e-3,
+            out.push_back(exactFloat("mip_level_" + std::to_string(l), d.readTexture(t),
+                                     solidImage(Format::RGBA32F, levels[l]), 1e-3,
                                      "solid 8-bit level: 1e-3 absolute"));
         }
     }
@@ -609,13 +732,18 @@ std::vector<CaseImage> renderToTextureThenSample(Device& d) {
     FullScreen fsq(d, "conformance/textured_uv.frag", {{1, 1, 0, 0}, {0.5f, 0, 0, 0}});
     DeviceObjects objects(d);
     TextureHandle a = colorTarget(objects), b = colorTarget(objects);
-    auto vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
-    auto fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
-    PipelineHandle tri = objects.add(
-        d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
-    SamplerHandle smp = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
+    auto vs = objects.add(d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")}));
+    PipelineHandle tri = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}}));
+    SamplerHandle smp =
+        objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
     PipelineHandle copy = objects.add(d.createGraphicsPipeline(
-        {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .colorFormats = {Format::RGBA8},
+        {.vertexShader = fsq.vs,
+         .fragmentShader = fsq.fs,
+         .colorFormats = {Format::RGBA8},
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                       {1, BindingType::SampledTexture, ShaderStage::Fragment}}}));
     auto cmd = d.createCommandList();
@@ -647,31 +775,50 @@ std::vector<CaseImage> blendModes(Device& d) {
         Texel expect;
     };
     const Mode modes[] = {
-        {"alpha", {.enable = true, .srcColor = BlendFactor::SrcAlpha, .dstColor = BlendFactor::OneMinusSrcAlpha,
-                   .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero},
-         {0.25f * 0.25f + 0.5f * 0.75f, 0.75f * 0.25f + 0.25f * 0.75f, 0.5f * 0.25f + 1.0f * 0.75f, 0.25f}},
-        {"min", {.enable = true, .colorOp = BlendOp::Min, .alphaOp = BlendOp::Min}, {0.25f, 0.25f, 0.5f, 0.25f}},
-        {"max", {.enable = true, .colorOp = BlendOp::Max, .alphaOp = BlendOp::Max}, {0.5f, 0.75f, 1.0f, 1.0f}},
-        {"reverse_subtract", {.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
-                              .colorOp = BlendOp::ReverseSubtract, .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero},
+        {"alpha",
+         {.enable = true,
+          .srcColor = BlendFactor::SrcAlpha,
+          .dstColor = BlendFactor::OneMinusSrcAlpha,
+          .srcAlpha = BlendFactor::One,
+          .dstAlpha = BlendFactor::Zero},
+         {0.25f * 0.25f + 0.5f * 0.75f, 0.75f * 0.25f + 0.25f * 0.75f, 0.5f * 0.25f + 1.0f * 0.75f,
+          0.25f}},
+        {"min",
+         {.enable = true, .colorOp = BlendOp::Min, .alphaOp = BlendOp::Min},
+         {0.25f, 0.25f, 0.5f, 0.25f}},
+        {"max",
+         {.enable = true, .colorOp = BlendOp::Max, .alphaOp = BlendOp::Max},
+         {0.5f, 0.75f, 1.0f, 1.0f}},
+        {"reverse_subtract",
+         {.enable = true,
+          .srcColor = BlendFactor::One,
+          .dstColor = BlendFactor::One,
+          .colorOp = BlendOp::ReverseSubtract,
+          .srcAlpha = BlendFactor::One,
+          .dstAlpha = BlendFactor::Zero},
          {0.25f, -0.5f, 0.5f, 0.25f}},
     };
     for (const Mode& m : modes) {
-        FullScreen fsq(d, "conformance/ubo_color.frag", {{src[0], src[1], src[2], src[3]}, {0.5f, 0, 0, 0}});
+        FullScreen fsq(d, "conformance/ubo_color.frag",
+                       {{src[0], src[1], src[2], src[3]}, {0.5f, 0, 0, 0}});
         DeviceObjects iteration(d);
         PipelineHandle p = iteration.add(d.createGraphicsPipeline(
-            {.vertexShader = fsq.vs, .fragmentShader = fsq.fs, .blend = {m.state}, .colorFormats = {Format::RGBA16F},
+            {.vertexShader = fsq.vs,
+             .fragmentShader = fsq.fs,
+             .blend = {m.state},
+             .colorFormats = {Format::RGBA16F},
              .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}}));
         TextureHandle t = colorTarget(iteration, Format::RGBA16F);
         auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {dst[0], dst[1], dst[2], dst[3]}}}});
+        cmd->beginRenderPass(
+            {.colors = {{.texture = t, .clear = {dst[0], dst[1], dst[2], dst[3]}}}});
         cmd->setPipeline(p);
         cmd->setUniformBuffer(0, fsq.ubo);
         cmd->draw(3);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(exactFloat(m.name, d.readTexture(t), solidImage(Format::RGBA16F, m.expect), 2e-3,
-                                 "half-float target: 2e-3 absolute"));
+        out.push_back(exactFloat(m.name, d.readTexture(t), solidImage(Format::RGBA16F, m.expect),
+                                 2e-3, "half-float target: 2e-3 absolute"));
     }
     return out;
 }

@@ -26,7 +26,8 @@ using namespace gdi;
 
 namespace {
 
-constexpr TextureUsage kTarget = TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled;
+constexpr TextureUsage kTarget =
+    TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::Sampled;
 constexpr Rect kWhole{0, 0, kCaseSize, kCaseSize};
 
 // The uniform block of fullscreen_ubo.vert, ubo_color.frag and textured_uv.frag.
@@ -34,25 +35,34 @@ struct Params {
     float color[4];  // ubo_color.frag: the colour; textured_uv.frag: uv scale (xy) and offset (zw)
     float depth[4];  // x: the triangle's depth; y: textured_uv.frag's level of detail
 };
-Params paramsOf(Texel color, float lod = 0) { return {{color[0], color[1], color[2], color[3]}, {0.5f, lod, 0, 0}}; }
+Params paramsOf(Texel color, float lod = 0) {
+    return {{color[0], color[1], color[2], color[3]}, {0.5f, lod, 0, 0}};
+}
 
 // An 8-bit colour: k/255 survives the float-to-unorm conversion of clears and draws.
-Texel rgb8(uint32_t r, uint32_t g, uint32_t b) { return {r / 255.0f, g / 255.0f, b / 255.0f, 1.0f}; }
+Texel rgb8(uint32_t r, uint32_t g, uint32_t b) {
+    return {r / 255.0f, g / 255.0f, b / 255.0f, 1.0f};
+}
 const Texel kBlack = rgb8(0, 0, 0);
 
 TextureHandle target(DeviceObjects& objects) {
-    return objects.add(objects.device().createTexture(
-        {.width = kCaseSize, .height = kCaseSize, .usage = kTarget, .debugName = "execution target"}));
+    return objects.add(objects.device().createTexture({.width = kCaseSize,
+                                                       .height = kCaseSize,
+                                                       .usage = kTarget,
+                                                       .debugName = "execution target"}));
 }
 
 void beginPass(CommandList& cmd, TextureHandle t, Texel clear, LoadOp load = LoadOp::Clear) {
-    cmd.beginRenderPass({.colors = {{.texture = t, .load = load, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
+    cmd.beginRenderPass(
+        {.colors = {
+             {.texture = t, .load = load, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
 }
 
 // `background`, with `inside` over rectangle r.
 Image rectImage(Texel background, Rect r, Texel inside) {
     return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t y) {
-        const bool in = int32_t(x) >= r.x && x < r.x + r.width && int32_t(y) >= r.y && y < r.y + r.height;
+        const bool in =
+            int32_t(x) >= r.x && x < r.x + r.width && int32_t(y) >= r.y && y < r.y + r.height;
         return in ? inside : background;
     });
 }
@@ -65,14 +75,16 @@ Image bandsImage() {
 Rect band(uint32_t f) { return {int32_t(8 * f), 0, 8, kCaseSize}; }
 
 CaseImage rendered(const std::string& name, Image image, Image expected) {
-    return within(name, std::move(image), std::move(expected), 1.0 / 255.0,
-                  "k/255 colours cleared or drawn into an 8-bit target: one step of float-to-unorm rounding");
+    return within(
+        name, std::move(image), std::move(expected), 1.0 / 255.0,
+        "k/255 colours cleared or drawn into an 8-bit target: one step of float-to-unorm rounding");
 }
 
 template <class T>
 std::vector<uint8_t> bytesVector(const T& value) {
     const ByteSpan b = bytesOf(value);
-    return {reinterpret_cast<const uint8_t*>(b.data()), reinterpret_cast<const uint8_t*>(b.data() + b.size())};
+    return {reinterpret_cast<const uint8_t*>(b.data()),
+            reinterpret_cast<const uint8_t*>(b.data() + b.size())};
 }
 
 // fullscreen_ubo.vert + ubo_color.frag into RGBA8: a full-screen triangle in its uniform
@@ -82,17 +94,26 @@ struct ColorDraw {
     ShaderHandle vs, fs;
     PipelineHandle pipeline;
     explicit ColorDraw(Device& d) : objects(d) {
-        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
-        pipeline = objects.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
-                                                         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
-                                                         .debugName = "execution colour"}));
+        vs = objects.add(
+            d.createShader({.stage = ShaderStage::Vertex,
+                            .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment,
+                                         .binary = shaders::find("conformance/ubo_color.frag")}));
+        pipeline = objects.add(d.createGraphicsPipeline(
+            {.vertexShader = vs,
+             .fragmentShader = fs,
+             .colorFormats = {Format::RGBA8},
+             .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
+             .debugName = "execution colour"}));
     }
     // A GpuOnly uniform block of colour c, owned by `owner`.
     BufferHandle params(DeviceObjects& owner, Texel c) const {
         const Params p = paramsOf(c);
-        return owner.add(owner.device().createBuffer(
-            {.size = sizeof p, .usage = BufferUsage::Uniform | BufferUsage::CopyDst, .debugName = "colour"}, bytesOf(p)));
+        return owner.add(
+            owner.device().createBuffer({.size = sizeof p,
+                                         .usage = BufferUsage::Uniform | BufferUsage::CopyDst,
+                                         .debugName = "colour"},
+                                        bytesOf(p)));
     }
     // Inside a pass: the block at `offset` of `ubo` over `rect`.
     void draw(CommandList& cmd, BufferHandle ubo, Rect rect, uint64_t offset = 0) const {
@@ -110,20 +131,28 @@ struct TexturedDraw {
     ShaderHandle vs, fs;
     SamplerHandle nearest;  // base level only (MipFilter::None), clamped
     explicit TexturedDraw(Device& d) : objects(d) {
-        vs = objects.add(d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
-        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured_uv.frag")}));
-        nearest = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest,
-                                               .addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
+        vs = objects.add(
+            d.createShader({.stage = ShaderStage::Vertex,
+                            .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+        fs = objects.add(d.createShader({.stage = ShaderStage::Fragment,
+                                         .binary = shaders::find("conformance/textured_uv.frag")}));
+        nearest = objects.add(d.createSampler({.minFilter = Filter::Nearest,
+                                               .magFilter = Filter::Nearest,
+                                               .addressU = AddressMode::ClampToEdge,
+                                               .addressV = AddressMode::ClampToEdge}));
     }
     GraphicsPipelineDesc desc() const {
-        return {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+        return {.vertexShader = vs,
+                .fragmentShader = fs,
+                .colorFormats = {Format::RGBA8},
                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics},
                              {1, BindingType::SampledTexture, ShaderStage::Fragment}},
                 .debugName = "execution textured"};
     }
     BufferHandle params(DeviceObjects& owner, float lod) const {
         const Params p = paramsOf({1, 1, 0, 0}, lod);
-        return owner.add(owner.device().createBuffer({.size = sizeof p, .usage = BufferUsage::Uniform}, bytesOf(p)));
+        return owner.add(owner.device().createBuffer(
+            {.size = sizeof p, .usage = BufferUsage::Uniform}, bytesOf(p)));
     }
     // One full-screen draw of `texture` through `sampler` (default: nearest) in an open pass.
     void draw(CommandList& cmd, PipelineHandle pipeline, BufferHandle ubo, TextureHandle texture,
@@ -138,14 +167,19 @@ struct TexturedDraw {
 // A 4x4 texture of 16 distinct texels, and how textured_uv.frag shows it (16x magnified).
 Texel tileTexel(uint32_t i) { return rgb8(i * 16, 255 - i * 16, (i % 4) * 80); }
 Image tiles() {
-    return expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) { return tileTexel(y * 4 + x); }, 4, 4);
+    return expectImage(
+        Format::RGBA8, [](uint32_t x, uint32_t y) { return tileTexel(y * 4 + x); }, 4, 4);
 }
 Image tilesMagnified() {
-    return expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) { return tileTexel((y / 16) * 4 + x / 16); });
+    return expectImage(Format::RGBA8,
+                       [](uint32_t x, uint32_t y) { return tileTexel((y / 16) * 4 + x / 16); });
 }
 TextureHandle tileTexture(DeviceObjects& owner) {
-    TextureHandle t = owner.add(owner.device().createTexture(
-        {.width = 4, .height = 4, .usage = TextureUsage::Sampled | TextureUsage::CopyDst, .debugName = "tiles"}));
+    TextureHandle t = owner.add(
+        owner.device().createTexture({.width = 4,
+                                      .height = 4,
+                                      .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
+                                      .debugName = "tiles"}));
     owner.device().writeTexture(t, {}, bytesOf(tiles().data));
     return t;
 }
@@ -187,7 +221,8 @@ std::vector<CaseImage> submissionOrder(Device& d) {
     ColorDraw draw(d);
     DeviceObjects objects(d);
     TextureHandle t = target(objects);
-    const Texel clearA = rgb8(200, 40, 40), rectA = rgb8(250, 220, 30), clearB = rgb8(30, 60, 210), rectB = rgb8(40, 230, 90);
+    const Texel clearA = rgb8(200, 40, 40), rectA = rgb8(250, 220, 30), clearB = rgb8(30, 60, 210),
+                rectB = rgb8(40, 230, 90);
     const Rect areaA{8, 8, 24, 24}, areaB{32, 32, 24, 24};
     BufferHandle uboA = draw.params(objects, rectA), uboB = draw.params(objects, rectB);
     auto a = d.createCommandList(), b = d.createCommandList();
@@ -226,8 +261,10 @@ std::vector<CaseImage> unsubmittedListHasNoEffect(Device& d) {
     BufferHandle greenUbo = draw.params(objects, green);
     const std::array<uint32_t, 4> kept = {1, 2, 3, 4}, copied = {9, 9, 9, 9};
     BufferHandle data = objects.add(
-        d.createBuffer({.size = sizeof kept, .usage = BufferUsage::CopySrc | BufferUsage::CopyDst}, bytesOf(kept)));
-    BufferHandle source = objects.add(d.createBuffer({.size = sizeof copied, .usage = BufferUsage::CopySrc}, bytesOf(copied)));
+        d.createBuffer({.size = sizeof kept, .usage = BufferUsage::CopySrc | BufferUsage::CopyDst},
+                       bytesOf(kept)));
+    BufferHandle source = objects.add(
+        d.createBuffer({.size = sizeof copied, .usage = BufferUsage::CopySrc}, bytesOf(copied)));
     auto cmd = d.createCommandList();
     beginPass(*cmd, t, red);
     cmd->endRenderPass();
@@ -245,8 +282,10 @@ std::vector<CaseImage> unsubmittedListHasNoEffect(Device& d) {
     d.wait(d.submit(*cmd));
     std::vector<CaseImage> out;
     out.push_back(rendered("recorded_not_submitted", d.readTexture(t), solid(Format::RGBA8, red)));
-    out.push_back(rendered("other_work_submitted", d.readTexture(other), solid(Format::RGBA8, green)));
-    FE_CONFORMANCE_CHECK(d.readBuffer(data, 0, sizeof kept) == bytesVector(kept), "an unsubmitted copy leaves its destination as it was");
+    out.push_back(
+        rendered("other_work_submitted", d.readTexture(other), solid(Format::RGBA8, green)));
+    FE_CONFORMANCE_CHECK(d.readBuffer(data, 0, sizeof kept) == bytesVector(kept),
+                         "an unsubmitted copy leaves its destination as it was");
 
     never.reset();
     d.waitIdle();
@@ -272,7 +311,8 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
     };
     {
         TextureHandle t = target(objects);
-        BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
+        BufferHandle ubo = objects.add(d.createBuffer(
+            {.size = sizeof(Params), .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
         d.writeBuffer(ubo, 0, bytesOf(paramsOf(x)));
         auto cmd = d.createCommandList();
         recordColour(*cmd, t, ubo);
@@ -282,8 +322,9 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
     }
     {
         TextureHandle t = target(objects);
-        BufferHandle ubo = objects.add(
-            d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform, .access = MemoryAccess::Upload}));
+        BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params),
+                                                       .usage = BufferUsage::Uniform,
+                                                       .access = MemoryAccess::Upload}));
         void* mapped = d.map(ubo);
         FE_CONFORMANCE_CHECK(mapped != nullptr, "an Upload buffer maps");
         const Params px = paramsOf(x), py = paramsOf(y);
@@ -296,8 +337,8 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
     }
     {
         TextureHandle t = target(objects);
-        TextureHandle tex = objects.add(
-            d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+        TextureHandle tex = objects.add(d.createTexture(
+            {.width = 4, .height = 4, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
         d.writeTexture(tex, {}, bytesOf(solid(Format::RGBA8, x, 4, 4).data));
         PipelineHandle p = objects.add(d.createGraphicsPipeline(textured.desc()));
         BufferHandle ubo = textured.params(objects, 0);
@@ -309,9 +350,10 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
         d.wait(d.submit(*cmd));
         out.push_back(rendered("texture", d.readTexture(t), tilesMagnified()));
     }
-    {   // Both lists recorded first; each sees the write made just before its own submit.
+    {  // Both lists recorded first; each sees the write made just before its own submit.
         TextureHandle first = target(objects), second = target(objects);
-        BufferHandle ubo = objects.add(d.createBuffer({.size = sizeof(Params), .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
+        BufferHandle ubo = objects.add(d.createBuffer(
+            {.size = sizeof(Params), .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
         auto a = d.createCommandList(), b = d.createCommandList();
         recordColour(*a, first, ubo);
         recordColour(*b, second, ubo);
@@ -319,8 +361,10 @@ std::vector<CaseImage> dataReadAtExecution(Device& d) {
         d.submit(*a);
         d.writeBuffer(ubo, 0, bytesOf(paramsOf(y)));
         d.wait(d.submit(*b));
-        out.push_back(rendered("write_between_submits_first", d.readTexture(first), solid(Format::RGBA8, x)));
-        out.push_back(rendered("write_between_submits_second", d.readTexture(second), solid(Format::RGBA8, y)));
+        out.push_back(
+            rendered("write_between_submits_first", d.readTexture(first), solid(Format::RGBA8, x)));
+        out.push_back(rendered("write_between_submits_second", d.readTexture(second),
+                               solid(Format::RGBA8, y)));
     }
     return out;
 }
@@ -364,7 +408,8 @@ std::vector<CaseImage> recordOnThreads(Device& d) {
     d.wait(d.submit(order));
     std::vector<CaseImage> out;
     for (uint32_t i = 0; i < kLists; ++i)
-        out.push_back(rendered("list" + std::to_string(i), d.readTexture(targets[i]), rectImage(clearOf(i), leftHalf, drawnOf(i))));
+        out.push_back(rendered("list" + std::to_string(i), d.readTexture(targets[i]),
+                               rectImage(clearOf(i), leftHalf, drawnOf(i))));
     return out;
 }
 
@@ -377,7 +422,9 @@ std::vector<CaseImage> secondaryListsInOnePass(Device& d) {
     ColorDraw draw(d);
     DeviceObjects objects(d);
     const TextureHandle t = target(objects);
-    auto colorOf = [](uint32_t frame, uint32_t i) { return rgb8(40 + 50 * i, 220 - 40 * i - 20 * frame, 60 + 90 * frame); };
+    auto colorOf = [](uint32_t frame, uint32_t i) {
+        return rgb8(40 + 50 * i, 220 - 40 * i - 20 * frame, 60 + 90 * frame);
+    };
     const Rect middle{8, 28, 48, 8};
     const Texel clear = rgb8(10, 20, 30);
     std::array<std::unique_ptr<CommandList>, kThreads> parts;
@@ -388,8 +435,10 @@ std::vector<CaseImage> secondaryListsInOnePass(Device& d) {
     for (uint32_t frame = 0; frame < 2; ++frame) {
         std::array<BufferHandle, kThreads> ubos;
         for (uint32_t i = 0; i < kThreads; ++i) ubos[i] = draw.params(objects, colorOf(frame, i));
-        const RenderPassDesc pass{.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}},
-                                  .debugName = "secondary lists", .secondaryLists = true};
+        const RenderPassDesc pass{
+            .colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}},
+            .debugName = "secondary lists",
+            .secondaryLists = true};
         primary->beginRenderPass(pass);  // before the workers record: order does not matter
         std::latch start(kThreads);
         Threads threads;
@@ -407,13 +456,15 @@ std::vector<CaseImage> secondaryListsInOnePass(Device& d) {
             });
         threads.joinAndRethrow();
         const auto& order = orders[frame];
-        primary->executeSecondary(std::vector<CommandList*>{parts[order[0]].get(), parts[order[1]].get()});
-        primary->executeSecondary(std::vector<CommandList*>{parts[order[2]].get(), parts[order[3]].get()});
+        primary->executeSecondary(
+            std::vector<CommandList*>{parts[order[0]].get(), parts[order[1]].get()});
+        primary->executeSecondary(
+            std::vector<CommandList*>{parts[order[2]].get(), parts[order[3]].get()});
         primary->endRenderPass();
         d.wait(d.submit(*primary));
         const Image expected = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
-            const bool inMiddle = int32_t(x) >= middle.x && x < middle.x + middle.width && int32_t(y) >= middle.y &&
-                                  y < middle.y + middle.height;
+            const bool inMiddle = int32_t(x) >= middle.x && x < middle.x + middle.width &&
+                                  int32_t(y) >= middle.y && y < middle.y + middle.height;
             return colorOf(frame, inMiddle ? order[kThreads - 1] : x / 16);
         });
         out.push_back(rendered("frame" + std::to_string(frame), d.readTexture(t), expected));
@@ -430,17 +481,22 @@ std::vector<CaseImage> createWhileRecording(Device& d) {
     DeviceObjects objects(d);
     DeviceObjects uploads(d);  // the uploading thread's alone until it is joined
     std::array<TextureHandle, kTextures> uploaded{};
-    auto uploadTexel = [](uint32_t i, uint32_t x, uint32_t y) { return rgb8(i * 15 + 10, x * 16, y * 16); };
+    auto uploadTexel = [](uint32_t i, uint32_t x, uint32_t y) {
+        return rgb8(i * 15 + 10, x * 16, y * 16);
+    };
     std::latch start(2);
     Threads threads;
     threads.start([&] {
         start.arrive_and_wait();
         for (uint32_t i = 0; i < kTextures; ++i) {
-            uploaded[i] = uploads.add(d.createTexture({.width = kTextureSize, .height = kTextureSize,
-                                                       .usage = TextureUsage::Sampled | TextureUsage::CopyDst | TextureUsage::CopySrc,
-                                                       .debugName = "uploaded on a thread"}));
-            const Image texels = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) { return uploadTexel(i, x, y); },
-                                             kTextureSize, kTextureSize);
+            uploaded[i] = uploads.add(d.createTexture(
+                {.width = kTextureSize,
+                 .height = kTextureSize,
+                 .usage = TextureUsage::Sampled | TextureUsage::CopyDst | TextureUsage::CopySrc,
+                 .debugName = "uploaded on a thread"}));
+            const Image texels = expectImage(
+                Format::RGBA8, [&](uint32_t x, uint32_t y) { return uploadTexel(i, x, y); },
+                kTextureSize, kTextureSize);
             d.writeTexture(uploaded[i], {}, bytesOf(texels.data));
         }
     });
@@ -449,7 +505,8 @@ std::vector<CaseImage> createWhileRecording(Device& d) {
     std::vector<std::unique_ptr<CommandList>> lists;
     FenceValue last = 0;
     for (uint32_t f = 0; f < kFrames; ++f) {
-        BufferHandle ubo = draw.params(objects, bandColor(f));  // created while the other thread creates
+        BufferHandle ubo =
+            draw.params(objects, bandColor(f));  // created while the other thread creates
         lists.push_back(d.createCommandList());
         beginPass(*lists.back(), bands, kBlack, f == 0 ? LoadOp::Clear : LoadOp::Load);
         draw.draw(*lists.back(), ubo, band(f));
@@ -462,18 +519,23 @@ std::vector<CaseImage> createWhileRecording(Device& d) {
     std::vector<CaseImage> out;
     out.push_back(rendered("bands_drawn_meanwhile", d.readTexture(bands), bandsImage()));
     // The uploads read back, laid out 4 x 4 in one image.
-    Image mosaic{kCaseSize, kCaseSize, Format::RGBA8, std::vector<uint8_t>(size_t(kCaseSize) * kCaseSize * 4)};
+    Image mosaic{kCaseSize, kCaseSize, Format::RGBA8,
+                 std::vector<uint8_t>(size_t(kCaseSize) * kCaseSize * 4)};
     for (uint32_t i = 0; i < kTextures; ++i) {
         const Image img = d.readTexture(uploaded[i]);
-        FE_CONFORMANCE_CHECK(img.width == kTextureSize && img.height == kTextureSize && img.format == Format::RGBA8,
-                             "an uploaded texture reads back at its size and format");
+        FE_CONFORMANCE_CHECK(
+            img.width == kTextureSize && img.height == kTextureSize && img.format == Format::RGBA8,
+            "an uploaded texture reads back at its size and format");
         for (uint32_t y = 0; y < kTextureSize; ++y)
-            std::memcpy(&mosaic.data[((i / 4 * kTextureSize + y) * kCaseSize + i % 4 * kTextureSize) * 4],
-                        &img.data[y * kTextureSize * 4], kTextureSize * 4);
+            std::memcpy(
+                &mosaic.data[((i / 4 * kTextureSize + y) * kCaseSize + i % 4 * kTextureSize) * 4],
+                &img.data[y * kTextureSize * 4], kTextureSize * 4);
     }
-    out.push_back(exact("uploaded_on_thread", mosaic, expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
-                            return uploadTexel((y / kTextureSize) * 4 + x / kTextureSize, x % kTextureSize, y % kTextureSize);
-                        })));
+    out.push_back(
+        exact("uploaded_on_thread", mosaic, expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
+                  return uploadTexel((y / kTextureSize) * 4 + x / kTextureSize, x % kTextureSize,
+                                     y % kTextureSize);
+              })));
     return out;
 }
 
@@ -491,20 +553,24 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
     const LiveObjects before = d.liveObjects();
     // Made and destroyed with no submission between: their first commands (Vulkan: the
     // transition and zero clear, the zero fill) are dropped and they are released at once.
-    d.destroy(d.createTexture({.width = 64, .height = 64, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+    d.destroy(d.createTexture(
+        {.width = 64, .height = 64, .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
     d.destroy(d.createBuffer({.size = 4096, .usage = BufferUsage::Storage}));
-    FE_CONFORMANCE_CHECK(d.liveObjects() == before, "objects made and destroyed before any submission are released at once");
+    FE_CONFORMANCE_CHECK(d.liveObjects() == before,
+                         "objects made and destroyed before any submission are released at once");
     {
         DeviceObjects inFlight(d);
         TextureHandle tex = tileTexture(inFlight);
-        SamplerHandle sampler = inFlight.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
+        SamplerHandle sampler = inFlight.add(
+            d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest}));
         BufferHandle ubo = textured.params(inFlight, 0);
         PipelineHandle p = inFlight.add(d.createGraphicsPipeline(textured.desc()));
         beginPass(*cmd, t, kBlack);
         cmd->setPipeline(p);
         cmd->setUniformBuffer(0, ubo);
         cmd->setTexture(1, tex, sampler);
-        for (int i = 0; i < 64; ++i) cmd->draw(3);  // work the GPU is likely still doing when they go
+        for (int i = 0; i < 64; ++i)
+            cmd->draw(3);  // work the GPU is likely still doing when they go
         cmd->endRenderPass();
         const FenceValue fence = d.submit(*cmd);
         inFlight.clear();
@@ -513,7 +579,8 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
     std::vector<CaseImage> out;
     out.push_back(rendered("destroyed_after_submit", d.readTexture(t), tilesMagnified()));
     d.waitIdle();
-    FE_CONFORMANCE_CHECK(d.liveObjects() == before, "objects destroyed in flight are released once their work has completed");
+    FE_CONFORMANCE_CHECK(d.liveObjects() == before,
+                         "objects destroyed in flight are released once their work has completed");
 
     const Texel magenta = rgb8(255, 0, 255);
     for (bool destroyTexture : {true, false}) {
@@ -525,22 +592,28 @@ std::vector<CaseImage> destroyWhileInFlight(Device& d) {
         beginPass(*stale, t, magenta);
         textured.draw(*stale, p, ubo, tex);
         stale->endRenderPass();
-        if (destroyTexture) iteration.destroy(tex);
-        else iteration.destroy(ubo);
+        if (destroyTexture)
+            iteration.destroy(tex);
+        else
+            iteration.destroy(ubo);
         // Recording goes on after the destroy (Vulkan: into the command buffer that names the
         // object, so its native release waits for the list); only the submit is refused.
         beginPass(*stale, t, magenta);
-        if (destroyTexture) textured.draw(*stale, p, ubo, tileTexture(iteration));
-        else textured.draw(*stale, p, textured.params(iteration, 0), tex);
+        if (destroyTexture)
+            textured.draw(*stale, p, ubo, tileTexture(iteration));
+        else
+            textured.draw(*stale, p, textured.params(iteration, 0), tex);
         stale->endRenderPass();
-        FE_CONFORMANCE_CHECK(throws([&] { d.submit(*stale); }), destroyTexture
-                                                                    ? "submitting a list that uses a destroyed texture is an error"
-                                                                    : "submitting a list that uses a destroyed buffer is an error");
+        FE_CONFORMANCE_CHECK(throws([&] { d.submit(*stale); }),
+                             destroyTexture
+                                 ? "submitting a list that uses a destroyed texture is an error"
+                                 : "submitting a list that uses a destroyed buffer is an error");
     }
     d.waitIdle();
-    FE_CONFORMANCE_CHECK(d.liveObjects() == before, "what refused lists held back is released once they are dropped");
+    FE_CONFORMANCE_CHECK(d.liveObjects() == before,
+                         "what refused lists held back is released once they are dropped");
     out.push_back(rendered("refused_submits_ran_nothing", d.readTexture(t), tilesMagnified()));
-    {   // and the device carries on
+    {  // and the device carries on
         DeviceObjects again(d);
         PipelineHandle p = again.add(d.createGraphicsPipeline(textured.desc()));
         TextureHandle tex = tileTexture(again);
@@ -564,8 +637,10 @@ std::vector<CaseImage> mappedUploadRing(Device& d) {
     DeviceObjects objects(d);
     const uint64_t align = std::max<uint64_t>(1, d.info().limits.uniformBufferOffsetAlignment);
     const uint64_t stride = (sizeof(Params) + align - 1) / align * align;
-    BufferHandle ring = objects.add(d.createBuffer(
-        {.size = stride * kRegions, .usage = BufferUsage::Uniform, .access = MemoryAccess::Upload, .debugName = "upload ring"}));
+    BufferHandle ring = objects.add(d.createBuffer({.size = stride * kRegions,
+                                                    .usage = BufferUsage::Uniform,
+                                                    .access = MemoryAccess::Upload,
+                                                    .debugName = "upload ring"}));
     std::byte* mapped = static_cast<std::byte*>(d.map(ring));
     FE_CONFORMANCE_CHECK(mapped != nullptr, "an Upload buffer maps");
     TextureHandle t = target(objects);
@@ -573,7 +648,8 @@ std::vector<CaseImage> mappedUploadRing(Device& d) {
     auto cmd = d.createCommandList();
     for (uint32_t f = 0; f < kFrames; ++f) {
         const uint32_t region = f % kRegions;
-        if (f >= kRegions) d.wait(lastUse[region]);  // the frame before that used this region is done
+        if (f >= kRegions)
+            d.wait(lastUse[region]);  // the frame before that used this region is done
         FE_CONFORMANCE_CHECK(d.map(ring) == mapped, "map() returns the same pointer every time");
         const Params p = paramsOf(bandColor(f));
         std::memcpy(mapped + region * stride, &p, sizeof p);
@@ -584,7 +660,8 @@ std::vector<CaseImage> mappedUploadRing(Device& d) {
     }
     d.waitIdle();
     FE_CONFORMANCE_CHECK(d.map(ring) == mapped, "map() returns the same pointer after the frames");
-    BufferHandle gpuOnly = objects.add(d.createBuffer({.size = 256, .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
+    BufferHandle gpuOnly = objects.add(
+        d.createBuffer({.size = 256, .usage = BufferUsage::Uniform | BufferUsage::CopyDst}));
     FE_CONFORMANCE_CHECK(throws([&] { d.map(gpuOnly); }), "a GpuOnly buffer cannot be mapped");
     return {rendered("eight_frames_three_regions", d.readTexture(t), bandsImage())};
 }
@@ -599,8 +676,10 @@ std::vector<CaseImage> asyncReadback(Device& d) {
     const Rect area{16, 8, 32, 40};
     BufferHandle ubo = draw.params(objects, inside);
     const uint64_t size = uint64_t(kCaseSize) * kCaseSize * 4;
-    BufferHandle readback = objects.add(
-        d.createBuffer({.size = size, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback, .debugName = "readback"}));
+    BufferHandle readback = objects.add(d.createBuffer({.size = size,
+                                                        .usage = BufferUsage::CopyDst,
+                                                        .access = MemoryAccess::Readback,
+                                                        .debugName = "readback"}));
     auto cmd = d.createCommandList();
     beginPass(*cmd, t, background);
     draw.draw(*cmd, ubo, area);
@@ -618,7 +697,9 @@ std::vector<CaseImage> asyncReadback(Device& d) {
     const auto* bytes = static_cast<const uint8_t*>(d.map(readback));
     FE_CONFORMANCE_CHECK(bytes != nullptr, "a Readback buffer maps");
     Image img{kCaseSize, kCaseSize, Format::RGBA8, std::vector<uint8_t>(bytes, bytes + size)};
-    FE_CONFORMANCE_CHECK(polled, "isComplete reports the submission complete without a wait (polled for up to 30 s)");
+    FE_CONFORMANCE_CHECK(
+        polled,
+        "isComplete reports the submission complete without a wait (polled for up to 30 s)");
     FE_CONFORMANCE_CHECK(d.isComplete(fence), "a completed fence stays complete");
     FE_CONFORMANCE_CHECK(img.data == d.readTexture(t).data, "the mapped bytes are the texture's");
     return {rendered("mapped_after_polling", img, rectImage(background, area, inside))};
@@ -655,52 +736,69 @@ std::vector<CaseImage> bufferBarrierComputeToIndirect(Device& d) {
                        colorFs = shader(ShaderStage::Fragment, "conformance/color.frag"),
                        uintVs = shader(ShaderStage::Vertex, "conformance/vertex_uint.vert"),
                        valueFs = shader(ShaderStage::Fragment, "conformance/value.frag");
-    PipelineHandle writeArgs = objects.add(
-        d.createComputePipeline({.computeShader = argsCs, .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute}}}));
+    PipelineHandle writeArgs = objects.add(d.createComputePipeline(
+        {.computeShader = argsCs,
+         .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute}}}));
     PipelineHandle writeValues = objects.add(d.createComputePipeline(
         {.computeShader = fillCs,
-         .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute}, {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
+         .bindings = {{0, BindingType::StorageBuffer, ShaderStage::Compute},
+                      {1, BindingType::StorageTexture, ShaderStage::Compute}}}));
     PipelineHandle coloured = objects.add(d.createGraphicsPipeline(
-        {.vertexShader = colorVs, .fragmentShader = colorFs,
-         .vertexBuffers = {{.stride = sizeof(Vertex2), .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
-                           {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
+        {.vertexShader = colorVs,
+         .fragmentShader = colorFs,
+         .vertexBuffers =
+             {{.stride = sizeof(Vertex2),
+               .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}},
+              {.stride = 8, .perInstance = true, .attributes = {{2, VertexFormat::Float2, 0}}}},
          .colorFormats = {Format::RGBA8}}));
     PipelineHandle valued = objects.add(d.createGraphicsPipeline(
-        {.vertexShader = uintVs, .fragmentShader = valueFs,
+        {.vertexShader = uintVs,
+         .fragmentShader = valueFs,
          .vertexBuffers = {{.stride = 8, .attributes = {{0, VertexFormat::Float2, 0}}},
                            {.stride = 4, .attributes = {{1, VertexFormat::UInt32, 0}}}},
          .colorFormats = {Format::RGBA8}}));
 
     // Vertices nothing should draw sit outside the target.
     std::vector<Vertex2> vertices(29, Vertex2{5, 5, 1, 1, 1, 1});
-    const Corners a = quadCorners(-0.75f, -0.5f, -0.75f, -0.25f), c = quadCorners(-0.25f, 0.25f, -0.75f, -0.25f);
+    const Corners a = quadCorners(-0.75f, -0.5f, -0.75f, -0.25f),
+                  c = quadCorners(-0.25f, 0.25f, -0.75f, -0.25f);
     for (uint32_t k = 0; k < 6; ++k) {
         vertices[k] = {a[k][0], a[k][1], 1, 0, 0, 1};
         vertices[12 + 3 * k + 1] = {c[k][0], c[k][1], 0, 0, 1, 1};
     }
-    const float instanceOffsets[12] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};  // instance 5 moves down by half the target
-    constexpr uint32_t kFirstValued = 333;                                    // 3 * 333 + 1 = 1000
+    const float instanceOffsets[12] = {0, 0, 0, 0, 0, 0, 0,
+                                       0, 0, 0, 0, 1};  // instance 5 moves down by half the target
+    constexpr uint32_t kFirstValued = 333;              // 3 * 333 + 1 = 1000
     std::vector<std::array<float, 2>> positions(kFirstValued + 6, {5, 5});
     const Corners dq = quadCorners(0.5f, 0.75f, 0.25f, 0.75f);
     std::copy(dq.begin(), dq.end(), positions.begin() + kFirstValued);
     auto vertexBuffer = [&](ByteSpan data) {
-        return objects.add(d.createBuffer({.size = data.size(), .usage = BufferUsage::Vertex}, data));
+        return objects.add(
+            d.createBuffer({.size = data.size(), .usage = BufferUsage::Vertex}, data));
     };
-    BufferHandle vb = vertexBuffer(bytesOf(vertices)), instances = vertexBuffer(bytesOf(instanceOffsets)),
+    BufferHandle vb = vertexBuffer(bytesOf(vertices)),
+                 instances = vertexBuffer(bytesOf(instanceOffsets)),
                  pb = vertexBuffer(bytesOf(positions));
-    BufferHandle args = objects.add(
-        d.createBuffer({.size = 256, .usage = BufferUsage::Storage | BufferUsage::Indirect, .debugName = "args from compute"}));
-    BufferHandle values = objects.add(d.createBuffer({.size = size_t(kCaseSize) * kCaseSize * 4,
-                                                      .usage = BufferUsage::Storage | BufferUsage::Index | BufferUsage::Vertex,
-                                                      .debugName = "indices and vertices from compute"}));
-    TextureHandle image = objects.add(d.createTexture({.format = Format::RGBA32F, .width = kCaseSize, .height = kCaseSize,
-                                                       .usage = TextureUsage::Storage}));  // fill.comp writes one too
+    BufferHandle args =
+        objects.add(d.createBuffer({.size = 256,
+                                    .usage = BufferUsage::Storage | BufferUsage::Indirect,
+                                    .debugName = "args from compute"}));
+    BufferHandle values = objects.add(
+        d.createBuffer({.size = size_t(kCaseSize) * kCaseSize * 4,
+                        .usage = BufferUsage::Storage | BufferUsage::Index | BufferUsage::Vertex,
+                        .debugName = "indices and vertices from compute"}));
+    TextureHandle image =
+        objects.add(d.createTexture({.format = Format::RGBA32F,
+                                     .width = kCaseSize,
+                                     .height = kCaseSize,
+                                     .usage = TextureUsage::Storage}));  // fill.comp writes one too
     TextureHandle t = target(objects);
 
     auto cmd = d.createCommandList();
     cmd->setAutomaticBarriers(false);
-    const TextureBarrier firstUse[] = {{.texture = image, .before = ResourceState::Undefined, .after = ResourceState::Storage},
-                                       {.texture = t, .before = ResourceState::Undefined, .after = ResourceState::RenderTarget}};
+    const TextureBarrier firstUse[] = {
+        {.texture = image, .before = ResourceState::Undefined, .after = ResourceState::Storage},
+        {.texture = t, .before = ResourceState::Undefined, .after = ResourceState::RenderTarget}};
     cmd->barrier(firstUse, 2);
     cmd->setPipeline(writeArgs);
     cmd->setStorageBuffer(0, args);
@@ -711,7 +809,9 @@ std::vector<CaseImage> bufferBarrierComputeToIndirect(Device& d) {
     cmd->dispatch(kCaseSize / 8, kCaseSize / 8);
     const BufferBarrier written[] = {
         {.buffer = args, .before = BufferAccess::StorageWrite, .after = BufferAccess::Indirect},
-        {.buffer = values, .before = BufferAccess::StorageWrite, .after = BufferAccess::Index | BufferAccess::Vertex}};
+        {.buffer = values,
+         .before = BufferAccess::StorageWrite,
+         .after = BufferAccess::Index | BufferAccess::Vertex}};
     cmd->barrier(written, 2);
     beginPass(*cmd, t, kBlack);
     cmd->setPipeline(coloured);
@@ -748,16 +848,22 @@ std::vector<CaseImage> subresourceBarrier(Device& d) {
     TexturedDraw textured(d);
     DeviceObjects objects(d);
     auto source = [](uint32_t x, uint32_t y) { return rgb8(4 * x, 4 * y, 255 - 2 * (x + y)); };
-    const Image mip0 = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) { return source(x / 2, y / 2); }, kMip0, kMip0);
-    TextureHandle tex = objects.add(d.createTexture(
-        {.width = kMip0, .height = kMip0, .mipLevels = 2,
-         .usage = TextureUsage::Sampled | TextureUsage::RenderTarget | TextureUsage::CopySrc | TextureUsage::CopyDst,
-         .debugName = "two mips"}));
+    const Image mip0 = expectImage(
+        Format::RGBA8, [&](uint32_t x, uint32_t y) { return source(x / 2, y / 2); }, kMip0, kMip0);
+    TextureHandle tex =
+        objects.add(d.createTexture({.width = kMip0,
+                                     .height = kMip0,
+                                     .mipLevels = 2,
+                                     .usage = TextureUsage::Sampled | TextureUsage::RenderTarget |
+                                              TextureUsage::CopySrc | TextureUsage::CopyDst,
+                                     .debugName = "two mips"}));
     d.writeTexture(tex, {.mipLevel = 0}, bytesOf(mip0.data));
     // Mip 1 gets a colour the pass replaces: both mips were last written by an upload (CopyDst).
     d.writeTexture(tex, {.mipLevel = 1}, bytesOf(solid(Format::RGBA8, rgb8(255, 0, 255)).data));
-    SamplerHandle levels = objects.add(d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest,
-                                                        .mipFilter = MipFilter::Nearest, .addressU = AddressMode::ClampToEdge,
+    SamplerHandle levels = objects.add(d.createSampler({.minFilter = Filter::Nearest,
+                                                        .magFilter = Filter::Nearest,
+                                                        .mipFilter = MipFilter::Nearest,
+                                                        .addressU = AddressMode::ClampToEdge,
                                                         .addressV = AddressMode::ClampToEdge}));
     BufferHandle level0 = textured.params(objects, 0), level1 = textured.params(objects, 1);
     PipelineHandle p = objects.add(d.createGraphicsPipeline(textured.desc()));
@@ -765,18 +871,30 @@ std::vector<CaseImage> subresourceBarrier(Device& d) {
 
     auto cmd = d.createCommandList();
     cmd->setAutomaticBarriers(false);
-    const TextureBarrier split[] = {
-        {.texture = tex, .before = ResourceState::CopyDst, .after = ResourceState::ShaderRead, .baseMip = 0, .mipCount = 1},
-        {.texture = tex, .before = ResourceState::CopyDst, .after = ResourceState::RenderTarget, .baseMip = 1, .mipCount = 1},
-        {.texture = copy, .before = ResourceState::Undefined, .after = ResourceState::RenderTarget}};
+    const TextureBarrier split[] = {{.texture = tex,
+                                     .before = ResourceState::CopyDst,
+                                     .after = ResourceState::ShaderRead,
+                                     .baseMip = 0,
+                                     .mipCount = 1},
+                                    {.texture = tex,
+                                     .before = ResourceState::CopyDst,
+                                     .after = ResourceState::RenderTarget,
+                                     .baseMip = 1,
+                                     .mipCount = 1},
+                                    {.texture = copy,
+                                     .before = ResourceState::Undefined,
+                                     .after = ResourceState::RenderTarget}};
     cmd->barrier(split, 3);
     // Sampled through textured.nearest, which reads the base level only: on GL an attached level
     // within the sampler's mip range is a feedback loop even where the shader never reads it.
     cmd->beginRenderPass({.colors = {{.texture = tex, .mipLevel = 1, .clear = {0, 0, 0, 1}}}});
     textured.draw(*cmd, p, level0, tex);
     cmd->endRenderPass();
-    const TextureBarrier renderedMip{.texture = tex, .before = ResourceState::RenderTarget, .after = ResourceState::ShaderRead,
-                                     .baseMip = 1, .mipCount = 1};
+    const TextureBarrier renderedMip{.texture = tex,
+                                     .before = ResourceState::RenderTarget,
+                                     .after = ResourceState::ShaderRead,
+                                     .baseMip = 1,
+                                     .mipCount = 1};
     cmd->barrier(renderedMip);
     cmd->beginRenderPass({.colors = {{.texture = copy, .clear = {0, 0, 0, 1}}}});
     textured.draw(*cmd, p, level1, tex, levels);
@@ -788,7 +906,8 @@ std::vector<CaseImage> subresourceBarrier(Device& d) {
     std::vector<CaseImage> out;
     out.push_back(exact("mip1_rendered_from_mip0", d.readTexture(tex, {.mipLevel = 1}), expected));
     out.push_back(exact("mip1_sampled_at_level1", d.readTexture(copy), expected));
-    FE_CONFORMANCE_CHECK(d.readTexture(tex, {.mipLevel = 0}).data == mip0.data, "rendering into mip 1 leaves mip 0 as uploaded");
+    FE_CONFORMANCE_CHECK(d.readTexture(tex, {.mipLevel = 0}).data == mip0.data,
+                         "rendering into mip 1 leaves mip 0 as uploaded");
     return out;
 }
 

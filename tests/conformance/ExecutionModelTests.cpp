@@ -25,10 +25,12 @@ const Case& caseNamed(const std::string& name) {
 
 TEST_P(ExecutionModel, ThreadedCasesPass) {
     const std::string backend = GetParam();
-    if (!gdi::probeBackend(backend, false).available) GTEST_SKIP() << backend << " is not available here";
+    if (!gdi::probeBackend(backend, false).available)
+        GTEST_SKIP() << backend << " is not available here";
     auto device = gdi::createDevice({.backend = backend, .validation = true});
-    for (const char* name : {"submission_order", "record_on_threads", "create_while_recording", "destroy_while_in_flight",
-                             "mapped_upload_ring", "async_readback", "data_read_at_execution"}) {
+    for (const char* name : {"submission_order", "record_on_threads", "create_while_recording",
+                             "destroy_while_in_flight", "mapped_upload_ring", "async_readback",
+                             "data_read_at_execution"}) {
         const CaseResult r = runCase(*device, caseNamed(name));
         EXPECT_TRUE(r.passed) << backend << " " << name << ": " << r.message;
     }
@@ -48,15 +50,18 @@ std::string collide(const std::function<void()>& first, const std::function<void
         ++ready;
         while (ready.load() < 2) std::this_thread::yield();
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-        while (!refused.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() < deadline) {
+        while (!refused.load(std::memory_order_relaxed) &&
+               std::chrono::steady_clock::now() < deadline) {
             for (int i = 0; i < 256 && !refused.load(std::memory_order_relaxed); ++i) {
                 try {
                     call();
                 } catch (const gdi::Error& e) {
                     std::lock_guard lock(m);
                     const std::string what = e.what();
-                    if (what.find("in use by another thread") == std::string::npos) unexpected = what;
-                    else if (message.empty()) message = what;
+                    if (what.find("in use by another thread") == std::string::npos)
+                        unexpected = what;
+                    else if (message.empty())
+                        message = what;
                     refused = true;
                 }
             }
@@ -72,10 +77,14 @@ class ListOnTwoThreads : public ::testing::TestWithParam<std::string> {
 protected:
     void SetUp() override {
         const std::string backend = GetParam();
-        if (!gdi::probeBackend(backend, false).available) GTEST_SKIP() << backend << " is not available here";
+        if (!gdi::probeBackend(backend, false).available)
+            GTEST_SKIP() << backend << " is not available here";
         device = gdi::createDevice({.backend = backend, .validation = true});
-        target = device->createTexture({.format = gdi::Format::RGBA8, .width = 16, .height = 16,
-                                        .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc});
+        target = device->createTexture(
+            {.format = gdi::Format::RGBA8,
+             .width = 16,
+             .height = 16,
+             .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc});
         list = device->createCommandList();
     }
     // The list still works after the refusals: a cleared target reads back cleared.
@@ -97,7 +106,8 @@ TEST_P(ListOnTwoThreads, RecordingIsRefused) {
     list->beginRenderPass({.colors = {{.texture = target}}});
     auto scissor = [this] { list->setScissor({0, 0, 8, 8}); };
     const std::string message = collide(scissor, scissor);
-    EXPECT_EQ(message.rfind("setScissor: the command list is in use by another thread", 0), 0u) << message;
+    EXPECT_EQ(message.rfind("setScissor: the command list is in use by another thread", 0), 0u)
+        << message;
     auto label = [this] { list->insertDebugLabel("label"); };
     EXPECT_EQ(collide(label, label).rfind("insertDebugLabel: ", 0), 0u);
     list->endRenderPass();
@@ -108,8 +118,9 @@ TEST_P(ListOnTwoThreads, RecordingIsRefused) {
 // Submitting a list while another thread records it is refused too (on whichever side comes second).
 TEST_P(ListOnTwoThreads, SubmitWhileRecordingIsRefused) {
     const uint32_t value = 1;
-    const std::string message = collide([this, &value] { list->setConstants(0, gdi::bytesOf(value)); },
-                                        [this] { (void)device->submit(*list); });
+    const std::string message =
+        collide([this, &value] { list->setConstants(0, gdi::bytesOf(value)); },
+                [this] { (void)device->submit(*list); });
     EXPECT_NE(message, "");
     device->waitIdle();
     expectListStillRecords();
@@ -124,7 +135,8 @@ TEST_P(ListOnTwoThreads, SubmitWhileRecordingIsRefused) {
 // (eglMakeCurrent failed) until the display was counted (GlPlatform.cpp).
 TEST_P(ExecutionModel, DevicesComeAndGoWhileAnotherWorks) {
     const std::string backend = GetParam();
-    if (!gdi::probeBackend(backend, false).available) GTEST_SKIP() << backend << " is not available here";
+    if (!gdi::probeBackend(backend, false).available)
+        GTEST_SKIP() << backend << " is not available here";
     std::atomic<bool> done{false};
     std::string failure;
     std::mutex m;
@@ -139,11 +151,16 @@ TEST_P(ExecutionModel, DevicesComeAndGoWhileAnotherWorks) {
             uint64_t rounds = 0;
             while (!done.load() || rounds < 8) {
                 const gdi::BufferHandle b = device->createBuffer(
-                    {.size = 1024, .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc | gdi::BufferUsage::CopyDst});
+                    {.size = 1024,
+                     .usage = gdi::BufferUsage::Storage | gdi::BufferUsage::CopySrc |
+                              gdi::BufferUsage::CopyDst});
                 device->writeBuffer(b, 0, gdi::bytesOf(words));
                 auto list = device->createCommandList();
-                const gdi::TextureHandle t = device->createTexture(
-                    {.format = gdi::Format::RGBA8, .width = 8, .height = 8, .usage = gdi::TextureUsage::RenderTarget});
+                const gdi::TextureHandle t =
+                    device->createTexture({.format = gdi::Format::RGBA8,
+                                           .width = 8,
+                                           .height = 8,
+                                           .usage = gdi::TextureUsage::RenderTarget});
                 list->beginRenderPass({.colors = {{.texture = t, .clear = {0, 1, 0, 1}}}});
                 list->endRenderPass();
                 device->wait(device->submit(*list));
@@ -152,7 +169,8 @@ TEST_P(ExecutionModel, DevicesComeAndGoWhileAnotherWorks) {
                 device->destroy(b);
                 ++rounds;
             }
-            if (device->validationErrorCount() != 0) fail("validation errors on the working device");
+            if (device->validationErrorCount() != 0)
+                fail("validation errors on the working device");
         } catch (const std::exception& e) {
             fail(e.what());
         }
@@ -170,15 +188,15 @@ TEST_P(ExecutionModel, DevicesComeAndGoWhileAnotherWorks) {
     EXPECT_EQ(failure, "");
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, ListOnTwoThreads, ::testing::Values("vulkan", "gl-egl", "gl-osmesa"),
-                         [](const auto& info) {
+INSTANTIATE_TEST_SUITE_P(Backends, ListOnTwoThreads,
+                         ::testing::Values("vulkan", "gl-egl", "gl-osmesa"), [](const auto& info) {
                              std::string n = info.param;
                              for (char& c : n) c = c == '-' ? '_' : c;
                              return n;
                          });
 
-INSTANTIATE_TEST_SUITE_P(Backends, ExecutionModel, ::testing::Values("vulkan", "gl-egl", "gl-osmesa"),
-                         [](const auto& info) {
+INSTANTIATE_TEST_SUITE_P(Backends, ExecutionModel,
+                         ::testing::Values("vulkan", "gl-egl", "gl-osmesa"), [](const auto& info) {
                              std::string n = info.param;
                              for (char& c : n) c = c == '-' ? '_' : c;
                              return n;

@@ -18,10 +18,14 @@ namespace {
 std::vector<CaseImage> flatFirstVertex(Device& d) {
     DeviceObjects o(d);
     const TextureHandle t = caseTarget(o);
-    GraphicsPipelineDesc desc{.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/flat_color.vert"),
-                              .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/flat_color.frag"),
-                              .vertexBuffers = {{.stride = 24, .attributes = {{0, VertexFormat::Float2, 0}, {1, VertexFormat::Float4, 8}}}},
-                              .colorFormats = {Format::RGBA8}, .debugName = "flat list"};
+    GraphicsPipelineDesc desc{
+        .vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/flat_color.vert"),
+        .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/flat_color.frag"),
+        .vertexBuffers = {{.stride = 24,
+                           .attributes = {{0, VertexFormat::Float2, 0},
+                                          {1, VertexFormat::Float4, 8}}}},
+        .colorFormats = {Format::RGBA8},
+        .debugName = "flat list"};
     const PipelineHandle list = o.add(d.createGraphicsPipeline(desc));
     desc.topology = PrimitiveTopology::TriangleStrip;
     desc.debugName = "flat strip";
@@ -31,14 +35,15 @@ std::vector<CaseImage> flatFirstVertex(Device& d) {
     };
     const V black = {0, 0, 0, 0, 0, 1};
     auto at = [](V v, float x, float y) { return V{x, y, v.r, v.g, v.b, v.a}; };
-    const V red{0, 0, 1, 0, 0, 1}, green{0, 0, 0, 1, 0, 1}, blue{0, 0, 0, 0, 1, 1}, white{0, 0, 1, 1, 1, 1};
-    const std::vector<V> v = {
-        // list: top-left triangle, then bottom-right, of the left half
-        at(red, -1, -1), at(black, 0, -1), at(black, -1, 1),
-        at(green, 0, 1), at(black, -1, 1), at(black, 0, -1),
-        // strip over the right half: (v0 v1 v2) then (v1 v2 v3)
-        at(blue, 0, -1), at(white, 0, 1), at(black, 1, -1), at(black, 1, 1)};
-    const BufferHandle vb = o.add(d.createBuffer({.size = v.size() * sizeof(V), .usage = BufferUsage::Vertex}, bytesOf(v)));
+    const V red{0, 0, 1, 0, 0, 1}, green{0, 0, 0, 1, 0, 1}, blue{0, 0, 0, 0, 1, 1},
+        white{0, 0, 1, 1, 1, 1};
+    const std::vector<V> v = {// list: top-left triangle, then bottom-right, of the left half
+                              at(red, -1, -1), at(black, 0, -1), at(black, -1, 1), at(green, 0, 1),
+                              at(black, -1, 1), at(black, 0, -1),
+                              // strip over the right half: (v0 v1 v2) then (v1 v2 v3)
+                              at(blue, 0, -1), at(white, 0, 1), at(black, 1, -1), at(black, 1, 1)};
+    const BufferHandle vb = o.add(
+        d.createBuffer({.size = v.size() * sizeof(V), .usage = BufferUsage::Vertex}, bytesOf(v)));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 0}}}});
     cmd->setVertexBuffer(0, vb);
@@ -50,7 +55,8 @@ std::vector<CaseImage> flatFirstVertex(Device& d) {
     d.wait(d.submit(*cmd));
     // Pixel centres off the diagonals: which triangle covers (x, y) in each half.
     const Image expected = expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) -> Texel {
-        const float u = (float(x % (kCaseSize / 2)) + 0.5f) / float(kCaseSize / 2), w = (float(y) + 0.5f) / float(kCaseSize);
+        const float u = (float(x % (kCaseSize / 2)) + 0.5f) / float(kCaseSize / 2),
+                    w = (float(y) + 0.5f) / float(kCaseSize);
         if (x < kCaseSize / 2) return u + w < 1.0f ? Texel{1, 0, 0, 1} : Texel{0, 1, 0, 1};
         return u + w < 1.0f ? Texel{0, 0, 1, 1} : Texel{1, 1, 1, 1};
     });
@@ -64,20 +70,24 @@ std::vector<CaseImage> unwrittenTargetKeepsContents(Device& d) {
     DeviceObjects o(d);
     const TextureHandle t0 = caseTarget(o), t1 = caseTarget(o);
     const float params[8] = {1, 0, 1, 1, 0.5f, 0, 0, 0};  // fullscreen_ubo.vert's colour and depth
-    const BufferHandle colour = o.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+    const BufferHandle colour = o.add(
+        d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
-         .colorFormats = {Format::RGBA8, Format::RGBA8}, .debugName = "one output, two targets"}));
+         .colorFormats = {Format::RGBA8, Format::RGBA8},
+         .debugName = "one output, two targets"}));
     auto cmd = d.createCommandList();
-    cmd->beginRenderPass({.colors = {{.texture = t0, .clear = {0, 0, 0, 1}}, {.texture = t1, .clear = {0, 0.5f, 0, 1}}}});
+    cmd->beginRenderPass({.colors = {{.texture = t0, .clear = {0, 0, 0, 1}},
+                                     {.texture = t1, .clear = {0, 0.5f, 0, 1}}}});
     cmd->setPipeline(p);
     cmd->setUniformBuffer(0, colour);
     cmd->draw(3);
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
-    return {exact("written", d.readTexture(t0), solid(Format::RGBA8, {1, 0, 1, 1})),
-            drawn8("unwritten_keeps_clear", d.readTexture(t1), solid(Format::RGBA8, {0, 0.5f, 0, 1}))};
+    return {
+        exact("written", d.readTexture(t0), solid(Format::RGBA8, {1, 0, 1, 1})),
+        drawn8("unwritten_keeps_clear", d.readTexture(t1), solid(Format::RGBA8, {0, 0.5f, 0, 1}))};
 }
 
 // draw(6, 2, 0, 3) and drawIndexed(6, 1, 0, 0, 6): the instances are 3, 4 and 6 (FE_INSTANCE_ID
@@ -88,9 +98,11 @@ std::vector<CaseImage> firstInstance(Device& d) {
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/instance_band.vert"),
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/value.frag"),
-         .colorFormats = {Format::RGBA8}, .debugName = "instance bands"}));
+         .colorFormats = {Format::RGBA8},
+         .debugName = "instance bands"}));
     const uint16_t indices[6] = {0, 1, 2, 3, 4, 5};
-    const BufferHandle ib = o.add(d.createBuffer({.size = sizeof indices, .usage = BufferUsage::Index}, bytesOf(indices)));
+    const BufferHandle ib = o.add(
+        d.createBuffer({.size = sizeof indices, .usage = BufferUsage::Index}, bytesOf(indices)));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 1, 1}}}});
     cmd->setPipeline(p);
@@ -115,7 +127,9 @@ std::vector<CaseImage> pointSizeAndCoord(Device& d) {
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/point_sprite.vert"),
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/point_coord.frag"),
-         .topology = PrimitiveTopology::PointList, .colorFormats = {Format::RGBA8}, .debugName = "points"}));
+         .topology = PrimitiveTopology::PointList,
+         .colorFormats = {Format::RGBA8},
+         .debugName = "points"}));
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 1, 1}}}});
     cmd->setPipeline(p);
@@ -129,7 +143,8 @@ std::vector<CaseImage> pointSizeAndCoord(Device& d) {
     const Image expected = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) -> Texel {
         for (const Point& pt : points)
             if (x >= pt.x0 && x < pt.x0 + pt.size && y >= pt.y0 && y < pt.y0 + pt.size)
-                return {(float(x - pt.x0) + 0.5f) / float(pt.size), (float(y - pt.y0) + 0.5f) / float(pt.size), 0, 1};
+                return {(float(x - pt.x0) + 0.5f) / float(pt.size),
+                        (float(y - pt.y0) + 0.5f) / float(pt.size), 0, 1};
         return {0, 0, 1, 1};
     });
     return {drawn8("points", d.readTexture(t), expected, 1.5)};
@@ -146,12 +161,17 @@ std::vector<CaseImage> depthWriteWithoutTest(Device& d) {
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
          .depthStencil = {.depthTest = false, .depthWrite = true},
-         .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F, .debugName = "depth write, no test"}));
+         .colorFormats = {Format::RGBA8},
+         .depthFormat = Format::D32F,
+         .debugName = "depth write, no test"}));
     const float near[8] = {1, 0, 0, 1, 0.25f, 0, 0, 0}, far[8] = {0, 1, 0, 1, 0.75f, 0, 0, 0};
-    const BufferHandle nearUbo = o.add(d.createBuffer({.size = sizeof near, .usage = BufferUsage::Uniform}, bytesOf(near)));
-    const BufferHandle farUbo = o.add(d.createBuffer({.size = sizeof far, .usage = BufferUsage::Uniform}, bytesOf(far)));
+    const BufferHandle nearUbo =
+        o.add(d.createBuffer({.size = sizeof near, .usage = BufferUsage::Uniform}, bytesOf(near)));
+    const BufferHandle farUbo =
+        o.add(d.createBuffer({.size = sizeof far, .usage = BufferUsage::Uniform}, bytesOf(far)));
     auto cmd = d.createCommandList();
-    cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth, .clearDepth = 1.0f}});
+    cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}},
+                          .depth = {.texture = depth, .clearDepth = 1.0f}});
     cmd->setPipeline(p);
     cmd->setUniformBuffer(0, nearUbo);
     cmd->setScissor({0, 0, 32, 64});
@@ -170,7 +190,8 @@ std::vector<CaseImage> depthWriteWithoutTest(Device& d) {
         const Texel c[3] = {{0, 0, 1, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}};
         return c[region(x, y)];
     });
-    return {exact("depth", d.readTexture(depth), expectedDepth), drawn8("colour", d.readTexture(color), expectedColor)};
+    return {exact("depth", d.readTexture(depth), expectedDepth),
+            drawn8("colour", d.readTexture(color), expectedColor)};
 }
 
 // MipFilter::None minifies with minFilter from the base level on both backends: a 128x128
@@ -178,9 +199,12 @@ std::vector<CaseImage> depthWriteWithoutTest(Device& d) {
 // a Linear-min, Nearest-mag sampler averages each pair to grey. Level 1 is red: it must not show.
 std::vector<CaseImage> mipFilterNone(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle tex = o.add(d.createTexture({.width = 128, .height = 128, .mipLevels = 2,
-                                                     .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
-                                                     .debugName = "columns"}));
+    const TextureHandle tex =
+        o.add(d.createTexture({.width = 128,
+                               .height = 128,
+                               .mipLevels = 2,
+                               .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
+                               .debugName = "columns"}));
     std::vector<uint8_t> level0(128 * 128 * 4), level1(64 * 64 * 4);
     for (uint32_t i = 0; i < 128 * 128; ++i) {
         const uint8_t v = (i % 128) % 2 ? 255 : 0;
@@ -191,8 +215,11 @@ std::vector<CaseImage> mipFilterNone(Device& d) {
     d.writeTexture(tex, {.mipLevel = 0}, bytesOf(level0));
     d.writeTexture(tex, {.mipLevel = 1}, bytesOf(level1));
     FullscreenSampler pass(d, "conformance/textured_uv.frag",
-                           {.minFilter = Filter::Linear, .magFilter = Filter::Nearest, .mipFilter = MipFilter::None,
-                            .addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
+                           {.minFilter = Filter::Linear,
+                            .magFilter = Filter::Nearest,
+                            .mipFilter = MipFilter::None,
+                            .addressU = AddressMode::ClampToEdge,
+                            .addressV = AddressMode::ClampToEdge});
     // textured_uv.frag: uv = pixel / 64 * (1, 1) + 0, textureLod at level 1 (the block's b.y).
     const Image image = pass.draw(d, tex, Format::RGBA8, {1, 1, 0, 0}, {0, 1, 0, 0});
     return {drawn8("minified", image, solid(Format::RGBA8, {0.5f, 0.5f, 0.5f, 1}), 1.5)};
@@ -204,10 +231,13 @@ std::vector<CaseImage> mipFilterNone(Device& d) {
 std::vector<CaseImage> copyOnlyTextures(Device& d) {
     DeviceObjects o(d);
     const TextureUsage copies = TextureUsage::CopySrc | TextureUsage::CopyDst;
-    const TextureHandle a = o.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = copies, .debugName = "copy a"}));
-    const TextureHandle b = o.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = copies, .debugName = "copy b"}));
+    const TextureHandle a = o.add(d.createTexture(
+        {.width = kCaseSize, .height = kCaseSize, .usage = copies, .debugName = "copy a"}));
+    const TextureHandle b = o.add(d.createTexture(
+        {.width = kCaseSize, .height = kCaseSize, .usage = copies, .debugName = "copy b"}));
     const Image pattern = expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) -> Texel {
-        return {float(x * 4) / 255.0f, float(y * 4) / 255.0f, float((x ^ y) & 7) * 32.0f / 255.0f, 1};
+        return {float(x * 4) / 255.0f, float(y * 4) / 255.0f, float((x ^ y) & 7) * 32.0f / 255.0f,
+                1};
     });
     d.writeTexture(a, {}, bytesOf(pattern.data));
     auto cmd = d.createCommandList();
@@ -224,42 +254,60 @@ std::vector<CaseImage> copyOnlyTextures(Device& d) {
 std::vector<CaseImage> formatCapsCase(Device& d) {
     std::vector<CaseImage> out;
     DeviceObjects o(d);
-    const SamplerHandle linear = o.add(d.createSampler({.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
+    const SamplerHandle linear = o.add(d.createSampler(
+        {.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge}));
     for (uint32_t i = 1; i < uint32_t(Format::Count); ++i) {
         const Format f = Format(i);
         const FormatInfo& fi = formatInfo(f);
         if (isCompressedFormat(f)) continue;
         const FormatCaps caps = d.formatCaps(f);
         const std::string name(fi.name);
-        FE_CONFORMANCE_CHECK(caps.sampled == d.supportsFormat(f, TextureUsage::Sampled), ("sampled agrees: " + name).c_str());
+        FE_CONFORMANCE_CHECK(caps.sampled == d.supportsFormat(f, TextureUsage::Sampled),
+                             ("sampled agrees: " + name).c_str());
         FE_CONFORMANCE_CHECK(caps.renderTarget == d.supportsFormat(f, TextureUsage::RenderTarget),
                              ("renderTarget agrees: " + name).c_str());
-        FE_CONFORMANCE_CHECK(caps.storage == d.supportsFormat(f, TextureUsage::Storage), ("storage agrees: " + name).c_str());
-        FE_CONFORMANCE_CHECK(!caps.renderTarget || (caps.sampleCounts & 1), ("one sample renders: " + name).c_str());
+        FE_CONFORMANCE_CHECK(caps.storage == d.supportsFormat(f, TextureUsage::Storage),
+                             ("storage agrees: " + name).c_str());
+        FE_CONFORMANCE_CHECK(!caps.renderTarget || (caps.sampleCounts & 1),
+                             ("one sample renders: " + name).c_str());
         if (!caps.sampled) continue;
         DeviceObjects per(d);
         const bool colour = !isDepthFormat(f) && !fi.isInteger;
         // Linear filtering, or its refusal.
-        const TextureHandle pair = per.add(d.createTexture({.format = f, .width = 2, .height = 1,
-                                                            .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
+        const TextureHandle pair =
+            per.add(d.createTexture({.format = f,
+                                     .width = 2,
+                                     .height = 1,
+                                     .usage = TextureUsage::Sampled | TextureUsage::CopyDst}));
         if (!caps.linearFilter) {
             auto cmd = d.createCommandList();
-            FE_CONFORMANCE_CHECK(throws([&] { cmd->setTexture(1, pair, linear); }),
-                                 ("a Linear sampler is refused on " + name + ", which cannot be filtered linearly").c_str());
+            FE_CONFORMANCE_CHECK(
+                throws([&] { cmd->setTexture(1, pair, linear); }),
+                ("a Linear sampler is refused on " + name + ", which cannot be filtered linearly")
+                    .c_str());
         } else if (colour) {
-            d.writeTexture(pair, {}, bytesOf(Image::fromTexels(2, 1, f, {{0, 0, 0, 0}, {1, 1, 1, 1}}).data));
-            FullscreenSampler pass(d, "conformance/textured_uv.frag",
-                                   {.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
-            const Image image = pass.draw(d, pair, Format::RGBA16F, {0, 0, 0.5f, 0.5f});  // uv (0.5, 0.5) everywhere
+            d.writeTexture(pair, {},
+                           bytesOf(Image::fromTexels(2, 1, f, {{0, 0, 0, 0}, {1, 1, 1, 1}}).data));
+            FullscreenSampler pass(
+                d, "conformance/textured_uv.frag",
+                {.addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge});
+            const Image image = pass.draw(d, pair, Format::RGBA16F,
+                                          {0, 0, 0.5f, 0.5f});  // uv (0.5, 0.5) everywhere
             const bool alpha = fi.channels == 4;
-            const Texel half{0.5f, fi.channels > 1 ? 0.5f : 0.0f, fi.channels > 2 ? 0.5f : 0.0f, alpha ? 0.5f : 1.0f};
-            out.push_back(within("linear_" + name, image, solid(Format::RGBA16F, half), 2.0 / 255.0,
-                                 "the average of texels 0 and 1: filtering weights of at least 8 bits"));
+            const Texel half{0.5f, fi.channels > 1 ? 0.5f : 0.0f, fi.channels > 2 ? 0.5f : 0.0f,
+                             alpha ? 0.5f : 1.0f};
+            out.push_back(
+                within("linear_" + name, image, solid(Format::RGBA16F, half), 2.0 / 255.0,
+                       "the average of texels 0 and 1: filtering weights of at least 8 bits"));
         }
-        if (!caps.renderTarget || isDepthFormat(f)) continue;  // depth and stencil: depth16, stencil8_and_readback
+        if (!caps.renderTarget || isDepthFormat(f))
+            continue;  // depth and stencil: depth16, stencil8_and_readback
         // A clear of values exact in every format (and in sRGB encoding).
-        const TextureHandle rt = per.add(d.createTexture({.format = f, .width = 4, .height = 4,
-                                                          .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+        const TextureHandle rt =
+            per.add(d.createTexture({.format = f,
+                                     .width = 4,
+                                     .height = 4,
+                                     .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {1, 0, 1, 1}}}});
         cmd->endRenderPass();
@@ -268,34 +316,49 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
         out.push_back(exact("clear_" + name, d.readTexture(rt), solid(f, cleared, 4, 4)));
         if (caps.blend && !fi.isSrgb) {  // sRGB blends in linear space: values checked elsewhere
             const PipelineHandle add = per.add(d.createGraphicsPipeline(
-                {.vertexShader = registryShader(per, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-                 .fragmentShader = registryShader(per, ShaderStage::Fragment, "conformance/ubo_color.frag"),
-                 .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
-                            .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::One}},
+                {.vertexShader =
+                     registryShader(per, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+                 .fragmentShader =
+                     registryShader(per, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+                 .blend = {{.enable = true,
+                            .srcColor = BlendFactor::One,
+                            .dstColor = BlendFactor::One,
+                            .srcAlpha = BlendFactor::One,
+                            .dstAlpha = BlendFactor::One}},
                  .colorFormats = {f}}));
             const float params[8] = {0.5f, 0.5f, 0.5f, 0.5f, 0, 0, 0, 0};
-            const BufferHandle ubo = per.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
-            cmd->beginRenderPass({.colors = {{.texture = rt, .clear = {0.25f, 0.25f, 0.25f, 0.25f}}}});
+            const BufferHandle ubo = per.add(d.createBuffer(
+                {.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+            cmd->beginRenderPass(
+                {.colors = {{.texture = rt, .clear = {0.25f, 0.25f, 0.25f, 0.25f}}}});
             cmd->setPipeline(add);
             cmd->setUniformBuffer(0, ubo);
             cmd->draw(3);
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
-            const Texel sum{0.75f, fi.channels > 1 ? 0.75f : 0.0f, fi.channels > 2 ? 0.75f : 0.0f, fi.channels == 4 ? 0.75f : 1.0f};
-            out.push_back(within("blend_" + name, d.readTexture(rt), solid(f, sum, 4, 4), 2.0 / 255.0,
-                                 "0.25 + 0.5 in the target's precision (8-bit: two rounding steps)"));
+            const Texel sum{0.75f, fi.channels > 1 ? 0.75f : 0.0f, fi.channels > 2 ? 0.75f : 0.0f,
+                            fi.channels == 4 ? 0.75f : 1.0f};
+            out.push_back(
+                within("blend_" + name, d.readTexture(rt), solid(f, sum, 4, 4), 2.0 / 255.0,
+                       "0.25 + 0.5 in the target's precision (8-bit: two rounding steps)"));
         }
         // Each sample count it reports renders (and resolves, where samples are averaged).
         for (uint32_t n = 2; n <= 8; n *= 2) {
             if (!(caps.sampleCounts & n)) continue;
-            const TextureHandle ms = per.add(d.createTexture({.format = f, .width = 4, .height = 4, .sampleCount = n,
-                                                              .usage = TextureUsage::RenderTarget}));
+            const TextureHandle ms =
+                per.add(d.createTexture({.format = f,
+                                         .width = 4,
+                                         .height = 4,
+                                         .sampleCount = n,
+                                         .usage = TextureUsage::RenderTarget}));
             ColorAttachment a{.texture = ms, .store = StoreOp::DontCare, .clear = {1, 0, 1, 1}};
             if (colour) a.resolveTexture = rt;
             cmd->beginRenderPass({.colors = {a}});
             cmd->endRenderPass();
             d.wait(d.submit(*cmd));
-            if (colour) out.push_back(exact("resolve_" + std::to_string(n) + "x_" + name, d.readTexture(rt), solid(f, cleared, 4, 4)));
+            if (colour)
+                out.push_back(exact("resolve_" + std::to_string(n) + "x_" + name, d.readTexture(rt),
+                                    solid(f, cleared, 4, 4)));
         }
     }
     return out;
@@ -304,7 +367,8 @@ std::vector<CaseImage> formatCapsCase(Device& d) {
 // D16 depth testing: near red at 0.25 drawn over the left half, far green at 0.75 over all of it
 // with Less: green only on the right; the depth image reads 0.25 and 0.75 (16-bit unorm).
 std::vector<CaseImage> depth16(Device& d) {
-    if (!d.formatCaps(Format::D16).renderTarget) return {};  // not a depth target here: nothing to prove
+    if (!d.formatCaps(Format::D16).renderTarget)
+        return {};  // not a depth target here: nothing to prove
     DeviceObjects o(d);
     const TextureHandle color = caseTarget(o);
     const TextureHandle depth = caseTarget(o, Format::D16);
@@ -312,12 +376,17 @@ std::vector<CaseImage> depth16(Device& d) {
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
          .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
-         .colorFormats = {Format::RGBA8}, .depthFormat = Format::D16, .debugName = "depth16"}));
+         .colorFormats = {Format::RGBA8},
+         .depthFormat = Format::D16,
+         .debugName = "depth16"}));
     const float near[8] = {1, 0, 0, 1, 0.25f, 0, 0, 0}, far[8] = {0, 1, 0, 1, 0.75f, 0, 0, 0};
-    const BufferHandle nearUbo = o.add(d.createBuffer({.size = sizeof near, .usage = BufferUsage::Uniform}, bytesOf(near)));
-    const BufferHandle farUbo = o.add(d.createBuffer({.size = sizeof far, .usage = BufferUsage::Uniform}, bytesOf(far)));
+    const BufferHandle nearUbo =
+        o.add(d.createBuffer({.size = sizeof near, .usage = BufferUsage::Uniform}, bytesOf(near)));
+    const BufferHandle farUbo =
+        o.add(d.createBuffer({.size = sizeof far, .usage = BufferUsage::Uniform}, bytesOf(far)));
     auto cmd = d.createCommandList();
-    cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
+    cmd->beginRenderPass(
+        {.colors = {{.texture = color, .clear = {0, 0, 1, 1}}}, .depth = {.texture = depth}});
     cmd->setPipeline(p);
     cmd->setUniformBuffer(0, nearUbo);
     cmd->setScissor({0, 0, 32, 64});
@@ -330,9 +399,12 @@ std::vector<CaseImage> depth16(Device& d) {
     const Image expectedColor = expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
         return x < 32 ? Texel{1, 0, 0, 1} : Texel{0, 1, 0, 1};
     });
-    const Image expectedDepth = expectImage(Format::D16, [](uint32_t x, uint32_t) -> Texel { return {x < 32 ? 0.25f : 0.75f, 0, 0, 0}; });
+    const Image expectedDepth = expectImage(Format::D16, [](uint32_t x, uint32_t) -> Texel {
+        return {x < 32 ? 0.25f : 0.75f, 0, 0, 0};
+    });
     return {drawn8("colour", d.readTexture(color), expectedColor),
-            within("depth", d.readTexture(depth), expectedDepth, 1.5 / 65535.0, "depth in 16-bit unorm: one rounding step")};
+            within("depth", d.readTexture(depth), expectedDepth, 1.5 / 65535.0,
+                   "depth in 16-bit unorm: one rounding step")};
 }
 
 // Stencil written and read back with depth, in each depth-stencil format and S8 (where it is an
@@ -349,17 +421,23 @@ std::vector<CaseImage> stencilReadback(Device& d) {
         const TextureHandle color = caseTarget(o);
         const TextureHandle depth = caseTarget(o, f);
         const PipelineHandle p = o.add(d.createGraphicsPipeline(
-            {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
-             .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
+            {.vertexShader =
+                 registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+             .fragmentShader =
+                 registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag"),
              .depthStencil = {.stencilTest = true,
                               .front = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
                               .back = {.passOp = StencilOp::Replace, .compare = CompareOp::Always},
                               .stencilReference = 7},
-             .colorFormats = {Format::RGBA8}, .depthFormat = f, .debugName = "stencil replace"}));
+             .colorFormats = {Format::RGBA8},
+             .depthFormat = f,
+             .debugName = "stencil replace"}));
         const float params[8] = {1, 1, 1, 1, 0.5f, 0, 0, 0};
-        const BufferHandle ubo = o.add(d.createBuffer({.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
+        const BufferHandle ubo = o.add(d.createBuffer(
+            {.size = sizeof params, .usage = BufferUsage::Uniform}, bytesOf(params)));
         auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = color}}, .depth = {.texture = depth, .clearDepth = 1.0f, .clearStencil = 3}});
+        cmd->beginRenderPass({.colors = {{.texture = color}},
+                              .depth = {.texture = depth, .clearDepth = 1.0f, .clearStencil = 3}});
         cmd->setPipeline(p);
         cmd->setUniformBuffer(0, ubo);
         cmd->setScissor({8, 16, 40, 24});
@@ -370,19 +448,24 @@ std::vector<CaseImage> stencilReadback(Device& d) {
             const bool in = x >= 8 && x < 48 && y >= 16 && y < 40;
             return {clearedDepth, in ? 7.0f : 3.0f, 0, 0};
         });
-        out.push_back(exact("stencil_" + std::string(formatInfo(f).name), d.readTexture(depth), expected));
+        out.push_back(
+            exact("stencil_" + std::string(formatInfo(f).name), d.readTexture(depth), expected));
     }
     // Uploads in the readback layout: a depth ramp and a stencil pattern, read back unchanged.
     for (Format f : {Format::D32F, Format::D16, Format::D24S8, Format::D32F_S8, Format::S8}) {
         if (!d.formatCaps(f).sampled) continue;
         DeviceObjects o(d);
-        const TextureHandle t = o.add(d.createTexture({.format = f, .width = kCaseSize, .height = kCaseSize,
-                                                       .usage = TextureUsage::CopySrc | TextureUsage::CopyDst}));
+        const TextureHandle t =
+            o.add(d.createTexture({.format = f,
+                                   .width = kCaseSize,
+                                   .height = kCaseSize,
+                                   .usage = TextureUsage::CopySrc | TextureUsage::CopyDst}));
         const Image pattern = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
             return {float(x) / 63.0f, float((x * 7 + y * 3) & 0xff), 0, 0};
         });
         d.writeTexture(t, {}, bytesOf(pattern.data));
-        out.push_back(exact("upload_" + std::string(formatInfo(f).name), d.readTexture(t), pattern));
+        out.push_back(
+            exact("upload_" + std::string(formatInfo(f).name), d.readTexture(t), pattern));
     }
     return out;
 }
@@ -393,13 +476,19 @@ std::vector<CaseImage> stencilReadback(Device& d) {
 // without a validation message.
 std::vector<CaseImage> clearBufferCase(Device& d) {
     DeviceObjects o(d);
-    const BufferHandle b = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "cleared"}));
-    const BufferHandle uniformOnly = o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Uniform}));
+    const BufferHandle b =
+        o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Storage, .debugName = "cleared"}));
+    const BufferHandle uniformOnly =
+        o.add(d.createBuffer({.size = 256, .usage = BufferUsage::Uniform}));
     auto cmd = d.createCommandList();
-    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(uniformOnly); }), "a buffer without CopyDst or Storage usage is refused");
-    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 2, 8, 1); }), "an offset that is not a multiple of 4 is refused");
-    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 0, 6, 1); }), "a size that is not a multiple of 4 is refused");
-    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 128, 256, 1); }), "a range past the end is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(uniformOnly); }),
+                         "a buffer without CopyDst or Storage usage is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 2, 8, 1); }),
+                         "an offset that is not a multiple of 4 is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 0, 6, 1); }),
+                         "a size that is not a multiple of 4 is refused");
+    FE_CONFORMANCE_CHECK(throws([&] { cmd->clearBuffer(b, 128, 256, 1); }),
+                         "a range past the end is refused");
     cmd->clearBuffer(b, 0, 0, 0x01020304u);  // all of it
     cmd->insertDebugLabel("between the clears");
     cmd->clearBuffer(b, 16, 48, 0xdeadbeefu);

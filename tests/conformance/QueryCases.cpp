@@ -26,11 +26,18 @@ struct DepthQuads {
     PipelineHandle pipeline;
     DepthQuads(Device& d, uint32_t samples) : o(d) {
         pipeline = o.add(d.createGraphicsPipeline(
-            {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
-             .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
-             .topology = PrimitiveTopology::TriangleStrip, .multisample = {.sampleCount = samples},
-             .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
-             .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F, .debugName = "depth quads"}));
+            {.vertexShader =
+                 registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
+             .fragmentShader =
+                 registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+             .topology = PrimitiveTopology::TriangleStrip,
+             .multisample = {.sampleCount = samples},
+             .depthStencil = {.depthTest = true,
+                              .depthWrite = true,
+                              .depthCompare = CompareOp::Less},
+             .colorFormats = {Format::RGBA8},
+             .depthFormat = Format::D32F,
+             .debugName = "depth quads"}));
     }
     static void draw(CommandList& cmd, const QuadConstants& q, float depth) {
         cmd.setViewport({0, 0, float(kCaseSize), float(kCaseSize), depth, depth});
@@ -44,24 +51,36 @@ struct DepthQuads {
 // without blocking (not before the submission completes), resolved into a buffer on the GPU
 // with the same values, and the queries are reused by a second submission.
 std::vector<CaseImage> occlusionQuery(Device& d) {
-    const uint32_t sampleCounts = d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts;
+    const uint32_t sampleCounts =
+        d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts;
     for (uint32_t samples : {1u, 4u}) {
         if (!(sampleCounts & samples)) continue;
         DepthQuads quads(d, samples);
         DeviceObjects& o = quads.o;
-        const TextureHandle color = o.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = samples,
+        const TextureHandle color = o.add(d.createTexture({.width = kCaseSize,
+                                                           .height = kCaseSize,
+                                                           .sampleCount = samples,
                                                            .usage = TextureUsage::RenderTarget}));
-        const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F, .width = kCaseSize, .height = kCaseSize,
-                                                           .sampleCount = samples, .usage = TextureUsage::RenderTarget}));
-        const QuerySetHandle occlusion = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 3, .debugName = "occlusion"}));
-        const QuerySetHandle any = o.add(d.createQuerySet({.type = QueryType::AnySamplesPassed, .count = 2, .debugName = "any"}));
-        const BufferHandle resolved = o.add(d.createBuffer({.size = 40, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+        const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
+                                                           .width = kCaseSize,
+                                                           .height = kCaseSize,
+                                                           .sampleCount = samples,
+                                                           .usage = TextureUsage::RenderTarget}));
+        const QuerySetHandle occlusion = o.add(
+            d.createQuerySet({.type = QueryType::Occlusion, .count = 3, .debugName = "occlusion"}));
+        const QuerySetHandle any = o.add(d.createQuerySet(
+            {.type = QueryType::AnySamplesPassed, .count = 2, .debugName = "any"}));
+        const BufferHandle resolved = o.add(
+            d.createBuffer({.size = 40, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
         const std::array<uint64_t, 3> expected = {256ull * samples, 0, 128ull * samples};
         for (int frame = 0; frame < 2; ++frame) {
             auto cmd = d.createCommandList();
-            cmd->beginRenderPass({.colors = {{.texture = color}}, .depth = {.texture = depth}, .debugName = "occlusion"});
+            cmd->beginRenderPass({.colors = {{.texture = color}},
+                                  .depth = {.texture = depth},
+                                  .debugName = "occlusion"});
             cmd->setPipeline(quads.pipeline);
-            DepthQuads::draw(*cmd, pixelQuad(32, 0, 64, 64), 0.2f);  // the occluder: the right half, near
+            DepthQuads::draw(*cmd, pixelQuad(32, 0, 64, 64),
+                             0.2f);  // the occluder: the right half, near
             cmd->beginQuery(occlusion, 0);
             DepthQuads::draw(*cmd, pixelQuad(0, 0, 16, 16), 0.5f);  // in front of nothing
             cmd->endQuery(occlusion, 0);
@@ -72,7 +91,8 @@ std::vector<CaseImage> occlusionQuery(Device& d) {
             DepthQuads::draw(*cmd, pixelQuad(40, 40, 56, 56), 0.7f);
             cmd->endQuery(any, 1);
             cmd->beginQuery(occlusion, 2);
-            DepthQuads::draw(*cmd, pixelQuad(24, 24, 40, 40), 0.5f);  // its right half behind the occluder
+            DepthQuads::draw(*cmd, pixelQuad(24, 24, 40, 40),
+                             0.5f);  // its right half behind the occluder
             cmd->endQuery(occlusion, 2);
             cmd->beginQuery(any, 0);
             DepthQuads::draw(*cmd, pixelQuad(24, 0, 40, 8), 0.5f);
@@ -83,20 +103,26 @@ std::vector<CaseImage> occlusionQuery(Device& d) {
             std::array<uint64_t, 3> counts{};
             const FenceValue fence = d.submit(*cmd);
             d.wait(fence);
-            FE_CONFORMANCE_CHECK(d.queryResults(occlusion, 0, 3, counts), "results are available once the submission completed");
+            FE_CONFORMANCE_CHECK(d.queryResults(occlusion, 0, 3, counts),
+                                 "results are available once the submission completed");
             for (size_t i = 0; i < 3; ++i)
                 FE_CONFORMANCE_CHECK(counts[i] == expected[i],
-                                     ("occlusion query " + std::to_string(i) + " counts " + std::to_string(counts[i]) +
-                                      " samples, expected " + std::to_string(expected[i])).c_str());
+                                     ("occlusion query " + std::to_string(i) + " counts " +
+                                      std::to_string(counts[i]) + " samples, expected " +
+                                      std::to_string(expected[i]))
+                                         .c_str());
             std::array<uint64_t, 2> anyPassed{};
-            FE_CONFORMANCE_CHECK(d.queryResults(any, 0, 2, anyPassed), "binary results are available");
-            FE_CONFORMANCE_CHECK(anyPassed[0] == 1 && anyPassed[1] == 0, "AnySamplesPassed: 1 for a visible quad, 0 hidden");
+            FE_CONFORMANCE_CHECK(d.queryResults(any, 0, 2, anyPassed),
+                                 "binary results are available");
+            FE_CONFORMANCE_CHECK(anyPassed[0] == 1 && anyPassed[1] == 0,
+                                 "AnySamplesPassed: 1 for a visible quad, 0 hidden");
             std::array<uint64_t, 5> gpu{};
             const std::vector<uint8_t> bytes = d.readBuffer(resolved, 0, 40);
             std::memcpy(gpu.data(), bytes.data(), 40);
             FE_CONFORMANCE_CHECK(gpu[0] == expected[0] && gpu[1] == 0 && gpu[2] == expected[2],
                                  "resolveQueries writes the same counts into the buffer");
-            FE_CONFORMANCE_CHECK(gpu[3] != 0 && gpu[4] == 0, "resolved AnySamplesPassed: non-zero, then 0");
+            FE_CONFORMANCE_CHECK(gpu[3] != 0 && gpu[4] == 0,
+                                 "resolved AnySamplesPassed: non-zero, then 0");
         }
     }
     return {};
@@ -108,20 +134,29 @@ std::vector<CaseImage> occlusionQuery(Device& d) {
 // and each query counts only its own stages.
 std::vector<CaseImage> pipelineStatistics(Device& d) {
     if (!d.info().features.pipelineStatistics) {
-        FE_CONFORMANCE_CHECK(throws([&] { d.destroy(d.createQuerySet({.type = QueryType::PipelineStatistics})); }),
-                             "without DeviceFeatures::pipelineStatistics the set is refused");
+        FE_CONFORMANCE_CHECK(
+            throws([&] { d.destroy(d.createQuerySet({.type = QueryType::PipelineStatistics})); }),
+            "without DeviceFeatures::pipelineStatistics the set is refused");
         return {};
     }
     DeviceObjects o(d);
     const PipelineHandle quad = o.add(d.createGraphicsPipeline(
         {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
-         .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
-         .topology = PrimitiveTopology::TriangleStrip, .colorFormats = {Format::RGBA8}, .debugName = "statistics quad"}));
-    const PipelineHandle copy = o.add(d.createComputePipeline(
-        {.computeShader = registryShader(o, ShaderStage::Compute, "conformance/constants_copy.comp"), .debugName = "statistics compute"}));
-    const BufferHandle out = o.add(d.createBuffer({.size = 3 * kMaxConstantBytes, .usage = BufferUsage::Storage}));
-    const BufferHandle resolved = o.add(d.createBuffer({.size = 64, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
-    const QuerySetHandle stats = o.add(d.createQuerySet({.type = QueryType::PipelineStatistics, .count = 2, .debugName = "stats"}));
+         .fragmentShader =
+             registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+         .topology = PrimitiveTopology::TriangleStrip,
+         .colorFormats = {Format::RGBA8},
+         .debugName = "statistics quad"}));
+    const PipelineHandle copy = o.add(
+        d.createComputePipeline({.computeShader = registryShader(o, ShaderStage::Compute,
+                                                                 "conformance/constants_copy.comp"),
+                                 .debugName = "statistics compute"}));
+    const BufferHandle out =
+        o.add(d.createBuffer({.size = 3 * kMaxConstantBytes, .usage = BufferUsage::Storage}));
+    const BufferHandle resolved =
+        o.add(d.createBuffer({.size = 64, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+    const QuerySetHandle stats = o.add(d.createQuerySet(
+        {.type = QueryType::PipelineStatistics, .count = 2, .debugName = "stats"}));
     const TextureHandle target = caseTarget(o);
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = target}}});
@@ -139,22 +174,30 @@ std::vector<CaseImage> pipelineStatistics(Device& d) {
     cmd->resolveQueries(stats, 0, 2, resolved, 0);
     d.wait(d.submit(*cmd));
     std::array<PipelineStatistics, 2> s{};
-    FE_CONFORMANCE_CHECK(d.queryResults(stats, 0, 2, std::span(&s[0].primitives, 8)), "statistics are available");
-    const std::string got = "primitives " + std::to_string(s[0].primitives) + ", vertex " + std::to_string(s[0].vertexInvocations) +
-                            ", fragment " + std::to_string(s[0].fragmentInvocations) + ", compute " +
-                            std::to_string(s[0].computeInvocations) + " / " + std::to_string(s[1].computeInvocations);
-    FE_CONFORMANCE_CHECK(s[0].primitives == 2, ("a strip of 4 vertices is 2 primitives: " + got).c_str());
-    FE_CONFORMANCE_CHECK(s[0].vertexInvocations == 4, ("4 vertex shader invocations: " + got).c_str());
+    FE_CONFORMANCE_CHECK(d.queryResults(stats, 0, 2, std::span(&s[0].primitives, 8)),
+                         "statistics are available");
+    const std::string got = "primitives " + std::to_string(s[0].primitives) + ", vertex " +
+                            std::to_string(s[0].vertexInvocations) + ", fragment " +
+                            std::to_string(s[0].fragmentInvocations) + ", compute " +
+                            std::to_string(s[0].computeInvocations) + " / " +
+                            std::to_string(s[1].computeInvocations);
+    FE_CONFORMANCE_CHECK(s[0].primitives == 2,
+                         ("a strip of 4 vertices is 2 primitives: " + got).c_str());
+    FE_CONFORMANCE_CHECK(s[0].vertexInvocations == 4,
+                         ("4 vertex shader invocations: " + got).c_str());
     FE_CONFORMANCE_CHECK(s[0].fragmentInvocations >= 256 && s[0].fragmentInvocations <= 2 * 256,
                          ("256 pixels: 256 to 512 fragment invocations: " + got).c_str());
-    FE_CONFORMANCE_CHECK(s[0].computeInvocations == 0 && s[1].computeInvocations == 24,
-                         ("compute invocations: 0 in the draw's query, 24 in the dispatch's: " + got).c_str());
-    FE_CONFORMANCE_CHECK(s[1].primitives == 0 && s[1].vertexInvocations == 0 && s[1].fragmentInvocations == 0,
-                         ("the dispatch's query counts no graphics work: " + got).c_str());
+    FE_CONFORMANCE_CHECK(
+        s[0].computeInvocations == 0 && s[1].computeInvocations == 24,
+        ("compute invocations: 0 in the draw's query, 24 in the dispatch's: " + got).c_str());
+    FE_CONFORMANCE_CHECK(
+        s[1].primitives == 0 && s[1].vertexInvocations == 0 && s[1].fragmentInvocations == 0,
+        ("the dispatch's query counts no graphics work: " + got).c_str());
     std::array<PipelineStatistics, 2> gpu{};
     const std::vector<uint8_t> bytes = d.readBuffer(resolved, 0, 64);
     std::memcpy(gpu.data(), bytes.data(), 64);
-    FE_CONFORMANCE_CHECK(std::memcmp(gpu.data(), s.data(), 64) == 0, "resolveQueries writes the same statistics");
+    FE_CONFORMANCE_CHECK(std::memcmp(gpu.data(), s.data(), 64) == 0,
+                         "resolveQueries writes the same statistics");
     return {};
 }
 
@@ -163,14 +206,19 @@ std::vector<CaseImage> pipelineStatistics(Device& d) {
 std::vector<CaseImage> timestampsInQuerySet(Device& d) {
     if (!d.info().features.timestamps) return {};
     DeviceObjects o(d);
-    const QuerySetHandle times = o.add(d.createQuerySet({.type = QueryType::Timestamp, .count = 3, .debugName = "times"}));
-    const BufferHandle resolved = o.add(d.createBuffer({.size = 24, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
-    const PipelineHandle copy = o.add(d.createComputePipeline(
-        {.computeShader = registryShader(o, ShaderStage::Compute, "conformance/constants_copy.comp")}));
-    const BufferHandle out = o.add(d.createBuffer({.size = kMaxConstantBytes, .usage = BufferUsage::Storage}));
+    const QuerySetHandle times =
+        o.add(d.createQuerySet({.type = QueryType::Timestamp, .count = 3, .debugName = "times"}));
+    const BufferHandle resolved =
+        o.add(d.createBuffer({.size = 24, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+    const PipelineHandle copy = o.add(
+        d.createComputePipeline({.computeShader = registryShader(
+                                     o, ShaderStage::Compute, "conformance/constants_copy.comp")}));
+    const BufferHandle out =
+        o.add(d.createBuffer({.size = kMaxConstantBytes, .usage = BufferUsage::Storage}));
     const TextureHandle target = caseTarget(o);
     std::array<uint64_t, 3> t{};
-    FE_CONFORMANCE_CHECK(!d.queryResults(times, 0, 3, t), "no results before the queries are submitted");
+    FE_CONFORMANCE_CHECK(!d.queryResults(times, 0, 3, t),
+                         "no results before the queries are submitted");
     auto cmd = d.createCommandList();
     cmd->writeTimestamp(times, 0);
     cmd->beginRenderPass({.colors = {{.texture = target}}});
@@ -190,31 +238,39 @@ std::vector<CaseImage> timestampsInQuerySet(Device& d) {
     std::memcpy(raw.data(), bytes.data(), 24);
     const double period = d.info().limits.timestampPeriodNs;
     for (size_t i = 0; i < 3; ++i)
-        FE_CONFORMANCE_CHECK(std::abs(double(raw[i]) * period - double(t[i])) <= 1.0 + 1e-9 * double(t[i]),
-                             "resolved timestamps times timestampPeriodNs are queryResults' nanoseconds");
+        FE_CONFORMANCE_CHECK(
+            std::abs(double(raw[i]) * period - double(t[i])) <= 1.0 + 1e-9 * double(t[i]),
+            "resolved timestamps times timestampPeriodNs are queryResults' nanoseconds");
     return {};
 }
 
 // Mistakes with queries, refused while recording with the same message everywhere.
 std::vector<CaseImage> queryErrors(Device& d) {
     DeviceObjects o(d);
-    const QuerySetHandle occlusion = o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 2, .debugName = "occ"}));
+    const QuerySetHandle occlusion =
+        o.add(d.createQuerySet({.type = QueryType::Occlusion, .count = 2, .debugName = "occ"}));
     const TextureHandle target = caseTarget(o);
     const BufferHandle noCopy = o.add(d.createBuffer({.size = 64, .usage = BufferUsage::Storage}));
-    expectError([&] { d.createQuerySet({.count = 0, .debugName = "none"}); }, "count 0 is out of range (1..4096)");
+    expectError([&] { d.createQuerySet({.count = 0, .debugName = "none"}); },
+                "count 0 is out of range (1..4096)");
     auto cmd = d.createCommandList();
-    expectError([&] { cmd->beginQuery(occlusion, 0); }, "Occlusion queries begin and end inside a render pass");
+    expectError([&] { cmd->beginQuery(occlusion, 0); },
+                "Occlusion queries begin and end inside a render pass");
     cmd->beginRenderPass({.colors = {{.texture = target}}});
-    expectError([&] { cmd->beginQuery(occlusion, 2); }, "query 2 of set 'occ' is out of range (the set has 2)");
+    expectError([&] { cmd->beginQuery(occlusion, 2); },
+                "query 2 of set 'occ' is out of range (the set has 2)");
     cmd->beginQuery(occlusion, 0);
     expectError([&] { cmd->beginQuery(occlusion, 1); }, "a Occlusion query is already active (0)");
     expectError([&] { cmd->endQuery(occlusion, 1); }, "query 1 of set 'occ' is not active");
     expectError([&] { cmd->endRenderPass(); }, "query 0 begun in the pass is still active");
     cmd->endQuery(occlusion, 0);
-    expectError([&] { cmd->beginQuery(occlusion, 0); }, "query 0 of set 'occ' is already written in this recording");
+    expectError([&] { cmd->beginQuery(occlusion, 0); },
+                "query 0 of set 'occ' is already written in this recording");
     cmd->endRenderPass();
-    expectError([&] { cmd->resolveQueries(occlusion, 0, 2, noCopy, 0); }, "query 1 of set 'occ' has not been written");
-    expectError([&] { cmd->resolveQueries(occlusion, 0, 1, noCopy, 0); }, "the buffer has no CopyDst usage");
+    expectError([&] { cmd->resolveQueries(occlusion, 0, 2, noCopy, 0); },
+                "query 1 of set 'occ' has not been written");
+    expectError([&] { cmd->resolveQueries(occlusion, 0, 1, noCopy, 0); },
+                "the buffer has no CopyDst usage");
     expectError([&] { cmd->writeTimestamp(occlusion, 1); }, "set 'occ' is not a Timestamp set");
     auto other = d.createCommandList();
     other->beginRenderPass({.colors = {{.texture = target}}});

@@ -19,16 +19,18 @@ namespace {
 constexpr TextureUsage kTarget = TextureUsage::RenderTarget | TextureUsage::CopySrc;
 constexpr Rect kWhole{0, 0, kCaseSize, kCaseSize};
 
-
 // An 8-bit colour: k/255 survives the float-to-unorm conversion of clears, draws and samples.
-Texel rgb8(uint32_t r, uint32_t g, uint32_t b) { return {r / 255.0f, g / 255.0f, b / 255.0f, 1.0f}; }
+Texel rgb8(uint32_t r, uint32_t g, uint32_t b) {
+    return {r / 255.0f, g / 255.0f, b / 255.0f, 1.0f};
+}
 
 bool inside(uint32_t x, uint32_t y, Rect r) {
     return int32_t(x) >= r.x && x < r.x + r.width && int32_t(y) >= r.y && y < r.y + r.height;
 }
 // `background`, with `in` over rectangle r.
 Image rectImage(Texel background, Rect r, Texel in) {
-    return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t y) { return inside(x, y, r) ? in : background; });
+    return expectImage(Format::RGBA8,
+                       [=](uint32_t x, uint32_t y) { return inside(x, y, r) ? in : background; });
 }
 
 // The uniform block of fullscreen_ubo.vert and ubo_color.frag.
@@ -38,7 +40,8 @@ struct Params {
 };
 BufferHandle params(DeviceObjects& o, Texel c, float depth = 0.5f) {
     const Params p{{c[0], c[1], c[2], c[3]}, {depth, 0, 0, 0}};
-    return o.add(o.device().createBuffer({.size = sizeof p, .usage = BufferUsage::Uniform}, bytesOf(p)));
+    return o.add(
+        o.device().createBuffer({.size = sizeof p, .usage = BufferUsage::Uniform}, bytesOf(p)));
 }
 
 // --- Samplers -----------------------------------------------------------------------------------
@@ -52,9 +55,13 @@ Texel tileTexel(uint32_t i) { return rgb8(i * 16, 255 - i * 16, (i % 4) * 80 + 1
 // texture show outside; a border colour not passed on gives the same colour for all three.
 std::vector<CaseImage> borderColor(Device& d) {
     DeviceObjects o(d);
-    const TextureHandle tex = o.add(d.createTexture({.width = 4, .height = 4, .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
-                                                     .debugName = "tiles"}));
-    const Image tiles = expectImage(Format::RGBA8, [](uint32_t x, uint32_t y) { return tileTexel(4 * y + x); }, 4, 4);
+    const TextureHandle tex =
+        o.add(d.createTexture({.width = 4,
+                               .height = 4,
+                               .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
+                               .debugName = "tiles"}));
+    const Image tiles = expectImage(
+        Format::RGBA8, [](uint32_t x, uint32_t y) { return tileTexel(4 * y + x); }, 4, 4);
     d.writeTexture(tex, {}, bytesOf(tiles.data));
     struct Border {
         BorderColor color;
@@ -67,16 +74,20 @@ std::vector<CaseImage> borderColor(Device& d) {
     std::vector<CaseImage> out;
     for (const Border& b : borders) {
         FullscreenSampler pass(d, "conformance/textured_uv.frag",
-                               {.minFilter = Filter::Nearest, .magFilter = Filter::Nearest,
-                                .addressU = AddressMode::ClampToBorder, .addressV = AddressMode::ClampToBorder,
-                                .addressW = AddressMode::ClampToBorder, .borderColor = b.color});
+                               {.minFilter = Filter::Nearest,
+                                .magFilter = Filter::Nearest,
+                                .addressU = AddressMode::ClampToBorder,
+                                .addressV = AddressMode::ClampToBorder,
+                                .addressW = AddressMode::ClampToBorder,
+                                .borderColor = b.color});
         const Image image = pass.draw(d, tex, Format::RGBA8, {2, 2, -0.5f, -0.5f});
         const Image expected = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) -> Texel {
             if (x < 16 || x >= 48 || y < 16 || y >= 48) return b.value;
             return tileTexel(4 * ((y - 16) / 8) + (x - 16) / 8);
         });
-        out.push_back(within(b.name, image, expected, 1.0 / 255.0,
-                             "k/255 texels and 0/1 border colours sampled into an 8-bit target: one step of rounding"));
+        out.push_back(within(
+            b.name, image, expected, 1.0 / 255.0,
+            "k/255 texels and 0/1 border colours sampled into an 8-bit target: one step of rounding"));
     }
     return out;
 }
@@ -88,11 +99,15 @@ std::vector<CaseImage> borderColor(Device& d) {
 // shows another level's colour.
 std::vector<CaseImage> lodBiasAndClamp(Device& d) {
     constexpr uint32_t kLevels = 4;
-    const Texel levelColor[kLevels] = {rgb8(240, 16, 16), rgb8(16, 240, 16), rgb8(16, 16, 240), rgb8(240, 240, 16)};
+    const Texel levelColor[kLevels] = {rgb8(240, 16, 16), rgb8(16, 240, 16), rgb8(16, 16, 240),
+                                       rgb8(240, 240, 16)};
     DeviceObjects o(d);
-    const TextureHandle tex = o.add(d.createTexture({.width = kCaseSize, .height = kCaseSize, .mipLevels = kLevels,
-                                                     .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
-                                                     .debugName = "level colours"}));
+    const TextureHandle tex =
+        o.add(d.createTexture({.width = kCaseSize,
+                               .height = kCaseSize,
+                               .mipLevels = kLevels,
+                               .usage = TextureUsage::Sampled | TextureUsage::CopyDst,
+                               .debugName = "level colours"}));
     for (uint32_t m = 0; m < kLevels; ++m) {
         const Image level = solid(Format::RGBA8, levelColor[m], kCaseSize >> m, kCaseSize >> m);
         d.writeTexture(tex, {.mipLevel = m}, bytesOf(level.data));
@@ -109,10 +124,17 @@ std::vector<CaseImage> lodBiasAndClamp(Device& d) {
     std::vector<CaseImage> out;
     for (const Lod& l : lods) {
         FullscreenSampler pass(d, "conformance/textured.frag",
-                               {.minFilter = Filter::Nearest, .magFilter = Filter::Nearest, .mipFilter = MipFilter::Nearest,
-                                .addressU = AddressMode::ClampToEdge, .addressV = AddressMode::ClampToEdge,
-                                .addressW = AddressMode::ClampToEdge, .lodBias = l.bias, .minLod = l.minLod, .maxLod = l.maxLod});
-        out.push_back(within(l.name, pass.draw(d, tex, Format::RGBA8), solid(Format::RGBA8, levelColor[l.level]), 1.0 / 255.0,
+                               {.minFilter = Filter::Nearest,
+                                .magFilter = Filter::Nearest,
+                                .mipFilter = MipFilter::Nearest,
+                                .addressU = AddressMode::ClampToEdge,
+                                .addressV = AddressMode::ClampToEdge,
+                                .addressW = AddressMode::ClampToEdge,
+                                .lodBias = l.bias,
+                                .minLod = l.minLod,
+                                .maxLod = l.maxLod});
+        out.push_back(within(l.name, pass.draw(d, tex, Format::RGBA8),
+                             solid(Format::RGBA8, levelColor[l.level]), 1.0 / 255.0,
                              "k/255 texels sampled into an 8-bit target: one step of rounding"));
     }
     return out;
@@ -132,16 +154,21 @@ std::vector<CaseImage> strideZeroVertex(Device& d) {
          .fragmentShader = registryShader(o, ShaderStage::Fragment, "conformance/value.frag"),
          .vertexBuffers = {{.stride = 8, .attributes = {{0, VertexFormat::Float2, 0}}},
                            {.stride = 0, .attributes = {{1, VertexFormat::Float4, 0}}}},
-         .colorFormats = {Format::RGBA8}, .debugName = "stride 0 colour"}));
+         .colorFormats = {Format::RGBA8},
+         .debugName = "stride 0 colour"}));
     // Pixels [16, 48) x [8, 40): NDC x in [-0.5, 0.5], y in [-0.75, 0.25].
-    const float positions[12] = {-0.5f, -0.75f, 0.5f, -0.75f, -0.5f, 0.25f, -0.5f, 0.25f, 0.5f, -0.75f, 0.5f, 0.25f};
+    const float positions[12] = {-0.5f, -0.75f, 0.5f, -0.75f, -0.5f, 0.25f,
+                                 -0.5f, 0.25f,  0.5f, -0.75f, 0.5f,  0.25f};
     const Texel color = rgb8(51, 153, 204), red = rgb8(255, 0, 0);
     const std::array<Texel, 6> colors = {color, red, red, red, red, red};
-    const BufferHandle pb = o.add(d.createBuffer({.size = sizeof positions, .usage = BufferUsage::Vertex}, bytesOf(positions)));
-    const BufferHandle cb = o.add(d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Vertex}, bytesOf(colors)));
+    const BufferHandle pb = o.add(d.createBuffer(
+        {.size = sizeof positions, .usage = BufferUsage::Vertex}, bytesOf(positions)));
+    const BufferHandle cb = o.add(
+        d.createBuffer({.size = sizeof colors, .usage = BufferUsage::Vertex}, bytesOf(colors)));
     const Texel clear = rgb8(0, 0, 0);
     auto cmd = d.createCommandList();
-    cmd->beginRenderPass({.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
+    cmd->beginRenderPass(
+        {.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
     cmd->setPipeline(p);
     cmd->setVertexBuffer(0, pb);
     cmd->setVertexBuffer(1, cb);
@@ -160,10 +187,13 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
     const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/position.vert"),
                        fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const PipelineHandle p = o.add(d.createGraphicsPipeline(
-        {.vertexShader = vs, .fragmentShader = fs,
+        {.vertexShader = vs,
+         .fragmentShader = fs,
          .vertexBuffers = {{.stride = 8, .attributes = {{0, VertexFormat::Float2, 0}}}},
-         .topology = PrimitiveTopology::TriangleStrip, .primitiveRestart = true,
-         .colorFormats = {Format::RGBA8}, .debugName = "restarted strips"}));
+         .topology = PrimitiveTopology::TriangleStrip,
+         .primitiveRestart = true,
+         .colorFormats = {Format::RGBA8},
+         .debugName = "restarted strips"}));
     // Unused vertices lie outside the target; each quad is a strip of four corners.
     std::vector<std::array<float, 2>> positions(65536, {5, 5});
     auto strip = [&](uint32_t first, float x0, float x1) {
@@ -175,13 +205,16 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
     strip(0, -0.75f, -0.25f);
     strip(4, 0.25f, 0.75f);
     positions[0xFFFF] = {0.0f, 0.25f};
-    const BufferHandle vb = o.add(d.createBuffer(
-        {.size = positions.size() * sizeof positions[0], .usage = BufferUsage::Vertex, .debugName = "strip corners"},
-        bytesOf(positions)));
+    const BufferHandle vb = o.add(d.createBuffer({.size = positions.size() * sizeof positions[0],
+                                                  .usage = BufferUsage::Vertex,
+                                                  .debugName = "strip corners"},
+                                                 bytesOf(positions)));
     const uint16_t indices16[9] = {0, 1, 2, 3, 0xFFFF, 4, 5, 6, 7};
     const uint32_t indices32[9] = {0, 1, 2, 3, 0xFFFFFFFFu, 4, 5, 6, 7};
-    const BufferHandle ib16 = o.add(d.createBuffer({.size = sizeof indices16, .usage = BufferUsage::Index}, bytesOf(indices16)));
-    const BufferHandle ib32 = o.add(d.createBuffer({.size = sizeof indices32, .usage = BufferUsage::Index}, bytesOf(indices32)));
+    const BufferHandle ib16 = o.add(d.createBuffer(
+        {.size = sizeof indices16, .usage = BufferUsage::Index}, bytesOf(indices16)));
+    const BufferHandle ib32 = o.add(d.createBuffer(
+        {.size = sizeof indices32, .usage = BufferUsage::Index}, bytesOf(indices32)));
     const Texel color = rgb8(255, 204, 51), clear = rgb8(0, 0, 0);
     const BufferHandle ubo = params(o, color);
     const Image expected = expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) {
@@ -191,7 +224,8 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
     for (IndexType type : {IndexType::U16, IndexType::U32}) {
         const TextureHandle t = caseTarget(o);
         auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
+        cmd->beginRenderPass(
+            {.colors = {{.texture = t, .clear = {clear[0], clear[1], clear[2], clear[3]}}}});
         cmd->setPipeline(p);
         cmd->setUniformBuffer(0, ubo);
         cmd->setVertexBuffer(0, vb);
@@ -199,7 +233,8 @@ std::vector<CaseImage> primitiveRestart(Device& d) {
         cmd->drawIndexed(9);
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(drawn8(type == IndexType::U16 ? "u16_two_strips" : "u32_two_strips", d.readTexture(t), expected));
+        out.push_back(drawn8(type == IndexType::U16 ? "u16_two_strips" : "u32_two_strips",
+                             d.readTexture(t), expected));
     }
     return out;
 }
@@ -224,9 +259,11 @@ void dirtyTexture(Device& d, TextureDesc desc) {
     auto cmd = d.createCommandList();
     for (uint32_t m = 0; m < desc.mipLevels; ++m) {
         if (isDepthFormat(desc.format))
-            cmd->beginRenderPass({.depth = {.texture = t, .mipLevel = m, .clearDepth = 0.5f, .clearStencil = 0x5A}});
+            cmd->beginRenderPass(
+                {.depth = {.texture = t, .mipLevel = m, .clearDepth = 0.5f, .clearStencil = 0x5A}});
         else
-            cmd->beginRenderPass({.colors = {{.texture = t, .mipLevel = m, .clear = {0.25f, 0.5f, 0.75f, 1}}}});
+            cmd->beginRenderPass(
+                {.colors = {{.texture = t, .mipLevel = m, .clear = {0.25f, 0.5f, 0.75f, 1}}}});
         cmd->endRenderPass();
     }
     d.wait(d.submit(*cmd));
@@ -245,38 +282,51 @@ bool allZero(const uint8_t* bytes, size_t size) {
 std::vector<CaseImage> zeroInitialised(Device& d) {
     DeviceObjects o(d);
     {
-        const BufferDesc desc{.size = 4096, .usage = BufferUsage::Storage | BufferUsage::CopySrc, .debugName = "new gpu-only"};
+        const BufferDesc desc{.size = 4096,
+                              .usage = BufferUsage::Storage | BufferUsage::CopySrc,
+                              .debugName = "new gpu-only"};
         dirtyBuffer(d, desc);
         const BufferHandle b = o.add(d.createBuffer(desc));
         const std::vector<uint8_t> bytes = d.readBuffer(b, 0, desc.size);
         FE_CONFORMANCE_CHECK(bytes.size() == desc.size, "readBuffer returns the bytes asked for");
-        FE_CONFORMANCE_CHECK(allZero(bytes.data(), bytes.size()), "a new GpuOnly buffer reads as zeros");
+        FE_CONFORMANCE_CHECK(allZero(bytes.data(), bytes.size()),
+                             "a new GpuOnly buffer reads as zeros");
     }
     {
-        const BufferDesc desc{.size = 256, .usage = BufferUsage::Uniform | BufferUsage::CopySrc, .access = MemoryAccess::Upload,
+        const BufferDesc desc{.size = 256,
+                              .usage = BufferUsage::Uniform | BufferUsage::CopySrc,
+                              .access = MemoryAccess::Upload,
                               .debugName = "new upload"};
         dirtyBuffer(d, desc);
         const BufferHandle b = o.add(d.createBuffer(desc));
         const auto* mapped = static_cast<const uint8_t*>(d.map(b));
         FE_CONFORMANCE_CHECK(mapped != nullptr, "an Upload buffer maps");
-        FE_CONFORMANCE_CHECK(allZero(mapped, desc.size), "a new Upload buffer's mapped bytes are zeros");
+        FE_CONFORMANCE_CHECK(allZero(mapped, desc.size),
+                             "a new Upload buffer's mapped bytes are zeros");
         const std::vector<uint8_t> bytes = d.readBuffer(b, 0, desc.size);
-        FE_CONFORMANCE_CHECK(allZero(bytes.data(), bytes.size()), "a new Upload buffer reads back as zeros");
+        FE_CONFORMANCE_CHECK(allZero(bytes.data(), bytes.size()),
+                             "a new Upload buffer reads back as zeros");
     }
     {
-        const BufferDesc desc{.size = 256, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc, .access = MemoryAccess::Readback,
+        const BufferDesc desc{.size = 256,
+                              .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
+                              .access = MemoryAccess::Readback,
                               .debugName = "new readback"};
         dirtyBuffer(d, desc);
         const BufferHandle b = o.add(d.createBuffer(desc));
         d.waitIdle();  // Readback bytes are valid once the work before them has completed
         const auto* mapped = static_cast<const uint8_t*>(d.map(b));
         FE_CONFORMANCE_CHECK(mapped != nullptr, "a Readback buffer maps");
-        FE_CONFORMANCE_CHECK(allZero(mapped, desc.size), "a new Readback buffer's mapped bytes are zeros");
+        FE_CONFORMANCE_CHECK(allZero(mapped, desc.size),
+                             "a new Readback buffer's mapped bytes are zeros");
     }
     std::vector<CaseImage> out;
     {
-        const TextureDesc desc{.width = kCaseSize, .height = kCaseSize, .mipLevels = 2,
-                               .usage = TextureUsage::Sampled | TextureUsage::CopySrc, .debugName = "new sampled"};
+        const TextureDesc desc{.width = kCaseSize,
+                               .height = kCaseSize,
+                               .mipLevels = 2,
+                               .usage = TextureUsage::Sampled | TextureUsage::CopySrc,
+                               .debugName = "new sampled"};
         dirtyTexture(d, desc);
         const TextureHandle t = o.add(d.createTexture(desc));
         out.push_back(exact("rgba8_mip0", d.readTexture(t), solid(Format::RGBA8, {0, 0, 0, 0})));
@@ -284,10 +334,15 @@ std::vector<CaseImage> zeroInitialised(Device& d) {
                             solid(Format::RGBA8, {0, 0, 0, 0}, kCaseSize / 2, kCaseSize / 2)));
     }
     for (Format f : {Format::RGBA16F, Format::D32F}) {
-        const TextureDesc desc{.format = f, .width = kCaseSize, .height = kCaseSize, .usage = kTarget, .debugName = "new target"};
+        const TextureDesc desc{.format = f,
+                               .width = kCaseSize,
+                               .height = kCaseSize,
+                               .usage = kTarget,
+                               .debugName = "new target"};
         dirtyTexture(d, desc);
         const TextureHandle t = o.add(d.createTexture(desc));
-        out.push_back(exact(f == Format::D32F ? "d32f_target" : "rgba16f_target", d.readTexture(t), solid(f, {0, 0, 0, 0})));
+        out.push_back(exact(f == Format::D32F ? "d32f_target" : "rgba16f_target", d.readTexture(t),
+                            solid(f, {0, 0, 0, 0})));
     }
     return out;
 }
@@ -301,13 +356,17 @@ std::vector<CaseImage> zeroInitialised(Device& d) {
 // everything. A mask that is ignored gives white.
 std::vector<CaseImage> sampleMask(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex,
+                                           "conformance/fullscreen_ubo.vert"),
                        fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const BufferHandle white = params(o, {1, 1, 1, 1});
     auto pipeline = [&](uint32_t samples, uint32_t mask) {
-        return o.add(d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                               .multisample = {.sampleCount = samples, .sampleMask = mask},
-                                               .colorFormats = {Format::RGBA8}, .debugName = "sample mask"}));
+        return o.add(
+            d.createGraphicsPipeline({.vertexShader = vs,
+                                      .fragmentShader = fs,
+                                      .multisample = {.sampleCount = samples, .sampleMask = mask},
+                                      .colorFormats = {Format::RGBA8},
+                                      .debugName = "sample mask"}));
     };
     auto drawInto = [&](PipelineHandle p, const ColorAttachment& attachment) {
         auto cmd = d.createCommandList();
@@ -323,17 +382,25 @@ std::vector<CaseImage> sampleMask(Device& d) {
         const TextureHandle t = caseTarget(o);
         drawInto(pipeline(1, mask), {.texture = t, .clear = {0, 0, 0, 1}});
         const float v = float(mask & 1u);
-        out.push_back(exact("single_sample_mask" + std::to_string(mask), d.readTexture(t), solid(Format::RGBA8, {v, v, v, 1})));
+        out.push_back(exact("single_sample_mask" + std::to_string(mask), d.readTexture(t),
+                            solid(Format::RGBA8, {v, v, v, 1})));
     }
     if (d.info().limits.colorSampleCounts & 4) {
-        const TextureHandle ms = o.add(
-            d.createTexture({.width = kCaseSize, .height = kCaseSize, .sampleCount = 4, .usage = TextureUsage::RenderTarget}));
+        const TextureHandle ms = o.add(d.createTexture({.width = kCaseSize,
+                                                        .height = kCaseSize,
+                                                        .sampleCount = 4,
+                                                        .usage = TextureUsage::RenderTarget}));
         for (uint32_t mask : {0b0001u, 0b0011u, 0b1110u}) {
             const TextureHandle resolved = caseTarget(o);
-            drawInto(pipeline(4, mask), {.texture = ms, .store = StoreOp::DontCare, .clear = {0, 0, 0, 1}, .resolveTexture = resolved});
+            drawInto(pipeline(4, mask), {.texture = ms,
+                                         .store = StoreOp::DontCare,
+                                         .clear = {0, 0, 0, 1},
+                                         .resolveTexture = resolved});
             const float v = float(std::popcount(mask)) / 4.0f;
-            out.push_back(within("msaa4_mask" + std::to_string(mask), d.readTexture(resolved), solid(Format::RGBA8, {v, v, v, 1}),
-                                 1.5 / 255.0, "average of 4 samples of 0 and 1 (0.25 and 0.75 round either way in 8 bits)"));
+            out.push_back(within(
+                "msaa4_mask" + std::to_string(mask), d.readTexture(resolved),
+                solid(Format::RGBA8, {v, v, v, 1}), 1.5 / 255.0,
+                "average of 4 samples of 0 and 1 (0.25 and 0.75 round either way in 8 bits)"));
         }
     }
     return out;
@@ -354,10 +421,12 @@ std::vector<CaseImage> sampleMask(Device& d) {
 // A command ignored, or setPipeline not restoring the pipeline's value, changes a column.
 std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     DeviceObjects o(d);
-    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex, "conformance/fullscreen_ubo.vert"),
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex,
+                                           "conformance/fullscreen_ubo.vert"),
                        fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const Texel red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1};
-    const BufferHandle whiteUbo = params(o, {1, 1, 1, 1}), redUbo = params(o, red), greenUbo = params(o, green);
+    const BufferHandle whiteUbo = params(o, {1, 1, 1, 1}), redUbo = params(o, red),
+                       greenUbo = params(o, green);
     auto column = [](uint32_t i) { return Rect{int32_t(16 * i), 0, 16, kCaseSize}; };
     auto columns = [](Texel c0, Texel c1, Texel c2, Texel c3) {
         return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t) {
@@ -367,11 +436,17 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     };
     std::vector<CaseImage> out;
     {
-        const PipelineHandle p = o.add(d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs,
-             .blend = {{.enable = true, .srcColor = BlendFactor::ConstantColor, .dstColor = BlendFactor::Zero,
-                        .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero}},
-             .blendConstant = {1, 0, 0, 1}, .colorFormats = {Format::RGBA8}, .debugName = "blend constant"}));
+        const PipelineHandle p =
+            o.add(d.createGraphicsPipeline({.vertexShader = vs,
+                                            .fragmentShader = fs,
+                                            .blend = {{.enable = true,
+                                                       .srcColor = BlendFactor::ConstantColor,
+                                                       .dstColor = BlendFactor::Zero,
+                                                       .srcAlpha = BlendFactor::One,
+                                                       .dstAlpha = BlendFactor::Zero}},
+                                            .blendConstant = {1, 0, 0, 1},
+                                            .colorFormats = {Format::RGBA8},
+                                            .debugName = "blend constant"}));
         const TextureHandle t = caseTarget(o);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}});
@@ -394,19 +469,29 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     }
     {
         const TextureHandle t = caseTarget(o);
-        const TextureHandle ds = o.add(d.createTexture(
-            {.format = Format::D24S8, .width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::RenderTarget}));
+        const TextureHandle ds = o.add(d.createTexture({.format = Format::D24S8,
+                                                        .width = kCaseSize,
+                                                        .height = kCaseSize,
+                                                        .usage = TextureUsage::RenderTarget}));
         const StencilFaceState replace{.passOp = StencilOp::Replace, .compare = CompareOp::Always};
         const PipelineHandle write = o.add(d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs,
-             .depthStencil = {.stencilTest = true, .front = replace, .back = replace, .stencilReference = 0},
+            {.vertexShader = vs,
+             .fragmentShader = fs,
+             .depthStencil =
+                 {.stencilTest = true, .front = replace, .back = replace, .stencilReference = 0},
              .blend = {{.writeMask = ColorMask::None}},
-             .colorFormats = {Format::RGBA8}, .depthFormat = Format::D24S8, .debugName = "stencil replace"}));
+             .colorFormats = {Format::RGBA8},
+             .depthFormat = Format::D24S8,
+             .debugName = "stencil replace"}));
         const StencilFaceState equal{.compare = CompareOp::Equal};
         const PipelineHandle test = o.add(d.createGraphicsPipeline(
-            {.vertexShader = vs, .fragmentShader = fs,
-             .depthStencil = {.stencilTest = true, .front = equal, .back = equal, .stencilReference = 0},
-             .colorFormats = {Format::RGBA8}, .depthFormat = Format::D24S8, .debugName = "stencil equal"}));
+            {.vertexShader = vs,
+             .fragmentShader = fs,
+             .depthStencil =
+                 {.stencilTest = true, .front = equal, .back = equal, .stencilReference = 0},
+             .colorFormats = {Format::RGBA8},
+             .depthFormat = Format::D24S8,
+             .debugName = "stencil equal"}));
         const Rect r{8, 20, 24, 16};
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},
@@ -429,18 +514,27 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     }
     {
         // D32F at 0.5: r = 2^-24, so a constant of -1000 moves depth by about -6e-5.
-        const GraphicsPipelineDesc desc{.vertexShader = vs, .fragmentShader = fs,
-                                        .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
-                                        .colorFormats = {Format::RGBA8}, .depthFormat = Format::D32F, .debugName = "depth less"};
+        const GraphicsPipelineDesc desc{.vertexShader = vs,
+                                        .fragmentShader = fs,
+                                        .depthStencil = {.depthTest = true,
+                                                         .depthWrite = true,
+                                                         .depthCompare = CompareOp::Less},
+                                        .colorFormats = {Format::RGBA8},
+                                        .depthFormat = Format::D32F,
+                                        .debugName = "depth less"};
         GraphicsPipelineDesc biasedDesc = desc;
         biasedDesc.raster.depthBiasConstant = -1000.0f;
         biasedDesc.debugName = "depth less, biased";
-        const PipelineHandle p = o.add(d.createGraphicsPipeline(desc)), biased = o.add(d.createGraphicsPipeline(biasedDesc));
+        const PipelineHandle p = o.add(d.createGraphicsPipeline(desc)),
+                             biased = o.add(d.createGraphicsPipeline(biasedDesc));
         const TextureHandle t = caseTarget(o);
-        const TextureHandle depth = o.add(d.createTexture(
-            {.format = Format::D32F, .width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::RenderTarget}));
+        const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
+                                                           .width = kCaseSize,
+                                                           .height = kCaseSize,
+                                                           .usage = TextureUsage::RenderTarget}));
         auto cmd = d.createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}}, .depth = {.texture = depth, .clearDepth = 1.0f}});
+        cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},
+                              .depth = {.texture = depth, .clearDepth = 1.0f}});
         cmd->setPipeline(p);
         cmd->setUniformBuffer(0, redUbo);
         cmd->draw(3);  // red at 0.5 everywhere

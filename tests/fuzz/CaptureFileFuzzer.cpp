@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         fe::gdi::summarizeCapture(path);
         // Work bounded so that each input replays in well under the harness's timeout on
         // lavapipe under ASan (the seeds draw a few thousand vertices).
-        fe::gdi::replayCapture(path, d, {.maxDrawVertices = 1u << 20, .maxDispatchGroups = 1u << 16});
+        fe::gdi::replayCapture(path, d,
+                               {.maxDrawVertices = 1u << 20, .maxDispatchGroups = 1u << 16});
     } catch (const fe::gdi::CaptureError&) {
     } catch (const fe::gdi::DeviceLostError& e) {
         lost = e.what();

@@ -17,8 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const auto stream = fe::gdi::decodeCommandStream(bytes);
         const std::vector<std::byte> again = fe::gdi::encodeCommandStream(*stream);
         FUZZ_CHECK(fe::gdi::encodeCommandStream(*fe::gdi::decodeCommandStream(again)) == again,
-                   "an accepted stream does not re-encode to the same bytes", std::to_string(again.size()) + " bytes");
-    } catch (const fe::gdi::CaptureError&) {
-    }
+                   "an accepted stream does not re-encode to the same bytes",
+                   std::to_string(again.size()) + " bytes");
+    } catch (const fe::gdi::CaptureError&) {}
     return 0;
 }

@@ -28,11 +28,12 @@ void render(std::vector<std::string> args) {
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    const fe::cli::Args parsed =
-        fe::cli::parse(int(argv.size() - 1), argv.data(), 2, fe::cli::kRenderOptions, fe::cli::kRenderFlags);
+    const fe::cli::Args parsed = fe::cli::parse(int(argv.size() - 1), argv.data(), 2,
+                                                fe::cli::kRenderOptions, fe::cli::kRenderFlags);
     const fe::cli::RenderJob job = fe::cli::renderJob(parsed);
     // Builtin scenes are generated in proportion to --lights; a few thousand keeps an input fast.
-    if (job.builtin.lights <= 4096) fe::assets::Scene scene = fe::assets::loadScene(job.spec, {}, job.builtin);
+    if (job.builtin.lights <= 4096)
+        fe::assets::Scene scene = fe::assets::loadScene(job.spec, {}, job.builtin);
 }
 
 void sweep(const std::string& text) {
@@ -45,7 +46,8 @@ void sweep(const std::string& text) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool quiet = [] {
-        spdlog::set_level(spdlog::level::off);  // --help and --log-level print; the fuzzer needs no output
+        spdlog::set_level(
+            spdlog::level::off);  // --help and --log-level print; the fuzzer needs no output
         return true;
     }();
     (void)quiet;
@@ -60,7 +62,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             size_t at = 0;
             while (at <= rest.size() && !rest.empty()) {
                 const size_t end = rest.find('\n', at);
-                args.push_back(rest.substr(at, end == std::string::npos ? std::string::npos : end - at));
+                args.push_back(
+                    rest.substr(at, end == std::string::npos ? std::string::npos : end - at));
                 if (end == std::string::npos) break;
                 at = end + 1;
             }

@@ -12,7 +12,8 @@
 namespace fe::fuzz {
 
 inline gdi::Device& vulkanDevice() {
-    static std::unique_ptr<gdi::Device> d = gdi::createDevice({.backend = "vulkan", .validation = true});
+    static std::unique_ptr<gdi::Device> d =
+        gdi::createDevice({.backend = "vulkan", .validation = true});
     return *d;
 }
 
@@ -23,7 +24,8 @@ struct DeviceContract {
     uint32_t validationBefore = device.validationErrorCount();
     void check(const std::string& lost, const char* while_) const {
         FUZZ_CHECK(lost.empty(), "device lost:", lost);
-        FUZZ_CHECK(device.liveObjects() == before, "device objects left behind:", gdi::toString(device.liveObjects()));
+        FUZZ_CHECK(device.liveObjects() == before,
+                   "device objects left behind:", gdi::toString(device.liveObjects()));
         FUZZ_CHECK(device.validationErrorCount() == validationBefore, "validation errors", while_);
     }
 };

@@ -18,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const std::exception& e) {
         undocumented = e.what();
     }
-    FUZZ_CHECK(undocumented.empty(), "the loader threw something other than AssetError:", undocumented);
+    FUZZ_CHECK(undocumented.empty(),
+               "the loader threw something other than AssetError:", undocumented);
     return 0;
 }

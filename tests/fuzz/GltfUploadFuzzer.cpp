@@ -23,8 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const fe::assets::AssetError&) {
     } catch (const fe::gdi::DeviceLostError& e) {
         lost = e.what();
-    } catch (const fe::gdi::Error&) {
-    }
+    } catch (const fe::gdi::Error&) {}
     FUZZ_CHECK_DEVICE(contract, lost, "while uploading");
     return 0;
 }

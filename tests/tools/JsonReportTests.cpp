@@ -20,7 +20,8 @@ namespace {
 
 // Runs the fe tool with `args`; returns its stdout (and stderr when asked) and sets `exitCode`.
 std::string runFe(const std::string& args, int& exitCode, bool withStderr = false) {
-    const std::string command = std::string(FE_TOOL) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
+    const std::string command =
+        std::string(FE_TOOL) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) throw std::runtime_error("cannot run " + command);
     std::string out;
@@ -49,7 +50,8 @@ void expectDeviceSummary(const json& d, const std::string& backend) {
         if constexpr (std::is_floating_point_v<std::decay_t<decltype(value)>>)
             EXPECT_TRUE(d["limits"][name].is_number()) << backend << " limit " << name;
         else if constexpr (!std::is_arithmetic_v<std::decay_t<decltype(value)>>)  // x, y, z
-            EXPECT_TRUE(d["limits"][name].is_array() && d["limits"][name].size() == value.size()) << backend << " limit " << name;
+            EXPECT_TRUE(d["limits"][name].is_array() && d["limits"][name].size() == value.size())
+                << backend << " limit " << name;
         else
             EXPECT_TRUE(d["limits"][name].is_number_unsigned()) << backend << " limit " << name;
     });
@@ -66,17 +68,26 @@ void expectDeviceSummary(const json& d, const std::string& backend) {
 
 // The conversion itself: every limit and feature appears under its name with its value.
 TEST(InfoJson, DeviceInfoCarriesEveryField) {
-    fe::gdi::DeviceInfo info{.backend = "test", .deviceName = "dev", .apiVersion = "api", .driverInfo = "drv"};
-    info.limits = {.maxTextureSize2D = 16384, .maxColorAttachments = 8, .maxComputeWorkGroupInvocations = 1024,
-                   .maxUniformBufferRange = 65536, .maxStorageBufferRange = 1ull << 31,
-                   .uniformBufferOffsetAlignment = 256, .storageBufferOffsetAlignment = 64};
+    fe::gdi::DeviceInfo info{
+        .backend = "test", .deviceName = "dev", .apiVersion = "api", .driverInfo = "drv"};
+    info.limits = {.maxTextureSize2D = 16384,
+                   .maxColorAttachments = 8,
+                   .maxComputeWorkGroupInvocations = 1024,
+                   .maxUniformBufferRange = 65536,
+                   .maxStorageBufferRange = 1ull << 31,
+                   .uniformBufferOffsetAlignment = 256,
+                   .storageBufferOffsetAlignment = 64};
     info.features.computeShaders = true;
     info.features.window = true;
     const fe::gdi::Json ordered = info;
     const json j = json::parse(ordered.dump());  // as a reader of the document sees it
     expectDeviceSummary(j, "test");
-    fe::gdi::forEachField(info.limits, [&](const char* name, const auto& value) { EXPECT_EQ(j["limits"][name], value) << name; });
-    fe::gdi::forEachField(info.features, [&](const char* name, const auto& value) { EXPECT_EQ(j["features"][name], value) << name; });
+    fe::gdi::forEachField(info.limits, [&](const char* name, const auto& value) {
+        EXPECT_EQ(j["limits"][name], value) << name;
+    });
+    fe::gdi::forEachField(info.features, [&](const char* name, const auto& value) {
+        EXPECT_EQ(j["features"][name], value) << name;
+    });
     EXPECT_EQ(j["limits"]["maxStorageBufferRange"].get<uint64_t>(), 1ull << 31);
 }
 
@@ -95,11 +106,14 @@ TEST(FeInfoJson, ListsEveryBackendWithItsDevice) {
             available.insert(name);
             expectDeviceSummary(b["device"], name);
         } else {
-            EXPECT_FALSE(b["reason"].get<std::string>().empty()) << name << ": unavailable without a reason";
+            EXPECT_FALSE(b["reason"].get<std::string>().empty())
+                << name << ": unavailable without a reason";
         }
     }
-    EXPECT_EQ(listed, (std::set<std::string>{"vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"}));
-    for (const std::string& b : kHeadless) EXPECT_TRUE(available.count(b)) << b << " is not available";
+    EXPECT_EQ(listed,
+              (std::set<std::string>{"vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"}));
+    for (const std::string& b : kHeadless)
+        EXPECT_TRUE(available.count(b)) << b << " is not available";
 }
 
 TEST(FeInfoJson, BackendOptionSelectsAndUnknownNamesFail) {
@@ -129,13 +143,15 @@ TEST(ConformanceReport, CarriesDevicesCasesAndComparisons) {
     EXPECT_EQ(report["schema"], "fe-results/1");  // the bench's schema too
     EXPECT_EQ(report["kind"], "conformance");
     EXPECT_EQ(report["engine"]["name"], "Fools Engine");
-    EXPECT_TRUE(std::regex_match(report["date"].get<std::string>(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
+    EXPECT_TRUE(std::regex_match(report["date"].get<std::string>(),
+                                 std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
         << report["date"];
     std::set<std::string> backends;
     for (const json& b : report["backends"]) {
         ASSERT_TRUE(b["available"].get<bool>()) << b.dump();
         expectDeviceSummary(b["device"], b["name"]);
-        EXPECT_TRUE(b["device"]["features"]["validation"].get<bool>()) << "conformance runs with validation";
+        EXPECT_TRUE(b["device"]["features"]["validation"].get<bool>())
+            << "conformance runs with validation";
         backends.insert(b["name"]);
     }
     EXPECT_EQ(backends, kHeadless);
@@ -169,7 +185,9 @@ TEST(ConformanceReport, CarriesDevicesCasesAndComparisons) {
 TEST(ConformanceReport, UnwritablePathIsAnError) {
     int exitCode = -1;
     const std::string out =
-        runFe("conformance --backend vulkan --case triangle --report /nonexistent/dir/report.json", exitCode, true);
+        runFe("conformance --backend vulkan --case triangle --report /nonexistent/dir/report.json",
+              exitCode, true);
     EXPECT_EQ(exitCode, 1);
-    EXPECT_NE(out.find("cannot write the report /nonexistent/dir/report.json"), std::string::npos) << out;
+    EXPECT_NE(out.find("cannot write the report /nonexistent/dir/report.json"), std::string::npos)
+        << out;
 }

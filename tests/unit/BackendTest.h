@@ -47,5 +47,6 @@ inline std::string backendTestName(const ::testing::TestParamInfo<std::string>& 
 
 }  // namespace fe::testing
 
-#define FE_INSTANTIATE_FOR_EVERY_BACKEND(Fixture) \
-    INSTANTIATE_TEST_SUITE_P(Backends, Fixture, ::testing::ValuesIn(fe::gdi::backendNames()), fe::testing::backendTestName)
+#define FE_INSTANTIATE_FOR_EVERY_BACKEND(Fixture)                                             \
+    INSTANTIATE_TEST_SUITE_P(Backends, Fixture, ::testing::ValuesIn(fe::gdi::backendNames()), \
+                             fe::testing::backendTestName)

@@ -33,10 +33,13 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
     device.reset();  // the bench opens the backend itself
     // Each measurement hands over the document so far (fe bench writes results.partial.json).
     std::vector<size_t> partialSizes;
-    const gdi::Json doc = render::runBench(
-        tinySweep(), {GetParam()},
-        {.warmupFrames = 1, .frames = 3, .validation = true,
-         .onResult = [&](const gdi::Json& partial) { partialSizes.push_back(partial["results"].size()); }});
+    const gdi::Json doc = render::runBench(tinySweep(), {GetParam()},
+                                           {.warmupFrames = 1,
+                                            .frames = 3,
+                                            .validation = true,
+                                            .onResult = [&](const gdi::Json& partial) {
+                                                partialSizes.push_back(partial["results"].size());
+                                            }});
     EXPECT_EQ(partialSizes, (std::vector<size_t>{1, 2, 3}));
     EXPECT_EQ(doc["schema"], "fe-results/1");
     EXPECT_TRUE(doc["engine"].contains("commit"));
@@ -52,14 +55,16 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
         EXPECT_LE(r["cpuFrameMs"]["min"].get<double>(), r["cpuFrameMs"]["max"].get<double>());
         EXPECT_GT(r["memory"]["transientWithoutAliasing"].get<uint64_t>(), 0u);
         EXPECT_FALSE(r["memory"]["textures"].empty());
-        for (const char* k : {"ssim", "flip", "percentOver5", "maxAbs"}) EXPECT_TRUE(r["error"][k].is_number()) << k;
+        for (const char* k : {"ssim", "flip", "percentOver5", "maxAbs"})
+            EXPECT_TRUE(r["error"][k].is_number()) << k;
         EXPECT_TRUE(r["settings"].contains("shadows"));
     }
     // Forward is exact; the reduced rate is not; the reference knew about shadows and the sky.
     EXPECT_GT(doc["results"][0]["error"]["psnr"].get<double>(), 45.0);
     EXPECT_LT(doc["results"][0]["error"]["percentOver5"].get<double>(), 0.5);
     EXPECT_GT(doc["results"][1]["error"]["percentOver5"].get<double>(), 1.0);
-    EXPECT_EQ(doc["results"][2]["reference"], "cpu reference, image-based lighting at 4096 samples, shadow rays");
+    EXPECT_EQ(doc["results"][2]["reference"],
+              "cpu reference, image-based lighting at 4096 samples, shadow rays");
     EXPECT_LT(doc["results"][2]["error"]["flip"].get<double>(), 0.1);
     // Each against its own BRDF's exact image, and against glTF's: the same for forward (glTF's
     // own), farther for redeferred (the separable BRDF) than its own.
@@ -74,14 +79,19 @@ TEST_P(Bench, SweepRecordsTimesMemoryAndError) {
     // Against itself nothing regresses; a doubled frame time or 1 point more error does.
     EXPECT_FALSE(render::compareResults(doc, doc).regression);
     gdi::Json slower = doc, worse = doc;
-    slower["results"][1]["cpuFrameMs"]["median"] = doc["results"][1]["cpuFrameMs"]["median"].get<double>() * 2.0;
-    worse["results"][0]["error"]["percentOver5"] = doc["results"][0]["error"]["percentOver5"].get<double>() + 1.0;
-    const render::BenchComparison s = render::compareResults(doc, slower), w = render::compareResults(doc, worse);
+    slower["results"][1]["cpuFrameMs"]["median"] =
+        doc["results"][1]["cpuFrameMs"]["median"].get<double>() * 2.0;
+    worse["results"][0]["error"]["percentOver5"] =
+        doc["results"][0]["error"]["percentOver5"].get<double>() + 1.0;
+    const render::BenchComparison s = render::compareResults(doc, slower),
+                                  w = render::compareResults(doc, worse);
     EXPECT_TRUE(s.regression);
-    EXPECT_NE(s.report.find("redeferred/scale4/48x36: frame time x2.00"), std::string::npos) << s.report;
+    EXPECT_NE(s.report.find("redeferred/scale4/48x36: frame time x2.00"), std::string::npos)
+        << s.report;
     EXPECT_TRUE(w.regression);
     EXPECT_NE(w.report.find("LESS EXACT"), std::string::npos) << w.report;
-    EXPECT_FALSE(render::compareResults(doc, slower, 2.5).regression);  // the threshold is the user's
+    EXPECT_FALSE(
+        render::compareResults(doc, slower, 2.5).regression);  // the threshold is the user's
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Bench);
@@ -96,14 +106,17 @@ TEST_P(Bench, WarmUpLastsItsTimeOnAGpuAndItsFramesOnASoftwareDevice) {
     cases.resize(1);
     std::vector<std::chrono::steady_clock::time_point> frames;
     render::BenchOptions options{.warmupFrames = 1, .warmupSeconds = 0.3, .frames = 2};
-    options.onFrame = [&](const std::string&, uint32_t) { frames.push_back(std::chrono::steady_clock::now()); };
+    options.onFrame = [&](const std::string&, uint32_t) {
+        frames.push_back(std::chrono::steady_clock::now());
+    };
     render::runBench(cases, {GetParam()}, options);
     ASSERT_GE(frames.size(), 3u);
     if (software) {
         EXPECT_EQ(frames.size(), 3u) << "a software device warmed up for a time";
     } else {
         // The first timed frame starts after the warm-up's time.
-        const double warm = std::chrono::duration<double>(frames[frames.size() - 2] - frames[0]).count();
+        const double warm =
+            std::chrono::duration<double>(frames[frames.size() - 2] - frames[0]).count();
         EXPECT_GE(warm, 0.3) << frames.size() << " frames";
     }
 }
@@ -116,15 +129,22 @@ TEST_P(Bench, InterleavedCasesAlternateFramesAndMeasureTheSame) {
     cases.resize(2);
     std::vector<std::string> sequential, interleaved;
     // Counted frames only: a GPU's timed warm-up would add frames (WarmUp, below).
-    render::BenchOptions options{.warmupFrames = 1, .warmupSeconds = 0, .frames = 2, .validation = true};
-    options.onFrame = [&](const std::string& key, uint32_t f) { sequential.push_back(key + " " + std::to_string(f)); };
+    render::BenchOptions options{
+        .warmupFrames = 1, .warmupSeconds = 0, .frames = 2, .validation = true};
+    options.onFrame = [&](const std::string& key, uint32_t f) {
+        sequential.push_back(key + " " + std::to_string(f));
+    };
     const gdi::Json a = render::runBench(cases, {GetParam()}, options);
     options.interleave = true;
-    options.onFrame = [&](const std::string& key, uint32_t f) { interleaved.push_back(key + " " + std::to_string(f)); };
+    options.onFrame = [&](const std::string& key, uint32_t f) {
+        interleaved.push_back(key + " " + std::to_string(f));
+    };
     const gdi::Json b = render::runBench(cases, {GetParam()}, options);
     const std::string k0 = cases[0].key(), k1 = cases[1].key();
-    EXPECT_EQ(sequential, (std::vector<std::string>{k0 + " 0", k0 + " 1", k0 + " 2", k1 + " 0", k1 + " 1", k1 + " 2"}));
-    EXPECT_EQ(interleaved, (std::vector<std::string>{k0 + " 0", k1 + " 0", k0 + " 1", k1 + " 1", k0 + " 2", k1 + " 2"}));
+    EXPECT_EQ(sequential, (std::vector<std::string>{k0 + " 0", k0 + " 1", k0 + " 2", k1 + " 0",
+                                                    k1 + " 1", k1 + " 2"}));
+    EXPECT_EQ(interleaved, (std::vector<std::string>{k0 + " 0", k1 + " 0", k0 + " 1", k1 + " 1",
+                                                     k0 + " 2", k1 + " 2"}));
     EXPECT_TRUE(b["options"]["interleave"].get<bool>());
     EXPECT_EQ(b["backends"][0]["validationErrors"], 0u);
     ASSERT_EQ(a["results"].size(), 2u);
@@ -148,7 +168,8 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
         EXPECT_GE(n, 2u) << t.name;
     }
     std::set<std::string> keys;
-    for (const auto& c : cases) EXPECT_TRUE(keys.insert(c.key()).second) << "duplicate key " << c.key();
+    for (const auto& c : cases)
+        EXPECT_TRUE(keys.insert(c.key()).second) << "duplicate key " << c.key();
     auto error = [](const char* text) {
         try {
             render::sweepFromJson(gdi::Json::parse(text));
@@ -157,20 +178,28 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
         }
         return std::string("(no error)");
     };
-    EXPECT_EQ(error(R"({"cases": [{"technique": "forward", "colour": 1}]})"), "sweep: unknown key \"colour\" in a case");
-    EXPECT_EQ(error(R"({"cases": [{"msaa": 16}]})"), "sweep: \"msaa\" must be an integer in [1, 8], got 16");
+    EXPECT_EQ(error(R"({"cases": [{"technique": "forward", "colour": 1}]})"),
+              "sweep: unknown key \"colour\" in a case");
+    EXPECT_EQ(error(R"({"cases": [{"msaa": 16}]})"),
+              "sweep: \"msaa\" must be an integer in [1, 8], got 16");
     EXPECT_EQ(error(R"({"cases": [{"size": "big"}]})"), "sweep: \"size\" must be WxH, got big");
     EXPECT_EQ(error(R"({"cases": []})"), "sweep: no cases");
     EXPECT_EQ(error(R"([1, 2])"), "sweep: expected an object with a \"cases\" array");
-    EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"), std::string::npos);
+    EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"),
+              std::string::npos);
     EXPECT_EQ(error(R"({"cases": [{"technique": "deferred", "msaa": 4}]})"),
               "sweep: case spheres/deferred/msaa4/96x72: deferred takes no --msaa");
-    EXPECT_EQ(error(R"({"cases": [{"technique": "forward-plus", "clusterDepthBounds": false}]})"),
-              "sweep: case spheres/forward-plus/no-cluster-bounds/96x72: forward-plus reads no cluster grid (--no-cluster-bounds)");
-    EXPECT_EQ(error(R"({"cases": [{"technique": "redeferred", "brdf": "gltf"}]})"),
-              "sweep: case spheres/redeferred/brdf-gltf/96x72: redeferred shades with the separable BRDF only (--brdf)");
-    EXPECT_EQ(error(R"({"cases": [{"brdf": "phong"}]})"), "sweep: \"brdf\" must be auto, gltf or separable, got \"phong\"");
-    EXPECT_EQ(render::sweepFromJson(gdi::Json::parse(R"({"cases": [{"technique": "deferred", "brdf": "separable"}]})"))[0].key(),
+    EXPECT_EQ(
+        error(R"({"cases": [{"technique": "forward-plus", "clusterDepthBounds": false}]})"),
+        "sweep: case spheres/forward-plus/no-cluster-bounds/96x72: forward-plus reads no cluster grid (--no-cluster-bounds)");
+    EXPECT_EQ(
+        error(R"({"cases": [{"technique": "redeferred", "brdf": "gltf"}]})"),
+        "sweep: case spheres/redeferred/brdf-gltf/96x72: redeferred shades with the separable BRDF only (--brdf)");
+    EXPECT_EQ(error(R"({"cases": [{"brdf": "phong"}]})"),
+              "sweep: \"brdf\" must be auto, gltf or separable, got \"phong\"");
+    EXPECT_EQ(render::sweepFromJson(gdi::Json::parse(
+                  R"({"cases": [{"technique": "deferred", "brdf": "separable"}]})"))[0]
+                  .key(),
               "spheres/deferred/brdf-separable/96x72");
     EXPECT_EQ(error(R"({"cases": [{"technique": "forward"}, {"technique": "forward"}]})"),
               "sweep: case spheres/forward/96x72 is listed twice");
@@ -187,9 +216,12 @@ TEST(BenchSweep, MatrixExpands) {
     for (const auto& t : render::techniques()) withIBuffer += t.illumScale;
     ASSERT_EQ(cases.size(), 2 * (render::techniques().size() + withIBuffer));
     EXPECT_EQ(cases[0].key(), "lights8/" + std::string(render::techniques()[0].name) + "/96x72");
-    EXPECT_EQ(cases.back().key(), "lights64/" + std::string(render::techniques().back().name) + "/scale2/96x72");
+    EXPECT_EQ(cases.back().key(),
+              "lights64/" + std::string(render::techniques().back().name) + "/scale2/96x72");
     for (const auto& c : cases) {
-        EXPECT_TRUE(c.settings.illumScale == 1 || render::findTechnique(c.settings.technique).illumScale) << c.key();
+        EXPECT_TRUE(c.settings.illumScale == 1 ||
+                    render::findTechnique(c.settings.technique).illumScale)
+            << c.key();
         EXPECT_TRUE(c.lights == 8 || c.lights == 64);
     }
 }

@@ -28,10 +28,15 @@ struct Params {
 TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
     Device& d = *device;
     constexpr uint32_t kSize = 64, kStride = 256;
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
-    const GraphicsPipelineDesc desc{.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
-                                    .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}};
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    const GraphicsPipelineDesc desc{
+        .vertexShader = vs,
+        .fragmentShader = fs,
+        .colorFormats = {Format::RGBA8},
+        .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}};
     PipelineHandle a = d.createGraphicsPipeline(desc);
     // b declares one more slot, so its layout is not compatible with a's: switching between
     // them disturbs Vulkan's push descriptors.
@@ -44,9 +49,13 @@ TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
         Params p{{colors[i][0], colors[i][1], colors[i][2], colors[i][3]}, {0.5f, 0, 0, 0}};
         std::memcpy(&bytes[i * kStride], &p, sizeof p);
     }
-    BufferHandle ubo = d.createBuffer({.size = bytes.size(), .usage = BufferUsage::Uniform}, gdi::bytesOf(bytes));
-    TextureHandle target = d.createTexture(
-        {.format = Format::RGBA8, .width = kSize, .height = kSize, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    BufferHandle ubo =
+        d.createBuffer({.size = bytes.size(), .usage = BufferUsage::Uniform}, gdi::bytesOf(bytes));
+    TextureHandle target =
+        d.createTexture({.format = Format::RGBA8,
+                         .width = kSize,
+                         .height = kSize,
+                         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
 
     // Eight vertical stripes, each drawn through a scissor: {pipeline, colour set before it or -1}.
     const std::array<std::pair<PipelineHandle, int>, 8> stripes = {{
@@ -65,7 +74,8 @@ TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
     cmd->setUniformBuffer(1, ubo, 0, sizeof(Params));  // b's extra slot, set once
     for (uint32_t i = 0; i < stripes.size(); ++i) {
         cmd->setPipeline(stripes[i].first);
-        if (stripes[i].second >= 0) cmd->setUniformBuffer(0, ubo, uint64_t(stripes[i].second) * kStride, sizeof(Params));
+        if (stripes[i].second >= 0)
+            cmd->setUniformBuffer(0, ubo, uint64_t(stripes[i].second) * kStride, sizeof(Params));
         cmd->setScissor({.x = int32_t(i * kSize / 8), .y = 0, .width = kSize / 8, .height = kSize});
         cmd->draw(3);
     }
@@ -76,7 +86,9 @@ TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
         const auto& want = colors[size_t(expected[i])];
         for (uint32_t y : {0u, kSize / 2, kSize - 1}) {
             auto t = img.texel(i * kSize / 8 + kSize / 16, y);
-            for (int c = 0; c < 4; ++c) EXPECT_NEAR(t[size_t(c)], want[size_t(c)], 1.0 / 255) << "stripe " << i << " row " << y;
+            for (int c = 0; c < 4; ++c)
+                EXPECT_NEAR(t[size_t(c)], want[size_t(c)], 1.0 / 255)
+                    << "stripe " << i << " row " << y;
         }
     }
 }
@@ -85,11 +97,17 @@ TEST_P(BindingState, SlotsPersistAcrossDrawsAndPipelineSwitches) {
 // after earlier draws with other pipelines pushed descriptors.
 TEST_P(BindingState, UnboundSlotStillFailsAfterOtherDraws) {
     Device& d = *device;
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
-    PipelineHandle p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
-                                                 .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
-    TextureHandle target = d.createTexture({.format = Format::RGBA8, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    PipelineHandle p = d.createGraphicsPipeline(
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = {Format::RGBA8},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
+    TextureHandle target = d.createTexture(
+        {.format = Format::RGBA8, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = target}}});
     cmd->setPipeline(p);
@@ -103,22 +121,32 @@ TEST_P(BindingState, UnboundSlotStillFailsAfterOtherDraws) {
 // pipeline must survive the pool growing underneath it, and the new ones must work at once.
 TEST_P(BindingState, PipelinesCreatedMidRecording) {
     Device& d = *device;
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
-    const GraphicsPipelineDesc desc{.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
-                                    .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
-                                    .debugName = "first"};
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")});
+    const GraphicsPipelineDesc desc{
+        .vertexShader = vs,
+        .fragmentShader = fs,
+        .colorFormats = {Format::RGBA8},
+        .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}},
+        .debugName = "first"};
     const Params green{{0, 1, 0, 1}, {0.5f, 0, 0, 0}};
-    BufferHandle ubo = d.createBuffer({.size = sizeof green, .usage = BufferUsage::Uniform}, gdi::bytesOf(green));
-    TextureHandle target = d.createTexture(
-        {.format = Format::RGBA8, .width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    BufferHandle ubo =
+        d.createBuffer({.size = sizeof green, .usage = BufferUsage::Uniform}, gdi::bytesOf(green));
+    TextureHandle target =
+        d.createTexture({.format = Format::RGBA8,
+                         .width = 16,
+                         .height = 16,
+                         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = target, .clear = {0, 0, 0, 1}}}});
     cmd->setPipeline(d.createGraphicsPipeline(desc));
     std::vector<PipelineHandle> later;
     for (int i = 0; i < 40; ++i) later.push_back(d.createGraphicsPipeline(desc));  // the pool grows
     cmd->setScissor({.x = 0, .y = 0, .width = 8, .height = 16});
-    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("pipeline 'first'"), std::string::npos);  // names the bound one
+    EXPECT_NE(errorOf([&] { cmd->draw(3); }).find("pipeline 'first'"),
+              std::string::npos);  // names the bound one
     cmd->setUniformBuffer(0, ubo);
     cmd->draw(3);  // left half, through the pipeline bound before the pool grew
     cmd->setPipeline(later.back());

@@ -45,7 +45,8 @@ std::unique_ptr<gdi::Device> startOrNull(const std::string& backend) {
 std::vector<gdi::Image> renderEveryTechnique(gdi::Device& device, const assets::Scene& scene) {
     std::vector<gdi::Image> images;
     for (const render::TechniqueInfo& t : render::techniques()) {
-        render::SceneRenderer r(device, scene, {.technique = t.name, .width = 48, .height = 32, .displayImage = true});
+        render::SceneRenderer r(
+            device, scene, {.technique = t.name, .width = 48, .height = 32, .displayImage = true});
         r.renderFrame();
         images.push_back(r.readDisplay());
     }
@@ -85,7 +86,8 @@ TEST(CaptureReplay, EveryTechniqueOnEveryBackendPair) {
             for (size_t i = 0; i < r.images.size(); ++i) {
                 const std::string technique = render::techniques()[i].name;
                 if (from == to) {
-                    EXPECT_EQ(r.images[i].image.data, live[from][i].data) << technique << " on " << to << " is not the live image";
+                    EXPECT_EQ(r.images[i].image.data, live[from][i].data)
+                        << technique << " on " << to << " is not the live image";
                 } else {
                     EXPECT_LE(fractionOver(r.images[i].image, liveImages[i]), 0.001)
                         << technique << ": captured on " << from << ", replayed on " << to;
@@ -104,8 +106,13 @@ TEST_P(CaptureMappedMemory, EveryFramesBytesReplayOnEveryBackend) {
     const std::array<uint32_t, 3> colours = {0xff0000ffu, 0xff00ff00u, 0x80ff0000u};
     {
         auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
-        const auto upload = d->createBuffer({.size = 4 * 4 * 4, .usage = gdi::BufferUsage::CopySrc, .access = gdi::MemoryAccess::Upload});
-        const auto texture = d->createTexture({.width = 4, .height = 4, .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
+        const auto upload = d->createBuffer({.size = 4 * 4 * 4,
+                                             .usage = gdi::BufferUsage::CopySrc,
+                                             .access = gdi::MemoryAccess::Upload});
+        const auto texture =
+            d->createTexture({.width = 4,
+                              .height = 4,
+                              .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
         auto* mapped = static_cast<uint32_t*>(d->map(upload));
         auto list = d->createCommandList();
         for (uint32_t colour : colours) {
@@ -132,7 +139,8 @@ TEST_P(CaptureMappedMemory, EveryFramesBytesReplayOnEveryBackend) {
             std::vector<uint32_t> texels(16);
             std::memcpy(texels.data(), r.images[f].image.data.data(), 64);
             for (int i = 0; i < 16; ++i)
-                EXPECT_EQ(texels[size_t(i)], i == 5 ? colours[f] ^ 0x00ffffffu : colours[f]) << "frame " << f << " texel " << i << " on " << to;
+                EXPECT_EQ(texels[size_t(i)], i == 5 ? colours[f] ^ 0x00ffffffu : colours[f])
+                    << "frame " << f << " texel " << i << " on " << to;
         }
         EXPECT_EQ(replay->validationErrorCount(), 0u) << to;
     }
@@ -152,7 +160,8 @@ TEST_P(CaptureConformanceRun, ReplaysOnEveryBackendWithValidationSilent) {
         }
         EXPECT_EQ(d->validationErrorCount(), 0u);
         gdi::finishCapture(*d);
-        EXPECT_GT(gdi::captureStats(*d)->dedupedBlobs, 0u) << "shaders made again should be written once";
+        EXPECT_GT(gdi::captureStats(*d)->dedupedBlobs, 0u)
+            << "shaders made again should be written once";
     }
     const gdi::CaptureSummary summary = gdi::summarizeCapture(file.string());
     EXPECT_EQ(summary.backend, GetParam());
@@ -173,7 +182,8 @@ FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureConformanceRun);
 class CaptureLimits : public fe::testing::BackendTest {};
 TEST_P(CaptureLimits, OffsetAlignmentsSuitEveryBackend) {
     const gdi::DeviceLimits inner = device->info().limits;
-    auto d = gdi::makeCaptureDevice(std::move(device), {.path = tempPath(GetParam() + "-limits.fecap").string()});
+    auto d = gdi::makeCaptureDevice(std::move(device),
+                                    {.path = tempPath(GetParam() + "-limits.fecap").string()});
     const gdi::DeviceLimits& l = d->info().limits;
     EXPECT_EQ(l.uniformBufferOffsetAlignment % 256, 0u);
     EXPECT_EQ(l.storageBufferOffsetAlignment % 256, 0u);
@@ -214,7 +224,13 @@ struct FileBuilder {
     FileBuilder& end() { return chunk(3, {}); }
 };
 
-json deviceRecord(uint64_t commandSet) { return {{"op", "device"}, {"backend", "vulkan"}, {"device", "x"}, {"commandSet", commandSet}, {"window", false}}; }
+json deviceRecord(uint64_t commandSet) {
+    return {{"op", "device"},
+            {"backend", "vulkan"},
+            {"device", "x"},
+            {"commandSet", commandSet},
+            {"window", false}};
+}
 
 class CaptureFileErrors : public fe::testing::BackendTest {
 protected:
@@ -224,8 +240,12 @@ protected:
         // A real capture's first record gives the command-set fingerprint hand-made files need.
         const fs::path good = tempPath("good.fecap");
         {
-            auto d = gdi::makeCaptureDevice(startOrNull(GetParam()), {.path = good.string(), .compress = false});
-            const auto t = d->createTexture({.width = 2, .height = 2, .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
+            auto d = gdi::makeCaptureDevice(startOrNull(GetParam()),
+                                            {.path = good.string(), .compress = false});
+            const auto t = d->createTexture(
+                {.width = 2,
+                 .height = 2,
+                 .usage = gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc});
             d->writeTexture(t, {}, gdi::bytesOf(std::vector<uint8_t>(16, 7)));
             d->readTexture(t);
             d->destroy(t);
@@ -236,13 +256,15 @@ protected:
         // The device record is the first chunk: 16 bytes of header, 24 of chunk header.
         uint64_t size;
         std::memcpy(&size, valid.data() + 16 + 8, 8);
-        fingerprint = json::from_cbor(std::vector<uint8_t>(valid.begin() + 40, valid.begin() + 40 + long(size)))["commandSet"];
+        fingerprint = json::from_cbor(std::vector<uint8_t>(
+            valid.begin() + 40, valid.begin() + 40 + long(size)))["commandSet"];
     }
     // Replays `bytes` and returns the CaptureError's message ("(replayed)" when accepted); any
     // other exception fails the test.
     std::string replayError(const std::vector<uint8_t>& bytes) {
         const fs::path file = tempPath("hostile.fecap");
-        std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        std::ofstream(file, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         std::string message = "(replayed)";
         try {
             gdi::replayCapture(file.string(), *device);
@@ -269,13 +291,16 @@ TEST_P(CaptureFileErrors, TheValidFileReplays) { EXPECT_EQ(replayError(valid), "
 
 TEST_P(CaptureFileErrors, NotACaptureOrAFutureVersion) {
     EXPECT_NE(replayError({'h', 'e', 'l', 'l', 'o'}).find("not a capture file"), std::string::npos);
-    EXPECT_NE(replayError(FileBuilder(99).end().bytes).find("format version 99; this build reads version 1"), std::string::npos);
+    EXPECT_NE(replayError(FileBuilder(99).end().bytes)
+                  .find("format version 99; this build reads version 1"),
+              std::string::npos);
     EXPECT_NE(replayError(FileBuilder(0).end().bytes).find("format version 0"), std::string::npos);
 }
 
 TEST_P(CaptureFileErrors, EveryTruncationIsRefusedWithItsOffset) {
     for (size_t n = 0; n < valid.size(); n += 7) {
-        const std::string e = replayError(std::vector<uint8_t>(valid.begin(), valid.begin() + long(n)));
+        const std::string e =
+            replayError(std::vector<uint8_t>(valid.begin(), valid.begin() + long(n)));
         EXPECT_NE(e.find("offset"), std::string::npos) << "cut at " << n << ": " << e;
     }
 }
@@ -284,7 +309,8 @@ TEST_P(CaptureFileErrors, DamagedBytesNeverCrash) {
     std::mt19937 random(27);
     for (int i = 0; i < 200; ++i) {
         std::vector<uint8_t> bytes = valid;
-        for (int k = 0; k < 3; ++k) bytes[16 + random() % (bytes.size() - 16)] ^= uint8_t(1 + random() % 255);
+        for (int k = 0; k < 3; ++k)
+            bytes[16 + random() % (bytes.size() - 16)] ^= uint8_t(1 + random() % 255);
         replayError(bytes);  // refused or replayed: only another exception or a crash fails
     }
 }
@@ -295,7 +321,8 @@ TEST_P(CaptureFileErrors, ChunkSizesAreCheckedBeforeMemoryIsTaken) {
     EXPECT_NE(replayError(past.bytes).find("runs past the end of the file"), std::string::npos);
     FileBuilder huge = started();
     huge.u32(1), huge.u32(1), huge.u64(4), huge.u64(uint64_t(1) << 40), huge.u32(0);
-    EXPECT_NE(replayError(huge.bytes).find("larger than a capture chunk may be"), std::string::npos);
+    EXPECT_NE(replayError(huge.bytes).find("larger than a capture chunk may be"),
+              std::string::npos);
     FileBuilder kind = started();
     kind.chunk(9, {}).end();
     EXPECT_NE(replayError(kind.bytes).find("unknown chunk kind 9"), std::string::npos);
@@ -304,38 +331,78 @@ TEST_P(CaptureFileErrors, ChunkSizesAreCheckedBeforeMemoryIsTaken) {
 }
 
 TEST_P(CaptureFileErrors, HandMadeRecordsNameTheRecordAndTheField) {
-    auto error = [&](const json& record) { return replayError(started().record(record).end().bytes); };
-    EXPECT_NE(error({{"op", "launchRockets"}}).find("record 1 (launchRockets) at offset"), std::string::npos);
+    auto error = [&](const json& record) {
+        return replayError(started().record(record).end().bytes);
+    };
+    EXPECT_NE(error({{"op", "launchRockets"}}).find("record 1 (launchRockets) at offset"),
+              std::string::npos);
     EXPECT_NE(error({{"op", "launchRockets"}}).find("unknown call"), std::string::npos);
-    const json texture = {{"dimension", 0}, {"format", 250}, {"width", 4}, {"height", 4}, {"depthOrLayers", 1}, {"mips", 1},
-                          {"samples", 1}, {"usage", 1}, {"heap", 0}, {"heapOffset", 0}, {"viewFormats", json::array()}};
-    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", texture}}).find("field 'format' has no such value (250)"),
+    const json texture = {{"dimension", 0},
+                          {"format", 250},
+                          {"width", 4},
+                          {"height", 4},
+                          {"depthOrLayers", 1},
+                          {"mips", 1},
+                          {"samples", 1},
+                          {"usage", 1},
+                          {"heap", 0},
+                          {"heapOffset", 0},
+                          {"viewFormats", json::array()}};
+    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", texture}})
+                  .find("field 'format' has no such value (250)"),
               std::string::npos);
     json usage = texture;
     usage["format"] = 0, usage["usage"] = 1u << 20;
-    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", usage}}).find("field 'usage' has unknown bits"), std::string::npos);
-    EXPECT_NE(error({{"op", "createBuffer"}, {"id", 1}, {"desc", {{"size", 16}, {"usage", 1}, {"access", 0}}}, {"data", 99}})
+    EXPECT_NE(error({{"op", "createTexture"}, {"id", 5}, {"desc", usage}})
+                  .find("field 'usage' has unknown bits"),
+              std::string::npos);
+    EXPECT_NE(error({{"op", "createBuffer"},
+                     {"id", 1},
+                     {"desc", {{"size", 16}, {"usage", 1}, {"access", 0}}},
+                     {"data", 99}})
                   .find("data block 99 is not in the file before it"),
               std::string::npos);
-    EXPECT_NE(error({{"op", "writeBuffer"}, {"id", 77}, {"offset", 0}, {"data", 0}}).find("record 1 (writeBuffer)"), std::string::npos);
-    EXPECT_NE(error({{"op", "createTimer"}, {"id", 0}}).find("object id 0 is null or already in use"), std::string::npos);
-    EXPECT_NE(error({{"op", "submit"}, {"fence", 1}, {"lists", "no"}}).find("field 'lists' is not an array"), std::string::npos);
+    EXPECT_NE(error({{"op", "writeBuffer"}, {"id", 77}, {"offset", 0}, {"data", 0}})
+                  .find("record 1 (writeBuffer)"),
+              std::string::npos);
+    EXPECT_NE(
+        error({{"op", "createTimer"}, {"id", 0}}).find("object id 0 is null or already in use"),
+        std::string::npos);
+    EXPECT_NE(error({{"op", "submit"}, {"fence", 1}, {"lists", "no"}})
+                  .find("field 'lists' is not an array"),
+              std::string::npos);
     // The device's own checks stand behind the file's: a buffer of size 0 is the device's error.
-    EXPECT_NE(error({{"op", "createBuffer"}, {"id", 1}, {"desc", {{"size", 0}, {"usage", 1}, {"access", 0}}}, {"data", 0}})
+    EXPECT_NE(error({{"op", "createBuffer"},
+                     {"id", 1},
+                     {"desc", {{"size", 0}, {"usage", 1}, {"access", 0}}},
+                     {"data", 0}})
                   .find("record 1 (createBuffer)"),
               std::string::npos);
     // No SPIR-V at all (data block 0 is "no bytes"): the device refuses it, nothing copies from null.
-    EXPECT_NE(error({{"op", "createShader"}, {"id", 1}, {"stage", 1}, {"name", "empty"}, {"entry", "main"}, {"vulkan", 0}, {"opengl", 0}})
+    EXPECT_NE(error({{"op", "createShader"},
+                     {"id", 1},
+                     {"stage", 1},
+                     {"name", "empty"},
+                     {"entry", "main"},
+                     {"vulkan", 0},
+                     {"opengl", 0}})
                   .find("record 1 (createShader)"),
               std::string::npos);
     // Not CBOR at all.
-    EXPECT_NE(replayError(started().chunk(2, {0xff, 0x00, 0x13}).end().bytes).find("record 1 (?) at offset"), std::string::npos);
+    EXPECT_NE(replayError(started().chunk(2, {0xff, 0x00, 0x13}).end().bytes)
+                  .find("record 1 (?) at offset"),
+              std::string::npos);
     // A command list whose stream is damaged names the command-stream record inside it.
-    EXPECT_NE(replayError(started().blob({1, 2, 3}).record({{"op", "submit"}, {"fence", 1}, {"lists", {1}}}).end().bytes)
+    EXPECT_NE(replayError(started()
+                              .blob({1, 2, 3})
+                              .record({{"op", "submit"}, {"fence", 1}, {"lists", {1}}})
+                              .end()
+                              .bytes)
                   .find("record 1 (submit)"),
               std::string::npos);
     // Another build's command set.
-    EXPECT_NE(replayError(FileBuilder().record(deviceRecord(fingerprint + 1)).end().bytes).find("another build's command set"),
+    EXPECT_NE(replayError(FileBuilder().record(deviceRecord(fingerprint + 1)).end().bytes)
+                  .find("another build's command set"),
               std::string::npos);
 }
 FE_INSTANTIATE_FOR_EVERY_BACKEND(CaptureFileErrors);
@@ -350,7 +417,8 @@ TEST_P(CaptureBisect, FindsThePerturbedDrawAndNothingElse) {
     {
         auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
         const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 3});
-        render::SceneRenderer r(*d, scene, {.technique = "deferred", .width = 48, .height = 32, .displayImage = true});
+        render::SceneRenderer r(
+            *d, scene, {.technique = "deferred", .width = 48, .height = 32, .displayImage = true});
         r.renderFrame();
         r.readDisplay();
     }
@@ -366,9 +434,11 @@ TEST_P(CaptureBisect, FindsThePerturbedDrawAndNothingElse) {
         EXPECT_GT(same.passesCompared, 1u);
         // The first draw, one in the middle, the last (in the display pass).
         for (uint64_t perturbed : {uint64_t(0), draws / 2, draws - 1}) {
-            const gdi::BisectResult r = gdi::bisectCapture(file.string(), *self, *b, {.perturb = {{1, perturbed}}});
+            const gdi::BisectResult r =
+                gdi::bisectCapture(file.string(), *self, *b, {.perturb = {{1, perturbed}}});
             ASSERT_TRUE(r.diverged) << "draw " << perturbed << " on " << other;
-            ASSERT_TRUE(r.draw) << "draw " << perturbed << " on " << other << ": only the pass was found";
+            ASSERT_TRUE(r.draw) << "draw " << perturbed << " on " << other
+                                << ": only the pass was found";
             EXPECT_EQ(r.draw->draw, perturbed) << other;
             EXPECT_FALSE(r.draw->pipeline.empty());
             EXPECT_FALSE(r.draw->shaders.empty());
@@ -391,15 +461,25 @@ TEST_P(CaptureFrameRange, FramesFromTwoStartFromTheStateBeforeThem) {
     const fs::path file = tempPath(GetParam() + ".fecap");
     std::vector<std::vector<uint8_t>> scratchAt, targetAt;  // live read-backs, per frame
     {
-        auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string(), .frames = 2, .firstFrame = 2});
+        auto d = gdi::makeCaptureDevice(std::move(device),
+                                        {.path = file.string(), .frames = 2, .firstFrame = 2});
         using namespace gdi;
-        const auto upload = d->createBuffer({.size = 64, .usage = BufferUsage::CopySrc, .access = MemoryAccess::Upload});
-        const auto kept = d->createTexture({.width = 4, .height = 4, .usage = TextureUsage::CopyDst | TextureUsage::CopySrc});
-        const auto scratch = d->createTexture({.width = 4, .height = 4, .usage = TextureUsage::CopyDst | TextureUsage::CopySrc});
-        const auto target = d->createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
-        const auto vs = d->createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
-        const auto fs = d->createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
-        const auto triangle = d->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+        const auto upload = d->createBuffer(
+            {.size = 64, .usage = BufferUsage::CopySrc, .access = MemoryAccess::Upload});
+        const auto kept = d->createTexture(
+            {.width = 4, .height = 4, .usage = TextureUsage::CopyDst | TextureUsage::CopySrc});
+        const auto scratch = d->createTexture(
+            {.width = 4, .height = 4, .usage = TextureUsage::CopyDst | TextureUsage::CopySrc});
+        const auto target =
+            d->createTexture({.width = 16,
+                              .height = 16,
+                              .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+        const auto vs = d->createShader({.stage = ShaderStage::Vertex,
+                                         .binary = fe::shaders::find("conformance/triangle.vert")});
+        const auto fs = d->createShader({.stage = ShaderStage::Fragment,
+                                         .binary = fe::shaders::find("conformance/color.frag")});
+        const auto triangle = d->createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
         d->destroy(vs);
         d->destroy(fs);
         auto* mapped = static_cast<uint32_t*>(d->map(upload));
@@ -443,10 +523,14 @@ TEST_P(CaptureFrameRange, FramesFromTwoStartFromTheStateBeforeThem) {
         // The range starts after frame 1's first read-back: its second (of the target drawn in
         // frame 0) is the capture's first; frame 3's second ends after the range.
         ASSERT_EQ(r.images.size(), 4u) << to;
-        EXPECT_EQ(r.images[0].image.data, targetAt[1]) << "the render target as frame 0 left it, on " << to;
-        EXPECT_EQ(r.images[1].image.data, scratchAt[2]) << "frame 2's copy from the texture kept since frame 0, on " << to;
-        EXPECT_EQ(r.images[2].image.data, targetAt[2]) << "frame 2's draw over the loaded target, on " << to;
-        EXPECT_EQ(r.images[3].image.data, scratchAt[3]) << "frame 3's upload through mapped memory, on " << to;
+        EXPECT_EQ(r.images[0].image.data, targetAt[1])
+            << "the render target as frame 0 left it, on " << to;
+        EXPECT_EQ(r.images[1].image.data, scratchAt[2])
+            << "frame 2's copy from the texture kept since frame 0, on " << to;
+        EXPECT_EQ(r.images[2].image.data, targetAt[2])
+            << "frame 2's draw over the loaded target, on " << to;
+        EXPECT_EQ(r.images[3].image.data, scratchAt[3])
+            << "frame 3's upload through mapped memory, on " << to;
         EXPECT_NE(targetAt[1], targetAt[2]);
         EXPECT_EQ(r.frames, 2u) << to;
         EXPECT_EQ(r.unrestored, 0u) << to;
@@ -465,7 +549,8 @@ TEST_P(CapturePassTimes, EveryPassIsTimedAndNamed) {
     {
         auto d = gdi::makeCaptureDevice(std::move(device), {.path = file.string()});
         const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});
-        render::SceneRenderer r(*d, scene, {.technique = "deferred", .width = 32, .height = 24, .displayImage = true});
+        render::SceneRenderer r(
+            *d, scene, {.technique = "deferred", .width = 32, .height = 24, .displayImage = true});
         r.renderFrame();
         r.renderFrame();
         r.readDisplay();
@@ -483,7 +568,8 @@ TEST_P(CapturePassTimes, EveryPassIsTimedAndNamed) {
     EXPECT_TRUE(names.count("gbuffer") && names.count("lighting") && names.count("display"));
     EXPECT_EQ(timed.frames, 2u);
     ASSERT_EQ(timed.images.size(), plain.images.size());
-    for (size_t i = 0; i < timed.images.size(); ++i) EXPECT_EQ(timed.images[i].image.data, plain.images[i].image.data);
+    for (size_t i = 0; i < timed.images.size(); ++i)
+        EXPECT_EQ(timed.images[i].image.data, plain.images[i].image.data);
     EXPECT_EQ(replay->validationErrorCount(), 0u);
     fs::remove(file);
 }
@@ -495,10 +581,16 @@ TEST_P(CaptureFileErrors, DrawsBeyondTheWorkLimitAreRefused) {
     const fs::path file = tempPath("heavy.fecap");
     {
         auto d = gdi::makeCaptureDevice(startOrNull(GetParam()), {.path = file.string()});
-        const auto target = d->createTexture({.width = 4, .height = 4, .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc});
-        const auto vs = d->createShader({.stage = gdi::ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
-        const auto fs = d->createShader({.stage = gdi::ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
-        const auto p = d->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {gdi::Format::RGBA8}});
+        const auto target = d->createTexture(
+            {.width = 4,
+             .height = 4,
+             .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc});
+        const auto vs = d->createShader({.stage = gdi::ShaderStage::Vertex,
+                                         .binary = fe::shaders::find("conformance/triangle.vert")});
+        const auto fs = d->createShader({.stage = gdi::ShaderStage::Fragment,
+                                         .binary = fe::shaders::find("conformance/color.frag")});
+        const auto p = d->createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {gdi::Format::RGBA8}});
         auto list = d->createCommandList();
         list->beginRenderPass({.colors = {{.texture = target}}});
         list->setPipeline(p);
@@ -514,7 +606,9 @@ TEST_P(CaptureFileErrors, DrawsBeyondTheWorkLimitAreRefused) {
         e = x.what();
     }
     EXPECT_NE(e.find("(submit)"), std::string::npos) << e;
-    EXPECT_NE(e.find("draw 0 of 3000 vertices is beyond this replay's limit (2999"), std::string::npos) << e;
+    EXPECT_NE(e.find("draw 0 of 3000 vertices is beyond this replay's limit (2999"),
+              std::string::npos)
+        << e;
     EXPECT_NO_THROW(gdi::replayCapture(file.string(), *device, {.maxDrawVertices = 3000}));
     EXPECT_EQ(device->liveObjects(), gdi::LiveObjects{});
     fs::remove(file);

@@ -26,7 +26,8 @@ std::vector<std::string> replayed(const cmd::CommandStream& s) {
         using R = std::decay_t<decltype(r)>;
         std::string line = R::kName;
         if constexpr (std::is_same_v<R, cmd::Draw>) line += " " + std::to_string(r.vertexCount);
-        if constexpr (std::is_same_v<R, cmd::PushDebugGroup>) line += " " + std::string(cmd::view(r, r.name));
+        if constexpr (std::is_same_v<R, cmd::PushDebugGroup>)
+            line += " " + std::string(cmd::view(r, r.name));
         if constexpr (std::is_same_v<R, cmd::BufferBarriers>)
             line += " " + std::to_string(cmd::view(r, r.barriers).size()) + "@" +
                     std::to_string(cmd::view(r, r.barriers).back().offset);
@@ -57,7 +58,8 @@ TEST(CommandStream, RecordsComeBackInOrderAcrossBlocks) {
     // A record whose payload alone is larger than a block.
     std::vector<BufferBarrier> many(5000);
     for (size_t i = 0; i < many.size(); ++i) many[i].offset = i;
-    auto* r = s.push(cmd::BufferBarriers{}, cmd::CommandStream::payloadSize(many.size() * sizeof(BufferBarrier)));
+    auto* r = s.push(cmd::BufferBarriers{},
+                     cmd::CommandStream::payloadSize(many.size() * sizeof(BufferBarrier)));
     r->barriers = s.payload(*r, std::span<const BufferBarrier>(many));
     expected.push_back("BufferBarriers 5000@4999");
     s.push(cmd::EndRenderPass{});
@@ -77,7 +79,8 @@ TEST(CommandStream, EveryCommandHasANameAndFields) {
     EXPECT_STREQ(cmd::opName(cmd::Op::Draw), "Draw");
     EXPECT_STREQ(cmd::opName(cmd::Op::BufferBarriers), "BufferBarriers");
     std::vector<std::string> fields;
-    cmd::forEachField(cmd::SetUniformBuffer{.slot = 3}, [&](const char* name, const auto&) { fields.push_back(name); });
+    cmd::forEachField(cmd::SetUniformBuffer{.slot = 3},
+                      [&](const char* name, const auto&) { fields.push_back(name); });
     EXPECT_EQ(fields, (std::vector<std::string>{"slot", "buffer", "offset", "size"}));
 }
 
@@ -94,7 +97,8 @@ TEST(CommandStream, AdoptsSecondaryStreams) {
         using R = std::decay_t<decltype(record)>;
         if constexpr (std::is_same_v<R, cmd::ExecuteSecondary>) {
             EXPECT_EQ(&primary.child(record.child), adopted);
-            seen.push_back("ExecuteSecondary " + std::to_string(replayed(primary.child(record.child)).size()));
+            seen.push_back("ExecuteSecondary " +
+                           std::to_string(replayed(primary.child(record.child)).size()));
         }
     });
     EXPECT_EQ(seen, (std::vector<std::string>{"ExecuteSecondary 1"}));
@@ -121,7 +125,9 @@ TEST(MessageLog, PrintsEachMessageOnceAndCountsRepeats) {
     ::testing::internal::CaptureStderr();
     log.printRepeats();
     const std::string repeats = ::testing::internal::GetCapturedStderr();
-    EXPECT_NE(repeats.find("test message repeated 60 times in all: error: the same mistake every frame"), std::string::npos)
+    EXPECT_NE(
+        repeats.find("test message repeated 60 times in all: error: the same mistake every frame"),
+        std::string::npos)
         << repeats;
     EXPECT_EQ(repeats.find("another one"), std::string::npos);
 }
@@ -134,7 +140,8 @@ std::unique_ptr<cmd::CommandStream> sampleStream() {
     pushName(*s, "frame");
     s->push(cmd::Draw{.vertexCount = 3, .instanceCount = 1});
     std::vector<BufferBarrier> barriers(3, BufferBarrier{.offset = 16});
-    auto* b = s->push(cmd::BufferBarriers{}, cmd::CommandStream::payloadSize(barriers.size() * sizeof(BufferBarrier)));
+    auto* b = s->push(cmd::BufferBarriers{},
+                      cmd::CommandStream::payloadSize(barriers.size() * sizeof(BufferBarrier)));
     b->barriers = s->payload(*b, std::span<const BufferBarrier>(barriers));
     auto child = std::make_unique<cmd::CommandStream>();
     child->push(cmd::Draw{.vertexCount = 7});
@@ -160,7 +167,8 @@ TEST(CaptureStream, RefusesTruncatedAndDamagedBytesNamingTheOffset) {
     for (size_t n = 0; n < bytes.size(); ++n) {
         try {
             decodeCommandStream(std::span(bytes).first(n));
-            ADD_FAILURE() << "a stream cut to " << n << " of " << bytes.size() << " bytes was accepted";
+            ADD_FAILURE() << "a stream cut to " << n << " of " << bytes.size()
+                          << " bytes was accepted";
         } catch (const CaptureError& e) {
             EXPECT_NE(std::string(e.what()).find("offset"), std::string::npos) << e.what();
         }
@@ -175,7 +183,8 @@ TEST(CaptureStream, RefusesTruncatedAndDamagedBytesNamingTheOffset) {
             ++refused;
         }
     }
-    EXPECT_GT(refused, bytes.size() / 4);  // headers, sizes, ops, offsets and string ends are checked
+    EXPECT_GT(refused,
+              bytes.size() / 4);  // headers, sizes, ops, offsets and string ends are checked
     // Specific refusals name what is wrong.
     std::vector<std::byte> badOp = bytes;
     const uint16_t op = 999;
@@ -185,7 +194,9 @@ TEST(CaptureStream, RefusesTruncatedAndDamagedBytesNamingTheOffset) {
             try {
                 decodeCommandStream(badOp);
             } catch (const CaptureError& e) {
-                EXPECT_NE(std::string(e.what()).find("record 0 at offset 16: unknown command 999"), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find("record 0 at offset 16: unknown command 999"),
+                          std::string::npos)
+                    << e.what();
                 throw;
             }
         },
@@ -208,16 +219,20 @@ TEST(CaptureStream, RefusesValuesNoDeviceCouldBeHanded) {
         }
         return std::string("(accepted)");
     };
-    EXPECT_NE(refusal(cmd::SetAutomaticBarriers{true}, [](std::byte* f) { f[0] = std::byte(3); })
-                  .find("(SetAutomaticBarriers) at offset 16: field 'enabled' is not a boolean (3)"),
-              std::string::npos);
-    EXPECT_NE(refusal(cmd::SetIndexBuffer{}, [](std::byte* f) { f[offsetof(cmd::SetIndexBuffer, type)] = std::byte(9); })
+    EXPECT_NE(
+        refusal(cmd::SetAutomaticBarriers{true}, [](std::byte* f) { f[0] = std::byte(3); })
+            .find("(SetAutomaticBarriers) at offset 16: field 'enabled' is not a boolean (3)"),
+        std::string::npos);
+    EXPECT_NE(refusal(cmd::SetIndexBuffer{},
+                      [](std::byte* f) { f[offsetof(cmd::SetIndexBuffer, type)] = std::byte(9); })
                   .find("field 'type' has no such value (9)"),
               std::string::npos);
-    EXPECT_NE(refusal(cmd::SetViewport{}, [](std::byte* f) {
-                  const float nan = std::numeric_limits<float>::quiet_NaN();
-                  std::memcpy(f, &nan, 4);
-              }).find("field 'viewport' is not a finite number"),
+    EXPECT_NE(refusal(cmd::SetViewport{},
+                      [](std::byte* f) {
+                          const float nan = std::numeric_limits<float>::quiet_NaN();
+                          std::memcpy(f, &nan, 4);
+                      })
+                  .find("field 'viewport' is not a finite number"),
               std::string::npos);
     EXPECT_EQ(refusal(cmd::SetIndexBuffer{}, [](std::byte*) {}), "(accepted)");
 }

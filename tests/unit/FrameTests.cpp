@@ -19,7 +19,8 @@ class Frames : public fe::testing::BackendTest {};
 
 TEST_P(Frames, SwapChainCyclesItsImagesAndReadsBackTheLastPresented) {
     render::CommandQueue queue(*device, 2);
-    render::SwapChain chain(*device, {.width = 32, .height = 16, .format = gdi::Format::RGBA8, .imageCount = 3});
+    render::SwapChain chain(
+        *device, {.width = 32, .height = 16, .format = gdi::Format::RGBA8, .imageCount = 3});
     std::set<uint32_t> seen;
     for (int frame = 0; frame < 7; ++frame) {
         gdi::TextureHandle image = chain.acquire();
@@ -40,7 +41,8 @@ TEST_P(Frames, SwapChainCyclesItsImagesAndReadsBackTheLastPresented) {
 
 TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
     render::CommandQueue queue(*device, 2, 4096);
-    const uint64_t align = std::max<uint64_t>(1, device->info().limits.uniformBufferOffsetAlignment);
+    const uint64_t align =
+        std::max<uint64_t>(1, device->info().limits.uniformBufferOffsetAlignment);
     std::vector<render::UploadAllocation> first;
     for (int frame = 0; frame < 2; ++frame) {
         queue.beginFrame();
@@ -71,7 +73,8 @@ TEST_P(PassTimes, FlushAndWaitTimesEveryPassAndLeavesTheImage) {
     assets::BuiltinOptions o;
     o.lights = 16;
     const assets::Scene scene = assets::makeBuiltinScene("lights", o);
-    const std::string technique = device->info().features.computeShaders ? "deferred-tiled" : "deferred";
+    const std::string technique =
+        device->info().features.computeShaders ? "deferred-tiled" : "deferred";
     render::SceneRenderer r(*device, scene, {.technique = technique, .width = 64, .height = 48});
     r.renderFrame();
     const gdi::Image plain = r.readOutput();
@@ -93,8 +96,10 @@ TEST_P(PassTimes, FlushAndWaitTimesEveryPassAndLeavesTheImage) {
     using render::SceneRenderer;
     EXPECT_FALSE(SceneRenderer::timersAccountForFrame({{"a", 1.0}}, 10.0));
     EXPECT_TRUE(SceneRenderer::timersAccountForFrame({{"a", 3.0}, {"b", 3.0}}, 10.0));
-    EXPECT_FALSE(SceneRenderer::timersAccountForFrame({}, 10.0)) << "no timestamps account for nothing";
-    const SceneRenderer::PassTimes low = r.measurePassTimes({{"gbuffer", {0.1, 0.1}}}, {100.0, 100.0}, 2);
+    EXPECT_FALSE(SceneRenderer::timersAccountForFrame({}, 10.0))
+        << "no timestamps account for nothing";
+    const SceneRenderer::PassTimes low =
+        r.measurePassTimes({{"gbuffer", {0.1, 0.1}}}, {100.0, 100.0}, 2);
     EXPECT_EQ(low.method, "flush-and-wait");
     ASSERT_EQ(low.passes.size(), executed.size());
     EXPECT_EQ(low.passes.front().second.size(), 2u) << "two profiled frames";

@@ -21,11 +21,17 @@ using namespace fe;
 
 namespace {
 const char* const kSamples[] = {
-    "Box/glTF/Box.gltf", "BoxTextured/glTF/BoxTextured.gltf", "BoxInterleaved/glTF-Binary/BoxInterleaved.glb",
-    "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", "NormalTangentTest/glTF-Binary/NormalTangentTest.glb",
-    "OrientationTest/glTF-Binary/OrientationTest.glb", "AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf",
-    "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf", "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb",
-    "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb",
+    "Box/glTF/Box.gltf",
+    "BoxTextured/glTF/BoxTextured.gltf",
+    "BoxInterleaved/glTF-Binary/BoxInterleaved.glb",
+    "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb",
+    "NormalTangentTest/glTF-Binary/NormalTangentTest.glb",
+    "OrientationTest/glTF-Binary/OrientationTest.glb",
+    "AlphaBlendModeTest/glTF/AlphaBlendModeTest.gltf",
+    "LightsPunctualLamp/glTF/LightsPunctualLamp.gltf",
+    "NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb",
+    "TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb",
+    "CesiumMilkTruck/glTF-Binary/CesiumMilkTruck.glb",
 };
 
 gdi::Image toDisplay(const gdi::Image& linear) {
@@ -57,7 +63,8 @@ void shrinkTextures(assets::Scene& scene, uint32_t maxSize) {
                         uint32_t sum = 0;
                         for (uint32_t dy = 0; dy < 2; ++dy)
                             for (uint32_t dx = 0; dx < 2; ++dx) {
-                                const uint32_t sx = std::min(2 * x + dx, t.width - 1), sy = std::min(2 * y + dy, t.height - 1);
+                                const uint32_t sx = std::min(2 * x + dx, t.width - 1),
+                                               sy = std::min(2 * y + dy, t.height - 1);
                                 sum += t.pixels[(size_t(sy) * t.width + sx) * 4 + c];
                             }
                         half[(size_t(y) * w + x) * 4 + c] = uint8_t((sum + 2) / 4);
@@ -100,9 +107,9 @@ static void expectBackendsAgree(const assets::Scene& scene, const render::Render
         EXPECT_GT(lit, 0u) << "nothing visible with " << t;
         for (size_t i = 1; i < byBackend.size(); ++i) {
             gdi::ImageDiff d = gdi::compareImages(first, byBackend[i].second, 5.0 / 255.0);
-            EXPECT_LE(d.fractionOver(), 0.001) << t << ": " << byBackend[0].first << " vs "
-                                               << byBackend[i].first << ": " << d.pixelsOverTolerance
-                                               << " pixels over 5/255, max " << d.maxAbsError;
+            EXPECT_LE(d.fractionOver(), 0.001)
+                << t << ": " << byBackend[0].first << " vs " << byBackend[i].first << ": "
+                << d.pixelsOverTolerance << " pixels over 5/255, max " << d.maxAbsError;
         }
     }
 }
@@ -121,16 +128,20 @@ TEST_P(GltfSampleRender, BackendsAgree) {
     shrinkTextures(scene, 256);
     std::vector<std::string> others;
     for (const render::TechniqueInfo& t : render::techniques())
-        if (t.name != std::string("forward") && t.name != std::string("deferred") && t.name != std::string("visibility-buffer"))
+        if (t.name != std::string("forward") && t.name != std::string("deferred") &&
+            t.name != std::string("visibility-buffer"))
             others.push_back(t.name);
-    const size_t sample = size_t(std::find_if(std::begin(kSamples), std::end(kSamples),
-                                              [&](const char* s) { return std::string(s) == GetParam(); }) -
-                                 std::begin(kSamples));
+    const size_t sample =
+        size_t(std::find_if(std::begin(kSamples), std::end(kSamples),
+                            [&](const char* s) { return std::string(s) == GetParam(); }) -
+               std::begin(kSamples));
     ASSERT_LT(sample, std::size(kSamples));
-    ASSERT_GE(std::size(kSamples), others.size()) << "a technique would meet fewer than two samples";
-    expectBackendsAgree(scene, {.width = 64, .height = 64},
-                        {"forward", "deferred", "visibility-buffer", others[(2 * sample) % others.size()],
-                         others[(2 * sample + 1) % others.size()]});
+    ASSERT_GE(std::size(kSamples), others.size())
+        << "a technique would meet fewer than two samples";
+    expectBackendsAgree(
+        scene, {.width = 64, .height = 64},
+        {"forward", "deferred", "visibility-buffer", others[(2 * sample) % others.size()],
+         others[(2 * sample + 1) % others.size()]});
 }
 
 // The visibility buffer rebuilds each pixel's surface from its triangle and samples textures
@@ -149,8 +160,9 @@ TEST_P(GltfSampleRender, VisibilityBufferMatchesForward) {
     if (scene.hasDefaultCamera) {
         const float radius = 0.5f * glm::length(scene.bounds.size()), yfov = scene.camera->yfov;
         const float d = radius / std::sin(yfov * 0.5f);
-        scene.camera = assets::Camera::lookAlong(scene.bounds.center() + glm::vec3(0.0f, 0.0f, d), {0, 0, -1}, {0, 1, 0}, yfov,
-                                                 0.5f * (d - radius), d + 2.0f * radius);
+        scene.camera =
+            assets::Camera::lookAlong(scene.bounds.center() + glm::vec3(0.0f, 0.0f, d), {0, 0, -1},
+                                      {0, 1, 0}, yfov, 0.5f * (d - radius), d + 2.0f * radius);
     }
     for (const std::string& b : gdi::backendNames()) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
@@ -160,9 +172,11 @@ TEST_P(GltfSampleRender, VisibilityBufferMatchesForward) {
             r.renderFrame();
             return toDisplay(r.readOutput());
         };
-        const gdi::ImageDiff d = gdi::compareImages(render("forward"), render("visibility-buffer"), 5.0 / 255.0);
+        const gdi::ImageDiff d =
+            gdi::compareImages(render("forward"), render("visibility-buffer"), 5.0 / 255.0);
         RecordProperty("over_" + b, std::to_string(d.fractionOver()));
-        EXPECT_LE(d.fractionOver(), 0.005) << b << ": " << d.pixelsOverTolerance << " pixels over 5/255, max " << d.maxAbsError;
+        EXPECT_LE(d.fractionOver(), 0.005)
+            << b << ": " << d.pixelsOverTolerance << " pixels over 5/255, max " << d.maxAbsError;
         EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
     }
 }
@@ -181,7 +195,9 @@ TEST(ShadowsAndSkyRender, BackendsAgree) {
 TEST(ShadowsAndSkyRender, BackendsAgreeOnASample) {
     render::RenderSettings s{.width = 64, .height = 48, .iblSamples = 16};
     s.shadows = {.enabled = true, .mapSize = 512};
-    const std::string path = std::string(FE_SHARED_ASSETS) + "/MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb";
+    const std::string path =
+        std::string(FE_SHARED_ASSETS) +
+        "/MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
     assets::Scene sample = assets::loadGltf(path);
     sample.environment = assets::loadEnvironment("builtin:sky");
@@ -193,7 +209,8 @@ TEST(ShadowsAndSkyRender, BackendsAgreeOnASample) {
     // One technique of each way shadows and the sky reach a pixel (forward's shadowed passes, the
     // deferred light volumes, the visibility buffer's compute resolve, redeferred's I-buffer, the
     // light pre-pass's buffer): all fourteen took 34 s here; builtin:shadows above has them all.
-    expectBackendsAgree(sample, s, {"forward", "deferred", "visibility-buffer", "redeferred", "light-prepass"});
+    expectBackendsAgree(
+        sample, s, {"forward", "deferred", "visibility-buffer", "redeferred", "light-prepass"});
 }
 
 // A user's flat model with no options (no camera, no lights in the file) is seen, lit: the
@@ -201,18 +218,21 @@ TEST(ShadowsAndSkyRender, BackendsAgreeOnASample) {
 // not edge-on (it was: an all-black image). It covers 13.6 % of the image (419 of 3072 pixels
 // on every backend, 2026-11-29; framed by its bounding sphere): a tenth at least.
 TEST(GltfDefaultLook, FlatModelIsSeenAndLit) {
-    const std::string path = std::string(FE_SHARED_ASSETS) + "/TwoSidedPlane/glTF/TwoSidedPlane.gltf";
+    const std::string path =
+        std::string(FE_SHARED_ASSETS) + "/TwoSidedPlane/glTF/TwoSidedPlane.gltf";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
     const assets::Scene scene = assets::loadGltf(path);
     ASSERT_TRUE(scene.hasDefaultCamera && scene.hasDefaultLights);
     for (const std::string& b : gdi::backendNames()) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
         if (!p.available) continue;
-        render::SceneRenderer r(*p.device, scene, {.technique = "forward", .width = 64, .height = 48});
+        render::SceneRenderer r(*p.device, scene,
+                                {.technique = "forward", .width = 64, .height = 48});
         r.renderFrame();
         const gdi::Image img = toDisplay(r.readOutput());
         uint32_t lit = 0;
-        for (uint32_t i = 0; i < img.width * img.height; ++i) lit += img.data[i * 4] + img.data[i * 4 + 1] + img.data[i * 4 + 2] > 0;
+        for (uint32_t i = 0; i < img.width * img.height; ++i)
+            lit += img.data[i * 4] + img.data[i * 4 + 1] + img.data[i * 4 + 2] > 0;
         EXPECT_GE(lit, img.width * img.height / 10) << b << ": " << lit << " lit pixels";
         EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
     }
@@ -235,14 +255,18 @@ TEST(GltfDefaultLook, FlatModelIsSeenAndLit) {
 // label's failure text, a grey box, an unrotated arrow).
 TEST(GltfMaterialInputs, MatchTheCpuReference) {
     constexpr uint32_t W = 128, H = 96, B = 8, S = 4;  // S x S reference rays a pixel
-    for (const char* rel : {"VertexColorTest/glTF/VertexColorTest.gltf", "BoxVertexColors/glTF/BoxVertexColors.gltf",
-                            "MultiUVTest/glTF/MultiUVTest.gltf", "TextureTransformTest/glTF/TextureTransformTest.gltf"}) {
+    for (const char* rel :
+         {"VertexColorTest/glTF/VertexColorTest.gltf", "BoxVertexColors/glTF/BoxVertexColors.gltf",
+          "MultiUVTest/glTF/MultiUVTest.gltf",
+          "TextureTransformTest/glTF/TextureTransformTest.gltf"}) {
         const std::string path = std::string(FE_SHARED_ASSETS) + "/" + rel;
         if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample assets not found at " << path;
         const assets::Scene scene = assets::loadGltf(path);
-        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, W * S, H * S);
+        const render::ReferenceImage ref =
+            render::renderReference(scene, *scene.camera, W * S, H * S);
         // The mean over block (bx, by) of a w-pixel-wide image, b pixels a side.
-        auto blockMean = [&](const std::function<glm::dvec3(uint32_t, uint32_t)>& at, uint32_t bx, uint32_t by, uint32_t b) {
+        auto blockMean = [&](const std::function<glm::dvec3(uint32_t, uint32_t)>& at, uint32_t bx,
+                             uint32_t by, uint32_t b) {
             glm::dvec3 sum(0.0);
             for (uint32_t y = by * b; y < (by + 1) * b; ++y)
                 for (uint32_t x = bx * b; x < (bx + 1) * b; ++x) sum += at(x, y);
@@ -253,14 +277,16 @@ TEST(GltfMaterialInputs, MatchTheCpuReference) {
             const int32_t surface = ref.surface[size_t(by * b) * W * S + bx * b];
             for (uint32_t y = by * b; y < (by + 1) * b; ++y)
                 for (uint32_t x = bx * b; x < (bx + 1) * b; ++x)
-                    if (ref.surface[size_t(y) * W * S + x] != surface || ref.nearEdge(x, y)) return false;
+                    if (ref.surface[size_t(y) * W * S + x] != surface || ref.nearEdge(x, y))
+                        return false;
             return surface >= 0;
         };
         for (const std::string& b : gdi::backendNames()) {
             gdi::BackendProbe p = gdi::probeBackend(b, true);
             if (!p.available) continue;
             for (const char* t : {"forward", "deferred-tiled", "visibility-buffer"}) {
-                render::SceneRenderer r(*p.device, scene, {.technique = t, .width = W, .height = H});
+                render::SceneRenderer r(*p.device, scene,
+                                        {.technique = t, .width = W, .height = H});
                 r.renderFrame();
                 const gdi::Image img = r.readOutput();
                 uint32_t blocks = 0, over = 0;
@@ -268,21 +294,30 @@ TEST(GltfMaterialInputs, MatchTheCpuReference) {
                     for (uint32_t bx = 0; bx < W / B; ++bx) {
                         if (!usable(bx, by)) continue;
                         ++blocks;
-                        const glm::dvec3 want =
-                            blockMean([&](uint32_t x, uint32_t y) { return ref.radiance[size_t(y) * W * S + x]; }, bx, by, B * S);
-                        const glm::dvec3 got = blockMean([&](uint32_t x, uint32_t y) {
-                            const auto v = img.texel(x, y);
-                            return glm::dvec3(v[0], v[1], v[2]);
-                        }, bx, by, B);
+                        const glm::dvec3 want = blockMean(
+                            [&](uint32_t x, uint32_t y) {
+                                return ref.radiance[size_t(y) * W * S + x];
+                            },
+                            bx, by, B * S);
+                        const glm::dvec3 got = blockMean(
+                            [&](uint32_t x, uint32_t y) {
+                                const auto v = img.texel(x, y);
+                                return glm::dvec3(v[0], v[1], v[2]);
+                            },
+                            bx, by, B);
                         bool bad = false;
-                        for (int c = 0; c < 3; ++c) bad = bad || std::abs(got[c] - want[c]) > 0.12 * std::max({want[c], got[c], 0.02});
+                        for (int c = 0; c < 3; ++c)
+                            bad = bad || std::abs(got[c] - want[c]) >
+                                             0.12 * std::max({want[c], got[c], 0.02});
                         if (bad && over == 0)
-                            std::cout << "  first block off at " << bx << "," << by << ": " << got.r << " " << got.g << " " << got.b
-                                      << " against " << want.r << " " << want.g << " " << want.b << "\n";
+                            std::cout << "  first block off at " << bx << "," << by << ": " << got.r
+                                      << " " << got.g << " " << got.b << " against " << want.r
+                                      << " " << want.g << " " << want.b << "\n";
                         over += bad;
                     }
                 ASSERT_GT(blocks, 4u) << rel;
-                std::cout << rel << " " << b << " " << t << ": " << over << " of " << blocks << " blocks over 12 %\n";
+                std::cout << rel << " " << b << " " << t << ": " << over << " of " << blocks
+                          << " blocks over 12 %\n";
                 EXPECT_LE(over, blocks / 3) << rel << " " << b << " " << t;
             }
             EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
@@ -290,8 +325,9 @@ TEST(GltfMaterialInputs, MatchTheCpuReference) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Samples, GltfSampleRender, ::testing::ValuesIn(kSamples), [](const auto& info) {
-    std::string n = info.param;
-    n = n.substr(0, n.find('/'));
-    return n;
-});
+INSTANTIATE_TEST_SUITE_P(Samples, GltfSampleRender, ::testing::ValuesIn(kSamples),
+                         [](const auto& info) {
+                             std::string n = info.param;
+                             n = n.substr(0, n.find('/'));
+                             return n;
+                         });

@@ -26,7 +26,8 @@ TEST(Image, CompareCountsPixelsOverTolerance) {
     ImageDiff d = compareImages(a, b, 5.0 / 255.0);
     EXPECT_EQ(d.pixelsOverTolerance, 1u);
     EXPECT_NEAR(d.maxAbsError, 0.5, 0.01);
-    EXPECT_THROW(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{0, 0, 0, 1}}), 0.1), Error);
+    EXPECT_THROW(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{0, 0, 0, 1}}), 0.1),
+                 Error);
 }
 
 // A rounding tie (0.5 is 127.5 steps) may land on either side on a real GPU (NVIDIA: 127,
@@ -36,16 +37,26 @@ TEST(Image, ToleranceOfWholeStepsHoldsForEveryEightBitValue) {
     for (int v = 1; v < 255; ++v) {
         const float lo = float(v - 1) / 255.0f, mid = float(v) / 255.0f, hi = float(v + 1) / 255.0f;
         const Image a = Image::fromTexels(1, 1, Format::RGBA8, {{mid, mid, mid, 1}});
-        EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{lo, hi, mid, 1}}), 1.0 / 255.0).pixelsOverTolerance, 0u) << v;
+        EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{lo, hi, mid, 1}}),
+                                1.0 / 255.0)
+                      .pixelsOverTolerance,
+                  0u)
+            << v;
         if (v > 1) {
-            EXPECT_EQ(compareImages(a, Image::fromTexels(1, 1, Format::RGBA8, {{float(v - 2) / 255.0f, mid, mid, 1}}), 1.0 / 255.0)
-                          .pixelsOverTolerance, 1u) << v;
+            EXPECT_EQ(compareImages(a,
+                                    Image::fromTexels(1, 1, Format::RGBA8,
+                                                      {{float(v - 2) / 255.0f, mid, mid, 1}}),
+                                    1.0 / 255.0)
+                          .pixelsOverTolerance,
+                      1u)
+                << v;
         }
     }
 }
 
 TEST(Image, PfmIsBottomRowFirstLittleEndian) {
-    Image img = Image::fromTexels(1, 2, Format::RGBA32F, {{1, 2, 3, 1}, {4, 5, 6, 1}});  // top, bottom
+    Image img =
+        Image::fromTexels(1, 2, Format::RGBA32F, {{1, 2, 3, 1}, {4, 5, 6, 1}});  // top, bottom
     const std::string path = ::testing::TempDir() + "/t.pfm";
     writePfm(img, path);
     std::ifstream f(path, std::ios::binary);
@@ -98,7 +109,7 @@ TEST(HandlePool, ObjectsDoNotMoveWhenThePoolGrows) {
     int visited = 0;
     pool.forEach([&](Big&) { ++visited; });
     EXPECT_EQ(visited, 1001);
-    EXPECT_EQ(pool.find(PipelineHandle{}), nullptr);                 // id 0: never valid
+    EXPECT_EQ(pool.find(PipelineHandle{}), nullptr);                    // id 0: never valid
     EXPECT_EQ(pool.find(PipelineHandle{(1u << 20) | 2000u}), nullptr);  // index past the end
 }
 

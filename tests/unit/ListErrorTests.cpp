@@ -18,9 +18,17 @@ TEST_P(DeviceErrors, ListsMayOutliveTheirDevice) {
     auto empty = other->createCommandList();
     other.reset();  // lists first would be the right order
     for (auto* list : {recorded.get(), submitted.get(), empty.get()}) {
-        EXPECT_NE(errorOf([&] { list->draw(3); }).find("the device of this command list was destroyed"), std::string::npos);
-        EXPECT_NE(errorOf([&] { list->setScissor({}); }).find("the device of this command list was destroyed"), std::string::npos);
-        EXPECT_NE(errorOf([&] { list->clearBuffer({1}); }).find("the device of this command list was destroyed"), std::string::npos);
+        EXPECT_NE(
+            errorOf([&] { list->draw(3); }).find("the device of this command list was destroyed"),
+            std::string::npos);
+        EXPECT_NE(errorOf([&] {
+                      list->setScissor({});
+                  }).find("the device of this command list was destroyed"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] {
+                      list->clearBuffer({1});
+                  }).find("the device of this command list was destroyed"),
+                  std::string::npos);
     }
     recorded.reset();
     submitted.reset();
@@ -38,12 +46,19 @@ TEST_P(DeviceErrors, EveryCallOfAnOrphanedListNamesItself) {
     const TextureBarrier tb{.texture = t};
     const BufferBarrier bb{.buffer = b};
     const std::vector<Call> calls = {
-        {"beginRenderPass", [&](CommandList& l) { l.beginRenderPass({.colors = {{.texture = t}}}); }},
+        {"beginRenderPass",
+         [&](CommandList& l) { l.beginRenderPass({.colors = {{.texture = t}}}); }},
         {"endRenderPass", [](CommandList& l) { l.endRenderPass(); }},
         {"setPipeline", [](CommandList& l) { l.setPipeline({1}); }},
         {"setViewport", [](CommandList& l) { l.setViewport({.width = 4, .height = 4}); }},
-        {"setScissor", [](CommandList& l) { l.setScissor({0, 0, 4, 4}); }},
-        {"setBlendConstant", [](CommandList& l) { l.setBlendConstant({0, 0, 0, 0}); }},
+        {"setScissor",
+         [](CommandList& l) {
+             l.setScissor({0, 0, 4, 4});
+         }},
+        {"setBlendConstant",
+         [](CommandList& l) {
+             l.setBlendConstant({0, 0, 0, 0});
+         }},
         {"setStencilReference", [](CommandList& l) { l.setStencilReference(1); }},
         {"setDepthBias", [](CommandList& l) { l.setDepthBias(1, 1); }},
         {"setConstants", [&](CommandList& l) { l.setConstants(0, bytesOf(four)); }},
@@ -59,14 +74,17 @@ TEST_P(DeviceErrors, EveryCallOfAnOrphanedListNamesItself) {
         {"drawIndirect", [&](CommandList& l) { l.drawIndirect(b, 0); }},
         {"drawIndexedIndirect", [&](CommandList& l) { l.drawIndexedIndirect(b, 0); }},
         {"drawIndirectCount", [&](CommandList& l) { l.drawIndirectCount(b, 0, b, 0, 1); }},
-        {"drawIndexedIndirectCount", [&](CommandList& l) { l.drawIndexedIndirectCount(b, 0, b, 0, 1); }},
+        {"drawIndexedIndirectCount",
+         [&](CommandList& l) { l.drawIndexedIndirectCount(b, 0, b, 0, 1); }},
         {"dispatchIndirect", [&](CommandList& l) { l.dispatchIndirect(b, 0); }},
         {"generateMips", [&](CommandList& l) { l.generateMips(t); }},
         {"copyBuffer", [&](CommandList& l) { l.copyBuffer(b, 0, b, 4, 4); }},
         {"clearBuffer", [&](CommandList& l) { l.clearBuffer(b); }},
         {"copyTexture", [&](CommandList& l) { l.copyTexture(t, t); }},
-        {"copyBufferToTexture", [&](CommandList& l) { l.copyBufferToTexture(t, Subresource{}, b, 0); }},
-        {"copyTextureToBuffer", [&](CommandList& l) { l.copyTextureToBuffer(b, 0, t, Subresource{}); }},
+        {"copyBufferToTexture",
+         [&](CommandList& l) { l.copyBufferToTexture(t, Subresource{}, b, 0); }},
+        {"copyTextureToBuffer",
+         [&](CommandList& l) { l.copyTextureToBuffer(b, 0, t, Subresource{}); }},
         {"beginTimer", [](CommandList& l) { l.beginTimer({1}); }},
         {"endTimer", [](CommandList& l) { l.endTimer({1}); }},
         {"beginQuery", [](CommandList& l) { l.beginQuery({1}, 0); }},
@@ -82,11 +100,13 @@ TEST_P(DeviceErrors, EveryCallOfAnOrphanedListNamesItself) {
         {"barrier", [&](CommandList& l) { l.barrier(bb); }},
         {"beginSecondary", [&](CommandList& l) { l.beginSecondary({.colors = {{.texture = t}}}); }},
         {"endSecondary", [](CommandList& l) { l.endSecondary(); }},
-        {"executeSecondary", [](CommandList& l) { l.executeSecondary(std::span<CommandList* const>()); }},
+        {"executeSecondary",
+         [](CommandList& l) { l.executeSecondary(std::span<CommandList* const>()); }},
     };
     for (bool inPass : {false, true}) {
         auto other = createDevice({.backend = GetParam()});
-        auto target = other->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
+        auto target =
+            other->createTexture({.width = 4, .height = 4, .usage = TextureUsage::RenderTarget});
         std::vector<std::unique_ptr<CommandList>> lists;
         for (size_t i = 0; i < calls.size(); ++i) {
             lists.push_back(other->createCommandList());
@@ -94,9 +114,10 @@ TEST_P(DeviceErrors, EveryCallOfAnOrphanedListNamesItself) {
         }
         other.reset();
         for (size_t i = 0; i < calls.size(); ++i)
-            EXPECT_EQ(errorOf([&] { calls[i].second(*lists[i]); }),
-                      std::string(calls[i].first) +
-                          ": the device of this command list was destroyed (destroy lists before their device)")
+            EXPECT_EQ(
+                errorOf([&] { calls[i].second(*lists[i]); }),
+                std::string(calls[i].first) +
+                    ": the device of this command list was destroyed (destroy lists before their device)")
                 << (inPass ? "in a pass: " : "") << calls[i].first;
     }
 }
@@ -111,7 +132,8 @@ TEST_P(DeviceErrors, ObjectsDestroyedWhileAnotherThreadRecordsAreErrors) {
     std::atomic<bool> stop{false};
     std::thread destroyer([&] {
         for (int i = 0; i < 1500; ++i) {
-            const BufferHandle b = device->createBuffer({.size = 256, .debugName = "a buffer with a name too long for SSO"});
+            const BufferHandle b = device->createBuffer(
+                {.size = 256, .debugName = "a buffer with a name too long for SSO"});
             current = b.id;
             std::this_thread::yield();
             device->destroy(b);
@@ -129,13 +151,17 @@ TEST_P(DeviceErrors, ObjectsDestroyedWhileAnotherThreadRecordsAreErrors) {
             }
         } catch (const Error& e) {
             ++refused;
-            EXPECT_NE(std::string(e.what()).find("invalid or destroyed buffer handle"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("invalid or destroyed buffer handle"),
+                      std::string::npos)
+                << e.what();
         }
         try {
             device->wait(device->submit(*list));
         } catch (const Error& e) {
             ++refused;
-            EXPECT_NE(std::string(e.what()).find("destroyed after it was recorded"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("destroyed after it was recorded"),
+                      std::string::npos)
+                << e.what();
             list = device->createCommandList();  // the refused one keeps its recording
         }
     }
@@ -166,7 +192,8 @@ TEST_P(DeviceErrors, RefusedSubmitRunsNothingAndKeepsItsLists) {
     d.waitIdle();
     EXPECT_EQ(d.readTexture(a).texel(0, 0)[0], 0.0f) << "the refused submission ran its first list";
     std::array<CommandList*, 2> twice = {first.get(), first.get()};
-    EXPECT_NE(errorOf([&] { d.submit(twice); }).find("the same list at 0 and 1"), std::string::npos);
+    EXPECT_NE(errorOf([&] { d.submit(twice); }).find("the same list at 0 and 1"),
+              std::string::npos);
     second->endRenderPass();
     d.wait(d.submit(both));
     EXPECT_EQ(d.readTexture(a).texel(0, 0)[0], 1.0f) << "the first list's recording was lost";
@@ -181,9 +208,12 @@ TEST_P(DeviceErrors, RefusedSubmitRunsNothingAndKeepsItsLists) {
 // after a pass of secondary lists the primary's bindings are unset on every backend.
 TEST_P(DeviceErrors, SecondaryListRules) {
     Device& d = *device;
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
-    auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = fe::shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = fe::shaders::find("conformance/color.frag")});
+    auto p = d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
     auto ubo = d.createBuffer({.size = 256, .usage = BufferUsage::Uniform});
     const TextureUsage rt = TextureUsage::RenderTarget | TextureUsage::CopySrc;
     auto t = d.createTexture({.width = 8, .height = 8, .usage = rt});
@@ -192,26 +222,42 @@ TEST_P(DeviceErrors, SecondaryListRules) {
     auto primary = d.createCommandList();
     auto part = d.createCommandList();
     auto has = [](const std::string& error, const char* text) {
-        return error.find(text) != std::string::npos ? ::testing::AssertionSuccess()
-                                                     : ::testing::AssertionFailure() << "got: " << error;
+        return error.find(text) != std::string::npos
+                   ? ::testing::AssertionSuccess()
+                   : ::testing::AssertionFailure() << "got: " << error;
     };
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "outside a render pass begun with secondaryLists"));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }),
+                    "outside a render pass begun with secondaryLists"));
     primary->beginRenderPass(pass);
-    EXPECT_TRUE(has(errorOf([&] { primary->setPipeline(p); }), "setPipeline is not allowed in a render pass whose draws come from secondary lists"));
-    EXPECT_TRUE(has(errorOf([&] { primary->draw(3); }), "draw is not allowed in a render pass whose draws"));
-    EXPECT_TRUE(has(errorOf([&] { primary->setViewport({0, 0, 4, 4}); }), "setViewport is not allowed"));
-    EXPECT_TRUE(has(errorOf([&] { primary->pushDebugGroup("x"); }), "pushDebugGroup is not allowed"));
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
+    EXPECT_TRUE(
+        has(errorOf([&] { primary->setPipeline(p); }),
+            "setPipeline is not allowed in a render pass whose draws come from secondary lists"));
+    EXPECT_TRUE(has(errorOf([&] { primary->draw(3); }),
+                    "draw is not allowed in a render pass whose draws"));
+    EXPECT_TRUE(has(errorOf([&] {
+                        primary->setViewport({0, 0, 4, 4});
+                    }),
+                    "setViewport is not allowed"));
+    EXPECT_TRUE(
+        has(errorOf([&] { primary->pushDebugGroup("x"); }), "pushDebugGroup is not allowed"));
+    EXPECT_TRUE(
+        has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
     part->beginSecondary(pass);
-    EXPECT_TRUE(has(errorOf([&] { part->beginRenderPass(pass); }), "beginRenderPass is not allowed in a secondary list"));
-    EXPECT_TRUE(has(errorOf([&] { part->endRenderPass(); }), "endRenderPass is not allowed in a secondary list"));
-    EXPECT_TRUE(has(errorOf([&] { part->copyBuffer(ubo, 0, ubo, 128, 4); }), "copyBuffer is not allowed inside a render pass"));
-    EXPECT_TRUE(has(errorOf([&] { d.submit(*part); }), "a secondary list is executed by a primary list"));
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is still recording (missing endSecondary)"));
+    EXPECT_TRUE(has(errorOf([&] { part->beginRenderPass(pass); }),
+                    "beginRenderPass is not allowed in a secondary list"));
+    EXPECT_TRUE(has(errorOf([&] { part->endRenderPass(); }),
+                    "endRenderPass is not allowed in a secondary list"));
+    EXPECT_TRUE(has(errorOf([&] { part->copyBuffer(ubo, 0, ubo, 128, 4); }),
+                    "copyBuffer is not allowed inside a render pass"));
+    EXPECT_TRUE(
+        has(errorOf([&] { d.submit(*part); }), "a secondary list is executed by a primary list"));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }),
+                    "list 0 is still recording (missing endSecondary)"));
     part->setPipeline(p);
     part->draw(3);
     part->pushDebugGroup("open");
-    EXPECT_TRUE(has(errorOf([&] { part->endSecondary(); }), "endSecondary: 1 debug group(s) not popped"));
+    EXPECT_TRUE(
+        has(errorOf([&] { part->endSecondary(); }), "endSecondary: 1 debug group(s) not popped"));
     part->popDebugGroup();
     part->endSecondary();
     EXPECT_TRUE(has(errorOf([&] { part->draw(3); }), "draw after endSecondary"));
@@ -220,22 +266,28 @@ TEST_P(DeviceErrors, SecondaryListRules) {
     auto other = d.createCommandList();
     other->beginSecondary({.colors = {{.texture = wide}}});
     other->endSecondary();
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*other); }),
-                    "list 0 was begun for another pass (RGBA8; 1 sample(s); 16x8) than the open one (RGBA8; 1 sample(s); 8x8)"));
+    EXPECT_TRUE(has(
+        errorOf([&] { primary->executeSecondary(*other); }),
+        "list 0 was begun for another pass (RGBA8; 1 sample(s); 16x8) than the open one (RGBA8; 1 sample(s); 8x8)"));
     std::array<CommandList*, 2> twice = {part.get(), part.get()};
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(twice); }), "the same list at 0 and 1"));
+    EXPECT_TRUE(
+        has(errorOf([&] { primary->executeSecondary(twice); }), "the same list at 0 and 1"));
     primary->executeSecondary(*part);
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
+    EXPECT_TRUE(
+        has(errorOf([&] { primary->executeSecondary(*part); }), "list 0 is not a secondary list"));
     primary->endRenderPass();
     // The executed list is empty again; a list with something recorded cannot begin a secondary one.
     part->beginSecondary(pass);
     part->endSecondary();
     auto used = d.createCommandList();
     used->setUniformBuffer(0, ubo);
-    EXPECT_TRUE(has(errorOf([&] { used->beginSecondary(pass); }), "beginSecondary: the list must be empty"));
+    EXPECT_TRUE(has(errorOf([&] { used->beginSecondary(pass); }),
+                    "beginSecondary: the list must be empty"));
     // The primary's bindings do not survive a pass of secondary lists.
     auto uboPipeline = d.createGraphicsPipeline(
-        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = {Format::RGBA8},
          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}});
     auto again = d.createCommandList();
     again->setUniformBuffer(0, ubo);
@@ -246,7 +298,8 @@ TEST_P(DeviceErrors, SecondaryListRules) {
     EXPECT_TRUE(has(errorOf([&] { again->draw(3); }), "missing binding for slot(s) 0"));
     again->endRenderPass();
     d.wait(d.submit(*primary));
-    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*other); }), "outside a render pass begun with secondaryLists"));
+    EXPECT_TRUE(has(errorOf([&] { primary->executeSecondary(*other); }),
+                    "outside a render pass begun with secondaryLists"));
     for (auto pl : {p, uboPipeline}) d.destroy(pl);
     d.destroy(vs);
     d.destroy(fs);
@@ -263,7 +316,8 @@ TEST_P(DeviceErrors, ListOfAnotherDeviceIsRefused) {
     const BufferHandle theirs = other->createBuffer({.size = 16});
     auto list = other->createCommandList();
     list->clearBuffer(theirs, 0, 16, 0x5555u);
-    EXPECT_NE(errorOf([&] { device->submit(*list); }).find("a command list of another device"), std::string::npos);
+    EXPECT_NE(errorOf([&] { device->submit(*list); }).find("a command list of another device"),
+              std::string::npos);
     const std::vector<uint8_t> bytes = device->readBuffer(mine, 0, 16);
     EXPECT_EQ(bytes, std::vector<uint8_t>(16, 0));  // untouched
     other->wait(other->submit(*list));
@@ -277,14 +331,23 @@ TEST_P(DeviceErrors, TimerMisuse) {
     const TimerHandle timer = device->createTimer();
     {
         auto cmd = device->createCommandList();
-        EXPECT_NE(errorOf([&] { cmd->endTimer(timer); }).find("endTimer: the timer was not begun in this recording"),
+        EXPECT_NE(errorOf([&] {
+                      cmd->endTimer(timer);
+                  }).find("endTimer: the timer was not begun in this recording"),
                   std::string::npos);
         cmd->beginTimer(timer);
-        EXPECT_NE(errorOf([&] { cmd->beginTimer(timer); }).find("beginTimer: the timer was already begun"), std::string::npos);
-        EXPECT_NE(errorOf([&] { device->submit(*cmd); }).find("a timer begun in this recording was not ended"),
+        EXPECT_NE(errorOf([&] {
+                      cmd->beginTimer(timer);
+                  }).find("beginTimer: the timer was already begun"),
+                  std::string::npos);
+        EXPECT_NE(errorOf([&] {
+                      device->submit(*cmd);
+                  }).find("a timer begun in this recording was not ended"),
                   std::string::npos);
         cmd->endTimer(timer);
-        EXPECT_NE(errorOf([&] { cmd->endTimer(timer); }).find("endTimer: the timer was already ended"), std::string::npos);
+        EXPECT_NE(
+            errorOf([&] { cmd->endTimer(timer); }).find("endTimer: the timer was already ended"),
+            std::string::npos);
         EXPECT_FALSE(device->timerNanoseconds(timer).has_value());  // never submitted
         const FenceValue f = device->submit(*cmd);
         device->wait(f);

@@ -36,7 +36,8 @@ protected:
     // until it runs through. Every failure must be an Error whose message passes `check` and
     // must leave the device's objects as they were. Returns the native calls failed, in order,
     // as the errors name them.
-    std::vector<std::string> failEachAllocation(const std::function<void()>& op, const std::function<void(const std::string&)>& check) {
+    std::vector<std::string> failEachAllocation(
+        const std::function<void()>& op, const std::function<void(const std::string&)>& check) {
         std::vector<std::string> failed;
         for (uint64_t n = 1; n <= 32; ++n) {
             fault::arm(fault::Site::Allocation, n);
@@ -45,17 +46,21 @@ protected:
             try {
                 op();
             } catch (const Error& e) {
-                EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore + 1) << "not the injected failure: " << e.what();
+                EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore + 1)
+                    << "not the injected failure: " << e.what();
                 check(e.what());
-                EXPECT_EQ(device->liveObjects(), before) << "allocation " << n << " failed and left objects behind";
+                EXPECT_EQ(device->liveObjects(), before)
+                    << "allocation " << n << " failed and left objects behind";
                 std::smatch call;
                 const std::string message = e.what();
-                EXPECT_TRUE(std::regex_search(message, call, std::regex(R"(\b(vk|gl)[A-Z]\w+)"))) << "no native call named: " << message;
+                EXPECT_TRUE(std::regex_search(message, call, std::regex(R"(\b(vk|gl)[A-Z]\w+)")))
+                    << "no native call named: " << message;
                 failed.push_back(call.str());
                 continue;
             }
             fault::arm(fault::Site::Allocation, 0);
-            EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore) << "a failure was swallowed";
+            EXPECT_EQ(fault::fired(fault::Site::Allocation), firedBefore)
+                << "a failure was swallowed";
             return failed;
         }
         ADD_FAILURE() << "the operation still made native allocations after 32";
@@ -65,10 +70,15 @@ protected:
     // A triangle drawn and read back: the device works.
     void expectDraws() {
         Device& d = *device;
-        auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
-        auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-        auto p = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
-        auto t = d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+        auto vs = d.createShader(
+            {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+        auto fs = d.createShader(
+            {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+        auto p = d.createGraphicsPipeline(
+            {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+        auto t = d.createTexture({.width = 16,
+                                  .height = 16,
+                                  .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 1, 1}}}});
         cmd->setPipeline(p);
@@ -76,7 +86,8 @@ protected:
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
         const Image img = d.readTexture(t);
-        EXPECT_EQ(img.texel(0, 15), (std::array<float, 4>{0, 0, 1, 1})) << "corner: the clear colour";
+        EXPECT_EQ(img.texel(0, 15), (std::array<float, 4>{0, 0, 1, 1}))
+            << "corner: the clear colour";
         const auto centre = img.texel(8, 8);
         EXPECT_GT(centre[0] + centre[1], 0.5f) << "centre: the triangle";
         cmd.reset();
@@ -105,7 +116,8 @@ void expectOutOfMemory(const std::string& message, const std::string& object) {
     EXPECT_TRUE(message.find("VK_ERROR_OUT_OF_DEVICE_MEMORY") != std::string::npos ||
                 message.find("GL_OUT_OF_MEMORY") != std::string::npos)
         << message;
-    EXPECT_TRUE(message.find("vk") != std::string::npos || message.find("gl") != std::string::npos) << message;
+    EXPECT_TRUE(message.find("vk") != std::string::npos || message.find("gl") != std::string::npos)
+        << message;
     EXPECT_NE(message.find(object), std::string::npos) << message;
 }
 
@@ -123,7 +135,8 @@ TEST(FaultInjection, CounterFailsOnlyTheNthCall) {
     EXPECT_EQ(fault::fired(fault::Site::Allocation), fired + 1);
     fault::arm(fault::Site::Allocation, 0);
     EXPECT_FALSE(fault::hit(fault::Site::Allocation, "e"));
-    EXPECT_EQ(fault::calls(fault::Site::Allocation), calls + 5) << "every call is counted, armed or not";
+    EXPECT_EQ(fault::calls(fault::Site::Allocation), calls + 5)
+        << "every call is counted, armed or not";
 }
 
 TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable) {
@@ -137,7 +150,10 @@ TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable)
     std::vector<uint8_t> data(20u << 20, 7);
     BufferHandle big;
     const std::vector<std::string> failed = failEachAllocation(
-        [&] { big = device->createBuffer({.size = data.size(), .debugName = "big vertices"}, bytesOf(data)); },
+        [&] {
+            big = device->createBuffer({.size = data.size(), .debugName = "big vertices"},
+                                       bytesOf(data));
+        },
         [&](const std::string& m) { expectOutOfMemory(m, "buffer"); });
     if (GetParam() == "vulkan") {
         // The buffer and its memory, then the staging buffer, its memory and mapping, and the
@@ -146,9 +162,11 @@ TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable)
         // texture made before (recorded at the first transfer or submission after it).
         std::vector<std::string> unmapped = failed;
         std::erase(unmapped, "vkMapMemory");
-        EXPECT_EQ(unmapped, (std::vector<std::string>{"vkCreateBuffer", "vkAllocateMemory", "vkCreateBuffer", "vkAllocateMemory",
-                                                      "vkAllocateCommandBuffers", "vkBeginCommandBuffer", "vkEndCommandBuffer",
-                                                      "vkAllocateCommandBuffers", "vkBeginCommandBuffer"}));
+        EXPECT_EQ(unmapped,
+                  (std::vector<std::string>{"vkCreateBuffer", "vkAllocateMemory", "vkCreateBuffer",
+                                            "vkAllocateMemory", "vkAllocateCommandBuffers",
+                                            "vkBeginCommandBuffer", "vkEndCommandBuffer",
+                                            "vkAllocateCommandBuffers", "vkBeginCommandBuffer"}));
         EXPECT_GE(failed.size() - unmapped.size(), 1u) << "the staging memory's mapping";
     } else {
         EXPECT_EQ(failed, std::vector<std::string>{"glNamedBufferStorage"});
@@ -157,7 +175,8 @@ TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable)
 
     // The failing object itself is named.
     fault::arm(fault::Site::Allocation, 1);
-    const std::string message = fe::testing::errorOf([&] { device->createBuffer({.size = 64, .debugName = "named one"}); });
+    const std::string message =
+        fe::testing::errorOf([&] { device->createBuffer({.size = 64, .debugName = "named one"}); });
     expectOutOfMemory(message, "buffer 'named one' (64 bytes)");
 
     expectDraws();
@@ -169,15 +188,23 @@ TEST_P(NativeFaults, OutOfMemoryCreatingBuffersIsAnErrorAndTheDeviceStaysUsable)
 TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable) {
     const LiveObjects empty = device->liveObjects();
     BufferHandle before = device->createBuffer({.size = 256});
-    TextureHandle beforeTexture = device->createTexture({.width = 8, .height = 8, .debugName = "made before"});
+    TextureHandle beforeTexture =
+        device->createTexture({.width = 8, .height = 8, .debugName = "made before"});
 
     TextureHandle small, big;
-    EXPECT_FALSE(failEachAllocation([&] { small = device->createTexture({.width = 64, .height = 64, .debugName = "albedo"}); },
-                                    [&](const std::string& m) { expectOutOfMemory(m, "texture 'albedo' (64x64 RGBA8)"); })
-                     .empty());
+    EXPECT_FALSE(
+        failEachAllocation(
+            [&] {
+                small = device->createTexture({.width = 64, .height = 64, .debugName = "albedo"});
+            },
+            [&](const std::string& m) { expectOutOfMemory(m, "texture 'albedo' (64x64 RGBA8)"); })
+            .empty());
     // 32 MiB: memory of its own on Vulkan (vkCreateImage, then vkAllocateMemory).
     const std::vector<std::string> failed = failEachAllocation(
-        [&] { big = device->createTexture({.format = Format::RGBA8, .width = 4096, .height = 2048, .debugName = "huge"}); },
+        [&] {
+            big = device->createTexture(
+                {.format = Format::RGBA8, .width = 4096, .height = 2048, .debugName = "huge"});
+        },
         [&](const std::string& m) { expectOutOfMemory(m, "texture 'huge'"); });
     if (GetParam() == "vulkan") {
         // The image, its memory (mapped where host-visible) and its view. Its first layout
@@ -185,26 +212,51 @@ TEST_P(NativeFaults, OutOfMemoryCreatingTexturesIsAnErrorAndTheDeviceStaysUsable
         // (recorded for the next submission, not submitted and waited for here).
         std::vector<std::string> unmapped = failed;
         std::erase(unmapped, "vkMapMemory");
-        EXPECT_EQ(unmapped, (std::vector<std::string>{"vkCreateImage", "vkAllocateMemory", "vkCreateImageView"}));
+        EXPECT_EQ(unmapped, (std::vector<std::string>{"vkCreateImage", "vkAllocateMemory",
+                                                      "vkCreateImageView"}));
     } else {
         EXPECT_EQ(failed, std::vector<std::string>{"glTextureStorage2D"});
     }
 
     // Every texture kind, each of its allocations failed in turn.
     const TextureUsage rt = TextureUsage::RenderTarget | TextureUsage::Sampled;
-    std::vector<TextureDesc> kinds = {
-        {.dimension = TextureDimension::Texture2DArray, .width = 32, .height = 32, .depthOrLayers = 4, .debugName = "layers"},
-        {.dimension = TextureDimension::TextureCube, .format = Format::RGBA16F, .width = 32, .height = 32, .depthOrLayers = 6,
-         .mipLevels = 6, .usage = rt, .debugName = "environment"},
-        {.dimension = TextureDimension::Texture3D, .width = 16, .height = 16, .depthOrLayers = 16, .debugName = "volume"},
-        {.format = Format::D32F, .width = 64, .height = 64, .usage = rt, .debugName = "shadow map"}};
+    std::vector<TextureDesc> kinds = {{.dimension = TextureDimension::Texture2DArray,
+                                       .width = 32,
+                                       .height = 32,
+                                       .depthOrLayers = 4,
+                                       .debugName = "layers"},
+                                      {.dimension = TextureDimension::TextureCube,
+                                       .format = Format::RGBA16F,
+                                       .width = 32,
+                                       .height = 32,
+                                       .depthOrLayers = 6,
+                                       .mipLevels = 6,
+                                       .usage = rt,
+                                       .debugName = "environment"},
+                                      {.dimension = TextureDimension::Texture3D,
+                                       .width = 16,
+                                       .height = 16,
+                                       .depthOrLayers = 16,
+                                       .debugName = "volume"},
+                                      {.format = Format::D32F,
+                                       .width = 64,
+                                       .height = 64,
+                                       .usage = rt,
+                                       .debugName = "shadow map"}};
     if (device->info().limits.colorSampleCounts & 4)
-        kinds.push_back({.width = 64, .height = 64, .sampleCount = 4, .usage = TextureUsage::RenderTarget, .debugName = "msaa"});
+        kinds.push_back({.width = 64,
+                         .height = 64,
+                         .sampleCount = 4,
+                         .usage = TextureUsage::RenderTarget,
+                         .debugName = "msaa"});
     std::vector<TextureHandle> made;
     for (const TextureDesc& k : kinds) {
         TextureHandle t;
         EXPECT_FALSE(failEachAllocation([&] { t = device->createTexture(k); },
-                                        [&](const std::string& m) { expectOutOfMemory(m, std::string("texture '") + k.debugName + "'"); })
+                                        [&](const std::string& m) {
+                                            expectOutOfMemory(
+                                                m, std::string("texture '") + k.debugName + "'");
+                                        })
                          .empty())
             << k.debugName;
         made.push_back(t);
@@ -224,7 +276,8 @@ TEST_P(NativeFaults, OutOfMemoryInTransfersLeavesNothingBehind) {
     // (NVIDIA), the first transfer each way also makes and maps a memory block, which stays for
     // later ones. One transfer each way first makes the counted ones alike on every device.
     {
-        TextureHandle warm = device->createTexture({.width = 16, .height = 16, .debugName = "warm-up"});
+        TextureHandle warm =
+            device->createTexture({.width = 16, .height = 16, .debugName = "warm-up"});
         device->writeTexture(warm, {}, bytesOf(std::vector<uint8_t>(16 * 16 * 4, 1)));
         device->readTexture(warm);
         device->destroy(warm);
@@ -232,22 +285,28 @@ TEST_P(NativeFaults, OutOfMemoryInTransfersLeavesNothingBehind) {
     TextureHandle t = device->createTexture({.width = 16, .height = 16, .debugName = "uploaded"});
     std::vector<uint8_t> texels(16 * 16 * 4, 200);
     auto staging = [](const std::string& m) {
-        expectOutOfMemory(m, m.find("staging") != std::string::npos ? "staging buffer for texture 'uploaded' (1024 bytes)"
-                                                                    : "texture 'uploaded'");  // the copy's command buffer
+        expectOutOfMemory(m, m.find("staging") != std::string::npos
+                                 ? "staging buffer for texture 'uploaded' (1024 bytes)"
+                                 : "texture 'uploaded'");  // the copy's command buffer
     };
-    const std::vector<std::string> failedWrites = failEachAllocation([&] { device->writeTexture(t, {}, bytesOf(texels)); }, staging);
+    const std::vector<std::string> failedWrites =
+        failEachAllocation([&] { device->writeTexture(t, {}, bytesOf(texels)); }, staging);
     Image img;
-    const std::vector<std::string> failedReads = failEachAllocation([&] { img = device->readTexture(t); }, staging);
+    const std::vector<std::string> failedReads =
+        failEachAllocation([&] { img = device->readTexture(t); }, staging);
     EXPECT_EQ(img.data, texels);
     // Vulkan, each way: the staging buffer (its memory block is already mapped, made by the
     // earlier texture) and the copy's command buffer.
-    const std::vector<std::string> perTransfer = GetParam() == "vulkan"
-        ? std::vector<std::string>{"vkCreateBuffer", "vkAllocateCommandBuffers", "vkBeginCommandBuffer", "vkEndCommandBuffer"}
-        : std::vector<std::string>{};
+    const std::vector<std::string> perTransfer =
+        GetParam() == "vulkan"
+            ? std::vector<std::string>{"vkCreateBuffer", "vkAllocateCommandBuffers",
+                                       "vkBeginCommandBuffer", "vkEndCommandBuffer"}
+            : std::vector<std::string>{};
     // The first write also records the texture's first commands (transition, zero clear) into
     // a command buffer of their own, in the same submission.
     std::vector<std::string> firstWrite = perTransfer;
-    if (GetParam() == "vulkan") firstWrite.insert(firstWrite.end(), {"vkAllocateCommandBuffers", "vkBeginCommandBuffer"});
+    if (GetParam() == "vulkan")
+        firstWrite.insert(firstWrite.end(), {"vkAllocateCommandBuffers", "vkBeginCommandBuffer"});
     EXPECT_EQ(failedWrites, firstWrite);
     EXPECT_EQ(failedReads, perTransfer);
     device->destroy(t);
@@ -258,10 +317,14 @@ TEST_P(NativeFaults, LostDeviceThrowsFromEveryLaterCallAndStillReleasesObjects) 
     Device& d = *device;
     const LiveObjects empty = d.liveObjects();
     // Objects made before the loss.
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-    auto pipeline = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
-    auto target = d.createTexture({.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    auto pipeline = d.createGraphicsPipeline(
+        {.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8}});
+    auto target = d.createTexture(
+        {.width = 16, .height = 16, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
     auto buffer = d.createBuffer({.size = 256, .debugName = "made before"});
     auto sampler = d.createSampler({});
     auto timer = d.createTimer();
@@ -273,7 +336,8 @@ TEST_P(NativeFaults, LostDeviceThrowsFromEveryLaterCallAndStillReleasesObjects) 
         cmd->endRenderPass();
     };
 
-    fault::arm(fault::Site::Submission, 2);  // the first submission runs, the second loses the device
+    fault::arm(fault::Site::Submission,
+               2);  // the first submission runs, the second loses the device
     record();
     const FenceValue first = d.submit(*cmd);
     d.wait(first);
@@ -285,8 +349,13 @@ TEST_P(NativeFaults, LostDeviceThrowsFromEveryLaterCallAndStillReleasesObjects) 
     expectLost("createBuffer", [&] { d.createBuffer({.size = 64}); });
     expectLost("createTexture", [&] { d.createTexture({.width = 4, .height = 4}); });
     expectLost("createSampler", [&] { d.createSampler({}); });
-    expectLost("createShader", [&] { d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")}); });
-    expectLost("createGraphicsPipeline", [&] { d.createGraphicsPipeline({.vertexShader = vs, .colorFormats = {Format::RGBA8}}); });
+    expectLost("createShader", [&] {
+        d.createShader(
+            {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/triangle.vert")});
+    });
+    expectLost("createGraphicsPipeline", [&] {
+        d.createGraphicsPipeline({.vertexShader = vs, .colorFormats = {Format::RGBA8}});
+    });
     expectLost("createTimer", [&] { d.createTimer(); });
     expectLost("createCommandList", [&] { d.createCommandList(); });
     expectLost("writeBuffer", [&] { d.writeBuffer(buffer, 0, bytesOf(bytes)); });
@@ -343,7 +412,8 @@ TEST_P(NativeFaults, LossInsideBlockingTransfersLeavesNothingBehind) {
     // transition for the next submission), so an armed submission failure does not fire.
     fault::arm(fault::Site::Submission, 1);
     d.destroy(d.createTexture({.width = 8, .height = 8}));
-    EXPECT_EQ(fault::fired(fault::Site::Submission), firedAtStart) << "texture creation submitted work";
+    EXPECT_EQ(fault::fired(fault::Site::Submission), firedAtStart)
+        << "texture creation submitted work";
     fault::arm(fault::Site::Submission, 0);
     d.waitIdle();
     EXPECT_EQ(d.liveObjects(), empty) << "the texture was left behind";
@@ -361,10 +431,14 @@ TEST_P(NativeFaults, AllocationBeyondTheDeviceIsRefusedBeforeAnyNativeCall) {
     ASSERT_GT(l.maxAllocationSize, 0u);
     const LiveObjects before = device->liveObjects();
     const uint64_t calls = fault::calls(fault::Site::Allocation);
-    const std::string limit = "exceed the device's maxAllocationSize (" + std::to_string(l.maxAllocationSize) + " bytes)";
+    const std::string limit =
+        "exceed the device's maxAllocationSize (" + std::to_string(l.maxAllocationSize) + " bytes)";
     if (l.maxAllocationSize < (uint64_t(1) << 40)) {  // larger buffers are out of range anyway
         const uint64_t size = l.maxAllocationSize + 1;
-        EXPECT_EQ(fe::testing::errorOf([&] { device->createBuffer({.size = size, .usage = BufferUsage::Storage, .debugName = "huge"}); }),
+        EXPECT_EQ(fe::testing::errorOf([&] {
+                      device->createBuffer(
+                          {.size = size, .usage = BufferUsage::Storage, .debugName = "huge"});
+                  }),
                   "buffer 'huge': " + std::to_string(size) + " bytes " + limit);
     }
     // Layers of the widest RGBA32F texture, one more than fits.
@@ -372,8 +446,13 @@ TEST_P(NativeFaults, AllocationBeyondTheDeviceIsRefusedBeforeAnyNativeCall) {
     const uint64_t layerBytes = uint64_t(edge) * edge * 16;
     const uint32_t layers = uint32_t(l.maxAllocationSize / layerBytes + 1);
     ASSERT_LE(layers, l.maxTextureArrayLayers);
-    const TextureDesc huge{.dimension = TextureDimension::Texture2DArray, .format = Format::RGBA32F, .width = edge,
-                           .height = edge, .depthOrLayers = layers, .usage = TextureUsage::Sampled, .debugName = "huge"};
+    const TextureDesc huge{.dimension = TextureDimension::Texture2DArray,
+                           .format = Format::RGBA32F,
+                           .width = edge,
+                           .height = edge,
+                           .depthOrLayers = layers,
+                           .usage = TextureUsage::Sampled,
+                           .debugName = "huge"};
     EXPECT_EQ(fe::testing::errorOf([&] { device->createTexture(huge); }),
               "texture 'huge': " + std::to_string(layerBytes * layers) + " bytes " + limit);
     EXPECT_EQ(fault::calls(fault::Site::Allocation), calls) << "a native allocation was tried";

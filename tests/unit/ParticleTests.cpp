@@ -19,7 +19,8 @@ using namespace fe;
 namespace {
 constexpr uint32_t kW = 96, kH = 72;
 
-gdi::Image frameOf(gdi::Device& d, const assets::Scene& scene, const std::string& technique, render::VfxRenderer::Counts* counts = nullptr,
+gdi::Image frameOf(gdi::Device& d, const assets::Scene& scene, const std::string& technique,
+                   render::VfxRenderer::Counts* counts = nullptr,
                    std::vector<float>* distances = nullptr, double* time = nullptr) {
     render::RenderSettings s{.technique = technique, .width = kW, .height = kH};
     s.displayImage = true;
@@ -38,15 +39,18 @@ TEST(Particles, EveryTechniqueOnEveryBackendAgrees) {
     for (const std::string& b : gdi::backendNames()) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
         if (!p.available) continue;
-        for (const render::TechniqueInfo& t : render::techniques()) images[t.name].push_back({b, frameOf(*p.device, scene, t.name)});
+        for (const render::TechniqueInfo& t : render::techniques())
+            images[t.name].push_back({b, frameOf(*p.device, scene, t.name)});
         EXPECT_EQ(p.device->validationErrorCount(), 0u) << b;
     }
     for (const auto& [technique, byBackend] : images) {
         ASSERT_FALSE(byBackend.empty());
         for (size_t i = 1; i < byBackend.size(); ++i) {
-            const gdi::ImageDiff d = gdi::compareImages(byBackend[0].second, byBackend[i].second, 5.0 / 255.0);
-            EXPECT_LE(d.fractionOver(), 0.002) << technique << ": " << byBackend[0].first << " vs " << byBackend[i].first << ": "
-                                               << d.pixelsOverTolerance << " pixels over 5/255, max " << d.maxAbsError;
+            const gdi::ImageDiff d =
+                gdi::compareImages(byBackend[0].second, byBackend[i].second, 5.0 / 255.0);
+            EXPECT_LE(d.fractionOver(), 0.002)
+                << technique << ": " << byBackend[0].first << " vs " << byBackend[i].first << ": "
+                << d.pixelsOverTolerance << " pixels over 5/255, max " << d.maxAbsError;
         }
     }
 }
@@ -66,7 +70,8 @@ TEST_P(Particles, SimulatedCountsMatchTheCpuAndAlphaIsSortedBackToFront) {
     EXPECT_NEAR(double(counts.additive), double(expected.additive), 2.0);
     EXPECT_NEAR(double(counts.alpha), double(expected.alpha), 2.0);
     ASSERT_EQ(distances.size(), counts.alpha);
-    EXPECT_TRUE(std::is_sorted(distances.rbegin(), distances.rend())) << "the alpha list is not farthest first";
+    EXPECT_TRUE(std::is_sorted(distances.rbegin(), distances.rend()))
+        << "the alpha list is not farthest first";
     EXPECT_GT(distances.front(), distances.back());
 }
 
@@ -115,7 +120,8 @@ TEST_P(Particles, SoftParticlesFadeIntoTheGround) {
             brighter += h > 0.02f;
             darker += h < -0.02f;
         }
-    EXPECT_GT(brighter, 15u) << "soft particles did not fade where they meet the ground";  // measured 25 on every backend
+    EXPECT_GT(brighter, 15u)
+        << "soft particles did not fade where they meet the ground";  // measured 25 on every backend
     EXPECT_EQ(darker, 0u) << "fading can only take light away";
 }
 
@@ -130,11 +136,14 @@ TEST(ParticleEmitters, BadEmittersAreRefused) {
               "particle emitter 'fire': a value is not finite (NaN or infinity)");
     scene = assets::makeBuiltinScene("particles");
     scene.emitters[1].rate = 1000.0f;  // 3000 smoke particles alive at once
-    EXPECT_EQ(fe::testing::errorOf([&] { frameOf(*vulkan.device, scene, "forward"); }),
-              "alpha-blended particles: 3000 alive at once (rate x lifetime) exceed the 1024 one work group sorts");
+    EXPECT_EQ(
+        fe::testing::errorOf([&] { frameOf(*vulkan.device, scene, "forward"); }),
+        "alpha-blended particles: 3000 alive at once (rate x lifetime) exceed the 1024 one work group sorts");
     scene = assets::makeBuiltinScene("particles");
     scene.emitters[0].lifetime = 0.0f;
-    EXPECT_NE(fe::testing::errorOf([&] { frameOf(*vulkan.device, scene, "forward"); }).find("rate and lifetime must be positive"),
+    EXPECT_NE(fe::testing::errorOf([&] {
+                  frameOf(*vulkan.device, scene, "forward");
+              }).find("rate and lifetime must be positive"),
               std::string::npos);
 }
 

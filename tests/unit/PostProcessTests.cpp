@@ -35,7 +35,8 @@ Rendered renderWith(gdi::Device& d, const assets::Scene& scene, render::RenderSe
 // The largest channel difference of pixel (x, y) between two RGBA8 images, in 1/255 steps.
 double maxChannelDiff(const gdi::Image& a, const gdi::Image& b, uint32_t x, uint32_t y) {
     double m = 0;
-    for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
+    for (int c = 0; c < 3; ++c)
+        m = std::max(m, std::abs(double(a.texel(x, y)[c]) - b.texel(x, y)[c]) * 255.0);
     return m;
 }
 
@@ -65,9 +66,12 @@ HeatPixels heatPixels(const gdi::Image& display, float green) {
     for (uint32_t y = 0; y < display.height; ++y)
         for (uint32_t x = 0; x < display.width; ++x) {
             const auto c = display.texel(x, y);
-            if (c[0] + c[1] + c[2] == 0.0f) ++h.black;
-            else if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - green) < 0.01f) ++h.matching;
-            else ++h.other;
+            if (c[0] + c[1] + c[2] == 0.0f)
+                ++h.black;
+            else if (c[0] == 0.0f && c[2] == 1.0f && std::abs(c[1] - green) < 0.01f)
+                ++h.matching;
+            else
+                ++h.other;
         }
     return h;
 }
@@ -95,7 +99,8 @@ TEST(Tonemap, OperatorsKeepTheirPromises) {
     // Both curves rise monotonically and never reach past 1, however bright.
     double prevA = -1, prevN = -1;
     for (double x = 0.0; x < 1e4; x = x * 1.5 + 0.01) {
-        const double a = tonemap(Tonemap::Aces, glm::dvec3(x)).r, p = tonemap(Tonemap::PbrNeutral, glm::dvec3(x)).r;
+        const double a = tonemap(Tonemap::Aces, glm::dvec3(x)).r,
+                     p = tonemap(Tonemap::PbrNeutral, glm::dvec3(x)).r;
         EXPECT_GE(a, prevA) << x;
         EXPECT_GE(p, prevN) << x;
         EXPECT_LE(a, 1.0);
@@ -110,7 +115,8 @@ TEST(Tonemap, OperatorsKeepTheirPromises) {
     EXPECT_GT(hot.r, hot.g);
     EXPECT_GT(hot.g, hot.b);
     EXPECT_GT(hot.b / hot.r, 0.5 / 8.0);
-    for (const char* name : {"clamp", "aces", "pbr-neutral"}) EXPECT_EQ(shading::tonemapName(*shading::parseTonemap(name)), std::string(name));
+    for (const char* name : {"clamp", "aces", "pbr-neutral"})
+        EXPECT_EQ(shading::tonemapName(*shading::parseTonemap(name)), std::string(name));
     EXPECT_FALSE(shading::parseTonemap("reinhard"));
 }
 
@@ -131,14 +137,16 @@ TEST_P(PostProcess, GpuTonemappersMatchTheCpuOperators) {
                 const auto l = r.linear.texel(x, y);
                 linear.emplace_back(l[0], l[1], l[2]);
             }
-        const render::DisplayImage cpu = render::toDisplay(r.linear.width, r.linear.height, linear, s.exposure, t);
+        const render::DisplayImage cpu =
+            render::toDisplay(r.linear.width, r.linear.height, linear, s.exposure, t);
         double worst = 0;
         size_t bright = 0;
         for (uint32_t y = 0; y < r.display.height; ++y)
             for (uint32_t x = 0; x < r.display.width; ++x) {
                 const size_t i = size_t(y) * r.display.width + x;
                 for (int c = 0; c < 3; ++c) {
-                    worst = std::max(worst, std::abs(double(r.display.texel(x, y)[c]) - cpu.rgb[i][c]) * 255.0);
+                    worst = std::max(
+                        worst, std::abs(double(r.display.texel(x, y)[c]) - cpu.rgb[i][c]) * 255.0);
                     bright += linear[i][c] * s.exposure > 1.0;
                 }
             }
@@ -163,12 +171,14 @@ TEST_P(PostProcess, FxaaSmoothsSilhouettesAndLeavesFlatRegions) {
     const uint32_t w = none.display.width, h = none.display.height;
     std::vector<double> d(size_t(w) * h);
     for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) d[size_t(y) * w + x] = maxChannelDiff(none.display, msaa.display, x, y);
+        for (uint32_t x = 0; x < w; ++x)
+            d[size_t(y) * w + x] = maxChannelDiff(none.display, msaa.display, x, y);
     auto edge = [&](uint32_t x, uint32_t y) { return d[size_t(y) * w + x] > 8.0; };
     auto flat = [&](uint32_t x, uint32_t y) {
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
-                const int xx = std::clamp(int(x) + dx, 0, int(w) - 1), yy = std::clamp(int(y) + dy, 0, int(h) - 1);
+                const int xx = std::clamp(int(x) + dx, 0, int(w) - 1),
+                          yy = std::clamp(int(y) + dy, 0, int(h) - 1);
                 if (d[size_t(yy) * w + xx] > 1.0) return false;
             }
         return true;
@@ -176,15 +186,19 @@ TEST_P(PostProcess, FxaaSmoothsSilhouettesAndLeavesFlatRegions) {
     const std::vector<double> edgeNone = channelDiffs(none.display, msaa.display, edge);
     const std::vector<double> edgeFxaa = channelDiffs(fxaa.display, msaa.display, edge);
     ASSERT_GT(edgeNone.size(), 50u);
-    EXPECT_LT(mean(edgeFxaa), 0.8 * mean(edgeNone)) << "silhouette error: fxaa " << mean(edgeFxaa) << ", none " << mean(edgeNone);
+    EXPECT_LT(mean(edgeFxaa), 0.8 * mean(edgeNone))
+        << "silhouette error: fxaa " << mean(edgeFxaa) << ", none " << mean(edgeNone);
     const std::vector<double> flatChange = channelDiffs(fxaa.display, none.display, flat);
-    const size_t changed = std::count_if(flatChange.begin(), flatChange.end(), [](double v) { return v > 2.0; });
+    const size_t changed =
+        std::count_if(flatChange.begin(), flatChange.end(), [](double v) { return v > 2.0; });
     ASSERT_GT(flatChange.size(), 1000u);
     // Measured 1.0 % on every backend: specular highlights are high-contrast interiors FXAA smooths.
-    EXPECT_LT(double(changed), 0.02 * double(flatChange.size())) << changed << " of " << flatChange.size() << " flat pixels changed";
-    std::cout << "[ fxaa ] " << GetParam() << ": silhouette error (mean of the largest channel, 1/255) none " << mean(edgeNone)
-              << ", fxaa " << mean(edgeFxaa) << " over " << edgeNone.size() << " pixels; flat pixels changed " << changed
-              << " of " << flatChange.size() << "\n";
+    EXPECT_LT(double(changed), 0.02 * double(flatChange.size()))
+        << changed << " of " << flatChange.size() << " flat pixels changed";
+    std::cout << "[ fxaa ] " << GetParam()
+              << ": silhouette error (mean of the largest channel, 1/255) none " << mean(edgeNone)
+              << ", fxaa " << mean(edgeFxaa) << " over " << edgeNone.size()
+              << " pixels; flat pixels changed " << changed << " of " << flatChange.size() << "\n";
 }
 
 // TAA: 16 frames of a still camera, each jittered within the pixel and blended into the
@@ -201,7 +215,8 @@ TEST_P(PostProcess, TaaConvergesTowardMultisamplingAndDoesNotGhost) {
         t.antiAliasing = render::AntiAliasing::Taa;
         render::SceneRenderer r(*device, scene, t);
         for (uint32_t f = 0; f < frames; ++f) {
-            const float a = orbitDegrees * float(f) / float(std::max(1u, frames - 1)) * 0.0174532925f;
+            const float a =
+                orbitDegrees * float(f) / float(std::max(1u, frames - 1)) * 0.0174532925f;
             r.setCamera(scene.camera->orbited(scene.bounds.center(), a));
             r.renderFrame();
         }
@@ -223,12 +238,15 @@ TEST_P(PostProcess, TaaConvergesTowardMultisamplingAndDoesNotGhost) {
             }
             bool isFlat = true;
             for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) isFlat = isFlat && diff(none.display, msaa.display, x + dx, y + dy) <= 1.0;
+                for (int dx = -1; dx <= 1; ++dx)
+                    isFlat = isFlat && diff(none.display, msaa.display, x + dx, y + dy) <= 1.0;
             if (isFlat) ++flat, flatChanged += diff(taa, none.display, x, y) > 4.0;
         }
     ASSERT_GT(edgeNone.size(), 50u);
-    EXPECT_LT(mean(edgeTaa), 0.7 * mean(edgeNone)) << "silhouette error: taa " << mean(edgeTaa) << ", none " << mean(edgeNone);
-    EXPECT_LT(double(flatChanged), 0.05 * double(flat)) << flatChanged << " of " << flat << " flat pixels changed";
+    EXPECT_LT(mean(edgeTaa), 0.7 * mean(edgeNone))
+        << "silhouette error: taa " << mean(edgeTaa) << ", none " << mean(edgeNone);
+    EXPECT_LT(double(flatChanged), 0.05 * double(flat))
+        << flatChanged << " of " << flat << " flat pixels changed";
     // Motion: 30 degrees of orbit over 8 frames, compared with the final camera's plain frame.
     const gdi::Image moving = taaFrames(8, 30.0f);
     render::RenderSettings last = s;
@@ -245,14 +263,17 @@ TEST_P(PostProcess, TaaConvergesTowardMultisamplingAndDoesNotGhost) {
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
                     const auto c = finalFrame.texel(x + dx, y + dy);
-                    lo = std::min(lo, double(c[0] + c[1] + c[2])), hi = std::max(hi, double(c[0] + c[1] + c[2]));
+                    lo = std::min(lo, double(c[0] + c[1] + c[2])),
+                    hi = std::max(hi, double(c[0] + c[1] + c[2]));
                 }
             if ((hi - lo) * 255.0 < 24.0) ghosts += diff(moving, finalFrame, x, y) > 24.0;
         }
-    EXPECT_LT(double(ghosts), 0.01 * w * h) << ghosts << " pixels away from edges far from the final camera's frame (ghosting)";
-    std::cout << "[ taa ] " << GetParam() << ": silhouette error none " << mean(edgeNone) << ", taa " << mean(edgeTaa) << " over "
-              << edgeNone.size() << " pixels; flat pixels changed " << flatChanged << " of " << flat << "; under motion "
-              << ghosts << " pixels away from edges beyond 24/255\n";
+    EXPECT_LT(double(ghosts), 0.01 * w * h)
+        << ghosts << " pixels away from edges far from the final camera's frame (ghosting)";
+    std::cout << "[ taa ] " << GetParam() << ": silhouette error none " << mean(edgeNone)
+              << ", taa " << mean(edgeTaa) << " over " << edgeNone.size()
+              << " pixels; flat pixels changed " << flatChanged << " of " << flat
+              << "; under motion " << ghosts << " pixels away from edges beyond 24/255\n";
 }
 
 // With FXAA the tone-mapped image is a transient of its own. The chain never costs aliasing a
@@ -269,9 +290,11 @@ TEST_P(PostProcess, FxaaIntermediateSharesTransientMemory) {
     const Rendered fxaa = renderWith(*device, scene, s);
     const uint64_t intermediate = 64u * 48u * 4u;
     EXPECT_GE(fxaa.memory.withoutAliasing, plain.memory.withoutAliasing + intermediate);
-    EXPECT_GE(fxaa.memory.withoutAliasing - fxaa.memory.withAliasing, plain.memory.withoutAliasing - plain.memory.withAliasing);
+    EXPECT_GE(fxaa.memory.withoutAliasing - fxaa.memory.withAliasing,
+              plain.memory.withoutAliasing - plain.memory.withAliasing);
     if (fxaa.aliasing == graph::AliasingMode::Memory)
-        EXPECT_LE(fxaa.memory.withAliasing, plain.memory.withAliasing) << "the intermediate should need no memory of its own";
+        EXPECT_LE(fxaa.memory.withAliasing, plain.memory.withAliasing)
+            << "the intermediate should need no memory of its own";
     else
         EXPECT_LE(fxaa.memory.withAliasing, plain.memory.withAliasing + intermediate);
 }
@@ -291,7 +314,8 @@ TEST_P(PostProcess, DebugViewShowsAnIntermediateTexture) {
     size_t differs = 0, grey = 0;
     for (uint32_t y = 0; y < 48; ++y)
         for (uint32_t x = 0; x < 64; ++x) {
-            const auto n = normals.display.texel(x, y), f = frame.display.texel(x, y), d = depth.display.texel(x, y);
+            const auto n = normals.display.texel(x, y), f = frame.display.texel(x, y),
+                       d = depth.display.texel(x, y);
             differs += std::abs(n[0] - f[0]) + std::abs(n[1] - f[1]) + std::abs(n[2] - f[2]) > 0.1f;
             grey += d[0] == d[1] && d[1] == d[2];
         }
@@ -299,7 +323,9 @@ TEST_P(PostProcess, DebugViewShowsAnIntermediateTexture) {
     EXPECT_EQ(grey, 64u * 48u) << "depth is one channel, shown as grey";
     s.debugView = "nothing";
     const std::string error = fe::testing::errorOf([&] { renderWith(*device, scene, s); });
-    EXPECT_NE(error.find("debug view 'nothing': this frame has no such texture (it has: "), std::string::npos) << error;
+    EXPECT_NE(error.find("debug view 'nothing': this frame has no such texture (it has: "),
+              std::string::npos)
+        << error;
     EXPECT_NE(error.find("gbuffer1 normal+roughness"), std::string::npos) << error;
 }
 
@@ -333,12 +359,14 @@ TEST_P(PostProcess, LightCountHeatMap) {
     s.debugView = render::SceneRenderer::kLightCountView;
     const Rendered plane = renderWith(*device, assets::makeBuiltinScene("plane"), s);
     const HeatPixels one = heatPixels(plane.display, 0.388f);  // heat(1/32), sRGB-encoded
-    EXPECT_GT(one.matching, 64u * 48u / 4);  // the plane fills most of the view; any background stays black
+    EXPECT_GT(one.matching,
+              64u * 48u / 4);  // the plane fills most of the view; any background stays black
     EXPECT_EQ(one.other, 0u) << one.black << " black pixels";
     assets::BuiltinOptions o;
     o.lights = 64;
     const Rendered lights = renderWith(*device, assets::makeBuiltinScene("lights", o), s);
-    EXPECT_GE(distinctColours(lights.display), 4u) << "short-range lights should reach different pixels in different numbers";
+    EXPECT_GE(distinctColours(lights.display), 4u)
+        << "short-range lights should reach different pixels in different numbers";
 }
 
 // The "lights evaluated" heat map: forward walks every light, so builtin:plane (one light) shows
@@ -358,7 +386,8 @@ TEST_P(PostProcess, LightsEvaluatedHeatMap) {
     const assets::Scene atrium = assets::makeBuiltinScene("atrium", o);
     s.technique = "forward-plus";
     const Rendered tiles = renderWith(*device, atrium, s);
-    EXPECT_GE(distinctColours(tiles.display), 6u) << "tile lists of many lengths should show many colours";
+    EXPECT_GE(distinctColours(tiles.display), 6u)
+        << "tile lists of many lengths should show many colours";
 
     s.technique = "deferred";
     try {

@@ -36,9 +36,14 @@ constexpr uint32_t kW = 96, kH = 72;
 // The separable BRDF for forward images the redeferred and light pre-pass techniques are
 // compared with (render::resolveBrdf): the comparisons measure the technique, not the BRDF.
 constexpr render::ShadingModel kSeparable = render::ShadingModel::Separable;
-gdi::Image renderImage(gdi::Device& d, const assets::Scene& scene, const std::string& t, uint32_t scale = 1,
-                       bool split = false, bool precomputedNoV = true, render::ShadingModel model = render::ShadingModel::Auto) {
-    render::RenderSettings s{.technique = t, .width = kW, .height = kH, .illumScale = scale, .illumSplit = split,
+gdi::Image renderImage(gdi::Device& d, const assets::Scene& scene, const std::string& t,
+                       uint32_t scale = 1, bool split = false, bool precomputedNoV = true,
+                       render::ShadingModel model = render::ShadingModel::Auto) {
+    render::RenderSettings s{.technique = t,
+                             .width = kW,
+                             .height = kH,
+                             .illumScale = scale,
+                             .illumSplit = split,
                              .precomputedNoV = precomputedNoV};
     s.shadingModel = model;
     render::SceneRenderer r(d, scene, s);
@@ -61,7 +66,8 @@ Stats compare(const gdi::Image& a, const gdi::Image& b, double tol, double floor
             auto ta = a.texel(x, y), tb = b.texel(x, y);
             bool bad = false;
             for (int c = 0; c < 3; ++c) {
-                double rel = std::abs(ta[c] - tb[c]) / std::max({std::abs(double(ta[c])), std::abs(double(tb[c])), floor});
+                double rel = std::abs(ta[c] - tb[c]) /
+                             std::max({std::abs(double(ta[c])), std::abs(double(tb[c])), floor});
                 if (!std::isfinite(ta[c])) rel = INFINITY;
                 s.maxRel = std::max(s.maxRel, rel);
                 bad = bad || rel > tol;
@@ -90,7 +96,8 @@ TEST_P(RenderAccuracy, ForwardMatchesCpuReference) {
     gdi::Image cpu = gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, texels);
     // Float32 shading vs double: 1% relative (0.01 absolute floor) on all pixels not on a
     // silhouette, where rasterization coverage and ray casting may see different surfaces.
-    Stats s = compare(gpu, cpu, 0.01, 0.01, [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); });
+    Stats s =
+        compare(gpu, cpu, 0.01, 0.01, [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); });
     RecordProperty("max_rel", std::to_string(s.maxRel));
     EXPECT_LE(s.fractionOver, 0.001) << "max relative error " << s.maxRel;
 }
@@ -112,14 +119,17 @@ TEST_P(RenderAccuracy, DeferredMatchesForward) {
 TEST_P(RenderAccuracy, TiledCullingDropsNoLight) {
     assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 128});
     auto render = [&](const char* t, bool cullingPass = true) {
-        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .tileCullingPass = cullingPass});
+        render::SceneRenderer r(
+            *device, lights,
+            {.technique = t, .width = 96, .height = 64, .tileCullingPass = cullingPass});
         r.renderFrame();
         return r.readOutput();
     };
     gdi::Image volumes = render("deferred");
     for (bool cullingPass : {true, false}) {
         Stats s = compare(render("deferred-tiled", cullingPass), volumes, 1e-4, 1e-3);
-        EXPECT_EQ(s.fractionOver, 0.0) << (cullingPass ? "culling pass" : "one pass") << " max relative error " << s.maxRel;
+        EXPECT_EQ(s.fractionOver, 0.0)
+            << (cullingPass ? "culling pass" : "one pass") << " max relative error " << s.maxRel;
     }
     // The tiled illumination pass fills the I-buffer with the same sums as the volumes (which
     // round L_dg to half float after every light's blend, where the compute pass rounds once).
@@ -134,13 +144,16 @@ TEST_P(RenderAccuracy, TiledCullingDropsNoLight) {
 TEST_P(RenderAccuracy, ClusteredTechniquesCullExactly) {
     const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
     auto render = [&](const char* t, uint32_t msaa = 1) {
-        render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .msaa = msaa});
+        render::SceneRenderer r(*device, lights,
+                                {.technique = t, .width = 96, .height = 64, .msaa = msaa});
         r.renderFrame();
         gdi::Image image = r.readOutput();
         if (r.clusters()) {
             const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
             constexpr uint32_t tile = render::ClusterLightGrid::kTilePixels;
-            EXPECT_EQ(st.clusters, (96 + tile - 1) / tile * ((64 + tile - 1) / tile) * render::ClusterLightGrid::kSlices) << t;
+            EXPECT_EQ(st.clusters, (96 + tile - 1) / tile * ((64 + tile - 1) / tile) *
+                                       render::ClusterLightGrid::kSlices)
+                << t;
             EXPECT_LE(st.entries, r.clusters()->listCapacity()) << t;
             EXPECT_EQ(st.overflowed, 0u) << t;
             EXPECT_GT(st.nonEmpty, 0u) << t;
@@ -157,16 +170,19 @@ TEST_P(RenderAccuracy, ClusteredTechniquesCullExactly) {
     // the rasterizer's interpolation against the ray's barycentrics. lavapipe and llvmpipe agree
     // to 3e-4; on an H200 27 % of pixels differed by over 1e-3 (at most 3.2 %, in the narrow
     // highlights), so the bound is the G-buffer techniques' 2 % (deferred against forward).
-    const gdi::Image visibility = render("visibility-buffer"), forward = render("clustered-forward");
+    const gdi::Image visibility = render("visibility-buffer"),
+                     forward = render("clustered-forward");
     Stats v = compare(visibility, forward, 0.02, 0.01);
     EXPECT_EQ(v.fractionOver, 0.0) << "visibility-buffer max relative error " << v.maxRel;
     if (device->info().softwareRasterizer) {
         Stats close = compare(visibility, forward, 1e-3, 1e-3);
-        EXPECT_EQ(close.fractionOver, 0.0) << "visibility-buffer max relative error " << close.maxRel;
+        EXPECT_EQ(close.fractionOver, 0.0)
+            << "visibility-buffer max relative error " << close.maxRel;
     }
     if (device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4) {
         Stats m = compare(render("clustered-forward", 4), render("forward", 4), 1e-6, 1e-6);
-        EXPECT_EQ(m.fractionOver, 0.0) << "clustered-forward at 4 samples, max relative error " << m.maxRel;
+        EXPECT_EQ(m.fractionOver, 0.0)
+            << "clustered-forward at 4 samples, max relative error " << m.maxRel;
     }
 }
 
@@ -178,7 +194,8 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
     constexpr uint32_t W = 128, H = 72;
     const render::ReferenceImage ref = render::renderReference(atrium, *atrium.camera, W, H);
     const render::DisplayImage expected = render::toDisplay(W, H, ref.radiance);
-    for (const char* t : {"forward", "forward-plus", "clustered-forward", "clustered-deferred", "deferred-tiled", "visibility-buffer"}) {
+    for (const char* t : {"forward", "forward-plus", "clustered-forward", "clustered-deferred",
+                          "deferred-tiled", "visibility-buffer"}) {
         render::SceneRenderer r(*device, atrium, {.technique = t, .width = W, .height = H});
         r.renderFrame();
         const gdi::Image out = r.readOutput();
@@ -188,7 +205,8 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
                 const auto v = out.texel(x, y);
                 linear.emplace_back(v[0], v[1], v[2]);
             }
-        const render::ImageMetrics m = render::compareImages(render::toDisplay(W, H, linear), expected);
+        const render::ImageMetrics m =
+            render::compareImages(render::toDisplay(W, H, linear), expected);
         RecordProperty(std::string("psnr_") + t, std::to_string(m.psnr));
         EXPECT_GE(m.psnr, 45.0) << t;
         EXPECT_LE(m.percentOver5, 0.1) << t;
@@ -203,8 +221,9 @@ TEST_P(RenderAccuracy, ManyLightTechniquesMatchTheReferenceInTheAtrium) {
 TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
     const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
     auto statistics = [&](const char* t, uint32_t msaa = 1) {
-        render::SceneRenderer r(*device, lights,
-                                {.technique = t, .width = 96, .height = 64, .msaa = msaa, .lightListStatistics = true});
+        render::SceneRenderer r(
+            *device, lights,
+            {.technique = t, .width = 96, .height = 64, .msaa = msaa, .lightListStatistics = true});
         r.renderFrame();
         return r.lightListStatistics();
     };
@@ -212,7 +231,8 @@ TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
     EXPECT_EQ(every.lists, "every light");
     EXPECT_EQ(every.mean, 256.0);
     EXPECT_EQ(every.max, 256u);
-    EXPECT_GT(every.reaching, 1.0);  // 256 lights of range 2 among 121 cubes: a few reach each surface
+    EXPECT_GT(every.reaching,
+              1.0);  // 256 lights of range 2 among 121 cubes: a few reach each surface
     EXPECT_LT(every.reaching, 256.0 / 8);
     EXPECT_EQ(every.pixelsMissingALight, 0u);
     if (device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4) {
@@ -224,19 +244,23 @@ TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
             EXPECT_EQ(m.pixelsMissingALight, 0u) << t << " at 4 samples";
         }
     }
-    for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward", "clustered-deferred", "visibility-buffer"}) {
+    for (const char* t : {"forward-plus", "deferred-tiled", "clustered-forward",
+                          "clustered-deferred", "visibility-buffer"}) {
         const render::LightListStatistics l = statistics(t);
         EXPECT_TRUE(l.measured) << t;
-        const bool clustered = std::string(t).starts_with("clustered") || std::string(t) == "visibility-buffer";
+        const bool clustered =
+            std::string(t).starts_with("clustered") || std::string(t) == "visibility-buffer";
         EXPECT_EQ(l.lists, clustered ? "cluster lists" : "tile lists") << t;
         EXPECT_EQ(l.pixels, every.pixels) << t;  // the same surfaces
         EXPECT_GT(l.mean, 0.0) << t;
-        EXPECT_LT(l.mean, 256.0 / 4) << t << ": the lists hardly cull";  // 32-pixel clusters: 3x2 columns here
+        EXPECT_LT(l.mean, 256.0 / 4)
+            << t << ": the lists hardly cull";  // 32-pixel clusters: 3x2 columns here
         EXPECT_LE(double(l.p95), double(l.max)) << t;
         EXPECT_LE(l.max, 256u) << t;
         EXPECT_NEAR(l.reaching, every.reaching, 1e-3 * every.reaching) << t;
         EXPECT_GE(l.mean, l.reaching) << t;
-        EXPECT_EQ(l.pixelsMissingALight, 0u) << t << ": a list misses a light that reaches its pixel";
+        EXPECT_EQ(l.pixelsMissingALight, 0u)
+            << t << ": a list misses a light that reaches its pixel";
     }
     // The two tiled techniques share the culling pass: the same lists.
     EXPECT_EQ(statistics("forward-plus").mean, statistics("deferred-tiled").mean);
@@ -251,13 +275,16 @@ TEST_P(RenderAccuracy, LightListStatisticsCountWhatTheLoopsWalk) {
 TEST_P(RenderAccuracy, ListsWalkFewMoreLightsThanReachInADeepScene) {
     const assets::Scene atrium = assets::makeBuiltinScene("atrium", {.lights = 512});
     for (const char* t : {"clustered-deferred", "deferred-tiled"}) {
-        render::SceneRenderer r(*device, atrium, {.technique = t, .width = 480, .height = 270, .lightListStatistics = true});
+        render::SceneRenderer r(
+            *device, atrium,
+            {.technique = t, .width = 480, .height = 270, .lightListStatistics = true});
         r.renderFrame();
         const render::LightListStatistics l = r.lightListStatistics();
         ASSERT_TRUE(l.measured) << t;
         EXPECT_EQ(l.pixelsMissingALight, 0u) << t;
         EXPECT_GT(l.reaching, 1.0) << t;
-        RecordProperty(std::string("walked_per_reaching_") + t, std::to_string(l.mean / l.reaching));
+        RecordProperty(std::string("walked_per_reaching_") + t,
+                       std::to_string(l.mean / l.reaching));
         EXPECT_LE(l.mean, 2.5 * l.reaching) << t;
     }
 }
@@ -275,10 +302,15 @@ TEST_P(RenderAccuracy, ClusterDepthBoundsShortenTheOpaqueListsExactly) {
     const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
     for (const char* t : {"clustered-deferred", "clustered-forward", "visibility-buffer"}) {
         auto render = [&](const assets::Scene& scene, bool bounds) {
-            render::SceneRenderer r(*device, scene, {.technique = t, .width = 320, .height = 180,
-                                                     .clusterDepthBounds = bounds, .lightListStatistics = true});
+            render::SceneRenderer r(*device, scene,
+                                    {.technique = t,
+                                     .width = 320,
+                                     .height = 180,
+                                     .clusterDepthBounds = bounds,
+                                     .lightListStatistics = true});
             bool boundsPass = false;
-            for (const auto& p : r.graph().passes()) boundsPass = boundsPass || p.name == "cluster-bounds";
+            for (const auto& p : r.graph().passes())
+                boundsPass = boundsPass || p.name == "cluster-bounds";
             EXPECT_EQ(boundsPass, bounds) << t;
             r.renderFrame();
             return std::tuple(r.readOutput(), r.lightListStatistics(), r.clusters()->statistics());
@@ -289,9 +321,11 @@ TEST_P(RenderAccuracy, ClusterDepthBoundsShortenTheOpaqueListsExactly) {
         EXPECT_TRUE(boundedGrid.bounded) << t;
         EXPECT_EQ(boundedWalked.pixelsMissingALight, 0u) << t;
         EXPECT_EQ(boundedWalked.reaching, wholeWalked.reaching) << t;
-        EXPECT_LT(boundedWalked.mean, 0.95 * wholeWalked.mean) << t << ": the bounds shorten nothing";
+        EXPECT_LT(boundedWalked.mean, 0.95 * wholeWalked.mean)
+            << t << ": the bounds shorten nothing";
         EXPECT_LT(boundedGrid.meanBoundedLights, boundedGrid.meanLights) << t;
-        EXPECT_EQ(boundedGrid.entries, wholeGrid.entries) << t << ": the banners walk the whole lists";
+        EXPECT_EQ(boundedGrid.entries, wholeGrid.entries)
+            << t << ": the banners walk the whole lists";
         RecordProperty(std::string("walked_bounded_") + t, std::to_string(boundedWalked.mean));
         RecordProperty(std::string("walked_whole_") + t, std::to_string(wholeWalked.mean));
         // Opaque pixels add the same lights in the same order; a banner's fragments add its
@@ -302,10 +336,12 @@ TEST_P(RenderAccuracy, ClusterDepthBoundsShortenTheOpaqueListsExactly) {
         const auto [wholeLights, wholeLightsWalked, wholeLightsGrid] = render(lights, false);
         const auto [boundedLights, boundedLightsWalked, boundedLightsGrid] = render(lights, true);
         EXPECT_EQ(boundedLightsWalked.pixelsMissingALight, 0u) << t;
-        EXPECT_EQ(boundedLightsGrid.meanBoundedLights, boundedLightsGrid.meanLights) << t << ": only the bounded parts";
+        EXPECT_EQ(boundedLightsGrid.meanBoundedLights, boundedLightsGrid.meanLights)
+            << t << ": only the bounded parts";
         EXPECT_LT(boundedLightsGrid.entries, wholeLightsGrid.entries) << t;
         Stats l = compare(boundedLights, wholeLights, 1e-6, 1e-6);
-        EXPECT_EQ(l.fractionOver, 0.0) << t << " in builtin:lights: max relative error " << l.maxRel;
+        EXPECT_EQ(l.fractionOver, 0.0)
+            << t << " in builtin:lights: max relative error " << l.maxRel;
     }
 }
 
@@ -318,20 +354,27 @@ TEST_P(RenderAccuracy, TranslucentPassReadsTheClusterGrid) {
             scene1.materials[i].alphaMode = assets::AlphaMode::Blend;
             scene1.materials[i].baseColorFactor.a = 0.5f;
         }
-        for (const char* t : {"deferred", "forward-plus", "clustered-deferred", "visibility-buffer"}) {
+        for (const char* t :
+             {"deferred", "forward-plus", "clustered-deferred", "visibility-buffer"}) {
             auto render = [&](bool clusters) {
-                render::SceneRenderer r(*device, scene1, {.technique = t, .width = 96, .height = 64,
-                                                          .translucentClusters = clusters,
-                                                          .shadows = {.enabled = std::string(name) == "shadows"}});
+                render::SceneRenderer r(*device, scene1,
+                                        {.technique = t,
+                                         .width = 96,
+                                         .height = 64,
+                                         .translucentClusters = clusters,
+                                         .shadows = {.enabled = std::string(name) == "shadows"}});
                 bool assigns = false;
-                for (const auto& p : r.graph().passes()) assigns = assigns || p.name == "light-assignment";
-                EXPECT_EQ(assigns, clusters || std::string(t) == "clustered-deferred" || std::string(t) == "visibility-buffer")
+                for (const auto& p : r.graph().passes())
+                    assigns = assigns || p.name == "light-assignment";
+                EXPECT_EQ(assigns, clusters || std::string(t) == "clustered-deferred" ||
+                                       std::string(t) == "visibility-buffer")
                     << name << " " << t;
                 r.renderFrame();
                 return r.readOutput();
             };
             Stats s = compare(render(true), render(false), 1e-6, 1e-6);
-            EXPECT_EQ(s.fractionOver, 0.0) << name << " " << t << ": max relative error " << s.maxRel;
+            EXPECT_EQ(s.fractionOver, 0.0)
+                << name << " " << t << ": max relative error " << s.maxRel;
         }
     }
 }
@@ -348,7 +391,8 @@ TEST_P(RenderAccuracy, ClusterListOverflowIsCountedAndShadesEveryLight) {
         l.range = 100.0f;
         l.intensity = 0.05f;
     }
-    render::SceneRenderer r(*device, scene1, {.technique = "clustered-forward", .width = 48, .height = 32});
+    render::SceneRenderer r(*device, scene1,
+                            {.technique = "clustered-forward", .width = 48, .height = 32});
     r.renderFrame();
     const gdi::Image clustered = r.readOutput();
     const render::ClusterLightGrid::Statistics st = r.clusters()->statistics();
@@ -407,7 +451,8 @@ TEST_P(RenderAccuracy, TileListOverflowShadesEveryLight) {
 // other slices are spaced exponentially from there to the scene's far side. Seen from inside the
 // scene the split is kNearSplit of the far depth; seen from outside, where the scene begins.
 TEST(ClusterSlicing, TheSlicesBeginWhereTheSceneCanBeSeen) {
-    const assets::Camera camera = assets::Camera::lookAlong({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1.0f, 0.1f, 1000.0f);
+    const assets::Camera camera =
+        assets::Camera::lookAlong({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1.0f, 0.1f, 1000.0f);
     auto slicing = [&](float nearZ, float farZ) {
         assets::Bounds b;
         b.extend(glm::vec3(-1.0f, -1.0f, -farZ));
@@ -419,11 +464,13 @@ TEST(ClusterSlicing, TheSlicesBeginWhereTheSceneCanBeSeen) {
     EXPECT_NEAR(outside.z, 20.2f, 1e-4f);  // the far side, 1 % margin
     EXPECT_NEAR(outside.w, 9.9f, 1e-4f);   // where the scene begins, 1 % margin
     // The last slice ends at the far side: split * exp((kSlices - 1) / y).
-    EXPECT_NEAR(outside.w * std::exp(float(render::ClusterLightGrid::kSlices - 1) / outside.y), outside.z, 1e-3f);
+    EXPECT_NEAR(outside.w * std::exp(float(render::ClusterLightGrid::kSlices - 1) / outside.y),
+                outside.z, 1e-3f);
     const glm::vec4 inside = slicing(-50.0f, 50.0f);  // the camera stands in the scene
     EXPECT_NEAR(inside.w, inside.z * render::ClusterLightGrid::kNearSplit, 1e-4f);
     EXPECT_GT(inside.w, inside.x);
-    const glm::vec4 close = slicing(-0.01f, 0.05f);  // a scene nearer than the near plane's 32 times
+    const glm::vec4 close =
+        slicing(-0.01f, 0.05f);  // a scene nearer than the near plane's 32 times
     EXPECT_GE(close.w, close.x);
     EXPECT_LE(close.w, 0.5f * close.z);
     EXPECT_TRUE(std::isfinite(close.y) && close.y > 0.0f);
@@ -438,19 +485,24 @@ TEST(TiledLightsVariants, EveryListShaderHasItsStorageVariant) {
     auto differ = [](const std::string& path, const std::string& a, const std::string& b) {
         const gdi::ShaderBinary& x = shaders::find(a.empty() ? path : path + ":" + a);
         const gdi::ShaderBinary& y = shaders::find(path + ":" + b);
-        EXPECT_FALSE(std::ranges::equal(x.vulkan, y.vulkan)) << path << " " << a << "/" << b << ": the same Vulkan binary";
-        EXPECT_FALSE(std::ranges::equal(x.opengl, y.opengl)) << path << " " << a << "/" << b << ": the same GL binary";
+        EXPECT_FALSE(std::ranges::equal(x.vulkan, y.vulkan))
+            << path << " " << a << "/" << b << ": the same Vulkan binary";
+        EXPECT_FALSE(std::ranges::equal(x.opengl, y.opengl))
+            << path << " " << a << "/" << b << ": the same GL binary";
     };
-    for (const char* name : {"tile_light_culling", "tiled_deferred", "tiled_illumination", "tiled_illumination_s2",
-                             "tiled_illumination_s4", "tiled_illumination_split"})
+    for (const char* name :
+         {"tile_light_culling", "tiled_deferred", "tiled_illumination", "tiled_illumination_s2",
+          "tiled_illumination_s4", "tiled_illumination_split"})
         differ(std::string("scene/") + name + ".comp", "", "FE_LIGHTS_IN_STORAGE");
-    for (const char* name : {"forward", "forward_ibl", "forward_ibl_prefiltered", "forward_shadowed", "forward_shadowed_cube",
-                             "forward_clustered", "forward_clustered_ibl", "forward_clustered_ibl_prefiltered", "forward_plus",
-                             "forward_plus_ibl", "forward_plus_ibl_prefiltered"})
+    for (const char* name : {"forward", "forward_ibl", "forward_ibl_prefiltered",
+                             "forward_shadowed", "forward_shadowed_cube", "forward_clustered",
+                             "forward_clustered_ibl", "forward_clustered_ibl_prefiltered",
+                             "forward_plus", "forward_plus_ibl", "forward_plus_ibl_prefiltered"})
         differ(std::string("scene/") + name + ".frag", "", "FE_LIGHTS_IN_STORAGE");
     for (const char* name : {"forward_plus", "forward_plus_ibl", "forward_plus_ibl_prefiltered"}) {
         const std::string path = std::string("scene/") + name + ".frag";
-        differ(path, "FE_MULTISAMPLED", "FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE");  // both defines, not one
+        differ(path, "FE_MULTISAMPLED",
+               "FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE");  // both defines, not one
         differ(path, "FE_LIGHTS_IN_STORAGE", "FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE");
     }
     // The statistics pass walks every light at every pixel, for each kind of list.
@@ -464,7 +516,8 @@ TEST(TiledLightsVariants, EveryListShaderHasItsStorageVariant) {
 // shader as forward, once: the same image, exactly.
 TEST_P(RenderAccuracy, ForwardVariantsMatchForward) {
     // Some emissive spheres: multi-pass must add emission once, not once per light.
-    for (size_t i = 0; i < scene.materials.size(); i += 3) scene.materials[i].emissiveFactor = {0.2f, 0.1f, 0.05f};
+    for (size_t i = 0; i < scene.materials.size(); i += 3)
+        scene.materials[i].emissiveFactor = {0.2f, 0.1f, 0.05f};
     gdi::Image f = renderImage(*device, scene, "forward");
     Stats multi = compare(renderImage(*device, scene, "forward-multipass"), f, 1e-4, 1e-4);
     EXPECT_EQ(multi.fractionOver, 0.0) << "forward-multipass max relative error " << multi.maxRel;
@@ -481,14 +534,18 @@ TEST_P(RenderAccuracy, ForwardVariantsMatchForward) {
 TEST_P(RenderAccuracy, ForwardPlusCullsExactly) {
     const assets::Scene lights = assets::makeBuiltinScene("lights", {.lights = 256});
     for (uint32_t msaa : {1u, 4u}) {
-        if (msaa > 1 && !(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & msaa)) continue;
+        if (msaa > 1 && !(device->info().limits.colorSampleCounts &
+                          device->info().limits.depthSampleCounts & msaa))
+            continue;
         auto render = [&](const char* t) {
-            render::SceneRenderer r(*device, lights, {.technique = t, .width = 96, .height = 64, .msaa = msaa});
+            render::SceneRenderer r(*device, lights,
+                                    {.technique = t, .width = 96, .height = 64, .msaa = msaa});
             if (std::string(t) == "forward-plus") {
                 // Under MSAA a fragment outside its tile's depth bounds walks its cluster's list, so
                 // the grid is assigned then, and only then (builtin:lights has no translucency).
                 bool assigns = false;
-                for (const auto& p : r.graph().passes()) assigns = assigns || (p.name == "light-assignment" && !p.culled);
+                for (const auto& p : r.graph().passes())
+                    assigns = assigns || (p.name == "light-assignment" && !p.culled);
                 EXPECT_EQ(assigns, msaa > 1) << msaa << " samples";
             }
             r.renderFrame();
@@ -505,48 +562,61 @@ TEST_P(RenderAccuracy, ForwardPlusCullsExactly) {
 // they match the single-sample image; silhouette pixels blend coverage, so some differ. The
 // deferred techniques refuse, saying why.
 TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
-    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
-    const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 2});  // large spheres: few edge pixels
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4))
+        GTEST_SKIP() << "no 4x MSAA";
+    const assets::Scene scene =
+        assets::makeBuiltinScene("spheres", {.sphereGrid = 2});  // large spheres: few edge pixels
     gdi::Image single = renderImage(*device, scene, "forward", 1, false, true, kSeparable);
     gdi::Image reference;
-    for (const char* t : {"forward", "forward-multipass", "forward-zprepass", "forward-plus", "clustered-forward"}) {
+    for (const char* t : {"forward", "forward-multipass", "forward-zprepass", "forward-plus",
+                          "clustered-forward"}) {
         render::RenderSettings s4{.technique = t, .width = kW, .height = kH, .msaa = 4};
         s4.shadingModel = kSeparable;  // compared with the light pre-pass below
         render::SceneRenderer r(*device, scene, s4);
         bool multisampled = false;
-        for (const auto& tex : r.graph().textures()) multisampled = multisampled || (tex.used() && tex.desc.sampleCount == 4);
+        for (const auto& tex : r.graph().textures())
+            multisampled = multisampled || (tex.used() && tex.desc.sampleCount == 4);
         EXPECT_TRUE(multisampled) << t << ": no 4-sample target in the graph";
         r.renderFrame();
         gdi::Image img = r.readOutput();
         Stats differs = compare(img, single, 0.02, 1e-3);
         RecordProperty(std::string("changed_") + t, std::to_string(differs.fractionOver));
-        std::cout << t << " at 4 samples: " << differs.fractionOver * 100 << "% of pixels beyond 2% of the 1-sample image\n";
+        std::cout << t << " at 4 samples: " << differs.fractionOver * 100
+                  << "% of pixels beyond 2% of the 1-sample image\n";
         EXPECT_GT(differs.fractionOver, 0.005) << t << ": no silhouette pixel changed";
         EXPECT_LT(differs.fractionOver, 0.08) << t << ": more than silhouettes changed";
         if (reference.data.empty()) reference = img;
         Stats same = compare(img, reference, 1e-4, 1e-4);
-        EXPECT_EQ(same.fractionOver, 0.0) << t << " differs from forward at 4 samples, max " << same.maxRel;
+        EXPECT_EQ(same.fractionOver, 0.0)
+            << t << " differs from forward at 4 samples, max " << same.maxRel;
     }
     for (const char* t : {"light-prepass", "light-prepass-unpacked"}) {
         // Hardware MSAA is the deck's argument for the light pre-pass: the material pass is a
         // forward pass, so silhouettes are antialiased while the light pass stays per pixel.
-        render::SceneRenderer r(*device, scene, {.technique = t, .width = kW, .height = kH, .msaa = 4});
+        render::SceneRenderer r(*device, scene,
+                                {.technique = t, .width = kW, .height = kH, .msaa = 4});
         uint32_t multisampled = 0;
-        for (const auto& tex : r.graph().textures()) multisampled += tex.used() && tex.desc.sampleCount == 4;
+        for (const auto& tex : r.graph().textures())
+            multisampled += tex.used() && tex.desc.sampleCount == 4;
         EXPECT_EQ(multisampled, 3u) << t << ": normals, depth and L_o should be multisampled";
         r.renderFrame();
         gdi::Image img = r.readOutput();
         Stats differs = compare(img, renderImage(*device, scene, t), 0.02, 1e-3);
         Stats vsForward = compare(img, reference, 0.05, 1e-3);
-        std::cout << t << " at 4 samples: " << differs.fractionOver * 100 << "% of pixels beyond 2% of its 1-sample image, "
-                  << vsForward.fractionOver * 100 << "% beyond 5% of forward at 4 samples\n";
+        std::cout << t << " at 4 samples: " << differs.fractionOver * 100
+                  << "% of pixels beyond 2% of its 1-sample image, " << vsForward.fractionOver * 100
+                  << "% beyond 5% of forward at 4 samples\n";
         EXPECT_GT(differs.fractionOver, 0.005) << t << ": no silhouette pixel changed";
         EXPECT_LT(differs.fractionOver, 0.08) << t << ": more than silhouettes changed";
-        EXPECT_LT(vsForward.fractionOver, 0.15) << t << " at 4 samples is far from forward at 4 samples";
+        EXPECT_LT(vsForward.fractionOver, 0.15)
+            << t << " at 4 samples is far from forward at 4 samples";
     }
-    const std::string e = fe::testing::errorOf([&] { render::SceneRenderer r(*device, scene, {.technique = "deferred", .msaa = 4}); });
+    const std::string e = fe::testing::errorOf(
+        [&] { render::SceneRenderer r(*device, scene, {.technique = "deferred", .msaa = 4}); });
     EXPECT_NE(e.find("technique deferred does not take --msaa"), std::string::npos) << e;
-    EXPECT_NE(fe::testing::errorOf([&] { render::SceneRenderer r(*device, scene, {.msaa = 3}); }).find("--msaa must be 1, 2, 4 or 8"),
+    EXPECT_NE(fe::testing::errorOf([&] {
+                  render::SceneRenderer r(*device, scene, {.msaa = 3});
+              }).find("--msaa must be 1, 2, 4 or 8"),
               std::string::npos);
 }
 
@@ -555,7 +625,10 @@ TEST_P(RenderAccuracy, MsaaSmoothsSilhouettesOnly) {
 TEST_P(RenderAccuracy, BadCamerasAndExposureAreErrors) {
     using fe::testing::errorOf;
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_EQ(errorOf([&] { render::SceneRenderer r(*device, scene, {.width = kW, .height = kH, .exposure = nan}); }),
+    EXPECT_EQ(errorOf([&] {
+                  render::SceneRenderer r(*device, scene,
+                                          {.width = kW, .height = kH, .exposure = nan});
+              }),
               "exposure nan is not a positive number");
     render::SceneRenderer r(*device, scene, {.width = kW, .height = kH});
     r.renderFrame();
@@ -563,23 +636,29 @@ TEST_P(RenderAccuracy, BadCamerasAndExposureAreErrors) {
     const assets::Camera good = *scene.camera;
     const std::vector<std::pair<std::function<void(assets::Camera&)>, std::string>> bad = {
         {[&](assets::Camera& c) { c.worldFromView[3][0] = nan; }, "not finite (NaN or infinity)"},
-        {[](assets::Camera& c) { c.worldFromView = glm::mat4(0.0f); }, "its transform is singular (no view can be made from it)"},
+        {[](assets::Camera& c) { c.worldFromView = glm::mat4(0.0f); },
+         "its transform is singular (no view can be made from it)"},
         {[](assets::Camera& c) { c.yfov = 0; }, "yfov 0.000000 is not in (0, pi) radians"},
         {[](assets::Camera& c) { c.znear = -1; }, "znear -1.000000 is not positive"},
         {[](assets::Camera& c) { c.znear = 10, c.zfar = 1; }, "zfar 1.000000 is not beyond znear"},
-        {[](assets::Camera& c) { c.aspectRatio = 0.0f; }, "aspectRatio 0.000000 is not a positive number"},
+        {[](assets::Camera& c) { c.aspectRatio = 0.0f; },
+         "aspectRatio 0.000000 is not a positive number"},
     };
     for (const auto& [spoil, why] : bad) {
         assets::Camera c = good;
         spoil(c);
-        EXPECT_EQ(errorOf([&] { r.setCamera(c); }), "setCamera: camera '" + good.name + "': " + why);
+        EXPECT_EQ(errorOf([&] { r.setCamera(c); }),
+                  "setCamera: camera '" + good.name + "': " + why);
         assets::Scene withCamera = scene;
         withCamera.camera = c;
-        EXPECT_EQ(errorOf([&] { render::SceneRenderer s(*device, withCamera, {.width = kW, .height = kH}); }),
+        EXPECT_EQ(errorOf([&] {
+                      render::SceneRenderer s(*device, withCamera, {.width = kW, .height = kH});
+                  }),
                   "scene refused: camera '" + good.name + "': " + why);
     }
     r.renderFrame();
-    EXPECT_EQ(compare(r.readOutput(), before, 0.0, 1e-6).fractionOver, 0.0) << "the refused cameras changed the view";
+    EXPECT_EQ(compare(r.readOutput(), before, 0.0, 1e-6).fractionOver, 0.0)
+        << "the refused cameras changed the view";
 }
 
 TEST_P(RenderAccuracy, RedeferredFullRateMatchesForward) {
@@ -620,18 +699,26 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
         {"forward-multipass", {"forward-multipass", "display"}},
         {"forward-zprepass", {"zprepass", "forward-shading", "display"}},
         {"forward-plus", {"zprepass", "light-culling", "forward-plus-shading", "display"}},
-        {"clustered-forward", {"zprepass", "cluster-bounds", "light-assignment", "clustered-shading", "display"}},
-        {"clustered-deferred", {"gbuffer", "cluster-bounds", "light-assignment", "clustered-lighting", "display"}},
-        {"visibility-buffer", {"visibility", "cluster-bounds", "light-assignment", "visibility-resolve", "display"}},
+        {"clustered-forward",
+         {"zprepass", "cluster-bounds", "light-assignment", "clustered-shading", "display"}},
+        {"clustered-deferred",
+         {"gbuffer", "cluster-bounds", "light-assignment", "clustered-lighting", "display"}},
+        {"visibility-buffer",
+         {"visibility", "cluster-bounds", "light-assignment", "visibility-resolve", "display"}},
         {"deferred-tiled", {"gbuffer", "light-culling", "tiled-lighting", "display"}},
         {"light-prepass", {"lpp-normals", "lpp-lights", "lpp-material", "display"}},
-        {"redeferred-tiled", {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},
+        {"redeferred-tiled",
+         {"gbuffer", "light-culling", "tiled-illumination", "material", "display"}},
         {"deferred", {"gbuffer", "lighting", "emissive", "display"}},
         {"redeferred", {"gbuffer", "illumination", "material", "display"}}};
     for (const auto& [technique, passes] : expected) {
         for (bool display : {false, true}) {
-            render::SceneRenderer r(*device, scene, {.technique = technique, .width = kW, .height = kH, .exposure = 2.0f,
-                                                     .displayImage = display});
+            render::SceneRenderer r(*device, scene,
+                                    {.technique = technique,
+                                     .width = kW,
+                                     .height = kH,
+                                     .exposure = 2.0f,
+                                     .displayImage = display});
             std::vector<std::string> names;
             for (const auto& p : r.graph().passes()) {
                 names.push_back(p.name);
@@ -640,7 +727,8 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
             EXPECT_EQ(names, passes);  // no transparent pass: the spheres have no BLEND material
             const graph::MemoryReport m = r.graph().memory();
             if (display && technique.find("deferred") != std::string::npos) {
-                EXPECT_LT(m.withAliasing, m.withoutAliasing) << r.graph().toDot();  // the display image reuses G-buffer memory
+                EXPECT_LT(m.withAliasing, m.withoutAliasing)
+                    << r.graph().toDot();  // the display image reuses G-buffer memory
             }
             if (!display) continue;
             r.renderFrame();
@@ -651,7 +739,8 @@ TEST_P(RenderAccuracy, FrameGraphHasOnlyNeededPassesAndAliasesMemory) {
                 for (uint32_t x = 0; x < kW; ++x)
                     for (int c = 0; c < 3; ++c) {
                         const float l = std::clamp(2.0f * out.texel(x, y)[c], 0.0f, 1.0f);
-                        const float srgb = l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1 / 2.4f) - 0.055f;
+                        const float srgb =
+                            l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1 / 2.4f) - 0.055f;
                         wrong += std::abs(shown.texel(x, y)[c] - srgb) > 1.5f / 255.0f;
                     }
             EXPECT_EQ(wrong, 0) << technique;
@@ -666,7 +755,8 @@ TEST_P(RenderAccuracy, LightPrepassErrorIsMeasured) {
     gdi::Image f = renderImage(*device, scene, "forward", 1, false, true, kSeparable);
     for (const char* t : {"light-prepass", "light-prepass-unpacked"}) {
         Stats s = compare(renderImage(*device, scene, t), f, 0.05, 0.01);
-        std::cout << t << ": " << s.fractionOver * 100.0 << "% of pixels beyond 5% relative error (max " << s.maxRel << ")\n";
+        std::cout << t << ": " << s.fractionOver * 100.0
+                  << "% of pixels beyond 5% relative error (max " << s.maxRel << ")\n";
         RecordProperty(std::string("fraction_over_") + t, std::to_string(s.fractionOver));
         EXPECT_LT(s.fractionOver, 0.15) << t;
         EXPECT_TRUE(std::isfinite(s.maxRel)) << t;
@@ -682,7 +772,8 @@ TEST_P(RenderAccuracy, ErrorConcentration) {
     constexpr uint32_t W = 192, H = 144;
     const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, W, H);
     auto image = [&](const char* t, uint32_t scale, bool split) {
-        render::RenderSettings s{.technique = t, .width = W, .height = H, .illumScale = scale, .illumSplit = split};
+        render::RenderSettings s{
+            .technique = t, .width = W, .height = H, .illumScale = scale, .illumSplit = split};
         s.shadingModel = kSeparable;
         render::SceneRenderer r(*device, scene, s);
         r.renderFrame();
@@ -710,7 +801,8 @@ TEST_P(RenderAccuracy, ErrorConcentration) {
                 bool bad = false;
                 const auto a = img.texel(x, y), b = f.texel(x, y);
                 for (int k = 0; k < 3; ++k)
-                    bad = bad || std::abs(a[k] - b[k]) > 0.05 * std::max({std::abs(a[k]), std::abs(b[k]), 0.01f});
+                    bad = bad || std::abs(a[k] - b[k]) >
+                                     0.05 * std::max({std::abs(a[k]), std::abs(b[k]), 0.01f});
                 Rate& r = ref.nearEdge(x, y) ? edge : interior;
                 ++r.n, r.bad += bad;
                 if (ref.nearEdge(x, y)) continue;
@@ -718,17 +810,21 @@ TEST_P(RenderAccuracy, ErrorConcentration) {
                 ++metal[surface / 5].n, metal[surface / 5].bad += bad;
             }
         std::ostringstream line;
-        line << std::fixed << std::setprecision(1) << c.technique << (c.split ? " split" : "") << " scale " << c.scale
-             << ": silhouettes " << edge.percent() << " %, interior " << interior.percent() << " %; interior by roughness";
+        line << std::fixed << std::setprecision(1) << c.technique << (c.split ? " split" : "")
+             << " scale " << c.scale << ": silhouettes " << edge.percent() << " %, interior "
+             << interior.percent() << " %; interior by roughness";
         for (const Rate& r : roughness) line << " " << r.percent();
         line << "; by metallic";
         for (const Rate& r : metal) line << " " << r.percent();
         std::cout << line.str() << "\n";
-        RecordProperty(std::string("concentration_") + c.technique + (c.split ? "_split" : "") + std::to_string(c.scale), line.str());
+        RecordProperty(std::string("concentration_") + c.technique + (c.split ? "_split" : "") +
+                           std::to_string(c.scale),
+                       line.str());
         if (std::string(c.technique).rfind("redeferred", 0) == 0) {
             // A reduced rate errs where neighbouring pixels differ: silhouettes first. At scale 4
             // (spheres about 6 I-buffer texels wide here) it errs nearly everywhere.
-            EXPECT_GT(edge.percent(), (c.scale == 2 ? 2.0 : 1.0) * interior.percent()) << line.str();
+            EXPECT_GT(edge.percent(), (c.scale == 2 ? 2.0 : 1.0) * interior.percent())
+                << line.str();
         } else {
             // The light pre-pass's specular colour is rebuilt from a monochrome sum: metals,
             // whose specular is coloured by F0 = base colour, carry its error.
@@ -745,18 +841,21 @@ TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {
     for (const char* t : {"redeferred", "redeferred-tiled"})
         for (uint32_t scale : {2u, 4u})
             for (bool split : {false, true}) {
-                if (split && std::string(t) == "redeferred") continue;  // refused: one size for the volume pass's targets
+                if (split && std::string(t) == "redeferred")
+                    continue;  // refused: one size for the volume pass's targets
                 gdi::Image r = renderImage(*device, scene, t, scale, split);
                 Stats s = compare(r, f, 0.05, 0.01);
-                const std::string name = std::string(t) + (split ? " split" : "") + " illum-scale " + std::to_string(scale);
-                std::cout << name << ": " << s.fractionOver * 100.0 << "% of pixels beyond 5% relative error (max " << s.maxRel
-                          << ")\n";
+                const std::string name = std::string(t) + (split ? " split" : "") +
+                                         " illum-scale " + std::to_string(scale);
+                std::cout << name << ": " << s.fractionOver * 100.0
+                          << "% of pixels beyond 5% relative error (max " << s.maxRel << ")\n";
                 RecordProperty("fraction_over_" + name, std::to_string(s.fractionOver));
                 EXPECT_LT(s.fractionOver, 0.5) << name;
                 EXPECT_TRUE(std::isfinite(s.maxRel)) << name;
                 if (split) {
                     Stats joint = compare(renderImage(*device, scene, t, scale), f, 0.05, 0.01);
-                    EXPECT_LT(s.fractionOver, joint.fractionOver * 0.8) << name << " is not better than the joint upsampling";
+                    EXPECT_LT(s.fractionOver, joint.fractionOver * 0.8)
+                        << name << " is not better than the joint upsampling";
                 }
             }
 }
@@ -766,9 +865,10 @@ TEST_P(RenderAccuracy, RedeferredReducedRateErrorIsMeasured) {
 // they match each other to half-float precision of w_o.n.
 TEST_P(RenderAccuracy, PrecomputedNoVMatchesRebuiltNoV) {
     for (const char* t : {"redeferred", "redeferred-tiled"}) {
-        Stats s = compare(renderImage(*device, scene, t, 1, false, true), renderImage(*device, scene, t, 1, false, false), 2e-3, 1e-3);
-        std::cout << t << ": precomputed against rebuilt w_o.n, " << s.fractionOver * 100 << "% of pixels beyond 0.2% (max "
-                  << s.maxRel << ")\n";
+        Stats s = compare(renderImage(*device, scene, t, 1, false, true),
+                          renderImage(*device, scene, t, 1, false, false), 2e-3, 1e-3);
+        std::cout << t << ": precomputed against rebuilt w_o.n, " << s.fractionOver * 100
+                  << "% of pixels beyond 0.2% (max " << s.maxRel << ")\n";
         EXPECT_LT(s.fractionOver, 0.01) << t;
     }
 }
@@ -797,7 +897,8 @@ TEST_P(RenderAccuracy, PackedNormalsHoldFromDirectorThreshold) {
     for (float r : {0.05f, 0.1f, 0.15f, 0.2f, 0.3f, 0.5f})
         std::cout << "roughness " << r << ": packed / unpacked highlight " << peakRatio(r) << "\n";
     EXPECT_NEAR(peakRatio(render::kPackedNormalsMinRoughness), 1.0, 0.01);
-    EXPECT_LT(peakRatio(render::kPackedNormalsMinRoughness / 2), 0.95) << "the threshold is not where packing fails";
+    EXPECT_LT(peakRatio(render::kPackedNormalsMinRoughness / 2), 0.95)
+        << "the threshold is not where packing fails";
 }
 
 // The roughness clamp: a mirror-smooth plane seen head-on with a point light on the view axis.
@@ -808,7 +909,8 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
     assets::Scene s = assets::makeBuiltinScene("plane");
     for (auto& m : s.materials) m.roughness = 0.0f;  // clamped to 0.045 by every technique
     for (auto& l : s.lights) l.intensity = 10.0f;
-    auto renderOdd = [&](const std::string& t, render::ShadingModel model = render::ShadingModel::Auto) {
+    auto renderOdd = [&](const std::string& t,
+                         render::ShadingModel model = render::ShadingModel::Auto) {
         render::RenderSettings rs{.technique = t, .width = 97, .height = 73};
         rs.shadingModel = model;
         render::SceneRenderer r(*device, s, rs);
@@ -852,7 +954,8 @@ TEST_P(RenderAccuracy, RoughnessClampStaysFiniteAndMatches) {
         // that alone moves D's peak by up to (1 + (2^-11 / 0.002)^2)^-2 = 0.89 x: lavapipe lands
         // at 1.000 x, an H100 at 0.945 x (2026-11-27), so 12 % is the bound, not 2 %.
         const float ratio = r.texel(48, 36)[0] / f.texel(48, 36)[0];
-        std::cout << t << " at the roughness clamp: highlight peak " << f.texel(48, 36)[0] << ", " << ratio << " x forward's\n";
+        std::cout << t << " at the roughness clamp: highlight peak " << f.texel(48, 36)[0] << ", "
+                  << ratio << " x forward's\n";
         EXPECT_NEAR(ratio, 1.0, 0.12) << t << " at the highlight";
     }
 }
@@ -862,38 +965,47 @@ namespace {
 // within 2 % of the CPU reference on 99 % of pixels off silhouettes, under its punctual lights and
 // then 64 samples of its environment; `plain` (the scene without the inputs under test) must be
 // far from that reference (20 % of pixels), so that dropping the inputs fails. `what` names them.
-void expectFullMaterialTechniquesMatchTheReference(gdi::Device& device, const assets::Scene& scene, const assets::Scene& plain,
-                                                   const char* what) {
+void expectFullMaterialTechniquesMatchTheReference(gdi::Device& device, const assets::Scene& scene,
+                                                   const assets::Scene& plain, const char* what) {
     auto toImage = [](const render::ReferenceImage& ref) {
         std::vector<std::array<float, 4>> texels;
         for (auto& v : ref.radiance) texels.push_back({float(v.x), float(v.y), float(v.z), 1});
         return gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, texels);
     };
     for (uint32_t samples : {0u, 64u}) {
-        const render::ReferenceImage ref = render::renderReference(scene, *scene.camera, kW, kH, {.iblSamples = samples});
+        const render::ReferenceImage ref =
+            render::renderReference(scene, *scene.camera, kW, kH, {.iblSamples = samples});
         const gdi::Image cpu = toImage(ref);
         const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
-        const Stats without = compare(toImage(render::renderReference(plain, *plain.camera, kW, kH, {.iblSamples = samples})), cpu,
-                                      0.02, 0.01, edge);
+        const Stats without = compare(
+            toImage(render::renderReference(plain, *plain.camera, kW, kH, {.iblSamples = samples})),
+            cpu, 0.02, 0.01, edge);
         EXPECT_GE(without.fractionOver, 0.2) << what << " hardly change the reference";
         for (const render::TechniqueInfo& t : render::techniques()) {
-            if (!t.fullMaterial(shading::Brdf::Gltf) || (std::string(t.name).find("tiled") != std::string::npos &&
-                                                          !device.info().features.computeShaders))
+            if (!t.fullMaterial(shading::Brdf::Gltf) ||
+                (std::string(t.name).find("tiled") != std::string::npos &&
+                 !device.info().features.computeShaders))
                 continue;
-            render::SceneRenderer r(device, scene, {.technique = t.name, .width = kW, .height = kH, .iblSamples = samples});
+            render::SceneRenderer r(
+                device, scene,
+                {.technique = t.name, .width = kW, .height = kH, .iblSamples = samples});
             r.renderFrame();
             const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
-            std::cout << what << ", " << t.name << (samples ? " with 64 sky samples" : ", punctual") << ": " << st.fractionOver * 100
-                      << " % beyond 2 % of the reference (without them: " << without.fractionOver * 100 << " %)\n";
+            std::cout << what << ", " << t.name << (samples ? " with 64 sky samples" : ", punctual")
+                      << ": " << st.fractionOver * 100
+                      << " % beyond 2 % of the reference (without them: "
+                      << without.fractionOver * 100 << " %)\n";
             EXPECT_LE(st.fractionOver, 0.01) << what << ", " << t.name << " max " << st.maxRel;
         }
     }
     // The fast path reads them too: against the same frame without them it differs.
-    render::RenderSettings fast{.technique = "forward", .width = kW, .height = kH, .iblPrefiltered = true};
+    render::RenderSettings fast{
+        .technique = "forward", .width = kW, .height = kH, .iblPrefiltered = true};
     render::SceneRenderer with(device, scene, fast), without(device, plain, fast);
     with.renderFrame();
     without.renderFrame();
-    EXPECT_GE(compare(with.readOutput(), without.readOutput(), 0.02, 0.01).fractionOver, 0.2) << what;
+    EXPECT_GE(compare(with.readOutput(), without.readOutput(), 0.02, 0.01).fractionOver, 0.2)
+        << what;
 }
 
 }  // namespace
@@ -914,18 +1026,24 @@ TEST_P(RenderAccuracy, DielectricIorAndSpecularMatchTheReference) {
         m.specularColor = i % 4 ? glm::vec3(1.0f, 0.5f, 2.0f) : glm::vec3(1.0f);
     }
     assets::Scene plain = scene;
-    for (assets::Material& m : plain.materials) m.ior = 1.5f, m.specular = 1.0f, m.specularColor = glm::vec3(1.0f);
+    for (assets::Material& m : plain.materials)
+        m.ior = 1.5f, m.specular = 1.0f, m.specularColor = glm::vec3(1.0f);
     expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "ior and specular");
     // A technique that cannot shows them with the default dielectric, and says which can.
     const std::vector<std::string> w = render::materialWarnings(scene, {.technique = "deferred"});
     ASSERT_EQ(w.size(), 1u);
-    EXPECT_NE(w[0].find("technique deferred shades them with F0 0.04, F90 1, no clearcoat and no sheen (its G-buffer does not hold it); "
-                        "forward, forward-multipass, forward-zprepass, forward-plus, clustered-forward, visibility-buffer "
-                        "evaluate them"),
-              std::string::npos)
+    EXPECT_NE(
+        w[0].find(
+            "technique deferred shades them with F0 0.04, F90 1, no clearcoat and no sheen (its G-buffer does not hold it); "
+            "forward, forward-multipass, forward-zprepass, forward-plus, clustered-forward, visibility-buffer "
+            "evaluate them"),
+        std::string::npos)
         << w[0];
     EXPECT_TRUE(render::materialWarnings(scene, {.technique = "forward"}).empty());
-    EXPECT_EQ(render::materialWarnings(scene, {.technique = "forward", .shadingModel = render::ShadingModel::Separable}).size(), 1u);
+    EXPECT_EQ(render::materialWarnings(
+                  scene, {.technique = "forward", .shadingModel = render::ShadingModel::Separable})
+                  .size(),
+              1u);
     EXPECT_TRUE(render::materialWarnings(plain, {.technique = "deferred"}).empty());
 }
 
@@ -969,9 +1087,13 @@ assets::Scene spheresBehindAPane(const std::function<void(assets::Material&)>& p
     assets::computeBounds(mesh);
     s.meshes.push_back(mesh);
     s.instances.push_back({.meshIndex = uint32_t(s.meshes.size() - 1),
-                           .world = glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 1.0f)), .name = "pane"});
-    s.lights.push_back({.name = "behind the pane", .type = assets::LightType::Point, .color = glm::vec3(1.0f, 0.9f, 0.8f),
-                        .intensity = 2.0f, .position = glm::vec3(-1.2f, 0.5f, 0.7f)});
+                           .world = glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 1.0f)),
+                           .name = "pane"});
+    s.lights.push_back({.name = "behind the pane",
+                        .type = assets::LightType::Point,
+                        .color = glm::vec3(1.0f, 0.9f, 0.8f),
+                        .intensity = 2.0f,
+                        .position = glm::vec3(-1.2f, 0.5f, 0.7f)});
     return s;
 }
 
@@ -998,7 +1120,8 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
         {"a thin pane", [](assets::Material&) {}, true},
         // log2(96) x 0.4 = 2.6: levels 2 and 3 of the copy, whose sizes halve evenly (96x72 .. 12x9).
         {"a rough thin pane", [](assets::Material& m) { m.roughness = 0.4f; }},
-        {"a tinted volume", [](assets::Material& m) {
+        {"a tinted volume",
+         [](assets::Material& m) {
              m.thickness = 0.6f;
              m.attenuationColor = glm::vec3(0.4f, 0.8f, 1.0f);
              m.attenuationDistance = 0.5f;
@@ -1019,11 +1142,17 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
         }
         for (const render::TechniqueInfo& t : render::techniques()) {
             if (!c.everyTechnique && std::string(t.name) != "forward") continue;
-            if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
-            const render::RenderSettings settings{.technique = t.name, .width = kW, .height = kH, .iblSamples = c.iblSamples};
-            const render::ReferenceOptions options{.iblSamples = c.iblSamples, .brdf = render::resolveBrdf(settings)};
-            const render::ReferenceImage ref = render::renderReference(withPane, *withPane.camera, kW, kH, options);
-            const gdi::Image cpu = gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(ref));
+            if (std::string(t.name).find("tiled") != std::string::npos &&
+                !device->info().features.computeShaders)
+                continue;
+            const render::RenderSettings settings{
+                .technique = t.name, .width = kW, .height = kH, .iblSamples = c.iblSamples};
+            const render::ReferenceOptions options{.iblSamples = c.iblSamples,
+                                                   .brdf = render::resolveBrdf(settings)};
+            const render::ReferenceImage ref =
+                render::renderReference(withPane, *withPane.camera, kW, kH, options);
+            const gdi::Image cpu =
+                gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(ref));
             const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
             render::SceneRenderer r(*device, withPane, settings);
             r.renderFrame();
@@ -1033,17 +1162,23 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
                 // pass) must still show through, against the same technique with the pane opaque.
                 render::SceneRenderer o(*device, opaquePane, settings);
                 o.renderFrame();
-                EXPECT_GE(compare(r.readOutput(), o.readOutput(), 0.02, 0.01, edge).fractionOver, 0.3) << t.name;
+                EXPECT_GE(compare(r.readOutput(), o.readOutput(), 0.02, 0.01, edge).fractionOver,
+                          0.3)
+                    << t.name;
                 continue;
             }
             const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
-            const render::ReferenceImage opaque = render::renderReference(opaquePane, *opaquePane.camera, kW, kH, options);
-            const Stats without = compare(gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(opaque)), cpu,
-                                          0.02, 0.01, edge);
-            std::cout << c.what << ", " << t.name << ": " << st.fractionOver * 100 << " % beyond 2 % of the reference (max "
-                      << st.maxRel << "; the pane opaque: " << without.fractionOver * 100 << " %)\n";
+            const render::ReferenceImage opaque =
+                render::renderReference(opaquePane, *opaquePane.camera, kW, kH, options);
+            const Stats without = compare(
+                gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(opaque)), cpu,
+                0.02, 0.01, edge);
+            std::cout << c.what << ", " << t.name << ": " << st.fractionOver * 100
+                      << " % beyond 2 % of the reference (max " << st.maxRel
+                      << "; the pane opaque: " << without.fractionOver * 100 << " %)\n";
             EXPECT_LE(st.fractionOver, 0.01) << c.what << ", " << t.name << " max " << st.maxRel;
-            EXPECT_GE(without.fractionOver, 0.3) << c.what << ": transmission hardly changes the reference";
+            EXPECT_GE(without.fractionOver, 0.3)
+                << c.what << ": transmission hardly changes the reference";
         }
     }
 }
@@ -1078,8 +1213,10 @@ uint32_t addGradientTexture(assets::Scene& s, bool srgb, glm::vec4 from, glm::ve
     t.sampler.mipmaps = false;
     for (uint32_t y = 0; y < 4; ++y)
         for (uint32_t x = 0; x < 4; ++x) {
-            const glm::vec4 v = glm::mix(from, to, glm::vec4(x / 3.0f, y / 3.0f, (x + y) / 6.0f, (3 - x + y) / 6.0f));
-            for (int c = 0; c < 4; ++c) t.pixels.push_back(uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f)));
+            const glm::vec4 v = glm::mix(
+                from, to, glm::vec4(x / 3.0f, y / 3.0f, (x + y) / 6.0f, (3 - x + y) / 6.0f));
+            for (int c = 0; c < 4; ++c)
+                t.pixels.push_back(uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f)));
         }
     s.textures.push_back(t);
     return uint32_t(s.textures.size() - 1);
@@ -1093,9 +1230,12 @@ uint32_t addGradientTexture(assets::Scene& s, bool srgb, glm::vec4 from, glm::ve
 TEST_P(RenderAccuracy, SpecularAndClearcoatTexturesMatchTheReference) {
     scene.environment = assets::loadEnvironment("builtin:sky");
     scene.environment->sky.sunRadiance = glm::dvec3(0.0);
-    const uint32_t colour = addGradientTexture(scene, true, glm::vec4(0.2f, 1.0f, 0.5f, 0.1f), glm::vec4(1.0f, 0.3f, 1.0f, 1.0f));
-    const uint32_t data = addGradientTexture(scene, false, glm::vec4(0.1f, 0.05f, 0.2f, 0.2f), glm::vec4(1.0f, 0.9f, 0.9f, 1.0f));
-    const uint32_t normals = addGradientTexture(scene, false, glm::vec4(0.2f, 0.3f, 0.8f, 1.0f), glm::vec4(0.8f, 0.7f, 1.0f, 1.0f));
+    const uint32_t colour = addGradientTexture(scene, true, glm::vec4(0.2f, 1.0f, 0.5f, 0.1f),
+                                               glm::vec4(1.0f, 0.3f, 1.0f, 1.0f));
+    const uint32_t data = addGradientTexture(scene, false, glm::vec4(0.1f, 0.05f, 0.2f, 0.2f),
+                                             glm::vec4(1.0f, 0.9f, 0.9f, 1.0f));
+    const uint32_t normals = addGradientTexture(scene, false, glm::vec4(0.2f, 0.3f, 0.8f, 1.0f),
+                                                glm::vec4(0.8f, 0.7f, 1.0f, 1.0f));
     assets::Scene plain = scene;
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         assets::Material& m = scene.materials[i];
@@ -1121,5 +1261,6 @@ TEST_P(RenderAccuracy, SpecularAndClearcoatTexturesMatchTheReference) {
         p.clearcoat = 1.0f;
         p.clearcoatRoughness = 0.6f;
     }
-    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain, "specular and clearcoat textures");
+    expectFullMaterialTechniquesMatchTheReference(*device, scene, plain,
+                                                  "specular and clearcoat textures");
 }

@@ -27,7 +27,8 @@ Built build(gdi::Device& device, const assets::Scene& scene, render::RenderSetti
             render::DirectorOptions options = {}) {
     request.width = 64;
     request.height = 48;
-    const render::DirectorChoice c = render::direct(scene, request, device.info(), &device, options);
+    const render::DirectorChoice c =
+        render::direct(scene, request, device.info(), &device, options);
     render::SceneRenderer r(device, scene, c.settings);
     r.renderFrame();
     Built b{c.settings.technique, {}, {}, c.reasons};
@@ -39,7 +40,8 @@ Built build(gdi::Device& device, const assets::Scene& scene, render::RenderSetti
 }
 
 bool anyStartsWith(const std::vector<std::string>& v, const std::string& prefix) {
-    return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.rfind(prefix, 0) == 0; });
+    return std::any_of(v.begin(), v.end(),
+                       [&](const std::string& s) { return s.rfind(prefix, 0) == 0; });
 }
 
 class RenderDirector : public fe::testing::BackendTest {};
@@ -51,9 +53,11 @@ TEST_P(RenderDirector, FewLightsGetForwardAndNoGBuffer) {
     const assets::Scene scene = assets::makeBuiltinScene("plane");
     const Built b = build(*device, scene, {.technique = "auto"});
     EXPECT_EQ(b.technique, "forward");
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"forward"}));  // display culled: no image asked for
+    EXPECT_EQ(b.passes,
+              (std::vector<std::string>{"forward"}));  // display culled: no image asked for
     EXPECT_EQ(b.textures, (std::vector<std::string>{"depth"}));
-    EXPECT_NE(b.reasons[0].find("1 light(s) covering the screen 1.0 times"), std::string::npos) << b.reasons[0];
+    EXPECT_NE(b.reasons[0].find("1 light(s) covering the screen 1.0 times"), std::string::npos)
+        << b.reasons[0];
 }
 
 // Many ranged lights covering the screen many times over, on a CPU rasterizer (every device of
@@ -68,12 +72,16 @@ TEST_P(RenderDirector, ManyLightsGetForwardPlusOnACpuRasterizer) {
         return;
     }
     EXPECT_EQ(b.technique, "forward-plus");
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "light-culling", "forward-plus-shading"}));
+    EXPECT_EQ(b.passes,
+              (std::vector<std::string>{"zprepass", "light-culling", "forward-plus-shading"}));
     EXPECT_FALSE(anyStartsWith(b.textures, "gbuffer"));
     EXPECT_FALSE(anyStartsWith(b.textures, "ibuffer"));
-    EXPECT_NE(b.reasons[0].find("512 light(s) (512 with a range) covering the screen"), std::string::npos) << b.reasons[0];
+    EXPECT_NE(b.reasons[0].find("512 light(s) (512 with a range) covering the screen"),
+              std::string::npos)
+        << b.reasons[0];
     EXPECT_NE(b.reasons[0].find("on a CPU rasterizer"), std::string::npos) << b.reasons[0];
-    EXPECT_NE(b.reasons[0].find("tiles hold their depth tightly"), std::string::npos) << b.reasons[0];
+    EXPECT_NE(b.reasons[0].find("tiles hold their depth tightly"), std::string::npos)
+        << b.reasons[0];
 }
 
 // More lights than forward takes, but small on screen: light volumes, no compute pass.
@@ -100,20 +108,25 @@ TEST_P(RenderDirector, ManyLightsInTheDeepAtriumGetClusteredForwardAndSayWhy) {
         return;
     }
     EXPECT_EQ(b.technique, "clustered-forward") << b.reasons[0];
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "cluster-bounds", "light-assignment", "clustered-shading", "transparent"}));
+    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "cluster-bounds", "light-assignment",
+                                                  "clustered-shading", "transparent"}));
     EXPECT_NE(b.reasons[0].find("a probe frame's lists walk"), std::string::npos) << b.reasons[0];
     EXPECT_NE(b.reasons[0].find("a deep scene"), std::string::npos) << b.reasons[0];
-    EXPECT_TRUE(anyStartsWith(b.reasons, std::to_string(render::sceneNeeds(scene, 64.0f / 48.0f).blendPrimitives) +
-                                             " translucent primitive(s): their pass lights them from the light cluster grid"));
+    EXPECT_TRUE(anyStartsWith(
+        b.reasons,
+        std::to_string(render::sceneNeeds(scene, 64.0f / 48.0f).blendPrimitives) +
+            " translucent primitive(s): their pass lights them from the light cluster grid"));
 }
 
 // --msaa with many lights: clustered forward, multisampled and exact (measured fastest with MSAA).
 TEST_P(RenderDirector, MsaaWithManyLightsGetsClusteredForward) {
-    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4))
+        GTEST_SKIP() << "no 4x MSAA";
     const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
     const Built b = build(*device, scene, {.technique = "auto", .msaa = 4});
     EXPECT_EQ(b.technique, "clustered-forward");
-    EXPECT_EQ(b.passes, (std::vector<std::string>{"zprepass", "light-assignment", "clustered-shading"}));
+    EXPECT_EQ(b.passes,
+              (std::vector<std::string>{"zprepass", "light-assignment", "clustered-shading"}));
     EXPECT_TRUE(anyStartsWith(b.textures, "msaa L_o"));
     EXPECT_FALSE(anyStartsWith(b.textures, "gbuffer"));
     EXPECT_NE(b.reasons[0].find("keeps hardware MSAA"), std::string::npos) << b.reasons[0];
@@ -122,7 +135,8 @@ TEST_P(RenderDirector, MsaaWithManyLightsGetsClusteredForward) {
 // Without compute shaders, --msaa with many lights: the light pre-pass, multisampled; packed
 // normals unless the scene has materials smoother than the packing holds.
 TEST_P(RenderDirector, MsaaWithManyLightsAndNoComputeGetsLightPrepass) {
-    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4))
+        GTEST_SKIP() << "no 4x MSAA";
     assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 64});
     gdi::DeviceInfo noCompute = device->info();
     noCompute.features.computeShaders = false;
@@ -155,22 +169,28 @@ TEST_P(RenderDirector, MsaaWithManyLightsAndNoComputeGetsLightPrepass) {
 // within the budget; without a budget there is no I-buffer.
 TEST_P(RenderDirector, ReducedRateOnlyWithinTheErrorBudget) {
     const assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 512});
-    const Built generous = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = 100});
+    const Built generous =
+        build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = 100});
     EXPECT_EQ(generous.technique, "redeferred-tiled");
     EXPECT_TRUE(anyStartsWith(generous.textures, "ibuffer0 L_dg"));
-    EXPECT_NE(generous.reasons[1].find("illum-scale 4: probe frame"), std::string::npos) << generous.reasons[1];
+    EXPECT_NE(generous.reasons[1].find("illum-scale 4: probe frame"), std::string::npos)
+        << generous.reasons[1];
     const Built strict = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = 0.01});
     EXPECT_EQ(strict.technique, "deferred-tiled");
     EXPECT_FALSE(anyStartsWith(strict.textures, "ibuffer"));
-    EXPECT_NE(strict.reasons[1].find("no reduced illumination rate: probe frames"), std::string::npos) << strict.reasons[1];
+    EXPECT_NE(strict.reasons[1].find("no reduced illumination rate: probe frames"),
+              std::string::npos)
+        << strict.reasons[1];
     // Between the two: a budget just above what scale 2 measured admits scale 2, not 4.
-    const render::DirectorChoice c = render::direct(scene, {.technique = "auto", .width = 64, .height = 48}, device->info(),
-                                                    device.get(), {.errorBudgetPercent = 0.01});
+    const render::DirectorChoice c =
+        render::direct(scene, {.technique = "auto", .width = 64, .height = 48}, device->info(),
+                       device.get(), {.errorBudgetPercent = 0.01});
     const std::string& line = c.reasons[1];
     const double atScale2 = std::stod(line.substr(line.find(", ") + 2));
     const double atScale4 = std::stod(line.substr(line.find("probe frames ") + 13));
     ASSERT_LT(atScale2, atScale4) << line;
-    const Built middle = build(*device, scene, {.technique = "auto"}, {.errorBudgetPercent = (atScale2 + atScale4) / 2});
+    const Built middle = build(*device, scene, {.technique = "auto"},
+                               {.errorBudgetPercent = (atScale2 + atScale4) / 2});
     EXPECT_EQ(middle.technique, "redeferred-tiled");
     EXPECT_NE(middle.reasons[1].find("illum-scale 2"), std::string::npos) << middle.reasons[1];
 }
@@ -182,10 +202,12 @@ TEST_P(RenderDirector, ReducedRateOnlyWithinTheErrorBudget) {
 TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
     assets::Scene scene = assets::makeBuiltinScene("lights", {.lights = 256});
     scene.environment = assets::loadEnvironment("builtin:sky");
-    render::RenderSettings request{.technique = "auto", .width = 64, .height = 48, .iblPrefiltered = true};
+    render::RenderSettings request{
+        .technique = "auto", .width = 64, .height = 48, .iblPrefiltered = true};
     request.shadows = {.enabled = true, .mapSize = 256, .pointBudget = 2};
     const double budget = 8.0;
-    const render::DirectorChoice c = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = budget});
+    const render::DirectorChoice c = render::direct(scene, request, device->info(), device.get(),
+                                                    {.errorBudgetPercent = budget});
     std::string why;
     for (const auto& r : c.reasons) why += r + "\n";
     size_t sourceLines = 0;
@@ -193,14 +215,18 @@ TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
     EXPECT_EQ(sourceLines, 4u) << why;
     ASSERT_NE(c.settings.technique.find("redeferred"), std::string::npos) << why;
     const render::SourceRates& rates = c.settings.rates;
-    EXPECT_TRUE(rates.punctual > 1 || rates.shadowed > 1 || rates.iblDiffuse > 1 || rates.iblSpecular > 1) << why;
+    EXPECT_TRUE(rates.punctual > 1 || rates.shadowed > 1 || rates.iblDiffuse > 1 ||
+                rates.iblSpecular > 1)
+        << why;
     // What it chose holds: within the budget of the exact image.
     render::RenderSettings exact = request;
     exact.technique = device->info().features.computeShaders ? "deferred-tiled" : "deferred";
     render::SceneRenderer reference(*device, scene, exact), chosen(*device, scene, c.settings);
     reference.renderFrame();
     chosen.renderFrame();
-    EXPECT_LE(render::percentPixelsOver5Of255(chosen.readOutput(), reference.readOutput(), 1.0f), budget) << why;
+    EXPECT_LE(render::percentPixelsOver5Of255(chosen.readOutput(), reference.readOutput(), 1.0f),
+              budget)
+        << why;
     if (c.settings.perSourceRates()) {
         std::vector<std::string> passes;
         for (const auto& p : chosen.graph().passes())
@@ -208,7 +234,8 @@ TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
         EXPECT_TRUE(anyStartsWith(passes, "upsample I-buffer 1/")) << why;
     }
     std::cout << why;
-    const render::DirectorChoice strict = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 0.01});
+    const render::DirectorChoice strict =
+        render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 0.01});
     EXPECT_EQ(strict.settings.technique, exact.technique);
     EXPECT_EQ(strict.settings.rates.punctual + strict.settings.rates.iblDiffuse, 0u);
 }
@@ -225,7 +252,8 @@ TEST_P(RenderDirector, GltfAskedNeverGetsASeparableTechnique) {
     EXPECT_EQ(msaa.settings.technique, "forward") << msaa.reasons[0];
     EXPECT_FALSE(render::findTechnique(msaa.settings.technique).separableBrdf);
     request.msaa = 1;
-    const render::DirectorChoice budget = render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 8.0});
+    const render::DirectorChoice budget =
+        render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 8.0});
     std::string why;
     for (const auto& r : budget.reasons) why += r + "\n";
     EXPECT_FALSE(render::findTechnique(budget.settings.technique).separableBrdf) << why;
@@ -243,7 +271,8 @@ TEST_P(RenderDirector, FullMaterialsKeepAForwardTechnique) {
     gdi::DeviceInfo noCompute = device->info();
     noCompute.features.computeShaders = false;
     const std::string before = render::direct(scene, request, noCompute).settings.technique;
-    ASSERT_FALSE(render::findTechnique(before).fullMaterial(shading::Brdf::Gltf)) << before << ": the test needs a G-buffer choice";
+    ASSERT_FALSE(render::findTechnique(before).fullMaterial(shading::Brdf::Gltf))
+        << before << ": the test needs a G-buffer choice";
     scene.materials[0].clearcoat = 1.0f;
     const render::DirectorChoice c = render::direct(scene, request, noCompute);
     std::string why;
@@ -253,7 +282,8 @@ TEST_P(RenderDirector, FullMaterialsKeepAForwardTechnique) {
     EXPECT_TRUE(render::materialWarnings(scene, c.settings).empty());
     if (device->info().features.computeShaders) {
         const render::DirectorChoice withCompute = render::direct(scene, request, device->info());
-        EXPECT_TRUE(render::findTechnique(withCompute.settings.technique).fullMaterial(shading::Brdf::Gltf))
+        EXPECT_TRUE(
+            render::findTechnique(withCompute.settings.technique).fullMaterial(shading::Brdf::Gltf))
             << withCompute.settings.technique;
     }
 }
@@ -309,8 +339,10 @@ TEST(RenderDirectorChoice, ManyLightsOnAGpuGetTheVisibilityBuffer) {
     gpu.softwareRasterizer = true;
     EXPECT_EQ(render::direct(scene, {.technique = "auto"}, gpu).settings.technique, "forward-plus");
     // An error budget with no device to probe on leaves nothing to reduce: forward-plus still.
-    EXPECT_EQ(render::direct(scene, {.technique = "auto"}, gpu, nullptr, {.errorBudgetPercent = 1.0}).settings.technique,
-              "forward-plus");
+    EXPECT_EQ(
+        render::direct(scene, {.technique = "auto"}, gpu, nullptr, {.errorBudgetPercent = 1.0})
+            .settings.technique,
+        "forward-plus");
 }
 
 // Every technique with an I-buffer keeps its illumination scale; the others drop it.
@@ -318,9 +350,15 @@ TEST(RenderDirectorChoice, IllumScaleKeptWhereThereIsAnIBuffer) {
     const assets::Scene scene = assets::makeBuiltinScene("plane");
     gdi::DeviceInfo device;
     for (const char* t : {"redeferred", "redeferred-tiled"})
-        EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 2u) << t;
+        EXPECT_EQ(
+            render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale,
+            2u)
+            << t;
     for (const char* t : {"deferred", "deferred-tiled", "forward", "light-prepass"})
-        EXPECT_EQ(render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale, 1u) << t;
+        EXPECT_EQ(
+            render::direct(scene, {.technique = t, .illumScale = 2}, device).settings.illumScale,
+            1u)
+            << t;
 }
 
 // Screen coverage: a light whose range sphere holds the eye covers the screen; one behind the
@@ -338,7 +376,8 @@ TEST(RenderDirectorChoice, LightCoverage) {
     EXPECT_DOUBLE_EQ(render::sceneNeeds(scene, 1.0f).lightCoverage, 0.0);
     scene.lights[0].position = cam.eye() + cam.forward() * 10.0f;
     const double d = 10.0, rho = 1.0 / (std::sqrt(d * d - 1.0) * std::tan(cam.yfov / 2));
-    EXPECT_NEAR(render::sceneNeeds(scene, 2.0f).lightCoverage, 3.14159265358979 * rho * rho / 8.0, 1e-6);
+    EXPECT_NEAR(render::sceneNeeds(scene, 2.0f).lightCoverage, 3.14159265358979 * rho * rho / 8.0,
+                1e-6);
     scene.lights[0].type = assets::LightType::Directional;
     EXPECT_DOUBLE_EQ(render::sceneNeeds(scene, 1.0f).lightCoverage, 1.0);
 }
@@ -349,9 +388,11 @@ TEST(RenderDirectorChoice, RoughnessRangeReadsTextures) {
     for (auto& m : scene.materials) m.roughness = 0.8f;
     render::SceneNeeds n = render::sceneNeeds(scene, 1.0f);
     EXPECT_FLOAT_EQ(n.minRoughness, 0.8f);
-    assets::TextureImage t{.name = "mr", .width = 2, .height = 1, .pixels = {0, 255, 0, 255, 0, 51, 0, 255}};
+    assets::TextureImage t{
+        .name = "mr", .width = 2, .height = 1, .pixels = {0, 255, 0, 255, 0, 51, 0, 255}};
     scene.textures.push_back(t);
-    for (auto& m : scene.materials) m.metallicRoughnessTexture.index = int32_t(scene.textures.size() - 1);
+    for (auto& m : scene.materials)
+        m.metallicRoughnessTexture.index = int32_t(scene.textures.size() - 1);
     n = render::sceneNeeds(scene, 1.0f);
     EXPECT_FLOAT_EQ(n.minRoughness, 0.8f * 0.2f);
     EXPECT_FLOAT_EQ(n.maxRoughness, 0.8f);

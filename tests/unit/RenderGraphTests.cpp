@@ -12,15 +12,18 @@
 #include "graph/RenderGraph.h"
 
 using namespace fe;
-using graph::RenderGraph;
-using graph::TextureId;
 using gdi::Format;
 using gdi::LoadOp;
 using gdi::ResourceState;
+using graph::RenderGraph;
+using graph::TextureId;
 
 namespace {
-const gdi::TextureDesc kOutputDesc{.format = Format::RGBA8, .width = 64, .height = 64,
-                                   .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc};
+const gdi::TextureDesc kOutputDesc{
+    .format = Format::RGBA8,
+    .width = 64,
+    .height = 64,
+    .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::CopySrc};
 
 // An imported output with a fake handle: planning never touches the device.
 TextureId importFake(RenderGraph& g, const char* name = "output") {
@@ -41,8 +44,18 @@ TEST(RenderGraph, CullsPassesWhoseResultsNothingUses) {
     auto unused = g.createTexture("unused", {.width = 64, .height = 64});
     auto out = importFake(g);
     g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
-    g.addPass("makeUnused", [&](auto& b) { b.sample(a); b.colorTarget(unused); }, {});
-    g.addPass("final", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.addPass("makeUnused",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(unused);
+              },
+              {});
+    g.addPass("final",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(out);
+              },
+              {});
     g.addPass("effect", [&](auto& b) { b.sideEffect(); }, {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
@@ -61,7 +74,12 @@ TEST(RenderGraph, CullsAWriteThatALaterClearHides) {
     g.addPass("first", [&](auto& b) { b.colorTarget(a); }, {});
     g.addPass("second", [&](auto& b) { b.colorTarget(a, LoadOp::Clear); }, {});
     g.addPass("accumulate", [&](auto& b) { b.colorTarget(a, LoadOp::Load); }, {});
-    g.addPass("final", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.addPass("final",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(out);
+              },
+              {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
     EXPECT_TRUE(culled(g, "first"));  // "second" clears what it wrote
@@ -74,12 +92,21 @@ TEST(RenderGraph, CullsAWriteThatALaterClearHides) {
 // that does not exist is an error, and a cube has 6 layers.
 TEST(RenderGraph, PassesWritingDifferentLayersAllSurvive) {
     RenderGraph g;
-    auto cascades = g.createTexture("cascades", {.format = Format::D32F, .width = 16, .height = 16,
-                                                 .dimension = gdi::TextureDimension::Texture2DArray, .layers = 3});
+    auto cascades = g.createTexture("cascades", {.format = Format::D32F,
+                                                 .width = 16,
+                                                 .height = 16,
+                                                 .dimension = gdi::TextureDimension::Texture2DArray,
+                                                 .layers = 3});
     auto out = importFake(g);
     for (uint32_t layer = 0; layer < 3; ++layer)
-        g.addPass("layer " + std::to_string(layer), [&](auto& b) { b.depthTarget(cascades, LoadOp::Clear, 1.0f, layer); }, {});
-    g.addPass("final", [&](auto& b) { b.sample(cascades); b.colorTarget(out); }, {});
+        g.addPass("layer " + std::to_string(layer),
+                  [&](auto& b) { b.depthTarget(cascades, LoadOp::Clear, 1.0f, layer); }, {});
+    g.addPass("final",
+              [&](auto& b) {
+                  b.sample(cascades);
+                  b.colorTarget(out);
+              },
+              {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
     for (const char* p : {"layer 0", "layer 1", "layer 2"}) EXPECT_FALSE(culled(g, p)) << p;
@@ -87,17 +114,29 @@ TEST(RenderGraph, PassesWritingDifferentLayersAllSurvive) {
     EXPECT_EQ(g.texture(cascades).size, 16u * 16u * 4u * 3u);  // every layer's bytes
 
     RenderGraph bad;
-    auto two = bad.createTexture("two", {.format = Format::D32F, .width = 8, .height = 8,
-                                         .dimension = gdi::TextureDimension::Texture2DArray, .layers = 2});
+    auto two = bad.createTexture("two", {.format = Format::D32F,
+                                         .width = 8,
+                                         .height = 8,
+                                         .dimension = gdi::TextureDimension::Texture2DArray,
+                                         .layers = 2});
     auto o = importFake(bad);
-    bad.addPass("p", [&](auto& b) { b.depthTarget(two, LoadOp::Clear, 1.0f, 2); b.colorTarget(o); }, {});
+    bad.addPass("p",
+                [&](auto& b) {
+                    b.depthTarget(two, LoadOp::Clear, 1.0f, 2);
+                    b.colorTarget(o);
+                },
+                {});
     try {
         bad.compile(graph::CompileOptions{});
         ADD_FAILURE() << "layer 2 of 2 accepted";
     } catch (const gdi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("renders into layer 2 of 'two', which has 2"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("renders into layer 2 of 'two', which has 2"),
+                  std::string::npos)
+            << e.what();
     }
-    EXPECT_THROW(bad.createTexture("cube", {.width = 8, .height = 8, .dimension = gdi::TextureDimension::TextureCube,
+    EXPECT_THROW(bad.createTexture("cube", {.width = 8,
+                                            .height = 8,
+                                            .dimension = gdi::TextureDimension::TextureCube,
                                             .layers = 4}),
                  gdi::Error);
 }
@@ -116,8 +155,18 @@ TEST(RenderGraph, LifetimesSpanFirstToLastUse) {
     auto b2 = g.createTexture("b", {.width = 8, .height = 8});
     auto out = importFake(g);
     g.addPass("p0", [&](auto& b) { b.colorTarget(a); }, {});
-    g.addPass("p1", [&](auto& b) { b.sample(a); b.colorTarget(b2); }, {});
-    g.addPass("p2", [&](auto& b) { b.sample(b2); b.colorTarget(out); }, {});
+    g.addPass("p1",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(b2);
+              },
+              {});
+    g.addPass("p2",
+              [&](auto& b) {
+                  b.sample(b2);
+                  b.colorTarget(out);
+              },
+              {});
     g.addPass("p3", [&](auto& b) { b.colorTarget(out, LoadOp::Load); }, {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
@@ -138,9 +187,20 @@ TEST(RenderGraph, DisjointLifetimesShareMemoryOverlappingOnesDoNot) {
     auto c = g.createTexture("c", {.format = Format::RGBA16F, .width = 16, .height = 16});
     auto out = importFake(g);
     g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
-    g.addPass("aToB", [&](auto& b) { b.sample(a); b.colorTarget(b2); }, {});
+    g.addPass("aToB",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(b2);
+              },
+              {});
     g.addPass("makeC", [&](auto& b) { b.colorTarget(c); }, {});
-    g.addPass("final", [&](auto& b) { b.sample(b2); b.sample(c); b.colorTarget(out); }, {});
+    g.addPass("final",
+              [&](auto& b) {
+                  b.sample(b2);
+                  b.sample(c);
+                  b.colorTarget(out);
+              },
+              {});
     g.markOutput(out);
 
     g.compile({.aliasing = graph::AliasingMode::Memory});
@@ -165,9 +225,19 @@ TEST(RenderGraph, ObjectReuseNeedsTheSameFormatAndSize) {
     auto c = g.createTexture("c", {.format = Format::RGBA8, .width = 16, .height = 16});
     auto out = importFake(g);
     g.addPass("makeA", [&](auto& b) { b.colorTarget(a); }, {});
-    g.addPass("useA", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {});
+    g.addPass("useA",
+              [&](auto& b) {
+                  b.sample(a);
+                  b.colorTarget(out);
+              },
+              {});
     g.addPass("makeC", [&](auto& b) { b.colorTarget(c); }, {});
-    g.addPass("useC", [&](auto& b) { b.sample(c); b.colorTarget(out, LoadOp::Load); }, {});
+    g.addPass("useC",
+              [&](auto& b) {
+                  b.sample(c);
+                  b.colorTarget(out, LoadOp::Load);
+              },
+              {});
     g.markOutput(out);
     g.compile({.aliasing = graph::AliasingMode::ObjectReuse});
     EXPECT_NE(g.texture(c).physical, g.texture(a).physical);
@@ -179,16 +249,20 @@ TEST(RenderGraph, ObjectReuseNeedsTheSameFormatAndSize) {
 // (Memory) or an object (ObjectReuse), offsets respect alignment, and aliasing never costs more.
 TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
     std::mt19937 rng(1234);
-    const Format formats[] = {Format::RGBA8, Format::RGBA16F, Format::RGBA32F, Format::R32F, Format::D32F};
+    const Format formats[] = {Format::RGBA8, Format::RGBA16F, Format::RGBA32F, Format::R32F,
+                              Format::D32F};
     int sharedSomewhere = 0;
     for (int iteration = 0; iteration < 300; ++iteration) {
         RenderGraph g;
         std::vector<TextureId> tex;
         const int textureCount = 2 + int(rng() % 10);
-        const uint32_t w = 8 << (rng() % 3), h = 8 << (rng() % 3);  // one size per graph: passes need equal targets
+        const uint32_t w = 8 << (rng() % 3),
+                       h = 8 << (rng() % 3);  // one size per graph: passes need equal targets
         for (int i = 0; i < textureCount; ++i)
-            tex.push_back(g.createTexture("t" + std::to_string(i), {.format = formats[rng() % 5], .width = w, .height = h}));
-        auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = w, .height = h});
+            tex.push_back(g.createTexture("t" + std::to_string(i),
+                                          {.format = formats[rng() % 5], .width = w, .height = h}));
+        auto out = g.importTexture("out", gdi::TextureHandle{1},
+                                   {.format = Format::RGBA8, .width = w, .height = h});
         std::vector<bool> written(textureCount, false);
         const int passCount = 2 + int(rng() % 12);
         for (int p = 0; p < passCount; ++p) {
@@ -196,23 +270,35 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
             std::vector<int> reads;
             for (int k = 0; k < 2; ++k) {
                 int r = int(rng() % textureCount);
-                if (written[r] && std::find(reads.begin(), reads.end(), r) == reads.end()) reads.push_back(r);
+                if (written[r] && std::find(reads.begin(), reads.end(), r) == reads.end())
+                    reads.push_back(r);
             }
             int colour = -1, depth = -1;
             for (int tries = 0; tries < 8 && (colour < 0 || depth < 0); ++tries) {
                 int t = int(rng() % textureCount);
-                if (std::find(reads.begin(), reads.end(), t) != reads.end() || t == colour || t == depth) continue;
+                if (std::find(reads.begin(), reads.end(), t) != reads.end() || t == colour ||
+                    t == depth)
+                    continue;
                 const bool isDepth = gdi::isDepthFormat(g.texture(tex[t]).desc.format);
-                if (isDepth && depth < 0 && rng() % 2) depth = t;
-                else if (!isDepth && colour < 0) colour = t;
+                if (isDepth && depth < 0 && rng() % 2)
+                    depth = t;
+                else if (!isDepth && colour < 0)
+                    colour = t;
             }
             const bool last = p == passCount - 1;
-            g.addPass("p" + std::to_string(p), [&](graph::PassBuilder& b) {
-                for (int r : reads) b.sample(tex[r]);
-                if (colour >= 0) b.colorTarget(tex[colour], written[colour] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
-                if (depth >= 0) b.depthTarget(tex[depth], written[depth] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
-                if (last || rng() % 4 == 0) b.colorTarget(out, LoadOp::Load);
-            }, {});
+            g.addPass(
+                "p" + std::to_string(p),
+                [&](graph::PassBuilder& b) {
+                    for (int r : reads) b.sample(tex[r]);
+                    if (colour >= 0)
+                        b.colorTarget(tex[colour],
+                                      written[colour] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
+                    if (depth >= 0)
+                        b.depthTarget(tex[depth],
+                                      written[depth] && rng() % 2 ? LoadOp::Load : LoadOp::Clear);
+                    if (last || rng() % 4 == 0) b.colorTarget(out, LoadOp::Load);
+                },
+                {});
             if (colour >= 0) written[colour] = true;
             if (depth >= 0) written[depth] = true;
         }
@@ -221,8 +307,10 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
             graph::CompileOptions options{.aliasing = mode};
             // Unusual sizes and alignments, as real drivers report them.
             options.requirements = [](const gdi::TextureDesc& d) {
-                const uint64_t bytes = uint64_t(d.width) * d.height * gdi::formatInfo(d.format).bytesPerPixel;
-                return gdi::MemoryRequirements{bytes + 96, gdi::isDepthFormat(d.format) ? 4096u : 512u};
+                const uint64_t bytes =
+                    uint64_t(d.width) * d.height * gdi::formatInfo(d.format).bytesPerPixel;
+                return gdi::MemoryRequirements{bytes + 96,
+                                               gdi::isDepthFormat(d.format) ? 4096u : 512u};
             };
             g.compile(options);
             const auto& ts = g.textures();
@@ -235,18 +323,21 @@ TEST(RenderGraph, RandomGraphsNeverAliasLiveTextures) {
                 }
                 for (size_t j = i + 1; j < ts.size(); ++j) {
                     if (ts[j].imported || !ts[j].used()) continue;
-                    const bool shareBytes = ts[i].offset < ts[j].offset + ts[j].size && ts[j].offset < ts[i].offset + ts[i].size;
+                    const bool shareBytes = ts[i].offset < ts[j].offset + ts[j].size &&
+                                            ts[j].offset < ts[i].offset + ts[i].size;
                     const bool shareObject = ts[i].physical == ts[j].physical;
                     if (mode == graph::AliasingMode::Memory ? shareBytes : shareObject) {
                         ++sharedSomewhere;
                         ASSERT_FALSE(ts[i].overlaps(ts[j]))
-                            << "iteration " << iteration << ": " << ts[i].name << " and " << ts[j].name << " are both live in passes "
-                            << std::max(ts[i].firstPass, ts[j].firstPass) << ".." << std::min(ts[i].lastPass, ts[j].lastPass)
-                            << " yet share memory\n"
+                            << "iteration " << iteration << ": " << ts[i].name << " and "
+                            << ts[j].name << " are both live in passes "
+                            << std::max(ts[i].firstPass, ts[j].firstPass) << ".."
+                            << std::min(ts[i].lastPass, ts[j].lastPass) << " yet share memory\n"
                             << g.toDot();
                         if (mode == graph::AliasingMode::ObjectReuse) {
                             EXPECT_EQ(ts[i].desc.format, ts[j].desc.format);
-                            EXPECT_EQ(ts[i].desc.usage, ts[j].desc.usage);  // the shared object has every usage
+                            EXPECT_EQ(ts[i].desc.usage,
+                                      ts[j].desc.usage);  // the shared object has every usage
                         }
                     }
                 }
@@ -264,10 +355,27 @@ TEST(RenderGraph, BarriersFollowStateChanges) {
     RenderGraph g;
     auto gb = g.createTexture("gbuffer", {.width = 8, .height = 8});
     auto depth = g.createTexture("depth", {.format = Format::D32F, .width = 8, .height = 8});
-    auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = 8, .height = 8});
-    g.addPass("geometry", [&](auto& b) { b.colorTarget(gb); b.depthTarget(depth); }, {});
-    g.addPass("lighting", [&](auto& b) { b.sample(gb); b.sample(depth); b.colorTarget(out); }, {});
-    g.addPass("transparent", [&](auto& b) { b.colorTarget(out, LoadOp::Load); b.depthTarget(depth, LoadOp::Load); }, {});
+    auto out = g.importTexture("out", gdi::TextureHandle{1},
+                               {.format = Format::RGBA8, .width = 8, .height = 8});
+    g.addPass("geometry",
+              [&](auto& b) {
+                  b.colorTarget(gb);
+                  b.depthTarget(depth);
+              },
+              {});
+    g.addPass("lighting",
+              [&](auto& b) {
+                  b.sample(gb);
+                  b.sample(depth);
+                  b.colorTarget(out);
+              },
+              {});
+    g.addPass("transparent",
+              [&](auto& b) {
+                  b.colorTarget(out, LoadOp::Load);
+                  b.depthTarget(depth, LoadOp::Load);
+              },
+              {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
     auto has = [&](size_t pass, TextureId t, ResourceState before, ResourceState after) {
@@ -281,7 +389,8 @@ TEST(RenderGraph, BarriersFollowStateChanges) {
     EXPECT_TRUE(has(1, depth, ResourceState::DepthTarget, ResourceState::ShaderRead));
     EXPECT_EQ(g.passes()[1].barriers.size(), 2u);  // the imported output's first use needs none
     EXPECT_TRUE(has(2, depth, ResourceState::ShaderRead, ResourceState::DepthTarget));
-    EXPECT_TRUE(has(2, out, ResourceState::RenderTarget, ResourceState::RenderTarget));  // write after write
+    EXPECT_TRUE(has(2, out, ResourceState::RenderTarget,
+                    ResourceState::RenderTarget));  // write after write
     const std::string dot = g.toDot();
     EXPECT_NE(dot.find("digraph RenderGraph"), std::string::npos);
     EXPECT_NE(dot.find("1: lighting"), std::string::npos);
@@ -297,28 +406,58 @@ TEST(RenderGraph, BufferBarriersOrderWritesAndReads) {
     auto args = g.importBuffer("args", gdi::BufferHandle{1}, 32);
     auto list = g.createBuffer("list", {.size = 256});
     g.addPass("reset", [&](auto& b) { b.buffer(args, A::CopyDst); }, {});
-    g.addPass("simulate", [&](auto& b) { b.buffer(args, A::StorageRead | A::StorageWrite); b.buffer(list, A::StorageWrite); }, {});
+    g.addPass("simulate",
+              [&](auto& b) {
+                  b.buffer(args, A::StorageRead | A::StorageWrite);
+                  b.buffer(list, A::StorageWrite);
+              },
+              {});
     auto sorted = g.createBuffer("sorted", {.size = 256});
-    g.addPass("sort", [&](auto& b) { b.buffer(list, A::StorageRead); b.buffer(args, A::StorageRead); b.buffer(sorted, A::StorageWrite); }, {});
-    g.addPass("draw", [&](auto& b) {
-        b.buffer(args, A::Indirect); b.buffer(list, A::StorageRead); b.buffer(sorted, A::StorageRead); b.colorTarget(out);
-    }, {});
-    g.addPass("rewrite", [&](auto& b) { b.buffer(list, A::StorageWrite); b.colorTarget(out, LoadOp::Load); }, {});
-    g.addPass("draw again", [&](auto& b) { b.buffer(list, A::Vertex); b.colorTarget(out, LoadOp::Load); }, {});
+    g.addPass("sort",
+              [&](auto& b) {
+                  b.buffer(list, A::StorageRead);
+                  b.buffer(args, A::StorageRead);
+                  b.buffer(sorted, A::StorageWrite);
+              },
+              {});
+    g.addPass("draw",
+              [&](auto& b) {
+                  b.buffer(args, A::Indirect);
+                  b.buffer(list, A::StorageRead);
+                  b.buffer(sorted, A::StorageRead);
+                  b.colorTarget(out);
+              },
+              {});
+    g.addPass("rewrite",
+              [&](auto& b) {
+                  b.buffer(list, A::StorageWrite);
+                  b.colorTarget(out, LoadOp::Load);
+              },
+              {});
+    g.addPass("draw again",
+              [&](auto& b) {
+                  b.buffer(list, A::Vertex);
+                  b.colorTarget(out, LoadOp::Load);
+              },
+              {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
     using Planned = std::vector<std::tuple<uint32_t, A, A>>;
     auto planned = [&](size_t pass) {
         Planned v;
-        for (const auto& b : g.passes()[pass].bufferBarriers) v.emplace_back(b.buffer.index, b.before, b.after);
+        for (const auto& b : g.passes()[pass].bufferBarriers)
+            v.emplace_back(b.buffer.index, b.before, b.after);
         return v;
     };
     EXPECT_EQ(planned(0), Planned{});
     EXPECT_EQ(planned(1), (Planned{{args.index, A::CopyDst, A::StorageRead | A::StorageWrite}}));
-    EXPECT_EQ(planned(2), (Planned{{list.index, A::StorageWrite, A::StorageRead}, {args.index, A::StorageWrite, A::StorageRead}}));
+    EXPECT_EQ(planned(2), (Planned{{list.index, A::StorageWrite, A::StorageRead},
+                                   {args.index, A::StorageWrite, A::StorageRead}}));
     // The list is already visible to storage reads; the sorted list is not.
-    EXPECT_EQ(planned(3), (Planned{{args.index, A::StorageWrite, A::Indirect}, {sorted.index, A::StorageWrite, A::StorageRead}}));
-    EXPECT_EQ(planned(4), (Planned{{list.index, A::StorageWrite | A::StorageRead, A::StorageWrite}}));
+    EXPECT_EQ(planned(3), (Planned{{args.index, A::StorageWrite, A::Indirect},
+                                   {sorted.index, A::StorageWrite, A::StorageRead}}));
+    EXPECT_EQ(planned(4),
+              (Planned{{list.index, A::StorageWrite | A::StorageRead, A::StorageWrite}}));
     EXPECT_EQ(planned(5), (Planned{{list.index, A::StorageWrite, A::Vertex}}));
     // A transient buffer gets the usages its passes need.
     EXPECT_EQ(g.buffer(list).usage, gdi::BufferUsage::Storage | gdi::BufferUsage::Vertex);
@@ -340,7 +479,12 @@ TEST(RenderGraph, BufferWritersSurviveOnlyWhenRead) {
     g.addPass("count", [&](auto& b) { b.buffer(counts, A::StorageWrite); }, {});
     g.addPass("build lists", [&](auto& b) { b.buffer(lists, A::StorageWrite); }, {});
     g.addPass("write unread", [&](auto& b) { b.buffer(unread, A::StorageWrite); }, {});
-    g.addPass("shade", [&](auto& b) { b.buffer(lists, A::StorageRead); b.colorTarget(out); }, {});
+    g.addPass("shade",
+              [&](auto& b) {
+                  b.buffer(lists, A::StorageRead);
+                  b.colorTarget(out);
+              },
+              {});
     g.markOutput(out);
     g.compile(graph::CompileOptions{});
     EXPECT_TRUE(culled(g, "count"));
@@ -353,10 +497,12 @@ TEST(RenderGraph, BufferWritersSurviveOnlyWhenRead) {
 }
 
 TEST(RenderGraph, MalformedGraphsAreClearErrors) {
-    auto expectError = [](const std::function<void(RenderGraph&, TextureId, TextureId)>& build, const std::string& message) {
+    auto expectError = [](const std::function<void(RenderGraph&, TextureId, TextureId)>& build,
+                          const std::string& message) {
         RenderGraph g;
         auto a = g.createTexture("a", {.width = 8, .height = 8});
-        auto out = g.importTexture("out", gdi::TextureHandle{1}, {.format = Format::RGBA8, .width = 8, .height = 8});
+        auto out = g.importTexture("out", gdi::TextureHandle{1},
+                                   {.format = Format::RGBA8, .width = 8, .height = 8});
         build(g, a, out);
         g.markOutput(out);
         try {
@@ -366,48 +512,117 @@ TEST(RenderGraph, MalformedGraphsAreClearErrors) {
             EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
         }
     };
-    expectError([](auto& g, auto a, auto out) { g.addPass("p", [&](auto& b) { b.sample(a); b.colorTarget(out); }, {}); },
-                "reads transient texture 'a' before any pass writes it");
-    expectError([](auto& g, auto a, auto out) {
-        g.addPass("w", [&](auto& b) { b.colorTarget(a); }, {});
-        g.addPass("p", [&](auto& b) { b.sample(a); b.colorTarget(a, LoadOp::Load); b.colorTarget(out); }, {});
-    }, "uses texture 'a' twice");
-    expectError([](auto& g, auto, auto out) {
-        auto big = g.createTexture("big", {.width = 16, .height = 16});
-        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.colorTarget(big); }, {});
-    }, "target 'big' is 16x16, the others 8x8");
-    expectError([](auto& g, auto a, auto) { g.addPass("p", [&](auto& b) { b.depthTarget(a); }, {}); },
-                "cannot be a depth target");
-    expectError([](auto& g, auto, auto) { g.addPass("p", [&](auto& b) { b.colorTarget(TextureId{99}); }, {}); },
+    expectError(
+        [](auto& g, auto a, auto out) {
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.sample(a);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "reads transient texture 'a' before any pass writes it");
+    expectError(
+        [](auto& g, auto a, auto out) {
+            g.addPass("w", [&](auto& b) { b.colorTarget(a); }, {});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.sample(a);
+                          b.colorTarget(a, LoadOp::Load);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "uses texture 'a' twice");
+    expectError(
+        [](auto& g, auto, auto out) {
+            auto big = g.createTexture("big", {.width = 16, .height = 16});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.colorTarget(out);
+                          b.colorTarget(big);
+                      },
+                      {});
+        },
+        "target 'big' is 16x16, the others 8x8");
+    expectError(
+        [](auto& g, auto a, auto) { g.addPass("p", [&](auto& b) { b.depthTarget(a); }, {}); },
+        "cannot be a depth target");
+    expectError([](auto& g, auto,
+                   auto) { g.addPass("p", [&](auto& b) { b.colorTarget(TextureId{99}); }, {}); },
                 "invalid texture id");
-    expectError([](auto& g, auto, auto out) {
-        auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
-        g.addPass("draw", [&](auto& b) { b.colorTarget(ms); }, {});
-        g.addPass("p", [&](auto& b) { b.sample(ms); b.colorTarget(out); }, {});
-    }, "samples multisampled texture 'ms'");
-    expectError([](auto& g, auto a, auto out) {
-        auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
-        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.resolve(ms, a); }, {});
-    }, "resolves 'ms' into 'a': the source is not a target of this pass");
-    expectError([](auto& g, auto a, auto out) {
-        g.addPass("p", [&](auto& b) { b.colorTarget(out); b.resolve(out, a); }, {});
-    }, "the source is single-sample");
-    expectError([](auto& g, auto, auto out) {
-        auto buf = g.createBuffer("buf", {.size = 16});
-        g.addPass("p", [&](auto& b) { b.buffer(buf, gdi::BufferAccess::StorageRead); b.buffer(buf, gdi::BufferAccess::Indirect); b.colorTarget(out); }, {});
-    }, "declares buffer 'buf' twice");
-    expectError([](auto& g, auto, auto out) {
-        g.addPass("p", [&](auto& b) { b.buffer(graph::BufferId{7}, gdi::BufferAccess::StorageRead); b.colorTarget(out); }, {});
-    }, "invalid buffer id");
-    expectError([](auto& g, auto, auto out) {
-        auto buf = g.createBuffer("buf", {.size = 16});
-        g.addPass("p", [&](auto& b) { b.buffer(buf, gdi::BufferAccess::None); b.colorTarget(out); }, {});
-    }, "uses buffer 'buf' with no access");
+    expectError(
+        [](auto& g, auto, auto out) {
+            auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
+            g.addPass("draw", [&](auto& b) { b.colorTarget(ms); }, {});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.sample(ms);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "samples multisampled texture 'ms'");
+    expectError(
+        [](auto& g, auto a, auto out) {
+            auto ms = g.createTexture("ms", {.width = 8, .height = 8, .sampleCount = 4});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.colorTarget(out);
+                          b.resolve(ms, a);
+                      },
+                      {});
+        },
+        "resolves 'ms' into 'a': the source is not a target of this pass");
+    expectError(
+        [](auto& g, auto a, auto out) {
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.colorTarget(out);
+                          b.resolve(out, a);
+                      },
+                      {});
+        },
+        "the source is single-sample");
+    expectError(
+        [](auto& g, auto, auto out) {
+            auto buf = g.createBuffer("buf", {.size = 16});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.buffer(buf, gdi::BufferAccess::StorageRead);
+                          b.buffer(buf, gdi::BufferAccess::Indirect);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "declares buffer 'buf' twice");
+    expectError(
+        [](auto& g, auto, auto out) {
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.buffer(graph::BufferId{7}, gdi::BufferAccess::StorageRead);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "invalid buffer id");
+    expectError(
+        [](auto& g, auto, auto out) {
+            auto buf = g.createBuffer("buf", {.size = 16});
+            g.addPass("p",
+                      [&](auto& b) {
+                          b.buffer(buf, gdi::BufferAccess::None);
+                          b.colorTarget(out);
+                      },
+                      {});
+        },
+        "uses buffer 'buf' with no access");
     RenderGraph g;
     EXPECT_THROW(g.createBuffer("empty", {.size = 0}), gdi::Error);
     EXPECT_THROW(g.importBuffer("null", gdi::BufferHandle{}, 16), gdi::Error);
     EXPECT_THROW(g.createTexture("zero", {.width = 0, .height = 8}), gdi::Error);
-    EXPECT_THROW(g.createTexture("three samples", {.width = 8, .height = 8, .sampleCount = 3}), gdi::Error);
+    EXPECT_THROW(g.createTexture("three samples", {.width = 8, .height = 8, .sampleCount = 3}),
+                 gdi::Error);
 }
 
 // ---- on every backend: real textures, aliased memory, explicit barriers --------------------------
@@ -419,19 +634,30 @@ class RenderGraphOnDevice : public fe::testing::BackendTest {};
 TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
     gdi::Device& d = *device;
     using namespace gdi;
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
     const float params[8] = {0, 0, 0, 0, 0.5f, 0, 0, 0};
-    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, gdi::bytesOf(params));
+    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform},
+                              gdi::bytesOf(params));
     auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
-    const std::vector<BindingSlot> slots = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
-                                            {1, BindingType::SampledTexture, ShaderStage::Fragment}};
-    auto copy = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA16F},
+    const std::vector<BindingSlot> slots = {
+        {0, BindingType::UniformBuffer, ShaderStage::Vertex},
+        {1, BindingType::SampledTexture, ShaderStage::Fragment}};
+    auto copy = d.createGraphicsPipeline({.vertexShader = vs,
+                                          .fragmentShader = fs,
+                                          .colorFormats = {Format::RGBA16F},
                                           .bindings = slots});
-    auto add = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
-                                         .blend = {{.enable = true, .srcColor = BlendFactor::One, .dstColor = BlendFactor::One,
-                                                    .srcAlpha = BlendFactor::One, .dstAlpha = BlendFactor::Zero}},
-                                         .colorFormats = {Format::RGBA8}, .bindings = slots});
+    auto add = d.createGraphicsPipeline({.vertexShader = vs,
+                                         .fragmentShader = fs,
+                                         .blend = {{.enable = true,
+                                                    .srcColor = BlendFactor::One,
+                                                    .dstColor = BlendFactor::One,
+                                                    .srcAlpha = BlendFactor::One,
+                                                    .dstAlpha = BlendFactor::Zero}},
+                                         .colorFormats = {Format::RGBA8},
+                                         .bindings = slots});
     auto output = d.createTexture(kOutputDesc);
 
     for (bool aliasing : {true, false}) {
@@ -439,10 +665,12 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
         auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 64, .height = 64});
         auto b2 = g.createTexture("b", {.format = Format::RGBA16F, .width = 64, .height = 64});
         auto c = g.createTexture("c", {.format = Format::RGBA16F, .width = 64, .height = 64});
-        auto unused = g.createTexture("unused", {.format = Format::RGBA16F, .width = 64, .height = 64});
+        auto unused =
+            g.createTexture("unused", {.format = Format::RGBA16F, .width = 64, .height = 64});
         auto out = g.importTexture("out", output, kOutputDesc);
         bool unusedRan = false;
-        auto draw = [&](graph::PassContext& ctx, PipelineHandle p, std::initializer_list<TextureId> inputs) {
+        auto draw = [&](graph::PassContext& ctx, PipelineHandle p,
+                        std::initializer_list<TextureId> inputs) {
             ctx.cmd.setPipeline(p);
             ctx.cmd.setUniformBuffer(0, ubo);
             for (TextureId t : inputs) {
@@ -450,21 +678,57 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
                 ctx.cmd.draw(3);
             }
         };
-        g.addPass("makeA", [&](auto& b) { b.colorTarget(a, LoadOp::Clear, {1, 0, 0, 1}); },
-                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); ctx.cmd.endRenderPass(); });
-        g.addPass("aToB", [&](auto& b) { b.sample(a); b.colorTarget(b2); },
-                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); draw(ctx, copy, {a}); ctx.cmd.endRenderPass(); });
-        g.addPass("makeC", [&](auto& b) { b.colorTarget(c, LoadOp::Clear, {0, 0, 1, 0}); },
-                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); ctx.cmd.endRenderPass(); });
-        g.addPass("makeUnused", [&](auto& b) { b.colorTarget(unused); }, [&](graph::PassContext&) { unusedRan = true; });
-        g.addPass("final", [&](auto& b) { b.sample(b2); b.sample(c); b.colorTarget(out); },
-                  [&](graph::PassContext& ctx) { ctx.beginRenderPass(); draw(ctx, add, {b2, c}); ctx.cmd.endRenderPass(); });
+        g.addPass(
+            "makeA",
+            [&](auto& b) {
+                b.colorTarget(a, LoadOp::Clear, {1, 0, 0, 1});
+            },
+            [&](graph::PassContext& ctx) {
+                ctx.beginRenderPass();
+                ctx.cmd.endRenderPass();
+            });
+        g.addPass(
+            "aToB",
+            [&](auto& b) {
+                b.sample(a);
+                b.colorTarget(b2);
+            },
+            [&](graph::PassContext& ctx) {
+                ctx.beginRenderPass();
+                draw(ctx, copy, {a});
+                ctx.cmd.endRenderPass();
+            });
+        g.addPass(
+            "makeC",
+            [&](auto& b) {
+                b.colorTarget(c, LoadOp::Clear, {0, 0, 1, 0});
+            },
+            [&](graph::PassContext& ctx) {
+                ctx.beginRenderPass();
+                ctx.cmd.endRenderPass();
+            });
+        g.addPass(
+            "makeUnused", [&](auto& b) { b.colorTarget(unused); },
+            [&](graph::PassContext&) { unusedRan = true; });
+        g.addPass(
+            "final",
+            [&](auto& b) {
+                b.sample(b2);
+                b.sample(c);
+                b.colorTarget(out);
+            },
+            [&](graph::PassContext& ctx) {
+                ctx.beginRenderPass();
+                draw(ctx, add, {b2, c});
+                ctx.cmd.endRenderPass();
+            });
         g.markOutput(out);
         g.compile(d, aliasing);
         if (aliasing) {
             EXPECT_LT(g.memory().withAliasing, g.memory().withoutAliasing) << g.toDot();
-            EXPECT_EQ(g.aliasing(), d.info().features.memoryAliasing ? graph::AliasingMode::Memory
-                                                                     : graph::AliasingMode::ObjectReuse);
+            EXPECT_EQ(g.aliasing(), d.info().features.memoryAliasing
+                                        ? graph::AliasingMode::Memory
+                                        : graph::AliasingMode::ObjectReuse);
         }
         EXPECT_THROW(g.handle(unused), gdi::Error);
         for (int frame = 0; frame < 2; ++frame) {  // the second frame reuses the aliased memory
@@ -478,7 +742,8 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
         for (uint32_t y = 0; y < img.height; ++y)
             for (uint32_t x = 0; x < img.width; ++x) {
                 auto t = img.texel(x, y);
-                wrong += std::abs(t[0] - 1) > 0.01f || std::abs(t[1]) > 0.01f || std::abs(t[2] - 1) > 0.01f;
+                wrong += std::abs(t[0] - 1) > 0.01f || std::abs(t[1]) > 0.01f ||
+                         std::abs(t[2] - 1) > 0.01f;
             }
         EXPECT_EQ(wrong, 0) << "aliasing " << aliasing;
         if (d.info().features.timestamps) {
@@ -502,53 +767,79 @@ TEST_P(RenderGraphOnDevice, AliasedTexturesKeepTheirContents) {
 TEST_P(RenderGraphOnDevice, MultisampledTransientsAndResolves) {
     gdi::Device& d = *device;
     using namespace gdi;
-    if (!(d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts & 4)) GTEST_SKIP() << "no 4x MSAA";
-    auto vsQuad = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/position3_color.vert")});
-    auto fsColor = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
-    auto vs = d.createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
-    auto fs = d.createShader({.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
+    if (!(d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts & 4))
+        GTEST_SKIP() << "no 4x MSAA";
+    auto vsQuad = d.createShader({.stage = ShaderStage::Vertex,
+                                  .binary = shaders::find("conformance/position3_color.vert")});
+    auto fsColor = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/color.frag")});
+    auto vs = d.createShader(
+        {.stage = ShaderStage::Vertex, .binary = shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/textured.frag")});
     auto quadPipe = d.createGraphicsPipeline(
-        {.vertexShader = vsQuad, .fragmentShader = fsColor,
-         .vertexBuffers = {{.stride = 28, .attributes = {{0, VertexFormat::Float3, 0}, {1, VertexFormat::Float4, 12}}}},
-         .multisample = {.sampleCount = 4}, .depthStencil = {.depthTest = true, .depthWrite = true},
-         .colorFormats = {Format::RGBA16F}, .depthFormat = Format::D32F});
+        {.vertexShader = vsQuad,
+         .fragmentShader = fsColor,
+         .vertexBuffers = {{.stride = 28,
+                            .attributes = {{0, VertexFormat::Float3, 0},
+                                           {1, VertexFormat::Float4, 12}}}},
+         .multisample = {.sampleCount = 4},
+         .depthStencil = {.depthTest = true, .depthWrite = true},
+         .colorFormats = {Format::RGBA16F},
+         .depthFormat = Format::D32F});
     const float e = 31.5f / 32.0f - 1.0f;
-    const float quad[6][7] = {{-1, -1, 0.25f, 1, 1, 1, 1}, {e, -1, 0.25f, 1, 1, 1, 1}, {-1, 1, 0.25f, 1, 1, 1, 1},
-                              {-1, 1, 0.25f, 1, 1, 1, 1},  {e, -1, 0.25f, 1, 1, 1, 1}, {e, 1, 0.25f, 1, 1, 1, 1}};
+    const float quad[6][7] = {{-1, -1, 0.25f, 1, 1, 1, 1}, {e, -1, 0.25f, 1, 1, 1, 1},
+                              {-1, 1, 0.25f, 1, 1, 1, 1},  {-1, 1, 0.25f, 1, 1, 1, 1},
+                              {e, -1, 0.25f, 1, 1, 1, 1},  {e, 1, 0.25f, 1, 1, 1, 1}};
     auto vb = d.createBuffer({.size = sizeof quad, .usage = BufferUsage::Vertex}, bytesOf(quad));
     const float params[8] = {0, 0, 0, 0, 0.5f, 0, 0, 0};
-    auto ubo = d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, bytesOf(params));
+    auto ubo =
+        d.createBuffer({.size = sizeof(params), .usage = BufferUsage::Uniform}, bytesOf(params));
     auto sampler = d.createSampler({.minFilter = Filter::Nearest, .magFilter = Filter::Nearest});
-    auto show = d.createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs, .colorFormats = {Format::RGBA8},
-                                          .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
-                                                       {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
+    auto show = d.createGraphicsPipeline(
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = {Format::RGBA8},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::Vertex},
+                      {1, BindingType::SampledTexture, ShaderStage::Fragment}}});
     auto output = d.createTexture(kOutputDesc);
     RenderGraph g;
-    auto msColor = g.createTexture("ms colour", {.format = Format::RGBA16F, .width = 64, .height = 64, .sampleCount = 4});
-    auto msDepth = g.createTexture("ms depth", {.format = Format::D32F, .width = 64, .height = 64, .sampleCount = 4});
+    auto msColor = g.createTexture(
+        "ms colour", {.format = Format::RGBA16F, .width = 64, .height = 64, .sampleCount = 4});
+    auto msDepth = g.createTexture(
+        "ms depth", {.format = Format::D32F, .width = 64, .height = 64, .sampleCount = 4});
     auto color = g.createTexture("colour", {.format = Format::RGBA16F, .width = 64, .height = 64});
     auto depth = g.createTexture("depth", {.format = Format::D32F, .width = 64, .height = 64});
     auto out = g.importTexture("out", output, kOutputDesc);
-    g.addPass("draw", [&](auto& b) {
-        b.colorTarget(msColor);
-        b.depthTarget(msDepth);
-        b.resolve(msColor, color);
-        b.resolve(msDepth, depth);
-    }, [&](graph::PassContext& ctx) {
-        ctx.beginRenderPass();
-        ctx.cmd.setPipeline(quadPipe);
-        ctx.cmd.setVertexBuffer(0, vb);
-        ctx.cmd.draw(6);
-        ctx.cmd.endRenderPass();
-    });
-    g.addPass("show", [&](auto& b) { b.sample(color); b.colorTarget(out); }, [&](graph::PassContext& ctx) {
-        ctx.beginRenderPass();
-        ctx.cmd.setPipeline(show);
-        ctx.cmd.setUniformBuffer(0, ubo);
-        ctx.cmd.setTexture(1, ctx.texture(color), sampler);
-        ctx.cmd.draw(3);
-        ctx.cmd.endRenderPass();
-    });
+    g.addPass(
+        "draw",
+        [&](auto& b) {
+            b.colorTarget(msColor);
+            b.depthTarget(msDepth);
+            b.resolve(msColor, color);
+            b.resolve(msDepth, depth);
+        },
+        [&](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            ctx.cmd.setPipeline(quadPipe);
+            ctx.cmd.setVertexBuffer(0, vb);
+            ctx.cmd.draw(6);
+            ctx.cmd.endRenderPass();
+        });
+    g.addPass(
+        "show",
+        [&](auto& b) {
+            b.sample(color);
+            b.colorTarget(out);
+        },
+        [&](graph::PassContext& ctx) {
+            ctx.beginRenderPass();
+            ctx.cmd.setPipeline(show);
+            ctx.cmd.setUniformBuffer(0, ubo);
+            ctx.cmd.setTexture(1, ctx.texture(color), sampler);
+            ctx.cmd.draw(3);
+            ctx.cmd.endRenderPass();
+        });
     g.markOutput(out);
     g.compile(d, true);
     EXPECT_EQ(g.texture(msColor).desc.sampleCount, 4u);
@@ -576,17 +867,35 @@ TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
     Device& d = *device;
     std::array<uint32_t, 64> words{};
     for (uint32_t i = 0; i < words.size(); ++i) words[i] = 0x9e3779b9u * (i + 1);
-    auto src = d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"}, bytesOf(words));
-    auto dst = d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc, .debugName = "result"});
+    auto src =
+        d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"},
+                       bytesOf(words));
+    auto dst = d.createBuffer({.size = sizeof words,
+                               .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
+                               .debugName = "result"});
     {
         RenderGraph g;
         auto in = g.importBuffer("source", src, sizeof words);
         auto mid = g.createBuffer("middle", {.size = sizeof words});
         auto result = g.importBuffer("result", dst, sizeof words);
-        g.addPass("fill", [&](auto& b) { b.buffer(in, A::CopySrc); b.buffer(mid, A::CopyDst); },
-                  [&](graph::PassContext& pc) { pc.cmd.copyBuffer(pc.buffer(mid), 0, src, 0, sizeof words); });
-        g.addPass("drain", [&](auto& b) { b.buffer(mid, A::CopySrc); b.buffer(result, A::CopyDst); },
-                  [&](graph::PassContext& pc) { pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words); });
+        g.addPass(
+            "fill",
+            [&](auto& b) {
+                b.buffer(in, A::CopySrc);
+                b.buffer(mid, A::CopyDst);
+            },
+            [&](graph::PassContext& pc) {
+                pc.cmd.copyBuffer(pc.buffer(mid), 0, src, 0, sizeof words);
+            });
+        g.addPass(
+            "drain",
+            [&](auto& b) {
+                b.buffer(mid, A::CopySrc);
+                b.buffer(result, A::CopyDst);
+            },
+            [&](graph::PassContext& pc) {
+                pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words);
+            });
         g.markOutput(result);
         g.compile(d);
         EXPECT_EQ(g.buffer(mid).usage, BufferUsage::CopySrc | BufferUsage::CopyDst);

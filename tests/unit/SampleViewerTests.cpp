@@ -28,25 +28,32 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kViewerDir = fs::path(FE_TEST_DATA) / "sample-viewer";
-const fs::path kViews = fs::path(FE_TEST_DATA) / ".." / ".." / "tools" / "sample-viewer" / "views.json";
+const fs::path kViews =
+    fs::path(FE_TEST_DATA) / ".." / ".." / "tools" / "sample-viewer" / "views.json";
 
-glm::vec3 vec3Of(const nlohmann::json& j) { return {j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()}; }
+glm::vec3 vec3Of(const nlohmann::json& j) {
+    return {j.at(0).get<float>(), j.at(1).get<float>(), j.at(2).get<float>()};
+}
 
 // The model as the Sample Viewer saw it: the manifest's camera and, where the file has none of
 // its own, the manifest's lights instead of fe's default rig.
 assets::Scene viewerScene(const nlohmann::json& view) {
-    assets::Scene scene = assets::loadGltf((fs::path(FE_SHARED_ASSETS) / view.at("gltf").get<std::string>()).string(),
-                                           {.scene = view.value("scene", -1)});
+    assets::Scene scene =
+        assets::loadGltf((fs::path(FE_SHARED_ASSETS) / view.at("gltf").get<std::string>()).string(),
+                         {.scene = view.value("scene", -1)});
     const nlohmann::json& c = view.at("camera");
     const glm::vec3 eye = vec3Of(c.at("eye"));
-    scene.camera = assets::Camera::lookAlong(eye, glm::normalize(vec3Of(c.at("target")) - eye), vec3Of(c.at("up")),
-                                             c.at("yfov").get<float>(), c.at("znear").get<float>(), c.at("zfar").get<float>());
+    scene.camera = assets::Camera::lookAlong(eye, glm::normalize(vec3Of(c.at("target")) - eye),
+                                             vec3Of(c.at("up")), c.at("yfov").get<float>(),
+                                             c.at("znear").get<float>(), c.at("zfar").get<float>());
     if (!view.value("lightsFromFile", false)) {
         scene.lights.clear();
         for (const nlohmann::json& l : view.at("lights")) {
             EXPECT_EQ(l.at("type"), "directional") << "only the directional rig is read here";
-            scene.lights.push_back({.name = l.at("name").get<std::string>(), .type = assets::LightType::Directional,
-                                    .color = vec3Of(l.at("color")), .intensity = l.at("intensity").get<float>(),
+            scene.lights.push_back({.name = l.at("name").get<std::string>(),
+                                    .type = assets::LightType::Directional,
+                                    .color = vec3Of(l.at("color")),
+                                    .intensity = l.at("intensity").get<float>(),
                                     .direction = glm::normalize(vec3Of(l.at("direction")))});
         }
     }
@@ -54,7 +61,10 @@ assets::Scene viewerScene(const nlohmann::json& view) {
 }
 
 // The viewer's output of a linear radiance: PBR Neutral, pow(1/2.2), 8 bits.
-uint8_t encode(double toneMapped) { return uint8_t(std::lround(std::clamp(std::pow(std::max(toneMapped, 0.0), 1.0 / 2.2), 0.0, 1.0) * 255.0)); }
+uint8_t encode(double toneMapped) {
+    return uint8_t(
+        std::lround(std::clamp(std::pow(std::max(toneMapped, 0.0), 1.0 / 2.2), 0.0, 1.0) * 255.0));
+}
 
 struct Diff {
     uint32_t over = 0, pixels = 0;
@@ -63,9 +73,11 @@ struct Diff {
 
 // Pixels where a channel differs by more than `tolerance` / 255. With `written` (the
 // FE_SAMPLE_VIEWER_OUT folder, for looking at a difference), fe's encoded image as a binary PPM.
-Diff compareWithViewer(const gdi::Image& linear, const fs::path& reference, int tolerance, const fs::path& written = {}) {
+Diff compareWithViewer(const gdi::Image& linear, const fs::path& reference, int tolerance,
+                       const fs::path& written = {}) {
     int w = 0, h = 0, n = 0;
-    std::unique_ptr<stbi_uc, void (*)(void*)> ref(stbi_load(reference.string().c_str(), &w, &h, &n, 3), stbi_image_free);
+    std::unique_ptr<stbi_uc, void (*)(void*)> ref(
+        stbi_load(reference.string().c_str(), &w, &h, &n, 3), stbi_image_free);
     Diff d;
     if (!ref || uint32_t(w) != linear.width || uint32_t(h) != linear.height) return d;
     d.pixels = uint32_t(w * h);
@@ -77,10 +89,12 @@ Diff compareWithViewer(const gdi::Image& linear, const fs::path& reference, int 
     for (uint32_t y = 0; y < linear.height; ++y)
         for (uint32_t x = 0; x < linear.width; ++x) {
             const auto t = linear.texel(x, y);
-            const glm::dvec3 mapped = shading::tonemap(shading::Tonemap::PbrNeutral, glm::dvec3(t[0], t[1], t[2]));
+            const glm::dvec3 mapped =
+                shading::tonemap(shading::Tonemap::PbrNeutral, glm::dvec3(t[0], t[1], t[2]));
             const stbi_uc* r = &ref.get()[(size_t(y) * w + x) * 3];
             bool bad = false;
-            for (int c = 0; c < 3; ++c) bad = bad || std::abs(int(encode(mapped[c])) - int(r[c])) > tolerance;
+            for (int c = 0; c < 3; ++c)
+                bad = bad || std::abs(int(encode(mapped[c])) - int(r[c])) > tolerance;
             if (ppm.is_open()) ppm << encode(mapped.r) << encode(mapped.g) << encode(mapped.b);
             d.over += bad;
         }
@@ -100,17 +114,44 @@ struct ViewerCase {
     const char* why = "";
 };
 const ViewerCase kViewerCases[] = {
-    {"AlphaBlendModeTest", 0.551}, {"Box", 0.013}, {"Box With Spaces", 3.27}, {"BoxAnimated", 0.022},
-    {"BoxInterleaved", 0.014}, {"BoxTextured", 2.99}, {"BoxTexturedNonPowerOfTwo", 3.47}, {"BoxVertexColors", 0.014},
-    {"Cameras", 0.0}, {"CesiumMilkTruck", 1.78}, {"EmissiveStrengthTest", 0.186}, {"Fox", 0.191},
+    {"AlphaBlendModeTest", 0.551},
+    {"Box", 0.013},
+    {"Box With Spaces", 3.27},
+    {"BoxAnimated", 0.022},
+    {"BoxInterleaved", 0.014},
+    {"BoxTextured", 2.99},
+    {"BoxTexturedNonPowerOfTwo", 3.47},
+    {"BoxVertexColors", 0.014},
+    {"Cameras", 0.0},
+    {"CesiumMilkTruck", 1.78},
+    {"EmissiveStrengthTest", 0.186},
+    {"Fox", 0.191},
     {"LightsPunctualLamp", 2.06},
-    {"MeshPrimitiveModes", 0.471}, {"MetalRoughSpheresNoTextures", 0.107}, {"MultiUVTest", 1.27},
-    {"MultipleScenes", 0.010}, {"NegativeScaleTest", 0.092}, {"NormalTangentTest", 0.836}, {"OrientationTest", 0.070},
-    {"RiggedSimple", 0.004}, {"SimpleInstancing", 0.051}, {"SimpleMeshes", 0.009}, {"SimpleMorph", 0.008},
-    {"SimpleSkin", 0.008}, {"SimpleSparseAccessor", 0.003}, {"Suzanne", 0.023}, {"TextureCoordinateTest", 0.113},
-    {"TextureEncodingTest", 0.042}, {"TextureLinearInterpolationTest", 0.072}, {"TextureSettingsTest", 1.76},
-    {"TextureTransformTest", 0.083}, {"Triangle", 0.004}, {"TriangleWithoutIndices", 0.004}, {"TwoSidedPlane", 1.03},
-    {"Unicode❤♻Test", 0.018}, {"UnlitTest", 0.013}, {"VertexColorTest", 0.104},
+    {"MeshPrimitiveModes", 0.471},
+    {"MetalRoughSpheresNoTextures", 0.107},
+    {"MultiUVTest", 1.27},
+    {"MultipleScenes", 0.010},
+    {"NegativeScaleTest", 0.092},
+    {"NormalTangentTest", 0.836},
+    {"OrientationTest", 0.070},
+    {"RiggedSimple", 0.004},
+    {"SimpleInstancing", 0.051},
+    {"SimpleMeshes", 0.009},
+    {"SimpleMorph", 0.008},
+    {"SimpleSkin", 0.008},
+    {"SimpleSparseAccessor", 0.003},
+    {"Suzanne", 0.023},
+    {"TextureCoordinateTest", 0.113},
+    {"TextureEncodingTest", 0.042},
+    {"TextureLinearInterpolationTest", 0.072},
+    {"TextureSettingsTest", 1.76},
+    {"TextureTransformTest", 0.083},
+    {"Triangle", 0.004},
+    {"TriangleWithoutIndices", 0.004},
+    {"TwoSidedPlane", 1.03},
+    {"Unicode❤♻Test", 0.018},
+    {"UnlitTest", 0.013},
+    {"VertexColorTest", 0.104},
 };
 
 void PrintTo(const ViewerCase& c, std::ostream* os) { *os << c.name; }
@@ -119,7 +160,8 @@ class SampleViewer : public ::testing::TestWithParam<ViewerCase> {};
 
 TEST_P(SampleViewer, MatchesTheReferenceRenderer) {
     const ViewerCase& c = GetParam();
-    if (!fs::exists(kViews) || !fs::exists(FE_SHARED_ASSETS)) GTEST_SKIP() << "no views.json or sample assets";
+    if (!fs::exists(kViews) || !fs::exists(FE_SHARED_ASSETS))
+        GTEST_SKIP() << "no views.json or sample assets";
     nlohmann::json views;
     std::ifstream(kViews) >> views;
     const nlohmann::json* view = nullptr;
@@ -130,13 +172,17 @@ TEST_P(SampleViewer, MatchesTheReferenceRenderer) {
     for (const std::string& b : gdi::backendNames()) {
         gdi::BackendProbe p = gdi::probeBackend(b, true);
         if (!p.available) continue;
-        render::SceneRenderer r(*p.device, scene, {.technique = "forward", .width = 320, .height = 240});
+        render::SceneRenderer r(*p.device, scene,
+                                {.technique = "forward", .width = 320, .height = 240});
         r.renderFrame();
         const char* out = std::getenv("FE_SAMPLE_VIEWER_OUT");
-        const Diff d = compareWithViewer(r.readOutput(), kViewerDir / view->at("reference").get<std::string>(), 8,
-                                         out ? fs::path(out) / (std::string(c.name) + "_" + b + ".ppm") : fs::path());
-        std::cout << b << " " << c.name << ": " << d.percent() << " % of pixels beyond 8/255 of the Sample Viewer"
-                  << (c.measuredPercent < 0 ? std::string(" (not bounded: ") + c.why + ")" : "") << "\n";
+        const Diff d = compareWithViewer(
+            r.readOutput(), kViewerDir / view->at("reference").get<std::string>(), 8,
+            out ? fs::path(out) / (std::string(c.name) + "_" + b + ".ppm") : fs::path());
+        std::cout << b << " " << c.name << ": " << d.percent()
+                  << " % of pixels beyond 8/255 of the Sample Viewer"
+                  << (c.measuredPercent < 0 ? std::string(" (not bounded: ") + c.why + ")" : "")
+                  << "\n";
         if (c.measuredPercent >= 0) {
             EXPECT_LE(d.percent(), std::max(1.5 * c.measuredPercent, 0.05)) << b << " " << c.name;
         }
@@ -144,8 +190,10 @@ TEST_P(SampleViewer, MatchesTheReferenceRenderer) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, SampleViewer, ::testing::ValuesIn(kViewerCases), [](const auto& info) {
-    std::string n;
-    for (const char ch : std::string(info.param.name)) n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-    return n;
-});
+INSTANTIATE_TEST_SUITE_P(Models, SampleViewer, ::testing::ValuesIn(kViewerCases),
+                         [](const auto& info) {
+                             std::string n;
+                             for (const char ch : std::string(info.param.name))
+                                 n += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                             return n;
+                         });

@@ -8,10 +8,14 @@ using fe::testing::errorOf;
 TEST_P(DeviceErrors, BrokenShaderBinary) {
     const uint32_t garbage[] = {0xdeadbeef, 1, 2, 3, 4, 5};
     ShaderBinary bin{"garbage.frag", garbage, garbage};
-    EXPECT_NE(errorOf([&] { device->createShader({.stage = ShaderStage::Fragment, .binary = bin}); }).find("garbage.frag"),
+    EXPECT_NE(errorOf([&] {
+                  device->createShader({.stage = ShaderStage::Fragment, .binary = bin});
+              }).find("garbage.frag"),
               std::string::npos);
     ShaderBinary empty{"empty.frag", {}, {}};
-    EXPECT_NE(errorOf([&] { device->createShader({.stage = ShaderStage::Fragment, .binary = empty}); }).find("empty.frag"),
+    EXPECT_NE(errorOf([&] {
+                  device->createShader({.stage = ShaderStage::Fragment, .binary = empty});
+              }).find("empty.frag"),
               std::string::npos);
 }
 
@@ -23,8 +27,9 @@ TEST_P(DeviceErrors, BrokenShaderBinary) {
 TEST_P(DeviceErrors, PipelinesAreCheckedAgainstTheirShaders) {
     Device& d = *device;
     auto has = [](const std::string& error, const char* text) {
-        return error.find(text) != std::string::npos ? ::testing::AssertionSuccess()
-                                                     : ::testing::AssertionFailure() << "got: " << error;
+        return error.find(text) != std::string::npos
+                   ? ::testing::AssertionSuccess()
+                   : ::testing::AssertionFailure() << "got: " << error;
     };
     auto shader = [&](ShaderStage stage, const char* path) {
         return d.createShader({.stage = stage, .binary = fe::shaders::find(path)});
@@ -33,50 +38,78 @@ TEST_P(DeviceErrors, PipelinesAreCheckedAgainstTheirShaders) {
     auto uboFs = shader(ShaderStage::Fragment, "conformance/ubo_color.frag");
     auto uintVs = shader(ShaderStage::Vertex, "conformance/vertex_uint.vert");
     auto valueFs = shader(ShaderStage::Fragment, "conformance/value.frag");
-    auto err = [&](const GraphicsPipelineDesc& desc) { return errorOf([&] { d.destroy(d.createGraphicsPipeline(desc)); }); };
-    const GraphicsPipelineDesc ubo{.vertexShader = uboVs, .fragmentShader = uboFs, .colorFormats = {Format::RGBA8},
+    auto err = [&](const GraphicsPipelineDesc& desc) {
+        return errorOf([&] { d.destroy(d.createGraphicsPipeline(desc)); });
+    };
+    const GraphicsPipelineDesc ubo{.vertexShader = uboVs,
+                                   .fragmentShader = uboFs,
+                                   .colorFormats = {Format::RGBA8},
                                    .debugName = "ubo"};
     GraphicsPipelineDesc omitted = ubo;
     omitted.bindings = {{1, BindingType::UniformBuffer, ShaderStage::AllGraphics}};
-    EXPECT_TRUE(has(err(omitted), "pipeline 'ubo': binding slot 0 (uniform buffer) is used by the vertex and fragment shader "
-                                  "but missing from the pipeline's bindings"));
+    EXPECT_TRUE(has(
+        err(omitted),
+        "pipeline 'ubo': binding slot 0 (uniform buffer) is used by the vertex and fragment shader "
+        "but missing from the pipeline's bindings"));
     GraphicsPipelineDesc mistyped = ubo;
     mistyped.bindings = {{0, BindingType::StorageBuffer, ShaderStage::AllGraphics}};
-    EXPECT_TRUE(has(err(mistyped), "binding slot 0 is declared a storage buffer, but the vertex and fragment shader uses a uniform buffer"));
+    EXPECT_TRUE(has(
+        err(mistyped),
+        "binding slot 0 is declared a storage buffer, but the vertex and fragment shader uses a uniform buffer"));
     GraphicsPipelineDesc stageless = ubo;
     stageless.bindings = {{0, BindingType::UniformBuffer, ShaderStage::Fragment}};
-    EXPECT_TRUE(has(err(stageless), "binding slot 0 is used by the vertex and fragment shader, which its declared stages leave out"));
-    const VertexBufferLayout uintLayout{.stride = 12, .attributes = {{.location = 0, .format = VertexFormat::Float2},
-                                                                     {.location = 1, .format = VertexFormat::UInt32, .offset = 8}}};
-    GraphicsPipelineDesc noAttribute{.vertexShader = uintVs, .fragmentShader = valueFs,
-                                     .vertexBuffers = {{.stride = 8, .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
-                                     .colorFormats = {Format::RGBA8}, .debugName = "attrs"};
-    EXPECT_TRUE(has(err(noAttribute), "pipeline 'attrs': vertex shader input 'inValue' (location 1) has no attribute in the vertex layout"));
+    EXPECT_TRUE(has(
+        err(stageless),
+        "binding slot 0 is used by the vertex and fragment shader, which its declared stages leave out"));
+    const VertexBufferLayout uintLayout{
+        .stride = 12,
+        .attributes = {{.location = 0, .format = VertexFormat::Float2},
+                       {.location = 1, .format = VertexFormat::UInt32, .offset = 8}}};
+    GraphicsPipelineDesc noAttribute{
+        .vertexShader = uintVs,
+        .fragmentShader = valueFs,
+        .vertexBuffers = {{.stride = 8,
+                           .attributes = {{.location = 0, .format = VertexFormat::Float2}}}},
+        .colorFormats = {Format::RGBA8},
+        .debugName = "attrs"};
+    EXPECT_TRUE(has(
+        err(noAttribute),
+        "pipeline 'attrs': vertex shader input 'inValue' (location 1) has no attribute in the vertex layout"));
     GraphicsPipelineDesc wrongKind = noAttribute;
-    wrongKind.vertexBuffers = {{.stride = 12, .attributes = {{.location = 0, .format = VertexFormat::Float2},
-                                                             {.location = 1, .format = VertexFormat::Float, .offset = 8}}}};
-    EXPECT_TRUE(has(err(wrongKind), "vertex shader input 'inValue' (location 1) is uint, its attribute's format gives float"));
+    wrongKind.vertexBuffers = {
+        {.stride = 12,
+         .attributes = {{.location = 0, .format = VertexFormat::Float2},
+                        {.location = 1, .format = VertexFormat::Float, .offset = 8}}}};
+    EXPECT_TRUE(has(
+        err(wrongKind),
+        "vertex shader input 'inValue' (location 1) is uint, its attribute's format gives float"));
     GraphicsPipelineDesc intTarget = noAttribute;
     intTarget.vertexBuffers = {uintLayout};
     intTarget.colorFormats = {Format::R32U};
-    EXPECT_TRUE(has(err(intTarget), "fragment output 'outColor' (location 0) is float, colour target 0 is R32U (uint)"));
+    EXPECT_TRUE(
+        has(err(intTarget),
+            "fragment output 'outColor' (location 0) is float, colour target 0 is R32U (uint)"));
 
     // Bindings taken from the shaders: the pipeline needs slot 0 bound, like a declared one.
     auto derived = d.createGraphicsPipeline(ubo);
     auto t = d.createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
-    auto t16 = d.createTexture({.format = Format::RGBA16F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
-    auto depth = d.createTexture({.format = Format::D32F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto t16 = d.createTexture(
+        {.format = Format::RGBA16F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto depth = d.createTexture(
+        {.format = Format::D32F, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
     auto cmd = d.createCommandList();
     cmd->beginRenderPass({.colors = {{.texture = t}}});
     cmd->setPipeline(derived);
     EXPECT_TRUE(has(errorOf([&] { cmd->draw(3); }), "missing binding for slot(s) 0"));
     cmd->endRenderPass();
     cmd->beginRenderPass({.colors = {{.texture = t16}}});
-    EXPECT_TRUE(has(errorOf([&] { cmd->setPipeline(derived); }),
-                    "setPipeline: pipeline 'ubo': renders to colour [RGBA8], depth none but the render pass has colour [RGBA16F], depth none"));
+    EXPECT_TRUE(has(
+        errorOf([&] { cmd->setPipeline(derived); }),
+        "setPipeline: pipeline 'ubo': renders to colour [RGBA8], depth none but the render pass has colour [RGBA16F], depth none"));
     cmd->endRenderPass();
     cmd->beginRenderPass({.colors = {{.texture = t}}, .depth = {.texture = depth}});
-    EXPECT_TRUE(has(errorOf([&] { cmd->setPipeline(derived); }), "but the render pass has colour [RGBA8], depth D32F"));
+    EXPECT_TRUE(has(errorOf([&] { cmd->setPipeline(derived); }),
+                    "but the render pass has colour [RGBA8], depth D32F"));
     cmd->endRenderPass();
     d.wait(d.submit(*cmd));
     EXPECT_EQ(d.validationErrorCount(), 0u);
@@ -90,17 +123,20 @@ TEST_P(DamagedSpirv, IsAnErrorNeverACrash) {
     std::mt19937 random(26);
     uint32_t refused = 0;
     for (int i = 0; i < 300; ++i) {
-        std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()), opengl(good.opengl.begin(), good.opengl.end());
+        std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()),
+            opengl(good.opengl.begin(), good.opengl.end());
         for (auto* words : {&vulkan, &opengl}) {
             // Header words kept (a wrong magic is refused early anyway): damage the instructions.
             for (int k = 0; k < 1 + i % 4; ++k) {
                 const size_t at = 5 + random() % (words->size() - 5);
-                (*words)[at] = (i % 3 == 0) ? uint32_t(random()) : (*words)[at] ^ (1u << (random() % 32));
+                (*words)[at] =
+                    (i % 3 == 0) ? uint32_t(random()) : (*words)[at] ^ (1u << (random() % 32));
             }
         }
         const std::string e = fe::testing::errorOf([&] {
             const ShaderHandle s = device->createShader(
-                {.stage = ShaderStage::Vertex, .binary = {.name = "damaged", .vulkan = vulkan, .opengl = opengl}});
+                {.stage = ShaderStage::Vertex,
+                 .binary = {.name = "damaged", .vulkan = vulkan, .opengl = opengl}});
             device->destroy(s);
         });
         if (e != "(no error)") {
@@ -116,26 +152,30 @@ TEST_P(DamagedSpirv, IsAnErrorNeverACrash) {
 TEST(DamagedSpirvAcrossBackends, SameErrorOnEveryBackend) {
     std::vector<std::unique_ptr<Device>> devices;
     for (const char* name : {"vulkan", "gl-egl", "gl-osmesa"})
-        if (BackendProbe p = probeBackend(name, true); p.available) devices.push_back(std::move(p.device));
+        if (BackendProbe p = probeBackend(name, true); p.available)
+            devices.push_back(std::move(p.device));
     if (devices.size() < 2) GTEST_SKIP() << "fewer than two backends";
     const ShaderBinary& good = fe::shaders::find("conformance/ubo_color.frag");
     std::mt19937 random(27);
     uint32_t refused = 0;
     for (int i = 0; i < 200; ++i) {
-        std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()), opengl(good.opengl.begin(), good.opengl.end());
-        auto* words = (i % 2) ? &vulkan : &opengl;  // one half damaged: the other backend must notice too
+        std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()),
+            opengl(good.opengl.begin(), good.opengl.end());
+        auto* words =
+            (i % 2) ? &vulkan : &opengl;  // one half damaged: the other backend must notice too
         const size_t at = 5 + random() % (words->size() - 5);
         (*words)[at] ^= 1u << (random() % 32);
         std::vector<std::string> errors;
         for (const auto& device : devices)
             errors.push_back(errorOf([&] {
                 device->destroy(device->createShader(
-                    {.stage = ShaderStage::Fragment, .binary = {.name = "damaged", .vulkan = vulkan, .opengl = opengl}}));
+                    {.stage = ShaderStage::Fragment,
+                     .binary = {.name = "damaged", .vulkan = vulkan, .opengl = opengl}}));
             }));
         refused += errors[0] != "(no error)";
         for (size_t d = 1; d < devices.size(); ++d)
-            EXPECT_EQ(errors[d], errors[0]) << "damage " << i << ": " << devices[d]->info().backend << " vs "
-                                            << devices[0]->info().backend;
+            EXPECT_EQ(errors[d], errors[0]) << "damage " << i << ": " << devices[d]->info().backend
+                                            << " vs " << devices[0]->info().backend;
     }
     EXPECT_GT(refused, 100u);
     for (const auto& device : devices) EXPECT_EQ(device->validationErrorCount(), 0u);
@@ -155,7 +195,8 @@ TEST_P(DamagedSpirv, LocationsBeyondSixteenAreRefused) {
     const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
     ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
     const std::string e = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "far", .vulkan = vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = {.name = "far", .vulkan = vulkan, .opengl = opengl}});
     });
     EXPECT_NE(e.find("location 40; every device has 16 (0 to 15)"), std::string::npos) << e;
 }
@@ -171,7 +212,8 @@ TEST_P(DamagedSpirv, ClipDistancesBeyondEightAreRefused) {
         std::map<uint32_t, size_t> constantAt;  // id -> word index of its value
         for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16)) {
             const uint32_t op = w[i] & 0xffffu, n = w[i] >> 16;
-            if (op == 43 && n == 4 && w[i + 3] == 1) constantAt[w[i + 2]] = i + 3;  // OpConstant ... 1
+            if (op == 43 && n == 4 && w[i + 3] == 1)
+                constantAt[w[i + 2]] = i + 3;  // OpConstant ... 1
             if (op == 28 && n == 4 && constantAt.count(w[i + 3])) w[constantAt[w[i + 3]]] = 14337;
         }
         return w;
@@ -179,10 +221,14 @@ TEST_P(DamagedSpirv, ClipDistancesBeyondEightAreRefused) {
     const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
     ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
     const std::string e = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "clip", .vulkan = vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = {.name = "clip", .vulkan = vulkan, .opengl = opengl}});
     });
     // gl_ClipDistance and gl_CullDistance share the array type: 2 x 14337.
-    EXPECT_NE(e.find("gl_ClipDistance and gl_CullDistance hold 28674 distances; every device has 8"), std::string::npos) << e;
+    EXPECT_NE(
+        e.find("gl_ClipDistance and gl_CullDistance hold 28674 distances; every device has 8"),
+        std::string::npos)
+        << e;
 }
 
 // A uniform block member that straddles a 16-byte boundary is valid SPIR-V but not a layout any
@@ -194,16 +240,20 @@ TEST_P(DamagedSpirv, StraddlingBlockMembersAreRefused) {
     auto patched = [](std::span<const uint32_t> words) {
         std::vector<uint32_t> w(words.begin(), words.end());
         for (size_t i = 5; i < w.size(); i += std::max(1u, w[i] >> 16))
-            if ((w[i] & 0xffffu) == 72 && (w[i] >> 16) == 5 && w[i + 2] == 1 && w[i + 3] == 35 && w[i + 4] == 16) w[i + 4] = 24;
+            if ((w[i] & 0xffffu) == 72 && (w[i] >> 16) == 5 && w[i + 2] == 1 && w[i + 3] == 35 &&
+                w[i + 4] == 16)
+                w[i + 4] = 24;
         return w;
     };
     const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
     ASSERT_NE(vulkan, std::vector<uint32_t>(good.vulkan.begin(), good.vulkan.end()));
     ASSERT_NE(opengl, std::vector<uint32_t>(good.opengl.begin(), good.opengl.end()));
     const std::string e = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Fragment, .binary = {.name = "straddle", .vulkan = vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Fragment,
+                              .binary = {.name = "straddle", .vulkan = vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(e.find("shader 'straddle': not a valid SPIR-V module for Vulkan:"), std::string::npos) << e;
+    EXPECT_NE(e.find("shader 'straddle': not a valid SPIR-V module for Vulkan:"), std::string::npos)
+        << e;
     EXPECT_NE(e.find("improperly straddling vector at offset 24"), std::string::npos) << e;
 }
 
@@ -224,27 +274,40 @@ TEST_P(DamagedSpirv, CapabilitiesTheDeviceLacksAreRefused) {
     const std::vector<uint32_t> vulkan = patched(good.vulkan), opengl = patched(good.opengl);
     ASSERT_EQ(vulkan.size(), good.vulkan.size() + 2);
     const std::string e = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "cull", .vulkan = vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = {.name = "cull", .vulkan = vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(e.find("shader 'cull': its Vulkan SPIR-V declares capability 33 (CullDistance), which the device does not offer"),
-              std::string::npos) << e;
+    EXPECT_NE(
+        e.find(
+            "shader 'cull': its Vulkan SPIR-V declares capability 33 (CullDistance), which the device does not offer"),
+        std::string::npos)
+        << e;
     // The GL half alone: refused the same way on every backend.
     const std::string gl = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "cull", .vulkan = good.vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = {.name = "cull", .vulkan = good.vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(gl.find("shader 'cull': its OpenGL SPIR-V declares capability 33 (CullDistance)"), std::string::npos) << gl;
+    EXPECT_NE(gl.find("shader 'cull': its OpenGL SPIR-V declares capability 33 (CullDistance)"),
+              std::string::npos)
+        << gl;
 }
 
 // The SPIR-V header's schema word must be 0: SPIRV-Tools lets other values through, Mesa's
 // Vulkan driver refuses them with a validation error (found by the capture-file fuzzer).
 TEST_P(DamagedSpirv, HeaderSchemaWordIsChecked) {
     const ShaderBinary& good = fe::shaders::find("conformance/triangle.vert");
-    std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()), opengl(good.opengl.begin(), good.opengl.end());
+    std::vector<uint32_t> vulkan(good.vulkan.begin(), good.vulkan.end()),
+        opengl(good.opengl.begin(), good.opengl.end());
     vulkan[4] = opengl[4] = 40;
     const std::string e = errorOf([&] {
-        device->createShader({.stage = ShaderStage::Vertex, .binary = {.name = "schema", .vulkan = vulkan, .opengl = opengl}});
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = {.name = "schema", .vulkan = vulkan, .opengl = opengl}});
     });
-    EXPECT_NE(e.find("shader 'schema': not a valid SPIR-V module for Vulkan: header word 4 (schema) is 40, not 0"), std::string::npos) << e;
+    EXPECT_NE(
+        e.find(
+            "shader 'schema': not a valid SPIR-V module for Vulkan: header word 4 (schema) is 40, not 0"),
+        std::string::npos)
+        << e;
 }
 
 // An image write whose texel has fewer components than the image's format is refused at
@@ -258,9 +321,10 @@ TEST(DamagedSpirvAcrossBackends, ImageWriteWithTooFewComponentsIsRefused) {
         uint32_t floatType = 0, scalar = 0;
         for (size_t i = 5; i < w.size(); i += w[i] >> 16) {
             const uint32_t op = w[i] & 0xffffu;
-            if (op == 22 && w[i + 2] == 32) floatType = w[i + 1];                         // OpTypeFloat 32
-            if (op == 43 && floatType && w[i + 1] == floatType && !scalar) scalar = w[i + 2];  // OpConstant
-            if (op == 99 && scalar) w[i + 3] = scalar;                                     // OpImageWrite's texel
+            if (op == 22 && w[i + 2] == 32) floatType = w[i + 1];  // OpTypeFloat 32
+            if (op == 43 && floatType && w[i + 1] == floatType && !scalar)
+                scalar = w[i + 2];                      // OpConstant
+            if (op == 99 && scalar) w[i + 3] = scalar;  // OpImageWrite's texel
         }
         return w;
     };
@@ -269,10 +333,13 @@ TEST(DamagedSpirvAcrossBackends, ImageWriteWithTooFewComponentsIsRefused) {
     for (const std::string& backend : backendNames()) {
         BackendProbe p = probeBackend(backend, true);
         if (!p.available) continue;
-        EXPECT_EQ(errorOf([&] {
-                      p.device->createShader({.stage = ShaderStage::Compute, .binary = {.name = "narrow", .vulkan = vulkan, .opengl = opengl}});
-                  }),
-                  "shader 'narrow': an image write gives 1 component(s) to an image whose format has 4")
+        EXPECT_EQ(
+            errorOf([&] {
+                p.device->createShader(
+                    {.stage = ShaderStage::Compute,
+                     .binary = {.name = "narrow", .vulkan = vulkan, .opengl = opengl}});
+            }),
+            "shader 'narrow': an image write gives 1 component(s) to an image whose format has 4")
             << backend;
         EXPECT_EQ(p.device->validationErrorCount(), 0u) << backend;
     }
@@ -284,12 +351,16 @@ TEST(DamagedSpirvAcrossBackends, ImageWriteWithTooFewComponentsIsRefused) {
 TEST(StorageTextureLimit, MoreThanTheDeviceBindsIsRefusedAndSlotNumbersDoNotCount) {
     ShaderInterface cs;
     cs.stage = ShaderStage::Compute;
-    cs.bindings = {{9, BindingType::StorageTexture, "a"}, {40, BindingType::StorageTexture, "b"}, {3, BindingType::StorageBuffer, "s"}};
+    cs.bindings = {{9, BindingType::StorageTexture, "a"},
+                   {40, BindingType::StorageTexture, "b"},
+                   {3, BindingType::StorageBuffer, "s"}};
     const DeviceLimits two{.maxStorageTextures = 2}, one{.maxStorageTextures = 1};
-    EXPECT_EQ(validate::pipelineBindings({}, {&cs}, "images", two).size(), 3u);  // slots 9 and 40 with 2 units
-    EXPECT_EQ(errorOf([&] { validate::pipelineBindings({}, {&cs}, "images", one); }),
-              "pipeline 'images': the shaders use 2 storage textures; this device binds at most 1 to one pipeline "
-              "(limits.maxStorageTextures)");
+    EXPECT_EQ(validate::pipelineBindings({}, {&cs}, "images", two).size(),
+              3u);  // slots 9 and 40 with 2 units
+    EXPECT_EQ(
+        errorOf([&] { validate::pipelineBindings({}, {&cs}, "images", one); }),
+        "pipeline 'images': the shaders use 2 storage textures; this device binds at most 1 to one pipeline "
+        "(limits.maxStorageTextures)");
 }
 
 // The GL backend renumbers storage textures to image units in the SPIR-V it hands the driver.
@@ -309,7 +380,8 @@ TEST(StorageTextureLimit, RenumberingChangesOnlyTheStorageTextureBindings) {
     EXPECT_EQ(slots["Scale"], 3u);  // the storage buffer keeps its slot
     // Names get the stage's prefix, so two stages' blocks of one name stay apart on NVIDIA's GL.
     const std::vector<uint32_t> prefixed = withNamesPrefixed(b.opengl, "compute.");
-    const ShaderInterface named = reflectShader(prefixed, ShaderStage::Compute, "main", "prefixed", SpirvRules::OpenGL45);
+    const ShaderInterface named =
+        reflectShader(prefixed, ShaderStage::Compute, "main", "prefixed", SpirvRules::OpenGL45);
     std::set<std::string> names;
     for (const auto& x : named.bindings) names.insert(x.name);
     EXPECT_EQ(names, (std::set<std::string>{"compute.first", "compute.second", "compute.Scale"}));

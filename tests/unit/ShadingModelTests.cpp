@@ -36,7 +36,8 @@ TEST(ShadingModel, RedeferredSplitEqualsPerLightSum) {
         }
         glm::dvec3 split = resolveMaterial(acc, s);
         for (int c = 0; c < 3; ++c)
-            if (direct[c] > 1e-9) maxRel = std::max(maxRel, std::abs(direct[c] - split[c]) / direct[c]);
+            if (direct[c] > 1e-9)
+                maxRel = std::max(maxRel, std::abs(direct[c] - split[c]) / direct[c]);
     }
     EXPECT_LT(maxRel, 1e-9);
 }
@@ -51,8 +52,8 @@ TEST(ShadingModel, RangeWindowAndSpotFalloff) {
     spot.direction = {0, 0, -1};
     spot.innerConeAngle = 0.2;
     spot.outerConeAngle = 0.4;
-    EXPECT_NEAR(evaluateLight(spot, {0, 0, 0}).E.x, 1.0, 1e-12);       // on axis: full
-    EXPECT_NEAR(evaluateLight(spot, {1, 0, 0}).E.x, 0.0, 1e-12);       // 45 degrees: outside
+    EXPECT_NEAR(evaluateLight(spot, {0, 0, 0}).E.x, 1.0, 1e-12);  // on axis: full
+    EXPECT_NEAR(evaluateLight(spot, {1, 0, 0}).E.x, 0.0, 1e-12);  // 45 degrees: outside
     EXPECT_NEAR(glm::length(evaluateLight(spot, {0, 0, 0}).wi - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
 }
 
@@ -76,13 +77,16 @@ glm::dvec3 gltfBrdfFromHeitz(const SurfacePoint& s, const glm::dvec3& wi) {
     const double NoL = glm::dot(s.n, wi), NoV = glm::dot(s.n, s.wo);
     const glm::dvec3 h = glm::normalize(wi + s.wo);
     const double NoH = glm::dot(s.n, h), VoH = glm::dot(s.wo, h);
-    auto lambda = [&](double c) { return (-1.0 + std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c))) / 2.0; };
+    auto lambda = [&](double c) {
+        return (-1.0 + std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c))) / 2.0;
+    };
     const double G2 = 1.0 / (1.0 + lambda(NoV) + lambda(NoL));
     const double D = a2 / (kPi * std::pow(NoH * NoH * (a2 - 1.0) + 1.0, 2.0));
     const double P = std::pow(1.0 - VoH, 5.0);
     const glm::dvec3 Fmetal = s.baseColor + (1.0 - s.baseColor) * P;
     const double Fdielectric = 0.04 + 0.96 * P;
-    const glm::dvec3 dielectric = s.baseColor / kPi * (1.0 - Fdielectric) + Fdielectric * D * G2 / (4.0 * NoL * NoV);
+    const glm::dvec3 dielectric =
+        s.baseColor / kPi * (1.0 - Fdielectric) + Fdielectric * D * G2 / (4.0 * NoL * NoV);
     const glm::dvec3 metal = Fmetal * D * G2 / (4.0 * NoL * NoV);
     return glm::mix(dielectric, metal, s.metallic);
 }
@@ -120,7 +124,8 @@ TEST(ShadingModel, GltfBrdfIsAppendixB) {
 // At alpha = 1 the height-correlated visibility is 1 / (2 (NoL + NoV)): a closed form.
 TEST(ShadingModel, HeightCorrelatedVisibilityAtFullRoughness) {
     for (double NoL : {0.1, 0.5, 1.0})
-        for (double NoV : {0.2, 0.7, 1.0}) EXPECT_NEAR(visibilityHeightCorrelated(NoL, NoV, 1.0), 0.5 / (NoL + NoV), 1e-15);
+        for (double NoV : {0.2, 0.7, 1.0})
+            EXPECT_NEAR(visibilityHeightCorrelated(NoL, NoV, 1.0), 0.5 / (NoL + NoV), 1e-15);
 }
 
 namespace {
@@ -135,7 +140,9 @@ glm::dvec3 coatedFromTheExtensions(const SurfacePoint& s, const LightSample& l) 
     auto ggx = [&](const glm::dvec3& n, double roughness) {  // D G2 / (4 n.l n.v), and n.l
         const double r = clampRoughness(roughness), a2 = r * r * r * r;
         const double NoL = glm::dot(n, l.wi), NoV = glm::dot(n, s.wo), NoH = glm::dot(n, h);
-        auto lambda = [&](double c) { return (-1.0 + std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c))) / 2.0; };
+        auto lambda = [&](double c) {
+            return (-1.0 + std::sqrt(1.0 + a2 * (1.0 - c * c) / (c * c))) / 2.0;
+        };
         const double D = a2 / (kPi * std::pow(NoH * NoH * (a2 - 1.0) + 1.0, 2.0));
         return std::pair{D / (1.0 + lambda(NoV) + lambda(NoL)) / (4.0 * NoL * NoV), NoL};
     };
@@ -145,7 +152,9 @@ glm::dvec3 coatedFromTheExtensions(const SurfacePoint& s, const LightSample& l) 
     const glm::dvec3 metal = spec * (s.baseColor + (1.0 - s.baseColor) * P);
     const glm::dvec3 base = glm::mix(dielectric, metal, s.metallic) * l.E * NoL;
     const auto [coat, NoLc] = ggx(s.clearcoatNormal, s.clearcoatRoughness);
-    const double fresnelView = s.clearcoatF0 + (1.0 - s.clearcoatF0) * std::pow(1.0 - glm::dot(s.clearcoatNormal, s.wo), 5.0);
+    const double fresnelView =
+        s.clearcoatF0 +
+        (1.0 - s.clearcoatF0) * std::pow(1.0 - glm::dot(s.clearcoatNormal, s.wo), 5.0);
     const double fresnelHalf = s.clearcoatF0 + (1.0 - s.clearcoatF0) * P;
     return base * (1.0 - s.clearcoat * fresnelView) + s.clearcoat * fresnelHalf * coat * l.E * NoLc;
 }
@@ -167,14 +176,15 @@ TEST(ShadingModel, DielectricAndClearcoatAreTheExtensionsFormulas) {
         LightSample l;
         l.wi = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
         l.E = {1.0, 2.0, 0.5};
-        if (glm::dot(s.n, s.wo) < 0.05 || glm::dot(s.n, l.wi) < 0.05 || glm::dot(s.clearcoatNormal, s.wo) < 0.05 ||
-            glm::dot(s.clearcoatNormal, l.wi) < 0.05)
+        if (glm::dot(s.n, s.wo) < 0.05 || glm::dot(s.n, l.wi) < 0.05 ||
+            glm::dot(s.clearcoatNormal, s.wo) < 0.05 || glm::dot(s.clearcoatNormal, l.wi) < 0.05)
             continue;
         s.baseColor = {u01(rng), u01(rng), u01(rng)};
         s.metallic = u01(rng);
         s.roughness = 0.05 + 0.95 * u01(rng);
         const double ior = 1.0 + 2.0 * u01(rng), f = (ior - 1.0) / (ior + 1.0), specular = u01(rng);
-        s.dielectricF0 = glm::min(f * f * glm::dvec3(u01(rng) * 2.0, u01(rng), 1.0), glm::dvec3(1.0)) * specular;
+        s.dielectricF0 =
+            glm::min(f * f * glm::dvec3(u01(rng) * 2.0, u01(rng), 1.0), glm::dvec3(1.0)) * specular;
         s.dielectricF90 = specular;
         s.clearcoat = u01(rng);
         s.clearcoatRoughness = 0.05 + 0.95 * u01(rng);
@@ -215,11 +225,13 @@ TEST(ShadingModel, SheenDistributionAndAlbedoTable) {
         const glm::dvec3 v(std::sqrt(1.0 - NoV * NoV), 0.0, NoV);
         double sum = 0.0;
         for (int i = 0; i < nTheta; ++i) {
-            const double theta = (i + 0.5) / nTheta * 0.5 * kPi, c = std::cos(theta), s = std::sin(theta);
+            const double theta = (i + 0.5) / nTheta * 0.5 * kPi, c = std::cos(theta),
+                         s = std::sin(theta);
             for (int k = 0; k < nPhi; ++k) {
                 const double phi = (k + 0.5) / nPhi * 2.0 * kPi;
                 const glm::dvec3 l(s * std::cos(phi), s * std::sin(phi), c);
-                sum += charlieD(r, glm::normalize(v + l).z) * sheenVisibility(c, std::max(NoV, 1e-4), r) * c * s;
+                sum += charlieD(r, glm::normalize(v + l).z) *
+                       sheenVisibility(c, std::max(NoV, 1e-4), r) * c * s;
             }
         }
         return sum * (0.5 * kPi / nTheta) * (2.0 * kPi / nPhi);
@@ -229,9 +241,12 @@ TEST(ShadingModel, SheenDistributionAndAlbedoTable) {
     for (float e : table) EXPECT_TRUE(e >= 0.0f && e <= 1.0f) << e;
     for (int j : {1, 8, 16, 31})
         for (int i : {0, 4, 16, 31}) {
-            const double mu = double(i) / (kSheenTableSize - 1), r = double(j) / (kSheenTableSize - 1);
-            const double want = std::min(albedo(mu, r), 1.0), got = table[size_t(j) * kSheenTableSize + i];
-            EXPECT_NEAR(got, want, std::max((j < 8 ? 0.1 : 0.01) * want, 1e-3)) << "cos " << mu << ", roughness " << r;
+            const double mu = double(i) / (kSheenTableSize - 1),
+                         r = double(j) / (kSheenTableSize - 1);
+            const double want = std::min(albedo(mu, r), 1.0),
+                         got = table[size_t(j) * kSheenTableSize + i];
+            EXPECT_NEAR(got, want, std::max((j < 8 ? 0.1 : 0.01) * want, 1e-3))
+                << "cos " << mu << ", roughness " << r;
             EXPECT_NEAR(sheenAlbedo(mu, r), got, 1e-7);
         }
     const double mid = sheenAlbedo(0.5 / (kSheenTableSize - 1), 0.5);

@@ -24,7 +24,8 @@ class Stability : public fe::testing::BackendTest {};
 }  // namespace
 
 TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
-    std::map<std::string, std::map<std::string, std::string>> table;  // case -> technique -> outcome
+    std::map<std::string, std::map<std::string, std::string>>
+        table;  // case -> technique -> outcome
     // FE_STABILITY_CASES (fe bench --stability-cases' syntax) runs some of them: the sanitized
     // suite takes the broken-data cases (tools/run-sanitized-tests.sh).
     const char* only = std::getenv("FE_STABILITY_CASES");
@@ -32,21 +33,27 @@ TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
         const assets::Scene scene = c.scene();
         std::map<bool, std::vector<glm::dvec3>> references;  // separable BRDF -> the exact image
         for (const render::TechniqueInfo& t : render::techniques()) {
-            if (std::string(t.name).find("tiled") != std::string::npos && !device->info().features.computeShaders) continue;
+            if (std::string(t.name).find("tiled") != std::string::npos &&
+                !device->info().features.computeShaders)
+                continue;
             std::vector<glm::dvec3>& reference = references[t.separableBrdf];
             if (reference.empty() && c.refusal.empty() && c.exactBound >= 0.0)
                 reference = render::renderReference(scene, *scene.camera, c.width(kW), c.height(kH),
                                                     {.brdf = t.defaultBrdf()})
                                 .radiance;
             SCOPED_TRACE(c.name + ", " + t.name);
-            const render::StabilityOutcome o = render::runStabilityCase(*device, scene, t.name, c.width(kW), c.height(kH), reference);
+            const render::StabilityOutcome o = render::runStabilityCase(
+                *device, scene, t.name, c.width(kW), c.height(kH), reference);
             std::string outcome;
             if (o.refused) {
                 outcome = "refused: " + o.message;
-                const bool manyLights = scene.lights.size() > render::ForwardMultipassRenderer::kMaxLights &&
-                                        std::string(t.name) == "forward-multipass";
+                const bool manyLights =
+                    scene.lights.size() > render::ForwardMultipassRenderer::kMaxLights &&
+                    std::string(t.name) == "forward-multipass";
                 if (manyLights) {
-                    EXPECT_NE(o.message.find("forward-multipass draws the scene once per light"), std::string::npos) << o.message;
+                    EXPECT_NE(o.message.find("forward-multipass draws the scene once per light"),
+                              std::string::npos)
+                        << o.message;
                 } else {
                     EXPECT_FALSE(c.refusal.empty()) << "unexpected refusal: " << o.message;
                     EXPECT_NE(o.message.find(c.refusal), std::string::npos) << o.message;
@@ -71,7 +78,8 @@ TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {
         }
     }
     std::ostringstream o;
-    o << "stability table (" << GetParam() << "): % of pixels beyond 5/255 of the reference, or the outcome\n";
+    o << "stability table (" << GetParam()
+      << "): % of pixels beyond 5/255 of the reference, or the outcome\n";
     for (const auto& [name, row] : table) {
         o << "  " << name << ":";
         for (const auto& [t, outcome] : row) o << " " << t << " " << outcome.substr(0, 60) << ";";

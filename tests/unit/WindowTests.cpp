@@ -48,7 +48,8 @@ gdi::Image pattern(uint32_t w, uint32_t h, gdi::Format f) {
     img.width = w, img.height = h, img.format = f;
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x)
-            for (uint8_t v : {uint8_t(x * 255 / (w - 1)), uint8_t(y * 255 / (h - 1)), uint8_t((x * 7 + y * 3) & 255), uint8_t(255)})
+            for (uint8_t v : {uint8_t(x * 255 / (w - 1)), uint8_t(y * 255 / (h - 1)),
+                              uint8_t((x * 7 + y * 3) & 255), uint8_t(255)})
                 img.data.push_back(v);
     return img;
 }
@@ -77,7 +78,8 @@ protected:
 
 // Uploads `src` into a new texture, presents it and expects the window to show exactly its bytes.
 void expectPresentedExactly(gdi::Device& device, const gdi::Image& src, const std::string& what) {
-    gdi::TextureHandle t = device.createTexture({.format = src.format, .width = src.width, .height = src.height});
+    gdi::TextureHandle t =
+        device.createTexture({.format = src.format, .width = src.width, .height = src.height});
     device.writeTexture(t, {}, gdi::bytesOf(src.data));
     EXPECT_TRUE(device.present(t)) << what;
     gdi::Image shown = device.readWindow();
@@ -87,13 +89,14 @@ void expectPresentedExactly(gdi::Device& device, const gdi::Image& src, const st
     size_t differing = 0, first = shown.data.size();
     for (size_t i = 0; i < shown.data.size() && i < src.data.size(); ++i)
         if (shown.data[i] != src.data[i]) ++differing, first = std::min(first, i);
-    EXPECT_EQ(differing, 0u) << what << ": first differing byte " << first << " (pixel " << first / 4 % src.width << ","
-                             << first / 4 / src.width << ")";
+    EXPECT_EQ(differing, 0u) << what << ": first differing byte " << first << " (pixel "
+                             << first / 4 % src.width << "," << first / 4 / src.width << ")";
 }
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(Glfw, WindowBackend, ::testing::ValuesIn(gdi::windowBackendNames()), fe::testing::backendTestName);
+INSTANTIATE_TEST_SUITE_P(Glfw, WindowBackend, ::testing::ValuesIn(gdi::windowBackendNames()),
+                         fe::testing::backendTestName);
 
 TEST_P(WindowBackend, WithoutADisplaySaysWhy) {
     ScopedUnsetEnv x("DISPLAY"), w("WAYLAND_DISPLAY");
@@ -124,7 +127,8 @@ TEST_P(WindowBackend, IsADeviceWithAWindow) {
     EXPECT_TRUE(device->info().features.window);
     const std::string api = isVulkan() ? "Vulkan 1." : "4.5";
     EXPECT_NE(device->info().apiVersion.find(api), std::string::npos) << device->info().apiVersion;
-    EXPECT_EQ(device->info().presentMode, isVulkan() ? "FIFO (vsync on)" : "swap interval 1 (vsync on)");
+    EXPECT_EQ(device->info().presentMode,
+              isVulkan() ? "FIFO (vsync on)" : "swap interval 1 (vsync on)");
 }
 
 // The window shows the texture's bytes unchanged (no sRGB re-encoding), upright, at its size.
@@ -133,14 +137,16 @@ TEST_P(WindowBackend, PresentShowsTheTextureBytesUpright) {
     for (gdi::Format f : {gdi::Format::RGBA8, gdi::Format::RGBA8_SRGB})
         for (auto [w, h] : {std::pair{64u, 48u}, std::pair{96u, 80u}})
             expectPresentedExactly(*device, pattern(w, h, f),
-                                   std::string(gdi::formatInfo(f).name) + " " + std::to_string(w) + "x" + std::to_string(h));
+                                   std::string(gdi::formatInfo(f).name) + " " + std::to_string(w) +
+                                       "x" + std::to_string(h));
 }
 
 // A device lost while presenting (Vulkan: the present's own submission; GL: a submission, whose
 // reset status the next present sees) is a DeviceLostError, now and for every later present.
 TEST_P(WindowBackend, DeviceLossWhilePresentingIsReported) {
     const gdi::Image img = pattern(32, 32, gdi::Format::RGBA8);
-    gdi::TextureHandle t = device->createTexture({.format = img.format, .width = img.width, .height = img.height});
+    gdi::TextureHandle t =
+        device->createTexture({.format = img.format, .width = img.width, .height = img.height});
     device->writeTexture(t, {}, gdi::bytesOf(img.data));
     EXPECT_TRUE(device->present(t));
     gdi::fault::arm(gdi::fault::Site::Submission, 1);
@@ -160,19 +166,32 @@ TEST_P(WindowBackend, DeviceLossWhilePresentingIsReported) {
 TEST_P(WindowBackend, ManyFramesInARow) {
     for (uint32_t i = 0; i < 8; ++i) {
         gdi::Image img = pattern(48, 32, gdi::Format::RGBA8);
-        for (size_t b = 2; b < img.data.size(); b += 4) img.data[b] = uint8_t(img.data[b] + 31 * i);  // differs per frame
+        for (size_t b = 2; b < img.data.size(); b += 4)
+            img.data[b] = uint8_t(img.data[b] + 31 * i);  // differs per frame
         expectPresentedExactly(*device, img, "frame " + std::to_string(i));
     }
 }
 
 TEST_P(WindowBackend, PresentRejectsBadTextures) {
     using U = gdi::TextureUsage;
-    gdi::TextureHandle depth = device->createTexture({.format = gdi::Format::D32F, .width = 8, .height = 8, .usage = U::RenderTarget | U::CopySrc});
-    EXPECT_NE(fe::testing::errorOf([&] { device->present(depth); }).find("format D32F cannot be shown"), std::string::npos);
-    gdi::TextureHandle hdr = device->createTexture({.format = gdi::Format::RGBA32F, .width = 8, .height = 8});
-    EXPECT_NE(fe::testing::errorOf([&] { device->present(hdr); }).find("present RGBA8 or RGBA8_SRGB"), std::string::npos);
-    gdi::TextureHandle noCopy = device->createTexture({.width = 8, .height = 8, .usage = U::Sampled, .debugName = "nocopy"});
-    EXPECT_NE(fe::testing::errorOf([&] { device->present(noCopy); }).find("texture 'nocopy': needs CopySrc usage"), std::string::npos);
+    gdi::TextureHandle depth = device->createTexture({.format = gdi::Format::D32F,
+                                                      .width = 8,
+                                                      .height = 8,
+                                                      .usage = U::RenderTarget | U::CopySrc});
+    EXPECT_NE(
+        fe::testing::errorOf([&] { device->present(depth); }).find("format D32F cannot be shown"),
+        std::string::npos);
+    gdi::TextureHandle hdr =
+        device->createTexture({.format = gdi::Format::RGBA32F, .width = 8, .height = 8});
+    EXPECT_NE(
+        fe::testing::errorOf([&] { device->present(hdr); }).find("present RGBA8 or RGBA8_SRGB"),
+        std::string::npos);
+    gdi::TextureHandle noCopy = device->createTexture(
+        {.width = 8, .height = 8, .usage = U::Sampled, .debugName = "nocopy"});
+    EXPECT_NE(fe::testing::errorOf([&] {
+                  device->present(noCopy);
+              }).find("texture 'nocopy': needs CopySrc usage"),
+              std::string::npos);
     EXPECT_THROW(device->present(gdi::TextureHandle{}), gdi::Error);
     EXPECT_THROW(device->present(gdi::TextureHandle{12345}), gdi::Error);
     // Nothing half-done: the next good present still shows its bytes.
@@ -180,7 +199,8 @@ TEST_P(WindowBackend, PresentRejectsBadTextures) {
 }
 
 TEST_P(WindowBackend, ReadWindowBeforeAnyPresentIsAnError) {
-    EXPECT_NE(fe::testing::errorOf([&] { device->readWindow(); }).find("nothing presented yet"), std::string::npos);
+    EXPECT_NE(fe::testing::errorOf([&] { device->readWindow(); }).find("nothing presented yet"),
+              std::string::npos);
 }
 
 // Vsync off: Vulkan picks IMMEDIATE or MAILBOX where the surface has one (lavapipe has both),
@@ -192,12 +212,14 @@ TEST_P(WindowBackend, VsyncOff) {
     const std::string mode = device->info().presentMode;
     if (isVulkan())
         EXPECT_TRUE(mode == "IMMEDIATE (vsync off)" || mode == "MAILBOX (vsync off)" ||
-                    mode.find("neither IMMEDIATE nor MAILBOX") != std::string::npos) << mode;
+                    mode.find("neither IMMEDIATE nor MAILBOX") != std::string::npos)
+            << mode;
     else
         EXPECT_EQ(mode, "swap interval 0 (vsync off)");
     for (auto [w, h] : {std::pair{64u, 48u}, std::pair{80u, 56u}})
         for (gdi::Format f : {gdi::Format::RGBA8, gdi::Format::RGBA8_SRGB})
-            expectPresentedExactly(*device, pattern(w, h, f), std::string(gdi::formatInfo(f).name) + " vsync off");
+            expectPresentedExactly(*device, pattern(w, h, f),
+                                   std::string(gdi::formatInfo(f).name) + " vsync off");
 }
 
 // Whole frames of the scene renderer, shown in the window: what the window shows is the
@@ -230,8 +252,10 @@ TEST_P(WindowBackend, ConformanceSuitePassesAndMatchesHeadlessTwin) {
         conformance::CaseResult ref = conformance::runCase(*headless.device, c);
         ASSERT_EQ(mine.images.size(), ref.images.size()) << c.name;
         for (size_t i = 0; i < ref.images.size(); ++i) {
-            gdi::ImageDiff d = gdi::compareImages(mine.images[i].image, ref.images[i].image, ref.images[i].absTolerance);
-            EXPECT_LE(d.fractionOver(), ref.images[i].maxFractionOver) << c.name << "/" << ref.images[i].name;
+            gdi::ImageDiff d = gdi::compareImages(mine.images[i].image, ref.images[i].image,
+                                                  ref.images[i].absTolerance);
+            EXPECT_LE(d.fractionOver(), ref.images[i].maxFractionOver)
+                << c.name << "/" << ref.images[i].name;
             ++compared;
         }
     }
@@ -249,7 +273,8 @@ TEST(WindowSelection, GenericNamesPickWindowedBackends) {
     EXPECT_TRUE(gdi::windowCandidates("gl-egl").empty());
     EXPECT_TRUE(gdi::windowCandidates("gl-osmesa").empty());
     EXPECT_THROW(gdi::windowCandidates("metal"), gdi::Error);
-    const std::string e = fe::testing::errorOf([] { gdi::createDevice({.backend = "gl-osmesa", .verbose = false, .window = true}); });
+    const std::string e = fe::testing::errorOf(
+        [] { gdi::createDevice({.backend = "gl-osmesa", .verbose = false, .window = true}); });
     EXPECT_NE(e.find("backend 'gl-osmesa' is headless"), std::string::npos) << e;
     // `auto` without a window never opens one.
     for (const std::string& name : gdi::backendNames())
@@ -258,8 +283,10 @@ TEST(WindowSelection, GenericNamesPickWindowedBackends) {
 
 TEST(WindowSelection, CreateDeviceWithWindowPicksVulkanThenGl) {
     if (!haveDisplay()) GTEST_SKIP() << "no display: CTest runs this binary under xvfb-run";
-    for (auto [name, expected] : {std::pair{"vulkan", "vulkan-glfw"}, std::pair{"gl", "gl-glfw"}, std::pair{"auto", "vulkan-glfw"}}) {
-        auto device = gdi::createDevice({.backend = name, .validation = true, .verbose = false, .window = true});
+    for (auto [name, expected] : {std::pair{"vulkan", "vulkan-glfw"}, std::pair{"gl", "gl-glfw"},
+                                  std::pair{"auto", "vulkan-glfw"}}) {
+        auto device = gdi::createDevice(
+            {.backend = name, .validation = true, .verbose = false, .window = true});
         EXPECT_EQ(device->info().backend, expected) << name;
         EXPECT_TRUE(device->info().features.window) << name;
     }

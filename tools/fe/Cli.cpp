@@ -129,10 +129,12 @@ struct OptionHelp {
     const char* text;
 };
 const std::map<std::string, OptionHelp> kOptionHelp = {
-    {"--backend", {"NAME", "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw or gl-glfw (also FE_BACKEND)"}},
+    {"--backend",
+     {"NAME", "auto, vulkan, gl, gl-egl, gl-osmesa, vulkan-glfw or gl-glfw (also FE_BACKEND)"}},
     {"info --backend", {"NAME[,NAME]", "only these backends (or all)"}},
     {"bench --backend", {"NAME[,NAME]|all", "the backends to measure (default all)"}},
-    {"conformance --backend", {"NAME[,NAME]|all", "the backends to run the cases on (default all)"}},
+    {"conformance --backend",
+     {"NAME[,NAME]|all", "the backends to run the cases on (default all)"}},
     {"--json", {"", "print the report as JSON"}},
     {"capture --out", {"FILE", "the capture file written (default capture.fecap)"}},
     {"capture --frames", {"N", "capture only the first N frames (default: all)"}},
@@ -141,16 +143,22 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
     {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
-    {"--capture", {"FILE[,FILE...]", "run these capture files as the cases (fe capture makes them)"}},
+    {"--capture",
+     {"FILE[,FILE...]", "run these capture files as the cases (fe capture makes them)"}},
     {"--pass", {"NAME", "stop after the first render pass of this name and write its targets"}},
     {"--draw", {"N", "stop after draw N (from 0, over the capture) and write its pass's targets"}},
     {"--backends", {"A,B", "the two backends to compare (default vulkan,gl-egl)"}},
-    {"--tolerance", {"ABS[,FRACTION]", "per channel, and the fraction of pixels allowed beyond it (default 0.0196,0.001)"}},
+    {"--tolerance",
+     {"ABS[,FRACTION]",
+      "per channel, and the fraction of pixels allowed beyond it (default 0.0196,0.001)"}},
     {"bisect --out", {"DIR", "where bisect.json and the images go (default bisect)"}},
     {"--perturb", {"BACKEND:DRAW", "leave draw DRAW out on BACKEND (tests the bisection)"}},
-    {"--technique", {"NAME|auto", "the lighting technique (fe --help lists them); auto, the default: the render director chooses"}},
+    {"--technique",
+     {"NAME|auto",
+      "the lighting technique (fe --help lists them); auto, the default: the render director chooses"}},
     {"view --technique", {"NAME", "the technique to start with (default deferred-tiled)"}},
-    {"--illum-scale", {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},
+    {"--illum-scale",
+     {"1|2|4", "redeferred: the I-buffer at 1/N of the resolution on each axis (default 1)"}},
     {"--size", {"WxH", "image size in pixels (default 960x540)"}},
     {"view --size", {"WxH", "window size in pixels (default 640x480)"}},
     {"--out", {"FILE", ".png (tone mapped) or .pfm (linear radiance) (default out.png)"}},
@@ -159,29 +167,44 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--frames", {"N", "frames to render (default 1; with --window: until it is closed)"}},
     {"view --frames", {"N", "stop after N frames (default: when the window is closed)"}},
     {"bench --frames", {"N", "timed frames per case; medians are reported"}},
-    {"--warmup-ms", {"MS", "untimed frames for at least MS ms per case on a GPU, so its clocks rise first (default 1000)"}},
-    {"--lights", {"N", "builtin:lights and builtin:atrium: the number of point lights (default 512)"}},
+    {"--warmup-ms",
+     {"MS",
+      "untimed frames for at least MS ms per case on a GPU, so its clocks rise first (default 1000)"}},
+    {"--lights",
+     {"N", "builtin:lights and builtin:atrium: the number of point lights (default 512)"}},
     {"--dump-graph", {"FILE.dot", "write the compiled render graph as Graphviz"}},
-    {"--pipeline-cache", {"FILE", "load and save compiled pipelines (Vulkan cache data, GL program binaries)"}},
-    {"--renderdoc-capture", {"FILE", "capture the first frame with RenderDoc into FILE_capture.rdc"}},
+    {"--pipeline-cache",
+     {"FILE", "load and save compiled pipelines (Vulkan cache data, GL program binaries)"}},
+    {"--renderdoc-capture",
+     {"FILE", "capture the first frame with RenderDoc into FILE_capture.rdc"}},
     {"--vsync", {"on|off", "with --window: wait for the display (default on)"}},
     {"--msaa", {"1|2|4|8", "samples per pixel: forward techniques and light-prepass (default 1)"}},
-    {"--error-budget", {"PERCENT", "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},
+    {"--error-budget",
+     {"PERCENT",
+      "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},
     {"--environment", {"FILE.hdr|builtin:sky", "the light from far away, drawn as the background"}},
     {"--ibl-samples", {"N", "light the scene by the environment, N importance samples per term"}},
-    {"--shadows", {"on|off", "shadow maps for directional, spot and the most important point lights (default: on where the scene is made to show them)"}},
+    {"--shadows",
+     {"on|off",
+      "shadow maps for directional, spot and the most important point lights (default: on where the scene is made to show them)"}},
     {"--shadow-map-size", {"N", "shadow map size in texels (default 1024)"}},
     {"--shadow-cascades", {"1-4", "cascades of a directional light's shadow (default 4)"}},
-    {"--shadow-point-budget", {"N", "point lights given cube shadow maps, the most important first (default 4)"}},
+    {"--shadow-point-budget",
+     {"N", "point lights given cube shadow maps, the most important first (default 4)"}},
     {"--shadow-filter", {"pcf|none", "2x2 hardware comparison or one tap (default pcf)"}},
-    {"--rates", {"SOURCE=RATE,...", "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
+    {"--rates",
+     {"SOURCE=RATE,...",
+      "redeferred: an I-buffer rate per source (punctual, shadowed, ibl-diffuse, ibl-specular)"}},
     {"--orbit", {"DEGREES", "the camera turns about the vertical axis over the frames"}},
-    {"--animation", {"INDEX|NAME|all", "play the file's animation, or all at once (glTF node transforms, skins, morph weights)"}},
+    {"--animation",
+     {"INDEX|NAME|all",
+      "play the file's animation, or all at once (glTF node transforms, skins, morph weights)"}},
     {"--time", {"SECONDS", "the animation's instant of the first frame (default 0)"}},
     {"--fps", {"F", "frames per second of an animated sequence (default 30)"}},
     {"--loop", {"", "the animation's time wraps around its duration"}},
     {"--camera", {"INDEX|NAME", "one of the file's cameras (default: the first)"}},
-    {"view --camera", {"INDEX|NAME", "look through one of the file's cameras (default: the orbit camera)"}},
+    {"view --camera",
+     {"INDEX|NAME", "look through one of the file's cameras (default: the orbit camera)"}},
     {"view --animation", {"INDEX|NAME", "the animation played (default: the file's first)"}},
     {"--camera-position", {"X,Y,Z", "a camera of your own at this point"}},
     {"--camera-target", {"X,Y,Z", "... looking at this point (default: the scene's centre)"}},
@@ -190,20 +213,33 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--azimuth", {"DEGREES", "the camera turned about the scene's vertical axis"}},
     {"--elevation", {"DEGREES", "the camera raised about the scene's centre"}},
     {"--tonemap", {"clamp|aces|pbr-neutral", "the .png's tone mapping (default pbr-neutral)"}},
-    {"--brdf", {"auto|gltf|separable", "glTF 2.0's BRDF or the seeds' separable one (auto: glTF where the technique can, docs/SHADING.md)"}},
-    {"--background", {"auto|environment|transparent|#RRGGBB|R,G,B", "what shows where nothing is drawn (default: the environment, else black)"}},
+    {"--brdf",
+     {"auto|gltf|separable",
+      "glTF 2.0's BRDF or the seeds' separable one (auto: glTF where the technique can, docs/SHADING.md)"}},
+    {"--background",
+     {"auto|environment|transparent|#RRGGBB|R,G,B",
+      "what shows where nothing is drawn (default: the environment, else black)"}},
     {"--aa", {"none|fxaa|taa", "the .png's anti-aliasing (default none)"}},
-    {"--debug-view", {"TEXTURE", "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
+    {"--debug-view",
+     {"TEXTURE",
+      "show an intermediate texture of the frame, or \"light count\" (lights reaching each pixel) or \"lights evaluated\" (lights the technique's loop walks)"}},
     {"--no-aliasing", {"", "transient textures in memory of their own"}},
     {"--window", {"", "show the frames in a window"}},
-    {"--verbose", {"", "print the render director's choices and their reasons, and the lights evaluated and reaching per pixel"}},
+    {"--verbose",
+     {"",
+      "print the render director's choices and their reasons, and the lights evaluated and reaching per pixel"}},
     {"--strict", {"", "the glTF loader's warnings are errors"}},
     {"--illum-split", {"", "redeferred-tiled: specular sums at full rate, diffuse at 1/scale"}},
-    {"--rebuild-nov", {"", "redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer"}},
+    {"--rebuild-nov",
+     {"", "redeferred: w_o.n rebuilt from depth and normal, not read from the G-buffer"}},
     {"--one-pass-culling", {"", "deferred-tiled: each work group culls its tile, no culling pass"}},
-    {"--no-cluster-bounds", {"", "clustered techniques: cluster lists not bounded by the opaque depth each cluster holds"}},
-    {"--ibl-prefiltered", {"", "light by the environment through prefiltered maps, not by sampling it"}},
-    {"--temporal", {"", "redeferred at illum-scale 2|4: jittered reduced-rate samples accumulate over frames"}},
+    {"--no-cluster-bounds",
+     {"",
+      "clustered techniques: cluster lists not bounded by the opaque depth each cluster holds"}},
+    {"--ibl-prefiltered",
+     {"", "light by the environment through prefiltered maps, not by sampling it"}},
+    {"--temporal",
+     {"", "redeferred at illum-scale 2|4: jittered reduced-rate samples accumulate over frames"}},
     {"--screenshot", {"FILE.png", "write the last frame"}},
     {"--switch-backend-at", {"FRAME", "tests: restart on the other API at this frame"}},
     {"--no-ui", {"", "no panel"}},
@@ -211,12 +247,16 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--sweep", {"FILE.json", "the cases to measure (bench/sweeps/ has the documented ones)"}},
     {"--compare", {"A.json", "compare A with the results file given after it"}},
     {"--time-ratio", {"X", "with --compare: a frame this many times slower fails (default 1.25)"}},
-    {"--error-points", {"P", "with --compare: this many more % of pixels over 5/255 fails (default 0.5)"}},
-    {"--quick", {"", "every technique and option at 96x72, with the stability and conformance suites"}},
+    {"--error-points",
+     {"P", "with --compare: this many more % of pixels over 5/255 fails (default 0.5)"}},
+    {"--quick",
+     {"", "every technique and option at 96x72, with the stability and conformance suites"}},
     {"--stability", {"", "with --sweep: also the stability suite's table"}},
-    {"--stability-cases", {"LIST", "only the stability cases whose name contains one of these comma-separated parts"}},
+    {"--stability-cases",
+     {"LIST", "only the stability cases whose name contains one of these comma-separated parts"}},
     {"--conformance", {"", "with --sweep: also the conformance suite's cross-backend images"}},
-    {"--interleave", {"", "the cases' timed frames in alternation, so interference hits all alike"}},
+    {"--interleave",
+     {"", "the cases' timed frames in alternation, so interference hits all alike"}},
     {"--report", {"FILE.json", "write the results as JSON"}},
     {"--out-dir", {"DIR", "write each case's image per backend"}},
     {"--case", {"SUBSTRING", "only the cases whose name contains it"}},
@@ -240,7 +280,8 @@ std::string usage() {
     u += "techniques (--technique):\n";
     for (const render::TechniqueInfo& t : render::techniques()) {
         std::string name = t.name;
-        u += "  " + name + std::string(name.size() < 20 ? 20 - name.size() : 1, ' ') + t.summary + "\n";
+        u += "  " + name + std::string(name.size() < 20 ? 20 - name.size() : 1, ' ') + t.summary +
+             "\n";
     }
     return u;
 }
@@ -252,14 +293,17 @@ std::string commandUsage(const std::string& command) {
     std::string line, out;
     bool inside = false;
     while (std::getline(in, line)) {
-        if (line.rfind("  " + command + " ", 0) == 0 || line == "  " + command) inside = true;
-        else if (line.rfind("      ", 0) != 0) inside = false;
+        if (line.rfind("  " + command + " ", 0) == 0 || line == "  " + command)
+            inside = true;
+        else if (line.rfind("      ", 0) != 0)
+            inside = false;
         if (inside) out += line + "\n";
     }
     return out;
 }
 
-Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags) {
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued,
+           const std::vector<std::string>& flags) {
     const std::string command = argv[first - 1];
     CLI::App app{"fe " + command + ": the options, then the full usage", "fe " + command};
     app.footer("\nUsage:\n" + commandUsage(command));
@@ -271,11 +315,13 @@ Args parse(int argc, char** argv, int first, const std::vector<std::string>& val
         const OptionHelp& h = optionHelp(command, o);
         app.add_option(o, values[o], h.text)->type_name(h.value)->allow_extra_args(false);
     }
-    app.add_option("--log-level", values["--log-level"], "trace, debug, info, warn (default), error or off; also FE_LOG_LEVEL")
+    app.add_option("--log-level", values["--log-level"],
+                   "trace, debug, info, warn (default), error or off; also FE_LOG_LEVEL")
         ->type_name("LEVEL");
     for (const std::string& f : flags) app.add_flag(f, on[f], optionHelp(command, f).text);
     Args a;
-    app.add_option("arguments", a.positional, "scene or files, as the command takes")->type_name("");
+    app.add_option("arguments", a.positional, "scene or files, as the command takes")
+        ->type_name("");
     try {
         // CLI11 skips argv[0] as the program's name: the command's name stands in for it.
         app.parse(argc - first + 1, argv + first - 1);
@@ -292,7 +338,8 @@ Args parse(int argc, char** argv, int first, const std::vector<std::string>& val
     if (app.count("--log-level")) {
         const spdlog::level::level_enum level = spdlog::level::from_str(values["--log-level"]);
         if (level == spdlog::level::off && values["--log-level"] != "off")
-            throw UsageError("--log-level must be trace, debug, info, warn, error or off, got '" + values["--log-level"] + "'");
+            throw UsageError("--log-level must be trace, debug, info, warn, error or off, got '" +
+                             values["--log-level"] + "'");
         spdlog::set_level(level);
     }
     return a;
@@ -302,32 +349,75 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
     char* end = nullptr;
     long v = std::strtol(s.c_str(), &end, 10);
     if (s.empty() || *end || v < long(lo) || v > long(hi))
-        throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                         "], got '" + s + "'");
+        throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) +
+                         ", " + std::to_string(hi) + "], got '" + s + "'");
     return uint32_t(v);
 }
 
-const std::vector<std::string> kRenderOptions = {"--backend", "--technique", "--illum-scale", "--size", "--out", "--exposure", "--frames",
-                                    "--lights", "--dump-graph", "--vsync", "--msaa", "--error-budget", "--environment", "--ibl-samples",
-                                    "--shadows", "--shadow-map-size", "--shadow-cascades", "--shadow-point-budget",
-                                    "--shadow-filter", "--rates", "--orbit", "--tonemap", "--aa", "--debug-view", "--pipeline-cache",
-                                    "--renderdoc-capture", "--brdf", "--background", "--animation", "--time", "--fps",
-                                    "--camera", "--camera-position", "--camera-target", "--camera-up", "--fov", "--azimuth",
-                                    "--elevation"};
-const std::vector<std::string> kRenderFlags = {"--no-aliasing", "--window", "--verbose", "--strict", "--illum-split", "--rebuild-nov", "--one-pass-culling",
-                                    "--no-cluster-bounds", "--ibl-prefiltered", "--temporal", "--loop"};
+const std::vector<std::string> kRenderOptions = {"--backend",
+                                                 "--technique",
+                                                 "--illum-scale",
+                                                 "--size",
+                                                 "--out",
+                                                 "--exposure",
+                                                 "--frames",
+                                                 "--lights",
+                                                 "--dump-graph",
+                                                 "--vsync",
+                                                 "--msaa",
+                                                 "--error-budget",
+                                                 "--environment",
+                                                 "--ibl-samples",
+                                                 "--shadows",
+                                                 "--shadow-map-size",
+                                                 "--shadow-cascades",
+                                                 "--shadow-point-budget",
+                                                 "--shadow-filter",
+                                                 "--rates",
+                                                 "--orbit",
+                                                 "--tonemap",
+                                                 "--aa",
+                                                 "--debug-view",
+                                                 "--pipeline-cache",
+                                                 "--renderdoc-capture",
+                                                 "--brdf",
+                                                 "--background",
+                                                 "--animation",
+                                                 "--time",
+                                                 "--fps",
+                                                 "--camera",
+                                                 "--camera-position",
+                                                 "--camera-target",
+                                                 "--camera-up",
+                                                 "--fov",
+                                                 "--azimuth",
+                                                 "--elevation"};
+const std::vector<std::string> kRenderFlags = {"--no-aliasing",
+                                               "--window",
+                                               "--verbose",
+                                               "--strict",
+                                               "--illum-split",
+                                               "--rebuild-nov",
+                                               "--one-pass-culling",
+                                               "--no-cluster-bounds",
+                                               "--ibl-prefiltered",
+                                               "--temporal",
+                                               "--loop"};
 
 render::Background parseBackground(const std::string& text) {
     using Kind = render::Background::Kind;
     if (text == "auto") return {};
     if (text == "environment") return {.kind = Kind::Environment};
     if (text == "transparent") return {.kind = Kind::Transparent};
-    const std::string usage = "--background takes auto, environment, transparent, #RRGGBB or R,G,B (sRGB, 0-1); got '" + text + "'";
+    const std::string usage =
+        "--background takes auto, environment, transparent, #RRGGBB or R,G,B (sRGB, 0-1); got '" +
+        text + "'";
     render::Background b{.kind = Kind::Color};
     if (text.size() == 7 && text[0] == '#') {
         for (int c = 0; c < 3; ++c) {
             const std::string hex = text.substr(1 + 2 * c, 2);
-            if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) throw UsageError(usage);
+            if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos)
+                throw UsageError(usage);
             b.color[c] = float(std::stoul(hex, nullptr, 16)) / 255.0f;
         }
         return b;
@@ -350,8 +440,8 @@ double parseNumber(const std::string& text, const char* what, double lo, double 
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end || !std::isfinite(v) || v < lo || v > hi)
-        throw UsageError(std::string(what) + " takes a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
-                         text + "'");
+        throw UsageError(std::string(what) + " takes a number in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "], got '" + text + "'");
     return v;
 }
 
@@ -365,40 +455,51 @@ glm::vec3 parseVec3(const std::string& text, const char* what) {
         v[c] = std::strtof(item.c_str(), &end);
         if (item.empty() || *end || !std::isfinite(v[c])) c = 4;
     }
-    if (c != 3) throw UsageError(std::string(what) + " takes X,Y,Z (three finite numbers), got '" + text + "'");
+    if (c != 3)
+        throw UsageError(std::string(what) + " takes X,Y,Z (three finite numbers), got '" + text +
+                         "'");
     return v;
 }
 
 // The camera asked for by --camera-position/-target/-up and --fov, each defaulting to `from`'s.
-assets::Camera customCamera(const RenderJob& job, const assets::Camera& from, const assets::AABB& bounds) {
+assets::Camera customCamera(const RenderJob& job, const assets::Camera& from,
+                            const assets::AABB& bounds) {
     const glm::vec3 eye = job.cameraPosition.value_or(from.eye());
-    const glm::vec3 target = job.cameraTarget ? *job.cameraTarget
+    const glm::vec3 target = job.cameraTarget     ? *job.cameraTarget
                              : job.cameraPosition ? bounds.center()
                                                   : from.eye() + from.forward();
-    const glm::vec3 up = job.cameraUp.value_or(job.cameraPosition || job.cameraTarget ? glm::vec3(0.0f, 1.0f, 0.0f) : from.up());
+    const glm::vec3 up = job.cameraUp.value_or(
+        job.cameraPosition || job.cameraTarget ? glm::vec3(0.0f, 1.0f, 0.0f) : from.up());
     const glm::vec3 forward = target - eye;
-    if (!(glm::length(forward) > 1e-6f)) throw UsageError("--camera-target must differ from the camera's position");
+    if (!(glm::length(forward) > 1e-6f))
+        throw UsageError("--camera-target must differ from the camera's position");
     if (!(glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) > 1e-4f))
-        throw UsageError("--camera-up must not be parallel to the view direction (give --camera-up)");
-    const float yfov = job.fovDegrees ? float(*job.fovDegrees * 3.14159265358979 / 180.0) : from.yfov;
+        throw UsageError(
+            "--camera-up must not be parallel to the view direction (give --camera-up)");
+    const float yfov =
+        job.fovDegrees ? float(*job.fovDegrees * 3.14159265358979 / 180.0) : from.yfov;
     // Near and far planes around the scene as seen from the new position.
     const float radius = std::max(0.5f * glm::length(bounds.size()), 1e-3f);
     const float distance = glm::length(bounds.center() - eye);
     const float znear = std::max(1e-3f * (distance + radius), 0.5f * (distance - radius));
-    assets::Camera c = assets::Camera::lookAlong(eye, forward, up, yfov, znear, std::numeric_limits<float>::infinity());
+    assets::Camera c = assets::Camera::lookAlong(eye, forward, up, yfov, znear,
+                                                 std::numeric_limits<float>::infinity());
     c.name = "command line";
     return c;
 }
 
 // --azimuth turns the camera about the vertical axis through the scene's centre, --elevation
 // raises it about its own horizontal axis through that centre (positive: from above).
-assets::Camera turned(const assets::Camera& camera, const assets::AABB& bounds, double azimuth, double elevation) {
+assets::Camera turned(const assets::Camera& camera, const assets::AABB& bounds, double azimuth,
+                      double elevation) {
     const glm::vec3 center = bounds.center();
     assets::Camera c = camera.orbited(center, float(azimuth * 3.14159265358979 / 180.0));
     if (elevation != 0.0) {
         const glm::vec3 right = glm::normalize(glm::vec3(c.worldFromView[0]));
-        const glm::mat4 r = glm::rotate(glm::mat4(1.0f), float(-elevation * 3.14159265358979 / 180.0), right);
-        c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r * glm::translate(glm::mat4(1.0f), -center) * c.worldFromView;
+        const glm::mat4 r =
+            glm::rotate(glm::mat4(1.0f), float(-elevation * 3.14159265358979 / 180.0), right);
+        c.worldFromView = glm::translate(glm::mat4(1.0f), center) * r *
+                          glm::translate(glm::mat4(1.0f), -center) * c.worldFromView;
     }
     return c;
 }
@@ -410,7 +511,9 @@ void RenderJob::applyScene(assets::Scene& scene) {
     // The animation and camera named: a name the file lacks is the command line's mistake.
     try {
         if (animated) {
-            if (scene.animations.empty()) throw UsageError("--animation, --time, --fps and --loop: " + spec + " has no animation");
+            if (scene.animations.empty())
+                throw UsageError("--animation, --time, --fps and --loop: " + spec +
+                                 " has no animation");
             animation = assets::findAnimation(scene, animationName.empty() ? "0" : animationName);
         }
         poseFrame(scene, 0);
@@ -436,7 +539,8 @@ void RenderJob::applyScene(assets::Scene& scene) {
 
 bool RenderJob::poseFrame(assets::Scene& scene, uint32_t k) const {
     if (!animated) return false;
-    assets::poseScene(scene, {.animation = animation, .seconds = time + double(k) / fps, .loop = loop});
+    assets::poseScene(scene,
+                      {.animation = animation, .seconds = time + double(k) / fps, .loop = loop});
     return true;
 }
 
@@ -455,34 +559,52 @@ std::string RenderJob::outPath(uint32_t k) const {
 namespace {
 // --animation, --time, --fps, --loop, the camera options and --out's {frame} field.
 void parseAnimationAndCamera(const Args& a, RenderJob& job) {
-    auto opt = [&](const char* k) { auto it = a.options.find(k); return it == a.options.end() ? std::string() : it->second; };
-    job.animated = a.options.count("--animation") || a.options.count("--time") || a.options.count("--fps") || a.options.count("--loop");
+    auto opt = [&](const char* k) {
+        auto it = a.options.find(k);
+        return it == a.options.end() ? std::string() : it->second;
+    };
+    job.animated = a.options.count("--animation") || a.options.count("--time") ||
+                   a.options.count("--fps") || a.options.count("--loop");
     job.animationName = opt("--animation");
     if (a.options.count("--time")) job.time = parseNumber(opt("--time"), "--time", -1e6, 1e6);
     if (a.options.count("--fps")) job.fps = parseNumber(opt("--fps"), "--fps", 1e-3, 1e4);
     job.loop = a.options.count("--loop") > 0;
     job.cameraName = opt("--camera");
-    if (a.options.count("--camera-position")) job.cameraPosition = parseVec3(opt("--camera-position"), "--camera-position");
-    if (a.options.count("--camera-target")) job.cameraTarget = parseVec3(opt("--camera-target"), "--camera-target");
+    if (a.options.count("--camera-position"))
+        job.cameraPosition = parseVec3(opt("--camera-position"), "--camera-position");
+    if (a.options.count("--camera-target"))
+        job.cameraTarget = parseVec3(opt("--camera-target"), "--camera-target");
     if (a.options.count("--camera-up")) job.cameraUp = parseVec3(opt("--camera-up"), "--camera-up");
-    if (job.cameraUp && !(glm::length(*job.cameraUp) > 0.0f)) throw UsageError("--camera-up must not be 0,0,0");
-    if (a.options.count("--fov")) job.fovDegrees = float(parseNumber(opt("--fov"), "--fov", 0.01, 179.0));
-    if (a.options.count("--azimuth")) job.azimuthDegrees = parseNumber(opt("--azimuth"), "--azimuth", -3600, 3600);
-    if (a.options.count("--elevation")) job.elevationDegrees = parseNumber(opt("--elevation"), "--elevation", -89.9, 89.9);
-    if (!job.cameraName.empty() && (job.cameraPosition || job.cameraTarget || job.cameraUp || job.fovDegrees))
-        throw UsageError("--camera picks a camera of the file; --camera-position/-target/-up and --fov make one: give one or the other");
+    if (job.cameraUp && !(glm::length(*job.cameraUp) > 0.0f))
+        throw UsageError("--camera-up must not be 0,0,0");
+    if (a.options.count("--fov"))
+        job.fovDegrees = float(parseNumber(opt("--fov"), "--fov", 0.01, 179.0));
+    if (a.options.count("--azimuth"))
+        job.azimuthDegrees = parseNumber(opt("--azimuth"), "--azimuth", -3600, 3600);
+    if (a.options.count("--elevation"))
+        job.elevationDegrees = parseNumber(opt("--elevation"), "--elevation", -89.9, 89.9);
+    if (!job.cameraName.empty() &&
+        (job.cameraPosition || job.cameraTarget || job.cameraUp || job.fovDegrees))
+        throw UsageError(
+            "--camera picks a camera of the file; --camera-position/-target/-up and --fov make one: give one or the other");
     // --out 'dir/f_{frame:04}.png': every frame; a field other than {frame} or {frame:0N} is a mistake.
     const size_t open = job.out.find('{');
     if (open != std::string::npos) {
         const size_t close = job.out.find('}', open);
-        const std::string field = close == std::string::npos ? job.out.substr(open) : job.out.substr(open, close - open + 1);
-        const bool padded = field.size() == 11 && field.rfind("{frame:0", 0) == 0 && std::isdigit((unsigned char)field[8]) &&
+        const std::string field = close == std::string::npos
+                                      ? job.out.substr(open)
+                                      : job.out.substr(open, close - open + 1);
+        const bool padded = field.size() == 11 && field.rfind("{frame:0", 0) == 0 &&
+                            std::isdigit((unsigned char)field[8]) &&
                             std::isdigit((unsigned char)field[9]) && field[10] == '}';
-        const bool padded1 = field.size() == 10 && field.rfind("{frame:0", 0) == 0 && std::isdigit((unsigned char)field[8]) &&
-                             field[9] == '}';
+        const bool padded1 = field.size() == 10 && field.rfind("{frame:0", 0) == 0 &&
+                             std::isdigit((unsigned char)field[8]) && field[9] == '}';
         if (field != "{frame}" && !padded && !padded1)
-            throw UsageError("--out: the frame field is {frame} or {frame:0N} (N digits, zero padded), got '" + field + "'");
-        if (job.out.find('{', open + 1) != std::string::npos) throw UsageError("--out: one {frame} field at most");
+            throw UsageError(
+                "--out: the frame field is {frame} or {frame:0N} (N digits, zero padded), got '" +
+                field + "'");
+        if (job.out.find('{', open + 1) != std::string::npos)
+            throw UsageError("--out: one {frame} field at most");
         if (job.window) throw UsageError("--out with {frame} writes files: not with --window");
         job.sequence = true;
     }
@@ -490,38 +612,51 @@ void parseAnimationAndCamera(const Args& a, RenderJob& job) {
 }  // namespace
 
 RenderJob renderJob(const Args& a) {
-    if (a.positional.size() > 1) throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
+    if (a.positional.size() > 1)
+        throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
     const bool quickStart = a.positional.empty();  // no scene named: the quick start's image
     std::string spec = quickStart ? kQuickStartScene : a.positional[0];
     render::RenderSettings s;
-    auto opt = [&](const char* k, const std::string& def) { auto it = a.options.find(k); return it == a.options.end() ? def : it->second; };
-    const bool lightingAsked = a.options.count("--environment") || a.options.count("--ibl-samples") || a.options.count("--ibl-prefiltered");
+    auto opt = [&](const char* k, const std::string& def) {
+        auto it = a.options.find(k);
+        return it == a.options.end() ? def : it->second;
+    };
+    const bool lightingAsked = a.options.count("--environment") ||
+                               a.options.count("--ibl-samples") ||
+                               a.options.count("--ibl-prefiltered");
     s.technique = opt("--technique", "auto");
     if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
-    s.iblSamples = parseUint(opt("--ibl-samples", quickStart && !lightingAsked ? std::to_string(kQuickStartIblSamples) : "0"),
-                             "--ibl-samples", 0, 65536);
+    s.iblSamples =
+        parseUint(opt("--ibl-samples",
+                      quickStart && !lightingAsked ? std::to_string(kQuickStartIblSamples) : "0"),
+                  "--ibl-samples", 0, 65536);
     s.iblPrefiltered = a.options.count("--ibl-prefiltered") > 0;
     // Unless given, shadows are on for a scene made to show them (assets::Scene::showsShadows,
     // decided once the scene is loaded: RenderJob::applyScene).
     const std::string shadows = opt("--shadows", "on");
-    if (shadows != "on" && shadows != "off") throw UsageError("--shadows must be on or off, got '" + shadows + "'");
+    if (shadows != "on" && shadows != "off")
+        throw UsageError("--shadows must be on or off, got '" + shadows + "'");
     s.shadows.enabled = shadows == "on";
     s.shadows.mapSize = parseUint(opt("--shadow-map-size", "1024"), "--shadow-map-size", 16, 16384);
     s.shadows.cascades = parseUint(opt("--shadow-cascades", "4"), "--shadow-cascades", 1, 4);
-    s.shadows.pointBudget = parseUint(opt("--shadow-point-budget", "4"), "--shadow-point-budget", 0, 1000);
+    s.shadows.pointBudget =
+        parseUint(opt("--shadow-point-budget", "4"), "--shadow-point-budget", 0, 1000);
     const std::string filter = opt("--shadow-filter", "pcf");
-    if (filter != "pcf" && filter != "none") throw UsageError("--shadow-filter must be pcf or none, got '" + filter + "'");
+    if (filter != "pcf" && filter != "none")
+        throw UsageError("--shadow-filter must be pcf or none, got '" + filter + "'");
     s.shadows.pcf = filter == "pcf";
     // A shadow option without --shadows asks for shadows; with --shadows off it is a mistake.
     bool shadowsGiven = a.options.count("--shadows") > 0;
-    for (const char* k : {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
+    for (const char* k :
+         {"--shadow-map-size", "--shadow-cascades", "--shadow-point-budget", "--shadow-filter"})
         if (a.options.count(k)) {
             if (!s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
             shadowsGiven = true;
         }
-    const std::string environment = opt("--environment", quickStart && !lightingAsked ? kQuickStartEnvironment : "");
+    const std::string environment =
+        opt("--environment", quickStart && !lightingAsked ? kQuickStartEnvironment : "");
     if (const std::string rates = opt("--rates", ""); !rates.empty()) {
         // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
         std::stringstream list(rates);
@@ -534,8 +669,9 @@ RenderJob renderJob(const Args& a) {
                           : source == "ibl-specular" ? &s.rates.iblSpecular
                                                      : nullptr;
             if (!r || eq == std::string::npos)
-                throw UsageError("--rates takes SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular; got '" +
-                                 item + "'");
+                throw UsageError(
+                    "--rates takes SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular; got '" +
+                    item + "'");
             *r = parseUint(item.substr(eq + 1), "--rates", 1, 4);
             if (*r == 3) throw UsageError("--rates: a rate must be 1, 2 or 4, got 3");
         }
@@ -548,19 +684,25 @@ RenderJob renderJob(const Args& a) {
     char* end = nullptr;
     std::string ex = opt("--exposure", "1");
     s.exposure = std::strtof(ex.c_str(), &end);
-    if (*end || !std::isfinite(s.exposure) || s.exposure <= 0) throw UsageError("--exposure must be a positive number");
+    if (*end || !std::isfinite(s.exposure) || s.exposure <= 0)
+        throw UsageError("--exposure must be a positive number");
     const std::string tonemap = opt("--tonemap", "pbr-neutral");
-    if (const auto t = shading::parseTonemap(tonemap)) s.tonemap = *t;
-    else throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
+    if (const auto t = shading::parseTonemap(tonemap))
+        s.tonemap = *t;
+    else
+        throw UsageError("--tonemap must be clamp, aces or pbr-neutral, got '" + tonemap + "'");
     const std::string brdf = opt("--brdf", "auto");
     if (brdf != "auto" && brdf != "gltf" && brdf != "separable")
         throw UsageError("--brdf must be auto, gltf or separable, got '" + brdf + "'");
-    s.shadingModel = brdf == "gltf" ? render::ShadingModel::Gltf
+    s.shadingModel = brdf == "gltf"        ? render::ShadingModel::Gltf
                      : brdf == "separable" ? render::ShadingModel::Separable
                                            : render::ShadingModel::Auto;
     const std::string aa = opt("--aa", "none");
-    if (aa != "none" && aa != "fxaa" && aa != "taa") throw UsageError("--aa must be none, fxaa or taa, got '" + aa + "'");
-    s.antiAliasing = aa == "fxaa" ? render::AntiAliasing::Fxaa : aa == "taa" ? render::AntiAliasing::Taa : render::AntiAliasing::None;
+    if (aa != "none" && aa != "fxaa" && aa != "taa")
+        throw UsageError("--aa must be none, fxaa or taa, got '" + aa + "'");
+    s.antiAliasing = aa == "fxaa"  ? render::AntiAliasing::Fxaa
+                     : aa == "taa" ? render::AntiAliasing::Taa
+                                   : render::AntiAliasing::None;
     render::DirectorOptions director;
     const std::string budget = opt("--error-budget", "0");
     director.errorBudgetPercent = std::strtod(budget.c_str(), &end);
@@ -571,10 +713,12 @@ RenderJob renderJob(const Args& a) {
     const bool window = a.options.count("--window") > 0;
     const std::string backend = opt("--backend", "auto");
     if (window && gdi::windowCandidates(backend).empty())
-        throw UsageError("--window needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " + backend +
-                         " is headless");
+        throw UsageError(
+            "--window needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " +
+            backend + " is headless");
     const std::string vsync = opt("--vsync", "on");
-    if (vsync != "on" && vsync != "off") throw UsageError("--vsync must be on or off, got '" + vsync + "'");
+    if (vsync != "on" && vsync != "off")
+        throw UsageError("--vsync must be on or off, got '" + vsync + "'");
     if (a.options.count("--vsync") && !window) throw UsageError("--vsync applies to --window");
     // With a window and no --frames, frames are shown until the window is closed.
     const bool untilClosed = window && !a.options.count("--frames");
@@ -588,7 +732,8 @@ RenderJob renderJob(const Args& a) {
 
     s.background = parseBackground(opt("--background", "auto"));
     if (a.options.count("--background") && pfm)
-        throw UsageError("--background applies to the .png (a .pfm holds radiance, with no alpha or display colour)");
+        throw UsageError(
+            "--background applies to the .png (a .pfm holds radiance, with no alpha or display colour)");
     s.displayImage = !pfm || window;  // the PNG (and the window) show the GPU's display pass output
     s.aliasing = !a.options.count("--no-aliasing");
     s.illumSplit = a.options.count("--illum-split") > 0;
@@ -603,18 +748,32 @@ RenderJob renderJob(const Args& a) {
         throw UsageError("--orbit takes degrees (at most 3600), got '" + orbitText + "'");
     if (!s.tileCullingPass && s.technique != "deferred-tiled")
         throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
-    if (!s.clusterDepthBounds && s.technique != "auto" && !render::findTechnique(s.technique).clusters)
-        throw UsageError("--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
-                         "clustered-deferred, visibility-buffer)");
+    if (!s.clusterDepthBounds && s.technique != "auto" &&
+        !render::findTechnique(s.technique).clusters)
+        throw UsageError(
+            "--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
+            "clustered-deferred, visibility-buffer)");
     const std::string dumpGraph = opt("--dump-graph", "");
-    RenderJob job{.spec = spec, .environment = environment, .defaultLook = !quickStart && !lightingAsked,
-                     .shadowsGiven = shadowsGiven, .settings = s, .director = director, .window = window, .backend = backend,
-                     .vsync = vsync == "on", .untilClosed = untilClosed, .frames = frames, .builtin = builtin, .out = out,
-                     .pfm = pfm, .orbitDegrees = orbitDegrees, .dumpGraph = dumpGraph,
-                     .pipelineCache = opt("--pipeline-cache", ""), .renderdocCapture = opt("--renderdoc-capture", "")};
+    RenderJob job{.spec = spec,
+                  .environment = environment,
+                  .defaultLook = !quickStart && !lightingAsked,
+                  .shadowsGiven = shadowsGiven,
+                  .settings = s,
+                  .director = director,
+                  .window = window,
+                  .backend = backend,
+                  .vsync = vsync == "on",
+                  .untilClosed = untilClosed,
+                  .frames = frames,
+                  .builtin = builtin,
+                  .out = out,
+                  .pfm = pfm,
+                  .orbitDegrees = orbitDegrees,
+                  .dumpGraph = dumpGraph,
+                  .pipelineCache = opt("--pipeline-cache", ""),
+                  .renderdocCapture = opt("--renderdoc-capture", "")};
     parseAnimationAndCamera(a, job);
     return job;
-
 }
 
 }  // namespace fe::cli

@@ -35,7 +35,8 @@ struct Args {
     std::vector<std::string> positional;
 };
 // argv[first - 1] is the command's name; its arguments follow.
-Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued, const std::vector<std::string>& flags);
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued,
+           const std::vector<std::string>& flags);
 uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi);
 
 // `fe render`: its options and flags, and what they ask for.
@@ -55,7 +56,7 @@ inline constexpr const char* kDefaultSize = "960x540";
 render::Background parseBackground(const std::string& text);
 
 struct RenderJob {
-    std::string spec;  // the scene: a path or builtin:NAME
+    std::string spec;         // the scene: a path or builtin:NAME
     std::string environment;  // --environment, or the quick start's sky when no scene is named
     // No lighting asked for (--environment, --ibl-*): a model without lights of its own gets the
     // default look (assets::useDefaultSkyAndSun, prefiltered image-based lighting).
@@ -74,7 +75,7 @@ struct RenderJob {
     bool pfm = false;
     double orbitDegrees = 0;
     std::string dumpGraph;
-    std::string pipelineCache;  // --pipeline-cache
+    std::string pipelineCache;     // --pipeline-cache
     std::string renderdocCapture;  // --renderdoc-capture
     // Animation: --animation INDEX|NAME (empty: none; --time or --fps alone: the first), the
     // instant of the first frame, frames per second of a sequence, --loop.

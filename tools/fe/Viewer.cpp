@@ -42,10 +42,12 @@ struct OrbitCamera {
         return o;
     }
     glm::vec3 eye() const {
-        return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+        return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                             std::cos(pitch) * std::cos(yaw));
     }
     assets::Camera camera() const {
-        return assets::Camera::lookAlong(eye(), target - eye(), glm::vec3(0, 1, 0), yfov, znear, zfar);
+        return assets::Camera::lookAlong(eye(), target - eye(), glm::vec3(0, 1, 0), yfov, znear,
+                                         zfar);
     }
 };
 
@@ -63,25 +65,35 @@ public:
         // and a sun (assets::useDefaultSkyAndSun) unless --environment is given; shadows where
         // the scene is made to show them.
         settings_.tonemap = shading::Tonemap::PbrNeutral;
-        if (o.environment.empty() && assets::useDefaultSkyAndSun(scene_)) settings_.iblPrefiltered = true;
+        if (o.environment.empty() && assets::useDefaultSkyAndSun(scene_))
+            settings_.iblPrefiltered = true;
         if (o.quickStartLighting) settings_.iblPrefiltered = true;
         settings_.shadows.enabled = scene_.showsShadows;
         camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
         wantEnvironment_ = bool(scene_.environment);
         // Animated files play their first animation (or --animation) in a loop; --camera looks
         // through one of the file's cameras instead of the orbit camera.
-        if (!scene_.animations.empty()) animation_ = assets::findAnimation(scene_, o.animation.empty() ? "0" : o.animation);
-        else if (!o.animation.empty()) throw assets::AssetError(o.scene + " has no animation");
+        if (!scene_.animations.empty())
+            animation_ = assets::findAnimation(scene_, o.animation.empty() ? "0" : o.animation);
+        else if (!o.animation.empty())
+            throw assets::AssetError(o.scene + " has no animation");
         if (!o.camera.empty()) fileCamera_ = assets::findCamera(scene_, o.camera);
         ImGui::CreateContext();
         ImGuiIO& io = ImGui::GetIO();
         io.IniFilename = nullptr;  // no imgui.ini beside the user's files
         // ImGui 1.86 reads keys through a map into KeysDown: our Key values are the indices.
-        const std::pair<ImGuiKey_, gdi::Key> keys[] = {
-            {ImGuiKey_Tab, gdi::Key::Tab},         {ImGuiKey_LeftArrow, gdi::Key::Left}, {ImGuiKey_RightArrow, gdi::Key::Right},
-            {ImGuiKey_UpArrow, gdi::Key::Up},      {ImGuiKey_DownArrow, gdi::Key::Down}, {ImGuiKey_Home, gdi::Key::Home},
-            {ImGuiKey_End, gdi::Key::End},         {ImGuiKey_Delete, gdi::Key::Delete},  {ImGuiKey_Backspace, gdi::Key::Backspace},
-            {ImGuiKey_Enter, gdi::Key::Enter},     {ImGuiKey_Escape, gdi::Key::Escape},  {ImGuiKey_Space, gdi::Key::Space}};
+        const std::pair<ImGuiKey_, gdi::Key> keys[] = {{ImGuiKey_Tab, gdi::Key::Tab},
+                                                       {ImGuiKey_LeftArrow, gdi::Key::Left},
+                                                       {ImGuiKey_RightArrow, gdi::Key::Right},
+                                                       {ImGuiKey_UpArrow, gdi::Key::Up},
+                                                       {ImGuiKey_DownArrow, gdi::Key::Down},
+                                                       {ImGuiKey_Home, gdi::Key::Home},
+                                                       {ImGuiKey_End, gdi::Key::End},
+                                                       {ImGuiKey_Delete, gdi::Key::Delete},
+                                                       {ImGuiKey_Backspace, gdi::Key::Backspace},
+                                                       {ImGuiKey_Enter, gdi::Key::Enter},
+                                                       {ImGuiKey_Escape, gdi::Key::Escape},
+                                                       {ImGuiKey_Space, gdi::Key::Space}};
         for (const auto& [imgui, key] : keys) io.KeyMap[imgui] = int(key);
         startDevice(o.backend);
     }
@@ -93,7 +105,8 @@ public:
     int run() {
         bool open = true;
         auto last = Clock::now();
-        for (uint32_t frame = 0; open && (options_.frames == 0 || frame < options_.frames); ++frame) {
+        for (uint32_t frame = 0; open && (options_.frames == 0 || frame < options_.frames);
+             ++frame) {
             const auto now = Clock::now();
             const float dt = std::max(1e-4f, std::chrono::duration<float>(now - last).count());
             last = now;
@@ -117,12 +130,16 @@ public:
             if (animation_ != -1) {
                 if (playing_) time_ += dt;
                 const double duration = animationDuration();
-                if (loop_ && duration > 0.0) time_ = std::fmod(time_, duration);
-                else if (time_ > duration) time_ = duration, playing_ = false;
-                assets::poseScene(scene_, {.animation = animation_, .seconds = time_, .loop = loop_});
+                if (loop_ && duration > 0.0)
+                    time_ = std::fmod(time_, duration);
+                else if (time_ > duration)
+                    time_ = duration, playing_ = false;
+                assets::poseScene(scene_,
+                                  {.animation = animation_, .seconds = time_, .loop = loop_});
                 renderer_->updatePose();
             }
-            renderer_->setCamera(fileCamera_ >= 0 ? scene_.cameras[size_t(fileCamera_)] : camera_.camera());
+            renderer_->setCamera(fileCamera_ >= 0 ? scene_.cameras[size_t(fileCamera_)]
+                                                  : camera_.camera());
             renderer_->renderFrame();
             timings_ = renderer_->passTimings();  // waits for the frame
             frameMs_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -130,10 +147,12 @@ public:
             if (options_.ui) ui_->render(*ImGui::GetDrawData(), display);
             const bool screenshotKey = in.down(gdi::Key::F12) && !screenshotKeyWasDown_;
             screenshotKeyWasDown_ = in.down(gdi::Key::F12);
-            if (screenshotKey) screenshot(options_.screenshot.empty() ? "fe-view.png" : options_.screenshot);
+            if (screenshotKey)
+                screenshot(options_.screenshot.empty() ? "fe-view.png" : options_.screenshot);
             open = device_->present(display);
             if (options_.switchBackendAt && frame + 1 == options_.switchBackendAt)
-                pendingBackend_ = device_->info().backend == "vulkan-glfw" ? "gl-glfw" : "vulkan-glfw";
+                pendingBackend_ =
+                    device_->info().backend == "vulkan-glfw" ? "gl-glfw" : "vulkan-glfw";
             applyPendingChanges();
         }
         if (!options_.screenshot.empty()) screenshot(options_.screenshot);
@@ -146,7 +165,8 @@ public:
 
 private:
     void startDevice(const std::string& backend) {
-        device_ = gdi::createDevice({.backend = backend, .validation = options_.validation, .window = true});
+        device_ = gdi::createDevice(
+            {.backend = backend, .validation = options_.validation, .window = true});
         ui_ = std::make_unique<render::UiRenderer>(*device_);
         rebuildRenderer();
     }
@@ -181,13 +201,17 @@ private:
         settings_ = *pendingSettings_;
         pendingSettings_.reset();
         if (wantEnvironment_ != bool(scene_.environment)) {
-            if (wantEnvironment_) scene_.environment = assets::loadEnvironment("builtin:sky");
-            else scene_.environment.reset(), settings_.iblSamples = 0, settings_.iblPrefiltered = false;
+            if (wantEnvironment_)
+                scene_.environment = assets::loadEnvironment("builtin:sky");
+            else
+                scene_.environment.reset(), settings_.iblSamples = 0,
+                                            settings_.iblPrefiltered = false;
         }
         try {
             rebuildRenderer();
             message_.clear();
-        } catch (const gdi::Error& e) {  // a combination the technique refuses: say so, keep the last one
+        } catch (const gdi::Error&
+                     e) {  // a combination the technique refuses: say so, keep the last one
             message_ = e.what();
             settings_ = previous;
             wantEnvironment_ = bool(scene_.environment) || previous.ibl();
@@ -200,9 +224,11 @@ private:
         if (!io.WantCaptureMouse) {
             if (in.mouse[0] && mouseWasDown_) {
                 camera_.yaw -= (in.mouseX - lastMouse_.x) * 0.01f;
-                camera_.pitch = std::clamp(camera_.pitch + (in.mouseY - lastMouse_.y) * 0.01f, -1.5f, 1.5f);
+                camera_.pitch =
+                    std::clamp(camera_.pitch + (in.mouseY - lastMouse_.y) * 0.01f, -1.5f, 1.5f);
             }
-            if (in.wheel != 0) camera_.distance = std::max(0.05f, camera_.distance * std::pow(0.9f, in.wheel));
+            if (in.wheel != 0)
+                camera_.distance = std::max(0.05f, camera_.distance * std::pow(0.9f, in.wheel));
         }
         mouseWasDown_ = in.mouse[0];
         lastMouse_ = {in.mouseX, in.mouseY};
@@ -229,10 +255,13 @@ private:
         ImGui::Text("backend");
         for (const char* b : {"vulkan-glfw", "gl-glfw"}) {
             ImGui::SameLine();
-            if (ImGui::RadioButton(b == std::string("vulkan-glfw") ? "Vulkan" : "GL", info.backend == b) && info.backend != b)
+            if (ImGui::RadioButton(b == std::string("vulkan-glfw") ? "Vulkan" : "GL",
+                                   info.backend == b) &&
+                info.backend != b)
                 pendingBackend_ = b;
         }
-        ImGui::TextWrapped("%s%s", info.deviceName.c_str(), info.softwareRasterizer ? " (software rasterizer)" : "");
+        ImGui::TextWrapped("%s%s", info.deviceName.c_str(),
+                           info.softwareRasterizer ? " (software rasterizer)" : "");
         render::RenderSettings s = pendingSettings_ ? *pendingSettings_ : settings_;
         bool changed = false;
         const render::TechniqueInfo& current = render::findTechnique(s.technique);
@@ -266,46 +295,63 @@ private:
         }
         changed |= ImGui::Checkbox("shadows", &s.shadows.enabled);
         bool environment = wantEnvironment_ || bool(scene_.environment);
-        if (ImGui::Checkbox("sky environment", &environment)) wantEnvironment_ = environment, changed = true;
+        if (ImGui::Checkbox("sky environment", &environment))
+            wantEnvironment_ = environment, changed = true;
         if (environment) {
             int samples = int(s.iblSamples);
-            if (ImGui::SliderInt("IBL samples", &samples, 0, 256)) s.iblSamples = uint32_t(samples), s.iblPrefiltered = false;
+            if (ImGui::SliderInt("IBL samples", &samples, 0, 256))
+                s.iblSamples = uint32_t(samples), s.iblPrefiltered = false;
             changed |= ImGui::IsItemDeactivatedAfterEdit();
-            if (ImGui::Checkbox("IBL prefiltered", &s.iblPrefiltered)) s.iblSamples = 0, changed = true;
+            if (ImGui::Checkbox("IBL prefiltered", &s.iblPrefiltered))
+                s.iblSamples = 0, changed = true;
         }
         if (ImGui::BeginCombo("tone mapper", shading::tonemapName(s.tonemap))) {
-            for (shading::Tonemap t : {shading::Tonemap::Clamp, shading::Tonemap::Aces, shading::Tonemap::PbrNeutral})
-                if (ImGui::Selectable(shading::tonemapName(t), s.tonemap == t)) s.tonemap = t, changed = true;
+            for (shading::Tonemap t :
+                 {shading::Tonemap::Clamp, shading::Tonemap::Aces, shading::Tonemap::PbrNeutral})
+                if (ImGui::Selectable(shading::tonemapName(t), s.tonemap == t))
+                    s.tonemap = t, changed = true;
             ImGui::EndCombo();
         }
         int aa = int(s.antiAliasing);
         ImGui::Text("AA");
-        for (auto [name, value] : {std::pair{"none", 0}, std::pair{"FXAA", 1}, std::pair{"TAA", 2}}) {
+        for (auto [name, value] :
+             {std::pair{"none", 0}, std::pair{"FXAA", 1}, std::pair{"TAA", 2}}) {
             ImGui::SameLine();
-            if (ImGui::RadioButton(name, &aa, value)) s.antiAliasing = render::AntiAliasing(aa), changed = true;
+            if (ImGui::RadioButton(name, &aa, value))
+                s.antiAliasing = render::AntiAliasing(aa), changed = true;
         }
         float stops = std::log2(s.exposure);
-        if (ImGui::SliderFloat("exposure", &stops, -8.0f, 8.0f, "%.1f")) s.exposure = std::exp2(stops);
+        if (ImGui::SliderFloat("exposure", &stops, -8.0f, 8.0f, "%.1f"))
+            s.exposure = std::exp2(stops);
         changed |= ImGui::IsItemDeactivatedAfterEdit();
         // Debug views: any 2D intermediate of this frame's graph.
-        if (ImGui::BeginCombo("debug view", s.debugView.empty() ? "frame (L_o)" : s.debugView.c_str())) {
-            if (ImGui::Selectable("frame (L_o)", s.debugView.empty())) s.debugView.clear(), changed = true;
-            for (const char* view : {render::SceneRenderer::kLightCountView, render::SceneRenderer::kLightsEvaluatedView})
-                if (ImGui::Selectable(view, s.debugView == view)) s.debugView = view, changed = true;
+        if (ImGui::BeginCombo("debug view",
+                              s.debugView.empty() ? "frame (L_o)" : s.debugView.c_str())) {
+            if (ImGui::Selectable("frame (L_o)", s.debugView.empty()))
+                s.debugView.clear(), changed = true;
+            for (const char* view : {render::SceneRenderer::kLightCountView,
+                                     render::SceneRenderer::kLightsEvaluatedView})
+                if (ImGui::Selectable(view, s.debugView == view))
+                    s.debugView = view, changed = true;
             for (const graph::TextureInfo& t : renderer_->graph().textures()) {
                 const auto& f = gdi::formatInfo(t.desc.format);
-                if (!t.used() || f.isInteger || t.name == "debug view" || t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||
-                    t.desc.dimension == gdi::TextureDimension::TextureCubeArray || t.desc.dimension == gdi::TextureDimension::Texture3D ||
-                    t.desc.sampleCount > 1)
+                if (!t.used() || f.isInteger || t.name == "debug view" ||
+                    t.name.rfind("display", 0) == 0 || t.name == "tonemapped sRGB" ||
+                    t.desc.dimension == gdi::TextureDimension::TextureCubeArray ||
+                    t.desc.dimension == gdi::TextureDimension::Texture3D || t.desc.sampleCount > 1)
                     continue;
-                if (ImGui::Selectable(t.name.c_str(), s.debugView == t.name)) s.debugView = t.name, changed = true;
+                if (ImGui::Selectable(t.name.c_str(), s.debugView == t.name))
+                    s.debugView = t.name, changed = true;
             }
             ImGui::EndCombo();
         }
-        if (changed) pendingSettings_ = s;
-        else if (s.exposure != settings_.exposure) settings_.exposure = s.exposure, pendingSettings_ = s;
+        if (changed)
+            pendingSettings_ = s;
+        else if (s.exposure != settings_.exposure)
+            settings_.exposure = s.exposure, pendingSettings_ = s;
         animationPanel();
-        if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
+        if (!message_.empty())
+            ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
         ImGui::Separator();
         ImGui::Text("frame %.1f ms (CPU)", frameMs_);
         if (ImGui::BeginTable("passes", 2)) {
@@ -327,7 +373,8 @@ private:
     double animationDuration() const {
         double d = 0.0;
         for (size_t i = 0; i < scene_.animations.size(); ++i)
-            if (animation_ == assets::kAllAnimations || int32_t(i) == animation_) d = std::max(d, double(scene_.animations[i].duration));
+            if (animation_ == assets::kAllAnimations || int32_t(i) == animation_)
+                d = std::max(d, double(scene_.animations[i].duration));
         return d;
     }
 
@@ -339,12 +386,17 @@ private:
                 const std::string& n = scene_.animations[size_t(i)].name;
                 return std::to_string(i) + (n.empty() ? "" : " " + n);
             };
-            const std::string current = animation_ == -1 ? "rest pose" : animation_ == assets::kAllAnimations ? "all" : name(animation_);
+            const std::string current = animation_ == -1                       ? "rest pose"
+                                        : animation_ == assets::kAllAnimations ? "all"
+                                                                               : name(animation_);
             if (ImGui::BeginCombo("animation", current.c_str())) {
-                if (ImGui::Selectable("rest pose", animation_ == -1)) animation_ = -1, assets::poseScene(scene_, {}), renderer_->updatePose();
-                if (ImGui::Selectable("all", animation_ == assets::kAllAnimations)) animation_ = assets::kAllAnimations, time_ = 0.0;
+                if (ImGui::Selectable("rest pose", animation_ == -1))
+                    animation_ = -1, assets::poseScene(scene_, {}), renderer_->updatePose();
+                if (ImGui::Selectable("all", animation_ == assets::kAllAnimations))
+                    animation_ = assets::kAllAnimations, time_ = 0.0;
                 for (int32_t i = 0; i < int32_t(scene_.animations.size()); ++i)
-                    if (ImGui::Selectable(name(i).c_str(), animation_ == i)) animation_ = i, time_ = 0.0;
+                    if (ImGui::Selectable(name(i).c_str(), animation_ == i))
+                        animation_ = i, time_ = 0.0;
                 ImGui::EndCombo();
             }
             if (animation_ != -1) {
@@ -352,12 +404,16 @@ private:
                 ImGui::SameLine();
                 ImGui::Checkbox("loop", &loop_);
                 float t = float(time_);
-                if (ImGui::SliderFloat("time", &t, 0.0f, float(animationDuration()), "%.2f s")) time_ = t;
+                if (ImGui::SliderFloat("time", &t, 0.0f, float(animationDuration()), "%.2f s"))
+                    time_ = t;
             }
         }
         if (!scene_.cameras.empty()) {
-            auto label = [&](int32_t i) { return std::to_string(i) + " " + scene_.cameras[size_t(i)].name; };
-            if (ImGui::BeginCombo("camera", fileCamera_ < 0 ? "orbit (drag)" : label(fileCamera_).c_str())) {
+            auto label = [&](int32_t i) {
+                return std::to_string(i) + " " + scene_.cameras[size_t(i)].name;
+            };
+            if (ImGui::BeginCombo("camera",
+                                  fileCamera_ < 0 ? "orbit (drag)" : label(fileCamera_).c_str())) {
                 if (ImGui::Selectable("orbit (drag)", fileCamera_ < 0)) fileCamera_ = -1;
                 for (int32_t i = 0; i < int32_t(scene_.cameras.size()); ++i)
                     if (ImGui::Selectable(label(i).c_str(), fileCamera_ == i)) fileCamera_ = i;
@@ -368,8 +424,9 @@ private:
 
     void screenshot(const std::string& path) {
         gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
-        std::cout << "wrote " << path << " (" << device_->info().backend << ", " << settings_.technique
-                  << (settings_.ibl() ? ", environment light" : "") << (settings_.shadows.enabled ? ", shadows" : "");
+        std::cout << "wrote " << path << " (" << device_->info().backend << ", "
+                  << settings_.technique << (settings_.ibl() ? ", environment light" : "")
+                  << (settings_.shadows.enabled ? ", shadows" : "");
         if (animation_ != -1) std::cout << ", animation " << animation_ << " at " << time_ << " s";
         if (fileCamera_ >= 0) std::cout << ", camera " << fileCamera_;
         std::cout << ")\n";
@@ -384,8 +441,8 @@ private:
     std::unique_ptr<render::SceneRenderer> renderer_;
     std::vector<graph::PassTiming> timings_;
     double frameMs_ = 0;
-    int32_t animation_ = -1;   // playing (Scene::animations), -1: the rest pose
-    double time_ = 0.0;        // its time, seconds
+    int32_t animation_ = -1;  // playing (Scene::animations), -1: the rest pose
+    double time_ = 0.0;       // its time, seconds
     bool playing_ = true, loop_ = true;
     int32_t fileCamera_ = -1;  // looking through Scene::cameras[i], -1: the orbit camera
     std::optional<render::RenderSettings> pendingSettings_;

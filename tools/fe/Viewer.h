@@ -13,18 +13,19 @@ struct ViewerOptions {
     // No scene named: the quick start's image, lit by its environment through the fast path
     // (prefiltered: interactive on a CPU rasterizer) with shadows on.
     bool quickStartLighting = false;
-    std::string backend = "auto";      // auto | vulkan | gl | vulkan-glfw | gl-glfw
+    std::string backend = "auto";  // auto | vulkan | gl | vulkan-glfw | gl-glfw
     std::string technique = "deferred-tiled";
-    std::string environment;           // "", builtin:sky or an .hdr
+    std::string environment;  // "", builtin:sky or an .hdr
     uint32_t width = 640, height = 480;
-    uint32_t frames = 0;               // 0: until the window is closed
-    std::string screenshot;            // written after the last frame (PNG), and by the F12 key
-    bool validation = false;           // Khronos layer / GL debug output on; an error fails the run (tests)
-    bool ui = true;                    // the panel (false: the scene alone, e.g. to compare)
-    std::string debugView;             // a texture of the frame's graph to show instead of L_o
-    std::string animation;             // index or name: played from the start (default: the first, if any)
-    std::string camera;                // index or name of the file's camera to look through (default: orbit)
-    uint32_t switchBackendAt = 0;      // tests: at this frame, switch to the other API as the panel does
+    uint32_t frames = 0;      // 0: until the window is closed
+    std::string screenshot;   // written after the last frame (PNG), and by the F12 key
+    bool validation = false;  // Khronos layer / GL debug output on; an error fails the run (tests)
+    bool ui = true;           // the panel (false: the scene alone, e.g. to compare)
+    std::string debugView;    // a texture of the frame's graph to show instead of L_o
+    std::string animation;    // index or name: played from the start (default: the first, if any)
+    std::string camera;       // index or name of the file's camera to look through (default: orbit)
+    uint32_t switchBackendAt =
+        0;  // tests: at this frame, switch to the other API as the panel does
 };
 
 // Runs the viewer; returns the process exit code. Throws gdi::Error / AssetError on failure.

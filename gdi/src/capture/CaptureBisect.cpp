@@ -13,8 +13,8 @@ std::optional<uint64_t> skipFor(const BisectOptions& o, int device) {
 }
 
 // The targets of `a` and `b` (same capture: same targets in the same order) that differ.
-std::vector<TargetDiff> differing(const std::vector<ReplayImage>& a, const std::vector<ReplayImage>& b,
-                                  const BisectOptions& o) {
+std::vector<TargetDiff> differing(const std::vector<ReplayImage>& a,
+                                  const std::vector<ReplayImage>& b, const BisectOptions& o) {
     std::vector<TargetDiff> out;
     for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
         const Image& x = a[i].image;
@@ -28,7 +28,8 @@ std::vector<TargetDiff> differing(const std::vector<ReplayImage>& a, const std::
         d.diff = compareImages(x, y, o.absTolerance, 0.0, &d.heat);
         if (d.diff.fractionOver() > o.maxFractionOver) out.push_back(std::move(d));
     }
-    if (a.size() != b.size()) out.push_back({.target = "(the two replays read different numbers of targets)"});
+    if (a.size() != b.size())
+        out.push_back({.target = "(the two replays read different numbers of targets)"});
     return out;
 }
 
@@ -63,7 +64,8 @@ BisectResult bisectCapture(const std::string& path, Device& a, Device& b, const 
         ++result.drawsCompared;
         const ReplayResult da = replay(a, 0, {.stopAfterDraw = draw});
         const ReplayResult db = replay(b, 1, {.stopAfterDraw = draw});
-        if (!da.stopTargets || !db.stopTargets) continue;  // the draw was left out (perturbed) on one side
+        if (!da.stopTargets || !db.stopTargets)
+            continue;  // the draw was left out (perturbed) on one side
         auto diffs = differing(da.stopTargets->targets, db.stopTargets->targets, o);
         if (diffs.empty()) continue;
         result.draw = da.stoppedAt ? da.stoppedAt : db.stoppedAt;

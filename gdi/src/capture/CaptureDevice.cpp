@@ -29,11 +29,18 @@ constexpr size_t kMappedGap = 64;
 class CaptureDevice final : public Device {
 public:
     CaptureDevice(std::unique_ptr<Device> inner, const CaptureDesc& desc)
-        : inner_(std::move(inner)), info_(portable(inner_->info())), writer_(desc.path, desc.compress), frameLimit_(desc.frames),
-          firstFrame_(desc.firstFrame), beforeRange_(desc.firstFrame > 0) {
+        : inner_(std::move(inner)),
+          info_(portable(inner_->info())),
+          writer_(desc.path, desc.compress),
+          frameLimit_(desc.frames),
+          firstFrame_(desc.firstFrame),
+          beforeRange_(desc.firstFrame > 0) {
         const DeviceInfo& i = inner_->info();
-        writer_.record(json::to_cbor(json{{"op", "device"}, {"backend", i.backend}, {"device", i.deviceName},
-                                          {"commandSet", capture::commandSetFingerprint()}, {"window", i.features.window},
+        writer_.record(json::to_cbor(json{{"op", "device"},
+                                          {"backend", i.backend},
+                                          {"device", i.deviceName},
+                                          {"commandSet", capture::commandSetFingerprint()},
+                                          {"window", i.features.window},
                                           {"firstFrame", firstFrame_}}));
         recording_ = !beforeRange_;
     }
@@ -65,15 +72,23 @@ public:
     }
 
     const DeviceInfo& info() const override { return info_; }
-    bool supportsFormat(Format f, TextureUsage u) const override { return inner_->supportsFormat(f, u); }
+    bool supportsFormat(Format f, TextureUsage u) const override {
+        return inner_->supportsFormat(f, u);
+    }
     FormatCaps formatCaps(Format f) const override { return inner_->formatCaps(f); }
-    PipelineCacheStats openPipelineCache(const std::string& path) override { return inner_->openPipelineCache(path); }
+    PipelineCacheStats openPipelineCache(const std::string& path) override {
+        return inner_->openPipelineCache(path);
+    }
     void savePipelineCache() override { inner_->savePipelineCache(); }
     PipelineCacheStats pipelineCacheStats() const override { return inner_->pipelineCacheStats(); }
 
     BufferHandle createBuffer(const BufferDesc& desc, ByteSpan initialData) override {
         const BufferHandle h = inner_->createBuffer(desc, initialData);
-        created("buffer", h.id, {{"op", "createBuffer"}, {"id", h.id}, {"desc", toJson(desc)}, {"data", kept(initialData)}});
+        created("buffer", h.id,
+                {{"op", "createBuffer"},
+                 {"id", h.id},
+                 {"desc", toJson(desc)},
+                 {"data", kept(initialData)}});
         return h;
     }
     TextureHandle createTexture(const TextureDesc& desc) override {
@@ -83,7 +98,11 @@ public:
     }
     TextureHandle createTextureView(TextureHandle texture, const TextureViewDesc& desc) override {
         const TextureHandle h = inner_->createTextureView(texture, desc);
-        created("texture", h.id, {{"op", "createTextureView"}, {"id", h.id}, {"of", texture.id}, {"desc", toJson(desc)}});
+        created("texture", h.id,
+                {{"op", "createTextureView"},
+                 {"id", h.id},
+                 {"of", texture.id},
+                 {"desc", toJson(desc)}});
         return h;
     }
     SamplerHandle createSampler(const SamplerDesc& desc) override {
@@ -94,19 +113,26 @@ public:
     ShaderHandle createShader(const ShaderDesc& desc) override {
         const ShaderHandle h = inner_->createShader(desc);
         const auto& b = desc.binary;
-        created("shader", h.id, {{"op", "createShader"}, {"id", h.id}, {"stage", uint64_t(desc.stage)},
-                                 {"name", b.name ? b.name : ""}, {"entry", desc.entryPoint ? desc.entryPoint : "main"},
-                                 {"vulkan", kept(std::as_bytes(b.vulkan))}, {"opengl", kept(std::as_bytes(b.opengl))}});
+        created("shader", h.id,
+                {{"op", "createShader"},
+                 {"id", h.id},
+                 {"stage", uint64_t(desc.stage)},
+                 {"name", b.name ? b.name : ""},
+                 {"entry", desc.entryPoint ? desc.entryPoint : "main"},
+                 {"vulkan", kept(std::as_bytes(b.vulkan))},
+                 {"opengl", kept(std::as_bytes(b.opengl))}});
         return h;
     }
     PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc) override {
         const PipelineHandle h = inner_->createGraphicsPipeline(desc);
-        created("pipeline", h.id, {{"op", "createGraphicsPipeline"}, {"id", h.id}, {"desc", toJson(desc)}});
+        created("pipeline", h.id,
+                {{"op", "createGraphicsPipeline"}, {"id", h.id}, {"desc", toJson(desc)}});
         return h;
     }
     PipelineHandle createComputePipeline(const ComputePipelineDesc& desc) override {
         const PipelineHandle h = inner_->createComputePipeline(desc);
-        created("pipeline", h.id, {{"op", "createComputePipeline"}, {"id", h.id}, {"desc", toJson(desc)}});
+        created("pipeline", h.id,
+                {{"op", "createComputePipeline"}, {"id", h.id}, {"desc", toJson(desc)}});
         return h;
     }
     TimerHandle createTimer() override {
@@ -153,18 +179,28 @@ public:
         // The file already holds these bytes: mapped memory compares against them from now on.
         if (const auto it = mapped_.find(b.id); it != mapped_.end())
             std::memcpy(it->second.shadow.data() + offset, data.data(), data.size());
-        recordLocked({{"op", "writeBuffer"}, {"id", b.id}, {"offset", offset}, {"data", blob(data)}});
+        recordLocked(
+            {{"op", "writeBuffer"}, {"id", b.id}, {"offset", offset}, {"data", blob(data)}});
     }
     void writeTexture(TextureHandle t, Subresource at, ByteSpan data) override {
         inner_->writeTexture(t, at, data);
         std::lock_guard lock(mutex_);
         // Before the range, textures that cannot be read back keep what the program wrote.
-        if (beforeRange_ && !readable(inner_->desc(t))) textureShadows_[{t.id, at.mipLevel, at.layer}].assign(data.begin(), data.end());
-        recordLocked({{"op", "writeTexture"}, {"id", t.id}, {"mip", at.mipLevel}, {"layer", at.layer}, {"data", blob(data)}});
+        if (beforeRange_ && !readable(inner_->desc(t)))
+            textureShadows_[{t.id, at.mipLevel, at.layer}].assign(data.begin(), data.end());
+        recordLocked({{"op", "writeTexture"},
+                      {"id", t.id},
+                      {"mip", at.mipLevel},
+                      {"layer", at.layer},
+                      {"data", blob(data)}});
     }
-    void writeTextureRegion(TextureHandle t, const TextureRegion& region, ByteSpan data, const TexelLayout& layout) override {
+    void writeTextureRegion(TextureHandle t, const TextureRegion& region, ByteSpan data,
+                            const TexelLayout& layout) override {
         inner_->writeTextureRegion(t, region, data, layout);
-        record({{"op", "writeTextureRegion"}, {"id", t.id}, {"region", toJson(region)}, {"layout", toJson(layout)},
+        record({{"op", "writeTextureRegion"},
+                {"id", t.id},
+                {"region", toJson(region)},
+                {"layout", toJson(layout)},
                 {"data", blob(data)}});
     }
     std::vector<uint8_t> readBuffer(BufferHandle b, uint64_t offset, uint64_t size) override {
@@ -175,7 +211,8 @@ public:
     Image readTexture(TextureHandle t, Subresource at) override {
         Image image = inner_->readTexture(t, at);
         std::lock_guard lock(mutex_);
-        recordLocked({{"op", "readTexture"}, {"id", t.id}, {"mip", at.mipLevel}, {"layer", at.layer}});
+        recordLocked(
+            {{"op", "readTexture"}, {"id", t.id}, {"mip", at.mipLevel}, {"layer", at.layer}});
         if (submittedSinceFrame_) endFrameLocked();
         return image;
     }
@@ -223,7 +260,8 @@ public:
         }
         writeMappedChanges();
         json ids = json::array();
-        for (RecordingCommandList* r : recorded) ids.push_back(blob(encodeCommandStream(*r->takeStream())));
+        for (RecordingCommandList* r : recorded)
+            ids.push_back(blob(encodeCommandStream(*r->takeStream())));
         recordLocked({{"op", "submit"}, {"fence", fence}, {"lists", ids}});
         submittedSinceFrame_ = true;
         return fence;
@@ -248,11 +286,15 @@ public:
         inner_->waitIdle();
         record({{"op", "waitIdle"}});
     }
-    std::optional<double> timerNanoseconds(TimerHandle t) override { return inner_->timerNanoseconds(t); }
+    std::optional<double> timerNanoseconds(TimerHandle t) override {
+        return inner_->timerNanoseconds(t);
+    }
     // Results the program got are results replay can compare (fe conformance --capture).
-    bool queryResults(QuerySetHandle s, uint32_t first, uint32_t count, std::span<uint64_t> out) override {
+    bool queryResults(QuerySetHandle s, uint32_t first, uint32_t count,
+                      std::span<uint64_t> out) override {
         const bool ready = inner_->queryResults(s, first, count, out);
-        if (ready) record({{"op", "queryResults"}, {"id", s.id}, {"first", first}, {"count", count}});
+        if (ready)
+            record({{"op", "queryResults"}, {"id", s.id}, {"first", first}, {"count", count}});
         return ready;
     }
     uint32_t validationErrorCount() const override { return inner_->validationErrorCount(); }
@@ -266,7 +308,9 @@ public:
     }
     Image readWindow() override { return inner_->readWindow(); }
     InputState input() const override { return inner_->input(); }
-    uint64_t nativeObject(NativeObject what, uint32_t id) const override { return inner_->nativeObject(what, id); }
+    uint64_t nativeObject(NativeObject what, uint32_t id) const override {
+        return inner_->nativeObject(what, id);
+    }
 
 private:
     struct Mapped {
@@ -295,8 +339,10 @@ private:
     }
     void created(const char* kind, uint32_t id, json j) {
         std::lock_guard lock(mutex_);
-        if (beforeRange_) live_[{kind, id}] = {sequence_++, std::move(j)};
-        else recordLocked(j);
+        if (beforeRange_)
+            live_[{kind, id}] = {sequence_++, std::move(j)};
+        else
+            recordLocked(j);
     }
     // Before the range: an object destroyed is not part of the state, except shaders, which the
     // live pipelines made from them still need when the state is written.
@@ -306,12 +352,17 @@ private:
         if (it == live_.end()) return;
         if (kind == "shader") deadShaders_[id] = std::move(it->second);
         live_.erase(it);
-        if (kind == "texture") std::erase_if(textureShadows_, [&](const auto& e) { return std::get<0>(e.first) == id; });
+        if (kind == "texture")
+            std::erase_if(textureShadows_,
+                          [&](const auto& e) { return std::get<0>(e.first) == id; });
     }
     static bool readable(const TextureDesc& d) {
-        return d.sampleCount == 1 && formatInfo(d.format).bytesPerBlock == 0 && d.dimension != TextureDimension::Texture3D;
+        return d.sampleCount == 1 && formatInfo(d.format).bytesPerBlock == 0 &&
+               d.dimension != TextureDimension::Texture3D;
     }
-    uint64_t blob(const std::vector<std::byte>& bytes) { return blob(std::span<const std::byte>(bytes)); }
+    uint64_t blob(const std::vector<std::byte>& bytes) {
+        return blob(std::span<const std::byte>(bytes));
+    }
     void record(const json& j) {
         std::lock_guard lock(mutex_);
         recordLocked(j);
@@ -339,18 +390,27 @@ private:
         inner_->waitIdle();
         beforeRange_ = false;
         recording_ = true;
-        static const std::map<std::string, int> rank = {
-            {"createHeap", 0},    {"createBuffer", 1}, {"createTexture", 2},          {"createTextureView", 3},
-            {"createSampler", 4}, {"createShader", 5}, {"createGraphicsPipeline", 6}, {"createComputePipeline", 6},
-            {"createTimer", 7},   {"createQuerySet", 8}};
+        static const std::map<std::string, int> rank = {{"createHeap", 0},
+                                                        {"createBuffer", 1},
+                                                        {"createTexture", 2},
+                                                        {"createTextureView", 3},
+                                                        {"createSampler", 4},
+                                                        {"createShader", 5},
+                                                        {"createGraphicsPipeline", 6},
+                                                        {"createComputePipeline", 6},
+                                                        {"createTimer", 7},
+                                                        {"createQuerySet", 8}};
         std::vector<std::pair<std::pair<int, uint64_t>, Kept*>> order;
-        for (auto& [key, k] : live_) order.push_back({{rank.at(k.create["op"].get<std::string>()), k.sequence}, &k});
+        for (auto& [key, k] : live_)
+            order.push_back({{rank.at(k.create["op"].get<std::string>()), k.sequence}, &k});
         for (auto& [id, k] : deadShaders_) order.push_back({{5, k.sequence}, &k});
-        std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        std::sort(order.begin(), order.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
         for (auto& [ranked, k] : order) {
             for (const char* field : {"data", "vulkan", "opengl"})
                 if (k->create.contains(field) && k->create[field].is_binary())
-                    k->create[field] = writer_.blob(std::as_bytes(std::span(k->create[field].get_binary())));
+                    k->create[field] =
+                        writer_.blob(std::as_bytes(std::span(k->create[field].get_binary())));
             const std::string op = k->create["op"].get<std::string>();
             const uint32_t id = k->create["id"].get<uint32_t>();
             if (op == "createBuffer") {
@@ -359,14 +419,17 @@ private:
                 recordLocked(k->create);
                 const BufferHandle b{id};
                 const auto bytes = inner_->readBuffer(b, 0, inner_->desc(b).size);
-                recordLocked({{"op", "restoreBuffer"}, {"id", id}, {"data", blob(std::as_bytes(std::span(bytes)))}});
+                recordLocked({{"op", "restoreBuffer"},
+                              {"id", id},
+                              {"data", blob(std::as_bytes(std::span(bytes)))}});
             } else if (op == "createTexture") {
                 writeTextureState(k->create, TextureHandle{id});
             } else {
                 recordLocked(k->create);
             }
         }
-        for (auto& [id, k] : deadShaders_) recordLocked({{"op", "destroy"}, {"kind", "shader"}, {"id", id}});
+        for (auto& [id, k] : deadShaders_)
+            recordLocked({{"op", "destroy"}, {"kind", "shader"}, {"id", id}});
         for (auto& [id, m] : mapped_) {
             m.shadow.assign(m.memory, m.memory + m.shadow.size());
             recordLocked({{"op", "mapped"}, {"id", id}, {"offset", 0}, {"data", blob(m.shadow)}});
@@ -389,12 +452,16 @@ private:
                     } catch (const Error&) {
                         // A format this device cannot read back: the state holds no contents for it.
                     }
-                } else if (const auto s = textureShadows_.find({t.id, mip, layer}); s != textureShadows_.end()) {
+                } else if (const auto s = textureShadows_.find({t.id, mip, layer});
+                           s != textureShadows_.end()) {
                     const auto* p = reinterpret_cast<const uint8_t*>(s->second.data());
                     bytes.assign(p, p + s->second.size());
                 }
                 if (!bytes.empty())
-                    restores.push_back({{"op", "restoreTexture"}, {"id", t.id}, {"mip", mip}, {"layer", layer},
+                    restores.push_back({{"op", "restoreTexture"},
+                                        {"id", t.id},
+                                        {"mip", mip},
+                                        {"layer", layer},
                                         {"data", blob(std::as_bytes(std::span(bytes)))}});
             }
         if (!restores.empty()) create["restore"] = true;
@@ -413,12 +480,17 @@ private:
                 }
                 size_t end = i + 1, same = 0;
                 for (size_t k = end; k < size && same < kMappedGap; ++k) {
-                    if (m.memory[k] != m.shadow[k]) end = k + 1, same = 0;
-                    else ++same;
+                    if (m.memory[k] != m.shadow[k])
+                        end = k + 1, same = 0;
+                    else
+                        ++same;
                 }
                 std::memcpy(m.shadow.data() + i, m.memory + i, end - i);
-                recordLocked({{"op", "mapped"}, {"id", id}, {"offset", i},
-                              {"data", blob(std::span<const std::byte>(m.shadow.data() + i, end - i))}});
+                recordLocked(
+                    {{"op", "mapped"},
+                     {"id", id},
+                     {"offset", i},
+                     {"data", blob(std::span<const std::byte>(m.shadow.data() + i, end - i))}});
                 i = end;
             }
         }
@@ -428,8 +500,10 @@ private:
     // and what GL drivers ask (NVIDIA's GL: 256, its Vulkan: 64): a program that aligns its
     // offsets as info() says records a capture every backend replays.
     static DeviceInfo portable(DeviceInfo i) {
-        i.limits.uniformBufferOffsetAlignment = std::lcm(std::max(i.limits.uniformBufferOffsetAlignment, 1u), 256u);
-        i.limits.storageBufferOffsetAlignment = std::lcm(std::max(i.limits.storageBufferOffsetAlignment, 1u), 256u);
+        i.limits.uniformBufferOffsetAlignment =
+            std::lcm(std::max(i.limits.uniformBufferOffsetAlignment, 1u), 256u);
+        i.limits.storageBufferOffsetAlignment =
+            std::lcm(std::max(i.limits.storageBufferOffsetAlignment, 1u), 256u);
         return i;
     }
     std::unique_ptr<Device> inner_;
@@ -447,7 +521,8 @@ private:
     uint64_t sequence_ = 0;
     std::map<std::pair<std::string, uint32_t>, Kept> live_;  // before the range: kind, id ->
     std::map<uint32_t, Kept> deadShaders_;
-    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, std::vector<std::byte>> textureShadows_;  // id, mip, layer ->
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, std::vector<std::byte>>
+        textureShadows_;                // id, mip, layer ->
     FenceValue completedRecorded_ = 0;  // the newest fence isComplete said was done, as written
     uint32_t frames_ = 0;
     bool submittedSinceFrame_ = false;

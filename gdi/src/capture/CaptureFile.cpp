@@ -35,7 +35,8 @@ std::string contentKey(std::span<const std::byte> bytes) {
     const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     uint64_t fnv = 14695981039346656037ull;
     for (std::byte b : bytes) fnv = (fnv ^ uint64_t(b)) * 1099511628211ull;
-    const uint64_t keys[3] = {uint64_t(bytes.size()), uint64_t(std::hash<std::string_view>{}(view)), fnv};
+    const uint64_t keys[3] = {uint64_t(bytes.size()), uint64_t(std::hash<std::string_view>{}(view)),
+                              fnv};
     return std::string(reinterpret_cast<const char*>(keys), sizeof keys);
 }
 
@@ -155,7 +156,8 @@ void Writer::write(const Chunk& c) {
     // Small chunks are not worth a zstd frame.
     if (compress_ && c.bytes.size() >= 256) {
         stored.resize(ZSTD_compressBound(c.bytes.size()));
-        const size_t n = ZSTD_compress(stored.data(), stored.size(), c.bytes.data(), c.bytes.size(), kZstdLevel);
+        const size_t n =
+            ZSTD_compress(stored.data(), stored.size(), c.bytes.data(), c.bytes.size(), kZstdLevel);
         if (!ZSTD_isError(n) && n < c.bytes.size()) {
             stored.resize(n);
             encoding = Encoding::Zstd;
@@ -179,7 +181,8 @@ void Writer::write(const Chunk& c) {
 
 Reader::Reader(const std::string& path) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw CaptureError("capture: '" + path + "' is not a readable file");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw CaptureError("capture: '" + path + "' is not a readable file");
     std::ifstream in(path, std::ios::binary);
     const auto size = std::filesystem::file_size(path, ec);
     if (!in || ec) throw CaptureError("capture: cannot read '" + path + "'");
@@ -190,24 +193,31 @@ Reader::Reader(const std::string& path) {
         refuse(0, "not a capture file (no FECAPTUR header)");
     version_ = get<uint32_t>(file_.data() + 8);
     if (version_ == 0 || version_ > kVersion)
-        refuse(8, "format version " + std::to_string(version_) + "; this build reads version " + std::to_string(kVersion));
+        refuse(8, "format version " + std::to_string(version_) + "; this build reads version " +
+                      std::to_string(kVersion));
 }
 
 bool Reader::next(Chunk& chunk) {
     if (ended_) return false;
     const uint64_t at = at_;
     if (file_.size() - at < kChunkHeaderBytes)
-        refuse(at, "file ends before its end record (truncated: the capturing program did not finish)");
+        refuse(at,
+               "file ends before its end record (truncated: the capturing program did not finish)");
     const auto kind = get<uint32_t>(file_.data() + at);
     const auto encoding = get<uint32_t>(file_.data() + at + 4);
     const auto stored = get<uint64_t>(file_.data() + at + 8);
     const auto raw = get<uint64_t>(file_.data() + at + 16);
-    if (kind < uint32_t(ChunkKind::Blob) || kind > uint32_t(ChunkKind::End)) refuse(at, "unknown chunk kind " + std::to_string(kind));
-    if (encoding > uint32_t(Encoding::Zstd)) refuse(at, "unknown chunk encoding " + std::to_string(encoding));
+    if (kind < uint32_t(ChunkKind::Blob) || kind > uint32_t(ChunkKind::End))
+        refuse(at, "unknown chunk kind " + std::to_string(kind));
+    if (encoding > uint32_t(Encoding::Zstd))
+        refuse(at, "unknown chunk encoding " + std::to_string(encoding));
     if (stored > file_.size() - at - kChunkHeaderBytes)
         refuse(at, "chunk of " + std::to_string(stored) + " bytes runs past the end of the file");
-    if (raw > kMaxChunkBytes) refuse(at, "chunk of " + std::to_string(raw) + " bytes is larger than a capture chunk may be");
-    if (encoding == uint32_t(Encoding::Raw) && raw != stored) refuse(at, "raw chunk's two sizes differ");
+    if (raw > kMaxChunkBytes)
+        refuse(at,
+               "chunk of " + std::to_string(raw) + " bytes is larger than a capture chunk may be");
+    if (encoding == uint32_t(Encoding::Raw) && raw != stored)
+        refuse(at, "raw chunk's two sizes differ");
     const std::byte* body = file_.data() + at + kChunkHeaderBytes;
     chunk.kind = ChunkKind(kind);
     chunk.offset = at;
@@ -215,11 +225,14 @@ bool Reader::next(Chunk& chunk) {
         chunk.bytes.assign(body, body + stored);
     } else {
         const unsigned long long content = ZSTD_getFrameContentSize(body, stored);
-        if (content != raw) refuse(at, "compressed chunk does not hold the " + std::to_string(raw) + " bytes it states");
+        if (content != raw)
+            refuse(at, "compressed chunk does not hold the " + std::to_string(raw) +
+                           " bytes it states");
         chunk.bytes.resize(raw);
         const size_t n = ZSTD_decompress(chunk.bytes.data(), raw, body, stored);
-        if (ZSTD_isError(n) || n != raw) refuse(at, "compressed chunk is damaged (zstd: " +
-                                                   std::string(ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short") + ")");
+        if (ZSTD_isError(n) || n != raw)
+            refuse(at, "compressed chunk is damaged (zstd: " +
+                           std::string(ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short") + ")");
     }
     at_ = at + kChunkHeaderBytes + stored;
     if (chunk.kind == ChunkKind::End) {

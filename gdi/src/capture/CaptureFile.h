@@ -49,7 +49,9 @@ public:
 
     // A blob's id (1, 2, ... in order of first appearance; 0 for no bytes). Thread-safe.
     uint64_t blob(std::span<const std::byte> bytes);
-    uint64_t blob(const void* data, size_t size) { return blob({static_cast<const std::byte*>(data), size}); }
+    uint64_t blob(const void* data, size_t size) {
+        return blob({static_cast<const std::byte*>(data), size});
+    }
     void record(std::vector<uint8_t> cbor);  // thread-safe
     // Writes the end chunk and closes the file; later calls do nothing.
     void finish();

@@ -12,7 +12,8 @@ namespace {
     throw std::runtime_error(std::string("field '") + key + "' " + why);
 }
 const json& at(const json& j, const char* key) {
-    if (!j.is_object()) throw std::runtime_error(std::string("expected an object holding '") + key + "'");
+    if (!j.is_object())
+        throw std::runtime_error(std::string("expected an object holding '") + key + "'");
     const auto it = j.find(key);
     if (it == j.end()) bad(key, "is missing");
     return *it;
@@ -27,7 +28,8 @@ float real(const json& j, const char* key) {
     if (!v.is_number()) bad(key, "is not a number");
     const double d = v.get<double>();
     // Descriptions hold finite floats; anything else (or beyond float range) is damage.
-    if (!(std::abs(d) <= double(std::numeric_limits<float>::max()))) bad(key, "is not a finite float");
+    if (!(std::abs(d) <= double(std::numeric_limits<float>::max())))
+        bad(key, "is not a finite float");
     return float(d);
 }
 // An enum stored as its value, which must be at most `last`.
@@ -61,7 +63,10 @@ constexpr TextureUsage kAllTextureUsage = TextureUsage(31);
 constexpr Format kLastFormat = Format(uint32_t(Format::Count) - 1);
 
 json toJson(const StencilFaceState& s) {
-    return {{"fail", raw(s.failOp)}, {"depthFail", raw(s.depthFailOp)}, {"pass", raw(s.passOp)}, {"compare", raw(s.compare)}};
+    return {{"fail", raw(s.failOp)},
+            {"depthFail", raw(s.depthFailOp)},
+            {"pass", raw(s.passOp)},
+            {"compare", raw(s.compare)}};
 }
 StencilFaceState stencilFace(const json& j) {
     return {.failOp = enumValue(j, "fail", StencilOp::DecrementWrap),
@@ -71,7 +76,8 @@ StencilFaceState stencilFace(const json& j) {
 }
 json toJson(const std::vector<BindingSlot>& bindings) {
     json a = json::array();
-    for (const BindingSlot& b : bindings) a.push_back({{"slot", b.slot}, {"type", raw(b.type)}, {"stages", raw(b.stages)}});
+    for (const BindingSlot& b : bindings)
+        a.push_back({{"slot", b.slot}, {"type", raw(b.type)}, {"stages", raw(b.stages)}});
     return a;
 }
 std::vector<BindingSlot> bindingSlots(const json& j) {
@@ -90,8 +96,9 @@ json toJson(const std::vector<SpecializationConstant>& s) {
 std::vector<SpecializationConstant> specialization(const json& j) {
     std::vector<SpecializationConstant> out;
     for (const json& c : array(j, "specialization")) {
-        if (!c.is_array() || c.size() != 2 || !c[0].is_number_unsigned() || !c[1].is_number_unsigned() ||
-            c[0].get<uint64_t>() > UINT32_MAX || c[1].get<uint64_t>() > UINT32_MAX)
+        if (!c.is_array() || c.size() != 2 || !c[0].is_number_unsigned() ||
+            !c[1].is_number_unsigned() || c[0].get<uint64_t>() > UINT32_MAX ||
+            c[1].get<uint64_t>() > UINT32_MAX)
             bad("specialization", "holds something other than [id, bits] pairs");
         out.push_back({c[0].get<uint32_t>(), c[1].get<uint32_t>()});
     }
@@ -105,7 +112,8 @@ json formats(const std::vector<Format>& f) {
 std::vector<Format> formatList(const json& j, const char* key) {
     std::vector<Format> out;
     for (const json& f : array(j, key)) {
-        if (!f.is_number_unsigned() || f.get<uint64_t>() > uint64_t(kLastFormat)) bad(key, "holds an unknown format");
+        if (!f.is_number_unsigned() || f.get<uint64_t>() > uint64_t(kLastFormat))
+            bad(key, "holds an unknown format");
         out.push_back(Format(f.get<uint32_t>()));
     }
     return out;
@@ -144,9 +152,16 @@ BufferDesc bufferDesc(const json& j, Strings& keep) {
 }
 
 json toJson(const TextureDesc& d) {
-    json j = {{"dimension", raw(d.dimension)}, {"format", raw(d.format)}, {"width", d.width}, {"height", d.height},
-              {"depthOrLayers", d.depthOrLayers}, {"mips", d.mipLevels}, {"samples", d.sampleCount},
-              {"usage", raw(d.usage)}, {"heap", d.heap.id}, {"heapOffset", d.heapOffset},
+    json j = {{"dimension", raw(d.dimension)},
+              {"format", raw(d.format)},
+              {"width", d.width},
+              {"height", d.height},
+              {"depthOrLayers", d.depthOrLayers},
+              {"mips", d.mipLevels},
+              {"samples", d.sampleCount},
+              {"usage", raw(d.usage)},
+              {"heap", d.heap.id},
+              {"heapOffset", d.heapOffset},
               {"viewFormats", formats(d.viewFormats)}};
     putName(j, d.debugName);
     return j;
@@ -167,9 +182,13 @@ TextureDesc textureDesc(const json& j, Strings& keep) {
 }
 
 json toJson(const TextureViewDesc& d) {
-    json j = {{"format", raw(d.format)}, {"baseMip", d.baseMip}, {"mipCount", d.mipCount}, {"baseLayer", d.baseLayer},
-              {"layerCount", d.layerCount},
-              {"swizzle", {raw(d.swizzle[0]), raw(d.swizzle[1]), raw(d.swizzle[2]), raw(d.swizzle[3])}}};
+    json j = {
+        {"format", raw(d.format)},
+        {"baseMip", d.baseMip},
+        {"mipCount", d.mipCount},
+        {"baseLayer", d.baseLayer},
+        {"layerCount", d.layerCount},
+        {"swizzle", {raw(d.swizzle[0]), raw(d.swizzle[1]), raw(d.swizzle[2]), raw(d.swizzle[3])}}};
     if (d.dimension) j["dimension"] = raw(*d.dimension);
     putName(j, d.debugName);
     return j;
@@ -181,21 +200,32 @@ TextureViewDesc textureViewDesc(const json& j, Strings& keep) {
                       .baseLayer = u32(j, "baseLayer"),
                       .layerCount = u32(j, "layerCount"),
                       .debugName = text(j, "name", keep)};
-    if (j.contains("dimension")) d.dimension = enumValue(j, "dimension", TextureDimension::Texture3D);
+    if (j.contains("dimension"))
+        d.dimension = enumValue(j, "dimension", TextureDimension::Texture3D);
     const json& s = array(j, "swizzle");
     if (s.size() != 4) bad("swizzle", "does not hold 4 values");
     for (size_t i = 0; i < 4; ++i) {
-        if (!s[i].is_number_unsigned() || s[i].get<uint64_t>() > uint64_t(Swizzle::A)) bad("swizzle", "holds an unknown value");
+        if (!s[i].is_number_unsigned() || s[i].get<uint64_t>() > uint64_t(Swizzle::A))
+            bad("swizzle", "holds an unknown value");
         d.swizzle[i] = Swizzle(s[i].get<uint32_t>());
     }
     return d;
 }
 
 json toJson(const SamplerDesc& d) {
-    json j = {{"min", raw(d.minFilter)}, {"mag", raw(d.magFilter)}, {"mip", raw(d.mipFilter)},
-              {"u", raw(d.addressU)}, {"v", raw(d.addressV)}, {"w", raw(d.addressW)},
-              {"anisotropy", d.maxAnisotropy}, {"compareEnable", d.compareEnable}, {"compare", raw(d.compare)},
-              {"border", raw(d.borderColor)}, {"lodBias", d.lodBias}, {"minLod", d.minLod}, {"maxLod", d.maxLod}};
+    json j = {{"min", raw(d.minFilter)},
+              {"mag", raw(d.magFilter)},
+              {"mip", raw(d.mipFilter)},
+              {"u", raw(d.addressU)},
+              {"v", raw(d.addressV)},
+              {"w", raw(d.addressW)},
+              {"anisotropy", d.maxAnisotropy},
+              {"compareEnable", d.compareEnable},
+              {"compare", raw(d.compare)},
+              {"border", raw(d.borderColor)},
+              {"lodBias", d.lodBias},
+              {"minLod", d.minLod},
+              {"maxLod", d.maxLod}};
     putName(j, d.debugName);
     return j;
 }
@@ -220,31 +250,55 @@ json toJson(const GraphicsPipelineDesc& d) {
     json vb = json::array();
     for (const VertexBufferLayout& b : d.vertexBuffers) {
         json attrs = json::array();
-        for (const VertexAttribute& a : b.attributes) attrs.push_back({a.location, raw(a.format), a.offset});
+        for (const VertexAttribute& a : b.attributes)
+            attrs.push_back({a.location, raw(a.format), a.offset});
         vb.push_back({{"stride", b.stride}, {"perInstance", b.perInstance}, {"attributes", attrs}});
     }
     json blend = json::array();
     for (const BlendTargetState& b : d.blend)
-        blend.push_back({{"enable", b.enable}, {"srcColor", raw(b.srcColor)}, {"dstColor", raw(b.dstColor)},
-                         {"colorOp", raw(b.colorOp)}, {"srcAlpha", raw(b.srcAlpha)}, {"dstAlpha", raw(b.dstAlpha)},
-                         {"alphaOp", raw(b.alphaOp)}, {"mask", raw(b.writeMask)}});
+        blend.push_back({{"enable", b.enable},
+                         {"srcColor", raw(b.srcColor)},
+                         {"dstColor", raw(b.dstColor)},
+                         {"colorOp", raw(b.colorOp)},
+                         {"srcAlpha", raw(b.srcAlpha)},
+                         {"dstAlpha", raw(b.dstAlpha)},
+                         {"alphaOp", raw(b.alphaOp)},
+                         {"mask", raw(b.writeMask)}});
     const RasterState& r = d.raster;
     const DepthStencilState& ds = d.depthStencil;
-    json j = {
-        {"vs", d.vertexShader.id}, {"fs", d.fragmentShader.id}, {"vertexBuffers", vb}, {"topology", raw(d.topology)},
-        {"primitiveRestart", d.primitiveRestart},
-        {"raster", {{"cull", raw(r.cullMode)}, {"front", raw(r.frontFace)}, {"biasConstant", r.depthBiasConstant},
-                    {"biasSlope", r.depthBiasSlope}, {"biasClamp", r.depthBiasClamp}, {"depthClamp", r.depthClamp}}},
-        {"multisample", {{"samples", d.multisample.sampleCount}, {"alphaToCoverage", d.multisample.alphaToCoverage},
-                         {"mask", d.multisample.sampleMask}}},
-        {"depthStencil", {{"test", ds.depthTest}, {"write", ds.depthWrite}, {"compare", raw(ds.depthCompare)},
-                          {"stencil", ds.stencilTest}, {"front", toJson(ds.front)}, {"back", toJson(ds.back)},
-                          {"readMask", ds.stencilReadMask}, {"writeMask", ds.stencilWriteMask},
-                          {"reference", ds.stencilReference}}},
-        {"blend", blend},
-        {"blendConstant", {d.blendConstant[0], d.blendConstant[1], d.blendConstant[2], d.blendConstant[3]}},
-        {"colorFormats", formats(d.colorFormats)}, {"depthFormat", raw(d.depthFormat)},
-        {"bindings", toJson(d.bindings)}, {"specialization", toJson(d.specialization)}};
+    json j = {{"vs", d.vertexShader.id},
+              {"fs", d.fragmentShader.id},
+              {"vertexBuffers", vb},
+              {"topology", raw(d.topology)},
+              {"primitiveRestart", d.primitiveRestart},
+              {"raster",
+               {{"cull", raw(r.cullMode)},
+                {"front", raw(r.frontFace)},
+                {"biasConstant", r.depthBiasConstant},
+                {"biasSlope", r.depthBiasSlope},
+                {"biasClamp", r.depthBiasClamp},
+                {"depthClamp", r.depthClamp}}},
+              {"multisample",
+               {{"samples", d.multisample.sampleCount},
+                {"alphaToCoverage", d.multisample.alphaToCoverage},
+                {"mask", d.multisample.sampleMask}}},
+              {"depthStencil",
+               {{"test", ds.depthTest},
+                {"write", ds.depthWrite},
+                {"compare", raw(ds.depthCompare)},
+                {"stencil", ds.stencilTest},
+                {"front", toJson(ds.front)},
+                {"back", toJson(ds.back)},
+                {"readMask", ds.stencilReadMask},
+                {"writeMask", ds.stencilWriteMask},
+                {"reference", ds.stencilReference}}},
+              {"blend", blend},
+              {"blendConstant",
+               {d.blendConstant[0], d.blendConstant[1], d.blendConstant[2], d.blendConstant[3]}},
+              {"colorFormats", formats(d.colorFormats)},
+              {"depthFormat", raw(d.depthFormat)},
+              {"bindings", toJson(d.bindings)},
+              {"specialization", toJson(d.specialization)}};
     putName(j, d.debugName);
     return j;
 }
@@ -255,11 +309,14 @@ GraphicsPipelineDesc graphicsPipelineDesc(const json& j, Strings& keep) {
     for (const json& b : array(j, "vertexBuffers")) {
         VertexBufferLayout l{.stride = u32(b, "stride"), .perInstance = flag(b, "perInstance")};
         for (const json& a : array(b, "attributes")) {
-            if (!a.is_array() || a.size() != 3) bad("attributes", "holds something other than [location, format, offset]");
+            if (!a.is_array() || a.size() != 3)
+                bad("attributes", "holds something other than [location, format, offset]");
             const json named = {{"location", a[0]}, {"format", a[1]}, {"offset", a[2]}};
-            l.attributes.push_back({.location = u32(named, "location"),
-                                    .format = enumValue(named, "format", VertexFormat(uint32_t(VertexFormat::Count) - 1)),
-                                    .offset = u32(named, "offset")});
+            l.attributes.push_back(
+                {.location = u32(named, "location"),
+                 .format =
+                     enumValue(named, "format", VertexFormat(uint32_t(VertexFormat::Count) - 1)),
+                 .offset = u32(named, "offset")});
         }
         d.vertexBuffers.push_back(std::move(l));
     }
@@ -273,7 +330,9 @@ GraphicsPipelineDesc graphicsPipelineDesc(const json& j, Strings& keep) {
                 .depthBiasClamp = real(r, "biasClamp"),
                 .depthClamp = flag(r, "depthClamp")};
     const json& m = at(j, "multisample");
-    d.multisample = {.sampleCount = u32(m, "samples"), .alphaToCoverage = flag(m, "alphaToCoverage"), .sampleMask = u32(m, "mask")};
+    d.multisample = {.sampleCount = u32(m, "samples"),
+                     .alphaToCoverage = flag(m, "alphaToCoverage"),
+                     .sampleMask = u32(m, "mask")};
     const json& ds = at(j, "depthStencil");
     auto byte = [&](const char* key) {
         const uint32_t v = u32(ds, key);
@@ -312,7 +371,9 @@ GraphicsPipelineDesc graphicsPipelineDesc(const json& j, Strings& keep) {
 }
 
 json toJson(const ComputePipelineDesc& d) {
-    json j = {{"cs", d.computeShader.id}, {"bindings", toJson(d.bindings)}, {"specialization", toJson(d.specialization)}};
+    json j = {{"cs", d.computeShader.id},
+              {"bindings", toJson(d.bindings)},
+              {"specialization", toJson(d.specialization)}};
     putName(j, d.debugName);
     return j;
 }
@@ -328,7 +389,9 @@ json toJson(const HeapDesc& d) {
     putName(j, d.debugName);
     return j;
 }
-HeapDesc heapDesc(const json& j, Strings& keep) { return {.size = u64(j, "size"), .debugName = text(j, "name", keep)}; }
+HeapDesc heapDesc(const json& j, Strings& keep) {
+    return {.size = u64(j, "size"), .debugName = text(j, "name", keep)};
+}
 
 json toJson(const QuerySetDesc& d) {
     json j = {{"type", raw(d.type)}, {"count", d.count}};
@@ -336,19 +399,31 @@ json toJson(const QuerySetDesc& d) {
     return j;
 }
 QuerySetDesc querySetDesc(const json& j, Strings& keep) {
-    return {.type = enumValue(j, "type", QueryType::Timestamp), .count = u32(j, "count"), .debugName = text(j, "name", keep)};
+    return {.type = enumValue(j, "type", QueryType::Timestamp),
+            .count = u32(j, "count"),
+            .debugName = text(j, "name", keep)};
 }
 
 json toJson(const TextureRegion& r) {
-    return {{"mip", r.mipLevel}, {"x", r.x}, {"y", r.y}, {"z", r.z}, {"width", r.width}, {"height", r.height}, {"depth", r.depth}};
+    return {{"mip", r.mipLevel}, {"x", r.x},           {"y", r.y},        {"z", r.z},
+            {"width", r.width},  {"height", r.height}, {"depth", r.depth}};
 }
 TextureRegion textureRegion(const json& j) {
-    return {.mipLevel = u32(j, "mip"), .x = u32(j, "x"), .y = u32(j, "y"), .z = u32(j, "z"),
-            .width = u32(j, "width"), .height = u32(j, "height"), .depth = u32(j, "depth")};
+    return {.mipLevel = u32(j, "mip"),
+            .x = u32(j, "x"),
+            .y = u32(j, "y"),
+            .z = u32(j, "z"),
+            .width = u32(j, "width"),
+            .height = u32(j, "height"),
+            .depth = u32(j, "depth")};
 }
-json toJson(const TexelLayout& l) { return {{"offset", l.offset}, {"bytesPerRow", l.bytesPerRow}, {"rowsPerImage", l.rowsPerImage}}; }
+json toJson(const TexelLayout& l) {
+    return {{"offset", l.offset}, {"bytesPerRow", l.bytesPerRow}, {"rowsPerImage", l.rowsPerImage}};
+}
 TexelLayout texelLayout(const json& j) {
-    return {.offset = u64(j, "offset"), .bytesPerRow = u32(j, "bytesPerRow"), .rowsPerImage = u32(j, "rowsPerImage")};
+    return {.offset = u64(j, "offset"),
+            .bytesPerRow = u32(j, "bytesPerRow"),
+            .rowsPerImage = u32(j, "rowsPerImage")};
 }
 
 }  // namespace fe::gdi::capture

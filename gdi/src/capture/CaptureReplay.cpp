@@ -30,7 +30,8 @@ using Clock = std::chrono::steady_clock;
 
 class Replayer {
 public:
-    Replayer(Device& device, const ReplayOptions& options) : device_(device), options_(options), probe_(*this) {
+    Replayer(Device& device, const ReplayOptions& options)
+        : device_(device), options_(options), probe_(*this) {
         map_.keepUnknown = false;
         if (!options_.outDir.empty()) std::filesystem::create_directories(options_.outDir);
     }
@@ -41,13 +42,11 @@ public:
         auto destroy = [&](auto handle) {
             try {
                 device_.destroy(handle);
-            } catch (const std::exception&) {
-            }
+            } catch (const std::exception&) {}
         };
         try {
             device_.waitIdle();
-        } catch (const std::exception&) {
-        }
+        } catch (const std::exception&) {}
         for (auto& [c, r] : map_.pipelines) destroy(PipelineHandle{r});
         for (auto& [c, r] : shaders_) destroy(ShaderHandle{r});
         for (uint32_t r : views_) destroy(TextureHandle{r});
@@ -88,9 +87,11 @@ private:
         std::string op = "?";
         try {
             const json r = json::from_cbor(chunk.bytes);
-            if (!r.is_object() || !r.contains("op") || !r["op"].is_string()) throw std::runtime_error("record without an op");
+            if (!r.is_object() || !r.contains("op") || !r["op"].is_string())
+                throw std::runtime_error("record without an op");
             op = r["op"].get<std::string>();
-            if (index == 0 && op != "device") throw std::runtime_error("the first record is not the device's");
+            if (index == 0 && op != "device")
+                throw std::runtime_error("the first record is not the device's");
             const auto it = handlers().find(op);
             if (it == handlers().end()) throw std::runtime_error("unknown call");
             (this->*(it->second))(r);
@@ -106,7 +107,8 @@ private:
         }
     }
     static std::string where(const capture::Chunk& c, uint64_t index, const std::string& op) {
-        return "capture: record " + std::to_string(index) + " (" + op + ") at offset " + std::to_string(c.offset) + ": ";
+        return "capture: record " + std::to_string(index) + " (" + op + ") at offset " +
+               std::to_string(c.offset) + ": ";
     }
 
     using Handler = void (Replayer::*)(const json&);
@@ -146,7 +148,9 @@ private:
     std::span<const std::byte> blob(const json& r, const char* key) const {
         const uint64_t id = u64(r, key);
         if (id == 0) return {};
-        if (id > blobs_.size()) throw std::runtime_error("data block " + std::to_string(id) + " is not in the file before it");
+        if (id > blobs_.size())
+            throw std::runtime_error("data block " + std::to_string(id) +
+                                     " is not in the file before it");
         return blobs_[id - 1];
     }
     // The id a create record names, checked before the object is made (so a refusal leaves
@@ -154,38 +158,52 @@ private:
     static uint32_t freeId(const std::unordered_map<uint32_t, uint32_t>& m, const json& r) {
         const uint32_t captured = u32(r, "id");
         if (captured == 0 || m.count(captured))
-            throw std::runtime_error("object id " + std::to_string(captured) + " is null or already in use");
+            throw std::runtime_error("object id " + std::to_string(captured) +
+                                     " is null or already in use");
         return captured;
     }
-    static void bind(std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured, uint32_t replayed) { m.emplace(captured, replayed); }
+    static void bind(std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured,
+                     uint32_t replayed) {
+        m.emplace(captured, replayed);
+    }
     static uint32_t lookup(const std::unordered_map<uint32_t, uint32_t>& m, uint32_t captured) {
         if (captured == 0) return 0;
         const auto it = m.find(captured);
         return it == m.end() ? HandleMap::kUnknownId : it->second;
     }
-    BufferHandle buffer(const json& r, const char* key = "id") const { return {lookup(map_.buffers, u32(r, key))}; }
-    TextureHandle texture(const json& r, const char* key = "id") const { return {lookup(map_.textures, u32(r, key))}; }
+    BufferHandle buffer(const json& r, const char* key = "id") const {
+        return {lookup(map_.buffers, u32(r, key))};
+    }
+    TextureHandle texture(const json& r, const char* key = "id") const {
+        return {lookup(map_.textures, u32(r, key))};
+    }
 
     void deviceRecord(const json& r) {
         result_.capturedBackend = r.at("backend").get<std::string>();
         if (u64(r, "commandSet") != capture::commandSetFingerprint())
-            throw std::runtime_error("recorded with another build's command set; its command lists cannot be read here");
+            throw std::runtime_error(
+                "recorded with another build's command set; its command lists cannot be read here");
     }
     void createBuffer(const json& r) {
         freeId(map_.buffers, r);
         BufferDesc d = capture::bufferDesc(r.at("desc"), strings_);
         // A trimmed capture's state is written into it (restoreBuffer).
-        if (r.contains("restore") && d.access == MemoryAccess::GpuOnly) d.usage = d.usage | BufferUsage::CopyDst;
+        if (r.contains("restore") && d.access == MemoryAccess::GpuOnly)
+            d.usage = d.usage | BufferUsage::CopyDst;
         const BufferHandle h = device_.createBuffer(d, blob(r, "data"));
         bind(map_.buffers, u32(r, "id"), h.id);
-        bufferNames_[u32(r, "id")] = d.debugName ? d.debugName : "buffer " + std::to_string(u32(r, "id"));
+        bufferNames_[u32(r, "id")] =
+            d.debugName ? d.debugName : "buffer " + std::to_string(u32(r, "id"));
     }
     void createTexture(const json& r) {
         freeId(map_.textures, r);
         TextureDesc d = capture::textureDesc(r.at("desc"), strings_);
-        if (unplacedHeaps_.count(d.heap.id)) d.heap = {}, d.heapOffset = 0;
-        else d.heap = {lookup(heaps_, d.heap.id)};
-        if (r.contains("restore")) {  // a trimmed capture's state is written into it (restoreTexture)
+        if (unplacedHeaps_.count(d.heap.id))
+            d.heap = {}, d.heapOffset = 0;
+        else
+            d.heap = {lookup(heaps_, d.heap.id)};
+        if (r.contains(
+                "restore")) {  // a trimmed capture's state is written into it (restoreTexture)
             TextureDesc writable = d;
             writable.usage = d.usage | TextureUsage::CopyDst;
             if (device_.supportsFormat(d.format, writable.usage)) d = writable;
@@ -212,14 +230,18 @@ private:
     void createShader(const json& r) {
         auto words = [&](const char* key) -> std::span<const uint32_t> {
             const auto bytes = blob(r, key);
-            if (bytes.size() % 4) throw std::runtime_error(std::string("SPIR-V '") + key + "' is not whole words");
+            if (bytes.size() % 4)
+                throw std::runtime_error(std::string("SPIR-V '") + key + "' is not whole words");
             auto& w = code_.emplace_back(bytes.size() / 4);
-            if (!bytes.empty()) std::memcpy(w.data(), bytes.data(), bytes.size());  // empty: both may be null
+            if (!bytes.empty())
+                std::memcpy(w.data(), bytes.data(), bytes.size());  // empty: both may be null
             return w;
         };
         freeId(shaders_, r);
         ShaderDesc d{.stage = capture::shaderStage(r),
-                     .binary = {.name = capture::text(r, "name", strings_), .vulkan = words("vulkan"), .opengl = words("opengl")},
+                     .binary = {.name = capture::text(r, "name", strings_),
+                                .vulkan = words("vulkan"),
+                                .opengl = words("opengl")},
                      .entryPoint = capture::text(r, "entry", strings_)};
         if (!d.binary.name) d.binary.name = "";
         if (!d.entryPoint) throw std::runtime_error("field 'entry' is missing");
@@ -232,8 +254,10 @@ private:
         GraphicsPipelineDesc d = capture::graphicsPipelineDesc(r.at("desc"), strings_);
         PipelineInfo& info = pipelines_[u32(r, "id")];
         info = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
-                {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]}, usedSlots(d.bindings)};
-        for (size_t i = 0; i < d.vertexBuffers.size(); ++i) info.uses.insert("vertex buffer " + std::to_string(i));
+                {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]},
+                usedSlots(d.bindings)};
+        for (size_t i = 0; i < d.vertexBuffers.size(); ++i)
+            info.uses.insert("vertex buffer " + std::to_string(i));
         d.vertexShader = {lookup(shaders_, d.vertexShader.id)};
         d.fragmentShader = {lookup(shaders_, d.fragmentShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
@@ -241,17 +265,22 @@ private:
     void createComputePipeline(const json& r) {
         freeId(map_.pipelines, r);
         ComputePipelineDesc d = capture::computePipelineDesc(r.at("desc"), strings_);
-        pipelines_[u32(r, "id")] = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
-                                    {shaderNames_[d.computeShader.id]}, usedSlots(d.bindings)};
+        pipelines_[u32(r, "id")] = {
+            d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
+            {shaderNames_[d.computeShader.id]},
+            usedSlots(d.bindings)};
         d.computeShader = {lookup(shaders_, d.computeShader.id)};
         bind(map_.pipelines, u32(r, "id"), device_.createComputePipeline(d).id);
     }
-    void createTimer(const json& r) { bind(map_.timers, freeId(map_.timers, r), device_.createTimer().id); }
+    void createTimer(const json& r) {
+        bind(map_.timers, freeId(map_.timers, r), device_.createTimer().id);
+    }
     // A device without memory aliasing (GL) gives each placed texture memory of its own: what
     // aliasing saves is memory, and a correct program never reads one texture through another.
     void createHeap(const json& r) {
         const uint32_t id = freeId(heaps_, r);
-        if (unplacedHeaps_.count(id)) throw std::runtime_error("object id " + std::to_string(id) + " is already in use");
+        if (unplacedHeaps_.count(id))
+            throw std::runtime_error("object id " + std::to_string(id) + " is already in use");
         const HeapDesc d = capture::heapDesc(r.at("desc"), strings_);
         if (!device_.info().features.memoryAliasing) {
             unplacedHeaps_.insert(u32(r, "id"));
@@ -298,7 +327,9 @@ private:
             throw std::runtime_error("unknown object kind '" + kind + "'");
         }
     }
-    void writeBuffer(const json& r) { device_.writeBuffer(buffer(r), u64(r, "offset"), blob(r, "data")); }
+    void writeBuffer(const json& r) {
+        device_.writeBuffer(buffer(r), u64(r, "offset"), blob(r, "data"));
+    }
     // What the program wrote into mapped Upload memory: written the same way here, so the GPU
     // reads it from mapped memory as it did (writeBuffer would wait for the work in flight).
     void mapped(const json& r) {
@@ -306,16 +337,19 @@ private:
         const uint64_t offset = u64(r, "offset");
         const auto data = blob(r, "data");
         const BufferDesc& d = device_.desc(b);
-        if (offset > d.size || data.size() > d.size - offset) throw std::runtime_error("mapped bytes beyond the buffer's end");
-        if (d.access != MemoryAccess::Upload) throw std::runtime_error("mapped bytes for a buffer that is not Upload memory");
-        if (!data.empty()) std::memcpy(static_cast<std::byte*>(device_.map(b)) + offset, data.data(), data.size());
+        if (offset > d.size || data.size() > d.size - offset)
+            throw std::runtime_error("mapped bytes beyond the buffer's end");
+        if (d.access != MemoryAccess::Upload)
+            throw std::runtime_error("mapped bytes for a buffer that is not Upload memory");
+        if (!data.empty())
+            std::memcpy(static_cast<std::byte*>(device_.map(b)) + offset, data.data(), data.size());
     }
     void writeTexture(const json& r) {
         device_.writeTexture(texture(r), {u32(r, "mip"), u32(r, "layer")}, blob(r, "data"));
     }
     void writeTextureRegion(const json& r) {
-        device_.writeTextureRegion(texture(r), capture::textureRegion(r.at("region")), blob(r, "data"),
-                                   capture::texelLayout(r.at("layout")));
+        device_.writeTextureRegion(texture(r), capture::textureRegion(r.at("region")),
+                                   blob(r, "data"), capture::texelLayout(r.at("layout")));
     }
     void readBuffer(const json& r) {
         const auto bytes = device_.readBuffer(buffer(r), u64(r, "offset"), u64(r, "size"));
@@ -325,7 +359,8 @@ private:
     // ends) is kept, as the program could read it.
     void mapRead(const json& r) {
         const BufferHandle b = buffer(r);
-        if (device_.desc(b).access != MemoryAccess::Readback) throw std::runtime_error("mapRead of a buffer that is not Readback memory");
+        if (device_.desc(b).access != MemoryAccess::Readback)
+            throw std::runtime_error("mapRead of a buffer that is not Readback memory");
         mappedForRead_[u32(r, "id")] = {b, static_cast<const uint8_t*>(device_.map(b))};
     }
     void keepMappedRead(uint32_t captured) {
@@ -333,22 +368,27 @@ private:
         if (it == mappedForRead_.end()) return;
         device_.waitIdle();
         const uint8_t* p = it->second.second;
-        result_.buffers.push_back({result_.frames, bufferNames_[captured], {p, p + device_.desc(it->second.first).size}});
+        result_.buffers.push_back(
+            {result_.frames, bufferNames_[captured], {p, p + device_.desc(it->second.first).size}});
         mappedForRead_.erase(it);
     }
     // Occlusion results compare across devices; timestamps and pipeline statistics do not.
     void queryResults(const json& r) {
         const uint32_t id = u32(r, "id"), first = u32(r, "first"), count = u32(r, "count");
         const auto type = querySetTypes_.find(id);
-        if (type == querySetTypes_.end()) throw std::runtime_error("query set " + std::to_string(id) + " does not exist");
-        if (type->second != QueryType::Occlusion && type->second != QueryType::AnySamplesPassed) return;
+        if (type == querySetTypes_.end())
+            throw std::runtime_error("query set " + std::to_string(id) + " does not exist");
+        if (type->second != QueryType::Occlusion && type->second != QueryType::AnySamplesPassed)
+            return;
         if (count > 4096) throw std::runtime_error("more queries than a set holds");
         std::vector<uint64_t> values(count);
         device_.waitIdle();
         if (!device_.queryResults({lookup(map_.querySets, id)}, first, count, values))
-            throw std::runtime_error("the queries' results are not available after the work completed");
+            throw std::runtime_error(
+                "the queries' results are not available after the work completed");
         const auto* bytes = reinterpret_cast<const uint8_t*>(values.data());
-        result_.buffers.push_back({result_.frames, "queries of set " + std::to_string(id), {bytes, bytes + count * 8}});
+        result_.buffers.push_back(
+            {result_.frames, "queries of set " + std::to_string(id), {bytes, bytes + count * 8}});
     }
     // A trimmed capture's state: what an object held when the captured range began. A device
     // that refuses it (a depth format it cannot upload to, say) leaves it undefined and counts it.
@@ -356,7 +396,8 @@ private:
         const BufferHandle b = buffer(r);
         const auto data = blob(r, "data");
         const BufferDesc& d = device_.desc(b);
-        if (data.size() != d.size) throw std::runtime_error("restored contents are not the buffer's size");
+        if (data.size() != d.size)
+            throw std::runtime_error("restored contents are not the buffer's size");
         if (d.access == MemoryAccess::Upload) {
             std::memcpy(device_.map(b), data.data(), data.size());
         } else if (d.access == MemoryAccess::GpuOnly) {
@@ -414,13 +455,17 @@ private:
     }
     void frame(const json&) {
         const auto now = Clock::now();
-        result_.frameMilliseconds.push_back(std::chrono::duration<double, std::milli>(now - frameStart_).count());
+        result_.frameMilliseconds.push_back(
+            std::chrono::duration<double, std::milli>(now - frameStart_).count());
         frameStart_ = now;
         ++result_.frames;
     }
 
     void keep(TextureHandle t, Image image, bool presented) {
-        ReplayImage out{.frame = result_.frames, .name = names_[t.id], .presented = presented, .image = std::move(image)};
+        ReplayImage out{.frame = result_.frames,
+                        .name = names_[t.id],
+                        .presented = presented,
+                        .image = std::move(image)};
         if (!options_.outDir.empty()) {
             std::string file = out.name;
             for (char& c : file)
@@ -439,12 +484,14 @@ private:
     struct Stopped {};
     bool timing() const { return options_.passTimes && device_.info().features.timestamps; }
     bool probing() const {
-        return options_.snapshotPasses || options_.stopAfterDraw || options_.stopAfterPass || options_.skipDraw;
+        return options_.snapshotPasses || options_.stopAfterDraw || options_.stopAfterPass ||
+               options_.skipDraw;
     }
     // Probing reads render targets back, so they get CopySrc where the format allows it (a
     // placed texture whose memory needs would change keeps its usage).
     TextureHandle createReadableTexture(const TextureDesc& d) {
-        if (!probing() || !any(d.usage, TextureUsage::RenderTarget) || any(d.usage, TextureUsage::CopySrc) || d.sampleCount > 1)
+        if (!probing() || !any(d.usage, TextureUsage::RenderTarget) ||
+            any(d.usage, TextureUsage::CopySrc) || d.sampleCount > 1)
             return device_.createTexture(d);
         TextureDesc readable = d;
         readable.usage = d.usage | TextureUsage::CopySrc;
@@ -466,7 +513,8 @@ private:
         bool before(cmd::Op op, const std::byte* record, CommandList& list) override {
             cmd::CommandStream::dispatch(op, record, [&](const auto& rec) { checkWork(rec); });
             if (op == cmd::Op::BeginRenderPass && r_.timing()) {
-                const QuerySetHandle set = r_.device_.createQuerySet({.type = QueryType::Timestamp, .count = 2});
+                const QuerySetHandle set =
+                    r_.device_.createQuerySet({.type = QueryType::Timestamp, .count = 2});
                 timestampSets_.push_back(set);
                 list.writeTimestamp(set, 0);
             }
@@ -486,16 +534,18 @@ private:
             if (op == cmd::Op::BeginRenderPass) {
                 inPass_ = true, drawsInPass_ = 0, firstDraw_ = draw, groupsAtPass_ = groups_.size();
                 // Unnamed passes (a render graph names its passes by debug group) take the group's name.
-                passName_ = open_.debugName      ? open_.debugName
+                passName_ = open_.debugName    ? open_.debugName
                             : !groups_.empty() ? groups_.back()
                                                : "pass " + std::to_string(pass);
             } else if (op == cmd::Op::EndRenderPass) {
                 inPass_ = false;
                 if (r_.timing() && !timestampSets_.empty()) {
                     list.writeTimestamp(timestampSets_.back(), 1);
-                    timed_.push_back({timestampSets_.back(), {r_.result_.frames, pass, passName_, 0}});
+                    timed_.push_back(
+                        {timestampSets_.back(), {r_.result_.frames, pass, passName_, 0}});
                 }
-                const bool stopHere = r_.options_.stopAfterPass && *r_.options_.stopAfterPass == passName_;
+                const bool stopHere =
+                    r_.options_.stopAfterPass && *r_.options_.stopAfterPass == passName_;
                 if (r_.options_.snapshotPasses || stopHere) readTargets(list, stopHere);
                 if (stopHere) closeList(list);
                 stop = stop || stopHere;
@@ -521,8 +571,10 @@ private:
                     image.image.data.assign(bytes.begin(), bytes.end());
                     p.snapshot.targets.push_back(std::move(image));
                 }
-                if (p.stop) r_.result_.stopTargets = std::move(p.snapshot);
-                else r_.result_.passSnapshots.push_back(std::move(p.snapshot));
+                if (p.stop)
+                    r_.result_.stopTargets = std::move(p.snapshot);
+                else
+                    r_.result_.passSnapshots.push_back(std::move(p.snapshot));
             }
             pending_.clear();
             for (BufferHandle b : buffers_) r_.device_.destroy(b);
@@ -532,18 +584,26 @@ private:
     private:
         template <class R>
         void checkWork(const R&) {}
-        void checkWork(const cmd::Draw& r) { checkVertices(uint64_t(r.vertexCount) * r.instanceCount); }
-        void checkWork(const cmd::DrawIndexed& r) { checkVertices(uint64_t(r.indexCount) * r.instanceCount); }
+        void checkWork(const cmd::Draw& r) {
+            checkVertices(uint64_t(r.vertexCount) * r.instanceCount);
+        }
+        void checkWork(const cmd::DrawIndexed& r) {
+            checkVertices(uint64_t(r.indexCount) * r.instanceCount);
+        }
         void checkWork(const cmd::Dispatch& r) {
             const uint64_t groups = uint64_t(r.groupsX) * r.groupsY * r.groupsZ;
             if (groups > r_.options_.maxDispatchGroups)
-                throw std::runtime_error("a dispatch of " + std::to_string(groups) + " work groups is beyond this replay's limit (" +
-                                         std::to_string(r_.options_.maxDispatchGroups) + ", ReplayOptions::maxDispatchGroups)");
+                throw std::runtime_error("a dispatch of " + std::to_string(groups) +
+                                         " work groups is beyond this replay's limit (" +
+                                         std::to_string(r_.options_.maxDispatchGroups) +
+                                         ", ReplayOptions::maxDispatchGroups)");
         }
         void checkVertices(uint64_t vertices) {
             if (vertices > r_.options_.maxDrawVertices)
-                throw std::runtime_error("draw " + std::to_string(draw) + " of " + std::to_string(vertices) +
-                                         " vertices is beyond this replay's limit (" + std::to_string(r_.options_.maxDrawVertices) +
+                throw std::runtime_error("draw " + std::to_string(draw) + " of " +
+                                         std::to_string(vertices) +
+                                         " vertices is beyond this replay's limit (" +
+                                         std::to_string(r_.options_.maxDrawVertices) +
                                          ", ReplayOptions::maxDrawVertices)");
         }
         void collectTimes() {
@@ -579,7 +639,8 @@ private:
         // the timers begun and not ended (a render graph times each pass), outermost last.
         void closeList(CommandList& list) {
             for (; !groups_.empty(); groups_.pop_back()) list.popDebugGroup();
-            for (uint32_t timer : timers_) list.endTimer(TimerHandle{lookup(r_.map_.timers, timer)});
+            for (uint32_t timer : timers_)
+                list.endTimer(TimerHandle{lookup(r_.map_.timers, timer)});
             timers_.clear();
         }
         struct Pending {
@@ -588,31 +649,40 @@ private:
             std::vector<std::pair<BufferHandle, ReplayImage>> reads;
         };
         static bool isDraw(cmd::Op op) {
-            return op == cmd::Op::Draw || op == cmd::Op::DrawIndexed || op == cmd::Op::DrawIndirect ||
-                   op == cmd::Op::DrawIndexedIndirect || op == cmd::Op::DrawIndirectCount ||
-                   op == cmd::Op::DrawIndexedIndirectCount || op == cmd::Op::ExecuteSecondary;
+            return op == cmd::Op::Draw || op == cmd::Op::DrawIndexed ||
+                   op == cmd::Op::DrawIndirect || op == cmd::Op::DrawIndexedIndirect ||
+                   op == cmd::Op::DrawIndirectCount || op == cmd::Op::DrawIndexedIndirectCount ||
+                   op == cmd::Op::ExecuteSecondary;
         }
         // Copies each readable attachment of the pass that just ended into a Readback buffer.
         void readTargets(CommandList& list, bool stopHere) {
-            Pending p{.snapshot = {pass, passName_, firstDraw_, drawsInPass_, {}}, .stop = stopHere};
-            auto read = [&](TextureHandle t, Subresource at, const std::string& what, ResourceState state) {
+            Pending p{.snapshot = {pass, passName_, firstDraw_, drawsInPass_, {}},
+                      .stop = stopHere};
+            auto read = [&](TextureHandle t, Subresource at, const std::string& what,
+                            ResourceState state) {
                 if (!t) return;
                 BufferHandle buffer;
                 try {
                     const TextureDesc& d = r_.device_.desc(t);
                     const uint64_t bytes = textureByteSize(d, at.mipLevel);
-                    buffer = r_.device_.createBuffer({.size = bytes, .usage = BufferUsage::CopyDst, .access = MemoryAccess::Readback});
+                    buffer = r_.device_.createBuffer({.size = bytes,
+                                                      .usage = BufferUsage::CopyDst,
+                                                      .access = MemoryAccess::Readback});
                     // Buffers outlive the list's submission even when the copy is refused.
                     buffers_.push_back(buffer);
                     // With the program's own barriers (automatic ones off), the copy brings its own
                     // and gives the texture back in the state the program left it in.
-                    const TextureBarrier toCopy{t, state, ResourceState::CopySrc, at.mipLevel, 1, at.layer, 1};
+                    const TextureBarrier toCopy{
+                        t, state, ResourceState::CopySrc, at.mipLevel, 1, at.layer, 1};
                     if (!automaticBarriers_) list.barrier(&toCopy, 1);
                     list.copyTextureToBuffer(buffer, 0, t, at);
-                    const TextureBarrier back{t, ResourceState::CopySrc, state, at.mipLevel, 1, at.layer, 1};
+                    const TextureBarrier back{
+                        t, ResourceState::CopySrc, state, at.mipLevel, 1, at.layer, 1};
                     if (!automaticBarriers_) list.barrier(&back, 1);
-                    ReplayImage image{.frame = r_.result_.frames, .name = what + ": " + r_.names_[t.id]};
-                    image.image = {std::max(1u, d.width >> at.mipLevel), std::max(1u, d.height >> at.mipLevel), d.format,
+                    ReplayImage image{.frame = r_.result_.frames,
+                                      .name = what + ": " + r_.names_[t.id]};
+                    image.image = {std::max(1u, d.width >> at.mipLevel),
+                                   std::max(1u, d.height >> at.mipLevel), d.format,
                                    std::vector<uint8_t>(bytes)};
                     p.reads.emplace_back(buffer, std::move(image));
                 } catch (const Error&) {
@@ -622,15 +692,22 @@ private:
             for (size_t i = 0; i < open_.colors.size(); ++i) {
                 const ColorAttachment& c = open_.colors[i];
                 if (c.resolveTexture)
-                    read(c.resolveTexture, c.resolveSubresource, "colour " + std::to_string(i), ResourceState::RenderTarget);
+                    read(c.resolveTexture, c.resolveSubresource, "colour " + std::to_string(i),
+                         ResourceState::RenderTarget);
                 else
-                    read(c.texture, {c.mipLevel, c.layer}, "colour " + std::to_string(i), ResourceState::RenderTarget);
+                    read(c.texture, {c.mipLevel, c.layer}, "colour " + std::to_string(i),
+                         ResourceState::RenderTarget);
             }
-            read(open_.depth.texture, {open_.depth.mipLevel, open_.depth.layer}, "depth", ResourceState::DepthTarget);
+            read(open_.depth.texture, {open_.depth.mipLevel, open_.depth.layer}, "depth",
+                 ResourceState::DepthTarget);
             pending_.push_back(std::move(p));
         }
         DrawContext context(const char* command) const {
-            DrawContext c{.draw = draw, .pass = pass, .drawInPass = drawsInPass_, .passName = passName_, .groups = groups_,
+            DrawContext c{.draw = draw,
+                          .pass = pass,
+                          .drawInPass = drawsInPass_,
+                          .passName = passName_,
+                          .groups = groups_,
                           .command = command};
             const auto it = r_.pipelines_.find(pipeline_);
             if (it == r_.pipelines_.end()) return c;
@@ -639,12 +716,15 @@ private:
                 if (!s.empty()) c.shaders.push_back(s);
             // What the pipeline reads: its binding slots, its vertex buffers, the index buffer of
             // an indexed draw (bindings persist across passes; the rest is not this draw's).
-            const bool indexed = std::string_view(command).find("Indexed") != std::string_view::npos;
+            const bool indexed =
+                std::string_view(command).find("Indexed") != std::string_view::npos;
             // A pipeline without declared bindings (taken from its shaders) shows every binding.
-            const bool declared = std::any_of(it->second.uses.begin(), it->second.uses.end(),
-                                              [](const std::string& k) { return k.rfind("vertex buffer", 0) != 0; });
+            const bool declared =
+                std::any_of(it->second.uses.begin(), it->second.uses.end(),
+                            [](const std::string& k) { return k.rfind("vertex buffer", 0) != 0; });
             for (const auto& [slot, name] : bound_) {
-                const bool vertex = slot.rfind("vertex buffer", 0) == 0, index = slot == "index buffer";
+                const bool vertex = slot.rfind("vertex buffer", 0) == 0,
+                           index = slot == "index buffer";
                 if ((index && indexed) || (vertex && it->second.uses.count(slot)) ||
                     (!vertex && !index && (!declared || it->second.uses.count(slot))))
                     c.resources.push_back(slot + ": " + name);
@@ -660,7 +740,9 @@ private:
         // What each record tells about the state a draw sees (captured ids: names are the capture's).
         template <class R>
         void note(const R&) {}
-        void note(const cmd::PushDebugGroup& r) { groups_.push_back(cmd::view(r, r.name) ? cmd::view(r, r.name) : ""); }
+        void note(const cmd::PushDebugGroup& r) {
+            groups_.push_back(cmd::view(r, r.name) ? cmd::view(r, r.name) : "");
+        }
         void note(const cmd::PopDebugGroup&) {
             if (!groups_.empty()) groups_.pop_back();
         }
@@ -668,12 +750,22 @@ private:
         void note(const cmd::EndTimer& r) { std::erase(timers_, r.timer.id); }
         void note(const cmd::SetPipeline& r) { pipeline_ = r.pipeline.id; }
         void note(const cmd::SetAutomaticBarriers& r) { automaticBarriers_ = r.enabled; }
-        void note(const cmd::SetVertexBuffer& r) { bound_["vertex buffer " + std::to_string(r.index)] = buffer(r.buffer); }
+        void note(const cmd::SetVertexBuffer& r) {
+            bound_["vertex buffer " + std::to_string(r.index)] = buffer(r.buffer);
+        }
         void note(const cmd::SetIndexBuffer& r) { bound_["index buffer"] = buffer(r.buffer); }
-        void note(const cmd::SetUniformBuffer& r) { bound_["uniform buffer " + std::to_string(r.slot)] = buffer(r.buffer); }
-        void note(const cmd::SetStorageBuffer& r) { bound_["storage buffer " + std::to_string(r.slot)] = buffer(r.buffer); }
-        void note(const cmd::SetTexture& r) { bound_["texture " + std::to_string(r.slot)] = texture(r.texture); }
-        void note(const cmd::SetStorageTexture& r) { bound_["storage texture " + std::to_string(r.slot)] = texture(r.texture); }
+        void note(const cmd::SetUniformBuffer& r) {
+            bound_["uniform buffer " + std::to_string(r.slot)] = buffer(r.buffer);
+        }
+        void note(const cmd::SetStorageBuffer& r) {
+            bound_["storage buffer " + std::to_string(r.slot)] = buffer(r.buffer);
+        }
+        void note(const cmd::SetTexture& r) {
+            bound_["texture " + std::to_string(r.slot)] = texture(r.texture);
+        }
+        void note(const cmd::SetStorageTexture& r) {
+            bound_["storage texture " + std::to_string(r.slot)] = texture(r.texture);
+        }
 
         Replayer& r_;
         RenderPassDesc open_;
@@ -685,9 +777,10 @@ private:
         uint32_t pipeline_ = 0;
         std::map<std::string, std::string> bound_;
         std::vector<Pending> pending_;
-        std::vector<BufferHandle> buffers_;  // read-back buffers of the current submission
-        std::vector<QuerySetHandle> timestampSets_;              // one per timed pass of the submission
-        std::vector<std::pair<QuerySetHandle, PassTime>> timed_;  // the passes whose end was written
+        std::vector<BufferHandle> buffers_;          // read-back buffers of the current submission
+        std::vector<QuerySetHandle> timestampSets_;  // one per timed pass of the submission
+        std::vector<std::pair<QuerySetHandle, PassTime>>
+            timed_;  // the passes whose end was written
         bool automaticBarriers_ = true;
         size_t groupsAtPass_ = 0;  // debug groups open when the pass began
     };
@@ -696,7 +789,8 @@ private:
     ReplayOptions options_;
     ReplayResult result_;
     Probe probe_;
-    std::unordered_map<uint32_t, std::string> bufferNames_, textureNames_, shaderNames_;  // captured id -> name
+    std::unordered_map<uint32_t, std::string> bufferNames_, textureNames_,
+        shaderNames_;  // captured id -> name
     struct PipelineInfo {
         std::string name;
         std::vector<std::string> shaders;
@@ -705,8 +799,8 @@ private:
     static std::set<std::string> usedSlots(const std::vector<BindingSlot>& bindings) {
         std::set<std::string> keys;
         for (const BindingSlot& b : bindings) {
-            const char* kind = b.type == BindingType::UniformBuffer   ? "uniform buffer "
-                               : b.type == BindingType::StorageBuffer ? "storage buffer "
+            const char* kind = b.type == BindingType::UniformBuffer    ? "uniform buffer "
+                               : b.type == BindingType::StorageBuffer  ? "storage buffer "
                                : b.type == BindingType::SampledTexture ? "texture "
                                                                        : "storage texture ";
             keys.insert(kind + std::to_string(b.slot));
@@ -716,14 +810,15 @@ private:
     std::unordered_map<uint32_t, PipelineInfo> pipelines_;  // captured id ->
     HandleMap map_;
     std::unordered_map<uint32_t, uint32_t> shaders_, heaps_;
-    std::unordered_map<uint32_t, std::pair<BufferHandle, const uint8_t*>> mappedForRead_;  // captured id ->
-    std::unordered_map<uint32_t, QueryType> querySetTypes_;                                 // captured id ->
+    std::unordered_map<uint32_t, std::pair<BufferHandle, const uint8_t*>>
+        mappedForRead_;                                      // captured id ->
+    std::unordered_map<uint32_t, QueryType> querySetTypes_;  // captured id ->
     std::unordered_set<uint32_t> unplacedHeaps_;       // captured heaps this device cannot make
     std::unordered_set<uint32_t> views_;               // replayed ids of texture views
     std::unordered_map<uint32_t, std::string> names_;  // replayed texture id -> name
     std::map<uint64_t, FenceValue> fences_;            // captured fence -> replayed fence
     std::vector<std::vector<std::byte>> blobs_;
-    std::deque<std::vector<uint32_t>> code_;           // SPIR-V words, aligned
+    std::deque<std::vector<uint32_t>> code_;  // SPIR-V words, aligned
     capture::Strings strings_;
     Clock::time_point frameStart_;
 };
@@ -732,7 +827,8 @@ private:
 
 CaptureSummary summarizeCapture(const std::string& path) {
     capture::Reader reader(path);
-    CaptureSummary s{.formatVersion = reader.version(), .fileBytes = std::filesystem::file_size(path)};
+    CaptureSummary s{.formatVersion = reader.version(),
+                     .fileBytes = std::filesystem::file_size(path)};
     capture::Chunk chunk;
     while (reader.next(chunk)) {
         s.rawBytes += chunk.bytes.size();
@@ -741,15 +837,17 @@ CaptureSummary summarizeCapture(const std::string& path) {
         std::string op;
         try {
             const json r = json::from_cbor(chunk.bytes);
-            op = r.is_object() && r.contains("op") && r["op"].is_string() ? r["op"].get<std::string>() : "";
+            op = r.is_object() && r.contains("op") && r["op"].is_string()
+                     ? r["op"].get<std::string>()
+                     : "";
             if (op == "device") {
                 s.backend = r.value("backend", std::string());
                 s.device = r.value("device", std::string());
                 s.firstFrame = r.value("firstFrame", 0u);
             }
         } catch (const std::exception& e) {
-            throw CaptureError("capture: record " + std::to_string(s.records) + " at offset " + std::to_string(chunk.offset) +
-                               ": " + e.what());
+            throw CaptureError("capture: record " + std::to_string(s.records) + " at offset " +
+                               std::to_string(chunk.offset) + ": " + e.what());
         }
         s.frames += op == "frame";
         s.submits += op == "submit";

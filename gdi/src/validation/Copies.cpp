@@ -3,35 +3,50 @@
 
 namespace fe::gdi::validate {
 
-TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what) {
+TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name,
+                            const char* what) {
     const std::string w = std::string(what) + ": " + label("texture", name.c_str());
-    if (d.sampleCount > 1) fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
+    if (d.sampleCount > 1)
+        fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
     if (isDepthFormat(d.format))
-        fail(w, std::string(formatInfo(d.format).name) + " is a depth format: use the whole-subresource call");
+        fail(w, std::string(formatInfo(d.format).name) +
+                    " is a depth format: use the whole-subresource call");
     if (r.mipLevel >= d.mipLevels)
-        fail(w, "mip level " + std::to_string(r.mipLevel) + " out of range (" + std::to_string(d.mipLevels) + " levels)");
+        fail(w, "mip level " + std::to_string(r.mipLevel) + " out of range (" +
+                    std::to_string(d.mipLevels) + " levels)");
     const Extent3 e = mipExtent(d, r.mipLevel);
     TextureRegion out = r;
     out.width = r.width ? r.width : (r.x < e.width ? e.width - r.x : 0);
     out.height = r.height ? r.height : (r.y < e.height ? e.height - r.y : 0);
     out.depth = r.depth ? r.depth : (r.z < e.depthOrLayers ? e.depthOrLayers - r.z : 0);
-    auto beyond = [](uint32_t at, uint32_t n, uint32_t size) { return n == 0 || at >= size || n > size - at; };
-    if (beyond(r.x, out.width, e.width) || beyond(r.y, out.height, e.height) || beyond(r.z, out.depth, e.depthOrLayers))
-        fail(w, "region at (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.z) + ") of " +
-                    std::to_string(out.width) + "x" + std::to_string(out.height) + "x" + std::to_string(out.depth) +
-                    " is outside mip level " + std::to_string(r.mipLevel) + " (" + std::to_string(e.width) + "x" +
-                    std::to_string(e.height) + "x" + std::to_string(e.depthOrLayers) + ")");
+    auto beyond = [](uint32_t at, uint32_t n, uint32_t size) {
+        return n == 0 || at >= size || n > size - at;
+    };
+    if (beyond(r.x, out.width, e.width) || beyond(r.y, out.height, e.height) ||
+        beyond(r.z, out.depth, e.depthOrLayers))
+        fail(w, "region at (" + std::to_string(r.x) + ", " + std::to_string(r.y) + ", " +
+                    std::to_string(r.z) + ") of " + std::to_string(out.width) + "x" +
+                    std::to_string(out.height) + "x" + std::to_string(out.depth) +
+                    " is outside mip level " + std::to_string(r.mipLevel) + " (" +
+                    std::to_string(e.width) + "x" + std::to_string(e.height) + "x" +
+                    std::to_string(e.depthOrLayers) + ")");
     const uint32_t block = formatInfo(d.format).blockSize;
-    auto aligned = [&](uint32_t at, uint32_t n, uint32_t size) { return at % block == 0 && (n % block == 0 || at + n == size); };
+    auto aligned = [&](uint32_t at, uint32_t n, uint32_t size) {
+        return at % block == 0 && (n % block == 0 || at + n == size);
+    };
     if (block > 1 && !(aligned(r.x, out.width, e.width) && aligned(r.y, out.height, e.height)))
-        fail(w, "a compressed region starts on a 4x4 block and spans whole blocks (or reaches the edge)");
+        fail(
+            w,
+            "a compressed region starts on a 4x4 block and spans whole blocks (or reaches the edge)");
     return out;
 }
 
-ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l, const char* what) {
+ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l,
+                           const char* what) {
     const FormatInfo& fi = formatInfo(f);
     const bool compressed = fi.blockSize > 1;
-    const uint32_t unit = compressed ? fi.bytesPerBlock : fi.bytesPerPixel;  // bytes per texel or block
+    const uint32_t unit =
+        compressed ? fi.bytesPerBlock : fi.bytesPerPixel;  // bytes per texel or block
     const uint32_t columns = (region.width + fi.blockSize - 1) / fi.blockSize;
     const uint32_t rows = (region.height + fi.blockSize - 1) / fi.blockSize;
     const uint64_t rowBytes = uint64_t(columns) * unit;
@@ -40,27 +55,35 @@ ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLay
     r.layout.rowsPerImage = l.rowsPerImage ? l.rowsPerImage : rows;
     const std::string w = what;
     if (l.offset % 4 || l.offset % unit)
-        fail(w, "offset " + std::to_string(l.offset) + " is not a multiple of 4 and of the texel size (" + std::to_string(unit) + ")");
+        fail(w, "offset " + std::to_string(l.offset) +
+                    " is not a multiple of 4 and of the texel size (" + std::to_string(unit) + ")");
     if (r.layout.bytesPerRow % unit || r.layout.bytesPerRow < rowBytes)
-        fail(w, "bytesPerRow " + std::to_string(r.layout.bytesPerRow) + " is not a multiple of the texel size (" +
-                    std::to_string(unit) + ") of at least one row (" + std::to_string(rowBytes) + ")");
+        fail(w, "bytesPerRow " + std::to_string(r.layout.bytesPerRow) +
+                    " is not a multiple of the texel size (" + std::to_string(unit) +
+                    ") of at least one row (" + std::to_string(rowBytes) + ")");
     if (r.layout.rowsPerImage < rows)
-        fail(w, "rowsPerImage " + std::to_string(r.layout.rowsPerImage) + " is less than the region's " + std::to_string(rows) + " rows");
+        fail(w, "rowsPerImage " + std::to_string(r.layout.rowsPerImage) +
+                    " is less than the region's " + std::to_string(rows) + " rows");
     if (compressed && (r.layout.bytesPerRow != rowBytes || r.layout.rowsPerImage != rows))
         fail(w, "compressed texels are packed tightly (bytesPerRow and rowsPerImage 0)");
-    r.end = l.offset + (uint64_t(region.depth - 1) * r.layout.rowsPerImage + (rows - 1)) * r.layout.bytesPerRow + rowBytes;
+    r.end =
+        l.offset +
+        (uint64_t(region.depth - 1) * r.layout.rowsPerImage + (rows - 1)) * r.layout.bytesPerRow +
+        rowBytes;
     return r;
 }
 
 // The usages a buffer <-> texture copy needs, by direction.
-static void bufferTextureUsages(const TextureDesc& t, const std::string& textureName, const BufferDesc& b,
-                                const std::string& bufferName, bool toTexture, const char* what) {
+static void bufferTextureUsages(const TextureDesc& t, const std::string& textureName,
+                                const BufferDesc& b, const std::string& bufferName, bool toTexture,
+                                const char* what) {
     textureUsage(t, toTexture ? TextureUsage::CopyDst : TextureUsage::CopySrc, textureName, what);
     bufferUsage(b, toTexture ? BufferUsage::CopySrc : BufferUsage::CopyDst, bufferName, what);
 }
 
-RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const std::string& bufferName,
-                               const TextureRegion& region, const TexelLayout& layout, bool toTexture, const char* what) {
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b,
+                               const std::string& bufferName, const TextureRegion& region,
+                               const TexelLayout& layout, bool toTexture, const char* what) {
     bufferTextureUsages(t, name, b, bufferName, toTexture, what);
     const TextureRegion r = textureRegion(t, region, name, what);
     const ResolvedLayout l = texelLayout(t.format, r, layout, what);
@@ -70,19 +93,25 @@ RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, co
 
 void dataSpan(size_t size, uint64_t end, const char* what) {
     if (size < end)
-        fail(what, std::to_string(size) + " bytes of data; the region and layout span " + std::to_string(end));
+        fail(what, std::to_string(size) + " bytes of data; the region and layout span " +
+                       std::to_string(end));
 }
 
-std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
-                                                    bool sameTexture, const TextureDesc& src, const std::string& srcName,
+std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
+                                                    const std::string& dstName, TextureRegion dstAt,
+                                                    bool sameTexture, const TextureDesc& src,
+                                                    const std::string& srcName,
                                                     const TextureRegion& srcRegion) {
     textureUsage(src, TextureUsage::CopySrc, srcName, "copyTexture source");
     textureUsage(dst, TextureUsage::CopyDst, dstName, "copyTexture destination");
     const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source");
     if (!formatsCompatible(src.format, dst.format))
-        fail("copyTexture", std::string(formatInfo(src.format).name) + " texels cannot be copied into " + std::string(formatInfo(dst.format).name) +
+        fail("copyTexture", std::string(formatInfo(src.format).name) +
+                                " texels cannot be copied into " +
+                                std::string(formatInfo(dst.format).name) +
                                 " (the same format, its sRGB/UNORM pair, or the same texel size)");
-    if ((src.dimension == TextureDimension::Texture3D) != (dst.dimension == TextureDimension::Texture3D))
+    if ((src.dimension == TextureDimension::Texture3D) !=
+        (dst.dimension == TextureDimension::Texture3D))
         fail("copyTexture", "between a 3D texture and a layered one");
     dstAt.width = s.width, dstAt.height = s.height, dstAt.depth = s.depth;
     const TextureRegion d = textureRegion(dst, dstAt, dstName, "copyTexture destination");
@@ -97,14 +126,17 @@ void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const 
                       const std::string& srcName, uint32_t mip) {
     textureUsage(src, TextureUsage::CopySrc, srcName, "copyTexture source");
     textureUsage(dst, TextureUsage::CopyDst, dstName, "copyTexture destination");
-    if (dst.format != src.format || dst.width != src.width || dst.height != src.height || dst.dimension != src.dimension ||
-        dst.depthOrLayers != src.depthOrLayers || dst.sampleCount != src.sampleCount)
-        fail("copyTexture", "'" + srcName + "' and '" + dstName + "' differ in format, kind, size or samples");
+    if (dst.format != src.format || dst.width != src.width || dst.height != src.height ||
+        dst.dimension != src.dimension || dst.depthOrLayers != src.depthOrLayers ||
+        dst.sampleCount != src.sampleCount)
+        fail("copyTexture",
+             "'" + srcName + "' and '" + dstName + "' differ in format, kind, size or samples");
     if (mip >= dst.mipLevels || mip >= src.mipLevels) fail("copyTexture", "mip level out of range");
 }
 
-void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at, const BufferDesc& b,
-                           const std::string& bufferName, uint64_t offset, bool toTexture, const char* what) {
+void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
+                           const BufferDesc& b, const std::string& bufferName, uint64_t offset,
+                           bool toTexture, const char* what) {
     bufferTextureUsages(t, textureName, b, bufferName, toTexture, what);
     subresource(t, at, what, textureName);
     if (isDepthFormat(t.format)) fail(what, "depth formats are not supported");
@@ -114,25 +146,28 @@ void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName,
     if (offset % 4) fail(what, "buffer offset must be a multiple of 4");
 }
 
-void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset, const BufferDesc& src,
-                const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer) {
+void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset,
+                const BufferDesc& src, const std::string& srcName, uint64_t srcOffset,
+                uint64_t size, bool sameBuffer) {
     bufferUsage(src, BufferUsage::CopySrc, srcName, "copyBuffer source");
     bufferUsage(dst, BufferUsage::CopyDst, dstName, "copyBuffer destination");
     bufferRange(dst, dstOffset, size, "copyBuffer destination");
     bufferRange(src, srcOffset, size, "copyBuffer source");
     if (sameBuffer && size && dstOffset < srcOffset + size && srcOffset < dstOffset + size)
-        fail(label("buffer", dstName.c_str()), "copyBuffer: the source [" + std::to_string(srcOffset) + ", " +
-                                                   std::to_string(srcOffset + size) + ") and destination [" +
-                                                   std::to_string(dstOffset) + ", " + std::to_string(dstOffset + size) +
-                                                   ") overlap");
+        fail(label("buffer", dstName.c_str()),
+             "copyBuffer: the source [" + std::to_string(srcOffset) + ", " +
+                 std::to_string(srcOffset + size) + ") and destination [" +
+                 std::to_string(dstOffset) + ", " + std::to_string(dstOffset + size) + ") overlap");
 }
 
 uint64_t clearRange(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t size) {
-    bufferUsage(d, BufferUsage::CopyDst | BufferUsage::Storage, name, "clearBuffer");  // a transfer or a UAV clear
+    bufferUsage(d, BufferUsage::CopyDst | BufferUsage::Storage, name,
+                "clearBuffer");  // a transfer or a UAV clear
     const uint64_t bytes = size == 0 && offset <= d.size ? d.size - offset : size;
     if (offset % 4 || bytes % 4)
-        throw Error("clearBuffer: " + label("buffer", name.c_str()) + ": offset " + std::to_string(offset) + " and size " +
-                    std::to_string(bytes) + " must be multiples of 4");
+        throw Error("clearBuffer: " + label("buffer", name.c_str()) + ": offset " +
+                    std::to_string(offset) + " and size " + std::to_string(bytes) +
+                    " must be multiples of 4");
     bufferRange(d, offset, bytes, "clearBuffer");
     return bytes;
 }

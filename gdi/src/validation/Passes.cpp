@@ -8,15 +8,18 @@ namespace {
 
 std::string signatureText(const PassSignature& s) {
     std::string t;
-    for (uint32_t i = 0; i < s.colorCount; ++i) t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
+    for (uint32_t i = 0; i < s.colorCount; ++i)
+        t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
     if (s.depth != Format::Undefined)
         t += std::string(t.empty() ? "" : ", ") + "depth " + std::string(formatInfo(s.depth).name);
-    return t + "; " + std::to_string(s.samples) + " sample(s); " + std::to_string(s.width) + "x" + std::to_string(s.height);
+    return t + "; " + std::to_string(s.samples) + " sample(s); " + std::to_string(s.width) + "x" +
+           std::to_string(s.height);
 }
 
 }  // namespace
 
-AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what, const std::string& name) {
+AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what,
+                          const std::string& name) {
     subresource(d, {mipLevel, layer}, what, name);
     const Extent3 e = mipExtent(d, mipLevel);
     return {d.format, e.width, e.height, d.usage, d.sampleCount};
@@ -31,23 +34,31 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
         fail(what, std::to_string(colors.size()) + " colour attachments exceed the device limit");
     uint32_t w = 0, h = 0, samples = 0;
     auto check = [&](const AttachmentInfo& a, const std::string& name) {
-        if (!any(a.usage, TextureUsage::RenderTarget)) fail(what, name + " texture lacks RenderTarget usage");
-        if (w == 0 && h == 0) { w = a.width; h = a.height; samples = a.samples; }
-        else if (a.width != w || a.height != h)
+        if (!any(a.usage, TextureUsage::RenderTarget))
+            fail(what, name + " texture lacks RenderTarget usage");
+        if (w == 0 && h == 0) {
+            w = a.width;
+            h = a.height;
+            samples = a.samples;
+        } else if (a.width != w || a.height != h)
             fail(what, "mismatched attachments: " + name + " is " + std::to_string(a.width) + "x" +
-                           std::to_string(a.height) + ", others are " + std::to_string(w) + "x" + std::to_string(h));
+                           std::to_string(a.height) + ", others are " + std::to_string(w) + "x" +
+                           std::to_string(h));
         else if (a.samples != samples)
-            fail(what, "mismatched sample counts: " + name + " has " + std::to_string(a.samples) + ", others " +
-                           std::to_string(samples));
+            fail(what, "mismatched sample counts: " + name + " has " + std::to_string(a.samples) +
+                           ", others " + std::to_string(samples));
     };
-    auto checkResolve = [&](const AttachmentInfo& src, const AttachmentInfo& dst, const std::string& name) {
+    auto checkResolve = [&](const AttachmentInfo& src, const AttachmentInfo& dst,
+                            const std::string& name) {
         if (src.samples == 1) fail(what, name + " is single-sample: nothing to resolve");
         if (dst.samples != 1) fail(what, name + " resolve target must be single-sample");
         if (dst.format != src.format)
-            fail(what, name + " resolve target format " + std::string(formatInfo(dst.format).name) + " differs from " +
-                           std::string(formatInfo(src.format).name));
-        if (dst.width != src.width || dst.height != src.height) fail(what, name + " resolve target size differs");
-        if (!any(dst.usage, TextureUsage::RenderTarget)) fail(what, name + " resolve target lacks RenderTarget usage");
+            fail(what, name + " resolve target format " + std::string(formatInfo(dst.format).name) +
+                           " differs from " + std::string(formatInfo(src.format).name));
+        if (dst.width != src.width || dst.height != src.height)
+            fail(what, name + " resolve target size differs");
+        if (!any(dst.usage, TextureUsage::RenderTarget))
+            fail(what, name + " resolve target lacks RenderTarget usage");
     };
     for (size_t i = 0; i < colors.size(); ++i) {
         const std::string name = "colour attachment " + std::to_string(i);
@@ -62,7 +73,9 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
             checkResolve(colors[i], colorResolves[i], name);
     }
     if (depth) {
-        if (!isDepthFormat(depth->format)) fail(what, "depth attachment has colour format " + std::string(formatInfo(depth->format).name));
+        if (!isDepthFormat(depth->format))
+            fail(what, "depth attachment has colour format " +
+                           std::string(formatInfo(depth->format).name));
         check(*depth, "depth attachment");
         const float z = d.depth.clearDepth;  // Vulkan's VkClearDepthStencilValue rule
         if (d.depth.load == LoadOp::Clear && !(z >= 0.0f && z <= 1.0f))
@@ -74,12 +87,13 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
 
 void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName) {
     if (pipelineSamples != passSamples) [[unlikely]]
-        fail(label("setPipeline: pipeline", pipelineName), "rasterizes " + std::to_string(pipelineSamples) +
-                                                               " sample(s) but the render pass has " +
-                                                               std::to_string(passSamples));
+        fail(label("setPipeline: pipeline", pipelineName),
+             "rasterizes " + std::to_string(pipelineSamples) +
+                 " sample(s) but the render pass has " + std::to_string(passSamples));
 }
 
-PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth, Rect area) {
+PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth,
+                            Rect area) {
     PassSignature s;
     s.colorCount = uint32_t(std::min(colors.size(), s.colors.size()));
     for (uint32_t i = 0; i < s.colorCount; ++i) s.colors[i] = colors[i].format;
@@ -91,38 +105,49 @@ PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const Att
 }
 
 void secondaryNotEmpty() {
-    throw Error("beginSecondary: the list must be empty (a secondary list records one pass's draws from its start)");
+    throw Error(
+        "beginSecondary: the list must be empty (a secondary list records one pass's draws from its start)");
 }
 
 void onlyExecuteSecondary(const char* what) {
-    throw Error(std::string(what) + " is not allowed in a render pass whose draws come from secondary lists "
-                                    "(the primary list may only call executeSecondary and endRenderPass there)");
+    throw Error(std::string(what) +
+                " is not allowed in a render pass whose draws come from secondary lists "
+                "(the primary list may only call executeSecondary and endRenderPass there)");
 }
 
-void notInSecondary(const char* what) { throw Error(std::string(what) + " is not allowed in a secondary list"); }
+void notInSecondary(const char* what) {
+    throw Error(std::string(what) + " is not allowed in a secondary list");
+}
 
 void submittedSecondary() {
-    throw Error("submit: a secondary list is executed by a primary list (executeSecondary), not submitted");
+    throw Error(
+        "submit: a secondary list is executed by a primary list (executeSecondary), not submitted");
 }
 
-void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const PassSignature& list,
-                       const PassSignature& pass, size_t index) {
+void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended,
+                       const PassSignature& list, const PassSignature& pass, size_t index) {
     const std::string what = "executeSecondary: list " + std::to_string(index);
     if (!inSecondaryPass)
-        throw Error("executeSecondary outside a render pass begun with secondaryLists (RenderPassDesc::secondaryLists)");
-    if (!isSecondary) throw Error(what + " is not a secondary list (record it between beginSecondary and endSecondary)");
+        throw Error(
+            "executeSecondary outside a render pass begun with secondaryLists (RenderPassDesc::secondaryLists)");
+    if (!isSecondary)
+        throw Error(what +
+                    " is not a secondary list (record it between beginSecondary and endSecondary)");
     if (!ended) throw Error(what + " is still recording (missing endSecondary)");
     if (!(list == pass))
-        throw Error(what + " was begun for another pass (" + signatureText(list) + ") than the open one (" +
-                    signatureText(pass) + ")");
+        throw Error(what + " was begun for another pass (" + signatureText(list) +
+                    ") than the open one (" + signatureText(pass) + ")");
 }
 
 void pipelineFitsPass(const PassSignature& p, const PassSignature& pass, const char* pipelineName) {
     if (p.samples != pass.samples) pipelineSamples(p.samples, pass.samples, pipelineName);
     auto formats = [](const PassSignature& s) {
         std::string t = "colour [";
-        for (uint32_t i = 0; i < s.colorCount; ++i) t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
-        return t + "], depth " + (s.depth == Format::Undefined ? std::string("none") : std::string(formatInfo(s.depth).name));
+        for (uint32_t i = 0; i < s.colorCount; ++i)
+            t += std::string(i ? ", " : "") + std::string(formatInfo(s.colors[i]).name);
+        return t + "], depth " +
+               (s.depth == Format::Undefined ? std::string("none")
+                                             : std::string(formatInfo(s.depth).name));
     };
     bool same = p.colorCount == pass.colorCount && p.depth == pass.depth;
     for (uint32_t i = 0; same && i < p.colorCount; ++i) same = p.colors[i] == pass.colors[i];
@@ -132,31 +157,44 @@ void pipelineFitsPass(const PassSignature& p, const PassSignature& pass, const c
 }
 
 void stateOutsidePass(const char* what) {
-    throw Error(std::string(what) + " outside a render pass (each pass starts from its pipeline's state: set it "
+    throw Error(std::string(what) +
+                " outside a render pass (each pass starts from its pipeline's state: set it "
                 "after beginRenderPass and setPipeline)");
 }
 
-void insidePass(const char* what) { throw Error(std::string(what) + " is not allowed inside a render pass"); }
+void insidePass(const char* what) {
+    throw Error(std::string(what) + " is not allowed inside a render pass");
+}
 
-TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer, const TextureDesc& view,
-                        std::optional<uint32_t> oneMip) {
-    TextureSpan s{.texture = viewOf ? viewOf : id, .baseMip = baseMip, .mipCount = view.mipLevels, .baseLayer = baseLayer,
+TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer,
+                        const TextureDesc& view, std::optional<uint32_t> oneMip) {
+    TextureSpan s{.texture = viewOf ? viewOf : id,
+                  .baseMip = baseMip,
+                  .mipCount = view.mipLevels,
+                  .baseLayer = baseLayer,
                   .layerCount = view.depthOrLayers};
-    if (view.dimension == TextureDimension::Texture3D) s.baseLayer = 0, s.layerCount = UINT32_MAX;  // every slice
+    if (view.dimension == TextureDimension::Texture3D)
+        s.baseLayer = 0, s.layerCount = UINT32_MAX;  // every slice
     if (oneMip) s.baseMip += *oneMip, s.mipCount = 1;
     return s;
 }
 
-void PassAttachments::add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role, const char* passName) {
+void PassAttachments::add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role,
+                          const char* passName) {
     if (count_ == 0) passName_ = passName ? passName : "";
-    const TextureSpan a{.texture = whole.texture, .baseMip = whole.baseMip + mip, .mipCount = 1,
-                        .baseLayer = whole.baseLayer + layer, .layerCount = 1};
+    const TextureSpan a{.texture = whole.texture,
+                        .baseMip = whole.baseMip + mip,
+                        .mipCount = 1,
+                        .baseLayer = whole.baseLayer + layer,
+                        .layerCount = 1};
     for (uint32_t i = 0; i < count_; ++i) {
         if (!reaches(a, at_[i])) continue;
-        const std::string why = roleName(roles_[i]) + " and " + roleName(role) + " are the same subresource (" +
-                                label("texture", names_[i].c_str()) + ", mip " + std::to_string(a.baseMip) + ", layer " +
-                                std::to_string(a.baseLayer) + "): each attachment needs its own";
-        count_ = 0;  // the pass does not begin: nothing may be checked against its half-read attachments
+        const std::string why =
+            roleName(roles_[i]) + " and " + roleName(role) + " are the same subresource (" +
+            label("texture", names_[i].c_str()) + ", mip " + std::to_string(a.baseMip) +
+            ", layer " + std::to_string(a.baseLayer) + "): each attachment needs its own";
+        count_ =
+            0;  // the pass does not begin: nothing may be checked against its half-read attachments
         fail(label("render pass", passName), why);
     }
     at_[count_] = a;
@@ -172,20 +210,26 @@ std::string PassAttachments::roleName(uint8_t role) {
     return role == kDepthRole ? "the depth attachment" : "the depth resolve target";
 }
 
-void PassAttachments::failed(uint32_t slot, const TextureSpan& s, bool storage, const char* pipelineName) const {
+void PassAttachments::failed(uint32_t slot, const TextureSpan& s, bool storage,
+                             const char* pipelineName) const {
     uint32_t i = 0;
     while (i + 1 < count_ && !reaches(s, at_[i])) ++i;
     const std::string how = storage ? " stores to " : " samples ";
-    fail(label("draw with pipeline", pipelineName),
-         "slot " + std::to_string(slot) + how + label("texture", names_[i].c_str()) + " (mip " + std::to_string(at_[i].baseMip) +
-             ", layer " + std::to_string(at_[i].baseLayer) + "), which " + roleName(roles_[i]) + " of " +
-             label("render pass", passName_.c_str()) + " writes: a feedback loop, undefined on every API. Read another mip or layer, or a copy" +
-             (roles_[i] == kDepthRole ? " (a pipeline that writes neither depth nor stencil may sample the depth attachment)"
-                                      : ""));
+    fail(
+        label("draw with pipeline", pipelineName),
+        "slot " + std::to_string(slot) + how + label("texture", names_[i].c_str()) + " (mip " +
+            std::to_string(at_[i].baseMip) + ", layer " + std::to_string(at_[i].baseLayer) +
+            "), which " + roleName(roles_[i]) + " of " + label("render pass", passName_.c_str()) +
+            " writes: a feedback loop, undefined on every API. Read another mip or layer, or a copy" +
+            (roles_[i] == kDepthRole
+                 ? " (a pipeline that writes neither depth nor stencil may sample the depth attachment)"
+                 : ""));
 }
 
-void FeedbackLoops::check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const {
-    if (refused(slot, pipelineWritesDepthStencil)) pass_.failed(slot, slots_[slot], storage_ & bit(slot), pipelineName);
+void FeedbackLoops::check(uint32_t slot, bool pipelineWritesDepthStencil,
+                          const char* pipelineName) const {
+    if (refused(slot, pipelineWritesDepthStencil))
+        pass_.failed(slot, slots_[slot], storage_ & bit(slot), pipelineName);
 }
 
 }  // namespace fe::gdi::validate

@@ -6,24 +6,31 @@ namespace fe::gdi::validate {
 
 namespace {
 
-ScalarKind vertexKind(VertexFormat f) { return f == VertexFormat::UInt32 ? ScalarKind::Uint : ScalarKind::Float; }
+ScalarKind vertexKind(VertexFormat f) {
+    return f == VertexFormat::UInt32 ? ScalarKind::Uint : ScalarKind::Float;
+}
 
 }  // namespace
 
 void shaderDesc(const ShaderDesc& d) {
     const std::string what = label("shader", d.binary.name);
-    if (d.stage != ShaderStage::Vertex && d.stage != ShaderStage::Fragment && d.stage != ShaderStage::Compute)
+    if (d.stage != ShaderStage::Vertex && d.stage != ShaderStage::Fragment &&
+        d.stage != ShaderStage::Compute)
         fail(what, "stage must be exactly one of Vertex, Fragment, Compute");
     if (!d.entryPoint || !*d.entryPoint) fail(what, "entry point is empty");
     if (d.binary.vulkan.empty() && d.binary.opengl.empty())
-        fail(what, "the binary is empty (no SPIR-V for Vulkan or for OpenGL: fe_add_shaders and shaders::find make both)");
+        fail(
+            what,
+            "the binary is empty (no SPIR-V for Vulkan or for OpenGL: fe_add_shaders and shaders::find make both)");
 }
 
 static void bindingList(const std::vector<BindingSlot>& bindings, const std::string& what) {
     uint64_t seen = 0;
     for (const BindingSlot& b : bindings) {
-        if (b.slot >= 64) fail(what, "binding slot " + std::to_string(b.slot) + " is out of range (0..63)");
-        if (seen & (uint64_t(1) << b.slot)) fail(what, "binding slot " + std::to_string(b.slot) + " is declared twice");
+        if (b.slot >= 64)
+            fail(what, "binding slot " + std::to_string(b.slot) + " is out of range (0..63)");
+        if (seen & (uint64_t(1) << b.slot))
+            fail(what, "binding slot " + std::to_string(b.slot) + " is declared twice");
         seen |= uint64_t(1) << b.slot;
     }
 }
@@ -36,47 +43,62 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
         fail(what, "sampleCount " + std::to_string(samples) + " is not 1, 2, 4 or 8");
     if (samples > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & samples))
         fail(what, std::to_string(samples) + " samples are not supported on " + device.backend);
-    if (d.raster.depthClamp && !device.features.depthClamp) fail(what, "depth clamp is not supported on " + device.backend);
+    if (d.raster.depthClamp && !device.features.depthClamp)
+        fail(what, "depth clamp is not supported on " + device.backend);
     if (d.raster.depthBiasClamp != 0 && !device.features.depthBiasClamp)
         fail(what, "depth bias clamp is not supported on " + device.backend);
     for (float v : {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp})
         if (!std::isfinite(v)) fail(what, "depth bias values must be finite");
     for (Format f : d.colorFormats)
-        if (isCompressedFormat(f)) fail(what, "colour target format " + std::string(formatInfo(f).name) + " is compressed");
+        if (isCompressedFormat(f))
+            fail(what,
+                 "colour target format " + std::string(formatInfo(f).name) + " is compressed");
     if (!d.vertexShader) fail(what, "no vertex shader");
-    if (d.colorFormats.empty() && d.depthFormat == Format::Undefined) fail(what, "no colour or depth target format");
+    if (d.colorFormats.empty() && d.depthFormat == Format::Undefined)
+        fail(what, "no colour or depth target format");
     if (limits.maxColorAttachments && d.colorFormats.size() > limits.maxColorAttachments)
-        fail(what, std::to_string(d.colorFormats.size()) + " colour targets exceed the device limit " +
+        fail(what, std::to_string(d.colorFormats.size()) +
+                       " colour targets exceed the device limit " +
                        std::to_string(limits.maxColorAttachments));
     for (Format f : d.colorFormats)
         if (f == Format::Undefined || isDepthFormat(f))
-            fail(what, "colour target format " + std::string(formatInfo(f).name) + " is not a colour format");
+            fail(what, "colour target format " + std::string(formatInfo(f).name) +
+                           " is not a colour format");
     if (d.depthFormat != Format::Undefined && !isDepthFormat(d.depthFormat))
-        fail(what, "depth format " + std::string(formatInfo(d.depthFormat).name) + " is not a depth format");
-    if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) && d.depthFormat == Format::Undefined)
+        fail(what, "depth format " + std::string(formatInfo(d.depthFormat).name) +
+                       " is not a depth format");
+    if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) &&
+        d.depthFormat == Format::Undefined)
         fail(what, "depth test/write enabled without a depth format");
     if (d.depthStencil.stencilTest && !formatInfo(d.depthFormat).hasStencil)
         fail(what, "stencil test enabled but depth format has no stencil");
-    if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) && !formatInfo(d.depthFormat).hasDepth)
+    if ((d.depthStencil.depthTest || d.depthStencil.depthWrite) &&
+        !formatInfo(d.depthFormat).hasDepth)
         fail(what, "depth test or write enabled but the depth format has no depth");
     if (d.blend.size() > d.colorFormats.size()) fail(what, "more blend states than colour targets");
     blendConstant(d.blendConstant, what.c_str());
-    if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip && d.topology != PrimitiveTopology::LineStrip)
+    if (d.primitiveRestart && d.topology != PrimitiveTopology::TriangleStrip &&
+        d.topology != PrimitiveTopology::LineStrip)
         fail(what, "primitiveRestart needs a strip topology (TriangleStrip or LineStrip)");
     if (d.vertexBuffers.size() > kMaxVertexBuffers)
-        fail(what, std::to_string(d.vertexBuffers.size()) + " vertex buffers (at most " + std::to_string(kMaxVertexBuffers) + ")");
+        fail(what, std::to_string(d.vertexBuffers.size()) + " vertex buffers (at most " +
+                       std::to_string(kMaxVertexBuffers) + ")");
     uint32_t locations = 0;
     for (size_t i = 0; i < d.vertexBuffers.size(); ++i) {
         const VertexBufferLayout& vb = d.vertexBuffers[i];
         for (const VertexAttribute& a : vb.attributes) {
-            if (a.format >= VertexFormat::Count) fail(what, "vertex attribute has an invalid format");
-            if (a.location >= 16) fail(what, "vertex attribute location " + std::to_string(a.location) + " >= 16");
+            if (a.format >= VertexFormat::Count)
+                fail(what, "vertex attribute has an invalid format");
+            if (a.location >= 16)
+                fail(what, "vertex attribute location " + std::to_string(a.location) + " >= 16");
             if (locations & (1u << a.location))
-                fail(what, "vertex attribute location " + std::to_string(a.location) + " is used twice");
+                fail(what,
+                     "vertex attribute location " + std::to_string(a.location) + " is used twice");
             locations |= 1u << a.location;
-            if (vb.stride != 0 && a.offset + vertexFormatInfo(a.format).bytes > vb.stride)  // 0: one element for all
-                fail(what, "vertex attribute at location " + std::to_string(a.location) + " overruns stride " +
-                               std::to_string(vb.stride));
+            if (vb.stride != 0 &&
+                a.offset + vertexFormatInfo(a.format).bytes > vb.stride)  // 0: one element for all
+                fail(what, "vertex attribute at location " + std::to_string(a.location) +
+                               " overruns stride " + std::to_string(vb.stride));
         }
     }
     bindingList(d.bindings, what);
@@ -88,7 +110,8 @@ void computePipelineDesc(const ComputePipelineDesc& d) {
     bindingList(d.bindings, what);
 }
 
-std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders,
+                                       const std::string& pipeline) {
     std::array<uint8_t, 64> dims{};
     for (const ShaderInterface* s : shaders) {
         if (!s) continue;
@@ -96,8 +119,10 @@ std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterfa
             if (b.slot >= 64 || !b.dimension) continue;
             if (dims[b.slot] && dims[b.slot] != b.dimension)
                 fail(label("pipeline", pipeline.c_str()),
-                     "slot " + std::to_string(b.slot) + " is a " + textureDimensionName(TextureDimension(dims[b.slot] - 1)) +
-                         " in one stage and a " + textureDimensionName(TextureDimension(b.dimension - 1)) + " in another");
+                     "slot " + std::to_string(b.slot) + " is a " +
+                         textureDimensionName(TextureDimension(dims[b.slot] - 1)) +
+                         " in one stage and a " +
+                         textureDimensionName(TextureDimension(b.dimension - 1)) + " in another");
             dims[b.slot] = b.dimension;
         }
     }
@@ -105,14 +130,16 @@ std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterfa
 }
 
 void computeShaderStage(ShaderStage stage, const ComputePipelineDesc& d) {
-    if (stage != ShaderStage::Compute) fail(label("compute pipeline", d.debugName), "computeShader is not a compute shader");
+    if (stage != ShaderStage::Compute)
+        fail(label("compute pipeline", d.debugName), "computeShader is not a compute shader");
 }
 
 std::vector<VertexBinding> vertexBindings(const GraphicsPipelineDesc& d) {
     std::vector<VertexBinding> out;
     for (const VertexBufferLayout& vb : d.vertexBuffers) {
         VertexBinding b{.stride = vb.stride, .perInstance = vb.perInstance};
-        for (const VertexAttribute& a : vb.attributes) b.extent = std::max(b.extent, a.offset + vertexFormatInfo(a.format).bytes);
+        for (const VertexAttribute& a : vb.attributes)
+            b.extent = std::max(b.extent, a.offset + vertexFormatInfo(a.format).bytes);
         out.push_back(b);
     }
     return out;
@@ -131,45 +158,58 @@ uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings) {
 }
 
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline,
-                                          const DeviceLimits& limits) {
+                                          std::initializer_list<const ShaderInterface*> shaders,
+                                          const std::string& pipeline, const DeviceLimits& limits) {
     const std::string what = "pipeline '" + pipeline + "'";
     std::vector<BindingSlot> used;  // by slot, stages merged
     for (const ShaderInterface* sh : shaders) {
         if (!sh) continue;
         for (const ShaderInterface::Binding& b : sh->bindings) {
             if (b.slot >= 64)
-                fail(what, std::string("the ") + shaderStageName(sh->stage) + " shader uses binding " + std::to_string(b.slot) +
-                               " ('" + b.name + "'); slots are 0 to 63");
-            auto it = std::find_if(used.begin(), used.end(), [&](const BindingSlot& u) { return u.slot == b.slot; });
+                fail(what, std::string("the ") + shaderStageName(sh->stage) +
+                               " shader uses binding " + std::to_string(b.slot) + " ('" + b.name +
+                               "'); slots are 0 to 63");
+            auto it = std::find_if(used.begin(), used.end(),
+                                   [&](const BindingSlot& u) { return u.slot == b.slot; });
             if (it == used.end()) {
                 used.push_back({b.slot, b.type, sh->stage});
             } else if (it->type != b.type) {
                 fail(what, "slot " + std::to_string(b.slot) + " is a " + bindingTypeName(it->type) +
-                               " in one shader and a " + bindingTypeName(b.type) + " ('" + b.name + "') in the " +
-                               shaderStageName(sh->stage) + " shader");
+                               " in one shader and a " + bindingTypeName(b.type) + " ('" + b.name +
+                               "') in the " + shaderStageName(sh->stage) + " shader");
             } else {
                 it->stages = it->stages | sh->stage;
             }
         }
     }
-    std::sort(used.begin(), used.end(), [](const BindingSlot& a, const BindingSlot& b) { return a.slot < b.slot; });
-    const auto images = std::count_if(used.begin(), used.end(), [](const BindingSlot& u) { return u.type == BindingType::StorageTexture; });
+    std::sort(used.begin(), used.end(),
+              [](const BindingSlot& a, const BindingSlot& b) { return a.slot < b.slot; });
+    const auto images = std::count_if(used.begin(), used.end(), [](const BindingSlot& u) {
+        return u.type == BindingType::StorageTexture;
+    });
     if (limits.maxStorageTextures && uint64_t(images) > limits.maxStorageTextures)
-        fail(what, "the shaders use " + std::to_string(images) + " storage textures; this device binds at most " +
-                       std::to_string(limits.maxStorageTextures) + " to one pipeline (limits.maxStorageTextures)");
+        fail(what, "the shaders use " + std::to_string(images) +
+                       " storage textures; this device binds at most " +
+                       std::to_string(limits.maxStorageTextures) +
+                       " to one pipeline (limits.maxStorageTextures)");
     if (declared.empty()) return used;
     for (const BindingSlot& u : used) {
-        auto it = std::find_if(declared.begin(), declared.end(), [&](const BindingSlot& d) { return d.slot == u.slot; });
+        auto it = std::find_if(declared.begin(), declared.end(),
+                               [&](const BindingSlot& d) { return d.slot == u.slot; });
         std::string user;
         for (const ShaderInterface* sh : shaders)
-            if (sh && any(u.stages, sh->stage)) user += std::string(user.empty() ? "the " : " and ") + shaderStageName(sh->stage);
+            if (sh && any(u.stages, sh->stage))
+                user += std::string(user.empty() ? "the " : " and ") + shaderStageName(sh->stage);
         if (it == declared.end())
-            fail(what, "binding slot " + std::to_string(u.slot) + " (" + bindingTypeName(u.type) + ") is used by " + user +
-                           " shader but missing from the pipeline's bindings (leave bindings empty to take them from the shaders)");
+            fail(
+                what,
+                "binding slot " + std::to_string(u.slot) + " (" + bindingTypeName(u.type) +
+                    ") is used by " + user +
+                    " shader but missing from the pipeline's bindings (leave bindings empty to take them from the shaders)");
         if (it->type != u.type)
-            fail(what, "binding slot " + std::to_string(u.slot) + " is declared a " + bindingTypeName(it->type) + ", but " + user +
-                           " shader uses a " + bindingTypeName(u.type));
+            fail(what, "binding slot " + std::to_string(u.slot) + " is declared a " +
+                           bindingTypeName(it->type) + ", but " + user + " shader uses a " +
+                           bindingTypeName(u.type));
         if ((uint32_t(it->stages) & uint32_t(u.stages)) != uint32_t(u.stages))
             fail(what, "binding slot " + std::to_string(u.slot) + " is used by " + user +
                            " shader, which its declared stages leave out");
@@ -177,7 +217,8 @@ std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declar
     return declared;
 }
 
-void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline) {
+void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs,
+                  const std::string& pipeline) {
     const std::string what = "pipeline '" + pipeline + "'";
     for (const ShaderInterface::Variable& in : vs.inputs) {
         const VertexAttribute* found = nullptr;
@@ -185,23 +226,28 @@ void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, cons
             for (const VertexAttribute& a : vb.attributes)
                 if (a.location == in.location) found = &a;
         if (!found)
-            fail(what, "vertex shader input '" + in.name + "' (location " + std::to_string(in.location) +
-                           ") has no attribute in the vertex layout");
+            fail(what, "vertex shader input '" + in.name + "' (location " +
+                           std::to_string(in.location) + ") has no attribute in the vertex layout");
         if (vertexKind(found->format) != in.kind)
-            fail(what, "vertex shader input '" + in.name + "' (location " + std::to_string(in.location) + ") is " +
-                           scalarKindName(in.kind) + ", its attribute's format gives " + scalarKindName(vertexKind(found->format)));
+            fail(what, "vertex shader input '" + in.name + "' (location " +
+                           std::to_string(in.location) + ") is " + scalarKindName(in.kind) +
+                           ", its attribute's format gives " +
+                           scalarKindName(vertexKind(found->format)));
     }
 }
 
-void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline) {
+void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs,
+                     const std::string& pipeline) {
     const std::string what = "pipeline '" + pipeline + "'";
     for (const ShaderInterface::Variable& out : fs.outputs) {
-        if (out.location >= d.colorFormats.size()) continue;  // no target there: the value is dropped, as both APIs do
+        if (out.location >= d.colorFormats.size())
+            continue;  // no target there: the value is dropped, as both APIs do
         const FormatInfo& f = formatInfo(d.colorFormats[out.location]);
         const ScalarKind want = f.isInteger ? ScalarKind::Uint : ScalarKind::Float;
         if (out.kind != want)
-            fail(what, "fragment output '" + out.name + "' (location " + std::to_string(out.location) + ") is " +
-                           scalarKindName(out.kind) + ", colour target " + std::to_string(out.location) + " is " +
+            fail(what, "fragment output '" + out.name + "' (location " +
+                           std::to_string(out.location) + ") is " + scalarKindName(out.kind) +
+                           ", colour target " + std::to_string(out.location) + " is " +
                            std::string(f.name) + " (" + scalarKindName(want) + ")");
     }
 }
@@ -209,17 +255,23 @@ void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, c
 void blendedTargets(const GraphicsPipelineDesc& d, const std::function<FormatCaps(Format)>& caps) {
     for (size_t i = 0; i < d.blend.size() && i < d.colorFormats.size(); ++i)
         if (d.blend[i].enable && !caps(d.colorFormats[i]).blend)
-            fail(label("graphics pipeline", d.debugName),
-                 "colour target " + std::to_string(i) + " (" + std::string(formatInfo(d.colorFormats[i]).name) +
-                     ") is blended, which this device cannot do for that format (FormatCaps::blend)");
+            fail(
+                label("graphics pipeline", d.debugName),
+                "colour target " + std::to_string(i) + " (" +
+                    std::string(formatInfo(d.colorFormats[i]).name) +
+                    ") is blended, which this device cannot do for that format (FormatCaps::blend)");
 }
 
-std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d, const ShaderInterface* fs) {
+std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d,
+                                                  const ShaderInterface* fs) {
     std::vector<BlendTargetState> blends(d.colorFormats.size());
     for (size_t i = 0; i < blends.size(); ++i) {
         if (i < d.blend.size()) blends[i] = d.blend[i];
-        const bool written = fs && std::any_of(fs->outputs.begin(), fs->outputs.end(),
-                                               [&](const ShaderInterface::Variable& o) { return i >= o.location && i < o.location + o.locations; });
+        const bool written =
+            fs && std::any_of(fs->outputs.begin(), fs->outputs.end(),
+                              [&](const ShaderInterface::Variable& o) {
+                                  return i >= o.location && i < o.location + o.locations;
+                              });
         if (!written) blends[i].writeMask = ColorMask::None;
     }
     return blends;
@@ -228,44 +280,52 @@ std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d,
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline) {
     const uint64_t n = uint64_t(cs.workgroupSize[0]) * cs.workgroupSize[1] * cs.workgroupSize[2];
     if (limits.maxComputeWorkGroupInvocations && n > limits.maxComputeWorkGroupInvocations)
-        fail("compute pipeline '" + pipeline + "'", "work group of " + std::to_string(n) + " invocations exceeds the device's " +
-                                                        std::to_string(limits.maxComputeWorkGroupInvocations));
+        fail("compute pipeline '" + pipeline + "'",
+             "work group of " + std::to_string(n) + " invocations exceeds the device's " +
+                 std::to_string(limits.maxComputeWorkGroupInvocations));
 }
 
-uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders,
+                           const std::string& pipeline) {
     uint32_t bytes = 0;
     for (const ShaderInterface* sh : shaders) {
         if (!sh) continue;
         if (sh->pushConstantBytes > kMaxConstantBytes)
-            fail("pipeline '" + pipeline + "'", std::string("the ") + shaderStageName(sh->stage) + " shader's constants block is " +
-                                                    std::to_string(sh->pushConstantBytes) + " bytes; at most " +
-                                                    std::to_string(kMaxConstantBytes) + " (kMaxConstantBytes)");
+            fail("pipeline '" + pipeline + "'",
+                 std::string("the ") + shaderStageName(sh->stage) +
+                     " shader's constants block is " + std::to_string(sh->pushConstantBytes) +
+                     " bytes; at most " + std::to_string(kMaxConstantBytes) +
+                     " (kMaxConstantBytes)");
         bytes = std::max(bytes, sh->pushConstantBytes);
     }
     return bytes;
 }
 
 void specialization(const std::vector<SpecializationConstant>& values,
-                    std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline) {
+                    std::initializer_list<const ShaderInterface*> shaders,
+                    const std::string& pipeline) {
     const std::string what = "pipeline '" + pipeline + "'";
     for (size_t i = 0; i < values.size(); ++i) {
         const SpecializationConstant& v = values[i];
         for (size_t j = 0; j < i; ++j)
-            if (values[j].id == v.id) fail(what, "specialization constant " + std::to_string(v.id) + " is given twice");
+            if (values[j].id == v.id)
+                fail(what, "specialization constant " + std::to_string(v.id) + " is given twice");
         const ShaderInterface::SpecConstant* declared = nullptr;
         for (const ShaderInterface* sh : shaders) {
             if (!sh) continue;
             for (const ShaderInterface::SpecConstant& c : sh->specConstants)
                 if (c.id == v.id) {
                     if (declared && (declared->isBool != c.isBool || declared->kind != c.kind))
-                        fail(what, "specialization constant " + std::to_string(v.id) + " has a different type in the " +
+                        fail(what, "specialization constant " + std::to_string(v.id) +
+                                       " has a different type in the " +
                                        shaderStageName(sh->stage) + " shader");
                     declared = &c;
                 }
         }
         if (!declared)
             fail(what, "specialization constant " + std::to_string(v.id) +
-                           " is not declared by its shaders (layout(constant_id = " + std::to_string(v.id) + "))");
+                           " is not declared by its shaders (layout(constant_id = " +
+                           std::to_string(v.id) + "))");
         if (declared->isBool && v.bits > 1)
             fail(what, "specialization constant " + std::to_string(v.id) + " ('" + declared->name +
                            "') is a bool: its value is 0 or 1, not " + std::to_string(v.bits));
@@ -287,9 +347,11 @@ PassSignature pipelineSignature(const GraphicsPipelineDesc& d) {
 bool writesDepthStencil(const GraphicsPipelineDesc& d) {
     const DepthStencilState& ds = d.depthStencil;
     auto writes = [](const StencilFaceState& f) {
-        return f.failOp != StencilOp::Keep || f.depthFailOp != StencilOp::Keep || f.passOp != StencilOp::Keep;
+        return f.failOp != StencilOp::Keep || f.depthFailOp != StencilOp::Keep ||
+               f.passOp != StencilOp::Keep;
     };
-    return ds.depthWrite || (ds.stencilTest && ds.stencilWriteMask && (writes(ds.front) || writes(ds.back)));
+    return ds.depthWrite ||
+           (ds.stencilTest && ds.stencilWriteMask && (writes(ds.front) || writes(ds.back)));
 }
 
 }  // namespace fe::gdi::validate

@@ -16,7 +16,8 @@ inline std::string label(const char* kind, const char* name) {
 
 // "A|B" for the usage an object has; "A or B" for the usages a call accepts (separator " or ").
 template <class Usage>
-inline std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, const char*>> names, const char* separator) {
+inline std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, const char*>> names,
+                              const char* separator) {
     std::string out;
     for (const auto& [bit, n] : names)
         if (any(u, bit)) out += (out.empty() ? "" : separator) + std::string(n);
@@ -25,19 +26,31 @@ inline std::string usageNames(Usage u, std::initializer_list<std::pair<Usage, co
 
 inline std::string bufferUsageNames(BufferUsage u, const char* separator = "|") {
     using B = BufferUsage;
-    return usageNames(u, {{B::Vertex, "Vertex"}, {B::Index, "Index"}, {B::Uniform, "Uniform"}, {B::Storage, "Storage"},
-                          {B::CopySrc, "CopySrc"}, {B::CopyDst, "CopyDst"}, {B::Indirect, "Indirect"}},
+    return usageNames(u,
+                      {{B::Vertex, "Vertex"},
+                       {B::Index, "Index"},
+                       {B::Uniform, "Uniform"},
+                       {B::Storage, "Storage"},
+                       {B::CopySrc, "CopySrc"},
+                       {B::CopyDst, "CopyDst"},
+                       {B::Indirect, "Indirect"}},
                       separator);
 }
 
 inline std::string textureUsageNames(TextureUsage u, const char* separator = "|") {
     using T = TextureUsage;
-    return usageNames(u, {{T::Sampled, "Sampled"}, {T::RenderTarget, "RenderTarget"}, {T::Storage, "Storage"},
-                          {T::CopySrc, "CopySrc"}, {T::CopyDst, "CopyDst"}},
+    return usageNames(u,
+                      {{T::Sampled, "Sampled"},
+                       {T::RenderTarget, "RenderTarget"},
+                       {T::Storage, "Storage"},
+                       {T::CopySrc, "CopySrc"},
+                       {T::CopyDst, "CopyDst"}},
                       separator);
 }
 
-[[noreturn]] inline void fail(const std::string& what, const std::string& why) { throw Error(what + ": " + why); }
+[[noreturn]] inline void fail(const std::string& what, const std::string& why) {
+    throw Error(what + ": " + why);
+}
 
 // Bytes beyond what one allocation of the device may take (0: no limit known).
 inline void allocationFits(const std::string& what, uint64_t bytes, const DeviceLimits& limits) {
@@ -48,10 +61,14 @@ inline void allocationFits(const std::string& what, uint64_t bytes, const Device
 
 inline const char* kindName(BindingType t) {
     switch (t) {
-        case BindingType::UniformBuffer: return "a uniform buffer";
-        case BindingType::StorageBuffer: return "a storage buffer";
-        case BindingType::SampledTexture: return "a sampled texture";
-        case BindingType::StorageTexture: return "a storage texture";
+        case BindingType::UniformBuffer:
+            return "a uniform buffer";
+        case BindingType::StorageBuffer:
+            return "a storage buffer";
+        case BindingType::SampledTexture:
+            return "a sampled texture";
+        case BindingType::StorageTexture:
+            return "a storage texture";
     }
     return "?";
 }

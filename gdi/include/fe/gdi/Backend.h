@@ -9,11 +9,12 @@
 namespace fe::gdi {
 
 struct DeviceCreateDesc {
-    std::string backend = "auto";  // auto | vulkan | gl | gl-egl | gl-osmesa | vulkan-glfw | gl-glfw
+    std::string backend =
+        "auto";  // auto | vulkan | gl | gl-egl | gl-osmesa | vulkan-glfw | gl-glfw
     // Khronos validation layer / GL debug context, and the check that one list is used by one
     // thread at a time (ExclusiveUse.h: an Error instead of a corrupted list).
     bool validation = false;
-    bool verbose = true;           // auto: say which backend was picked and why others were not
+    bool verbose = true;  // auto: say which backend was picked and why others were not
     // A device with a window (Device::present): auto, vulkan and gl stand for their windowed
     // backends (windowCandidates); a headless-only name is an error.
     bool window = false;

@@ -29,8 +29,8 @@ namespace fe::gdi {
 inline constexpr uint32_t kCaptureFormatVersion = 1;
 
 struct CaptureDesc {
-    std::string path;       // the file written (created or replaced)
-    bool compress = true;   // zstd on every chunk it shrinks
+    std::string path;      // the file written (created or replaced)
+    bool compress = true;  // zstd on every chunk it shrinks
     // Frames captured: 0 for all of them, until the device is destroyed; N: the first N, after
     // which the file is finished and the device goes on uncaptured. A frame ends at
     // markFrameEnd (the renderer's CommandQueue calls it after each frame's submit), at
@@ -127,11 +127,12 @@ struct DrawContext {
     uint64_t pass = 0;        // its render pass, over the capture
     uint64_t drawInPass = 0;  // within that pass
     std::string passName;
-    std::vector<std::string> groups;     // debug groups open at the draw, outermost first
-    std::string command;                 // Draw, DrawIndexed, ...
-    std::string pipeline;                // its debug name
-    std::vector<std::string> shaders;    // the pipeline's shaders, by name
-    std::vector<std::string> resources;  // what was bound: "vertex buffer 0: NAME", "texture 2: NAME", ...
+    std::vector<std::string> groups;   // debug groups open at the draw, outermost first
+    std::string command;               // Draw, DrawIndexed, ...
+    std::string pipeline;              // its debug name
+    std::vector<std::string> shaders;  // the pipeline's shaders, by name
+    std::vector<std::string>
+        resources;  // what was bound: "vertex buffer 0: NAME", "texture 2: NAME", ...
 };
 // A render pass's attachments as its last draw left them (ReplayImage::name: "colour N: TEXTURE"
 // or "depth: TEXTURE"); attachments that cannot be read (views, multisampled without a resolve
@@ -149,17 +150,18 @@ struct ReplayResult {
     uint64_t records = 0, submits = 0, commandLists = 0;
     std::vector<double> frameMilliseconds;  // wall time of each replayed frame (CPU and GPU)
     std::vector<ReplayImage> images;
-    std::vector<ReplayBuffer> buffers;       // every readBuffer, as replayed
-    std::vector<PassTime> passTimes;         // ReplayOptions::passTimes
-    uint32_t unrestored = 0;                 // object contents of a trimmed capture this device refused
-    uint64_t draws = 0, passes = 0;          // replayed (up to the stop)
+    std::vector<ReplayBuffer> buffers;  // every readBuffer, as replayed
+    std::vector<PassTime> passTimes;    // ReplayOptions::passTimes
+    uint32_t unrestored = 0;            // object contents of a trimmed capture this device refused
+    uint64_t draws = 0, passes = 0;     // replayed (up to the stop)
     std::vector<PassSnapshot> passSnapshots;  // snapshotPasses
     std::optional<DrawContext> stoppedAt;     // stopAfterDraw: the draw, when it was reached
     std::optional<PassSnapshot> stopTargets;  // stopAfterDraw / stopAfterPass: the targets there
 };
 // Replays the capture at `path` on `device`. Throws CaptureError naming the record and the byte
 // offset for a damaged, truncated or future-version file, and for a call `device` refuses.
-ReplayResult replayCapture(const std::string& path, Device& device, const ReplayOptions& options = {});
+ReplayResult replayCapture(const std::string& path, Device& device,
+                           const ReplayOptions& options = {});
 
 // fe bisect: where two devices first disagree on a capture. Both replay it, reading every render
 // pass's attachments; the first pass whose targets differ beyond the tolerance is then replayed
@@ -174,16 +176,18 @@ struct BisectOptions {
 struct TargetDiff {
     std::string target;  // "colour 0: NAME", "depth: NAME", or a read-back's name
     ImageDiff diff;
-    Image a, b, heat;    // heat: per pixel, how far apart (compareImages' diff image)
+    Image a, b, heat;  // heat: per pixel, how far apart (compareImages' diff image)
 };
 struct BisectResult {
     bool diverged = false;
-    std::optional<PassSnapshot> pass;  // the first pass that differs (targets: as device A made them)
-    std::optional<DrawContext> draw;   // the first draw in it whose targets differ
-    std::vector<TargetDiff> diffs;     // the targets that differ there (at the draw, else the pass)
+    std::optional<PassSnapshot>
+        pass;  // the first pass that differs (targets: as device A made them)
+    std::optional<DrawContext> draw;  // the first draw in it whose targets differ
+    std::vector<TargetDiff> diffs;    // the targets that differ there (at the draw, else the pass)
     uint64_t passesCompared = 0, drawsCompared = 0;
     uint32_t replays = 0;
 };
-BisectResult bisectCapture(const std::string& path, Device& a, Device& b, const BisectOptions& options = {});
+BisectResult bisectCapture(const std::string& path, Device& a, Device& b,
+                           const BisectOptions& options = {});
 
 }  // namespace fe::gdi

@@ -25,6 +25,7 @@ struct CaptureError : Error {
 
 std::vector<std::byte> encodeCommandStream(const cmd::CommandStream& stream);
 // `baseOffset`: where `bytes` starts in the file, for messages. Throws CaptureError.
-std::unique_ptr<cmd::CommandStream> decodeCommandStream(std::span<const std::byte> bytes, uint64_t baseOffset = 0);
+std::unique_ptr<cmd::CommandStream> decodeCommandStream(std::span<const std::byte> bytes,
+                                                        uint64_t baseOffset = 0);
 
 }  // namespace fe::gdi

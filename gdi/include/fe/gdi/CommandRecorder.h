@@ -32,10 +32,10 @@ public:
     // to the inner list, then (if it did not throw) becomes its record.
 #define FE_FIELD(Type, name) (Type, name)
 #define FE_COMMAND(Name, Fields)
-#define FE_CALL(Name, method, Fields)              \
-    void method(FE_CMD_PARAMS(Fields)) override {  \
-        check<cmd::Name>(FE_CMD_ARGS(Fields));     \
-        inner_->method(FE_CMD_ARGS(Fields));       \
+#define FE_CALL(Name, method, Fields)                    \
+    void method(FE_CMD_PARAMS(Fields)) override {        \
+        check<cmd::Name>(FE_CMD_ARGS(Fields));           \
+        inner_->method(FE_CMD_ARGS(Fields));             \
         stream_->record<cmd::Name>(FE_CMD_ARGS(Fields)); \
     }
 #include "fe/gdi/CommandSet.inc"
@@ -57,7 +57,7 @@ private:
     template <class R, class... A>
     void check(const A&...) {}
     template <class R>
-        requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
+    requires std::is_same_v<R, cmd::SetUniformBuffer> || std::is_same_v<R, cmd::SetStorageBuffer>
     void check(uint32_t slot, BufferHandle buffer, uint64_t offset, uint64_t size);
     template <class R, class T>
     void pushArray(std::span<const T> items);
@@ -70,7 +70,8 @@ private:
 // used as they are when keepUnknown (right when both are one device), else they become an id no
 // device has, so the replaying device refuses them (captures from files).
 struct HandleMap {
-    std::unordered_map<uint32_t, uint32_t> buffers, textures, samplers, pipelines, timers, querySets;
+    std::unordered_map<uint32_t, uint32_t> buffers, textures, samplers, pipelines, timers,
+        querySets;
     bool keepUnknown = true;
     static constexpr uint32_t kUnknownId = 0xFFFFFFFFu;
 };
@@ -92,7 +93,7 @@ public:
 
 // Calls `stream`'s records on `list` (a recording list of `device`), handles mapped through `map`.
 // Secondary streams become secondary lists of `device`, begun for the pass that executes them.
-void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list, const HandleMap& map = {},
-                 ApplyObserver* observer = nullptr);
+void applyStream(const cmd::CommandStream& stream, Device& device, CommandList& list,
+                 const HandleMap& map = {}, ApplyObserver* observer = nullptr);
 
 }  // namespace fe::gdi

@@ -51,11 +51,16 @@ template <class T>
 struct ParamOfConstRef {
     using type = const T&;
 };
-template <> struct ParamOf<Viewport> : ParamOfConstRef<Viewport> {};
-template <> struct ParamOf<Rect> : ParamOfConstRef<Rect> {};
-template <> struct ParamOf<Rgba> : ParamOfConstRef<Rgba> {};
-template <> struct ParamOf<TextureRegion> : ParamOfConstRef<TextureRegion> {};
-template <> struct ParamOf<TexelLayout> : ParamOfConstRef<TexelLayout> {};
+template <>
+struct ParamOf<Viewport> : ParamOfConstRef<Viewport> {};
+template <>
+struct ParamOf<Rect> : ParamOfConstRef<Rect> {};
+template <>
+struct ParamOf<Rgba> : ParamOfConstRef<Rgba> {};
+template <>
+struct ParamOf<TextureRegion> : ParamOfConstRef<TextureRegion> {};
+template <>
+struct ParamOf<TexelLayout> : ParamOfConstRef<TexelLayout> {};
 template <class T>
 using Param = typename ParamOf<T>::type;
 
@@ -65,10 +70,10 @@ using Param = typename ParamOf<T>::type;
 // FE_CMD_PARAMS(fields) turns into "Param<T1> n1, Param<T2> n2" and FE_CMD_ARGS(fields) into
 // "n1, n2" (the alternating-macro walk over a sequence, as Boost.Preprocessor's SEQ does).
 // FE_CMD_TYPE_NAMES, in a generating class, names the command set's own types as it does.
-#define FE_CMD_TYPE_NAMES                                \
-    template <class T>                                   \
-    using Array = ::fe::gdi::cmd::Array<T>;              \
-    using String = ::fe::gdi::cmd::String;               \
+#define FE_CMD_TYPE_NAMES                   \
+    template <class T>                      \
+    using Array = ::fe::gdi::cmd::Array<T>; \
+    using String = ::fe::gdi::cmd::String;  \
     using Rgba = ::fe::gdi::cmd::Rgba;
 #define FE_CMD_DROP_FIRST(first, ...) __VA_ARGS__
 #define FE_CMD_APPLY(macro, args) macro args
@@ -101,11 +106,11 @@ enum class Op : uint16_t {
 };
 
 #define FE_FIELD(Type, name) Type name{};
-#define FE_COMMAND(Name, Fields)              \
-    struct Name {                             \
-        static constexpr Op kOp = Op::Name;   \
+#define FE_COMMAND(Name, Fields)                    \
+    struct Name {                                   \
+        static constexpr Op kOp = Op::Name;         \
         static constexpr const char* kName = #Name; \
-        Fields                                \
+        Fields                                      \
     };
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
@@ -115,17 +120,21 @@ const char* opName(Op op);
 
 // Calls f(fieldName, value) for every field of a record, in declaration order.
 #define FE_FIELD(Type, name) f(#name, record.name);
-#define FE_COMMAND(Name, Fields)                                      \
-    template <class F>                                                \
-    void forEachField([[maybe_unused]] const Name& record, [[maybe_unused]] F&& f) { Fields }
+#define FE_COMMAND(Name, Fields)                                                     \
+    template <class F>                                                               \
+    void forEachField([[maybe_unused]] const Name& record, [[maybe_unused]] F&& f) { \
+        Fields                                                                       \
+    }
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
 #undef FE_FIELD
 
 // A record's fields as references, in declaration order (CommandStream::record fills them).
 #define FE_FIELD(Type, name) , record.name
-#define FE_COMMAND(Name, ...) \
-    inline auto fieldRefs([[maybe_unused]] Name& record) { return std::tie(FE_CMD_LIST(__VA_ARGS__)); }
+#define FE_COMMAND(Name, ...)                              \
+    inline auto fieldRefs([[maybe_unused]] Name& record) { \
+        return std::tie(FE_CMD_LIST(__VA_ARGS__));         \
+    }
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
 #undef FE_FIELD
@@ -133,7 +142,8 @@ const char* opName(Op op);
 // The payload an Array field refers to.
 template <class T, class R>
 std::span<const T> view(const R& record, Array<T> a) {
-    return {reinterpret_cast<const T*>(reinterpret_cast<const std::byte*>(&record) + a.offset), a.count};
+    return {reinterpret_cast<const T*>(reinterpret_cast<const std::byte*>(&record) + a.offset),
+            a.count};
 }
 template <class R>
 const char* view(const R& record, String s) {
@@ -184,10 +194,10 @@ public:
     R* record(const A&... args) {
         auto* r = push(R{}, (size_t(0) + ... + payloadBytes(args)));
         auto fields = fieldRefs(*r);
-        static_assert(std::tuple_size_v<decltype(fields)> == sizeof...(A), "one argument per field");
-        [&]<size_t... I>(std::index_sequence<I...>) {
-            (store(*r, std::get<I>(fields), args), ...);
-        }(std::index_sequence_for<A...>{});
+        static_assert(std::tuple_size_v<decltype(fields)> == sizeof...(A),
+                      "one argument per field");
+        [&]<size_t... I>(std::index_sequence<I...>) { (store(*r, std::get<I>(fields), args), ...); }
+        (std::index_sequence_for<A...>{});
         return r;
     }
     static size_t payloadSize(size_t bytes) { return align(bytes); }
@@ -203,11 +213,14 @@ public:
     template <class F>
     static void dispatch(Op op, const std::byte* record, F&& f) {
         switch (op) {
-#define FE_COMMAND(Name, Fields) \
-    case Op::Name: f(*reinterpret_cast<const Name*>(record)); break;
+#define FE_COMMAND(Name, Fields)                   \
+    case Op::Name:                                 \
+        f(*reinterpret_cast<const Name*>(record)); \
+        break;
 #include "fe/gdi/CommandSet.inc"
 #undef FE_COMMAND
-            default: break;
+            default:
+                break;
         }
     }
 
@@ -239,7 +252,9 @@ public:
     }
     const CommandStream& child(uint32_t index) const { return *children_.at(index); }
     // Gives the adopted streams back (for reuse), leaving none.
-    std::vector<std::unique_ptr<CommandStream>> takeChildren() { return std::exchange(children_, {}); }
+    std::vector<std::unique_ptr<CommandStream>> takeChildren() {
+        return std::exchange(children_, {});
+    }
 
     size_t commandCount() const { return count_; }
     bool empty() const { return count_ == 0; }
@@ -255,16 +270,28 @@ public:
 
 private:
     template <class T>
-    static size_t payloadBytes(const T&) { return 0; }
+    static size_t payloadBytes(const T&) {
+        return 0;
+    }
     template <class T>
-    static size_t payloadBytes(const std::span<const T>& data) { return align(data.size_bytes()); }
-    static size_t payloadBytes(const char* text) { return align(std::strlen(text ? text : "") + 1); }
+    static size_t payloadBytes(const std::span<const T>& data) {
+        return align(data.size_bytes());
+    }
+    static size_t payloadBytes(const char* text) {
+        return align(std::strlen(text ? text : "") + 1);
+    }
     template <class R, class T, class V>
-    void store(const R&, T& field, const V& value) { field = value; }
+    void store(const R&, T& field, const V& value) {
+        field = value;
+    }
     template <class R, class T>
-    void store(const R& record, Array<T>& field, const std::span<const T>& data) { field = payload(record, data); }
+    void store(const R& record, Array<T>& field, const std::span<const T>& data) {
+        field = payload(record, data);
+    }
     template <class R>
-    void store(const R& record, String& field, const char* text) { field = payload(record, text ? text : ""); }
+    void store(const R& record, String& field, const char* text) {
+        field = payload(record, text ? text : "");
+    }
     static constexpr size_t kBlockSize = 64 * 1024;
     static constexpr size_t align(size_t n) { return (n + 7) & ~size_t(7); }
     struct Block {
@@ -299,8 +326,8 @@ private:
         return b.data.get();
     }
     std::vector<Block> blocks_;
-    size_t current_ = 0;                            // the block being written
-    std::byte* cur_ = nullptr, *end_ = nullptr;     // its free space
+    size_t current_ = 0;                         // the block being written
+    std::byte *cur_ = nullptr, *end_ = nullptr;  // its free space
     size_t count_ = 0;
     std::byte* payloadAt_ = nullptr;
     std::vector<std::unique_ptr<CommandStream>> children_;

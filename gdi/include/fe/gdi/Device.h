@@ -245,15 +245,40 @@ namespace fe::gdi {
 // windowed backend. Keys are the ones the engine's tools use.
 // ---------------------------------------------------------------------------------------------
 enum class Key : uint8_t {
-    W, A, S, D, Q, E, R, F, P, Space, Escape, Tab, Enter, Backspace, Delete, Left, Right, Up, Down,
-    Home, End, LeftShift, LeftControl, F1, F2, F12, Count
+    W,
+    A,
+    S,
+    D,
+    Q,
+    E,
+    R,
+    F,
+    P,
+    Space,
+    Escape,
+    Tab,
+    Enter,
+    Backspace,
+    Delete,
+    Left,
+    Right,
+    Up,
+    Down,
+    Home,
+    End,
+    LeftShift,
+    LeftControl,
+    F1,
+    F2,
+    F12,
+    Count
 };
 struct InputState {
-    float mouseX = 0, mouseY = 0;   // framebuffer pixels from the window's top-left
-    bool mouse[3] = {};             // left, right, middle button down
-    float wheel = 0;                // scroll since the previous present (positive: away from the user)
+    float mouseX = 0, mouseY = 0;  // framebuffer pixels from the window's top-left
+    bool mouse[3] = {};            // left, right, middle button down
+    float wheel = 0;  // scroll since the previous present (positive: away from the user)
     bool keys[size_t(Key::Count)] = {};
-    std::string text;               // UTF-8 typed since the previous present
+    std::string text;  // UTF-8 typed since the previous present
     bool down(Key k) const { return keys[size_t(k)]; }
 };
 
@@ -290,19 +315,22 @@ ByteSpan bytesOf(const T& data) {
     if constexpr (std::ranges::contiguous_range<T>) {
         return std::as_bytes(std::span(std::ranges::data(data), std::ranges::size(data)));
     } else {
-        static_assert(std::is_trivially_copyable_v<T>, "bytesOf: plain data or a contiguous range of it");
+        static_assert(std::is_trivially_copyable_v<T>,
+                      "bytesOf: plain data or a contiguous range of it");
         return {reinterpret_cast<const std::byte*>(&data), sizeof(T)};
     }
 }
 
 template <class E>
-constexpr E operator|(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
-    return E(uint32_t(a) | uint32_t(b));
+constexpr E operator|(E a, E b) requires std::is_enum_v<E> && requires {
+    E::FlagsMarker;
 }
+{ return E(uint32_t(a) | uint32_t(b)); }
 template <class E>
-constexpr bool any(E a, E b) requires std::is_enum_v<E> && requires { E::FlagsMarker; } {
-    return (uint32_t(a) & uint32_t(b)) != 0;
+constexpr bool any(E a, E b) requires std::is_enum_v<E> && requires {
+    E::FlagsMarker;
 }
+{ return (uint32_t(a) & uint32_t(b)) != 0; }
 
 // ---------------------------------------------------------------------------------------------
 // Buffers
@@ -327,8 +355,9 @@ enum class MemoryAccess : uint8_t {
 
 struct BufferDesc {
     uint64_t size = 0;
-    BufferUsage usage = BufferUsage::Vertex | BufferUsage::Index | BufferUsage::Uniform | BufferUsage::Storage |
-                        BufferUsage::CopySrc | BufferUsage::CopyDst | BufferUsage::Indirect;
+    BufferUsage usage = BufferUsage::Vertex | BufferUsage::Index | BufferUsage::Uniform |
+                        BufferUsage::Storage | BufferUsage::CopySrc | BufferUsage::CopyDst |
+                        BufferUsage::Indirect;
     MemoryAccess access = MemoryAccess::GpuOnly;
     const char* debugName = nullptr;
 };
@@ -392,10 +421,10 @@ enum class Swizzle : uint8_t { Identity, Zero, One, R, G, B, A };
 // a texture's views are destroyed before it.
 struct TextureViewDesc {
     std::optional<TextureDimension> dimension;  // default: the texture's
-    Format format = Format::Undefined;          // default: the texture's; else one of its viewFormats
-    uint32_t baseMip = 0, mipCount = 0;         // 0: to the last mip
-    uint32_t baseLayer = 0, layerCount = 0;     // 0: to the last layer; 3D views take every slice
-    std::array<Swizzle, 4> swizzle{};           // what r, g, b and a return
+    Format format = Format::Undefined;       // default: the texture's; else one of its viewFormats
+    uint32_t baseMip = 0, mipCount = 0;      // 0: to the last mip
+    uint32_t baseLayer = 0, layerCount = 0;  // 0: to the last layer; 3D views take every slice
+    std::array<Swizzle, 4> swizzle{};        // what r, g, b and a return
     const char* debugName = nullptr;
 };
 
@@ -450,7 +479,16 @@ enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToB
 // What ClampToBorder returns outside the texture (the three colours both APIs offer alike).
 enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
 
-enum class CompareOp : uint8_t { Never, Less, Equal, LessOrEqual, Greater, NotEqual, GreaterOrEqual, Always };
+enum class CompareOp : uint8_t {
+    Never,
+    Less,
+    Equal,
+    LessOrEqual,
+    Greater,
+    NotEqual,
+    GreaterOrEqual,
+    Always
+};
 
 struct SamplerDesc {
     Filter minFilter = Filter::Linear;
@@ -520,11 +558,13 @@ struct SpecializationConstant {
     uint32_t bits = 0;  // the value's 32 bits
     template <class T>
     static SpecializationConstant of(uint32_t id, T value) {
-        static_assert(std::is_same_v<T, bool> || std::is_same_v<T, int32_t> || std::is_same_v<T, uint32_t> ||
-                          std::is_same_v<T, float>,
+        static_assert(std::is_same_v<T, bool> || std::is_same_v<T, int32_t> ||
+                          std::is_same_v<T, uint32_t> || std::is_same_v<T, float>,
                       "specialization constants are bool, int32_t, uint32_t or float");
-        if constexpr (std::is_same_v<T, bool>) return {id, value ? 1u : 0u};
-        else return {id, std::bit_cast<uint32_t>(value)};
+        if constexpr (std::is_same_v<T, bool>)
+            return {id, value ? 1u : 0u};
+        else
+            return {id, std::bit_cast<uint32_t>(value)};
     }
 };
 
@@ -546,13 +586,38 @@ struct VertexBufferLayout {
     std::vector<VertexAttribute> attributes;
 };
 
-enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, LineStrip, PointList };
+enum class PrimitiveTopology : uint8_t {
+    TriangleList,
+    TriangleStrip,
+    LineList,
+    LineStrip,
+    PointList
+};
 enum class CullMode : uint8_t { None, Front, Back };
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
-enum class StencilOp : uint8_t { Keep, Zero, Replace, IncrementClamp, DecrementClamp, Invert, IncrementWrap, DecrementWrap };
+enum class StencilOp : uint8_t {
+    Keep,
+    Zero,
+    Replace,
+    IncrementClamp,
+    DecrementClamp,
+    Invert,
+    IncrementWrap,
+    DecrementWrap
+};
 enum class BlendFactor : uint8_t {
-    Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
-    SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, ConstantColor, OneMinusConstantColor
+    Zero,
+    One,
+    SrcColor,
+    OneMinusSrcColor,
+    DstColor,
+    OneMinusDstColor,
+    SrcAlpha,
+    OneMinusSrcAlpha,
+    DstAlpha,
+    OneMinusDstAlpha,
+    ConstantColor,
+    OneMinusConstantColor
 };
 enum class BlendOp : uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
 enum class ColorMask : uint8_t { None = 0, R = 1, G = 2, B = 4, A = 8, All = 15, FlagsMarker = 0 };
@@ -577,7 +642,8 @@ struct RasterState {
 struct MultisampleState {
     uint32_t sampleCount = 1;      // must equal the sample count of every attachment in the pass
     bool alphaToCoverage = false;  // the first output's alpha becomes a coverage mask
-    uint32_t sampleMask = ~0u;     // bit i clear: sample i is never written (bit 0: single-sample targets)
+    uint32_t sampleMask =
+        ~0u;  // bit i clear: sample i is never written (bit 0: single-sample targets)
 };
 
 struct StencilFaceState {
@@ -715,10 +781,10 @@ struct DispatchIndirectArgs {
 //   if (device->queryResults(occlusion, 0, 64, samples)) { /* the frame's counts, no waiting */ }
 //   cmd->resolveQueries(occlusion, 0, 64, buffer, 0);  // or into a buffer on the GPU
 enum class QueryType : uint8_t {
-    Occlusion,           // samples that passed the depth and stencil tests, exactly (x samples per pixel)
+    Occlusion,  // samples that passed the depth and stencil tests, exactly (x samples per pixel)
     AnySamplesPassed,    // 1 when any sample passed, else 0 (resolveQueries: 0 or non-zero)
     PipelineStatistics,  // a PipelineStatistics per query (DeviceFeatures::pipelineStatistics)
-    Timestamp,           // the GPU clock when the work recorded before it has finished (writeTimestamp)
+    Timestamp,  // the GPU clock when the work recorded before it has finished (writeTimestamp)
 };
 const char* queryTypeName(QueryType t);
 
@@ -733,7 +799,7 @@ struct QuerySetDesc {
 // ran: a vertex shader may run fewer times than vertices (reuse) and a fragment shader more
 // times than pixels (helper invocations); primitives and compute invocations are exact.
 struct PipelineStatistics {
-    uint64_t primitives = 0;           // primitives assembled from the draws' vertices
+    uint64_t primitives = 0;  // primitives assembled from the draws' vertices
     uint64_t vertexInvocations = 0;
     uint64_t fragmentInvocations = 0;
     uint64_t computeInvocations = 0;
@@ -789,7 +855,7 @@ enum class BufferAccess : uint32_t {
     None = 0,
     Vertex = 1 << 0,
     Index = 1 << 1,
-    Indirect = 1 << 2,      // draw/dispatch arguments and draw counts
+    Indirect = 1 << 2,  // draw/dispatch arguments and draw counts
     Uniform = 1 << 3,
     StorageRead = 1 << 4,
     StorageWrite = 1 << 5,
@@ -835,7 +901,9 @@ public:
     // bytes its block declares. Cheaper per draw than a uniform buffer at a new offset.
     virtual void setConstants(uint32_t offset, ByteSpan data) = 0;
     template <class T>
-    void setConstants(const T& data) { setConstants(0, bytesOf(data)); }
+    void setConstants(const T& data) {
+        setConstants(0, bytesOf(data));
+    }
     // Vertex buffers 0 to 15; an index buffer's offset is a multiple of its index size. Each
     // draw checks that every buffer its pipeline's layout names is bound, that a non-indexed
     // draw's vertices and every draw's instances lie inside them, and that an indexed draw's
@@ -846,15 +914,18 @@ public:
     // Resource bindings, by slot (`layout(binding = slot)`, 0 to 63 for every kind, on every
     // backend). size 0 means "to the end". A pipeline's shaders may use at most
     // limits.maxStorageTextures storage textures (GL image units: 8 on NVIDIA), at any slots.
-    virtual void setUniformBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
-    virtual void setStorageBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0) = 0;
+    virtual void setUniformBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0,
+                                  uint64_t size = 0) = 0;
+    virtual void setStorageBuffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0,
+                                  uint64_t size = 0) = 0;
     virtual void setTexture(uint32_t slot, TextureHandle texture, SamplerHandle sampler) = 0;
     virtual void setStorageTexture(uint32_t slot, TextureHandle texture, uint32_t mipLevel = 0) = 0;
 
     virtual void draw(uint32_t vertexCount, uint32_t instanceCount = 1, uint32_t firstVertex = 0,
                       uint32_t firstInstance = 0) = 0;
-    virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1, uint32_t firstIndex = 0,
-                             int32_t baseVertex = 0, uint32_t firstInstance = 0) = 0;
+    virtual void drawIndexed(uint32_t indexCount, uint32_t instanceCount = 1,
+                             uint32_t firstIndex = 0, int32_t baseVertex = 0,
+                             uint32_t firstInstance = 0) = 0;
     // At most limits.maxComputeWorkGroupCount groups along each axis.
     virtual void dispatch(uint32_t groupsX, uint32_t groupsY = 1, uint32_t groupsZ = 1) = 0;
 
@@ -866,10 +937,12 @@ public:
                               uint32_t stride = sizeof(DrawIndirectArgs)) = 0;
     virtual void drawIndexedIndirect(BufferHandle args, uint64_t offset, uint32_t drawCount = 1,
                                      uint32_t stride = sizeof(DrawIndexedIndirectArgs)) = 0;
-    virtual void drawIndirectCount(BufferHandle args, uint64_t offset, BufferHandle countBuffer, uint64_t countOffset,
-                                   uint32_t maxDrawCount, uint32_t stride = sizeof(DrawIndirectArgs)) = 0;
-    virtual void drawIndexedIndirectCount(BufferHandle args, uint64_t offset, BufferHandle countBuffer,
-                                          uint64_t countOffset, uint32_t maxDrawCount,
+    virtual void drawIndirectCount(BufferHandle args, uint64_t offset, BufferHandle countBuffer,
+                                   uint64_t countOffset, uint32_t maxDrawCount,
+                                   uint32_t stride = sizeof(DrawIndirectArgs)) = 0;
+    virtual void drawIndexedIndirectCount(BufferHandle args, uint64_t offset,
+                                          BufferHandle countBuffer, uint64_t countOffset,
+                                          uint32_t maxDrawCount,
                                           uint32_t stride = sizeof(DrawIndexedIndirectArgs)) = 0;
     virtual void dispatchIndirect(BufferHandle args, uint64_t offset) = 0;
 
@@ -883,21 +956,24 @@ public:
     // usage it was created with. The device's own transfers (writeBuffer, writeTexture,
     // readBuffer, readTexture, initial data) and generateMips need no copy usage.
     // Within one buffer the two ranges must not overlap.
-    virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src, uint64_t srcOffset,
-                            uint64_t size) = 0;
+    virtual void copyBuffer(BufferHandle dst, uint64_t dstOffset, BufferHandle src,
+                            uint64_t srcOffset, uint64_t size) = 0;
     // Fills [offset, offset + size) of the buffer with the 32-bit pattern `value` (0: zeros);
     // size 0 means to the end. Offset and size are multiples of 4 (vkCmdFillBuffer's rule).
     // Outside render passes.
-    virtual void clearBuffer(BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0, uint32_t value = 0) = 0;
+    virtual void clearBuffer(BufferHandle buffer, uint64_t offset = 0, uint64_t size = 0,
+                             uint32_t value = 0) = 0;
     // Whole-texture copies of one mip level (every layer); descriptions must match.
     virtual void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel = 0) = 0;
     // One subresource, tightly packed rows, top to bottom (see textureByteSize).
-    virtual void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src, uint64_t srcOffset) = 0;
-    virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src, Subresource at) = 0;
+    virtual void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src,
+                                     uint64_t srcOffset) = 0;
+    virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src,
+                                     Subresource at) = 0;
     // Regions (TextureRegion, TexelLayout): uncompressed colour formats and compressed ones
     // packed tightly; depth formats and multisampled textures use the whole-subresource calls.
-    virtual void copyBufferToTexture(TextureHandle dst, const TextureRegion& region, BufferHandle src,
-                                     const TexelLayout& layout) = 0;
+    virtual void copyBufferToTexture(TextureHandle dst, const TextureRegion& region,
+                                     BufferHandle src, const TexelLayout& layout) = 0;
     virtual void copyTextureToBuffer(BufferHandle dst, const TexelLayout& layout, TextureHandle src,
                                      const TextureRegion& region) = 0;
     // Copies srcRegion of src to dst at dstAt's mip level and origin (its extent is srcRegion's):
@@ -922,8 +998,8 @@ public:
     // recording, into dst at dstOffset (a multiple of 8; CopyDst usage) as uint64_t values: one
     // per query, four (PipelineStatistics) for statistics; timestamps in DeviceLimits::
     // timestampPeriodNs units. The GPU waits for the queries, not the CPU. Outside passes.
-    virtual void resolveQueries(QuerySetHandle set, uint32_t first, uint32_t count, BufferHandle dst,
-                                uint64_t dstOffset) = 0;
+    virtual void resolveQueries(QuerySetHandle set, uint32_t first, uint32_t count,
+                                BufferHandle dst, uint64_t dstOffset) = 0;
     virtual void pushDebugGroup(const char* name) = 0;
     virtual void popDebugGroup() = 0;
     // One marker at this point of the recording (a frame debugger shows it among the calls).
@@ -1046,22 +1122,23 @@ struct DeviceFeatures {
     bool computeShaders = false;
     bool debugLabels = false;
     bool validation = false;  // Khronos validation layer / KHR_debug active
-    bool memoryAliasing = false;  // heaps + placed textures (Vulkan); GL reuses whole objects instead
-    bool window = false;          // present() shows images in a window (vulkan-glfw, gl-glfw)
-    bool textureCubeArray = false;    // TextureDimension::TextureCubeArray
-    bool depthClamp = false;          // RasterState::depthClamp
-    bool depthBiasClamp = false;      // RasterState::depthBiasClamp other than 0
-    bool multiDrawIndirect = false;   // drawIndirect with drawCount > 1
-    bool drawIndirectCount = false;   // drawIndirectCount, drawIndexedIndirectCount
+    bool memoryAliasing =
+        false;            // heaps + placed textures (Vulkan); GL reuses whole objects instead
+    bool window = false;  // present() shows images in a window (vulkan-glfw, gl-glfw)
+    bool textureCubeArray = false;      // TextureDimension::TextureCubeArray
+    bool depthClamp = false;            // RasterState::depthClamp
+    bool depthBiasClamp = false;        // RasterState::depthBiasClamp other than 0
+    bool multiDrawIndirect = false;     // drawIndirect with drawCount > 1
+    bool drawIndirectCount = false;     // drawIndirectCount, drawIndexedIndirectCount
     bool textureCompressionBC = false;  // Format::BC1..BC7 sampled textures
     bool occlusionQueries = false;      // QueryType::Occlusion (exact counts) and AnySamplesPassed
     bool pipelineStatistics = false;    // QueryType::PipelineStatistics
 };
 
 struct DeviceInfo {
-    std::string backend;      // "vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"
-    std::string deviceName;   // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-    std::string apiVersion;   // e.g. "Vulkan 1.3.230" or "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
+    std::string backend;     // "vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"
+    std::string deviceName;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string apiVersion;  // e.g. "Vulkan 1.3.230" or "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
     std::string driverInfo;
     std::string presentMode;  // windows: how frames reach the screen, e.g. "FIFO (vsync on)"
     bool softwareRasterizer = false;
@@ -1076,7 +1153,8 @@ struct DeviceInfo {
 // users left alive ("fe leak check: vulkan device destroyed with {buffers 1, ...}"; it frees
 // them either way), so a whole program's run is leak-checked without a test harness.
 struct LiveObjects {
-    uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0, heaps = 0, querySets = 0;
+    uint32_t buffers = 0, textures = 0, samplers = 0, shaders = 0, pipelines = 0, timers = 0,
+             heaps = 0, querySets = 0;
     uint32_t nativeObjects = 0;
     friend bool operator==(const LiveObjects&, const LiveObjects&) = default;
 };
@@ -1085,12 +1163,12 @@ using FenceValue = uint64_t;
 
 // The device's pipeline cache (Device::openPipelineCache, DeviceCreateDesc::pipelineCache).
 struct PipelineCacheStats {
-    std::string path;           // empty: no file (pipelines are still cached in memory)
-    bool loaded = false;        // the file's data was accepted
-    uint64_t loadedBytes = 0;   // of backend data
-    uint32_t hits = 0;          // pipelines created from cached data (where the backend can tell)
-    uint32_t misses = 0;        // pipelines compiled
-    std::string warning;        // why the file was ignored, or why the backend cannot cache
+    std::string path;          // empty: no file (pipelines are still cached in memory)
+    bool loaded = false;       // the file's data was accepted
+    uint64_t loadedBytes = 0;  // of backend data
+    uint32_t hits = 0;         // pipelines created from cached data (where the backend can tell)
+    uint32_t misses = 0;       // pipelines compiled
+    std::string warning;       // why the file was ignored, or why the backend cannot cache
 };
 
 // Threads: every member may be called from any thread, concurrently, except present() and
@@ -1181,10 +1259,11 @@ public:
     virtual void writeTexture(TextureHandle texture, Subresource at, ByteSpan data) = 0;
     // A region of uncompressed colour texels laid out as `layout` says (its offset counts from
     // data's start); data holds at least what the layout spans. Queue-ordered like the above.
-    virtual void writeTextureRegion(TextureHandle texture, const TextureRegion& region, ByteSpan data,
-                              const TexelLayout& layout = {}) = 0;
+    virtual void writeTextureRegion(TextureHandle texture, const TextureRegion& region,
+                                    ByteSpan data, const TexelLayout& layout = {}) = 0;
     // Blocking reads: they wait for all work submitted before the call, then copy.
-    virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
+    virtual std::vector<uint8_t> readBuffer(BufferHandle buffer, uint64_t offset,
+                                            uint64_t size) = 0;
     // One subresource of a single-sample, uncompressed texture.
     virtual Image readTexture(TextureHandle texture, Subresource at = {}) = 0;
 
@@ -1218,14 +1297,12 @@ public:
     void waitOrLost(FenceValue fence) {
         try {
             wait(fence);
-        } catch (const DeviceLostError&) {
-        }
+        } catch (const DeviceLostError&) {}
     }
     void waitIdleOrLost() {
         try {
             waitIdle();
-        } catch (const DeviceLostError&) {
-        }
+        } catch (const DeviceLostError&) {}
     }
 
     // GPU time between beginTimer and endTimer of the last submitted use; nullopt until that
@@ -1237,7 +1314,8 @@ public:
     // false (and `out` untouched) until every one of them has been submitted and its submission
     // has completed. `out` holds count values (4 x count for PipelineStatistics, in its order);
     // timestamps in nanoseconds, AnySamplesPassed 0 or 1.
-    virtual bool queryResults(QuerySetHandle set, uint32_t first, uint32_t count, std::span<uint64_t> out) = 0;
+    virtual bool queryResults(QuerySetHandle set, uint32_t first, uint32_t count,
+                              std::span<uint64_t> out) = 0;
 
     // Messages of severity "error" from the validation layer or the GL debug output so far.
     virtual uint32_t validationErrorCount() const = 0;
@@ -1248,7 +1326,8 @@ public:
     // sized to it, bytes unchanged, and swaps. Returns false once the user has closed the window.
     // Headless backends throw Error.
     virtual bool present(TextureHandle texture) {
-        throw Error(info().backend + ": no window to present to (the vulkan-glfw and gl-glfw backends have one)");
+        throw Error(info().backend +
+                    ": no window to present to (the vulkan-glfw and gl-glfw backends have one)");
     }
     // What the window shows now, top row first, RGBA8 (tests check presentation with it).
     virtual Image readWindow() { throw Error(info().backend + ": no window to read"); }

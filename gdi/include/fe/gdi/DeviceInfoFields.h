@@ -64,8 +64,10 @@ constexpr bool bracesAccept(std::index_sequence<I...>) {
 }
 template <class T, size_t N = 0>
 constexpr size_t fieldCount() {
-    if constexpr (bracesAccept<T>(std::make_index_sequence<N + 1>{})) return fieldCount<T, N + 1>();
-    else return N;
+    if constexpr (bracesAccept<T>(std::make_index_sequence<N + 1>{}))
+        return fieldCount<T, N + 1>();
+    else
+        return N;
 }
 template <class T>
 constexpr size_t visitedCount() {
@@ -75,9 +77,11 @@ constexpr size_t visitedCount() {
 }
 }  // namespace detail
 
-static_assert(detail::visitedCount<DeviceLimits>() == detail::fieldCount<DeviceLimits>(),
-              "a DeviceLimits field is missing from forEachField(DeviceLimits) in DeviceInfoFields.h: add its line");
-static_assert(detail::visitedCount<DeviceFeatures>() == detail::fieldCount<DeviceFeatures>(),
-              "a DeviceFeatures field is missing from forEachField(DeviceFeatures) in DeviceInfoFields.h: add its line");
+static_assert(
+    detail::visitedCount<DeviceLimits>() == detail::fieldCount<DeviceLimits>(),
+    "a DeviceLimits field is missing from forEachField(DeviceLimits) in DeviceInfoFields.h: add its line");
+static_assert(
+    detail::visitedCount<DeviceFeatures>() == detail::fieldCount<DeviceFeatures>(),
+    "a DeviceFeatures field is missing from forEachField(DeviceFeatures) in DeviceInfoFields.h: add its line");
 
 }  // namespace fe::gdi

@@ -77,8 +77,8 @@ public:
     size_t size() const { return objects_.size(); }
 
 private:
-    using Object = std::variant<BufferHandle, TextureHandle, SamplerHandle, ShaderHandle, PipelineHandle, TimerHandle, HeapHandle,
-                                QuerySetHandle>;
+    using Object = std::variant<BufferHandle, TextureHandle, SamplerHandle, ShaderHandle,
+                                PipelineHandle, TimerHandle, HeapHandle, QuerySetHandle>;
     Device* device_;
     std::vector<Object> objects_;
 };

@@ -58,7 +58,8 @@ public:
 
 // `list` behind the check: each call claims it for its duration (and, with `layerLock`, holds
 // NativeLayerLock::Call too).
-std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list, bool layerLock = false);
+std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list,
+                                          bool layerLock = false);
 
 // For Device::submit and CommandList::executeSecondary: checks the array (no null, no list
 // twice), claims every checked list for the lifetime of this object (an Error names the one
@@ -67,7 +68,8 @@ std::unique_ptr<CommandList> exclusiveUse(std::unique_ptr<CommandList> list, boo
 // claimed by its own call), passes through unclaimed so that the backend refuses it as itself.
 class ClaimedLists {
 public:
-    ClaimedLists(std::span<CommandList* const> lists, const char* what, const CommandList* self = nullptr);
+    ClaimedLists(std::span<CommandList* const> lists, const char* what,
+                 const CommandList* self = nullptr);
     ~ClaimedLists();
     ClaimedLists(const ClaimedLists&) = delete;
     ClaimedLists& operator=(const ClaimedLists&) = delete;

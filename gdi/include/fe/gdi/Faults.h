@@ -51,7 +51,8 @@ std::string describeObject(const char* kind, const std::string& name, const std:
 // FE_LEAK_CHECK=1 (device destructors): whether to report, and the report of `live` on stderr,
 // naming the buffers and textures left (`named`), unless nothing is left.
 bool leakCheckEnabled();
-void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live, const std::vector<std::string>& named);
+void reportLeaksAtDestruction(const std::string& backend, const LiveObjects& live,
+                              const std::vector<std::string>& named);
 std::string toString(const LiveObjects& live);
 
 // Thread-safe: any thread may check while another (a GL context thread) marks the loss.

@@ -18,18 +18,18 @@ enum class Format : uint8_t {
     R32U,
     R11G11B10F,  // packed unsigned float, no alpha
     D32F,
-    D24S8,    // read back as 32-bit texels: depth in the low 24 bits, stencil in the high 8
-    D16,      // unorm
+    D24S8,  // read back as 32-bit texels: depth in the low 24 bits, stencil in the high 8
+    D16,    // unorm
     D32F_S8,  // read back as 64-bit texels: float depth, then a 32-bit word with stencil in its low 8 bits
-    S8,       // stencil only (FormatCaps say where it can be an attachment); one byte per texel
+    S8,  // stencil only (FormatCaps say where it can be an attachment); one byte per texel
     // Block-compressed (4x4 texel blocks), sampled only; DeviceFeatures::textureCompressionBC.
-    BC1,        // RGB 5:6:5 endpoints + 1-bit alpha, 8 bytes per block
+    BC1,  // RGB 5:6:5 endpoints + 1-bit alpha, 8 bytes per block
     BC1_SRGB,
-    BC3,        // BC1 colour + interpolated alpha, 16 bytes
+    BC3,  // BC1 colour + interpolated alpha, 16 bytes
     BC3_SRGB,
-    BC4,        // one channel (R), 8 bytes
-    BC5,        // two channels (RG), 16 bytes
-    BC7,        // RGBA, eight block modes, 16 bytes
+    BC4,  // one channel (R), 8 bytes
+    BC5,  // two channels (RG), 16 bytes
+    BC7,  // RGBA, eight block modes, 16 bytes
     BC7_SRGB,
     Count
 };

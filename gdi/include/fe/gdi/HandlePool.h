@@ -64,8 +64,11 @@ public:
             free_.pop_front();
         } else {
             index = count_.load(std::memory_order_relaxed);
-            if (index >= kMaxIndex) throw Error("too many live objects of one kind (at most " + std::to_string(kMaxIndex) + ")");
-            if ((index & kChunkMask) == 0) chunks_[index >> kChunkShift].store(new Chunk, std::memory_order_release);
+            if (index >= kMaxIndex)
+                throw Error("too many live objects of one kind (at most " +
+                            std::to_string(kMaxIndex) + ")");
+            if ((index & kChunkMask) == 0)
+                chunks_[index >> kChunkShift].store(new Chunk, std::memory_order_release);
             count_.store(index + 1, std::memory_order_release);
             slot(index).generation += salt_;  // a new slot: its first generation is the salt's
         }
@@ -80,7 +83,8 @@ public:
         const uint32_t index = (h.id & 0xfffffu) - 1u;
         if (index >= count_.load(std::memory_order_acquire)) return nullptr;
         Slot& s = slot(index);
-        if (s.liveTag.load(std::memory_order_acquire) != (h.id >> 20)) return nullptr;  // dead slots never match
+        if (s.liveTag.load(std::memory_order_acquire) != (h.id >> 20))
+            return nullptr;  // dead slots never match
         return &s.object;
     }
     const T* find(H h) const { return const_cast<HandlePool*>(this)->find(h); }
@@ -89,7 +93,9 @@ public:
             return *p;
         invalidHandle(h.id, what);
     }
-    const T& get(H h, const char* what) const { return const_cast<HandlePool*>(this)->get(h, what); }
+    const T& get(H h, const char* what) const {
+        return const_cast<HandlePool*>(this)->get(h, what);
+    }
     // The object of a live or retired (not yet released) handle, without the liveness check:
     // for replaying work whose handles were checked when it was recorded.
     T& at(H h) { return slot((h.id & 0xfffffu) - 1).object; }
@@ -114,7 +120,9 @@ public:
         s.generation++;
         free_.push_back(index);
     }
-    uint32_t size() const { return count_.load(std::memory_order_acquire) - uint32_t(free_.size()); }  // live + retired
+    uint32_t size() const {
+        return count_.load(std::memory_order_acquire) - uint32_t(free_.size());
+    }  // live + retired
     template <class F>
     void forEach(F&& f) {
         const uint32_t n = count_.load(std::memory_order_acquire);
@@ -123,11 +131,12 @@ public:
     }
 
 private:
-    [[noreturn, gnu::noinline, gnu::cold]] static void invalidHandle(uint32_t id, const char* what) {
+    [[noreturn, gnu::noinline, gnu::cold]] static void invalidHandle(uint32_t id,
+                                                                     const char* what) {
         throw Error(std::string("invalid or destroyed ") + what + " handle " + std::to_string(id) +
                     " (or one made by another device)");
     }
-    static constexpr uint32_t kDead = ~0u;  // id >> 20 is at most 0xfff
+    static constexpr uint32_t kDead = ~0u;                 // id >> 20 is at most 0xfff
     static constexpr uint32_t kMaxIndex = (1u << 20) - 1;  // ids keep 20 bits of index
     struct SlotFields {
         T object{};
@@ -146,12 +155,14 @@ private:
     static constexpr uint32_t kChunkMask = kChunkSlots - 1;
     static constexpr uint32_t kMaxChunks = (kMaxIndex >> kChunkShift) + 1;
     using Chunk = std::array<Slot, kChunkSlots>;
-    Slot& slot(uint32_t index) { return (*chunks_[index >> kChunkShift].load(std::memory_order_acquire))[index & kChunkMask]; }
+    Slot& slot(uint32_t index) {
+        return (*chunks_[index >> kChunkShift].load(std::memory_order_acquire))[index & kChunkMask];
+    }
 
     // Inline, not behind a pointer: a lookup is one load for the chunk, one for the slot.
     std::array<std::atomic<Chunk*>, kMaxChunks> chunks_{};  // null until used
     static constexpr size_t kQuarantine = 64;
-    std::deque<uint32_t> free_;  // released slots, oldest first
+    std::deque<uint32_t> free_;       // released slots, oldest first
     std::atomic<uint32_t> count_{0};  // slots in use or freed: the next new index
     uint32_t salt_ = 0;               // see nextHandleSalt()
 };

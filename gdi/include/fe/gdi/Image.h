@@ -24,7 +24,8 @@ struct Image {
 
 // 8-bit sRGB PNG: stored values for 8-bit formats, sRGB_OETF(clamp(exposure x v)) for floats.
 // alpha: an RGBA PNG with the image's fourth channel as stored (1 where it has none).
-void writePng(const Image& image, const std::string& path, float exposure = 1.0f, bool alpha = false);
+void writePng(const Image& image, const std::string& path, float exposure = 1.0f,
+              bool alpha = false);
 // Portable Float Map, linear RGB, little-endian (scale -1), rows bottom to top.
 void writePfm(const Image& image, const std::string& path);
 
@@ -38,7 +39,7 @@ struct ImageDiff {
 
 // Per-channel comparison. A pixel is "over" when any channel differs by more than
 // absTolerance AND (relTolerance <= 0 or more than relTolerance relative to the larger value).
-ImageDiff compareImages(const Image& a, const Image& b, double absTolerance, double relTolerance = 0.0,
-                        Image* diffImage = nullptr);
+ImageDiff compareImages(const Image& a, const Image& b, double absTolerance,
+                        double relTolerance = 0.0, Image* diffImage = nullptr);
 
 }  // namespace fe::gdi

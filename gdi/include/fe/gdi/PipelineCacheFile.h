@@ -28,9 +28,11 @@ struct PipelineCacheLoad {
 // Reads and checks `bytes` (a whole file) against `identity`.
 PipelineCacheLoad parsePipelineCache(std::span<const uint8_t> bytes, const std::string& identity);
 PipelineCacheLoad readPipelineCache(const std::string& path, const std::string& identity);
-std::vector<uint8_t> encodePipelineCache(const std::string& identity, std::span<const uint8_t> payload);
+std::vector<uint8_t> encodePipelineCache(const std::string& identity,
+                                         std::span<const uint8_t> payload);
 // Writes the file whole or not at all (a temporary file renamed over it). Throws Error on failure.
-void writePipelineCache(const std::string& path, const std::string& identity, std::span<const uint8_t> payload);
+void writePipelineCache(const std::string& path, const std::string& identity,
+                        std::span<const uint8_t> payload);
 
 // GL program binaries by key; decode refuses (false, `why`) a payload whose sizes do not add up.
 struct ProgramBinary {
@@ -38,6 +40,7 @@ struct ProgramBinary {
     std::vector<uint8_t> bytes;
 };
 std::vector<uint8_t> encodeProgramBinaries(const std::map<uint64_t, ProgramBinary>& programs);
-bool decodeProgramBinaries(std::span<const uint8_t> payload, std::map<uint64_t, ProgramBinary>& out, std::string& why);
+bool decodeProgramBinaries(std::span<const uint8_t> payload, std::map<uint64_t, ProgramBinary>& out,
+                           std::string& why);
 
 }  // namespace fe::gdi

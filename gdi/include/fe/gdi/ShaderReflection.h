@@ -26,7 +26,7 @@ struct ShaderInterface {
     struct Binding {
         uint32_t slot = 0;  // layout(binding = slot), descriptor set 0
         BindingType type = BindingType::UniformBuffer;
-        std::string name;   // the block or variable name, for messages
+        std::string name;  // the block or variable name, for messages
         // Textures: 1 + the TextureDimension the shader declares (sampler2DArray: Texture2DArray);
         // 0 for buffers, and for image kinds the device has no texture of (1D, buffer, multisampled).
         uint8_t dimension = 0;
@@ -39,11 +39,11 @@ struct ShaderInterface {
         uint32_t locations = 1;  // consecutive locations taken (arrays, matrices)
     };
     ShaderStage stage = ShaderStage::None;
-    std::vector<Binding> bindings;   // the ones the entry point uses, by slot
-    std::vector<Variable> inputs;    // user inputs (built-ins excluded), by location
+    std::vector<Binding> bindings;  // the ones the entry point uses, by slot
+    std::vector<Variable> inputs;   // user inputs (built-ins excluded), by location
     std::vector<Variable> outputs;
     struct SpecConstant {
-        uint32_t id = 0;  // layout(constant_id = id)
+        uint32_t id = 0;                      // layout(constant_id = id)
         ScalarKind kind = ScalarKind::Float;  // Other: a bool
         bool isBool = false;
         std::string name;
@@ -71,12 +71,14 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
 // device offers, cube arrays where `features` say so), and the entry point of desc's stage.
 // Every backend calls it before reading its own half, so a damaged binary is the same Error on
 // every backend, not only on the one that happens to read the damaged half.
-void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules, const DeviceFeatures& features);
+void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules,
+                          const DeviceFeatures& features);
 
 // Throws Error naming the shader when the module is not valid under `rules`, cannot be parsed,
 // uses a descriptor set other than 0, or a resource kind the device has no slot type for.
-ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
-                              const std::string& name, SpirvRules rules = SpirvRules::Universal);
+ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage,
+                              const char* entryPoint, const std::string& name,
+                              SpirvRules rules = SpirvRules::Universal);
 
 // The module with `prefix` before every OpName. NVIDIA's GL matches a program's uniforms across
 // stages by name even in SPIR-V programs, so two stages' blocks of one name and different members
@@ -88,6 +90,7 @@ std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const s
 // The module with every storage texture's binding `slot` changed to newSlot[slot] (0xff: kept).
 // The GL backend numbers a pipeline's storage textures 0, 1, ... as image units, because GL has
 // as few as 8 image units (NVIDIA) where the device's slots go to 63. `spirv` must be valid.
-std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv, const std::array<uint8_t, 64>& newSlot);
+std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv,
+                                              const std::array<uint8_t, 64>& newSlot);
 
 }  // namespace fe::gdi

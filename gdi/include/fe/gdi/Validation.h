@@ -31,7 +31,8 @@ struct Extent3 {
 };
 Extent3 mipExtent(const TextureDesc& d, uint32_t mipLevel);
 // A view checked against its texture (not itself a view); returns the view's TextureDesc.
-TextureDesc textureView(const TextureDesc& texture, const std::string& name, bool textureIsView, const TextureViewDesc& v);
+TextureDesc textureView(const TextureDesc& texture, const std::string& name, bool textureIsView,
+                        const TextureViewDesc& v);
 // destroy() of a texture whose views are alive.
 [[noreturn]] void viewsAlive(const std::string& name, uint32_t views);
 // Views are bound, not copied: copies, uploads, readback, mips and barriers take the texture.
@@ -43,27 +44,32 @@ inline bool identitySwizzle(const std::array<Swizzle, 4>& s) {
 }
 // A TextureRegion checked against the texture and resolved (0 extents filled in): in its mip
 // level, not multisampled, no depth format, block-aligned when compressed.
-TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name, const char* what);
+TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name,
+                            const char* what);
 // A TexelLayout checked for `region` of format `f` and resolved (0 fields filled in); `end` is
 // the offset just past the last byte it spans.
 struct ResolvedLayout {
     TexelLayout layout;
     uint64_t end = 0;
 };
-ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l, const char* what);
+ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLayout& l,
+                           const char* what);
 // A buffer<->texture region copy: the region and layout resolved and checked, the buffer range too.
 struct RegionCopy {
     TextureRegion region;
     TexelLayout layout;
 };
-RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b, const std::string& bufferName,
-                               const TextureRegion& region, const TexelLayout& layout, bool toTexture, const char* what);
+RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, const BufferDesc& b,
+                               const std::string& bufferName, const TextureRegion& region,
+                               const TexelLayout& layout, bool toTexture, const char* what);
 // writeTexture's data holds at least the `end` bytes its layout spans.
 void dataSpan(size_t size, uint64_t end, const char* what);
 // copyTexture between regions: compatible formats, both 3D or both layered, the destination box
 // in its texture, the two boxes apart when the texture is the same. Returns the resolved pair.
-std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst, const std::string& dstName, TextureRegion dstAt,
-                                                    bool sameTexture, const TextureDesc& src, const std::string& srcName,
+std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
+                                                    const std::string& dstName, TextureRegion dstAt,
+                                                    bool sameTexture, const TextureDesc& src,
+                                                    const std::string& srcName,
                                                     const TextureRegion& srcRegion);
 // copyTexture of a whole mip: the same format, kind, size and samples; the mip in both.
 void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
@@ -71,12 +77,13 @@ void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const 
 // copyBufferToTexture / copyTextureToBuffer of one whole subresource: a colour, single-sample
 // texture and a tightly packed range of the buffer at a 4-byte aligned offset, with copy usages.
 void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
-                           const BufferDesc& b, const std::string& bufferName, uint64_t offset, bool toTexture,
-                           const char* what);
+                           const BufferDesc& b, const std::string& bufferName, uint64_t offset,
+                           bool toTexture, const char* what);
 // Commands recorded in a list that copy need CopySrc on what they read and CopyDst on what they
 // write (copies, resolveQueries; clearBuffer CopyDst or Storage). The device's own transfers
 // (writeBuffer, writeTexture, readBuffer, readTexture, initial data) need neither.
-void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name, const char* what);
+void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& name,
+                  const char* what);
 // Throws Error unless `at` names an existing subresource of the texture; `what` names the call.
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
 // readTexture: an existing subresource of a single-sample, uncompressed texture.
@@ -87,14 +94,18 @@ void mipGeneration(const TextureDesc& d, const std::string& name);
 inline bool isArrayed(TextureDimension d) {
     return d == TextureDimension::Texture2DArray || d == TextureDimension::TextureCubeArray;
 }
-inline bool isCube(TextureDimension d) { return d == TextureDimension::TextureCube || d == TextureDimension::TextureCubeArray; }
+inline bool isCube(TextureDimension d) {
+    return d == TextureDimension::TextureCube || d == TextureDimension::TextureCubeArray;
+}
 // An upload of `size` bytes to subresource `at` (checked with subresource()) must be exactly it.
-void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char* what, const std::string& name);
+void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char* what,
+                const std::string& name);
 void samplerDesc(const SamplerDesc& d);
 // Indirect arguments: an Indirect buffer holding drawCount records of `stride` bytes from
 // offset (4-byte aligned); drawCount > 1 needs multiDrawIndirect.
-void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uint32_t drawCount, uint32_t stride,
-              uint32_t recordSize, const DeviceFeatures& features, const char* what);
+void indirect(const BufferDesc& d, const std::string& name, uint64_t offset, uint32_t drawCount,
+              uint32_t stride, uint32_t recordSize, const DeviceFeatures& features,
+              const char* what);
 void shaderDesc(const ShaderDesc& d);
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device);
 void computePipelineDesc(const ComputePipelineDesc& d);
@@ -111,7 +122,8 @@ struct AttachmentInfo {
     uint32_t samples = 1;
 };
 // The attachment view of a texture's subresource; throws for a subresource that does not exist.
-AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what, const std::string& name);
+AttachmentInfo attachment(const TextureDesc& d, uint32_t mipLevel, uint32_t layer, const char* what,
+                          const std::string& name);
 // colorResolves has one entry per colour attachment (format Undefined: none).
 Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colors,
                 const std::vector<AttachmentInfo>& colorResolves, const AttachmentInfo* depth,
@@ -125,7 +137,8 @@ struct PassSignature {
     uint32_t width = 0, height = 0;  // the render area
     bool operator==(const PassSignature&) const = default;
 };
-PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth, Rect area);
+PassSignature passSignature(const std::vector<AttachmentInfo>& colors, const AttachmentInfo* depth,
+                            Rect area);
 inline Rect renderArea(const PassSignature& s) { return {0, 0, s.width, s.height}; }
 
 // Rendering feedback loops. A draw that samples or stores to a subresource its render pass
@@ -144,11 +157,12 @@ struct TextureSpan {
 // starts) exposes to a binding: every layer, and every mip of the view, or one mip: a storage
 // binding's, or the base mip for a sampler whose MipFilter is None (GL's feedback-loop rule
 // takes the levels the filter can reach).
-TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer, const TextureDesc& view,
-                        std::optional<uint32_t> oneMip = std::nullopt);
+TextureSpan bindingSpan(uint32_t id, uint32_t viewOf, uint32_t baseMip, uint32_t baseLayer,
+                        const TextureDesc& view, std::optional<uint32_t> oneMip = std::nullopt);
 // The same for a backend's texture record (viewOf, baseMip, baseLayer, desc) named `name`.
 template <class Texture>
-TextureSpan bindingSpanOf(uint32_t id, const Texture& t, std::string_view name, std::optional<uint32_t> oneMip = std::nullopt) {
+TextureSpan bindingSpanOf(uint32_t id, const Texture& t, std::string_view name,
+                          std::optional<uint32_t> oneMip = std::nullopt) {
     TextureSpan s = bindingSpan(id, t.viewOf, t.baseMip, t.baseLayer, t.desc, oneMip);
     s.name = name;
     return s;
@@ -166,11 +180,12 @@ public:
         };
         for (size_t i = 0; i < d.colors.size() && i < 8; ++i) {
             each(d.colors[i].texture, d.colors[i].mipLevel, d.colors[i].layer, uint8_t(i));
-            each(d.colors[i].resolveTexture, d.colors[i].resolveSubresource.mipLevel, d.colors[i].resolveSubresource.layer,
-                uint8_t(8 + i));
+            each(d.colors[i].resolveTexture, d.colors[i].resolveSubresource.mipLevel,
+                 d.colors[i].resolveSubresource.layer, uint8_t(8 + i));
         }
         each(d.depth.texture, d.depth.mipLevel, d.depth.layer, kDepthRole);
-        each(d.depth.resolveTexture, d.depth.resolveSubresource.mipLevel, d.depth.resolveSubresource.layer, kDepthRole + 1);
+        each(d.depth.resolveTexture, d.depth.resolveSubresource.mipLevel,
+             d.depth.resolveSubresource.layer, kDepthRole + 1);
     }
     void end() { count_ = 0; }
     bool empty() const { return count_ == 0; }
@@ -182,15 +197,18 @@ public:
         return hit;
     }
     // The Error of a draw whose pipeline reads `slot` while it reaches an attachment.
-    [[noreturn]] void failed(uint32_t slot, const TextureSpan& s, bool storage, const char* pipelineName) const;
+    [[noreturn]] void failed(uint32_t slot, const TextureSpan& s, bool storage,
+                             const char* pipelineName) const;
 
 private:
     static bool reaches(const TextureSpan& s, const TextureSpan& a) {
-        return s.texture == a.texture && a.baseMip - s.baseMip < s.mipCount && a.baseLayer - s.baseLayer < s.layerCount;
+        return s.texture == a.texture && a.baseMip - s.baseMip < s.mipCount &&
+               a.baseLayer - s.baseLayer < s.layerCount;
     }
     // role: colour attachment i (0-7), its resolve target (8 + i), depth (16), depth resolve (17).
     static constexpr uint8_t kDepthRole = 16;
-    void add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role, const char* passName);
+    void add(const TextureSpan& whole, uint32_t mip, uint32_t layer, uint8_t role,
+             const char* passName);
     static std::string roleName(uint8_t role);
     static constexpr uint32_t kMax = 2 * 8 + 2;
     std::array<TextureSpan, kMax> at_{};
@@ -237,8 +255,8 @@ public:
     void check(uint32_t slot, bool pipelineWritesDepthStencil, const char* pipelineName) const;
     // Whether check() would throw for this slot.
     bool refused(uint32_t slot, bool pipelineWritesDepthStencil) const {
-        return (reaching_ & bit(slot)) &&
-               ((hits_[slot] & PassAttachments::kColour) || (storage_ & bit(slot)) || pipelineWritesDepthStencil);
+        return (reaching_ & bit(slot)) && ((hits_[slot] & PassAttachments::kColour) ||
+                                           (storage_ & bit(slot)) || pipelineWritesDepthStencil);
     }
     void clear() { pass_.end(), reaching_ = 0; }
 
@@ -259,8 +277,8 @@ bool writesDepthStencil(const GraphicsPipelineDesc& d);
 // A call a secondary list may not hold (timers; begin/endRenderPass).
 [[noreturn]] void notInSecondary(const char* what);
 // executeSecondary's checks of list `index`: a secondary list, ended, for this pass.
-void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const PassSignature& list,
-                       const PassSignature& pass, size_t index);
+void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended,
+                       const PassSignature& list, const PassSignature& pass, size_t index);
 // submit of a secondary list.
 [[noreturn]] void submittedSecondary();
 // Pipelines against their shaders (ShaderReflection.h). The binding slots: derived from the
@@ -268,19 +286,22 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended, const
 // appear with the kind the shader declares and that shader's stage. The shaders use at most
 // limits.maxStorageTextures storage textures.
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline,
-                                          const DeviceLimits& limits);
+                                          std::initializer_list<const ShaderInterface*> shaders,
+                                          const std::string& pipeline, const DeviceLimits& limits);
 // Every vertex shader input has an attribute of the same scalar kind in the vertex layout.
-void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs, const std::string& pipeline);
+void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs,
+                  const std::string& pipeline);
 // Every fragment output that lands on a colour target has the target format's scalar kind.
-void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs, const std::string& pipeline);
+void fragmentOutputs(const GraphicsPipelineDesc& d, const ShaderInterface& fs,
+                     const std::string& pipeline);
 // Every blended colour target's format can be blended on this device (FormatCaps::blend: never
 // integer formats; 32-bit floats only where the device says so).
 void blendedTargets(const GraphicsPipelineDesc& d, const std::function<FormatCaps(Format)>& caps);
 // The pipeline's blend states with writes masked off for the colour targets the fragment shader
 // (null: none) has no output for: such a target keeps its contents on every backend, where the
 // APIs leave it undefined (Vulkan stored stale bytes there, GL zeros).
-std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d, const ShaderInterface* fs);
+std::vector<BlendTargetState> writtenTargetBlends(const GraphicsPipelineDesc& d,
+                                                  const ShaderInterface* fs);
 // A compute shader's work group fits the device.
 void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std::string& pipeline);
 // Queries: a set's description (feature, count), and each recording's rules, with one message
@@ -288,19 +309,25 @@ void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std:
 void querySetDesc(const QuerySetDesc& d, const DeviceFeatures& f);
 uint32_t queryValues(QueryType t);  // uint64_t values per query: 4 for statistics, else 1
 // resolveQueries' buffer: CopyDst usage, an 8-byte aligned offset, room for `bytes`.
-void queryDestination(const BufferDesc& d, const std::string& name, uint64_t offset, uint64_t bytes);
+void queryDestination(const BufferDesc& d, const std::string& name, uint64_t offset,
+                      uint64_t bytes);
 // queryResults: the range is in the set and `out` holds its values.
-void queryRead(const QuerySetDesc& d, const std::string& name, uint32_t first, uint32_t count, size_t outSize);
+void queryRead(const QuerySetDesc& d, const std::string& name, uint32_t first, uint32_t count,
+               size_t outSize);
 class QueryRecording {
 public:
     struct Use {
         uint32_t set = 0, index = 0;
         bool ended = false;
     };
-    void begin(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
-    void end(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
-    void timestamp(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, bool inPass);
-    void resolve(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t first, uint32_t count) const;
+    void begin(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index,
+               bool inPass);
+    void end(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index,
+             bool inPass);
+    void timestamp(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index,
+                   bool inPass);
+    void resolve(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t first,
+                 uint32_t count) const;
     void endPass() const;  // a query begun in the pass must end in it
     void finish() const;   // submit: none left active, every timer ended
     void clear() { used_.clear(), active_ = {}, timers_.clear(); }
@@ -311,7 +338,8 @@ public:
     const std::vector<std::pair<uint32_t, bool>>& timers() const { return timers_; }  // (id, ended)
 
 private:
-    void written(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index, const char* what);
+    void written(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index,
+                 const char* what);
     struct Active {
         uint32_t set = 0, index = 0;
         bool inPass = false;
@@ -325,7 +353,8 @@ void queriesOncePerSubmission(std::span<const QueryRecording* const> lists);
 
 // Bytes of per-draw constants the pipeline's shaders read (the largest block; 0: none), at
 // most kMaxConstantBytes.
-uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders,
+                           const std::string& pipeline);
 // setConstants: offset and size multiples of 4, not empty, within kMaxConstantBytes.
 [[noreturn, gnu::cold]] void badConstantsRange(uint32_t offset, size_t size);
 inline void constantsRange(uint32_t offset, size_t size) {
@@ -335,16 +364,20 @@ inline void constantsRange(uint32_t offset, size_t size) {
 // Specialization constants given to a pipeline: each id declared by one of its shaders, once,
 // with a value of that constant's kind.
 void specialization(const std::vector<SpecializationConstant>& values,
-                    std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
+                    std::initializer_list<const ShaderInterface*> shaders,
+                    const std::string& pipeline);
 // The attachments a graphics pipeline renders to (formats, depth format, samples).
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
 // setPipeline in a pass: the pipeline's attachment formats and sample count are the pass's.
-void pipelineFitsPass(const PassSignature& pipeline, const PassSignature& pass, const char* pipelineName);
+void pipelineFitsPass(const PassSignature& pipeline, const PassSignature& pass,
+                      const char* pipelineName);
 // setTexture: a sampler that filters linearly needs a format that can be (FormatCaps).
 inline bool filtersLinearly(const SamplerDesc& d) {
-    return !d.compareEnable && (d.minFilter == Filter::Linear || d.magFilter == Filter::Linear || d.mipFilter == MipFilter::Linear);
+    return !d.compareEnable && (d.minFilter == Filter::Linear || d.magFilter == Filter::Linear ||
+                                d.mipFilter == MipFilter::Linear);
 }
-[[noreturn]] void notFilterable(const std::string& texture, Format format, const std::string& sampler);
+[[noreturn]] void notFilterable(const std::string& texture, Format format,
+                                const std::string& sampler);
 // A buffer bound or copied as `usage` must have been created with it.
 void bufferUsage(const BufferDesc& d, BufferUsage usage, const std::string& name, const char* what);
 // clearBuffer: a range inside the buffer, offset and size multiples of 4 (size 0: to the end);
@@ -355,7 +388,8 @@ void depthBias(float constant, float slope, float clamp, const DeviceFeatures& f
 // A pipeline set in a pass must rasterize with the pass's sample count.
 void pipelineSamples(uint32_t pipelineSamples, uint32_t passSamples, const char* pipelineName);
 // Per-draw checks: inline fast paths, the message is built out of line only on failure.
-[[noreturn]] void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
+[[noreturn]] void bufferRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size,
+                                    const char* what);
 inline void bufferRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
     if (offset > d.size || size > d.size - offset) [[unlikely]]
         bufferRangeFailed(d, offset, size, what);
@@ -378,21 +412,26 @@ class VertexInputs {
 public:
     // setVertexBuffer / setIndexBuffer: index below kMaxVertexBuffers, usage, offset in the buffer
     // (and, for indices, a multiple of the index size).
-    void setVertexBuffer(uint32_t index, const BufferDesc& d, const std::string& name, uint64_t offset);
-    void setIndexBuffer(const BufferDesc& d, const std::string& name, IndexType type, uint64_t offset);
+    void setVertexBuffer(uint32_t index, const BufferDesc& d, const std::string& name,
+                         uint64_t offset);
+    void setIndexBuffer(const BufferDesc& d, const std::string& name, IndexType type,
+                        uint64_t offset);
     // The bound pipeline's bindings (null: none, or a compute pipeline).
     void setPipeline(const std::vector<VertexBinding>* bindings, const std::string* pipelineName);
     void clear();  // nothing bound (a new recording; after a pass of secondary lists)
     // Every buffer the pipeline reads is bound (folded into the lists' one per-draw state check).
     bool ready() const { return (required_ & ~bound_) == 0; }
     [[noreturn, gnu::cold]] void notReady(const char* what) const;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex, uint32_t firstInstance) const {
-        if (uint64_t(firstVertex) + vertexCount > vertices_ || uint64_t(firstInstance) + instanceCount > instances_)
-            [[unlikely]]
+    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+              uint32_t firstInstance) const {
+        if (uint64_t(firstVertex) + vertexCount > vertices_ ||
+            uint64_t(firstInstance) + instanceCount > instances_) [[unlikely]]
             outside("draw", vertexCount, instanceCount, firstVertex, firstInstance);
     }
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, uint32_t firstInstance) const {
-        if (uint64_t(firstIndex) + indexCount > indices_ || uint64_t(firstInstance) + instanceCount > instances_) [[unlikely]]
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
+                     uint32_t firstInstance) const {
+        if (uint64_t(firstIndex) + indexCount > indices_ ||
+            uint64_t(firstInstance) + instanceCount > instances_) [[unlikely]]
             indexedOutside(indexCount, instanceCount, firstIndex, firstInstance);
     }
     // Indirect indexed draws: an index buffer bound at offset 0 (the records hold firstIndex).
@@ -403,10 +442,10 @@ public:
     uint64_t instanceCapacity() const { return instances_; }
 
 private:
-    [[noreturn, gnu::cold]] void outside(const char* what, uint32_t count, uint32_t instanceCount, uint32_t first,
-                                         uint32_t firstInstance) const;
-    [[noreturn, gnu::cold]] void indexedOutside(uint32_t count, uint32_t instanceCount, uint32_t first,
-                                                uint32_t firstInstance) const;
+    [[noreturn, gnu::cold]] void outside(const char* what, uint32_t count, uint32_t instanceCount,
+                                         uint32_t first, uint32_t firstInstance) const;
+    [[noreturn, gnu::cold]] void indexedOutside(uint32_t count, uint32_t instanceCount,
+                                                uint32_t first, uint32_t firstInstance) const;
     void update();  // the capacities below, from what is bound
     struct Bound {
         uint64_t available = 0;  // bytes from the bound offset to the buffer's end
@@ -416,7 +455,8 @@ private:
     uint32_t bound_ = 0, required_ = 0;
     const std::vector<VertexBinding>* bindings_ = nullptr;
     const std::string* pipelineName_ = nullptr;
-    uint64_t vertices_ = ~uint64_t(0), instances_ = ~uint64_t(0);  // elements every bound buffer holds
+    uint64_t vertices_ = ~uint64_t(0),
+             instances_ = ~uint64_t(0);  // elements every bound buffer holds
     bool indexBound_ = false;
     uint64_t indexOffset_ = 0, indices_ = 0;
     uint32_t indexBytes_ = 2;
@@ -442,9 +482,10 @@ inline ViewportLimits viewportLimits(const DeviceLimits& l) {
 }
 [[noreturn, gnu::cold]] void badViewport(const Viewport& v, const ViewportLimits& l);
 inline void viewport(const Viewport& v, const ViewportLimits& l) {
-    const bool ok = v.width > 0 && v.height > 0 && v.x - v.x == 0 && v.y - v.y == 0 && v.width - v.width == 0 &&
-                    v.height - v.height == 0 && v.minDepth >= 0 && v.minDepth <= 1 && v.maxDepth >= 0 && v.maxDepth <= 1 &&
-                    v.width <= l.maxSize && v.height <= l.maxSize && v.x >= l.lo && v.y >= l.lo && v.x + v.width <= l.hi &&
+    const bool ok = v.width > 0 && v.height > 0 && v.x - v.x == 0 && v.y - v.y == 0 &&
+                    v.width - v.width == 0 && v.height - v.height == 0 && v.minDepth >= 0 &&
+                    v.minDepth <= 1 && v.maxDepth >= 0 && v.maxDepth <= 1 && v.width <= l.maxSize &&
+                    v.height <= l.maxSize && v.x >= l.lo && v.y >= l.lo && v.x + v.width <= l.hi &&
                     v.y + v.height <= l.hi;
     if (!ok) [[unlikely]]
         badViewport(v, l);
@@ -461,16 +502,18 @@ inline Rect scissor(const Rect& r) {
     return out;
 }
 // dispatch: group counts within limits.maxComputeWorkGroupCount.
-[[noreturn, gnu::cold]] void badDispatch(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& limits);
+[[noreturn, gnu::cold]] void badDispatch(uint32_t x, uint32_t y, uint32_t z,
+                                         const DeviceLimits& limits);
 inline void dispatchSize(uint32_t x, uint32_t y, uint32_t z, const DeviceLimits& l) {
-    if (x > l.maxComputeWorkGroupCount[0] || y > l.maxComputeWorkGroupCount[1] || z > l.maxComputeWorkGroupCount[2])
-        [[unlikely]]
+    if (x > l.maxComputeWorkGroupCount[0] || y > l.maxComputeWorkGroupCount[1] ||
+        z > l.maxComputeWorkGroupCount[2]) [[unlikely]]
         badDispatch(x, y, z, l);
 }
 // copyBuffer: both ranges inside their buffers, and apart when the buffer is the same (Vulkan
 // leaves overlapping copies undefined, GL refuses them).
-void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset, const BufferDesc& src,
-                const std::string& srcName, uint64_t srcOffset, uint64_t size, bool sameBuffer);
+void bufferCopy(const BufferDesc& dst, const std::string& dstName, uint64_t dstOffset,
+                const BufferDesc& src, const std::string& srcName, uint64_t srcOffset,
+                uint64_t size, bool sameBuffer);
 // A call on a command list whose device was destroyed (LiveLists.h).
 [[noreturn, gnu::cold]] void listOfDestroyedDevice(const char* what);
 // barrier(pointer, count): count barriers need an array (a null one with count 0 is no barrier).
@@ -486,7 +529,8 @@ inline void issuedFence(FenceValue fence, FenceValue last, const char* what) {
 }
 
 // A range bound to a slot must also be non-empty (Vulkan and GL both reject zero-sized bindings).
-[[noreturn]] void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what);
+[[noreturn]] void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size,
+                                     const char* what);
 inline void bindingRange(const BufferDesc& d, uint64_t offset, uint64_t size, const char* what) {
     if (offset >= d.size || size > d.size - offset || size == 0) [[unlikely]]
         bindingRangeFailed(d, offset, size, what);
@@ -498,14 +542,15 @@ inline void bindingRange(const BufferDesc& d, uint64_t offset, uint64_t size, co
 // `limits` is the device's rule for the binding's kind: the offset a multiple of its alignment
 // and the range at most its maximum; size 0 binds to the end, at most that maximum.
 struct BindingLimits {
-    uint64_t alignMask = 0;     // offset alignment - 1 (alignments are powers of two)
+    uint64_t alignMask = 0;  // offset alignment - 1 (alignments are powers of two)
     uint64_t maxRange = ~uint64_t(0);
     const char* alignmentName = "";  // for messages: "uniformBufferOffsetAlignment"
     const char* rangeName = "";
 };
 BindingLimits uniformBindingLimits(const DeviceLimits& l);
 BindingLimits storageBindingLimits(const DeviceLimits& l);
-inline uint64_t plainBindingSize(uint32_t slot, uint64_t bufferSize, uint64_t offset, uint64_t size, const BindingLimits& limits) {
+inline uint64_t plainBindingSize(uint32_t slot, uint64_t bufferSize, uint64_t offset, uint64_t size,
+                                 const BindingLimits& limits) {
     if (slot >= 64 || offset >= bufferSize || (offset & limits.alignMask)) return 0;
     const uint64_t rest = bufferSize - offset;
     if (size == 0) return rest < limits.maxRange ? rest : limits.maxRange;
@@ -522,15 +567,17 @@ inline void missingBindings(uint64_t required, uint64_t bound, const char* pipel
         missingBindingsFailed(missing, pipelineName);
 }
 // A slot bound with another kind of resource than the pipeline declares for it.
-[[noreturn]] void wrongBindingKindFailed(uint32_t slot, BindingType expected, BindingType bound, const char* pipelineName);
+[[noreturn]] void wrongBindingKindFailed(uint32_t slot, BindingType expected, BindingType bound,
+                                         const char* pipelineName);
 // Per-slot declared kind, 1 + BindingType (0: the pipeline does not use the slot).
 std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings);
 // Per-slot texture kind the shaders sample or store, 1 + TextureDimension (0: any; a buffer
 // slot, or one no shader uses). Stages that declare one slot with two kinds are an Error. A
 // texture bound there must be of that kind (a view may give it another: createTextureView).
-std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders, const std::string& pipeline);
-[[noreturn, gnu::cold]] void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected, uint8_t bound,
-                                                         const char* pipelineName);
+std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders,
+                                       const std::string& pipeline);
+[[noreturn, gnu::cold]] void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected,
+                                                         uint8_t bound, const char* pipelineName);
 
 // A barrier's subresources, resolved: mips [baseMip, baseMip + mipCount), layers likewise
 // (array layers and cube faces; a 3D texture has one). Throws for an empty or outside range,
@@ -541,7 +588,8 @@ struct SubresourceRange {
     uint32_t baseMip = 0, mipCount = 1, baseLayer = 0, layerCount = 1;
     bool whole = true;  // every mip and layer of the texture
 };
-SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b, const std::string& name);
+SubresourceRange textureBarrier(const TextureDesc& d, const TextureBarrier& b,
+                                const std::string& name);
 // A buffer barrier's range, resolved (size 0: to the end); throws when outside the buffer or
 // when an access needs a usage the buffer lacks (Vertex, Index, Indirect, Uniform; StorageRead
 // and StorageWrite need Storage; the copy accesses any usage).
