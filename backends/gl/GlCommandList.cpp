@@ -26,6 +26,48 @@ GlCommandList::~GlCommandList() {
     dev_.returnStream(std::move(stream_));
     dev_.liveLists().remove(this);
 }
+// Dynamic state and per-draw constants: checked, then one record each.
+void GlCommandList::setViewport(const gdi::Viewport& v) {
+    checkUnrestricted("setViewport");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setViewport");
+    gdi::validate::viewport(v, viewportLimits_);
+    stream_->push(cmd::SetViewport{v});
+}
+void GlCommandList::setScissor(const gdi::Rect& r) {
+    checkUnrestricted("setScissor");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setScissor");
+    stream_->push(cmd::SetScissor{gdi::validate::scissor(r)});
+}
+void GlCommandList::setConstants(uint32_t offset, gdi::ByteSpan data) {
+    gdi::validate::constantsRange(offset, data.size());
+    checkUnrestricted("setConstants");
+    auto* r =
+        stream_->push(cmd::SetConstants{offset}, cmd::CommandStream::payloadSize(data.size()));
+    r->data = stream_->payload(*r, data);
+}
+void GlCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
+    checkUnrestricted("setBlendConstant");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setBlendConstant");
+    gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
+    stream_->push(cmd::SetBlendConstant{rgba});
+}
+void GlCommandList::setStencilReference(uint8_t reference) {
+    checkUnrestricted("setStencilReference");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setStencilReference");
+    stream_->push(cmd::SetStencilReference{reference});
+}
+void GlCommandList::setDepthBias(float constant, float slope, float clamp) {
+    checkUnrestricted("setDepthBias");
+    if (!inPass_) [[unlikely]]
+        gdi::validate::stateOutsidePass("setDepthBias");
+    gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
+    stream_->push(cmd::SetDepthBias{constant, slope, clamp});
+}
+
 // The device is being destroyed before this list (LiveLists.h): every later call throws.
 void GlCommandList::orphan() { orphaned_ = restricted_ = true, readyToDraw_ = inPass_ = false; }
 
@@ -162,18 +204,12 @@ void GlCommandList::endSecondary() {
 
 void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
     checkDevice("executeSecondary");
-    gdi::validate::submittedLists(lists);
-    std::vector<GlCommandList*> parts;
-    for (size_t i = 0; i < lists.size(); ++i) {
-        auto* l = dynamic_cast<GlCommandList*>(lists[i]);
-        if (!l || &l->dev_ != &dev_)
-            throw gdi::Error("executeSecondary: list " + std::to_string(i) +
-                             " belongs to another device");
-        if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
-        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_,
-                                         l->signature_, signature_, i);
-        parts.push_back(l);
-    }
+    const auto parts =
+        gdi::validate::executedLists(lists, this, [&](const GlCommandList& l, size_t i) {
+            if (&l.dev_ != &dev_) gdi::validate::secondaryOfAnotherDevice(i);
+            gdi::validate::executedSecondary(inPass_ && secondaryPass_, l.secondary_, l.ended_,
+                                             l.signature_, signature_, i);
+        });
     // Each recording moves, uncopied, into this list's stream; the secondary list records anew.
     for (GlCommandList* l : parts) {
         destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);

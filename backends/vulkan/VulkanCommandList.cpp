@@ -622,18 +622,12 @@ void VulkanCommandList::endSecondary() {
 
 void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
     checkDevice("executeSecondary");
-    gdi::validate::submittedLists(lists);
-    std::vector<VulkanCommandList*> parts;
-    for (size_t i = 0; i < lists.size(); ++i) {
-        auto* l = dynamic_cast<VulkanCommandList*>(lists[i]);
-        if (!l || &l->dev_ != &dev_)
-            throw gdi::Error("executeSecondary: list " + std::to_string(i) +
-                             " belongs to another device");
-        if (l == this) throw gdi::Error("executeSecondary: a list cannot execute itself");
-        gdi::validate::executedSecondary(inPass_ && secondaryPass_, l->secondary_, l->ended_,
-                                         l->signature_, signature_, i);
-        parts.push_back(l);
-    }
+    const auto parts =
+        gdi::validate::executedLists(lists, this, [&](const VulkanCommandList& l, size_t i) {
+            if (&l.dev_ != &dev_) gdi::validate::secondaryOfAnotherDevice(i);
+            gdi::validate::executedSecondary(inPass_ && secondaryPass_, l.secondary_, l.ended_,
+                                             l.signature_, signature_, i);
+        });
     std::vector<VkCommandBuffer> cbs;
     for (VulkanCommandList* l : parts) {
         cbs.push_back(l->lease_.cb);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "VulkanDevice.h"
+#include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -18,63 +19,8 @@ public:
     void orphan();  // the device's destructor, for a list that outlives it (LiveLists.h)
 
     void beginRenderPass(const gdi::RenderPassDesc& desc) override;
-    void endRenderPass() override;
-    void setPipeline(gdi::PipelineHandle pipeline) override;
-    void setViewport(const gdi::Viewport& viewport) override;
-    void setScissor(const gdi::Rect& rect) override;
-    void setConstants(uint32_t offset, gdi::ByteSpan data) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, const gdi::TextureRegion& region,
-                             gdi::BufferHandle src, const gdi::TexelLayout& layout) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, const gdi::TexelLayout& layout,
-                             gdi::TextureHandle src, const gdi::TextureRegion& region) override;
-    void copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
-                     gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) override;
-    void beginQuery(gdi::QuerySetHandle set, uint32_t index) override;
-    void endQuery(gdi::QuerySetHandle set, uint32_t index) override;
-    void writeTimestamp(gdi::QuerySetHandle set, uint32_t index) override;
-    void resolveQueries(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
-                        gdi::BufferHandle dst, uint64_t dstOffset) override;
-    void setBlendConstant(const std::array<float, 4>& rgba) override;
-    void setStencilReference(uint8_t reference) override;
-    void setDepthBias(float constant, float slope, float clamp) override;
-    void setVertexBuffer(uint32_t index, gdi::BufferHandle buffer, uint64_t offset) override;
-    void setIndexBuffer(gdi::BufferHandle buffer, gdi::IndexType type, uint64_t offset) override;
-    void setUniformBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset,
-                          uint64_t size) override;
-    void setStorageBuffer(uint32_t slot, gdi::BufferHandle buffer, uint64_t offset,
-                          uint64_t size) override;
-    void setTexture(uint32_t slot, gdi::TextureHandle texture, gdi::SamplerHandle sampler) override;
-    void setStorageTexture(uint32_t slot, gdi::TextureHandle texture, uint32_t mipLevel) override;
-    void draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
-              uint32_t firstInstance) override;
-    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex,
-                     int32_t baseVertex, uint32_t firstInstance) override;
-    void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
-    void drawIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
-                      uint32_t stride) override;
-    void drawIndexedIndirect(gdi::BufferHandle args, uint64_t offset, uint32_t drawCount,
-                             uint32_t stride) override;
-    void drawIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
-                           uint64_t countOffset, uint32_t maxDrawCount, uint32_t stride) override;
-    void drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t offset, gdi::BufferHandle count,
-                                  uint64_t countOffset, uint32_t maxDrawCount,
-                                  uint32_t stride) override;
-    void dispatchIndirect(gdi::BufferHandle args, uint64_t offset) override;
-    void generateMips(gdi::TextureHandle texture) override;
-    void copyBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::BufferHandle src,
-                    uint64_t srcOffset, uint64_t size) override;
-    void copyTexture(gdi::TextureHandle dst, gdi::TextureHandle src, uint32_t mipLevel) override;
-    void copyBufferToTexture(gdi::TextureHandle dst, gdi::Subresource at, gdi::BufferHandle src,
-                             uint64_t srcOffset) override;
-    void copyTextureToBuffer(gdi::BufferHandle dst, uint64_t dstOffset, gdi::TextureHandle src,
-                             gdi::Subresource at) override;
-    void beginTimer(gdi::TimerHandle timer) override;
-    void endTimer(gdi::TimerHandle timer) override;
-    void pushDebugGroup(const char* name) override;
-    void popDebugGroup() override;
-    void insertDebugLabel(const char* name) override;
-    void clearBuffer(gdi::BufferHandle buffer, uint64_t offset, uint64_t size,
-                     uint32_t value) override;
+    // Every call that maps field for field to its record (CommandSet.inc).
+#include "fe/gdi/CommandListOverrides.inc"
     void beginSecondary(const gdi::RenderPassDesc& pass) override;
     void endSecondary() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;
@@ -92,8 +38,6 @@ public:
     static void fullBarrier(VkCommandBuffer cb);
     static void toGeneral(VkCommandBuffer cb, VkImage image,
                           gdi::Format format);  // every subresource
-    void discardTexture(gdi::TextureHandle texture) override;
-    void setAutomaticBarriers(bool enabled) override;
     void barrier(const gdi::TextureBarrier* barriers, uint32_t count) override;
     void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
 

@@ -31,4 +31,8 @@ void destroyedBeforeSubmit(const char* kind, uint32_t id) {
         "its refused recording)");
 }
 
+void secondaryOfAnotherDevice(size_t index) {
+    throw Error("executeSecondary: list " + std::to_string(index) + " belongs to another device");
+}
+
 }  // namespace fe::gdi::validate

@@ -75,6 +75,21 @@ using Param = typename ParamOf<T>::type;
     using Array = ::fe::gdi::cmd::Array<T>; \
     using String = ::fe::gdi::cmd::String;  \
     using Rgba = ::fe::gdi::cmd::Rgba;
+// FE_CMD_GDI_TYPE_NAMES does the same for the gdi types it names, in a class of another
+// namespace (a backend's list: CommandListOverrides.inc).
+#define FE_CMD_GDI_TYPE_NAMES                         \
+    using BufferHandle = ::fe::gdi::BufferHandle;     \
+    using TextureHandle = ::fe::gdi::TextureHandle;   \
+    using SamplerHandle = ::fe::gdi::SamplerHandle;   \
+    using PipelineHandle = ::fe::gdi::PipelineHandle; \
+    using TimerHandle = ::fe::gdi::TimerHandle;       \
+    using QuerySetHandle = ::fe::gdi::QuerySetHandle; \
+    using Viewport = ::fe::gdi::Viewport;             \
+    using Rect = ::fe::gdi::Rect;                     \
+    using IndexType = ::fe::gdi::IndexType;           \
+    using Subresource = ::fe::gdi::Subresource;       \
+    using TextureRegion = ::fe::gdi::TextureRegion;   \
+    using TexelLayout = ::fe::gdi::TexelLayout;
 #define FE_CMD_DROP_FIRST(first, ...) __VA_ARGS__
 #define FE_CMD_APPLY(macro, args) macro args
 #define FE_CMD_LIST(...) FE_CMD_APPLY(FE_CMD_DROP_FIRST, (~__VA_ARGS__))

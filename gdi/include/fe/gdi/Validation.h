@@ -598,6 +598,25 @@ uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::s
 void mappable(const BufferDesc& d, const std::string& name);
 // submit(lists): no list twice, none null.
 void submittedLists(std::span<CommandList* const> lists);
+// executeSecondary(lists) on a backend's List `self`: the array checked as submit's is, each a
+// List (else "belongs to another device") other than `self`, then `check(list, index)` (the
+// backend's own: same device, executable here). Returns the lists as the backend's type.
+[[noreturn]] void secondaryOfAnotherDevice(size_t index);
+template <class List, class Check>
+std::vector<List*> executedLists(std::span<CommandList* const> lists, const List* self,
+                                 Check&& check) {
+    submittedLists(lists);
+    std::vector<List*> parts;
+    parts.reserve(lists.size());
+    for (size_t i = 0; i < lists.size(); ++i) {
+        auto* l = dynamic_cast<List*>(lists[i]);
+        if (!l) secondaryOfAnotherDevice(i);
+        if (l == self) throw Error("executeSecondary: a list cannot execute itself");
+        check(*l, i);
+        parts.push_back(l);
+    }
+    return parts;
+}
 // destroy() of a handle that is not live (destroyed already, or made by another device).
 [[noreturn]] void destroyedHandle(const char* kind, uint32_t id);
 // Dynamic state (viewport, scissor, blend constant, stencil reference, depth bias) is set
