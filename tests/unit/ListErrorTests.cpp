@@ -325,6 +325,31 @@ TEST_P(DeviceErrors, ListOfAnotherDeviceIsRefused) {
     device->destroy(mine);
 }
 
+// executeSecondary refuses, the same on every backend, a secondary list of another device and a
+// list executing itself (the checks both backends share: validate::executedLists).
+TEST_P(DeviceErrors, SecondaryListOfAnotherDeviceOrItselfIsRefused) {
+    auto other = createDevice({.backend = GetParam(), .validation = true});
+    const TextureHandle target = device->createTexture(
+        {.format = Format::RGBA8, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    const TextureHandle theirs = other->createTexture(
+        {.format = Format::RGBA8, .width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    const RenderPassDesc pass{.colors = {{.texture = target}}, .secondaryLists = true};
+    auto foreign = other->createCommandList();
+    foreign->beginSecondary({.colors = {{.texture = theirs}}, .secondaryLists = true});
+    foreign->endSecondary();
+    auto list = device->createCommandList();
+    list->beginRenderPass(pass);
+    EXPECT_EQ(errorOf([&] { list->executeSecondary(*foreign); }),
+              "executeSecondary: list 0 belongs to another device");
+    EXPECT_EQ(errorOf([&] { list->executeSecondary(*list); }),
+              "executeSecondary: a list cannot execute itself");
+    list->endRenderPass();
+    device->wait(device->submit(*list));
+    EXPECT_EQ(device->validationErrorCount(), 0u);
+    other->destroy(theirs);
+    device->destroy(target);
+}
+
 // Timers: one span per recording. Ended without a begin, GL read a negative time and Vulkan's
 // layer objected; begun twice or left open, the backends measured different spans.
 TEST_P(DeviceErrors, TimerMisuse) {
