@@ -89,11 +89,13 @@ void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
         constants_;  // a secondary starts from zeros and leaves the primary's alone
     constants_ = {};
     constantsDirty_ = true;
+    const uint8_t primaryDynamic = std::exchange(dynamicSet_, 0);  // and from its pipelines' state
     stream_ = &primary->child(r.child);
     replayRecords(*stream_);
     stream_ = primary;
     constants_ = primaryConstants;
     constantsDirty_ = true;
+    dynamicSet_ = primaryDynamic;
 }
 
 void GlReplay::operator()(const cmd::SetConstants& r) {
@@ -109,6 +111,7 @@ void GlReplay::flushConstants() {
 }
 
 void GlReplay::operator()(const cmd::BeginRenderPass& r) {
+    dynamicSet_ = 0;  // each pass starts from its pipelines' values
     gl_.Disable(
         GL_RASTERIZER_DISCARD);  // a pipeline's empty sample mask must not discard the clears
     const auto colorsIn = cmd::view(r, r.colors);
@@ -208,7 +211,9 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
     // gdi's winding is Vulkan's: its area formula is negated with respect to GL's over the
     // same (row-index) coordinates, so the GL enum is the opposite one.
     gl_.FrontFace(d.raster.frontFace == gdi::FrontFace::CounterClockwise ? GL_CW : GL_CCW);
-    applyDepthBias(d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp);
+    if (!(dynamicSet_ & kDepthBiasSet))  // the pipeline's, unless set in the pass
+        applyDepthBias(d.raster.depthBiasConstant, d.raster.depthBiasSlope,
+                       d.raster.depthBiasClamp);
     if (d.raster.depthClamp)
         gl_.Enable(GL_DEPTH_CLAMP);
     else
@@ -247,7 +252,7 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
         for (auto [face, s] : {std::pair{GL_FRONT, ds.front}, std::pair{GL_BACK, ds.back}})
             gl_.StencilOpSeparate(face, stencilOp(s.failOp), stencilOp(s.depthFailOp),
                                   stencilOp(s.passOp));
-        applyStencil(ds.stencilReference);
+        applyStencil(dynamicSet_ & kStencilReferenceSet ? stencilReference_ : ds.stencilReference);
         gl_.StencilMask(ds.stencilWriteMask);
     } else {
         gl_.Disable(GL_STENCIL_TEST);
@@ -265,7 +270,9 @@ void GlReplay::applyPipelineState(const Pipeline& p) {
         const auto m = uint8_t(b.writeMask);
         gl_.ColorMaski(GLuint(i), m & 1, (m >> 1) & 1, (m >> 2) & 1, (m >> 3) & 1);
     }
-    gl_.BlendColor(d.blendConstant[0], d.blendConstant[1], d.blendConstant[2], d.blendConstant[3]);
+    if (!(dynamicSet_ & kBlendConstantSet))
+        gl_.BlendColor(d.blendConstant[0], d.blendConstant[1], d.blendConstant[2],
+                       d.blendConstant[3]);
 }
 
 // The reference goes with the compare function and mask in GL; they are the pipeline's.
@@ -287,14 +294,19 @@ void GlReplay::applyDepthBias(float constant, float slope, float clamp) {
 
 void GlReplay::operator()(const cmd::SetBlendConstant& r) {
     gl_.BlendColor(r.rgba[0], r.rgba[1], r.rgba[2], r.rgba[3]);
+    dynamicSet_ |= kBlendConstantSet;
 }
-// Without a stencil test the reference has no effect, and the next setPipeline sets its own.
+// GL keeps the reference with the stencil function, which is the pipeline's: without a stencil
+// test it is kept here, and the next setPipeline applies it.
 void GlReplay::operator()(const cmd::SetStencilReference& r) {
+    stencilReference_ = r.reference;
+    dynamicSet_ |= kStencilReferenceSet;
     if (pipeline_ && !pipeline_->compute && pipeline_->desc.depthStencil.stencilTest)
         applyStencil(r.reference);
 }
 void GlReplay::operator()(const cmd::SetDepthBias& r) {
     applyDepthBias(r.constant, r.slope, r.clamp);
+    dynamicSet_ |= kDepthBiasSet;
 }
 
 void GlReplay::operator()(const cmd::SetViewport& r) {

@@ -89,6 +89,10 @@ private:
     const GlFunctions& gl_;
     bool automatic_ = true;  // setAutomaticBarriers
     bool labelled_ = false;  // the open pass pushed a debug group
+    // Dynamic state the pass has set (setBlendConstant, ...): setPipeline leaves it (Device.h).
+    static constexpr uint8_t kBlendConstantSet = 1, kStencilReferenceSet = 2, kDepthBiasSet = 4;
+    uint8_t dynamicSet_ = 0;
+    uint8_t stencilReference_ = 0;  // the pass's, when kStencilReferenceSet
     gdi::Rect area_;
     GLuint fbo_ = 0;  // the open pass's framebuffer
     std::vector<std::pair<GLenum, FboAttachment>>

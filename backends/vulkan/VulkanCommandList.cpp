@@ -483,6 +483,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     if (desc.debugName) pushDebugGroup(desc.debugName);
     vkCmdBeginRendering(cb_, &ri);
     inPass_ = true;
+    dynamicSet_ = 0;      // each pass starts from its pipelines' values
     pipeline_ = nullptr;  // a render pass starts with no pipeline, as on GL (see Device.h)
     computeBound_ = false;
     updateReadyToDraw();
@@ -597,6 +598,7 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     cb_ = lease_.cb;
     openRecording();
     recording_ = secondary_ = inPass_ = true;
+    dynamicSet_ = 0;
     renderArea_ = gdi::validate::renderArea(signature_);
     passSamples_ = signature_.samples;
     passHasLabel_ = false;
@@ -670,10 +672,12 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
     if (inPass_ && p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS)
         gdi::validate::pipelineFitsPass(p.signature, signature_, p.name.c_str());
     vkCmdBindPipeline(cb_, p.bindPoint, p.pipeline);
-    if (p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) {
-        vkCmdSetBlendConstants(cb_, p.blendConstant.data());
-        vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, p.stencilReference);
-        vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
+    if (p.bindPoint == VK_PIPELINE_BIND_POINT_GRAPHICS) {  // the pipeline's, unless set in the pass
+        if (!(dynamicSet_ & kBlendConstantSet)) vkCmdSetBlendConstants(cb_, p.blendConstant.data());
+        if (!(dynamicSet_ & kStencilReferenceSet))
+            vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, p.stencilReference);
+        if (!(dynamicSet_ & kDepthBiasSet))
+            vkCmdSetDepthBias(cb_, p.depthBias[0], p.depthBias[2], p.depthBias[1]);
     }
     if (!pipeline_ || pipeline_->layout != p.layout) dirtySlots_ = ~uint64_t(0);
     // The list's constants, whatever the previous pipeline was (a list's values outlive it).
@@ -733,6 +737,7 @@ void VulkanCommandList::setBlendConstant(const std::array<float, 4>& rgba) {
         gdi::validate::stateOutsidePass("setBlendConstant");
     gdi::validate::blendConstant(rgba.data(), "setBlendConstant");
     vkCmdSetBlendConstants(cb_, rgba.data());
+    dynamicSet_ |= kBlendConstantSet;
 }
 
 void VulkanCommandList::setStencilReference(uint8_t reference) {
@@ -741,6 +746,7 @@ void VulkanCommandList::setStencilReference(uint8_t reference) {
     if (!inPass_) [[unlikely]]
         gdi::validate::stateOutsidePass("setStencilReference");
     vkCmdSetStencilReference(cb_, VK_STENCIL_FACE_FRONT_AND_BACK, reference);
+    dynamicSet_ |= kStencilReferenceSet;
 }
 
 void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
@@ -750,6 +756,7 @@ void VulkanCommandList::setDepthBias(float constant, float slope, float clamp) {
         gdi::validate::stateOutsidePass("setDepthBias");
     gdi::validate::depthBias(constant, slope, clamp, dev_.info().features);
     vkCmdSetDepthBias(cb_, constant, clamp, slope);
+    dynamicSet_ |= kDepthBiasSet;
 }
 
 void VulkanCommandList::setScissor(const gdi::Rect& r) {

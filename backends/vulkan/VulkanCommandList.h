@@ -225,6 +225,9 @@ private:
     void closeRecording();
     bool recording_ = false;
     bool inPass_ = false;
+    // Dynamic state the pass has set (setBlendConstant, ...): setPipeline leaves it (Device.h).
+    static constexpr uint8_t kBlendConstantSet = 1, kStencilReferenceSet = 2, kDepthBiasSet = 4;
+    uint8_t dynamicSet_ = 0;
     bool passHasLabel_ = false;
     bool written_ = false;  // a command since the last barrier wrote memory
     bool automaticBarriers_ = true;

@@ -408,17 +408,21 @@ std::vector<CaseImage> sampleMask(Device& d) {
 
 // --- Dynamic pipeline state ---------------------------------------------------------------------
 
-// Blend constant, stencil reference and depth bias set between draws; setPipeline applies the
-// pipeline's values again (Device.h). Three images, four 16-pixel columns (or regions) each:
-//  - blend constant: colour = white x constant. Column 0 the pipeline's (red), 1 after
-//    setBlendConstant (green), 2 after setPipeline again (red), 3 after setBlendConstant (blue);
-//  - stencil reference: a pipeline (reference 0) replaces stencil in a rectangle after
-//    setStencilReference(5); an Equal pipeline (reference 0) with setStencilReference(5) draws red
-//    there, then set again (reference 0) draws green everywhere else;
+// Blend constant, stencil reference and depth bias set between draws stay until set again:
+// setPipeline applies a pipeline's own values only to what the pass has not set (Device.h), and
+// each pass starts from its pipelines' values. Three images:
+//  - blend constant: colour = white x constant, four 16-pixel columns. Column 0 the pipeline's
+//    (red), 1 after setBlendConstant (green), 2 after setPipeline again (still green), 3 after
+//    setBlendConstant (blue); then a second pass draws the bottom 8 rows with the pipeline's
+//    value again (red);
+//  - stencil reference: setStencilReference(5) before a replacing pipeline (reference 0) writes
+//    5 in a rectangle; an Equal pipeline (reference 0) keeps 5 and draws red there; then
+//    setStencilReference(0) and the Equal pipeline bound again draw green everywhere else;
 //  - depth bias: a triangle at 0.5 everywhere, then another at 0.5 with depth test Less: column
-//    0 unbiased (fails), 1 after setDepthBias(-1000) (passes), 2 after setPipeline again
-//    (fails), 3 a pipeline with depthBiasConstant -1000 (passes).
-// A command ignored, or setPipeline not restoring the pipeline's value, changes a column.
+//    0 unbiased (fails), 1 after setDepthBias(-1000) (passes), 2 after setPipeline again (the
+//    bias stays: passes), 3 in a second pass with a pipeline whose depthBiasConstant is -1000
+//    (passes), while the unbiased pipeline bound in that pass draws nothing in column 0.
+// A command ignored, or setPipeline replacing a value the pass set, changes a column.
 std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     DeviceObjects o(d);
     const ShaderHandle vs = registryShader(o, ShaderStage::Vertex,
@@ -426,7 +430,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
                        fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
     const Texel red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1};
     const BufferHandle whiteUbo = params(o, {1, 1, 1, 1}), redUbo = params(o, red),
-                       greenUbo = params(o, green);
+                       greenUbo = params(o, green), blueUbo = params(o, blue);
     auto column = [](uint32_t i) { return Rect{int32_t(16 * i), 0, 16, kCaseSize}; };
     auto columns = [](Texel c0, Texel c1, Texel c2, Texel c3) {
         return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t) {
@@ -464,8 +468,18 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         cmd->setScissor(column(3));
         cmd->draw(3);
         cmd->endRenderPass();
+        cmd->beginRenderPass({.colors = {{.texture = t, .load = LoadOp::Load}}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, whiteUbo);
+        cmd->setScissor({0, int32_t(kCaseSize) - 8, kCaseSize, 8});
+        cmd->draw(3);  // a new pass: the pipeline's constant again
+        cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(exact("blend_constant", d.readTexture(t), columns(red, green, red, blue)));
+        const Texel c[4] = {red, green, green, blue};
+        out.push_back(exact("blend_constant", d.readTexture(t),
+                            expectImage(Format::RGBA8, [=](uint32_t x, uint32_t y) {
+                                return y >= kCaseSize - 8 ? red : c[x / 16];
+                            })));
     }
     {
         const TextureHandle t = caseTarget(o);
@@ -496,18 +510,18 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},
                               .depth = {.texture = ds, .clearDepth = 1.0f, .clearStencil = 0}});
+        cmd->setStencilReference(5);  // before the pipeline: kept
         cmd->setPipeline(write);
         cmd->setUniformBuffer(0, redUbo);
-        cmd->setStencilReference(5);
         cmd->setScissor(r);
         cmd->draw(3);  // stencil 5 in r
         cmd->setScissor(kWhole);
         cmd->setPipeline(test);
-        cmd->setStencilReference(5);
-        cmd->draw(3);  // red where stencil is 5
+        cmd->draw(3);  // red where stencil is 5 (the reference set, not the pipeline's 0)
+        cmd->setStencilReference(0);
         cmd->setPipeline(test);
         cmd->setUniformBuffer(0, greenUbo);
-        cmd->draw(3);  // green where stencil is 0 (the pipeline's reference again)
+        cmd->draw(3);  // green where stencil is 0
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
         out.push_back(exact("stencil_reference", d.readTexture(t), rectImage(green, r, red)));
@@ -546,15 +560,70 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         cmd->draw(3);  // passes
         cmd->setPipeline(p);
         cmd->setScissor(column(2));
-        cmd->draw(3);  // the pipeline's bias (none) again: fails
+        cmd->draw(3);  // the bias set stays: passes
+        cmd->endRenderPass();
+        cmd->beginRenderPass({.colors = {{.texture = t, .load = LoadOp::Load}},
+                              .depth = {.texture = depth, .load = LoadOp::Load}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, blueUbo);
+        cmd->setScissor(column(0));
+        cmd->draw(3);  // a new pass: the pipeline's bias (none) again: fails, stays red
         cmd->setPipeline(biased);
+        cmd->setUniformBuffer(0, greenUbo);
         cmd->setScissor(column(3));
         cmd->draw(3);  // the pipeline's bias: passes
         cmd->endRenderPass();
         d.wait(d.submit(*cmd));
-        out.push_back(exact("depth_bias", d.readTexture(t), columns(red, green, red, green)));
+        out.push_back(exact("depth_bias", d.readTexture(t), columns(red, green, green, green)));
     }
     return out;
+}
+
+// The order Vulkan samples and WebGPU programs use: the blend constant and the depth bias set at
+// the start of the pass, before setPipeline; the pipeline's own values (a red constant, no
+// bias) must not replace them. Green where both held, red or black where one was replaced.
+std::vector<CaseImage> dynamicStateBeforePipeline(Device& d) {
+    DeviceObjects o(d);
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex,
+                                           "conformance/fullscreen_ubo.vert"),
+                       fs = registryShader(o, ShaderStage::Fragment, "conformance/ubo_color.frag");
+    const BufferHandle whiteUbo = params(o, {1, 1, 1, 1});
+    const PipelineHandle p = o.add(d.createGraphicsPipeline(
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .depthStencil = {.depthTest = true, .depthWrite = true, .depthCompare = CompareOp::Less},
+         .blend = {{.enable = true,
+                    .srcColor = BlendFactor::ConstantColor,
+                    .dstColor = BlendFactor::Zero,
+                    .srcAlpha = BlendFactor::One,
+                    .dstAlpha = BlendFactor::Zero}},
+         .blendConstant = {1, 0, 0, 1},
+         .colorFormats = {Format::RGBA8},
+         .depthFormat = Format::D32F,
+         .debugName = "constant blend, depth less"}));
+    const TextureHandle t = caseTarget(o);
+    const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
+                                                       .width = kCaseSize,
+                                                       .height = kCaseSize,
+                                                       .usage = TextureUsage::RenderTarget}));
+    auto cmd = d.createCommandList();
+    // Depth 0.5 everywhere first (the full-screen triangle's depth), in a pass of its own.
+    cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},
+                          .depth = {.texture = depth, .clearDepth = 1.0f}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, whiteUbo);
+    cmd->draw(3);  // red at 0.5
+    cmd->endRenderPass();
+    cmd->beginRenderPass({.colors = {{.texture = t, .load = LoadOp::Load}},
+                          .depth = {.texture = depth, .load = LoadOp::Load}});
+    cmd->setBlendConstant({0, 1, 0, 1});
+    cmd->setDepthBias(-1000.0f, 0.0f);
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, whiteUbo);
+    cmd->draw(3);  // passes only biased, green only with the constant set
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    return {exact("before_pipeline", d.readTexture(t), solid(Format::RGBA8, {0, 1, 0, 1}))};
 }
 
 }  // namespace
@@ -568,6 +637,7 @@ std::vector<Case> samplerStateCases() {
         {"primitive_restart", primitiveRestart},
         {"sample_mask", sampleMask},
         {"dynamic_blend_stencil_bias", dynamicBlendStencilBias},
+        {"dynamic_state_before_pipeline", dynamicStateBeforePipeline},
     };
 }
 

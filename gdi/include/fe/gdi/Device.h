@@ -886,11 +886,13 @@ public:
     // the projection). A scissor partly outside the target (negative offsets too) clips to it.
     virtual void setViewport(const Viewport& viewport) = 0;  // default: whole render area
     virtual void setScissor(const Rect& rect) = 0;           // default: whole render area
-    // Pipeline state that may also change between draws: setPipeline applies the pipeline's
+    // Pipeline state that may also change between draws. Each pass starts from its pipelines'
     // values (GraphicsPipelineDesc::blendConstant, DepthStencilState::stencilReference,
-    // RasterState's depth bias), and these replace them until the next setPipeline.
+    // RasterState's depth bias), which setPipeline applies; once the pass sets one of these, the
+    // value stays, across later setPipeline calls too, until it is set again or the pass ends
+    // (WebGPU's rule, and Vulkan's for dynamic state): set before setPipeline, it is not lost.
     // Viewport, scissor and these are set inside a render pass (outside one they are an Error:
-    // each pass starts from the render area and its pipeline's values).
+    // each pass starts from the render area and its pipelines' values).
     virtual void setBlendConstant(const std::array<float, 4>& rgba) = 0;
     virtual void setStencilReference(uint8_t reference) = 0;
     virtual void setDepthBias(float constant, float slope, float clamp = 0.0f) = 0;
