@@ -224,7 +224,8 @@ void GlDevice::initialize(bool validation) {
         .memoryAliasing = false,
         .window = platform_->hasWindow(),
         .textureCubeArray = true,
-        .depthClamp = true,  // core in 4.0 and 3.2
+        .storageImageExtendedFormats = true,  // GL 4.5 core's image formats include them all
+        .depthClamp = true,                   // core in 4.0 and 3.2
         .depthBiasClamp = gl_.PolygonOffsetClamp != nullptr,
         .multiDrawIndirect = true,  // core in 4.3
         .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,

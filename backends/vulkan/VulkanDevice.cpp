@@ -250,6 +250,8 @@ void VulkanDevice::createLogicalDevice() {
         supported.shaderStorageImageWriteWithoutFormat;
     features.features.independentBlend = supported.independentBlend;
     features.features.imageCubeArray = supported.imageCubeArray;
+    features.features.shaderStorageImageExtendedFormats =
+        supported.shaderStorageImageExtendedFormats;
     features.features.depthClamp = supported.depthClamp;
     features.features.depthBiasClamp = supported.depthBiasClamp;
     features.features.multiDrawIndirect = supported.multiDrawIndirect;
@@ -431,6 +433,7 @@ void VulkanDevice::fillInfo() {
     info_.features.debugLabels = cmdBeginLabel != nullptr;
     info_.features.memoryAliasing = true;
     info_.features.textureCubeArray = enabled_.imageCubeArray;
+    info_.features.storageImageExtendedFormats = enabled_.shaderStorageImageExtendedFormats;
     info_.features.depthClamp = enabled_.depthClamp;
     info_.features.depthBiasClamp = enabled_.depthBiasClamp;
     // Multi-draw needs a firstInstance in the records too (the engine's instancing uses it).

@@ -47,7 +47,10 @@ gdi::FormatCaps VulkanDevice::formatCaps(gdi::Format format) const {
     c.renderTarget = f & (depth ? VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT
                                 : VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT);
     c.blend = !depth && (f & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT);
-    c.storage = f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    // The formats beyond the base set need the shader feature as well (enabled when offered).
+    c.storage =
+        (f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+        (!gdi::isExtendedStorageFormat(format) || enabled_.shaderStorageImageExtendedFormats);
     if (c.renderTarget) {
         VkImageFormatProperties ip{};
         const VkImageUsageFlags usage = depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT

@@ -355,6 +355,7 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
         ImageBuffer = 47,
         ImageQuery = 50,
         DerivativeControl = 51,
+        StorageImageExtendedFormats = 49,
         InterpolationFunction = 52,
         DrawParameters = 4427
     };
@@ -383,6 +384,9 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
                 case DrawParameters:
                     offered = !vulkan;
                     break;
+                case StorageImageExtendedFormats:  // formatCaps(f).storage says the same per format
+                    offered = features.storageImageExtendedFormats;
+                    break;
                 default:
                     break;
             }
@@ -392,7 +396,9 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
                                     : c == DrawParameters   ? " (DrawParameters)"
                                     : c == ImageCubeArray   ? " (ImageCubeArray)"
                                     : c == SampledCubeArray ? " (SampledCubeArray)"
-                                                            : "";
+                                    : c == StorageImageExtendedFormats
+                                        ? " (StorageImageExtendedFormats)"
+                                        : "";
                 throw Error("shader '" + name + "': its " + (vulkan ? "Vulkan" : "OpenGL") +
                             " SPIR-V declares capability " + std::to_string(c) + known +
                             ", which the device does not offer");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "CaseSupport.h"
 #include "Conformance.h"
 #include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
@@ -333,6 +334,70 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
                 "values exact in the target's float format: 1e-3 absolute, no pixel over";
         }
         out.push_back(ci);
+    }
+    return out;
+}
+
+// Every format formatCaps calls storage is written by a compute shader that declares it (the
+// base formats and, with DeviceFeatures::storageImageExtendedFormats, RG16F, R16F, RG32F and
+// R11G11B10F), read back and compared: formatCaps and shader acceptance agree. A format said to
+// be storage-capable without a shader here fails the case, so a new one cannot go untested.
+std::vector<CaseImage> storageImageEveryFormat(Device& d) {
+    struct StorageFormat {
+        Format format;
+        const char* shader;
+        double tolerance;  // the format's rounding of x / 16 (8-bit unorm), else exact
+    };
+    const StorageFormat formats[] = {
+        {Format::RGBA8, "conformance/storage_rgba8.comp", 0.5 / 255},
+        {Format::RGBA16F, "conformance/storage_rgba16f.comp", 0},
+        {Format::RG16F, "conformance/storage_rg16f.comp", 0},
+        {Format::R16F, "conformance/storage_r16f.comp", 0},
+        {Format::RGBA32F, "conformance/storage_rgba32f.comp", 0},
+        {Format::RG32F, "conformance/storage_rg32f.comp", 0},
+        {Format::R32F, "conformance/storage_r32f.comp", 0},
+        {Format::R32U, "conformance/storage_r32u.comp", 0},
+        {Format::R11G11B10F, "conformance/storage_r11g11b10f.comp", 0}};
+    for (uint32_t f = 1; f < uint32_t(Format::Count); ++f) {
+        const bool covered =
+            std::any_of(std::begin(formats), std::end(formats),
+                        [&](const StorageFormat& s) { return s.format == Format(f); });
+        FE_CONFORMANCE_CHECK(covered || !d.formatCaps(Format(f)).storage,
+                             "every format formatCaps calls storage has a shader in this case");
+    }
+    FE_CONFORMANCE_CHECK(
+        d.formatCaps(Format::RG16F).storage == d.info().features.storageImageExtendedFormats,
+        "RG16F storage follows DeviceFeatures::storageImageExtendedFormats");
+    constexpr uint32_t kSide = 16;
+    std::vector<CaseImage> out;
+    for (const StorageFormat& s : formats) {
+        if (!d.formatCaps(s.format).storage) continue;
+        DeviceObjects o(d);
+        const ShaderHandle cs = registryShader(o, ShaderStage::Compute, s.shader);
+        const PipelineHandle p = o.add(d.createComputePipeline(
+            {.computeShader = cs,
+             .bindings = {{0, BindingType::StorageTexture, ShaderStage::Compute}}}));
+        const TextureHandle t =
+            o.add(d.createTexture({.format = s.format,
+                                   .width = kSide,
+                                   .height = kSide,
+                                   .usage = TextureUsage::Storage | TextureUsage::CopySrc}));
+        auto cmd = d.createCommandList();
+        cmd->setPipeline(p);
+        cmd->setStorageTexture(0, t);
+        cmd->dispatch(kSide / 8, kSide / 8);
+        d.wait(d.submit(*cmd));
+        const Image expected = expectImage(
+            s.format,
+            [&](uint32_t x, uint32_t y) -> Texel {
+                if (s.format == Format::R32U) return {float(x + kSide * y + 1), 0, 0, 1};
+                return {float(x) / kSide, float(y) / kSide, 0.25f, 1};
+            },
+            kSide, kSide);
+        const std::string name(formatInfo(s.format).name);
+        out.push_back(s.tolerance > 0 ? within(name, d.readTexture(t), expected, s.tolerance,
+                                               "x / 16 rounded to 8 bits")
+                                      : exact(name, d.readTexture(t), expected));
     }
     return out;
 }
@@ -832,6 +897,7 @@ std::vector<Case> drawCases() {
         {"scissor_viewport_stencil", scissorViewportStencil},
         {"mrt_mixed_formats", mrtMixedFormats},
         {"compute_buffer_and_image", computeBufferAndImage},
+        {"storage_image_every_format", storageImageEveryFormat},
         {"copies", copies},
         {"vertex_formats", vertexFormats},
         {"storage_buffer_in_fragment", storageBufferInFragment},

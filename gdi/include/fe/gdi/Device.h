@@ -1127,7 +1127,10 @@ struct DeviceFeatures {
     bool memoryAliasing =
         false;            // heaps + placed textures (Vulkan); GL reuses whole objects instead
     bool window = false;  // present() shows images in a window (vulkan-glfw, gl-glfw)
-    bool textureCubeArray = false;      // TextureDimension::TextureCubeArray
+    bool textureCubeArray = false;  // TextureDimension::TextureCubeArray
+    // Storage images of the formats beyond the base set (RG16F, R16F, RG32F, R11G11B10F):
+    // formatCaps(f).storage says so for each, and shaders may declare them.
+    bool storageImageExtendedFormats = false;
     bool depthClamp = false;            // RasterState::depthClamp
     bool depthBiasClamp = false;        // RasterState::depthBiasClamp other than 0
     bool multiDrawIndirect = false;     // drawIndirect with drawCount > 1

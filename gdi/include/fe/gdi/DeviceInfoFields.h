@@ -43,6 +43,7 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("memoryAliasing", f.memoryAliasing);
     visit("window", f.window);
     visit("textureCubeArray", f.textureCubeArray);
+    visit("storageImageExtendedFormats", f.storageImageExtendedFormats);
     visit("depthClamp", f.depthClamp);
     visit("depthBiasClamp", f.depthBiasClamp);
     visit("multiDrawIndirect", f.multiDrawIndirect);

@@ -50,6 +50,11 @@ struct FormatInfo {
 const FormatInfo& formatInfo(Format f);
 // A format of the depth/stencil attachment: depth, stencil or both (S8 has no depth).
 inline bool isDepthFormat(Format f) { return formatInfo(f).hasDepth || formatInfo(f).hasStencil; }
+// Storage-image formats beyond SPIR-V's base set: a shader declaring one needs the capability
+// StorageImageExtendedFormats (DeviceFeatures::storageImageExtendedFormats).
+inline bool isExtendedStorageFormat(Format f) {
+    return f == Format::RG16F || f == Format::R16F || f == Format::RG32F || f == Format::R11G11B10F;
+}
 inline bool isCompressedFormat(Format f) { return formatInfo(f).blockSize > 1; }
 // Bytes of a tightly packed width x height image (compressed: whole 4x4 blocks).
 uint64_t imageByteSize(Format f, uint32_t width, uint32_t height);
