@@ -133,34 +133,10 @@ public:
     ~GlDevice() override;
 
     const gdi::DeviceInfo& info() const override { return info_; }
-    bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
+#include "fe/gdi/DeviceOverrides.inc"
     gdi::FormatCaps formatCaps(gdi::Format format) const override {
         return formatCaps_[size_t(format)];
     }
-    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
-    gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
-    gdi::TextureHandle createTextureView(gdi::TextureHandle texture,
-                                         const gdi::TextureViewDesc& desc) override;
-    gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
-    gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
-    gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
-    gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
-    gdi::TimerHandle createTimer() override;
-    gdi::HeapHandle createHeap(const gdi::HeapDesc&) override;
-    gdi::QuerySetHandle createQuerySet(const gdi::QuerySetDesc& desc) override;
-    gdi::PipelineCacheStats openPipelineCache(const std::string& path) override;
-    void savePipelineCache() override;
-    gdi::PipelineCacheStats pipelineCacheStats() const override;
-    void destroy(gdi::QuerySetHandle) override;
-    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
-                      std::span<uint64_t> out) override;
-    gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc&) const override;
-    void destroy(gdi::BufferHandle) override;
-    void destroy(gdi::TextureHandle) override;
-    void destroy(gdi::SamplerHandle) override;
-    void destroy(gdi::ShaderHandle) override;
-    void destroy(gdi::PipelineHandle) override;
-    void destroy(gdi::TimerHandle) override;
     void destroy(gdi::HeapHandle h) override {  // no heaps on GL: only the null handle is valid
         if (h) gdi::validate::destroyedHandle("heap", h.id);
     }
@@ -170,13 +146,6 @@ public:
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
         return textures_.get(h, "texture").desc;
     }
-    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
-    void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
-    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region,
-                            gdi::ByteSpan data, const gdi::TexelLayout& layout) override;
-    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset,
-                                    uint64_t size) override;
-    gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
     // Upload/readback of one subresource through the pixel unpack/pack state (pointer or, with a
     // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
     void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels,
@@ -188,19 +157,7 @@ public:
     void readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
                     void* pixels, uint64_t bytes);
     void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
-    void* map(gdi::BufferHandle buffer) override;
-    std::unique_ptr<gdi::CommandList> createCommandList() override;
-    using gdi::Device::submit;
-    gdi::FenceValue submit(std::span<gdi::CommandList* const> lists) override;
-    void wait(gdi::FenceValue fence) override;
-    bool isComplete(gdi::FenceValue fence) override;
-    void waitIdle() override;
-    std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return errors_.load(); }
-    gdi::LiveObjects liveObjects() const override;
-    uint64_t nativeObject(gdi::NativeObject what, uint32_t id) const override;
-    bool present(gdi::TextureHandle texture) override;
-    gdi::Image readWindow() override;
     gdi::InputState input() const override { return platform_->input(); }
 
     // For the command list (recording, any thread: lookups only) and the replay (context thread).

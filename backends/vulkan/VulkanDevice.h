@@ -154,34 +154,10 @@ public:
     ~VulkanDevice() override;
 
     const gdi::DeviceInfo& info() const override { return info_; }
-    bool supportsFormat(gdi::Format format, gdi::TextureUsage usage) const override;
+#include "fe/gdi/DeviceOverrides.inc"
 
-    gdi::BufferHandle createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) override;
-    gdi::TextureHandle createTexture(const gdi::TextureDesc& desc) override;
-    gdi::TextureHandle createTextureView(gdi::TextureHandle texture,
-                                         const gdi::TextureViewDesc& desc) override;
-    gdi::SamplerHandle createSampler(const gdi::SamplerDesc& desc) override;
-    gdi::ShaderHandle createShader(const gdi::ShaderDesc& desc) override;
-    gdi::PipelineHandle createGraphicsPipeline(const gdi::GraphicsPipelineDesc& desc) override;
-    gdi::PipelineHandle createComputePipeline(const gdi::ComputePipelineDesc& desc) override;
-    gdi::TimerHandle createTimer() override;
-    gdi::HeapHandle createHeap(const gdi::HeapDesc& desc) override;
-    gdi::QuerySetHandle createQuerySet(const gdi::QuerySetDesc& desc) override;
-    gdi::PipelineCacheStats openPipelineCache(const std::string& path) override;
-    void savePipelineCache() override;
-    gdi::PipelineCacheStats pipelineCacheStats() const override;
-    bool queryResults(gdi::QuerySetHandle set, uint32_t first, uint32_t count,
-                      std::span<uint64_t> out) override;
-    gdi::MemoryRequirements textureMemoryRequirements(const gdi::TextureDesc& desc) const override;
 
-    void destroy(gdi::BufferHandle) override;
-    void destroy(gdi::TextureHandle) override;
-    void destroy(gdi::SamplerHandle) override;
-    void destroy(gdi::ShaderHandle) override;
-    void destroy(gdi::PipelineHandle) override;
-    void destroy(gdi::TimerHandle) override;
     void destroy(gdi::HeapHandle) override;
-    void destroy(gdi::QuerySetHandle) override;
 
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override {
         return buffers_.get(h, "buffer").desc;
@@ -190,27 +166,8 @@ public:
         return textures_.get(h, "texture").desc;
     }
 
-    void writeBuffer(gdi::BufferHandle buffer, uint64_t offset, gdi::ByteSpan data) override;
-    void writeTexture(gdi::TextureHandle texture, gdi::Subresource at, gdi::ByteSpan data) override;
-    void writeTextureRegion(gdi::TextureHandle texture, const gdi::TextureRegion& region,
-                            gdi::ByteSpan data, const gdi::TexelLayout& layout) override;
-    std::vector<uint8_t> readBuffer(gdi::BufferHandle buffer, uint64_t offset,
-                                    uint64_t size) override;
-    gdi::Image readTexture(gdi::TextureHandle texture, gdi::Subresource at) override;
 
-    void* map(gdi::BufferHandle buffer) override;
-    std::unique_ptr<gdi::CommandList> createCommandList() override;
-    using gdi::Device::submit;
-    gdi::FenceValue submit(std::span<gdi::CommandList* const> lists) override;
-    void wait(gdi::FenceValue fence) override;
-    bool isComplete(gdi::FenceValue fence) override;
-    void waitIdle() override;
-    std::optional<double> timerNanoseconds(gdi::TimerHandle timer) override;
     uint32_t validationErrorCount() const override { return validationErrors_.load(); }
-    gdi::LiveObjects liveObjects() const override;
-    uint64_t nativeObject(gdi::NativeObject what, uint32_t handleId) const override;
-    bool present(gdi::TextureHandle texture) override;  // VulkanSwapchain.cpp
-    gdi::Image readWindow() override;
     gdi::InputState input() const override;
 
     // Internal, for the command list.
