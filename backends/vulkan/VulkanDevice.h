@@ -156,7 +156,6 @@ public:
     const gdi::DeviceInfo& info() const override { return info_; }
 #include "fe/gdi/DeviceOverrides.inc"
 
-
     void destroy(gdi::HeapHandle) override;
 
     const gdi::BufferDesc& desc(gdi::BufferHandle h) const override {
@@ -165,7 +164,6 @@ public:
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
         return textures_.get(h, "texture").desc;
     }
-
 
     uint32_t validationErrorCount() const override { return validationErrors_.load(); }
     gdi::InputState input() const override;
