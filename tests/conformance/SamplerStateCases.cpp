@@ -406,6 +406,14 @@ std::vector<CaseImage> sampleMask(Device& d) {
     return out;
 }
 
+// A 64x64 depth (or depth-stencil) attachment, owned by `o`.
+TextureHandle caseDepthTarget(DeviceObjects& o, Format f) {
+    return o.add(o.device().createTexture({.format = f,
+                                           .width = kCaseSize,
+                                           .height = kCaseSize,
+                                           .usage = TextureUsage::RenderTarget}));
+}
+
 // --- Dynamic pipeline state ---------------------------------------------------------------------
 
 // Blend constant, stencil reference and depth bias set between draws stay until set again:
@@ -483,10 +491,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
     }
     {
         const TextureHandle t = caseTarget(o);
-        const TextureHandle ds = o.add(d.createTexture({.format = Format::D24S8,
-                                                        .width = kCaseSize,
-                                                        .height = kCaseSize,
-                                                        .usage = TextureUsage::RenderTarget}));
+        const TextureHandle ds = caseDepthTarget(o, Format::D24S8);
         const StencilFaceState replace{.passOp = StencilOp::Replace, .compare = CompareOp::Always};
         const PipelineHandle write = o.add(d.createGraphicsPipeline(
             {.vertexShader = vs,
@@ -542,10 +547,7 @@ std::vector<CaseImage> dynamicBlendStencilBias(Device& d) {
         const PipelineHandle p = o.add(d.createGraphicsPipeline(desc)),
                              biased = o.add(d.createGraphicsPipeline(biasedDesc));
         const TextureHandle t = caseTarget(o);
-        const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
-                                                           .width = kCaseSize,
-                                                           .height = kCaseSize,
-                                                           .usage = TextureUsage::RenderTarget}));
+        const TextureHandle depth = caseDepthTarget(o, Format::D32F);
         auto cmd = d.createCommandList();
         cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},
                               .depth = {.texture = depth, .clearDepth = 1.0f}});
@@ -602,10 +604,7 @@ std::vector<CaseImage> dynamicStateBeforePipeline(Device& d) {
          .depthFormat = Format::D32F,
          .debugName = "constant blend, depth less"}));
     const TextureHandle t = caseTarget(o);
-    const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
-                                                       .width = kCaseSize,
-                                                       .height = kCaseSize,
-                                                       .usage = TextureUsage::RenderTarget}));
+    const TextureHandle depth = caseDepthTarget(o, Format::D32F);
     auto cmd = d.createCommandList();
     // Depth 0.5 everywhere first (the full-screen triangle's depth), in a pass of its own.
     cmd->beginRenderPass({.colors = {{.texture = t, .clear = {0, 0, 0, 1}}},

@@ -158,8 +158,8 @@ void pipelineFitsPass(const PassSignature& p, const PassSignature& pass, const c
 
 void stateOutsidePass(const char* what) {
     throw Error(std::string(what) +
-                " outside a render pass (each pass starts from its pipeline's state: set it "
-                "after beginRenderPass and setPipeline)");
+                " outside a render pass (each pass starts from its pipelines' state: set it "
+                "after beginRenderPass, where it stays across setPipeline)");
 }
 
 void insidePass(const char* what) {
