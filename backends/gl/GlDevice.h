@@ -156,6 +156,11 @@ public:
                       const void* pixels, uint64_t bytes);
     void readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
                     void* pixels, uint64_t bytes);
+    // One aspect of D24S8 / D32F_S8 (pixels in client memory, no pixel buffer bound).
+    void uploadAspect(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                      const uint8_t* pixels);
+    void readAspect(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                    uint8_t* pixels);
     void readSubresource(const Texture& t, gdi::Subresource at, void* pixels, uint64_t bytes);
     uint32_t validationErrorCount() const override { return errors_.load(); }
     gdi::InputState input() const override { return platform_->input(); }

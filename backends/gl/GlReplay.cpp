@@ -497,6 +497,13 @@ void GlReplay::operator()(const cmd::CopyBufferToTextureRegion& r) {
     const Texture& t = dev_.textureAt(r.dst);
     gl_.MemoryBarrier(
         GL_ALL_BARRIER_BITS);  // buffer writes by shaders become visible to the unpack
+    if (gdi::hasTwoAspects(t.desc.format)) {  // one aspect: merged on the CPU (uploadAspect)
+        std::vector<uint8_t> bytes(spanBytes(t.desc.format, r.region, r.layout));
+        gl_.GetNamedBufferSubData(dev_.bufferAt(r.src).name, GLintptr(r.layout.offset),
+                                  GLsizeiptr(bytes.size()), bytes.data());
+        dev_.uploadAspect(t, r.region, r.layout, bytes.data());
+        return;
+    }
     gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, dev_.bufferAt(r.src).name);
     dev_.uploadRegion(t, r.region, r.layout,
                       reinterpret_cast<const void*>(uintptr_t(r.layout.offset)),
@@ -506,6 +513,17 @@ void GlReplay::operator()(const cmd::CopyBufferToTextureRegion& r) {
 void GlReplay::operator()(const cmd::CopyTextureToBufferRegion& r) {
     const Texture& t = dev_.textureAt(r.src);
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+    if (gdi::hasTwoAspects(t.desc.format)) {  // one aspect, taken out on the CPU (readAspect);
+        // the span is read first so that the bytes between rows keep their contents
+        const GLuint buffer = dev_.bufferAt(r.dst).name;
+        std::vector<uint8_t> bytes(spanBytes(t.desc.format, r.region, r.layout));
+        gl_.GetNamedBufferSubData(buffer, GLintptr(r.layout.offset), GLsizeiptr(bytes.size()),
+                                  bytes.data());
+        dev_.readAspect(t, r.region, r.layout, bytes.data());
+        gl_.NamedBufferSubData(buffer, GLintptr(r.layout.offset), GLsizeiptr(bytes.size()),
+                               bytes.data());
+        return;
+    }
     gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, dev_.bufferAt(r.dst).name);
     dev_.readRegion(t, r.region, r.layout, reinterpret_cast<void*>(uintptr_t(r.layout.offset)),
                     spanBytes(t.desc.format, r.region, r.layout));

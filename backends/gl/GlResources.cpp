@@ -426,8 +426,100 @@ static void pixelPitch(const GlFunctions& gl, bool pack, const gdi::TexelLayout&
                    texel ? GLint(l.rowsPerImage) : 0);
 }
 
+// D24S8 and D32F_S8 keep both aspects in one GL texel (depth in the high 24 bits and stencil in
+// the low 8; a float, then a word with the stencil in its low 8 bits), and GL 4.5 has no upload
+// of one aspect into them, nor an exact read of D24S8's depth alone (GL_DEPTH_COMPONENT converts
+// through float). So one aspect is taken out of, or merged into, the whole texels of the region
+// on the CPU, exactly; the buffer side uses Vulkan's per-aspect layouts (aspectTexelBytes).
+namespace {
+struct AspectTexels {
+    std::vector<uint8_t> whole;  // GL's combined texels of the region, tightly packed
+    uint32_t wholeBytes;         // 4 (D24S8) or 8 (D32F_S8)
+    uint32_t aspectBytes;        // the buffer's texel: 4 for depth, 1 for stencil
+    bool depth;
+    bool d24;
+};
+// Visits every texel of the region: i (index into the tight combined texels), o (byte offset
+// of the texel in the caller's layout).
+template <class Fn>
+void forEachTexel(const gdi::TextureRegion& r, const gdi::TexelLayout& l, uint32_t aspectBytes,
+                  Fn&& fn) {
+    size_t i = 0;
+    for (uint32_t z = 0; z < r.depth; ++z)
+        for (uint32_t y = 0; y < r.height; ++y)
+            for (uint32_t x = 0; x < r.width; ++x, ++i)
+                fn(i,
+                   (uint64_t(z) * l.rowsPerImage + y) * l.bytesPerRow + uint64_t(x) * aspectBytes);
+}
+}  // namespace
+
+static AspectTexels readWholeTexels(const GlFunctions& gl, const Texture& t,
+                                    const gdi::TextureRegion& r) {
+    const GlFormat f = toGlFormat(t.desc.format);
+    AspectTexels a{.wholeBytes = gdi::formatInfo(t.desc.format).bytesPerPixel,
+                   .aspectBytes = gdi::aspectTexelBytes(t.desc.format, r.aspect),
+                   .depth = r.aspect == gdi::TextureAspect::Depth,
+                   .d24 = t.desc.format == gdi::Format::D24S8};
+    a.whole.resize(size_t(r.width) * r.height * r.depth * a.wholeBytes);
+    gl.GetTextureSubImage(t.name, GLint(r.mipLevel), GLint(r.x), GLint(r.y), GLint(r.z),
+                          GLsizei(r.width), GLsizei(r.height), GLsizei(r.depth), f.format, f.type,
+                          GLsizei(a.whole.size()), a.whole.data());
+    return a;
+}
+
+void GlDevice::readAspect(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
+                          uint8_t* pixels) {
+    const AspectTexels a = readWholeTexels(gl_, t, r);
+    forEachTexel(r, l, a.aspectBytes, [&](size_t i, uint64_t o) {
+        const uint8_t* w = &a.whole[i * a.wholeBytes];
+        if (a.d24) {
+            uint32_t v;
+            std::memcpy(&v, w, 4);
+            if (a.depth) {
+                v >>= 8;
+                std::memcpy(pixels + o, &v, 4);
+            } else {
+                pixels[o] = uint8_t(v & 0xff);
+            }
+        } else if (a.depth) {
+            std::memcpy(pixels + o, w, 4);
+        } else {
+            pixels[o] = w[4];
+        }
+    });
+}
+
+void GlDevice::uploadAspect(const Texture& t, const gdi::TextureRegion& r,
+                            const gdi::TexelLayout& l, const uint8_t* pixels) {
+    AspectTexels a = readWholeTexels(gl_, t, r);
+    forEachTexel(r, l, a.aspectBytes, [&](size_t i, uint64_t o) {
+        uint8_t* w = &a.whole[i * a.wholeBytes];
+        if (a.d24) {
+            uint32_t v, in = 0;
+            std::memcpy(&v, w, 4);
+            std::memcpy(&in, pixels + o, a.aspectBytes);
+            v = a.depth ? (in << 8) | (v & 0xffu) : (v & ~0xffu) | (in & 0xffu);
+            std::memcpy(w, &v, 4);
+        } else if (a.depth) {
+            std::memcpy(w, pixels + o, 4);
+        } else {
+            const uint32_t word = pixels[o];
+            std::memcpy(w + 4, &word, 4);
+        }
+    });
+    const GlFormat f = toGlFormat(t.desc.format);
+    const auto mip = GLint(r.mipLevel), x = GLint(r.x), y = GLint(r.y), z = GLint(r.z);
+    const auto w = GLsizei(r.width), h = GLsizei(r.height), d = GLsizei(r.depth);
+    if (t.target == GL_TEXTURE_2D)
+        gl_.TextureSubImage2D(t.name, mip, x, y, w, h, f.format, f.type, a.whole.data());
+    else
+        gl_.TextureSubImage3D(t.name, mip, x, y, z, w, h, d, f.format, f.type, a.whole.data());
+}
+
 void GlDevice::uploadRegion(const Texture& t, const gdi::TextureRegion& r,
                             const gdi::TexelLayout& l, const void* pixels, uint64_t bytes) {
+    if (gdi::hasTwoAspects(t.desc.format))
+        return uploadAspect(t, r, l, static_cast<const uint8_t*>(pixels));
     const GlFormat f = toGlFormat(t.desc.format);
     const bool flat = t.target == GL_TEXTURE_2D;
     const auto mip = GLint(r.mipLevel), x = GLint(r.x), y = GLint(r.y), z = GLint(r.z);
@@ -451,6 +543,8 @@ void GlDevice::uploadRegion(const Texture& t, const gdi::TextureRegion& r,
 
 void GlDevice::readRegion(const Texture& t, const gdi::TextureRegion& r, const gdi::TexelLayout& l,
                           void* pixels, uint64_t bytes) {
+    if (gdi::hasTwoAspects(t.desc.format))
+        return readAspect(t, r, l, static_cast<uint8_t*>(pixels));
     const GlFormat f = toGlFormat(t.desc.format);
     pixelPitch(gl_, true, l, t.desc.format);
     gl_.GetTextureSubImage(t.name, GLint(r.mipLevel), GLint(r.x), GLint(r.y), GLint(r.z),

@@ -169,13 +169,17 @@ VkBufferImageCopy copyRegion(const gdi::TextureDesc& d, gdi::Subresource at,
 VkBufferImageCopy regionCopy(const gdi::TextureDesc& d, const gdi::TextureRegion& r,
                              const gdi::TexelLayout& l) {
     const gdi::FormatInfo& fi = gdi::formatInfo(d.format);
-    const uint32_t unit = fi.blockSize > 1 ? fi.bytesPerBlock : fi.bytesPerPixel;
+    const uint32_t unit =
+        fi.blockSize > 1 ? fi.bytesPerBlock : gdi::aspectTexelBytes(d.format, r.aspect);
     const bool is3D = d.dimension == gdi::TextureDimension::Texture3D;
+    VkImageAspectFlags aspect = viewAspectOf(d.format);
+    if (r.aspect == gdi::TextureAspect::Depth) aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    if (r.aspect == gdi::TextureAspect::Stencil) aspect = VK_IMAGE_ASPECT_STENCIL_BIT;
     VkBufferImageCopy c{};
     c.bufferOffset = l.offset;
     c.bufferRowLength = l.bytesPerRow / unit * fi.blockSize;  // in texels
     c.bufferImageHeight = l.rowsPerImage * fi.blockSize;
-    c.imageSubresource = {viewAspectOf(d.format), r.mipLevel, is3D ? 0 : r.z, is3D ? 1 : r.depth};
+    c.imageSubresource = {aspect, r.mipLevel, is3D ? 0 : r.z, is3D ? 1 : r.depth};
     c.imageOffset = {int32_t(r.x), int32_t(r.y), is3D ? int32_t(r.z) : 0};
     c.imageExtent = {r.width, r.height, is3D ? r.depth : 1};
     return c;

@@ -53,6 +53,18 @@ uint64_t imageByteSize(Format f, uint32_t width, uint32_t height) {
     return uint64_t(width) * height * i.bytesPerPixel;
 }
 
+uint32_t aspectTexelBytes(Format f, TextureAspect aspect) {
+    const FormatInfo& i = formatInfo(f);
+    const bool depth = aspect == TextureAspect::Depth ||
+                       (aspect == TextureAspect::All && i.hasDepth && !i.hasStencil);
+    const bool stencil = aspect == TextureAspect::Stencil ||
+                         (aspect == TextureAspect::All && i.hasStencil && !i.hasDepth);
+    if (!i.hasDepth && !i.hasStencil) return aspect == TextureAspect::All ? i.bytesPerPixel : 0;
+    if (depth) return !i.hasDepth ? 0 : f == Format::D16 ? 2 : 4;
+    if (stencil) return i.hasStencil ? 1 : 0;
+    return 0;  // All of a format with two aspects
+}
+
 Format formatFromName(std::string_view name) {
     for (size_t i = 1; i < size_t(Format::Count); ++i)
         if (kFormats[i].name == name) return Format(i);

@@ -617,12 +617,163 @@ std::vector<CaseImage> recordedListReplays(Device& d) {
         exact("replayed from capture bytes, against the live frame", d.readTexture(target), live)};
 }
 
+// Where one aspect of a depth/stencil texel lies in readTexture's layout (Device.h), and how many
+// of its bytes are defined after a copy to a buffer (D24S8's depth word has 8 undefined bits).
+struct AspectInTexel {
+    uint32_t at, defined;
+};
+AspectInTexel aspectInTexel(Format f, TextureAspect a) {
+    if (a == TextureAspect::Stencil)
+        return {f == Format::D24S8 ? 3u : f == Format::D32F_S8 ? 4u : 0u, 1};
+    return {0, f == Format::D16 ? 2u : f == Format::D24S8 ? 3u : 4u};
+}
+TextureAspect soleAspect(Format f) {
+    return formatInfo(f).hasDepth ? TextureAspect::Depth : TextureAspect::Stencil;
+}
+
+// One aspect at a time through a buffer, both ways, for every depth/stencil format: a box of
+// layer 1 of `source` into a pitched buffer (the bytes between rows keep their contents), the
+// same bytes into another box of `target`, whose other aspect must keep its values; for two-
+// aspect formats the stencil box overlaps the depth box and writeTextureRegion writes a third.
+// Formats of one aspect also round-trip through the whole-subresource calls.
+std::vector<CaseImage> depthStencilBufferCopies(Device& d) {
+    std::vector<CaseImage> out;
+    for (Format f : {Format::D16, Format::D32F, Format::D24S8, Format::D32F_S8, Format::S8}) {
+        if (!d.formatCaps(f).sampled) continue;
+        const std::string name(formatInfo(f).name);
+        const uint32_t texel = formatInfo(f).bytesPerPixel;
+        DeviceObjects o(d);
+        auto make = [&](const char* debugName) {
+            return o.add(d.createTexture({.dimension = TextureDimension::Texture2DArray,
+                                          .format = f,
+                                          .width = kCaseSize,
+                                          .height = kCaseSize,
+                                          .depthOrLayers = 2,
+                                          .usage = TextureUsage::CopySrc | TextureUsage::CopyDst,
+                                          .debugName = debugName}));
+        };
+        const TextureHandle source = make("source"), target = make("target");
+        const Image a = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+            return {float(x) / 63.0f, float((x * 7 + y * 13) & 0xff), 0, 0};
+        });
+        Image expected = expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+            return {float(y) / 63.0f, float(((x + 2 * y) & 0xff) ^ 0x55), 0, 0};
+        });
+        d.writeTexture(source, {0, 1}, bytesOf(a.data));
+        d.writeTexture(target, {0, 1}, bytesOf(expected.data));
+        const BufferHandle staging = o.add(
+            d.createBuffer({.size = 4096, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+
+        std::vector<TextureAspect> aspects;
+        if (formatInfo(f).hasDepth) aspects.push_back(TextureAspect::Depth);
+        if (formatInfo(f).hasStencil) aspects.push_back(TextureAspect::Stencil);
+        uint32_t shift = 0;  // the stencil box lies 4 texels right of the depth box
+        for (TextureAspect aspect : aspects) {
+            const uint32_t bytes = aspectTexelBytes(f, aspect);
+            const AspectInTexel in = aspectInTexel(f, aspect);
+            const TextureRegion box{
+                .x = 16, .y = 8, .z = 1, .width = 8, .height = 4, .depth = 1, .aspect = aspect};
+            const TexelLayout pitch{.offset = 64, .bytesPerRow = 8 * bytes + 2 * bytes};
+            TextureRegion into = box;
+            into.x = 40 + shift, into.y = 50 + shift / 2;
+            auto cmd = d.createCommandList();
+            cmd->clearBuffer(staging, 0, 0, 0xABABABABu);
+            cmd->copyTextureToBuffer(staging, pitch, source, box);
+            cmd->copyBufferToTexture(target, into, staging, pitch);
+            d.wait(d.submit(*cmd));
+            const std::vector<uint8_t> got = d.readBuffer(staging, 0, 4096);
+            for (uint32_t i = 0; i < 4096; ++i) {
+                const uint32_t rel = i - 64, row = rel / pitch.bytesPerRow,
+                               column = rel % pitch.bytesPerRow / bytes, byte = rel % bytes;
+                const bool inBox = i >= 64 && row < 4 && column < 8;
+                if (inBox && byte >= in.defined) continue;  // D24S8 depth's high byte
+                const uint8_t want =
+                    inBox ? a.data[((8 + row) * kCaseSize + 16 + column) * texel + in.at + byte]
+                          : 0xAB;
+                FE_CONFORMANCE_CHECK(
+                    got[i] == want,
+                    (name + " copyTextureToBuffer byte " + std::to_string(i) + " is " +
+                     std::to_string(got[i]) + ", expected " + std::to_string(want))
+                        .c_str());
+            }
+            for (uint32_t y = 0; y < 4; ++y)
+                for (uint32_t x = 0; x < 8; ++x)
+                    std::memcpy(
+                        &expected.data[((into.y + y) * kCaseSize + into.x + x) * texel + in.at],
+                        &a.data[((8 + y) * kCaseSize + 16 + x) * texel + in.at], in.defined);
+            shift += 4;
+        }
+        if (hasTwoAspects(f)) {  // the device's own upload of one aspect: stencil 0xC3 in a 4x4 box
+            const std::vector<uint8_t> stencil(16, 0xC3);
+            d.writeTextureRegion(target,
+                                 {.x = 2,
+                                  .y = 2,
+                                  .z = 1,
+                                  .width = 4,
+                                  .height = 4,
+                                  .depth = 1,
+                                  .aspect = TextureAspect::Stencil},
+                                 bytesOf(stencil));
+            const uint32_t at = aspectInTexel(f, TextureAspect::Stencil).at;
+            for (uint32_t y = 2; y < 6; ++y)
+                for (uint32_t x = 2; x < 6; ++x)
+                    expected.data[(y * kCaseSize + x) * texel + at] = 0xC3;
+        }
+        out.push_back(
+            exact(name + " boxes copied per aspect", d.readTexture(target, {0, 1}), expected));
+        out.push_back(exact(name + " layer 0 untouched", d.readTexture(target, {0, 0}),
+                            expectImage(f, [](uint32_t, uint32_t) -> Texel { return {}; })));
+
+        auto list = d.createCommandList();
+        if (hasTwoAspects(f)) {
+            expectError(
+                [&] {
+                    list->copyTextureToBuffer(staging, 0, source, {0, 1});
+                },
+                name +
+                    " has depth and stencil: copy each with a TextureRegion naming its "
+                    "aspect");
+            expectError(
+                [&] {
+                    list->copyTextureToBuffer(staging, {}, source,
+                                              {.width = 4, .height = 4, .depth = 1});
+                },
+                name + " has depth and stencil: a region names one");
+        } else {  // the whole subresource, both ways, in the aspect's layout
+            const TextureHandle whole = make("whole");
+            const BufferHandle big = o.add(d.createBuffer(
+                {.size = 64 * 64 * 4, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+            auto cmd = d.createCommandList();
+            cmd->copyTextureToBuffer(big, 0, source, {0, 1});
+            cmd->copyBufferToTexture(whole, {0, 0}, big, 0);
+            d.wait(d.submit(*cmd));
+            out.push_back(exact(name + " whole subresource through a buffer",
+                                d.readTexture(whole, {0, 0}), a));
+            const TextureAspect other = soleAspect(f) == TextureAspect::Depth
+                                            ? TextureAspect::Stencil
+                                            : TextureAspect::Depth;
+            expectError(
+                [&] {
+                    list->copyTextureToBuffer(
+                        staging, {}, source,
+                        {.width = 4, .height = 4, .depth = 1, .aspect = other});
+                },
+                name + " has no " + (other == TextureAspect::Depth ? "depth" : "stencil") +
+                    " aspect");
+        }
+        expectError([&] { list->copyTexture(target, {}, source, {.width = 4, .height = 4}); },
+                    "regions of depth/stencil textures are copied through a buffer");
+        d.wait(d.submit(*list));
+    }
+    return out;
+}
 }  // namespace
 
 std::vector<Case> regionAndViewCases() {
     return {
         {"region_upload_row_pitch", regionUploadRowPitch},
         {"region_copies", regionCopies},
+        {"depth_stencil_buffer_copies", depthStencilBufferCopies},
         {"texture_copy_between_mips", textureCopyBetweenMips},
         {"view_mip_range", viewMipRange},
         {"view_layer_and_face", viewLayerAndFace},

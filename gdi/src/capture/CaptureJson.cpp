@@ -405,8 +405,10 @@ QuerySetDesc querySetDesc(const json& j, Strings& keep) {
 }
 
 json toJson(const TextureRegion& r) {
-    return {{"mip", r.mipLevel}, {"x", r.x},           {"y", r.y},        {"z", r.z},
-            {"width", r.width},  {"height", r.height}, {"depth", r.depth}};
+    json j = {{"mip", r.mipLevel}, {"x", r.x},           {"y", r.y},        {"z", r.z},
+              {"width", r.width},  {"height", r.height}, {"depth", r.depth}};
+    if (r.aspect != TextureAspect::All) j["aspect"] = raw(r.aspect);  // older captures lack it
+    return j;
 }
 TextureRegion textureRegion(const json& j) {
     return {.mipLevel = u32(j, "mip"),
@@ -415,7 +417,9 @@ TextureRegion textureRegion(const json& j) {
             .z = u32(j, "z"),
             .width = u32(j, "width"),
             .height = u32(j, "height"),
-            .depth = u32(j, "depth")};
+            .depth = u32(j, "depth"),
+            .aspect = j.contains("aspect") ? enumValue(j, "aspect", TextureAspect::Stencil)
+                                           : TextureAspect::All};
 }
 json toJson(const TexelLayout& l) {
     return {{"offset", l.offset}, {"bytesPerRow", l.bytesPerRow}, {"rowsPerImage", l.rowsPerImage}};

@@ -3,14 +3,24 @@
 
 namespace fe::gdi::validate {
 
+// The aspect a region names exists in the format, and is one aspect (aspectTexelBytes' rule).
+static void aspect(Format f, TextureAspect a, const std::string& w) {
+    if (uint8_t(a) > uint8_t(TextureAspect::Stencil))
+        fail(w, "aspect " + std::to_string(unsigned(a)) + " is not a TextureAspect");
+    if (aspectTexelBytes(f, a) != 0) return;
+    const std::string format(formatInfo(f).name);
+    if (a == TextureAspect::All)
+        fail(w, format + " has depth and stencil: a region names one (TextureRegion::aspect " +
+                    "Depth or Stencil)");
+    fail(w, format + " has no " + (a == TextureAspect::Depth ? "depth" : "stencil") + " aspect");
+}
+
 TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name,
                             const char* what) {
     const std::string w = std::string(what) + ": " + label("texture", name.c_str());
     if (d.sampleCount > 1)
         fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
-    if (isDepthFormat(d.format))
-        fail(w, std::string(formatInfo(d.format).name) +
-                    " is a depth format: use the whole-subresource call");
+    aspect(d.format, r.aspect, w);
     if (r.mipLevel >= d.mipLevels)
         fail(w, "mip level " + std::to_string(r.mipLevel) + " out of range (" +
                     std::to_string(d.mipLevels) + " levels)");
@@ -46,7 +56,7 @@ ResolvedLayout texelLayout(Format f, const TextureRegion& region, const TexelLay
     const FormatInfo& fi = formatInfo(f);
     const bool compressed = fi.blockSize > 1;
     const uint32_t unit =
-        compressed ? fi.bytesPerBlock : fi.bytesPerPixel;  // bytes per texel or block
+        compressed ? fi.bytesPerBlock : aspectTexelBytes(f, region.aspect);  // texel or block
     const uint32_t columns = (region.width + fi.blockSize - 1) / fi.blockSize;
     const uint32_t rows = (region.height + fi.blockSize - 1) / fi.blockSize;
     const uint64_t rowBytes = uint64_t(columns) * unit;
@@ -104,6 +114,10 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
                                                     const TextureRegion& srcRegion) {
     textureUsage(src, TextureUsage::CopySrc, srcName, "copyTexture source");
     textureUsage(dst, TextureUsage::CopyDst, dstName, "copyTexture destination");
+    if (isDepthFormat(src.format) || isDepthFormat(dst.format))
+        fail("copyTexture",
+             "regions of depth/stencil textures are copied through a buffer (one "
+             "aspect each) or whole (copyTexture(dst, src, mip))");
     const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source");
     if (!formatsCompatible(src.format, dst.format))
         fail("copyTexture", std::string(formatInfo(src.format).name) +
@@ -139,7 +153,9 @@ void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName,
                            bool toTexture, const char* what) {
     bufferTextureUsages(t, textureName, b, bufferName, toTexture, what);
     subresource(t, at, what, textureName);
-    if (isDepthFormat(t.format)) fail(what, "depth formats are not supported");
+    if (hasTwoAspects(t.format))
+        fail(what, std::string(formatInfo(t.format).name) +
+                       " has depth and stencil: copy each with a TextureRegion naming its aspect");
     if (t.sampleCount > 1) fail(what, "multisampled textures are not supported");
     const Extent3 e = mipExtent(t, at.mipLevel);
     bufferRange(b, offset, imageByteSize(t.format, e.width, e.height), what);

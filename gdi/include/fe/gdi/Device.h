@@ -110,14 +110,17 @@
 //   device->writeTextureRegion(tex, {.x = 8, .y = 8, .width = 16, .height = 16}, bytes, {.bytesPerRow = 256});
 //   cmd->copyTexture(tex, {.mipLevel = 1}, tex, {.width = 32, .height = 32});   // regions, mips, layers
 //  - Regions and layouts (TextureRegion, TexelLayout): offsets multiples of 4 and of the texel
-//    size, bytesPerRow a multiple of the texel size, compressed data tightly packed.
+//    size, bytesPerRow a multiple of the texel size, compressed data tightly packed. Depth and
+//    stencil go to and from buffers one aspect at a time (TextureRegion::aspect), in Vulkan's
+//    buffer layouts on every backend (aspectTexelBytes).
 //  - Views: TextureDesc::viewFormats lists the other formats a view may take; copies, uploads,
 //    readback and barriers take the texture, not a view; views go before their texture.
 // Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
 // render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
 // compressed_bc, msaa_resolve, msaa_multiple_targets, view_mip_range, view_layer_and_face,
 // view_format_srgb_unorm, view_swizzle, view_as_attachment, region_upload_row_pitch,
-// region_copies, texture_copy_between_mips, shadow_compare_pcf, draw_indirect, dispatch_indirect.
+// region_copies, depth_stencil_buffer_copies, texture_copy_between_mips, shadow_compare_pcf,
+// draw_indirect, dispatch_indirect.
 //
 // Pipelines and shaders
 // ---------------------
@@ -447,10 +450,13 @@ struct Subresource {
 // layers, cube faces (as Subresource::layer counts them) or 3D slices [z, z + depth). A width,
 // height or depth of 0 reaches the edge of the mip level (the last layer or slice).
 // Block-compressed formats: x, y, width and height are multiples of 4 or reach the edge.
+// Buffer copies of depth/stencil textures move one aspect (aspectTexelBytes gives its layout):
+// D16, D32F and S8 have one (All or its name); D24S8 and D32F_S8 need Depth or Stencil named.
 struct TextureRegion {
     uint32_t mipLevel = 0;
     uint32_t x = 0, y = 0, z = 0;
     uint32_t width = 0, height = 0, depth = 0;
+    TextureAspect aspect = TextureAspect::All;
 };
 
 // Where a region's texels lie in a buffer (or in writeTexture's data): from `offset`, rows of
@@ -967,13 +973,17 @@ public:
                              uint32_t value = 0) = 0;
     // Whole-texture copies of one mip level (every layer); descriptions must match.
     virtual void copyTexture(TextureHandle dst, TextureHandle src, uint32_t mipLevel = 0) = 0;
-    // One subresource, tightly packed rows, top to bottom (see textureByteSize).
+    // One subresource, tightly packed rows, top to bottom (see textureByteSize); of the
+    // depth/stencil formats those with one aspect (D16, D32F, S8) in that aspect's layout.
     virtual void copyBufferToTexture(TextureHandle dst, Subresource at, BufferHandle src,
                                      uint64_t srcOffset) = 0;
     virtual void copyTextureToBuffer(BufferHandle dst, uint64_t dstOffset, TextureHandle src,
                                      Subresource at) = 0;
-    // Regions (TextureRegion, TexelLayout): uncompressed colour formats and compressed ones
-    // packed tightly; depth formats and multisampled textures use the whole-subresource calls.
+    // Regions (TextureRegion, TexelLayout): colour formats, compressed ones packed tightly, and
+    // one aspect of a depth/stencil format (TextureRegion::aspect; aspectTexelBytes gives the
+    // texel: D24S8's depth is 4 bytes with the depth in the low 24 bits, every stencil 1 byte).
+    // Copying depth into a float format (D32F, D32F_S8) takes values in [0, 1] (Vulkan leaves
+    // others undefined). Multisampled textures are not copied by region (resolve them).
     virtual void copyBufferToTexture(TextureHandle dst, const TextureRegion& region,
                                      BufferHandle src, const TexelLayout& layout) = 0;
     virtual void copyTextureToBuffer(BufferHandle dst, const TexelLayout& layout, TextureHandle src,

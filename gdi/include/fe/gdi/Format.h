@@ -56,6 +56,17 @@ inline bool isExtendedStorageFormat(Format f) {
     return f == Format::RG16F || f == Format::R16F || f == Format::RG32F || f == Format::R11G11B10F;
 }
 inline bool isCompressedFormat(Format f) { return formatInfo(f).blockSize > 1; }
+// Depth and stencil in one texture (D24S8, D32F_S8): buffer copies take one aspect at a time.
+inline bool hasTwoAspects(Format f) { return formatInfo(f).hasDepth && formatInfo(f).hasStencil; }
+
+// Which part of a depth/stencil texel a buffer copy moves (TextureRegion::aspect). All: the
+// whole texel of a colour format, or the one aspect of D16, D32F and S8.
+enum class TextureAspect : uint8_t { All, Depth, Stencil };
+// Bytes of one texel of `aspect` in a buffer (Vulkan's buffer layouts, the same on GL): D16's
+// depth 2 (unorm), D32F's and D32F_S8's 4 (float), D24S8's 4 (depth in the low 24 bits, the high
+// 8 undefined after a copy from the texture and ignored by one into it), any stencil 1; colour
+// formats their bytesPerPixel. 0 when the format has no such aspect (or two, for All).
+uint32_t aspectTexelBytes(Format f, TextureAspect aspect);
 // Bytes of a tightly packed width x height image (compressed: whole 4x4 blocks).
 uint64_t imageByteSize(Format f, uint32_t width, uint32_t height);
 // The sRGB form of a UNORM format or the UNORM form of an sRGB one (RGBA8, BC1, BC3, BC7);

@@ -74,8 +74,8 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
 // copyTexture of a whole mip: the same format, kind, size and samples; the mip in both.
 void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
                       const std::string& srcName, uint32_t mip);
-// copyBufferToTexture / copyTextureToBuffer of one whole subresource: a colour, single-sample
-// texture and a tightly packed range of the buffer at a 4-byte aligned offset, with copy usages.
+// copyBufferToTexture / copyTextureToBuffer of one whole subresource: a single-sample texture of
+// one aspect (colour, D16, D32F or S8) and a tightly packed range of the buffer at a 4-byte aligned offset, with copy usages.
 void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName, Subresource at,
                            const BufferDesc& b, const std::string& bufferName, uint64_t offset,
                            bool toTexture, const char* what);
