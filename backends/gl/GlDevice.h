@@ -209,9 +209,11 @@ private:
     void rethrowAsyncError();
     GLuint specializedShader(const Shader& s, std::span<const uint32_t> code,
                              const std::vector<gdi::SpecializationConstant>& values);
+    // singleSample: the pipeline draws into single-sample targets, where a fragment shader's
+    // gl_SampleMask needs withSampleMaskAsDiscard to act as on Vulkan.
     GLuint linkPipeline(std::initializer_list<const Shader*> shaders,
                         const std::vector<gdi::SpecializationConstant>& values,
-                        const std::string& label);
+                        const std::string& label, bool singleSample = false);
     GLuint checkLinked(GLuint program, const std::string& label);
     std::unique_ptr<GlPlatform> platform_;
     GlFunctions gl_;
@@ -264,7 +266,7 @@ private:
     GLint binaryFormats_ = 0;  // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
     GLuint cachedProgram(std::initializer_list<const Shader*> shaders,
                          const std::vector<gdi::SpecializationConstant>& values,
-                         const std::string& label);
+                         const std::string& label, bool singleSample = false);
     void
     savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
     void forgetFramebuffers(GLuint texture);

@@ -37,7 +37,7 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
     const bool images =
         std::any_of(s.iface.bindings.begin(), s.iface.bindings.end(),
                     [](const auto& b) { return b.type == gdi::BindingType::StorageTexture; });
-    if (!s.iface.specConstants.empty() || images) s.spirv = stageNamed;
+    if (!s.iface.specConstants.empty() || images || s.iface.writesSampleMask) s.spirv = stageNamed;
     return thread_.runCreation([&]() -> gdi::ShaderHandle {  // a new object: no queued work uses it
         loss_.check("createShader");
         s.name = specializedShader(s, stageNamed, {});
@@ -110,11 +110,12 @@ static std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> s
 }
 
 // Links the pipeline's shaders: each one's own shader object, or one of its own (deleted once
-// linked) for the stages that declare the pipeline's specialization constants or whose storage
-// textures take other image units in this pipeline than their slot numbers.
+// linked) for the stages that declare the pipeline's specialization constants, whose storage
+// textures take other image units in this pipeline than their slot numbers, or whose
+// gl_SampleMask must act on a single-sample target.
 GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
                               const std::vector<gdi::SpecializationConstant>& values,
-                              const std::string& label) {
+                              const std::string& label, bool singleSample) {
     std::vector<GLuint> names, owned;
     auto dropOwned = [&] {
         for (GLuint n : owned) gl_.DeleteShader(n);
@@ -133,12 +134,16 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
                 sh->iface.bindings.begin(), sh->iface.bindings.end(), [&](const auto& b) {
                     return b.type == gdi::BindingType::StorageTexture && units[b.slot] != b.slot;
                 });
-            if (renumber)
-                owned.push_back(
-                    specializedShader(*sh, gdi::withStorageTextureSlots(sh->spirv, units), values));
-            else if (specialize)
+            const bool maskAsDiscard = singleSample && sh->iface.writesSampleMask;
+            if (renumber || maskAsDiscard) {
+                std::vector<uint32_t> code = sh->spirv;
+                if (renumber) code = gdi::withStorageTextureSlots(code, units);
+                if (maskAsDiscard) code = gdi::withSampleMaskAsDiscard(code);
+                owned.push_back(specializedShader(*sh, code, values));
+            } else if (specialize) {
                 owned.push_back(specializedShader(*sh, sh->spirv, values));
-            names.push_back(specialize || renumber ? owned.back() : sh->name);
+            }
+            names.push_back(specialize || renumber || maskAsDiscard ? owned.back() : sh->name);
         }
         GLuint program = gl_.CreateProgram();
         gl_.ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT,
@@ -153,11 +158,16 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
     }
 }
 
-// A program's cache key: its shaders' code and entry points, and the specialization values.
+// A program's cache key: its shaders' code and entry points, the specialization values, and
+// whether a shader's gl_SampleMask was rewritten for single-sample targets.
 static uint64_t programKey(std::initializer_list<const Shader*> shaders,
-                           const std::vector<gdi::SpecializationConstant>& values) {
+                           const std::vector<gdi::SpecializationConstant>& values,
+                           bool singleSample) {
     uint64_t key = 0xcbf29ce484222325ull;
-    for (const Shader* s : shaders) key = (key ^ (s ? s->codeHash : 0)) * 0x100000001b3ull;
+    for (const Shader* s : shaders) {
+        key = (key ^ (s ? s->codeHash : 0)) * 0x100000001b3ull;
+        if (s && singleSample && s->iface.writesSampleMask) key = (key ^ 1) * 0x100000001b3ull;
+    }
     return gdi::fnv1a(
         {reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(values[0])}, key);
 }
@@ -166,8 +176,8 @@ static uint64_t programKey(std::initializer_list<const Shader*> shaders,
 // `link` and its binary kept for the cache (context thread).
 GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders,
                                const std::vector<gdi::SpecializationConstant>& values,
-                               const std::string& label) {
-    const uint64_t key = programKey(shaders, values);
+                               const std::string& label, bool singleSample) {
+    const uint64_t key = programKey(shaders, values, singleSample);
     if (auto it = programs_.find(key); it != programs_.end()) {
         const GLuint p = gl_.CreateProgram();
         gl_.ProgramBinary(p, it->second.format, it->second.bytes.data(),
@@ -183,7 +193,7 @@ GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders,
         gl_.DeleteProgram(p);  // the driver may refuse a binary (an update): link it again
         programs_.erase(it);
     }
-    const GLuint p = linkPipeline(shaders, values, label);
+    const GLuint p = linkPipeline(shaders, values, label, singleSample);
     {
         std::lock_guard lock(cacheMutex_);
         ++cacheStats_.misses;
@@ -271,7 +281,8 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
                 d.bindings, {&vs.iface, fsIface}, p.label, info_.limits);
             p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
             gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
-            p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label);
+            p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label,
+                                      d.multisample.sampleCount <= 1);
             p.imageSlots = imageSlots({&vs, fsShader});
             gl_.CreateVertexArrays(1, &p.vao);
             for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {

@@ -592,6 +592,10 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
         out.specConstants.push_back({specs[i].constant_id, word ? kindOf(base) : ScalarKind::Other,
                                      base == SPVC_BASETYPE_BOOLEAN, name ? name : ""});
     }
+    if (stage == ShaderStage::Fragment)  // OpDecorate %v BuiltIn SampleMask
+        for (size_t i = 5; i + 3 < spirv.size() && (spirv[i] >> 16) != 0; i += spirv[i] >> 16)
+            if (spirv[i] == (4u << 16 | 71u) && spirv[i + 2] == 11 && spirv[i + 3] == 20)
+                out.writesSampleMask = true;
     if (stage == ShaderStage::Compute)
         for (uint32_t i = 0; i < 3; ++i)
             out.workgroupSize[i] = spvc_compiler_get_execution_mode_argument_by_index(

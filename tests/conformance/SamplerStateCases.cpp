@@ -406,6 +406,61 @@ std::vector<CaseImage> sampleMask(Device& d) {
     return out;
 }
 
+// gl_SampleMask written by the fragment shader (sample_mask_columns.frag: per column of four, no
+// sample, sample 0, samples 1-3, every sample; the last column's lower half nothing, from a second
+// return). A single-sample target keeps the fragments whose mask has bit 0 set, as Vulkan does
+// (GL ignores the mask without sample buffers: the device rewrites the shader there); a 4-sample
+// target resolves to the fraction of samples written.
+std::vector<CaseImage> shaderSampleMask(Device& d) {
+    DeviceObjects o(d);
+    const ShaderHandle vs = registryShader(o, ShaderStage::Vertex,
+                                           "conformance/fullscreen_ubo.vert"),
+                       fs = registryShader(o, ShaderStage::Fragment,
+                                           "conformance/sample_mask_columns.frag");
+    const BufferHandle unused = params(o, {0, 0, 0, 0});
+    auto drawInto = [&](uint32_t samples, const ColorAttachment& attachment) {
+        const PipelineHandle p =
+            o.add(d.createGraphicsPipeline({.vertexShader = vs,
+                                            .fragmentShader = fs,
+                                            .multisample = {.sampleCount = samples},
+                                            .colorFormats = {Format::RGBA8},
+                                            .debugName = "shader sample mask"}));
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {attachment}});
+        cmd->setPipeline(p);
+        cmd->setUniformBuffer(0, unused);
+        cmd->draw(3);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+    };
+    auto expected = [](const std::array<float, 4>& byColumn) {
+        return expectImage(Format::RGBA8, [&](uint32_t x, uint32_t y) -> Texel {
+            const float v = x % 4 == 3 && y >= 32 ? 0.0f : byColumn[x % 4];
+            return {v, v, v, 1};
+        });
+    };
+    std::vector<CaseImage> out;
+    const TextureHandle single = caseTarget(o);
+    drawInto(1, {.texture = single, .clear = {0, 0, 0, 1}});
+    out.push_back(
+        exact("single sample: bit 0 decides", d.readTexture(single), expected({0, 1, 0, 1})));
+    if (d.info().limits.colorSampleCounts & 4) {
+        const TextureHandle ms = o.add(d.createTexture({.width = kCaseSize,
+                                                        .height = kCaseSize,
+                                                        .sampleCount = 4,
+                                                        .usage = TextureUsage::RenderTarget}));
+        const TextureHandle resolved = caseTarget(o);
+        drawInto(4, {.texture = ms,
+                     .store = StoreOp::DontCare,
+                     .clear = {0, 0, 0, 1},
+                     .resolveTexture = resolved});
+        out.push_back(within("4 samples: the fraction written", d.readTexture(resolved),
+                             expected({0, 0.25f, 0.75f, 1}), 1.5 / 255.0,
+                             "average of 4 samples of 0 and 1 (0.25 and 0.75 round either way)"));
+    }
+    return out;
+}
+
 // A 64x64 depth (or depth-stencil) attachment, owned by `o`.
 TextureHandle caseDepthTarget(DeviceObjects& o, Format f) {
     return o.add(o.device().createTexture({.format = f,
@@ -635,6 +690,7 @@ std::vector<Case> samplerStateCases() {
         {"zero_initialised", zeroInitialised},
         {"primitive_restart", primitiveRestart},
         {"sample_mask", sampleMask},
+        {"shader_sample_mask", shaderSampleMask},
         {"dynamic_blend_stencil_bias", dynamicBlendStencilBias},
         {"dynamic_state_before_pipeline", dynamicStateBeforePipeline},
     };

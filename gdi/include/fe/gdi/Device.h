@@ -191,7 +191,8 @@
 //  - depthWrite without depthTest writes every fragment's depth (the test always passes).
 //  - MipFilter::None reads level 0 and minifies with minFilter, magnifies with magFilter.
 //  - MultisampleState::sampleMask with bit 0 clear draws nothing on a single-sample target;
-//    bits beyond the sample count are ignored.
+//    bits beyond the sample count are ignored. A fragment shader's gl_SampleMask likewise: on a
+//    single-sample target a fragment is kept when bit 0 is set.
 //  - Flat-shaded (`flat`) outputs take the value of a primitive's first vertex (Vulkan's
 //    provoking vertex; GL is set to its first-vertex convention).
 //  - A colour target the fragment shader has no output for (or every target, without a fragment
@@ -209,8 +210,8 @@
 //  - Validation-layer and GL debug messages are printed once each; the count of repeats is
 //    printed when the device is destroyed (validationErrorCount() counts every one).
 // Shown by: first_instance, flat_first_vertex, unwritten_target_keeps_contents,
-// point_size_and_coord, depth_write_without_test, mip_filter_none, sample_mask, primitive_restart,
-// zero_initialised, stencil8_and_readback, depth16, dynamic_blend_stencil_bias, stride_zero_vertex,
+// point_size_and_coord, depth_write_without_test, mip_filter_none, sample_mask, shader_sample_mask,
+// primitive_restart, zero_initialised, stencil8_and_readback, depth16, dynamic_blend_stencil_bias, stride_zero_vertex,
 // border_color, lod_bias_and_clamp, depth_bias, depth_clamp.
 //
 // Windows

@@ -53,6 +53,7 @@ struct ShaderInterface {
     uint32_t pushConstantBytes = 0;
     std::vector<SpecConstant> specConstants;  // by id
     std::array<uint32_t, 3> workgroupSize{};  // compute
+    bool writesSampleMask = false;            // fragment: declares the SampleMask output
 };
 
 // The GL binding of the constants block (fe_common.glsl's FE_CONSTANTS), past the 0..63 slots.
@@ -92,5 +93,11 @@ std::vector<uint32_t> withNamesPrefixed(std::span<const uint32_t> spirv, const s
 // as few as 8 image units (NVIDIA) where the device's slots go to 63. `spirv` must be valid.
 std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv,
                                               const std::array<uint8_t, 64>& newSlot);
+
+// The fragment module with its SampleMask output turned into a private variable and a discard,
+// before each return of the entry point, of a fragment whose mask has bit 0 clear: what Vulkan
+// does on a single-sample target, where GL ignores gl_SampleMask (no sample buffers). The module
+// unchanged when it declares no SampleMask. `spirv` must be valid.
+std::vector<uint32_t> withSampleMaskAsDiscard(std::span<const uint32_t> spirv);
 
 }  // namespace fe::gdi
