@@ -211,8 +211,8 @@
 //    printed when the device is destroyed (validationErrorCount() counts every one).
 // Shown by: first_instance, flat_first_vertex, unwritten_target_keeps_contents,
 // point_size_and_coord, depth_write_without_test, mip_filter_none, sample_mask, shader_sample_mask,
-// primitive_restart, zero_initialised, stencil8_and_readback, depth16, dynamic_blend_stencil_bias, stride_zero_vertex,
-// border_color, lod_bias_and_clamp, depth_bias, depth_clamp.
+// primitive_restart, zero_initialised, stencil8_and_readback, depth16, dynamic_blend_stencil_bias,
+// stride_zero_vertex, border_color, lod_bias_and_clamp, depth_bias, depth_clamp.
 //
 // Windows
 // -------
