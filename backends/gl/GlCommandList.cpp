@@ -511,9 +511,9 @@ void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32
     outsidePass("resolveQueries");
     const QuerySet& q = usedQuerySet(h, "resolveQueries");
     const Buffer& b = dev_.buffer(dst);
-    queries_.resolve(q.desc, q.label, h.id, first, count);
     gdi::validate::queryDestination(b.desc, b.label, dstOffset,
                                     8ull * gdi::validate::queryValues(q.desc.type) * count);
+    queries_.resolve(q.desc, q.label, h.id, first, count);  // last: it keeps what it resolves
     stream_->push(cmd::ResolveQueries{h, first, count, dst, dstOffset});
 }
 

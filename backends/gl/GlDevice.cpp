@@ -390,7 +390,9 @@ gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (GlCommandList* gl : gls) gl->checkSubmittable();
     std::vector<const gdi::validate::QueryRecording*> queries;
     for (GlCommandList* gl : gls) queries.push_back(&gl->queries());
-    gdi::validate::queriesOncePerSubmission(queries);
+    gdi::validate::querySubmission(queries, [&](uint32_t set, uint32_t index) {
+        return querySets_.get({set}, "query set").submitted[index] != 0;
+    });
     std::vector<gdi::validate::QueryRecording::Use> usedQueries;
     for (const auto* q : queries)
         usedQueries.insert(usedQueries.end(), q->used().begin(), q->used().end());

@@ -1294,9 +1294,9 @@ void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, ui
     outsidePass("resolveQueries");
     QuerySet& q = usedQuerySet(h, "resolveQueries");
     Buffer& b = usedBuffer(dst);
-    queries_.resolve(q.desc, q.name, h.id, first, count);
     const uint64_t stride = 8 * gdi::validate::queryValues(q.desc.type);
     gdi::validate::queryDestination(b.desc, b.name, dstOffset, stride * count);
+    queries_.resolve(q.desc, q.name, h.id, first, count);  // last: it keeps what it resolves
     barrierIfWritten();
     vkCmdCopyQueryPoolResults(cb_, q.pool, first, count, b.buffer, dstOffset, stride,
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);

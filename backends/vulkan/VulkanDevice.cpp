@@ -554,7 +554,9 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     for (VulkanCommandList* list : vk) list->checkSubmittable();
     std::vector<const gdi::validate::QueryRecording*> queries;
     for (VulkanCommandList* list : vk) queries.push_back(&list->queries());
-    gdi::validate::queriesOncePerSubmission(queries);
+    gdi::validate::querySubmission(queries, [&](uint32_t set, uint32_t index) {
+        return querySets_.get({set}, "query set").submitted[index] != 0;
+    });
     std::vector<std::pair<QuerySet*, uint32_t>> usedQueries;  // reset before the lists run
     std::vector<std::pair<VkQueryPool, uint32_t>>
         resets;  // (the closure outlives this call on failure)

@@ -65,6 +65,12 @@ void QueryRecording::written(const QuerySetDesc& d, const std::string& name, uin
             fail(what,
                  queryName(name, index) +
                      " is already written in this recording (each query once per submission)");
+    for (const Use& r : resolvedEarlier_)
+        if (r.set == set && r.index == index)
+            fail(what, queryName(name, index) +
+                           " was resolved earlier in this recording, from an earlier write: "
+                           "the submission resets it before it runs, so the resolve would wait "
+                           "for this write");
 }
 
 void QueryRecording::begin(const QuerySetDesc& d, const std::string& name, uint32_t set,
@@ -111,20 +117,22 @@ void QueryRecording::timestamp(const QuerySetDesc& d, const std::string& name, u
 }
 
 void QueryRecording::resolve(const QuerySetDesc& d, const std::string& name, uint32_t set,
-                             uint32_t first, uint32_t count) const {
+                             uint32_t first, uint32_t count) {
     if (count == 0 || uint64_t(first) + count > d.count)
         fail("resolveQueries", "queries " + std::to_string(first) + ".." +
                                    std::to_string(uint64_t(first) + count) + " of set '" + name +
                                    "' are out of range (the set has " + std::to_string(d.count) +
                                    ")");
+    std::vector<Use> earlier;  // kept only when the whole call is valid
     for (uint32_t i = first; i < first + count; ++i) {
         auto it = std::find_if(used_.begin(), used_.end(),
                                [&](const Use& u) { return u.set == set && u.index == i; });
-        if (it == used_.end() || !it->ended)
-            fail(
-                "resolveQueries",
-                queryName(name, i) + " has not been written (and ended) earlier in this recording");
+        if (it == used_.end())
+            earlier.push_back({set, i, true});  // checked against the submission
+        else if (!it->ended)
+            fail("resolveQueries", queryName(name, i) + " is still active (end it first)");
     }
+    resolvedEarlier_.insert(resolvedEarlier_.end(), earlier.begin(), earlier.end());
 }
 
 void QueryRecording::endPass() const {
@@ -163,15 +171,35 @@ void QueryRecording::endTimer(uint32_t timer) {
     fail("endTimer", "the timer was not begun in this recording (beginTimer first)");
 }
 
-void queriesOncePerSubmission(std::span<const QueryRecording* const> lists) {
-    for (size_t i = 0; i < lists.size(); ++i)
+void querySubmission(std::span<const QueryRecording* const> lists,
+                     const std::function<bool(uint32_t set, uint32_t index)>& writtenBefore) {
+    auto writes = [](const QueryRecording* list, const QueryRecording::Use& q) {
+        return std::any_of(
+            list->used().begin(), list->used().end(),
+            [&](const QueryRecording::Use& u) { return u.set == q.set && u.index == q.index; });
+    };
+    for (size_t i = 0; i < lists.size(); ++i) {
         for (const QueryRecording::Use& u : lists[i]->used())
             for (size_t j = 0; j < i; ++j)
-                for (const QueryRecording::Use& v : lists[j]->used())
-                    if (u.set == v.set && u.index == v.index)
-                        fail("submit", "query " + std::to_string(u.index) +
-                                           " of one set is written by two lists of this "
-                                           "submission (each query once per submission)");
+                if (writes(lists[j], u))
+                    fail("submit", "query " + std::to_string(u.index) +
+                                       " of one set is written by two lists of this "
+                                       "submission (each query once per submission)");
+        for (const QueryRecording::Use& r : lists[i]->resolvedEarlier()) {
+            bool earlier = false, later = false;
+            for (size_t j = 0; j < lists.size(); ++j)
+                if (j != i && writes(lists[j], r)) (j < i ? earlier : later) = true;
+            if (later)
+                fail("submit", "list " + std::to_string(i) + " resolves query " +
+                                   std::to_string(r.index) +
+                                   " before a later list of this submission writes it (the "
+                                   "submission resets it first): submit the writer earlier");
+            if (!earlier && !writtenBefore(r.set, r.index))
+                fail("submit", "list " + std::to_string(i) + " resolves query " +
+                                   std::to_string(r.index) +
+                                   " that no earlier list or submission has written");
+        }
+    }
 }
 
 }  // namespace fe::gdi::validate

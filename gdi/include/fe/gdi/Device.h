@@ -165,7 +165,8 @@
 //   device->queryResults(occlusion, 0, 1, samples);   // false until its submission completed
 //  - Queries: a query is written once per submission (the device resets it before the
 //    submission runs); occlusion queries inside one pass; none in secondary lists.
-// Shown by: occlusion_query, pipeline_statistics, timestamps_in_query_set, query_errors.
+// Shown by: occlusion_query, pipeline_statistics, timestamps_in_query_set, query_errors,
+// queries_across_lists.
 //
 // Pipeline cache
 // --------------
@@ -1007,10 +1008,12 @@ public:
     virtual void endQuery(QuerySetHandle set, uint32_t index) = 0;
     // Timestamp sets: the GPU time once the work recorded before has finished. Outside passes.
     virtual void writeTimestamp(QuerySetHandle set, uint32_t index) = 0;
-    // Copies the results of queries [first, first + count), each written earlier in this
-    // recording, into dst at dstOffset (a multiple of 8; CopyDst usage) as uint64_t values: one
+    // Copies the results of queries [first, first + count) into dst at dstOffset (a multiple of 8; CopyDst usage) as uint64_t values: one
     // per query, four (PipelineStatistics) for statistics; timestamps in DeviceLimits::
     // timestampPeriodNs units. The GPU waits for the queries, not the CPU. Outside passes.
+    // Each query ended earlier in this recording, in an earlier list of the submission, or (when
+    // no list of the submission writes it) in an earlier submission: its last result. Otherwise
+    // submit throws (the resolve would wait for a write the submission's reset erases).
     virtual void resolveQueries(QuerySetHandle set, uint32_t first, uint32_t count,
                                 BufferHandle dst, uint64_t dstOffset) = 0;
     virtual void pushDebugGroup(const char* name) = 0;

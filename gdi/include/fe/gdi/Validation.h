@@ -327,11 +327,14 @@ public:
     void timestamp(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t index,
                    bool inPass);
     void resolve(const QuerySetDesc& d, const std::string& name, uint32_t set, uint32_t first,
-                 uint32_t count) const;
+                 uint32_t count);
     void endPass() const;  // a query begun in the pass must end in it
     void finish() const;   // submit: none left active, every timer ended
-    void clear() { used_.clear(), active_ = {}, timers_.clear(); }
+    void clear() { used_.clear(), active_ = {}, timers_.clear(), resolvedEarlier_.clear(); }
     const std::vector<Use>& used() const { return used_; }
+    // Queries resolved here that this recording does not write: written by an earlier list of
+    // the submission or an earlier submission (checked at submit by querySubmission).
+    const std::vector<Use>& resolvedEarlier() const { return resolvedEarlier_; }
     // Timers (Device::createTimer): each begun once and then ended once per recording.
     void beginTimer(uint32_t timer);
     void endTimer(uint32_t timer);
@@ -346,10 +349,15 @@ private:
     };
     std::array<std::optional<Active>, 3> active_;  // per type that begins and ends
     std::vector<Use> used_;
+    std::vector<Use> resolvedEarlier_;
     std::vector<std::pair<uint32_t, bool>> timers_;
 };
-// submit: no query written by two of the lists (each is reset once, before the submission).
-void queriesOncePerSubmission(std::span<const QueryRecording* const> lists);
+// submit: no query written by two of the lists (each is reset once, before the submission), and
+// every query a list resolves without writing it written by an earlier list of the submission
+// or, when no list of it writes the query, by an earlier submission (writtenBefore(set, index)).
+// Otherwise the GPU would wait for a result that never comes, or read one the reset erased.
+void querySubmission(std::span<const QueryRecording* const> lists,
+                     const std::function<bool(uint32_t set, uint32_t index)>& writtenBefore);
 
 // Bytes of per-draw constants the pipeline's shaders read (the largest block; 0: none), at
 // most kMaxConstantBytes.
