@@ -58,7 +58,7 @@ std::unique_ptr<Device> withCapture(std::unique_ptr<Device> device, const std::s
 }
 
 // Starts one backend as it is (createDevice adds its own capture).
-BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsync) {
+BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsync, bool robust) {
     BackendProbe p;
     p.name = name;
     try {
@@ -66,17 +66,22 @@ BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsyn
             fault::Site::
                 Allocation);  // a bad FE_FAULT_* value is reported here, before any device work
         if (name == "vulkan")
-            p.device = vk::createVulkanDevice(validation);
+            p.device = vk::createVulkanDevice(validation, robust);
         else if (name == "gl-egl")
             p.device = gl::createGlDevice(gl::PlatformKind::Egl, validation);
         else if (name == "gl-osmesa")
             p.device = gl::createGlDevice(gl::PlatformKind::OSMesa, validation);
         else if (name == "vulkan-glfw")
-            p.device = vk::createVulkanWindowDevice(validation, vsync);
+            p.device = vk::createVulkanWindowDevice(validation, vsync, robust);
         else if (name == "gl-glfw")
             p.device = gl::createGlDevice(gl::PlatformKind::Glfw, validation, vsync);
         else
             throw Error("unknown backend '" + name + "' (valid: " + validBackendList() + ")");
+        if (robust && !p.device->info().features.robustBufferAccess)
+            throw Error(name + ": robust buffer access is not available (" +
+                        (name.starts_with("gl") ? "no robust-access GL context"
+                                                : "no robustBufferAccess feature") +
+                        ")");
         p.available = true;
     } catch (const std::exception& e) {
         p.reason = e.what();
@@ -86,8 +91,9 @@ BackendProbe probeUncaptured(const std::string& name, bool validation, bool vsyn
 
 }  // namespace
 
-BackendProbe probeBackend(const std::string& name, bool validation, bool vsync) {
-    BackendProbe p = probeUncaptured(name, validation, vsync);
+BackendProbe probeBackend(const std::string& name, bool validation, bool vsync,
+                          bool robustBufferAccess) {
+    BackendProbe p = probeUncaptured(name, validation, vsync, robustBufferAccess);
     if (p.available) {
         try {
             p.device = withCapture(std::move(p.device), "", 0, 0, true);
@@ -128,7 +134,7 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
                     "' is headless; a window needs auto, vulkan, gl, vulkan-glfw or gl-glfw");
     std::string failures;
     for (const std::string& c : list) {
-        BackendProbe p = probeUncaptured(c, desc.validation, desc.vsync);
+        BackendProbe p = probeUncaptured(c, desc.validation, desc.vsync, desc.robustBufferAccess);
         if (p.available) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";

@@ -143,6 +143,7 @@ void GlDevice::initialize(bool validation) {
         std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", resets are reported"
                                                          : ", no reset notification") +
         std::string((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) ? ", robust buffer access" : "");
+    info_.features.robustBufferAccess = (flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) != 0;
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;

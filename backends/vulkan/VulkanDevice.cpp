@@ -64,8 +64,8 @@ std::string versionString(uint32_t v) {
 }
 }  // namespace
 
-std::unique_ptr<gdi::Device> createVulkanDevice(bool validation) {
-    return std::make_unique<VulkanDevice>(validation);
+std::unique_ptr<gdi::Device> createVulkanDevice(bool validation, bool robustBufferAccess) {
+    return std::make_unique<VulkanDevice>(validation, nullptr, robustBufferAccess);
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(
@@ -82,8 +82,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL VulkanDevice::debugCallback(
     return VK_FALSE;
 }
 
-VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window)
-    : swapchain_(std::move(window)) {
+VulkanDevice::VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window,
+                           bool robustBufferAccess)
+    : swapchain_(std::move(window)), robustRequested_(robustBufferAccess) {
     const gdi::NativeLayerLock::Change layerChange(
         validation);  // the layer adds this device and instance
     try {
@@ -259,6 +260,8 @@ void VulkanDevice::createLogicalDevice() {
     features.features.textureCompressionBC = supported.textureCompressionBC;
     features.features.occlusionQueryPrecise = supported.occlusionQueryPrecise;
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
+    // Bounds checks on every buffer access cost time on hardware: only when asked for.
+    features.features.robustBufferAccess = robustRequested_ && supported.robustBufferAccess;
     features.features.alphaToOne = VK_FALSE;
     enabled_ = features.features;
     VkPhysicalDeviceVulkan12Features supported12{
@@ -434,6 +437,7 @@ void VulkanDevice::fillInfo() {
     info_.features.memoryAliasing = true;
     info_.features.textureCubeArray = enabled_.imageCubeArray;
     info_.features.storageImageExtendedFormats = enabled_.shaderStorageImageExtendedFormats;
+    info_.features.robustBufferAccess = enabled_.robustBufferAccess;
     info_.features.depthClamp = enabled_.depthClamp;
     info_.features.depthBiasClamp = enabled_.depthBiasClamp;
     // Multi-draw needs a firstInstance in the records too (the engine's instancing uses it).

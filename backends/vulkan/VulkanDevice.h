@@ -150,7 +150,8 @@ class VulkanSwapchain;
 class VulkanDevice final : public gdi::Device {
 public:
     // `window`: the vulkan-glfw backend (VulkanSwapchain.h); null: headless.
-    explicit VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window = nullptr);
+    explicit VulkanDevice(bool validation, std::unique_ptr<VulkanSwapchain> window = nullptr,
+                          bool robustBufferAccess = false);
     ~VulkanDevice() override;
 
     const gdi::DeviceInfo& info() const override { return info_; }
@@ -318,6 +319,7 @@ private:
     VkPhysicalDevice physical_ = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties props_{};
     bool anisotropy_ = false;
+    bool robustRequested_ = false;        // DeviceCreateDesc::robustBufferAccess
     VkPhysicalDeviceFeatures enabled_{};  // the core features the device was created with
     bool drawIndirectCount_ = false;
     VkDevice device_ = VK_NULL_HANDLE;

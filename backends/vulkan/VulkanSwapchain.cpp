@@ -424,8 +424,10 @@ void VulkanSwapchain::release() {
 // ---------------------------------------------------------------------------------------------
 // VulkanDevice's window members
 // ---------------------------------------------------------------------------------------------
-std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsync) {
-    return std::make_unique<VulkanDevice>(validation, std::make_unique<VulkanSwapchain>(vsync));
+std::unique_ptr<gdi::Device> createVulkanWindowDevice(bool validation, bool vsync,
+                                                      bool robustBufferAccess) {
+    return std::make_unique<VulkanDevice>(validation, std::make_unique<VulkanSwapchain>(vsync),
+                                          robustBufferAccess);
 }
 
 bool VulkanDevice::present(gdi::TextureHandle h) {

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "CaseSupport.h"
+#include "fe/gdi/Backend.h"
 #include "Conformance.h"
 #include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
@@ -336,6 +337,83 @@ std::vector<CaseImage> mrtMixedFormats(Device& d) {
         out.push_back(ci);
     }
     return out;
+}
+
+// DeviceCreateDesc::robustBufferAccess on a device of this backend: a compute shader writes 16
+// floats past the end of one buffer and reads 24 past the end of another. Reads past the end
+// give zero or values from inside the buffer, writes past it reach no other buffer (the
+// neighbours made before and after keep their bytes), in-range results are exact. A backend
+// that cannot promise it (gl-osmesa: OSMesa has no robust-access context) refuses to start.
+std::vector<CaseImage> robustBufferAccess(Device& d) {
+    const DeviceCreateDesc desc{.backend = d.info().backend,
+                                .validation = d.info().features.validation,
+                                .verbose = false,
+                                .robustBufferAccess = true};
+    std::unique_ptr<Device> robust;
+    try {
+        robust = createDevice(desc);
+    } catch (const Error& e) {
+        const std::string why = e.what();
+        FE_CONFORMANCE_CHECK(why.find("robust buffer access is not available") != std::string::npos,
+                             ("a backend without robust access says so: " + why).c_str());
+        // Every Vulkan device has robustBufferAccess (the one feature Vulkan 1.0 requires).
+        FE_CONFORMANCE_CHECK(d.info().backend.starts_with("gl"),
+                             "only a GL backend may lack robust access");
+        return {};
+    }
+    Device& r = *robust;
+    FE_CONFORMANCE_CHECK(r.info().features.robustBufferAccess, "the started device reports it");
+    DeviceObjects o(r);
+    const std::vector<float> sentinel(64, 7.0f);
+    auto buffer = [&](uint64_t size, std::span<const float> data = {}) {
+        return o.add(
+            r.createBuffer({.size = size, .usage = BufferUsage::Storage}, std::as_bytes(data)));
+    };
+    const BufferHandle before = buffer(256, sentinel);
+    const BufferHandle written = buffer(64);
+    const BufferHandle after = buffer(256, sentinel);
+    std::vector<float> values(16);
+    for (uint32_t i = 0; i < 16; ++i) values[i] = 100.0f + float(i);
+    const BufferHandle source = buffer(64, values);
+    const BufferHandle read = buffer(128);
+    const BufferHandle last = buffer(256, sentinel);
+    const PipelineHandle p = o.add(r.createComputePipeline(
+        {.computeShader = registryShader(o, ShaderStage::Compute, "conformance/robust_access.comp"),
+         .debugName = "robust access"}));
+    auto cmd = r.createCommandList();
+    cmd->setPipeline(p);
+    cmd->setStorageBuffer(0, written);
+    cmd->setStorageBuffer(1, source);
+    cmd->setStorageBuffer(2, read);
+    cmd->dispatch(1);
+    r.wait(r.submit(*cmd));
+    auto floats = [&](BufferHandle b, uint64_t size) {
+        std::vector<float> f(size / 4);
+        std::memcpy(f.data(), r.readBuffer(b, 0, size).data(), size);
+        return f;
+    };
+    for (BufferHandle neighbour : {before, after, last})
+        FE_CONFORMANCE_CHECK(floats(neighbour, 256) == sentinel,
+                             "writes past the end reach no other buffer");
+    const std::vector<float> w = floats(written, 64), got = floats(read, 128);
+    for (uint32_t k = 0; k < 16; ++k)
+        FE_CONFORMANCE_CHECK(w[k] == float(k + 1) || (w[k] >= 17.0f && w[k] <= 32.0f),
+                             ("written[" + std::to_string(k) + "] is " + std::to_string(w[k]) +
+                              ": its own value, or one written past the end that stayed inside")
+                                 .c_str());
+    for (uint32_t k = 0; k < 32; ++k) {
+        const bool inRange = k < 8;
+        const bool fromInside =
+            got[k] >= 100.0f && got[k] <= 115.0f && got[k] == std::floor(got[k]);
+        FE_CONFORMANCE_CHECK(inRange ? got[k] == 108.0f + float(k) : got[k] == 0.0f || fromInside,
+                             ("read[" + std::to_string(k) + "] is " + std::to_string(got[k]) +
+                              (inRange ? ", expected " + std::to_string(108 + k)
+                                       : ": past the end, expected 0 or a value of the buffer"))
+                                 .c_str());
+    }
+    FE_CONFORMANCE_CHECK(r.validationErrorCount() == 0,
+                         "the robust device's validation stays silent");
+    return {};
 }
 
 // Every format formatCaps calls storage is written by a compute shader that declares it (the
@@ -898,6 +976,7 @@ std::vector<Case> drawCases() {
         {"mrt_mixed_formats", mrtMixedFormats},
         {"compute_buffer_and_image", computeBufferAndImage},
         {"storage_image_every_format", storageImageEveryFormat},
+        {"robust_buffer_access", robustBufferAccess},
         {"copies", copies},
         {"vertex_formats", vertexFormats},
         {"storage_buffer_in_fragment", storageBufferInFragment},

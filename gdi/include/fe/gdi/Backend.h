@@ -21,6 +21,10 @@ struct DeviceCreateDesc {
     // Windows: frames wait for the display's refresh (Vulkan FIFO, GL swap interval 1); off:
     // Vulkan IMMEDIATE, else MAILBOX, else FIFO (DeviceInfo::presentMode says which), GL 0.
     bool vsync = true;
+    // Out-of-range buffer accesses in shaders made safe (DeviceFeatures::robustBufferAccess):
+    // a backend that cannot promise it fails to start (auto tries the next). Off by default: it
+    // costs time on hardware. gl-egl contexts are robust whenever the driver offers it.
+    bool robustBufferAccess = false;
     // A pipeline cache file (Device::openPipelineCache): loaded now, saved when the device goes.
     std::string pipelineCache;
     // A capture file (Capture.h): every call is written there for fe replay and fe bisect,
@@ -51,7 +55,8 @@ struct BackendProbe {
 };
 
 // Starts one named concrete backend; never throws: failure is reported in `reason`.
-BackendProbe probeBackend(const std::string& name, bool validation, bool vsync = true);
+BackendProbe probeBackend(const std::string& name, bool validation, bool vsync = true,
+                          bool robustBufferAccess = false);
 
 // Resolves auto / gl / FE_BACKEND and starts the first backend that works. Throws Error listing
 // the valid names for an unknown name, and why each candidate failed when none starts.

@@ -1152,6 +1152,10 @@ struct DeviceFeatures {
     bool textureCompressionBC = false;  // Format::BC1..BC7 sampled textures
     bool occlusionQueries = false;      // QueryType::Occlusion (exact counts) and AnySamplesPassed
     bool pipelineStatistics = false;    // QueryType::PipelineStatistics
+    // Shader reads of storage and uniform buffers outside the bound range give zero or values
+    // from inside it, and writes there never reach memory outside it (Vulkan's robustBufferAccess
+    // when DeviceCreateDesc::robustBufferAccess asks for it; a GL robust-access context).
+    bool robustBufferAccess = false;
 };
 
 struct DeviceInfo {

@@ -51,6 +51,7 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("textureCompressionBC", f.textureCompressionBC);
     visit("occlusionQueries", f.occlusionQueries);
     visit("pipelineStatistics", f.pipelineStatistics);
+    visit("robustBufferAccess", f.robustBufferAccess);
 }
 
 namespace detail {
