@@ -438,6 +438,9 @@ void VulkanDevice::fillInfo() {
     info_.features.textureCubeArray = enabled_.imageCubeArray;
     info_.features.storageImageExtendedFormats = enabled_.shaderStorageImageExtendedFormats;
     info_.features.robustBufferAccess = enabled_.robustBufferAccess;
+    for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+        if (memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT)
+            info_.features.lazilyAllocatedMemory = true;
     info_.features.depthClamp = enabled_.depthClamp;
     info_.features.depthBiasClamp = enabled_.depthBiasClamp;
     // Multi-draw needs a firstInstance in the records too (the engine's instancing uses it).

@@ -28,6 +28,10 @@ uint32_t MemoryAllocator::chooseType(uint32_t typeBits, MemoryUsage usage) const
         case MemoryUsage::GpuOnly:
             preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
             break;
+        case MemoryUsage::Transient:
+            preferred =
+                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT;
+            break;
         case MemoryUsage::Upload:
             required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
             break;

@@ -22,7 +22,8 @@ struct Allocation {
     explicit operator bool() const { return memory != VK_NULL_HANDLE; }
 };
 
-enum class MemoryUsage { GpuOnly, Upload, Readback };
+// Transient: attachments whose contents live inside a pass (lazily allocated memory first).
+enum class MemoryUsage { GpuOnly, Upload, Readback, Transient };
 
 class MemoryAllocator {
 public:

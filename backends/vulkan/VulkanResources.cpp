@@ -197,7 +197,12 @@ VkImageView VulkanDevice::attachmentView(Texture& t, uint32_t mip, uint32_t laye
 
 VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     using U = gdi::TextureUsage;
-    VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    // Transient attachments may have no other usage than attachment ones (not even the
+    // transfers every other texture gets for readback and its first clear to zero).
+    const bool transient = any(desc.usage, U::Transient);
+    VkImageUsageFlags usage =
+        transient ? VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT
+                  : VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     if (any(desc.usage, U::Sampled)) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
     if (any(desc.usage, U::Storage)) usage |= VK_IMAGE_USAGE_STORAGE_BIT;
     if (any(desc.usage, U::RenderTarget))
@@ -335,7 +340,11 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
             t.memory.offset += desc.heapOffset;
             t.memory.size = req.size;
         } else {
-            t.memory = allocator_->allocate(req, MemoryUsage::GpuOnly, object);
+            t.memory = allocator_->allocate(req,
+                                            any(desc.usage, gdi::TextureUsage::Transient)
+                                                ? MemoryUsage::Transient
+                                                : MemoryUsage::GpuOnly,
+                                            object);
         }
         check(vkBindImageMemory(device_, t.image, t.memory.memory, t.memory.offset),
               "vkBindImageMemory", object);
@@ -363,11 +372,12 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     // next submission (or transfer) rather than submitted and waited for here.
     const VkImage image = t.image;
     const gdi::Format format = desc.format;
+    const bool zeroed = !any(desc.usage, gdi::TextureUsage::Transient);  // no one reads it
     const gdi::TextureHandle h = textures_.add(std::move(t));
     recordInitialTransition(
-        [image, format](VkCommandBuffer cb) {
+        [image, format, zeroed](VkCommandBuffer cb) {
             VulkanCommandList::toGeneral(cb, image, format);
-            clearToZero(cb, image, format);
+            if (zeroed) clearToZero(cb, image, format);
         },
         h.id);
     return h;

@@ -48,6 +48,7 @@ struct TextureInfo {
     uint64_t size = 0, alignment = 1;   // memory requirements (transient only)
     uint64_t offset = 0;                // in the heap (AliasingMode::Memory)
     int physical = -1;                  // shared object index (ObjectReuse), own index otherwise
+    bool ownMemory = false;  // lazily allocated on its own: outside the plan (CompileOptions)
     bool used() const { return firstPass >= 0; }
     bool overlaps(const TextureInfo& o) const {
         return used() && o.used() && firstPass <= o.lastPass && o.firstPass <= lastPass;

@@ -8,12 +8,13 @@ namespace fe::graph {
 namespace {
 uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) / a * a; }
 
-bool transient(const TextureInfo& t) { return !t.imported && t.used(); }
+bool transient(const TextureInfo& t) { return !t.imported && t.used() && !t.ownMemory; }
 
 bool sameObject(const gdi::TextureDesc& a, const gdi::TextureDesc& b) {
     return a.dimension == b.dimension && a.depthOrLayers == b.depthOrLayers &&
            a.format == b.format && a.width == b.width && a.height == b.height &&
-           a.mipLevels == b.mipLevels && a.sampleCount == b.sampleCount;
+           a.mipLevels == b.mipLevels && a.sampleCount == b.sampleCount &&
+           any(a.usage, gdi::TextureUsage::Transient) == any(b.usage, gdi::TextureUsage::Transient);
 }
 
 MemoryReport placeInHeap(std::vector<TextureInfo>& textures, std::vector<uint32_t>& order) {

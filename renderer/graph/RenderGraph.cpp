@@ -285,6 +285,23 @@ void RenderGraph::computeLifetimes() {
             t.lastPass = std::max(t.lastPass, lastAlive);
             if (!t.imported) t.desc.usage = t.desc.usage | gdi::TextureUsage::CopySrc;
         }
+    markTransientAttachments();
+}
+
+// An attachment of one pass only, begun from a clear or nothing and read by no later pass (so
+// stored DontCare, not resolved into): its contents live inside the pass. Transient usage lets
+// Vulkan skip its memory on tile GPUs (lazily allocated) and every driver skip its stores.
+void RenderGraph::markTransientAttachments() {
+    for (size_t i = 0; i < textures_.size(); ++i) {
+        TextureInfo& t = textures_[i];
+        if (t.imported || t.output || !t.used() || t.firstPass != t.lastPass ||
+            t.desc.usage != gdi::TextureUsage::RenderTarget || t.desc.mipLevels != 1)
+            continue;
+        bool passLocal = true;
+        for (const TextureAccess& a : passes_[size_t(t.firstPass)].accesses)
+            if (a.texture.index == i && (a.reads() || a.resolveSource.valid())) passLocal = false;
+        if (passLocal) t.desc.usage = t.desc.usage | gdi::TextureUsage::Transient;
+    }
 }
 
 // Per buffer: the accesses of its last write, and the kinds of read made visible since (or
@@ -440,6 +457,7 @@ void RenderGraph::compile(const CompileOptions& options) {
         t.firstPass = t.lastPass = -1;
         t.offset = 0;
         t.physical = -1;
+        t.ownMemory = false;
         if (!t.imported) t.desc.usage = gdi::TextureUsage::None;
     }
     checkBufferUses();
@@ -449,8 +467,11 @@ void RenderGraph::compile(const CompileOptions& options) {
     }
     cull();
     computeLifetimes();
-    for (TextureInfo& t : textures_) {
+    for (size_t i = 0; i < textures_.size(); ++i) {
+        TextureInfo& t = textures_[i];
         if (t.imported || !t.used()) continue;
+        if (options.lazilyAllocated && any(t.desc.usage, gdi::TextureUsage::Transient))
+            t.ownMemory = true, t.physical = int(i);
         if (options.requirements) {
             gdi::MemoryRequirements r = options.requirements(t.desc);
             t.size = r.size;
@@ -488,6 +509,7 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
     options.aliasing = !aliasing ? AliasingMode::None
                        : heaps   ? AliasingMode::Memory
                                  : AliasingMode::ObjectReuse;
+    options.lazilyAllocated = device.info().features.lazilyAllocatedMemory;
     if (heaps)
         options.requirements = [&](const gdi::TextureDesc& d) {
             return device.textureMemoryRequirements(d);
@@ -508,7 +530,7 @@ void RenderGraph::compile(gdi::Device& device, bool aliasing) {
             continue;  // shares below
         gdi::TextureDesc d = t.desc;
         d.debugName = t.name.c_str();
-        if (heap) d.heap = heap, d.heapOffset = t.offset;
+        if (heap && !t.ownMemory) d.heap = heap, d.heapOffset = t.offset;
         handles_[i] = objects_->add(device.createTexture(d));
     }
     for (size_t i = 0; i < textures_.size(); ++i)

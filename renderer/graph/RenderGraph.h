@@ -138,6 +138,9 @@ struct CompileOptions {
     AliasingMode aliasing = AliasingMode::Memory;
     // Size and alignment of a texture's memory; default: width x height x bytes per pixel, 256-aligned.
     std::function<gdi::MemoryRequirements(const gdi::TextureDesc&)> requirements;
+    // Transient attachments (one pass's, TextureUsage::Transient) get memory of their own, lazily
+    // allocated, instead of a place in the plan (DeviceFeatures::lazilyAllocatedMemory).
+    bool lazilyAllocated = false;
 };
 
 // A state change the graph records before a pass (gdi::TextureBarrier once textures exist).
@@ -220,6 +223,7 @@ private:
     void release();
     void cull();
     void computeLifetimes();
+    void markTransientAttachments();
     void planBarriers();
     void planBufferBarriers();
     void checkBufferUses() const;

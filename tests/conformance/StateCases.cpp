@@ -48,6 +48,109 @@ std::vector<Vertex3> quad(float x0, float x1, float y0, float y1, float z0, floa
 
 // --- Multisampling ------------------------------------------------------------------------------
 
+// TextureUsage::Transient attachments: a 4-sample colour and depth that live inside one pass
+// (cleared, stored DontCare, the colour resolved) draw two overlapping quads with the depth test
+// as ordinary ones do; a single-sample transient depth beside a stored colour likewise. Loading
+// or storing one, resolving into one, reading, writing or sampling one are the same Error on
+// every backend.
+std::vector<CaseImage> transientAttachments(Device& d) {
+    std::vector<CaseImage> out;
+    DepthGeometry geo(d);
+    const TextureUsage transient = TextureUsage::RenderTarget | TextureUsage::Transient;
+    std::vector<Vertex3> v = quad(-1, 0.5f, -1, 1, 0.5f, 0.5f, {1, 0, 0, 1});
+    const std::vector<Vertex3> behind = quad(-0.5f, 1, -1, 1, 0.75f, 0.75f, {0, 0, 1, 1});
+    v.insert(v.end(), behind.begin(), behind.end());
+    DeviceObjects o(d);
+    const BufferHandle vb = o.add(d.createBuffer(
+        {.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
+    const Image expected = expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
+        return x < 48 ? Texel{1, 0, 0, 1} : Texel{0, 0, 1, 1};  // red in front up to x = 48
+    });
+    const uint32_t counts = d.info().limits.colorSampleCounts & d.info().limits.depthSampleCounts;
+    for (uint32_t samples : {1u, 4u}) {
+        if (!(counts & samples)) continue;
+        GraphicsPipelineDesc pd = geo.desc;
+        pd.colorFormats = {Format::RGBA8};
+        pd.depthFormat = Format::D32F;
+        pd.depthStencil = {.depthTest = true, .depthWrite = true};
+        pd.multisample.sampleCount = samples;
+        const PipelineHandle p = o.add(d.createGraphicsPipeline(pd));
+        const TextureHandle depth = o.add(d.createTexture({.format = Format::D32F,
+                                                           .width = kCaseSize,
+                                                           .height = kCaseSize,
+                                                           .sampleCount = samples,
+                                                           .usage = transient,
+                                                           .debugName = "transient depth"}));
+        const TextureHandle result = caseTarget(o);
+        ColorAttachment color{.texture = result, .clear = {0, 0, 0, 1}};
+        if (samples > 1) {
+            color.texture = o.add(d.createTexture({.width = kCaseSize,
+                                                   .height = kCaseSize,
+                                                   .sampleCount = samples,
+                                                   .usage = transient,
+                                                   .debugName = "transient colour"}));
+            color.store = StoreOp::DontCare;
+            color.resolveTexture = result;
+        }
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass(
+            {.colors = {color}, .depth = {.texture = depth, .store = StoreOp::DontCare}});
+        cmd->setPipeline(p);
+        cmd->setVertexBuffer(0, vb);
+        cmd->draw(12);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+        out.push_back(exact(std::to_string(samples) + " sample(s), transient depth" +
+                                (samples > 1 ? " and colour" : ""),
+                            d.readTexture(result), expected));
+
+        auto list = d.createCommandList();
+        expectError(
+            [&] {
+                list->beginRenderPass(
+                    {.colors = {{.texture = result}}, .depth = {.texture = depth}});
+            },
+            "depth attachment is Transient: it is loaded by Clear or DontCare and stored "
+            "DontCare");
+        expectError(
+            [&] {
+                list->beginRenderPass(
+                    {.colors = {{.texture = result}},
+                     .depth = {
+                         .texture = depth, .load = LoadOp::Load, .store = StoreOp::DontCare}});
+            },
+            "depth attachment is Transient");
+        expectError([&] { d.readTexture(depth); }, "is Transient: its contents live only inside");
+        d.wait(d.submit(*list));
+    }
+    const TextureHandle transientColor = o.add(d.createTexture(
+        {.width = kCaseSize, .height = kCaseSize, .usage = transient, .debugName = "tc"}));
+    expectError(
+        [&] {
+            d.createTexture({.width = 8,
+                             .height = 8,
+                             .usage = transient | TextureUsage::Sampled,
+                             .debugName = "sampled transient"});
+        },
+        "a Transient texture is a RenderTarget only");
+    expectError([&] { d.writeTexture(transientColor, {}, bytesOf(expected.data)); },
+                "is Transient: its contents live only inside");
+    if (counts & 4) {
+        const TextureHandle ms = o.add(d.createTexture(
+            {.width = kCaseSize, .height = kCaseSize, .sampleCount = 4, .usage = transient}));
+        auto list = d.createCommandList();
+        expectError(
+            [&] {
+                list->beginRenderPass({.colors = {{.texture = ms,
+                                                   .store = StoreOp::DontCare,
+                                                   .resolveTexture = transientColor}}});
+            },
+            "resolve target is Transient");
+        d.wait(d.submit(*list));
+    }
+    return out;
+}
+
 // A white quad whose edge runs through the middle of pixel column 31: at the standard sample
 // positions of 2, 4 and 8 samples exactly half of that column's samples are inside, so the
 // colour resolve (the average) is 0.5 there. The depth resolve is sample 0, which lies left of
@@ -784,6 +887,7 @@ std::vector<CaseImage> dispatchIndirect(Device& d) {
 std::vector<Case> stateCases() {
     return {
         {"msaa_resolve", msaaResolve},
+        {"transient_attachments", transientAttachments},
         {"msaa_multiple_targets", msaaMultipleTargets},
         {"msaa_alpha_to_coverage", msaaAlphaToCoverage},
         {"shadow_compare_ops", shadowCompareOps},

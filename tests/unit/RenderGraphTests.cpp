@@ -180,6 +180,47 @@ TEST(RenderGraph, LifetimesSpanFirstToLastUse) {
     EXPECT_TRUE(any(g.texture(a).desc.usage, gdi::TextureUsage::Sampled));
 }
 
+// An attachment of one pass, cleared there and read by no later pass, is Transient; one that a
+// later pass samples or loads, an output, or a texture loaded in its only pass is not. Object
+// reuse never shares an object between a Transient texture and another.
+TEST(RenderGraph, OnePassAttachmentsAreTransient) {
+    RenderGraph g;
+    const graph::TransientTextureDesc depthDesc{.format = Format::D32F, .width = 64, .height = 64};
+    auto depth0 = g.createTexture("depth0", depthDesc);
+    auto depth1 = g.createTexture("depth1", depthDesc);
+    auto kept = g.createTexture("kept", {.width = 64, .height = 64});
+    auto out = importFake(g);
+    g.addPass("p0",
+              [&](auto& b) {
+                  b.colorTarget(out);
+                  b.depthTarget(depth0);
+                  b.colorTarget(kept);
+              },
+              {});
+    g.addPass("p1",
+              [&](auto& b) {
+                  b.colorTarget(out, LoadOp::Load);
+                  b.depthTarget(depth1);
+                  b.sample(kept);
+              },
+              {});
+    g.markOutput(out);
+    using U = gdi::TextureUsage;
+    for (auto mode : {graph::AliasingMode::Memory, graph::AliasingMode::ObjectReuse}) {
+        g.compile(graph::CompileOptions{.aliasing = mode});
+        EXPECT_EQ(g.texture(depth0).desc.usage, U::RenderTarget | U::Transient);
+        EXPECT_EQ(g.texture(depth1).desc.usage, U::RenderTarget | U::Transient);
+        EXPECT_FALSE(any(g.texture(kept).desc.usage, U::Transient));
+        if (mode == graph::AliasingMode::ObjectReuse) {
+            EXPECT_EQ(g.texture(depth1).physical, int(depth0.index));  // two transients share
+            EXPECT_NE(g.texture(kept).physical, int(depth0.index));
+        }
+    }
+    g.compile(graph::CompileOptions{.lazilyAllocated = true});
+    EXPECT_TRUE(g.texture(depth0).ownMemory);  // lazily allocated, outside the heap
+    EXPECT_FALSE(g.texture(kept).ownMemory);
+}
+
 TEST(RenderGraph, DisjointLifetimesShareMemoryOverlappingOnesDoNot) {
     RenderGraph g;
     auto a = g.createTexture("a", {.format = Format::RGBA16F, .width = 16, .height = 16});
@@ -844,6 +885,13 @@ TEST_P(RenderGraphOnDevice, MultisampledTransientsAndResolves) {
     g.compile(d, true);
     EXPECT_EQ(g.texture(msColor).desc.sampleCount, 4u);
     EXPECT_TRUE(g.texture(depth).used());  // written by the resolve even though nothing samples it
+    // The multisampled targets live inside the pass (resolved, never stored): Transient; the
+    // resolve targets and the sampled colour are not.
+    using U = TextureUsage;
+    EXPECT_EQ(g.texture(msColor).desc.usage, U::RenderTarget | U::Transient);
+    EXPECT_EQ(g.texture(msDepth).desc.usage, U::RenderTarget | U::Transient);
+    EXPECT_FALSE(any(g.texture(color).desc.usage, U::Transient));
+    EXPECT_FALSE(any(g.texture(depth).desc.usage, U::Transient));
     auto cmd = d.createCommandList();
     g.execute(*cmd);
     d.wait(d.submit(*cmd));

@@ -21,6 +21,7 @@ TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const 
     if (d.sampleCount > 1)
         fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
     aspect(d.format, r.aspect, w);
+    transientContents(d, w);
     if (r.mipLevel >= d.mipLevels)
         fail(w, "mip level " + std::to_string(r.mipLevel) + " out of range (" +
                     std::to_string(d.mipLevels) + " levels)");

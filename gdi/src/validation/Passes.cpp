@@ -33,9 +33,14 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
     if (limits.maxColorAttachments && colors.size() > limits.maxColorAttachments)
         fail(what, std::to_string(colors.size()) + " colour attachments exceed the device limit");
     uint32_t w = 0, h = 0, samples = 0;
-    auto check = [&](const AttachmentInfo& a, const std::string& name) {
+    auto check = [&](const AttachmentInfo& a, const std::string& name, LoadOp load, StoreOp store) {
         if (!any(a.usage, TextureUsage::RenderTarget))
             fail(what, name + " texture lacks RenderTarget usage");
+        if (any(a.usage, TextureUsage::Transient) &&
+            (load == LoadOp::Load || store == StoreOp::Store))
+            fail(what, name +
+                           " is Transient: it is loaded by Clear or DontCare and stored "
+                           "DontCare (its contents live inside the pass)");
         if (w == 0 && h == 0) {
             w = a.width;
             h = a.height;
@@ -59,11 +64,14 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
             fail(what, name + " resolve target size differs");
         if (!any(dst.usage, TextureUsage::RenderTarget))
             fail(what, name + " resolve target lacks RenderTarget usage");
+        if (any(dst.usage, TextureUsage::Transient))
+            fail(what, name + " resolve target is Transient: a resolve stores what it writes");
     };
     for (size_t i = 0; i < colors.size(); ++i) {
         const std::string name = "colour attachment " + std::to_string(i);
         if (isDepthFormat(colors[i].format)) fail(what, name + " has a depth format");
-        check(colors[i], name);
+        const ColorAttachment a = i < d.colors.size() ? d.colors[i] : ColorAttachment{};
+        check(colors[i], name, a.load, a.store);
         // NaN or infinity converts to a format's values differently per driver (and a unorm
         // target has no such value): a clear colour is finite.
         if (i < d.colors.size() && d.colors[i].load == LoadOp::Clear)
@@ -76,7 +84,7 @@ Rect renderPass(const RenderPassDesc& d, const std::vector<AttachmentInfo>& colo
         if (!isDepthFormat(depth->format))
             fail(what, "depth attachment has colour format " +
                            std::string(formatInfo(depth->format).name));
-        check(*depth, "depth attachment");
+        check(*depth, "depth attachment", d.depth.load, d.depth.store);
         const float z = d.depth.clearDepth;  // Vulkan's VkClearDepthStencilValue rule
         if (d.depth.load == LoadOp::Clear && !(z >= 0.0f && z <= 1.0f))
             fail(what, "depth attachment: clearDepth " + std::to_string(z) + " is not in [0, 1]");

@@ -76,6 +76,11 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
         fail(what, "mipLevels " + std::to_string(d.mipLevels) + " not in [1, " +
                        std::to_string(maxMips) + "]");
     if (d.usage == TextureUsage::None) fail(what, "usage is None");
+    if (any(d.usage, TextureUsage::Transient) &&
+        (d.usage != (TextureUsage::Transient | TextureUsage::RenderTarget) || d.mipLevels != 1))
+        fail(what,
+             "a Transient texture is a RenderTarget only (no Sampled, Storage, CopySrc or "
+             "CopyDst usage) of one mip level: its contents live inside one render pass");
     if (isDepthFormat(d.format) && any(d.usage, TextureUsage::Storage))
         fail(what, "depth format " + std::string(formatInfo(d.format).name) +
                        " cannot be a storage texture");
@@ -205,9 +210,15 @@ void subresource(const TextureDesc& d, Subresource at, const char* what, const s
 void readable(const TextureDesc& d, Subresource at, const char* what, const std::string& name) {
     subresource(d, at, what, name);
     const std::string w = std::string(what) + ": " + label("texture", name.c_str());
+    transientContents(d, w);
     if (d.sampleCount > 1)
         fail(w, "is multisampled: resolve it into a single-sample texture to read it");
     if (isCompressedFormat(d.format)) fail(w, "block-compressed textures cannot be read back");
+}
+
+void transientContents(const TextureDesc& d, const std::string& what) {
+    if (any(d.usage, TextureUsage::Transient))
+        fail(what, "is Transient: its contents live only inside a render pass");
 }
 
 void mipGeneration(const TextureDesc& d, const std::string& name) {
@@ -221,6 +232,7 @@ void mipGeneration(const TextureDesc& d, const std::string& name) {
 void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char* what,
                 const std::string& name) {
     subresource(d, at, what, name);
+    transientContents(d, std::string(what) + ": " + label("texture", name.c_str()));
     const Extent3 e = mipExtent(d, at.mipLevel);
     const uint64_t expected = imageByteSize(d.format, e.width, e.height);
     if (size != expected)

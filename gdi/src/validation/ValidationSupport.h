@@ -44,7 +44,8 @@ inline std::string textureUsageNames(TextureUsage u, const char* separator = "|"
                        {T::RenderTarget, "RenderTarget"},
                        {T::Storage, "Storage"},
                        {T::CopySrc, "CopySrc"},
-                       {T::CopyDst, "CopyDst"}},
+                       {T::CopyDst, "CopyDst"},
+                       {T::Transient, "Transient"}},
                       separator);
 }
 

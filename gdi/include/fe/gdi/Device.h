@@ -97,7 +97,8 @@
 //    allow) are single-mip 2D render targets; pipelines drawing into them set
 //    MultisampleState::sampleCount to match. A pass resolves them into single-sample textures:
 //    colour by averaging, depth by taking sample 0 (see DepthAttachment). They cannot be sampled
-//    or read back.
+//    or read back. Attachments whose contents live inside one pass (a resolved multisampled
+//    target, a depth buffer read by no later pass) may be TextureUsage::Transient.
 //  - Shadow maps: RasterState depth bias and depth clamp; a SamplerDesc with compareEnable makes
 //    sampler2DShadow / sampler2DArrayShadow / samplerCubeShadow return 0..1, filtered (PCF) when Linear.
 //  - Indirect work: records (DrawIndirectArgs, DrawIndexedIndirectArgs, DispatchIndirectArgs) in
@@ -117,10 +118,10 @@
 //    readback and barriers take the texture, not a view; views go before their texture.
 // Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
 // render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
-// compressed_bc, msaa_resolve, msaa_multiple_targets, view_mip_range, view_layer_and_face,
-// view_format_srgb_unorm, view_swizzle, view_as_attachment, region_upload_row_pitch,
-// region_copies, depth_stencil_buffer_copies, texture_copy_between_mips, shadow_compare_pcf,
-// draw_indirect, dispatch_indirect.
+// compressed_bc, msaa_resolve, transient_attachments, msaa_multiple_targets, view_mip_range,
+// view_layer_and_face, view_format_srgb_unorm, view_swizzle, view_as_attachment,
+// region_upload_row_pitch, region_copies, depth_stencil_buffer_copies, texture_copy_between_mips,
+// shadow_compare_pcf, draw_indirect, dispatch_indirect.
 //
 // Pipelines and shaders
 // ---------------------
@@ -377,6 +378,12 @@ enum class TextureUsage : uint32_t {
     Storage = 1 << 2,
     CopySrc = 1 << 3,
     CopyDst = 1 << 4,
+    // With RenderTarget only: contents live inside one render pass (loaded by Clear or DontCare,
+    // stored DontCare, resolvable), never sampled, copied or read back. Vulkan makes it a
+    // transient attachment in lazily allocated memory where the device has it
+    // (DeviceFeatures::lazilyAllocatedMemory: tile GPUs keep it on chip); the render graph gives
+    // it to attachments used by one pass only.
+    Transient = 1 << 5,
     FlagsMarker = 0
 };
 
@@ -1156,6 +1163,9 @@ struct DeviceFeatures {
     // from inside it, and writes there never reach memory outside it (Vulkan's robustBufferAccess
     // when DeviceCreateDesc::robustBufferAccess asks for it; a GL robust-access context).
     bool robustBufferAccess = false;
+    // TextureUsage::Transient textures take memory only while a pass needs it (Vulkan's
+    // LAZILY_ALLOCATED memory type); elsewhere they take memory like any texture.
+    bool lazilyAllocatedMemory = false;
 };
 
 struct DeviceInfo {

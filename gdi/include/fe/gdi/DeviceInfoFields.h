@@ -52,6 +52,7 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("occlusionQueries", f.occlusionQueries);
     visit("pipelineStatistics", f.pipelineStatistics);
     visit("robustBufferAccess", f.robustBufferAccess);
+    visit("lazilyAllocatedMemory", f.lazilyAllocatedMemory);
 }
 
 namespace detail {

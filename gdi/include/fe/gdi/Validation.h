@@ -88,6 +88,8 @@ void textureUsage(const TextureDesc& d, TextureUsage usage, const std::string& n
 void subresource(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
 // readTexture: an existing subresource of a single-sample, uncompressed texture.
 void readable(const TextureDesc& d, Subresource at, const char* what, const std::string& name);
+// A Transient texture's contents cannot be read, written or copied outside a pass.
+void transientContents(const TextureDesc& d, const std::string& what);
 // generateMips: a single-sample colour texture of a filterable (not integer, not compressed) format.
 void mipGeneration(const TextureDesc& d, const std::string& name);
 // Vulkan and GL need a view or binding per kind; these say what each dimension is.
