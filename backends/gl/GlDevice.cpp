@@ -306,7 +306,8 @@ bool GlDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) const
     // GL 4.5 core requires every format here as texture and render target; image load/store
     // has no sRGB, packed-float-to-RGB or depth formats.
     if (any(usage, gdi::TextureUsage::Storage) &&
-        (format == gdi::Format::RGBA8_SRGB || gdi::isDepthFormat(format)))
+        (format == gdi::Format::RGBA8_SRGB || format == gdi::Format::BGRA8 ||
+         format == gdi::Format::BGRA8_SRGB || gdi::isDepthFormat(format)))
         return false;
     return true;
 }

@@ -16,6 +16,11 @@ GlFormat toGlFormat(gdi::Format f) {
             return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
         case F::RGBA8_SRGB:
             return {GL_SRGB8_ALPHA8, GL_RGBA, GL_UNSIGNED_BYTE};
+        // GL has no BGRA internal format: stored as RGBA, BGRA in every transfer.
+        case F::BGRA8:
+            return {GL_RGBA8, GL_BGRA, GL_UNSIGNED_BYTE};
+        case F::BGRA8_SRGB:
+            return {GL_SRGB8_ALPHA8, GL_BGRA, GL_UNSIGNED_BYTE};
         case F::RGBA16F:
             return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
         case F::RG16F:

@@ -59,6 +59,10 @@ VkFormat toVkFormat(gdi::Format f) {
             return VK_FORMAT_R8G8B8A8_UNORM;
         case F::RGBA8_SRGB:
             return VK_FORMAT_R8G8B8A8_SRGB;
+        case F::BGRA8:
+            return VK_FORMAT_B8G8R8A8_UNORM;
+        case F::BGRA8_SRGB:
+            return VK_FORMAT_B8G8R8A8_SRGB;
         case F::RGBA16F:
             return VK_FORMAT_R16G16B16A16_SFLOAT;
         case F::RG16F:

@@ -26,6 +26,9 @@ bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) c
     VkFormat vf = toVkFormat(format);
     if (vf == VK_FORMAT_UNDEFINED) return false;
     if (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC) return false;
+    if (any(usage, gdi::TextureUsage::Storage) &&
+        (format == gdi::Format::BGRA8 || format == gdi::Format::BGRA8_SRGB))
+        return false;  // no SPIR-V image format names them (formatCaps agrees)
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
     VkFormatFeatureFlags need = requiredFeatures(format, usage);
@@ -50,6 +53,7 @@ gdi::FormatCaps VulkanDevice::formatCaps(gdi::Format format) const {
     // The formats beyond the base set need the shader feature as well (enabled when offered).
     c.storage =
         (f & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+        supportsFormat(format, gdi::TextureUsage::Storage) &&
         (!gdi::isExtendedStorageFormat(format) || enabled_.shaderStorageImageExtendedFormats);
     if (c.renderTarget) {
         VkImageFormatProperties ip{};

@@ -239,14 +239,16 @@ void VulkanSwapchain::destroyChain(VkSwapchainKHR chain) {
     if (chain) vkDestroySwapchainKHR(device_, chain, nullptr);
 }
 
-void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height) {
-    if (staging_ && stagingExtent_.width == width && stagingExtent_.height == height) return;
+void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height, VkFormat format) {
+    if (staging_ && stagingExtent_.width == width && stagingExtent_.height == height &&
+        stagingFormat_ == format)
+        return;
     check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");  // the last present may still read it
     vkDestroyImage(device_, staging_, nullptr), staging_ = VK_NULL_HANDLE;
     vkFreeMemory(device_, stagingMemory_, nullptr), stagingMemory_ = VK_NULL_HANDLE;
     VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     ci.imageType = VK_IMAGE_TYPE_2D;
-    ci.format = VK_FORMAT_R8G8B8A8_UNORM;
+    ci.format = format;
     ci.extent = {width, height, 1};
     ci.mipLevels = ci.arrayLayers = 1;
     ci.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -278,6 +280,7 @@ void VulkanSwapchain::ensureStaging(uint32_t width, uint32_t height) {
         "vkAllocateMemory");
     check(vkBindImageMemory(device_, staging_, stagingMemory_, 0), "vkBindImageMemory");
     stagingExtent_ = {width, height};
+    stagingFormat_ = format;
 }
 
 void VulkanSwapchain::record(VkCommandBuffer cb, VkImage target, const Source& src) {
@@ -326,7 +329,7 @@ void VulkanSwapchain::record(VkCommandBuffer cb, VkImage target, const Source& s
                              VK_ACCESS_TRANSFER_WRITE_BIT));
     }
     // Same size, NEAREST: every texel lands on one pixel, converted per channel (R to R), so the
-    // blit is the RGBA -> BGRA swizzle and the bytes stay the same. Row 0 is the top on both.
+    // blit is the RGBA <-> BGRA swizzle where needed and the colours stay the same. Row 0 is the top on both.
     VkImageBlit blit{};
     blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.srcOffsets[1] = blit.dstOffsets[1] = {int32_t(w), int32_t(h), 1};
@@ -342,7 +345,9 @@ void VulkanSwapchain::record(VkCommandBuffer cb, VkImage target, const Source& s
 
 bool VulkanSwapchain::present(const Source& src) {
     const platform::GlfwWindow::Size size = window_->prepare(src.width, src.height);
-    if (src.srgb) ensureStaging(src.width, src.height);
+    if (src.srgb)  // the UNORM twin of the texture's format takes its bits
+        ensureStaging(src.width, src.height,
+                      src.bgra ? VK_FORMAT_B8G8R8A8_UNORM : VK_FORMAT_R8G8B8A8_UNORM);
     for (int attempt = 0;; ++attempt) {
         if (!swapchain_ || stale_ || extent_.width != size.width || extent_.height != size.height)
             recreate(size.width, size.height);
@@ -448,7 +453,9 @@ bool VulkanDevice::present(gdi::TextureHandle h) {
     }
     try {
         return swapchain_->present(
-            {t.image, t.desc.width, t.desc.height, t.desc.format == gdi::Format::RGBA8_SRGB});
+            {t.image, t.desc.width, t.desc.height,
+             t.desc.format == gdi::Format::RGBA8_SRGB || t.desc.format == gdi::Format::BGRA8_SRGB,
+             t.desc.format == gdi::Format::BGRA8 || t.desc.format == gdi::Format::BGRA8_SRGB});
     } catch (const SwapchainDeviceLost& e) {
         throw loss_.lose("vulkan", std::string(e.what()) + " returned VK_ERROR_DEVICE_LOST");
     }

@@ -55,9 +55,10 @@ public:
     const std::string& presentMode() const { return presentModeText_; }
 
     struct Source {
-        VkImage image = VK_NULL_HANDLE;  // in VK_IMAGE_LAYOUT_GENERAL, RGBA8 or RGBA8_SRGB
+        VkImage image = VK_NULL_HANDLE;  // in VK_IMAGE_LAYOUT_GENERAL, RGBA8 or BGRA8 (or sRGB)
         uint32_t width = 0, height = 0;
         bool srgb = false;
+        bool bgra = false;
     };
     // Shows `source` in the window, sized to it; false once the user has closed the window.
     bool present(const Source& source);
@@ -71,7 +72,7 @@ public:
 private:
     void recreate(uint32_t width, uint32_t height);
     void destroyChain(VkSwapchainKHR chain);
-    void ensureStaging(uint32_t width, uint32_t height);
+    void ensureStaging(uint32_t width, uint32_t height, VkFormat format);
     void record(VkCommandBuffer cb, VkImage target, const Source& source);
 
     struct Frame {
@@ -105,6 +106,7 @@ private:
     VkImage staging_ = VK_NULL_HANDLE;
     VkDeviceMemory stagingMemory_ = VK_NULL_HANDLE;
     VkExtent2D stagingExtent_{};
+    VkFormat stagingFormat_ = VK_FORMAT_UNDEFINED;
 
     uint32_t shownWidth_ = 0, shownHeight_ = 0;  // what the last present put on screen
 };

@@ -29,6 +29,8 @@ const FormatInfo kFormats[] = {
     {"BC5", 0, 2, false, false, false, false, false, 4, 16},
     {"BC7", 0, 4, false, false, false, false, false, 4, 16},
     {"BC7_SRGB", 0, 4, false, true, false, false, false, 4, 16},
+    {"BGRA8", 4, 4},
+    {"BGRA8_SRGB", 4, 4, false, true},
 };
 static_assert(sizeof(kFormats) / sizeof(kFormats[0]) == size_t(Format::Count));
 
@@ -95,13 +97,22 @@ Format srgbPair(Format f) {
             return Format::BC7_SRGB;
         case Format::BC7_SRGB:
             return Format::BC7;
+        case Format::BGRA8:
+            return Format::BGRA8_SRGB;
+        case Format::BGRA8_SRGB:
+            return Format::BGRA8;
         default:
             return Format::Undefined;
     }
 }
 
+// BGRA8 texels keep their bytes only among the BGRA8 formats: GL stores them as RGBA, so a
+// copy or view into another 4-byte format would see the bytes differently there.
+static bool isBgra(Format f) { return f == Format::BGRA8 || f == Format::BGRA8_SRGB; }
+
 bool formatsCompatible(Format a, Format b) {
     if (a == b || (srgbPair(a) == b && b != Format::Undefined)) return true;
+    if (isBgra(a) || isBgra(b)) return false;
     const FormatInfo &fa = formatInfo(a), &fb = formatInfo(b);
     return !isDepthFormat(a) && !isDepthFormat(b) && !isCompressedFormat(a) &&
            !isCompressedFormat(b) && a != Format::Undefined && b != Format::Undefined &&

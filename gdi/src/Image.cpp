@@ -104,6 +104,10 @@ std::array<float, 4> Image::texel(uint32_t x, uint32_t y) const {
         case Format::RGBA8_SRGB:
             for (int i = 0; i < 4; ++i) out[i] = p[i] / 255.0f;
             break;
+        case Format::BGRA8:
+        case Format::BGRA8_SRGB:
+            for (int i = 0; i < 4; ++i) out[i] = p[i == 3 ? 3 : 2 - i] / 255.0f;
+            break;
         case Format::RGBA16F:
             for (int i = 0; i < 4; ++i) out[i] = f16(i);
             break;
@@ -202,6 +206,12 @@ Image Image::fromTexels(uint32_t width, uint32_t height, Format format,
                 for (int c = 0; c < 4; ++c)
                     p[c] = uint8_t(std::nearbyint(std::clamp(t[c], 0.0f, 1.0f) * 255.0f));
                 break;
+            case Format::BGRA8:
+            case Format::BGRA8_SRGB:
+                for (int c = 0; c < 4; ++c)
+                    p[c == 3 ? 3 : 2 - c] =
+                        uint8_t(std::nearbyint(std::clamp(t[c], 0.0f, 1.0f) * 255.0f));
+                break;
             case Format::RGBA16F:
                 for (int c = 0; c < 4; ++c) put16(c, t[c]);
                 break;
@@ -268,7 +278,8 @@ void writePng(const Image& image, const std::string& path, float exposure, bool 
         throw Error("writePng: empty or truncated image for " + path);
     const int channels = alpha ? 4 : 3;
     std::vector<uint8_t> rgb(size_t(image.width) * image.height * channels);
-    const bool eightBit = image.format == Format::RGBA8 || image.format == Format::RGBA8_SRGB;
+    const bool eightBit = image.format == Format::RGBA8 || image.format == Format::RGBA8_SRGB ||
+                          image.format == Format::BGRA8 || image.format == Format::BGRA8_SRGB;
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) {
             auto t = image.texel(x, y);

@@ -661,6 +661,8 @@ std::vector<CaseImage> depthStencilBufferCopies(Device& d) {
         });
         d.writeTexture(source, {0, 1}, bytesOf(a.data));
         d.writeTexture(target, {0, 1}, bytesOf(expected.data));
+        const Image layer0 = expected;  // copies into layer 1 leave layer 0 as it is
+        d.writeTexture(target, {0, 0}, bytesOf(layer0.data));
         const BufferHandle staging = o.add(
             d.createBuffer({.size = 4096, .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
 
@@ -721,8 +723,7 @@ std::vector<CaseImage> depthStencilBufferCopies(Device& d) {
         }
         out.push_back(
             exact(name + " boxes copied per aspect", d.readTexture(target, {0, 1}), expected));
-        out.push_back(exact(name + " layer 0 untouched", d.readTexture(target, {0, 0}),
-                            expectImage(f, [](uint32_t, uint32_t) -> Texel { return {}; })));
+        out.push_back(exact(name + " layer 0 untouched", d.readTexture(target, {0, 0}), layer0));
 
         auto list = d.createCommandList();
         if (hasTwoAspects(f)) {
@@ -767,6 +768,104 @@ std::vector<CaseImage> depthStencilBufferCopies(Device& d) {
     }
     return out;
 }
+
+// BGRA8 and BGRA8_SRGB: texels written in blue, green, red, alpha byte order are sampled as RGBA
+// (into an RGBA8 or RGBA8_SRGB target), drawn into (the read-back bytes are BGRA), copied to a
+// buffer in that order and between the two BGRA formats bit for bit. Copies or views between
+// BGRA and RGBA, and BGRA storage textures, are the same Error everywhere (GL stores BGRA8 as RGBA).
+std::vector<CaseImage> bgra8Formats(Device& d) {
+    std::vector<CaseImage> out;
+    FullscreenSampler sampler(d, "conformance/textured.frag");
+    DeviceObjects o(d);
+    const TextureUsage all = TextureUsage::Sampled | TextureUsage::RenderTarget |
+                             TextureUsage::CopySrc | TextureUsage::CopyDst;
+    for (Format f : {Format::BGRA8, Format::BGRA8_SRGB}) {
+        const std::string name(formatInfo(f).name);
+        if (!d.formatCaps(f).sampled || !d.formatCaps(f).renderTarget) {
+            FE_CONFORMANCE_CHECK(false,
+                                 (name + " is sampled and rendered on every backend").c_str());
+            continue;
+        }
+        const bool srgb = f == Format::BGRA8_SRGB;
+        const TextureHandle bgra = o.add(d.createTexture({.format = f,
+                                                          .width = kCaseSize,
+                                                          .height = kCaseSize,
+                                                          .usage = all,
+                                                          .viewFormats = {srgbPair(f)},
+                                                          .debugName = "bgra"}));
+        std::vector<uint8_t> bytes(kCaseSize * kCaseSize * 4);
+        for (uint32_t i = 0; i < kCaseSize * kCaseSize; ++i) {
+            const uint32_t x = i % kCaseSize, y = i / kCaseSize;
+            bytes[4 * i + 0] = uint8_t(x * 4);  // blue
+            bytes[4 * i + 1] = uint8_t(y * 4);  // green
+            bytes[4 * i + 2] = 200;             // red
+            bytes[4 * i + 3] = 255;
+        }
+        d.writeTexture(bgra, {}, bytesOf(bytes));
+        // Sampled: RGBA in the shader (an sRGB source into an sRGB target: decoded, encoded back).
+        const Format rgbaTarget = srgb ? Format::RGBA8_SRGB : Format::RGBA8;
+        out.push_back(
+            drawn8(name + " sampled as RGBA", sampler.draw(d, bgra, rgbaTarget),
+                   expectImage(rgbaTarget, [](uint32_t x, uint32_t y) -> Texel {
+                       return {200 / 255.0f, float(y * 4) / 255.0f, float(x * 4) / 255.0f, 1};
+                   })));
+        // Drawn into: the same RGBA values land as BGRA bytes.
+        const TextureHandle rgba = o.add(d.createTexture(
+            {.format = rgbaTarget, .width = kCaseSize, .height = kCaseSize, .usage = all}));
+        std::vector<uint8_t> swapped = bytes;
+        for (size_t i = 0; i < swapped.size(); i += 4) std::swap(swapped[i], swapped[i + 2]);
+        d.writeTexture(rgba, {}, bytesOf(swapped));
+        Image drawn = sampler.draw(d, rgba, f);
+        out.push_back(
+            drawn8(name + " drawn into", drawn, expectImage(f, [](uint32_t x, uint32_t y) -> Texel {
+                       return {200 / 255.0f, float(y * 4) / 255.0f, float(x * 4) / 255.0f, 1};
+                   })));
+        FE_CONFORMANCE_CHECK(std::abs(int(drawn.data[4 * 70 + 0]) - 6 * 4) <= 1 &&
+                                 std::abs(int(drawn.data[4 * 70 + 2]) - 200) <= 1,
+                             "read back in blue, green, red, alpha byte order");
+        // To a buffer and to the other BGRA format: the bytes as written.
+        const BufferHandle buffer = o.add(d.createBuffer(
+            {.size = bytes.size(), .usage = BufferUsage::CopyDst | BufferUsage::CopySrc}));
+        const TextureHandle twin = o.add(d.createTexture(
+            {.format = srgbPair(f), .width = kCaseSize, .height = kCaseSize, .usage = all}));
+        auto cmd = d.createCommandList();
+        cmd->copyTextureToBuffer(buffer, 0, bgra, {});
+        cmd->copyTexture(twin, {}, bgra, {});
+        d.wait(d.submit(*cmd));
+        FE_CONFORMANCE_CHECK(d.readBuffer(buffer, 0, bytes.size()) == bytes,
+                             "copyTextureToBuffer gives the BGRA bytes");
+        FE_CONFORMANCE_CHECK(d.readTexture(twin).data == bytes,
+                             "copyTexture into the sRGB/UNORM twin moves the bytes");
+        out.push_back(
+            drawn8(name + " through its twin view",
+                   sampler.draw(d, o.add(d.createTextureView(bgra, {.format = srgbPair(f)})),
+                                srgbPair(rgbaTarget)),
+                   expectImage(srgbPair(rgbaTarget), [](uint32_t x, uint32_t y) -> Texel {
+                       return {200 / 255.0f, float(y * 4) / 255.0f, float(x * 4) / 255.0f, 1};
+                   })));
+        auto list = d.createCommandList();
+        expectError(
+            [&] { list->copyTexture(rgba, {}, bgra, {}); },
+            name + " texels cannot be copied into " + std::string(formatInfo(rgbaTarget).name));
+        d.wait(d.submit(*list));
+        expectError(
+            [&] {
+                d.createTexture({.format = f,
+                                 .width = 8,
+                                 .height = 8,
+                                 .usage = TextureUsage::Sampled,
+                                 .viewFormats = {Format::RGBA8}});
+            },
+            "view format RGBA8 is not compatible with " + name);
+        expectError(
+            [&] {
+                d.createTexture(
+                    {.format = f, .width = 8, .height = 8, .usage = TextureUsage::Storage});
+            },
+            name + " cannot be a storage texture");
+    }
+    return out;
+}
 }  // namespace
 
 std::vector<Case> regionAndViewCases() {
@@ -774,6 +873,7 @@ std::vector<Case> regionAndViewCases() {
         {"region_upload_row_pitch", regionUploadRowPitch},
         {"region_copies", regionCopies},
         {"depth_stencil_buffer_copies", depthStencilBufferCopies},
+        {"bgra8_formats", bgra8Formats},
         {"texture_copy_between_mips", textureCopyBetweenMips},
         {"view_mip_range", viewMipRange},
         {"view_layer_and_face", viewLayerAndFace},

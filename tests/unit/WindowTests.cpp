@@ -76,8 +76,13 @@ protected:
     std::unique_ptr<gdi::Device> device;
 };
 
-// Uploads `src` into a new texture, presents it and expects the window to show exactly its bytes.
+// Uploads `src` into a new texture, presents it and expects the window to show exactly its bytes
+// (in RGBA order: a BGRA8 texture's red byte is shown as red).
 void expectPresentedExactly(gdi::Device& device, const gdi::Image& src, const std::string& what) {
+    gdi::Image want = src;
+    if (src.format == gdi::Format::BGRA8 || src.format == gdi::Format::BGRA8_SRGB)
+        for (size_t i = 0; i + 3 < want.data.size(); i += 4)
+            std::swap(want.data[i], want.data[i + 2]);
     gdi::TextureHandle t =
         device.createTexture({.format = src.format, .width = src.width, .height = src.height});
     device.writeTexture(t, {}, gdi::bytesOf(src.data));
@@ -87,8 +92,8 @@ void expectPresentedExactly(gdi::Device& device, const gdi::Image& src, const st
     ASSERT_EQ(shown.width, src.width) << what;
     ASSERT_EQ(shown.height, src.height) << what;
     size_t differing = 0, first = shown.data.size();
-    for (size_t i = 0; i < shown.data.size() && i < src.data.size(); ++i)
-        if (shown.data[i] != src.data[i]) ++differing, first = std::min(first, i);
+    for (size_t i = 0; i < shown.data.size() && i < want.data.size(); ++i)
+        if (shown.data[i] != want.data[i]) ++differing, first = std::min(first, i);
     EXPECT_EQ(differing, 0u) << what << ": first differing byte " << first << " (pixel "
                              << first / 4 % src.width << "," << first / 4 / src.width << ")";
 }
@@ -134,7 +139,8 @@ TEST_P(WindowBackend, IsADeviceWithAWindow) {
 // The window shows the texture's bytes unchanged (no sRGB re-encoding), upright, at its size.
 // The sizes alternate, so the window grows and shrinks (Vulkan: the swap chain is recreated).
 TEST_P(WindowBackend, PresentShowsTheTextureBytesUpright) {
-    for (gdi::Format f : {gdi::Format::RGBA8, gdi::Format::RGBA8_SRGB})
+    for (gdi::Format f :
+         {gdi::Format::RGBA8, gdi::Format::RGBA8_SRGB, gdi::Format::BGRA8, gdi::Format::BGRA8_SRGB})
         for (auto [w, h] : {std::pair{64u, 48u}, std::pair{96u, 80u}})
             expectPresentedExactly(*device, pattern(w, h, f),
                                    std::string(gdi::formatInfo(f).name) + " " + std::to_string(w) +
@@ -183,9 +189,10 @@ TEST_P(WindowBackend, PresentRejectsBadTextures) {
         std::string::npos);
     gdi::TextureHandle hdr =
         device->createTexture({.format = gdi::Format::RGBA32F, .width = 8, .height = 8});
-    EXPECT_NE(
-        fe::testing::errorOf([&] { device->present(hdr); }).find("present RGBA8 or RGBA8_SRGB"),
-        std::string::npos);
+    EXPECT_NE(fe::testing::errorOf([&] {
+                  device->present(hdr);
+              }).find("present RGBA8, RGBA8_SRGB, BGRA8 or BGRA8_SRGB"),
+              std::string::npos);
     gdi::TextureHandle noCopy = device->createTexture(
         {.width = 8, .height = 8, .usage = U::Sampled, .debugName = "nocopy"});
     EXPECT_NE(fe::testing::errorOf([&] {

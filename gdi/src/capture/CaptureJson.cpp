@@ -59,7 +59,8 @@ void putName(json& j, const char* name) {
     if (name) j["name"] = name;
 }
 constexpr BufferUsage kAllBufferUsage = BufferUsage(127);
-constexpr TextureUsage kAllTextureUsage = TextureUsage(31);
+constexpr TextureUsage kAllTextureUsage =
+    TextureUsage((uint32_t(TextureUsage::Transient) << 1) - 1);
 constexpr Format kLastFormat = Format(uint32_t(Format::Count) - 1);
 
 json toJson(const StencilFaceState& s) {

@@ -202,8 +202,8 @@ private:
             d.heap = {}, d.heapOffset = 0;
         else
             d.heap = {lookup(heaps_, d.heap.id)};
-        if (r.contains(
-                "restore")) {  // a trimmed capture's state is written into it (restoreTexture)
+        if (r.contains("restore") &&  // a trimmed capture's state is written into it
+            !any(d.usage, TextureUsage::Transient)) {  // (restoreTexture); a transient has none
             TextureDesc writable = d;
             writable.usage = d.usage | TextureUsage::CopyDst;
             if (device_.supportsFormat(d.format, writable.usage)) d = writable;
@@ -493,8 +493,9 @@ private:
         if (!probing() || !any(d.usage, TextureUsage::RenderTarget) ||
             any(d.usage, TextureUsage::CopySrc) || d.sampleCount > 1)
             return device_.createTexture(d);
-        TextureDesc readable = d;
-        readable.usage = d.usage | TextureUsage::CopySrc;
+        TextureDesc readable = d;  // a Transient one becomes an ordinary target to be read
+        readable.usage = TextureUsage(uint32_t(d.usage) & ~uint32_t(TextureUsage::Transient)) |
+                         TextureUsage::CopySrc;
         if (!device_.supportsFormat(d.format, readable.usage)) return device_.createTexture(d);
         try {
             return device_.createTexture(readable);

@@ -81,6 +81,10 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
         fail(what,
              "a Transient texture is a RenderTarget only (no Sampled, Storage, CopySrc or "
              "CopyDst usage) of one mip level: its contents live inside one render pass");
+    if ((d.format == Format::BGRA8 || d.format == Format::BGRA8_SRGB) &&
+        any(d.usage, TextureUsage::Storage))
+        fail(what, std::string(formatInfo(d.format).name) +
+                       " cannot be a storage texture (no shader image format names it)");
     if (isDepthFormat(d.format) && any(d.usage, TextureUsage::Storage))
         fail(what, "depth format " + std::string(formatInfo(d.format).name) +
                        " cannot be a storage texture");
@@ -244,9 +248,10 @@ void uploadSize(const TextureDesc& d, Subresource at, uint64_t size, const char*
 void presentTexture(const TextureDesc& d, const std::string& name) {
     const std::string what =
         "present: texture" + (name.empty() ? std::string() : " '" + name + "'");
-    if (d.format != Format::RGBA8 && d.format != Format::RGBA8_SRGB)
+    if (d.format != Format::RGBA8 && d.format != Format::RGBA8_SRGB && d.format != Format::BGRA8 &&
+        d.format != Format::BGRA8_SRGB)
         fail(what, "format " + std::string(formatInfo(d.format).name) +
-                       " cannot be shown; present RGBA8 or RGBA8_SRGB");
+                       " cannot be shown; present RGBA8, RGBA8_SRGB, BGRA8 or BGRA8_SRGB");
     if (!any(d.usage, TextureUsage::CopySrc))
         fail(what, "needs CopySrc usage (present copies it into the window)");
 }

@@ -119,7 +119,7 @@
 // Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
 // render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
 // compressed_bc, msaa_resolve, transient_attachments, msaa_multiple_targets, view_mip_range,
-// view_layer_and_face, view_format_srgb_unorm, view_swizzle, view_as_attachment,
+// view_layer_and_face, view_format_srgb_unorm, view_swizzle, view_as_attachment, bgra8_formats,
 // region_upload_row_pitch, region_copies, depth_stencil_buffer_copies, texture_copy_between_mips,
 // shadow_compare_pcf, draw_indirect, dispatch_indirect.
 //
@@ -1355,8 +1355,8 @@ public:
     virtual LiveObjects liveObjects() const = 0;
 
     // Window presentation, where DeviceFeatures::window (vulkan-glfw, gl-glfw): after the work
-    // submitted so far, shows `texture` (RGBA8 or RGBA8_SRGB, CopySrc usage) in the window,
-    // sized to it, bytes unchanged, and swaps. Returns false once the user has closed the window.
+    // submitted so far, shows `texture` (RGBA8, BGRA8 or their sRGB forms; CopySrc usage) in the
+    // window, sized to it, colours unchanged, and swaps. Returns false once the user has closed the window.
     // Headless backends throw Error.
     virtual bool present(TextureHandle texture) {
         throw Error(info().backend +

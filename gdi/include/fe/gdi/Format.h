@@ -31,6 +31,11 @@ enum class Format : uint8_t {
     BC5,  // two channels (RG), 16 bytes
     BC7,  // RGBA, eight block modes, 16 bytes
     BC7_SRGB,
+    // Bytes in the order blue, green, red, alpha (the common swap-chain and interop layout);
+    // shaders see RGBA as for RGBA8. Copied only to and from BGRA8 formats (GL stores them RGBA),
+    // never storage images (SPIR-V has no such image format).
+    BGRA8,
+    BGRA8_SRGB,
     Count
 };
 
