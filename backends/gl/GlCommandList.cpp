@@ -154,7 +154,7 @@ void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     inPass_ = true;
     pipeline_ = nullptr;  // a render pass starts with no pipeline
     readyToDraw_ = false;
-    secondaryPass_ = restricted_ = desc.secondaryLists;
+    secondaryPass_ = desc.secondaryLists;  // the primary may draw between executed lists
 }
 
 void GlCommandList::endRenderPass() {
@@ -166,7 +166,7 @@ void GlCommandList::endRenderPass() {
     readyToDraw_ = false;
     endPassFeedback();
     if (secondaryPass_) {  // as on Vulkan, where vkCmdExecuteCommands leaves the state undefined
-        secondaryPass_ = restricted_ = false;
+        secondaryPass_ = false;
         unbindAll();
     }
     stream_->push(cmd::EndRenderPass{});
@@ -174,13 +174,17 @@ void GlCommandList::endRenderPass() {
 
 void GlCommandList::restrictedCall(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
-    if (ended_)
-        throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
-    gdi::validate::onlyExecuteSecondary(what);
+    gdi::validate::afterEndSecondary(what);  // restricted_: an ended secondary list
 }
 
 void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     checkDevice("beginSecondary");
+    if (ended_) {  // recorded anew: primaries that executed the old recording keep it
+        recorded_.reset();
+        secondary_ = ended_ = restricted_ = inPass_ = false;
+        depth_ = 0;
+        restart();
+    }
     if (!stream_->empty() || secondary_ || inPass_) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc);
     restart();
@@ -200,6 +204,8 @@ void GlCommandList::endSecondary() {
     ended_ = restricted_ = true;
     readyToDraw_ = false;
     endPassFeedback();
+    recorded_ =
+        std::shared_ptr<const gdi::cmd::CommandStream>(std::exchange(stream_, dev_.takeStream()));
 }
 
 void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
@@ -210,15 +216,20 @@ void GlCommandList::executeSecondary(std::span<gdi::CommandList* const> lists) {
             gdi::validate::executedSecondary(inPass_ && secondaryPass_, l.secondary_, l.ended_,
                                              l.signature_, signature_, i);
         });
-    // Each recording moves, uncopied, into this list's stream; the secondary list records anew.
+    // Each recording is shared, uncopied, with this list's stream: the secondary list keeps it
+    // for the next pass or frame that executes it.
     for (GlCommandList* l : parts) {
         destroyEpoch_ = std::min(destroyEpoch_, l->destroyEpoch_);
-        stream_->push(
-            cmd::ExecuteSecondary{stream_->adopt(std::exchange(l->stream_, dev_.takeStream()))});
-        l->secondary_ = l->ended_ = l->restricted_ = l->inPass_ = false;
-        l->depth_ = 0;
-        l->restart();
+        stream_->push(cmd::ExecuteSecondary{stream_->adopt(l->recorded_)});
     }
+    // As on Vulkan after vkCmdExecuteCommands: the primary's pipeline and bindings are unset,
+    // its viewport and scissor the render area again.
+    unbindAll();
+    pipeline_ = nullptr;
+    readyToDraw_ = false;
+    const gdi::Rect area = gdi::validate::renderArea(signature_);
+    stream_->push(cmd::SetViewport{{0, 0, float(area.width), float(area.height), 0, 1}});
+    stream_->push(cmd::SetScissor{area});
 }
 
 void GlCommandList::setPipeline(gdi::PipelineHandle h) {
@@ -299,7 +310,9 @@ void GlCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sample
     const Sampler& s = dev_.sampler(sh);
     if (s.filtersLinearly && !t.linearFilter)
         gdi::validate::notFilterable(t.label, t.desc.format, s.label);
-    bound(slot, gdi::BindingType::SampledTexture, uint8_t(1 + uint8_t(t.desc.dimension)));
+    bound(slot, gdi::BindingType::SampledTexture,
+          t.desc.sampleCount > 1 ? gdi::kTexture2DMultisampleKind
+                                 : uint8_t(1 + uint8_t(t.desc.dimension)));
     const auto span = gdi::validate::bindingSpanOf(th.id, t, t.label,
                                                    s.readsMips ? std::nullopt : std::optional(0u));
     if (feedback_.bind(slot, span, false)) kinds_[slot] |= kFeedback;
@@ -407,6 +420,16 @@ void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion
     const auto [dr, sr] =
         gdi::validate::textureCopy(d.desc, d.label, dstAt, dst == src, s.desc, s.label, srcRegion);
     stream_->push(cmd::CopyTextureRegion{dst, dr, src, sr});
+}
+
+void GlCommandList::resolveTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                                   gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) {
+    outsidePass("resolveTexture");
+    const Texture& d = copied(dst);
+    const Texture& s = copied(src);
+    const auto [dr, sr] =
+        gdi::validate::textureResolve(d.desc, d.label, dstAt, s.desc, s.label, srcRegion);
+    stream_->push(cmd::ResolveTextureRegion{dst, dr, src, sr});
 }
 
 void GlCommandList::generateMips(gdi::TextureHandle h) {

@@ -109,6 +109,8 @@ private:
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     const gdi::validate::ViewportLimits viewportLimits_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;
+    // A secondary list's recording after endSecondary, shared with the primaries executing it.
+    std::shared_ptr<const gdi::cmd::CommandStream> recorded_;
     uint64_t destroyEpoch_ = 0;  // the device's destroy count when this recording began
     bool inPass_ = false;
     int depth_ = 0;

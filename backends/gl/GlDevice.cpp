@@ -321,7 +321,7 @@ std::unique_ptr<gdi::cmd::CommandStream> GlDevice::takeStream() {
 }
 void GlDevice::returnStream(std::unique_ptr<gdi::cmd::CommandStream> stream) {
     if (!stream) return;
-    for (auto& child : stream->takeChildren()) returnStream(std::move(child));
+    stream->takeChildren();  // shared with their secondary lists, which may execute them again
     stream->reset();
     std::lock_guard lock(streamsMutex_);
     freeStreams_.push_back(std::move(stream));

@@ -89,13 +89,15 @@ void GlReplay::operator()(const cmd::ExecuteSecondary& r) {
         constants_;  // a secondary starts from zeros and leaves the primary's alone
     constants_ = {};
     constantsDirty_ = true;
-    const uint8_t primaryDynamic = std::exchange(dynamicSet_, 0);  // and from its pipelines' state
+    dynamicSet_ = 0;  // and from its pipelines' state
     stream_ = &primary->child(r.child);
     replayRecords(*stream_);
     stream_ = primary;
     constants_ = primaryConstants;
     constantsDirty_ = true;
-    dynamicSet_ = primaryDynamic;
+    // The primary's draws after it take blend constant, stencil reference and depth bias from
+    // their pipelines again (Vulkan leaves that state undefined after vkCmdExecuteCommands).
+    dynamicSet_ = 0;
 }
 
 void GlReplay::operator()(const cmd::SetConstants& r) {
@@ -537,6 +539,24 @@ void GlReplay::operator()(const cmd::CopyTextureRegion& r) {
     gl_.CopyImageSubData(s.name, s.target, GLint(a.mipLevel), GLint(a.x), GLint(a.y), GLint(a.z),
                          d.name, d.target, GLint(b.mipLevel), GLint(b.x), GLint(b.y), GLint(b.z),
                          GLsizei(a.width), GLsizei(a.height), GLsizei(a.depth));
+    gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+// A blit from the multisampled texture's framebuffer resolves it (averaging, sRGB as linear
+// values: the render pass's resolve above, by region).
+void GlReplay::operator()(const cmd::ResolveTextureRegion& r) {
+    const Texture& d = dev_.textureAt(r.dst);
+    const Texture& s = dev_.textureAt(r.src);
+    const GLuint from = dev_.framebuffer({dev_.fboAttachment(s, 0, r.srcRegion.z)}, {}, GL_NONE);
+    const GLuint to =
+        dev_.framebuffer({dev_.fboAttachment(d, r.dstAt.mipLevel, r.dstAt.z)}, {}, GL_NONE);
+    const auto& a = r.srcRegion;
+    const auto& b = r.dstAt;
+    gl_.Disable(GL_SCISSOR_TEST);  // blits honour the scissor
+    gl_.BlitNamedFramebuffer(from, to, GLint(a.x), GLint(a.y), GLint(a.x + a.width),
+                             GLint(a.y + a.height), GLint(b.x), GLint(b.y), GLint(b.x + a.width),
+                             GLint(b.y + a.height), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl_.Enable(GL_SCISSOR_TEST);
     gl_.MemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 

@@ -54,6 +54,7 @@ public:
     void operator()(const gdi::cmd::CopyTextureToBuffer& r);
     void operator()(const gdi::cmd::CopyBufferToTextureRegion& r);
     void operator()(const gdi::cmd::CopyTextureToBufferRegion& r);
+    void operator()(const gdi::cmd::ResolveTextureRegion& r);
     void operator()(const gdi::cmd::CopyTextureRegion& r);
     void operator()(const gdi::cmd::BeginTimer& r);
     void operator()(const gdi::cmd::EndTimer& r);

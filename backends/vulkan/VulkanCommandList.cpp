@@ -109,12 +109,15 @@ void VulkanCommandList::closeRecording() {
     dev_.closeRecording(std::exchange(openSince_, kNotOpen));
 }
 
+VulkanCommandList::SharedSecondary::~SharedSecondary() {
+    dev.releaseSecondary(std::span(&recording, 1), lastFence.load());
+}
+
 void VulkanCommandList::releaseNative() {
-    // Secondary recordings never submitted (this list's own, or executed by it) are free again.
-    if (lease_.pool) executed_.push_back(lease_);
-    dev_.releaseSecondary(executed_, 0);
+    // Secondary recordings go back once no list holds them (after the last submission that ran
+    // them: their fence).
     executed_.clear();
-    lease_ = {};
+    lease_.reset();
     if (lastSubmit_) dev_.settle(lastSubmit_);  // not wait(): a lost device must not throw here
     for (const RecordingBuffer& b : buffers_)
         vkDestroyCommandPool(dev_.vkDevice(), b.pool, nullptr);
@@ -337,7 +340,10 @@ void VulkanCommandList::beginRecording(const char* what) {
 void VulkanCommandList::submitted(gdi::FenceValue value) {
     lastSubmit_ = value;
     buffers_[current_].fence = value;
-    dev_.releaseSecondary(executed_, value);
+    for (const auto& s : executed_) {
+        gdi::FenceValue last = s->lastFence.load();
+        while (last < value && !s->lastFence.compare_exchange_weak(last, value)) {}
+    }
     executed_.clear();
     clearRecording();  // push descriptors are undefined when a command buffer begins: all dirty
 }
@@ -479,21 +485,33 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     ri.layerCount = 1;
     ri.colorAttachmentCount = uint32_t(colors.size());
     ri.pColorAttachments = colors.data();
-    if (desc.secondaryLists) ri.flags = VK_RENDERING_CONTENTS_SECONDARY_COMMAND_BUFFERS_BIT;
     if (desc.debugName) pushDebugGroup(desc.debugName);
-    vkCmdBeginRendering(cb_, &ri);
+    if (desc.secondaryLists) {  // kept to resume the instance around each executeSecondary
+        passInstance_.colors = std::move(colors);
+        passInstance_.depth = depth;
+        passInstance_.stencil = stencil;
+        passInstance_.info = ri;
+        passInstance_.info.pColorAttachments = passInstance_.colors.data();
+        if (ri.pDepthAttachment) passInstance_.info.pDepthAttachment = &passInstance_.depth;
+        if (ri.pStencilAttachment) passInstance_.info.pStencilAttachment = &passInstance_.stencil;
+        passInstance_.begin(cb_, VK_RENDERING_SUSPENDING_BIT);
+    } else {
+        vkCmdBeginRendering(cb_, &ri);
+    }
     inPass_ = true;
     dynamicSet_ = 0;      // each pass starts from its pipelines' values
     pipeline_ = nullptr;  // a render pass starts with no pipeline, as on GL (see Device.h)
     computeBound_ = false;
     updateReadyToDraw();
     passHasLabel_ = desc.debugName != nullptr;
-    if (desc.secondaryLists) {
-        secondaryPass_ = restricted_ = true;  // the secondary lists set their own viewports
-        return;
-    }
+    secondaryPass_ = desc.secondaryLists;  // the primary draws between the executed lists
     setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
     setScissor(renderArea_);
+}
+
+void VulkanCommandList::PassInstance::begin(VkCommandBuffer cb, VkRenderingFlags flags) {
+    info.flags = flags;
+    vkCmdBeginRendering(cb, &info);
 }
 
 void VulkanCommandList::endRenderPass() {
@@ -502,12 +520,16 @@ void VulkanCommandList::endRenderPass() {
     if (!inPass_) throw gdi::Error("endRenderPass without beginRenderPass");
     queries_.endPass();
     vkCmdEndRendering(cb_);
+    if (secondaryPass_) {  // the last instance of the chain: it stores and resolves
+        passInstance_.begin(cb_, VK_RENDERING_RESUMING_BIT);
+        vkCmdEndRendering(cb_);
+    }
     inPass_ = false;
     endPassFeedback();
     setNotReady();
     written_ = true;
     if (secondaryPass_) {  // vkCmdExecuteCommands left the primary's state undefined
-        secondaryPass_ = restricted_ = false;
+        secondaryPass_ = false;
         unbindAll();
     }
     if (passHasLabel_) popDebugGroup();
@@ -553,22 +575,24 @@ void VulkanCommandList::unbindAll() {
     dirtySlots_ = ~uint64_t(0);
 }
 
-// A call that a pass of secondary lists (primary side) or an ended secondary list refuses.
+// A call that an ended secondary list refuses.
 void VulkanCommandList::restrictedCall(const char* what) const {
     if (orphaned_) gdi::validate::listOfDestroyedDevice(what);
-    if (ended_)
-        throw gdi::Error(std::string(what) + " after endSecondary (execute the list first)");
-    gdi::validate::onlyExecuteSecondary(what);
+    gdi::validate::afterEndSecondary(what);
 }
 
 void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     checkDevice("beginSecondary");
+    if (ended_) {  // recorded anew: primaries that executed the old recording keep it
+        lease_.reset();
+        clearRecording();
+    }
     bool bound = false;
     for (const Binding& b : bindings_) bound |= b.kind != kUnbound;
     if (recording_ || secondary_ || inPass_ || bound) gdi::validate::secondaryNotEmpty();
     signature_ = checkPass(desc, nullptr);
     beginPassFeedback(desc);  // no texture is bound yet: checks the attachments
-    lease_ = dev_.acquireSecondary();
+    lease_ = std::make_shared<SharedSecondary>(dev_, dev_.acquireSecondary());
     std::array<VkFormat, 8> formats{};
     for (uint32_t i = 0; i < signature_.colorCount; ++i)
         formats[i] = toVkFormat(signature_.colors[i]);
@@ -582,20 +606,22 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
         if (gdi::formatInfo(signature_.depth).hasStencil) ir.stencilAttachmentFormat = f;
     }
     ir.rasterizationSamples = VkSampleCountFlagBits(signature_.samples);
+    ir.flags = VK_RENDERING_RESUMING_BIT | VK_RENDERING_SUSPENDING_BIT;  // executeSecondary's
     VkCommandBufferInheritanceInfo ii{VK_STRUCTURE_TYPE_COMMAND_BUFFER_INHERITANCE_INFO};
     ii.pNext = &ir;
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT |
+    // Executed any number of times, also while an earlier execution is pending.
+    bi.flags = VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT |
                VK_COMMAND_BUFFER_USAGE_RENDER_PASS_CONTINUE_BIT;
     bi.pInheritanceInfo = &ii;
-    if (VkResult r = nativeAllocation("vkBeginCommandBuffer",
-                                      [&] { return vkBeginCommandBuffer(lease_.cb, &bi); });
+    if (VkResult r =
+            nativeAllocation("vkBeginCommandBuffer",
+                             [&] { return vkBeginCommandBuffer(lease_->recording.cb, &bi); });
         r != VK_SUCCESS) {
-        dev_.releaseSecondary(std::span(&lease_, 1), 0);
-        lease_ = {};
+        lease_.reset();
         check(r, "vkBeginCommandBuffer");
     }
-    cb_ = lease_.cb;
+    cb_ = lease_->recording.cb;
     openRecording();
     recording_ = secondary_ = inPass_ = true;
     dynamicSet_ = 0;
@@ -631,8 +657,8 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
                                              l.signature_, signature_, i);
         });
     std::vector<VkCommandBuffer> cbs;
-    for (VulkanCommandList* l : parts) {
-        cbs.push_back(l->lease_.cb);
+    for (VulkanCommandList* l : parts) {  // shared, not taken: the list may run again
+        cbs.push_back(l->lease_->recording.cb);
         executed_.push_back(l->lease_);
         used_.insert(used_.end(), l->used_.begin(), l->used_.end());
         lastBuffer_ = 0;
@@ -641,10 +667,24 @@ void VulkanCommandList::executeSecondary(std::span<gdi::CommandList* const> list
             closeRecording();
             openSince_ = destroyEpoch_ = l->destroyEpoch_;
         }
-        l->lease_ = {};
-        l->clearRecording();
     }
-    if (!cbs.empty()) vkCmdExecuteCommands(cb_, uint32_t(cbs.size()), cbs.data());
+    if (cbs.empty()) return;
+    // The primary's instance is suspended; the lists run in one of their own, then the
+    // primary's resumes (Vulkan: one instance holds either inline commands or secondaries).
+    vkCmdEndRendering(cb_);
+    passInstance_.begin(cb_, VK_RENDERING_RESUMING_BIT | VK_RENDERING_SUSPENDING_BIT |
+                                 VK_RENDERING_CONTENTS_SECONDARY_COMMAND_BUFFERS_BIT);
+    vkCmdExecuteCommands(cb_, uint32_t(cbs.size()), cbs.data());
+    vkCmdEndRendering(cb_);
+    passInstance_.begin(cb_, VK_RENDERING_RESUMING_BIT | VK_RENDERING_SUSPENDING_BIT);
+    // vkCmdExecuteCommands left the primary's state undefined: pipeline and bindings unset,
+    // dynamic state from the next pipeline, viewport and scissor the render area (as on GL).
+    unbindAll();
+    pipeline_ = nullptr;
+    dynamicSet_ = 0;
+    updateReadyToDraw();
+    setViewport({0, 0, float(renderArea_.width), float(renderArea_.height), 0, 1});
+    setScissor(renderArea_);
 }
 
 // The state of a list with nothing recorded (after submit, or after its secondary recording
@@ -851,10 +891,11 @@ void VulkanCommandList::setTexture(uint32_t slot, gdi::TextureHandle th, gdi::Sa
         throw gdi::Error("setTexture: texture '" + t.name + "' lacks Sampled usage");
     if (s.filtersLinearly && !t.linearFilter)
         gdi::validate::notFilterable(t.name, t.desc.format, s.name);
-    bindings_[slot] = {
-        kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint8_t(1 + uint8_t(t.desc.dimension))),
-        {},
-        {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
+    bindings_[slot] = {kindCode(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                t.desc.sampleCount > 1 ? gdi::kTexture2DMultisampleKind
+                                                       : uint8_t(1 + uint8_t(t.desc.dimension))),
+                       {},
+                       {s.sampler, t.view, VK_IMAGE_LAYOUT_GENERAL}};
     const auto span = gdi::validate::bindingSpanOf(th.id, t, t.name,
                                                    s.readsMips ? std::nullopt : std::optional(0u));
     if (feedback_.bind(slot, span, false)) refreshFeedback();
@@ -1193,6 +1234,22 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRe
     barrierIfWritten();
     const VkImageCopy c = imageCopy(d.desc, dr, s.desc, sr);
     vkCmdCopyImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1, &c);
+    written_ = true;
+}
+
+void VulkanCommandList::resolveTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
+                                       gdi::TextureHandle src,
+                                       const gdi::TextureRegion& srcRegion) {
+    outsidePass("resolveTexture");
+    Texture& d = copiedTexture(dst);
+    Texture& s = copiedTexture(src);
+    const auto [dr, sr] =
+        gdi::validate::textureResolve(d.desc, d.name, dstAt, s.desc, s.name, srcRegion);
+    barrierIfWritten();
+    const VkImageCopy c = imageCopy(d.desc, dr, s.desc, sr);
+    const VkImageResolve r{c.srcSubresource, c.srcOffset, c.dstSubresource, c.dstOffset, c.extent};
+    vkCmdResolveImage(cb_, s.image, VK_IMAGE_LAYOUT_GENERAL, d.image, VK_IMAGE_LAYOUT_GENERAL, 1,
+                      &r);
     written_ = true;
 }
 

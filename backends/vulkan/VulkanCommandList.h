@@ -1,5 +1,6 @@
 // Command recording into a VkCommandBuffer; see VulkanDevice.h for the synchronisation model.
 #pragma once
+#include <atomic>
 #include <array>
 #include <vector>
 
@@ -264,8 +265,25 @@ private:
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;
     gdi::validate::PassSignature
         signature_;  // of the open pass, or the pass a secondary list is for
-    VulkanDevice::SecondaryRecording lease_;  // the secondary command buffer being recorded
-    std::vector<VulkanDevice::SecondaryRecording> executed_;  // owned until this list's submission
+    // A recorded secondary command buffer, shared by the list that recorded it and every primary
+    // that executed it; back to the device, after the last submission that ran it, when the
+    // last of them lets go (a secondary list is executed any number of times).
+    struct SharedSecondary {
+        VulkanDevice& dev;
+        VulkanDevice::SecondaryRecording recording;
+        std::atomic<gdi::FenceValue> lastFence{0};
+        ~SharedSecondary();
+    };
+    std::shared_ptr<SharedSecondary> lease_;  // the secondary command buffer this list records
+    std::vector<std::shared_ptr<SharedSecondary>> executed_;  // held until this list's submission
+    // A pass of secondary lists is a chain of suspended and resumed render pass instances (the
+    // primary's own draws inline, each executeSecondary in one of its own): what they share.
+    struct PassInstance {
+        std::vector<VkRenderingAttachmentInfo> colors;
+        VkRenderingAttachmentInfo depth{}, stencil{};
+        VkRenderingInfo info{};
+        void begin(VkCommandBuffer cb, VkRenderingFlags flags);
+    } passInstance_;
     gdi::validate::FeedbackLoops feedback_;  // last: keeps it off the per-draw members' cache lines
 };
 

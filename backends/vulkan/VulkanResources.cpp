@@ -354,10 +354,12 @@ gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
               "vkBindImageMemory", object);
         const VkImageViewType type = viewType(desc.dimension);
         const uint32_t layers = arrayLayers(desc);
-        // Multisampled images are only attachments (gdi does not sample them); an image only
-        // copied to and from has no usage a view may have (VUID-VkImageViewCreateInfo-image-04441).
+        // Multisampled images have a view only when sampled (their attachments take views of
+        // their own); an image only copied to and from has no usage a view may have
+        // (VUID-VkImageViewCreateInfo-image-04441).
         using U = gdi::TextureUsage;
-        if (desc.sampleCount == 1 && any(desc.usage, U::Sampled | U::Storage | U::RenderTarget)) {
+        if ((desc.sampleCount == 1 && any(desc.usage, U::Sampled | U::Storage | U::RenderTarget)) ||
+            any(desc.usage, U::Sampled)) {  // multisampled: read per sample (sampler2DMS)
             t.view =
                 makeView(t.image, type, desc.format, {0, 0, desc.mipLevels, 0, layers}, object);
             // Storage images bind one mip, every layer, of the texture's kind (image2DArray,

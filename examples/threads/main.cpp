@@ -144,16 +144,10 @@ int main(int argc, char** argv) {
                 throw;
             }
         });
-        // Mistake 5: drawing in the primary list of a pass whose draws come from secondary lists.
-        ok &= reported("draw in a pass of secondary lists", [&] {
-            primary->beginRenderPass(pass);
-            try {
-                primary->setPipeline(pipeline);
-            } catch (...) {
-                primary->endRenderPass();
-                throw;
-            }
-        });
+        // Mistake 5: executing a secondary list outside a pass of secondary lists (the lists
+        // keep their recordings: they could run again in another pass like `pass`).
+        ok &= reported("executeSecondary outside a pass of secondary lists",
+                       [&] { primary->executeSecondary(*lists[0]); });
 
         for (size_t i = 0; i < 2; ++i) {
             const auto mid = d.readTexture(halves[i]).texel(32, 40);

@@ -53,8 +53,12 @@ void RecordingCommandList::barrier(const BufferBarrier* b, uint32_t n) {
 // A secondary list's records go to its own stream, which the executing list adopts.
 void RecordingCommandList::beginSecondary(const RenderPassDesc& pass) {
     inner_->beginSecondary(pass);
+    recorded_.reset();  // recorded anew: primaries that executed the old one keep theirs
 }
-void RecordingCommandList::endSecondary() { inner_->endSecondary(); }
+void RecordingCommandList::endSecondary() {
+    inner_->endSecondary();
+    recorded_ = takeStream();  // shared by every primary that executes it
+}
 void RecordingCommandList::executeSecondary(std::span<CommandList* const> lists) {
     std::vector<RecordingCommandList*> recorded;
     std::vector<CommandList*> inner;
@@ -66,7 +70,7 @@ void RecordingCommandList::executeSecondary(std::span<CommandList* const> lists)
     }
     inner_->executeSecondary(inner);
     for (RecordingCommandList* r : recorded)
-        stream_->push(cmd::ExecuteSecondary{stream_->adopt(r->takeStream())});
+        stream_->push(cmd::ExecuteSecondary{stream_->adopt(r->recorded_)});
 }
 
 namespace {
@@ -177,7 +181,7 @@ struct Applier {
         secondary->beginSecondary(pass);
         applyStream(stream.child(r.child), device, *secondary, map);
         secondary->endSecondary();
-        list.executeSecondary(*secondary);  // takes the recording: the list may go
+        list.executeSecondary(*secondary);  // the primary keeps what it runs: the list may go
     }
 };
 

@@ -39,6 +39,13 @@ const char* textureDimensionName(TextureDimension d) {
     return "?";
 }
 
+const char* textureKindName(uint8_t kind) {
+    if (kind == kTexture2DMultisampleKind) return "Texture2D (multisampled)";
+    return kind == 0 || kind > kTexture2DMultisampleKind
+               ? "?"
+               : textureDimensionName(TextureDimension(kind - 1));
+}
+
 const char* queryTypeName(QueryType t) {
     switch (t) {
         case QueryType::Occlusion:

@@ -497,7 +497,12 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
             if (type == BindingType::SampledTexture || type == BindingType::StorageTexture) {
                 const spvc_type t = spvc_compiler_get_type_handle(comp, r.base_type_id);
                 const bool arrayed = spvc_type_get_image_arrayed(t);
-                if (!spvc_type_get_image_multisampled(t))
+                if (spvc_type_get_image_multisampled(t)) {
+                    // texelFetch of one sample: sampled textures only (no multisampled storage)
+                    if (type == BindingType::SampledTexture && !arrayed &&
+                        spvc_type_get_image_dimension(t) == SpvDim2D)
+                        dimension = kTexture2DMultisampleKind;
+                } else
                     switch (spvc_type_get_image_dimension(t)) {
                         case SpvDim2D:
                             dimension = 1 + uint8_t(arrayed ? TextureDimension::Texture2DArray
@@ -518,9 +523,10 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
                 if (dimension == 0)
                     throw fail(
                         "'" + std::string(r.name) + "' is a " +
-                        (spvc_type_get_image_multisampled(t) ? "multisampled" : "1D or buffer") +
-                        " texture, which the device has none of: bind 2D, 2D array, cube, cube array or 3D "
-                        "textures (a multisampled target is resolved into one by its render pass)");
+                        (spvc_type_get_image_multisampled(t) ? "multisampled array or storage"
+                                                             : "1D or buffer") +
+                        " texture, which the device has none of: bind 2D, 2D array, cube, cube array, "
+                        "3D or multisampled 2D (sampler2DMS) textures");
             }
             out.bindings.push_back({slot, type, r.name, dimension});
         };

@@ -413,6 +413,91 @@ std::vector<CaseImage> recordOnThreads(Device& d) {
     return out;
 }
 
+// Reusable secondary lists (bundles): two lists recorded once on two threads draw constant-
+// coloured quads; they run in two passes of two frames, one of them twice in one pass with the
+// primary's own draws before, between and after (which set their pipeline again after each
+// executeSecondary); the lists start from the render area as viewport whatever the primary set.
+// A list recorded anew while a submission that ran the old recording is in flight leaves that
+// submission's image as it was.
+std::vector<CaseImage> reusableSecondaryLists(Device& d) {
+    DeviceObjects o(d);
+    const PipelineHandle quads = o.add(d.createGraphicsPipeline(
+        {.vertexShader = registryShader(o, ShaderStage::Vertex, "conformance/constants_quad.vert"),
+         .fragmentShader =
+             registryShader(o, ShaderStage::Fragment, "conformance/constants_quad.frag"),
+         .topology = PrimitiveTopology::TriangleStrip,
+         .colorFormats = {Format::RGBA8},
+         .debugName = "quads"}));
+    const TextureHandle first = caseTarget(o), second = caseTarget(o), third = caseTarget(o);
+    const RenderPassDesc pass{.colors = {{.texture = first, .clear = {0, 0, 0, 1}}},
+                              .secondaryLists = true};
+    auto record = [&](CommandList& list, QuadConstants q) {
+        list.beginSecondary(pass);
+        list.setPipeline(quads);
+        list.setConstants(q);
+        list.draw(4);
+        list.endSecondary();
+    };
+    const Texel red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1}, white{1, 1, 1, 1};
+    auto left = d.createCommandList(), right = d.createCommandList();
+    std::thread a([&] { record(*left, pixelQuad(0, 0, 16, 64, red)); });
+    std::thread b([&] { record(*right, pixelQuad(48, 0, 64, 64, green)); });
+    a.join();
+    b.join();
+    auto direct = [&](CommandList& cmd, uint32_t x0, uint32_t x1, Texel c) {
+        cmd.setPipeline(quads);
+        cmd.setConstants(pixelQuad(x0, 0, x1, 64, c));
+        cmd.draw(4);
+    };
+    // Frame 1: primary, left, primary, left again (over the primary's quad), right, primary.
+    auto frame = d.createCommandList();
+    frame->beginRenderPass(pass);
+    direct(*frame, 0, 24, blue);
+    frame->setViewport({0, 0, 8, 8});  // the lists draw in the render area regardless
+    frame->executeSecondary(*left);
+    direct(*frame, 20, 28, white);
+    std::array<CommandList*, 2> both = {left.get(), right.get()};
+    frame->executeSecondary(both);
+    direct(*frame, 30, 34, blue);
+    frame->endRenderPass();
+    d.wait(d.submit(*frame));
+    // Frame 2: the same lists in another target of the same kind; then the right one is
+    // recorded anew (yellow) before that frame completes, and runs in frame 3.
+    RenderPassDesc pass2 = pass;
+    pass2.colors[0].texture = second;
+    frame->beginRenderPass(pass2);
+    frame->executeSecondary(both);
+    frame->endRenderPass();
+    const FenceValue frame2 = d.submit(*frame);
+    record(*right, pixelQuad(40, 0, 64, 64, {1, 1, 0, 1}));
+    RenderPassDesc pass3 = pass;
+    pass3.colors[0].texture = third;
+    frame->beginRenderPass(pass3);
+    frame->executeSecondary(*right);
+    frame->endRenderPass();
+    d.wait(d.submit(*frame));
+    d.wait(frame2);
+    auto columns = [](std::initializer_list<std::tuple<uint32_t, uint32_t, Texel>> spans) {
+        return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t) -> Texel {
+            Texel c{0, 0, 0, 1};
+            for (const auto& [x0, x1, t] : spans)
+                if (x >= x0 && x < x1) c = t;
+            return c;
+        });
+    };
+    return {exact("frame 1: the primary's draws between the lists", d.readTexture(first),
+                  columns({{0, 24, blue},
+                           {0, 16, red},
+                           {20, 28, white},
+                           {0, 16, red},
+                           {48, 64, green},
+                           {30, 34, blue}})),
+            exact("frame 2: the same lists in another pass", d.readTexture(second),
+                  columns({{0, 16, red}, {48, 64, green}})),
+            exact("frame 3: the right list recorded anew", d.readTexture(third),
+                  columns({{40, 64, {1, 1, 0, 1}}}))};
+}
+
 // The draws of one pass recorded on four threads as secondary lists, executed by the primary in
 // a shuffled order over two executeSecondary calls, for two frames (the lists record anew after
 // being executed). Secondary list t fills column quarter t and then the middle band: each column
@@ -920,6 +1005,7 @@ std::vector<Case> executionCases() {
         {"data_read_at_execution", dataReadAtExecution},
         {"record_on_threads", recordOnThreads},
         {"secondary_lists_in_one_pass", secondaryListsInOnePass},
+        {"reusable_secondary_lists", reusableSecondaryLists},
         {"create_while_recording", createWhileRecording},
         {"destroy_while_in_flight", destroyWhileInFlight},
         {"mapped_upload_ring", mappedUploadRing},

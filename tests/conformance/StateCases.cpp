@@ -151,6 +151,133 @@ std::vector<CaseImage> transientAttachments(Device& d) {
     return out;
 }
 
+// A 4-sample texture drawn with a white quad whose edge runs through the middle of column 31,
+// then read per sample with texelFetch (sampler2DMS, Sampled usage): at the standard sample
+// positions samples 0 and 2 of that column lie left of the middle (inside), 1 and 3 right of it.
+// Every sample of the other columns is exact. The same texture bound to a sampler2D slot, or a
+// single-sample one to a sampler2DMS slot, is an Error at the draw on every backend.
+struct MultisampledEdge {
+    DeviceObjects o;
+    TextureHandle texture;
+    MultisampledEdge(Device& d, DepthGeometry& geo) : o(d) {
+        GraphicsPipelineDesc pd = geo.desc;
+        pd.colorFormats = {Format::RGBA8};
+        pd.multisample.sampleCount = 4;
+        const PipelineHandle p = o.add(d.createGraphicsPipeline(pd));
+        texture =
+            o.add(d.createTexture({.width = kCaseSize,
+                                   .height = kCaseSize,
+                                   .sampleCount = 4,
+                                   .usage = TextureUsage::RenderTarget | TextureUsage::Sampled |
+                                            TextureUsage::CopySrc | TextureUsage::CopyDst,
+                                   .debugName = "multisampled"}));
+        const std::vector<Vertex3> v =
+            quad(-1, 31.5f / 32.0f - 1.0f, -1, 1, 0.5f, 0.5f, {1, 1, 1, 1});
+        const BufferHandle vb = o.add(d.createBuffer(
+            {.size = v.size() * sizeof(Vertex3), .usage = BufferUsage::Vertex}, bytesOf(v)));
+        auto cmd = d.createCommandList();
+        cmd->beginRenderPass({.colors = {{.texture = texture, .clear = {0, 0, 0, 1}}}});
+        cmd->setPipeline(p);
+        cmd->setVertexBuffer(0, vb);
+        cmd->draw(6);
+        cmd->endRenderPass();
+        d.wait(d.submit(*cmd));
+    }
+    // Sample `s` of each pixel, when the quad covered columns [x0, x1) (31: by sample position).
+    static Image expected(uint32_t s, uint32_t x0 = 0, uint32_t x1 = 32) {
+        return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t) -> Texel {
+            const bool edge = x == x1 - 1;
+            const float v = x < x0 || x >= x1 ? 0.0f : edge ? float(s % 2 == 0) : 1.0f;
+            return {v, v, v, 1};
+        });
+    }
+};
+
+std::vector<CaseImage> msaaTexelFetch(Device& d) {
+    std::vector<CaseImage> out;
+    if (!(d.info().limits.colorSampleCounts & 4)) return out;
+    DepthGeometry geo(d);
+    MultisampledEdge edge(d, geo);
+    FullscreenSampler perSample(d, "conformance/sample_ms_index.frag");
+    for (uint32_t s = 0; s < 4; ++s)
+        out.push_back(exact("sample " + std::to_string(s),
+                            perSample.draw(d, edge.texture, Format::RGBA8, {float(s), 0, 0, 0}),
+                            MultisampledEdge::expected(s)));
+    FullscreenSampler plain(d, "conformance/textured.frag");
+    expectError([&] { plain.draw(d, edge.texture, Format::RGBA8); },
+                "is declared a Texture2D in its shader, but the texture bound there is a Texture2D "
+                "(multisampled)");
+    const TextureHandle single = edge.o.add(
+        d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::Sampled}));
+    expectError([&] { perSample.draw(d, single, Format::RGBA8); },
+                "sampler2DMS takes multisampled textures");
+    return out;
+}
+
+// Multisampled textures copied to multisampled ones, every sample: whole, and a region (the
+// left 32 columns placed at x = 16); and resolved by region (resolveTexture) into a single-sample
+// one. Copies between sample counts, and to or from buffers, are the same Error everywhere.
+std::vector<CaseImage> msaaCopy(Device& d) {
+    std::vector<CaseImage> out;
+    if (!(d.info().limits.colorSampleCounts & 4)) return out;
+    DepthGeometry geo(d);
+    MultisampledEdge edge(d, geo);
+    DeviceObjects& o = edge.o;
+    auto copyTarget = [&] {
+        return o.add(d.createTexture(
+            {.width = kCaseSize,
+             .height = kCaseSize,
+             .sampleCount = 4,
+             .usage = TextureUsage::RenderTarget | TextureUsage::Sampled | TextureUsage::CopyDst}));
+    };
+    const TextureHandle whole = copyTarget(), moved = copyTarget();
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = moved, .clear = {0, 0, 0, 1}}}});
+    cmd->endRenderPass();
+    cmd->copyTexture(whole, edge.texture);
+    cmd->copyTexture(moved, {.x = 16}, edge.texture, {.width = 32, .height = 64, .depth = 1});
+    d.wait(d.submit(*cmd));
+    FullscreenSampler perSample(d, "conformance/sample_ms_index.frag");
+    for (uint32_t s : {0u, 1u}) {
+        out.push_back(exact("whole, sample " + std::to_string(s),
+                            perSample.draw(d, whole, Format::RGBA8, {float(s), 0, 0, 0}),
+                            MultisampledEdge::expected(s)));
+        out.push_back(exact("region at x = 16, sample " + std::to_string(s),
+                            perSample.draw(d, moved, Format::RGBA8, {float(s), 0, 0, 0}),
+                            MultisampledEdge::expected(s, 16, 48)));
+    }
+    // Resolved by region: the left 32 columns averaged into x = 8 of a single-sample texture.
+    const TextureHandle resolved =
+        o.add(d.createTexture({.width = kCaseSize,
+                               .height = kCaseSize,
+                               .usage = TextureUsage::CopyDst | TextureUsage::CopySrc}));
+    auto resolve = d.createCommandList();
+    resolve->resolveTexture(resolved, {.x = 8}, edge.texture,
+                            {.width = 32, .height = 64, .depth = 1});
+    d.wait(d.submit(*resolve));
+    CaseImage r{"region resolved at x = 8", d.readTexture(resolved),
+                expectImage(Format::RGBA8, [](uint32_t x, uint32_t) -> Texel {
+                    const float v = x < 8 || x >= 40 ? 0.0f : x == 39 ? 0.5f : 1.0f;
+                    return {v, v, v, x < 8 || x >= 40 ? 0.0f : 1.0f};
+                })};
+    r.absTolerance = 1.0 / 255.0;  // 127.5 rounds either way
+    r.toleranceReason = "the half-covered edge column averages to 0.5 (127 or 128 in 8 bits)";
+    out.push_back(std::move(r));
+    auto list = d.createCommandList();
+    expectError([&] { list->resolveTexture(resolved, {}, resolved, {}); },
+                "resolves a multisampled texture");
+    const TextureHandle single = o.add(
+        d.createTexture({.width = kCaseSize, .height = kCaseSize, .usage = TextureUsage::CopyDst}));
+    expectError([&] { list->copyTexture(single, {}, edge.texture, {}); },
+                "copies keep every sample");
+    const BufferHandle buffer =
+        o.add(d.createBuffer({.size = 64 * 64 * 4, .usage = BufferUsage::CopyDst}));
+    expectError([&] { list->copyTextureToBuffer(buffer, {}, edge.texture, {}); },
+                "multisampled textures go to and from buffers only through a single-sample one");
+    d.wait(d.submit(*list));
+    return out;
+}
+
 // A white quad whose edge runs through the middle of pixel column 31: at the standard sample
 // positions of 2, 4 and 8 samples exactly half of that column's samples are inside, so the
 // colour resolve (the average) is 0.5 there. The depth resolve is sample 0, which lies left of
@@ -888,6 +1015,8 @@ std::vector<Case> stateCases() {
     return {
         {"msaa_resolve", msaaResolve},
         {"transient_attachments", transientAttachments},
+        {"msaa_texel_fetch", msaaTexelFetch},
+        {"msaa_copy", msaaCopy},
         {"msaa_multiple_targets", msaaMultipleTargets},
         {"msaa_alpha_to_coverage", msaaAlphaToCoverage},
         {"shadow_compare_ops", shadowCompareOps},

@@ -16,10 +16,12 @@ static void aspect(Format f, TextureAspect a, const std::string& w) {
 }
 
 TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name,
-                            const char* what) {
+                            const char* what, bool perSample) {
     const std::string w = std::string(what) + ": " + label("texture", name.c_str());
-    if (d.sampleCount > 1)
-        fail(w, "multisampled textures are not copied by region (resolve them in a pass)");
+    if (d.sampleCount > 1 && !perSample)
+        fail(w,
+             "multisampled textures go to and from buffers only through a single-sample one "
+             "(resolve them, or read samples with sampler2DMS)");
     aspect(d.format, r.aspect, w);
     transientContents(d, w);
     if (r.mipLevel >= d.mipLevels)
@@ -119,7 +121,11 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
         fail("copyTexture",
              "regions of depth/stencil textures are copied through a buffer (one "
              "aspect each) or whole (copyTexture(dst, src, mip))");
-    const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source");
+    if (src.sampleCount != dst.sampleCount)
+        fail("copyTexture", "'" + srcName + "' has " + std::to_string(src.sampleCount) +
+                                " sample(s) and '" + dstName + "' " +
+                                std::to_string(dst.sampleCount) + ": copies keep every sample");
+    const TextureRegion s = textureRegion(src, srcRegion, srcName, "copyTexture source", true);
     if (!formatsCompatible(src.format, dst.format))
         fail("copyTexture", std::string(formatInfo(src.format).name) +
                                 " texels cannot be copied into " +
@@ -129,12 +135,35 @@ std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
         (dst.dimension == TextureDimension::Texture3D))
         fail("copyTexture", "between a 3D texture and a layered one");
     dstAt.width = s.width, dstAt.height = s.height, dstAt.depth = s.depth;
-    const TextureRegion d = textureRegion(dst, dstAt, dstName, "copyTexture destination");
+    const TextureRegion d = textureRegion(dst, dstAt, dstName, "copyTexture destination", true);
     auto apart = [](uint32_t a, uint32_t b, uint32_t n) { return a + n <= b || b + n <= a; };
     if (sameTexture && s.mipLevel == d.mipLevel &&
         !(apart(s.x, d.x, s.width) || apart(s.y, d.y, s.height) || apart(s.z, d.z, s.depth)))
         fail("copyTexture", "source and destination overlap in '" + srcName + "'");
     return {d, s};
+}
+
+std::pair<TextureRegion, TextureRegion> textureResolve(const TextureDesc& dst,
+                                                       const std::string& dstName,
+                                                       TextureRegion dstAt, const TextureDesc& src,
+                                                       const std::string& srcName,
+                                                       const TextureRegion& srcRegion) {
+    textureUsage(src, TextureUsage::CopySrc, srcName, "resolveTexture source");
+    textureUsage(dst, TextureUsage::CopyDst, dstName, "resolveTexture destination");
+    if (src.sampleCount == 1 || dst.sampleCount != 1)
+        fail("resolveTexture", "resolves a multisampled texture ('" + srcName +
+                                   "': " + std::to_string(src.sampleCount) +
+                                   " sample(s)) into a single-sample one ('" + dstName +
+                                   "': " + std::to_string(dst.sampleCount) + ")");
+    const FormatInfo& f = formatInfo(src.format);
+    if (src.format != dst.format || isDepthFormat(src.format) || f.isInteger)
+        fail("resolveTexture",
+             "both textures have one colour format that averages (not integer "
+             "or depth: resolve those in a render pass); got " +
+                 std::string(f.name) + " and " + std::string(formatInfo(dst.format).name));
+    const TextureRegion s = textureRegion(src, srcRegion, srcName, "resolveTexture source", true);
+    dstAt.width = s.width, dstAt.height = s.height, dstAt.depth = s.depth;
+    return {textureRegion(dst, dstAt, dstName, "resolveTexture destination"), s};
 }
 
 void wholeTextureCopy(const TextureDesc& dst, const std::string& dstName, const TextureDesc& src,
@@ -157,7 +186,10 @@ void subresourceBufferCopy(const TextureDesc& t, const std::string& textureName,
     if (hasTwoAspects(t.format))
         fail(what, std::string(formatInfo(t.format).name) +
                        " has depth and stencil: copy each with a TextureRegion naming its aspect");
-    if (t.sampleCount > 1) fail(what, "multisampled textures are not supported");
+    if (t.sampleCount > 1)
+        fail(what,
+             "multisampled textures go to and from buffers only through a single-sample one "
+             "(resolve them, or read samples with sampler2DMS)");
     const Extent3 e = mipExtent(t, at.mipLevel);
     bufferRange(b, offset, imageByteSize(t.format, e.width, e.height), what);
     if (offset % 4) fail(what, "buffer offset must be a multiple of 4");

@@ -117,10 +117,10 @@ void secondaryNotEmpty() {
         "beginSecondary: the list must be empty (a secondary list records one pass's draws from its start)");
 }
 
-void onlyExecuteSecondary(const char* what) {
+void afterEndSecondary(const char* what) {
     throw Error(std::string(what) +
-                " is not allowed in a render pass whose draws come from secondary lists "
-                "(the primary list may only call executeSecondary and endRenderPass there)");
+                " after endSecondary (the list is executed as it is; beginSecondary records it "
+                "anew)");
 }
 
 void notInSecondary(const char* what) {

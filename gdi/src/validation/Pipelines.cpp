@@ -119,10 +119,8 @@ std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterfa
             if (b.slot >= 64 || !b.dimension) continue;
             if (dims[b.slot] && dims[b.slot] != b.dimension)
                 fail(label("pipeline", pipeline.c_str()),
-                     "slot " + std::to_string(b.slot) + " is a " +
-                         textureDimensionName(TextureDimension(dims[b.slot] - 1)) +
-                         " in one stage and a " +
-                         textureDimensionName(TextureDimension(b.dimension - 1)) + " in another");
+                     "slot " + std::to_string(b.slot) + " is a " + textureKindName(dims[b.slot]) +
+                         " in one stage and a " + textureKindName(b.dimension) + " in another");
             dims[b.slot] = b.dimension;
         }
     }

@@ -39,11 +39,11 @@ void bindingRangeFailed(const BufferDesc& d, uint64_t offset, uint64_t size, con
 void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected, uint8_t bound,
                                  const char* pipelineName) {
     fail(label("pipeline", pipelineName),
-         "slot " + std::to_string(slot) + " is declared a " +
-             textureDimensionName(TextureDimension(expected - 1)) +
-             " in its shader, but the texture bound there is a " +
-             textureDimensionName(TextureDimension(bound - 1)) +
-             " (bind a view of that kind: createTextureView with .dimension)");
+         "slot " + std::to_string(slot) + " is declared a " + textureKindName(expected) +
+             " in its shader, but the texture bound there is a " + textureKindName(bound) +
+             (expected == kTexture2DMultisampleKind || bound == kTexture2DMultisampleKind
+                  ? " (sampler2DMS takes multisampled textures, the other kinds single-sample ones)"
+                  : " (bind a view of that kind: createTextureView with .dimension)"));
 }
 
 void VertexInputs::setVertexBuffer(uint32_t index, const BufferDesc& d, const std::string& name,

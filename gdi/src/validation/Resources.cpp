@@ -110,11 +110,10 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
                            " targets on " + device.backend);
         if (d.dimension != D::Texture2D || d.mipLevels != 1)
             fail(what, "a multisampled texture is a Texture2D with one mip level");
-        if (!any(d.usage, TextureUsage::RenderTarget) ||
-            any(d.usage, TextureUsage::Storage | TextureUsage::Sampled))
-            fail(
-                what,
-                "a multisampled texture is a render target, resolved (not sampled) into a single-sample one");
+        if (!any(d.usage, TextureUsage::RenderTarget) || any(d.usage, TextureUsage::Storage))
+            fail(what,
+                 "a multisampled texture is a render target (resolved into a single-sample "
+                 "one, or read per sample by sampler2DMS with Sampled usage), not storage");
         if (isCompressedFormat(d.format)) fail(what, "a compressed format cannot be multisampled");
     }
     uint64_t bytes = 0;

@@ -64,6 +64,7 @@ private:
     Device& device_;
     std::unique_ptr<CommandList> inner_;
     std::unique_ptr<cmd::CommandStream> stream_;
+    std::shared_ptr<const cmd::CommandStream> recorded_;  // a secondary list's, after endSecondary
 };
 
 // Handle ids of the recording device -> the replaying device's. Ids missing from a map are

@@ -259,15 +259,15 @@ public:
         ++count_;
     }
 
-    // Secondary lists: a stream owns the streams its ExecuteSecondary records name (by index),
-    // handed over whole (no copy) when a primary list executes them.
-    uint32_t adopt(std::unique_ptr<CommandStream> child) {
+    // Secondary lists: a stream shares the streams its ExecuteSecondary records name (by
+    // index) with the secondary list that recorded them, which may be executed again (no copy).
+    uint32_t adopt(std::shared_ptr<const CommandStream> child) {
         children_.push_back(std::move(child));
         return uint32_t(children_.size() - 1);
     }
     const CommandStream& child(uint32_t index) const { return *children_.at(index); }
-    // Gives the adopted streams back (for reuse), leaving none.
-    std::vector<std::unique_ptr<CommandStream>> takeChildren() {
+    // Lets go of the adopted streams, leaving none.
+    std::vector<std::shared_ptr<const CommandStream>> takeChildren() {
         return std::exchange(children_, {});
     }
 
@@ -345,7 +345,7 @@ private:
     std::byte *cur_ = nullptr, *end_ = nullptr;  // its free space
     size_t count_ = 0;
     std::byte* payloadAt_ = nullptr;
-    std::vector<std::unique_ptr<CommandStream>> children_;
+    std::vector<std::shared_ptr<const CommandStream>> children_;
 };
 
 }  // namespace fe::gdi::cmd

@@ -72,8 +72,8 @@
 //   if (device->isComplete(f)) { /* read a Readback buffer through map() */ }
 // Every Device member may be called from any thread (CommandList's own rules: its section below).
 // Shown by: submission_order, unsubmitted_list_has_no_effect, data_read_at_execution,
-// record_on_threads, secondary_lists_in_one_pass, create_while_recording, destroy_while_in_flight,
-// mapped_upload_ring, async_readback, buffer_barrier_compute_to_indirect, subresource_barrier.
+// record_on_threads, secondary_lists_in_one_pass, reusable_secondary_lists, create_while_recording,
+// destroy_while_in_flight, mapped_upload_ring, async_readback, buffer_barrier_compute_to_indirect, subresource_barrier.
 //
 // Textures and views
 // ------------------
@@ -96,8 +96,10 @@
 //  - Multisampled textures (sampleCount 2/4/8 as DeviceLimits::colorSampleCounts/depthSampleCounts
 //    allow) are single-mip 2D render targets; pipelines drawing into them set
 //    MultisampleState::sampleCount to match. A pass resolves them into single-sample textures:
-//    colour by averaging, depth by taking sample 0 (see DepthAttachment). They cannot be sampled
-//    or read back. Attachments whose contents live inside one pass (a resolved multisampled
+//    colour by averaging, depth by taking sample 0 (see DepthAttachment). With Sampled usage a
+//    shader reads single samples (GLSL sampler2DMS, texelFetch(tex, pixel, sample)); copyTexture
+//    moves every sample between textures of one sample count; they are not read back or copied
+//    to buffers (resolve them first). Attachments whose contents live inside one pass (a resolved multisampled
 //    target, a depth buffer read by no later pass) may be TextureUsage::Transient.
 //  - Shadow maps: RasterState depth bias and depth clamp; a SamplerDesc with compareEnable makes
 //    sampler2DShadow / sampler2DArrayShadow / samplerCubeShadow return 0..1, filtered (PCF) when Linear.
@@ -118,7 +120,8 @@
 //    readback and barriers take the texture, not a view; views go before their texture.
 // Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
 // render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
-// compressed_bc, msaa_resolve, transient_attachments, msaa_multiple_targets, view_mip_range,
+// compressed_bc, msaa_resolve, transient_attachments, msaa_texel_fetch, msaa_copy,
+// msaa_multiple_targets, view_mip_range,
 // view_layer_and_face, view_format_srgb_unorm, view_swizzle, view_as_attachment, bgra8_formats,
 // region_upload_row_pitch, region_copies, depth_stencil_buffer_copies, texture_copy_between_mips,
 // shadow_compare_pcf, draw_indirect, dispatch_indirect.
@@ -201,7 +204,7 @@
 //    shader) keeps its contents: the device masks its writes (the APIs leave it undefined).
 //  - Blending a colour target whose format cannot be blended here (FormatCaps::blend: never the
 //    integer formats) is an Error at createGraphicsPipeline; so is a shader declaring a texture
-//    kind the device has none of (sampler2DMS, 1D, buffer textures) at createShader.
+//    kind the device has none of (1D, buffer textures, multisampled arrays) at createShader.
 //  - Primitive restart (strip topologies) uses the index 0xFFFF / 0xFFFFFFFF.
 //  - New buffers and textures read as zeros (block-compressed textures excepted: upload them).
 //  - readTexture of D24S8 gives depth in the low 24 bits and stencil in the high 8 of each
@@ -397,6 +400,10 @@ enum class TextureDimension : uint8_t {
     Texture3D,
 };
 const char* textureDimensionName(TextureDimension d);
+// What a shader slot declares and a bound texture is, as one code: 1 + its TextureDimension, or
+// kTexture2DMultisampleKind for a multisampled 2D texture (GLSL sampler2DMS); 0: no texture.
+inline constexpr uint8_t kTexture2DMultisampleKind = 1 + uint8_t(TextureDimension::Texture3D) + 1;
+const char* textureKindName(uint8_t kind);  // "Texture2D", ..., "Texture2D (multisampled)"
 
 struct TextureDesc {
     TextureDimension dimension = TextureDimension::Texture2D;
@@ -757,9 +764,8 @@ struct RenderPassDesc {
     std::vector<ColorAttachment> colors;
     DepthAttachment depth;
     const char* debugName = nullptr;
-    // The pass's draws are recorded in secondary lists (CommandList::beginSecondary) and the
-    // primary list only executes them: between beginRenderPass and endRenderPass it may call
-    // executeSecondary and nothing else.
+    // The pass executes secondary lists (CommandList::beginSecondary, executeSecondary), with
+    // the primary's own draws before, between and after them.
     bool secondaryLists = false;
 };
 
@@ -1002,6 +1008,11 @@ public:
     // textures of compatible formats (formatsCompatible), both 3D or both layered. Outside passes.
     virtual void copyTexture(TextureHandle dst, const TextureRegion& dstAt, TextureHandle src,
                              const TextureRegion& srcRegion) = 0;
+    // Averages the samples of srcRegion of a multisampled texture into dst at dstAt's mip level,
+    // layer and origin (the extent is srcRegion's): a render pass's resolve, by region and
+    // outside passes. One colour format (not integer), src CopySrc and dst CopyDst usage.
+    virtual void resolveTexture(TextureHandle dst, const TextureRegion& dstAt, TextureHandle src,
+                                const TextureRegion& srcRegion) = 0;
 
     virtual void beginTimer(TimerHandle timer) = 0;
     virtual void endTimer(TimerHandle timer) = 0;
@@ -1050,22 +1061,28 @@ public:
     void barrier(const TextureBarrier& b) { barrier(&b, 1); }
     void barrier(const BufferBarrier& b) { barrier(&b, 1); }
 
-    // Secondary lists: the draws of one pass recorded on several threads (Vulkan's secondary
-    // command buffers, Metal's parallel render encoder, D3D12 bundles):
+    // Secondary lists: draws of one pass recorded on several threads, or once and replayed every
+    // frame (Vulkan's secondary command buffers, Metal's indirect command buffers, D3D12 and
+    // WebGPU bundles):
     //   primary->beginRenderPass({.colors = ..., .secondaryLists = true});
-    //   // on each worker thread, with the same RenderPassDesc:
+    //   // on each worker thread (or once, at load), for a pass of the same kind:
     //   part->beginSecondary(pass); part->setPipeline(p); ... part->draw(...); part->endSecondary();
-    //   primary->executeSecondary(parts);   // in this order, after the workers are done
+    //   primary->draw(...);                  // the primary's own draws, before, between, after
+    //   primary->executeSecondary(parts);    // after the workers are done
     //   primary->endRenderPass();
-    // beginSecondary starts a secondary recording on an empty list; until endSecondary it may
-    // record what a pass may hold (pipeline, viewport, scissor, vertex/index buffers, bindings,
-    // draws, balanced debug groups), starting from the pass's render area as viewport and
-    // scissor, no pipeline and no bindings of its own. executeSecondary checks each list was
-    // begun for a pass of the same formats, sample count and size, and takes its recording:
-    // the list is empty again (as after submit) and its commands run when the primary's
-    // submission runs. A secondary list cannot be submitted itself. After a pass of secondary
-    // lists the primary's bindings, vertex and index buffers are unset (Vulkan leaves them
-    // undefined): set them again before its next draw or dispatch.
+    // beginSecondary starts a secondary recording on an empty list (or on an ended secondary
+    // list, whose old recording it replaces); until endSecondary it may record what a pass may
+    // hold (pipeline, viewport, scissor, vertex/index buffers, bindings, draws, balanced debug
+    // groups), starting from the pass's render area as viewport and scissor, no pipeline and no
+    // bindings of its own. executeSecondary checks each list was begun for a pass of the same
+    // formats, sample count and size and runs its recording there, when the primary's
+    // submission runs; the list keeps it, so it runs again in any compatible pass of any later
+    // recording (a list recorded anew meanwhile leaves the submissions that ran the old one
+    // alone). A secondary list cannot be submitted itself. After each executeSecondary, and
+    // after the pass, the primary's pipeline, bindings, vertex and index buffers are unset and
+    // its viewport and scissor are the render area (Vulkan leaves them undefined): set them
+    // again before its next draw. Objects a secondary list uses stay alive while it is executed
+    // (a destroyed one makes the submit fail, as for any recording).
     virtual void beginSecondary(const RenderPassDesc& pass) = 0;
     virtual void endSecondary() = 0;
     virtual void executeSecondary(std::span<CommandList* const> lists) = 0;

@@ -27,8 +27,8 @@ struct ShaderInterface {
         uint32_t slot = 0;  // layout(binding = slot), descriptor set 0
         BindingType type = BindingType::UniformBuffer;
         std::string name;  // the block or variable name, for messages
-        // Textures: 1 + the TextureDimension the shader declares (sampler2DArray: Texture2DArray);
-        // 0 for buffers, and for image kinds the device has no texture of (1D, buffer, multisampled).
+        // Textures: 1 + the TextureDimension the shader declares (sampler2DArray: Texture2DArray),
+        // kTexture2DMultisampleKind for sampler2DMS; 0 for buffers.
         uint8_t dimension = 0;
     };
     struct Variable {

@@ -43,9 +43,10 @@ inline bool identitySwizzle(const std::array<Swizzle, 4>& s) {
     return true;
 }
 // A TextureRegion checked against the texture and resolved (0 extents filled in): in its mip
-// level, not multisampled, no depth format, block-aligned when compressed.
+// level, an aspect the format has, block-aligned when compressed, single-sample unless
+// perSample (texture-to-texture copies move every sample).
 TextureRegion textureRegion(const TextureDesc& d, const TextureRegion& r, const std::string& name,
-                            const char* what);
+                            const char* what, bool perSample = false);
 // A TexelLayout checked for `region` of format `f` and resolved (0 fields filled in); `end` is
 // the offset just past the last byte it spans.
 struct ResolvedLayout {
@@ -66,6 +67,13 @@ RegionCopy bufferTextureRegion(const TextureDesc& t, const std::string& name, co
 void dataSpan(size_t size, uint64_t end, const char* what);
 // copyTexture between regions: compatible formats, both 3D or both layered, the destination box
 // in its texture, the two boxes apart when the texture is the same. Returns the resolved pair.
+// resolveTexture: src multisampled, dst single-sample of the same non-integer colour format,
+// both regions resolved (dst's extent is src's); returns {dst, src}.
+std::pair<TextureRegion, TextureRegion> textureResolve(const TextureDesc& dst,
+                                                       const std::string& dstName,
+                                                       TextureRegion dstAt, const TextureDesc& src,
+                                                       const std::string& srcName,
+                                                       const TextureRegion& srcRegion);
 std::pair<TextureRegion, TextureRegion> textureCopy(const TextureDesc& dst,
                                                     const std::string& dstName, TextureRegion dstAt,
                                                     bool sameTexture, const TextureDesc& src,
@@ -274,8 +282,8 @@ bool writesDepthStencil(const GraphicsPipelineDesc& d);
 // The secondary-list rules of CommandList (Device.h), with one message on every backend.
 // beginSecondary on a list that is not empty, or inside a pass.
 [[noreturn]] void secondaryNotEmpty();
-// A call other than executeSecondary/endRenderPass inside a pass begun with secondaryLists.
-[[noreturn]] void onlyExecuteSecondary(const char* what);
+// A recording call on a secondary list after its endSecondary.
+[[noreturn]] void afterEndSecondary(const char* what);
 // A call a secondary list may not hold (timers; begin/endRenderPass).
 [[noreturn]] void notInSecondary(const char* what);
 // executeSecondary's checks of list `index`: a secondary list, ended, for this pass.
