@@ -2,7 +2,8 @@
 //  1. Parallel recording: 20,000 draws (a uniform-buffer slice and a draw each) recorded as one
 //     list on one thread, against four lists of 5,000 on two threads (the calling thread and a
 //     job thread, two lists each), and against one pass whose draws are four secondary lists
-//     recorded on two threads and executed by a primary list. Only the recording is timed
+//     recorded on two threads and executed by a primary list, and that pass again with the
+//     lists as recorded (bundles: only the primary's recording). Only the recording is timed
 //     (executeSecondary included); the ratios two-thread / one-thread are the figures, each the
 //     median of the rounds' own ratios: a round records one way right after the other, so a slow
 //     phase of the machine (here they last several rounds and change the one-thread time up to
@@ -132,6 +133,7 @@ struct Row {
     double seqFrame = 0, pipeFrame = 0, record = 0, submit = 0, wait = 0;
     double plainFrame = 0, churnFrame = 0;
     double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
+    double secondaryReplayed = 0;  // the pass of 4 secondary lists again, recorded once, ms
     bool pinned = false;
 };
 
@@ -246,7 +248,7 @@ private:
 // repeats the four lists with the job thread asleep when the recording starts.
 void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     Device& d = *s.device;
-    std::vector<double> one, two, parts, cold, callerHalves, workerHalves;
+    std::vector<double> one, two, parts, cold, callerHalves, workerHalves, replayed;
     auto single = d.createCommandList();
     std::array<std::unique_ptr<CommandList>, 4> quarter = {
         d.createCommandList(), d.createCommandList(), d.createCommandList(), d.createCommandList()};
@@ -297,6 +299,14 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
         worker.sleep();
         d.wait(d.submit(*primary));
 
+        t = Clock::now();  // the same four lists run again, recorded once (bundles)
+        primary->beginRenderPass(s.secondaryPass());
+        primary->executeSecondary(all);
+        primary->endRenderPass();
+        if (r) replayed.push_back(msSince(t));
+        d.wait(d.submit(*primary));
+        for (auto& l : quarter) l->reset();  // primary lists again
+
         std::this_thread::sleep_for(
             std::chrono::milliseconds(1));  // the job thread is asleep by now
         t = Clock::now();
@@ -321,6 +331,7 @@ void parallelRecording(Scene& s, uint32_t rounds, Row& row) {
     row.oneThread = median(one);
     row.twoThreads = median(two);
     row.secondaryTwoThreads = median(parts);
+    row.secondaryReplayed = median(replayed);
     row.fromSleep = median(cold);
     row.callerHalf = median(callerHalves);
     row.workerHalf = median(workerHalves);
@@ -413,6 +424,12 @@ int main(int argc, char** argv) {
             std::printf("| %s | %.3f | %.3f | **%.2f** | %.3f | **%.2f** | %.3f | %.2f |\n",
                         r.backend.c_str(), r.oneThread, r.twoThreads, r.twoRatio,
                         r.secondaryTwoThreads, r.secondaryRatio, r.fromSleep, r.fromSleepRatio);
+        std::printf(
+            "\nThe pass of 4 secondary lists executed again without recording them "
+            "(bundles; the primary's recording only), medians, ms:\n");
+        for (const Row& r : rows)
+            std::printf("- %s: %.3f (recording them took %.3f)\n", r.backend.c_str(),
+                        r.secondaryReplayed, r.secondaryTwoThreads);
         std::printf(
             "\nEach thread's own half of the 4 lists (medians, ms; a half alone would take half the first column):\n");
         for (const Row& r : rows)

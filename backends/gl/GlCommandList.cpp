@@ -196,6 +196,15 @@ void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     stream_->push(cmd::SetScissor{area});
 }
 
+void GlCommandList::reset() {
+    checkDevice("reset");
+    recorded_.reset();
+    dev_.returnStream(std::exchange(stream_, dev_.takeStream()));
+    secondary_ = ended_ = restricted_ = inPass_ = secondaryPass_ = false;
+    depth_ = 0;
+    restart();
+}
+
 void GlCommandList::endSecondary() {
     checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");

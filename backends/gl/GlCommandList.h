@@ -29,6 +29,7 @@ public:
     void barrier(const gdi::BufferBarrier* barriers, uint32_t count) override;
     void beginSecondary(const gdi::RenderPassDesc& pass) override;
     void endSecondary() override;
+    void reset() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;
 
     // For Device::submit, which checks every list before it takes any (a refused submission

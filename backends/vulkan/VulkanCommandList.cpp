@@ -635,6 +635,14 @@ void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
     setScissor(renderArea_);
 }
 
+// An unsubmitted command buffer is left as it is: the next recording resets its pool.
+void VulkanCommandList::reset() {
+    checkDevice("reset");
+    lease_.reset();
+    executed_.clear();  // never submitted here: the secondaries' fences stay as they were
+    clearRecording();
+}
+
 void VulkanCommandList::endSecondary() {
     checkDevice("endSecondary");
     if (!secondary_ || ended_) throw gdi::Error("endSecondary without beginSecondary");

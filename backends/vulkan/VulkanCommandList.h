@@ -24,6 +24,7 @@ public:
 #include "fe/gdi/CommandListOverrides.inc"
     void beginSecondary(const gdi::RenderPassDesc& pass) override;
     void endSecondary() override;
+    void reset() override;
     void executeSecondary(std::span<gdi::CommandList* const> lists) override;
     uint64_t nativeCommandBuffer() override {
         ensureRecording("nativeCommandBuffer");

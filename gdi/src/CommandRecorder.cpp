@@ -55,6 +55,11 @@ void RecordingCommandList::beginSecondary(const RenderPassDesc& pass) {
     inner_->beginSecondary(pass);
     recorded_.reset();  // recorded anew: primaries that executed the old one keep theirs
 }
+void RecordingCommandList::reset() {
+    inner_->reset();
+    stream_ = std::make_unique<cmd::CommandStream>();
+    recorded_.reset();
+}
 void RecordingCommandList::endSecondary() {
     inner_->endSecondary();
     recorded_ = takeStream();  // shared by every primary that executes it

@@ -104,6 +104,7 @@ public:
     void barrier(const BufferBarrier* b, uint32_t n) override FE_CLAIMED(barrier(b, n))
     void beginSecondary(const RenderPassDesc& pass) override FE_CLAIMED(beginSecondary(pass))
     void endSecondary() override FE_CLAIMED(endSecondary())
+    void reset() override FE_CLAIMED(reset())
     // The executed lists are taken too: one still being recorded by a worker is refused.
     void executeSecondary(std::span<CommandList* const> lists) override {
         const NativeLayerLock::Call layer(layerLock_);

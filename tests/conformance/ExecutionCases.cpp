@@ -418,7 +418,7 @@ std::vector<CaseImage> recordOnThreads(Device& d) {
 // primary's own draws before, between and after (which set their pipeline again after each
 // executeSecondary); the lists start from the render area as viewport whatever the primary set.
 // A list recorded anew while a submission that ran the old recording is in flight leaves that
-// submission's image as it was.
+// submission's image as it was; reset() makes a secondary list a primary one again.
 std::vector<CaseImage> reusableSecondaryLists(Device& d) {
     DeviceObjects o(d);
     const PipelineHandle quads = o.add(d.createGraphicsPipeline(
@@ -477,6 +477,15 @@ std::vector<CaseImage> reusableSecondaryLists(Device& d) {
     frame->endRenderPass();
     d.wait(d.submit(*frame));
     d.wait(frame2);
+    // reset(): the secondary list is as new, and records as a primary one.
+    FE_CONFORMANCE_CHECK(throws([&] { right->draw(4); }),
+                         "an ended secondary list records no more");
+    right->reset();
+    const TextureHandle fourth = caseTarget(o);
+    right->beginRenderPass({.colors = {{.texture = fourth, .clear = {0, 0, 0, 1}}}});
+    direct(*right, 8, 12, green);
+    right->endRenderPass();
+    d.wait(d.submit(*right));
     auto columns = [](std::initializer_list<std::tuple<uint32_t, uint32_t, Texel>> spans) {
         return expectImage(Format::RGBA8, [=](uint32_t x, uint32_t) -> Texel {
             Texel c{0, 0, 0, 1};
@@ -495,7 +504,8 @@ std::vector<CaseImage> reusableSecondaryLists(Device& d) {
             exact("frame 2: the same lists in another pass", d.readTexture(second),
                   columns({{0, 16, red}, {48, 64, green}})),
             exact("frame 3: the right list recorded anew", d.readTexture(third),
-                  columns({{40, 64, {1, 1, 0, 1}}}))};
+                  columns({{40, 64, {1, 1, 0, 1}}})),
+            exact("after reset, a primary list", d.readTexture(fourth), columns({{8, 12, green}}))};
 }
 
 // The draws of one pass recorded on four threads as secondary lists, executed by the primary in

@@ -48,6 +48,7 @@ public:
     void barrier(const BufferBarrier* barriers, uint32_t count) override;
     void beginSecondary(const RenderPassDesc& pass) override;
     void endSecondary() override;
+    void reset() override;
     void executeSecondary(std::span<CommandList* const> lists) override;
     using CommandList::barrier;
     using CommandList::executeSecondary;

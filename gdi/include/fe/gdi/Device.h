@@ -1085,6 +1085,9 @@ public:
     // (a destroyed one makes the submit fail, as for any recording).
     virtual void beginSecondary(const RenderPassDesc& pass) = 0;
     virtual void endSecondary() = 0;
+    // Drops what the list holds (an unsubmitted recording, or a secondary list's recording:
+    // primaries that executed it keep theirs): the list is as new, for either use again.
+    virtual void reset() = 0;
     virtual void executeSecondary(std::span<CommandList* const> lists) = 0;
     void executeSecondary(CommandList& list) {
         CommandList* l = &list;
