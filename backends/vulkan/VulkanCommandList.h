@@ -270,6 +270,8 @@ private:
     // that executed it; back to the device, after the last submission that ran it, when the
     // last of them lets go (a secondary list is executed any number of times).
     struct SharedSecondary {
+        SharedSecondary(VulkanDevice& d, const VulkanDevice::SecondaryRecording& r)
+            : dev(d), recording(r) {}  // (clang 15 has no aggregate make_shared)
         VulkanDevice& dev;
         VulkanDevice::SecondaryRecording recording;
         std::atomic<gdi::FenceValue> lastFence{0};
