@@ -149,24 +149,26 @@ void printPassTimes(render::SceneRenderer& renderer, const std::vector<std::stri
                   << ")\n";
 }
 
-// The output files can be written, before anything is rendered: their directories are created,
-// and a path that cannot be opened for writing is an error saying why.
+// An output file can be written, before anything is rendered: its directory is created, and a
+// path that cannot be opened for writing is an error naming the option, the path and why.
+void checkWritableFile(const std::filesystem::path& path, const char* option) {
+    std::error_code ec;
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+    if (ec)
+        throw gdi::Error("cannot create the directory " + path.parent_path().string() + " for " +
+                         option + ": " + ec.message());
+    if (std::filesystem::is_directory(path, ec))
+        throw gdi::Error(std::string(option) + " " + path.string() + " is a directory");
+    const bool existed = std::filesystem::exists(path, ec);
+    std::ofstream probe(path, std::ios::app);
+    if (!probe) throw gdi::Error("cannot write " + path.string() + ": " + std::strerror(errno));
+    probe.close();
+    if (!existed) std::filesystem::remove(path, ec);
+}
+
 void checkWritable(const cli::RenderJob& job, uint32_t frames) {
-    for (uint32_t k : {0u, frames - 1}) {
-        const std::filesystem::path path(job.outPath(k));
-        std::error_code ec;
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-        if (ec)
-            throw gdi::Error("cannot create the directory " + path.parent_path().string() +
-                             " for --out: " + ec.message());
-        if (std::filesystem::is_directory(path, ec))
-            throw gdi::Error("--out " + path.string() + " is a directory");
-        const bool existed = std::filesystem::exists(path, ec);
-        std::ofstream probe(path, std::ios::app);
-        if (!probe) throw gdi::Error("cannot write " + path.string() + ": " + std::strerror(errno));
-        probe.close();
-        if (!existed) std::filesystem::remove(path, ec);
-    }
+    for (uint32_t k : {0u, frames - 1}) checkWritableFile(job.outPath(k), "--out");
+    if (!job.dumpGraph.empty()) checkWritableFile(job.dumpGraph, "--dump-graph");
 }
 
 int cmdRender(const Args& a) {
