@@ -625,7 +625,11 @@ RenderJob renderJob(const Args& a) {
                                a.options.count("--ibl-samples") ||
                                a.options.count("--ibl-prefiltered");
     s.technique = opt("--technique", "auto");
-    if (s.technique != "auto") s.technique = render::findTechnique(s.technique).name;
+    if (s.technique != "auto") try {  // an unknown name is a usage error (exit 2)
+            s.technique = render::findTechnique(s.technique).name;
+        } catch (const gdi::Error& e) {
+            throw UsageError(e.what());
+        }
     s.illumScale = parseUint(opt("--illum-scale", "1"), "--illum-scale", 1, 4);
     s.msaa = parseUint(opt("--msaa", "1"), "--msaa", 1, 8);
     s.iblSamples =
@@ -712,7 +716,13 @@ RenderJob renderJob(const Args& a) {
         throw UsageError("--error-budget applies to --technique auto");
     const bool window = a.options.count("--window") > 0;
     const std::string backend = opt("--backend", "auto");
-    if (window && gdi::windowCandidates(backend).empty())
+    std::vector<std::string> windowed;
+    try {  // throws for a name that is no backend: a usage error (exit 2)
+        windowed = gdi::windowCandidates(backend);
+    } catch (const gdi::Error& e) {
+        throw UsageError(e.what());
+    }
+    if (window && windowed.empty())
         throw UsageError(
             "--window needs a backend with a window (auto, vulkan, gl, vulkan-glfw, gl-glfw); " +
             backend + " is headless");
