@@ -1,5 +1,6 @@
 // Example (c): command lists recorded on two threads at once and submitted together, three
-// frames in flight, one pass whose draws are two secondary lists recorded on two threads, and
+// frames in flight, one pass whose draws are two secondary lists recorded on two threads (and
+// executed again in a second pass, as recorded), and
 // five mistakes made on purpose, each of which must be the same gdi::Error on every backend
 // (tests/package_consumer.sh compares the messages).
 //   fe_example_threads [--backend NAME] [--validation]
@@ -109,6 +110,16 @@ int main(int argc, char** argv) {
         primary->executeSecondary(std::array<CommandList*, 2>{lists[0].get(), lists[1].get()});
         primary->endRenderPass();
         d.wait(d.submit(*primary));
+        // The lists keep their recordings: the same pass again into another target (as a frame
+        // would every frame), then reset() makes them plain lists for the mistakes below.
+        const TextureHandle again = target("again");
+        RenderPassDesc againPass = pass;
+        againPass.colors[0].texture = again;
+        primary->beginRenderPass(againPass);
+        primary->executeSecondary(std::array<CommandList*, 2>{lists[0].get(), lists[1].get()});
+        primary->endRenderPass();
+        d.wait(d.submit(*primary));
+        for (auto& l : lists) l->reset();
 
         bool ok = true;
         // Mistake 1: a draw outside a render pass, recorded on a worker thread.
@@ -155,18 +166,21 @@ int main(int argc, char** argv) {
             std::printf("%s half: %s\n", i ? "right" : "left", drawn ? "drawn" : "MISSING");
             ok &= drawn;
         }
-        const Image all = d.readTexture(whole);
-        for (uint32_t x : {24u, 40u}) {  // either side of the split, inside the triangle
-            const auto t = all.texel(x, 40);
-            const bool drawn = t[1] > 0.15f || t[2] > 0.15f;
-            std::printf("secondary list %s: %s\n", x < 32 ? "left" : "right",
-                        drawn ? "drawn" : "MISSING");
-            ok &= drawn;
+        for (TextureHandle t : {whole, again}) {
+            const Image all = d.readTexture(t);
+            for (uint32_t x : {24u, 40u}) {  // either side of the split, inside the triangle
+                const auto texel = all.texel(x, 40);
+                const bool drawn = texel[1] > 0.15f || texel[2] > 0.15f;
+                std::printf("secondary list %s%s: %s\n", x < 32 ? "left" : "right",
+                            t == again ? ", executed again" : "", drawn ? "drawn" : "MISSING");
+                ok &= drawn;
+            }
         }
         lists = {};
         primary.reset();
         late.reset();
         d.destroy(whole);
+        d.destroy(again);
         d.destroy(gpuOnly);
         for (TextureHandle t : halves) d.destroy(t);
         d.destroy(pipeline);
