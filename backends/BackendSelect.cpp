@@ -138,7 +138,12 @@ std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc) {
         if (p.available) {
             if (desc.verbose && list.size() > 1)
                 std::cerr << "fe: backend '" << name << "' picked " << c << failures << "\n";
-            if (!desc.pipelineCache.empty()) p.device->openPipelineCache(desc.pipelineCache);
+            // The one place a cache's warning is printed: the program asked for this file at
+            // creation; openPipelineCache itself only returns it in the stats.
+            if (!desc.pipelineCache.empty()) {
+                const PipelineCacheStats cache = p.device->openPipelineCache(desc.pipelineCache);
+                if (!cache.warning.empty()) std::cerr << "fe: " << cache.warning << "\n";
+            }
             return withCapture(std::move(p.device), desc.capture, desc.captureFrames,
                                desc.captureFirstFrame, desc.verbose);
         }

@@ -46,7 +46,8 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/feConfig.cmake.in ${CM
                               INSTALL_DESTINATION ${FE_CMAKE_DIR} PATH_VARS CMAKE_INSTALL_DATADIR)
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/feConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/FeShaders.cmake DESTINATION ${FE_CMAKE_DIR})
+              ${PROJECT_SOURCE_DIR}/cmake/FeShaders.cmake ${PROJECT_SOURCE_DIR}/cmake/fe-glslang.sh
+        DESTINATION ${FE_CMAKE_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/include/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fe/shaders/include)
 
 # pkg-config: the same libraries in link order; the shader objects are inside libfe_render.a.

@@ -6,6 +6,9 @@
 # and the binaries ship inside the executable (no shader files to find at run time).
 # The result is a static library whose registry answers fe::shaders::find("<path under BASE_DIR>").
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+# glslangValidator through a wrapper that adds, to an error on a one-API built-in
+# (gl_VertexIndex, gl_VertexID, ...), the portable macro to write instead.
+set(FE_GLSLANG_WRAPPER ${CMAKE_CURRENT_LIST_DIR}/fe-glslang.sh)
 # The engine's GLSL includes (fe_common.glsl, ...): the source tree's, or the installed
 # package's (feConfig.cmake sets it before including this file).
 if(NOT FE_SHADER_INCLUDE_DIR)
@@ -47,9 +50,9 @@ function(fe_add_shaders target)
       set(gl_h ${out_dir}/s${index}_gl.h)
       add_custom_command(
         OUTPUT ${vk_h} ${gl_h}
-        COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -DFE_VULKAN=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
+        COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -DFE_VULKAN=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
                 --quiet --vn fe_spv_vk_${index} -o ${vk_h} ${abs}
-        COMMAND ${GLSLANG_VALIDATOR} -G -DFE_OPENGL=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
+        COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -G -DFE_OPENGL=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
                 --quiet --vn fe_spv_gl_${index} -o ${gl_h} ${abs}
         DEPENDS ${abs} ${common_includes}
         COMMENT "glslang ${name}"

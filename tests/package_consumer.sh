@@ -29,6 +29,8 @@ step "$work/configure.log" cmake -S "$src/examples" -B "$work/examples" -DCMAKE_
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$linkflags"
 step "$work/build.log" cmake --build "$work/examples" -j2
 for b in vulkan gl-egl gl-osmesa; do
+  (cd "$work" && FE_BACKEND=$b "$work/examples/fe_example_quickstart" | grep -qF "drew a triangle on $b") ||
+    { echo "package consumer: README's quick start did not draw on $b"; exit 1; }
   "$work/examples/fe_example_triangle" --backend "$b" --validation --out "$work/triangle_$b.png"
   "$work/examples/fe_example_turntable" --backend "$b" --validation --frames 2 --size 96x72 --out "$work/turntable_$b.png"
   "$work/examples/fe_example_turntable" builtin:crowd --backend "$b" --validation --frames 2 --size 96x72 \

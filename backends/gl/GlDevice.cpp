@@ -138,15 +138,23 @@ void GlDevice::initialize(bool validation) {
     GLint strategy = 0, flags = 0;
     gl_.GetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
     gl_.GetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    info_.driverName = reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR));
     info_.driverInfo =
-        reinterpret_cast<const char*>(gl_.GetString(GL_VENDOR)) +
-        std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? ", resets are reported"
-                                                         : ", no reset notification") +
+        std::string(strategy == GL_LOSE_CONTEXT_ON_RESET ? "resets are reported"
+                                                         : "no reset notification") +
         std::string((flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) ? ", robust buffer access" : "");
+    GLint extensionCount = 0;
+    gl_.GetIntegerv(GL_NUM_EXTENSIONS, &extensionCount);
+    info_.extensions.clear();
+    for (GLint i = 0; i < extensionCount; ++i)
+        info_.extensions.push_back(
+            reinterpret_cast<const char*>(gl_.GetStringi(GL_EXTENSIONS, GLuint(i))));
+    std::sort(info_.extensions.begin(), info_.extensions.end());
     info_.features.robustBufferAccess = (flags & GL_CONTEXT_FLAG_ROBUST_ACCESS_BIT) != 0;
     info_.presentMode = platform_->presentMode();
     info_.softwareRasterizer = info_.deviceName.find("llvmpipe") != std::string::npos ||
                                info_.deviceName.find("softpipe") != std::string::npos;
+    info_.deviceType = info_.softwareRasterizer ? "cpu" : "gpu";
     thread_.serializeAcrossDevices(
         info_.softwareRasterizer);  // GlContextThread: Mesa's software drivers
     auto get = [&](GLenum e) {

@@ -226,7 +226,6 @@ gdi::PipelineCacheStats GlDevice::openPipelineCache(const std::string& path) {
             (info_.apiVersion.find("Mesa") != std::string::npos
                  ? "Mesa's glGetProgramBinary crashes on SPIR-V programs with uniform blocks"
                  : "the driver offers no program binary format (GL_NUM_PROGRAM_BINARY_FORMATS is 0)");
-    if (!stats.warning.empty()) std::cerr << "fe: " << stats.warning << "\n";
     thread_.run([&] {
         programs_ = stats.loaded ? std::move(programs) : std::map<uint64_t, gdi::ProgramBinary>{};
     });

@@ -43,7 +43,37 @@ struct Glfw {
     void* (*getUserPointer)(GLFWwindow*) = nullptr;
     GLFWscrollfun (*setScrollCallback)(GLFWwindow*, GLFWscrollfun) = nullptr;
     GLFWcharfun (*setCharCallback)(GLFWwindow*, GLFWcharfun) = nullptr;
+    GLFWkeyfun (*setKeyCallback)(GLFWwindow*, GLFWkeyfun) = nullptr;
+    GLFWdropfun (*setDropCallback)(GLFWwindow*, GLFWdropfun) = nullptr;
 };
+
+// gdi::Key's GLFW key codes, in its order.
+const int kGlfwKeys[size_t(gdi::Key::Count)] = {GLFW_KEY_W,
+                                                GLFW_KEY_A,
+                                                GLFW_KEY_S,
+                                                GLFW_KEY_D,
+                                                GLFW_KEY_Q,
+                                                GLFW_KEY_E,
+                                                GLFW_KEY_R,
+                                                GLFW_KEY_F,
+                                                GLFW_KEY_P,
+                                                GLFW_KEY_SPACE,
+                                                GLFW_KEY_ESCAPE,
+                                                GLFW_KEY_TAB,
+                                                GLFW_KEY_ENTER,
+                                                GLFW_KEY_BACKSPACE,
+                                                GLFW_KEY_DELETE,
+                                                GLFW_KEY_LEFT,
+                                                GLFW_KEY_RIGHT,
+                                                GLFW_KEY_UP,
+                                                GLFW_KEY_DOWN,
+                                                GLFW_KEY_HOME,
+                                                GLFW_KEY_END,
+                                                GLFW_KEY_LEFT_SHIFT,
+                                                GLFW_KEY_LEFT_CONTROL,
+                                                GLFW_KEY_F1,
+                                                GLFW_KEY_F2,
+                                                GLFW_KEY_F12};
 
 const Glfw& glfw() {
     static Glfw g;
@@ -74,6 +104,8 @@ const Glfw& glfw() {
     t.getUserPointer = symbol<decltype(t.getUserPointer)>(t.lib, "glfwGetWindowUserPointer");
     t.setScrollCallback = symbol<decltype(t.setScrollCallback)>(t.lib, "glfwSetScrollCallback");
     t.setCharCallback = symbol<decltype(t.setCharCallback)>(t.lib, "glfwSetCharCallback");
+    t.setKeyCallback = symbol<decltype(t.setKeyCallback)>(t.lib, "glfwSetKeyCallback");
+    t.setDropCallback = symbol<decltype(t.setDropCallback)>(t.lib, "glfwSetDropCallback");
     g = t;
     return g;
 }
@@ -134,6 +166,17 @@ GlfwWindow::GlfwWindow(Api api, bool debug) {
         g.setUserPointer(window, this);
         g.setScrollCallback(window, [](GLFWwindow* w, double, double dy) {
             static_cast<GlfwWindow*>(glfw().getUserPointer(w))->wheel_ += float(dy);
+        });
+        // Presses are counted as they happen, so a tap between two polls is not lost.
+        g.setKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+            if (action != GLFW_PRESS) return;
+            auto* self = static_cast<GlfwWindow*>(glfw().getUserPointer(w));
+            for (size_t k = 0; k < size_t(gdi::Key::Count); ++k)
+                if (kGlfwKeys[k] == key && self->presses_[k] < 255) ++self->presses_[k];
+        });
+        g.setDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+            auto* self = static_cast<GlfwWindow*>(glfw().getUserPointer(w));
+            for (int i = 0; i < count; ++i) self->dropped_.emplace_back(paths[i]);
         });
         g.setCharCallback(window, [](GLFWwindow* w, unsigned int c) {
             std::string& text = static_cast<GlfwWindow*>(glfw().getUserPointer(w))->text_;
@@ -211,34 +254,12 @@ bool GlfwWindow::poll() {
     in.mouseX = float(x * (ww > 0 ? double(fb.width) / ww : 1.0));
     in.mouseY = float(y * (wh > 0 ? double(fb.height) / wh : 1.0));
     for (int b = 0; b < 3; ++b) in.mouse[b] = g.getMouseButton(window, b) == GLFW_PRESS;
-    static const int keys[size_t(gdi::Key::Count)] = {GLFW_KEY_W,
-                                                      GLFW_KEY_A,
-                                                      GLFW_KEY_S,
-                                                      GLFW_KEY_D,
-                                                      GLFW_KEY_Q,
-                                                      GLFW_KEY_E,
-                                                      GLFW_KEY_R,
-                                                      GLFW_KEY_F,
-                                                      GLFW_KEY_P,
-                                                      GLFW_KEY_SPACE,
-                                                      GLFW_KEY_ESCAPE,
-                                                      GLFW_KEY_TAB,
-                                                      GLFW_KEY_ENTER,
-                                                      GLFW_KEY_BACKSPACE,
-                                                      GLFW_KEY_DELETE,
-                                                      GLFW_KEY_LEFT,
-                                                      GLFW_KEY_RIGHT,
-                                                      GLFW_KEY_UP,
-                                                      GLFW_KEY_DOWN,
-                                                      GLFW_KEY_HOME,
-                                                      GLFW_KEY_END,
-                                                      GLFW_KEY_LEFT_SHIFT,
-                                                      GLFW_KEY_LEFT_CONTROL,
-                                                      GLFW_KEY_F1,
-                                                      GLFW_KEY_F2,
-                                                      GLFW_KEY_F12};
     for (size_t k = 0; k < size_t(gdi::Key::Count); ++k)
-        in.keys[k] = g.getKey(window, keys[k]) == GLFW_PRESS;
+        in.keys[k] = g.getKey(window, kGlfwKeys[k]) == GLFW_PRESS;
+    std::copy(std::begin(presses_), std::end(presses_), std::begin(in.presses));
+    std::fill(std::begin(presses_), std::end(presses_), uint8_t(0));
+    in.droppedFiles = std::move(dropped_);
+    dropped_.clear();
     in.wheel = wheel_;
     in.text = std::move(text_);
     wheel_ = 0;

@@ -56,6 +56,8 @@ private:
     gdi::InputState input_;
     float wheel_ = 0;  // gathered by GLFW's callbacks between polls
     std::string text_;
+    uint8_t presses_[size_t(gdi::Key::Count)] = {};
+    std::vector<std::string> dropped_;
 };
 
 }  // namespace fe::platform

@@ -341,7 +341,6 @@ gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path)
         gdi::readPipelineCache(path, gdi::pipelineCacheIdentity(info_));
     cacheStats_ = {.path = path};
     cacheStats_.warning = file.warning;
-    if (!file.warning.empty()) std::cerr << "fe: " << file.warning << "\n";
     if (file.payload.empty()) return cacheStats_;
     VkPipelineCacheCreateInfo cci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     cci.initialDataSize = file.payload.size();
@@ -349,7 +348,6 @@ gdi::PipelineCacheStats VulkanDevice::openPipelineCache(const std::string& path)
     VkPipelineCache loaded = VK_NULL_HANDLE;
     if (vkCreatePipelineCache(device_, &cci, nullptr, &loaded) != VK_SUCCESS) {
         cacheStats_.warning = "pipeline cache '" + path + "' ignored: the driver refused its data";
-        std::cerr << "fe: " << cacheStats_.warning << "\n";
         return cacheStats_;
     }
     vkMergePipelineCaches(device_, loaded, 1, &pipelineCache_);
@@ -392,7 +390,23 @@ void VulkanDevice::fillInfo() {
     info_.backend = swapchain_ ? "vulkan-glfw" : "vulkan";
     info_.deviceName = props_.deviceName;
     info_.apiVersion = "Vulkan " + versionString(props_.apiVersion);
-    info_.driverInfo = "driver version " + std::to_string(props_.driverVersion);
+    switch (props_.deviceType) {
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            info_.deviceType = "cpu";
+            break;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            info_.deviceType = "integrated-gpu";
+            break;
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            info_.deviceType = "discrete-gpu";
+            break;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            info_.deviceType = "virtual-gpu";
+            break;
+        default:
+            info_.deviceType = "other";
+            break;
+    }
     info_.softwareRasterizer = props_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     const VkPhysicalDeviceLimits& l = props_.limits;
     info_.limits.maxTextureSize2D = l.maxImageDimension2D;
@@ -415,11 +429,33 @@ void VulkanDevice::fillInfo() {
     info_.limits.maxStorageBufferRange = l.maxStorageBufferRange;
     VkPhysicalDeviceMaintenance3Properties m3{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    // The driver's own name and version text (core in 1.2, which the device requires): the
+    // packed driverVersion means nothing without the vendor's encoding.
+    VkPhysicalDeviceDriverProperties driver{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, .pNext = &m3};
     VkPhysicalDeviceProperties2 p2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
-                                   .pNext = &m3};
+                                   .pNext = &driver};
     vkGetPhysicalDeviceProperties2(physical_, &p2);
+    info_.driverName = driver.driverName;
+    info_.driverInfo = driver.driverInfo;
+    const VkConformanceVersion& cts = driver.conformanceVersion;
+    info_.conformanceVersion = std::to_string(cts.major) + "." + std::to_string(cts.minor) + "." +
+                               std::to_string(cts.subminor) + "." + std::to_string(cts.patch);
+    uint32_t extensionCount = 0;
+    vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, nullptr);
+    std::vector<VkExtensionProperties> extensions(extensionCount);
+    vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, extensions.data());
+    info_.extensions.clear();
+    for (uint32_t i = 0; i < extensionCount; ++i)
+        info_.extensions.push_back(extensions[i].extensionName);
+    std::sort(info_.extensions.begin(), info_.extensions.end());
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory);
+    info_.memoryHeaps.clear();
+    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+        info_.memoryHeaps.push_back(
+            {.bytes = memory.memoryHeaps[h].size,
+             .deviceLocal = (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0});
     VkDeviceSize largestHeap = 0;
     for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
         largestHeap = std::max(largestHeap, memory.memoryHeaps[h].size);

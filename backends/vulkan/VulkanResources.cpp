@@ -26,9 +26,13 @@ bool VulkanDevice::supportsFormat(gdi::Format format, gdi::TextureUsage usage) c
     VkFormat vf = toVkFormat(format);
     if (vf == VK_FORMAT_UNDEFINED) return false;
     if (gdi::isCompressedFormat(format) && !info_.features.textureCompressionBC) return false;
+    // No SPIR-V image format names BGRA or a depth/stencil format (formatCaps agrees), though
+    // drivers may offer the storage feature (NVIDIA does for D16 and D32F; the case
+    // storage_image_every_format caught it there).
     if (any(usage, gdi::TextureUsage::Storage) &&
-        (format == gdi::Format::BGRA8 || format == gdi::Format::BGRA8_SRGB))
-        return false;  // no SPIR-V image format names them (formatCaps agrees)
+        (format == gdi::Format::BGRA8 || format == gdi::Format::BGRA8_SRGB ||
+         gdi::isDepthFormat(format)))
+        return false;
     VkFormatProperties p;
     vkGetPhysicalDeviceFormatProperties(physical_, vf, &p);
     VkFormatFeatureFlags need = requiredFeatures(format, usage);

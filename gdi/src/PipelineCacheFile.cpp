@@ -45,8 +45,8 @@ uint64_t fnv1a(std::span<const uint8_t> bytes, uint64_t seed) {
 }
 
 std::string pipelineCacheIdentity(const DeviceInfo& info) {
-    return info.backend + "|" + info.deviceName + "|" + info.apiVersion + "|" + info.driverInfo +
-           "|" FE_VERSION "|" FE_GIT_DESCRIBE;
+    return info.backend + "|" + info.deviceName + "|" + info.apiVersion + "|" + info.driverName +
+           "|" + info.driverInfo + "|" FE_VERSION "|" FE_GIT_DESCRIBE;
 }
 
 PipelineCacheLoad parsePipelineCache(std::span<const uint8_t> bytes, const std::string& identity) {

@@ -164,6 +164,17 @@ void Loader::parseFile() {
     }
     if (magic && ext != ".glb")
         warn("binary glTF content in a file named '" + fp.filename().string() + "'");
+    if (!magic && ext != ".gltf") {
+        // Not a glTF by name or by its first bytes: say what is read rather than let the JSON
+        // parser report on a file that was never JSON (an .obj, a .png).
+        const size_t first =
+            std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())
+                .find_first_not_of(" \t\r\n\xEF\xBB\xBF");
+        if (first == std::string_view::npos || bytes[first] != '{')
+            fail("unsupported format" + (ext.empty() ? std::string() : " '" + ext + "'") +
+                 ": scenes are glTF 2.0 files (.gltf, .glb) or builtin:NAME");
+        warn("glTF JSON content in a file named '" + fp.filename().string() + "'");
+    }
 
     if (magic) checkGlbLayout(bytes);
     const std::string_view json = jsonText(bytes, magic);

@@ -80,12 +80,14 @@ double median(std::vector<double> v) {
 int cmdCapture(int argc, char** argv) {
     int dashes = 2;
     while (dashes < argc && std::strcmp(argv[dashes], "--") != 0) ++dashes;
-    const Args a = parse(dashes, argv, 2, {"--out", "--frames", "--frame"}, {"--no-compress"});
+    const Args a = parse(dashes, argv, 2, {"--out", "--frames", "--frame"}, {"--no-compress"},
+                         {"PROGRAM", "after --: the program to run and its arguments"});
     if (!a.positional.empty())
         throw UsageError("capture: put the program after --, e.g. fe capture -- fe render");
     if (dashes + 1 >= argc)
         throw UsageError("capture: no program to run (fe capture [options] -- PROGRAM [ARGS...])");
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "capture.fecap";
+    checkWritableFile(out, "--out");
     if (a.options.count("--frames") && a.options.count("--frame"))
         throw UsageError("capture: --frames N or --frame K, not both");
     uint32_t frames = a.options.count("--frames")
@@ -117,6 +119,7 @@ int cmdCapture(int argc, char** argv) {
 int cmdReplay(const Args& a) {
     if (a.positional.size() != 1) throw UsageError("replay takes one capture FILE");
     const std::string& path = a.positional[0];
+    if (a.options.count("--out")) makeOutputDirectory(a.options.at("--out"), "--out");
     auto device = gdi::createDevice(
         {.backend = a.options.count("--backend") ? a.options.at("--backend") : "auto",
          .validation = a.options.count("--validation") > 0,
@@ -126,6 +129,10 @@ int cmdReplay(const Args& a) {
                                .passTimes = true};
     if (a.options.count("--pass") && a.options.count("--draw"))
         throw UsageError("replay: --pass or --draw, not both");
+    const bool list = a.options.count("--list") > 0;
+    if (list && (a.options.count("--pass") || a.options.count("--draw")))
+        throw UsageError("replay: --list names every pass and draw: not with --pass or --draw");
+    options.snapshotPasses = list;
     if (a.options.count("--pass")) options.stopAfterPass = a.options.at("--pass");
     if (a.options.count("--draw"))
         options.stopAfterDraw = parseUint(a.options.at("--draw"), "--draw", 0, UINT32_MAX);
@@ -150,6 +157,20 @@ int cmdReplay(const Args& a) {
                 if (writeImage(t.image, file)) std::cout << " -> " << file;
             }
             std::cout << "\n";
+        }
+        return 0;
+    }
+    if (list) {
+        // The names --pass takes and the numbers --draw takes, in the capture's order.
+        std::cout << path << ": captured on " << r.capturedBackend << ": " << r.frames
+                  << " frame(s), " << r.passes << " render pass(es), " << r.draws << " draw(s)\n";
+        for (const gdi::PassSnapshot& p : r.passSnapshots) {
+            std::cout << "  pass " << p.pass << " '" << p.name << "': ";
+            if (p.draws == 0)
+                std::cout << "no draws\n";
+            else
+                std::cout << p.draws << " draw(s), " << p.firstDraw << " to "
+                          << p.firstDraw + p.draws - 1 << "\n";
         }
         return 0;
     }
@@ -225,7 +246,7 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
     auto deviceB = gdi::createDevice({.backend = nameB, .validation = true, .verbose = false});
     const gdi::BisectResult r = gdi::bisectCapture(path, *deviceA, *deviceB, options);
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "bisect";
-    std::filesystem::create_directories(out);
+    makeOutputDirectory(out, "--out");
 
     std::cout << path << ": " << nameA << " against " << nameB << ", " << r.passesCompared
               << " pass(es) and " << r.drawsCompared << " draw(s) compared in " << r.replays

@@ -3,7 +3,13 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -39,7 +45,8 @@ constexpr const char* kUsage =
     "      --error-budget PERCENT: with auto, a reduced illumination rate may be chosen if a probe frame has at\n"
     "        most PERCENT % of pixels beyond 5/255 of the exact image (default 0: exact techniques only)\n"
     "      --environment FILE.hdr|builtin:sky: the light from far away, drawn as the background\n"
-    "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique)\n"
+    "      --ibl-samples N: light the scene by the environment, N importance samples per term (every technique);\n"
+    "        with --ibl-* and no --environment the environment is builtin:sky\n"
     "      --ibl-prefiltered: light the scene by the environment through the fast path (prefiltered cube,\n"
     "        split-sum table, SH irradiance) instead of sampling it\n"
     "      --rates SOURCE=RATE,...: redeferred, each illumination source in an I-buffer of its own rate (1, 2, 4;\n"
@@ -77,6 +84,9 @@ constexpr const char* kUsage =
     "      --debug-view NAME: the .png shows an intermediate texture of the frame (a name of the graph's,\n"
     "        e.g. \"gbuffer1 normal+roughness\", \"depth\", \"shadow 0 map\"; or \"light count\" / \"lights evaluated\", heat maps)\n"
     "      --strict: the loader's warnings (content skipped or approximated, printed on stderr) are errors\n"
+    "      --verbose: also pass times, transient memory, the director's reasons, lights per pixel;\n"
+    "        --quiet: only warnings and errors; --json: the run as one JSON document on stdout\n"
+    "      an option the technique does not use (--msaa, --illum-scale, --temporal, ...) is a warning, ignored\n"
     "      --window: show the frames in a window until it is closed, or for --frames N; --backend auto\n"
     "        (Vulkan, else GL), vulkan, gl, vulkan-glfw or gl-glfw; --vsync on|off (default on)\n"
     "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
@@ -84,9 +94,13 @@ constexpr const char* kUsage =
     "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
     "      [--animation INDEX|NAME] [--camera INDEX|NAME]: an animated file plays (its first animation unless named),\n"
     "      looped; the panel picks the animation, plays, pauses, loops and scrubs it, and lists the file's cameras\n"
-    "      an interactive window with a panel (technique and options, backend, tone mapping, debug views, pass\n"
-    "      times); drag to orbit, wheel to zoom, W A S D Q E to fly, F12 for a screenshot; --frames N stops after\n"
-    "      N frames and --screenshot writes the last one (under xvfb-run for tests)\n"
+    "      every look option of render in its units: --illum-scale --msaa --ibl-samples --ibl-prefiltered --shadows\n"
+    "      --shadow-* --rates --tonemap --aa --exposure --brdf --background --lights and render's flags\n"
+    "      an interactive window with a panel beside the scene (technique and options, backend, tone mapping, debug\n"
+    "      views, pass times; F1 or its arrow folds it); drag to orbit, wheel to zoom, W A S D Q E to fly, R resets\n"
+    "      the camera, F frames the scene, F12 writes fe-view-NNN.png, Esc quits; drop a .gltf/.glb or .hdr on the\n"
+    "      window to open it; --frames N stops after N frames and --screenshot writes the last one (under xvfb-run\n"
+    "      for tests)\n"
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--warmup-ms MS] [--interleave]\n"
     "      [--stability | --stability-cases LIST] [--conformance]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
@@ -107,11 +121,11 @@ constexpr const char* kUsage =
     "      capture.fecap): every call of its first device, with its data, goes into FILE; --frames N: only the\n"
     "      first N frames (a frame ends with the renderer's frame, a present, or a read-back, after a submit); --frame K: only\n"
     "      frame K (from 0), the objects made before it written in the state they have when it starts\n"
-    "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present] [--pass NAME | --draw N]\n"
+    "  replay FILE [--backend NAME] [--out DIR] [--validation] [--present] [--pass NAME | --draw N | --list]\n"
     "      replays a capture on any backend (captured on vulkan, replayed on gl-egl, or the other way round);\n"
     "      --out DIR: every read-back and presented image as PNG; prints the frame times; --present: in a window;\n"
     "      --pass NAME / --draw N: stop after that render pass or draw (counted from 0 over the capture) and\n"
-    "      write the render targets there\n"
+    "      write the render targets there; --list: every render pass by name with its draws' numbers\n"
     "  bisect FILE [--backends A,B] [--tolerance ABS[,FRACTION]] [--out DIR] [--perturb BACKEND:DRAW]\n"
     "      replays on both backends (default vulkan,gl-egl), compares the render targets after every render\n"
     "      pass, then draw by draw in the first pass that differs, and prints the first divergent pass and draw:\n"
@@ -136,6 +150,9 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"conformance --backend",
      {"NAME[,NAME]|all", "the backends to run the cases on (default all)"}},
     {"--json", {"", "print the report as JSON"}},
+    {"render --json",
+     {"", "print the run as one JSON document (device, timings, passes, memory, warnings)"}},
+    {"--quiet", {"", "print nothing but warnings and errors"}},
     {"capture --out", {"FILE", "the capture file written (default capture.fecap)"}},
     {"capture --frames", {"N", "capture only the first N frames (default: all)"}},
     {"--frame", {"K", "capture only frame K, starting from the state the frames before left"}},
@@ -143,6 +160,8 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
     {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
+    {"--list",
+     {"", "name the capture's render passes and their draws (what --pass and --draw take)"}},
     {"--capture",
      {"FILE[,FILE...]", "run these capture files as the cases (fe capture makes them)"}},
     {"--pass", {"NAME", "stop after the first render pass of this name and write its targets"}},
@@ -227,7 +246,7 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--window", {"", "show the frames in a window"}},
     {"--verbose",
      {"",
-      "print the render director's choices and their reasons, and the lights evaluated and reaching per pixel"}},
+      "also print pass times, transient memory, the render director's reasons and the lights evaluated per pixel"}},
     {"--strict", {"", "the glTF loader's warnings are errors"}},
     {"--illum-split", {"", "redeferred-tiled: specular sums at full rate, diffuse at 1/scale"}},
     {"--rebuild-nov",
@@ -274,16 +293,30 @@ const OptionHelp& optionHelp(const std::string& command, const std::string& opti
 
 }  // namespace
 
-// The usage text with every technique of the engine's table, one line each.
-std::string usage() {
-    std::string u = kUsage;
-    u += "techniques (--technique):\n";
+std::string builtinSceneList() {
+    std::string list;
+    for (const std::string& n : assets::builtinSceneNames())
+        list += (list.empty() ? "builtin:" : ", builtin:") + n;
+    return list;
+}
+
+// The techniques of the engine's table, one line each.
+std::string techniqueList() {
+    std::string u = "techniques (--technique):\n";
     for (const render::TechniqueInfo& t : render::techniques()) {
         std::string name = t.name;
         u += "  " + name + std::string(name.size() < 20 ? 20 - name.size() : 1, ' ') + t.summary +
              "\n";
     }
     return u;
+}
+
+const Positionals kScenePositional{
+    "SCENE", "a glTF 2.0 file (.gltf, .glb) or builtin:NAME (fe render --help lists them)"};
+
+// The usage text with every technique of the engine's table, one line each.
+std::string usage() {
+    return kUsage + ("builtin scenes: " + builtinSceneList() + "\n") + techniqueList();
 }
 
 // The usage lines of one command (from kUsage: the line starting "  COMMAND" and its
@@ -303,10 +336,13 @@ std::string commandUsage(const std::string& command) {
 }
 
 Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued,
-           const std::vector<std::string>& flags) {
+           const std::vector<std::string>& flags, const Positionals& positionals) {
     const std::string command = argv[first - 1];
     CLI::App app{"fe " + command + ": the options, then the full usage", "fe " + command};
-    app.footer("\nUsage:\n" + commandUsage(command));
+    // render and view also list what SCENE and --technique take.
+    const bool scenes = command == "render" || command == "view";
+    app.footer("\nUsage:\n" + commandUsage(command) +
+               (scenes ? "\nbuiltin scenes: " + builtinSceneList() + "\n" + techniqueList() : ""));
     app.allow_extras(false);
     app.positionals_at_end(false);
     std::map<std::string, std::string> values;
@@ -320,8 +356,8 @@ Args parse(int argc, char** argv, int first, const std::vector<std::string>& val
         ->type_name("LEVEL");
     for (const std::string& f : flags) app.add_flag(f, on[f], optionHelp(command, f).text);
     Args a;
-    app.add_option("arguments", a.positional, "scene or files, as the command takes")
-        ->type_name("");
+    if (positionals.name)
+        app.add_option(positionals.name, a.positional, positionals.help)->type_name("");
     try {
         // CLI11 skips argv[0] as the program's name: the command's name stands in for it.
         app.parse(argc - first + 1, argv + first - 1);
@@ -352,6 +388,37 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
         throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) +
                          ", " + std::to_string(hi) + "], got '" + s + "'");
     return uint32_t(v);
+}
+
+std::string humanBytes(double bytes) {
+    const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
+    int u = 0;
+    while (bytes >= 1024.0 && u < 4) bytes /= 1024.0, ++u;
+    char text[32];
+    std::snprintf(text, sizeof text, u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
+    return text;
+}
+
+void makeOutputDirectory(const std::string& path, const char* option) {
+    std::error_code ec;
+    std::filesystem::create_directories(path, ec);
+    if (ec || !std::filesystem::is_directory(path))
+        throw gdi::Error("cannot create the directory " + path + " for " + option + ": " +
+                         (ec ? ec.message() : std::string("a file of that name exists")));
+}
+
+void checkWritableFile(const std::string& file, const char* option) {
+    const std::filesystem::path path(file);
+    std::error_code ec;
+    if (path.has_parent_path()) makeOutputDirectory(path.parent_path().string(), option);
+    if (std::filesystem::is_directory(path, ec))
+        throw gdi::Error(std::string(option) + " " + file + " is a directory");
+    const bool existed = std::filesystem::exists(path, ec);
+    std::ofstream probe(path, std::ios::app);
+    if (!probe)
+        throw gdi::Error("cannot write " + file + " (" + option + "): " + std::strerror(errno));
+    probe.close();
+    if (!existed) std::filesystem::remove(path, ec);
 }
 
 const std::vector<std::string> kRenderOptions = {"--backend",
@@ -393,6 +460,8 @@ const std::vector<std::string> kRenderOptions = {"--backend",
                                                  "--azimuth",
                                                  "--elevation"};
 const std::vector<std::string> kRenderFlags = {"--no-aliasing",
+                                               "--quiet",
+                                               "--json",
                                                "--window",
                                                "--verbose",
                                                "--strict",
@@ -611,11 +680,20 @@ void parseAnimationAndCamera(const Args& a, RenderJob& job) {
 }
 }  // namespace
 
+void checkBuiltinScene(const std::string& spec) {
+    if (spec.rfind("builtin:", 0) != 0) return;
+    const auto& names = assets::builtinSceneNames();
+    if (std::find(names.begin(), names.end(), spec.substr(8)) == names.end())
+        throw UsageError("unknown scene '" + spec + "' (builtin scenes: " + builtinSceneList() +
+                         ")");
+}
+
 RenderJob renderJob(const Args& a) {
     if (a.positional.size() > 1)
         throw UsageError("render takes one SCENE, got " + std::to_string(a.positional.size()));
     const bool quickStart = a.positional.empty();  // no scene named: the quick start's image
     std::string spec = quickStart ? kQuickStartScene : a.positional[0];
+    checkBuiltinScene(spec);
     render::RenderSettings s;
     auto opt = [&](const char* k, const std::string& def) {
         auto it = a.options.find(k);
@@ -659,8 +737,10 @@ RenderJob renderJob(const Args& a) {
             if (!s.shadows.enabled) throw UsageError(std::string(k) + " applies to --shadows on");
             shadowsGiven = true;
         }
-    const std::string environment =
-        opt("--environment", quickStart && !lightingAsked ? kQuickStartEnvironment : "");
+    // Image-based light asked for without an environment: the builtin sky, as the quick start.
+    const bool iblAsked = a.options.count("--ibl-samples") || a.options.count("--ibl-prefiltered");
+    const std::string environment = opt(
+        "--environment", (quickStart && !lightingAsked) || iblAsked ? kQuickStartEnvironment : "");
     if (const std::string rates = opt("--rates", ""); !rates.empty()) {
         // SOURCE=RATE,... with sources punctual, shadowed, ibl-diffuse, ibl-specular.
         std::stringstream list(rates);
@@ -756,13 +836,6 @@ RenderJob renderJob(const Args& a) {
     const double orbitDegrees = std::strtod(orbitText.c_str(), &end);
     if (*end || !std::isfinite(orbitDegrees) || std::abs(orbitDegrees) > 3600)
         throw UsageError("--orbit takes degrees (at most 3600), got '" + orbitText + "'");
-    if (!s.tileCullingPass && s.technique != "deferred-tiled")
-        throw UsageError("--one-pass-culling applies to --technique deferred-tiled");
-    if (!s.clusterDepthBounds && s.technique != "auto" &&
-        !render::findTechnique(s.technique).clusters)
-        throw UsageError(
-            "--no-cluster-bounds applies to the techniques that read the cluster grid (clustered-forward, "
-            "clustered-deferred, visibility-buffer)");
     const std::string dumpGraph = opt("--dump-graph", "");
     RenderJob job{.spec = spec,
                   .environment = environment,

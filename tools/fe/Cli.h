@@ -34,10 +34,26 @@ struct Args {
     std::map<std::string, std::string> options;
     std::vector<std::string> positional;
 };
+// The positional arguments a command takes, as its --help names them; a command without
+// (name nullptr) refuses any.
+struct Positionals {
+    const char* name = nullptr;  // e.g. "SCENE"
+    const char* help = "";
+};
 // argv[first - 1] is the command's name; its arguments follow.
 Args parse(int argc, char** argv, int first, const std::vector<std::string>& valued,
-           const std::vector<std::string>& flags);
+           const std::vector<std::string>& flags, const Positionals& positionals = {});
+// `fe render` and `fe view`'s positional argument.
+extern const Positionals kScenePositional;
 uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi);
+
+// Bytes as people read them: "512 B", "3.5 KiB", "23.4 GiB".
+std::string humanBytes(double bytes);
+// An output file can be written, before any work: its directory is created, and a path that
+// cannot be written is a gdi::Error naming the option, the path and why.
+void checkWritableFile(const std::string& path, const char* option);
+// An output directory exists (created with its parents) and is one, else such an error.
+void makeOutputDirectory(const std::string& path, const char* option);
 
 // `fe render`: its options and flags, and what they ask for.
 extern const std::vector<std::string> kRenderOptions, kRenderFlags;
@@ -103,5 +119,9 @@ struct RenderJob {
     std::string outPath(uint32_t k) const;
 };
 RenderJob renderJob(const Args& a);
+// A builtin:NAME that names no builtin scene is a usage error listing them; other specs pass.
+void checkBuiltinScene(const std::string& spec);
+// "builtin:spheres, builtin:lights, ...".
+std::string builtinSceneList();
 
 }  // namespace fe::cli

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -51,33 +54,13 @@ struct OrbitCamera {
     }
 };
 
+// The panel's column at the window's left: the scene is drawn beside it, never under it.
+constexpr uint32_t kPanelWidth = 300;
+
 class Viewer {
 public:
     explicit Viewer(const ViewerOptions& o) : options_(o) {
-        scene_ = assets::loadScene(o.scene);
-        if (!o.environment.empty()) scene_.environment = assets::loadEnvironment(o.environment);
-        settings_.technique = o.technique;
-        settings_.width = o.width;
-        settings_.height = o.height;
-        settings_.displayImage = true;
-        settings_.debugView = o.debugView;
-        // The look fe render gives: PBR Neutral; a model without lights of its own under the sky
-        // and a sun (assets::useDefaultSkyAndSun) unless --environment is given; shadows where
-        // the scene is made to show them.
-        settings_.tonemap = shading::Tonemap::PbrNeutral;
-        if (o.environment.empty() && assets::useDefaultSkyAndSun(scene_))
-            settings_.iblPrefiltered = true;
-        if (o.quickStartLighting) settings_.iblPrefiltered = true;
-        settings_.shadows.enabled = scene_.showsShadows;
-        camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
-        wantEnvironment_ = bool(scene_.environment);
-        // Animated files play their first animation (or --animation) in a loop; --camera looks
-        // through one of the file's cameras instead of the orbit camera.
-        if (!scene_.animations.empty())
-            animation_ = assets::findAnimation(scene_, o.animation.empty() ? "0" : o.animation);
-        else if (!o.animation.empty())
-            throw assets::AssetError(o.scene + " has no animation");
-        if (!o.camera.empty()) fileCamera_ = assets::findCamera(scene_, o.camera);
+        loadLook(o.scene, o.look);
         ImGui::CreateContext();
         ImGuiIO& io = ImGui::GetIO();
         io.IniFilename = nullptr;  // no imgui.ini beside the user's files
@@ -112,7 +95,7 @@ public:
             last = now;
             const gdi::InputState in = device_->input();
             ImGuiIO& io = ImGui::GetIO();
-            io.DisplaySize = ImVec2(float(settings_.width), float(settings_.height));
+            io.DisplaySize = ImVec2(float(options_.width), float(options_.height));  // the window
             io.DeltaTime = dt;
             io.MousePos = ImVec2(in.mouseX, in.mouseY);
             for (int b = 0; b < 3; ++b) io.MouseDown[b] = in.mouse[b];
@@ -124,6 +107,7 @@ public:
             ImGui::NewFrame();
             if (options_.ui) panel();
             ImGui::Render();
+            if (!handleKeys(in)) break;
             moveCamera(in, dt);
 
             const auto t0 = Clock::now();
@@ -143,13 +127,10 @@ public:
             renderer_->renderFrame();
             timings_ = renderer_->passTimings();  // waits for the frame
             frameMs_ = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-            const gdi::TextureHandle display = renderer_->displayTexture();
-            if (options_.ui) ui_->render(*ImGui::GetDrawData(), display);
-            const bool screenshotKey = in.down(gdi::Key::F12) && !screenshotKeyWasDown_;
-            screenshotKeyWasDown_ = in.down(gdi::Key::F12);
-            if (screenshotKey)
-                screenshot(options_.screenshot.empty() ? "fe-view.png" : options_.screenshot);
-            open = device_->present(display);
+            const gdi::TextureHandle shown = composeWindow();
+            if (options_.ui) ui_->render(*ImGui::GetDrawData(), shown);
+            shown_ = shown;
+            open = device_->present(shown);
             if (options_.switchBackendAt && frame + 1 == options_.switchBackendAt)
                 pendingBackend_ =
                     device_->info().backend == "vulkan-glfw" ? "gl-glfw" : "vulkan-glfw";
@@ -164,6 +145,155 @@ public:
     }
 
 private:
+    // The scene and how it is lit: fe render's look (ViewerOptions::look) where given, else
+    // the defaults fe render has: PBR Neutral; a model without lights of its own under the sky
+    // and a sun (assets::useDefaultSkyAndSun) unless --environment is given; shadows where the
+    // scene is made to show them. Also for a file dropped on the window.
+    void loadLook(const std::string& spec, const std::optional<cli::RenderJob>& look) {
+        const ViewerOptions& o = options_;
+        if (look) {
+            cli::RenderJob job = *look;
+            job.spec = spec;
+            scene_ = assets::loadScene(spec, {}, job.builtin);
+            job.applyScene(scene_);
+            settings_ = job.settings;
+        } else {
+            scene_ = assets::loadScene(spec);
+            if (!o.environment.empty()) scene_.environment = assets::loadEnvironment(o.environment);
+            settings_ = {.technique = o.technique};
+            settings_.debugView = o.debugView;
+            settings_.tonemap = shading::Tonemap::PbrNeutral;
+            if (o.environment.empty() && assets::useDefaultSkyAndSun(scene_))
+                settings_.iblPrefiltered = true;
+            settings_.shadows.enabled = scene_.showsShadows;
+        }
+        // Interactive on a CPU rasterizer: the quick start's sky through the fast path.
+        if (o.quickStartLighting && spec == o.scene)
+            settings_.iblSamples = 0, settings_.iblPrefiltered = true;
+        settings_.displayImage = true;
+        settings_.height = o.height;
+        settings_.width = sceneWidth();
+        camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center());
+        wantEnvironment_ = bool(scene_.environment);
+        // Animated files play their first animation (or --animation) in a loop; --camera looks
+        // through one of the file's cameras instead of the orbit camera.
+        animation_ = -1, time_ = 0.0, fileCamera_ = -1;
+        const bool first = spec == o.scene;
+        if (!scene_.animations.empty())
+            animation_ =
+                assets::findAnimation(scene_, first && !o.animation.empty() ? o.animation : "0");
+        else if (first && !o.animation.empty())
+            throw assets::AssetError(spec + " has no animation");
+        if (first && !o.camera.empty()) fileCamera_ = assets::findCamera(scene_, o.camera);
+    }
+
+    // The scene's width: the window's less the panel's column while the panel is open.
+    uint32_t sceneWidth() const {
+        return panelDocked() ? options_.width - panelWidth() : options_.width;
+    }
+    uint32_t panelWidth() const { return std::min(kPanelWidth, options_.width / 2); }
+    bool panelDocked() const { return options_.ui && !panelCollapsed_; }
+
+    // What the window shows: the scene texture, or beside an open panel a window-sized texture
+    // the scene is copied into at the panel's right.
+    gdi::TextureHandle composeWindow() {
+        const gdi::TextureHandle display = renderer_->displayTexture();
+        if (!panelDocked()) return display;
+        const gdi::TextureDesc d = device_->desc(display);
+        if (!windowTexture_ || device_->desc(windowTexture_).width != options_.width) {
+            if (windowTexture_) device_->destroy(windowTexture_);
+            windowTexture_ = device_->createTexture(
+                {.format = d.format,
+                 .width = options_.width,
+                 .height = options_.height,
+                 .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
+                          gdi::TextureUsage::CopyDst | gdi::TextureUsage::CopySrc,
+                 .debugName = "fe view window"});
+        }
+        auto cmd = device_->createCommandList();
+        cmd->copyTexture(windowTexture_, {.x = panelWidth()}, display,
+                         {.width = d.width, .height = d.height, .depth = 1});
+        device_->submit(*cmd);
+        return windowTexture_;
+    }
+
+    // Keys that act on a press (counted by the device, so a tap between slow frames counts):
+    // Esc quits, F12 a numbered screenshot, R the scene's camera again, F frames the scene, F1
+    // opens or closes the panel; files dropped on the window are opened.
+    bool handleKeys(const gdi::InputState& in) {
+        const ImGuiIO& io = ImGui::GetIO();
+        if (in.pressed(gdi::Key::F12)) screenshot(nextScreenshotPath());
+        if (!io.WantCaptureKeyboard) {
+            if (in.pressed(gdi::Key::Escape)) return false;
+            if (in.pressed(gdi::Key::R))
+                camera_ = OrbitCamera::from(*scene_.camera, scene_.bounds.center()),
+                fileCamera_ = -1;
+            if (in.pressed(gdi::Key::F)) frameAll();
+            if (in.pressed(gdi::Key::F1) && options_.ui) setPanelCollapsed(!panelCollapsed_);
+        }
+        for (const std::string& path : in.droppedFiles) openDropped(path);
+        return true;
+    }
+
+    // The orbit camera keeps its direction and takes the scene's bounds whole into view.
+    void frameAll() {
+        fileCamera_ = -1;
+        camera_.target = scene_.bounds.center();
+        const float radius = std::max(1e-3f, glm::length(scene_.bounds.size()) * 0.5f);
+        const float aspect = float(sceneWidth()) / float(options_.height);
+        const float halfFov =
+            0.5f * std::min(camera_.yfov, 2.0f * std::atan(std::tan(0.5f * camera_.yfov) * aspect));
+        camera_.distance = radius / std::sin(halfFov);
+    }
+
+    void setPanelCollapsed(bool collapsed) {
+        if (collapsed == panelCollapsed_) return;
+        panelCollapsed_ = collapsed;
+        render::RenderSettings s = pendingSettings_ ? *pendingSettings_ : settings_;
+        s.width = sceneWidth();
+        pendingSettings_ = s;
+    }
+
+    // A .gltf/.glb replaces the scene (lit as fe render would), an .hdr the environment.
+    void openDropped(const std::string& path) {
+        std::string ext = path.size() > 4 ? path.substr(path.find_last_of('.') + 1) : "";
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        try {
+            if (ext == "hdr") {
+                scene_.environment = assets::loadEnvironment(path);
+                wantEnvironment_ = true;
+                render::RenderSettings s = pendingSettings_ ? *pendingSettings_ : settings_;
+                if (!s.ibl()) s.iblPrefiltered = true;
+                pendingSettings_ = s;
+            } else if (ext == "gltf" || ext == "glb") {
+                renderer_.reset();
+                loadLook(path, options_.look);
+                rebuildRenderer();
+            } else {
+                throw gdi::Error(
+                    path + ": unsupported format: drop a glTF 2.0 file (.gltf, .glb) or an .hdr");
+            }
+            message_.clear();
+            std::cout << "opened " << path << "\n";
+        } catch (const std::exception& e) {
+            message_ = e.what();
+            if (!renderer_) {  // the old scene is gone: show the quick start's again
+                loadLook(options_.scene, options_.look);
+                rebuildRenderer();
+            }
+        }
+    }
+
+    // fe-view-001.png, fe-view-002.png, ...: the first name not taken in the working directory.
+    std::string nextScreenshotPath() const {
+        for (uint32_t n = 1;; ++n) {
+            char name[32];
+            std::snprintf(name, sizeof name, "fe-view-%03u.png", n);
+            if (!std::filesystem::exists(name)) return name;
+        }
+    }
+
     void startDevice(const std::string& backend) {
         device_ = gdi::createDevice(
             {.backend = backend, .validation = options_.validation, .window = true});
@@ -171,6 +301,8 @@ private:
         rebuildRenderer();
     }
     void stopDevice() {
+        if (windowTexture_) device_->destroy(windowTexture_);
+        windowTexture_ = {};
         renderer_.reset();
         ui_.reset();
         device_.reset();
@@ -247,9 +379,19 @@ private:
     }
 
     void panel() {
-        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
-        ImGui::Begin("fe view");
+        // A column of its own, full height, opaque: beside the scene. Collapsing it (its arrow,
+        // or F1) gives the scene the whole window.
+        ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(float(panelWidth()), float(options_.height)),
+                                 ImGuiCond_Always);
+        ImGui::SetNextWindowCollapsed(panelCollapsed_, ImGuiCond_Always);
+        ImGui::SetNextWindowBgAlpha(1.0f);
+        const bool open =
+            ImGui::Begin("fe view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+        if (!open) {
+            ImGui::End();
+            return;
+        }
         ImGui::PushItemWidth(150);
         const gdi::DeviceInfo& info = device_->info();
         ImGui::Text("backend");
@@ -320,9 +462,9 @@ private:
             if (ImGui::RadioButton(name, &aa, value))
                 s.antiAliasing = render::AntiAliasing(aa), changed = true;
         }
-        float stops = std::log2(s.exposure);
-        if (ImGui::SliderFloat("exposure", &stops, -8.0f, 8.0f, "%.1f"))
-            s.exposure = std::exp2(stops);
+        // A multiplier, as fe render's --exposure.
+        ImGui::SliderFloat("exposure", &s.exposure, 1.0f / 256.0f, 256.0f, "x%.3g",
+                           ImGuiSliderFlags_Logarithmic);
         changed |= ImGui::IsItemDeactivatedAfterEdit();
         // Debug views: any 2D intermediate of this frame's graph.
         if (ImGui::BeginCombo("debug view",
@@ -364,7 +506,9 @@ private:
             }
             ImGui::EndTable();
         }
-        ImGui::TextDisabled("drag: orbit, wheel: zoom\nW A S D Q E: fly, F12: screenshot");
+        ImGui::TextDisabled(
+            "drag: orbit, wheel: zoom, W A S D Q E: fly\nR: reset camera, F: frame all, F1: panel\n"
+            "F12: screenshot, Esc: quit; drop a .gltf, .glb or .hdr here");
         ImGui::PopItemWidth();
         ImGui::End();
     }
@@ -422,8 +566,9 @@ private:
         }
     }
 
+    // What the window shows (the panel too, unless --no-ui).
     void screenshot(const std::string& path) {
-        gdi::writePng(device_->readTexture(renderer_->displayTexture()), path);
+        gdi::writePng(device_->readTexture(shown_ ? shown_ : renderer_->displayTexture()), path);
         std::cout << "wrote " << path << " (" << device_->info().backend << ", "
                   << settings_.technique << (settings_.ibl() ? ", environment light" : "")
                   << (settings_.shadows.enabled ? ", shadows" : "");
@@ -448,7 +593,9 @@ private:
     std::optional<render::RenderSettings> pendingSettings_;
     std::string pendingBackend_, message_;
     bool wantEnvironment_ = false;
-    bool mouseWasDown_ = false, screenshotKeyWasDown_ = false;
+    bool mouseWasDown_ = false;
+    bool panelCollapsed_ = false;
+    gdi::TextureHandle windowTexture_, shown_;
     glm::vec2 lastMouse_{0.0f};
 };
 

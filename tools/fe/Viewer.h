@@ -4,11 +4,18 @@
 // switched by restarting the device in place; frame and per-pass GPU times; debug views of the
 // frame's intermediate textures; a screenshot key.
 #pragma once
+#include <optional>
 #include <string>
+
+#include "Cli.h"
 
 namespace fe::tools {
 
 struct ViewerOptions {
+    // The look, from fe render's options in fe render's units (cli::renderJob): technique,
+    // environment, image-based light, shadows, tone mapping, antialiasing, exposure, ...; its
+    // applyScene lights the scene as fe render would. Unset: the defaults below.
+    std::optional<cli::RenderJob> look;
     std::string scene = "builtin:spheres";
     // No scene named: the quick start's image, lit by its environment through the fast path
     // (prefiltered: interactive on a CPU rasterizer) with shadows on.
@@ -18,7 +25,7 @@ struct ViewerOptions {
     std::string environment;  // "", builtin:sky or an .hdr
     uint32_t width = 640, height = 480;
     uint32_t frames = 0;      // 0: until the window is closed
-    std::string screenshot;   // written after the last frame (PNG), and by the F12 key
+    std::string screenshot;   // written after the last frame (PNG); F12 writes fe-view-NNN.png
     bool validation = false;  // Khronos layer / GL debug output on; an error fails the run (tests)
     bool ui = true;           // the panel (false: the scene alone, e.g. to compare)
     std::string debugView;    // a texture of the frame's graph to show instead of L_o

@@ -32,6 +32,7 @@
 #include "fe/gdi/InfoJson.h"
 #include "CaptureCommands.h"
 #include "Cli.h"
+#include "RenderCommand.h"
 #include "Viewer.h"
 #include "integration/Bench.h"
 #include "integration/RenderDirector.h"
@@ -45,6 +46,7 @@ using namespace fe;
 using cli::Args;
 using cli::commandUsage;
 using cli::HelpShown;
+using cli::humanBytes;
 using cli::parse;
 using cli::parseUint;
 using cli::usage;
@@ -61,341 +63,80 @@ gdi::Json probeAll(const Args& a) {
     }
     gdi::Json backends = gdi::Json::array();
     for (const std::string& n : names)
-        backends.push_back(gdi::probeJson(gdi::probeBackend(n, false)));
+        backends.push_back(gdi::probeJson(gdi::probeBackend(n, false), true));
     return backends;
 }
 
+std::string joinedCounts(const gdi::Json& counts) {
+    std::string s;
+    for (const gdi::Json& n : counts) s += (s.empty() ? "" : ",") + std::to_string(n.get<int>());
+    return s;
+}
+
+// One available backend as `fe info` prints it, in vulkaninfo's terms.
+void printDeviceText(const gdi::Json& d) {
+    auto fields = [](const gdi::Json& object) {
+        std::string s;
+        for (const auto& [name, value] : object.items())
+            s += (s.empty() ? "" : ", ") + name + " " +
+                 (name.ends_with("SampleCounts") ? joinedCounts(value) : value.dump());
+        return s;
+    };
+    std::cout << "  device: " << d["deviceName"].get<std::string>() << " ("
+              << d["deviceType"].get<std::string>()
+              << (d["softwareRasterizer"].get<bool>() ? ", software rasterizer" : "") << ")\n"
+              << "  api: " << d["apiVersion"].get<std::string>() << "\n"
+              << "  driver: " << d["driverName"].get<std::string>() << ", "
+              << d["driverInfo"].get<std::string>();
+    if (!d["conformanceVersion"].get<std::string>().empty())
+        std::cout << "; conformance version " << d["conformanceVersion"].get<std::string>();
+    std::cout << "\n";
+    if (!d["memoryHeaps"].empty()) {
+        std::string heaps;
+        for (const gdi::Json& h : d["memoryHeaps"])
+            heaps += (heaps.empty() ? "" : ", ") + humanBytes(h["bytes"].get<double>()) +
+                     (h["deviceLocal"].get<bool>() ? " device-local" : " host");
+        std::cout << "  memory heaps: " << heaps << "\n";
+    }
+    std::cout << "  extensions: " << d["extensions"].size() << " (fe info --json lists them)\n"
+              << "  limits: " << fields(d["limits"]) << "\n"
+              << "  features: " << fields(d["features"]) << "\n";
+    if (!d["presentMode"].get<std::string>().empty())
+        std::cout << "  present mode: " << d["presentMode"].get<std::string>() << "\n";
+    std::cout << "  formats (s sampled, l linear filter, r render target, b blend, w storage; "
+                 "sample counts):\n";
+    for (const auto& [format, c] : d["formats"].items()) {
+        std::string flags;
+        for (const auto& [key, letter] : {std::pair{"sampled", 's'},
+                                          {"linearFilter", 'l'},
+                                          {"renderTarget", 'r'},
+                                          {"blend", 'b'},
+                                          {"storage", 'w'}})
+            flags += c[key].get<bool>() ? letter : '-';
+        const std::string counts = joinedCounts(c["sampleCounts"]);
+        std::cout << "    " << format << " " << flags << (counts.empty() ? "" : " " + counts)
+                  << "\n";
+    }
+}
+
 int cmdInfo(const Args& a) {
-    if (!a.positional.empty()) throw UsageError("info takes no positional arguments");
     const gdi::Json backends = probeAll(a);
     if (a.options.count("--json")) {
         std::cout << gdi::Json{{"engine", gdi::engineJson()}, {"backends", backends}}.dump(2)
                   << "\n";
         return 0;
     }
-    // The text form prints the same document, so both list every field.
-    auto fields = [](const gdi::Json& object) {
-        std::string s;
-        for (const auto& [name, value] : object.items())
-            s += (s.empty() ? "" : ", ") + name + " " + value.dump();
-        return s;
-    };
     for (const gdi::Json& b : backends) {
         const std::string name = b["name"];
         if (!b["available"]) {
             std::cout << name << ": unavailable: " << b["reason"].get<std::string>() << "\n";
             continue;
         }
-        const gdi::Json& d = b["device"];
-        std::cout << name << ": available\n"
-                  << "  device: " << d["deviceName"].get<std::string>()
-                  << (d["softwareRasterizer"].get<bool>() ? " (software rasterizer)" : "") << "\n"
-                  << "  api: " << d["apiVersion"].get<std::string>() << "\n"
-                  << "  driver: " << d["driverInfo"].get<std::string>() << "\n"
-                  << "  limits: " << fields(d["limits"]) << "\n"
-                  << "  features: " << fields(d["features"]) << "\n";
-        if (!d["presentMode"].get<std::string>().empty())
-            std::cout << "  present mode: " << d["presentMode"].get<std::string>() << "\n";
-        std::cout
-            << "  formats (s sampled, l linear filter, r render target, b blend, w storage; sample counts):\n";
-        for (const auto& [format, c] : d["formats"].items()) {
-            std::string flags;
-            for (const auto& [key, letter] : {std::pair{"sampled", 's'},
-                                              {"linearFilter", 'l'},
-                                              {"renderTarget", 'r'},
-                                              {"blend", 'b'},
-                                              {"storage", 'w'}})
-                flags += c[key].get<bool>() ? letter : '-';
-            std::string counts;
-            for (uint32_t n = 1; n <= 8; n *= 2)
-                if (c["sampleCounts"].get<uint32_t>() & n)
-                    counts += (counts.empty() ? "" : ",") + std::to_string(n);
-            std::cout << "    " << format << " " << flags << (counts.empty() ? "" : " " + counts)
-                      << "\n";
-        }
+        std::cout << name << ": available\n";
+        printDeviceText(b["device"]);
     }
     return 0;
 }
-// Pass times, saying which method made them (SceneRenderer::measurePassTimes): the GPU
-// timestamps where they account for the frame, else `profiled` flush-and-wait frames (medians).
-void printPassTimes(render::SceneRenderer& renderer, const std::vector<std::string>& order,
-                    std::map<std::string, std::vector<double>>& timestamps,
-                    const std::vector<double>& frameMs, uint32_t profiled) {
-    auto median = [](std::vector<double> v) {
-        std::sort(v.begin(), v.end());
-        return v.empty() ? 0.0 : v[v.size() / 2];
-    };
-    render::SceneRenderer::PassSamples samples;
-    for (const std::string& name : order) samples.push_back({name, timestamps[name]});
-    const render::SceneRenderer::PassTimes t =
-        renderer.measurePassTimes(samples, frameMs, profiled);
-    const int share = int(100.0 * t.timestampShare + 0.5);
-    if (t.method == "gpu-timestamps") {
-        std::cout << "pass times (GPU timestamps; they sum to " << share << " % of the frame):\n";
-        for (const auto& [name, v] : t.passes)
-            std::cout << "  pass " << name << ": " << median(v) << " ms GPU\n";
-        return;
-    }
-    std::cout << "pass times (flush-and-wait profiling, median of " << profiled
-              << " frame(s): the GPU timestamps "
-              << (order.empty() ? std::string("are unavailable")
-                                : "sum to only " + std::to_string(share) + " % of the frame")
-              << "):\n";
-    for (const auto& [name, v] : t.passes)
-        std::cout << "  pass " << name << ": " << median(v) << " ms (flush-and-wait"
-                  << (timestamps.count(name)
-                          ? "; timestamps " + std::to_string(median(timestamps[name])) + " ms"
-                          : std::string())
-                  << ")\n";
-}
-
-// An output file can be written, before anything is rendered: its directory is created, and a
-// path that cannot be opened for writing is an error naming the option, the path and why.
-void checkWritableFile(const std::filesystem::path& path, const char* option) {
-    std::error_code ec;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-    if (ec)
-        throw gdi::Error("cannot create the directory " + path.parent_path().string() + " for " +
-                         option + ": " + ec.message());
-    if (std::filesystem::is_directory(path, ec))
-        throw gdi::Error(std::string(option) + " " + path.string() + " is a directory");
-    const bool existed = std::filesystem::exists(path, ec);
-    std::ofstream probe(path, std::ios::app);
-    if (!probe) throw gdi::Error("cannot write " + path.string() + ": " + std::strerror(errno));
-    probe.close();
-    if (!existed) std::filesystem::remove(path, ec);
-}
-
-void checkWritable(const cli::RenderJob& job, uint32_t frames) {
-    for (uint32_t k : {0u, frames - 1}) checkWritableFile(job.outPath(k), "--out");
-    if (!job.dumpGraph.empty()) checkWritableFile(job.dumpGraph, "--dump-graph");
-}
-
-int cmdRender(const Args& a) {
-    cli::RenderJob job = cli::renderJob(a);
-    const std::string& spec = job.spec;
-    render::RenderSettings& s = job.settings;
-    const render::DirectorOptions& director = job.director;
-    const bool window = job.window, untilClosed = job.untilClosed, pfm = job.pfm;
-    const std::string &backend = job.backend, &out = job.out, &dumpGraph = job.dumpGraph;
-    const uint32_t frames = job.frames;
-    const assets::BuiltinOptions& builtin = job.builtin;
-    const double orbitDegrees = job.orbitDegrees;
-    assets::Scene scene = assets::loadScene(spec, {}, builtin);
-    // What the loader skipped or approximated, on stderr; --strict makes any of it an error.
-    for (const std::string& w : scene.warnings) spdlog::warn("{}: {}", spec, w);
-    if (a.options.count("--strict") && !scene.warnings.empty())
-        throw assets::AssetError(spec + ": --strict: " + std::to_string(scene.warnings.size()) +
-                                 " warning(s), the first: " + scene.warnings.front());
-    job.applyScene(scene);
-    checkWritable(job, frames);
-    if (const auto& c = scene.camera;
-        c && c->aspectRatio && std::abs(*c->aspectRatio * s.height / s.width - 1.0f) > 0.01f)
-        spdlog::warn(
-            "{}: camera '{}' has aspectRatio {}: the {}x{} image stretches its view, as glTF asks (a --size of that "
-            "ratio shows it undistorted)",
-            spec, c->name, *c->aspectRatio, s.width, s.height);
-    // RenderDoc joins before the device exists (its Vulkan layer is enabled at instance creation).
-    std::unique_ptr<gdi::FrameCapture> capture;
-    if (!job.renderdocCapture.empty()) capture = gdi::FrameCapture::load(job.renderdocCapture);
-    std::string captured;
-    const auto startup = std::chrono::steady_clock::now();
-    auto device = gdi::createDevice({.backend = backend,
-                                     .validation = false,
-                                     .window = window,
-                                     .vsync = job.vsync,
-                                     .pipelineCache = job.pipelineCache});
-    const double deviceMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - startup)
-            .count();
-    const render::DirectorChoice choice =
-        render::direct(scene, s, device->info(), device.get(), director);
-    if (a.options.count("--verbose") && spdlog::get_level() > spdlog::level::info)
-        spdlog::set_level(spdlog::level::info);
-    for (const std::string& r : choice.reasons) spdlog::info("director: {}", r);
-    s = choice.settings;
-    for (const std::string& w : render::materialWarnings(scene, s)) spdlog::warn("{}: {}", spec, w);
-    const bool verbose = a.options.count("--verbose") > 0;
-    const auto rendererStart = std::chrono::steady_clock::now();
-    render::SceneRenderer renderer(*device, scene, s);
-    const double rendererMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - rendererStart)
-            .count();
-    if (!dumpGraph.empty()) {
-        std::ofstream f(dumpGraph);
-        f << renderer.graph().toDot();
-        if (!f) throw gdi::Error("cannot write " + dumpGraph);
-    }
-    std::vector<double> cpu;
-    std::map<std::string, std::vector<double>> gpu;
-    std::vector<std::string> passOrder;  // execution order
-    bool open = true;
-    uint32_t presented = 0, lastFrame = 0;
-    // What changes from frame to frame: an --animation poses the scene at its frame's instant;
-    // builtin:lights animates (light positions are a function of the frame index); --orbit turns
-    // the camera about the scene's vertical axis over the frames.
-    auto animate = [&](render::SceneRenderer& r, uint32_t f) {
-        if (job.poseFrame(scene, f)) r.updatePose();
-        if (spec == "builtin:lights") r.updateLights(assets::lightsSceneLights(builtin.lights, f));
-        if (orbitDegrees != 0.0) {
-            const double t = frames > 1 ? double(f) / double(frames) : 0.0;
-            r.setCamera(scene.camera->orbited(scene.bounds.center(),
-                                              float(orbitDegrees * t * 3.14159265358979 / 180.0)));
-        }
-    };
-    // A sequence (--out with {frame}) writes each frame as it is rendered.
-    auto writeFrame = [&](render::SceneRenderer& r, const std::string& path) {
-        if (pfm) return gdi::writePfm(r.readOutput(), path);
-        gdi::writePng(r.readDisplay(), path, 1.0f,
-                      s.background.kind == render::Background::Kind::Transparent);
-    };
-    // One warm-up frame when timing (frame 0 again), so frame k of the output is loop index k + 1.
-    const uint32_t warmup = frames > 1 ? 1 : 0;
-    for (uint32_t f = 0; open && (untilClosed || f < frames + warmup); ++f) {
-        auto t0 = std::chrono::steady_clock::now();
-        const uint32_t k = f < warmup ? 0 : f - warmup;
-        animate(renderer, k);
-        lastFrame = f;
-        if (capture && f == 0) capture->begin(*device);
-        renderer.renderFrame();
-        auto timings = renderer.passTimings();  // waits for the frame
-        if (capture && f == 0) captured = capture->end(*device);
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                        .count();
-        if (window) open = device->present(renderer.displayTexture()), ++presented;
-        if (f < warmup) continue;
-        if (job.sequence) writeFrame(renderer, job.outPath(k));
-        cpu.push_back(ms);
-        for (auto& t : timings) {
-            if (!gpu.count(t.name)) passOrder.push_back(t.name);
-            gpu[t.name].push_back(t.gpuMilliseconds);
-        }
-    }
-    auto median = [](std::vector<double> v) {
-        std::sort(v.begin(), v.end());
-        return v[v.size() / 2];
-    };
-    gdi::Image img = renderer.readOutput();
-    for (float v :
-         std::vector<float>(reinterpret_cast<const float*>(img.data.data()),
-                            reinterpret_cast<const float*>(img.data.data() + img.data.size())))
-        if (!std::isfinite(v))
-            throw gdi::Error("the rendered image contains NaN or infinite values");
-    const bool transparent = s.background.kind == render::Background::Kind::Transparent;
-    if (job.sequence) {
-        if (!pfm)
-            for (const std::string& w :
-                 render::frameWarnings(scene, *scene.camera, s, renderer.readDisplay()))
-                spdlog::warn("{}: {}", spec, w);
-    } else if (pfm)
-        gdi::writePfm(img, out);
-    else {
-        const gdi::Image display = renderer.readDisplay();
-        gdi::writePng(display, out, 1.0f, transparent);
-        // A black frame, or one showing none of the scene, exits 0 like any other: say why.
-        for (const std::string& w : render::frameWarnings(scene, *scene.camera, s, display))
-            spdlog::warn("{}: {}", spec, w);
-    }
-    const bool soft = device->info().softwareRasterizer;
-    std::cout << "backend " << device->info().backend << " (" << device->info().deviceName << ")"
-              << (soft ? " [software rasterizer timings]" : "") << "\n";
-    if (window)
-        std::cout << "window: " << presented << " frame(s) presented, "
-                  << device->info().presentMode << "\n";
-    std::cout << "technique " << s.technique;
-    if (render::findTechnique(s.technique).illumScale) {
-        std::cout << " illum-scale " << s.illumScale << (s.illumSplit ? " split" : "")
-                  << (s.precomputedNoV ? "" : " rebuild-nov");
-        if (s.perSourceRates())
-            std::cout << " rates punctual " << s.rate(s.rates.punctual) << " shadowed "
-                      << s.rate(s.rates.shadowed) << " ibl-diffuse " << s.rate(s.rates.iblDiffuse)
-                      << " ibl-specular " << s.rate(s.rates.iblSpecular);
-    }
-    if (s.msaa > 1) std::cout << " msaa " << s.msaa;
-    if (!pfm && s.tonemap != shading::Tonemap::Clamp)
-        std::cout << ", tonemap " << shading::tonemapName(s.tonemap);
-    if (!pfm && s.antiAliasing == render::AntiAliasing::Fxaa) std::cout << ", fxaa";
-    if (s.antiAliasing == render::AntiAliasing::Taa) std::cout << ", taa";
-    if (s.ibl())
-        std::cout << ", environment light "
-                  << (s.iblPrefiltered ? std::string("prefiltered")
-                                       : std::to_string(s.iblSamples) + " samples");
-    if (job.defaultLookApplied)
-        std::cout << ", default look (builtin:sky and a sun: the scene has no lights)";
-    if (!pfm) {
-        const char* kinds[] = {"black", "environment", "colour", "transparent"};
-        const render::Background::Kind kind = renderer.background().kind();
-        std::cout << ", background " << kinds[int(kind)];
-        if (kind == render::Background::Kind::Color)
-            std::cout << " " << s.background.color.r << "," << s.background.color.g << ","
-                      << s.background.color.b;
-    }
-    if (s.shadows.enabled)
-        std::cout << ", shadows " << renderer.shadowPlan().shadowed.size() << " light(s), map "
-                  << s.shadows.mapSize << (s.shadows.pcf ? " pcf" : " nearest");
-    std::cout << ", size " << s.width << "x" << s.height << ", scene " << spec << " ("
-              << scene.lights.size() << " lights)\n"
-              << "frame time (CPU wall, median of " << cpu.size() << "): " << median(cpu)
-              << " ms\n";
-    if (!job.pipelineCache.empty()) {
-        const gdi::PipelineCacheStats c = device->pipelineCacheStats();
-        std::cout << "start-up: device " << deviceMs << " ms, renderer (pipelines and resources) "
-                  << rendererMs << " ms; pipeline cache "
-                  << (c.loaded ? "loaded " + std::to_string(c.loadedBytes) + " bytes"
-                               : std::string("empty"))
-                  << ", " << c.hits << " hit(s), " << c.misses << " compiled\n";
-    }
-    printPassTimes(renderer, passOrder, gpu, cpu, std::min<uint32_t>(uint32_t(cpu.size()), 3));
-    const graph::MemoryReport mem = renderer.graph().memory();
-    static const char* modes[] = {"none", "heap memory aliasing", "texture object reuse"};
-    std::cout << "transient memory: " << mem.withAliasing << " bytes with aliasing ("
-              << modes[int(renderer.graph().aliasing())] << "), " << mem.withoutAliasing
-              << " without; " << mem.transientTextures << " transient textures in "
-              << mem.allocations << " allocation(s)\n";
-    if (verbose) {
-        // From a renderer of its own set up as the last frame was: the statistics pass walks every
-        // light at every pixel, so it stays out of the timed frames above.
-        const render::LightListStatistics l = render::measureLightLists(
-            *device, scene, s, [&](render::SceneRenderer& r) { animate(r, lastFrame); });
-        std::cout << "lights evaluated per pixel (" << l.lists << ")";
-        if (l.measured) {
-            std::cout
-                << ": mean " << l.mean << ", 95th percentile " << l.p95 << ", max " << l.max
-                << " over " << l.pixels
-                << " pixels; lights reaching a pixel (what exact culling walks at least): mean "
-                << l.reaching;
-            // Always said when it happens: a dropped light is a wrong picture, not a slow one.
-            if (l.pixelsMissingALight)
-                std::cout << "; " << l.pixelsMissingALight
-                          << " pixels MISS a light that reaches them";
-        }
-        std::cout << "\n";
-    }
-    if (const render::ClusterLightGrid* grid = renderer.clusters()) {
-        // Always printed: a cluster that overflowed shades every light, which must not pass unseen.
-        const render::ClusterLightGrid::Statistics c = grid->statistics();
-        std::cout << "light clusters: " << c.clusters << " ("
-                  << render::ClusterLightGrid::kTilePixels << "x"
-                  << render::ClusterLightGrid::kTilePixels << " px x "
-                  << render::ClusterLightGrid::kSlices << " slices), " << c.nonEmpty
-                  << " with lights, " << c.meanLights << " lights per such cluster (max "
-                  << c.maxLights << ")";
-        if (c.bounded)
-            std::cout << ", " << c.meanBoundedLights
-                      << " of them reaching its opaque surfaces' depths";
-        std::cout << ", " << c.entries << " of " << grid->listCapacity() << " index entries used, "
-                  << c.overflowed << " overflowed (no room left: shade every light)\n";
-    }
-    if (!dumpGraph.empty()) std::cout << "wrote " << dumpGraph << "\n";
-    if (!captured.empty()) std::cout << "RenderDoc capture of frame 0: " << captured << "\n";
-    if (job.sequence)
-        std::cout << "wrote " << frames << " frame(s): " << job.outPath(0) << " ... "
-                  << job.outPath(frames - 1) << "\n";
-    else
-        std::cout << "wrote " << out << "\n";
-    return 0;
-}
-
 // What a conformance run found: the report's sections and the pass/fail counts.
 struct ConformanceRun {
     int passed = 0, failed = 0;
@@ -518,6 +259,35 @@ double parsePositive(const std::string& text, const char* what) {
     return v;
 }
 
+// fe view's own options; the rest are fe render's look options (kViewLookOptions), in its units.
+const std::vector<std::string> kViewOptions = {
+    "--backend",   "--technique",  "--size",       "--environment",
+    "--frames",    "--screenshot", "--debug-view", "--switch-backend-at",
+    "--animation", "--camera"};
+const std::vector<std::string> kViewLookOptions = {"--illum-scale",
+                                                   "--msaa",
+                                                   "--ibl-samples",
+                                                   "--shadows",
+                                                   "--shadow-map-size",
+                                                   "--shadow-cascades",
+                                                   "--shadow-point-budget",
+                                                   "--shadow-filter",
+                                                   "--rates",
+                                                   "--tonemap",
+                                                   "--aa",
+                                                   "--exposure",
+                                                   "--brdf",
+                                                   "--background",
+                                                   "--lights"};
+const std::vector<std::string> kViewLookFlags = {"--ibl-prefiltered",   "--illum-split",
+                                                 "--rebuild-nov",       "--one-pass-culling",
+                                                 "--no-cluster-bounds", "--temporal"};
+
+std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
 // fe view: the interactive viewer (Viewer.h).
 int cmdView(const Args& a) {
     if (a.positional.size() > 1) throw UsageError("view takes one scene");
@@ -556,6 +326,17 @@ int cmdView(const Args& a) {
     if (a.options.count("--switch-backend-at"))
         o.switchBackendAt =
             parseUint(a.options.at("--switch-backend-at"), "--switch-backend-at", 1, 1000000);
+    if (!o.screenshot.empty()) cli::checkWritableFile(o.screenshot, "--screenshot");
+    // The look as fe render reads it: the same options, units and checks (fe render's --size
+    // and --frames mean other things here, and a window's technique starts as deferred-tiled).
+    Args look = a;
+    for (const char* viewOnly : {"--size", "--frames", "--screenshot", "--switch-backend-at",
+                                 "--backend", "--no-ui", "--validation"})
+        look.options.erase(viewOnly);
+    look.options["--technique"] = o.technique;
+    look.options["--size"] = std::to_string(o.width) + "x" + std::to_string(o.height);
+    o.look = cli::renderJob(look);
+    if (o.quickStartLighting) o.look->environment = cli::kQuickStartEnvironment;
     return tools::runViewer(o);
 }
 
@@ -618,7 +399,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
             parseUint(a.options.at("--warmup-ms"), "--warmup-ms", 0, 60000) / 1000.0;
     options.interleave = a.options.count("--interleave") > 0;
     const std::string out = a.options.count("--out") ? a.options.at("--out") : "bench";
-    std::filesystem::create_directories(out);
+    cli::makeOutputDirectory(out, "--out");
     options.imageDir = out + "/images";
     const bool tty = isatty(2);
     const auto showProgress = [&](const render::BenchProgress& p) {
@@ -692,7 +473,6 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
 }
 
 int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
-    if (!a.positional.empty()) throw UsageError("conformance takes no positional arguments");
     std::string which = a.options.count("--backend") ? a.options.at("--backend") : "all";
     std::vector<std::string> backends = gdi::expandBackendList(which);
     const std::string date = gdi::utcTimestamp();  // when the run started
@@ -713,6 +493,10 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     } else {
         cases = conformance::cases();
     }
+    // Outputs are checked before any case runs.
+    if (a.options.count("--report")) cli::checkWritableFile(a.options.at("--report"), "--report");
+    if (a.options.count("--out-dir"))
+        cli::makeOutputDirectory(a.options.at("--out-dir"), "--out-dir");
     ConformanceRun run;
     for (const std::string& b : backends) conformanceOne(b, a, cases, run);
     crossBackend(backends, a.options.count("--out-dir") ? a.options.at("--out-dir") : "", run);
@@ -769,19 +553,19 @@ int main(int argc, char** argv) {
     try {
         if (command == "info") return cmdInfo(parse(argc, argv, 2, {"--backend"}, {"--json"}));
         if (command == "render")
-            return cmdRender(parse(argc, argv, 2, cli::kRenderOptions, cli::kRenderFlags));
+            return cli::cmdRender(parse(argc, argv, 2, cli::kRenderOptions, cli::kRenderFlags,
+                                        cli::kScenePositional));
         if (command == "view")
-            return cmdView(parse(
-                argc, argv, 2,
-                {"--backend", "--technique", "--size", "--environment", "--frames", "--screenshot",
-                 "--debug-view", "--switch-backend-at", "--animation", "--camera"},
-                {"--no-ui", "--validation"}));
+            return cmdView(parse(argc, argv, 2, joined(kViewOptions, kViewLookOptions),
+                                 joined({"--no-ui", "--validation"}, kViewLookFlags),
+                                 cli::kScenePositional));
         if (command == "bench")
             return cmdBench(
                 parse(argc, argv, 2,
                       {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare",
                        "--time-ratio", "--error-points", "--stability-cases"},
-                      {"--quick", "--stability", "--conformance", "--interleave"}),
+                      {"--quick", "--stability", "--conformance", "--interleave"},
+                      {"B.json", "with --compare A.json: the results compared with A"}),
                 std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
             return cmdConformance(
@@ -791,10 +575,12 @@ int main(int argc, char** argv) {
         if (command == "capture") return cli::cmdCapture(argc, argv);
         if (command == "replay")
             return cli::cmdReplay(parse(argc, argv, 2, {"--backend", "--out", "--pass", "--draw"},
-                                        {"--validation", "--present"}));
+                                        {"--validation", "--present", "--list"},
+                                        {"FILE", "the capture to replay (fe capture makes them)"}));
         if (command == "bisect")
             return cli::cmdBisect(
-                parse(argc, argv, 2, {"--backends", "--tolerance", "--out", "--perturb"}, {}),
+                parse(argc, argv, 2, {"--backends", "--tolerance", "--out", "--perturb"}, {},
+                      {"FILE", "the capture to replay on both backends"}),
                 std::vector<std::string>(argv + 1, argv + argc));
         if (command == "--help" || command == "help") {
             std::cout << usage();
@@ -804,12 +590,10 @@ int main(int argc, char** argv) {
     } catch (const HelpShown&) {
         return 0;
     } catch (const UsageError& e) {
-        // A known command's own usage lines (its --help lists every option); else everything.
-        const std::string own = commandUsage(command);
+        // One line, then where help is: the error stays on screen.
+        const bool known = !commandUsage(command).empty();
         std::cerr << "fe: " << e.what() << "\n"
-                  << (own.empty() ? usage()
-                                  : "usage:\n" + own + "run 'fe " + command +
-                                        " --help' for every option\n");
+                  << "see 'fe " << (known ? command + " " : std::string()) << "--help'\n";
         return 2;
     } catch (const assets::AssetError& e) {
         std::cerr << "fe: " << e.what() << "\n";

@@ -176,7 +176,8 @@
 // --------------
 //   device->openPipelineCache("pipelines.bin");         // or DeviceCreateDesc::pipelineCache
 //  - Compiled pipelines (Vulkan's VkPipelineCache data, GL program binaries) kept across runs: a
-//    file made for another device, driver or build is ignored with a warning (PipelineCacheFile.h).
+//    file made for another device, driver or build is ignored, the stats' warning saying why
+//    (PipelineCacheFile.h).
 // Shown by: pipeline_cache_roundtrip.
 //
 // Captures
@@ -288,7 +289,13 @@ struct InputState {
     float wheel = 0;  // scroll since the previous present (positive: away from the user)
     bool keys[size_t(Key::Count)] = {};
     std::string text;  // UTF-8 typed since the previous present
+    // Presses per key since the previous present: a tap between two slow frames is not lost,
+    // though `keys` (what is down as the frame samples it) never shows it.
+    uint8_t presses[size_t(Key::Count)] = {};
+    // Paths of the files dropped on the window since the previous present.
+    std::vector<std::string> droppedFiles;
     bool down(Key k) const { return keys[size_t(k)]; }
+    bool pressed(Key k) const { return presses[size_t(k)] > 0; }
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -1192,11 +1199,26 @@ struct DeviceInfo {
     std::string backend;     // "vulkan", "gl-egl", "gl-osmesa", "vulkan-glfw", "gl-glfw"
     std::string deviceName;  // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string apiVersion;  // e.g. "Vulkan 1.3.230" or "OpenGL 4.5 (Core Profile) Mesa 22.3.6"
+    // The driver as vulkaninfo names it: Vulkan's driverName and driverInfo (e.g. "llvmpipe",
+    // "Mesa 22.3.6 (LLVM 15.0.6)"); GL's vendor string and what the context promises.
+    std::string driverName;
     std::string driverInfo;
+    std::string conformanceVersion;  // Vulkan: the CTS version the driver passed; GL: empty
+    // "cpu", "integrated-gpu", "discrete-gpu", "virtual-gpu" or "other" (Vulkan's device type);
+    // GL has none: "cpu" for a software rasterizer, else "gpu".
+    std::string deviceType;
     std::string presentMode;  // windows: how frames reach the screen, e.g. "FIFO (vsync on)"
     bool softwareRasterizer = false;
     DeviceLimits limits;
     DeviceFeatures features;
+    // What the driver offers, for reports (fe info --json): its extensions, sorted, and its
+    // memory heaps (Vulkan; GL reports none).
+    std::vector<std::string> extensions;
+    struct MemoryHeap {
+        uint64_t bytes = 0;
+        bool deviceLocal = false;
+    };
+    std::vector<MemoryHeap> memoryHeaps;
 };
 
 // What a device holds now, for leak checks (tests, tools): gdi objects by kind, and the native
@@ -1255,8 +1277,9 @@ public:
     // Pipeline cache: compiled pipelines kept across runs (Vulkan: VkPipelineCache data; GL:
     // program binaries), in one file keyed by backend, device, driver and engine build
     // (PipelineCacheFile.h). openPipelineCache loads `path` when it exists, before the pipelines
-    // it should speed up are made; a file made elsewhere, damaged or truncated is ignored with
-    // one warning on stderr (and in the stats), never handed to the driver. savePipelineCache
+    // it should speed up are made; a file made elsewhere, damaged or truncated is ignored, never
+    // handed to the driver, and the returned stats' warning says why (createDevice with
+    // DeviceCreateDesc::pipelineCache also prints it on stderr). savePipelineCache
     // writes it (whole or not at all); the device also saves when destroyed.
     virtual PipelineCacheStats openPipelineCache(const std::string& path) = 0;
     virtual void savePipelineCache() = 0;

@@ -15,7 +15,9 @@ namespace fe::gdi {
 using Json = nlohmann::ordered_json;
 
 // nlohmann's hooks, found by argument-dependent lookup: `gdi::Json j = device.info();`
-// DeviceInfo: backend, deviceName, apiVersion, driverInfo, softwareRasterizer, limits, features.
+// DeviceInfo: backend, deviceName, apiVersion, driverName, driverInfo, conformanceVersion,
+// deviceType, softwareRasterizer, presentMode, limits, features, memoryHeaps (extensions only
+// through probeJson's withExtensions: reports that carry a device summary stay short).
 void to_json(Json& j, const DeviceLimits& limits);
 void to_json(Json& j, const DeviceFeatures& features);
 void to_json(Json& j, const DeviceInfo& info);
@@ -23,8 +25,9 @@ void to_json(Json& j, const DeviceInfo& info);
 // An image comparison, as reports carry it: pixels, pixelsOverTolerance, fractionOver, maxAbsError.
 void to_json(Json& j, const ImageDiff& diff);
 
-// One backend: {"name", "available", and "device" (its DeviceInfo) or "reason" (why not)}.
-Json probeJson(const BackendProbe& probe);
+// One backend: {"name", "available", and "device" (its DeviceInfo, with the formats' caps and,
+// withExtensions, the driver's extensions) or "reason" (why not)}.
+Json probeJson(const BackendProbe& probe, bool withExtensions = false);
 
 // The engine build: {"name", "version", "commit" (git describe of the source tree when built)}.
 Json engineJson();
