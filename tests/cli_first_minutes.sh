@@ -19,6 +19,9 @@ run() {
 has() { grep -q -- "$2" "$out/$1" || fail "$1 lacks '$2': $(head -c 600 "$out/$1")"; }
 lacks() { ! grep -q -- "$2" "$out/$1" || fail "$1 has '$2'"; }
 small=(--backend "$backend" --size 64x48)
+# Debian's interpreter, whose python3-matplotlib it is (a python3 earlier on PATH may lack it).
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
 
 # Usage errors: the message, then where help is; nothing else, exit 2.
 run bogus 2 render --bogus
@@ -65,6 +68,27 @@ run capture 0 capture --out "$out/captures/c.fecap" -- "$fe" render builtin:tria
 run replay_list 0 replay "$out/captures/c.fecap" --backend "$backend" --list
 grep -q -E "^  pass 0 '.+': [0-9]+ draw\(s\), 0 to [0-9]+" "$out/replay_list.out" || fail "replay --list: $(cat "$out/replay_list.out")"
 
+# fe bisect: a draw left out on one side is found; its heat map is scaled to the largest
+# difference (white) and says so; the report command named is one that exists.
+run bisect 1 bisect "$out/captures/c.fecap" --backends "$backend,$backend" --perturb "$backend:1" --out "$out/bisect"
+has bisect.out "first divergent draw 1"
+has bisect.out "heat map (white: a difference of "
+# Passing runs print no alarms: the engine's own shaders draw no validation message, and the
+# conformance case that damages a pipeline cache on purpose prints nothing about it.
+lacks bisect.err "validation"
+run cache_case 0 conformance --backend "$backend" --case pipeline_cache_roundtrip
+lacks cache_case.err "ignored"
+lacks cache_case.out "ignored"
+report_script=$(sed -n "s/^report: .* '\([^']*report.py\)' .*/\1/p" "$out/bisect.out")
+[ -f "$report_script" ] || fail "bisect names a report script that is not there: $(grep '^report:' "$out/bisect.out")"
+heat=$(sed -n 's/^    heat map (white: [^)]*): //p' "$out/bisect.out" | head -1)
+"$python" - "$heat" <<'EOF2' || fail "the heat map $heat is not scaled to its largest difference"
+import sys
+import matplotlib.image as mpimg
+image = mpimg.imread(sys.argv[1])
+assert image[..., :3].max() > 0.99, image[..., :3].max()
+EOF2
+
 # fe info in vulkaninfo's terms: the driver by name, the device type, sample counts as lists;
 # --json also the extensions (and on Vulkan the memory heaps).
 run info 0 info --backend "$backend"
@@ -73,7 +97,7 @@ grep -q -E "^  device: .*\((cpu|gpu|integrated-gpu|discrete-gpu|virtual-gpu|othe
 grep -q -E "colorSampleCounts 1(,[248])*," "$out/info.out" || fail "fe info: sample counts not a list"
 lacks info.out "driver version"
 run info_json 0 info --backend "$backend" --json
-python3 - "$out/info_json.out" "$backend" <<'EOF2' || fail "fe info --json: $(head -c 300 "$out/info_json.out")"
+"$python" - "$out/info_json.out" "$backend" <<'EOF2' || fail "fe info --json: $(head -c 300 "$out/info_json.out")"
 import json, sys
 d = json.load(open(sys.argv[1]))["backends"][0]["device"]
 assert d["driverName"] and d["deviceType"], d
@@ -110,7 +134,7 @@ run quiet 0 render builtin:spheres "${small[@]}" --out "$out/q.png" --quiet
 [ ! -s "$out/quiet.out" ] || fail "--quiet printed: $(cat "$out/quiet.out")"
 [ -s "$out/q.png" ] || fail "--quiet wrote no image"
 run json 0 render builtin:spheres "${small[@]}" --technique forward --msaa 4 --illum-scale 2 --out "$out/j.png" --json
-python3 - "$out/json.out" <<'EOF' || fail "--json: $(head -c 600 "$out/json.out")"
+"$python" - "$out/json.out" <<'EOF' || fail "--json: $(head -c 600 "$out/json.out")"
 import json, sys
 doc = json.load(open(sys.argv[1]))
 for key in ("device", "technique", "frameTimeMs", "passTimes", "memory", "warnings", "outputs"):

@@ -54,7 +54,7 @@ private:
         used_.push_back(uint64_t(kind) << 32 | id);
     }
     // Per-object binds repeat one buffer at many offsets: a buffer is noted when it differs
-    // from the last one noted (one compare on the per-draw path, measured in docs/BENCHMARKS.md).
+    // from the last one noted (one compare on the per-draw path, measured in docs/MEASUREMENT_LOG.md).
     void noteBuffer(uint32_t id) {
         if (id != lastBuffer_) [[unlikely]]
             note(UsedKind::Buffer, lastBuffer_ = id);

@@ -1,7 +1,8 @@
 // Example (b): a glTF model turning, lit and textured, with a UI panel, written once against the
 // engine (fe::renderer, fe::ui) and run unchanged on every backend: the backend is only a startup
 // argument. The panel (Dear ImGui drawn by the engine's UiRenderer) shows the frame time and
-// lets a window user pause the turn and change its speed; headless, it is drawn into the image.
+// lets a window user pause the turn and change its speed; headless there is no one to use it, so
+// the image is the model alone.
 //   fe_example_turntable [MODEL.gltf|.glb|builtin:NAME] [--backend NAME] [--technique NAME]
 //                        [--frames N] [--size WxH] [--out FILE.png] [--window] [--validation]
 // Headless it renders N frames (default 24) of one turn about the model and writes the last;
@@ -94,23 +95,25 @@ int main(int argc, char** argv) {
             frameMs =
                 std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - t0)
                     .count();
-            // The panel, fed by the window's input (none headless).
-            const gdi::InputState in = device->input();
-            ImGuiIO& io = ImGui::GetIO();
-            io.DisplaySize = ImVec2(float(settings.width), float(settings.height));
-            io.DeltaTime = std::max(frameMs, 0.1f) / 1000.0f;
-            io.MousePos = ImVec2(in.mouseX, in.mouseY);
-            for (int b = 0; b < 3; ++b) io.MouseDown[b] = in.mouse[b];
-            ImGui::NewFrame();
-            ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
-            ImGui::Begin("turntable", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-            ImGui::Text("%s, %s", device->info().backend.c_str(), settings.technique.c_str());
-            ImGui::Text("%.1f ms a frame", frameMs);
-            ImGui::Checkbox("pause", &paused);
-            ImGui::SliderFloat("deg/frame", &degreesPerFrame, 0.0f, 10.0f, "%.1f");
-            ImGui::End();
-            ImGui::Render();
-            ui.render(*ImGui::GetDrawData(), renderer.displayTexture());
+            // The panel, fed by the window's input: only in a window.
+            if (window) {
+                const gdi::InputState in = device->input();
+                ImGuiIO& io = ImGui::GetIO();
+                io.DisplaySize = ImVec2(float(settings.width), float(settings.height));
+                io.DeltaTime = std::max(frameMs, 0.1f) / 1000.0f;
+                io.MousePos = ImVec2(in.mouseX, in.mouseY);
+                for (int b = 0; b < 3; ++b) io.MouseDown[b] = in.mouse[b];
+                ImGui::NewFrame();
+                ImGui::SetNextWindowPos(ImVec2(6, 6), ImGuiCond_FirstUseEver);
+                ImGui::Begin("turntable", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+                ImGui::Text("%s, %s", device->info().backend.c_str(), settings.technique.c_str());
+                ImGui::Text("%.1f ms a frame", frameMs);
+                ImGui::Checkbox("pause", &paused);
+                ImGui::SliderFloat("deg/frame", &degreesPerFrame, 0.0f, 10.0f, "%.1f");
+                ImGui::End();
+                ImGui::Render();
+                ui.render(*ImGui::GetDrawData(), renderer.displayTexture());
+            }
             if (!paused) angle += degreesPerFrame;
             if (window) open = device->present(renderer.displayTexture());
         }

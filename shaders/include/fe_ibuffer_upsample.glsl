@@ -58,7 +58,7 @@ IlluminationSums feUpsampleIBuffer(ivec2 p, float depth, vec3 n, vec4 g1) {
             float bil = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
             // One exp for depth and roughness together, and cos^32 by five squarings: on
             // lavapipe pow() is exp2(32 log2 x), and the two exps and pow per tap measured a
-            // large part of the reduced-rate material pass (docs/BENCHMARKS.md).
+            // large part of the reduced-rate material pass (docs/MEASUREMENT_LOG.md).
             float wzr = zr <= 0.0 ? 0.0 : exp(-abs(zr - zp) / (0.02 * zp) - abs(r1.a - g1.a) / 0.05);
             float cn = max(dot(r1.xyz, n), 0.0);  // r1.xyz is unit (feOctDecode, or normalized above)
             cn *= cn;

@@ -41,7 +41,7 @@ void main() {
 #elif defined(FE_UPSAMPLE)
     // The filter needs this pixel's depth and normal; the resolve takes w_o.n from the geometry
     // pass (consideration A) as at scale 1: rebuilding the position and w_o here cost 2.5 of
-    // the pass's 32 ms at 1280x720 on lavapipe, for the same image (docs/BENCHMARKS.md).
+    // the pass's 32 ms at 1280x720 on lavapipe, for the same image (docs/MEASUREMENT_LOG.md).
     acc = feUpsampleIBuffer(p, texelFetch(depthTexture, p, 0).r, normalize(g1.xyz), g1);
     outRadiance = vec4(g2.rgb + feResolveMaterialNoV(acc, g2.a, g0.rgb, g0.a, g1.a), 1.0);
 #else

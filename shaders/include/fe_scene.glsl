@@ -83,7 +83,7 @@ ivec2 feRepOffset() { return ivec2(frame.temporal.xy); }
 // The passes that walk light lists and the forward shaders read the lights from a uniform block
 // (FE_LIGHTS_UNIFORM): on lavapipe and llvmpipe a storage buffer load is a loop over the SIMD
 // lanes, a uniform one a vector gather, which measured 10 % faster tiled passes and a forward
-// shading pass 7x faster (docs/BENCHMARKS.md). A block holds at most FE_UNIFORM_LIGHTS (64 KiB):
+// shading pass 7x faster (docs/MEASUREMENT_LOG.md). A block holds at most FE_UNIFORM_LIGHTS (64 KiB):
 // scenes with more use each such shader's FE_LIGHTS_IN_STORAGE variant (TileLightCulling::shader,
 // GeometryRenderer::lightsVariant).
 #define FE_UNIFORM_LIGHTS 1024

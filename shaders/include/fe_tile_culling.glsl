@@ -4,7 +4,7 @@
 // range, so a light whose sphere misses the slice contributes nothing to its pixels.
 // Two forms:
 //   FE_TILE_LISTS: the lists come from the light-culling pass (tile_light_culling.comp), one per
-//     8x8 pixels; feUseTileList() picks the invocation's. Measured fastest (docs/BENCHMARKS.md).
+//     8x8 pixels; feUseTileList() picks the invocation's. Measured fastest (docs/MEASUREMENT_LOG.md).
 //   otherwise: feCullTile() culls in each 16x16-pixel work group, in shared memory between
 //     barriers (deferred-tiled --one-pass-culling). The slice is bounded by a world-space box,
 //     each invocation computing it: on lavapipe that measured faster (89 ms at 1280x720, 512

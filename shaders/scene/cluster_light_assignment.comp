@@ -27,7 +27,7 @@
 // shared memory and no barrier but in 2. The pass it replaces (64 invocations a column, each a
 // 64th of the lights, counts per slice and share in shared memory, prefixes over the shares)
 // took 77 ms with 8 lights and 146 ms with 1024 at 1280x720 on lavapipe, whose shared-memory
-// loads at per-lane addresses are a loop over the SIMD lanes (docs/BENCHMARKS.md); one
+// loads at per-lane addresses are a loop over the SIMD lanes (docs/MEASUREMENT_LOG.md); one
 // invocation per column walking every light, as this pass first did, left an H200 mostly idle
 // (920 invocations, 1.4 ms at 1024 lights). Every light of the scene is assigned
 // (frame.counts.w), shadowed ones too: the translucent pass lights with all of them, the opaque

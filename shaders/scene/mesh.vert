@@ -14,12 +14,12 @@ layout(location = 1) out vec3 vNormal;
 layout(location = 2) out vec4 vTangent;
 layout(location = 3) out vec4 vUv;     // both texture coordinate sets
 layout(location = 4) out vec4 vColor;
-// The depth pre-pass and the EQUAL-tested passes after it must compute bit-identical depths.
-// `invariant` is GLSL's way, but Mesa 22.3 drops it: glslang puts it on the gl_PerVertex member,
-// and spirv_to_nir warns ("Decoration not allowed on struct members: SpvDecorationInvariant")
-// and ignores it. `precise` (NoContraction on every operation leading to gl_Position) is honoured:
-// no fused or reassociated arithmetic, whatever the rest of the pipeline lets the compiler drop.
-invariant gl_Position;
+// The depth pre-pass and the EQUAL-tested passes after it must compute bit-identical depths:
+// both run this module, and `precise` (NoContraction on every operation leading to gl_Position)
+// fixes its arithmetic, no fused or reassociated operations, whatever the rest of the pipeline
+// lets the compiler drop. Not `invariant`: glslang puts it on the gl_PerVertex member, which
+// Mesa 22.3 ignores with a warning under validation ("Decoration not allowed on struct members:
+// SpvDecorationInvariant"), so passing runs printed it; `precise` alone was what held there.
 precise gl_Position;
 void main() {
     // Camera-relative: the object's translation minus the eye's is exact in float where both are

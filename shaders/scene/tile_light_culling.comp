@@ -10,7 +10,7 @@
 // against its quarters' boxes, and writes the quarters' lists, which the shading passes read
 // (fe_tile_culling.glsl, FE_TILE_LISTS). Two levels: testing every light against every quarter
 // directly cost 20 ms against 6 at 1280x720 with 512 lights. No shared memory and no barriers:
-// on lavapipe a barrier splits a shader into resumable parts (docs/BENCHMARKS.md).
+// on lavapipe a barrier splits a shader into resumable parts (docs/MEASUREMENT_LOG.md).
 layout(local_size_x = 64) in;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = FE_SLOT_TILE_LIGHTS_OUT, r32ui) uniform writeonly uimage2D lists;

@@ -17,8 +17,7 @@ layout(binding = FE_SLOT_INDICES, std430) readonly buffer IndexBlock {
 layout(location = 0) flat out uint vTriangle;
 layout(location = 1) out vec4 vUv;  // for MASK materials' alpha test
 layout(location = 2) out vec4 vColor;
-invariant gl_Position;
-precise gl_Position;
+precise gl_Position;  // as mesh.vert: the same depths as the passes it shares a buffer with
 void main() {
     const uint v = indices[object.flags.y + uint(FE_VERTEX_ID)] + object.flags.z;
     const uint f = v * 18u;

@@ -39,14 +39,25 @@ const std::set<std::string> kHeadless = {"vulkan", "gl-egl", "gl-osmesa"};
 void expectDeviceSummary(const json& d, const std::string& backend) {
     ASSERT_TRUE(d.is_object()) << backend;
     EXPECT_EQ(d["backend"], backend);
-    for (const char* key : {"deviceName", "apiVersion", "driverInfo"}) {
+    for (const char* key : {"deviceName", "apiVersion", "driverName", "driverInfo", "deviceType"}) {
         ASSERT_TRUE(d[key].is_string()) << backend << " " << key;
         EXPECT_FALSE(d[key].get<std::string>().empty()) << backend << " " << key;
     }
     EXPECT_TRUE(d["softwareRasterizer"].is_boolean()) << backend;
+    EXPECT_TRUE(d["conformanceVersion"].is_string()) << backend;
+    ASSERT_TRUE(d["memoryHeaps"].is_array()) << backend;
+    for (const json& h : d["memoryHeaps"])
+        EXPECT_TRUE(h["bytes"].is_number_unsigned() && h["deviceLocal"].is_boolean()) << backend;
     size_t limits = 0, features = 0;
     fe::gdi::forEachField(fe::gdi::DeviceLimits{}, [&](const char* name, const auto& value) {
         ++limits;
+        if (std::string(name).ends_with("SampleCounts")) {  // the counts, as vulkaninfo lists them
+            ASSERT_TRUE(d["limits"][name].is_array()) << backend << " limit " << name;
+            for (const json& n : d["limits"][name])
+                EXPECT_TRUE(n == 1 || n == 2 || n == 4 || n == 8 || n == 16 || n == 32 || n == 64)
+                    << backend << " limit " << name << ": " << n;
+            return;
+        }
         if constexpr (std::is_floating_point_v<std::decay_t<decltype(value)>>)
             EXPECT_TRUE(d["limits"][name].is_number()) << backend << " limit " << name;
         else if constexpr (!std::is_arithmetic_v<std::decay_t<decltype(value)>>)  // x, y, z
@@ -68,8 +79,14 @@ void expectDeviceSummary(const json& d, const std::string& backend) {
 
 // The conversion itself: every limit and feature appears under its name with its value.
 TEST(InfoJson, DeviceInfoCarriesEveryField) {
-    fe::gdi::DeviceInfo info{
-        .backend = "test", .deviceName = "dev", .apiVersion = "api", .driverInfo = "drv"};
+    fe::gdi::DeviceInfo info{.backend = "test",
+                             .deviceName = "dev",
+                             .apiVersion = "api",
+                             .driverName = "driver",
+                             .driverInfo = "drv",
+                             .conformanceVersion = "1.3.1.1",
+                             .deviceType = "cpu"};
+    info.memoryHeaps = {{.bytes = 1ull << 33, .deviceLocal = true}};
     info.limits = {.maxTextureSize2D = 16384,
                    .maxColorAttachments = 8,
                    .maxComputeWorkGroupInvocations = 1024,
@@ -83,8 +100,15 @@ TEST(InfoJson, DeviceInfoCarriesEveryField) {
     const json j = json::parse(ordered.dump());  // as a reader of the document sees it
     expectDeviceSummary(j, "test");
     fe::gdi::forEachField(info.limits, [&](const char* name, const auto& value) {
-        EXPECT_EQ(j["limits"][name], value) << name;
+        if (!std::string(name).ends_with("SampleCounts"))
+            EXPECT_EQ(j["limits"][name], value) << name;
     });
+    info.limits.colorSampleCounts = 1 | 4 | 8;
+    EXPECT_EQ(json::parse(fe::gdi::Json(info).dump())["limits"]["colorSampleCounts"],
+              json::array({1, 4, 8}))
+        << "a sample-count bit set is listed as its counts";
+    EXPECT_EQ(j["memoryHeaps"][0]["bytes"].get<uint64_t>(), 1ull << 33);
+    EXPECT_EQ(j["driverName"], "driver");
     fe::gdi::forEachField(info.features, [&](const char* name, const auto& value) {
         EXPECT_EQ(j["features"][name], value) << name;
     });
@@ -182,12 +206,17 @@ TEST(ConformanceReport, CarriesDevicesCasesAndComparisons) {
     EXPECT_EQ(report["summary"]["failed"], 0);
 }
 
+// A report that cannot be written is an error naming it and why, before any case runs (a
+// directory under a regular file cannot be made, even by root).
 TEST(ConformanceReport, UnwritablePathIsAnError) {
     int exitCode = -1;
+    const std::string report = std::string(FE_TOOL) + "/dir/report.json";
     const std::string out =
-        runFe("conformance --backend vulkan --case triangle --report /nonexistent/dir/report.json",
-              exitCode, true);
+        runFe("conformance --backend vulkan --case triangle --report " + report, exitCode, true);
     EXPECT_EQ(exitCode, 1);
-    EXPECT_NE(out.find("cannot write the report /nonexistent/dir/report.json"), std::string::npos)
+    EXPECT_NE(out.find("cannot create the directory " + std::string(FE_TOOL) +
+                       "/dir for --report: Not a directory"),
+              std::string::npos)
         << out;
+    EXPECT_EQ(out.find("PASS"), std::string::npos) << "a case ran before the check: " << out;
 }

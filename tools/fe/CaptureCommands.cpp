@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -76,6 +78,24 @@ double median(std::vector<double> v) {
 }
 
 }  // namespace
+
+// A heat map of two images' difference scaled to the largest (white), so that a difference of
+// 3e-5 shows as clearly as one of 1: each pixel's largest channel difference over `largest`.
+gdi::Image scaledHeatMap(const gdi::Image& a, const gdi::Image& b, double largest) {
+    std::vector<std::array<float, 4>> texels(size_t(a.width) * a.height);
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = 0; x < a.width; ++x) {
+            const auto ta = a.texel(x, y), tb = b.texel(x, y);
+            double err = 0;
+            for (int c = 0; c < 4; ++c) {
+                const double e = std::fabs(double(ta[c]) - double(tb[c]));
+                err = std::max(err, std::isfinite(e) ? e : largest);
+            }
+            const float v = largest > 0 ? float(std::min(1.0, err / largest)) : 0.0f;
+            texels[size_t(y) * a.width + x] = {v, v, v, 1.0f};
+        }
+    return gdi::Image::fromTexels(a.width, a.height, gdi::Format::RGBA8, texels);
+}
 
 int cmdCapture(int argc, char** argv) {
     int dashes = 2;
@@ -262,7 +282,8 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
             out + "/conformance/diff_" + nameA + "_" + nameB + "_bisect_" + image + ".png";
         writeImage(d.a, fileA);
         writeImage(d.b, fileB);
-        const bool heatWritten = d.heat.width && writeImage(d.heat, heat);
+        const bool heatWritten =
+            d.a.width && writeImage(scaledHeatMap(d.a, d.b, d.diff.maxAbsError), heat);
         comparisons.push_back({{"name", nameA + " vs " + nameB + " bisect/" + d.target},
                                {"reference", nameA},
                                {"backend", nameB},
@@ -274,7 +295,8 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
                                 {{"absolute", options.absTolerance},
                                  {"maxFractionOver", options.maxFractionOver},
                                  {"reason", "fe bisect --tolerance"}}},
-                               {"files", {fileA, fileB, heatWritten ? heat : ""}}});
+                               {"files", {fileA, fileB, heatWritten ? heat : ""}},
+                               {"heatMapWhite", d.diff.maxAbsError}});
     }
     gdi::Json divergence = nullptr;
     if (!r.diverged) {
@@ -298,7 +320,10 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
         for (const gdi::TargetDiff& d : r.diffs)
             std::cout << "  " << d.target << ": " << d.diff.pixelsOverTolerance << " of "
                       << d.diff.pixels << " pixels differ (" << d.diff.fractionOver() * 100
-                      << " %), max error " << d.diff.maxAbsError << "\n";
+                      << " %), max error " << d.diff.maxAbsError << "\n"
+                      << "    heat map (white: a difference of " << d.diff.maxAbsError
+                      << ", black: none): " << out << "/conformance/diff_" << nameA << "_" << nameB
+                      << "_bisect_" << fileName(d.target) << ".png\n";
         divergence = {{"pass", r.pass ? gdi::Json(r.pass->pass) : gdi::Json(nullptr)},
                       {"passName", r.pass ? r.pass->name : ""}};
         if (r.draw) {
@@ -329,8 +354,8 @@ int cmdBisect(const Args& a, const std::vector<std::string>& arguments) {
         {"conformance", {{"summary", summary}, {"comparisons", comparisons}}},
         {"summary", summary}};
     std::ofstream(out + "/bisect.json") << report.dump(2) << "\n";
-    std::cout << "report: " << out << "/bisect.json (python3 tools/bench/report.py " << out
-              << "/bisect.json draws it)\n";
+    std::cout << "report: " << out << "/bisect.json (" << reportCommand(out + "/bisect.json")
+              << " draws it)\n";
     return r.diverged ? 1 : 0;
 }
 

@@ -92,6 +92,7 @@ constexpr const char* kUsage =
     "  view [SCENE] [--backend auto|vulkan|gl] [--technique NAME] [--size WxH] [--environment FILE.hdr|builtin:sky]\n"
     "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"|\"lights evaluated\"] [--no-ui] [--validation]\n"
     "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
+    "      [--input-script FRAME:KEY|FRAME:drop=PATH,...] (tests: keys pressed and files dropped at those frames)\n"
     "      [--animation INDEX|NAME] [--camera INDEX|NAME]: an animated file plays (its first animation unless named),\n"
     "      looped; the panel picks the animation, plays, pauses, loops and scrubs it, and lists the file's cameras\n"
     "      every look option of render in its units: --illum-scale --msaa --ibl-samples --ibl-prefiltered --shadows\n"
@@ -261,6 +262,9 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
      {"", "redeferred at illum-scale 2|4: jittered reduced-rate samples accumulate over frames"}},
     {"--screenshot", {"FILE.png", "write the last frame"}},
     {"--switch-backend-at", {"FRAME", "tests: restart on the other API at this frame"}},
+    {"--input-script",
+     {"FRAME:KEY,...",
+      "tests: keys (Esc, F12, F1, R, F) or drop=PATH as if given at those frames"}},
     {"--no-ui", {"", "no panel"}},
     {"--validation", {"", "the Khronos validation layer / GL debug output on"}},
     {"--sweep", {"FILE.json", "the cases to measure (bench/sweeps/ has the documented ones)"}},
@@ -388,6 +392,20 @@ uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t
         throw UsageError(std::string(what) + " must be an integer in [" + std::to_string(lo) +
                          ", " + std::to_string(hi) + "], got '" + s + "'");
     return uint32_t(v);
+}
+
+std::string reportCommand(const std::string& resultsJson) {
+    std::error_code ec;
+    std::string script = FE_BENCH_REPORT_SCRIPT;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const std::filesystem::path installed =
+            exe.parent_path().parent_path() / "share/fe/bench/report.py";
+        if (std::filesystem::exists(installed, ec)) script = installed.string();
+    }
+    const std::string python =
+        std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    return python + " '" + script + "' '" + resultsJson + "'";
 }
 
 std::string humanBytes(double bytes) {

@@ -47,6 +47,11 @@ Args parse(int argc, char** argv, int first, const std::vector<std::string>& val
 extern const Positionals kScenePositional;
 uint32_t parseUint(const std::string& s, const char* what, uint32_t lo, uint32_t hi);
 
+// The command that draws fe bench's charts and report page from a results file: Debian's
+// python3 (whose python3-matplotlib it is) with report.py, an installed fe's
+// (PREFIX/share/fe/bench/report.py beside PREFIX/bin/fe), else the source tree's it was built from.
+std::string reportCommand(const std::string& resultsJson);
+
 // Bytes as people read them: "512 B", "3.5 KiB", "23.4 GiB".
 std::string humanBytes(double bytes);
 // An output file can be written, before any work: its directory is created, and a path that

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "assets/Animation.h"
 #include "assets/BuiltinScenes.h"
@@ -93,7 +94,8 @@ public:
             const auto now = Clock::now();
             const float dt = std::max(1e-4f, std::chrono::duration<float>(now - last).count());
             last = now;
-            const gdi::InputState in = device_->input();
+            gdi::InputState in = device_->input();
+            scriptedInput(frame, in);
             ImGuiIO& io = ImGui::GetIO();
             io.DisplaySize = ImVec2(float(options_.width), float(options_.height));  // the window
             io.DeltaTime = dt;
@@ -107,7 +109,10 @@ public:
             ImGui::NewFrame();
             if (options_.ui) panel();
             ImGui::Render();
-            if (!handleKeys(in)) break;
+            if (!handleKeys(in)) {
+                std::cout << "fe view: Esc: quit after " << frame << " frame(s)\n";
+                break;
+            }
             moveCamera(in, dt);
 
             const auto t0 = Clock::now();
@@ -278,10 +283,30 @@ private:
             std::cout << "opened " << path << "\n";
         } catch (const std::exception& e) {
             message_ = e.what();
+            std::cerr << "fe view: cannot open " << path << ": " << e.what() << "\n";
             if (!renderer_) {  // the old scene is gone: show the quick start's again
                 loadLook(options_.scene, options_.look);
                 rebuildRenderer();
             }
+        }
+    }
+
+    // ViewerOptions::inputScript's entries for `frame`, added to what the window reported.
+    void scriptedInput(uint32_t frame, gdi::InputState& in) const {
+        static const std::map<std::string, gdi::Key> keys = {{"Esc", gdi::Key::Escape},
+                                                             {"F12", gdi::Key::F12},
+                                                             {"F1", gdi::Key::F1},
+                                                             {"R", gdi::Key::R},
+                                                             {"F", gdi::Key::F}};
+        std::stringstream script(options_.inputScript);
+        for (std::string entry; std::getline(script, entry, ',');) {
+            const size_t colon = entry.find(':');
+            if (colon == std::string::npos || std::stoul(entry.substr(0, colon)) != frame) continue;
+            const std::string what = entry.substr(colon + 1);
+            if (what.rfind("drop=", 0) == 0)
+                in.droppedFiles.push_back(what.substr(5));
+            else if (keys.count(what))
+                ++in.presses[size_t(keys.at(what))];
         }
     }
 

@@ -31,6 +31,9 @@ struct ViewerOptions {
     std::string debugView;    // a texture of the frame's graph to show instead of L_o
     std::string animation;    // index or name: played from the start (default: the first, if any)
     std::string camera;       // index or name of the file's camera to look through (default: orbit)
+    // Tests: input as if typed or dropped at a frame (from 0), "FRAME:KEY" (Esc, F12, F1, R, F)
+    // or "FRAME:drop=PATH", comma-separated: the keys' and drops' handling without a person.
+    std::string inputScript;
     uint32_t switchBackendAt =
         0;  // tests: at this frame, switch to the other API as the panel does
 };

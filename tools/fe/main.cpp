@@ -261,9 +261,9 @@ double parsePositive(const std::string& text, const char* what) {
 
 // fe view's own options; the rest are fe render's look options (kViewLookOptions), in its units.
 const std::vector<std::string> kViewOptions = {
-    "--backend",   "--technique",  "--size",       "--environment",
-    "--frames",    "--screenshot", "--debug-view", "--switch-backend-at",
-    "--animation", "--camera"};
+    "--backend",      "--technique",  "--size",       "--environment",
+    "--frames",       "--screenshot", "--debug-view", "--switch-backend-at",
+    "--input-script", "--animation",  "--camera"};
 const std::vector<std::string> kViewLookOptions = {"--illum-scale",
                                                    "--msaa",
                                                    "--ibl-samples",
@@ -326,31 +326,34 @@ int cmdView(const Args& a) {
     if (a.options.count("--switch-backend-at"))
         o.switchBackendAt =
             parseUint(a.options.at("--switch-backend-at"), "--switch-backend-at", 1, 1000000);
+    o.inputScript = opt("--input-script", "");
+    {  // FRAME:KEY or FRAME:drop=PATH, comma-separated: checked here, a usage error
+        std::stringstream script(o.inputScript);
+        for (std::string entry; std::getline(script, entry, ',');) {
+            const size_t colon = entry.find(':');
+            const std::string what = colon == std::string::npos ? "" : entry.substr(colon + 1);
+            if (colon == std::string::npos || entry.find_first_not_of("0123456789") != colon ||
+                colon == 0 ||
+                !(what == "Esc" || what == "F12" || what == "F1" || what == "R" || what == "F" ||
+                  what.rfind("drop=", 0) == 0))
+                throw UsageError(
+                    "--input-script takes FRAME:KEY (Esc, F12, F1, R, F) or "
+                    "FRAME:drop=PATH, comma-separated; got '" +
+                    entry + "'");
+        }
+    }
     if (!o.screenshot.empty()) cli::checkWritableFile(o.screenshot, "--screenshot");
     // The look as fe render reads it: the same options, units and checks (fe render's --size
     // and --frames mean other things here, and a window's technique starts as deferred-tiled).
     Args look = a;
     for (const char* viewOnly : {"--size", "--frames", "--screenshot", "--switch-backend-at",
-                                 "--backend", "--no-ui", "--validation"})
+                                 "--input-script", "--backend", "--no-ui", "--validation"})
         look.options.erase(viewOnly);
     look.options["--technique"] = o.technique;
     look.options["--size"] = std::to_string(o.width) + "x" + std::to_string(o.height);
     o.look = cli::renderJob(look);
     if (o.quickStartLighting) o.look->environment = cli::kQuickStartEnvironment;
     return tools::runViewer(o);
-}
-
-// The report script: an installed fe's (PREFIX/share/fe/bench/report.py beside PREFIX/bin/fe),
-// else the source tree's this fe was built from.
-std::string reportScript() {
-    std::error_code ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const std::filesystem::path installed =
-            exe.parent_path().parent_path() / "share/fe/bench/report.py";
-        if (std::filesystem::exists(installed, ec)) return installed.string();
-    }
-    return FE_BENCH_REPORT_SCRIPT;
 }
 
 // fe bench: a sweep on the backends asked for, results.json and results.csv in --out; or
@@ -461,9 +464,7 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
               << "/results.csv\n";
     // The charts and report.html, drawn by tools/bench/report.py with Debian's python3-matplotlib.
     // Debian's interpreter, whose python3-matplotlib it is (a python3 earlier on PATH may lack it).
-    const std::string python =
-        std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string command = python + " '" + reportScript() + "' '" + out + "/results.json'";
+    const std::string command = cli::reportCommand(out + "/results.json");
     const int rc = std::system(command.c_str());
     if (rc != 0)
         throw gdi::Error("the charts and report were not drawn: '" + command + "' failed (exit " +

@@ -4,7 +4,8 @@
 # binaries in parallel, then the benchmarks one at a time. Everything it writes goes
 # to $OUT. Each step has its own time limit so that one slow step still leaves the others' files.
 #   bash tools/gpu/run-on-nvidia.sh [QUICK_S SWEEP_S MICRO_S TESTS_S]   (a step given 0 s is left out)
-# SWEEP_FRAMES and SWEEP_WARMUP_MS (default 20 and 1000) size the sweep to the time left.
+# SWEEP_FRAMES and SWEEP_WARMUP_MS (default 20 and 1000) size the sweep to the time left;
+# SWEEP_BACKENDS (default vulkan,gl-egl) picks its backends (one a run left unmeasured, say).
 set -u
 out=${OUT:-/tmp/gpu-out}; mkdir -p "$out"
 quick_s=${1:-100} sweep_s=${2:-120} micro_s=${3:-60} tests_s=${4:-150}
@@ -36,7 +37,7 @@ fi
 # Then the benchmarks, on an otherwise idle GPU.
 # The sweep's measurements so far reach $OUT every few seconds, so a time limit keeps them.
 ( while sleep 3; do cp /tmp/sweep/results.partial.json "$out/sweep.partial.json" 2>/dev/null; done ) & copier=$!
-step sweep "$sweep_s" $fe bench --sweep bench/sweeps/many-lights-gpu.json --backend $backends --frames ${SWEEP_FRAMES:-20} \
+step sweep "$sweep_s" $fe bench --sweep bench/sweeps/many-lights-gpu.json --backend ${SWEEP_BACKENDS:-$backends} --frames ${SWEEP_FRAMES:-20} \
   --warmup-ms ${SWEEP_WARMUP_MS:-1000} --out /tmp/sweep
 kill $copier 2>/dev/null
 cp /tmp/sweep/results.json /tmp/sweep/results.csv "$out/" 2>/dev/null

@@ -227,8 +227,10 @@
 //   while (device->present(target)) { /* render the next frame into target */ }  // false: closed
 // present() takes an RGBA8 or RGBA8_SRGB texture with CopySrc usage and shows its bytes as they
 // are (no sRGB conversion), upright, in a window sized to it (resized when the size changes).
-// device->input() then says where the mouse is, which buttons and keys are down, how far the
-// wheel turned and what was typed (InputState), for UIs and cameras (fe view).
+// device->input() then says where the mouse is, which buttons and keys are down, each key's
+// presses since the last present (a tap between two slow frames is not lost), how far the wheel
+// turned, what was typed and which files were dropped on the window (InputState), for UIs and
+// cameras (fe view).
 // Shown by: the window tests (tests/unit/WindowTests.cpp), which need a display.
 #pragma once
 
