@@ -111,5 +111,9 @@ while IFS= read -r raw; do
   case "$raw" in '$ '*) last="cmd$n" lastcmd=$raw ;; esac
 done <commands.txt
 check_expected
+# The figures README states in its text: the conformance suite's size.
+said=$(sed -n 's/^The suite has \([0-9]*\) cases per backend.*/\1/p' "$src/README.md")
+has=$("$fe" conformance --list | tail -1 | cut -d' ' -f1)
+[ "$said" = "$has" ] || { echo "FAIL: README says the suite has '$said' cases per backend; fe conformance --list counts $has"; failures=$((failures + 1)); }
 echo "$ran README command(s) run, $skipped skipped"
 if [ "$failures" = 0 ]; then echo "every README command works"; else echo "$failures failure(s)"; exit 1; fi

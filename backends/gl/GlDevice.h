@@ -146,6 +146,9 @@ public:
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
         return textures_.get(h, "texture").desc;
     }
+    const gdi::ShaderInterface& shaderInterface(gdi::ShaderHandle h) const override {
+        return shaders_.get(h, "shader").iface;
+    }
     // Upload/readback of one subresource through the pixel unpack/pack state (pointer or, with a
     // bound GL_PIXEL_*_BUFFER, an offset); shared by the blocking calls and the command list.
     void uploadSubresource(const Texture& t, gdi::Subresource at, const void* pixels,

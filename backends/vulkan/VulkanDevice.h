@@ -165,6 +165,9 @@ public:
     const gdi::TextureDesc& desc(gdi::TextureHandle h) const override {
         return textures_.get(h, "texture").desc;
     }
+    const gdi::ShaderInterface& shaderInterface(gdi::ShaderHandle h) const override {
+        return shaders_.get(h, "shader").iface;
+    }
 
     uint32_t validationErrorCount() const override { return validationErrors_.load(); }
     gdi::InputState input() const override;

@@ -433,6 +433,70 @@ void validateShaderBinary(const ShaderDesc& desc, SpirvRules vulkanRules,
 
 // Some of SPIRV-Cross's C API entry points let its C++ exceptions through (set_entry_point on a
 // valid module whose entry point is of another stage, say): reflectShader turns them into Error.
+// The members of the struct `typeId` at `base` bytes, named from `prefix`, appended to `out`
+// (BlockMember): nested structs by path, arrays of structs element by element up to 64.
+static void reflectMembers(spvc_compiler comp, spvc_type_id typeId, uint32_t base,
+                           const std::string& prefix, std::vector<BlockMember>& out) {
+    const spvc_type type = spvc_compiler_get_type_handle(comp, typeId);
+    const unsigned count = spvc_type_get_num_member_types(type);
+    for (unsigned i = 0; i < count; ++i) {
+        const spvc_type_id memberId = spvc_type_get_member_type(type, i);
+        const spvc_type member = spvc_compiler_get_type_handle(comp, memberId);
+        unsigned offset = 0;
+        size_t size = 0;
+        spvc_compiler_type_struct_member_offset(comp, type, i, &offset);
+        spvc_compiler_get_declared_struct_member_size(comp, type, i, &size);
+        const char* raw = spvc_compiler_get_member_name(comp, typeId, i);
+        const std::string name = prefix + (raw && *raw ? raw : "_m" + std::to_string(i));
+        const unsigned dims = spvc_type_get_num_array_dimensions(member);
+        uint32_t elements = 1;
+        for (unsigned d = 0; d < dims; ++d)
+            elements *= spvc_type_array_dimension_is_literal(member, d)
+                            ? std::max(1u, spvc_type_get_array_dimension(member, d))
+                            : 0u;  // a specialization-sized array: not listed by element
+        unsigned arrayStride = 0;
+        if (dims) spvc_compiler_type_struct_member_array_stride(comp, type, i, &arrayStride);
+        if (spvc_type_get_basetype(member) == SPVC_BASETYPE_STRUCT) {
+            // The struct's own type carries its member names (an array type does not).
+            const spvc_type_id structId = spvc_type_get_base_type_id(member);
+            if (!dims) {
+                reflectMembers(comp, structId, base + offset, name + ".", out);
+                continue;
+            }
+            for (uint32_t e = 0; e < std::min<uint32_t>(elements, 64); ++e)
+                reflectMembers(comp, structId, base + offset + e * arrayStride,
+                               name + "[" + std::to_string(e) + "].", out);
+            continue;
+        }
+        BlockMember m{.name = name, .offset = base + offset, .size = uint32_t(size)};
+        switch (spvc_type_get_basetype(member)) {
+            case SPVC_BASETYPE_FP32:
+                m.kind = ScalarKind::Float;
+                break;
+            case SPVC_BASETYPE_INT32:
+                m.kind = ScalarKind::Int;
+                break;
+            case SPVC_BASETYPE_UINT32:
+                m.kind = ScalarKind::Uint;
+                break;
+            default:
+                m.kind = ScalarKind::Other;
+                break;
+        }
+        m.vectorSize = std::max(1u, spvc_type_get_vector_size(member));
+        m.columns = std::max(1u, spvc_type_get_columns(member));
+        if (m.columns > 1) {
+            unsigned stride = 0;
+            spvc_compiler_type_struct_member_matrix_stride(comp, type, i, &stride);
+            m.matrixStride = stride;
+            m.rowMajor =
+                spvc_compiler_has_member_decoration(comp, typeId, i, SpvDecorationRowMajor);
+        }
+        if (dims) m.arrayCount = elements, m.arrayStride = arrayStride;
+        out.push_back(std::move(m));
+    }
+}
+
 static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderStage stage,
                                         const char* entryPoint, const std::string& name,
                                         SpirvRules rules) {
@@ -528,7 +592,12 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
                         " texture, which the device has none of: bind 2D, 2D array, cube, cube array, "
                         "3D or multisampled 2D (sampler2DMS) textures");
             }
-            out.bindings.push_back({slot, type, r.name, dimension});
+            ShaderInterface::Binding b{slot, type, r.name, dimension};
+            if (type == BindingType::UniformBuffer || type == BindingType::StorageBuffer) {
+                b.blockBytes = uint32_t(declaredSize(r.base_type_id));
+                reflectMembers(comp, r.base_type_id, 0, "", b.members);
+            }
+            out.bindings.push_back(std::move(b));
         };
     };
     each(SPVC_RESOURCE_TYPE_UNIFORM_BUFFER, binding(BindingType::UniformBuffer));

@@ -277,6 +277,7 @@ std::vector<Case> samplerStateCases();   // SamplerStateCases.cpp
 std::vector<Case> constantsCases();      // ConstantsCases.cpp
 std::vector<Case> queryCases();          // QueryCases.cpp
 std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
+std::vector<Case> uniformBlockCases();   // UniformBlockCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -287,9 +288,9 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group :
-             {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
-              pipelineCases, samplerStateCases, constantsCases, queryCases, regionAndViewCases})
+        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
+                            pipelineCases, samplerStateCases, constantsCases, queryCases,
+                            regionAndViewCases, uniformBlockCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

@@ -245,7 +245,8 @@ TEST_P(RenderDirector, RatesPerSourceWithinTheErrorBudget) {
     }
     std::cout << why;
     const render::DirectorChoice strict =
-        render::direct(scene, request, device->info(), device.get(), {.errorBudgetPercent = 0.01});
+        render::direct(scene, request, asCpuRasterizer(device->info()), device.get(),
+                       {.errorBudgetPercent = 0.01});
     EXPECT_EQ(strict.settings.technique, exact.technique);
     EXPECT_EQ(strict.settings.rates.punctual + strict.settings.rates.iblDiffuse, 0u);
 }

@@ -115,6 +115,7 @@ constexpr const char* kUsage =
     "  bench --compare A.json B.json [--time-ratio X] [--error-points P]: what changed from A to B; exit 1 when\n"
     "      a frame got slower than X times (default 1.25) or P more percent of pixels over 5/255 (default 0.5)\n"
     "  conformance [--backend NAME|all] [--report FILE.json] [--out-dir DIR] [--case SUBSTRING] [--no-validation]\n"
+    "      [--list]: the case names (those --case matches), nothing run\n"
     "      [--capture FILE[,FILE...]]: the captures are the cases (each replayed on every backend, its images\n"
     "      compared across backends with the suite's tolerance)\n"
     "  capture [--out FILE] [--frames N | --frame K] [--no-compress] -- PROGRAM [ARGS...]\n"
@@ -161,8 +162,9 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"replay --out", {"DIR", "write every read-back and presented image there as PNG"}},
     {"replay --backend", {"NAME", "the backend to replay on (default auto)"}},
     {"--present", {"", "present the captured frames in a window (vulkan-glfw, gl-glfw)"}},
-    {"--list",
+    {"replay --list",
      {"", "name the capture's render passes and their draws (what --pass and --draw take)"}},
+    {"conformance --list", {"", "name the cases (those --case matches) without running them"}},
     {"--capture",
      {"FILE[,FILE...]", "run these capture files as the cases (fe capture makes them)"}},
     {"--pass", {"NAME", "stop after the first render pass of this name and write its targets"}},

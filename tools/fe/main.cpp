@@ -494,6 +494,14 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
     } else {
         cases = conformance::cases();
     }
+    if (a.options.count("--list")) {  // the names --case matches, without running anything
+        size_t listed = 0;
+        const std::string filter = a.options.count("--case") ? a.options.at("--case") : "";
+        for (const conformance::Case& c : cases)
+            if (c.name.find(filter) != std::string::npos) std::cout << c.name << "\n", ++listed;
+        std::cout << listed << " case(s)\n";
+        return 0;
+    }
     // Outputs are checked before any case runs.
     if (a.options.count("--report")) cli::checkWritableFile(a.options.at("--report"), "--report");
     if (a.options.count("--out-dir"))
@@ -571,7 +579,7 @@ int main(int argc, char** argv) {
         if (command == "conformance")
             return cmdConformance(
                 parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case", "--capture"},
-                      {"--no-validation"}),
+                      {"--no-validation", "--list"}),
                 std::vector<std::string>(argv + 1, argv + argc));
         if (command == "capture") return cli::cmdCapture(argc, argv);
         if (command == "replay")

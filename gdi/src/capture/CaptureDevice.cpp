@@ -172,6 +172,9 @@ public:
 
     const BufferDesc& desc(BufferHandle h) const override { return inner_->desc(h); }
     const TextureDesc& desc(TextureHandle h) const override { return inner_->desc(h); }
+    const ShaderInterface& shaderInterface(ShaderHandle h) const override {
+        return inner_->shaderInterface(h);
+    }
 
     void writeBuffer(BufferHandle b, uint64_t offset, ByteSpan data) override {
         inner_->writeBuffer(b, offset, data);

@@ -150,8 +150,13 @@
 //    same texture may be read (render mip 1 while sampling a view of mip 0). The exception is
 //    read-only depth: a pipeline that writes neither depth nor stencil may sample the depth
 //    attachment (soft particles, decals). A pass may not name one subresource twice.
+//  - What a shader declares is there to read: shaderInterface(shader) (ShaderReflection.h) lists
+//    its bindings and each block's members with their offsets, and UniformBlock (UniformBlock.h)
+//    writes a block by member name, as a port from glUniform* needs:
+//      UniformBlock material(device->shaderInterface(fs), "Material");
+//      material.set("tint", {1.0f, 0.5f, 0.0f});  device->writeBuffer(ubo, 0, material.bytes());
 // Shown by: pipeline_layout_from_shader, binding_mismatch_errors, storage_textures_at_any_slot,
-// format_caps, vertex_formats.
+// format_caps, vertex_formats, uniform_block_layout.
 //
 // Per-draw constants and specialization
 // -------------------------------------
@@ -303,6 +308,8 @@ struct InputState {
 // ---------------------------------------------------------------------------------------------
 // Errors and handles
 // ---------------------------------------------------------------------------------------------
+struct ShaderInterface;  // ShaderReflection.h
+
 struct Error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
@@ -1322,6 +1329,11 @@ public:
 
     virtual const BufferDesc& desc(BufferHandle) const = 0;
     virtual const TextureDesc& desc(TextureHandle) const = 0;
+    // What a shader declares, reflected when it was created (ShaderReflection.h): its bindings,
+    // each uniform and storage block's size and members with their offsets (BlockMember), its
+    // inputs, outputs and specialization constants. UniformBlock (UniformBlock.h) writes a
+    // block's members by name from it, as a port from glUniform* needs.
+    virtual const ShaderInterface& shaderInterface(ShaderHandle) const = 0;
 
     // Queue-ordered writes: the data is copied before the call returns (the caller may reuse
     // its memory), and the write takes effect after all work submitted before the call and

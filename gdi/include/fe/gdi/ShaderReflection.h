@@ -22,6 +22,23 @@ const char* bindingTypeName(BindingType t);  // "uniform buffer", ...
 // guarantee for vertex attributes, varyings and fragment inputs).
 inline constexpr uint32_t kMaxInterfaceLocations = 16;
 
+// One member of a uniform or storage block as the shader lays it out (std140, std430 or
+// explicit offsets): a port from OpenGL sets uniforms by name, so it needs these rather than
+// padding a C++ struct by hand. Members of nested structs are listed by path ("light.colour"),
+// and each element of an array of structs by index ("lights[2].colour") up to 64 elements.
+struct BlockMember {
+    std::string name;
+    uint32_t offset = 0;                  // bytes from the block's start
+    uint32_t size = 0;                    // bytes the member takes (all of an array's elements)
+    ScalarKind kind = ScalarKind::Float;  // Other: bool (4 bytes in a block)
+    uint32_t vectorSize = 1;              // components of a vector (of a matrix's column)
+    uint32_t columns = 1;                 // a matrix's columns, else 1
+    bool rowMajor = false;                // layout(row_major): each row contiguous instead
+    uint32_t matrixStride = 0;            // bytes between a matrix's columns (rows if rowMajor)
+    uint32_t arrayCount = 1;              // elements; 0: runtime-sized (a storage block's last)
+    uint32_t arrayStride = 0;             // bytes between elements (0: not an array)
+};
+
 struct ShaderInterface {
     struct Binding {
         uint32_t slot = 0;  // layout(binding = slot), descriptor set 0
@@ -30,6 +47,10 @@ struct ShaderInterface {
         // Textures: 1 + the TextureDimension the shader declares (sampler2DArray: Texture2DArray),
         // kTexture2DMultisampleKind for sampler2DMS; 0 for buffers.
         uint8_t dimension = 0;
+        // Buffers: the block's declared size in bytes (a runtime-sized array counted as empty)
+        // and its members (BlockMember); empty for textures.
+        uint32_t blockBytes = 0;
+        std::vector<BlockMember> members;
     };
     struct Variable {
         uint32_t location = 0;
