@@ -7,6 +7,7 @@ PACKAGES=(
   build-essential cmake pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools
+  glslang-dev                  # GLSL compiled at run time (createShader from source)
   libosmesa6 libosmesa6-dev libegl-dev libegl1-mesa-dev libgl-dev libgl1-mesa-dri
   libglfw3-dev libx11-dev libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   libzstd-dev                  # capture files (fe capture, fe replay)

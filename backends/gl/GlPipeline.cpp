@@ -1,5 +1,6 @@
 // The GL backend's shaders and pipelines: specialization, linking, program binaries (the pipeline
 // cache file), image units.
+#include "fe/gdi/ShaderCompiler.h"
 #include "gl/GlDevice.h"
 
 #include <algorithm>
@@ -12,8 +13,10 @@
 
 namespace fe::gl {
 
-gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& desc) {
+gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& given) {
     loss_.check("createShader");
+    // Source text is compiled first (ShaderCompiler.h), the same on every backend.
+    const gdi::ShaderDesc desc = gdi::withCompiledSource(given);
     gdi::validate::shaderDesc(desc);
     const std::string label = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.opengl;

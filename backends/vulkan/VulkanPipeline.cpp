@@ -2,6 +2,7 @@
 #include <string>
 #include <utility>
 
+#include "fe/gdi/ShaderCompiler.h"
 #include "VulkanDevice.h"
 #include "VulkanFaults.h"
 #include "fe/gdi/Validation.h"
@@ -102,9 +103,11 @@ VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
 }
 }  // namespace
 
-gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& desc) {
+gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& given) {
     const DeviceCall call(*this);
     loss_.check("createShader");
+    // Source text is compiled first (ShaderCompiler.h), the same on every backend.
+    const gdi::ShaderDesc desc = gdi::withCompiledSource(given);
     gdi::validate::shaderDesc(desc);
     const std::string name = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.vulkan;

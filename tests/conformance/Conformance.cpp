@@ -278,6 +278,7 @@ std::vector<Case> constantsCases();      // ConstantsCases.cpp
 std::vector<Case> queryCases();          // QueryCases.cpp
 std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
 std::vector<Case> uniformBlockCases();   // UniformBlockCases.cpp
+std::vector<Case> shaderSourceCases();   // ShaderSourceCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -290,7 +291,7 @@ const std::vector<Case>& cases() {
         };
         for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
                             pipelineCases, samplerStateCases, constantsCases, queryCases,
-                            regionAndViewCases, uniformBlockCases})
+                            regionAndViewCases, uniformBlockCases, shaderSourceCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

@@ -1,4 +1,5 @@
 // The capturing device: a Device that forwards every call and writes it to a capture file.
+#include "fe/gdi/ShaderCompiler.h"
 #include <algorithm>
 #include <atomic>
 #include <map>
@@ -110,7 +111,9 @@ public:
         created("sampler", h.id, {{"op", "createSampler"}, {"id", h.id}, {"desc", toJson(desc)}});
         return h;
     }
-    ShaderHandle createShader(const ShaderDesc& desc) override {
+    ShaderHandle createShader(const ShaderDesc& given) override {
+        // A source is compiled here, so the capture holds the binaries any backend replays.
+        const ShaderDesc desc = withCompiledSource(given);
         const ShaderHandle h = inner_->createShader(desc);
         const auto& b = desc.binary;
         created("shader", h.id,

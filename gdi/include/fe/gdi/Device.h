@@ -11,6 +11,8 @@
 // -----
 //   auto device = fe::gdi::createDevice({.backend = "auto"});     // Backend.h
 //   auto vs = device->createShader({.stage = ShaderStage::Vertex, .binary = shaders::find("tri.vert")});
+//   auto fs = device->createShader({.stage = ShaderStage::Fragment,        // or GLSL at run time
+//                                   .source = {.text = glsl, .name = "tint.frag"}});
 //   auto target = device->createTexture({.format = Format::RGBA8, .width = 64, .height = 64,
 //                                         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc});
 //   auto pipe = device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
@@ -243,12 +245,14 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <ranges>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -571,10 +575,22 @@ struct ShaderBinary {
     std::span<const uint32_t> opengl;  // glslang -G, loaded through ARB_gl_spirv
 };
 
+// GLSL source compiled at createShader instead of a binary (ShaderCompiler.h: both encodings, an
+// unchanged source compiled once per process, errors as the build step's "NAME:LINE: message").
+struct ShaderSource {
+    std::string_view text;  // GLSL 450; empty: ShaderDesc::binary is used
+    const char* name = "shader";
+    std::vector<std::string> defines;  // "NAME" or "NAME=VALUE"
+    // `#include "NAME"` beyond the built-in fe_common.glsl: NAME's text, or nullopt.
+    std::function<std::optional<std::string>(const std::string& name, const std::string& includer)>
+        include;
+};
+
 struct ShaderDesc {
     ShaderStage stage = ShaderStage::None;
     ShaderBinary binary;
     const char* entryPoint = "main";
+    ShaderSource source;  // instead of binary: compiled at createShader
 };
 
 enum class BindingType : uint8_t { UniformBuffer, StorageBuffer, SampledTexture, StorageTexture };

@@ -1,0 +1,46 @@
+// GLSL compiled at run time (glslang as a library), for editors, material tools and hot reload:
+// the same two encodings the build step (fe_add_shaders) makes, so a shader given as source
+// behaves on every backend as one compiled at build time.
+//   ShaderHandle fs = device->createShader({.stage = ShaderStage::Fragment,
+//                                           .source = {.text = glsl, .name = "tint.frag"}});
+//   ShaderBinary b = compileShader({.stage = ShaderStage::Vertex, .text = glsl});  // or by hand
+// - GLSL 450 with FE_VULKAN or FE_OPENGL defined as the build step does, `#include
+//   "fe_common.glsl"` (FE_VERTEX_ID, FE_CONSTANTS) built in, and other includes through the
+//   source's `include` callback (none: an include is an error naming it).
+// - An error is a gdi::Error with glslang's messages as "NAME:LINE: message" (the build step's
+//   form), plus the portable name when the source used a built-in only one API has.
+// - Compiled once per text, stage, defines and includes' text: an unchanged source is not
+//   compiled twice in a process (the binaries stay valid for the process, so their spans can
+//   go into ShaderDesc::binary and captures).
+#pragma once
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fe/gdi/Device.h"
+
+namespace fe::gdi {
+
+struct ShaderSourceCompile {
+    ShaderStage stage = ShaderStage::None;
+    std::string_view text;
+    std::string name = "shader";       // in messages: "NAME:LINE: ..."
+    std::vector<std::string> defines;  // "NAME" or "NAME=VALUE", as -D
+    // `#include "NAME"`: the text of NAME (included from `includer`), or nullopt if there is none.
+    std::function<std::optional<std::string>(const std::string& name, const std::string& includer)>
+        include;
+};
+
+// Both encodings of the source (ShaderBinary::vulkan and ::opengl); throws Error as above.
+ShaderBinary compileShader(const ShaderSourceCompile& source);
+
+// createShader's first step on every backend: a desc given as source (ShaderDesc::source) with
+// its binary compiled; any other desc unchanged.
+ShaderDesc withCompiledSource(const ShaderDesc& desc);
+
+// How many compiles the process has run (the cache's misses), for tests of the cache.
+uint64_t shaderCompileCount();
+
+}  // namespace fe::gdi
