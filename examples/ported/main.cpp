@@ -1,9 +1,10 @@
 // Example (d): what a port of a Vulkan or GL sample uses, from the installed package: per-draw
 // constants and a specialization constant in shaders of its own (fe_common.glsl's FE_CONSTANTS),
 // a texture view drawn into (one layer of an array), a region read back with a row pitch, an
-// occlusion query, two lists recorded on two threads and submitted together, and four mistakes
-// made on purpose that must be the same gdi::Error on every backend (tests/package_consumer.sh
-// compares the output).
+// occlusion query, two lists recorded on two threads and submitted together, shaders given as
+// GLSL source (compiled on two threads) with a uniform block set by member name, and six
+// mistakes made on purpose that must be the same gdi::Error on every backend
+// (tests/package_consumer.sh compares the output).
 //   fe_example_ported [--backend NAME] [--validation]
 // Prints the query count, the texels read back and the mistakes; exit 1 when something differs
 // from what the program expects.
@@ -20,6 +21,7 @@
 #include "fe/gdi/Device.h"
 #include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
+#include "fe/gdi/UniformBlock.h"
 
 using namespace fe::gdi;
 
@@ -39,6 +41,63 @@ bool reported(const char* what, const std::function<void()>& mistake) {
     return false;
 }
 }  // namespace
+
+// A GL port's shaders given as source (glShaderSource), compiled on two threads at once, and its
+// uniform block set by member name (glUniform*) rather than padded by hand; then two mistakes.
+bool sourceShadersAndBlocks(Device& d) {
+    DeviceObjects o(d);
+    const char* vertex = R"(#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "fe_common.glsl"
+void main() {
+    vec2 p = vec2((FE_VERTEX_ID << 1) & 2, FE_VERTEX_ID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+    const char* fragment = R"(#version 450
+layout(binding = 0, std140) uniform Tint { float scale; vec3 colour; } tint;
+layout(location = 0) out vec4 outColor;
+void main() { outColor = vec4(tint.colour * tint.scale, 1.0); }
+)";
+    std::array<ShaderHandle, 2> shaders{};
+    std::thread vsThread([&] {
+        shaders[0] = o.add(d.createShader(
+            {.stage = ShaderStage::Vertex, .source = {.text = vertex, .name = "port.vert"}}));
+    });
+    shaders[1] = o.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .source = {.text = fragment, .name = "port.frag"}}));
+    vsThread.join();
+    UniformBlock tint(d.shaderInterface(shaders[1]), "Tint");
+    tint.set("scale", 0.5f);
+    tint.set("colour", {1.0f, 0.5f, 0.0f});  // at offset 16, where std140 puts a vec3
+    const BufferHandle ubo = o.add(
+        d.createBuffer({.size = tint.bytes().size(), .usage = BufferUsage::Uniform}, tint.bytes()));
+    const PipelineHandle p = o.add(d.createGraphicsPipeline({.vertexShader = shaders[0],
+                                                             .fragmentShader = shaders[1],
+                                                             .colorFormats = {Format::RGBA8}}));
+    const TextureHandle target = o.add(d.createTexture(
+        {.width = 8, .height = 8, .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = target}}});
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, ubo);
+    cmd->draw(3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    const Image image = d.readTexture(target);
+    const auto t = image.texel(4, 4);
+    std::printf("source shaders, block by name: %.2f %.2f %.2f\n", t[0], t[1], t[2]);
+    bool ok = t[0] > 0.49f && t[0] < 0.51f && t[1] > 0.24f && t[1] < 0.26f && t[2] < 0.01f;
+    ok &= reported("a uniform block member that is not there", [&] {
+        tint.set("color", {1.0f, 1.0f, 1.0f});
+    });
+    ok &= reported("a shader source that does not compile", [&] {
+        d.createShader({.stage = ShaderStage::Fragment,
+                        .source = {.text = "#version 450\nvoid main() { undeclared = 1; }\n",
+                                   .name = "broken.frag"}});
+    });
+    return ok;
+}
 
 int main(int argc, char** argv) {
     std::string backend = "auto";
@@ -162,6 +221,7 @@ int main(int argc, char** argv) {
                                       .colorFormats = {Format::RGBA8},
                                       .specialization = {SpecializationConstant::of(7, 1.0f)}});
         });
+        ok &= sourceShadersAndBlocks(d);
         if (validation && d.validationErrorCount())
             ok = false, std::printf("the validation layer reported errors\n");
         return ok ? 0 : 1;

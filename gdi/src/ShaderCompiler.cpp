@@ -72,6 +72,7 @@ std::string errorText(const std::string& log, const std::string& name) {
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("ERROR: ", 0) != 0) continue;
         line = line.substr(7);
+        line.erase(line.find_last_not_of(" \r") + 1);  // glslang ends its lines with a space
         if (line.find("compilation terminated") != std::string::npos ||
             line.find("compilation errors.") != std::string::npos)
             continue;

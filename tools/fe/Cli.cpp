@@ -441,57 +441,60 @@ void checkWritableFile(const std::string& file, const char* option) {
     if (!existed) std::filesystem::remove(path, ec);
 }
 
-const std::vector<std::string> kRenderOptions = {"--backend",
-                                                 "--technique",
-                                                 "--illum-scale",
-                                                 "--size",
-                                                 "--out",
-                                                 "--exposure",
-                                                 "--frames",
-                                                 "--lights",
-                                                 "--dump-graph",
-                                                 "--vsync",
-                                                 "--msaa",
-                                                 "--error-budget",
-                                                 "--environment",
-                                                 "--ibl-samples",
-                                                 "--shadows",
-                                                 "--shadow-map-size",
-                                                 "--shadow-cascades",
-                                                 "--shadow-point-budget",
-                                                 "--shadow-filter",
-                                                 "--rates",
-                                                 "--orbit",
-                                                 "--tonemap",
-                                                 "--aa",
-                                                 "--debug-view",
-                                                 "--pipeline-cache",
-                                                 "--renderdoc-capture",
-                                                 "--brdf",
-                                                 "--background",
-                                                 "--animation",
-                                                 "--time",
-                                                 "--fps",
-                                                 "--camera",
-                                                 "--camera-position",
-                                                 "--camera-target",
-                                                 "--camera-up",
-                                                 "--fov",
-                                                 "--azimuth",
-                                                 "--elevation"};
-const std::vector<std::string> kRenderFlags = {"--no-aliasing",
-                                               "--quiet",
-                                               "--json",
-                                               "--window",
-                                               "--verbose",
-                                               "--strict",
-                                               "--illum-split",
-                                               "--rebuild-nov",
-                                               "--one-pass-culling",
-                                               "--no-cluster-bounds",
-                                               "--ibl-prefiltered",
-                                               "--temporal",
-                                               "--loop"};
+// The look: what fe render and fe view both take, in the same units (renderJob reads them).
+const std::vector<std::string> kLookOptions = {"--illum-scale",
+                                               "--msaa",
+                                               "--ibl-samples",
+                                               "--shadows",
+                                               "--shadow-map-size",
+                                               "--shadow-cascades",
+                                               "--shadow-point-budget",
+                                               "--shadow-filter",
+                                               "--rates",
+                                               "--tonemap",
+                                               "--aa",
+                                               "--exposure",
+                                               "--brdf",
+                                               "--background",
+                                               "--lights"};
+const std::vector<std::string> kLookFlags = {"--ibl-prefiltered",   "--illum-split",
+                                             "--rebuild-nov",       "--one-pass-culling",
+                                             "--no-cluster-bounds", "--temporal"};
+
+namespace {
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+}  // namespace
+
+const std::vector<std::string> kRenderOptions = with({"--backend",
+                                                      "--technique",
+                                                      "--size",
+                                                      "--out",
+                                                      "--frames",
+                                                      "--dump-graph",
+                                                      "--vsync",
+                                                      "--error-budget",
+                                                      "--environment",
+                                                      "--orbit",
+                                                      "--debug-view",
+                                                      "--pipeline-cache",
+                                                      "--renderdoc-capture",
+                                                      "--animation",
+                                                      "--time",
+                                                      "--fps",
+                                                      "--camera",
+                                                      "--camera-position",
+                                                      "--camera-target",
+                                                      "--camera-up",
+                                                      "--fov",
+                                                      "--azimuth",
+                                                      "--elevation"},
+                                                     kLookOptions);
+const std::vector<std::string> kRenderFlags =
+    with({"--no-aliasing", "--quiet", "--json", "--window", "--verbose", "--strict", "--loop"},
+         kLookFlags);
 
 render::Background parseBackground(const std::string& text) {
     using Kind = render::Background::Kind;

@@ -62,6 +62,9 @@ void makeOutputDirectory(const std::string& path, const char* option);
 
 // `fe render`: its options and flags, and what they ask for.
 extern const std::vector<std::string> kRenderOptions, kRenderFlags;
+// fe render's look options and flags (technique options, light, shadows, tone mapping, ...),
+// which fe view takes too, in the same units.
+extern const std::vector<std::string> kLookOptions, kLookFlags;
 // What `fe render` and `fe view` show when no scene is named: the quick start's image
 // (tools/render-default.sh): builtin:shadows lit by the builtin sky (image-based lighting at
 // kQuickStartIblSamples samples) with shadows on; options given on the command line win.

@@ -259,29 +259,11 @@ double parsePositive(const std::string& text, const char* what) {
     return v;
 }
 
-// fe view's own options; the rest are fe render's look options (kViewLookOptions), in its units.
+// fe view's own options; the rest are fe render's look options (cli::kLookOptions), in its units.
 const std::vector<std::string> kViewOptions = {
     "--backend",      "--technique",  "--size",       "--environment",
     "--frames",       "--screenshot", "--debug-view", "--switch-backend-at",
     "--input-script", "--animation",  "--camera"};
-const std::vector<std::string> kViewLookOptions = {"--illum-scale",
-                                                   "--msaa",
-                                                   "--ibl-samples",
-                                                   "--shadows",
-                                                   "--shadow-map-size",
-                                                   "--shadow-cascades",
-                                                   "--shadow-point-budget",
-                                                   "--shadow-filter",
-                                                   "--rates",
-                                                   "--tonemap",
-                                                   "--aa",
-                                                   "--exposure",
-                                                   "--brdf",
-                                                   "--background",
-                                                   "--lights"};
-const std::vector<std::string> kViewLookFlags = {"--ibl-prefiltered",   "--illum-split",
-                                                 "--rebuild-nov",       "--one-pass-culling",
-                                                 "--no-cluster-bounds", "--temporal"};
 
 std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
     a.insert(a.end(), b.begin(), b.end());
@@ -565,8 +547,8 @@ int main(int argc, char** argv) {
             return cli::cmdRender(parse(argc, argv, 2, cli::kRenderOptions, cli::kRenderFlags,
                                         cli::kScenePositional));
         if (command == "view")
-            return cmdView(parse(argc, argv, 2, joined(kViewOptions, kViewLookOptions),
-                                 joined({"--no-ui", "--validation"}, kViewLookFlags),
+            return cmdView(parse(argc, argv, 2, joined(kViewOptions, cli::kLookOptions),
+                                 joined({"--no-ui", "--validation"}, cli::kLookFlags),
                                  cli::kScenePositional));
         if (command == "bench")
             return cmdBench(
