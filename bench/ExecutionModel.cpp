@@ -15,6 +15,13 @@
 //     wait are timed apart; with overlap the pipelined frame costs less than record + execute.
 //  3. Churn: the frame time of (2) with two frames in flight, plain and while 1,000 textures are
 //     created and destroyed (50 per frame over 20 frames).
+//  4. Async compute (issue 50): a frame of 5,000 draws on the graphics queue and a compute job
+//     (bench/busy.comp, 65,536 invocations, its loop sized to take about the frame's time) on
+//     the compute queue, submitted with no wait between
+//     them, against the same two one after the other on the graphics queue; from the first
+//     submit to both fences, lists recorded beforehand. Below 1 only where the compute queue is
+//     a hardware queue of its own (DeviceFeatures::asyncCompute) and the GPU has room beside the
+//     frame; lavapipe and GL share one queue, so about 1 there.
 // Each frame starts with --cpu-ms of application work (a busy loop), which frames in flight
 // overlap with the previous frame's execution.
 // Prints a markdown table. On lavapipe/llvmpipe the "GPU" is the same two CPU cores, so these
@@ -135,6 +142,8 @@ struct Row {
     double callerHalf = 0, workerHalf = 0;  // each thread's own two lists, in the 4-list rounds
     double secondaryReplayed = 0;  // the pass of 4 secondary lists again, recorded once, ms
     bool pinned = false;
+    double frameAlone = 0, jobAlone = 0, serialQueues = 0, overlappedQueues = 0, queueRatio = 0;
+    bool asyncCompute = false;
 };
 
 // A job thread that lives across rounds, as an engine's job threads do (threads made per round
@@ -381,6 +390,62 @@ double frames(Scene& s, uint32_t count, uint32_t inFlight, Row* split, uint32_t 
     return median(frameMs);
 }
 
+// Section 4: see the top. Each round times the serial and the overlapped form back to back and
+// takes their ratio (the figure is the median of those ratios, as in section 1).
+void asyncComputeOverlap(Scene& s, uint32_t rounds, Row& row) {
+    Device& d = *s.device;
+    row.asyncCompute = d.info().features.asyncCompute;
+    const ShaderHandle cs = d.createShader(
+        {.stage = ShaderStage::Compute, .binary = fe::shaders::find("bench/busy.comp")});
+    const PipelineHandle busy = d.createComputePipeline({.computeShader = cs});
+    constexpr uint32_t kInvocations = 65536;
+    uint32_t iterations = 100;  // then scaled so that the job alone takes about the frame's time
+    const BufferHandle results =
+        d.createBuffer({.size = kInvocations * 4, .usage = BufferUsage::Storage});
+    auto graphics = d.createCommandList();
+    auto onGraphics = d.createCommandList();
+    auto onCompute = d.createCommandList({.queue = QueueKind::Compute});
+    auto job = [&](CommandList& c) {
+        c.setPipeline(busy);
+        c.setStorageBuffer(0, results);
+        c.setConstants(iterations);
+        c.dispatch(kInvocations / 64);
+    };
+    auto timed = [&](CommandList* jobList) {
+        s.record(*graphics, 0, kDraws / 4, true);
+        if (jobList) job(*jobList);
+        const Clock::time_point t = Clock::now();
+        FenceValue last = d.submit(*graphics);
+        if (jobList) last = d.submit(*jobList);
+        d.wait(last);
+        return msSince(t);
+    };
+    auto jobOnly = [&] {
+        job(*onCompute);
+        const Clock::time_point t = Clock::now();
+        d.wait(d.submit(*onCompute));
+        return msSince(t);
+    };
+    (void)timed(nullptr), (void)jobOnly();  // warm-up
+    const double frame = timed(nullptr), job100 = jobOnly();
+    iterations = uint32_t(std::clamp(100.0 * frame / std::max(job100, 1e-3), 10.0, 1e6));
+    std::vector<double> alone, jobs, serial, overlapped, ratios;
+    for (uint32_t r = 0; r < rounds + 1; ++r) {  // one warm-up round
+        const double a = timed(nullptr), j = jobOnly(), se = timed(onGraphics.get()),
+                     ov = timed(onCompute.get());
+        if (r == 0) continue;
+        alone.push_back(a), jobs.push_back(j), serial.push_back(se), overlapped.push_back(ov);
+        ratios.push_back(ov / se);
+    }
+    d.waitIdle();
+    d.destroy(results);
+    d.destroy(busy);
+    d.destroy(cs);
+    row.frameAlone = median(alone), row.jobAlone = median(jobs);
+    row.serialQueues = median(serial), row.overlappedQueues = median(overlapped);
+    row.queueRatio = median(ratios);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -412,6 +477,7 @@ int main(int argc, char** argv) {
             row.pipeFrame = frames(s, 2 * rounds, 2, &row, 0, cpuMs);
             row.plainFrame = frames(s, 20, 2, nullptr, 0, cpuMs);
             row.churnFrame = frames(s, 20, 2, nullptr, 50, cpuMs);
+            asyncComputeOverlap(s, rounds, row);
             rows.push_back(row);
         }
         std::printf(
@@ -447,6 +513,17 @@ int main(int argc, char** argv) {
             std::printf("| %s | %.2f | %.2f | %.2f / %.2f / %.2f | %.2f | %.2f |\n",
                         r.backend.c_str(), r.seqFrame, r.pipeFrame, r.record, r.submit, r.wait,
                         r.plainFrame, r.churnFrame);
+        std::printf(
+            "\nAsync compute: a frame of 5,000 draws and a compute job, serial on the graphics queue "
+            "against the job on the compute queue (medians of %u rounds; the ratio is the median of "
+            "the rounds' own ratios)\n\n| backend | compute queue of its own | frame alone, ms | job "
+            "alone, ms | both on the graphics queue, ms | job on the compute queue, ms | ratio |\n"
+            "|---|---|---|---|---|---|---|\n",
+            rounds);
+        for (const Row& r : rows)
+            std::printf("| %s | %s | %.2f | %.2f | %.2f | %.2f | **%.2f** |\n", r.backend.c_str(),
+                        r.asyncCompute ? "yes" : "no (shares the graphics queue)", r.frameAlone,
+                        r.jobAlone, r.serialQueues, r.overlappedQueues, r.queueRatio);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fe_bench_execution: %s\n", e.what());

@@ -12,8 +12,9 @@ namespace fe::gl {
 
 namespace cmd = gdi::cmd;
 
-GlCommandList::GlCommandList(GlDevice& d)
+GlCommandList::GlCommandList(GlDevice& d, gdi::QueueKind queue)
     : dev_(d),
+      queue_(queue),
       uniformLimits_(gdi::validate::uniformBindingLimits(d.info().limits)),
       storageLimits_(gdi::validate::storageBindingLimits(d.info().limits)),
       viewportLimits_(gdi::validate::viewportLimits(d.info().limits)),
@@ -138,6 +139,7 @@ gdi::validate::PassSignature GlCommandList::checkPass(const gdi::RenderPassDesc&
 }
 
 void GlCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "beginRenderPass");
     checkDevice("beginRenderPass");
     if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
     if (inPass_) gdi::validate::insidePass("beginRenderPass");
@@ -178,6 +180,7 @@ void GlCommandList::restrictedCall(const char* what) const {
 }
 
 void GlCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "beginSecondary");
     checkDevice("beginSecondary");
     if (ended_) {  // recorded anew: primaries that executed the old recording keep it
         recorded_.reset();
@@ -362,6 +365,7 @@ void GlCommandList::prepareCompute(const char* what) {
         throw gdi::Error(std::string(what) + " with graphics pipeline '" + pipeline_->label + "'");
 }
 void GlCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "dispatch");
     prepareCompute("dispatch");
     gdi::validate::dispatchSize(x, y, z, dev_.info().limits);
     checkBindings();
@@ -433,6 +437,7 @@ void GlCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRegion
 
 void GlCommandList::resolveTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
                                    gdi::TextureHandle src, const gdi::TextureRegion& srcRegion) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "resolveTexture");
     outsidePass("resolveTexture");
     const Texture& d = copied(dst);
     const Texture& s = copied(src);
@@ -442,6 +447,7 @@ void GlCommandList::resolveTexture(gdi::TextureHandle dst, const gdi::TextureReg
 }
 
 void GlCommandList::generateMips(gdi::TextureHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "generateMips");
     outsidePass("generateMips");
     const Texture& t = copied(h);
     gdi::validate::mipGeneration(t.desc, t.label);
@@ -496,6 +502,7 @@ void GlCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_t of
         cmd::DrawIndexedIndirectCount{args, offset, count, countOffset, maxDrawCount, stride});
 }
 void GlCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "dispatchIndirect");
     prepareCompute("dispatchIndirect");
     const Buffer& b = dev_.buffer(args);
     gdi::validate::indirect(b.desc, b.label, offset, 1, sizeof(gdi::DispatchIndirectArgs),
@@ -506,12 +513,14 @@ void GlCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
 }
 
 void GlCommandList::beginTimer(gdi::TimerHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "beginTimer");
     outsidePass("beginTimer");
     (void)dev_.timer(h);
     queries_.beginTimer(h.id);
     stream_->push(cmd::BeginTimer{h});
 }
 void GlCommandList::endTimer(gdi::TimerHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "endTimer");
     checkUnrestricted("endTimer");
     if (secondary_) gdi::validate::notInSecondary("endTimer");
     (void)dev_.timer(h);
@@ -524,6 +533,7 @@ QuerySet& GlCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* what) {
     return dev_.querySet(h);
 }
 void GlCommandList::beginQuery(gdi::QuerySetHandle h, uint32_t index) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "beginQuery");
     const QuerySet& q = usedQuerySet(h, "beginQuery");
     queries_.begin(q.desc, q.label, h.id, index, inPass_);
     stream_->push(cmd::BeginQuery{h, index});
@@ -534,12 +544,14 @@ void GlCommandList::endQuery(gdi::QuerySetHandle h, uint32_t index) {
     stream_->push(cmd::EndQuery{h, index});
 }
 void GlCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "writeTimestamp");
     const QuerySet& q = usedQuerySet(h, "writeTimestamp");
     queries_.timestamp(q.desc, q.label, h.id, index, inPass_);
     stream_->push(cmd::WriteTimestamp{h, index});
 }
 void GlCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
                                    gdi::BufferHandle dst, uint64_t dstOffset) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "resolveQueries");
     outsidePass("resolveQueries");
     const QuerySet& q = usedQuerySet(h, "resolveQueries");
     const Buffer& b = dev_.buffer(dst);
@@ -680,9 +692,9 @@ void GlCommandList::notReadyToDraw(const char* what) const {
     vertexInputs_.notReady(what);
 }
 
-std::unique_ptr<gdi::CommandList> GlDevice::createCommandList() {
+std::unique_ptr<gdi::CommandList> GlDevice::createCommandList(const gdi::CommandListDesc& desc) {
     loss_.check("createCommandList");
-    auto list = std::make_unique<GlCommandList>(*this);
+    auto list = std::make_unique<GlCommandList>(*this, desc.queue);
     return info_.features.validation ? gdi::exclusiveUse(std::move(list)) : std::move(list);
 }
 

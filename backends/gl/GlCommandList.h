@@ -14,7 +14,8 @@ namespace fe::gl {
 
 class GlCommandList final : public gdi::CommandList {
 public:
-    explicit GlCommandList(GlDevice& d);
+    GlCommandList(GlDevice& d, gdi::QueueKind queue);
+    gdi::QueueKind queue() const override { return queue_; }
     bool madeBy(const GlDevice& d) const {
         return !orphaned_ && &dev_ == &d;
     }  // a new device may reuse the address
@@ -107,6 +108,7 @@ private:
     }
 
     GlDevice& dev_;
+    const gdi::QueueKind queue_;  // what it may record (validate::queueAllows)
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     const gdi::validate::ViewportLimits viewportLimits_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;

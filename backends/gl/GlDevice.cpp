@@ -384,10 +384,14 @@ void GlDevice::rethrowAsyncError() {
 }
 
 // Validated on the calling thread; replayed, in order, on the context thread.
-gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists) {
+// One context runs every queue's work in submission order, which satisfies every
+// SubmitDesc::waitFor by itself (DeviceFeatures::asyncCompute and asyncCopy are false).
+gdi::FenceValue GlDevice::submit(std::span<gdi::CommandList* const> lists,
+                                 const gdi::SubmitDesc& desc) {
     loss_.check("submit");
     rethrowAsyncError();
     const gdi::ClaimedLists claimed(lists, "submit");  // null, twice, in use on another thread
+    (void)gdi::validate::submissionQueue(claimed.lists(), desc, nextFence_.load() - 1);
     std::vector<GlCommandList*> gls;
     for (gdi::CommandList* list : claimed.lists()) {
         auto* gl = dynamic_cast<GlCommandList*>(list);

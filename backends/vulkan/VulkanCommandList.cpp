@@ -49,8 +49,9 @@ VkAttachmentStoreOp toStore(gdi::StoreOp op) {
 }
 }  // namespace
 
-VulkanCommandList::VulkanCommandList(VulkanDevice& device)
+VulkanCommandList::VulkanCommandList(VulkanDevice& device, gdi::QueueKind queue)
     : dev_(device),
+      queue_(queue),
       uniformLimits_(gdi::validate::uniformBindingLimits(device.info().limits)),
       storageLimits_(gdi::validate::storageBindingLimits(device.info().limits)),
       viewportLimits_(gdi::validate::viewportLimits(device.info().limits)) {
@@ -66,7 +67,7 @@ void VulkanCommandList::addRecordingBuffer() {
     RecordingBuffer b;
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    pci.queueFamilyIndex = dev_.queueFamily();
+    pci.queueFamilyIndex = dev_.queueFamily(queue_);
     check(nativeAllocation(
               "vkCreateCommandPool",
               [&] { return vkCreateCommandPool(dev_.vkDevice(), &pci, nullptr, &b.pool); }),
@@ -421,6 +422,7 @@ gdi::validate::PassSignature VulkanCommandList::checkPass(const gdi::RenderPassD
 }
 
 void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "beginRenderPass");
     if (secondary_) gdi::validate::notInSecondary("beginRenderPass");
     outsidePass("beginRenderPass");
     PassTextures pt;
@@ -582,6 +584,7 @@ void VulkanCommandList::restrictedCall(const char* what) const {
 }
 
 void VulkanCommandList::beginSecondary(const gdi::RenderPassDesc& desc) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "beginSecondary");
     checkDevice("beginSecondary");
     if (ended_) {  // recorded anew: primaries that executed the old recording keep it
         lease_.reset();
@@ -1091,6 +1094,7 @@ void VulkanCommandList::drawIndexedIndirectCount(gdi::BufferHandle args, uint64_
 }
 
 void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "dispatchIndirect");
     outsidePass("dispatchIndirect");
     if (!pipeline_) fail("dispatchIndirect without a pipeline (call setPipeline first)");
     if (pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
@@ -1107,6 +1111,7 @@ void VulkanCommandList::dispatchIndirect(gdi::BufferHandle args, uint64_t offset
 }
 
 void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "dispatch");
     outsidePass("dispatch");
     if (pipeline_ && pipeline_->bindPoint != VK_PIPELINE_BIND_POINT_COMPUTE)
         throw gdi::Error("dispatch with graphics pipeline '" + pipeline_->name + "'");
@@ -1248,6 +1253,7 @@ void VulkanCommandList::copyTexture(gdi::TextureHandle dst, const gdi::TextureRe
 void VulkanCommandList::resolveTexture(gdi::TextureHandle dst, const gdi::TextureRegion& dstAt,
                                        gdi::TextureHandle src,
                                        const gdi::TextureRegion& srcRegion) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "resolveTexture");
     outsidePass("resolveTexture");
     Texture& d = copiedTexture(dst);
     Texture& s = copiedTexture(src);
@@ -1277,6 +1283,7 @@ void VulkanCommandList::hostReadable(const Buffer& b) {
 // Each level is a linear blit of the one above (an exact 2x2 or 2x2x2 average where sizes
 // halve evenly), every layer at once; a barrier orders each level's write before its read.
 void VulkanCommandList::generateMips(gdi::TextureHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Graphics, "generateMips");
     outsidePass("generateMips");
     Texture& t = copiedTexture(h);
     gdi::validate::mipGeneration(t.desc, t.name);
@@ -1308,6 +1315,7 @@ void VulkanCommandList::generateMips(gdi::TextureHandle h) {
 }
 
 void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "beginTimer");
     outsidePass("beginTimer");  // the query reset below must be outside rendering
     Timer& t = usedTimer(h);
     queries_.beginTimer(h.id);
@@ -1316,6 +1324,7 @@ void VulkanCommandList::beginTimer(gdi::TimerHandle h) {
 }
 
 void VulkanCommandList::endTimer(gdi::TimerHandle h) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "endTimer");
     ensureRecording("endTimer");
     checkUnrestricted("endTimer");
     if (secondary_) gdi::validate::notInSecondary("endTimer");
@@ -1336,6 +1345,7 @@ QuerySet& VulkanCommandList::usedQuerySet(gdi::QuerySetHandle h, const char* wha
 }
 
 void VulkanCommandList::beginQuery(gdi::QuerySetHandle h, uint32_t index) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "beginQuery");
     QuerySet& q = usedQuerySet(h, "beginQuery");
     queries_.begin(q.desc, q.name, h.id, index, inPass_);
     vkCmdBeginQuery(cb_, q.pool, index,
@@ -1349,6 +1359,7 @@ void VulkanCommandList::endQuery(gdi::QuerySetHandle h, uint32_t index) {
 }
 
 void VulkanCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "writeTimestamp");
     QuerySet& q = usedQuerySet(h, "writeTimestamp");
     queries_.timestamp(q.desc, q.name, h.id, index, inPass_);
     vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, q.pool, index);
@@ -1356,6 +1367,7 @@ void VulkanCommandList::writeTimestamp(gdi::QuerySetHandle h, uint32_t index) {
 
 void VulkanCommandList::resolveQueries(gdi::QuerySetHandle h, uint32_t first, uint32_t count,
                                        gdi::BufferHandle dst, uint64_t dstOffset) {
+    gdi::validate::queueAllows(queue_, gdi::QueueKind::Compute, "resolveQueries");
     outsidePass("resolveQueries");
     QuerySet& q = usedQuerySet(h, "resolveQueries");
     Buffer& b = usedBuffer(dst);

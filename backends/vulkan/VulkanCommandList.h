@@ -12,7 +12,8 @@ namespace fe::vk {
 
 class VulkanCommandList final : public gdi::CommandList {
 public:
-    explicit VulkanCommandList(VulkanDevice& device);
+    VulkanCommandList(VulkanDevice& device, gdi::QueueKind queue);
+    gdi::QueueKind queue() const override { return queue_; }
     bool madeBy(const VulkanDevice& d) const {
         return !orphaned_ && &dev_ == &d;
     }  // a new device may reuse the address
@@ -198,6 +199,7 @@ private:
     };
 
     VulkanDevice& dev_;
+    const gdi::QueueKind queue_;  // what it may record (validate::queueAllows), its pools' family
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     const gdi::validate::ViewportLimits viewportLimits_;
     struct RecordingBuffer {

@@ -233,12 +233,63 @@ void VulkanDevice::pickPhysicalDevice() {
     if (!physical_) throw gdi::Error("Vulkan: no suitable device" + rejected);
 }
 
+// Compute and copy prefer a family of their own (NVIDIA: a compute-only and a transfer-only
+// family), then another queue of a family in use, and share the graphics queue when the device
+// has no more (lavapipe: one queue). A transfer family must copy any region (granularity 1).
+void VulkanDevice::chooseQueues(const std::vector<VkQueueFamilyProperties>& families) {
+    std::vector<uint32_t> used(families.size(), 0);
+    queues_[0] = {.family = queueFamily_, .index = 0};
+    used[queueFamily_] = 1;
+    auto pick = [&](VkQueueFlags need, VkQueueFlags without) -> QueueSlot {
+        for (uint32_t f = 0; f < families.size(); ++f) {
+            const VkExtent3D g = families[f].minImageTransferGranularity;
+            if ((families[f].queueFlags & need) == need && !(families[f].queueFlags & without) &&
+                used[f] < families[f].queueCount && g.width == 1 && g.height == 1 && g.depth == 1)
+                return {.family = f, .index = used[f]++};
+        }
+        for (uint32_t f = 0; f < families.size(); ++f)  // another queue of a family in use
+            if ((families[f].queueFlags & need) == need && used[f] &&
+                used[f] < families[f].queueCount)
+                return {.family = f, .index = used[f]++};
+        return queues_[0];
+    };
+    queues_[1] = pick(VK_QUEUE_COMPUTE_BIT, VK_QUEUE_GRAPHICS_BIT);
+    queues_[2] = pick(VK_QUEUE_TRANSFER_BIT, VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT);
+    sharingFamilies_.clear();
+    for (const QueueSlot& q : queues_)
+        if (std::find(sharingFamilies_.begin(), sharingFamilies_.end(), q.family) ==
+            sharingFamilies_.end())
+            sharingFamilies_.push_back(q.family);
+}
+
+void VulkanDevice::createQueueTimelines() {
+    VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+    type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    VkSemaphoreCreateInfo ci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    ci.pNext = &type;
+    for (VkSemaphore* s :
+         {&queues_[0].timeline, &queues_[1].timeline, &queues_[2].timeline, &initTimeline_})
+        check(nativeAllocation("vkCreateSemaphore",
+                               [&] { return vkCreateSemaphore(device_, &ci, nullptr, s); }),
+              "vkCreateSemaphore");
+}
+
 void VulkanDevice::createLogicalDevice() {
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    qci.queueFamilyIndex = queueFamily_;
-    qci.queueCount = 1;
-    qci.pQueuePriorities = &priority;
+    uint32_t qn = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, nullptr);
+    std::vector<VkQueueFamilyProperties> families(qn);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, families.data());
+    chooseQueues(families);
+    const float priorities[3] = {1.0f, 1.0f, 1.0f};
+    std::vector<VkDeviceQueueCreateInfo> qcis;
+    for (uint32_t family : sharingFamilies_) {
+        VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qci.queueFamilyIndex = family;
+        for (const QueueSlot& q : queues_)
+            if (q.family == family) qci.queueCount = std::max(qci.queueCount, q.index + 1);
+        qci.pQueuePriorities = priorities;
+        qcis.push_back(qci);
+    }
 
     VkPhysicalDeviceFeatures supported;
     vkGetPhysicalDeviceFeatures(physical_, &supported);
@@ -271,6 +322,7 @@ void VulkanDevice::createLogicalDevice() {
     vkGetPhysicalDeviceFeatures2(physical_, &query);
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.hostQueryReset = VK_TRUE;
+    f12.timelineSemaphore = VK_TRUE;  // required by Vulkan 1.2: waits between queues
     f12.drawIndirectCount = supported12.drawIndirectCount;
     drawIndirectCount_ = supported12.drawIndirectCount;
     VkPhysicalDeviceDynamicRenderingFeatures dyn{
@@ -286,14 +338,16 @@ void VulkanDevice::createLogicalDevice() {
 
     VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     ci.pNext = &features;
-    ci.queueCreateInfoCount = 1;
-    ci.pQueueCreateInfos = &qci;
+    ci.queueCreateInfoCount = uint32_t(qcis.size());
+    ci.pQueueCreateInfos = qcis.data();
     ci.enabledExtensionCount = uint32_t(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
     check(nativeAllocation("vkCreateDevice",
                            [&] { return vkCreateDevice(physical_, &ci, nullptr, &device_); }),
           "vkCreateDevice");
-    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+    for (QueueSlot& q : queues_) vkGetDeviceQueue(device_, q.family, q.index, &q.queue);
+    queue_ = queues_[0].queue;
+    createQueueTimelines();
     cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
     if (!cmdPushDescriptorSet) throw gdi::Error("Vulkan: vkCmdPushDescriptorSetKHR not found");
@@ -469,6 +523,8 @@ void VulkanDevice::fillInfo() {
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, qf.data());
     info_.features.timestamps = qf[queueFamily_].timestampValidBits > 0 && l.timestampPeriod > 0;
     info_.features.computeShaders = true;
+    info_.features.asyncCompute = queues_[1].queue != queue_;
+    info_.features.asyncCopy = queues_[2].queue != queue_;
     info_.features.debugLabels = cmdBeginLabel != nullptr;
     info_.features.memoryAliasing = true;
     info_.features.textureCubeArray = enabled_.imageCubeArray;
@@ -539,6 +595,9 @@ void VulkanDevice::release() {
         });
         for (auto& s : inFlight_) vkDestroyFence(device_, s.fence, nullptr);
         for (VkFence f : freeFences_) vkDestroyFence(device_, f, nullptr);
+        for (VkSemaphore s :
+             {queues_[0].timeline, queues_[1].timeline, queues_[2].timeline, initTimeline_})
+            if (s) vkDestroySemaphore(device_, s, nullptr);
         if (queryPool_) vkDestroyQueryPool(device_, queryPool_, nullptr);
         if (pipelineCache_) vkDestroyPipelineCache(device_, pipelineCache_, nullptr);
         if (immediatePool_) vkDestroyCommandPool(device_, immediatePool_, nullptr);
@@ -576,18 +635,22 @@ void VulkanDevice::setName(VkObjectType type, uint64_t object, const char* name)
 // ---------------------------------------------------------------------------------------------
 // Submission
 // ---------------------------------------------------------------------------------------------
-std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList() {
+std::unique_ptr<gdi::CommandList> VulkanDevice::createCommandList(
+    const gdi::CommandListDesc& desc) {
     loss_.check("createCommandList");
-    auto list = std::make_unique<VulkanCommandList>(*this);
+    auto list = std::make_unique<VulkanCommandList>(*this, desc.queue);
     return info_.features.validation ? gdi::exclusiveUse(std::move(list), true) : std::move(list);
 }
 
-gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
+gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists,
+                                     const gdi::SubmitDesc& desc) {
     const DeviceCall call(*this);
     loss_.check("submit");
     std::vector<VulkanCommandList*> vk;
     std::vector<VkCommandBuffer> cbs;
     const gdi::ClaimedLists claimed(lists, "submit");  // null, twice, in use on another thread
+    const gdi::QueueKind queue =
+        gdi::validate::submissionQueue(claimed.lists(), desc, nextFence_ - 1);
     for (gdi::CommandList* l : claimed.lists()) {
         auto* list = dynamic_cast<VulkanCommandList*>(l);
         if (!list || !list->madeBy(*this))
@@ -614,9 +677,34 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
         recordInitialTransition([resets](VkCommandBuffer cb) {
             for (auto [pool, index] : resets) vkCmdResetQueryPool(cb, pool, index, 1);
         });
-    const VkCommandBuffer init = takeInitialTransitions();
-    if (init) cbs.push_back(init);
+    VkCommandBuffer init = takeInitialTransitions();
+    const bool graphics = queue == gdi::QueueKind::Graphics;
+    if (init && graphics) cbs.push_back(init);
+    if (init && !graphics) submitInitialCommands(init);  // throws before any list is touched
     for (VulkanCommandList* list : vk) cbs.push_back(list->finish());
+    // What this submission waits for: the other queues' last submissions up to waitFor, and,
+    // off the graphics queue, the objects' first commands submitted there.
+    std::vector<VkSemaphore> waitSemaphores;
+    std::vector<uint64_t> waitValues;
+    for (gdi::QueueKind other :
+         {gdi::QueueKind::Graphics, gdi::QueueKind::Compute, gdi::QueueKind::Copy})
+        if (other != queue && desc.waitFor)
+            if (const gdi::FenceValue v = lastInFlightOn(other, desc.waitFor)) {
+                waitSemaphores.push_back(queues_[size_t(other)].timeline);
+                waitValues.push_back(v);
+            }
+    if (!graphics && initSignalled_) {
+        waitSemaphores.push_back(initTimeline_);
+        waitValues.push_back(initSignalled_);
+    }
+    const std::vector<VkPipelineStageFlags> waitStages(waitSemaphores.size(),
+                                                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+    const gdi::FenceValue value = nextFence_;
+    VkTimelineSemaphoreSubmitInfo timeline{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    timeline.waitSemaphoreValueCount = uint32_t(waitValues.size());
+    timeline.pWaitSemaphoreValues = waitValues.data();
+    timeline.signalSemaphoreValueCount = 1;
+    timeline.pSignalSemaphoreValues = &value;
     VkFence fence;
     if (!freeFences_.empty()) {
         fence = freeFences_.back();
@@ -628,19 +716,27 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
               "vkCreateFence");
     }
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.pNext = &timeline;
+    si.waitSemaphoreCount = uint32_t(waitSemaphores.size());
+    si.pWaitSemaphores = waitSemaphores.data();
+    si.pWaitDstStageMask = waitStages.data();
     si.commandBufferCount = uint32_t(cbs.size());
     si.pCommandBuffers = cbs.data();
+    si.signalSemaphoreCount = 1;
+    si.pSignalSemaphores = &queues_[size_t(queue)].timeline;
+    const VkQueue target = queues_[size_t(queue)].queue;
     if (VkResult r =
-            nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, fence); });
+            nativeSubmission("vkQueueSubmit", [&] { return vkQueueSubmit(target, 1, &si, fence); });
         r != VK_SUCCESS) {
         freeFences_.push_back(fence);  // never submitted
         for (VulkanCommandList* list : vk)
-            list->submitted(nextFence_ - 1);  // the recordings are dropped
+            list->submitted(nextFence_ - 1);                   // the recordings are dropped
+        if (init && !graphics) (void)vkQueueWaitIdle(queue_);  // it was submitted there
         if (init) vkFreeCommandBuffers(device_, immediatePool_, 1, &init);
         check(r, "vkQueueSubmit");
     }
-    gdi::FenceValue value = nextFence_++;
-    inFlight_.push_back({value, fence});
+    ++nextFence_;
+    inFlight_.push_back({value, fence, queue});
     for (auto [set, index] : usedQueries) set->submitted[index] = value;
     for (Timer* t : usedTimers) t->submitted = value;
     for (VulkanCommandList* list : vk) list->submitted(value);
@@ -648,6 +744,46 @@ gdi::FenceValue VulkanDevice::submit(std::span<gdi::CommandList* const> lists) {
     pollFences();
     collectRetired();
     return value;
+}
+
+// Objects' first commands before a compute or copy submission: on the graphics queue, which
+// every command they record can run on, signalling initTimeline_ (the submission waits for it).
+void VulkanDevice::submitInitialCommands(VkCommandBuffer init) {
+    const uint64_t value = initSignalled_ + 1;
+    VkTimelineSemaphoreSubmitInfo timeline{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+    timeline.signalSemaphoreValueCount = 1;
+    timeline.pSignalSemaphoreValues = &value;
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.pNext = &timeline;
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &init;
+    si.signalSemaphoreCount = 1;
+    si.pSignalSemaphores = &initTimeline_;
+    if (VkResult r = nativeSubmission(
+            "vkQueueSubmit", [&] { return vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE); });
+        r != VK_SUCCESS) {
+        vkFreeCommandBuffers(device_, immediatePool_, 1, &init);
+        check(r, "vkQueueSubmit");
+    }
+    initSignalled_ = value;
+}
+
+// The last submission to queue `q` with a fence at most `atMost` not yet known to be complete
+// (0: none): waiting for it waits for every earlier one on that queue too.
+gdi::FenceValue VulkanDevice::lastInFlightOn(gdi::QueueKind q, gdi::FenceValue atMost) const {
+    gdi::FenceValue last = 0;
+    for (const Submission& s : inFlight_)
+        if (s.queue == q && s.value <= atMost) last = s.value;
+    return last;
+}
+
+// Before work on the graphics queue that must follow everything submitted so far (the device's
+// own transfers): the other queues' submissions are waited for on the CPU.
+void VulkanDevice::settleOtherQueues() {
+    gdi::FenceValue last = 0;
+    for (gdi::QueueKind q : {gdi::QueueKind::Compute, gdi::QueueKind::Copy})
+        last = std::max(last, lastInFlightOn(q, nextFence_ - 1));
+    if (last) settle(last);
 }
 
 void VulkanDevice::wait(gdi::FenceValue fence) {
@@ -756,17 +892,19 @@ void VulkanDevice::waitIdle() {
     loss_.check("waitIdle");
     if (!pendingInit_.empty()) return releaseRetiredNow();  // submits the pending transitions too
     wait(nextFence_ - 1);
-    check(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
+    for (const QueueSlot& q : queues_) check(vkQueueWaitIdle(q.queue), "vkQueueWaitIdle");
     collectRetired();  // nothing in flight, nothing pending: all but what open recordings hold
 }
 
 void VulkanDevice::idle() {
     settle(nextFence_ - 1);
-    const VkResult r = vkQueueWaitIdle(queue_);
-    if (r == VK_ERROR_DEVICE_LOST)
-        (void)loss_.lose("vulkan", "vkQueueWaitIdle returned VK_ERROR_DEVICE_LOST");
-    else
-        check(r, "vkQueueWaitIdle");
+    for (const QueueSlot& q : queues_) {
+        const VkResult r = vkQueueWaitIdle(q.queue);
+        if (r == VK_ERROR_DEVICE_LOST)
+            (void)loss_.lose("vulkan", "vkQueueWaitIdle returned VK_ERROR_DEVICE_LOST");
+        else
+            check(r, "vkQueueWaitIdle");
+    }
 }
 
 void VulkanDevice::fail(VkResult r, const char* call, const std::string& object) const {
@@ -863,6 +1001,7 @@ void VulkanDevice::immediate(const std::string& object,
           "vkBeginCommandBuffer", object);
     VulkanCommandList::fullBarrier(cb);  // order after everything submitted before
     record(cb);
+    settleOtherQueues();  // the barrier orders the graphics queue's work, this the others'
     VulkanCommandList::fullBarrier(cb);
     check(nativeAllocation("vkEndCommandBuffer", [&] { return vkEndCommandBuffer(cb); }),
           "vkEndCommandBuffer", object);

@@ -206,7 +206,7 @@ public:
     PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
     PFN_vkCmdInsertDebugUtilsLabelEXT cmdInsertLabel = nullptr;
-    uint32_t queueFamily() const { return queueFamily_; }
+    uint32_t queueFamily(gdi::QueueKind q) const { return queues_[size_t(q)].family; }
     bool linearBlit(gdi::Format format) const;
     gdi::FormatCaps formatCaps(
         gdi::Format format) const override;  // vkCmdBlitImage with VK_FILTER_LINEAR works
@@ -326,8 +326,40 @@ private:
     VkPhysicalDeviceFeatures enabled_{};  // the core features the device was created with
     bool drawIndirectCount_ = false;
     VkDevice device_ = VK_NULL_HANDLE;
-    uint32_t queueFamily_ = 0;
-    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;        // the graphics queue's (queues_[Graphics])
+    VkQueue queue_ = VK_NULL_HANDLE;  // the graphics queue, which also presents
+    // The three queues of Device.h's "Queues", by QueueKind. Compute and copy take a family or a
+    // queue of their own where the device has one (DeviceFeatures::asyncCompute/asyncCopy), else
+    // the graphics VkQueue. Each logical queue signals its timeline semaphore with the fence
+    // value of each of its submissions; a SubmitDesc::waitFor waits on the others' timelines.
+    struct QueueSlot {
+        VkQueue queue = VK_NULL_HANDLE;
+        uint32_t family = 0;
+        uint32_t index = 0;
+        VkSemaphore timeline = VK_NULL_HANDLE;
+    };
+    std::array<QueueSlot, 3> queues_;
+    // Objects' first commands (clears, query resets: pendingInit_) always run on the graphics
+    // queue; before another queue's submission they are a graphics submission of their own,
+    // which signals this timeline, and every compute or copy submission waits for its last value.
+    VkSemaphore initTimeline_ = VK_NULL_HANDLE;
+    uint64_t initSignalled_ = 0;
+    // The distinct families of queues_: resources are VK_SHARING_MODE_CONCURRENT over them when
+    // there are several (images stay in GENERAL, so no layout or ownership moves between them).
+    std::vector<uint32_t> sharingFamilies_;
+    void chooseQueues(const std::vector<VkQueueFamilyProperties>& families);
+    void createQueueTimelines();
+    void settleOtherQueues();
+    // EXCLUSIVE with one queue family; CONCURRENT over sharingFamilies_ with several.
+    template <class CreateInfo>
+    void setSharing(CreateInfo& ci) const {
+        const bool several = sharingFamilies_.size() > 1;
+        ci.sharingMode = several ? VK_SHARING_MODE_CONCURRENT : VK_SHARING_MODE_EXCLUSIVE;
+        ci.queueFamilyIndexCount = several ? uint32_t(sharingFamilies_.size()) : 0;
+        ci.pQueueFamilyIndices = several ? sharingFamilies_.data() : nullptr;
+    }
+    void submitInitialCommands(VkCommandBuffer init);
+    gdi::FenceValue lastInFlightOn(gdi::QueueKind q, gdi::FenceValue atMost) const;
     std::unique_ptr<MemoryAllocator> allocator_;
     VkCommandPool immediatePool_ = VK_NULL_HANDLE;
     VkQueryPool queryPool_ = VK_NULL_HANDLE;
@@ -342,6 +374,7 @@ private:
     struct Submission {
         gdi::FenceValue value;
         VkFence fence;
+        gdi::QueueKind queue = gdi::QueueKind::Graphics;
     };
     std::deque<Submission> inFlight_;
     std::vector<VkFence> freeFences_;

@@ -87,7 +87,7 @@ Buffer VulkanDevice::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, Mem
     VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     ci.size = size;
     ci.usage = usage;
-    ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    setSharing(ci);
     check(nativeAllocation("vkCreateBuffer",
                            [&] { return vkCreateBuffer(device_, &ci, nullptr, &b.buffer); }),
           "vkCreateBuffer", object);
@@ -235,6 +235,7 @@ VkImageCreateInfo VulkanDevice::imageInfo(const gdi::TextureDesc& desc) const {
     ci.tiling = VK_IMAGE_TILING_OPTIMAL;
     ci.usage = usage;
     ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    setSharing(ci);
     return ci;
 }
 

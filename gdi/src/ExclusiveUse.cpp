@@ -113,6 +113,7 @@ public:
         inner_->executeSecondary(parts.lists());
     }
     uint64_t nativeCommandBuffer() override FE_CLAIMED(nativeCommandBuffer())
+    QueueKind queue() const override { return inner_->queue(); }  // fixed at creation
 
 private:
     std::unique_ptr<CommandList> inner_;

@@ -3,6 +3,18 @@
 
 namespace fe::gdi {
 
+const char* queueKindName(QueueKind q) {
+    switch (q) {
+        case QueueKind::Graphics:
+            return "graphics";
+        case QueueKind::Compute:
+            return "compute";
+        case QueueKind::Copy:
+            return "copy";
+    }
+    return "unknown";
+}
+
 const char* resourceStateName(ResourceState s) {
     switch (s) {
         case ResourceState::Undefined:

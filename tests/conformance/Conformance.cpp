@@ -279,6 +279,7 @@ std::vector<Case> queryCases();          // QueryCases.cpp
 std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
 std::vector<Case> uniformBlockCases();   // UniformBlockCases.cpp
 std::vector<Case> shaderSourceCases();   // ShaderSourceCases.cpp
+std::vector<Case> queueCases();          // QueueCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -291,7 +292,7 @@ const std::vector<Case>& cases() {
         };
         for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
                             pipelineCases, samplerStateCases, constantsCases, queryCases,
-                            regionAndViewCases, uniformBlockCases, shaderSourceCases})
+                            regionAndViewCases, uniformBlockCases, shaderSourceCases, queueCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

@@ -28,10 +28,10 @@ TEST_P(ExecutionModel, ThreadedCasesPass) {
     if (!gdi::probeBackend(backend, false).available)
         GTEST_SKIP() << backend << " is not available here";
     auto device = gdi::createDevice({.backend = backend, .validation = true});
-    for (const char* name :
-         {"submission_order", "record_on_threads", "create_while_recording",
-          "destroy_while_in_flight", "mapped_upload_ring", "async_readback",
-          "data_read_at_execution", "secondary_lists_in_one_pass", "reusable_secondary_lists"}) {
+    for (const char* name : {"submission_order", "record_on_threads", "create_while_recording",
+                             "destroy_while_in_flight", "mapped_upload_ring", "async_readback",
+                             "data_read_at_execution", "secondary_lists_in_one_pass",
+                             "reusable_secondary_lists", "compute_queue"}) {
         const CaseResult r = runCase(*device, caseNamed(name));
         EXPECT_TRUE(r.passed) << backend << " " << name << ": " << r.message;
     }

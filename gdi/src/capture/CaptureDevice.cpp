@@ -242,12 +242,14 @@ public:
         return p;
     }
 
-    std::unique_ptr<CommandList> createCommandList() override {
+    using Device::createCommandList;
+    std::unique_ptr<CommandList> createCommandList(const CommandListDesc& desc) override {
         // Checked against info_; the recorder's own stream is guarded as the inner list is.
-        auto list = std::make_unique<RecordingCommandList>(*this, inner_->createCommandList());
+        auto list = std::make_unique<RecordingCommandList>(*this, inner_->createCommandList(desc));
         return info_.features.validation ? exclusiveUse(std::move(list)) : std::move(list);
     }
-    FenceValue submit(std::span<CommandList* const> lists) override {
+    using Device::submit;
+    FenceValue submit(std::span<CommandList* const> lists, const SubmitDesc& desc) override {
         std::vector<CommandList*> inner;
         std::vector<RecordingCommandList*> recorded;
         const ClaimedLists claimed(lists, "submit");
@@ -258,7 +260,7 @@ public:
             inner.push_back(&r->inner());
         }
         std::lock_guard lock(mutex_);
-        const FenceValue fence = inner_->submit(inner);
+        const FenceValue fence = inner_->submit(inner, desc);
         submittedSinceFrame_ = true;  // frames are counted before the range too
         if (!recording_) {
             for (RecordingCommandList* r : recorded) r->takeStream();
@@ -268,7 +270,11 @@ public:
         json ids = json::array();
         for (RecordingCommandList* r : recorded)
             ids.push_back(blob(encodeCommandStream(*r->takeStream())));
-        recordLocked({{"op", "submit"}, {"fence", fence}, {"lists", ids}});
+        json op = {{"op", "submit"}, {"fence", fence}, {"lists", ids}};
+        if (!inner.empty() && inner[0]->queue() != QueueKind::Graphics)
+            op["queue"] = queueKindName(inner[0]->queue());
+        if (desc.waitFor) op["waitFor"] = desc.waitFor;
+        recordLocked(op);
         submittedSinceFrame_ = true;
         return fence;
     }

@@ -420,19 +420,22 @@ private:
     void submit(const json& r) {
         const json& lists = r.at("lists");
         if (!lists.is_array()) throw std::runtime_error("field 'lists' is not an array");
+        const QueueKind queue = queueOf(r);
+        SubmitDesc desc;
+        if (r.contains("waitFor")) desc.waitFor = replayedFence(u64(r, "waitFor"));
         std::vector<std::unique_ptr<CommandList>> recorded;
         std::vector<CommandList*> raw;
         for (size_t i = 0; i < lists.size() && !probe_.stop; ++i) {
             const json one = {{"data", lists[i]}};
             const auto bytes = blob(one, "data");
             const auto stream = decodeCommandStream(bytes);
-            auto list = device_.createCommandList();
+            auto list = device_.createCommandList({.queue = queue});
             probe_.newList();
             applyStream(*stream, device_, *list, map_, &probe_);
             raw.push_back(list.get());
             recorded.push_back(std::move(list));
         }
-        const FenceValue replayed = device_.submit(raw);
+        const FenceValue replayed = device_.submit(raw, desc);
         fences_[u64(r, "fence")] = replayed;
         ++result_.submits;
         result_.commandLists += raw.size();
@@ -440,9 +443,20 @@ private:
         if (probe_.stop) throw Stopped{};
     }
     // A captured fence maps to the newest replayed fence at or before it (fences only grow).
+    FenceValue replayedFence(uint64_t captured) const {
+        const auto it = fences_.upper_bound(captured);
+        return it == fences_.begin() ? 0 : std::prev(it)->second;
+    }
     void wait(const json& r) {
-        const auto it = fences_.upper_bound(u64(r, "fence"));
-        if (it != fences_.begin()) device_.wait(std::prev(it)->second);
+        if (const FenceValue f = replayedFence(u64(r, "fence"))) device_.wait(f);
+    }
+    // "queue": absent (graphics), or "graphics", "compute", "copy".
+    static QueueKind queueOf(const json& r) {
+        if (!r.contains("queue")) return QueueKind::Graphics;
+        const json& q = r.at("queue");
+        for (QueueKind k : {QueueKind::Graphics, QueueKind::Compute, QueueKind::Copy})
+            if (q.is_string() && q.get<std::string>() == queueKindName(k)) return k;
+        throw std::runtime_error("field 'queue' is not graphics, compute or copy");
     }
     void waitIdle(const json&) { device_.waitIdle(); }
     void present(const json& r) {

@@ -50,6 +50,7 @@ public:
     void endSecondary() override;
     void reset() override;
     void executeSecondary(std::span<CommandList* const> lists) override;
+    QueueKind queue() const override { return inner_->queue(); }
     using CommandList::barrier;
     using CommandList::executeSecondary;
 

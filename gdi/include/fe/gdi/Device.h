@@ -1,7 +1,7 @@
 // Fools Engine graphics device interface (layers 1-4): the whole device API in one header.
 //
 // Contents (grep for the heading):
-//   Usage / Conventions / Errors and device loss / Threads and recording / Textures and views /
+//   Usage / Conventions / Errors and device loss / Threads and recording / Queues / Textures and views /
 //   Pipelines and shaders / Per-draw constants and specialization / Queries / Pipeline cache /
 //   Captures / Fixed function / Windows
 // Each section ends with the conformance cases (tests/conformance, `fe conformance --case NAME`)
@@ -859,6 +859,36 @@ struct PipelineStatistics {
 };
 
 // ---------------------------------------------------------------------------------------------
+// Queues
+// ---------------------------------------------------------------------------------------------
+// Every device has three queues; a command list is made for one (CommandListDesc::queue) and
+// submitted to it. What a list may record depends on its queue, on every backend (Vulkan's
+// queue capabilities, checked when the command is recorded, with the same Error everywhere):
+//  - Graphics: everything.
+//  - Compute: dispatches, copies, clearBuffer, barriers, queries outside passes, timers,
+//    resolveQueries, debug groups: no render passes, generateMips or resolveTexture.
+//  - Copy: copies, clearBuffer, barriers and debug groups only.
+// Submissions to one queue run in submission order. Submissions to different queues are ordered
+// only where the program says so, with SubmitDesc::waitFor: that submission starts once the
+// fence's submission and every earlier one (on every queue) have completed, and sees all their
+// writes. Where DeviceFeatures::asyncCompute / asyncCopy are true the queue is a hardware queue
+// of its own (a Vulkan queue family or queue beside the graphics one) and its work may overlap
+// the graphics queue's; elsewhere (GL: one context; lavapipe: one queue) it shares the
+// graphics queue and runs in submission order, which satisfies every waitFor by itself. Fences
+// count submissions across all queues: wait(f) waits for f and every submission before it.
+// Device transfers (writeBuffer, writeTexture, readBuffer, readTexture, initial data) are
+// ordered after the work of every queue submitted before them. present() shows what the
+// graphics queue wrote: a texture another queue writes reaches it through a graphics submission
+// that waits for that queue's fence.
+//   auto upload = device->createCommandList({.queue = QueueKind::Copy});
+//   upload->copyBufferToTexture(texture, {}, staging, 0);
+//   FenceValue uploaded = device->submit(*upload);                  // runs beside the frame
+//   FenceValue drawn = device->submit(*frame, {.waitFor = uploaded}); // samples `texture`
+// Shown by: compute_queue (a compute list recorded and submitted on another thread), copy_queue.
+enum class QueueKind : uint8_t { Graphics, Compute, Copy };
+const char* queueKindName(QueueKind q);  // "graphics", "compute", "copy"
+
+// ---------------------------------------------------------------------------------------------
 // Command recording
 // ---------------------------------------------------------------------------------------------
 // Recording is not executing, on every backend (Vulkan's model). A CommandList records; nothing
@@ -1126,6 +1156,9 @@ public:
         executeSecondary(std::span<CommandList* const>(&l, 1));
     }
 
+    // The queue the list was made for (CommandListDesc::queue); reset() keeps it.
+    virtual QueueKind queue() const = 0;
+
     // Escape hatch (interop, and bench/ measuring the abstraction against direct API calls):
     // the VkCommandBuffer being recorded, 0 on backends without one.
     virtual uint64_t nativeCommandBuffer() { return 0; }
@@ -1218,6 +1251,10 @@ struct DeviceFeatures {
     // TextureUsage::Transient textures take memory only while a pass needs it (Vulkan's
     // LAZILY_ALLOCATED memory type); elsewhere they take memory like any texture.
     bool lazilyAllocatedMemory = false;
+    // The compute / copy queue is a hardware queue of its own: its work may overlap the graphics
+    // queue's (see Queues). False: it shares the graphics queue, in submission order.
+    bool asyncCompute = false;
+    bool asyncCopy = false;
 };
 
 struct DeviceInfo {
@@ -1260,6 +1297,16 @@ struct LiveObjects {
 };
 
 using FenceValue = uint64_t;
+
+// Device::createCommandList: the queue the list's work is submitted to (see Queues).
+struct CommandListDesc {
+    QueueKind queue = QueueKind::Graphics;
+};
+// Device::submit: what the submission waits for before it starts (see Queues). 0: nothing
+// beyond its own queue's order. A fence no submit has returned yet is an Error.
+struct SubmitDesc {
+    FenceValue waitFor = 0;
+};
 
 // The device's pipeline cache (Device::openPipelineCache, DeviceCreateDesc::pipelineCache).
 struct PipelineCacheStats {
@@ -1384,13 +1431,16 @@ public:
     //  GpuOnly buffers cannot be mapped (Error).
     virtual void* map(BufferHandle buffer) = 0;
 
-    virtual std::unique_ptr<CommandList> createCommandList() = 0;
-    // Submits lists in order as one submission; its fence covers all of them. Each list is
-    // then empty, ready to record again (while the submitted work runs).
-    virtual FenceValue submit(std::span<CommandList* const> lists) = 0;
-    FenceValue submit(CommandList& commands) {
+    virtual std::unique_ptr<CommandList> createCommandList(const CommandListDesc& desc) = 0;
+    std::unique_ptr<CommandList> createCommandList() { return createCommandList({}); }
+    // Submits lists in order as one submission to their queue (all made for one queue; an empty
+    // submission goes to the graphics queue); its fence covers all of them. Each list is then
+    // empty, ready to record again (while the submitted work runs).
+    virtual FenceValue submit(std::span<CommandList* const> lists, const SubmitDesc& desc) = 0;
+    FenceValue submit(std::span<CommandList* const> lists) { return submit(lists, {}); }
+    FenceValue submit(CommandList& commands, const SubmitDesc& desc = {}) {
         CommandList* list = &commands;
-        return submit(std::span<CommandList* const>(&list, 1));
+        return submit(std::span<CommandList* const>(&list, 1), desc);
     }
     // Blocks until the submission with this fence (and every one before it) has completed. A
     // fence no submit has returned yet is an Error (here and in isComplete); 0 is always complete.

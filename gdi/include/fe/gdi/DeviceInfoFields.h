@@ -53,6 +53,8 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("pipelineStatistics", f.pipelineStatistics);
     visit("robustBufferAccess", f.robustBufferAccess);
     visit("lazilyAllocatedMemory", f.lazilyAllocatedMemory);
+    visit("asyncCompute", f.asyncCompute);
+    visit("asyncCopy", f.asyncCopy);
 }
 
 namespace detail {

@@ -616,6 +616,17 @@ uint64_t bufferBarrier(const BufferDesc& d, const BufferBarrier& b, const std::s
 void mappable(const BufferDesc& d, const std::string& name);
 // submit(lists): no list twice, none null.
 void submittedLists(std::span<CommandList* const> lists);
+// Queues (Device.h): a list made for `list` records `what`, which needs a queue that can run
+// `needs` (Graphics > Compute > Copy). Inline: dispatches check it.
+[[noreturn]] void wrongQueue(QueueKind list, QueueKind needs, const char* what);
+inline void queueAllows(QueueKind list, QueueKind needs, const char* what) {
+    if (uint8_t(list) > uint8_t(needs)) [[unlikely]]
+        wrongQueue(list, needs, what);
+}
+// submit(lists, desc): the queue they go to (all lists of one queue; none: graphics), and
+// desc.waitFor issued (at most `lastIssued`).
+QueueKind submissionQueue(std::span<CommandList* const> lists, const SubmitDesc& desc,
+                          FenceValue lastIssued);
 // executeSecondary(lists) on a backend's List `self`: the array checked as submit's is, each a
 // List (else "belongs to another device") other than `self`, then `check(list, index)` (the
 // backend's own: same device, executable here). Returns the lists as the backend's type.
