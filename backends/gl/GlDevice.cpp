@@ -199,6 +199,7 @@ void GlDevice::initialize(bool validation) {
     GLfloat bounds[2] = {0, 0};
     gl_.GetFloatv(GL_VIEWPORT_BOUNDS_RANGE, bounds);
     info_.limits.viewportBounds = {bounds[0], bounds[1]};
+    info_.limits.maxTessellationPatchSize = get(GL_MAX_PATCH_VERTICES);  // core in 4.0
     info_.limits.maxComputeWorkGroupInvocations = get(GL_MAX_COMPUTE_WORK_GROUP_INVOCATIONS);
     for (GLuint axis = 0; axis < 3; ++axis) {
         GLint groups = 0;
@@ -240,7 +241,9 @@ void GlDevice::initialize(bool validation) {
         .drawIndirectCount = gl_.MultiDrawArraysIndirectCount && gl_.MultiDrawElementsIndirectCount,
         .textureCompressionBC = bc,
         .occlusionQueries = true,  // GL_SAMPLES_PASSED counts exactly
-        .pipelineStatistics = has("GL_ARB_pipeline_statistics_query")};
+        .pipelineStatistics = has("GL_ARB_pipeline_statistics_query"),
+        .geometryShaders = true,       // core in 3.2
+        .tessellationShaders = true};  // core in 4.0
     // What each format can do, from the driver's internal-format queries (ARB_internalformat_query2).
     auto supported = [&](GLenum target, GLenum internal, GLenum pname) {
         GLint v = GL_NONE;

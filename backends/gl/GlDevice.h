@@ -214,7 +214,7 @@ private:
                              const std::vector<gdi::SpecializationConstant>& values);
     // singleSample: the pipeline draws into single-sample targets, where a fragment shader's
     // gl_SampleMask needs withSampleMaskAsDiscard to act as on Vulkan.
-    GLuint linkPipeline(std::initializer_list<const Shader*> shaders,
+    GLuint linkPipeline(const std::vector<const Shader*>& shaders,
                         const std::vector<gdi::SpecializationConstant>& values,
                         const std::string& label, bool singleSample = false);
     GLuint checkLinked(GLuint program, const std::string& label);
@@ -267,7 +267,7 @@ private:
     gdi::PipelineCacheStats cacheStats_;
     mutable std::mutex cacheMutex_;  // cacheStats_
     GLint binaryFormats_ = 0;  // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
-    GLuint cachedProgram(std::initializer_list<const Shader*> shaders,
+    GLuint cachedProgram(const std::vector<const Shader*>& shaders,
                          const std::vector<gdi::SpecializationConstant>& values,
                          const std::string& label, bool singleSample = false);
     void

@@ -15,6 +15,7 @@ namespace fe::gl {
     X(PFNGLGETERRORPROC, GetError)                                               \
     X(PFNGLGETGRAPHICSRESETSTATUSPROC, GetGraphicsResetStatus)                   \
     X(PFNGLENABLEPROC, Enable)                                                   \
+    X(PFNGLPATCHPARAMETERIPROC, PatchParameteri)                                 \
     X(PFNGLDISABLEPROC, Disable)                                                 \
     X(PFNGLENABLEIPROC, Enablei)                                                 \
     X(PFNGLPOINTPARAMETERIPROC, PointParameteri)                                 \

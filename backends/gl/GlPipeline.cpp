@@ -51,9 +51,13 @@ gdi::ShaderHandle GlDevice::createShader(const gdi::ShaderDesc& given) {
 // A shader object of `code` with these specialization constants (context thread).
 GLuint GlDevice::specializedShader(const Shader& s, std::span<const uint32_t> code,
                                    const std::vector<gdi::SpecializationConstant>& values) {
-    const GLenum type = s.stage == gdi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
-                        : s.stage == gdi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
-                                                                : GL_COMPUTE_SHADER;
+    using S = gdi::ShaderStage;
+    const GLenum type = s.stage == S::Vertex           ? GL_VERTEX_SHADER
+                        : s.stage == S::Fragment       ? GL_FRAGMENT_SHADER
+                        : s.stage == S::Geometry       ? GL_GEOMETRY_SHADER
+                        : s.stage == S::TessControl    ? GL_TESS_CONTROL_SHADER
+                        : s.stage == S::TessEvaluation ? GL_TESS_EVALUATION_SHADER
+                                                       : GL_COMPUTE_SHADER;
     // Only the ids this stage declares: glSpecializeShader fails on any other.
     std::vector<GLuint> ids, bits;
     for (const gdi::SpecializationConstant& v : values)
@@ -92,7 +96,7 @@ GLuint GlDevice::checkLinked(GLuint p, const std::string& label) {
 
 // GL image units: each storage-texture slot the shaders use, in slot order, takes the next unit.
 // The slots by unit (Pipeline::imageSlots)...
-static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shaders) {
+static std::vector<uint8_t> imageSlots(const std::vector<const Shader*>& shaders) {
     std::bitset<64> used;
     for (const Shader* sh : shaders)
         for (const auto& b : sh ? sh->iface.bindings : std::vector<gdi::ShaderInterface::Binding>{})
@@ -104,7 +108,7 @@ static std::vector<uint8_t> imageSlots(std::initializer_list<const Shader*> shad
     return slots;
 }
 // ... and the unit by slot (0xff: not a storage texture of theirs), as the shaders are renumbered.
-static std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> shaders) {
+static std::array<uint8_t, 64> imageUnits(const std::vector<const Shader*>& shaders) {
     std::array<uint8_t, 64> unit;
     unit.fill(0xff);
     const std::vector<uint8_t> slots = imageSlots(shaders);
@@ -116,7 +120,7 @@ static std::array<uint8_t, 64> imageUnits(std::initializer_list<const Shader*> s
 // linked) for the stages that declare the pipeline's specialization constants, whose storage
 // textures take other image units in this pipeline than their slot numbers, or whose
 // gl_SampleMask must act on a single-sample target.
-GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
+GLuint GlDevice::linkPipeline(const std::vector<const Shader*>& shaders,
                               const std::vector<gdi::SpecializationConstant>& values,
                               const std::string& label, bool singleSample) {
     std::vector<GLuint> names, owned;
@@ -163,7 +167,7 @@ GLuint GlDevice::linkPipeline(std::initializer_list<const Shader*> shaders,
 
 // A program's cache key: its shaders' code and entry points, the specialization values, and
 // whether a shader's gl_SampleMask was rewritten for single-sample targets.
-static uint64_t programKey(std::initializer_list<const Shader*> shaders,
+static uint64_t programKey(const std::vector<const Shader*>& shaders,
                            const std::vector<gdi::SpecializationConstant>& values,
                            bool singleSample) {
     uint64_t key = 0xcbf29ce484222325ull;
@@ -177,7 +181,7 @@ static uint64_t programKey(std::initializer_list<const Shader*> shaders,
 
 // The program for `key`: from its cached binary when the driver takes it back, else linked by
 // `link` and its binary kept for the cache (context thread).
-GLuint GlDevice::cachedProgram(std::initializer_list<const Shader*> shaders,
+GLuint GlDevice::cachedProgram(const std::vector<const Shader*>& shaders,
                                const std::vector<gdi::SpecializationConstant>& values,
                                const std::string& label, bool singleSample) {
     const uint64_t key = programKey(shaders, values, singleSample);
@@ -265,27 +269,26 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
             gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
             Pipeline p;
             p.label = d.debugName ? d.debugName : "";
-            Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
-            if (vs.stage != gdi::ShaderStage::Vertex)
-                throw gdi::Error("pipeline '" + p.label + "': vertexShader is not a vertex shader");
-            const Shader* fsShader = nullptr;
-            const gdi::ShaderInterface* fsIface = nullptr;
-            if (d.fragmentShader) {
-                fsShader = &shaders_.get(d.fragmentShader, "fragment shader");
-                if (fsShader->stage != gdi::ShaderStage::Fragment)
-                    throw gdi::Error("pipeline '" + p.label +
-                                     "': fragmentShader is not a fragment shader");
-                fsIface = &fsShader->iface;
+            std::vector<const Shader*> shaders;  // in stage order
+            std::vector<const gdi::ShaderInterface*> ifaces;
+            for (const gdi::validate::PipelineStage& st : gdi::validate::graphicsStages(d)) {
+                const Shader& s = shaders_.get(st.shader, st.kind);
+                gdi::validate::shaderOfStage(s.stage, st, p.label);
+                shaders.push_back(&s);
+                ifaces.push_back(&s.iface);
             }
+            const Shader& vs = *shaders.front();
+            const gdi::ShaderInterface* fsIface = d.fragmentShader ? ifaces.back() : nullptr;
             gdi::validate::vertexInputs(d, vs.iface, p.label);
+            gdi::validate::stageInterfaces(ifaces, p.label);
             if (fsIface) gdi::validate::fragmentOutputs(d, *fsIface, p.label);
-            const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(
-                d.bindings, {&vs.iface, fsIface}, p.label, info_.limits);
-            p.constantBytes = gdi::validate::pipelineConstants({&vs.iface, fsIface}, p.label);
-            gdi::validate::specialization(d.specialization, {&vs.iface, fsIface}, p.label);
-            p.program = cachedProgram({&vs, fsShader}, d.specialization, p.label,
-                                      d.multisample.sampleCount <= 1);
-            p.imageSlots = imageSlots({&vs, fsShader});
+            const std::vector<gdi::BindingSlot> bindings =
+                gdi::validate::pipelineBindings(d.bindings, ifaces, p.label, info_.limits);
+            p.constantBytes = gdi::validate::pipelineConstants(ifaces, p.label);
+            gdi::validate::specialization(d.specialization, ifaces, p.label);
+            p.program =
+                cachedProgram(shaders, d.specialization, p.label, d.multisample.sampleCount <= 1);
+            p.imageSlots = imageSlots(shaders);
             gl_.CreateVertexArrays(1, &p.vao);
             for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
                 const auto& vb = d.vertexBuffers[i];
@@ -343,7 +346,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
             p.desc.bindings = bindings;
             p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
             p.slotKinds = gdi::validate::slotKinds(bindings);
-            p.slotDimensions = gdi::validate::slotDimensions({&vs.iface, fsIface}, p.label);
+            p.slotDimensions = gdi::validate::slotDimensions(ifaces, p.label);
             p.signature = gdi::validate::pipelineSignature(d);
             p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
             p.vertexBindings = gdi::validate::vertexBindings(d);

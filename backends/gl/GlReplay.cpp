@@ -49,7 +49,8 @@ GLenum blendOp(gdi::BlendOp o) {
     return t[int(o)];
 }
 GLenum topology(gdi::PrimitiveTopology p) {
-    static const GLenum t[] = {GL_TRIANGLES, GL_TRIANGLE_STRIP, GL_LINES, GL_LINE_STRIP, GL_POINTS};
+    static const GLenum t[] = {GL_TRIANGLES,  GL_TRIANGLE_STRIP, GL_LINES,
+                               GL_LINE_STRIP, GL_POINTS,         GL_PATCHES};
     return t[int(p)];
 }
 }  // namespace
@@ -198,6 +199,8 @@ void GlReplay::operator()(const cmd::SetPipeline& r) {
     gl_.UseProgram(p.program);
     if (p.compute) return;
     topology_ = topology(p.desc.topology);
+    if (p.desc.patchControlPoints)
+        gl_.PatchParameteri(GL_PATCH_VERTICES, GLint(p.desc.patchControlPoints));
     applyPipelineState(p);
 }
 

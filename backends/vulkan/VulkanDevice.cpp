@@ -305,6 +305,8 @@ void VulkanDevice::createLogicalDevice() {
     features.features.shaderStorageImageExtendedFormats =
         supported.shaderStorageImageExtendedFormats;
     features.features.depthClamp = supported.depthClamp;
+    features.features.geometryShader = supported.geometryShader;
+    features.features.tessellationShader = supported.tessellationShader;
     features.features.depthBiasClamp = supported.depthBiasClamp;
     features.features.multiDrawIndirect = supported.multiDrawIndirect;
     features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
@@ -473,6 +475,8 @@ void VulkanDevice::fillInfo() {
     info_.limits.depthSampleCounts = l.framebufferDepthSampleCounts & 0xf;
     info_.limits.maxColorAttachments = l.maxColorAttachments;
     info_.limits.maxViewportSize = std::min(l.maxViewportDimensions[0], l.maxViewportDimensions[1]);
+    info_.limits.maxTessellationPatchSize =
+        enabled_.tessellationShader ? l.maxTessellationPatchSize : 0;
     info_.limits.viewportBounds = {l.viewportBoundsRange[0], l.viewportBoundsRange[1]};
     info_.limits.maxComputeWorkGroupInvocations = l.maxComputeWorkGroupInvocations;
     for (int axis = 0; axis < 3; ++axis)
@@ -523,6 +527,8 @@ void VulkanDevice::fillInfo() {
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &qn, qf.data());
     info_.features.timestamps = qf[queueFamily_].timestampValidBits > 0 && l.timestampPeriod > 0;
     info_.features.computeShaders = true;
+    info_.features.geometryShaders = enabled_.geometryShader;
+    info_.features.tessellationShaders = enabled_.tessellationShader;
     info_.features.asyncCompute = queues_[1].queue != queue_;
     info_.features.asyncCopy = queues_[2].queue != queue_;
     info_.features.debugLabels = cmdBeginLabel != nullptr;

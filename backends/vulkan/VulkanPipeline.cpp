@@ -17,6 +17,9 @@ VkShaderStageFlags toStages(gdi::ShaderStage s) {
     if (any(s, gdi::ShaderStage::Vertex)) f |= VK_SHADER_STAGE_VERTEX_BIT;
     if (any(s, gdi::ShaderStage::Fragment)) f |= VK_SHADER_STAGE_FRAGMENT_BIT;
     if (any(s, gdi::ShaderStage::Compute)) f |= VK_SHADER_STAGE_COMPUTE_BIT;
+    if (any(s, gdi::ShaderStage::Geometry)) f |= VK_SHADER_STAGE_GEOMETRY_BIT;
+    if (any(s, gdi::ShaderStage::TessControl)) f |= VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT;
+    if (any(s, gdi::ShaderStage::TessEvaluation)) f |= VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
     return f;
 }
 
@@ -97,6 +100,8 @@ VkPrimitiveTopology toTopology(gdi::PrimitiveTopology t) {
             return VK_PRIMITIVE_TOPOLOGY_LINE_STRIP;
         case gdi::PrimitiveTopology::PointList:
             return VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+        case gdi::PrimitiveTopology::PatchList:
+            return VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
         default:
             return VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     }
@@ -196,38 +201,40 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     gdi::validate::graphicsPipelineDesc(d, info_);
     gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
     const std::string name = d.debugName ? d.debugName : "";
-    Shader& vs = shaders_.get(d.vertexShader, "vertex shader");
-    if (vs.stage != gdi::ShaderStage::Vertex)
-        throw gdi::Error("pipeline '" + name + "': vertexShader is not a vertex shader");
-    Shader* fs = nullptr;
-    if (d.fragmentShader) {
-        fs = &shaders_.get(d.fragmentShader, "fragment shader");
-        if (fs->stage != gdi::ShaderStage::Fragment)
-            throw gdi::Error("pipeline '" + name + "': fragmentShader is not a fragment shader");
+    std::vector<std::pair<gdi::ShaderStage, Shader*>> shaders;  // in stage order
+    std::vector<const gdi::ShaderInterface*> ifaces;
+    for (const gdi::validate::PipelineStage& st : gdi::validate::graphicsStages(d)) {
+        Shader& s = shaders_.get(st.shader, st.kind);
+        gdi::validate::shaderOfStage(s.stage, st, name);
+        shaders.push_back({st.stage, &s});
+        ifaces.push_back(&s.iface);
     }
+    const Shader& vs = *shaders.front().second;
+    const Shader* fs = d.fragmentShader ? shaders.back().second : nullptr;
     gdi::validate::vertexInputs(d, vs.iface, name);
+    gdi::validate::stageInterfaces(ifaces, name);
     if (fs) gdi::validate::fragmentOutputs(d, fs->iface, name);
-    const std::vector<gdi::BindingSlot> bindings = gdi::validate::pipelineBindings(
-        d.bindings, {&vs.iface, fs ? &fs->iface : nullptr}, name, info_.limits);
-    const std::array<uint8_t, 64> dimensions =
-        gdi::validate::slotDimensions({&vs.iface, fs ? &fs->iface : nullptr}, name);
+    const std::vector<gdi::BindingSlot> bindings =
+        gdi::validate::pipelineBindings(d.bindings, ifaces, name, info_.limits);
+    const std::array<uint8_t, 64> dimensions = gdi::validate::slotDimensions(ifaces, name);
     for (gdi::Format f : d.colorFormats)
         if (!supportsFormat(f, gdi::TextureUsage::RenderTarget))
             throw gdi::Error("pipeline '" + name + "': format " +
                              std::string(gdi::formatInfo(f).name) +
                              " cannot be a render target on this device");
 
-    const uint32_t constantBytes =
-        gdi::validate::pipelineConstants({&vs.iface, fs ? &fs->iface : nullptr}, name);
-    gdi::validate::specialization(d.specialization, {&vs.iface, fs ? &fs->iface : nullptr}, name);
+    const uint32_t constantBytes = gdi::validate::pipelineConstants(ifaces, name);
+    gdi::validate::specialization(d.specialization, ifaces, name);
     const StageSpecialization spec(d.specialization);
 
     std::vector<VkPipelineShaderStageCreateInfo> stages;
-    stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                      VK_SHADER_STAGE_VERTEX_BIT, vs.module, vs.entry.c_str(), spec.get()});
-    if (fs)
+    for (const auto& [stage, s] : shaders)
         stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                          VK_SHADER_STAGE_FRAGMENT_BIT, fs->module, fs->entry.c_str(), spec.get()});
+                          VkShaderStageFlagBits(toStages(stage)), s->module, s->entry.c_str(),
+                          spec.get()});
+    VkPipelineTessellationStateCreateInfo tess{
+        VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+    tess.patchControlPoints = d.patchControlPoints;
 
     std::vector<VkVertexInputBindingDescription> vbind;
     std::vector<VkVertexInputAttributeDescription> vattr;
@@ -342,10 +349,10 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
         gdi::formatInfo(d.depthFormat).hasStencil ? toVkFormat(d.depthFormat) : VK_FORMAT_UNDEFINED;
 
     // The constants range covers only the stages that read the block: drivers update per stage.
-    Pipeline p =
-        makeLayout(device_, bindings, d.debugName, constantBytes,
-                   (vs.iface.pushConstantBytes ? VK_SHADER_STAGE_VERTEX_BIT : 0) |
-                       (fs && fs->iface.pushConstantBytes ? VK_SHADER_STAGE_FRAGMENT_BIT : 0));
+    VkShaderStageFlags constantStages = 0;
+    for (const auto& [stage, s] : shaders)
+        if (s->iface.pushConstantBytes) constantStages |= toStages(stage);
+    Pipeline p = makeLayout(device_, bindings, d.debugName, constantBytes, constantStages);
     p.signature = gdi::validate::pipelineSignature(d);
     p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
     p.vertexBindings = gdi::validate::vertexBindings(d);
@@ -359,6 +366,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     ci.pStages = stages.data();
     ci.pVertexInputState = &vi;
     ci.pInputAssemblyState = &ia;
+    if (d.patchControlPoints) ci.pTessellationState = &tess;
     ci.pViewportState = &vp;
     ci.pRasterizationState = &rs;
     ci.pMultisampleState = &ms;

@@ -29,9 +29,17 @@ EShLanguage glslangStage(ShaderStage stage) {
             return EShLangFragment;
         case ShaderStage::Compute:
             return EShLangCompute;
+        case ShaderStage::Geometry:
+            return EShLangGeometry;
+        case ShaderStage::TessControl:
+            return EShLangTessControl;
+        case ShaderStage::TessEvaluation:
+            return EShLangTessEvaluation;
         default:
-            throw Error("compileShader: the stage must be Vertex, Fragment or Compute, not " +
-                        std::string(shaderStageName(stage)));
+            throw Error(
+                "compileShader: the stage must be one of Vertex, TessControl, TessEvaluation, "
+                "Geometry, Fragment, Compute, not " +
+                std::string(shaderStageName(stage)));
     }
 }
 

@@ -35,6 +35,12 @@ const char* shaderStageName(ShaderStage s) {
             return "fragment";
         case ShaderStage::Compute:
             return "compute";
+        case ShaderStage::Geometry:
+            return "geometry";
+        case ShaderStage::TessControl:
+            return "tessellation control";
+        case ShaderStage::TessEvaluation:
+            return "tessellation evaluation";
         default:
             return "unknown-stage";
     }
@@ -312,13 +318,28 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
 
 namespace {
 
+SpvExecutionModel executionModel(ShaderStage stage) {
+    switch (stage) {
+        case ShaderStage::Vertex:
+            return SpvExecutionModelVertex;
+        case ShaderStage::TessControl:
+            return SpvExecutionModelTessellationControl;
+        case ShaderStage::TessEvaluation:
+            return SpvExecutionModelTessellationEvaluation;
+        case ShaderStage::Geometry:
+            return SpvExecutionModelGeometry;
+        case ShaderStage::Fragment:
+            return SpvExecutionModelFragment;
+        default:
+            return SpvExecutionModelGLCompute;
+    }
+}
+
 // The module (valid here) declares an entry point of this name for this stage.
 void checkEntryPoint(std::span<const uint32_t> spirv, ShaderStage stage, const char* entryPoint,
                      const std::string& name) {
     constexpr uint32_t kOpEntryPoint = 15;
-    const uint32_t model = stage == ShaderStage::Vertex     ? 0u
-                           : stage == ShaderStage::Fragment ? 4u
-                                                            : 5u;  // GLCompute
+    const uint32_t model = uint32_t(executionModel(stage));
     const std::string_view wanted = entryPoint ? entryPoint : "main";
     for (size_t i = 5; i < spirv.size();) {
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
@@ -345,6 +366,8 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
     enum : uint32_t {
         Matrix = 0,
         Shader = 1,
+        Geometry = 2,
+        Tessellation = 3,
         ClipDistance = 32,
         CullDistance = 33,
         ImageCubeArray = 34,
@@ -387,6 +410,12 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
                 case StorageImageExtendedFormats:  // formatCaps(f).storage says the same per format
                     offered = features.storageImageExtendedFormats;
                     break;
+                case Geometry:
+                    offered = features.geometryShaders;
+                    break;
+                case Tessellation:
+                    offered = features.tessellationShaders;
+                    break;
                 default:
                     break;
             }
@@ -398,7 +427,9 @@ void checkCapabilities(std::span<const uint32_t> spirv, bool vulkan, const Devic
                                     : c == SampledCubeArray ? " (SampledCubeArray)"
                                     : c == StorageImageExtendedFormats
                                         ? " (StorageImageExtendedFormats)"
-                                        : "";
+                                    : c == Geometry     ? " (Geometry)"
+                                    : c == Tessellation ? " (Tessellation)"
+                                                        : "";
                 throw Error("shader '" + name + "': its " + (vulkan ? "Vulkan" : "OpenGL") +
                             " SPIR-V declares capability " + std::to_string(c) + known +
                             ", which the device does not offer");
@@ -515,9 +546,7 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     if (spvc_context_create_compiler(c.ctx, SPVC_BACKEND_NONE, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP,
                                      &comp) != SPVC_SUCCESS)
         throw fail("SPIR-V reflection failed");
-    const SpvExecutionModel model = stage == ShaderStage::Vertex     ? SpvExecutionModelVertex
-                                    : stage == ShaderStage::Fragment ? SpvExecutionModelFragment
-                                                                     : SpvExecutionModelGLCompute;
+    const SpvExecutionModel model = executionModel(stage);
     if (spvc_compiler_set_entry_point(comp, entryPoint ? entryPoint : "main", model) !=
         SPVC_SUCCESS)
         throw fail(std::string("no ") + shaderStageName(stage) + " entry point '" +
@@ -614,12 +643,28 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
     // Stage inputs and outputs stay within the 16 locations (64 components) every Vulkan and GL
     // 4.5 device has; beyond that the pipeline would be the driver's error, not ours. Every
     // interface variable counts, used or not (as the drivers count them).
-    auto checkLocations = [&](const spvc_reflected_resource& r) {
+    // Tessellation and geometry stages see one element per vertex of the patch or primitive: that
+    // outermost array (SPIRV-Cross lists it last) takes no locations of its own. Per-patch
+    // variables (`patch out`) are not arrays of vertices.
+    auto perVertexDimensions = [&](const spvc_reflected_resource& r, bool input) -> unsigned {
+        const bool arrayed =
+            (stage == ShaderStage::TessControl) ||
+            (input && (stage == ShaderStage::TessEvaluation || stage == ShaderStage::Geometry));
+        return arrayed && !spvc_compiler_has_decoration(comp, r.id, SpvDecorationPatch) ? 1u : 0u;
+    };
+    auto locationsOf = [&](const spvc_reflected_resource& r, bool input) {
         const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
-        const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
         uint64_t locations = std::max(1u, spvc_type_get_columns(t));
-        for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
+        const unsigned dims = spvc_type_get_num_array_dimensions(t);
+        const unsigned skip = std::min(dims, perVertexDimensions(r, input));
+        for (unsigned d = 0; d + skip < dims; ++d)
             locations *= std::max<uint64_t>(1, spvc_type_get_array_dimension(t, d));
+        return locations;
+    };
+    bool checkingInputs = true;
+    auto checkLocations = [&](const spvc_reflected_resource& r) {
+        const uint32_t location = spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
+        const uint64_t locations = locationsOf(r, checkingInputs);
         if (uint64_t(location) + locations > kMaxInterfaceLocations)
             throw fail("'" + std::string(r.name) + "' at location " + std::to_string(location) +
                        " takes locations up to " +
@@ -635,22 +680,22 @@ static ShaderInterface reflectUnguarded(std::span<const uint32_t> spirv, ShaderS
         const spvc_reflected_resource* list = nullptr;
         size_t count = 0;
         spvc_resources_get_resource_list_for_type(all, type, &list, &count);
+        checkingInputs = type == SPVC_RESOURCE_TYPE_STAGE_INPUT;
         for (size_t i = 0; i < count; ++i) checkLocations(list[i]);
     }
-    auto variable = [&](std::vector<ShaderInterface::Variable>& into) {
-        return [&](const spvc_reflected_resource& r) {
+    auto variable = [&](std::vector<ShaderInterface::Variable>& into, bool input) {
+        return [&, input](const spvc_reflected_resource& r) {
             const spvc_type t = spvc_compiler_get_type_handle(comp, r.type_id);
             const uint32_t location =
                 spvc_compiler_get_decoration(comp, r.id, SpvDecorationLocation);
-            uint32_t locations = std::max(1u, spvc_type_get_columns(t));
-            for (unsigned d = 0; d < spvc_type_get_num_array_dimensions(t); ++d)
-                locations *= std::max(1u, spvc_type_get_array_dimension(t, d));
+            const bool patch = spvc_compiler_has_decoration(comp, r.id, SpvDecorationPatch);
             into.push_back({location, kindOf(spvc_type_get_basetype(t)),
-                            spvc_type_get_vector_size(t), r.name, locations});
+                            spvc_type_get_vector_size(t), r.name, uint32_t(locationsOf(r, input)),
+                            patch});
         };
     };
-    each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs));
-    each(SPVC_RESOURCE_TYPE_STAGE_OUTPUT, variable(out.outputs));
+    each(SPVC_RESOURCE_TYPE_STAGE_INPUT, variable(out.inputs, true));
+    each(SPVC_RESOURCE_TYPE_STAGE_OUTPUT, variable(out.outputs, false));
     each(SPVC_RESOURCE_TYPE_PUSH_CONSTANT, [&](const spvc_reflected_resource& r) {
         out.pushConstantBytes = uint32_t(declaredSize(r.base_type_id));
     });

@@ -280,6 +280,7 @@ std::vector<Case> regionAndViewCases();  // RegionAndViewCases.cpp
 std::vector<Case> uniformBlockCases();   // UniformBlockCases.cpp
 std::vector<Case> shaderSourceCases();   // ShaderSourceCases.cpp
 std::vector<Case> queueCases();          // QueueCases.cpp
+std::vector<Case> stageCases();          // StageCases.cpp
 
 const std::vector<Case>& cases() {
     static const std::vector<Case> all = [] {
@@ -290,9 +291,10 @@ const std::vector<Case>& cases() {
             {"texture_sampling", textureSampling},
             {"timestamps", timestamps},
         };
-        for (auto* group : {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
-                            pipelineCases, samplerStateCases, constantsCases, queryCases,
-                            regionAndViewCases, uniformBlockCases, shaderSourceCases, queueCases})
+        for (auto* group :
+             {drawCases, textureCases, stateCases, executionCases, fixedFunctionCases,
+              pipelineCases, samplerStateCases, constantsCases, queryCases, regionAndViewCases,
+              uniformBlockCases, shaderSourceCases, queueCases, stageCases})
             for (Case& c : group()) v.push_back(std::move(c));
         return v;
     }();

@@ -300,6 +300,13 @@ json toJson(const GraphicsPipelineDesc& d) {
               {"depthFormat", raw(d.depthFormat)},
               {"bindings", toJson(d.bindings)},
               {"specialization", toJson(d.specialization)}};
+    // The optional stages only when used, so captures without them read as before.
+    if (d.geometryShader) j["gs"] = d.geometryShader.id;
+    if (d.tessControlShader || d.tessEvaluationShader) {
+        j["tcs"] = d.tessControlShader.id;
+        j["tes"] = d.tessEvaluationShader.id;
+    }
+    if (d.patchControlPoints) j["patchControlPoints"] = d.patchControlPoints;
     putName(j, d.debugName);
     return j;
 }
@@ -307,6 +314,10 @@ GraphicsPipelineDesc graphicsPipelineDesc(const json& j, Strings& keep) {
     GraphicsPipelineDesc d;
     d.vertexShader = {u32(j, "vs")};
     d.fragmentShader = {u32(j, "fs")};
+    if (j.contains("gs")) d.geometryShader = {u32(j, "gs")};
+    if (j.contains("tcs")) d.tessControlShader = {u32(j, "tcs")};
+    if (j.contains("tes")) d.tessEvaluationShader = {u32(j, "tes")};
+    if (j.contains("patchControlPoints")) d.patchControlPoints = u32(j, "patchControlPoints");
     for (const json& b : array(j, "vertexBuffers")) {
         VertexBufferLayout l{.stride = u32(b, "stride"), .perInstance = flag(b, "perInstance")};
         for (const json& a : array(b, "attributes")) {
@@ -321,7 +332,7 @@ GraphicsPipelineDesc graphicsPipelineDesc(const json& j, Strings& keep) {
         }
         d.vertexBuffers.push_back(std::move(l));
     }
-    d.topology = enumValue(j, "topology", PrimitiveTopology::PointList);
+    d.topology = enumValue(j, "topology", PrimitiveTopology::PatchList);
     d.primitiveRestart = flag(j, "primitiveRestart");
     const json& r = at(j, "raster");
     d.raster = {.cullMode = enumValue(r, "cull", CullMode::Back),

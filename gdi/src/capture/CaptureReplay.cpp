@@ -256,10 +256,13 @@ private:
         info = {d.debugName ? d.debugName : "pipeline " + std::to_string(u32(r, "id")),
                 {shaderNames_[d.vertexShader.id], shaderNames_[d.fragmentShader.id]},
                 usedSlots(d.bindings)};
+        for (ShaderHandle h : {d.tessControlShader, d.tessEvaluationShader, d.geometryShader})
+            if (h) info.shaders.push_back(shaderNames_[h.id]);
         for (size_t i = 0; i < d.vertexBuffers.size(); ++i)
             info.uses.insert("vertex buffer " + std::to_string(i));
-        d.vertexShader = {lookup(shaders_, d.vertexShader.id)};
-        d.fragmentShader = {lookup(shaders_, d.fragmentShader.id)};
+        for (ShaderHandle* h : {&d.vertexShader, &d.fragmentShader, &d.tessControlShader,
+                                &d.tessEvaluationShader, &d.geometryShader})
+            *h = {lookup(shaders_, h->id)};
         bind(map_.pipelines, u32(r, "id"), device_.createGraphicsPipeline(d).id);
     }
     void createComputePipeline(const json& r) {

@@ -15,8 +15,11 @@ ScalarKind vertexKind(VertexFormat f) {
 void shaderDesc(const ShaderDesc& d) {
     const std::string what = label("shader", d.binary.name);
     if (d.stage != ShaderStage::Vertex && d.stage != ShaderStage::Fragment &&
-        d.stage != ShaderStage::Compute)
-        fail(what, "stage must be exactly one of Vertex, Fragment, Compute");
+        d.stage != ShaderStage::Compute && d.stage != ShaderStage::Geometry &&
+        d.stage != ShaderStage::TessControl && d.stage != ShaderStage::TessEvaluation)
+        fail(what,
+             "stage must be exactly one of Vertex, TessControl, TessEvaluation, Geometry, "
+             "Fragment, Compute");
     if (!d.entryPoint || !*d.entryPoint) fail(what, "entry point is empty");
     if (d.binary.vulkan.empty() && d.binary.opengl.empty())
         fail(
@@ -33,6 +36,33 @@ static void bindingList(const std::vector<BindingSlot>& bindings, const std::str
             fail(what, "binding slot " + std::to_string(b.slot) + " is declared twice");
         seen |= uint64_t(1) << b.slot;
     }
+}
+
+// The optional stages: present on the device, tessellation as a pair with PatchList.
+static void stagesOfPipeline(const GraphicsPipelineDesc& d, const DeviceInfo& device,
+                             const std::string& what) {
+    const bool tessellated = d.tessControlShader || d.tessEvaluationShader;
+    if (tessellated && !(d.tessControlShader && d.tessEvaluationShader))
+        fail(what,
+             "tessellation needs both a tessControlShader and a tessEvaluationShader (one is "
+             "missing)");
+    if (tessellated && !device.features.tessellationShaders)
+        fail(what, "tessellation shaders are not supported on " + device.backend);
+    if (d.geometryShader && !device.features.geometryShaders)
+        fail(what, "geometry shaders are not supported on " + device.backend);
+    const bool patches = d.topology == PrimitiveTopology::PatchList;
+    if (tessellated && !patches)
+        fail(what, "tessellation shaders draw patches: set topology PrimitiveTopology::PatchList");
+    if (patches && !tessellated)
+        fail(what,
+             "topology PatchList needs tessellation shaders (tessControlShader and "
+             "tessEvaluationShader)");
+    const uint32_t most = device.limits.maxTessellationPatchSize;
+    if (patches && (d.patchControlPoints == 0 || d.patchControlPoints > most))
+        fail(what, "patchControlPoints " + std::to_string(d.patchControlPoints) + " is not 1 to " +
+                       std::to_string(most));
+    if (!patches && d.patchControlPoints != 0)
+        fail(what, "patchControlPoints is for topology PatchList only");
 }
 
 void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& device) {
@@ -102,6 +132,57 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
         }
     }
     bindingList(d.bindings, what);
+    stagesOfPipeline(d, device, what);
+}
+
+std::vector<PipelineStage> graphicsStages(const GraphicsPipelineDesc& d) {
+    std::vector<PipelineStage> out;
+    auto add = [&](ShaderStage stage, ShaderHandle h, const char* field, const char* kind) {
+        if (h) out.push_back({stage, h, field, kind});
+    };
+    add(ShaderStage::Vertex, d.vertexShader, "vertexShader", "vertex shader");
+    add(ShaderStage::TessControl, d.tessControlShader, "tessControlShader",
+        "tessellation control shader");
+    add(ShaderStage::TessEvaluation, d.tessEvaluationShader, "tessEvaluationShader",
+        "tessellation evaluation shader");
+    add(ShaderStage::Geometry, d.geometryShader, "geometryShader", "geometry shader");
+    add(ShaderStage::Fragment, d.fragmentShader, "fragmentShader", "fragment shader");
+    return out;
+}
+
+void shaderOfStage(ShaderStage actual, const PipelineStage& s, const std::string& pipeline) {
+    if (actual != s.stage)
+        throw Error("pipeline '" + pipeline + "': " + s.field + " is not a " +
+                    shaderStageName(s.stage) + " shader (it is a " + shaderStageName(actual) +
+                    " shader)");
+}
+
+void stageInterfaces(const std::vector<const ShaderInterface*>& shaders,
+                     const std::string& pipeline) {
+    const std::string what = "pipeline '" + pipeline + "'";
+    for (size_t i = 1; i < shaders.size(); ++i) {
+        const ShaderInterface& from = *shaders[i - 1];
+        const ShaderInterface& to = *shaders[i];
+        const std::string fromName = shaderStageName(from.stage),
+                          toName = shaderStageName(to.stage);
+        for (const ShaderInterface::Variable& in : to.inputs) {
+            const ShaderInterface::Variable* out = nullptr;
+            for (const ShaderInterface::Variable& o : from.outputs)
+                if (in.location >= o.location && in.location < o.location + o.locations) out = &o;
+            const std::string input = toName + " shader input '" + in.name + "' (location " +
+                                      std::to_string(in.location) + ")";
+            if (!out) fail(what, input + " is not written by the " + fromName + " shader");
+            if (out->kind != in.kind || out->components < in.components)
+                fail(what, input + " is " + scalarKindName(in.kind) + " x" +
+                               std::to_string(in.components) + ", the " + fromName +
+                               " shader writes '" + out->name + "' there as " +
+                               scalarKindName(out->kind) + " x" + std::to_string(out->components));
+            if (out->patch != in.patch)
+                fail(what, input + (in.patch ? " is" : " is not") + " per-patch, '" + out->name +
+                               "' of the " + fromName + " shader" +
+                               (out->patch ? " is" : " is not"));
+        }
+    }
 }
 
 void computePipelineDesc(const ComputePipelineDesc& d) {
@@ -110,7 +191,7 @@ void computePipelineDesc(const ComputePipelineDesc& d) {
     bindingList(d.bindings, what);
 }
 
-std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders,
+std::array<uint8_t, 64> slotDimensions(const std::vector<const ShaderInterface*>& shaders,
                                        const std::string& pipeline) {
     std::array<uint8_t, 64> dims{};
     for (const ShaderInterface* s : shaders) {
@@ -156,7 +237,7 @@ uint64_t requiredSlotMask(const std::vector<BindingSlot>& bindings) {
 }
 
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders,
+                                          const std::vector<const ShaderInterface*>& shaders,
                                           const std::string& pipeline, const DeviceLimits& limits) {
     const std::string what = "pipeline '" + pipeline + "'";
     std::vector<BindingSlot> used;  // by slot, stages merged
@@ -283,7 +364,7 @@ void workgroup(const ShaderInterface& cs, const DeviceLimits& limits, const std:
                  std::to_string(limits.maxComputeWorkGroupInvocations));
 }
 
-uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders,
+uint32_t pipelineConstants(const std::vector<const ShaderInterface*>& shaders,
                            const std::string& pipeline) {
     uint32_t bytes = 0;
     for (const ShaderInterface* sh : shaders) {
@@ -300,7 +381,7 @@ uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders
 }
 
 void specialization(const std::vector<SpecializationConstant>& values,
-                    std::initializer_list<const ShaderInterface*> shaders,
+                    const std::vector<const ShaderInterface*>& shaders,
                     const std::string& pipeline) {
     const std::string what = "pipeline '" + pipeline + "'";
     for (size_t i = 0; i < values.size(); ++i) {

@@ -137,8 +137,14 @@
 //    given must name every slot a shader uses, with that kind and stage (an error names the
 //    slot); slots the shaders do not use are allowed and must still be bound to draw.
 //  - Every vertex shader input needs an attribute of its scalar kind (float or uint) in the
-//    vertex layout; a fragment output landing on a colour target has the target's kind; a
-//    compute work group fits maxComputeWorkGroupInvocations.
+//    vertex layout; each later stage's inputs are outputs of the stage before it (location,
+//    kind, enough components, per-patch alike); a fragment output landing on a colour target
+//    has the target's kind; a compute work group fits maxComputeWorkGroupInvocations.
+//  - Stages: vertex, [tessellation control + evaluation with PatchList and patchControlPoints],
+//    [geometry], fragment, where DeviceFeatures::tessellationShaders / geometryShaders say so:
+//      device->createGraphicsPipeline({.vertexShader = vs, .fragmentShader = fs,
+//          .tessControlShader = tcs, .tessEvaluationShader = tes, .patchControlPoints = 4,
+//          .geometryShader = gs, .topology = PrimitiveTopology::PatchList, ...});
 //  - setPipeline in a pass: colorFormats, depthFormat and sampleCount equal the pass's.
 //  - Binding setters: offsets are multiples of uniformBufferOffsetAlignment /
 //    storageBufferOffsetAlignment and ranges at most maxUniformBufferRange / maxStorageBufferRange
@@ -158,7 +164,7 @@
 //      UniformBlock material(device->shaderInterface(fs), "Material");
 //      material.set("tint", {1.0f, 0.5f, 0.0f});  device->writeBuffer(ubo, 0, material.bytes());
 // Shown by: pipeline_layout_from_shader, binding_mismatch_errors, storage_textures_at_any_slot,
-// format_caps, vertex_formats, uniform_block_layout.
+// format_caps, vertex_formats, uniform_block_layout, geometry_stage, tessellation_stages.
 //
 // Per-draw constants and specialization
 // -------------------------------------
@@ -558,13 +564,19 @@ struct SamplerDesc {
 // ---------------------------------------------------------------------------------------------
 // Shaders and pipelines
 // ---------------------------------------------------------------------------------------------
+// A graphics pipeline runs vertex, [tessellation control, tessellation evaluation], [geometry],
+// fragment (DeviceFeatures::tessellationShaders, geometryShaders). Shader files: .vert, .tesc,
+// .tese, .geom, .frag, .comp.
 enum class ShaderStage : uint32_t {
     None = 0,
     Vertex = 1 << 0,
     Fragment = 1 << 1,
     Compute = 1 << 2,
-    AllGraphics = Vertex | Fragment,
-    All = Vertex | Fragment | Compute,
+    Geometry = 1 << 3,
+    TessControl = 1 << 4,
+    TessEvaluation = 1 << 5,
+    AllGraphics = Vertex | Fragment | Geometry | TessControl | TessEvaluation,
+    All = AllGraphics | Compute,
     FlagsMarker = 0
 };
 
@@ -645,7 +657,8 @@ enum class PrimitiveTopology : uint8_t {
     TriangleStrip,
     LineList,
     LineStrip,
-    PointList
+    PointList,
+    PatchList,  // tessellation: GraphicsPipelineDesc::patchControlPoints vertices per patch
 };
 enum class CullMode : uint8_t { None, Front, Back };
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
@@ -733,6 +746,13 @@ struct BlendTargetState {
 struct GraphicsPipelineDesc {
     ShaderHandle vertexShader;
     ShaderHandle fragmentShader;  // may be null for depth-only passes
+    // Tessellation: both or neither (DeviceFeatures::tessellationShaders), with topology
+    // PatchList and patchControlPoints (1 to limits.maxTessellationPatchSize) vertices a patch.
+    ShaderHandle tessControlShader;
+    ShaderHandle tessEvaluationShader;
+    uint32_t patchControlPoints = 0;
+    // After the vertex (or tessellation) stages: DeviceFeatures::geometryShaders.
+    ShaderHandle geometryShader;
     std::vector<VertexBufferLayout> vertexBuffers;
     PrimitiveTopology topology = PrimitiveTopology::TriangleList;
     // Strip topologies, indexed draws: the index 0xFFFF (U16) or 0xFFFFFFFF (U32) ends a strip
@@ -1211,6 +1231,9 @@ struct DeviceLimits {
     // GL_MAX_VIEWPORT_DIMS and GL_VIEWPORT_BOUNDS_RANGE). setViewport refuses others.
     uint32_t maxViewportSize = 0;
     std::array<float, 2> viewportBounds = {0, 0};
+    // Control points a tessellation patch may have (GraphicsPipelineDesc::patchControlPoints;
+    // both APIs guarantee 32 where tessellation is supported; 0 without it).
+    uint32_t maxTessellationPatchSize = 0;
     // Nanoseconds per unit of the timestamps resolveQueries writes (queryResults converts).
     double timestampPeriodNs = 1.0;
 };
@@ -1255,6 +1278,8 @@ struct DeviceFeatures {
     // queue's (see Queues). False: it shares the graphics queue, in submission order.
     bool asyncCompute = false;
     bool asyncCopy = false;
+    bool geometryShaders = false;      // GraphicsPipelineDesc::geometryShader
+    bool tessellationShaders = false;  // tessControlShader, tessEvaluationShader, PatchList
 };
 
 struct DeviceInfo {

@@ -31,6 +31,7 @@ constexpr void forEachField(const DeviceLimits& l, Visitor&& visit) {
     visit("storageBufferOffsetAlignment", l.storageBufferOffsetAlignment);
     visit("maxViewportSize", l.maxViewportSize);
     visit("viewportBounds", l.viewportBounds);  // min, max
+    visit("maxTessellationPatchSize", l.maxTessellationPatchSize);
     visit("timestampPeriodNs", l.timestampPeriodNs);
 }
 
@@ -55,6 +56,8 @@ constexpr void forEachField(const DeviceFeatures& f, Visitor&& visit) {
     visit("lazilyAllocatedMemory", f.lazilyAllocatedMemory);
     visit("asyncCompute", f.asyncCompute);
     visit("asyncCopy", f.asyncCopy);
+    visit("geometryShaders", f.geometryShaders);
+    visit("tessellationShaders", f.tessellationShaders);
 }
 
 namespace detail {

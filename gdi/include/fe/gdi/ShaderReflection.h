@@ -58,6 +58,7 @@ struct ShaderInterface {
         uint32_t components = 1;
         std::string name;
         uint32_t locations = 1;  // consecutive locations taken (arrays, matrices)
+        bool patch = false;      // a tessellation stage's per-patch variable (`patch out`)
     };
     ShaderStage stage = ShaderStage::None;
     std::vector<Binding> bindings;  // the ones the entry point uses, by slot

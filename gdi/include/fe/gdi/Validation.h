@@ -296,7 +296,7 @@ void executedSecondary(bool inSecondaryPass, bool isSecondary, bool ended,
 // appear with the kind the shader declares and that shader's stage. The shaders use at most
 // limits.maxStorageTextures storage textures.
 std::vector<BindingSlot> pipelineBindings(const std::vector<BindingSlot>& declared,
-                                          std::initializer_list<const ShaderInterface*> shaders,
+                                          const std::vector<const ShaderInterface*>& shaders,
                                           const std::string& pipeline, const DeviceLimits& limits);
 // Every vertex shader input has an attribute of the same scalar kind in the vertex layout.
 void vertexInputs(const GraphicsPipelineDesc& d, const ShaderInterface& vs,
@@ -369,9 +369,26 @@ private:
 void querySubmission(std::span<const QueryRecording* const> lists,
                      const std::function<bool(uint32_t set, uint32_t index)>& writtenBefore);
 
+// A graphics pipeline's shaders in stage order: vertex, tessellation control and evaluation,
+// geometry, fragment (those given). `kind` names the handle in lookups ("geometry shader").
+struct PipelineStage {
+    ShaderStage stage;
+    ShaderHandle shader;
+    const char* field;  // GraphicsPipelineDesc's member, for messages
+    const char* kind;
+};
+std::vector<PipelineStage> graphicsStages(const GraphicsPipelineDesc& d);
+// The shader given for a stage is of that stage ("geometryShader is not a geometry shader").
+void shaderOfStage(ShaderStage actual, const PipelineStage& s, const std::string& pipeline);
+// Each stage's inputs are outputs of the stage before it (same location, scalar kind, at least
+// as many components, per-patch or not alike); `shaders` in stage order. Built-ins are left to
+// the APIs. A mismatch is undefined values on both APIs (or a link error on some drivers).
+void stageInterfaces(const std::vector<const ShaderInterface*>& shaders,
+                     const std::string& pipeline);
+
 // Bytes of per-draw constants the pipeline's shaders read (the largest block; 0: none), at
 // most kMaxConstantBytes.
-uint32_t pipelineConstants(std::initializer_list<const ShaderInterface*> shaders,
+uint32_t pipelineConstants(const std::vector<const ShaderInterface*>& shaders,
                            const std::string& pipeline);
 // setConstants: offset and size multiples of 4, not empty, within kMaxConstantBytes.
 [[noreturn, gnu::cold]] void badConstantsRange(uint32_t offset, size_t size);
@@ -382,7 +399,7 @@ inline void constantsRange(uint32_t offset, size_t size) {
 // Specialization constants given to a pipeline: each id declared by one of its shaders, once,
 // with a value of that constant's kind.
 void specialization(const std::vector<SpecializationConstant>& values,
-                    std::initializer_list<const ShaderInterface*> shaders,
+                    const std::vector<const ShaderInterface*>& shaders,
                     const std::string& pipeline);
 // The attachments a graphics pipeline renders to (formats, depth format, samples).
 PassSignature pipelineSignature(const GraphicsPipelineDesc& d);
@@ -592,7 +609,7 @@ std::array<uint8_t, 64> slotKinds(const std::vector<BindingSlot>& bindings);
 // Per-slot texture kind the shaders sample or store, 1 + TextureDimension (0: any; a buffer
 // slot, or one no shader uses). Stages that declare one slot with two kinds are an Error. A
 // texture bound there must be of that kind (a view may give it another: createTextureView).
-std::array<uint8_t, 64> slotDimensions(std::initializer_list<const ShaderInterface*> shaders,
+std::array<uint8_t, 64> slotDimensions(const std::vector<const ShaderInterface*>& shaders,
                                        const std::string& pipeline);
 [[noreturn, gnu::cold]] void wrongTextureDimensionFailed(uint32_t slot, uint8_t expected,
                                                          uint8_t bound, const char* pipelineName);
