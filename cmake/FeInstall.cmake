@@ -36,14 +36,14 @@ install(TARGETS ${FE_EXPORTED_TARGETS} EXPORT feTargets
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/gdi/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/renderer/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/fe/renderer
         FILES_MATCHING PATTERN "*.h")
-install(TARGETS fe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS fe fe_hlsl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/tools/bench/report.py DESTINATION ${CMAKE_INSTALL_DATADIR}/fe/bench)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/bench/sweeps DESTINATION ${CMAKE_INSTALL_DATADIR}/fe/bench)
 
 set(FE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/fe)
 install(EXPORT feTargets NAMESPACE fe:: DESTINATION ${FE_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/feConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/feConfig.cmake
-                              INSTALL_DESTINATION ${FE_CMAKE_DIR} PATH_VARS CMAKE_INSTALL_DATADIR)
+                              INSTALL_DESTINATION ${FE_CMAKE_DIR} PATH_VARS CMAKE_INSTALL_DATADIR CMAKE_INSTALL_BINDIR)
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/feConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/FeShaders.cmake ${PROJECT_SOURCE_DIR}/cmake/fe-glslang.sh

@@ -15,6 +15,39 @@ if(NOT FE_SHADER_INCLUDE_DIR)
   set(FE_SHADER_INCLUDE_DIR ${CMAKE_CURRENT_LIST_DIR}/../shaders/include)
 endif()
 
+# HLSL: a file named NAME.STAGE.hlsl (STAGE: vert, tesc, tese, geom, frag, comp) whose entry
+# point is `main` or the one a line "// fe-entry: NAME" names, compiled by fe-hlsl (the engine's
+# run-time HLSL compiler as a tool: HLSL -> SPIR-V -> GLSL 450 -> both encodings). The binaries'
+# entry point is "main".
+function(fe_add_hlsl_command abs index vk_h gl_h define name)
+  if(NOT abs MATCHES "\\.(vert|tesc|tese|geom|frag|comp)\\.hlsl$")
+    message(FATAL_ERROR "fe_add_shaders: ${abs}: an HLSL file is named NAME.STAGE.hlsl (STAGE: vert, tesc, tese, geom, frag or comp)")
+  endif()
+  set(stage ${CMAKE_MATCH_1})
+  file(STRINGS ${abs} entry_lines REGEX "^// fe-entry: [A-Za-z_0-9]+")
+  set(entry main)
+  foreach(line ${entry_lines})
+    string(REGEX REPLACE "^// fe-entry: ([A-Za-z_0-9]+).*$" "\\1" entry "${line}")
+  endforeach()
+  if(TARGET fe_hlsl)
+    set(tool $<TARGET_FILE:fe_hlsl>)
+    set(tool_dep fe_hlsl)
+  elseif(FE_HLSL_COMPILER)
+    set(tool ${FE_HLSL_COMPILER})
+    set(tool_dep ${FE_HLSL_COMPILER})
+  else()
+    message(FATAL_ERROR "fe_add_shaders: ${abs}: no fe-hlsl (FE_HLSL_COMPILER) to compile HLSL")
+  endif()
+  # ASan's leak check off: glslang keeps process-wide tables to the end.
+  add_custom_command(
+    OUTPUT ${vk_h} ${gl_h}
+    COMMAND ${CMAKE_COMMAND} -E env ASAN_OPTIONS=detect_leaks=0 ${tool} ${stage} ${entry} ${abs}
+            ${vk_h} fe_spv_vk_${index} ${gl_h} fe_spv_gl_${index} ${define} -I${FE_SHADER_INCLUDE_DIR}
+    DEPENDS ${abs} ${tool_dep}
+    COMMENT "fe-hlsl ${name}"
+    VERBATIM)
+endfunction()
+
 function(fe_add_shaders target)
   cmake_parse_arguments(ARG "" "BASE_DIR" "SOURCES" ${ARGN})
   set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_spv)
@@ -48,6 +81,9 @@ function(fe_add_shaders target)
       endif()
       set(vk_h ${out_dir}/s${index}_vk.h)
       set(gl_h ${out_dir}/s${index}_gl.h)
+      if(abs MATCHES "\\.hlsl$")
+        fe_add_hlsl_command(${abs} ${index} ${vk_h} ${gl_h} "${define}" ${name})
+      else()
       add_custom_command(
         OUTPUT ${vk_h} ${gl_h}
         COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -DFE_VULKAN=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
@@ -57,6 +93,7 @@ function(fe_add_shaders target)
         DEPENDS ${abs} ${common_includes}
         COMMENT "glslang ${name}"
         VERBATIM)
+      endif()
       list(APPEND headers ${vk_h} ${gl_h})
       string(APPEND includes "#include \"s${index}_vk.h\"\n#include \"s${index}_gl.h\"\n")
       string(APPEND entries "    {\"${name}\", {fe_spv_vk_${index}, sizeof(fe_spv_vk_${index}) / 4}, {fe_spv_gl_${index}, sizeof(fe_spv_gl_${index}) / 4}},\n")

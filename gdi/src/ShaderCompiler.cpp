@@ -4,13 +4,24 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cctype>
+#include <chrono>
+#include <shared_mutex>
 #include <cstring>
 #include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
+
+#include <spirv_cross/spirv_cross_c.h>
 
 #include "fe/gdi/ShaderReflection.h"
 #include "fe_common_glsl.h"  // generated: the text of shaders/include/fe_common.glsl
@@ -97,10 +108,19 @@ std::string errorText(const std::string& log, const std::string& name) {
     return out;
 }
 
+// Every compile holds this shared while it is inside glslang; the HLSL translation holds it alone
+// while it forks, so no other thread is inside glslang (or holds glslang's global lock) when the
+// child is made.
+std::shared_mutex& glslangInUse() {
+    static std::shared_mutex m;
+    return m;
+}
+
 // One encoding: FE_VULKAN for Vulkan 1.2 SPIR-V, FE_OPENGL for GL 4.5's ARB_gl_spirv (as
 // glslangValidator -V and -G with those defines).
 std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Includer& includer) {
     const EShLanguage stage = glslangStage(s.stage);
+    const std::shared_lock inGlslang(glslangInUse());  // see isolatedHlslToGlsl
     glslang::TShader shader(stage);
     const char* text = s.text.data();
     const int length = int(s.text.size());
@@ -141,6 +161,248 @@ std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Incl
     return spirv;
 }
 
+// glslang 11.13's HLSL front end dereferences a null name when an entry point's parameter has
+// none ("float4 main(float : TEXCOORD0)": SEGV in HlslParseContext::remapEntryPointIO, found by
+// ShaderSourceFuzzer), so such a parameter is refused before glslang sees the source. A parameter
+// is its type then its name: one word before the semantic or the end is an unnamed one.
+void checkEntryParameters(const ShaderSourceCompile& s) {
+    const std::string text(s.text);
+    for (size_t at = text.find(s.entryPoint); at != std::string::npos;
+         at = text.find(s.entryPoint, at + 1)) {
+        const size_t end = at + s.entryPoint.size();
+        const bool word =
+            (at == 0 || !(std::isalnum(uint8_t(text[at - 1])) || text[at - 1] == '_'));
+        size_t open = end;
+        while (open < text.size() && std::isspace(uint8_t(text[open]))) ++open;
+        if (!word || open >= text.size() || text[open] != '(') continue;
+        const size_t close = text.find(')', open);
+        if (close == std::string::npos) return;  // glslang reports the syntax
+        std::string params = text.substr(open + 1, close - open - 1);
+        size_t index = 0;
+        for (size_t from = 0; from <= params.size(); ++index) {
+            const size_t comma = std::min(params.find(',', from), params.size());
+            const std::string p = params.substr(from, comma - from);
+            const std::string declared = p.substr(0, p.find(':'));
+            int words = 0;
+            bool inWord = false;
+            for (char ch : declared) {
+                const bool part = std::isalnum(uint8_t(ch)) || ch == '_';
+                words += part && !inWord;
+                inWord = part;
+            }
+            const bool blank = p.find_first_not_of(" \t\r\n") == std::string::npos;
+            if (!(blank && index == 0 && comma == params.size()) && words < 2)
+                throw Error("shader '" + s.name + "': parameter " + std::to_string(index + 1) +
+                            " of entry point '" + s.entryPoint +
+                            "' has no name (HLSL's entry parameters are named: 'float2 uv : "
+                            "TEXCOORD0')");
+            from = comma + 1;
+        }
+    }
+}
+
+// HLSL to Vulkan SPIR-V (glslang's HLSL front end: registers are binding numbers whatever their
+// letter, stage inputs and outputs take locations in declaration order).
+std::vector<uint32_t> hlslToSpirv(const ShaderSourceCompile& s, Includer& includer) {
+    checkEntryParameters(s);
+    const EShLanguage stage = glslangStage(s.stage);
+    glslang::TShader shader(stage);
+    const char* text = s.text.data();
+    const int length = int(s.text.size());
+    const char* name = s.name.c_str();
+    shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
+    std::string preamble;
+    for (const std::string& d : s.defines) {
+        const size_t eq = d.find('=');
+        preamble +=
+            "#define " +
+            (eq == std::string::npos ? d + " 1" : d.substr(0, eq) + " " + d.substr(eq + 1)) + "\n";
+    }
+    shader.setPreamble(preamble.c_str());
+    shader.setEntryPoint(s.entryPoint.c_str());
+    shader.setSourceEntryPoint(s.entryPoint.c_str());
+    shader.setEnvInput(glslang::EShSourceHlsl, stage, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+    shader.setAutoMapLocations(true);
+    const EShMessages messages = EShMessages(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
+    if (!shader.parse(GetDefaultResources(), 100, false, messages, includer))
+        throw Error("shader '" + s.name + "' does not compile as HLSL:\n" +
+                    errorText(shader.getInfoLog(), s.name));
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages) || !program.mapIO())
+        throw Error("shader '" + s.name + "' does not link as HLSL:\n" +
+                    errorText(program.getInfoLog(), s.name));
+    std::vector<uint32_t> spirv;
+    glslang::SpvOptions options;
+    glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &options);
+    return spirv;
+}
+
+// Vulkan SPIR-V as GLSL 450 (SPIRV-Cross): each texture and the sampler it is sampled with
+// become one combined sampler at the texture's binding, the device's binding model. A texture
+// sampled with two samplers would need two slots: an Error.
+std::string spirvToGlsl(const std::vector<uint32_t>& spirv, const std::string& name) {
+    struct Context {
+        spvc_context ctx = nullptr;
+        Context() { spvc_context_create(&ctx); }
+        ~Context() {
+            if (ctx) spvc_context_destroy(ctx);
+        }
+    } c;
+    auto fail = [&](const std::string& what) {
+        const char* detail = c.ctx ? spvc_context_get_last_error_string(c.ctx) : "";
+        return Error("shader '" + name + "': " + what +
+                     (detail && *detail ? std::string(": ") + detail : std::string()));
+    };
+    spvc_parsed_ir ir = nullptr;
+    spvc_compiler comp = nullptr;
+    spvc_compiler_options options = nullptr;
+    if (!c.ctx ||
+        spvc_context_parse_spirv(c.ctx, spirv.data(), spirv.size(), &ir) != SPVC_SUCCESS ||
+        spvc_context_create_compiler(c.ctx, SPVC_BACKEND_GLSL, ir, SPVC_CAPTURE_MODE_TAKE_OWNERSHIP,
+                                     &comp) != SPVC_SUCCESS ||
+        spvc_compiler_create_compiler_options(comp, &options) != SPVC_SUCCESS)
+        throw fail("SPIRV-Cross could not read the HLSL's SPIR-V");
+    spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_GLSL_VERSION, 450);
+    spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_ES, SPVC_FALSE);
+    spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_VULKAN_SEMANTICS, SPVC_FALSE);
+    spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_SUPPORT_NONZERO_BASE_INSTANCE,
+                                   SPVC_FALSE);  // no uniform of its own: FE_INSTANCE_ID below
+    spvc_compiler_install_compiler_options(comp, options);
+    if (spvc_compiler_build_combined_image_samplers(comp) != SPVC_SUCCESS)
+        throw fail("combining its textures and samplers failed");
+    const spvc_combined_image_sampler* combined = nullptr;
+    size_t count = 0;
+    spvc_compiler_get_combined_image_samplers(comp, &combined, &count);
+    std::map<uint32_t, uint32_t> samplersOf;  // texture id -> its combined samplers
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t binding =
+            spvc_compiler_get_decoration(comp, combined[i].image_id, SpvDecorationBinding);
+        if (++samplersOf[combined[i].image_id] > 1)
+            throw Error("shader '" + name + "': texture '" +
+                        spvc_compiler_get_name(comp, combined[i].image_id) +
+                        "' is sampled with two samplers; the device binds one sampler per "
+                        "texture slot (setTexture)");
+        spvc_compiler_set_decoration(comp, combined[i].combined_id, SpvDecorationBinding, binding);
+        spvc_compiler_set_decoration(comp, combined[i].combined_id, SpvDecorationDescriptorSet, 0);
+    }
+    const char* written = nullptr;
+    if (spvc_compiler_compile(comp, &written) != SPVC_SUCCESS || !written)
+        throw fail("SPIRV-Cross could not write it as GLSL");
+    // SPIRV-Cross writes GL's vertex and instance ids; the text is compiled for Vulkan too, so
+    // they become fe_common.glsl's portable names (which count from firstVertex and
+    // firstInstance on both, as SV_VertexID and SV_InstanceID do).
+    std::string glsl = written;
+    bool portable = false;
+    for (const auto& [gl, fe] :
+         {std::pair{"gl_VertexID", "FE_VERTEX_ID"}, std::pair{"gl_InstanceID", "FE_INSTANCE_ID"}})
+        for (size_t at = glsl.find(gl); at != std::string::npos; at = glsl.find(gl, at + 1)) {
+            const size_t end = at + std::strlen(gl);
+            if (end < glsl.size() && (std::isalnum(uint8_t(glsl[end])) || glsl[end] == '_'))
+                continue;
+            glsl.replace(at, end - at, fe);
+            portable = true;
+        }
+    if (portable)
+        glsl.insert(
+            glsl.find('\n') + 1,
+            "#extension GL_GOOGLE_include_directive : require\n#include \"fe_common.glsl\"\n");
+    return glsl;
+}
+
+// The HLSL translation in a child process. glslang 11.13's HLSL front end crashes on some
+// malformed sources (ShaderSourceFuzzer found two null dereferences in a minute: an unnamed entry
+// parameter, a register-less declaration after garbage), and a shader editor must not die of a
+// typo: the child translates and writes the result to a pipe; a child that dies or hangs (60 s)
+// is a clear Error and the process goes on. The includes it read come back for the cache.
+// Reply: 'G' or 'E', then length-prefixed strings: the GLSL (or the message), then name,
+// includer and text of each include read.
+std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer::Seen>& seen) {
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0)
+        throw Error("shader '" + s.name + "': no pipe for the HLSL compiler: " + strerror(errno));
+    pid_t pid;
+    {
+        std::unique_lock lock(glslangInUse());
+        pid = fork();
+    }
+    if (pid < 0) {
+        close(fds[0]), close(fds[1]);
+        throw Error("shader '" + s.name +
+                    "': could not start the HLSL compiler: " + strerror(errno));
+    }
+    auto put = [](std::string& out, const std::string& v) {
+        const uint32_t n = uint32_t(v.size());
+        out.append(reinterpret_cast<const char*>(&n), 4).append(v);
+    };
+    if (pid == 0) {  // the child: glslang and SPIRV-Cross only, then _exit
+        close(fds[0]);
+        std::string reply;
+        Includer includes(s);
+        try {
+            const std::string glsl = spirvToGlsl(hlslToSpirv(s, includes), s.name);
+            reply = "G";
+            put(reply, glsl);
+        } catch (const std::exception& e) {
+            reply = "E";
+            put(reply, e.what());
+        }
+        for (const Includer::Seen& i : includes.seen)
+            put(reply, i.name), put(reply, i.includer), put(reply, i.text);
+        for (size_t done = 0; done < reply.size();) {
+            const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
+            if (n <= 0) break;
+            done += size_t(n);
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    std::string reply;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool timedOut = false;
+    for (char buffer[65536];;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        pollfd p{fds[0], POLLIN, 0};
+        const int ready = left.count() > 0 ? poll(&p, 1, int(left.count())) : 0;
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready <= 0) {
+            timedOut = true;
+            break;
+        }
+        const ssize_t n = read(fds[0], buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        reply.append(buffer, size_t(n));
+    }
+    close(fds[0]);
+    if (timedOut) kill(pid, SIGKILL);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    size_t at = 1;
+    auto get = [&](std::string& v) {
+        uint32_t n = 0;
+        if (at + 4 > reply.size()) return false;
+        std::memcpy(&n, reply.data() + at, 4);
+        if (at + 4 + n > reply.size()) return false;
+        v.assign(reply, at + 4, n);
+        at += 4 + n;
+        return true;
+    };
+    std::string text;
+    const bool whole = !timedOut && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                       !reply.empty() && (reply[0] == 'G' || reply[0] == 'E') && get(text);
+    if (!whole)
+        throw Error("shader '" + s.name + "': the HLSL compiler (glslang's HLSL front end) " +
+                    (timedOut ? "did not finish in 60 s" : "crashed") +
+                    " on this source, which is refused (the process goes on)");
+    for (Includer::Seen i; get(i.name) && get(i.includer) && get(i.text);) seen.push_back(i);
+    if (reply[0] == 'E') throw Error(text);
+    return text;
+}
+
 struct Compiled {
     std::vector<uint32_t> vulkan, opengl;
     std::string name;
@@ -148,6 +410,14 @@ struct Compiled {
 };
 
 }  // namespace
+
+std::string hlslToGlsl(const ShaderSourceCompile& s) {
+    glslangStage(s.stage);
+    static const bool initialised = glslang::InitializeProcess();
+    (void)initialised;
+    std::deque<Includer::Seen> seen;
+    return isolatedHlslToGlsl(s, seen);
+}
 
 ShaderBinary compileShader(const ShaderSourceCompile& s) {
     glslangStage(s.stage);  // a stage glslang is not given is an Error first
@@ -159,7 +429,8 @@ ShaderBinary compileShader(const ShaderSourceCompile& s) {
     // for each include the compile asked for (an edited include is a new compile).
     static std::mutex mutex;
     static std::map<std::string, std::vector<std::unique_ptr<Compiled>>> cache;
-    std::string key = std::to_string(int(s.stage)) + '\0' + s.name + '\0' + std::string(s.text);
+    std::string key = std::to_string(int(s.stage)) + '\0' + std::to_string(int(s.language)) + '\0' +
+                      s.entryPoint + '\0' + s.name + '\0' + std::string(s.text);
     for (const std::string& d : s.defines) key += '\0' + d;
     auto unchanged = [&](const Compiled& c) {
         for (const Includer::Seen& i : c.includes) {
@@ -179,8 +450,17 @@ ShaderBinary compileShader(const ShaderSourceCompile& s) {
         if (unchanged(*c)) return {c->name.c_str(), c->vulkan, c->opengl};
     Includer vulkanIncludes(s), glIncludes(s);
     auto compiled = std::make_unique<Compiled>();
-    compiled->vulkan = compileFor(s, true, vulkanIncludes);
-    compiled->opengl = compileFor(s, false, glIncludes);
+    if (s.language == ShaderLanguage::HLSL) {
+        // One translation, then the GLSL path with no includes left to resolve.
+        const std::string glsl = isolatedHlslToGlsl(s, vulkanIncludes.seen);
+        ShaderSourceCompile translated{.stage = s.stage, .text = glsl, .name = s.name};
+        Includer none(translated), noneGl(translated);
+        compiled->vulkan = compileFor(translated, true, none);
+        compiled->opengl = compileFor(translated, false, noneGl);
+    } else {
+        compiled->vulkan = compileFor(s, true, vulkanIncludes);
+        compiled->opengl = compileFor(s, false, glIncludes);
+    }
     compiled->name = s.name;
     compiled->includes = std::move(vulkanIncludes.seen);
     compiles.fetch_add(1, std::memory_order_relaxed);
@@ -195,11 +475,15 @@ ShaderDesc withCompiledSource(const ShaderDesc& desc) {
         throw Error(std::string("createShader '") + desc.source.name +
                     "': give a binary or a source, not both");
     ShaderDesc compiled = desc;
+    const bool hlsl = desc.source.language == ShaderLanguage::HLSL;
     compiled.binary = compileShader({.stage = desc.stage,
                                      .text = desc.source.text,
+                                     .language = desc.source.language,
+                                     .entryPoint = desc.entryPoint ? desc.entryPoint : "main",
                                      .name = desc.source.name,
                                      .defines = desc.source.defines,
                                      .include = desc.source.include});
+    if (hlsl) compiled.entryPoint = "main";  // what the translation names it
     compiled.source = {};
     return compiled;
 }

@@ -6,6 +6,7 @@
 # build-sanitize/fuzz/findings/ and makes this script fail. CI runs it with a short SECONDS.
 #   tools/fuzz/run.sh [SECONDS] [HARNESS...]     HARNESS: GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer
 #                                                PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer
+#                                                ShaderSourceFuzzer
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root="$(pwd)"
@@ -13,7 +14,7 @@ tools/install-deps.sh
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(GltfLoaderFuzzer GltfUploadFuzzer CliFuzzer PipelineCacheFuzzer CaptureStreamFuzzer CaptureFileFuzzer ShaderSourceFuzzer)
 
 # The sanitized suite's build (tools/sanitized-build.sh): after that suite, nothing is left to compile.
 tools/sanitized-build.sh "${harnesses[@]}"
@@ -31,6 +32,7 @@ for h in "${harnesses[@]}"; do
     PipelineCacheFuzzer) seeds=(tests/fuzz/seeds/pipeline_cache) ;;
     CaptureStreamFuzzer) seeds=(tests/fuzz/seeds/capture_stream) ;;
     CaptureFileFuzzer) seeds=(tests/fuzz/seeds/capture_file) ;;
+    ShaderSourceFuzzer) seeds=(tests/fuzz/seeds/shader_source) ;;
     *) seeds=(tests/fuzz/seeds/gltf)
        if [ -d ../shared/assets ]; then
          mkdir -p build-sanitize/fuzz/samples

@@ -587,10 +587,13 @@ struct ShaderBinary {
     std::span<const uint32_t> opengl;  // glslang -G, loaded through ARB_gl_spirv
 };
 
-// GLSL source compiled at createShader instead of a binary (ShaderCompiler.h: both encodings, an
-// unchanged source compiled once per process, errors as the build step's "NAME:LINE: message").
+// GLSL or HLSL source compiled at createShader instead of a binary (ShaderCompiler.h: both
+// encodings, an unchanged source compiled once per process, errors as the build step's
+// "NAME:LINE: message"). HLSL's entry point is ShaderDesc::entryPoint (PORTING: its conventions).
+enum class ShaderLanguage : uint8_t { GLSL, HLSL };
 struct ShaderSource {
-    std::string_view text;  // GLSL 450; empty: ShaderDesc::binary is used
+    std::string_view text;  // GLSL 450 or HLSL (Shader Model 5/6); empty: ShaderDesc::binary
+    ShaderLanguage language = ShaderLanguage::GLSL;
     const char* name = "shader";
     std::vector<std::string> defines;  // "NAME" or "NAME=VALUE"
     // `#include "NAME"` beyond the built-in fe_common.glsl: NAME's text, or nullopt.

@@ -1,4 +1,4 @@
-// GLSL compiled at run time (glslang as a library), for editors, material tools and hot reload:
+// GLSL and HLSL compiled at run time (glslang as a library), for editors, material tools and hot reload:
 // the same two encodings the build step (fe_add_shaders) makes, so a shader given as source
 // behaves on every backend as one compiled at build time.
 //   ShaderHandle fs = device->createShader({.stage = ShaderStage::Fragment,
@@ -26,6 +26,11 @@ namespace fe::gdi {
 struct ShaderSourceCompile {
     ShaderStage stage = ShaderStage::None;
     std::string_view text;
+    // HLSL: compiled from `entryPoint` to SPIR-V, then written as GLSL 450 (SPIRV-Cross; a
+    // texture and the sampler it is sampled with become one sampler at the texture's register),
+    // which is compiled as any GLSL: the binaries' entry point is "main".
+    ShaderLanguage language = ShaderLanguage::GLSL;
+    std::string entryPoint = "main";
     std::string name = "shader";       // in messages: "NAME:LINE: ..."
     std::vector<std::string> defines;  // "NAME" or "NAME=VALUE", as -D
     // `#include "NAME"`: the text of NAME (included from `includer`), or nullopt if there is none.
@@ -35,6 +40,9 @@ struct ShaderSourceCompile {
 
 // Both encodings of the source (ShaderBinary::vulkan and ::opengl); throws Error as above.
 ShaderBinary compileShader(const ShaderSourceCompile& source);
+// HLSL as the GLSL 450 the HLSL path compiles (what the build step's fe_add_shaders makes of a
+// .hlsl file too), for reading and tests; throws Error as above.
+std::string hlslToGlsl(const ShaderSourceCompile& source);
 
 // createShader's first step on every backend: a desc given as source (ShaderDesc::source) with
 // its binary compiled; any other desc unchanged.
