@@ -39,12 +39,18 @@ for b in vulkan gl-egl gl-osmesa; do
   "$work/examples/fe_example_threads" --backend "$b" --validation >"$work/threads_$b.txt"
   "$work/examples/fe_example_ported" --backend "$b" --validation >"$work/ported_$b.txt"
   "$work/examples/fe_example_materials" --backend "$b" --validation >"$work/materials_$b.txt"
+  # HLSL built by the installed fe-hlsl, a geometry shader, tessellation (its first line names the backend).
+  "$work/examples/fe_example_stages" --backend "$b" --validation --out "$work/stages_$b.png" | tail -n +2 >"$work/stages_$b.txt"
+  grep -qF "every stage seen" "$work/stages_$b.txt" || { echo "package consumer: the stages example missed a stage on $b"; exit 1; }
 done
 # Lists recorded on two threads and mistakes made on purpose: the same words on every backend.
 for b in gl-egl gl-osmesa; do
   diff "$work/threads_vulkan.txt" "$work/threads_$b.txt" || { echo "package consumer: vulkan and $b disagree"; exit 1; }
   diff "$work/ported_vulkan.txt" "$work/ported_$b.txt" || { echo "package consumer: vulkan and $b disagree (ported)"; exit 1; }
   diff "$work/materials_vulkan.txt" "$work/materials_$b.txt" || { echo "package consumer: vulkan and $b disagree (materials)"; exit 1; }
+  diff "$work/stages_vulkan.txt" "$work/stages_$b.txt" || { echo "package consumer: vulkan and $b disagree (stages)"; exit 1; }
+  python3 "$src/tests/check_png.py" "$work/stages_$b.png" --like "$work/stages_vulkan.png" 0.01 >/dev/null ||
+    { echo "package consumer: the stages images of vulkan and $b differ"; exit 1; }
 done
 cat "$work/threads_vulkan.txt" "$work/ported_vulkan.txt" "$work/materials_vulkan.txt"
 # What the materials example must see: vertex colours at the top corners, the texture's black
