@@ -15,6 +15,7 @@ namespace cmd = gdi::cmd;
 GlCommandList::GlCommandList(GlDevice& d, gdi::QueueKind queue)
     : dev_(d),
       queue_(queue),
+      validating_(d.info().features.validation),
       uniformLimits_(gdi::validate::uniformBindingLimits(d.info().limits)),
       storageLimits_(gdi::validate::storageBindingLimits(d.info().limits)),
       viewportLimits_(gdi::validate::viewportLimits(d.info().limits)),
@@ -303,6 +304,10 @@ void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offse
         gdi::validate::bindingLimits(offset, bindSize, limits, what);
     }
     boundBuffer(slot, kKind);
+    if (validating_) [[unlikely]] {  // the next draw checks the range (checkBindings)
+        boundBytes_[slot] = bindSize;
+        unchecked_ |= uint64_t(1) << slot;
+    }
     stream_->push(Record{slot, h, offset, bindSize});
 }
 void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
@@ -652,6 +657,15 @@ void GlCommandList::outsidePass(const char* what) const {
 void GlCommandList::checkBindings() {
     const uint64_t check = unchecked_ & requiredSlots_;
     if (!check) return;
+    if (validating_) [[unlikely]]  // each buffer covers the block declared at its slot
+        for (uint64_t m = check; m; m &= m - 1) {
+            const uint32_t slot = uint32_t(std::countr_zero(m));
+            const uint8_t kind = kinds_[slot] & ~kFeedback;
+            if (kind == 1 + uint8_t(gdi::BindingType::UniformBuffer) ||
+                kind == 1 + uint8_t(gdi::BindingType::StorageBuffer))
+                gdi::validate::rangeCoversBlock(slot, boundBytes_[slot],
+                                                pipeline_->slotBlockBytes[slot], pipeline_->label);
+        }
     if (!(check & (check - 1))) [[likely]] {  // the per-object case: one slot changed
         const uint32_t slot = uint32_t(std::countr_zero(check));
         if (!slotMatches(slot)) [[unlikely]]

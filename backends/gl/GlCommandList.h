@@ -109,6 +109,8 @@ private:
 
     GlDevice& dev_;
     const gdi::QueueKind queue_;  // what it may record (validate::queueAllows)
+    const bool validating_;       // DeviceFeatures::validation: buffer ranges against blocks
+    std::array<uint64_t, 64> boundBytes_{};  // per slot, the buffer range bound (validation)
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     const gdi::validate::ViewportLimits viewportLimits_;
     std::unique_ptr<gdi::cmd::CommandStream> stream_;

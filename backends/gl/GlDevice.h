@@ -97,6 +97,7 @@ struct Pipeline {
     std::array<uint8_t, 64> slotKinds{};  // validate::slotKinds: what each slot must be bound with
     std::array<uint8_t, 64>
         slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
+    std::array<uint32_t, 64> slotBlockBytes{};  // validate::slotBlockBytes (validation mode)
     gdi::validate::PassSignature
         signature;  // attachment formats and samples, checked at setPipeline
     bool writesDepthStencil =

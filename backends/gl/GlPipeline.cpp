@@ -347,6 +347,7 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
             p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
             p.slotKinds = gdi::validate::slotKinds(bindings);
             p.slotDimensions = gdi::validate::slotDimensions(ifaces, p.label);
+            p.slotBlockBytes = gdi::validate::slotBlockBytes(ifaces);
             p.signature = gdi::validate::pipelineSignature(d);
             p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
             p.vertexBindings = gdi::validate::vertexBindings(d);
@@ -375,6 +376,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
             p.requiredSlots = gdi::validate::requiredSlotMask(bindings);
             p.slotKinds = gdi::validate::slotKinds(bindings);
             p.slotDimensions = gdi::validate::slotDimensions({&cs.iface}, p.label);
+            p.slotBlockBytes = gdi::validate::slotBlockBytes({&cs.iface});
             return pipelines_.add(std::move(p));
         });
 }

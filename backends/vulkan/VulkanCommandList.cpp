@@ -52,6 +52,7 @@ VkAttachmentStoreOp toStore(gdi::StoreOp op) {
 VulkanCommandList::VulkanCommandList(VulkanDevice& device, gdi::QueueKind queue)
     : dev_(device),
       queue_(queue),
+      validating_(device.info().features.validation),
       uniformLimits_(gdi::validate::uniformBindingLimits(device.info().limits)),
       storageLimits_(gdi::validate::storageBindingLimits(device.info().limits)),
       viewportLimits_(gdi::validate::viewportLimits(device.info().limits)) {
@@ -968,7 +969,21 @@ void VulkanCommandList::badBindings() const {
 // Pushes the slots in push (dirty and used by the pipeline) after checking them. The common
 // per-object case, one changed slot, pushes its prepared write in place; several are gathered.
 // Required slots outside push were checked when they were last pushed and have not changed.
+// Validation mode: each buffer a draw or dispatch is about to use covers the block its pipeline
+// declares there (a warning where not: validate::rangeCoversBlock).
+void VulkanCommandList::checkRanges(uint64_t slots) const {
+    for (uint64_t m = slots; m; m &= m - 1) {
+        const uint32_t slot = uint32_t(std::countr_zero(m));
+        const uint32_t kind = bindings_[slot].kind;
+        if (kind == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || kind == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+            gdi::validate::rangeCoversBlock(slot, bindings_[slot].buffer.range,
+                                            pipeline_->slotBlockBytes[slot], pipeline_->name);
+    }
+}
+
 inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bindPoint) {
+    if (validating_) [[unlikely]]
+        checkRanges(push);
     if (push & (push - 1)) [[unlikely]]
         return pushGathered(push);
     const uint32_t slot = uint32_t(std::countr_zero(push));

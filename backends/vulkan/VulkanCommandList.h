@@ -188,6 +188,7 @@ private:
         bindings_[slot].buffer = {buffer, offset, size};
         dirtySlots_ |= uint64_t(1) << slot;
     }
+    void checkRanges(uint64_t slots) const;  // validation mode, the slots a draw pushes
     // An unbound slot has type kUnbound, so the one type check before a push also catches a
     // missing binding (no separate bound-slot mask to maintain per bind).
     static constexpr uint32_t kUnbound = VK_DESCRIPTOR_TYPE_MAX_ENUM;
@@ -200,6 +201,7 @@ private:
 
     VulkanDevice& dev_;
     const gdi::QueueKind queue_;  // what it may record (validate::queueAllows), its pools' family
+    const bool validating_;       // DeviceFeatures::validation: buffer ranges against blocks
     const gdi::validate::BindingLimits uniformLimits_, storageLimits_;
     const gdi::validate::ViewportLimits viewportLimits_;
     struct RecordingBuffer {

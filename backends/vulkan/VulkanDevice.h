@@ -115,6 +115,7 @@ struct Pipeline {
     std::vector<gdi::validate::VertexBinding> vertexBindings;  // what each draw checks it may read
     std::array<uint8_t, 64>
         slotDimensions{};  // validate::slotDimensions: the texture kind a slot takes
+    std::array<uint32_t, 64> slotBlockBytes{};  // validate::slotBlockBytes (validation mode)
     // Dynamic state set to the pipeline's values by setPipeline (CommandList may change it).
     std::array<float, 4> blendConstant{};
     uint8_t stencilReference = 0;

@@ -357,6 +357,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
     p.writesDepthStencil = gdi::validate::writesDepthStencil(d);
     p.vertexBindings = gdi::validate::vertexBindings(d);
     p.slotDimensions = dimensions;
+    p.slotBlockBytes = gdi::validate::slotBlockBytes(ifaces);
     std::copy(std::begin(d.blendConstant), std::end(d.blendConstant), p.blendConstant.begin());
     p.stencilReference = d.depthStencil.stencilReference;
     p.depthBias = {d.raster.depthBiasConstant, d.raster.depthBiasSlope, d.raster.depthBiasClamp};
@@ -404,9 +405,11 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     gdi::validate::specialization(d.specialization, {&cs.iface}, name);
     const StageSpecialization spec(d.specialization);
     const std::array<uint8_t, 64> dimensions = gdi::validate::slotDimensions({&cs.iface}, name);
+    const std::array<uint32_t, 64> blockBytes = gdi::validate::slotBlockBytes({&cs.iface});
     Pipeline p = makeLayout(
         device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name, info_.limits),
         d.debugName, constantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
+    p.slotBlockBytes = blockBytes;
     p.slotDimensions = dimensions;
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

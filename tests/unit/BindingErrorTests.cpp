@@ -725,3 +725,54 @@ TEST_P(DeviceErrors, StateOutsideAPassAndDoubleDestroy) {
     EXPECT_EQ(d.readBuffer(b, 0, 4)[0], 7);
     d.destroy(b);
 }
+
+// A uniform range smaller than the block the pipeline declares at its slot: a warning in
+// validation mode (Vulkan allows it while the shader stays inside) at the draw that uses it,
+// whether the buffer or the pipeline came last; a whole block, or a short range rebound before
+// any draw, gives none. (The reads past the range stay inside the 256-byte buffer.)
+TEST_P(DeviceErrors, RangeSmallerThanTheBlockWarns) {
+    auto vs =
+        device->createShader({.stage = ShaderStage::Vertex,
+                              .binary = fe::shaders::find("conformance/fullscreen_ubo.vert")});
+    auto fs = device->createShader({.stage = ShaderStage::Fragment,
+                                    .binary = fe::shaders::find("conformance/ubo_color.frag")});
+    // Each message is printed once a process: the backend in the name makes it this test's own.
+    const std::string name = "32-byte block on " + GetParam();
+    auto p = device->createGraphicsPipeline({.vertexShader = vs,
+                                             .fragmentShader = fs,
+                                             .colorFormats = {Format::RGBA8},
+                                             .debugName = name.c_str()});
+    auto ubo = device->createBuffer({.size = 256, .usage = BufferUsage::Uniform});
+    auto t = device->createTexture({.width = 8, .height = 8, .usage = TextureUsage::RenderTarget});
+    auto cmd = device->createCommandList();
+    cmd->beginRenderPass({.colors = {{.texture = t}}});
+    const uint64_t before = validate::warningCount();
+    ::testing::internal::CaptureStderr();
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, ubo, 0, 16);  // bound under the pipeline
+    cmd->draw(3);
+    EXPECT_EQ(validate::warningCount(), before + 1);
+    cmd->setUniformBuffer(0, ubo, 0, 32);  // the whole block
+    cmd->draw(3);
+    EXPECT_EQ(validate::warningCount(), before + 1);
+    cmd->setUniformBuffer(0, ubo, 0, 16);
+    cmd->setUniformBuffer(0, ubo, 32, 32);  // rebound before the draw: fine
+    cmd->draw(3);
+    EXPECT_EQ(validate::warningCount(), before + 1);
+    cmd->setUniformBuffer(0, ubo, 64, 16);
+    cmd->setPipeline(p);  // the pipeline set over the short binding
+    cmd->draw(3);
+    EXPECT_EQ(validate::warningCount(), before + 2);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find("fe validation warning: slot 0 holds a range of 16 bytes where pipeline '" +
+                       name + "' declares a block of 32 bytes"),
+              std::string::npos)
+        << err;
+    cmd->endRenderPass();
+    cmd->reset();
+    device->destroy(p);
+    device->destroy(vs);
+    device->destroy(fs);
+    device->destroy(ubo);
+    device->destroy(t);
+}

@@ -2,6 +2,10 @@
 // fragment outputs, blending, workgroups and specialization constants.
 #include "ValidationSupport.h"
 
+#include <atomic>
+
+#include "fe/gdi/MessageLog.h"
+
 namespace fe::gdi::validate {
 
 namespace {
@@ -134,6 +138,33 @@ void graphicsPipelineDesc(const GraphicsPipelineDesc& d, const DeviceInfo& devic
     bindingList(d.bindings, what);
     stagesOfPipeline(d, device, what);
 }
+
+std::array<uint32_t, 64> slotBlockBytes(const std::vector<const ShaderInterface*>& shaders) {
+    std::array<uint32_t, 64> bytes{};
+    for (const ShaderInterface* s : shaders)
+        for (const ShaderInterface::Binding& b :
+             s ? s->bindings : std::vector<ShaderInterface::Binding>{})
+            if (b.slot < 64 &&
+                (b.type == BindingType::UniformBuffer || b.type == BindingType::StorageBuffer))
+                bytes[b.slot] = std::max(bytes[b.slot], b.blockBytes);
+    return bytes;
+}
+
+namespace {
+std::atomic<uint64_t> warnings{0};
+}
+
+void rangeSmallerThanBlock(uint32_t slot, uint64_t bound, uint32_t declared,
+                           const std::string& pipeline) {
+    static MessageLog log("fe validation");
+    ++warnings;
+    log.report("warning", "slot " + std::to_string(slot) + " holds a range of " +
+                              std::to_string(bound) + " bytes where pipeline '" + pipeline +
+                              "' declares a block of " + std::to_string(declared) +
+                              " bytes: a read past the range is undefined");
+}
+
+uint64_t warningCount() { return warnings.load(); }
 
 std::vector<PipelineStage> graphicsStages(const GraphicsPipelineDesc& d) {
     std::vector<PipelineStage> out;

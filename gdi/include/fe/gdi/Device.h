@@ -163,6 +163,10 @@
 //    writes a block by member name, as a port from glUniform* needs:
 //      UniformBlock material(device->shaderInterface(fs), "Material");
 //      material.set("tint", {1.0f, 0.5f, 0.0f});  device->writeBuffer(ubo, 0, material.bytes());
+//    With validation, a uniform or storage range smaller than the block the pipeline declares at
+//    its slot is a warning on stderr, once per message ("fe validation warning: slot 0 holds a
+//    range of 16 bytes where pipeline 'x' declares a block of 32 bytes"; validate::warningCount):
+//    Vulkan allows the smaller range while the shader reads no further, so it is not an Error.
 // Shown by: pipeline_layout_from_shader, binding_mismatch_errors, storage_textures_at_any_slot,
 // format_caps, vertex_formats, uniform_block_layout, geometry_stage, tessellation_stages.
 //

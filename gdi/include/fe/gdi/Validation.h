@@ -369,6 +369,22 @@ private:
 void querySubmission(std::span<const QueryRecording* const> lists,
                      const std::function<bool(uint32_t set, uint32_t index)>& writtenBefore);
 
+// Bytes of the uniform or storage block each slot's shaders declare (the largest over the stages;
+// a runtime-sized array counted as empty; 0: no block there).
+std::array<uint32_t, 64> slotBlockBytes(const std::vector<const ShaderInterface*>& shaders);
+// Validation mode: a range bound at `slot` smaller than the block the pipeline declares there.
+// Vulkan allows it while the shader reads no further, so it is a warning, not an Error: printed
+// once per message on stderr ("fe validation warning: ..."), counted in warningCount().
+[[gnu::cold]] void rangeSmallerThanBlock(uint32_t slot, uint64_t bound, uint32_t declared,
+                                         const std::string& pipeline);
+inline void rangeCoversBlock(uint32_t slot, uint64_t bound, uint32_t declared,
+                             const std::string& pipeline) {
+    if (bound < declared) [[unlikely]]
+        rangeSmallerThanBlock(slot, bound, declared, pipeline);
+}
+// Warnings reported in this process (each time, repeats included).
+uint64_t warningCount();
+
 // A graphics pipeline's shaders in stage order: vertex, tessellation control and evaluation,
 // geometry, fragment (those given). `kind` names the handle in lookups ("geometry shader").
 struct PipelineStage {
