@@ -271,6 +271,11 @@ std::string spirvToGlsl(const std::vector<uint32_t>& spirv, const std::string& n
     spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_SUPPORT_NONZERO_BASE_INSTANCE,
                                    SPVC_FALSE);  // no uniform of its own: FE_INSTANCE_ID below
     spvc_compiler_install_compiler_options(comp, options);
+    // Texture.Load (texelFetch) uses no sampler: SPIRV-Cross pairs it with a dummy one, which
+    // the device's combined binding at the texture's slot stands for.
+    spvc_variable_id dummy = 0;
+    if (spvc_compiler_build_dummy_sampler_for_combined_images(comp, &dummy) != SPVC_SUCCESS)
+        throw fail("pairing its loaded textures with a sampler failed");
     if (spvc_compiler_build_combined_image_samplers(comp) != SPVC_SUCCESS)
         throw fail("combining its textures and samplers failed");
     const spvc_combined_image_sampler* combined = nullptr;
@@ -283,8 +288,8 @@ std::string spirvToGlsl(const std::vector<uint32_t>& spirv, const std::string& n
         if (++samplersOf[combined[i].image_id] > 1)
             throw Error("shader '" + name + "': texture '" +
                         spvc_compiler_get_name(comp, combined[i].image_id) +
-                        "' is sampled with two samplers; the device binds one sampler per "
-                        "texture slot (setTexture)");
+                        "' is sampled with two samplers (Load counting as one); the device binds "
+                        "one sampler per texture slot (setTexture)");
         spvc_compiler_set_decoration(comp, combined[i].combined_id, SpvDecorationBinding, binding);
         spvc_compiler_set_decoration(comp, combined[i].combined_id, SpvDecorationDescriptorSet, 0);
     }

@@ -230,8 +230,8 @@ std::vector<CaseImage> runtimeHlslCompile(Device& d) {
                 "t.Sample(a, uv) + t.Sample(b, uv);\n}\n",
                 "two.hlsl", "main");
         },
-        "shader 'two.hlsl': texture 't' is sampled with two samplers; the device binds one "
-        "sampler per texture slot (setTexture)");
+        "shader 'two.hlsl': texture 't' is sampled with two samplers (Load counting as one); the "
+        "device binds one sampler per texture slot (setTexture)");
     // Sources on which glslang 11.13's HLSL front end dereferences null (found by
     // ShaderSourceFuzzer): refused with an Error naming the shader, and the process goes on (the
     // translation runs in a child process; the first is also refused before glslang sees it).

@@ -93,6 +93,9 @@ constexpr const char* kUsage =
     "      [--frames N] [--screenshot FILE.png] [--debug-view TEXTURE|\"light count\"|\"lights evaluated\"] [--no-ui] [--validation]\n"
     "      [--switch-backend-at FRAME] (tests: restart on the other API there, as the panel's buttons do)\n"
     "      [--input-script FRAME:KEY|FRAME:drop=PATH,...] (tests: keys pressed and files dropped at those frames)\n"
+    "      [--post-shader FILE.frag|FILE.frag.hlsl]: a fragment shader over the image (it samples binding 0 /\n"
+    "      register t0 at gl_FragCoord / SV_Position), compiled again whenever the file changes; an error keeps\n"
+    "      the last good version and is printed and shown in the panel\n"
     "      [--animation INDEX|NAME] [--camera INDEX|NAME]: an animated file plays (its first animation unless named),\n"
     "      looped; the panel picks the animation, plays, pauses, loops and scrubs it, and lists the file's cameras\n"
     "      every look option of render in its units: --illum-scale --msaa --ibl-samples --ibl-prefiltered --shadows\n"
@@ -267,6 +270,9 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--input-script",
      {"FRAME:KEY,...",
       "tests: keys (Esc, F12, F1, R, F) or drop=PATH as if given at those frames"}},
+    {"--post-shader",
+     {"FILE",
+      "a fragment shader (GLSL, or HLSL for .hlsl) over the image, reloaded when it changes"}},
     {"--no-ui", {"", "no panel"}},
     {"--validation", {"", "the Khronos validation layer / GL debug output on"}},
     {"--sweep", {"FILE.json", "the cases to measure (bench/sweeps/ has the documented ones)"}},

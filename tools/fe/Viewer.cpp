@@ -3,7 +3,9 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include "assets/Environment.h"
 #include "fe/gdi/Backend.h"
 #include "integration/SceneRenderer.h"
+#include "PostShader.h"
 #include "integration/UiRenderer.h"
 #include "render/TechniqueRenderer.h"
 
@@ -58,6 +61,8 @@ struct OrbitCamera {
 // The panel's column at the window's left: the scene is drawn beside it, never under it.
 constexpr uint32_t kPanelWidth = 300;
 
+std::atomic<bool> interrupted{false};  // set by SIGINT / SIGTERM (runViewer)
+
 class Viewer {
 public:
     explicit Viewer(const ViewerOptions& o) : options_(o) {
@@ -89,8 +94,12 @@ public:
     int run() {
         bool open = true;
         auto last = Clock::now();
-        for (uint32_t frame = 0; open && (options_.frames == 0 || frame < options_.frames);
-             ++frame) {
+        uint32_t frame = 0;
+        for (; open && (options_.frames == 0 || frame < options_.frames); ++frame) {
+            if (interrupted.load()) {  // Ctrl-C or SIGTERM: end as the last frame would
+                std::cout << "fe view: interrupted after " << frame << " frame(s)\n";
+                break;
+            }
             const auto now = Clock::now();
             const float dt = std::max(1e-4f, std::chrono::duration<float>(now - last).count());
             last = now;
@@ -202,7 +211,15 @@ private:
     // What the window shows: the scene texture, or beside an open panel a window-sized texture
     // the scene is copied into at the panel's right.
     gdi::TextureHandle composeWindow() {
-        const gdi::TextureHandle display = renderer_->displayTexture();
+        gdi::TextureHandle display = renderer_->displayTexture();
+        if (post_) {
+            if (const std::optional<std::string> news = post_->refresh()) {
+                std::cout << "fe view: post shader " << options_.postShader << ": " << *news
+                          << std::endl;
+                message_ = *news == "compiled" ? "" : *news;
+            }
+            display = post_->apply(display);
+        }
         if (!panelDocked()) return display;
         const gdi::TextureDesc d = device_->desc(display);
         if (!windowTexture_ || device_->desc(windowTexture_).width != options_.width) {
@@ -323,11 +340,14 @@ private:
         device_ = gdi::createDevice(
             {.backend = backend, .validation = options_.validation, .window = true});
         ui_ = std::make_unique<render::UiRenderer>(*device_);
+        if (!options_.postShader.empty())
+            post_ = std::make_unique<PostShader>(*device_, options_.postShader);
         rebuildRenderer();
     }
     void stopDevice() {
         if (windowTexture_) device_->destroy(windowTexture_);
         windowTexture_ = {};
+        post_.reset();
         renderer_.reset();
         ui_.reset();
         device_.reset();
@@ -609,6 +629,7 @@ private:
     std::unique_ptr<gdi::Device> device_;
     std::unique_ptr<render::UiRenderer> ui_;
     std::unique_ptr<render::SceneRenderer> renderer_;
+    std::unique_ptr<PostShader> post_;  // --post-shader
     std::vector<graph::PassTiming> timings_;
     double frameMs_ = 0;
     int32_t animation_ = -1;  // playing (Scene::animations), -1: the rest pose
@@ -627,6 +648,10 @@ private:
 }  // namespace
 
 int runViewer(const ViewerOptions& options) {
+    // Ctrl-C (and SIGTERM) end the loop after the frame in progress: the screenshot is written
+    // and the device closed as after the last frame.
+    std::signal(SIGINT, [](int) { interrupted.store(true); });
+    std::signal(SIGTERM, [](int) { interrupted.store(true); });
     Viewer viewer(options);
     return viewer.run();
 }

@@ -34,6 +34,8 @@ struct ViewerOptions {
     // Tests: input as if typed or dropped at a frame (from 0), "FRAME:KEY" (Esc, F12, F1, R, F)
     // or "FRAME:drop=PATH", comma-separated: the keys' and drops' handling without a person.
     std::string inputScript;
+    // A fragment shader over the displayed image, recompiled when its file changes (PostShader.h).
+    std::string postShader;
     uint32_t switchBackendAt =
         0;  // tests: at this frame, switch to the other API as the panel does
 };

@@ -263,7 +263,7 @@ double parsePositive(const std::string& text, const char* what) {
 const std::vector<std::string> kViewOptions = {
     "--backend",      "--technique",  "--size",       "--environment",
     "--frames",       "--screenshot", "--debug-view", "--switch-backend-at",
-    "--input-script", "--animation",  "--camera"};
+    "--input-script", "--animation",  "--camera",     "--post-shader"};
 
 std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
     a.insert(a.end(), b.begin(), b.end());
@@ -309,6 +309,9 @@ int cmdView(const Args& a) {
         o.switchBackendAt =
             parseUint(a.options.at("--switch-backend-at"), "--switch-backend-at", 1, 1000000);
     o.inputScript = opt("--input-script", "");
+    o.postShader = opt("--post-shader", "");
+    if (!o.postShader.empty() && !std::filesystem::is_regular_file(o.postShader))
+        throw UsageError("--post-shader: no such file '" + o.postShader + "'");
     {  // FRAME:KEY or FRAME:drop=PATH, comma-separated: checked here, a usage error
         std::stringstream script(o.inputScript);
         for (std::string entry; std::getline(script, entry, ',');) {
@@ -328,8 +331,9 @@ int cmdView(const Args& a) {
     // The look as fe render reads it: the same options, units and checks (fe render's --size
     // and --frames mean other things here, and a window's technique starts as deferred-tiled).
     Args look = a;
-    for (const char* viewOnly : {"--size", "--frames", "--screenshot", "--switch-backend-at",
-                                 "--input-script", "--backend", "--no-ui", "--validation"})
+    for (const char* viewOnly :
+         {"--size", "--frames", "--screenshot", "--switch-backend-at", "--input-script",
+          "--backend", "--no-ui", "--validation", "--post-shader"})
         look.options.erase(viewOnly);
     look.options["--technique"] = o.technique;
     look.options["--size"] = std::to_string(o.width) + "x" + std::to_string(o.height);
