@@ -116,6 +116,18 @@ std::shared_mutex& glslangInUse() {
     return m;
 }
 
+// The source's defines ("NAME" or "NAME=VALUE") as the preamble's #define lines, as -D does.
+std::string definesOf(const ShaderSourceCompile& s) {
+    std::string lines;
+    for (const std::string& d : s.defines) {
+        const size_t eq = d.find('=');
+        lines += "#define " +
+                 (eq == std::string::npos ? d + " 1" : d.substr(0, eq) + " " + d.substr(eq + 1)) +
+                 "\n";
+    }
+    return lines;
+}
+
 // One encoding: FE_VULKAN for Vulkan 1.2 SPIR-V, FE_OPENGL for GL 4.5's ARB_gl_spirv (as
 // glslangValidator -V and -G with those defines).
 std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Includer& includer) {
@@ -126,13 +138,8 @@ std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Incl
     const int length = int(s.text.size());
     const char* name = s.name.c_str();
     shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
-    std::string preamble = vulkan ? "#define FE_VULKAN 1\n" : "#define FE_OPENGL 1\n";
-    for (const std::string& d : s.defines) {
-        const size_t eq = d.find('=');
-        preamble +=
-            "#define " +
-            (eq == std::string::npos ? d + " 1" : d.substr(0, eq) + " " + d.substr(eq + 1)) + "\n";
-    }
+    const std::string preamble =
+        (vulkan ? "#define FE_VULKAN 1\n" : "#define FE_OPENGL 1\n") + definesOf(s);
     shader.setPreamble(preamble.c_str());
     if (vulkan) {
         shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
@@ -211,13 +218,7 @@ std::vector<uint32_t> hlslToSpirv(const ShaderSourceCompile& s, Includer& includ
     const int length = int(s.text.size());
     const char* name = s.name.c_str();
     shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
-    std::string preamble;
-    for (const std::string& d : s.defines) {
-        const size_t eq = d.find('=');
-        preamble +=
-            "#define " +
-            (eq == std::string::npos ? d + " 1" : d.substr(0, eq) + " " + d.substr(eq + 1)) + "\n";
-    }
+    const std::string preamble = definesOf(s);
     shader.setPreamble(preamble.c_str());
     shader.setEntryPoint(s.entryPoint.c_str());
     shader.setSourceEntryPoint(s.entryPoint.c_str());

@@ -88,30 +88,27 @@ gdi::TextureHandle PostShader::apply(gdi::TextureHandle input) {
         if (fs_) makePipeline();
     }
     if (!pipeline_) return input;
-    if (!target_ || device_.desc(target_).width != d.width ||
-        device_.desc(target_).height != d.height || device_.desc(target_).format != d.format) {
-        if (target_) device_.destroy(target_);
-        target_ = device_.createTexture(
-            {.format = d.format,
-             .width = d.width,
-             .height = d.height,
-             .usage = gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
-                      gdi::TextureUsage::CopySrc | gdi::TextureUsage::CopyDst,
-             .debugName = "fe view post shader output"});
-    }
+    // `t` as a texture of the input's size and format with this usage, made anew when it is not.
+    auto sized = [&](gdi::TextureHandle& t, gdi::TextureUsage usage, const char* name) {
+        if (t && device_.desc(t).width == d.width && device_.desc(t).height == d.height &&
+            device_.desc(t).format == d.format)
+            return;
+        if (t) device_.destroy(t);
+        t = device_.createTexture({.format = d.format,
+                                   .width = d.width,
+                                   .height = d.height,
+                                   .usage = usage,
+                                   .debugName = name});
+    };
+    sized(target_,
+          gdi::TextureUsage::RenderTarget | gdi::TextureUsage::Sampled |
+              gdi::TextureUsage::CopySrc | gdi::TextureUsage::CopyDst,
+          "fe view post shader output");
     auto cmd = device_.createCommandList();
     gdi::TextureHandle sampled = input;
     if (!any(d.usage, gdi::TextureUsage::Sampled)) {  // a display texture: copied to be read
-        if (!source_ || device_.desc(source_).width != d.width ||
-            device_.desc(source_).height != d.height || device_.desc(source_).format != d.format) {
-            if (source_) device_.destroy(source_);
-            source_ = device_.createTexture(
-                {.format = d.format,
-                 .width = d.width,
-                 .height = d.height,
-                 .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::CopyDst,
-                 .debugName = "fe view post shader input"});
-        }
+        sized(source_, gdi::TextureUsage::Sampled | gdi::TextureUsage::CopyDst,
+              "fe view post shader input");
         cmd->copyTexture(source_, input);
         sampled = source_;
     }
