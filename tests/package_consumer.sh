@@ -42,6 +42,11 @@ for b in vulkan gl-egl gl-osmesa; do
   # HLSL built by the installed fe-hlsl, a geometry shader, tessellation (its first line names the backend).
   "$work/examples/fe_example_stages" --backend "$b" --validation --out "$work/stages_$b.png" | tail -n +2 >"$work/stages_$b.txt"
   grep -qF "every stage seen" "$work/stages_$b.txt" || { echo "package consumer: the stages example missed a stage on $b"; exit 1; }
+  for want in "mistake 1: graphics pipeline 'triangles': tessellation shaders draw patches" \
+              "mistake 2: pipeline 'no geometry': geometryShader is not a geometry shader" \
+              "mistake 3: beginRenderPass: this list is for the copy queue"; do
+    grep -qF "$want" "$work/stages_$b.txt" || { echo "package consumer: the stages example lacks '$want' on $b"; exit 1; }
+  done
 done
 # Lists recorded on two threads and mistakes made on purpose: the same words on every backend.
 for b in gl-egl gl-osmesa; do

@@ -7,10 +7,16 @@
 //    terrain.tese).
 //   fe_example_stages [--backend NAME] [--out FILE.png] [--validation]
 // Prints what it sees (each part's pixels found by colour) in words that are the same on every
-// backend; the images agree within a few pixels (tests/check_png.py --like).
+// backend; the images agree within a few pixels (tests/check_png.py --like). The floor's patches
+// are recorded on a second thread into a list of their own, and the cube's upload goes through
+// the copy queue, which the frame waits for. Then three mistakes on purpose, each printed: the
+// same gdi::Error on every backend.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <functional>
 #include <exception>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -95,12 +101,22 @@ int main(int argc, char** argv) {
         const BufferHandle frameUbo = o.add(device->createBuffer(
             {.size = sizeof frame, .usage = BufferUsage::Uniform, .debugName = "frame"},
             bytesOf(frame)));
+        // The cube's vertices reach the GPU through the copy queue (a staging buffer, a copy), and
+        // the frame waits for that submission's fence.
         const std::vector<Vertex> mesh = cube();
+        const uint64_t meshBytes = mesh.size() * sizeof(Vertex);
+        const BufferHandle staging = o.add(device->createBuffer({.size = meshBytes,
+                                                                 .usage = BufferUsage::CopySrc,
+                                                                 .access = MemoryAccess::Upload,
+                                                                 .debugName = "cube staging"}));
+        std::memcpy(device->map(staging), mesh.data(), meshBytes);
         const BufferHandle meshVb =
-            o.add(device->createBuffer({.size = mesh.size() * sizeof(Vertex),
-                                        .usage = BufferUsage::Vertex,
-                                        .debugName = "cube"},
-                                       bytesOf(mesh)));
+            o.add(device->createBuffer({.size = meshBytes,
+                                        .usage = BufferUsage::Vertex | BufferUsage::CopyDst,
+                                        .debugName = "cube"}));
+        auto upload = device->createCommandList({.queue = QueueKind::Copy});
+        upload->copyBuffer(meshVb, 0, staging, 0, meshBytes);
+        const FenceValue uploaded = device->submit(*upload);
         std::vector<glm::vec2>
             patches;  // 4 x 4 patches over [-2, 2]^2, control points in quad order
         for (int z = 0; z < 4; ++z)
@@ -162,20 +178,33 @@ int main(int argc, char** argv) {
                                          .height = kHeight,
                                          .usage = TextureUsage::RenderTarget,
                                          .debugName = "stages depth"}));
+        const RenderPassDesc pass{.colors = {{.texture = color, .load = LoadOp::Load}},
+                                  .depth = {.texture = depthTarget, .load = LoadOp::Load}};
+        // The floor recorded on another thread, into a list submitted first.
+        std::future<std::unique_ptr<CommandList>> floor = std::async(std::launch::async, [&] {
+            auto list = device->createCommandList();
+            list->beginRenderPass(
+                {.colors = {{.texture = color, .clear = {0.02f, 0.02f, 0.03f, 1}}},
+                 .depth = {.texture = depthTarget, .clearDepth = 1.0f}});
+            list->setUniformBuffer(0, frameUbo);
+            list->setPipeline(terrain);
+            list->setVertexBuffer(0, patchVb);
+            list->draw(uint32_t(patches.size()));
+            list->endRenderPass();
+            return list;
+        });
         auto cmd = device->createCommandList();
-        cmd->beginRenderPass({.colors = {{.texture = color, .clear = {0.02f, 0.02f, 0.03f, 1}}},
-                              .depth = {.texture = depthTarget, .clearDepth = 1.0f}});
+        cmd->beginRenderPass(pass);
         cmd->setUniformBuffer(0, frameUbo);
-        cmd->setPipeline(terrain);
-        cmd->setVertexBuffer(0, patchVb);
-        cmd->draw(uint32_t(patches.size()));
         cmd->setPipeline(shaded);
         cmd->setVertexBuffer(0, meshVb);
         cmd->draw(uint32_t(mesh.size()));
         cmd->setPipeline(normals);
         cmd->draw(uint32_t(mesh.size()));
         cmd->endRenderPass();
-        device->wait(device->submit(*cmd));
+        std::unique_ptr<CommandList> floorList = floor.get();
+        CommandList* frameLists[] = {floorList.get(), cmd.get()};
+        device->wait(device->submit(frameLists, {.waitFor = uploaded}));
         const Image image = device->readTexture(color);
         writePng(image, out);
 
@@ -199,6 +228,41 @@ int main(int argc, char** argv) {
         std::printf("the floor (tessellated, displaced) covers %s, rising in places: %s\n",
                     terrain_ > total / 5 ? "more than 20 %" : "too little",
                     terrainBright > 100 && terrainBright < terrain_ ? "yes" : "no");
+        // Mistakes on purpose: each refused before any native call, in the same words everywhere.
+        auto mistake = [&](int n, const std::function<void()>& f) {
+            try {
+                f();
+                std::printf("mistake %d: not refused\n", n);
+            } catch (const Error& e) {
+                std::printf("mistake %d: %s\n", n, e.what());
+            }
+        };
+        mistake(1, [&] {  // tessellation shaders drawing triangles
+            o.add(device->createGraphicsPipeline(
+                {.vertexShader = shader(o, ShaderStage::Vertex, "stages/terrain.vert"),
+                 .fragmentShader = shader(o, ShaderStage::Fragment, "stages/terrain.frag"),
+                 .tessControlShader = shader(o, ShaderStage::TessControl, "stages/terrain.tesc"),
+                 .tessEvaluationShader =
+                     shader(o, ShaderStage::TessEvaluation, "stages/terrain.tese"),
+                 .patchControlPoints = 4,
+                 .colorFormats = {Format::RGBA8},
+                 .debugName = "triangles"}));
+        });
+        mistake(2, [&] {  // a vertex shader where the geometry shader goes
+            o.add(device->createGraphicsPipeline(
+                {.vertexShader = shader(o, ShaderStage::Vertex, "stages/normals.vert"),
+                 .fragmentShader = shader(o, ShaderStage::Fragment, "stages/flat.frag"),
+                 .geometryShader = shader(o, ShaderStage::Vertex, "stages/normals.vert"),
+                 .vertexBuffers = {meshLayout},
+                 .colorFormats = {Format::RGBA8},
+                 .debugName = "no geometry"}));
+        });
+        mistake(3, [&] {  // a render pass on a copy-queue list, on another thread
+            std::async(std::launch::async, [&] {
+                auto list = device->createCommandList({.queue = QueueKind::Copy});
+                list->beginRenderPass(pass);
+            }).get();
+        });
         const bool seen = mesh_ > total / 20 && normals_ > 100 && terrain_ > total / 5 &&
                           terrainBright > 100 && terrainBright < terrain_;
         std::printf("%s\n", seen ? "every stage seen" : "a stage is missing from the image");
