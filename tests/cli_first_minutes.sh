@@ -108,7 +108,7 @@ if sys.argv[2] == "vulkan":
 EOF2
 
 # An option the technique does not use: one warning, one form, and the render goes on.
-for case in "forward --illum-scale 2" "deferred --msaa 4" "deferred --one-pass-culling" "forward --temporal" "forward --rates punctual=2"; do
+for case in "forward --illum-scale 2" "redeferred --msaa 4" "deferred --one-pass-culling" "forward --temporal" "forward --rates punctual=2"; do
   set -- $case
   name=unused_${2#--}
   run "$name" 0 render builtin:triangle "${small[@]}" --out "$out/$name.png" --technique "$@"

@@ -156,13 +156,20 @@ gdi::TextureHandle GlDevice::createTextureView(gdi::TextureHandle h,
             static constexpr GLenum kParams[] = {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G,
                                                  GL_TEXTURE_SWIZZLE_B, GL_TEXTURE_SWIZZLE_A};
             static constexpr GLint kChannels[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+            // GL stores BGRA8 as RGBA8 (its BGRA is a transfer order): a view across the channel
+            // orders reads red and blue swapped, as Vulkan's view of the other byte order does.
+            const bool swapRedBlue = gdi::channelOrdersDiffer(parent.desc.format, t.desc.format);
+            auto stored = [&](size_t channel) {
+                return swapRedBlue && (channel == 0 || channel == 2) ? kChannels[2 - channel]
+                                                                     : kChannels[channel];
+            };
             for (size_t i = 0; i < 4; ++i) {
                 const gdi::Swizzle c = v.swizzle[i];
-                const GLint value = c == gdi::Swizzle::Identity ? kChannels[i]
+                const GLint value = c == gdi::Swizzle::Identity ? stored(i)
                                     : c == gdi::Swizzle::Zero   ? GL_ZERO
                                     : c == gdi::Swizzle::One
                                         ? GL_ONE
-                                        : kChannels[int(c) - int(gdi::Swizzle::R)];
+                                        : stored(size_t(int(c) - int(gdi::Swizzle::R)));
                 if (value != kChannels[i]) gl_.TextureParameteri(t.name, kParams[i], value);
             }
             if (!t.label.empty()) gl_.ObjectLabel(GL_TEXTURE, t.name, -1, t.label.c_str());

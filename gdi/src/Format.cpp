@@ -110,6 +110,15 @@ Format srgbPair(Format f) {
 // copy or view into another 4-byte format would see the bytes differently there.
 static bool isBgra(Format f) { return f == Format::BGRA8 || f == Format::BGRA8_SRGB; }
 
+bool channelOrdersDiffer(Format a, Format b) {
+    auto isRgba = [](Format f) { return f == Format::RGBA8 || f == Format::RGBA8_SRGB; };
+    return (isBgra(a) && isRgba(b)) || (isRgba(a) && isBgra(b));
+}
+
+bool viewFormatsCompatible(Format a, Format b) {
+    return formatsCompatible(a, b) || channelOrdersDiffer(a, b);
+}
+
 bool formatsCompatible(Format a, Format b) {
     if (a == b || (srgbPair(a) == b && b != Format::Undefined)) return true;
     if (isBgra(a) || isBgra(b)) return false;

@@ -426,10 +426,6 @@ void RenderGraph::compile(const CompileOptions& options) {
                 throw gdi::Error("render graph: pass '" + pass.name + "' renders into layer " +
                                  std::to_string(a.layer) + " of '" + t.name + "', which has " +
                                  std::to_string(t.desc.depthOrLayers));
-            if (t.desc.sampleCount > 1 && a.state == gdi::ResourceState::ShaderRead)
-                throw gdi::Error("render graph: pass '" + pass.name +
-                                 "' samples multisampled texture '" + t.name +
-                                 "'; resolve it into a single-sample texture first");
             // Storage images are addressed by the shader and copies by their regions, not a
             // render area: any sizes may mix.
             if (!isTarget(a.state)) continue;

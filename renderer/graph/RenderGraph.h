@@ -48,7 +48,8 @@ struct TransientTextureDesc {
     gdi::Format format = gdi::Format::RGBA8;
     uint32_t width = 1;
     uint32_t height = 1;
-    uint32_t sampleCount = 1;  // > 1: a multisampled target, read only through a resolve
+    // > 1: a multisampled target, read by a resolve or sampled per sample (sampler2DMS)
+    uint32_t sampleCount = 1;
     // Layered textures (shadow cascades in a Texture2DArray, a point light's TextureCube): each
     // pass renders into one layer (PassBuilder's `layer`) and shaders sample every layer.
     gdi::TextureDimension dimension = gdi::TextureDimension::Texture2D;

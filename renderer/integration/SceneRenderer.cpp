@@ -67,7 +67,8 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene,
         for (const TechniqueInfo& t : techniques())
             if (t.msaa) taking += (taking.empty() ? "" : ", ") + std::string(t.name);
         throw gdi::Error("technique " + s.technique +
-                         " does not take --msaa: it shades from a single-sample G-buffer (use " +
+                         " does not take --msaa: it sums light at the I-buffer's rate from a "
+                         "single-sample G-buffer (use " +
                          taking + ")");
     }
     if (s.ibl() && !scene.environment)

@@ -6,10 +6,11 @@
 namespace fe::render {
 
 DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), objects_(c.device) {
-    volumes_ = std::make_unique<LightVolumes>(c.device, "scene/deferred_light.frag",
-                                              std::vector{kRadianceFormat});
+    volumes_ = std::make_unique<LightVolumes>(
+        c.device, GBuffer::shader(c, "scene/deferred_light.frag"), std::vector{kRadianceFormat});
     emissiveFs_ = objects_.add(c.device.createShader(
-        {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/emissive.frag")}));
+        {.stage = gdi::ShaderStage::Fragment,
+         .binary = shaders::find(GBuffer::shader(c, "scene/emissive.frag"))}));
     emissive_ = objects_.add(
         c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs,
                                          .fragmentShader = emissiveFs_,
@@ -22,7 +23,8 @@ DeferredRenderer::DeferredRenderer(TechniqueContext& c) : TechniqueRenderer(c), 
                                          .debugName = "emissive"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(
-            c, "scene/deferred_light_shadowed.frag", "scene/deferred_light_shadowed_cube.frag",
+            c, GBuffer::shader(c, "scene/deferred_light_shadowed.frag"),
+            GBuffer::shader(c, "scene/deferred_light_shadowed_cube.frag"),
             std::vector{kRadianceFormat});
     if (c.settings.ibl())
         ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag",

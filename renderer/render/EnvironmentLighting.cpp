@@ -8,7 +8,8 @@ namespace fe::render {
 EnvironmentLighting::EnvironmentLighting(TechniqueContext& c, const char* fragmentShader,
                                          std::vector<gdi::Format> formats, bool albedo)
     : objects_(c.device), ctx_(c), albedo_(albedo) {
-    const std::string shader = c.environmentLight.shader(fragmentShader);
+    // The multisampled variant under --msaa (the deferred family; the others refuse --msaa).
+    const std::string shader = GBuffer::shader(c, c.environmentLight.shader(fragmentShader), true);
     fs_ = objects_.add(c.device.createShader(
         {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(shader)}));
     const gdi::BlendTargetState add{.enable = true,

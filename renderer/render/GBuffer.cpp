@@ -4,18 +4,30 @@
 
 namespace fe::render {
 
+std::string GBuffer::shader(const TechniqueContext& ctx, const std::string& name, bool occlusion) {
+    if (ctx.settings.msaa <= 1) return name;
+    return name + ":FE_MULTISAMPLED" + (occlusion && hasOcclusion(ctx) ? "+FE_OCCLUSION" : "");
+}
+
+bool GBuffer::hasOcclusion(const TechniqueContext& ctx) {
+    return ctx.settings.ibl() && ctx.scene.hasOcclusion();
+}
+
 void GBuffer::declare(graph::RenderGraph& g, TechniqueContext& ctx, graph::TextureId sceneDepth) {
     const uint32_t w = ctx.settings.width, h = ctx.settings.height;
-    gb0 = g.createTexture("gbuffer0 base colour+metallic",
-                          {.format = kFormat0, .width = w, .height = h});
-    gb1 =
-        g.createTexture("gbuffer1 normal+roughness", {.format = kFormat1, .width = w, .height = h});
-    gb2 = g.createTexture("gbuffer2 emissive+unlit", {.format = kFormat2, .width = w, .height = h});
-    depth = sceneDepth;
+    samples = ctx.settings.msaa;
+    auto target = [&](const char* name, gdi::Format format) {
+        return g.createTexture(samples > 1 ? std::string("msaa ") + name : std::string(name),
+                               {.format = format, .width = w, .height = h, .sampleCount = samples});
+    };
+    gb0 = target("gbuffer0 base colour+metallic", kFormat0);
+    gb1 = target("gbuffer1 normal+roughness", kFormat1);
+    gb2 = target("gbuffer2 emissive+unlit", kFormat2);
+    depth = samples > 1 ? target("depth", kSceneDepthFormat) : sceneDepth;
     noOcclusion = ctx.scene.white();
-    const bool occlusion = ctx.settings.ibl() && ctx.scene.hasOcclusion();
-    if (occlusion)
-        gb3 = g.createTexture("gbuffer3 occlusion", {.format = kFormat3, .width = w, .height = h});
+    const bool occlusion = hasOcclusion(ctx);
+    if (occlusion) gb3 = target("gbuffer3 occlusion", kFormat3);
+    const uint32_t n = samples;
     g.addPass(
         "gbuffer",
         [&](graph::PassBuilder& b) {
@@ -25,10 +37,11 @@ void GBuffer::declare(graph::RenderGraph& g, TechniqueContext& ctx, graph::Textu
                           {0, 0, 0, -1});  // alpha -1: nothing drawn (fe_scene.glsl)
             if (occlusion) b.colorTarget(gb3);
             b.depthTarget(depth);
+            if (depth != sceneDepth) b.resolve(depth, sceneDepth);  // sample 0, for what follows
         },
-        [&ctx, occlusion](graph::PassContext& pc) {
+        [&ctx, occlusion, n](graph::PassContext& pc) {
             pc.beginRenderPass();
-            MeshPassTargets targets{{kFormat0, kFormat1, kFormat2}, kSceneDepthFormat};
+            MeshPassTargets targets{{kFormat0, kFormat1, kFormat2}, kSceneDepthFormat, n};
             if (occlusion)
                 targets.colorFormats.push_back(
                     kFormat3);  // the G-buffer shader's occlusion variant
@@ -48,7 +61,10 @@ void GBuffer::bind(gdi::CommandList& cmd, const graph::PassContext& pc, gdi::Sam
 
 void GBuffer::bindOcclusion(gdi::CommandList& cmd, const graph::PassContext& pc,
                             gdi::SamplerHandle sampler) const {
-    cmd.setTexture(kSlotGBuffer3, gb3.valid() ? pc.texture(gb3) : noOcclusion, sampler);
+    if (gb3.valid())
+        cmd.setTexture(kSlotGBuffer3, pc.texture(gb3), sampler);
+    else if (samples == 1)  // the multisampled variant without FE_OCCLUSION reads none
+        cmd.setTexture(kSlotGBuffer3, noOcclusion, sampler);
 }
 
 void GBuffer::sampleOcclusionIn(graph::PassBuilder& b) const {

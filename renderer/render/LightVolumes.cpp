@@ -100,7 +100,7 @@ LightVolumes::Counts LightVolumes::classify(const std::vector<assets::Light>& li
     return c;
 }
 
-LightVolumes::LightVolumes(gdi::Device& device, const char* fragmentShader,
+LightVolumes::LightVolumes(gdi::Device& device, const std::string& fragmentShader,
                            std::vector<gdi::Format> targets)
     : objects_(device) {
     std::vector<glm::vec3> verts = {{-1, -1, 0}, {3, -1, 0}, {-1, 3, 0}};  // full-screen triangle

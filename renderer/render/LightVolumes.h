@@ -16,7 +16,8 @@ public:
     // `fragmentShader` decides what a volume computes (deferred radiance or I-buffer sums);
     // every colour target is accumulated additively (alpha too: the light pre-pass keeps its
     // monochrome specular there; shaders that write alpha 0 leave it as it was).
-    LightVolumes(gdi::Device& device, const char* fragmentShader, std::vector<gdi::Format> targets);
+    LightVolumes(gdi::Device& device, const std::string& fragmentShader,
+                 std::vector<gdi::Format> targets);
 
     // Draws the lights without shadows, [0, scene.unshadowedLightCount()).
     void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,

@@ -4,8 +4,9 @@
 
 namespace fe::render {
 
-ShadowedLightVolumes::ShadowedLightVolumes(TechniqueContext& c, const char* shader,
-                                           const char* cubeShader, std::vector<gdi::Format> targets)
+ShadowedLightVolumes::ShadowedLightVolumes(TechniqueContext& c, const std::string& shader,
+                                           const std::string& cubeShader,
+                                           std::vector<gdi::Format> targets)
     : ctx_(c) {
     if (!c.shadows) return;
     // Only the shaders some shadowed light needs.

@@ -14,8 +14,8 @@ namespace fe::render {
 class ShadowedLightVolumes {
 public:
     // `shader`: the variant for cascades and spot maps; `cubeShader`: for point lights' cubes.
-    ShadowedLightVolumes(TechniqueContext& context, const char* shader, const char* cubeShader,
-                         std::vector<gdi::Format> targets);
+    ShadowedLightVolumes(TechniqueContext& context, const std::string& shader,
+                         const std::string& cubeShader, std::vector<gdi::Format> targets);
     ~ShadowedLightVolumes();
     // `setup` declares the pass's inputs and its targets (loaded: the light adds to them).
     // `bindInputs` binds what the shaders sample besides the shadow map. `frame`: the passes'

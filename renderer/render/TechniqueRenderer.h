@@ -108,8 +108,9 @@ struct TechniqueInfo {
     const char* name;
     const char* summary;  // one line for `fe render --help`
     std::unique_ptr<TechniqueRenderer> (*create)(TechniqueContext&);
-    // Renders with hardware MSAA (--msaa N). The deferred techniques shade from single-sample
-    // G-buffers: they refuse --msaa with a clear message rather than shade per sample.
+    // Renders with hardware MSAA (--msaa N): the forward ones into multisampled targets, the
+    // deferred ones and the visibility buffer from a multisampled G-buffer (GBuffer.h). The
+    // light pre-pass's light pass is per pixel; redeferred's I-buffer sums refuse with a message.
     bool msaa = false;
     // Has an I-buffer, so takes --illum-scale (redeferred and redeferred-tiled).
     bool illumScale = false;

@@ -7,13 +7,16 @@
 
 namespace fe::render {
 
-TileLightCulling::TileLightCulling(TechniqueContext& c) : objects_(c.device), ctx_(c) {
+TileLightCulling::TileLightCulling(TechniqueContext& c, bool multisampledDepth)
+    : objects_(c.device), ctx_(c), multisampledDepth_(multisampledDepth) {
     if (!c.device.info().features.computeShaders)
         throw gdi::Error("tiled light culling needs compute shaders, which " +
                          c.device.info().backend + " lacks");
     uniformLights_ = lightsFitUniformBlock(c);
-    cs_ = objects_.add(c.device.createShader(
-        {.stage = gdi::ShaderStage::Compute, .binary = shader("tile_light_culling")}));
+    cs_ = objects_.add(
+        c.device.createShader({.stage = gdi::ShaderStage::Compute,
+                               .binary = listPassShader("tile_light_culling", uniformLights_, false,
+                                                        multisampledDepth)}));
     pipeline_ = objects_.add(
         c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
 }
@@ -23,15 +26,17 @@ bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {
 }
 
 const gdi::ShaderBinary& TileLightCulling::listPassShader(const std::string& name,
-                                                          bool uniformLights, bool layered) {
-    std::string variant = layered ? "FE_LAYERED" : "";
+                                                          bool uniformLights, bool layered,
+                                                          bool multisampled) {
+    std::string variant = multisampled ? "FE_MULTISAMPLED" : "";
+    if (layered) variant += variant.empty() ? "FE_LAYERED" : "+FE_LAYERED";
     if (!uniformLights)
         variant += variant.empty() ? "FE_LIGHTS_IN_STORAGE" : "+FE_LIGHTS_IN_STORAGE";
     return shaders::find("scene/" + name + ".comp" + (variant.empty() ? "" : ":" + variant));
 }
 
 const gdi::ShaderBinary& TileLightCulling::shader(const std::string& name) const {
-    return listPassShader(name, uniformLights_);
+    return listPassShader(name, uniformLights_, false, multisampledDepth_);
 }
 
 void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext& c,
@@ -75,8 +80,11 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
             bindFrameAndLights(pc.cmd, pipeline_);
             pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
             pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
-            // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres.
-            pc.cmd.setConstants(glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
+            // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres;
+            // the multisampled variant reads every sample instead.
+            if (!multisampledDepth_)
+                pc.cmd.setConstants(
+                    glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
             pc.cmd.dispatch((tiles + 63) / 64, 1);
         });
     return lists;

@@ -13,7 +13,10 @@ namespace fe::render {
 
 class TileLightCulling {
 public:
-    explicit TileLightCulling(TechniqueContext& context);
+    // `multisampledDepth`: the depth declare() reads is a multisampled G-buffer's, and the tiles
+    // are bounded by every sample (the deferred techniques under --msaa; forward-plus culls for
+    // its resolved depth, widened to the pixel centres its fragments shade at).
+    explicit TileLightCulling(TechniqueContext& context, bool multisampledDepth = false);
     TileLightCulling(const TileLightCulling&) = delete;
     TileLightCulling& operator=(const TileLightCulling&) = delete;
 
@@ -34,8 +37,9 @@ public:
     // uniform block, the shader variant, and the binding of the lights alone.
     static bool lightsFitUniformBlock(const TechniqueContext& c);
     // `layered`: the FE_LAYERED variant (GpuScene::hasLayeredMaterials: clearcoat and sheen lobes).
+    // `multisampled`: the FE_MULTISAMPLED variant (a multisampled G-buffer or visibility buffer).
     static const gdi::ShaderBinary& listPassShader(const std::string& name, bool uniformLights,
-                                                   bool layered = false);
+                                                   bool layered = false, bool multisampled = false);
     static void bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights);
 
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
@@ -49,6 +53,7 @@ private:
     gdi::DeviceObjects objects_;
     TechniqueContext& ctx_;
     bool uniformLights_ = false;
+    bool multisampledDepth_ = false;
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
 };

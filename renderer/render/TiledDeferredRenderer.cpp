@@ -14,10 +14,15 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c, Lists lists)
                          " needs compute shaders, which " + c.device.info().backend + " lacks");
     if (clusters_ && !c.clusters)
         throw gdi::Error("clustered-deferred: the renderer made no light cluster grid");
-    if (!clusters_ && c.settings.tileCullingPass) culling_ = std::make_unique<TileLightCulling>(c);
+    // Under --msaa the lists come from the culling pass, which bounds tiles by every sample's
+    // depth (the one-pass form culls for one depth per invocation).
+    const bool multisampled = c.settings.msaa > 1;
+    if (!clusters_ && (c.settings.tileCullingPass || multisampled))
+        culling_ = std::make_unique<TileLightCulling>(c, multisampled);
     const gdi::ShaderBinary& binary =
         clusters_  ? TileLightCulling::listPassShader("clustered_deferred",
-                                                      TileLightCulling::lightsFitUniformBlock(c))
+                                                      TileLightCulling::lightsFitUniformBlock(c),
+                                                      false, multisampled)
         : culling_ ? culling_->shader("tiled_deferred")
                    : shaders::find("scene/tiled_deferred_onepass.comp");
     cs_ =
@@ -26,7 +31,8 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c, Lists lists)
         c.device.createComputePipeline({.computeShader = cs_, .debugName = "tiled lighting"}));
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(
-            c, "scene/deferred_light_shadowed.frag", "scene/deferred_light_shadowed_cube.frag",
+            c, GBuffer::shader(c, "scene/deferred_light_shadowed.frag"),
+            GBuffer::shader(c, "scene/deferred_light_shadowed_cube.frag"),
             std::vector{kRadianceFormat});
     if (c.settings.ibl())
         ibl_ = std::make_unique<EnvironmentLighting>(c, "scene/deferred_ibl.frag",
@@ -36,10 +42,15 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c, Lists lists)
 void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
                                     graph::TextureId depth) {
     gbuffer_.declare(g, ctx_, depth);
-    const graph::TextureId lists = culling_ ? culling_->declare(g, depth) : graph::TextureId{};
+    // Multisampled, the culling pass reads every sample, and the clusters' lists are whole (their
+    // bounds would hold sample 0's depths only).
+    const graph::TextureId lists =
+        culling_ ? culling_->declare(g, gbuffer_.depth) : graph::TextureId{};
     tiles_ = lists;
-    const ClusterLightGrid::Lists clusterLists =
-        clusters_ ? ctx_.clusters->declareBounded(g, depth) : ClusterLightGrid::Lists{};
+    const ClusterLightGrid::Lists clusterLists = !clusters_ ? ClusterLightGrid::Lists{}
+                                                 : gbuffer_.samples > 1
+                                                     ? ctx_.clusters->declare(g)
+                                                     : ctx_.clusters->declareBounded(g, depth);
     g.addPass(
         clusters_ ? "clustered-lighting" : "tiled-lighting",
         [&](graph::PassBuilder& b) {

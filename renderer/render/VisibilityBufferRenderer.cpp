@@ -14,6 +14,11 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
         throw gdi::Error("technique visibility-buffer needs compute shaders, which " +
                          c.device.info().backend + " lacks");
     if (!c.clusters) throw gdi::Error("visibility-buffer: the renderer made no light cluster grid");
+    if (c.settings.msaa > 1 && c.shadows && c.shadows->any())
+        throw gdi::Error(
+            "technique visibility-buffer takes --msaa without shadows only: its shadowed lights are "
+            "forward passes adding into the single-sample result (use clustered-deferred, whose "
+            "shadowed lights read the multisampled G-buffer)");
     std::vector<ObjectConstants> records;
     for (const DrawItem& d : c.scene.draws()) records.push_back(c.scene.objectConstants(d));
     if (records.empty()) records.emplace_back();  // a buffer needs at least one byte
@@ -25,10 +30,10 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
                              : c.environmentLight.prefiltered()
                                  ? "visibility_resolve_ibl_prefiltered"
                                  : "visibility_resolve_ibl";
-    cs_ = objects_.add(
-        c.device.createShader({.stage = gdi::ShaderStage::Compute,
-                               .binary = TileLightCulling::listPassShader(
-                                   name, uniformLights_, c.scene.hasLayeredMaterials())}));
+    cs_ = objects_.add(c.device.createShader(
+        {.stage = gdi::ShaderStage::Compute,
+         .binary = TileLightCulling::listPassShader(
+             name, uniformLights_, c.scene.hasLayeredMaterials(), c.settings.msaa > 1)}));
     pipeline_ = objects_.add(
         c.device.createComputePipeline({.computeShader = cs_, .debugName = "visibility resolve"}));
 }
@@ -36,39 +41,52 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
 void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
                                        graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
+    // --msaa N: N ids a pixel and a multisampled depth, resolved (sample 0) into `depth` for the
+    // passes after the technique; the resolve shades each triangle of a pixel once, weighted by
+    // its samples, and walks whole cluster lists (bounds would hold sample 0's depths only).
+    const uint32_t samples = s.msaa;
     const graph::TextureId ids = g.createTexture(
-        "visibility triangle ids", {.format = kIdFormat, .width = s.width, .height = s.height});
+        samples > 1 ? "msaa visibility triangle ids" : "visibility triangle ids",
+        {.format = kIdFormat, .width = s.width, .height = s.height, .sampleCount = samples});
+    const graph::TextureId visibleDepth =
+        samples > 1 ? g.createTexture("msaa depth", {.format = kSceneDepthFormat,
+                                                     .width = s.width,
+                                                     .height = s.height,
+                                                     .sampleCount = samples})
+                    : depth;
     g.addPass(
         "visibility",
         [&](graph::PassBuilder& b) {
             b.colorTarget(ids);  // cleared to 0: no surface
-            b.depthTarget(depth);
+            b.depthTarget(visibleDepth);
+            if (visibleDepth != depth) b.resolve(visibleDepth, depth);
         },
-        [this](graph::PassContext& pc) {
+        [this, samples](graph::PassContext& pc) {
             pc.beginRenderPass();
             objectUploads_.clear();
             ctx_.geometry.draw(pc.cmd, ctx_.queue, MeshPass::Visibility,
-                               {{kIdFormat}, kSceneDepthFormat}, ctx_.frameConstants, ctx_.eye,
-                               &objectUploads_);
+                               {{kIdFormat}, kSceneDepthFormat, samples}, ctx_.frameConstants,
+                               ctx_.eye, &objectUploads_);
             pc.cmd.endRenderPass();
         });
-    const ClusterLightGrid::Lists lists = ctx_.clusters->declareBounded(g, depth);
+    const ClusterLightGrid::Lists lists =
+        samples > 1 ? ctx_.clusters->declare(g) : ctx_.clusters->declareBounded(g, depth);
     g.addPass(
         "visibility-resolve",
         [&](graph::PassBuilder& b) {
             b.sample(ids);
-            b.sample(depth);
+            if (samples == 1) b.sample(depth);
             ClusterLightGrid::read(b, lists);
             b.storage(output);
         },
-        [this, ids, depth, output](graph::PassContext& pc) {
+        [this, ids, depth, output, samples](graph::PassContext& pc) {
             gdi::CommandList& cmd = pc.cmd;
             bindFrameAndLights(cmd, pipeline_);
             TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
             ctx_.clusters->bindLists(cmd);
             if (ctx_.settings.ibl()) ctx_.environmentLight.bind(cmd);
             cmd.setTexture(kSlotVisibility, pc.texture(ids), ctx_.pointSampler);
-            cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
+            if (samples == 1) cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
             cmd.setStorageBuffer(kSlotDraws, draws_);
             cmd.setStorageBuffer(kSlotVertices, ctx_.scene.vertexBuffer());
             cmd.setStorageBuffer(kSlotIndices, ctx_.scene.indexBuffer());
@@ -77,6 +95,11 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
             const std::vector<MaterialTextures>& sets = ctx_.scene.textureSets();
             for (uint32_t set = 0; set < sets.size();
                  ++set) {  // never empty (GpuScene::textureSets)
+                // Multisampled, a dispatch adds to what the earlier ones stored.
+                if (samples > 1 && set > 0)
+                    cmd.barrier(gdi::TextureBarrier{.texture = pc.texture(output),
+                                                    .before = gdi::ResourceState::Storage,
+                                                    .after = gdi::ResourceState::Storage});
                 sets[set].bind(cmd);
                 cmd.setConstants(glm::uvec4(set, set == 0 ? 1u : 0u, 0u, 0u));
                 cmd.dispatch((rs.width + kGroupSize - 1) / kGroupSize,

@@ -4,22 +4,25 @@
 #ifdef FE_SHADOWED
 #include "fe_shadow.glsl"
 #endif
-layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
-layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
-layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
-layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+#include "fe_gbuffer.glsl"
 layout(location = 0) flat in uint vLightIndex;
 layout(location = 0) out vec4 outRadiance;
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(depthTexture, p, 0).r;
-    if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, 0).a)) discard;  // background or unlit
-    vec4 g0 = texelFetch(gb0, p, 0);
-    vec4 g1 = texelFetch(gb1, p, 0);
-    const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
-    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), s.Pe);
+    const ivec2 p = ivec2(gl_FragCoord.xy);
+    const int shadings = feGBufferShadings(p);  // 1, or each sample of an edge (fe_gbuffer.glsl)
+    vec3 sum = vec3(0.0);
+    bool lit = false;
+    for (int k = 0; k < shadings; ++k) {
+        const float depth = feGBufferDepth(p, k, shadings);
+        if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, k).a)) continue;  // background or unlit
+        const SurfacePoint s = feGBufferSurface(p, depth, texelFetch(gb0, p, k), texelFetch(gb1, p, k));
+        SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), s.Pe);
 #ifdef FE_SHADOWED
-    l.E *= feShadowVisibility(s.P, s.n);
+        l.E *= feShadowVisibility(s.P, s.n);
 #endif
-    outRadiance = vec4(feShadeLight(s, l), 0.0);
+        sum += feShadeLight(s, l);
+        lit = true;
+    }
+    if (!lit) discard;
+    outRadiance = vec4(sum / float(shadings), 0.0);
 }

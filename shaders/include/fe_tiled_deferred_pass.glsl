@@ -5,33 +5,34 @@
 // clustered_deferred.comp (FE_CLUSTER_LISTS) reads each pixel's cluster list instead
 // (ClusterLightGrid, fe_clusters.glsl).
 layout(local_size_x = 16, local_size_y = 16) in;
-layout(binding = FE_SLOT_GBUFFER0) uniform sampler2D gb0;
-layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
-layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
-layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+#include "fe_gbuffer.glsl"  // per sample at edges under FE_MULTISAMPLED
 layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform writeonly image2D outRadiance;
 
-void main() {
-    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    const bool inside = all(lessThan(p, ivec2(frame.viewport.xy)));
-    const float depth = inside ? texelFetch(depthTexture, p, 0).r : 1.0;
-#ifndef FE_CLUSTER_LISTS
-    feFindTileLights(p, depth);  // every invocation: the shared-memory form has barriers
-#endif
-    if (!inside) return;
-    const vec4 g2 = texelFetch(gb2, p, 0);
+// L_o of one shading of pixel p (fe_gbuffer.glsl) at `depth`: its emission (or unlit colour)
+// and its lights.
+vec3 feShadeTiled(ivec2 p, int sampleIndex, float depth) {
+    const vec4 g2 = texelFetch(gb2, p, sampleIndex);
     vec3 radiance = g2.rgb;  // emissive, or the colour of an unlit surface
     if (depth < 1.0 && !feGBufferUnlit(g2.a)) {
-        const vec4 g0 = texelFetch(gb0, p, 0);
-        const vec4 g1 = texelFetch(gb1, p, 0);
-        const SurfacePoint s = feGBufferSurface(p, depth, g0, g1);
+        const SurfacePoint s = feGBufferSurface(p, depth, texelFetch(gb0, p, sampleIndex),
+                                                 texelFetch(gb1, p, sampleIndex));
         const SurfaceBrdf brdf = fePrepareBrdf(s);
 #ifdef FE_CLUSTER_LISTS
         feUseClusterList(p, depth);
+#ifdef FE_MULTISAMPLED
+        const uint count = feClusterLightCount(frame.counts.x);  // whole lists: the bounds hold sample 0's depths
+#else
         const uint count = feClusterBoundedLightCount(frame.counts.x);
+#endif
         for (uint k = 0u; k < count; ++k) {
             const uint i = feClusterLight(k);
-            if (i >= frame.counts.x) break;  // the shadowed lights, last in the list, have passes of their own
+            // The shadowed lights, last in a run of the list, have passes of their own (a whole
+            // list is two runs in light order).
+#ifdef FE_MULTISAMPLED
+            if (i >= frame.counts.x) continue;
+#else
+            if (i >= frame.counts.x) break;
+#endif
             const GpuLight L = feLight(i);
 #else
         const uint count = feTileLightCount();
@@ -44,5 +45,22 @@ void main() {
             radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
         }
     }
-    imageStore(outRadiance, p, vec4(radiance, 1.0));
+    return radiance;
+}
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    const bool inside = all(lessThan(p, ivec2(frame.viewport.xy)));
+    // The pixel's depth, or its samples' mean (fe_gbuffer.glsl); multisampled, the tile lists come
+    // from the light-culling pass, whose bounds take in every sample.
+    const float depth = inside ? feGBufferDepth(p, 0, 1) : 1.0;
+#ifndef FE_CLUSTER_LISTS
+    feFindTileLights(p, depth);  // every invocation: the shared-memory form has barriers
+#endif
+    if (!inside) return;
+    const int shadings = feGBufferShadings(p);  // 1, or each sample of an edge
+    vec3 radiance = vec3(0.0);
+    for (int k = 0; k < shadings; ++k)
+        radiance += feShadeTiled(p, k, shadings == 1 ? depth : texelFetch(depthTexture, p, k).r);
+    imageStore(outRadiance, p, vec4(radiance / float(shadings), 1.0));
 }

@@ -17,9 +17,16 @@
 #include "fe_ibl.glsl"
 #endif
 layout(local_size_x = 16, local_size_y = 16) in;
+#ifdef FE_MULTISAMPLED
+// --msaa: the ids of every sample; the lists are whole (the cluster of the shading's own depth),
+// and each dispatch adds its texture set's triangles to what the earlier ones stored.
+layout(binding = FE_SLOT_VISIBILITY) uniform usampler2DMS visibility;
+layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform image2D outRadiance;
+#else
 layout(binding = FE_SLOT_VISIBILITY) uniform usampler2D visibility;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 layout(binding = FE_SLOT_RADIANCE_OUT, rgba32f) uniform writeonly image2D outRadiance;
+#endif
 layout(binding = FE_SLOT_VERTICES, std430) readonly buffer VertexBlock {
     float vertexFloats[];  // assets::Vertex: position, normal, tangent, uv0, uv1, colour (18 floats)
 };
@@ -70,16 +77,8 @@ vec2 feRayBarycentrics(vec3 dir, vec3 p0, vec3 e1, vec3 e2) {
     return vec2(dot(tv, pv), dot(dir, cross(tv, e1))) * inv;
 }
 
-void main() {
-    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
-    const uint id = texelFetch(visibility, p, 0).r;
-    if (id == 0u) {
-        if (resolve.pass.y != 0u) imageStore(outRadiance, p, vec4(0.0, 0.0, 0.0, 1.0));
-        return;
-    }
-    object = draws[feDrawOfTriangle(id)];
-    if ((object.flags.x >> 8) != resolve.pass.x) return;
+// L_o of triangle `id` (of the draw in `object`) where the ray through pixel p's centre meets it.
+vec3 feShadeTriangle(ivec2 p, uint id) {
     const uint first = object.flags.y + 3u * (id - object.flags.w);
     const TriangleVertex v0 = feTriangleVertex(indices[first]), v1 = feTriangleVertex(indices[first + 1u]),
                          v2 = feTriangleVertex(indices[first + 2u]);
@@ -102,24 +101,72 @@ void main() {
     const bool front = (dot(cross(e1, e2), dir) < 0.0) != ((object.flags.x & 4u) != 0u);
     const vec4 color = w.x * v0.color + w.y * v1.color + w.z * v2.color;
     const MaterialSample m = feSampleMaterial(uv, color, N, vec4(mat3(object.world) * T.xyz, T.w), front);
+    if (m.unlit) return m.baseColor;
     vec3 radiance = feCoatedEmission(m, eye);
-    if (m.unlit) {
-        radiance = m.baseColor;
-    } else {
-        const SurfacePoint s = feMaterialSurface(m, eye);
-        const SurfaceBrdf brdf = fePrepareBrdf(s);
-        feUseClusterList(p, texelFetch(depthTexture, p, 0).r);
-        const uint count = feClusterBoundedLightCount(frame.counts.x);
-        for (uint k = 0u; k < count; ++k) {
-            const uint i = feClusterLight(k);
-            if (i >= frame.counts.x) break;  // the shadowed lights, last in the list, have passes of their own
-            const GpuLight L = feLight(i);
-            if (!feLightReaches(L, s.P)) continue;  // beyond its range a light adds exactly 0
-            radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
-        }
-#ifdef FE_IBL
-        radiance += feOcclusion(uv) * feShadeEnvironment(s, frame.counts.z);
+    const SurfacePoint s = feMaterialSurface(m, eye);
+    const SurfaceBrdf brdf = fePrepareBrdf(s);
+#ifdef FE_MULTISAMPLED
+    const vec4 clip = frame.viewProjFromEye * vec4(eye, 1.0);
+    feUseClusterList(p, clip.z / clip.w);
+    const uint count = feClusterLightCount(frame.counts.x);  // whole: two runs in light order
+#else
+    feUseClusterList(p, texelFetch(depthTexture, p, 0).r);
+    const uint count = feClusterBoundedLightCount(frame.counts.x);
 #endif
+    for (uint k = 0u; k < count; ++k) {
+        const uint i = feClusterLight(k);
+        if (i >= frame.counts.x) {  // the shadowed lights, last in a run, have passes of their own
+#ifdef FE_MULTISAMPLED
+            continue;
+#else
+            break;
+#endif
+        }
+        const GpuLight L = feLight(i);
+        if (!feLightReaches(L, s.P)) continue;  // beyond its range a light adds exactly 0
+        radiance += feShadeLight(brdf, feEvaluateLightFromEye(L, s.Pe));
     }
-    imageStore(outRadiance, p, vec4(radiance, 1.0));
+#ifdef FE_IBL
+    radiance += feOcclusion(uv) * feShadeEnvironment(s, frame.counts.z);
+#endif
+    return radiance;
 }
+
+#ifdef FE_MULTISAMPLED
+// Each triangle the pixel's samples hold is shaded once, at the pixel's centre as a multisampled
+// forward pass shades it, weighted by how many samples it covers; empty samples add 0.
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+    const int n = textureSamples(visibility);
+    vec3 sum = vec3(0.0);
+    bool shaded = false;
+    for (int i = 0; i < n; ++i) {
+        const uint id = texelFetch(visibility, p, i).r;
+        bool seen = id == 0u;
+        for (int j = 0; j < i; ++j) seen = seen || texelFetch(visibility, p, j).r == id;
+        if (seen) continue;
+        object = draws[feDrawOfTriangle(id)];
+        if ((object.flags.x >> 8) != resolve.pass.x) continue;
+        int covered = 1;
+        for (int j = i + 1; j < n; ++j) covered += texelFetch(visibility, p, j).r == id ? 1 : 0;
+        sum += float(covered) * feShadeTriangle(p, id);
+        shaded = true;
+    }
+    if (resolve.pass.y != 0u) imageStore(outRadiance, p, vec4(sum / float(n), 1.0));
+    else if (shaded) imageStore(outRadiance, p, vec4(imageLoad(outRadiance, p).rgb + sum / float(n), 1.0));
+}
+#else
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, ivec2(frame.viewport.xy)))) return;
+    const uint id = texelFetch(visibility, p, 0).r;
+    if (id == 0u) {
+        if (resolve.pass.y != 0u) imageStore(outRadiance, p, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    object = draws[feDrawOfTriangle(id)];
+    if ((object.flags.x >> 8) != resolve.pass.x) return;
+    imageStore(outRadiance, p, vec4(feShadeTriangle(p, id), 1.0));
+}
+#endif

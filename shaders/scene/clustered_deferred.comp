@@ -1,6 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
+// fe-variant: FE_MULTISAMPLED (--msaa: a multisampled G-buffer, edge pixels shaded per sample: fe_gbuffer.glsl)
+// fe-variant: FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE
 // Clustered deferred lighting: each pixel shades the lights of its cluster (ClusterLightGrid).
 #define FE_TILE_LISTS  // the list passes' helpers and uniform lights (fe_tile_culling.glsl)
 #define FE_CLUSTER_LISTS

@@ -1,4 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+// fe-variant: FE_MULTISAMPLED (--msaa: a multisampled G-buffer, edge pixels shaded per sample: fe_gbuffer.glsl)
+// fe-variant: FE_MULTISAMPLED+FE_OCCLUSION (... with the occlusion target, multisampled too)
 // Deferred image-based lighting (sampled: fe_deferred_ibl_pass.glsl).
 #include "fe_deferred_ibl_pass.glsl"

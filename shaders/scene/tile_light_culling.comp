@@ -1,6 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // fe-variant: FE_LIGHTS_IN_STORAGE (scenes with more lights than a uniform block holds)
+// fe-variant: FE_MULTISAMPLED (a multisampled depth, deferred under --msaa: bounds over every sample)
+// fe-variant: FE_MULTISAMPLED+FE_LIGHTS_IN_STORAGE
 #define FE_TILE_LISTS  // only for the shared helpers: this pass writes the lists
 #include "fe_common.glsl"
 #include "fe_tile_culling.glsl"
@@ -12,7 +14,11 @@
 // directly cost 20 ms against 6 at 1280x720 with 512 lights. No shared memory and no barriers:
 // on lavapipe a barrier splits a shader into resumable parts (docs/MEASUREMENT_LOG.md).
 layout(local_size_x = 64) in;
+#ifdef FE_MULTISAMPLED
+layout(binding = FE_SLOT_DEPTH) uniform sampler2DMS depthTexture;
+#else
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
+#endif
 layout(binding = FE_SLOT_TILE_LIGHTS_OUT, r32ui) uniform writeonly uimage2D lists;
 FE_CONSTANTS(CullingConstants) {
     // x: with MSAA, how far (in pixels of depth slope) a fragment's pixel-centre depth may lie from
@@ -21,6 +27,7 @@ FE_CONSTANTS(CullingConstants) {
     vec4 widen;
 } culling;
 
+#ifndef FE_MULTISAMPLED
 // Depth slope of the surface at pixel p in pixels, per axis: the smaller one-sided difference,
 // so that an edge to another surface (or to the background) does not count.
 float feDepthSlope(ivec2 p, float d, ivec2 axis, ivec2 viewport) {
@@ -30,6 +37,7 @@ float feDepthSlope(ivec2 p, float d, ivec2 axis, ivec2 viewport) {
     const float slope = min(da, db);
     return slope < 1.0 ? slope : 0.0;
 }
+#endif
 
 void main() {
     const ivec2 viewport = ivec2(frame.viewport.xy);
@@ -45,8 +53,16 @@ void main() {
     const ivec2 p0 = tile * 16, p1 = min(p0 + 16, viewport);
     for (int y = p0.y; y < p1.y; ++y)
         for (int x = p0.x; x < p1.x; ++x) {
-            const float d = texelFetch(depthTexture, ivec2(x, y), 0).r;
             const int k = (x - p0.x) / FE_LIST_TILE + 2 * ((y - p0.y) / FE_LIST_TILE);
+#ifdef FE_MULTISAMPLED
+            // The deferred passes shade an edge's samples at their own depths, and an inner
+            // pixel at its samples' mean (fe_gbuffer.glsl): every sample's depth bounds it.
+            for (int i = 0; i < textureSamples(depthTexture); ++i) {
+                const float d = texelFetch(depthTexture, ivec2(x, y), i).r;
+                if (d < 1.0) z[k] = vec2(min(z[k].x, d), max(z[k].y, d));
+            }
+#else
+            const float d = texelFetch(depthTexture, ivec2(x, y), 0).r;
             if (!(d < 1.0)) continue;
             // With MSAA the fragments shading this pixel sit at its centre, the depth culled for at
             // sample 0: the bounds take in the centre's depth along the surface's slope.
@@ -54,6 +70,7 @@ void main() {
                                                                         feDepthSlope(ivec2(x, y), d, ivec2(0, 1), viewport))
                                                   : 0.0;
             z[k] = vec2(min(z[k].x, max(d - s, 0.0)), max(z[k].y, min(d + s, 1.0)));
+#endif
         }
     vec3 lo[4], hi[4];
     uint count[4] = uint[4](0u, 0u, 0u, 0u);

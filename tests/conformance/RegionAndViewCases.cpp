@@ -773,6 +773,64 @@ std::vector<CaseImage> depthStencilBufferCopies(Device& d) {
 // (into an RGBA8 or RGBA8_SRGB target), drawn into (the read-back bytes are BGRA), copied to a
 // buffer in that order and between the two BGRA formats bit for bit. Copies or views between
 // BGRA and RGBA, and BGRA storage textures, are the same Error everywhere (GL stores BGRA8 as RGBA).
+// Views across the channel orders (RGBA8 <-> BGRA8, each with its sRGB twin): the texels' red
+// and blue read swapped, as Vulkan reads the other byte order (GL swaps them by the view's
+// swizzle), a swizzle composes with that, and such a view is sampled only, the same Error
+// everywhere when rendered into. `bytes`: BGRA bytes of blue x*4, green y*4, red 200.
+void crossOrderViews(Device& d, DeviceObjects& o, FullscreenSampler& sampler, Format bgraFormat,
+                     const std::vector<uint8_t>& bytes, std::vector<CaseImage>& out) {
+    const Format rgbaFormat = bgraFormat == Format::BGRA8_SRGB ? Format::RGBA8_SRGB : Format::RGBA8;
+    const TextureUsage all = TextureUsage::Sampled | TextureUsage::RenderTarget |
+                             TextureUsage::CopySrc | TextureUsage::CopyDst;
+    // The same bytes in a BGRA texture and an RGBA one: a cross-order view of each reads them in
+    // the other order (from the BGRA texture red = x*4, blue = 200; from the RGBA one the reverse).
+    for (const bool bgraTexture : {true, false}) {
+        const Format texFormat = bgraTexture ? bgraFormat : rgbaFormat,
+                     viewFormat = bgraTexture ? rgbaFormat : bgraFormat;
+        const TextureHandle tex = o.add(d.createTexture({.format = texFormat,
+                                                         .width = kCaseSize,
+                                                         .height = kCaseSize,
+                                                         .usage = all,
+                                                         .viewFormats = {viewFormat},
+                                                         .debugName = "cross-order"}));
+        d.writeTexture(tex, {}, bytesOf(bytes));
+        const std::string what = std::string(formatInfo(texFormat).name) + " seen as " +
+                                 std::string(formatInfo(viewFormat).name);
+        const TextureHandle view = o.add(d.createTextureView(tex, {.format = viewFormat}));
+        auto expected = [&](bool swapped) {
+            return expectImage(rgbaFormat, [=](uint32_t x, uint32_t y) -> Texel {
+                const float ramp = float(x * 4) / 255.0f, flat = 200 / 255.0f;
+                const bool rampRed = bgraTexture != swapped;
+                return {rampRed ? ramp : flat, float(y * 4) / 255.0f, rampRed ? flat : ramp, 1};
+            });
+        };
+        out.push_back(drawn8(what, sampler.draw(d, view, rgbaFormat), expected(false)));
+        using S = Swizzle;
+        const TextureHandle swizzled = o.add(d.createTextureView(
+            tex, {.format = viewFormat, .swizzle = {S::B, S::G, S::R, S::One}}));
+        out.push_back(drawn8(what + ", swizzled back", sampler.draw(d, swizzled, rgbaFormat),
+                             expected(true)));
+        FE_CONFORMANCE_CHECK(d.desc(view).usage == TextureUsage::Sampled,
+                             "a cross-order view is sampled only");
+        auto cmd = d.createCommandList();
+        expectError([&] { cmd->beginRenderPass({.colors = {{.texture = view}}}); },
+                    "lacks RenderTarget usage");
+        d.wait(d.submit(*cmd));
+    }
+    expectError(
+        [&] {
+            const TextureHandle noSampling =
+                o.add(d.createTexture({.format = bgraFormat,
+                                       .width = 8,
+                                       .height = 8,
+                                       .usage = TextureUsage::RenderTarget,
+                                       .viewFormats = {rgbaFormat}}));
+            d.createTextureView(noSampling, {.format = rgbaFormat});
+        },
+        "a view between RGBA and BGRA channel orders is sampled only, and the texture has no "
+        "Sampled usage");
+}
+
 std::vector<CaseImage> bgra8Formats(Device& d) {
     std::vector<CaseImage> out;
     FullscreenSampler sampler(d, "conformance/textured.frag");
@@ -848,15 +906,16 @@ std::vector<CaseImage> bgra8Formats(Device& d) {
             [&] { list->copyTexture(rgba, {}, bgra, {}); },
             name + " texels cannot be copied into " + std::string(formatInfo(rgbaTarget).name));
         d.wait(d.submit(*list));
+        crossOrderViews(d, o, sampler, f, bytes, out);
         expectError(
             [&] {
                 d.createTexture({.format = f,
                                  .width = 8,
                                  .height = 8,
                                  .usage = TextureUsage::Sampled,
-                                 .viewFormats = {Format::RGBA8}});
+                                 .viewFormats = {Format::R32F}});
             },
-            "view format RGBA8 is not compatible with " + name);
+            "view format R32F is not compatible with " + name);
         expectError(
             [&] {
                 d.createTexture(

@@ -192,8 +192,8 @@ TEST(BenchSweep, QuickSweepCoversEveryTechniqueAndBadFilesAreRefused) {
     EXPECT_EQ(error(R"([1, 2])"), "sweep: expected an object with a \"cases\" array");
     EXPECT_NE(error(R"({"cases": [{"technique": "raytrace"}]})").find("valid: forward"),
               std::string::npos);
-    EXPECT_EQ(error(R"({"cases": [{"technique": "deferred", "msaa": 4}]})"),
-              "sweep: case spheres/deferred/msaa4/96x72: deferred takes no --msaa");
+    EXPECT_EQ(error(R"({"cases": [{"technique": "redeferred", "msaa": 4}]})"),
+              "sweep: case spheres/redeferred/msaa4/96x72: redeferred takes no --msaa");
     EXPECT_EQ(
         error(R"({"cases": [{"technique": "forward-plus", "clusterDepthBounds": false}]})"),
         "sweep: case spheres/forward-plus/no-cluster-bounds/96x72: forward-plus reads no cluster grid (--no-cluster-bounds)");

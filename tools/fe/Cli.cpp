@@ -37,7 +37,7 @@ constexpr const char* kUsage =
     "      a model without lights of its own, unless --environment or --ibl-* is given, gets the default look:\n"
     "        the built-in sky as prefiltered image-based light and background, and a sun with shadows\n"
     "      --backend NAME --technique NAME|auto (below; default auto: the render director chooses, --verbose says why)\n"
-    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (forward techniques and light-prepass)\n"
+    "      --illum-scale 1|2|4 --msaa 1|2|4|8 (every technique but the redeferred ones)\n"
     "      --illum-split (redeferred-tiled: specular sums at full rate, L_dg at 1/scale)\n"
     "      --one-pass-culling (deferred-tiled: each work group culls its tile in shared memory, no culling pass)\n"
     "      --no-cluster-bounds (clustered techniques, visibility buffer: cluster lists not bounded by the opaque depth)\n"
@@ -203,7 +203,9 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--renderdoc-capture",
      {"FILE", "capture the first frame with RenderDoc into FILE_capture.rdc"}},
     {"--vsync", {"on|off", "with --window: wait for the display (default on)"}},
-    {"--msaa", {"1|2|4|8", "samples per pixel: forward techniques and light-prepass (default 1)"}},
+    {"--msaa",
+     {"1|2|4|8",
+      "samples per pixel: every technique but redeferred and redeferred-tiled (default 1)"}},
     {"--error-budget",
      {"PERCENT",
       "with auto: % of pixels beyond 5/255 of exact a reduced rate may cost (default 0)"}},

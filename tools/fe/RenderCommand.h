@@ -11,7 +11,7 @@ namespace fe::cli {
 int cmdRender(const Args& a);
 
 // The technique-specific options given (--msaa, --illum-scale, ...) that technique s.technique
-// does not use: reset in `s`, one warning each ("--msaa has no effect on technique deferred (it
+// does not use: reset in `s`, one warning each ("--msaa has no effect on technique redeferred (it
 // applies to ...): ignored").
 std::vector<std::string> dropUnusedTechniqueOptions(const Args& a, render::RenderSettings& s);
 

@@ -27,10 +27,11 @@ void textureDesc(const TextureDesc& d, const DeviceInfo& device) {
     if (d.format == Format::Undefined || d.format >= Format::Count)
         fail(what, "format is undefined");
     for (Format f : d.viewFormats)
-        if (!formatsCompatible(d.format, f))
+        if (!viewFormatsCompatible(d.format, f))
             fail(what, "view format " + std::string(formatInfo(f).name) +
                            " is not compatible with " + std::string(formatInfo(d.format).name) +
-                           " (its sRGB/UNORM pair, or the same texel size)");
+                           " (its sRGB/UNORM pair, the same texel size, or between RGBA8 and "
+                           "BGRA8)");
     const std::string kind = textureDimensionName(d.dimension);
     const std::string size = std::to_string(d.width) + "x" + std::to_string(d.height) + "x" +
                              std::to_string(d.depthOrLayers);
@@ -181,6 +182,13 @@ TextureDesc textureView(const TextureDesc& t, const std::string& name, bool text
             v.swizzle)) {  // Vulkan: swizzled views are sampled, never attachments or storage
         if (!any(t.usage, TextureUsage::Sampled))
             fail(what, "a swizzled view is sampled, and the texture has no Sampled usage");
+        d.usage = TextureUsage::Sampled;
+    }
+    if (channelOrdersDiffer(t.format, format)) {  // GL swaps red and blue by the view's swizzle
+        if (!any(t.usage, TextureUsage::Sampled))
+            fail(what,
+                 "a view between RGBA and BGRA channel orders is sampled only, and the "
+                 "texture has no Sampled usage");
         d.usage = TextureUsage::Sampled;
     }
     return d;

@@ -119,7 +119,9 @@
 //    stencil go to and from buffers one aspect at a time (TextureRegion::aspect), in Vulkan's
 //    buffer layouts on every backend (aspectTexelBytes).
 //  - Views: TextureDesc::viewFormats lists the other formats a view may take; copies, uploads,
-//    readback and barriers take the texture, not a view; views go before their texture.
+//    readback and barriers take the texture, not a view; views go before their texture. A view
+//    between RGBA8 and BGRA8 orders (each with its sRGB twin) reads red and blue swapped, as the
+//    bytes read in the other order, and is sampled only (GL swaps them by the view's swizzle).
 // Shown by: texture_array_layers, cube_faces, cube_array, texture_3d_slices, render_to_subresource,
 // render_cube_faces_then_sample, storage_texture_layers, generate_mips, copy_subresources,
 // compressed_bc, msaa_resolve, transient_attachments, msaa_texel_fetch, msaa_copy,

@@ -33,7 +33,8 @@ enum class Format : uint8_t {
     BC7_SRGB,
     // Bytes in the order blue, green, red, alpha (the common swap-chain and interop layout);
     // shaders see RGBA as for RGBA8. Copied only to and from BGRA8 formats (GL stores them RGBA),
-    // never storage images (SPIR-V has no such image format).
+    // never storage images (SPIR-V has no such image format). Views between them and RGBA8 /
+    // RGBA8_SRGB read red and blue swapped, sampled only (channelOrdersDiffer).
     BGRA8,
     BGRA8_SRGB,
     Count
@@ -80,6 +81,13 @@ Format srgbPair(Format f);
 // Whether texels of `a` may be read as `b` (copies between textures, texture views): the same
 // format, its sRGB/UNORM pair, or two uncompressed colour formats of the same texel size.
 bool formatsCompatible(Format a, Format b);
+// Whether one of `a` and `b` is RGBA8 or RGBA8_SRGB and the other BGRA8 or BGRA8_SRGB: a view
+// between them reads the texels' red and blue swapped, and is sampled only (GL stores both orders
+// as RGBA and swaps the view's channels by its swizzle, which writes do not go through).
+bool channelOrdersDiffer(Format a, Format b);
+// Whether a texture of format `a` may have a view of format `b` (TextureDesc::viewFormats):
+// formatsCompatible, or the other channel order of the 8-bit RGBA formats (channelOrdersDiffer).
+bool viewFormatsCompatible(Format a, Format b);
 // Parses the names printed by formatInfo (case-sensitive); Undefined when unknown.
 Format formatFromName(std::string_view name);
 
