@@ -18,7 +18,7 @@ add_library(fe::ui ALIAS fe_ui)
 # The libraries behind them, exported under short names (fe::core, fe::render, ...) because a
 # static library's dependencies must be installed with it.
 set(FE_EXPORTED fe_gdi:core fe_gdi_json:gdi_json fe_gdi_capture:gdi_capture fe_platform:platform fe_backend_vulkan:backend_vulkan
-    fe_backend_gl:backend_gl fe_backends:backends fe_assets:assets fe_graph:graph fe_render:render
+    fe_backend_gl:backend_gl fe_backends:backends fe_assets:assets fe_frame:frame fe_graph:graph fe_render:render
     fe_shaders_scene:shaders_scene fe_ui:ui)
 set(FE_EXPORTED_TARGETS fe_package_gdi fe_package_renderer)
 foreach(pair ${FE_EXPORTED})

@@ -200,6 +200,29 @@ StateScope scopeOf(gdi::ResourceState s) {
     // Undefined: whatever last used these bytes (another texture aliasing the memory).
     return {VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT};
 }
+
+// A barrier's scope as a list of `queue` may state it: the stages and accesses that queue's
+// family supports. The rest happened, or will happen, on another queue, which the submissions'
+// waits order (a render graph's async compute pass after a G-buffer pass).
+StateScope onQueue(StateScope s, gdi::QueueKind queue, bool source) {
+    if (queue == gdi::QueueKind::Graphics) return s;
+    constexpr VkPipelineStageFlags kAnyQueue =
+        VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT |
+        VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+    constexpr VkAccessFlags kTransfer = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
+                                        VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    const bool compute = queue == gdi::QueueKind::Compute;
+    s.stages &=
+        kAnyQueue |
+        (compute ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0u);
+    s.access &=
+        kTransfer | (compute ? VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                   VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT
+                             : 0u);
+    if (s.stages == 0)
+        s = {source ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0};
+    return s;
+}
 }  // namespace
 
 void VulkanCommandList::setAutomaticBarriers(bool enabled) {
@@ -220,7 +243,8 @@ void VulkanCommandList::barrier(const gdi::TextureBarrier* barriers, uint32_t co
         const gdi::TextureBarrier& in = barriers[i];
         Texture& t = copiedTexture(in.texture);
         const auto range = gdi::validate::textureBarrier(t.desc, in, t.name);
-        const StateScope before = scopeOf(in.before), after = scopeOf(in.after);
+        const StateScope before = onQueue(scopeOf(in.before), queue_, true),
+                         after = onQueue(scopeOf(in.after), queue_, false);
         VkImageMemoryBarrier& b = bs[i];
         b = {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
         b.srcAccessMask = before.access;
@@ -273,7 +297,8 @@ void VulkanCommandList::barrier(const gdi::BufferBarrier* barriers, uint32_t cou
         const gdi::BufferBarrier& in = barriers[i];
         const Buffer& buf = usedBuffer(in.buffer);
         const uint64_t size = gdi::validate::bufferBarrier(buf.desc, in, buf.name);
-        const StateScope before = bufferScope(in.before), after = bufferScope(in.after);
+        const StateScope before = onQueue(bufferScope(in.before), queue_, true),
+                         after = onQueue(bufferScope(in.after), queue_, false);
         VkBufferMemoryBarrier& b = bs[i];
         b = {VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
         b.srcAccessMask = before.access;

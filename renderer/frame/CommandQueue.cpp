@@ -35,13 +35,56 @@ gdi::CommandList& CommandQueue::beginFrame() {
     if (s.fence) device_.wait(s.fence);  // this slot's previous frame is done with its region
     regionUsed_ = 0;
     inFrame_ = true;
+    current_ = s.commands.get();
+    graphicsUsed_ = computeUsed_ = 0;
+    graphicsWait_ = 0;
+    submissions_.clear();
     return *s.commands;
 }
+
+gdi::FenceValue CommandQueue::submitCurrent() {
+    const gdi::FenceValue fence = device_.submit(*current_, {.waitFor = graphicsWait_});
+    submissions_.push_back({gdi::QueueKind::Graphics, fence, graphicsWait_});
+    graphicsWait_ = 0;
+    return fence;
+}
+
+gdi::CommandList& CommandQueue::graphics() {
+    if (!inFrame_) throw gdi::Error("CommandQueue::graphics outside a frame");
+    return *current_;
+}
+
+gdi::FenceValue CommandQueue::submitGraphics() {
+    if (!inFrame_) throw gdi::Error("CommandQueue::submitGraphics outside a frame");
+    const gdi::FenceValue fence = submitCurrent();
+    Slot& s = slot();
+    if (graphicsUsed_ == s.moreGraphics.size())
+        s.moreGraphics.push_back(device_.createCommandList());
+    current_ = s.moreGraphics[graphicsUsed_++].get();
+    return fence;
+}
+
+gdi::CommandList& CommandQueue::compute() {
+    if (!inFrame_) throw gdi::Error("CommandQueue::compute outside a frame");
+    Slot& s = slot();
+    if (computeUsed_ == s.computeLists.size())
+        s.computeLists.push_back(device_.createCommandList({.queue = gdi::QueueKind::Compute}));
+    return *s.computeLists[computeUsed_++];
+}
+
+gdi::FenceValue CommandQueue::submitCompute(gdi::CommandList& list, gdi::FenceValue waitFor) {
+    if (!inFrame_) throw gdi::Error("CommandQueue::submitCompute outside a frame");
+    const gdi::FenceValue fence = device_.submit(list, {.waitFor = waitFor});
+    submissions_.push_back({list.queue(), fence, waitFor});
+    return fence;
+}
+
+void CommandQueue::graphicsWaits(gdi::FenceValue fence) { graphicsWait_ = fence; }
 
 gdi::FenceValue CommandQueue::endFrame() {
     if (!inFrame_) throw gdi::Error("CommandQueue::endFrame without beginFrame");
     Slot& s = slots_[frameNumber_ % slots_.size()];
-    s.fence = device_.submit(*s.commands);
+    s.fence = submitCurrent();
     gdi::markFrameEnd(device_);  // a capture's frames are the queue's frames (headless too)
     inFrame_ = false;
     ++frameNumber_;
@@ -50,7 +93,9 @@ gdi::FenceValue CommandQueue::endFrame() {
 
 gdi::FenceValue CommandQueue::flush() {
     if (!inFrame_) throw gdi::Error("CommandQueue::flush outside a frame");
-    return device_.submit(*slots_[frameNumber_ % slots_.size()].commands);
+    const gdi::FenceValue fence = device_.submit(*current_);
+    submissions_.push_back({gdi::QueueKind::Graphics, fence, 0});
+    return fence;
 }
 
 void CommandQueue::waitIdle() {

@@ -1,6 +1,9 @@
 // Layer 5 (Communication): frames in flight. Each frame slot owns a command list, a fence and
 // a region of a per-frame upload ring; beginFrame() waits only for the frame that last used
 // the same slot, so the CPU records frame N+1 while the GPU still executes frame N.
+// A frame may be cut into several submissions on the graphics queue and lists on the compute
+// queue (async compute: RenderGraph::execute(CommandQueue&)); the frame's fence is its last
+// graphics submission's, which the others precede or are waited for by.
 #pragma once
 #include <memory>
 #include <vector>
@@ -33,6 +36,23 @@ public:
     gdi::FenceValue flush();
     void waitIdle();
 
+    // Async compute within a frame. graphics(): the graphics list being recorded (beginFrame's
+    // at first). submitGraphics(): submits it, waiting for what graphicsWaits() named, and
+    // starts the next one. compute(): a compute-queue list of this frame, submitted by
+    // submitCompute(list, waitFor). graphicsWaits(fence): the next graphics submission (or
+    // endFrame's) waits for it.
+    gdi::CommandList& graphics();
+    gdi::FenceValue submitGraphics();
+    gdi::CommandList& compute();
+    gdi::FenceValue submitCompute(gdi::CommandList& list, gdi::FenceValue waitFor);
+    void graphicsWaits(gdi::FenceValue fence);
+    // What the frame being recorded (after endFrame: the last frame) submitted, in order.
+    struct Submission {
+        gdi::QueueKind queue = gdi::QueueKind::Graphics;
+        gdi::FenceValue fence = 0, waitFor = 0;
+    };
+    const std::vector<Submission>& submissions() const { return submissions_; }
+
     // Copies `size` bytes into this frame's upload region; aligned for uniform/storage binding.
     UploadAllocation upload(gdi::ByteSpan data);
     template <class T>
@@ -48,7 +68,11 @@ private:
     struct Slot {
         std::unique_ptr<gdi::CommandList> commands;
         gdi::FenceValue fence = 0;
+        // The frame's further lists, reused frame after frame (async compute's cuts).
+        std::vector<std::unique_ptr<gdi::CommandList>> moreGraphics, computeLists;
     };
+    Slot& slot() { return slots_[frameNumber_ % slots_.size()]; }
+    gdi::FenceValue submitCurrent();
     gdi::DeviceObjects objects_;
     gdi::Device& device_;
     std::vector<Slot> slots_;
@@ -58,6 +82,10 @@ private:
     uint64_t alignment_ = 256;
     uint64_t frameNumber_ = 0;
     bool inFrame_ = false;
+    gdi::CommandList* current_ = nullptr;  // the graphics list being recorded
+    size_t graphicsUsed_ = 0, computeUsed_ = 0;
+    gdi::FenceValue graphicsWait_ = 0;
+    std::vector<Submission> submissions_;
 };
 
 }  // namespace fe::render

@@ -94,6 +94,7 @@ void PassBuilder::buffer(BufferId b, gdi::BufferAccess access) {
     graph_.passes_[pass_].buffers.push_back({b, access});
 }
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+void PassBuilder::asyncCompute() { graph_.passes_[pass_].asyncCompute = true; }
 
 RenderGraph::RenderGraph() = default;
 RenderGraph::~RenderGraph() { release(); }
@@ -380,6 +381,81 @@ void RenderGraph::planBarriers() {
     }
 }
 
+// Async compute: runs of consecutive async passes become groups on the compute queue. A group
+// may fork after the last graphics pass that shares a texture or buffer with it and must join
+// before the first later one that does; the graphics passes between run beside it. Sharing
+// nothing is what keeps the planned barriers right: each resource of the group is used by the
+// graphics queue only before the fork (ordered by the compute submission's wait) or after the
+// join (by the graphics submission's wait), so the barriers the serial order planned hold.
+// Groups whose windows overlap share one compute list: it forks at the later fork and joins at
+// the earlier join. A group that would leave its window with no graphics pass beside it runs in
+// order on the graphics list.
+void RenderGraph::planAsyncCompute() {
+    for (PassInfo& p : passes_) p.forkBefore = p.joinBefore = -1;
+    auto shares = [&](size_t a, size_t b) {
+        for (const TextureAccess& x : passes_[a].accesses)
+            for (const TextureAccess& y : passes_[b].accesses)
+                if (x.texture == y.texture) return true;
+        for (const BufferUse& x : passes_[a].buffers)
+            for (const BufferUse& y : passes_[b].buffers)
+                if (x.buffer == y.buffer) return true;
+        return false;
+    };
+    struct Window {
+        int fork = 0, join = 0;
+        std::vector<int> members;
+    };
+    const int n = int(passes_.size());
+    auto beside = [&](const Window& w) {
+        for (int q = w.fork; q < w.join; ++q)
+            if (!passes_[q].culled &&
+                std::find(w.members.begin(), w.members.end(), q) == w.members.end())
+                return true;
+        return false;
+    };
+    std::vector<Window> windows;
+    for (int first = 0; first < n;) {
+        if (passes_[first].culled || !passes_[first].asyncCompute) {
+            ++first;
+            continue;
+        }
+        Window g;  // the group: async passes with no graphics pass between them
+        int last = first;
+        for (int q = first; q < n && (passes_[q].culled || passes_[q].asyncCompute); ++q)
+            if (!passes_[q].culled) g.members.push_back(q), last = q;
+        auto sharesGroup = [&](int q) {
+            for (int m : g.members)
+                if (shares(size_t(m), size_t(q))) return true;
+            return false;
+        };
+        g.join = n;
+        for (int q = first - 1; q >= 0 && g.fork == 0; --q)
+            if (!passes_[q].culled && sharesGroup(q)) g.fork = q + 1;
+        for (int q = last + 1; q < n && g.join == n; ++q)
+            if (!passes_[q].culled && sharesGroup(q)) g.join = q;
+        first = last + 1;
+        if (!windows.empty() && g.fork < windows.back().join) {  // overlapping: one list
+            Window merged = windows.back();
+            merged.fork = std::max(merged.fork, g.fork);
+            merged.join = std::min(merged.join, g.join);
+            merged.members.insert(merged.members.end(), g.members.begin(), g.members.end());
+            if (merged.fork < merged.join && beside(merged)) windows.back() = merged;
+        } else if (beside(g)) {
+            windows.push_back(g);
+        }
+    }
+    for (const Window& w : windows)
+        for (int m : w.members) {
+            passes_[m].forkBefore = w.fork, passes_[m].joinBefore = w.join;
+            // Alive over the whole window: nothing beside the group may share its memory.
+            for (const TextureAccess& a : passes_[m].accesses) {
+                TextureInfo& t = textures_[a.texture.index];
+                t.firstPass = std::min(t.firstPass, w.fork);
+                t.lastPass = std::max(t.lastPass, w.join - 1);
+            }
+        }
+}
+
 // A resolve's source is a multisampled target of the same pass; its destination a
 // single-sample texture of the same format and size.
 void RenderGraph::checkResolve(const PassInfo& pass, const TextureAccess& a,
@@ -417,6 +493,11 @@ void RenderGraph::compile(const CompileOptions& options) {
                     throw gdi::Error("render graph: pass '" + pass.name + "' uses texture '" +
                                      t.name +
                                      "' twice (a target cannot also be sampled in the same pass)");
+            if (pass.asyncCompute && (isTarget(a.state) || a.resolveSource.valid()))
+                throw gdi::Error(
+                    "render graph: pass '" + pass.name +
+                    "' may run on the compute queue (asyncCompute) but renders into '" + t.name +
+                    "'");
             if (a.resolveSource.valid()) {
                 checkResolve(pass, a, t);
                 continue;
@@ -463,6 +544,7 @@ void RenderGraph::compile(const CompileOptions& options) {
     }
     cull();
     computeLifetimes();
+    planAsyncCompute();
     for (size_t i = 0; i < textures_.size(); ++i) {
         TextureInfo& t = textures_[i];
         if (t.imported || !t.used()) continue;
@@ -592,34 +674,78 @@ void RenderGraph::execute(gdi::CommandList& cmd,
                           const std::function<void(const std::string&)>& afterPass) {
     if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
     cmd.setAutomaticBarriers(false);
-    std::vector<gdi::TextureBarrier> barriers;
-    std::vector<gdi::BufferBarrier> bufferBarriers;
     for (size_t p = 0; p < passes_.size(); ++p) {
-        const PassInfo& pass = passes_[p];
-        if (pass.culled) continue;
-        barriers.clear();
-        for (const PlannedBarrier& b : pass.barriers)
-            barriers.push_back({handle(b.texture), b.before, b.after});
-        cmd.barrier(barriers.data(), uint32_t(barriers.size()));
-        bufferBarriers.clear();
-        for (const PlannedBufferBarrier& b : pass.bufferBarriers)
-            bufferBarriers.push_back(
-                {.buffer = handle(b.buffer), .before = b.before, .after = b.after});
-        cmd.barrier(bufferBarriers.data(), uint32_t(bufferBarriers.size()));
-        cmd.pushDebugGroup(pass.name.c_str());
-        Executor& e = executors_[p];
-        if (e.timer) cmd.beginTimer(e.timer);
-        PassContext ctx(cmd, *this, uint32_t(p));
-        if (e.run) e.run(ctx);
-        if (e.timer) cmd.endTimer(e.timer);
-        cmd.popDebugGroup();
-        e.timed = bool(e.timer);
+        if (passes_[p].culled) continue;
+        recordPass(cmd, p);
         if (afterPass) {
-            afterPass(pass.name);
+            afterPass(passes_[p].name);
             cmd.setAutomaticBarriers(false);  // a submitted list starts over with the default
         }
     }
     cmd.setAutomaticBarriers(true);
+}
+
+void RenderGraph::recordPass(gdi::CommandList& cmd, size_t p) {
+    const PassInfo& pass = passes_[p];
+    std::vector<gdi::TextureBarrier> barriers;
+    for (const PlannedBarrier& b : pass.barriers)
+        barriers.push_back({handle(b.texture), b.before, b.after});
+    cmd.barrier(barriers.data(), uint32_t(barriers.size()));
+    std::vector<gdi::BufferBarrier> bufferBarriers;
+    for (const PlannedBufferBarrier& b : pass.bufferBarriers)
+        bufferBarriers.push_back(
+            {.buffer = handle(b.buffer), .before = b.before, .after = b.after});
+    cmd.barrier(bufferBarriers.data(), uint32_t(bufferBarriers.size()));
+    cmd.pushDebugGroup(pass.name.c_str());
+    Executor& e = executors_[p];
+    if (e.timer) cmd.beginTimer(e.timer);
+    PassContext ctx(cmd, *this, uint32_t(p));
+    if (e.run) e.run(ctx);
+    if (e.timer) cmd.endTimer(e.timer);
+    cmd.popDebugGroup();
+    e.timed = bool(e.timer);
+}
+
+void RenderGraph::execute(render::CommandQueue& queue) {
+    if (!compiled_ || !device_) throw gdi::Error("render graph: execute before compile(device)");
+    gdi::CommandList* graphics = &queue.graphics();
+    graphics->setAutomaticBarriers(false);
+    auto cut = [&] {  // submits the graphics list so far and continues in a new one
+        graphics->setAutomaticBarriers(true);
+        const gdi::FenceValue fence = queue.submitGraphics();
+        graphics = &queue.graphics();
+        graphics->setAutomaticBarriers(false);
+        return fence;
+    };
+    int join = -1;
+    gdi::FenceValue computeDone = 0;
+    const int n = int(passes_.size());
+    for (int p = 0; p <= n; ++p) {
+        if (p == join) {  // the graphics passes from here on wait for the group
+            if (p < n) cut();
+            queue.graphicsWaits(computeDone);
+            join = -1;
+        }
+        if (p == n) break;
+        gdi::CommandList* compute = nullptr;
+        for (int m = p; m < n; ++m) {  // a group forking here: its passes on a compute list
+            if (passes_[m].culled || passes_[m].forkBefore != p) continue;
+            if (!compute) {
+                const gdi::FenceValue before = cut();
+                compute = &queue.compute();
+                compute->setAutomaticBarriers(false);
+                computeDone = before;  // the compute submission waits for the graphics before it
+            }
+            recordPass(*compute, size_t(m));
+            join = passes_[m].joinBefore;
+        }
+        if (compute) {
+            compute->setAutomaticBarriers(true);
+            computeDone = queue.submitCompute(*compute, computeDone);
+        }
+        if (!passes_[p].culled && passes_[p].forkBefore < 0) recordPass(*graphics, size_t(p));
+    }
+    graphics->setAutomaticBarriers(true);
 }
 
 std::vector<PassTiming> RenderGraph::passTimings() const {

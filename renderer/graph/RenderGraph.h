@@ -39,6 +39,7 @@
 
 #include "fe/gdi/Device.h"
 #include "fe/gdi/DeviceObjects.h"
+#include "frame/CommandQueue.h"
 #include "graph/GraphTypes.h"
 
 namespace fe::graph {
@@ -111,6 +112,10 @@ public:
     void buffer(BufferId buffer, gdi::BufferAccess access);
     // The pass has effects the graph cannot see: never culled.
     void sideEffect();
+    // The pass may run on the compute queue beside the graphics passes that share no texture
+    // or buffer with it (execute(CommandQueue&)). It records compute work only: dispatches,
+    // copies, barriers, timers; no targets (an Error at compile).
+    void asyncCompute();
 
 private:
     friend class RenderGraph;
@@ -163,6 +168,13 @@ struct PassInfo {
     std::vector<BufferUse> buffers;
     bool sideEffect = false;
     bool culled = false;
+    bool asyncCompute = false;  // PassBuilder::asyncCompute
+    // Planned by compile for an async compute pass: it starts on the compute queue once the
+    // graphics passes before `forkBefore` have been submitted, the graphics passes from there up
+    // to `joinBefore` run beside it, and those from `joinBefore` on wait for it (passes_.size():
+    // the frame's end). -1: it runs in order on the graphics list (its window would overlap an
+    // earlier async pass's).
+    int forkBefore = -1, joinBefore = -1;
     std::vector<PlannedBarrier> barriers;  // recorded before the pass
     std::vector<PlannedBufferBarrier> bufferBarriers;
 };
@@ -203,6 +215,11 @@ public:
     // on into the same list.
     void execute(gdi::CommandList& cmd,
                  const std::function<void(const std::string& pass)>& afterPass = {});
+    // Records the frame into the queue's lists: the async compute passes (PassInfo::forkBefore)
+    // on compute-queue lists, the graphics list cut and submitted at each fork and join, the
+    // graphics passes after a join waiting for the compute work (CommandQueue::graphicsWaits).
+    // The caller ends the frame (CommandQueue::endFrame).
+    void execute(render::CommandQueue& queue);
 
     const std::vector<PassInfo>& passes() const { return passes_; }
     const std::vector<TextureInfo>& textures() const { return textures_; }
@@ -226,6 +243,8 @@ private:
     void computeLifetimes();
     void markTransientAttachments();
     void planBarriers();
+    void planAsyncCompute();
+    void recordPass(gdi::CommandList& cmd, size_t p);
     void planBufferBarriers();
     void checkBufferUses() const;
     void checkResolve(const PassInfo& pass, const TextureAccess& a, const TextureInfo& dst) const;

@@ -89,6 +89,7 @@ gdi::Json settingsJson(const BenchCase& c) {
             {"precomputedNoV", s.precomputedNoV},
             {"tileCullingPass", s.tileCullingPass},
             {"clusterDepthBounds", s.clusterDepthBounds},
+            {"asyncCompute", s.asyncCompute},
             {"brdf", shadingModelName(s.shadingModel)},
             {"iblSamples", s.iblSamples},
             {"iblPrefiltered", s.iblPrefiltered},
@@ -166,6 +167,7 @@ std::string BenchCase::key() const {
     if (!s.precomputedNoV) k += "/rebuild-nov";
     if (!s.tileCullingPass) k += "/one-pass-culling";
     if (!s.clusterDepthBounds) k += "/no-cluster-bounds";
+    if (!s.asyncCompute) k += "/no-async-compute";
     if (s.shadingModel != ShadingModel::Auto)
         k += std::string("/brdf-") + shadingModelName(s.shadingModel);
     if (s.tonemap != shading::Tonemap::Clamp)
@@ -279,6 +281,8 @@ BenchCase caseFromJson(const gdi::Json& j) {
             s.tileCullingPass = boolean();
         else if (key == "clusterDepthBounds")
             s.clusterDepthBounds = boolean();
+        else if (key == "asyncCompute")
+            s.asyncCompute = boolean();
         else if (key == "brdf") {
             const std::string b = text();
             if (b != "auto" && b != "gltf" && b != "separable")

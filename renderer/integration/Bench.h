@@ -78,7 +78,8 @@ std::vector<BenchCase> quickSweep();
 // A sweep file: {"cases": [{"scene": ..., "technique": ..., "size": "WxH", "illumScale": 2,
 // "msaa": 4, "shadows": true, "shadowMapSize": 512, "environment": "builtin:sky",
 // "iblSamples": 64, "iblPrefiltered": false, "temporal": false, "illumSplit": false,
-// "precomputedNoV": true, "tileCullingPass": true, "clusterDepthBounds": true, "brdf": "auto"
+// "precomputedNoV": true, "tileCullingPass": true, "clusterDepthBounds": true,
+// "asyncCompute": true, "brdf": "auto"
 // (or "gltf", "separable": fe render --brdf), "lights": 64,
 // "sphereGrid": 5}, ...],
 // "description": "..."}; unknown keys are errors (a typo must not silently bench the default).

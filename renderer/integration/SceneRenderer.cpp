@@ -612,7 +612,11 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     if (shadows_)
         shadows_->update(cam, projectionAspect(cam, float(s.width) / float(s.height)),
                          scene_.bounds, sceneLights_);
-    graph_.execute(cmd, afterPass);
+    // Async compute cuts the frame into submissions; a profiling run (afterPass) keeps one list.
+    if (s.asyncCompute && !afterPass)
+        graph_.execute(*queue_);
+    else
+        graph_.execute(cmd, afterPass);
     lastFence_ = queue_->endFrame();
 }
 

@@ -142,6 +142,8 @@ ClusterLightGrid::Lists ClusterLightGrid::declareLists(graph::RenderGraph& g,
             b.buffer(declared_.headers, gdi::BufferAccess::StorageWrite);
             b.storage(declared_.entries);
             if (bounded_) b.buffer(bounds, gdi::BufferAccess::StorageRead);
+            // Unbounded, it reads only the lights: it runs beside the depth or G-buffer pass.
+            if (ctx_.settings.asyncCompute) b.asyncCompute();
         },
         [this](graph::PassContext& pc) { recordAssignment(pc.cmd); });
     return declared_;

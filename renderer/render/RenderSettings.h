@@ -81,6 +81,11 @@ struct RenderSettings {
     // declareBounded: an opaque pixel walks only the lights reaching those depths); off: every
     // pixel walks its slice's whole list, as before (the same image; measured both ways).
     bool clusterDepthBounds = true;
+    // The compute passes that share nothing with the graphics passes around them (the light
+    // cluster grid's assignment when it is not bounded by depth, the particles' simulation) run
+    // on the compute queue beside them (RenderGraph::execute(CommandQueue&); a device with one
+    // queue orders them as before); off: every pass on the graphics list, in order.
+    bool asyncCompute = true;
     // A "light-list-statistics" pass after the technique's: per pixel, the lights its shading
     // loop walks (SceneRenderer::lightListStatistics). measureLightLists turns it on in a renderer of
     // its own (fe render --verbose, fe bench, the director), out of the timed frames.

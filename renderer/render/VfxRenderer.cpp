@@ -147,6 +147,9 @@ void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph:
         [&](graph::PassBuilder& b) {
             b.buffer(argsReset, A::CopySrc);
             b.buffer(args, A::CopyDst);
+            // Reset, simulation and sort share nothing with the scene's passes: on the compute
+            // queue beside them (RenderSettings::asyncCompute), until the particles are drawn.
+            if (ctx_.settings.asyncCompute) b.asyncCompute();
         },
         [this](graph::PassContext& pc) {
             pc.cmd.copyBuffer(args_, 0, argsReset_, 0, sizeof(gdi::DrawIndirectArgs) * 2);
@@ -159,6 +162,7 @@ void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph:
             b.buffer(additive, A::StorageWrite);
             b.buffer(alpha, A::StorageWrite);
             b.buffer(args, A::StorageRead | A::StorageWrite);  // atomic appends count the instances
+            if (ctx_.settings.asyncCompute) b.asyncCompute();
         },
         [this](graph::PassContext& pc) {
             gdi::CommandList& cmd = pc.cmd;
@@ -187,6 +191,7 @@ void VfxRenderer::declare(graph::RenderGraph& g, graph::TextureId output, graph:
             b.buffer(sorted, A::StorageWrite);
             b.buffer(args,
                      A::StorageRead | A::StorageWrite);  // caps the alpha count at the list size
+            if (ctx_.settings.asyncCompute) b.asyncCompute();
         },
         [this](graph::PassContext& pc) {
             gdi::CommandList& cmd = pc.cmd;

@@ -75,6 +75,38 @@ TEST_P(Particles, SimulatedCountsMatchTheCpuAndAlphaIsSortedBackToFront) {
     EXPECT_GT(distances.front(), distances.back());
 }
 
+// RenderSettings::asyncCompute: the particles' reset, simulation and sort run on the compute
+// queue beside the scene's passes (and, under MSAA, the unbounded light assignment of
+// clustered-deferred), the frame cut into submissions with the waits between them; the image
+// is the one the single list draws, bit for bit. Marking nothing async fails the first checks.
+TEST_P(Particles, AsyncComputeDrawsTheSameFrame) {
+    const assets::Scene scene = assets::makeBuiltinScene("particles");
+    for (const uint32_t msaa : {1u, 4u}) {
+        if (msaa > 1 && !(device->info().limits.colorSampleCounts & 4)) continue;
+        gdi::Image images[2];
+        for (const bool async : {false, true}) {
+            render::RenderSettings s{
+                .technique = "clustered-deferred", .width = kW, .height = kH, .msaa = msaa};
+            s.asyncCompute = async;
+            render::SceneRenderer r(*device, scene, s);
+            std::vector<std::string> beside;
+            for (const graph::PassInfo& p : r.graph().passes())
+                if (!p.culled && p.forkBefore >= 0) beside.push_back(p.name);
+            using V = std::vector<std::string>;
+            const V expected = !async ? V{}
+                               : msaa == 1
+                                   ? V{"particles reset", "particles simulate", "particles sort"}
+                                   : V{"light-assignment", "particles reset", "particles simulate",
+                                       "particles sort"};
+            EXPECT_EQ(beside, expected) << msaa << " samples";
+            r.renderFrame();
+            images[async] = r.readOutput();
+        }
+        EXPECT_EQ(images[0].data, images[1].data) << msaa << " samples";
+    }
+    EXPECT_EQ(device->validationErrorCount(), 0u);
+}
+
 // With the emitters removed the frame changes only where the particles were (the fire and the
 // smoke column: a few percent of the frame, not most of it).
 TEST_P(Particles, ParticlesDrawOnlyWhereTheyAre) {

@@ -180,6 +180,79 @@ TEST(RenderGraph, LifetimesSpanFirstToLastUse) {
     EXPECT_TRUE(any(g.texture(a).desc.usage, gdi::TextureUsage::Sampled));
 }
 
+// Async compute: an async pass forks after the last pass sharing a resource with it and joins
+// before the first later one that does; its textures stay alive over the window, so nothing
+// beside it shares their memory. A window with no graphics pass in it, and an async pass
+// rendering into a target, are refused (the first runs in order, the second is an Error).
+TEST(RenderGraph, AsyncComputeForksAfterItsInputsAndJoinsBeforeItsReaders) {
+    RenderGraph g;
+    using A = gdi::BufferAccess;
+    auto gb = g.createTexture("gbuffer", {.width = 64, .height = 64});
+    auto shadow = g.createTexture("shadow", {.width = 64, .height = 64});
+    auto lists = g.createTexture("lists", {.format = Format::R32U, .width = 64, .height = 64});
+    auto lights = g.createBuffer("lights", {.size = 256});
+    auto out = importFake(g);
+    g.addPass("gbuffer", [&](auto& b) { b.colorTarget(gb); }, {});
+    g.addPass("upload", [&](auto& b) { b.buffer(lights, A::StorageWrite); }, {});
+    g.addPass("shadow", [&](auto& b) { b.colorTarget(shadow); }, {});
+    g.addPass("assign",
+              [&](auto& b) {
+                  b.buffer(lights, A::StorageRead);
+                  b.storage(lists);
+                  b.asyncCompute();
+              },
+              {});
+    g.addPass("light",
+              [&](auto& b) {
+                  b.sample(gb);
+                  b.sample(shadow);
+                  b.colorTarget(out);
+              },
+              {});
+    g.addPass("shade",
+              [&](auto& b) {
+                  b.sample(lists);
+                  b.colorTarget(out, LoadOp::Load);
+              },
+              {});
+    g.markOutput(out);
+    g.compile(graph::CompileOptions{});
+    const graph::PassInfo& assign = g.passes()[3];
+    EXPECT_EQ(assign.forkBefore, 2);  // after "upload", its input
+    EXPECT_EQ(assign.joinBefore, 5);  // before "shade", its reader
+    EXPECT_EQ(g.texture(lists).firstPass, 2);
+    EXPECT_EQ(g.texture(lists).lastPass, 5);
+    // "shadow" lives beside the async pass: their memory must not overlap.
+    const graph::TextureInfo &l = g.texture(lists), &s = g.texture(shadow);
+    EXPECT_TRUE(l.offset + l.size <= s.offset || s.offset + s.size <= l.offset)
+        << "lists at " << l.offset << ", shadow at " << s.offset;
+    for (const graph::PassInfo& p : g.passes())
+        if (p.name != "assign") EXPECT_EQ(p.forkBefore, -1) << p.name;
+
+    // Read right after it is written: no graphics pass beside it, so it runs in order.
+    RenderGraph h;
+    auto t = h.createTexture("t", {.width = 8, .height = 8});
+    auto o = importFake(h);
+    h.addPass("make", [&](auto& b) { b.storage(t), b.asyncCompute(); }, {});
+    h.addPass("use",
+              [&](auto& b) {
+                  b.sample(t);
+                  b.colorTarget(o);
+              },
+              {});
+    h.markOutput(o);
+    h.compile(graph::CompileOptions{});
+    EXPECT_EQ(h.passes()[0].forkBefore, -1);
+
+    RenderGraph bad;
+    auto badOut = importFake(bad);
+    bad.addPass("draw", [&](auto& b) { b.colorTarget(badOut), b.asyncCompute(); }, {});
+    bad.markOutput(badOut);
+    EXPECT_EQ(fe::testing::errorOf([&] { bad.compile(graph::CompileOptions{}); }),
+              "render graph: pass 'draw' may run on the compute queue (asyncCompute) but renders "
+              "into 'output'");
+}
+
 // A multisampled target a later pass samples (a G-buffer under --msaa, read per sample) is
 // Sampled and lives past its pass (not Transient).
 TEST(RenderGraph, SampledMultisampledTargetsAreSampled) {
@@ -967,6 +1040,99 @@ TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
     EXPECT_EQ(d.validationErrorCount(), 0u);
     d.destroy(src);
     d.destroy(dst);
+}
+
+// Async compute on a device: a copy chain on the compute queue (fill, then drain into the
+// result after an unrelated graphics pass), recorded through CommandQueue: the frame is cut at
+// the fork and the join, the graphics after the join waits for the compute list, and the bytes
+// arrive with validation silent (on Vulkan the barriers of the compute list keep to its stages).
+TEST_P(RenderGraphOnDevice, AsyncComputeRunsBesideGraphics) {
+    using namespace gdi;
+    using A = BufferAccess;
+    Device& d = *device;
+    std::array<uint32_t, 64> words{};
+    for (uint32_t i = 0; i < words.size(); ++i) words[i] = 0x85ebca6bu * (i + 3);
+    auto src =
+        d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"},
+                       bytesOf(words));
+    auto dst = d.createBuffer({.size = sizeof words,
+                               .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
+                               .debugName = "result"});
+    auto target = d.createTexture({.width = 32,
+                                   .height = 32,
+                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                                   .debugName = "beside"});
+    {
+        render::CommandQueue queue(d, 2, 1024);
+        RenderGraph g;
+        auto in = g.importBuffer("source", src, sizeof words);
+        auto mid = g.createBuffer("middle", {.size = sizeof words});
+        auto result = g.importBuffer("result", dst, sizeof words);
+        auto beside = g.importTexture("beside", target, d.desc(target));
+        g.addPass(
+            "fill",
+            [&](auto& b) {
+                b.buffer(in, A::CopySrc);
+                b.buffer(mid, A::CopyDst);
+                b.asyncCompute();
+            },
+            [&](graph::PassContext& pc) {
+                EXPECT_EQ(pc.cmd.queue(), QueueKind::Compute);
+                pc.cmd.copyBuffer(pc.buffer(mid), 0, src, 0, sizeof words);
+            });
+        g.addPass(
+            "clear",
+            [&](auto& b) {
+                b.colorTarget(beside, LoadOp::Clear, {0, 1, 0, 1});
+            },
+            [&](graph::PassContext& pc) {
+                EXPECT_EQ(pc.cmd.queue(), QueueKind::Graphics);
+                pc.beginRenderPass();
+                pc.cmd.endRenderPass();
+            });
+        g.addPass(
+            "drain",
+            [&](auto& b) {
+                b.buffer(mid, A::CopySrc);
+                b.buffer(result, A::CopyDst);
+            },
+            [&](graph::PassContext& pc) {
+                pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words);
+            });
+        g.markOutput(result);
+        g.markOutput(beside);
+        g.compile(d);
+        EXPECT_EQ(g.passes()[0].forkBefore, 0);
+        EXPECT_EQ(g.passes()[0].joinBefore, 2);
+        for (int frame = 0; frame < 3; ++frame) {  // the frame's lists are reused
+            d.writeBuffer(dst, 0, bytesOf(std::array<uint32_t, 64>{}));
+            queue.beginFrame();
+            g.execute(queue);
+            d.wait(queue.endFrame());
+            const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
+            std::array<uint32_t, 64> back{};
+            std::memcpy(back.data(), bytes.data(), sizeof back);
+            EXPECT_EQ(back, words) << "frame " << frame;
+            // The fork (before "fill": nothing before it), the compute list waiting for it, the
+            // graphics beside it ("clear"), and the rest ("drain") waiting for the compute list.
+            // A device with one queue runs them in order either way: these waits are what a
+            // device with a compute family relies on.
+            const auto& s = queue.submissions();
+            ASSERT_EQ(s.size(), 4u) << "frame " << frame;
+            EXPECT_EQ(s[0].queue, QueueKind::Graphics);
+            EXPECT_EQ(s[1].queue, QueueKind::Compute);
+            EXPECT_EQ(s[1].waitFor, s[0].fence);
+            EXPECT_EQ(s[2].queue, QueueKind::Graphics);
+            EXPECT_EQ(s[2].waitFor, 0u);
+            EXPECT_EQ(s[3].queue, QueueKind::Graphics);
+            EXPECT_EQ(s[3].waitFor, s[1].fence);
+        }
+        EXPECT_EQ(d.readTexture(target).texel(5, 5)[1], 1.0f);
+    }
+    EXPECT_EQ(d.validationErrorCount(), 0u);
+    d.destroy(src);
+    d.destroy(dst);
+    d.destroy(target);
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderGraphOnDevice);
