@@ -18,7 +18,10 @@ start=$(date +%s)
 "$fe" bench --sweep bench/sweeps/many-lights.json --backend all --frames 5 --out "$out/many-lights"
 "$fe" bench --sweep bench/sweeps/cluster-bounds.json --backend all --frames 5 --interleave --out "$out/cluster-bounds"
 "$fe" bench --sweep bench/sweeps/director-crossovers.json --backend vulkan,gl-egl --frames 5 --out "$out/director-crossovers"
+"$fe" bench --sweep bench/sweeps/deferred-msaa.json --backend all --frames 5 --out "$out/deferred-msaa"
+"$fe" bench --sweep bench/sweeps/async-compute.json --backend all --frames 9 --interleave --out "$out/async-compute"
 "$python" tools/bench/update_benchmarks.py docs/BENCHMARKS.md quick="$out/quick" \
     techniques-720p="$out/techniques-720p" tiled-720p="$out/tiled-720p" light-scaling="$out/light-scaling" shadows="$out/shadows" post="$out/post" \
-    many-lights="$out/many-lights" cluster-bounds="$out/cluster-bounds" director-crossovers="$out/director-crossovers"
+    many-lights="$out/many-lights" cluster-bounds="$out/cluster-bounds" director-crossovers="$out/director-crossovers" \
+    deferred-msaa="$out/deferred-msaa" async-compute="$out/async-compute"
 echo "the full sweep took $(( $(date +%s) - start )) s; results in $out"
