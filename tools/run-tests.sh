@@ -4,4 +4,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/build.sh
 cd build
-ctest --output-on-failure -j"$(nproc)" "$@"
+# --timeout: a test that hangs fails after 10 minutes (the slowest takes about 2 on 2 cores)
+# instead of holding the run.
+ctest --output-on-failure --timeout 600 -j"$(nproc)" "$@"

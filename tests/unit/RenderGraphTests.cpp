@@ -990,18 +990,39 @@ TEST_P(RenderGraphOnDevice, MultisampledTransientsAndResolves) {
 
 // A transient buffer between two copy passes, with the backend's automatic barriers off: the
 // graph creates it with copy usages, orders the write before the read, and the bytes arrive.
+namespace {
+// The copy-chain tests' buffers: 64 known words in a source, and a result to copy them into.
+struct CopyChain {
+    explicit CopyChain(gdi::Device& device, uint32_t seed) : d(device), objects(device) {
+        using gdi::BufferUsage;
+        for (uint32_t i = 0; i < words.size(); ++i) words[i] = seed * (i + 1);
+        src = objects.add(d.createBuffer(
+            {.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"},
+            gdi::bytesOf(words)));
+        dst = objects.add(d.createBuffer({.size = sizeof words,
+                                          .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
+                                          .debugName = "result"}));
+    }
+    std::array<uint32_t, 64> result() const {
+        const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
+        std::array<uint32_t, 64> back{};
+        std::memcpy(back.data(), bytes.data(), sizeof back);
+        return back;
+    }
+    gdi::Device& d;
+    gdi::DeviceObjects objects;
+    std::array<uint32_t, 64> words{};
+    gdi::BufferHandle src, dst;
+};
+}  // namespace
+
 TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
     using namespace gdi;
     using A = BufferAccess;
     Device& d = *device;
-    std::array<uint32_t, 64> words{};
-    for (uint32_t i = 0; i < words.size(); ++i) words[i] = 0x9e3779b9u * (i + 1);
-    auto src =
-        d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"},
-                       bytesOf(words));
-    auto dst = d.createBuffer({.size = sizeof words,
-                               .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
-                               .debugName = "result"});
+    CopyChain chain(d, 0x9e3779b9u);
+    const auto& words = chain.words;
+    const BufferHandle src = chain.src, dst = chain.dst;
     {
         RenderGraph g;
         auto in = g.importBuffer("source", src, sizeof words);
@@ -1033,13 +1054,8 @@ TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
         g.execute(*cmd);
         d.wait(d.submit(*cmd));
     }
-    const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
-    std::array<uint32_t, 64> back{};
-    std::memcpy(back.data(), bytes.data(), sizeof back);
-    EXPECT_EQ(back, words);
+    EXPECT_EQ(chain.result(), words);
     EXPECT_EQ(d.validationErrorCount(), 0u);
-    d.destroy(src);
-    d.destroy(dst);
 }
 
 // Async compute on a device: a copy chain on the compute queue (fill, then drain into the
@@ -1050,18 +1066,14 @@ TEST_P(RenderGraphOnDevice, AsyncComputeRunsBesideGraphics) {
     using namespace gdi;
     using A = BufferAccess;
     Device& d = *device;
-    std::array<uint32_t, 64> words{};
-    for (uint32_t i = 0; i < words.size(); ++i) words[i] = 0x85ebca6bu * (i + 3);
-    auto src =
-        d.createBuffer({.size = sizeof words, .usage = BufferUsage::CopySrc, .debugName = "source"},
-                       bytesOf(words));
-    auto dst = d.createBuffer({.size = sizeof words,
-                               .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
-                               .debugName = "result"});
-    auto target = d.createTexture({.width = 32,
-                                   .height = 32,
-                                   .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
-                                   .debugName = "beside"});
+    CopyChain chain(d, 0x85ebca6bu);
+    const auto& words = chain.words;
+    const BufferHandle src = chain.src, dst = chain.dst;
+    const TextureHandle target = chain.objects.add(
+        d.createTexture({.width = 32,
+                         .height = 32,
+                         .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc,
+                         .debugName = "beside"}));
     {
         render::CommandQueue queue(d, 2, 1024);
         RenderGraph g;
@@ -1109,10 +1121,7 @@ TEST_P(RenderGraphOnDevice, AsyncComputeRunsBesideGraphics) {
             queue.beginFrame();
             g.execute(queue);
             d.wait(queue.endFrame());
-            const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
-            std::array<uint32_t, 64> back{};
-            std::memcpy(back.data(), bytes.data(), sizeof back);
-            EXPECT_EQ(back, words) << "frame " << frame;
+            EXPECT_EQ(chain.result(), words) << "frame " << frame;
             // The fork (before "fill": nothing before it), the compute list waiting for it, the
             // graphics beside it ("clear"), and the rest ("drain") waiting for the compute list.
             // A device with one queue runs them in order either way: these waits are what a
@@ -1130,9 +1139,6 @@ TEST_P(RenderGraphOnDevice, AsyncComputeRunsBesideGraphics) {
         EXPECT_EQ(d.readTexture(target).texel(5, 5)[1], 1.0f);
     }
     EXPECT_EQ(d.validationErrorCount(), 0u);
-    d.destroy(src);
-    d.destroy(dst);
-    d.destroy(target);
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(RenderGraphOnDevice);
