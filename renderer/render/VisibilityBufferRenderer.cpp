@@ -1,5 +1,7 @@
 #include "render/VisibilityBufferRenderer.h"
 
+#include "fe/gdi/ShaderRegistry.h"
+
 #include "render/ClusterLightGrid.h"
 #include "render/ShaderSlots.h"
 #include "render/TileLightCulling.h"
@@ -14,11 +16,20 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
         throw gdi::Error("technique visibility-buffer needs compute shaders, which " +
                          c.device.info().backend + " lacks");
     if (!c.clusters) throw gdi::Error("visibility-buffer: the renderer made no light cluster grid");
-    if (c.settings.msaa > 1 && c.shadows && c.shadows->any())
-        throw gdi::Error(
-            "technique visibility-buffer takes --msaa without shadows only: its shadowed lights are "
-            "forward passes adding into the single-sample result (use clustered-deferred, whose "
-            "shadowed lights read the multisampled G-buffer)");
+    if (c.settings.msaa > 1 && c.shadows && c.shadows->any()) {
+        addFs_ = objects_.add(c.device.createShader(
+            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find("scene/copy.frag")}));
+        addPipeline_ = objects_.add(
+            c.device.createGraphicsPipeline({.vertexShader = c.fullscreenVs,
+                                             .fragmentShader = addFs_,
+                                             .blend = {{.enable = true,
+                                                        .srcColor = gdi::BlendFactor::One,
+                                                        .dstColor = gdi::BlendFactor::One,
+                                                        .srcAlpha = gdi::BlendFactor::Zero,
+                                                        .dstAlpha = gdi::BlendFactor::One}},
+                                             .colorFormats = {kRadianceFormat},
+                                             .debugName = "shadowed lights added"}));
+    }
     std::vector<ObjectConstants> records;
     for (const DrawItem& d : c.scene.draws()) records.push_back(c.scene.objectConstants(d));
     if (records.empty()) records.emplace_back();  // a buffer needs at least one byte
@@ -106,11 +117,47 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
                              (rs.height + kGroupSize - 1) / kGroupSize);
             }
         });
-    declareShadowedForward(
-        g,
-        ForwardTargets{
-            output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, 1}, false},
-        &objectUploads_);
+    if (samples == 1) {
+        declareShadowedForward(
+            g,
+            ForwardTargets{
+                output, depth, output, depth, {{kRadianceFormat}, kSceneDepthFormat, 1}, false},
+            &objectUploads_);
+        return;
+    }
+    if (!hasShadowedLights()) return;
+    // Multisampled: the shadowed lights' forward passes add into a target of their own, cleared
+    // first, against the multisampled depth; the last resolves it (and sample 0's depth again),
+    // and one full-screen pass adds the result into L_o.
+    const graph::TextureId shadowed =
+                               g.createTexture("msaa shadowed L_o", {.format = kRadianceFormat,
+                                                                     .width = s.width,
+                                                                     .height = s.height,
+                                                                     .sampleCount = samples}),
+                           resolved = g.createTexture(
+                               "shadowed L_o",
+                               {.format = kRadianceFormat, .width = s.width, .height = s.height});
+    g.addPass(
+        "shadowed clear", [&](graph::PassBuilder& b) { b.colorTarget(shadowed); },
+        [](graph::PassContext& pc) {
+            pc.beginRenderPass();
+            pc.cmd.endRenderPass();
+        });
+    declareShadowedForward(g,
+                           ForwardTargets{shadowed,
+                                          visibleDepth,
+                                          resolved,
+                                          depth,
+                                          {{kRadianceFormat}, kSceneDepthFormat, samples},
+                                          true},
+                           &objectUploads_);
+    g.addPass(
+        "shadowed lights added",
+        [&](graph::PassBuilder& b) {
+            b.sample(resolved);
+            b.colorTarget(output, gdi::LoadOp::Load);
+        },
+        fullscreen(addPipeline_, {{kSlotRadiance, resolved}}));
 }
 
 }  // namespace fe::render

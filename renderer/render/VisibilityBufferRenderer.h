@@ -7,6 +7,8 @@
 // per texture set of the scene's materials (GpuScene::textureSets; the built-in scenes have
 // one), each dispatch shading the pixels of its set. Shadowed lights add forward passes
 // tested EQUAL against the visibility pass's depth, which pulls the same vertices mesh.vert reads.
+// With --msaa N they render into a multisampled target of their own against the multisampled
+// depth, resolved once after the last and added into L_o by a full-screen pass.
 #pragma once
 #include <memory>
 #include <vector>
@@ -31,6 +33,8 @@ private:
     gdi::BufferHandle draws_;  // every draw's ObjectConstants, in scene order
     gdi::ShaderHandle cs_;
     gdi::PipelineHandle pipeline_;
+    gdi::ShaderHandle addFs_;          // --msaa with shadows: the resolved shadowed lights ...
+    gdi::PipelineHandle addPipeline_;  // ... added into L_o
     std::vector<UploadAllocation>
         objectUploads_;  // the visibility pass's, reused by the shadowed lights' passes
 };

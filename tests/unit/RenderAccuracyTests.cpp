@@ -657,6 +657,27 @@ TEST_P(RenderAccuracy, DeferredTechniquesTakeMsaa) {
     }
 }
 
+// With shadows under MSAA the visibility buffer's shadowed lights render into a multisampled
+// target of their own against the multisampled depth, resolved once and added into L_o: against
+// forward-zprepass at 4 samples with the same shadows, within the bound above. Dropping the
+// final add (no shadowed light at all) fails it.
+TEST_P(RenderAccuracy, VisibilityBufferTakesMsaaWithShadows) {
+    if (!(device->info().limits.colorSampleCounts & device->info().limits.depthSampleCounts & 4))
+        GTEST_SKIP() << "no 4x MSAA";
+    const assets::Scene scene = assets::makeBuiltinScene("shadows");
+    auto render = [&](const char* t) {
+        render::RenderSettings s{.technique = t, .width = kW, .height = kH, .msaa = 4};
+        s.shadows = {.enabled = true, .mapSize = 512};
+        render::SceneRenderer r(*device, scene, s);
+        r.renderFrame();
+        return r.readOutput();
+    };
+    const Stats s = compare(render("visibility-buffer"), render("forward-zprepass"), 0.02, 0.01);
+    std::cout << "visibility-buffer with shadows at 4 samples: " << s.fractionOver * 100
+              << "% of pixels beyond 2% of forward-zprepass\n";
+    EXPECT_LE(s.fractionOver, 0.02) << "max relative error " << s.maxRel;
+}
+
 // Under MSAA the light lists hold for every sample: the tiles are bounded by every sample's
 // depth and the clusters' lists are whole, so with 128 ranged lights deferred-tiled and
 // clustered-deferred equal the light volumes (each light's fragment shading the same samples)
