@@ -58,7 +58,7 @@ struct RenderSettings {
     uint32_t width = 320;
     uint32_t height = 240;
     uint32_t illumScale = 1;  // redeferred I-buffer: 1, 2 or 4
-    uint32_t msaa = 1;        // samples per pixel (forward techniques; TechniqueInfo::msaa)
+    uint32_t msaa = 1;        // samples per pixel (TechniqueInfo::msaa: all but redeferred)
     // Redeferred options from the seed's considerations, each measured (docs/BENCHMARKS.md):
     // the specular sums L_sg1, L_sg2 at full resolution while L_dg stays at 1/illumScale, so only
     // the smooth diffuse term is upsampled (redeferred-tiled only; "separate upscaling for
