@@ -1003,6 +1003,18 @@ struct CopyChain {
                                           .usage = BufferUsage::CopyDst | BufferUsage::CopySrc,
                                           .debugName = "result"}));
     }
+    // The pass copying the transient `mid` into the result (imported as `result`).
+    void addDrain(RenderGraph& g, graph::BufferId mid, graph::BufferId result) const {
+        g.addPass(
+            "drain",
+            [&](graph::PassBuilder& b) {
+                b.buffer(mid, gdi::BufferAccess::CopySrc);
+                b.buffer(result, gdi::BufferAccess::CopyDst);
+            },
+            [this, mid](graph::PassContext& pc) {
+                pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words);
+            });
+    }
     std::array<uint32_t, 64> result() const {
         const std::vector<uint8_t> bytes = d.readBuffer(dst, 0, sizeof words);
         std::array<uint32_t, 64> back{};
@@ -1037,15 +1049,7 @@ TEST_P(RenderGraphOnDevice, TransientBufferCarriesDataBetweenPasses) {
             [&](graph::PassContext& pc) {
                 pc.cmd.copyBuffer(pc.buffer(mid), 0, src, 0, sizeof words);
             });
-        g.addPass(
-            "drain",
-            [&](auto& b) {
-                b.buffer(mid, A::CopySrc);
-                b.buffer(result, A::CopyDst);
-            },
-            [&](graph::PassContext& pc) {
-                pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words);
-            });
+        chain.addDrain(g, mid, result);
         g.markOutput(result);
         g.compile(d);
         EXPECT_EQ(g.buffer(mid).usage, BufferUsage::CopySrc | BufferUsage::CopyDst);
@@ -1102,15 +1106,7 @@ TEST_P(RenderGraphOnDevice, AsyncComputeRunsBesideGraphics) {
                 pc.beginRenderPass();
                 pc.cmd.endRenderPass();
             });
-        g.addPass(
-            "drain",
-            [&](auto& b) {
-                b.buffer(mid, A::CopySrc);
-                b.buffer(result, A::CopyDst);
-            },
-            [&](graph::PassContext& pc) {
-                pc.cmd.copyBuffer(dst, 0, pc.buffer(mid), 0, sizeof words);
-            });
+        chain.addDrain(g, mid, result);
         g.markOutput(result);
         g.markOutput(beside);
         g.compile(d);
