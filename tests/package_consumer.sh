@@ -44,7 +44,8 @@ for b in vulkan gl-egl gl-osmesa; do
   grep -qF "every stage seen" "$work/stages_$b.txt" || { echo "package consumer: the stages example missed a stage on $b"; exit 1; }
   for want in "mistake 1: graphics pipeline 'triangles': tessellation shaders draw patches" \
               "mistake 2: pipeline 'no geometry': geometryShader is not a geometry shader" \
-              "mistake 3: beginRenderPass: this list is for the copy queue"; do
+              "mistake 3: beginRenderPass: this list is for the copy queue" \
+              "mistake 4: render pass: colour attachment 0 texture lacks RenderTarget usage"; do
     grep -qF "$want" "$work/stages_$b.txt" || { echo "package consumer: the stages example lacks '$want' on $b"; exit 1; }
   done
 done

@@ -9,7 +9,7 @@
 // Prints what it sees (each part's pixels found by colour) in words that are the same on every
 // backend; the images agree within a few pixels (tests/check_png.py --like). The floor's patches
 // are recorded on a second thread into a list of their own, and the cube's upload goes through
-// the copy queue, which the frame waits for. Then three mistakes on purpose, each printed: the
+// the copy queue, which the frame waits for. Then four mistakes on purpose, each printed: the
 // same gdi::Error on every backend.
 #include <cmath>
 #include <cstdio>
@@ -261,6 +261,20 @@ int main(int argc, char** argv) {
             std::async(std::launch::async, [&] {
                 auto list = device->createCommandList({.queue = QueueKind::Copy});
                 list->beginRenderPass(pass);
+            }).get();
+        });
+        mistake(4, [&] {  // rendering into a BGRA texture seen as RGBA (sampled only), on a thread
+            const TextureHandle bgra = o.add(
+                device->createTexture({.format = Format::BGRA8,
+                                       .width = 8,
+                                       .height = 8,
+                                       .usage = TextureUsage::Sampled | TextureUsage::RenderTarget,
+                                       .viewFormats = {Format::RGBA8}}));
+            const TextureHandle seenAsRgba =
+                o.add(device->createTextureView(bgra, {.format = Format::RGBA8}));
+            std::async(std::launch::async, [&] {
+                auto list = device->createCommandList();
+                list->beginRenderPass({.colors = {{.texture = seenAsRgba}}});
             }).get();
         });
         const bool seen = mesh_ > total / 20 && normals_ > 100 && terrain_ > total / 5 &&
