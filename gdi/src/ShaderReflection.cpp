@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 #include <spirv-tools/libspirv.h>
@@ -284,6 +286,78 @@ void checkImageWrites(std::span<const uint32_t> spirv, SpirvRules rules, const s
 
 }  // namespace
 
+namespace {
+
+// Validating and reflecting a module is most of what creating a shader costs on a software
+// rasterizer (3 s of an 8 s accuracy test, measured with perf), and a process creates the same
+// modules again: on each device, in each renderer, and reflection validates what
+// validateShaderBinary did. What a module gave under the same rules (and stage and entry point)
+// it gives again (the checks read nothing else), so successes are kept, each module whole and
+// compared word for word: a hash alone could let a damaged module through. Bounded, so a program
+// that streams generated shaders does not grow without end.
+template <class Value>
+class ModuleMemo {
+public:
+    std::optional<Value> find(std::span<const uint32_t> spirv, const std::string& salt) {
+        std::lock_guard lock(mutex_);
+        auto [first, last] = entries_.equal_range(key(spirv, salt));
+        for (auto it = first; it != last; ++it)
+            if (it->second.salt == salt && std::ranges::equal(it->second.words, spirv))
+                return it->second.value;
+        return std::nullopt;
+    }
+    void add(std::span<const uint32_t> spirv, const std::string& salt, Value value) {
+        std::lock_guard lock(mutex_);
+        if (words_ + spirv.size() > kMaxWords) return;
+        words_ += spirv.size();
+        entries_.emplace(key(spirv, salt),
+                         Entry{salt, std::vector<uint32_t>(spirv.begin(), spirv.end()),
+                               std::move(value)});
+    }
+
+private:
+    static constexpr size_t kMaxWords = size_t(32) << 20 >> 2;  // 32 MiB of modules
+    struct Entry {
+        std::string salt;
+        std::vector<uint32_t> words;
+        Value value;
+    };
+    static uint64_t key(std::span<const uint32_t> spirv, const std::string& salt) {
+        uint64_t h = 1469598103934665603ull;  // FNV-1a over the salt and the words
+        for (char c : salt) h = (h ^ uint8_t(c)) * 1099511628211ull;
+        for (uint32_t w : spirv) h = (h ^ w) * 1099511628211ull;
+        return h;
+    }
+    std::mutex mutex_;
+    std::unordered_multimap<uint64_t, Entry> entries_;
+    size_t words_ = 0;
+};
+
+ModuleMemo<bool>& validatedModules() {
+    static ModuleMemo<bool> memo;
+    return memo;
+}
+
+// spvValidateWithOptions; friendly names (OpName in the validator's messages) cost a third of
+// its time, building a name for every id, so they are asked for only to word a failure.
+spv_result_t runValidator(std::span<const uint32_t> spirv, SpirvRules rules, bool friendlyNames,
+                          spv_diagnostic* diagnostic) {
+    struct Options {
+        spv_validator_options options = spvValidatorOptionsCreate();
+        explicit Options(bool names) {
+            spvValidatorOptionsSetRelaxBlockLayout(options, true);
+            spvValidatorOptionsSetFriendlyNames(options, names);
+        }
+        ~Options() { spvValidatorOptionsDestroy(options); }
+    };
+    static const Options quick(false), named(true);
+    spv_const_binary_t binary{spirv.data(), spirv.size()};
+    return spvValidateWithOptions(spirvContext(rules), (friendlyNames ? named : quick).options,
+                                  &binary, diagnostic);
+}
+
+}  // namespace
+
 void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std::string& name) {
     const std::string what = std::string("shader '") + name + "': not a valid SPIR-V module" +
                              (rules == SpirvRules::OpenGL45    ? " for OpenGL"
@@ -293,23 +367,17 @@ void validateSpirv(std::span<const uint32_t> spirv, SpirvRules rules, const std:
     // The header's schema word is 0 (the validator lets any value through; Mesa refuses others).
     if (spirv.size() >= 5 && spirv[4] != 0)
         throw Error(what + "header word 4 (schema) is " + std::to_string(spirv[4]) + ", not 0");
-    struct Options {
-        spv_validator_options options = spvValidatorOptionsCreate();
-        Options() { spvValidatorOptionsSetRelaxBlockLayout(options, true); }
-        ~Options() { spvValidatorOptionsDestroy(options); }
-    };
-    static const Options options;
-    spv_const_binary_t binary{spirv.data(), spirv.size()};
-    spv_diagnostic diagnostic = nullptr;
-    const spv_result_t result =
-        spvValidateWithOptions(spirvContext(rules), options.options, &binary, &diagnostic);
-    if (result == SPV_SUCCESS) {
-        spvDiagnosticDestroy(diagnostic);
+    const std::string salt(1, char('0' + int(rules)));
+    if (validatedModules().find(spirv, salt)) return;
+    if (runValidator(spirv, rules, false, nullptr) == SPV_SUCCESS) {
         checkLocationLiterals(spirv, name);
         checkDistanceArrays(spirv, name);
         checkImageWrites(spirv, rules, name);
+        validatedModules().add(spirv, salt, true);
         return;
     }
+    spv_diagnostic diagnostic = nullptr;
+    runValidator(spirv, rules, true, &diagnostic);
     const std::string why =
         diagnostic && diagnostic->error ? diagnostic->error : "rejected by the SPIR-V validator";
     spvDiagnosticDestroy(diagnostic);
@@ -789,8 +857,14 @@ std::vector<uint32_t> withStorageTextureSlots(std::span<const uint32_t> spirv,
 
 ShaderInterface reflectShader(std::span<const uint32_t> spirv, ShaderStage stage,
                               const char* entryPoint, const std::string& name, SpirvRules rules) {
+    static ModuleMemo<ShaderInterface> reflected;  // see ModuleMemo: a success is kept
+    const std::string salt = std::to_string(int(rules)) + "/" + std::to_string(int(stage)) + "/" +
+                             (entryPoint ? entryPoint : "main");
+    if (std::optional<ShaderInterface> known = reflected.find(spirv, salt)) return *known;
     try {
-        return reflectUnguarded(spirv, stage, entryPoint, name, rules);
+        ShaderInterface iface = reflectUnguarded(spirv, stage, entryPoint, name, rules);
+        reflected.add(spirv, salt, iface);
+        return iface;
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {

@@ -33,20 +33,19 @@ GeometryRenderer::GeometryRenderer(gdi::Device& device, GpuScene& scene)
       scene_(scene),
       uniformLights_(GpuScene::lightsFitUniformBlock(uint32_t(scene.scene().lights.size()),
                                                      device.info().limits)) {
-    vs_ = objects_.add(device.createShader(
-        {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/mesh.vert")}));
-    auto fragment = [&](const std::string& name) {
-        return objects_.add(device.createShader(
-            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
-    };
-    forwardFs_ = fragment(lightsVariant("scene/forward.frag"));
-    gbufferFs_ = fragment("scene/gbuffer.frag");
-    depthFs_ = fragment("scene/depth_prepass.frag");
-    lppNormalsFs_ = fragment("scene/lpp_normals.frag");
-    lppNormalsUnpackedFs_ = fragment("scene/lpp_normals_unpacked.frag");
-    lppMaterialFs_ = fragment("scene/lpp_material.frag");
-    forwardShadowedFs_ = fragment(lightsVariant("scene/forward_shadowed.frag"));
-    forwardShadowedCubeFs_ = fragment(lightsVariant("scene/forward_shadowed_cube.frag"));
+    // The shaders are made at their first pipeline: a renderer uses a few of its passes, and
+    // making (validating, reflecting) the others cost most of a small scene's set-up.
+}
+
+gdi::ShaderHandle GeometryRenderer::shader(gdi::ShaderHandle& made, gdi::ShaderStage stage,
+                                           const std::string& path) {
+    if (!made)
+        made = objects_.add(device_.createShader({.stage = stage, .binary = shaders::find(path)}));
+    return made;
+}
+
+gdi::ShaderHandle GeometryRenderer::fragment(gdi::ShaderHandle& made, const std::string& path) {
+    return shader(made, gdi::ShaderStage::Fragment, path);
 }
 
 // The forward shaders read the lights from the uniform block when they fit it, else from the
@@ -63,13 +62,8 @@ std::string GeometryRenderer::lightsVariant(const std::string& path, const char*
 void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
     if (!pipelines_.empty())
         throw gdi::Error("GeometryRenderer::setEnvironment after the first draw");
-    auto fragment = [&](const std::string& path) {
-        return objects_.add(device_.createShader(
-            {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
-    };
-    forwardIblFs_ = fragment(lightsVariant(light.shader("scene/forward_ibl.frag")));
-    lppMaterialIblFs_ = fragment(light.shader("scene/lpp_material_ibl.frag"));
     environment_ = light;
+    hasEnvironment_ = true;
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets,
@@ -89,44 +83,53 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     // The forward-shaded passes that add the environment's light (with the emissive term: not
     // multi-pass forward's additive passes).
     const bool ibl =
-        forwardIblFs_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual ||
+        hasEnvironment_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual ||
                           pass == MeshPass::Transparent || pass == MeshPass::LightPrepassMaterial);
 
+    auto forward = [&] {
+        return ibl ? fragment(forwardIblFs_,
+                              lightsVariant(environment_.shader("scene/forward_ibl.frag")))
+                   : fragment(forwardFs_, lightsVariant("scene/forward.frag"));
+    };
     State st = [&]() -> State {
         switch (pass) {
             case MeshPass::GBuffer:
                 // A fourth target: the occlusion (GBuffer::gb3), written by the shader's variant.
-                if (targets.colorFormats.size() == 4) {
-                    if (!gbufferOcclusionFs_)
-                        gbufferOcclusionFs_ = objects_.add(device_.createShader(
-                            {.stage = gdi::ShaderStage::Fragment,
-                             .binary = shaders::find("scene/gbuffer.frag:FE_GBUFFER_OCCLUSION")}));
-                    return {gbufferOcclusionFs_, true, gdi::CompareOp::LessOrEqual,
-                            "gbuffer with occlusion"};
-                }
-                return {gbufferFs_, true, gdi::CompareOp::LessOrEqual, "gbuffer"};
+                if (targets.colorFormats.size() == 4)
+                    return {fragment(gbufferOcclusionFs_, "scene/gbuffer.frag:FE_GBUFFER_OCCLUSION"),
+                            true, gdi::CompareOp::LessOrEqual, "gbuffer with occlusion"};
+                return {fragment(gbufferFs_, "scene/gbuffer.frag"), true,
+                        gdi::CompareOp::LessOrEqual, "gbuffer"};
             case MeshPass::Transparent:
-                return {forwardFs_, false, gdi::CompareOp::LessOrEqual, "transparent"};
+                return {forward(), false, gdi::CompareOp::LessOrEqual, "transparent"};
             case MeshPass::DepthPrepass:
-                return {depthFs_, true, gdi::CompareOp::LessOrEqual, "depth prepass"};
+                return {fragment(depthFs_, "scene/depth_prepass.frag"), true,
+                        gdi::CompareOp::LessOrEqual, "depth prepass"};
             case MeshPass::ForwardEqual:
-                return {forwardFs_, false, gdi::CompareOp::Equal, "forward equal"};
+                return {forward(), false, gdi::CompareOp::Equal, "forward equal"};
             case MeshPass::ForwardAdditive:
-                return {forwardFs_, false, gdi::CompareOp::Equal, "forward additive"};
+                return {forward(), false, gdi::CompareOp::Equal, "forward additive"};
             case MeshPass::NormalRoughness:
-                return {lppNormalsFs_, true, gdi::CompareOp::LessOrEqual, "lpp normals"};
+                return {fragment(lppNormalsFs_, "scene/lpp_normals.frag"), true,
+                        gdi::CompareOp::LessOrEqual, "lpp normals"};
             case MeshPass::NormalRoughnessUnpacked:
-                return {lppNormalsUnpackedFs_, true, gdi::CompareOp::LessOrEqual,
-                        "lpp normals unpacked"};
+                return {fragment(lppNormalsUnpackedFs_, "scene/lpp_normals_unpacked.frag"), true,
+                        gdi::CompareOp::LessOrEqual, "lpp normals unpacked"};
             case MeshPass::LightPrepassMaterial:
-                return {lppMaterialFs_, false, gdi::CompareOp::Equal, "lpp material"};
+                return {ibl ? fragment(lppMaterialIblFs_,
+                                       environment_.shader("scene/lpp_material_ibl.frag"))
+                            : fragment(lppMaterialFs_, "scene/lpp_material.frag"),
+                        false, gdi::CompareOp::Equal, "lpp material"};
             case MeshPass::ShadowCaster:
-                return {depthFs_, true, gdi::CompareOp::LessOrEqual, "shadow caster"};
+                return {fragment(depthFs_, "scene/depth_prepass.frag"), true,
+                        gdi::CompareOp::LessOrEqual, "shadow caster"};
             case MeshPass::ForwardShadowed:
-                return {forwardShadowedFs_, false, gdi::CompareOp::Equal, "forward shadowed"};
+                return {fragment(forwardShadowedFs_, lightsVariant("scene/forward_shadowed.frag")),
+                        false, gdi::CompareOp::Equal, "forward shadowed"};
             case MeshPass::ForwardShadowedCube:
-                return {forwardShadowedCubeFs_, false, gdi::CompareOp::Equal,
-                        "forward shadowed cube"};
+                return {fragment(forwardShadowedCubeFs_,
+                                 lightsVariant("scene/forward_shadowed_cube.frag")),
+                        false, gdi::CompareOp::Equal, "forward shadowed cube"};
             case MeshPass::ForwardTiled:
                 // Multisampled: the variant whose fragments outside their tile's bounds walk their cluster's list.
                 return targets.samples > 1
@@ -146,14 +149,14 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::Transmission:
                 return {transmissionShader(), true, gdi::CompareOp::LessOrEqual, "transmission"};
             default:
-                return {forwardFs_, true, gdi::CompareOp::LessOrEqual, "forward"};
+                return {forward(), true, gdi::CompareOp::LessOrEqual, "forward"};
         }
     }();
-    if (ibl && pass != MeshPass::Transmission)
-        st.fs = pass == MeshPass::LightPrepassMaterial ? lppMaterialIblFs_ : forwardIblFs_;
     using gdi::VertexFormat;
     gdi::GraphicsPipelineDesc d{
-        .vertexShader = vs_,
+        .vertexShader = pass == MeshPass::Visibility
+                            ? visibilityVs_
+                            : shader(vs_, gdi::ShaderStage::Vertex, "scene/mesh.vert"),
         .fragmentShader = st.fs,
         .vertexBuffers = {{.stride = GpuScene::kVertexStride,
                            .attributes = {{0, VertexFormat::Float3, 0},
@@ -172,7 +175,6 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .debugName = st.name,
     };
     if (pass == MeshPass::Visibility) {  // no vertex buffers: the vertex shader pulls its vertices
-        d.vertexShader = visibilityVs_;
         d.vertexBuffers.clear();
     }
     if (isTransparent(pass))
@@ -210,37 +212,25 @@ gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const ch
                                                const char* variant) {
     if (made) return made;
     const std::string plain = std::string("scene/") + name + ".frag";
-    const std::string path = lightsVariant(
-        forwardIblFs_ ? environment_.shader(std::string("scene/") + name + "_ibl.frag") : plain,
-        variant);
-    made = objects_.add(
-        device_.createShader({.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(path)}));
-    return made;
+    return fragment(made, lightsVariant(hasEnvironment_ ? environment_.shader(std::string("scene/") +
+                                                                              name + "_ibl.frag")
+                                                        : plain,
+                                        variant));
 }
 
 // The transmission pass's forward shader (FE_TRANSMISSION), with the environment's light when
 // the renderer has one; made at its first pipeline.
 gdi::ShaderHandle GeometryRenderer::transmissionShader() {
-    if (!transmissionFs_) {
-        const std::string path =
-            forwardIblFs_ ? environment_.shader("scene/forward_ibl.frag") : "scene/forward.frag";
-        transmissionFs_ = objects_.add(device_.createShader(
-            {.stage = gdi::ShaderStage::Fragment,
-             .binary = shaders::find(lightsVariant(path, "FE_TRANSMISSION"))}));
-    }
-    return transmissionFs_;
+    if (transmissionFs_) return transmissionFs_;
+    const std::string path =
+        hasEnvironment_ ? environment_.shader("scene/forward_ibl.frag") : "scene/forward.frag";
+    return fragment(transmissionFs_, lightsVariant(path, "FE_TRANSMISSION"));
 }
 
 // The visibility pass's shaders (its fragment shader returned), made at its first pipeline.
 gdi::ShaderHandle GeometryRenderer::visibilityShaders() {
-    if (!visibilityFs_) {
-        visibilityVs_ = objects_.add(device_.createShader(
-            {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/visibility.vert")}));
-        visibilityFs_ =
-            objects_.add(device_.createShader({.stage = gdi::ShaderStage::Fragment,
-                                               .binary = shaders::find("scene/visibility.frag")}));
-    }
-    return visibilityFs_;
+    shader(visibilityVs_, gdi::ShaderStage::Vertex, "scene/visibility.vert");
+    return fragment(visibilityFs_, "scene/visibility.frag");
 }
 
 uint32_t GeometryRenderer::drawCount(MeshPass pass) const {

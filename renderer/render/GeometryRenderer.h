@@ -71,21 +71,25 @@ private:
     gdi::Device& device_;
     GpuScene& scene_;
     bool uniformLights_;  // the forward shaders read the lights as the uniform block (GpuScene)
+    // Every shader is made at its first pipeline (shader()).
     gdi::ShaderHandle vs_, forwardFs_, gbufferFs_, gbufferOcclusionFs_, depthFs_, lppNormalsFs_,
         lppNormalsUnpackedFs_, lppMaterialFs_;
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_,
-        forwardClusteredFs_;                         // made at their first pipeline
-    gdi::ShaderHandle visibilityVs_, visibilityFs_;  // likewise
-    gdi::ShaderHandle transmissionFs_;               // likewise
+    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;
+    gdi::ShaderHandle visibilityVs_, visibilityFs_;
+    gdi::ShaderHandle transmissionFs_;
+    gdi::ShaderHandle shader(gdi::ShaderHandle& made, gdi::ShaderStage stage,
+                             const std::string& path);
+    gdi::ShaderHandle fragment(gdi::ShaderHandle& made, const std::string& path);
     gdi::ShaderHandle listShader(gdi::ShaderHandle& made, const char* name,
                                  const char* variant = nullptr);
     std::string lightsVariant(const std::string& path, const char* variant = nullptr) const;
     gdi::ShaderHandle visibilityShaders();
     gdi::ShaderHandle transmissionShader();
     EnvironmentLight environment_;
+    bool hasEnvironment_ = false;
 };
 
 }  // namespace fe::render
