@@ -310,9 +310,9 @@ public:
         std::lock_guard lock(mutex_);
         if (words_ + spirv.size() > kMaxWords) return;
         words_ += spirv.size();
-        entries_.emplace(key(spirv, salt),
-                         Entry{salt, std::vector<uint32_t>(spirv.begin(), spirv.end()),
-                               std::move(value)});
+        entries_.emplace(
+            key(spirv, salt),
+            Entry{salt, std::vector<uint32_t>(spirv.begin(), spirv.end()), std::move(value)});
     }
 
 private:

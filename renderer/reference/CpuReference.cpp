@@ -218,8 +218,9 @@ ReferenceImage renderReference(const assets::Scene& scene, const assets::Camera&
         for (const assets::MeshInstance& inst : scene.instances)
             for (const assets::Primitive& prim : scene.meshes[inst.meshIndex].primitives) {
                 const assets::Material& m = scene.materials[prim.material];
-                counts[m.alphaMode == assets::AlphaMode::Blend ? 0 : m.transmissive() ? 1 : 2] +=
-                    prim.indices.size() / 3;
+                counts[m.alphaMode == assets::AlphaMode::Blend ? 0
+                       : m.transmissive()                      ? 1
+                                                               : 2] += prim.indices.size() / 3;
             }
         blended.reserve(counts[0]);
         transmissive.reserve(counts[1]);

@@ -82,9 +82,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
     };
     // The forward-shaded passes that add the environment's light (with the emissive term: not
     // multi-pass forward's additive passes).
-    const bool ibl =
-        hasEnvironment_ && (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual ||
-                          pass == MeshPass::Transparent || pass == MeshPass::LightPrepassMaterial);
+    const bool ibl = hasEnvironment_ &&
+                     (pass == MeshPass::Forward || pass == MeshPass::ForwardEqual ||
+                      pass == MeshPass::Transparent || pass == MeshPass::LightPrepassMaterial);
 
     auto forward = [&] {
         return ibl ? fragment(forwardIblFs_,
@@ -96,8 +96,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
             case MeshPass::GBuffer:
                 // A fourth target: the occlusion (GBuffer::gb3), written by the shader's variant.
                 if (targets.colorFormats.size() == 4)
-                    return {fragment(gbufferOcclusionFs_, "scene/gbuffer.frag:FE_GBUFFER_OCCLUSION"),
-                            true, gdi::CompareOp::LessOrEqual, "gbuffer with occlusion"};
+                    return {
+                        fragment(gbufferOcclusionFs_, "scene/gbuffer.frag:FE_GBUFFER_OCCLUSION"),
+                        true, gdi::CompareOp::LessOrEqual, "gbuffer with occlusion"};
                 return {fragment(gbufferFs_, "scene/gbuffer.frag"), true,
                         gdi::CompareOp::LessOrEqual, "gbuffer"};
             case MeshPass::Transparent:
@@ -212,10 +213,11 @@ gdi::ShaderHandle GeometryRenderer::listShader(gdi::ShaderHandle& made, const ch
                                                const char* variant) {
     if (made) return made;
     const std::string plain = std::string("scene/") + name + ".frag";
-    return fragment(made, lightsVariant(hasEnvironment_ ? environment_.shader(std::string("scene/") +
-                                                                              name + "_ibl.frag")
-                                                        : plain,
-                                        variant));
+    return fragment(
+        made, lightsVariant(hasEnvironment_
+                                ? environment_.shader(std::string("scene/") + name + "_ibl.frag")
+                                : plain,
+                            variant));
 }
 
 // The transmission pass's forward shader (FE_TRANSMISSION), with the environment's light when
