@@ -21,7 +21,7 @@ using namespace fe;
 namespace {
 constexpr uint32_t kW = 160, kH = 120;
 
-render::RenderSettings shadowSettings(const std::string& technique, uint32_t mapSize = 2048,
+render::RenderSettings shadowSettings(const std::string& technique, uint32_t mapSize = 1024,
                                       bool pcf = true) {
     render::RenderSettings s{.technique = technique, .width = kW, .height = kH};
     s.shadows = {.enabled = true, .mapSize = mapSize, .pcf = pcf};
