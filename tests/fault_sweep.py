@@ -75,10 +75,10 @@ def trace(cmd, timeout):
         code, out, _ = run(cmd, {"FE_FAULT_TRACE": f.name}, timeout)
         if code != 0:
             raise SystemExit("clean run failed (exit %s):\n%s\n%s" % (code, " ".join(cmd), out))
-        calls = []
+        calls = []  # (site, ordinal, API call, the object it is made for or "")
         for line in f:
-            site, ordinal, name = line.split(maxsplit=2)
-            calls.append((site, int(ordinal), name.strip()))
+            site, ordinal, name, *obj = line.split(maxsplit=3)
+            calls.append((site, int(ordinal), name, obj[0].strip() if obj else ""))
         return calls
 
 
@@ -90,6 +90,8 @@ def main():
     ap.add_argument("--case", default="render_to_texture_then_sample", help="the conformance case")
     ap.add_argument("--only", action="append", help="workloads whose name contains this (repeatable)")
     ap.add_argument("--every", action="store_true", help="fail every native call, not each site's first")
+    ap.add_argument("--every-workload", action="store_true",
+                    help="inject in each workload, also where an earlier one failed the same call after the same calls")
     ap.add_argument("--timeout", type=float, default=120)
     ap.add_argument("--window", action="store_true",
                     help="the windowed backend (vulkan-glfw, gl-glfw; needs a display): render --window and view")
@@ -101,6 +103,13 @@ def main():
     injections = 0
     calls_seen = 0
     began = time.monotonic()
+    # The native calls before and at each injection already made, as one prefix of a trace: a
+    # workload whose trace begins with the same calls, for the same objects (by debug name),
+    # fails at the same point of the same run so far (opening the device, uploading the scene:
+    # what every technique's `fe render` shares), and is not run again (--every-workload does).
+    # Calls for an object of another name (a technique's own target or pipeline) are injected.
+    injected_prefixes = set()
+    shared = 0
     for name, cmd in workloads(a.fe, a.backend, a.size, a.case, a.only, a.window):
         calls = trace(cmd, a.timeout)
         calls_seen += len(calls)
@@ -108,10 +117,16 @@ def main():
             targets = calls
         else:
             first = {}
-            for site, ordinal, call in calls:
-                first.setdefault((site, call), (site, ordinal, call))
+            for site, ordinal, call, obj in calls:
+                first.setdefault((site, call), (site, ordinal, call, obj))
             targets = list(first.values())
-        for site, ordinal, call in targets:
+        index = {(site, ordinal): i for i, (site, ordinal, _, _) in enumerate(calls)}
+        for site, ordinal, call, obj in targets:
+            prefix = tuple((s, c, o) for s, _, c, o in calls[:index[(site, ordinal)] + 1])
+            if not a.every_workload and prefix in injected_prefixes:
+                shared += 1
+                continue
+            injected_prefixes.add(prefix)
             var = "FE_FAULT_ALLOC" if site == "allocation" else "FE_FAULT_SUBMIT"
             code, out, secs = run(cmd, {var: str(ordinal)}, a.timeout)
             injections += 1
@@ -151,6 +166,7 @@ def main():
           "(%d native calls in their clean runs), %.0f s" %
           (a.backend, " (window)" if a.window else "", injections, len(sites), kinds["allocation"], kinds["submission"],
            len(workloads(a.fe, a.backend, a.size, a.case, a.only, a.window)), calls_seen, time.monotonic() - began))
+    print("  %d injections left out: an earlier workload failed the same call after the same calls" % shared)
     print("  outcomes: " + ", ".join("%d %s" % (n, k) for k, n in sorted(outcomes.items())) +
           "; %d crashes, hangs, leaks or unclear errors" % len(failures))
     print("  sites: " + ", ".join("%s (%d)" % (c, n) for (_, c), n in sorted(sites.items())))

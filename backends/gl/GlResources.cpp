@@ -22,6 +22,7 @@ GLenum GlDevice::allocateStorage(const char* name, Call&& call) {
 gdi::BufferHandle GlDevice::createBuffer(const gdi::BufferDesc& desc, gdi::ByteSpan initialData) {
     return thread_.runCreation([&]() -> gdi::BufferHandle {  // a new object: no queued work uses it
         loss_.check("createBuffer");
+        const gdi::fault::ObjectScope faultObject(desc.debugName);  // on the context thread
         gdi::validate::bufferDesc(desc, info_.limits);
         gdi::validate::initialData(desc, initialData.size());
         Buffer b;
@@ -67,6 +68,7 @@ gdi::TextureHandle GlDevice::createTexture(const gdi::TextureDesc& desc) {
     return thread_.runCreation([&]()
                                    -> gdi::TextureHandle {  // a new object: no queued work uses it
         loss_.check("createTexture");
+        const gdi::fault::ObjectScope faultObject(desc.debugName);  // on the context thread
         gdi::validate::textureDesc(desc, info_);
         const std::string label = desc.debugName ? desc.debugName : "";
         if (desc.heap)

@@ -114,6 +114,7 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& given) {
     // Source text is compiled first (ShaderCompiler.h), the same on every backend.
     const gdi::ShaderDesc desc = gdi::withCompiledSource(given);
     gdi::validate::shaderDesc(desc);
+    const gdi::fault::ObjectScope faultObject(desc.binary.name);
     const std::string name = desc.binary.name ? desc.binary.name : "";
     const auto& code = desc.binary.vulkan;
     if (code.size() < 5 || code[0] != kSpirvMagic)
@@ -198,6 +199,7 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
 gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
     const DeviceCall call(*this);
     loss_.check("createGraphicsPipeline");
+    const gdi::fault::ObjectScope faultObject(d.debugName);
     gdi::validate::graphicsPipelineDesc(d, info_);
     gdi::validate::blendedTargets(d, [&](gdi::Format f) { return formatCaps(f); });
     const std::string name = d.debugName ? d.debugName : "";
@@ -396,6 +398,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
     const DeviceCall call(*this);
     loss_.check("createComputePipeline");
+    const gdi::fault::ObjectScope faultObject(d.debugName);
     gdi::validate::computePipelineDesc(d);
     Shader& cs = shaders_.get(d.computeShader, "compute shader");
     gdi::validate::computeShaderStage(cs.stage, d);

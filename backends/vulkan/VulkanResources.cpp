@@ -115,6 +115,7 @@ gdi::BufferHandle VulkanDevice::createBuffer(const gdi::BufferDesc& desc,
                                              gdi::ByteSpan initialData) {
     const DeviceCall call(*this);
     loss_.check("createBuffer");
+    const gdi::fault::ObjectScope faultObject(desc.debugName);
     gdi::validate::bufferDesc(desc, info_.limits);
     gdi::validate::initialData(desc, initialData.size());
     using U = gdi::BufferUsage;
@@ -308,6 +309,7 @@ void VulkanDevice::destroy(gdi::HeapHandle h) {
 gdi::TextureHandle VulkanDevice::createTexture(const gdi::TextureDesc& desc) {
     const DeviceCall call(*this);
     loss_.check("createTexture");
+    const gdi::fault::ObjectScope faultObject(desc.debugName);
     gdi::validate::textureDesc(desc, info_);
     const std::string name = desc.debugName ? desc.debugName : "";
     if (!supportsFormat(desc.format, desc.usage)) gdi::validate::unsupportedTextureUsage(desc);
@@ -475,6 +477,7 @@ void VulkanDevice::clearToZero(VkCommandBuffer cb, VkImage image, gdi::Format fo
 gdi::SamplerHandle VulkanDevice::createSampler(const gdi::SamplerDesc& d) {
     const DeviceCall call(*this);
     loss_.check("createSampler");
+    const gdi::fault::ObjectScope faultObject(d.debugName);
     gdi::validate::samplerDesc(d);
     auto filter = [](gdi::Filter f) {
         return f == gdi::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;

@@ -31,13 +31,14 @@ public:
     ~Trace() {
         if (path_.empty()) return;
         std::ofstream out(path_);
-        for (const auto& [site, ordinal, call] : lines_)
-            out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call << '\n';
+        for (const auto& [site, ordinal, call, object] : lines_)
+            out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call
+                << (object.empty() ? "" : " ") << object << '\n';
     }
-    void record(Site site, uint64_t ordinal, const char* call) {
+    void record(Site site, uint64_t ordinal, const char* call, const char* object) {
         if (path_.empty()) return;
         std::lock_guard lock(mutex_);
-        lines_.push_back({site, ordinal, call});
+        lines_.push_back({site, ordinal, call, object ? object : ""});
     }
 
 private:
@@ -45,6 +46,7 @@ private:
         Site site;
         uint64_t ordinal;
         const char* call;
+        std::string object;  // copied: the name may not outlive the call
     };
     std::string path_;
     std::mutex mutex_;
@@ -76,13 +78,19 @@ std::array<Counter, 2>& counters() {
     return c;
 }
 
+thread_local const char* currentObject = nullptr;  // ObjectScope
+
 }  // namespace
+
+ObjectScope::ObjectScope(const char* name) : previous_(currentObject) { currentObject = name; }
+
+ObjectScope::~ObjectScope() { currentObject = previous_; }
 
 void arm(Site site, uint64_t n) { counters()[size_t(site)].remaining = n; }
 
 bool hit(Site site, const char* call) {
     Counter& c = counters()[size_t(site)];
-    trace().record(site, ++c.calls, call);
+    trace().record(site, ++c.calls, call, currentObject);
     uint64_t r = c.remaining.load(std::memory_order_relaxed);
     while (r != 0) {
         if (c.remaining.compare_exchange_weak(r, r - 1)) {

@@ -12,7 +12,8 @@
 //                      and vkQueuePresentKHR (VK_ERROR_DEVICE_LOST); GL Device::submit and
 //                      present (a context reset, as glGetGraphicsResetStatus reports one).
 //   FE_FAULT_TRACE=FILE  at exit, every native call of either kind made, one line each:
-//                      "allocation|submission ORDINAL CALL" (the fault sweep picks its targets from it).
+//                      "allocation|submission ORDINAL CALL [OBJECT]" (the fault sweep picks its
+//                      targets from it); OBJECT: the debug name of the object being created.
 // Only the N-th call fails. Counting is per process from its first native call; fault::arm
 // restarts it from the moment of the call (gtests).
 #pragma once
@@ -38,6 +39,20 @@ bool hit(Site site, const char* call);
 uint64_t calls(Site site);
 // Failures injected at `site` so far.
 uint64_t fired(Site site);
+
+// While one lives, this thread's native calls are made for the object `name` (a desc's debug
+// name; null: unnamed): FE_FAULT_TRACE's lines say so, so the fault sweep can tell apart two
+// runs that make the same API calls for different objects. Costs a pointer swap.
+class ObjectScope {
+public:
+    explicit ObjectScope(const char* name);
+    ~ObjectScope();
+    ObjectScope(const ObjectScope&) = delete;
+    ObjectScope& operator=(const ObjectScope&) = delete;
+
+private:
+    const char* previous_;
+};
 
 }  // namespace fe::gdi::fault
 
