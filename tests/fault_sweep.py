@@ -77,8 +77,9 @@ def trace(cmd, timeout):
             raise SystemExit("clean run failed (exit %s):\n%s\n%s" % (code, " ".join(cmd), out))
         calls = []  # (site, ordinal, API call, the object it is made for or "")
         for line in f:
-            site, ordinal, name, *obj = line.split(maxsplit=3)
-            calls.append((site, int(ordinal), name, obj[0].strip() if obj else ""))
+            site, ordinal, rest = line.split(maxsplit=2)
+            name, _, obj = rest.strip().partition(" @")  # "vkCreateImage @scene texture 3"
+            calls.append((site, int(ordinal), name, obj))
         return calls
 
 

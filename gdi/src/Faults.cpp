@@ -33,7 +33,7 @@ public:
         std::ofstream out(path_);
         for (const auto& [site, ordinal, call, object] : lines_)
             out << kSiteNames[size_t(site)] << ' ' << ordinal << ' ' << call
-                << (object.empty() ? "" : " ") << object << '\n';
+                << (object.empty() ? "" : " @") << object << '\n';
     }
     void record(Site site, uint64_t ordinal, const char* call, const char* object) {
         if (path_.empty()) return;

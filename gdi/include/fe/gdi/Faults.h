@@ -12,7 +12,7 @@
 //                      and vkQueuePresentKHR (VK_ERROR_DEVICE_LOST); GL Device::submit and
 //                      present (a context reset, as glGetGraphicsResetStatus reports one).
 //   FE_FAULT_TRACE=FILE  at exit, every native call of either kind made, one line each:
-//                      "allocation|submission ORDINAL CALL [OBJECT]" (the fault sweep picks its
+//                      "allocation|submission ORDINAL CALL[ @OBJECT]" (the fault sweep picks its
 //                      targets from it); OBJECT: the debug name of the object being created.
 // Only the N-th call fails. Counting is per process from its first native call; fault::arm
 // restarts it from the moment of the call (gtests).
