@@ -386,3 +386,38 @@ TEST(StorageTextureLimit, RenumberingChangesOnlyTheStorageTextureBindings) {
     for (const auto& x : named.bindings) names.insert(x.name);
     EXPECT_EQ(names, (std::set<std::string>{"compute.first", "compute.second", "compute.Scale"}));
 }
+
+// Creating a shader keeps what validating and reflecting a module gave (ShaderReflection.cpp's
+// ModuleMemo), since renderers create the same modules on every device: the answer is reused
+// only for the same module, word for word, under the same rules, stage and entry point.
+TEST(ShaderModuleMemo, ReusesAnAnswerOnlyForTheSameModuleStageAndEntryPoint) {
+    const ShaderBinary& b = fe::shaders::find("conformance/storage_high_slots.comp");
+    const std::vector<uint32_t> words(b.opengl.begin(), b.opengl.end());
+    for (int pass = 0; pass < 2; ++pass) {  // the second pass answers from the memo
+        SCOPED_TRACE(pass);
+        EXPECT_EQ(errorOf([&] { validateSpirv(words, SpirvRules::OpenGL45, "kept"); }),
+                  "(no error)");
+        EXPECT_EQ(errorOf([&] {
+                      reflectShader(words, ShaderStage::Compute, "main", "kept",
+                                    SpirvRules::OpenGL45);
+                  }),
+                  "(no error)");
+        EXPECT_EQ(errorOf([&] {
+                      reflectShader(words, ShaderStage::Fragment, "main", "kept",
+                                    SpirvRules::OpenGL45);
+                  }),
+                  "shader 'kept': SPIR-V reflection failed: Entry point does not exist.");
+        EXPECT_EQ(errorOf([&] {
+                      reflectShader(words, ShaderStage::Compute, "other", "kept",
+                                    SpirvRules::OpenGL45);
+                  }),
+                  "shader 'kept': SPIR-V reflection failed: Entry point does not exist.");
+        // The same size, one word changed (the bound: every id must lie below it).
+        std::vector<uint32_t> damaged = words;
+        damaged[3] = 1;
+        EXPECT_NE(errorOf([&] {
+                      validateSpirv(damaged, SpirvRules::OpenGL45, "damaged");
+                  }).find("shader 'damaged': not a valid SPIR-V module for OpenGL: "),
+                  std::string::npos);
+    }
+}
