@@ -195,11 +195,13 @@ struct GlDirect {
     using BindBufferRange = void (*)(unsigned, unsigned, unsigned, intptr_t, intptr_t);
     using DrawArrays = void (*)(unsigned, int, int);
     using VertexArrayVertexBuffer = void (*)(unsigned, unsigned, unsigned, intptr_t, int);
+    using DrawArraysInstancedBaseInstance = void (*)(unsigned, int, int, int, unsigned);
     UseProgram useProgram = nullptr;
     BindVertexArray bindVertexArray = nullptr;
     BindBufferRange bindBufferRange = nullptr;
     DrawArrays drawArrays = nullptr;
     VertexArrayVertexBuffer vertexArrayVertexBuffer = nullptr;
+    DrawArraysInstancedBaseInstance drawArraysInstancedBaseInstance = nullptr;
 
     explicit GlDirect(const std::string& backend) {
         using GetProc = void* (*)(const char*);
@@ -218,10 +220,14 @@ struct GlDirect {
         drawArrays = reinterpret_cast<DrawArrays>(get("glDrawArrays"));
         vertexArrayVertexBuffer =
             reinterpret_cast<VertexArrayVertexBuffer>(get("glVertexArrayVertexBuffer"));
+        drawArraysInstancedBaseInstance = reinterpret_cast<DrawArraysInstancedBaseInstance>(
+            get("glDrawArraysInstancedBaseInstance"));
     }
 };
 
-FramePath glDirectPath(Scene& s, const std::string& backend) {
+// `instanced`: each draw through glDrawArraysInstancedBaseInstance(..., 1, 0) instead, the entry
+// point the replay used for every draw until 2026-11-30 (--paired prints what it costs the driver).
+FramePath glDirectPath(Scene& s, const std::string& backend, bool instanced = false) {
     Device& d = *s.device;
     auto gl = std::make_shared<GlDirect>(backend);
     const unsigned program = unsigned(d.nativeObject(NativeObject::Pipeline, s.pipeline.id));
@@ -231,7 +237,7 @@ FramePath glDirectPath(Scene& s, const std::string& backend) {
     if (!program || !vao || !vb || !ubo) throw Error("GL backend does not expose native objects");
     auto fence = std::make_shared<FenceValue>(0);
     return {.record =
-                [&s, gl, program, vao, vb, ubo] {
+                [&s, gl, program, vao, vb, ubo, instanced] {
                     constexpr unsigned GL_UNIFORM_BUFFER = 0x8A11, GL_TRIANGLES = 0x0004;
                     // The render pass itself (FBO bind, clear, pipeline state) goes through the
                     // backend on both sides: an empty pass leaves the framebuffer and state bound
@@ -248,7 +254,10 @@ FramePath glDirectPath(Scene& s, const std::string& backend) {
                         for (uint32_t i = 0; i < kDraws; ++i) {
                             gl->bindBufferRange(GL_UNIFORM_BUFFER, 0, ubo,
                                                 intptr_t(i) * kObjectStride, 64);
-                            gl->drawArrays(GL_TRIANGLES, 0, 3);
+                            if (instanced)
+                                gl->drawArraysInstancedBaseInstance(GL_TRIANGLES, 0, 3, 1, 0);
+                            else
+                                gl->drawArrays(GL_TRIANGLES, 0, 3);
                         }
                     });
                 },
@@ -395,47 +404,64 @@ double threadSeconds() {
     return double(ts.tv_sec) + double(ts.tv_nsec) * 1e-9;
 }
 
+// Besides the ratio, where each path's time went: the recording thread and GL's context thread
+// apart (the direct path's calls all run on the context thread), and on GL a third path, direct
+// calls through glDrawArraysInstancedBaseInstance, timed in the same rotation: what the
+// instanced entry point costs the driver over glDrawArrays.
 int pairedRatios(uint32_t pairs) {
     std::cout
         << "abstraction cost, " << pairs << " pairs of frames of " << kDraws
         << " draws, CPU time of the recording thread (and GL's context thread), median (and quartiles) of per-pair "
            "abstract / direct:\n";
+    auto quantile = [](std::vector<double> v, double q) {
+        std::sort(v.begin(), v.end());
+        return v[size_t(q * double(v.size() - 1) + 0.5)];
+    };
     for (const std::string& b : backendNames()) {
         if (!probeBackend(b, false).available) continue;
         Scene& s = scene(b);
-        FramePath paths[2] = {abstractPath(s), directPath(s, b)};
+        const bool gl = b != "vulkan";
+        std::vector<FramePath> paths = {abstractPath(s), directPath(s, b)};
+        if (gl) paths.push_back(glDirectPath(s, b, true));
+        const size_t n = paths.size();
         // Read on the context thread once the frame's calls ran there (it runs tasks in order).
         auto contextSeconds = [&] {
             double v = 0;
-            if (b != "vulkan") fe::gl::runOnContextThread(*s.device, [&] { v = threadSeconds(); });
+            if (gl) fe::gl::runOnContextThread(*s.device, [&] { v = threadSeconds(); });
             return v;
         };
         for (FramePath& p : paths) p.record(), p.submit(), p.wait();  // warm-up
-        std::vector<double> ratios, abstractNs, directNs;
+        std::vector<double> ratios, instancedRatios;
+        std::vector<std::vector<double>> recordingNs(n), contextNs(n), totalNs(n);
         for (uint32_t i = 0; i < pairs; ++i) {
-            double t[2];
-            for (int k = 0; k < 2; ++k) {
-                const int which = (i & 1) ? 1 - k : k;
+            std::vector<double> t(n);
+            for (size_t k = 0; k < n; ++k) {
+                const size_t which = (k + i) % n;  // each path goes first as often
                 const double c0 = contextSeconds(), t0 = threadSeconds();
                 paths[which].record();
                 paths[which].submit();
-                const double t1 = threadSeconds();
-                t[which] = t1 - t0 + contextSeconds() - c0;
+                const double recording = threadSeconds() - t0, context = contextSeconds() - c0;
+                t[which] = recording + context;
+                recordingNs[which].push_back(recording / kDraws * 1e9);
+                contextNs[which].push_back(context / kDraws * 1e9);
+                totalNs[which].push_back(t[which] / kDraws * 1e9);
                 paths[which].wait();
             }
             ratios.push_back(t[0] / t[1]);
-            abstractNs.push_back(t[0] / kDraws * 1e9);
-            directNs.push_back(t[1] / kDraws * 1e9);
+            if (gl) instancedRatios.push_back(t[2] / t[1]);
         }
-        auto quantile = [](std::vector<double> v, double q) {
-            std::sort(v.begin(), v.end());
-            return v[size_t(q * double(v.size() - 1) + 0.5)];
-        };
         std::cout << "  " << b
                   << (s.device->info().softwareRasterizer ? " (software rasterizer)" : "") << ": "
-                  << quantile(abstractNs, 0.5) << " vs " << quantile(directNs, 0.5)
+                  << quantile(totalNs[0], 0.5) << " vs " << quantile(totalNs[1], 0.5)
                   << " ns/draw, ratio " << quantile(ratios, 0.5) << " (quartiles "
                   << quantile(ratios, 0.25) << " - " << quantile(ratios, 0.75) << ")\n";
+        if (!gl) continue;
+        std::cout << "    medians, ns/draw: abstract " << quantile(recordingNs[0], 0.5)
+                  << " recording + " << quantile(contextNs[0], 0.5) << " context thread; direct "
+                  << quantile(recordingNs[1], 0.5) << " + " << quantile(contextNs[1], 0.5)
+                  << "; direct through glDrawArraysInstancedBaseInstance "
+                  << quantile(totalNs[2], 0.5) << ", ratio to direct "
+                  << quantile(instancedRatios, 0.5) << "\n";
     }
     return 0;
 }

@@ -71,7 +71,12 @@ void GlCommandList::setDepthBias(float constant, float slope, float clamp) {
 }
 
 // The device is being destroyed before this list (LiveLists.h): every later call throws.
-void GlCommandList::orphan() { orphaned_ = restricted_ = true, readyToDraw_ = inPass_ = false; }
+// Clearing the bind cache sends every bind to the checked path, which throws before the
+// fast path could read the destroyed device.
+void GlCommandList::orphan() {
+    orphaned_ = restricted_ = true, readyToDraw_ = inPass_ = false;
+    lastBound_ = {};
+}
 
 void GlCommandList::restart() {
     feedback_.clear();
@@ -275,39 +280,51 @@ void GlCommandList::setIndexBuffer(gdi::BufferHandle h, gdi::IndexType type, uin
 
 // Per-object path: plainly valid arguments are recorded at once; anything else (size 0 = "the
 // rest", errors) takes the checked path, which owns the messages. Size 0 is resolved here so
-// replay binds exactly what was validated.
+// replay binds exactly what was validated. The per-object case binds one buffer at many offsets:
+// the buffer the checked path bound last, with nothing destroyed since, is still alive and of the
+// usage checked then, so the fast path checks only the range and that a buffer of this kind is
+// in the slot already (no handle lookup, no saved registers); orphan() clears the cache. While
+// validating, each bind's range is noted for the next draw's check against the block.
 template <gdi::BindingType kKind>
-void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size) {
+inline void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                     uint64_t size) {
     using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer,
                                       cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
-    checkDevice(kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer");
-    const Buffer* b = dev_.findBuffer(h);
-    const gdi::validate::BindingLimits& limits =
-        kKind == gdi::BindingType::UniformBuffer ? uniformLimits_ : storageLimits_;
-    uint64_t bindSize =
-        b ? gdi::validate::plainBindingSize(slot, b->desc.size, offset, size, limits) : 0;
     constexpr size_t kind = kKind == gdi::BindingType::UniformBuffer ? 0 : 1;
-    if (!bindSize || h.id != lastBound_[kind])
-        [[unlikely]] {  // another buffer: its usage is checked
-        const char* what =
-            kKind == gdi::BindingType::UniformBuffer ? "setUniformBuffer" : "setStorageBuffer";
-        checkSlot(slot, what);
-        const Buffer& checked = dev_.buffer(h);
-        gdi::validate::bufferUsage(
-            checked.desc, kind == 0 ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage,
-            checked.label, what);
-        lastBound_[kind] = h.id;
-        bindSize = size == 0 ? std::min(checked.desc.size - std::min(offset, checked.desc.size),
-                                        limits.maxRange)
-                             : size;
-        gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
-        gdi::validate::bindingLimits(offset, bindSize, limits, what);
-    }
+    const BoundBuffer& last = lastBound_[kind];
+    const uint64_t bindSize = gdi::validate::plainBindingSize(
+        slot, last.size, offset, size, kind == 0 ? uniformLimits_ : storageLimits_);
+    if (h.id != last.id || !bindSize || last.destroyEpoch != dev_.destroyEpoch() ||
+        kinds_[slot] != uint8_t(1 + uint8_t(kKind)) || !stream_->fits<Record>()) [[unlikely]]
+        return setBufferChecked<kKind>(slot, h, offset, size);
+    stream_->pushFitting(Record{slot, h, offset, bindSize});
+    if (validating_) [[unlikely]]
+        noteRange(slot, bindSize);
+}
+template <gdi::BindingType kKind>
+void GlCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                     uint64_t size) {
+    using Record = std::conditional_t<kKind == gdi::BindingType::UniformBuffer,
+                                      cmd::SetUniformBuffer, cmd::SetStorageBuffer>;
+    constexpr size_t kind = kKind == gdi::BindingType::UniformBuffer ? 0 : 1;
+    const char* what = kind == 0 ? "setUniformBuffer" : "setStorageBuffer";
+    checkDevice(what);
+    checkSlot(slot, what);
+    const uint64_t epoch = dev_.destroyEpoch();  // before the lookup: a destroy after it counts
+    const Buffer& checked = dev_.buffer(h);
+    gdi::validate::bufferUsage(checked.desc,
+                               kind == 0 ? gdi::BufferUsage::Uniform : gdi::BufferUsage::Storage,
+                               checked.label, what);
+    const gdi::validate::BindingLimits& limits = kind == 0 ? uniformLimits_ : storageLimits_;
+    const uint64_t bindSize =
+        size == 0
+            ? std::min(checked.desc.size - std::min(offset, checked.desc.size), limits.maxRange)
+            : size;
+    gdi::validate::bindingRange(checked.desc, offset, bindSize, what);
+    gdi::validate::bindingLimits(offset, bindSize, limits, what);
     boundBuffer(slot, kKind);
-    if (validating_) [[unlikely]] {  // the next draw checks the range (checkBindings)
-        boundBytes_[slot] = bindSize;
-        unchecked_ |= uint64_t(1) << slot;
-    }
+    if (validating_) noteRange(slot, bindSize);
+    lastBound_[kind] = {.id = h.id, .destroyEpoch = epoch, .size = checked.desc.size};
     stream_->push(Record{slot, h, offset, bindSize});
 }
 void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
@@ -348,8 +365,20 @@ void GlCommandList::setStorageTexture(uint32_t slot, gdi::TextureHandle th, uint
     stream_->push(cmd::SetStorageTexture{slot, th, mip});
 }
 
+// The per-object path is a leaf: one test covers the draw state, changed slots, the vertex and
+// instance ranges and the stream's room; anything else goes to drawChecked (errors, the bindings'
+// check, a new block).
 void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
                          uint32_t firstInstance) {
+    if (!readyToDraw_ || (unchecked_ & requiredSlots_) ||
+        uint64_t(firstVertex) + vertexCount > vertexInputs_.vertexCapacity() ||
+        uint64_t(firstInstance) + instanceCount > vertexInputs_.instanceCapacity() ||
+        !stream_->fits<cmd::Draw>()) [[unlikely]]
+        return drawChecked(vertexCount, instanceCount, firstVertex, firstInstance);
+    stream_->pushFitting(cmd::Draw{vertexCount, instanceCount, firstVertex, firstInstance});
+}
+void GlCommandList::drawChecked(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,
+                                uint32_t firstInstance) {
     prepareDraw("draw");
     vertexInputs_.draw(vertexCount, instanceCount, firstVertex, firstInstance);
     stream_->push(cmd::Draw{vertexCount, instanceCount, firstVertex, firstInstance});

@@ -64,6 +64,14 @@ private:
     void checkSlot(uint32_t slot, const char* what) const;
     template <gdi::BindingType kKind>
     void setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset, uint64_t size);
+    template <gdi::BindingType kKind>
+    [[gnu::noinline]] void setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
+                                            uint64_t size);
+    // Validation: the next draw checks the range bound at slot against the block (checkBindings).
+    void noteRange(uint32_t slot, uint64_t bytes) {
+        boundBytes_[slot] = bytes;
+        unchecked_ |= uint64_t(1) << slot;
+    }
     void bound(uint32_t slot, gdi::BindingType kind, uint8_t dimension = 0) {
         kinds_[slot] = uint8_t(1 + uint8_t(kind));
         dims_[slot] = dimension;
@@ -92,8 +100,11 @@ private:
     void prepareDraw(const char* what) {
         if (!readyToDraw_) [[unlikely]]
             notReadyToDraw(what);
-        checkBindings();
+        if (unchecked_ & requiredSlots_) [[unlikely]]  // no call when no used slot changed
+            checkBindings();
     }
+    [[gnu::noinline]] void drawChecked(uint32_t vertexCount, uint32_t instanceCount,
+                                       uint32_t firstVertex, uint32_t firstInstance);
     void prepareCompute(const char* what);
     void indirectArgs(gdi::BufferHandle h, uint64_t offset, uint32_t drawCount, uint32_t stride,
                       uint32_t recordSize, const char* what);
@@ -130,8 +141,13 @@ private:
     uint64_t unchecked_ = ~uint64_t(0);         // slots to check at the next draw/dispatch
     gdi::validate::VertexInputs vertexInputs_;  // vertex and index buffers, checked at each draw
     gdi::validate::FeedbackLoops feedback_;
-    std::array<uint32_t, 2>
-        lastBound_{};  // per kind (uniform, storage): last buffer whose usage was checked
+    // Per kind (uniform, storage): the last buffer the checked path bound (setBuffer).
+    struct BoundBuffer {
+        uint32_t id = 0;
+        uint64_t destroyEpoch = 0;  // the device's destroy count before it was looked up
+        uint64_t size = 0;
+    };
+    std::array<BoundBuffer, 2> lastBound_{};
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;

@@ -106,6 +106,8 @@ namespace fe::gl {
     X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                 \
     X(PFNGLBINDSAMPLERPROC, BindSampler)                                         \
     X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                               \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                           \
+    X(PFNGLDRAWELEMENTSBASEVERTEXPROC, DrawElementsBaseVertex)                   \
     X(PFNGLDRAWARRAYSINSTANCEDBASEINSTANCEPROC, DrawArraysInstancedBaseInstance) \
     X(PFNGLDRAWELEMENTSINSTANCEDBASEVERTEXBASEINSTANCEPROC,                      \
       DrawElementsInstancedBaseVertexBaseInstance)                               \

@@ -378,19 +378,30 @@ void GlReplay::bindIndexBuffer() {
     if (indexDirty_) gl_.VertexArrayElementBuffer(pipeline_->vao, indexBuffer_);
     indexDirty_ = false;
 }
+// A single instance at base 0 (most draws) takes the plain entry point: the instanced one is the
+// same draw (gl_InstanceID 0, base instance 0) but costs more in some drivers' call path.
 void GlReplay::operator()(const cmd::Draw& r) {
-    bindVertexBuffers();
+    if (constantsDirty_ | imagesDirty_ | vertexDirty_) [[unlikely]]  // no call per object
+        bindVertexBuffers();
+    if (r.instanceCount == 1 && r.firstInstance == 0) [[likely]]
+        return gl_.DrawArrays(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount));
     gl_.DrawArraysInstancedBaseInstance(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount),
                                         GLsizei(r.instanceCount), r.firstInstance);
 }
 void GlReplay::operator()(const cmd::DrawIndexed& r) {
-    bindVertexBuffers();
-    bindIndexBuffer();
+    if (constantsDirty_ | imagesDirty_ | vertexDirty_) [[unlikely]]
+        bindVertexBuffers();
+    if (indexDirty_) [[unlikely]]
+        bindIndexBuffer();
     const uint32_t size = indexType_ == gdi::IndexType::U16 ? 2 : 4;
-    gl_.DrawElementsInstancedBaseVertexBaseInstance(
-        topology_, GLsizei(r.indexCount), indexType(),
-        reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(r.firstIndex) * size)),
-        GLsizei(r.instanceCount), r.baseVertex, r.firstInstance);
+    const auto* first =
+        reinterpret_cast<const void*>(uintptr_t(indexOffset_ + uint64_t(r.firstIndex) * size));
+    if (r.instanceCount == 1 && r.firstInstance == 0) [[likely]]
+        return gl_.DrawElementsBaseVertex(topology_, GLsizei(r.indexCount), indexType(), first,
+                                          r.baseVertex);
+    gl_.DrawElementsInstancedBaseVertexBaseInstance(topology_, GLsizei(r.indexCount), indexType(),
+                                                    first, GLsizei(r.instanceCount), r.baseVertex,
+                                                    r.firstInstance);
 }
 // Dispatches and copies keep full barriers even with automatic barriers off: glMemoryBarrier
 // is cheap next to them, and GL has no finer ordering to gain.

@@ -529,6 +529,7 @@ void VulkanCommandList::beginRenderPass(const gdi::RenderPassDesc& desc) {
     inPass_ = true;
     dynamicSet_ = 0;      // each pass starts from its pipelines' values
     pipeline_ = nullptr;  // a render pass starts with no pipeline, as on GL (see Device.h)
+    eagerSlots_ = {};     // nor a layout to push with
     computeBound_ = false;
     updateReadyToDraw();
     passHasLabel_ = desc.debugName != nullptr;
@@ -594,6 +595,7 @@ void VulkanCommandList::endPassFeedback() {
 void VulkanCommandList::unbindAll() {
     pipeline_ = nullptr;
     writesFor_ = 0;
+    eagerSlots_ = {};
     computeBound_ = false;
     setNotReady();
     requiredSlots_ = 0;
@@ -782,6 +784,8 @@ void VulkanCommandList::setPipeline(gdi::PipelineHandle h) {
         }
         writesFor_ = h.id;
     }
+    eagerSlots_ = p.bufferSlots;
+    bindPoint_ = p.bindPoint;
 }
 
 void VulkanCommandList::setViewport(const gdi::Viewport& v) {
@@ -884,6 +888,13 @@ inline void VulkanCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uin
         gdi::validate::plainBindingSize(slot, last.size, offset, size, limits);
     if (!bindSize) [[unlikely]]
         return setBufferChecked<kType>(slot, h, offset, size);
+    if (eagerSlots_[kind] >> slot & 1) {  // the pipeline takes this kind here: push it now
+        bindings_[slot].kind = kType;
+        bindings_[slot].buffer = {last.buffer, offset, bindSize};
+        if (validating_) [[unlikely]]
+            return pushValidatedSlot(slot);
+        return pushDescriptorSet_(cb_, bindPoint_, layout_, 0, 1, &writes_[slot]);
+    }
     bindBuffer(slot, kType, last.buffer, offset, bindSize);
 }
 
@@ -1018,6 +1029,13 @@ inline void VulkanCommandList::pushDirty(uint64_t push, VkPipelineBindPoint bind
     pushDescriptorSet_(cb_, bindPoint, layout_, 0, 1, &writes_[slot]);
 }
 
+// Validation mode's eager push: the slot stays dirty, so the draw that uses it checks its range
+// against the block (a range rebound before any draw is no mistake) and pushes it again.
+void VulkanCommandList::pushValidatedSlot(uint32_t slot) {
+    dirtySlots_ |= uint64_t(1) << slot;
+    pushDescriptorSet_(cb_, bindPoint_, layout_, 0, 1, &writes_[slot]);
+}
+
 void VulkanCommandList::pushGathered(uint64_t push) {
     for (uint64_t m = push; m; m &= m - 1) {
         const uint32_t slot = uint32_t(std::countr_zero(m));
@@ -1046,11 +1064,15 @@ void VulkanCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint3
     if (int64_t(firstVertex) + vertexCount > drawVertexLimit_ ||
         uint64_t(firstInstance) + instanceCount > vertexInputs_.instanceCapacity()) [[unlikely]]
         drawRefused(vertexCount, instanceCount, firstVertex, firstInstance);
-    const uint64_t push = dirtySlots_ & requiredSlots_;
-    if (!push) return vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
+    if (dirtySlots_ & requiredSlots_) [[unlikely]]  // the draw stays a leaf without
+        return drawPushing(vertexCount, instanceCount, firstVertex, firstInstance);
+    vkCmdDraw(cb_, vertexCount, instanceCount, firstVertex, firstInstance);
+}
+void VulkanCommandList::drawPushing(uint32_t vertexCount, uint32_t instanceCount,
+                                    uint32_t firstVertex, uint32_t firstInstance) {
     // Parked in members across the push: cheaper than keeping four arguments in saved registers.
     draw_ = {vertexCount, instanceCount, firstVertex, firstInstance};
-    pushDirty(push, VK_PIPELINE_BIND_POINT_GRAPHICS);
+    pushDirty(dirtySlots_ & requiredSlots_, VK_PIPELINE_BIND_POINT_GRAPHICS);
     vkCmdDraw(cb_, draw_[0], draw_[1], draw_[2], draw_[3]);
 }
 

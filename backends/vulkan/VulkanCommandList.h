@@ -175,6 +175,9 @@ private:
                                                             uint32_t firstVertex,
                                                             uint32_t firstInstance) const;
     [[noreturn, gnu::cold, gnu::noinline]] void notReadyToDraw(const char* what) const;
+    [[gnu::noinline]] void pushValidatedSlot(uint32_t slot);
+    [[gnu::noinline]] void drawPushing(uint32_t vertexCount, uint32_t instanceCount,
+                                       uint32_t firstVertex, uint32_t firstInstance);
     // Buffer binding: a branch-free leaf fast path per setter; anything unusual (not recording,
     // size 0 = "the rest", any invalid argument) goes to the checked path, which gives the error.
     template <VkDescriptorType kType>
@@ -261,6 +264,12 @@ private:
     // Slots set since they were last pushed. Push descriptors may be updated incrementally
     // until a pipeline with another layout disturbs the set, which makes every slot dirty.
     uint64_t dirtySlots_ = ~uint64_t(0);
+    // Per kind (uniform, storage): the slots where the bound pipeline declares a buffer of that
+    // kind. The per-object bind of the last buffer pushes such a slot at once, as a program
+    // calling Vulkan itself would, so the draw after it has nothing to push (no register spills
+    // around a call).
+    std::array<uint64_t, 2> eagerSlots_{};
+    VkPipelineBindPoint bindPoint_ = VK_PIPELINE_BIND_POINT_GRAPHICS;  // pipeline_->bindPoint
     int debugDepth_ = 0;
     gdi::validate::QueryRecording queries_;
     std::array<std::byte, gdi::kMaxConstantBytes>

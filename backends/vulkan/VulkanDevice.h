@@ -108,6 +108,7 @@ struct Pipeline {
     // Per slot: the descriptor write flushBindings copies (type, binding; pointers filled at
     // flush time), so the per-draw path does no translation.
     std::array<VkWriteDescriptorSet, 64> writeTemplates{};
+    std::array<uint64_t, 2> bufferSlots{};  // per kind (uniform, storage): the slots of that kind
     gdi::validate::PassSignature
         signature;  // attachment formats and samples, checked at setPipeline
     bool writesDepthStencil =

@@ -171,6 +171,10 @@ static Pipeline makeLayout(VkDevice device, const std::vector<gdi::BindingSlot>&
         w.dstBinding = b.slot;
         w.descriptorCount = 1;
         w.descriptorType = toDescriptorType(b.type);
+        if (b.type == gdi::BindingType::UniformBuffer)
+            p.bufferSlots[0] |= uint64_t(1) << (b.slot & 63);
+        if (b.type == gdi::BindingType::StorageBuffer)
+            p.bufferSlots[1] |= uint64_t(1) << (b.slot & 63);
     }
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;

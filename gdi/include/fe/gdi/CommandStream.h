@@ -184,9 +184,25 @@ public:
         std::byte* at = reserve(size);
         new (at) Header{R::kOp, 0, uint32_t(size)};
         R* r = new (at + sizeof(Header)) R(record);
-        payloadAt_ = at + sizeof(Header) + align(sizeof(R));
+        if (payloadBytes) payloadAt_ = at + sizeof(Header) + align(sizeof(R));  // folded away: 0
         ++count_;
         return r;
+    }
+    // A caller's leaf fast path (no call, so no saved registers): whether a record of type R
+    // without payloads fits the current block; if so, pushFitting appends it. Else the caller
+    // takes its checked path, which calls push().
+    template <class R>
+    bool fits() const {
+        return align(sizeof(Header) + align(sizeof(R))) <= size_t(end_ - cur_);
+    }
+    template <class R>
+    void pushFitting(const R& record) {
+        static_assert(std::is_trivially_copyable_v<R>);
+        constexpr size_t size = align(sizeof(Header) + align(sizeof(R)));
+        new (cur_) Header{R::kOp, 0, uint32_t(size)};
+        new (cur_ + sizeof(Header)) R(record);
+        cur_ += size;
+        ++count_;
     }
     // Copies `data` into the room push() reserved after `record` (the last record pushed).
     template <class T, class R>
