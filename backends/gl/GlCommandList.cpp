@@ -88,6 +88,7 @@ void GlCommandList::restart() {
 void GlCommandList::unbindAll() {
     kinds_ = {};
     lastBound_ = {};
+    lastUniform_ = {};
     unchecked_ = ~uint64_t(0);
     pipeline_ = nullptr;
     readyToDraw_ = false;
@@ -297,9 +298,14 @@ inline void GlCommandList::setBuffer(uint32_t slot, gdi::BufferHandle h, uint64_
     if (h.id != last.id || !bindSize || last.destroyEpoch != dev_.destroyEpoch() ||
         kinds_[slot] != uint8_t(1 + uint8_t(kKind)) || !stream_->fits<Record>()) [[unlikely]]
         return setBufferChecked<kKind>(slot, h, offset, size);
-    stream_->pushFitting(Record{slot, h, offset, bindSize});
     if (validating_) [[unlikely]]
         noteRange(slot, bindSize);
+    if constexpr (kind == 0) {
+        if (slot == lastUniform_.slot && h.id == lastUniform_.id && bindSize == lastUniform_.size)
+            return stream_->pushFitting(cmd::SetUniformOffset{offset});
+        lastUniform_ = {.slot = slot, .id = h.id, .size = bindSize};
+    }
+    stream_->pushFitting(Record{slot, h, offset, bindSize});
 }
 template <gdi::BindingType kKind>
 void GlCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
@@ -325,6 +331,7 @@ void GlCommandList::setBufferChecked(uint32_t slot, gdi::BufferHandle h, uint64_
     boundBuffer(slot, kKind);
     if (validating_) noteRange(slot, bindSize);
     lastBound_[kind] = {.id = h.id, .destroyEpoch = epoch, .size = checked.desc.size};
+    if constexpr (kind == 0) lastUniform_ = {.slot = slot, .id = h.id, .size = bindSize};
     stream_->push(Record{slot, h, offset, bindSize});
 }
 void GlCommandList::setUniformBuffer(uint32_t slot, gdi::BufferHandle h, uint64_t offset,
@@ -375,6 +382,8 @@ void GlCommandList::draw(uint32_t vertexCount, uint32_t instanceCount, uint32_t 
         uint64_t(firstInstance) + instanceCount > vertexInputs_.instanceCapacity() ||
         !stream_->fits<cmd::Draw>()) [[unlikely]]
         return drawChecked(vertexCount, instanceCount, firstVertex, firstInstance);
+    if (instanceCount == 1 && firstInstance == 0) [[likely]]
+        return stream_->pushFitting(cmd::DrawOneInstance{vertexCount, firstVertex});
     stream_->pushFitting(cmd::Draw{vertexCount, instanceCount, firstVertex, firstInstance});
 }
 void GlCommandList::drawChecked(uint32_t vertexCount, uint32_t instanceCount, uint32_t firstVertex,

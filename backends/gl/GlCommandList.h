@@ -148,6 +148,14 @@ private:
         uint64_t size = 0;
     };
     std::array<BoundBuffer, 2> lastBound_{};
+    // The stream's last SetUniformBuffer record since the recording or the last executeSecondary
+    // began: a bind that repeats its slot, buffer and size is recorded as SetUniformOffset.
+    struct LastUniform {
+        uint32_t slot = ~0u;
+        uint32_t id = 0;
+        uint64_t size = 0;
+    };
+    LastUniform lastUniform_;
     // Secondary lists (Device.h): this list records one (secondary_, until executed; ended_
     // after endSecondary), or its open pass takes them (secondaryPass_).
     bool secondary_ = false, ended_ = false, secondaryPass_ = false, restricted_ = false;

@@ -336,8 +336,14 @@ void GlReplay::operator()(const cmd::SetIndexBuffer& r) {
     indexType_ = r.type;
 }
 void GlReplay::operator()(const cmd::SetUniformBuffer& r) {
-    gl_.BindBufferRange(GL_UNIFORM_BUFFER, r.slot, dev_.bufferAt(r.buffer).name, GLintptr(r.offset),
-                        GLsizeiptr(r.size));
+    lastUniform_ = {
+        .slot = r.slot, .name = dev_.bufferAt(r.buffer).name, .size = GLsizeiptr(r.size)};
+    gl_.BindBufferRange(GL_UNIFORM_BUFFER, r.slot, lastUniform_.name, GLintptr(r.offset),
+                        lastUniform_.size);
+}
+void GlReplay::operator()(const cmd::SetUniformOffset& r) {
+    gl_.BindBufferRange(GL_UNIFORM_BUFFER, lastUniform_.slot, lastUniform_.name, GLintptr(r.offset),
+                        lastUniform_.size);
 }
 void GlReplay::operator()(const cmd::SetStorageBuffer& r) {
     gl_.BindBufferRange(GL_SHADER_STORAGE_BUFFER, r.slot, dev_.bufferAt(r.buffer).name,
@@ -387,6 +393,11 @@ void GlReplay::operator()(const cmd::Draw& r) {
         return gl_.DrawArrays(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount));
     gl_.DrawArraysInstancedBaseInstance(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount),
                                         GLsizei(r.instanceCount), r.firstInstance);
+}
+void GlReplay::operator()(const cmd::DrawOneInstance& r) {
+    if (constantsDirty_ | imagesDirty_ | vertexDirty_) [[unlikely]]
+        bindVertexBuffers();
+    gl_.DrawArrays(topology_, GLint(r.firstVertex), GLsizei(r.vertexCount));
 }
 void GlReplay::operator()(const cmd::DrawIndexed& r) {
     if (constantsDirty_ | imagesDirty_ | vertexDirty_) [[unlikely]]

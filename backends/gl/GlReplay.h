@@ -40,6 +40,8 @@ public:
     void operator()(const gdi::cmd::SetTexture& r);
     void operator()(const gdi::cmd::SetStorageTexture& r);
     void operator()(const gdi::cmd::Draw& r);
+    void operator()(const gdi::cmd::DrawOneInstance& r);
+    void operator()(const gdi::cmd::SetUniformOffset& r);
     void operator()(const gdi::cmd::DrawIndexed& r);
     void operator()(const gdi::cmd::Dispatch& r);
     void operator()(const gdi::cmd::DrawIndirect& r);
@@ -122,6 +124,12 @@ private:
         if (constantsDirty_) flushConstants();
         if (imagesDirty_) bindImages();
     }
+    // The stream's last SetUniformBuffer, which a SetUniformOffset binds at another offset.
+    struct LastUniform {
+        GLuint slot = 0, name = 0;
+        GLsizeiptr size = 0;
+    };
+    LastUniform lastUniform_;
     GLuint indexBuffer_ = 0;
     uint64_t indexOffset_ = 0;
     gdi::IndexType indexType_ = gdi::IndexType::U32;

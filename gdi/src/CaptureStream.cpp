@@ -218,6 +218,9 @@ std::unique_ptr<cmd::CommandStream> decodeCommandStream(std::span<const std::byt
             if constexpr (std::is_same_v<R, cmd::ExecuteSecondary>)
                 if (problem.empty() && r.child >= children)
                     problem = "secondary stream " + std::to_string(r.child) + " does not exist";
+            if constexpr (std::is_same_v<R, cmd::DrawOneInstance> ||
+                          std::is_same_v<R, cmd::SetUniformOffset>)
+                problem = "the GL backend's own form of a command, never recorded in a capture";
         });
         if (!problem.empty()) throw fail(problem, cmd::opName(h.op));
         stream->pushRaw(std::span(reinterpret_cast<const std::byte*>(aligned.data()), h.size));

@@ -181,6 +181,9 @@ struct Applier {
         for (BufferBarrier& x : b) x.buffer = m()[x.buffer];
         list.barrier(b.data(), uint32_t(b.size()));
     }
+    // The GL backend's dense records are in no recorded stream (decodeCommandStream refuses them).
+    void operator()(const cmd::DrawOneInstance&) { throw Error("replay: a GL backend record"); }
+    void operator()(const cmd::SetUniformOffset&) { throw Error("replay: a GL backend record"); }
     void operator()(const cmd::ExecuteSecondary& r) {
         auto secondary = device.createCommandList();
         secondary->beginSecondary(pass);

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "BackendTest.h"
+#include "fe/gdi/DeviceObjects.h"
 #include "fe/gdi/ShaderRegistry.h"
 
 using namespace fe;
@@ -163,3 +164,73 @@ TEST_P(BindingState, PipelinesCreatedMidRecording) {
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(BindingState);
+
+// GL records a bind that repeats the stream's last uniform bind (slot, buffer and size) in a
+// dense form naming only the offset. A secondary list executed between two such binds binds its
+// own buffer there, so the primary's next bind must name its buffer again: each stripe shows the
+// colour its own bind selects, never the secondary list's.
+TEST_P(BindingState, BindsAfterSecondaryListsNameTheirBuffer) {
+    Device& d = *device;
+    constexpr uint32_t kSize = 32, kStride = 256;
+    DeviceObjects objects(d);
+    auto vs =
+        objects.add(d.createShader({.stage = ShaderStage::Vertex,
+                                    .binary = shaders::find("conformance/fullscreen_ubo.vert")}));
+    auto fs = objects.add(d.createShader(
+        {.stage = ShaderStage::Fragment, .binary = shaders::find("conformance/ubo_color.frag")}));
+    PipelineHandle p = objects.add(d.createGraphicsPipeline(
+        {.vertexShader = vs,
+         .fragmentShader = fs,
+         .colorFormats = {Format::RGBA8},
+         .bindings = {{0, BindingType::UniformBuffer, ShaderStage::AllGraphics}}}));
+    auto paramsOf = [&](std::initializer_list<std::array<float, 4>> colors) {
+        std::vector<uint8_t> bytes(kStride * colors.size());
+        size_t i = 0;
+        for (const auto& c : colors) {
+            Params params{{c[0], c[1], c[2], c[3]}, {0.5f, 0, 0, 0}};
+            std::memcpy(&bytes[i++ * kStride], &params, sizeof params);
+        }
+        return objects.add(d.createBuffer({.size = bytes.size(), .usage = BufferUsage::Uniform},
+                                          gdi::bytesOf(bytes)));
+    };
+    const BufferHandle primaryColors = paramsOf({{1, 0, 0, 1}, {0, 1, 0, 1}});  // red, green
+    const BufferHandle secondaryColors = paramsOf({{0, 0, 1, 1}});              // blue
+    TextureHandle target =
+        objects.add(d.createTexture({.format = Format::RGBA8,
+                                     .width = kSize,
+                                     .height = kSize,
+                                     .usage = TextureUsage::RenderTarget | TextureUsage::CopySrc}));
+    const RenderPassDesc pass{.colors = {{.texture = target, .clear = {0, 0, 0, 1}}},
+                              .secondaryLists = true};
+    auto stripe = [&](CommandList& c, uint32_t i) {
+        c.setScissor({.x = int32_t(i * kSize / 4), .y = 0, .width = kSize / 4, .height = kSize});
+        c.draw(3);
+    };
+    auto part = d.createCommandList();
+    part->beginSecondary(pass);
+    part->setPipeline(p);
+    part->setUniformBuffer(0, secondaryColors, 0, sizeof(Params));
+    stripe(*part, 1);
+    part->endSecondary();
+    auto cmd = d.createCommandList();
+    cmd->beginRenderPass(pass);
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, primaryColors, 0, sizeof(Params));  // red
+    stripe(*cmd, 0);
+    cmd->executeSecondary(*part);  // blue
+    cmd->setPipeline(p);
+    cmd->setUniformBuffer(0, primaryColors, kStride, sizeof(Params));  // green
+    stripe(*cmd, 2);
+    cmd->setUniformBuffer(0, primaryColors, 0, sizeof(Params));  // red
+    stripe(*cmd, 3);
+    cmd->endRenderPass();
+    d.wait(d.submit(*cmd));
+    const Image img = d.readTexture(target);
+    const std::array<std::array<float, 4>, 4> expected = {
+        {{1, 0, 0, 1}, {0, 0, 1, 1}, {0, 1, 0, 1}, {1, 0, 0, 1}}};
+    for (uint32_t i = 0; i < 4; ++i) {
+        const auto t = img.texel(i * kSize / 4 + kSize / 8, kSize / 2);
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(t[size_t(c)], expected[i][size_t(c)], 1.0 / 255) << "stripe " << i;
+    }
+}

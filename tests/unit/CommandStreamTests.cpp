@@ -236,3 +236,21 @@ TEST(CaptureStream, RefusesValuesNoDeviceCouldBeHanded) {
               std::string::npos);
     EXPECT_EQ(refusal(cmd::SetIndexBuffer{}, [](std::byte*) {}), "(accepted)");
 }
+
+// The GL backend's dense records (DrawOneInstance, SetUniformOffset) are in no capture: a file
+// that holds one is refused by name (a SetUniformOffset would bind whatever buffer came before).
+TEST(CaptureStream, RefusesTheGlBackendsOwnRecords) {
+    auto refused = [](auto record) {
+        cmd::CommandStream s;
+        s.push(record);
+        try {
+            decodeCommandStream(encodeCommandStream(s));
+        } catch (const CaptureError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    for (const std::string& e : {refused(cmd::DrawOneInstance{.vertexCount = 3}),
+                                 refused(cmd::SetUniformOffset{.offset = 256})})
+        EXPECT_NE(e.find("the GL backend's own form of a command"), std::string::npos) << e;
+}

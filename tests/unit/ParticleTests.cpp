@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 
 #include "BackendTest.h"
@@ -75,12 +76,32 @@ TEST_P(Particles, SimulatedCountsMatchTheCpuAndAlphaIsSortedBackToFront) {
     EXPECT_GT(distances.front(), distances.back());
 }
 
+// The largest difference of two images' bytes.
+static int largestByteDifference(const gdi::Image& a, const gdi::Image& b) {
+    int largest = a.data.size() == b.data.size() ? 0 : 255;
+    for (size_t i = 0; i < std::min(a.data.size(), b.data.size()); ++i)
+        largest = std::max(largest, std::abs(int(a.data[i]) - int(b.data[i])));
+    return largest;
+}
+
 // RenderSettings::asyncCompute: the particles' reset, simulation and sort run on the compute
 // queue beside the scene's passes (and, under MSAA, the unbounded light assignment of
 // clustered-deferred), the frame cut into submissions with the waits between them; the image
 // is the one the single list draws, bit for bit. Marking nothing async fails the first checks.
+// On a GPU the frame itself is not reproducible to the bit (an H200, 2026-11-30): particles
+// join their draw lists, and lights their tiles' lists, through atomics in an order that varies
+// from run to run, and the float sums follow the order. Where a second single-list frame differs
+// from the first, the async frame may differ from it by at most twice as much.
 TEST_P(Particles, AsyncComputeDrawsTheSameFrame) {
     const assets::Scene scene = assets::makeBuiltinScene("particles");
+    auto frame = [&](uint32_t msaa, bool async) {
+        render::RenderSettings s{
+            .technique = "clustered-deferred", .width = kW, .height = kH, .msaa = msaa};
+        s.asyncCompute = async;
+        render::SceneRenderer r(*device, scene, s);
+        r.renderFrame();
+        return r.readOutput();
+    };
     for (const uint32_t msaa : {1u, 4u}) {
         if (msaa > 1 && !(device->info().limits.colorSampleCounts & 4)) continue;
         gdi::Image images[2];
@@ -102,7 +123,11 @@ TEST_P(Particles, AsyncComputeDrawsTheSameFrame) {
             r.renderFrame();
             images[async] = r.readOutput();
         }
-        EXPECT_EQ(images[0].data, images[1].data) << msaa << " samples";
+        if (images[0].data == images[1].data) continue;
+        const int again = largestByteDifference(images[0], frame(msaa, false));
+        EXPECT_GT(again, 0) << msaa << " samples: the async frame differs where the frame is "
+                            << "reproducible";
+        EXPECT_LE(largestByteDifference(images[0], images[1]), 2 * again) << msaa << " samples";
     }
     EXPECT_EQ(device->validationErrorCount(), 0u);
 }
