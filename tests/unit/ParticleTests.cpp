@@ -88,20 +88,14 @@ static int largestByteDifference(const gdi::Image& a, const gdi::Image& b) {
 // queue beside the scene's passes (and, under MSAA, the unbounded light assignment of
 // clustered-deferred), the frame cut into submissions with the waits between them; the image
 // is the one the single list draws, bit for bit. Marking nothing async fails the first checks.
-// On a GPU the frame itself is not reproducible to the bit (an H200, 2026-11-30): particles
+// On a GPU the frame is not the same to the bit (an H200, 2026-11-30, both APIs): particles
 // join their draw lists, and lights their tiles' lists, through atomics in an order that varies
-// from run to run, and the float sums follow the order. Where a second single-list frame differs
-// from the first, the async frame may differ from it by at most twice as much.
+// with the GPU's scheduling (on Vulkan between two single-list frames too; on GL, one queue,
+// with how the frame is cut into submissions), and the float sums follow the order. There the
+// async frame may differ from the single list's by 2/255 per channel; a software rasterizer
+// must draw it to the bit.
 TEST_P(Particles, AsyncComputeDrawsTheSameFrame) {
     const assets::Scene scene = assets::makeBuiltinScene("particles");
-    auto frame = [&](uint32_t msaa, bool async) {
-        render::RenderSettings s{
-            .technique = "clustered-deferred", .width = kW, .height = kH, .msaa = msaa};
-        s.asyncCompute = async;
-        render::SceneRenderer r(*device, scene, s);
-        r.renderFrame();
-        return r.readOutput();
-    };
     for (const uint32_t msaa : {1u, 4u}) {
         if (msaa > 1 && !(device->info().limits.colorSampleCounts & 4)) continue;
         gdi::Image images[2];
@@ -123,11 +117,9 @@ TEST_P(Particles, AsyncComputeDrawsTheSameFrame) {
             r.renderFrame();
             images[async] = r.readOutput();
         }
-        if (images[0].data == images[1].data) continue;
-        const int again = largestByteDifference(images[0], frame(msaa, false));
-        EXPECT_GT(again, 0) << msaa << " samples: the async frame differs where the frame is "
-                            << "reproducible";
-        EXPECT_LE(largestByteDifference(images[0], images[1]), 2 * again) << msaa << " samples";
+        EXPECT_LE(largestByteDifference(images[0], images[1]),
+                  device->info().softwareRasterizer ? 0 : 2)
+            << msaa << " samples";
     }
     EXPECT_EQ(device->validationErrorCount(), 0u);
 }

@@ -53,7 +53,9 @@ uint64_t commandSetFingerprint() {
         h = (h ^ size) * 1099511628211ull;
     };
 #define FE_COMMAND(Name, Fields) mix(#Name, sizeof(cmd::Name));
+#define FE_BACKEND_COMMAND(Name, Fields)  // in no capture
 #include "fe/gdi/CommandSet.inc"
+#undef FE_BACKEND_COMMAND
 #undef FE_COMMAND
     return h;
 }
