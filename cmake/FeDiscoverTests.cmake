@@ -7,6 +7,7 @@
 # their bodies. Every case still runs, with its own device; a failure names the case in the
 # output (--output-on-failure), and `fe_unit_tests --gtest_filter=...` runs one alone.
 # Other cases stay one CTest test each (the sanitized run selects some by name).
+include(${CMAKE_CURRENT_LIST_DIR}/FeTestEnvironment.cmake)
 set(FE_DISCOVER_TESTS_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/FeDiscoverTestsScript.cmake")
 
 function(fe_discover_tests target)
@@ -16,7 +17,7 @@ function(fe_discover_tests target)
     TARGET ${target} POST_BUILD
     COMMAND "${CMAKE_COMMAND}" -D "TEST_EXECUTABLE=$<TARGET_FILE:${target}>"
             -D "CTEST_FILE=${ctest_file}" -D "WORKING_DIR=${CMAKE_CURRENT_BINARY_DIR}"
-            -D "LABELS=${arg_LABELS}" -P "${FE_DISCOVER_TESTS_SCRIPT}"
+            -D "LABELS=${arg_LABELS}" -D "ENVIRONMENT=${FE_TEST_ENVIRONMENT}" -P "${FE_DISCOVER_TESTS_SCRIPT}"
     BYPRODUCTS "${ctest_file}"
     VERBATIM)
   set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${ctest_file}")

@@ -16,7 +16,8 @@ set(skip "\\[  PASSED  \\] 0 tests")
 macro(emit name filter cost)
   string(APPEND out "add_test([==[${name}]==] [==[${TEST_EXECUTABLE}]==] [==[--gtest_filter=${filter}]==])\n"
          "set_tests_properties([==[${name}]==] PROPERTIES WORKING_DIRECTORY [==[${WORKING_DIR}]==] "
-         "SKIP_REGULAR_EXPRESSION [==[${skip}]==] LABELS [==[${LABELS}]==] COST ${cost})\n")
+         "SKIP_REGULAR_EXPRESSION [==[${skip}]==] LABELS [==[${LABELS}]==] COST ${cost} "
+         "ENVIRONMENT [==[${ENVIRONMENT}]==])\n")
 endmacro()
 foreach(line IN LISTS lines)
   if(line MATCHES "^([^ #][^ ]*)\\.")  # a suite: "Backends/Shadows."
