@@ -1224,6 +1224,15 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
                 s->environment->sky.sunRadiance = glm::dvec3(0.0);
             }
         }
+        // A reference depends on the scene and the BRDF, not the technique: each is traced once.
+        std::map<shading::Brdf, render::ReferenceImage> withPaneRefs, opaquePaneRefs;
+        auto traced = [&](auto& refs, const assets::Scene& s,
+                          const render::ReferenceOptions& o) -> const render::ReferenceImage& {
+            auto it = refs.find(o.brdf);
+            if (it == refs.end())
+                it = refs.emplace(o.brdf, render::renderReference(s, *s.camera, kW, kH, o)).first;
+            return it->second;
+        };
         for (const render::TechniqueInfo& t : render::techniques()) {
             if (!c.everyTechnique && std::string(t.name) != "forward") continue;
             if (std::string(t.name).find("tiled") != std::string::npos &&
@@ -1233,8 +1242,7 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
                 .technique = t.name, .width = kW, .height = kH, .iblSamples = c.iblSamples};
             const render::ReferenceOptions options{.iblSamples = c.iblSamples,
                                                    .brdf = render::resolveBrdf(settings)};
-            const render::ReferenceImage ref =
-                render::renderReference(withPane, *withPane.camera, kW, kH, options);
+            const render::ReferenceImage& ref = traced(withPaneRefs, withPane, options);
             const gdi::Image cpu =
                 gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(ref));
             const auto edge = [&](uint32_t x, uint32_t y) { return ref.nearEdge(x, y); };
@@ -1252,8 +1260,7 @@ TEST_P(RenderAccuracy, TransmissionMatchesTheReference) {
                 continue;
             }
             const Stats st = compare(r.readOutput(), cpu, 0.02, 0.01, edge);
-            const render::ReferenceImage opaque =
-                render::renderReference(opaquePane, *opaquePane.camera, kW, kH, options);
+            const render::ReferenceImage& opaque = traced(opaquePaneRefs, opaquePane, options);
             const Stats without = compare(
                 gdi::Image::fromTexels(kW, kH, gdi::Format::RGBA32F, referenceTexels(opaque)), cpu,
                 0.02, 0.01, edge);
