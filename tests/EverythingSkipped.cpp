@@ -3,7 +3,8 @@
 // SKIP_REGULAR_EXPRESSION matches (cmake/FeDiscoverTestsScript.cmake), so a backend that is not
 // there reads as skipped. gtest's own summary cannot be matched for this: "[  PASSED  ] 0 tests"
 // is also what a run prints when its only case failed, and CTest's skip expression outranks the
-// exit code, so failures of one-case tests were reported as skipped.
+// exit code, so failures of one-case tests were reported as skipped. Checked both ways by the
+// CTest tests skip_line_when_every_case_skips and no_skip_line_when_the_only_case_fails.
 #include <gtest/gtest.h>
 
 #include <cstdio>
