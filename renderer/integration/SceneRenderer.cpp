@@ -125,11 +125,12 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene,
                                                        .addressV = gdi::AddressMode::ClampToEdge}));
     fullscreenVs_ = objects_.add(device.createShader(
         {.stage = gdi::ShaderStage::Vertex, .binary = shaders::find("scene/fullscreen.vert")}));
-    postProcess_ = std::make_unique<PostProcess>(device, settings_, fullscreenVs_, frameConstants_);
     if (scene.environment)
         environment_ = std::make_unique<EnvironmentMap>(device, *scene.environment, fullscreenVs_);
     background_ = std::make_unique<BackgroundPass>(device, *queue_, settings_, environment_.get(),
                                                    frameConstants_);
+    postProcess_ = std::make_unique<PostProcess>(device, settings_, fullscreenVs_, frameConstants_,
+                                                 background_->displayConstants().x);
     context_.reset(new TechniqueContext{device, *queue_, *gpuScene_, *geometry_, settings_, frame_,
                                         frameConstants_, scene.camera->eye(), pointSampler_,
                                         fullscreenVs_});
@@ -580,6 +581,7 @@ void SceneRenderer::recordFrame(const std::function<void(const std::string&)>& a
     fc.invViewProjFromEye = glm::inverse(fc.viewProjFromEye);
     fc.cameraPosition = glm::vec4(cam.eye(), s.exposure);
     const glm::uvec2 background = background_->displayConstants();
+    geometry_->setBrdf(resolveBrdf(s));
     fc.shading = glm::uvec4(resolveBrdf(s) == shading::Brdf::Separable ? 1u : 0u, background.x,
                             background.y, cam.orthographic ? 1u : 0u);
     fc.viewport = glm::vec4(s.width, s.height, 1.0f / s.width, 1.0f / s.height);

@@ -67,9 +67,22 @@ void GeometryRenderer::setEnvironment(const EnvironmentLight& light) {
 }
 
 gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTargets& targets,
-                                               gdi::CullMode cull, gdi::FrontFace face) {
-    std::vector<uint32_t> key = {uint32_t(pass), uint32_t(cull), uint32_t(face),
-                                 uint32_t(targets.depthFormat), targets.samples};
+                                               gdi::CullMode cull, gdi::FrontFace face,
+                                               uint32_t materialFeatures) {
+    // Specialized for the scene's light types, the frame's BRDF (glTF's for the transmission
+    // pass, whose lobe it is) and the draw's material (ShaderFeatures); the depth passes sample
+    // only what the alpha test reads.
+    const bool depthOnly = pass == MeshPass::DepthPrepass || pass == MeshPass::ShadowCaster ||
+                           pass == MeshPass::Visibility;
+    const ShaderFeatures features{
+        .lightTypes = scene_.lightTypes(),
+        .brdfModels = pass == MeshPass::Transmission ? ShaderFeatures::kGltf : brdfModels_,
+        .material = depthOnly ? materialFeatures &
+                                    (ShaderFeatures::kBaseTextures | ShaderFeatures::kAlphaMask)
+                              : materialFeatures};
+    std::vector<uint32_t> key = {
+        uint32_t(pass),  uint32_t(cull),      uint32_t(face),      uint32_t(targets.depthFormat),
+        targets.samples, features.lightTypes, features.brdfModels, features.material};
     for (gdi::Format f : targets.colorFormats) key.push_back(uint32_t(f));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
@@ -175,6 +188,7 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .depthFormat = targets.depthFormat,
         .debugName = st.name,
     };
+    d.specialization = features.constantsFor(device_, {d.vertexShader, d.fragmentShader});
     if (pass == MeshPass::Visibility) {  // no vertex buffers: the vertex shader pulls its vertices
         d.vertexBuffers.clear();
     }
@@ -279,7 +293,8 @@ void GeometryRenderer::draw(gdi::CommandList& cmd, CommandQueue& queue, MeshPass
         gdi::CullMode cull = d->doubleSided ? gdi::CullMode::None : gdi::CullMode::Back;
         gdi::FrontFace face =
             d->mirrored ? gdi::FrontFace::Clockwise : gdi::FrontFace::CounterClockwise;
-        gdi::PipelineHandle p = pipeline(pass, targets, cull, face);
+        gdi::PipelineHandle p =
+            pipeline(pass, targets, cull, face, scene_.materialFeatures(d->material));
         if (!(p == current)) {
             cmd.setPipeline(p);
             current = p;

@@ -12,6 +12,8 @@
 #include "frame/CommandQueue.h"
 #include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
+#include "render/ShaderFeatures.h"
+#include "shading/ShadingModel.h"
 
 namespace fe::render {
 
@@ -61,10 +63,13 @@ public:
               const glm::vec3& eye, std::vector<UploadAllocation>* objects = nullptr);
 
     uint32_t drawCount(MeshPass pass) const;
+    // The BRDF the shading passes' pipelines are specialized for (ShaderFeatures), the one the
+    // frame constants name (FrameConstants::shading.x); until set, both (the shader picks).
+    void setBrdf(shading::Brdf brdf) { brdfModels_ = ShaderFeatures::brdfOf(brdf); }
 
 private:
     gdi::PipelineHandle pipeline(MeshPass pass, const MeshPassTargets& targets, gdi::CullMode cull,
-                                 gdi::FrontFace face);
+                                 gdi::FrontFace face, uint32_t materialFeatures);
     std::vector<const DrawItem*> items(MeshPass pass, const glm::vec3& eye) const;
 
     gdi::DeviceObjects objects_;
@@ -88,6 +93,7 @@ private:
     std::string lightsVariant(const std::string& path, const char* variant = nullptr) const;
     gdi::ShaderHandle visibilityShaders();
     gdi::ShaderHandle transmissionShader();
+    uint32_t brdfModels_ = ShaderFeatures::kBothBrdfs;
     EnvironmentLight environment_;
     bool hasEnvironment_ = false;
 };

@@ -1,5 +1,6 @@
 #include "render/GpuScene.h"
 
+#include "render/ShaderFeatures.h"
 #include "render/ShaderSlots.h"
 #include "shading/ShadingModel.h"
 
@@ -287,7 +288,14 @@ GpuScene::GpuScene(gdi::Device& device, const assets::Scene& scene)
             hasOcclusion_ || (m.occlusionTexture.valid() && m.occlusionStrength != 0.0f);
         hasLayered_ = hasLayered_ || m.clearcoat > 0.0f || m.hasSheen();
         materialTextures_.push_back(mt);
+        materialFeatures_.push_back(ShaderFeatures::materialOf(m));
     }
+    // The extensions' features are the scene's (any material's), the common ones each
+    // material's own: each distinct set is a pipeline of every shading pass to compile, and a
+    // scene mixing extension textures would make many of the largest shaders.
+    uint32_t extensions = 0;
+    for (uint32_t f : materialFeatures_) extensions |= f & ~ShaderFeatures::kPerMaterial;
+    for (uint32_t& f : materialFeatures_) f = (f & ShaderFeatures::kPerMaterial) | extensions;
     for (DrawItem& d : draws_) {
         const MaterialTextures& mt = materialTextures_[d.material];
         auto it = std::find(textureSets_.begin(), textureSets_.end(), mt);
@@ -339,6 +347,7 @@ void GpuScene::updateLights(const std::vector<assets::Light>& lights, uint32_t u
     lightCount_ = uint32_t(lights.size());
     unshadowedCount_ = std::min(unshadowed, lightCount_);
     currentLights_ = lights;
+    lightTypes_ = ShaderFeatures::lightTypesOf(lights);
 }
 
 void GpuScene::updatePose() {

@@ -183,6 +183,8 @@ public:
     uint32_t unshadowedLightCount() const { return unshadowedCount_; }
     // The lights as last uploaded (the scene's, or those of the last updateLights()).
     const std::vector<assets::Light>& lights() const { return currentLights_; }
+    // Their types (ShaderFeatures::lightTypesOf): the scene shaders' specialization.
+    uint32_t lightTypes() const { return lightTypes_; }
 
     bool hasBlend() const;
     bool hasOpaque() const;  // neither blended nor transmissive
@@ -194,6 +196,8 @@ public:
     // Some material darkens indirect light by an occlusion texture (strength not 0): the
     // G-buffer techniques then store it (GBuffer::gb3).
     bool hasOcclusion() const { return hasOcclusion_; }
+    // What material `index` uses (ShaderFeatures::materialOf): the scene shaders' specialization.
+    uint32_t materialFeatures(uint32_t index) const { return materialFeatures_[index]; }
     gdi::TextureHandle white() const { return white_; }  // 1x1 opaque white, linear
 
     static constexpr uint32_t kVertexStride = sizeof(assets::Vertex);
@@ -215,6 +219,8 @@ private:
     gdi::TextureHandle white_, black_, flatNormal_, sheenAlbedo_;
     bool hasOcclusion_ = false;
     bool hasLayered_ = false;
+    std::vector<uint32_t> materialFeatures_;  // by material
+    uint32_t lightTypes_ = 0;
     gdi::SamplerHandle defaultSampler_;
 };
 

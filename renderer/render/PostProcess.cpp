@@ -1,6 +1,7 @@
 #include "render/PostProcess.h"
 
 #include "fe/gdi/ShaderRegistry.h"
+#include "render/ShaderFeatures.h"
 #include "render/ShaderSlots.h"
 
 namespace fe::render {
@@ -20,7 +21,8 @@ const char* tonemapShader(shading::Tonemap t) {
 }  // namespace
 
 PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings,
-                         gdi::ShaderHandle fullscreenVs, const UploadAllocation& frameConstants)
+                         gdi::ShaderHandle fullscreenVs, const UploadAllocation& frameConstants,
+                         uint32_t background)
     : objects_(device), device_(device), settings_(settings), frameConstants_(frameConstants) {
     const gdi::SamplerDesc clamp{.addressU = gdi::AddressMode::ClampToEdge,
                                  .addressV = gdi::AddressMode::ClampToEdge};
@@ -33,10 +35,14 @@ PostProcess::PostProcess(gdi::Device& device, const RenderSettings& settings,
             {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
     tonemapFs_ = fragment(tonemapShader(settings.tonemap));
-    tonemapPipeline_ = objects_.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs,
-                                                                   .fragmentShader = tonemapFs_,
-                                                                   .colorFormats = {kDisplayFormat},
-                                                                   .debugName = "tonemap"}));
+    // Specialized for the background: the paths of the others are not run (ShaderFeatures).
+    tonemapPipeline_ = objects_.add(device.createGraphicsPipeline(
+        {.vertexShader = fullscreenVs,
+         .fragmentShader = tonemapFs_,
+         .colorFormats = {kDisplayFormat},
+         .specialization = declaredConstants(
+             device, {tonemapFs_}, {gdi::SpecializationConstant::of(kBackgroundId, background)}),
+         .debugName = "tonemap"}));
     if (settings.antiAliasing == AntiAliasing::Taa) {
         taaFs_ = fragment("scene/taa_resolve.frag");
         taaPipeline_ =

@@ -26,8 +26,12 @@ void addFullscreenPass(graph::RenderGraph& graph, const char* name, graph::Textu
 class PostProcess {
 public:
     // `frameConstants` is read when each frame's passes execute (exposure is cameraPosition.w).
+    // `background`: the display pass's background mode (BackgroundPass::displayConstants().x,
+    // FrameConstants::shading.y), which its pipeline is specialized for.
     PostProcess(gdi::Device& device, const RenderSettings& settings, gdi::ShaderHandle fullscreenVs,
-                const UploadAllocation& frameConstants);
+                const UploadAllocation& frameConstants, uint32_t background);
+    // fe_display_pass.glsl's FE_BACKGROUND (a specialization constant; 3: read the frame's).
+    static constexpr uint32_t kBackgroundId = 204;
     PostProcess(const PostProcess&) = delete;
     PostProcess& operator=(const PostProcess&) = delete;
 

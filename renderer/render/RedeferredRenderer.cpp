@@ -29,8 +29,8 @@ RedeferredRenderer::RedeferredRenderer(TechniqueContext& c, bool tiled)
         culling_ = std::make_unique<TileLightCulling>(c);
         illuminationCs_ = objects_.add(c.device.createShader(
             {.stage = gdi::ShaderStage::Compute, .binary = culling_->shader(shader)}));
-        illumination_ = objects_.add(c.device.createComputePipeline(
-            {.computeShader = illuminationCs_, .debugName = "tiled illumination"}));
+        illumination_ = std::make_unique<FeatureComputePipelines>(c.device, illuminationCs_,
+                                                                  "tiled illumination");
     } else {
         // The volume pass writes the three sums as one multiple-render-target draw, so they
         // must have one size.
@@ -145,7 +145,7 @@ void RedeferredRenderer::declarePunctual(graph::RenderGraph& g, const IBuffer& i
                 for (auto t : {ib.l0, ib.l1, ib.l2}) b.storage(t);
             },
             [this, ib, lists, frame](graph::PassContext& pc) {
-                culling_->bindFrameAndLights(pc.cmd, illumination_);
+                culling_->bindFrameAndLights(pc.cmd, (*illumination_)(frameFeatures(ctx_)));
                 if (frame) {
                     const UploadAllocation fc = frame();
                     pc.cmd.setUniformBuffer(kSlotFrame, fc.buffer, fc.offset, fc.size);

@@ -56,7 +56,7 @@ private:
     std::unique_ptr<LightVolumes> volumes_;
     std::unique_ptr<TileLightCulling> culling_;  // tiled
     gdi::ShaderHandle illuminationCs_;
-    gdi::PipelineHandle illumination_;  // tiled
+    std::unique_ptr<FeatureComputePipelines> illumination_;  // tiled, by the frame's ShaderFeatures
     gdi::ShaderHandle materialFs_;
     gdi::PipelineHandle material_;
     std::unique_ptr<EnvironmentLighting>

@@ -14,6 +14,7 @@
 #include "render/GeometryRenderer.h"
 #include "render/EnvironmentMap.h"
 #include "render/GpuScene.h"
+#include "render/ShaderFeatures.h"
 #include "render/RenderSettings.h"
 #include "shading/ShadingModel.h"
 #include "render/ShadowMaps.h"
@@ -48,6 +49,14 @@ struct TechniqueContext {
     // has blended surfaces (the translucent pass reads it) and the device has compute shaders.
     ClusterLightGrid* clusters = nullptr;
 };
+
+// The scene shaders' specialization for this frame's light passes (ShaderFeatures): the scene's
+// light types and the frame's BRDF (FrameConstants::shading.x); they sample no material.
+inline ShaderFeatures frameFeatures(const TechniqueContext& c) {
+    return {
+        .lightTypes = c.scene.lightTypes(),
+        .brdfModels = c.frame.shading.x == 1u ? ShaderFeatures::kSeparable : ShaderFeatures::kGltf};
+}
 
 constexpr gdi::Format kRadianceFormat = gdi::Format::RGBA32F;  // linear L_o, exact enough for .pfm
 constexpr gdi::Format kSceneDepthFormat = gdi::Format::D32F;

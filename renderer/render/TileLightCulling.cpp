@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "fe/gdi/ShaderRegistry.h"
+#include "render/ShaderFeatures.h"
 #include "render/ShaderSlots.h"
 
 namespace fe::render {
@@ -17,8 +18,14 @@ TileLightCulling::TileLightCulling(TechniqueContext& c, bool multisampledDepth)
         c.device.createShader({.stage = gdi::ShaderStage::Compute,
                                .binary = listPassShader("tile_light_culling", uniformLights_, false,
                                                         multisampledDepth)}));
-    pipeline_ = objects_.add(
-        c.device.createComputePipeline({.computeShader = cs_, .debugName = "light culling"}));
+    // Without MSAA the depth bounds are not widened: the constant removes the slope's fetches
+    // (a uniform's test would not, on CPU rasterizers: ShaderFeatures).
+    pipeline_ = objects_.add(c.device.createComputePipeline(
+        {.computeShader = cs_,
+         .specialization = declaredConstants(
+             c.device, {cs_},
+             {gdi::SpecializationConstant::of(kWidenBoundsId, c.settings.msaa > 1)}),
+         .debugName = "light culling"}));
 }
 
 bool TileLightCulling::lightsFitUniformBlock(const TechniqueContext& c) {

@@ -13,6 +13,9 @@ namespace fe::render {
 
 class TileLightCulling {
 public:
+    // tile_light_culling.comp's FE_WIDEN_BOUNDS (specialization constant): widen the depth
+    // bounds along the surface's slope (forward-plus under MSAA).
+    static constexpr uint32_t kWidenBoundsId = 203;
     // `multisampledDepth`: the depth declare() reads is a multisampled G-buffer's, and the tiles
     // are bounded by every sample (the deferred techniques under --msaa; forward-plus culls for
     // its resolved depth, widened to the pixel centres its fragments shade at).

@@ -27,8 +27,7 @@ TiledDeferredRenderer::TiledDeferredRenderer(TechniqueContext& c, Lists lists)
                    : shaders::find("scene/tiled_deferred_onepass.comp");
     cs_ =
         objects_.add(c.device.createShader({.stage = gdi::ShaderStage::Compute, .binary = binary}));
-    pipeline_ = objects_.add(
-        c.device.createComputePipeline({.computeShader = cs_, .debugName = "tiled lighting"}));
+    pipelines_ = std::make_unique<FeatureComputePipelines>(c.device, cs_, "tiled lighting");
     if (c.shadows)
         shadowed_ = std::make_unique<ShadowedLightVolumes>(
             c, GBuffer::shader(c, "scene/deferred_light_shadowed.frag"),
@@ -61,14 +60,14 @@ void TiledDeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId outp
         },
         [this, output, lists](graph::PassContext& pc) {
             if (culling_) {
-                culling_->bindFrameAndLights(pc.cmd, pipeline_);
+                culling_->bindFrameAndLights(pc.cmd, (*pipelines_)(frameFeatures(ctx_)));
             } else if (clusters_) {
-                bindFrameAndLights(pc.cmd, pipeline_);
+                bindFrameAndLights(pc.cmd, (*pipelines_)(frameFeatures(ctx_)));
                 TileLightCulling::bindLights(pc.cmd, ctx_,
                                              TileLightCulling::lightsFitUniformBlock(ctx_));
                 ctx_.clusters->bindLists(pc.cmd);
             } else {
-                bindFrameAndLights(pc.cmd, pipeline_);
+                bindFrameAndLights(pc.cmd, (*pipelines_)(frameFeatures(ctx_)));
             }
             gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
             if (culling_) culling_->bindLists(pc.cmd, pc, lists);

@@ -39,7 +39,7 @@ private:
     bool clusters_ = false;  // the lists of ctx_.clusters
     graph::TextureId tiles_;
     gdi::ShaderHandle cs_;
-    gdi::PipelineHandle pipeline_;
+    std::unique_ptr<FeatureComputePipelines> pipelines_;  // by the frame's ShaderFeatures
 };
 
 }  // namespace fe::render

@@ -45,8 +45,7 @@ VisibilityBufferRenderer::VisibilityBufferRenderer(TechniqueContext& c)
         {.stage = gdi::ShaderStage::Compute,
          .binary = TileLightCulling::listPassShader(
              name, uniformLights_, c.scene.hasLayeredMaterials(), c.settings.msaa > 1)}));
-    pipeline_ = objects_.add(
-        c.device.createComputePipeline({.computeShader = cs_, .debugName = "visibility resolve"}));
+    pipelines_ = std::make_unique<FeatureComputePipelines>(c.device, cs_, "visibility resolve");
 }
 
 void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
@@ -92,7 +91,7 @@ void VisibilityBufferRenderer::declare(graph::RenderGraph& g, graph::TextureId o
         },
         [this, ids, depth, output, samples](graph::PassContext& pc) {
             gdi::CommandList& cmd = pc.cmd;
-            bindFrameAndLights(cmd, pipeline_);
+            bindFrameAndLights(cmd, (*pipelines_)(frameFeatures(ctx_)));
             TileLightCulling::bindLights(cmd, ctx_, uniformLights_);
             ctx_.clusters->bindLists(cmd);
             if (ctx_.settings.ibl()) ctx_.environmentLight.bind(cmd);

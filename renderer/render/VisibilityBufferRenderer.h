@@ -32,7 +32,7 @@ private:
     bool uniformLights_ = false;
     gdi::BufferHandle draws_;  // every draw's ObjectConstants, in scene order
     gdi::ShaderHandle cs_;
-    gdi::PipelineHandle pipeline_;
+    std::unique_ptr<FeatureComputePipelines> pipelines_;  // by the frame's ShaderFeatures
     gdi::ShaderHandle addFs_;          // --msaa with shadows: the resolved shadowed lights ...
     gdi::PipelineHandle addPipeline_;  // ... added into L_o
     std::vector<UploadAllocation>

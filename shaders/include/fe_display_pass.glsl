@@ -8,9 +8,12 @@
 #include "fe_tonemap.glsl"
 layout(binding = FE_SLOT_RADIANCE) uniform sampler2D radiance;
 layout(location = 0) out vec4 outColor;
+// The background mode this pipeline is for (PostProcess::kBackgroundId; 3: frame.shading.y's): a
+// constant, so the paths of the other modes are not run on CPU rasterizers (ShaderFeatures.h).
+layout(constant_id = 204) const uint FE_BACKGROUND = 3u;
 void main() {
     const vec4 source = texelFetch(radiance, ivec2(gl_FragCoord.xy), 0);
-    const uint background = frame.shading.y;
+    const uint background = FE_BACKGROUND < 3u ? FE_BACKGROUND : frame.shading.y;
     const float coverage = background == 0u ? 1.0 : clamp(source.a, 0.0, 1.0);
     vec3 l = frame.cameraPosition.w * source.rgb / max(coverage, 1e-6);
     bvec3 bad = bvec3(ivec3(isnan(l)) | ivec3(isinf(l)));

@@ -62,6 +62,13 @@ layout(binding = FE_SLOT_OBJECT, std140) uniform ObjectBlock {
 } object;
 #endif
 
+// What the draw's material uses (a specialization constant, render/ShaderFeatures.h: the
+// driver drops the sampling of what it does not; unspecialized, everything). Bit 0 its base
+// colour, metallic-roughness, emissive or occlusion texture; 1 a normal map; 2 specular
+// textures; 3 clearcoat textures; 4 a clearcoat normal map; 5 a sheen; 6 the MASK alpha mode.
+layout(constant_id = 202) const uint FE_MATERIAL_FEATURES = 0xffffffffu;
+bool feMaterialUses(uint bit) { return (FE_MATERIAL_FEATURES & bit) != 0u; }
+
 // The textures of a material, in ObjectConstants::uvTransform's order.
 const uint FE_TEXTURE_BASECOLOR = 0u;
 const uint FE_TEXTURE_METALROUGH = 1u;
@@ -95,6 +102,8 @@ vec4 feSampleTexture(sampler2D tex, uint t, vec4 uvs) {
 #else
 vec4 feSampleTexture(sampler2D tex, uint t, vec4 uvs) { return texture(tex, feTextureCoord(t, uvs)); }
 #endif
+// A base texture (feMaterialUses(1u)): without one the draw binds white (GpuScene), texel 1.
+vec4 feSampleBaseTexture(sampler2D tex, uint t, vec4 uvs) { return feMaterialUses(1u) ? feSampleTexture(tex, t, uvs) : vec4(1.0); }
 
 layout(binding = FE_SLOT_BASECOLOR) uniform sampler2D baseColorTexture;
 layout(binding = FE_SLOT_METALROUGH) uniform sampler2D metallicRoughnessTexture;
@@ -140,13 +149,13 @@ struct MaterialSample {
 
 // Base colour alpha times COLOR_0's: what MASK tests and BLEND blends.
 float feCoverageAlpha(vec4 uvs, vec4 color) {
-    return object.baseColorFactor.a * color.a * feSampleTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs).a;
+    return object.baseColorFactor.a * color.a * feSampleBaseTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs).a;
 }
 
 // The factor of indirect light (image-based) at uvs: glTF's 1 + strength (occlusion - 1).
 float feOcclusion(vec4 uvs) {
     if (object.occlusion.x == 0.0) return 1.0;
-    return 1.0 + object.occlusion.x * (feSampleTexture(occlusionTexture, FE_TEXTURE_OCCLUSION, uvs).r - 1.0);
+    return 1.0 + object.occlusion.x * (feSampleBaseTexture(occlusionTexture, FE_TEXTURE_OCCLUSION, uvs).r - 1.0);
 }
 
 // A tangent-space normal map about the vertex normal n (tangent T from the vertex), its xy scaled.
@@ -164,18 +173,18 @@ vec3 feMapNormal(sampler2D map, uint t, float scale, vec3 n, vec4 T, vec4 uvs) {
 // COLOR_0 multiplies the base colour and its alpha (glTF 2.0).
 MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool frontFacing) {
     MaterialSample m;
-    vec4 bc = object.baseColorFactor * color * feSampleTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs);
+    vec4 bc = object.baseColorFactor * color * feSampleBaseTexture(baseColorTexture, FE_TEXTURE_BASECOLOR, uvs);
     m.baseColor = bc.rgb;
     m.alpha = bc.a;
-    vec4 mr = feSampleTexture(metallicRoughnessTexture, FE_TEXTURE_METALROUGH, uvs);
+    vec4 mr = feSampleBaseTexture(metallicRoughnessTexture, FE_TEXTURE_METALROUGH, uvs);
     m.metallic = clamp(object.params.x * mr.b, 0.0, 1.0);
     m.roughnessUnclamped = clamp(object.params.y * mr.g, 0.0, 1.0);
     m.roughness = feClampRoughness(m.roughnessUnclamped);
-    m.emissive = object.emissiveNormalScale.rgb * feSampleTexture(emissiveTexture, FE_TEXTURE_EMISSIVE, uvs).rgb;
+    m.emissive = object.emissiveNormalScale.rgb * feSampleBaseTexture(emissiveTexture, FE_TEXTURE_EMISSIVE, uvs).rgb;
     vec3 n = normalize(N);
     if (!frontFacing) n = -n;  // double-sided: the back face shades with the flipped normal
     m.clearcoatNormal = n;  // KHR_materials_clearcoat: the layer keeps the vertex normal
-    m.n = (object.flags.x & 1u) != 0u ? feMapNormal(normalTexture, FE_TEXTURE_NORMAL, object.emissiveNormalScale.a, n, T, uvs) : n;
+    m.n = feMaterialUses(2u) && (object.flags.x & 1u) != 0u ? feMapNormal(normalTexture, FE_TEXTURE_NORMAL, object.emissiveNormalScale.a, n, T, uvs) : n;
     m.unlit = (object.flags.x & 2u) != 0u;
     // KHR_materials_ior / specular: F0 = min(ior's F0 x specularColor x colour texel, 1) x specular
     // x texel, F90 = specular x texel; KHR_materials_clearcoat's factor, roughness and normal map.
@@ -184,15 +193,15 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.clearcoat = object.occlusion.y;
     m.clearcoatRoughness = object.occlusion.z;
 #ifdef FE_MATERIAL_EXTENSIONS
-    if ((object.flags.x & 8u) != 0u) {  // the draw's: uniform branches
+    if (feMaterialUses(4u) && (object.flags.x & 8u) != 0u) {
         specularColorTexel = feSampleTexture(specularColorTexture, FE_TEXTURE_SPECULAR_COLOR, uvs).rgb;
         specularTexel = feSampleTexture(specularTexture, FE_TEXTURE_SPECULAR, uvs).a;
     }
-    if ((object.flags.x & 16u) != 0u) {
+    if (feMaterialUses(8u) && (object.flags.x & 16u) != 0u) {
         m.clearcoat *= feSampleTexture(clearcoatTexture, FE_TEXTURE_CLEARCOAT, uvs).r;
         m.clearcoatRoughness *= feSampleTexture(clearcoatRoughnessTexture, FE_TEXTURE_CLEARCOAT_ROUGHNESS, uvs).g;
     }
-    if ((object.flags.x & 32u) != 0u)
+    if (feMaterialUses(16u) && (object.flags.x & 32u) != 0u)
         m.clearcoatNormal = feMapNormal(clearcoatNormalTexture, FE_TEXTURE_CLEARCOAT_NORMAL, object.clearcoatNormal.x, n, T, uvs);
 #endif
     m.dielectricF0 = min(object.dielectric.rgb * specularColorTexel, vec3(1.0)) * object.dielectric.a * specularTexel;
@@ -202,7 +211,7 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
     m.sheenColor = vec3(0.0);
     m.sheenRoughness = 0.0;
 #ifdef FE_MATERIAL_EXTENSIONS
-    if (object.sheen.rgb != vec3(0.0)) {  // the draw's: a uniform branch
+    if (feMaterialUses(32u) && object.sheen.rgb != vec3(0.0)) {
         m.sheenColor = object.sheen.rgb * feSampleTexture(sheenColorTexture, FE_TEXTURE_SHEEN_COLOR, uvs).rgb;
         m.sheenRoughness = object.sheen.a * feSampleTexture(sheenRoughnessTexture, FE_TEXTURE_SHEEN_ROUGHNESS, uvs).a;
     }
@@ -218,7 +227,7 @@ MaterialSample feSampleMaterial(vec4 uvs, vec4 color, vec3 N, vec4 T, bool front
 }
 
 // MASK: discard below the cutoff; OPAQUE: alpha ignored.
-bool feAlphaDiscard(float alpha) { return object.params.w == 1.0 && alpha < object.params.z; }
+bool feAlphaDiscard(float alpha) { return feMaterialUses(64u) && object.params.w == 1.0 && alpha < object.params.z; }
 
 // The shading inputs of a sampled material at eye-space position Pe, seen from the camera.
 SurfacePoint feMaterialSurface(MaterialSample m, vec3 Pe) {

@@ -11,6 +11,14 @@ const float FE_LIGHT_DIRECTIONAL = 0.0;
 const float FE_LIGHT_POINT = 1.0;
 const float FE_LIGHT_SPOT = 2.0;
 
+// Specialization constants (render/ShaderFeatures.h): what the pipeline's scene holds, so that
+// the driver's compiler drops the code of what it does not. CPU rasterizers run both sides of a
+// branch under a lane mask, so a test of a uniform skips nothing; a constant removes the code.
+// Unspecialized, everything is on. Lights: bit 0 directional, 1 point, 2 spot. BRDFs: bit 0
+// glTF's, bit 1 the separable one (frame.shading.x picks when both are on).
+layout(constant_id = 200) const uint FE_LIGHT_TYPES = 7u;
+layout(constant_id = 201) const uint FE_BRDF_MODELS = 3u;
+
 // std430/std140-compatible light record (4 x vec4), written by renderer/shading/GpuLight.h.
 struct GpuLight {
     vec4 positionRange;   // xyz world position, w range (0 = infinite)
@@ -38,7 +46,7 @@ float feRangeWindow(float d, float range) {
 SurfaceLight feEvaluateLightAt(GpuLight L, vec3 Pe, vec3 origin) {
     SurfaceLight s;
     vec3 E = L.colorIntensity.rgb * L.colorIntensity.w;
-    if (L.directionType.w == FE_LIGHT_DIRECTIONAL) {
+    if ((FE_LIGHT_TYPES & 1u) != 0u && L.directionType.w == FE_LIGHT_DIRECTIONAL) {
         s.wi = -normalize(L.directionType.xyz);
         s.E = E;
         s.distance = 0.0;
@@ -46,11 +54,19 @@ SurfaceLight feEvaluateLightAt(GpuLight L, vec3 Pe, vec3 origin) {
     }
     vec3 toLight = (L.positionRange.xyz - origin) - Pe;
     float d2 = max(dot(toLight, toLight), 1e-12);
-    float d = sqrt(d2);
-    s.wi = toLight / d;
-    s.distance = d;
-    E *= feRangeWindow(d, L.positionRange.w) / d2;
-    if (L.directionType.w == FE_LIGHT_SPOT) {
+    // The window from d^2 (q^4 = (d^2 / range^2)^2) and the direction by one reciprocal square
+    // root: two divisions a light where the plain form takes five and a square root, which CPU
+    // rasterizers pay for every light of every pixel.
+    const float invD = inversesqrt(d2), range = L.positionRange.w;
+    s.wi = toLight * invD;
+    s.distance = d2 * invD;
+    float window = 1.0;
+    if (range > 0.0) {
+        const float q2 = d2 / (range * range), w = clamp(1.0 - q2 * q2, 0.0, 1.0);
+        window = w * w;
+    }
+    E *= window / d2;
+    if ((FE_LIGHT_TYPES & 4u) != 0u && L.directionType.w == FE_LIGHT_SPOT) {
         float cosTheta = dot(normalize(L.directionType.xyz), -s.wi);
         float t = clamp(cosTheta * L.spotScaleOffset.x + L.spotScaleOffset.y, 0.0, 1.0);
         E *= t * t;
@@ -208,7 +224,7 @@ float feClearcoatViewFresnel(SurfacePoint s) {
 
 SurfaceBrdf fePrepareBrdf(SurfacePoint s, uint model) {
     SurfaceBrdf b;
-    b.gltf = model == FE_BRDF_GLTF;
+    b.gltf = FE_BRDF_MODELS == 1u || (FE_BRDF_MODELS != 2u && model == FE_BRDF_GLTF);
     b.n = s.n;
     b.wo = s.wo;
     const RoughnessTerms t = feRoughnessTerms(s.roughness);

@@ -20,6 +20,9 @@ layout(binding = FE_SLOT_DEPTH) uniform sampler2DMS depthTexture;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 #endif
 layout(binding = FE_SLOT_TILE_LIGHTS_OUT, r32ui) uniform writeonly uimage2D lists;
+// Whether culling.widen may be set (TileLightCulling::kWidenBoundsId, on under MSAA): a
+// constant, so that at one sample the slope's four fetches a pixel are not made at all.
+layout(constant_id = 203) const bool FE_WIDEN_BOUNDS = true;
 FE_CONSTANTS(CullingConstants) {
     // x: with MSAA, how far (in pixels of depth slope) a fragment's pixel-centre depth may lie from
     // the sample-0 depth culled for: 0.5 (every sample lies within half a pixel of the centre);
@@ -66,7 +69,7 @@ void main() {
             if (!(d < 1.0)) continue;
             // With MSAA the fragments shading this pixel sit at its centre, the depth culled for at
             // sample 0: the bounds take in the centre's depth along the surface's slope.
-            const float s = culling.widen.x > 0.0 ? culling.widen.x * (feDepthSlope(ivec2(x, y), d, ivec2(1, 0), viewport) +
+            const float s = FE_WIDEN_BOUNDS && culling.widen.x > 0.0 ? culling.widen.x * (feDepthSlope(ivec2(x, y), d, ivec2(1, 0), viewport) +
                                                                         feDepthSlope(ivec2(x, y), d, ivec2(0, 1), viewport))
                                                   : 0.0;
             z[k] = vec2(min(z[k].x, max(d - s, 0.0)), max(z[k].y, min(d + s, 1.0)));
