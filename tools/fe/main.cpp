@@ -519,6 +519,7 @@ int cmdConformance(const Args& a, const std::vector<std::string>& arguments) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    gdi::keepFreedMemory();  // before any backend allocates (fe::gdi::keepFreedMemory says why)
     // Diagnostics go through spdlog to stderr ("fe info: ..."); results go to stdout. The level:
     // warn unless FE_LOG_LEVEL or a command's --log-level (or render's --verbose) says otherwise.
     auto logger = spdlog::stderr_color_mt("fe");

@@ -62,6 +62,14 @@ BackendProbe probeBackend(const std::string& name, bool validation, bool vsync =
 // the valid names for an unknown name, and why each candidate failed when none starts.
 std::unique_ptr<Device> createDevice(const DeviceCreateDesc& desc);
 
+// Makes this process's allocator keep the memory it frees (glibc: blocks under 32 MiB from the
+// heap, never trimmed, grown 64 MiB at a time) instead of handing it back to the kernel. The CPU
+// rasterizers (llvmpipe, lavapipe) allocate and free large blocks every frame; handed back, each
+// frame faults their pages in again: 13-15 % of builtin:lights' frame at 1280x720 on a 2-core
+// machine (docs/MEASUREMENT_LOG.md). A policy for the whole process, so the application's to
+// choose, before it starts a backend (`fe` does, first thing). Nothing where libc is not glibc.
+void keepFreedMemory();
+
 // RenderDoc frame captures (RenderDoc's in-application API; Debian's librenderdoc, opened at
 // run time). Every object's debugName, each pass's name and each debug group or label reaches
 // the capture, which qrenderdoc or python3-renderdoc opens.
