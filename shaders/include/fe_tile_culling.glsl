@@ -60,7 +60,10 @@ ivec2 feTileBlock_;
 void feUseTileList(ivec2 pixel) {
     const int tilesY = (int(frame.viewport.y) + FE_LIST_TILE - 1) / FE_LIST_TILE;
     const ivec2 tile = pixel / FE_LIST_TILE;
-    feTileBlock_ = ivec2(tile.x * 32, tile.y * (textureSize(tileLightLists, 0).y / tilesY));
+    // The block height by a float division, exact here (the height is tilesY blocks, both far
+    // below 2^24): CPU rasterizers have no vector integer division and divide lane by lane.
+    const int blockHeight = int(float(textureSize(tileLightLists, 0).y) / float(tilesY));
+    feTileBlock_ = ivec2(tile.x * 32, tile.y * blockHeight);
     feTileCount_ = texelFetch(tileLightLists, feTileBlock_, 0).r;
 }
 #define FE_TILE_HEADER 3u  // count, depth min, depth max
