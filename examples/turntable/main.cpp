@@ -28,6 +28,9 @@
 using namespace fe;
 
 int main(int argc, char** argv) {
+    // A program rendering many frames keeps the memory it frees: on the CPU rasterizers a frame
+    // costs 13-15 % more when freed blocks go back to the kernel (gdi/Backend.h).
+    gdi::keepFreedMemory();
     std::string model = "builtin:shadows", backend = "auto", out = "turntable.png";
     render::RenderSettings settings{.technique = "deferred-tiled", .width = 320, .height = 240};
     settings.tonemap = shading::Tonemap::PbrNeutral;  // a display image, not a measurement
