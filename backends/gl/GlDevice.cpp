@@ -299,9 +299,9 @@ void GlDevice::releaseAll() {
     shaders_.forEach([&](Shader& s) { gl_.DeleteShader(s.name); });
     constantsRing_.release(gl_);
     pipelines_.forEach([&](Pipeline& p) {
-        gl_.DeleteProgram(p.program);
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
+    for (GLuint program : sharedPrograms_.clear()) gl_.DeleteProgram(program);  // each once
     timers_.forEach([&](Timer& t) { gl_.DeleteQueries(2, t.queries); });
     querySets_.forEach(
         [&](QuerySet& q) { gl_.DeleteQueries(GLsizei(q.names.size()), q.names.data()); });

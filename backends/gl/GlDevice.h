@@ -21,6 +21,7 @@
 #include "fe/gdi/LiveLists.h"
 #include "fe/gdi/CommandStream.h"
 #include "fe/gdi/Device.h"
+#include "fe/gdi/PipelineSharing.h"
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/Faults.h"
 #include "fe/gdi/HandlePool.h"
@@ -108,6 +109,7 @@ struct Pipeline {
     // image unit u (the shaders are renumbered so; GL may have only 8 units).
     std::vector<uint8_t> imageSlots;
     std::string label;
+    std::string programKey;  // the program is shared by this key (PipelineSharing.h)
 };
 struct Timer {
     GLuint queries[2] = {0, 0};
@@ -268,9 +270,17 @@ private:
     gdi::PipelineCacheStats cacheStats_;
     mutable std::mutex cacheMutex_;  // cacheStats_
     GLint binaryFormats_ = 0;  // GL_NUM_PROGRAM_BINARY_FORMATS: 0, and program binaries are off
+    // Linked programs by key and label, shared by the pipelines that use them (PipelineSharing.h).
+    gdi::SharedPipelines<GLuint> sharedPrograms_;
+    // The program of a pipeline: shared, from its cached binary, or linked; `sharedKey` is set
+    // to the key the pipeline releases it by.
     GLuint cachedProgram(const std::vector<const Shader*>& shaders,
                          const std::vector<gdi::SpecializationConstant>& values,
-                         const std::string& label, bool singleSample = false);
+                         const std::string& label, std::string& sharedKey,
+                         bool singleSample = false);
+    GLuint compiledProgram(const std::vector<const Shader*>& shaders,
+                           const std::vector<gdi::SpecializationConstant>& values,
+                           const std::string& label, bool singleSample);
     void
     savePipelineCacheOnContext();  // QuerySet::submitted, written by submit, read by queryResults
     void forgetFramebuffers(GLuint texture);

@@ -183,7 +183,19 @@ static uint64_t programKey(const std::vector<const Shader*>& shaders,
 // `link` and its binary kept for the cache (context thread).
 GLuint GlDevice::cachedProgram(const std::vector<const Shader*>& shaders,
                                const std::vector<gdi::SpecializationConstant>& values,
-                               const std::string& label, bool singleSample) {
+                               const std::string& label, std::string& sharedKey,
+                               bool singleSample) {
+    // The label is part of the key: debug output and captures name the program by it.
+    sharedKey = std::to_string(programKey(shaders, values, singleSample)) + ' ' + label;
+    if (std::optional<GLuint> shared = sharedPrograms_.acquire(sharedKey)) return *shared;
+    const GLuint program = compiledProgram(shaders, values, label, singleSample);
+    sharedPrograms_.add(sharedKey, program);
+    return program;
+}
+
+GLuint GlDevice::compiledProgram(const std::vector<const Shader*>& shaders,
+                                 const std::vector<gdi::SpecializationConstant>& values,
+                                 const std::string& label, bool singleSample) {
     const uint64_t key = programKey(shaders, values, singleSample);
     if (auto it = programs_.find(key); it != programs_.end()) {
         const GLuint p = gl_.CreateProgram();
@@ -258,7 +270,9 @@ void GlDevice::savePipelineCache() {
 
 gdi::PipelineCacheStats GlDevice::pipelineCacheStats() const {
     std::lock_guard lock(cacheMutex_);
-    return cacheStats_;
+    gdi::PipelineCacheStats stats = cacheStats_;
+    stats.shared = sharedPrograms_.sharedCount();
+    return stats;
 }
 
 gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipelineDesc& d) {
@@ -286,8 +300,8 @@ gdi::PipelineHandle GlDevice::createGraphicsPipeline(const gdi::GraphicsPipeline
                 gdi::validate::pipelineBindings(d.bindings, ifaces, p.label, info_.limits);
             p.constantBytes = gdi::validate::pipelineConstants(ifaces, p.label);
             gdi::validate::specialization(d.specialization, ifaces, p.label);
-            p.program =
-                cachedProgram(shaders, d.specialization, p.label, d.multisample.sampleCount <= 1);
+            p.program = cachedProgram(shaders, d.specialization, p.label, p.programKey,
+                                      d.multisample.sampleCount <= 1);
             p.imageSlots = imageSlots(shaders);
             gl_.CreateVertexArrays(1, &p.vao);
             for (uint32_t i = 0; i < d.vertexBuffers.size(); ++i) {
@@ -369,7 +383,7 @@ gdi::PipelineHandle GlDevice::createComputePipeline(const gdi::ComputePipelineDe
                 gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, p.label, info_.limits);
             p.constantBytes = gdi::validate::pipelineConstants({&cs.iface}, p.label);
             gdi::validate::specialization(d.specialization, {&cs.iface}, p.label);
-            p.program = cachedProgram({&cs}, d.specialization, p.label);
+            p.program = cachedProgram({&cs}, d.specialization, p.label, p.programKey);
             p.imageSlots = imageSlots({&cs});
             p.compute = true;
             p.desc.bindings = bindings;

@@ -303,7 +303,7 @@ void GlDevice::destroy(gdi::ShaderHandle h) {
 }
 void GlDevice::destroy(gdi::PipelineHandle h) {
     retire(pipelines_, h, "pipeline", [this](Pipeline& p) {
-        gl_.DeleteProgram(p.program);
+        for (GLuint unused : sharedPrograms_.release(p.programKey)) gl_.DeleteProgram(unused);
         if (p.vao) gl_.DeleteVertexArrays(1, &p.vao);
     });
 }

@@ -429,7 +429,9 @@ void VulkanDevice::savePipelineCache() {
 
 gdi::PipelineCacheStats VulkanDevice::pipelineCacheStats() const {
     const DeviceCall call(*this);
-    return cacheStats_;
+    gdi::PipelineCacheStats stats = cacheStats_;
+    stats.shared = sharedPipelines_.sharedCount();
+    return stats;
 }
 
 // Whether the pipeline just made came from the cache (VK_EXT_pipeline_creation_feedback, core
@@ -594,11 +596,8 @@ void VulkanDevice::release() {
         querySets_.forEach([&](QuerySet& q) { vkDestroyQueryPool(device_, q.pool, nullptr); });
         samplers_.forEach([&](Sampler& s) { vkDestroySampler(device_, s.sampler, nullptr); });
         shaders_.forEach([&](Shader& s) { vkDestroyShaderModule(device_, s.module, nullptr); });
-        pipelines_.forEach([&](Pipeline& p) {
-            vkDestroyPipeline(device_, p.pipeline, nullptr);
-            vkDestroyPipelineLayout(device_, p.layout, nullptr);
-            vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
-        });
+        // Every live pipeline's objects are among the shared ones, each destroyed once.
+        for (const Pipeline& p : sharedPipelines_.clear()) destroyPipelineObjects(p);
         for (auto& s : inFlight_) vkDestroyFence(device_, s.fence, nullptr);
         for (VkFence f : freeFences_) vkDestroyFence(device_, f, nullptr);
         for (VkSemaphore s :

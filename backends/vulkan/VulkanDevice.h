@@ -31,6 +31,7 @@
 #include "fe/gdi/Validation.h"
 #include "fe/gdi/HandlePool.h"
 #include "fe/gdi/MessageLog.h"
+#include "fe/gdi/PipelineSharing.h"
 
 namespace fe::vk {
 
@@ -96,6 +97,7 @@ struct Shader {
     std::string name;
     std::string entry;
     gdi::ShaderInterface iface;  // reflected: pipelines are checked against it
+    uint64_t codeHash = 0;       // its code, entry point and stage: pipeline keys name it so
 };
 
 struct Pipeline {
@@ -124,6 +126,7 @@ struct Pipeline {
     uint32_t constantBytes = 0;        // the shaders' constants block (push-constant range)
     VkShaderStageFlags constantStages = 0;
     std::string name;
+    std::string sharedKey;  // PipelineSharing.h: the native objects are shared by this key
 };
 
 struct Timer {
@@ -390,6 +393,14 @@ private:
     gdi::HandlePool<gdi::ShaderHandle, Shader> shaders_{handleSalt_};
     gdi::HandlePool<gdi::PipelineHandle, Pipeline> pipelines_{
         handleSalt_};  // command lists point at the bound one (objects never move)
+    // Native pipelines by key, shared by equal pipelines and kept a while when unused.
+    gdi::SharedPipelines<Pipeline> sharedPipelines_;
+    void destroyPipelineObjects(const Pipeline& p);
+    gdi::PipelineHandle addShared(Pipeline p, const std::string& key);
+    uint64_t codeHash(gdi::ShaderHandle h) const {
+        const Shader* s = h ? shaders_.find(h) : nullptr;
+        return s ? s->codeHash : 0;
+    }
     gdi::HandlePool<gdi::TimerHandle, Timer> timers_{handleSalt_};
     gdi::HandlePool<gdi::HeapHandle, Heap> heaps_{handleSalt_};
     gdi::HandlePool<gdi::QuerySetHandle, QuerySet> querySets_{handleSalt_};

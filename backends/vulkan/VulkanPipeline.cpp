@@ -5,6 +5,7 @@
 #include "fe/gdi/ShaderCompiler.h"
 #include "VulkanDevice.h"
 #include "VulkanFaults.h"
+#include "fe/gdi/PipelineCacheFile.h"
 #include "fe/gdi/Validation.h"
 
 namespace fe::vk {
@@ -134,6 +135,11 @@ gdi::ShaderHandle VulkanDevice::createShader(const gdi::ShaderDesc& given) {
     s.stage = desc.stage;
     s.name = name;
     s.entry = desc.entryPoint;
+    const uint64_t stage = uint64_t(desc.stage);
+    s.codeHash = gdi::fnv1a(
+        {reinterpret_cast<const uint8_t*>(code.data()), code.size_bytes()},
+        gdi::fnv1a({reinterpret_cast<const uint8_t*>(s.entry.data()), s.entry.size()},
+                   gdi::fnv1a({reinterpret_cast<const uint8_t*>(&stage), sizeof stage})));
     setName(VK_OBJECT_TYPE_SHADER_MODULE, uint64_t(s.module), desc.binary.name);
     return shaders_.add(std::move(s));
 }
@@ -231,6 +237,9 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
 
     const uint32_t constantBytes = gdi::validate::pipelineConstants(ifaces, name);
     gdi::validate::specialization(d.specialization, ifaces, name);
+    const std::string key = gdi::pipelineKey(d, [&](gdi::ShaderHandle h) { return codeHash(h); });
+    if (std::optional<Pipeline> shared = sharedPipelines_.acquire(key))
+        return pipelines_.add(std::move(*shared));
     const StageSpecialization spec(d.specialization);
 
     std::vector<VkPipelineShaderStageCreateInfo> stages;
@@ -396,7 +405,7 @@ gdi::PipelineHandle VulkanDevice::createGraphicsPipeline(const gdi::GraphicsPipe
         throwVk(r, ("vkCreateGraphicsPipelines for '" + name + "'").c_str());
     }
     setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), d.debugName);
-    return pipelines_.add(std::move(p));
+    return addShared(std::move(p), key);
 }
 
 gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipelineDesc& d) {
@@ -413,6 +422,9 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
     const StageSpecialization spec(d.specialization);
     const std::array<uint8_t, 64> dimensions = gdi::validate::slotDimensions({&cs.iface}, name);
     const std::array<uint32_t, 64> blockBytes = gdi::validate::slotBlockBytes({&cs.iface});
+    const std::string key = gdi::pipelineKey(d, [&](gdi::ShaderHandle h) { return codeHash(h); });
+    if (std::optional<Pipeline> shared = sharedPipelines_.acquire(key))
+        return pipelines_.add(std::move(*shared));
     Pipeline p = makeLayout(
         device_, gdi::validate::pipelineBindings(d.bindings, {&cs.iface}, name, info_.limits),
         d.debugName, constantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -443,7 +455,20 @@ gdi::PipelineHandle VulkanDevice::createComputePipeline(const gdi::ComputePipeli
         throwVk(r, "vkCreateComputePipelines");
     }
     setName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), d.debugName);
+    return addShared(std::move(p), key);
+}
+
+// A pipeline just made: its objects shared from now on under `key`.
+gdi::PipelineHandle VulkanDevice::addShared(Pipeline p, const std::string& key) {
+    p.sharedKey = key;
+    sharedPipelines_.add(key, p);
     return pipelines_.add(std::move(p));
+}
+
+void VulkanDevice::destroyPipelineObjects(const Pipeline& p) {
+    vkDestroyPipeline(device_, p.pipeline, nullptr);
+    vkDestroyPipelineLayout(device_, p.layout, nullptr);
+    vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
 }
 
 }  // namespace fe::vk

@@ -601,9 +601,8 @@ void VulkanDevice::destroy(gdi::PipelineHandle h) {
     retire([this, h] {
         Pipeline p;
         pipelines_.release(h, p);
-        vkDestroyPipeline(device_, p.pipeline, nullptr);
-        vkDestroyPipelineLayout(device_, p.layout, nullptr);
-        vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+        for (const Pipeline& unused : sharedPipelines_.release(p.sharedKey))
+            destroyPipelineObjects(unused);
     });
 }
 

@@ -231,7 +231,10 @@ TEST(AnimationReference, CpuPosingMatchesTheReference) {
 
 // The deformed vertices the device wrote, read back, against the reference's, in world space
 // (instances the animation only moves are checked through their posed transform).
-class MeshDeformationTest : public fe::testing::BackendTest {};
+class MeshDeformationTest : public fe::testing::BackendTest {
+protected:
+    MeshDeformationTest() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 TEST_P(MeshDeformationTest, DeviceDeformationMatchesTheReference) {
     FE_REQUIRE_ASSETS();
@@ -384,7 +387,10 @@ PixelBox coveredBox(const gdi::Image& image) {
 
 // What every technique draws of an animated model is what the reference traces of it: the
 // deformation reaches the G-buffer and visibility-buffer techniques as it reaches forward.
-class AnimatedRender : public fe::testing::BackendTest {};
+class AnimatedRender : public fe::testing::BackendTest {
+protected:
+    AnimatedRender() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 TEST_P(AnimatedRender, PosedModelsMatchTheReferenceOnEveryTechniqueKind) {
     FE_REQUIRE_ASSETS();

@@ -138,7 +138,10 @@ TEST(FrameWarnings, ABlackFrameSaysWhy) {
     EXPECT_NE(only().find("no light reaches a visible surface"), std::string::npos) << only();
 }
 
-class Backgrounds : public fe::testing::BackendTest {};
+class Backgrounds : public fe::testing::BackendTest {
+protected:
+    Backgrounds() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 // Transparent: alpha 0 where nothing was drawn, 1 on opaque surfaces (their colour as with the
 // environment behind them), in between on a blended one; kept through FXAA and TAA.

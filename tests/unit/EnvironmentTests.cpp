@@ -85,7 +85,10 @@ void writeHdr(const std::string& path, uint32_t w, uint32_t h,
         }
 }
 
-class Environment : public fe::testing::BackendTest {};
+class Environment : public fe::testing::BackendTest {
+protected:
+    Environment() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 }  // namespace
 

@@ -56,7 +56,10 @@ TEST(Particles, EveryTechniqueOnEveryBackendAgrees) {
     }
 }
 
-class Particles : public fe::testing::BackendTest {};
+class Particles : public fe::testing::BackendTest {
+protected:
+    Particles() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 TEST_P(Particles, SimulatedCountsMatchTheCpuAndAlphaIsSortedBackToFront) {
     const assets::Scene scene = assets::makeBuiltinScene("particles");

@@ -120,7 +120,10 @@ TEST(Tonemap, OperatorsKeepTheirPromises) {
     EXPECT_FALSE(shading::parseTonemap("reinhard"));
 }
 
-class PostProcess : public fe::testing::BackendTest {};
+class PostProcess : public fe::testing::BackendTest {
+protected:
+    PostProcess() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 // The display image of each tone mapper is the CPU operator applied to the frame's own L_o
 // (over-exposed 4x so the curves' upper parts are exercised): within 1/255 plus rounding.

@@ -80,6 +80,7 @@ Stats compare(const gdi::Image& a, const gdi::Image& b, double tol, double floor
 
 class RenderAccuracy : public fe::testing::BackendTest {
 protected:
+    RenderAccuracy() : BackendTest(true) {}
     void SetUp() override {
         BackendTest::SetUp();
         scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 5});

@@ -54,7 +54,10 @@ bool anyStartsWith(const std::vector<std::string>& v, const std::string& prefix)
                        [&](const std::string& s) { return s.rfind(prefix, 0) == 0; });
 }
 
-class RenderDirector : public fe::testing::BackendTest {};
+class RenderDirector : public fe::testing::BackendTest {
+protected:
+    RenderDirector() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 
 }  // namespace
 

@@ -77,7 +77,10 @@ TEST(ShaderFeatures, SayWhatAMaterialSamples) {
 }
 
 namespace {
-class SpecializedShaders : public fe::testing::BackendTest {};
+class SpecializedShaders : public fe::testing::BackendTest {
+protected:
+    SpecializedShaders() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 }  // namespace
 
 // The spheres lit by three point lights, then (updateLights) by two directional lights and a

@@ -84,16 +84,20 @@ double fractionDiffering(const gdi::Image& a, const gdi::Image& b, double tol) {
 
 class Shadows : public fe::testing::BackendTest {
 protected:
+    Shadows() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
     void SetUp() override {
         BackendTest::SetUp();
         if (!device) return;
         scene = assets::makeBuiltinScene("shadows");
         plan = render::planShadows(scene.lights, *scene.camera, scene.bounds, {.enabled = true});
-        reference = render::renderReference(scene, *scene.camera, kW, kH,
-                                            {.castsShadow = plan.castsShadow()});
-        separableReference = render::renderReference(
+        // The references depend on the scene alone: traced once for every case.
+        static const render::ReferenceImage kReference = render::renderReference(
+            scene, *scene.camera, kW, kH, {.castsShadow = plan.castsShadow()});
+        static const render::ReferenceImage kSeparableReference = render::renderReference(
             scene, *scene.camera, kW, kH,
             {.castsShadow = plan.castsShadow(), .brdf = shading::Brdf::Separable});
+        reference = kReference;
+        separableReference = kSeparableReference;
     }
     // The exact image under the technique's BRDF (render::resolveBrdf).
     const render::ReferenceImage& referenceFor(const std::string& technique) const {

@@ -20,7 +20,10 @@ using namespace fe;
 
 namespace {
 constexpr uint32_t kW = 48, kH = 36;
-class Stability : public fe::testing::BackendTest {};
+class Stability : public fe::testing::BackendTest {
+protected:
+    Stability() : BackendTest(true) {}  // the cases share a device (BackendTest.h)
+};
 }  // namespace
 
 TEST_P(Stability, EveryCaseRendersFiniteWithinItsBoundOrIsRefused) {

@@ -200,7 +200,11 @@
 //  - Compiled pipelines (Vulkan's VkPipelineCache data, GL program binaries) kept across runs: a
 //    file made for another device, driver or build is ignored, the stats' warning saying why
 //    (PipelineCacheFile.h).
-// Shown by: pipeline_cache_roundtrip.
+//  - Within a run, a pipeline equal to one the device made (every field, its shaders by their
+//    code, not their handles) shares that one's native objects, also for a while after it was
+//    destroyed (the last 128 unused are kept): a renderer made again compiles nothing twice.
+//    pipelineCacheStats().shared counts them (PipelineSharing.h).
+// Shown by: pipeline_cache_roundtrip; PipelineSharing tests.
 //
 // Captures
 // --------
@@ -1353,6 +1357,9 @@ struct PipelineCacheStats {
     uint32_t hits = 0;         // pipelines created from cached data (where the backend can tell)
     uint32_t misses = 0;       // pipelines compiled
     std::string warning;       // why the file was ignored, or why the backend cannot cache
+    // Pipelines that took the native objects of an equal pipeline the device had made, alive or
+    // destroyed a short while ago (the device keeps its last 128 unused ones): nothing compiled.
+    uint32_t shared = 0;
 };
 
 // Threads: every member may be called from any thread, concurrently, except present() and
