@@ -17,12 +17,25 @@ CommandQueue::CommandQueue(gdi::Device& device, uint32_t framesInFlight,
         std::max<uint64_t>({64, l.uniformBufferOffsetAlignment, l.storageBufferOffsetAlignment});
     slots_.resize(framesInFlight);
     for (Slot& s : slots_) s.commands = device.createCommandList();
+    if (regionSize_ == 0) throw gdi::Error("CommandQueue: uploadBytesPerFrame must not be 0");
+    createUploadBuffer();
+}
+
+void CommandQueue::createUploadBuffer() {
     uploadBuffer_ = objects_.add(
-        device.createBuffer({.size = regionSize_ * framesInFlight,
-                             .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage |
-                                      gdi::BufferUsage::Vertex | gdi::BufferUsage::Index,
-                             .access = gdi::MemoryAccess::Upload,
-                             .debugName = "per-frame uploads"}));
+        device_.createBuffer({.size = regionSize_ * slots_.size(),
+                              .usage = gdi::BufferUsage::Uniform | gdi::BufferUsage::Storage |
+                                       gdi::BufferUsage::Vertex | gdi::BufferUsage::Index,
+                              .access = gdi::MemoryAccess::Upload,
+                              .debugName = "per-frame uploads"}));
+}
+
+// This frame's uploads so far stay in the old buffer, which its lists use until submitted.
+void CommandQueue::outgrowRegion(uint64_t upload) {
+    outgrown_.push_back(uploadBuffer_);
+    regionSize_ = std::max(regionSize_ * 2, (upload + alignment_ - 1) / alignment_ * alignment_);
+    createUploadBuffer();
+    regionUsed_ = 0;
 }
 
 CommandQueue::~CommandQueue() {
@@ -85,6 +98,8 @@ gdi::FenceValue CommandQueue::endFrame() {
     if (!inFrame_) throw gdi::Error("CommandQueue::endFrame without beginFrame");
     Slot& s = slots_[frameNumber_ % slots_.size()];
     s.fence = submitCurrent();
+    for (gdi::BufferHandle b : outgrown_) objects_.destroy(b);
+    outgrown_.clear();
     gdi::markFrameEnd(device_);  // a capture's frames are the queue's frames (headless too)
     inFrame_ = false;
     ++frameNumber_;
@@ -107,9 +122,10 @@ UploadAllocation CommandQueue::upload(gdi::ByteSpan data) {
     const uint64_t size = data.size();
     if (!inFrame_) throw gdi::Error("CommandQueue::upload outside a frame");
     uint64_t offset = (regionUsed_ + alignment_ - 1) / alignment_ * alignment_;
-    if (offset + size > regionSize_)
-        throw gdi::Error("CommandQueue: per-frame upload region of " + std::to_string(regionSize_) +
-                         " bytes exhausted (asked " + std::to_string(size) + ")");
+    if (offset + size > regionSize_) {
+        outgrowRegion(size);
+        offset = 0;
+    }
     regionUsed_ = offset + size;
     uint64_t base = (frameNumber_ % slots_.size()) * regionSize_;
     device_.writeBuffer(uploadBuffer_, base + offset, data);

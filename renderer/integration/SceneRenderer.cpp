@@ -98,13 +98,14 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene,
     if (s.msaa > 1 && !(limits.colorSampleCounts & limits.depthSampleCounts & s.msaa))
         throw gdi::Error(std::to_string(s.msaa) + " samples are not supported on " +
                          device.info().backend);
-    // The per-frame uploads hold the animated instances' joint matrices and weights as well.
+    // The per-frame uploads hold the animated instances' joint matrices and weights as well (the
+    // regions grow when a frame needs more: many lights, many objects).
     uint64_t poseBytes = 0;
     for (const assets::MeshInstance& i : scene.instances)
         if (i.deformed())
             poseBytes +=
                 i.joints.size() * sizeof(glm::mat4) + (i.weights.size() + 3) / 4 * 16 + 256;
-    queue_ = std::make_unique<CommandQueue>(device, 2, (4u << 20) + poseBytes);
+    queue_ = std::make_unique<CommandQueue>(device, 2, (256u << 10) + poseBytes);
     gpuScene_ = std::make_unique<GpuScene>(device, scene);
     geometry_ = std::make_unique<GeometryRenderer>(device, *gpuScene_);
     shadowPlan_ = planShadows(scene.lights, *scene.camera, scene.bounds, s.shadows);

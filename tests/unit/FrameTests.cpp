@@ -39,7 +39,7 @@ TEST_P(Frames, SwapChainCyclesItsImagesAndReadsBackTheLastPresented) {
     EXPECT_EQ(seen.size(), 3u);  // a ring of three distinct images
 }
 
-TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
+TEST_P(Frames, UploadsAreAlignedFramesInFlightKeepTheirRegionsAndRegionsGrow) {
     render::CommandQueue queue(*device, 2, 4096);
     const uint64_t align =
         std::max<uint64_t>(1, device->info().limits.uniformBufferOffsetAlignment);
@@ -54,12 +54,30 @@ TEST_P(Frames, UploadsAreAlignedAndFramesInFlightKeepTheirRegions) {
         queue.endFrame();
     }
     EXPECT_NE(first[0].offset, first[1].offset);  // two frames in flight, two regions
-    // A frame that asks for more than its region is an error, not an overwrite.
+    // A frame that asks for more than its region moves to a buffer of larger regions: what it
+    // uploaded before stays where it was, each upload holds its bytes, the outgrown buffer goes
+    // once the frame is submitted, and the next frames fit without growing again.
+    const uint32_t buffersBefore = device->liveObjects().buffers;
     queue.beginFrame();
-    std::vector<uint8_t> big(8192);
-    EXPECT_THROW(queue.upload(gdi::bytesOf(big)), gdi::Error);
+    std::vector<uint8_t> small(1000, 0x5a), big(8192);
+    for (size_t i = 0; i < big.size(); ++i) big[i] = uint8_t(i * 7 + 1);
+    const render::UploadAllocation a = queue.upload(gdi::bytesOf(small));
+    const render::UploadAllocation b = queue.upload(gdi::bytesOf(big));
+    EXPECT_NE(a.buffer.id, b.buffer.id);
+    EXPECT_EQ(b.offset % align, 0u);
+    EXPECT_EQ(device->readBuffer(a.buffer, a.offset, a.size), small);
+    EXPECT_EQ(device->readBuffer(b.buffer, b.offset, b.size), big);
+    EXPECT_EQ(device->liveObjects().buffers, buffersBefore + 1);
     queue.endFrame();
+    for (int frame = 0; frame < 3; ++frame) {
+        queue.beginFrame();
+        const render::UploadAllocation c = queue.upload(gdi::bytesOf(big));
+        EXPECT_EQ(c.buffer.id, b.buffer.id) << "frame " << frame;
+        EXPECT_EQ(device->readBuffer(c.buffer, c.offset, c.size), big);
+        queue.endFrame();
+    }
     queue.waitIdle();
+    EXPECT_EQ(device->liveObjects().buffers, buffersBefore);  // the outgrown one is gone
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(Frames);
