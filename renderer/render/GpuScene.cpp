@@ -5,6 +5,7 @@
 #include "shading/ShadingModel.h"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <cmath>
 #include <string>
@@ -21,6 +22,14 @@ float linearToSrgb(float c) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
 }
 
+// srgbToLinear of each 8-bit value, the same floats: a pow per texel and channel was most of the
+// time a textured model took to load.
+const std::array<float, 256> kSrgbToLinear = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(i / 255.0f);
+    return t;
+}();
+
 // Next mip level by a 2x2 box filter; sRGB colour channels are averaged in linear space.
 std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uint32_t h,
                                 bool srgb) {
@@ -34,8 +43,8 @@ std::vector<uint8_t> downsample(const std::vector<uint8_t>& src, uint32_t w, uin
                 for (uint32_t dy = 0; dy < 2; ++dy)
                     for (uint32_t dx = 0; dx < 2; ++dx) {
                         uint32_t sx = std::min(w - 1, x * 2 + dx), sy = std::min(h - 1, y * 2 + dy);
-                        float v = src[(size_t(sy) * w + sx) * 4 + c] / 255.0f;
-                        sum += (srgb && c < 3) ? srgbToLinear(v) : v;
+                        const uint8_t v = src[(size_t(sy) * w + sx) * 4 + c];
+                        sum += (srgb && c < 3) ? kSrgbToLinear[v] : v / 255.0f;
                         ++n;
                     }
                 float v = sum / float(n);
