@@ -148,9 +148,11 @@ private:
     static constexpr size_t kSlotAlign =
         sizeof(SlotFields) <= 256 ? std::bit_ceil(sizeof(SlotFields)) : alignof(SlotFields);
     struct alignas(kSlotAlign) Slot : SlotFields {};
-    // About 16 KiB per chunk, a power of two slots: index >> shift picks the chunk.
+    // About 16 KiB per chunk, a power of two slots: index >> shift picks the chunk. At least 16
+    // slots: the table of chunks is inline, and with a slot of 4.6 KiB (a Vulkan pipeline) two a
+    // chunk made it 4 MiB, zeroed with every device.
     static constexpr uint32_t kChunkSlots =
-        uint32_t(std::bit_floor(std::max<size_t>(1, size_t(16384) / sizeof(Slot))));
+        uint32_t(std::bit_floor(std::max<size_t>(16, size_t(16384) / sizeof(Slot))));
     static constexpr uint32_t kChunkShift = uint32_t(std::countr_zero(kChunkSlots));
     static constexpr uint32_t kChunkMask = kChunkSlots - 1;
     static constexpr uint32_t kMaxChunks = (kMaxIndex >> kChunkShift) + 1;
