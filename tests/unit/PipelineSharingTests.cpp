@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "BackendTest.h"
 #include "fe/gdi/DeviceObjects.h"
@@ -126,6 +128,26 @@ TEST_P(PipelineSharing, EqualPipelinesShareTheirObjectsAndOutliveEachOther) {
     const gdi::PipelineHandle again = objects->add(pipeline(fs, 1.0f));
     EXPECT_EQ(shared(), before + 2);
     EXPECT_NEAR(redOf(again), 1.0f, 0.01f);
+}
+
+// Equal pipelines made on two threads at once: the first is compiled, every other one shares it
+// (creation is serialised by the device), and each draws.
+TEST_P(PipelineSharing, EqualPipelinesMadeOnTwoThreadsShareOneCompilation) {
+    const gdi::ShaderHandle fs = shader(gdi::ShaderStage::Fragment, kFragment);
+    const uint32_t before = shared();
+    constexpr int kEach = 8;
+    std::vector<gdi::PipelineHandle> made[2];
+    std::thread other([&] {
+        for (int i = 0; i < kEach; ++i) made[1].push_back(pipeline(fs, 0.75f));
+    });
+    for (int i = 0; i < kEach; ++i) made[0].push_back(pipeline(fs, 0.75f));
+    other.join();
+    EXPECT_EQ(shared(), before + 2 * kEach - 1);
+    for (auto& list : made)
+        for (gdi::PipelineHandle p : list) {
+            EXPECT_NEAR(redOf(p), 0.75f, 0.01f);
+            device->destroy(p);
+        }
 }
 
 FE_INSTANTIATE_FOR_EVERY_BACKEND(PipelineSharing);
