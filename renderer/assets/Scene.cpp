@@ -175,14 +175,18 @@ void checkFinite(const Scene& scene) {
             const Primitive& prim = scene.meshes[m].primitives[p];
             for (size_t v = 0; v < prim.vertices.size(); ++v) {
                 const Vertex& x = prim.vertices[v];
-                const std::string where = "mesh '" + scene.meshes[m].name + "' primitive " +
-                                          std::to_string(p) + " vertex " + std::to_string(v) + ": ";
-                if (!finite(x.position)) fail(where + "its position");
-                if (!finite(x.normal)) fail(where + "its normal");
-                if (!finite(x.tangent)) fail(where + "its tangent");
-                if (!finite(x.uv0)) fail(where + "its uv");
-                if (!finite(x.uv1)) fail(where + "its second uv set");
-                if (!finite(x.color)) fail(where + "its colour");
+                // The vertex's name is spelled only for the error (every vertex of every scene
+                // passes through here).
+                auto failAt = [&](const char* what) {
+                    fail("mesh '" + scene.meshes[m].name + "' primitive " + std::to_string(p) +
+                         " vertex " + std::to_string(v) + ": " + what);
+                };
+                if (!finite(x.position)) failAt("its position");
+                if (!finite(x.normal)) failAt("its normal");
+                if (!finite(x.tangent)) failAt("its tangent");
+                if (!finite(x.uv0)) failAt("its uv");
+                if (!finite(x.uv1)) failAt("its second uv set");
+                if (!finite(x.color)) failAt("its colour");
             }
         }
     for (const Material& m : scene.materials) {

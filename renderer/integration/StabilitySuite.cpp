@@ -78,7 +78,7 @@ std::vector<StabilityCase> stabilityCases() {
     c.push_back(
         {"4096 lights", [] { return assets::makeBuiltinScene("lights", {.lights = 4096}); }, 1.0});
     c.push_back({"65536 lights",
-                 [] { return assets::makeBuiltinScene("lights", {.lights = 65536}); }, 1.0, "", 3});
+                 [] { return assets::makeBuiltinScene("lights", {.lights = 65536}); }, 1.0, "", 6});
     c.push_back({"1e5 from the origin",
                  [] {
                      assets::Scene s = spheres();

@@ -23,7 +23,8 @@ struct StabilityCase {
     std::string refusal;  // non-empty: every technique must refuse with a message containing it
     // The case renders at the suite's size divided by this: where every tile's light list
     // overflows (65536 lights), each pixel walks every light, and at the full size that one case
-    // cost more than all the others together.
+    // cost more than all the others together (at a third, 16x12, still two thirds of the suite's
+    // time; at a sixth, 8x6, it is one partial tile, which overflows just the same).
     uint32_t sizeDivisor = 1;
     uint32_t width(uint32_t suiteWidth) const { return std::max(1u, suiteWidth / sizeDivisor); }
     uint32_t height(uint32_t suiteHeight) const { return std::max(1u, suiteHeight / sizeDivisor); }

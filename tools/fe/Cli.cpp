@@ -106,12 +106,12 @@ constexpr const char* kUsage =
     "      window to open it; --frames N stops after N frames and --screenshot writes the last one (under xvfb-run\n"
     "      for tests)\n"
     "  bench [--quick | --sweep FILE.json] [--backend NAME|all] [--out DIR] [--frames N] [--warmup-ms MS] [--interleave]\n"
-    "      [--stability | --stability-cases LIST] [--conformance]\n"
+    "      [--stability | --stability-cases LIST] [--conformance | --conformance-cases LIST]\n"
     "      every case of the sweep (default --quick: every technique and option at 96x72) on each backend:\n"
     "      frame and pass times, transient memory, error against the CPU reference (PSNR, SSIM, FLIP, % over\n"
     "      5/255, max); with --quick (or --stability, --conformance) also the stability suite's table and the\n"
     "      conformance suite's cross-backend images (--stability-cases \"one light,NaN\": only the stability\n"
-    "      cases whose name contains a part); writes DIR/results.json,\n"
+    "      cases whose name contains a part; --conformance-cases likewise); writes DIR/results.json,\n"
     "      DIR/results.csv, charts, report.html and summary.md (default DIR: bench; while it runs,\n"
     "      DIR/results.partial.json holds what is measured so far); --interleave: each\n"
     "      backend's cases render their timed frames in alternation, all held at once, for steadier ratios\n"
@@ -288,6 +288,8 @@ const std::map<std::string, OptionHelp> kOptionHelp = {
     {"--stability-cases",
      {"LIST", "only the stability cases whose name contains one of these comma-separated parts"}},
     {"--conformance", {"", "with --sweep: also the conformance suite's cross-backend images"}},
+    {"--conformance-cases",
+     {"LIST", "only the conformance cases whose name contains one of these comma-separated parts"}},
     {"--interleave",
      {"", "the cases' timed frames in alternation, so interference hits all alike"}},
     {"--report", {"FILE.json", "write the results as JSON"}},

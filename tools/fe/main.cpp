@@ -344,6 +344,31 @@ int cmdView(const Args& a) {
 
 // fe bench: a sweep on the backends asked for, results.json and results.csv in --out; or
 // --compare A.json B.json, exit 1 on a regression beyond the thresholds.
+// The conformance cases whose name contains one of the comma-separated parts of `names` (empty:
+// all); a part that names no case is a usage error, before anything runs.
+std::vector<conformance::Case> conformanceCasesNamed(const std::string& names) {
+    std::vector<conformance::Case> all = conformance::cases();
+    if (names.empty()) return all;
+    std::vector<conformance::Case> chosen;
+    for (size_t begin = 0; begin <= names.size();) {
+        const size_t end = std::min(names.find(',', begin), names.size());
+        const std::string part = names.substr(begin, end - begin);
+        begin = end + 1;
+        bool named = false;
+        for (const conformance::Case& c : all)
+            if (!part.empty() && c.name.find(part) != std::string::npos) {
+                named = true;
+                const bool taken = std::any_of(chosen.begin(), chosen.end(),
+                                               [&](const auto& t) { return t.name == c.name; });
+                if (!taken) chosen.push_back(c);
+            }
+        if (!named)
+            throw UsageError("--conformance-cases: no conformance case's name contains '" + part +
+                             "' (fe conformance --list names them)");
+    }
+    return chosen;
+}
+
 int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     if (a.options.count("--compare")) {
         if (a.positional.size() != 1)
@@ -373,6 +398,10 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
     } catch (const gdi::Error& e) {
         throw UsageError(std::string("--stability-cases: ") + e.what());
     }
+    // Likewise --conformance-cases (its report section from some cases, not the whole suite).
+    const std::vector<conformance::Case> conformanceCases = conformanceCasesNamed(
+        a.options.count("--conformance-cases") ? a.options.at("--conformance-cases")
+                                               : std::string());
     const auto started = std::chrono::steady_clock::now();
     const gdi::Json sweep =
         a.options.count("--sweep") ? readJsonFile(a.options.at("--sweep")) : gdi::Json();
@@ -411,14 +440,15 @@ int cmdBench(const Args& a, const std::vector<std::string>& arguments) {
         a.options.count("--stability-cases"))
         results["stability"] = render::runStability(backends, 48, 36, showProgress, stabilityNames);
     // The conformance suite and its cross-backend image comparisons, for the report's triplets.
-    if (!a.options.count("--sweep") || a.options.count("--conformance")) {
+    if (!a.options.count("--sweep") || a.options.count("--conformance") ||
+        a.options.count("--conformance-cases")) {
         Args conformanceArgs;
         conformanceArgs.options["--out-dir"] = out + "/conformance";
         ConformanceRun run;
         std::ostringstream quiet;  // its PASS / FAIL lines: the report has them
         std::streambuf* saved = std::cout.rdbuf(quiet.rdbuf());
         for (const std::string& b : backends)
-            conformanceOne(b, conformanceArgs, conformance::cases(), run);
+            conformanceOne(b, conformanceArgs, conformanceCases, run);
         crossBackend(backends, out + "/conformance", run);
         std::cout.rdbuf(saved);
         results["conformance"] = {{"cases", run.cases},
@@ -556,13 +586,13 @@ int main(int argc, char** argv) {
                                  joined({"--no-ui", "--validation"}, cli::kLookFlags),
                                  cli::kScenePositional));
         if (command == "bench")
-            return cmdBench(
-                parse(argc, argv, 2,
-                      {"--sweep", "--backend", "--out", "--frames", "--warmup-ms", "--compare",
-                       "--time-ratio", "--error-points", "--stability-cases"},
-                      {"--quick", "--stability", "--conformance", "--interleave"},
-                      {"B.json", "with --compare A.json: the results compared with A"}),
-                std::vector<std::string>(argv + 1, argv + argc));
+            return cmdBench(parse(argc, argv, 2,
+                                  {"--sweep", "--backend", "--out", "--frames", "--warmup-ms",
+                                   "--compare", "--time-ratio", "--error-points",
+                                   "--stability-cases", "--conformance-cases"},
+                                  {"--quick", "--stability", "--conformance", "--interleave"},
+                                  {"B.json", "with --compare A.json: the results compared with A"}),
+                            std::vector<std::string>(argv + 1, argv + argc));
         if (command == "conformance")
             return cmdConformance(
                 parse(argc, argv, 2, {"--backend", "--report", "--out-dir", "--case", "--capture"},
