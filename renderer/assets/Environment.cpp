@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "assets/AssetError.h"
 #include "assets/ImageDecode.h"
@@ -24,8 +25,17 @@ glm::dvec3 SkyModel::radiance(const glm::dvec3& d) const {
     // Sky: horizon to zenith by the square root of the elevation's sine; ground: constant.
     glm::dvec3 l = d.y >= 0.0 ? glm::mix(horizon, zenith, std::sqrt(d.y)) : ground;
     const double c = glm::dot(d, sunDirection);
-    const double limb = smoothstep(std::cos(sunOuterDegrees * kPi / 180.0),
-                                   std::cos(sunInnerDegrees * kPi / 180.0), c);
+    // The limb's cosines, kept for the last sun this thread asked about: a reference asks about
+    // one sun millions of times, and two cos per call were 7 % of an image-based-lighting test.
+    struct LimbCosines {
+        double outerDegrees = std::numeric_limits<double>::quiet_NaN(), innerDegrees = 0.0;
+        double outer = 0.0, inner = 0.0;
+    };
+    thread_local LimbCosines limbCos;
+    if (!(limbCos.outerDegrees == sunOuterDegrees && limbCos.innerDegrees == sunInnerDegrees))
+        limbCos = {sunOuterDegrees, sunInnerDegrees, std::cos(sunOuterDegrees * kPi / 180.0),
+                   std::cos(sunInnerDegrees * kPi / 180.0)};
+    const double limb = smoothstep(limbCos.outer, limbCos.inner, c);
     return l + limb * sunRadiance;
 }
 

@@ -53,12 +53,20 @@ std::array<glm::dvec3, 9> radianceSH(const assets::Environment& e) {
     };
     const bool image = e.kind == assets::Environment::Kind::Image;
     const uint32_t rows = image ? e.height : 512, cols = image ? e.width : 1024;
+    // directionFromEquirect's sines and cosines, each column's and row's taken once.
+    std::vector<double> sinPhi(cols), cosPhi(cols);
+    for (uint32_t u = 0; u < cols; ++u) {
+        const double phi = ((u + 0.5) / cols - 0.5) * 2.0 * kPi;
+        sinPhi[u] = std::sin(phi), cosPhi[u] = std::cos(phi);
+    }
     for (uint32_t v = 0; v < rows; ++v) {
         // The row's exact solid angle, shared by its columns.
         const double solidAngle =
             (std::cos(v * kPi / rows) - std::cos((v + 1) * kPi / rows)) * (2.0 * kPi / cols);
+        const double theta = (v + 0.5) / rows * kPi;
+        const double sinTheta = std::sin(theta), cosTheta = std::cos(theta);
         for (uint32_t u = 0; u < cols; ++u)
-            add(assets::directionFromEquirect({(u + 0.5) / cols, (v + 0.5) / rows}), solidAngle);
+            add({sinTheta * sinPhi[u], cosTheta, -sinTheta * cosPhi[u]}, solidAngle);
     }
     return sh;
 }
