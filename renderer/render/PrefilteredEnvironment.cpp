@@ -6,6 +6,7 @@
 
 #include "fe/gdi/ShaderRegistry.h"
 #include "render/ShaderSlots.h"
+#include "render/SplitSumTable.h"
 
 namespace fe::render {
 
@@ -95,12 +96,13 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device,
                               .mipLevels = kLevels,
                               .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
                               .debugName = "prefiltered environment"}));
-    lut_ = objects_.add(
-        device.createTexture({.format = kLutFormat,
-                              .width = kLutSize,
-                              .height = 2 * kLutSize,
-                              .usage = gdi::TextureUsage::Sampled | gdi::TextureUsage::RenderTarget,
-                              .debugName = "split-sum table"}));
+    // The split-sum table depends on no environment: compiled in (SplitSumTable.h), uploaded.
+    static_assert(kLutSize == kSplitSumSize && kLutSamples == kSplitSumSamples);
+    lut_ = objects_.add(device.createTexture({.format = kLutFormat,
+                                              .width = kLutSize,
+                                              .height = 2 * kLutSize,
+                                              .debugName = "split-sum table"}));
+    device.writeTexture(lut_, {}, gdi::bytesOf(bakedSplitSumTable()));
     sampler_ = objects_.add(device.createSampler({.mipFilter = gdi::MipFilter::Linear,
                                                   .addressU = gdi::AddressMode::ClampToEdge,
                                                   .addressV = gdi::AddressMode::ClampToEdge,
@@ -127,9 +129,7 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device,
             blocks.push_back({glm::vec4(float(face), float(kFaceSize >> level),
                                         float(level) / float(kLevels - 1), texelSolidAngle),
                               glm::uvec4(kPrefilterSamples, 0, 0, 0)});
-    blocks.push_back(
-        {glm::vec4(float(kLutSize), float(kLutSize), 0, 0), glm::uvec4(kLutSamples, 0, 0, 0)});
-    // What draws the cube and the table: freed once they are drawn, or when something throws before.
+    // What draws the cube: freed once it is drawn, or when something throws before.
     gdi::DeviceObjects temporary(device);
     uint64_t stride = 0;
     const gdi::BufferHandle ubo = uniformBlocks(temporary, blocks, stride, "prefilter blocks");
@@ -137,18 +137,12 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device,
         return temporary.add(device.createShader(
             {.stage = gdi::ShaderStage::Fragment, .binary = shaders::find(name)}));
     };
-    const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag"),
-                            lutFs = shader("scene/ibl_lut.frag");
+    const gdi::ShaderHandle prefilterFs = shader("scene/ibl_prefilter.frag");
     const gdi::PipelineHandle prefilter =
         temporary.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs,
                                                      .fragmentShader = prefilterFs,
                                                      .colorFormats = {kPrefilteredFormat},
                                                      .debugName = "prefilter environment"}));
-    const gdi::PipelineHandle table =
-        temporary.add(device.createGraphicsPipeline({.vertexShader = fullscreenVs,
-                                                     .fragmentShader = lutFs,
-                                                     .colorFormats = {kLutFormat},
-                                                     .debugName = "split-sum table"}));
     auto cmd = device.createCommandList();
     for (uint32_t level = 0; level < kLevels; ++level)
         for (uint32_t face = 0; face < 6; ++face) {
@@ -163,12 +157,6 @@ PrefilteredEnvironment::PrefilteredEnvironment(gdi::Device& device,
             cmd->draw(3);
             cmd->endRenderPass();
         }
-    cmd->beginRenderPass({.colors = {{.texture = lut_, .load = gdi::LoadOp::DontCare}},
-                          .debugName = "split-sum table"});
-    cmd->setPipeline(table);
-    cmd->setUniformBuffer(kSlotObject, ubo, kLevels * 6 * stride, sizeof(Block));
-    cmd->draw(3);
-    cmd->endRenderPass();
     device.wait(device.submit(*cmd));
 }
 

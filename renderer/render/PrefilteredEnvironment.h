@@ -1,8 +1,9 @@
 // Layer 7 (Render): the fast path of image-based lighting, the one most engines ship: the
 // environment prefiltered per roughness into a cube (GGX, n = v = r), a table of what the
 // sampled estimator weighs radiance by per (NoV, roughness) (the split sum), and the irradiance
-// as L2 spherical harmonics. Made once per environment, on the GPU except the harmonics (a CPU
-// quadrature of the environment's radiance: nine numbers, no GPU reduction needed).
+// as L2 spherical harmonics. The cube is made once per environment on the GPU, the harmonics on
+// the CPU (a quadrature of the environment's radiance: nine numbers, no GPU reduction needed);
+// the table depends on no environment and is compiled in (render/SplitSumTable.h).
 // shaders/include/fe_ibl.glsl (FE_IBL_PREFILTERED) shades with them; docs/BENCHMARKS.md has
 // their bias against the sampled estimator.
 #pragma once

@@ -254,8 +254,7 @@ inline double clearcoatLight(const SurfacePoint& s, const glm::dvec3& wi) {
     const double r = clampRoughness(s.clearcoatRoughness), a2 = r * r * r * r;
     const double NoV = std::max(glm::dot(n, s.wo), 1e-4);
     const glm::dvec3 h = glm::normalize(s.wo + wi);
-    const double NoH = glm::dot(n, h),
-                 P = pow5(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0));
+    const double NoH = glm::dot(n, h), P = pow5(std::clamp(1.0 - glm::dot(h, s.wo), 0.0, 1.0));
     const double dd = NoH * NoH * (a2 - 1.0) + 1.0, D = a2 / (kPi * dd * dd);
     return (s.clearcoatF0 + (1.0 - s.clearcoatF0) * P) * D *
            visibilityHeightCorrelated(NoL, NoV, a2) * NoL;
@@ -487,6 +486,36 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
     return base * (1.0 - s.clearcoat * clearcoatViewFresnel(s)) + s.clearcoat * layer / double(n);
 }
 
+// What shadeEnvironment's estimators weigh the environment's radiance by when it is taken out of
+// their sums (the split sum of the prefiltered fast path, fe_ibl.glsl), for w_o at NoV about
+// n = z and roughness r, by the same n samples: x = (1/n) sum g and y = (1/n) sum P g over the
+// GGX half vectors, g the specular weight of `brdf` without F and L; z = (1/n) sum (1 - P) over
+// the cosine-weighted directions (the diffuse lobe's Fresnel).
+inline glm::dvec3 splitSumTerms(double NoV, double roughness, Brdf brdf, uint32_t n) {
+    const double r = clampRoughness(roughness), a = r * r, a2 = a * a, k = a2 / 2.0;
+    const glm::dvec3 normal(0.0, 0.0, 1.0), t(1.0, 0.0, 0.0), b(0.0, 1.0, 0.0);
+    const glm::dvec3 wo(std::sqrt(std::max(1.0 - NoV * NoV, 0.0)), 0.0, NoV);
+    glm::dvec3 sum(0.0);
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::dvec2 u = hammersley(i, n);
+        const auto [wi, NoL, VoH, cosH] = ggxSample(u, a2, t, b, normal, wo);
+        if (NoL > 0.0 && VoH > 0.0) {
+            const double P = pow5(std::clamp(1.0 - VoH, 0.0, 1.0));
+            const double g =
+                brdf == Brdf::Gltf
+                    ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
+                    : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
+            sum.x += g;
+            sum.y += P * g;
+        }
+        const double phi = 2.0 * kPi * u.y, cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
+        const glm::dvec3 wd =
+            t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + normal * cosD;
+        sum.z += 1.0 - pow5(std::clamp(1.0 - glm::dot(glm::normalize(wo + wd), wo), 0.0, 1.0));
+    }
+    return sum / double(n);
+}
+
 // The weight of the opaque scene's radiance seen through a transmissive surface (glTF model):
 // (1 - metallic) transmission baseColor (1 - F(n.w_o)) times the volume's transmittance, the
 // light the dielectric does not reflect at the viewing angle (docs/SHADING.md: the Sample Viewer
@@ -494,8 +523,7 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
 inline glm::dvec3 transmittedSceneWeight(const SurfacePoint& s) {
     if (s.transmission <= 0.0) return glm::dvec3(0.0);
     const double NoV = std::clamp(glm::dot(s.n, s.wo), 0.0, 1.0);
-    const glm::dvec3 F =
-        s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * pow5(1.0 - NoV);
+    const glm::dvec3 F = s.dielectricF0 + (s.dielectricF90 - s.dielectricF0) * pow5(1.0 - NoV);
     return (1.0 - s.metallic) * s.transmission * s.baseColor * (1.0 - F) * s.transmittance;
 }
 // The mip level of the opaque scene's copy that rough transmission reads: log2 of the copy's

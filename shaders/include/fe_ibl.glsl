@@ -46,7 +46,8 @@ vec3 feCosineDirection(vec2 u, vec3 t, vec3 b, vec3 n) {
 // and Hanrahan, "An Efficient Representation for Irradiance Environment Maps", 2001): the
 // estimators below with the environment's radiance taken out of the sums, as prefiltered
 // radiance (specular, assuming n = v = r while prefiltering) and SH irradiance (diffuse), times
-// the rest of each sum tabulated per (NoV, roughness) by ibl_lut.frag. Its bias against the
+// the rest of each sum tabulated per (NoV, roughness) on the CPU (render/SplitSumTable.h, baked
+// into the renderer: shading::splitSumTerms). Its bias against the
 // sampled estimator is measured (docs/BENCHMARKS.md).
 #define FE_SLOT_IBL_SH 23
 #define FE_SLOT_IBL_LUT 24
@@ -55,7 +56,7 @@ layout(binding = FE_SLOT_IBL_SH, std140) uniform IrradianceBlock {
     vec4 sh[9];  // L2 spherical harmonics of the radiance, in Ramamoorthi-Hanrahan order
 } irradiance;
 // Two tables, one above the other: rows [0, H) the separable model's, [H, 2H) glTF's
-// (ibl_lut.frag). x: (1/n) sum g, y: (1/n) sum P g over GGX samples, g = NoL VoH / ((NoL (1-k) + k)
+// (render/SplitSumTable.h). x: (1/n) sum g, y: (1/n) sum P g over GGX samples, g = NoL VoH / ((NoL (1-k) + k)
 // n.h (NoV (1-k) + k)) (separable) or 4 V NoL VoH / n.h (glTF); z: (1/n) sum (1 - P) over
 // cosine-weighted samples.
 layout(binding = FE_SLOT_IBL_LUT) uniform sampler2D iblLut;

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "render/SplitSumTable.h"
 #include "shading/ShadingModel.h"
 
 using namespace fe::shading;
@@ -253,4 +254,42 @@ TEST(ShadingModel, SheenDistributionAndAlbedoTable) {
     const double a = sheenAlbedo(0.0, 0.5), b = sheenAlbedo(1.0 / (kSheenTableSize - 1), 0.5);
     EXPECT_NEAR(mid, 0.5 * (a + b), 1e-7);
     EXPECT_GT(sheenAlbedo(1.0, 0.5), 0.0);
+}
+
+// The split-sum table compiled into the renderer (render/SplitSumTable.h) is the shading model's:
+// equal to computeSplitSumTable() (else it must be baked again), and what shadeEnvironment's
+// estimator weighs a constant environment by, at each texel centre: a metal of F0 c reflects
+// c x + (1 - c) y; a white dielectric 0.04 x + 0.96 y + 0.96 z (the diffuse lobe under
+// 1 - F_d = 0.96 (1 - P)), under each BRDF.
+TEST(ShadingModel, SplitSumTableIsTheEstimatorsWeights) {
+    const std::span<const float> baked = fe::render::bakedSplitSumTable();
+    const std::vector<float> computed = fe::render::computeSplitSumTable();
+    constexpr uint32_t S = fe::render::kSplitSumSize;
+    ASSERT_EQ(baked.size(), size_t(S) * 2 * S * 4);
+    ASSERT_EQ(computed.size(), baked.size());
+    for (size_t i = 0; i < baked.size(); ++i)
+        ASSERT_NEAR(baked[i], computed[i], 1e-6 * std::max(1.0f, std::abs(computed[i])))
+            << "texel " << i / 4 << ": bake it again (build/tools/fe_bake_split_sum > "
+            << "renderer/render/SplitSumTableData.cpp)";
+    const auto white = [](const glm::dvec3&) { return glm::dvec3(1.0); };
+    for (uint32_t y = 0; y < 2 * S; y += 5)
+        for (uint32_t x = 0; x < S; x += 3) {
+            const bool gltf = y >= S;
+            const float* t = &baked[(size_t(y) * S + x) * 4];
+            SurfacePoint s;
+            const double NoV = (x + 0.5) / S;
+            s.wo = {std::sqrt(1.0 - NoV * NoV), 0.0, NoV};
+            s.roughness = ((gltf ? y - S : y) + 0.5) / S;
+            const Brdf brdf = gltf ? Brdf::Gltf : Brdf::Separable;
+            s.metallic = 1.0;
+            s.baseColor = glm::dvec3(0.3);
+            EXPECT_NEAR(shadeEnvironment(s, white, fe::render::kSplitSumSamples, brdf).x,
+                        0.3 * t[0] + 0.7 * t[1], 2e-6)
+                << "metal at texel " << x << ", " << y;
+            s.metallic = 0.0;
+            s.baseColor = glm::dvec3(1.0);
+            EXPECT_NEAR(shadeEnvironment(s, white, fe::render::kSplitSumSamples, brdf).x,
+                        0.04 * t[0] + 0.96 * t[1] + 0.96 * t[2], 2e-6)
+                << "dielectric at texel " << x << ", " << y;
+        }
 }
