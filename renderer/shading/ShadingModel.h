@@ -422,6 +422,21 @@ inline GgxSample ggxSample(const glm::dvec2& u, double a2, const glm::dvec3& t, 
     return {wi, glm::dot(n, wi), VoH, cosH};
 }
 
+// A GGX sample's specular weight without F and L: 4 V NoL (w_o.h) / (n.h) under glTF's BRDF (V
+// height-correlated), NoL (w_o.h) / ((NoL (1-k) + k)(n.h)(NoV (1-k) + k)) under the separable one.
+inline double ggxSampleWeight(double NoL, double VoH, double NoH, double NoV, double a2, double k,
+                              Brdf brdf) {
+    return brdf == Brdf::Gltf ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / NoH
+                              : NoL * VoH / ((NoL * (1.0 - k) + k) * NoH * (NoV * (1.0 - k) + k));
+}
+// The cosine-weighted direction of Hammersley point u about n with basis (t, b): each diffuse
+// sample (its n.w_d is sqrt(1 - A)).
+inline glm::dvec3 cosineSample(const glm::dvec2& u, const glm::dvec3& t, const glm::dvec3& b,
+                               const glm::dvec3& n) {
+    const double phi = 2.0 * kPi * u.y, cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
+    return t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + n * cosD;
+}
+
 template <class Environment>
 glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environment, uint32_t n,
                             Brdf brdf = Brdf::Gltf) {
@@ -438,20 +453,16 @@ glm::dvec3 shadeEnvironment(const SurfacePoint& s, const Environment& environmen
     const bool sheenLayer = gltf && s.sheenColor != glm::dvec3(0.0);
     for (uint32_t i = 0; i < n; ++i) {
         const glm::dvec2 u = hammersley(i, n);
-        const double phi = 2.0 * kPi * u.y;
         // Specular: a GGX half vector.
         const auto [wi, NoL, VoH, cosH] = ggxSample(u, a2, t, b, s.n, s.wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = pow5(std::clamp(1.0 - VoH, 0.0, 1.0));
-            const double weight =
-                brdf == Brdf::Gltf
-                    ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
-                    : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
-            specular += (F0 + (F90 - F0) * P) * environment(wi) * weight;
+            specular += (F0 + (F90 - F0) * P) * environment(wi) *
+                        ggxSampleWeight(NoL, VoH, cosH, NoV, a2, k, brdf);
         }
         // Diffuse: a cosine-weighted direction.
-        const double cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
-        const glm::dvec3 wd = t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + s.n * cosD;
+        const glm::dvec3 wd = cosineSample(u, t, b, s.n);
+        const double cosD = std::sqrt(1.0 - u.x);  // n.w_d
         const glm::dvec3 hd = glm::normalize(s.wo + wd);
         const double Pd = pow5(std::clamp(1.0 - glm::dot(hd, s.wo), 0.0, 1.0));
         diffuse +=
@@ -501,16 +512,11 @@ inline glm::dvec3 splitSumTerms(double NoV, double roughness, Brdf brdf, uint32_
         const auto [wi, NoL, VoH, cosH] = ggxSample(u, a2, t, b, normal, wo);
         if (NoL > 0.0 && VoH > 0.0) {
             const double P = pow5(std::clamp(1.0 - VoH, 0.0, 1.0));
-            const double g =
-                brdf == Brdf::Gltf
-                    ? 4.0 * visibilityHeightCorrelated(NoL, NoV, a2) * NoL * VoH / cosH
-                    : NoL * VoH / ((NoL * (1.0 - k) + k) * cosH * (NoV * (1.0 - k) + k));
+            const double g = ggxSampleWeight(NoL, VoH, cosH, NoV, a2, k, brdf);
             sum.x += g;
             sum.y += P * g;
         }
-        const double phi = 2.0 * kPi * u.y, cosD = std::sqrt(1.0 - u.x), sinD = std::sqrt(u.x);
-        const glm::dvec3 wd =
-            t * (sinD * std::cos(phi)) + b * (sinD * std::sin(phi)) + normal * cosD;
+        const glm::dvec3 wd = cosineSample(u, t, b, normal);
         sum.z += 1.0 - pow5(std::clamp(1.0 - glm::dot(glm::normalize(wo + wd), wo), 0.0, 1.0));
     }
     return sum / double(n);
