@@ -1,5 +1,6 @@
 #include "PostShader.h"
 
+#include <chrono>
 #include <fstream>
 #include <iterator>
 #include <regex>
@@ -36,6 +37,14 @@ std::optional<std::string> PostShader::refresh() {
         return "cannot read it (" + ec.message() + ")";
     }
     if (seenTime_ && *seenTime_ == time && seenSize_ == size) return std::nullopt;
+    // A file written in place is truncated, then written: read only once its time and size have
+    // held for 50 ms, or a look between the two compiles an empty file (and says so).
+    const auto now = std::chrono::steady_clock::now();
+    if (!(pendingTime_ == time && pendingSize_ == size)) {
+        pendingTime_ = time, pendingSize_ = size, pendingSince_ = now;
+        return std::nullopt;
+    }
+    if (now - pendingSince_ < std::chrono::milliseconds(50)) return std::nullopt;
     seenTime_ = time, seenSize_ = size;
     std::ifstream in(path_, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

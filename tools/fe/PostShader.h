@@ -5,6 +5,7 @@
 // sampler2D frame`; HLSL `Texture2D frame : register(t0)` with a sampler at s0), one colour
 // output, gl_FragCoord / SV_Position in the image's pixels.
 #pragma once
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -20,8 +21,9 @@ public:
     ~PostShader();
     PostShader(const PostShader&) = delete;
     PostShader& operator=(const PostShader&) = delete;
-    // Compiles the file again when it changed since the last look (time or size); returns what
-    // happened then ("compiled", or the error while the previous shader stays), else nothing.
+    // Compiles the file again when it changed since the last look (time or size) and has held
+    // still for 50 ms; returns what happened then ("compiled", or the error while the previous
+    // shader stays), else nothing.
     std::optional<std::string> refresh();
     // `input` through the shader into a texture of its size and format; `input` itself while no
     // version of the file has compiled.
@@ -34,6 +36,10 @@ private:
     gdi::DeviceObjects objects_;
     std::optional<std::filesystem::file_time_type> seenTime_;
     uintmax_t seenSize_ = 0;
+    // The file's time and size as last seen changing, and since when (refresh waits for them to settle).
+    std::optional<std::filesystem::file_time_type> pendingTime_;
+    uintmax_t pendingSize_ = 0;
+    std::chrono::steady_clock::time_point pendingSince_;
     gdi::ShaderHandle vs_, fs_;
     gdi::SamplerHandle sampler_;
     gdi::PipelineHandle pipeline_;
