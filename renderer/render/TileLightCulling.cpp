@@ -61,7 +61,7 @@ void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd,
 
 graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::TextureId depth) {
     const RenderSettings& s = ctx_.settings;
-    // One block of the list texture per list tile; the pass runs one invocation per 16x16 tile.
+    // One block of the list texture per list tile; the pass runs one invocation per 32x32 block.
     const uint32_t tilesX = (s.width + kTileSize - 1) / kTileSize,
                    tilesY = (s.height + kTileSize - 1) / kTileSize;
     // Room for every light (up to kMaxListLength) and the header, within the device's texture limit.
@@ -83,7 +83,7 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
             b.storage(lists);
         },
         [this, depth, lists,
-         tiles = ((s.width + 15) / 16) * ((s.height + 15) / 16)](graph::PassContext& pc) {
+         blocks = ((s.width + 31) / 32) * ((s.height + 31) / 32)](graph::PassContext& pc) {
             bindFrameAndLights(pc.cmd, pipeline_);
             pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
             pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
@@ -92,7 +92,7 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
             if (!multisampledDepth_)
                 pc.cmd.setConstants(
                     glm::vec4(ctx_.settings.msaa > 1 ? 0.5f : 0.0f, 0.0f, 0.0f, 0.0f));
-            pc.cmd.dispatch((tiles + 63) / 64, 1);
+            pc.cmd.dispatch((blocks + 63) / 64, 1);
         });
     return lists;
 }
