@@ -16,9 +16,11 @@
 #include <shared_mutex>
 #include <cstring>
 #include <deque>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <spirv_cross/spirv_cross_c.h>
@@ -318,80 +320,154 @@ std::string spirvToGlsl(const std::vector<uint32_t>& spirv, const std::string& n
     return glsl;
 }
 
-// The HLSL translation in a child process. glslang 11.13's HLSL front end crashes on some
-// malformed sources (ShaderSourceFuzzer found two null dereferences in a minute: an unnamed entry
-// parameter, a register-less declaration after garbage), and a shader editor must not die of a
-// typo: the child translates and writes the result to a pipe; a child that dies or hangs (60 s)
-// is a clear Error and the process goes on. The includes it read come back for the cache.
+// How long a translation may take, and how long its child may sit asleep without using the
+// processor before it counts as stalled.
+constexpr auto kTranslationLimit = std::chrono::seconds(60);
+constexpr auto kStallLimit = std::chrono::seconds(2);
+constexpr int kTranslationAttempts = 3;
+
+// The state letter (R, S, D, Z...) and processor time (clock ticks) of a process, from
+// /proc/PID/stat; nullopt where it cannot be read.
+std::optional<std::pair<char, unsigned long long>> processProgress(pid_t pid) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    std::getline(in, line);
+    const size_t close = line.rfind(')');  // the command name may hold spaces and parentheses
+    if (close == std::string::npos || close + 2 >= line.size()) return std::nullopt;
+    std::istringstream fields(line.substr(close + 2));
+    char state = 0;
+    std::string skipped;
+    unsigned long long user = 0, system = 0;
+    fields >> state;
+    for (int field = 4; field <= 13; ++field) fields >> skipped;
+    fields >> user >> system;
+    if (!fields) return std::nullopt;
+    return std::pair{state, user + system};
+}
+
+// Forks the translation of `s`: the child runs glslang and SPIRV-Cross only, writes the reply to
+// fds[1] and _exits. Returns the child's pid (the parent's end of the pipe stays open).
 // Reply: 'G' or 'E', then length-prefixed strings: the GLSL (or the message), then name,
 // includer and text of each include read.
-std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer::Seen>& seen) {
-    int fds[2];
-    if (pipe2(fds, O_CLOEXEC) != 0)
-        throw Error("shader '" + s.name + "': no pipe for the HLSL compiler: " + strerror(errno));
+pid_t forkTranslation(const ShaderSourceCompile& s, const int fds[2]) {
     pid_t pid;
     {
         std::unique_lock lock(glslangInUse());
         pid = fork();
     }
-    if (pid < 0) {
-        close(fds[0]), close(fds[1]);
-        throw Error("shader '" + s.name +
-                    "': could not start the HLSL compiler: " + strerror(errno));
-    }
+    if (pid != 0) return pid;
+    // A crash here is the failure the parent reports ("crashed"): the child dies by its signal
+    // at once, with no handler of the parent's (a sanitizer's report, symbolized, took over a
+    // minute under load in the sanitized suite, starving the next compile's child past its 60 s).
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) signal(sig, SIG_DFL);
+    close(fds[0]);
     auto put = [](std::string& out, const std::string& v) {
         const uint32_t n = uint32_t(v.size());
         out.append(reinterpret_cast<const char*>(&n), 4).append(v);
     };
-    if (pid == 0) {  // the child: glslang and SPIRV-Cross only, then _exit
-        // A crash here is the failure the parent reports ("crashed"): the child dies by its
-        // signal at once, with no handler of the parent's (a sanitizer's report, symbolized,
-        // took over a minute under load in the sanitized suite, starving the next compile's
-        // child past its 60 s).
-        for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) signal(sig, SIG_DFL);
-        close(fds[0]);
-        std::string reply;
-        Includer includes(s);
-        try {
-            const std::string glsl = spirvToGlsl(hlslToSpirv(s, includes), s.name);
-            reply = "G";
-            put(reply, glsl);
-        } catch (const std::exception& e) {
-            reply = "E";
-            put(reply, e.what());
-        }
-        for (const Includer::Seen& i : includes.seen)
-            put(reply, i.name), put(reply, i.includer), put(reply, i.text);
-        for (size_t done = 0; done < reply.size();) {
-            const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
-            if (n <= 0) break;
-            done += size_t(n);
-        }
-        _exit(0);
-    }
-    close(fds[1]);
     std::string reply;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    bool timedOut = false;
+    Includer includes(s);
+    try {
+        const std::string glsl = spirvToGlsl(hlslToSpirv(s, includes), s.name);
+        reply = "G";
+        put(reply, glsl);
+    } catch (const std::exception& e) {
+        reply = "E";
+        put(reply, e.what());
+    }
+    for (const Includer::Seen& i : includes.seen)
+        put(reply, i.name), put(reply, i.includer), put(reply, i.text);
+    for (size_t done = 0; done < reply.size();) {
+        const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
+        if (n <= 0) break;
+        done += size_t(n);
+    }
+    _exit(0);
+}
+
+// What came of one forked translation.
+struct ChildOutcome {
+    std::string reply;
+    enum class End { Finished, TimedOut, Stalled } end = End::Finished;
+    int status = 0;  // waitpid's, where it finished
+};
+
+// Reads the child's reply until the pipe closes. Two ways it may not: the child loops (past
+// kTranslationLimit: TimedOut), or the child sleeps for good (Stalled). The second is what a fork
+// in a threaded process risks: the child has only the forking thread, so a lock another thread
+// held at that instant (the include callback's, or any library's) is never released in it.
+// Asleep, with no processor time spent and nothing written for kStallLimit, it is stalled.
+// A child that exited while the pipe stays open (another fork holding its end) has said all.
+ChildOutcome awaitTranslation(pid_t pid, int fd) {
+    using Clock = std::chrono::steady_clock;
+    ChildOutcome out;
+    const auto start = Clock::now();
+    auto lastProgress = start;
+    std::optional<unsigned long long> lastCpu;
     for (char buffer[65536];;) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-            deadline - std::chrono::steady_clock::now());
-        pollfd p{fds[0], POLLIN, 0};
-        const int ready = left.count() > 0 ? poll(&p, 1, int(left.count())) : 0;
-        if (ready < 0 && errno == EINTR) continue;
-        if (ready <= 0) {
-            timedOut = true;
+        const auto now = Clock::now();
+        if (now - start >= kTranslationLimit) {
+            out.end = ChildOutcome::End::TimedOut;
             break;
         }
-        const ssize_t n = read(fds[0], buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        reply.append(buffer, size_t(n));
+        pollfd p{fd, POLLIN, 0};
+        const int ready = poll(&p, 1, 250);
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready > 0) {
+            const ssize_t n = read(fd, buffer, sizeof buffer);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) break;
+            out.reply.append(buffer, size_t(n));
+            lastProgress = Clock::now();
+            continue;
+        }
+        const auto progress = processProgress(pid);
+        if (!progress) continue;
+        const auto [state, cpu] = *progress;
+        if (state == 'Z') {  // exited: what it wrote is in the pipe
+            for (ssize_t n; poll(&p, 1, 0) > 0 && (n = read(fd, buffer, sizeof buffer)) > 0;)
+                out.reply.append(buffer, size_t(n));
+            break;
+        }
+        if (state == 'R' || cpu != lastCpu) {  // running, or waiting for a processor
+            lastCpu = cpu;
+            lastProgress = Clock::now();
+        } else if (Clock::now() - lastProgress >= kStallLimit) {
+            out.end = ChildOutcome::End::Stalled;
+            break;
+        }
     }
-    close(fds[0]);
-    if (timedOut) kill(pid, SIGKILL);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    if (out.end != ChildOutcome::End::Finished) kill(pid, SIGKILL);
+    while (waitpid(pid, &out.status, 0) < 0 && errno == EINTR) {}
+    return out;
+}
+
+// The HLSL translation in a child process. glslang 11.13's HLSL front end crashes on some
+// malformed sources (ShaderSourceFuzzer found two null dereferences in a minute: an unnamed entry
+// parameter, a register-less declaration after garbage), and a shader editor must not die of a
+// typo: the child translates and writes the result to a pipe; a child that dies or loops (60 s)
+// is a clear Error and the process goes on. A child that stalls on a lock it inherited is
+// killed and the translation forked again (the lock's holder has moved on by then). The
+// includes it read come back for the cache.
+std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer::Seen>& seen) {
+    ChildOutcome outcome;
+    for (int attempt = 1; attempt <= kTranslationAttempts; ++attempt) {
+        int fds[2];
+        if (pipe2(fds, O_CLOEXEC) != 0)
+            throw Error("shader '" + s.name +
+                        "': no pipe for the HLSL compiler: " + strerror(errno));
+        const pid_t pid = forkTranslation(s, fds);
+        close(fds[1]);
+        if (pid < 0) {
+            close(fds[0]);
+            throw Error("shader '" + s.name +
+                        "': could not start the HLSL compiler: " + strerror(errno));
+        }
+        outcome = awaitTranslation(pid, fds[0]);
+        close(fds[0]);
+        if (outcome.end != ChildOutcome::End::Stalled) break;
+    }
+    const std::string& reply = outcome.reply;
     size_t at = 1;
     auto get = [&](std::string& v) {
         uint32_t n = 0;
@@ -403,12 +479,19 @@ std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer
         return true;
     };
     std::string text;
-    const bool whole = !timedOut && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                       !reply.empty() && (reply[0] == 'G' || reply[0] == 'E') && get(text);
-    if (!whole)
+    const bool whole = outcome.end == ChildOutcome::End::Finished && WIFEXITED(outcome.status) &&
+                       WEXITSTATUS(outcome.status) == 0 && !reply.empty() &&
+                       (reply[0] == 'G' || reply[0] == 'E') && get(text);
+    if (!whole) {
+        const char* what =
+            outcome.end == ChildOutcome::End::TimedOut ? "did not finish in 60 s"
+            : outcome.end == ChildOutcome::End::Stalled
+                ? "stalled on each of its three tries (asleep on a lock another thread held when "
+                  "it was forked: an include callback waiting for another thread?)"
+                : "crashed";
         throw Error("shader '" + s.name + "': the HLSL compiler (glslang's HLSL front end) " +
-                    (timedOut ? "did not finish in 60 s" : "crashed") +
-                    " on this source, which is refused (the process goes on)");
+                    what + " on this source, which is refused (the process goes on)");
+    }
     for (Includer::Seen i; get(i.name) && get(i.includer) && get(i.text);) seen.push_back(i);
     if (reply[0] == 'E') throw Error(text);
     return text;

@@ -1,6 +1,10 @@
 // Shaders and pipelines: damaged or out-of-bounds SPIR-V, pipelines checked against their
 // shaders' reflection, device limits on storage textures.
+#include <chrono>
+#include <mutex>
+
 #include "DeviceErrors.h"
+#include "fe/gdi/ShaderCompiler.h"
 
 using namespace fe::gdi;
 using fe::testing::errorOf;
@@ -420,4 +424,64 @@ TEST(ShaderModuleMemo, ReusesAnAnswerOnlyForTheSameModuleStageAndEntryPoint) {
                   }).find("shader 'damaged': not a valid SPIR-V module for OpenGL: "),
                   std::string::npos);
     }
+}
+
+// HLSL is translated in a forked child, which has only the forking thread: a lock another thread
+// holds at the fork stays held in the child for good. An include callback that takes a lock
+// another thread holds for a moment is such a case (the suite's CI once saw a child hang so on
+// a lock of unknown owner). The stalled child is killed and the translation forked again, in
+// seconds, not at the 60 s limit; one that stalls every time is a clear Error.
+namespace {
+const char* kIncludingPixelShader =
+    "#include \"value.hlsli\"\nfloat4 main() : SV_Target0 { return VALUE; }\n";
+ShaderSourceCompile lockingInclude(std::mutex& m) {
+    return {.stage = ShaderStage::Fragment,
+            .text = kIncludingPixelShader,
+            .language = ShaderLanguage::HLSL,
+            .name = "locking.hlsl",
+            .include = [&m](const std::string& name, const std::string&) {
+                std::lock_guard lock(m);
+                return name == "value.hlsli" ? std::optional<std::string>(
+                                                   "#define VALUE float4(0.25, 0.5, 0.75, 1)\n")
+                                             : std::nullopt;
+            }};
+}
+}  // namespace
+
+TEST(HlslTranslation, AChildStalledOnALockHeldAtTheForkIsForkedAgain) {
+    std::mutex m;
+    std::atomic<bool> held{false};
+    std::thread holder([&] {
+        std::lock_guard lock(m);
+        held = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+    });
+    while (!held) std::this_thread::yield();
+    const auto start = std::chrono::steady_clock::now();
+    std::string glsl, error;
+    try {
+        glsl = hlslToGlsl(lockingInclude(m));
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    holder.join();
+    EXPECT_EQ(error, "");
+    EXPECT_NE(glsl.find("0.25"), std::string::npos) << glsl;
+    EXPECT_LT(seconds, 20.0) << "the stalled child was not noticed before the 60 s limit";
+}
+
+TEST(HlslTranslation, AChildThatStallsEveryTimeIsAClearError) {
+    std::mutex m;
+    std::unique_lock lock(m);  // held through every try
+    const auto start = std::chrono::steady_clock::now();
+    const std::string error = fe::testing::errorOf([&] { hlslToGlsl(lockingInclude(m)); });
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(error.find("shader 'locking.hlsl': the HLSL compiler (glslang's HLSL front end) "
+                         "stalled on each of its three tries"),
+              std::string::npos)
+        << error;
+    EXPECT_LT(seconds, 20.0);
 }

@@ -34,6 +34,10 @@ struct ShaderSourceCompile {
     std::string name = "shader";       // in messages: "NAME:LINE: ..."
     std::vector<std::string> defines;  // "NAME" or "NAME=VALUE", as -D
     // `#include "NAME"`: the text of NAME (included from `includer`), or nullopt if there is none.
+    // For HLSL it is called in the translation's child process (a fork, so that a glslang crash
+    // costs only the child): what it changes is not seen by the caller, and it should not wait
+    // for another thread (a lock held elsewhere at the fork stalls the child, which is then
+    // forked again, three tries in all).
     std::function<std::optional<std::string>(const std::string& name, const std::string& includer)>
         include;
 };
