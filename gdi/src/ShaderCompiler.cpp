@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -345,44 +346,94 @@ std::optional<std::pair<char, unsigned long long>> processProgress(pid_t pid) {
     return std::pair{state, user + system};
 }
 
-// Forks the translation of `s`: the child runs glslang and SPIRV-Cross only, writes the reply to
-// fds[1] and _exits. Returns the child's pid (the parent's end of the pipe stays open).
-// Reply: 'G' or 'E', then length-prefixed strings: the GLSL (or the message), then name,
-// includer and text of each include read.
+// Length-prefixed strings, the framing of everything parent and child send each other.
+void putString(std::string& out, const std::string& v) {
+    const uint32_t n = uint32_t(v.size());
+    out.append(reinterpret_cast<const char*>(&n), 4).append(v);
+}
+// The string at `at` in `in` (advancing `at`), or false where `in` does not hold all of it yet.
+bool getString(const std::string& in, size_t& at, std::string& v) {
+    uint32_t n = 0;
+    if (at + 4 > in.size()) return false;
+    std::memcpy(&n, in.data() + at, 4);
+    if (at + 4 + size_t(n) > in.size()) return false;
+    v.assign(in, at + 4, n);
+    at += 4 + size_t(n);
+    return true;
+}
+bool sendAll(int fd, const std::string& bytes) {
+    for (size_t done = 0; done < bytes.size();) {
+        const ssize_t n = send(fd, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        done += size_t(n);
+    }
+    return true;
+}
+
+// Children that are to sleep for good before translating (stallHlslChildrenForTesting).
+std::atomic<int> childrenToStall{0};
+
+// The child's side: glslang and SPIRV-Cross only, then _exit. Its include requests go to the
+// parent, which calls the source's callback ('I', name, includer; the answer: '1' and the text,
+// or '0'): the callback runs in the caller's process, where its locks and what it records are
+// the caller's. Then the reply: 'G' or 'E', the GLSL (or the message), and name, includer and
+// text of each include read.
+[[noreturn]] void translateInChild(const ShaderSourceCompile& s, int fd, bool stall) {
+    // A crash here is the failure the parent reports ("crashed"): the child dies by its signal
+    // at once, with no handler of the parent's (a sanitizer's report, symbolized, took over a
+    // minute under load in the sanitized suite, starving the next compile's child past its 60 s).
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) signal(sig, SIG_DFL);
+    while (stall) pause();
+    ShaderSourceCompile remote = s;
+    if (s.include)
+        remote.include = [fd](const std::string& name,
+                              const std::string& includer) -> std::optional<std::string> {
+            std::string request = "I";
+            putString(request, name);
+            putString(request, includer);
+            if (!sendAll(fd, request)) _exit(2);
+            std::string answer;
+            size_t at = 1;
+            std::string text;
+            for (char buffer[4096];
+                 answer.empty() || (answer[0] == '1' && !getString(answer, at, text));) {
+                const ssize_t n = read(fd, buffer, sizeof buffer);
+                if (n < 0 && errno == EINTR) continue;
+                if (n <= 0) _exit(2);
+                answer.append(buffer, size_t(n));
+            }
+            return answer[0] == '1' ? std::optional<std::string>(text) : std::nullopt;
+        };
+    std::string reply;
+    Includer includes(remote);
+    try {
+        const std::string glsl = spirvToGlsl(hlslToSpirv(remote, includes), s.name);
+        reply = "G";
+        putString(reply, glsl);
+    } catch (const std::exception& e) {
+        reply = "E";
+        putString(reply, e.what());
+    }
+    for (const Includer::Seen& i : includes.seen)
+        putString(reply, i.name), putString(reply, i.includer), putString(reply, i.text);
+    sendAll(fd, reply);
+    _exit(0);
+}
+
+// Forks the translation of `s` over the socket pair `fds` (the child gets fds[1]). Returns the
+// child's pid, or -1.
 pid_t forkTranslation(const ShaderSourceCompile& s, const int fds[2]) {
+    int stallsLeft = childrenToStall.load();
+    while (stallsLeft > 0 && !childrenToStall.compare_exchange_weak(stallsLeft, stallsLeft - 1)) {}
     pid_t pid;
     {
         std::unique_lock lock(glslangInUse());
         pid = fork();
     }
     if (pid != 0) return pid;
-    // A crash here is the failure the parent reports ("crashed"): the child dies by its signal
-    // at once, with no handler of the parent's (a sanitizer's report, symbolized, took over a
-    // minute under load in the sanitized suite, starving the next compile's child past its 60 s).
-    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL}) signal(sig, SIG_DFL);
     close(fds[0]);
-    auto put = [](std::string& out, const std::string& v) {
-        const uint32_t n = uint32_t(v.size());
-        out.append(reinterpret_cast<const char*>(&n), 4).append(v);
-    };
-    std::string reply;
-    Includer includes(s);
-    try {
-        const std::string glsl = spirvToGlsl(hlslToSpirv(s, includes), s.name);
-        reply = "G";
-        put(reply, glsl);
-    } catch (const std::exception& e) {
-        reply = "E";
-        put(reply, e.what());
-    }
-    for (const Includer::Seen& i : includes.seen)
-        put(reply, i.name), put(reply, i.includer), put(reply, i.text);
-    for (size_t done = 0; done < reply.size();) {
-        const ssize_t n = write(fds[1], reply.data() + done, reply.size() - done);
-        if (n <= 0) break;
-        done += size_t(n);
-    }
-    _exit(0);
+    translateInChild(s, fds[1], stallsLeft > 0);
 }
 
 // What came of one forked translation.
@@ -392,50 +443,76 @@ struct ChildOutcome {
     int status = 0;  // waitpid's, where it finished
 };
 
-// Reads the child's reply until the pipe closes. Two ways it may not: the child loops (past
-// kTranslationLimit: TimedOut), or the child sleeps for good (Stalled). The second is what a fork
-// in a threaded process risks: the child has only the forking thread, so a lock another thread
-// held at that instant (the include callback's, or any library's) is never released in it.
-// Asleep, with no processor time spent and nothing written for kStallLimit, it is stalled.
-// A child that exited while the pipe stays open (another fork holding its end) has said all.
-ChildOutcome awaitTranslation(pid_t pid, int fd) {
+// Answers the include requests at the front of `in` (the source's callback, in this process),
+// removing them; false when `in` starts with a request not all here yet.
+bool answerIncludes(const ShaderSourceCompile& s, std::string& in, int fd) {
+    while (!in.empty() && in[0] == 'I') {
+        size_t at = 1;
+        std::string name, includer;
+        if (!getString(in, at, name) || !getString(in, at, includer)) return false;
+        in.erase(0, at);
+        const std::optional<std::string> text = s.include(name, includer);
+        std::string answer = text ? "1" : "0";
+        if (text) putString(answer, *text);
+        sendAll(fd, answer);  // a child gone by now is seen at the next read
+    }
+    return true;
+}
+
+// Reads the child's messages until it closes its end, answering its include requests. Two ways
+// it may not close: the child loops (past kTranslationLimit of its own time: TimedOut), or it
+// sleeps for good (Stalled). The second is what a fork in a threaded process risks: the child has
+// only the forking thread, so a lock another thread held at that instant (a library's) is never
+// released in it. Asleep, with no processor time spent and nothing sent for kStallLimit, it is
+// stalled. A child that exited while the socket stays open (another fork holding its end) has
+// said all. The time the include callback takes is not the child's.
+ChildOutcome awaitTranslation(const ShaderSourceCompile& s, pid_t pid, int fd) {
     using Clock = std::chrono::steady_clock;
     ChildOutcome out;
-    const auto start = Clock::now();
+    auto start = Clock::now();
     auto lastProgress = start;
     std::optional<unsigned long long> lastCpu;
-    for (char buffer[65536];;) {
-        const auto now = Clock::now();
-        if (now - start >= kTranslationLimit) {
-            out.end = ChildOutcome::End::TimedOut;
-            break;
+    std::string& in = out.reply;
+    try {
+        for (char buffer[65536];;) {
+            if (Clock::now() - start >= kTranslationLimit) {
+                out.end = ChildOutcome::End::TimedOut;
+                break;
+            }
+            pollfd p{fd, POLLIN, 0};
+            const int ready = poll(&p, 1, 250);
+            if (ready < 0 && errno == EINTR) continue;
+            if (ready > 0) {
+                const ssize_t n = read(fd, buffer, sizeof buffer);
+                if (n < 0 && errno == EINTR) continue;
+                if (n <= 0) break;
+                in.append(buffer, size_t(n));
+                const auto before = Clock::now();
+                answerIncludes(s, in, fd);
+                start += Clock::now() - before;
+                lastProgress = Clock::now();
+                continue;
+            }
+            const auto progress = processProgress(pid);
+            if (!progress) continue;
+            const auto [state, cpu] = *progress;
+            if (state == 'Z') {  // exited: what it sent is in the socket
+                for (ssize_t n; poll(&p, 1, 0) > 0 && (n = read(fd, buffer, sizeof buffer)) > 0;)
+                    in.append(buffer, size_t(n));
+                break;
+            }
+            if (state == 'R' || cpu != lastCpu) {  // running, or waiting for a processor
+                lastCpu = cpu;
+                lastProgress = Clock::now();
+            } else if (Clock::now() - lastProgress >= kStallLimit) {
+                out.end = ChildOutcome::End::Stalled;
+                break;
+            }
         }
-        pollfd p{fd, POLLIN, 0};
-        const int ready = poll(&p, 1, 250);
-        if (ready < 0 && errno == EINTR) continue;
-        if (ready > 0) {
-            const ssize_t n = read(fd, buffer, sizeof buffer);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) break;
-            out.reply.append(buffer, size_t(n));
-            lastProgress = Clock::now();
-            continue;
-        }
-        const auto progress = processProgress(pid);
-        if (!progress) continue;
-        const auto [state, cpu] = *progress;
-        if (state == 'Z') {  // exited: what it wrote is in the pipe
-            for (ssize_t n; poll(&p, 1, 0) > 0 && (n = read(fd, buffer, sizeof buffer)) > 0;)
-                out.reply.append(buffer, size_t(n));
-            break;
-        }
-        if (state == 'R' || cpu != lastCpu) {  // running, or waiting for a processor
-            lastCpu = cpu;
-            lastProgress = Clock::now();
-        } else if (Clock::now() - lastProgress >= kStallLimit) {
-            out.end = ChildOutcome::End::Stalled;
-            break;
-        }
+    } catch (...) {  // the include callback threw: the child goes, the exception on
+        kill(pid, SIGKILL);
+        while (waitpid(pid, &out.status, 0) < 0 && errno == EINTR) {}
+        throw;
     }
     if (out.end != ChildOutcome::End::Finished) kill(pid, SIGKILL);
     while (waitpid(pid, &out.status, 0) < 0 && errno == EINTR) {}
@@ -445,17 +522,17 @@ ChildOutcome awaitTranslation(pid_t pid, int fd) {
 // The HLSL translation in a child process. glslang 11.13's HLSL front end crashes on some
 // malformed sources (ShaderSourceFuzzer found two null dereferences in a minute: an unnamed entry
 // parameter, a register-less declaration after garbage), and a shader editor must not die of a
-// typo: the child translates and writes the result to a pipe; a child that dies or loops (60 s)
-// is a clear Error and the process goes on. A child that stalls on a lock it inherited is
-// killed and the translation forked again (the lock's holder has moved on by then). The
-// includes it read come back for the cache.
+// typo: the child translates and sends the result back; a child that dies or loops (60 s) is a
+// clear Error and the process goes on. A child that stalls on a lock it inherited is killed and
+// the translation forked again (the lock's holder has moved on by then). The includes it read
+// come back for the cache.
 std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer::Seen>& seen) {
     ChildOutcome outcome;
     for (int attempt = 1; attempt <= kTranslationAttempts; ++attempt) {
         int fds[2];
-        if (pipe2(fds, O_CLOEXEC) != 0)
+        if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0)
             throw Error("shader '" + s.name +
-                        "': no pipe for the HLSL compiler: " + strerror(errno));
+                        "': no socket for the HLSL compiler: " + strerror(errno));
         const pid_t pid = forkTranslation(s, fds);
         close(fds[1]);
         if (pid < 0) {
@@ -463,36 +540,32 @@ std::string isolatedHlslToGlsl(const ShaderSourceCompile& s, std::deque<Includer
             throw Error("shader '" + s.name +
                         "': could not start the HLSL compiler: " + strerror(errno));
         }
-        outcome = awaitTranslation(pid, fds[0]);
-        close(fds[0]);
+        struct Closer {
+            int fd;
+            ~Closer() { close(fd); }
+        } closer{fds[0]};
+        outcome = awaitTranslation(s, pid, fds[0]);
         if (outcome.end != ChildOutcome::End::Stalled) break;
     }
     const std::string& reply = outcome.reply;
     size_t at = 1;
-    auto get = [&](std::string& v) {
-        uint32_t n = 0;
-        if (at + 4 > reply.size()) return false;
-        std::memcpy(&n, reply.data() + at, 4);
-        if (at + 4 + n > reply.size()) return false;
-        v.assign(reply, at + 4, n);
-        at += 4 + n;
-        return true;
-    };
     std::string text;
     const bool whole = outcome.end == ChildOutcome::End::Finished && WIFEXITED(outcome.status) &&
                        WEXITSTATUS(outcome.status) == 0 && !reply.empty() &&
-                       (reply[0] == 'G' || reply[0] == 'E') && get(text);
+                       (reply[0] == 'G' || reply[0] == 'E') && getString(reply, at, text);
     if (!whole) {
         const char* what =
             outcome.end == ChildOutcome::End::TimedOut ? "did not finish in 60 s"
             : outcome.end == ChildOutcome::End::Stalled
                 ? "stalled on each of its three tries (asleep on a lock another thread held when "
-                  "it was forked: an include callback waiting for another thread?)"
+                  "it was forked)"
                 : "crashed";
         throw Error("shader '" + s.name + "': the HLSL compiler (glslang's HLSL front end) " +
                     what + " on this source, which is refused (the process goes on)");
     }
-    for (Includer::Seen i; get(i.name) && get(i.includer) && get(i.text);) seen.push_back(i);
+    for (Includer::Seen i; getString(reply, at, i.name) && getString(reply, at, i.includer) &&
+                           getString(reply, at, i.text);)
+        seen.push_back(i);
     if (reply[0] == 'E') throw Error(text);
     return text;
 }
@@ -581,6 +654,8 @@ ShaderDesc withCompiledSource(const ShaderDesc& desc) {
     compiled.source = {};
     return compiled;
 }
+
+void stallHlslChildrenForTesting(int count) { childrenToStall.store(count); }
 
 uint64_t shaderCompileCount() { return compiles.load(std::memory_order_relaxed); }
 

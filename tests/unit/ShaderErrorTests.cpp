@@ -426,62 +426,90 @@ TEST(ShaderModuleMemo, ReusesAnAnswerOnlyForTheSameModuleStageAndEntryPoint) {
     }
 }
 
-// HLSL is translated in a forked child, which has only the forking thread: a lock another thread
-// holds at the fork stays held in the child for good. An include callback that takes a lock
-// another thread holds for a moment is such a case (the suite's CI once saw a child hang so on
-// a lock of unknown owner). The stalled child is killed and the translation forked again, in
-// seconds, not at the 60 s limit; one that stalls every time is a clear Error.
+// HLSL is translated in a forked child, so that a glslang crash costs only the child. Its
+// include requests come back to the caller's process: the callback's locks and what it records
+// are the caller's (run in the child, a lock another thread held at the fork stayed held there
+// for good, and what the callback recorded was lost). A child that sleeps for good (a lock some
+// library held at the fork) is killed and forked again in seconds, not at the 60 s limit; one that
+// stalls every time is a clear Error.
 namespace {
 const char* kIncludingPixelShader =
     "#include \"value.hlsli\"\nfloat4 main() : SV_Target0 { return VALUE; }\n";
-ShaderSourceCompile lockingInclude(std::mutex& m) {
+ShaderSourceCompile includingSource(
+    std::function<std::optional<std::string>(const std::string&, const std::string&)> include) {
     return {.stage = ShaderStage::Fragment,
             .text = kIncludingPixelShader,
             .language = ShaderLanguage::HLSL,
-            .name = "locking.hlsl",
-            .include = [&m](const std::string& name, const std::string&) {
-                std::lock_guard lock(m);
-                return name == "value.hlsli" ? std::optional<std::string>(
-                                                   "#define VALUE float4(0.25, 0.5, 0.75, 1)\n")
-                                             : std::nullopt;
-            }};
+            .name = "including.hlsl",
+            .include = std::move(include)};
+}
+std::optional<std::string> valueHeader(const std::string& name) {
+    if (name != "value.hlsli") return std::nullopt;
+    return "#define VALUE float4(0.25, 0.5, 0.75, 1)\n";
+}
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 }  // namespace
 
-TEST(HlslTranslation, AChildStalledOnALockHeldAtTheForkIsForkedAgain) {
+TEST(HlslTranslation, TheIncludeCallbackRunsInTheCallersProcess) {
     std::mutex m;
     std::atomic<bool> held{false};
+    std::vector<std::string> asked;  // what a hot-reloading tool would watch
     std::thread holder([&] {
         std::lock_guard lock(m);
         held = true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
     });
     while (!held) std::this_thread::yield();
-    const auto start = std::chrono::steady_clock::now();
     std::string glsl, error;
     try {
-        glsl = hlslToGlsl(lockingInclude(m));
+        glsl = hlslToGlsl(includingSource([&](const std::string& name, const std::string&) {
+            std::lock_guard lock(m);  // held by `holder` when the child is forked
+            asked.push_back(name);
+            return valueHeader(name);
+        }));
     } catch (const Error& e) {
         error = e.what();
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     holder.join();
     EXPECT_EQ(error, "");
     EXPECT_NE(glsl.find("0.25"), std::string::npos) << glsl;
-    EXPECT_LT(seconds, 20.0) << "the stalled child was not noticed before the 60 s limit";
+    EXPECT_EQ(asked, std::vector<std::string>{"value.hlsli"});
+    EXPECT_THROW(hlslToGlsl(includingSource(
+                     [](const std::string&, const std::string&) -> std::optional<std::string> {
+                         throw std::runtime_error("the include's disk is gone");
+                     })),
+                 std::runtime_error);
+}
+
+TEST(HlslTranslation, AStalledChildIsForkedAgain) {
+    stallHlslChildrenForTesting(1);
+    const auto start = std::chrono::steady_clock::now();
+    std::string glsl, error;
+    try {
+        glsl = hlslToGlsl(includingSource(
+            [](const std::string& name, const std::string&) { return valueHeader(name); }));
+    } catch (const Error& e) {
+        error = e.what();
+    }
+    stallHlslChildrenForTesting(0);
+    EXPECT_EQ(error, "");
+    EXPECT_NE(glsl.find("0.25"), std::string::npos) << glsl;
+    EXPECT_LT(secondsSince(start), 20.0) << "the stalled child was not noticed before 60 s";
 }
 
 TEST(HlslTranslation, AChildThatStallsEveryTimeIsAClearError) {
-    std::mutex m;
-    std::unique_lock lock(m);  // held through every try
+    stallHlslChildrenForTesting(3);
     const auto start = std::chrono::steady_clock::now();
-    const std::string error = fe::testing::errorOf([&] { hlslToGlsl(lockingInclude(m)); });
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    EXPECT_NE(error.find("shader 'locking.hlsl': the HLSL compiler (glslang's HLSL front end) "
+    const std::string error = fe::testing::errorOf([&] {
+        hlslToGlsl(includingSource(
+            [](const std::string& name, const std::string&) { return valueHeader(name); }));
+    });
+    stallHlslChildrenForTesting(0);
+    EXPECT_NE(error.find("shader 'including.hlsl': the HLSL compiler (glslang's HLSL front end) "
                          "stalled on each of its three tries"),
               std::string::npos)
         << error;
-    EXPECT_LT(seconds, 20.0);
+    EXPECT_LT(secondsSince(start), 20.0);
 }

@@ -34,10 +34,10 @@ struct ShaderSourceCompile {
     std::string name = "shader";       // in messages: "NAME:LINE: ..."
     std::vector<std::string> defines;  // "NAME" or "NAME=VALUE", as -D
     // `#include "NAME"`: the text of NAME (included from `includer`), or nullopt if there is none.
-    // For HLSL it is called in the translation's child process (a fork, so that a glslang crash
-    // costs only the child): what it changes is not seen by the caller, and it should not wait
-    // for another thread (a lock held elsewhere at the fork stalls the child, which is then
-    // forked again, three tries in all).
+    // Called on the compiling thread, for HLSL too (whose translation runs in a child process,
+    // so that a glslang crash costs only the child: the child asks, this process answers), so
+    // what it records and the locks it takes are the caller's; an exception it throws reaches
+    // the caller.
     std::function<std::optional<std::string>(const std::string& name, const std::string& includer)>
         include;
 };
@@ -54,5 +54,9 @@ ShaderDesc withCompiledSource(const ShaderDesc& desc);
 
 // How many compiles the process has run (the cache's misses), for tests of the cache.
 uint64_t shaderCompileCount();
+// Tests of the HLSL translation's stall detection: the next `count` translation children sleep
+// for good before translating, as a child blocked on a lock it inherited at the fork would (each
+// is noticed after 2 s asleep, killed and forked again; three tries, then an Error).
+void stallHlslChildrenForTesting(int count);
 
 }  // namespace fe::gdi
