@@ -100,8 +100,9 @@ TEST(InfoJson, DeviceInfoCarriesEveryField) {
     const json j = json::parse(ordered.dump());  // as a reader of the document sees it
     expectDeviceSummary(j, "test");
     fe::gdi::forEachField(info.limits, [&](const char* name, const auto& value) {
-        if (!std::string(name).ends_with("SampleCounts"))
+        if (!std::string(name).ends_with("SampleCounts")) {
             EXPECT_EQ(j["limits"][name], value) << name;
+        }
     });
     info.limits.colorSampleCounts = 1 | 4 | 8;
     EXPECT_EQ(json::parse(fe::gdi::Json(info).dump())["limits"]["colorSampleCounts"],
