@@ -371,8 +371,10 @@ bool sendAll(int fd, const std::string& bytes) {
     return true;
 }
 
-// Children that are to sleep for good before translating (stallHlslChildrenForTesting).
+// Children that are to sleep for good before translating, and the stall limit meanwhile
+// (stallHlslChildrenForTesting).
 std::atomic<int> childrenToStall{0};
+std::atomic<int64_t> stallLimitMs{std::chrono::milliseconds(kStallLimit).count()};
 
 // The child's side: glslang and SPIRV-Cross only, then _exit. Its include requests go to the
 // parent, which calls the source's callback ('I', name, includer; the answer: '1' and the text,
@@ -504,7 +506,8 @@ ChildOutcome awaitTranslation(const ShaderSourceCompile& s, pid_t pid, int fd) {
             if (state == 'R' || cpu != lastCpu) {  // running, or waiting for a processor
                 lastCpu = cpu;
                 lastProgress = Clock::now();
-            } else if (Clock::now() - lastProgress >= kStallLimit) {
+            } else if (Clock::now() - lastProgress >=
+                       std::chrono::milliseconds(stallLimitMs.load())) {
                 out.end = ChildOutcome::End::Stalled;
                 break;
             }
@@ -655,7 +658,11 @@ ShaderDesc withCompiledSource(const ShaderDesc& desc) {
     return compiled;
 }
 
-void stallHlslChildrenForTesting(int count) { childrenToStall.store(count); }
+void stallHlslChildrenForTesting(int count, std::chrono::milliseconds stallLimit) {
+    stallLimitMs.store(count > 0 ? stallLimit.count()
+                                 : std::chrono::milliseconds(kStallLimit).count());
+    childrenToStall.store(count);
+}
 
 uint64_t shaderCompileCount() { return compiles.load(std::memory_order_relaxed); }
 

@@ -484,7 +484,8 @@ TEST(HlslTranslation, TheIncludeCallbackRunsInTheCallersProcess) {
 }
 
 TEST(HlslTranslation, AStalledChildIsForkedAgain) {
-    stallHlslChildrenForTesting(1);
+    // A stall is noticed after 0.5 s here (2 s in use), so the case waits less.
+    stallHlslChildrenForTesting(1, std::chrono::milliseconds(500));
     const auto start = std::chrono::steady_clock::now();
     std::string glsl, error;
     try {
@@ -500,7 +501,7 @@ TEST(HlslTranslation, AStalledChildIsForkedAgain) {
 }
 
 TEST(HlslTranslation, AChildThatStallsEveryTimeIsAClearError) {
-    stallHlslChildrenForTesting(3);
+    stallHlslChildrenForTesting(3, std::chrono::milliseconds(500));
     const auto start = std::chrono::steady_clock::now();
     const std::string error = fe::testing::errorOf([&] {
         hlslToGlsl(includingSource(

@@ -13,6 +13,7 @@
 //   compiled twice in a process (the binaries stay valid for the process, so their spans can
 //   go into ShaderDesc::binary and captures).
 #pragma once
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -56,7 +57,9 @@ ShaderDesc withCompiledSource(const ShaderDesc& desc);
 uint64_t shaderCompileCount();
 // Tests of the HLSL translation's stall detection: the next `count` translation children sleep
 // for good before translating, as a child blocked on a lock it inherited at the fork would (each
-// is noticed after 2 s asleep, killed and forked again; three tries, then an Error).
-void stallHlslChildrenForTesting(int count);
+// is noticed after `stallLimit` asleep, killed and forked again; three tries, then an Error).
+// The limit is 2 s in use; a test may shorten it while it stalls children (count 0 restores it).
+void stallHlslChildrenForTesting(int count,
+                                 std::chrono::milliseconds stallLimit = std::chrono::seconds(2));
 
 }  // namespace fe::gdi
