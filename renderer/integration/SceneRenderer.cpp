@@ -164,6 +164,17 @@ SceneRenderer::SceneRenderer(gdi::Device& device, const assets::Scene& scene,
     if (!gpuScene_->deformations().empty())
         deformation_ = std::make_unique<MeshDeformation>(*context_);
     technique_ = technique.create(*context_);
+    // The display image straight from the shading pass: the display pass's sum for background
+    // 0, so only where nothing after the technique's passes adds to L_o (blended surfaces,
+    // particles, transmission, shadowed lights, a background pass) or reads it (antialiasing,
+    // a debug view, the list statistics), at one sample, without the environment's light (its
+    // shaders have no such variant).
+    displayInShading_ = s.displayInShading && s.displayImage && technique.writesDisplay &&
+                        s.msaa <= 1 && s.antiAliasing == AntiAliasing::None &&
+                        s.debugView.empty() && !s.lightListStatistics && !s.ibl() &&
+                        background_->kind() == Background::Kind::Auto &&
+                        background_->displayConstants().x == 0 && !transmission_ &&
+                        !gpuScene_->hasBlend() && !vfx_ && !shadows_;
     buildGraph();
     graph_.compile(device, s.aliasing);
 }
@@ -182,6 +193,11 @@ void SceneRenderer::buildGraph() {
                              {.format = kSceneDepthFormat, .width = s.width, .height = s.height});
     if (deformation_)
         deformation_->declare(g);  // first: every pass after it draws the deformed meshes
+    context_->display =
+        displayInShading_
+            ? g.createTexture("display sRGB",
+                              {.format = kDisplayFormat, .width = s.width, .height = s.height})
+            : graph::TextureId{};
     technique_->declare(g, output_, depth_);
     if (s.lightListStatistics || s.debugView == kLightsEvaluatedView) declareListStatistics(g);
     background_->declare(g, output_, depth_);
@@ -214,7 +230,7 @@ void SceneRenderer::buildGraph() {
         vfx_->declare(g, output_, depth_);  // particles: after every other translucent surface
     graph::TextureId shown = output_;
     if (!s.debugView.empty()) shown = declareDebugView(g);
-    display_ = postProcess_->declare(g, shown, depth_);
+    display_ = displayInShading_ ? context_->display : postProcess_->declare(g, shown, depth_);
     g.markOutput(output_);
     if (s.displayImage) g.markOutput(display_);
 }

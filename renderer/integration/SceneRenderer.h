@@ -117,6 +117,10 @@ public:
     // How many lights the technique's shading loop walked per pixel in the last frame. Throws
     // unless the renderer was made with RenderSettings::lightListStatistics.
     LightListStatistics lightListStatistics();
+    // Whether the technique's shading pass writes the display image, so the frame has no display
+    // pass: RenderSettings::displayInShading, a technique that can (TechniqueInfo::writesDisplay)
+    // and nothing after its passes that changes L_o or reads it (see the .cpp).
+    bool displayInShading() const { return displayInShading_; }
 
 private:
     void recordFrame(const std::function<void(const std::string& pass)>& afterPass);
@@ -167,6 +171,7 @@ private:
     graph::TextureId output_, display_, depth_;
     gdi::TextureHandle outputTexture_;
     gdi::FenceValue lastFence_ = 0;
+    bool displayInShading_ = false;
 };
 
 // Lights walked per pixel in one frame of `scene` rendered with `settings` by a renderer of its

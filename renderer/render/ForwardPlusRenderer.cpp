@@ -1,6 +1,7 @@
 #include "render/ForwardPlusRenderer.h"
 
 #include "render/ClusterLightGrid.h"
+#include "render/PostProcess.h"
 
 namespace fe::render {
 
@@ -15,12 +16,20 @@ ForwardPlusRenderer::ForwardPlusRenderer(TechniqueContext& c, Lists lists) : Tec
 void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
                                   graph::TextureId depth) {
     const ForwardTargets t = forwardTargets(g, output, depth);
-    const MeshPassTargets targets = t.formats;
+    MeshPassTargets targets = t.formats;
+    // The display image as a second target where the renderer asks for it (displayInShading):
+    // cleared as the display pass shows an empty pixel (background 0), written by the shading.
+    const graph::TextureId display = culling_ ? ctx_.display : graph::TextureId{};
+    if (display.valid()) {
+        targets.colorFormats.push_back(kDisplayFormat);
+        targets.displayTonemap = uint32_t(ctx_.settings.tonemap);
+    }
     // As forward-zprepass: the pre-pass clears the radiance target too (one attachment layout).
     g.addPass(
         "zprepass",
         [&](graph::PassBuilder& b) {
             b.colorTarget(t.color);
+            if (display.valid()) b.colorTarget(display, gdi::LoadOp::Clear, {0, 0, 0, 1});
             b.depthTarget(t.depth);
             if (culling_ && t.depth != t.sceneDepth)
                 b.resolve(t.depth, t.sceneDepth);  // culling reads one sample
@@ -50,6 +59,7 @@ void ForwardPlusRenderer::declare(graph::RenderGraph& g, graph::TextureId output
             if (culling_) b.sample(tiles);
             if (clustersRead) ClusterLightGrid::read(b, clusters);
             b.colorTarget(t.color, gdi::LoadOp::Load);
+            if (display.valid()) b.colorTarget(display, gdi::LoadOp::Load);
             b.depthTarget(t.depth, gdi::LoadOp::Load);
             t.resolveIn(b);
         },

@@ -80,9 +80,11 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .material = depthOnly ? materialFeatures &
                                     (ShaderFeatures::kBaseTextures | ShaderFeatures::kAlphaMask)
                               : materialFeatures};
-    std::vector<uint32_t> key = {
-        uint32_t(pass),  uint32_t(cull),      uint32_t(face),      uint32_t(targets.depthFormat),
-        targets.samples, features.lightTypes, features.brdfModels, features.material};
+    std::vector<uint32_t> key = {uint32_t(pass),        uint32_t(cull),
+                                 uint32_t(face),        uint32_t(targets.depthFormat),
+                                 targets.samples,       features.lightTypes,
+                                 features.brdfModels,   features.material,
+                                 targets.displayTonemap};
     for (gdi::Format f : targets.colorFormats) key.push_back(uint32_t(f));
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
@@ -145,7 +147,11 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
                                  lightsVariant("scene/forward_shadowed_cube.frag")),
                         false, gdi::CompareOp::Equal, "forward shadowed cube"};
             case MeshPass::ForwardTiled:
-                // Multisampled: the variant whose fragments outside their tile's bounds walk their cluster's list.
+                // Multisampled: the variant whose fragments outside their tile's bounds walk their
+                // cluster's list; with a second target, the one writing the display image too.
+                if (targets.colorFormats.size() == 2)
+                    return {listShader(forwardTiledDisplayFs_, "forward_plus", "FE_DISPLAY_OUT"),
+                            false, gdi::CompareOp::Equal, "forward tiled to display"};
                 return targets.samples > 1
                            ? State{listShader(forwardTiledMsaaFs_, "forward_plus",
                                               "FE_MULTISAMPLED"),
@@ -189,6 +195,9 @@ gdi::PipelineHandle GeometryRenderer::pipeline(MeshPass pass, const MeshPassTarg
         .debugName = st.name,
     };
     d.specialization = features.constantsFor(device_, {d.vertexShader, d.fragmentShader});
+    if (pass == MeshPass::ForwardTiled && targets.colorFormats.size() == 2)
+        d.specialization.push_back(gdi::SpecializationConstant::of(
+            ShaderFeatures::kDisplayTonemapId, targets.displayTonemap));
     if (pass == MeshPass::Visibility) {  // no vertex buffers: the vertex shader pulls its vertices
         d.vertexBuffers.clear();
     }

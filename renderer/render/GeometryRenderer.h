@@ -44,6 +44,9 @@ struct MeshPassTargets {
     std::vector<gdi::Format> colorFormats;
     gdi::Format depthFormat = gdi::Format::D32F;
     uint32_t samples = 1;
+    // ForwardTiled with a second colour target: the display image, written through this tone
+    // mapper (shading::Tonemap's value; SceneRenderer::displayInShading).
+    uint32_t displayTonemap = 0;
 };
 
 class GeometryRenderer {
@@ -82,7 +85,8 @@ private:
     std::map<std::vector<uint32_t>, gdi::PipelineHandle> pipelines_;
     gdi::ShaderHandle forwardShadowedFs_, forwardShadowedCubeFs_;
     gdi::ShaderHandle forwardIblFs_, lppMaterialIblFs_;  // with an environment (setEnvironment)
-    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardClusteredFs_;
+    gdi::ShaderHandle forwardTiledFs_, forwardTiledMsaaFs_, forwardTiledDisplayFs_,
+        forwardClusteredFs_;
     gdi::ShaderHandle visibilityVs_, visibilityFs_;
     gdi::ShaderHandle transmissionFs_;
     gdi::ShaderHandle shader(gdi::ShaderHandle& made, gdi::ShaderStage stage,

@@ -130,6 +130,10 @@ struct RenderSettings {
     // Also produce the displayable image (RGBA8_SRGB) on the GPU; without it the graph culls
     // the post-processing passes.
     bool displayImage = false;
+    // forward-plus writes the display image in its shading pass, one full-screen pass fewer,
+    // where nothing after that pass changes L_o (SceneRenderer::displayInShading: the same
+    // pixels). false: always the display pass (to compare the two).
+    bool displayInShading = true;
     // Alias transient memory (false: every transient texture has memory of its own).
     bool aliasing = true;
 };

@@ -23,6 +23,8 @@ namespace fe::render {
 struct ShaderFeatures {
     // constant_id of each (fe_shading.glsl, fe_material.glsl).
     static constexpr uint32_t kLightTypesId = 200, kBrdfModelsId = 201, kMaterialId = 202;
+    // The tone mapper of forward-plus's display output (fe_forward_pass.glsl, FE_DISPLAY_OUT).
+    static constexpr uint32_t kDisplayTonemapId = 205;
     // FE_LIGHT_TYPES: the light types the scene's lights have.
     static constexpr uint32_t kDirectional = 1, kPoint = 2, kSpot = 4, kAllLights = 7;
     // FE_BRDF_MODELS: the BRDFs the pipeline may shade with (both: frame.shading.x picks).

@@ -48,6 +48,10 @@ struct TechniqueContext {
     // The light cluster grid, when the technique reads it (TechniqueInfo::clusters) or the scene
     // has blended surfaces (the translucent pass reads it) and the device has compute shaders.
     ClusterLightGrid* clusters = nullptr;
+    // The display image (kDisplayFormat) for a technique that writes it in its shading pass
+    // (TechniqueInfo::writesDisplay), when nothing after its passes changes L_o
+    // (SceneRenderer::displayInShading); invalid otherwise. Set before each declare().
+    graph::TextureId display;
 };
 
 // The scene shaders' specialization for this frame's light passes (ShaderFeatures): the scene's
@@ -134,6 +138,8 @@ struct TechniqueInfo {
     // Shades from a G-buffer (base colour, metallic, normal, roughness, emissive): the material's
     // dielectric Fresnel (KHR_materials_ior / specular) is not there, so 0.04 and 1 are used.
     bool gbuffer = false;
+    // Can write the display image in its shading pass (TechniqueContext::display): forward-plus.
+    bool writesDisplay = false;
     // Evaluates every material input of the glTF model under `brdf` (what materialWarnings asks).
     bool fullMaterial(shading::Brdf brdf) const {
         return !gbuffer && !separableBrdf && brdf == shading::Brdf::Gltf;

@@ -34,6 +34,14 @@ vec3 feTransmittedScene(SurfacePoint s, float roughnessUnclamped) {
     return weight * textureLod(transmittedScene, uv, lod).rgb;
 }
 #endif
+#ifdef FE_DISPLAY_OUT
+// forward-plus writing the display image itself where nothing after its shading pass changes L_o
+// (SceneRenderer::displayInShading): what the display pass (fe_display_pass.glsl) makes of this
+// L_o with background 0, in the same fragment, one full-screen pass fewer.
+#include "fe_tonemap.glsl"
+layout(constant_id = 205) const uint FE_DISPLAY_TONEMAP = 0u;  // RenderSettings::tonemap
+layout(location = 1) out vec4 outDisplay;
+#endif
 #ifdef FE_TILE_LISTS
 // forward-plus's list for a fragment: its tile's; under MSAA (FE_MULTISAMPLED) its cluster's
 // where the fragment lies outside the depth bounds its tile was culled for.
@@ -126,4 +134,7 @@ void main() {
     }
     // Alpha only matters for BLEND draws (source-over); opaque targets ignore it.
     outRadiance = vec4(L, object.params.w == 2.0 ? m.alpha : 1.0);
+#ifdef FE_DISPLAY_OUT
+    outDisplay = vec4(feDisplayedBy(frame.cameraPosition.w * L, FE_DISPLAY_TONEMAP), 1.0);
+#endif
 }

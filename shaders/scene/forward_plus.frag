@@ -7,6 +7,10 @@
 // fe-variant: FE_LAYERED+FE_LIGHTS_IN_STORAGE
 // fe-variant: FE_MULTISAMPLED+FE_LAYERED
 // fe-variant: FE_MULTISAMPLED+FE_LAYERED+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_DISPLAY_OUT (the display image written too: SceneRenderer::displayInShading)
+// fe-variant: FE_DISPLAY_OUT+FE_LIGHTS_IN_STORAGE
+// fe-variant: FE_DISPLAY_OUT+FE_LAYERED
+// fe-variant: FE_DISPLAY_OUT+FE_LAYERED+FE_LIGHTS_IN_STORAGE
 // Forward+ shading (forward-plus): fe_forward_pass.glsl over the pixel's tile light list.
 #define FE_TILE_LISTS
 #include "fe_forward_pass.glsl"

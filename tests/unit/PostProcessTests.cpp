@@ -23,13 +23,19 @@ struct Rendered {
     gdi::Image linear, display;
     graph::MemoryReport memory;
     graph::AliasingMode aliasing;
+    bool displayInShading = false;
+    std::set<std::string> passes;  // those the graph ran (not culled)
 };
 
 Rendered renderWith(gdi::Device& d, const assets::Scene& scene, render::RenderSettings s) {
     s.displayImage = true;
     render::SceneRenderer r(d, scene, s);
     r.renderFrame();
-    return {r.readOutput(), r.readDisplay(), r.graph().memory(), r.graph().aliasing()};
+    std::set<std::string> passes;
+    for (const graph::PassInfo& p : r.graph().passes())
+        if (!p.culled) passes.insert(p.name);
+    return {r.readOutput(),       r.readDisplay(),      r.graph().memory(),
+            r.graph().aliasing(), r.displayInShading(), std::move(passes)};
 }
 
 // The largest channel difference of pixel (x, y) between two RGBA8 images, in 1/255 steps.
@@ -155,6 +161,44 @@ TEST_P(PostProcess, GpuTonemappersMatchTheCpuOperators) {
             }
         EXPECT_LE(worst, 1.5) << shading::tonemapName(t);
         EXPECT_GT(bright, 100u) << "the scene must reach past 1 for the test to mean anything";
+    }
+}
+
+// forward-plus writes the display image in its shading pass where nothing after it changes L_o
+// (SceneRenderer::displayInShading): the display pass's image, pixel for pixel, under each tone
+// mapper (over-exposed so the curves' upper parts count), with no display pass in the frame; and
+// the display pass again wherever something after the shading reads or changes L_o.
+TEST_P(PostProcess, ForwardPlusWritesTheDisplayPassImageItself) {
+    const assets::Scene scene = assets::makeBuiltinScene("spheres", {.sphereGrid = 3});
+    for (Tonemap t : {Tonemap::Clamp, Tonemap::Aces, Tonemap::PbrNeutral}) {
+        render::RenderSettings s{.technique = "forward-plus", .width = 64, .height = 48};
+        s.exposure = 3.0f;
+        s.tonemap = t;
+        const Rendered fused = renderWith(*device, scene, s);
+        s.displayInShading = false;
+        const Rendered separate = renderWith(*device, scene, s);
+        const char* name = shading::tonemapName(t);
+        EXPECT_TRUE(fused.displayInShading) << name;
+        EXPECT_FALSE(fused.passes.count("display")) << name;
+        EXPECT_FALSE(separate.displayInShading) << name;
+        EXPECT_TRUE(separate.passes.count("display")) << name;
+        const std::vector<double> diffs =
+            channelDiffs(fused.display, separate.display, [](uint32_t, uint32_t) { return true; });
+        EXPECT_EQ(*std::max_element(diffs.begin(), diffs.end()), 0.0) << name;
+        EXPECT_GT(distinctColours(fused.display), 20u)
+            << name << ": a lit scene, not a cleared image";
+    }
+    // What comes after the shading keeps the display pass: antialiasing, a debug view, MSAA.
+    render::RenderSettings fxaa{.technique = "forward-plus", .width = 64, .height = 48};
+    fxaa.antiAliasing = render::AntiAliasing::Fxaa;
+    render::RenderSettings debug{.technique = "forward-plus", .width = 64, .height = 48};
+    debug.debugView = "depth";
+    render::RenderSettings msaa{.technique = "forward-plus", .width = 64, .height = 48, .msaa = 4};
+    for (const render::RenderSettings& s : {fxaa, debug, msaa}) {
+        const Rendered r = renderWith(*device, scene, s);
+        EXPECT_FALSE(r.displayInShading);
+        EXPECT_TRUE(
+            r.passes.count(s.antiAliasing == render::AntiAliasing::Fxaa ? "tonemap" : "display"));
     }
 }
 
