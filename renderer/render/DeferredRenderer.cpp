@@ -43,7 +43,7 @@ void DeferredRenderer::declare(graph::RenderGraph& g, graph::TextureId output,
         [this](graph::PassContext& pc) {
             pc.beginRenderPass();
             gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, true);
-            volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
+            volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants, ctx_.frame);
             pc.cmd.endRenderPass();
         });
     if (shadowed_)

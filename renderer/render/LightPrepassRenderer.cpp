@@ -70,7 +70,7 @@ void LightPrepassRenderer::declare(graph::RenderGraph& g, graph::TextureId outpu
             pc.beginRenderPass();
             pc.cmd.setTexture(kSlotGBuffer1, pc.texture(normals), ctx_.pointSampler);
             pc.cmd.setTexture(kSlotDepth, pc.texture(sceneDepth), ctx_.pointSampler);
-            volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants);
+            volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene, ctx_.frameConstants, ctx_.frame);
             pc.cmd.endRenderPass();
         });
     if (shadowed_)

@@ -11,6 +11,13 @@
 
 namespace fe::render {
 
+// Whether a ranged light's sphere of influence lies wholly outside the view: beyond one of the
+// four side planes of `seen`'s frustum (eye-relative clip space, viewProjFromEye, as
+// light_volume.vert draws; the planes meet at the eye, so what lies behind it is out too). Such
+// a light's volume covers no pixel, and outside its range the fragment shader adds nothing, so
+// LightVolumes skips it without changing a pixel. Directional and unbounded lights: never.
+bool lightOutOfView(const assets::Light& light, const FrameConstants& seen);
+
 class LightVolumes {
 public:
     // `fragmentShader` decides what a volume computes (deferred radiance or I-buffer sums);
@@ -19,12 +26,14 @@ public:
     LightVolumes(gdi::Device& device, const std::string& fragmentShader,
                  std::vector<gdi::Format> targets);
 
-    // Draws the lights without shadows, [0, scene.unshadowedLightCount()).
+    // Draws the lights without shadows, [0, scene.unshadowedLightCount()). `seen`: the frame's
+    // constants on the CPU, whose camera culls the lights whose range lies outside the view.
     void draw(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
-              const UploadAllocation& frame);
+              const UploadAllocation& frame, const FrameConstants& seen);
     // Draws lights [first, first + count) of the light buffer (a shadowed light's own pass).
     void drawRange(gdi::CommandList& cmd, CommandQueue& queue, const GpuScene& scene,
-                   const UploadAllocation& frame, uint32_t first, uint32_t count);
+                   const UploadAllocation& frame, const FrameConstants& seen, uint32_t first,
+                   uint32_t count);
 
     struct Counts {
         uint32_t spheres = 0, cones = 0, fullscreen = 0;

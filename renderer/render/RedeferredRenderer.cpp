@@ -171,7 +171,7 @@ void RedeferredRenderer::declarePunctual(graph::RenderGraph& g, const IBuffer& i
                 pc.beginRenderPass();
                 gbuffer_.bind(pc.cmd, pc, ctx_.pointSampler, false);
                 volumes_->draw(pc.cmd, ctx_.queue, ctx_.scene,
-                               frame ? frame() : ctx_.frameConstants);
+                               frame ? frame() : ctx_.frameConstants, ctx_.frame);
                 pc.cmd.endRenderPass();
             });
     }

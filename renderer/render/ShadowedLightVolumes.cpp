@@ -40,7 +40,7 @@ void ShadowedLightVolumes::declare(graph::RenderGraph& g,
                 ctx_.shadows->bind(pc.cmd, pc, light);
                 LightVolumes& v = light.kind == ShadowKind::Cube ? *cubeVolumes_ : *volumes_;
                 v.drawRange(pc.cmd, ctx_.queue, ctx_.scene, frame ? frame() : ctx_.frameConstants,
-                            light.gpuLight, 1);
+                            ctx_.frame, light.gpuLight, 1);
                 pc.cmd.endRenderPass();
             });
     });

@@ -27,6 +27,7 @@
 #include "integration/SceneRenderer.h"
 #include "render/ClusterLightGrid.h"
 #include "render/GpuScene.h"
+#include "render/LightVolumes.h"
 
 using namespace fe;
 
@@ -445,6 +446,38 @@ TEST_P(RenderAccuracy, TileListOverflowShadesEveryLight) {
     for (const char* t : {"forward-plus", "clustered-forward"}) {
         Stats l = compare(render(t), forward, 1e-6, 1e-6);
         EXPECT_EQ(l.fractionOver, 0.0) << t << ": max relative error " << l.maxRel;
+    }
+}
+
+// Light volumes outside the view are not drawn (lightOutOfView): a light ahead is kept, one
+// behind the eye or beside the frustum by more than its range is culled, one whose range
+// reaches into the view is kept; the same 1e5 units from the origin. That culling changes no
+// pixel is TiledCullingDropsNoLight's (deferred's volumes against deferred-tiled's lists over
+// builtin:lights, whose lights reach well beyond the view).
+TEST(LightVolumeCulling, OnlyLightsWhollyOutsideTheViewAreCulled) {
+    for (const glm::vec3 eye : {glm::vec3(0.0f), glm::vec3(1e5f, 0.0f, 1e5f)}) {
+        render::FrameConstants f;
+        f.cameraPosition = glm::vec4(eye, 1.0f);
+        // Looking down -z, 90 degrees vertically, 2:1.
+        f.viewProjFromEye = glm::perspectiveRH_ZO(glm::radians(90.0f), 2.0f, 0.1f, 100.0f);
+        auto light = [&](glm::vec3 offset, float range) {
+            assets::Light l;
+            l.type = assets::LightType::Point;
+            l.position = eye + offset;
+            l.range = range;
+            return l;
+        };
+        EXPECT_FALSE(render::lightOutOfView(light({0, 0, -5}, 1), f));
+        EXPECT_TRUE(render::lightOutOfView(light({0, 0, 5}, 1), f));      // behind the eye
+        EXPECT_FALSE(render::lightOutOfView(light({0, 0, 0.5f}, 1), f));  // reaching past it
+        EXPECT_TRUE(render::lightOutOfView(light({13, 0, -5}, 1), f));    // right: x > 2z + r*sqrt5
+        EXPECT_FALSE(render::lightOutOfView(light({11, 0, -5}, 1), f));   // its range reaches in
+        EXPECT_TRUE(render::lightOutOfView(light({0, -7.5f, -5}, 1.5f), f));  // below
+        EXPECT_FALSE(render::lightOutOfView(light({0, -7.5f, -5}, 2), f));
+        assets::Light sun = light({0, 0, 50}, 0);  // unbounded: never culled
+        EXPECT_FALSE(render::lightOutOfView(sun, f));
+        sun.type = assets::LightType::Directional;
+        EXPECT_FALSE(render::lightOutOfView(sun, f));
     }
 }
 
