@@ -65,4 +65,6 @@ constexpr uint32_t kSlotMorphTargets = 51;  // ... the morph targets' deltas
 constexpr uint32_t kSlotPose = 52;          // ... the frame's joint matrices and morph weights
 constexpr uint32_t kSlotDeformations = 53;  // ... what each deformed primitive reads and writes
 constexpr uint32_t kSlotDeformGroups = 54;  // ... and which of them each work group deforms
+constexpr uint32_t kSlotVisibleLights =
+    55;  // the lights the light-culling pass walks (TileLightCulling::lightsInView)
 }  // namespace fe::render

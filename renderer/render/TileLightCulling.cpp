@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "fe/gdi/ShaderRegistry.h"
+#include "render/LightVolumes.h"
 #include "render/ShaderFeatures.h"
 #include "render/ShaderSlots.h"
 
@@ -51,6 +52,18 @@ void TileLightCulling::bindLights(gdi::CommandList& cmd, const TechniqueContext&
     c.scene.bindLights(cmd, kSlotLights, uniformLights);
 }
 
+std::vector<uint32_t> TileLightCulling::lightsInView(const std::vector<assets::Light>& lights,
+                                                     uint32_t count, const FrameConstants& seen,
+                                                     bool uniformBlock) {
+    std::vector<uint32_t> block(4, 0u);
+    const uint32_t end = std::min<uint32_t>(count, uint32_t(lights.size()));
+    for (uint32_t i = 0; i < end; ++i)
+        if (!lightOutOfView(lights[i], seen)) block.push_back(i);
+    block[0] = uint32_t(block.size() - 4);
+    if (uniformBlock) block.resize(4 + GpuScene::kUniformLights, 0u);
+    return block;
+}
+
 void TileLightCulling::bindFrameAndLights(gdi::CommandList& cmd,
                                           gdi::PipelineHandle pipeline) const {
     cmd.setPipeline(pipeline);
@@ -87,6 +100,14 @@ graph::TextureId TileLightCulling::declare(graph::RenderGraph& g, graph::Texture
             bindFrameAndLights(pc.cmd, pipeline_);
             pc.cmd.setTexture(kSlotDepth, pc.texture(depth), ctx_.pointSampler);
             pc.cmd.setStorageTexture(kSlotTileLightsOut, pc.texture(lists));
+            const UploadAllocation inView = ctx_.queue.upload(gdi::bytesOf(lightsInView(
+                ctx_.scene.lights(), ctx_.frame.counts.x, ctx_.frame, uniformLights_)));
+            if (uniformLights_)
+                pc.cmd.setUniformBuffer(kSlotVisibleLights, inView.buffer, inView.offset,
+                                        inView.size);
+            else
+                pc.cmd.setStorageBuffer(kSlotVisibleLights, inView.buffer, inView.offset,
+                                        inView.size);
             // With MSAA (forward-plus) the depth is sample 0's and fragments shade at pixel centres;
             // the multisampled variant reads every sample instead.
             if (!multisampledDepth_)

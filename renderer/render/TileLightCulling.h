@@ -45,6 +45,15 @@ public:
                                                    bool layered = false, bool multisampled = false);
     static void bindLights(gdi::CommandList& cmd, const TechniqueContext& c, bool uniformLights);
 
+    // The light-culling pass's VisibleLights block (tile_light_culling.comp), made each frame: a
+    // header of four words (the first the count), then the indices below `count` of the lights not
+    // wholly outside `seen`'s view (lightOutOfView), ascending; padded to the uniform block's
+    // size (GpuScene::kUniformLights indices) when `uniformBlock`. The lists keep the lights'
+    // own indices, so the passes that read them are unchanged.
+    static std::vector<uint32_t> lightsInView(const std::vector<assets::Light>& lights,
+                                              uint32_t count, const FrameConstants& seen,
+                                              bool uniformBlock);
+
     // List tiles are finer than the shading passes' 16x16 work groups (FE_LIST_TILE in
     // fe_tile_culling.glsl): shorter lists, each invocation reading its own pixel's.
     static constexpr uint32_t kTileSize = 8;

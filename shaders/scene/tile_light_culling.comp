@@ -26,6 +26,25 @@ layout(binding = FE_SLOT_DEPTH) uniform sampler2DMS depthTexture;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
 #endif
 layout(binding = FE_SLOT_TILE_LIGHTS_OUT, r32ui) uniform writeonly uimage2D lists;
+// The lights the loop walks (TileLightCulling::lightsInView): the frame's lights less those wholly
+// outside the view, ascending, their count in the header's x. A light outside the view lights no
+// surface seen, yet its sphere may touch a tile's box (a box around a slice of the frustum reaches
+// past it), and every light the loop walks costs each block an iteration: 107 of builtin:lights'
+// 512 are out of its default view (docs/MEASUREMENT_LOG.md).
+#define FE_SLOT_VISIBLE_LIGHTS 55
+#ifdef FE_LIGHTS_IN_STORAGE
+layout(binding = FE_SLOT_VISIBLE_LIGHTS, std430) readonly buffer VisibleLights {
+    uvec4 visibleHeader;
+    uint visibleIndices[];
+};
+uint feVisibleLight(uint k) { return visibleIndices[k]; }
+#else
+layout(binding = FE_SLOT_VISIBLE_LIGHTS, std140) uniform VisibleLights {
+    uvec4 visibleHeader;
+    uvec4 visibleWords[FE_UNIFORM_LIGHTS / 4];
+};
+uint feVisibleLight(uint k) { return visibleWords[k >> 2u][k & 3u]; }
+#endif
 // Whether culling.widen may be set (TileLightCulling::kWidenBoundsId, on under MSAA): a
 // constant, so that at one sample the slope's four fetches a pixel are not made at all.
 layout(constant_id = 203) const bool FE_WIDEN_BOUNDS = true;
@@ -113,7 +132,8 @@ void main() {
     uint count[16];
     for (int q = 0; q < 16; ++q) count[q] = 0u;
     if (blockLo.x <= blockHi.x) {  // the block has surfaces
-        for (uint i = 0u; i < frame.counts.x; ++i) {
+        for (uint v = 0u; v < visibleHeader.x; ++v) {
+            const uint i = feVisibleLight(v);
             const GpuLight L = feLight(i);
             if (!feLightTouchesBox(L, blockLo, blockHi)) continue;
             for (int t = 0; t < 4; ++t) {

@@ -28,6 +28,7 @@
 #include "render/ClusterLightGrid.h"
 #include "render/GpuScene.h"
 #include "render/LightVolumes.h"
+#include "render/TileLightCulling.h"
 
 using namespace fe;
 
@@ -479,6 +480,40 @@ TEST(LightVolumeCulling, OnlyLightsWhollyOutsideTheViewAreCulled) {
         sun.type = assets::LightType::Directional;
         EXPECT_FALSE(render::lightOutOfView(sun, f));
     }
+}
+
+// The light-culling pass walks the lights in view (TileLightCulling::lightsInView): the count in
+// the header, the indices below the frame's light count in order, the lights wholly outside the
+// view left out, unbounded and directional lights kept; padded for the uniform block.
+TEST(TileLightCulling, WalksOnlyTheLightsInViewInOrder) {
+    render::FrameConstants f;
+    f.cameraPosition = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    f.viewProjFromEye = glm::perspectiveRH_ZO(glm::radians(90.0f), 2.0f, 0.1f, 100.0f);
+    auto light = [](glm::vec3 position, float range, assets::LightType type) {
+        assets::Light l;
+        l.type = type;
+        l.position = position;
+        l.range = range;
+        return l;
+    };
+    const auto point = assets::LightType::Point;
+    const std::vector<assets::Light> lights = {
+        light({0, 0, -5}, 1, point),                           // 0: in view
+        light({0, 0, 5}, 1, point),                            // 1: behind the eye
+        light({11, 0, -5}, 1, point),                          // 2: its range reaches in
+        light({13, 0, -5}, 1, point),                          // 3: right of the view
+        light({0, 0, 50}, 0, point),                           // 4: unbounded
+        light({0, 0, 50}, 1, assets::LightType::Directional),  // 5: directional
+        light({0, 0, -5}, 1, point),                           // 6: in view, beyond the count
+    };
+    const std::vector<uint32_t> block = render::TileLightCulling::lightsInView(lights, 6, f, false);
+    EXPECT_EQ(block, (std::vector<uint32_t>{4, 0, 0, 0, 0, 2, 4, 5}));
+    const std::vector<uint32_t> uniform =
+        render::TileLightCulling::lightsInView(lights, 6, f, true);
+    ASSERT_EQ(uniform.size(), 4u + render::GpuScene::kUniformLights);
+    EXPECT_TRUE(std::equal(block.begin(), block.end(), uniform.begin()));
+    EXPECT_EQ(render::TileLightCulling::lightsInView(lights, 0, f, false),
+              (std::vector<uint32_t>{0, 0, 0, 0}));
 }
 
 // The cluster grid's slicing (fe_clusters.glsl reads it): slice 0 ends at the near split, the
