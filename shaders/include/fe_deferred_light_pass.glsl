@@ -5,7 +5,7 @@
 #include "fe_shadow.glsl"
 #endif
 #include "fe_gbuffer.glsl"
-layout(location = 0) flat in uint vLightIndex;
+layout(location = 0) flat in vec4 vLightWords[4];  // the volume's light (light_volume.vert)
 layout(location = 0) out vec4 outRadiance;
 void main() {
     const ivec2 p = ivec2(gl_FragCoord.xy);
@@ -16,7 +16,7 @@ void main() {
         const float depth = feGBufferDepth(p, k, shadings);
         if (depth >= 1.0 || feGBufferUnlit(texelFetch(gb2, p, k).a)) continue;  // background or unlit
         const SurfacePoint s = feGBufferSurface(p, depth, texelFetch(gb0, p, k), texelFetch(gb1, p, k));
-        SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), s.Pe);
+        SurfaceLight l = feEvaluateLightFromEye(GpuLight(vLightWords[0], vLightWords[1], vLightWords[2], vLightWords[3]), s.Pe);
 #ifdef FE_SHADOWED
         l.E *= feShadowVisibility(s.P, s.n);
 #endif

@@ -9,7 +9,7 @@
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D gb1;
 layout(binding = FE_SLOT_GBUFFER2) uniform sampler2D gb2;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(location = 0) flat in uint vLightIndex;
+layout(location = 0) flat in vec4 vLightWords[4];  // the volume's light (light_volume.vert)
 layout(location = 0) out vec4 outLdg;
 layout(location = 1) out vec4 outLsg1;
 layout(location = 2) out vec4 outLsg2;
@@ -27,7 +27,7 @@ void main() {
     acc.Ldg = vec3(0.0);
     acc.Lsg1 = vec3(0.0);
     acc.Lsg2 = vec3(0.0);
-    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), Pe);
+    SurfaceLight l = feEvaluateLightFromEye(GpuLight(vLightWords[0], vLightWords[1], vLightWords[2], vLightWords[3]), Pe);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);  // at the representative pixel, like the rest of the sums
 #endif

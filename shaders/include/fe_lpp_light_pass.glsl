@@ -6,7 +6,7 @@
 // FE_SHADOWED: darkened by the light's shadow map (fe_shadow.glsl).
 layout(binding = FE_SLOT_GBUFFER1) uniform sampler2D normalTexture;
 layout(binding = FE_SLOT_DEPTH) uniform sampler2D depthTexture;
-layout(location = 0) flat in uint vLightIndex;
+layout(location = 0) flat in vec4 vLightWords[4];  // the volume's light (light_volume.vert)
 layout(location = 0) out vec4 outLight;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -18,7 +18,7 @@ void main() {
     vec3 P = frame.cameraPosition.xyz + Pe;  // the eye ray at the stored depth
     vec3 wo = feViewDirection(Pe);
     IlluminationSums acc = IlluminationSums(vec3(0.0), vec3(0.0), vec3(0.0));
-    SurfaceLight l = feEvaluateLightFromEye(feLight(vLightIndex), Pe);
+    SurfaceLight l = feEvaluateLightFromEye(GpuLight(vLightWords[0], vLightWords[1], vLightWords[2], vLightWords[3]), Pe);
 #ifdef FE_SHADOWED
     l.E *= feShadowVisibility(P, n);
 #endif

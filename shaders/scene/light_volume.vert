@@ -6,10 +6,16 @@
 layout(location = 0) in vec3 inPosition;  // unit sphere / unit cone (apex at 0, base at z=1) / NDC triangle
 layout(location = 1) in uint inLightIndex; // per instance
 layout(location = 2) in uint inShape;      // per instance: 0 full screen, 1 sphere, 2 cone
-layout(location = 0) flat out uint vLightIndex;
+// The light itself, for the fragment shader (fe_deferred_light_pass.glsl, fe_illumination_pass.glsl,
+// fe_lpp_light_pass.glsl): flat inputs are set up once a triangle, where a storage-buffer read in
+// the fragment shader is a loop over the SIMD lanes on CPU rasterizers, for every fragment.
+layout(location = 0) flat out vec4 vLightWords[4];
 void main() {
-    vLightIndex = inLightIndex;
     GpuLight L = feLight(inLightIndex);
+    vLightWords[0] = L.positionRange;
+    vLightWords[1] = L.colorIntensity;
+    vLightWords[2] = L.directionType;
+    vLightWords[3] = L.spotScaleOffset;
     if (inShape == 0u) {
         gl_Position = vec4(inPosition.xy, 0.0, 1.0);
         return;
