@@ -132,7 +132,11 @@ void main() {
     uint count[16];
     for (int q = 0; q < 16; ++q) count[q] = 0u;
     if (blockLo.x <= blockHi.x) {  // the block has surfaces
-        for (uint v = 0u; v < visibleHeader.x; ++v) {
+        // The bound is not the uniform alone: lavapipe (Mesa 22.3) inlines a uniform that ends a
+        // loop, compiling a variant of the shader for each value it sees (each light count in
+        // view), and under LeakSanitizer those variants outlived the device.
+        // gl_WorkGroupID.y is 0 (one row of groups), which the driver cannot know.
+        for (uint v = 0u; v < visibleHeader.x + gl_WorkGroupID.y; ++v) {
             const uint i = feVisibleLight(v);
             const GpuLight L = feLight(i);
             if (!feLightTouchesBox(L, blockLo, blockHi)) continue;
