@@ -47,6 +47,7 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/feConfig.cmake.in ${CM
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/feConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/feConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/FeShaders.cmake ${PROJECT_SOURCE_DIR}/cmake/fe-glslang.sh
+              ${PROJECT_SOURCE_DIR}/cmake/fe-spirv-embed.sh
         DESTINATION ${FE_CMAKE_DIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/include/ DESTINATION ${CMAKE_INSTALL_DATADIR}/fe/shaders/include)
 
