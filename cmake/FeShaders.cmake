@@ -9,8 +9,8 @@ find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 # glslangValidator through a wrapper that adds, to an error on a one-API built-in
 # (gl_VertexIndex, gl_VertexID, ...), the portable macro to write instead.
 set(FE_GLSLANG_WRAPPER ${CMAKE_CURRENT_LIST_DIR}/fe-glslang.sh)
-# The Vulkan encoding through spirv-opt (Debian's spirv-tools, which the engine needs anyway):
-# fe-spirv-embed.sh says why. Without spirv-opt it is embedded as glslang wrote it.
+# Graphics stages through spirv-opt (Debian's spirv-tools, which the engine needs anyway), both
+# encodings: fe-spirv-embed.sh says why. Without spirv-opt they are embedded as glslang wrote them.
 find_program(FE_SPIRV_OPT spirv-opt)
 set(FE_SPIRV_EMBED ${CMAKE_CURRENT_LIST_DIR}/fe-spirv-embed.sh)
 # The engine's GLSL includes (fe_common.glsl, ...): the source tree's, or the installed
@@ -90,20 +90,24 @@ function(fe_add_shaders target)
       else()
       if(FE_SPIRV_OPT AND NOT abs MATCHES "\\.comp$")  # compute: fe-spirv-embed.sh says why not
         set(vk_spv ${out_dir}/s${index}_vk.spv)
-        set(vk_commands
+        set(gl_spv ${out_dir}/s${index}_gl.spv)
+        set(commands
             COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -DFE_VULKAN=1 ${define}
                     -I${FE_SHADER_INCLUDE_DIR} --quiet -o ${vk_spv} ${abs}
-            COMMAND sh ${FE_SPIRV_EMBED} ${FE_SPIRV_OPT} ${vk_spv} ${vk_h} fe_spv_vk_${index})
+            COMMAND sh ${FE_SPIRV_EMBED} ${FE_SPIRV_OPT} vulkan1.2 ${vk_spv} ${vk_h} fe_spv_vk_${index}
+            COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -G -DFE_OPENGL=1 ${define}
+                    -I${FE_SHADER_INCLUDE_DIR} --quiet -o ${gl_spv} ${abs}
+            COMMAND sh ${FE_SPIRV_EMBED} ${FE_SPIRV_OPT} opengl4.5 ${gl_spv} ${gl_h} fe_spv_gl_${index})
       else()
-        set(vk_commands
+        set(commands
             COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -V --target-env vulkan1.2 -DFE_VULKAN=1 ${define}
-                    -I${FE_SHADER_INCLUDE_DIR} --quiet --vn fe_spv_vk_${index} -o ${vk_h} ${abs})
+                    -I${FE_SHADER_INCLUDE_DIR} --quiet --vn fe_spv_vk_${index} -o ${vk_h} ${abs}
+            COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -G -DFE_OPENGL=1 ${define}
+                    -I${FE_SHADER_INCLUDE_DIR} --quiet --vn fe_spv_gl_${index} -o ${gl_h} ${abs})
       endif()
       add_custom_command(
         OUTPUT ${vk_h} ${gl_h}
-        ${vk_commands}
-        COMMAND sh ${FE_GLSLANG_WRAPPER} ${GLSLANG_VALIDATOR} -G -DFE_OPENGL=1 ${define} -I${FE_SHADER_INCLUDE_DIR}
-                --quiet --vn fe_spv_gl_${index} -o ${gl_h} ${abs}
+        ${commands}
         DEPENDS ${abs} ${common_includes} ${FE_SPIRV_EMBED}
         COMMENT "glslang ${name}"
         VERBATIM)

@@ -3,6 +3,7 @@
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
+#include <spirv-tools/optimizer.hpp>  // SPIRV-Tools-opt, which glslang::SPIRV links
 
 #include <fcntl.h>
 #include <poll.h>
@@ -131,8 +132,22 @@ std::string definesOf(const ShaderSourceCompile& s) {
     return lines;
 }
 
+// A graphics stage's encoding through SPIRV-Tools' performance passes, as the build step runs
+// spirv-opt -O on both (cmake/fe-spirv-embed.sh says why, and why not compute stages). Bindings
+// and specialization constants are kept. A module the optimizer refuses stays as glslang wrote it.
+std::vector<uint32_t> optimized(const std::vector<uint32_t>& spirv, bool vulkan) {
+    spvtools::Optimizer optimizer(vulkan ? SPV_ENV_VULKAN_1_2 : SPV_ENV_OPENGL_4_5);
+    optimizer.RegisterPerformancePasses();
+    spvtools::OptimizerOptions options;
+    options.set_preserve_bindings(true);
+    options.set_preserve_spec_constants(true);
+    std::vector<uint32_t> out;
+    if (!optimizer.Run(spirv.data(), spirv.size(), &out, options) || out.empty()) return spirv;
+    return out;
+}
+
 // One encoding: FE_VULKAN for Vulkan 1.2 SPIR-V, FE_OPENGL for GL 4.5's ARB_gl_spirv (as
-// glslangValidator -V and -G with those defines).
+// glslangValidator -V and -G with those defines, and the build step's optimization).
 std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Includer& includer) {
     const EShLanguage stage = glslangStage(s.stage);
     const std::shared_lock inGlslang(glslangInUse());  // see isolatedHlslToGlsl
@@ -168,6 +183,7 @@ std::vector<uint32_t> compileFor(const ShaderSourceCompile& s, bool vulkan, Incl
     glslang::SpvOptions options;
     options.disableOptimizer = false;
     glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &options);
+    if (s.stage != ShaderStage::Compute) return optimized(spirv, vulkan);
     return spirv;
 }
 

@@ -596,8 +596,8 @@ enum class ShaderStage : uint32_t {
 // SPIR-V for both targets, compiled at build time from one GLSL 450 source (see shaders/).
 struct ShaderBinary {
     const char* name = "";
-    std::span<const uint32_t> vulkan;  // glslang -V
-    std::span<const uint32_t> opengl;  // glslang -G, loaded through ARB_gl_spirv
+    std::span<const uint32_t> vulkan;  // glslang -V (graphics stages: then spirv-opt -O)
+    std::span<const uint32_t> opengl;  // glslang -G (likewise), loaded through ARB_gl_spirv
 };
 
 // GLSL or HLSL source compiled at createShader instead of a binary (ShaderCompiler.h: both
