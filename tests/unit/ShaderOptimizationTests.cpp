@@ -71,10 +71,10 @@ TEST(ShaderOptimization, RunTimeGraphicsStagesAreOptimizedWithTheirInterfaceKept
         compileShader({.stage = ShaderStage::Fragment, .text = kFragment, .name = "opt.frag"});
     EXPECT_EQ(functionCalls(bin.vulkan), 0u);  // inlined
     EXPECT_EQ(functionCalls(bin.opengl), 0u);
-    const ShaderInterface vk = reflectShader(bin.vulkan, ShaderStage::Fragment, "main", "opt.frag",
-                                             SpirvRules::Vulkan12);
-    const ShaderInterface gl = reflectShader(bin.opengl, ShaderStage::Fragment, "main", "opt.frag",
-                                             SpirvRules::OpenGL45);
+    const ShaderInterface vk =
+        reflectShader(bin.vulkan, ShaderStage::Fragment, "main", "opt.frag", SpirvRules::Vulkan12);
+    const ShaderInterface gl =
+        reflectShader(bin.opengl, ShaderStage::Fragment, "main", "opt.frag", SpirvRules::OpenGL45);
     expectSameInterface(vk, gl);
     EXPECT_EQ(vk.bindings.size(), 2u);
     EXPECT_EQ(vk.specConstants.size(), 2u);  // the unused one too
